@@ -1,0 +1,233 @@
+"""The heading pipeline: presets, streaming :class:`Pipeline`, :func:`process` and :func:`integrate`.
+
+Units are SI at every API: seconds, rad, rad/s, counter-clockwise positive. Rate parameters also
+accept a degree-per-second spelling with a ``_dps`` suffix (``threshold_dps=0.3``), and
+``initial_heading_deg`` is the degree spelling of ``initial_heading``.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from . import _gyrocore
+from ._arrays import FloatArray, as_float_array
+
+#: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling.
+_RATE_PARAMETERS = ("bias", "offset", "threshold", "hdr_increment", "hdr_turn_threshold")
+
+
+def preset_names() -> list[str]:
+    """Names of the presets, in order of increasing processing (``recommended`` is an alias)."""
+    names, _ = _gyrocore.preset_names()
+    return list(names)
+
+
+def recommended_preset() -> str:
+    """The preset that ``"recommended"`` stands for."""
+    return str(_gyrocore.preset_names()[1])
+
+
+def parameters() -> dict[str, str]:
+    """Every pipeline parameter with its description and unit."""
+    return dict(_gyrocore.parameter_names())
+
+
+def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
+    """Convert ``*_dps`` / ``*_deg`` spellings to the SI parameter names."""
+    si: dict[str, Any] = {}
+    for key, value in overrides.items():
+        if key.endswith("_dps") and key[:-4] in _RATE_PARAMETERS:
+            name, value = key[:-4], None if value is None else math.radians(value)
+        elif key == "initial_heading_deg":
+            name, value = "initial_heading", None if value is None else math.radians(value)
+        else:
+            name = key
+        if name in si:
+            raise ValueError(f"{name} is given twice (as {name} and in degrees)")
+        si[name] = value
+    return si
+
+
+def preset_params(preset: str = "hdr", **overrides: Any) -> dict[str, Any]:
+    """The flat SI parameters of ``preset`` with ``overrides`` applied (validated by the core)."""
+    return dict(_gyrocore.preset_params(preset, _to_si(overrides)))
+
+
+@dataclass(frozen=True, repr=False)
+class HeadingResult:
+    """Per-sample output of the pipeline (all arrays float64, one entry per input sample).
+
+    Attributes:
+        t: timestamps [s], as given.
+        heading: continuous (unwrapped) heading [rad], counter-clockwise positive.
+        rate: corrected rate that was integrated [rad/s].
+        drift: HDR's drift estimate ``-I`` applied to each sample [rad/s] (0 without HDR).
+    """
+
+    t: FloatArray
+    heading: FloatArray
+    rate: FloatArray
+    drift: FloatArray
+
+    @property
+    def heading_deg(self) -> FloatArray:
+        """Heading in degrees."""
+        return np.degrees(self.heading)
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    def __repr__(self) -> str:
+        if len(self.t) == 0:
+            return "HeadingResult(empty)"
+        duration = self.t[-1] - self.t[0]
+        return (
+            f"HeadingResult(n={len(self.t)}, duration={duration:.3f} s, "
+            f"heading {math.degrees(self.heading[0]):.3f} -> {math.degrees(self.heading[-1]):.3f} deg, "
+            f"final drift estimate {math.degrees(self.drift[-1]):.4f} deg/s)"
+        )
+
+
+class Pipeline:
+    """Streaming heading pipeline (correction -> threshold -> low-pass -> HDR -> de-lag -> integrate).
+
+    ``process`` may be called chunk after chunk: the output is bit-identical to one call over the
+    whole log. Pickling keeps the full state, so a pipeline can be stopped and resumed.
+
+    Args:
+        preset: ``raw``, ``static_bias``, ``hong_park``, ``hdr``, ``combined`` or ``recommended``.
+        **overrides: parameters to change (see :func:`parameters`), e.g. ``bias_window=(t0, t1)``,
+            ``bias=0.01`` [rad/s], ``threshold_dps=0.3``, ``hdr_increment=...``.
+    """
+
+    def __init__(self, preset: str = "hdr", **overrides: Any) -> None:
+        si = _to_si(overrides)
+        self._inner = _gyrocore.Pipeline(preset, si)
+        self._preset = preset
+        if preset != "raw" and not any(si.get(k) is not None for k in ("bias", "bias_window", "bias_duration")):
+            warnings.warn(
+                f"preset {preset!r} removes a static bias, but no bias, bias_window or bias_duration "
+                "was given: the bias is taken as 0",
+                stacklevel=2,
+            )
+
+    @property
+    def preset(self) -> str:
+        """The preset this pipeline started from."""
+        return self._preset
+
+    @property
+    def params(self) -> dict[str, Any]:
+        """The full flat SI parameter set in use."""
+        return dict(self._inner.params())
+
+    @property
+    def bias(self) -> float:
+        """The static bias in use now [rad/s] (what the gyro reads at rest)."""
+        return float(self._inner.bias()[0])
+
+    def process(
+        self, t: ArrayLike, rate: ArrayLike, *, temperature: ArrayLike | None = None
+    ) -> HeadingResult:
+        """Process the next chunk of samples.
+
+        Args:
+            t: timestamps [s], strictly increasing (also across chunks).
+            rate: yaw rate [rad/s], counter-clockwise positive.
+            temperature: sensor temperature [degC], needed when ``temp_slope``/``temp_offset`` are set.
+
+        Raises:
+            ValueError: mismatched lengths, NaN/inf, non-increasing timestamps (the message names the
+                first bad index), or a rest window that holds no sample. Nothing is processed then.
+            TypeError: non-numeric arrays.
+        """
+        ta = as_float_array("t", t)
+        ra = as_float_array("rate", rate)
+        temp = None if temperature is None else as_float_array("temperature", temperature)
+        self._check_bias_window(ta)
+        heading, out_rate, drift = self._inner.process(ta, ra, temp)
+        _, count, learning = self._inner.bias()
+        if not learning and count == 0 and self._measures_bias():
+            raise ValueError(f"the bias window {self._window_text()} held no sample of the log")
+        return HeadingResult(ta, heading, out_rate, drift)
+
+    def reset(self) -> None:
+        """Return to the state before the first sample (same parameters)."""
+        self._inner.reset()
+
+    def _measures_bias(self) -> bool:
+        p = self._inner.params()
+        return "bias_window" in p or "bias_duration" in p
+
+    def _window_text(self) -> str:
+        p = self._inner.params()
+        if "bias_window" in p:
+            start, end = p["bias_window"]
+            return f"[{start}, {end}] s"
+        return f"of the first {p['bias_duration']} s"
+
+    def _check_bias_window(self, t: FloatArray) -> None:
+        """Refuse a log that starts after its rest window ends: the bias would silently be 0."""
+        p = self._inner.params()
+        if self._inner.last_time() is None and "bias_window" in p and len(t) > 0:
+            start, end = p["bias_window"]
+            if t[0] > end:
+                raise ValueError(
+                    f"the bias window [{start}, {end}] s ends before the first sample (t[0] = {t[0]}); "
+                    "give the window in the log's own time base"
+                )
+
+    def __getstate__(self) -> dict[str, Any]:
+        return {"preset": self._preset, "state": self._inner.state_json()}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self._preset = state["preset"]
+        self._inner = _gyrocore.Pipeline.from_state_json(state["state"])
+
+    def __repr__(self) -> str:
+        return f"Pipeline(preset={self._preset!r}, params={self.params!r})"
+
+
+def process(
+    t: ArrayLike,
+    rate: ArrayLike,
+    preset: str = "hdr",
+    *,
+    temperature: ArrayLike | None = None,
+    **overrides: Any,
+) -> HeadingResult:
+    """Heading of a whole log: ``Pipeline(preset, **overrides).process(t, rate)``.
+
+    Example:
+        >>> import numpy as np, gyrocore
+        >>> t = np.arange(0, 60, 0.01)
+        >>> r = gyrocore.process(t, np.full_like(t, 0.002), "static_bias", bias_duration=20.0)
+        >>> abs(r.heading[-1]) < 1e-9
+        True
+    """
+    return Pipeline(preset, **overrides).process(t, rate, temperature=temperature)
+
+
+def integrate(
+    t: ArrayLike, rate: ArrayLike, method: str = "trapezoid", *, initial_heading: float = 0.0
+) -> FloatArray:
+    """Continuous heading [rad] from rate [rad/s]: ``trapezoid`` or ``rectangle`` (HDR eq 3)."""
+    heading: FloatArray = _gyrocore.integrate(
+        as_float_array("t", t), as_float_array("rate", rate), method, initial_heading
+    )
+    return heading
+
+
+def downsample(t: ArrayLike, rate: ArrayLike, interval: float = 1.0) -> tuple[FloatArray, FloatArray]:
+    """Block means over ``interval`` seconds (the HDR paper's down-sampling, its second eq 14).
+
+    Returns the end time of each complete block and its time-weighted mean rate.
+    """
+    tb, rb = _gyrocore.downsample(as_float_array("t", t), as_float_array("rate", rate), interval)
+    return tb, rb

@@ -1,0 +1,193 @@
+//! Python bindings of the gyrocore core crate: convert, validate shapes, release the GIL, call the
+//! core, and move results into numpy without copying.
+
+mod params;
+
+use gyrocore::{
+    check_block, Downsample, DownsampleConfig, Error, Integrator, IntegratorConfig, Outputs,
+    Pipeline, PipelineConfig, Preset, Stage,
+};
+use numpy::{PyArray1, PyReadonlyArray1};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// Maps a core error to `ValueError` with the core's message.
+fn value_error(e: Error) -> PyErr {
+    PyValueError::new_err(e.to_string())
+}
+
+/// A contiguous view of a float64 array (the Python layer converts other dtypes and strides).
+fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
+    a.as_slice()
+        .map_err(|_| PyValueError::new_err(format!("{name} must be a contiguous float64 array")))
+}
+
+type Arrays3<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
+/// The streaming pipeline of the core crate (see `gyrocore.Pipeline` for the documented API).
+#[pyclass(module = "gyrocore._gyrocore", name = "Pipeline")]
+#[derive(Clone)]
+struct PyPipeline {
+    inner: Pipeline,
+}
+
+fn build_config(preset: &str, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<PipelineConfig> {
+    let preset = Preset::from_name(preset).ok_or_else(|| {
+        let names: Vec<&str> = Preset::ALL.iter().map(|p| p.name()).collect();
+        PyValueError::new_err(format!(
+            "unknown preset '{preset}'; choose one of {}, recommended",
+            names.join(", ")
+        ))
+    })?;
+    let mut config = preset.config();
+    if let Some(o) = overrides {
+        params::apply(&mut config, o)?;
+    }
+    Ok(config)
+}
+
+#[pymethods]
+impl PyPipeline {
+    #[new]
+    #[pyo3(signature = (preset, overrides=None))]
+    fn new(preset: &str, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let config = build_config(preset, overrides)?;
+        Ok(PyPipeline { inner: Pipeline::new(config).map_err(value_error)? })
+    }
+
+    /// Processes a block; returns (heading, rate, drift). Nothing is processed from an invalid block.
+    #[pyo3(signature = (t, rate, temperature=None))]
+    fn process<'py>(
+        &mut self,
+        py: Python<'py>,
+        t: PyReadonlyArray1<'py, f64>,
+        rate: PyReadonlyArray1<'py, f64>,
+        temperature: Option<PyReadonlyArray1<'py, f64>>,
+    ) -> PyResult<Arrays3<'py>> {
+        let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
+        let temperature = temperature.as_ref().map(|a| slice("temperature", a)).transpose()?;
+        let n = t.len();
+        let (mut heading, mut out_rate, mut drift) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let inner = &mut self.inner;
+        py.detach(|| {
+            let out = Outputs { heading: &mut heading, rate: &mut out_rate, drift: &mut drift };
+            inner.process_block(t, rate, temperature, out)
+        })
+        .map_err(value_error)?;
+        Ok((PyArray1::from_vec(py, heading), PyArray1::from_vec(py, out_rate), PyArray1::from_vec(py, drift)))
+    }
+
+    /// Returns the pipeline to its state before the first sample.
+    fn reset(&mut self) {
+        self.inner.reset();
+    }
+
+    /// The configuration as a flat parameter dict.
+    fn params<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        params::to_dict(py, self.inner.config())
+    }
+
+    /// (bias [rad/s], number of readings it averages, still measuring?).
+    fn bias(&self) -> (f64, u64, bool) {
+        let (b, n) = self.inner.bias();
+        (b, n, self.inner.bias_learning())
+    }
+
+    /// The last timestamp processed, or None.
+    fn last_time(&self) -> Option<f64> {
+        self.inner.last_time()
+    }
+
+    /// Complete state (configuration included) as JSON; floats round-trip exactly.
+    fn state_json(&self) -> PyResult<String> {
+        serde_json::to_string(&self.inner).map_err(|e| PyValueError::new_err(e.to_string()))
+    }
+
+    /// Rebuilds a pipeline from `state_json()`.
+    #[staticmethod]
+    fn from_state_json(state: &str) -> PyResult<Self> {
+        let inner: Pipeline = serde_json::from_str(state)
+            .map_err(|e| PyValueError::new_err(format!("not a gyrocore pipeline state: {e}")))?;
+        Ok(PyPipeline { inner })
+    }
+
+    fn __copy__(&self) -> Self {
+        self.clone()
+    }
+}
+
+/// Flat parameters of a preset (after optional overrides).
+#[pyfunction]
+#[pyo3(signature = (preset, overrides=None))]
+fn preset_params<'py>(py: Python<'py>, preset: &str, overrides: Option<&Bound<'py, PyDict>>) -> PyResult<Bound<'py, PyDict>> {
+    params::to_dict(py, &build_config(preset, overrides)?)
+}
+
+/// Preset names, and the name the `recommended` alias stands for.
+#[pyfunction]
+fn preset_names() -> (Vec<&'static str>, &'static str) {
+    (Preset::ALL.iter().map(|p| p.name()).collect(), Preset::RECOMMENDED.name())
+}
+
+/// Parameter names and their descriptions.
+#[pyfunction]
+fn parameter_names() -> Vec<(&'static str, &'static str)> {
+    params::NAMES.to_vec()
+}
+
+/// Integrates rate into a continuous heading.
+#[pyfunction]
+#[pyo3(signature = (t, rate, method="trapezoid", initial_heading=0.0))]
+fn integrate<'py>(
+    py: Python<'py>,
+    t: PyReadonlyArray1<'py, f64>,
+    rate: PyReadonlyArray1<'py, f64>,
+    method: &str,
+    initial_heading: f64,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
+    let config = IntegratorConfig { method: params::parse_method(method)?, initial_heading };
+    let mut integrator = Integrator::new(config).map_err(value_error)?;
+    let mut heading = vec![0.0; t.len()];
+    py.detach(|| {
+        check_block(t, rate, None, None)?;
+        integrator.process_block(t, rate, &mut heading)
+    })
+    .map_err(value_error)?;
+    Ok(PyArray1::from_vec(py, heading))
+}
+
+/// Block means over `interval` seconds (HDR's second eq 14); returns (t_end, mean rate).
+#[pyfunction]
+fn downsample<'py>(
+    py: Python<'py>,
+    t: PyReadonlyArray1<'py, f64>,
+    rate: PyReadonlyArray1<'py, f64>,
+    interval: f64,
+) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+    let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
+    let mut stage = Downsample::new(DownsampleConfig { interval }).map_err(value_error)?;
+    let (mut out_t, mut out_rate) = (vec![0.0; t.len()], vec![0.0; t.len()]);
+    let n = py
+        .detach(|| {
+            check_block(t, rate, None, None)?;
+            stage.process_block(t, rate, &mut out_t, &mut out_rate)
+        })
+        .map_err(value_error)?;
+    out_t.truncate(n);
+    out_rate.truncate(n);
+    Ok((PyArray1::from_vec(py, out_t), PyArray1::from_vec(py, out_rate)))
+}
+
+#[pymodule]
+fn _gyrocore(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyPipeline>()?;
+    m.add_function(wrap_pyfunction!(preset_params, m)?)?;
+    m.add_function(wrap_pyfunction!(preset_names, m)?)?;
+    m.add_function(wrap_pyfunction!(parameter_names, m)?)?;
+    m.add_function(wrap_pyfunction!(integrate, m)?)?;
+    m.add_function(wrap_pyfunction!(downsample, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

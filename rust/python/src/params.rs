@@ -1,0 +1,170 @@
+//! The flat parameter names of the Python API, mapped to and from the core's `PipelineConfig`.
+//!
+//! This is the one place that knows the names; presets come from the core crate.
+
+use gyrocore::{HdrConfig, LowPassConfig, Method, PipelineConfig, StaticBias, TemperatureScale, ThresholdConfig};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// Every accepted parameter name, with its unit, for error messages and the docs.
+pub const NAMES: &[(&str, &str)] = &[
+    ("bias", "static bias eps0 [rad/s] (what the gyro reads at rest)"),
+    ("bias_window", "(start, end) rest window [s] to measure the bias in"),
+    ("bias_duration", "measure the bias over the first T_bias seconds [s]"),
+    ("scale", "s_bar of Hong eq 3 [1]"),
+    ("offset", "b_bar of Hong eq 3 [rad/s]"),
+    ("c_cw", "clockwise correction factor C_cw (FOG eq 2a) [1]"),
+    ("c_ccw", "counter-clockwise correction factor C_ccw (FOG eq 2b) [1]"),
+    ("temp_slope", "turn error per degC of FOG eq 5 divided by 360 deg [1/degC]"),
+    ("temp_offset", "turn error at 0 degC of FOG eq 5 divided by 360 deg [1]"),
+    ("threshold", "dead band r_thres of Hong eq 12 [rad/s], 0 = off"),
+    ("lowpass_tau", "low-pass time constant tau of HDR eq 7 [s], 0 = off"),
+    ("delag", "undo the low-pass lag (HDR eq 13) [bool]"),
+    ("hdr", "run Heuristic Drift Reduction [bool]"),
+    ("hdr_increment", "i_c [rad/s per step]"),
+    ("hdr_turn_threshold", "Theta_w [rad/s]"),
+    ("hdr_c1", "repetition attenuator constant c_1 [1]"),
+    ("hdr_c2", "repetition attenuator power c_2 [1]"),
+    ("hdr_interval", "HDR step length [s]"),
+    ("integration", "'trapezoid' or 'rectangle'"),
+    ("initial_heading", "heading at the first sample [rad]"),
+];
+
+fn unknown(name: &str) -> PyErr {
+    let valid: Vec<&str> = NAMES.iter().map(|(n, _)| *n).collect();
+    PyValueError::new_err(format!("unknown parameter '{name}'; valid names: {}", valid.join(", ")))
+}
+
+/// Applies `overrides` (name -> value) to `config`. Disabled stages are enabled by giving
+/// their switch (`hdr=True`) or a non-zero `threshold` / `lowpass_tau`.
+pub fn apply(config: &mut PipelineConfig, overrides: &Bound<'_, PyDict>) -> PyResult<()> {
+    let mut bias_sources = Vec::new();
+    let mut hdr = config.hdr.unwrap_or_else(HdrConfig::table_iii);
+    let mut hdr_touched: Option<String> = None;
+    let mut temp = config.correction.temperature;
+    for (key, value) in overrides.iter() {
+        let name: String = key.extract()?;
+        // `None` leaves a parameter as the preset has it, so callers can pass optional values through.
+        if value.is_none() {
+            continue;
+        }
+        let c = &mut config.correction;
+        match name.as_str() {
+            "bias" => {
+                c.bias = StaticBias::Fixed(value.extract()?);
+                bias_sources.push(name);
+            }
+            "bias_window" => {
+                let (start, end): (f64, f64) = value.extract()?;
+                c.bias = StaticBias::Window { start, end };
+                bias_sources.push(name);
+            }
+            "bias_duration" => {
+                c.bias = StaticBias::Leading { duration: value.extract()? };
+                bias_sources.push(name);
+            }
+            "scale" => c.scale = value.extract()?,
+            "offset" => c.offset = value.extract()?,
+            "c_cw" => c.c_cw = value.extract()?,
+            "c_ccw" => c.c_ccw = value.extract()?,
+            "temp_slope" => temp.get_or_insert(TemperatureScale { slope: 0.0, offset: 0.0 }).slope = value.extract()?,
+            "temp_offset" => temp.get_or_insert(TemperatureScale { slope: 0.0, offset: 0.0 }).offset = value.extract()?,
+            "threshold" => {
+                let threshold: f64 = value.extract()?;
+                config.threshold = (threshold != 0.0).then_some(ThresholdConfig { threshold });
+            }
+            "lowpass_tau" => {
+                let tau: f64 = value.extract()?;
+                config.lowpass = (tau != 0.0).then_some(LowPassConfig { tau });
+            }
+            "delag" => config.delag = value.extract()?,
+            "hdr" => config.hdr = value.extract::<bool>()?.then_some(hdr),
+            "hdr_increment" | "hdr_turn_threshold" | "hdr_c1" | "hdr_c2" | "hdr_interval" => {
+                let v: f64 = value.extract()?;
+                match name.as_str() {
+                    "hdr_increment" => hdr.increment = v,
+                    "hdr_turn_threshold" => hdr.turn_threshold = v,
+                    "hdr_c1" => hdr.c1 = v,
+                    "hdr_c2" => hdr.c2 = v,
+                    _ => hdr.interval = v,
+                }
+                hdr_touched = Some(name);
+            }
+            "integration" => {
+                let method: String = value.extract()?;
+                config.integrator.method = parse_method(&method)?;
+            }
+            "initial_heading" => config.integrator.initial_heading = value.extract()?,
+            _ => return Err(unknown(&name)),
+        }
+    }
+    if bias_sources.len() > 1 {
+        return Err(PyValueError::new_err(format!(
+            "give at most one of bias, bias_window, bias_duration (got {})",
+            bias_sources.join(", ")
+        )));
+    }
+    config.correction.temperature = temp;
+    if config.hdr.is_some() {
+        config.hdr = Some(hdr);
+    } else if let Some(name) = hdr_touched {
+        return Err(PyValueError::new_err(format!("{name} is set but HDR is off; pass hdr=True to enable it")));
+    }
+    // De-lag inverts the low-pass; with no low-pass there is no lag to undo.
+    if config.lowpass.is_none() {
+        config.delag = false;
+    }
+    Ok(())
+}
+
+/// Parses an integration rule name.
+pub fn parse_method(name: &str) -> PyResult<Method> {
+    match name {
+        "trapezoid" => Ok(Method::Trapezoid),
+        "rectangle" => Ok(Method::Rectangle),
+        _ => Err(PyValueError::new_err(format!(
+            "unknown integration method '{name}': use 'trapezoid' or 'rectangle'"
+        ))),
+    }
+}
+
+fn method_name(method: Method) -> &'static str {
+    match method {
+        Method::Trapezoid => "trapezoid",
+        Method::Rectangle => "rectangle",
+    }
+}
+
+/// The configuration as a flat dict; `apply` on a default config rebuilds it exactly.
+pub fn to_dict<'py>(py: Python<'py>, config: &PipelineConfig) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let c = &config.correction;
+    match c.bias {
+        StaticBias::Fixed(b) => d.set_item("bias", b)?,
+        StaticBias::Window { start, end } => d.set_item("bias_window", (start, end))?,
+        StaticBias::Leading { duration } => d.set_item("bias_duration", duration)?,
+    }
+    d.set_item("scale", c.scale)?;
+    d.set_item("offset", c.offset)?;
+    d.set_item("c_cw", c.c_cw)?;
+    d.set_item("c_ccw", c.c_ccw)?;
+    if let Some(m) = c.temperature {
+        d.set_item("temp_slope", m.slope)?;
+        d.set_item("temp_offset", m.offset)?;
+    }
+    d.set_item("threshold", config.threshold.map_or(0.0, |t| t.threshold))?;
+    d.set_item("lowpass_tau", config.lowpass.map_or(0.0, |l| l.tau))?;
+    d.set_item("delag", config.delag)?;
+    d.set_item("hdr", config.hdr.is_some())?;
+    if let Some(h) = config.hdr {
+        d.set_item("hdr_increment", h.increment)?;
+        d.set_item("hdr_turn_threshold", h.turn_threshold)?;
+        d.set_item("hdr_c1", h.c1)?;
+        d.set_item("hdr_c2", h.c2)?;
+        d.set_item("hdr_interval", h.interval)?;
+    }
+    d.set_item("integration", method_name(config.integrator.method))?;
+    d.set_item("initial_heading", config.integrator.initial_heading)?;
+    Ok(d)
+}

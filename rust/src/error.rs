@@ -1,0 +1,110 @@
+//! The one error type of the core crate.
+
+use core::fmt;
+
+/// Everything that can go wrong in the core: invalid configuration, and invalid sample blocks
+/// handed to the block-processing functions (per-sample `update` never fails).
+#[non_exhaustive]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Error {
+    /// A configuration parameter is outside its valid range.
+    InvalidParameter {
+        /// Parameter name as it appears in the config struct.
+        name: &'static str,
+        /// The rejected value.
+        value: f64,
+        /// The valid range, in words.
+        valid: &'static str,
+    },
+    /// Input slices of one block have different lengths.
+    LengthMismatch {
+        /// Which slice differs (`"rate"`, `"temperature"`, an output name).
+        what: &'static str,
+        /// Its length.
+        len: usize,
+        /// The length of the timestamps.
+        expected: usize,
+    },
+    /// A sample is NaN or infinite.
+    NonFinite {
+        /// `"t"`, `"rate"` or `"temperature"`.
+        what: &'static str,
+        /// Index of the first bad sample within the block.
+        index: usize,
+        /// The value found.
+        value: f64,
+    },
+    /// Timestamps do not strictly increase at `index` (a duplicate or a step back).
+    NotIncreasing {
+        /// Index within the block of the first offending timestamp.
+        index: usize,
+        /// The timestamp before it (from this block or the previous one).
+        previous: f64,
+        /// The offending timestamp.
+        value: f64,
+    },
+    /// The configuration asks for a temperature signal and none was given.
+    MissingTemperature,
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Error::InvalidParameter { name, value, valid } => {
+                write!(f, "invalid parameter {name} = {value}: must be {valid}")
+            }
+            Error::LengthMismatch { what, len, expected } => write!(
+                f,
+                "length mismatch: {what} has {len} samples but t has {expected}"
+            ),
+            Error::NonFinite { what, index, value } => write!(
+                f,
+                "{what}[{index}] is {value}: samples must be finite (drop or fill them first)"
+            ),
+            Error::NotIncreasing { index, previous, value } => write!(
+                f,
+                "timestamps must strictly increase: t[{index}] = {value} follows {previous} \
+                 (sort the log and drop duplicate timestamps)"
+            ),
+            Error::MissingTemperature => write!(
+                f,
+                "the temperature scale-factor model is configured but no temperature was given"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for Error {}
+
+/// Checks that `value` lies in `[lo, hi]` (both finite or infinite bounds allowed, NaN rejected).
+pub(crate) fn check_range(
+    name: &'static str,
+    value: f64,
+    lo: f64,
+    hi: f64,
+    valid: &'static str,
+) -> Result<(), Error> {
+    if value >= lo && value <= hi {
+        Ok(())
+    } else {
+        Err(Error::InvalidParameter { name, value, valid })
+    }
+}
+
+/// Checks that `value` is finite and strictly positive.
+pub(crate) fn check_positive(name: &'static str, value: f64) -> Result<(), Error> {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::InvalidParameter { name, value, valid: "finite and > 0" })
+    }
+}
+
+/// Checks that `value` is finite.
+pub(crate) fn check_finite(name: &'static str, value: f64) -> Result<(), Error> {
+    if value.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::InvalidParameter { name, value, valid: "finite" })
+    }
+}

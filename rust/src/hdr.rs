@@ -1,0 +1,183 @@
+//! Heuristic Drift Reduction (HDR eq 4-12): a binary I-controller that drives the sign changes of
+//! the corrected rate toward zero mean, gated by a turn switch and a repetition attenuator.
+//!
+//! Table III's parameters are per 1 s step (the paper ran its loop on 1 Hz block means, second
+//! eq 14). This stage keeps that meaning at any input rate: it adds the current `I` to every sample
+//! (eq 12) but decides on `I` once per `interval` seconds, on the time-weighted block mean of its
+//! input. At 1 Hz input every sample is a block and the stage is the paper's loop exactly.
+//!
+//! Two typos in the printed eq 8 are corrected, following the paper's text (section 4.2.2): the
+//! switch compares the *absolute* low-passed rate `|w'|` with the threshold, and it *disables* the
+//! controller (W = 0) above the threshold, enabling it (W = 1) below. As printed, eq 8 would switch
+//! HDR off on straight roads and on for every left turn.
+
+use crate::block::BlockMean;
+use crate::error::{check_positive, check_range};
+use crate::stage::{Clock, Stage};
+use crate::Error;
+
+/// Number of precomputed attenuation values `R(1..=N)` (eq 10); larger counts use `pow`.
+const ATTENUATION_TABLE: usize = 32;
+
+/// HDR parameters. Rates in rad/s; [`HdrConfig::table_iii`] gives the paper's values.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct HdrConfig {
+    /// Nominal increment `i_c` per step [rad/s], >= 0 (0 disables HDR). Table III: 0.0422 deg/s.
+    pub increment: f64,
+    /// Turn threshold `Theta_w` [rad/s], > 0 (infinity disables the switch). Table III: 0.564 deg/s.
+    pub turn_threshold: f64,
+    /// Repetition attenuator constant `c_1` (eq 10), >= 0. Table III: 0.16.
+    pub c1: f64,
+    /// Repetition attenuator power `c_2` (eq 10), > 0. Table III: 1.80.
+    pub c2: f64,
+    /// Length of one HDR step [s], > 0. The paper's step is 1 s.
+    pub interval: f64,
+}
+
+impl HdrConfig {
+    /// The single parameter set of the HDR paper's Table III, converted to rad/s.
+    pub fn table_iii() -> Self {
+        HdrConfig {
+            increment: 0.0422_f64.to_radians(),
+            turn_threshold: 0.564_f64.to_radians(),
+            c1: 0.16,
+            c2: 1.80,
+            interval: 1.0,
+        }
+    }
+
+    /// Checks every field; the error names the first invalid one.
+    pub fn validate(&self) -> Result<(), Error> {
+        check_range("hdr_increment", self.increment, 0.0, f64::MAX, "finite and >= 0")?;
+        check_range(
+            "hdr_turn_threshold",
+            self.turn_threshold,
+            f64::MIN_POSITIVE,
+            f64::INFINITY,
+            "> 0 (infinity disables the turn switch)",
+        )?;
+        check_range("hdr_c1", self.c1, 0.0, f64::MAX, "finite and >= 0")?;
+        check_positive("hdr_c2", self.c2)?;
+        check_positive("hdr_interval", self.interval)
+    }
+
+    /// Repetition attenuator `R = (1 + c_1) / (1 + c_1 r^c_2)` (HDR eq 10).
+    pub fn attenuation(&self, repetitions: u32) -> f64 {
+        (1.0 + self.c1) / (1.0 + self.c1 * libm::pow(repetitions as f64, self.c2))
+    }
+}
+
+/// `SIGN()` of HDR eq 4b: 1, 0 or -1.
+#[inline]
+fn sign(x: f64) -> i8 {
+    if x > 0.0 {
+        1
+    } else if x < 0.0 {
+        -1
+    } else {
+        0
+    }
+}
+
+/// The evolving part of [`Hdr`]; the default is the state before the first sample.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+struct HdrState {
+    /// The integrator `I` [rad/s]; `-I` is the drift estimate.
+    integrator: f64,
+    block: BlockMean,
+    /// `SIGN(w)` of the previous step, for the repetition counter (eq 9).
+    previous_sign: Option<i8>,
+    /// Repetition counter `r` (eq 9).
+    repetitions: u32,
+    clock: Clock,
+}
+
+/// The HDR stage: input is the low-passed rate `w'`, output the corrected rate `w = w' + I`.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Hdr {
+    config: HdrConfig,
+    /// `R(r)` for `r = 1..=ATTENUATION_TABLE`: eq 10 costs a `pow`, and `r` is a small integer.
+    attenuation: [f64; ATTENUATION_TABLE],
+    state: HdrState,
+}
+
+impl Hdr {
+    /// Validates `config` and builds the stage.
+    pub fn new(config: HdrConfig) -> Result<Self, Error> {
+        config.validate()?;
+        let mut attenuation = [0.0; ATTENUATION_TABLE];
+        for (r, a) in (1u32..).zip(attenuation.iter_mut()) {
+            *a = config.attenuation(r);
+        }
+        Ok(Hdr { config, attenuation, state: HdrState::default() })
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &HdrConfig {
+        &self.config
+    }
+
+    /// The drift estimate `-I` [rad/s].
+    pub fn drift(&self) -> f64 {
+        -self.state.integrator
+    }
+
+    /// The repetition counter `r` of the last step (eq 9); 0 before the first step.
+    pub fn repetitions(&self) -> u32 {
+        self.state.repetitions
+    }
+
+    /// Corrects one low-passed sample whose interval is `dt` [s]: returns `w = w' + I` (eq 12)
+    /// and, when the sample closes an HDR step, updates `I` for the next step.
+    #[inline]
+    pub fn step(&mut self, dt: f64, filtered: f64) -> f64 {
+        let corrected = filtered + self.state.integrator;
+        if let Some(mean) = self.state.block.push(self.config.interval, dt, filtered) {
+            self.decide(mean);
+        }
+        corrected
+    }
+
+    /// One HDR step on the block mean `w'_{i-1}` of the low-passed rate: eq 8 (as the text
+    /// states it), eq 9, eq 10 and eq 11 `I_i = I_{i-1} - SIGN(w_{i-1}) W_i R_i i_c`.
+    fn decide(&mut self, filtered_mean: f64) {
+        let st = &mut self.state;
+        let s = sign(filtered_mean + st.integrator);
+        st.repetitions = match st.previous_sign {
+            Some(p) if p == s => st.repetitions.saturating_add(1),
+            _ => 1,
+        };
+        st.previous_sign = Some(s);
+        let turning = libm::fabs(filtered_mean) >= self.config.turn_threshold;
+        if !turning {
+            let r = st.repetitions;
+            let step = f64::from(s) * self.attenuation_at(r) * self.config.increment;
+            self.state.integrator -= step;
+        }
+    }
+
+    #[inline]
+    fn attenuation_at(&self, repetitions: u32) -> f64 {
+        match repetitions.checked_sub(1).and_then(|k| self.attenuation.get(k as usize)) {
+            Some(&a) => a,
+            None => self.config.attenuation(repetitions),
+        }
+    }
+}
+
+impl Stage for Hdr {
+    type Output = f64;
+
+    #[inline]
+    fn update(&mut self, t: f64, rate: f64) -> f64 {
+        let dt = self.state.clock.tick(t);
+        self.step(dt, rate)
+    }
+
+    fn reset(&mut self) {
+        self.state = HdrState::default();
+    }
+}

@@ -1,0 +1,63 @@
+//! # gyrocore
+//!
+//! A drift-free heading from a yaw-rate gyro. The core crate holds the per-sample streaming
+//! stages of three papers and composes them into one [`Pipeline`]:
+//!
+//! ```text
+//! samples -> Correction -> Threshold -> LowPass -> Hdr -> DeLag -> Integrator -> heading
+//! ```
+//!
+//! Every stage is a validated `Copy` config plus private state with `new`, `update`, `reset` and
+//! block processing; the state serialises with the `serde` feature. `update` never allocates and
+//! never panics. Units are SI (s, rad, rad/s), counter-clockwise positive (ROS REP-103); the bias
+//! is what the gyro reads at rest (corrected = measured - bias). The crate is `no_std` without its
+//! default `std` feature.
+//!
+//! | equation | where |
+//! |---|---|
+//! | HDR eq 1-2, static bias `eps0` | [`correction::StaticBias`], [`Correction`] |
+//! | HDR eq 3 and 14, heading | [`integrate::Method::Rectangle`], [`Integrator`] |
+//! | HDR eq 4, 8-12, binary I-controller, turn switch, repetition attenuator | [`Hdr`] |
+//! | HDR eq 7, low-pass | [`LowPass`] |
+//! | HDR eq 13, de-lag | [`DeLag`] |
+//! | HDR second eq 14, block down-sampling | [`Downsample`] |
+//! | Hong eq 3, linear calibration `s_bar r_m + b_bar` | [`CorrectionConfig::scale`], [`CorrectionConfig::offset`] |
+//! | Hong eq 12, threshold | [`Threshold`] |
+//! | FOG eq 2-4, cw/ccw correction factors | [`CorrectionConfig::c_cw`], [`CorrectionConfig::c_ccw`] |
+//! | FOG eq 5-6, temperature-linear scale factor | [`correction::TemperatureScale`] |
+//!
+//! ```
+//! use gyrocore::{Pipeline, Preset};
+//! let mut config = Preset::Hdr.config();
+//! config.correction.bias = gyrocore::StaticBias::Leading { duration: 20.0 };
+//! let mut pipeline = Pipeline::new(config).unwrap();
+//! for i in 0..100 {
+//!     let out = pipeline.update(i as f64 * 0.01, 0.001);
+//!     assert!(out.heading.is_finite());
+//! }
+//! ```
+#![cfg_attr(not(feature = "std"), no_std)]
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+mod block;
+pub mod correction;
+mod error;
+pub mod hdr;
+pub mod integrate;
+pub mod lowpass;
+pub mod pipeline;
+mod stage;
+pub mod threshold;
+mod validate;
+
+pub use block::{Downsample, DownsampleConfig};
+pub use correction::{Correction, CorrectionConfig, StaticBias, TemperatureScale};
+pub use error::Error;
+pub use hdr::{Hdr, HdrConfig};
+pub use integrate::{Integrator, IntegratorConfig, Method};
+pub use lowpass::{DeLag, LowPass, LowPassConfig};
+pub use pipeline::{Output, Outputs, Pipeline, PipelineConfig, Preset};
+pub use stage::{Clock, Stage};
+pub use threshold::{Threshold, ThresholdConfig};
+pub use validate::check_block;

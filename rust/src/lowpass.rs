@@ -1,0 +1,116 @@
+//! First-order low-pass (HDR eq 7) and its exact inverse, the de-lag (HDR eq 13).
+//!
+//! Both use the actual interval `T_i` of each sample, so the time constant keeps its meaning at
+//! any (and at an irregular) sample rate. De-lag after low-pass restores the input exactly (up to
+//! rounding): in the pipeline the low-pass only shapes what HDR decides on, and the de-lag removes
+//! its lag from the heading.
+
+use crate::error::check_range;
+use crate::stage::{Clock, Stage};
+use crate::Error;
+
+/// Configuration shared by [`LowPass`] and [`DeLag`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct LowPassConfig {
+    /// Time constant `tau` [s], >= 0 (0 makes the stage the identity). HDR Table III: 0.75 s.
+    pub tau: f64,
+}
+
+impl LowPassConfig {
+    /// Checks `tau`.
+    pub fn validate(&self) -> Result<(), Error> {
+        check_range("lowpass_tau", self.tau, 0.0, f64::MAX, "finite and >= 0")
+    }
+}
+
+/// Low-pass filter, HDR eq 7: `w'_i = (w_i T_i + tau w'_{i-1}) / (T_i + tau)`.
+///
+/// The first sample passes unchanged (no start-up transient).
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct LowPass {
+    config: LowPassConfig,
+    previous: Option<f64>,
+    clock: Clock,
+}
+
+impl LowPass {
+    /// Validates `config` and builds the stage.
+    pub fn new(config: LowPassConfig) -> Result<Self, Error> {
+        config.validate()?;
+        Ok(LowPass { config, previous: None, clock: Clock::default() })
+    }
+
+    /// Filters one sample whose interval is `dt` [s] (HDR eq 7).
+    #[inline]
+    pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
+        let tau = self.config.tau;
+        let y = match self.previous {
+            Some(p) if dt + tau > 0.0 => (rate * dt + tau * p) / (dt + tau),
+            _ => rate,
+        };
+        self.previous = Some(y);
+        y
+    }
+}
+
+impl Stage for LowPass {
+    type Output = f64;
+
+    #[inline]
+    fn update(&mut self, t: f64, rate: f64) -> f64 {
+        let dt = self.clock.tick(t);
+        self.step(dt, rate)
+    }
+
+    fn reset(&mut self) {
+        self.previous = None;
+        self.clock = Clock::default();
+    }
+}
+
+/// De-lag, HDR eq 13: `w_d,i = w_i + tau / T_i (w_i - w_{i-1})`, the inverse of eq 7.
+///
+/// The first sample, and a sample with no interval (`T_i = 0`), pass unchanged.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct DeLag {
+    config: LowPassConfig,
+    previous: Option<f64>,
+    clock: Clock,
+}
+
+impl DeLag {
+    /// Validates `config` and builds the stage.
+    pub fn new(config: LowPassConfig) -> Result<Self, Error> {
+        config.validate()?;
+        Ok(DeLag { config, previous: None, clock: Clock::default() })
+    }
+
+    /// De-lags one sample whose interval is `dt` [s] (HDR eq 13).
+    #[inline]
+    pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
+        let y = match self.previous {
+            Some(p) if dt > 0.0 => rate + self.config.tau / dt * (rate - p),
+            _ => rate,
+        };
+        self.previous = Some(rate);
+        y
+    }
+}
+
+impl Stage for DeLag {
+    type Output = f64;
+
+    #[inline]
+    fn update(&mut self, t: f64, rate: f64) -> f64 {
+        let dt = self.clock.tick(t);
+        self.step(dt, rate)
+    }
+
+    fn reset(&mut self) {
+        self.previous = None;
+        self.clock = Clock::default();
+    }
+}

@@ -1,0 +1,259 @@
+//! The whole chain in one pass: correction -> threshold -> low-pass -> HDR -> de-lag -> integrate.
+//! No intermediate arrays: every enabled stage sees each sample once, in order.
+
+use crate::correction::{Correction, CorrectionConfig};
+use crate::hdr::{Hdr, HdrConfig};
+use crate::integrate::{Integrator, IntegratorConfig};
+use crate::lowpass::{DeLag, LowPass, LowPassConfig};
+use crate::stage::{check_len, Clock};
+use crate::threshold::{Threshold, ThresholdConfig};
+use crate::validate::check_block;
+use crate::Error;
+
+/// Which stages run, and how. `None` disables a stage.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct PipelineConfig {
+    /// Bias, calibration and scale-factor correction (always runs; identity by default).
+    pub correction: CorrectionConfig,
+    /// Dead band (Hong eq 12).
+    pub threshold: Option<ThresholdConfig>,
+    /// Low-pass before HDR (HDR eq 7).
+    pub lowpass: Option<LowPassConfig>,
+    /// Undo the low-pass lag after HDR (HDR eq 13); needs `lowpass`.
+    pub delag: bool,
+    /// Heuristic Drift Reduction (HDR eq 4-12).
+    pub hdr: Option<HdrConfig>,
+    /// Integration rule and initial heading.
+    pub integrator: IntegratorConfig,
+}
+
+/// Named parameter sets. Every field can be changed after [`Preset::config`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Preset {
+    /// Plain trapezoid integration of the raw rate.
+    Raw,
+    /// Static bias removal (HDR eq 2); set the bias or its rest window.
+    StaticBias,
+    /// Hong & Park: static bias, linear self-calibration (set `scale`/`offset` from a
+    /// calibration) and the 0.3 deg/s threshold (Hong eq 3, 12).
+    HongPark,
+    /// Static bias and HDR with the paper's Table III (low-pass, HDR, de-lag).
+    Hdr,
+    /// Calibration, the 0.3 deg/s threshold and HDR with Table III.
+    Combined,
+}
+
+impl Preset {
+    /// Every preset, in order of increasing processing.
+    pub const ALL: [Preset; 5] =
+        [Preset::Raw, Preset::StaticBias, Preset::HongPark, Preset::Hdr, Preset::Combined];
+
+    /// The preset the documentation recommends (`"recommended"`).
+    pub const RECOMMENDED: Preset = Preset::Combined;
+
+    /// The preset's name as used by the Python API and the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Preset::Raw => "raw",
+            Preset::StaticBias => "static_bias",
+            Preset::HongPark => "hong_park",
+            Preset::Hdr => "hdr",
+            Preset::Combined => "combined",
+        }
+    }
+
+    /// Looks a preset up by name; `"recommended"` gives [`Preset::RECOMMENDED`].
+    pub fn from_name(name: &str) -> Option<Preset> {
+        if name == "recommended" {
+            return Some(Preset::RECOMMENDED);
+        }
+        Preset::ALL.into_iter().find(|p| p.name() == name)
+    }
+
+    /// The preset's configuration (static bias 0 until set).
+    pub fn config(self) -> PipelineConfig {
+        let threshold = Some(ThresholdConfig { threshold: 0.3_f64.to_radians() });
+        let hdr = PipelineConfig {
+            lowpass: Some(LowPassConfig { tau: 0.75 }),
+            delag: true,
+            hdr: Some(HdrConfig::table_iii()),
+            ..PipelineConfig::default()
+        };
+        match self {
+            Preset::Raw | Preset::StaticBias => PipelineConfig::default(),
+            Preset::HongPark => PipelineConfig { threshold, ..PipelineConfig::default() },
+            Preset::Hdr => hdr,
+            Preset::Combined => PipelineConfig { threshold, ..hdr },
+        }
+    }
+
+    /// Whether the preset subtracts a static bias (so a bias or rest window should be given).
+    pub fn uses_static_bias(self) -> bool {
+        self != Preset::Raw
+    }
+}
+
+/// Per-sample output of the pipeline.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Output {
+    /// Continuous heading [rad], counter-clockwise positive.
+    pub heading: f64,
+    /// Corrected (and de-lagged) rate that was integrated [rad/s].
+    pub rate: f64,
+    /// HDR's drift estimate `-I` applied to this sample [rad/s] (0 without HDR).
+    pub drift: f64,
+}
+
+/// Output slices for [`Pipeline::process_block`], each as long as the input.
+#[derive(Debug)]
+pub struct Outputs<'a> {
+    /// Receives [`Output::heading`].
+    pub heading: &'a mut [f64],
+    /// Receives [`Output::rate`].
+    pub rate: &'a mut [f64],
+    /// Receives [`Output::drift`].
+    pub drift: &'a mut [f64],
+}
+
+/// The composed pipeline; see the module doc for the order of the stages.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Pipeline {
+    config: PipelineConfig,
+    correction: Correction,
+    threshold: Option<Threshold>,
+    lowpass: Option<LowPass>,
+    hdr: Option<Hdr>,
+    delag: Option<DeLag>,
+    integrator: Integrator,
+    clock: Clock,
+}
+
+impl Pipeline {
+    /// Validates every stage's configuration and builds the pipeline.
+    pub fn new(config: PipelineConfig) -> Result<Self, Error> {
+        if config.delag && config.lowpass.is_none() {
+            return Err(Error::InvalidParameter {
+                name: "delag",
+                value: 1.0,
+                valid: "false unless a low-pass is configured (de-lag inverts the low-pass)",
+            });
+        }
+        let delag = match (config.delag, config.lowpass) {
+            (true, Some(lp)) => Some(DeLag::new(lp)?),
+            _ => None,
+        };
+        Ok(Pipeline {
+            config,
+            correction: Correction::new(config.correction)?,
+            threshold: config.threshold.map(Threshold::new).transpose()?,
+            lowpass: config.lowpass.map(LowPass::new).transpose()?,
+            hdr: config.hdr.map(Hdr::new).transpose()?,
+            delag,
+            integrator: Integrator::new(config.integrator)?,
+            clock: Clock::default(),
+        })
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &PipelineConfig {
+        &self.config
+    }
+
+    /// The static bias in use now [rad/s] and how many readings it averages.
+    pub fn bias(&self) -> (f64, u64) {
+        (self.correction.bias(), self.correction.bias_sample_count())
+    }
+
+    /// True while a rest window is still being measured.
+    pub fn bias_learning(&self) -> bool {
+        self.correction.bias_learning()
+    }
+
+    /// The last timestamp processed, if any.
+    pub fn last_time(&self) -> Option<f64> {
+        self.clock.last()
+    }
+
+    /// Returns every stage to its initial state (same as a new pipeline with the same config).
+    pub fn reset(&mut self) {
+        use crate::stage::Stage;
+        self.correction.reset();
+        if let Some(s) = &mut self.threshold {
+            s.reset();
+        }
+        if let Some(s) = &mut self.lowpass {
+            s.reset();
+        }
+        if let Some(s) = &mut self.hdr {
+            s.reset();
+        }
+        if let Some(s) = &mut self.delag {
+            s.reset();
+        }
+        self.integrator.reset();
+        self.clock = Clock::default();
+    }
+
+    /// Feeds one sample (`t` [s], `rate` [rad/s]) without a temperature.
+    #[inline]
+    pub fn update(&mut self, t: f64, rate: f64) -> Output {
+        self.update_with_temperature(t, rate, None)
+    }
+
+    /// Feeds one sample with the sensor temperature [degC] for the temperature scale model.
+    ///
+    /// Infallible and allocation-free; a timestamp that does not move forward adds nothing to the
+    /// heading. Use [`Pipeline::process_block`] to have the input checked.
+    #[inline]
+    pub fn update_with_temperature(&mut self, t: f64, rate: f64, temperature: Option<f64>) -> Output {
+        let dt = self.clock.tick(t);
+        let mut r = self.correction.apply(t, rate, temperature);
+        if let Some(s) = &self.threshold {
+            r = s.apply(r);
+        }
+        if let Some(s) = &mut self.lowpass {
+            r = s.step(dt, r);
+        }
+        let mut drift = 0.0;
+        if let Some(s) = &mut self.hdr {
+            drift = s.drift();
+            r = s.step(dt, r);
+        }
+        if let Some(s) = &mut self.delag {
+            r = s.step(dt, r);
+        }
+        let heading = self.integrator.step(dt, r);
+        Output { heading, rate: r, drift }
+    }
+
+    /// Checks a block (lengths, finite values, strictly increasing time, also after the previous
+    /// block) and, only if it is valid, feeds it through the pipeline.
+    pub fn process_block(
+        &mut self,
+        t: &[f64],
+        rate: &[f64],
+        temperature: Option<&[f64]>,
+        out: Outputs<'_>,
+    ) -> Result<(), Error> {
+        if self.config.correction.temperature.is_some() && temperature.is_none() {
+            return Err(Error::MissingTemperature);
+        }
+        check_block(t, rate, temperature, self.clock.last())?;
+        check_len("heading", out.heading.len(), t.len())?;
+        check_len("rate out", out.rate.len(), t.len())?;
+        check_len("drift", out.drift.len(), t.len())?;
+        // One loop for both cases: without a temperature signal every sample gets `None`.
+        let temperatures = temperature.into_iter().flatten().copied().map(Some).chain(core::iter::repeat(None));
+        let inputs = t.iter().zip(rate).zip(temperatures);
+        let outputs = out.heading.iter_mut().zip(out.rate.iter_mut()).zip(out.drift.iter_mut());
+        for (((&ti, &ri), temp), ((heading, rate), drift)) in inputs.zip(outputs) {
+            let o = self.update_with_temperature(ti, ri, temp);
+            *heading = o.heading;
+            *rate = o.rate;
+            *drift = o.drift;
+        }
+        Ok(())
+    }
+}

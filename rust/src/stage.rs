@@ -1,0 +1,82 @@
+//! What every streaming stage shares: the [`Stage`] trait and the [`Clock`] that turns
+//! timestamps into the actual interval `T_i` of each sample.
+
+use crate::Error;
+
+/// A streaming stage: validated config + private state, fed one sample at a time.
+///
+/// `update` never fails and never allocates; `process_block` is the same loop over a block.
+pub trait Stage {
+    /// What the stage emits per sample.
+    type Output: Copy;
+
+    /// Feeds one sample: `t` in seconds, `rate` in rad/s.
+    fn update(&mut self, t: f64, rate: f64) -> Self::Output;
+
+    /// Returns the stage to the state it had when it was created.
+    fn reset(&mut self);
+
+    /// Feeds a block of samples; `out[i]` receives the output for sample `i`.
+    fn process_block(
+        &mut self,
+        t: &[f64],
+        rate: &[f64],
+        out: &mut [Self::Output],
+    ) -> Result<(), Error> {
+        check_len("rate", rate.len(), t.len())?;
+        check_len("out", out.len(), t.len())?;
+        for ((o, &ti), &ri) in out.iter_mut().zip(t).zip(rate) {
+            *o = self.update(ti, ri);
+        }
+        Ok(())
+    }
+}
+
+/// Fails with [`Error::LengthMismatch`] unless `len == expected`.
+pub(crate) fn check_len(what: &'static str, len: usize, expected: usize) -> Result<(), Error> {
+    if len == expected {
+        Ok(())
+    } else {
+        Err(Error::LengthMismatch { what, len, expected })
+    }
+}
+
+/// Remembers the last timestamp and gives the interval `T_i = t_i - t_{i-1}` of each sample.
+///
+/// The first sample has no interval (`T_0 = 0`). A timestamp that does not move forward, or is
+/// not finite, also gets `T_i = 0`, so such a sample adds nothing to any integral and cannot
+/// divide by zero; block processing rejects those timestamps before they get here.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Clock {
+    last: Option<f64>,
+}
+
+impl Clock {
+    /// Interval since the previous timestamp, in seconds (0 for the first sample).
+    #[inline]
+    pub fn tick(&mut self, t: f64) -> f64 {
+        match self.last {
+            Some(last) => {
+                let dt = t - last;
+                if dt > 0.0 && dt.is_finite() {
+                    self.last = Some(t);
+                    dt
+                } else {
+                    0.0
+                }
+            }
+            None => {
+                if t.is_finite() {
+                    self.last = Some(t);
+                }
+                0.0
+            }
+        }
+    }
+
+    /// The last accepted timestamp, if any.
+    pub fn last(&self) -> Option<f64> {
+        self.last
+    }
+}

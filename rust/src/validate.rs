@@ -1,0 +1,40 @@
+//! Checks of a block of samples before any stage sees it.
+
+use crate::stage::check_len;
+use crate::Error;
+
+/// Checks one block: `rate` (and `temperature`, when given) as long as `t`, every value finite,
+/// and `t` strictly increasing, also across the previous block whose last timestamp was `previous_t`.
+///
+/// The error names the first offending index, so nothing is processed from a bad block.
+pub fn check_block(
+    t: &[f64],
+    rate: &[f64],
+    temperature: Option<&[f64]>,
+    previous_t: Option<f64>,
+) -> Result<(), Error> {
+    check_len("rate", rate.len(), t.len())?;
+    check_finite_all("rate", rate)?;
+    if let Some(temp) = temperature {
+        check_len("temperature", temp.len(), t.len())?;
+        check_finite_all("temperature", temp)?;
+    }
+    check_finite_all("t", t)?;
+    let mut previous = previous_t;
+    for (index, &value) in t.iter().enumerate() {
+        if let Some(p) = previous {
+            if value <= p {
+                return Err(Error::NotIncreasing { index, previous: p, value });
+            }
+        }
+        previous = Some(value);
+    }
+    Ok(())
+}
+
+fn check_finite_all(what: &'static str, values: &[f64]) -> Result<(), Error> {
+    match values.iter().position(|v| !v.is_finite()) {
+        Some(index) => Err(Error::NonFinite { what, index, value: values[index] }),
+        None => Ok(()),
+    }
+}
