@@ -13,7 +13,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from . import evaluate, io, sim
-from .pipeline import preset_names, process, recommended_preset
+from .pipeline import preset_names, process, recommended_preset, uses_static_bias
 
 EXAMPLES = {
     "demo": "gyrocore demo --duration 900 --seed 3",
@@ -27,7 +27,7 @@ def _demo(args: argparse.Namespace) -> int:
     rows: list[dict[str, Any]] = []
     results = {}
     for preset in preset_names():
-        bias = {} if preset == "raw" else {"bias_window": drive.stationary}
+        bias = {"bias_window": drive.stationary} if uses_static_bias(preset) else {}
         result = process(drive.t, drive.rate_measured, preset, **bias)
         results[preset] = result
         errors = evaluate.heading_errors(drive.t, result.heading, drive.t, drive.heading_true)
@@ -110,7 +110,7 @@ def _process(args: argparse.Namespace) -> int:
     overrides: dict[str, Any] = {}
     if args.bias_dps is not None:
         overrides["bias_dps"] = args.bias_dps
-    elif args.preset != "raw" and window is not None:
+    elif uses_static_bias(args.preset) and window is not None:
         overrides["bias_window"] = window
     result = process(t, rate, args.preset, **overrides)
     table = np.column_stack([result.t, result.heading, result.rate, result.drift])

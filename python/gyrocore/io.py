@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from ._arrays import FloatArray
-from .pipeline import HeadingResult, process
+from .pipeline import HeadingResult, has_bias_source, process, uses_static_bias
 
 
 def read_csv_columns(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:
@@ -59,9 +59,7 @@ class Log:
 
     def process(self, preset: str = "recommended", **overrides: Any) -> HeadingResult:
         """Run a preset on this log; the static bias comes from the rest window unless given."""
-        if self.stationary is not None and not any(
-            overrides.get(k) is not None for k in ("bias", "bias_window", "bias_duration", "bias_dps")
-        ):
+        if self.stationary is not None and uses_static_bias(preset) and not has_bias_source(overrides):
             overrides["bias_window"] = self.stationary
         return process(self.t, self.rate, preset, **overrides)
 

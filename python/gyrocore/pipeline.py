@@ -33,6 +33,20 @@ def recommended_preset() -> str:
     return str(_gyrocore.preset_names()[1])
 
 
+#: Parameters that each give the static bias (or where to measure it); at most one may be set.
+BIAS_SOURCES = ("bias", "bias_window", "bias_duration")
+
+
+def uses_static_bias(preset: str) -> bool:
+    """Whether ``preset`` subtracts a static bias (and so wants a bias or a rest window)."""
+    return bool(_gyrocore.preset_uses_static_bias(preset))
+
+
+def has_bias_source(overrides: dict[str, Any]) -> bool:
+    """Whether ``overrides`` (SI or degree spelling) set the static bias or its rest window."""
+    return any(_to_si(overrides).get(k) is not None for k in BIAS_SOURCES)
+
+
 def parameters() -> dict[str, str]:
     """Every pipeline parameter with its description and unit."""
     return dict(_gyrocore.parameter_names())
@@ -110,7 +124,7 @@ class Pipeline:
         si = _to_si(overrides)
         self._inner = _gyrocore.Pipeline(preset, si)
         self._preset = preset
-        if preset != "raw" and not any(si.get(k) is not None for k in ("bias", "bias_window", "bias_duration")):
+        if uses_static_bias(preset) and not has_bias_source(si):
             warnings.warn(
                 f"preset {preset!r} removes a static bias, but no bias, bias_window or bias_duration "
                 "was given: the bias is taken as 0",

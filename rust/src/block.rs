@@ -21,20 +21,21 @@ pub(crate) struct BlockMean {
 }
 
 impl BlockMean {
-    /// Adds a sample with interval `dt`; returns the block mean when this sample closes a block.
+    /// Adds a sample with interval `dt`; when this sample closes a block, returns the block's
+    /// mean and duration [s].
     #[inline]
-    pub(crate) fn push(&mut self, interval: f64, dt: f64, rate: f64) -> Option<f64> {
+    pub(crate) fn push(&mut self, interval: f64, dt: f64, rate: f64) -> Option<(f64, f64)> {
         self.sum += rate * dt;
         self.duration += dt;
         self.elapsed += dt;
         if self.duration > 0.0 && self.elapsed >= interval - 0.5 * dt {
-            let mean = self.sum / self.duration;
+            let closed = (self.sum / self.duration, self.duration);
             let carry = self.elapsed - interval;
             *self = BlockMean {
                 elapsed: if carry <= dt { carry } else { 0.0 },
                 ..BlockMean::default()
             };
-            Some(mean)
+            Some(closed)
         } else {
             None
         }
@@ -70,7 +71,7 @@ impl Downsample {
     #[inline]
     pub fn update(&mut self, t: f64, rate: f64) -> Option<(f64, f64)> {
         let dt = self.clock.tick(t);
-        self.block.push(self.config.interval, dt, rate).map(|mean| (t, mean))
+        self.block.push(self.config.interval, dt, rate).map(|(mean, _)| (t, mean))
     }
 
     /// Returns the stage to its initial state.

@@ -6,7 +6,7 @@
 //! multiply the result. The bias is what the gyro reads at rest (corrected = measured - bias).
 
 use crate::error::{check_finite, check_positive, check_range};
-use crate::stage::Stage;
+use crate::stage::{Clock, Stage};
 use crate::Error;
 
 /// Where the static bias `eps0` comes from (HDR eq 1-2, FOG section 2).
@@ -111,18 +111,27 @@ impl CorrectionConfig {
     }
 }
 
-/// Running mean of the readings inside the rest window (the static bias test).
+/// Time-weighted mean of the readings inside the rest window (the static bias test).
+///
+/// Each reading stands for the interval since the previous one (the rectangle rule of HDR eq 3),
+/// so an irregular logger's bursts do not outweigh its pauses, and a record averaged to a lower
+/// rate (second eq 14) gives the same bias. The first reading in the window has no interval
+/// inside it: it is the estimate until the second arrives, then carries no weight.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct BiasEstimate {
     /// The bias in use now [rad/s].
     value: f64,
-    sum: f64,
+    /// Integral of the readings over the window so far [rad].
+    integral: f64,
+    /// Time covered so far [s].
+    duration: f64,
     count: u64,
     /// `(start, end)` once known; `None` for a leading window before the first sample.
     window: Option<(f64, f64)>,
     /// False once the stream has passed the window's end: the bias is frozen.
     learning: bool,
+    clock: Clock,
 }
 
 impl BiasEstimate {
@@ -132,12 +141,13 @@ impl BiasEstimate {
             StaticBias::Window { start, end } => (0.0, Some((start, end)), true),
             StaticBias::Leading { .. } => (0.0, None, true),
         };
-        BiasEstimate { value, sum: 0.0, count: 0, window, learning }
+        BiasEstimate { value, integral: 0.0, duration: 0.0, count: 0, window, learning, clock: Clock::default() }
     }
 
     /// Takes the reading into the mean while `t` is inside the window (HDR eq 2's `eps0`).
     #[inline]
     fn learn(&mut self, source: StaticBias, t: f64, rate: f64) {
+        let dt = self.clock.tick(t);
         let (start, end) = match (self.window, source) {
             (Some(w), _) => w,
             (None, StaticBias::Leading { duration }) => {
@@ -150,9 +160,12 @@ impl BiasEstimate {
         if t > end {
             self.learning = false;
         } else if t >= start {
-            self.sum += rate;
+            if self.count > 0 {
+                self.integral += rate * dt;
+                self.duration += dt;
+            }
             self.count += 1;
-            self.value = self.sum / self.count as f64;
+            self.value = if self.duration > 0.0 { self.integral / self.duration } else { rate };
         }
     }
 }

@@ -3,8 +3,10 @@
 //!
 //! Table III's parameters are per 1 s step (the paper ran its loop on 1 Hz block means, second
 //! eq 14). This stage keeps that meaning at any input rate: it adds the current `I` to every sample
-//! (eq 12) but decides on `I` once per `interval` seconds, on the time-weighted block mean of its
-//! input. At 1 Hz input every sample is a block and the stage is the paper's loop exactly.
+//! (eq 12) but decides on `I` once per `interval` seconds, exactly as the paper's 1 Hz loop did:
+//! on the time-weighted mean of the step, low-passed by eq 7 with `T_i` = the step's length.
+//! At 1 Hz input every sample is a step and the stage is the paper's loop; at 10 or 100 Hz, a
+//! record whose step means equal the 1 Hz samples gets the same decisions, hence the same `I`.
 //!
 //! Two typos in the printed eq 8 are corrected, following the paper's text (section 4.2.2): the
 //! switch compares the *absolute* low-passed rate `|w'|` with the threshold, and it *disables* the
@@ -13,6 +15,7 @@
 
 use crate::block::BlockMean;
 use crate::error::{check_positive, check_range};
+use crate::lowpass::{LowPass, LowPassConfig};
 use crate::stage::{Clock, Stage};
 use crate::Error;
 
@@ -33,6 +36,9 @@ pub struct HdrConfig {
     pub c2: f64,
     /// Length of one HDR step [s], > 0. The paper's step is 1 s.
     pub interval: f64,
+    /// Time constant `tau` of the low-pass (eq 7) on the step means that HDR decides on [s], >= 0.
+    /// Table III: 0.75 s.
+    pub tau: f64,
 }
 
 impl HdrConfig {
@@ -44,6 +50,7 @@ impl HdrConfig {
             c1: 0.16,
             c2: 1.80,
             interval: 1.0,
+            tau: 0.75,
         }
     }
 
@@ -59,7 +66,8 @@ impl HdrConfig {
         )?;
         check_range("hdr_c1", self.c1, 0.0, f64::MAX, "finite and >= 0")?;
         check_positive("hdr_c2", self.c2)?;
-        check_positive("hdr_interval", self.interval)
+        check_positive("hdr_interval", self.interval)?;
+        LowPassConfig { tau: self.tau }.validate()
     }
 
     /// Repetition attenuator `R = (1 + c_1) / (1 + c_1 r^c_2)` (HDR eq 10).
@@ -80,13 +88,15 @@ fn sign(x: f64) -> i8 {
     }
 }
 
-/// The evolving part of [`Hdr`]; the default is the state before the first sample.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+/// The evolving part of [`Hdr`].
+#[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct HdrState {
     /// The integrator `I` [rad/s]; `-I` is the drift estimate.
     integrator: f64,
     block: BlockMean,
+    /// Eq 7 on the step means: the `w'` that the controller sees.
+    filter: LowPass,
     /// `SIGN(w)` of the previous step, for the repetition counter (eq 9).
     previous_sign: Option<i8>,
     /// Repetition counter `r` (eq 9).
@@ -94,7 +104,21 @@ struct HdrState {
     clock: Clock,
 }
 
-/// The HDR stage: input is the low-passed rate `w'`, output the corrected rate `w = w' + I`.
+impl HdrState {
+    /// The state before the first sample.
+    fn start(config: &HdrConfig) -> Self {
+        HdrState {
+            integrator: 0.0,
+            block: BlockMean::default(),
+            filter: LowPass::from_valid(LowPassConfig { tau: config.tau }),
+            previous_sign: None,
+            repetitions: 0,
+            clock: Clock::default(),
+        }
+    }
+}
+
+/// The HDR stage: output is the input rate plus the controller output `I` (eq 12).
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Hdr {
@@ -112,7 +136,7 @@ impl Hdr {
         for (r, a) in (1u32..).zip(attenuation.iter_mut()) {
             *a = config.attenuation(r);
         }
-        Ok(Hdr { config, attenuation, state: HdrState::default() })
+        Ok(Hdr { config, attenuation, state: HdrState::start(&config) })
     }
 
     /// The configuration.
@@ -130,28 +154,37 @@ impl Hdr {
         self.state.repetitions
     }
 
-    /// Corrects one low-passed sample whose interval is `dt` [s]: returns `w = w' + I` (eq 12)
-    /// and, when the sample closes an HDR step, updates `I` for the next step.
+    /// Adds `I` to one sample whose interval is `dt` [s]: returns `w = rate + I` (eq 12), and
+    /// updates `I` for the next step when the sample closes one.
     #[inline]
-    pub fn step(&mut self, dt: f64, filtered: f64) -> f64 {
-        let corrected = filtered + self.state.integrator;
-        if let Some(mean) = self.state.block.push(self.config.interval, dt, filtered) {
-            self.decide(mean);
-        }
-        corrected
+    pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
+        rate + self.observe(dt, rate)
     }
 
-    /// One HDR step on the block mean `w'_{i-1}` of the low-passed rate: eq 8 (as the text
-    /// states it), eq 9, eq 10 and eq 11 `I_i = I_{i-1} - SIGN(w_{i-1}) W_i R_i i_c`.
-    fn decide(&mut self, filtered_mean: f64) {
+    /// Feeds one sample to the controller and returns the `I` that applies to it (the value
+    /// before this sample's step closes). The pipeline adds it to the low-passed rate instead.
+    #[inline]
+    pub fn observe(&mut self, dt: f64, rate: f64) -> f64 {
+        let applied = self.state.integrator;
+        if let Some((mean, duration)) = self.state.block.push(self.config.interval, dt, rate) {
+            self.decide(mean, duration);
+        }
+        applied
+    }
+
+    /// One HDR step on the mean rate of the step just closed: eq 7 gives `w'_{i-1}`, then eq 8 (as
+    /// the text states it), eq 9, eq 10 and eq 11 `I_i = I_{i-1} - SIGN(w_{i-1}) W_i R_i i_c`
+    /// with `w_{i-1} = w'_{i-1} + I_{i-1}` (eq 12).
+    fn decide(&mut self, mean: f64, duration: f64) {
         let st = &mut self.state;
-        let s = sign(filtered_mean + st.integrator);
+        let filtered = st.filter.step(duration, mean);
+        let s = sign(filtered + st.integrator);
         st.repetitions = match st.previous_sign {
             Some(p) if p == s => st.repetitions.saturating_add(1),
             _ => 1,
         };
         st.previous_sign = Some(s);
-        let turning = libm::fabs(filtered_mean) >= self.config.turn_threshold;
+        let turning = libm::fabs(filtered) >= self.config.turn_threshold;
         if !turning {
             let r = st.repetitions;
             let step = f64::from(s) * self.attenuation_at(r) * self.config.increment;
@@ -178,6 +211,6 @@ impl Stage for Hdr {
     }
 
     fn reset(&mut self) {
-        self.state = HdrState::default();
+        self.state = HdrState::start(&self.config);
     }
 }

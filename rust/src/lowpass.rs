@@ -39,7 +39,12 @@ impl LowPass {
     /// Validates `config` and builds the stage.
     pub fn new(config: LowPassConfig) -> Result<Self, Error> {
         config.validate()?;
-        Ok(LowPass { config, previous: None, clock: Clock::default() })
+        Ok(Self::from_valid(config))
+    }
+
+    /// Builds the stage from a configuration that has been validated already.
+    pub(crate) fn from_valid(config: LowPassConfig) -> Self {
+        LowPass { config, previous: None, clock: Clock::default() }
     }
 
     /// Filters one sample whose interval is `dt` [s] (HDR eq 7).

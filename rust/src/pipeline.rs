@@ -18,7 +18,8 @@ pub struct PipelineConfig {
     pub correction: CorrectionConfig,
     /// Dead band (Hong eq 12).
     pub threshold: Option<ThresholdConfig>,
-    /// Low-pass before HDR (HDR eq 7).
+    /// Low-pass of the per-sample rate before HDR's `I` is added (HDR eq 7); HDR low-passes
+    /// its step means with its own [`HdrConfig::tau`].
     pub lowpass: Option<LowPassConfig>,
     /// Undo the low-pass lag after HDR (HDR eq 13); needs `lowpass`.
     pub delag: bool,
@@ -209,17 +210,23 @@ impl Pipeline {
     #[inline]
     pub fn update_with_temperature(&mut self, t: f64, rate: f64, temperature: Option<f64>) -> Output {
         let dt = self.clock.tick(t);
-        let mut r = self.correction.apply(t, rate, temperature);
-        if let Some(s) = &self.threshold {
-            r = s.apply(r);
-        }
-        if let Some(s) = &mut self.lowpass {
-            r = s.step(dt, r);
-        }
+        let corrected = {
+            let r = self.correction.apply(t, rate, temperature);
+            self.threshold.as_ref().map_or(r, |s| s.apply(r))
+        };
+        let mut r = match &mut self.lowpass {
+            Some(s) => s.step(dt, corrected),
+            None => corrected,
+        };
+        // HDR decides on its own low-passed step means of the corrected rate (see `Hdr`) and its
+        // `I` is added to the per-sample low-passed rate, which the de-lag then restores. It starts
+        // once the static bias is known: during the rest window it would only chase the running
+        // estimate of the bias (the papers measure the bias before the drive, then run HDR).
         let mut drift = 0.0;
-        if let Some(s) = &mut self.hdr {
-            drift = s.drift();
-            r = s.step(dt, r);
+        if let (Some(s), false) = (&mut self.hdr, self.correction.bias_learning()) {
+            let integrator = s.observe(dt, corrected);
+            drift = -integrator;
+            r += integrator;
         }
         if let Some(s) = &mut self.delag {
             r = s.step(dt, r);

@@ -32,15 +32,15 @@ struct PyPipeline {
     inner: Pipeline,
 }
 
-fn build_config(preset: &str, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<PipelineConfig> {
-    let preset = Preset::from_name(preset).ok_or_else(|| {
+fn build_preset(name: &str) -> PyResult<Preset> {
+    Preset::from_name(name).ok_or_else(|| {
         let names: Vec<&str> = Preset::ALL.iter().map(|p| p.name()).collect();
-        PyValueError::new_err(format!(
-            "unknown preset '{preset}'; choose one of {}, recommended",
-            names.join(", ")
-        ))
-    })?;
-    let mut config = preset.config();
+        PyValueError::new_err(format!("unknown preset '{name}'; choose one of {}, recommended", names.join(", ")))
+    })
+}
+
+fn build_config(preset: &str, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<PipelineConfig> {
+    let mut config = build_preset(preset)?.config();
     if let Some(o) = overrides {
         params::apply(&mut config, o)?;
     }
@@ -130,6 +130,12 @@ fn preset_names() -> (Vec<&'static str>, &'static str) {
     (Preset::ALL.iter().map(|p| p.name()).collect(), Preset::RECOMMENDED.name())
 }
 
+/// Whether a preset subtracts a static bias (so it wants a bias or a rest window).
+#[pyfunction]
+fn preset_uses_static_bias(preset: &str) -> PyResult<bool> {
+    Ok(build_preset(preset)?.uses_static_bias())
+}
+
 /// Parameter names and their descriptions.
 #[pyfunction]
 fn parameter_names() -> Vec<(&'static str, &'static str)> {
@@ -186,6 +192,7 @@ fn _gyrocore(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(preset_params, m)?)?;
     m.add_function(wrap_pyfunction!(preset_names, m)?)?;
     m.add_function(wrap_pyfunction!(parameter_names, m)?)?;
+    m.add_function(wrap_pyfunction!(preset_uses_static_bias, m)?)?;
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
     m.add_function(wrap_pyfunction!(downsample, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

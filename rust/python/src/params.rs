@@ -19,7 +19,7 @@ pub const NAMES: &[(&str, &str)] = &[
     ("temp_slope", "turn error per degC of FOG eq 5 divided by 360 deg [1/degC]"),
     ("temp_offset", "turn error at 0 degC of FOG eq 5 divided by 360 deg [1]"),
     ("threshold", "dead band r_thres of Hong eq 12 [rad/s], 0 = off"),
-    ("lowpass_tau", "low-pass time constant tau of HDR eq 7 [s], 0 = off"),
+    ("lowpass_tau", "low-pass time constant tau of HDR eq 7, per sample and on HDR's steps [s], 0 = off"),
     ("delag", "undo the low-pass lag (HDR eq 13) [bool]"),
     ("hdr", "run Heuristic Drift Reduction [bool]"),
     ("hdr_increment", "i_c [rad/s per step]"),
@@ -107,6 +107,8 @@ pub fn apply(config: &mut PipelineConfig, overrides: &Bound<'_, PyDict>) -> PyRe
     }
     config.correction.temperature = temp;
     if config.hdr.is_some() {
+        // One tau, as in the paper: the same eq 7 smooths the samples and HDR's step means.
+        hdr.tau = config.lowpass.map_or(0.0, |l| l.tau);
         config.hdr = Some(hdr);
     } else if let Some(name) = hdr_touched {
         return Err(PyValueError::new_err(format!("{name} is set but HDR is off; pass hdr=True to enable it")));

@@ -1,0 +1,179 @@
+"""The Python API: process, Pipeline (streaming, pickle, reset), integrate, presets and errors."""
+
+from __future__ import annotations
+
+import math
+import pickle
+import warnings
+
+import numpy as np
+import pytest
+
+import gyrocore
+
+
+def _log(n: int = 3000, seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
+    rng = np.random.default_rng(seed)
+    t = 1.65e9 + np.cumsum(rng.uniform(0.005, 0.02, n))
+    rate = 0.01 + 0.3 * np.sin(t / 7.0) * (rng.random(n) < 0.5) + rng.normal(0, 0.01, n)
+    return t, rate
+
+
+def test_process_returns_float64_arrays_of_input_length() -> None:
+    t, rate = _log()
+    r = gyrocore.process(t, rate, "combined", bias=0.01)
+    for name in ("t", "heading", "rate", "drift"):
+        a = getattr(r, name)
+        assert a.dtype == np.float64 and a.shape == t.shape, name
+    assert "HeadingResult(n=3000" in repr(r)
+    assert np.array_equal(r.heading_deg, np.degrees(r.heading))
+
+
+@pytest.mark.parametrize("preset", ["raw", "static_bias", "hong_park", "hdr", "combined", "recommended"])
+def test_chunked_streaming_is_bit_identical(preset: str) -> None:
+    t, rate = _log()
+    whole = gyrocore.Pipeline(preset, bias_duration=2.0).process(t, rate)
+    p = gyrocore.Pipeline(preset, bias_duration=2.0)
+    parts = [p.process(t[a:b], rate[a:b]) for a, b in [(0, 1), (1, 700), (700, 701), (701, 3000)]]
+    for name in ("heading", "rate", "drift"):
+        joined = np.concatenate([getattr(x, name) for x in parts])
+        assert np.array_equal(joined, getattr(whole, name)), name
+
+
+def test_pickle_mid_stream_continues_bit_identically_and_reset_restarts() -> None:
+    t, rate = _log()
+    a = gyrocore.Pipeline("combined", bias_window=(t[0], t[200]))
+    a.process(t[:1000], rate[:1000])
+    b = pickle.loads(pickle.dumps(a))
+    assert b.params == a.params and b.preset == "combined"
+    ra, rb = a.process(t[1000:], rate[1000:]), b.process(t[1000:], rate[1000:])
+    assert np.array_equal(ra.heading, rb.heading) and np.array_equal(ra.drift, rb.drift)
+    a.reset()
+    fresh = gyrocore.Pipeline("combined", bias_window=(t[0], t[200])).process(t, rate)
+    assert np.array_equal(a.process(t, rate).heading, fresh.heading)
+
+
+def test_any_float_dtype_and_stride_gives_the_same_result() -> None:
+    t, rate = _log(500)
+    ref = gyrocore.process(t, rate, "hdr", bias=0.0)
+    strided_t = np.repeat(t, 2)[::2]
+    assert not np.repeat(rate, 2)[::2].flags.c_contiguous
+    got = gyrocore.process(strided_t, np.repeat(rate, 2)[::2], "hdr", bias=0.0)
+    assert np.array_equal(got.heading, ref.heading)
+    got32 = gyrocore.process(t, rate.astype(np.float32), "hdr", bias=0.0)
+    assert np.allclose(got32.heading, ref.heading, atol=1e-5)
+    ints = gyrocore.process(np.arange(10), np.ones(10, dtype=np.int64), "raw")
+    assert ints.heading[-1] == 9.0
+
+
+def test_bad_input_raises_with_the_first_bad_index() -> None:
+    t, rate = _log(100)
+    p = gyrocore.Pipeline("hdr", bias=0.0)
+    bad_t = t.copy()
+    bad_t[37] = bad_t[36]
+    with pytest.raises(ValueError, match=r"t\[37\]"):
+        p.process(bad_t, rate)
+    bad_r = rate.copy()
+    bad_r[12] = np.nan
+    with pytest.raises(ValueError, match=r"rate\[12\] is NaN"):
+        p.process(t, bad_r)
+    with pytest.raises(ValueError, match="length mismatch"):
+        p.process(t, rate[:-1])
+    with pytest.raises(TypeError, match="real numbers"):
+        p.process(t, np.array(["a"] * 100))
+    with pytest.raises(ValueError, match="one-dimensional"):
+        p.process(t.reshape(10, 10), rate.reshape(10, 10))
+    # Nothing was processed: the pipeline still accepts the log from its start.
+    assert np.array_equal(p.process(t, rate).heading, gyrocore.process(t, rate, "hdr", bias=0.0).heading)
+    with pytest.raises(ValueError, match=r"t\[0\] = .* follows"):
+        p.process(t, rate)
+
+
+def test_empty_input_gives_empty_output() -> None:
+    r = gyrocore.process(np.array([]), np.array([]), "raw")
+    assert len(r) == 0 and repr(r) == "HeadingResult(empty)"
+
+
+def test_overrides_in_si_and_degrees_and_unknown_names() -> None:
+    si = gyrocore.preset_params("hdr", hdr_increment=math.radians(0.05), threshold=math.radians(0.2))
+    deg = gyrocore.preset_params("hdr", hdr_increment_dps=0.05, threshold_dps=0.2)
+    assert si == deg
+    assert gyrocore.preset_params("recommended") == gyrocore.preset_params(gyrocore.recommended_preset())
+    with pytest.raises(ValueError, match="unknown parameter 'hdr_gain'"):
+        gyrocore.Pipeline("hdr", bias=0.0, hdr_gain=1.0)
+    with pytest.raises(ValueError, match="unknown preset 'fast'"):
+        gyrocore.Pipeline("fast")
+    with pytest.raises(ValueError, match="hdr_c2 = 0: must be finite and > 0"):
+        gyrocore.Pipeline("hdr", bias=0.0, hdr_c2=0.0)
+    with pytest.raises(ValueError, match="HDR is off; pass hdr=True"):
+        gyrocore.Pipeline("static_bias", bias=0.0, hdr_c1=0.1)
+    with pytest.raises(ValueError, match="at most one of bias"):
+        gyrocore.Pipeline("hdr", bias=0.0, bias_duration=3.0)
+    with pytest.raises(ValueError, match="given twice"):
+        gyrocore.Pipeline("hdr", bias=0.0, threshold=0.1, threshold_dps=0.1)
+
+
+def test_presets_match_the_papers() -> None:
+    hdr = gyrocore.preset_params("hdr")
+    assert math.degrees(hdr["hdr_increment"]) == pytest.approx(0.0422)
+    assert math.degrees(hdr["hdr_turn_threshold"]) == pytest.approx(0.564)
+    assert (hdr["hdr_c1"], hdr["hdr_c2"], hdr["lowpass_tau"], hdr["delag"]) == (0.16, 1.8, 0.75, True)
+    assert math.degrees(gyrocore.preset_params("hong_park")["threshold"]) == pytest.approx(0.3)
+    combined = gyrocore.preset_params("combined")
+    assert combined["hdr"] and combined["threshold"] == gyrocore.preset_params("hong_park")["threshold"]
+    assert not gyrocore.preset_params("raw")["hdr"]
+    assert set(gyrocore.parameters()) >= set(hdr)
+
+
+def test_missing_bias_warns_and_a_window_outside_the_log_is_an_error() -> None:
+    t, rate = _log(200)
+    with pytest.warns(UserWarning, match="no bias"):
+        gyrocore.Pipeline("static_bias")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        gyrocore.Pipeline("raw")
+    with pytest.raises(ValueError, match="ends before the first sample"):
+        gyrocore.process(t, rate, "static_bias", bias_window=(0.0, 10.0))
+
+
+def test_static_bias_from_a_rest_window_is_the_mean_there() -> None:
+    t = np.arange(0.0, 30.0, 0.01)
+    rate = np.where(t < 10.0, 0.02, 0.5) + 0.0
+    p = gyrocore.Pipeline("static_bias", bias_window=(0.0, 9.9))
+    r = p.process(t, rate)
+    assert p.bias == pytest.approx(0.02, abs=1e-15)
+    assert r.rate[-1] == pytest.approx(0.48)
+
+
+def test_temperature_model_is_applied_and_required() -> None:
+    t = np.arange(0.0, 10.0, 0.1)
+    rate = np.full_like(t, 0.5)
+    temp = np.full_like(t, 25.0)
+    fog = {"temp_slope": -0.52 / 360, "temp_offset": 19.23 / 360, "bias": 0.0}
+    r = gyrocore.process(t, rate, "static_bias", temperature=temp, **fog)
+    assert r.rate[0] == pytest.approx(0.5 * 360 / (379.23 - 0.52 * 25))
+    with pytest.raises(ValueError, match="no temperature was given"):
+        gyrocore.process(t, rate, "static_bias", **fog)
+
+
+def test_integrate_and_downsample() -> None:
+    t = np.array([0.0, 1.0, 3.0])
+    r = np.array([1.0, 2.0, 3.0])
+    assert gyrocore.integrate(t, r).tolist() == [0.0, 1.5, 6.5]
+    assert gyrocore.integrate(t, r, "rectangle", initial_heading=0.5).tolist() == [0.5, 2.5, 8.5]
+    with pytest.raises(ValueError, match="unknown integration method"):
+        gyrocore.integrate(t, r, "simpson")
+    tt = np.arange(0, 31) * 0.1
+    tb, rb = gyrocore.downsample(tt, np.arange(31.0), 1.0)
+    assert np.allclose(tb, [1, 2, 3]) and np.allclose(rb, [5.5, 15.5, 25.5])
+
+
+def test_processing_in_threads_gives_the_sequential_result() -> None:
+    # The GIL is released while Rust works; each thread must still see only its own pipeline.
+    from concurrent.futures import ThreadPoolExecutor
+
+    logs = [_log(20000, seed=s) for s in range(4)]
+    seq = [gyrocore.process(t, r, "combined", bias=0.01).heading for t, r in logs]
+    with ThreadPoolExecutor(4) as ex:
+        par = list(ex.map(lambda x: gyrocore.process(x[0], x[1], "combined", bias=0.01).heading, logs))
+    assert all(np.array_equal(a, b) for a, b in zip(seq, par))

@@ -1,0 +1,46 @@
+"""Presets on the real logs of ../shared/data/real, against the figures of the data's own README
+(measured there with an independent script: trapezoid integration, E_psi of HDR eq 15)."""
+
+from __future__ import annotations
+
+import pytest
+
+import gyrocore
+
+from .conftest import real_log_path
+
+# data/README.md: raw integration and static bias removed, E_psi in degrees (rounded to 0.1).
+INDEPENDENT = {"f110_ds3": (20.4, 3.7), "broad_10": (10.7, 1.3), "comma_seg40": (116.2, None)}
+
+
+def e_psi(log: gyrocore.Log, preset: str, **overrides: object) -> float:
+    r = log.process(preset, **overrides)
+    return gyrocore.heading_errors(r.t, r.heading, log.t_ref, log.heading_ref).e_psi_deg
+
+
+def test_raw_and_static_bias_match_the_independent_figures(real_log: gyrocore.Log) -> None:
+    raw, static = INDEPENDENT[real_log.name]
+    assert e_psi(real_log, "raw") == pytest.approx(raw, abs=0.05)
+    if static is not None:
+        assert e_psi(real_log, "static_bias") == pytest.approx(static, abs=0.05)
+
+
+@pytest.mark.parametrize("name", ["f110_ds3", "broad_10"])
+def test_static_bias_beats_raw_on_logs_with_a_rest(name: str) -> None:
+    log = gyrocore.read_log(real_log_path(name))
+    assert log.stationary is not None
+    assert e_psi(log, "static_bias") < 0.5 * e_psi(log, "raw")
+
+
+def test_every_preset_runs_on_every_real_log(real_log: gyrocore.Log) -> None:
+    for preset in gyrocore.preset_names():
+        r = real_log.process(preset, bias=0.0) if real_log.stationary is None and preset != "raw" else real_log.process(preset)
+        assert len(r) == len(real_log.t)
+        assert all(map(lambda a: bool(abs(a).max() < 1e3), (r.heading, r.rate, r.drift)))
+
+
+def test_log_folder_reading_keeps_units_and_rest_window() -> None:
+    log = gyrocore.read_log(real_log_path("f110_ds3"))
+    assert log.stationary == pytest.approx((1651541251.8307054, 1651541253.6700983))
+    assert len(log.t) == log.meta["samples"] and log.speed is not None
+    assert log.duration == pytest.approx(log.meta["duration_s"], rel=1e-6)
