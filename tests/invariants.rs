@@ -21,7 +21,9 @@ fn stream() -> impl Strategy<Value = (Vec<f64>, Vec<f64>)> {
             now += 0.001 + 0.3 * next();
             t.push(now);
         }
-        let rate = (0..n).map(|_| (next() - 0.5) * 0.2 + if next() < 0.1 { 1.5 } else { 0.0 }).collect();
+        let rate = (0..n)
+            .map(|_| (next() - 0.5) * 0.2 + if next() < 0.1 { 1.5 } else { 0.0 })
+            .collect();
         (t, rate)
     })
 }
@@ -43,12 +45,30 @@ fn run_updates(p: &mut Pipeline, t: &[f64], r: &[f64]) -> Vec<Output> {
 fn run_block(p: &mut Pipeline, t: &[f64], r: &[f64]) -> Vec<Output> {
     let n = t.len();
     let (mut h, mut ra, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    p.process_block(t, r, None, Outputs { heading: &mut h, rate: &mut ra, drift: &mut d }).unwrap();
-    (0..n).map(|i| Output { heading: h[i], rate: ra[i], drift: d[i] }).collect()
+    p.process_block(
+        t,
+        r,
+        None,
+        Outputs {
+            heading: &mut h,
+            rate: &mut ra,
+            drift: &mut d,
+        },
+    )
+    .unwrap();
+    (0..n)
+        .map(|i| Output {
+            heading: h[i],
+            rate: ra[i],
+            drift: d[i],
+        })
+        .collect()
 }
 
 fn bits(o: &[Output]) -> Vec<[u64; 3]> {
-    o.iter().map(|o| [o.heading.to_bits(), o.rate.to_bits(), o.drift.to_bits()]).collect()
+    o.iter()
+        .map(|o| [o.heading.to_bits(), o.rate.to_bits(), o.drift.to_bits()])
+        .collect()
 }
 
 proptest! {
@@ -167,34 +187,105 @@ fn a_bad_block_is_rejected_whole_with_the_first_bad_index() {
     let mut out = vec![0.0; 4];
     let (mut o2, mut o3) = (out.clone(), out.clone());
     let mut bad = |t: &[f64], r: &[f64], p: &mut Pipeline| {
-        p.process_block(t, r, None, Outputs { heading: &mut out, rate: &mut o2, drift: &mut o3 }).unwrap_err()
+        p.process_block(
+            t,
+            r,
+            None,
+            Outputs {
+                heading: &mut out,
+                rate: &mut o2,
+                drift: &mut o3,
+            },
+        )
+        .unwrap_err()
     };
     assert_eq!(
         bad(&[0.0, 1.0, 1.0, 2.0], &[0.0; 4], &mut p),
-        Error::NotIncreasing { index: 2, previous: 1.0, value: 1.0 }
+        Error::NotIncreasing {
+            index: 2,
+            previous: 1.0,
+            value: 1.0
+        }
     );
-    assert!(matches!(bad(&[0.0, 1.0, 2.0, 3.0], &[0.0, f64::NAN, 0.0, 0.0], &mut p), Error::NonFinite { what: "rate", index: 1, .. }));
-    assert!(matches!(bad(&[0.0, 1.0, f64::INFINITY, 3.0], &[0.0; 4], &mut p), Error::NonFinite { what: "t", index: 2, .. }));
-    assert!(matches!(bad(&[0.0, 1.0, 2.0, 3.0], &[0.0; 3], &mut p), Error::LengthMismatch { what: "rate", .. }));
+    assert!(matches!(
+        bad(&[0.0, 1.0, 2.0, 3.0], &[0.0, f64::NAN, 0.0, 0.0], &mut p),
+        Error::NonFinite {
+            what: "rate",
+            index: 1,
+            ..
+        }
+    ));
+    assert!(matches!(
+        bad(&[0.0, 1.0, f64::INFINITY, 3.0], &[0.0; 4], &mut p),
+        Error::NonFinite {
+            what: "t",
+            index: 2,
+            ..
+        }
+    ));
+    assert!(matches!(
+        bad(&[0.0, 1.0, 2.0, 3.0], &[0.0; 3], &mut p),
+        Error::LengthMismatch { what: "rate", .. }
+    ));
     assert_eq!(p, before, "nothing may be processed from a rejected block");
     // Across blocks: the next block must start after the last timestamp.
     let mut q = Pipeline::new(Preset::Hdr.config()).unwrap();
     let n = 4;
     let (mut h, mut ra, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    q.process_block(&[0.0, 1.0, 2.0, 3.0], &[0.0; 4], None, Outputs { heading: &mut h, rate: &mut ra, drift: &mut d }).unwrap();
+    q.process_block(
+        &[0.0, 1.0, 2.0, 3.0],
+        &[0.0; 4],
+        None,
+        Outputs {
+            heading: &mut h,
+            rate: &mut ra,
+            drift: &mut d,
+        },
+    )
+    .unwrap();
     let err = q
-        .process_block(&[3.0, 4.0, 5.0, 6.0], &[0.0; 4], None, Outputs { heading: &mut h, rate: &mut ra, drift: &mut d })
+        .process_block(
+            &[3.0, 4.0, 5.0, 6.0],
+            &[0.0; 4],
+            None,
+            Outputs {
+                heading: &mut h,
+                rate: &mut ra,
+                drift: &mut d,
+            },
+        )
         .unwrap_err();
-    assert_eq!(err, Error::NotIncreasing { index: 0, previous: 3.0, value: 3.0 });
+    assert_eq!(
+        err,
+        Error::NotIncreasing {
+            index: 0,
+            previous: 3.0,
+            value: 3.0
+        }
+    );
 }
 
 #[test]
 fn a_temperature_model_without_temperature_is_an_error() {
     let mut config = Preset::Raw.config();
-    config.correction.temperature = Some(TemperatureScale { slope: 0.0, offset: 0.0 });
+    config.correction.temperature = Some(TemperatureScale {
+        slope: 0.0,
+        offset: 0.0,
+    });
     let mut p = Pipeline::new(config).unwrap();
     let (mut h, mut r, mut d) = (vec![0.0; 1], vec![0.0; 1], vec![0.0; 1]);
-    let err = p.process_block(&[0.0], &[0.0], None, Outputs { heading: &mut h, rate: &mut r, drift: &mut d }).unwrap_err();
+    let err = p
+        .process_block(
+            &[0.0],
+            &[0.0],
+            None,
+            Outputs {
+                heading: &mut h,
+                rate: &mut r,
+                drift: &mut d,
+            },
+        )
+        .unwrap_err();
     assert_eq!(err, Error::MissingTemperature);
 }
 
@@ -214,12 +305,18 @@ fn presets_are_valid_and_named() {
 #[test]
 fn hdr_waits_for_the_end_of_the_rest_window() {
     let mut config = Preset::Hdr.config();
-    config.correction.bias = StaticBias::Window { start: 0.0, end: 10.0 };
+    config.correction.bias = StaticBias::Window {
+        start: 0.0,
+        end: 10.0,
+    };
     let mut p = Pipeline::new(config).unwrap();
     let t: Vec<f64> = (0..=150).map(|i| i as f64 * 0.1).collect();
     // A drifting reading during the rest: HDR must not act on it while the bias is measured.
     let rate: Vec<f64> = t.iter().map(|&x| 0.001 * x).collect();
     let out = run_updates(&mut p, &t, &rate);
     assert!(out[..=100].iter().all(|o| o.drift == 0.0));
-    assert!(out[112..].iter().any(|o| o.drift != 0.0), "HDR acts after the window");
+    assert!(
+        out[112..].iter().any(|o| o.drift != 0.0),
+        "HDR acts after the window"
+    );
 }

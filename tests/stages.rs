@@ -9,7 +9,10 @@ fn close(a: f64, b: f64) -> bool {
 }
 
 fn run<S: Stage<Output = f64>>(stage: &mut S, t: &[f64], rate: &[f64]) -> Vec<f64> {
-    t.iter().zip(rate).map(|(&ti, &ri)| stage.update(ti, ri)).collect()
+    t.iter()
+        .zip(rate)
+        .map(|(&ti, &ri)| stage.update(ti, ri))
+        .collect()
 }
 
 #[test]
@@ -32,7 +35,11 @@ fn correction_applies_bias_then_calibration_then_direction_factors() {
 fn hong_calibration_recovers_the_true_rate_of_section_3_1() {
     // s = -10 %, b = 0.1 rad/s: r_m = 0.9 r + 0.1, s_bar = 1/0.9, b_bar = -0.1/0.9 (Hong eq 2-3).
     let (s, b) = (-0.1, 0.1);
-    let config = CorrectionConfig { scale: 1.0 / (1.0 + s), offset: -b / (1.0 + s), ..Default::default() };
+    let config = CorrectionConfig {
+        scale: 1.0 / (1.0 + s),
+        offset: -b / (1.0 + s),
+        ..Default::default()
+    };
     let mut c = Correction::new(config).unwrap();
     for (i, r) in [-1.0, -0.2, 0.0, 0.35, 2.0].into_iter().enumerate() {
         assert!(close(c.update(i as f64, (1.0 + s) * r + b), r));
@@ -42,20 +49,39 @@ fn hong_calibration_recovers_the_true_rate_of_section_3_1() {
 #[test]
 fn temperature_factor_is_fog_eq_6() {
     // FOG eq 5-6: E_T = -0.52 T + 19.23 deg, C_T = 360 / (379.23 - 0.52 T).
-    let model = TemperatureScale { slope: -0.52 / 360.0, offset: 19.23 / 360.0 };
+    let model = TemperatureScale {
+        slope: -0.52 / 360.0,
+        offset: 19.23 / 360.0,
+    };
     for temp in [0.0, 25.0, 40.0] {
         assert!(close(model.factor(temp), 360.0 / (379.23 - 0.52 * temp)));
     }
-    let config = CorrectionConfig { temperature: Some(model), ..Default::default() };
+    let config = CorrectionConfig {
+        temperature: Some(model),
+        ..Default::default()
+    };
     let mut c = Correction::new(config).unwrap();
-    assert!(close(c.apply(0.0, 0.5, Some(25.0)), 0.5 * 360.0 / (379.23 - 13.0)));
+    assert!(close(
+        c.apply(0.0, 0.5, Some(25.0)),
+        0.5 * 360.0 / (379.23 - 13.0)
+    ));
 }
 
 #[test]
 fn static_bias_window_is_the_time_weighted_mean_at_rest_and_then_frozen() {
-    let config = CorrectionConfig { bias: StaticBias::Window { start: 0.0, end: 2.0 }, ..Default::default() };
+    let config = CorrectionConfig {
+        bias: StaticBias::Window {
+            start: 0.0,
+            end: 2.0,
+        },
+        ..Default::default()
+    };
     let mut c = Correction::new(config).unwrap();
-    let out = run(&mut c, &[0.0, 0.5, 2.0, 3.0, 4.0], &[0.1, 0.3, 0.2, 1.0, 0.2]);
+    let out = run(
+        &mut c,
+        &[0.0, 0.5, 2.0, 3.0, 4.0],
+        &[0.1, 0.3, 0.2, 1.0, 0.2],
+    );
     // Estimate: 0.1 (first reading), then 0.3 (0.5 s), then (0.3*0.5 + 0.2*1.5)/2 = 0.225; frozen.
     let expected = [0.0, 0.0, 0.2 - 0.225, 1.0 - 0.225, 0.2 - 0.225];
     for (o, e) in out.iter().zip(expected) {
@@ -68,7 +94,10 @@ fn static_bias_window_is_the_time_weighted_mean_at_rest_and_then_frozen() {
 
 #[test]
 fn leading_bias_window_starts_at_the_first_sample() {
-    let config = CorrectionConfig { bias: StaticBias::Leading { duration: 2.5 }, ..Default::default() };
+    let config = CorrectionConfig {
+        bias: StaticBias::Leading { duration: 2.5 },
+        ..Default::default()
+    };
     let mut c = Correction::new(config).unwrap();
     run(&mut c, &[100.0, 101.0, 102.0, 103.0], &[0.2, 0.4, 0.6, 9.0]);
     assert!(close(c.bias(), 0.5));
@@ -78,7 +107,11 @@ fn leading_bias_window_starts_at_the_first_sample() {
 #[test]
 fn threshold_is_hong_eq_12() {
     let mut th = Threshold::new(ThresholdConfig { threshold: 0.1 }).unwrap();
-    let out = run(&mut th, &[0.0, 1.0, 2.0, 3.0, 4.0], &[0.05, -0.05, 0.1, -0.2, 0.0999]);
+    let out = run(
+        &mut th,
+        &[0.0, 1.0, 2.0, 3.0, 4.0],
+        &[0.05, -0.05, 0.1, -0.2, 0.0999],
+    );
     assert_eq!(out, vec![0.0, 0.0, 0.1, -0.2, 0.0]);
 }
 
@@ -97,12 +130,19 @@ fn lowpass_is_hdr_eq_7_with_the_actual_interval() {
 fn delag_is_hdr_eq_13_and_inverts_the_lowpass() {
     let mut d = DeLag::new(LowPassConfig { tau: 0.75 }).unwrap();
     let out = run(&mut d, &[0.0, 0.5, 1.5], &[1.0, 2.0, 1.0]);
-    let expected = [1.0, 2.0 + 0.75 / 0.5 * 1.0, 1.0 + 0.75 / 1.0 * -1.0];
+    // w_d = w + tau/T (w_i - w_{i-1}): (2 - 1) over 0.5 s, then (1 - 2) over 1 s.
+    let expected = [
+        1.0,
+        2.0 + 0.75 / 0.5 * (2.0 - 1.0),
+        1.0 + 0.75 / 1.0 * (1.0 - 2.0),
+    ];
     for (o, e) in out.iter().zip(expected) {
         assert!(close(*o, e), "{out:?}");
     }
     // Irregular timestamps: de-lag(low-pass(x)) == x.
-    let t: Vec<f64> = (0..200).map(|i| i as f64 * 0.01 + 0.003 * ((i * 7 % 5) as f64)).collect();
+    let t: Vec<f64> = (0..200)
+        .map(|i| i as f64 * 0.01 + 0.003 * ((i * 7 % 5) as f64))
+        .collect();
     let x: Vec<f64> = (0..200).map(|i| (i as f64 * 0.37).sin()).collect();
     let mut lp = LowPass::new(LowPassConfig { tau: 0.75 }).unwrap();
     let mut dl = DeLag::new(LowPassConfig { tau: 0.75 }).unwrap();
@@ -114,7 +154,14 @@ fn delag_is_hdr_eq_13_and_inverts_the_lowpass() {
 
 fn hand_hdr() -> HdrConfig {
     // R(r) = 1.5 / (1 + 0.5 r): R(1) = 1, R(2) = 0.75, R(3) = 0.6.
-    HdrConfig { increment: 0.1, turn_threshold: 1.0, c1: 0.5, c2: 1.0, interval: 1.0, tau: 0.0 }
+    HdrConfig {
+        increment: 0.1,
+        turn_threshold: 1.0,
+        c1: 0.5,
+        c2: 1.0,
+        interval: 1.0,
+        tau: 0.0,
+    }
 }
 
 #[test]
@@ -143,7 +190,10 @@ fn hdr_turn_switch_uses_the_absolute_rate_and_disables_above_the_threshold() {
     for rate in [0.5, -0.5] {
         let mut h = Hdr::new(hand_hdr()).unwrap();
         run(&mut h, &[0.0, 1.0], &[rate; 2]);
-        assert!(close(h.drift(), 0.1 * rate.signum()), "below the threshold HDR must act");
+        assert!(
+            close(h.drift(), 0.1 * rate.signum()),
+            "below the threshold HDR must act"
+        );
     }
 }
 
@@ -164,7 +214,10 @@ fn hdr_decides_once_per_interval_at_any_rate() {
 fn attenuator_table_matches_eq_10_beyond_its_end() {
     let c = HdrConfig::table_iii();
     assert!(close(c.attenuation(1), 1.0));
-    assert!(close(c.attenuation(40), 1.16 / (1.0 + 0.16 * 40f64.powf(1.8))));
+    assert!(close(
+        c.attenuation(40),
+        1.16 / (1.0 + 0.16 * 40f64.powf(1.8))
+    ));
     // A constant rate below the turn threshold keeps its sign for 60 steps: r passes the table.
     let mut h = Hdr::new(c).unwrap();
     let mut expected_i = 0.0;
@@ -182,9 +235,17 @@ fn attenuator_table_matches_eq_10_beyond_its_end() {
 fn integration_rectangle_is_hdr_eq_3_and_trapezoid_averages_neighbours() {
     let t = [0.0, 1.0, 3.0];
     let r = [1.0, 2.0, 3.0];
-    let mut rect = Integrator::new(IntegratorConfig { method: Method::Rectangle, initial_heading: 0.5 }).unwrap();
+    let mut rect = Integrator::new(IntegratorConfig {
+        method: Method::Rectangle,
+        initial_heading: 0.5,
+    })
+    .unwrap();
     assert_eq!(run(&mut rect, &t, &r), vec![0.5, 2.5, 8.5]);
-    let mut trap = Integrator::new(IntegratorConfig { method: Method::Trapezoid, initial_heading: 0.0 }).unwrap();
+    let mut trap = Integrator::new(IntegratorConfig {
+        method: Method::Trapezoid,
+        initial_heading: 0.0,
+    })
+    .unwrap();
     assert_eq!(run(&mut trap, &t, &r), vec![0.0, 1.5, 6.5]);
 }
 
@@ -214,15 +275,55 @@ fn downsample_averages_blocks_like_the_second_eq_14() {
 #[test]
 fn invalid_parameters_name_the_parameter() {
     let cases: Vec<(Error, &str)> = vec![
-        (LowPass::new(LowPassConfig { tau: -1.0 }).unwrap_err(), "lowpass_tau"),
-        (Threshold::new(ThresholdConfig { threshold: -0.1 }).unwrap_err(), "threshold"),
-        (Hdr::new(HdrConfig { c2: 0.0, ..HdrConfig::table_iii() }).unwrap_err(), "hdr_c2"),
-        (Hdr::new(HdrConfig { increment: f64::NAN, ..HdrConfig::table_iii() }).unwrap_err(), "hdr_increment"),
-        (Hdr::new(HdrConfig { interval: 0.0, ..HdrConfig::table_iii() }).unwrap_err(), "hdr_interval"),
-        (Correction::new(CorrectionConfig { scale: 0.0, ..Default::default() }).unwrap_err(), "scale"),
         (
-            Correction::new(CorrectionConfig { bias: StaticBias::Window { start: 2.0, end: 1.0 }, ..Default::default() })
-                .unwrap_err(),
+            LowPass::new(LowPassConfig { tau: -1.0 }).unwrap_err(),
+            "lowpass_tau",
+        ),
+        (
+            Threshold::new(ThresholdConfig { threshold: -0.1 }).unwrap_err(),
+            "threshold",
+        ),
+        (
+            Hdr::new(HdrConfig {
+                c2: 0.0,
+                ..HdrConfig::table_iii()
+            })
+            .unwrap_err(),
+            "hdr_c2",
+        ),
+        (
+            Hdr::new(HdrConfig {
+                increment: f64::NAN,
+                ..HdrConfig::table_iii()
+            })
+            .unwrap_err(),
+            "hdr_increment",
+        ),
+        (
+            Hdr::new(HdrConfig {
+                interval: 0.0,
+                ..HdrConfig::table_iii()
+            })
+            .unwrap_err(),
+            "hdr_interval",
+        ),
+        (
+            Correction::new(CorrectionConfig {
+                scale: 0.0,
+                ..Default::default()
+            })
+            .unwrap_err(),
+            "scale",
+        ),
+        (
+            Correction::new(CorrectionConfig {
+                bias: StaticBias::Window {
+                    start: 2.0,
+                    end: 1.0,
+                },
+                ..Default::default()
+            })
+            .unwrap_err(),
             "bias_window.end",
         ),
     ];

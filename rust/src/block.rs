@@ -64,14 +64,20 @@ impl Downsample {
     /// Validates `config` and builds the stage.
     pub fn new(config: DownsampleConfig) -> Result<Self, Error> {
         check_positive("interval", config.interval)?;
-        Ok(Downsample { config, block: BlockMean::default(), clock: Clock::default() })
+        Ok(Downsample {
+            config,
+            block: BlockMean::default(),
+            clock: Clock::default(),
+        })
     }
 
     /// Feeds one sample; returns `(t, mean rate)` when the sample at `t` closes a block.
     #[inline]
     pub fn update(&mut self, t: f64, rate: f64) -> Option<(f64, f64)> {
         let dt = self.clock.tick(t);
-        self.block.push(self.config.interval, dt, rate).map(|(mean, _)| (t, mean))
+        self.block
+            .push(self.config.interval, dt, rate)
+            .map(|(mean, _)| (t, mean))
     }
 
     /// Returns the stage to its initial state.

@@ -95,7 +95,13 @@ impl CorrectionConfig {
             StaticBias::Window { start, end } => {
                 check_finite("bias_window.start", start)?;
                 check_finite("bias_window.end", end)?;
-                check_range("bias_window.end", end, start, f64::INFINITY, "finite and >= start")?;
+                check_range(
+                    "bias_window.end",
+                    end,
+                    start,
+                    f64::INFINITY,
+                    "finite and >= start",
+                )?;
             }
             StaticBias::Leading { duration } => check_positive("bias_duration", duration)?,
         }
@@ -141,7 +147,15 @@ impl BiasEstimate {
             StaticBias::Window { start, end } => (0.0, Some((start, end)), true),
             StaticBias::Leading { .. } => (0.0, None, true),
         };
-        BiasEstimate { value, integral: 0.0, duration: 0.0, count: 0, window, learning, clock: Clock::default() }
+        BiasEstimate {
+            value,
+            integral: 0.0,
+            duration: 0.0,
+            count: 0,
+            window,
+            learning,
+            clock: Clock::default(),
+        }
     }
 
     /// Takes the reading into the mean while `t` is inside the window (HDR eq 2's `eps0`).
@@ -165,7 +179,11 @@ impl BiasEstimate {
                 self.duration += dt;
             }
             self.count += 1;
-            self.value = if self.duration > 0.0 { self.integral / self.duration } else { rate };
+            self.value = if self.duration > 0.0 {
+                self.integral / self.duration
+            } else {
+                rate
+            };
         }
     }
 }
@@ -185,7 +203,10 @@ impl Correction {
     /// Validates `config` and builds the stage.
     pub fn new(config: CorrectionConfig) -> Result<Self, Error> {
         config.validate()?;
-        Ok(Correction { config, bias: BiasEstimate::new(config.bias) })
+        Ok(Correction {
+            config,
+            bias: BiasEstimate::new(config.bias),
+        })
     }
 
     /// The configuration.

@@ -53,7 +53,11 @@ impl fmt::Display for Error {
             Error::InvalidParameter { name, value, valid } => {
                 write!(f, "invalid parameter {name} = {value}: must be {valid}")
             }
-            Error::LengthMismatch { what, len, expected } => write!(
+            Error::LengthMismatch {
+                what,
+                len,
+                expected,
+            } => write!(
                 f,
                 "length mismatch: {what} has {len} samples but t has {expected}"
             ),
@@ -61,7 +65,11 @@ impl fmt::Display for Error {
                 f,
                 "{what}[{index}] is {value}: samples must be finite (drop or fill them first)"
             ),
-            Error::NotIncreasing { index, previous, value } => write!(
+            Error::NotIncreasing {
+                index,
+                previous,
+                value,
+            } => write!(
                 f,
                 "timestamps must strictly increase: t[{index}] = {value} follows {previous} \
                  (sort the log and drop duplicate timestamps)"
@@ -96,7 +104,11 @@ pub(crate) fn check_positive(name: &'static str, value: f64) -> Result<(), Error
     if value.is_finite() && value > 0.0 {
         Ok(())
     } else {
-        Err(Error::InvalidParameter { name, value, valid: "finite and > 0" })
+        Err(Error::InvalidParameter {
+            name,
+            value,
+            valid: "finite and > 0",
+        })
     }
 }
 
@@ -105,6 +117,10 @@ pub(crate) fn check_finite(name: &'static str, value: f64) -> Result<(), Error> 
     if value.is_finite() {
         Ok(())
     } else {
-        Err(Error::InvalidParameter { name, value, valid: "finite" })
+        Err(Error::InvalidParameter {
+            name,
+            value,
+            valid: "finite",
+        })
     }
 }

@@ -56,7 +56,13 @@ impl HdrConfig {
 
     /// Checks every field; the error names the first invalid one.
     pub fn validate(&self) -> Result<(), Error> {
-        check_range("hdr_increment", self.increment, 0.0, f64::MAX, "finite and >= 0")?;
+        check_range(
+            "hdr_increment",
+            self.increment,
+            0.0,
+            f64::MAX,
+            "finite and >= 0",
+        )?;
         check_range(
             "hdr_turn_threshold",
             self.turn_threshold,
@@ -136,7 +142,11 @@ impl Hdr {
         for (r, a) in (1u32..).zip(attenuation.iter_mut()) {
             *a = config.attenuation(r);
         }
-        Ok(Hdr { config, attenuation, state: HdrState::start(&config) })
+        Ok(Hdr {
+            config,
+            attenuation,
+            state: HdrState::start(&config),
+        })
     }
 
     /// The configuration.
@@ -194,7 +204,10 @@ impl Hdr {
 
     #[inline]
     fn attenuation_at(&self, repetitions: u32) -> f64 {
-        match repetitions.checked_sub(1).and_then(|k| self.attenuation.get(k as usize)) {
+        match repetitions
+            .checked_sub(1)
+            .and_then(|k| self.attenuation.get(k as usize))
+        {
             Some(&a) => a,
             None => self.config.attenuation(repetitions),
         }

@@ -48,7 +48,12 @@ impl Integrator {
     }
 
     fn start(config: IntegratorConfig) -> Self {
-        Integrator { config, heading: config.initial_heading, previous: None, clock: Clock::default() }
+        Integrator {
+            config,
+            heading: config.initial_heading,
+            previous: None,
+            clock: Clock::default(),
+        }
     }
 
     /// Adds one sample whose interval is `dt` [s]; returns the heading at that sample.

@@ -44,7 +44,11 @@ impl LowPass {
 
     /// Builds the stage from a configuration that has been validated already.
     pub(crate) fn from_valid(config: LowPassConfig) -> Self {
-        LowPass { config, previous: None, clock: Clock::default() }
+        LowPass {
+            config,
+            previous: None,
+            clock: Clock::default(),
+        }
     }
 
     /// Filters one sample whose interval is `dt` [s] (HDR eq 7).
@@ -90,7 +94,11 @@ impl DeLag {
     /// Validates `config` and builds the stage.
     pub fn new(config: LowPassConfig) -> Result<Self, Error> {
         config.validate()?;
-        Ok(DeLag { config, previous: None, clock: Clock::default() })
+        Ok(DeLag {
+            config,
+            previous: None,
+            clock: Clock::default(),
+        })
     }
 
     /// De-lags one sample whose interval is `dt` [s] (HDR eq 13).

@@ -47,8 +47,13 @@ pub enum Preset {
 
 impl Preset {
     /// Every preset, in order of increasing processing.
-    pub const ALL: [Preset; 5] =
-        [Preset::Raw, Preset::StaticBias, Preset::HongPark, Preset::Hdr, Preset::Combined];
+    pub const ALL: [Preset; 5] = [
+        Preset::Raw,
+        Preset::StaticBias,
+        Preset::HongPark,
+        Preset::Hdr,
+        Preset::Combined,
+    ];
 
     /// The preset the documentation recommends (`"recommended"`).
     pub const RECOMMENDED: Preset = Preset::Combined;
@@ -74,7 +79,9 @@ impl Preset {
 
     /// The preset's configuration (static bias 0 until set).
     pub fn config(self) -> PipelineConfig {
-        let threshold = Some(ThresholdConfig { threshold: 0.3_f64.to_radians() });
+        let threshold = Some(ThresholdConfig {
+            threshold: 0.3_f64.to_radians(),
+        });
         let hdr = PipelineConfig {
             lowpass: Some(LowPassConfig { tau: 0.75 }),
             delag: true,
@@ -83,7 +90,10 @@ impl Preset {
         };
         match self {
             Preset::Raw | Preset::StaticBias => PipelineConfig::default(),
-            Preset::HongPark => PipelineConfig { threshold, ..PipelineConfig::default() },
+            Preset::HongPark => PipelineConfig {
+                threshold,
+                ..PipelineConfig::default()
+            },
             Preset::Hdr => hdr,
             Preset::Combined => PipelineConfig { threshold, ..hdr },
         }
@@ -208,7 +218,12 @@ impl Pipeline {
     /// Infallible and allocation-free; a timestamp that does not move forward adds nothing to the
     /// heading. Use [`Pipeline::process_block`] to have the input checked.
     #[inline]
-    pub fn update_with_temperature(&mut self, t: f64, rate: f64, temperature: Option<f64>) -> Output {
+    pub fn update_with_temperature(
+        &mut self,
+        t: f64,
+        rate: f64,
+        temperature: Option<f64>,
+    ) -> Output {
         let dt = self.clock.tick(t);
         let corrected = {
             let r = self.correction.apply(t, rate, temperature);
@@ -232,7 +247,11 @@ impl Pipeline {
             r = s.step(dt, r);
         }
         let heading = self.integrator.step(dt, r);
-        Output { heading, rate: r, drift }
+        Output {
+            heading,
+            rate: r,
+            drift,
+        }
     }
 
     /// Checks a block (lengths, finite values, strictly increasing time, also after the previous
@@ -252,9 +271,18 @@ impl Pipeline {
         check_len("rate out", out.rate.len(), t.len())?;
         check_len("drift", out.drift.len(), t.len())?;
         // One loop for both cases: without a temperature signal every sample gets `None`.
-        let temperatures = temperature.into_iter().flatten().copied().map(Some).chain(core::iter::repeat(None));
+        let temperatures = temperature
+            .into_iter()
+            .flatten()
+            .copied()
+            .map(Some)
+            .chain(core::iter::repeat(None));
         let inputs = t.iter().zip(rate).zip(temperatures);
-        let outputs = out.heading.iter_mut().zip(out.rate.iter_mut()).zip(out.drift.iter_mut());
+        let outputs = out
+            .heading
+            .iter_mut()
+            .zip(out.rate.iter_mut())
+            .zip(out.drift.iter_mut());
         for (((&ti, &ri), temp), ((heading, rate), drift)) in inputs.zip(outputs) {
             let o = self.update_with_temperature(ti, ri, temp);
             *heading = o.heading;

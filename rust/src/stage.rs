@@ -37,7 +37,11 @@ pub(crate) fn check_len(what: &'static str, len: usize, expected: usize) -> Resu
     if len == expected {
         Ok(())
     } else {
-        Err(Error::LengthMismatch { what, len, expected })
+        Err(Error::LengthMismatch {
+            what,
+            len,
+            expected,
+        })
     }
 }
 

@@ -22,7 +22,13 @@ pub struct Threshold {
 impl Threshold {
     /// Validates `config` and builds the stage.
     pub fn new(config: ThresholdConfig) -> Result<Self, Error> {
-        check_range("threshold", config.threshold, 0.0, f64::MAX, "finite and >= 0")?;
+        check_range(
+            "threshold",
+            config.threshold,
+            0.0,
+            f64::MAX,
+            "finite and >= 0",
+        )?;
         Ok(Threshold { config })
     }
 

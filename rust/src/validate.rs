@@ -24,7 +24,11 @@ pub fn check_block(
     for (index, &value) in t.iter().enumerate() {
         if let Some(p) = previous {
             if value <= p {
-                return Err(Error::NotIncreasing { index, previous: p, value });
+                return Err(Error::NotIncreasing {
+                    index,
+                    previous: p,
+                    value,
+                });
             }
         }
         previous = Some(value);
@@ -34,7 +38,11 @@ pub fn check_block(
 
 fn check_finite_all(what: &'static str, values: &[f64]) -> Result<(), Error> {
     match values.iter().position(|v| !v.is_finite()) {
-        Some(index) => Err(Error::NonFinite { what, index, value: values[index] }),
+        Some(index) => Err(Error::NonFinite {
+            what,
+            index,
+            value: values[index],
+        }),
         None => Ok(()),
     }
 }

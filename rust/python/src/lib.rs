@@ -23,7 +23,8 @@ fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]
         .map_err(|_| PyValueError::new_err(format!("{name} must be a contiguous float64 array")))
 }
 
-type Arrays3<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+/// A float64 numpy array owned by Python.
+type Array<'py> = Bound<'py, PyArray1<f64>>;
 
 /// The streaming pipeline of the core crate (see `gyrocore.Pipeline` for the documented API).
 #[pyclass(module = "gyrocore._gyrocore", name = "Pipeline")]
@@ -35,7 +36,10 @@ struct PyPipeline {
 fn build_preset(name: &str) -> PyResult<Preset> {
     Preset::from_name(name).ok_or_else(|| {
         let names: Vec<&str> = Preset::ALL.iter().map(|p| p.name()).collect();
-        PyValueError::new_err(format!("unknown preset '{name}'; choose one of {}, recommended", names.join(", ")))
+        PyValueError::new_err(format!(
+            "unknown preset '{name}'; choose one of {}, recommended",
+            names.join(", ")
+        ))
     })
 }
 
@@ -53,7 +57,9 @@ impl PyPipeline {
     #[pyo3(signature = (preset, overrides=None))]
     fn new(preset: &str, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
         let config = build_config(preset, overrides)?;
-        Ok(PyPipeline { inner: Pipeline::new(config).map_err(value_error)? })
+        Ok(PyPipeline {
+            inner: Pipeline::new(config).map_err(value_error)?,
+        })
     }
 
     /// Processes a block; returns (heading, rate, drift). Nothing is processed from an invalid block.
@@ -64,18 +70,29 @@ impl PyPipeline {
         t: PyReadonlyArray1<'py, f64>,
         rate: PyReadonlyArray1<'py, f64>,
         temperature: Option<PyReadonlyArray1<'py, f64>>,
-    ) -> PyResult<Arrays3<'py>> {
+    ) -> PyResult<(Array<'py>, Array<'py>, Array<'py>)> {
         let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
-        let temperature = temperature.as_ref().map(|a| slice("temperature", a)).transpose()?;
+        let temperature = temperature
+            .as_ref()
+            .map(|a| slice("temperature", a))
+            .transpose()?;
         let n = t.len();
         let (mut heading, mut out_rate, mut drift) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         let inner = &mut self.inner;
         py.detach(|| {
-            let out = Outputs { heading: &mut heading, rate: &mut out_rate, drift: &mut drift };
+            let out = Outputs {
+                heading: &mut heading,
+                rate: &mut out_rate,
+                drift: &mut drift,
+            };
             inner.process_block(t, rate, temperature, out)
         })
         .map_err(value_error)?;
-        Ok((PyArray1::from_vec(py, heading), PyArray1::from_vec(py, out_rate), PyArray1::from_vec(py, drift)))
+        Ok((
+            PyArray1::from_vec(py, heading),
+            PyArray1::from_vec(py, out_rate),
+            PyArray1::from_vec(py, drift),
+        ))
     }
 
     /// Returns the pipeline to its state before the first sample.
@@ -120,14 +137,21 @@ impl PyPipeline {
 /// Flat parameters of a preset (after optional overrides).
 #[pyfunction]
 #[pyo3(signature = (preset, overrides=None))]
-fn preset_params<'py>(py: Python<'py>, preset: &str, overrides: Option<&Bound<'py, PyDict>>) -> PyResult<Bound<'py, PyDict>> {
+fn preset_params<'py>(
+    py: Python<'py>,
+    preset: &str,
+    overrides: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
     params::to_dict(py, &build_config(preset, overrides)?)
 }
 
 /// Preset names, and the name the `recommended` alias stands for.
 #[pyfunction]
 fn preset_names() -> (Vec<&'static str>, &'static str) {
-    (Preset::ALL.iter().map(|p| p.name()).collect(), Preset::RECOMMENDED.name())
+    (
+        Preset::ALL.iter().map(|p| p.name()).collect(),
+        Preset::RECOMMENDED.name(),
+    )
 }
 
 /// Whether a preset subtracts a static bias (so it wants a bias or a rest window).
@@ -151,9 +175,12 @@ fn integrate<'py>(
     rate: PyReadonlyArray1<'py, f64>,
     method: &str,
     initial_heading: f64,
-) -> PyResult<Bound<'py, PyArray1<f64>>> {
+) -> PyResult<Array<'py>> {
     let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
-    let config = IntegratorConfig { method: params::parse_method(method)?, initial_heading };
+    let config = IntegratorConfig {
+        method: params::parse_method(method)?,
+        initial_heading,
+    };
     let mut integrator = Integrator::new(config).map_err(value_error)?;
     let mut heading = vec![0.0; t.len()];
     py.detach(|| {
@@ -171,7 +198,7 @@ fn downsample<'py>(
     t: PyReadonlyArray1<'py, f64>,
     rate: PyReadonlyArray1<'py, f64>,
     interval: f64,
-) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+) -> PyResult<(Array<'py>, Array<'py>)> {
     let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
     let mut stage = Downsample::new(DownsampleConfig { interval }).map_err(value_error)?;
     let (mut out_t, mut out_rate) = (vec![0.0; t.len()], vec![0.0; t.len()]);
@@ -183,7 +210,10 @@ fn downsample<'py>(
         .map_err(value_error)?;
     out_t.truncate(n);
     out_rate.truncate(n);
-    Ok((PyArray1::from_vec(py, out_t), PyArray1::from_vec(py, out_rate)))
+    Ok((
+        PyArray1::from_vec(py, out_t),
+        PyArray1::from_vec(py, out_rate),
+    ))
 }
 
 #[pymodule]

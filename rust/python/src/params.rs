@@ -2,24 +2,50 @@
 //!
 //! This is the one place that knows the names; presets come from the core crate.
 
-use gyrocore::{HdrConfig, LowPassConfig, Method, PipelineConfig, StaticBias, TemperatureScale, ThresholdConfig};
+use gyrocore::{
+    HdrConfig, LowPassConfig, Method, PipelineConfig, StaticBias, TemperatureScale, ThresholdConfig,
+};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 /// Every accepted parameter name, with its unit, for error messages and the docs.
 pub const NAMES: &[(&str, &str)] = &[
-    ("bias", "static bias eps0 [rad/s] (what the gyro reads at rest)"),
-    ("bias_window", "(start, end) rest window [s] to measure the bias in"),
-    ("bias_duration", "measure the bias over the first T_bias seconds [s]"),
+    (
+        "bias",
+        "static bias eps0 [rad/s] (what the gyro reads at rest)",
+    ),
+    (
+        "bias_window",
+        "(start, end) rest window [s] to measure the bias in",
+    ),
+    (
+        "bias_duration",
+        "measure the bias over the first T_bias seconds [s]",
+    ),
     ("scale", "s_bar of Hong eq 3 [1]"),
     ("offset", "b_bar of Hong eq 3 [rad/s]"),
     ("c_cw", "clockwise correction factor C_cw (FOG eq 2a) [1]"),
-    ("c_ccw", "counter-clockwise correction factor C_ccw (FOG eq 2b) [1]"),
-    ("temp_slope", "turn error per degC of FOG eq 5 divided by 360 deg [1/degC]"),
-    ("temp_offset", "turn error at 0 degC of FOG eq 5 divided by 360 deg [1]"),
-    ("threshold", "dead band r_thres of Hong eq 12 [rad/s], 0 = off"),
-    ("lowpass_tau", "low-pass time constant tau of HDR eq 7, per sample and on HDR's steps [s], 0 = off"),
+    (
+        "c_ccw",
+        "counter-clockwise correction factor C_ccw (FOG eq 2b) [1]",
+    ),
+    (
+        "temp_slope",
+        "turn error per degC of FOG eq 5 divided by 360 deg [1/degC]",
+    ),
+    (
+        "temp_offset",
+        "turn error at 0 degC of FOG eq 5 divided by 360 deg [1]",
+    ),
+    (
+        "threshold",
+        "dead band r_thres of Hong eq 12 [rad/s], 0 = off",
+    ),
+    (
+        "lowpass_tau",
+        "low-pass time constant tau of HDR eq 7, per sample and on HDR's steps [s], 0 = off",
+    ),
     ("delag", "undo the low-pass lag (HDR eq 13) [bool]"),
     ("hdr", "run Heuristic Drift Reduction [bool]"),
     ("hdr_increment", "i_c [rad/s per step]"),
@@ -33,7 +59,10 @@ pub const NAMES: &[(&str, &str)] = &[
 
 fn unknown(name: &str) -> PyErr {
     let valid: Vec<&str> = NAMES.iter().map(|(n, _)| *n).collect();
-    PyValueError::new_err(format!("unknown parameter '{name}'; valid names: {}", valid.join(", ")))
+    PyValueError::new_err(format!(
+        "unknown parameter '{name}'; valid names: {}",
+        valid.join(", ")
+    ))
 }
 
 /// Applies `overrides` (name -> value) to `config`. Disabled stages are enabled by giving
@@ -61,15 +90,29 @@ pub fn apply(config: &mut PipelineConfig, overrides: &Bound<'_, PyDict>) -> PyRe
                 bias_sources.push(name);
             }
             "bias_duration" => {
-                c.bias = StaticBias::Leading { duration: value.extract()? };
+                c.bias = StaticBias::Leading {
+                    duration: value.extract()?,
+                };
                 bias_sources.push(name);
             }
             "scale" => c.scale = value.extract()?,
             "offset" => c.offset = value.extract()?,
             "c_cw" => c.c_cw = value.extract()?,
             "c_ccw" => c.c_ccw = value.extract()?,
-            "temp_slope" => temp.get_or_insert(TemperatureScale { slope: 0.0, offset: 0.0 }).slope = value.extract()?,
-            "temp_offset" => temp.get_or_insert(TemperatureScale { slope: 0.0, offset: 0.0 }).offset = value.extract()?,
+            "temp_slope" => {
+                temp.get_or_insert(TemperatureScale {
+                    slope: 0.0,
+                    offset: 0.0,
+                })
+                .slope = value.extract()?
+            }
+            "temp_offset" => {
+                temp.get_or_insert(TemperatureScale {
+                    slope: 0.0,
+                    offset: 0.0,
+                })
+                .offset = value.extract()?
+            }
             "threshold" => {
                 let threshold: f64 = value.extract()?;
                 config.threshold = (threshold != 0.0).then_some(ThresholdConfig { threshold });
@@ -111,7 +154,9 @@ pub fn apply(config: &mut PipelineConfig, overrides: &Bound<'_, PyDict>) -> PyRe
         hdr.tau = config.lowpass.map_or(0.0, |l| l.tau);
         config.hdr = Some(hdr);
     } else if let Some(name) = hdr_touched {
-        return Err(PyValueError::new_err(format!("{name} is set but HDR is off; pass hdr=True to enable it")));
+        return Err(PyValueError::new_err(format!(
+            "{name} is set but HDR is off; pass hdr=True to enable it"
+        )));
     }
     // De-lag inverts the low-pass; with no low-pass there is no lag to undo.
     if config.lowpass.is_none() {
