@@ -1,0 +1,33 @@
+"""The ``gyrocore`` command line: one entry point, one module per subcommand.
+
+A subcommand module has ``register(sub)``, which adds its parser with ``_common.add_command``;
+add the module to ``COMMANDS`` below.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import Sequence
+
+from . import demo, presets, process
+
+COMMANDS = (demo, process, presets)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="gyrocore", description="Drift-free heading from a yaw-rate gyro.")
+    sub = parser.add_subparsers(dest="command", required=True)
+    for command in COMMANDS:
+        command.register(sub)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command; user errors print one line ``gyrocore: error: ...`` and return 2."""
+    args = build_parser().parse_args(argv)
+    try:
+        return int(args.func(args))
+    except (ValueError, TypeError, OSError) as e:
+        print(f"gyrocore: error: {e}", file=sys.stderr)
+        return 2

@@ -1,0 +1,7 @@
+"""``python -m gyrocore.cli``."""
+
+import sys
+
+from . import main
+
+sys.exit(main())
