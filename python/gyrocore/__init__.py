@@ -12,6 +12,7 @@ counter-clockwise positive; the bias is what the gyro reads at rest.
 """
 
 from . import evaluate, io, sim
+from ._checks import InputWarning
 from ._gyrocore import __version__
 from .evaluate import HeadingErrors, heading_errors
 from .io import Log, read_log
@@ -30,6 +31,7 @@ from .pipeline import (
 __all__ = [
     "HeadingErrors",
     "HeadingResult",
+    "InputWarning",
     "Log",
     "Pipeline",
     "__version__",

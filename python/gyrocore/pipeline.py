@@ -8,7 +8,6 @@ accept a degree-per-second spelling with a ``_dps`` suffix (``threshold_dps=0.3`
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass
 from typing import Any
 
@@ -17,6 +16,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
+from ._checks import warn, warn_units
 
 #: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling.
 _RATE_PARAMETERS = ("bias", "offset", "threshold", "hdr_increment", "hdr_turn_threshold")
@@ -124,11 +124,11 @@ class Pipeline:
         si = _to_si(overrides)
         self._inner = _gyrocore.Pipeline(preset, si)
         self._preset = preset
+        self._units_checked = False
         if uses_static_bias(preset) and not has_bias_source(si):
-            warnings.warn(
+            warn(
                 f"preset {preset!r} removes a static bias, but no bias, bias_window or bias_duration "
-                "was given: the bias is taken as 0",
-                stacklevel=2,
+                "was given: the bias is taken as 0"
             )
 
     @property
@@ -157,15 +157,26 @@ class Pipeline:
             temperature: sensor temperature [degC], needed when ``temp_slope``/``temp_offset`` are set.
 
         Raises:
-            ValueError: mismatched lengths, NaN/inf, non-increasing timestamps (the message names the
-                first bad index), or a rest window that holds no sample. Nothing is processed then.
+            ValueError: mismatched lengths, non-increasing or non-finite timestamps, NaN/inf readings
+                under ``nonfinite="error"`` (the message names the first bad index), or a rest window
+                that holds no sample. Nothing is processed then.
             TypeError: non-numeric arrays.
+
+        Warns:
+            InputWarning: rates or timestamps that look like another unit (checked on the first
+                chunk), readings held or skipped (``nonfinite="hold"/"skip"``), gaps longer than
+                ``gap_limit``.
         """
         ta = as_float_array("t", t)
         ra = as_float_array("rate", rate)
         temp = None if temperature is None else as_float_array("temperature", temperature)
         self._check_bias_window(ta)
+        if not self._units_checked and len(ta):
+            warn_units(ta, ra)
+            self._units_checked = True
+        before = self._inner.report()
         heading, out_rate, drift = self._inner.process(ta, ra, temp)
+        self._warn_repairs(before, self._inner.report(), ta, ra, temp)
         _, count, learning = self._inner.bias()
         if not learning and count == 0 and self._measures_bias():
             raise ValueError(f"the bias window {self._window_text()} held no sample of the log")
@@ -174,6 +185,36 @@ class Pipeline:
     def reset(self) -> None:
         """Return to the state before the first sample (same parameters)."""
         self._inner.reset()
+
+    def _warn_repairs(
+        self,
+        before: dict[str, float],
+        after: dict[str, float],
+        t: FloatArray,
+        rate: FloatArray,
+        temperature: FloatArray | None,
+    ) -> None:
+        """Say what the input policy repaired in this chunk (indices are within the chunk)."""
+        bad = ~np.isfinite(rate)
+        if temperature is not None:
+            bad |= ~np.isfinite(temperature)
+        for key, verb in (("held", "replaced by the last finite reading"), ("skipped", "skipped")):
+            n = int(after[key] - before[key])
+            if n and bad.any():
+                first = int(np.flatnonzero(bad)[0])
+                warn(f"{n} non-finite reading(s) {verb} (first at index {first}, t = {t[first]})")
+        gaps = int(after["gaps"] - before["gaps"])
+        if gaps:
+            limit = self._inner.params()["gap_limit"]
+            warn(
+                f"{gaps} gap(s) longer than {limit} s (longest so far {after['longest_gap']:.6g} s); "
+                f"gap_action={self._inner.params()['gap_action']!r}"
+            )
+
+    @property
+    def report(self) -> dict[str, float]:
+        """What the input policy did so far: ``held``, ``skipped``, ``gaps``, ``longest_gap`` [s]."""
+        return dict(self._inner.report())
 
     def _measures_bias(self) -> bool:
         p = self._inner.params()
@@ -203,6 +244,7 @@ class Pipeline:
     def __setstate__(self, state: dict[str, Any]) -> None:
         self._preset = state["preset"]
         self._inner = _gyrocore.Pipeline.from_state_json(state["state"])
+        self._units_checked = self._inner.last_time() is not None
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"

@@ -11,7 +11,7 @@ use crate::Error;
 /// Sample `i` stands for the interval `(t_{i-1}, t_i]` (the rectangle rule of HDR eq 3), so the
 /// mean is `sum(w_i T_i) / sum(T_i)`; for a regular rate this is the plain average of eq 14. A block
 /// closes at the sample nearest to the grid boundary, and the leftover phase is carried so that
-/// blocks average exactly `interval` over a long log. A gap longer than a sample restarts the grid.
+/// blocks average exactly `interval` over a long log. A gap restarts the grid.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct BlockMean {
@@ -30,9 +30,14 @@ impl BlockMean {
         self.elapsed += dt;
         if self.duration > 0.0 && self.elapsed >= interval - 0.5 * dt {
             let closed = (self.sum / self.duration, self.duration);
+            // Keep the phase left over by sample placement; after a gap, start the grid afresh.
             let carry = self.elapsed - interval;
             *self = BlockMean {
-                elapsed: if carry <= dt { carry } else { 0.0 },
+                elapsed: if libm::fabs(carry) < 0.5 * interval {
+                    carry
+                } else {
+                    0.0
+                },
                 ..BlockMean::default()
             };
             Some(closed)

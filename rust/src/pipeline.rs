@@ -3,6 +3,7 @@
 
 use crate::correction::{Correction, CorrectionConfig};
 use crate::hdr::{Hdr, HdrConfig};
+use crate::input::{GapAction, InputPolicy, InputReport, NonFinite};
 use crate::integrate::{Integrator, IntegratorConfig};
 use crate::lowpass::{DeLag, LowPass, LowPassConfig};
 use crate::stage::{check_len, Clock};
@@ -27,6 +28,8 @@ pub struct PipelineConfig {
     pub hdr: Option<HdrConfig>,
     /// Integration rule and initial heading.
     pub integrator: IntegratorConfig,
+    /// Non-finite readings and gaps.
+    pub input: InputPolicy,
 }
 
 /// Named parameter sets. Every field can be changed after [`Preset::config`].
@@ -107,6 +110,7 @@ impl Preset {
 
 /// Per-sample output of the pipeline.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Output {
     /// Continuous heading [rad], counter-clockwise positive.
     pub heading: f64,
@@ -114,6 +118,17 @@ pub struct Output {
     pub rate: f64,
     /// HDR's drift estimate `-I` applied to this sample [rad/s] (0 without HDR).
     pub drift: f64,
+}
+
+impl Output {
+    /// The output before the first sample: the initial heading, nothing measured yet.
+    fn at_rest(heading: f64) -> Self {
+        Output {
+            heading,
+            rate: 0.0,
+            drift: 0.0,
+        }
+    }
 }
 
 /// Output slices for [`Pipeline::process_block`], each as long as the input.
@@ -139,6 +154,11 @@ pub struct Pipeline {
     delag: Option<DeLag>,
     integrator: Integrator,
     clock: Clock,
+    /// The last finite (rate, temperature) reading, for [`NonFinite::Hold`].
+    last_reading: Option<(f64, Option<f64>)>,
+    /// The last output, repeated (with a NaN rate) for a skipped sample.
+    last_output: Output,
+    report: InputReport,
 }
 
 impl Pipeline {
@@ -155,6 +175,7 @@ impl Pipeline {
             (true, Some(lp)) => Some(DeLag::new(lp)?),
             _ => None,
         };
+        config.input.validate()?;
         Ok(Pipeline {
             config,
             correction: Correction::new(config.correction)?,
@@ -164,6 +185,9 @@ impl Pipeline {
             delag,
             integrator: Integrator::new(config.integrator)?,
             clock: Clock::default(),
+            last_reading: None,
+            last_output: Output::at_rest(config.integrator.initial_heading),
+            report: InputReport::default(),
         })
     }
 
@@ -187,10 +211,26 @@ impl Pipeline {
         self.clock.last()
     }
 
+    /// What the input policy has done so far (held, skipped samples; gaps).
+    pub fn report(&self) -> InputReport {
+        self.report
+    }
+
     /// Returns every stage to its initial state (same as a new pipeline with the same config).
     pub fn reset(&mut self) {
         use crate::stage::Stage;
         self.correction.reset();
+        self.reset_memory();
+        self.integrator.reset();
+        self.clock = Clock::default();
+        self.last_reading = None;
+        self.last_output = Output::at_rest(self.config.integrator.initial_heading);
+        self.report = InputReport::default();
+    }
+
+    /// Restarts the stages whose state is a memory of the recent signal (HDR, low-pass, de-lag).
+    fn reset_memory(&mut self) {
+        use crate::stage::Stage;
         if let Some(s) = &mut self.threshold {
             s.reset();
         }
@@ -203,8 +243,26 @@ impl Pipeline {
         if let Some(s) = &mut self.delag {
             s.reset();
         }
-        self.integrator.reset();
-        self.clock = Clock::default();
+    }
+
+    /// The reading to use for a sample under the input policy, or `None` to skip it.
+    #[inline]
+    fn admit(&mut self, t: f64, rate: f64, temperature: Option<f64>) -> Option<(f64, Option<f64>)> {
+        let moves_forward = t.is_finite() && self.clock.last().is_none_or(|last| t > last);
+        if !moves_forward {
+            return None;
+        }
+        if rate.is_finite() && temperature.is_none_or(f64::is_finite) {
+            self.last_reading = Some((rate, temperature));
+            return Some((rate, temperature));
+        }
+        match (self.config.input.non_finite, self.last_reading) {
+            (NonFinite::Hold, Some(held)) => {
+                self.report.held += 1;
+                Some(held)
+            }
+            _ => None,
+        }
     }
 
     /// Feeds one sample (`t` [s], `rate` [rad/s]) without a temperature.
@@ -215,8 +273,10 @@ impl Pipeline {
 
     /// Feeds one sample with the sensor temperature [degC] for the temperature scale model.
     ///
-    /// Infallible and allocation-free; a timestamp that does not move forward adds nothing to the
-    /// heading. Use [`Pipeline::process_block`] to have the input checked.
+    /// Infallible and allocation-free. A sample whose timestamp does not move forward is skipped,
+    /// and so is a non-finite reading unless the policy holds the last one: a skipped sample leaves
+    /// every stage untouched and gets the last heading and drift with a NaN rate (counted in
+    /// [`Pipeline::report`]). Use [`Pipeline::process_block`] to have bad input rejected instead.
     #[inline]
     pub fn update_with_temperature(
         &mut self,
@@ -224,7 +284,21 @@ impl Pipeline {
         rate: f64,
         temperature: Option<f64>,
     ) -> Output {
+        let Some((rate, temperature)) = self.admit(t, rate, temperature) else {
+            self.report.skipped += 1;
+            return Output {
+                rate: f64::NAN,
+                ..self.last_output
+            };
+        };
         let dt = self.clock.tick(t);
+        if dt > self.config.input.gap_limit {
+            self.report.gaps += 1;
+            self.report.longest_gap = self.report.longest_gap.max(dt);
+            if self.config.input.gap_action == GapAction::Reset {
+                self.reset_memory();
+            }
+        }
         let corrected = {
             let r = self.correction.apply(t, rate, temperature);
             self.threshold.as_ref().map_or(r, |s| s.apply(r))
@@ -247,15 +321,17 @@ impl Pipeline {
             r = s.step(dt, r);
         }
         let heading = self.integrator.step(dt, r);
-        Output {
+        self.last_output = Output {
             heading,
             rate: r,
             drift,
-        }
+        };
+        self.last_output
     }
 
-    /// Checks a block (lengths, finite values, strictly increasing time, also after the previous
-    /// block) and, only if it is valid, feeds it through the pipeline.
+    /// Checks a block (lengths; finite, strictly increasing time, also after the previous block;
+    /// finite readings unless the policy holds or skips them) and, only if it is valid, feeds it
+    /// through the pipeline.
     pub fn process_block(
         &mut self,
         t: &[f64],
@@ -266,7 +342,14 @@ impl Pipeline {
         if self.config.correction.temperature.is_some() && temperature.is_none() {
             return Err(Error::MissingTemperature);
         }
-        check_block(t, rate, temperature, self.clock.last())?;
+        let readings_must_be_finite = self.config.input.non_finite == NonFinite::Error;
+        check_block(
+            t,
+            rate,
+            temperature,
+            self.clock.last(),
+            readings_must_be_finite,
+        )?;
         check_len("heading", out.heading.len(), t.len())?;
         check_len("rate out", out.rate.len(), t.len())?;
         check_len("drift", out.drift.len(), t.len())?;

@@ -3,8 +3,9 @@
 use crate::stage::check_len;
 use crate::Error;
 
-/// Checks one block: `rate` (and `temperature`, when given) as long as `t`, every value finite,
-/// and `t` strictly increasing, also across the previous block whose last timestamp was `previous_t`.
+/// Checks one block: `rate` (and `temperature`, when given) as long as `t`, `t` finite and
+/// strictly increasing, also across the previous block whose last timestamp was `previous_t`, and,
+/// when `readings_must_be_finite`, every reading finite.
 ///
 /// The error names the first offending index, so nothing is processed from a bad block.
 pub fn check_block(
@@ -12,12 +13,17 @@ pub fn check_block(
     rate: &[f64],
     temperature: Option<&[f64]>,
     previous_t: Option<f64>,
+    readings_must_be_finite: bool,
 ) -> Result<(), Error> {
     check_len("rate", rate.len(), t.len())?;
-    check_finite_all("rate", rate)?;
     if let Some(temp) = temperature {
         check_len("temperature", temp.len(), t.len())?;
-        check_finite_all("temperature", temp)?;
+    }
+    if readings_must_be_finite {
+        check_finite_all("rate", rate)?;
+        if let Some(temp) = temperature {
+            check_finite_all("temperature", temp)?;
+        }
     }
     check_finite_all("t", t)?;
     let mut previous = previous_t;

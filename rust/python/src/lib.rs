@@ -111,6 +111,17 @@ impl PyPipeline {
         (b, n, self.inner.bias_learning())
     }
 
+    /// What the input policy did so far: held, skipped, gaps, longest_gap [s].
+    fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let r = self.inner.report();
+        let d = PyDict::new(py);
+        d.set_item("held", r.held)?;
+        d.set_item("skipped", r.skipped)?;
+        d.set_item("gaps", r.gaps)?;
+        d.set_item("longest_gap", r.longest_gap)?;
+        Ok(d)
+    }
+
     /// The last timestamp processed, or None.
     fn last_time(&self) -> Option<f64> {
         self.inner.last_time()
@@ -184,7 +195,7 @@ fn integrate<'py>(
     let mut integrator = Integrator::new(config).map_err(value_error)?;
     let mut heading = vec![0.0; t.len()];
     py.detach(|| {
-        check_block(t, rate, None, None)?;
+        check_block(t, rate, None, None, true)?;
         integrator.process_block(t, rate, &mut heading)
     })
     .map_err(value_error)?;
@@ -204,7 +215,7 @@ fn downsample<'py>(
     let (mut out_t, mut out_rate) = (vec![0.0; t.len()], vec![0.0; t.len()]);
     let n = py
         .detach(|| {
-            check_block(t, rate, None, None)?;
+            check_block(t, rate, None, None, true)?;
             stage.process_block(t, rate, &mut out_t, &mut out_rate)
         })
         .map_err(value_error)?;
@@ -216,6 +227,13 @@ fn downsample<'py>(
     ))
 }
 
+/// Panics inside Rust, with the GIL released as in real work: proves that a panic reaches Python
+/// as an exception (pyo3's PanicException) instead of aborting the interpreter.
+#[pyfunction]
+fn _panic_for_test(py: Python<'_>) {
+    py.detach(|| panic!("forced panic for the no-abort test"));
+}
+
 #[pymodule]
 fn _gyrocore(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyPipeline>()?;
@@ -223,6 +241,7 @@ fn _gyrocore(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(preset_names, m)?)?;
     m.add_function(wrap_pyfunction!(parameter_names, m)?)?;
     m.add_function(wrap_pyfunction!(preset_uses_static_bias, m)?)?;
+    m.add_function(wrap_pyfunction!(_panic_for_test, m)?)?;
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
     m.add_function(wrap_pyfunction!(downsample, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -3,7 +3,8 @@
 //! This is the one place that knows the names; presets come from the core crate.
 
 use gyrocore::{
-    HdrConfig, LowPassConfig, Method, PipelineConfig, StaticBias, TemperatureScale, ThresholdConfig,
+    GapAction, HdrConfig, LowPassConfig, Method, NonFinite, PipelineConfig, StaticBias,
+    TemperatureScale, ThresholdConfig,
 };
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -55,6 +56,18 @@ pub const NAMES: &[(&str, &str)] = &[
     ("hdr_interval", "HDR step length [s]"),
     ("integration", "'trapezoid' or 'rectangle'"),
     ("initial_heading", "heading at the first sample [rad]"),
+    (
+        "nonfinite",
+        "NaN/inf readings: 'error' (default), 'hold' the last reading, or 'skip' the sample",
+    ),
+    (
+        "gap_limit",
+        "longest interval that is not a gap [s] (default 2; inf: none)",
+    ),
+    (
+        "gap_action",
+        "at a gap: 'bridge' (default) or 'reset' HDR, low-pass and de-lag",
+    ),
 ];
 
 fn unknown(name: &str) -> PyErr {
@@ -139,6 +152,28 @@ pub fn apply(config: &mut PipelineConfig, overrides: &Bound<'_, PyDict>) -> PyRe
                 config.integrator.method = parse_method(&method)?;
             }
             "initial_heading" => config.integrator.initial_heading = value.extract()?,
+            "nonfinite" => {
+                config.input.non_finite = match value.extract::<String>()?.as_str() {
+                    "error" => NonFinite::Error,
+                    "hold" => NonFinite::Hold,
+                    "skip" => NonFinite::Skip,
+                    other => {
+                        return Err(choice_error(
+                            "nonfinite",
+                            other,
+                            "'error', 'hold' or 'skip'",
+                        ))
+                    }
+                }
+            }
+            "gap_limit" => config.input.gap_limit = value.extract()?,
+            "gap_action" => {
+                config.input.gap_action = match value.extract::<String>()?.as_str() {
+                    "bridge" => GapAction::Bridge,
+                    "reset" => GapAction::Reset,
+                    other => return Err(choice_error("gap_action", other, "'bridge' or 'reset'")),
+                }
+            }
             _ => return Err(unknown(&name)),
         }
     }
@@ -165,14 +200,20 @@ pub fn apply(config: &mut PipelineConfig, overrides: &Bound<'_, PyDict>) -> PyRe
     Ok(())
 }
 
+fn choice_error(name: &str, got: &str, valid: &str) -> PyErr {
+    PyValueError::new_err(format!("unknown {name} '{got}': use {valid}"))
+}
+
 /// Parses an integration rule name.
 pub fn parse_method(name: &str) -> PyResult<Method> {
     match name {
         "trapezoid" => Ok(Method::Trapezoid),
         "rectangle" => Ok(Method::Rectangle),
-        _ => Err(PyValueError::new_err(format!(
-            "unknown integration method '{name}': use 'trapezoid' or 'rectangle'"
-        ))),
+        _ => Err(choice_error(
+            "integration method",
+            name,
+            "'trapezoid' or 'rectangle'",
+        )),
     }
 }
 
@@ -213,5 +254,21 @@ pub fn to_dict<'py>(py: Python<'py>, config: &PipelineConfig) -> PyResult<Bound<
     }
     d.set_item("integration", method_name(config.integrator.method))?;
     d.set_item("initial_heading", config.integrator.initial_heading)?;
+    let input = &config.input;
+    let nonfinite = match input.non_finite {
+        NonFinite::Error => "error",
+        NonFinite::Hold => "hold",
+        NonFinite::Skip => "skip",
+    };
+    d.set_item("nonfinite", nonfinite)?;
+    d.set_item("gap_limit", input.gap_limit)?;
+    d.set_item(
+        "gap_action",
+        if input.gap_action == GapAction::Reset {
+            "reset"
+        } else {
+            "bridge"
+        },
+    )?;
     Ok(d)
 }

@@ -1,0 +1,63 @@
+"""Plausibility checks of user input: values that only make sense in another unit."""
+
+from __future__ import annotations
+
+import os
+import sys
+import warnings
+
+import numpy as np
+
+from ._arrays import FloatArray
+
+#: Above this the rates are implausible in rad/s (about 1150 deg/s) and likely deg/s.
+RATE_LIMIT = 20.0
+#: A mean interval above this [s] suggests timestamps in ms, us or ns (no gyro for heading
+#: reports slower than 0.5 Hz).
+INTERVAL_LIMIT = 2.0
+#: Enough samples for a percentile; longer arrays are checked on a regular subset.
+_SUBSET = 100_000
+
+
+class InputWarning(UserWarning):
+    """Input that gyrocore processed but that looks wrong (units) or was repaired (NaN, gaps)."""
+
+
+def unit_problems(t: FloatArray, rate: FloatArray) -> list[str]:
+    """Messages for rates or timestamps that look like another unit (empty if none)."""
+    problems = []
+    finite = rate[:: max(1, len(rate) // _SUBSET)]
+    finite = finite[np.isfinite(finite)]
+    if len(finite):
+        p99 = float(np.percentile(np.abs(finite), 99))
+        if p99 > RATE_LIMIT:
+            problems.append(
+                f"rates look like deg/s, not rad/s: 99 % of |rate| are below {p99:.3g}, which is "
+                f"{np.degrees(p99):.3g} deg/s if read as rad/s (convert with numpy.radians)"
+            )
+    if len(t) > 1:
+        mean_dt = float(t[-1] - t[0]) / (len(t) - 1)
+        if mean_dt > INTERVAL_LIMIT:
+            problems.append(
+                f"timestamps look like ms, us or ns, not seconds: the mean interval is {mean_dt:.6g} "
+                "(convert to seconds first)"
+            )
+    return problems
+
+
+_PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
+
+
+def warn(message: str) -> None:
+    """Emit an :class:`InputWarning` attributed to the first caller outside this package."""
+    # stacklevel 1 is this function; 2 its caller, and so on up to the first frame outside.
+    level, frame = 2, sys._getframe(1)
+    while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(_PACKAGE_DIR):
+        level, frame = level + 1, frame.f_back
+    warnings.warn(message, InputWarning, stacklevel=level)
+
+
+def warn_units(t: FloatArray, rate: FloatArray) -> None:
+    """Emit an :class:`InputWarning` for each unit problem."""
+    for message in unit_problems(t, rate):
+        warn(message)

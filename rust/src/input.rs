@@ -1,0 +1,81 @@
+//! What the pipeline does with input that is not a clean, regular stream: non-finite readings and
+//! gaps. Non-increasing or non-finite timestamps are never guessed at: block processing rejects
+//! them, and the per-sample `update` (which cannot fail) skips such a sample untouched.
+
+use crate::error::check_range;
+use crate::Error;
+
+/// What to do with a NaN or infinite rate (or temperature) reading.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum NonFinite {
+    /// Reject the block, naming the first bad index. (`update`, which cannot fail, skips the sample.)
+    #[default]
+    Error,
+    /// Use the last finite reading in its place (skip it if there is none yet).
+    Hold,
+    /// Leave the sample out: the filters never see it; its output row repeats the heading and drift
+    /// so far, with a NaN rate; the next sample's interval spans the hole.
+    Skip,
+}
+
+/// What to do when the interval between two samples exceeds [`InputPolicy::gap_limit`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum GapAction {
+    /// Integrate across the gap as across any interval (and count it).
+    #[default]
+    Bridge,
+    /// Also restart HDR, the low-pass and the de-lag: their memory predates the gap. The heading and
+    /// the static bias carry on.
+    Reset,
+}
+
+/// The input policy of a [`crate::Pipeline`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct InputPolicy {
+    /// Non-finite readings.
+    pub non_finite: NonFinite,
+    /// Longest interval that is not a gap [s], > 0 (infinity: never a gap).
+    pub gap_limit: f64,
+    /// What a gap does.
+    pub gap_action: GapAction,
+}
+
+impl Default for InputPolicy {
+    fn default() -> Self {
+        InputPolicy {
+            non_finite: NonFinite::Error,
+            gap_limit: 2.0,
+            gap_action: GapAction::Bridge,
+        }
+    }
+}
+
+impl InputPolicy {
+    /// Checks `gap_limit`.
+    pub fn validate(&self) -> Result<(), Error> {
+        check_range(
+            "gap_limit",
+            self.gap_limit,
+            f64::MIN_POSITIVE,
+            f64::INFINITY,
+            "> 0 (infinity: no gap detection)",
+        )
+    }
+}
+
+/// Counts of what the input policy did, since the pipeline was created or reset.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct InputReport {
+    /// Non-finite readings replaced by the last finite one.
+    pub held: u64,
+    /// Samples left out (non-finite readings, or timestamps that do not move forward in `update`).
+    pub skipped: u64,
+    /// Intervals longer than the gap limit.
+    pub gaps: u64,
+    /// The longest such interval [s] (0 without gaps).
+    pub longest_gap: f64,
+}

@@ -1,0 +1,181 @@
+//! The input policy: non-finite readings held or skipped, gaps bridged or reset, timestamps that do
+//! not move forward never processed.
+
+use gyrocore::*;
+
+fn config(non_finite: NonFinite) -> PipelineConfig {
+    let mut c = Preset::Combined.config();
+    c.correction.bias = StaticBias::Fixed(0.01);
+    c.input.non_finite = non_finite;
+    c
+}
+
+fn stream(n: usize) -> (Vec<f64>, Vec<f64>) {
+    let t = (0..n).map(|i| 100.0 + i as f64 * 0.05).collect();
+    let r = (0..n)
+        .map(|i| 0.02 + 0.3 * ((i as f64) * 0.05).sin())
+        .collect();
+    (t, r)
+}
+
+fn block(p: &mut Pipeline, t: &[f64], r: &[f64]) -> Result<Vec<Output>, Error> {
+    let n = t.len();
+    let (mut h, mut ra, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    p.process_block(
+        t,
+        r,
+        None,
+        Outputs {
+            heading: &mut h,
+            rate: &mut ra,
+            drift: &mut d,
+        },
+    )?;
+    Ok((0..n)
+        .map(|i| Output {
+            heading: h[i],
+            rate: ra[i],
+            drift: d[i],
+        })
+        .collect())
+}
+
+fn same(a: &Output, b: &Output) -> bool {
+    a.heading.to_bits() == b.heading.to_bits()
+        && a.rate.to_bits() == b.rate.to_bits()
+        && a.drift.to_bits() == b.drift.to_bits()
+}
+
+#[test]
+fn error_policy_rejects_a_block_with_a_nan_reading() {
+    let (t, mut r) = stream(500);
+    r[123] = f64::NAN;
+    let err = block(
+        &mut Pipeline::new(config(NonFinite::Error)).unwrap(),
+        &t,
+        &r,
+    )
+    .unwrap_err();
+    assert!(matches!(
+        err,
+        Error::NonFinite {
+            what: "rate",
+            index: 123,
+            ..
+        }
+    ));
+}
+
+#[test]
+fn hold_uses_the_last_finite_reading() {
+    let (t, mut r) = stream(500);
+    let bad = [123usize, 124, 400];
+    let mut filled = r.clone();
+    for &i in &bad {
+        r[i] = if i == 400 { f64::INFINITY } else { f64::NAN };
+        filled[i] = filled[i - 1];
+    }
+    let mut p = Pipeline::new(config(NonFinite::Hold)).unwrap();
+    let got = block(&mut p, &t, &r).unwrap();
+    let want = block(
+        &mut Pipeline::new(config(NonFinite::Hold)).unwrap(),
+        &t,
+        &filled,
+    )
+    .unwrap();
+    assert!(got.iter().zip(&want).all(|(a, b)| same(a, b)));
+    assert_eq!(p.report().held, 3);
+    assert_eq!(p.report().skipped, 0);
+}
+
+#[test]
+fn hold_with_nothing_to_hold_skips() {
+    let (t, mut r) = stream(50);
+    r[0] = f64::NAN;
+    let mut p = Pipeline::new(config(NonFinite::Hold)).unwrap();
+    let out = block(&mut p, &t, &r).unwrap();
+    assert!(out[0].rate.is_nan() && out[0].heading == 0.0);
+    assert_eq!((p.report().held, p.report().skipped), (0, 1));
+}
+
+#[test]
+fn skip_equals_leaving_the_samples_out() {
+    let (t, mut r) = stream(600);
+    let bad = [0usize, 77, 78, 79, 300, 599];
+    for &i in &bad {
+        r[i] = f64::NAN;
+    }
+    let mut p = Pipeline::new(config(NonFinite::Skip)).unwrap();
+    let got = block(&mut p, &t, &r).unwrap();
+    let keep: Vec<usize> = (0..t.len()).filter(|i| !bad.contains(i)).collect();
+    let kt: Vec<f64> = keep.iter().map(|&i| t[i]).collect();
+    let kr: Vec<f64> = keep.iter().map(|&i| r[i]).collect();
+    let want = block(
+        &mut Pipeline::new(config(NonFinite::Skip)).unwrap(),
+        &kt,
+        &kr,
+    )
+    .unwrap();
+    for (k, &i) in keep.iter().enumerate() {
+        assert!(same(&got[i], &want[k]), "row {i}");
+    }
+    for &i in &bad[1..] {
+        // A skipped row repeats the heading and drift of the row before, with no rate.
+        assert!(got[i].rate.is_nan());
+        assert_eq!(got[i].heading.to_bits(), got[i - 1].heading.to_bits());
+        assert_eq!(got[i].drift.to_bits(), got[i - 1].drift.to_bits());
+    }
+    assert_eq!(p.report().skipped, bad.len() as u64);
+}
+
+#[test]
+fn update_skips_timestamps_that_do_not_move_forward_without_touching_state() {
+    let (t, r) = stream(200);
+    let mut a = Pipeline::new(config(NonFinite::Error)).unwrap();
+    let mut b = a.clone();
+    for i in 0..t.len() {
+        let oa = a.update(t[i], r[i]);
+        let ob = b.update(t[i], r[i]);
+        assert!(same(&oa, &ob));
+        if i % 50 == 10 {
+            // A duplicate, a step back and a NaN timestamp: skipped, state untouched.
+            for bad_t in [t[i], t[i] - 1.0, f64::NAN] {
+                let o = b.update(bad_t, 5.0);
+                assert!(o.rate.is_nan() && o.heading.to_bits() == oa.heading.to_bits());
+            }
+        }
+    }
+    assert_eq!(b.report().skipped, 12);
+    // NaN reading through `update` under the Error policy (update cannot fail): skipped.
+    assert!(b.update(1e9, f64::NAN).rate.is_nan());
+}
+
+#[test]
+fn gaps_are_counted_and_reset_restarts_hdr_only() {
+    let mut t: Vec<f64> = (0..400).map(|i| i as f64 * 0.1).collect();
+    t.extend((0..400).map(|i| 100.0 + i as f64 * 0.1));
+    let r = vec![0.004; t.len()]; // a drift HDR works on (below the turn and dead-band thresholds)
+    for (action, expect_reset) in [(GapAction::Bridge, false), (GapAction::Reset, true)] {
+        let mut c = Preset::Hdr.config();
+        c.input.gap_action = action;
+        let mut p = Pipeline::new(c).unwrap();
+        let out = block(&mut p, &t, &r).unwrap();
+        assert_eq!(p.report().gaps, 1);
+        assert!((p.report().longest_gap - 60.1).abs() < 1e-9);
+        let before = out[399];
+        let after = out[400];
+        assert!(before.drift != 0.0);
+        assert_eq!(after.drift == 0.0, expect_reset, "{action:?}");
+        // The heading carries on across the gap either way (bridged by the integration rule).
+        assert!(after.heading >= before.heading);
+    }
+    let mut c = Preset::Hdr.config();
+    c.input.gap_limit = 0.0;
+    assert!(matches!(
+        Pipeline::new(c),
+        Err(Error::InvalidParameter {
+            name: "gap_limit",
+            ..
+        })
+    ));
+}

@@ -1,0 +1,143 @@
+"""Bad input and state: the input policy, unit checks, a panic that must not abort, and property
+tests (hypothesis) of the streaming invariants."""
+
+from __future__ import annotations
+
+import math
+import pickle
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import gyrocore
+from gyrocore import _gyrocore
+
+
+@st.composite
+def logs(draw: st.DrawFn) -> tuple[np.ndarray, np.ndarray]:
+    n = draw(st.integers(1, 300))
+    steps = draw(st.lists(st.floats(1e-3, 0.5), min_size=n, max_size=n))
+    rates = draw(st.lists(st.floats(-3.0, 3.0), min_size=n, max_size=n))
+    return 1.6e9 + np.cumsum(steps), np.array(rates)
+
+
+PRESETS = ["raw", "static_bias", "hong_park", "hdr", "combined"]
+
+
+def _run(preset: str, t: np.ndarray, r: np.ndarray, **kw: object) -> gyrocore.HeadingResult:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrocore.InputWarning)
+        return gyrocore.Pipeline(preset, bias=0.01, **kw).process(t, r)
+
+
+@settings(max_examples=40, deadline=None)
+@given(logs(), st.lists(st.integers(0, 300), max_size=5), st.sampled_from(PRESETS))
+def test_any_chunking_is_bit_identical(log: tuple[np.ndarray, np.ndarray], cuts: list[int], preset: str) -> None:
+    t, r = log
+    whole = _run(preset, t, r)
+    p = gyrocore.Pipeline(preset, bias=0.01)
+    bounds = sorted({min(c, len(t)) for c in cuts} | {0, len(t)})
+    parts = [p.process(t[a:b], r[a:b]) for a, b in zip(bounds, bounds[1:])]
+    joined = np.concatenate([x.heading for x in parts]) if parts else np.array([])
+    assert joined.tobytes() == whole.heading.tobytes()
+    assert len(whole.heading) == len(t)
+
+
+@settings(max_examples=30, deadline=None)
+@given(logs(), st.integers(0, 300), st.sampled_from(PRESETS))
+def test_pickle_snapshot_continues_and_reset_equals_fresh(log: tuple[np.ndarray, np.ndarray], at: int, preset: str) -> None:
+    t, r = log
+    at = min(at, len(t))
+    a = gyrocore.Pipeline(preset, bias=0.01)
+    a.process(t[:at], r[:at])
+    b = pickle.loads(pickle.dumps(a))
+    assert a.process(t[at:], r[at:]).heading.tobytes() == b.process(t[at:], r[at:]).heading.tobytes()
+    a.reset()
+    assert a.process(t, r).heading.tobytes() == _run(preset, t, r).heading.tobytes()
+
+
+@settings(max_examples=30, deadline=None)
+@given(logs(), st.sampled_from(PRESETS), st.floats(-0.5, 0.5))
+def test_finite_in_finite_out_and_a_known_bias_is_removed_exactly(
+    log: tuple[np.ndarray, np.ndarray], preset: str, bias: float
+) -> None:
+    t, r = log
+    out = _run(preset, t, r)
+    assert all(np.isfinite(a).all() for a in (out.heading, out.rate, out.drift))
+    if preset != "raw":
+        flat = gyrocore.process(t, np.full_like(t, bias), preset, bias=bias)
+        assert np.all(flat.heading == 0.0)
+    still = gyrocore.process(t, np.zeros_like(t), preset, bias=0.0, initial_heading=0.7)
+    assert np.all(still.heading == 0.7)
+
+
+def test_nan_policies_and_their_warnings() -> None:
+    t = np.arange(0.0, 20.0, 0.01)
+    r = np.full_like(t, 0.1)
+    r[[500, 501, 900]] = np.nan
+    with pytest.raises(ValueError, match=r"rate\[500\] is NaN"):
+        gyrocore.process(t, r, "hdr", bias=0.0)
+    with pytest.warns(gyrocore.InputWarning, match=r"3 non-finite reading\(s\) replaced by the last finite reading \(first at index 500"):
+        held = gyrocore.process(t, r, "raw", nonfinite="hold")
+    assert held.heading[-1] == pytest.approx(0.1 * t[-1])
+    p = gyrocore.Pipeline("raw", nonfinite="skip")
+    with pytest.warns(gyrocore.InputWarning, match=r"3 non-finite reading\(s\) skipped"):
+        skipped = p.process(t, r)
+    assert np.isnan(skipped.rate[[500, 501, 900]]).all() and np.isfinite(skipped.heading).all()
+    assert p.report["skipped"] == 3
+    with pytest.raises(ValueError, match="unknown nonfinite 'drop'"):
+        gyrocore.Pipeline("raw", nonfinite="drop")
+
+
+def test_gaps_are_reported_and_reset_on_request() -> None:
+    t = np.r_[np.arange(0.0, 30.0, 0.1), np.arange(90.0, 120.0, 0.1)]
+    r = np.full_like(t, 0.004)
+    with pytest.warns(gyrocore.InputWarning, match=r"1 gap\(s\) longer than 2.0 s .*60.1"):
+        bridged = gyrocore.process(t, r, "hdr", bias=0.0)
+    with pytest.warns(gyrocore.InputWarning, match="gap_action='reset'"):
+        reset = gyrocore.process(t, r, "hdr", bias=0.0, gap_action="reset")
+    k = len(np.arange(0.0, 30.0, 0.1))
+    assert bridged.drift[k] != 0.0 and reset.drift[k] == 0.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        gyrocore.process(t, r, "hdr", bias=0.0, gap_limit=math.inf)
+
+
+def test_rates_and_times_in_the_wrong_unit_warn() -> None:
+    t = np.arange(0.0, 60.0, 0.01)
+    deg = 30.0 * np.sin(t)
+    with pytest.warns(gyrocore.InputWarning, match="rates look like deg/s"):
+        gyrocore.process(t, deg, "raw")
+    with pytest.warns(gyrocore.InputWarning, match="timestamps look like ms"):
+        gyrocore.process(t * 1000.0, np.radians(deg), "raw", gap_limit=math.inf)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        gyrocore.process(t, np.radians(deg), "raw")
+
+
+def test_a_panic_in_rust_is_a_python_exception_not_an_abort() -> None:
+    with pytest.raises(BaseException, match="forced panic") as info:
+        _gyrocore._panic_for_test()
+    assert type(info.value).__name__ == "PanicException"
+    # The interpreter and the extension still work afterwards.
+    assert gyrocore.integrate([0.0, 1.0], [1.0, 1.0])[-1] == 1.0
+
+
+@pytest.mark.parametrize(
+    ("overrides", "message"),
+    [
+        ({"lowpass_tau": -1.0}, "lowpass_tau = -1: must be finite and >= 0"),
+        ({"hdr_c2": -0.5}, "hdr_c2 = -0.5: must be finite and > 0"),
+        ({"threshold": -0.1}, "threshold = -0.1: must be finite and >= 0"),
+        ({"hdr_interval": 0.0}, "hdr_interval = 0: must be finite and > 0"),
+        ({"gap_limit": -1.0}, "gap_limit = -1: must be > 0"),
+        ({"scale": float("nan")}, "scale = NaN: must be finite and > 0"),
+        ({"bias_window": (5.0, 1.0)}, "bias_window.end = 1: must be finite and >= start"),
+    ],
+)
+def test_invalid_parameters_name_the_parameter_and_range(overrides: dict[str, object], message: str) -> None:
+    with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(")", r"\)")):
+        gyrocore.Pipeline("hdr", **({"bias": 0.0} | overrides if "bias_window" not in overrides else overrides))
