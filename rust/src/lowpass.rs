@@ -56,7 +56,12 @@ impl LowPass {
     pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
         let tau = self.config.tau;
         let y = match self.previous {
-            Some(p) if dt + tau > 0.0 => (rate * dt + tau * p) / (dt + tau),
+            // Eq 7 as two weights: the division does not wait for `p`, so the chain from one
+            // output to the next is a multiply and an add.
+            Some(p) if dt + tau > 0.0 => {
+                let inv = 1.0 / (dt + tau);
+                rate * (dt * inv) + p * (tau * inv)
+            }
             _ => rate,
         };
         self.previous = Some(y);

@@ -245,24 +245,30 @@ impl Pipeline {
         }
     }
 
-    /// The reading to use for a sample under the input policy, or `None` to skip it.
+    /// The interval and the reading to use for a sample under the input policy (the clock then
+    /// moves to `t`), or `None` to skip the sample and leave everything as it was.
     #[inline]
-    fn admit(&mut self, t: f64, rate: f64, temperature: Option<f64>) -> Option<(f64, Option<f64>)> {
-        let moves_forward = t.is_finite() && self.clock.last().is_none_or(|last| t > last);
-        if !moves_forward {
-            return None;
-        }
-        if rate.is_finite() && temperature.is_none_or(f64::is_finite) {
+    fn admit(
+        &mut self,
+        t: f64,
+        rate: f64,
+        temperature: Option<f64>,
+    ) -> Option<(f64, f64, Option<f64>)> {
+        let dt = self.clock.interval(t)?;
+        let reading = if rate.is_finite() && temperature.is_none_or(f64::is_finite) {
             self.last_reading = Some((rate, temperature));
-            return Some((rate, temperature));
-        }
-        match (self.config.input.non_finite, self.last_reading) {
-            (NonFinite::Hold, Some(held)) => {
-                self.report.held += 1;
-                Some(held)
+            (rate, temperature)
+        } else {
+            match (self.config.input.non_finite, self.last_reading) {
+                (NonFinite::Hold, Some(held)) => {
+                    self.report.held += 1;
+                    held
+                }
+                _ => return None,
             }
-            _ => None,
-        }
+        };
+        self.clock.set(t);
+        Some((dt, reading.0, reading.1))
     }
 
     /// Feeds one sample (`t` [s], `rate` [rad/s]) without a temperature.
@@ -284,14 +290,13 @@ impl Pipeline {
         rate: f64,
         temperature: Option<f64>,
     ) -> Output {
-        let Some((rate, temperature)) = self.admit(t, rate, temperature) else {
+        let Some((dt, rate, temperature)) = self.admit(t, rate, temperature) else {
             self.report.skipped += 1;
             return Output {
                 rate: f64::NAN,
                 ..self.last_output
             };
         };
-        let dt = self.clock.tick(t);
         if dt > self.config.input.gap_limit {
             self.report.gaps += 1;
             self.report.longest_gap = self.report.longest_gap.max(dt);
@@ -353,25 +358,35 @@ impl Pipeline {
         check_len("heading", out.heading.len(), t.len())?;
         check_len("rate out", out.rate.len(), t.len())?;
         check_len("drift", out.drift.len(), t.len())?;
-        // One loop for both cases: without a temperature signal every sample gets `None`.
-        let temperatures = temperature
-            .into_iter()
-            .flatten()
-            .copied()
-            .map(Some)
-            .chain(core::iter::repeat(None));
-        let inputs = t.iter().zip(rate).zip(temperatures);
-        let outputs = out
-            .heading
-            .iter_mut()
-            .zip(out.rate.iter_mut())
-            .zip(out.drift.iter_mut());
-        for (((&ti, &ri), temp), ((heading, rate), drift)) in inputs.zip(outputs) {
-            let o = self.update_with_temperature(ti, ri, temp);
-            *heading = o.heading;
-            *rate = o.rate;
-            *drift = o.drift;
+        match temperature {
+            Some(temp) => self.feed(t, rate, |i| Some(temp[i]), out),
+            None => self.feed(t, rate, |_| None, out),
         }
         Ok(())
+    }
+
+    /// The loop of [`Pipeline::process_block`] over checked slices; `temperature_at(i)` gives the
+    /// temperature of sample `i` (a closure, so the loop without temperature carries no lookups).
+    #[inline(always)]
+    fn feed(
+        &mut self,
+        t: &[f64],
+        rate: &[f64],
+        temperature_at: impl Fn(usize) -> Option<f64>,
+        out: Outputs<'_>,
+    ) {
+        let n = t.len();
+        let (rate, heading, rate_out, drift) = (
+            &rate[..n],
+            &mut out.heading[..n],
+            &mut out.rate[..n],
+            &mut out.drift[..n],
+        );
+        for i in 0..n {
+            let o = self.update_with_temperature(t[i], rate[i], temperature_at(i));
+            heading[i] = o.heading;
+            rate_out[i] = o.rate;
+            drift[i] = o.drift;
+        }
     }
 }

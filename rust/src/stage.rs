@@ -57,26 +57,34 @@ pub struct Clock {
 }
 
 impl Clock {
-    /// Interval since the previous timestamp, in seconds (0 for the first sample).
+    /// Interval since the previous timestamp, in seconds (0 for the first sample, and 0 for a
+    /// timestamp that does not move forward, which is then not taken as the last one).
     #[inline]
     pub fn tick(&mut self, t: f64) -> f64 {
-        match self.last {
-            Some(last) => {
-                let dt = t - last;
-                if dt > 0.0 && dt.is_finite() {
-                    self.last = Some(t);
-                    dt
-                } else {
-                    0.0
-                }
+        match self.interval(t) {
+            Some(dt) => {
+                self.last = Some(t);
+                dt
             }
-            None => {
-                if t.is_finite() {
-                    self.last = Some(t);
-                }
-                0.0
-            }
+            None => 0.0,
         }
+    }
+
+    /// The interval `t` would have (0 for the first sample), or `None` if `t` is not finite or does
+    /// not move forward. Does not change the clock.
+    #[inline]
+    pub fn interval(&self, t: f64) -> Option<f64> {
+        match self.last {
+            Some(last) if t > last && t.is_finite() => Some(t - last),
+            None if t.is_finite() => Some(0.0),
+            _ => None,
+        }
+    }
+
+    /// Takes `t` as the last timestamp (after [`Clock::interval`] accepted it).
+    #[inline]
+    pub fn set(&mut self, t: f64) {
+        self.last = Some(t);
     }
 
     /// The last accepted timestamp, if any.

@@ -26,6 +26,13 @@ pub fn check_block(
         }
     }
     check_finite_all("t", t)?;
+    // Fast path first (branch-free, vectorisable); search for the index only when it fails.
+    let continues = previous_t
+        .zip(t.first())
+        .is_none_or(|(p, &first)| first > p);
+    if continues && t.windows(2).all(|w| w[1] > w[0]) {
+        return Ok(());
+    }
     let mut previous = previous_t;
     for (index, &value) in t.iter().enumerate() {
         if let Some(p) = previous {
@@ -43,6 +50,9 @@ pub fn check_block(
 }
 
 fn check_finite_all(what: &'static str, values: &[f64]) -> Result<(), Error> {
+    if values.iter().fold(true, |ok, v| ok & v.is_finite()) {
+        return Ok(());
+    }
     match values.iter().position(|v| !v.is_finite()) {
         Some(index) => Err(Error::NonFinite {
             what,
