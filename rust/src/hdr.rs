@@ -185,6 +185,10 @@ impl Hdr {
     /// One HDR step on the mean rate of the step just closed: eq 7 gives `w'_{i-1}`, then eq 8 (as
     /// the text states it), eq 9, eq 10 and eq 11 `I_i = I_{i-1} - SIGN(w_{i-1}) W_i R_i i_c`
     /// with `w_{i-1} = w'_{i-1} + I_{i-1}` (eq 12).
+    ///
+    /// Inlined although it runs once a step: a call would make the pipeline's state escape to
+    /// memory, and every sample would then load and store it.
+    #[inline(always)]
     fn decide(&mut self, mean: f64, duration: f64) {
         let st = &mut self.state;
         let filtered = st.filter.step(duration, mean);

@@ -8,7 +8,7 @@ use crate::integrate::{Integrator, IntegratorConfig};
 use crate::lowpass::{DeLag, LowPass, LowPassConfig};
 use crate::stage::{check_len, Clock};
 use crate::threshold::{Threshold, ThresholdConfig};
-use crate::validate::check_block;
+use crate::validate::{all_finite, check_block};
 use crate::Error;
 
 /// Which stages run, and how. `None` disables a stage.
@@ -229,6 +229,7 @@ impl Pipeline {
     }
 
     /// Restarts the stages whose state is a memory of the recent signal (HDR, low-pass, de-lag).
+    #[inline(always)]
     fn reset_memory(&mut self) {
         use crate::stage::Stage;
         if let Some(s) = &mut self.threshold {
@@ -297,6 +298,13 @@ impl Pipeline {
                 ..self.last_output
             };
         };
+        self.last_output = self.step(t, dt, rate, temperature);
+        self.last_output
+    }
+
+    /// The stages, in order, for one admitted sample with interval `dt`.
+    #[inline(always)]
+    fn step(&mut self, t: f64, dt: f64, rate: f64, temperature: Option<f64>) -> Output {
         if dt > self.config.input.gap_limit {
             self.report.gaps += 1;
             self.report.longest_gap = self.report.longest_gap.max(dt);
@@ -326,12 +334,11 @@ impl Pipeline {
             r = s.step(dt, r);
         }
         let heading = self.integrator.step(dt, r);
-        self.last_output = Output {
+        Output {
             heading,
             rate: r,
             drift,
-        };
-        self.last_output
+        }
     }
 
     /// Checks a block (lengths; finite, strictly increasing time, also after the previous block;
@@ -358,9 +365,14 @@ impl Pipeline {
         check_len("heading", out.heading.len(), t.len())?;
         check_len("rate out", out.rate.len(), t.len())?;
         check_len("drift", out.drift.len(), t.len())?;
-        match temperature {
-            Some(temp) => self.feed(t, rate, |i| Some(temp[i]), out),
-            None => self.feed(t, rate, |_| None, out),
+        // Checked blocks of finite readings (the common case) skip the per-sample admission.
+        let readings_finite =
+            readings_must_be_finite || (all_finite(rate) && temperature.is_none_or(all_finite));
+        match (temperature, readings_finite) {
+            (Some(temp), true) => self.feed_checked(t, rate, |i| Some(temp[i]), out),
+            (None, true) => self.feed_checked(t, rate, |_| None, out),
+            (Some(temp), false) => self.feed(t, rate, |i| Some(temp[i]), out),
+            (None, false) => self.feed(t, rate, |_| None, out),
         }
         Ok(())
     }
@@ -388,5 +400,40 @@ impl Pipeline {
             rate_out[i] = o.rate;
             drift[i] = o.drift;
         }
+    }
+
+    /// The loop of [`Pipeline::process_block`] over a checked block of finite readings: every
+    /// sample is admitted, so the interval comes straight from the timestamps and the memories of
+    /// the input policy are updated once, at the end.
+    #[inline(always)]
+    fn feed_checked(
+        &mut self,
+        t: &[f64],
+        rate: &[f64],
+        temperature_at: impl Fn(usize) -> Option<f64>,
+        out: Outputs<'_>,
+    ) {
+        let n = t.len();
+        if n == 0 {
+            return;
+        }
+        let (rate, heading, rate_out, drift) = (
+            &rate[..n],
+            &mut out.heading[..n],
+            &mut out.rate[..n],
+            &mut out.drift[..n],
+        );
+        let mut previous = self.clock.last().unwrap_or(t[0]);
+        let mut o = self.last_output;
+        for i in 0..n {
+            o = self.step(t[i], t[i] - previous, rate[i], temperature_at(i));
+            previous = t[i];
+            heading[i] = o.heading;
+            rate_out[i] = o.rate;
+            drift[i] = o.drift;
+        }
+        self.clock.set(t[n - 1]);
+        self.last_reading = Some((rate[n - 1], temperature_at(n - 1)));
+        self.last_output = o;
     }
 }

@@ -49,8 +49,14 @@ pub fn check_block(
     Ok(())
 }
 
+/// True if every value is finite (branch-free, so the compiler can vectorise it).
+#[inline]
+pub(crate) fn all_finite(values: &[f64]) -> bool {
+    values.iter().fold(true, |ok, v| ok & v.is_finite())
+}
+
 fn check_finite_all(what: &'static str, values: &[f64]) -> Result<(), Error> {
-    if values.iter().fold(true, |ok, v| ok & v.is_finite()) {
+    if all_finite(values) {
         return Ok(());
     }
     match values.iter().position(|v| !v.is_finite()) {
