@@ -1,6 +1,8 @@
 //! The input policy: non-finite readings held or skipped, gaps bridged or reset, timestamps that do
 //! not move forward never processed.
 
+mod common;
+
 use gyrocore::*;
 
 fn config(non_finite: NonFinite) -> PipelineConfig {
@@ -19,31 +21,11 @@ fn stream(n: usize) -> (Vec<f64>, Vec<f64>) {
 }
 
 fn block(p: &mut Pipeline, t: &[f64], r: &[f64]) -> Result<Vec<Output>, Error> {
-    let n = t.len();
-    let (mut h, mut ra, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    p.process_block(
-        t,
-        r,
-        None,
-        Outputs {
-            heading: &mut h,
-            rate: &mut ra,
-            drift: &mut d,
-        },
-    )?;
-    Ok((0..n)
-        .map(|i| Output {
-            heading: h[i],
-            rate: ra[i],
-            drift: d[i],
-        })
-        .collect())
+    common::try_block(p, t, r)
 }
 
 fn same(a: &Output, b: &Output) -> bool {
-    a.heading.to_bits() == b.heading.to_bits()
-        && a.rate.to_bits() == b.rate.to_bits()
-        && a.drift.to_bits() == b.drift.to_bits()
+    common::bits(&[*a]) == common::bits(&[*b])
 }
 
 #[test]

@@ -2,6 +2,9 @@
 //! `update`, any chunking gives bit-identical output, `reset` equals a fresh stage, a clone (and a
 //! serde snapshot) taken mid-stream continues identically. Checked on random irregular streams.
 
+mod common;
+
+use common::bits;
 use gyrocore::*;
 use proptest::prelude::*;
 
@@ -43,32 +46,7 @@ fn run_updates(p: &mut Pipeline, t: &[f64], r: &[f64]) -> Vec<Output> {
 }
 
 fn run_block(p: &mut Pipeline, t: &[f64], r: &[f64]) -> Vec<Output> {
-    let n = t.len();
-    let (mut h, mut ra, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    p.process_block(
-        t,
-        r,
-        None,
-        Outputs {
-            heading: &mut h,
-            rate: &mut ra,
-            drift: &mut d,
-        },
-    )
-    .unwrap();
-    (0..n)
-        .map(|i| Output {
-            heading: h[i],
-            rate: ra[i],
-            drift: d[i],
-        })
-        .collect()
-}
-
-fn bits(o: &[Output]) -> Vec<[u64; 3]> {
-    o.iter()
-        .map(|o| [o.heading.to_bits(), o.rate.to_bits(), o.drift.to_bits()])
-        .collect()
+    common::try_block(p, t, r).unwrap()
 }
 
 proptest! {

@@ -16,7 +16,7 @@
 use crate::block::BlockMean;
 use crate::error::{check_positive, check_range};
 use crate::lowpass::{LowPass, LowPassConfig};
-use crate::stage::{Clock, Stage};
+use crate::stage::{interval_stage, Clock};
 use crate::Error;
 
 /// Number of precomputed attenuation values `R(1..=N)` (eq 10); larger counts use `pow`.
@@ -116,7 +116,7 @@ impl HdrState {
         HdrState {
             integrator: 0.0,
             block: BlockMean::default(),
-            filter: LowPass::from_valid(LowPassConfig { tau: config.tau }),
+            filter: LowPass::start(LowPassConfig { tau: config.tau }),
             previous_sign: None,
             repetitions: 0,
             clock: Clock::default(),
@@ -138,15 +138,20 @@ impl Hdr {
     /// Validates `config` and builds the stage.
     pub fn new(config: HdrConfig) -> Result<Self, Error> {
         config.validate()?;
+        Ok(Self::start(config))
+    }
+
+    /// The stage before the first sample, from a configuration validated already.
+    fn start(config: HdrConfig) -> Self {
         let mut attenuation = [0.0; ATTENUATION_TABLE];
         for (r, a) in (1u32..).zip(attenuation.iter_mut()) {
             *a = config.attenuation(r);
         }
-        Ok(Hdr {
+        Hdr {
             config,
             attenuation,
             state: HdrState::start(&config),
-        })
+        }
     }
 
     /// The configuration.
@@ -218,16 +223,4 @@ impl Hdr {
     }
 }
 
-impl Stage for Hdr {
-    type Output = f64;
-
-    #[inline]
-    fn update(&mut self, t: f64, rate: f64) -> f64 {
-        let dt = self.state.clock.tick(t);
-        self.step(dt, rate)
-    }
-
-    fn reset(&mut self) {
-        self.state = HdrState::start(&self.config);
-    }
-}
+interval_stage!(Hdr, state.clock);

@@ -6,7 +6,7 @@
 //! once, as the starting value: `psi_i = psi_{i-1} + w_d,i T_i`, `psi` at the first sample = `psi_0`.
 
 use crate::error::check_finite;
-use crate::stage::{Clock, Stage};
+use crate::stage::{interval_stage, Clock};
 use crate::Error;
 
 /// Integration rule.
@@ -75,16 +75,4 @@ impl Integrator {
     }
 }
 
-impl Stage for Integrator {
-    type Output = f64;
-
-    #[inline]
-    fn update(&mut self, t: f64, rate: f64) -> f64 {
-        let dt = self.clock.tick(t);
-        self.step(dt, rate)
-    }
-
-    fn reset(&mut self) {
-        *self = Self::start(self.config);
-    }
-}
+interval_stage!(Integrator, clock);

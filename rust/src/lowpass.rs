@@ -6,7 +6,7 @@
 //! its lag from the heading.
 
 use crate::error::check_range;
-use crate::stage::{Clock, Stage};
+use crate::stage::{interval_stage, Clock};
 use crate::Error;
 
 /// Configuration shared by [`LowPass`] and [`DeLag`].
@@ -39,11 +39,11 @@ impl LowPass {
     /// Validates `config` and builds the stage.
     pub fn new(config: LowPassConfig) -> Result<Self, Error> {
         config.validate()?;
-        Ok(Self::from_valid(config))
+        Ok(Self::start(config))
     }
 
-    /// Builds the stage from a configuration that has been validated already.
-    pub(crate) fn from_valid(config: LowPassConfig) -> Self {
+    /// The stage before the first sample, from a configuration validated already.
+    pub(crate) fn start(config: LowPassConfig) -> Self {
         LowPass {
             config,
             previous: None,
@@ -69,20 +69,7 @@ impl LowPass {
     }
 }
 
-impl Stage for LowPass {
-    type Output = f64;
-
-    #[inline]
-    fn update(&mut self, t: f64, rate: f64) -> f64 {
-        let dt = self.clock.tick(t);
-        self.step(dt, rate)
-    }
-
-    fn reset(&mut self) {
-        self.previous = None;
-        self.clock = Clock::default();
-    }
-}
+interval_stage!(LowPass, clock);
 
 /// De-lag, HDR eq 13: `w_d,i = w_i + tau / T_i (w_i - w_{i-1})`, the inverse of eq 7.
 ///
@@ -99,11 +86,16 @@ impl DeLag {
     /// Validates `config` and builds the stage.
     pub fn new(config: LowPassConfig) -> Result<Self, Error> {
         config.validate()?;
-        Ok(DeLag {
+        Ok(Self::start(config))
+    }
+
+    /// The stage before the first sample, from a configuration validated already.
+    fn start(config: LowPassConfig) -> Self {
+        DeLag {
             config,
             previous: None,
             clock: Clock::default(),
-        })
+        }
     }
 
     /// De-lags one sample whose interval is `dt` [s] (HDR eq 13).
@@ -118,17 +110,4 @@ impl DeLag {
     }
 }
 
-impl Stage for DeLag {
-    type Output = f64;
-
-    #[inline]
-    fn update(&mut self, t: f64, rate: f64) -> f64 {
-        let dt = self.clock.tick(t);
-        self.step(dt, rate)
-    }
-
-    fn reset(&mut self) {
-        self.previous = None;
-        self.clock = Clock::default();
-    }
-}
+interval_stage!(DeLag, clock);

@@ -369,18 +369,22 @@ impl Pipeline {
         let readings_finite =
             readings_must_be_finite || (all_finite(rate) && temperature.is_none_or(all_finite));
         match (temperature, readings_finite) {
-            (Some(temp), true) => self.feed_checked(t, rate, |i| Some(temp[i]), out),
-            (None, true) => self.feed_checked(t, rate, |_| None, out),
-            (Some(temp), false) => self.feed(t, rate, |i| Some(temp[i]), out),
-            (None, false) => self.feed(t, rate, |_| None, out),
+            (Some(temp), true) => self.feed::<true>(t, rate, |i| Some(temp[i]), out),
+            (None, true) => self.feed::<true>(t, rate, |_| None, out),
+            (Some(temp), false) => self.feed::<false>(t, rate, |i| Some(temp[i]), out),
+            (None, false) => self.feed::<false>(t, rate, |_| None, out),
         }
         Ok(())
     }
 
     /// The loop of [`Pipeline::process_block`] over checked slices; `temperature_at(i)` gives the
     /// temperature of sample `i` (a closure, so the loop without temperature carries no lookups).
+    ///
+    /// With `FINITE` (every reading is known to be finite) every sample is admitted, so the
+    /// interval comes straight from the timestamps and the memories of the input policy are updated
+    /// once, at the end; otherwise each sample goes through [`Pipeline::update_with_temperature`].
     #[inline(always)]
-    fn feed(
+    fn feed<const FINITE: bool>(
         &mut self,
         t: &[f64],
         rate: &[f64],
@@ -394,46 +398,24 @@ impl Pipeline {
             &mut out.rate[..n],
             &mut out.drift[..n],
         );
-        for i in 0..n {
-            let o = self.update_with_temperature(t[i], rate[i], temperature_at(i));
-            heading[i] = o.heading;
-            rate_out[i] = o.rate;
-            drift[i] = o.drift;
-        }
-    }
-
-    /// The loop of [`Pipeline::process_block`] over a checked block of finite readings: every
-    /// sample is admitted, so the interval comes straight from the timestamps and the memories of
-    /// the input policy are updated once, at the end.
-    #[inline(always)]
-    fn feed_checked(
-        &mut self,
-        t: &[f64],
-        rate: &[f64],
-        temperature_at: impl Fn(usize) -> Option<f64>,
-        out: Outputs<'_>,
-    ) {
-        let n = t.len();
-        if n == 0 {
-            return;
-        }
-        let (rate, heading, rate_out, drift) = (
-            &rate[..n],
-            &mut out.heading[..n],
-            &mut out.rate[..n],
-            &mut out.drift[..n],
-        );
-        let mut previous = self.clock.last().unwrap_or(t[0]);
+        let mut previous = self.clock.last().or(t.first().copied()).unwrap_or(0.0);
         let mut o = self.last_output;
         for i in 0..n {
-            o = self.step(t[i], t[i] - previous, rate[i], temperature_at(i));
-            previous = t[i];
+            o = if FINITE {
+                let dt = t[i] - previous;
+                previous = t[i];
+                self.step(t[i], dt, rate[i], temperature_at(i))
+            } else {
+                self.update_with_temperature(t[i], rate[i], temperature_at(i))
+            };
             heading[i] = o.heading;
             rate_out[i] = o.rate;
             drift[i] = o.drift;
         }
-        self.clock.set(t[n - 1]);
-        self.last_reading = Some((rate[n - 1], temperature_at(n - 1)));
-        self.last_output = o;
+        if FINITE && n > 0 {
+            self.clock.set(t[n - 1]);
+            self.last_reading = Some((rate[n - 1], temperature_at(n - 1)));
+            self.last_output = o;
+        }
     }
 }

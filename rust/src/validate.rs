@@ -55,7 +55,8 @@ pub(crate) fn all_finite(values: &[f64]) -> bool {
     values.iter().fold(true, |ok, v| ok & v.is_finite())
 }
 
-fn check_finite_all(what: &'static str, values: &[f64]) -> Result<(), Error> {
+/// Fails with [`Error::NonFinite`] naming the first NaN or infinite value.
+pub(crate) fn check_finite_all(what: &'static str, values: &[f64]) -> Result<(), Error> {
     if all_finite(values) {
         return Ok(());
     }

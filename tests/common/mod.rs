@@ -1,0 +1,29 @@
+//! Helpers shared by the integration tests.
+
+use gyrocore::{Error, Output, Outputs, Pipeline};
+
+/// Feeds one block through `p`, returning the per-sample outputs.
+pub fn try_block(p: &mut Pipeline, t: &[f64], r: &[f64]) -> Result<Vec<Output>, Error> {
+    let n = t.len();
+    let (mut h, mut ra, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let out = Outputs {
+        heading: &mut h,
+        rate: &mut ra,
+        drift: &mut d,
+    };
+    p.process_block(t, r, None, out)?;
+    Ok((0..n)
+        .map(|i| Output {
+            heading: h[i],
+            rate: ra[i],
+            drift: d[i],
+        })
+        .collect())
+}
+
+/// The outputs as bits, so that comparisons are exact (and NaN equals NaN).
+pub fn bits(o: &[Output]) -> Vec<[u64; 3]> {
+    o.iter()
+        .map(|o| [o.heading.to_bits(), o.rate.to_bits(), o.drift.to_bits()])
+        .collect()
+}
