@@ -11,9 +11,9 @@ counter-clockwise positive; the bias is what the gyro reads at rest.
     True
 """
 
-from . import evaluate, io, sim
+from . import batch, evaluate, io, sim
 from ._checks import InputWarning
-from ._gyrocore import __version__
+from ._gyrocore import SampleError, __version__
 from .evaluate import HeadingErrors, heading_errors
 from .io import Log, read_log
 from .pipeline import (
@@ -34,7 +34,9 @@ __all__ = [
     "InputWarning",
     "Log",
     "Pipeline",
+    "SampleError",
     "__version__",
+    "batch",
     "downsample",
     "evaluate",
     "heading_errors",

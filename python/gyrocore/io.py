@@ -1,35 +1,772 @@
-"""Reading logs in the log-folder layout: gyro.csv (t, gyro_z), reference.csv (t, heading, x, y),
-odometry.csv (t, speed) and meta.json (with the ``stationary`` rest window)."""
+"""Reading gyro logs and writing heading tables.
+
+Every reader returns SI units: timestamps [s] and yaw rate [rad/s], counter-clockwise positive.
+
+============  =====================================================================================
+format        what is read
+============  =====================================================================================
+CSV           a header line, then one sample per line; columns ``time_col`` (default ``t``) and
+              ``rate_col`` (default ``gyro_z``); other columns are ignored (pyarrow, streaming)
+Parquet       columns ``time_col`` and ``rate_col``; a timestamp column carries its own unit
+``.npy``      a structured array with fields ``time_col``/``rate_col``, or a 2-D array
+              (samples x columns: time in column 0, rate in column 1 unless numbered otherwise)
+``.npz``      arrays named ``time_col`` and ``rate_col`` (loaded whole)
+log folder    ``gyro.csv`` (t, gyro_z), ``reference.csv`` (t, heading, x, y), ``odometry.csv``
+              (t, speed) and ``meta.json`` with the ``stationary`` rest window
+ROS bag       a ROS 1 ``.bag`` file or a ROS 2 bag folder (``metadata.yaml``): sensor_msgs/Imu
+              ``angular_velocity.z`` stamped by ``header.stamp`` (needs ``gyrocore[ros]``)
+============  =====================================================================================
+
+Units of the file are options: ``time_unit`` one of ``s``, ``ms``, ``us``, ``ns`` and ``rate_unit``
+``rad/s`` or ``deg/s``; a sanity check warns when the values look like another unit. Malformed
+files raise ``ValueError`` naming the file, line and column (or the row of a Parquet or NumPy file,
+the message of a bag).
+
+:func:`open_source` reads any of them chunk after chunk with flat memory (what ``gyrocore process``
+and :mod:`gyrocore.batch` use); :func:`read_log` reads a whole log into memory. Heading tables are
+written by :class:`HeadingWriter` through a temporary file that is renamed at the end.
+"""
 
 from __future__ import annotations
 
+import csv
+import io as _io
 import json
-from dataclasses import dataclass, field
+import math
+import os
+import secrets
+import zipfile
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from types import TracebackType
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from . import _gyrocore
+from ._gyrocore import SampleError
 from ._arrays import FloatArray
+from ._checks import INTERVAL_LIMIT, unit_problems, warn
 from .pipeline import HeadingResult, has_bias_source, process, uses_static_bias
+
+if TYPE_CHECKING:
+    import pyarrow as pa
+
+#: Time units of a file, as counts per second.
+TIME_UNITS = {"s": 1.0, "ms": 1e3, "us": 1e6, "ns": 1e9}
+#: Rate units of a file.
+RATE_UNITS = ("rad/s", "deg/s")
+#: Heading conventions of the output: ENU yaw (counter-clockwise from east) or compass heading
+#: (clockwise from north).
+HEADING_CONVENTIONS = ("enu", "compass")
+#: Columns of a heading table.
+OUTPUT_COLUMNS = ("t", "heading", "rate", "drift")
+#: Samples per chunk, at most (a CSV chunk also ends with a block of :data:`CSV_BLOCK_BYTES`).
+DEFAULT_CHUNK_ROWS = 1 << 16
+#: Bytes of CSV text parsed at a time. pyarrow's streaming reader reads about 32 blocks ahead, so
+#: this sets the reader's memory (1 MiB: about 40 MB, and the fastest size measured).
+CSV_BLOCK_BYTES = 1 << 20
+#: Rows per Parquet row group written (256 Ki rows: 8 MiB of doubles per column; larger groups
+#: raised the peak memory without writing faster).
+PARQUET_ROW_GROUP = 1 << 18
+#: Suffixes of the files :func:`open_source` reads.
+FILE_SUFFIXES = (".csv", ".parquet", ".pq", ".npy", ".npz", ".bag")
+#: A yaw rate that never exceeds this [deg/s] over a whole log is more likely in rad/s.
+SMALL_RATE_DPS = 3.0
+#: A mean interval below this [s] (above 10 kHz) suggests timestamps in a larger unit.
+SHORT_INTERVAL = 1e-4
+#: Timestamps beyond this [s] (the year 5138) are an epoch in ms, us or ns.
+EPOCH_LIMIT = 1e11
+
+
+@dataclass(frozen=True)
+class ReadOptions:
+    """Where the samples are in a file and in which units.
+
+    Attributes:
+        time_col: time column (field, array) name; ``None``: ``t``, or column 0 of a plain 2-D
+            ``.npy`` array (whose columns are numbered from 0).
+        rate_col: rate column name; ``None``: ``gyro_z``, or column 1 of a plain 2-D array.
+        time_unit: ``s``, ``ms``, ``us`` or ``ns`` (a Parquet timestamp column and bag stamps
+            carry their own unit).
+        rate_unit: ``rad/s`` or ``deg/s``.
+        topic: the bag topic with sensor_msgs/Imu messages (``None``: the only one).
+        delimiter: CSV field delimiter.
+    """
+
+    time_col: str | None = None
+    rate_col: str | None = None
+    time_unit: str = "s"
+    rate_unit: str = "rad/s"
+    topic: str | None = None
+    delimiter: str = ","
+
+    def __post_init__(self) -> None:
+        if self.time_unit not in TIME_UNITS:
+            raise ValueError(f"time_unit {self.time_unit!r} is not one of {', '.join(TIME_UNITS)}")
+        if self.rate_unit not in RATE_UNITS:
+            raise ValueError(f"rate_unit {self.rate_unit!r} is not one of {', '.join(RATE_UNITS)}")
+        if len(self.delimiter) != 1:
+            raise ValueError(f"delimiter must be one character, got {self.delimiter!r}")
+
+    @property
+    def time(self) -> str:
+        """The time column of a named layout."""
+        return self.time_col or "t"
+
+    @property
+    def rate(self) -> str:
+        """The rate column of a named layout."""
+        return self.rate_col or "gyro_z"
+
+
+@dataclass(frozen=True, repr=False)
+class Chunk:
+    """Consecutive samples of one input, in SI units.
+
+    Attributes:
+        t: timestamps [s].
+        rate: yaw rate [rad/s], counter-clockwise positive (NaN where a value was empty).
+        first_row: index of the first sample in the whole input (0-based).
+        done: progress through the input after this chunk, in :attr:`GyroSource.progress_unit`.
+    """
+
+    t: FloatArray
+    rate: FloatArray
+    first_row: int
+    done: int
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    def __repr__(self) -> str:
+        return f"Chunk(rows {self.first_row}..{self.first_row + len(self.t)})"
+
+
+@dataclass(frozen=True)
+class GyroSource:
+    """One input, ready to be read chunk after chunk (see :func:`open_source`).
+
+    Attributes:
+        path: the input as given.
+        kind: ``csv``, ``parquet``, ``npy``, ``npz``, ``bag`` or ``log folder``.
+        data_path: the file whose rows are counted (``gyro.csv`` of a log folder, else ``path``).
+        options: columns and units.
+        stationary: rest window ``(t0, t1)`` [s] from a log folder's meta.json, or None.
+        progress_total: size of the input in :attr:`progress_unit`, or None if unknown.
+        progress_unit: ``B`` (bytes of a CSV file) or ``rows``.
+    """
+
+    path: Path
+    kind: str
+    data_path: Path
+    options: ReadOptions
+    stationary: tuple[float, float] | None = None
+    progress_total: int | None = None
+    progress_unit: str = "rows"
+    meta: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
+
+    @property
+    def name(self) -> str:
+        """The log's name: the file name without its suffix, or the folder name."""
+        return str(self.meta.get("name", self.path.stem if self.path.is_file() else self.path.name))
+
+    def where(self, row: int) -> str:
+        """Where sample ``row`` (0-based) is in the file, in the file's own terms."""
+        if self.kind in ("csv", "log folder"):
+            return f"line {row + 2}"
+        if self.kind == "bag":
+            return f"message {row} on {self.options.topic}"
+        return f"row {row}"
+
+    def locate(self, error: SampleError) -> str:
+        """The pipeline's error about sample ``error.index`` of this file, with where it is."""
+        return f"{error} ({self.data_path}, {self.where(error.index)})"
+
+    def chunks(self, rows: int = DEFAULT_CHUNK_ROWS) -> Iterator[Chunk]:
+        """The samples, at most ``rows`` at a time, converted to SI units.
+
+        Raises:
+            ValueError: a malformed file (naming the file and the line, row or message), a missing
+                column, or an empty timestamp.
+            ImportError: a bag without the ``rosbags`` package.
+        """
+        if rows < 1:
+            raise ValueError(f"rows per chunk must be >= 1, got {rows}")
+        readers = {
+            "csv": _csv_chunks,
+            "log folder": _csv_chunks,
+            "parquet": _parquet_chunks,
+            "npy": _npy_chunks,
+            "npz": _npz_chunks,
+            "bag": _bag_chunks,
+        }
+        first = 0
+        for t_raw, rate_raw, per_second, done in readers[self.kind](self, rows):
+            t = _seconds(t_raw, per_second)
+            rate = np.asarray(rate_raw, dtype=np.float64)
+            if self.options.rate_unit == "deg/s":
+                rate = np.radians(rate)
+            for start in range(0, len(t), rows):  # a CSV block can hold more than ``rows``
+                yield Chunk(t[start : start + rows], rate[start : start + rows], first + start, done)
+            first += len(t)
+
+
+
+
+def _seconds(raw: np.ndarray, per_second: float) -> FloatArray:
+    """Timestamps [s] from counts of a unit; division (not multiplication by 1e-3) rounds once."""
+    t = np.asarray(raw, dtype=np.float64)
+    return t if per_second == 1.0 else t / per_second
+
+
+def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: Any) -> GyroSource:
+    """Recognise an input by its suffix or layout; read nothing but headers and metadata yet.
+
+    Args:
+        path: a ``.csv``, ``.parquet``/``.pq``, ``.npy``, ``.npz`` or ``.bag`` file, a log folder
+            (with ``gyro.csv``) or a ROS 2 bag folder (with ``metadata.yaml``).
+        options: columns and units; or give the :class:`ReadOptions` fields as keywords.
+
+    Raises:
+        FileNotFoundError: no such file or folder.
+        ValueError: an unknown kind of file or folder.
+    """
+    if options is None:
+        options = ReadOptions(**kwargs)
+    elif kwargs:
+        raise TypeError("give either options or keywords, not both")
+    p = Path(path)
+    if not p.exists():
+        raise FileNotFoundError(f"{p}: no such file or folder")
+    if p.is_dir():
+        if (p / "gyro.csv").is_file():
+            meta = _read_meta(p / "meta.json")
+            stationary = _rest_window(p / "meta.json", meta.get("stationary"))
+            data = p / "gyro.csv"
+            return GyroSource(p, "log folder", data, options, stationary, data.stat().st_size, "B", meta)
+        if (p / "metadata.yaml").is_file():
+            return _open_bag(p, options)
+        raise ValueError(f"{p}: not a log folder (no gyro.csv) nor a ROS 2 bag (no metadata.yaml)")
+    suffix = p.suffix.lower()
+    if suffix == ".csv":
+        return GyroSource(p, "csv", p, options, progress_total=p.stat().st_size, progress_unit="B")
+    if suffix in (".parquet", ".pq"):
+        return GyroSource(p, "parquet", p, options, progress_total=_parquet_file(p).metadata.num_rows)
+    if suffix == ".npy":
+        with open(p, "rb") as f:
+            shape = _npy_header(p, f)[0]
+        return GyroSource(p, "npy", p, options, progress_total=shape[0] if shape else 0)
+    if suffix == ".npz":
+        return GyroSource(p, "npz", p, options)
+    if suffix == ".bag":
+        return _open_bag(p, options)
+    raise ValueError(
+        f"{p}: unknown kind of file (read are {', '.join(FILE_SUFFIXES)}, log folders and ROS 2 bag folders)"
+    )
+
+
+def is_input(path: Path) -> bool:
+    """Whether ``path`` is something :func:`open_source` reads (by suffix or folder layout)."""
+    if path.is_dir():
+        return (path / "gyro.csv").is_file() or (path / "metadata.yaml").is_file()
+    return path.is_file() and path.suffix.lower() in FILE_SUFFIXES
+
+
+def _rest_window(path: Path, window: Any) -> tuple[float, float] | None:
+    """meta.json's ``stationary``: ``[t0, t1]`` [s] or null."""
+    if window is None:
+        return None
+    if not (isinstance(window, list) and len(window) == 2 and all(isinstance(v, (int, float)) for v in window)):
+        raise ValueError(f"{path}: stationary must be [t0, t1] in seconds or null, got {window!r}")
+    return float(window[0]), float(window[1])
+
+
+def _read_meta(path: Path) -> dict[str, Any]:
+    if not path.is_file():
+        return {}
+    try:
+        meta = json.loads(path.read_text(encoding="utf-8"))
+    except json.JSONDecodeError as e:
+        raise ValueError(f"{path}: line {e.lineno} column {e.colno}: {e.msg}") from None
+    if not isinstance(meta, dict):
+        raise ValueError(f"{path}: expected a JSON object")
+    return meta
+
+
+# --- CSV -------------------------------------------------------------------------------------
+
+
+def _csv_header(path: Path, delimiter: str) -> list[str]:
+    with open(path, "rb") as f:
+        line = f.readline()
+    if not line.strip():
+        raise ValueError(f"{path}: line 1: no header line (expected column names)")
+    text = line.decode("utf-8-sig", errors="replace").rstrip("\r\n")
+    return [name.strip() for name in next(csv.reader([text], delimiter=delimiter))]
+
+
+def _column_positions(path: Path, header: list[str], columns: tuple[str, ...]) -> dict[str, int]:
+    missing = [c for c in columns if c not in header]
+    if missing:
+        raise ValueError(
+            f"{path}: missing column(s) {', '.join(missing)}; it has {', '.join(map(str, header))} "
+            "(choose with time_col/rate_col, --time-col/--rate-col)"
+        )
+    twice = [c for c in columns if header.count(c) > 1]
+    if twice:
+        raise ValueError(f"{path}: line 1: column(s) {', '.join(twice)} appear more than once")
+    return {c: header.index(c) for c in columns}
+
+
+def _read_csv(
+    path: Path, columns: tuple[str, ...], *, delimiter: str = ",", block_bytes: int = CSV_BLOCK_BYTES
+) -> Iterator[tuple[int, dict[str, pa.Array], int]]:
+    """Yield ``(first_row, {column: pyarrow array}, bytes read)`` of a CSV file, block by block.
+
+    Empty values become nulls; blank lines are rows of nulls, so that row ``k`` is line ``k + 2``
+    (for files with one sample per line: a quoted line break would shift the line numbers).
+    """
+    import pyarrow as pa
+    import pyarrow.csv as pa_csv
+
+    header = _csv_header(path, delimiter)
+    positions = _column_positions(path, header, columns)
+    read = pa_csv.ReadOptions(
+        column_names=[f"{i}:{name}" for i, name in enumerate(header)],  # unique even if the header is not
+        skip_rows=1,
+        block_size=block_bytes,
+        use_threads=False,  # parallel files scale better than parallel blocks (and it was not faster)
+    )
+    keys = {c: f"{positions[c]}:{c}" for c in columns}
+    convert = pa_csv.ConvertOptions(
+        include_columns=list(keys.values()),
+        column_types={k: pa.float64() for k in keys.values()},
+        null_values=[""],
+        strings_can_be_null=False,
+        quoted_strings_can_be_null=True,
+    )
+    parse = pa_csv.ParseOptions(delimiter=delimiter, ignore_empty_lines=False)
+    first = 0
+    # pyarrow reads the file itself, on its own thread and without the GIL
+    with pa.OSFile(str(path)) as f:
+        try:
+            reader = pa_csv.open_csv(f, read_options=read, parse_options=parse, convert_options=convert)
+            for batch in reader:
+                yield first, {c: batch.column(keys[c]) for c in columns}, f.tell()
+                first += batch.num_rows
+        except pa.ArrowInvalid as e:
+            raise ValueError(_csv_error(path, e, first + 2, header, positions, delimiter)) from None
+
+
+def _csv_error(
+    path: Path, error: Exception, first_line: int, header: list[str], positions: dict[str, int], delimiter: str
+) -> str:
+    """Find the line and column of a value pyarrow could not read (its message names neither).
+
+    Reads on from ``first_line``, the first line not yet handed out; runs only after an error.
+    """
+    with open(path, "rb") as f:
+        _skip_lines(f, first_line - 1)
+        text = _io.TextIOWrapper(f, encoding="utf-8", errors="replace", newline="")
+        reader = csv.reader(text, delimiter=delimiter)
+        read = 0  # lines read so far; a record may span lines (a quoted line break)
+        for fields in reader:
+            line, read = first_line + read, reader.line_num
+            if fields == []:  # a blank line: pyarrow reads it as empty values
+                continue
+            if len(fields) != len(header):
+                return f"{path}: line {line}: {_count(len(fields), 'field')}, but the header has {len(header)}"
+            for name, pos in positions.items():
+                value = fields[pos].strip()
+                where = f"{path}: line {line}, column {pos + 1} ({name})"
+                if fields[pos] and not value:
+                    return f"{where}: blank value {fields[pos]!r} (leave it empty for a missing value)"
+                if value and not _is_number(value):
+                    return f"{where}: {value!r} is not a number"
+    return f"{path}: after line {first_line}: {error}"
+
+
+def _count(n: int, noun: str) -> str:
+    return f"{n} {noun}{'' if n == 1 else 's'}"
+
+
+def _is_number(text: str) -> bool:
+    """Whether pyarrow reads ``text`` as a float (Python's float() also takes ``1_000``)."""
+    if "_" in text:
+        return False
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def _skip_lines(f: Any, count: int) -> None:
+    """Move the binary file ``f`` past ``count`` line ends (counted in C, block by block)."""
+    while count > 0:
+        start = f.tell()
+        block = f.read(1 << 20)
+        if not block:
+            return
+        found = block.count(b"\n")
+        if found < count:
+            count -= found
+            continue
+        end = -1
+        for _ in range(count):
+            end = block.index(b"\n", end + 1)
+        f.seek(start + end + 1)
+        return
+
+
+def _first_null(array: pa.Array) -> int | None:
+    if array.null_count == 0:
+        return None
+    return int(np.flatnonzero(np.asarray(array.is_null()))[0])
+
+
+def _csv_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
+    """CSV blocks of at most ``rows`` samples; an empty time is an error, an empty rate is NaN."""
+    o = src.options
+    path = src.data_path
+    block = min(CSV_BLOCK_BYTES, max(4096, rows * _bytes_per_line(path)))
+    header = None
+    for first, cols, done in _read_csv(path, (o.time, o.rate), delimiter=o.delimiter, block_bytes=block):
+        t = cols[o.time]
+        bad = _first_null(t)
+        if bad is not None:
+            header = header or _csv_header(path, o.delimiter)
+            blank = cols[o.rate][bad].as_py() is None
+            raise ValueError(
+                f"{path}: line {first + bad + 2}, column {header.index(o.time) + 1} ({o.time}): "
+                + ("blank line" if blank else "empty timestamp")
+            )
+        yield t.to_numpy(), cols[o.rate].to_numpy(zero_copy_only=False), TIME_UNITS[o.time_unit], done
+
+
+def _bytes_per_line(path: Path) -> int:
+    """Mean length of the first lines (to size CSV blocks for a number of rows)."""
+    with open(path, "rb") as f:
+        head = f.read(1 << 16)
+    return max(1, len(head) // max(1, head.count(b"\n")))
 
 
 def read_csv_columns(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:
-    """Read the named columns of a CSV file with a header line.
+    """Read the named columns of a CSV file with a header line (all of it, as float64).
 
-    Raises ValueError naming the file (and the line, for a malformed row) on bad content.
+    Raises ValueError naming the file, line and column of a malformed or empty value.
     """
-    with open(path, encoding="utf-8") as f:
-        header = [h.strip() for h in f.readline().strip().split(",")]
-    missing = [c for c in columns if c not in header]
-    if missing:
-        raise ValueError(f"{path}: missing column(s) {', '.join(missing)} (header has {', '.join(header)})")
-    idx = [header.index(c) for c in columns]
+    path = Path(path)
+    parts: dict[str, list[np.ndarray]] = {c: [] for c in columns}
+    header = _csv_header(path, ",")
+    for first, cols, _ in _read_csv(path, columns):
+        for c in columns:
+            bad = _first_null(cols[c])
+            if bad is not None:
+                raise ValueError(f"{path}: line {first + bad + 2}, column {header.index(c) + 1} ({c}): empty value")
+            parts[c].append(cols[c].to_numpy())
+    return {c: _concat(parts[c]) for c in columns}
+
+
+def _concat(parts: list[np.ndarray]) -> FloatArray:
+    return np.ascontiguousarray(np.concatenate(parts) if parts else np.empty(0), dtype=np.float64)
+
+
+# --- Parquet ---------------------------------------------------------------------------------
+
+
+def _parquet_file(path: Path) -> Any:
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
     try:
-        data = np.loadtxt(path, delimiter=",", skiprows=1, usecols=idx, ndmin=2, dtype=np.float64)
+        return pq.ParquetFile(path)
+    except (pa.ArrowInvalid, OSError) as e:
+        raise ValueError(f"{path}: not a readable Parquet file ({e})") from None
+
+
+def _parquet_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
+    o = src.options
+    pf = _parquet_file(src.path)
+    header = pf.schema_arrow.names
+    _column_positions(src.path, header, (o.time, o.rate))
+    first = 0
+    for batch in pf.iter_batches(batch_size=rows, columns=[o.time, o.rate]):
+        t, per_second = _arrow_time(src, batch.column(0), first)
+        rate = _arrow_numbers(src, o.rate, batch.column(1))
+        first += batch.num_rows
+        yield t, rate, per_second, first
+
+
+def _arrow_time(src: GyroSource, array: pa.Array, first: int) -> tuple[np.ndarray, float]:
+    """Timestamps as numbers and their counts per second (a timestamp type carries its unit)."""
+    import pyarrow as pa
+
+    name = src.options.time
+    bad = _first_null(array)
+    if bad is not None:
+        raise ValueError(f"{src.path}: {src.where(first + bad)}, column {name}: empty timestamp")
+    if pa.types.is_timestamp(array.type) or pa.types.is_duration(array.type):
+        per_second = TIME_UNITS[array.type.unit]
+        return array.cast(pa.int64()).to_numpy(), per_second
+    return _arrow_numbers(src, name, array), TIME_UNITS[src.options.time_unit]
+
+
+def _arrow_numbers(src: GyroSource, name: str, array: pa.Array) -> np.ndarray:
+    """A numeric column as numpy (nulls become NaN); other types are an error."""
+    import pyarrow as pa
+
+    t = array.type
+    if not (pa.types.is_integer(t) or pa.types.is_floating(t) or pa.types.is_decimal(t)):
+        raise ValueError(f"{src.path}: column {name} holds {t}, not numbers")
+    if array.null_count or pa.types.is_decimal(t):
+        array = array.cast(pa.float64())
+    return array.to_numpy(zero_copy_only=False)
+
+
+# --- NumPy -----------------------------------------------------------------------------------
+
+
+def _npy_header(path: Path, f: Any) -> tuple[tuple[int, ...], bool, np.dtype[Any]]:
+    """(shape, Fortran order, dtype) of an .npy file; ``f`` is left at the start of the data."""
+    fmt = np.lib.format
+    try:
+        version = fmt.read_magic(f)
+        read_header = fmt.read_array_header_1_0 if version == (1, 0) else fmt.read_array_header_2_0
+        shape, fortran, dtype = read_header(f)
     except ValueError as e:
-        raise ValueError(f"{path}: {e}") from None
-    return {c: np.ascontiguousarray(data[:, k]) for k, c in enumerate(columns)}
+        raise ValueError(f"{path}: not a NumPy .npy file ({e})") from None
+    return shape, fortran, dtype
+
+
+def _npy_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
+    """Read an .npy file a block of rows at a time with plain reads (a memory map would count the
+    whole file in the resident memory by the end)."""
+    per_second = TIME_UNITS[src.options.time_unit]
+    with open(src.path, "rb") as f:
+        shape, fortran, dtype = _npy_header(src.path, f)
+        offset = f.tell()
+        if dtype.names:
+            if len(shape) != 1:
+                raise ValueError(f"{src.path}: a structured array must be 1-D, got shape {shape}")
+            o = src.options
+            _column_positions(src.path, list(dtype.names), (o.time, o.rate))
+            for name in (o.time, o.rate):
+                _check_numbers(src, name, dtype[name])
+            n = shape[0]
+            for start in range(0, n, rows):
+                rec = np.fromfile(f, dtype=dtype, count=min(rows, n - start))
+                _check_read(src, rec, min(rows, n - start))
+                yield rec[o.time], rec[o.rate], per_second, start + len(rec)
+            return
+        if len(shape) != 2 or shape[1] < 2:
+            raise ValueError(
+                f"{src.path}: expected a structured array with time and rate fields, or a 2-D array "
+                f"(samples x columns), got shape {shape}"
+            )
+        _check_numbers(src, "the array", dtype)
+        n, width = shape
+        ti, ri = (
+            _column_number(src, c, default, width)
+            for c, default in ((src.options.time_col, 0), (src.options.rate_col, 1))
+        )
+        for start in range(0, n, rows):
+            count = min(rows, n - start)
+            if fortran:  # columns are contiguous: read the two column segments
+                cols = []
+                for j in (ti, ri):
+                    f.seek(offset + (j * n + start) * dtype.itemsize)
+                    cols.append(np.fromfile(f, dtype=dtype, count=count))
+                    _check_read(src, cols[-1], count)
+                t, rate = cols
+            else:
+                block = np.fromfile(f, dtype=dtype, count=count * width)
+                _check_read(src, block, count * width)
+                block = block.reshape(count, width)
+                t, rate = block[:, ti], block[:, ri]
+            yield t, rate, per_second, start + count
+
+
+def _check_numbers(src: GyroSource, name: str, dtype: np.dtype[Any]) -> None:
+    if dtype.kind not in "iuf":
+        raise ValueError(f"{src.path}: {name} holds {dtype}, not real numbers")
+
+
+def _check_read(src: GyroSource, data: np.ndarray, expected: int) -> None:
+    if len(data) != expected:
+        raise ValueError(f"{src.path}: file ends early (truncated .npy)")
+
+
+def _column_number(src: GyroSource, name: str | None, default: int, width: int) -> int:
+    if name is None:
+        return default
+    if not name.isdigit() or int(name) >= width:
+        raise ValueError(
+            f"{src.path}: a plain 2-D array has numbered columns 0..{width - 1}; "
+            f"got column {name!r} (give the column number)"
+        )
+    return int(name)
+
+
+def _npz_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
+    o = src.options
+    try:
+        with np.load(src.path, allow_pickle=False) as archive:
+            names = list(archive.files)
+            arrays = {k: archive[k] for k in (o.time, o.rate) if k in names}
+    except (ValueError, OSError, zipfile.BadZipFile) as e:
+        raise ValueError(f"{src.path}: not a readable NumPy .npz file ({e})") from None
+    _column_positions(src.path, names, (o.time, o.rate))
+    t, rate = arrays[o.time], arrays[o.rate]
+    for name, a in ((o.time, t), (o.rate, rate)):
+        _check_numbers(src, f"array {name}", a.dtype)
+        if a.ndim != 1:
+            raise ValueError(f"{src.path}: array {name} must be 1-D, got shape {a.shape}")
+    if len(t) != len(rate):
+        raise ValueError(f"{src.path}: {o.time} has {len(t)} samples but {o.rate} has {len(rate)}")
+    for start in range(0, len(t), rows):
+        end = min(len(t), start + rows)
+        yield t[start:end], rate[start:end], TIME_UNITS[o.time_unit], end
+
+
+# --- ROS bags --------------------------------------------------------------------------------
+
+_IMU = "sensor_msgs/msg/Imu"
+
+
+def _bag_reader(path: Path) -> Any:
+    """An open rosbags AnyReader (ROS 1 or ROS 2)."""
+    try:
+        from rosbags.highlevel import AnyReader, AnyReaderError
+        from rosbags.typesys import Stores, get_typestore
+    except ImportError:
+        raise ImportError(f"{path}: reading ROS bags needs rosbags: pip install 'gyrocore[ros]'") from None
+    try:
+        # Bags without embedded definitions (ROS 2 before Iron) use the current standard types.
+        reader = AnyReader([path], default_typestore=get_typestore(Stores.LATEST))
+        reader.open()
+    except AnyReaderError as e:
+        raise ValueError(f"{path}: not a readable ROS bag ({e})") from None
+    return reader
+
+
+def _open_bag(path: Path, options: ReadOptions) -> GyroSource:
+    """Resolve the Imu topic (the one given, or the only one) and count its messages."""
+    reader = _bag_reader(path)
+    try:
+        counts: dict[str, int] = {}
+        for c in reader.connections:
+            if c.msgtype == _IMU:
+                counts[c.topic] = counts.get(c.topic, 0) + c.msgcount
+    finally:
+        reader.close()
+    found = ", ".join(sorted(counts)) or "none"
+    if options.topic is None and len(counts) != 1:
+        raise ValueError(f"{path}: give the topic (--topic); {_IMU} topics: {found}")
+    topic = options.topic or next(iter(counts))
+    if topic not in counts:
+        raise ValueError(f"{path}: no {_IMU} messages on {topic} ({_IMU} topics: {found})")
+    return GyroSource(path, "bag", path, replace(options, topic=topic), progress_total=counts[topic])
+
+
+def _bag_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
+    """sensor_msgs/Imu ``angular_velocity.z`` [rad/s] stamped by ``header.stamp`` [ns].
+
+    rosbags deserialises message by message (a Python loop: about 70 000 messages/s).
+    """
+    from rosbags.highlevel import AnyReaderError
+    from rosbags.rosbag1 import ReaderError as Ros1Error
+    from rosbags.rosbag2 import ReaderError as Ros2Error
+
+    reader = _bag_reader(src.path)
+    try:
+        connections = [c for c in reader.connections if c.msgtype == _IMU and c.topic == src.options.topic]
+        stamps: list[int] = []
+        rates: list[float] = []
+        done = 0
+        for connection, _, raw in reader.messages(connections=connections):
+            msg: Any = reader.deserialize(raw, connection.msgtype)
+            stamps.append(msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec)
+            rates.append(msg.angular_velocity.z)
+            if len(stamps) == rows:
+                done += rows
+                yield np.array(stamps, dtype=np.int64), np.array(rates), 1e9, done
+                stamps, rates = [], []
+        if stamps:
+            yield np.array(stamps, dtype=np.int64), np.array(rates), 1e9, done + len(stamps)
+    except (AnyReaderError, Ros1Error, Ros2Error) as e:
+        raise ValueError(f"{src.path}: damaged bag ({e})") from None
+    finally:
+        reader.close()
+
+
+# --- unit checks -----------------------------------------------------------------------------
+
+
+class UnitCheck:
+    """Checks that a stream of samples looks like the units it was read in.
+
+    Feed it every chunk (in SI units, after conversion); :meth:`problems` then lists what looks like
+    another unit. Intervals and large rates are judged on the first chunk (as
+    :class:`gyrocore.Pipeline` does); small rates on the largest ``|rate|`` of the whole stream,
+    since a log may begin with a long rest.
+    """
+
+    def __init__(self, options: ReadOptions) -> None:
+        self._options = options
+        self._first: list[str] | None = None
+        self._max_rate = 0.0
+
+    def update(self, t: FloatArray, rate: FloatArray) -> None:
+        """Account for one chunk (t [s], rate [rad/s])."""
+        largest = np.max(np.abs(rate), initial=0.0, where=np.isfinite(rate))
+        self._max_rate = max(self._max_rate, float(largest))
+        if self._first is None and len(t) > 1:  # a chunk with an interval
+            self._first = self._first_chunk_problems(t, rate)
+
+    def problems(self) -> list[str]:
+        """What looks like another unit, with the option that would fix it."""
+        problems = list(self._first or [])
+        max_dps = math.degrees(self._max_rate)
+        if self._options.rate_unit == "deg/s" and self._first is not None and max_dps < SMALL_RATE_DPS:
+            problems.append(
+                f"rates look like rad/s, not deg/s: |rate| never exceeds {max_dps:.3g} deg/s, which only a "
+                f"sensor that never turned reads; if the log is in rad/s, use rate_unit='rad/s' (--rate-unit rad/s)"
+            )
+        return problems
+
+    def _first_chunk_problems(self, t: FloatArray, rate: FloatArray) -> list[str]:
+        o = self._options
+        problems = []
+        if o.rate_unit == "rad/s":
+            # unit_problems judges rates only when given one timestamp
+            problems += [f"{p}; or use rate_unit='deg/s' (--rate-unit deg/s)" for p in unit_problems(t[:1], rate)]
+        unit = o.time_unit
+        t0 = abs(float(t[0]))
+        mean_dt = float(t[-1] - t[0]) / (len(t) - 1) if len(t) > 1 else 0.0
+        if t0 > EPOCH_LIMIT:
+            # an epoch read in too small a unit: which unit puts it between 1973 and 2286?
+            counts = t0 * TIME_UNITS[unit]
+            fits = [u for u, k in TIME_UNITS.items() if 1e8 <= counts / k <= 1e10]
+            why = f"t[0] = {t[0]:.6g} s is after the year 5000"
+        elif mean_dt > 0 and not SHORT_INTERVAL <= mean_dt <= INTERVAL_LIMIT:
+            counts = mean_dt * TIME_UNITS[unit]
+            fits = [u for u, k in TIME_UNITS.items() if SHORT_INTERVAL <= counts / k <= INTERVAL_LIMIT]
+            why = f"the mean interval is {mean_dt:.3g} s, a {1 / mean_dt:.3g} Hz gyro"
+        else:
+            fits = []
+        if fits:
+            problems.append(
+                f"timestamps look like {' or '.join(fits)}, not {unit}: {why}; "
+                f"use time_unit='{fits[0]}' (--time-unit {fits[0]})"
+            )
+        return problems
+
+
+# --- whole logs ------------------------------------------------------------------------------
 
 
 @dataclass(frozen=True)
@@ -64,35 +801,214 @@ class Log:
         return process(self.t, self.rate, preset, **overrides)
 
 
-def read_log(path: str | Path) -> Log:
-    """Read a log folder (see the module doc for the layout)."""
-    folder = Path(path)
-    if not (folder / "gyro.csv").is_file():
-        raise FileNotFoundError(f"{folder}: not a log folder (no gyro.csv)")
-    meta: dict[str, Any] = {}
-    if (folder / "meta.json").is_file():
-        try:
-            meta = json.loads((folder / "meta.json").read_text(encoding="utf-8"))
-        except json.JSONDecodeError as e:
-            raise ValueError(f"{folder / 'meta.json'}: line {e.lineno} column {e.colno}: {e.msg}") from None
-    gyro = read_csv_columns(folder / "gyro.csv", ("t", "gyro_z"))
+def read_log(path: str | Path, **options: Any) -> Log:
+    """Read a whole log into memory: a log folder (with its reference and odometry) or any file
+    :func:`open_source` reads (``options``: the :class:`ReadOptions` fields).
+
+    Warns (:class:`gyrocore.InputWarning`) when the values look like another unit.
+
+    Example:
+        >>> import gyrocore
+        >>> log = gyrocore.read_log("../shared/data/real/f110_ds3")  # doctest: +SKIP
+        >>> log = gyrocore.read_log("drive.csv", time_col="time", time_unit="ms", rate_unit="deg/s")  # doctest: +SKIP
+    """
+    src = open_source(path, **options)
+    check = UnitCheck(src.options)
+    ts, rates = [], []
+    for chunk in src.chunks(1 << 20):
+        check.update(chunk.t, chunk.rate)
+        ts.append(chunk.t)
+        rates.append(chunk.rate)
+    for problem in check.problems():
+        warn(f"{src.data_path}: {problem}")
     ref: dict[str, FloatArray | None] = dict.fromkeys(("t", "heading", "x", "y"))
-    if (folder / "reference.csv").is_file():
-        ref.update(read_csv_columns(folder / "reference.csv", ("t", "heading", "x", "y")))
     odo: dict[str, FloatArray | None] = dict.fromkeys(("t", "speed"))
-    if (folder / "odometry.csv").is_file():
-        odo.update(read_csv_columns(folder / "odometry.csv", ("t", "speed")))
-    window = meta.get("stationary")
+    if src.kind == "log folder":
+        if (src.path / "reference.csv").is_file():
+            ref.update(read_csv_columns(src.path / "reference.csv", ("t", "heading", "x", "y")))
+        if (src.path / "odometry.csv").is_file():
+            odo.update(read_csv_columns(src.path / "odometry.csv", ("t", "speed")))
     return Log(
-        name=str(meta.get("name", folder.name)),
-        t=gyro["t"],
-        rate=gyro["gyro_z"],
+        name=src.name,
+        t=_concat(ts),
+        rate=_concat(rates),
         t_ref=ref["t"],
         heading_ref=ref["heading"],
         x_ref=ref["x"],
         y_ref=ref["y"],
         t_odometry=odo["t"],
         speed=odo["speed"],
-        stationary=None if window is None else (float(window[0]), float(window[1])),
-        meta=meta,
+        stationary=src.stationary,
+        meta=src.meta,
     )
+
+
+# --- output ----------------------------------------------------------------------------------
+
+
+def convert_heading(result: HeadingResult, convention: str = "enu") -> HeadingResult:
+    """The pipeline's output in a heading convention.
+
+    ``enu``: as computed, ENU yaw [rad], counter-clockwise from east (ROS REP-103), with rate and
+    drift counter-clockwise positive. ``compass``: heading = pi/2 - yaw, clockwise from north, with
+    rate and drift clockwise positive, so that heading is still the integral of rate. Both stay
+    continuous (unwrapped); the yaw starts at the pipeline's ``initial_heading`` (default 0, east,
+    which is 90 deg as a compass heading).
+    """
+    if convention == "enu":
+        return result
+    if convention == "compass":
+        return HeadingResult(result.t, math.pi / 2 - result.heading, -result.rate, -result.drift)
+    raise ValueError(f"heading convention {convention!r} is not one of {', '.join(HEADING_CONVENTIONS)}")
+
+
+def output_format(path: Path) -> str:
+    """``csv`` or ``parquet`` from an output file's suffix."""
+    suffix = path.suffix.lower()
+    if suffix == ".csv":
+        return "csv"
+    if suffix in (".parquet", ".pq"):
+        return "parquet"
+    raise ValueError(f"{path}: output must end in .csv or .parquet")
+
+
+def check_output(out: Path, source: GyroSource) -> None:
+    """Refuse an output that is the input, or lies inside an input folder."""
+    target = out.resolve()
+    for p in {source.path, source.data_path}:
+        inside = p.is_dir() and p.resolve() in target.parents
+        if target == p.resolve() or inside or (out.exists() and os.path.samefile(out, p)):
+            raise ValueError(f"refusing to write {out} over or inside the input {source.path}")
+
+
+class StagedFile:
+    """A temporary file next to ``path`` that becomes ``path`` on :meth:`commit`.
+
+    :meth:`discard` (call it in a ``finally``) removes it unless committed, so an error or an
+    interruption never leaves ``path`` half written. A hard kill can leave the hidden temporary
+    file (``.NAME.*.tmp``) behind, but never a partial ``path``.
+    """
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+        for _ in range(3):
+            tmp = path.parent / f".{path.name}.{secrets.token_hex(6)}.tmp"
+            try:
+                # created exclusively with the umask's permissions (mkstemp's 0600 would hide the
+                # output from other users)
+                os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
+            except FileExistsError:
+                continue
+            self.tmp = tmp
+            return
+        raise FileExistsError(f"{path.parent}: cannot create a temporary file for {path.name}")
+
+    def commit(self) -> None:
+        """Make the temporary file ``path``: on disk first, then renamed (atomic on one filesystem)."""
+        fd = os.open(self.tmp, os.O_RDWR)  # Windows syncs only writable handles
+        try:
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+        os.replace(self.tmp, self.path)
+
+    def discard(self) -> None:
+        """Remove the temporary file if it is still there."""
+        self.tmp.unlink(missing_ok=True)
+
+
+@contextmanager
+def atomic_path(path: Path) -> Iterator[Path]:
+    """A temporary path next to ``path``, renamed to ``path`` when the block ends without error and
+    removed otherwise (also on KeyboardInterrupt)."""
+    staged = StagedFile(path)
+    try:
+        yield staged.tmp
+        staged.commit()
+    finally:
+        staged.discard()
+
+
+class HeadingWriter:
+    """Writes a heading table (columns t, heading, rate, drift) chunk after chunk.
+
+    Use as a context manager: the table goes to a temporary file next to ``path``, which replaces
+    ``path`` only when the block ends without error; on an error or an interruption it is removed.
+    CSV floats are written in their shortest form that reads back bit-identically (``NaN`` for the
+    rate of a skipped sample).
+
+    Args:
+        path: ``.csv`` or ``.parquet`` output.
+        heading: ``enu`` (default) or ``compass`` (see :func:`convert_heading`).
+    """
+
+    def __init__(self, path: str | Path, *, heading: str = "enu") -> None:
+        self.path = Path(path)
+        self.format = output_format(self.path)
+        if heading not in HEADING_CONVENTIONS:
+            raise ValueError(f"heading convention {heading!r} is not one of {', '.join(HEADING_CONVENTIONS)}")
+        self.heading = heading
+        self.rows = 0
+        self._staged: StagedFile | None = None
+        self._sink: Any = None  # CSV: the open file
+        self._writer: Any = None  # Parquet: the pyarrow writer, its schema and rows not yet written
+        self._schema: Any = None
+        self._pending: list[Any] = []
+
+    def __enter__(self) -> HeadingWriter:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+
+        self._staged = StagedFile(self.path)
+        tmp = self._staged.tmp
+        try:
+            if self.format == "csv":
+                self._sink = open(tmp, "wb")
+                self._sink.write(",".join(OUTPUT_COLUMNS).encode() + b"\n")
+            else:
+                units = {"t": "s", "heading": "rad", "rate": "rad/s", "drift": "rad/s"}
+                self._schema = pa.schema([(c, pa.float64()) for c in OUTPUT_COLUMNS]).with_metadata(
+                    {"gyrocore": json.dumps({"heading": self.heading, "units": units})}
+                )
+                # dictionary encoding only costs memory and time on float signals that never repeat
+                self._writer = pq.ParquetWriter(str(tmp), self._schema, use_dictionary=False)
+        except BaseException:
+            self._staged.discard()
+            raise
+        return self
+
+    def write(self, result: HeadingResult) -> None:
+        """Append the rows of one chunk."""
+        import pyarrow as pa
+
+        r = convert_heading(result, self.heading)
+        columns = [r.t, r.heading, r.rate, r.drift]
+        if self.format == "csv":
+            # formatted in Rust without the GIL (pyarrow's float-to-text cast was the slow part)
+            self._sink.write(_gyrocore.format_csv_rows(columns))
+        else:
+            self._pending.append(pa.record_batch(columns, schema=self._schema))
+            if sum(b.num_rows for b in self._pending) >= PARQUET_ROW_GROUP:
+                self._flush()
+        self.rows += len(r.t)
+
+    def _flush(self) -> None:
+        import pyarrow as pa
+
+        if self._pending:
+            self._writer.write_table(pa.Table.from_batches(self._pending, schema=self._schema))
+            self._pending = []
+
+    def __exit__(self, kind: type[BaseException] | None, error: BaseException | None, tb: TracebackType | None) -> None:
+        assert self._staged is not None, "HeadingWriter is used as a context manager"
+        try:
+            if self.format == "parquet":
+                if error is None:
+                    self._flush()
+                self._writer.close()
+            else:
+                self._sink.close()
+            if error is None:
+                self._staged.commit()
+        finally:
+            self._staged.discard()

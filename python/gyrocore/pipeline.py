@@ -147,7 +147,12 @@ class Pipeline:
         return float(self._inner.bias()[0])
 
     def process(
-        self, t: ArrayLike, rate: ArrayLike, *, temperature: ArrayLike | None = None
+        self,
+        t: ArrayLike,
+        rate: ArrayLike,
+        *,
+        temperature: ArrayLike | None = None,
+        index_offset: int = 0,
     ) -> HeadingResult:
         """Process the next chunk of samples.
 
@@ -155,11 +160,13 @@ class Pipeline:
             t: timestamps [s], strictly increasing (also across chunks).
             rate: yaw rate [rad/s], counter-clockwise positive.
             temperature: sensor temperature [degC], needed when ``temp_slope``/``temp_offset`` are set.
+            index_offset: index of this chunk's first sample in the whole log; errors count from it.
 
         Raises:
-            ValueError: mismatched lengths, non-increasing or non-finite timestamps, NaN/inf readings
-                under ``nonfinite="error"`` (the message names the first bad index), or a rest window
-                that holds no sample. Nothing is processed then.
+            SampleError: (a ValueError) non-increasing or non-finite timestamps, or NaN/inf readings
+                under ``nonfinite="error"``; its ``index`` and ``what`` name the first bad sample.
+            ValueError: mismatched lengths, or a rest window that holds no sample.
+                Nothing is processed after any of these.
             TypeError: non-numeric arrays.
 
         Warns:
@@ -175,7 +182,7 @@ class Pipeline:
             warn_units(ta, ra)
             self._units_checked = True
         before = self._inner.report()
-        heading, out_rate, drift = self._inner.process(ta, ra, temp)
+        heading, out_rate, drift = self._inner.process(ta, ra, temp, index_offset)
         self._warn_repairs(before, self._inner.report(), ta, ra, temp)
         _, count, learning = self._inner.bias()
         if not learning and count == 0 and self._measures_bias():

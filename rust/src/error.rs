@@ -47,6 +47,38 @@ pub enum Error {
     MissingTemperature,
 }
 
+impl Error {
+    /// The index of the offending sample, for errors about one sample.
+    pub fn index(&self) -> Option<usize> {
+        match *self {
+            Error::NonFinite { index, .. } | Error::NotIncreasing { index, .. } => Some(index),
+            _ => None,
+        }
+    }
+
+    /// The same error with its sample index counted from `offset` (a chunked reader passes the
+    /// index of the chunk's first sample in the whole log, so messages name the log's sample).
+    pub fn with_index_offset(self, offset: usize) -> Self {
+        match self {
+            Error::NonFinite { what, index, value } => Error::NonFinite {
+                what,
+                index: index + offset,
+                value,
+            },
+            Error::NotIncreasing {
+                index,
+                previous,
+                value,
+            } => Error::NotIncreasing {
+                index: index + offset,
+                previous,
+                value,
+            },
+            other => other,
+        }
+    }
+}
+
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {

@@ -66,3 +66,89 @@ def test_every_subcommand_help_shows_an_example(capsys: pytest.CaptureFixture[st
         with pytest.raises(SystemExit):
             main([cmd, "--help"])
         assert "example: gyrocore " + cmd in capsys.readouterr().out
+
+
+def test_top_level_help_lists_an_example_for_every_subcommand(capsys: pytest.CaptureFixture[str]) -> None:
+    from gyrocore.cli import COMMANDS
+
+    with pytest.raises(SystemExit):
+        main(["--help"])
+    out = " ".join(capsys.readouterr().out.split())  # argparse wraps lines
+    for command in COMMANDS:
+        name = command.__name__.rsplit(".", 1)[-1]
+        assert f"(example: gyrocore {name}" in out, name
+
+
+def test_process_a_folder_of_logs_in_parallel_with_json(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    data = real_log_path("f110_ds3").parent
+    out = tmp_path / "headings"
+    assert main(["process", str(data), "--out", str(out), "--format", "parquet", "--jobs", "2", "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["failed"] == 0 and summary["rows_in"] == summary["rows_out"] == 2736 + 55409 + 6256
+    assert sorted(p.name for p in out.iterdir()) == ["broad_10.parquet", "comma_seg40.parquet", "f110_ds3.parquet"]
+    comma = next(f for f in summary["files"] if f["input"].endswith("comma_seg40"))
+    assert any("no rest window" in w for w in comma["warnings"])  # no rest in meta.json: said, not hidden
+
+
+def test_process_batch_with_a_bad_file_exits_1_and_names_it(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    (tmp_path / "good.csv").write_text("t,gyro_z\n0,0\n1,0.5\n")
+    (tmp_path / "bad.csv").write_text("t,gyro_z\n0,0\n1,half\n")
+    assert main(["process", str(tmp_path / "*.csv"), "--out", str(tmp_path / "out"), "--preset", "raw"]) == 1
+    out = capsys.readouterr().out
+    assert f"FAILED {tmp_path / 'bad.csv'}: line 3, column 2 (gyro_z): 'half' is not a number" in out
+    assert f"ok     {tmp_path / 'good.csv'}: 2 rows in, 2 out" in out
+    assert "1 of 2 files processed, 1 failed" in out
+
+
+def test_process_units_columns_and_compass_heading(tmp_path: Path) -> None:
+    # a quarter turn counter-clockwise in 10 s, in ms and deg/s: from east (compass 90) to north (0)
+    rows = "".join(f"{k * 100},{9.0}\n" for k in range(101))
+    (tmp_path / "turn.csv").write_text("time_ms,wz\n" + rows)
+    out = tmp_path / "h.csv"
+    args = ["process", str(tmp_path / "turn.csv"), "--out", str(out), "--preset", "raw", "--time-col", "time_ms"]
+    args += ["--rate-col", "wz", "--time-unit", "ms", "--rate-unit", "deg/s", "--heading", "compass"]
+    assert main(args) == 0
+    data = np.loadtxt(out, delimiter=",", skiprows=1)
+    assert data[0, 0] == 0.0 and data[-1, 0] == 10.0
+    assert data[0, 1] == pytest.approx(np.pi / 2) and data[-1, 1] == pytest.approx(0.0, abs=1e-12)
+    assert np.allclose(data[:, 2], -np.radians(9.0))
+
+
+def test_process_malformed_file_exits_2_naming_file_line_and_column(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    bad = tmp_path / "bad.csv"
+    bad.write_text("t,gyro_z\n0,0\n1,0\n2,0;1\n")
+    assert main(["process", str(bad), "--out", str(tmp_path / "o.csv")]) == 2
+    err = capsys.readouterr().err
+    assert err == f"gyrocore: error: {bad}: line 4, column 2 (gyro_z): '0;1' is not a number\n"
+    assert not (tmp_path / "o.csv").exists()
+
+
+def test_process_warns_about_units_on_one_line_and_draws_no_bar_off_a_terminal(tmp_path: Path) -> None:
+    log = real_log_path("f110_ds3")
+    out = tmp_path / "h.csv"
+    proc = subprocess.run(
+        [sys.executable, "-m", "gyrocore.cli", "process", str(log), "--out", str(out), "--rate-unit", "deg/s"],
+        capture_output=True,
+        text=True,
+    )
+    assert proc.returncode == 0
+    lines = proc.stderr.splitlines()  # only the warning: no progress bar, no Python warning text
+    assert len(lines) == 1 and lines[0].startswith(f"gyrocore: warning: {log}: rates look like rad/s, not deg/s")
+
+
+def test_process_params_reach_the_pipeline(tmp_path: Path) -> None:
+    src = tmp_path / "nan.csv"
+    src.write_text("t,gyro_z\n0,0.1\n1,nan\n2,0.1\n")
+    base = ["process", str(src), "--preset", "raw", "--out"]
+    assert main([*base, str(tmp_path / "a.csv")]) == 2
+    assert main([*base, str(tmp_path / "a.csv"), "--nonfinite", "hold"]) == 0
+    held = np.loadtxt(tmp_path / "a.csv", delimiter=",", skiprows=1)
+    assert held[-1, 1] == pytest.approx(0.2)
+    assert main([*base, str(tmp_path / "b.csv"), "--param", "nonfinite=skip", "--param", "initial_heading_deg=90"]) == 0
+    skipped = np.loadtxt(tmp_path / "b.csv", delimiter=",", skiprows=1)
+    assert np.isnan(skipped[1, 2]) and skipped[0, 1] == pytest.approx(np.pi / 2)
+    assert main([*base, str(tmp_path / "c.csv"), "--param", "hdr_c2"]) == 2

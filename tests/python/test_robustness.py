@@ -141,3 +141,18 @@ def test_a_panic_in_rust_is_a_python_exception_not_an_abort() -> None:
 def test_invalid_parameters_name_the_parameter_and_range(overrides: dict[str, object], message: str) -> None:
     with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(")", r"\)")):
         gyrocore.Pipeline("hdr", **({"bias": 0.0} | overrides if "bias_window" not in overrides else overrides))
+
+
+def test_sample_errors_carry_the_index_counted_from_the_offset() -> None:
+    t = np.arange(10.0)
+    r = np.zeros(10)
+    r[4] = np.inf
+    p = gyrocore.Pipeline("raw")
+    with pytest.raises(gyrocore.SampleError, match=r"rate\[1004\] is inf") as info:
+        p.process(t, r, index_offset=1000)
+    assert (info.value.index, info.value.what) == (1004, "rate")
+    assert isinstance(info.value, ValueError)
+    t[6] = t[5]
+    with pytest.raises(gyrocore.SampleError) as info:
+        p.process(t, np.zeros(10))
+    assert (info.value.index, info.value.what) == (6, "t")

@@ -3,32 +3,87 @@
 from __future__ import annotations
 
 import argparse
-import os
-import tempfile
+import json
+import signal
+import sys
+import threading
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
-from typing import Callable
+from typing import Any
+
+from ..io import atomic_path
 
 
 def add_command(
-    sub: "argparse._SubParsersAction[argparse.ArgumentParser]",
+    sub: argparse._SubParsersAction[argparse.ArgumentParser],
     name: str,
     help_text: str,
     example: str,
     func: Callable[[argparse.Namespace], int],
 ) -> argparse.ArgumentParser:
     """Add a subcommand whose ``--help`` ends with an example; ``func(args)`` returns the exit code."""
-    parser = sub.add_parser(name, help=help_text, description=help_text, epilog=f"example: {example}")
+    # the example also shows in the list of subcommands of ``gyrocore --help``
+    parser = sub.add_parser(
+        name, help=f"{help_text} (example: {example})", description=help_text, epilog=f"example: {example}"
+    )
     parser.set_defaults(func=func)
     return parser
 
 
-def write_atomically(path: Path, write: Callable[[str], object]) -> None:
+def write_atomically(path: str | Path, write: Callable[[str], object]) -> None:
     """Write through a temporary file in the same folder, then rename: no half-written output."""
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    os.close(fd)
+    with atomic_path(Path(path)) as tmp:
+        write(str(tmp))
+
+
+def print_json(data: Any) -> None:
+    """Machine output on stdout."""
+    print(json.dumps(data, indent=2))
+
+
+def warn(message: str) -> None:
+    """One line on stderr: ``gyrocore: warning: ...``."""
+    print(f"gyrocore: warning: {message}", file=sys.stderr)
+
+
+@contextmanager
+def progress_bar(description: str) -> Iterator[Callable[[int, int | None, str], None]]:
+    """A callback ``(done, total, unit)`` that draws a tqdm bar on stderr, only on a terminal
+    (pipes, CI and logs get nothing)."""
+    if not sys.stderr.isatty():
+        yield lambda done, total, unit: None
+        return
+    from tqdm import tqdm
+
+    bar: Any = None
+
+    def update(done: int, total: int | None, unit: str) -> None:
+        nonlocal bar
+        if bar is None:
+            bar = tqdm(total=total, unit=unit, unit_scale=True, desc=description, leave=False)
+        bar.update(done - bar.n)
+
     try:
-        write(tmp)
-        os.replace(tmp, path)
+        yield update
     finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+        if bar is not None:
+            bar.close()
+
+
+@contextmanager
+def terminate_cleanly() -> Iterator[None]:
+    """Turn SIGTERM into KeyboardInterrupt while the block runs, so that temporary outputs are
+    removed on ``kill`` as on Ctrl-C (only the main thread can own signal handlers)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def interrupt(signum: int, frame: Any) -> None:
+        raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGTERM, interrupt)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)

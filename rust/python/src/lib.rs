@@ -2,6 +2,7 @@
 //! core, and move results into numpy without copying.
 
 mod params;
+mod table;
 
 use gyrocore::{
     check_block, Downsample, DownsampleConfig, Error, Integrator, IntegratorConfig, Outputs,
@@ -12,9 +13,32 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-/// Maps a core error to `ValueError` with the core's message.
+pyo3::create_exception!(
+    _gyrocore,
+    SampleError,
+    PyValueError,
+    "A sample that cannot be processed: NaN/inf or a timestamp that does not increase. \
+     Attributes: index (of the sample), what ('t', 'rate' or 'temperature')."
+);
+
+/// Maps a core error to a Python exception with the core's message: `SampleError` (a
+/// `ValueError` carrying `index` and `what`) for a bad sample, `ValueError` otherwise.
 fn value_error(e: Error) -> PyErr {
-    PyValueError::new_err(e.to_string())
+    let Some(index) = e.index() else {
+        return PyValueError::new_err(e.to_string());
+    };
+    let what = match e {
+        Error::NonFinite { what, .. } => what,
+        _ => "t",
+    };
+    Python::attach(|py| {
+        let err = SampleError::new_err(e.to_string());
+        let value = err.value(py);
+        match (value.setattr("index", index), value.setattr("what", what)) {
+            (Ok(()), Ok(())) => err,
+            (Err(set), _) | (_, Err(set)) => set,
+        }
+    })
 }
 
 /// A contiguous view of a float64 array (the Python layer converts other dtypes and strides).
@@ -62,14 +86,16 @@ impl PyPipeline {
         })
     }
 
-    /// Processes a block; returns (heading, rate, drift). Nothing is processed from an invalid block.
-    #[pyo3(signature = (t, rate, temperature=None))]
+    /// Processes a block; returns (heading, rate, drift). Nothing is processed from an invalid block;
+    /// its error counts sample indices from `index_offset`.
+    #[pyo3(signature = (t, rate, temperature=None, index_offset=0))]
     fn process<'py>(
         &mut self,
         py: Python<'py>,
         t: PyReadonlyArray1<'py, f64>,
         rate: PyReadonlyArray1<'py, f64>,
         temperature: Option<PyReadonlyArray1<'py, f64>>,
+        index_offset: usize,
     ) -> PyResult<(Array<'py>, Array<'py>, Array<'py>)> {
         let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
         let temperature = temperature
@@ -87,7 +113,7 @@ impl PyPipeline {
             };
             inner.process_block(t, rate, temperature, out)
         })
-        .map_err(value_error)?;
+        .map_err(|e| value_error(e.with_index_offset(index_offset)))?;
         Ok((
             PyArray1::from_vec(py, heading),
             PyArray1::from_vec(py, out_rate),
@@ -237,6 +263,7 @@ fn _panic_for_test(py: Python<'_>) {
 #[pymodule]
 fn _gyrocore(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyPipeline>()?;
+    m.add("SampleError", m.py().get_type::<SampleError>())?;
     m.add_function(wrap_pyfunction!(preset_params, m)?)?;
     m.add_function(wrap_pyfunction!(preset_names, m)?)?;
     m.add_function(wrap_pyfunction!(parameter_names, m)?)?;
@@ -244,6 +271,7 @@ fn _gyrocore(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_panic_for_test, m)?)?;
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
     m.add_function(wrap_pyfunction!(downsample, m)?)?;
+    table::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

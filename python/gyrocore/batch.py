@@ -1,0 +1,416 @@
+"""Heading of whole files: one log streamed chunk by chunk (:func:`process_file`), or a fleet of
+logs in parallel on all cores or on a Dask cluster (:func:`process_many`).
+
+A log far larger than memory streams through :class:`gyrocore.Pipeline` in chunks (bit-identical to
+one call), and its heading table (t, heading, rate, drift) is written as it goes to a temporary file
+that replaces the output only when every row is through: an error or an interruption leaves no
+half-written output, and the output is never the input. Each file gets a :class:`FileReport` with
+its rows in and out; in a batch one bad file fails alone, with its reason, and the others finish.
+
+    >>> from gyrocore.batch import process_many
+    >>> summary = process_many(["logs/*.csv", "logs/drive_7"], out_dir="headings", jobs=2)  # doctest: +SKIP
+    >>> print(summary)  # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import glob
+import os
+import sys
+import threading
+import time
+from collections.abc import Callable, Iterable, Sequence
+from concurrent.futures import ThreadPoolExecutor, as_completed
+from dataclasses import asdict, dataclass, fields
+from pathlib import Path
+from typing import Any
+
+from . import io
+from ._gyrocore import SampleError
+from .pipeline import Pipeline, has_bias_source, uses_static_bias
+
+#: ``progress(done, total, unit)``: called after each chunk with the progress through the input.
+Progress = Callable[[int, "int | None", str], None]
+
+_READ_OPTIONS = {f.name for f in fields(io.ReadOptions)}
+
+
+@dataclass(frozen=True)
+class FileReport:
+    """What happened to one input.
+
+    Attributes:
+        input: the input path.
+        output: the heading table written, or None if the file failed.
+        rows_in: samples read (up to the failure, for a failed file).
+        rows_out: rows written (equal to ``rows_in`` for a file that succeeded; 0 if it failed).
+        seconds: wall time.
+        error: why the file failed, or None.
+        warnings: what looked wrong but was processed (units, a missing rest window, repairs).
+    """
+
+    input: str
+    output: str | None
+    rows_in: int
+    rows_out: int
+    seconds: float
+    error: str | None = None
+    warnings: tuple[str, ...] = ()
+
+    @property
+    def ok(self) -> bool:
+        """Whether the file was processed completely."""
+        return self.error is None
+
+    def as_dict(self) -> dict[str, Any]:
+        """Plain data for JSON."""
+        return {**asdict(self), "warnings": list(self.warnings), "ok": self.ok}
+
+    def __str__(self) -> str:
+        if not self.ok:  # most reasons already name the file
+            return f"FAILED {self.error}" if self.input in (self.error or "") else f"FAILED {self.input}: {self.error}"
+        return (
+            f"ok     {self.input}: {self.rows_in} rows in, {self.rows_out} out -> {self.output} ({self.seconds:.2f} s)"
+        )
+
+
+@dataclass(frozen=True)
+class BatchReport:
+    """The reports of a batch, in the order of the inputs."""
+
+    files: tuple[FileReport, ...]
+    seconds: float
+
+    @property
+    def succeeded(self) -> tuple[FileReport, ...]:
+        """The files processed completely."""
+        return tuple(r for r in self.files if r.ok)
+
+    @property
+    def failed(self) -> tuple[FileReport, ...]:
+        """The files that failed, with their reason."""
+        return tuple(r for r in self.files if not r.ok)
+
+    @property
+    def rows_in(self) -> int:
+        """Samples read, over all files."""
+        return sum(r.rows_in for r in self.files)
+
+    @property
+    def rows_out(self) -> int:
+        """Rows written, over all files."""
+        return sum(r.rows_out for r in self.files)
+
+    def as_dict(self) -> dict[str, Any]:
+        """Plain data for JSON."""
+        return {
+            "ok": len(self.succeeded),
+            "failed": len(self.failed),
+            "rows_in": self.rows_in,
+            "rows_out": self.rows_out,
+            "seconds": self.seconds,
+            "files": [r.as_dict() for r in self.files],
+        }
+
+    def __str__(self) -> str:
+        lines = [str(r) for r in self.files]
+        lines.append(
+            f"{len(self.succeeded)} of {len(self.files)} files processed, {len(self.failed)} failed; "
+            f"{self.rows_in} rows in, {self.rows_out} out, {self.seconds:.2f} s"
+        )
+        return "\n".join(lines)
+
+
+def split_options(options: dict[str, Any]) -> tuple[io.ReadOptions, dict[str, Any]]:
+    """Separate reader options (:class:`gyrocore.io.ReadOptions` fields) from pipeline overrides."""
+    read = {k: v for k, v in options.items() if k in _READ_OPTIONS}
+    return io.ReadOptions(**read), {k: v for k, v in options.items() if k not in _READ_OPTIONS}
+
+
+class _FileJob:
+    """One input streamed to one output; counts rows as it goes so a failure can say how far it got."""
+
+    def __init__(self, path: Path, out: Path, preset: str, heading: str, chunk_rows: int, options: dict[str, Any]):
+        self.path, self.out, self.preset, self.heading, self.chunk_rows = path, out, preset, heading, chunk_rows
+        self.read_options, self.overrides = split_options(options)
+        self.rows_in = 0
+
+    def run(self, progress: Progress | None = None) -> FileReport:
+        start = time.perf_counter()
+        source = io.open_source(self.path, self.read_options)
+        io.check_output(self.out, source)
+        overrides = dict(self.overrides)
+        notes: list[str] = []
+        if uses_static_bias(self.preset) and not has_bias_source(overrides):
+            if source.stationary is not None:
+                overrides["bias_window"] = source.stationary
+            else:
+                notes.append(
+                    f"preset {self.preset!r} removes a static bias but the log gives no rest window: "
+                    "the bias is taken as 0 (give bias_window, bias_duration or bias; "
+                    "--bias-window, --bias-duration or --bias-dps)"
+                )
+        pipeline = Pipeline(self.preset, **overrides)
+        check = io.UnitCheck(source.options)
+        with io.HeadingWriter(self.out, heading=self.heading) as writer:
+            for chunk in source.chunks(self.chunk_rows):
+                check.update(chunk.t, chunk.rate)
+                try:
+                    result = pipeline.process(chunk.t, chunk.rate, index_offset=chunk.first_row)
+                except SampleError as e:
+                    raise ValueError(source.locate(e)) from None
+                except ValueError as e:
+                    raise ValueError(f"{source.data_path}: {e}") from None
+                writer.write(result)
+                self.rows_in += len(chunk)
+                if progress is not None:
+                    progress(chunk.done, source.progress_total, source.progress_unit)
+            if self.rows_in == 0:
+                raise ValueError(f"{source.data_path}: no samples")
+            if writer.rows != self.rows_in:  # the pipeline returns one row per sample; prove it
+                raise RuntimeError(f"{self.path}: {self.rows_in} rows read but {writer.rows} written")
+        notes += check.problems() + _repairs(pipeline.report)
+        return FileReport(
+            str(self.path), str(self.out), self.rows_in, writer.rows, time.perf_counter() - start, None, tuple(notes)
+        )
+
+    def failure(self, error: BaseException, seconds: float) -> FileReport:
+        reason = str(error) if isinstance(error, (ValueError, TypeError, OSError, ImportError)) else repr(error)
+        return FileReport(str(self.path), None, self.rows_in, 0, seconds, reason or type(error).__name__)
+
+
+def _repairs(report: dict[str, float]) -> list[str]:
+    """What the pipeline's input policy repaired (NaN readings held or skipped, gaps)."""
+    notes = []
+    if report["held"]:
+        notes.append(f"{int(report['held'])} non-finite readings replaced by the last finite one")
+    if report["skipped"]:
+        notes.append(f"{int(report['skipped'])} samples skipped (non-finite readings; their rows have a NaN rate)")
+    if report["gaps"]:
+        notes.append(f"{int(report['gaps'])} gaps, the longest {report['longest_gap']:.6g} s")
+    return notes
+
+
+def process_file(
+    path: str | Path,
+    out: str | Path,
+    *,
+    preset: str = "recommended",
+    heading: str = "enu",
+    chunk_rows: int = io.DEFAULT_CHUNK_ROWS,
+    progress: Progress | None = None,
+    **options: Any,
+) -> FileReport:
+    """Stream one log through the pipeline into a heading table, with flat memory.
+
+    Args:
+        path: any input :func:`gyrocore.io.open_source` reads.
+        out: ``.csv`` or ``.parquet`` output (columns t [s], heading [rad], rate, drift [rad/s]);
+            written to a temporary file and renamed at the end; never the input.
+        preset: pipeline preset.
+        heading: ``enu`` (counter-clockwise from east, default) or ``compass`` (clockwise from
+            north); see :func:`gyrocore.io.convert_heading`.
+        chunk_rows: samples per chunk (memory; the output does not depend on it).
+        progress: called after each chunk (see :data:`Progress`); may raise to stop.
+        **options: reader options (``time_col``, ``rate_col``, ``time_unit``, ``rate_unit``,
+            ``topic``, ``delimiter``) and pipeline parameters (``bias_window=(t0, t1)`` [s],
+            ``bias_duration`` [s], ``bias_dps``, ...). The rest window of a log folder's meta.json
+            is used unless a bias or rest window is given.
+
+    Returns:
+        The file's report (rows in = rows out).
+
+    Raises:
+        ValueError: a malformed file or bad samples (naming the file and line or row), an output
+            over the input, invalid options. No output is left then.
+    """
+    return _FileJob(Path(path), Path(out), preset, heading, chunk_rows, options).run(progress)
+
+
+def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
+    """Files and folders from paths, folders of logs and glob patterns (``logs/**/*.csv``).
+
+    A log folder or ROS 2 bag folder is one input; any other folder stands for the inputs directly
+    in it. Raises ValueError for an item that matches nothing.
+    """
+    found: list[Path] = []
+    for item in items:
+        p = Path(item)
+        if p.exists():
+            matches = [p]
+        else:
+            matches = [Path(m) for m in sorted(glob.glob(str(item), recursive=True))]
+            if not matches:
+                raise ValueError(f"{item}: no such file or folder, and no file matches it")
+        for m in matches:
+            if m.is_dir() and not io.is_input(m):
+                inside = sorted(c for c in m.iterdir() if io.is_input(c))
+                if not inside and p.exists():
+                    raise ValueError(f"{m}: no logs in this folder ({', '.join(io.FILE_SUFFIXES)}, log or bag folders)")
+                found += inside
+            elif io.is_input(m) or p.exists():
+                found.append(m)
+    return list(dict.fromkeys(found))
+
+
+def output_paths(inputs: Sequence[Path], out_dir: Path, fmt: str) -> list[Path]:
+    """``out_dir/<input name without suffix>.<fmt>`` for each input; refuses two inputs that would
+    share an output."""
+    outs = [out_dir / f"{p.stem if p.is_file() else p.name}.{fmt}" for p in inputs]
+    seen: dict[Path, Path] = {}
+    for p, o in zip(inputs, outs):
+        if o in seen:
+            raise ValueError(f"{seen[o]} and {p} would both be written to {o}; process them separately")
+        seen[o] = p
+    return outs
+
+
+def process_many(
+    paths: Iterable[str | Path],
+    *,
+    preset: str = "recommended",
+    out_dir: str | Path,
+    client: Any = None,
+    jobs: int | None = None,
+    fmt: str = "csv",
+    heading: str = "enu",
+    chunk_rows: int = io.DEFAULT_CHUNK_ROWS,
+    progress: bool = False,
+    **options: Any,
+) -> BatchReport:
+    """Process a fleet of logs in parallel: threads on this machine, or a Dask cluster.
+
+    Args:
+        paths: files, log folders, folders of logs and glob patterns (see :func:`expand_inputs`).
+        preset: pipeline preset for every file.
+        out_dir: folder for the heading tables (created), one ``<name>.<fmt>`` per input.
+        client: a ``dask.distributed.Client`` or a scheduler address (``"tcp://host:8786"``) to run
+            on a Dask cluster (whose workers must see the paths and have gyrocore installed);
+            None: threads here.
+        jobs: threads (default: every core). The Rust core and pyarrow release the GIL, so files
+            run in parallel. Ignored with a Dask client.
+        fmt: ``csv`` or ``parquet``.
+        heading, chunk_rows, **options: as for :func:`process_file`.
+        progress: show a bar over the files on a terminal.
+
+    Returns:
+        Reports of all files, in input order: the ones that failed with their reason, the others
+        with rows in and out.
+
+    Raises:
+        ValueError: no input, invalid options or two inputs mapping to one output (before any work).
+    """
+    start = time.perf_counter()
+    inputs = expand_inputs([paths] if isinstance(paths, (str, Path)) else paths)
+    if not inputs:
+        raise ValueError("no input files")
+    if fmt not in ("csv", "parquet"):
+        raise ValueError(f"fmt must be 'csv' or 'parquet', got {fmt!r}")
+    if jobs is not None and jobs < 1:
+        raise ValueError(f"jobs must be >= 1, got {jobs}")
+    if chunk_rows < 1:
+        raise ValueError(f"chunk_rows must be >= 1, got {chunk_rows}")
+    if heading not in io.HEADING_CONVENTIONS:
+        raise ValueError(f"heading convention {heading!r} is not one of {', '.join(io.HEADING_CONVENTIONS)}")
+    _, overrides = split_options(options)
+    # invalid parameters fail here, before any work (a stand-in bias keeps the check quiet)
+    Pipeline(preset, **(overrides if has_bias_source(overrides) else {**overrides, "bias": 0.0}))
+    outputs = output_paths(inputs, Path(out_dir), fmt)
+    Path(out_dir).mkdir(parents=True, exist_ok=True)
+    jobs_list = [_FileJob(p, o, preset, heading, chunk_rows, options) for p, o in zip(inputs, outputs)]
+    if client is not None:
+        reports = _run_on_dask(client, jobs_list, progress)
+    else:
+        reports = _run_on_threads(jobs_list, jobs or os.cpu_count() or 1, progress)
+    return BatchReport(tuple(reports), time.perf_counter() - start)
+
+
+def _run_job(job: _FileJob, stop: threading.Event | None = None) -> FileReport:
+    """Run one job; any error becomes a failed report (a bad file fails alone)."""
+    start = time.perf_counter()
+
+    def check_stop(done: int, total: int | None, unit: str) -> None:
+        if stop is not None and stop.is_set():
+            raise _Stopped("stopped before the end")
+
+    try:
+        return job.run(check_stop)
+    except Exception as e:  # noqa: BLE001 - every failure is reported and the batch goes on
+        return job.failure(e, time.perf_counter() - start)
+
+
+class _Stopped(Exception):
+    """The batch was interrupted; the file's temporary output is removed."""
+
+
+def _bar(total: int, enabled: bool) -> Any:
+    """A bar over the files on stderr, only when asked for and stderr is a terminal."""
+    if not (enabled and sys.stderr.isatty()):
+        return _NoBar()
+    from tqdm import tqdm
+
+    return tqdm(total=total, unit="file", leave=False)
+
+
+class _NoBar:
+    """Stands in for a bar that is not drawn (tqdm would still start its monitor thread)."""
+
+    def __enter__(self) -> _NoBar:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        return None
+
+    def update(self, n: int = 1) -> None:
+        return None
+
+
+def _run_on_threads(jobs: list[_FileJob], workers: int, progress: bool) -> list[FileReport]:
+    stop = threading.Event()
+    reports: dict[int, FileReport] = {}
+    with _bar(len(jobs), progress) as bar:
+        executor = ThreadPoolExecutor(max_workers=min(workers, len(jobs)), thread_name_prefix="gyrocore")
+        try:
+            futures = {executor.submit(_run_job, job, stop): i for i, job in enumerate(jobs)}
+            for future in as_completed(futures):
+                reports[futures[future]] = future.result()
+                bar.update(1)
+        except BaseException:
+            stop.set()  # running files stop at their next chunk and remove their temporary output
+            executor.shutdown(wait=True, cancel_futures=True)
+            raise
+        executor.shutdown()
+    return [reports[i] for i in range(len(jobs))]
+
+
+def _run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileReport]:
+    try:
+        from dask.distributed import Client
+        from dask.distributed import as_completed as dask_completed
+    except ImportError:
+        raise ImportError("running on a Dask cluster needs dask: pip install 'gyrocore[dask]'") from None
+    own = not isinstance(client, Client)
+    if own:
+        client = Client(client)
+    reports: dict[int, FileReport] = {}
+    try:
+        futures = [
+            client.submit(_run_job, job, key=f"gyrocore-{i}-{job.path.name}", pure=False) for i, job in enumerate(jobs)
+        ]
+        index = {f.key: i for i, f in enumerate(futures)}
+        with _bar(len(jobs), progress) as bar:
+            try:
+                for future in dask_completed(futures):
+                    i = index[future.key]
+                    try:
+                        reports[i] = future.result()
+                    except Exception as e:  # noqa: BLE001 - a lost worker fails its file only
+                        reports[i] = jobs[i].failure(e, 0.0)
+                    bar.update(1)
+            except BaseException:
+                client.cancel(futures)
+                raise
+    finally:
+        if own:
+            client.close()
+    return [reports[i] for i in range(len(jobs))]

@@ -1,0 +1,291 @@
+"""Chunked processing of whole files (rows in = rows out, chunk-size invariance, atomic output,
+errors located in the file) and batches on threads and on a Dask cluster."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pyarrow as pa
+import pyarrow.csv as pa_csv
+import pyarrow.parquet as pq
+import pytest
+
+import gyrocore
+from gyrocore.batch import expand_inputs, process_file, process_many
+
+from .conftest import real_log_path
+
+
+def synthetic_csv(path: Path, n: int, *, seed: int = 0, rest: float = 20.0) -> Path:
+    """A 100 Hz drive from a Unix epoch: rest, then turns; rate with bias and noise [rad/s]."""
+    rng = np.random.default_rng(seed)
+    i = np.arange(n)
+    t = 1.7e9 + i * 0.01 + rng.uniform(0, 1e-3, n)
+    rate = np.where(t - t[0] < rest, 0.0, 0.3 * np.sin(i / 700.0)) + 0.004 + rng.normal(0, 0.01, n)
+    pa_csv.write_csv(pa.table({"t": t, "gyro_z": np.round(rate, 7)}), path)
+    return path
+
+
+def read_table(path: Path) -> pa.Table:
+    return pq.read_table(path) if path.suffix == ".parquet" else pa_csv.read_csv(path)
+
+
+def leftovers(folder: Path) -> list[str]:
+    return [p.name for p in folder.iterdir() if p.name.endswith(".tmp")]
+
+
+def test_streamed_file_equals_the_in_memory_pipeline_on_a_real_log(tmp_path: Path) -> None:
+    folder = real_log_path("f110_ds3")
+    out = tmp_path / "h.csv"
+    report = process_file(folder, out, preset="combined", chunk_rows=500)
+    assert report.ok and report.rows_in == report.rows_out == 2736
+    log = gyrocore.read_log(folder)
+    expected = log.process("combined")  # static bias from meta.json's rest window, as the stream
+    table = read_table(out)
+    for name in ("t", "heading", "rate", "drift"):
+        assert table[name].to_numpy().tobytes() == getattr(expected, name).tobytes(), name
+
+
+@pytest.mark.parametrize("fmt", ["csv", "parquet"])
+def test_output_does_not_depend_on_the_chunk_size(tmp_path: Path, fmt: str) -> None:
+    src = synthetic_csv(tmp_path / "in.csv", 60_000)
+    outputs = []
+    for rows in (997, 60_000, 1 << 20):
+        out = tmp_path / f"h{rows}.{fmt}"
+        report = process_file(src, out, preset="recommended", bias_duration=15.0, chunk_rows=rows)
+        assert report.rows_in == report.rows_out == 60_000
+        outputs.append(read_table(out))
+    for other in outputs[1:]:
+        assert other.equals(outputs[0])
+    assert len(outputs[0]) == 60_000
+
+
+def test_every_row_is_counted_one_sample_per_chunk(tmp_path: Path) -> None:
+    src = synthetic_csv(tmp_path / "in.csv", 300)
+    whole = process_file(src, tmp_path / "a.parquet", preset="hdr", bias_duration=1.0)
+    single = process_file(src, tmp_path / "b.parquet", preset="hdr", bias_duration=1.0, chunk_rows=1)
+    assert whole.rows_out == single.rows_out == 300
+    assert read_table(tmp_path / "a.parquet").equals(read_table(tmp_path / "b.parquet"))
+
+
+def test_units_and_heading_options_reach_the_output(tmp_path: Path) -> None:
+    folder = real_log_path("broad_10")
+    log = gyrocore.read_log(folder)
+    pq.write_table(pa.table({"ms": log.t * 1e3, "dps": np.degrees(log.rate)}), tmp_path / "in.parquet")
+    report = process_file(
+        tmp_path / "in.parquet",
+        tmp_path / "h.parquet",
+        preset="static_bias",
+        heading="compass",
+        time_col="ms",
+        rate_col="dps",
+        time_unit="ms",
+        rate_unit="deg/s",
+        bias_window=log.stationary,
+    )
+    assert report.warnings == ()
+    expected = log.process("static_bias")
+    table = read_table(tmp_path / "h.parquet")
+    np.testing.assert_allclose(table["t"].to_numpy(), log.t, rtol=1e-15)
+    np.testing.assert_allclose(table["heading"].to_numpy(), np.pi / 2 - expected.heading, atol=1e-9)
+    assert pq.read_schema(tmp_path / "h.parquet").metadata[b"gyrocore"].startswith(b'{"heading": "compass"')
+
+
+@pytest.mark.parametrize("row", [3456, 3000])  # inside a chunk, and the first row of a chunk
+def test_duplicate_timestamp_names_file_global_row_and_line(tmp_path: Path, row: int) -> None:
+    lines = [f"{i * 0.01:.2f},0.001" for i in range(5000)]
+    lines[row] = lines[row - 1]
+    src = tmp_path / "dup.csv"
+    src.write_text("t,gyro_z\n" + "\n".join(lines) + "\n")
+    out = tmp_path / "h.csv"
+    with pytest.raises(ValueError) as e:
+        process_file(src, out, preset="raw", chunk_rows=1000)
+    message = str(e.value)
+    value = f"{(row - 1) * 0.01:.2f}"
+    assert message.startswith(f"timestamps must strictly increase: t[{row}] = {value} follows {value}")
+    assert message.endswith(f"({src}, line {row + 2})")
+    assert not out.exists() and leftovers(tmp_path) == []
+
+
+def test_bag_stamps_that_go_back_name_the_message(tmp_path: Path) -> None:
+    from .test_io import STAMPS, Z, write_bag
+
+    stamps = list(STAMPS[:100])
+    stamps[70] = stamps[60]
+    write_bag(tmp_path / "back.bag", stamps, Z[:100], ros1=True)
+    with pytest.raises(ValueError, match=rf"t\[70\] = .* \({tmp_path / 'back.bag'}, message 70 on /imu\)$"):
+        process_file(tmp_path / "back.bag", tmp_path / "h.csv", preset="raw", chunk_rows=32)
+
+
+def test_nan_rate_names_the_line_or_is_held_and_reported(tmp_path: Path) -> None:
+    src = tmp_path / "nan.csv"
+    src.write_text("t,gyro_z\n" + "".join(f"{i},{'nan' if i == 70 else 0.001}\n" for i in range(100)))
+    with pytest.raises(ValueError, match=rf"rate\[70\] is NaN.*\({src}, line 72\)"):
+        process_file(src, tmp_path / "h.csv", preset="raw", chunk_rows=30)
+    with pytest.warns(gyrocore.InputWarning, match="replaced by the last finite reading"):
+        report = process_file(src, tmp_path / "h.csv", preset="raw", chunk_rows=30, nonfinite="hold")
+    assert report.rows_out == 100 and any("1 non-finite readings replaced" in w for w in report.warnings)
+
+
+def test_output_is_never_the_input(tmp_path: Path) -> None:
+    src = synthetic_csv(tmp_path / "in.csv", 100)
+    before = src.read_bytes()
+    with pytest.raises(ValueError, match="refusing to write"):
+        process_file(src, src, preset="raw")
+    link = tmp_path / "link.csv"
+    os.link(src, link)
+    with pytest.raises(ValueError, match="refusing to write"):
+        process_file(src, link, preset="raw")
+    assert src.read_bytes() == before
+    with pytest.raises(ValueError, match="refusing to write .* inside the input"):
+        process_file(real_log_path("f110_ds3"), real_log_path("f110_ds3") / "heading.csv", preset="raw")
+
+
+def test_a_failed_run_leaves_the_previous_output_intact(tmp_path: Path) -> None:
+    src = tmp_path / "late_error.csv"
+    src.write_text("t,gyro_z\n" + "".join(f"{i},0.001\n" for i in range(5000)) + "5000,oops\n")
+    out = tmp_path / "h.csv"
+    out.write_text("previous\n")
+    with pytest.raises(ValueError, match="line 5002, column 2"):
+        process_file(src, out, preset="raw", chunk_rows=100)
+    assert out.read_text() == "previous\n" and leftovers(tmp_path) == []
+
+
+def test_an_interrupted_run_writes_nothing(tmp_path: Path) -> None:
+    src = synthetic_csv(tmp_path / "in.csv", 20_000)
+
+    def interrupt(done: int, total: int | None, unit: str) -> None:
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        process_file(src, tmp_path / "h.csv", preset="raw", chunk_rows=1000, progress=interrupt)
+    assert not (tmp_path / "h.csv").exists() and leftovers(tmp_path) == []
+
+
+def test_a_killed_command_leaves_no_output(tmp_path: Path) -> None:
+    src = synthetic_csv(tmp_path / "in.csv", 400_000)
+    out = tmp_path / "h.csv"
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "gyrocore.cli",
+            "process",
+            str(src),
+            "--out",
+            str(out),
+            "--preset",
+            "raw",
+            "--chunk-rows",
+            "2000",
+        ],
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    deadline = time.monotonic() + 30
+    while not leftovers(tmp_path) and proc.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.005)  # wait until the output is being written
+    if proc.poll() is not None:
+        pytest.skip("the run finished before it could be interrupted")
+    proc.send_signal(signal.SIGTERM)
+    _, stderr = proc.communicate(timeout=30)
+    assert leftovers(tmp_path) == []
+    if out.exists():  # the signal came after the rename: then the output is complete
+        assert len(read_table(out)) == 400_000
+    else:
+        assert proc.returncode == 130, stderr
+        assert stderr.strip() == "gyrocore: interrupted; no partial output was left"
+
+
+def test_empty_input_is_an_error_without_output(tmp_path: Path) -> None:
+    src = tmp_path / "empty.csv"
+    src.write_text("t,gyro_z\n")
+    with pytest.raises(ValueError, match="empty.csv: no samples"):
+        process_file(src, tmp_path / "h.csv", preset="raw")
+    assert not (tmp_path / "h.csv").exists()
+
+
+def test_missing_rest_window_is_reported(tmp_path: Path) -> None:
+    src = synthetic_csv(tmp_path / "in.csv", 500)
+    with pytest.warns(UserWarning, match="removes a static bias"):
+        report = process_file(src, tmp_path / "h.csv", preset="static_bias")
+    assert any("no rest window" in w for w in report.warnings)
+
+
+# --- batches -------------------------------------------------------------------------------
+
+
+@pytest.fixture()
+def fleet(tmp_path: Path) -> list[Path]:
+    """Three good logs of different formats and one malformed CSV."""
+    good = [synthetic_csv(tmp_path / f"drive{k}.csv", 3000 + 1000 * k, seed=k) for k in range(2)]
+    table = pa_csv.read_csv(good[0])
+    pq.write_table(table, tmp_path / "drive_p.parquet")
+    bad = tmp_path / "broken.csv"
+    bad.write_text("t,gyro_z\n0,0\n0.01,zero\n")
+    return [*good, tmp_path / "drive_p.parquet", bad]
+
+
+def check_summary(summary: gyrocore.batch.BatchReport, fleet: list[Path], out_dir: Path) -> None:
+    assert [r.input for r in summary.files] == [str(p) for p in fleet]
+    assert [r.ok for r in summary.files] == [True, True, True, False]
+    bad = summary.files[3]
+    assert bad.error == f"{fleet[3]}: line 3, column 2 (gyro_z): 'zero' is not a number" and bad.output is None
+    for report in summary.succeeded:
+        assert report.rows_in == report.rows_out == len(read_table(Path(report.output or "")))
+    assert summary.rows_out == 3000 + 4000 + 3000
+    assert sorted(p.name for p in out_dir.iterdir()) == ["drive0.csv", "drive1.csv", "drive_p.csv"]
+    assert "1 failed" in str(summary) and "FAILED" in str(summary)
+
+
+def test_batch_on_threads_fails_the_bad_file_alone(fleet: list[Path], tmp_path: Path) -> None:
+    summary = process_many(fleet, out_dir=tmp_path / "out", jobs=2, bias_duration=10.0)
+    check_summary(summary, fleet, tmp_path / "out")
+    one = process_file(fleet[0], tmp_path / "one.csv", bias_duration=10.0)
+    assert read_table(tmp_path / "one.csv").equals(read_table(tmp_path / "out" / "drive0.csv"))
+    assert one.rows_out == summary.files[0].rows_out
+
+
+def test_batch_on_a_dask_cluster(fleet: list[Path], tmp_path: Path) -> None:
+    distributed = pytest.importorskip("dask.distributed")
+    with (
+        distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None) as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        summary = process_many(fleet, out_dir=tmp_path / "out", client=client, bias_duration=10.0)
+        check_summary(summary, fleet, tmp_path / "out")
+        again = process_many(
+            fleet[:1], out_dir=tmp_path / "again", client=cluster.scheduler_address, bias_duration=10.0
+        )
+    assert again.files[0].ok
+    assert read_table(tmp_path / "again" / "drive0.csv").equals(read_table(tmp_path / "out" / "drive0.csv"))
+
+
+def test_batch_inputs_from_folders_and_globs(tmp_path: Path) -> None:
+    for k in range(3):
+        synthetic_csv(tmp_path / f"d{k}.csv", 100)
+    (tmp_path / "notes.txt").write_text("not a log")
+    found = expand_inputs([tmp_path, str(tmp_path / "d*.csv"), real_log_path("f110_ds3")])
+    assert [p.name for p in found] == ["d0.csv", "d1.csv", "d2.csv", "f110_ds3"]
+    with pytest.raises(ValueError, match="no such file or folder, and no file matches it"):
+        expand_inputs([str(tmp_path / "nothing*.csv")])
+
+
+def test_batch_refuses_two_inputs_with_one_output_name_before_any_work(tmp_path: Path) -> None:
+    synthetic_csv(tmp_path / "a.csv", 100)
+    pq.write_table(pa_csv.read_csv(tmp_path / "a.csv"), tmp_path / "a.parquet")
+    with pytest.raises(ValueError, match="would both be written to"):
+        process_many([tmp_path / "a.csv", tmp_path / "a.parquet"], out_dir=tmp_path / "out", preset="raw")
+    assert not (tmp_path / "out").exists()
+
+
+def test_batch_rejects_invalid_parameters_before_any_work(tmp_path: Path) -> None:
+    synthetic_csv(tmp_path / "a.csv", 100)
+    with pytest.raises(ValueError, match="hdr_c2"):
+        process_many([tmp_path / "a.csv"], out_dir=tmp_path / "out", preset="hdr", hdr_c2=-1.0)
