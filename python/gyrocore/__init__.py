@@ -11,7 +11,7 @@ counter-clockwise positive; the bias is what the gyro reads at rest.
     True
 """
 
-from . import batch, evaluate, io, sim
+from . import allan, batch, calibration, evaluate, io, sim
 from ._checks import InputWarning
 from ._gyrocore import SampleError, __version__
 from .evaluate import HeadingErrors, heading_errors
@@ -36,7 +36,9 @@ __all__ = [
     "Pipeline",
     "SampleError",
     "__version__",
+    "allan",
     "batch",
+    "calibration",
     "downsample",
     "evaluate",
     "heading_errors",

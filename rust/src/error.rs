@@ -45,6 +45,13 @@ pub enum Error {
     },
     /// The configuration asks for a temperature signal and none was given.
     MissingTemperature,
+    /// A statistic needs a longer record than it was given (an averaging time too long for it).
+    TooShort {
+        /// Samples needed.
+        needed: usize,
+        /// Samples given.
+        len: usize,
+    },
 }
 
 impl Error {
@@ -109,6 +116,11 @@ impl fmt::Display for Error {
             Error::MissingTemperature => write!(
                 f,
                 "the temperature scale-factor model is configured but no temperature was given"
+            ),
+            Error::TooShort { needed, len } => write!(
+                f,
+                "the record is too short: {len} samples given, {needed} needed \
+                 (choose a shorter averaging time or a longer record)"
             ),
         }
     }

@@ -25,6 +25,7 @@
 //! | Hong eq 12, threshold | [`Threshold`] |
 //! | FOG eq 2-4, cw/ccw correction factors | [`CorrectionConfig::c_cw`], [`CorrectionConfig::c_ccw`] |
 //! | FOG eq 5-6, temperature-linear scale factor | [`correction::TemperatureScale`] |
+//! | Allan, overlapping, modified and Hadamard variances (IEEE 952, Hong section 2.1) | [`allan`] |
 //!
 //! ```
 //! use gyrocore::{Pipeline, Preset};
@@ -40,6 +41,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod allan;
 mod block;
 pub mod correction;
 mod error;
@@ -52,6 +54,7 @@ mod stage;
 pub mod threshold;
 mod validate;
 
+pub use allan::Variance;
 pub use block::{Downsample, DownsampleConfig};
 pub use correction::{Correction, CorrectionConfig, StaticBias, TemperatureScale};
 pub use error::Error;

@@ -10,9 +10,9 @@ import argparse
 import sys
 from typing import Sequence
 
-from . import demo, presets, process
+from . import allan, calibrate, demo, presets, process
 
-COMMANDS = (demo, process, presets)
+COMMANDS = (demo, process, presets, allan, calibrate)
 
 
 def build_parser() -> argparse.ArgumentParser:

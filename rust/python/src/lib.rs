@@ -1,6 +1,7 @@
 //! Python bindings of the gyrocore core crate: convert, validate shapes, release the GIL, call the
 //! core, and move results into numpy without copying.
 
+mod allan;
 mod params;
 mod table;
 
@@ -271,6 +272,7 @@ fn _gyrocore(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_panic_for_test, m)?)?;
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
     m.add_function(wrap_pyfunction!(downsample, m)?)?;
+    allan::register(m)?;
     table::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

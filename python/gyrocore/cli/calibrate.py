@@ -1,0 +1,93 @@
+"""``gyrocore calibrate``: static bias from a rest window (found automatically) and least-squares
+scale and bias against the log's reference heading (Hong eq 4-7)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+from .. import calibration, io
+from ._common import add_command, write_atomically
+
+
+def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
+    p = add_command(
+        sub,
+        "calibrate",
+        "calibrate a gyro from a log folder: static bias at rest, scale and bias against reference.csv",
+        "gyrocore calibrate ../shared/data/real/f110_ds3 --save f110_calibration.json",
+        run,
+    )
+    p.add_argument("logdir", help="log folder (gyro.csv; reference.csv and meta.json where present)")
+    p.add_argument("--window", nargs=2, type=float, metavar=("T0", "T1"),
+                   help="rest window [s, log time base] instead of finding one")
+    p.add_argument("--min-duration", type=float, default=1.0, help="shortest rest [s] (default 1)")
+    p.add_argument("--max-rate-dps", type=float, default=None,
+                   help="largest reading at rest [deg/s] (default 2.9); raise it for a gyro with a large bias")
+    p.add_argument("--fit-window", nargs=2, type=float, metavar=("T0", "T1"),
+                   help="span [s] for the reference fit (default: the whole log)")
+    p.add_argument("--json", action="store_true", help="print the results as JSON")
+    p.add_argument("--save", type=Path,
+                   help="write the calibration (JSON): the reference fit where the log has a reference, "
+                        "else the static bias")
+
+
+def run(args: argparse.Namespace) -> int:
+    folder = Path(args.logdir)
+    if not folder.is_dir():
+        raise ValueError(f"{folder}: not a log folder")
+    if args.save is not None and args.save.suffix.lower() != ".json":
+        raise ValueError(f"{args.save}: the calibration file must end in .json")
+    log = io.read_log(folder)
+    results: dict[str, Any] = {"log": log.name, "meta_stationary": log.stationary}
+    static: calibration.Calibration | None = None
+    options: dict[str, float] = {}
+    if args.max_rate_dps is not None:
+        options["max_rate"] = math.radians(args.max_rate_dps)
+    try:
+        window = None if args.window is None else (args.window[0], args.window[1])
+        static = calibration.static_bias(log.t, log.rate, window, min_duration=args.min_duration, **options)
+        results["static_bias"] = static.to_dict()["calibration"]
+    except ValueError as e:
+        results["static_bias"] = {"error": str(e)}
+    fit: calibration.Calibration | None = None
+    if log.t_ref is not None and log.heading_ref is not None:
+        fit_window = None if args.fit_window is None else (args.fit_window[0], args.fit_window[1])
+        try:
+            fit = calibration.heading_reference(log.t, log.rate, log.t_ref, log.heading_ref, window=fit_window)
+            results["heading_reference"] = fit.to_dict()["calibration"]
+        except ValueError as e:
+            results["heading_reference"] = {"error": str(e)}
+    chosen = fit or static
+    if chosen is None:
+        raise ValueError(
+            f"{folder}: nothing to calibrate from: {results['static_bias']['error']}"
+            + ("" if "heading_reference" not in results else f"; {results['heading_reference']['error']}")
+        )
+    if args.save is not None:
+        write_atomically(args.save, lambda tmp: chosen.save(tmp))
+        results["saved"] = {"file": str(args.save), "method": chosen.method}
+    if args.json:
+        print(json.dumps(results, indent=2))
+        return 0
+    print(f"{log.name}:")
+    t0 = float(log.t[0])
+    if static is not None and static.window is not None:
+        w = static.window
+        print(f"  static bias: {static!r}")
+        print(f"  rest window used: {w[0] - t0:.4f} .. {w[1] - t0:.4f} s after the first sample")
+    else:
+        print(f"  static bias: {results['static_bias']['error']}")
+    if log.stationary is not None:
+        m = log.stationary
+        print(f"  (meta.json rest window: {m[0] - t0:.4f} .. {m[1] - t0:.4f} s after the first sample)")
+    if fit is not None:
+        print(f"  reference fit: {fit!r}")
+    elif "heading_reference" in results:
+        print(f"  reference fit: {results['heading_reference']['error']}")
+    if args.save is not None:
+        print(f"  saved the {chosen.method} calibration to {args.save}")
+    return 0
