@@ -11,7 +11,7 @@ counter-clockwise positive; the bias is what the gyro reads at rest.
     True
 """
 
-from . import allan, batch, calibration, evaluate, io, sim
+from . import allan, batch, calibration, deadreckon, evaluate, io, motion, paper, sim, tune
 from ._checks import InputWarning
 from ._gyrocore import SampleError, __version__
 from .evaluate import HeadingErrors, heading_errors
@@ -39,11 +39,14 @@ __all__ = [
     "allan",
     "batch",
     "calibration",
+    "deadreckon",
     "downsample",
     "evaluate",
     "heading_errors",
     "integrate",
     "io",
+    "motion",
+    "paper",
     "parameters",
     "preset_names",
     "preset_params",
@@ -51,4 +54,5 @@ __all__ = [
     "read_log",
     "recommended_preset",
     "sim",
+    "tune",
 ]

@@ -1,15 +1,32 @@
-"""Heading error metrics of the papers: E_psi (HDR eq 15), NE_psi (HDR eq 16), the mean and standard
-deviation of the absolute error (Hong Table 1), final and maximum error."""
+"""Heading against a reference, scored with the papers' metrics, and methods compared on logs.
+
+Metrics: E_psi (HDR eq 15), NE_psi (HDR eq 16), the mean and standard deviation of the absolute
+error (Hong Table 1), final and maximum error, the return orientation error of a closed path (FOG
+section 4.1) and the improvement factor over plain integration (HDR Table II). :func:`compare` runs
+every method on every log and writes plots of heading and error against time.
+
+Units: radians inside, degrees in the fields named ``*_deg``; times in seconds.
+"""
 
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+import sys
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._arrays import as_float_array
+from . import deadreckon
+from ._arrays import FloatArray, as_float_array
+from .io import Log, read_log
+from .pipeline import HeadingResult, has_bias_source, process, recommended_preset, uses_static_bias
+
+#: An interval longer than this many times the median interval is a gap (a logger or tracking
+#: outage). Irregular ROS logging stays below about 5 times its median (f110_ds3: 4.1).
+GAP_FACTOR = 10.0
 
 
 @dataclass(frozen=True)
@@ -25,13 +42,15 @@ class HeadingErrors:
     std_error_deg: float
     """Standard deviation of the absolute error (Hong Table 1)."""
     final_error_deg: float
-    """Signed error at the last compared reference time."""
+    """Signed error (estimate - reference) at the last compared reference time."""
     max_error_deg: float
     """Largest absolute error."""
     duration_min: float
-    """Compared duration T_d [min]."""
+    """Compared duration T_d [min], from the first to the last compared reference time."""
     n: int
     """Number of reference samples compared."""
+    gaps: int = 0
+    """Gaps (of the reference or of the estimate) inside the compared span that were skipped."""
 
     def as_dict(self) -> dict[str, float]:
         """The metrics as a plain dict (for JSON)."""
@@ -43,41 +62,394 @@ def unwrap(heading: ArrayLike) -> np.ndarray:
     return np.unwrap(as_float_array("heading", heading))
 
 
+def _check_series(name: str, t: FloatArray, values: FloatArray) -> None:
+    """Equal lengths, finite values and strictly increasing times, or a ValueError naming the index."""
+    if len(t) != len(values):
+        raise ValueError(f"{name}: times and values have different lengths ({len(t)} and {len(values)})")
+    for label, a in (("time", t), ("value", values)):
+        bad = ~np.isfinite(a)
+        if bad.any():
+            i = int(np.flatnonzero(bad)[0])
+            raise ValueError(f"{name}: non-finite {label} at index {i} ({a[i]})")
+    steps = np.diff(t) <= 0
+    if steps.any():
+        i = int(np.flatnonzero(steps)[0]) + 1
+        raise ValueError(f"{name}: times must strictly increase, but t[{i}] = {t[i]} follows {t[i - 1]}")
+
+
+def find_gaps(t: ArrayLike, *, gap_factor: float = GAP_FACTOR) -> np.ndarray:
+    """Which intervals ``t[k] -> t[k+1]`` are gaps: longer than ``gap_factor`` times the median.
+
+    Returns a boolean array of length ``len(t) - 1``.
+    """
+    if gap_factor <= 1:
+        raise ValueError(f"gap_factor must be > 1, got {gap_factor}")
+    dt = np.diff(as_float_array("t", t))
+    if len(dt) == 0:
+        return np.zeros(0, dtype=bool)
+    return np.asarray(dt > gap_factor * float(np.median(dt)))
+
+
+class Reference:
+    """A reference heading prepared once and scored against many estimates (tuning does thousands).
+
+    The reference (rad, may be wrapped to (-pi, pi]) is unwrapped between its gaps. Across a gap
+    its number of whole turns is unknown, so the turn count is chosen that makes the reference's
+    change over the gap closest to the estimate's: the error stays continuous as long as the
+    estimate does not drift by half a turn during the gap.
+
+    Args:
+        t_ref: reference times [s], strictly increasing, any rate.
+        heading_ref: reference heading [rad], counter-clockwise positive.
+        gap_factor: an interval longer than this many times the median interval is a gap, on the
+            reference and on the estimate. Reference samples inside a gap of the estimate are not
+            scored (the estimate there is only an interpolation).
+        time_weighted: average the absolute error over time instead of over samples. HDR eq 15
+            averages samples (its reference came at a regular 1 Hz); with a bursty reference the
+            time average weighs each moment equally. Gap intervals get no weight.
+    """
+
+    def __init__(
+        self,
+        t_ref: ArrayLike,
+        heading_ref: ArrayLike,
+        *,
+        gap_factor: float = GAP_FACTOR,
+        time_weighted: bool = False,
+    ) -> None:
+        t = as_float_array("t_ref", t_ref)
+        psi = as_float_array("heading_ref", heading_ref)
+        _check_series("reference", t, psi)
+        gaps = find_gaps(t, gap_factor=gap_factor)
+        # Segment k starts after the k-th gap; unwrap within segments only.
+        segment = np.concatenate(([0], np.cumsum(gaps)))
+        unwrapped = psi.copy()
+        for s in range(int(segment[-1]) + 1):
+            mask = segment == s
+            unwrapped[mask] = np.unwrap(psi[mask])
+        self.t = t
+        """Reference times [s]."""
+        self.heading = unwrapped
+        """Reference heading [rad], unwrapped within each stretch between gaps."""
+        self.segment = segment
+        """Index of the stretch between gaps that each sample belongs to."""
+        self.gap_factor = gap_factor
+        self.time_weighted = time_weighted
+
+    def compared(self, t: ArrayLike, heading: ArrayLike) -> tuple[FloatArray, FloatArray, np.ndarray]:
+        """The estimate's error at the compared reference times.
+
+        Returns ``(t_compared, error [rad], gap_after)``: the error is estimate minus reference,
+        both aligned to 0 at the first compared time; ``gap_after[k]`` says whether the interval
+        after sample ``k`` crosses a gap (of either side) and so is not scored.
+        """
+        te = as_float_array("t", t)
+        est_all = as_float_array("heading", heading)
+        _check_series("estimate", te, est_all)
+        if len(te) < 2:
+            raise ValueError("need at least two heading samples to compare")
+        inside = (self.t >= te[0]) & (self.t <= te[-1])
+        est_gaps = find_gaps(te, gap_factor=self.gap_factor)
+        if est_gaps.any():
+            k = np.clip(np.searchsorted(te, self.t, side="right") - 1, 0, len(est_gaps) - 1)
+            inside &= ~(est_gaps[k] & (self.t > te[k]) & (self.t < te[np.minimum(k + 1, len(te) - 1)]))
+        idx = np.flatnonzero(inside)
+        if len(idx) < 2:
+            raise ValueError("the reference has fewer than two samples inside the heading's time span")
+        tr, ref, seg = self.t[idx], self.heading[idx].copy(), self.segment[idx]
+        est = np.interp(tr, te, est_all)
+        # Consecutive compared samples not adjacent in the reference skipped an estimate gap.
+        gap_after = (np.diff(idx) > 1) | (np.diff(seg) != 0)
+        for j in np.flatnonzero(np.diff(seg) != 0):
+            turns = round(((est[j + 1] - est[j]) - (ref[j + 1] - ref[j])) / (2 * math.pi))
+            ref[j + 1 :] += 2 * math.pi * turns
+        return tr, (est - est[0]) - (ref - ref[0]), gap_after
+
+    def errors(self, t: ArrayLike, heading: ArrayLike) -> HeadingErrors:
+        """Score an estimated heading (continuous, rad) against this reference (HDR eq 15-16)."""
+        tr, err_rad, gap_after = self.compared(t, heading)
+        abs_err = np.degrees(np.abs(err_rad))
+        weights = None
+        if self.time_weighted:
+            # Each sample weighs half of each scored interval next to it (trapezoid rule).
+            dt = np.where(gap_after, 0.0, np.diff(tr))
+            weights = np.concatenate((dt, [0.0])) / 2 + np.concatenate(([0.0], dt)) / 2
+            if weights.sum() == 0:
+                weights = None
+        e_psi = float(np.average(abs_err, weights=weights))
+        std = float(np.sqrt(np.average((abs_err - e_psi) ** 2, weights=weights)))
+        duration_min = float(tr[-1] - tr[0]) / 60.0
+        return HeadingErrors(
+            e_psi_deg=e_psi,
+            ne_psi_deg_per_min=e_psi / duration_min if duration_min > 0 else math.nan,
+            mean_error_deg=e_psi,
+            std_error_deg=std,
+            final_error_deg=float(np.degrees(err_rad[-1])),
+            max_error_deg=float(abs_err.max()),
+            duration_min=duration_min,
+            n=len(tr),
+            gaps=int(gap_after.sum()),
+        )
+
+
 def heading_errors(
-    t: ArrayLike, heading: ArrayLike, t_ref: ArrayLike, heading_ref: ArrayLike
+    t: ArrayLike,
+    heading: ArrayLike,
+    t_ref: ArrayLike,
+    heading_ref: ArrayLike,
+    *,
+    gap_factor: float = GAP_FACTOR,
+    time_weighted: bool = False,
 ) -> HeadingErrors:
-    """Compare an estimated heading with a reference heading.
+    """Compare an estimated heading with a reference heading (HDR eq 15-16, Hong Table 1).
 
     The estimate (continuous, rad) is linearly interpolated at the reference's times inside its
     own time span; the reference (rad, may be wrapped) is unwrapped. Both are aligned at the first
     compared reference time (only relative heading is meaningful), and E_psi averages the absolute
     difference over the reference samples (HDR eq 15), NE_psi divides it by the duration in minutes
-    (eq 16).
+    (eq 16). Gaps are skipped as :class:`Reference` describes; both sides may have irregular rates.
     """
-    t = as_float_array("t", t)
-    heading = as_float_array("heading", heading)
-    t_ref = as_float_array("t_ref", t_ref)
-    ref = unwrap(heading_ref)
-    if len(t) != len(heading) or len(t_ref) != len(ref):
-        raise ValueError("t/heading and t_ref/heading_ref must have equal lengths")
-    if len(t) < 2:
-        raise ValueError("need at least two heading samples to compare")
-    inside = (t_ref >= t[0]) & (t_ref <= t[-1])
-    if inside.sum() < 2:
-        raise ValueError("the reference has fewer than two samples inside the heading's time span")
-    tr, ref = t_ref[inside], ref[inside]
-    est = np.interp(tr, t, heading)
-    err = np.degrees((est - est[0]) - (ref - ref[0]))
-    abs_err = np.abs(err)
-    duration_min = (tr[-1] - tr[0]) / 60.0
-    e_psi = float(abs_err.mean())
-    return HeadingErrors(
-        e_psi_deg=e_psi,
-        ne_psi_deg_per_min=e_psi / duration_min if duration_min > 0 else math.nan,
-        mean_error_deg=e_psi,
-        std_error_deg=float(abs_err.std()),
-        final_error_deg=float(err[-1]),
-        max_error_deg=float(abs_err.max()),
-        duration_min=float(duration_min),
-        n=int(len(tr)),
+    return Reference(t_ref, heading_ref, gap_factor=gap_factor, time_weighted=time_weighted).errors(t, heading)
+
+
+def improvement(raw: HeadingErrors, method: HeadingErrors) -> float:
+    """Relative improvement over plain integration: E_psi without / E_psi with (HDR Table II)."""
+    return raw.e_psi_deg / method.e_psi_deg if method.e_psi_deg > 0 else math.inf
+
+
+def return_orientation_error(
+    t: ArrayLike,
+    heading: ArrayLike,
+    *,
+    t_start: float | None = None,
+    t_end: float | None = None,
+    rotation: float | None = None,
+) -> float:
+    """Return orientation error E_g of a closed path [rad] (FOG section 4.1).
+
+    The rotation measured from ``t_start`` to ``t_end`` (default: the whole record; the heading is
+    interpolated at both) minus the actual rotation ``rotation`` [rad]. Without a reference the
+    actual rotation of a closed lap is a whole number of turns; by default the whole number nearest
+    to the measured rotation (right while the error stays below half a turn). Positive: the
+    estimate turned further counter-clockwise than the vehicle.
+    """
+    te = as_float_array("t", t)
+    psi = as_float_array("heading", heading)
+    _check_series("heading", te, psi)
+    t0 = te[0] if t_start is None else t_start
+    t1 = te[-1] if t_end is None else t_end
+    if not te[0] <= t0 < t1 <= te[-1]:
+        raise ValueError(f"the lap [{t0}, {t1}] s must lie inside the record [{te[0]}, {te[-1]}] s")
+    measured = float(np.interp(t1, te, psi) - np.interp(t0, te, psi))
+    if rotation is None:
+        rotation = 2 * math.pi * round(measured / (2 * math.pi))
+    return measured - rotation
+
+
+# ---------------------------------------------------------------------------------------------
+# Method comparison on logs
+
+
+@dataclass(frozen=True)
+class Method:
+    """A way to compute the heading: a preset with parameter overrides (SI names, see
+    :func:`gyrocore.parameters`). ``name`` labels it in tables and plots."""
+
+    name: str
+    preset: str
+    overrides: Mapping[str, Any] = field(default_factory=dict)
+
+    @classmethod
+    def from_preset(cls, preset: str) -> "Method":
+        """The preset as it is; ``recommended`` keeps its name and runs what it stands for."""
+        return cls(preset, recommended_preset() if preset == "recommended" else preset)
+
+    def run(self, log: Log, *, bias_duration: float | None = None) -> tuple[HeadingResult, str]:
+        """Heading of ``log`` and a description of where the static bias came from (:func:`log_bias`)."""
+        if not uses_static_bias(self.preset):
+            return log.process(self.preset, **self.overrides), "none (preset has no static bias)"
+        if has_bias_source(dict(self.overrides)):
+            return log.process(self.preset, **self.overrides), "given by the method"
+        bias, source = log_bias(log, bias_duration=bias_duration)
+        return log.process(self.preset, **self.overrides, **bias), source
+
+
+def log_bias(log: Log, *, bias_duration: float | None = None) -> tuple[dict[str, Any], str]:
+    """Where the static bias of ``log`` comes from: pipeline overrides and a description.
+
+    The log's rest window (meta.json) when it has one; otherwise the first ``bias_duration``
+    seconds while moving (good only if the drive starts straight) when given, else a bias of 0.
+    """
+    if log.stationary is not None:
+        return {"bias_window": log.stationary}, f"rest window [{log.stationary[0]:.3f}, {log.stationary[1]:.3f}] s"
+    if bias_duration is not None:
+        return {"bias_duration": bias_duration}, f"first {bias_duration:g} s (moving)"
+    return {"bias": 0.0}, "none (no rest window; 0)"
+
+
+@dataclass(frozen=True)
+class Score:
+    """One method scored on one log."""
+
+    log: str
+    method: Method
+    errors: HeadingErrors
+    improvement: float
+    """E_psi of plain integration / E_psi of this method (HDR Table II)."""
+    bias_source: str
+    return_error_deg: float | None = None
+    """Return orientation error (FOG section 4.1) where the reference path is closed, else None."""
+    position: deadreckon.PositionErrors | None = None
+    """Dead reckoning with this heading and the log's odometry, against the reference track."""
+
+    def as_dict(self) -> dict[str, Any]:
+        """Flat JSON-ready dict: ``log``, ``preset`` (the method's name), ``base_preset``, the
+        heading metrics, ``improvement``, ``bias_source``, ``return_error_deg`` and, where the log has
+        odometry, ``position_*_m`` and ``position_final_error_percent``."""
+        row: dict[str, Any] = {"log": self.log, "preset": self.method.name, "base_preset": self.method.preset}
+        row.update(self.errors.as_dict())
+        row["improvement"] = self.improvement
+        row["bias_source"] = self.bias_source
+        row["return_error_deg"] = self.return_error_deg
+        if self.position is not None:
+            row.update({f"position_{k}": v for k, v in self.position.as_dict().items()})
+        if self.method.overrides:
+            row["overrides"] = dict(self.method.overrides)
+        return row
+
+
+#: A reference path that ends within this fraction of its length from its start is closed.
+CLOSED_FRACTION = 0.01
+
+
+def is_closed_path(x: ArrayLike, y: ArrayLike, *, fraction: float = CLOSED_FRACTION) -> bool:
+    """Whether a track [m] ends within ``fraction`` of its length from where it started."""
+    xa, ya = as_float_array("x", x), as_float_array("y", y)
+    length = float(np.hypot(np.diff(xa), np.diff(ya)).sum())
+    return length > 0 and math.hypot(xa[-1] - xa[0], ya[-1] - ya[0]) <= fraction * length
+
+
+def score(log: Log, method: Method, result: HeadingResult, raw: HeadingErrors, bias_source: str) -> Score:
+    """Score one heading of ``log`` (see :class:`Score`); ``raw`` is plain integration's errors."""
+    if log.t_ref is None or log.heading_ref is None:
+        raise ValueError(f"log {log.name}: no reference heading to compare with (reference.csv)")
+    errors = heading_errors(result.t, result.heading, log.t_ref, log.heading_ref)
+    has_track = log.x_ref is not None and log.y_ref is not None
+    # Aligned at the start, the error at the end of a closed path is its measured minus its actual
+    # rotation: the return orientation error.
+    closed = has_track and is_closed_path(log.x_ref, log.y_ref)  # type: ignore[arg-type]
+    return_error = errors.final_error_deg if closed else None
+    position = None
+    if has_track and log.t_odometry is not None and log.speed is not None:
+        track = deadreckon.dead_reckon_log(log, result)
+        position = deadreckon.position_errors(track, log.t_ref, log.x_ref, log.y_ref)  # type: ignore[arg-type]
+    return Score(log.name, method, errors, improvement(raw, errors), bias_source, return_error, position)
+
+
+def compare(
+    logs: Sequence[Log | str | Path],
+    presets: Sequence[str | Method],
+    params: Sequence[Method] | None = None,
+    *,
+    bias_duration: float | None = None,
+    plot_dir: str | Path | None = None,
+) -> list[Score]:
+    """Score every method on every log: one :class:`Score` per (log, method), logs in order.
+
+    Args:
+        logs: :class:`Log` objects or log folders.
+        presets: preset names (``recommended`` runs the preset the README recommends) or methods.
+        params: further methods, e.g. tuned parameter sets (:meth:`gyrocore.tune.ParameterSet.method`).
+        bias_duration: for logs without a rest window, measure the static bias over the first
+            ``bias_duration`` seconds while moving [s] (see :meth:`Method.run`). The same value is
+            used for every such log: never tune it per log.
+        plot_dir: write ``<log>.png`` there (heading vs reference and error vs time of each method;
+            needs matplotlib).
+    """
+    methods = [m if isinstance(m, Method) else Method.from_preset(m) for m in presets] + list(params or [])
+    if not methods:
+        raise ValueError("no method to compare: give at least one preset or parameter set")
+    if plot_dir is not None:
+        _pyplot()  # fail before the work if plots cannot be drawn
+    rows: list[Score] = []
+    for item in logs:
+        log = item if isinstance(item, Log) else read_log(item)
+        raw_result = process(log.t, log.rate, "raw")
+        if log.t_ref is None or log.heading_ref is None:
+            raise ValueError(f"log {log.name}: no reference heading to compare with (reference.csv)")
+        raw = heading_errors(raw_result.t, raw_result.heading, log.t_ref, log.heading_ref)
+        results = {}
+        for method in methods:
+            result, source = method.run(log, bias_duration=bias_duration)
+            results[method.name] = result
+            rows.append(score(log, method, result, raw, source))
+        if plot_dir is not None:
+            plot_log(Path(plot_dir) / f"{log.name}.png", log, results)
+    return rows
+
+
+def _pyplot() -> Any:
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        raise ValueError("plots need matplotlib: pip install 'gyrocore[plot]'") from None
+    return plt
+
+
+def plot_log(path: Path, log: Log, results: Mapping[str, HeadingResult]) -> None:
+    """Write a PNG: heading of each method and the reference (top), error against time (bottom).
+
+    Headings are aligned with the reference at the first compared time, in degrees.
+    """
+    plt = _pyplot()
+    from .cli._common import write_atomically
+
+    reference = Reference(log.t_ref, log.heading_ref)  # type: ignore[arg-type]
+    t0 = float(log.t[0])
+    fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(10, 6.5))
+    for k, (name, r) in enumerate(results.items()):
+        tr, err, _ = reference.compared(r.t, r.heading)
+        start = np.interp(tr[0], r.t, r.heading)
+        if k == 0:
+            # The aligned reference is the aligned estimate minus its error.
+            ref = np.interp(tr, r.t, r.heading) - start - err
+            ax1.plot(tr - t0, np.degrees(ref), "k", lw=2.2, label="reference")
+        ax1.plot(r.t - t0, np.degrees(r.heading - start), lw=1, label=name)
+        ax2.plot(tr - t0, np.degrees(err), lw=1, label=name)
+    ax1.set_title(f"{log.name}: heading against the reference")
+    ax1.set_ylabel("heading change [deg]")
+    ax2.set_ylabel("error [deg]")
+    ax2.set_xlabel(f"t - t0 [s] (t0 = {t0:.3f} s)")
+    ax2.axhline(0.0, color="k", lw=0.5)
+    ax1.legend(fontsize=8, ncol=2)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    write_atomically(path, lambda tmp: fig.savefig(tmp, format="png", dpi=100))
+    plt.close(fig)
+
+
+def format_table(rows: Sequence[Score], *, file: Any = None) -> None:
+    """Print ``rows`` as a table (E_psi, NE_psi, final and maximum error, improvement vs raw)."""
+    out = file or sys.stdout
+    has_position = any(r.position is not None for r in rows)
+    header = (
+        f"{'log':<14} {'method':<16} {'E_psi':>8} {'NE_psi':>9} {'final':>8} {'max':>8} {'vs raw':>8}"
+        f" {'return':>8}" + (f" {'pos mean':>9} {'pos end':>8}" if has_position else "")
     )
+    print(header, file=out)
+    print(f"{'':<14} {'':<16} {'[deg]':>8} {'[deg/min]':>9} {'[deg]':>8} {'[deg]':>8} {'':>8} {'[deg]':>8}"
+          + (f" {'[m]':>9} {'[m]':>8}" if has_position else ""), file=out)
+    for r in rows:
+        e = r.errors
+        ret = "-" if r.return_error_deg is None else f"{r.return_error_deg:.2f}"
+        line = (
+            f"{r.log:<14} {r.method.name:<16} {e.e_psi_deg:>8.3f} {e.ne_psi_deg_per_min:>9.4f} "
+            f"{e.final_error_deg:>8.2f} {e.max_error_deg:>8.2f} {r.improvement:>7.1f}x {ret:>8}"
+        )
+        if has_position:
+            p = r.position
+            line += " " + (f"{p.mean_error_m:>9.2f} {p.final_error_m:>8.2f}" if p else f"{'-':>9} {'-':>8}")
+        print(line, file=out)

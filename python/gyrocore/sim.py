@@ -1,29 +1,276 @@
-"""Simulated drives with a known true heading, for the demo, the tests and tuning.
+"""A simulated yaw-rate gyro with a known truth: the error model, the papers' sensors, and drives.
 
-The motion and the slow gyro drift are functions of continuous time (fixed by the seed), so the
-same drive can be sampled at any rate; only the white noise depends on the sample interval
-(``sigma = ARW / sqrt(dt)``), as it does for a real gyro.
+The gyro reads ``r_m = (1 + s) r + b + d + w`` (Hong eq 1, with the residual ``d`` of Hong eq 10):
+scale error ``s`` (temperature-dependent, different for clockwise and counter-clockwise rates),
+bias ``b`` (temperature-dependent), slow stochastic bias ``d`` (bias instability as flicker noise,
+and the rate random walk of Hong eq 11), white noise ``w`` (angle random walk), then range clipping
+and quantisation. Samples arrive on a jittered grid and some are lost. The per-sample work runs in
+Rust (``rust/src/sim.rs``, which documents the model).
+
+A :class:`GyroSpec` holds a sensor's errors in datasheet units (deg/sqrt(h), deg/h, deg/h/sqrt(h),
+deg/s, percent as a fraction); :data:`SENSORS` has the papers' three sensors. :func:`simulate` runs a
+:class:`gyrocore.motion.Motion` through a sensor and returns a :class:`Drive` with the truth.
+
+The motion and the slow gyro errors are functions of continuous time fixed by the seed, so one
+drive can be sampled at any rate; only the white noise depends on the sample interval
+(``sigma = ARW sqrt(rate)``), as it does for a real gyro.
+
+    >>> import gyrocore
+    >>> d = gyrocore.sim.car_drive(duration=120.0, rate_hz=10.0, seed=1)
+    >>> (len(d.t), d.stationary)
+    (1200, (0.0, 20.0))
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass, field, replace
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from ._arrays import FloatArray
+from . import _gyrocore, motion
+from ._arrays import FloatArray, as_float_array
 
-#: Segment kinds of a drive: straight (with a slight 0.1 Hz swerve), a long gentle curve,
-#: a 90-degree turn, and a stop.
-_KINDS = ("straight", "curve", "turn", "stop")
+_DEG = math.pi / 180.0
+_HOUR = 3600.0
 
 
 @dataclass(frozen=True)
-class Drive:
-    """A simulated drive: true motion, the gyro's reading and its (known) errors.
+class GyroSpec:
+    """A gyro's errors in datasheet units (converted to SI by :meth:`si` for the Rust model).
 
-    Units: s, rad/s, rad; counter-clockwise positive.
+    Attributes:
+        name: label used in tables and plots.
+        rate_hz: output data rate [Hz]; also the bandwidth of the white noise.
+        arw_deg_per_sqrt_h: angle random walk ``N`` [deg/sqrt(h)] (Allan deviation ``N / sqrt(tau)``).
+        bandwidth_hz: corner of the sensor's first-order low-pass on the white noise [Hz]: above
+            it, consecutive samples are correlated and each has less noise (infinity: none).
+        bias_instability_deg_per_h: bias instability ``B`` [deg/h] (IEEE 952 flicker coefficient:
+            the Allan deviation is flat at ``0.664 B``).
+        rrw_deg_per_h_per_sqrt_h: rate random walk ``K`` [deg/h/sqrt(h)] (Hong eq 11).
+        flicker_band_s: (shortest, longest) correlation time of the flicker approximation [s].
+        bias_dps: bias ``b`` at the reference temperature [deg/s] (what the gyro reads at rest).
+        bias_dps_per_c: change of the bias per degree [deg/s/degC].
+        scale_error: scale error ``s`` at the reference temperature [1] (0.025 reads 2.5 % high).
+        scale_asymmetry: scale error of counter-clockwise minus clockwise rates [1].
+        scale_per_c: change of the scale error per degree [1/degC].
+        temperature_c: sensor temperature (at the first sample, reached in the end) [degC].
+        temperature_time_constant_s: time constant of the approach between the two [s].
+        reference_temperature_c: temperature at which ``bias_dps`` and ``scale_error`` hold [degC].
+        resolution_dps: one least significant bit [deg/s] (0: no quantisation).
+        range_dps: measurement range [deg/s] (readings are clipped to +-range).
+        jitter_s: standard deviation of each sampling instant about the nominal grid [s].
+        drop_probability: probability that a sample is lost before it reaches the log.
+        drift_step_s: grid on which the slow bias is generated and interpolated [s].
+        source: where the values come from (paper and section, or "assumed").
+    """
+
+    name: str = "ideal"
+    rate_hz: float = 100.0
+    arw_deg_per_sqrt_h: float = 0.0
+    bandwidth_hz: float = math.inf
+    bias_instability_deg_per_h: float = 0.0
+    rrw_deg_per_h_per_sqrt_h: float = 0.0
+    flicker_band_s: tuple[float, float] = (1.0, 1.0e5)
+    bias_dps: float = 0.0
+    bias_dps_per_c: float = 0.0
+    scale_error: float = 0.0
+    scale_asymmetry: float = 0.0
+    scale_per_c: float = 0.0
+    temperature_c: tuple[float, float] = (25.0, 25.0)
+    temperature_time_constant_s: float = 600.0
+    reference_temperature_c: float = 25.0
+    resolution_dps: float = 0.0
+    range_dps: float = math.inf
+    jitter_s: float = 0.0
+    drop_probability: float = 0.0
+    drift_step_s: float = 0.1
+    source: str = field(default="", compare=False)
+
+    def si(self) -> dict[str, float]:
+        """The flat SI configuration of the Rust model (rad/s, rad/sqrt(s), rad/s/sqrt(s), s, degC)."""
+        return {
+            "rate_hz": self.rate_hz,
+            "jitter": self.jitter_s,
+            "drop_probability": self.drop_probability,
+            "scale_error": self.scale_error,
+            "scale_asymmetry": self.scale_asymmetry,
+            "scale_temperature": self.scale_per_c,
+            "bias": self.bias_dps * _DEG,
+            "bias_temperature": self.bias_dps_per_c * _DEG,
+            "arw": self.arw_deg_per_sqrt_h * _DEG / math.sqrt(_HOUR),
+            "bandwidth": self.bandwidth_hz,
+            "bias_instability": self.bias_instability_deg_per_h * _DEG / _HOUR,
+            "flicker_min": self.flicker_band_s[0],
+            "flicker_max": self.flicker_band_s[1],
+            "rrw": self.rrw_deg_per_h_per_sqrt_h * _DEG / _HOUR / math.sqrt(_HOUR),
+            "drift_step": self.drift_step_s,
+            "temperature_start": self.temperature_c[0],
+            "temperature_end": self.temperature_c[1],
+            "temperature_time_constant": self.temperature_time_constant_s,
+            "reference_temperature": self.reference_temperature_c,
+            "resolution": self.resolution_dps * _DEG,
+            "range": self.range_dps * _DEG,
+        }
+
+    def replace(self, **changes: Any) -> GyroSpec:
+        """A copy with some fields changed (``spec.replace(rate_hz=10.0)``)."""
+        return replace(self, **changes)
+
+    def allan_deviation(self, taus: ArrayLike) -> FloatArray:
+        """Closed-form Allan deviation [rad/s] of the noise terms at averaging times ``taus`` [s]
+        (IEEE 952 Annex C: ARW, the flicker terms, RRW; without quantisation and temperature)."""
+        adev: FloatArray = _gyrocore.gyro_allan_deviation(self.si(), as_float_array("taus", taus))
+        return adev
+
+    def as_dict(self) -> dict[str, Any]:
+        """The fields as a plain dict (for JSON)."""
+        return asdict(self)
+
+
+#: The papers' sensors. Values marked "assumed" are not in the papers; they are plausible for the
+#: class of sensor and documented here so that results can be traced.
+SENSORS: dict[str, GyroSpec] = {
+    "xv3500": GyroSpec(
+        name="Epson XV3500",
+        rate_hz=100.0,
+        arw_deg_per_sqrt_h=2.5,
+        bandwidth_hz=20.0,
+        bias_instability_deg_per_h=18.0,
+        rrw_deg_per_h_per_sqrt_h=4.0,
+        flicker_band_s=(1.0, 1.0e5),
+        bias_dps=0.75,
+        bias_dps_per_c=0.01,
+        scale_error=0.0253,
+        range_dps=100.0,
+        source=(
+            "Hong & Park: ARW 2.5 deg/sqrt(h), bias instability 18 deg/h (section 2.1), scale error "
+            "2.53 % (2.2), bias 0.75 deg/s (their estimate, 4.2), 100 Hz, +-100 deg/s (2.2); a 20 Hz "
+            "noise bandwidth gives Figure 8a's 2 deg/s peak-to-peak noise; assumed: RRW, flicker band, "
+            "0.01 deg/s/degC"
+        ),
+    ),
+    "crs03": GyroSpec(
+        name="Silicon Sensing CRS03-04",
+        rate_hz=10.0,
+        arw_deg_per_sqrt_h=3.0,
+        bandwidth_hz=10.0,
+        bias_instability_deg_per_h=66.0,
+        rrw_deg_per_h_per_sqrt_h=10.0,
+        flicker_band_s=(1.0, 1.0e5),
+        bias_dps=1.432,
+        bias_dps_per_c=0.005,
+        scale_error=0.01,
+        resolution_dps=400.0 / 65536.0,
+        range_dps=200.0,
+        temperature_c=(20.0, 20.0),
+        source=(
+            "HDR paper: bias drift < 66 deg/h, +-200 deg/s, 10 Hz bandwidth and sampling (Table I, "
+            "section 5), static bias 1.432 deg/s (5.2); assumed: ARW, RRW, flicker band, 1 % scale "
+            "error, 0.005 deg/s/degC, a 16-bit converter"
+        ),
+    ),
+    "fog": GyroSpec(
+        name="KVH/Andrew Autogyro Navigator (FOG)",
+        rate_hz=100.0,
+        arw_deg_per_sqrt_h=0.07,
+        bandwidth_hz=100.0,
+        bias_instability_deg_per_h=18.0,
+        rrw_deg_per_h_per_sqrt_h=1.0,
+        flicker_band_s=(0.1, 1.0e5),
+        bias_dps=0.01,
+        bias_dps_per_c=0.0005,
+        # FOG eq 5: turn error E_T = -0.52 T + 19.23 deg per 360 deg, i.e. s(T) = E_T / 360.
+        scale_error=(19.23 - 0.52 * 25.0) / 360.0,
+        scale_per_c=-0.52 / 360.0,
+        temperature_c=(22.0, 42.0),
+        temperature_time_constant_s=2400.0,
+        range_dps=100.0,
+        source=(
+            "FOG paper: bias drift 18 deg/h rms, +-100 deg/s, 100 Hz bandwidth (Table I), scale error "
+            "linear in temperature (eq 5), steady temperature after about 2 h (section 3); the 0.5 % "
+            "scale non-linearity is represented by that temperature-linear scale error; assumed: ARW, "
+            "RRW, flicker band, bias and its temperature coefficient, 22 -> 42 degC warm-up"
+        ),
+    ),
+}
+
+
+def sensor(name: str | GyroSpec, **changes: Any) -> GyroSpec:
+    """A sensor of :data:`SENSORS` by name (or a spec as given), with ``changes`` applied."""
+    if isinstance(name, GyroSpec):
+        spec = name
+    else:
+        try:
+            spec = SENSORS[name]
+        except KeyError:
+            raise ValueError(f"unknown sensor {name!r}; choose one of {', '.join(SENSORS)}") from None
+    return spec.replace(**changes) if changes else spec
+
+
+def _seed(seed: int) -> int:
+    if not isinstance(seed, (int, np.integer)) or isinstance(seed, bool) or not 0 <= seed < 2**64:
+        raise ValueError(f"seed must be an integer in [0, 2**64), got {seed!r}")
+    return int(seed)
+
+
+def sample_times(spec: GyroSpec, start: float, end: float, *, seed: int) -> FloatArray:
+    """The instants [s] in ``[start, end)`` at which the log receives samples: the grid of
+    ``spec.rate_hz`` with the spec's jitter and dropped samples (the first sample is never moved or
+    dropped)."""
+    t: FloatArray = _gyrocore.gyro_sample_times(spec.si(), _seed(seed), float(start), float(end))
+    return t
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class Reading:
+    """What the simulated gyro reads and the truth about its errors, per sample.
+
+    Attributes:
+        rate: the reading ``r_m`` [rad/s].
+        temperature: sensor temperature [degC].
+        bias: everything it would read at rest apart from white noise, ``b + d`` [rad/s].
+        scale: the scale error ``s`` applied [1].
+    """
+
+    rate: FloatArray
+    temperature: FloatArray
+    bias: FloatArray
+    scale: FloatArray
+
+    def __repr__(self) -> str:
+        return f"Reading(n={len(self.rate)})"
+
+
+def measure(spec: GyroSpec, t: ArrayLike, rate_true: ArrayLike, *, seed: int) -> Reading:
+    """Readings of the gyro ``spec`` for the true rate [rad/s] at times ``t`` [s] (strictly
+    increasing; the first is the model's time origin)."""
+    ta, ra = as_float_array("t", t), as_float_array("rate_true", rate_true)
+    rate, temperature, bias, scale = _gyrocore.gyro_measure(spec.si(), _seed(seed), ta, ra)
+    return Reading(rate, temperature, bias, scale)
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class Drive:
+    """A simulated run: the true motion, the gyro's reading and its (known) errors, per sample.
+
+    Units: s, rad/s, rad, m, m/s, degC; counter-clockwise positive.
+
+    Attributes:
+        t: sample times [s].
+        rate_true: true yaw rate [rad/s].
+        heading_true: true heading [rad] (continuous, 0 at the start).
+        rate_measured: the gyro's reading [rad/s].
+        drift: the slow error ``eps_d`` (HDR eq 1) at each sample: the gyro's bias ``b + d`` minus
+            :attr:`bias` [rad/s]. Scale error and white noise are not part of it.
+        bias: the static bias ``eps0`` [rad/s]: the mean of ``b + d`` over the rest window (what a
+            noise-free static bias test there would measure), or its value at the first sample.
+        stationary: rest window at the start [s], or None.
+        x, y: true position [m]. speed: true forward speed [m/s].
+        temperature: sensor temperature [degC]. scale: scale error ``s`` per sample [1].
+        motion: the motion that was sampled. sensor: the gyro. seed: the seed.
     """
 
     t: FloatArray
@@ -31,46 +278,68 @@ class Drive:
     heading_true: FloatArray
     rate_measured: FloatArray
     drift: FloatArray
-    """Slow error ``eps_d`` (HDR eq 1) at each sample, excluding the static bias [rad/s]."""
     bias: float
-    """Static bias ``eps0`` [rad/s]."""
-    stationary: tuple[float, float]
-    """Rest window at the start [s]."""
+    stationary: tuple[float, float] | None
+    x: FloatArray
+    y: FloatArray
+    speed: FloatArray
+    temperature: FloatArray
+    scale: FloatArray
+    motion: motion.Motion
+    sensor: GyroSpec
+    seed: int
+
+    @property
+    def duration(self) -> float:
+        """Length of the record [s]."""
+        return float(self.t[-1] - self.t[0])
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    def __repr__(self) -> str:
+        return (
+            f"Drive({self.motion.name!r}, {self.sensor.name!r} at {self.sensor.rate_hz:g} Hz, "
+            f"seed {self.seed}, n={len(self.t)}, {self.duration:.1f} s, "
+            f"static bias {math.degrees(self.bias):.4f} deg/s, "
+            f"drift within +-{math.degrees(float(np.abs(self.drift).max())):.4f} deg/s)"
+        )
 
 
-def _segments(duration: float, rest: float, rng: np.random.Generator) -> list[tuple[float, float, float]]:
-    """(start, end, rate) pieces of the true yaw rate; rates in rad/s, ramps added later."""
-    pieces = [(0.0, rest, 0.0)]
-    t = rest
-    while t < duration:
-        kind = rng.choice(_KINDS, p=(0.55, 0.2, 0.2, 0.05))
-        if kind == "straight":
-            length, rate = rng.uniform(20, 90), 0.0
-        elif kind == "curve":
-            length = rng.uniform(10, 30)
-            rate = math.radians(rng.uniform(1.0, 3.0)) * rng.choice((-1, 1))
-        elif kind == "turn":
-            length = rng.uniform(5, 8)
-            rate = math.radians(90.0) / length * rng.choice((-1, 1))
-        else:
-            length, rate = rng.uniform(5, 20), 0.0
-        pieces.append((t, min(t + length, duration), rate))
-        t += length
-    return pieces
+def simulate(trajectory: motion.Motion, spec: GyroSpec | str, *, seed: int, rate_hz: float | None = None) -> Drive:
+    """Sample ``trajectory`` with the gyro ``spec`` (a :class:`GyroSpec` or a name in :data:`SENSORS`).
 
-
-def _true_rate(t: FloatArray, pieces: list[tuple[float, float, float]], swerve: float) -> FloatArray:
-    """Piecewise-constant rate with 1 s cosine ramps at the edges, plus a 0.1 Hz swerve while moving."""
-    rate = np.zeros_like(t)
-    for start, end, r in pieces:
-        if r == 0.0:
-            continue
-        ramp = np.clip(np.minimum(t - start, end - t), 0.0, 1.0)
-        inside = (t >= start) & (t <= end)
-        rate[inside] += r * 0.5 * (1 - np.cos(math.pi * ramp[inside]))
-    moving = t > pieces[0][1]
-    rate[moving] += swerve * np.sin(2 * math.pi * 0.1 * t[moving])
-    return rate
+    The samples fall on the spec's grid (with its jitter and drops) over the motion's duration.
+    ``rate_hz`` overrides the spec's rate. Same arguments, same drive.
+    """
+    spec = sensor(spec) if rate_hz is None else sensor(spec, rate_hz=rate_hz)
+    seed = _seed(seed)
+    t = sample_times(spec, 0.0, trajectory.duration, seed=seed)
+    truth = trajectory.sample(t)
+    reading = measure(spec, t, truth.rate, seed=seed)
+    window = trajectory.rest
+    if window is not None:
+        inside = (t >= window[0]) & (t <= window[1])
+        bias = float(reading.bias[inside].mean())
+    else:
+        bias = float(reading.bias[0])
+    return Drive(
+        t=t,
+        rate_true=truth.rate,
+        heading_true=truth.heading,
+        rate_measured=reading.rate,
+        drift=reading.bias - bias,
+        bias=bias,
+        stationary=window,
+        x=truth.x,
+        y=truth.y,
+        speed=truth.speed,
+        temperature=reading.temperature,
+        scale=reading.scale,
+        motion=trajectory,
+        sensor=spec,
+        seed=seed,
+    )
 
 
 def car_drive(
@@ -79,52 +348,17 @@ def car_drive(
     *,
     seed: int = 0,
     rest: float = 20.0,
-    bias_dps: float = 0.5,
-    drift_dps: float = 0.05,
-    arw_deg_per_sqrt_h: float = 2.5,
-    swerve_dps: float = 0.3,
+    mix: str = "mixed",
+    sensor_name: str | GyroSpec = "crs03",
+    **changes: Any,
 ) -> Drive:
-    """A car drive: a rest at the start, then straight stretches, gentle curves, 90-degree turns, stops.
+    """A car drive: a rest of ``rest`` seconds (the static bias test), then the road mix ``mix``
+    of :data:`gyrocore.motion.ROAD_MIXES` (straight stretches with a slight swerve, swaying,
+    curves, 90-degree turns, stops), read by the gyro ``sensor_name`` (default the HDR paper's
+    CRS03-04) at ``rate_hz``. ``changes`` modify the sensor (``bias_dps=0.5``, ...).
 
-    Args:
-        duration: length [s]. rate_hz: gyro sample rate [Hz]. seed: fixes motion, drift and noise.
-        rest: rest time at the start [s] (the static bias test).
-        bias_dps: static bias [deg/s]. drift_dps: standard deviation of the slow drift [deg/s]
-            (a first-order Gauss-Markov process with a 300 s correlation time, starting at 0).
-        arw_deg_per_sqrt_h: angle random walk [deg/sqrt(h)]. swerve_dps: amplitude of the 0.1 Hz swerve.
+    One seed fixes the route, the drift and the noise; the route and the drift do not depend on
+    ``rate_hz``.
     """
-    if duration <= rest:
-        raise ValueError(f"duration ({duration} s) must exceed the rest time ({rest} s)")
-    if rate_hz <= 0:
-        raise ValueError(f"rate_hz must be > 0, got {rate_hz}")
-    rng = np.random.default_rng(seed)
-    pieces = _segments(duration, rest, rng)
-    # Drift on a 1 s grid, interpolated: a Gauss-Markov process independent of the sample rate.
-    knots = np.arange(0.0, duration + 2.0)
-    corr = 300.0
-    phi = math.exp(-1.0 / corr)
-    steps = rng.normal(0.0, math.radians(drift_dps) * math.sqrt(1 - phi**2), len(knots))
-    drift_knots = np.zeros(len(knots))
-    for k in range(1, len(knots)):
-        drift_knots[k] = phi * drift_knots[k - 1] + steps[k]
-    noise_rng = np.random.default_rng([seed, int(round(rate_hz * 1000))])
-    t = np.arange(0.0, duration, 1.0 / rate_hz)
-    rate_true = _true_rate(t, pieces, math.radians(swerve_dps))
-    # True heading: the true rate integrated on a 1 ms grid (exact to well below a millidegree).
-    fine = np.arange(0.0, duration + 0.001, 0.001)
-    rate_fine = _true_rate(fine, pieces, math.radians(swerve_dps))
-    heading_fine = np.concatenate(([0.0], np.cumsum(0.5 * (rate_fine[1:] + rate_fine[:-1]) * 0.001)))
-    heading_true = np.interp(t, fine, heading_fine)
-    drift = np.interp(t, knots, drift_knots)
-    bias = math.radians(bias_dps)
-    arw = math.radians(arw_deg_per_sqrt_h) / 60.0  # rad/sqrt(s)
-    noise = noise_rng.normal(0.0, arw * math.sqrt(rate_hz), len(t))
-    return Drive(
-        t=t,
-        rate_true=rate_true,
-        heading_true=heading_true,
-        rate_measured=rate_true + bias + drift + noise,
-        drift=drift,
-        bias=bias,
-        stationary=(0.0, rest),
-    )
+    route = motion.car(duration, mix=mix, seed=seed, rest=rest)
+    return simulate(route, sensor(sensor_name, rate_hz=rate_hz, **changes), seed=seed)

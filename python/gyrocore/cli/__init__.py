@@ -10,9 +10,9 @@ import argparse
 import sys
 from typing import Sequence
 
-from . import allan, calibrate, demo, presets, process
+from . import allan, calibrate, demo, evaluate, presets, process, simulate, tune
 
-COMMANDS = (demo, process, presets, allan, calibrate)
+COMMANDS = (demo, process, presets, allan, calibrate, evaluate, tune, simulate)
 
 
 def build_parser() -> argparse.ArgumentParser:

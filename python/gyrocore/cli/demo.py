@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from .. import evaluate, sim
+from .. import evaluate, motion, sim
 from ..pipeline import HeadingResult, preset_names, process, recommended_preset, uses_static_bias
 from ._common import add_command, write_atomically
 
@@ -26,12 +26,20 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p.add_argument("--duration", type=float, default=600.0, help="drive length [s] (default 600)")
     p.add_argument("--rate-hz", type=float, default=100.0, help="gyro sample rate [Hz] (default 100)")
     p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    p.add_argument("--sensor", choices=sorted(sim.SENSORS), default="crs03",
+                   help="simulated gyro (default crs03, the HDR paper's)")
+    p.add_argument("--mix", choices=sorted(motion.ROAD_MIXES), default="mixed",
+                   help="road mix of the drive (default mixed, the HDR paper's Mixed Drive)")
     p.add_argument("--plot", default="gyrocore_demo.png", help="PNG to write ('' for none)")
     p.add_argument("--json", action="store_true", help="print the table as JSON")
 
 
 def run(args: argparse.Namespace) -> int:
-    drive = sim.car_drive(duration=args.duration, rate_hz=args.rate_hz, seed=args.seed)
+    if args.seed < 0:
+        raise ValueError(f"--seed must be >= 0, got {args.seed}")
+    drive = sim.car_drive(
+        duration=args.duration, rate_hz=args.rate_hz, seed=args.seed, mix=args.mix, sensor_name=args.sensor
+    )
     rows: list[dict[str, Any]] = []
     results = {}
     for preset in preset_names():
@@ -45,9 +53,9 @@ def run(args: argparse.Namespace) -> int:
         print(json.dumps(rows, indent=2))
     else:
         print(
-            f"Simulated drive: {args.duration:.0f} s at {args.rate_hz:g} Hz (seed {args.seed}), "
-            f"static bias {np.degrees(drive.bias):.3f} deg/s, drift up to "
-            f"{np.degrees(np.abs(drive.drift).max()):.3f} deg/s"
+            f"Simulated drive: {args.duration:.0f} s of '{args.mix}' roads, {drive.sensor.name} at "
+            f"{args.rate_hz:g} Hz (seed {args.seed}), static bias {np.degrees(drive.bias):.3f} deg/s, "
+            f"drift up to {np.degrees(np.abs(drive.drift).max()):.3f} deg/s"
         )
         print(f"{'preset':<12} {'E_psi [deg]':>12} {'NE_psi [deg/min]':>17} {'final [deg]':>12} {'vs raw':>8}")
         for r in rows:

@@ -3,6 +3,7 @@
 
 mod allan;
 mod params;
+mod sim;
 mod table;
 
 use gyrocore::{
@@ -273,6 +274,7 @@ fn _gyrocore(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
     m.add_function(wrap_pyfunction!(downsample, m)?)?;
     allan::register(m)?;
+    sim::register(m)?;
     table::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

@@ -1,0 +1,181 @@
+"""``gyrocore tune``: fit a method's parameters over training drives and write a parameter file."""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from typing import Any, Sequence
+
+from .. import motion, tune
+from ..io import read_log
+from ..pipeline import parameters
+from ._common import add_command, print_json
+
+_TABLES = {"II": motion.TABLE_II_DRIVES, "IV": motion.TABLE_IV_DRIVES}
+#: Seeds of the simulated test drives start here, away from the training drives' seeds.
+_TEST_SEED = 500
+#: Seeds of the held-out do-no-harm drives.
+_HARM_TEST_SEED = 2000
+
+
+def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
+    p = add_command(
+        sub,
+        "tune",
+        "fit a method's parameters to minimise the mean NE_psi over training drives (HDR section 5.3)",
+        "gyrocore tune --preset hdr --sim-table II --test-sim-table IV --out hdr_tuned.json",
+        run,
+    )
+    add = p.add_argument
+    add("logs", nargs="*", metavar="LOGDIR", help="real log folders to train on (with a reference)")
+    add("--preset", default="hdr", metavar="NAME", help="base preset (default hdr)")
+    add(
+        "--param",
+        action="append",
+        metavar="NAME[=LOW:HIGH]",
+        help="parameter to fit, optionally with SI bounds (repeatable; default: HDR's five, and the "
+        "threshold where the preset has one)",
+    )
+    add("--sim-table", action="append", choices=sorted(_TABLES),
+        help="train on simulated drives like HDR Table II or IV")
+    add("--test-sim-table", action="append", choices=sorted(_TABLES), help="simulated test drives (other seeds)")
+    add("--test", action="append", default=[], metavar="LOGDIR", help="real log folder to test on (not trained on)")
+    add("--time-scale", type=float, default=1.0, metavar="F", help="scale the simulated drives' durations (default 1)")
+    add("--rate-hz", type=float, default=10.0, metavar="HZ",
+        help="sample rate of the simulated drives [Hz] (default 10)")
+    add("--sensor", default="crs03", metavar="NAME", help="simulated gyro (gyrocore.sim.SENSORS; default crs03)")
+    add("--harm-mix", action="append", metavar="MIX", help="road mixes of the perfect-gyro do-no-harm drives "
+        f"(default {', '.join(tune.HARM_MIXES)})")
+    add("--harm-per-mix", type=int, default=2, metavar="N", help="perfect-gyro drives per road mix (default 2)")
+    add("--no-harm", action="store_true", help="no do-no-harm constraint")
+    add("--harm-limit", type=float, default=0.5, metavar="DEG",
+        help="allowed E_psi above plain integration on a perfect gyro [deg] (default 0.5)")
+    add("--bias-duration", type=float, metavar="S", help="static bias of logs without a rest window: first S seconds")
+    add("--leave-one-out", action="store_true", help="also report the leave-one-out score (one fit per drive)")
+    add("--max-evals", type=int, default=2000, metavar="N", help="objective evaluations per fit (default 2000)")
+    add("--seed", type=int, default=0, metavar="N", help="optimiser seed (default 0)")
+    add("--optimiser", choices=tune.OPTIMISERS, default="differential_evolution")
+    add("--name", help="name of the parameter set (default <preset>_tuned)")
+    add("--out", metavar="FILE", help="write the parameter file (JSON) here")
+    add("--json", action="store_true", help="print the result as JSON")
+
+
+def _parse_params(specs: Sequence[str]) -> tuple[list[str], dict[str, tuple[float, float]]]:
+    names: list[str] = []
+    bounds: dict[str, tuple[float, float]] = {}
+    for spec in specs:
+        name, _, rng = spec.partition("=")
+        if name not in parameters():
+            raise ValueError(f"--param {spec}: unknown parameter {name!r}")
+        names.append(name)
+        if rng:
+            low, sep, high = rng.partition(":")
+            try:
+                bounds[name] = (float(low), float(high))
+            except ValueError:
+                raise ValueError(f"--param {spec}: bounds must read LOW:HIGH (SI numbers)") from None
+            if not sep:
+                raise ValueError(f"--param {spec}: bounds must read LOW:HIGH (SI numbers)")
+    return names, bounds
+
+
+def run(args: argparse.Namespace) -> int:
+    names, bounds = _parse_params(args.param or [])
+    progress = (lambda msg: print(msg, file=sys.stderr)) if not args.json else None
+    sim_options = {"rate_hz": args.rate_hz, "sensor_name": args.sensor, "time_scale": args.time_scale}
+    cases = [tune.Case.from_log(read_log(p), bias_duration=args.bias_duration) for p in args.logs]
+    for table in args.sim_table or []:
+        cases += tune.simulated_cases(_TABLES[table], **sim_options)
+    if not cases:
+        raise ValueError("no training drive: give log folders and/or --sim-table")
+    tests = [tune.Case.from_log(read_log(p), bias_duration=args.bias_duration) for p in args.test]
+    for table in args.test_sim_table or []:
+        tests += tune.simulated_cases(_TABLES[table], first_seed=_TEST_SEED, **sim_options)
+    harm_options = {
+        "minutes": 20.0 * args.time_scale, "rate_hz": args.rate_hz, "mixes": args.harm_mix or tune.HARM_MIXES,
+        "per_mix": args.harm_per_mix,
+    }
+    harm = [] if args.no_harm else tune.harm_cases(**harm_options)
+    # The same roads with other seeds: does the constraint hold on drives it was not fitted to?
+    harm_test = tune.harm_cases(**harm_options, first_seed=_HARM_TEST_SEED)
+    options: dict[str, Any] = {
+        "preset": args.preset, "names": names or None, "bounds": bounds, "harm": harm,
+        "harm_limit_deg": args.harm_limit, "max_evaluations": args.max_evals, "seed": args.seed,
+        "optimiser": args.optimiser,
+    }
+    if progress:
+        progress(f"tuning {args.preset} on {len(cases)} drive(s), {len(harm)} do-no-harm drive(s), "
+                 f"up to {args.max_evals} evaluations")
+    result = tune.tune(cases, name=args.name, **options)
+    loo = tune.leave_one_out(cases, progress=progress, **options) if args.leave_one_out else ()
+    test = tune.score_cases(tests, args.preset, result.params.overrides)
+    test_start = tune.score_cases(tests, args.preset, result.start)
+    held = (
+        tune.score_cases(harm_test, args.preset, result.start),
+        tune.score_cases(harm_test, args.preset, result.params.overrides),
+    )
+    extra = dict(result.params.tuning)
+    extra["harm_held_out_deg"] = {s.case: s.harm_deg for s in held[1]}
+    if loo:
+        extra["leave_one_out_ne_psi_deg_per_min"] = tune.mean_ne_psi(loo)
+    if test:
+        extra["test"] = {t.case: t.ne_psi_deg_per_min for t in test}
+        extra["test_score_ne_psi_deg_per_min"] = tune.mean_ne_psi(test)
+    params = tune.ParameterSet(result.params.name, result.params.preset, result.params.overrides, extra)
+    if args.out:
+        params.write(args.out)
+    if args.json:
+        out = result.as_dict()
+        out["leave_one_out"] = [s.as_dict() for s in loo]
+        out["test"] = [s.as_dict() for s in test]
+        out["test_start"] = [s.as_dict() for s in test_start]
+        out["harm_test_start"] = [s.as_dict() for s in held[0]]
+        out["harm_test"] = [s.as_dict() for s in held[1]]
+        print_json(out)
+    else:
+        _print_report(result, loo, test, test_start)
+        _print_harm("held-out perfect-gyro drives", *held, result.harm_limit_deg)
+    if args.out:
+        print(f"wrote {args.out}", file=sys.stderr if args.json else sys.stdout)
+    return 0
+
+
+_RATES = ("hdr_increment", "hdr_turn_threshold", "threshold")
+
+
+def _print_report(
+    result: tune.TuningResult,
+    loo: Sequence[tune.CaseScore],
+    test: Sequence[tune.CaseScore],
+    test_start: Sequence[tune.CaseScore],
+) -> None:
+    units = parameters()
+    print(f"{result.params.preset}: {result.optimiser}, seed {result.seed}, {result.evaluations} evaluations")
+    print(f"{'parameter':<20} {'start':>12} {'tuned':>12}  unit")
+    for name, value in result.params.overrides.items():
+        deg = f"  ({math.degrees(result.start[name]):.4g} -> {math.degrees(value):.4g} deg/s)" if name in _RATES else ""
+        print(f"{name:<20} {result.start[name]:>12.5g} {value:>12.5g}  {units.get(name, '')}{deg}")
+    _print_scores("training", result.train_start, result.train)
+    if test:
+        _print_scores("test", test_start, test)
+    if loo:
+        print(f"leave-one-out mean NE_psi: {tune.mean_ne_psi(loo):.4f} deg/min "
+              f"(training {result.train_score:.4f})")
+    if result.harm:
+        _print_harm("the fit's perfect-gyro drives", result.harm_start, result.harm, result.harm_limit_deg)
+
+
+def _print_harm(label: str, start: Sequence[tune.CaseScore], tuned: Sequence[tune.CaseScore], limit: float) -> None:
+    print(f"do no harm on {label} (E_psi above plain integration, limit {limit} deg):")
+    for before, after in zip(start, tuned):
+        flag = "ok" if after.harm_deg <= limit else "EXCEEDED"
+        print(f"  {after.case:<60} start {before.harm_deg:+8.3f}  tuned {after.harm_deg:+8.3f} deg  {flag}")
+
+
+def _print_scores(label: str, start: Sequence[tune.CaseScore], tuned: Sequence[tune.CaseScore]) -> None:
+    print(f"{label + ' drive':<44} {'raw E_psi':>10} {'start E_psi':>12} {'tuned E_psi':>12} {'tuned NE_psi':>13}")
+    for a, b in zip(start, tuned):
+        print(f"{b.case:<44} {b.raw_e_psi_deg:>10.2f} {a.e_psi_deg:>12.3f} {b.e_psi_deg:>12.3f} "
+              f"{b.ne_psi_deg_per_min:>13.4f}")
+    print(f"{'mean NE_psi [deg/min]':<44} {'':>10} {tune.mean_ne_psi(start):>12.4f} {tune.mean_ne_psi(tuned):>12.4f}")

@@ -1,0 +1,173 @@
+"""Gyro-aided odometry (FOG section 4.2): position from the odometry's speed and the gyro's heading.
+
+The odometry gives how far the vehicle moved, the gyro which way. Between two odometry samples the
+speed is taken as linear (trapezoid distance) and the heading as turning at a constant rate, so
+each step is a circular arc: exact for a vehicle on a circle at constant speed, and free of the
+first-order error that stepping along the start or mid heading makes in turns.
+
+Units: s, m, m/s, rad (counter-clockwise positive, from the x axis).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ._arrays import FloatArray, as_float_array
+from .io import Log
+from .pipeline import HeadingResult
+
+
+@dataclass(frozen=True, repr=False)
+class Track:
+    """A dead-reckoned track: position ``(x, y)`` [m] and heading [rad] at the odometry times ``t`` [s]."""
+
+    t: FloatArray
+    x: FloatArray
+    y: FloatArray
+    heading: FloatArray
+
+    @property
+    def distance(self) -> float:
+        """Path length travelled [m]."""
+        return float(np.hypot(np.diff(self.x), np.diff(self.y)).sum())
+
+    def __repr__(self) -> str:
+        return (
+            f"Track(n={len(self.t)}, duration={self.t[-1] - self.t[0]:.3f} s, distance={self.distance:.3f} m, "
+            f"end=({self.x[-1]:.3f}, {self.y[-1]:.3f}) m)"
+        )
+
+
+def dead_reckon(
+    t_speed: ArrayLike,
+    speed: ArrayLike,
+    t_heading: ArrayLike,
+    heading: ArrayLike,
+    *,
+    position: tuple[float, float] = (0.0, 0.0),
+    heading_offset: float = 0.0,
+) -> Track:
+    """Position from speed and heading (FOG section 4.2, gyro-aided odometry).
+
+    Args:
+        t_speed, speed: odometry times [s] and forward speed [m/s] (negative when reversing).
+        t_heading, heading: continuous heading [rad] at its own times, e.g. a
+            :class:`~gyrocore.HeadingResult`; it is interpolated at the odometry times. Odometry
+            samples outside the heading's time span are left out.
+        position: position at the first odometry sample used [m].
+        heading_offset: added to the heading [rad] (the gyro gives only heading changes).
+
+    Returns:
+        The track at the odometry times used.
+    """
+    ts = as_float_array("t_speed", t_speed)
+    v = as_float_array("speed", speed)
+    th = as_float_array("t_heading", t_heading)
+    psi = as_float_array("heading", heading)
+    if len(ts) != len(v) or len(th) != len(psi):
+        raise ValueError("t_speed/speed and t_heading/heading must have equal lengths")
+    for name, a in (("t_speed", ts), ("speed", v), ("t_heading", th), ("heading", psi)):
+        bad = ~np.isfinite(a)
+        if bad.any():
+            i = int(np.flatnonzero(bad)[0])
+            raise ValueError(f"{name}: non-finite value at index {i}")
+    for name, a in (("t_speed", ts), ("t_heading", th)):
+        back = np.diff(a) <= 0
+        if back.any():
+            i = int(np.flatnonzero(back)[0]) + 1
+            raise ValueError(f"{name}: times must strictly increase, but [{i}] = {a[i]} follows {a[i - 1]}")
+    if len(th) < 2:
+        raise ValueError("need at least two heading samples")
+    inside = (ts >= th[0]) & (ts <= th[-1])
+    if inside.sum() < 2:
+        raise ValueError("fewer than two odometry samples lie inside the heading's time span")
+    ts, v = ts[inside], v[inside]
+    psi_s = np.interp(ts, th, psi) + heading_offset
+    dt = np.diff(ts)
+    distance = 0.5 * (v[1:] + v[:-1]) * dt
+    turn = np.diff(psi_s)
+    # A chord of an arc that turns by d: length s * sin(d/2)/(d/2), along the mean heading.
+    chord = distance * np.sinc(turn / (2 * math.pi))
+    mid = psi_s[:-1] + 0.5 * turn
+    x = position[0] + np.concatenate(([0.0], np.cumsum(chord * np.cos(mid))))
+    y = position[1] + np.concatenate(([0.0], np.cumsum(chord * np.sin(mid))))
+    return Track(ts, x, y, psi_s)
+
+
+def dead_reckon_log(log: Log, result: HeadingResult) -> Track:
+    """Dead reckoning of a log with ``result``'s heading, aligned with the reference at the start.
+
+    The track starts at the reference position and heading at the first odometry time inside the
+    reference's and the heading's spans (only relative heading is meaningful).
+    """
+    if log.t_odometry is None or log.speed is None:
+        raise ValueError(f"log {log.name}: no odometry (odometry.csv)")
+    if log.t_ref is None or log.heading_ref is None or log.x_ref is None or log.y_ref is None:
+        raise ValueError(f"log {log.name}: no reference track (reference.csv)")
+    start = max(log.t_ref[0], result.t[0])
+    later = log.t_odometry >= start
+    if not later.any():
+        raise ValueError(f"log {log.name}: no odometry sample after the start of the reference and heading")
+    t0 = float(log.t_odometry[np.flatnonzero(later)[0]])
+    ref_heading = np.unwrap(log.heading_ref)
+    offset = float(np.interp(t0, log.t_ref, ref_heading) - np.interp(t0, result.t, result.heading))
+    position = (float(np.interp(t0, log.t_ref, log.x_ref)), float(np.interp(t0, log.t_ref, log.y_ref)))
+    return dead_reckon(
+        log.t_odometry[later], log.speed[later], result.t, result.heading, position=position, heading_offset=offset
+    )
+
+
+@dataclass(frozen=True)
+class PositionErrors:
+    """Distance [m] between a dead-reckoned track and a reference track, at the reference's times."""
+
+    mean_error_m: float
+    max_error_m: float
+    final_error_m: float
+    """Error at the last compared reference time."""
+    distance_m: float
+    """Path length of the reference over the compared span."""
+    final_error_percent: float
+    """Final error as a percentage of the distance travelled (the usual dead-reckoning figure)."""
+    n: int
+    """Reference samples compared."""
+
+    def as_dict(self) -> dict[str, float]:
+        """The metrics as a plain dict (for JSON)."""
+        return asdict(self)
+
+
+def position_errors(track: Track, t_ref: ArrayLike, x_ref: ArrayLike, y_ref: ArrayLike) -> PositionErrors:
+    """Compare ``track`` (interpolated) with the reference positions inside the track's time span."""
+    tr, xr, yr = as_float_array("t_ref", t_ref), as_float_array("x_ref", x_ref), as_float_array("y_ref", y_ref)
+    if not len(tr) == len(xr) == len(yr):
+        raise ValueError("t_ref, x_ref and y_ref must have equal lengths")
+    inside = (tr >= track.t[0]) & (tr <= track.t[-1])
+    if inside.sum() < 2:
+        raise ValueError("the reference has fewer than two samples inside the track's time span")
+    tr, xr, yr = tr[inside], xr[inside], yr[inside]
+    err = np.hypot(np.interp(tr, track.t, track.x) - xr, np.interp(tr, track.t, track.y) - yr)
+    distance = float(np.hypot(np.diff(xr), np.diff(yr)).sum())
+    return PositionErrors(
+        mean_error_m=float(err.mean()),
+        max_error_m=float(err.max()),
+        final_error_m=float(err[-1]),
+        distance_m=distance,
+        final_error_percent=100.0 * float(err[-1]) / distance if distance > 0 else math.nan,
+        n=len(tr),
+    )
+
+
+def return_position_error(track: Track, *, displacement: tuple[float, float] = (0.0, 0.0)) -> float:
+    """Return position error of a closed path [m] (FOG section 4.2, Figure 8).
+
+    The distance between where the track ends and where it should end: its start plus the true
+    ``displacement`` [m] from start to end (zero for a path that returns to its start).
+    """
+    dx = track.x[-1] - track.x[0] - displacement[0]
+    dy = track.y[-1] - track.y[0] - displacement[1]
+    return math.hypot(dx, dy)

@@ -1,0 +1,208 @@
+//! Bindings of the simulated gyro (`gyrocore.sim` documents the Python API). The configuration
+//! arrives as a flat dict of SI values; `gyrocore.sim.GyroSpec` builds it from datasheet units.
+
+use gyrocore::{check_block, GyroModel, GyroModelConfig, Stage};
+use numpy::{PyArray1, PyReadonlyArray1};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// The accepted configuration keys, with their units.
+const FIELDS: &[(&str, &str)] = &[
+    ("rate_hz", "output data rate [Hz]"),
+    ("jitter", "standard deviation of the sampling instants [s]"),
+    ("drop_probability", "probability that a sample is lost [1]"),
+    ("scale_error", "scale error s of Hong eq 1 [1]"),
+    ("scale_asymmetry", "ccw minus cw scale error [1]"),
+    ("scale_temperature", "scale error per degree [1/degC]"),
+    (
+        "bias",
+        "bias b of Hong eq 1 at the reference temperature [rad/s]",
+    ),
+    ("bias_temperature", "bias per degree [rad/s/degC]"),
+    ("arw", "angle random walk N [rad/sqrt(s)]"),
+    (
+        "bandwidth",
+        "corner of the low-pass on the white noise [Hz]",
+    ),
+    ("bias_instability", "bias instability B [rad/s]"),
+    ("flicker_min", "shortest flicker correlation time [s]"),
+    ("flicker_max", "longest flicker correlation time [s]"),
+    ("rrw", "rate random walk K [rad/s/sqrt(s)]"),
+    ("drift_step", "grid of the slow bias [s]"),
+    (
+        "temperature_start",
+        "temperature at the first sample [degC]",
+    ),
+    ("temperature_end", "temperature reached in the end [degC]"),
+    (
+        "temperature_time_constant",
+        "time constant of the temperature [s]",
+    ),
+    (
+        "reference_temperature",
+        "temperature of scale_error and bias [degC]",
+    ),
+    ("resolution", "one least significant bit [rad/s]"),
+    ("range", "measurement range [rad/s]"),
+];
+
+/// Most samples one call may produce (8 GB of float64): a guard against a duration in ms.
+const MAX_SAMPLES: f64 = 1.0e9;
+
+/// Builds and validates the core configuration from the flat SI dict (every key in `FIELDS`).
+fn config_from(dict: &Bound<'_, PyDict>) -> PyResult<GyroModelConfig> {
+    let rate_hz: f64 = match dict.get_item("rate_hz")? {
+        Some(v) => v.extract()?,
+        None => {
+            return Err(PyValueError::new_err(
+                "the gyro configuration needs rate_hz",
+            ))
+        }
+    };
+    let mut c = GyroModelConfig::ideal(rate_hz);
+    for (key, value) in dict.iter() {
+        let name: String = key.extract()?;
+        let v: f64 = value.extract()?;
+        let field = match name.as_str() {
+            "rate_hz" => &mut c.rate_hz,
+            "jitter" => &mut c.jitter,
+            "drop_probability" => &mut c.drop_probability,
+            "scale_error" => &mut c.scale_error,
+            "scale_asymmetry" => &mut c.scale_asymmetry,
+            "scale_temperature" => &mut c.scale_temperature,
+            "bias" => &mut c.bias,
+            "bias_temperature" => &mut c.bias_temperature,
+            "arw" => &mut c.arw,
+            "bandwidth" => &mut c.bandwidth,
+            "bias_instability" => &mut c.bias_instability,
+            "flicker_min" => &mut c.flicker_min,
+            "flicker_max" => &mut c.flicker_max,
+            "rrw" => &mut c.rrw,
+            "drift_step" => &mut c.drift_step,
+            "temperature_start" => &mut c.temperature.start,
+            "temperature_end" => &mut c.temperature.end,
+            "temperature_time_constant" => &mut c.temperature.time_constant,
+            "reference_temperature" => &mut c.reference_temperature,
+            "resolution" => &mut c.resolution,
+            "range" => &mut c.range,
+            _ => {
+                let valid: Vec<&str> = FIELDS.iter().map(|(n, _)| *n).collect();
+                return Err(PyValueError::new_err(format!(
+                    "unknown gyro parameter '{name}'; valid names: {}",
+                    valid.join(", ")
+                )));
+            }
+        };
+        *field = v;
+    }
+    c.validate()
+        .map_err(|e| PyValueError::new_err(format!("gyro model: {e}")))?;
+    Ok(c)
+}
+
+type Array<'py> = Bound<'py, PyArray1<f64>>;
+
+fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
+    a.as_slice()
+        .map_err(|_| PyValueError::new_err(format!("{name} must be a contiguous float64 array")))
+}
+
+/// Readings of the simulated gyro for true rates `rate` [rad/s] at times `t` [s]; returns
+/// (reading [rad/s], temperature [degC], bias b + d [rad/s], scale error s [1]) per sample.
+#[pyfunction]
+fn gyro_measure<'py>(
+    py: Python<'py>,
+    config: &Bound<'py, PyDict>,
+    seed: u64,
+    t: PyReadonlyArray1<'py, f64>,
+    rate: PyReadonlyArray1<'py, f64>,
+) -> PyResult<(Array<'py>, Array<'py>, Array<'py>, Array<'py>)> {
+    let mut model = GyroModel::new(config_from(config)?, seed)
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
+    let n = t.len();
+    let mut out = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    py.detach(|| {
+        check_block(t, rate, None, None, true)?;
+        for (i, (&ti, &ri)) in t.iter().zip(rate).enumerate() {
+            let s = model.update(ti, ri);
+            (out.0[i], out.1[i], out.2[i], out.3[i]) = (s.rate, s.temperature, s.bias, s.scale);
+        }
+        Ok(())
+    })
+    .map_err(|e: gyrocore::Error| PyValueError::new_err(e.to_string()))?;
+    Ok((
+        PyArray1::from_vec(py, out.0),
+        PyArray1::from_vec(py, out.1),
+        PyArray1::from_vec(py, out.2),
+        PyArray1::from_vec(py, out.3),
+    ))
+}
+
+/// The kept sampling instants in `[start, end)` [s] (jittered grid, dropped samples left out).
+#[pyfunction]
+fn gyro_sample_times<'py>(
+    py: Python<'py>,
+    config: &Bound<'py, PyDict>,
+    seed: u64,
+    start: f64,
+    end: f64,
+) -> PyResult<Array<'py>> {
+    let c = config_from(config)?;
+    if !(start.is_finite() && end.is_finite() && end > start) {
+        return Err(PyValueError::new_err(format!(
+            "the sampling span must be finite with end > start, got [{start}, {end})"
+        )));
+    }
+    let expected = (end - start) * c.rate_hz;
+    if expected > MAX_SAMPLES {
+        return Err(PyValueError::new_err(format!(
+            "{expected:.3e} samples requested ({} s at {} Hz): more than {MAX_SAMPLES:.0e}; \
+             is the duration in seconds?",
+            end - start,
+            c.rate_hz
+        )));
+    }
+    let model = GyroModel::new(c, seed).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let times = py.detach(|| {
+        let mut times = Vec::with_capacity(expected as usize + 1);
+        times.extend(model.sampler(start).take_while(|&t| t < end));
+        times
+    });
+    Ok(PyArray1::from_vec(py, times))
+}
+
+/// Closed-form Allan deviation [rad/s] of the configured noise at averaging times `taus` [s].
+#[pyfunction]
+fn gyro_allan_deviation<'py>(
+    py: Python<'py>,
+    config: &Bound<'py, PyDict>,
+    taus: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Array<'py>> {
+    let c = config_from(config)?;
+    let taus = slice("taus", &taus)?;
+    if let Some(i) = taus.iter().position(|&x| !(x.is_finite() && x > 0.0)) {
+        return Err(PyValueError::new_err(format!(
+            "taus[{i}] = {} must be finite and > 0",
+            taus[i]
+        )));
+    }
+    let adev: Vec<f64> = taus.iter().map(|&x| c.allan_variance(x).sqrt()).collect();
+    Ok(PyArray1::from_vec(py, adev))
+}
+
+/// The gyro configuration keys with their units.
+#[pyfunction]
+fn gyro_parameter_names() -> Vec<(&'static str, &'static str)> {
+    FIELDS.to_vec()
+}
+
+/// Adds the simulation functions to the extension module.
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(gyro_measure, m)?)?;
+    m.add_function(wrap_pyfunction!(gyro_sample_times, m)?)?;
+    m.add_function(wrap_pyfunction!(gyro_allan_deviation, m)?)?;
+    m.add_function(wrap_pyfunction!(gyro_parameter_names, m)?)?;
+    Ok(())
+}

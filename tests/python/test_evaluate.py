@@ -1,0 +1,189 @@
+"""Heading metrics (HDR eq 15-16, Hong Table 1, FOG section 4.1) against closed forms and the
+papers' numbers, and the method comparison on the real logs of ../shared/data/real."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import gyrocore
+from gyrocore import evaluate
+from gyrocore.cli import main
+
+from .conftest import REAL_LOGS, real_log_path
+
+
+def irregular_times(duration: float, mean_dt: float, seed: int) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    t = np.concatenate(([0.0], np.cumsum(rng.uniform(0.2, 1.8, int(duration / mean_dt) + 10) * mean_dt)))
+    return t[t <= duration]
+
+
+def wrap(angle: np.ndarray) -> np.ndarray:
+    """To (-pi, pi], as the logs store the reference."""
+    return np.angle(np.exp(1j * angle))
+
+
+# Both sides turn at W rad/s (several whole turns); the estimate drifts at B rad/s on top.
+W, B = 0.4, math.radians(0.05)
+
+
+def drifting(t: np.ndarray) -> np.ndarray:
+    return W * t + B * t
+
+
+def test_linear_drift_gives_the_closed_form_metrics_on_irregular_times() -> None:
+    t_est = irregular_times(300.0, 0.01, seed=1)
+    t_ref = irregular_times(300.0, 0.2, seed=2) + 0.05
+    e = gyrocore.heading_errors(t_est, drifting(t_est), t_ref, wrap(W * t_ref))
+    inside = t_ref[t_ref <= t_est[-1]]
+    expected = np.degrees(B * (inside - inside[0]))  # aligned at the first compared time
+    assert e.n == len(inside)
+    assert e.e_psi_deg == pytest.approx(expected.mean(), rel=1e-9)
+    assert e.std_error_deg == pytest.approx(expected.std(), rel=1e-9)
+    assert e.final_error_deg == pytest.approx(expected[-1], rel=1e-9)
+    assert e.max_error_deg == pytest.approx(expected[-1], rel=1e-9)
+    assert e.ne_psi_deg_per_min == pytest.approx(expected.mean() / ((inside[-1] - inside[0]) / 60), rel=1e-9)
+    assert e.gaps == 0
+
+
+def test_time_weighting_averages_over_time_not_samples() -> None:
+    # A faster reference early on (10 Hz, then 4 Hz): the sample mean leans to small errors, the
+    # time mean of a linear error is exactly half the final one.
+    t_ref = np.concatenate((np.arange(0.0, 10.0, 0.1), np.linspace(10.0, 100.0, 361)))
+    t_est = np.linspace(0.0, 100.0, 2001)
+    timed = gyrocore.heading_errors(t_est, drifting(t_est), t_ref, wrap(W * t_ref), time_weighted=True)
+    plain = gyrocore.heading_errors(t_est, drifting(t_est), t_ref, wrap(W * t_ref))
+    assert timed.e_psi_deg == pytest.approx(np.degrees(B * 100.0) / 2, rel=1e-9)
+    assert plain.e_psi_deg == pytest.approx(np.degrees(B * t_ref).mean(), rel=1e-9)
+    assert plain.e_psi_deg < 0.9 * timed.e_psi_deg
+
+
+def test_reference_gap_is_skipped_and_its_turns_recovered() -> None:
+    # 30 s without reference while turning 12 rad (almost two turns): unwrapping across the gap
+    # would lose whole turns; the error must stay the drift's closed form.
+    t_est = np.arange(0.0, 200.0, 0.01)
+    t_ref = np.arange(0.0, 200.0, 0.1)
+    t_ref = t_ref[(t_ref < 80.0) | (t_ref > 110.0)]
+    e = gyrocore.heading_errors(t_est, drifting(t_est), t_ref, wrap(W * t_ref))
+    inside = t_ref[t_ref <= t_est[-1]]
+    assert e.gaps == 1
+    assert e.e_psi_deg == pytest.approx(np.degrees(B * inside).mean(), rel=1e-9)
+    naive = np.unwrap(wrap(W * t_ref))
+    assert abs(naive[-1] - W * t_ref[-1]) > 1.0  # plain unwrapping gets the turns wrong here
+
+
+def test_reference_samples_inside_a_gap_of_the_estimate_are_not_scored() -> None:
+    t_est = np.arange(0.0, 100.0, 0.01)
+    t_est = t_est[(t_est < 40.0) | (t_est > 60.0)]
+    t_ref = np.arange(0.0, 100.0, 0.1)
+    # The estimate is wrong inside its gap only as a straight line can be: score must ignore it.
+    e = gyrocore.heading_errors(t_est, drifting(t_est), t_ref, wrap(W * t_ref))
+    kept = t_ref[((t_ref <= t_est[t_est < 50][-1]) | (t_ref >= t_est[t_est > 50][0])) & (t_ref <= t_est[-1])]
+    assert e.n == len(kept)
+    assert e.gaps == 1
+    assert e.e_psi_deg == pytest.approx(np.degrees(B * kept).mean(), rel=1e-9)
+
+
+def test_bad_reference_names_the_index() -> None:
+    t = np.arange(10.0)
+    with pytest.raises(ValueError, match=r"reference: times must strictly increase, but t\[3\]"):
+        gyrocore.heading_errors(t, t * 0, [0.0, 1.0, 2.0, 2.0, 4.0], np.zeros(5))
+    with pytest.raises(ValueError, match="reference: non-finite value at index 2"):
+        gyrocore.heading_errors(t, t * 0, [0.0, 1.0, 2.0], [0.0, 0.0, math.nan])
+    with pytest.raises(ValueError, match="fewer than two samples inside"):
+        gyrocore.heading_errors(t, t * 0, [20.0, 21.0], [0.0, 0.0])
+
+
+# HDR Table II: E_psi without and with HDR [deg], the improvement it reports, duration [min] and
+# NE_psi with HDR [deg/min]. The paper's E values are rounded, hence the tolerances.
+TABLE_II = [
+    ("City 1", 17, 3.1, 5.4, 19.4, 0.16),
+    ("Suburbs", 35, 10.4, 3.4, 24.3, 0.43),
+    ("Mixed", 44, 4.7, 9.4, 20.0, 0.24),
+    ("Highway 1", 184, 6.4, 29, 52.1, 0.12),
+    ("City 2", 74, 11.3, 6.7, 21.6, 0.52),
+]
+
+
+@pytest.mark.parametrize("name,raw,hdr,factor,minutes,ne", TABLE_II)
+def test_improvement_and_ne_psi_reproduce_table_ii(
+    name: str, raw: float, hdr: float, factor: float, minutes: float, ne: float
+) -> None:
+    # A heading that is off by a constant hdr degrees after the start scores E_psi = hdr.
+    t = np.linspace(0.0, minutes * 60.0, 2001)
+    ref = np.zeros_like(t)
+    with_hdr = gyrocore.heading_errors(t, np.where(t > 0, math.radians(hdr), 0.0), t, ref)
+    without = gyrocore.heading_errors(t, np.where(t > 0, math.radians(raw), 0.0), t, ref)
+    assert with_hdr.ne_psi_deg_per_min == pytest.approx(ne, abs=0.006)
+    assert evaluate.improvement(without, with_hdr) == pytest.approx(factor, rel=0.03)
+
+
+def test_return_orientation_error_of_a_square_lap_with_a_scale_error() -> None:
+    # FOG section 4.1: a lap with four 90-degree turns; a gyro reading 1 % high measures 363.6 deg.
+    t = np.linspace(0.0, 64.0, 641)
+    true = np.clip(np.floor(t / 16.0), 0, 4) * (math.pi / 2)
+    measured = 1.01 * true
+    assert math.degrees(evaluate.return_orientation_error(t, measured)) == pytest.approx(3.6, rel=1e-9)
+    assert math.degrees(evaluate.return_orientation_error(t, -measured)) == pytest.approx(-3.6, rel=1e-9)
+    explicit = evaluate.return_orientation_error(t, measured, t_start=10.0, t_end=40.0, rotation=math.pi)
+    assert math.degrees(explicit) == pytest.approx(1.8, rel=1e-9)
+
+
+def test_compare_scores_every_method_on_every_real_log(tmp_path: Path) -> None:
+    logs = [real_log_path(n) for n in REAL_LOGS]
+    rows = evaluate.compare(logs, ["raw", "static_bias", "recommended"], bias_duration=10.0, plot_dir=tmp_path)
+    assert [(r.log, r.method.name) for r in rows] == [
+        (n, p) for n in REAL_LOGS for p in ("raw", "static_bias", "recommended")
+    ]
+    by = {(r.log, r.method.name): r for r in rows}
+    # The data README's independent figures (static bias from the rest window).
+    assert by["f110_ds3", "static_bias"].errors.e_psi_deg == pytest.approx(3.7, abs=0.05)
+    assert by["broad_10", "static_bias"].errors.e_psi_deg == pytest.approx(1.3, abs=0.05)
+    assert by["f110_ds3", "static_bias"].improvement == pytest.approx(20.4 / 3.7, rel=0.03)
+    assert by["f110_ds3", "recommended"].method.preset == gyrocore.recommended_preset()
+    # comma_seg40 has no rest: a 10 s leading window while driving straight is the documented way.
+    comma = by["comma_seg40", "static_bias"]
+    assert comma.bias_source.startswith("first 10 s") and comma.errors.e_psi_deg < 10.0
+    # Both f110_ds3 (out and back, 0.7 m apart) and broad_10 (back to rest) end where they started.
+    assert by["f110_ds3", "raw"].return_error_deg is not None and by["comma_seg40", "raw"].return_error_deg is None
+    assert by["f110_ds3", "static_bias"].position is not None and by["broad_10", "raw"].position is None
+    for name in REAL_LOGS:
+        assert (tmp_path / f"{name}.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_without_a_bias_option_a_log_without_rest_gets_no_bias() -> None:
+    rows = evaluate.compare([real_log_path("comma_seg40")], ["raw", "static_bias"])
+    assert rows[1].bias_source.startswith("none")
+    assert rows[1].errors.e_psi_deg == pytest.approx(rows[0].errors.e_psi_deg, rel=1e-9)
+
+
+KEYS = {"log", "preset", "e_psi_deg", "ne_psi_deg_per_min", "final_error_deg", "max_error_deg"}
+
+
+def test_cli_json_has_one_object_per_log_and_preset(capsys: pytest.CaptureFixture[str]) -> None:
+    logs = [str(real_log_path(n)) for n in ("f110_ds3", "comma_seg40")]
+    assert main(["evaluate", *logs, "--preset", "static_bias", "--preset", "recommended",
+                 "--bias-duration", "10", "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert [(r["log"], r["preset"]) for r in rows] == [
+        ("f110_ds3", "static_bias"), ("f110_ds3", "recommended"),
+        ("comma_seg40", "static_bias"), ("comma_seg40", "recommended"),
+    ]
+    assert all(KEYS <= set(r) for r in rows)
+    assert rows[0]["e_psi_deg"] == pytest.approx(3.7, abs=0.05)
+
+
+def test_cli_table_and_errors(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    assert main(["evaluate", str(real_log_path("broad_10")), "--preset", "raw", "--preset", "hdr"]) == 0
+    out = capsys.readouterr().out
+    assert "E_psi" in out and "\nbroad_10       hdr " in out
+    assert main(["evaluate", str(tmp_path), "--preset", "raw"]) == 2
+    assert main(["evaluate", str(real_log_path("broad_10")), "--preset", "nonsense"]) == 2
+    assert main(["evaluate", str(real_log_path("broad_10")), "--bias-duration", "-1"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("gyrocore: error:") == 3

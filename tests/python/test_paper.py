@@ -1,0 +1,153 @@
+"""The papers' experiments reproduced on simulated data (gyrocore.paper): exact recovery where the
+mathematics is exact, and the papers' qualitative claims and orderings elsewhere."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from gyrocore import paper
+
+
+@pytest.fixture(scope="module")
+def hong_cal() -> paper.HongCalibration:
+    return paper.hong_calibration()
+
+
+@pytest.fixture(scope="module")
+def hong_t1() -> paper.HongTable1:
+    return paper.hong_table_1()
+
+
+@pytest.fixture(scope="module")
+def hdr_fig() -> paper.HdrFigures:
+    return paper.hdr_figures()
+
+
+@pytest.fixture(scope="module")
+def hdr_tab() -> paper.HdrTables:
+    return paper.hdr_tables()
+
+
+@pytest.fixture(scope="module")
+def fog_table() -> paper.FogRotaryTable:
+    return paper.fog_rotary_table(runs=80)
+
+
+def test_rate_reference_recovers_hong_section_3_1_exactly(hong_cal: paper.HongCalibration) -> None:
+    # s = -10 %, b = 0.1 rad/s: s_bar = 1/(1+s) = 1.1111..., b_bar = -b/(1+s) = -0.1111... (Hong eq 3).
+    assert hong_cal.rate.s_bar == pytest.approx(1.0 / 0.9, rel=1e-12)
+    assert hong_cal.rate.b_bar == pytest.approx(-0.1 / 0.9, rel=1e-12)
+    assert hong_cal.errors(hong_cal.rate) == pytest.approx((0.0, 0.0), abs=1e-9)
+
+
+def test_heading_reference_recovers_them_within_the_integration_error(hong_cal: paper.HongCalibration) -> None:
+    # The paper's heading fit was off by 4.8 % (s) and 20.26 % (b); an exact fit, noise-free, is
+    # limited only by integrating the 100 Hz gyro between the 20 Hz reference samples.
+    s_error, b_error = hong_cal.errors(hong_cal.heading)
+    assert s_error < 0.1 and b_error < 0.1
+    # With the XV3500's noise both fits still find s and b within a few percent.
+    assert max(hong_cal.errors(hong_cal.rate_noisy) + hong_cal.errors(hong_cal.heading_noisy)) < 5.0
+
+
+def test_hong_table_1_proposed_is_best_and_calibration_beats_pure_integration(hong_t1: paper.HongTable1) -> None:
+    mean = {m: hong_t1.mean_error(m) for m in hong_t1.PAPER}
+    # The paper's claims that the simulation reproduces: the combination is best, each part helps.
+    assert mean["proposed"] == min(mean.values())
+    assert mean["self-calibration"] < 0.6 * mean["pure integration"]
+    assert mean["threshold filter"] < mean["pure integration"]
+    assert mean["proposed"] < mean["threshold filter"]
+    # The self-calibration finds the XV3500's scale error and bias (2.53 %, 0.75 deg/s).
+    s = np.mean([c.scale_error for c in hong_t1.calibrations])
+    b = np.mean([math.degrees(c.bias) for c in hong_t1.calibrations])
+    assert s == pytest.approx(0.0253, abs=0.002) and b == pytest.approx(0.75, abs=0.02)
+
+
+def test_hdr_minus_i_tracks_the_drift_on_straight_driving(hdr_fig: paper.HdrFigures) -> None:
+    i_c = 0.0422  # deg/s, Table III
+    for method in ("without", "with"):
+        # -I oscillates about the drift by about one increment (HDR section 4.2.3's discussion).
+        assert hdr_fig.tracking_rms(method) < 3 * i_c
+
+
+def test_hdr_figure_3_peak_is_twenty_increments_above_the_drift(hdr_fig: paper.HdrFigures) -> None:
+    # Without the attenuator and with the turn switch off, each of the 20 steps of curving adds i_c
+    # to -I (eq 4): the peak is the drift at the start of the curve plus 20 i_c (paper: 1.2 deg/s).
+    start = np.searchsorted(hdr_fig.t, hdr_fig.curve[0])
+    expected = math.degrees(hdr_fig.drift[start]) + 20 * 0.0422
+    assert hdr_fig.peak("without") == pytest.approx(expected, abs=2 * 0.0422)
+    assert hdr_fig.peak("with") < hdr_fig.peak("without") - 10 * 0.0422
+
+
+def test_hdr_figure_5_attenuator_shrinks_the_area_after_the_curve(hdr_fig: paper.HdrFigures) -> None:
+    # "The area between the -I curve and the drift curve is much smaller" with the attenuator.
+    assert hdr_fig.area("with") < 0.5 * hdr_fig.area("without")
+
+
+def test_hdr_tables_improve_every_set_several_fold(hdr_tab: paper.HdrTables) -> None:
+    for table, drives in hdr_tab.tables.items():
+        assert len(drives) == (9 if table == "Table II" else 5)
+        without = np.mean([d.without.ne_psi_deg_per_min for d in drives])
+        with_hdr = np.mean([d.with_hdr.ne_psi_deg_per_min for d in drives])
+        # The paper: 2.2 -> 0.28 and 2.9 -> 0.46 deg/min; a 9.2x and 6.9x mean improvement.
+        assert with_hdr < without / 2.5, (table, without, with_hdr)
+        assert hdr_tab.improvement(table) > 2.5
+    assert [d.spec.minutes for d in hdr_tab.tables["Table II"]][:3] == [19.4, 24.3, 20.0]
+
+
+def test_fog_rotary_table_finds_eq_5_and_eq_6_brings_turns_within_a_quarter_degree(
+    fog_table: paper.FogRotaryTable,
+) -> None:
+    # The simulated FOG's scale error is the paper's eq 5, so the fit must find it.
+    assert fog_table.slope_deg_per_c() == pytest.approx(-0.52, abs=0.02)
+    assert fog_table.offset_deg() == pytest.approx(19.23, abs=0.6)
+    # FOG section 3: after eq 6, "less than +-0.25 deg in all cases" (on another warm-up session).
+    errors = fog_table.corrected_errors_deg()
+    assert len(errors) == 160 and np.all(np.abs(errors) < 0.25)
+    before = np.array([t.error_deg for t in fog_table.fit.turns])
+    assert np.abs(before).max() > 2.0
+
+
+def test_fog_square_path_return_orientation_within_one_degree() -> None:
+    r = paper.fog_square_path(runs=12, calibration_runs=80)
+    assert len(r.cw) == len(r.ccw) == 12
+    # FOG Figure 5: the gyro's return orientation errors within +-1 deg; without eq 6 the scale
+    # error of the warm-up shows (a 360 deg lap reads 360 (1 + s)).
+    assert r.largest() < 1.0
+    assert np.mean(np.abs(r.cw_raw)) > 2 * np.mean(np.abs(r.cw))
+
+
+def test_hong_allan_reproduction_reads_the_xv3500() -> None:
+    r = paper.hong_allan(gyros=3, runs=1, hours=24.0)
+    assert len(r.arw_deg_per_sqrt_h) == 3
+    assert r.arw == pytest.approx(2.5, rel=0.1)
+    assert "17.99" in r.table()
+
+
+def test_every_reproduction_prints_paper_beside_ours_and_plots(
+    tmp_path: Path,
+    hong_cal: paper.HongCalibration,
+    hong_t1: paper.HongTable1,
+    hdr_fig: paper.HdrFigures,
+    hdr_tab: paper.HdrTables,
+    fog_table: paper.FogRotaryTable,
+) -> None:
+    printed = {
+        "1.111": hong_cal, "1.6675": hong_t1, "much smaller": hdr_fig, "9.2": hdr_tab, "19.23": fog_table,
+    }
+    for paper_value, result in printed.items():
+        text = result.table()
+        assert "paper" in text and "ours" in text and paper_value in text
+        png = result.plot(tmp_path / f"{type(result).__name__}.png")
+        assert png is not None and png.read_bytes()[:4] == b"\x89PNG"
+    assert not list(tmp_path.glob(".*tmp"))
+
+
+def test_reproduce_refuses_an_unknown_name() -> None:
+    with pytest.raises(ValueError, match="unknown reproduction 'hdr-figure-9'"):
+        paper.reproduce("hdr-figure-9")
+    assert set(paper.REPRODUCTIONS) >= {"hong-calibration", "hong-table-1", "hdr-figures", "hdr-tables",
+                                        "fog-rotary-table", "fog-square-path", "hong-allan"}

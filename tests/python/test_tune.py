@@ -1,0 +1,141 @@
+"""Parameter tuning (HDR section 5.3): the optimiser improves the objective, the do-no-harm check,
+leave-one-out, and the parameter file that evaluate and Pipeline accept."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import gyrocore
+from gyrocore import motion, tune
+from gyrocore.cli import main
+
+from .conftest import real_log_path
+
+SHORT = [motion.DriveSpec(f"short {mix}", 5.0, mix, "test") for mix in ("city", "rural", "suburbs")]
+
+
+@pytest.fixture(scope="module")
+def cases() -> list[tune.Case]:
+    return tune.simulated_cases(SHORT, rate_hz=10.0, first_seed=7)
+
+
+@pytest.fixture(scope="module")
+def tuned(cases: list[tune.Case]) -> tune.TuningResult:
+    return tune.tune(cases, preset="hdr", names=("hdr_increment", "hdr_turn_threshold"), max_evaluations=80, seed=1)
+
+
+def test_tuning_improves_the_mean_ne_psi_over_its_start(tuned: tune.TuningResult, cases: list[tune.Case]) -> None:
+    assert tuned.objective < 0.9 * tuned.start_objective
+    assert tuned.evaluations <= 80
+    # The reported scores are recomputed, not copied: the objective is the mean NE_psi (no harm drives).
+    assert tuned.train_score == pytest.approx(tuned.objective, rel=1e-12)
+    fresh = [c.score("hdr", tuned.params.overrides).ne_psi_deg_per_min for c in cases]
+    assert tuned.train_score == pytest.approx(float(np.mean(fresh)), rel=1e-12)
+    table_iii = {"hdr_increment": math.radians(0.0422), "hdr_turn_threshold": math.radians(0.564)}
+    assert tuned.start == pytest.approx(table_iii)
+    for name, value in tuned.params.overrides.items():
+        low, high = tune.BOUNDS[name]
+        assert low <= value <= high
+
+
+def test_nelder_mead_also_improves(cases: list[tune.Case]) -> None:
+    r = tune.tune(cases[:2], names=("hdr_increment",), optimiser="nelder-mead", max_evaluations=30)
+    assert r.objective < r.start_objective and r.evaluations <= 30
+
+
+def test_parameter_file_round_trips_into_pipeline_and_evaluate(
+    tuned: tune.TuningResult, cases: list[tune.Case], tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    path = tmp_path / "tuned.json"
+    tuned.params.write(path)
+    data = json.loads(path.read_text())
+    assert (data["format"], data["version"], data["preset"]) == ("gyrocore-params", 1, "hdr")
+    assert data["units"]["hdr_increment"].endswith("[rad/s per step]")
+    back = tune.ParameterSet.read(path)
+    assert back.overrides == tuned.params.overrides
+    case = cases[0]
+    direct = gyrocore.Pipeline(back.preset, **back.overrides, **case.bias).process(case.t, case.rate)
+    np.testing.assert_array_equal(direct.heading, case.heading("hdr", tuned.params.overrides).heading)
+    assert main(["evaluate", str(real_log_path("f110_ds3")), "--params", str(path), "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert [(r["preset"], r["base_preset"]) for r in rows] == [("hdr_tuned", "hdr")]
+    assert rows[0]["overrides"] == tuned.params.overrides
+
+
+HEAD = '{"format": "gyrocore-params", "version": 1, "name": "x", "preset": "hdr", '
+
+
+@pytest.mark.parametrize(
+    "content,message",
+    [
+        ("{", "line 1 column 2"),
+        ('{"format": "other"}', "not a gyrocore parameter file"),
+        ('{"format": "gyrocore-params", "version": 99}', "version 99"),
+        ('{"format": "gyrocore-params", "version": 1, "name": "x", "preset": "hdr"}', "missing key"),
+        (HEAD + '"overrides": {"bias_window": [0, 10]}}', "bias_window cannot be part"),
+        (HEAD + '"overrides": {"hdr_increment": -1}}', "hdr_increment = -1"),
+        ('{"format": "gyrocore-params", "version": 1, "name": "x", "preset": "nope", "overrides": {}}', "nope"),
+    ],
+)
+def test_bad_parameter_files_name_the_file_and_the_problem(tmp_path: Path, content: str, message: str) -> None:
+    path = tmp_path / "bad.json"
+    path.write_text(content)
+    with pytest.raises(ValueError, match="bad.json") as info:
+        tune.ParameterSet.read(path)
+    assert message in str(info.value)
+
+
+def test_harm_of_a_perfect_gyro() -> None:
+    harm = tune.harm_cases(minutes=6.0, mixes=("curvy_highway",), per_mix=1)
+    table_iii = tune.score_cases(harm, "hdr", {})[0]
+    # Plain integration of a perfect gyro is exact, and so is removing its (zero) static bias.
+    assert table_iii.raw_e_psi_deg < 0.01
+    assert tune.score_cases(harm, "static_bias", {})[0].harm_deg == pytest.approx(0.0, abs=1e-9)
+    # Table III's HDR "corrects" curving below its turn switch (the issue's do-no-harm case).
+    assert table_iii.harm_deg > 0.5
+    # An increment of zero leaves HDR inert: no harm.
+    assert tune.score_cases(harm, "hdr", {"hdr_increment": 0.0})[0].harm_deg == pytest.approx(0.0, abs=1e-9)
+
+
+def test_harm_constraint_steers_the_fit(cases: list[tune.Case]) -> None:
+    harm = tune.harm_cases(minutes=6.0, mixes=("curvy_highway",), per_mix=1)
+    r = tune.tune(cases[:2], names=("hdr_increment",), harm=harm, max_evaluations=40, seed=2)
+    assert r.harm_start[0].harm_deg > r.harm_limit_deg
+    assert r.harm_ok and r.harm[0].harm_deg <= 0.5
+    assert r.objective == pytest.approx(r.train_score + tune.HARM_WEIGHT * tune.harm_excess(r.harm, 0.5))
+
+
+def test_leave_one_out_scores_each_drive_with_the_others_fit(cases: list[tune.Case]) -> None:
+    held = tune.leave_one_out(cases, names=("hdr_increment",), max_evaluations=20, seed=0)
+    assert [h.case for h in held] == [c.name for c in cases]
+    # Each held-out score is that drive's score with parameters fitted without it.
+    solo = tune.tune(cases[1:], names=("hdr_increment",), max_evaluations=20, seed=0)
+    assert held[0].ne_psi_deg_per_min == pytest.approx(
+        cases[0].score("hdr", solo.params.overrides).ne_psi_deg_per_min, rel=1e-12
+    )
+
+
+def test_real_log_case_uses_the_rest_window_or_the_bias_duration() -> None:
+    f110 = tune.Case.from_log(gyrocore.read_log(real_log_path("f110_ds3")))
+    assert "bias_window" in f110.bias
+    comma = tune.Case.from_log(gyrocore.read_log(real_log_path("comma_seg40")), bias_duration=10.0)
+    assert comma.bias == {"bias_duration": 10.0}
+    assert comma.score("static_bias", {}).e_psi_deg < 10.0
+
+
+def test_cli_tune_writes_a_loadable_file(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "p.json"
+    args = ["tune", "--sim-table", "II", "--time-scale", "0.08", "--param", "hdr_increment=1e-5:1e-2",
+            "--max-evals", "12", "--out", str(out), "--json"]
+    assert main(args) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert len(result["train"]) == len(motion.TABLE_II_DRIVES) and len(result["harm"]) == 2 * len(tune.HARM_MIXES)
+    assert {h["case"] for h in result["harm"]}.isdisjoint(h["case"] for h in result["harm_test"])
+    assert tune.ParameterSet.read(out).overrides == result["overrides"]
+    assert main(["tune", "--param", "nonsense"]) == 2
+    assert main(["tune"]) == 2
