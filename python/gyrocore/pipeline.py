@@ -202,12 +202,14 @@ class Pipeline:
         temperature: FloatArray | None,
     ) -> None:
         """Say what the input policy repaired in this chunk (indices are within the chunk)."""
-        bad = ~np.isfinite(rate)
-        if temperature is not None:
-            bad |= ~np.isfinite(temperature)
         for key, verb in (("held", "replaced by the last finite reading"), ("skipped", "skipped")):
             n = int(after[key] - before[key])
-            if n and bad.any():
+            if not n:
+                continue
+            bad = ~np.isfinite(rate)
+            if temperature is not None:
+                bad |= ~np.isfinite(temperature)
+            if bad.any():
                 first = int(np.flatnonzero(bad)[0])
                 warn(f"{n} non-finite reading(s) {verb} (first at index {first}, t = {t[first]})")
         gaps = int(after["gaps"] - before["gaps"])

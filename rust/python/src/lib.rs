@@ -10,7 +10,7 @@ use gyrocore::{
     check_block, Downsample, DownsampleConfig, Error, Integrator, IntegratorConfig, Outputs,
     Pipeline, PipelineConfig, Preset, Stage,
 };
-use numpy::{PyArray1, PyReadonlyArray1};
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -44,13 +44,33 @@ fn value_error(e: Error) -> PyErr {
 }
 
 /// A contiguous view of a float64 array (the Python layer converts other dtypes and strides).
-fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
+pub(crate) fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
     a.as_slice()
         .map_err(|_| PyValueError::new_err(format!("{name} must be a contiguous float64 array")))
 }
 
 /// A float64 numpy array owned by Python.
-type Array<'py> = Bound<'py, PyArray1<f64>>;
+pub(crate) type Array<'py> = Bound<'py, PyArray1<f64>>;
+
+/// A new zeroed float64 array of `n` samples, allocated by numpy: its allocator asks the kernel for
+/// huge pages, where a fresh `Vec` handed over with `from_vec` costs a page fault every 4 KiB (at
+/// 10^7 samples that was most of the time of a call).
+pub(crate) fn zeros(py: Python<'_>, n: usize) -> Array<'_> {
+    PyArray1::zeros(py, n, false)
+}
+
+/// Runs `f` on mutable views of `arrays` (fresh, contiguous arrays from [`zeros`]).
+pub(crate) fn fill<const N: usize, R>(
+    arrays: [&Array<'_>; N],
+    f: impl FnOnce([&mut [f64]; N]) -> R,
+) -> PyResult<R> {
+    let mut guards = arrays.map(|a| a.readwrite());
+    let slices = guards.each_mut().map(|g| g.as_slice_mut());
+    if slices.iter().any(Result::is_err) {
+        return Err(PyValueError::new_err("output array is not contiguous"));
+    }
+    Ok(f(slices.map(Result::unwrap_or_default)))
+}
 
 /// The streaming pipeline of the core crate (see `gyrocore.Pipeline` for the documented API).
 #[pyclass(module = "gyrocore._gyrocore", name = "Pipeline")]
@@ -105,22 +125,20 @@ impl PyPipeline {
             .map(|a| slice("temperature", a))
             .transpose()?;
         let n = t.len();
-        let (mut heading, mut out_rate, mut drift) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let (heading, out_rate, drift) = (zeros(py, n), zeros(py, n), zeros(py, n));
         let inner = &mut self.inner;
-        py.detach(|| {
-            let out = Outputs {
-                heading: &mut heading,
-                rate: &mut out_rate,
-                drift: &mut drift,
-            };
-            inner.process_block(t, rate, temperature, out)
-        })
+        fill([&heading, &out_rate, &drift], |[h, r, d]| {
+            py.detach(|| {
+                let out = Outputs {
+                    heading: h,
+                    rate: r,
+                    drift: d,
+                };
+                inner.process_block(t, rate, temperature, out)
+            })
+        })?
         .map_err(|e| value_error(e.with_index_offset(index_offset)))?;
-        Ok((
-            PyArray1::from_vec(py, heading),
-            PyArray1::from_vec(py, out_rate),
-            PyArray1::from_vec(py, drift),
-        ))
+        Ok((heading, out_rate, drift))
     }
 
     /// Returns the pipeline to its state before the first sample.
@@ -221,13 +239,15 @@ fn integrate<'py>(
         initial_heading,
     };
     let mut integrator = Integrator::new(config).map_err(value_error)?;
-    let mut heading = vec![0.0; t.len()];
-    py.detach(|| {
-        check_block(t, rate, None, None, true)?;
-        integrator.process_block(t, rate, &mut heading)
-    })
+    let heading = zeros(py, t.len());
+    fill([&heading], |[h]| {
+        py.detach(|| {
+            check_block(t, rate, None, None, true)?;
+            integrator.process_block(t, rate, h)
+        })
+    })?
     .map_err(value_error)?;
-    Ok(PyArray1::from_vec(py, heading))
+    Ok(heading)
 }
 
 /// Block means over `interval` seconds (HDR's second eq 14); returns (t_end, mean rate).

@@ -7,6 +7,8 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::{fill, slice, zeros, Array};
+
 /// The accepted configuration keys, with their units.
 const FIELDS: &[(&str, &str)] = &[
     ("rate_hz", "output data rate [Hz]"),
@@ -101,13 +103,6 @@ fn config_from(dict: &Bound<'_, PyDict>) -> PyResult<GyroModelConfig> {
     Ok(c)
 }
 
-type Array<'py> = Bound<'py, PyArray1<f64>>;
-
-fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
-    a.as_slice()
-        .map_err(|_| PyValueError::new_err(format!("{name} must be a contiguous float64 array")))
-}
-
 /// Readings of the simulated gyro for true rates `rate` [rad/s] at times `t` [s]; returns
 /// (reading [rad/s], temperature [degC], bias b + d [rad/s], scale error s [1]) per sample.
 #[pyfunction]
@@ -122,22 +117,20 @@ fn gyro_measure<'py>(
         .map_err(|e| PyValueError::new_err(e.to_string()))?;
     let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
     let n = t.len();
-    let mut out = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    py.detach(|| {
-        check_block(t, rate, None, None, true)?;
-        for (i, (&ti, &ri)) in t.iter().zip(rate).enumerate() {
-            let s = model.update(ti, ri);
-            (out.0[i], out.1[i], out.2[i], out.3[i]) = (s.rate, s.temperature, s.bias, s.scale);
-        }
-        Ok(())
-    })
+    let out = [zeros(py, n), zeros(py, n), zeros(py, n), zeros(py, n)];
+    fill([&out[0], &out[1], &out[2], &out[3]], |[r, temp, b, s]| {
+        py.detach(|| {
+            check_block(t, rate, None, None, true)?;
+            for (i, (&ti, &ri)) in t.iter().zip(rate).enumerate() {
+                let m = model.update(ti, ri);
+                (r[i], temp[i], b[i], s[i]) = (m.rate, m.temperature, m.bias, m.scale);
+            }
+            Ok(())
+        })
+    })?
     .map_err(|e: gyrocore::Error| PyValueError::new_err(e.to_string()))?;
-    Ok((
-        PyArray1::from_vec(py, out.0),
-        PyArray1::from_vec(py, out.1),
-        PyArray1::from_vec(py, out.2),
-        PyArray1::from_vec(py, out.3),
-    ))
+    let [r, temp, b, s] = out;
+    Ok((r, temp, b, s))
 }
 
 /// The kept sampling instants in `[start, end)` [s] (jittered grid, dropped samples left out).
