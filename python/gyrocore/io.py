@@ -305,7 +305,10 @@ def _csv_header(path: Path, delimiter: str) -> list[str]:
     if not line.strip():
         raise ValueError(f"{path}: line 1: no header line (expected column names)")
     text = line.decode("utf-8-sig", errors="replace").rstrip("\r\n")
-    return [name.strip() for name in next(csv.reader([text], delimiter=delimiter))]
+    try:
+        return [name.strip() for name in next(csv.reader([text], delimiter=delimiter))]
+    except csv.Error as e:  # e.g. a bare carriage return inside the header
+        raise ValueError(f"{path}: line 1: malformed header: {e}") from None
 
 
 def _column_positions(path: Path, header: list[str], columns: tuple[str, ...]) -> dict[str, int]:
@@ -493,8 +496,19 @@ def _parquet_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np
     pf = _parquet_file(src.path)
     header = pf.schema_arrow.names
     _column_positions(src.path, header, (o.time, o.rate))
+    import pyarrow as pa
+
     first = 0
-    for batch in pf.iter_batches(batch_size=rows, columns=[o.time, o.rate]):
+    batches = pf.iter_batches(batch_size=rows, columns=[o.time, o.rate])
+    while True:
+        try:
+            batch = next(batches, None)
+        except (pa.ArrowException, OSError) as e:  # a corrupt page or schema
+            raise ValueError(f"{src.path}: unreadable Parquet data after row {first} ({e})") from None
+        if batch is None:
+            return
+        if batch.num_columns != 2:
+            raise ValueError(f"{src.path}: columns {o.time!r} and {o.rate!r} do not read as two columns")
         t, per_second = _arrow_time(src, batch.column(0), first)
         rate = _arrow_numbers(src, o.rate, batch.column(1))
         first += batch.num_rows
@@ -537,8 +551,8 @@ def _npy_header(path: Path, f: Any) -> tuple[tuple[int, ...], bool, np.dtype[Any
         version = fmt.read_magic(f)
         read_header = fmt.read_array_header_1_0 if version == (1, 0) else fmt.read_array_header_2_0
         shape, fortran, dtype = read_header(f)
-    except ValueError as e:
-        raise ValueError(f"{path}: not a NumPy .npy file ({e})") from None
+    except Exception as e:  # numpy's header parser raises ValueError, SyntaxError, TokenError, ...
+        raise ValueError(f"{path}: not a NumPy .npy file ({type(e).__name__}: {e})") from None
     return shape, fortran, dtype
 
 
@@ -617,11 +631,13 @@ def _npz_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.nda
         with np.load(src.path, allow_pickle=False) as archive:
             names = list(archive.files)
             arrays = {k: archive[k] for k in (o.time, o.rate) if k in names}
-    except (ValueError, OSError, zipfile.BadZipFile) as e:
-        raise ValueError(f"{src.path}: not a readable NumPy .npz file ({e})") from None
+    except Exception as e:  # np.load raises EOFError, BadZipFile, ValueError, OSError, ... on bad bytes
+        raise ValueError(f"{src.path}: not a readable NumPy .npz file ({type(e).__name__}: {e})") from None
     _column_positions(src.path, names, (o.time, o.rate))
     t, rate = arrays[o.time], arrays[o.rate]
     for name, a in ((o.time, t), (o.rate, rate)):
+        if not isinstance(a, np.ndarray):  # a member not stored as .npy comes back as raw bytes
+            raise ValueError(f"{src.path}: member {name} is not a NumPy array")
         _check_numbers(src, f"array {name}", a.dtype)
         if a.ndim != 1:
             raise ValueError(f"{src.path}: array {name} must be 1-D, got shape {a.shape}")

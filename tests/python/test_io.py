@@ -356,3 +356,39 @@ def test_writer_leaves_nothing_when_interrupted(tmp_path: Path) -> None:
 def test_writer_refuses_unknown_formats(tmp_path: Path) -> None:
     with pytest.raises(ValueError, match=r"must end in \.csv or \.parquet"):
         io.HeadingWriter(tmp_path / "h.txt")
+
+
+def test_fuzz_finding_a_carriage_return_inside_the_header(tmp_path: Path) -> None:
+    # Found by fuzz/python/readers.py: csv.Error escaped instead of a ValueError naming the file.
+    path = tmp_path / "cr.csv"
+    path.write_bytes(b"\x01\x00\x00\r0,0\x0e")
+    with pytest.raises(ValueError, match=r"cr\.csv: line 1: malformed header"):
+        io.read_log(path)
+
+
+@pytest.mark.parametrize(
+    ("name", "data", "message"),
+    [
+        # Found by fuzz/python/readers.py: a header numpy's parser rejects with TokenError.
+        ("bad.npy", b"\x93NUMPY\x01\x00v\x00{'descr': '<f8', 'fortran_order': False, 'shape': (" + b" " * 100 + b"\n",
+         "not a NumPy .npy file"),
+        ("empty.npz", b"", "not a readable NumPy .npz file"),
+        ("bad.parquet", b"PAR1garbagePAR1", "Parquet"),
+    ],
+)
+def test_fuzz_findings_malformed_binary_files_are_value_errors(tmp_path: Path, name: str, data: bytes, message: str) -> None:
+    path = tmp_path / name
+    path.write_bytes(data)
+    with pytest.raises(ValueError, match=message):
+        io.read_log(path)
+
+
+def test_fuzz_finding_an_npz_member_that_is_not_an_array(tmp_path: Path) -> None:
+    import zipfile
+
+    path = tmp_path / "raw.npz"
+    with zipfile.ZipFile(path, "w") as z:
+        z.writestr("t", b"0.0")
+        z.writestr("gyro_z", b"0.1")
+    with pytest.raises(ValueError, match="member t is not a NumPy array"):
+        io.read_log(path)
