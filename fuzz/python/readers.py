@@ -1,5 +1,5 @@
 """Coverage-guided fuzzing of gyrocore's file readers with atheris: arbitrary bytes written as a
-CSV, .npy, .npz or Parquet file, read whole and streamed through the pipeline. A reader may reject
+CSV, .npy, .npz, Parquet or ROS 1 bag file, read whole and streamed through the pipeline. A reader may reject
 a file only with ValueError (or OSError / UnicodeDecodeError for undecodable bytes), naming the
 file; anything else, a crash or a hang, is a finding.
 
@@ -20,7 +20,7 @@ import atheris
 with atheris.instrument_imports():
     from gyrocore import batch, io
 
-FORMATS = {"csv": ".csv", "npy": ".npy", "npz": ".npz", "parquet": ".parquet"}
+FORMATS = {"csv": ".csv", "npy": ".npy", "npz": ".npz", "parquet": ".parquet", "bag": ".bag"}
 ACCEPTED = (ValueError, OSError, UnicodeDecodeError)
 
 kind = sys.argv.pop(1) if len(sys.argv) > 1 and sys.argv[1] in FORMATS else "csv"

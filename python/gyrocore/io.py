@@ -666,6 +666,8 @@ def _bag_reader(path: Path) -> Any:
         reader.open()
     except AnyReaderError as e:
         raise ValueError(f"{path}: not a readable ROS bag ({e})") from None
+    except Exception as e:  # rosbags' parser reports some corruption as AssertionError, KeyError, ...
+        raise ValueError(f"{path}: not a readable ROS bag ({type(e).__name__}: {e})") from None
     return reader
 
 
@@ -693,10 +695,6 @@ def _bag_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.nda
 
     rosbags deserialises message by message (a Python loop: about 70 000 messages/s).
     """
-    from rosbags.highlevel import AnyReaderError
-    from rosbags.rosbag1 import ReaderError as Ros1Error
-    from rosbags.rosbag2 import ReaderError as Ros2Error
-
     reader = _bag_reader(src.path)
     try:
         connections = [c for c in reader.connections if c.msgtype == _IMU and c.topic == src.options.topic]
@@ -713,8 +711,8 @@ def _bag_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.nda
                 stamps, rates = [], []
         if stamps:
             yield np.array(stamps, dtype=np.int64), np.array(rates), 1e9, done + len(stamps)
-    except (AnyReaderError, Ros1Error, Ros2Error) as e:
-        raise ValueError(f"{src.path}: damaged bag ({e})") from None
+    except Exception as e:  # rosbags reports damage as its ReaderErrors, AssertionError, struct.error, ...
+        raise ValueError(f"{src.path}: damaged bag ({type(e).__name__}: {e})") from None
     finally:
         reader.close()
 

@@ -392,3 +392,18 @@ def test_fuzz_finding_an_npz_member_that_is_not_an_array(tmp_path: Path) -> None
         z.writestr("gyro_z", b"0.1")
     with pytest.raises(ValueError, match="member t is not a NumPy array"):
         io.read_log(path)
+
+
+def test_fuzz_finding_a_damaged_bag_is_a_value_error(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # Found by fuzz/python/readers.py: rosbags reports some damage (a bad index record size) with a
+    # bare AssertionError; whatever rosbags raises must come out as a ValueError naming the file.
+    highlevel = pytest.importorskip("rosbags.highlevel")
+    path = tmp_path / "damaged.bag"
+    write_bag(path, STAMPS[:5], Z[:5], ros1=True)
+
+    def broken_open(self: object) -> None:
+        raise AssertionError
+
+    monkeypatch.setattr(highlevel.AnyReader, "open", broken_open)
+    with pytest.raises(ValueError, match=r"damaged\.bag: not a readable ROS bag \(AssertionError"):
+        io.read_log(path)
