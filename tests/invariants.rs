@@ -208,31 +208,8 @@ fn a_bad_block_is_rejected_whole_with_the_first_bad_index() {
     assert_eq!(p, before, "nothing may be processed from a rejected block");
     // Across blocks: the next block must start after the last timestamp.
     let mut q = Pipeline::new(Preset::Hdr.config()).unwrap();
-    let n = 4;
-    let (mut h, mut ra, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    q.process_block(
-        &[0.0, 1.0, 2.0, 3.0],
-        &[0.0; 4],
-        None,
-        Outputs {
-            heading: &mut h,
-            rate: &mut ra,
-            drift: &mut d,
-        },
-    )
-    .unwrap();
-    let err = q
-        .process_block(
-            &[3.0, 4.0, 5.0, 6.0],
-            &[0.0; 4],
-            None,
-            Outputs {
-                heading: &mut h,
-                rate: &mut ra,
-                drift: &mut d,
-            },
-        )
-        .unwrap_err();
+    common::try_block(&mut q, &[0.0, 1.0, 2.0, 3.0], &[0.0; 4]).unwrap();
+    let err = common::try_block(&mut q, &[3.0, 4.0, 5.0, 6.0], &[0.0; 4]).unwrap_err();
     assert_eq!(
         err,
         Error::NotIncreasing {
