@@ -689,14 +689,7 @@ def rotary_table(
             ``turn_angle``, or no turn at all.
     """
     ta, ra = _series(t, rate)
-    temp = None
-    if temperature is not None:
-        temp = as_float_array("temperature", temperature)
-        if len(temp) != len(ta):
-            raise ValueError(f"temperature has {len(temp)} samples but t has {len(ta)}")
-        bad = np.flatnonzero(~np.isfinite(temp))
-        if len(bad):
-            raise ValueError(f"temperature[{bad[0]}] is {temp[bad[0]]}: samples must be finite")
+    temp = None if temperature is None else _temperature(temperature, len(ta))
     pauses = rest_windows(ta, ra, min_duration=min_pause, **rest_options)
     tests = [w for w in pauses if w[1] - w[0] >= min_rest]
     if not tests:
@@ -771,6 +764,17 @@ def rotary_table(
     return RotaryTable(tuple(turns), calibration, e_cw, e_ccw, fit)
 
 
+def _temperature(temperature: ArrayLike, n: int) -> FloatArray:
+    """The temperature record [degC], checked: as long as the timestamps, every value finite."""
+    temp = as_float_array("temperature", temperature)
+    if len(temp) != n:
+        raise ValueError(f"temperature has {len(temp)} samples but t has {n}")
+    bad = np.flatnonzero(~np.isfinite(temp))
+    if len(bad):
+        raise ValueError(f"temperature[{bad[0]}] is {temp[bad[0]]}: samples must be finite")
+    return temp
+
+
 def bias_temperature_table(
     t: ArrayLike,
     rate: ArrayLike,
@@ -787,12 +791,7 @@ def bias_temperature_table(
     rest first); the temperature should change slowly (a warm-up after power-on).
     """
     ta, ra = _series(t, rate)
-    temp = as_float_array("temperature", temperature)
-    if len(temp) != len(ta):
-        raise ValueError(f"temperature has {len(temp)} samples but t has {len(ta)}")
-    bad = np.flatnonzero(~np.isfinite(temp))
-    if len(bad):
-        raise ValueError(f"temperature[{bad[0]}] is {temp[bad[0]]}: samples must be finite")
+    temp = _temperature(temperature, len(ta))
     if not (math.isfinite(bin_width) and bin_width > 0):
         raise ValueError(f"bin_width must be finite and > 0 [degC], got {bin_width}")
     w = _time_weights(ta - ta[0])
