@@ -147,6 +147,41 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Blocks are checked while they are processed (one pass): a block with one bad sample
+    /// anywhere, as the first block or after a good one, gets the error `check_block` names and
+    /// leaves the pipeline exactly as it was.
+    #[test]
+    fn a_bad_sample_anywhere_rejects_the_block_and_changes_nothing(
+        (t, r) in stream(), at in 0usize..400, fault in 0usize..6, prefix in 0usize..3,
+    ) {
+        let at = at % t.len();
+        let (mut t, mut r) = (t, r);
+        match fault {
+            0 => t[at] = f64::NAN,
+            1 => t[at] = f64::INFINITY,
+            2 => t[at] = if at > 0 { t[at - 1] } else { f64::NEG_INFINITY },
+            3 => t[at] = if at > 0 { t[at - 1] - 0.5 } else { f64::NAN },
+            4 => r[at] = f64::NAN,
+            _ => r[at] = f64::NEG_INFINITY,
+        }
+        let split = (prefix * t.len() / 4).min(at);
+        for config in configs() {
+            let mut p = Pipeline::new(config).unwrap();
+            run_block(&mut p, &t[..split], &r[..split]);
+            let before = p.clone();
+            let (t, r) = (&t[split..], &r[split..]);
+            let expected = check_block(t, r, None, p.last_time(), true).unwrap_err();
+            let error = common::try_block(&mut p, t, r).unwrap_err();
+            // Compared as text: a NaN in the error's `value` is not equal to itself.
+            prop_assert_eq!(format!("{error:?}"), format!("{expected:?}"));
+            prop_assert_eq!(&p, &before);
+        }
+    }
+}
+
 #[test]
 fn zero_rate_keeps_the_heading_constant() {
     for preset in Preset::ALL {

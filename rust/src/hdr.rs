@@ -178,7 +178,7 @@ impl Hdr {
 
     /// Feeds one sample to the controller and returns the `I` that applies to it (the value
     /// before this sample's step closes). The pipeline adds it to the low-passed rate instead.
-    #[inline]
+    #[inline(always)]
     pub fn observe(&mut self, dt: f64, rate: f64) -> f64 {
         let applied = self.state.integrator;
         if let Some((mean, duration)) = self.state.block.push(self.config.interval, dt, rate) {

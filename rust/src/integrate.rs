@@ -57,7 +57,7 @@ impl Integrator {
     }
 
     /// Adds one sample whose interval is `dt` [s]; returns the heading at that sample.
-    #[inline]
+    #[inline(always)]
     pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
         if let Some(p) = self.previous {
             self.heading += match self.config.method {

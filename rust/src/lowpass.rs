@@ -52,7 +52,7 @@ impl LowPass {
     }
 
     /// Filters one sample whose interval is `dt` [s] (HDR eq 7).
-    #[inline]
+    #[inline(always)]
     pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
         let tau = self.config.tau;
         let y = match self.previous {
@@ -99,7 +99,7 @@ impl DeLag {
     }
 
     /// De-lags one sample whose interval is `dt` [s] (HDR eq 13).
-    #[inline]
+    #[inline(always)]
     pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
         let y = match self.previous {
             Some(p) if dt > 0.0 => rate + self.config.tau / dt * (rate - p),

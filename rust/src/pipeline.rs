@@ -8,7 +8,7 @@ use crate::integrate::{Integrator, IntegratorConfig};
 use crate::lowpass::{DeLag, LowPass, LowPassConfig};
 use crate::stage::{check_len, Clock};
 use crate::threshold::{Threshold, ThresholdConfig};
-use crate::validate::{all_finite, check_block};
+use crate::validate::{check_block, Checks};
 use crate::Error;
 
 /// Which stages run, and how. `None` disables a stage.
@@ -166,16 +166,102 @@ pub struct Outputs<'a> {
     pub drift: &'a mut [f64],
 }
 
-/// The composed pipeline; see the module doc for the order of the stages.
+/// How the pipeline drives a stage that remembers the recent signal (low-pass, HDR, de-lag).
+///
+/// Implemented for each such stage and for `Option` of it, so that one generic loop serves every
+/// combination of enabled stages: with all of them on (the HDR presets) the loop is compiled for
+/// the concrete stages, has no per-sample check of which are enabled, and keeps their state in
+/// registers across samples instead of storing and reloading it every sample.
+trait Memory {
+    /// Feeds one sample with interval `dt`; the value the pipeline uses (see each impl).
+    fn feed(&mut self, dt: f64, rate: f64) -> f64;
+    /// What [`Memory::feed`] gives while the stage is off.
+    fn off(rate: f64) -> f64
+    where
+        Self: Sized;
+    /// Forgets the recent signal (after a gap, with [`GapAction::Reset`]).
+    fn restart(&mut self);
+}
+
+/// Implements [`Memory`] for a stage; `$feed` is the method the pipeline calls, `$off` what an
+/// absent stage gives instead.
+macro_rules! memory_stage {
+    ($ty:ty, $feed:ident, |$rate:ident| $off:expr) => {
+        impl Memory for $ty {
+            #[inline(always)]
+            fn feed(&mut self, dt: f64, rate: f64) -> f64 {
+                self.$feed(dt, rate)
+            }
+            #[inline(always)]
+            fn off($rate: f64) -> f64 {
+                $off
+            }
+            #[inline(always)]
+            fn restart(&mut self) {
+                crate::stage::Stage::reset(self);
+            }
+        }
+    };
+}
+// The low-pass and de-lag pass the rate on; HDR gives the `I` to add (0 when off).
+memory_stage!(LowPass, step, |rate| rate);
+memory_stage!(DeLag, step, |rate| rate);
+memory_stage!(Hdr, observe, |_rate| 0.0);
+
+impl<M: Memory> Memory for Option<M> {
+    #[inline(always)]
+    fn feed(&mut self, dt: f64, rate: f64) -> f64 {
+        match self {
+            Some(m) => m.feed(dt, rate),
+            None => M::off(rate),
+        }
+    }
+    #[inline(always)]
+    fn off(rate: f64) -> f64 {
+        M::off(rate)
+    }
+    #[inline(always)]
+    fn restart(&mut self) {
+        if let Some(m) = self {
+            m.restart();
+        }
+    }
+}
+
+/// The stages with memory are borrowed for a block or a sample.
+impl<M: Memory> Memory for &mut M {
+    #[inline(always)]
+    fn feed(&mut self, dt: f64, rate: f64) -> f64 {
+        (**self).feed(dt, rate)
+    }
+    #[inline(always)]
+    fn off(rate: f64) -> f64 {
+        M::off(rate)
+    }
+    #[inline(always)]
+    fn restart(&mut self) {
+        (**self).restart();
+    }
+}
+
+/// The stages with memory, each `None` when disabled.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct Pipeline {
-    config: PipelineConfig,
-    correction: Correction,
-    threshold: Option<Threshold>,
+struct Memories {
     lowpass: Option<LowPass>,
     hdr: Option<Hdr>,
     delag: Option<DeLag>,
+}
+
+/// Everything of the pipeline but the stages with memory: the stages without memory of the
+/// signal, the integrator and the input bookkeeping. Kept apart from [`Memories`] so that a block
+/// can borrow both at once (see [`Memory`]).
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+struct Chain {
+    config: PipelineConfig,
+    correction: Correction,
+    threshold: Option<Threshold>,
     integrator: Integrator,
     clock: Clock,
     /// The last finite (rate, temperature) reading, for [`NonFinite::Hold`].
@@ -183,6 +269,14 @@ pub struct Pipeline {
     /// The last output, repeated (with a NaN rate) for a skipped sample.
     last_output: Output,
     report: InputReport,
+}
+
+/// The composed pipeline; see the module doc for the order of the stages.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Pipeline {
+    chain: Chain,
+    memories: Memories,
 }
 
 impl Pipeline {
@@ -201,73 +295,167 @@ impl Pipeline {
         };
         config.input.validate()?;
         Ok(Pipeline {
-            config,
-            correction: Correction::new(config.correction)?,
-            threshold: config.threshold.map(Threshold::new).transpose()?,
-            lowpass: config.lowpass.map(LowPass::new).transpose()?,
-            hdr: config.hdr.map(Hdr::new).transpose()?,
-            delag,
-            integrator: Integrator::new(config.integrator)?,
-            clock: Clock::default(),
-            last_reading: None,
-            last_output: Output::at_rest(config.integrator.initial_heading),
-            report: InputReport::default(),
+            chain: Chain {
+                config,
+                correction: Correction::new(config.correction)?,
+                threshold: config.threshold.map(Threshold::new).transpose()?,
+                integrator: Integrator::new(config.integrator)?,
+                clock: Clock::default(),
+                last_reading: None,
+                last_output: Output::at_rest(config.integrator.initial_heading),
+                report: InputReport::default(),
+            },
+            memories: Memories {
+                lowpass: config.lowpass.map(LowPass::new).transpose()?,
+                hdr: config.hdr.map(Hdr::new).transpose()?,
+                delag,
+            },
         })
     }
 
     /// The configuration.
     pub fn config(&self) -> &PipelineConfig {
-        &self.config
+        &self.chain.config
     }
 
     /// The static bias in use now [rad/s] and how many readings it averages.
     pub fn bias(&self) -> (f64, u64) {
-        (self.correction.bias(), self.correction.bias_sample_count())
+        let c = &self.chain.correction;
+        (c.bias(), c.bias_sample_count())
     }
 
     /// True while a rest window is still being measured.
     pub fn bias_learning(&self) -> bool {
-        self.correction.bias_learning()
+        self.chain.correction.bias_learning()
     }
 
     /// The last timestamp processed, if any.
     pub fn last_time(&self) -> Option<f64> {
-        self.clock.last()
+        self.chain.clock.last()
     }
 
     /// What the input policy has done so far (held, skipped samples; gaps).
     pub fn report(&self) -> InputReport {
-        self.report
+        self.chain.report
     }
 
     /// Returns every stage to its initial state (same as a new pipeline with the same config).
     pub fn reset(&mut self) {
         use crate::stage::Stage;
-        self.correction.reset();
-        self.reset_memory();
-        self.integrator.reset();
-        self.clock = Clock::default();
-        self.last_reading = None;
-        self.last_output = Output::at_rest(self.config.integrator.initial_heading);
-        self.report = InputReport::default();
+        let Pipeline { chain, memories } = self;
+        chain.restart(&mut (
+            &mut memories.lowpass,
+            &mut memories.hdr,
+            &mut memories.delag,
+        ));
+        chain.correction.reset();
+        chain.integrator.reset();
+        chain.clock = Clock::default();
+        chain.last_reading = None;
+        chain.last_output = Output::at_rest(chain.config.integrator.initial_heading);
+        chain.report = InputReport::default();
     }
 
-    /// Restarts the stages whose state is a memory of the recent signal (HDR, low-pass, de-lag).
+    /// Feeds one sample (`t` [s], `rate` [rad/s]) without a temperature.
+    #[inline]
+    pub fn update(&mut self, t: f64, rate: f64) -> Output {
+        self.update_with_temperature(t, rate, None)
+    }
+
+    /// Feeds one sample with the sensor temperature [degC] for the temperature scale model.
+    ///
+    /// Infallible and allocation-free. A sample whose timestamp does not move forward is skipped,
+    /// and so is a non-finite reading unless the policy holds the last one: a skipped sample leaves
+    /// every stage untouched and gets the last heading and drift with a NaN rate (counted in
+    /// [`Pipeline::report`]). Use [`Pipeline::process_block`] to have bad input rejected instead.
+    #[inline]
+    pub fn update_with_temperature(
+        &mut self,
+        t: f64,
+        rate: f64,
+        temperature: Option<f64>,
+    ) -> Output {
+        let m = &mut self.memories;
+        let mut memories = (&mut m.lowpass, &mut m.hdr, &mut m.delag);
+        self.chain.update(&mut memories, t, rate, temperature)
+    }
+
+    /// Checks a block (lengths; finite, strictly increasing time, also after the previous block;
+    /// finite readings unless the policy holds or skips them) and, only if it is valid, feeds it
+    /// through the pipeline. On an error the pipeline is as it was (the outputs are not).
+    ///
+    /// One pass over memory: the block runs through a copy of the pipeline that checks every
+    /// sample on the way, and the copy replaces the pipeline only if all were valid. A separate
+    /// check first would read the whole block once more, which costs about as much as the
+    /// processing itself. Only a block with a bad sample is checked again, to name the first one
+    /// (an error), or fed sample by sample when the policy holds or skips non-finite readings.
+    pub fn process_block(
+        &mut self,
+        t: &[f64],
+        rate: &[f64],
+        temperature: Option<&[f64]>,
+        mut out: Outputs<'_>,
+    ) -> Result<(), Error> {
+        let c = &self.chain;
+        if c.config.correction.temperature.is_some() && temperature.is_none() {
+            return Err(Error::MissingTemperature);
+        }
+        check_len("rate", rate.len(), t.len())?;
+        if let Some(temp) = temperature {
+            check_len("temperature", temp.len(), t.len())?;
+        }
+        check_len("heading", out.heading.len(), t.len())?;
+        check_len("rate out", out.rate.len(), t.len())?;
+        check_len("drift", out.drift.len(), t.len())?;
+        let mut trial = self.clone();
+        if trial.feed::<true>(t, rate, temperature, &mut out) {
+            *self = trial;
+            return Ok(());
+        }
+        let readings_must_be_finite = self.chain.config.input.non_finite == NonFinite::Error;
+        let last = self.chain.clock.last();
+        check_block(t, rate, temperature, last, readings_must_be_finite)?;
+        self.feed::<false>(t, rate, temperature, &mut out);
+        Ok(())
+    }
+
+    /// [`Chain::feed`] with the stages with memory: compiled for the concrete stages when all are
+    /// on (see [`Memory`]), for `Option`s otherwise.
     #[inline(always)]
-    fn reset_memory(&mut self) {
+    fn feed<const FAST: bool>(
+        &mut self,
+        t: &[f64],
+        rate: &[f64],
+        temperature: Option<&[f64]>,
+        out: &mut Outputs<'_>,
+    ) -> bool {
+        let Pipeline { chain, memories } = self;
+        match memories {
+            Memories {
+                lowpass: Some(l),
+                hdr: Some(h),
+                delag: Some(d),
+            } => chain.feed::<FAST, _, _, _>(&mut (l, h, d), t, rate, temperature, out),
+            Memories {
+                lowpass,
+                hdr,
+                delag,
+            } => chain.feed::<FAST, _, _, _>(&mut (lowpass, hdr, delag), t, rate, temperature, out),
+        }
+    }
+}
+
+impl Chain {
+    /// Restarts the stages whose state is a memory of the recent signal.
+    #[inline(always)]
+    fn restart<L: Memory, H: Memory, D: Memory>(&mut self, memories: &mut (L, H, D)) {
         use crate::stage::Stage;
         if let Some(s) = &mut self.threshold {
             s.reset();
         }
-        if let Some(s) = &mut self.lowpass {
-            s.reset();
-        }
-        if let Some(s) = &mut self.hdr {
-            s.reset();
-        }
-        if let Some(s) = &mut self.delag {
-            s.reset();
-        }
+        memories.0.restart();
+        memories.1.restart();
+        memories.2.restart();
     }
 
     /// The interval and the reading to use for a sample under the input policy (the clock then
@@ -296,21 +484,11 @@ impl Pipeline {
         Some((dt, reading.0, reading.1))
     }
 
-    /// Feeds one sample (`t` [s], `rate` [rad/s]) without a temperature.
-    #[inline]
-    pub fn update(&mut self, t: f64, rate: f64) -> Output {
-        self.update_with_temperature(t, rate, None)
-    }
-
-    /// Feeds one sample with the sensor temperature [degC] for the temperature scale model.
-    ///
-    /// Infallible and allocation-free. A sample whose timestamp does not move forward is skipped,
-    /// and so is a non-finite reading unless the policy holds the last one: a skipped sample leaves
-    /// every stage untouched and gets the last heading and drift with a NaN rate (counted in
-    /// [`Pipeline::report`]). Use [`Pipeline::process_block`] to have bad input rejected instead.
-    #[inline]
-    pub fn update_with_temperature(
+    /// [`Pipeline::update_with_temperature`] with the stages with memory borrowed apart.
+    #[inline(always)]
+    fn update<L: Memory, H: Memory, D: Memory>(
         &mut self,
+        memories: &mut (L, H, D),
         t: f64,
         rate: f64,
         temperature: Option<f64>,
@@ -322,41 +500,44 @@ impl Pipeline {
                 ..self.last_output
             };
         };
-        self.last_output = self.step(t, dt, rate, temperature);
+        self.last_output = self.step(memories, t, dt, rate, temperature);
         self.last_output
     }
 
     /// The stages, in order, for one admitted sample with interval `dt`.
     #[inline(always)]
-    fn step(&mut self, t: f64, dt: f64, rate: f64, temperature: Option<f64>) -> Output {
+    fn step<L: Memory, H: Memory, D: Memory>(
+        &mut self,
+        memories: &mut (L, H, D),
+        t: f64,
+        dt: f64,
+        rate: f64,
+        temperature: Option<f64>,
+    ) -> Output {
         if dt > self.config.input.gap_limit {
             self.report.gaps += 1;
             self.report.longest_gap = self.report.longest_gap.max(dt);
             if self.config.input.gap_action == GapAction::Reset {
-                self.reset_memory();
+                self.restart(memories);
             }
         }
+        let (lowpass, hdr, delag) = memories;
         let corrected = {
             let r = self.correction.apply(t, rate, temperature);
             self.threshold.as_ref().map_or(r, |s| s.apply(r))
         };
-        let mut r = match &mut self.lowpass {
-            Some(s) => s.step(dt, corrected),
-            None => corrected,
-        };
+        let mut r = lowpass.feed(dt, corrected);
         // HDR decides on its own low-passed step means of the corrected rate (see `Hdr`) and its
         // `I` is added to the per-sample low-passed rate, which the de-lag then restores. It starts
         // once the static bias is known: during the rest window it would only chase the running
         // estimate of the bias (the papers measure the bias before the drive, then run HDR).
         let mut drift = 0.0;
-        if let (Some(s), false) = (&mut self.hdr, self.correction.bias_learning()) {
-            let integrator = s.observe(dt, corrected);
+        if !self.correction.bias_learning() {
+            let integrator = hdr.feed(dt, corrected);
             drift = -integrator;
             r += integrator;
         }
-        if let Some(s) = &mut self.delag {
-            r = s.step(dt, r);
-        }
+        let r = delag.feed(dt, r);
         let heading = self.integrator.step(dt, r);
         Output {
             heading,
@@ -365,56 +546,40 @@ impl Pipeline {
         }
     }
 
-    /// Checks a block (lengths; finite, strictly increasing time, also after the previous block;
-    /// finite readings unless the policy holds or skips them) and, only if it is valid, feeds it
-    /// through the pipeline.
-    pub fn process_block(
+    /// The loops of [`Pipeline::process_block`], with or without temperature (a closure, so the
+    /// loop without temperature carries no lookups). See [`Chain::run`] for `FAST`.
+    #[inline(always)]
+    fn feed<const FAST: bool, L: Memory, H: Memory, D: Memory>(
         &mut self,
+        memories: &mut (L, H, D),
         t: &[f64],
         rate: &[f64],
         temperature: Option<&[f64]>,
-        out: Outputs<'_>,
-    ) -> Result<(), Error> {
-        if self.config.correction.temperature.is_some() && temperature.is_none() {
-            return Err(Error::MissingTemperature);
+        out: &mut Outputs<'_>,
+    ) -> bool {
+        match temperature {
+            Some(temp) => self.run::<FAST, _, _, _>(memories, t, rate, |i| Some(temp[i]), out),
+            None => self.run::<FAST, _, _, _>(memories, t, rate, |_| None, out),
         }
-        let readings_must_be_finite = self.config.input.non_finite == NonFinite::Error;
-        check_block(
-            t,
-            rate,
-            temperature,
-            self.clock.last(),
-            readings_must_be_finite,
-        )?;
-        check_len("heading", out.heading.len(), t.len())?;
-        check_len("rate out", out.rate.len(), t.len())?;
-        check_len("drift", out.drift.len(), t.len())?;
-        // Checked blocks of finite readings (the common case) skip the per-sample admission.
-        let readings_finite =
-            readings_must_be_finite || (all_finite(rate) && temperature.is_none_or(all_finite));
-        match (temperature, readings_finite) {
-            (Some(temp), true) => self.feed::<true>(t, rate, |i| Some(temp[i]), out),
-            (None, true) => self.feed::<true>(t, rate, |_| None, out),
-            (Some(temp), false) => self.feed::<false>(t, rate, |i| Some(temp[i]), out),
-            (None, false) => self.feed::<false>(t, rate, |_| None, out),
-        }
-        Ok(())
     }
 
-    /// The loop of [`Pipeline::process_block`] over checked slices; `temperature_at(i)` gives the
-    /// temperature of sample `i` (a closure, so the loop without temperature carries no lookups).
+    /// One loop over a block whose slices have equal lengths; `temperature_at(i)` gives the
+    /// temperature of sample `i`.
     ///
-    /// With `FINITE` (every reading is known to be finite) every sample is admitted, so the
-    /// interval comes straight from the timestamps and the memories of the input policy are updated
-    /// once, at the end; otherwise each sample goes through [`Pipeline::update_with_temperature`].
+    /// `FAST`: every sample is taken as admissible (the interval comes straight from the
+    /// timestamps, the input policy's memories are updated once, at the end) and checked on the
+    /// way; returns false if any was not (a timestamp not after the one before, a non-finite
+    /// one or reading), and the state is then meaningless. Otherwise each sample goes through
+    /// [`Chain::update`] (timestamps must have been checked) and the result is true.
     #[inline(always)]
-    fn feed<const FINITE: bool>(
+    fn run<const FAST: bool, L: Memory, H: Memory, D: Memory>(
         &mut self,
+        memories: &mut (L, H, D),
         t: &[f64],
         rate: &[f64],
         temperature_at: impl Fn(usize) -> Option<f64>,
-        out: Outputs<'_>,
-    ) {
+        out: &mut Outputs<'_>,
+    ) -> bool {
         let n = t.len();
         let (rate, heading, rate_out, drift) = (
             &rate[..n],
@@ -422,24 +587,42 @@ impl Pipeline {
             &mut out.rate[..n],
             &mut out.drift[..n],
         );
-        let mut previous = self.clock.last().or(t.first().copied()).unwrap_or(0.0);
         let mut o = self.last_output;
-        for i in 0..n {
-            o = if FINITE {
-                let dt = t[i] - previous;
-                previous = t[i];
-                self.step(t[i], dt, rate[i], temperature_at(i))
-            } else {
-                self.update_with_temperature(t[i], rate[i], temperature_at(i))
-            };
+        let mut emit = |i: usize, o: Output| {
             heading[i] = o.heading;
             rate_out[i] = o.rate;
             drift[i] = o.drift;
+        };
+        let mut checks = Checks::default();
+        // The first sample of a stream has no interval (0, as `Clock` gives it): it is checked
+        // on its own, and every later one by its interval from the one before.
+        let (mut previous, start) = match (self.clock.last(), t.first()) {
+            (None, Some(&first)) if FAST => {
+                checks.finite(first);
+                checks.reading(rate[0], temperature_at(0));
+                o = self.step(memories, first, 0.0, rate[0], temperature_at(0));
+                emit(0, o);
+                (first, 1)
+            }
+            (last, _) => (last.unwrap_or(0.0), 0),
+        };
+        for i in start..n {
+            o = if FAST {
+                let dt = t[i] - previous;
+                previous = t[i];
+                checks.interval(dt);
+                checks.reading(rate[i], temperature_at(i));
+                self.step(memories, t[i], dt, rate[i], temperature_at(i))
+            } else {
+                self.update(memories, t[i], rate[i], temperature_at(i))
+            };
+            emit(i, o);
         }
-        if FINITE && n > 0 {
+        if FAST && n > 0 {
             self.clock.set(t[n - 1]);
             self.last_reading = Some((rate[n - 1], temperature_at(n - 1)));
             self.last_output = o;
         }
+        !FAST || checks.passed()
     }
 }

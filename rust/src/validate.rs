@@ -49,17 +49,63 @@ pub fn check_block(
     Ok(())
 }
 
-/// True if every value is finite. Branch-free integer arithmetic, so it vectorises: a double is
-/// NaN or infinite exactly when its 11 exponent bits are all set, and adding one to the exponent
-/// field then carries into the top bit.
+/// True if every value is finite. Branch-free integer arithmetic, so it vectorises.
 #[inline]
 pub(crate) fn all_finite(values: &[f64]) -> bool {
+    values.iter().fold(0u64, |acc, &v| acc | exponent_carry(v)) & CARRY == 0
+}
+
+/// The bit that [`exponent_carry`] sets for a non-finite value.
+const CARRY: u64 = 1 << 63;
+
+/// A double is NaN or infinite exactly when its 11 exponent bits are all set, and adding one to
+/// the exponent field then carries into the top bit ([`CARRY`]); OR-ed over many values, the
+/// carry survives.
+#[inline(always)]
+fn exponent_carry(v: f64) -> u64 {
     const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
-    const ONE: u64 = 0x0010_0000_0000_0000;
-    let carry = values
-        .iter()
-        .fold(0u64, |acc, v| acc | ((v.to_bits() & EXPONENT) + ONE));
-    carry & (1 << 63) == 0
+    const EXPONENT_ONE: u64 = 0x0010_0000_0000_0000;
+    (v.to_bits() & EXPONENT) + EXPONENT_ONE
+}
+
+/// Validity of a block's samples, accumulated branch-free while the block is processed (see
+/// [`Pipeline::process_block`](crate::Pipeline::process_block)): a few integer operations per
+/// sample and no early exit, instead of a separate pass over the block.
+#[derive(Debug, Default)]
+pub(crate) struct Checks {
+    /// The largest `bits(dt) - 1` seen: below `bits(f64::MAX)` exactly when every interval was
+    /// finite and positive (positive finite doubles order like their bit patterns).
+    worst_interval: u64,
+    /// [`exponent_carry`] of every value seen, OR-ed.
+    carry: u64,
+}
+
+impl Checks {
+    /// A finite and positive interval (so, after a finite timestamp, a finite one).
+    #[inline(always)]
+    pub(crate) fn interval(&mut self, dt: f64) {
+        self.worst_interval = self.worst_interval.max(dt.to_bits().wrapping_sub(1));
+    }
+
+    /// A finite value (a timestamp or a reading).
+    #[inline(always)]
+    pub(crate) fn finite(&mut self, value: f64) {
+        self.carry |= exponent_carry(value);
+    }
+
+    /// A finite rate and, when there is one, a finite temperature.
+    #[inline(always)]
+    pub(crate) fn reading(&mut self, rate: f64, temperature: Option<f64>) {
+        self.finite(rate);
+        if let Some(celsius) = temperature {
+            self.finite(celsius);
+        }
+    }
+
+    /// True if every value and interval seen was valid.
+    pub(crate) fn passed(&self) -> bool {
+        self.worst_interval < f64::MAX.to_bits() && self.carry & CARRY == 0
+    }
 }
 
 /// True if every value is larger than the one before (branch-free, so it vectorises).
