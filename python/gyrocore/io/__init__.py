@@ -35,7 +35,6 @@ import json
 import math
 import os
 import secrets
-import zipfile
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
@@ -45,11 +44,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from . import _gyrocore
-from ._gyrocore import SampleError
-from ._arrays import FloatArray
-from ._checks import INTERVAL_LIMIT, unit_problems, warn
-from .pipeline import HeadingResult, has_bias_source, process, uses_static_bias
+from .. import _gyrocore
+from .._arrays import FloatArray
+from .._checks import INTERVAL_LIMIT, unit_problems, warn
+from .._gyrocore import SampleError
+from ..pipeline import HeadingResult, has_bias_source, process, uses_static_bias
 
 if TYPE_CHECKING:
     import pyarrow as pa
