@@ -33,7 +33,7 @@ import json
 from collections.abc import Iterator
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
@@ -41,8 +41,10 @@ from .._arrays import FloatArray
 from .._checks import warn
 from .._gyrocore import SampleError
 from ..pipeline import HeadingResult, has_bias_source, process, uses_static_bias
-from ._columns import column_positions, concat, first_null
+from ._columns import concat
 from ._csvfile import CSV_BLOCK_BYTES, csv_chunks, read_csv_columns
+from ._npyfile import npy_chunks, npy_header, npz_chunks
+from ._parquetfile import parquet_chunks, parquet_file
 from .atomic import StagedFile, atomic_path
 from .units import EPOCH_LIMIT, RATE_UNITS, SHORT_INTERVAL, SMALL_RATE_DPS, TIME_UNITS, UnitCheck
 from .writer import (
@@ -54,9 +56,6 @@ from .writer import (
     convert_heading,
     output_format,
 )
-
-if TYPE_CHECKING:
-    import pyarrow as pa
 
 #: Samples per chunk, at most (a CSV chunk also ends with a block of :data:`CSV_BLOCK_BYTES`).
 DEFAULT_CHUNK_ROWS = 1 << 16
@@ -181,9 +180,9 @@ class GyroSource:
         readers = {
             "csv": csv_chunks,
             "log folder": csv_chunks,
-            "parquet": _parquet_chunks,
-            "npy": _npy_chunks,
-            "npz": _npz_chunks,
+            "parquet": parquet_chunks,
+            "npy": npy_chunks,
+            "npz": npz_chunks,
             "bag": _bag_chunks,
         }
         first = 0
@@ -237,10 +236,10 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
     if suffix == ".csv":
         return GyroSource(p, "csv", p, options, progress_total=p.stat().st_size, progress_unit="B")
     if suffix in (".parquet", ".pq"):
-        return GyroSource(p, "parquet", p, options, progress_total=_parquet_file(p).metadata.num_rows)
+        return GyroSource(p, "parquet", p, options, progress_total=parquet_file(p).metadata.num_rows)
     if suffix == ".npy":
         with open(p, "rb") as f:
-            shape = _npy_header(p, f)[0]
+            shape = npy_header(p, f)[0]
         return GyroSource(p, "npy", p, options, progress_total=shape[0] if shape else 0)
     if suffix == ".npz":
         return GyroSource(p, "npz", p, options)
@@ -277,176 +276,6 @@ def _read_meta(path: Path) -> dict[str, Any]:
     if not isinstance(meta, dict):
         raise ValueError(f"{path}: expected a JSON object")
     return meta
-
-
-# --- Parquet ---------------------------------------------------------------------------------
-
-
-def _parquet_file(path: Path) -> Any:
-    import pyarrow as pa
-    import pyarrow.parquet as pq
-
-    try:
-        return pq.ParquetFile(path)
-    except (pa.ArrowInvalid, OSError) as e:
-        raise ValueError(f"{path}: not a readable Parquet file ({e})") from None
-
-
-def _parquet_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
-    o = src.options
-    pf = _parquet_file(src.path)
-    header = pf.schema_arrow.names
-    column_positions(src.path, header, (o.time, o.rate))
-    import pyarrow as pa
-
-    first = 0
-    batches = pf.iter_batches(batch_size=rows, columns=[o.time, o.rate])
-    while True:
-        try:
-            batch = next(batches, None)
-        except (pa.ArrowException, OSError) as e:  # a corrupt page or schema
-            raise ValueError(f"{src.path}: unreadable Parquet data after row {first} ({e})") from None
-        if batch is None:
-            return
-        if batch.num_columns != 2:
-            raise ValueError(f"{src.path}: columns {o.time!r} and {o.rate!r} do not read as two columns")
-        t, per_second = _arrow_time(src, batch.column(0), first)
-        rate = _arrow_numbers(src, o.rate, batch.column(1))
-        first += batch.num_rows
-        yield t, rate, per_second, first
-
-
-def _arrow_time(src: GyroSource, array: pa.Array, first: int) -> tuple[np.ndarray, float]:
-    """Timestamps as numbers and their counts per second (a timestamp type carries its unit)."""
-    import pyarrow as pa
-
-    name = src.options.time
-    bad = first_null(array)
-    if bad is not None:
-        raise ValueError(f"{src.path}: {src.where(first + bad)}, column {name}: empty timestamp")
-    if pa.types.is_timestamp(array.type) or pa.types.is_duration(array.type):
-        per_second = TIME_UNITS[array.type.unit]
-        return array.cast(pa.int64()).to_numpy(), per_second
-    return _arrow_numbers(src, name, array), TIME_UNITS[src.options.time_unit]
-
-
-def _arrow_numbers(src: GyroSource, name: str, array: pa.Array) -> np.ndarray:
-    """A numeric column as numpy (nulls become NaN); other types are an error."""
-    import pyarrow as pa
-
-    t = array.type
-    if not (pa.types.is_integer(t) or pa.types.is_floating(t) or pa.types.is_decimal(t)):
-        raise ValueError(f"{src.path}: column {name} holds {t}, not numbers")
-    if array.null_count or pa.types.is_decimal(t):
-        array = array.cast(pa.float64())
-    return array.to_numpy(zero_copy_only=False)
-
-
-# --- NumPy -----------------------------------------------------------------------------------
-
-
-def _npy_header(path: Path, f: Any) -> tuple[tuple[int, ...], bool, np.dtype[Any]]:
-    """(shape, Fortran order, dtype) of an .npy file; ``f`` is left at the start of the data."""
-    fmt = np.lib.format
-    try:
-        version = fmt.read_magic(f)
-        read_header = fmt.read_array_header_1_0 if version == (1, 0) else fmt.read_array_header_2_0
-        shape, fortran, dtype = read_header(f)
-    except Exception as e:  # numpy's header parser raises ValueError, SyntaxError, TokenError, ...
-        raise ValueError(f"{path}: not a NumPy .npy file ({type(e).__name__}: {e})") from None
-    return shape, fortran, dtype
-
-
-def _npy_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
-    """Read an .npy file a block of rows at a time with plain reads (a memory map would count the
-    whole file in the resident memory by the end)."""
-    per_second = TIME_UNITS[src.options.time_unit]
-    with open(src.path, "rb") as f:
-        shape, fortran, dtype = _npy_header(src.path, f)
-        offset = f.tell()
-        if dtype.names:
-            if len(shape) != 1:
-                raise ValueError(f"{src.path}: a structured array must be 1-D, got shape {shape}")
-            o = src.options
-            column_positions(src.path, list(dtype.names), (o.time, o.rate))
-            for name in (o.time, o.rate):
-                _check_numbers(src, name, dtype[name])
-            n = shape[0]
-            for start in range(0, n, rows):
-                rec = np.fromfile(f, dtype=dtype, count=min(rows, n - start))
-                _check_read(src, rec, min(rows, n - start))
-                yield rec[o.time], rec[o.rate], per_second, start + len(rec)
-            return
-        if len(shape) != 2 or shape[1] < 2:
-            raise ValueError(
-                f"{src.path}: expected a structured array with time and rate fields, or a 2-D array "
-                f"(samples x columns), got shape {shape}"
-            )
-        _check_numbers(src, "the array", dtype)
-        n, width = shape
-        ti, ri = (
-            _column_number(src, c, default, width)
-            for c, default in ((src.options.time_col, 0), (src.options.rate_col, 1))
-        )
-        for start in range(0, n, rows):
-            count = min(rows, n - start)
-            if fortran:  # columns are contiguous: read the two column segments
-                cols = []
-                for j in (ti, ri):
-                    f.seek(offset + (j * n + start) * dtype.itemsize)
-                    cols.append(np.fromfile(f, dtype=dtype, count=count))
-                    _check_read(src, cols[-1], count)
-                t, rate = cols
-            else:
-                block = np.fromfile(f, dtype=dtype, count=count * width)
-                _check_read(src, block, count * width)
-                block = block.reshape(count, width)
-                t, rate = block[:, ti], block[:, ri]
-            yield t, rate, per_second, start + count
-
-
-def _check_numbers(src: GyroSource, name: str, dtype: np.dtype[Any]) -> None:
-    if dtype.kind not in "iuf":
-        raise ValueError(f"{src.path}: {name} holds {dtype}, not real numbers")
-
-
-def _check_read(src: GyroSource, data: np.ndarray, expected: int) -> None:
-    if len(data) != expected:
-        raise ValueError(f"{src.path}: file ends early (truncated .npy)")
-
-
-def _column_number(src: GyroSource, name: str | None, default: int, width: int) -> int:
-    if name is None:
-        return default
-    if not name.isdigit() or int(name) >= width:
-        raise ValueError(
-            f"{src.path}: a plain 2-D array has numbered columns 0..{width - 1}; "
-            f"got column {name!r} (give the column number)"
-        )
-    return int(name)
-
-
-def _npz_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
-    o = src.options
-    try:
-        with np.load(src.path, allow_pickle=False) as archive:
-            names = list(archive.files)
-            arrays = {k: archive[k] for k in (o.time, o.rate) if k in names}
-    except Exception as e:  # np.load raises EOFError, BadZipFile, ValueError, OSError, ... on bad bytes
-        raise ValueError(f"{src.path}: not a readable NumPy .npz file ({type(e).__name__}: {e})") from None
-    column_positions(src.path, names, (o.time, o.rate))
-    t, rate = arrays[o.time], arrays[o.rate]
-    for name, a in ((o.time, t), (o.rate, rate)):
-        if not isinstance(a, np.ndarray):  # a member not stored as .npy comes back as raw bytes
-            raise ValueError(f"{src.path}: member {name} is not a NumPy array")
-        _check_numbers(src, f"array {name}", a.dtype)
-        if a.ndim != 1:
-            raise ValueError(f"{src.path}: array {name} must be 1-D, got shape {a.shape}")
-    if len(t) != len(rate):
-        raise ValueError(f"{src.path}: {o.time} has {len(t)} samples but {o.rate} has {len(rate)}")
-    for start in range(0, len(t), rows):
-        end = min(len(t), start + rows)
-        yield t[start:end], rate[start:end], TIME_UNITS[o.time_unit], end
 
 
 # --- ROS bags --------------------------------------------------------------------------------
