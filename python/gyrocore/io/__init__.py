@@ -45,6 +45,7 @@ from ._columns import concat
 from ._csvfile import CSV_BLOCK_BYTES, csv_chunks, read_csv_columns
 from ._npyfile import npy_chunks, npy_header, npz_chunks
 from ._parquetfile import parquet_chunks, parquet_file
+from ._rosbag import bag_chunks, imu_topic
 from .atomic import StagedFile, atomic_path
 from .units import EPOCH_LIMIT, RATE_UNITS, SHORT_INTERVAL, SMALL_RATE_DPS, TIME_UNITS, UnitCheck
 from .writer import (
@@ -183,7 +184,7 @@ class GyroSource:
             "parquet": parquet_chunks,
             "npy": npy_chunks,
             "npz": npz_chunks,
-            "bag": _bag_chunks,
+            "bag": bag_chunks,
         }
         first = 0
         for t_raw, rate_raw, per_second, done in readers[self.kind](self, rows):
@@ -194,8 +195,6 @@ class GyroSource:
             for start in range(0, len(t), rows):  # a CSV block can hold more than ``rows``
                 yield Chunk(t[start : start + rows], rate[start : start + rows], first + start, done)
             first += len(t)
-
-
 
 
 def _seconds(raw: np.ndarray, per_second: float) -> FloatArray:
@@ -250,6 +249,12 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
     )
 
 
+def _open_bag(path: Path, options: ReadOptions) -> GyroSource:
+    """A bag on its Imu topic (the one given, or the only one), with the topic's message count."""
+    topic, count = imu_topic(path, options.topic)
+    return GyroSource(path, "bag", path, replace(options, topic=topic), progress_total=count)
+
+
 def is_input(path: Path) -> bool:
     """Whether ``path`` is something :func:`open_source` reads (by suffix or folder layout)."""
     if path.is_dir():
@@ -276,75 +281,6 @@ def _read_meta(path: Path) -> dict[str, Any]:
     if not isinstance(meta, dict):
         raise ValueError(f"{path}: expected a JSON object")
     return meta
-
-
-# --- ROS bags --------------------------------------------------------------------------------
-
-_IMU = "sensor_msgs/msg/Imu"
-
-
-def _bag_reader(path: Path) -> Any:
-    """An open rosbags AnyReader (ROS 1 or ROS 2)."""
-    try:
-        from rosbags.highlevel import AnyReader, AnyReaderError
-        from rosbags.typesys import Stores, get_typestore
-    except ImportError:
-        raise ImportError(f"{path}: reading ROS bags needs rosbags: pip install 'gyrocore[ros]'") from None
-    try:
-        # Bags without embedded definitions (ROS 2 before Iron) use the current standard types.
-        reader = AnyReader([path], default_typestore=get_typestore(Stores.LATEST))
-        reader.open()
-    except AnyReaderError as e:
-        raise ValueError(f"{path}: not a readable ROS bag ({e})") from None
-    except Exception as e:  # rosbags' parser reports some corruption as AssertionError, KeyError, ...
-        raise ValueError(f"{path}: not a readable ROS bag ({type(e).__name__}: {e})") from None
-    return reader
-
-
-def _open_bag(path: Path, options: ReadOptions) -> GyroSource:
-    """Resolve the Imu topic (the one given, or the only one) and count its messages."""
-    reader = _bag_reader(path)
-    try:
-        counts: dict[str, int] = {}
-        for c in reader.connections:
-            if c.msgtype == _IMU:
-                counts[c.topic] = counts.get(c.topic, 0) + c.msgcount
-    finally:
-        reader.close()
-    found = ", ".join(sorted(counts)) or "none"
-    if options.topic is None and len(counts) != 1:
-        raise ValueError(f"{path}: give the topic (--topic); {_IMU} topics: {found}")
-    topic = options.topic or next(iter(counts))
-    if topic not in counts:
-        raise ValueError(f"{path}: no {_IMU} messages on {topic} ({_IMU} topics: {found})")
-    return GyroSource(path, "bag", path, replace(options, topic=topic), progress_total=counts[topic])
-
-
-def _bag_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
-    """sensor_msgs/Imu ``angular_velocity.z`` [rad/s] stamped by ``header.stamp`` [ns].
-
-    rosbags deserialises message by message (a Python loop: about 70 000 messages/s).
-    """
-    reader = _bag_reader(src.path)
-    try:
-        connections = [c for c in reader.connections if c.msgtype == _IMU and c.topic == src.options.topic]
-        stamps: list[int] = []
-        rates: list[float] = []
-        done = 0
-        for connection, _, raw in reader.messages(connections=connections):
-            msg: Any = reader.deserialize(raw, connection.msgtype)
-            stamps.append(msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec)
-            rates.append(msg.angular_velocity.z)
-            if len(stamps) == rows:
-                done += rows
-                yield np.array(stamps, dtype=np.int64), np.array(rates), 1e9, done
-                stamps, rates = [], []
-        if stamps:
-            yield np.array(stamps, dtype=np.int64), np.array(rates), 1e9, done + len(stamps)
-    except Exception as e:  # rosbags reports damage as its ReaderErrors, AssertionError, struct.error, ...
-        raise ValueError(f"{src.path}: damaged bag ({type(e).__name__}: {e})") from None
-    finally:
-        reader.close()
 
 
 # --- whole logs ------------------------------------------------------------------------------
