@@ -29,7 +29,6 @@ written by :class:`HeadingWriter` through a temporary file that is renamed at th
 
 from __future__ import annotations
 
-import json
 from collections.abc import Iterator
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -43,6 +42,7 @@ from .._gyrocore import SampleError
 from ..pipeline import HeadingResult, has_bias_source, process, uses_static_bias
 from ._columns import concat
 from ._csvfile import CSV_BLOCK_BYTES, csv_chunks, read_csv_columns
+from ._logfolder import GYRO_CSV, is_log_folder, read_meta, read_odometry, read_reference
 from ._npyfile import npy_chunks, npy_header, npz_chunks
 from ._parquetfile import parquet_chunks, parquet_file
 from ._rosbag import bag_chunks, imu_topic
@@ -223,10 +223,9 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
     if not p.exists():
         raise FileNotFoundError(f"{p}: no such file or folder")
     if p.is_dir():
-        if (p / "gyro.csv").is_file():
-            meta = _read_meta(p / "meta.json")
-            stationary = _rest_window(p / "meta.json", meta.get("stationary"))
-            data = p / "gyro.csv"
+        if is_log_folder(p):
+            meta, stationary = read_meta(p)
+            data = p / GYRO_CSV
             return GyroSource(p, "log folder", data, options, stationary, data.stat().st_size, "B", meta)
         if (p / "metadata.yaml").is_file():
             return _open_bag(p, options)
@@ -258,29 +257,8 @@ def _open_bag(path: Path, options: ReadOptions) -> GyroSource:
 def is_input(path: Path) -> bool:
     """Whether ``path`` is something :func:`open_source` reads (by suffix or folder layout)."""
     if path.is_dir():
-        return (path / "gyro.csv").is_file() or (path / "metadata.yaml").is_file()
+        return is_log_folder(path) or (path / "metadata.yaml").is_file()
     return path.is_file() and path.suffix.lower() in FILE_SUFFIXES
-
-
-def _rest_window(path: Path, window: Any) -> tuple[float, float] | None:
-    """meta.json's ``stationary``: ``[t0, t1]`` [s] or null."""
-    if window is None:
-        return None
-    if not (isinstance(window, list) and len(window) == 2 and all(isinstance(v, (int, float)) for v in window)):
-        raise ValueError(f"{path}: stationary must be [t0, t1] in seconds or null, got {window!r}")
-    return float(window[0]), float(window[1])
-
-
-def _read_meta(path: Path) -> dict[str, Any]:
-    if not path.is_file():
-        return {}
-    try:
-        meta = json.loads(path.read_text(encoding="utf-8"))
-    except json.JSONDecodeError as e:
-        raise ValueError(f"{path}: line {e.lineno} column {e.colno}: {e.msg}") from None
-    if not isinstance(meta, dict):
-        raise ValueError(f"{path}: expected a JSON object")
-    return meta
 
 
 # --- whole logs ------------------------------------------------------------------------------
@@ -338,23 +316,20 @@ def read_log(path: str | Path, **options: Any) -> Log:
         rates.append(chunk.rate)
     for problem in check.problems():
         warn(f"{src.data_path}: {problem}")
-    ref: dict[str, FloatArray | None] = dict.fromkeys(("t", "heading", "x", "y"))
-    odo: dict[str, FloatArray | None] = dict.fromkeys(("t", "speed"))
+    ref: dict[str, FloatArray] = {}
+    odo: dict[str, FloatArray] = {}
     if src.kind == "log folder":
-        if (src.path / "reference.csv").is_file():
-            ref.update(read_csv_columns(src.path / "reference.csv", ("t", "heading", "x", "y")))
-        if (src.path / "odometry.csv").is_file():
-            odo.update(read_csv_columns(src.path / "odometry.csv", ("t", "speed")))
+        ref, odo = read_reference(src.path), read_odometry(src.path)
     return Log(
         name=src.name,
         t=concat(ts),
         rate=concat(rates),
-        t_ref=ref["t"],
-        heading_ref=ref["heading"],
-        x_ref=ref["x"],
-        y_ref=ref["y"],
-        t_odometry=odo["t"],
-        speed=odo["speed"],
+        t_ref=ref.get("t"),
+        heading_ref=ref.get("heading"),
+        x_ref=ref.get("x"),
+        y_ref=ref.get("y"),
+        t_odometry=odo.get("t"),
+        speed=odo.get("speed"),
         stationary=src.stationary,
         meta=src.meta,
     )
