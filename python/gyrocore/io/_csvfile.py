@@ -22,7 +22,7 @@ from .units import TIME_UNITS
 if TYPE_CHECKING:
     import pyarrow as pa
 
-    from . import GyroSource
+    from .source import GyroSource
 
 #: Bytes of CSV text parsed at a time. pyarrow's streaming reader reads about 32 blocks ahead, so
 #: this sets the reader's memory (1 MiB: about 40 MB, and the fastest size measured).

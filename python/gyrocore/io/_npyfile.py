@@ -16,7 +16,7 @@ from ._columns import column_positions
 from .units import TIME_UNITS
 
 if TYPE_CHECKING:
-    from . import GyroSource
+    from .source import GyroSource
 
 
 def npy_header(path: Path, f: Any) -> tuple[tuple[int, ...], bool, np.dtype[Any]]:

@@ -18,7 +18,7 @@ from .units import TIME_UNITS
 if TYPE_CHECKING:
     import pyarrow as pa
 
-    from . import GyroSource
+    from .source import GyroSource
 
 
 def parquet_file(path: Path) -> Any:

@@ -13,9 +13,14 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 if TYPE_CHECKING:
-    from . import GyroSource
+    from .source import GyroSource
 
 _IMU = "sensor_msgs/msg/Imu"
+
+
+def is_bag_folder(path: Path) -> bool:
+    """Whether the folder ``path`` is a ROS 2 bag (it has ``metadata.yaml``)."""
+    return (path / "metadata.yaml").is_file()
 
 
 def _bag_reader(path: Path) -> Any:

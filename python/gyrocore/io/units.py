@@ -16,7 +16,7 @@ from .._arrays import FloatArray
 from .._checks import INTERVAL_LIMIT, unit_problems
 
 if TYPE_CHECKING:
-    from . import ReadOptions
+    from .source import ReadOptions
 
 #: Time units of a file, as counts per second.
 TIME_UNITS = {"s": 1.0, "ms": 1e3, "us": 1e6, "ns": 1e9}

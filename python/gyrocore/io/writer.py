@@ -18,7 +18,7 @@ from ..pipeline import HeadingResult
 from .atomic import StagedFile
 
 if TYPE_CHECKING:
-    from . import GyroSource
+    from .source import GyroSource
 
 #: Heading conventions of the output: ENU yaw (counter-clockwise from east) or compass heading
 #: (clockwise from north).
