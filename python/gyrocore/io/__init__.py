@@ -1,0 +1,90 @@
+"""Reading gyro logs and writing heading tables.
+
+Every reader returns SI units: timestamps [s] and yaw rate [rad/s], counter-clockwise positive.
+
+============  =====================================================================================
+format        what is read
+============  =====================================================================================
+CSV           a header line, then one sample per line; columns ``time_col`` (default ``t``) and
+              ``rate_col`` (default ``gyro_z``); other columns are ignored (pyarrow, streaming)
+Parquet       columns ``time_col`` and ``rate_col``; a timestamp column carries its own unit
+``.npy``      a structured array with fields ``time_col``/``rate_col``, or a 2-D array
+              (samples x columns: time in column 0, rate in column 1 unless numbered otherwise)
+``.npz``      arrays named ``time_col`` and ``rate_col`` (loaded whole)
+log folder    ``gyro.csv`` (t, gyro_z), ``reference.csv`` (t, heading, x, y), ``odometry.csv``
+              (t, speed) and ``meta.json`` with the ``stationary`` rest window
+ROS bag       a ROS 1 ``.bag`` file or a ROS 2 bag folder (``metadata.yaml``): sensor_msgs/Imu
+              ``angular_velocity.z`` stamped by ``header.stamp`` (needs ``gyrocore[ros]``)
+============  =====================================================================================
+
+Units of the file are options: ``time_unit`` one of ``s``, ``ms``, ``us``, ``ns`` and ``rate_unit``
+``rad/s`` or ``deg/s``; a sanity check warns when the values look like another unit. Malformed
+files raise ``ValueError`` naming the file, line and column (or the row of a Parquet or NumPy file,
+the message of a bag).
+
+:func:`open_source` reads any of them chunk after chunk with flat memory (what ``gyrocore process``
+and :mod:`gyrocore.batch` use); :func:`read_log` reads a whole log into memory. Heading tables are
+written by :class:`HeadingWriter` through a temporary file that is renamed at the end.
+
+Modules (import the names from ``gyrocore.io``, which has them all):
+
+==================  ===============================================================================
+``source``          :class:`ReadOptions`, :func:`open_source`, :class:`GyroSource` and its chunks
+``log``             :func:`read_log` and :class:`Log`: a whole log in memory
+``units``           the units of a file and :class:`UnitCheck`
+``writer``          :class:`HeadingWriter`, :func:`convert_heading` and the checks of an output path
+``atomic``          :class:`StagedFile` and :func:`atomic_path`: files that appear whole or not at all
+``_csvfile``        the CSV reader (pyarrow), with :func:`read_csv_columns`
+``_parquetfile``    the Parquet reader
+``_npyfile``        the ``.npy`` and ``.npz`` reader
+``_rosbag``         the ROS bag reader (rosbags)
+``_logfolder``      the log-folder layout: ``meta.json``, ``reference.csv``, ``odometry.csv``
+``_columns``        what the readers share: finding the named columns, column data as arrays
+==================  ===============================================================================
+"""
+
+from __future__ import annotations
+
+from ._csvfile import CSV_BLOCK_BYTES, read_csv_columns
+from .atomic import StagedFile, atomic_path
+from .log import Log, read_log
+from .source import DEFAULT_CHUNK_ROWS, FILE_SUFFIXES, Chunk, GyroSource, ReadOptions, is_input, open_source
+from .units import EPOCH_LIMIT, RATE_UNITS, SHORT_INTERVAL, SMALL_RATE_DPS, TIME_UNITS, UnitCheck
+from .writer import (
+    HEADING_CONVENTIONS,
+    OUTPUT_COLUMNS,
+    PARQUET_ROW_GROUP,
+    HeadingWriter,
+    check_output,
+    convert_heading,
+    output_format,
+)
+
+__all__ = [
+    "CSV_BLOCK_BYTES",
+    "DEFAULT_CHUNK_ROWS",
+    "EPOCH_LIMIT",
+    "FILE_SUFFIXES",
+    "HEADING_CONVENTIONS",
+    "OUTPUT_COLUMNS",
+    "PARQUET_ROW_GROUP",
+    "RATE_UNITS",
+    "SHORT_INTERVAL",
+    "SMALL_RATE_DPS",
+    "TIME_UNITS",
+    "Chunk",
+    "GyroSource",
+    "HeadingWriter",
+    "Log",
+    "ReadOptions",
+    "StagedFile",
+    "UnitCheck",
+    "atomic_path",
+    "check_output",
+    "convert_heading",
+    "is_input",
+    "open_source",
+    "output_format",
+    "read_csv_columns",
+    "read_log",
+]

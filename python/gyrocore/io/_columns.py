@@ -1,0 +1,43 @@
+"""What the format readers share: finding the named columns, and column data as numpy arrays."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .._arrays import FloatArray
+
+if TYPE_CHECKING:
+    import pyarrow as pa
+
+
+def column_positions(path: Path, header: list[str], columns: tuple[str, ...]) -> dict[str, int]:
+    """Where each of ``columns`` is in ``header`` (column, field or array names of ``path``).
+
+    Raises:
+        ValueError: a column is missing or appears more than once.
+    """
+    missing = [c for c in columns if c not in header]
+    if missing:
+        raise ValueError(
+            f"{path}: missing column(s) {', '.join(missing)}; it has {', '.join(map(str, header))} "
+            "(choose with time_col/rate_col, --time-col/--rate-col)"
+        )
+    twice = [c for c in columns if header.count(c) > 1]
+    if twice:
+        raise ValueError(f"{path}: line 1: column(s) {', '.join(twice)} appear more than once")
+    return {c: header.index(c) for c in columns}
+
+
+def first_null(array: pa.Array) -> int | None:
+    """Index of the first null of a pyarrow array, or None."""
+    if array.null_count == 0:
+        return None
+    return int(np.flatnonzero(np.asarray(array.is_null()))[0])
+
+
+def concat(parts: list[np.ndarray]) -> FloatArray:
+    """The pieces of a column, read chunk after chunk, as one contiguous float64 array."""
+    return np.ascontiguousarray(np.concatenate(parts) if parts else np.empty(0), dtype=np.float64)

@@ -1,0 +1,185 @@
+"""Reading CSV files: pyarrow's streaming reader, and the line and column of a malformed value.
+
+A CSV file has a header line, then one sample per line. pyarrow parses it block by block on its own
+thread; when it rejects a value, the file is read again from that block with Python's csv module to
+find the line and column, which pyarrow's message does not name.
+"""
+
+from __future__ import annotations
+
+import csv
+import io as _io
+from collections.abc import Iterator
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .._arrays import FloatArray
+from ._columns import column_positions, concat, first_null
+from .units import TIME_UNITS
+
+if TYPE_CHECKING:
+    import pyarrow as pa
+
+    from .source import GyroSource
+
+#: Bytes of CSV text parsed at a time. pyarrow's streaming reader reads about 32 blocks ahead, so
+#: this sets the reader's memory (1 MiB: about 40 MB, and the fastest size measured).
+CSV_BLOCK_BYTES = 1 << 20
+
+
+def _csv_header(path: Path, delimiter: str) -> list[str]:
+    with open(path, "rb") as f:
+        line = f.readline()
+    if not line.strip():
+        raise ValueError(f"{path}: line 1: no header line (expected column names)")
+    text = line.decode("utf-8-sig", errors="replace").rstrip("\r\n")
+    try:
+        return [name.strip() for name in next(csv.reader([text], delimiter=delimiter))]
+    except csv.Error as e:  # e.g. a bare carriage return inside the header
+        raise ValueError(f"{path}: line 1: malformed header: {e}") from None
+
+
+def _read_csv(
+    path: Path, columns: tuple[str, ...], *, delimiter: str = ",", block_bytes: int = CSV_BLOCK_BYTES
+) -> Iterator[tuple[int, dict[str, pa.Array], int]]:
+    """Yield ``(first_row, {column: pyarrow array}, bytes read)`` of a CSV file, block by block.
+
+    Empty values become nulls; blank lines are rows of nulls, so that row ``k`` is line ``k + 2``
+    (for files with one sample per line: a quoted line break would shift the line numbers).
+    """
+    import pyarrow as pa
+    import pyarrow.csv as pa_csv
+
+    header = _csv_header(path, delimiter)
+    positions = column_positions(path, header, columns)
+    read = pa_csv.ReadOptions(
+        column_names=[f"{i}:{name}" for i, name in enumerate(header)],  # unique even if the header is not
+        skip_rows=1,
+        block_size=block_bytes,
+        use_threads=False,  # parallel files scale better than parallel blocks (and it was not faster)
+    )
+    keys = {c: f"{positions[c]}:{c}" for c in columns}
+    convert = pa_csv.ConvertOptions(
+        include_columns=list(keys.values()),
+        column_types={k: pa.float64() for k in keys.values()},
+        null_values=[""],
+        strings_can_be_null=False,
+        quoted_strings_can_be_null=True,
+    )
+    parse = pa_csv.ParseOptions(delimiter=delimiter, ignore_empty_lines=False)
+    first = 0
+    # pyarrow reads the file itself, on its own thread and without the GIL
+    with pa.OSFile(str(path)) as f:
+        try:
+            reader = pa_csv.open_csv(f, read_options=read, parse_options=parse, convert_options=convert)
+            for batch in reader:
+                yield first, {c: batch.column(keys[c]) for c in columns}, f.tell()
+                first += batch.num_rows
+        except pa.ArrowInvalid as e:
+            raise ValueError(_csv_error(path, e, first + 2, header, positions, delimiter)) from None
+
+
+def _csv_error(
+    path: Path, error: Exception, first_line: int, header: list[str], positions: dict[str, int], delimiter: str
+) -> str:
+    """Find the line and column of a value pyarrow could not read (its message names neither).
+
+    Reads on from ``first_line``, the first line not yet handed out; runs only after an error.
+    """
+    with open(path, "rb") as f:
+        _skip_lines(f, first_line - 1)
+        text = _io.TextIOWrapper(f, encoding="utf-8", errors="replace", newline="")
+        reader = csv.reader(text, delimiter=delimiter)
+        read = 0  # lines read so far; a record may span lines (a quoted line break)
+        for fields in reader:
+            line, read = first_line + read, reader.line_num
+            if fields == []:  # a blank line: pyarrow reads it as empty values
+                continue
+            if len(fields) != len(header):
+                return f"{path}: line {line}: {_count(len(fields), 'field')}, but the header has {len(header)}"
+            for name, pos in positions.items():
+                value = fields[pos].strip()
+                where = f"{path}: line {line}, column {pos + 1} ({name})"
+                if fields[pos] and not value:
+                    return f"{where}: blank value {fields[pos]!r} (leave it empty for a missing value)"
+                if value and not _is_number(value):
+                    return f"{where}: {value!r} is not a number"
+    return f"{path}: after line {first_line}: {error}"
+
+
+def _count(n: int, noun: str) -> str:
+    return f"{n} {noun}{'' if n == 1 else 's'}"
+
+
+def _is_number(text: str) -> bool:
+    """Whether pyarrow reads ``text`` as a float (Python's float() also takes ``1_000``)."""
+    if "_" in text:
+        return False
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def _skip_lines(f: Any, count: int) -> None:
+    """Move the binary file ``f`` past ``count`` line ends (counted in C, block by block)."""
+    while count > 0:
+        start = f.tell()
+        block = f.read(1 << 20)
+        if not block:
+            return
+        found = block.count(b"\n")
+        if found < count:
+            count -= found
+            continue
+        end = -1
+        for _ in range(count):
+            end = block.index(b"\n", end + 1)
+        f.seek(start + end + 1)
+        return
+
+
+def csv_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
+    """CSV blocks of at most ``rows`` samples; an empty time is an error, an empty rate is NaN."""
+    o = src.options
+    path = src.data_path
+    block = min(CSV_BLOCK_BYTES, max(4096, rows * _bytes_per_line(path)))
+    header = None
+    for first, cols, done in _read_csv(path, (o.time, o.rate), delimiter=o.delimiter, block_bytes=block):
+        t = cols[o.time]
+        bad = first_null(t)
+        if bad is not None:
+            header = header or _csv_header(path, o.delimiter)
+            blank = cols[o.rate][bad].as_py() is None
+            raise ValueError(
+                f"{path}: line {first + bad + 2}, column {header.index(o.time) + 1} ({o.time}): "
+                + ("blank line" if blank else "empty timestamp")
+            )
+        yield t.to_numpy(), cols[o.rate].to_numpy(zero_copy_only=False), TIME_UNITS[o.time_unit], done
+
+
+def _bytes_per_line(path: Path) -> int:
+    """Mean length of the first lines (to size CSV blocks for a number of rows)."""
+    with open(path, "rb") as f:
+        head = f.read(1 << 16)
+    return max(1, len(head) // max(1, head.count(b"\n")))
+
+
+def read_csv_columns(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:
+    """Read the named columns of a CSV file with a header line (all of it, as float64).
+
+    Raises ValueError naming the file, line and column of a malformed or empty value.
+    """
+    path = Path(path)
+    parts: dict[str, list[np.ndarray]] = {c: [] for c in columns}
+    header = _csv_header(path, ",")
+    for first, cols, _ in _read_csv(path, columns):
+        for c in columns:
+            bad = first_null(cols[c])
+            if bad is not None:
+                raise ValueError(f"{path}: line {first + bad + 2}, column {header.index(c) + 1} ({c}): empty value")
+            parts[c].append(cols[c].to_numpy())
+    return {c: concat(parts[c]) for c in columns}

@@ -1,0 +1,65 @@
+"""The log-folder layout: ``gyro.csv`` (t, gyro_z), ``reference.csv`` (t, heading, x, y),
+``odometry.csv`` (t, speed) and ``meta.json`` (the ``stationary`` rest window, and whatever else
+describes the log).
+
+``gyro.csv`` is read like any CSV input; this module reads the rest. Only ``gyro.csv`` is required.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+from .._arrays import FloatArray
+from ._csvfile import read_csv_columns
+
+#: The gyro samples of a log folder; a folder with this file is a log folder.
+GYRO_CSV = "gyro.csv"
+
+
+def is_log_folder(path: Path) -> bool:
+    """Whether the folder ``path`` is a log folder (it has ``gyro.csv``)."""
+    return (path / GYRO_CSV).is_file()
+
+
+def read_meta(folder: Path) -> tuple[dict[str, Any], tuple[float, float] | None]:
+    """``meta.json`` (empty without the file) and its rest window ``(t0, t1)`` [s] (or None)."""
+    path = folder / "meta.json"
+    meta = _read_json(path)
+    return meta, _rest_window(path, meta.get("stationary"))
+
+
+def read_reference(folder: Path) -> dict[str, FloatArray]:
+    """Columns t, heading, x and y of ``reference.csv``; empty without the file."""
+    return _read_table(folder / "reference.csv", ("t", "heading", "x", "y"))
+
+
+def read_odometry(folder: Path) -> dict[str, FloatArray]:
+    """Columns t and speed of ``odometry.csv``; empty without the file."""
+    return _read_table(folder / "odometry.csv", ("t", "speed"))
+
+
+def _read_table(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:
+    return read_csv_columns(path, columns) if path.is_file() else {}
+
+
+def _rest_window(path: Path, window: Any) -> tuple[float, float] | None:
+    """meta.json's ``stationary``: ``[t0, t1]`` [s] or null."""
+    if window is None:
+        return None
+    if not (isinstance(window, list) and len(window) == 2 and all(isinstance(v, (int, float)) for v in window)):
+        raise ValueError(f"{path}: stationary must be [t0, t1] in seconds or null, got {window!r}")
+    return float(window[0]), float(window[1])
+
+
+def _read_json(path: Path) -> dict[str, Any]:
+    if not path.is_file():
+        return {}
+    try:
+        meta = json.loads(path.read_text(encoding="utf-8"))
+    except json.JSONDecodeError as e:
+        raise ValueError(f"{path}: line {e.lineno} column {e.colno}: {e.msg}") from None
+    if not isinstance(meta, dict):
+        raise ValueError(f"{path}: expected a JSON object")
+    return meta

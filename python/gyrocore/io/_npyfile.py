@@ -1,0 +1,123 @@
+"""Reading NumPy files: ``.npy`` a block of rows at a time, ``.npz`` whole.
+
+An ``.npy`` file holds a structured array with time and rate fields, or a 2-D array (samples x
+columns) in C or Fortran order; an ``.npz`` archive holds the time and rate as 1-D arrays.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ._columns import column_positions
+from .units import TIME_UNITS
+
+if TYPE_CHECKING:
+    from .source import GyroSource
+
+
+def npy_header(path: Path, f: Any) -> tuple[tuple[int, ...], bool, np.dtype[Any]]:
+    """(shape, Fortran order, dtype) of an .npy file; ``f`` is left at the start of the data."""
+    fmt = np.lib.format
+    try:
+        version = fmt.read_magic(f)
+        read_header = fmt.read_array_header_1_0 if version == (1, 0) else fmt.read_array_header_2_0
+        shape, fortran, dtype = read_header(f)
+    except Exception as e:  # numpy's header parser raises ValueError, SyntaxError, TokenError, ...
+        raise ValueError(f"{path}: not a NumPy .npy file ({type(e).__name__}: {e})") from None
+    return shape, fortran, dtype
+
+
+def npy_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
+    """Read an .npy file a block of rows at a time with plain reads (a memory map would count the
+    whole file in the resident memory by the end)."""
+    per_second = TIME_UNITS[src.options.time_unit]
+    with open(src.path, "rb") as f:
+        shape, fortran, dtype = npy_header(src.path, f)
+        offset = f.tell()
+        if dtype.names:
+            if len(shape) != 1:
+                raise ValueError(f"{src.path}: a structured array must be 1-D, got shape {shape}")
+            o = src.options
+            column_positions(src.path, list(dtype.names), (o.time, o.rate))
+            for name in (o.time, o.rate):
+                _check_numbers(src, name, dtype[name])
+            n = shape[0]
+            for start in range(0, n, rows):
+                rec = np.fromfile(f, dtype=dtype, count=min(rows, n - start))
+                _check_read(src, rec, min(rows, n - start))
+                yield rec[o.time], rec[o.rate], per_second, start + len(rec)
+            return
+        if len(shape) != 2 or shape[1] < 2:
+            raise ValueError(
+                f"{src.path}: expected a structured array with time and rate fields, or a 2-D array "
+                f"(samples x columns), got shape {shape}"
+            )
+        _check_numbers(src, "the array", dtype)
+        n, width = shape
+        ti, ri = (
+            _column_number(src, c, default, width)
+            for c, default in ((src.options.time_col, 0), (src.options.rate_col, 1))
+        )
+        for start in range(0, n, rows):
+            count = min(rows, n - start)
+            if fortran:  # columns are contiguous: read the two column segments
+                cols = []
+                for j in (ti, ri):
+                    f.seek(offset + (j * n + start) * dtype.itemsize)
+                    cols.append(np.fromfile(f, dtype=dtype, count=count))
+                    _check_read(src, cols[-1], count)
+                t, rate = cols
+            else:
+                block = np.fromfile(f, dtype=dtype, count=count * width)
+                _check_read(src, block, count * width)
+                block = block.reshape(count, width)
+                t, rate = block[:, ti], block[:, ri]
+            yield t, rate, per_second, start + count
+
+
+def _check_numbers(src: GyroSource, name: str, dtype: np.dtype[Any]) -> None:
+    if dtype.kind not in "iuf":
+        raise ValueError(f"{src.path}: {name} holds {dtype}, not real numbers")
+
+
+def _check_read(src: GyroSource, data: np.ndarray, expected: int) -> None:
+    if len(data) != expected:
+        raise ValueError(f"{src.path}: file ends early (truncated .npy)")
+
+
+def _column_number(src: GyroSource, name: str | None, default: int, width: int) -> int:
+    if name is None:
+        return default
+    if not name.isdigit() or int(name) >= width:
+        raise ValueError(
+            f"{src.path}: a plain 2-D array has numbered columns 0..{width - 1}; "
+            f"got column {name!r} (give the column number)"
+        )
+    return int(name)
+
+
+def npz_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
+    o = src.options
+    try:
+        with np.load(src.path, allow_pickle=False) as archive:
+            names = list(archive.files)
+            arrays = {k: archive[k] for k in (o.time, o.rate) if k in names}
+    except Exception as e:  # np.load raises EOFError, BadZipFile, ValueError, OSError, ... on bad bytes
+        raise ValueError(f"{src.path}: not a readable NumPy .npz file ({type(e).__name__}: {e})") from None
+    column_positions(src.path, names, (o.time, o.rate))
+    t, rate = arrays[o.time], arrays[o.rate]
+    for name, a in ((o.time, t), (o.rate, rate)):
+        if not isinstance(a, np.ndarray):  # a member not stored as .npy comes back as raw bytes
+            raise ValueError(f"{src.path}: member {name} is not a NumPy array")
+        _check_numbers(src, f"array {name}", a.dtype)
+        if a.ndim != 1:
+            raise ValueError(f"{src.path}: array {name} must be 1-D, got shape {a.shape}")
+    if len(t) != len(rate):
+        raise ValueError(f"{src.path}: {o.time} has {len(t)} samples but {o.rate} has {len(rate)}")
+    for start in range(0, len(t), rows):
+        end = min(len(t), start + rows)
+        yield t[start:end], rate[start:end], TIME_UNITS[o.time_unit], end

@@ -1,0 +1,82 @@
+"""Reading Parquet files: the time and rate columns, a batch of rows at a time.
+
+A timestamp or duration column carries its own unit; numeric columns may be integers, floats or
+decimals (nulls in the rate become NaN).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ._columns import column_positions, first_null
+from .units import TIME_UNITS
+
+if TYPE_CHECKING:
+    import pyarrow as pa
+
+    from .source import GyroSource
+
+
+def parquet_file(path: Path) -> Any:
+    """The file opened as a pyarrow ``ParquetFile`` (its metadata read, no data yet)."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    try:
+        return pq.ParquetFile(path)
+    except (pa.ArrowInvalid, OSError) as e:
+        raise ValueError(f"{path}: not a readable Parquet file ({e})") from None
+
+
+def parquet_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
+    o = src.options
+    pf = parquet_file(src.path)
+    header = pf.schema_arrow.names
+    column_positions(src.path, header, (o.time, o.rate))
+    import pyarrow as pa
+
+    first = 0
+    batches = pf.iter_batches(batch_size=rows, columns=[o.time, o.rate])
+    while True:
+        try:
+            batch = next(batches, None)
+        except (pa.ArrowException, OSError) as e:  # a corrupt page or schema
+            raise ValueError(f"{src.path}: unreadable Parquet data after row {first} ({e})") from None
+        if batch is None:
+            return
+        if batch.num_columns != 2:
+            raise ValueError(f"{src.path}: columns {o.time!r} and {o.rate!r} do not read as two columns")
+        t, per_second = _arrow_time(src, batch.column(0), first)
+        rate = _arrow_numbers(src, o.rate, batch.column(1))
+        first += batch.num_rows
+        yield t, rate, per_second, first
+
+
+def _arrow_time(src: GyroSource, array: pa.Array, first: int) -> tuple[np.ndarray, float]:
+    """Timestamps as numbers and their counts per second (a timestamp type carries its unit)."""
+    import pyarrow as pa
+
+    name = src.options.time
+    bad = first_null(array)
+    if bad is not None:
+        raise ValueError(f"{src.path}: {src.where(first + bad)}, column {name}: empty timestamp")
+    if pa.types.is_timestamp(array.type) or pa.types.is_duration(array.type):
+        per_second = TIME_UNITS[array.type.unit]
+        return array.cast(pa.int64()).to_numpy(), per_second
+    return _arrow_numbers(src, name, array), TIME_UNITS[src.options.time_unit]
+
+
+def _arrow_numbers(src: GyroSource, name: str, array: pa.Array) -> np.ndarray:
+    """A numeric column as numpy (nulls become NaN); other types are an error."""
+    import pyarrow as pa
+
+    t = array.type
+    if not (pa.types.is_integer(t) or pa.types.is_floating(t) or pa.types.is_decimal(t)):
+        raise ValueError(f"{src.path}: column {name} holds {t}, not numbers")
+    if array.null_count or pa.types.is_decimal(t):
+        array = array.cast(pa.float64())
+    return array.to_numpy(zero_copy_only=False)

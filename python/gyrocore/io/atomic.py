@@ -1,0 +1,61 @@
+"""Files that appear whole or not at all: written under a temporary name, renamed at the end.
+
+A reader of ``path`` sees either the old file or the finished new one, never a half-written one,
+even when the writer fails or is interrupted (:class:`StagedFile`, :func:`atomic_path`).
+"""
+
+from __future__ import annotations
+
+import os
+import secrets
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+
+class StagedFile:
+    """A temporary file next to ``path`` that becomes ``path`` on :meth:`commit`.
+
+    :meth:`discard` (call it in a ``finally``) removes it unless committed, so an error or an
+    interruption never leaves ``path`` half written. A hard kill can leave the hidden temporary
+    file (``.NAME.*.tmp``) behind, but never a partial ``path``.
+    """
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+        for _ in range(3):
+            tmp = path.parent / f".{path.name}.{secrets.token_hex(6)}.tmp"
+            try:
+                # created exclusively with the umask's permissions (mkstemp's 0600 would hide the
+                # output from other users)
+                os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
+            except FileExistsError:
+                continue
+            self.tmp = tmp
+            return
+        raise FileExistsError(f"{path.parent}: cannot create a temporary file for {path.name}")
+
+    def commit(self) -> None:
+        """Make the temporary file ``path``: on disk first, then renamed (atomic on one filesystem)."""
+        fd = os.open(self.tmp, os.O_RDWR)  # Windows syncs only writable handles
+        try:
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+        os.replace(self.tmp, self.path)
+
+    def discard(self) -> None:
+        """Remove the temporary file if it is still there."""
+        self.tmp.unlink(missing_ok=True)
+
+
+@contextmanager
+def atomic_path(path: Path) -> Iterator[Path]:
+    """A temporary path next to ``path``, renamed to ``path`` when the block ends without error and
+    removed otherwise (also on KeyboardInterrupt)."""
+    staged = StagedFile(path)
+    try:
+        yield staged.tmp
+        staged.commit()
+    finally:
+        staged.discard()

@@ -1,0 +1,90 @@
+"""Whole logs in memory: :func:`read_log` and the :class:`Log` it returns.
+
+A log is read chunk after chunk like any input (:mod:`gyrocore.io.source`), checked for units that
+look wrong, and joined; a log folder adds its reference, odometry and rest window.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from .._arrays import FloatArray
+from .._checks import warn
+from ..pipeline import HeadingResult, has_bias_source, process, uses_static_bias
+from ._columns import concat
+from ._logfolder import read_odometry, read_reference
+from .source import open_source
+from .units import UnitCheck
+
+
+@dataclass(frozen=True)
+class Log:
+    """One recorded drive: gyro samples, and the reference and odometry where the log has them.
+
+    Units: s, rad/s, rad, m, m/s; headings counter-clockwise positive.
+    """
+
+    name: str
+    t: FloatArray
+    rate: FloatArray
+    t_ref: FloatArray | None = None
+    heading_ref: FloatArray | None = None
+    x_ref: FloatArray | None = None
+    y_ref: FloatArray | None = None
+    t_odometry: FloatArray | None = None
+    speed: FloatArray | None = None
+    stationary: tuple[float, float] | None = None
+    """Rest window ``(t0, t1)`` at the start, in the log's time base, or None."""
+    meta: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def duration(self) -> float:
+        """Duration of the gyro record [s]."""
+        return float(self.t[-1] - self.t[0]) if len(self.t) else 0.0
+
+    def process(self, preset: str = "recommended", **overrides: Any) -> HeadingResult:
+        """Run a preset on this log; the static bias comes from the rest window unless given."""
+        if self.stationary is not None and uses_static_bias(preset) and not has_bias_source(overrides):
+            overrides["bias_window"] = self.stationary
+        return process(self.t, self.rate, preset, **overrides)
+
+
+def read_log(path: str | Path, **options: Any) -> Log:
+    """Read a whole log into memory: a log folder (with its reference and odometry) or any file
+    :func:`open_source` reads (``options``: the :class:`ReadOptions` fields).
+
+    Warns (:class:`gyrocore.InputWarning`) when the values look like another unit.
+
+    Example:
+        >>> import gyrocore
+        >>> log = gyrocore.read_log("../shared/data/real/f110_ds3")  # doctest: +SKIP
+        >>> log = gyrocore.read_log("drive.csv", time_col="time", time_unit="ms", rate_unit="deg/s")  # doctest: +SKIP
+    """
+    src = open_source(path, **options)
+    check = UnitCheck(src.options)
+    ts, rates = [], []
+    for chunk in src.chunks(1 << 20):
+        check.update(chunk.t, chunk.rate)
+        ts.append(chunk.t)
+        rates.append(chunk.rate)
+    for problem in check.problems():
+        warn(f"{src.data_path}: {problem}")
+    ref: dict[str, FloatArray] = {}
+    odo: dict[str, FloatArray] = {}
+    if src.kind == "log folder":
+        ref, odo = read_reference(src.path), read_odometry(src.path)
+    return Log(
+        name=src.name,
+        t=concat(ts),
+        rate=concat(rates),
+        t_ref=ref.get("t"),
+        heading_ref=ref.get("heading"),
+        x_ref=ref.get("x"),
+        y_ref=ref.get("y"),
+        t_odometry=odo.get("t"),
+        speed=odo.get("speed"),
+        stationary=src.stationary,
+        meta=src.meta,
+    )

@@ -1,0 +1,227 @@
+"""Inputs read chunk after chunk: what a file or folder is, and its samples in SI units.
+
+:func:`open_source` recognises an input by its suffix or folder layout and reads only its headers
+and metadata; :meth:`GyroSource.chunks` then reads the samples with flat memory through the
+reader of its format and converts them to s and rad/s (what ``gyrocore process`` and
+:mod:`gyrocore.batch` use).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .._arrays import FloatArray
+from .._gyrocore import SampleError
+from ._csvfile import csv_chunks
+from ._logfolder import GYRO_CSV, is_log_folder, read_meta
+from ._npyfile import npy_chunks, npy_header, npz_chunks
+from ._parquetfile import parquet_chunks, parquet_file
+from ._rosbag import bag_chunks, imu_topic, is_bag_folder
+from .units import RATE_UNITS, TIME_UNITS
+
+#: Samples per chunk, at most (a CSV chunk also ends with a block of :data:`CSV_BLOCK_BYTES`).
+DEFAULT_CHUNK_ROWS = 1 << 16
+#: Suffixes of the files :func:`open_source` reads.
+FILE_SUFFIXES = (".csv", ".parquet", ".pq", ".npy", ".npz", ".bag")
+
+
+@dataclass(frozen=True)
+class ReadOptions:
+    """Where the samples are in a file and in which units.
+
+    Attributes:
+        time_col: time column (field, array) name; ``None``: ``t``, or column 0 of a plain 2-D
+            ``.npy`` array (whose columns are numbered from 0).
+        rate_col: rate column name; ``None``: ``gyro_z``, or column 1 of a plain 2-D array.
+        time_unit: ``s``, ``ms``, ``us`` or ``ns`` (a Parquet timestamp column and bag stamps
+            carry their own unit).
+        rate_unit: ``rad/s`` or ``deg/s``.
+        topic: the bag topic with sensor_msgs/Imu messages (``None``: the only one).
+        delimiter: CSV field delimiter.
+    """
+
+    time_col: str | None = None
+    rate_col: str | None = None
+    time_unit: str = "s"
+    rate_unit: str = "rad/s"
+    topic: str | None = None
+    delimiter: str = ","
+
+    def __post_init__(self) -> None:
+        if self.time_unit not in TIME_UNITS:
+            raise ValueError(f"time_unit {self.time_unit!r} is not one of {', '.join(TIME_UNITS)}")
+        if self.rate_unit not in RATE_UNITS:
+            raise ValueError(f"rate_unit {self.rate_unit!r} is not one of {', '.join(RATE_UNITS)}")
+        if len(self.delimiter) != 1:
+            raise ValueError(f"delimiter must be one character, got {self.delimiter!r}")
+
+    @property
+    def time(self) -> str:
+        """The time column of a named layout."""
+        return self.time_col or "t"
+
+    @property
+    def rate(self) -> str:
+        """The rate column of a named layout."""
+        return self.rate_col or "gyro_z"
+
+
+@dataclass(frozen=True, repr=False)
+class Chunk:
+    """Consecutive samples of one input, in SI units.
+
+    Attributes:
+        t: timestamps [s].
+        rate: yaw rate [rad/s], counter-clockwise positive (NaN where a value was empty).
+        first_row: index of the first sample in the whole input (0-based).
+        done: progress through the input after this chunk, in :attr:`GyroSource.progress_unit`.
+    """
+
+    t: FloatArray
+    rate: FloatArray
+    first_row: int
+    done: int
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    def __repr__(self) -> str:
+        return f"Chunk(rows {self.first_row}..{self.first_row + len(self.t)})"
+
+
+@dataclass(frozen=True)
+class GyroSource:
+    """One input, ready to be read chunk after chunk (see :func:`open_source`).
+
+    Attributes:
+        path: the input as given.
+        kind: ``csv``, ``parquet``, ``npy``, ``npz``, ``bag`` or ``log folder``.
+        data_path: the file whose rows are counted (``gyro.csv`` of a log folder, else ``path``).
+        options: columns and units.
+        stationary: rest window ``(t0, t1)`` [s] from a log folder's meta.json, or None.
+        progress_total: size of the input in :attr:`progress_unit`, or None if unknown.
+        progress_unit: ``B`` (bytes of a CSV file) or ``rows``.
+    """
+
+    path: Path
+    kind: str
+    data_path: Path
+    options: ReadOptions
+    stationary: tuple[float, float] | None = None
+    progress_total: int | None = None
+    progress_unit: str = "rows"
+    meta: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
+
+    @property
+    def name(self) -> str:
+        """The log's name: the file name without its suffix, or the folder name."""
+        return str(self.meta.get("name", self.path.stem if self.path.is_file() else self.path.name))
+
+    def where(self, row: int) -> str:
+        """Where sample ``row`` (0-based) is in the file, in the file's own terms."""
+        if self.kind in ("csv", "log folder"):
+            return f"line {row + 2}"
+        if self.kind == "bag":
+            return f"message {row} on {self.options.topic}"
+        return f"row {row}"
+
+    def locate(self, error: SampleError) -> str:
+        """The pipeline's error about sample ``error.index`` of this file, with where it is."""
+        return f"{error} ({self.data_path}, {self.where(error.index)})"
+
+    def chunks(self, rows: int = DEFAULT_CHUNK_ROWS) -> Iterator[Chunk]:
+        """The samples, at most ``rows`` at a time, converted to SI units.
+
+        Raises:
+            ValueError: a malformed file (naming the file and the line, row or message), a missing
+                column, or an empty timestamp.
+            ImportError: a bag without the ``rosbags`` package.
+        """
+        if rows < 1:
+            raise ValueError(f"rows per chunk must be >= 1, got {rows}")
+        readers = {
+            "csv": csv_chunks,
+            "log folder": csv_chunks,
+            "parquet": parquet_chunks,
+            "npy": npy_chunks,
+            "npz": npz_chunks,
+            "bag": bag_chunks,
+        }
+        first = 0
+        for t_raw, rate_raw, per_second, done in readers[self.kind](self, rows):
+            t = _seconds(t_raw, per_second)
+            rate = np.asarray(rate_raw, dtype=np.float64)
+            if self.options.rate_unit == "deg/s":
+                rate = np.radians(rate)
+            for start in range(0, len(t), rows):  # a CSV block can hold more than ``rows``
+                yield Chunk(t[start : start + rows], rate[start : start + rows], first + start, done)
+            first += len(t)
+
+
+def _seconds(raw: np.ndarray, per_second: float) -> FloatArray:
+    """Timestamps [s] from counts of a unit; division (not multiplication by 1e-3) rounds once."""
+    t = np.asarray(raw, dtype=np.float64)
+    return t if per_second == 1.0 else t / per_second
+
+
+def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: Any) -> GyroSource:
+    """Recognise an input by its suffix or layout; read nothing but headers and metadata yet.
+
+    Args:
+        path: a ``.csv``, ``.parquet``/``.pq``, ``.npy``, ``.npz`` or ``.bag`` file, a log folder
+            (with ``gyro.csv``) or a ROS 2 bag folder (with ``metadata.yaml``).
+        options: columns and units; or give the :class:`ReadOptions` fields as keywords.
+
+    Raises:
+        FileNotFoundError: no such file or folder.
+        ValueError: an unknown kind of file or folder.
+    """
+    if options is None:
+        options = ReadOptions(**kwargs)
+    elif kwargs:
+        raise TypeError("give either options or keywords, not both")
+    p = Path(path)
+    if not p.exists():
+        raise FileNotFoundError(f"{p}: no such file or folder")
+    if p.is_dir():
+        if is_log_folder(p):
+            meta, stationary = read_meta(p)
+            data = p / GYRO_CSV
+            return GyroSource(p, "log folder", data, options, stationary, data.stat().st_size, "B", meta)
+        if is_bag_folder(p):
+            return _open_bag(p, options)
+        raise ValueError(f"{p}: not a log folder (no gyro.csv) nor a ROS 2 bag (no metadata.yaml)")
+    suffix = p.suffix.lower()
+    if suffix == ".csv":
+        return GyroSource(p, "csv", p, options, progress_total=p.stat().st_size, progress_unit="B")
+    if suffix in (".parquet", ".pq"):
+        return GyroSource(p, "parquet", p, options, progress_total=parquet_file(p).metadata.num_rows)
+    if suffix == ".npy":
+        with open(p, "rb") as f:
+            shape = npy_header(p, f)[0]
+        return GyroSource(p, "npy", p, options, progress_total=shape[0] if shape else 0)
+    if suffix == ".npz":
+        return GyroSource(p, "npz", p, options)
+    if suffix == ".bag":
+        return _open_bag(p, options)
+    raise ValueError(
+        f"{p}: unknown kind of file (read are {', '.join(FILE_SUFFIXES)}, log folders and ROS 2 bag folders)"
+    )
+
+
+def _open_bag(path: Path, options: ReadOptions) -> GyroSource:
+    """A bag on its Imu topic (the one given, or the only one), with the topic's message count."""
+    topic, count = imu_topic(path, options.topic)
+    return GyroSource(path, "bag", path, replace(options, topic=topic), progress_total=count)
+
+
+def is_input(path: Path) -> bool:
+    """Whether ``path`` is something :func:`open_source` reads (by suffix or folder layout)."""
+    if path.is_dir():
+        return is_log_folder(path) or is_bag_folder(path)
+    return path.is_file() and path.suffix.lower() in FILE_SUFFIXES
