@@ -38,6 +38,19 @@ fn configs() -> Vec<PipelineConfig> {
     measured.correction.c_cw = 1.01;
     measured.integrator.method = Method::Rectangle;
     out.push(measured);
+    // Noise-scaled dead band and bound, and the settings that may be infinite.
+    let mut scaled = measured;
+    scaled.noise_scaled = NoiseScaled {
+        threshold_sigmas: Some(0.5),
+        hdr_bound_sigmas: Some(2.0),
+    };
+    scaled.input.gap_limit = f64::INFINITY;
+    scaled.hdr = Some(HdrConfig {
+        turn_threshold: f64::INFINITY,
+        max_correction: 1e-3,
+        ..HdrConfig::table_iii()
+    });
+    out.push(scaled);
     out
 }
 

@@ -161,6 +161,7 @@ fn hand_hdr() -> HdrConfig {
         c2: 1.0,
         interval: 1.0,
         tau: 0.0,
+        max_correction: f64::INFINITY,
     }
 }
 

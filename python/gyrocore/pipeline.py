@@ -221,6 +221,15 @@ class Pipeline:
             )
 
     @property
+    def rest_statistics(self) -> dict[str, float] | None:
+        """What the rest window measured besides the bias, once it is over: ``noise``, the standard
+        deviation of one reading [rad/s], and ``bias_std_error``, the standard error of the static
+        bias [rad/s]; None with a fixed bias, while measuring, or from too few readings. The
+        ``threshold_sigmas`` and ``hdr_bound_sigmas`` parameters are in these units."""
+        stats = self._inner.rest_statistics()
+        return None if stats is None else {"noise": stats[0], "bias_std_error": stats[1]}
+
+    @property
     def report(self) -> dict[str, float]:
         """What the input policy did so far: ``held``, ``skipped``, ``gaps``, ``longest_gap`` [s]."""
         return dict(self._inner.report())

@@ -6,6 +6,7 @@
 //! multiply the result. The bias is what the gyro reads at rest (corrected = measured - bias).
 
 use crate::error::{check_finite, check_positive, check_range};
+use crate::rest::{RestNoise, RestStatistics};
 use crate::stage::{Clock, Stage};
 use crate::Error;
 
@@ -137,6 +138,8 @@ struct BiasEstimate {
     window: Option<(f64, f64)>,
     /// False once the stream has passed the window's end: the bias is frozen.
     learning: bool,
+    /// The window's noise, for [`Correction::rest_statistics`].
+    noise: RestNoise,
     clock: Clock,
 }
 
@@ -154,6 +157,7 @@ impl BiasEstimate {
             count: 0,
             window,
             learning,
+            noise: RestNoise::default(),
             clock: Clock::default(),
         }
     }
@@ -178,6 +182,13 @@ impl BiasEstimate {
                 self.integral += rate * dt;
                 self.duration += dt;
             }
+            let length = end - start;
+            let position = if length > 0.0 {
+                (t - start) / length
+            } else {
+                1.0
+            };
+            self.noise.push(position, dt, rate);
             self.count += 1;
             self.value = if self.duration > 0.0 {
                 self.integral / self.duration
@@ -227,6 +238,16 @@ impl Correction {
     /// True while the rest window is still being measured.
     pub fn bias_learning(&self) -> bool {
         self.bias.learning
+    }
+
+    /// The rest window's noise and the standard error of the bias measured in it, once the
+    /// window is over; `None` for a fixed bias, while measuring, or from fewer than two readings
+    /// in two parts of the window.
+    pub fn rest_statistics(&self) -> Option<RestStatistics> {
+        if self.bias.learning || self.bias.window.is_none() {
+            return None;
+        }
+        self.bias.noise.statistics()
     }
 
     /// Corrects one reading; `temperature` [degC] feeds the temperature model when configured.

@@ -29,6 +29,7 @@ pub struct HdrConfig {
     /// Nominal increment `i_c` per step [rad/s], >= 0 (0 disables HDR). Table III: 0.0422 deg/s.
     pub increment: f64,
     /// Turn threshold `Theta_w` [rad/s], > 0 (infinity disables the switch). Table III: 0.564 deg/s.
+    #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
     pub turn_threshold: f64,
     /// Repetition attenuator constant `c_1` (eq 10), >= 0. Table III: 0.16.
     pub c1: f64,
@@ -39,6 +40,15 @@ pub struct HdrConfig {
     /// Time constant `tau` of the low-pass (eq 7) on the step means that HDR decides on [s], >= 0.
     /// Table III: 0.75 s.
     pub tau: f64,
+    /// Bound on the correction `|I|` [rad/s], > 0; infinity (the paper's HDR) leaves it free.
+    ///
+    /// Not in the paper. After the static bias is removed, `I` estimates what is left of the
+    /// bias; a sensor's bias does not wander further than a few times its bias instability in a
+    /// drive, so a larger `I` is a gentle curve below the turn switch being taken for drift.
+    /// The bound caps the heading error HDR can cause on a gyro without bias at
+    /// `max_correction` times the time spent on such curves.
+    #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
+    pub max_correction: f64,
 }
 
 impl HdrConfig {
@@ -51,6 +61,7 @@ impl HdrConfig {
             c2: 1.80,
             interval: 1.0,
             tau: 0.75,
+            max_correction: f64::INFINITY,
         }
     }
 
@@ -73,6 +84,13 @@ impl HdrConfig {
         check_range("hdr_c1", self.c1, 0.0, f64::MAX, "finite and >= 0")?;
         check_positive("hdr_c2", self.c2)?;
         check_positive("hdr_interval", self.interval)?;
+        check_range(
+            "hdr_max_correction",
+            self.max_correction,
+            f64::MIN_POSITIVE,
+            f64::INFINITY,
+            "> 0 (infinity: no bound)",
+        )?;
         LowPassConfig { tau: self.tau }.validate()
     }
 
@@ -131,6 +149,10 @@ pub struct Hdr {
     config: HdrConfig,
     /// `R(r)` for `r = 1..=ATTENUATION_TABLE`: eq 10 costs a `pow`, and `r` is a small integer.
     attenuation: [f64; ATTENUATION_TABLE],
+    /// The bound on `|I|` in force: [`HdrConfig::max_correction`], or a tighter one set by
+    /// [`Hdr::bound_correction`]. A property of the sensor, so [`Hdr::restart`] keeps it.
+    #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
+    bound: f64,
     state: HdrState,
 }
 
@@ -150,8 +172,26 @@ impl Hdr {
         Hdr {
             config,
             attenuation,
+            bound: config.max_correction,
             state: HdrState::start(&config),
         }
+    }
+
+    /// Tightens the bound on `|I|` to `bound` [rad/s] (never beyond
+    /// [`HdrConfig::max_correction`]); `I` is clamped to it at once. A bound of 0 turns HDR off.
+    pub fn bound_correction(&mut self, bound: f64) {
+        self.bound = self.config.max_correction.min(libm::fabs(bound));
+        self.state.integrator = self.state.integrator.clamp(-self.bound, self.bound);
+    }
+
+    /// The bound on `|I|` in force [rad/s].
+    pub fn correction_bound(&self) -> f64 {
+        self.bound
+    }
+
+    /// Forgets the signal (the controller starts again from `I = 0`) but keeps the bound.
+    pub fn restart(&mut self) {
+        self.state = HdrState::start(&self.config);
     }
 
     /// The configuration.
@@ -207,7 +247,8 @@ impl Hdr {
         if !turning {
             let r = st.repetitions;
             let step = f64::from(s) * self.attenuation_at(r) * self.config.increment;
-            self.state.integrator -= step;
+            let bound = self.bound;
+            self.state.integrator = (self.state.integrator - step).clamp(-bound, bound);
         }
     }
 

@@ -38,6 +38,7 @@ pub struct InputPolicy {
     /// Non-finite readings.
     pub non_finite: NonFinite,
     /// Longest interval that is not a gap [s], > 0 (infinity: never a gap).
+    #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
     pub gap_limit: f64,
     /// What a gap does.
     pub gap_action: GapAction,

@@ -2,10 +2,12 @@
 //! No intermediate arrays: every enabled stage sees each sample once, in order.
 
 use crate::correction::{Correction, CorrectionConfig};
+use crate::error::check_range;
 use crate::hdr::{Hdr, HdrConfig};
 use crate::input::{GapAction, InputPolicy, InputReport, NonFinite};
 use crate::integrate::{Integrator, IntegratorConfig};
 use crate::lowpass::{DeLag, LowPass, LowPassConfig};
+use crate::rest::RestStatistics;
 use crate::stage::{check_len, Clock};
 use crate::threshold::{Threshold, ThresholdConfig};
 use crate::validate::{check_block, Checks};
@@ -30,6 +32,47 @@ pub struct PipelineConfig {
     pub integrator: IntegratorConfig,
     /// Non-finite readings and gaps.
     pub input: InputPolicy,
+    /// Dead band and HDR bound scaled to the rest window's noise.
+    pub noise_scaled: NoiseScaled,
+}
+
+/// The dead band and HDR's bound in units of what the rest window measured (see
+/// [`crate::rest::RestStatistics`]), set once the window is over; until then, and when there is
+/// no window (a fixed bias) or too little in it, `threshold` and `hdr.max_correction` apply.
+///
+/// Not in the papers. Hong and Park chose their 0.3 deg/s dead band for their sensor's noise; in
+/// units of the noise one value fits every sensor and sample rate. HDR's `I` estimates what is
+/// left of the bias after the static bias test, and that is, to first order, the test's own
+/// error: a bound of a few standard errors keeps HDR from taking a gentle curve below its turn
+/// switch for a larger drift. On a gyro whose rest reads without noise both become 0, and the
+/// pipeline is plain integration of the bias-corrected rate, as it should be.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct NoiseScaled {
+    /// Dead band in standard deviations of one reading's noise (replaces `threshold`), >= 0.
+    pub threshold_sigmas: Option<f64>,
+    /// Bound on HDR's `|I|` in standard errors of the static bias (tightens
+    /// `hdr.max_correction`), >= 0.
+    pub hdr_bound_sigmas: Option<f64>,
+}
+
+impl NoiseScaled {
+    /// Checks both factors; the error names the first invalid one.
+    pub fn validate(&self) -> Result<(), Error> {
+        for (name, value) in [
+            ("threshold_sigmas", self.threshold_sigmas),
+            ("hdr_bound_sigmas", self.hdr_bound_sigmas),
+        ] {
+            if let Some(v) = value {
+                check_range(name, v, 0.0, f64::MAX, "finite and >= 0")?;
+            }
+        }
+        Ok(())
+    }
+
+    fn any(&self) -> bool {
+        self.threshold_sigmas.is_some() || self.hdr_bound_sigmas.is_some()
+    }
 }
 
 /// Named parameter sets. Every field can be changed after [`Preset::config`].
@@ -119,6 +162,7 @@ impl Preset {
                         c2: 0.285,
                         interval: 1.0,
                         tau,
+                        max_correction: f64::INFINITY,
                     }),
                     ..PipelineConfig::default()
                 }
@@ -170,8 +214,7 @@ pub struct Outputs<'a> {
 ///
 /// Implemented for each such stage and for `Option` of it, so that one generic loop serves every
 /// combination of enabled stages: with all of them on (the HDR presets) the loop is compiled for
-/// the concrete stages, has no per-sample check of which are enabled, and keeps their state in
-/// registers across samples instead of storing and reloading it every sample.
+/// the concrete stages and has no per-sample check of which are enabled.
 trait Memory {
     /// Feeds one sample with interval `dt`; the value the pipeline uses (see each impl).
     fn feed(&mut self, dt: f64, rate: f64) -> f64;
@@ -181,20 +224,22 @@ trait Memory {
         Self: Sized;
     /// Forgets the recent signal (after a gap, with [`GapAction::Reset`]).
     fn restart(&mut self);
+    /// Bounds the correction to what the rest window allows (see [`NoiseScaled`]); only HDR
+    /// makes one.
+    fn bound(&mut self, _bound: f64) {}
 }
 
-/// Implements [`Memory`] for a stage; `$feed` is the method the pipeline calls, `$off` what an
-/// absent stage gives instead.
-macro_rules! memory_stage {
-    ($ty:ty, $feed:ident, |$rate:ident| $off:expr) => {
+/// Implements [`Memory`] for a filter of the rate: it passes the rate on, unchanged when off.
+macro_rules! rate_filter {
+    ($ty:ty) => {
         impl Memory for $ty {
             #[inline(always)]
             fn feed(&mut self, dt: f64, rate: f64) -> f64 {
-                self.$feed(dt, rate)
+                self.step(dt, rate)
             }
             #[inline(always)]
-            fn off($rate: f64) -> f64 {
-                $off
+            fn off(rate: f64) -> f64 {
+                rate
             }
             #[inline(always)]
             fn restart(&mut self) {
@@ -203,10 +248,27 @@ macro_rules! memory_stage {
         }
     };
 }
-// The low-pass and de-lag pass the rate on; HDR gives the `I` to add (0 when off).
-memory_stage!(LowPass, step, |rate| rate);
-memory_stage!(DeLag, step, |rate| rate);
-memory_stage!(Hdr, observe, |_rate| 0.0);
+rate_filter!(LowPass);
+rate_filter!(DeLag);
+
+/// HDR gives the `I` to add (0 when off); its bound survives a restart.
+impl Memory for Hdr {
+    #[inline(always)]
+    fn feed(&mut self, dt: f64, rate: f64) -> f64 {
+        self.observe(dt, rate)
+    }
+    #[inline(always)]
+    fn off(_rate: f64) -> f64 {
+        0.0
+    }
+    #[inline(always)]
+    fn restart(&mut self) {
+        Hdr::restart(self);
+    }
+    fn bound(&mut self, bound: f64) {
+        self.bound_correction(bound);
+    }
+}
 
 impl<M: Memory> Memory for Option<M> {
     #[inline(always)]
@@ -226,6 +288,11 @@ impl<M: Memory> Memory for Option<M> {
             m.restart();
         }
     }
+    fn bound(&mut self, bound: f64) {
+        if let Some(m) = self {
+            m.bound(bound);
+        }
+    }
 }
 
 /// The stages with memory are borrowed for a block or a sample.
@@ -241,6 +308,9 @@ impl<M: Memory> Memory for &mut M {
     #[inline(always)]
     fn restart(&mut self) {
         (**self).restart();
+    }
+    fn bound(&mut self, bound: f64) {
+        (**self).bound(bound);
     }
 }
 
@@ -269,6 +339,8 @@ struct Chain {
     /// The last output, repeated (with a NaN rate) for a skipped sample.
     last_output: Output,
     report: InputReport,
+    /// True until the [`NoiseScaled`] values are set from the rest window.
+    scaling_pending: bool,
 }
 
 /// The composed pipeline; see the module doc for the order of the stages.
@@ -294,6 +366,7 @@ impl Pipeline {
             _ => None,
         };
         config.input.validate()?;
+        config.noise_scaled.validate()?;
         Ok(Pipeline {
             chain: Chain {
                 config,
@@ -304,6 +377,7 @@ impl Pipeline {
                 last_reading: None,
                 last_output: Output::at_rest(config.integrator.initial_heading),
                 report: InputReport::default(),
+                scaling_pending: config.noise_scaled.any(),
             },
             memories: Memories {
                 lowpass: config.lowpass.map(LowPass::new).transpose()?,
@@ -341,19 +415,16 @@ impl Pipeline {
 
     /// Returns every stage to its initial state (same as a new pipeline with the same config).
     pub fn reset(&mut self) {
-        use crate::stage::Stage;
-        let Pipeline { chain, memories } = self;
-        chain.restart(&mut (
-            &mut memories.lowpass,
-            &mut memories.hdr,
-            &mut memories.delag,
-        ));
-        chain.correction.reset();
-        chain.integrator.reset();
-        chain.clock = Clock::default();
-        chain.last_reading = None;
-        chain.last_output = Output::at_rest(chain.config.integrator.initial_heading);
-        chain.report = InputReport::default();
+        // The configuration was validated when the pipeline was built.
+        if let Ok(fresh) = Pipeline::new(self.chain.config) {
+            *self = fresh;
+        }
+    }
+
+    /// The rest window's noise and the standard error of the bias measured in it, once the
+    /// window is over (see [`Correction::rest_statistics`]).
+    pub fn rest_statistics(&self) -> Option<RestStatistics> {
+        self.chain.correction.rest_statistics()
     }
 
     /// Feeds one sample (`t` [s], `rate` [rad/s]) without a temperature.
@@ -504,6 +575,24 @@ impl Chain {
         self.last_output
     }
 
+    /// Sets the [`NoiseScaled`] dead band and HDR bound from the rest window that just ended.
+    #[cold]
+    fn scale_to_rest<H: Memory>(&mut self, hdr: &mut H) {
+        self.scaling_pending = false;
+        let Some(rest) = self.correction.rest_statistics() else {
+            return;
+        };
+        let scaled = self.config.noise_scaled;
+        if let Some(k) = scaled.threshold_sigmas {
+            self.threshold = Some(Threshold::start(ThresholdConfig {
+                threshold: k * rest.noise,
+            }));
+        }
+        if let Some(k) = scaled.hdr_bound_sigmas {
+            hdr.bound(k * rest.bias_std_error);
+        }
+    }
+
     /// The stages, in order, for one admitted sample with interval `dt`.
     #[inline(always)]
     fn step<L: Memory, H: Memory, D: Memory>(
@@ -521,18 +610,20 @@ impl Chain {
                 self.restart(memories);
             }
         }
+        let r = self.correction.apply(t, rate, temperature);
+        let learning = self.correction.bias_learning();
+        if self.scaling_pending && !learning {
+            self.scale_to_rest(&mut memories.1);
+        }
         let (lowpass, hdr, delag) = memories;
-        let corrected = {
-            let r = self.correction.apply(t, rate, temperature);
-            self.threshold.as_ref().map_or(r, |s| s.apply(r))
-        };
+        let corrected = self.threshold.as_ref().map_or(r, |s| s.apply(r));
         let mut r = lowpass.feed(dt, corrected);
         // HDR decides on its own low-passed step means of the corrected rate (see `Hdr`) and its
         // `I` is added to the per-sample low-passed rate, which the de-lag then restores. It starts
         // once the static bias is known: during the rest window it would only chase the running
         // estimate of the bias (the papers measure the bias before the drive, then run HDR).
         let mut drift = 0.0;
-        if !self.correction.bias_learning() {
+        if !learning {
             let integrator = hdr.feed(dt, corrected);
             drift = -integrator;
             r += integrator;

@@ -29,7 +29,12 @@ impl Threshold {
             f64::MAX,
             "finite and >= 0",
         )?;
-        Ok(Threshold { config })
+        Ok(Self::start(config))
+    }
+
+    /// The stage for a threshold known to be valid (finite, >= 0).
+    pub(crate) fn start(config: ThresholdConfig) -> Self {
+        Threshold { config }
     }
 
     /// Applies Hong eq 12 to one rate.

@@ -53,6 +53,30 @@ def test_pickle_mid_stream_continues_bit_identically_and_reset_restarts() -> Non
     assert np.array_equal(a.process(t, rate).heading, fresh.heading)
 
 
+def test_noise_scaled_settings_round_trip_and_report_the_rest_window() -> None:
+    t = np.arange(0.0, 60.0, 0.01)
+    rate = 0.01 + np.random.default_rng(3).normal(0.0, 0.002, len(t))
+    p = gyrocore.Pipeline("tuned", bias_window=(0.0, 20.0), threshold_sigmas=1.5, hdr_bound_sigmas=2.0,
+                          hdr_turn_threshold=math.inf)
+    assert p.rest_statistics is None  # nothing measured yet
+    p.process(t[:1000], rate[:1000])
+    assert p.rest_statistics is None  # still inside the window
+    p.process(t[1000:3000], rate[1000:3000])
+    stats = p.rest_statistics
+    assert stats is not None
+    assert stats["noise"] == pytest.approx(0.002, rel=0.05)
+    assert stats["bias_std_error"] == pytest.approx(0.002 / math.sqrt(2000), rel=0.6)
+    # Pickling keeps the infinite turn threshold and bound, and the scaled values.
+    q = pickle.loads(pickle.dumps(p))
+    assert q.params == p.params and q.params["hdr_max_correction"] == math.inf
+    assert q.params["threshold_sigmas"] == 1.5 and q.params["hdr_bound_sigmas"] == 2.0
+    assert np.array_equal(q.process(t[3000:], rate[3000:]).heading, p.process(t[3000:], rate[3000:]).heading)
+    with pytest.raises(ValueError, match="hdr_bound_sigmas = -1: must be finite and >= 0"):
+        gyrocore.Pipeline("tuned", bias=0.0, hdr_bound_sigmas=-1.0)
+    with pytest.raises(ValueError, match="hdr_bound_sigmas is set but HDR is off"):
+        gyrocore.Pipeline("static_bias", bias=0.0, hdr_bound_sigmas=1.0)
+
+
 def test_any_float_dtype_and_stride_gives_the_same_result() -> None:
     t, rate = _log(500)
     ref = gyrocore.process(t, rate, "hdr", bias=0.0)

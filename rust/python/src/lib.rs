@@ -157,6 +157,13 @@ impl PyPipeline {
         (b, n, self.inner.bias_learning())
     }
 
+    /// (noise [rad/s], bias standard error [rad/s]) of the rest window once it is over, or None.
+    fn rest_statistics(&self) -> Option<(f64, f64)> {
+        self.inner
+            .rest_statistics()
+            .map(|r| (r.noise, r.bias_std_error))
+    }
+
     /// What the input policy did so far: held, skipped, gaps, longest_gap [s].
     fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let r = self.inner.report();

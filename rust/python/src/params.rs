@@ -47,6 +47,10 @@ pub const NAMES: &[(&str, &str)] = &[
         "lowpass_tau",
         "low-pass time constant tau of HDR eq 7, per sample and on HDR's steps [s], 0 = off",
     ),
+    (
+        "threshold_sigmas",
+        "dead band in noise standard deviations of the rest window (replaces threshold) [1], None = off",
+    ),
     ("delag", "undo the low-pass lag (HDR eq 13) [bool]"),
     ("hdr", "run Heuristic Drift Reduction [bool]"),
     ("hdr_increment", "i_c [rad/s per step]"),
@@ -54,6 +58,14 @@ pub const NAMES: &[(&str, &str)] = &[
     ("hdr_c1", "repetition attenuator constant c_1 [1]"),
     ("hdr_c2", "repetition attenuator power c_2 [1]"),
     ("hdr_interval", "HDR step length [s]"),
+    (
+        "hdr_max_correction",
+        "bound on HDR's correction |I| [rad/s] (inf: none, as in the paper)",
+    ),
+    (
+        "hdr_bound_sigmas",
+        "bound on HDR's |I| in standard errors of the static bias from the rest window [1], None = off",
+    ),
     ("integration", "'trapezoid' or 'rectangle'"),
     ("initial_heading", "heading at the first sample [rad]"),
     (
@@ -135,14 +147,21 @@ pub fn apply(config: &mut PipelineConfig, overrides: &Bound<'_, PyDict>) -> PyRe
                 config.lowpass = (tau != 0.0).then_some(LowPassConfig { tau });
             }
             "delag" => config.delag = value.extract()?,
+            "threshold_sigmas" => config.noise_scaled.threshold_sigmas = value.extract()?,
+            "hdr_bound_sigmas" => {
+                config.noise_scaled.hdr_bound_sigmas = value.extract()?;
+                hdr_touched = Some(name);
+            }
             "hdr" => config.hdr = value.extract::<bool>()?.then_some(hdr),
-            "hdr_increment" | "hdr_turn_threshold" | "hdr_c1" | "hdr_c2" | "hdr_interval" => {
+            "hdr_increment" | "hdr_turn_threshold" | "hdr_c1" | "hdr_c2" | "hdr_interval"
+            | "hdr_max_correction" => {
                 let v: f64 = value.extract()?;
                 match name.as_str() {
                     "hdr_increment" => hdr.increment = v,
                     "hdr_turn_threshold" => hdr.turn_threshold = v,
                     "hdr_c1" => hdr.c1 = v,
                     "hdr_c2" => hdr.c2 = v,
+                    "hdr_max_correction" => hdr.max_correction = v,
                     _ => hdr.interval = v,
                 }
                 hdr_touched = Some(name);
@@ -243,6 +262,7 @@ pub fn to_dict<'py>(py: Python<'py>, config: &PipelineConfig) -> PyResult<Bound<
     }
     d.set_item("threshold", config.threshold.map_or(0.0, |t| t.threshold))?;
     d.set_item("lowpass_tau", config.lowpass.map_or(0.0, |l| l.tau))?;
+    d.set_item("threshold_sigmas", config.noise_scaled.threshold_sigmas)?;
     d.set_item("delag", config.delag)?;
     d.set_item("hdr", config.hdr.is_some())?;
     if let Some(h) = config.hdr {
@@ -251,6 +271,8 @@ pub fn to_dict<'py>(py: Python<'py>, config: &PipelineConfig) -> PyResult<Bound<
         d.set_item("hdr_c1", h.c1)?;
         d.set_item("hdr_c2", h.c2)?;
         d.set_item("hdr_interval", h.interval)?;
+        d.set_item("hdr_max_correction", h.max_correction)?;
+        d.set_item("hdr_bound_sigmas", config.noise_scaled.hdr_bound_sigmas)?;
     }
     d.set_item("integration", method_name(config.integrator.method))?;
     d.set_item("initial_heading", config.integrator.initial_heading)?;
