@@ -149,7 +149,7 @@ pub struct Hdr {
     config: HdrConfig,
     /// `R(r)` for `r = 1..=ATTENUATION_TABLE`: eq 10 costs a `pow`, and `r` is a small integer.
     attenuation: [f64; ATTENUATION_TABLE],
-    /// The bound on `|I|` in force: [`HdrConfig::max_correction`], or a tighter one set by
+    /// The bound on `|I|` in force: [`HdrConfig::max_correction`], or the one set by
     /// [`Hdr::bound_correction`]. A property of the sensor, so [`Hdr::restart`] keeps it.
     #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
     bound: f64,
@@ -177,10 +177,10 @@ impl Hdr {
         }
     }
 
-    /// Tightens the bound on `|I|` to `bound` [rad/s] (never beyond
-    /// [`HdrConfig::max_correction`]); `I` is clamped to it at once. A bound of 0 turns HDR off.
+    /// Replaces [`HdrConfig::max_correction`] as the bound on `|I|` by `bound` [rad/s]; `I` is
+    /// clamped to it at once. A bound of 0 turns HDR off.
     pub fn bound_correction(&mut self, bound: f64) {
-        self.bound = self.config.max_correction.min(libm::fabs(bound));
+        self.bound = libm::fabs(bound);
         self.state.integrator = self.state.integrator.clamp(-self.bound, self.bound);
     }
 

@@ -51,7 +51,7 @@ pub struct PipelineConfig {
 pub struct NoiseScaled {
     /// Dead band in standard deviations of one reading's noise (replaces `threshold`), >= 0.
     pub threshold_sigmas: Option<f64>,
-    /// Bound on HDR's `|I|` in standard errors of the static bias (tightens
+    /// Bound on HDR's `|I|` in standard errors of the static bias (replaces
     /// `hdr.max_correction`), >= 0.
     pub hdr_bound_sigmas: Option<f64>,
 }

@@ -64,7 +64,7 @@ pub const NAMES: &[(&str, &str)] = &[
     ),
     (
         "hdr_bound_sigmas",
-        "bound on HDR's |I| in standard errors of the static bias from the rest window [1], None = off",
+        "bound on HDR's |I| in standard errors of the static bias from the rest window (replaces hdr_max_correction) [1], None = off",
     ),
     ("integration", "'trapezoid' or 'rectangle'"),
     ("initial_heading", "heading at the first sample [rad]"),
