@@ -392,6 +392,7 @@ def tune(
     start: Mapping[str, float] | None = None,
     harm: Sequence[Case] = (),
     harm_limit_deg: float = 0.5,
+    fixed: Mapping[str, Any] | None = None,
     max_evaluations: int = 2000,
     seed: int = 0,
     optimiser: str = "differential_evolution",
@@ -406,7 +407,8 @@ def tune(
         bounds: search range per parameter, SI (default :data:`BOUNDS`).
         start: starting values, SI (default: the preset's own, clipped into the bounds).
         harm: perfect-gyro drives for the do-no-harm constraint (see the module doc).
-        harm_limit_deg: how much worse than plain integration E_psi may get on a harm drive [deg].
+        harm_limit_deg: how much worse than its baseline E_psi may get on a harm drive [deg].
+        fixed: overrides held at these values (SI) in every evaluation and in the result.
         max_evaluations: bound on objective evaluations (each runs every training and harm drive).
         seed: fixes the optimiser's randomness.
         optimiser: ``differential_evolution`` (global, robust to the objective's steps; the start
@@ -432,14 +434,22 @@ def tune(
             raise ValueError(f"bounds of {n} must satisfy 0 < low < high, got ({low}, {high})")
         validate(preset, {n: low})
         validate(preset, {n: high})
-    base = preset_params(preset)
-    start_values = {n: float(np.clip((start or {}).get(n, base.get(n, 0.0)), *box[n])) for n in names}
+    fixed = dict(fixed or {})
+    overlap = [n for n in names if n in fixed]
+    if overlap:
+        raise ValueError(f"{', '.join(overlap)} cannot be both fitted and fixed")
+    validate(preset, fixed)
+    base = preset_params(preset, **fixed)
+    # A parameter the preset leaves unset (None) starts in the middle of its bounds.
+    given = {n: (start or {}).get(n, base.get(n)) for n in names}
+    start_values = {n: float(np.clip(math.sqrt(box[n][0] * box[n][1]) if v is None else v, *box[n]))
+                    for n, v in given.items()}
 
     lo = np.log([box[n][0] for n in names])
     hi = np.log([box[n][1] for n in names])
 
     def overrides_of(x: np.ndarray) -> dict[str, float]:
-        return {n: float(math.exp(v)) for n, v in zip(names, np.clip(x, lo, hi))}
+        return {**fixed, **{n: float(math.exp(v)) for n, v in zip(names, np.clip(x, lo, hi))}}
 
     def objective_of(overrides: Mapping[str, float]) -> float:
         value = mean_ne_psi(score_cases(cases, preset, overrides))
@@ -448,6 +458,7 @@ def tune(
         return value
 
     evaluations = 0
+    start_values = {**fixed, **start_values}
     best: tuple[float, dict[str, float]] = (math.inf, dict(start_values))
 
     def objective(x: np.ndarray) -> float:
@@ -483,8 +494,8 @@ def tune(
         tuned,
         {
             "objective": "mean NE_psi [deg/min] (HDR eq 16, section 5.3)"
-            + (f" + {HARM_WEIGHT} * excess over {harm_limit_deg} deg of E_psi above plain integration on "
-               "perfect-gyro drives" if harm else ""),
+            + (f" + {HARM_WEIGHT} * excess over {harm_limit_deg} deg of E_psi above the baseline on "
+               "do-no-harm drives" if harm else ""),
             "training": [c.name for c in cases],
             "harm_drives": [c.name for c in harm],
             "train_score_ne_psi_deg_per_min": mean_ne_psi(train),

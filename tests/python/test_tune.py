@@ -102,6 +102,24 @@ def test_harm_of_a_perfect_gyro() -> None:
     assert tune.score_cases(harm, "hdr", {"hdr_increment": 0.0})[0].harm_deg == pytest.approx(0.0, abs=1e-9)
 
 
+def test_noisy_harm_is_measured_against_static_bias_removal() -> None:
+    harm = tune.harm_cases(minutes=6.0, mixes=("curvy_highway",), per_mix=1, noisy=True)
+    assert harm[0].baseline == "static_bias"
+    static = tune.score_cases(harm, "static_bias", {})[0]
+    assert static.harm_deg == pytest.approx(0.0, abs=1e-12) and static.raw_e_psi_deg > 0.0
+    # With the bound from the rest window, HDR's harm is bounded by k standard errors of the bias.
+    hdr = tune.score_cases(harm, "hdr", {"hdr_bound_sigmas": 0.0})[0]
+    assert hdr.harm_deg == pytest.approx(0.0, abs=1e-6)
+
+
+def test_fixed_parameters_are_held_in_every_evaluation(cases: list[tune.Case]) -> None:
+    r = tune.tune(cases[:2], preset="combined", names=("hdr_increment",), fixed={"threshold": 0.0},
+                  max_evaluations=15, seed=3)
+    assert r.params.overrides["threshold"] == 0.0 and r.start["threshold"] == 0.0
+    with pytest.raises(ValueError, match="cannot be both fitted and fixed"):
+        tune.tune(cases[:1], names=("hdr_increment",), fixed={"hdr_increment": 1e-4}, max_evaluations=2)
+
+
 def test_harm_constraint_steers_the_fit(cases: list[tune.Case]) -> None:
     harm = tune.harm_cases(minutes=6.0, mixes=("curvy_highway",), per_mix=1)
     r = tune.tune(cases[:2], names=("hdr_increment",), harm=harm, max_evaluations=40, seed=2)
@@ -139,3 +157,10 @@ def test_cli_tune_writes_a_loadable_file(tmp_path: Path, capsys: pytest.CaptureF
     assert tune.ParameterSet.read(out).overrides == result["overrides"]
     assert main(["tune", "--param", "nonsense"]) == 2
     assert main(["tune"]) == 2
+    assert main(["tune", "--sim-drive", "nowhere:3"]) == 2
+    assert main(["tune", "--sim-table", "II", "--set", "threshold"]) == 2
+    drives = ["tune", "--sim-drive", "city:0.5:2", "--set", "threshold=0", "--param", "hdr_increment",
+              "--preset", "combined", "--no-harm", "--max-evals", "3", "--json"]
+    assert main(drives) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert len(result["train"]) == 2 and result["overrides"]["threshold"] == 0.0

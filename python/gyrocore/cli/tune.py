@@ -17,6 +17,8 @@ _TABLES = {"II": motion.TABLE_II_DRIVES, "IV": motion.TABLE_IV_DRIVES}
 _TEST_SEED = 500
 #: Seeds of the held-out do-no-harm drives.
 _HARM_TEST_SEED = 2000
+#: Seeds of the --sim-drive training drives.
+_DRIVE_SEED = 300
 
 
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
@@ -39,6 +41,9 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     )
     add("--sim-table", action="append", choices=sorted(_TABLES),
         help="train on simulated drives like HDR Table II or IV")
+    add("--sim-drive", action="append", metavar="MIX:MINUTES[:COUNT]",
+        help="train also on COUNT (default 1) simulated drives of a road mix (gyrocore.motion.ROAD_MIXES)")
+    add("--set", action="append", metavar="NAME=VALUE", help="hold a parameter at an SI value (repeatable)")
     add("--test-sim-table", action="append", choices=sorted(_TABLES), help="simulated test drives (other seeds)")
     add("--test", action="append", default=[], metavar="LOGDIR", help="real log folder to test on (not trained on)")
     add("--time-scale", type=float, default=1.0, metavar="F", help="scale the simulated drives' durations (default 1)")
@@ -82,6 +87,34 @@ def _parse_params(specs: Sequence[str]) -> tuple[list[str], dict[str, tuple[floa
     return names, bounds
 
 
+def _parse_drives(specs: Sequence[str]) -> list[motion.DriveSpec]:
+    drives = []
+    for spec in specs:
+        parts = spec.split(":")
+        try:
+            mix, minutes, count = parts[0], float(parts[1]), int(parts[2]) if len(parts) > 2 else 1
+        except (IndexError, ValueError):
+            raise ValueError(f"--sim-drive {spec}: must read MIX:MINUTES[:COUNT]") from None
+        if mix not in motion.ROAD_MIXES or len(parts) > 3 or minutes <= 0 or count < 1:
+            raise ValueError(f"--sim-drive {spec}: need a road mix of {', '.join(motion.ROAD_MIXES)}, "
+                             "minutes > 0 and a count >= 1")
+        drives += [motion.DriveSpec(f"{mix} {minutes:g} min", minutes, mix, "--sim-drive")] * count
+    return drives
+
+
+def _parse_fixed(specs: Sequence[str]) -> dict[str, float]:
+    fixed = {}
+    for spec in specs:
+        name, sep, value = spec.partition("=")
+        if not sep or name not in parameters():
+            raise ValueError(f"--set {spec}: must read NAME=VALUE with a parameter name")
+        try:
+            fixed[name] = float(value)
+        except ValueError:
+            raise ValueError(f"--set {spec}: the value must be a number (SI)") from None
+    return fixed
+
+
 def run(args: argparse.Namespace) -> int:
     names, bounds = _parse_params(args.param or [])
     progress = (lambda msg: print(msg, file=sys.stderr)) if not args.json else None
@@ -89,8 +122,10 @@ def run(args: argparse.Namespace) -> int:
     cases = [tune.Case.from_log(read_log(p), bias_duration=args.bias_duration) for p in args.logs]
     for table in args.sim_table or []:
         cases += tune.simulated_cases(_TABLES[table], **sim_options)
+    if args.sim_drive:
+        cases += tune.simulated_cases(_parse_drives(args.sim_drive), first_seed=_DRIVE_SEED, **sim_options)
     if not cases:
-        raise ValueError("no training drive: give log folders and/or --sim-table")
+        raise ValueError("no training drive: give log folders, --sim-table and/or --sim-drive")
     tests = [tune.Case.from_log(read_log(p), bias_duration=args.bias_duration) for p in args.test]
     for table in args.test_sim_table or []:
         tests += tune.simulated_cases(_TABLES[table], first_seed=_TEST_SEED, **sim_options)
@@ -104,7 +139,8 @@ def run(args: argparse.Namespace) -> int:
     harm_test = [c for noisy in gyros for c in tune.harm_cases(**harm_options, first_seed=_HARM_TEST_SEED, noisy=noisy)]
     options: dict[str, Any] = {
         "preset": args.preset, "names": names or None, "bounds": bounds, "harm": harm,
-        "harm_limit_deg": args.harm_limit, "max_evaluations": args.max_evals, "seed": args.seed,
+        "harm_limit_deg": args.harm_limit, "fixed": _parse_fixed(args.set or []),
+        "max_evaluations": args.max_evals, "seed": args.seed,
         "optimiser": args.optimiser,
     }
     if progress:
