@@ -1,0 +1,67 @@
+"""Allan deviation of a long rate log: overlapping and non-overlapping, octave taus, median of
+--repeats runs, with a breakdown of where the time goes.
+
+    python benches/allan_speed.py --samples 100000000 --repeats 5
+
+The rate is white noise on a bias, ``default_rng(0).standard_normal(n) * 0.01 + 0.05`` at
+dt = 1 ms. The breakdown times the parts of one overlapping call separately:
+
+- ``checks``: the Python-side finiteness check of the rate (``np.isfinite``);
+- ``variances``: the Rust passes alone, on a phase integrated beforehand
+  (``_gyrocore.allan_variances(phase, ..., is_rate=False)``);
+- ``phase``: what the rate path adds to that, i.e. allocating and integrating the phase.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+from collections.abc import Callable
+
+import numpy as np
+
+from gyrocore import _gyrocore, allan
+
+DT = 1e-3
+
+
+def median_time(run: Callable[[], object], repeats: int) -> float:
+    """Median wall time of ``repeats`` calls [s]."""
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        run()
+        times.append(time.perf_counter() - start)
+    return statistics.median(times)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--samples", type=int, default=10**8)
+    ap.add_argument("--repeats", type=int, default=5)
+    ap.add_argument("--no-breakdown", action="store_true", help="time only the two public calls")
+    args = ap.parse_args()
+    rate = np.random.default_rng(0).standard_normal(args.samples) * 0.01 + 0.05
+    curve = allan.deviation(rate, DT)
+    print(f"{args.samples} samples, {len(curve.taus)} octave taus, median of {args.repeats}")
+    overlapping = median_time(lambda: allan.deviation(rate, DT), args.repeats)
+    plain = median_time(lambda: allan.deviation(rate, DT, overlapping=False), args.repeats)
+    print(f"overlapping     {overlapping:7.3f} s")
+    print(f"non-overlapping {plain:7.3f} s")
+    if args.no_breakdown:
+        return
+    factors = np.rint(curve.taus / DT).astype(np.int64).tolist()
+    phase = np.concatenate(([0.0], np.cumsum((rate - rate.mean()) * DT)))
+    checks = median_time(lambda: np.isfinite(rate).all(), args.repeats)
+    passes = median_time(
+        lambda: _gyrocore.allan_variances(phase, DT, factors, "overlapping_allan", False), args.repeats
+    )
+    print("breakdown of the overlapping call:")
+    print(f"  checks    {checks:7.3f} s")
+    print(f"  variances {passes:7.3f} s ({passes / len(factors) * 1e3:.1f} ms per tau)")
+    print(f"  phase     {overlapping - checks - passes:7.3f} s (the rest)")
+
+
+if __name__ == "__main__":
+    main()
