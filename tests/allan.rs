@@ -2,6 +2,8 @@
 //! ../shared/data/allan at test time), the textbook definition from averaged rates, and the
 //! closed form for white rate noise.
 
+#[cfg(feature = "std")]
+use gyrocore::allan::variances_parallel;
 use gyrocore::allan::{phase_from_rate, variance, variances};
 use gyrocore::{Error, Variance};
 use std::path::PathBuf;
@@ -276,4 +278,37 @@ fn bad_input_is_an_error_naming_what_and_where() {
     }
     .to_string()
     .contains("13 needed"));
+}
+
+#[cfg(feature = "std")]
+#[test]
+fn parallel_variances_equal_the_sequential_ones_bit_for_bit() {
+    // Long enough for many blocks per factor, with short factors (summed together), long ones
+    // and, for the modified variance, blocks longer than the default.
+    let x: Vec<f64> = normals(300_001, 5)
+        .iter()
+        .scan(0.0, |s, w| {
+            *s += w;
+            Some(*s)
+        })
+        .collect();
+    let factors = [1usize, 2, 3, 8, 100, 1024, 20_000, 33_333, 70_000];
+    for kind in [
+        Variance::Allan,
+        Variance::OverlappingAllan,
+        Variance::ModifiedAllan,
+        Variance::Hadamard,
+        Variance::OverlappingHadamard,
+    ] {
+        let (mut expected, mut expected_terms) = (vec![0.0; 9], vec![0u64; 9]);
+        variances(&x, 0.5, &factors, kind, &mut expected, &mut expected_terms).unwrap();
+        for threads in [1, 2, 3, 4] {
+            let (mut v, mut terms) = (vec![0.0; 9], vec![0u64; 9]);
+            variances_parallel(&x, 0.5, &factors, kind, threads, &mut v, &mut terms).unwrap();
+            assert_eq!(terms, expected_terms, "{kind:?}, {threads} threads");
+            for (a, b) in v.iter().zip(&expected) {
+                assert_eq!(a.to_bits(), b.to_bits(), "{kind:?}, {threads} threads");
+            }
+        }
+    }
 }
