@@ -280,6 +280,37 @@ fn bad_input_is_an_error_naming_what_and_where() {
     .contains("13 needed"));
 }
 
+#[test]
+fn a_non_finite_phase_sample_is_found_wherever_it_is() {
+    // Whether or not the factors' terms read every sample (m = 7 non-overlapping reads every
+    // seventh), the error names the first bad sample.
+    let x: Vec<f64> = (0..1000).map(|i| (i as f64 * 0.37).sin()).collect();
+    for kind in [
+        Variance::Allan,
+        Variance::OverlappingAllan,
+        Variance::ModifiedAllan,
+        Variance::Hadamard,
+        Variance::OverlappingHadamard,
+    ] {
+        for factors in [&[1usize, 2, 7][..], &[7], &[300]] {
+            for (index, bad) in [
+                (0, f64::NAN),
+                (500, f64::INFINITY),
+                (999, f64::NEG_INFINITY),
+            ] {
+                let mut y = x.clone();
+                y[index] = bad;
+                let (mut v, mut n) = (vec![0.0; factors.len()], vec![0u64; factors.len()]);
+                let result = variances(&y, 1.0, factors, kind, &mut v, &mut n);
+                assert!(
+                    matches!(result, Err(Error::NonFinite { what: "phase", index: i, .. }) if i == index),
+                    "{kind:?} {factors:?} bad at {index}: {result:?}"
+                );
+            }
+        }
+    }
+}
+
 #[cfg(feature = "std")]
 #[test]
 fn parallel_variances_equal_the_sequential_ones_bit_for_bit() {
@@ -310,5 +341,16 @@ fn parallel_variances_equal_the_sequential_ones_bit_for_bit() {
                 assert_eq!(a.to_bits(), b.to_bits(), "{kind:?}, {threads} threads");
             }
         }
+        let mut y = x.clone();
+        y[123_456] = f64::NAN;
+        let (mut v, mut terms) = (vec![0.0; 9], vec![0u64; 9]);
+        assert!(matches!(
+            variances_parallel(&y, 0.5, &factors, kind, 2, &mut v, &mut terms),
+            Err(Error::NonFinite {
+                what: "phase",
+                index: 123_456,
+                ..
+            })
+        ));
     }
 }
