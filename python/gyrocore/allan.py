@@ -231,15 +231,22 @@ def _curve(
         raise ValueError(f"confidence must lie in (0, 1), got {confidence}")
     if noise_alpha not in _TABLES:
         raise ValueError(f"noise_alpha must be 0 (white), -1 (flicker) or -2 (random walk), got {noise_alpha}")
-    bad = np.flatnonzero(~np.isfinite(data))
-    if len(bad):
-        what = "rate" if is_rate else "phase"
-        raise ValueError(f"{what}[{bad[0]}] is {data[bad[0]]}: samples must be finite (drop or fill them first)")
     overlapping = overlapping or kind == "modified"
     variance = _VARIANCE[(kind, overlapping)]
     n_phase = len(data) + 1 if is_rate else len(data)
     factors = _factors(taus, n_phase, float(dt), variance)
-    var, terms = _gyrocore.allan_variances(data, float(dt), factors.tolist(), variance, is_rate)
+    try:
+        var, terms = _gyrocore.allan_variances(data, float(dt), factors.tolist(), variance, is_rate)
+    except ValueError:
+        # The core finds a NaN or infinity within its own passes (a separate pass here would cost
+        # as much as a tau); this names the first one.
+        bad = np.flatnonzero(~np.isfinite(data))
+        if len(bad):
+            what = "rate" if is_rate else "phase"
+            raise ValueError(
+                f"{what}[{bad[0]}] is {data[bad[0]]}: samples must be finite (drop or fill them first)"
+            ) from None
+        raise
     dev = np.sqrt(var)
     d = 3 if kind == "hadamard" else 2
     edf = np.array([
