@@ -160,7 +160,10 @@ pub fn variances_parallel(
         .map(|&m| Blocks::new(kind, x.len(), m).count())
         .collect();
     let total = counts.iter().sum();
-    let threads = threads.min(total / MIN_BLOCKS_PER_THREAD).max(1);
+    let threads = threads.min(total / MIN_BLOCKS_PER_THREAD);
+    if threads <= 1 {
+        return variances(x, tau0, factors, kind, variance, terms);
+    }
     let mut table = vec![0.0; total];
     std::thread::scope(|scope| {
         for (t, mut rows) in thread_shares(&mut table, &counts, threads)
