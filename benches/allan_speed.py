@@ -1,5 +1,5 @@
-"""Allan deviation of a long rate log: overlapping and non-overlapping, octave taus, median of
---repeats runs, with a breakdown of where the time goes.
+"""Allan deviation of a long rate log: overlapping and non-overlapping, octave taus, median (and
+fastest) of --repeats runs, with a breakdown of where the time goes.
 
     python benches/allan_speed.py --samples 100000000 --repeats 5
 
@@ -12,6 +12,8 @@ dt = 1 ms. The breakdown splits one overlapping call by timing the extension on 
   and integrating the rate into it;
 - ``python``: what ``allan.deviation`` adds to the extension call (tau list, degrees of
   freedom, confidence intervals).
+
+Each part is the median of its own runs, so on a busy machine the parts need not add up.
 """
 
 from __future__ import annotations
@@ -28,14 +30,19 @@ from gyrocore import _gyrocore, allan
 DT = 1e-3
 
 
-def median_time(run: Callable[[], object], repeats: int) -> float:
-    """Median wall time of ``repeats`` calls [s]."""
+def wall_times(run: Callable[[], object], repeats: int) -> list[float]:
+    """Wall times of ``repeats`` calls [s]."""
     times = []
     for _ in range(repeats):
         start = time.perf_counter()
         run()
         times.append(time.perf_counter() - start)
-    return statistics.median(times)
+    return times
+
+
+def median_time(run: Callable[[], object], repeats: int) -> float:
+    """Median wall time of ``repeats`` calls [s]."""
+    return statistics.median(wall_times(run, repeats))
 
 
 def main() -> None:
@@ -47,10 +54,12 @@ def main() -> None:
     rate = np.random.default_rng(0).standard_normal(args.samples) * 0.01 + 0.05
     curve = allan.deviation(rate, DT)
     print(f"{args.samples} samples, {len(curve.taus)} octave taus, median of {args.repeats}")
-    overlapping = median_time(lambda: allan.deviation(rate, DT), args.repeats)
-    plain = median_time(lambda: allan.deviation(rate, DT, overlapping=False), args.repeats)
-    print(f"overlapping     {overlapping:7.3f} s")
-    print(f"non-overlapping {plain:7.3f} s")
+    times = wall_times(lambda: allan.deviation(rate, DT), args.repeats)
+    plain = wall_times(lambda: allan.deviation(rate, DT, overlapping=False), args.repeats)
+    overlapping = statistics.median(times)
+    print(f"overlapping     {overlapping:7.3f} s (min {min(times):.3f})")
+    print(f"non-overlapping {statistics.median(plain):7.3f} s (min {min(plain):.3f})")
+    print(f"numpy.cumsum    {median_time(lambda: np.cumsum(rate), args.repeats):7.3f} s (for scale)")
     if args.no_breakdown:
         return
     factors = np.rint(curve.taus / DT).astype(np.int64).tolist()
