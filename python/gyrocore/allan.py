@@ -2,8 +2,8 @@
 
 The curve is IEEE Std 952-1997 Annex C's (Hong & Park section 2.1 read their gyro's angle random
 walk and bias instability from it): the rate averaged over ``tau`` seconds, differenced between
-adjacent intervals. The sums run in Rust, one O(N) pass per averaging time over the angle (the
-integral of the rate, computed once), so hours of 1 kHz data take seconds.
+adjacent intervals. The sums run in Rust on all cores, O(N) per averaging time over the angle
+(the integral of the rate, computed once), so a day of 1 kHz data takes about a second.
 
 Units: for a rate in rad/s the deviation is in rad/s; the angle random walk ``N`` is in
 rad/s/sqrt(Hz) (= rad/sqrt(s)), the bias instability ``B`` in rad/s, the rate random walk ``K`` in
