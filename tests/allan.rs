@@ -2,6 +2,8 @@
 //! ../shared/data/allan at test time), the textbook definition from averaged rates, and the
 //! closed form for white rate noise.
 
+#[cfg(feature = "std")]
+use gyrocore::allan::variances_parallel;
 use gyrocore::allan::{phase_from_rate, variance, variances};
 use gyrocore::{Error, Variance};
 use std::path::PathBuf;
@@ -276,4 +278,79 @@ fn bad_input_is_an_error_naming_what_and_where() {
     }
     .to_string()
     .contains("13 needed"));
+}
+
+#[test]
+fn a_non_finite_phase_sample_is_found_wherever_it_is() {
+    // Whether or not the factors' terms read every sample (m = 7 non-overlapping reads every
+    // seventh), the error names the first bad sample.
+    let x: Vec<f64> = (0..1000).map(|i| (i as f64 * 0.37).sin()).collect();
+    for kind in [
+        Variance::Allan,
+        Variance::OverlappingAllan,
+        Variance::ModifiedAllan,
+        Variance::Hadamard,
+        Variance::OverlappingHadamard,
+    ] {
+        for factors in [&[1usize, 2, 7][..], &[7], &[300]] {
+            for (index, bad) in [
+                (0, f64::NAN),
+                (500, f64::INFINITY),
+                (999, f64::NEG_INFINITY),
+            ] {
+                let mut y = x.clone();
+                y[index] = bad;
+                let (mut v, mut n) = (vec![0.0; factors.len()], vec![0u64; factors.len()]);
+                let result = variances(&y, 1.0, factors, kind, &mut v, &mut n);
+                assert!(
+                    matches!(result, Err(Error::NonFinite { what: "phase", index: i, .. }) if i == index),
+                    "{kind:?} {factors:?} bad at {index}: {result:?}"
+                );
+            }
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+#[test]
+fn parallel_variances_equal_the_sequential_ones_bit_for_bit() {
+    // Long enough for many blocks per factor, with short factors (summed together), long ones
+    // and, for the modified variance, blocks longer than the default.
+    let x: Vec<f64> = normals(300_001, 5)
+        .iter()
+        .scan(0.0, |s, w| {
+            *s += w;
+            Some(*s)
+        })
+        .collect();
+    let factors = [1usize, 2, 3, 8, 100, 1024, 20_000, 33_333, 70_000];
+    for kind in [
+        Variance::Allan,
+        Variance::OverlappingAllan,
+        Variance::ModifiedAllan,
+        Variance::Hadamard,
+        Variance::OverlappingHadamard,
+    ] {
+        let (mut expected, mut expected_terms) = (vec![0.0; 9], vec![0u64; 9]);
+        variances(&x, 0.5, &factors, kind, &mut expected, &mut expected_terms).unwrap();
+        for threads in [1, 2, 3, 4] {
+            let (mut v, mut terms) = (vec![0.0; 9], vec![0u64; 9]);
+            variances_parallel(&x, 0.5, &factors, kind, threads, &mut v, &mut terms).unwrap();
+            assert_eq!(terms, expected_terms, "{kind:?}, {threads} threads");
+            for (a, b) in v.iter().zip(&expected) {
+                assert_eq!(a.to_bits(), b.to_bits(), "{kind:?}, {threads} threads");
+            }
+        }
+        let mut y = x.clone();
+        y[123_456] = f64::NAN;
+        let (mut v, mut terms) = (vec![0.0; 9], vec![0u64; 9]);
+        assert!(matches!(
+            variances_parallel(&y, 0.5, &factors, kind, 2, &mut v, &mut terms),
+            Err(Error::NonFinite {
+                what: "phase",
+                index: 123_456,
+                ..
+            })
+        ));
+    }
 }

@@ -1,8 +1,8 @@
 //! Bindings of the core's Allan-family variances (`gyrocore.allan` documents the Python API).
 
-use gyrocore::allan::{phase_from_rate, variances};
+use gyrocore::allan::{phase_from_rate, variances_parallel};
 use gyrocore::{Error, Variance};
-use numpy::{PyArray1, PyReadonlyArray1};
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
@@ -26,8 +26,8 @@ fn parse_kind(name: &str) -> PyResult<Variance> {
 type Curve<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<u64>>);
 
 /// Variances [(unit/s)^2 for angle data in unit] and their numbers of terms at each averaging
-/// factor. `data` is phase (angle) sampled every `tau0` seconds, or rate when `is_rate` (then
-/// integrated once to phase here, the only allocation).
+/// factor, summed on all cores. `data` is phase (angle) sampled every `tau0` seconds, or rate
+/// when `is_rate` (then integrated once to phase here, the only large allocation).
 #[pyfunction]
 #[pyo3(signature = (data, tau0, factors, kind, is_rate))]
 fn allan_variances<'py>(
@@ -43,14 +43,20 @@ fn allan_variances<'py>(
         .as_slice()
         .map_err(|_| PyValueError::new_err("the samples must be a contiguous float64 array"))?;
     let (mut var, mut terms) = (vec![0.0; factors.len()], vec![0u64; factors.len()]);
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    // The phase buffer comes from numpy, which asks the kernel for huge pages for large arrays:
+    // 10^8 samples then cost a few hundred page faults instead of 200 000 (0.3 s).
+    let mut phase = is_rate.then(|| PyArray1::<f64>::zeros(py, data.len() + 1, false).readwrite());
+    let phase = phase.as_mut().map(|p| p.as_slice_mut()).transpose()?;
     py.detach(|| -> Result<(), Error> {
-        if is_rate {
-            let mut x = vec![0.0; data.len() + 1];
-            phase_from_rate(data, tau0, &mut x)?;
-            variances(&x, tau0, &factors, kind, &mut var, &mut terms)
-        } else {
-            variances(data, tau0, &factors, kind, &mut var, &mut terms)
-        }
+        let x = match phase {
+            Some(x) => {
+                phase_from_rate(data, tau0, x)?;
+                &*x
+            }
+            None => data,
+        };
+        variances_parallel(x, tau0, &factors, kind, threads, &mut var, &mut terms)
     })
     .map_err(|e| PyValueError::new_err(e.to_string()))?;
     Ok((PyArray1::from_vec(py, var), PyArray1::from_vec(py, terms)))
