@@ -100,6 +100,13 @@ impl HdrConfig {
     }
 }
 
+/// `x` limited to `[-bound, bound]`; a NaN bound (from a block that is then rejected) leaves `x`
+/// as it is, where `f64::clamp` would panic.
+#[inline]
+fn within(x: f64, bound: f64) -> f64 {
+    x.max(-bound).min(bound)
+}
+
 /// `SIGN()` of HDR eq 4b: 1, 0 or -1.
 #[inline]
 fn sign(x: f64) -> i8 {
@@ -181,7 +188,7 @@ impl Hdr {
     /// clamped to it at once. A bound of 0 turns HDR off.
     pub fn bound_correction(&mut self, bound: f64) {
         self.bound = libm::fabs(bound);
-        self.state.integrator = self.state.integrator.clamp(-self.bound, self.bound);
+        self.state.integrator = within(self.state.integrator, self.bound);
     }
 
     /// The bound on `|I|` in force [rad/s].
@@ -247,8 +254,7 @@ impl Hdr {
         if !turning {
             let r = st.repetitions;
             let step = f64::from(s) * self.attenuation_at(r) * self.config.increment;
-            let bound = self.bound;
-            self.state.integrator = (self.state.integrator - step).clamp(-bound, bound);
+            self.state.integrator = within(self.state.integrator - step, self.bound);
         }
     }
 

@@ -89,10 +89,11 @@ pub enum Preset {
     Hdr,
     /// Calibration, the 0.3 deg/s threshold and HDR with Table III.
     Combined,
-    /// `Combined` with parameters fitted by `gyrocore tune` (scipy) to minimise the mean NE_psi of
-    /// nine simulated Table II drives, under a do-no-harm limit on six perfect-gyro drives; not
-    /// fitted to any real log. A much smaller increment than Table III (0.00187 deg/s), threshold
-    /// 0.171 deg/s, turn threshold 0.402 deg/s, tau 0.072 s, c1 0.203, c2 0.285.
+    /// Static bias, low-pass, HDR and de-lag with parameters fitted by `gyrocore tune` (scipy) to
+    /// minimise the mean NE_psi of eighteen simulated drives (HDR Table II and nine 3-minute town
+    /// drives) under a do-no-harm limit; not fitted to any real log. HDR's bound is 14.3 standard
+    /// errors of the static bias ([`NoiseScaled`]; 5e-5 rad/s without a rest window), no dead
+    /// band; i_c 0.00213 deg/s, Theta_w 0.669 deg/s, tau 0.335 s, c1 0.0484, c2 0.905.
     Tuned,
 }
 
@@ -150,20 +151,23 @@ impl Preset {
             Preset::Hdr => hdr,
             Preset::Combined => PipelineConfig { threshold, ..hdr },
             Preset::Tuned => {
-                let tau = 0.072;
+                let tau = 0.335;
                 PipelineConfig {
-                    threshold: Some(ThresholdConfig { threshold: 2.98e-3 }),
                     lowpass: Some(LowPassConfig { tau }),
                     delag: true,
                     hdr: Some(HdrConfig {
-                        increment: 3.26e-5,
-                        turn_threshold: 7.02e-3,
-                        c1: 0.203,
-                        c2: 0.285,
+                        increment: 3.71e-5,
+                        turn_threshold: 1.17e-2,
+                        c1: 0.0484,
+                        c2: 0.905,
                         interval: 1.0,
                         tau,
-                        max_correction: f64::INFINITY,
+                        max_correction: 5e-5,
                     }),
+                    noise_scaled: NoiseScaled {
+                        threshold_sigmas: None,
+                        hdr_bound_sigmas: Some(14.3),
+                    },
                     ..PipelineConfig::default()
                 }
             }

@@ -68,7 +68,7 @@ def test_noise_scaled_settings_round_trip_and_report_the_rest_window() -> None:
     assert stats["bias_std_error"] == pytest.approx(0.002 / math.sqrt(2000), rel=0.6)
     # Pickling keeps the infinite turn threshold and bound, and the scaled values.
     q = pickle.loads(pickle.dumps(p))
-    assert q.params == p.params and q.params["hdr_max_correction"] == math.inf
+    assert q.params == p.params and q.params["hdr_turn_threshold"] == math.inf
     assert q.params["threshold_sigmas"] == 1.5 and q.params["hdr_bound_sigmas"] == 2.0
     assert np.array_equal(q.process(t[3000:], rate[3000:]).heading, p.process(t[3000:], rate[3000:]).heading)
     with pytest.raises(ValueError, match="hdr_bound_sigmas = -1: must be finite and >= 0"):
