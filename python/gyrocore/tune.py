@@ -186,6 +186,26 @@ class Case:
         bias, _ = log_bias(log, bias_duration=bias_duration)
         return cls(log.name, log.t, log.rate, Reference(log.t_ref, log.heading_ref), bias)
 
+    @classmethod
+    def from_reference_rate(cls, log: Log) -> "Case":
+        """The log's reference as a gyro without bias (the accuracy bar's "reference's own rate"),
+        scored against the reference, with harm measured against plain integration. Its static
+        bias is given as 0, as for a gyro known to have none: the reference need not be at rest
+        in the log's rest window (f110_ds3's turns at -0.15 deg/s there).
+
+        The unwrapped reference heading is interpolated onto a regular grid at its median interval
+        and differenced; each rate stands at the middle of its interval. On a regular grid the
+        trapezoid rule then integrates these rates back to the reference exactly, where
+        derivatives at irregular reference times would not (f110_ds3's jittered times would add
+        tens of degrees)."""
+        if log.t_ref is None or log.heading_ref is None or len(log.t_ref) < 2:
+            raise ValueError(f"log {log.name}: no reference heading (reference.csv)")
+        step = float(np.median(np.diff(log.t_ref)))
+        grid = log.t_ref[0] + step * np.arange(int((log.t_ref[-1] - log.t_ref[0]) / step) + 1)
+        heading = np.interp(grid, log.t_ref, np.unwrap(log.heading_ref))
+        t, rate = grid[:-1] + 0.5 * step, np.diff(heading) / step
+        return cls(f"{log.name} (reference rate)", t, rate, Reference(log.t_ref, log.heading_ref), {"bias": 0.0})
+
     def heading(self, preset: str, overrides: Mapping[str, Any]) -> HeadingResult:
         """The heading of this drive with ``preset`` and ``overrides``."""
         bias = self.bias if uses_static_bias(preset) else {}

@@ -25,9 +25,13 @@ def test_demo_prints_every_preset_and_writes_a_plot(tmp_path: Path, capsys: pyte
 
 
 def test_demo_json_rows_beat_raw(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["demo", "--duration", "300", "--plot", "", "--json"]) == 0
+    assert main(["demo", "--duration", "300", "--drives", "3", "--plot", "", "--json"]) == 0
     rows = {r["preset"]: r for r in json.loads(capsys.readouterr().out)}
     assert rows["static_bias"]["e_psi_deg"] < rows["raw"]["e_psi_deg"]
+    # The table's figures are the means of the per-drive ones.
+    assert rows["hdr"]["e_psi_deg"] == pytest.approx(np.mean(rows["hdr"]["e_psi_deg_per_drive"]))
+    assert len(rows["hdr"]["e_psi_deg_per_drive"]) == 3 and 0 <= rows["hdr"]["beats_static_bias"] <= 3
+    assert main(["demo", "--drives", "0"]) == 2
 
 
 def test_process_writes_csv_with_one_row_per_sample(tmp_path: Path) -> None:

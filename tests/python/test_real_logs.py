@@ -6,6 +6,7 @@ from __future__ import annotations
 import pytest
 
 import gyrocore
+from gyrocore import tune
 
 from .conftest import real_log_path
 
@@ -51,6 +52,16 @@ def test_recommended_beats_static_bias_on_logs_with_a_rest(name: str) -> None:
     # Issue 5's bar: one parameter set, chosen without these logs (fitted to simulated drives).
     log = gyrocore.read_log(real_log_path(name))
     assert e_psi(log, "recommended") < e_psi(log, "static_bias")
+
+
+def test_recommended_does_no_harm_to_a_reference_rate(real_log: gyrocore.Log) -> None:
+    # Issue 5's bar: fed a gyro without bias (here the log's own reference, differentiated), the
+    # recommended preset may not make E_psi worse than plain integration by more than 0.5 deg.
+    case = tune.Case.from_reference_rate(real_log)
+    assert case.raw.e_psi_deg < 0.25  # integrating the derivative gives the reference back
+    assert case.harm_deg("recommended", {}) < 0.5
+    if real_log.name != "comma_seg40":  # on the curving logs, Table III's HDR fails the bar
+        assert case.harm_deg("combined", {}) > 1.0
 
 
 def test_a_leading_bias_window_handles_a_log_without_rest() -> None:

@@ -98,6 +98,8 @@ def test_harm_of_a_perfect_gyro() -> None:
     assert tune.score_cases(harm, "static_bias", {})[0].harm_deg == pytest.approx(0.0, abs=1e-9)
     # Table III's HDR "corrects" curving below its turn switch (the do-no-harm case).
     assert table_iii.harm_deg > 0.5
+    # The recommended preset bounds HDR by the rest window's noise, which a perfect gyro has none of.
+    assert tune.score_cases(harm, "recommended", {})[0].harm_deg == pytest.approx(0.0, abs=1e-6)
     # An increment of zero leaves HDR inert: no harm.
     assert tune.score_cases(harm, "hdr", {"hdr_increment": 0.0})[0].harm_deg == pytest.approx(0.0, abs=1e-9)
 
