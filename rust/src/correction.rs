@@ -163,7 +163,10 @@ impl BiasEstimate {
     }
 
     /// Takes the reading into the mean while `t` is inside the window (HDR eq 2's `eps0`).
-    #[inline]
+    ///
+    /// Out of line: it runs only during the rest window, and inlined into the pipeline's loop it
+    /// slows every later sample by about a fifth (`benches/pipeline.rs`).
+    #[inline(never)]
     fn learn(&mut self, source: StaticBias, t: f64, rate: f64) {
         let dt = self.clock.tick(t);
         let (start, end) = match (self.window, source) {

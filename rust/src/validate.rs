@@ -71,7 +71,7 @@ fn exponent_carry(v: f64) -> u64 {
 /// Validity of a block's samples, accumulated branch-free while the block is processed (see
 /// [`Pipeline::process_block`](crate::Pipeline::process_block)): a few integer operations per
 /// sample and no early exit, instead of a separate pass over the block.
-#[derive(Debug, Default)]
+#[derive(Debug, Default, Clone, Copy)]
 pub(crate) struct Checks {
     /// The largest `bits(dt) - 1` seen: below `bits(f64::MAX)` exactly when every interval was
     /// finite and positive (positive finite doubles order like their bit patterns).
