@@ -101,6 +101,17 @@ fn hadamard_deviations_match_stable32() {
 }
 
 /// Deterministic standard normal samples (xorshift64* and Box-Muller), so no dependency is needed.
+/// Phase of white rate noise: the running sum of `normals`.
+fn random_walk(n: usize, seed: u64) -> Vec<f64> {
+    normals(n, seed)
+        .iter()
+        .scan(0.0, |s, w| {
+            *s += w;
+            Some(*s)
+        })
+        .collect()
+}
+
 fn normals(n: usize, mut seed: u64) -> Vec<f64> {
     let mut uniform = move || {
         seed ^= seed >> 12;
@@ -198,13 +209,7 @@ fn constant_rate_has_zero_deviation() {
 #[test]
 fn modified_variance_running_sum_equals_the_double_sum() {
     // 200_000 terms at m = 3 pass several restarts of the running inner sum.
-    let x: Vec<f64> = normals(200_010, 3)
-        .iter()
-        .scan(0.0, |s, w| {
-            *s += w;
-            Some(*s)
-        })
-        .collect();
+    let x: Vec<f64> = random_walk(200_010, 3);
     let m = 3;
     let (v, terms) = variance(&x, 1.0, m, Variance::ModifiedAllan).unwrap();
     assert_eq!(terms as usize, x.len() - 3 * m + 1);
@@ -316,13 +321,7 @@ fn a_non_finite_phase_sample_is_found_wherever_it_is() {
 fn parallel_variances_equal_the_sequential_ones_bit_for_bit() {
     // Long enough for many blocks per factor, with short factors (summed together), long ones
     // and, for the modified variance, blocks longer than the default.
-    let x: Vec<f64> = normals(300_001, 5)
-        .iter()
-        .scan(0.0, |s, w| {
-            *s += w;
-            Some(*s)
-        })
-        .collect();
+    let x: Vec<f64> = random_walk(300_001, 5);
     let factors = [1usize, 2, 3, 8, 100, 1024, 20_000, 33_333, 70_000];
     for kind in [
         Variance::Allan,
