@@ -91,6 +91,11 @@ def main() -> int:
         jitted = numba.njit(cache=False)(reference.combined)
         numba_heading = run_reference(jitted, t, rate)  # compiles; not timed
         add("Numba (same algorithm)", median_seconds(lambda: run_reference(jitted, t, rate), args.repeats), n)
+        # The loop alone: outputs allocated and faulted in once, outside the timing (criterion
+        # times gyrocore's Rust loop the same way).
+        reused = [np.empty(n) for _ in range(3)]
+        add("Numba, into reused arrays (the loop alone)",
+            median_seconds(lambda: jitted(t, rate, *reused, *reference_args()), args.repeats), n)
         if not np.allclose(numba_heading, gyro.heading, rtol=0, atol=1e-9):
             failures.append(f"Numba differs from gyrocore by {np.abs(numba_heading - gyro.heading).max():.3g} rad")
     except ImportError:
