@@ -194,24 +194,20 @@ fn the_scaled_bound_survives_a_gap_restart_and_a_reset_restores_the_configured_o
 
 #[test]
 fn negative_or_non_finite_factors_are_rejected() {
-    for bad in [-1.0, f64::NAN, f64::INFINITY] {
-        let mut config = Preset::Hdr.config();
-        config.noise_scaled.threshold_sigmas = Some(bad);
-        assert!(matches!(
-            Pipeline::new(config),
-            Err(Error::InvalidParameter {
-                name: "threshold_sigmas",
-                ..
-            })
-        ));
-        let mut config = Preset::Hdr.config();
-        config.noise_scaled.hdr_bound_sigmas = Some(bad);
-        assert!(matches!(
-            Pipeline::new(config),
-            Err(Error::InvalidParameter {
-                name: "hdr_bound_sigmas",
-                ..
-            })
-        ));
+    type Set = fn(&mut NoiseScaled, f64);
+    let settings: [(&str, Set); 2] = [
+        ("threshold_sigmas", |n, v| n.threshold_sigmas = Some(v)),
+        ("hdr_bound_sigmas", |n, v| n.hdr_bound_sigmas = Some(v)),
+    ];
+    for (field, set) in settings {
+        for bad in [-1.0, f64::NAN, f64::INFINITY] {
+            let mut config = Preset::Hdr.config();
+            set(&mut config.noise_scaled, bad);
+            let err = Pipeline::new(config).unwrap_err();
+            assert!(
+                matches!(err, Error::InvalidParameter { name, .. } if name == field),
+                "{err:?}"
+            );
+        }
     }
 }
