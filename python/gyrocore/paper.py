@@ -421,9 +421,9 @@ def _interval_fit(
     return calibration.rate_reference(mean_reading[:n], mean_rate[:n])
 
 
-def hong_table_1(*, seed: int = 0, runs: int = 10) -> HongTable1:
-    """Hong Table 1: the XV3500 on :func:`gyrocore.motion.robot_run` at 100 Hz, a 20 Hz reference,
-    ``runs`` runs with seeds ``seed``, ``seed + 1``, ...
+def hong_table_1(*, seed: int = 0, runs: int = 10, sensor: str | sim.GyroSpec = "xv3500") -> HongTable1:
+    """Hong Table 1: the XV3500 (or ``sensor``) on :func:`gyrocore.motion.robot_run` at 100 Hz, a
+    20 Hz reference, ``runs`` runs with seeds ``seed``, ``seed + 1``, ...
 
     - pure integration: static bias of the power-up rest (0-5 s) removed, then integrated;
     - self-calibration: ``s`` and ``b`` from Hong eq 8-9 over the calibration motion (the gyro's
@@ -442,7 +442,7 @@ def hong_table_1(*, seed: int = 0, runs: int = 10) -> HongTable1:
     errors: dict[str, list[evaluate.HeadingErrors]] = {m: [] for m in HongTable1.PAPER}
     calibrations, headings = [], {}
     for k in range(runs):
-        d = sim.simulate(route, "xv3500", seed=seed + k)
+        d = sim.simulate(route, sensor, seed=seed + k)
         cal = _interval_fit(d, t_ref, heading_ref, (window.start, window.end))
         calibrations.append(cal)
         methods: dict[str, tuple[str, dict[str, Any]]] = {

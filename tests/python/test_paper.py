@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gyrocore import paper
+from gyrocore import paper, sim
 
 
 @pytest.fixture(scope="module")
@@ -64,6 +64,14 @@ def test_hong_table_1_proposed_is_best_and_calibration_beats_pure_integration(ho
     s = np.mean([c.scale_error for c in hong_t1.calibrations])
     b = np.mean([math.degrees(c.bias) for c in hong_t1.calibrations])
     assert s == pytest.approx(0.0253, abs=0.002) and b == pytest.approx(0.75, abs=0.02)
+
+
+def test_hong_table_1_threshold_gains_more_on_a_quieter_gyro(hong_t1: paper.HongTable1) -> None:
+    # The README's explanation of the threshold's small gain: it is the noise (as large as the
+    # threshold) that passes it. With a fifth of the noise bandwidth, the threshold gains more.
+    quiet = paper.hong_table_1(sensor=sim.sensor("xv3500", bandwidth_hz=2.0))
+    assert quiet.mean_error("threshold filter") < 0.8 * hong_t1.mean_error("threshold filter")
+    assert quiet.mean_error("pure integration") == pytest.approx(hong_t1.mean_error("pure integration"), rel=0.05)
 
 
 def test_hdr_minus_i_tracks_the_drift_on_straight_driving(hdr_fig: paper.HdrFigures) -> None:
