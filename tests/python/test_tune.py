@@ -166,3 +166,8 @@ def test_cli_tune_writes_a_loadable_file(tmp_path: Path, capsys: pytest.CaptureF
     assert main(drives) == 0
     result = json.loads(capsys.readouterr().out)
     assert len(result["train"]) == 2 and result["overrides"]["threshold"] == 0.0
+    noisy = ["tune", "--sim-drive", "city:10", "--param", "hdr_increment", "--harm-noisy", "--harm-per-mix", "1",
+             "--harm-mix", "suburbs", "--time-scale", "0.05", "--max-evals", "2", "--json"]
+    assert main(noisy) == 0
+    harm = json.loads(capsys.readouterr().out)["harm"]
+    assert [h["case"].split(",")[0] for h in harm] == ["perfect gyro", "unbiased noisy gyro"]
