@@ -53,6 +53,15 @@ impl Variance {
         }
     }
 
+    /// True for the kinds whose terms start at every sample (the overlapping estimators), where
+    /// the others step by `m`.
+    fn overlapping(self) -> bool {
+        matches!(
+            self,
+            Variance::OverlappingAllan | Variance::OverlappingHadamard
+        )
+    }
+
     /// Number of terms averaged at factor `m` over `n` phase samples (0: not computable).
     pub fn terms(self, n: usize, m: usize) -> usize {
         if m == 0 || n == 0 {
@@ -252,11 +261,7 @@ fn check_phase(x: &[f64], kind: Variance, factors: &[usize], sums: &[f64]) -> Re
 /// `[0, n)` when they overlap, i.e. with at least `m` terms. (The modified variance reads its
 /// samples in another pattern; it is left to the plain check.)
 fn reads_every_sample(kind: Variance, n: usize, m: usize) -> bool {
-    let overlapping = match kind {
-        Variance::OverlappingAllan | Variance::OverlappingHadamard => true,
-        Variance::Allan | Variance::Hadamard => m == 1,
-        Variance::ModifiedAllan => false,
-    };
+    let overlapping = kind.overlapping() || (m == 1 && kind != Variance::ModifiedAllan);
     overlapping && kind.terms(n, m) >= m
 }
 
@@ -334,11 +339,7 @@ impl Blocks {
 
     /// Whether the factor is summed together with the other short ones (see [`SHORT_SPAN`]).
     fn is_short(self) -> bool {
-        let overlapping = matches!(
-            self.kind,
-            Variance::OverlappingAllan | Variance::OverlappingHadamard
-        );
-        overlapping && self.kind.order() * self.m <= SHORT_SPAN
+        self.kind.overlapping() && self.kind.order() * self.m <= SHORT_SPAN
     }
 
     /// The sum of the squared differences of block `b`.

@@ -191,11 +191,6 @@ impl Hdr {
         self.state.integrator = within(self.state.integrator, self.bound);
     }
 
-    /// The bound on `|I|` in force [rad/s].
-    pub fn correction_bound(&self) -> f64 {
-        self.bound
-    }
-
     /// Forgets the signal (the controller starts again from `I = 0`) but keeps the bound.
     pub fn restart(&mut self) {
         self.state = HdrState::start(&self.config);

@@ -10,7 +10,7 @@ use crate::lowpass::{DeLag, LowPass, LowPassConfig};
 use crate::rest::RestStatistics;
 use crate::stage::{check_len, Clock};
 use crate::threshold::{Threshold, ThresholdConfig};
-use crate::validate::{check_block, Checks};
+use crate::validate::{check_block, check_lengths, Checks};
 use crate::Error;
 
 /// Which stages run, and how. `None` disables a stage.
@@ -461,10 +461,10 @@ impl Pipeline {
     /// through the pipeline. On an error the pipeline is as it was (the outputs are not).
     ///
     /// One pass over memory: the block runs through a copy of the pipeline that checks every
-    /// sample on the way, and the copy replaces the pipeline only if all were valid. A separate
-    /// check first would read the whole block once more, which costs about as much as the
-    /// processing itself. Only a block with a bad sample is checked again, to name the first one
-    /// (an error), or fed sample by sample when the policy holds or skips non-finite readings.
+    /// sample on the way, and the copy replaces the pipeline only if all were valid, where a
+    /// separate check first would read the whole block once more. Only a block with a bad sample
+    /// is checked again, to name the first one (an error), or fed sample by sample when the
+    /// policy holds or skips non-finite readings.
     pub fn process_block(
         &mut self,
         t: &[f64],
@@ -476,10 +476,7 @@ impl Pipeline {
         if c.config.correction.temperature.is_some() && temperature.is_none() {
             return Err(Error::MissingTemperature);
         }
-        check_len("rate", rate.len(), t.len())?;
-        if let Some(temp) = temperature {
-            check_len("temperature", temp.len(), t.len())?;
-        }
+        check_lengths(t, rate, temperature)?;
         check_len("heading", out.heading.len(), t.len())?;
         check_len("rate out", out.rate.len(), t.len())?;
         check_len("drift", out.drift.len(), t.len())?;

@@ -15,10 +15,7 @@ pub fn check_block(
     previous_t: Option<f64>,
     readings_must_be_finite: bool,
 ) -> Result<(), Error> {
-    check_len("rate", rate.len(), t.len())?;
-    if let Some(temp) = temperature {
-        check_len("temperature", temp.len(), t.len())?;
-    }
+    check_lengths(t, rate, temperature)?;
     if readings_must_be_finite {
         check_finite_all("rate", rate)?;
         if let Some(temp) = temperature {
@@ -45,6 +42,20 @@ pub fn check_block(
             }
         }
         previous = Some(value);
+    }
+    Ok(())
+}
+
+/// Fails with [`Error::LengthMismatch`] unless `rate` (and `temperature`, when given) is as long
+/// as `t`.
+pub(crate) fn check_lengths(
+    t: &[f64],
+    rate: &[f64],
+    temperature: Option<&[f64]>,
+) -> Result<(), Error> {
+    check_len("rate", rate.len(), t.len())?;
+    if let Some(temp) = temperature {
+        check_len("temperature", temp.len(), t.len())?;
     }
     Ok(())
 }
