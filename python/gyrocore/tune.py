@@ -217,14 +217,25 @@ class Case:
         return self.reference.errors(r.t, r.heading)
 
     @cached_property
+    def _plain(self) -> dict[str, HeadingErrors]:
+        return {}
+
+    def plain(self, preset: str) -> HeadingErrors:
+        """Heading errors of ``preset`` with its own parameters, computed once per preset: the
+        comparisons that every score of this drive is set against."""
+        if preset not in self._plain:
+            self._plain[preset] = self.score(preset, {})
+        return self._plain[preset]
+
+    @property
     def raw(self) -> HeadingErrors:
         """Heading errors of plain integration."""
-        return self.score("raw", {})
+        return self.plain("raw")
 
-    @cached_property
+    @property
     def baseline_errors(self) -> HeadingErrors:
         """Heading errors of the baseline that harm is measured against."""
-        return self.score(self.baseline, {})
+        return self.plain(self.baseline)
 
     def harm_deg(self, preset: str, overrides: Mapping[str, Any]) -> float:
         """How much worse than the baseline ``preset`` makes E_psi here [deg]."""

@@ -15,8 +15,8 @@ from typing import Any
 
 import numpy as np
 
-from .. import evaluate, motion, sim
-from ..pipeline import HeadingResult, preset_names, process, recommended_preset, uses_static_bias
+from .. import evaluate, motion, sim, tune
+from ..pipeline import HeadingResult, preset_names, recommended_preset
 from ._common import add_command, write_atomically
 
 
@@ -52,12 +52,12 @@ def run(args: argparse.Namespace) -> int:
     ]
     errors: dict[str, list[evaluate.HeadingErrors]] = {p: [] for p in preset_names()}
     first: dict[str, HeadingResult] = {}
-    for drive in drives:
+    for k, drive in enumerate(drives):
+        case = tune.Case.from_drive(f"seed {args.seed + k}", drive)
         for preset in errors:
-            bias = {"bias_window": drive.stationary} if uses_static_bias(preset) else {}
-            result = process(drive.t, drive.rate_measured, preset, **bias)
-            errors[preset].append(evaluate.heading_errors(drive.t, result.heading, drive.t, drive.heading_true))
-            if drive is drives[0]:
+            result = case.heading(preset, {})
+            errors[preset].append(case.reference.errors(result.t, result.heading))
+            if k == 0:
                 first[preset] = result
     static = [e.e_psi_deg for e in errors["static_bias"]]
     rows: list[dict[str, Any]] = []

@@ -134,9 +134,13 @@ def run(args: argparse.Namespace) -> int:
         "per_mix": args.harm_per_mix,
     }
     gyros = (False, True) if args.harm_noisy else (False,)
-    harm = [] if args.no_harm else [c for noisy in gyros for c in tune.harm_cases(**harm_options, noisy=noisy)]
+
+    def harm_drives(**seed: int) -> list[tune.Case]:
+        return [c for noisy in gyros for c in tune.harm_cases(**harm_options, **seed, noisy=noisy)]
+
+    harm = [] if args.no_harm else harm_drives()
     # The same roads with other seeds: does the constraint hold on drives it was not fitted to?
-    harm_test = [c for noisy in gyros for c in tune.harm_cases(**harm_options, first_seed=_HARM_TEST_SEED, noisy=noisy)]
+    harm_test = harm_drives(first_seed=_HARM_TEST_SEED)
     options: dict[str, Any] = {
         "preset": args.preset, "names": names or None, "bounds": bounds, "harm": harm,
         "harm_limit_deg": args.harm_limit, "fixed": _parse_fixed(args.set or []),
