@@ -40,6 +40,18 @@ def test_chunked_streaming_is_bit_identical(preset: str) -> None:
         assert np.array_equal(joined, getattr(whole, name)), name
 
 
+def test_long_arrays_written_while_another_core_faults_their_pages_in_are_bit_identical() -> None:
+    # From 2**18 samples on, the outputs' pages are faulted in by a helper thread as the pipeline
+    # writes them; chunks below that size are written without it.
+    t, rate = _log(600_000)
+    whole = gyrocore.Pipeline("combined", bias_duration=2.0).process(t, rate)
+    p = gyrocore.Pipeline("combined", bias_duration=2.0)
+    parts = [p.process(t[a : a + 100_000], rate[a : a + 100_000]) for a in range(0, len(t), 100_000)]
+    for name in ("heading", "rate", "drift"):
+        joined = np.concatenate([getattr(x, name) for x in parts])
+        assert np.array_equal(joined, getattr(whole, name)), name
+
+
 def test_pickle_mid_stream_continues_bit_identically_and_reset_restarts() -> None:
     t, rate = _log()
     a = gyrocore.Pipeline("combined", bias_window=(t[0], t[200]))

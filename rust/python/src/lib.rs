@@ -3,6 +3,7 @@
 
 mod allan;
 mod params;
+mod prefault;
 mod sim;
 mod table;
 
@@ -59,7 +60,8 @@ pub(crate) fn zeros(py: Python<'_>, n: usize) -> Array<'_> {
     PyArray1::zeros(py, n, false)
 }
 
-/// Runs `f` on mutable views of `arrays` (fresh, contiguous arrays from [`zeros`]).
+/// Runs `f` on mutable views of `arrays` (fresh, contiguous arrays from [`zeros`]), their pages
+/// faulted in on another core meanwhile (see [`prefault`]).
 pub(crate) fn fill<const N: usize, R>(
     arrays: [&Array<'_>; N],
     f: impl FnOnce([&mut [f64]; N]) -> R,
@@ -69,7 +71,9 @@ pub(crate) fn fill<const N: usize, R>(
     if slices.iter().any(Result::is_err) {
         return Err(PyValueError::new_err("output array is not contiguous"));
     }
-    Ok(f(slices.map(Result::unwrap_or_default)))
+    let slices = slices.map(Result::unwrap_or_default);
+    let pages = prefault::Pages::of(&slices);
+    Ok(pages.while_faulting_in(|| f(slices)))
 }
 
 /// The streaming pipeline of the core crate (see `gyrocore.Pipeline` for the documented API).
