@@ -1,8 +1,8 @@
 //! Fresh output arrays fault their pages in on another core while this one computes.
 //!
 //! A new array's memory is not there until it is first written: the kernel then maps and zeroes
-//! each page, and at 10^7 samples that costs the writing loop about 1.5 ns per sample and array
-//! triple (`benches/compare.py`), a quarter of the pipeline's time. A helper thread asks the
+//! each page. For the pipeline's three outputs that cost the writing loop about 1.5 ns per
+//! sample at 10^7 samples (`benches/compare.py`), a quarter of its time. A helper thread asks the
 //! kernel for the pages (`MADV_POPULATE_WRITE`, Linux 5.14) a stretch ahead of the loop, in the
 //! order the loop writes them. It never reads or writes the arrays themselves, so it cannot
 //! disturb what the loop writes; where the call is not supported it fails and nothing changes.
@@ -34,7 +34,8 @@ impl Pages {
             return work();
         }
         std::thread::scope(|s| {
-            s.spawn(|| populate(&self.0));
+            // Without a thread (the system refused one) the loop faults the pages in itself.
+            let _helper = std::thread::Builder::new().spawn_scoped(s, || populate(&self.0));
             work()
         })
     }
