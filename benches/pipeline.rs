@@ -19,26 +19,29 @@ fn pipeline(c: &mut Criterion) {
     let (t, rate) = samples();
     let mut group = c.benchmark_group("pipeline_block");
     group.throughput(Throughput::Elements(N as u64));
-    for preset in Preset::ALL {
-        let mut config = preset.config();
+    // The presets, and `combined` with a factor per turn direction (FOG eq 3-4), which compiles
+    // to another loop (see `Correction::apply_directed`).
+    let mut split = Preset::Combined.config();
+    split.correction.c_cw = 1.01;
+    let configs = Preset::ALL
+        .iter()
+        .map(|p| (p.name(), p.config()))
+        .chain([("combined_cw_ccw", split)]);
+    for (name, mut config) in configs {
         config.correction.bias = StaticBias::Fixed(0.01);
         let (mut h, mut r, mut d) = (vec![0.0; N], vec![0.0; N], vec![0.0; N]);
-        group.bench_with_input(
-            BenchmarkId::from_parameter(preset.name()),
-            &config,
-            |b, &config| {
-                b.iter(|| {
-                    let mut p = Pipeline::new(config).unwrap();
-                    let out = Outputs {
-                        heading: &mut h,
-                        rate: &mut r,
-                        drift: &mut d,
-                    };
-                    p.process_block(black_box(&t), black_box(&rate), None, out)
-                        .unwrap();
-                })
-            },
-        );
+        group.bench_with_input(BenchmarkId::from_parameter(name), &config, |b, &config| {
+            b.iter(|| {
+                let mut p = Pipeline::new(config).unwrap();
+                let out = Outputs {
+                    heading: &mut h,
+                    rate: &mut r,
+                    drift: &mut d,
+                };
+                p.process_block(black_box(&t), black_box(&rate), None, out)
+                    .unwrap();
+            })
+        });
     }
     group.finish();
 

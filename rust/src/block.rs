@@ -23,7 +23,10 @@ pub(crate) struct BlockMean {
 impl BlockMean {
     /// Adds a sample with interval `dt`; when this sample closes a block, returns the block's
     /// mean and duration [s].
-    #[inline]
+    ///
+    /// Always inlined: it runs on every sample of the pipeline's loop, and as a call it would
+    /// make the loop's state escape to memory.
+    #[inline(always)]
     pub(crate) fn push(&mut self, interval: f64, dt: f64, rate: f64) -> Option<(f64, f64)> {
         self.sum += rate * dt;
         self.duration += dt;

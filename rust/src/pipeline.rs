@@ -453,7 +453,7 @@ impl Pipeline {
         let m = &mut self.memories;
         let mut memories = (&mut m.lowpass, &mut m.hdr, &mut m.delag);
         self.chain
-            .update::<false, _, _, _>(&mut memories, t, rate, temperature)
+            .update::<false, true, _, _, _>(&mut memories, t, rate, temperature)
     }
 
     /// Checks a block (lengths; finite, strictly increasing time, also after the previous block;
@@ -493,7 +493,8 @@ impl Pipeline {
     }
 
     /// [`Chain::feed`] with the stages with memory: compiled for the concrete stages when all are
-    /// on (see [`Memory`]), for `Option`s otherwise.
+    /// on (see [`Memory`]), and then also for a single direction factor when the two are equal
+    /// (see [`Correction::apply_directed`]); for `Option`s otherwise.
     #[inline(always)]
     fn feed<const FAST: bool>(
         &mut self,
@@ -502,18 +503,29 @@ impl Pipeline {
         temperature: Option<&[f64]>,
         out: &mut Outputs<'_>,
     ) -> bool {
+        let split = self.chain.correction.direction_split();
         let Pipeline { chain, memories } = self;
         match memories {
             Memories {
                 lowpass: Some(l),
                 hdr: Some(h),
                 delag: Some(d),
-            } => chain.feed::<FAST, _, _, _>(&mut (l, h, d), t, rate, temperature, out),
+            } => {
+                let m = &mut (l, h, d);
+                if split {
+                    chain.feed::<FAST, true, _, _, _>(m, t, rate, temperature, out)
+                } else {
+                    chain.feed::<FAST, false, _, _, _>(m, t, rate, temperature, out)
+                }
+            }
             Memories {
                 lowpass,
                 hdr,
                 delag,
-            } => chain.feed::<FAST, _, _, _>(&mut (lowpass, hdr, delag), t, rate, temperature, out),
+            } => {
+                let m = &mut (lowpass, hdr, delag);
+                chain.feed::<FAST, true, _, _, _>(m, t, rate, temperature, out)
+            }
         }
     }
 }
@@ -558,9 +570,9 @@ impl Chain {
     }
 
     /// [`Pipeline::update_with_temperature`] with the stages with memory borrowed apart (see
-    /// [`Chain::step`] for `SETTLED`).
+    /// [`Chain::step`] for `SETTLED` and `SPLIT`).
     #[inline(always)]
-    fn update<const SETTLED: bool, L: Memory, H: Memory, D: Memory>(
+    fn update<const SETTLED: bool, const SPLIT: bool, L: Memory, H: Memory, D: Memory>(
         &mut self,
         memories: &mut (L, H, D),
         t: f64,
@@ -574,7 +586,7 @@ impl Chain {
                 ..self.last_output
             };
         };
-        self.last_output = self.step::<SETTLED, L, H, D>(memories, t, dt, rate, temperature);
+        self.last_output = self.step::<SETTLED, SPLIT, L, H, D>(memories, t, dt, rate, temperature);
         self.last_output
     }
 
@@ -607,9 +619,10 @@ impl Chain {
     ///
     /// `SETTLED`: the pipeline is [`Chain::settled`], so the sample need not check for the end of
     /// the rest window. The block loops run settled samples separately: that check, with the
-    /// dead band and HDR bound it may change, costs the loop about a third of its speed.
+    /// dead band and HDR bound it may change, costs the loop about a third of its speed. `SPLIT`:
+    /// see [`Correction::apply_directed`].
     #[inline(always)]
-    fn step<const SETTLED: bool, L: Memory, H: Memory, D: Memory>(
+    fn step<const SETTLED: bool, const SPLIT: bool, L: Memory, H: Memory, D: Memory>(
         &mut self,
         memories: &mut (L, H, D),
         t: f64,
@@ -624,7 +637,9 @@ impl Chain {
                 self.restart(memories);
             }
         }
-        let r = self.correction.apply(t, rate, temperature);
+        let r = self
+            .correction
+            .apply_directed::<SPLIT>(t, rate, temperature);
         let learning = !SETTLED && self.correction.bias_learning();
         if !SETTLED && self.scaling_pending && !learning {
             self.scale_to_rest(&mut memories.1);
@@ -654,7 +669,7 @@ impl Chain {
     /// The loops of [`Pipeline::process_block`], with or without temperature (a closure, so the
     /// loop without temperature carries no lookups). See [`Chain::run`] for `FAST`.
     #[inline(always)]
-    fn feed<const FAST: bool, L: Memory, H: Memory, D: Memory>(
+    fn feed<const FAST: bool, const SPLIT: bool, L: Memory, H: Memory, D: Memory>(
         &mut self,
         memories: &mut (L, H, D),
         t: &[f64],
@@ -663,8 +678,10 @@ impl Chain {
         out: &mut Outputs<'_>,
     ) -> bool {
         match temperature {
-            Some(temp) => self.run::<FAST, _, _, _>(memories, t, rate, |i| Some(temp[i]), out),
-            None => self.run::<FAST, _, _, _>(memories, t, rate, |_| None, out),
+            Some(temp) => {
+                self.run::<FAST, SPLIT, _, _, _>(memories, t, rate, |i| Some(temp[i]), out)
+            }
+            None => self.run::<FAST, SPLIT, _, _, _>(memories, t, rate, |_| None, out),
         }
     }
 
@@ -677,7 +694,7 @@ impl Chain {
     /// one or reading), and the state is then meaningless. Otherwise each sample goes through
     /// [`Chain::update`] (timestamps must have been checked) and the result is true.
     #[inline(always)]
-    fn run<const FAST: bool, L: Memory, H: Memory, D: Memory>(
+    fn run<const FAST: bool, const SPLIT: bool, L: Memory, H: Memory, D: Memory>(
         &mut self,
         memories: &mut (L, H, D),
         t: &[f64],
@@ -697,15 +714,34 @@ impl Chain {
         if let (None, Some(&first), true) = (self.clock.last(), t.first(), FAST) {
             cursor.checks.finite(first);
             cursor.checks.reading(rate[0], temperature_at(0));
-            cursor.output =
-                self.step::<false, L, H, D>(memories, first, 0.0, rate[0], temperature_at(0));
+            cursor.output = self.step::<false, SPLIT, L, H, D>(
+                memories,
+                first,
+                0.0,
+                rate[0],
+                temperature_at(0),
+            );
             out.set(0, cursor.output);
             (cursor.previous, cursor.next) = (first, 1);
         }
         if !self.settled() {
-            self.span::<FAST, false, L, H, D>(memories, t, rate, &temperature_at, out, &mut cursor);
+            self.span::<FAST, false, SPLIT, L, H, D>(
+                memories,
+                t,
+                rate,
+                &temperature_at,
+                out,
+                &mut cursor,
+            );
         }
-        self.span::<FAST, true, L, H, D>(memories, t, rate, &temperature_at, out, &mut cursor);
+        self.span::<FAST, true, SPLIT, L, H, D>(
+            memories,
+            t,
+            rate,
+            &temperature_at,
+            out,
+            &mut cursor,
+        );
         if FAST && n > 0 {
             self.clock.set(t[n - 1]);
             self.last_reading = Some((rate[n - 1], temperature_at(n - 1)));
@@ -717,7 +753,14 @@ impl Chain {
     /// The samples of [`Chain::run`] from `cursor.next` on; unless `SETTLED`, only until the
     /// pipeline is settled (see [`Chain::step`]).
     #[inline(always)]
-    fn span<const FAST: bool, const SETTLED: bool, L: Memory, H: Memory, D: Memory>(
+    fn span<
+        const FAST: bool,
+        const SETTLED: bool,
+        const SPLIT: bool,
+        L: Memory,
+        H: Memory,
+        D: Memory,
+    >(
         &mut self,
         memories: &mut (L, H, D),
         t: &[f64],
@@ -742,9 +785,9 @@ impl Chain {
                 previous = t[i];
                 checks.interval(dt);
                 checks.reading(rate[i], temperature_at(i));
-                self.step::<SETTLED, L, H, D>(memories, t[i], dt, rate[i], temperature_at(i))
+                self.step::<SETTLED, SPLIT, L, H, D>(memories, t[i], dt, rate[i], temperature_at(i))
             } else {
-                self.update::<SETTLED, L, H, D>(memories, t[i], rate[i], temperature_at(i))
+                self.update::<SETTLED, SPLIT, L, H, D>(memories, t[i], rate[i], temperature_at(i))
             };
             out.set(i, o);
             i += 1;
