@@ -137,6 +137,7 @@ struct HdrState {
 
 impl HdrState {
     /// The state before the first sample.
+    #[inline(always)]
     fn start(config: &HdrConfig) -> Self {
         HdrState {
             integrator: 0.0,
@@ -186,12 +187,17 @@ impl Hdr {
 
     /// Replaces [`HdrConfig::max_correction`] as the bound on `|I|` by `bound` [rad/s]; `I` is
     /// clamped to it at once. A bound of 0 turns HDR off.
+    #[inline(always)]
     pub fn bound_correction(&mut self, bound: f64) {
         self.bound = libm::fabs(bound);
         self.state.integrator = within(self.state.integrator, self.bound);
     }
 
     /// Forgets the signal (the controller starts again from `I = 0`) but keeps the bound.
+    ///
+    /// Always inlined, as are the other steps the pipeline's loop may take: a call would let the
+    /// stage's state escape the loop's registers.
+    #[inline(always)]
     pub fn restart(&mut self) {
         self.state = HdrState::start(&self.config);
     }

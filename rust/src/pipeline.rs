@@ -231,6 +231,12 @@ trait Memory {
     /// Bounds the correction to what the rest window allows (see [`NoiseScaled`]); only HDR
     /// makes one.
     fn bound(&mut self, _bound: f64) {}
+    /// The stage as a value of its own (see [`Chain::run`]).
+    type Value: Memory;
+    /// A copy of the stage.
+    fn value(&self) -> Self::Value;
+    /// Takes over the state of `value`, a copy made by [`Memory::value`].
+    fn set_value(&mut self, value: Self::Value);
 }
 
 /// Implements [`Memory`] for a filter of the rate: it passes the rate on, unchanged when off.
@@ -248,6 +254,15 @@ macro_rules! rate_filter {
             #[inline(always)]
             fn restart(&mut self) {
                 crate::stage::Stage::reset(self);
+            }
+            type Value = Self;
+            #[inline(always)]
+            fn value(&self) -> Self {
+                self.clone()
+            }
+            #[inline(always)]
+            fn set_value(&mut self, value: Self) {
+                *self = value;
             }
         }
     };
@@ -271,6 +286,15 @@ impl Memory for Hdr {
     }
     fn bound(&mut self, bound: f64) {
         self.bound_correction(bound);
+    }
+    type Value = Self;
+    #[inline(always)]
+    fn value(&self) -> Self {
+        self.clone()
+    }
+    #[inline(always)]
+    fn set_value(&mut self, value: Self) {
+        *self = value;
     }
 }
 
@@ -297,6 +321,17 @@ impl<M: Memory> Memory for Option<M> {
             m.bound(bound);
         }
     }
+    type Value = Option<M::Value>;
+    #[inline(always)]
+    fn value(&self) -> Self::Value {
+        self.as_ref().map(M::value)
+    }
+    #[inline(always)]
+    fn set_value(&mut self, value: Self::Value) {
+        if let (Some(m), Some(v)) = (self, value) {
+            m.set_value(v);
+        }
+    }
 }
 
 /// The stages with memory are borrowed for a block or a sample.
@@ -316,19 +351,29 @@ impl<M: Memory> Memory for &mut M {
     fn bound(&mut self, bound: f64) {
         (**self).bound(bound);
     }
+    type Value = M::Value;
+    #[inline(always)]
+    fn value(&self) -> Self::Value {
+        (**self).value()
+    }
+    #[inline(always)]
+    fn set_value(&mut self, value: Self::Value) {
+        (**self).set_value(value);
+    }
 }
 
-/// The stages with memory, each `None` when disabled.
+/// The stages with memory, each `None` when disabled, and the integrator.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Memories {
     lowpass: Option<LowPass>,
     hdr: Option<Hdr>,
     delag: Option<DeLag>,
+    integrator: Integrator,
 }
 
-/// Everything of the pipeline but the stages with memory: the stages without memory of the
-/// signal, the integrator and the input bookkeeping. Kept apart from [`Memories`] so that a block
+/// Everything of the pipeline but the stages with memory and the integrator: the stages without
+/// memory of the signal and the input bookkeeping. Kept apart from [`Memories`] so that a block
 /// can borrow both at once (see [`Memory`]).
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -336,7 +381,6 @@ struct Chain {
     config: PipelineConfig,
     correction: Correction,
     threshold: Option<Threshold>,
-    integrator: Integrator,
     clock: Clock,
     /// The last finite (rate, temperature) reading, for [`NonFinite::Hold`].
     last_reading: Option<(f64, Option<f64>)>,
@@ -376,7 +420,6 @@ impl Pipeline {
                 config,
                 correction: Correction::new(config.correction)?,
                 threshold: config.threshold.map(Threshold::new).transpose()?,
-                integrator: Integrator::new(config.integrator)?,
                 clock: Clock::default(),
                 last_reading: None,
                 last_output: Output::at_rest(config.integrator.initial_heading),
@@ -387,6 +430,7 @@ impl Pipeline {
                 lowpass: config.lowpass.map(LowPass::new).transpose()?,
                 hdr: config.hdr.map(Hdr::new).transpose()?,
                 delag,
+                integrator: Integrator::new(config.integrator)?,
             },
         })
     }
@@ -451,7 +495,7 @@ impl Pipeline {
         temperature: Option<f64>,
     ) -> Output {
         let m = &mut self.memories;
-        let mut memories = (&mut m.lowpass, &mut m.hdr, &mut m.delag);
+        let mut memories = (&mut m.lowpass, &mut m.hdr, &mut m.delag, &mut m.integrator);
         self.chain
             .update::<false, true, _, _, _>(&mut memories, t, rate, temperature)
     }
@@ -510,8 +554,9 @@ impl Pipeline {
                 lowpass: Some(l),
                 hdr: Some(h),
                 delag: Some(d),
+                integrator,
             } => {
-                let m = &mut (l, h, d);
+                let m = &mut (l, h, d, integrator);
                 if split {
                     chain.feed::<FAST, true, _, _, _>(m, t, rate, temperature, out)
                 } else {
@@ -522,8 +567,9 @@ impl Pipeline {
                 lowpass,
                 hdr,
                 delag,
+                integrator,
             } => {
-                let m = &mut (lowpass, hdr, delag);
+                let m = &mut (lowpass, hdr, delag, integrator);
                 chain.feed::<FAST, true, _, _, _>(m, t, rate, temperature, out)
             }
         }
@@ -533,7 +579,10 @@ impl Pipeline {
 impl Chain {
     /// Restarts the stages whose state is a memory of the recent signal.
     #[inline(always)]
-    fn restart<L: Memory, H: Memory, D: Memory>(&mut self, memories: &mut (L, H, D)) {
+    fn restart<L: Memory, H: Memory, D: Memory>(
+        &mut self,
+        memories: &mut (L, H, D, &mut Integrator),
+    ) {
         use crate::stage::Stage;
         if let Some(s) = &mut self.threshold {
             s.reset();
@@ -574,7 +623,7 @@ impl Chain {
     #[inline(always)]
     fn update<const SETTLED: bool, const SPLIT: bool, L: Memory, H: Memory, D: Memory>(
         &mut self,
-        memories: &mut (L, H, D),
+        memories: &mut (L, H, D, &mut Integrator),
         t: f64,
         rate: f64,
         temperature: Option<f64>,
@@ -624,7 +673,7 @@ impl Chain {
     #[inline(always)]
     fn step<const SETTLED: bool, const SPLIT: bool, L: Memory, H: Memory, D: Memory>(
         &mut self,
-        memories: &mut (L, H, D),
+        memories: &mut (L, H, D, &mut Integrator),
         t: f64,
         dt: f64,
         rate: f64,
@@ -644,7 +693,7 @@ impl Chain {
         if !SETTLED && self.scaling_pending && !learning {
             self.scale_to_rest(&mut memories.1);
         }
-        let (lowpass, hdr, delag) = memories;
+        let (lowpass, hdr, delag, integrator) = memories;
         let corrected = self.threshold.as_ref().map_or(r, |s| s.apply(r));
         let mut r = lowpass.feed(dt, corrected);
         // HDR decides on its own low-passed step means of the corrected rate (see `Hdr`) and its
@@ -658,7 +707,7 @@ impl Chain {
             r += integrator;
         }
         let r = delag.feed(dt, r);
-        let heading = self.integrator.step(dt, r);
+        let heading = integrator.step(dt, r);
         Output {
             heading,
             rate: r,
@@ -671,7 +720,7 @@ impl Chain {
     #[inline(always)]
     fn feed<const FAST: bool, const SPLIT: bool, L: Memory, H: Memory, D: Memory>(
         &mut self,
-        memories: &mut (L, H, D),
+        memories: &mut (L, H, D, &mut Integrator),
         t: &[f64],
         rate: &[f64],
         temperature: Option<&[f64]>,
@@ -696,7 +745,7 @@ impl Chain {
     #[inline(always)]
     fn run<const FAST: bool, const SPLIT: bool, L: Memory, H: Memory, D: Memory>(
         &mut self,
-        memories: &mut (L, H, D),
+        memories: &mut (L, H, D, &mut Integrator),
         t: &[f64],
         rate: &[f64],
         temperature_at: impl Fn(usize) -> Option<f64>,
@@ -734,14 +783,27 @@ impl Chain {
                 &mut cursor,
             );
         }
-        self.span::<FAST, true, SPLIT, L, H, D>(
-            memories,
+        // The settled samples run on copies of the stages with memory and of the integrator
+        // that nothing else can reach, so the compiler keeps their state in registers from one
+        // sample to the next; in the pipeline, which the bias-learning step and HDR's rare calls
+        // can reach, every sample would store the state and load it back (`benches/pipeline.rs`:
+        // `raw` 2.9 -> 2.3 ns/sample).
+        let mut lowpass = memories.0.value();
+        let mut hdr = memories.1.value();
+        let mut delag = memories.2.value();
+        let mut integrator = memories.3.clone();
+        self.span::<FAST, true, SPLIT, _, _, _>(
+            &mut (&mut lowpass, &mut hdr, &mut delag, &mut integrator),
             t,
             rate,
             &temperature_at,
             out,
             &mut cursor,
         );
+        memories.0.set_value(lowpass);
+        memories.1.set_value(hdr);
+        memories.2.set_value(delag);
+        *memories.3 = integrator;
         if FAST && n > 0 {
             self.clock.set(t[n - 1]);
             self.last_reading = Some((rate[n - 1], temperature_at(n - 1)));
@@ -762,7 +824,7 @@ impl Chain {
         D: Memory,
     >(
         &mut self,
-        memories: &mut (L, H, D),
+        memories: &mut (L, H, D, &mut Integrator),
         t: &[f64],
         rate: &[f64],
         temperature_at: &impl Fn(usize) -> Option<f64>,
