@@ -239,6 +239,21 @@ trait Memory {
     fn set_value(&mut self, value: Self::Value);
 }
 
+/// The [`Memory::Value`] items of a stage that is its own value (a copy of itself).
+macro_rules! value_is_self {
+    () => {
+        type Value = Self;
+        #[inline(always)]
+        fn value(&self) -> Self {
+            self.clone()
+        }
+        #[inline(always)]
+        fn set_value(&mut self, value: Self) {
+            *self = value;
+        }
+    };
+}
+
 /// Implements [`Memory`] for a filter of the rate: it passes the rate on, unchanged when off.
 macro_rules! rate_filter {
     ($ty:ty) => {
@@ -255,15 +270,7 @@ macro_rules! rate_filter {
             fn restart(&mut self) {
                 crate::stage::Stage::reset(self);
             }
-            type Value = Self;
-            #[inline(always)]
-            fn value(&self) -> Self {
-                self.clone()
-            }
-            #[inline(always)]
-            fn set_value(&mut self, value: Self) {
-                *self = value;
-            }
+            value_is_self!();
         }
     };
 }
@@ -287,15 +294,7 @@ impl Memory for Hdr {
     fn bound(&mut self, bound: f64) {
         self.bound_correction(bound);
     }
-    type Value = Self;
-    #[inline(always)]
-    fn value(&self) -> Self {
-        self.clone()
-    }
-    #[inline(always)]
-    fn set_value(&mut self, value: Self) {
-        *self = value;
-    }
+    value_is_self!();
 }
 
 impl<M: Memory> Memory for Option<M> {
