@@ -29,38 +29,54 @@ impl Pages {
 
     /// Runs `work` while a helper thread faults in the pages (see the module doc).
     pub(crate) fn while_faulting_in<R>(&self, work: impl FnOnce() -> R) -> R {
-        let longest = self.0.iter().map(|&(_, len)| len).max().unwrap_or(0);
-        if !cfg!(target_os = "linux") || longest < MIN_SAMPLES * std::mem::size_of::<f64>() {
+        if !cfg!(target_os = "linux") || self.longest() < MIN_SAMPLES * std::mem::size_of::<f64>() {
             return work();
         }
         std::thread::scope(|s| {
             // Without a thread (the system refused one) the loop faults the pages in itself.
-            let _helper = std::thread::Builder::new().spawn_scoped(s, || populate(&self.0));
+            let _helper = std::thread::Builder::new().spawn_scoped(s, || self.populate());
             work()
         })
     }
-}
 
-/// Populates `(address, length)` ranges stretch by stretch, interleaved.
-fn populate(ranges: &[(usize, usize)]) {
-    let longest = ranges.iter().map(|&(_, len)| len).max().unwrap_or(0);
-    for offset in (0..longest).step_by(STRETCH) {
-        for &(start, len) in ranges {
-            if offset < len {
-                populate_range(start + offset, STRETCH.min(len - offset));
+    /// The length of the longest range [bytes].
+    fn longest(&self) -> usize {
+        self.0.iter().map(|&(_, len)| len).max().unwrap_or(0)
+    }
+
+    /// Populates the ranges stretch by stretch, interleaved.
+    fn populate(&self) {
+        let Some(page) = page_size() else {
+            return;
+        };
+        for offset in (0..self.longest()).step_by(STRETCH) {
+            for &(start, len) in &self.0 {
+                if offset < len {
+                    populate_range(page, start + offset, STRETCH.min(len - offset));
+                }
             }
         }
     }
 }
 
+/// The system's page size [bytes].
 #[cfg(target_os = "linux")]
-fn populate_range(start: usize, len: usize) {
-    // madvise needs a page-aligned start; the page holding the array's first byte is mapped.
+fn page_size() -> Option<usize> {
     // SAFETY: sysconf only reads a system constant.
-    let page = match unsafe { libc::sysconf(libc::_SC_PAGESIZE) } {
-        p if p > 0 => p as usize,
-        _ => return,
-    };
+    match unsafe { libc::sysconf(libc::_SC_PAGESIZE) } {
+        p if p > 0 => Some(p as usize),
+        _ => None,
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+fn page_size() -> Option<usize> {
+    None
+}
+
+#[cfg(target_os = "linux")]
+fn populate_range(page: usize, start: usize, len: usize) {
+    // madvise needs a page-aligned start; the page holding the array's first byte is mapped.
     let aligned = start & !(page - 1);
     // SAFETY: MADV_POPULATE_WRITE only maps pages of the range (as a write would) and leaves
     // their contents as they are; an unmapped or unsupported range returns an error, ignored.
@@ -74,4 +90,4 @@ fn populate_range(start: usize, len: usize) {
 }
 
 #[cfg(not(target_os = "linux"))]
-fn populate_range(_start: usize, _len: usize) {}
+fn populate_range(_page: usize, _start: usize, _len: usize) {}
