@@ -271,7 +271,7 @@ impl Correction {
     ///
     /// Choosing the factor by the sign of the rate puts a load that waits for the rate on every
     /// sample's path; with one factor for both directions (the default: no FOG correction) the
-    /// pipeline's loop is about 0.6 ns/sample faster (`benches/pipeline.rs`).
+    /// `combined` pipeline took 4.48 instead of 4.82 ns/sample (`benches/pipeline.rs`).
     #[inline(always)]
     pub(crate) fn apply_directed<const SPLIT: bool>(
         &mut self,
