@@ -51,6 +51,12 @@ fn configs() -> Vec<PipelineConfig> {
         ..HdrConfig::table_iii()
     });
     out.push(scaled);
+    // A low-pass with no lag: its weight on the previous output, and the de-lag's on the
+    // difference, are 0 (a non-finite reading must still reach the heading: 0 * inf is NaN).
+    out.push(PipelineConfig {
+        lowpass: Some(LowPassConfig { tau: 0.0 }),
+        ..Preset::Combined.config()
+    });
     out
 }
 
@@ -191,6 +197,50 @@ proptest! {
             // Compared as text: a NaN in the error's `value` is not equal to itself.
             prop_assert_eq!(format!("{error:?}"), format!("{expected:?}"));
             prop_assert_eq!(&p, &before);
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// Non-finite readings the policy holds or skips, and gaps bridged or reset, anywhere in a
+    /// block: the block still equals repeated `update`, in any chunking, and reports the same.
+    #[test]
+    fn held_skipped_and_gapped_samples_give_what_update_gives(
+        (t, r) in stream(),
+        bad in proptest::collection::vec((0usize..400, 0usize..3), 0..8),
+        gaps in proptest::collection::vec(0usize..400, 0..4),
+        cut in 0usize..400,
+    ) {
+        let (mut t, mut r) = (t, r);
+        let n = t.len();
+        for (at, kind) in bad {
+            r[at % n] = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY][kind];
+        }
+        for at in gaps {
+            // Longer than the 2 s default gap limit (the stream's intervals are below 0.31 s).
+            for x in &mut t[at % n..] {
+                *x += 3.0;
+            }
+        }
+        let cut = cut % (n + 1);
+        for base in configs() {
+            for non_finite in [NonFinite::Hold, NonFinite::Skip] {
+                for gap_action in [GapAction::Bridge, GapAction::Reset] {
+                    let mut config = base;
+                    config.input.non_finite = non_finite;
+                    config.input.gap_action = gap_action;
+                    let mut a = Pipeline::new(config).unwrap();
+                    let whole = bits(&run_updates(&mut a, &t, &r));
+                    let mut b = Pipeline::new(config).unwrap();
+                    let mut chunked = run_block(&mut b, &t[..cut], &r[..cut]);
+                    chunked.extend(run_block(&mut b, &t[cut..], &r[cut..]));
+                    prop_assert_eq!(bits(&chunked), whole);
+                    prop_assert_eq!(b.report(), a.report());
+                    prop_assert_eq!(&b, &a);
+                }
+            }
         }
     }
 }

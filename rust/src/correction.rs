@@ -279,10 +279,16 @@ impl Correction {
         rate: f64,
         temperature: Option<f64>,
     ) -> f64 {
-        let c = &self.config;
         if self.bias.learning {
-            self.bias.learn(c.bias, t, rate);
+            self.bias.learn(self.config.bias, t, rate);
         }
+        self.settled::<SPLIT>(rate, temperature)
+    }
+
+    /// [`Correction::apply_directed`] once the bias is known (not [`Correction::bias_learning`]).
+    #[inline(always)]
+    pub(crate) fn settled<const SPLIT: bool>(&self, rate: f64, temperature: Option<f64>) -> f64 {
+        let c = &self.config;
         let r = c.scale * (rate - self.bias.value) + c.offset;
         // Counter-clockwise is positive (REP-103), so negative rates are clockwise turns.
         let r = r * if SPLIT && r < 0.0 { c.c_cw } else { c.c_ccw };

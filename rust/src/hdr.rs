@@ -122,7 +122,7 @@ fn sign(x: f64) -> i8 {
 /// The evolving part of [`Hdr`].
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-struct HdrState {
+pub(crate) struct HdrState {
     /// The integrator `I` [rad/s]; `-I` is the drift estimate.
     integrator: f64,
     block: BlockMean,
@@ -154,6 +154,14 @@ impl HdrState {
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Hdr {
+    rule: HdrRule,
+    state: HdrState,
+}
+
+/// What HDR's steps read but do not change.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct HdrRule {
     config: HdrConfig,
     /// `R(r)` for `r = 1..=ATTENUATION_TABLE`: eq 10 costs a `pow`, and `r` is a small integer.
     attenuation: [f64; ATTENUATION_TABLE],
@@ -161,7 +169,6 @@ pub struct Hdr {
     /// [`Hdr::bound_correction`]. A property of the sensor, so [`Hdr::restart`] keeps it.
     #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
     bound: f64,
-    state: HdrState,
 }
 
 impl Hdr {
@@ -178,9 +185,11 @@ impl Hdr {
             *a = config.attenuation(r);
         }
         Hdr {
-            config,
-            attenuation,
-            bound: config.max_correction,
+            rule: HdrRule {
+                config,
+                attenuation,
+                bound: config.max_correction,
+            },
             state: HdrState::start(&config),
         }
     }
@@ -189,8 +198,8 @@ impl Hdr {
     /// clamped to it at once. A bound of 0 turns HDR off.
     #[inline(always)]
     pub fn bound_correction(&mut self, bound: f64) {
-        self.bound = libm::fabs(bound);
-        self.state.integrator = within(self.state.integrator, self.bound);
+        self.rule.bound = libm::fabs(bound);
+        self.state.integrator = within(self.state.integrator, self.rule.bound);
     }
 
     /// Forgets the signal (the controller starts again from `I = 0`) but keeps the bound.
@@ -199,12 +208,12 @@ impl Hdr {
     /// stage's state escape the loop's registers.
     #[inline(always)]
     pub fn restart(&mut self) {
-        self.state = HdrState::start(&self.config);
+        self.state = HdrState::start(&self.rule.config);
     }
 
     /// The configuration.
     pub fn config(&self) -> &HdrConfig {
-        &self.config
+        &self.rule.config
     }
 
     /// The drift estimate `-I` [rad/s].
@@ -228,37 +237,27 @@ impl Hdr {
     /// before this sample's step closes). The pipeline adds it to the low-passed rate instead.
     #[inline(always)]
     pub fn observe(&mut self, dt: f64, rate: f64) -> f64 {
-        let applied = self.state.integrator;
-        if let Some((mean, duration)) = self.state.block.push(self.config.interval, dt, rate) {
-            self.decide(mean, duration);
-        }
-        applied
+        self.state.observe(&self.rule, dt, rate)
     }
 
-    /// One HDR step on the mean rate of the step just closed: eq 7 gives `w'_{i-1}`, then eq 8 (as
-    /// the text states it), eq 9, eq 10 and eq 11 `I_i = I_{i-1} - SIGN(w_{i-1}) W_i R_i i_c`
-    /// with `w_{i-1} = w'_{i-1} + I_{i-1}` (eq 12).
-    ///
-    /// Inlined although it runs once a step: a call would make the pipeline's state escape to
-    /// memory, and every sample would then load and store it.
+    /// The stage as a [`PrimedHdr`].
     #[inline(always)]
-    fn decide(&mut self, mean: f64, duration: f64) {
-        let st = &mut self.state;
-        let filtered = st.filter.step(duration, mean);
-        let s = sign(filtered + st.integrator);
-        st.repetitions = match st.previous_sign {
-            Some(p) if p == s => st.repetitions.saturating_add(1),
-            _ => 1,
-        };
-        st.previous_sign = Some(s);
-        let turning = libm::fabs(filtered) >= self.config.turn_threshold;
-        if !turning {
-            let r = st.repetitions;
-            let step = f64::from(s) * self.attenuation_at(r) * self.config.increment;
-            self.state.integrator = within(self.state.integrator - step, self.bound);
+    pub(crate) fn primed(&self) -> PrimedHdr<'_> {
+        PrimedHdr {
+            rule: &self.rule,
+            state: self.state.clone(),
         }
     }
 
+    /// Takes over the state of a [`PrimedHdr`] made by [`Hdr::primed`].
+    #[inline(always)]
+    pub(crate) fn set_state(&mut self, state: HdrState) {
+        self.state = state;
+    }
+}
+
+impl HdrRule {
+    /// `R(r)` of eq 10, from the table where it has it.
     #[inline]
     fn attenuation_at(&self, repetitions: u32) -> f64 {
         match repetitions
@@ -271,4 +270,62 @@ impl Hdr {
     }
 }
 
-interval_stage!(Hdr, state.clock);
+impl HdrState {
+    /// [`Hdr::observe`].
+    #[inline(always)]
+    fn observe(&mut self, rule: &HdrRule, dt: f64, rate: f64) -> f64 {
+        let applied = self.integrator;
+        if let Some((mean, duration)) = self.block.push(rule.config.interval, dt, rate) {
+            self.decide(rule, mean, duration);
+        }
+        applied
+    }
+
+    /// One HDR step on the mean rate of the step just closed: eq 7 gives `w'_{i-1}`, then eq 8 (as
+    /// the text states it), eq 9, eq 10 and eq 11 `I_i = I_{i-1} - SIGN(w_{i-1}) W_i R_i i_c`
+    /// with `w_{i-1} = w'_{i-1} + I_{i-1}` (eq 12).
+    ///
+    /// Inlined although it runs once a step: a call would make the pipeline's state escape to
+    /// memory, and every sample would then load and store it.
+    #[inline(always)]
+    fn decide(&mut self, rule: &HdrRule, mean: f64, duration: f64) {
+        let filtered = self.filter.step(duration, mean);
+        let s = sign(filtered + self.integrator);
+        self.repetitions = match self.previous_sign {
+            Some(p) if p == s => self.repetitions.saturating_add(1),
+            _ => 1,
+        };
+        self.previous_sign = Some(s);
+        let turning = libm::fabs(filtered) >= rule.config.turn_threshold;
+        if !turning {
+            let step = f64::from(s) * rule.attenuation_at(self.repetitions) * rule.config.increment;
+            self.integrator = within(self.integrator - step, rule.bound);
+        }
+    }
+}
+
+/// A copy of an [`Hdr`]'s state that borrows the rest, for the pipeline's loop over a block: the
+/// compiler keeps a local copy of scalars in registers, but not scalars that share a copy with a
+/// table indexed by a variable (eq 10's), so a whole copy of the stage would load and store the
+/// step's sums on every sample.
+#[derive(Debug, Clone)]
+pub(crate) struct PrimedHdr<'a> {
+    rule: &'a HdrRule,
+    state: HdrState,
+}
+
+impl PrimedHdr<'_> {
+    /// [`Hdr::observe`].
+    #[inline(always)]
+    pub(crate) fn observe(&mut self, dt: f64, rate: f64) -> f64 {
+        self.state.observe(self.rule, dt, rate)
+    }
+
+    /// The state, for [`Hdr::set_state`].
+    #[inline(always)]
+    pub(crate) fn into_state(self) -> HdrState {
+        self.state
+    }
+}
+
+interval_stage!(Hdr, state.clock, rule.config);

@@ -59,14 +59,31 @@ impl Integrator {
     /// Adds one sample whose interval is `dt` [s]; returns the heading at that sample.
     #[inline(always)]
     pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
-        if let Some(p) = self.previous {
-            self.heading += match self.config.method {
-                Method::Rectangle => rate * dt,
-                Method::Trapezoid => 0.5 * (rate + p) * dt,
-            };
+        match self.primed() {
+            Some(mut primed) => {
+                primed.step(dt, rate);
+                self.set_primed(primed);
+            }
+            None => self.previous = Some(rate),
         }
-        self.previous = Some(rate);
         self.heading
+    }
+
+    /// The stage as a [`PrimedIntegrator`], once it has a sample.
+    #[inline(always)]
+    pub(crate) fn primed(&self) -> Option<PrimedIntegrator> {
+        self.previous.map(|previous| PrimedIntegrator {
+            method: self.config.method,
+            heading: self.heading,
+            previous,
+        })
+    }
+
+    /// Takes over the state of `primed`, made by [`Integrator::primed`].
+    #[inline(always)]
+    pub(crate) fn set_primed(&mut self, primed: PrimedIntegrator) {
+        self.heading = primed.heading;
+        self.previous = Some(primed.previous);
     }
 
     /// The heading so far [rad].
@@ -75,4 +92,26 @@ impl Integrator {
     }
 }
 
-interval_stage!(Integrator, clock);
+interval_stage!(Integrator, clock, config);
+
+/// An [`Integrator`] that has a sample: no first-sample case to check, for the pipeline's loop
+/// over a block.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PrimedIntegrator {
+    method: Method,
+    heading: f64,
+    previous: f64,
+}
+
+impl PrimedIntegrator {
+    /// Adds one sample whose interval is `dt` [s]; returns the heading at that sample.
+    #[inline(always)]
+    pub(crate) fn step(&mut self, dt: f64, rate: f64) -> f64 {
+        self.heading += match self.method {
+            Method::Rectangle => rate * dt,
+            Method::Trapezoid => 0.5 * (rate + self.previous) * dt,
+        };
+        self.previous = rate;
+        self.heading
+    }
+}

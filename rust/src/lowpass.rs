@@ -54,22 +54,56 @@ impl LowPass {
     /// Filters one sample whose interval is `dt` [s] (HDR eq 7).
     #[inline(always)]
     pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
-        let tau = self.config.tau;
-        let y = match self.previous {
-            // Eq 7 as two weights: the division does not wait for `p`, so the chain from one
-            // output to the next is a multiply and an add.
-            Some(p) if dt + tau > 0.0 => {
-                let inv = 1.0 / (dt + tau);
-                rate * (dt * inv) + p * (tau * inv)
+        match self.primed() {
+            Some(mut primed) if dt + self.config.tau > 0.0 => {
+                let y = primed.step(dt, rate);
+                self.set_primed(primed);
+                y
             }
-            _ => rate,
-        };
-        self.previous = Some(y);
-        y
+            _ => {
+                self.previous = Some(rate);
+                rate
+            }
+        }
+    }
+
+    /// The stage as a [`PrimedLowPass`], once it has an output.
+    #[inline(always)]
+    pub(crate) fn primed(&self) -> Option<PrimedLowPass> {
+        self.previous.map(|previous| PrimedLowPass {
+            tau: self.config.tau,
+            previous,
+        })
+    }
+
+    /// Takes over the state of `primed`, made by [`LowPass::primed`].
+    #[inline(always)]
+    pub(crate) fn set_primed(&mut self, primed: PrimedLowPass) {
+        self.previous = Some(primed.previous);
     }
 }
 
-interval_stage!(LowPass, clock);
+/// A [`LowPass`] that has an output, for intervals > 0: eq 7 with no first-sample case to check,
+/// for the pipeline's loop over a block.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PrimedLowPass {
+    tau: f64,
+    previous: f64,
+}
+
+impl PrimedLowPass {
+    /// Filters one sample whose interval `dt` is > 0 (HDR eq 7).
+    #[inline(always)]
+    pub(crate) fn step(&mut self, dt: f64, rate: f64) -> f64 {
+        // Eq 7 as two weights: the division does not wait for the previous output, so the chain
+        // from one output to the next is a multiply and an add.
+        let inv = 1.0 / (dt + self.tau);
+        self.previous = rate * (dt * inv) + self.previous * (self.tau * inv);
+        self.previous
+    }
+}
+
+interval_stage!(LowPass, clock, config);
 
 /// De-lag, HDR eq 13: `w_d,i = w_i + tau / T_i (w_i - w_{i-1})`, the inverse of eq 7.
 ///
@@ -101,13 +135,50 @@ impl DeLag {
     /// De-lags one sample whose interval is `dt` [s] (HDR eq 13).
     #[inline(always)]
     pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
-        let y = match self.previous {
-            Some(p) if dt > 0.0 => rate + self.config.tau / dt * (rate - p),
-            _ => rate,
-        };
-        self.previous = Some(rate);
+        match self.primed() {
+            Some(mut primed) if dt > 0.0 => {
+                let y = primed.step(dt, rate);
+                self.set_primed(primed);
+                y
+            }
+            _ => {
+                self.previous = Some(rate);
+                rate
+            }
+        }
+    }
+
+    /// The stage as a [`PrimedDeLag`], once it has an input.
+    #[inline(always)]
+    pub(crate) fn primed(&self) -> Option<PrimedDeLag> {
+        self.previous.map(|previous| PrimedDeLag {
+            tau: self.config.tau,
+            previous,
+        })
+    }
+
+    /// Takes over the state of `primed`, made by [`DeLag::primed`].
+    #[inline(always)]
+    pub(crate) fn set_primed(&mut self, primed: PrimedDeLag) {
+        self.previous = Some(primed.previous);
+    }
+}
+
+/// A [`DeLag`] that has an input, for intervals > 0: eq 13 with no first-sample case to check.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PrimedDeLag {
+    tau: f64,
+    previous: f64,
+}
+
+impl PrimedDeLag {
+    /// De-lags one sample whose interval `dt` is > 0 (HDR eq 13).
+    #[inline(always)]
+    pub(crate) fn step(&mut self, dt: f64, rate: f64) -> f64 {
+        let y = rate + self.tau / dt * (rate - self.previous);
+        self.previous = rate;
         y
     }
 }
 
-interval_stage!(DeLag, clock);
+interval_stage!(DeLag, clock, config);

@@ -32,10 +32,11 @@ pub trait Stage {
     }
 }
 
-/// Implements [`Stage`] for a stage with a `step(dt, rate) -> f64` method, a [`Clock`] at the
-/// given field path, a `config` field and `start(config) -> Self` that builds its initial state.
+/// Implements [`Stage`] for a stage with a `step(dt, rate) -> f64` method, a [`Clock`] and a
+/// configuration at the given field paths, and `start(config) -> Self` that builds its initial
+/// state.
 macro_rules! interval_stage {
-    ($ty:ty, $($clock:ident).+) => {
+    ($ty:ty, $($clock:ident).+, $($config:ident).+) => {
         impl $crate::stage::Stage for $ty {
             type Output = f64;
 
@@ -46,7 +47,7 @@ macro_rules! interval_stage {
             }
 
             fn reset(&mut self) {
-                *self = Self::start(self.config);
+                *self = Self::start(self.$($config).+);
             }
         }
     };

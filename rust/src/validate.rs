@@ -82,10 +82,19 @@ fn exponent_carry(v: f64) -> u64 {
 /// Validity of a block's samples, accumulated branch-free while the block is processed (see
 /// [`Pipeline::process_block`](crate::Pipeline::process_block)): a few integer operations per
 /// sample and no early exit, instead of a separate pass over the block.
+/// An interval as an integer that orders the valid ones: for a finite `limit` > 0,
+/// `interval_key(dt) <= interval_key(limit)` exactly when `0 < dt <= limit`. The bits of a
+/// positive float grow with its value; 0 wraps around to the largest key, and a negative
+/// interval (sign bit set) or NaN lands above every finite one. One comparison thus checks that
+/// time moves forward, by a finite step and without a gap.
+#[inline(always)]
+pub(crate) fn interval_key(dt: f64) -> u64 {
+    dt.to_bits().wrapping_sub(1)
+}
+
 #[derive(Debug, Default, Clone, Copy)]
 pub(crate) struct Checks {
-    /// The largest `bits(dt) - 1` seen: below `bits(f64::MAX)` exactly when every interval was
-    /// finite and positive (positive finite doubles order like their bit patterns).
+    /// The largest [`interval_key`] seen.
     worst_interval: u64,
     /// [`exponent_carry`] of every value seen, OR-ed.
     carry: u64,
@@ -95,7 +104,7 @@ impl Checks {
     /// A finite and positive interval (so, after a finite timestamp, a finite one).
     #[inline(always)]
     pub(crate) fn interval(&mut self, dt: f64) {
-        self.worst_interval = self.worst_interval.max(dt.to_bits().wrapping_sub(1));
+        self.worst_interval = self.worst_interval.max(interval_key(dt));
     }
 
     /// A finite value (a timestamp or a reading).
@@ -115,7 +124,7 @@ impl Checks {
 
     /// True if every value and interval seen was valid.
     pub(crate) fn passed(&self) -> bool {
-        self.worst_interval < f64::MAX.to_bits() && self.carry & CARRY == 0
+        self.worst_interval <= interval_key(f64::MAX) && self.carry & CARRY == 0
     }
 }
 
