@@ -808,8 +808,8 @@ impl Chain {
     /// comparison, a FAST loop leaves the readings to the heading check (see [`Chain::run`]),
     /// and the copies are local, so the compiler keeps their state in registers from one sample
     /// to the next. Against the loop through [`Chain::step`] on copies of the stages
-    /// (`benches/pipeline.rs`, ns/sample): `combined` 4.62 -> 4.05, `tuned` 4.12 -> 3.64, and
-    /// with [`Off`] `raw` 2.12 -> 1.07.
+    /// (`benches/pipeline.rs`, ns/sample): `combined` 4.49 -> 4.09, `tuned` 4.04 -> 3.71, and
+    /// with [`Off`] `raw` 2.09 -> 1.11.
     #[inline(always)]
     fn primed_span<const FAST: bool, const SPLIT: bool, L: Feed, H: Feed, D: Feed>(
         &mut self,
