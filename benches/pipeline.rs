@@ -1,5 +1,7 @@
 //! Criterion benches: the full pipeline and each stage over 1,000,000-sample blocks, and one
-//! `update`, reported as elements per second.
+//! `update`, reported as elements per second; beside them, the `combined` algorithm written as
+//! one straightforward loop (no validation, gaps or options), the yardstick of
+//! `benches/compare.py`'s Numba version.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use gyrocore::*;
@@ -43,6 +45,41 @@ fn pipeline(c: &mut Criterion) {
             })
         });
     }
+    let mut config = Preset::Combined.config();
+    config.correction.bias = StaticBias::Fixed(0.01);
+    let (mut h, mut r, mut d) = (vec![0.0; N], vec![0.0; N], vec![0.0; N]);
+    let (mut sh, mut sr, mut sd) = (vec![0.0; N], vec![0.0; N], vec![0.0; N]);
+    let out = Outputs {
+        heading: &mut h,
+        rate: &mut r,
+        drift: &mut d,
+    };
+    Pipeline::new(config)
+        .unwrap()
+        .process_block(&t, &rate, None, out)
+        .unwrap();
+    straightforward_combined(&t, &rate, &mut sh, &mut sr, &mut sd, &config);
+    let worst = h
+        .iter()
+        .zip(&sh)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        worst < 1e-9,
+        "the straightforward loop differs by {worst} rad"
+    );
+    group.bench_function("straightforward_combined", |b| {
+        b.iter(|| {
+            straightforward_combined(
+                black_box(&t),
+                black_box(&rate),
+                &mut sh,
+                &mut sr,
+                &mut sd,
+                &config,
+            )
+        })
+    });
     group.finish();
 
     let mut group = c.benchmark_group("pipeline_update");
@@ -56,6 +93,107 @@ fn pipeline(c: &mut Criterion) {
         })
     });
     group.finish();
+}
+
+/// `benches/reference.py` (static bias, Hong eq 3 and 12, HDR eq 7-13, trapezoid rule) as a
+/// plain Rust loop, statement for statement: what the pipeline would be without validation, gap
+/// handling, a rest window or stages that may be off. Checked against the pipeline above.
+fn straightforward_combined(
+    t: &[f64],
+    rate: &[f64],
+    heading_out: &mut [f64],
+    rate_out: &mut [f64],
+    drift_out: &mut [f64],
+    config: &PipelineConfig,
+) {
+    let c = &config.correction;
+    let StaticBias::Fixed(bias) = c.bias else {
+        panic!("a fixed bias")
+    };
+    let threshold = config.threshold.unwrap().threshold;
+    let tau = config.lowpass.unwrap().tau;
+    let hdr = config.hdr.unwrap();
+    let (mut last_t, mut lp_prev, mut dl_prev, mut integ_prev, mut heading) =
+        (0.0, 0.0, 0.0, 0.0, 0.0);
+    let (mut integ, mut step_sum, mut step_duration, mut elapsed, mut dec_prev) =
+        (0.0f64, 0.0, 0.0, 0.0, 0.0);
+    let (mut dec_started, mut prev_sign, mut reps) = (false, 2i32, 0i32);
+    let n = t.len();
+    let (rate, heading_out, rate_out, drift_out) = (
+        &rate[..n],
+        &mut heading_out[..n],
+        &mut rate_out[..n],
+        &mut drift_out[..n],
+    );
+    for i in 0..n {
+        let dt = if i == 0 { 0.0 } else { t[i] - last_t };
+        last_t = t[i];
+        let mut r = c.scale * (rate[i] - bias) + c.offset;
+        r *= c.c_ccw;
+        if r.abs() < threshold {
+            r = 0.0;
+        }
+        let corrected = r;
+        let lp = if i == 0 {
+            corrected
+        } else {
+            let inv = 1.0 / (dt + tau);
+            corrected * (dt * inv) + lp_prev * (tau * inv)
+        };
+        lp_prev = lp;
+        let applied = integ;
+        step_sum += corrected * dt;
+        step_duration += dt;
+        elapsed += dt;
+        if step_duration > 0.0 && elapsed >= hdr.interval - 0.5 * dt {
+            let mean = step_sum / step_duration;
+            let duration = step_duration;
+            let carry = elapsed - hdr.interval;
+            step_sum = 0.0;
+            step_duration = 0.0;
+            elapsed = if carry.abs() < 0.5 * hdr.interval {
+                carry
+            } else {
+                0.0
+            };
+            let filtered = if dec_started {
+                let inv = 1.0 / (duration + hdr.tau);
+                mean * (duration * inv) + dec_prev * (hdr.tau * inv)
+            } else {
+                dec_started = true;
+                mean
+            };
+            dec_prev = filtered;
+            let w = filtered + integ;
+            let s = if w > 0.0 {
+                1
+            } else if w < 0.0 {
+                -1
+            } else {
+                0
+            };
+            reps = if s == prev_sign { reps + 1 } else { 1 };
+            prev_sign = s;
+            if filtered.abs() < hdr.turn_threshold {
+                let att = (1.0 + hdr.c1) / (1.0 + hdr.c1 * f64::from(reps).powf(hdr.c2));
+                integ -= f64::from(s) * att * hdr.increment;
+            }
+        }
+        let w = lp + applied;
+        let out = if i == 0 {
+            w
+        } else {
+            w + tau / dt * (w - dl_prev)
+        };
+        dl_prev = w;
+        if i > 0 {
+            heading += 0.5 * (out + integ_prev) * dt;
+        }
+        integ_prev = out;
+        heading_out[i] = heading;
+        rate_out[i] = out;
+        drift_out[i] = -applied;
+    }
 }
 
 fn stages(c: &mut Criterion) {
