@@ -3,8 +3,9 @@ algorithm as a pure-Python loop and compiled with Numba (benches/reference.py, o
 `numpy.cumsum` over the same array (a memory-bound one-pass scan: the practical floor), and against
 imufusion's gyroscope bias stage (FusionBias, formerly FusionOffset) (a peer library's per-sample gyro filter).
 
-Prints ns/sample (median of --repeats runs; the pure-Python and imufusion loops run once, on a
-prefix, and say so) and the ratios, and checks that the implementations agree: the reference must
+Prints ns/sample (median of --repeats rounds, in each of which every fast implementation runs once,
+in turn; the pure-Python and imufusion loops run once, on a prefix, and say so) and the ratios
+(median of the per-round ratios), and checks that the implementations agree: the reference must
 give the same heading as gyrocore to 1e-9 rad. Exit status 1 if they do not.
 
     pip install ".[bench]" && python benches/compare.py            # 10^7 samples
@@ -42,13 +43,24 @@ def synthetic_log(n: int, seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
     return t, turns + BIAS + drift + rng.normal(0.0, np.radians(0.4), n)
 
 
-def median_seconds(run: Callable[[], object], repeats: int) -> float:
-    times = []
+def interleaved_seconds(runs: dict[str, Callable[[], object]], repeats: int) -> dict[str, list[float]]:
+    """Each run's times over `repeats` rounds in which every run goes once, in turn. On a machine
+    whose speed drifts (other tenants, clocks), all are slowed alike within a round, so the
+    median of per-round ratios is steadier than the ratio of medians taken one after another."""
+    times: dict[str, list[float]] = {name: [] for name in runs}
     for _ in range(repeats):
-        start = time.perf_counter()
-        run()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times)
+        for name, run in runs.items():
+            start = time.perf_counter()
+            run()
+            times[name].append(time.perf_counter() - start)
+    return times
+
+
+def ratio(a: list[float], b: list[float]) -> float:
+    """Median of the per-round ratios a/b when both ran in the same rounds, else of the medians."""
+    if len(a) == len(b) > 1:
+        return statistics.median(x / y for x, y in zip(a, b))
+    return statistics.median(a) / statistics.median(b)
 
 
 def reference_args() -> tuple[float, ...]:
@@ -68,7 +80,7 @@ def run_reference(impl: Callable[..., None], t: np.ndarray, rate: np.ndarray) ->
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--samples", type=int, default=10_000_000)
-    ap.add_argument("--repeats", type=int, default=7, help="runs per fast implementation (median)")
+    ap.add_argument("--repeats", type=int, default=7, help="rounds of the fast implementations (median)")
     ap.add_argument("--slow-samples", type=int, default=1_000_000, help="prefix for the per-sample Python loops")
     ap.add_argument("--json", action="store_true")
     args = ap.parse_args()
@@ -77,34 +89,36 @@ def main() -> int:
     n = len(t)
     rows: list[dict[str, object]] = []
 
-    def add(name: str, seconds: float, samples: int, note: str = "") -> None:
-        rows.append({"implementation": name, "ns_per_sample": seconds / samples * 1e9, "samples": samples, "note": note})
+    def add(name: str, seconds: list[float], samples: int, note: str = "") -> None:
+        rows.append({"implementation": name, "seconds": seconds, "samples": samples, "note": note})
 
     gyro = gyrocore.process(t, rate, "combined", bias=BIAS)
-    add("gyrocore combined (gyrocore.process)", median_seconds(lambda: gyrocore.process(t, rate, "combined", bias=BIAS), args.repeats), n)
-    add("numpy.cumsum (floor)", median_seconds(lambda: np.cumsum(rate), args.repeats), n)
-
+    runs: dict[str, Callable[[], object]] = {
+        "gyrocore combined (gyrocore.process)": lambda: gyrocore.process(t, rate, "combined", bias=BIAS),
+        "numpy.cumsum (floor)": lambda: np.cumsum(rate),
+    }
     failures = []
     try:
         import numba
 
         jitted = numba.njit(cache=False)(reference.combined)
         numba_heading = run_reference(jitted, t, rate)  # compiles; not timed
-        add("Numba (same algorithm)", median_seconds(lambda: run_reference(jitted, t, rate), args.repeats), n)
+        runs["Numba (same algorithm)"] = lambda: run_reference(jitted, t, rate)
         # The loop alone: outputs allocated and faulted in once, outside the timing (criterion
         # times gyrocore's Rust loop the same way).
         reused = [np.empty(n) for _ in range(3)]
-        add("Numba, into reused arrays (the loop alone)",
-            median_seconds(lambda: jitted(t, rate, *reused, *reference_args()), args.repeats), n)
+        runs["Numba, into reused arrays (the loop alone)"] = lambda: jitted(t, rate, *reused, *reference_args())
         if not np.allclose(numba_heading, gyro.heading, rtol=0, atol=1e-9):
             failures.append(f"Numba differs from gyrocore by {np.abs(numba_heading - gyro.heading).max():.3g} rad")
     except ImportError:
         print("(numba not installed: pip install '.[bench]')", file=sys.stderr)
+    for name, seconds in interleaved_seconds(runs, args.repeats).items():
+        add(name, seconds, n)
 
     m = min(args.slow_samples, n)
     start = time.perf_counter()
     py_heading = run_reference(reference.combined, t[:m], rate[:m])
-    add("pure Python loop (same algorithm)", time.perf_counter() - start, m, f"one run on the first {m} samples")
+    add("pure Python loop (same algorithm)", [time.perf_counter() - start], m, f"one run on the first {m} samples")
     prefix = gyrocore.process(t[:m], rate[:m], "combined", bias=BIAS)
     if not np.allclose(py_heading, prefix.heading, rtol=0, atol=1e-9):
         failures.append(f"pure Python differs from gyrocore by {np.abs(py_heading - prefix.heading).max():.3g} rad")
@@ -124,15 +138,19 @@ def main() -> int:
 
         start = time.perf_counter()
         fusion_offset()
-        add("imufusion Bias.update (peer, Python loop)", time.perf_counter() - start, m, f"one run on the first {m} samples")
+        add("imufusion Bias.update (peer, Python loop)", [time.perf_counter() - start], m, f"one run on the first {m} samples")
     except ImportError:
         print("(imufusion not installed: pip install '.[bench]')", file=sys.stderr)
 
-    floor = next(r["ns_per_sample"] for r in rows if str(r["implementation"]).startswith("numpy.cumsum"))
-    ours = rows[0]["ns_per_sample"]
+    def per_sample(r: dict[str, object]) -> list[float]:
+        return [x / r["samples"] * 1e9 for x in r["seconds"]]  # type: ignore[attr-defined, operator]
+
+    floor, ours = per_sample(rows[1]), per_sample(rows[0])
     for r in rows:
-        r["x_cumsum"] = r["ns_per_sample"] / floor  # type: ignore[operator]
-        r["x_gyrocore"] = r["ns_per_sample"] / ours  # type: ignore[operator]
+        r["ns_per_sample"] = statistics.median(per_sample(r))
+        r["x_cumsum"] = ratio(per_sample(r), floor)
+        r["x_gyrocore"] = ratio(per_sample(r), ours)
+        del r["seconds"]
     machine = {
         "cpu": platform.processor() or platform.machine(),
         "cores": os.cpu_count(),
@@ -145,7 +163,7 @@ def main() -> int:
     if args.json:
         print(json.dumps({"machine": machine, "rows": rows, "agree": not failures, "failures": failures}, indent=2))
     else:
-        print(f"{n} samples, median of {args.repeats} runs; {machine}")
+        print(f"{n} samples, median of {args.repeats} interleaved rounds (ratios: median of per-round ratios); {machine}")
         print(f"{'implementation':<46} {'ns/sample':>10} {'x cumsum':>9} {'x gyrocore':>11}  note")
         for r in rows:
             print(
