@@ -15,8 +15,10 @@ RATE_LIMIT = 20.0
 #: A mean interval above this [s] suggests timestamps in ms, us or ns (no gyro for heading
 #: reports slower than 0.5 Hz).
 INTERVAL_LIMIT = 2.0
-#: Enough samples for a percentile; longer arrays are checked on a regular subset.
-_SUBSET = 100_000
+#: Enough samples for a percentile; longer arrays are checked on a regular subset. The unit
+#: mistakes differ by a factor of 57 (deg/s read as rad/s), far more than the percentile of
+#: 10,000 values can be off; 100,000 took 2.5 ms of a 10^7-sample call (0.1 ms now).
+_SUBSET = 10_000
 
 
 class InputWarning(UserWarning):
