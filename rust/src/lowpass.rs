@@ -24,72 +24,96 @@ impl LowPassConfig {
     }
 }
 
-/// Low-pass filter, HDR eq 7: `w'_i = (w_i T_i + tau w'_{i-1}) / (T_i + tau)`.
-///
-/// The first sample passes unchanged (no start-up transient).
-#[derive(Debug, Clone, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct LowPass {
-    config: LowPassConfig,
-    previous: Option<f64>,
-    clock: Clock,
-}
-
-impl LowPass {
-    /// Validates `config` and builds the stage.
-    pub fn new(config: LowPassConfig) -> Result<Self, Error> {
-        config.validate()?;
-        Ok(Self::start(config))
-    }
-
-    /// The stage before the first sample, from a configuration validated already.
-    pub(crate) fn start(config: LowPassConfig) -> Self {
-        LowPass {
-            config,
-            previous: None,
-            clock: Clock::default(),
+/// Defines a stage that remembers one value of the signal, and its primed form for the pipeline's
+/// loop over a block: the stage once it has that value, for intervals > 0, with no first-sample
+/// case to check (its `step`, the stage's equation, is written beside each). The first sample, and
+/// one for which `$defined` (of the interval `$dt` and `$tau`) is false, pass unchanged.
+macro_rules! remembers_one_value {
+    (
+        $(#[$doc:meta])* $stage:ident,
+        $(#[$primed_doc:meta])* $primed:ident,
+        $step_doc:literal,
+        |$dt:ident, $tau:ident| $defined:expr
+    ) => {
+        $(#[$doc])*
+        #[derive(Debug, Clone, PartialEq)]
+        #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+        pub struct $stage {
+            config: LowPassConfig,
+            previous: Option<f64>,
+            clock: Clock,
         }
-    }
 
-    /// Filters one sample whose interval is `dt` [s] (HDR eq 7).
-    #[inline(always)]
-    pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
-        match self.primed() {
-            Some(mut primed) if dt + self.config.tau > 0.0 => {
-                let y = primed.step(dt, rate);
-                self.set_primed(primed);
-                y
+        impl $stage {
+            /// Validates `config` and builds the stage.
+            pub fn new(config: LowPassConfig) -> Result<Self, Error> {
+                config.validate()?;
+                Ok(Self::start(config))
             }
-            _ => {
-                self.previous = Some(rate);
-                rate
+
+            /// The stage before the first sample, from a configuration validated already.
+            pub(crate) fn start(config: LowPassConfig) -> Self {
+                $stage {
+                    config,
+                    previous: None,
+                    clock: Clock::default(),
+                }
+            }
+
+            #[doc = $step_doc]
+            #[inline(always)]
+            pub fn step(&mut self, $dt: f64, rate: f64) -> f64 {
+                let $tau = self.config.tau;
+                match self.primed() {
+                    Some(mut primed) if $defined => {
+                        let y = primed.step($dt, rate);
+                        self.set_primed(primed);
+                        y
+                    }
+                    _ => {
+                        self.previous = Some(rate);
+                        rate
+                    }
+                }
+            }
+
+            /// The stage as its primed form, once it has the value it remembers.
+            #[inline(always)]
+            pub(crate) fn primed(&self) -> Option<$primed> {
+                self.previous.map(|previous| $primed {
+                    tau: self.config.tau,
+                    previous,
+                })
+            }
+
+            /// Takes over the state of `primed`, made by `primed()`.
+            #[inline(always)]
+            pub(crate) fn set_primed(&mut self, primed: $primed) {
+                self.previous = Some(primed.previous);
             }
         }
-    }
 
-    /// The stage as a [`PrimedLowPass`], once it has an output.
-    #[inline(always)]
-    pub(crate) fn primed(&self) -> Option<PrimedLowPass> {
-        self.previous.map(|previous| PrimedLowPass {
-            tau: self.config.tau,
-            previous,
-        })
-    }
+        $(#[$primed_doc])*
+        #[derive(Debug, Clone, Copy)]
+        pub(crate) struct $primed {
+            tau: f64,
+            previous: f64,
+        }
 
-    /// Takes over the state of `primed`, made by [`LowPass::primed`].
-    #[inline(always)]
-    pub(crate) fn set_primed(&mut self, primed: PrimedLowPass) {
-        self.previous = Some(primed.previous);
-    }
+        interval_stage!($stage, clock, config);
+    };
 }
 
-/// A [`LowPass`] that has an output, for intervals > 0: eq 7 with no first-sample case to check,
-/// for the pipeline's loop over a block.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct PrimedLowPass {
-    tau: f64,
-    previous: f64,
-}
+remembers_one_value!(
+    /// Low-pass filter, HDR eq 7: `w'_i = (w_i T_i + tau w'_{i-1}) / (T_i + tau)`.
+    ///
+    /// The first sample passes unchanged (no start-up transient).
+    LowPass,
+    /// A [`LowPass`] that has an output, for intervals > 0.
+    PrimedLowPass,
+    "Filters one sample whose interval is `dt` [s] (HDR eq 7).",
+    |dt, tau| dt + tau > 0.0
+);
 
 impl PrimedLowPass {
     /// Filters one sample whose interval `dt` is > 0 (HDR eq 7).
@@ -103,73 +127,16 @@ impl PrimedLowPass {
     }
 }
 
-interval_stage!(LowPass, clock, config);
-
-/// De-lag, HDR eq 13: `w_d,i = w_i + tau / T_i (w_i - w_{i-1})`, the inverse of eq 7.
-///
-/// The first sample, and a sample with no interval (`T_i = 0`), pass unchanged.
-#[derive(Debug, Clone, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct DeLag {
-    config: LowPassConfig,
-    previous: Option<f64>,
-    clock: Clock,
-}
-
-impl DeLag {
-    /// Validates `config` and builds the stage.
-    pub fn new(config: LowPassConfig) -> Result<Self, Error> {
-        config.validate()?;
-        Ok(Self::start(config))
-    }
-
-    /// The stage before the first sample, from a configuration validated already.
-    fn start(config: LowPassConfig) -> Self {
-        DeLag {
-            config,
-            previous: None,
-            clock: Clock::default(),
-        }
-    }
-
-    /// De-lags one sample whose interval is `dt` [s] (HDR eq 13).
-    #[inline(always)]
-    pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
-        match self.primed() {
-            Some(mut primed) if dt > 0.0 => {
-                let y = primed.step(dt, rate);
-                self.set_primed(primed);
-                y
-            }
-            _ => {
-                self.previous = Some(rate);
-                rate
-            }
-        }
-    }
-
-    /// The stage as a [`PrimedDeLag`], once it has an input.
-    #[inline(always)]
-    pub(crate) fn primed(&self) -> Option<PrimedDeLag> {
-        self.previous.map(|previous| PrimedDeLag {
-            tau: self.config.tau,
-            previous,
-        })
-    }
-
-    /// Takes over the state of `primed`, made by [`DeLag::primed`].
-    #[inline(always)]
-    pub(crate) fn set_primed(&mut self, primed: PrimedDeLag) {
-        self.previous = Some(primed.previous);
-    }
-}
-
-/// A [`DeLag`] that has an input, for intervals > 0: eq 13 with no first-sample case to check.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct PrimedDeLag {
-    tau: f64,
-    previous: f64,
-}
+remembers_one_value!(
+    /// De-lag, HDR eq 13: `w_d,i = w_i + tau / T_i (w_i - w_{i-1})`, the inverse of eq 7.
+    ///
+    /// The first sample, and a sample with no interval (`T_i = 0`), pass unchanged.
+    DeLag,
+    /// A [`DeLag`] that has an input, for intervals > 0.
+    PrimedDeLag,
+    "De-lags one sample whose interval is `dt` [s] (HDR eq 13).",
+    |dt, _tau| dt > 0.0
+);
 
 impl PrimedDeLag {
     /// De-lags one sample whose interval `dt` is > 0 (HDR eq 13).
@@ -180,5 +147,3 @@ impl PrimedDeLag {
         y
     }
 }
-
-interval_stage!(DeLag, clock, config);
