@@ -393,8 +393,7 @@ impl Pipeline {
     }
 
     /// [`Chain::feed`] with the stages with memory: compiled for the concrete stages when all are
-    /// on or all off (see [`Memory`], [`Off`]), and then also for a single direction factor when
-    /// the two are equal (see [`Correction::apply_directed`]); for `Option`s otherwise.
+    /// on or all off (see [`Memory`], [`Off`]), for `Option`s otherwise.
     #[inline(always)]
     fn feed<const FAST: bool>(
         &mut self,
@@ -410,13 +409,7 @@ impl Pipeline {
                 hdr: Some(h),
                 delag: Some(d),
                 integrator,
-            } => chain.feed_directed::<FAST, _, _, _>(
-                &mut (l, h, d, integrator),
-                t,
-                rate,
-                temperature,
-                out,
-            ),
+            } => chain.feed::<FAST, _, _, _>(&mut (l, h, d, integrator), t, rate, temperature, out),
             Memories {
                 lowpass: None,
                 hdr: None,
@@ -429,7 +422,7 @@ impl Pipeline {
                     Off::<DeLag>::OFF,
                     integrator,
                 );
-                chain.feed_directed::<FAST, _, _, _>(m, t, rate, temperature, out)
+                chain.feed::<FAST, _, _, _>(m, t, rate, temperature, out)
             }
             Memories {
                 lowpass,
@@ -438,7 +431,7 @@ impl Pipeline {
                 integrator,
             } => {
                 let m = &mut (lowpass, hdr, delag, integrator);
-                chain.feed::<FAST, true, _, _, _>(m, t, rate, temperature, out)
+                chain.feed::<FAST, _, _, _>(m, t, rate, temperature, out)
             }
         }
     }
@@ -597,28 +590,11 @@ impl Chain {
         }
     }
 
-    /// [`Chain::feed`], compiled for a single direction factor when the two are equal (see
-    /// [`Correction::apply_directed`]).
-    #[inline(always)]
-    fn feed_directed<const FAST: bool, L: Memory, H: Memory, D: Memory>(
-        &mut self,
-        memories: &mut (L, H, D, &mut Integrator),
-        t: &[f64],
-        rate: &[f64],
-        temperature: Option<&[f64]>,
-        out: &mut Outputs<'_>,
-    ) -> bool {
-        if self.correction.direction_split() {
-            self.feed::<FAST, true, _, _, _>(memories, t, rate, temperature, out)
-        } else {
-            self.feed::<FAST, false, _, _, _>(memories, t, rate, temperature, out)
-        }
-    }
-
     /// The loops of [`Pipeline::process_block`], with or without temperature (a closure, so the
-    /// loop without temperature carries no lookups). See [`Chain::run`] for `FAST`.
+    /// loop without temperature carries no lookups), and compiled for a single direction factor
+    /// when the two are equal (see [`Correction::apply_directed`]). See [`Chain::run`] for `FAST`.
     #[inline(always)]
-    fn feed<const FAST: bool, const SPLIT: bool, L: Memory, H: Memory, D: Memory>(
+    fn feed<const FAST: bool, L: Memory, H: Memory, D: Memory>(
         &mut self,
         memories: &mut (L, H, D, &mut Integrator),
         t: &[f64],
@@ -626,11 +602,16 @@ impl Chain {
         temperature: Option<&[f64]>,
         out: &mut Outputs<'_>,
     ) -> bool {
-        match temperature {
-            Some(temp) => {
-                self.run::<FAST, SPLIT, _, _, _>(memories, t, rate, |i| Some(temp[i]), out)
+        let m = memories;
+        match (temperature, self.correction.direction_split()) {
+            (Some(temp), true) => {
+                self.run::<FAST, true, _, _, _>(m, t, rate, |i| Some(temp[i]), out)
             }
-            None => self.run::<FAST, SPLIT, _, _, _>(memories, t, rate, |_| None, out),
+            (Some(temp), false) => {
+                self.run::<FAST, false, _, _, _>(m, t, rate, |i| Some(temp[i]), out)
+            }
+            (None, true) => self.run::<FAST, true, _, _, _>(m, t, rate, |_| None, out),
+            (None, false) => self.run::<FAST, false, _, _, _>(m, t, rate, |_| None, out),
         }
     }
 
