@@ -161,3 +161,47 @@ fn gaps_are_counted_and_reset_restarts_hdr_only() {
         })
     ));
 }
+
+/// Long blocks with gaps and bad readings here and there, some next to each other: the block
+/// equals repeated `update` for every preset and policy, whole and cut in two.
+#[test]
+fn long_blocks_with_gaps_and_bad_readings_equal_updates() {
+    let (mut t, clean) = stream(13_000);
+    for &k in &[4095, 4096, 4097, 8191, 12_288] {
+        for x in &mut t[k..] {
+            *x += 5.0; // beyond the 2 s gap limit
+        }
+    }
+    let mut faulty = clean.clone();
+    for &k in &[1, 4094, 4096, 8192, 8193, 12_999] {
+        faulty[k] = f64::NAN;
+    }
+    for preset in Preset::ALL {
+        for (r, policies) in [
+            (&clean, &[NonFinite::Error][..]),
+            (&faulty, &[NonFinite::Hold, NonFinite::Skip][..]),
+        ] {
+            for &non_finite in policies {
+                for gap_action in [GapAction::Bridge, GapAction::Reset] {
+                    let mut c = preset.config();
+                    c.correction.bias = StaticBias::Fixed(0.01);
+                    c.input.non_finite = non_finite;
+                    c.input.gap_action = gap_action;
+                    let mut a = Pipeline::new(c).unwrap();
+                    let updates: Vec<Output> =
+                        t.iter().zip(r).map(|(&x, &y)| a.update(x, y)).collect();
+                    let mut b = Pipeline::new(c).unwrap();
+                    let mut blocks = block(&mut b, &t[..6000], &r[..6000]).unwrap();
+                    blocks.extend(block(&mut b, &t[6000..], &r[6000..]).unwrap());
+                    let mut whole = Pipeline::new(c).unwrap();
+                    let one = block(&mut whole, &t, r).unwrap();
+                    let what = format!("{preset:?} {non_finite:?} {gap_action:?}");
+                    assert_eq!(common::bits(&blocks), common::bits(&updates), "{what}");
+                    assert_eq!(common::bits(&one), common::bits(&updates), "{what}");
+                    assert_eq!(b.report(), a.report(), "{what}");
+                    assert_eq!(b, a, "{what}");
+                }
+            }
+        }
+    }
+}

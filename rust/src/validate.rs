@@ -149,3 +149,38 @@ pub(crate) fn check_finite_all(what: &'static str, values: &[f64]) -> Result<(),
         None => Ok(()),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `interval_key(dt) <= interval_key(longest)` exactly when `0 < dt <= longest`.
+    #[test]
+    fn interval_key_orders_the_valid_intervals() {
+        let above = |x: f64| f64::from_bits(x.to_bits() + 1);
+        let intervals = [
+            0.0,
+            -0.0,
+            f64::from_bits(1),
+            1e-300,
+            0.005,
+            0.01,
+            above(0.01),
+            2.0,
+            above(2.0),
+            f64::MAX,
+            f64::INFINITY,
+            -1.0,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            -f64::NAN,
+        ];
+        for longest in [f64::from_bits(1), 0.01, 2.0, f64::MAX] {
+            for dt in intervals {
+                let by_key = interval_key(dt) <= interval_key(longest);
+                let valid = dt > 0.0 && dt <= longest;
+                assert_eq!(by_key, valid, "dt {dt:e}, longest {longest:e}");
+            }
+        }
+    }
+}
