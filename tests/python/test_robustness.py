@@ -156,3 +156,19 @@ def test_sample_errors_carry_the_index_counted_from_the_offset() -> None:
     with pytest.raises(gyrocore.SampleError) as info:
         p.process(t, np.zeros(10))
     assert (info.value.index, info.value.what) == (6, "t")
+
+
+@pytest.mark.parametrize("n", [100, 101, 1000, 9999, 10_000, 50_000])
+def test_the_rate_unit_check_agrees_with_the_99th_percentile(n: int) -> None:
+    from gyrocore._checks import RATE_LIMIT, unit_problems
+
+    rng = np.random.default_rng(n)
+    t = np.arange(n) * 0.01
+    for share in (0.0, 0.005, 0.009, 0.0101, 0.011, 0.02, 0.5):
+        rate = rng.normal(0.0, 0.1, n)
+        big = rng.choice(n, int(round(share * n)), replace=False)
+        rate[big] = RATE_LIMIT * rng.uniform(1.01, 3.0, len(big))
+        subset = rate[:: max(1, n // 10_000)]
+        expected = np.percentile(np.abs(subset), 99) > RATE_LIMIT
+        warned = any(p.startswith("rates look like deg/s") for p in unit_problems(t, rate))
+        assert warned == expected, (n, share)
