@@ -438,16 +438,10 @@ impl Pipeline {
 }
 
 impl Chain {
-    /// Restarts the stages whose state is a memory of the recent signal.
+    /// Restarts the stages whose state is a memory of the recent signal (the dead band has
+    /// none).
     #[inline(always)]
-    fn restart<L: Memory, H: Memory, D: Memory>(
-        &mut self,
-        memories: &mut (L, H, D, &mut Integrator),
-    ) {
-        use crate::stage::Stage;
-        if let Some(s) = &mut self.threshold {
-            s.reset();
-        }
+    fn restart<L: Memory, H: Memory, D: Memory>(memories: &mut (L, H, D, &mut Integrator)) {
         memories.0.restart();
         memories.1.restart();
         memories.2.restart();
@@ -544,7 +538,7 @@ impl Chain {
             self.report.gaps += 1;
             self.report.longest_gap = self.report.longest_gap.max(dt);
             if self.config.input.gap_action == GapAction::Reset {
-                self.restart(memories);
+                Self::restart(memories);
             }
         }
         let r = self

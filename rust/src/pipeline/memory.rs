@@ -50,34 +50,43 @@ pub(super) trait Memory: Optional {
     fn set_state(&mut self, state: Self::State);
 }
 
-/// Implements the pipeline's traits for a filter of the rate and its primed form: it passes the
-/// rate on, unchanged when off.
-macro_rules! rate_filter {
+/// Implements [`Feed`] for stages by their own method of that signature.
+macro_rules! feed_by {
+    ($method:ident: $($ty:ty),+) => {
+        $(
+            impl Feed for $ty {
+                #[inline(always)]
+                fn feed(&mut self, dt: f64, rate: f64) -> f64 {
+                    self.$method(dt, rate)
+                }
+            }
+        )+
+    };
+}
+// The filters pass the rate on, HDR gives the `I` to add, the integrator the heading.
+feed_by!(step: LowPass, PrimedLowPass, DeLag, PrimedDeLag, Integrator, PrimedIntegrator);
+feed_by!(observe: Hdr, PrimedHdr<'_>);
+
+/// Implements [`Optional`] for stages that give `$off` (of `$rate`) while off.
+macro_rules! off_gives {
+    (|$rate:ident| $off:expr; $($ty:ty),+) => {
+        $(
+            impl Optional for $ty {
+                #[inline(always)]
+                fn off($rate: f64) -> f64 {
+                    $off
+                }
+            }
+        )+
+    };
+}
+// A filter that is off passes the rate unchanged; HDR off adds nothing.
+off_gives!(|rate| rate; LowPass, PrimedLowPass, DeLag, PrimedDeLag);
+off_gives!(|_rate| 0.0; Hdr, PrimedHdr<'_>);
+
+/// Implements [`Memory`] for a filter of the rate whose primed form is all its changing state.
+macro_rules! rate_filter_memory {
     ($ty:ty, $primed:ty) => {
-        impl Feed for $ty {
-            #[inline(always)]
-            fn feed(&mut self, dt: f64, rate: f64) -> f64 {
-                self.step(dt, rate)
-            }
-        }
-        impl Optional for $ty {
-            #[inline(always)]
-            fn off(rate: f64) -> f64 {
-                rate
-            }
-        }
-        impl Feed for $primed {
-            #[inline(always)]
-            fn feed(&mut self, dt: f64, rate: f64) -> f64 {
-                self.step(dt, rate)
-            }
-        }
-        impl Optional for $primed {
-            #[inline(always)]
-            fn off(rate: f64) -> f64 {
-                rate
-            }
-        }
         impl Memory for $ty {
             #[inline(always)]
             fn restart(&mut self) {
@@ -103,29 +112,8 @@ macro_rules! rate_filter {
         }
     };
 }
-rate_filter!(LowPass, PrimedLowPass);
-rate_filter!(DeLag, PrimedDeLag);
-
-/// Implements [`Feed`] and [`Optional`] for HDR and its primed form: they give the `I` to add
-/// (0 when off).
-macro_rules! hdr_feed {
-    ($ty:ty) => {
-        impl Feed for $ty {
-            #[inline(always)]
-            fn feed(&mut self, dt: f64, rate: f64) -> f64 {
-                self.observe(dt, rate)
-            }
-        }
-        impl Optional for $ty {
-            #[inline(always)]
-            fn off(_rate: f64) -> f64 {
-                0.0
-            }
-        }
-    };
-}
-hdr_feed!(Hdr);
-hdr_feed!(PrimedHdr<'_>);
+rate_filter_memory!(LowPass, PrimedLowPass);
+rate_filter_memory!(DeLag, PrimedDeLag);
 
 /// HDR's bound survives a restart.
 impl Memory for Hdr {
@@ -152,21 +140,6 @@ impl Memory for Hdr {
     #[inline(always)]
     fn set_state(&mut self, state: HdrState) {
         Hdr::set_state(self, state);
-    }
-}
-
-/// The integrator gives the heading.
-impl Feed for Integrator {
-    #[inline(always)]
-    fn feed(&mut self, dt: f64, rate: f64) -> f64 {
-        self.step(dt, rate)
-    }
-}
-
-impl Feed for PrimedIntegrator {
-    #[inline(always)]
-    fn feed(&mut self, dt: f64, rate: f64) -> f64 {
-        self.step(dt, rate)
     }
 }
 
