@@ -80,3 +80,12 @@ pub struct InputReport {
     /// The longest such interval [s] (0 without gaps).
     pub longest_gap: f64,
 }
+
+impl InputReport {
+    /// Counts an interval `dt` [s] longer than the gap limit.
+    #[inline(always)]
+    pub(crate) fn gap(&mut self, dt: f64) {
+        self.gaps += 1;
+        self.longest_gap = self.longest_gap.max(dt);
+    }
+}

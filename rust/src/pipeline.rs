@@ -535,8 +535,7 @@ impl Chain {
         temperature: Option<f64>,
     ) -> Output {
         if dt > self.config.input.gap_limit {
-            self.report.gaps += 1;
-            self.report.longest_gap = self.report.longest_gap.max(dt);
+            self.report.gap(dt);
             if self.config.input.gap_action == GapAction::Reset {
                 Self::restart(memories);
             }
@@ -825,14 +824,14 @@ impl Chain {
         let mut i = cursor.next;
         if FAST && self.config.input.gap_action == GapAction::Bridge {
             let limit = self.config.input.gap_limit;
-            let (mut gaps, mut widest) = (0u64, 0.0f64);
+            // A local copy: the loop's state stays apart from the pipeline's.
+            let mut report = self.report;
             for k in i..n {
                 let dt = t[k] - previous;
                 previous = t[k];
                 checks.interval(dt);
                 if dt > limit {
-                    gaps += 1;
-                    widest = widest.max(dt);
+                    report.gap(dt);
                 }
                 let temperature = temperature_at(k);
                 if let Some(celsius) = temperature {
@@ -841,8 +840,7 @@ impl Chain {
                 o = self.primed_sample::<SPLIT, _, _, _>(primed, dt, rate[k], temperature);
                 out.set(k, o);
             }
-            self.report.gaps += gaps;
-            self.report.longest_gap = self.report.longest_gap.max(widest);
+            self.report = report;
             i = n;
         } else {
             let longest = interval_key(self.config.input.gap_limit.min(f64::MAX));
