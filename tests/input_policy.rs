@@ -162,6 +162,38 @@ fn gaps_are_counted_and_reset_restarts_hdr_only() {
     ));
 }
 
+/// An interval of exactly the gap limit is not a gap, one just over it is, and a gap between two
+/// blocks counts as one: in one block, in blocks cut at the gap, and sample by sample alike.
+#[test]
+fn gaps_are_counted_at_the_limit_and_between_blocks() {
+    // Quarter-second steps, so that every interval is exact: 2.0 (the limit), 2.25 and 7.0.
+    let mut t = vec![0.0];
+    for (k, step) in (1..3000).map(|k| (k, 0.25)) {
+        let extra = match k {
+            1000 => 1.75,
+            2000 => 2.0,
+            2500 => 6.75,
+            _ => 0.0,
+        };
+        t.push(t[k - 1] + step + extra);
+    }
+    let r: Vec<f64> = (0..t.len()).map(|i| 0.01 * ((i % 7) as f64)).collect();
+    for gap_action in [GapAction::Bridge, GapAction::Reset] {
+        let mut c = Preset::Combined.config();
+        c.input.gap_action = gap_action;
+        let mut a = Pipeline::new(c).unwrap();
+        let updates: Vec<Output> = t.iter().zip(&r).map(|(&x, &y)| a.update(x, y)).collect();
+        assert_eq!((a.report().gaps, a.report().longest_gap), (2, 7.0));
+        for cut in [t.len(), 2000, 2500] {
+            let mut b = Pipeline::new(c).unwrap();
+            let mut out = block(&mut b, &t[..cut], &r[..cut]).unwrap();
+            out.extend(block(&mut b, &t[cut..], &r[cut..]).unwrap());
+            assert_eq!(b.report(), a.report(), "{gap_action:?}, cut at {cut}");
+            assert_eq!(common::bits(&out), common::bits(&updates), "{gap_action:?}");
+        }
+    }
+}
+
 /// Long blocks with gaps and bad readings here and there, some next to each other: the block
 /// equals repeated `update` for every preset and policy, whole and cut in two.
 #[test]

@@ -85,7 +85,15 @@ impl InputReport {
     /// Counts an interval `dt` [s] longer than the gap limit.
     #[inline(always)]
     pub(crate) fn gap(&mut self, dt: f64) {
-        self.gaps += 1;
-        self.longest_gap = self.longest_gap.max(dt);
+        self.gaps_up_to(1, dt);
+    }
+
+    /// Counts `count` intervals longer than the gap limit, none longer than `longest` [s].
+    #[inline(always)]
+    pub(crate) fn gaps_up_to(&mut self, count: u64, longest: f64) {
+        if count > 0 {
+            self.gaps += count;
+            self.longest_gap = self.longest_gap.max(longest);
+        }
     }
 }

@@ -789,8 +789,9 @@ impl Chain {
     /// The settled samples of [`Chain::run`] from `cursor.next` on, through `primed` stages (see
     /// [`Memory::primed`]).
     ///
-    /// A FAST loop that bridges gaps (the default) takes every sample: a gap is only counted,
-    /// and a bad interval is noted in the checks. Any other loop stops at a sample that needs
+    /// A FAST loop that bridges gaps (the default) takes every sample: a bad interval is noted
+    /// in the checks, and gaps are counted after the loop, only if the longest interval is one.
+    /// Any other loop stops at a sample that needs
     /// [`Chain::step`]: one whose interval is not in (0, gap limit] (a gap to restart at, or a
     /// timestamp not after the one before) or, unless `FAST`, a non-finite reading, which the
     /// input policy holds or skips.
@@ -822,17 +823,13 @@ impl Chain {
         };
         let (mut previous, mut checks, mut o) = (cursor.previous, cursor.checks, cursor.output);
         let mut i = cursor.next;
+        let limit = self.config.input.gap_limit;
         if FAST && self.config.input.gap_action == GapAction::Bridge {
-            let limit = self.config.input.gap_limit;
-            // A local copy: the loop's state stays apart from the pipeline's.
-            let mut report = self.report;
+            let start = previous;
             for k in i..n {
                 let dt = t[k] - previous;
                 previous = t[k];
                 checks.interval(dt);
-                if dt > limit {
-                    report.gap(dt);
-                }
                 let temperature = temperature_at(k);
                 if let Some(celsius) = temperature {
                     checks.finite(celsius);
@@ -840,10 +837,16 @@ impl Chain {
                 o = self.primed_sample::<SPLIT, _, _, _>(primed, dt, rate[k], temperature);
                 out.set(k, o);
             }
-            self.report = report;
+            // The checks have the longest interval. Only if it is a gap are the gaps counted, in
+            // a pass over the timestamps: the loop carries nothing for them. (If an interval was
+            // not valid, the block is taken again and nothing counted here is kept.)
+            if let Some(longest) = checks.longest_interval().filter(|&dt| dt > limit) {
+                let gaps = intervals_over(start, &t[i..], limit);
+                self.report.gaps_up_to(gaps, longest);
+            }
             i = n;
         } else {
-            let longest = interval_key(self.config.input.gap_limit.min(f64::MAX));
+            let longest = interval_key(limit.min(f64::MAX));
             while i < n {
                 let dt = t[i] - previous;
                 if interval_key(dt) > longest {
@@ -895,6 +898,16 @@ fn primed<'a, L: Memory, H: Memory, D: Memory>(
         memories.2.primed()?,
         memories.3.primed()?,
     ))
+}
+
+/// How many of the intervals from `start` to `t[0]` and between the timestamps `t` are longer
+/// than `limit`.
+fn intervals_over(start: f64, t: &[f64], limit: f64) -> u64 {
+    let previous = core::iter::once(start).chain(t.iter().copied());
+    previous
+        .zip(t)
+        .map(|(a, &b)| u64::from(b - a > limit))
+        .sum()
 }
 
 /// Where a block's loop stands, carried from one of [`Chain::run`]'s loops to the next.

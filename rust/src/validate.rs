@@ -122,6 +122,12 @@ impl Checks {
         }
     }
 
+    /// The longest interval seen [s], if every one was valid (finite and > 0).
+    pub(crate) fn longest_interval(&self) -> Option<f64> {
+        (self.worst_interval <= interval_key(f64::MAX))
+            .then(|| f64::from_bits(self.worst_interval + 1))
+    }
+
     /// True if every value and interval seen was valid.
     pub(crate) fn passed(&self) -> bool {
         self.worst_interval <= interval_key(f64::MAX) && self.carry & CARRY == 0
