@@ -236,7 +236,9 @@ struct Memories {
 struct Chain {
     config: PipelineConfig,
     correction: Correction,
-    threshold: Option<Threshold>,
+    /// The dead band; 0 when none is configured: `|r| < 0` holds for no rate, so every rate
+    /// passes unchanged, and the loops carry no test of whether there is one.
+    threshold: Threshold,
     clock: Clock,
     /// The last finite (rate, temperature) reading, for [`NonFinite::Hold`].
     last_reading: Option<(f64, Option<f64>)>,
@@ -275,7 +277,11 @@ impl Pipeline {
             chain: Chain {
                 config,
                 correction: Correction::new(config.correction)?,
-                threshold: config.threshold.map(Threshold::new).transpose()?,
+                threshold: Threshold::new(
+                    config
+                        .threshold
+                        .unwrap_or(ThresholdConfig { threshold: 0.0 }),
+                )?,
                 clock: Clock::default(),
                 last_reading: None,
                 last_output: Output::at_rest(config.integrator.initial_heading),
@@ -510,9 +516,9 @@ impl Chain {
         };
         let scaled = self.config.noise_scaled;
         if let Some(k) = scaled.threshold_sigmas {
-            self.threshold = Some(Threshold::start(ThresholdConfig {
+            self.threshold = Threshold::start(ThresholdConfig {
                 threshold: k * rest.noise,
-            }));
+            });
         }
         if let Some(k) = scaled.hdr_bound_sigmas {
             hdr.bound(k * rest.bias_std_error);
@@ -562,7 +568,7 @@ impl Chain {
         learning: bool,
     ) -> Output {
         let (lowpass, hdr, delag, integrator) = stages;
-        let corrected = self.threshold.as_ref().map_or(r, |s| s.apply(r));
+        let corrected = self.threshold.apply(r);
         let mut r = lowpass.feed(dt, corrected);
         // HDR decides on its own low-passed step means of the corrected rate (see `Hdr`) and its
         // `I` is added to the per-sample low-passed rate, which the de-lag then restores. It starts
