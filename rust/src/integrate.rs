@@ -59,7 +59,17 @@ impl Integrator {
     /// Adds one sample whose interval is `dt` [s]; returns the heading at that sample.
     #[inline(always)]
     pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
-        match self.primed() {
+        if self.trapezoid() {
+            self.step_by::<true>(dt, rate)
+        } else {
+            self.step_by::<false>(dt, rate)
+        }
+    }
+
+    /// [`Integrator::step`] by the rule of [`PrimedIntegrator`]`<TRAPEZOID>`.
+    #[inline(always)]
+    fn step_by<const TRAPEZOID: bool>(&mut self, dt: f64, rate: f64) -> f64 {
+        match self.primed::<TRAPEZOID>() {
             Some(mut primed) => {
                 primed.step(dt, rate);
                 self.set_primed(primed);
@@ -69,11 +79,18 @@ impl Integrator {
         self.heading
     }
 
-    /// The stage as a [`PrimedIntegrator`], once it has a sample.
+    /// True if the rule is the trapezoid rule (the `TRAPEZOID` of [`Integrator::primed`]).
     #[inline(always)]
-    pub(crate) fn primed(&self) -> Option<PrimedIntegrator> {
+    pub(crate) fn trapezoid(&self) -> bool {
+        self.config.method == Method::Trapezoid
+    }
+
+    /// The stage as a [`PrimedIntegrator`], once it has a sample; `TRAPEZOID` must be
+    /// [`Integrator::trapezoid`].
+    #[inline(always)]
+    pub(crate) fn primed<const TRAPEZOID: bool>(&self) -> Option<PrimedIntegrator<TRAPEZOID>> {
+        debug_assert_eq!(TRAPEZOID, self.trapezoid());
         self.previous.map(|previous| PrimedIntegrator {
-            method: self.config.method,
             heading: self.heading,
             previous,
         })
@@ -81,7 +98,10 @@ impl Integrator {
 
     /// Takes over the state of `primed`, made by [`Integrator::primed`].
     #[inline(always)]
-    pub(crate) fn set_primed(&mut self, primed: PrimedIntegrator) {
+    pub(crate) fn set_primed<const TRAPEZOID: bool>(
+        &mut self,
+        primed: PrimedIntegrator<TRAPEZOID>,
+    ) {
         self.heading = primed.heading;
         self.previous = Some(primed.previous);
     }
@@ -95,21 +115,22 @@ impl Integrator {
 interval_stage!(Integrator, clock, config);
 
 /// An [`Integrator`] that has a sample: no first-sample case to check, for the pipeline's loop
-/// over a block.
+/// over a block. Its rule is part of its type (`TRAPEZOID`, else the rectangle rule), so the
+/// loop does not choose it sample by sample.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct PrimedIntegrator {
-    method: Method,
+pub(crate) struct PrimedIntegrator<const TRAPEZOID: bool> {
     heading: f64,
     previous: f64,
 }
 
-impl PrimedIntegrator {
+impl<const TRAPEZOID: bool> PrimedIntegrator<TRAPEZOID> {
     /// Adds one sample whose interval is `dt` [s]; returns the heading at that sample.
     #[inline(always)]
     pub(crate) fn step(&mut self, dt: f64, rate: f64) -> f64 {
-        self.heading += match self.method {
-            Method::Rectangle => rate * dt,
-            Method::Trapezoid => 0.5 * (rate + self.previous) * dt,
+        self.heading += if TRAPEZOID {
+            0.5 * (rate + self.previous) * dt
+        } else {
+            rate * dt
         };
         self.previous = rate;
         self.heading

@@ -675,31 +675,24 @@ impl Chain {
         // (a gap, a bad interval, a reading the policy holds or skips, and any before every stage
         // has had a sample) one at a time through `step`.
         while cursor.next < n {
-            let states = match primed(memories) {
-                Some(mut primed) => {
-                    self.primed_span::<FAST, SPLIT, _, _, _>(
-                        &mut primed,
-                        t,
-                        rate,
-                        &temperature_at,
-                        out,
-                        &mut cursor,
-                    );
-                    let (lowpass, hdr, delag, integrator) = primed;
-                    Some((
-                        L::state(lowpass),
-                        H::state(hdr),
-                        D::state(delag),
-                        integrator,
-                    ))
-                }
-                None => None,
-            };
-            if let Some((lowpass, hdr, delag, integrator)) = states {
-                memories.0.set_state(lowpass);
-                memories.1.set_state(hdr);
-                memories.2.set_state(delag);
-                memories.3.set_primed(integrator);
+            if memories.3.trapezoid() {
+                self.primed_stretch::<FAST, SPLIT, true, L, H, D>(
+                    memories,
+                    t,
+                    rate,
+                    &temperature_at,
+                    out,
+                    &mut cursor,
+                );
+            } else {
+                self.primed_stretch::<FAST, SPLIT, false, L, H, D>(
+                    memories,
+                    t,
+                    rate,
+                    &temperature_at,
+                    out,
+                    &mut cursor,
+                );
             }
             if cursor.next < n {
                 if FAST && !cursor.checks.passed() {
@@ -723,6 +716,55 @@ impl Chain {
             self.last_output = cursor.output;
         }
         !FAST || (cursor.checks.passed() && memories.3.heading().is_finite())
+    }
+
+    /// The samples of [`Chain::run`] from `cursor.next` on that [`Chain::primed_span`] takes,
+    /// through primed copies of `memories` whose state is then taken back (none while a stage
+    /// has yet to see a sample). `TRAPEZOID` is the integration rule's
+    /// ([`Integrator::trapezoid`]), a compile-time choice for the loop.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn primed_stretch<
+        const FAST: bool,
+        const SPLIT: bool,
+        const TRAPEZOID: bool,
+        L: Memory,
+        H: Memory,
+        D: Memory,
+    >(
+        &mut self,
+        memories: &mut (L, H, D, &mut Integrator),
+        t: &[f64],
+        rate: &[f64],
+        temperature_at: &impl Fn(usize) -> Option<f64>,
+        out: &mut Outputs<'_>,
+        cursor: &mut Cursor,
+    ) {
+        // The copies borrow `memories`, which takes their state back once they are gone.
+        let states = {
+            let Some(mut primed) = primed::<TRAPEZOID, L, H, D>(memories) else {
+                return;
+            };
+            self.primed_span::<FAST, SPLIT, TRAPEZOID, _, _, _>(
+                &mut primed,
+                t,
+                rate,
+                temperature_at,
+                out,
+                cursor,
+            );
+            let (lowpass, hdr, delag, integrator) = primed;
+            (
+                L::state(lowpass),
+                H::state(hdr),
+                D::state(delag),
+                integrator,
+            )
+        };
+        memories.0.set_state(states.0);
+        memories.1.set_state(states.1);
+        memories.2.set_state(states.2);
+        memories.3.set_primed(states.3);
     }
 
     /// The samples of [`Chain::run`] from `cursor.next` to `end`; unless `SETTLED`, only until
@@ -781,9 +823,9 @@ impl Chain {
 
     /// One settled sample through `primed` stages: its correction and the stages after it.
     #[inline(always)]
-    fn primed_sample<const SPLIT: bool, L: Feed, H: Feed, D: Feed>(
+    fn primed_sample<const SPLIT: bool, const TRAPEZOID: bool, L: Feed, H: Feed, D: Feed>(
         &self,
-        primed: &mut (L, H, D, PrimedIntegrator),
+        primed: &mut (L, H, D, PrimedIntegrator<TRAPEZOID>),
         dt: f64,
         rate: f64,
         temperature: Option<f64>,
@@ -810,9 +852,16 @@ impl Chain {
     /// more of it there: `combined` 3.96 -> 3.61, `tuned` 3.61 -> 3.34, `hdr` 3.61 -> 3.28, for
     /// `raw` 1.10 -> 1.14 and `hong_park` 1.29 -> 1.37 (two alternating runs of each).
     #[inline(always)]
-    fn primed_span<const FAST: bool, const SPLIT: bool, L: Feed, H: Feed, D: Feed>(
+    fn primed_span<
+        const FAST: bool,
+        const SPLIT: bool,
+        const TRAPEZOID: bool,
+        L: Feed,
+        H: Feed,
+        D: Feed,
+    >(
         &mut self,
-        primed: &mut (L, H, D, PrimedIntegrator),
+        primed: &mut (L, H, D, PrimedIntegrator<TRAPEZOID>),
         t: &[f64],
         rate: &[f64],
         temperature_at: &impl Fn(usize) -> Option<f64>,
@@ -840,7 +889,12 @@ impl Chain {
                 if let Some(celsius) = temperature {
                     checks.finite(celsius);
                 }
-                o = self.primed_sample::<SPLIT, _, _, _>(primed, dt, rate[k], temperature);
+                o = self.primed_sample::<SPLIT, TRAPEZOID, _, _, _>(
+                    primed,
+                    dt,
+                    rate[k],
+                    temperature,
+                );
                 out.set(k, o);
             }
             // The checks have the longest interval. Only if it is a gap are the gaps counted, in
@@ -867,7 +921,12 @@ impl Chain {
                     break;
                 }
                 previous = t[i];
-                o = self.primed_sample::<SPLIT, _, _, _>(primed, dt, rate[i], temperature);
+                o = self.primed_sample::<SPLIT, TRAPEZOID, _, _, _>(
+                    primed,
+                    dt,
+                    rate[i],
+                    temperature,
+                );
                 out.set(i, o);
                 i += 1;
             }
@@ -890,13 +949,13 @@ impl Chain {
 /// `None` while one has yet to see a sample.
 #[inline(always)]
 #[allow(clippy::type_complexity)]
-fn primed<'a, L: Memory, H: Memory, D: Memory>(
+fn primed<'a, const TRAPEZOID: bool, L: Memory, H: Memory, D: Memory>(
     memories: &'a (L, H, D, &mut Integrator),
 ) -> Option<(
     L::Primed<'a>,
     H::Primed<'a>,
     D::Primed<'a>,
-    PrimedIntegrator,
+    PrimedIntegrator<TRAPEZOID>,
 )> {
     Some((
         memories.0.primed()?,

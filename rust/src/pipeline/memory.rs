@@ -64,8 +64,15 @@ macro_rules! feed_by {
     };
 }
 // The filters pass the rate on, HDR gives the `I` to add, the integrator the heading.
-feed_by!(step: LowPass, PrimedLowPass, DeLag, PrimedDeLag, Integrator, PrimedIntegrator);
+feed_by!(step: LowPass, PrimedLowPass, DeLag, PrimedDeLag, Integrator);
 feed_by!(observe: Hdr, PrimedHdr<'_>);
+
+impl<const TRAPEZOID: bool> Feed for PrimedIntegrator<TRAPEZOID> {
+    #[inline(always)]
+    fn feed(&mut self, dt: f64, rate: f64) -> f64 {
+        self.step(dt, rate)
+    }
+}
 
 /// Implements [`Optional`] for stages that give `$off` (of `$rate`) while off.
 macro_rules! off_gives {
