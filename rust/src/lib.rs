@@ -38,7 +38,8 @@
 //! }
 //! ```
 #![cfg_attr(not(feature = "std"), no_std)]
-#![forbid(unsafe_code)]
+// One `unsafe` in the crate: the call of the loop compiled for AVX-512, after the CPU is checked.
+#![deny(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod allan;
