@@ -674,6 +674,12 @@ impl Chain {
         out: &mut Outputs<'_>,
     ) -> bool {
         let n = t.len();
+        let block = &mut Block {
+            t,
+            rate,
+            temperature_at: &temperature_at,
+            out,
+        };
         let mut cursor = Cursor {
             previous: self.clock.last().unwrap_or(0.0),
             next: 0,
@@ -692,57 +698,27 @@ impl Chain {
                 rate[0],
                 temperature_at(0),
             );
-            out.set(0, cursor.output);
+            block.out.set(0, cursor.output);
             (cursor.previous, cursor.next) = (first, 1);
         }
         if !self.settled() {
-            self.span::<FAST, false, SPLIT, L, H, D>(
-                memories,
-                t,
-                rate,
-                &temperature_at,
-                out,
-                &mut cursor,
-                n,
-            );
+            self.span::<FAST, false, SPLIT, L, H, D>(memories, block, &mut cursor, n);
         }
         // The settled samples: all they can through primed copies of the stages, the others
         // (a gap, a bad interval, a reading the policy holds or skips, and any before every stage
         // has had a sample) one at a time through `step`.
         while cursor.next < n {
             if memories.3.trapezoid() {
-                self.primed_stretch::<FAST, SPLIT, true, L, H, D>(
-                    memories,
-                    t,
-                    rate,
-                    &temperature_at,
-                    out,
-                    &mut cursor,
-                );
+                self.primed_stretch::<FAST, SPLIT, true, L, H, D>(memories, block, &mut cursor);
             } else {
-                self.primed_stretch::<FAST, SPLIT, false, L, H, D>(
-                    memories,
-                    t,
-                    rate,
-                    &temperature_at,
-                    out,
-                    &mut cursor,
-                );
+                self.primed_stretch::<FAST, SPLIT, false, L, H, D>(memories, block, &mut cursor);
             }
             if cursor.next < n {
                 if FAST && !cursor.checks.passed() {
                     return false;
                 }
                 let next = cursor.next + 1;
-                self.span::<FAST, true, SPLIT, L, H, D>(
-                    memories,
-                    t,
-                    rate,
-                    &temperature_at,
-                    out,
-                    &mut cursor,
-                    next,
-                );
+                self.span::<FAST, true, SPLIT, L, H, D>(memories, block, &mut cursor, next);
             }
         }
         if FAST && n > 0 {
@@ -757,7 +733,6 @@ impl Chain {
     /// through primed copies of `memories` whose state is then taken back (none while a stage
     /// has yet to see a sample). `TRAPEZOID` is the integration rule's
     /// ([`Integrator::trapezoid`]), a compile-time choice for the loop.
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn primed_stretch<
         const FAST: bool,
@@ -769,10 +744,7 @@ impl Chain {
     >(
         &mut self,
         memories: &mut (L, H, D, &mut Integrator),
-        t: &[f64],
-        rate: &[f64],
-        temperature_at: &impl Fn(usize) -> Option<f64>,
-        out: &mut Outputs<'_>,
+        block: &mut Block<'_, '_, impl Fn(usize) -> Option<f64>>,
         cursor: &mut Cursor,
     ) {
         // The copies borrow `memories`, which takes their state back once they are gone.
@@ -780,14 +752,7 @@ impl Chain {
             let Some(mut primed) = primed::<TRAPEZOID, L, H, D>(memories) else {
                 return;
             };
-            self.primed_span::<FAST, SPLIT, TRAPEZOID, _, _, _>(
-                &mut primed,
-                t,
-                rate,
-                temperature_at,
-                out,
-                cursor,
-            );
+            self.primed_span::<FAST, SPLIT, TRAPEZOID, _, _, _>(&mut primed, block, cursor);
             let (lowpass, hdr, delag, integrator) = primed;
             (
                 L::state(lowpass),
@@ -804,7 +769,6 @@ impl Chain {
 
     /// The samples of [`Chain::run`] from `cursor.next` to `end`; unless `SETTLED`, only until
     /// the pipeline is settled (see [`Chain::step`]).
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn span<
         const FAST: bool,
@@ -816,13 +780,16 @@ impl Chain {
     >(
         &mut self,
         memories: &mut (L, H, D, &mut Integrator),
-        t: &[f64],
-        rate: &[f64],
-        temperature_at: &impl Fn(usize) -> Option<f64>,
-        out: &mut Outputs<'_>,
+        block: &mut Block<'_, '_, impl Fn(usize) -> Option<f64>>,
         cursor: &mut Cursor,
         end: usize,
     ) {
+        let Block {
+            t,
+            rate,
+            temperature_at,
+            out,
+        } = block;
         let (mut previous, mut checks, mut o) = (cursor.previous, cursor.checks, cursor.output);
         let mut i = cursor.next;
         while i < end {
@@ -897,12 +864,15 @@ impl Chain {
     >(
         &mut self,
         primed: &mut (L, H, D, PrimedIntegrator<TRAPEZOID>),
-        t: &[f64],
-        rate: &[f64],
-        temperature_at: &impl Fn(usize) -> Option<f64>,
-        out: &mut Outputs<'_>,
+        block: &mut Block<'_, '_, impl Fn(usize) -> Option<f64>>,
         cursor: &mut Cursor,
     ) {
+        let Block {
+            t,
+            rate,
+            temperature_at,
+            out,
+        } = block;
         let n = t.len();
         // Slices of one length, so the loop carries no bounds checks.
         let rate = &rate[..n];
@@ -1008,6 +978,15 @@ fn intervals_over(start: f64, t: &[f64], limit: f64) -> u64 {
         .zip(t)
         .map(|(a, &b)| u64::from(b - a > limit))
         .sum()
+}
+
+/// A block's samples and outputs, as [`Chain::run`]'s loops share them; `temperature_at(i)`
+/// gives the temperature of sample `i`.
+struct Block<'a, 'o, T> {
+    t: &'a [f64],
+    rate: &'a [f64],
+    temperature_at: &'a T,
+    out: &'a mut Outputs<'o>,
 }
 
 /// Where a block's loop stands, carried from one of [`Chain::run`]'s loops to the next.
