@@ -122,7 +122,8 @@ impl Checks {
         }
     }
 
-    /// The longest interval seen [s], if every one was valid (finite and > 0).
+    /// The longest interval seen [s], if every one was valid (finite and > 0); the smallest
+    /// positive float if none was seen.
     pub(crate) fn longest_interval(&self) -> Option<f64> {
         (self.worst_interval <= interval_key(f64::MAX))
             .then(|| f64::from_bits(self.worst_interval + 1))
