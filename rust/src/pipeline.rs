@@ -401,8 +401,9 @@ impl Pipeline {
     /// The FAST [`Pipeline::feed`], compiled a second time for AVX-512 and chosen at run time
     /// where the CPU has it (with `std`, which detects it).
     ///
-    /// Its 32 registers keep every state of the loop in one (with 16 the compiler spills some
-    /// to the stack) and its three-operand instructions need no copies. It changes no result:
+    /// Its 32 registers hold the loop's running values (heading, filter memories, HDR sums),
+    /// where with 16 the compiler keeps some on the stack, and its three-operand instructions
+    /// need no register copies. It changes no result:
     /// the operations are the same IEEE ones, one by one (no fused multiply-add is formed).
     fn feed_fast(
         &mut self,
