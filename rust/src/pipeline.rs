@@ -791,14 +791,15 @@ impl Chain {
             temperature_at,
             out,
         } = block;
-        let (mut previous, mut checks, mut o) = (cursor.previous, cursor.checks, cursor.output);
-        let mut i = cursor.next;
-        while i < end {
-            o = if FAST {
-                let dt = t[i] - previous;
-                previous = t[i];
-                checks.interval(dt);
-                checks.reading(rate[i], temperature_at(i));
+        // A local copy, so that the loop keeps it in registers.
+        let mut c = *cursor;
+        while c.next < end {
+            let i = c.next;
+            c.output = if FAST {
+                let dt = t[i] - c.previous;
+                c.previous = t[i];
+                c.checks.interval(dt);
+                c.checks.reading(rate[i], temperature_at(i));
                 self.step::<SETTLED, SPLIT, L, H, D>(memories, t[i], dt, rate[i], temperature_at(i))
             } else {
                 let o = self.update::<SETTLED, SPLIT, L, H, D>(
@@ -807,21 +808,16 @@ impl Chain {
                     rate[i],
                     temperature_at(i),
                 );
-                previous = self.clock.last().unwrap_or(previous);
+                c.previous = self.clock.last().unwrap_or(c.previous);
                 o
             };
-            out.set(i, o);
-            i += 1;
+            out.set(i, c.output);
+            c.next += 1;
             if !SETTLED && self.settled() {
                 break;
             }
         }
-        *cursor = Cursor {
-            previous,
-            next: i,
-            checks,
-            output: o,
-        };
+        *cursor = c;
     }
 
     /// One settled sample through `primed` stages: its correction and the stages after it.
@@ -882,72 +878,63 @@ impl Chain {
             rate: &mut out.rate[..n],
             drift: &mut out.drift[..n],
         };
-        let (mut previous, mut checks, mut o) = (cursor.previous, cursor.checks, cursor.output);
-        let mut i = cursor.next;
+        // A local copy, so that the loop keeps it in registers.
+        let mut c = *cursor;
         let limit = self.config.input.gap_limit;
         if FAST && self.config.input.gap_action == GapAction::Bridge {
-            let start = previous;
-            for k in i..n {
-                let dt = t[k] - previous;
-                previous = t[k];
-                checks.interval(dt);
-                let temperature = temperature_at(k);
-                if let Some(celsius) = temperature {
-                    checks.finite(celsius);
-                }
-                o = self.primed_sample::<SPLIT, TRAPEZOID, _, _, _>(
-                    primed,
-                    dt,
-                    rate[k],
-                    temperature,
-                );
-                out.set(k, o);
-            }
-            // The checks have the longest interval. Only if it is a gap are the gaps counted, in
-            // a pass over the timestamps: the loop carries nothing for them. (If an interval was
-            // not valid, the block is taken again and nothing counted here is kept.)
-            if let Some(longest) = checks.longest_interval().filter(|&dt| dt > limit) {
-                let gaps = intervals_over(start, &t[i..], limit);
-                self.report.gaps_up_to(gaps, longest);
-            }
-            i = n;
-        } else {
-            let longest = interval_key(limit.min(f64::MAX));
-            while i < n {
-                let dt = t[i] - previous;
-                if interval_key(dt) > longest {
-                    break;
-                }
+            for i in c.next..n {
+                let dt = t[i] - c.previous;
+                c.previous = t[i];
+                c.checks.interval(dt);
                 let temperature = temperature_at(i);
-                if FAST {
-                    if let Some(celsius) = temperature {
-                        checks.finite(celsius);
-                    }
-                } else if !(rate[i].is_finite() && temperature.is_none_or(f64::is_finite)) {
-                    break;
-                }
-                previous = t[i];
-                o = self.primed_sample::<SPLIT, TRAPEZOID, _, _, _>(
+                c.checks.temperature(temperature);
+                c.output = self.primed_sample::<SPLIT, TRAPEZOID, _, _, _>(
                     primed,
                     dt,
                     rate[i],
                     temperature,
                 );
-                out.set(i, o);
-                i += 1;
+                out.set(i, c.output);
+            }
+            c.next = n;
+            // The checks have the longest interval. Only if it is a gap are the gaps counted, in
+            // a pass over the timestamps: the loop carries nothing for them. (If an interval was
+            // not valid, the block is taken again and nothing counted here is kept.)
+            if let Some(longest) = c.checks.longest_interval().filter(|&dt| dt > limit) {
+                let gaps = intervals_over(cursor.previous, &t[cursor.next..], limit);
+                self.report.gaps_up_to(gaps, longest);
+            }
+        } else {
+            let longest = interval_key(limit.min(f64::MAX));
+            while c.next < n {
+                let i = c.next;
+                let dt = t[i] - c.previous;
+                if interval_key(dt) > longest {
+                    break;
+                }
+                let temperature = temperature_at(i);
+                if FAST {
+                    c.checks.temperature(temperature);
+                } else if !(rate[i].is_finite() && temperature.is_none_or(f64::is_finite)) {
+                    break;
+                }
+                c.previous = t[i];
+                c.output = self.primed_sample::<SPLIT, TRAPEZOID, _, _, _>(
+                    primed,
+                    dt,
+                    rate[i],
+                    temperature,
+                );
+                out.set(i, c.output);
+                c.next += 1;
             }
         }
-        if !FAST && i > cursor.next {
-            self.clock.set(previous);
-            self.last_reading = Some((rate[i - 1], temperature_at(i - 1)));
-            self.last_output = o;
+        if !FAST && c.next > cursor.next {
+            self.clock.set(c.previous);
+            self.last_reading = Some((rate[c.next - 1], temperature_at(c.next - 1)));
+            self.last_output = c.output;
         }
-        *cursor = Cursor {
-            previous,
-            next: i,
-            checks,
-            output: o,
-        };
+        *cursor = c;
     }
 }
 
@@ -991,6 +978,7 @@ struct Block<'a, 'o, T> {
 }
 
 /// Where a block's loop stands, carried from one of [`Chain::run`]'s loops to the next.
+#[derive(Clone, Copy)]
 struct Cursor {
     previous: f64,
     next: usize,

@@ -117,6 +117,12 @@ impl Checks {
     #[inline(always)]
     pub(crate) fn reading(&mut self, rate: f64, temperature: Option<f64>) {
         self.finite(rate);
+        self.temperature(temperature);
+    }
+
+    /// A finite temperature, when there is one.
+    #[inline(always)]
+    pub(crate) fn temperature(&mut self, temperature: Option<f64>) {
         if let Some(celsius) = temperature {
             self.finite(celsius);
         }
