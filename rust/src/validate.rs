@@ -79,9 +79,6 @@ fn exponent_carry(v: f64) -> u64 {
     (v.to_bits() & EXPONENT) + EXPONENT_ONE
 }
 
-/// Validity of a block's samples, accumulated branch-free while the block is processed (see
-/// [`Pipeline::process_block`](crate::Pipeline::process_block)): a few integer operations per
-/// sample and no early exit, instead of a separate pass over the block.
 /// An interval as an integer that orders the valid ones: for a finite `limit` > 0,
 /// `interval_key(dt) <= interval_key(limit)` exactly when `0 < dt <= limit`. The bits of a
 /// positive float grow with its value; 0 wraps around to the largest key, and a negative
@@ -92,6 +89,9 @@ pub(crate) fn interval_key(dt: f64) -> u64 {
     dt.to_bits().wrapping_sub(1)
 }
 
+/// Validity of a block's samples, accumulated branch-free while the block is processed (see
+/// [`Pipeline::process_block`](crate::Pipeline::process_block)): a few integer operations per
+/// sample and no early exit, instead of a separate pass over the block.
 #[derive(Debug, Default, Clone, Copy)]
 pub(crate) struct Checks {
     /// The largest [`interval_key`] seen.
@@ -137,7 +137,7 @@ impl Checks {
 
     /// True if every value and interval seen was valid.
     pub(crate) fn passed(&self) -> bool {
-        self.worst_interval <= interval_key(f64::MAX) && self.carry & CARRY == 0
+        self.longest_interval().is_some() && self.carry & CARRY == 0
     }
 }
 
