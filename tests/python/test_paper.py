@@ -154,6 +154,12 @@ def test_every_reproduction_prints_paper_beside_ours_and_plots(
     assert not list(tmp_path.glob(".*tmp"))
 
 
+def test_reproduce_creates_the_figure_folder(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    paper.reproduce("hong-calibration", out_dir=tmp_path / "figures" / "hong")
+    assert (tmp_path / "figures" / "hong" / "hong_calibration.png").read_bytes()[:4] == b"\x89PNG"
+    assert "1.111" in capsys.readouterr().out
+
+
 def test_reproduce_refuses_an_unknown_name() -> None:
     with pytest.raises(ValueError, match="unknown reproduction 'hdr-figure-9'"):
         paper.reproduce("hdr-figure-9")

@@ -77,7 +77,7 @@ REPRODUCTIONS: dict[str, tuple[Callable[[], _Report], str]] = {
 
 def reproduce(name: str, *, out_dir: str | Path | None = ".") -> _Report:
     """Run the reproduction ``name`` (see :data:`REPRODUCTIONS`) with its defaults, print its
-    table, and write its figure into ``out_dir`` (None: no figure)."""
+    table, and write its figure into ``out_dir`` (created if missing; None: no figure)."""
     try:
         run, figure = REPRODUCTIONS[name]
     except KeyError:
@@ -85,6 +85,7 @@ def reproduce(name: str, *, out_dir: str | Path | None = ".") -> _Report:
     result = run()
     print(result.table())
     if out_dir is not None:
+        Path(out_dir).mkdir(parents=True, exist_ok=True)
         path = result.plot(Path(out_dir) / figure)
         if path is not None:
             print(f"wrote {path}")
