@@ -11,7 +11,7 @@ counter-clockwise positive; the bias is what the gyro reads at rest.
     True
 """
 
-from . import allan, batch, calibration, deadreckon, evaluate, io, motion, paper, sim, tune
+from . import allan, batch, calibration, deadband, deadreckon, evaluate, io, motion, paper, sim, tune
 from ._checks import InputWarning
 from ._gyrocore import SampleError, __version__
 from .evaluate import HeadingErrors, heading_errors
@@ -39,6 +39,7 @@ __all__ = [
     "allan",
     "batch",
     "calibration",
+    "deadband",
     "deadreckon",
     "downsample",
     "evaluate",

@@ -119,6 +119,14 @@ class GyroSpec:
         """A copy with some fields changed (``spec.replace(rate_hz=10.0)``)."""
         return replace(self, **changes)
 
+    @property
+    def noise_rms_dps(self) -> float:
+        """The rms of the white noise in one sample [deg/s]: ``N sqrt(rate_hz)`` through the
+        first-order low-pass of ``bandwidth_hz``, whose pole ``a = exp(-2 pi bandwidth / rate)``
+        leaves the variance ``N^2 rate (1 - a) / (1 + a)`` (``rust/src/sim.rs``)."""
+        a = math.exp(-2.0 * math.pi * self.bandwidth_hz / self.rate_hz)
+        return self.arw_deg_per_sqrt_h / math.sqrt(_HOUR) * math.sqrt(self.rate_hz * (1.0 - a) / (1.0 + a))
+
     def allan_deviation(self, taus: ArrayLike) -> FloatArray:
         """Closed-form Allan deviation [rad/s] of the noise terms at averaging times ``taus`` [s]
         (IEEE 952 Annex C: ARW, the flicker terms, RRW; without quantisation and temperature)."""
