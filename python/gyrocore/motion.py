@@ -466,16 +466,23 @@ def rotary_table(
 
 
 def robot_run(
-    *, duration: float = 160.0, power_up: float = 5.0, calibration: float = 20.0, max_speed: float = 2.0
+    *,
+    duration: float = 160.0,
+    power_up: float = 5.0,
+    calibration: float = 20.0,
+    max_speed: float = 2.0,
+    turn_deg: float = 90.0,
 ) -> Motion:
     """The Hong & Park robot run (section 4.1): a preprogrammed trajectory of ``duration`` seconds.
     The robot stands for ``power_up`` seconds after switching on (segment ``rest``), then turns back
     and forth on the spot at rates from 20 to 90 deg/s until ``calibration`` seconds (segment
     ``calibration``: the rate must change for the least squares of Hong eq 7 and 9), then drives
-    straight legs at up to ``max_speed`` [m/s] with on-the-spot 90-degree turns to alternate sides,
-    so the heading stays within +-90 deg."""
+    straight legs at up to ``max_speed`` [m/s] with on-the-spot turns of ``turn_deg`` (> 0) to
+    alternate sides, so the heading stays within +-``turn_deg``."""
     if not 0 < power_up < calibration < duration:
         raise ValueError("need 0 < power_up < calibration < duration")
+    if not 0 < turn_deg <= 180:
+        raise ValueError(f"turn_deg must be in (0, 180], got {turn_deg!r}")
     tr = _Track()
     tr.rest(power_up)
     for angle_deg, rate_dps in ((60, 40), (-120, 90), (90, 20), (-30, 60), (45, 70), (-45, 30)):
@@ -483,13 +490,13 @@ def robot_run(
         tr.rest(0.2, kind="pause")
     tr.rest(max(calibration - tr.now, 0.0), kind="pause")
     tr.label("calibration", power_up)
-    legs = ((6.0, 90), (10.0, -90), (4.0, -90), (12.0, 90), (8.0, 90), (6.0, -90), (10.0, -90), (5.0, 90))
+    legs = ((6.0, 1), (10.0, -1), (4.0, -1), (12.0, 1), (8.0, 1), (6.0, -1), (10.0, -1), (5.0, 1))
     i = 0
     while tr.now < duration:
-        metres, turn = legs[i % len(legs)]
+        metres, side = legs[i % len(legs)]
         tr.distance(metres, max_speed, 1.0)
         tr.rest(1.0, kind="pause")
-        tr.turn(turn * _DEG, 60 * _DEG, 120 * _DEG)
+        tr.turn(side * turn_deg * _DEG, 60 * _DEG, 120 * _DEG)
         tr.rest(1.0, kind="pause")
         i += 1
     return tr.build("Hong & Park robot run", (0.0, power_up), end=duration)

@@ -174,6 +174,13 @@ def test_hdr_figure3_curves_40_degrees_and_robot_run_follows_hong() -> None:
     truth = robot.sample(np.arange(0.0, 160.0, 0.01))
     assert truth.speed.max() == pytest.approx(2.0)  # Hong section 4.1: up to 2 m/s
     assert len(np.unique(np.round(np.abs(truth.rate[(truth.t > 5) & (truth.t < 20)]), 3))) > 10
+    # Smaller turns keep the heading closer to the start: within +-turn_deg after calibration.
+    for turn in (90.0, 20.0):
+        heading = motion.robot_run(turn_deg=turn).sample(np.arange(20.0, 160.0, 0.01)).heading
+        assert np.degrees(np.abs(heading - heading[0])).max() == pytest.approx(turn, abs=1e-6)
+    for bad in (0.0, -10.0, 270.0, math.nan):
+        with pytest.raises(ValueError, match="turn_deg"):
+            motion.robot_run(turn_deg=bad)
 
 
 @pytest.mark.parametrize("mix", sorted(motion.ROAD_MIXES))

@@ -9,6 +9,8 @@ beside ours and whose ``plot(path)`` draws the paper's figure where it has one:
   reference on a gyro with ``s = -10 %``, ``b = 0.1 rad/s`` (their Figures 6 and 7).
 - :func:`hong_table_1`: Hong & Park Table 1, pure integration, self-calibration, threshold and both
   on a simulated XV3500 robot run (their Figure 10).
+- :func:`hong_table_1_sensitivity`: Table 1 over a grid of gyro noise and turn size, the two
+  things the paper leaves open, to show where its order of the methods holds.
 - :func:`hdr_figures`: HDR Figures 3 and 5, ``-I`` against the simulated drift around a curving
   episode, without and with the repetition attenuator.
 - :func:`hdr_tables`: HDR Tables II and IV, the fourteen drives with one parameter set, with and
@@ -35,9 +37,11 @@ from .hong import (
     AllanReproduction,
     HongCalibration,
     HongTable1,
+    HongTable1Sensitivity,
     hong_allan,
     hong_calibration,
     hong_table_1,
+    hong_table_1_sensitivity,
 )
 
 __all__ = [
@@ -49,6 +53,7 @@ __all__ = [
     "HdrTables",
     "HongCalibration",
     "HongTable1",
+    "HongTable1Sensitivity",
     "REPRODUCTIONS",
     "Row",
     "fog_rotary_table",
@@ -59,6 +64,7 @@ __all__ = [
     "hong_allan",
     "hong_calibration",
     "hong_table_1",
+    "hong_table_1_sensitivity",
     "reproduce",
 ]
 
@@ -68,6 +74,7 @@ REPRODUCTIONS: dict[str, tuple[Callable[[], _Report], str]] = {
     "hong-allan": (hong_allan, "hong_allan.png"),
     "hong-calibration": (hong_calibration, "hong_calibration.png"),
     "hong-table-1": (hong_table_1, "hong_table_1.png"),
+    "hong-table-1-sensitivity": (hong_table_1_sensitivity, "hong_table_1_sensitivity.png"),
     "hdr-figures": (hdr_figures, "hdr_figures_3_5.png"),
     "hdr-tables": (hdr_tables, "hdr_tables_2_4.png"),
     "fog-rotary-table": (fog_rotary_table, "fog_rotary_table.png"),

@@ -9,10 +9,10 @@ from typing import Any
 
 import numpy as np
 
-from .. import allan, calibration, evaluate, motion, sim
+from .. import allan, calibration, deadband, evaluate, motion, sim
 from .._arrays import FloatArray
-from ..pipeline import downsample, integrate, process
-from ._report import Row, _Report
+from ..pipeline import downsample, integrate, preset_params, process
+from ._report import Row, _Report, format_table
 
 _DEG = math.pi / 180.0
 
@@ -313,9 +313,11 @@ def _interval_fit(
     return calibration.rate_reference(mean_reading[:n], mean_rate[:n])
 
 
-def hong_table_1(*, seed: int = 0, runs: int = 10, sensor: str | sim.GyroSpec = "xv3500") -> HongTable1:
-    """Hong Table 1: the XV3500 (or ``sensor``) on :func:`gyrocore.motion.robot_run` at 100 Hz, a
-    20 Hz reference, ``runs`` runs with seeds ``seed``, ``seed + 1``, ...
+def hong_table_1(
+    *, seed: int = 0, runs: int = 10, sensor: str | sim.GyroSpec = "xv3500", turn_deg: float = 90.0
+) -> HongTable1:
+    """Hong Table 1: the XV3500 (or ``sensor``) on :func:`gyrocore.motion.robot_run` (with turns
+    of ``turn_deg``) at 100 Hz, a 20 Hz reference, ``runs`` runs with seeds ``seed``, ``seed + 1``, ...
 
     - pure integration: static bias of the power-up rest (0-5 s) removed, then integrated;
     - self-calibration: ``s`` and ``b`` from Hong eq 8-9 over the calibration motion (the gyro's
@@ -326,7 +328,7 @@ def hong_table_1(*, seed: int = 0, runs: int = 10, sensor: str | sim.GyroSpec = 
     """
     if runs < 1:
         raise ValueError(f"runs must be >= 1, got {runs}")
-    route = motion.robot_run()
+    route = motion.robot_run(turn_deg=turn_deg)
     rest = route.segments_of("rest")[0]
     window = route.segments_of("calibration")[0]
     t_ref, heading_ref, _ = _reference(route, 20.0, 0.0, route.duration)
@@ -349,3 +351,147 @@ def hong_table_1(*, seed: int = 0, runs: int = 10, sensor: str | sim.GyroSpec = 
             if k == 0:
                 headings[method] = (d.t, result.heading)
     return HongTable1({m: tuple(e) for m, e in errors.items()}, tuple(calibrations), t_ref, heading_ref, headings)
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class HongTable1Sensitivity(_Report):
+    """Hong Table 1 over a grid of the two things the paper leaves open: the gyro's noise in one
+    sample (set by its noise bandwidth at the XV3500's ARW) and the size of the robot's turns.
+
+    The threshold filter removes a residual bias only where the noise is well below the threshold
+    (:func:`gyrocore.deadband.bias_leak`); self-calibration removes the scale error, which costs
+    more the larger the turns. The paper's order (self-calibration behind the threshold filter)
+    needs both a quiet gyro and small turns.
+
+    Attributes:
+        spec: the sensor, before its bandwidth is changed.
+        threshold_dps: Hong eq 12's threshold of the ``hong_park`` preset [deg/s].
+        tables: (turn [deg], noise bandwidth [Hz]) -> the :class:`HongTable1` of that cell.
+    """
+
+    spec: sim.GyroSpec
+    threshold_dps: float
+    tables: dict[tuple[float, float], HongTable1]
+    title: str = "Hong & Park Table 1, sensitivity: mean error / pure integration's, by gyro noise and turn size"
+
+    #: The paper's ratios to pure integration (Table 1): threshold filter, self-calibration.
+    PAPER_RATIOS = (0.7768 / 1.6675, 1.1511 / 1.6675)
+
+    @property
+    def turns_deg(self) -> list[float]:
+        return sorted({turn for turn, _ in self.tables}, reverse=True)
+
+    @property
+    def bandwidths_hz(self) -> list[float]:
+        return sorted({bandwidth for _, bandwidth in self.tables}, reverse=True)
+
+    def noise_rms_dps(self, bandwidth_hz: float) -> float:
+        """The rms of the noise in one sample at this bandwidth [deg/s]."""
+        return self.spec.replace(bandwidth_hz=bandwidth_hz).noise_rms_dps
+
+    def leak(self, bandwidth_hz: float) -> float:
+        """The fraction of a small residual bias that the threshold lets through at this bandwidth."""
+        return deadband.bias_leak(self.noise_rms_dps(bandwidth_hz), self.threshold_dps)
+
+    def ratio(self, method: str, turn_deg: float, bandwidth_hz: float) -> float:
+        """``method``'s mean error over pure integration's, in one cell of the grid."""
+        table = self.tables[(turn_deg, bandwidth_hz)]
+        return table.mean_error(method) / table.mean_error("pure integration")
+
+    def has_paper_order(self, turn_deg: float, bandwidth_hz: float) -> bool:
+        """Whether the cell orders the methods as the paper's Table 1 does."""
+        return self.tables[(turn_deg, bandwidth_hz)].ordering() == list(HongTable1.PAPER)
+
+    def noisiest_with_paper_order_dps(self, turn_deg: float) -> float | None:
+        """The largest noise rms [deg/s] in the grid at which the methods fall in the paper's order
+        with these turns (None: at no noise in the grid)."""
+        holding = [self.noise_rms_dps(b) for b in self.bandwidths_hz if self.has_paper_order(turn_deg, b)]
+        return max(holding, default=None)
+
+    def rows(self) -> list[Row]:
+        stated = self.bandwidths_hz[0]
+        thr, cal = self.PAPER_RATIOS
+        noise = self.noise_rms_dps(stated)
+        rows = [
+            Row(f"threshold / pure at {noise:.2f} deg/s noise, turns "
+                f"{min(self.turns_deg):g}-{max(self.turns_deg):g} deg",
+                f"{thr:.2f}", f"{min(self.ratio('threshold filter', t, stated) for t in self.turns_deg):.2f}"
+                f"-{max(self.ratio('threshold filter', t, stated) for t in self.turns_deg):.2f}"),
+            Row(f"bias leak through the threshold at {noise:.2f} deg/s noise", "", self.leak(stated)),
+            Row("self-calibration / pure, over the grid", f"{cal:.2f}",
+                f"{min(self.ratio('self-calibration', *c) for c in self.tables):.2f}"
+                f"-{max(self.ratio('self-calibration', *c) for c in self.tables):.2f}"),
+        ]
+        for turn in self.turns_deg:
+            noisiest = self.noisiest_with_paper_order_dps(turn)
+            rows.append(Row(f"turns of {turn:g} deg: the paper's order up to a noise of", "",
+                            f"none down to {self.noise_rms_dps(self.bandwidths_hz[-1]):.3f}" if noisiest is None
+                            else noisiest, "deg/s"))
+        return rows
+
+    def table(self) -> str:
+        cells = [f"{t:g} deg" for t in self.turns_deg]
+        head = f"{'noise rms [deg/s]':<24} {'leak':>5}  " + "  ".join(f"{c:>13}" for c in cells)
+        lines = [self.title, "cells: threshold filter / pure, self-calibration / pure; * the paper's order", head,
+                 "-" * len(head)]
+        for b in self.bandwidths_hz:
+            row = f"{self.noise_rms_dps(b):.3f} ({b:g} Hz bandwidth)"
+            cell = [f"{self.ratio('threshold filter', t, b):.2f} / {self.ratio('self-calibration', t, b):.2f}"
+                    f"{'*' if self.has_paper_order(t, b) else ' '}" for t in self.turns_deg]
+            lines.append(f"{row:<24} {self.leak(b):>5.2f}  " + "  ".join(f"{c:>13}" for c in cell))
+        thr, cal = self.PAPER_RATIOS
+        lines.append(f"{'paper (Table 1)':<24} {'':>5}  {thr:.2f} / {cal:.2f}*")
+        lines.append("")
+        lines.append(format_table("Summary (paper vs ours)", self.rows(), self.notes()))
+        return "\n".join(lines)
+
+    def notes(self) -> tuple[str, ...]:
+        return (
+            f"{self.spec.name} at its ARW ({self.spec.arw_deg_per_sqrt_h:g} deg/sqrt(h)) with the noise bandwidth "
+            f"changed; threshold {self.threshold_dps:.2f} deg/s; robot run with turns of each size; "
+            f"{len(next(iter(self.tables.values())).calibrations)} runs per cell",
+            "pure integration's error is mostly that of the bias measured over the 5 s at power-up "
+            "(ARW / sqrt(5 s), 0.019 deg/s rms), which grows with time as in the paper's Figure 10b",
+            "the paper's Figure 8a (2 deg/s peak-to-peak at 100 Hz) and its ARW put the noise near the "
+            f"top row ({self.noise_rms_dps(self.bandwidths_hz[0]):.2f} deg/s), where the threshold passes "
+            f"{100 * self.leak(self.bandwidths_hz[0]):.0f} % of a residual bias",
+        )
+
+    def _figure(self, plt: Any) -> Any:
+        fig, ax = plt.subplots(figsize=(7, 4.5))
+        bandwidths = self.bandwidths_hz
+        k = [self.threshold_dps / self.noise_rms_dps(b) for b in bandwidths]
+        for turn in self.turns_deg:
+            ax.plot(k, [self.ratio("threshold filter", turn, b) for b in bandwidths], "o-",
+                    label=f"threshold / pure, turns {turn:g} deg")
+        fine = np.linspace(min(k), max(k), 200)
+        ax.plot(fine, [deadband.bias_leak(1.0, x) for x in fine], "k--", label="bias leak (deadband.bias_leak)")
+        ax.axhline(self.PAPER_RATIOS[0], color="r", lw=1, label="paper: threshold / pure")
+        ax.set_xlabel("threshold / noise rms of one sample")
+        ax.set_ylabel("mean error / pure integration's")
+        ax.set_title("Hong Table 1: what the threshold filter gains, by gyro noise")
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        return fig
+
+
+def hong_table_1_sensitivity(
+    *,
+    bandwidths_hz: tuple[float, ...] = (20.0, 10.0, 5.0, 3.0, 2.0, 1.0),
+    turns_deg: tuple[float, ...] = (90.0, 45.0, 20.0, 10.0),
+    runs: int = 20,
+    seed: int = 0,
+    sensor: str | sim.GyroSpec = "xv3500",
+) -> HongTable1Sensitivity:
+    """:func:`hong_table_1` for every noise bandwidth of ``sensor`` in ``bandwidths_hz`` and turn
+    size in ``turns_deg``, each with ``runs`` runs from ``seed`` (the same seeds in every cell)."""
+    if not bandwidths_hz or not turns_deg:
+        raise ValueError("need at least one bandwidth and one turn size")
+    spec = sim.sensor(sensor)
+    tables = {
+        (float(turn), float(b)): hong_table_1(seed=seed, runs=runs, sensor=spec.replace(bandwidth_hz=b), turn_deg=turn)
+        for turn in turns_deg
+        for b in bandwidths_hz
+    }
+    threshold = math.degrees(preset_params("hong_park")["threshold"])
+    return HongTable1Sensitivity(spec, threshold, tables)
