@@ -5,11 +5,13 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+import warnings
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from gyrocore import InputWarning
 from gyrocore.cli import main
 
 from .conftest import real_log_path
@@ -156,3 +158,32 @@ def test_process_params_reach_the_pipeline(tmp_path: Path) -> None:
     skipped = np.loadtxt(tmp_path / "b.csv", delimiter=",", skiprows=1)
     assert np.isnan(skipped[1, 2]) and skipped[0, 1] == pytest.approx(np.pi / 2)
     assert main([*base, str(tmp_path / "c.csv"), "--param", "hdr_c2"]) == 2
+
+
+def test_allan_reads_the_simulated_arw_and_writes_plot_and_kalibr(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # A static gyro with white noise only (2.5 deg/sqrt(h), no bandwidth limit), 2000 s at 100 Hz.
+    from gyrocore import sim
+
+    spec = sim.GyroSpec(rate_hz=100.0, arw_deg_per_sqrt_h=2.5)
+    t = np.arange(200_000) / spec.rate_hz
+    rate = sim.measure(spec, t, np.zeros_like(t), seed=7).rate
+    src = tmp_path / "static.csv"
+    np.savetxt(src, np.column_stack([t, np.degrees(rate)]), delimiter=",", header="t,gyro_z", comments="")
+    plot, kalibr = tmp_path / "adev.png", tmp_path / "imu.yaml"
+    args = ["allan", str(src), "--rate-unit", "deg/s", "--json", "--plot", str(plot), "--kalibr", str(kalibr),
+            "--rrw", "1e-5"]
+    with warnings.catch_warnings():
+        # A record at rest in deg/s: its small rates are no sign of a log in rad/s.
+        warnings.simplefilter("error", InputWarning)
+        assert main(args) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["noise"]["arw"]["value_deg"] == pytest.approx(2.5, rel=0.05)
+    assert plot.read_bytes()[:4] == b"\x89PNG"
+    density = float(kalibr.read_text().split("gyroscope_noise_density:")[1].split()[0])
+    assert density == pytest.approx(out["noise"]["arw"]["value"], rel=1e-5)
+    # The noise parameters come from the Allan deviation only; another kind cannot give a YAML.
+    assert main(["allan", str(src), "--rate-unit", "deg/s", "--kind", "modified", "--kalibr", str(tmp_path / "b.yaml")]) == 2
+    assert "--kalibr needs --kind allan" in capsys.readouterr().err
+    assert not (tmp_path / "b.yaml").exists()

@@ -212,6 +212,8 @@ def test_rates_in_deg_per_s_read_as_rad_per_s_warn(tmp_path: Path) -> None:
 def test_rates_in_rad_per_s_read_as_deg_per_s_warn(name: str) -> None:
     found = unit_warnings(real_log_path(name), rate_unit="deg/s")
     assert any("look like rad/s" in w and "--rate-unit rad/s" in w for w in found), found
+    # A record known to be at rest (for an Allan deviation) reads small rates: no sign of a mistake.
+    assert not any("look like rad/s" in w for w in unit_warnings(real_log_path(name), rate_unit="deg/s", static=True))
 
 
 def test_timestamps_in_another_unit_warn(tmp_path: Path) -> None:

@@ -37,10 +37,11 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
 
 def run(args: argparse.Namespace) -> int:
     src = Path(args.input)
+    # A record for the Allan deviation is taken at rest: small rates are no sign of a unit mistake.
     if src.is_dir():
-        log = io.read_log(src)
+        log = io.read_log(src, static=True)
     else:
-        log = io.read_log(src, time_col=args.time_col, rate_col=args.rate_col, rate_unit=args.rate_unit)
+        log = io.read_log(src, time_col=args.time_col, rate_col=args.rate_col, rate_unit=args.rate_unit, static=True)
     t, rate = log.t, log.rate
     if args.window is not None:
         inside = (t >= args.window[0]) & (t <= args.window[1])
@@ -67,9 +68,13 @@ def run(args: argparse.Namespace) -> int:
         except ImportError:
             raise ValueError("--plot needs matplotlib: pip install 'gyrocore[plot]'") from None
         matplotlib.use("Agg")
-        ax = allan.plot(result, parameters=params)
+        import matplotlib.pyplot as plt
+
+        fig, ax = plt.subplots(figsize=(6.4, 4.8))
+        allan.plot(result, parameters=params, ax=ax)
         ax.set_title(f"{log.name}: {result.kind} deviation")
-        write_atomically(args.plot, lambda tmp: ax.figure.savefig(tmp, format="png", dpi=120))
+        write_atomically(args.plot, lambda tmp: fig.savefig(tmp, format="png", dpi=120))
+        plt.close(fig)
     if args.kalibr is not None:
         if params is None:
             raise ValueError("--kalibr needs --kind allan")

@@ -43,6 +43,8 @@ class ReadOptions:
         rate_unit: ``rad/s`` or ``deg/s``.
         topic: the bag topic with sensor_msgs/Imu messages (``None``: the only one).
         delimiter: CSV field delimiter.
+        static: the log was recorded at rest (for an Allan deviation): rates that stay small do
+            not suggest a log in rad/s read as deg/s.
     """
 
     time_col: str | None = None
@@ -51,6 +53,7 @@ class ReadOptions:
     rate_unit: str = "rad/s"
     topic: str | None = None
     delimiter: str = ","
+    static: bool = False
 
     def __post_init__(self) -> None:
         if self.time_unit not in TIME_UNITS:

@@ -55,7 +55,8 @@ class UnitCheck:
         """What looks like another unit, with the option that would fix it."""
         problems = list(self._first or [])
         max_dps = math.degrees(self._max_rate)
-        if self._options.rate_unit == "deg/s" and self._first is not None and max_dps < SMALL_RATE_DPS:
+        small = self._first is not None and max_dps < SMALL_RATE_DPS and not self._options.static
+        if self._options.rate_unit == "deg/s" and small:
             problems.append(
                 f"rates look like rad/s, not deg/s: |rate| never exceeds {max_dps:.3g} deg/s, which only a "
                 f"sensor that never turned reads; if the log is in rad/s, use rate_unit='rad/s' (--rate-unit rad/s)"
