@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import sys
+import types
 import warnings
 
 import numpy as np
@@ -55,7 +56,8 @@ _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
 def warn(message: str) -> None:
     """Emit an :class:`InputWarning` attributed to the first caller outside this package."""
     # stacklevel 1 is this function; 2 its caller, and so on up to the first frame outside.
-    level, frame = 2, sys._getframe(1)
+    level = 2
+    frame: types.FrameType | None = sys._getframe(1)
     while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(_PACKAGE_DIR):
         level, frame = level + 1, frame.f_back
     warnings.warn(message, InputWarning, stacklevel=level)

@@ -255,7 +255,7 @@ def _curve(
     ])
     low, high = confidence_interval(dev, edf, confidence)
     return AllanResult(
-        taus=factors * float(dt),
+        taus=np.asarray(factors * float(dt), dtype=np.float64),
         adev=dev,
         n=terms.astype(np.int64),
         adev_low=low,

@@ -378,7 +378,7 @@ def static_bias(
     *,
     min_duration: float = 1.0,
     batches: int = 10,
-    **detect_options: float,
+    **detect_options: Any,
 ) -> Calibration:
     """Static bias test (FOG section 2; HDR eq 1-2's ``eps0``): the mean reading at rest.
 
@@ -747,7 +747,9 @@ def rotary_table(
             # C_T of FOG eq 6 at each turn's temperature; what is left is the direction's factor.
             if not group:
                 return 1.0
-            return float(np.mean([x.factor * abs(1.0 + slope * x.temperature + offset) for x in group]))
+            factor = np.array([x.factor for x in group])
+            temperature = np.array([x.temperature for x in group], dtype=np.float64)
+            return float(np.mean(factor * np.abs(1.0 + slope * temperature + offset)))
 
         c_cw, c_ccw = residual_factor(cw), residual_factor(ccw)
     calibration = Calibration(

@@ -44,7 +44,7 @@ def run(args: argparse.Namespace) -> int:
     log = io.read_log(folder)
     results: dict[str, Any] = {"log": log.name, "meta_stationary": log.stationary}
     static: calibration.Calibration | None = None
-    options: dict[str, float] = {}
+    options: dict[str, Any] = {}
     if args.max_rate_dps is not None:
         options["max_rate"] = math.radians(args.max_rate_dps)
     try:

@@ -129,13 +129,13 @@ def run(args: argparse.Namespace) -> int:
     tests = [tune.Case.from_log(read_log(p), bias_duration=args.bias_duration) for p in args.test]
     for table in args.test_sim_table or []:
         tests += tune.simulated_cases(_TABLES[table], first_seed=_TEST_SEED, **sim_options)
-    harm_options = {
+    harm_options: dict[str, Any] = {
         "minutes": 20.0 * args.time_scale, "rate_hz": args.rate_hz, "mixes": args.harm_mix or tune.HARM_MIXES,
         "per_mix": args.harm_per_mix,
     }
     gyros = (False, True) if args.harm_noisy else (False,)
 
-    def harm_drives(**seed: int) -> list[tune.Case]:
+    def harm_drives(**seed: Any) -> list[tune.Case]:
         return [c for noisy in gyros for c in tune.harm_cases(**harm_options, **seed, noisy=noisy)]
 
     harm = [] if args.no_harm else harm_drives()

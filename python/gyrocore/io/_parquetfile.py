@@ -79,4 +79,5 @@ def _arrow_numbers(src: GyroSource, name: str, array: pa.Array) -> np.ndarray:
         raise ValueError(f"{src.path}: column {name} holds {t}, not numbers")
     if array.null_count or pa.types.is_decimal(t):
         array = array.cast(pa.float64())
-    return array.to_numpy(zero_copy_only=False)
+    values: np.ndarray = array.to_numpy(zero_copy_only=False)
+    return values
