@@ -15,6 +15,12 @@ from ..pipeline import integrate, process
 from ._report import Row, _Report
 
 
+def _paper_band(ax: Any, bound: float) -> None:
+    """The paper's +-``bound`` [deg] on an error plot."""
+    for level in (-bound, bound):
+        ax.axhline(level, color="r", ls=":")
+
+
 def _eq6_corrected(d: sim.Drive, cal: calibration.Calibration) -> FloatArray:
     """The reading scaled by FOG eq 6 (and the direction factors of eq 2-4) at each sample's
     temperature, by the pipeline's correction stage, before any static bias is taken out."""
@@ -86,18 +92,13 @@ class FogRotaryTable(_Report):
         span = np.linspace(temps.min(), temps.max(), 2)
         a1.plot(span, self.slope_deg_per_c() * span + self.offset_deg(), "k", label="fit (eq 5)")
         a1.plot(span, -0.52 * span + 19.23, "r--", label="paper: -0.52 T + 19.23")
-        a1.set_xlabel("temperature [degC]")
-        a1.set_ylabel("turn error [deg]")
-        a1.set_title("FOG Figure 3 (simulated)")
+        a1.set(xlabel="temperature [degC]", ylabel="turn error [deg]", title="FOG Figure 3 (simulated)")
         a1.legend(fontsize=8)
         for direction, marker in (("cw", "o-"), ("ccw", "s-")):
             errs = [t.error_deg for t in self.corrected.turns if t.direction == direction]
             a2.plot(np.arange(1, len(errs) + 1), errs, marker, ms=3, lw=0.5, label=direction)
-        a2.axhline(0.25, color="r", ls=":")
-        a2.axhline(-0.25, color="r", ls=":")
-        a2.set_xlabel("run")
-        a2.set_ylabel("turn error after eq 6 [deg]")
-        a2.set_title("FOG Figure 6 (simulated)")
+        _paper_band(a2, 0.25)
+        a2.set(xlabel="run", ylabel="turn error after eq 6 [deg]", title="FOG Figure 6 (simulated)")
         a2.legend(fontsize=8)
         fig.tight_layout()
         return fig
@@ -163,11 +164,8 @@ class FogSquarePath(_Report):
         ax.plot(runs, self.ccw, "s-", ms=3, lw=0.6, label="E_g ccw (eq 6)")
         ax.plot(runs, self.cw_raw, "o:", ms=2, lw=0.5, color="0.5", label="cw, static bias only")
         ax.plot(runs, self.ccw_raw, "s:", ms=2, lw=0.5, color="0.3", label="ccw, static bias only")
-        ax.axhline(1.0, color="r", ls=":")
-        ax.axhline(-1.0, color="r", ls=":")
-        ax.set_xlabel("run")
-        ax.set_ylabel("return orientation error [deg]")
-        ax.set_title("FOG Figure 5 (simulated, gyro only)")
+        _paper_band(ax, 1.0)
+        ax.set(xlabel="run", ylabel="return orientation error [deg]", title="FOG Figure 5 (simulated, gyro only)")
         ax.legend(fontsize=8)
         fig.tight_layout()
         return fig

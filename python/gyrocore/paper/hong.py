@@ -70,9 +70,7 @@ class AllanReproduction(_Report):
         ax.loglog(self.taus, self.adev_mean * to_deg_h, "o-", label=f"simulated, mean of {len(self.arw_deg_per_sqrt_h)} logs")
         ax.loglog(self.taus, self.adev_model * to_deg_h, "k--", label="closed form (IEEE 952)")
         ax.axhline(0.6643 * 18.0, color="grey", lw=0.8, ls=":", label="0.664 x 18 deg/h")
-        ax.set_xlabel("tau [s]")
-        ax.set_ylabel("Allan deviation [deg/h]")
-        ax.set_title("Epson XV3500 (Hong & Park Figure 2)")
+        ax.set(xlabel="tau [s]", ylabel="Allan deviation [deg/h]", title="Epson XV3500 (Hong & Park Figure 2)")
         ax.legend()
         return fig
 
@@ -169,15 +167,12 @@ class HongCalibration(_Report):
         a1.plot(self.t_ref, np.degrees(self.heading_ref), "k", lw=2, label="reference")
         a1.plot(self.t, np.degrees(gyro_heading), label="gyro (integrated)")
         a1.plot(self.t, np.degrees(corrected), "--", label="gyro, calibrated")
-        a1.set_ylabel("heading [deg]")
-        a1.set_title("Figure 6: heading reference")
+        a1.set(ylabel="heading [deg]", title="Figure 6: heading reference")
         a1.legend(fontsize=8)
         a2.plot(self.t_ref, np.degrees(self.rate_ref), "k", lw=2, label="reference")
         a2.plot(self.t, np.degrees(self.rate_measured), lw=0.8, label="gyro")
         a2.plot(self.t, np.degrees(self.rate.s_bar * self.rate_measured + self.rate.b_bar), "--", label="calibrated")
-        a2.set_ylabel("rate [deg/s]")
-        a2.set_xlabel("t [s]")
-        a2.set_title("Figure 7: rate reference")
+        a2.set(ylabel="rate [deg/s]", xlabel="t [s]", title="Figure 7: rate reference")
         a2.legend(fontsize=8)
         fig.tight_layout()
         return fig
@@ -287,11 +282,9 @@ class HongTable1(_Report):
             a1.plot(t, np.degrees(h), lw=1, label=method)
             ref = np.interp(t, self.t_ref, self.heading_ref)
             a2.plot(t, np.degrees(h - ref), lw=1, label=method)
-        a1.set_ylabel("heading [deg]")
-        a1.set_title("Hong & Park Figure 10 (simulated)")
+        a1.set(ylabel="heading [deg]", title="Hong & Park Figure 10 (simulated)")
         a1.legend(fontsize=8)
-        a2.set_ylabel("error [deg]")
-        a2.set_xlabel("t [s]")
+        a2.set(ylabel="error [deg]", xlabel="t [s]")
         fig.tight_layout()
         return fig
 
@@ -467,9 +460,8 @@ class HongTable1Sensitivity(_Report):
         fine = np.linspace(min(k), max(k), 200)
         ax.plot(fine, [deadband.bias_leak(1.0, x) for x in fine], "k--", label="bias leak (deadband.bias_leak)")
         ax.axhline(self.PAPER_RATIOS[0], color="r", lw=1, label="paper: threshold / pure")
-        ax.set_xlabel("threshold / noise rms of one sample")
-        ax.set_ylabel("mean error / pure integration's")
-        ax.set_title("Hong Table 1: what the threshold filter gains, by gyro noise")
+        ax.set(xlabel="threshold / noise rms of one sample", ylabel="mean error / pure integration's",
+               title="Hong Table 1: what the threshold filter gains, by gyro noise")
         ax.legend(fontsize=8)
         fig.tight_layout()
         return fig
