@@ -212,23 +212,26 @@ def hong_calibration(*, seed: int = 0) -> HongCalibration:
 
 @dataclass(frozen=True, repr=False, eq=False)
 class HongTable1(_Report):
-    """Hong Table 1 on simulated XV3500 robot runs: mean and standard deviation of the absolute
-    heading error of each method [deg], against the 20 Hz reference over the whole run, averaged
-    over independent runs (the paper reports one run; one simulated run varies a lot with its seed).
+    """Hong Table 1 on simulated robot runs: mean and standard deviation of the absolute heading
+    error of each method [deg], against the 20 Hz reference over the whole run, averaged over
+    independent runs (the paper reports one run; one simulated run varies a lot with its seed).
 
     Attributes:
+        spec: the simulated gyro; turn_deg: the size of the robot run's turns [deg].
         errors: method -> the :class:`gyrocore.evaluate.HeadingErrors` of each run.
         calibrations: the self-calibration of each run (Hong eq 8-9 over the calibration motion).
         t_ref, heading_ref: the reference of the first run; headings: method -> (t, heading) of
             the first run, for the figure.
     """
 
+    spec: sim.GyroSpec
+    turn_deg: float
     errors: dict[str, tuple[evaluate.HeadingErrors, ...]]
     calibrations: tuple[calibration.Calibration, ...]
     t_ref: FloatArray
     heading_ref: FloatArray
     headings: dict[str, tuple[FloatArray, FloatArray]]
-    title: str = "Hong & Park Table 1: mean heading error of each method on simulated XV3500 robot runs"
+    title: str = "Hong & Park Table 1: mean heading error of each method on simulated robot runs"
 
     #: The paper's Table 1 [deg]: (mean, standard deviation).
     PAPER = {
@@ -264,15 +267,18 @@ class HongTable1(_Report):
         return rows
 
     def notes(self) -> tuple[str, ...]:
+        noise, threshold = self.spec.noise_rms_dps, _hong_threshold_dps()
         return (
-            f"mean over {len(self.calibrations)} simulated runs: XV3500 preset at 100 Hz (true s = 2.53 %, "
-            "b = 0.75 deg/s), 20 Hz reference, gyrocore.motion.robot_run (the paper's trajectory is not given)",
+            f"mean over {len(self.calibrations)} simulated runs: {self.spec.name} at {self.spec.rate_hz:g} Hz "
+            f"(true s = {100 * self.spec.scale_error:.3g} %, b = {self.spec.bias_dps:g} deg/s), 20 Hz reference, "
+            f"gyrocore.motion.robot_run with {self.turn_deg:g}-degree turns (the paper's trajectory is not given)",
             "pure integration and threshold subtract the static bias of the 5 s at power-up (the paper "
             "does not say how its pure integration handled the bias); self-calibration fits Hong eq 8-9 "
             "over the calibration motion (5-20 s) and applies Hong eq 3",
-            "the threshold alone helps little here: the XV3500's per-sample noise (0.31 deg/s rms at 100 Hz, "
-            "from Figure 8a's 2 deg/s peak-to-peak) is as large as the 0.3 deg/s threshold, so most noise "
-            "passes it and a residual bias leaks through at about 85 % (Gaussian noise, threshold = 1 sigma)",
+            f"the noise in one sample is {noise:.2f} deg/s rms (the XV3500's: 0.31, from its ARW and Figure 8a's "
+            f"2 deg/s peak-to-peak) against the {threshold:.2f} deg/s threshold, which therefore lets "
+            f"{100 * deadband.bias_leak(noise, threshold):.0f} % of a residual bias through "
+            "(gyrocore.deadband.bias_leak; hong_table_1_sensitivity varies the noise and the turns)",
         )
 
     def _figure(self, plt: Any) -> Any:
@@ -287,6 +293,11 @@ class HongTable1(_Report):
         a2.set(ylabel="error [deg]", xlabel="t [s]")
         fig.tight_layout()
         return fig
+
+
+def _hong_threshold_dps() -> float:
+    """Hong eq 12's threshold of the ``hong_park`` preset [deg/s]."""
+    return math.degrees(preset_params("hong_park")["threshold"])
 
 
 def _interval_fit(
@@ -321,6 +332,7 @@ def hong_table_1(
     """
     if runs < 1:
         raise ValueError(f"runs must be >= 1, got {runs}")
+    spec = sim.sensor(sensor)
     route = motion.robot_run(turn_deg=turn_deg)
     rest = route.segments_of("rest")[0]
     window = route.segments_of("calibration")[0]
@@ -329,7 +341,7 @@ def hong_table_1(
     errors: dict[str, list[evaluate.HeadingErrors]] = {m: [] for m in HongTable1.PAPER}
     calibrations, headings = [], {}
     for k in range(runs):
-        d = sim.simulate(route, sensor, seed=seed + k)
+        d = sim.simulate(route, spec, seed=seed + k)
         cal = _interval_fit(d, t_ref, heading_ref, (window.start, window.end))
         calibrations.append(cal)
         methods: dict[str, tuple[str, dict[str, Any]]] = {
@@ -343,7 +355,9 @@ def hong_table_1(
             errors[method].append(evaluate.heading_errors(d.t, result.heading, t_ref, heading_ref))
             if k == 0:
                 headings[method] = (d.t, result.heading)
-    return HongTable1({m: tuple(e) for m, e in errors.items()}, tuple(calibrations), t_ref, heading_ref, headings)
+    return HongTable1(
+        spec, turn_deg, {m: tuple(e) for m, e in errors.items()}, tuple(calibrations), t_ref, heading_ref, headings
+    )
 
 
 @dataclass(frozen=True, repr=False, eq=False)
@@ -485,5 +499,4 @@ def hong_table_1_sensitivity(
         for turn in turns_deg
         for b in bandwidths_hz
     }
-    threshold = math.degrees(preset_params("hong_park")["threshold"])
-    return HongTable1Sensitivity(spec, threshold, tables)
+    return HongTable1Sensitivity(spec, _hong_threshold_dps(), tables)
