@@ -362,8 +362,9 @@ def hong_table_1(
 
 @dataclass(frozen=True, repr=False, eq=False)
 class HongTable1Sensitivity(_Report):
-    """Hong Table 1 over a grid of the two things the paper leaves open: the gyro's noise in one
-    sample (set by its noise bandwidth at the XV3500's ARW) and the size of the robot's turns.
+    """Hong Table 1 over a grid of two things the paper gives only as a plot (the gyro's noise in
+    one sample: Figure 8a) or not at all (the size of the robot's turns); the noise is set by the
+    noise bandwidth at the sensor's ARW.
 
     The threshold filter removes a residual bias only where the noise is well below the threshold
     (:func:`gyrocore.deadband.bias_leak`); self-calibration removes the scale error, which costs
