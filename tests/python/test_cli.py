@@ -187,3 +187,20 @@ def test_allan_reads_the_simulated_arw_and_writes_plot_and_kalibr(
     assert main(["allan", str(src), "--rate-unit", "deg/s", "--kind", "modified", "--kalibr", str(tmp_path / "b.yaml")]) == 2
     assert "--kalibr needs --kind allan" in capsys.readouterr().err
     assert not (tmp_path / "b.yaml").exists()
+
+
+def test_reproduce_prints_paper_beside_ours_and_writes_figures(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "figures"
+    assert main(["reproduce", "hong-calibration", "fog-square-path", "--out", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert "1.111" in printed and "return orientation error on the 4x4 m" in printed
+    assert sorted(p.name for p in out.iterdir()) == ["fog_square_path.png", "hong_calibration.png"]
+    assert main(["reproduce", "hong-calibration", "--no-figures", "--out", str(tmp_path / "none")]) == 0
+    assert "1.111" in capsys.readouterr().out and not (tmp_path / "none").exists()
+    # A misspelt name stops it before anything runs.
+    assert main(["reproduce", "hong-calibration", "hong-tabel-1", "--out", str(tmp_path / "typo")]) == 2
+    captured = capsys.readouterr()
+    assert "unknown experiment 'hong-tabel-1'" in captured.err and "1.111" not in captured.out
+    assert not (tmp_path / "typo").exists()

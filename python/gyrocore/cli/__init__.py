@@ -10,9 +10,9 @@ import argparse
 import sys
 from typing import Sequence
 
-from . import allan, calibrate, demo, evaluate, presets, process, simulate, tune
+from . import allan, calibrate, demo, evaluate, presets, process, reproduce, simulate, tune
 
-COMMANDS = (demo, process, presets, allan, calibrate, evaluate, tune, simulate)
+COMMANDS = (demo, process, presets, allan, calibrate, evaluate, tune, simulate, reproduce)
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -1,0 +1,35 @@
+"""``gyrocore reproduce``: the papers' experiments on simulated data, paper values beside ours."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from .. import paper
+from ._common import add_command
+
+
+def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
+    p = add_command(
+        sub,
+        "reproduce",
+        "rerun the papers' experiments on simulated data: print paper beside ours, write the figures",
+        "gyrocore reproduce hong-table-1 hong-table-1-sensitivity --out figures",
+        run,
+    )
+    p.add_argument("names", nargs="*", metavar="NAME",
+                   help=f"experiments (default: all): {', '.join(paper.REPRODUCTIONS)}")
+    p.add_argument("--out", type=Path, default=Path("."), help="folder for the figures (PNG; created if missing)")
+    p.add_argument("--no-figures", action="store_true", help="print the tables only")
+
+
+def run(args: argparse.Namespace) -> int:
+    names = args.names or list(paper.REPRODUCTIONS)
+    unknown = [n for n in names if n not in paper.REPRODUCTIONS]
+    if unknown:  # before anything runs, so a typo costs no time
+        raise ValueError(f"unknown experiment {', '.join(map(repr, unknown))}; choose from {', '.join(paper.REPRODUCTIONS)}")
+    for i, name in enumerate(names):
+        if i:
+            print()
+        paper.reproduce(name, out_dir=None if args.no_figures else args.out)
+    return 0
