@@ -1,11 +1,17 @@
 """Type stubs of the Rust extension. Arrays are 1-D contiguous float64 (the Python layer converts)."""
 
-from typing import Any
+from typing import Any, final
 
 import numpy as np
 from numpy.typing import NDArray
 
 _F = NDArray[np.float64]
+
+__all__ = [
+    "Pipeline", "SampleError", "preset_params", "preset_names", "parameter_names", "preset_uses_static_bias",
+    "_panic_for_test", "integrate", "downsample", "allan_variances", "gyro_measure", "gyro_sample_times",
+    "gyro_allan_deviation", "gyro_parameter_names", "format_csv_rows", "__version__",
+]
 
 __version__: str
 
@@ -13,8 +19,9 @@ class SampleError(ValueError):
     index: int
     what: str
 
+@final
 class Pipeline:
-    def __init__(self, preset: str, overrides: dict[str, Any] | None = None) -> None: ...
+    def __new__(cls, preset: str, overrides: dict[str, Any] | None = None) -> Pipeline: ...
     def process(
         self, t: _F, rate: _F, temperature: _F | None = None, index_offset: int = 0
     ) -> tuple[_F, _F, _F]: ...
