@@ -106,16 +106,15 @@ def dead_reckon_log(log: Log, result: HeadingResult) -> Track:
     """
     if log.t_odometry is None or log.speed is None:
         raise ValueError(f"log {log.name}: no odometry (odometry.csv)")
-    if log.t_ref is None or log.heading_ref is None or log.x_ref is None or log.y_ref is None:
-        raise ValueError(f"log {log.name}: no reference track (reference.csv)")
-    start = max(log.t_ref[0], result.t[0])
+    t_ref, heading_ref = log.reference()
+    _, x_ref, y_ref = log.track()
+    start = max(t_ref[0], result.t[0])
     later = log.t_odometry >= start
     if not later.any():
         raise ValueError(f"log {log.name}: no odometry sample after the start of the reference and heading")
     t0 = float(log.t_odometry[np.flatnonzero(later)[0]])
-    ref_heading = np.unwrap(log.heading_ref)
-    offset = float(np.interp(t0, log.t_ref, ref_heading) - np.interp(t0, result.t, result.heading))
-    position = (float(np.interp(t0, log.t_ref, log.x_ref)), float(np.interp(t0, log.t_ref, log.y_ref)))
+    offset = float(np.interp(t0, t_ref, np.unwrap(heading_ref)) - np.interp(t0, result.t, result.heading))
+    position = (float(np.interp(t0, t_ref, x_ref)), float(np.interp(t0, t_ref, y_ref)))
     return dead_reckon(
         log.t_odometry[later], log.speed[later], result.t, result.heading, position=position, heading_offset=offset
     )

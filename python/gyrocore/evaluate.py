@@ -331,18 +331,15 @@ def is_closed_path(x: ArrayLike, y: ArrayLike, *, fraction: float = CLOSED_FRACT
 
 def score(log: Log, method: Method, result: HeadingResult, raw: HeadingErrors, bias_source: str) -> Score:
     """Score one heading of ``log`` (see :class:`Score`); ``raw`` is plain integration's errors."""
-    if log.t_ref is None or log.heading_ref is None:
-        raise ValueError(f"log {log.name}: no reference heading to compare with (reference.csv)")
-    errors = heading_errors(result.t, result.heading, log.t_ref, log.heading_ref)
-    has_track = log.x_ref is not None and log.y_ref is not None
+    errors = heading_errors(result.t, result.heading, *log.reference())
     # Aligned at the start, the error at the end of a closed path is its measured minus its actual
     # rotation: the return orientation error.
-    closed = has_track and is_closed_path(log.x_ref, log.y_ref)  # type: ignore[arg-type]
+    closed = log.has_track and is_closed_path(*log.track()[1:])
     return_error = errors.final_error_deg if closed else None
     position = None
-    if has_track and log.t_odometry is not None and log.speed is not None:
+    if log.has_track and log.t_odometry is not None and log.speed is not None:
         track = deadreckon.dead_reckon_log(log, result)
-        position = deadreckon.position_errors(track, log.t_ref, log.x_ref, log.y_ref)  # type: ignore[arg-type]
+        position = deadreckon.position_errors(track, *log.track())
     return Score(log.name, method, errors, improvement(raw, errors), bias_source, return_error, position)
 
 
@@ -374,10 +371,9 @@ def compare(
     rows: list[Score] = []
     for item in logs:
         log = item if isinstance(item, Log) else read_log(item)
+        reference = log.reference()  # before any work
         raw_result = process(log.t, log.rate, "raw")
-        if log.t_ref is None or log.heading_ref is None:
-            raise ValueError(f"log {log.name}: no reference heading to compare with (reference.csv)")
-        raw = heading_errors(raw_result.t, raw_result.heading, log.t_ref, log.heading_ref)
+        raw = heading_errors(raw_result.t, raw_result.heading, *reference)
         results = {}
         for method in methods:
             result, source = method.run(log, bias_duration=bias_duration)
@@ -407,7 +403,7 @@ def plot_log(path: Path, log: Log, results: Mapping[str, HeadingResult]) -> None
     plt = _pyplot()
     from .cli._common import write_atomically
 
-    reference = Reference(log.t_ref, log.heading_ref)  # type: ignore[arg-type]
+    reference = Reference(*log.reference())
     t0 = float(log.t[0])
     fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(10, 6.5))
     for k, (name, r) in enumerate(results.items()):

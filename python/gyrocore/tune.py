@@ -181,10 +181,9 @@ class Case:
     @classmethod
     def from_log(cls, log: Log, *, bias_duration: float | None = None) -> "Case":
         """A real log against its reference; the bias as :func:`gyrocore.evaluate.log_bias` says."""
-        if log.t_ref is None or log.heading_ref is None:
-            raise ValueError(f"log {log.name}: no reference heading to tune against (reference.csv)")
+        t_ref, heading_ref = log.reference()
         bias, _ = log_bias(log, bias_duration=bias_duration)
-        return cls(log.name, log.t, log.rate, Reference(log.t_ref, log.heading_ref), bias)
+        return cls(log.name, log.t, log.rate, Reference(t_ref, heading_ref), bias)
 
     @classmethod
     def from_reference_rate(cls, log: Log) -> "Case":
@@ -198,13 +197,14 @@ class Case:
         trapezoid rule then integrates these rates back to the reference exactly, where
         derivatives at irregular reference times would not (f110_ds3's jittered times would add
         tens of degrees)."""
-        if log.t_ref is None or log.heading_ref is None or len(log.t_ref) < 2:
-            raise ValueError(f"log {log.name}: no reference heading (reference.csv)")
-        step = float(np.median(np.diff(log.t_ref)))
-        grid = log.t_ref[0] + step * np.arange(int((log.t_ref[-1] - log.t_ref[0]) / step) + 1)
-        heading = np.interp(grid, log.t_ref, np.unwrap(log.heading_ref))
+        t_ref, heading_ref = log.reference()
+        if len(t_ref) < 2:
+            raise ValueError(f"log {log.name}: a reference heading needs two samples for a rate, got {len(t_ref)}")
+        step = float(np.median(np.diff(t_ref)))
+        grid = t_ref[0] + step * np.arange(int((t_ref[-1] - t_ref[0]) / step) + 1)
+        heading = np.interp(grid, t_ref, np.unwrap(heading_ref))
         t, rate = grid[:-1] + 0.5 * step, np.diff(heading) / step
-        return cls(f"{log.name} (reference rate)", t, rate, Reference(log.t_ref, log.heading_ref), {"bias": 0.0})
+        return cls(f"{log.name} (reference rate)", t, rate, Reference(t_ref, heading_ref), {"bias": 0.0})
 
     def heading(self, preset: str, overrides: Mapping[str, Any]) -> HeadingResult:
         """The heading of this drive with ``preset`` and ``overrides``."""

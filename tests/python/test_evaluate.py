@@ -187,3 +187,30 @@ def test_cli_table_and_errors(capsys: pytest.CaptureFixture[str], tmp_path: Path
     assert main(["evaluate", str(real_log_path("broad_10")), "--bias-duration", "-1"]) == 2
     err = capsys.readouterr().err
     assert err.count("gyrocore: error:") == 3
+
+
+def test_a_log_without_reference_is_refused_by_name(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # A bare gyro file: samples, no reference.csv. Evaluating, tuning or dead-reckoning against it
+    # is an error that names the log and what is missing, raised before any work.
+    drive = gyrocore.sim.car_drive(duration=60.0, seed=2)
+    src = tmp_path / "bare.npz"
+    np.savez(src, t=drive.t, gyro_z=drive.rate_measured)
+    log = gyrocore.read_log(src)
+    assert not log.has_track
+    for attempt in (log.reference, log.track):
+        with pytest.raises(ValueError, match="log bare: no reference"):
+            attempt()
+    with pytest.raises(ValueError, match="log bare: no reference heading"):
+        evaluate.compare([log], ["raw"])
+    with pytest.raises(ValueError, match="log bare: no reference heading"):
+        gyrocore.tune.Case.from_log(log)
+    folder = tmp_path / "no_reference"
+    folder.mkdir()
+    np.savetxt(folder / "gyro.csv", np.column_stack([drive.t, drive.rate_measured]), delimiter=",",
+               header="t,gyro_z", comments="")
+    assert main(["evaluate", str(folder), "--preset", "raw"]) == 2
+    assert "log no_reference: no reference heading (reference.csv)" in capsys.readouterr().err
+    # A log folder has both: the reference and the positions come back as read.
+    real = gyrocore.read_log(real_log_path("f110_ds3"))
+    t_ref, heading_ref = real.reference()
+    assert real.has_track and real.track()[0] is t_ref and heading_ref is real.heading_ref

@@ -44,6 +44,31 @@ class Log:
         """Duration of the gyro record [s]."""
         return float(self.t[-1] - self.t[0]) if len(self.t) else 0.0
 
+    def reference(self) -> tuple[FloatArray, FloatArray]:
+        """The reference heading: ``(t_ref, heading_ref)``.
+
+        Raises:
+            ValueError: the log has none (a log folder without reference.csv, or a bare file).
+        """
+        if self.t_ref is None or self.heading_ref is None:
+            raise ValueError(f"log {self.name}: no reference heading (reference.csv)")
+        return self.t_ref, self.heading_ref
+
+    @property
+    def has_track(self) -> bool:
+        """Whether the log has reference positions (x, y in reference.csv)."""
+        return self.t_ref is not None and self.x_ref is not None and self.y_ref is not None
+
+    def track(self) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """The reference positions: ``(t_ref, x_ref, y_ref)`` [s, m, m].
+
+        Raises:
+            ValueError: the log has none.
+        """
+        if self.t_ref is None or self.x_ref is None or self.y_ref is None:
+            raise ValueError(f"log {self.name}: no reference positions (x, y in reference.csv)")
+        return self.t_ref, self.x_ref, self.y_ref
+
     def process(self, preset: str = "recommended", **overrides: Any) -> HeadingResult:
         """Run a preset on this log; the static bias comes from the rest window unless given."""
         if self.stationary is not None and uses_static_bias(preset) and not has_bias_source(overrides):
