@@ -73,3 +73,8 @@ pub use sim::{GyroModel, GyroModelConfig, GyroSample, TemperatureProfile};
 pub use stage::{Clock, Stage};
 pub use threshold::{Threshold, ThresholdConfig};
 pub use validate::check_block;
+
+// The README's Rust example compiles and runs with the doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../README.md")]
+struct ReadmeExamples;
