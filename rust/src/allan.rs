@@ -1,8 +1,8 @@
 //! Allan-family variances for gyro noise characterisation (IEEE Std 952-1997 Annex C,
 //! NIST SP 1065 section 5.2; Hong section 2.1 reads ARW and bias instability off this curve).
 //!
-//! The kernels work on *phase* data: for a gyro the phase is the angle `x_i` [rad], sampled
-//! every `tau0` [s], and the averaged rate over `[i, i + m)` is `(x_{i+m} - x_i) / (m tau0)`.
+//! The kernels work on *phase* data: for a gyro the phase is the angle `x_i` \[rad\], sampled
+//! every `tau0` \[s\], and the averaged rate over `[i, i + m)` is `(x_{i+m} - x_i) / (m tau0)`.
 //! So a rate log is integrated once ([`phase_from_rate`]) and each averaging time
 //! `tau = m tau0` is then O(N) work on the phase, whatever `m` is. Each sum is cut into blocks
 //! of consecutive terms, added in block order: the short averaging times share one sweep over
@@ -79,7 +79,7 @@ impl Variance {
 }
 
 /// Integrates a regularly sampled rate into phase for the kernels: `x_0 = 0`,
-/// `x_{i+1} = x_i + (r_i - r_mean) dt` [rad], so `x` holds `rate.len() + 1` samples.
+/// `x_{i+1} = x_i + (r_i - r_mean) dt` \[rad\], so `x` holds `rate.len() + 1` samples.
 ///
 /// The mean rate is taken out first: every estimator here differences the phase at least twice,
 /// which cancels a linear phase trend exactly, and a phase that stays near zero keeps its

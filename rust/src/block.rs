@@ -54,7 +54,7 @@ impl BlockMean {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DownsampleConfig {
-    /// Block length [s], > 0. The HDR paper averaged 10 Hz data into 1 s blocks.
+    /// Block length \[s\], > 0. The HDR paper averaged 10 Hz data into 1 s blocks.
     pub interval: f64,
 }
 

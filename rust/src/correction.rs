@@ -18,14 +18,14 @@ pub enum StaticBias {
     Fixed(f64),
     /// The mean reading over the rest window `start <= t <= end` [s, same clock as the samples].
     Window {
-        /// Window start [s].
+        /// Window start \[s\].
         start: f64,
-        /// Window end [s].
+        /// Window end \[s\].
         end: f64,
     },
     /// The mean reading over the first `duration` seconds of the stream (`T_bias`, HDR section 2).
     Leading {
-        /// Averaging time `T_bias` [s].
+        /// Averaging time `T_bias` \[s\].
         duration: f64,
     },
 }
@@ -45,7 +45,7 @@ impl Default for StaticBias {
 pub struct TemperatureScale {
     /// Change of the turn error per degree Celsius [1/degC].
     pub slope: f64,
-    /// Turn error at 0 degC [dimensionless].
+    /// Turn error at 0 degC \[dimensionless\].
     pub offset: f64,
 }
 
@@ -63,11 +63,11 @@ impl TemperatureScale {
 pub struct CorrectionConfig {
     /// Static bias `eps0` (HDR eq 2) or how to measure it.
     pub bias: StaticBias,
-    /// Calibration scale `s_bar = 1/(1+s)` of Hong eq 3 [dimensionless].
+    /// Calibration scale `s_bar = 1/(1+s)` of Hong eq 3 \[dimensionless\].
     pub scale: f64,
     /// Calibration offset `b_bar = -b/(1+s)` of Hong eq 3 [rad/s].
     pub offset: f64,
-    /// Correction factor for clockwise (negative) rates, `C_cw` of FOG eq 2a [dimensionless].
+    /// Correction factor for clockwise (negative) rates, `C_cw` of FOG eq 2a \[dimensionless\].
     pub c_cw: f64,
     /// Correction factor for counter-clockwise (positive) rates, `C_ccw` of FOG eq 2b.
     pub c_ccw: f64,
@@ -253,7 +253,7 @@ impl Correction {
         self.bias.noise.statistics()
     }
 
-    /// Corrects one reading; `temperature` [degC] feeds the temperature model when configured.
+    /// Corrects one reading; `temperature` \[degC\] feeds the temperature model when configured.
     ///
     /// `r = (s_bar * (r_m - eps0) + b_bar) * C_dir * C_T` (HDR eq 2, Hong eq 3, FOG eq 3-4 and 6).
     #[inline]

@@ -35,9 +35,9 @@ pub struct HdrConfig {
     pub c1: f64,
     /// Repetition attenuator power `c_2` (eq 10), > 0. Table III: 1.80.
     pub c2: f64,
-    /// Length of one HDR step [s], > 0. The paper's step is 1 s.
+    /// Length of one HDR step \[s\], > 0. The paper's step is 1 s.
     pub interval: f64,
-    /// Time constant `tau` of the low-pass (eq 7) on the step means that HDR decides on [s], >= 0.
+    /// Time constant `tau` of the low-pass (eq 7) on the step means that HDR decides on \[s\], >= 0.
     /// Table III: 0.75 s.
     pub tau: f64,
     /// Bound on the correction `|I|` [rad/s], > 0; infinity (the paper's HDR) leaves it free.
@@ -226,7 +226,7 @@ impl Hdr {
         self.state.repetitions
     }
 
-    /// Adds `I` to one sample whose interval is `dt` [s]: returns `w = rate + I` (eq 12), and
+    /// Adds `I` to one sample whose interval is `dt` \[s\]: returns `w = rate + I` (eq 12), and
     /// updates `I` for the next step when the sample closes one.
     #[inline]
     pub fn step(&mut self, dt: f64, rate: f64) -> f64 {

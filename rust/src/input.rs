@@ -37,7 +37,7 @@ pub enum GapAction {
 pub struct InputPolicy {
     /// Non-finite readings.
     pub non_finite: NonFinite,
-    /// Longest interval that is not a gap [s], > 0 (infinity: never a gap).
+    /// Longest interval that is not a gap \[s\], > 0 (infinity: never a gap).
     #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
     pub gap_limit: f64,
     /// What a gap does.
@@ -77,7 +77,7 @@ pub struct InputReport {
     pub skipped: u64,
     /// Intervals longer than the gap limit.
     pub gaps: u64,
-    /// The longest such interval [s] (0 without gaps).
+    /// The longest such interval \[s\] (0 without gaps).
     pub longest_gap: f64,
 }
 

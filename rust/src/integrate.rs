@@ -26,11 +26,11 @@ pub enum Method {
 pub struct IntegratorConfig {
     /// Integration rule.
     pub method: Method,
-    /// Heading at the first sample, `psi_0` [rad].
+    /// Heading at the first sample, `psi_0` \[rad\].
     pub initial_heading: f64,
 }
 
-/// Integrates rate [rad/s] into a continuous heading [rad].
+/// Integrates rate [rad/s] into a continuous heading \[rad\].
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Integrator {
@@ -56,7 +56,7 @@ impl Integrator {
         }
     }
 
-    /// Adds one sample whose interval is `dt` [s]; returns the heading at that sample.
+    /// Adds one sample whose interval is `dt` \[s\]; returns the heading at that sample.
     #[inline(always)]
     pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
         if self.trapezoid() {
@@ -106,7 +106,7 @@ impl Integrator {
         self.previous = Some(primed.previous);
     }
 
-    /// The heading so far [rad].
+    /// The heading so far \[rad\].
     pub fn heading(&self) -> f64 {
         self.heading
     }

@@ -13,7 +13,7 @@ use crate::Error;
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct LowPassConfig {
-    /// Time constant `tau` [s], >= 0 (0 makes the stage the identity). HDR Table III: 0.75 s.
+    /// Time constant `tau` \[s\], >= 0 (0 makes the stage the identity). HDR Table III: 0.75 s.
     pub tau: f64,
 }
 
@@ -111,7 +111,7 @@ remembers_one_value!(
     LowPass,
     /// A [`LowPass`] that has an output, for intervals > 0.
     PrimedLowPass,
-    "Filters one sample whose interval is `dt` [s] (HDR eq 7).",
+    "Filters one sample whose interval is `dt` \\[s\\] (HDR eq 7).",
     |dt, tau| dt + tau > 0.0
 );
 
@@ -134,7 +134,7 @@ remembers_one_value!(
     DeLag,
     /// A [`DeLag`] that has an input, for intervals > 0.
     PrimedDeLag,
-    "De-lags one sample whose interval is `dt` [s] (HDR eq 13).",
+    "De-lags one sample whose interval is `dt` \\[s\\] (HDR eq 13).",
     |dt, _tau| dt > 0.0
 );
 

@@ -188,7 +188,7 @@ impl Preset {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Output {
-    /// Continuous heading [rad], counter-clockwise positive.
+    /// Continuous heading \[rad\], counter-clockwise positive.
     pub heading: f64,
     /// Corrected (and de-lagged) rate that was integrated [rad/s].
     pub rate: f64,
@@ -337,13 +337,13 @@ impl Pipeline {
         self.chain.correction.rest_statistics()
     }
 
-    /// Feeds one sample (`t` [s], `rate` [rad/s]) without a temperature.
+    /// Feeds one sample (`t` \[s\], `rate` [rad/s]) without a temperature.
     #[inline]
     pub fn update(&mut self, t: f64, rate: f64) -> Output {
         self.update_with_temperature(t, rate, None)
     }
 
-    /// Feeds one sample with the sensor temperature [degC] for the temperature scale model.
+    /// Feeds one sample with the sensor temperature \[degC\] for the temperature scale model.
     ///
     /// Infallible and allocation-free. A sample whose timestamp does not move forward is skipped,
     /// and so is a non-finite reading unless the policy holds the last one: a skipped sample leaves

@@ -14,7 +14,7 @@ pub struct RestStatistics {
     /// readings (`sqrt(mean(d^2) / 2)`): a slow drift or smooth motion cancels in them.
     pub noise: f64,
     /// Standard error of the static bias [rad/s]: the spread of the means of the window's
-    /// [`BATCHES`] equal parts over `sqrt(parts)` (the batch-means estimate, which stays right
+    /// eight equal parts over `sqrt(parts)` (the batch-means estimate, which stays right
     /// when the noise of neighbouring readings is correlated, where `noise / sqrt(n)` would not).
     pub bias_std_error: f64,
 }

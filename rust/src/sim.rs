@@ -162,16 +162,16 @@ impl Gaussian {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct TemperatureProfile {
-    /// Temperature at the first sample [degC].
+    /// Temperature at the first sample \[degC\].
     pub start: f64,
-    /// Temperature reached in the end [degC].
+    /// Temperature reached in the end \[degC\].
     pub end: f64,
-    /// Time constant of the approach [s], > 0.
+    /// Time constant of the approach \[s\], > 0.
     pub time_constant: f64,
 }
 
 impl TemperatureProfile {
-    /// A constant temperature [degC].
+    /// A constant temperature \[degC\].
     pub fn constant(celsius: f64) -> Self {
         TemperatureProfile {
             start: celsius,
@@ -180,7 +180,7 @@ impl TemperatureProfile {
         }
     }
 
-    /// The temperature `elapsed` seconds after the first sample [degC].
+    /// The temperature `elapsed` seconds after the first sample \[degC\].
     #[inline]
     pub fn at(&self, elapsed: f64) -> f64 {
         self.end + (self.start - self.end) * libm::exp(-elapsed / self.time_constant)
@@ -192,16 +192,16 @@ impl TemperatureProfile {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct GyroModelConfig {
-    /// Output data rate [Hz], > 0: the nominal sampling grid, and the bandwidth of the white noise.
+    /// Output data rate \[Hz\], > 0: the nominal sampling grid, and the bandwidth of the white noise.
     pub rate_hz: f64,
-    /// Standard deviation of each sampling instant about the nominal grid [s], in
+    /// Standard deviation of each sampling instant about the nominal grid \[s\], in
     /// `[0, 0.25 / rate_hz]`; deviations are clipped to 0.45 of a period so instants keep their order.
     pub jitter: f64,
     /// Probability that a sample is lost before it reaches the log, in `[0, 1)`.
     pub drop_probability: f64,
-    /// Scale error `s` of Hong eq 1 at the reference temperature [1], > -1 (e.g. -0.1 reads 10 % low).
+    /// Scale error `s` of Hong eq 1 at the reference temperature \[1\], > -1 (e.g. -0.1 reads 10 % low).
     pub scale_error: f64,
-    /// Scale error of counter-clockwise minus that of clockwise rates [1] (FOG's cw/ccw factors).
+    /// Scale error of counter-clockwise minus that of clockwise rates \[1\] (FOG's cw/ccw factors).
     pub scale_asymmetry: f64,
     /// Change of the scale error per degree [1/degC] (FOG eq 5 divided by 360 deg).
     pub scale_temperature: f64,
@@ -211,26 +211,26 @@ pub struct GyroModelConfig {
     pub bias_temperature: f64,
     /// Angle random walk `N` [rad/sqrt(s)], >= 0: white rate noise with Allan deviation `N / sqrt(tau)`.
     pub arw: f64,
-    /// Corner frequency of the sensor's first-order low-pass on the white noise [Hz], > 0
+    /// Corner frequency of the sensor's first-order low-pass on the white noise \[Hz\], > 0
     /// (infinity: none).
     pub bandwidth: f64,
     /// Bias instability `B` [rad/s], >= 0: flicker noise whose Allan deviation is flat at
     /// `sqrt(2 ln 2 / pi) B = 0.664 B` between the correlation times below.
     pub bias_instability: f64,
-    /// Shortest correlation time of the flicker approximation [s], > 0.
+    /// Shortest correlation time of the flicker approximation \[s\], > 0.
     pub flicker_min: f64,
-    /// Longest correlation time of the flicker approximation [s], >= `flicker_min`, at most seven
+    /// Longest correlation time of the flicker approximation \[s\], >= `flicker_min`, at most seven
     /// decades above it.
     pub flicker_max: f64,
     /// Rate random walk `K` [rad/s/sqrt(s)], >= 0: the bias random walk of Hong eq 11, with Allan
     /// deviation `K sqrt(tau / 3)`.
     pub rrw: f64,
-    /// Grid on which the slow bias is generated and between which it is interpolated [s], > 0 and at
+    /// Grid on which the slow bias is generated and between which it is interpolated \[s\], > 0 and at
     /// most `flicker_min` (when there is flicker noise).
     pub drift_step: f64,
     /// Sensor temperature over time.
     pub temperature: TemperatureProfile,
-    /// Temperature at which `scale_error` and `bias` hold [degC].
+    /// Temperature at which `scale_error` and `bias` hold \[degC\].
     pub reference_temperature: f64,
     /// Resolution (one least significant bit) [rad/s], >= 0 (0: no quantisation).
     pub resolution: f64,
@@ -349,7 +349,7 @@ impl GyroModelConfig {
         n.min(MAX_FLICKER_TERMS)
     }
 
-    /// Correlation time [s] and standard deviation [rad/s] of flicker term `k` (`k <` [`Self::flicker_terms`]).
+    /// Correlation time \[s\] and standard deviation [rad/s] of flicker term `k` (`k <` [`Self::flicker_terms`]).
     ///
     /// The correlation times are spaced evenly in logarithm, `Delta = ln(max/min) / (n - 1)` apart
     /// (one term at `flicker_min` when the band is a single time). A Gauss-Markov process of
@@ -373,7 +373,7 @@ impl GyroModelConfig {
         (correlation, sd)
     }
 
-    /// Closed-form Allan variance of the noise terms at averaging time `tau` [s] [(rad/s)^2]:
+    /// Closed-form Allan variance of the noise terms at averaging time `tau` \[s\] [(rad/s)^2]:
     /// `N^2 / tau` (angle random walk) + the Gauss-Markov terms + `K^2 tau / 3` (rate random walk)
     /// (IEEE Std 952, Annex C). A Gauss-Markov process of variance `q^2` and correlation time `T`
     /// contributes `q^2 (T / tau)^2 (2 tau/T - 3 + 4 e^(-tau/T) - e^(-2 tau/T))`. Quantisation,
@@ -401,11 +401,11 @@ impl GyroModelConfig {
 pub struct GyroSample {
     /// The reading `r_m` [rad/s] (after clipping and quantisation).
     pub rate: f64,
-    /// Sensor temperature [degC].
+    /// Sensor temperature \[degC\].
     pub temperature: f64,
     /// Everything the gyro would read at rest apart from white noise: `b + d` [rad/s].
     pub bias: f64,
-    /// The scale error `s` applied to this reading [1].
+    /// The scale error `s` applied to this reading \[1\].
     pub scale: f64,
 }
 
@@ -592,12 +592,12 @@ impl GyroModel {
         self.seed
     }
 
-    /// The sampling instants of this model's seed, from `start` [s] (see [`Sampler`]).
+    /// The sampling instants of this model's seed, from `start` \[s\] (see [`Sampler`]).
     pub fn sampler(&self, start: f64) -> Sampler {
         Sampler::new(&self.config, self.seed, start)
     }
 
-    /// The reading for true rate `rate` [rad/s] at time `t` [s] (Hong eq 1 with the terms of the
+    /// The reading for true rate `rate` [rad/s] at time `t` \[s\] (Hong eq 1 with the terms of the
     /// module doc). Times are expected to increase; no allocation, no panic.
     #[inline]
     pub fn measure(&mut self, t: f64, rate: f64) -> GyroSample {
@@ -672,7 +672,7 @@ impl Stage for GyroModel {
 
 /// Sampling instants of a logger: the nominal grid `start + k / rate_hz`, each instant after the
 /// first moved by a Gaussian jitter (clipped to 0.45 of a period, so the order holds), and each
-/// sample lost with `drop_probability`. An endless iterator of the kept instants [s].
+/// sample lost with `drop_probability`. An endless iterator of the kept instants \[s\].
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Sampler {
