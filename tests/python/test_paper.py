@@ -73,7 +73,7 @@ def test_hong_table_1_proposed_is_best_and_calibration_beats_pure_integration(ho
 
 def test_hong_table_1_threshold_gains_more_on_a_quieter_gyro(hong_t1: paper.HongTable1) -> None:
     # The README's explanation of the threshold's small gain: it is the noise (as large as the
-    # threshold) that passes it. With a fifth of the noise bandwidth, the threshold gains more.
+    # threshold) that passes it. With a tenth of the noise bandwidth, the threshold gains more.
     quiet = paper.hong_table_1(sensor=sim.sensor("xv3500", bandwidth_hz=2.0))
     assert quiet.mean_error("threshold filter") < 0.8 * hong_t1.mean_error("threshold filter")
     # The notes state the noise and the leak of the gyro simulated, not the XV3500's.
