@@ -14,7 +14,7 @@ use crate::lowpass::{DeLag, LowPass, LowPassConfig};
 use crate::rest::RestStatistics;
 use crate::stage::{check_len, Clock};
 use crate::threshold::{Threshold, ThresholdConfig};
-use crate::validate::{check_block, check_lengths, interval_key, Checks};
+use crate::validate::{check_block, check_lengths, finite_reading, interval_key, Checks};
 use crate::Error;
 
 /// Which stages run, and how. `None` disables a stage.
@@ -499,7 +499,7 @@ impl Chain {
         temperature: Option<f64>,
     ) -> Option<(f64, f64, Option<f64>)> {
         let dt = self.clock.interval(t)?;
-        let reading = if rate.is_finite() && temperature.is_none_or(f64::is_finite) {
+        let reading = if finite_reading(rate, temperature) {
             self.last_reading = Some((rate, temperature));
             (rate, temperature)
         } else {
@@ -723,11 +723,23 @@ impl Chain {
             }
         }
         if FAST && n > 0 {
-            self.clock.set(t[n - 1]);
-            self.last_reading = Some((rate[n - 1], temperature_at(n - 1)));
-            self.last_output = cursor.output;
+            self.took(
+                t[n - 1],
+                (rate[n - 1], temperature_at(n - 1)),
+                cursor.output,
+            );
         }
         !FAST || (cursor.checks.passed() && memories.3.heading().is_finite())
+    }
+
+    /// What [`Chain::update`] leaves of a sample at `t` with a finite `reading` (rate,
+    /// temperature) and its `output`, for a loop that takes samples without it: the clock, the
+    /// reading [`NonFinite::Hold`] would hold, and the last output.
+    #[inline(always)]
+    fn took(&mut self, t: f64, reading: (f64, Option<f64>), output: Output) {
+        self.clock.set(t);
+        self.last_reading = Some(reading);
+        self.last_output = output;
     }
 
     /// The samples of [`Chain::run`] from `cursor.next` on that [`Chain::primed_span`] takes,
@@ -915,7 +927,7 @@ impl Chain {
                 let temperature = temperature_at(i);
                 if FAST {
                     c.checks.temperature(temperature);
-                } else if !(rate[i].is_finite() && temperature.is_none_or(f64::is_finite)) {
+                } else if !finite_reading(rate[i], temperature) {
                     break;
                 }
                 c.previous = t[i];
@@ -930,9 +942,8 @@ impl Chain {
             }
         }
         if !FAST && c.next > cursor.next {
-            self.clock.set(c.previous);
-            self.last_reading = Some((rate[c.next - 1], temperature_at(c.next - 1)));
-            self.last_output = c.output;
+            let last = c.next - 1;
+            self.took(t[last], (rate[last], temperature_at(last)), c.output);
         }
         *cursor = c;
     }

@@ -79,6 +79,13 @@ fn exponent_carry(v: f64) -> u64 {
     (v.to_bits() & EXPONENT) + EXPONENT_ONE
 }
 
+/// A reading the pipeline takes as it is: a finite rate and, if there is one, a finite
+/// temperature (any other the input policy holds or skips).
+#[inline(always)]
+pub(crate) fn finite_reading(rate: f64, temperature: Option<f64>) -> bool {
+    rate.is_finite() && temperature.is_none_or(f64::is_finite)
+}
+
 /// An interval as an integer that orders the valid ones: for a finite `limit` > 0,
 /// `interval_key(dt) <= interval_key(limit)` exactly when `0 < dt <= limit`. The bits of a
 /// positive float grow with its value; 0 wraps around to the largest key, and a negative
