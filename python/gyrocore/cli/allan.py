@@ -37,11 +37,10 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
 
 def run(args: argparse.Namespace) -> int:
     src = Path(args.input)
+    # A log folder names its columns and units; a file takes them from the options.
+    columns = {} if src.is_dir() else {"time_col": args.time_col, "rate_col": args.rate_col, "rate_unit": args.rate_unit}
     # A record for the Allan deviation is taken at rest: small rates are no sign of a unit mistake.
-    if src.is_dir():
-        log = io.read_log(src, static=True)
-    else:
-        log = io.read_log(src, time_col=args.time_col, rate_col=args.rate_col, rate_unit=args.rate_unit, static=True)
+    log = io.read_log(src, static=True, **columns)
     t, rate = log.t, log.rate
     if args.window is not None:
         inside = (t >= args.window[0]) & (t <= args.window[1])

@@ -27,7 +27,8 @@ def run(args: argparse.Namespace) -> int:
     names = args.names or list(paper.REPRODUCTIONS)
     unknown = [n for n in names if n not in paper.REPRODUCTIONS]
     if unknown:  # before anything runs, so a typo costs no time
-        raise ValueError(f"unknown experiment {', '.join(map(repr, unknown))}; choose from {', '.join(paper.REPRODUCTIONS)}")
+        choices = ", ".join(paper.REPRODUCTIONS)
+        raise ValueError(f"unknown experiment {', '.join(map(repr, unknown))}; choose from {choices}")
     for i, name in enumerate(names):
         if i:
             print()
