@@ -35,11 +35,7 @@ fn pipeline(c: &mut Criterion) {
         group.bench_with_input(BenchmarkId::from_parameter(name), &config, |b, &config| {
             b.iter(|| {
                 let mut p = Pipeline::new(config).unwrap();
-                let out = Outputs {
-                    heading: &mut h,
-                    rate: &mut r,
-                    drift: &mut d,
-                };
+                let out = Outputs::all(&mut h, &mut r, &mut d);
                 p.process_block(black_box(&t), black_box(&rate), None, out)
                     .unwrap();
             })
@@ -49,11 +45,7 @@ fn pipeline(c: &mut Criterion) {
     config.correction.bias = StaticBias::Fixed(0.01);
     let (mut h, mut r, mut d) = (vec![0.0; N], vec![0.0; N], vec![0.0; N]);
     let (mut sh, mut sr, mut sd) = (vec![0.0; N], vec![0.0; N], vec![0.0; N]);
-    let out = Outputs {
-        heading: &mut h,
-        rate: &mut r,
-        drift: &mut d,
-    };
+    let out = Outputs::all(&mut h, &mut r, &mut d);
     Pipeline::new(config)
         .unwrap()
         .process_block(&t, &rate, None, out)

@@ -53,8 +53,13 @@ fn configs() -> Vec<PipelineConfig> {
     out.push(scaled);
     // A low-pass with no lag: its weight on the previous output, and the de-lag's on the
     // difference, are 0 (a non-finite reading must still reach the heading: 0 * inf is NaN).
+    // HDR's step means take the same tau (the rule of `PipelineConfig::validate`).
     out.push(PipelineConfig {
         lowpass: Some(LowPassConfig { tau: 0.0 }),
+        hdr: Some(HdrConfig {
+            tau: 0.0,
+            ..HdrConfig::table_iii()
+        }),
         ..Preset::Combined.config()
     });
     out
@@ -263,17 +268,8 @@ fn a_bad_block_is_rejected_whole_with_the_first_bad_index() {
     let mut out = vec![0.0; 4];
     let (mut o2, mut o3) = (out.clone(), out.clone());
     let mut bad = |t: &[f64], r: &[f64], p: &mut Pipeline| {
-        p.process_block(
-            t,
-            r,
-            None,
-            Outputs {
-                heading: &mut out,
-                rate: &mut o2,
-                drift: &mut o3,
-            },
-        )
-        .unwrap_err()
+        p.process_block(t, r, None, Outputs::all(&mut out, &mut o2, &mut o3))
+            .unwrap_err()
     };
     assert_eq!(
         bad(&[0.0, 1.0, 1.0, 2.0], &[0.0; 4], &mut p),
@@ -328,16 +324,7 @@ fn a_temperature_model_without_temperature_is_an_error() {
     let mut p = Pipeline::new(config).unwrap();
     let (mut h, mut r, mut d) = (vec![0.0; 1], vec![0.0; 1], vec![0.0; 1]);
     let err = p
-        .process_block(
-            &[0.0],
-            &[0.0],
-            None,
-            Outputs {
-                heading: &mut h,
-                rate: &mut r,
-                drift: &mut d,
-            },
-        )
+        .process_block(&[0.0], &[0.0], None, Outputs::all(&mut h, &mut r, &mut d))
         .unwrap_err();
     assert_eq!(err, Error::MissingTemperature);
 }

@@ -96,11 +96,7 @@ fn run_block(
         t,
         r,
         temp,
-        Outputs {
-            heading: &mut h,
-            rate: &mut ra,
-            drift: &mut d,
-        },
+        Outputs::all(&mut h, &mut ra, &mut d),
     )?;
     Ok((0..n)
         .map(|k| [h[k].to_bits(), ra[k].to_bits(), d[k].to_bits()])

@@ -26,6 +26,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
 from .evaluate import unwrap
 from .pipeline import integrate
@@ -377,7 +378,6 @@ def static_bias(
     window: tuple[float, float] | None = None,
     *,
     min_duration: float = 1.0,
-    batches: int = 10,
     **detect_options: Any,
 ) -> Calibration:
     """Static bias test (FOG section 2; HDR eq 1-2's ``eps0``): the mean reading at rest.
@@ -388,14 +388,13 @@ def static_bias(
         window: ``(start, end)`` rest window [s, log time base]; None finds the first rest of at
             least ``min_duration`` seconds (:func:`detect_rest`, which takes ``detect_options``).
         min_duration: shortest acceptable rest [s] (also for a given window).
-        batches: the standard error is that of ``batches`` consecutive equal-time batch means
-            (batch means), which stays honest when the noise is correlated (bias instability);
-            for white noise it equals ``sd / sqrt(n)``. Fewer than 8 readings per batch fall back
-            to ``sd / sqrt(n)``.
 
-    The mean weighs each reading by the interval since the previous one, exactly as the
-    pipeline's ``bias_window`` does, so ``bias=cal.bias`` gives the bias that
-    ``bias_window=cal.window`` ends with (the pipeline uses its running mean inside the window).
+    The bias and its standard error come from the core's static bias test, the one the
+    pipeline's ``bias_window`` runs, so ``bias=cal.bias`` gives the bias that
+    ``bias_window=cal.window`` ends with (the pipeline uses its running mean inside the window):
+    the mean weighs each reading by the interval since the previous one, and the standard error
+    is that of the means of the window's eight equal parts (batch means), which stays honest
+    when the noise is correlated (bias instability); for white noise it equals ``sd / sqrt(n)``.
     Returns a :class:`Calibration` with ``bias``, ``bias_stderr``,
     ``residual_rms`` (the readings' standard deviation) and the ``window`` used.
 
@@ -422,14 +421,10 @@ def static_bias(
             f"the rest window [{start}, {end}] s covers {duration:.3g} s of readings, shorter than "
             f"min_duration = {min_duration:g} s: the bias would be mostly noise"
         )
-    w = _time_weights(tw)
-    bias = float(np.sum(w * rw) / duration)
-    sd = float(np.sqrt(np.sum(w * (rw - bias) ** 2) / duration))
-    stderr = sd / math.sqrt(len(rw))
-    if batches >= 2 and len(rw) >= 8 * batches:
-        b = np.minimum((tw / duration * batches).astype(np.int64), batches - 1)
-        means = np.bincount(b, w * rw, batches) / np.bincount(b, w, batches)
-        stderr = float(np.std(means, ddof=1) / math.sqrt(batches))
+    bias, _, _, batch_stderr = _gyrocore.static_bias_test(ta, ra, start, end)
+    sd = float(np.sqrt(np.sum(_time_weights(tw) * (rw - bias) ** 2) / duration))
+    # The batch means need readings in two parts of the window; with fewer, the white-noise error.
+    stderr = sd / math.sqrt(len(rw)) if batch_stderr is None else batch_stderr
     return Calibration(
         method="static_bias",
         bias=bias,

@@ -73,9 +73,27 @@ def preset_params(preset: str = "hdr", **overrides: Any) -> dict[str, Any]:
     return dict(_gyrocore.preset_params(preset, _to_si(overrides)))
 
 
+#: The per-sample outputs of the pipeline, in the order of :class:`HeadingResult`.
+OUTPUTS = ("heading", "rate", "drift")
+
+
+def output_flags(outputs: tuple[str, ...] | list[str]) -> tuple[bool, bool]:
+    """Whether ``outputs`` asks for the rate and the drift (the heading is always computed);
+    a name not in :data:`OUTPUTS`, or no heading, is a ``ValueError``."""
+    if isinstance(outputs, str) or any(o not in OUTPUTS for o in outputs) or "heading" not in outputs:
+        raise ValueError(
+            f"outputs={outputs!r}: give a tuple of names from {', '.join(OUTPUTS)}, with heading "
+            "(the heading is always computed)"
+        )
+    return "rate" in outputs, "drift" in outputs
+
+
 @dataclass(frozen=True, repr=False)
 class HeadingResult:
     """Per-sample output of the pipeline (all arrays float64, one entry per input sample).
+
+    ``rate`` and ``drift`` are None when not asked for (``outputs=`` of :func:`process` and
+    :meth:`Pipeline.process`): they were never computed or stored.
 
     Attributes:
         t: timestamps [s], as given.
@@ -86,8 +104,15 @@ class HeadingResult:
 
     t: FloatArray
     heading: FloatArray
-    rate: FloatArray
-    drift: FloatArray
+    rate: FloatArray | None = None
+    drift: FloatArray | None = None
+
+    def output(self, name: str) -> FloatArray:
+        """The output ``name`` (one of :data:`OUTPUTS`); a ``ValueError`` if it was not asked for."""
+        value: FloatArray | None = getattr(self, name) if name in OUTPUTS else None
+        if value is None:
+            raise ValueError(f"the {name!r} output was not computed: ask for it in outputs=")
+        return value
 
     @property
     def heading_deg(self) -> FloatArray:
@@ -100,12 +125,12 @@ class HeadingResult:
     def __repr__(self) -> str:
         if len(self.t) == 0:
             return "HeadingResult(empty)"
-        duration = self.t[-1] - self.t[0]
-        return (
-            f"HeadingResult(n={len(self.t)}, duration={duration:.3f} s, "
-            f"heading {math.degrees(self.heading[0]):.3f} -> {math.degrees(self.heading[-1]):.3f} deg, "
-            f"final drift estimate {math.degrees(self.drift[-1]):.4f} deg/s)"
-        )
+        parts = [f"n={len(self.t)}", f"duration={self.t[-1] - self.t[0]:.3f} s"]
+        first, last = math.degrees(self.heading[0]), math.degrees(self.heading[-1])
+        parts.append(f"heading {first:.3f} -> {last:.3f} deg")
+        if self.drift is not None:
+            parts.append(f"final drift estimate {math.degrees(self.drift[-1]):.4f} deg/s")
+        return f"HeadingResult({', '.join(parts)})"
 
 
 class Pipeline:
@@ -153,6 +178,7 @@ class Pipeline:
         *,
         temperature: ArrayLike | None = None,
         index_offset: int = 0,
+        outputs: tuple[str, ...] = OUTPUTS,
     ) -> HeadingResult:
         """Process the next chunk of samples.
 
@@ -161,12 +187,15 @@ class Pipeline:
             rate: yaw rate [rad/s], counter-clockwise positive.
             temperature: sensor temperature [degC], needed when ``temp_slope``/``temp_offset`` are set.
             index_offset: index of this chunk's first sample in the whole log; errors count from it.
+            outputs: which of ``heading``, ``rate`` and ``drift`` to compute (the heading always);
+                the others are None and cost nothing: ``("heading",)`` fills one array, not three.
 
         Raises:
             SampleError: (a ValueError) non-increasing or non-finite timestamps, or NaN/inf readings
                 under ``nonfinite="error"``; its ``index`` and ``what`` name the first bad sample.
-            ValueError: mismatched lengths, or a rest window that holds no sample.
-                Nothing is processed after any of these.
+            ValueError: mismatched lengths, or a rest window that holds no sample (the chunk that
+                passes its end is refused). Nothing of the chunk is processed after any of these:
+                the pipeline is as it was.
             TypeError: non-numeric arrays.
 
         Warns:
@@ -181,12 +210,10 @@ class Pipeline:
         if not self._units_checked and len(ta):
             warn_units(ta, ra)
             self._units_checked = True
+        flags = output_flags(outputs)
         before = self._inner.report()
-        heading, out_rate, drift = self._inner.process(ta, ra, temp, index_offset)
+        heading, out_rate, drift = self._inner.process(ta, ra, temp, index_offset, flags)
         self._warn_repairs(before, self._inner.report(), ta, ra, temp)
-        _, count, learning = self._inner.bias()
-        if not learning and count == 0 and self._measures_bias():
-            raise ValueError(f"the bias window {self._window_text()} held no sample of the log")
         return HeadingResult(ta, heading, out_rate, drift)
 
     def reset(self) -> None:
@@ -234,17 +261,6 @@ class Pipeline:
         """What the input policy did so far: ``held``, ``skipped``, ``gaps``, ``longest_gap`` [s]."""
         return dict(self._inner.report())
 
-    def _measures_bias(self) -> bool:
-        p = self._inner.params()
-        return "bias_window" in p or "bias_duration" in p
-
-    def _window_text(self) -> str:
-        p = self._inner.params()
-        if "bias_window" in p:
-            start, end = p["bias_window"]
-            return f"[{start}, {end}] s"
-        return f"of the first {p['bias_duration']} s"
-
     def _check_bias_window(self, t: FloatArray) -> None:
         """Refuse a log that starts after its rest window ends: the bias would silently be 0."""
         p = self._inner.params()
@@ -274,9 +290,11 @@ def process(
     preset: str = "hdr",
     *,
     temperature: ArrayLike | None = None,
+    outputs: tuple[str, ...] = OUTPUTS,
     **overrides: Any,
 ) -> HeadingResult:
-    """Heading of a whole log: ``Pipeline(preset, **overrides).process(t, rate)``.
+    """Heading of a whole log: ``Pipeline(preset, **overrides).process(t, rate)``; ``outputs``
+    chooses which of ``heading``, ``rate`` and ``drift`` are computed (see :meth:`Pipeline.process`).
 
     Example:
         >>> import numpy as np, gyrocore
@@ -285,7 +303,7 @@ def process(
         >>> bool(abs(r.heading[-1]) < 1e-9)
         True
     """
-    return Pipeline(preset, **overrides).process(t, rate, temperature=temperature)
+    return Pipeline(preset, **overrides).process(t, rate, temperature=temperature, outputs=outputs)
 
 
 def integrate(

@@ -6,7 +6,8 @@
 //! multiply the result. The bias is what the gyro reads at rest (corrected = measured - bias).
 
 use crate::error::{check_finite, check_positive, check_range};
-use crate::rest::{RestNoise, RestStatistics};
+use crate::kernel::{Kernel, Measured, Signal};
+use crate::rest::{BiasEstimate, RestStatistics};
 use crate::stage::{Clock, Stage};
 use crate::Error;
 
@@ -118,99 +119,105 @@ impl CorrectionConfig {
     }
 }
 
-/// Time-weighted mean of the readings inside the rest window (the static bias test).
-///
-/// Each reading stands for the interval since the previous one (the rectangle rule of HDR eq 3),
-/// so an irregular logger's bursts do not outweigh its pauses, and a record averaged to a lower
-/// rate (second eq 14) gives the same bias. The first reading in the window has no interval
-/// inside it: it is the estimate until the second arrives, then carries no weight.
+/// The correction as the kernels read it: the settings with the bias in force [rad/s].
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-struct BiasEstimate {
-    /// The bias in use now [rad/s].
-    value: f64,
-    /// Integral of the readings over the window so far [rad].
-    integral: f64,
-    /// Time covered so far [s].
-    duration: f64,
-    count: u64,
-    /// `(start, end)` once known; `None` for a leading window before the first sample.
-    window: Option<(f64, f64)>,
-    /// False once the stream has passed the window's end: the bias is frozen.
-    learning: bool,
-    /// The window's noise, for [`Correction::rest_statistics`].
-    noise: RestNoise,
-    clock: Clock,
+pub struct Calibration {
+    /// The static bias in use [rad/s]: fixed, or measured in the rest window so far.
+    pub bias: f64,
+    /// The settings.
+    pub config: CorrectionConfig,
 }
 
-impl BiasEstimate {
-    fn new(source: StaticBias) -> Self {
-        let (value, window, learning) = match source {
-            StaticBias::Fixed(b) => (b, None, false),
-            StaticBias::Window { start, end } => (0.0, Some((start, end)), true),
-            StaticBias::Leading { .. } => (0.0, None, true),
+impl Calibration {
+    /// The settings with the bias they start with (0 until a rest window is measured).
+    pub(crate) fn new(config: CorrectionConfig) -> Self {
+        let bias = match config.bias {
+            StaticBias::Fixed(b) => b,
+            _ => 0.0,
         };
-        BiasEstimate {
-            value,
-            integral: 0.0,
-            duration: 0.0,
-            count: 0,
-            window,
-            learning,
-            noise: RestNoise::default(),
-            clock: Clock::default(),
-        }
+        Calibration { bias, config }
     }
 
-    /// Takes the reading into the mean while `t` is inside the window (HDR eq 2's `eps0`).
-    ///
-    /// Out of line: it runs only during the rest window, and inlined into the pipeline's loop it
-    /// slows every later sample by about a fifth (`benches/pipeline.rs`).
-    #[inline(never)]
-    fn learn(&mut self, source: StaticBias, t: f64, rate: f64) {
-        let dt = self.clock.tick(t);
-        let (start, end) = match (self.window, source) {
-            (Some(w), _) => w,
-            (None, StaticBias::Leading { duration }) => {
-                let w = (t, t + duration);
-                self.window = Some(w);
-                w
-            }
-            _ => return,
-        };
-        if t > end {
-            self.learning = false;
-        } else if t >= start {
-            if self.count > 0 {
-                self.integral += rate * dt;
-                self.duration += dt;
-            }
-            let length = end - start;
-            let position = if length > 0.0 {
-                (t - start) / length
-            } else {
-                1.0
-            };
-            self.noise.push(position, dt, rate);
-            self.count += 1;
-            self.value = if self.duration > 0.0 {
-                self.integral / self.duration
-            } else {
-                rate
-            };
-        }
+    /// `s_bar * (r_m - eps0) + b_bar` (HDR eq 2, Hong eq 3).
+    #[inline(always)]
+    fn linear(&self, rate: f64) -> f64 {
+        self.config.scale * (rate - self.bias) + self.config.offset
     }
 }
 
-/// Corrects raw readings for bias, scale and direction (see the module doc for the order).
+/// Implements [`Kernel`] for a correction: `$correct` (of the calibration `$c` and the signal
+/// `$x`) gives the corrected rate; the pipeline hands it the bias as it is measured.
+macro_rules! correction_kernel {
+    ($ty:ty, |$c:ident, $x:ident| $correct:expr) => {
+        impl Kernel for $ty {
+            type Config = Calibration;
+            type State = ();
+
+            fn start(_config: &Calibration) {}
+
+            #[inline(always)]
+            fn first(config: &Calibration, state: &mut (), x: Signal) -> Signal {
+                Self::step(config, state, 0.0, x)
+            }
+
+            #[inline(always)]
+            fn step($c: &Calibration, _state: &mut (), _dt: f64, $x: Signal) -> Signal {
+                let r = $correct;
+                Signal {
+                    rate: r,
+                    corrected: r,
+                    ..$x
+                }
+            }
+
+            fn measured(config: &mut Calibration, _state: &mut (), m: &Measured) {
+                if let Some(bias) = m.bias {
+                    config.bias = bias;
+                }
+            }
+        }
+    };
+}
+
+/// The whole correction (see the module doc): `r = (s_bar (r_m - eps0) + b_bar) C_dir C_T`
+/// (HDR eq 2, Hong eq 3, FOG eq 3-4 and 6), the factors chosen per sample.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CorrectionKernel;
+
+correction_kernel!(CorrectionKernel, |c, x| {
+    let r = c.linear(x.rate);
+    // Counter-clockwise is positive (REP-103), so negative rates are clockwise turns.
+    let r = r * if r < 0.0 {
+        c.config.c_cw
+    } else {
+        c.config.c_ccw
+    };
+    match c.config.temperature {
+        Some(model) => r * model.factor(x.temperature),
+        None => r,
+    }
+});
+
+/// The correction with one factor for both directions and no temperature model (the common
+/// case), composed when that is known: choosing the factor by the sign of the rate puts a
+/// load that waits for the rate on every sample's path.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SingleFactorKernel;
+
+correction_kernel!(SingleFactorKernel, |c, x| c.linear(x.rate) * c.config.c_ccw);
+
+/// Corrects raw readings for bias, scale and direction (see the module doc for the order), as a
+/// stand-alone stage.
 ///
 /// While a rest window is being measured, the running mean so far is used as the bias, so the
 /// stage is causal and streams; after the window the bias is frozen.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Correction {
-    config: CorrectionConfig,
+    calibration: Calibration,
     bias: BiasEstimate,
+    clock: Clock,
 }
 
 impl Correction {
@@ -218,97 +225,67 @@ impl Correction {
     pub fn new(config: CorrectionConfig) -> Result<Self, Error> {
         config.validate()?;
         Ok(Correction {
-            config,
+            calibration: Calibration::new(config),
             bias: BiasEstimate::new(config.bias),
+            clock: Clock::default(),
         })
     }
 
     /// The configuration.
     pub fn config(&self) -> &CorrectionConfig {
-        &self.config
+        &self.calibration.config
     }
 
     /// The static bias in use now [rad/s] (what the gyro reads at rest).
     pub fn bias(&self) -> f64 {
-        self.bias.value
+        self.bias.value()
     }
 
     /// How many readings the measured bias averages (0 for a fixed bias).
     pub fn bias_sample_count(&self) -> u64 {
-        self.bias.count
+        self.bias.count()
     }
 
     /// True while the rest window is still being measured.
     pub fn bias_learning(&self) -> bool {
-        self.bias.learning
+        self.bias.learning()
     }
 
     /// The rest window's noise and the standard error of the bias measured in it, once the
     /// window is over; `None` for a fixed bias, while measuring, or from fewer than two readings
     /// in two parts of the window.
     pub fn rest_statistics(&self) -> Option<RestStatistics> {
-        if self.bias.learning || self.bias.window.is_none() {
-            return None;
-        }
-        self.bias.noise.statistics()
+        self.bias.rest_statistics()
     }
 
-    /// Corrects one reading; `temperature` \[degC\] feeds the temperature model when configured.
+    /// Corrects one reading; `temperature` \[degC\] feeds the temperature model when configured
+    /// (without it, such a model gives NaN: the reading cannot be corrected).
     ///
     /// `r = (s_bar * (r_m - eps0) + b_bar) * C_dir * C_T` (HDR eq 2, Hong eq 3, FOG eq 3-4 and 6).
     #[inline]
     pub fn apply(&mut self, t: f64, rate: f64, temperature: Option<f64>) -> f64 {
-        self.apply_directed::<true>(t, rate, temperature)
-    }
-
-    /// True if clockwise and counter-clockwise rates take different factors (FOG eq 3-4).
-    pub(crate) fn direction_split(&self) -> bool {
-        self.config.c_cw != self.config.c_ccw
-    }
-
-    /// [`Correction::apply`], compiled for a single direction factor unless `SPLIT`; without
-    /// `SPLIT` the factors must be equal (not [`Correction::direction_split`]).
-    ///
-    /// Choosing the factor by the sign of the rate puts a load that waits for the rate on every
-    /// sample's path; with one factor for both directions (the default: no FOG correction) the
-    /// `combined` pipeline took 4.48 instead of 4.82 ns/sample (`benches/pipeline.rs`).
-    #[inline(always)]
-    pub(crate) fn apply_directed<const SPLIT: bool>(
-        &mut self,
-        t: f64,
-        rate: f64,
-        temperature: Option<f64>,
-    ) -> f64 {
-        if self.bias.learning {
-            self.bias.learn(self.config.bias, t, rate);
+        let dt = self.clock.tick(t);
+        if self.bias.learning() {
+            self.bias.learn(self.calibration.config.bias, t, dt, rate);
+            self.calibration.bias = self.bias.value();
         }
-        self.settled::<SPLIT>(rate, temperature)
-    }
-
-    /// [`Correction::apply_directed`] once the bias is known (not [`Correction::bias_learning`]).
-    #[inline(always)]
-    pub(crate) fn settled<const SPLIT: bool>(&self, rate: f64, temperature: Option<f64>) -> f64 {
-        let c = &self.config;
-        let r = c.scale * (rate - self.bias.value) + c.offset;
-        // Counter-clockwise is positive (REP-103), so negative rates are clockwise turns.
-        let r = r * if SPLIT && r < 0.0 { c.c_cw } else { c.c_ccw };
-        match (c.temperature, temperature) {
-            (Some(model), Some(celsius)) => r * model.factor(celsius),
-            _ => r,
-        }
+        let x = Signal::reading(rate, temperature.unwrap_or(f64::NAN));
+        CorrectionKernel::step(&self.calibration, &mut (), 0.0, x).rate
     }
 }
 
 impl Stage for Correction {
     type Output = f64;
 
-    /// Corrects one reading without a temperature (the temperature model, if any, is skipped).
+    /// Corrects one reading without a temperature (see [`Correction::apply`]).
     #[inline]
     fn update(&mut self, t: f64, rate: f64) -> f64 {
         self.apply(t, rate, None)
     }
 
     fn reset(&mut self) {
-        self.bias = BiasEstimate::new(self.config.bias);
+        self.bias = BiasEstimate::new(self.calibration.config.bias);
+        self.calibration = Calibration::new(self.calibration.config);
+        self.clock = Clock::default();
     }
 }

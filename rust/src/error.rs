@@ -45,6 +45,17 @@ pub enum Error {
     },
     /// The configuration asks for a temperature signal and none was given.
     MissingTemperature,
+    /// No sample lies in the rest window, so there is no static bias to measure.
+    EmptyRestWindow {
+        /// Window start \[s\].
+        start: f64,
+        /// Window end \[s\].
+        end: f64,
+        /// The first timestamp seen \[s\].
+        first: f64,
+        /// The last timestamp seen \[s\] (for a stream, the first one past the window).
+        last: f64,
+    },
     /// A statistic needs a longer record than it was given (an averaging time too long for it).
     TooShort {
         /// Samples needed.
@@ -116,6 +127,16 @@ impl fmt::Display for Error {
             Error::MissingTemperature => write!(
                 f,
                 "the temperature scale-factor model is configured but no temperature was given"
+            ),
+            Error::EmptyRestWindow {
+                start,
+                end,
+                first,
+                last,
+            } => write!(
+                f,
+                "the bias window [{start}, {end}] s holds no sample of the samples from t = \
+                 {first} to {last} s (give the window in the samples' own time base)"
             ),
             Error::TooShort { needed, len } => write!(
                 f,

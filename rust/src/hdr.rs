@@ -15,8 +15,8 @@
 
 use crate::block::BlockMean;
 use crate::error::{check_positive, check_range};
-use crate::lowpass::{LowPass, LowPassConfig};
-use crate::stage::{interval_stage, Clock};
+use crate::kernel::{Kernel, Measured, Signal, Streaming, Validated};
+use crate::lowpass::{LowPassConfig, LowPassKernel};
 use crate::Error;
 
 /// Number of precomputed attenuation values `R(1..=N)` (eq 10); larger counts use `pow`.
@@ -100,8 +100,8 @@ impl HdrConfig {
     }
 }
 
-/// `x` limited to `[-bound, bound]`; a NaN bound (from a block that is then rejected) leaves `x`
-/// as it is, where `f64::clamp` would panic.
+/// `x` limited to `[-bound, bound]`; a NaN bound leaves `x` as it is, where `f64::clamp` would
+/// panic.
 #[inline]
 fn within(x: f64, bound: f64) -> f64 {
     x.max(-bound).min(bound)
@@ -119,144 +119,49 @@ fn sign(x: f64) -> i8 {
     }
 }
 
-/// The evolving part of [`Hdr`].
-#[derive(Debug, Clone, PartialEq)]
+/// What HDR remembers between samples.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub(crate) struct HdrState {
+pub struct HdrState {
     /// The integrator `I` [rad/s]; `-I` is the drift estimate.
     integrator: f64,
     block: BlockMean,
-    /// Eq 7 on the step means: the `w'` that the controller sees.
-    filter: LowPass,
+    /// Eq 7 on the step means: the last `w'` that the controller saw, once there is one.
+    filtered: Option<f64>,
     /// `SIGN(w)` of the previous step, for the repetition counter (eq 9).
     previous_sign: Option<i8>,
     /// Repetition counter `r` (eq 9).
     repetitions: u32,
-    clock: Clock,
 }
 
-impl HdrState {
-    /// The state before the first sample.
-    #[inline(always)]
-    fn start(config: &HdrConfig) -> Self {
-        HdrState {
-            integrator: 0.0,
-            block: BlockMean::default(),
-            filter: LowPass::start(LowPassConfig { tau: config.tau }),
-            previous_sign: None,
-            repetitions: 0,
-            clock: Clock::default(),
-        }
-    }
-}
-
-/// The HDR stage: output is the input rate plus the controller output `I` (eq 12).
-#[derive(Debug, Clone, PartialEq)]
+/// HDR's configuration as the kernel reads it: the settings, eq 10's attenuation table and the
+/// bound on `|I|` in force.
+#[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct Hdr {
-    rule: HdrRule,
-    state: HdrState,
-}
-
-/// What HDR's steps read but do not change.
-#[derive(Debug, Clone, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub(crate) struct HdrRule {
+pub struct HdrRule {
     config: HdrConfig,
     /// `R(r)` for `r = 1..=ATTENUATION_TABLE`: eq 10 costs a `pow`, and `r` is a small integer.
     attenuation: [f64; ATTENUATION_TABLE],
-    /// The bound on `|I|` in force: [`HdrConfig::max_correction`], or the one set by
-    /// [`Hdr::bound_correction`]. A property of the sensor, so [`Hdr::restart`] keeps it.
+    /// The bound on `|I|` in force: [`HdrConfig::max_correction`], or the one a measured rest
+    /// window sets (see [`crate::NoiseScaled`]). A property of the sensor: a restart keeps it.
     #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
     bound: f64,
 }
 
-impl Hdr {
-    /// Validates `config` and builds the stage.
-    pub fn new(config: HdrConfig) -> Result<Self, Error> {
-        config.validate()?;
-        Ok(Self::start(config))
-    }
-
-    /// The stage before the first sample, from a configuration validated already.
-    fn start(config: HdrConfig) -> Self {
+impl HdrRule {
+    /// The rule of valid settings.
+    pub(crate) fn new(config: HdrConfig) -> Self {
         let mut attenuation = [0.0; ATTENUATION_TABLE];
         for (r, a) in (1u32..).zip(attenuation.iter_mut()) {
             *a = config.attenuation(r);
         }
-        Hdr {
-            rule: HdrRule {
-                config,
-                attenuation,
-                bound: config.max_correction,
-            },
-            state: HdrState::start(&config),
+        HdrRule {
+            config,
+            attenuation,
+            bound: config.max_correction,
         }
     }
 
-    /// Replaces [`HdrConfig::max_correction`] as the bound on `|I|` by `bound` [rad/s]; `I` is
-    /// clamped to it at once. A bound of 0 turns HDR off.
-    #[inline(always)]
-    pub fn bound_correction(&mut self, bound: f64) {
-        self.rule.bound = libm::fabs(bound);
-        self.state.integrator = within(self.state.integrator, self.rule.bound);
-    }
-
-    /// Forgets the signal (the controller starts again from `I = 0`) but keeps the bound.
-    ///
-    /// Always inlined, as are the other steps the pipeline's loop may take: a call would let the
-    /// stage's state escape the loop's registers.
-    #[inline(always)]
-    pub fn restart(&mut self) {
-        self.state = HdrState::start(&self.rule.config);
-    }
-
-    /// The configuration.
-    pub fn config(&self) -> &HdrConfig {
-        &self.rule.config
-    }
-
-    /// The drift estimate `-I` [rad/s].
-    pub fn drift(&self) -> f64 {
-        -self.state.integrator
-    }
-
-    /// The repetition counter `r` of the last step (eq 9); 0 before the first step.
-    pub fn repetitions(&self) -> u32 {
-        self.state.repetitions
-    }
-
-    /// Adds `I` to one sample whose interval is `dt` \[s\]: returns `w = rate + I` (eq 12), and
-    /// updates `I` for the next step when the sample closes one.
-    #[inline]
-    pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
-        rate + self.observe(dt, rate)
-    }
-
-    /// Feeds one sample to the controller and returns the `I` that applies to it (the value
-    /// before this sample's step closes). The pipeline adds it to the low-passed rate instead.
-    #[inline(always)]
-    pub fn observe(&mut self, dt: f64, rate: f64) -> f64 {
-        self.state.observe(&self.rule, dt, rate)
-    }
-
-    /// The stage as a [`PrimedHdr`].
-    #[inline(always)]
-    pub(crate) fn primed(&self) -> PrimedHdr<'_> {
-        PrimedHdr {
-            rule: &self.rule,
-            state: self.state.clone(),
-        }
-    }
-
-    /// Takes over the state of a [`PrimedHdr`] made by [`Hdr::primed`].
-    #[inline(always)]
-    pub(crate) fn set_state(&mut self, state: HdrState) {
-        self.state = state;
-    }
-}
-
-impl HdrRule {
     /// `R(r)` of eq 10, from the table where it has it.
     #[inline]
     fn attenuation_at(&self, repetitions: u32) -> f64 {
@@ -270,17 +175,12 @@ impl HdrRule {
     }
 }
 
-impl HdrState {
-    /// [`Hdr::observe`].
-    #[inline(always)]
-    fn observe(&mut self, rule: &HdrRule, dt: f64, rate: f64) -> f64 {
-        let applied = self.integrator;
-        if let Some((mean, duration)) = self.block.push(rule.config.interval, dt, rate) {
-            self.decide(rule, mean, duration);
-        }
-        applied
-    }
+/// Heuristic Drift Reduction as a [`Kernel`]: adds `I` to the (low-passed) rate (eq 12) and
+/// decides on `I` once per step from the corrected rate's step means.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct HdrKernel;
 
+impl HdrState {
     /// One HDR step on the mean rate of the step just closed: eq 7 gives `w'_{i-1}`, then eq 8 (as
     /// the text states it), eq 9, eq 10 and eq 11 `I_i = I_{i-1} - SIGN(w_{i-1}) W_i R_i i_c`
     /// with `w_{i-1} = w'_{i-1} + I_{i-1}` (eq 12).
@@ -289,7 +189,11 @@ impl HdrState {
     /// memory, and every sample would then load and store it.
     #[inline(always)]
     fn decide(&mut self, rule: &HdrRule, mean: f64, duration: f64) {
-        let filtered = self.filter.step(duration, mean);
+        let filtered = match self.filtered {
+            Some(previous) => LowPassKernel::filter(rule.config.tau, previous, duration, mean),
+            None => mean,
+        };
+        self.filtered = Some(filtered);
         let s = sign(filtered + self.integrator);
         self.repetitions = match self.previous_sign {
             Some(p) if p == s => self.repetitions.saturating_add(1),
@@ -304,28 +208,88 @@ impl HdrState {
     }
 }
 
-/// A copy of an [`Hdr`]'s state that borrows the rest, for the pipeline's loop over a block: the
-/// compiler keeps a local copy of scalars in registers, but not scalars that share a copy with a
-/// table indexed by a variable (eq 10's), so a whole copy of the stage would load and store the
-/// step's sums on every sample.
-#[derive(Debug, Clone)]
-pub(crate) struct PrimedHdr<'a> {
-    rule: &'a HdrRule,
-    state: HdrState,
-}
+impl Kernel for HdrKernel {
+    type Config = HdrRule;
+    type State = HdrState;
+    const REMEMBERS: bool = true;
+    const WAITS_FOR_BIAS: bool = true;
 
-impl PrimedHdr<'_> {
-    /// [`Hdr::observe`].
-    #[inline(always)]
-    pub(crate) fn observe(&mut self, dt: f64, rate: f64) -> f64 {
-        self.state.observe(self.rule, dt, rate)
+    fn start(_rule: &HdrRule) -> HdrState {
+        HdrState::default()
     }
 
-    /// The state, for [`Hdr::set_state`].
     #[inline(always)]
-    pub(crate) fn into_state(self) -> HdrState {
-        self.state
+    fn first(rule: &HdrRule, state: &mut HdrState, x: Signal) -> Signal {
+        Self::step(rule, state, 0.0, x)
+    }
+
+    /// Adds the `I` in force to the sample's rate and closes the step when the sample ends it.
+    #[inline(always)]
+    fn step(rule: &HdrRule, state: &mut HdrState, dt: f64, x: Signal) -> Signal {
+        let applied = state.integrator;
+        if let Some((mean, duration)) = state.block.push(rule.config.interval, dt, x.corrected) {
+            state.decide(rule, mean, duration);
+        }
+        Signal {
+            rate: x.rate + applied,
+            drift: -applied,
+            ..x
+        }
+    }
+
+    /// After a gap HDR starts afresh, and the gap's sample opens its first step.
+    #[inline(always)]
+    fn restarted(rule: &HdrRule, state: &mut HdrState, dt: f64, x: Signal) -> Signal {
+        Self::step(rule, state, dt, x)
+    }
+
+    fn measured(rule: &mut HdrRule, state: &mut HdrState, m: &Measured) {
+        if let Some(bound) = m.hdr_bound {
+            rule.bound = libm::fabs(bound);
+            state.integrator = within(state.integrator, rule.bound);
+        }
     }
 }
 
-interval_stage!(Hdr, state.clock, rule.config);
+impl Validated for HdrKernel {
+    type Settings = HdrConfig;
+
+    fn configure(config: HdrConfig) -> Result<HdrRule, Error> {
+        config.validate()?;
+        Ok(HdrRule::new(config))
+    }
+}
+
+/// HDR as a stand-alone stage: its output is the input rate plus `I` (eq 12).
+pub type Hdr = Streaming<HdrKernel>;
+
+impl Hdr {
+    /// The settings.
+    pub fn settings(&self) -> &HdrConfig {
+        &self.parts().0.config
+    }
+
+    /// The drift estimate `-I` [rad/s].
+    pub fn drift(&self) -> f64 {
+        -self.parts().1.integrator
+    }
+
+    /// The repetition counter `r` of the last step (eq 9); 0 before the first step.
+    pub fn repetitions(&self) -> u32 {
+        self.parts().1.repetitions
+    }
+
+    /// Replaces [`HdrConfig::max_correction`] as the bound on `|I|` by `bound` [rad/s]; `I` is
+    /// clamped to it at once. A bound of 0 turns HDR off.
+    pub fn bound_correction(&mut self, bound: f64) {
+        let (rule, state) = self.parts_mut();
+        HdrKernel::measured(
+            rule,
+            state,
+            &Measured {
+                hdr_bound: Some(bound),
+                ..Measured::default()
+            },
+        );
+    }
+}

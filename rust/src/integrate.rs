@@ -6,7 +6,7 @@
 //! once, as the starting value: `psi_i = psi_{i-1} + w_d,i T_i`, `psi` at the first sample = `psi_0`.
 
 use crate::error::check_finite;
-use crate::stage::{interval_stage, Clock};
+use crate::kernel::{settings_are_config, Kernel, Signal, Streaming};
 use crate::Error;
 
 /// Integration rule.
@@ -30,109 +30,91 @@ pub struct IntegratorConfig {
     pub initial_heading: f64,
 }
 
-/// Integrates rate [rad/s] into a continuous heading \[rad\].
-#[derive(Debug, Clone, PartialEq)]
+impl IntegratorConfig {
+    /// Checks the initial heading.
+    pub fn validate(&self) -> Result<(), Error> {
+        check_finite("initial_heading", self.initial_heading)
+    }
+}
+
+/// What an integrator remembers: the heading so far and the last rate.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct Integrator {
-    config: IntegratorConfig,
-    heading: f64,
-    previous: Option<f64>,
-    clock: Clock,
+pub struct Heading {
+    /// The heading \[rad\].
+    pub heading: f64,
+    /// The last rate integrated [rad/s].
+    pub previous: f64,
 }
 
-impl Integrator {
-    /// Validates `config` and builds the stage.
-    pub fn new(config: IntegratorConfig) -> Result<Self, Error> {
-        check_finite("initial_heading", config.initial_heading)?;
-        Ok(Self::start(config))
-    }
-
-    fn start(config: IntegratorConfig) -> Self {
-        Integrator {
-            config,
-            heading: config.initial_heading,
-            previous: None,
-            clock: Clock::default(),
-        }
-    }
-
-    /// Adds one sample whose interval is `dt` \[s\]; returns the heading at that sample.
+impl Heading {
+    /// Adds one sample with interval `dt` \[s\] by the rule `trapezoid` (else the rectangle rule).
     #[inline(always)]
-    pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
-        if self.trapezoid() {
-            self.step_by::<true>(dt, rate)
-        } else {
-            self.step_by::<false>(dt, rate)
-        }
-    }
-
-    /// [`Integrator::step`] by the rule of [`PrimedIntegrator`]`<TRAPEZOID>`.
-    #[inline(always)]
-    fn step_by<const TRAPEZOID: bool>(&mut self, dt: f64, rate: f64) -> f64 {
-        match self.primed::<TRAPEZOID>() {
-            Some(mut primed) => {
-                primed.step(dt, rate);
-                self.set_primed(primed);
-            }
-            None => self.previous = Some(rate),
-        }
-        self.heading
-    }
-
-    /// True if the rule is the trapezoid rule (the `TRAPEZOID` of [`Integrator::primed`]).
-    #[inline(always)]
-    pub(crate) fn trapezoid(&self) -> bool {
-        self.config.method == Method::Trapezoid
-    }
-
-    /// The stage as a [`PrimedIntegrator`], once it has a sample; `TRAPEZOID` must be
-    /// [`Integrator::trapezoid`].
-    #[inline(always)]
-    pub(crate) fn primed<const TRAPEZOID: bool>(&self) -> Option<PrimedIntegrator<TRAPEZOID>> {
-        debug_assert_eq!(TRAPEZOID, self.trapezoid());
-        self.previous.map(|previous| PrimedIntegrator {
-            heading: self.heading,
-            previous,
-        })
-    }
-
-    /// Takes over the state of `primed`, made by [`Integrator::primed`].
-    #[inline(always)]
-    pub(crate) fn set_primed<const TRAPEZOID: bool>(
-        &mut self,
-        primed: PrimedIntegrator<TRAPEZOID>,
-    ) {
-        self.heading = primed.heading;
-        self.previous = Some(primed.previous);
-    }
-
-    /// The heading so far \[rad\].
-    pub fn heading(&self) -> f64 {
-        self.heading
-    }
-}
-
-interval_stage!(Integrator, clock, config);
-
-/// An [`Integrator`] that has a sample: no first-sample case to check, for the pipeline's loop
-/// over a block. Its rule is part of its type (`TRAPEZOID`, else the rectangle rule), so the
-/// loop does not choose it sample by sample.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct PrimedIntegrator<const TRAPEZOID: bool> {
-    heading: f64,
-    previous: f64,
-}
-
-impl<const TRAPEZOID: bool> PrimedIntegrator<TRAPEZOID> {
-    /// Adds one sample whose interval is `dt` [s]; returns the heading at that sample.
-    #[inline(always)]
-    pub(crate) fn step(&mut self, dt: f64, rate: f64) -> f64 {
-        self.heading += if TRAPEZOID {
+    fn add(&mut self, trapezoid: bool, dt: f64, rate: f64) -> f64 {
+        self.heading += if trapezoid {
             0.5 * (rate + self.previous) * dt
         } else {
             rate * dt
         };
         self.previous = rate;
         self.heading
+    }
+}
+
+/// Integrates by the configured rule (HDR eq 3 and 14, or the trapezoid rule); the heading is
+/// the signal's `heading`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct IntegratorKernel;
+
+/// Integrates by the trapezoid rule, known when the chain is composed (the pipeline's common
+/// chains), so the loop does not choose the rule sample by sample.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TrapezoidKernel;
+
+/// Implements [`Kernel`] for an integrator whose rule is `$trapezoid` (of its config `$c`).
+macro_rules! integrator_kernel {
+    ($ty:ty, |$c:ident| $trapezoid:expr) => {
+        impl Kernel for $ty {
+            type Config = IntegratorConfig;
+            type State = Heading;
+
+            fn start(config: &IntegratorConfig) -> Heading {
+                Heading {
+                    heading: config.initial_heading,
+                    previous: 0.0,
+                }
+            }
+
+            #[inline(always)]
+            fn first(_config: &IntegratorConfig, state: &mut Heading, x: Signal) -> Signal {
+                state.previous = x.rate;
+                Signal {
+                    heading: state.heading,
+                    ..x
+                }
+            }
+
+            #[inline(always)]
+            fn step($c: &IntegratorConfig, state: &mut Heading, dt: f64, x: Signal) -> Signal {
+                Signal {
+                    heading: state.add($trapezoid, dt, x.rate),
+                    ..x
+                }
+            }
+        }
+
+        settings_are_config!($ty; output |y: Signal| y.heading);
+    };
+}
+integrator_kernel!(IntegratorKernel, |c| c.method == Method::Trapezoid);
+integrator_kernel!(TrapezoidKernel, |_c| true);
+
+/// Integrates rate [rad/s] into a continuous heading \[rad\], as a stand-alone stage.
+pub type Integrator = Streaming<IntegratorKernel>;
+
+impl Integrator {
+    /// The heading so far \[rad\].
+    pub fn heading(&self) -> f64 {
+        self.parts().1.heading
     }
 }

@@ -38,8 +38,7 @@
 //! }
 //! ```
 #![cfg_attr(not(feature = "std"), no_std)]
-// One `unsafe` in the crate: the call of the loop compiled for AVX-512, after the CPU is checked.
-#![deny(unsafe_code)]
+#![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod allan;
@@ -49,6 +48,7 @@ mod error;
 pub mod hdr;
 pub mod input;
 pub mod integrate;
+pub mod kernel;
 pub mod lowpass;
 pub mod pipeline;
 pub mod rest;
@@ -66,9 +66,10 @@ pub use error::Error;
 pub use hdr::{Hdr, HdrConfig};
 pub use input::{GapAction, InputPolicy, InputReport, NonFinite};
 pub use integrate::{Integrator, IntegratorConfig, Method};
+pub use kernel::{Kernel, Signal, Streaming};
 pub use lowpass::{DeLag, LowPass, LowPassConfig};
 pub use pipeline::{NoiseScaled, Output, Outputs, Pipeline, PipelineConfig, Preset};
-pub use rest::RestStatistics;
+pub use rest::{static_bias_test, RestStatistics, StaticBiasTest};
 pub use sim::{GyroModel, GyroModelConfig, GyroSample, TemperatureProfile};
 pub use stage::{Clock, Stage};
 pub use threshold::{Threshold, ThresholdConfig};

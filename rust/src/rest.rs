@@ -3,6 +3,10 @@
 //! sensor at hand (see [`crate::pipeline::NoiseScaled`]): a gyro whose rest shows no noise and an
 //! exact bias gets neither, because there is nothing for them to remove.
 
+use crate::correction::StaticBias;
+use crate::validate::check_block;
+use crate::Error;
+
 /// Number of equal parts of the rest window whose means give the bias's standard error.
 const BATCHES: usize = 8;
 
@@ -72,4 +76,171 @@ impl RestNoise {
             bias_std_error: libm::sqrt(spread / k),
         })
     }
+}
+
+/// Time-weighted mean of the readings inside the rest window (the static bias test).
+///
+/// Each reading stands for the interval since the previous one (the rectangle rule of HDR eq 3),
+/// so an irregular logger's bursts do not outweigh its pauses, and a record averaged to a lower
+/// rate (second eq 14) gives the same bias. The first reading in the window has no interval
+/// inside it: it is the estimate until the second arrives, then carries no weight.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct BiasEstimate {
+    /// The bias in use now [rad/s].
+    value: f64,
+    /// Integral of the readings over the window so far [rad].
+    integral: f64,
+    /// Time covered so far [s].
+    duration: f64,
+    count: u64,
+    /// `(start, end)` once known; `None` for a leading window before the first sample.
+    window: Option<(f64, f64)>,
+    /// False once the stream has passed the window's end: the bias is frozen.
+    learning: bool,
+    /// The window's noise, for [`crate::Correction::rest_statistics`].
+    noise: RestNoise,
+    /// The first timestamp seen, for the error of a window that holds no sample.
+    first: Option<f64>,
+}
+
+impl BiasEstimate {
+    pub(crate) fn new(source: StaticBias) -> Self {
+        let (value, window, learning) = match source {
+            StaticBias::Fixed(b) => (b, None, false),
+            StaticBias::Window { start, end } => (0.0, Some((start, end)), true),
+            StaticBias::Leading { .. } => (0.0, None, true),
+        };
+        BiasEstimate {
+            value,
+            integral: 0.0,
+            duration: 0.0,
+            count: 0,
+            window,
+            learning,
+            noise: RestNoise::default(),
+            first: None,
+        }
+    }
+
+    /// Takes the reading into the mean while `t` is inside the window (HDR eq 2's `eps0`), and
+    /// ends the measurement once `t` is past it; `dt` is the interval since the previous reading
+    /// \[s\] (0 for the first).
+    pub(crate) fn learn(&mut self, source: StaticBias, t: f64, dt: f64, rate: f64) {
+        self.first.get_or_insert(t);
+        let (start, end) = match (self.window, source) {
+            (Some(w), _) => w,
+            (None, StaticBias::Leading { duration }) => {
+                let w = (t, t + duration);
+                self.window = Some(w);
+                w
+            }
+            _ => return,
+        };
+        if t > end {
+            self.learning = false;
+        } else if t >= start {
+            if self.count > 0 {
+                self.integral += rate * dt;
+                self.duration += dt;
+            }
+            let length = end - start;
+            let position = if length > 0.0 {
+                (t - start) / length
+            } else {
+                1.0
+            };
+            self.noise.push(position, dt, rate);
+            self.count += 1;
+            self.value = if self.duration > 0.0 {
+                self.integral / self.duration
+            } else {
+                rate
+            };
+        }
+    }
+}
+
+impl BiasEstimate {
+    /// The bias in use now [rad/s].
+    pub(crate) fn value(&self) -> f64 {
+        self.value
+    }
+
+    /// How many readings the measured bias averages (0 for a fixed bias).
+    pub(crate) fn count(&self) -> u64 {
+        self.count
+    }
+
+    /// True while the rest window is still being measured.
+    pub(crate) fn learning(&self) -> bool {
+        self.learning
+    }
+
+    /// The error for a window the samples up to `last` \[s\] passed without a reading inside.
+    pub(crate) fn missed(&self, last: f64) -> Option<Error> {
+        let (start, end) = self.window.filter(|_| self.count == 0)?;
+        Some(Error::EmptyRestWindow {
+            start,
+            end,
+            first: self.first.unwrap_or(last),
+            last,
+        })
+    }
+
+    /// See [`crate::Correction::rest_statistics`].
+    pub(crate) fn rest_statistics(&self) -> Option<RestStatistics> {
+        if self.learning || self.window.is_none() {
+            return None;
+        }
+        self.noise.statistics()
+    }
+}
+
+/// What the static bias test measured in a rest window (HDR eq 1-2's `eps0`, FOG section 2).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StaticBiasTest {
+    /// The time-weighted mean reading in the window [rad/s] (what the gyro reads at rest).
+    pub bias: f64,
+    /// How many readings lie in the window.
+    pub count: u64,
+    /// The window's noise and the bias's standard error (`None` from too few readings).
+    pub statistics: Option<RestStatistics>,
+}
+
+/// The static bias test over the readings `rate` at `t` inside `[start, end]`: exactly what a
+/// pipeline with this rest window ends with (the same estimator, sample by sample).
+///
+/// Fails for a bad block (see [`check_block`]), an invalid window, or one that holds no reading.
+pub fn static_bias_test(
+    t: &[f64],
+    rate: &[f64],
+    start: f64,
+    end: f64,
+) -> Result<StaticBiasTest, Error> {
+    let window = StaticBias::Window { start, end };
+    crate::CorrectionConfig {
+        bias: window,
+        ..crate::CorrectionConfig::default()
+    }
+    .validate()?;
+    check_block(t, rate, None, None, true)?;
+    let mut estimate = BiasEstimate::new(window);
+    let mut previous = None;
+    for (&ti, &ri) in t.iter().zip(rate) {
+        if ti > end {
+            break;
+        }
+        let dt = previous.map_or(0.0, |p| ti - p);
+        estimate.learn(window, ti, dt, ri);
+        previous = Some(ti);
+    }
+    if let Some(e) = estimate.missed(t.last().copied().unwrap_or(end)) {
+        return Err(e);
+    }
+    Ok(StaticBiasTest {
+        bias: estimate.value(),
+        count: estimate.count(),
+        statistics: estimate.noise.statistics(),
+    })
 }

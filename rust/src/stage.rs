@@ -32,28 +32,6 @@ pub trait Stage {
     }
 }
 
-/// Implements [`Stage`] for a stage with a `step(dt, rate) -> f64` method, a [`Clock`] and a
-/// configuration at the given field paths, and `start(config) -> Self` that builds its initial
-/// state.
-macro_rules! interval_stage {
-    ($ty:ty, $($clock:ident).+, $($config:ident).+) => {
-        impl $crate::stage::Stage for $ty {
-            type Output = f64;
-
-            #[inline]
-            fn update(&mut self, t: f64, rate: f64) -> f64 {
-                let dt = self.$($clock).+.tick(t);
-                self.step(dt, rate)
-            }
-
-            fn reset(&mut self) {
-                *self = Self::start(self.$($config).+);
-            }
-        }
-    };
-}
-pub(crate) use interval_stage;
-
 /// Fails with [`Error::LengthMismatch`] unless `len == expected`.
 pub(crate) fn check_len(what: &'static str, len: usize, expected: usize) -> Result<(), Error> {
     if len == expected {

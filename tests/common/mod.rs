@@ -7,11 +7,7 @@ use gyrocore::{Error, Output, Outputs, Pipeline};
 pub fn try_block(p: &mut Pipeline, t: &[f64], r: &[f64]) -> Result<Vec<Output>, Error> {
     let n = t.len();
     let (mut h, mut ra, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let out = Outputs {
-        heading: &mut h,
-        rate: &mut ra,
-        drift: &mut d,
-    };
+    let out = Outputs::all(&mut h, &mut ra, &mut d);
     p.process_block(t, r, None, out)?;
     Ok((0..n)
         .map(|i| Output {

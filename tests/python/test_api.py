@@ -213,3 +213,32 @@ def test_processing_in_threads_gives_the_sequential_result() -> None:
     with ThreadPoolExecutor(4) as ex:
         par = list(ex.map(lambda x: gyrocore.process(x[0], x[1], "combined", bias=0.01).heading, logs))
     assert all(np.array_equal(a, b) for a, b in zip(seq, par))
+
+
+def test_outputs_choose_what_is_computed_and_the_heading_is_the_same() -> None:
+    drive = gyrocore.sim.car_drive(duration=120.0, rate_hz=50.0, seed=3)
+    t, rate = drive.t, drive.rate_measured
+    full = gyrocore.process(t, rate, "recommended", bias_duration=10.0)
+    alone = gyrocore.process(t, rate, "recommended", bias_duration=10.0, outputs=("heading",))
+    assert np.array_equal(alone.heading, full.heading)
+    assert alone.rate is None and alone.drift is None
+    with_drift = gyrocore.process(t, rate, "recommended", bias_duration=10.0, outputs=("heading", "drift"))
+    assert with_drift.rate is None and np.array_equal(with_drift.output("drift"), full.output("drift"))
+    with pytest.raises(ValueError, match="'rate' output was not computed"):
+        alone.output("rate")
+    for bad in (("rate",), ("heading", "speed"), "heading"):
+        with pytest.raises(ValueError, match="outputs="):
+            gyrocore.process(t, rate, "raw", outputs=bad)  # type: ignore[arg-type]
+
+
+def test_parameter_rules_are_the_cores_with_its_message() -> None:
+    t = np.arange(0.0, 10.0, 0.01)
+    # Without a low-pass the de-lag has nothing to invert: an error, not a silent change.
+    with pytest.raises(ValueError, match="invalid parameter delag = 1: must be false unless a low-pass"):
+        gyrocore.process(t, np.zeros_like(t), "hdr", bias=0.0, lowpass_tau=0.0)
+    r = gyrocore.process(t, np.zeros_like(t), "hdr", bias=0.0, lowpass_tau=0.0, delag=False)
+    assert np.all(r.heading == 0.0)
+    # One tau for the samples and HDR's step means, whatever order the parameters come in.
+    for overrides in ({"lowpass_tau": 0.4, "hdr": True}, {"hdr": True, "lowpass_tau": 0.4}):
+        p = gyrocore.Pipeline("static_bias", bias=0.0, delag=True, **overrides)
+        assert p.params["lowpass_tau"] == 0.4 and p.params["hdr"]

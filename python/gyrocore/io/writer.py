@@ -42,7 +42,7 @@ def convert_heading(result: HeadingResult, convention: str = "enu") -> HeadingRe
     if convention == "enu":
         return result
     if convention == "compass":
-        return HeadingResult(result.t, math.pi / 2 - result.heading, -result.rate, -result.drift)
+        return HeadingResult(result.t, math.pi / 2 - result.heading, -result.output("rate"), -result.output("drift"))
     raise ValueError(f"heading convention {convention!r} is not one of {', '.join(HEADING_CONVENTIONS)}")
 
 
@@ -118,7 +118,7 @@ class HeadingWriter:
         import pyarrow as pa
 
         r = convert_heading(result, self.heading)
-        columns = [r.t, r.heading, r.rate, r.drift]
+        columns = [r.t, r.heading, r.output("rate"), r.output("drift")]
         if self.format == "csv":
             # formatted in Rust without the GIL (pyarrow's float-to-text cast was the slow part)
             self._sink.write(_gyrocore.format_csv_rows(columns))

@@ -116,7 +116,7 @@ def hdr_figures(*, seed: int = 0) -> HdrFigures:
     for method, c1 in (("without", 0.0), ("with", None)):
         p = Pipeline("hdr", bias_window=d.stationary, hdr_turn_threshold=math.inf, hdr_c1=c1)
         result = p.process(d.t, d.rate_measured)
-        minus_i[method], rate[method], static[method] = result.drift, result.rate, p.bias
+        minus_i[method], rate[method], static[method] = result.output("drift"), result.output("rate"), p.bias
         heading_error[method] = result.heading - d.heading_true
     # The drift HDR should find: the gyro's bias minus the static bias measured at rest (the same
     # rest, so the same value, for both runs).

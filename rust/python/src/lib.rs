@@ -66,13 +66,26 @@ pub(crate) fn fill<const N: usize, R>(
     arrays: [&Array<'_>; N],
     f: impl FnOnce([&mut [f64]; N]) -> R,
 ) -> PyResult<R> {
-    let mut guards = arrays.map(|a| a.readwrite());
-    let slices = guards.each_mut().map(|g| g.as_slice_mut());
+    // Every array is given, so every view is there.
+    fill_some(arrays.map(Some), |slices| {
+        f(slices.map(Option::unwrap_or_default))
+    })
+}
+
+/// [`fill`] for outputs that may not be asked for (`None`).
+pub(crate) fn fill_some<const N: usize, R>(
+    arrays: [Option<&Array<'_>>; N],
+    f: impl FnOnce([Option<&mut [f64]>; N]) -> R,
+) -> PyResult<R> {
+    let mut guards = arrays.map(|a| a.map(|a| a.readwrite()));
+    let slices = guards
+        .each_mut()
+        .map(|g| g.as_mut().map(|g| g.as_slice_mut()).transpose());
     if slices.iter().any(Result::is_err) {
         return Err(PyValueError::new_err("output array is not contiguous"));
     }
-    let slices = slices.map(Result::unwrap_or_default);
-    let pages = prefault::Pages::of(&slices);
+    let slices = slices.map(|s| s.ok().flatten());
+    let pages = prefault::Pages::of(slices.iter().flatten());
     Ok(pages.while_faulting_in(|| f(slices)))
 }
 
@@ -112,9 +125,11 @@ impl PyPipeline {
         })
     }
 
-    /// Processes a block; returns (heading, rate, drift). Nothing is processed from an invalid block;
-    /// its error counts sample indices from `index_offset`.
-    #[pyo3(signature = (t, rate, temperature=None, index_offset=0))]
+    /// Processes a block; returns (heading, rate, drift), rate and drift None unless asked for
+    /// in `outputs` (rate, drift). Nothing is processed from an invalid block; its error counts
+    /// sample indices from `index_offset`.
+    #[pyo3(signature = (t, rate, temperature=None, index_offset=0, outputs=(true, true)))]
+    #[allow(clippy::type_complexity)]
     fn process<'py>(
         &mut self,
         py: Python<'py>,
@@ -122,25 +137,30 @@ impl PyPipeline {
         rate: PyReadonlyArray1<'py, f64>,
         temperature: Option<PyReadonlyArray1<'py, f64>>,
         index_offset: usize,
-    ) -> PyResult<(Array<'py>, Array<'py>, Array<'py>)> {
+        outputs: (bool, bool),
+    ) -> PyResult<(Array<'py>, Option<Array<'py>>, Option<Array<'py>>)> {
         let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
         let temperature = temperature
             .as_ref()
             .map(|a| slice("temperature", a))
             .transpose()?;
         let n = t.len();
-        let (heading, out_rate, drift) = (zeros(py, n), zeros(py, n), zeros(py, n));
+        let wanted = |on: bool| on.then(|| zeros(py, n));
+        let (heading, out_rate, drift) = (zeros(py, n), wanted(outputs.0), wanted(outputs.1));
         let inner = &mut self.inner;
-        fill([&heading, &out_rate, &drift], |[h, r, d]| {
-            py.detach(|| {
-                let out = Outputs {
-                    heading: h,
-                    rate: r,
-                    drift: d,
-                };
-                inner.process_block(t, rate, temperature, out)
-            })
-        })?
+        fill_some(
+            [Some(&heading), out_rate.as_ref(), drift.as_ref()],
+            |[h, r, d]| {
+                py.detach(|| {
+                    let out = Outputs {
+                        heading: h,
+                        rate: r,
+                        drift: d,
+                    };
+                    inner.process_block(t, rate, temperature, out)
+                })
+            },
+        )?
         .map_err(|e| value_error(e.with_index_offset(index_offset)))?;
         Ok((heading, out_rate, drift))
     }
@@ -261,6 +281,30 @@ fn integrate<'py>(
     Ok(heading)
 }
 
+/// The static bias test over `[start, end]`: (bias [rad/s], readings, noise [rad/s] or None,
+/// bias standard error [rad/s] or None), by the estimator the pipeline's rest window uses.
+#[pyfunction]
+#[allow(clippy::type_complexity)]
+fn static_bias_test(
+    py: Python<'_>,
+    t: PyReadonlyArray1<'_, f64>,
+    rate: PyReadonlyArray1<'_, f64>,
+    start: f64,
+    end: f64,
+) -> PyResult<(f64, u64, Option<f64>, Option<f64>)> {
+    let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
+    let test = py
+        .detach(|| gyrocore::static_bias_test(t, rate, start, end))
+        .map_err(value_error)?;
+    let stats = test.statistics;
+    Ok((
+        test.bias,
+        test.count,
+        stats.map(|s| s.noise),
+        stats.map(|s| s.bias_std_error),
+    ))
+}
+
 /// Block means over `interval` seconds (HDR's second eq 14); returns (t_end, mean rate).
 #[pyfunction]
 fn downsample<'py>(
@@ -304,6 +348,7 @@ fn _gyrocore(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_panic_for_test, m)?)?;
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
     m.add_function(wrap_pyfunction!(downsample, m)?)?;
+    m.add_function(wrap_pyfunction!(static_bias_test, m)?)?;
     allan::register(m)?;
     sim::register(m)?;
     table::register(m)?;

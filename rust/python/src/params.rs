@@ -3,8 +3,8 @@
 //! This is the one place that knows the names; presets come from the core crate.
 
 use gyrocore::{
-    GapAction, HdrConfig, LowPassConfig, Method, NonFinite, PipelineConfig, StaticBias,
-    TemperatureScale, ThresholdConfig,
+    GapAction, HdrConfig, Method, NonFinite, PipelineConfig, StaticBias, TemperatureScale,
+    ThresholdConfig,
 };
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -90,82 +90,60 @@ fn unknown(name: &str) -> PyErr {
     ))
 }
 
-/// Applies `overrides` (name -> value) to `config`. Disabled stages are enabled by giving
-/// their switch (`hdr=True`) or a non-zero `threshold` / `lowpass_tau`.
+/// Applies `overrides` (name -> value) to `config`, name by name in the order of [`NAMES`] (so
+/// a switch such as `hdr` comes before the parameters it enables, whatever the caller's order);
+/// every rule between parameters is the core's (`PipelineConfig::validate`), checked when the
+/// pipeline is built. Only what the core's types cannot express is checked here: one bias
+/// source, and HDR parameters need HDR.
 pub fn apply(config: &mut PipelineConfig, overrides: &Bound<'_, PyDict>) -> PyResult<()> {
-    let mut bias_sources = Vec::new();
-    let mut hdr = config.hdr.unwrap_or_else(HdrConfig::table_iii);
-    let mut hdr_touched: Option<String> = None;
-    let mut temp = config.correction.temperature;
-    for (key, value) in overrides.iter() {
+    for key in overrides.keys() {
         let name: String = key.extract()?;
-        // `None` leaves a parameter as the preset has it, so callers can pass optional values through.
-        if value.is_none() {
-            continue;
+        if !NAMES.iter().any(|(n, _)| *n == name) {
+            return Err(unknown(&name));
         }
+    }
+    let mut bias_sources = Vec::new();
+    for &(name, _) in NAMES {
+        // `None` leaves a parameter as the preset has it, so callers can pass optional values through.
+        let Some(value) = overrides.get_item(name)?.filter(|v| !v.is_none()) else {
+            continue;
+        };
         let c = &mut config.correction;
-        match name.as_str() {
-            "bias" => {
-                c.bias = StaticBias::Fixed(value.extract()?);
-                bias_sources.push(name);
-            }
+        match name {
+            "bias" => c.bias = StaticBias::Fixed(value.extract()?),
             "bias_window" => {
                 let (start, end): (f64, f64) = value.extract()?;
                 c.bias = StaticBias::Window { start, end };
-                bias_sources.push(name);
             }
             "bias_duration" => {
                 c.bias = StaticBias::Leading {
                     duration: value.extract()?,
-                };
-                bias_sources.push(name);
+                }
             }
             "scale" => c.scale = value.extract()?,
             "offset" => c.offset = value.extract()?,
             "c_cw" => c.c_cw = value.extract()?,
             "c_ccw" => c.c_ccw = value.extract()?,
-            "temp_slope" => {
-                temp.get_or_insert(TemperatureScale {
-                    slope: 0.0,
-                    offset: 0.0,
-                })
-                .slope = value.extract()?
-            }
-            "temp_offset" => {
-                temp.get_or_insert(TemperatureScale {
-                    slope: 0.0,
-                    offset: 0.0,
-                })
-                .offset = value.extract()?
-            }
+            "temp_slope" => temperature_model(c).slope = value.extract()?,
+            "temp_offset" => temperature_model(c).offset = value.extract()?,
             "threshold" => {
                 let threshold: f64 = value.extract()?;
                 config.threshold = (threshold != 0.0).then_some(ThresholdConfig { threshold });
             }
-            "lowpass_tau" => {
-                let tau: f64 = value.extract()?;
-                config.lowpass = (tau != 0.0).then_some(LowPassConfig { tau });
-            }
+            "lowpass_tau" => config.set_lowpass_tau(value.extract()?),
             "delag" => config.delag = value.extract()?,
             "threshold_sigmas" => config.noise_scaled.threshold_sigmas = value.extract()?,
+            "hdr" => config.set_hdr(value.extract()?),
             "hdr_bound_sigmas" => {
+                hdr_of(config, name)?;
                 config.noise_scaled.hdr_bound_sigmas = value.extract()?;
-                hdr_touched = Some(name);
             }
-            "hdr" => config.hdr = value.extract::<bool>()?.then_some(hdr),
-            "hdr_increment" | "hdr_turn_threshold" | "hdr_c1" | "hdr_c2" | "hdr_interval"
-            | "hdr_max_correction" => {
-                let v: f64 = value.extract()?;
-                match name.as_str() {
-                    "hdr_increment" => hdr.increment = v,
-                    "hdr_turn_threshold" => hdr.turn_threshold = v,
-                    "hdr_c1" => hdr.c1 = v,
-                    "hdr_c2" => hdr.c2 = v,
-                    "hdr_max_correction" => hdr.max_correction = v,
-                    _ => hdr.interval = v,
-                }
-                hdr_touched = Some(name);
-            }
+            "hdr_increment" => hdr_of(config, name)?.increment = value.extract()?,
+            "hdr_turn_threshold" => hdr_of(config, name)?.turn_threshold = value.extract()?,
+            "hdr_c1" => hdr_of(config, name)?.c1 = value.extract()?,
+            "hdr_c2" => hdr_of(config, name)?.c2 = value.extract()?,
+            "hdr_interval" => hdr_of(config, name)?.interval = value.extract()?,
+            "hdr_max_correction" => hdr_of(config, name)?.max_correction = value.extract()?,
             "integration" => {
                 let method: String = value.extract()?;
                 config.integrator.method = parse_method(&method)?;
@@ -193,7 +171,10 @@ pub fn apply(config: &mut PipelineConfig, overrides: &Bound<'_, PyDict>) -> PyRe
                     other => return Err(choice_error("gap_action", other, "'bridge' or 'reset'")),
                 }
             }
-            _ => return Err(unknown(&name)),
+            _ => return Err(unknown(name)),
+        }
+        if BIAS_SOURCES.contains(&name) {
+            bias_sources.push(name);
         }
     }
     if bias_sources.len() > 1 {
@@ -202,21 +183,27 @@ pub fn apply(config: &mut PipelineConfig, overrides: &Bound<'_, PyDict>) -> PyRe
             bias_sources.join(", ")
         )));
     }
-    config.correction.temperature = temp;
-    if config.hdr.is_some() {
-        // One tau, as in the paper: the same eq 7 smooths the samples and HDR's step means.
-        hdr.tau = config.lowpass.map_or(0.0, |l| l.tau);
-        config.hdr = Some(hdr);
-    } else if let Some(name) = hdr_touched {
-        return Err(PyValueError::new_err(format!(
-            "{name} is set but HDR is off; pass hdr=True to enable it"
-        )));
-    }
-    // De-lag inverts the low-pass; with no low-pass there is no lag to undo.
-    if config.lowpass.is_none() {
-        config.delag = false;
-    }
     Ok(())
+}
+
+/// The names that each give the static bias.
+const BIAS_SOURCES: [&str; 3] = ["bias", "bias_window", "bias_duration"];
+
+/// The temperature model of `c`, created (as the identity) when first set.
+fn temperature_model(c: &mut gyrocore::CorrectionConfig) -> &mut TemperatureScale {
+    c.temperature.get_or_insert(TemperatureScale {
+        slope: 0.0,
+        offset: 0.0,
+    })
+}
+
+/// HDR's parameters, or an error naming `name` when HDR is off.
+fn hdr_of<'a>(config: &'a mut PipelineConfig, name: &str) -> PyResult<&'a mut HdrConfig> {
+    config.hdr.as_mut().ok_or_else(|| {
+        PyValueError::new_err(format!(
+            "{name} is set but HDR is off; pass hdr=True to enable it"
+        ))
+    })
 }
 
 fn choice_error(name: &str, got: &str, valid: &str) -> PyErr {

@@ -18,10 +18,9 @@ pub(crate) struct Pages(Vec<(usize, usize)>);
 
 impl Pages {
     /// The pages of `outputs`, to be faulted in while they are written.
-    pub(crate) fn of(outputs: &[&mut [f64]]) -> Self {
+    pub(crate) fn of<'a>(outputs: impl Iterator<Item = &'a &'a mut [f64]>) -> Self {
         Pages(
             outputs
-                .iter()
                 .map(|o| (o.as_ptr() as usize, std::mem::size_of_val(&**o)))
                 .collect(),
         )

@@ -1,0 +1,214 @@
+//! The chains the pipeline composes from its configuration, and the loop that runs one over a
+//! block.
+//!
+//! A chain is a tuple of kernels (see [`crate::kernel`]): the stages a configuration leaves out
+//! are not in the type, so they cost nothing per sample. Three chains cover every configuration:
+//! the common ones without and with HDR, each compiled for what it holds, and a general one in
+//! which every stage may be off. To add a stage, write its kernel and put it into these tuples.
+
+use crate::correction::{Calibration, CorrectionKernel, SingleFactorKernel};
+use crate::hdr::{HdrKernel, HdrRule};
+use crate::integrate::{IntegratorKernel, Method, TrapezoidKernel};
+use crate::kernel::{Event, Kernel, Measured, Signal};
+use crate::lowpass::{DeLagKernel, LowPassKernel};
+use crate::threshold::{ThresholdConfig, ThresholdKernel};
+use crate::validate::{finite_reading, interval_key, Checks};
+
+use super::{Output, Outputs, PipelineConfig};
+
+/// The presets without HDR (`raw`, `static_bias`, `hong_park`): correction, dead band, trapezoid.
+pub(crate) type PlainChain = (SingleFactorKernel, ThresholdKernel, TrapezoidKernel);
+
+/// The HDR presets (`hdr`, `combined`, `tuned`): HDR eq 7-13 between the dead band and the
+/// trapezoid rule.
+pub(crate) type HdrChain = (
+    SingleFactorKernel,
+    ThresholdKernel,
+    LowPassKernel,
+    HdrKernel,
+    DeLagKernel,
+    TrapezoidKernel,
+);
+
+/// Any other configuration: factors per turn direction, a temperature model, the rectangle
+/// rule, or any subset of the filters.
+pub(crate) type GeneralChain = (
+    CorrectionKernel,
+    ThresholdKernel,
+    Option<LowPassKernel>,
+    Option<HdrKernel>,
+    Option<DeLagKernel>,
+    IntegratorKernel,
+);
+
+/// A chain's configuration and state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(bound = ""))]
+pub(crate) struct Chain<C: Kernel> {
+    config: C::Config,
+    state: C::State,
+}
+
+/// The chain a configuration runs.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) enum Engine {
+    Plain(Chain<PlainChain>),
+    Hdr(Chain<HdrChain>),
+    General(Chain<GeneralChain>),
+}
+
+/// Runs `$body` with `$chain` bound to the engine's chain, whichever it is.
+macro_rules! with_chain {
+    ($engine:expr, |$chain:ident| $body:expr) => {
+        match $engine {
+            Engine::Plain($chain) => $body,
+            Engine::Hdr($chain) => $body,
+            Engine::General($chain) => $body,
+        }
+    };
+}
+
+impl Engine {
+    /// The chain for a valid configuration.
+    pub(crate) fn new(config: &PipelineConfig) -> Engine {
+        let calibration = Calibration::new(config.correction);
+        let threshold = config
+            .threshold
+            .unwrap_or(ThresholdConfig { threshold: 0.0 });
+        let c = &config.correction;
+        let common = c.c_cw == c.c_ccw
+            && c.temperature.is_none()
+            && config.integrator.method == Method::Trapezoid;
+        let integrator = config.integrator;
+        match (common, config.lowpass, config.hdr, config.delag) {
+            (true, None, None, false) => {
+                Engine::Plain(Chain::new((calibration, threshold, integrator)))
+            }
+            (true, Some(lowpass), Some(hdr), true) => Engine::Hdr(Chain::new((
+                calibration,
+                threshold,
+                lowpass,
+                HdrRule::new(hdr),
+                lowpass,
+                integrator,
+            ))),
+            _ => Engine::General(Chain::new((
+                calibration,
+                threshold,
+                config.lowpass,
+                config.hdr.map(HdrRule::new),
+                config.lowpass.filter(|_| config.delag),
+                integrator,
+            ))),
+        }
+    }
+
+    /// One sample on the slow path (see [`Event`]).
+    pub(crate) fn event(&mut self, e: Event, x: Signal) -> Signal {
+        with_chain!(self, |chain| chain.event(e, x))
+    }
+
+    /// Hands what the pipeline measured to every stage.
+    pub(crate) fn measured(&mut self, m: &Measured) {
+        with_chain!(self, |chain| chain.measured(m))
+    }
+
+    /// The settled samples of `block` from `cursor.next` on, through the chain's loop; see
+    /// [`Chain::run`].
+    pub(crate) fn run(
+        &mut self,
+        block: &Block<'_>,
+        cursor: &mut Cursor,
+        stops: Option<u64>,
+        out: &mut Outputs<'_>,
+    ) {
+        match stops {
+            None => with_chain!(self, |chain| chain.run::<false>(block, cursor, 0, out)),
+            Some(key) => with_chain!(self, |chain| chain.run::<true>(block, cursor, key, out)),
+        }
+    }
+}
+
+/// A block's samples.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Block<'a> {
+    pub(crate) t: &'a [f64],
+    pub(crate) rate: &'a [f64],
+    pub(crate) temperature: Option<&'a [f64]>,
+}
+
+/// Where the loop over a block stands.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Cursor {
+    /// The next sample to take.
+    pub(crate) next: usize,
+    /// The timestamp of the last sample taken.
+    pub(crate) previous: f64,
+    /// Validity of every sample taken.
+    pub(crate) checks: Checks,
+    /// The output of the last sample taken.
+    pub(crate) last: Output,
+}
+
+impl<C: Kernel> Chain<C> {
+    fn new(config: C::Config) -> Self {
+        Chain {
+            state: C::start(&config),
+            config,
+        }
+    }
+
+    fn event(&mut self, e: Event, x: Signal) -> Signal {
+        C::event(&self.config, &mut self.state, e, x)
+    }
+
+    fn measured(&mut self, m: &Measured) {
+        C::measured(&mut self.config, &mut self.state, m);
+    }
+
+    /// The loop: every sample from `cursor.next` on through [`Kernel::step`], its output into
+    /// `out`.
+    ///
+    /// Each sample is taken as it comes and checked on the way (a few integer operations that
+    /// run beside the chain's floating-point work, see [`Checks`]); the caller rejects the block
+    /// if any failed. Unless `STOPS`, the loop takes every sample; with `STOPS`, it stops before
+    /// a sample whose interval's [`interval_key`] exceeds `stop_key` (a gap the input policy
+    /// restarts at, or a timestamp that does not move forward) or whose reading is not finite
+    /// (which the policy holds or skips): such a sample needs the slow path.
+    #[inline(always)]
+    fn run<const STOPS: bool>(
+        &mut self,
+        block: &Block<'_>,
+        cursor: &mut Cursor,
+        stop_key: u64,
+        out: &mut Outputs<'_>,
+    ) {
+        let n = block.t.len();
+        // Slices of one length, so the loop carries no bounds checks.
+        let (t, rate) = (block.t, &block.rate[..n]);
+        let temperature = block.temperature.map(|temp| &temp[..n]);
+        let mut out = out.first(n);
+        let config = &self.config;
+        // Local copies, so that the loop keeps them in registers.
+        let mut state = self.state;
+        let mut c = *cursor;
+        for i in c.next..n {
+            let dt = t[i] - c.previous;
+            let temp = temperature.map(|temp| temp[i]);
+            if STOPS && (interval_key(dt) > stop_key || !finite_reading(rate[i], temp)) {
+                break;
+            }
+            c.previous = t[i];
+            c.checks.interval(dt);
+            c.checks.reading(rate[i], temp);
+            let x = Signal::reading(rate[i], temp.unwrap_or(f64::NAN));
+            c.last = Output::of(C::step(config, &mut state, dt, x));
+            out.set(i, c.last);
+            c.next = i + 1;
+        }
+        self.state = state;
+        *cursor = c;
+    }
+}

@@ -1,0 +1,449 @@
+//! The whole chain in one pass: correction -> threshold -> low-pass -> HDR -> de-lag -> integrate.
+//! No intermediate arrays: every enabled stage sees each sample once, in order.
+//!
+//! - [`config`]: what runs ([`PipelineConfig`], its rules, the [`Preset`]s);
+//! - `engine`: the chains composed from a configuration and the loop over a block;
+//! - this module: the public [`Pipeline`], which takes samples one at a time ([`Pipeline::update`])
+//!   or a block at a time ([`Pipeline::process_block`]), and the slow path that the loop leaves
+//!   to it: the first sample, the rest window, gaps the policy restarts at, and readings it holds
+//!   or skips.
+
+pub mod config;
+mod engine;
+
+pub use config::{NoiseScaled, PipelineConfig, Preset};
+
+use engine::{Block, Cursor, Engine};
+
+use crate::input::{GapAction, InputReport, NonFinite};
+use crate::kernel::{Event, EventKind, Measured, Signal};
+use crate::rest::BiasEstimate;
+use crate::rest::RestStatistics;
+use crate::stage::{check_len, Clock};
+use crate::validate::{check_block, check_lengths, finite_reading, interval_key, Checks};
+use crate::Error;
+
+/// Per-sample output of the pipeline.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Output {
+    /// Continuous heading \[rad\], counter-clockwise positive.
+    pub heading: f64,
+    /// Corrected (and de-lagged) rate that was integrated [rad/s].
+    pub rate: f64,
+    /// HDR's drift estimate `-I` applied to this sample [rad/s] (0 without HDR).
+    pub drift: f64,
+}
+
+impl Output {
+    /// What the pipeline reports of a signal that passed the whole chain.
+    #[inline(always)]
+    fn of(y: Signal) -> Self {
+        Output {
+            heading: y.heading,
+            rate: y.rate,
+            drift: y.drift,
+        }
+    }
+}
+
+/// Where [`Pipeline::process_block`] writes its outputs: each slice as long as the input, or
+/// `None` for an output the caller does not need (it then costs nothing to fill).
+#[derive(Debug, Default)]
+pub struct Outputs<'a> {
+    /// Receives [`Output::heading`].
+    pub heading: Option<&'a mut [f64]>,
+    /// Receives [`Output::rate`].
+    pub rate: Option<&'a mut [f64]>,
+    /// Receives [`Output::drift`].
+    pub drift: Option<&'a mut [f64]>,
+}
+
+impl<'a> Outputs<'a> {
+    /// All three outputs.
+    pub fn all(heading: &'a mut [f64], rate: &'a mut [f64], drift: &'a mut [f64]) -> Self {
+        Outputs {
+            heading: Some(heading),
+            rate: Some(rate),
+            drift: Some(drift),
+        }
+    }
+
+    /// The heading alone.
+    pub fn heading(heading: &'a mut [f64]) -> Self {
+        Outputs {
+            heading: Some(heading),
+            ..Outputs::default()
+        }
+    }
+
+    /// Fails unless every slice given holds `n` samples.
+    fn check(&self, n: usize) -> Result<(), Error> {
+        for (what, slice) in [
+            ("heading", &self.heading),
+            ("rate out", &self.rate),
+            ("drift", &self.drift),
+        ] {
+            if let Some(s) = slice {
+                check_len(what, s.len(), n)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The first `n` samples of each slice (all it has, after [`Outputs::check`]).
+    #[inline(always)]
+    fn first(&mut self, n: usize) -> Outputs<'_> {
+        Outputs {
+            heading: self.heading.as_deref_mut().map(|s| &mut s[..n]),
+            rate: self.rate.as_deref_mut().map(|s| &mut s[..n]),
+            drift: self.drift.as_deref_mut().map(|s| &mut s[..n]),
+        }
+    }
+
+    /// Writes sample `i`'s output where it is wanted.
+    #[inline(always)]
+    fn set(&mut self, i: usize, o: Output) {
+        if let Some(s) = &mut self.heading {
+            s[i] = o.heading;
+        }
+        if let Some(s) = &mut self.rate {
+            s[i] = o.rate;
+        }
+        if let Some(s) = &mut self.drift {
+            s[i] = o.drift;
+        }
+    }
+}
+
+/// The composed pipeline; see the module doc for the order of the stages.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Pipeline {
+    config: PipelineConfig,
+    engine: Engine,
+    /// The static bias test of the rest window, while it runs and after.
+    bias: BiasEstimate,
+    clock: Clock,
+    /// The last finite (rate, temperature) reading, for [`NonFinite::Hold`].
+    last_reading: Option<(f64, Option<f64>)>,
+    /// The last output, repeated (with a NaN rate) for a skipped sample.
+    last_output: Output,
+    report: InputReport,
+    /// True until the [`NoiseScaled`] values are set from the rest window.
+    scaling_pending: bool,
+}
+
+impl Pipeline {
+    /// Validates the configuration ([`PipelineConfig::validate`]) and builds the pipeline.
+    pub fn new(config: PipelineConfig) -> Result<Self, Error> {
+        config.validate()?;
+        Ok(Pipeline {
+            config,
+            engine: Engine::new(&config),
+            bias: BiasEstimate::new(config.correction.bias),
+            clock: Clock::default(),
+            last_reading: None,
+            last_output: Output {
+                heading: config.integrator.initial_heading,
+                ..Output::default()
+            },
+            report: InputReport::default(),
+            scaling_pending: config.noise_scaled.any(),
+        })
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &PipelineConfig {
+        &self.config
+    }
+
+    /// The static bias in use now [rad/s] and how many readings it averages.
+    pub fn bias(&self) -> (f64, u64) {
+        (self.bias.value(), self.bias.count())
+    }
+
+    /// True while a rest window is still being measured.
+    pub fn bias_learning(&self) -> bool {
+        self.bias.learning()
+    }
+
+    /// The last timestamp processed, if any.
+    pub fn last_time(&self) -> Option<f64> {
+        self.clock.last()
+    }
+
+    /// What the input policy has done so far (held, skipped samples; gaps).
+    pub fn report(&self) -> InputReport {
+        self.report
+    }
+
+    /// Returns every stage to its initial state (same as a new pipeline with the same config).
+    pub fn reset(&mut self) {
+        // The configuration was validated when the pipeline was built.
+        if let Ok(fresh) = Pipeline::new(self.config) {
+            *self = fresh;
+        }
+    }
+
+    /// The rest window's noise and the standard error of the bias measured in it, once the
+    /// window is over (see [`crate::Correction::rest_statistics`]).
+    pub fn rest_statistics(&self) -> Option<RestStatistics> {
+        self.bias.rest_statistics()
+    }
+
+    /// Feeds one sample (`t` \[s\], `rate` [rad/s]) without a temperature.
+    #[inline]
+    pub fn update(&mut self, t: f64, rate: f64) -> Output {
+        self.update_with_temperature(t, rate, None)
+    }
+
+    /// Feeds one sample with the sensor temperature \[degC\] for the temperature scale model.
+    ///
+    /// Infallible and allocation-free. A sample whose timestamp does not move forward is skipped,
+    /// and so is a non-finite reading unless the policy holds the last one (a missing
+    /// temperature where the model needs one counts as non-finite): a skipped sample leaves every
+    /// stage untouched and gets the last heading and drift with a NaN rate (counted in
+    /// [`Pipeline::report`]). Use [`Pipeline::process_block`] to have bad input rejected instead.
+    pub fn update_with_temperature(
+        &mut self,
+        t: f64,
+        rate: f64,
+        temperature: Option<f64>,
+    ) -> Output {
+        let first = self.clock.last().is_none();
+        let Some((dt, rate, temperature)) = self.admit(t, rate, temperature) else {
+            self.report.skipped += 1;
+            return Output {
+                rate: f64::NAN,
+                ..self.last_output
+            };
+        };
+        self.last_output = self.take(first, t, dt, rate, temperature);
+        self.last_output
+    }
+
+    /// Checks a block (lengths; finite, strictly increasing time, also after the previous block;
+    /// finite readings unless the policy holds or skips them; a rest window that holds a sample)
+    /// and feeds it through the pipeline, writing the outputs asked for. On an error the
+    /// pipeline is as it was before the block (the outputs are not).
+    ///
+    /// The settled samples (after the first, past the rest window) run through the chain's loop,
+    /// which checks them on the way; the pipeline is restored if any fails, and the block is
+    /// checked again only then, to name the first bad sample.
+    pub fn process_block(
+        &mut self,
+        t: &[f64],
+        rate: &[f64],
+        temperature: Option<&[f64]>,
+        mut out: Outputs<'_>,
+    ) -> Result<(), Error> {
+        if self.config.correction.temperature.is_some() && temperature.is_none() {
+            return Err(Error::MissingTemperature);
+        }
+        check_lengths(t, rate, temperature)?;
+        out.check(t.len())?;
+        let block = Block {
+            t,
+            rate,
+            temperature,
+        };
+        let before = self.clone();
+        let result = self.feed(&block, &mut out);
+        if result.is_err() {
+            *self = before;
+        }
+        result
+    }
+
+    /// [`Pipeline::process_block`] after its checks of lengths.
+    fn feed(&mut self, block: &Block<'_>, out: &mut Outputs<'_>) -> Result<(), Error> {
+        let n = block.t.len();
+        let mut next = 0;
+        while next < n {
+            if self.settled() {
+                next = self.run(block, next, out)?;
+                if next == n {
+                    break;
+                }
+            }
+            let o = self.sample_of_block(block, next)?;
+            out.first(n).set(next, o);
+            next += 1;
+        }
+        Ok(())
+    }
+
+    /// True once the first sample is in and the rest window is over and applied: from then on
+    /// the chain's loop takes the samples.
+    fn settled(&self) -> bool {
+        self.clock.last().is_some() && !self.bias.learning() && !self.scaling_pending
+    }
+
+    /// The chain's loop from sample `from` of a settled pipeline, to the end of the block or to
+    /// a sample that needs the slow path; returns where it stopped, or the block's first error.
+    fn run(
+        &mut self,
+        block: &Block<'_>,
+        from: usize,
+        out: &mut Outputs<'_>,
+    ) -> Result<usize, Error> {
+        let policy = self.config.input;
+        let previous = self.clock.last().unwrap_or(f64::NAN);
+        let mut cursor = Cursor {
+            next: from,
+            previous,
+            checks: Checks::default(),
+            last: self.last_output,
+        };
+        // The loop stops only where the policy needs the slow path: at a gap it restarts at, or
+        // a reading it holds or skips. Otherwise it takes every sample and they are checked.
+        let stops = (policy.gap_action == GapAction::Reset
+            || policy.non_finite != NonFinite::Error)
+            .then(|| match policy.gap_action {
+                GapAction::Reset => interval_key(policy.gap_limit.min(f64::MAX)),
+                GapAction::Bridge => interval_key(f64::MAX),
+            });
+        self.engine.run(block, &mut cursor, stops, out);
+        let end = cursor.next;
+        let (t, rate) = (&block.t[from..end], &block.rate[from..end]);
+        let temperature = block.temperature.map(|temp| &temp[from..end]);
+        if !cursor.checks.passed() {
+            let must_be_finite = policy.non_finite == NonFinite::Error;
+            check_block(t, rate, temperature, Some(previous), must_be_finite)
+                .map_err(|e| e.with_index_offset(from))?;
+        }
+        // The checks have the longest interval; only if it is a gap are the gaps counted, in a
+        // pass over the timestamps: the loop carries nothing for them.
+        if let Some(longest) = cursor
+            .checks
+            .longest_interval()
+            .filter(|&dt| dt > policy.gap_limit)
+        {
+            self.report
+                .gaps_up_to(intervals_over(previous, t, policy.gap_limit), longest);
+        }
+        if end > from {
+            let last = end - 1;
+            self.clock.set(block.t[last]);
+            self.last_reading = Some((block.rate[last], block.temperature.map(|temp| temp[last])));
+            self.last_output = cursor.last;
+        }
+        Ok(end)
+    }
+
+    /// Sample `i` of a block on the slow path: checked first, then taken as
+    /// [`Pipeline::update_with_temperature`] takes it.
+    fn sample_of_block(&mut self, block: &Block<'_>, i: usize) -> Result<Output, Error> {
+        let (t, rate) = (block.t[i], block.rate[i]);
+        let temperature = block.temperature.map(|temp| temp[i]);
+        let must_be_finite = self.config.input.non_finite == NonFinite::Error;
+        let temperatures = block.temperature.map(|temp| &temp[i..=i]);
+        check_block(
+            &[t],
+            &[rate],
+            temperatures,
+            self.clock.last(),
+            must_be_finite,
+        )
+        .map_err(|e| e.with_index_offset(i))?;
+        let out = self.update_with_temperature(t, rate, temperature);
+        match self.bias.missed(t).filter(|_| !self.bias.learning()) {
+            Some(e) => Err(e),
+            None => Ok(out),
+        }
+    }
+
+    /// The interval and the reading to use for a sample under the input policy (the clock then
+    /// moves to `t`), or `None` to skip the sample and leave everything as it was.
+    fn admit(
+        &mut self,
+        t: f64,
+        rate: f64,
+        temperature: Option<f64>,
+    ) -> Option<(f64, f64, Option<f64>)> {
+        let dt = self.clock.interval(t)?;
+        let needs_temperature = self.config.correction.temperature.is_some();
+        let reading =
+            if finite_reading(rate, temperature) && (temperature.is_some() || !needs_temperature) {
+                self.last_reading = Some((rate, temperature));
+                (rate, temperature)
+            } else {
+                match (self.config.input.non_finite, self.last_reading) {
+                    (NonFinite::Hold, Some(held)) => {
+                        self.report.held += 1;
+                        held
+                    }
+                    _ => return None,
+                }
+            };
+        self.clock.set(t);
+        Some((dt, reading.0, reading.1))
+    }
+
+    /// The slow path for an admitted sample with interval `dt`: the first sample, a gap, the rest
+    /// window and its end.
+    fn take(
+        &mut self,
+        first: bool,
+        t: f64,
+        dt: f64,
+        rate: f64,
+        temperature: Option<f64>,
+    ) -> Output {
+        let policy = self.config.input;
+        let kind = if first {
+            EventKind::First
+        } else if dt > policy.gap_limit {
+            self.report.gap(dt);
+            match policy.gap_action {
+                GapAction::Reset => EventKind::AfterGap,
+                GapAction::Bridge => EventKind::Step,
+            }
+        } else {
+            EventKind::Step
+        };
+        if self.bias.learning() {
+            self.bias.learn(self.config.correction.bias, t, dt, rate);
+            self.engine.measured(&Measured {
+                bias: Some(self.bias.value()),
+                ..Measured::default()
+            });
+        }
+        let measuring = self.bias.learning();
+        if self.scaling_pending && !measuring {
+            self.scale_to_rest();
+        }
+        let e = Event {
+            dt,
+            kind,
+            measuring,
+        };
+        let x = Signal::reading(rate, temperature.unwrap_or(f64::NAN));
+        Output::of(self.engine.event(e, x))
+    }
+
+    /// Sets the [`NoiseScaled`] dead band and HDR bound from the rest window that just ended.
+    fn scale_to_rest(&mut self) {
+        self.scaling_pending = false;
+        let Some(rest) = self.bias.rest_statistics() else {
+            return;
+        };
+        let scaled = self.config.noise_scaled;
+        self.engine.measured(&Measured {
+            bias: None,
+            threshold: scaled.threshold_sigmas.map(|k| k * rest.noise),
+            hdr_bound: scaled.hdr_bound_sigmas.map(|k| k * rest.bias_std_error),
+        });
+    }
+}
+
+/// How many of the intervals from `start` to `t[0]` and between the timestamps `t` are longer
+/// than `limit`.
+fn intervals_over(start: f64, t: &[f64], limit: f64) -> u64 {
+    let previous = core::iter::once(start).chain(t.iter().copied());
+    previous
+        .zip(t)
+        .map(|(a, &b)| u64::from(b - a > limit))
+        .sum()
+}

@@ -1,0 +1,156 @@
+//! The rules between parameters live in `PipelineConfig::validate`, a block may ask for only
+//! some outputs, a rest window must hold a sample, and the static bias test is the pipeline's.
+
+mod common;
+use gyrocore::*;
+
+fn stream(n: usize) -> (Vec<f64>, Vec<f64>) {
+    let t = (0..n).map(|i| 50.0 + i as f64 * 0.02).collect();
+    let r = (0..n)
+        .map(|i| {
+            0.01 + 0.4 * ((i as f64) * 0.013).sin().powi(5) + 0.002 * ((i * 7919 % 13) as f64 - 6.0)
+        })
+        .collect();
+    (t, r)
+}
+
+fn invalid_name(config: PipelineConfig) -> &'static str {
+    match Pipeline::new(config) {
+        Err(Error::InvalidParameter { name, .. }) => name,
+        other => panic!("expected an invalid parameter, got {other:?}"),
+    }
+}
+
+#[test]
+fn delag_needs_a_lowpass() {
+    let mut c = Preset::Hdr.config();
+    c.lowpass = None;
+    c.hdr = Some(HdrConfig {
+        tau: 0.0,
+        ..HdrConfig::table_iii()
+    });
+    assert_eq!(invalid_name(c), "delag");
+    c.delag = false;
+    assert!(Pipeline::new(c).is_ok());
+}
+
+#[test]
+fn hdr_smooths_its_steps_with_the_lowpass_tau() {
+    let mut c = Preset::Hdr.config();
+    c.lowpass = Some(LowPassConfig { tau: 0.5 });
+    assert_eq!(invalid_name(c), "hdr.tau");
+    c.set_lowpass_tau(0.5);
+    assert_eq!(c.hdr.unwrap().tau, 0.5);
+    assert!(Pipeline::new(c).is_ok());
+    // Removing the low-pass leaves de-lag with nothing to invert: an error, not a silent change.
+    c.set_lowpass_tau(0.0);
+    assert_eq!(c.lowpass, None);
+    assert_eq!(invalid_name(c), "delag");
+}
+
+#[test]
+fn switching_hdr_on_takes_table_iii_with_the_lowpass_tau() {
+    let mut c = Preset::StaticBias.config();
+    c.set_hdr(true);
+    assert_eq!(
+        c.hdr,
+        Some(HdrConfig {
+            tau: 0.0,
+            ..HdrConfig::table_iii()
+        })
+    );
+    assert!(Pipeline::new(c).is_ok());
+    c.set_hdr(false);
+    assert_eq!(c.hdr, None);
+}
+
+#[test]
+fn the_heading_alone_is_the_heading_of_all_outputs() {
+    let (t, r) = stream(5000);
+    for preset in Preset::ALL {
+        let mut c = preset.config();
+        c.correction.bias = StaticBias::Leading { duration: 10.0 };
+        let all = common::try_block(&mut Pipeline::new(c).unwrap(), &t, &r).unwrap();
+        let mut heading = vec![0.0; t.len()];
+        let mut p = Pipeline::new(c).unwrap();
+        p.process_block(&t, &r, None, Outputs::heading(&mut heading))
+            .unwrap();
+        let expected: Vec<u64> = all.iter().map(|o| o.heading.to_bits()).collect();
+        let got: Vec<u64> = heading.iter().map(|h| h.to_bits()).collect();
+        assert!(expected == got, "{preset:?}");
+    }
+}
+
+#[test]
+fn an_output_of_the_wrong_length_is_an_error() {
+    let (t, r) = stream(10);
+    let mut short = vec![0.0; 9];
+    let mut p = Pipeline::new(Preset::Raw.config()).unwrap();
+    let e = p
+        .process_block(&t, &r, None, Outputs::heading(&mut short))
+        .unwrap_err();
+    assert!(matches!(
+        e,
+        Error::LengthMismatch {
+            what: "heading",
+            len: 9,
+            expected: 10
+        }
+    ));
+}
+
+#[test]
+fn a_block_that_passes_an_empty_rest_window_changes_nothing() {
+    let (t, r) = stream(3000);
+    let mut c = Preset::Tuned.config();
+    // The stream has a gap over the whole window: 20 s to 40 s after the start, none inside.
+    c.correction.bias = StaticBias::Window {
+        start: 75.0,
+        end: 80.0,
+    };
+    let t: Vec<f64> = t
+        .iter()
+        .map(|&x| if x > 70.0 { x + 20.0 } else { x })
+        .collect();
+    let mut p = Pipeline::new(c).unwrap();
+    let head = 500;
+    common::try_block(&mut p, &t[..head], &r[..head]).unwrap();
+    let before = p.clone();
+    let e = common::try_block(&mut p, &t[head..], &r[head..]).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::EmptyRestWindow {
+                start: 75.0,
+                end: 80.0,
+                first: 50.0,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    assert!(e.to_string().contains("holds no sample"), "{e}");
+    assert_eq!(p, before);
+    // Sent again, the same error: the pipeline did not move on.
+    assert_eq!(
+        common::try_block(&mut p, &t[head..], &r[head..]).unwrap_err(),
+        e
+    );
+}
+
+#[test]
+fn the_static_bias_test_is_the_pipelines_rest_window() {
+    let (t, r) = stream(4000);
+    let (start, end) = (60.0, 90.0);
+    let mut c = Preset::Tuned.config();
+    c.correction.bias = StaticBias::Window { start, end };
+    let mut p = Pipeline::new(c).unwrap();
+    common::try_block(&mut p, &t, &r).unwrap();
+    let test = static_bias_test(&t, &r, start, end).unwrap();
+    assert_eq!((test.bias, test.count), p.bias());
+    assert_eq!(test.statistics, p.rest_statistics());
+    assert!(matches!(
+        static_bias_test(&t, &r, 10.0, 20.0),
+        Err(Error::EmptyRestWindow { .. })
+    ));
+}
