@@ -218,12 +218,23 @@ def test_rates_in_rad_per_s_read_as_deg_per_s_warn(name: str) -> None:
 
 def test_timestamps_in_another_unit_warn(tmp_path: Path) -> None:
     log = gyrocore.read_log(real_log_path("broad_10"))  # 285.7 Hz from 0 s
-    np.savez(tmp_path / "ms.npz", t=log.t * 1e3, gyro_z=log.rate)
-    assert any("look like ms, not s" in w and "--time-unit ms" in w for w in unit_warnings(tmp_path / "ms.npz"))
-    assert unit_warnings(tmp_path / "ms.npz", time_unit="ms") == []
     assert any("look like s, not ms" in w for w in unit_warnings(real_log_path("broad_10"), time_unit="ms"))
+    t_ms = 1.7e12 + np.arange(1000.0)  # an epoch in ms at 1 kHz: 1 s intervals read as s, no gaps
+    np.savez(tmp_path / "epoch_ms.npz", t=t_ms, gyro_z=RATE)
+    assert any("look like ms, not s" in w and "--time-unit ms" in w for w in unit_warnings(tmp_path / "epoch_ms.npz"))
+    assert unit_warnings(tmp_path / "epoch_ms.npz", time_unit="ms") == []
+    np.savez(tmp_path / "ms.npz", t=log.t * 1e3, gyro_z=log.rate)
+    assert unit_warnings(tmp_path / "ms.npz", time_unit="ms") == []
+
+
+def test_timestamps_that_are_all_gaps_stop_with_the_option_to_add(tmp_path: Path) -> None:
+    log = gyrocore.read_log(real_log_path("broad_10"))
+    np.savez(tmp_path / "ms.npz", t=log.t * 1e3, gyro_z=log.rate)  # 3.5 "s" intervals: every one a gap
+    with pytest.raises(ValueError, match=r"ms\.npz: each of the \d+ intervals is longer than 2 s.*--time-unit ms"):
+        gyrocore.read_log(tmp_path / "ms.npz")
     np.savez(tmp_path / "epoch_ns.npz", t=(T * 1e9).astype(np.int64), gyro_z=RATE)  # epoch in ns as s
-    assert any("look like ns, not s" in w for w in unit_warnings(tmp_path / "epoch_ns.npz"))
+    with pytest.raises(ValueError, match=r"look like ns, not s.*--time-unit ns"):
+        gyrocore.read_log(tmp_path / "epoch_ns.npz")
     assert unit_warnings(tmp_path / "epoch_ns.npz", time_unit="ns") == []
 
 

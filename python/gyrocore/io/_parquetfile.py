@@ -67,7 +67,7 @@ def _arrow_time(src: GyroSource, array: pa.Array, first: int) -> tuple[np.ndarra
     if pa.types.is_timestamp(array.type) or pa.types.is_duration(array.type):
         per_second = TIME_UNITS[array.type.unit]
         return array.cast(pa.int64()).to_numpy(), per_second
-    return _arrow_numbers(src, name, array), TIME_UNITS[src.options.time_unit]
+    return _arrow_numbers(src, name, array), src.options.counts_per_second
 
 
 def _arrow_numbers(src: GyroSource, name: str, array: pa.Array) -> np.ndarray:

@@ -80,7 +80,8 @@ def read_log(path: str | Path, **options: Any) -> Log:
     """Read a whole log into memory: a log folder (with its reference and odometry) or any file
     :func:`open_source` reads (``options``: the :class:`ReadOptions` fields).
 
-    Warns (:class:`gyrocore.InputWarning`) when the values look like another unit.
+    Warns (:class:`gyrocore.InputWarning`) when the values look like another unit; raises
+    ValueError when every interval is a gap (timestamps in another unit).
 
     Example:
         >>> import gyrocore
@@ -94,6 +95,9 @@ def read_log(path: str | Path, **options: Any) -> Log:
         check.update(chunk.t, chunk.rate)
         ts.append(chunk.t)
         rates.append(chunk.rate)
+    error = check.error()
+    if error is not None:
+        raise ValueError(f"{src.data_path}: {error}")
     for problem in check.problems():
         warn(f"{src.data_path}: {problem}")
     ref: dict[str, FloatArray] = {}
