@@ -250,3 +250,48 @@ def test_evaluate_takes_param_and_bias_dps_like_process(tmp_path: Path) -> None:
         proc = gyrocore_cli(command, folder, "--param", "bias", *(["--out", str(tmp_path / "o.csv")] * (command == "process")),
                             code=2)
         assert "--param 'bias': expected NAME=VALUE" in one_error(proc)
+
+
+# --- finding 10: what a new user sees -------------------------------------------------------
+
+
+def test_a_log_prints_as_a_short_summary() -> None:
+    log = gyrocore.read_log(real_log_path("f110_ds3"))
+    text = repr(log)
+    assert text.startswith("Log('f110_ds3': 2736 samples, 126.993 s from t = 1651541251.831 s")
+    assert "reference 2736 samples with track" in text and "rest +0 .. +1.83939 s" in text
+    assert "array" not in text and len(text) < 200
+
+
+def test_output_csv_never_holds_negative_zero(tmp_path: Path) -> None:
+    src = tmp_path / "rest.csv"
+    src.write_text("t,gyro_z\n0,0\n0.01,0\n0.02,0\n")  # at rest: the compass rate is -0.0
+    out = tmp_path / "heading.csv"
+    gyrocore_cli("process", src, "--out", out, "--preset", "raw", "--heading", "compass", code=0)
+    rows = [line.split(",") for line in out.read_text().splitlines()[1:]]
+    assert len(rows) == 3 and all(float(r[2]) == 0.0 for r in rows)
+    assert not any(value.startswith("-0") and float(value) == 0.0 for r in rows for value in r)
+
+
+def test_the_demo_says_why_recommended_is_not_the_best_and_titles_its_plot(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    args = ("demo", "--duration", "300", "--drives", "2", "--seed", "0")
+    rows = json.loads(gyrocore_cli(*args, "--plot", "", "--json", code=0).stdout)
+    best = min((r for r in rows if r["preset"] != "raw"), key=lambda r: r["e_psi_deg"])["preset"]
+    out = gyrocore_cli(*args, "--plot", "", code=0).stdout
+    recommended = gyrocore.recommended_preset()
+    if best == recommended:
+        assert f"{recommended} has the lowest E_psi here" in out
+    else:
+        assert f"{recommended} is not the lowest E_psi here ({best} is): it was chosen to do no harm" in out
+    import matplotlib.pyplot as plt
+
+    from gyrocore.cli import main
+
+    figures: list[object] = []
+    monkeypatch.setattr(plt, "close", figures.append)  # keep the demo's figure to read its title
+    assert main([*args, "--plot", str(tmp_path / "demo.png")]) == 0
+    title = figures[0].axes[0].get_title()  # type: ignore[attr-defined]
+    assert "simulated car drive" in title and "'mixed' roads" in title
+    assert gyrocore.sim.SENSORS["crs03"].name in title

@@ -120,8 +120,9 @@ class HeadingWriter:
         r = convert_heading(result, self.heading)
         columns = [r.t, r.heading, r.rate, r.drift]
         if self.format == "csv":
-            # formatted in Rust without the GIL (pyarrow's float-to-text cast was the slow part)
-            self._sink.write(_gyrocore.format_csv_rows(columns))
+            # formatted in Rust without the GIL (pyarrow's float-to-text cast was the slow part);
+            # + 0.0 turns -0.0 (the compass rate of a gyro at rest) into 0.0, a sign that is not there
+            self._sink.write(_gyrocore.format_csv_rows([c + 0.0 for c in columns]))
         else:
             self._pending.append(pa.record_batch(columns, schema=self._schema))
             if sum(b.num_rows for b in self._pending) >= PARQUET_ROW_GROUP:
