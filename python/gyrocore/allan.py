@@ -32,6 +32,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
+from ._extras import require
 from .pipeline import integrate
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -426,7 +427,7 @@ def confidence_interval(
 ) -> tuple[FloatArray, FloatArray]:
     """Chi-squared interval of a deviation with ``edf`` degrees of freedom (NIST SP 1065 eq 45):
     ``dev * sqrt(edf / chi2_{(1+c)/2})`` .. ``dev * sqrt(edf / chi2_{(1-c)/2})``."""
-    from scipy.stats import chi2  # the only use of scipy: chi-squared quantiles
+    chi2 = require("scipy.stats", "the Allan deviation").chi2  # scipy's only use here
 
     d = np.asarray(dev, dtype=np.float64)
     e = np.asarray(edf, dtype=np.float64)
@@ -735,10 +736,7 @@ def plot(
     """Log-log plot of the deviation with its confidence interval; with ``parameters``, the
     slope -1/2 (N), floor (0.664 B) and slope +1/2 (K) lines over the ranges they came from.
     Needs matplotlib (``pip install gyrocore[plot]``); returns the axes."""
-    try:
-        import matplotlib.pyplot as plt
-    except ImportError as e:  # pragma: no cover - depends on the environment
-        raise ImportError("plotting needs matplotlib: pip install 'gyrocore[plot]'") from e
+    plt = require("matplotlib.pyplot", "plotting an Allan deviation")
     if ax is None:
         _, ax = plt.subplots(figsize=(6.4, 4.8))
     err = np.vstack([result.adev - result.adev_low, result.adev_high - result.adev])

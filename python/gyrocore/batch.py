@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 
 from . import io
+from ._extras import require, tqdm_class
 from ._gyrocore import SampleError
 from .pipeline import Pipeline, has_bias_source, uses_static_bias
 from .window import Window, time_range
@@ -381,11 +382,8 @@ class _Stopped(Exception):
 
 def _bar(total: int, enabled: bool) -> Any:
     """A bar over the files on stderr, only when asked for and stderr is a terminal."""
-    if not (enabled and sys.stderr.isatty()):
-        return _NoBar()
-    from tqdm import tqdm
-
-    return tqdm(total=total, unit="file", leave=False)
+    tqdm = tqdm_class() if enabled and sys.stderr.isatty() else None
+    return _NoBar() if tqdm is None else tqdm(total=total, unit="file", leave=False)
 
 
 class _NoBar:
@@ -420,11 +418,8 @@ def _run_on_threads(jobs: list[_FileJob], workers: int, progress: bool) -> list[
 
 
 def _run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileReport]:
-    try:
-        from dask.distributed import Client
-        from dask.distributed import as_completed as dask_completed
-    except ImportError:
-        raise ImportError("running on a Dask cluster needs dask: pip install 'gyrocore[dask]'") from None
+    distributed = require("dask.distributed", "running on a Dask cluster")
+    Client, dask_completed = distributed.Client, distributed.as_completed
     own = not isinstance(client, Client)
     if own:
         client = Client(client)

@@ -12,6 +12,7 @@ import warnings
 from typing import Sequence
 
 from . import allan, calibrate, demo, evaluate, presets, process, reproduce, simulate, tune
+from .._extras import MissingExtra
 from ._common import show_warning
 
 COMMANDS = (demo, process, presets, allan, calibrate, evaluate, tune, simulate, reproduce)
@@ -33,6 +34,6 @@ def main(argv: Sequence[str] | None = None) -> int:
         with warnings.catch_warnings():
             warnings.showwarning = show_warning
             return int(args.func(args))
-    except (ValueError, TypeError, OSError) as e:
+    except (ValueError, TypeError, OSError, MissingExtra) as e:
         print(f"gyrocore: error: {e}", file=sys.stderr)
         return 2

@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from .. import io
+from .._extras import tqdm_class
 from ..calibration import Calibration
 from ..io import atomic_path
 from ..pipeline import has_bias_source
@@ -153,10 +154,10 @@ def show_warning(
 def progress_bar(description: str) -> Iterator[Callable[[int, int | None, str], None]]:
     """A callback ``(done, total, unit)`` that draws a tqdm bar on stderr, only on a terminal
     (pipes, CI and logs get nothing)."""
-    if not sys.stderr.isatty():
+    tqdm = tqdm_class() if sys.stderr.isatty() else None
+    if tqdm is None:
         yield lambda done, total, unit: None
         return
-    from tqdm import tqdm
 
     bar: Any = None
 

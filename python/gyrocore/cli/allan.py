@@ -7,6 +7,7 @@ import json
 from pathlib import Path
 
 from .. import allan, io
+from .._extras import pyplot
 from ..window import Window
 from ._common import WINDOW_HELP, add_command, add_reading_options, reading_options, write_atomically
 
@@ -37,6 +38,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
 def run(args: argparse.Namespace) -> int:
     src = Path(args.input)
     window = None if args.window is None else Window.parse(args.window, "--window")
+    plt = None if args.plot is None else pyplot("--plot")  # before the work
     # A record for the Allan deviation is taken at rest: small rates are no sign of a unit mistake.
     log = io.read_log(src, static=True, **reading_options(args))
     t, rate = log.t, log.rate
@@ -57,14 +59,7 @@ def run(args: argparse.Namespace) -> int:
             print(f"{tau:12.5g} {d:12.5g} {lo:11.4g} {hi:11.4g} {n:9d}")
         if params is not None:
             print(params)
-    if args.plot is not None:
-        try:
-            import matplotlib
-        except ImportError:
-            raise ValueError("--plot needs matplotlib: pip install 'gyrocore[plot]'") from None
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
+    if plt is not None:
         fig, ax = plt.subplots(figsize=(6.4, 4.8))
         allan.plot(result, parameters=params, ax=ax)
         ax.set_title(f"{log.name}: {result.kind} deviation")

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from .. import evaluate, motion, sim, tune
+from .._extras import MissingExtra, pyplot
 from ..pipeline import HeadingResult, preset_names, recommended_preset
 from ._common import add_command, write_atomically
 
@@ -112,12 +113,9 @@ def _why_recommended(rows: list[dict[str, Any]]) -> str:
 
 def _plot_demo(path: Path, drive: sim.Drive, results: dict[str, HeadingResult], title: str) -> None:
     try:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print("(no plot: install matplotlib, e.g. pip install 'gyrocore[plot]')", file=sys.stderr)
+        plt = pyplot("the demo's plot")
+    except MissingExtra as e:
+        print(f"(no plot: {e})", file=sys.stderr)
         return
     fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(9, 6))
     truth = np.degrees(drive.heading_true)

@@ -8,6 +8,7 @@ import sys
 from typing import Any, Sequence
 
 from .. import motion, tune
+from .._extras import require
 from ..io import read_log
 from ..pipeline import parameters
 from ._common import add_command, add_reading_options, print_json, reading_options
@@ -117,6 +118,7 @@ def _parse_fixed(specs: Sequence[str]) -> dict[str, float]:
 
 
 def run(args: argparse.Namespace) -> int:
+    require("scipy.optimize", "tuning")  # before the drives are built
     names, bounds = _parse_params(args.param or [])
     progress = (lambda msg: print(msg, file=sys.stderr)) if not args.json else None
     sim_options = {"rate_hz": args.rate_hz, "sensor_name": args.sensor, "time_scale": args.time_scale}

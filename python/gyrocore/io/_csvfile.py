@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .._arrays import FloatArray
+from .._extras import require
 from ._columns import column_positions, concat, first_null
 
 if TYPE_CHECKING:
@@ -55,8 +56,8 @@ def _read_csv(
     ``required`` names the columns whose empty value the caller refuses, with what to call it
     (``{"t": "timestamp"}``), so that an error in a block names the first bad line of either kind.
     """
-    import pyarrow as pa
-    import pyarrow.csv as pa_csv
+    pa = require("pyarrow", f"{path}: reading CSV files")
+    pa_csv = require("pyarrow.csv", f"{path}: reading CSV files")
 
     header = _csv_header(path, delimiter)
     positions = column_positions(path, header, columns)

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._extras import require
 from ._columns import column_positions, first_null
 from .units import TIME_UNITS
 
@@ -23,8 +24,8 @@ if TYPE_CHECKING:
 
 def parquet_file(path: Path) -> Any:
     """The file opened as a pyarrow ``ParquetFile`` (its metadata read, no data yet)."""
-    import pyarrow as pa
-    import pyarrow.parquet as pq
+    pa = require("pyarrow", f"{path}: reading Parquet files")
+    pq = require("pyarrow.parquet", f"{path}: reading Parquet files")
 
     try:
         return pq.ParquetFile(path)
