@@ -295,3 +295,28 @@ def test_the_demo_says_why_recommended_is_not_the_best_and_titles_its_plot(
     title = figures[0].axes[0].get_title()  # type: ignore[attr-defined]
     assert "simulated car drive" in title and "'mixed' roads" in title
     assert gyrocore.sim.SENSORS["crs03"].name in title
+
+
+def test_the_allan_plot_keeps_its_labels_inside_the_figure(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    import matplotlib.pyplot as plt
+
+    from gyrocore.cli import main
+
+    figures: list[object] = []
+    monkeypatch.setattr(plt, "close", figures.append)  # keep the figure to measure its layout
+    png = tmp_path / "allan.png"
+    # half a second: a curve within one decade, labelled at minor ticks (1.7x10^-3), wider than 10^-3
+    assert main(["allan", str(real_log_path("broad_10")), "--window", "+0", "+0.5", "--plot", str(png)]) == 0
+    fig = figures[0]
+    renderer = fig.canvas.get_renderer()  # type: ignore[attr-defined]
+    ax = fig.axes[0]  # type: ignore[attr-defined]
+    box = fig.bbox  # type: ignore[attr-defined]
+    low, high = sorted(ax.get_ylim())
+    ticks = [*ax.get_yticklabels(), *ax.get_yticklabels(minor=True)]
+    drawn = [t for t in ticks if low <= t.get_position()[1] <= high]  # the ticks in view
+    texts = [ax.yaxis.label, ax.xaxis.label, ax.title, *drawn]
+    assert drawn and ax.yaxis.label.get_text() == "deviation [rad/s]"
+    for text in (t for t in texts if t.get_text()):
+        extent = text.get_window_extent(renderer)
+        assert box.x0 <= extent.x0 and extent.x1 <= box.x1 and box.y0 <= extent.y0 and extent.y1 <= box.y1, text
+    assert png.read_bytes()[:4] == b"\x89PNG"
