@@ -250,9 +250,11 @@ def process_file(
         chunk_rows: samples per chunk (memory; the output does not depend on it).
         progress: called after each chunk (see :data:`Progress`); may raise to stop.
         **options: reader options (``time_col``, ``rate_col``, ``time_unit``, ``rate_unit``,
-            ``topic``, ``delimiter``) and pipeline parameters (``bias_window=(t0, t1)`` [s],
-            ``bias_duration`` [s], ``bias_dps``, ...). The rest window of a log folder's meta.json
-            is used unless a bias or rest window is given.
+            ``topic``, ``delimiter``) and pipeline parameters (``bias_window=(t0, t1)`` [s] in
+            the log's time base, or a :class:`gyrocore.window.Window` whose bounds may count from
+            the first sample; ``bias_duration`` [s], ``bias_dps``, ...). The rest window of a log
+            folder's meta.json is used unless a bias or rest window is given; a rest window that
+            holds no sample is an error naming the log's time range.
 
     Returns:
         The file's report (rows in = rows out).

@@ -104,4 +104,7 @@ def time_range(first: float, last: float | None = None) -> str:
     hint = "write a bound as +T for T seconds after the first sample"
     if last is None:
         return f"the log starts at {first:.10g} s ({hint})"
-    return f"the log runs from {first:.10g} to {last:.10g} s (+0 .. +{last - first:.6g} s after its first sample; {hint})"
+    return (
+        f"the log runs from {first:.10g} to {last:.10g} s (+0 .. +{last - first:.6g} s after its first sample; "
+        f"{hint})"
+    )

@@ -247,8 +247,8 @@ def test_evaluate_takes_param_and_bias_dps_like_process(tmp_path: Path) -> None:
     assert by_dps != pytest.approx(e_psi(), rel=1e-3)  # the rest window's bias differs
     # the same helper reads --param in both commands
     for command in ("evaluate", "process"):
-        proc = gyrocore_cli(command, folder, "--param", "bias", *(["--out", str(tmp_path / "o.csv")] * (command == "process")),
-                            code=2)
+        out = ["--out", str(tmp_path / "o.csv")] if command == "process" else []
+        proc = gyrocore_cli(command, folder, "--param", "bias", *out, code=2)
         assert "--param 'bias': expected NAME=VALUE" in one_error(proc)
 
 

@@ -73,6 +73,23 @@ def test_units_are_converted_to_seconds_and_rad_per_s(tmp_path: Path) -> None:
     np.testing.assert_allclose(rate, RATE, rtol=1e-15, atol=1e-18)
 
 
+def test_units_stated_by_parquet_and_csv_column_names(tmp_path: Path) -> None:
+    ms = np.round((T - T[0]) * 1e3, 3)
+    pq.write_table(pa.table({"time (ms)": ms, "wz [deg/s]": np.degrees(RATE)}), tmp_path / "a.parquet")
+    pa_csv.write_csv(pa.table({"t_us": ms * 1e3, "gyro_z_dps": np.degrees(RATE)}), tmp_path / "a.csv")
+    cases = [(tmp_path / "a.parquet", {"time_col": "time", "rate_col": "wz"}, "ms"), (tmp_path / "a.csv", {}, "us")]
+    for path, options, time_unit in cases:
+        src = io.open_source(path, **options)
+        assert (src.options.time_unit, src.options.rate_unit) == (time_unit, "deg/s")
+        t, rate = read_all(path, **options)
+        np.testing.assert_allclose(t, ms / 1000.0, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(rate, RATE, rtol=1e-15, atol=1e-18)
+    pa_csv.write_csv(pa.table({"t [s]": ms, "t [ms]": ms, "gyro_z": RATE}), tmp_path / "two.csv")
+    with pytest.raises(ValueError, match=r"column 't' matches 't \[s\]', 't \[ms\]'; give the whole name \(--time-col\)"):
+        io.open_source(tmp_path / "two.csv")
+    assert io.open_source(tmp_path / "two.csv", time_col="t [ms]").options.time_unit == "ms"
+
+
 def test_parquet_timestamp_columns_carry_their_unit(tmp_path: Path) -> None:
     ns = np.array([1_700_000_000_000_000_000, 1_700_000_000_010_000_000, 1_700_000_000_020_000_000])
     stamps = pa.array(ns).cast(pa.timestamp("ns"))

@@ -11,7 +11,14 @@ from ..evaluate import Method, compare, format_table
 from ..io import read_log
 from ..pipeline import preset_names
 from ..tune import ParameterSet
-from ._common import add_command, add_override_options, add_reading_options, pipeline_overrides, print_json, reading_options
+from ._common import (
+    add_command,
+    add_override_options,
+    add_reading_options,
+    pipeline_overrides,
+    print_json,
+    reading_options,
+)
 
 
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
