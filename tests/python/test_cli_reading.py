@@ -99,6 +99,12 @@ def test_a_euroc_header_states_ns_and_rad_per_s(tmp_path: Path, broad: gyrocore.
     np.testing.assert_allclose(got[:, 1], expected, atol=1e-6)
 
 
+def test_a_missing_column_error_says_a_name_may_leave_out_its_unit(tmp_path: Path, broad: gyrocore.Log) -> None:
+    message = one_error(gyrocore_cli("allan", euroc(tmp_path / "data.csv", broad), code=2))
+    assert "missing column(s) t, gyro_z; it has #timestamp [ns], w_RS_S_x [rad s^-1]" in message
+    assert "a name may leave out its unit, e.g. timestamp" in message
+
+
 def test_unit_suffixes_t_ms_and_gyro_z_dps_are_read_by_the_default_columns(tmp_path: Path, broad: gyrocore.Log) -> None:
     src = write_csv(tmp_path / "dps.csv", ["t_ms", "gyro_z_dps"], [broad.t * 1e3, np.degrees(broad.rate)])
     out = tmp_path / "heading.csv"
