@@ -54,7 +54,7 @@ def with_reference(log: io.Log, path: Path) -> io.Log:
 def add_reading_options(parser: argparse.ArgumentParser) -> None:
     """The options that say how to read a file input, the same for every command that reads one."""
     read = parser.add_argument_group(
-        "reading (a log folder names its columns; a header like 't [ms]' or 'gyro_z_dps' states its unit)"
+        "reading (where the samples are; a header like 't [ms]' or 'gyro_z_dps' states its unit)"
     )
     read.add_argument("--time-col", help="time column, with or without its unit (default t; "
                       "column number for a plain .npy array)")
