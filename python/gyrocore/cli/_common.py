@@ -118,7 +118,7 @@ def pipeline_overrides(args: argparse.Namespace, named: dict[str, Any]) -> dict[
         if not sep or not name:
             raise ValueError(f"--param {item!r}: expected NAME=VALUE")
         if name in _READING_FIELDS:
-            raise ValueError(f"--param {name} is a reading option: give --{name.replace('_', '-')}")
+            raise ValueError(f"--param {name} is a reading option, not a pipeline parameter (see the reading options)")
         if name in sources:
             raise ValueError(f"--param {name} is also given by {sources[name]}")
         out[name] = parse_value(value)
