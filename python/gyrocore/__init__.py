@@ -9,13 +9,19 @@ counter-clockwise positive; the bias is what the gyro reads at rest.
     >>> result = gyrocore.process(drive.t, drive.rate_measured, "hdr", bias_window=drive.stationary)
     >>> len(result) == len(drive.t)
     True
+
+``import gyrocore`` loads only the pipeline (numpy and the extension); the modules below and the
+names taken from them load when first used, so that a script that only integrates an array
+starts fast and needs numpy only (the optional dependencies: :mod:`gyrocore._extras`).
 """
 
-from . import allan, batch, calibration, deadband, deadreckon, evaluate, io, motion, paper, sim, tune
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
 from ._checks import InputWarning
 from ._gyrocore import SampleError, __version__
-from .evaluate import HeadingErrors, heading_errors
-from .io import Log, read_log
 from .pipeline import (
     HeadingResult,
     Pipeline,
@@ -27,6 +33,30 @@ from .pipeline import (
     process,
     recommended_preset,
 )
+
+if TYPE_CHECKING:
+    from . import allan, batch, calibration, deadband, deadreckon, evaluate, io, motion, paper, sim, tune
+    from .evaluate import HeadingErrors, heading_errors
+    from .io import Log, read_log
+
+_SUBMODULES = ("allan", "batch", "calibration", "deadband", "deadreckon", "evaluate", "io", "motion", "paper",
+               "sim", "tune")
+#: Names of the package taken from a submodule, loaded with it.
+_FROM = {"HeadingErrors": "evaluate", "heading_errors": "evaluate", "Log": "io", "read_log": "io"}
+
+
+def __getattr__(name: str) -> Any:
+    """Load a submodule, or a name taken from one, when it is first used (PEP 562)."""
+    if name in _SUBMODULES:
+        return importlib.import_module(f".{name}", __name__)
+    if name in _FROM:
+        return getattr(importlib.import_module(f".{_FROM[name]}", __name__), name)
+    raise AttributeError(f"module 'gyrocore' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))
+
 
 __all__ = [
     "HeadingErrors",

@@ -32,6 +32,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
+from ._extras import require
 from .pipeline import integrate
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -426,7 +427,7 @@ def confidence_interval(
 ) -> tuple[FloatArray, FloatArray]:
     """Chi-squared interval of a deviation with ``edf`` degrees of freedom (NIST SP 1065 eq 45):
     ``dev * sqrt(edf / chi2_{(1+c)/2})`` .. ``dev * sqrt(edf / chi2_{(1-c)/2})``."""
-    from scipy.stats import chi2  # the only use of scipy: chi-squared quantiles
+    chi2 = require("scipy.stats", "the Allan deviation").chi2  # scipy's only use here
 
     d = np.asarray(dev, dtype=np.float64)
     e = np.asarray(edf, dtype=np.float64)
@@ -538,8 +539,10 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
       at tau = 1 s: ``N = sigma(1 s)``.
     - Bias instability ``B``: the flat minimum divided by sqrt(2 ln 2 / pi) = 0.664. The flat
       minimum is the lowest stretch of slope 0 (within ``slope_tolerance``), its level the
-      weighted mean there; without such a stretch, the lowest point. If that is the last tau,
-      the floor is not reached and ``B`` is only an upper bound (see notes).
+      weighted mean there; without such a stretch, the lowest point. A flat stretch the curve
+      later falls clearly below (the hump of a sensor's internal filter at the shortest taus) is
+      not the floor. If the minimum is the last tau (the floor is not reached) or the first (an
+      internal filter), ``B`` is only an upper bound (see notes).
     - Rate random walk ``K``: as N, for slope +1/2, read at tau = 3 s: ``K = sigma(3 s)``.
     """
     if result.kind != "allan":
@@ -563,21 +566,33 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
         value, span = rrw
         rrw_p = NoiseParameter(value, "rad/s^2/sqrt(Hz)", value * _RAD_TO_DEG * _HOUR * _SQRT_HOUR,
                                "deg/h/sqrt(h)", span, "line of slope +1/2 read at tau = 3 s")
-    flat = _slope_runs(taus, dev, 0.0, slope_tolerance)
+    # The flat bottom: of the flat stretches, the lowest; its level is the edf-weighted mean,
+    # since the single lowest point of a noisy floor is biased low (few terms at long tau). A
+    # stretch the curve later falls below half of (confidence interval included) is no bottom: a
+    # sensor's internal filter flattens the shortest taus before the white noise's -1/2 fall,
+    # while a floor's own points stay well within a factor 2 of its level.
+    flat = [
+        (float(np.average(dev[a : b + 1], weights=w[a : b + 1])), (a, b))
+        for a, b in _slope_runs(taus, dev, 0.0, slope_tolerance)
+    ]
+    flat = [(level, run) for level, run in flat if not np.any(result.adev_high[run[1] + 1 :] < level / 2)]
     if flat:
-        # The flat bottom: of the flat stretches, the lowest; its level is the edf-weighted mean,
-        # since the single lowest point of a noisy floor is biased low (few terms at long tau).
-        levels = [float(np.average(dev[a : b + 1], weights=w[a : b + 1])) for a, b in flat]
-        k = int(np.argmin(levels))
-        floor, (lo, hi) = levels[k], flat[k]
+        floor, (lo, hi) = min(flat)
         method = "flat minimum (slope 0, weighted mean) / 0.664"
     else:
         lo = hi = int(np.argmin(dev))
         floor = float(dev[lo])
         method = "minimum / 0.664"
-        if lo == len(dev) - 1:
-            method += " (upper bound: the curve still falls at the longest tau)"
-            notes.append("the Allan deviation has no minimum within the record: bias instability is an upper bound")
+    if lo == 0 and not flat:
+        # every point of the curve is at least 0.664 B, so the level still bounds B from above
+        method += " (upper bound: the minimum is at the shortest tau)"
+        notes.append(
+            "the Allan deviation is lowest at the shortest taus, where a sensor's internal filter shapes the "
+            "curve, not its bias instability: bias instability is an upper bound"
+        )
+    elif hi == len(dev) - 1 and not flat:
+        method += " (upper bound: the curve still falls at the longest tau)"
+        notes.append("the Allan deviation has no minimum within the record: bias instability is an upper bound")
     b = floor / FLICKER_FLOOR
     bias_p = NoiseParameter(b, "rad/s", b * _RAD_TO_DEG * _HOUR, "deg/h", (float(taus[lo]), float(taus[hi])), method)
     return NoiseParameters(arw_p, bias_p, rrw_p, result.dt, tuple(notes))
@@ -721,10 +736,7 @@ def plot(
     """Log-log plot of the deviation with its confidence interval; with ``parameters``, the
     slope -1/2 (N), floor (0.664 B) and slope +1/2 (K) lines over the ranges they came from.
     Needs matplotlib (``pip install gyrocore[plot]``); returns the axes."""
-    try:
-        import matplotlib.pyplot as plt
-    except ImportError as e:  # pragma: no cover - depends on the environment
-        raise ImportError("plotting needs matplotlib: pip install 'gyrocore[plot]'") from e
+    plt = require("matplotlib.pyplot", "plotting an Allan deviation")
     if ax is None:
         _, ax = plt.subplots(figsize=(6.4, 4.8))
     err = np.vstack([result.adev - result.adev_low, result.adev_high - result.adev])

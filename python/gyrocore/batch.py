@@ -25,9 +25,13 @@ from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from . import io
+from ._extras import require, tqdm_class
 from ._gyrocore import SampleError
 from .pipeline import Pipeline, has_bias_source, uses_static_bias
+from .window import Window, time_range
 
 #: ``progress(done, total, unit)``: called after each chunk with the progress through the input.
 Progress = Callable[[int, "int | None", str], None]
@@ -140,6 +144,16 @@ class _FileJob:
         source = io.open_source(self.path, self.read_options)
         io.check_output(self.out, source)
         overrides = dict(self.overrides)
+        window = overrides.get("bias_window")
+        if window is not None:
+            t0 = _first_time(source)
+            if isinstance(window, Window):  # a window after the first sample: the log says where that is
+                overrides["bias_window"] = window.resolve(t0)
+            if overrides["bias_window"][1] < t0:
+                raise ValueError(
+                    f"{source.data_path}: the rest window {_window_text(window)} ends before the first sample; "
+                    + time_range(t0)
+                )
         notes: list[str] = []
         if uses_static_bias(self.preset) and not has_bias_source(overrides):
             if source.stationary is not None:
@@ -152,9 +166,13 @@ class _FileJob:
                 )
         pipeline = Pipeline(self.preset, **overrides)
         check = io.UnitCheck(source.options)
+        span = overrides.get("bias_window")
+        in_window = 0  # samples in the rest window: none means a bias of 0 said nowhere
         with io.HeadingWriter(self.out, heading=self.heading) as writer:
             for chunk in source.chunks(self.chunk_rows):
                 check.update(chunk.t, chunk.rate)
+                if span is not None:
+                    in_window += int(np.count_nonzero((chunk.t >= span[0]) & (chunk.t <= span[1])))
                 try:
                     result = pipeline.process(chunk.t, chunk.rate, index_offset=chunk.first_row)
                 except SampleError as e:
@@ -167,6 +185,13 @@ class _FileJob:
                     progress(chunk.done, source.progress_total, source.progress_unit)
             if self.rows_in == 0:
                 raise ValueError(f"{source.data_path}: no samples")
+            if check.error() is not None:
+                raise ValueError(f"{source.data_path}: {check.error()}")
+            if span is not None and in_window == 0:
+                raise ValueError(
+                    f"{source.data_path}: the rest window {_window_text(window or span)} holds no sample; "
+                    + time_range(_first_time(source), float(result.t[-1]))
+                )
             if writer.rows != self.rows_in:  # the pipeline returns one row per sample; prove it
                 raise RuntimeError(f"{self.path}: {self.rows_in} rows read but {writer.rows} written")
         notes += check.problems() + _repairs(pipeline.report)
@@ -177,6 +202,18 @@ class _FileJob:
     def failure(self, error: BaseException, seconds: float) -> FileReport:
         reason = str(error) if isinstance(error, (ValueError, TypeError, OSError, ImportError)) else repr(error)
         return FileReport(str(self.path), None, self.rows_in, 0, seconds, reason or type(error).__name__)
+
+
+def _window_text(window: Window | tuple[float, float]) -> str:
+    return str(window) if isinstance(window, Window) else f"{window[0]:.10g} .. {window[1]:.10g} s"
+
+
+def _first_time(source: io.GyroSource) -> float:
+    """The first timestamp of an input [s] (reads its first block only)."""
+    first = next(source.chunks(1), None)  # the reader closes its file as the generator goes
+    if first is None:
+        raise ValueError(f"{source.data_path}: no samples")
+    return float(first.t[0])
 
 
 def _repairs(report: dict[str, float]) -> list[str]:
@@ -213,9 +250,11 @@ def process_file(
         chunk_rows: samples per chunk (memory; the output does not depend on it).
         progress: called after each chunk (see :data:`Progress`); may raise to stop.
         **options: reader options (``time_col``, ``rate_col``, ``time_unit``, ``rate_unit``,
-            ``topic``, ``delimiter``) and pipeline parameters (``bias_window=(t0, t1)`` [s],
-            ``bias_duration`` [s], ``bias_dps``, ...). The rest window of a log folder's meta.json
-            is used unless a bias or rest window is given.
+            ``topic``, ``delimiter``) and pipeline parameters (``bias_window=(t0, t1)`` [s] in
+            the log's time base, or a :class:`gyrocore.window.Window` whose bounds may count from
+            the first sample; ``bias_duration`` [s], ``bias_dps``, ...). The rest window of a log
+            folder's meta.json is used unless a bias or rest window is given; a rest window that
+            holds no sample is an error naming the log's time range.
 
     Returns:
         The file's report (rows in = rows out).
@@ -345,11 +384,8 @@ class _Stopped(Exception):
 
 def _bar(total: int, enabled: bool) -> Any:
     """A bar over the files on stderr, only when asked for and stderr is a terminal."""
-    if not (enabled and sys.stderr.isatty()):
-        return _NoBar()
-    from tqdm import tqdm
-
-    return tqdm(total=total, unit="file", leave=False)
+    tqdm = tqdm_class() if enabled and sys.stderr.isatty() else None
+    return _NoBar() if tqdm is None else tqdm(total=total, unit="file", leave=False)
 
 
 class _NoBar:
@@ -384,11 +420,8 @@ def _run_on_threads(jobs: list[_FileJob], workers: int, progress: bool) -> list[
 
 
 def _run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileReport]:
-    try:
-        from dask.distributed import Client
-        from dask.distributed import as_completed as dask_completed
-    except ImportError:
-        raise ImportError("running on a Dask cluster needs dask: pip install 'gyrocore[dask]'") from None
+    distributed = require("dask.distributed", "running on a Dask cluster")
+    Client, dask_completed = distributed.Client, distributed.as_completed
     own = not isinstance(client, Client)
     if own:
         client = Client(client)

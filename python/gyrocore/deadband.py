@@ -24,9 +24,9 @@ from __future__ import annotations
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.stats import norm
 
 from ._arrays import FloatArray
+from ._extras import require
 
 
 def _check(noise_rms: float, threshold: float) -> None:
@@ -41,6 +41,7 @@ def expected_output(rate: ArrayLike, noise_rms: float, threshold: float) -> Floa
     Gaussian noise of rms ``noise_rms``, in the units of the arguments."""
     _check(noise_rms, threshold)
     b = np.asarray(rate, dtype=np.float64)
+    norm = require("scipy.stats", "the dead band's expected output").norm
     a = (threshold - b) / noise_rms
     c = (-threshold - b) / noise_rms
     out: FloatArray = b * (norm.sf(a) + norm.cdf(c)) + noise_rms * (norm.pdf(a) - norm.pdf(c))
@@ -54,4 +55,5 @@ def bias_leak(noise_rms: float, threshold: float) -> float:
     ``k = 1.54``."""
     _check(noise_rms, threshold)
     k = threshold / noise_rms
+    norm = require("scipy.stats", "the dead band's bias leak").norm
     return float(2.0 * norm.sf(k) + 2.0 * k * norm.pdf(k))

@@ -21,6 +21,7 @@ from numpy.typing import ArrayLike
 
 from . import deadreckon
 from ._arrays import FloatArray, as_float_array
+from ._extras import pyplot
 from .io import Log, read_log
 from .pipeline import HeadingResult, has_bias_source, process, recommended_preset, uses_static_bias
 
@@ -385,14 +386,7 @@ def compare(
 
 
 def _pyplot() -> Any:
-    try:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        raise ValueError("plots need matplotlib: pip install 'gyrocore[plot]'") from None
-    return plt
+    return pyplot("plotting the evaluation")
 
 
 def plot_log(path: Path, log: Log, results: Mapping[str, HeadingResult]) -> None:

@@ -27,6 +27,7 @@ import numpy as np
 
 from . import motion, sim
 from ._arrays import FloatArray
+from ._extras import require
 from .evaluate import HeadingErrors, Method, Reference, log_bias
 from .io import Log
 from .pipeline import BIAS_SOURCES, HeadingResult, Pipeline, parameters, preset_params, uses_static_bias
@@ -446,7 +447,7 @@ def tune(
             is part of its first population) or ``nelder-mead`` (local, from the start).
         name: name of the parameter set (default ``<preset>_tuned``).
     """
-    from scipy import optimize
+    optimize = require("scipy.optimize", "tuning")
 
     if not cases:
         raise ValueError("no training drive given")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import re
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -202,6 +203,31 @@ def test_a_falling_curve_reports_bias_instability_as_an_upper_bound() -> None:
     assert any("upper bound" in note for note in p.notes)
     with pytest.raises(ValueError, match="rate random walk was not found"):
         p.kalibr_yaml()
+
+
+def test_a_filter_plateau_at_the_shortest_taus_is_not_bias_instability() -> None:
+    # A 10 s rest of a sensor with an internal filter (ADIS16448-like at 200 Hz): the curve is flat
+    # from 0.005 to 0.02 s, then falls as white noise. That plateau is the filter, not the floor.
+    rng = np.random.default_rng(3)
+    t = np.arange(2000) * 0.005
+    white = allan.deviation_from_timestamps(t, rng.normal(0.002, 0.01, len(t)))
+    lift = np.where(white.taus <= 0.02, white.adev[white.taus == 0.02][0] / white.adev, 1.0)
+    curve = replace(white, adev=white.adev * lift, adev_low=white.adev_low * lift, adev_high=white.adev_high * lift)
+    b = allan.noise_parameters(curve).bias_instability
+    assert b is not None
+    assert b.tau_range[0] > 0.02
+    assert allan.FLICKER_FLOOR * b.value <= curve.adev_high.min()  # the B line is not above the curve
+    assert "upper bound" in b.method
+
+
+def test_a_minimum_at_the_shortest_tau_is_only_an_upper_bound() -> None:
+    rng = np.random.default_rng(4)
+    t = np.arange(2000) * 0.005
+    white = allan.deviation_from_timestamps(t, rng.normal(0.002, 0.01, len(t)))
+    rising = replace(white, adev=white.adev[0] * np.sqrt(white.taus / white.taus[0]))  # lowest at 0.005 s
+    p = allan.noise_parameters(rising)
+    assert p.bias_instability is not None and "upper bound" in p.bias_instability.method
+    assert any("shortest taus" in note and "upper bound" in note for note in p.notes)
 
 
 def test_kalibr_yaml_states_units_and_values() -> None:

@@ -8,9 +8,12 @@ from __future__ import annotations
 
 import argparse
 import sys
+import warnings
 from typing import Sequence
 
 from . import allan, calibrate, demo, evaluate, presets, process, reproduce, simulate, tune
+from .._extras import MissingExtra
+from ._common import show_warning
 
 COMMANDS = (demo, process, presets, allan, calibrate, evaluate, tune, simulate, reproduce)
 
@@ -24,10 +27,13 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command; user errors print one line ``gyrocore: error: ...`` and return 2."""
+    """Run the command; user errors print one line ``gyrocore: error: ...`` and return 2, warnings
+    one line ``gyrocore: warning: ...``."""
     args = build_parser().parse_args(argv)
     try:
-        return int(args.func(args))
-    except (ValueError, TypeError, OSError) as e:
+        with warnings.catch_warnings():
+            warnings.showwarning = show_warning
+            return int(args.func(args))
+    except (ValueError, TypeError, OSError, MissingExtra) as e:
         print(f"gyrocore: error: {e}", file=sys.stderr)
         return 2

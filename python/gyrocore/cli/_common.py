@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import signal
 import sys
@@ -12,7 +13,12 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
+from .. import io
+from .._extras import tqdm_class
+from ..calibration import Calibration
 from ..io import atomic_path
+from ..pipeline import has_bias_source
+from ..window import Window
 
 
 def add_command(
@@ -31,6 +37,95 @@ def add_command(
     return parser
 
 
+#: How every window option is written.
+WINDOW_HELP = "T0 T1 [s] in the log's time base, or +T0 +T1 after its first sample"
+
+
+#: What a reference file given with ``--reference`` holds.
+REFERENCE_HELP = "a CSV file with columns t [s, the log's time base] and heading [rad, counter-clockwise]"
+
+
+def with_reference(log: io.Log, path: Path) -> io.Log:
+    """``log`` with the reference heading of the file ``path`` (see :data:`REFERENCE_HELP`)."""
+    ref = io.read_reference_file(path)
+    return dataclasses.replace(log, t_ref=ref["t"], heading_ref=ref["heading"], x_ref=ref.get("x"), y_ref=ref.get("y"))
+
+
+def add_reading_options(parser: argparse.ArgumentParser) -> None:
+    """The options that say how to read a file input, the same for every command that reads one."""
+    read = parser.add_argument_group(
+        "reading (where the samples are; a header like 't [ms]' or 'gyro_z_dps' states its unit)"
+    )
+    read.add_argument("--time-col", help="time column, with or without its unit (default t; "
+                      "column number for a plain .npy array)")
+    read.add_argument("--rate-col", help="rate column, with or without its unit (default gyro_z)")
+    read.add_argument("--time-unit", choices=tuple(io.TIME_UNITS),
+                      help="unit of the time column (default: the header's, else s)")
+    read.add_argument("--rate-unit", choices=io.RATE_UNITS,
+                      help="unit of the rate column (default: the header's, else rad/s)")
+    read.add_argument("--topic", help="bag topic with sensor_msgs/Imu (default: the only one)")
+    read.add_argument("--delimiter", help="CSV delimiter (default ,)")
+
+
+def reading_options(args: argparse.Namespace) -> dict[str, Any]:
+    """The reading options given on the command line, as :class:`gyrocore.io.ReadOptions` fields."""
+    names = ("time_col", "rate_col", "time_unit", "rate_unit", "topic", "delimiter")
+    return {name: getattr(args, name) for name in names if getattr(args, name) is not None}
+
+
+def add_override_options(group: argparse._ArgumentGroup) -> None:
+    """``--param`` and ``--calibration``: pipeline parameters beyond the command's own options."""
+    group.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
+                       help="any pipeline parameter (gyrocore presets --json); repeatable")
+    group.add_argument("--calibration", type=Path, metavar="FILE",
+                       help="a calibration written by gyrocore calibrate --save: its scale, and its bias "
+                       "unless another bias option is given")
+
+
+def parse_value(text: str) -> Any:
+    """A ``--param`` value: a bool, a number, numbers separated by commas (a tuple), or text."""
+    if text.lower() in ("true", "false"):
+        return text.lower() == "true"
+    numbers = text.split(",")
+    try:
+        values = [float(v) for v in numbers]
+    except ValueError:
+        return text
+    if len(values) > 1:
+        return tuple(values)
+    return int(text) if text.strip().lstrip("+-").isdigit() else values[0]
+
+
+_READING_FIELDS = {f.name for f in dataclasses.fields(io.ReadOptions)}
+
+
+def pipeline_overrides(args: argparse.Namespace, named: dict[str, Any]) -> dict[str, Any]:
+    """The pipeline parameters of the command line: the options ``named`` (parameter -> value, None
+    when not given; a ``bias_window`` as written, see :class:`gyrocore.window.Window`), the
+    scale and bias of ``--calibration`` and each ``--param NAME=VALUE``; a parameter given twice is
+    an error."""
+    out = {k: v for k, v in named.items() if v is not None}
+    if "bias_window" in out:
+        out["bias_window"] = Window.parse(out["bias_window"], "--bias-window")
+    sources = dict.fromkeys(out, "its own option")
+    if args.calibration is not None:
+        # a bias given on the command line (or a rest window) replaces the calibration's bias
+        found = Calibration.load(args.calibration).overrides(include_bias=False if has_bias_source(out) else None)
+        out.update(found)
+        sources.update(dict.fromkeys(found, f"--calibration {args.calibration}"))
+    for item in args.param:
+        name, sep, value = item.partition("=")
+        if not sep or not name:
+            raise ValueError(f"--param {item!r}: expected NAME=VALUE")
+        if name in _READING_FIELDS:
+            raise ValueError(f"--param {name} is a reading option, not a pipeline parameter (see the reading options)")
+        if name in sources:
+            raise ValueError(f"--param {name} is also given by {sources[name]}")
+        out[name] = parse_value(value)
+        sources[name] = "--param"
+    return out
+
+
 def write_atomically(path: str | Path, write: Callable[[str], object]) -> None:
     """Write through a temporary file in the same folder, then rename: no half-written output."""
     with atomic_path(Path(path)) as tmp:
@@ -47,14 +142,22 @@ def warn(message: str) -> None:
     print(f"gyrocore: warning: {message}", file=sys.stderr)
 
 
+def show_warning(
+    message: Warning | str, category: type[Warning], filename: str, lineno: int, file: Any = None, line: Any = None
+) -> None:
+    """``warnings.showwarning`` for the command line: the message alone, as :func:`warn` prints it
+    (not Python's ``file:line: Category`` form, which points into the package)."""
+    warn(str(message))
+
+
 @contextmanager
 def progress_bar(description: str) -> Iterator[Callable[[int, int | None, str], None]]:
     """A callback ``(done, total, unit)`` that draws a tqdm bar on stderr, only on a terminal
     (pipes, CI and logs get nothing)."""
-    if not sys.stderr.isatty():
+    tqdm = tqdm_class() if sys.stderr.isatty() else None
+    if tqdm is None:
         yield lambda done, total, unit: None
         return
-    from tqdm import tqdm
 
     bar: Any = None
 

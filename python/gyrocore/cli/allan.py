@@ -7,7 +7,9 @@ import json
 from pathlib import Path
 
 from .. import allan, io
-from ._common import add_command, write_atomically
+from .._extras import pyplot
+from ..window import Window
+from ._common import WINDOW_HELP, add_command, add_reading_options, reading_options, write_atomically
 
 
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
@@ -24,28 +26,24 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
                    help="averaging times (default octave: 1, 2, 4, ... samples)")
     p.add_argument("--non-overlapping", action="store_true", help="non-overlapping estimator")
     p.add_argument("--kind", choices=("allan", "modified", "hadamard"), default="allan")
-    p.add_argument("--window", nargs=2, type=float, metavar=("T0", "T1"),
-                   help="analyse only this span [s, log time base], e.g. the rest")
-    p.add_argument("--time-col", default=None, help="time column of a file input [s] (default t)")
-    p.add_argument("--rate-col", default=None, help="rate column of a file input (default gyro_z)")
-    p.add_argument("--rate-unit", choices=("rad/s", "deg/s"), default="rad/s")
+    p.add_argument("--window", nargs=2, metavar=("T0", "T1"),
+                   help=f"analyse only this span, e.g. the rest: {WINDOW_HELP}")
     p.add_argument("--plot", type=Path, help="write a log-log plot (PNG) to this file")
     p.add_argument("--kalibr", type=Path, help="write a Kalibr-style IMU noise YAML to this file")
     p.add_argument("--rrw", type=float, default=None,
                    help="rate random walk K [rad/s^2/sqrt(Hz)] for --kalibr when the record is too short to show it")
+    add_reading_options(p)
 
 
 def run(args: argparse.Namespace) -> int:
     src = Path(args.input)
-    # A log folder names its columns and units; a file takes them from the options.
-    columns = {} if src.is_dir() else {"time_col": args.time_col, "rate_col": args.rate_col, "rate_unit": args.rate_unit}
+    window = None if args.window is None else Window.parse(args.window, "--window")
+    plt = None if args.plot is None else pyplot("--plot")  # before the work
     # A record for the Allan deviation is taken at rest: small rates are no sign of a unit mistake.
-    log = io.read_log(src, static=True, **columns)
+    log = io.read_log(src, static=True, **reading_options(args))
     t, rate = log.t, log.rate
-    if args.window is not None:
-        inside = (t >= args.window[0]) & (t <= args.window[1])
-        if inside.sum() < 3:
-            raise ValueError(f"the window {args.window[0]} .. {args.window[1]} s holds {int(inside.sum())} samples")
+    if window is not None:
+        inside = window.samples(t, minimum=3)
         t, rate = t[inside], rate[inside]
     result = allan.deviation_from_timestamps(
         t, rate, taus=args.taus, overlapping=not args.non_overlapping, kind=args.kind
@@ -61,17 +59,11 @@ def run(args: argparse.Namespace) -> int:
             print(f"{tau:12.5g} {d:12.5g} {lo:11.4g} {hi:11.4g} {n:9d}")
         if params is not None:
             print(params)
-    if args.plot is not None:
-        try:
-            import matplotlib
-        except ImportError:
-            raise ValueError("--plot needs matplotlib: pip install 'gyrocore[plot]'") from None
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
+    if plt is not None:
         fig, ax = plt.subplots(figsize=(6.4, 4.8))
         allan.plot(result, parameters=params, ax=ax)
         ax.set_title(f"{log.name}: {result.kind} deviation")
+        fig.tight_layout()  # room for the axis labels: the default margins clip the y label
         write_atomically(args.plot, lambda tmp: fig.savefig(tmp, format="png", dpi=120))
         plt.close(fig)
     if args.kalibr is not None:

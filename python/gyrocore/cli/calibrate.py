@@ -1,5 +1,6 @@
 """``gyrocore calibrate``: static bias from a rest window (found automatically) and least-squares
-scale and bias against the log's reference heading (Hong eq 4-7)."""
+scale and bias against the log's reference heading (Hong eq 4-7), from a log folder or any file
+with a reference file."""
 
 from __future__ import annotations
 
@@ -10,52 +11,80 @@ from pathlib import Path
 from typing import Any
 
 from .. import calibration, io
-from ._common import add_command, write_atomically
+from ..window import Window
+from ._common import (
+    REFERENCE_HELP,
+    WINDOW_HELP,
+    add_command,
+    add_reading_options,
+    reading_options,
+    with_reference,
+    write_atomically,
+)
 
 
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
     p = add_command(
         sub,
         "calibrate",
-        "calibrate a gyro from a log folder: static bias at rest, scale and bias against reference.csv",
+        "calibrate a gyro from a log: static bias at rest, scale and bias against a reference heading",
         "gyrocore calibrate ../shared/data/real/f110_ds3 --save f110_calibration.json",
         run,
     )
-    p.add_argument("logdir", help="log folder (gyro.csv; reference.csv and meta.json where present)")
-    p.add_argument("--window", nargs=2, type=float, metavar=("T0", "T1"),
-                   help="rest window [s, log time base] instead of finding one")
+    p.add_argument("input", help="log folder (gyro.csv; reference.csv and meta.json where present), or any "
+                   "file the reading options describe")
+    p.add_argument("--reference", type=Path, metavar="FILE",
+                   help=f"reference heading of a file input: {REFERENCE_HELP}")
+    p.add_argument("--window", nargs=2, metavar=("T0", "T1"),
+                   help=f"rest window instead of finding one: {WINDOW_HELP}")
     p.add_argument("--min-duration", type=float, default=1.0, help="shortest rest [s] (default 1)")
     p.add_argument("--max-rate-dps", type=float, default=None,
                    help="largest reading at rest [deg/s] (default 2.9); raise it for a gyro with a large bias")
-    p.add_argument("--fit-window", nargs=2, type=float, metavar=("T0", "T1"),
-                   help="span [s] for the reference fit (default: the whole log)")
+    p.add_argument("--fit-window", nargs=2, metavar=("T0", "T1"),
+                   help=f"span for the reference fit (default: the whole log): {WINDOW_HELP}")
     p.add_argument("--json", action="store_true", help="print the results as JSON")
     p.add_argument("--save", type=Path,
                    help="write the calibration (JSON): the reference fit where the log has a reference, "
                         "else the static bias")
+    add_reading_options(p)
+
+
+#: What a folder needs to be calibrated from, said when it is not a log folder.
+_FOLDER_NEEDS = (
+    "a log folder needs gyro.csv (columns t [s] and gyro_z [rad/s]); reference.csv (t, heading [rad], x, y) "
+    "for the scale fit and meta.json ({\"stationary\": [t0, t1]}) are optional. For another file, give it "
+    "with the reading options (--time-col, --rate-col, --time-unit, --rate-unit) and --reference FILE"
+)
 
 
 def run(args: argparse.Namespace) -> int:
-    folder = Path(args.logdir)
-    if not folder.is_dir():
-        raise ValueError(f"{folder}: not a log folder")
+    source = Path(args.input)
+    if source.is_dir() and not io.is_input(source):
+        raise ValueError(f"{source}: not a log folder: {_FOLDER_NEEDS}")
     if args.save is not None and args.save.suffix.lower() != ".json":
         raise ValueError(f"{args.save}: the calibration file must end in .json")
-    log = io.read_log(folder)
+    rest = None if args.window is None else Window.parse(args.window, "--window")
+    span = None if args.fit_window is None else Window.parse(args.fit_window, "--fit-window")
+    log = io.read_log(source, **reading_options(args))
+    if args.reference is not None:
+        log = with_reference(log, args.reference)
     results: dict[str, Any] = {"log": log.name, "meta_stationary": log.stationary}
     static: calibration.Calibration | None = None
     options: dict[str, Any] = {}
     if args.max_rate_dps is not None:
         options["max_rate"] = math.radians(args.max_rate_dps)
+    for given in (rest, span):
+        if given is not None:
+            given.samples(log.t, minimum=2)  # an empty window is a usage error, with the log's range
     try:
-        window = None if args.window is None else (args.window[0], args.window[1])
+        window = None if rest is None else rest.resolve(float(log.t[0]))
         static = calibration.static_bias(log.t, log.rate, window, min_duration=args.min_duration, **options)
         results["static_bias"] = static.to_dict()["calibration"]
     except ValueError as e:
         results["static_bias"] = {"error": str(e)}
     fit: calibration.Calibration | None = None
     if log.t_ref is not None and log.heading_ref is not None:
-        fit_window = None if args.fit_window is None else (args.fit_window[0], args.fit_window[1])
+        fit_window = None if span is None else span.resolve(float(log.t[0]))
         try:
             fit = calibration.heading_reference(log.t, log.rate, log.t_ref, log.heading_ref, window=fit_window)
             results["heading_reference"] = fit.to_dict()["calibration"]
@@ -64,7 +93,7 @@ def run(args: argparse.Namespace) -> int:
     chosen = fit or static
     if chosen is None:
         raise ValueError(
-            f"{folder}: nothing to calibrate from: {results['static_bias']['error']}"
+            f"{source}: nothing to calibrate from: {results['static_bias']['error']}"
             + ("" if "heading_reference" not in results else f"; {results['heading_reference']['error']}")
         )
     if args.save is not None:

@@ -7,10 +7,18 @@ import math
 from pathlib import Path
 from typing import Any
 
-from ..evaluate import compare, format_table
+from ..evaluate import Method, compare, format_table
+from ..io import read_log
 from ..pipeline import preset_names
 from ..tune import ParameterSet
-from ._common import add_command, print_json
+from ._common import (
+    add_command,
+    add_override_options,
+    add_reading_options,
+    pipeline_overrides,
+    print_json,
+    reading_options,
+)
 
 
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
@@ -21,7 +29,8 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         "gyrocore evaluate ../shared/data/real/* --preset static_bias --preset recommended --bias-duration 10",
         run,
     )
-    p.add_argument("logs", nargs="+", metavar="LOGDIR", help="log folders (gyro.csv, reference.csv, meta.json)")
+    p.add_argument("logs", nargs="+", metavar="LOGDIR",
+                   help="log folders (gyro.csv, reference.csv, meta.json); the reading options apply to gyro.csv")
     p.add_argument(
         "--preset",
         action="append",
@@ -32,13 +41,18 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p.add_argument(
         "--params", action="append", metavar="FILE", help="parameter file written by gyrocore tune (repeatable)"
     )
-    p.add_argument(
+    bias = p.add_mutually_exclusive_group()
+    bias.add_argument(
         "--bias-duration",
         type=float,
         metavar="S",
         help="for logs with no rest window: measure the static bias over the first S seconds while driving "
         "(only sound when the drive starts straight; the same S for every log)",
     )
+    bias.add_argument("--bias-dps", type=float, metavar="B",
+                      help="known bias [deg/s] (what the gyro reads at rest), for every method and log")
+    add_override_options(p.add_argument_group("pipeline parameters for every method"))
+    add_reading_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON list, an object per (log, method)")
     p.add_argument("--plot-dir", metavar="DIR", help="write <log>.png (heading and error vs time) there")
 
@@ -46,12 +60,15 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
 def run(args: argparse.Namespace) -> int:
     if args.bias_duration is not None and not (math.isfinite(args.bias_duration) and args.bias_duration > 0):
         raise ValueError(f"--bias-duration must be a positive number of seconds, got {args.bias_duration}")
+    extra = pipeline_overrides(args, {"bias_dps": args.bias_dps})
     params = [ParameterSet.read(f).method() for f in args.params or []]
     presets = args.preset if args.preset else ([] if params else preset_names())
+    methods = [_with(m if isinstance(m, Method) else Method.from_preset(m), extra) for m in [*presets, *params]]
     for path in args.logs:
         if not Path(path).is_dir():
             raise ValueError(f"{path}: not a log folder")
-    rows = compare(args.logs, presets, params, bias_duration=args.bias_duration, plot_dir=args.plot_dir)
+    logs = [read_log(path, **reading_options(args)) for path in args.logs]
+    rows = compare(logs, methods, bias_duration=args.bias_duration, plot_dir=args.plot_dir)
     if args.json:
         print_json([_finite(r.as_dict()) for r in rows])
     else:
@@ -59,6 +76,14 @@ def run(args: argparse.Namespace) -> int:
         if args.plot_dir:
             print(f"plots in {args.plot_dir}")
     return 0
+
+
+def _with(method: Method, extra: dict[str, Any]) -> Method:
+    """``method`` with the command line's parameters; a parameter file that sets one too is an error."""
+    twice = sorted(set(extra) & set(method.overrides))
+    if twice:
+        raise ValueError(f"{method.name} sets {', '.join(twice)}, which the command line gives too")
+    return method if not extra else Method(method.name, method.preset, {**method.overrides, **extra})
 
 
 def _finite(row: dict[str, Any]) -> dict[str, Any]:

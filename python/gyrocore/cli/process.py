@@ -11,7 +11,18 @@ from typing import Any
 from .. import io
 from .._checks import InputWarning
 from ..batch import expand_inputs, process_file, process_many
-from ._common import add_command, print_json, progress_bar, terminate_cleanly, warn
+from ._common import (
+    WINDOW_HELP,
+    add_command,
+    add_override_options,
+    add_reading_options,
+    pipeline_overrides,
+    print_json,
+    progress_bar,
+    reading_options,
+    terminate_cleanly,
+    warn,
+)
 
 _EPILOG = """
 IN is a CSV, Parquet, .npy or .npz file, a ROS 1 .bag or ROS 2 bag folder, a log folder, a
@@ -36,23 +47,11 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p.add_argument("--out", required=True, help="output .csv/.parquet file, or a folder for several inputs")
     p.add_argument("--preset", default="recommended", help="preset name (default recommended)")
 
-    read = p.add_argument_group("reading")
-    read.add_argument("--time-col", help="time column (default t; column number for a plain .npy array)")
-    read.add_argument("--rate-col", help="rate column (default gyro_z)")
-    read.add_argument(
-        "--time-unit", choices=tuple(io.TIME_UNITS), default="s", help="unit of the time column (default s)"
-    )
-    read.add_argument(
-        "--rate-unit", choices=io.RATE_UNITS, default="rad/s", help="unit of the rate column (default rad/s)"
-    )
-    read.add_argument("--topic", help="bag topic with sensor_msgs/Imu (default: the only one)")
-    read.add_argument("--delimiter", default=",", help="CSV delimiter (default ,)")
+    add_reading_options(p)
 
     bias = p.add_argument_group("static bias (default: the rest window of a log folder's meta.json)")
     group = bias.add_mutually_exclusive_group()
-    group.add_argument(
-        "--bias-window", nargs=2, type=float, metavar=("T0", "T1"), help="rest window [s], the log's time base"
-    )
+    group.add_argument("--bias-window", nargs=2, metavar=("T0", "T1"), help=f"rest window: {WINDOW_HELP}")
     group.add_argument("--bias-duration", type=float, metavar="S", help="rest during the first S seconds")
     group.add_argument("--bias-dps", type=float, metavar="B", help="known bias [deg/s] (what the gyro reads at rest)")
 
@@ -60,13 +59,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     pipe.add_argument("--nonfinite", choices=("error", "hold", "skip"), help="NaN/inf readings (default error)")
     pipe.add_argument("--gap-limit", type=float, metavar="S", help="longest interval that is not a gap [s] (default 2)")
     pipe.add_argument("--gap-action", choices=("bridge", "reset"), help="at a gap (default bridge)")
-    pipe.add_argument(
-        "--param",
-        action="append",
-        default=[],
-        metavar="NAME=VALUE",
-        help="any pipeline parameter (gyrocore presets --json); repeatable",
-    )
+    add_override_options(pipe)
 
     out = p.add_argument_group("output")
     out.add_argument(
@@ -89,47 +82,17 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     out.add_argument("--json", action="store_true", help="print the report as JSON")
 
 
-def parse_value(text: str) -> Any:
-    """A ``--param`` value: a bool, a number, numbers separated by commas (a tuple), or text."""
-    if text.lower() in ("true", "false"):
-        return text.lower() == "true"
-    numbers = text.split(",")
-    try:
-        values = [float(v) for v in numbers]
-    except ValueError:
-        return text
-    if len(values) > 1:
-        return tuple(values)
-    return int(text) if text.strip().lstrip("+-").isdigit() else values[0]
-
-
 def options(args: argparse.Namespace) -> dict[str, Any]:
     """Reader options and pipeline overrides from the command line."""
-    opts: dict[str, Any] = {
-        "time_col": args.time_col,
-        "rate_col": args.rate_col,
-        "time_unit": args.time_unit,
-        "rate_unit": args.rate_unit,
-        "topic": args.topic,
-        "delimiter": args.delimiter,
-    }
     named = {
-        "bias_window": tuple(args.bias_window) if args.bias_window else None,
+        "bias_window": args.bias_window,
         "bias_duration": args.bias_duration,
         "bias_dps": args.bias_dps,
         "nonfinite": args.nonfinite,
         "gap_limit": args.gap_limit,
         "gap_action": args.gap_action,
     }
-    opts.update({k: v for k, v in named.items() if v is not None})
-    for item in args.param:
-        name, sep, value = item.partition("=")
-        if not sep or not name:
-            raise ValueError(f"--param {item!r}: expected NAME=VALUE")
-        if name in opts:
-            raise ValueError(f"--param {name} is also given by its own option")
-        opts[name] = parse_value(value)
-    return opts
+    return {**reading_options(args), **pipeline_overrides(args, named)}
 
 
 def run(args: argparse.Namespace) -> int:

@@ -8,9 +8,10 @@ import sys
 from typing import Any, Sequence
 
 from .. import motion, tune
+from .._extras import require
 from ..io import read_log
 from ..pipeline import parameters
-from ._common import add_command, print_json
+from ._common import add_command, add_reading_options, print_json, reading_options
 
 _TABLES = {"II": motion.TABLE_II_DRIVES, "IV": motion.TABLE_IV_DRIVES}
 #: Seeds of the simulated test drives start here, away from the training drives' seeds.
@@ -66,6 +67,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     add("--name", help="name of the parameter set (default <preset>_tuned)")
     add("--out", metavar="FILE", help="write the parameter file (JSON) here")
     add("--json", action="store_true", help="print the result as JSON")
+    add_reading_options(p)
 
 
 def _parse_params(specs: Sequence[str]) -> tuple[list[str], dict[str, tuple[float, float]]]:
@@ -116,17 +118,19 @@ def _parse_fixed(specs: Sequence[str]) -> dict[str, float]:
 
 
 def run(args: argparse.Namespace) -> int:
+    require("scipy.optimize", "tuning")  # before the drives are built
     names, bounds = _parse_params(args.param or [])
     progress = (lambda msg: print(msg, file=sys.stderr)) if not args.json else None
     sim_options = {"rate_hz": args.rate_hz, "sensor_name": args.sensor, "time_scale": args.time_scale}
-    cases = [tune.Case.from_log(read_log(p), bias_duration=args.bias_duration) for p in args.logs]
+    reading = reading_options(args)
+    cases = [tune.Case.from_log(read_log(p, **reading), bias_duration=args.bias_duration) for p in args.logs]
     for table in args.sim_table or []:
         cases += tune.simulated_cases(_TABLES[table], **sim_options)
     if args.sim_drive:
         cases += tune.simulated_cases(_parse_drives(args.sim_drive), first_seed=_DRIVE_SEED, **sim_options)
     if not cases:
         raise ValueError("no training drive: give log folders, --sim-table and/or --sim-drive")
-    tests = [tune.Case.from_log(read_log(p), bias_duration=args.bias_duration) for p in args.test]
+    tests = [tune.Case.from_log(read_log(p, **reading), bias_duration=args.bias_duration) for p in args.test]
     for table in args.test_sim_table or []:
         tests += tune.simulated_cases(_TABLES[table], first_seed=_TEST_SEED, **sim_options)
     harm_options: dict[str, Any] = {

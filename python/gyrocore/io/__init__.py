@@ -46,6 +46,7 @@ Modules (import the names from ``gyrocore.io``, which has them all):
 from __future__ import annotations
 
 from ._csvfile import CSV_BLOCK_BYTES, read_csv_columns
+from ._logfolder import read_reference_file
 from .atomic import StagedFile, atomic_path
 from .log import Log, read_log
 from .source import DEFAULT_CHUNK_ROWS, FILE_SUFFIXES, Chunk, GyroSource, ReadOptions, is_input, open_source
@@ -87,4 +88,5 @@ __all__ = [
     "output_format",
     "read_csv_columns",
     "read_log",
+    "read_reference_file",
 ]

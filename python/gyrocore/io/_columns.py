@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .._arrays import FloatArray
+from .units import split_unit
 
 if TYPE_CHECKING:
     import pyarrow as pa
@@ -21,9 +22,11 @@ def column_positions(path: Path, header: list[str], columns: tuple[str, ...]) ->
     """
     missing = [c for c in columns if c not in header]
     if missing:
+        with_unit = [split_unit(str(h)) for h in header if split_unit(str(h))[1] is not None]
+        short = f"; a name may leave out its unit, e.g. {with_unit[0][0]}" if with_unit else ""
         raise ValueError(
             f"{path}: missing column(s) {', '.join(missing)}; it has {', '.join(map(str, header))} "
-            "(choose with time_col/rate_col, --time-col/--rate-col)"
+            f"(choose with time_col/rate_col, --time-col/--rate-col{short})"
         )
     twice = [c for c in columns if header.count(c) > 1]
     if twice:

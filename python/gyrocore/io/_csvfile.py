@@ -16,8 +16,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .._arrays import FloatArray
+from .._extras import require
 from ._columns import column_positions, concat, first_null
-from .units import TIME_UNITS
 
 if TYPE_CHECKING:
     import pyarrow as pa
@@ -42,15 +42,22 @@ def _csv_header(path: Path, delimiter: str) -> list[str]:
 
 
 def _read_csv(
-    path: Path, columns: tuple[str, ...], *, delimiter: str = ",", block_bytes: int = CSV_BLOCK_BYTES
+    path: Path,
+    columns: tuple[str, ...],
+    *,
+    delimiter: str = ",",
+    block_bytes: int = CSV_BLOCK_BYTES,
+    required: dict[str, str] | None = None,
 ) -> Iterator[tuple[int, dict[str, pa.Array], int]]:
     """Yield ``(first_row, {column: pyarrow array}, bytes read)`` of a CSV file, block by block.
 
     Empty values become nulls; blank lines are rows of nulls, so that row ``k`` is line ``k + 2``
     (for files with one sample per line: a quoted line break would shift the line numbers).
+    ``required`` names the columns whose empty value the caller refuses, with what to call it
+    (``{"t": "timestamp"}``), so that an error in a block names the first bad line of either kind.
     """
-    import pyarrow as pa
-    import pyarrow.csv as pa_csv
+    pa = require("pyarrow", f"{path}: reading CSV files")
+    pa_csv = require("pyarrow.csv", f"{path}: reading CSV files")
 
     header = _csv_header(path, delimiter)
     positions = column_positions(path, header, columns)
@@ -78,15 +85,23 @@ def _read_csv(
                 yield first, {c: batch.column(keys[c]) for c in columns}, f.tell()
                 first += batch.num_rows
         except pa.ArrowInvalid as e:
-            raise ValueError(_csv_error(path, e, first + 2, header, positions, delimiter)) from None
+            raise ValueError(_csv_error(path, e, first + 2, header, positions, delimiter, required or {})) from None
 
 
 def _csv_error(
-    path: Path, error: Exception, first_line: int, header: list[str], positions: dict[str, int], delimiter: str
+    path: Path,
+    error: Exception,
+    first_line: int,
+    header: list[str],
+    positions: dict[str, int],
+    delimiter: str,
+    required: dict[str, str],
 ) -> str:
     """Find the line and column of a value pyarrow could not read (its message names neither).
 
     Reads on from ``first_line``, the first line not yet handed out; runs only after an error.
+    pyarrow rejects a whole block for one unreadable value, so an empty ``required`` value earlier
+    in the block (which pyarrow reads as a null) is the first error of the file: it is reported.
     """
     with open(path, "rb") as f:
         _skip_lines(f, first_line - 1)
@@ -95,7 +110,9 @@ def _csv_error(
         read = 0  # lines read so far; a record may span lines (a quoted line break)
         for fields in reader:
             line, read = first_line + read, reader.line_num
-            if fields == []:  # a blank line: pyarrow reads it as empty values
+            if not any(fields):  # a blank line or a row of delimiters: pyarrow reads it as empty values
+                for name in required:
+                    return f"{path}: line {line}, column {positions[name] + 1} ({name}): blank line"
                 continue
             if len(fields) != len(header):
                 return f"{path}: line {line}: {_count(len(fields), 'field')}, but the header has {len(header)}"
@@ -106,6 +123,8 @@ def _csv_error(
                     return f"{where}: blank value {fields[pos]!r} (leave it empty for a missing value)"
                 if value and not _is_number(value):
                     return f"{where}: {value!r} is not a number"
+                if not fields[pos] and name in required:
+                    return f"{where}: empty {required[name]}"
     return f"{path}: after line {first_line}: {error}"
 
 
@@ -148,7 +167,9 @@ def csv_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndar
     path = src.data_path
     block = min(CSV_BLOCK_BYTES, max(4096, rows * _bytes_per_line(path)))
     header = None
-    for first, cols, done in _read_csv(path, (o.time, o.rate), delimiter=o.delimiter, block_bytes=block):
+    required = {o.time: "timestamp"}
+    blocks = _read_csv(path, (o.time, o.rate), delimiter=o.delimiter, block_bytes=block, required=required)
+    for first, cols, done in blocks:
         t = cols[o.time]
         bad = first_null(t)
         if bad is not None:
@@ -158,7 +179,7 @@ def csv_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndar
                 f"{path}: line {first + bad + 2}, column {header.index(o.time) + 1} ({o.time}): "
                 + ("blank line" if blank else "empty timestamp")
             )
-        yield t.to_numpy(), cols[o.rate].to_numpy(zero_copy_only=False), TIME_UNITS[o.time_unit], done
+        yield t.to_numpy(), cols[o.rate].to_numpy(zero_copy_only=False), o.counts_per_second, done
 
 
 def _bytes_per_line(path: Path) -> int:
@@ -176,7 +197,7 @@ def read_csv_columns(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArr
     path = Path(path)
     parts: dict[str, list[np.ndarray]] = {c: [] for c in columns}
     header = _csv_header(path, ",")
-    for first, cols, _ in _read_csv(path, columns):
+    for first, cols, _ in _read_csv(path, columns, required=dict.fromkeys(columns, "value")):
         for c in columns:
             bad = first_null(cols[c])
             if bad is not None:

@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from .._arrays import FloatArray
-from ._csvfile import read_csv_columns
+from ._csvfile import _csv_header, read_csv_columns
 
 #: The gyro samples of a log folder; a folder with this file is a log folder.
 GYRO_CSV = "gyro.csv"
@@ -38,6 +38,15 @@ def read_reference(folder: Path) -> dict[str, FloatArray]:
 def read_odometry(folder: Path) -> dict[str, FloatArray]:
     """Columns t and speed of ``odometry.csv``; empty without the file."""
     return _read_table(folder / "odometry.csv", ("t", "speed"))
+
+
+def read_reference_file(path: Path) -> dict[str, FloatArray]:
+    """A reference heading given apart from its log: a CSV file like ``reference.csv``, with
+    columns t [s] and heading [rad], and x and y [m] where it has both."""
+    if not path.is_file():
+        raise FileNotFoundError(f"{path}: no such reference file")
+    header = _csv_header(path, ",")
+    return read_csv_columns(path, ("t", "heading") + (("x", "y") if {"x", "y"} <= set(header) else ()))
 
 
 def _read_table(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:

@@ -13,7 +13,6 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ._columns import column_positions
-from .units import TIME_UNITS
 
 if TYPE_CHECKING:
     from .source import GyroSource
@@ -34,7 +33,7 @@ def npy_header(path: Path, f: Any) -> tuple[tuple[int, ...], bool, np.dtype[Any]
 def npy_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
     """Read an .npy file a block of rows at a time with plain reads (a memory map would count the
     whole file in the resident memory by the end)."""
-    per_second = TIME_UNITS[src.options.time_unit]
+    per_second = src.options.counts_per_second
     with open(src.path, "rb") as f:
         shape, fortran, dtype = npy_header(src.path, f)
         offset = f.tell()
@@ -120,4 +119,4 @@ def npz_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndar
         raise ValueError(f"{src.path}: {o.time} has {len(t)} samples but {o.rate} has {len(rate)}")
     for start in range(0, len(t), rows):
         end = min(len(t), start + rows)
-        yield t[start:end], rate[start:end], TIME_UNITS[o.time_unit], end
+        yield t[start:end], rate[start:end], o.counts_per_second, end

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._extras import require
 from ._columns import column_positions, first_null
 from .units import TIME_UNITS
 
@@ -23,8 +24,8 @@ if TYPE_CHECKING:
 
 def parquet_file(path: Path) -> Any:
     """The file opened as a pyarrow ``ParquetFile`` (its metadata read, no data yet)."""
-    import pyarrow as pa
-    import pyarrow.parquet as pq
+    pa = require("pyarrow", f"{path}: reading Parquet files")
+    pq = require("pyarrow.parquet", f"{path}: reading Parquet files")
 
     try:
         return pq.ParquetFile(path)
@@ -67,7 +68,7 @@ def _arrow_time(src: GyroSource, array: pa.Array, first: int) -> tuple[np.ndarra
     if pa.types.is_timestamp(array.type) or pa.types.is_duration(array.type):
         per_second = TIME_UNITS[array.type.unit]
         return array.cast(pa.int64()).to_numpy(), per_second
-    return _arrow_numbers(src, name, array), TIME_UNITS[src.options.time_unit]
+    return _arrow_numbers(src, name, array), src.options.counts_per_second
 
 
 def _arrow_numbers(src: GyroSource, name: str, array: pa.Array) -> np.ndarray:

@@ -12,6 +12,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._extras import require
+
 if TYPE_CHECKING:
     from .source import GyroSource
 
@@ -25,11 +27,10 @@ def is_bag_folder(path: Path) -> bool:
 
 def _bag_reader(path: Path) -> Any:
     """An open rosbags AnyReader (ROS 1 or ROS 2)."""
-    try:
-        from rosbags.highlevel import AnyReader, AnyReaderError
-        from rosbags.typesys import Stores, get_typestore
-    except ImportError:
-        raise ImportError(f"{path}: reading ROS bags needs rosbags: pip install 'gyrocore[ros]'") from None
+    highlevel = require("rosbags.highlevel", f"{path}: reading ROS bags")
+    typesys = require("rosbags.typesys", f"{path}: reading ROS bags")
+    AnyReader, AnyReaderError = highlevel.AnyReader, highlevel.AnyReaderError
+    Stores, get_typestore = typesys.Stores, typesys.get_typestore
     try:
         # Bags without embedded definitions (ROS 2 before Iron) use the current standard types.
         reader = AnyReader([path], default_typestore=get_typestore(Stores.LATEST))

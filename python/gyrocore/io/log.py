@@ -19,7 +19,7 @@ from .source import open_source
 from .units import UnitCheck
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Log:
     """One recorded drive: gyro samples, and the reference and odometry where the log has them.
 
@@ -38,6 +38,20 @@ class Log:
     stationary: tuple[float, float] | None = None
     """Rest window ``(t0, t1)`` at the start, in the log's time base, or None."""
     meta: dict[str, Any] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        """A summary (the arrays run to millions of samples)."""
+        if len(self.t) == 0:
+            return f"Log({self.name!r}, empty)"
+        parts = [f"{len(self.t)} samples", f"{self.duration:.6g} s from t = {self.t[0]:.3f} s"]
+        if self.t_ref is not None:
+            parts.append(f"reference {len(self.t_ref)} samples" + (" with track" if self.has_track else ""))
+        if self.t_odometry is not None:
+            parts.append(f"odometry {len(self.t_odometry)} samples")
+        if self.stationary is not None:
+            t0 = float(self.t[0])
+            parts.append(f"rest +{self.stationary[0] - t0:.6g} .. +{self.stationary[1] - t0:.6g} s")
+        return f"Log({self.name!r}: {', '.join(parts)})"
 
     @property
     def duration(self) -> float:
@@ -80,7 +94,8 @@ def read_log(path: str | Path, **options: Any) -> Log:
     """Read a whole log into memory: a log folder (with its reference and odometry) or any file
     :func:`open_source` reads (``options``: the :class:`ReadOptions` fields).
 
-    Warns (:class:`gyrocore.InputWarning`) when the values look like another unit.
+    Warns (:class:`gyrocore.InputWarning`) when the values look like another unit; raises
+    ValueError when every interval is a gap (timestamps in another unit).
 
     Example:
         >>> import gyrocore
@@ -94,6 +109,9 @@ def read_log(path: str | Path, **options: Any) -> Log:
         check.update(chunk.t, chunk.rate)
         ts.append(chunk.t)
         rates.append(chunk.rate)
+    error = check.error()
+    if error is not None:
+        raise ValueError(f"{src.data_path}: {error}")
     for problem in check.problems():
         warn(f"{src.data_path}: {problem}")
     ref: dict[str, FloatArray] = {}

@@ -17,12 +17,12 @@ import numpy as np
 
 from .._arrays import FloatArray
 from .._gyrocore import SampleError
-from ._csvfile import csv_chunks
+from ._csvfile import _csv_header, csv_chunks
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta
 from ._npyfile import npy_chunks, npy_header, npz_chunks
 from ._parquetfile import parquet_chunks, parquet_file
 from ._rosbag import bag_chunks, imu_topic, is_bag_folder
-from .units import RATE_UNITS, TIME_UNITS
+from .units import RATE_UNITS, TIME_UNITS, header_options
 
 #: Samples per chunk, at most (a CSV chunk also ends with a block of :data:`CSV_BLOCK_BYTES`).
 DEFAULT_CHUNK_ROWS = 1 << 16
@@ -39,8 +39,10 @@ class ReadOptions:
             ``.npy`` array (whose columns are numbered from 0).
         rate_col: rate column name; ``None``: ``gyro_z``, or column 1 of a plain 2-D array.
         time_unit: ``s``, ``ms``, ``us`` or ``ns`` (a Parquet timestamp column and bag stamps
-            carry their own unit).
-        rate_unit: ``rad/s`` or ``deg/s``.
+            carry their own unit); ``None``: the unit the column's name states (``t [ms]``,
+            ``#timestamp [ns]``, ``t_us``), else ``s``.
+        rate_unit: ``rad/s`` or ``deg/s``; ``None``: the unit the column's name states
+            (``w_z [rad s^-1]``, ``gyro_z_dps``), else ``rad/s``.
         topic: the bag topic with sensor_msgs/Imu messages (``None``: the only one).
         delimiter: CSV field delimiter.
         static: the log was recorded at rest (for an Allan deviation): rates that stay small do
@@ -49,19 +51,24 @@ class ReadOptions:
 
     time_col: str | None = None
     rate_col: str | None = None
-    time_unit: str = "s"
-    rate_unit: str = "rad/s"
+    time_unit: str | None = None
+    rate_unit: str | None = None
     topic: str | None = None
     delimiter: str = ","
     static: bool = False
 
     def __post_init__(self) -> None:
-        if self.time_unit not in TIME_UNITS:
+        if self.time_unit is not None and self.time_unit not in TIME_UNITS:
             raise ValueError(f"time_unit {self.time_unit!r} is not one of {', '.join(TIME_UNITS)}")
-        if self.rate_unit not in RATE_UNITS:
+        if self.rate_unit is not None and self.rate_unit not in RATE_UNITS:
             raise ValueError(f"rate_unit {self.rate_unit!r} is not one of {', '.join(RATE_UNITS)}")
         if len(self.delimiter) != 1:
             raise ValueError(f"delimiter must be one character, got {self.delimiter!r}")
+
+    @property
+    def counts_per_second(self) -> float:
+        """Counts of the time unit in a second (a unit not resolved yet is s)."""
+        return TIME_UNITS[self.time_unit or "s"]
 
     @property
     def time(self) -> str:
@@ -195,23 +202,27 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
         if is_log_folder(p):
             meta, stationary = read_meta(p)
             data = p / GYRO_CSV
+            options = header_options(data, _csv_header(data, options.delimiter), options)
             return GyroSource(p, "log folder", data, options, stationary, data.stat().st_size, "B", meta)
         if is_bag_folder(p):
-            return _open_bag(p, options)
+            return _open_bag(p, header_options(p, None, options))
         raise ValueError(f"{p}: not a log folder (no gyro.csv) nor a ROS 2 bag (no metadata.yaml)")
     suffix = p.suffix.lower()
     if suffix == ".csv":
+        options = header_options(p, _csv_header(p, options.delimiter), options)
         return GyroSource(p, "csv", p, options, progress_total=p.stat().st_size, progress_unit="B")
     if suffix in (".parquet", ".pq"):
-        return GyroSource(p, "parquet", p, options, progress_total=parquet_file(p).metadata.num_rows)
+        pf = parquet_file(p)
+        options = header_options(p, pf.schema_arrow.names, options)
+        return GyroSource(p, "parquet", p, options, progress_total=pf.metadata.num_rows)
     if suffix == ".npy":
         with open(p, "rb") as f:
             shape = npy_header(p, f)[0]
-        return GyroSource(p, "npy", p, options, progress_total=shape[0] if shape else 0)
+        return GyroSource(p, "npy", p, header_options(p, None, options), progress_total=shape[0] if shape else 0)
     if suffix == ".npz":
-        return GyroSource(p, "npz", p, options)
+        return GyroSource(p, "npz", p, header_options(p, None, options))
     if suffix == ".bag":
-        return _open_bag(p, options)
+        return _open_bag(p, header_options(p, None, options))
     raise ValueError(
         f"{p}: unknown kind of file (read are {', '.join(FILE_SUFFIXES)}, log folders and ROS 2 bag folders)"
     )

@@ -8,6 +8,9 @@ look like another unit (rates in deg/s read as rad/s, an epoch in ms read as s, 
 from __future__ import annotations
 
 import math
+import re
+from dataclasses import replace
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -22,6 +25,20 @@ if TYPE_CHECKING:
 TIME_UNITS = {"s": 1.0, "ms": 1e3, "us": 1e6, "ns": 1e9}
 #: Rate units of a file.
 RATE_UNITS = ("rad/s", "deg/s")
+#: How a header may write each unit, normalised by :func:`_normal` (lower case; no spaces, ``*``,
+#: ``.`` or ``^``), e.g. ``#timestamp [ns]``, ``w_RS_S_x [rad s^-1]``, ``gyro_z_dps``, ``t_ms``.
+HEADER_TIME_UNITS = {
+    **dict.fromkeys(("s", "sec", "secs", "second", "seconds"), "s"),
+    **dict.fromkeys(("ms", "msec", "millisecond", "milliseconds"), "ms"),
+    **dict.fromkeys(("us", "\u00b5s", "\u03bcs", "usec", "microsecond", "microseconds"), "us"),
+    **dict.fromkeys(("ns", "nsec", "nanosecond", "nanoseconds"), "ns"),
+}
+HEADER_RATE_UNITS = {
+    **dict.fromkeys(("rad/s", "rads-1", "rad/sec", "radps", "rad_s"), "rad/s"),
+    **dict.fromkeys(("deg/s", "degs-1", "deg/sec", "degps", "dps", "\u00b0/s", "deg_s"), "deg/s"),
+}
+#: A unit in brackets or parentheses at the end of a column name: ``t [s]``, ``rate (deg/s)``.
+_BRACKETED = re.compile(r"^(?P<base>.*?)\s*(?:\[(?P<square>[^\]]*)\]|\((?P<round>[^)]*)\))$")
 #: A yaw rate that never exceeds this [deg/s] over a whole log is more likely in rad/s.
 SMALL_RATE_DPS = 3.0
 #: A mean interval below this [s] (above 10 kHz) suggests timestamps in a larger unit.
@@ -43,11 +60,19 @@ class UnitCheck:
         self._options = options
         self._first: list[str] | None = None
         self._max_rate = 0.0
+        self._last_time: float | None = None
+        self._intervals = 0
+        self._short_intervals = 0  # not longer than INTERVAL_LIMIT: not a gap
 
     def update(self, t: FloatArray, rate: FloatArray) -> None:
         """Account for one chunk (t [s], rate [rad/s])."""
         largest = np.max(np.abs(rate), initial=0.0, where=np.isfinite(rate))
         self._max_rate = max(self._max_rate, float(largest))
+        if len(t):
+            edges = t if self._last_time is None else np.concatenate(([self._last_time], t))
+            self._intervals += len(edges) - 1
+            self._short_intervals += int(np.count_nonzero(np.diff(edges) <= INTERVAL_LIMIT))
+            self._last_time = float(t[-1])
         if self._first is None and len(t) > 1:  # a chunk with an interval
             self._first = self._first_chunk_problems(t, rate)
 
@@ -63,13 +88,22 @@ class UnitCheck:
             )
         return problems
 
+    def error(self) -> str | None:
+        """Why the stream cannot be a gyro log in the units it was read in, or None: every interval
+        is longer than a gap (a log in ns read as s has nothing but gaps)."""
+        if self._intervals == 0 or self._short_intervals > 0:
+            return None
+        fixes = [p for p in self._first or [] if p.startswith("timestamps look like")]
+        fix = fixes[0] if fixes else f"give the unit of the time column with --time-unit ({', '.join(TIME_UNITS)})"
+        return f"each of the {self._intervals} intervals is longer than {INTERVAL_LIMIT:g} s, a gap: {fix}"
+
     def _first_chunk_problems(self, t: FloatArray, rate: FloatArray) -> list[str]:
         o = self._options
         problems = []
         if o.rate_unit == "rad/s":
             # unit_problems judges rates only when given one timestamp
             problems += [f"{p}; or use rate_unit='deg/s' (--rate-unit deg/s)" for p in unit_problems(t[:1], rate)]
-        unit = o.time_unit
+        unit = o.time_unit or "s"
         t0 = abs(float(t[0]))
         mean_dt = float(t[-1] - t[0]) / (len(t) - 1) if len(t) > 1 else 0.0
         if t0 > EPOCH_LIMIT:
@@ -89,3 +123,80 @@ class UnitCheck:
                 f"use time_unit='{fits[0]}' (--time-unit {fits[0]})"
             )
         return problems
+
+
+def _normal(unit: str) -> str:
+    return re.sub(r"[\s*.^]", "", unit.lower())
+
+
+def split_unit(column: str) -> tuple[str, str | None]:
+    """A column name without the unit it states, and that unit as written (None if it states none).
+
+    ``#timestamp [ns]`` -> ``("timestamp", "ns")``; ``gyro_z_dps`` -> ``("gyro_z", "dps")``;
+    ``t`` -> ``("t", None)``. A ``_suffix`` counts as a unit only if it is one (``gyro_z`` has none).
+    """
+    name = column.strip().lstrip("#").strip()
+    m = _BRACKETED.match(name)
+    if m and m["base"]:
+        return m["base"], (m["square"] if m["square"] is not None else m["round"]).strip()
+    base, sep, suffix = name.rpartition("_")
+    if sep and base and (_normal(suffix) in HEADER_TIME_UNITS or _normal(suffix) in HEADER_RATE_UNITS):
+        return base, suffix
+    return name, None
+
+
+def _header_column(path: Path, header: list[str], wanted: str, option: str) -> str:
+    """The header name of column ``wanted``: itself, or the one column that is ``wanted`` with a
+    unit (``t`` finds ``t [s]`` or ``t_ms``). A missing column is left to the reader to report."""
+    if wanted in header:
+        return wanted
+    matches = [h for h in header if split_unit(h)[0] == wanted]
+    if len(matches) > 1:
+        raise ValueError(
+            f"{path}: column {wanted!r} matches {', '.join(map(repr, matches))}; give the whole name ({option})"
+        )
+    return matches[0] if matches else wanted
+
+
+def _stated_unit(path: Path, column: str, given: str | None, option: str, default: str) -> str:
+    """The unit of ``column``: the one given, else the one its name states, else ``default``."""
+    kind = "time" if option == "--time-unit" else "rate"
+    table, choices = (HEADER_TIME_UNITS, TIME_UNITS) if kind == "time" else (HEADER_RATE_UNITS, RATE_UNITS)
+    written = split_unit(column)[1]
+    if written is None:
+        return given or default
+    stated = table.get(_normal(written))
+    # a known unit of the other kind in a ``_suffix`` is part of the name (``t_dps`` is no time unit)
+    if stated is None and written == column.rpartition("_")[2]:
+        return given or default
+    where = f"{path}: column {column!r} states the unit {written!r}"
+    if stated is None and given is None:
+        raise ValueError(
+            f"{where}, which is not a {kind} unit gyrocore reads ({', '.join(choices)}): convert the column, "
+            f"or read it as one of those with {option}"
+        )
+    if stated is not None and given is not None and given != stated:
+        raise ValueError(f"{where} but {option} {given} was given: leave out {option} (or correct the header)")
+    return given or stated or default
+
+
+def header_options(path: Path, header: list[str] | None, options: ReadOptions) -> ReadOptions:
+    """``options`` with the time and rate columns named as in ``header`` and their units taken from
+    the header where it states them (and no unit was given); for a file without column names
+    (``header`` None) the units given, else s and rad/s.
+
+    Raises:
+        ValueError: a header unit gyrocore does not read (naming the option to give instead), a unit
+            given that contradicts the header, or a column name that matches several columns.
+    """
+    if header is None:
+        return replace(options, time_unit=options.time_unit or "s", rate_unit=options.rate_unit or "rad/s")
+    time = _header_column(path, header, options.time, "--time-col")
+    rate = _header_column(path, header, options.rate, "--rate-col")
+    return replace(
+        options,
+        time_col=time,
+        rate_col=rate,
+        time_unit=_stated_unit(path, time, options.time_unit, "--time-unit", "s"),
+        rate_unit=_stated_unit(path, rate, options.rate_unit, "--rate-unit", "rad/s"),
+    )

@@ -14,6 +14,7 @@ from types import TracebackType
 from typing import TYPE_CHECKING, Any
 
 from .. import _gyrocore
+from .._extras import require
 from ..pipeline import HeadingResult
 from .atomic import StagedFile
 
@@ -92,9 +93,9 @@ class HeadingWriter:
         self._pending: list[Any] = []
 
     def __enter__(self) -> HeadingWriter:
-        import pyarrow as pa
-        import pyarrow.parquet as pq
-
+        if self.format == "parquet":  # before the staged file: nothing to remove if pyarrow is missing
+            pa = require("pyarrow", f"{self.path}: writing Parquet files")
+            pq = require("pyarrow.parquet", f"{self.path}: writing Parquet files")
         self._staged = StagedFile(self.path)
         tmp = self._staged.tmp
         try:
@@ -115,14 +116,15 @@ class HeadingWriter:
 
     def write(self, result: HeadingResult) -> None:
         """Append the rows of one chunk."""
-        import pyarrow as pa
-
         r = convert_heading(result, self.heading)
         columns = [r.t, r.heading, r.output("rate"), r.output("drift")]
         if self.format == "csv":
-            # formatted in Rust without the GIL (pyarrow's float-to-text cast was the slow part)
-            self._sink.write(_gyrocore.format_csv_rows(columns))
+            # formatted in Rust without the GIL (pyarrow's float-to-text cast was the slow part);
+            # + 0.0 turns -0.0 (the compass rate of a gyro at rest) into 0.0, a sign that is not there
+            self._sink.write(_gyrocore.format_csv_rows([c + 0.0 for c in columns]))
         else:
+            import pyarrow as pa  # present: __enter__ required it
+
             self._pending.append(pa.record_batch(columns, schema=self._schema))
             if sum(b.num_rows for b in self._pending) >= PARQUET_ROW_GROUP:
                 self._flush()

@@ -8,6 +8,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from .._extras import MissingExtra, pyplot
+
 
 @dataclass(frozen=True)
 class Row:
@@ -36,14 +38,10 @@ def format_table(title: str, rows: tuple[Row, ...] | list[Row], notes: tuple[str
 def _pyplot() -> Any:
     """matplotlib's pyplot on the Agg backend, or None (with a hint) when it is not installed."""
     try:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print("(no plot: install matplotlib, e.g. pip install 'gyrocore[plot]')", file=sys.stderr)
+        return pyplot("drawing the figures")
+    except MissingExtra as e:
+        print(f"(no plot: {e})", file=sys.stderr)
         return None
-    return plt
 
 
 def _save(fig: Any, path: str | Path) -> Path:

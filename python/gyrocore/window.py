@@ -1,0 +1,110 @@
+"""Time windows of a log: each bound in the log's own time base, or after its first sample.
+
+A log stamped with the Unix epoch starts near 1.7e9 s, so ``20 .. 30`` holds nothing of it;
+``+20 .. +30`` (a bound written with ``+``) means 20 to 30 s after the first sample, whatever the
+time base. Every command that takes a window (``--window``, ``--bias-window``, ``--fit-window``)
+reads it with :meth:`Window.parse`, and an empty window is reported with the log's time range.
+
+    >>> import numpy as np
+    >>> w = Window.parse(["+20", "+30"])
+    >>> w.resolve(1.7e9)
+    (1700000020.0, 1700000030.0)
+    >>> w.samples(np.arange(1.7e9, 1.7e9 + 60.0), minimum=2).shape
+    (11,)
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._arrays import FloatArray
+
+
+@dataclass(frozen=True)
+class Window:
+    """A span ``start .. end`` [s]; a bound with ``relative`` set counts from the first sample.
+
+    Attributes:
+        start, end: the bounds [s].
+        relative: ``(start relative, end relative)``.
+        option: how the user gave it (``--window``), to name it in errors.
+    """
+
+    start: float
+    end: float
+    relative: tuple[bool, bool] = (False, False)
+    option: str = "window"
+
+    @classmethod
+    def parse(cls, bounds: Sequence[str], option: str = "window") -> Window:
+        """Two bounds as written: ``["20", "30"]`` (log time base) or ``["+20", "+30"]`` (after the
+        first sample).
+
+        Raises:
+            ValueError: not two numbers, not finite, or the end not after the start.
+        """
+        if len(bounds) != 2:
+            raise ValueError(f"{option}: give two bounds T0 T1, got {len(bounds)}")
+        values, relative = [], []
+        for text in bounds:
+            stripped = text.strip()
+            try:
+                values.append(float(stripped))
+            except ValueError:
+                raise ValueError(
+                    f"{option} {' '.join(bounds)}: {text!r} is not a number of seconds "
+                    "(write +T for T seconds after the first sample)"
+                ) from None
+            relative.append(stripped.startswith("+"))
+        window = cls(values[0], values[1], (relative[0], relative[1]), option)
+        if not all(map(math.isfinite, values)):
+            raise ValueError(f"{option} {window}: the bounds must be finite")
+        if relative[0] == relative[1] and values[1] <= values[0]:
+            raise ValueError(f"{option} {window}: the end must come after the start")
+        return window
+
+    def resolve(self, t0: float) -> tuple[float, float]:
+        """The bounds in the log's time base, for a log whose first sample is at ``t0`` [s]."""
+        return (
+            self.start + t0 if self.relative[0] else self.start,
+            self.end + t0 if self.relative[1] else self.end,
+        )
+
+    def samples(self, t: FloatArray, *, minimum: int = 1) -> np.ndarray:
+        """Indices of the samples of ``t`` inside the window (bounds included).
+
+        Raises:
+            ValueError: fewer than ``minimum`` samples inside, naming the window and the log's range.
+        """
+        if len(t) == 0:
+            raise ValueError(f"{self.option} {self}: the log has no samples")
+        start, end = self.resolve(float(t[0]))
+        inside = np.flatnonzero((t >= start) & (t <= end))
+        if len(inside) < minimum:
+            raise ValueError(
+                f"{self.option} {self} holds {len(inside)} sample(s), fewer than {minimum}; "
+                + time_range(float(t[0]), float(t[-1]))
+            )
+        return inside
+
+    def __str__(self) -> str:
+        def bound(value: float, relative: bool) -> str:
+            return f"+{value:g}" if relative else f"{value:.10g}"
+
+        return f"{bound(self.start, self.relative[0])} .. {bound(self.end, self.relative[1])} s"
+
+
+def time_range(first: float, last: float | None = None) -> str:
+    """The span of a log (first and last timestamp [s], or only the first where the last is not
+    known yet) in both time bases, for an error about a window."""
+    hint = "write a bound as +T for T seconds after the first sample"
+    if last is None:
+        return f"the log starts at {first:.10g} s ({hint})"
+    return (
+        f"the log runs from {first:.10g} to {last:.10g} s (+0 .. +{last - first:.6g} s after its first sample; "
+        f"{hint})"
+    )
