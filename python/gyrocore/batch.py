@@ -25,7 +25,7 @@ from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 from typing import Any
 
-from . import io
+from . import _signals, io
 from ._gyrocore import SampleError
 from .pipeline import Pipeline, has_bias_source, uses_static_bias
 
@@ -154,6 +154,7 @@ class _FileJob:
         check = io.UnitCheck(source.options)
         with io.HeadingWriter(self.out, heading=self.heading) as writer:
             for chunk in source.chunks(self.chunk_rows):
+                _signals.check()  # a signal whose KeyboardInterrupt a library swallowed stops here
                 check.update(chunk.t, chunk.rate)
                 try:
                     result = pipeline.process(chunk.t, chunk.rate, index_offset=chunk.first_row)

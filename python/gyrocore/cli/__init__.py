@@ -10,6 +10,7 @@ import argparse
 import sys
 from typing import Sequence
 
+from .. import _signals
 from . import allan, calibrate, demo, evaluate, presets, process, reproduce, simulate, tune
 
 COMMANDS = (demo, process, presets, allan, calibrate, evaluate, tune, simulate, reproduce)
@@ -24,10 +25,15 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command; user errors print one line ``gyrocore: error: ...`` and return 2."""
-    args = build_parser().parse_args(argv)
-    try:
-        return int(args.func(args))
-    except (ValueError, TypeError, OSError) as e:
-        print(f"gyrocore: error: {e}", file=sys.stderr)
-        return 2
+    """Run the command; user errors print one line ``gyrocore: error: ...`` and return 2; Ctrl-C
+    or SIGTERM, whenever it comes, returns 130 with every output as it was before the run."""
+    with _signals.handled():
+        try:
+            args = build_parser().parse_args(argv)
+            return int(args.func(args))
+        except (ValueError, TypeError, OSError) as e:
+            print(f"gyrocore: error: {e}", file=sys.stderr)
+            return 2
+        except KeyboardInterrupt:
+            print("gyrocore: interrupted; no partial output was left", file=sys.stderr)
+            return 130

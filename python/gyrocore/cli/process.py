@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import sys
 import warnings
 from pathlib import Path
 from typing import Any
@@ -11,7 +10,7 @@ from typing import Any
 from .. import io
 from .._checks import InputWarning
 from ..batch import expand_inputs, process_file, process_many
-from ._common import add_command, print_json, progress_bar, terminate_cleanly, warn
+from ._common import add_command, print_json, progress_bar, warn
 
 _EPILOG = """
 IN is a CSV, Parquet, .npy or .npz file, a ROS 1 .bag or ROS 2 bag folder, a log folder, a
@@ -137,7 +136,7 @@ def run(args: argparse.Namespace) -> int:
     out = Path(args.out)
     kwargs = options(args)
     try:
-        with terminate_cleanly(), warnings.catch_warnings():
+        with warnings.catch_warnings():
             # every file's report carries these; print them once, with the file's name
             warnings.simplefilter("ignore", InputWarning)
             if out.suffix.lower() in (".csv", ".parquet", ".pq"):
@@ -145,9 +144,6 @@ def run(args: argparse.Namespace) -> int:
             return _many(inputs, out, args, kwargs)
     except ImportError as e:  # an optional dependency the input needs: the user can install it
         raise ValueError(str(e)) from None
-    except KeyboardInterrupt:
-        print("gyrocore: interrupted; no partial output was left", file=sys.stderr)
-        return 130
 
 
 def _one(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .._arrays import FloatArray
-from ._columns import column_positions, concat, first_null
+from ._columns import column_positions, concat, first_null, import_pyarrow_lazy_modules
 from .units import TIME_UNITS
 
 if TYPE_CHECKING:
@@ -174,6 +174,7 @@ def read_csv_columns(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArr
     Raises ValueError naming the file, line and column of a malformed or empty value.
     """
     path = Path(path)
+    import_pyarrow_lazy_modules()
     parts: dict[str, list[np.ndarray]] = {c: [] for c in columns}
     header = _csv_header(path, ",")
     for first, cols, _ in _read_csv(path, columns):

@@ -17,6 +17,7 @@ import numpy as np
 
 from .._arrays import FloatArray
 from .._gyrocore import SampleError
+from ._columns import import_pyarrow_lazy_modules
 from ._csvfile import csv_chunks
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta
 from ._npyfile import npy_chunks, npy_header, npz_chunks
@@ -147,6 +148,7 @@ class GyroSource:
         """
         if rows < 1:
             raise ValueError(f"rows per chunk must be >= 1, got {rows}")
+        import_pyarrow_lazy_modules()
         readers = {
             "csv": csv_chunks,
             "log folder": csv_chunks,

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 from .. import _gyrocore
 from ..pipeline import HeadingResult
+from ._columns import import_pyarrow_lazy_modules
 from .atomic import StagedFile
 
 if TYPE_CHECKING:
@@ -95,6 +96,7 @@ class HeadingWriter:
         import pyarrow as pa
         import pyarrow.parquet as pq
 
+        import_pyarrow_lazy_modules()
         self._staged = StagedFile(self.path)
         tmp = self._staged.tmp
         try:
