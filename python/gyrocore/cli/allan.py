@@ -37,6 +37,9 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
 
 def run(args: argparse.Namespace) -> int:
     src = Path(args.input)
+    for out in (args.plot, args.kalibr):
+        if out is not None:
+            io.check_not_input(out, [src])
     # A log folder names its columns and units; a file takes them from the options.
     columns = {} if src.is_dir() else {"time_col": args.time_col, "rate_col": args.rate_col, "rate_unit": args.rate_unit}
     # A record for the Allan deviation is taken at rest: small rates are no sign of a unit mistake.

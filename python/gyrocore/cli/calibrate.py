@@ -41,6 +41,8 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"{folder}: not a log folder")
     if args.save is not None and args.save.suffix.lower() != ".json":
         raise ValueError(f"{args.save}: the calibration file must end in .json")
+    if args.save is not None:
+        io.check_not_input(args.save, [folder])  # e.g. the log's own meta.json
     log = io.read_log(folder)
     results: dict[str, Any] = {"log": log.name, "meta_stationary": log.stationary}
     static: calibration.Calibration | None = None

@@ -9,7 +9,7 @@ from typing import Any
 
 from .. import io
 from .._checks import InputWarning
-from ..batch import expand_inputs, process_file, process_many
+from ..batch import check_outside_inputs, expand_inputs, process_file, process_many
 from ._common import add_command, print_json, progress_bar, warn
 
 _EPILOG = """
@@ -141,7 +141,7 @@ def run(args: argparse.Namespace) -> int:
             warnings.simplefilter("ignore", InputWarning)
             if out.suffix.lower() in (".csv", ".parquet", ".pq"):
                 return _one(inputs, out, args, kwargs)
-            return _many(inputs, out, args, kwargs)
+            return _many(out, args, kwargs)
     except ImportError as e:  # an optional dependency the input needs: the user can install it
         raise ValueError(str(e)) from None
 
@@ -149,6 +149,7 @@ def run(args: argparse.Namespace) -> int:
 def _one(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
     if len(inputs) != 1:
         raise ValueError(f"--out {out} is one file but there are {len(inputs)} inputs; give a folder")
+    check_outside_inputs(args.inputs, out.parent)
     with progress_bar(inputs[0].name) as bar:
         report = process_file(
             inputs[0], out, preset=args.preset, heading=args.heading, chunk_rows=args.chunk_rows, progress=bar, **kwargs
@@ -162,9 +163,9 @@ def _one(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[s
     return 0
 
 
-def _many(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
+def _many(out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
     summary = process_many(
-        inputs,
+        args.inputs,  # as given: the folders among them are where no output may go
         preset=args.preset,
         out_dir=out,
         client=args.scheduler,

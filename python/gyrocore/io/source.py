@@ -8,6 +8,7 @@ reader of its format and converts them to s and rad/s (what ``gyrocore process``
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterator
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -183,8 +184,8 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
         options: columns and units; or give the :class:`ReadOptions` fields as keywords.
 
     Raises:
-        FileNotFoundError: no such file or folder.
-        ValueError: an unknown kind of file or folder.
+        FileNotFoundError: no such file or folder, or a symbolic link that cannot be followed.
+        ValueError: an unknown kind of file or folder, or not a regular file (a named pipe).
     """
     if options is None:
         options = ReadOptions(**kwargs)
@@ -192,7 +193,7 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
         raise TypeError("give either options or keywords, not both")
     p = Path(path)
     if not p.exists():
-        raise FileNotFoundError(f"{p}: no such file or folder")
+        raise FileNotFoundError(_missing(p))
     if p.is_dir():
         if is_log_folder(p):
             meta, stationary = read_meta(p)
@@ -201,6 +202,8 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
         if is_bag_folder(p):
             return _open_bag(p, options)
         raise ValueError(f"{p}: not a log folder (no gyro.csv) nor a ROS 2 bag (no metadata.yaml)")
+    if not p.is_file():  # reading a named pipe or a device would wait for ever, or never end
+        raise ValueError(f"{p}: not a regular file (a named pipe, socket or device); give a file or folder")
     suffix = p.suffix.lower()
     if suffix == ".csv":
         return GyroSource(p, "csv", p, options, progress_total=p.stat().st_size, progress_unit="B")
@@ -217,6 +220,18 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
     raise ValueError(
         f"{p}: unknown kind of file (read are {', '.join(FILE_SUFFIXES)}, log folders and ROS 2 bag folders)"
     )
+
+
+def _missing(path: Path) -> str:
+    """Why ``path``, which does not exist, cannot be read: no such file, or a broken link."""
+    if not path.is_symlink():
+        return f"{path}: no such file or folder"
+    reason = "no such file"
+    try:
+        path.stat()
+    except OSError as e:  # a dangling link, or a loop (ELOOP)
+        reason = e.strerror or reason
+    return f"{path}: a symbolic link to {os.readlink(path)!r}, which cannot be followed ({reason})"
 
 
 def _open_bag(path: Path, options: ReadOptions) -> GyroSource:
