@@ -19,6 +19,7 @@ from .io import Log, read_log
 from .pipeline import (
     HeadingResult,
     Pipeline,
+    RestWindowError,
     downsample,
     integrate,
     parameters,
@@ -34,6 +35,7 @@ __all__ = [
     "InputWarning",
     "Log",
     "Pipeline",
+    "RestWindowError",
     "SampleError",
     "__version__",
     "allan",

@@ -27,7 +27,7 @@ from typing import Any
 
 from . import _signals, io
 from ._gyrocore import SampleError
-from .pipeline import Pipeline, has_bias_source, uses_static_bias
+from .pipeline import Pipeline, RestWindowError, has_bias_source, uses_static_bias
 
 #: ``progress(done, total, unit)``: called after each chunk with the progress through the input.
 Progress = Callable[[int, "int | None", str], None]
@@ -141,9 +141,10 @@ class _FileJob:
         io.check_output(self.out, source)
         overrides = dict(self.overrides)
         notes: list[str] = []
+        from_meta = False
         if uses_static_bias(self.preset) and not has_bias_source(overrides):
             if source.stationary is not None:
-                overrides["bias_window"] = source.stationary
+                overrides["bias_window"], from_meta = source.stationary, True
             else:
                 notes.append(
                     f"preset {self.preset!r} removes a static bias but the log gives no rest window: "
@@ -161,13 +162,17 @@ class _FileJob:
                 except SampleError as e:
                     raise ValueError(source.locate(e)) from None
                 except ValueError as e:
-                    raise ValueError(f"{source.data_path}: {e}") from None
+                    raise _in_file(source, e, from_meta) from None
                 writer.write(result)
                 self.rows_in += len(chunk)
                 if progress is not None:
                     progress(chunk.done, source.progress_total, source.progress_unit)
             if self.rows_in == 0:
                 raise ValueError(f"{source.data_path}: no samples")
+            try:
+                pipeline.finish()
+            except ValueError as e:
+                raise _in_file(source, e, from_meta) from None
             if writer.rows != self.rows_in:  # the pipeline returns one row per sample; prove it
                 raise RuntimeError(f"{self.path}: {self.rows_in} rows read but {writer.rows} written")
         notes += check.problems() + _repairs(pipeline.report)
@@ -178,6 +183,13 @@ class _FileJob:
     def failure(self, error: BaseException, seconds: float) -> FileReport:
         reason = str(error) if isinstance(error, (ValueError, TypeError, OSError, ImportError)) else repr(error)
         return FileReport(str(self.path), None, self.rows_in, 0, seconds, reason or type(error).__name__)
+
+
+def _in_file(source: io.GyroSource, error: ValueError, window_from_meta: bool) -> ValueError:
+    """The pipeline's error about a file, naming it (and meta.json where the rest window is its)."""
+    meta = window_from_meta and isinstance(error, RestWindowError)
+    where = f" (the rest window is the stationary of {source.path / 'meta.json'})" if meta else ""
+    return ValueError(f"{source.data_path}: {error}{where}")
 
 
 def _repairs(report: dict[str, float]) -> list[str]:

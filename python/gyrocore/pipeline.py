@@ -22,6 +22,11 @@ from ._checks import warn, warn_units
 _RATE_PARAMETERS = ("bias", "offset", "threshold", "hdr_increment", "hdr_turn_threshold")
 
 
+class RestWindowError(ValueError):
+    """The rest window (``bias_window``, ``bias_duration``) does not fit the log: it holds no
+    sample, or reaches past the log's end."""
+
+
 def preset_names() -> list[str]:
     """Names of the presets, in order of increasing processing (``recommended`` is an alias)."""
     names, _ = _gyrocore.preset_names()
@@ -125,6 +130,7 @@ class Pipeline:
         self._inner = _gyrocore.Pipeline(preset, si)
         self._preset = preset
         self._units_checked = False
+        self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
         if uses_static_bias(preset) and not has_bias_source(si):
             warn(
                 f"preset {preset!r} removes a static bias, but no bias, bias_window or bias_duration "
@@ -165,8 +171,9 @@ class Pipeline:
         Raises:
             SampleError: (a ValueError) non-increasing or non-finite timestamps, or NaN/inf readings
                 under ``nonfinite="error"``; its ``index`` and ``what`` name the first bad sample.
-            ValueError: mismatched lengths, or a rest window that holds no sample.
-                Nothing is processed after any of these.
+            ValueError: mismatched lengths; :class:`RestWindowError` for a rest window that
+                holds no sample (known once a reading after its end comes). Nothing of the
+                chunk is processed after any of these.
             TypeError: non-numeric arrays.
 
         Warns:
@@ -177,21 +184,44 @@ class Pipeline:
         ta = as_float_array("t", t)
         ra = as_float_array("rate", rate)
         temp = None if temperature is None else as_float_array("temperature", temperature)
-        self._check_bias_window(ta)
+        self._check_bias_window(ta, ra, temp)
         if not self._units_checked and len(ta):
             warn_units(ta, ra)
             self._units_checked = True
         before = self._inner.report()
         heading, out_rate, drift = self._inner.process(ta, ra, temp, index_offset)
         self._warn_repairs(before, self._inner.report(), ta, ra, temp)
-        _, count, learning = self._inner.bias()
-        if not learning and count == 0 and self._measures_bias():
-            raise ValueError(f"the bias window {self._window_text()} held no sample of the log")
+        if self._first_time is None and len(ta):
+            self._first_time = float(ta[0])
         return HeadingResult(ta, heading, out_rate, drift)
+
+    def finish(self) -> None:
+        """Call after the last chunk of a log: raises ValueError if the rest window reaches past the
+        log's end (a ``bias_window`` after the log, or a ``bias_duration`` longer than the log), so
+        that the bias was measured over less than asked, or not at all (0). Changes nothing.
+        """
+        p = self._inner.params()
+        last = self._inner.last_time()
+        if not self._inner.bias()[2] or last is None or self._first_time is None:
+            return  # a fixed bias, a window that is over, or no sample
+        span = f"the log runs from t = {self._first_time} to {last} s"
+        if "bias_window" in p:
+            start, end = p["bias_window"]
+            if last < end:
+                raise RestWindowError(
+                    f"the bias window [{start}, {end}] s reaches past the end of the log ({span}); "
+                    "give a rest window inside the log, in its own time base"
+                )
+        elif last < self._first_time + p["bias_duration"]:
+            raise RestWindowError(
+                f"bias_duration = {p['bias_duration']} s is longer than the log ({span}); "
+                "give a shorter rest at the start, or a bias_window"
+            )
 
     def reset(self) -> None:
         """Return to the state before the first sample (same parameters)."""
         self._inner.reset()
+        self._first_time = None
 
     def _warn_repairs(
         self,
@@ -234,35 +264,52 @@ class Pipeline:
         """What the input policy did so far: ``held``, ``skipped``, ``gaps``, ``longest_gap`` [s]."""
         return dict(self._inner.report())
 
-    def _measures_bias(self) -> bool:
-        p = self._inner.params()
-        return "bias_window" in p or "bias_duration" in p
+    def _check_bias_window(self, t: FloatArray, rate: FloatArray, temperature: FloatArray | None) -> None:
+        """Refuse, before anything is processed, a chunk that would close the rest window with no
+        reading in it (the bias would silently be 0): the core's rule, that the first reading it
+        takes after the window's end closes it, applied to the chunk's timestamps.
 
-    def _window_text(self) -> str:
+        Only a chunk whose timestamps the core accepts is checked; it rejects the others itself.
+        """
         p = self._inner.params()
-        if "bias_window" in p:
-            start, end = p["bias_window"]
-            return f"[{start}, {end}] s"
-        return f"of the first {p['bias_duration']} s"
-
-    def _check_bias_window(self, t: FloatArray) -> None:
-        """Refuse a log that starts after its rest window ends: the bias would silently be 0."""
-        p = self._inner.params()
-        if self._inner.last_time() is None and "bias_window" in p and len(t) > 0:
-            start, end = p["bias_window"]
-            if t[0] > end:
-                raise ValueError(
-                    f"the bias window [{start}, {end}] s ends before the first sample (t[0] = {t[0]}); "
-                    "give the window in the log's own time base"
-                )
+        _, count, learning = self._inner.bias()
+        if "bias_window" not in p or not learning or count > 0 or len(t) == 0:
+            return
+        last = self._inner.last_time()
+        if not (np.isfinite(t).all() and (np.diff(t) > 0).all() and (last is None or t[0] > last)):
+            return
+        taken = np.isfinite(rate)  # the readings the filters see: skipped ones are not
+        if temperature is not None and len(temperature) == len(t):
+            taken &= np.isfinite(temperature)
+        if p["nonfinite"] == "hold":  # held once there was a finite reading
+            taken |= np.logical_or.accumulate(taken) | (last is not None)
+        start, end = p["bias_window"]
+        after = np.flatnonzero(taken & (t > end))
+        if len(after) == 0:
+            return
+        k = int(after[0])
+        if (taken[:k] & (t[:k] >= start)).any():
+            return
+        before = t[k - 1] if k > 0 else last
+        if before is None:
+            raise RestWindowError(
+                f"the bias window [{start}, {end}] s ends before the first sample (t[0] = {t[0]}); "
+                "give the window in the log's own time base"
+            )
+        raise RestWindowError(
+            f"the bias window [{start}, {end}] s holds no sample of the log, which jumps from t = {before} "
+            f"to t = {t[k]} s (index {k} of this chunk); give a window where the log has readings at rest. "
+            "Nothing of this chunk was processed"
+        )
 
     def __getstate__(self) -> dict[str, Any]:
-        return {"preset": self._preset, "state": self._inner.state_json()}
+        return {"preset": self._preset, "state": self._inner.state_json(), "first_time": self._first_time}
 
     def __setstate__(self, state: dict[str, Any]) -> None:
         self._preset = state["preset"]
         self._inner = _gyrocore.Pipeline.from_state_json(state["state"])
         self._units_checked = self._inner.last_time() is not None
+        self._first_time = state.get("first_time")
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"
@@ -285,7 +332,10 @@ def process(
         >>> bool(abs(r.heading[-1]) < 1e-9)
         True
     """
-    return Pipeline(preset, **overrides).process(t, rate, temperature=temperature)
+    pipeline = Pipeline(preset, **overrides)
+    result = pipeline.process(t, rate, temperature=temperature)
+    pipeline.finish()
+    return result
 
 
 def integrate(

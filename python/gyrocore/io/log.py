@@ -12,7 +12,7 @@ from typing import Any
 
 from .._arrays import FloatArray
 from .._checks import warn
-from ..pipeline import HeadingResult, has_bias_source, process, uses_static_bias
+from ..pipeline import HeadingResult, RestWindowError, has_bias_source, process, uses_static_bias
 from ._columns import concat
 from ._logfolder import read_odometry, read_reference
 from .source import open_source
@@ -71,9 +71,12 @@ class Log:
 
     def process(self, preset: str = "recommended", **overrides: Any) -> HeadingResult:
         """Run a preset on this log; the static bias comes from the rest window unless given."""
-        if self.stationary is not None and uses_static_bias(preset) and not has_bias_source(overrides):
-            overrides["bias_window"] = self.stationary
-        return process(self.t, self.rate, preset, **overrides)
+        if self.stationary is None or not uses_static_bias(preset) or has_bias_source(overrides):
+            return process(self.t, self.rate, preset, **overrides)
+        try:
+            return process(self.t, self.rate, preset, bias_window=self.stationary, **overrides)
+        except RestWindowError as e:
+            raise RestWindowError(f"log {self.name}: {e} (the rest window is the stationary of its meta.json)") from None
 
 
 def read_log(path: str | Path, **options: Any) -> Log:
