@@ -9,7 +9,9 @@ from __future__ import annotations
 
 import csv
 import io as _io
+import threading
 from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -27,6 +29,9 @@ if TYPE_CHECKING:
 #: Bytes of CSV text parsed at a time. pyarrow's streaming reader reads about 32 blocks ahead, so
 #: this sets the reader's memory (1 MiB: about 40 MB, and the fastest size measured).
 CSV_BLOCK_BYTES = 1 << 20
+#: The longest CSV line read [bytes]; pyarrow reads a few blocks of this size ahead.
+MAX_LINE_BYTES = 1 << 28
+_FIELD_LIMIT_LOCK = threading.Lock()
 
 
 def _csv_header(path: Path, delimiter: str) -> list[str]:
@@ -36,7 +41,8 @@ def _csv_header(path: Path, delimiter: str) -> list[str]:
         raise ValueError(f"{path}: line 1: no header line (expected column names)")
     text = line.decode("utf-8-sig", errors="replace").rstrip("\r\n")
     try:
-        return [name.strip() for name in next(csv.reader([text], delimiter=delimiter))]
+        with _long_fields():
+            return [name.strip() for name in next(csv.reader([text], delimiter=delimiter))]
     except csv.Error as e:  # e.g. a bare carriage return inside the header
         raise ValueError(f"{path}: line 1: malformed header: {e}") from None
 
@@ -48,18 +54,15 @@ def _read_csv(
 
     Empty values become nulls; blank lines are rows of nulls, so that row ``k`` is line ``k + 2``
     (for files with one sample per line: a quoted line break would shift the line numbers).
+    pyarrow needs every line inside one block: at a longer line (a long text in a column that is
+    not read) the reading goes on from that line with blocks four times larger, so that neither
+    the chunk size nor the block size decides whether a file can be read.
     """
     import pyarrow as pa
     import pyarrow.csv as pa_csv
 
     header = _csv_header(path, delimiter)
     positions = column_positions(path, header, columns)
-    read = pa_csv.ReadOptions(
-        column_names=[f"{i}:{name}" for i, name in enumerate(header)],  # unique even if the header is not
-        skip_rows=1,
-        block_size=block_bytes,
-        use_threads=False,  # parallel files scale better than parallel blocks (and it was not faster)
-    )
     keys = {c: f"{positions[c]}:{c}" for c in columns}
     convert = pa_csv.ConvertOptions(
         include_columns=list(keys.values()),
@@ -69,16 +72,38 @@ def _read_csv(
         quoted_strings_can_be_null=True,
     )
     parse = pa_csv.ParseOptions(delimiter=delimiter, ignore_empty_lines=False)
-    first = 0
-    # pyarrow reads the file itself, on its own thread and without the GIL
-    with pa.OSFile(str(path)) as f:
-        try:
-            reader = pa_csv.open_csv(f, read_options=read, parse_options=parse, convert_options=convert)
-            for batch in reader:
-                yield first, {c: batch.column(keys[c]) for c in columns}, f.tell()
-                first += batch.num_rows
-        except pa.ArrowInvalid as e:
-            raise ValueError(_csv_error(path, e, first + 2, header, positions, delimiter)) from None
+    first, block = 0, block_bytes
+    if _line_offset(path, 1) >= path.stat().st_size:
+        return  # a header and no samples (pyarrow would call the file empty)
+    while True:
+        read = pa_csv.ReadOptions(
+            column_names=[f"{i}:{name}" for i, name in enumerate(header)],  # unique even if the header is not
+            block_size=block,
+            use_threads=False,  # parallel files scale better than parallel blocks (and it was not faster)
+        )
+        # pyarrow reads the file itself, on its own thread and without the GIL
+        with pa.OSFile(str(path)) as f:
+            f.seek(_line_offset(path, first + 1))  # past the header (which may be longer than a block)
+            try:
+                for batch in pa_csv.open_csv(f, read_options=read, parse_options=parse, convert_options=convert):
+                    yield first, {c: batch.column(keys[c]) for c in columns}, f.tell()
+                    first += batch.num_rows
+                return
+            except pa.ArrowInvalid as e:
+                if "straddl" not in str(e):
+                    raise ValueError(_csv_error(path, e, first + 2, header, positions, delimiter)) from None
+                if block >= MAX_LINE_BYTES:
+                    raise ValueError(
+                        f"{path}: a line after line {first + 1} is longer than {MAX_LINE_BYTES} bytes, the longest read"
+                    ) from None
+                block = min(4 * block, MAX_LINE_BYTES)
+
+
+def _line_offset(path: Path, lines: int) -> int:
+    """The byte offset of the start of line ``lines + 1`` (past ``lines`` line ends)."""
+    with open(path, "rb") as f:
+        _skip_lines(f, lines)
+        return f.tell()
 
 
 def _csv_error(
@@ -88,7 +113,7 @@ def _csv_error(
 
     Reads on from ``first_line``, the first line not yet handed out; runs only after an error.
     """
-    with open(path, "rb") as f:
+    with open(path, "rb") as f, _long_fields():
         _skip_lines(f, first_line - 1)
         text = _io.TextIOWrapper(f, encoding="utf-8", errors="replace", newline="")
         reader = csv.reader(text, delimiter=delimiter)
@@ -107,6 +132,19 @@ def _csv_error(
                 if value and not _is_number(value):
                     return f"{where}: {value!r} is not a number"
     return f"{path}: after line {first_line}: {error}"
+
+
+@contextmanager
+def _long_fields() -> Iterator[None]:
+    """Let Python's csv module read fields as long as pyarrow does (it refuses over 128 KiB by
+    default; a long text in a column that is not read is legal). The limit is global, hence the
+    lock; only headers and the search for a bad value use the csv module."""
+    with _FIELD_LIMIT_LOCK:
+        previous = csv.field_size_limit(MAX_LINE_BYTES)
+        try:
+            yield
+        finally:
+            csv.field_size_limit(previous)
 
 
 def _count(n: int, noun: str) -> str:

@@ -83,6 +83,7 @@ def read_log(path: str | Path, **options: Any) -> Log:
     """Read a whole log into memory: a log folder (with its reference and odometry) or any file
     :func:`open_source` reads (``options``: the :class:`ReadOptions` fields).
 
+    Raises ValueError for a malformed input, naming the file and where, and for one without samples.
     Warns (:class:`gyrocore.InputWarning`) when the values look like another unit.
 
     Example:
@@ -97,6 +98,8 @@ def read_log(path: str | Path, **options: Any) -> Log:
         check.update(chunk.t, chunk.rate)
         ts.append(chunk.t)
         rates.append(chunk.rate)
+    if sum(map(len, ts)) == 0:
+        raise ValueError(f"{src.data_path}: no samples")
     for problem in check.problems():
         warn(f"{src.data_path}: {problem}")
     ref: dict[str, FloatArray] = {}

@@ -75,10 +75,11 @@ class UnitCheck:
     def _judge_head(self) -> None:
         """Judge the first samples (at most :data:`HEAD_SAMPLES`, whatever the chunks were), once
         they hold an interval."""
+        if self._head_samples < 2:
+            return
         t = np.concatenate([h[0] for h in self._head])[:HEAD_SAMPLES]
         rate = np.concatenate([h[1] for h in self._head])[:HEAD_SAMPLES]
-        if len(t) > 1:
-            self._first, self._head = self._first_chunk_problems(t, rate), []
+        self._first, self._head = self._first_chunk_problems(t, rate), []
 
     def _first_chunk_problems(self, t: FloatArray, rate: FloatArray) -> list[str]:
         o = self._options
