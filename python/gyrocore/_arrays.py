@@ -8,12 +8,25 @@ from numpy.typing import ArrayLike, NDArray
 FloatArray = NDArray[np.float64]
 
 
+def durations_in_seconds(a: np.ndarray) -> np.ndarray:
+    """A ``timedelta64`` array in seconds (NaT: NaN); any other array as it is. numpy counts
+    timedelta64 as an integer type, whose raw counts are in its own unit (ms would read as s)."""
+    return a / np.timedelta64(1, "s") if a.dtype.kind == "m" else a
+
+
 def as_float_array(name: str, values: ArrayLike) -> FloatArray:
     """Return ``values`` as a 1-D contiguous float64 array, copying only when needed.
 
+    ``timedelta64`` values are durations and become seconds, whatever their unit (NaT becomes NaN);
+    ``datetime64`` is refused, since which epoch a time counts from is the caller's choice.
+
     Raises TypeError for non-numeric data and ValueError for a wrong shape.
     """
-    a = np.asarray(values)
+    a = durations_in_seconds(np.asarray(values))
+    if a.dtype.kind == "M":
+        raise TypeError(
+            f"{name} holds {a.dtype} times: give seconds, e.g. ({name} - {name}[0]) / numpy.timedelta64(1, 's')"
+        )
     if a.dtype == np.bool_ or not (
         np.issubdtype(a.dtype, np.floating) or np.issubdtype(a.dtype, np.integer)
     ):

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from .._arrays import FloatArray
+from .._arrays import FloatArray, durations_in_seconds
 from .._gyrocore import SampleError
 from ._columns import import_pyarrow_lazy_modules
 from ._csvfile import csv_chunks
@@ -170,7 +170,10 @@ class GyroSource:
 
 
 def _seconds(raw: np.ndarray, per_second: float) -> FloatArray:
-    """Timestamps [s] from counts of a unit; division (not multiplication by 1e-3) rounds once."""
+    """Timestamps [s] from counts of a unit; division (not multiplication by 1e-3) rounds once.
+    Durations (timedelta64 in .npy and .npz files) carry their own unit."""
+    if raw.dtype.kind == "m":
+        return np.asarray(durations_in_seconds(raw), dtype=np.float64)
     t = np.asarray(raw, dtype=np.float64)
     return t if per_second == 1.0 else t / per_second
 

@@ -1,0 +1,42 @@
+"""timedelta64 timestamps are durations converted with their unit (not read as raw counts, which
+made a heading 1000x too large); datetime64 is refused with what to do, in the API and the readers."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import gyrocore
+
+COUNTS = np.arange(0, 5000, 7)  # irregular enough to see any scale error
+RATE = 0.3 * np.sin(COUNTS / 900.0)
+# counts read as seconds look like a 0.14 Hz gyro with gaps: warned about, beside the point here
+pytestmark = pytest.mark.filterwarnings("ignore::gyrocore.InputWarning")
+
+
+@pytest.mark.parametrize(("unit", "per_second"), [("s", 1), ("ms", 1e3), ("us", 1e6), ("ns", 1e9)])
+def test_timedelta_timestamps_are_seconds_in_their_unit(unit: str, per_second: float) -> None:
+    seconds = COUNTS / per_second
+    durations = COUNTS.astype(f"timedelta64[{unit}]")
+    expected = gyrocore.process(seconds, RATE, "raw")
+    assert np.array_equal(gyrocore.process(durations, RATE, "raw").heading, expected.heading)
+    assert np.array_equal(gyrocore.integrate(durations, RATE), expected.heading)
+
+
+def test_datetime_timestamps_are_refused_with_the_conversion() -> None:
+    with pytest.raises(TypeError, match=r"^t holds datetime64\[ms\] times: give seconds, e\.g\. \(t - t\[0\]\) / "):
+        gyrocore.process(COUNTS.astype("datetime64[ms]"), RATE, "raw")
+
+
+def test_timedelta_columns_of_numpy_files_carry_their_unit(tmp_path: Path) -> None:
+    record = np.zeros(len(COUNTS), dtype=[("t", "timedelta64[ms]"), ("gyro_z", "f8")])
+    record["t"], record["gyro_z"] = COUNTS, RATE
+    np.save(tmp_path / "d.npy", record)
+    np.savez(tmp_path / "d.npz", t=record["t"], gyro_z=RATE)
+    for name in ("d.npy", "d.npz"):
+        assert np.array_equal(gyrocore.read_log(tmp_path / name).t, COUNTS / 1e3)
+    np.save(tmp_path / "e.npy", record.astype([("t", "datetime64[ms]"), ("gyro_z", "f8")]))
+    with pytest.raises(ValueError, match=r"e\.npy: t holds datetime64\[ms\], not real numbers or durations$"):
+        gyrocore.read_log(tmp_path / "e.npy")
