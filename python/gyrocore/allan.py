@@ -190,12 +190,17 @@ def deviation_from_timestamps(
     is sampled on a regular grid of ``dt`` seconds (default: the mean interval) by linear
     interpolation and analysed as phase data. For a regular log this is
     ``deviation(rate[1:], dt)`` (the first reading has no interval).
+
+    Raises ValueError for an interval longer than :data:`GAP_FACTOR` median intervals: across a
+    gap the grid would hold a straight line nobody measured (and the default ``dt``, the mean
+    interval, would grow with the gap), so each continuous part must be analysed on its own.
     """
     ta = as_float_array("t", t)
     ra = as_float_array("rate", rate)
     if len(ta) < 3:
         raise ValueError(f"need at least 3 samples for an Allan deviation, got {len(ta)}")
     angle = integrate(ta - ta[0], ra, method="rectangle")  # validates lengths, NaN, increasing t
+    _refuse_gaps(ta)
     span = ta[-1] - ta[0]
     # The mean interval keeps a regular log's grid on its samples (a median of float-rounded
     # epoch intervals would drift off them over a long log).
@@ -206,6 +211,24 @@ def deviation_from_timestamps(
     phase = np.interp(grid, ta - ta[0], angle)
     return phase_deviation(phase, step, taus=taus, overlapping=overlapping, kind=kind,
                            confidence=confidence, noise_alpha=noise_alpha)
+
+
+#: An interval longer than this many median intervals is a gap in an Allan record.
+GAP_FACTOR = 10.0
+
+
+def _refuse_gaps(t: FloatArray) -> None:
+    """Name the longest gap of a record, if it has one (see :func:`deviation_from_timestamps`)."""
+    intervals = np.diff(t)
+    median = float(np.median(intervals))
+    i = int(np.argmax(intervals))
+    if intervals[i] > GAP_FACTOR * median:
+        raise ValueError(
+            f"the record has a gap of {intervals[i]:.6g} s from t[{i}] = {t[i]} to t[{i + 1}] = {t[i + 1]} s, "
+            f"{intervals[i] / median:.3g} times its median interval ({median:.6g} s); an Allan deviation needs "
+            "a continuous record: analyse each part on its own (gyrocore allan --window T0 T1, or slices of "
+            "t and rate)"
+        )
 
 
 def _curve(

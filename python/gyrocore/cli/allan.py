@@ -28,7 +28,9 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
                    help="analyse only this span [s, log time base], e.g. the rest")
     p.add_argument("--time-col", default=None, help="time column of a file input [s] (default t)")
     p.add_argument("--rate-col", default=None, help="rate column of a file input (default gyro_z)")
-    p.add_argument("--rate-unit", choices=("rad/s", "deg/s"), default="rad/s")
+    p.add_argument("--time-unit", choices=tuple(io.TIME_UNITS), default="s",
+                   help="unit of the time column of a file input (default s)")
+    p.add_argument("--rate-unit", choices=io.RATE_UNITS, default="rad/s")
     p.add_argument("--plot", type=Path, help="write a log-log plot (PNG) to this file")
     p.add_argument("--kalibr", type=Path, help="write a Kalibr-style IMU noise YAML to this file")
     p.add_argument("--rrw", type=float, default=None,
@@ -41,7 +43,9 @@ def run(args: argparse.Namespace) -> int:
         if out is not None:
             io.check_not_input(out, [src])
     # A log folder names its columns and units; a file takes them from the options.
-    columns = {} if src.is_dir() else {"time_col": args.time_col, "rate_col": args.rate_col, "rate_unit": args.rate_unit}
+    columns = {} if src.is_dir() else {
+        "time_col": args.time_col, "rate_col": args.rate_col, "time_unit": args.time_unit, "rate_unit": args.rate_unit
+    }
     # A record for the Allan deviation is taken at rest: small rates are no sign of a unit mistake.
     log = io.read_log(src, static=True, **columns)
     t, rate = log.t, log.rate
