@@ -171,7 +171,7 @@ class Pipeline:
         Raises:
             SampleError: (a ValueError) non-increasing or non-finite timestamps, or NaN/inf readings
                 under ``nonfinite="error"``; its ``index`` and ``what`` name the first bad sample.
-            ValueError: mismatched lengths; :class:`RestWindowError` for a rest window that
+            ValueError: mismatched lengths; timestamps whose interval overflows (near +-1e308); :class:`RestWindowError` for a rest window that
                 holds no sample (known once a reading after its end comes). Nothing of the
                 chunk is processed after any of these.
             TypeError: non-numeric arrays.
@@ -184,6 +184,7 @@ class Pipeline:
         ta = as_float_array("t", t)
         ra = as_float_array("rate", rate)
         temp = None if temperature is None else as_float_array("temperature", temperature)
+        self._check_time_range(ta)
         self._check_bias_window(ta, ra, temp)
         if not self._units_checked and len(ta):
             warn_units(ta, ra)
@@ -263,6 +264,21 @@ class Pipeline:
     def report(self) -> dict[str, float]:
         """What the input policy did so far: ``held``, ``skipped``, ``gaps``, ``longest_gap`` [s]."""
         return dict(self._inner.report())
+
+    def _check_time_range(self, t: FloatArray) -> None:
+        """Refuse timestamps so far apart that an interval overflows to infinity (|t| near 1e308),
+        which would make the heading NaN. For increasing times no interval exceeds the span from
+        the previous chunk's last time to this chunk's last, so two numbers are checked, not all."""
+        if len(t) == 0:
+            return
+        last = self._inner.last_time()
+        first = float(t[0]) if last is None else last
+        end = float(t[-1])
+        if math.isfinite(first) and math.isfinite(end) and not math.isfinite(end - first):
+            raise ValueError(
+                f"timestamps from {first} to {end} s are too far apart: their interval overflows; "
+                "give times in a smaller range (e.g. t - t[0])"
+            )
 
     def _check_bias_window(self, t: FloatArray, rate: FloatArray, temperature: FloatArray | None) -> None:
         """Refuse, before anything is processed, a chunk that would close the rest window with no

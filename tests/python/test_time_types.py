@@ -40,3 +40,15 @@ def test_timedelta_columns_of_numpy_files_carry_their_unit(tmp_path: Path) -> No
     np.save(tmp_path / "e.npy", record.astype([("t", "datetime64[ms]"), ("gyro_z", "f8")]))
     with pytest.raises(ValueError, match=r"e\.npy: t holds datetime64\[ms\], not real numbers or durations$"):
         gyrocore.read_log(tmp_path / "e.npy")
+
+
+def test_timestamps_whose_interval_overflows_are_refused_before_processing() -> None:
+    """+-1.5e308 are finite, but their interval is not: the heading was NaN."""
+    with pytest.raises(ValueError, match=r"^timestamps from -1\.5e\+308 to 1\.5e\+308 s are too far apart"):
+        gyrocore.process([-1.5e308, 0.0, 1.5e308], [0.1, 0.1, 0.1], "recommended", bias=0.0)
+    pipeline = gyrocore.Pipeline("raw")
+    pipeline.process([-1.5e308], [0.1])
+    with pytest.raises(ValueError, match="too far apart"):  # also across chunks
+        pipeline.process([1.5e308], [0.1])
+    far = pipeline.process([0.0], [0.1])  # 1.5e308 s later: an interval that is finite
+    assert np.isfinite(far.heading).all()
