@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -34,3 +36,18 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
     if a.ndim != 1:
         raise ValueError(f"{name} must be one-dimensional, got shape {a.shape}")
     return np.ascontiguousarray(a, dtype=np.float64)
+
+
+def as_window(name: str, window: object) -> tuple[float, float]:
+    """``(start, end)`` [s] as two finite floats with ``start < end``; ValueError naming ``name``
+    for anything else (one number, three, text, NaN, a reversed window)."""
+    try:
+        pair = np.asarray(window, dtype=np.float64)
+    except (TypeError, ValueError):
+        pair = np.empty(0)
+    if pair.shape != (2,):
+        raise ValueError(f"{name} must be (start, end) in seconds, got {window!r}")
+    start, end = float(pair[0]), float(pair[1])
+    if not (math.isfinite(start) and math.isfinite(end) and end > start):
+        raise ValueError(f"{name} ({start}, {end}) must be finite with end > start")
+    return start, end

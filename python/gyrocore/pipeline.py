@@ -58,9 +58,12 @@ def parameters() -> dict[str, str]:
 
 
 def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
-    """Convert ``*_dps`` / ``*_deg`` spellings to the SI parameter names."""
+    """Convert ``*_dps`` / ``*_deg`` spellings to the SI parameter names, and a list or array (a
+    window) to the tuple the core takes."""
     si: dict[str, Any] = {}
     for key, value in overrides.items():
+        if isinstance(value, (list, np.ndarray)):
+            value = tuple(value.tolist() if isinstance(value, np.ndarray) else value)
         if key.endswith("_dps") and key[:-4] in _RATE_PARAMETERS:
             name, value = key[:-4], None if value is None else math.radians(value)
         elif key == "initial_heading_deg":
@@ -75,7 +78,23 @@ def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
 
 def preset_params(preset: str = "hdr", **overrides: Any) -> dict[str, Any]:
     """The flat SI parameters of ``preset`` with ``overrides`` applied (validated by the core)."""
-    return dict(_gyrocore.preset_params(preset, _to_si(overrides)))
+    si = _to_si(overrides)
+    try:
+        return dict(_gyrocore.preset_params(preset, si))
+    except TypeError as e:
+        raise _named_type_error(preset, si, e) from None
+
+
+def _named_type_error(preset: str, si: dict[str, Any], error: TypeError) -> TypeError:
+    """The core's TypeError ("must be real number, not str") with the parameter it is about and
+    what that parameter takes (the core checks them all at once and names none)."""
+    for key, value in si.items():
+        try:
+            _gyrocore.preset_params(preset, {key: value})
+        except TypeError as e:
+            what = parameters().get(key, "")
+            return TypeError(f"invalid parameter {key} = {value!r}: {e}; {key} is {what}")
+    return error
 
 
 @dataclass(frozen=True, repr=False)
@@ -127,7 +146,10 @@ class Pipeline:
 
     def __init__(self, preset: str = "hdr", **overrides: Any) -> None:
         si = _to_si(overrides)
-        self._inner = _gyrocore.Pipeline(preset, si)
+        try:
+            self._inner = _gyrocore.Pipeline(preset, si)
+        except TypeError as e:
+            raise _named_type_error(preset, si, e) from None
         self._preset = preset
         self._units_checked = False
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names

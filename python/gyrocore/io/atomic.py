@@ -33,6 +33,10 @@ class StagedFile:
                 os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
             except FileExistsError:
                 continue
+            except (FileNotFoundError, NotADirectoryError):  # named after the output, not the hidden file
+                raise FileNotFoundError(f"{path}: the folder {path.parent} does not exist") from None
+            except PermissionError as e:
+                raise PermissionError(f"{path}: cannot write in {path.parent} ({e.strerror})") from None
             self.tmp = tmp
             return
         raise FileExistsError(f"{path.parent}: cannot create a temporary file for {path.name}")
