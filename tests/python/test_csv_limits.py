@@ -3,6 +3,7 @@ a long header) read the same with any --chunk-rows; a header without samples is 
 
 from __future__ import annotations
 
+import gzip
 import subprocess
 import sys
 from collections.abc import Callable
@@ -92,3 +93,13 @@ def test_a_header_without_samples_is_an_error(tmp_path: Path, suffix: str) -> No
         gyrocore.read_log(path)
     proc = run_cli("process", path, "--out", tmp_path / "h.csv")
     assert proc.returncode == 2 and proc.stderr == f"gyrocore: error: {path}: no samples\n"
+
+
+def test_a_compressed_file_named_csv_is_refused_without_printing_its_bytes(tmp_path: Path) -> None:
+    path = tmp_path / "drive.csv"
+    path.write_bytes(gzip.compress(b"t,gyro_z\n0,0\n0.01,0\n"))
+    proc = run_cli("process", path, "--out", tmp_path / "h.csv")
+    assert proc.returncode == 2
+    assert proc.stderr == (
+        f"gyrocore: error: {path}: not a text CSV file (binary data on line 1; decompress a .gz file first)\n"
+    )

@@ -32,6 +32,7 @@ CSV_BLOCK_BYTES = 1 << 20
 #: The longest CSV line read [bytes]; pyarrow reads a few blocks of this size ahead.
 MAX_LINE_BYTES = 1 << 28
 _FIELD_LIMIT_LOCK = threading.Lock()
+_GZIP = b"\x1f\x8b"
 
 
 def _csv_header(path: Path, delimiter: str) -> list[str]:
@@ -39,6 +40,9 @@ def _csv_header(path: Path, delimiter: str) -> list[str]:
         line = f.readline()
     if not line.strip():
         raise ValueError(f"{path}: line 1: no header line (expected column names)")
+    if line.startswith(_GZIP) or any(b < 32 and b not in b"\t\r\n" for b in line[:4096]):
+        # naming the columns would print the binary bytes
+        raise ValueError(f"{path}: not a text CSV file (binary data on line 1; decompress a .gz file first)")
     text = line.decode("utf-8-sig", errors="replace").rstrip("\r\n")
     try:
         with _long_fields():
