@@ -112,3 +112,17 @@ def test_other_commands_refuse_to_write_over_or_into_their_input(tmp_path: Path)
         assert proc.returncode == 2, proc.stderr
         assert proc.stderr.startswith(f"gyrocore: error: refusing to write {args[-1]} over or inside the input")
         assert {p.name: p.read_bytes() for p in log.iterdir()} == before
+
+
+def test_evaluate_and_tune_refuse_to_write_into_a_log_folder(tmp_path: Path) -> None:
+    log = tmp_path / "drive"
+    log.mkdir()
+    synthetic_csv(log / "gyro.csv", 300)
+    for args in (
+        ("evaluate", log, "--preset", "raw", "--plot-dir", log / "plots"),
+        ("tune", log, "--out", log / "meta.json"),
+    ):
+        proc = gyrocore(*args)
+        assert proc.returncode == 2, proc.stderr
+        assert proc.stderr.startswith(f"gyrocore: error: refusing to write {args[-1]} over or inside the input {log}")
+    assert sorted(p.name for p in log.iterdir()) == ["gyro.csv"]

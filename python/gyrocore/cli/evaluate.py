@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from ..evaluate import compare, format_table
+from ..io import check_not_input
 from ..pipeline import preset_names
 from ..tune import ParameterSet
 from ._common import add_command, print_json
@@ -51,6 +52,8 @@ def run(args: argparse.Namespace) -> int:
     for path in args.logs:
         if not Path(path).is_dir():
             raise ValueError(f"{path}: not a log folder")
+    if args.plot_dir:
+        check_not_input(Path(args.plot_dir), [Path(p) for p in args.logs])
     rows = compare(args.logs, presets, params, bias_duration=args.bias_duration, plot_dir=args.plot_dir)
     if args.json:
         print_json([_finite(r.as_dict()) for r in rows])

@@ -5,10 +5,11 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+from pathlib import Path
 from typing import Any, Sequence
 
 from .. import motion, tune
-from ..io import read_log
+from ..io import check_not_input, read_log
 from ..pipeline import parameters
 from ._common import add_command, print_json
 
@@ -116,6 +117,8 @@ def _parse_fixed(specs: Sequence[str]) -> dict[str, float]:
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.out is not None:  # before the fit, which takes minutes
+        check_not_input(Path(args.out), [Path(p) for p in args.logs + args.test])
     names, bounds = _parse_params(args.param or [])
     progress = (lambda msg: print(msg, file=sys.stderr)) if not args.json else None
     sim_options = {"rate_hz": args.rate_hz, "sensor_name": args.sensor, "time_scale": args.time_scale}
