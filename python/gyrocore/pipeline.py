@@ -193,9 +193,9 @@ class Pipeline:
         Raises:
             SampleError: (a ValueError) non-increasing or non-finite timestamps, or NaN/inf readings
                 under ``nonfinite="error"``; its ``index`` and ``what`` name the first bad sample.
-            ValueError: mismatched lengths; timestamps whose interval overflows (near +-1e308); :class:`RestWindowError` for a rest window that
-                holds no sample (known once a reading after its end comes). Nothing of the
-                chunk is processed after any of these.
+            ValueError: mismatched lengths; timestamps whose interval overflows (near +-1e308);
+                :class:`RestWindowError` for a rest window that holds no sample (known once a
+                reading after its end comes). Nothing of the chunk is processed after any of these.
             TypeError: non-numeric arrays.
 
         Warns:
@@ -219,9 +219,10 @@ class Pipeline:
         return HeadingResult(ta, heading, out_rate, drift)
 
     def finish(self) -> None:
-        """Call after the last chunk of a log: raises ValueError if the rest window reaches past the
-        log's end (a ``bias_window`` after the log, or a ``bias_duration`` longer than the log), so
-        that the bias was measured over less than asked, or not at all (0). Changes nothing.
+        """Call after the last chunk of a log: raises :class:`RestWindowError` if the rest window
+        reaches past the log's end (a ``bias_window`` after the log, or a ``bias_duration`` longer
+        than the log), so that the bias was measured over less than asked, or not at all (0).
+        Changes nothing.
         """
         p = self._inner.params()
         last = self._inner.last_time()

@@ -52,3 +52,21 @@ def test_timestamps_whose_interval_overflows_are_refused_before_processing() -> 
         pipeline.process([1.5e308], [0.1])
     far = pipeline.process([0.0], [0.1])  # 1.5e308 s later: an interval that is finite
     assert np.isfinite(far.heading).all()
+
+
+@pytest.mark.parametrize("unit", ["as", "fs", "ps", "m", "h", "D", "W"])
+def test_every_fixed_timedelta_unit_converts(unit: str) -> None:
+    """Found by fuzz/python/readers.py: numpy's own division overflowed for attoseconds."""
+    seconds = {"as": 1e-18, "fs": 1e-15, "ps": 1e-12, "m": 60.0, "h": 3600.0, "D": 86400.0, "W": 604800.0}[unit]
+    t = np.arange(3).astype(f"timedelta64[{unit}]")
+    expected = np.arange(3) / (1 / seconds) if seconds < 1 else np.arange(3) * seconds
+    assert np.array_equal(gyrocore.process(t, np.zeros(3), "raw").t, expected)
+
+
+def test_timedelta_units_without_a_fixed_length_are_refused(tmp_path: Path) -> None:
+    with pytest.raises(TypeError, match=r"^t holds timedelta64\[M\], which has no fixed length in seconds$"):
+        gyrocore.process(np.arange(3).astype("timedelta64[M]"), RATE[:3], "raw")
+    record = np.zeros(3, dtype=[("t", "timedelta64[Y]"), ("gyro_z", "f8")])
+    np.save(tmp_path / "y.npy", record)
+    with pytest.raises(ValueError, match=r"y\.npy: t holds timedelta64\[Y\], which has no fixed length in seconds$"):
+        gyrocore.read_log(tmp_path / "y.npy")

@@ -83,6 +83,8 @@ def _check_numbers(src: GyroSource, name: str, dtype: np.dtype[Any], *, time: bo
     """Real numbers; a time may also be a duration (timedelta64, which carries its unit)."""
     if dtype.kind not in ("iufm" if time else "iuf"):
         raise ValueError(f"{src.path}: {name} holds {dtype}, not real numbers{' or durations' if time else ''}")
+    if dtype.kind == "m" and np.datetime_data(dtype)[0] in ("Y", "M", "generic"):
+        raise ValueError(f"{src.path}: {name} holds {dtype}, which has no fixed length in seconds")
 
 
 def _check_read(src: GyroSource, data: np.ndarray, expected: int) -> None:

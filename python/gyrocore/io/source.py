@@ -173,7 +173,7 @@ def _seconds(raw: np.ndarray, per_second: float) -> FloatArray:
     """Timestamps [s] from counts of a unit; division (not multiplication by 1e-3) rounds once.
     Durations (timedelta64 in .npy and .npz files) carry their own unit."""
     if raw.dtype.kind == "m":
-        return np.asarray(durations_in_seconds(raw), dtype=np.float64)
+        return np.asarray(durations_in_seconds("the time column", raw), dtype=np.float64)
     t = np.asarray(raw, dtype=np.float64)
     return t if per_second == 1.0 else t / per_second
 
