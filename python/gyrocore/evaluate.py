@@ -381,8 +381,8 @@ def compare(
                 results[method.name] = result
                 rows.append(score(log, method, result, raw, source))
         except ValueError as e:  # name the log, once
-            message = str(e)
-            raise ValueError(message if message.startswith(f"log {log.name}:") else f"log {log.name}: {message}") from None
+            named = str(e) if str(e).startswith(f"log {log.name}:") else f"log {log.name}: {e}"
+            raise ValueError(named) from None
         if plot_dir is not None:
             plot_log(Path(plot_dir) / f"{log.name}.png", log, results)
     return rows

@@ -51,10 +51,14 @@ def test_a_csv_whose_first_rates_are_empty(tmp_path: Path) -> None:
     out = tmp_path / "h.csv"
     proc = run_cli("process", src, "--out", out, "--preset", "raw")
     assert proc.returncode == 2 and not out.exists()
-    assert proc.stderr == f"gyrocore: error: rate[0] is NaN: samples must be finite (drop or fill them first) ({src}, line 2)\n"
+    assert proc.stderr == (
+        f"gyrocore: error: rate[0] is NaN: samples must be finite (drop or fill them first) ({src}, line 2)\n"
+    )
     proc = run_cli("process", src, "--out", out, "--preset", "raw", "--nonfinite", "skip")
     assert proc.returncode == 0
-    assert proc.stderr == f"gyrocore: warning: {src}: 2 samples skipped (non-finite readings; their rows have a NaN rate)\n"
+    assert proc.stderr == (
+        f"gyrocore: warning: {src}: 2 samples skipped (non-finite readings; their rows have a NaN rate)\n"
+    )
 
 
 @pytest.mark.parametrize("chunk_rows", [1, 2, 7, 65536])
@@ -64,7 +68,8 @@ def test_unit_warnings_do_not_depend_on_the_chunk_size(tmp_path: Path, chunk_row
     t = np.arange(300) * 10.0  # ms
     src.write_text("t,gyro_z\n" + "".join(f"{a},{30 + 5 * np.sin(a / 300)}\n" for a in t))
     proc = run_cli(
-        "process", src, "--out", tmp_path / "h.csv", "--preset", "raw", "--gap-limit", "100", "--chunk-rows", str(chunk_rows)
+        "process", src, "--out", tmp_path / "h.csv", "--preset", "raw", "--gap-limit", "100",
+        "--chunk-rows", str(chunk_rows),
     )
     assert proc.returncode == 0
     warned = proc.stderr.splitlines()

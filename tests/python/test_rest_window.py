@@ -90,7 +90,10 @@ def test_the_check_before_processing_agrees_with_the_core(nonfinite: str, window
             "the bias window [1000.0, 2000.0] s reaches past the end of the log (the log runs from t = 0.0 to 29.9 s)",
         ),
         ({"bias_window": (20.0, 40.0)}, "the bias window [20.0, 40.0] s reaches past the end of the log"),
-        ({"bias_duration": 100.0}, "bias_duration = 100.0 s is longer than the log (the log runs from t = 0.0 to 29.9 s)"),
+        (
+            {"bias_duration": 100.0},
+            "bias_duration = 100.0 s is longer than the log (the log runs from t = 0.0 to 29.9 s)",
+        ),
     ],
 )
 def test_a_rest_window_past_the_end_of_the_log_is_an_error(overrides: dict[str, object], message: str) -> None:
@@ -125,6 +128,9 @@ def test_the_command_line_refuses_a_window_after_the_log(tmp_path: Path) -> None
     assert proc.returncode == 2 and "bias_duration = 60.0 s is longer than the log" in proc.stderr
 
 
+STATIONARY = "stationary must be [t0, t1] in seconds (finite, t0 <= t1) or null"
+
+
 @pytest.fixture
 def log_folder(tmp_path: Path) -> Path:
     folder = tmp_path / "drive"
@@ -146,8 +152,8 @@ def test_a_meta_json_window_after_the_log_names_meta_json(log_folder: Path, tmp_
 @pytest.mark.parametrize(
     ("content", "message"),
     [
-        (b'{"stationary": [NaN, 5]}', "stationary must be [t0, t1] in seconds (finite, t0 <= t1) or null, got [nan, 5]"),
-        (b'{"stationary": [5, 1]}', "stationary must be [t0, t1] in seconds (finite, t0 <= t1) or null, got [5, 1]"),
+        (b'{"stationary": [NaN, 5]}', f"{STATIONARY}, got [nan, 5]"),
+        (b'{"stationary": [5, 1]}', f"{STATIONARY}, got [5, 1]"),
         (b'{"name": "caf\xe9"}', "not UTF-8 text (at byte offset 13: invalid continuation byte); save it as UTF-8"),
     ],
 )

@@ -12,7 +12,13 @@ from typing import Any
 
 from .._arrays import FloatArray
 from .._checks import warn
-from ..pipeline import HeadingResult, RestWindowError, has_bias_source, process, uses_static_bias
+from ..pipeline import (
+    HeadingResult,
+    RestWindowError,
+    has_bias_source,
+    process,
+    uses_static_bias,
+)
 from ._columns import concat
 from ._logfolder import read_odometry, read_reference
 from .source import open_source
