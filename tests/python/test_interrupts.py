@@ -160,3 +160,33 @@ def test_a_swallowed_interrupt_still_stops_the_commit(tmp_path: Path) -> None:
     with _signals.handled():
         process_file(synthetic_csv(tmp_path / "in.csv", 100), out, preset="raw")
     assert np.array_equal(read_table(out)["t"].to_numpy(), pa.csv.read_csv(tmp_path / "in.csv")["t"].to_numpy())
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads the signal mask from /proc")
+def test_an_interrupted_batch_leaves_each_output_previous_or_complete(tmp_path: Path) -> None:
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    for i in range(4):
+        synthetic_csv(logs / f"d{i}.csv", 300_000, seed=i)
+    out = tmp_path / "out"
+    out.mkdir()
+    for i in range(4):
+        (out / f"d{i}.csv").write_text(PREVIOUS)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "gyrocore.cli", "process", str(logs), "--out", str(out), "--preset", "raw",
+         "--jobs", "2", "--chunk-rows", "5000"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    while proc.poll() is None and not _owns_signals(proc.pid):
+        time.sleep(0.002)
+    time.sleep(0.3)
+    proc.send_signal(signal.SIGTERM)
+    stdout, stderr = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and stderr.strip() == INTERRUPTED and stdout == ""
+    assert leftovers(out) == []
+    kept = [p for p in sorted(out.iterdir()) if p.read_text() == PREVIOUS]
+    assert kept, "the signal came before the first of the four files was done"
+    for p in set(out.iterdir()) - set(kept):
+        assert len(read_table(p)) == 300_000
