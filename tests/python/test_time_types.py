@@ -55,12 +55,14 @@ def test_timestamps_whose_interval_overflows_are_refused_before_processing() -> 
 
 
 @pytest.mark.parametrize("unit", ["as", "fs", "ps", "m", "h", "D", "W"])
-def test_every_fixed_timedelta_unit_converts(unit: str) -> None:
+def test_every_fixed_timedelta_unit_converts(tmp_path: Path, unit: str) -> None:
     """Found by fuzz/python/readers.py: numpy's own division overflowed for attoseconds."""
     seconds = {"as": 1e-18, "fs": 1e-15, "ps": 1e-12, "m": 60.0, "h": 3600.0, "D": 86400.0, "W": 604800.0}[unit]
-    t = np.arange(3).astype(f"timedelta64[{unit}]")
+    record = np.zeros(3, dtype=[("t", f"timedelta64[{unit}]"), ("gyro_z", "f8")])
+    record["t"] = np.arange(3)
+    np.save(tmp_path / "d.npy", record)
     expected = np.arange(3) / (1 / seconds) if seconds < 1 else np.arange(3) * seconds
-    assert np.array_equal(gyrocore.process(t, np.zeros(3), "raw").t, expected)
+    assert np.array_equal(gyrocore.read_log(tmp_path / "d.npy").t, expected)
 
 
 def test_timedelta_units_without_a_fixed_length_are_refused(tmp_path: Path) -> None:
@@ -70,3 +72,12 @@ def test_timedelta_units_without_a_fixed_length_are_refused(tmp_path: Path) -> N
     np.save(tmp_path / "y.npy", record)
     with pytest.raises(ValueError, match=r"y\.npy: t holds timedelta64\[Y\], which has no fixed length in seconds$"):
         gyrocore.read_log(tmp_path / "y.npy")
+
+
+@pytest.mark.parametrize("interval", [1e-301, 1e-310, 1e-13])
+def test_timestamps_closer_than_a_picosecond_are_refused(interval: float) -> None:
+    """Intervals near 1e-310 s gave a NaN heading with the HDR presets."""
+    t = np.arange(100) * interval
+    with pytest.raises(ValueError, match=r"apart on average, below 1e-12 s: no gyro samples that fast"):
+        gyrocore.process(t, np.full(100, 0.1), "hdr", bias=0.0)
+    assert np.isfinite(gyrocore.process(np.arange(100) * 1e-12, np.full(100, 0.1), "hdr", bias=0.0).heading).all()
