@@ -263,22 +263,15 @@ def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
     return list(dict.fromkeys(found))
 
 
-def check_outside_inputs(items: Iterable[str | Path], out_dir: Path, inputs: Sequence[Path] = ()) -> None:
-    """Refuse an output folder that is, or lies inside, a folder given as input (directly or by a
-    pattern), or that holds one of ``inputs``: a later run over that folder would read the outputs
-    as logs (and a CSV output could be its own input)."""
-    target = out_dir.resolve()
-    folders = [m for item in items for m in _matches(item)[1] if m.is_dir()]
-    for folder in folders:
-        if target == folder.resolve() or folder.resolve() in target.parents:
-            raise ValueError(
-                f"refusing to write into {out_dir}: it is inside the input folder {folder}, whose next run "
-                "would read the outputs as logs; give an output folder outside the inputs"
-            )
+def check_outside_inputs(items: Iterable[str | Path], out: Path, inputs: Sequence[Path] = ()) -> None:
+    """Refuse an output (file or folder) that is, or lies inside, a folder given as input (directly
+    or by a pattern), or an output folder that holds one of ``inputs``: a later run over that
+    folder would read the outputs as logs (and a CSV output could be its own input)."""
+    io.check_not_input(out, [m for item in items for m in _matches(item)[1] if m.is_dir()])
     for p in inputs:
-        if p.parent.resolve() == target:
+        if p.parent.resolve() == out.resolve():
             raise ValueError(
-                f"refusing to write into {out_dir}: it holds the input {p}, and the outputs would be read as "
+                f"refusing to write into {out}: it holds the input {p}, and the outputs would be read as "
                 "logs by a later run over it; give an output folder outside the inputs"
             )
 

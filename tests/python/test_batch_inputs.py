@@ -83,8 +83,9 @@ def test_no_output_is_written_into_an_input_folder(tmp_path: Path, out: str) -> 
     before = sorted(p.name for p in logs.iterdir())
     proc = gyrocore("process", logs, "--out", tmp_path / out, "--format", "parquet")
     assert proc.returncode == 2
-    assert proc.stderr.startswith(f"gyrocore: error: refusing to write into {tmp_path / out}".rsplit("/h.csv")[0])
-    assert f"the input folder {logs}" in proc.stderr and len(proc.stderr.splitlines()) == 1
+    assert proc.stderr == f"gyrocore: error: refusing to write {tmp_path / out} over or inside the input {logs}; " + (
+        "write it elsewhere\n"
+    )
     assert sorted(p.name for p in logs.iterdir()) == before
     # so a later run over the folder still works
     assert gyrocore("process", logs, "--out", tmp_path / "elsewhere", "--preset", "raw").returncode == 0

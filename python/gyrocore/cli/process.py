@@ -149,7 +149,7 @@ def run(args: argparse.Namespace) -> int:
 def _one(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
     if len(inputs) != 1:
         raise ValueError(f"--out {out} is one file but there are {len(inputs)} inputs; give a folder")
-    check_outside_inputs(args.inputs, out.parent)
+    check_outside_inputs(args.inputs, out)
     with progress_bar(inputs[0].name) as bar:
         report = process_file(
             inputs[0], out, preset=args.preset, heading=args.heading, chunk_rows=args.chunk_rows, progress=bar, **kwargs
