@@ -25,6 +25,7 @@ from ._gyrocore import SampleError, __version__
 from .pipeline import (
     HeadingResult,
     Pipeline,
+    RestWindowError,
     downsample,
     integrate,
     parameters,
@@ -64,6 +65,7 @@ __all__ = [
     "InputWarning",
     "Log",
     "Pipeline",
+    "RestWindowError",
     "SampleError",
     "__version__",
     "allan",

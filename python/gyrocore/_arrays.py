@@ -2,18 +2,51 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 FloatArray = NDArray[np.float64]
 
 
+#: Counts per second of the timedelta64 units below a second (divided by: rounds once).
+_PER_SECOND = {"as": 1e18, "fs": 1e15, "ps": 1e12, "ns": 1e9, "us": 1e6, "ms": 1e3, "s": 1.0}
+#: Seconds per count of the longer units of a fixed length.
+_SECONDS = {"m": 60.0, "h": 3600.0, "D": 86400.0, "W": 604800.0}
+
+
+def durations_in_seconds(name: str, a: np.ndarray) -> np.ndarray:
+    """A ``timedelta64`` array in seconds (NaT: NaN); any other array as it is. numpy counts
+    timedelta64 as an integer type, whose raw counts are in its own unit (ms would read as s).
+    Computed from the counts: numpy's own division overflows for attoseconds."""
+    if a.dtype.kind != "m":
+        return a
+    unit, step = np.datetime_data(a.dtype)
+    counts = a.astype(np.int64).astype(np.float64) * step
+    if unit in _PER_SECOND:
+        seconds = counts / _PER_SECOND[unit]
+    elif unit in _SECONDS:
+        seconds = counts * _SECONDS[unit]
+    else:  # years and months, or no unit
+        raise TypeError(f"{name} holds {a.dtype}, which has no fixed length in seconds")
+    seconds[np.isnat(a)] = np.nan
+    return seconds
+
+
 def as_float_array(name: str, values: ArrayLike) -> FloatArray:
     """Return ``values`` as a 1-D contiguous float64 array, copying only when needed.
 
+    ``timedelta64`` values are durations and become seconds, whatever their unit (NaT becomes NaN);
+    ``datetime64`` is refused, since which epoch a time counts from is the caller's choice.
+
     Raises TypeError for non-numeric data and ValueError for a wrong shape.
     """
-    a = np.asarray(values)
+    a = durations_in_seconds(name, np.asarray(values))
+    if a.dtype.kind == "M":
+        raise TypeError(
+            f"{name} holds {a.dtype} times: give seconds, e.g. ({name} - {name}[0]) / numpy.timedelta64(1, 's')"
+        )
     if a.dtype == np.bool_ or not (
         np.issubdtype(a.dtype, np.floating) or np.issubdtype(a.dtype, np.integer)
     ):
@@ -21,3 +54,18 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
     if a.ndim != 1:
         raise ValueError(f"{name} must be one-dimensional, got shape {a.shape}")
     return np.ascontiguousarray(a, dtype=np.float64)
+
+
+def as_window(name: str, window: object) -> tuple[float, float]:
+    """``(start, end)`` [s] as two finite floats with ``start < end``; ValueError naming ``name``
+    for anything else (one number, three, text, NaN, a reversed window)."""
+    try:
+        pair = np.asarray(window, dtype=np.float64)
+    except (TypeError, ValueError):
+        pair = np.empty(0)
+    if pair.shape != (2,):
+        raise ValueError(f"{name} must be (start, end) in seconds, got {window!r}")
+    start, end = float(pair[0]), float(pair[1])
+    if not (math.isfinite(start) and math.isfinite(end) and end > start):
+        raise ValueError(f"{name} ({start}, {end}) must be finite with end > start")
+    return start, end

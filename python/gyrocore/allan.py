@@ -191,22 +191,52 @@ def deviation_from_timestamps(
     is sampled on a regular grid of ``dt`` seconds (default: the mean interval) by linear
     interpolation and analysed as phase data. For a regular log this is
     ``deviation(rate[1:], dt)`` (the first reading has no interval).
+
+    Raises ValueError for an interval longer than :data:`GAP_FACTOR` median intervals: across a
+    gap the grid would hold a straight line nobody measured (and the default ``dt``, the mean
+    interval, would grow with the gap), so each continuous part must be analysed on its own.
     """
     ta = as_float_array("t", t)
     ra = as_float_array("rate", rate)
     if len(ta) < 3:
         raise ValueError(f"need at least 3 samples for an Allan deviation, got {len(ta)}")
     angle = integrate(ta - ta[0], ra, method="rectangle")  # validates lengths, NaN, increasing t
+    _refuse_gaps(ta)
     span = ta[-1] - ta[0]
     # The mean interval keeps a regular log's grid on its samples (a median of float-rounded
     # epoch intervals would drift off them over a long log).
     step = span / (len(ta) - 1) if dt is None else float(dt)
     if not (math.isfinite(step) and step > 0):
         raise ValueError(f"dt must be finite and > 0, got {step}")
+    if span / step > MAX_OVERSAMPLING * len(ta):  # a finer grid only interpolates (and 1e-9 s asked for 738 GiB)
+        raise ValueError(
+            f"dt = {step:g} s would resample the {len(ta)} samples onto {span / step:.3g} points; give dt of at "
+            f"least {span / (MAX_OVERSAMPLING * len(ta)):.3g} s (the mean interval is {span / (len(ta) - 1):.3g} s)"
+        )
     grid = np.arange(int(span / step + 1e-9) + 1) * step
     phase = np.interp(grid, ta - ta[0], angle)
     return phase_deviation(phase, step, taus=taus, overlapping=overlapping, kind=kind,
                            confidence=confidence, noise_alpha=noise_alpha)
+
+
+#: The grid of :func:`deviation_from_timestamps` holds at most this many points per sample.
+MAX_OVERSAMPLING = 10
+#: An interval longer than this many median intervals is a gap in an Allan record.
+GAP_FACTOR = 10.0
+
+
+def _refuse_gaps(t: FloatArray) -> None:
+    """Name the longest gap of a record, if it has one (see :func:`deviation_from_timestamps`)."""
+    intervals = np.diff(t)
+    median = float(np.median(intervals))
+    i = int(np.argmax(intervals))
+    if intervals[i] > GAP_FACTOR * median:
+        raise ValueError(
+            f"the record has a gap of {intervals[i]:.6g} s from t[{i}] = {t[i]} to t[{i + 1}] = {t[i + 1]} s, "
+            f"{intervals[i] / median:.3g} times its median interval ({median:.6g} s); an Allan deviation needs "
+            "a continuous record: analyse each part on its own (gyrocore allan --window T0 T1, or slices of "
+            "t and rate)"
+        )
 
 
 def _curve(
@@ -235,6 +265,8 @@ def _curve(
     overlapping = overlapping or kind == "modified"
     variance = _VARIANCE[(kind, overlapping)]
     n_phase = len(data) + 1 if is_rate else len(data)
+    if is_rate and not math.isfinite(float(np.sum(np.abs(data[np.isfinite(data)]))) * dt):
+        raise ValueError(f"dt = {dt} s: the angle, the sum of rate x dt, overflows; give dt in seconds")
     factors = _factors(taus, n_phase, float(dt), variance)
     try:
         var, terms = _gyrocore.allan_variances(data, float(dt), factors.tolist(), variance, is_rate)
@@ -313,6 +345,9 @@ def _factors(taus: TauSpec | ArrayLike, n: int, dt: float, variance: str) -> NDA
     requested = as_float_array("taus", taus)
     if len(requested) == 0:
         raise ValueError("taus is empty")
+    bad = np.flatnonzero(~(np.isfinite(requested) & (requested > 0)))
+    if len(bad):
+        raise ValueError(f"taus[{bad[0]}] = {requested[bad[0]]}: averaging times must be finite and > 0 [s]")
     m = np.round(requested / dt)
     off = np.flatnonzero((np.abs(m * dt - requested) > 1e-6 * requested) | (m < 1))
     if len(off):

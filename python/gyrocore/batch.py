@@ -25,12 +25,10 @@ from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
-from . import io
+from . import _signals, io
 from ._extras import require, tqdm_class
 from ._gyrocore import SampleError
-from .pipeline import Pipeline, has_bias_source, uses_static_bias
+from .pipeline import Pipeline, RestWindowError, has_bias_source, uses_static_bias
 from .window import Window, time_range
 
 #: ``progress(done, total, unit)``: called after each chunk with the progress through the input.
@@ -155,9 +153,10 @@ class _FileJob:
                     + time_range(t0)
                 )
         notes: list[str] = []
+        from_meta = False
         if uses_static_bias(self.preset) and not has_bias_source(overrides):
             if source.stationary is not None:
-                overrides["bias_window"] = source.stationary
+                overrides["bias_window"], from_meta = source.stationary, True
             else:
                 notes.append(
                     f"preset {self.preset!r} removes a static bias but the log gives no rest window: "
@@ -166,19 +165,16 @@ class _FileJob:
                 )
         pipeline = Pipeline(self.preset, **overrides)
         check = io.UnitCheck(source.options)
-        span = overrides.get("bias_window")
-        in_window = 0  # samples in the rest window: none means a bias of 0 said nowhere
         with io.HeadingWriter(self.out, heading=self.heading) as writer:
             for chunk in source.chunks(self.chunk_rows):
+                _signals.check()  # a signal whose KeyboardInterrupt a library swallowed stops here
                 check.update(chunk.t, chunk.rate)
-                if span is not None:
-                    in_window += int(np.count_nonzero((chunk.t >= span[0]) & (chunk.t <= span[1])))
                 try:
                     result = pipeline.process(chunk.t, chunk.rate, index_offset=chunk.first_row)
                 except SampleError as e:
                     raise ValueError(source.locate(e)) from None
                 except ValueError as e:
-                    raise ValueError(f"{source.data_path}: {e}") from None
+                    raise _in_file(source, e, from_meta) from None
                 writer.write(result)
                 self.rows_in += len(chunk)
                 if progress is not None:
@@ -187,11 +183,10 @@ class _FileJob:
                 raise ValueError(f"{source.data_path}: no samples")
             if check.error() is not None:
                 raise ValueError(f"{source.data_path}: {check.error()}")
-            if span is not None and in_window == 0:
-                raise ValueError(
-                    f"{source.data_path}: the rest window {_window_text(window or span)} holds no sample; "
-                    + time_range(_first_time(source), float(result.t[-1]))
-                )
+            try:
+                pipeline.finish()
+            except ValueError as e:
+                raise _in_file(source, e, from_meta) from None
             if writer.rows != self.rows_in:  # the pipeline returns one row per sample; prove it
                 raise RuntimeError(f"{self.path}: {self.rows_in} rows read but {writer.rows} written")
         notes += check.problems() + _repairs(pipeline.report)
@@ -214,6 +209,11 @@ def _first_time(source: io.GyroSource) -> float:
     if first is None:
         raise ValueError(f"{source.data_path}: no samples")
     return float(first.t[0])
+def _in_file(source: io.GyroSource, error: ValueError, window_from_meta: bool) -> ValueError:
+    """The pipeline's error about a file, naming it (and meta.json where the rest window is its)."""
+    meta = window_from_meta and isinstance(error, RestWindowError)
+    where = f" (the rest window is the stationary of {source.path / 'meta.json'})" if meta else ""
+    return ValueError(f"{source.data_path}: {error}{where}")
 
 
 def _repairs(report: dict[str, float]) -> list[str]:
@@ -270,32 +270,59 @@ def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
     """Files and folders from paths, folders of logs and glob patterns (``logs/**/*.csv``).
 
     A log folder or ROS 2 bag folder is one input; any other folder stands for the inputs directly
-    in it. Raises ValueError for an item that matches nothing.
+    in it. Every path named, and every name with an input's suffix that a folder or pattern gives,
+    is kept even if it cannot be read (a dangling symbolic link, a loop, no permission): it fails
+    later with its reason instead of silently dropping out. Raises ValueError for an item that
+    matches nothing.
     """
     found: list[Path] = []
     for item in items:
-        p = Path(item)
-        if p.exists():
-            matches = [p]
-        else:
-            matches = [Path(m) for m in sorted(glob.glob(str(item), recursive=True))]
-            if not matches:
-                raise ValueError(f"{item}: no such file or folder, and no file matches it")
+        named, matches = _matches(item)
         for m in matches:
             if m.is_dir() and not io.is_input(m):
-                inside = sorted(c for c in m.iterdir() if io.is_input(c))
-                if not inside and p.exists():
+                inside = sorted(c for c in m.iterdir() if _named_as_input(c))
+                if not inside and named:
                     raise ValueError(f"{m}: no logs in this folder ({', '.join(io.FILE_SUFFIXES)}, log or bag folders)")
                 found += inside
-            elif io.is_input(m) or p.exists():
+            elif named or _named_as_input(m):
                 found.append(m)
     return list(dict.fromkeys(found))
+
+
+def check_outside_inputs(items: Iterable[str | Path], out: Path, inputs: Sequence[Path] = ()) -> None:
+    """Refuse an output (file or folder) that is, or lies inside, a folder given as input (directly
+    or by a pattern), or an output folder that holds one of ``inputs``: a later run over that
+    folder would read the outputs as logs (and a CSV output could be its own input)."""
+    io.check_not_input(out, [m for item in items for m in _matches(item)[1] if m.is_dir()])
+    for p in inputs:
+        if p.parent.resolve() == out.resolve():
+            raise ValueError(
+                f"refusing to write into {out}: it holds the input {p}, and the outputs would be read as "
+                "logs by a later run over it; give an output folder outside the inputs"
+            )
+
+
+def _matches(item: str | Path) -> tuple[bool, list[Path]]:
+    """Whether ``item`` names a path itself, and the paths it stands for (itself, or a pattern's
+    matches); raises ValueError if it matches nothing."""
+    p = Path(item)
+    if os.path.lexists(p):  # also true for a dangling link, which exists() is not
+        return True, [p]
+    matches = [Path(m) for m in sorted(glob.glob(str(item), recursive=True))]
+    if not matches:
+        raise ValueError(f"{item}: no such file or folder, and no file matches it")
+    return False, matches
+
+
+def _named_as_input(path: Path) -> bool:
+    """An input, or a name that says it is one but cannot be read as one (a dangling link)."""
+    return io.is_input(path) or (not path.is_dir() and path.suffix.lower() in io.FILE_SUFFIXES)
 
 
 def output_paths(inputs: Sequence[Path], out_dir: Path, fmt: str) -> list[Path]:
     """``out_dir/<input name without suffix>.<fmt>`` for each input; refuses two inputs that would
     share an output."""
-    outs = [out_dir / f"{p.stem if p.is_file() else p.name}.{fmt}" for p in inputs]
+    outs = [out_dir / f"{p.name if p.is_dir() else p.stem}.{fmt}" for p in inputs]
     seen: dict[Path, Path] = {}
     for p, o in zip(inputs, outs):
         if o in seen:
@@ -337,10 +364,13 @@ def process_many(
         with rows in and out.
 
     Raises:
-        ValueError: no input, invalid options or two inputs mapping to one output (before any work).
+        ValueError: no input, invalid options, two inputs mapping to one output, or an output
+            folder inside an input folder (before any work).
     """
     start = time.perf_counter()
-    inputs = expand_inputs([paths] if isinstance(paths, (str, Path)) else paths)
+    items = [paths] if isinstance(paths, (str, Path)) else list(paths)
+    inputs = expand_inputs(items)
+    check_outside_inputs(items, Path(out_dir), inputs)
     if not inputs:
         raise ValueError("no input files")
     if fmt not in ("csv", "parquet"):

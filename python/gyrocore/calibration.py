@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _gyrocore
-from ._arrays import FloatArray, as_float_array
+from ._arrays import FloatArray, as_float_array, as_window
 from .evaluate import unwrap
 from .pipeline import integrate
 
@@ -50,6 +50,8 @@ _UNITS = {
     "temp_offset": "1 (FOG eq 5's E_T at 0 degC / 360 deg)",
     "bias_table": "temperatures degC, biases rad/s",
 }
+#: What a saved field of each type must be, for the errors of :meth:`Calibration.from_dict`.
+_KINDS = {"str": "text", "int": "a whole number"}
 
 
 @dataclass(frozen=True)
@@ -199,15 +201,27 @@ class Calibration:
             raise ValueError(f"not a gyrocore calibration (format {found!r})")
         if data.get("version") != VERSION:
             raise ValueError(f"calibration format version {data.get('version')!r} is not supported (this is {VERSION})")
+        if not isinstance(data.get("calibration"), dict):
+            raise ValueError("no calibration object")
         values = dict(data["calibration"])
         known = {f.name for f in fields(cls)}
         unknown = sorted(set(values) - known)
         if unknown:
             raise ValueError(f"unknown calibration field(s): {', '.join(unknown)}")
+        for f in fields(cls):  # JSON types: a number must not be text ("bias": "abc")
+            value = values.get(f.name)
+            if value is None or f.name in ("window", "bias_table", "notes"):
+                continue
+            expected = {"str": str, "int": int}.get(str(f.type), (int, float))
+            if isinstance(value, bool) or not isinstance(value, expected):
+                raise ValueError(f"{f.name} must be {_KINDS.get(str(f.type), 'a number')}, got {value!r}")
         if values.get("window") is not None:
-            values["window"] = (float(values["window"][0]), float(values["window"][1]))
+            values["window"] = as_window("window", values["window"])
         if values.get("bias_table") is not None:
-            values["bias_table"] = BiasTable(**{k: tuple(v) for k, v in values["bias_table"].items()})
+            table = values["bias_table"]
+            if not isinstance(table, dict):
+                raise ValueError(f"bias_table must be an object of lists, got {table!r}")
+            values["bias_table"] = BiasTable(**{k: tuple(v) for k, v in table.items()})
         values["notes"] = tuple(values.get("notes", ()))
         return cls(**values)
 
@@ -223,10 +237,12 @@ class Calibration:
             data = json.loads(p.read_text(encoding="utf-8"))
         except json.JSONDecodeError as e:
             raise ValueError(f"{p}: line {e.lineno} column {e.colno}: {e.msg}") from None
+        except UnicodeDecodeError as e:
+            raise ValueError(f"{p}: not UTF-8 text (at byte offset {e.start}: {e.reason})") from None
         try:
             return cls.from_dict(data)
-        except (KeyError, TypeError, ValueError) as e:
-            raise ValueError(f"{p}: {e}") from None
+        except (KeyError, TypeError, ValueError) as e:  # missing keys, wrong shapes and types
+            raise ValueError(f"{p}: not a valid calibration: {e}") from None
 
 
 # --- input checks ---------------------------------------------------------------------------
@@ -405,9 +421,7 @@ def static_bias(
     ta, ra = _series(t, rate)
     if window is None:
         window = detect_rest(ta, ra, min_duration=min_duration, **detect_options)
-    start, end = float(window[0]), float(window[1])
-    if not (math.isfinite(start) and math.isfinite(end) and end > start):
-        raise ValueError(f"the rest window ({start}, {end}) must be finite with end > start")
+    start, end = as_window("the rest window", window)
     inside = np.flatnonzero((ta >= start) & (ta <= end))
     if len(inside) < 2:
         raise ValueError(
@@ -575,7 +589,8 @@ def heading_reference(
     tr, hr = _series(t_ref, heading_ref, t_name="t_ref", rate_name="heading_ref")
     lo, hi = ta[0], ta[-1]
     if window is not None:
-        lo, hi = max(lo, float(window[0])), min(hi, float(window[1]))
+        start, end = as_window("window", window)
+        lo, hi = max(lo, start), min(hi, end)
     inside = np.flatnonzero((tr >= lo) & (tr <= hi))
     if len(inside) < 3:
         raise ValueError(

@@ -372,14 +372,18 @@ def compare(
     rows: list[Score] = []
     for item in logs:
         log = item if isinstance(item, Log) else read_log(item)
-        reference = log.reference()  # before any work
-        raw_result = process(log.t, log.rate, "raw")
-        raw = heading_errors(raw_result.t, raw_result.heading, *reference)
-        results = {}
-        for method in methods:
-            result, source = method.run(log, bias_duration=bias_duration)
-            results[method.name] = result
-            rows.append(score(log, method, result, raw, source))
+        try:
+            reference = log.reference()  # before any work
+            raw_result = process(log.t, log.rate, "raw")
+            raw = heading_errors(raw_result.t, raw_result.heading, *reference)
+            results = {}
+            for method in methods:
+                result, source = method.run(log, bias_duration=bias_duration)
+                results[method.name] = result
+                rows.append(score(log, method, result, raw, source))
+        except ValueError as e:  # name the log, once
+            named = str(e) if str(e).startswith(f"log {log.name}:") else f"log {log.name}: {e}"
+            raise ValueError(named) from None
         if plot_dir is not None:
             plot_log(Path(plot_dir) / f"{log.name}.png", log, results)
     return rows

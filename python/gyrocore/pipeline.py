@@ -17,9 +17,19 @@ from numpy.typing import ArrayLike
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
 from ._checks import warn, warn_units
+from .window import time_range
 
 #: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling.
 _RATE_PARAMETERS = ("bias", "offset", "threshold", "hdr_increment", "hdr_turn_threshold")
+
+
+#: The shortest mean interval between timestamps taken [s] (a 1 THz gyro).
+MIN_MEAN_INTERVAL = 1e-12
+
+
+class RestWindowError(ValueError):
+    """The rest window (``bias_window``, ``bias_duration``) does not fit the log: it holds no
+    sample, or reaches past the log's end."""
 
 
 def preset_names() -> list[str]:
@@ -53,9 +63,12 @@ def parameters() -> dict[str, str]:
 
 
 def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
-    """Convert ``*_dps`` / ``*_deg`` spellings to the SI parameter names."""
+    """Convert ``*_dps`` / ``*_deg`` spellings to the SI parameter names, and a list or array (a
+    window) to the tuple the core takes."""
     si: dict[str, Any] = {}
     for key, value in overrides.items():
+        if isinstance(value, (list, np.ndarray)):
+            value = tuple(value.tolist() if isinstance(value, np.ndarray) else value)
         if key.endswith("_dps") and key[:-4] in _RATE_PARAMETERS:
             name, value = key[:-4], None if value is None else math.radians(value)
         elif key == "initial_heading_deg":
@@ -70,7 +83,23 @@ def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
 
 def preset_params(preset: str = "hdr", **overrides: Any) -> dict[str, Any]:
     """The flat SI parameters of ``preset`` with ``overrides`` applied (validated by the core)."""
-    return dict(_gyrocore.preset_params(preset, _to_si(overrides)))
+    si = _to_si(overrides)
+    try:
+        return dict(_gyrocore.preset_params(preset, si))
+    except TypeError as e:
+        raise _named_type_error(preset, si, e) from None
+
+
+def _named_type_error(preset: str, si: dict[str, Any], error: TypeError) -> TypeError:
+    """The core's TypeError ("must be real number, not str") with the parameter it is about and
+    what that parameter takes (the core checks them all at once and names none)."""
+    for key, value in si.items():
+        try:
+            _gyrocore.preset_params(preset, {key: value})
+        except TypeError as e:
+            what = parameters().get(key, "")
+            return TypeError(f"invalid parameter {key} = {value!r}: {e}; {key} is {what}")
+    return error
 
 
 #: The per-sample outputs of the pipeline, in the order of :class:`HeadingResult`.
@@ -147,9 +176,13 @@ class Pipeline:
 
     def __init__(self, preset: str = "hdr", **overrides: Any) -> None:
         si = _to_si(overrides)
-        self._inner = _gyrocore.Pipeline(preset, si)
+        try:
+            self._inner = _gyrocore.Pipeline(preset, si)
+        except TypeError as e:
+            raise _named_type_error(preset, si, e) from None
         self._preset = preset
         self._units_checked = False
+        self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
         if uses_static_bias(preset) and not has_bias_source(si):
             warn(
                 f"preset {preset!r} removes a static bias, but no bias, bias_window or bias_duration "
@@ -193,9 +226,9 @@ class Pipeline:
         Raises:
             SampleError: (a ValueError) non-increasing or non-finite timestamps, or NaN/inf readings
                 under ``nonfinite="error"``; its ``index`` and ``what`` name the first bad sample.
-            ValueError: mismatched lengths, or a rest window that holds no sample (the chunk that
-                passes its end is refused). Nothing of the chunk is processed after any of these:
-                the pipeline is as it was.
+            ValueError: mismatched lengths; timestamps whose interval overflows (near +-1e308);
+                :class:`RestWindowError` for a rest window that holds no sample (known once a
+                reading after its end comes). Nothing of the chunk is processed after any of these.
             TypeError: non-numeric arrays.
 
         Warns:
@@ -206,7 +239,8 @@ class Pipeline:
         ta = as_float_array("t", t)
         ra = as_float_array("rate", rate)
         temp = None if temperature is None else as_float_array("temperature", temperature)
-        self._check_bias_window(ta)
+        self._check_time_range(ta)
+        self._check_bias_window(ta, ra, temp)
         if not self._units_checked and len(ta):
             warn_units(ta, ra)
             self._units_checked = True
@@ -214,11 +248,38 @@ class Pipeline:
         before = self._inner.report()
         heading, out_rate, drift = self._inner.process(ta, ra, temp, index_offset, flags)
         self._warn_repairs(before, self._inner.report(), ta, ra, temp)
+        if self._first_time is None and len(ta):
+            self._first_time = float(ta[0])
         return HeadingResult(ta, heading, out_rate, drift)
+
+    def finish(self) -> None:
+        """Call after the last chunk of a log: raises :class:`RestWindowError` if the rest window
+        reaches past the log's end (a ``bias_window`` after the log, or a ``bias_duration`` longer
+        than the log), so that the bias was measured over less than asked, or not at all (0).
+        Changes nothing.
+        """
+        p = self._inner.params()
+        last = self._inner.last_time()
+        if not self._inner.bias()[2] or last is None or self._first_time is None:
+            return  # a fixed bias, a window that is over, or no sample
+        span = time_range(self._first_time, last)
+        if "bias_window" in p:
+            start, end = p["bias_window"]
+            if last < end:
+                raise RestWindowError(
+                    f"the bias window [{start}, {end}] s reaches past the end of the log ({span}); "
+                    "give a rest window inside the log, in its own time base"
+                )
+        elif last < self._first_time + p["bias_duration"]:
+            raise RestWindowError(
+                f"bias_duration = {p['bias_duration']} s is longer than the log ({span}); "
+                "give a shorter rest at the start, or a bias_window"
+            )
 
     def reset(self) -> None:
         """Return to the state before the first sample (same parameters)."""
         self._inner.reset()
+        self._first_time = None
 
     def _warn_repairs(
         self,
@@ -261,24 +322,78 @@ class Pipeline:
         """What the input policy did so far: ``held``, ``skipped``, ``gaps``, ``longest_gap`` [s]."""
         return dict(self._inner.report())
 
-    def _check_bias_window(self, t: FloatArray) -> None:
-        """Refuse a log that starts after its rest window ends: the bias would silently be 0."""
+    def _check_time_range(self, t: FloatArray) -> None:
+        """Refuse timestamps so far apart that an interval overflows to infinity (|t| near 1e308),
+        or so close that their mean interval is below :data:`MIN_MEAN_INTERVAL` (intervals near
+        1e-310 s make HDR's steps and the de-lag divide by almost nothing): either makes the
+        heading NaN. For increasing times no interval exceeds the span from the previous chunk's
+        last time to this chunk's last, so two numbers are checked, not all; a single tiny
+        interval among normal ones is the core's to refuse."""
+        if len(t) == 0:
+            return
+        last = self._inner.last_time()
+        first = float(t[0]) if last is None else last
+        end = float(t[-1])
+        if not (math.isfinite(first) and math.isfinite(end)):
+            return  # the core names the sample
+        intervals = len(t) - (1 if last is None else 0)
+        if not math.isfinite(end - first):
+            raise ValueError(
+                f"timestamps from {first} to {end} s are too far apart: their interval overflows; "
+                "give times in a smaller range (e.g. t - t[0])"
+            )
+        if intervals and 0 < end - first < MIN_MEAN_INTERVAL * intervals:
+            raise ValueError(
+                f"timestamps from {first} to {end} s are {(end - first) / intervals:.3g} s apart on average, "
+                f"below {MIN_MEAN_INTERVAL:g} s: no gyro samples that fast; give them in seconds"
+            )
+
+    def _check_bias_window(self, t: FloatArray, rate: FloatArray, temperature: FloatArray | None) -> None:
+        """Refuse, before anything is processed, a chunk that would close the rest window with no
+        reading in it (the bias would silently be 0): the core's rule, that the first reading it
+        takes after the window's end closes it, applied to the chunk's timestamps.
+
+        Only a chunk whose timestamps the core accepts is checked; it rejects the others itself.
+        """
         p = self._inner.params()
-        if self._inner.last_time() is None and "bias_window" in p and len(t) > 0:
-            start, end = p["bias_window"]
-            if t[0] > end:
-                raise ValueError(
-                    f"the bias window [{start}, {end}] s ends before the first sample (t[0] = {t[0]}); "
-                    "give the window in the log's own time base"
-                )
+        _, count, learning = self._inner.bias()
+        if "bias_window" not in p or not learning or count > 0 or len(t) == 0:
+            return
+        last = self._inner.last_time()
+        if not (np.isfinite(t).all() and (np.diff(t) > 0).all() and (last is None or t[0] > last)):
+            return
+        taken = np.isfinite(rate)  # the readings the filters see: skipped ones are not
+        if temperature is not None and len(temperature) == len(t):
+            taken &= np.isfinite(temperature)
+        if p["nonfinite"] == "hold":  # held once there was a finite reading
+            taken |= np.logical_or.accumulate(taken) | (last is not None)
+        start, end = p["bias_window"]
+        after = np.flatnonzero(taken & (t > end))
+        if len(after) == 0:
+            return
+        k = int(after[0])
+        if (taken[:k] & (t[:k] >= start)).any():
+            return
+        before = t[k - 1] if k > 0 else last
+        if before is None:
+            raise RestWindowError(
+                f"the bias window [{start}, {end}] s ends before the first sample (t[0] = {t[0]}); "
+                "give the window in the log's own time base"
+            )
+        raise RestWindowError(
+            f"the bias window [{start}, {end}] s holds no sample of the log, which jumps from t = {before} "
+            f"to t = {t[k]} s (index {k} of this chunk); give a window where the log has readings at rest. "
+            "Nothing of this chunk was processed"
+        )
 
     def __getstate__(self) -> dict[str, Any]:
-        return {"preset": self._preset, "state": self._inner.state_json()}
+        return {"preset": self._preset, "state": self._inner.state_json(), "first_time": self._first_time}
 
     def __setstate__(self, state: dict[str, Any]) -> None:
         self._preset = state["preset"]
         self._inner = _gyrocore.Pipeline.from_state_json(state["state"])
         self._units_checked = self._inner.last_time() is not None
+        self._first_time = state.get("first_time")
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"
@@ -303,7 +418,10 @@ def process(
         >>> bool(abs(r.heading[-1]) < 1e-9)
         True
     """
-    return Pipeline(preset, **overrides).process(t, rate, temperature=temperature, outputs=outputs)
+    pipeline = Pipeline(preset, **overrides)
+    result = pipeline.process(t, rate, temperature=temperature, outputs=outputs)
+    pipeline.finish()
+    return result
 
 
 def integrate(

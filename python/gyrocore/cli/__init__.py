@@ -11,6 +11,7 @@ import sys
 import warnings
 from typing import Sequence
 
+from .. import _signals
 from . import allan, calibrate, demo, evaluate, presets, process, reproduce, simulate, tune
 from .._extras import MissingExtra
 from ._common import show_warning
@@ -28,12 +29,17 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command; user errors print one line ``gyrocore: error: ...`` and return 2, warnings
-    one line ``gyrocore: warning: ...``."""
-    args = build_parser().parse_args(argv)
-    try:
-        with warnings.catch_warnings():
-            warnings.showwarning = show_warning
-            return int(args.func(args))
-    except (ValueError, TypeError, OSError, MissingExtra) as e:
-        print(f"gyrocore: error: {e}", file=sys.stderr)
-        return 2
+    one line ``gyrocore: warning: ...``; Ctrl-C or SIGTERM, whenever it comes, returns 130 with
+    every output as it was before the run."""
+    with _signals.handled():
+        try:
+            args = build_parser().parse_args(argv)
+            with warnings.catch_warnings():
+                warnings.showwarning = show_warning
+                return int(args.func(args))
+        except (ValueError, TypeError, OSError, MissingExtra) as e:
+            print(f"gyrocore: error: {e}", file=sys.stderr)
+            return 2
+        except KeyboardInterrupt:
+            print("gyrocore: interrupted; no partial output was left", file=sys.stderr)
+            return 130

@@ -5,9 +5,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
-import signal
 import sys
-import threading
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -172,21 +170,3 @@ def progress_bar(description: str) -> Iterator[Callable[[int, int | None, str], 
     finally:
         if bar is not None:
             bar.close()
-
-
-@contextmanager
-def terminate_cleanly() -> Iterator[None]:
-    """Turn SIGTERM into KeyboardInterrupt while the block runs, so that temporary outputs are
-    removed on ``kill`` as on Ctrl-C (only the main thread can own signal handlers)."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-
-    def interrupt(signum: int, frame: Any) -> None:
-        raise KeyboardInterrupt
-
-    previous = signal.signal(signal.SIGTERM, interrupt)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, previous)

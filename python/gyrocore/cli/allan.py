@@ -38,6 +38,9 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
 def run(args: argparse.Namespace) -> int:
     src = Path(args.input)
     window = None if args.window is None else Window.parse(args.window, "--window")
+    for out in (args.plot, args.kalibr):
+        if out is not None:
+            io.check_not_input(out, [src])
     plt = None if args.plot is None else pyplot("--plot")  # before the work
     # A record for the Allan deviation is taken at rest: small rates are no sign of a unit mistake.
     log = io.read_log(src, static=True, **reading_options(args))

@@ -65,6 +65,8 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"{args.save}: the calibration file must end in .json")
     rest = None if args.window is None else Window.parse(args.window, "--window")
     span = None if args.fit_window is None else Window.parse(args.fit_window, "--fit-window")
+    if args.save is not None:
+        io.check_not_input(args.save, [source])  # e.g. the log's own meta.json
     log = io.read_log(source, **reading_options(args))
     if args.reference is not None:
         log = with_reference(log, args.reference)

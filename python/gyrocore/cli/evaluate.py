@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from ..evaluate import Method, compare, format_table
-from ..io import read_log
+from ..io import check_not_input, read_log
 from ..pipeline import preset_names
 from ..tune import ParameterSet
 from ._common import (
@@ -67,6 +67,8 @@ def run(args: argparse.Namespace) -> int:
     for path in args.logs:
         if not Path(path).is_dir():
             raise ValueError(f"{path}: not a log folder")
+    if args.plot_dir:
+        check_not_input(Path(args.plot_dir), [Path(p) for p in args.logs])
     logs = [read_log(path, **reading_options(args)) for path in args.logs]
     rows = compare(logs, methods, bias_duration=args.bias_duration, plot_dir=args.plot_dir)
     if args.json:

@@ -3,14 +3,13 @@
 from __future__ import annotations
 
 import argparse
-import sys
 import warnings
 from pathlib import Path
 from typing import Any
 
 from .. import io
 from .._checks import InputWarning
-from ..batch import expand_inputs, process_file, process_many
+from ..batch import check_outside_inputs, expand_inputs, process_file, process_many
 from ._common import (
     WINDOW_HELP,
     add_command,
@@ -20,7 +19,6 @@ from ._common import (
     print_json,
     progress_bar,
     reading_options,
-    terminate_cleanly,
     warn,
 )
 
@@ -100,22 +98,20 @@ def run(args: argparse.Namespace) -> int:
     out = Path(args.out)
     kwargs = options(args)
     try:
-        with terminate_cleanly(), warnings.catch_warnings():
+        with warnings.catch_warnings():
             # every file's report carries these; print them once, with the file's name
             warnings.simplefilter("ignore", InputWarning)
             if out.suffix.lower() in (".csv", ".parquet", ".pq"):
                 return _one(inputs, out, args, kwargs)
-            return _many(inputs, out, args, kwargs)
+            return _many(out, args, kwargs)
     except ImportError as e:  # an optional dependency the input needs: the user can install it
         raise ValueError(str(e)) from None
-    except KeyboardInterrupt:
-        print("gyrocore: interrupted; no partial output was left", file=sys.stderr)
-        return 130
 
 
 def _one(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
     if len(inputs) != 1:
         raise ValueError(f"--out {out} is one file but there are {len(inputs)} inputs; give a folder")
+    check_outside_inputs(args.inputs, out)
     with progress_bar(inputs[0].name) as bar:
         report = process_file(
             inputs[0], out, preset=args.preset, heading=args.heading, chunk_rows=args.chunk_rows, progress=bar, **kwargs
@@ -129,9 +125,9 @@ def _one(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[s
     return 0
 
 
-def _many(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
+def _many(out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
     summary = process_many(
-        inputs,
+        args.inputs,  # as given: the folders among them are where no output may go
         preset=args.preset,
         out_dir=out,
         client=args.scheduler,

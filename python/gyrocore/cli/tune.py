@@ -5,11 +5,12 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+from pathlib import Path
 from typing import Any, Sequence
 
 from .. import motion, tune
 from .._extras import require
-from ..io import read_log
+from ..io import check_not_input, read_log
 from ..pipeline import parameters
 from ._common import add_command, add_reading_options, print_json, reading_options
 
@@ -118,6 +119,8 @@ def _parse_fixed(specs: Sequence[str]) -> dict[str, float]:
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.out is not None:  # before the fit, which takes minutes
+        check_not_input(Path(args.out), [Path(p) for p in args.logs + args.test])
     require("scipy.optimize", "tuning")  # before the drives are built
     names, bounds = _parse_params(args.param or [])
     progress = (lambda msg: print(msg, file=sys.stderr)) if not args.json else None

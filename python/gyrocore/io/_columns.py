@@ -1,12 +1,15 @@
-"""What the format readers share: finding the named columns, and column data as numpy arrays."""
+"""What the format readers and the writer share: finding the named columns, column data as numpy
+arrays, and pyarrow's lazy import done where an interrupt is not lost."""
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .. import _signals
 from .._arrays import FloatArray
 from .units import split_unit
 
@@ -44,3 +47,21 @@ def first_null(array: pa.Array) -> int | None:
 def concat(parts: list[np.ndarray]) -> FloatArray:
     """The pieces of a column, read chunk after chunk, as one contiguous float64 array."""
     return np.ascontiguousarray(np.concatenate(parts) if parts else np.empty(0), dtype=np.float64)
+
+
+@functools.cache
+def import_pyarrow_lazy_modules() -> None:
+    """Make pyarrow import pandas now (or find it missing), before any data is read or written.
+
+    pyarrow does it on its first conversion between its arrays and numpy and discards whatever
+    that import raises, so a Ctrl-C or SIGTERM arriving then would be lost and the run would go on
+    (:mod:`gyrocore._signals`). Done here, such a signal still raises KeyboardInterrupt. Without
+    pyarrow (an install without the ``io`` extra) there is nothing to do.
+    """
+    try:
+        import pyarrow as pa
+    except ImportError:
+        return
+
+    with _signals.not_swallowed():
+        pa.record_batch([np.zeros(1)], names=["x"]).column(0).to_numpy()

@@ -9,7 +9,9 @@ from __future__ import annotations
 
 import csv
 import io as _io
+import threading
 from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -17,7 +19,7 @@ import numpy as np
 
 from .._arrays import FloatArray
 from .._extras import require
-from ._columns import column_positions, concat, first_null
+from ._columns import column_positions, concat, first_null, import_pyarrow_lazy_modules
 
 if TYPE_CHECKING:
     import pyarrow as pa
@@ -27,6 +29,10 @@ if TYPE_CHECKING:
 #: Bytes of CSV text parsed at a time. pyarrow's streaming reader reads about 32 blocks ahead, so
 #: this sets the reader's memory (1 MiB: about 40 MB, and the fastest size measured).
 CSV_BLOCK_BYTES = 1 << 20
+#: The longest CSV line read [bytes]; pyarrow reads a few blocks of this size ahead.
+MAX_LINE_BYTES = 1 << 28
+_FIELD_LIMIT_LOCK = threading.Lock()
+_GZIP = b"\x1f\x8b"
 
 
 def _csv_header(path: Path, delimiter: str) -> list[str]:
@@ -34,9 +40,13 @@ def _csv_header(path: Path, delimiter: str) -> list[str]:
         line = f.readline()
     if not line.strip():
         raise ValueError(f"{path}: line 1: no header line (expected column names)")
+    if line.startswith(_GZIP) or any(b < 32 and b not in b"\t\r\n" for b in line[:4096]):
+        # naming the columns would print the binary bytes
+        raise ValueError(f"{path}: not a text CSV file (binary data on line 1; decompress a .gz file first)")
     text = line.decode("utf-8-sig", errors="replace").rstrip("\r\n")
     try:
-        return [name.strip() for name in next(csv.reader([text], delimiter=delimiter))]
+        with _long_fields():
+            return [name.strip() for name in next(csv.reader([text], delimiter=delimiter))]
     except csv.Error as e:  # e.g. a bare carriage return inside the header
         raise ValueError(f"{path}: line 1: malformed header: {e}") from None
 
@@ -55,18 +65,15 @@ def _read_csv(
     (for files with one sample per line: a quoted line break would shift the line numbers).
     ``required`` names the columns whose empty value the caller refuses, with what to call it
     (``{"t": "timestamp"}``), so that an error in a block names the first bad line of either kind.
+    pyarrow needs every line inside one block: at a longer line (a long text in a column that is
+    not read) the reading goes on from that line with blocks four times larger, so that neither
+    the chunk size nor the block size decides whether a file can be read.
     """
     pa = require("pyarrow", f"{path}: reading CSV files")
     pa_csv = require("pyarrow.csv", f"{path}: reading CSV files")
 
     header = _csv_header(path, delimiter)
     positions = column_positions(path, header, columns)
-    read = pa_csv.ReadOptions(
-        column_names=[f"{i}:{name}" for i, name in enumerate(header)],  # unique even if the header is not
-        skip_rows=1,
-        block_size=block_bytes,
-        use_threads=False,  # parallel files scale better than parallel blocks (and it was not faster)
-    )
     keys = {c: f"{positions[c]}:{c}" for c in columns}
     convert = pa_csv.ConvertOptions(
         include_columns=list(keys.values()),
@@ -76,16 +83,38 @@ def _read_csv(
         quoted_strings_can_be_null=True,
     )
     parse = pa_csv.ParseOptions(delimiter=delimiter, ignore_empty_lines=False)
-    first = 0
-    # pyarrow reads the file itself, on its own thread and without the GIL
-    with pa.OSFile(str(path)) as f:
-        try:
-            reader = pa_csv.open_csv(f, read_options=read, parse_options=parse, convert_options=convert)
-            for batch in reader:
-                yield first, {c: batch.column(keys[c]) for c in columns}, f.tell()
-                first += batch.num_rows
-        except pa.ArrowInvalid as e:
-            raise ValueError(_csv_error(path, e, first + 2, header, positions, delimiter, required or {})) from None
+    first, block = 0, block_bytes
+    if _line_offset(path, 1) >= path.stat().st_size:
+        return  # a header and no samples (pyarrow would call the file empty)
+    while True:
+        read = pa_csv.ReadOptions(
+            column_names=[f"{i}:{name}" for i, name in enumerate(header)],  # unique even if the header is not
+            block_size=block,
+            use_threads=False,  # parallel files scale better than parallel blocks (and it was not faster)
+        )
+        # pyarrow reads the file itself, on its own thread and without the GIL
+        with pa.OSFile(str(path)) as f:
+            f.seek(_line_offset(path, first + 1))  # past the header (which may be longer than a block)
+            try:
+                for batch in pa_csv.open_csv(f, read_options=read, parse_options=parse, convert_options=convert):
+                    yield first, {c: batch.column(keys[c]) for c in columns}, f.tell()
+                    first += batch.num_rows
+                return
+            except pa.ArrowInvalid as e:
+                if "straddl" not in str(e):
+                    raise ValueError(_csv_error(path, e, first + 2, header, positions, delimiter, required or {})) from None
+                if block >= MAX_LINE_BYTES:
+                    raise ValueError(
+                        f"{path}: a line after line {first + 1} is longer than {MAX_LINE_BYTES} bytes, the longest read"
+                    ) from None
+                block = min(4 * block, MAX_LINE_BYTES)
+
+
+def _line_offset(path: Path, lines: int) -> int:
+    """The byte offset of the start of line ``lines + 1`` (past ``lines`` line ends)."""
+    with open(path, "rb") as f:
+        _skip_lines(f, lines)
+        return f.tell()
 
 
 def _csv_error(
@@ -103,7 +132,7 @@ def _csv_error(
     pyarrow rejects a whole block for one unreadable value, so an empty ``required`` value earlier
     in the block (which pyarrow reads as a null) is the first error of the file: it is reported.
     """
-    with open(path, "rb") as f:
+    with open(path, "rb") as f, _long_fields():
         _skip_lines(f, first_line - 1)
         text = _io.TextIOWrapper(f, encoding="utf-8", errors="replace", newline="")
         reader = csv.reader(text, delimiter=delimiter)
@@ -126,6 +155,19 @@ def _csv_error(
                 if not fields[pos] and name in required:
                     return f"{where}: empty {required[name]}"
     return f"{path}: after line {first_line}: {error}"
+
+
+@contextmanager
+def _long_fields() -> Iterator[None]:
+    """Let Python's csv module read fields as long as pyarrow does (it refuses over 128 KiB by
+    default; a long text in a column that is not read is legal). The limit is global, hence the
+    lock; only headers and the search for a bad value use the csv module."""
+    with _FIELD_LIMIT_LOCK:
+        previous = csv.field_size_limit(MAX_LINE_BYTES)
+        try:
+            yield
+        finally:
+            csv.field_size_limit(previous)
 
 
 def _count(n: int, noun: str) -> str:
@@ -195,6 +237,7 @@ def read_csv_columns(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArr
     Raises ValueError naming the file, line and column of a malformed or empty value.
     """
     path = Path(path)
+    import_pyarrow_lazy_modules()
     parts: dict[str, list[np.ndarray]] = {c: [] for c in columns}
     header = _csv_header(path, ",")
     for first, cols, _ in _read_csv(path, columns, required=dict.fromkeys(columns, "value")):

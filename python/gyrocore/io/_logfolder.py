@@ -8,6 +8,7 @@ describes the log).
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 from typing import Any
 
@@ -57,8 +58,13 @@ def _rest_window(path: Path, window: Any) -> tuple[float, float] | None:
     """meta.json's ``stationary``: ``[t0, t1]`` [s] or null."""
     if window is None:
         return None
-    if not (isinstance(window, list) and len(window) == 2 and all(isinstance(v, (int, float)) for v in window)):
-        raise ValueError(f"{path}: stationary must be [t0, t1] in seconds or null, got {window!r}")
+    if not (
+        isinstance(window, list)
+        and len(window) == 2
+        and all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in window)
+        and window[0] <= window[1]
+    ):
+        raise ValueError(f"{path}: stationary must be [t0, t1] in seconds (finite, t0 <= t1) or null, got {window!r}")
     return float(window[0]), float(window[1])
 
 
@@ -69,6 +75,8 @@ def _read_json(path: Path) -> dict[str, Any]:
         meta = json.loads(path.read_text(encoding="utf-8"))
     except json.JSONDecodeError as e:
         raise ValueError(f"{path}: line {e.lineno} column {e.colno}: {e.msg}") from None
+    except UnicodeDecodeError as e:
+        raise ValueError(f"{path}: not UTF-8 text (at byte offset {e.start}: {e.reason}); save it as UTF-8") from None
     if not isinstance(meta, dict):
         raise ValueError(f"{path}: expected a JSON object")
     return meta

@@ -43,7 +43,7 @@ def npy_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndar
             o = src.options
             column_positions(src.path, list(dtype.names), (o.time, o.rate))
             for name in (o.time, o.rate):
-                _check_numbers(src, name, dtype[name])
+                _check_numbers(src, name, dtype[name], time=name == o.time)
             n = shape[0]
             for start in range(0, n, rows):
                 rec = np.fromfile(f, dtype=dtype, count=min(rows, n - start))
@@ -78,9 +78,12 @@ def npy_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndar
             yield t, rate, per_second, start + count
 
 
-def _check_numbers(src: GyroSource, name: str, dtype: np.dtype[Any]) -> None:
-    if dtype.kind not in "iuf":
-        raise ValueError(f"{src.path}: {name} holds {dtype}, not real numbers")
+def _check_numbers(src: GyroSource, name: str, dtype: np.dtype[Any], *, time: bool = False) -> None:
+    """Real numbers; a time may also be a duration (timedelta64, which carries its unit)."""
+    if dtype.kind not in ("iufm" if time else "iuf"):
+        raise ValueError(f"{src.path}: {name} holds {dtype}, not real numbers{' or durations' if time else ''}")
+    if dtype.kind == "m" and np.datetime_data(dtype)[0] in ("Y", "M", "generic"):
+        raise ValueError(f"{src.path}: {name} holds {dtype}, which has no fixed length in seconds")
 
 
 def _check_read(src: GyroSource, data: np.ndarray, expected: int) -> None:
@@ -112,7 +115,7 @@ def npz_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndar
     for name, a in ((o.time, t), (o.rate, rate)):
         if not isinstance(a, np.ndarray):  # a member not stored as .npy comes back as raw bytes
             raise ValueError(f"{src.path}: member {name} is not a NumPy array")
-        _check_numbers(src, f"array {name}", a.dtype)
+        _check_numbers(src, f"array {name}", a.dtype, time=name == o.time)
         if a.ndim != 1:
             raise ValueError(f"{src.path}: array {name} must be 1-D, got shape {a.shape}")
     if len(t) != len(rate):

@@ -12,6 +12,8 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from .. import _signals
+
 
 class StagedFile:
     """A temporary file next to ``path`` that becomes ``path`` on :meth:`commit`.
@@ -31,17 +33,26 @@ class StagedFile:
                 os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
             except FileExistsError:
                 continue
+            except (FileNotFoundError, NotADirectoryError):  # named after the output, not the hidden file
+                raise FileNotFoundError(f"{path}: the folder {path.parent} does not exist") from None
+            except PermissionError as e:
+                raise PermissionError(f"{path}: cannot write in {path.parent} ({e.strerror})") from None
             self.tmp = tmp
             return
         raise FileExistsError(f"{path.parent}: cannot create a temporary file for {path.name}")
 
     def commit(self) -> None:
-        """Make the temporary file ``path``: on disk first, then renamed (atomic on one filesystem)."""
+        """Make the temporary file ``path``: on disk first, then renamed (atomic on one filesystem).
+
+        Raises KeyboardInterrupt instead if a signal came during the run, even one whose exception a
+        library swallowed (see :mod:`gyrocore._signals`): an interrupted run keeps the old file.
+        """
         fd = os.open(self.tmp, os.O_RDWR)  # Windows syncs only writable handles
         try:
             os.fsync(fd)
         finally:
             os.close(fd)
+        _signals.check()
         os.replace(self.tmp, self.path)
 
     def discard(self) -> None:

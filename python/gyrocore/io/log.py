@@ -12,7 +12,13 @@ from typing import Any
 
 from .._arrays import FloatArray
 from .._checks import warn
-from ..pipeline import HeadingResult, has_bias_source, process, uses_static_bias
+from ..pipeline import (
+    HeadingResult,
+    RestWindowError,
+    has_bias_source,
+    process,
+    uses_static_bias,
+)
 from ._columns import concat
 from ._logfolder import read_odometry, read_reference
 from .source import open_source
@@ -85,17 +91,21 @@ class Log:
 
     def process(self, preset: str = "recommended", **overrides: Any) -> HeadingResult:
         """Run a preset on this log; the static bias comes from the rest window unless given."""
-        if self.stationary is not None and uses_static_bias(preset) and not has_bias_source(overrides):
-            overrides["bias_window"] = self.stationary
-        return process(self.t, self.rate, preset, **overrides)
+        if self.stationary is None or not uses_static_bias(preset) or has_bias_source(overrides):
+            return process(self.t, self.rate, preset, **overrides)
+        try:
+            return process(self.t, self.rate, preset, bias_window=self.stationary, **overrides)
+        except RestWindowError as e:
+            raise RestWindowError(f"log {self.name}: {e} (the rest window is the stationary of its meta.json)") from None
 
 
 def read_log(path: str | Path, **options: Any) -> Log:
     """Read a whole log into memory: a log folder (with its reference and odometry) or any file
     :func:`open_source` reads (``options``: the :class:`ReadOptions` fields).
 
-    Warns (:class:`gyrocore.InputWarning`) when the values look like another unit; raises
-    ValueError when every interval is a gap (timestamps in another unit).
+    Raises ValueError for a malformed input, naming the file and where, for one without samples,
+    and when every interval is a gap (timestamps in another unit).
+    Warns (:class:`gyrocore.InputWarning`) when the values look like another unit.
 
     Example:
         >>> import gyrocore
@@ -109,6 +119,8 @@ def read_log(path: str | Path, **options: Any) -> Log:
         check.update(chunk.t, chunk.rate)
         ts.append(chunk.t)
         rates.append(chunk.rate)
+    if sum(map(len, ts)) == 0:
+        raise ValueError(f"{src.data_path}: no samples")
     error = check.error()
     if error is not None:
         raise ValueError(f"{src.data_path}: {error}")

@@ -8,6 +8,7 @@ reader of its format and converts them to s and rad/s (what ``gyrocore process``
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterator
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -15,8 +16,9 @@ from typing import Any
 
 import numpy as np
 
-from .._arrays import FloatArray
+from .._arrays import FloatArray, durations_in_seconds
 from .._gyrocore import SampleError
+from ._columns import import_pyarrow_lazy_modules
 from ._csvfile import _csv_header, csv_chunks
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta
 from ._npyfile import npy_chunks, npy_header, npz_chunks
@@ -154,6 +156,7 @@ class GyroSource:
         """
         if rows < 1:
             raise ValueError(f"rows per chunk must be >= 1, got {rows}")
+        import_pyarrow_lazy_modules()
         readers = {
             "csv": csv_chunks,
             "log folder": csv_chunks,
@@ -174,7 +177,10 @@ class GyroSource:
 
 
 def _seconds(raw: np.ndarray, per_second: float) -> FloatArray:
-    """Timestamps [s] from counts of a unit; division (not multiplication by 1e-3) rounds once."""
+    """Timestamps [s] from counts of a unit; division (not multiplication by 1e-3) rounds once.
+    Durations (timedelta64 in .npy and .npz files) carry their own unit."""
+    if raw.dtype.kind == "m":
+        return np.asarray(durations_in_seconds("the time column", raw), dtype=np.float64)
     t = np.asarray(raw, dtype=np.float64)
     return t if per_second == 1.0 else t / per_second
 
@@ -188,8 +194,8 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
         options: columns and units; or give the :class:`ReadOptions` fields as keywords.
 
     Raises:
-        FileNotFoundError: no such file or folder.
-        ValueError: an unknown kind of file or folder.
+        FileNotFoundError: no such file or folder, or a symbolic link that cannot be followed.
+        ValueError: an unknown kind of file or folder, or not a regular file (a named pipe).
     """
     if options is None:
         options = ReadOptions(**kwargs)
@@ -197,7 +203,7 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
         raise TypeError("give either options or keywords, not both")
     p = Path(path)
     if not p.exists():
-        raise FileNotFoundError(f"{p}: no such file or folder")
+        raise FileNotFoundError(_missing(p))
     if p.is_dir():
         if is_log_folder(p):
             meta, stationary = read_meta(p)
@@ -207,6 +213,8 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
         if is_bag_folder(p):
             return _open_bag(p, header_options(p, None, options))
         raise ValueError(f"{p}: not a log folder (no gyro.csv) nor a ROS 2 bag (no metadata.yaml)")
+    if not p.is_file():  # reading a named pipe or a device would wait for ever, or never end
+        raise ValueError(f"{p}: not a regular file (a named pipe, socket or device); give a file or folder")
     suffix = p.suffix.lower()
     if suffix == ".csv":
         options = header_options(p, _csv_header(p, options.delimiter), options)
@@ -226,6 +234,18 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
     raise ValueError(
         f"{p}: unknown kind of file (read are {', '.join(FILE_SUFFIXES)}, log folders and ROS 2 bag folders)"
     )
+
+
+def _missing(path: Path) -> str:
+    """Why ``path``, which does not exist, cannot be read: no such file, or a broken link."""
+    if not path.is_symlink():
+        return f"{path}: no such file or folder"
+    reason = "no such file"
+    try:
+        path.stat()
+    except OSError as e:  # a dangling link, or a loop (ELOOP)
+        reason = e.strerror or reason
+    return f"{path}: a symbolic link to {os.readlink(path)!r}, which cannot be followed ({reason})"
 
 
 def _open_bag(path: Path, options: ReadOptions) -> GyroSource:

@@ -45,20 +45,24 @@ SMALL_RATE_DPS = 3.0
 SHORT_INTERVAL = 1e-4
 #: Timestamps beyond this [s] (the year 5138) are an epoch in ms, us or ns.
 EPOCH_LIMIT = 1e11
+#: Intervals and large rates are judged on this many first samples, whatever the chunks are.
+HEAD_SAMPLES = 1 << 16
 
 
 class UnitCheck:
     """Checks that a stream of samples looks like the units it was read in.
 
     Feed it every chunk (in SI units, after conversion); :meth:`problems` then lists what looks like
-    another unit. Intervals and large rates are judged on the first chunk (as
-    :class:`gyrocore.Pipeline` does); small rates on the largest ``|rate|`` of the whole stream,
+    another unit. Intervals and large rates are judged on the first :data:`HEAD_SAMPLES` samples
+    (however they were chunked); small rates on the largest ``|rate|`` of the whole stream,
     since a log may begin with a long rest.
     """
 
     def __init__(self, options: ReadOptions) -> None:
         self._options = options
         self._first: list[str] | None = None
+        self._head: list[tuple[FloatArray, FloatArray]] = []  # the first samples, until judged
+        self._head_samples = 0
         self._max_rate = 0.0
         self._last_time: float | None = None
         self._intervals = 0
@@ -73,11 +77,16 @@ class UnitCheck:
             self._intervals += len(edges) - 1
             self._short_intervals += int(np.count_nonzero(np.diff(edges) <= INTERVAL_LIMIT))
             self._last_time = float(t[-1])
-        if self._first is None and len(t) > 1:  # a chunk with an interval
-            self._first = self._first_chunk_problems(t, rate)
+        if self._first is None:
+            self._head.append((t[:HEAD_SAMPLES], rate[:HEAD_SAMPLES]))
+            self._head_samples += len(t)
+            if self._head_samples >= HEAD_SAMPLES:
+                self._judge_head()
 
     def problems(self) -> list[str]:
         """What looks like another unit, with the option that would fix it."""
+        if self._first is None:
+            self._judge_head()
         problems = list(self._first or [])
         max_dps = math.degrees(self._max_rate)
         small = self._first is not None and max_dps < SMALL_RATE_DPS and not self._options.static
@@ -93,9 +102,20 @@ class UnitCheck:
         is longer than a gap (a log in ns read as s has nothing but gaps)."""
         if self._intervals == 0 or self._short_intervals > 0:
             return None
+        if self._first is None:
+            self._judge_head()
         fixes = [p for p in self._first or [] if p.startswith("timestamps look like")]
         fix = fixes[0] if fixes else f"give the unit of the time column with --time-unit ({', '.join(TIME_UNITS)})"
         return f"each of the {self._intervals} intervals is longer than {INTERVAL_LIMIT:g} s, a gap: {fix}"
+
+    def _judge_head(self) -> None:
+        """Judge the first samples (at most :data:`HEAD_SAMPLES`, whatever the chunks were), once
+        they hold an interval."""
+        if self._head_samples < 2:
+            return
+        t = np.concatenate([h[0] for h in self._head])[:HEAD_SAMPLES]
+        rate = np.concatenate([h[1] for h in self._head])[:HEAD_SAMPLES]
+        self._first, self._head = self._first_chunk_problems(t, rate), []
 
     def _first_chunk_problems(self, t: FloatArray, rate: FloatArray) -> list[str]:
         o = self._options

@@ -9,6 +9,7 @@ from __future__ import annotations
 import json
 import math
 import os
+from collections.abc import Iterable
 from pathlib import Path
 from types import TracebackType
 from typing import TYPE_CHECKING, Any
@@ -16,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 from .. import _gyrocore
 from .._extras import require
 from ..pipeline import HeadingResult
+from ._columns import import_pyarrow_lazy_modules
 from .atomic import StagedFile
 
 if TYPE_CHECKING:
@@ -59,11 +61,17 @@ def output_format(path: Path) -> str:
 
 def check_output(out: Path, source: GyroSource) -> None:
     """Refuse an output that is the input, or lies inside an input folder."""
+    check_not_input(out, (source.path, source.data_path))
+
+
+def check_not_input(out: Path, inputs: Iterable[Path]) -> None:
+    """Refuse an output that is one of ``inputs`` (also through a link) or lies inside one that is
+    a folder: nothing a user gave is overwritten, and no output becomes part of a log."""
     target = out.resolve()
-    for p in {source.path, source.data_path}:
+    for p in inputs:
         inside = p.is_dir() and p.resolve() in target.parents
-        if target == p.resolve() or inside or (out.exists() and os.path.samefile(out, p)):
-            raise ValueError(f"refusing to write {out} over or inside the input {source.path}")
+        if target == p.resolve() or inside or (out.exists() and p.exists() and os.path.samefile(out, p)):
+            raise ValueError(f"refusing to write {out} over or inside the input {p}; write it elsewhere")
 
 
 class HeadingWriter:
@@ -96,6 +104,7 @@ class HeadingWriter:
         if self.format == "parquet":  # before the staged file: nothing to remove if pyarrow is missing
             pa = require("pyarrow", f"{self.path}: writing Parquet files")
             pq = require("pyarrow.parquet", f"{self.path}: writing Parquet files")
+            import_pyarrow_lazy_modules()
         self._staged = StagedFile(self.path)
         tmp = self._staged.tmp
         try:

@@ -1,0 +1,129 @@
+"""Every input named is accounted for (processed, or failed with its reason), and no output lands in
+an input folder: through the command line and process_many."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from gyrocore.batch import process_many
+
+from .test_batch import synthetic_csv
+
+
+def gyrocore(*args: str | Path) -> subprocess.CompletedProcess[str]:
+    proc = subprocess.run(
+        [sys.executable, "-m", "gyrocore.cli", *map(str, args)], capture_output=True, text=True, timeout=120
+    )
+    assert "Traceback" not in proc.stderr
+    return proc
+
+
+def broken_links(folder: Path) -> dict[str, str]:
+    """A dangling symbolic link and a loop, each named like a log, with the reason each must give."""
+    folder.mkdir(exist_ok=True)
+    (folder / "dangling.csv").symlink_to(folder / "gone.csv")
+    (folder / "loop.csv").symlink_to(folder / "loop.csv")
+    return {"dangling.csv": "No such file or directory", "loop.csv": "Too many levels of symbolic links"}
+
+
+def test_broken_links_named_on_the_command_line_fail_with_their_reason(tmp_path: Path) -> None:
+    good = synthetic_csv(tmp_path / "good.csv", 300)
+    reasons = broken_links(tmp_path / "in")
+    named = [tmp_path / "in" / name for name in reasons]
+    proc = gyrocore("process", good, *named, "--out", tmp_path / "out", "--preset", "raw")
+    assert proc.returncode == 1, proc.stderr
+    lines = proc.stdout.splitlines()
+    assert lines[-1].startswith("1 of 3 files processed, 2 failed")
+    for path, (name, reason) in zip(named, reasons.items()):
+        line = next(line for line in lines if name in line)
+        assert line.startswith(f"FAILED {path}: a symbolic link to ") and reason in line
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["good.csv"]
+
+
+def test_broken_links_in_a_folder_are_reported_by_process_many(tmp_path: Path) -> None:
+    folder = tmp_path / "logs"
+    reasons = broken_links(folder)
+    synthetic_csv(folder / "good.csv", 300)
+    summary = process_many([folder], out_dir=tmp_path / "out", preset="raw", jobs=2)
+    assert [Path(r.input).name for r in summary.files] == ["dangling.csv", "good.csv", "loop.csv"]
+    assert [r.ok for r in summary.files] == [False, True, False]
+    for report in summary.failed:
+        assert reasons[Path(report.input).name] in (report.error or "")
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root reads a file without read permission")
+def test_an_unreadable_file_fails_with_its_reason(tmp_path: Path) -> None:
+    locked = synthetic_csv(tmp_path / "locked.csv", 300)
+    locked.chmod(0)
+    proc = gyrocore("process", locked, synthetic_csv(tmp_path / "good.csv", 300), "--out", tmp_path / "out")
+    assert proc.returncode == 1
+    assert "Permission denied" in next(line for line in proc.stdout.splitlines() if "locked.csv" in line)
+
+
+def test_a_named_pipe_is_refused_not_waited_on(tmp_path: Path) -> None:
+    fifo = tmp_path / "stream.csv"
+    os.mkfifo(fifo)
+    proc = gyrocore("process", fifo, "--out", tmp_path / "h.csv")
+    assert proc.returncode == 2
+    assert proc.stderr.strip() == (
+        f"gyrocore: error: {fifo}: not a regular file (a named pipe, socket or device); give a file or folder"
+    )
+
+
+@pytest.mark.parametrize("out", ["logs", "logs/headings", "logs/h.csv"])
+def test_no_output_is_written_into_an_input_folder(tmp_path: Path, out: str) -> None:
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    synthetic_csv(logs / "a.csv", 300)
+    before = sorted(p.name for p in logs.iterdir())
+    proc = gyrocore("process", logs, "--out", tmp_path / out, "--format", "parquet")
+    assert proc.returncode == 2
+    assert proc.stderr == f"gyrocore: error: refusing to write {tmp_path / out} over or inside the input {logs}; " + (
+        "write it elsewhere\n"
+    )
+    assert sorted(p.name for p in logs.iterdir()) == before
+    # so a later run over the folder still works
+    assert gyrocore("process", logs, "--out", tmp_path / "elsewhere", "--preset", "raw").returncode == 0
+
+
+def test_an_output_folder_holding_the_inputs_is_refused(tmp_path: Path) -> None:
+    synthetic_csv(tmp_path / "a.csv", 300)
+    with pytest.raises(ValueError, match=f"refusing to write into {tmp_path}: it holds the input {tmp_path / 'a.csv'}"):
+        process_many([str(tmp_path / "*.csv")], out_dir=tmp_path, fmt="parquet")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv"]
+
+
+def test_other_commands_refuse_to_write_over_or_into_their_input(tmp_path: Path) -> None:
+    log = tmp_path / "drive"
+    log.mkdir()
+    synthetic_csv(log / "gyro.csv", 3000)
+    (log / "meta.json").write_text('{"stationary": [1700000000.0, 1700000015.0]}')
+    before = {p.name: p.read_bytes() for p in log.iterdir()}
+    for args in (
+        ("allan", log / "gyro.csv", "--kalibr", log / "gyro.csv"),
+        ("allan", log, "--plot", log / "allan.png"),
+        ("calibrate", log, "--save", log / "meta.json"),
+    ):
+        proc = gyrocore(*args)
+        assert proc.returncode == 2, proc.stderr
+        assert proc.stderr.startswith(f"gyrocore: error: refusing to write {args[-1]} over or inside the input")
+        assert {p.name: p.read_bytes() for p in log.iterdir()} == before
+
+
+def test_evaluate_and_tune_refuse_to_write_into_a_log_folder(tmp_path: Path) -> None:
+    log = tmp_path / "drive"
+    log.mkdir()
+    synthetic_csv(log / "gyro.csv", 300)
+    for args in (
+        ("evaluate", log, "--preset", "raw", "--plot-dir", log / "plots"),
+        ("tune", log, "--out", log / "meta.json"),
+    ):
+        proc = gyrocore(*args)
+        assert proc.returncode == 2, proc.stderr
+        assert proc.stderr.startswith(f"gyrocore: error: refusing to write {args[-1]} over or inside the input {log}")
+    assert sorted(p.name for p in log.iterdir()) == ["gyro.csv"]

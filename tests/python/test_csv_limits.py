@@ -1,0 +1,105 @@
+"""Files at the edges of the readers: lines longer than a block (a long text in an ignored column,
+a long header) read the same with any --chunk-rows; a header without samples is an error."""
+
+from __future__ import annotations
+
+import gzip
+import subprocess
+import sys
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+import pyarrow as pa
+import pyarrow.parquet as pq
+import pytest
+
+import gyrocore
+from gyrocore.io import CSV_BLOCK_BYTES
+
+N = 200
+
+
+def expected_t() -> np.ndarray:
+    return np.arange(N) * 0.01
+
+
+def run_cli(*args: str | Path) -> subprocess.CompletedProcess[str]:
+    proc = subprocess.run(
+        [sys.executable, "-m", "gyrocore.cli", *map(str, args)], capture_output=True, text=True, timeout=300
+    )
+    assert "Traceback" not in proc.stderr
+    return proc
+
+
+def long_field_csv(path: Path) -> Path:
+    """A 2 MB note (twice the reader's largest block) in a column that is not read, on line 52."""
+    with open(path, "w") as f:
+        f.write("t,gyro_z,note\n")
+        for i, t in enumerate(expected_t()):
+            f.write(f"{float(t)!r},0.01,{'x' * 2_000_000 if i == 50 else 'ok'}\n")
+    return path
+
+
+def long_header_csv(path: Path) -> Path:
+    """A header of 1.3 MB (120,000 columns), longer than any block."""
+    names = ",".join(f"extra{i}" for i in range(120_000))
+    with open(path, "w") as f:
+        f.write(f"t,gyro_z,{names}\n")
+        empty = "," * 120_000
+        for t in expected_t():
+            f.write(f"{float(t)!r},0.01{empty}\n")
+    return path
+
+
+@pytest.mark.parametrize("make", [long_field_csv, long_header_csv])
+def test_lines_longer_than_a_block_read_with_any_chunk_size(tmp_path: Path, make: Callable[[Path], Path]) -> None:
+    src = make(tmp_path / "in.csv")
+    assert max(map(len, src.read_bytes().split(b"\n"))) > CSV_BLOCK_BYTES
+    outputs = []
+    for chunk_rows in ("1", "7", "65536"):
+        out = tmp_path / f"h{chunk_rows}.csv"
+        proc = run_cli("process", src, "--out", out, "--preset", "raw", "--chunk-rows", chunk_rows)
+        assert proc.returncode == 0, proc.stderr
+        outputs.append(out.read_bytes())
+    assert outputs[0] == outputs[1] == outputs[2]
+    assert np.array_equal(gyrocore.read_log(src).t, expected_t())
+
+
+def test_a_bad_value_after_a_long_line_is_still_located(tmp_path: Path) -> None:
+    src = long_field_csv(tmp_path / "in.csv")
+    lines = src.read_bytes().split(b"\n")
+    lines[120] = b"1.19,abc,ok"
+    src.write_bytes(b"\n".join(lines))
+    proc = run_cli("process", src, "--out", tmp_path / "h.csv", "--chunk-rows", "10")
+    assert proc.returncode == 2
+    assert proc.stderr == f"gyrocore: error: {src}: line 121, column 2 (gyro_z): 'abc' is not a number\n"
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".csv (no line end)", ".npy", ".npz", ".parquet"])
+def test_a_header_without_samples_is_an_error(tmp_path: Path, suffix: str) -> None:
+    path = tmp_path / f"empty{suffix.split()[0]}"
+    if suffix == ".csv":
+        path.write_text("t,gyro_z\n")
+    elif suffix.startswith(".csv"):
+        path.write_text("t,gyro_z")
+    elif suffix == ".npy":
+        np.save(path, np.zeros((0, 2)))
+    elif suffix == ".npz":
+        np.savez(path, t=np.zeros(0), gyro_z=np.zeros(0))
+    else:
+        pq.write_table(pa.table({"t": pa.array([], pa.float64()), "gyro_z": pa.array([], pa.float64())}), path)
+    with pytest.raises(ValueError, match=f"^{path}: no samples$"):
+        gyrocore.read_log(path)
+    proc = run_cli("process", path, "--out", tmp_path / "h.csv")
+    assert proc.returncode == 2 and proc.stderr == f"gyrocore: error: {path}: no samples\n"
+
+
+def test_a_compressed_file_named_csv_is_refused_without_printing_its_bytes(tmp_path: Path) -> None:
+    path = tmp_path / "drive.csv"
+    path.write_bytes(gzip.compress(b"t,gyro_z\n0,0\n0.01,0\n"))
+    proc = run_cli("process", path, "--out", tmp_path / "h.csv")
+    assert proc.returncode == 2
+    assert proc.stderr == (
+        f"gyrocore: error: {path}: not a text CSV file (binary data on line 1; decompress a .gz file first)\n"
+    )

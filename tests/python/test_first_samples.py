@@ -1,0 +1,80 @@
+"""The first samples: no finite rate in the first chunk is named, not a crash; the unit check sees
+the same first samples whatever the chunk size."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import gyrocore
+from gyrocore import SampleError
+
+
+def test_no_finite_rate_is_a_sample_error_at_index_0() -> None:
+    for rates in ([np.nan], [np.inf, np.nan, -np.inf]):
+        t = np.arange(len(rates), dtype=float)
+        with pytest.raises(SampleError) as e:
+            gyrocore.process(t, rates, "raw")
+        assert e.value.index == 0 and str(e.value).startswith("rate[0] is ")
+
+
+@pytest.mark.parametrize("nonfinite", ["hold", "skip"])
+def test_no_finite_first_reading_is_skipped_under_hold_and_skip(nonfinite: str) -> None:
+    t = np.arange(4) * 0.01
+    r = np.array([np.nan, np.nan, 0.1, 0.1])
+    with pytest.warns(gyrocore.InputWarning, match=r"2 non-finite reading\(s\) skipped \(first at index 0"):
+        result = gyrocore.process(t, r, "raw", nonfinite=nonfinite)
+    # nothing to hold yet: both are left out, and the heading starts at the first finite reading
+    assert np.array_equal(result.heading, [0.0, 0.0, 0.0, 0.5 * (0.1 + 0.1) * (t[3] - t[2])])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrocore.InputWarning)
+        only_nan = gyrocore.process([0.0, 1.0], [np.nan, np.nan], "raw", nonfinite=nonfinite)
+    assert np.array_equal(only_nan.heading, [0.0, 0.0])
+
+
+def run_cli(*args: str | Path) -> subprocess.CompletedProcess[str]:
+    proc = subprocess.run(
+        [sys.executable, "-m", "gyrocore.cli", *map(str, args)], capture_output=True, text=True, timeout=120
+    )
+    assert "Traceback" not in proc.stderr
+    return proc
+
+
+def test_a_csv_whose_first_rates_are_empty(tmp_path: Path) -> None:
+    src = tmp_path / "first_empty.csv"
+    src.write_text("t,gyro_z\n0,\n0.01,\n0.02,0.1\n0.03,0.1\n")
+    out = tmp_path / "h.csv"
+    proc = run_cli("process", src, "--out", out, "--preset", "raw")
+    assert proc.returncode == 2 and not out.exists()
+    assert proc.stderr == (
+        f"gyrocore: error: rate[0] is NaN: samples must be finite (drop or fill them first) ({src}, line 2)\n"
+    )
+    proc = run_cli("process", src, "--out", out, "--preset", "raw", "--nonfinite", "skip")
+    assert proc.returncode == 0
+    assert proc.stderr == (
+        f"gyrocore: warning: {src}: 2 samples skipped (non-finite readings; their rows have a NaN rate)\n"
+    )
+
+
+@pytest.mark.parametrize("chunk_rows", [1, 2, 7, 65536])
+def test_unit_warnings_do_not_depend_on_the_chunk_size(tmp_path: Path, chunk_rows: int) -> None:
+    """Timestamps in ms and rates in deg/s, read as s and rad/s: both said, with any --chunk-rows."""
+    src = tmp_path / "ms_dps.csv"
+    # ms, 10 ms apart on average; every other interval (1 ms, read as 1 s) is not a gap, since a
+    # log whose every interval is a gap is an error, not a warning
+    t = np.cumsum(np.tile([1.0, 19.0], 150))
+    src.write_text("t,gyro_z\n" + "".join(f"{a},{30 + 5 * np.sin(a / 300)}\n" for a in t))
+    proc = run_cli(
+        "process", src, "--out", tmp_path / "h.csv", "--preset", "raw", "--gap-limit", "100",
+        "--chunk-rows", str(chunk_rows),
+    )
+    assert proc.returncode == 0
+    warned = proc.stderr.splitlines()
+    assert len(warned) == 2
+    assert warned[0].startswith(f"gyrocore: warning: {src}: rates look like deg/s, not rad/s")
+    assert warned[1].startswith(f"gyrocore: warning: {src}: timestamps look like ms, not s")

@@ -1,0 +1,192 @@
+"""Ctrl-C and kill: exit 130 and the previous output untouched, whenever the signal comes (issue:
+pyarrow swallowed an interrupt raised in its lazy import of pandas, and the run replaced the output)."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+import numpy as np
+import pyarrow as pa
+import pyarrow.parquet as pq
+import pytest
+
+from gyrocore import _signals
+from gyrocore.batch import process_file
+from gyrocore.io import StagedFile
+
+from .test_batch import leftovers, read_table, synthetic_csv
+
+PREVIOUS = "previous output\n"
+INTERRUPTED = "gyrocore: interrupted; no partial output was left"
+
+
+def _command(src: Path, out: Path) -> list[str]:
+    return ["process", str(src), "--out", str(out), "--preset", "raw", "--chunk-rows", "5000"]
+
+
+def _owns_signals(pid: int) -> bool:
+    """Whether the process has a handler for SIGTERM (Linux: the SigCgt mask in /proc)."""
+    with open(f"/proc/{pid}/status") as f:
+        caught = next(line for line in f if line.startswith("SigCgt:"))
+    return bool(int(caught.split()[1], 16) >> (signal.SIGTERM - 1) & 1)
+
+
+def _check_interrupted(proc: subprocess.CompletedProcess[str] | subprocess.Popen[str], stderr: str, out: Path) -> None:
+    assert proc.returncode == 130, stderr
+    assert stderr.strip() == INTERRUPTED and "Traceback" not in stderr
+    assert out.read_text() == PREVIOUS and leftovers(out.parent) == []
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads the signal mask from /proc")
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
+def test_a_signal_at_any_moment_of_a_run_exits_130_and_keeps_the_previous_output(
+    tmp_path: Path, signum: signal.Signals
+) -> None:
+    src = synthetic_csv(tmp_path / "in.csv", 600_000)
+    out = tmp_path / "h.csv"
+    kept = []
+    # from the moment the command owns its signals: reading the header, the first chunk (pyarrow's
+    # lazy imports), the stream, the rename
+    for delay in (0.0, 0.02, 0.05, 0.1, 0.2, 0.4, 0.8, 1.6):
+        out.write_text(PREVIOUS)
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "gyrocore.cli", *_command(src, out)], stderr=subprocess.PIPE, text=True
+        )
+        deadline = time.monotonic() + 60
+        while proc.poll() is None and not _owns_signals(proc.pid) and time.monotonic() < deadline:
+            time.sleep(0.002)
+        time.sleep(delay)
+        if proc.poll() is not None:
+            break  # it finished before this delay; longer ones would too
+        proc.send_signal(signum)
+        _, stderr = proc.communicate(timeout=60)
+        assert "Traceback" not in stderr and leftovers(tmp_path) == []
+        if out.read_text() == PREVIOUS:
+            _check_interrupted(proc, stderr, out)
+            kept.append(delay)
+        else:  # the signal came after the rename: the output is the complete new one
+            assert len(read_table(out)) == 600_000
+            assert proc.returncode in (0, 130, -signum), stderr
+    # the run lasts over half a second: a signal in its first 0.1 s always interrupts it
+    assert kept[:4] == [0.0, 0.02, 0.05, 0.1]
+
+
+_TRAP = """
+import os, signal, sys
+
+class SignalDuringImport:
+    # sends the signal to this process while pyarrow imports pandas, once the command owns its signals
+    def find_spec(self, name, path=None, target=None):
+        if name == "pandas" and signal.getsignal(signal.SIGTERM) is not signal.SIG_DFL:
+            sys.meta_path.remove(self)
+            os.kill(os.getpid(), {signum})
+        return None
+
+sys.meta_path.insert(0, SignalDuringImport())
+from gyrocore.cli import main
+sys.exit(main({argv!r}))
+"""
+
+
+@pytest.mark.parametrize("fmt", ["csv", "parquet"])
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
+def test_a_signal_inside_pyarrows_lazy_import_of_pandas_is_not_lost(
+    tmp_path: Path, fmt: str, signum: signal.Signals
+) -> None:
+    src = synthetic_csv(tmp_path / "in.csv", 2000)
+    if fmt == "parquet":
+        pq.write_table(read_table(src), tmp_path / "in.parquet")
+        src = tmp_path / "in.parquet"
+    out = tmp_path / f"h.{fmt}"
+    out.write_text(PREVIOUS)
+    script = textwrap.dedent(_TRAP).format(signum=int(signum), argv=_command(src, out))
+    proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    _check_interrupted(proc, proc.stderr, out)
+
+
+def test_the_api_raises_an_interrupt_that_came_inside_pyarrows_lazy_import(tmp_path: Path) -> None:
+    """process_file in a program that keeps Python's own Ctrl-C handling: KeyboardInterrupt, no output."""
+    src = synthetic_csv(tmp_path / "in.csv", 2000)
+    out = tmp_path / "h.csv"
+    out.write_text(PREVIOUS)
+    script = textwrap.dedent(
+        f"""
+        import os, signal, sys
+        class SignalDuringImport:
+            def find_spec(self, name, path=None, target=None):
+                if name == "pandas":
+                    sys.meta_path.remove(self)
+                    os.kill(os.getpid(), signal.SIGINT)
+                return None
+        from gyrocore.batch import process_file
+        sys.meta_path.insert(0, SignalDuringImport())
+        try:
+            process_file({str(src)!r}, {str(out)!r}, preset="raw")
+        except KeyboardInterrupt:
+            sys.exit(3)
+        """
+    )
+    proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 3, proc.stderr
+    assert out.read_text() == PREVIOUS and leftovers(tmp_path) == []
+
+
+def test_a_swallowed_interrupt_still_stops_the_commit(tmp_path: Path) -> None:
+    """Under the command's handlers a signal is remembered: even if a library swallows the
+    KeyboardInterrupt, the staged output does not replace the old one."""
+    out = tmp_path / "h.csv"
+    out.write_text(PREVIOUS)
+    with _signals.handled():
+        staged = StagedFile(out)
+        try:
+            staged.tmp.write_text("new\n")
+            try:
+                os.kill(os.getpid(), signal.SIGTERM)
+                time.sleep(1)  # the handler runs here
+            except KeyboardInterrupt:
+                pass  # what pyarrow's lazy import did
+            with pytest.raises(KeyboardInterrupt):
+                staged.commit()
+        finally:
+            staged.discard()
+    assert out.read_text() == PREVIOUS and leftovers(tmp_path) == []
+    # the flag belongs to that run: the next one commits
+    with _signals.handled():
+        process_file(synthetic_csv(tmp_path / "in.csv", 100), out, preset="raw")
+    assert np.array_equal(read_table(out)["t"].to_numpy(), pa.csv.read_csv(tmp_path / "in.csv")["t"].to_numpy())
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads the signal mask from /proc")
+def test_an_interrupted_batch_leaves_each_output_previous_or_complete(tmp_path: Path) -> None:
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    for i in range(4):
+        synthetic_csv(logs / f"d{i}.csv", 300_000, seed=i)
+    out = tmp_path / "out"
+    out.mkdir()
+    for i in range(4):
+        (out / f"d{i}.csv").write_text(PREVIOUS)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "gyrocore.cli", "process", str(logs), "--out", str(out), "--preset", "raw",
+         "--jobs", "2", "--chunk-rows", "5000"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    while proc.poll() is None and not _owns_signals(proc.pid):
+        time.sleep(0.002)
+    time.sleep(0.3)
+    proc.send_signal(signal.SIGTERM)
+    stdout, stderr = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and stderr.strip() == INTERRUPTED and stdout == ""
+    assert leftovers(out) == []
+    kept = [p for p in sorted(out.iterdir()) if p.read_text() == PREVIOUS]
+    assert kept, "the signal came before the first of the four files was done"
+    for p in set(out.iterdir()) - set(kept):
+        assert len(read_table(p)) == 300_000

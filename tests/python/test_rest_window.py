@@ -1,0 +1,165 @@
+"""The rest window must fit the log: an empty window is refused before its chunk changes anything,
+and a window (or bias_duration) reaching past the log's end is an error naming both, through the
+API, the command line and a log folder's meta.json."""
+
+from __future__ import annotations
+
+import json
+import pickle
+import subprocess
+import sys
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import gyrocore
+from gyrocore import Pipeline, RestWindowError
+
+from .test_batch import synthetic_csv
+
+STEP = 0.1
+
+
+def span(t0: float, t1: float) -> np.ndarray:
+    return np.round(np.arange(t0, t1, STEP), 9)
+
+
+def rate(t: np.ndarray) -> np.ndarray:
+    return 0.01 + 0.2 * np.sin(t / 7.0)
+
+
+def test_a_chunk_that_closes_an_empty_window_changes_nothing() -> None:
+    before_gap, after_gap, rest = span(0, 30), span(130, 160), span(30, 70)
+    pipeline = Pipeline("hdr", bias_window=(50.0, 60.0))
+    first = pipeline.process(before_gap, rate(before_gap))
+    state = pickle.dumps(pipeline)
+    for _ in range(2):  # sent again, it fails the same way, not as "timestamps must strictly increase"
+        with pytest.raises(RestWindowError) as e:
+            pipeline.process(after_gap, rate(after_gap))
+        assert str(e.value).startswith(
+            f"the bias window [50.0, 60.0] s holds no sample of the log, which jumps from t = {before_gap[-1]} "
+            "to t = 130.0 s (index 0 of this chunk)"
+        )
+        assert pickle.dumps(pipeline) == state
+    # the next valid chunk continues as if the rejected one had never been sent
+    fresh = Pipeline("hdr", bias_window=(50.0, 60.0))
+    fresh.process(before_gap, rate(before_gap))
+    expected = fresh.process(rest, rate(rest))
+    got = pipeline.process(rest, rate(rest))
+    assert np.array_equal(got.heading, expected.heading) and np.array_equal(got.drift, expected.drift)
+    assert pipeline.bias == fresh.bias != 0.0 and len(first) == len(before_gap)
+
+
+@pytest.mark.parametrize("nonfinite", ["error", "hold", "skip"])
+@pytest.mark.parametrize("window", [(4.95, 5.05), (5.0, 5.0), (5.05, 5.09), (4.0, 6.0), (-1.0, -0.5)])
+def test_the_check_before_processing_agrees_with_the_core(nonfinite: str, window: tuple[float, float]) -> None:
+    """Whatever the readings in the window (NaN ones are not measured under skip), a chunk is refused
+    exactly when the core would have closed the window with no reading in it."""
+    t = span(0, 10)
+    for bad in ([], [50], list(range(40, 61))):  # no NaN, one at t = 5, all readings in [4, 6]
+        r = rate(t)
+        r[bad] = np.nan
+        if nonfinite == "error" and bad:
+            continue
+        pipeline = Pipeline("hdr", bias_window=window, nonfinite=nonfinite)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", gyrocore.InputWarning)
+            try:
+                pipeline.process(t, r)
+            except RestWindowError:
+                refused = True
+            else:
+                refused = False
+        _, count, learning = pipeline._inner.bias()
+        if refused:
+            assert pipeline._inner.last_time() is None  # nothing of the chunk went through
+            probe = gyrocore._gyrocore.Pipeline("hdr", {"bias_window": window, "nonfinite": nonfinite})
+            with pytest.raises(ValueError, match="holds no sample"):  # the core refuses it too
+                probe.process(t, r, None, 0)
+            assert probe.bias()[1:] == (0, True) and probe.last_time() is None, (window, bad)
+        else:
+            assert count > 0 or learning, (window, bad)
+
+
+@pytest.mark.parametrize(
+    ("overrides", "message"),
+    [
+        (
+            {"bias_window": (1000.0, 2000.0)},
+            "the bias window [1000.0, 2000.0] s reaches past the end of the log (the log runs from 0 to 29.9 s ",
+        ),
+        ({"bias_window": (20.0, 40.0)}, "the bias window [20.0, 40.0] s reaches past the end of the log"),
+        (
+            {"bias_duration": 100.0},
+            "bias_duration = 100.0 s is longer than the log (the log runs from 0 to 29.9 s ",
+        ),
+    ],
+)
+def test_a_rest_window_past_the_end_of_the_log_is_an_error(overrides: dict[str, object], message: str) -> None:
+    t = span(0, 30)
+    with pytest.raises(RestWindowError) as e:
+        gyrocore.process(t, rate(t), "hdr", **overrides)
+    assert str(e.value).startswith(message)
+    # a window that ends at the last sample is complete
+    end = {"bias_window": (0.0, 29.9)} if "bias_window" in overrides else {"bias_duration": 29.9}
+    assert len(gyrocore.process(t, rate(t), "hdr", **end)) == len(t)
+
+
+def gyrocore_cli(*args: str | Path) -> subprocess.CompletedProcess[str]:
+    proc = subprocess.run(
+        [sys.executable, "-m", "gyrocore.cli", *map(str, args)], capture_output=True, text=True, timeout=120
+    )
+    assert "Traceback" not in proc.stderr
+    return proc
+
+
+def test_the_command_line_refuses_a_window_after_the_log(tmp_path: Path) -> None:
+    src = synthetic_csv(tmp_path / "in.csv", 3000)  # 30 s from t = 1.7e9
+    out = tmp_path / "h.csv"
+    proc = gyrocore_cli("process", src, "--out", out, "--bias-window", "1700001000", "1700002000")
+    assert proc.returncode == 2
+    assert proc.stderr.startswith(
+        f"gyrocore: error: {src}: the bias window [1700001000.0, 1700002000.0] s reaches past the end of the log "
+        "(the log runs from 1700000000 to 1700000030 s "
+    )
+    assert len(proc.stderr.splitlines()) == 1 and not out.exists()
+    proc = gyrocore_cli("process", src, "--out", out, "--bias-duration", "60")
+    assert proc.returncode == 2 and "bias_duration = 60.0 s is longer than the log" in proc.stderr
+
+
+STATIONARY = "stationary must be [t0, t1] in seconds (finite, t0 <= t1) or null"
+
+
+@pytest.fixture
+def log_folder(tmp_path: Path) -> Path:
+    folder = tmp_path / "drive"
+    folder.mkdir()
+    synthetic_csv(folder / "gyro.csv", 3000)
+    return folder
+
+
+def test_a_meta_json_window_after_the_log_names_meta_json(log_folder: Path, tmp_path: Path) -> None:
+    (log_folder / "meta.json").write_text(json.dumps({"stationary": [1700005000.0, 1700005010.0]}))
+    proc = gyrocore_cli("process", log_folder, "--out", tmp_path / "h.csv")
+    assert proc.returncode == 2
+    assert proc.stderr.strip().endswith(f"(the rest window is the stationary of {log_folder / 'meta.json'})")
+    assert "[1700005000.0, 1700005010.0] s reaches past the end of the log" in proc.stderr
+    with pytest.raises(RestWindowError, match=r"log drive: the bias window .* its meta.json\)$"):
+        gyrocore.read_log(log_folder).process("hdr")
+
+
+@pytest.mark.parametrize(
+    ("content", "message"),
+    [
+        (b'{"stationary": [NaN, 5]}', f"{STATIONARY}, got [nan, 5]"),
+        (b'{"stationary": [5, 1]}', f"{STATIONARY}, got [5, 1]"),
+        (b'{"name": "caf\xe9"}', "not UTF-8 text (at byte offset 13: invalid continuation byte); save it as UTF-8"),
+    ],
+)
+def test_a_bad_meta_json_is_named(log_folder: Path, tmp_path: Path, content: bytes, message: str) -> None:
+    (log_folder / "meta.json").write_bytes(content)
+    proc = gyrocore_cli("process", log_folder, "--out", tmp_path / "h.csv")
+    assert proc.returncode == 2
+    assert proc.stderr.strip() == f"gyrocore: error: {log_folder / 'meta.json'}: {message}"

@@ -1,0 +1,85 @@
+"""timedelta64 timestamps are durations converted with their unit (not read as raw counts, which
+made a heading 1000x too large); datetime64 is refused with what to do, in the API and the readers."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import gyrocore
+
+COUNTS = np.arange(0, 5000, 7)  # irregular enough to see any scale error
+RATE = 0.3 * np.sin(COUNTS / 900.0)
+# counts read as seconds look like a 0.14 Hz gyro with gaps: warned about, beside the point here
+pytestmark = pytest.mark.filterwarnings("ignore::gyrocore.InputWarning")
+
+
+@pytest.mark.parametrize(("unit", "per_second"), [("s", 1), ("ms", 1e3), ("us", 1e6), ("ns", 1e9)])
+def test_timedelta_timestamps_are_seconds_in_their_unit(unit: str, per_second: float) -> None:
+    seconds = COUNTS / per_second
+    durations = COUNTS.astype(f"timedelta64[{unit}]")
+    expected = gyrocore.process(seconds, RATE, "raw")
+    assert np.array_equal(gyrocore.process(durations, RATE, "raw").heading, expected.heading)
+    assert np.array_equal(gyrocore.integrate(durations, RATE), expected.heading)
+
+
+def test_datetime_timestamps_are_refused_with_the_conversion() -> None:
+    with pytest.raises(TypeError, match=r"^t holds datetime64\[ms\] times: give seconds, e\.g\. \(t - t\[0\]\) / "):
+        gyrocore.process(COUNTS.astype("datetime64[ms]"), RATE, "raw")
+
+
+def test_timedelta_columns_of_numpy_files_carry_their_unit(tmp_path: Path) -> None:
+    record = np.zeros(len(COUNTS), dtype=[("t", "timedelta64[ms]"), ("gyro_z", "f8")])
+    record["t"], record["gyro_z"] = COUNTS, RATE
+    np.save(tmp_path / "d.npy", record)
+    np.savez(tmp_path / "d.npz", t=record["t"], gyro_z=RATE)
+    for name in ("d.npy", "d.npz"):
+        assert np.array_equal(gyrocore.read_log(tmp_path / name).t, COUNTS / 1e3)
+    np.save(tmp_path / "e.npy", record.astype([("t", "datetime64[ms]"), ("gyro_z", "f8")]))
+    with pytest.raises(ValueError, match=r"e\.npy: t holds datetime64\[ms\], not real numbers or durations$"):
+        gyrocore.read_log(tmp_path / "e.npy")
+
+
+def test_timestamps_whose_interval_overflows_are_refused_before_processing() -> None:
+    """+-1.5e308 are finite, but their interval is not: the heading was NaN."""
+    with pytest.raises(ValueError, match=r"^timestamps from -1\.5e\+308 to 1\.5e\+308 s are too far apart"):
+        gyrocore.process([-1.5e308, 0.0, 1.5e308], [0.1, 0.1, 0.1], "recommended", bias=0.0)
+    pipeline = gyrocore.Pipeline("raw")
+    pipeline.process([-1.5e308], [0.1])
+    with pytest.raises(ValueError, match="too far apart"):  # also across chunks
+        pipeline.process([1.5e308], [0.1])
+    far = pipeline.process([0.0], [0.1])  # 1.5e308 s later: an interval that is finite
+    assert np.isfinite(far.heading).all()
+
+
+@pytest.mark.parametrize("unit", ["as", "fs", "ps", "m", "h", "D", "W"])
+def test_every_fixed_timedelta_unit_converts(tmp_path: Path, unit: str) -> None:
+    """Found by fuzz/python/readers.py: numpy's own division overflowed for attoseconds."""
+    seconds = {"as": 1e-18, "fs": 1e-15, "ps": 1e-12, "m": 60.0, "h": 3600.0, "D": 86400.0, "W": 604800.0}[unit]
+    record = np.zeros(3, dtype=[("t", f"timedelta64[{unit}]"), ("gyro_z", "f8")])
+    record["t"] = np.arange(3)
+    np.save(tmp_path / "d.npy", record)
+    expected = np.arange(3) / (1 / seconds) if seconds < 1 else np.arange(3) * seconds
+    # The reader converts; a whole log of minutes or longer would be all gaps (an error of its own).
+    chunk = next(gyrocore.io.open_source(tmp_path / "d.npy").chunks())
+    assert np.array_equal(chunk.t, expected)
+
+
+def test_timedelta_units_without_a_fixed_length_are_refused(tmp_path: Path) -> None:
+    with pytest.raises(TypeError, match=r"^t holds timedelta64\[M\], which has no fixed length in seconds$"):
+        gyrocore.process(np.arange(3).astype("timedelta64[M]"), RATE[:3], "raw")
+    record = np.zeros(3, dtype=[("t", "timedelta64[Y]"), ("gyro_z", "f8")])
+    np.save(tmp_path / "y.npy", record)
+    with pytest.raises(ValueError, match=r"y\.npy: t holds timedelta64\[Y\], which has no fixed length in seconds$"):
+        gyrocore.read_log(tmp_path / "y.npy")
+
+
+@pytest.mark.parametrize("interval", [1e-301, 1e-310, 1e-13])
+def test_timestamps_closer_than_a_picosecond_are_refused(interval: float) -> None:
+    """Intervals near 1e-310 s gave a NaN heading with the HDR presets."""
+    t = np.arange(100) * interval
+    with pytest.raises(ValueError, match=r"apart on average, below 1e-12 s: no gyro samples that fast"):
+        gyrocore.process(t, np.full(100, 0.1), "hdr", bias=0.0)
+    assert np.isfinite(gyrocore.process(np.arange(100) * 1e-12, np.full(100, 0.1), "hdr", bias=0.0).heading).all()
