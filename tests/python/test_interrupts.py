@@ -110,6 +110,39 @@ def test_a_signal_inside_pyarrows_lazy_import_of_pandas_is_not_lost(
     _check_interrupted(proc, proc.stderr, out)
 
 
+_EVAL_TRAP = """
+import os, signal, sys
+
+class SignalInsideEval:
+    # the signal lands inside an eval, as it does when it interrupts an import that builds a
+    # namedtuple (argparse's lazy import of shutil): CPython then marks the KeyboardInterrupt as
+    # unhandled and, at exit, kills the process with SIGINT unless the program ends it itself
+    def find_spec(self, name, path=None, target=None):
+        if signal.getsignal(signal.SIGTERM) is not signal.SIG_DFL:
+            sys.meta_path.remove(self)
+            eval("os.kill(os.getpid(), signal.SIGINT) or __import__('time').sleep(5)")
+        return None
+
+sys.meta_path.insert(0, SignalInsideEval())
+sys.argv[1:] = {argv!r}
+from gyrocore.cli import run
+run()
+"""
+
+
+def test_ctrl_c_inside_an_eval_still_exits_130(tmp_path: Path) -> None:
+    """Run as ``python -m`` runs the command (a program run with ``-c`` or as a file exits
+    through another path that never looks at that mark)."""
+    src = synthetic_csv(tmp_path / "in.csv", 2000)
+    out = tmp_path / "h.csv"
+    out.write_text(PREVIOUS)
+    (tmp_path / "trapped.py").write_text(textwrap.dedent(_EVAL_TRAP).format(argv=_command(src, out)))
+    proc = subprocess.run(
+        [sys.executable, "-m", "trapped"], cwd=tmp_path, capture_output=True, text=True, timeout=120
+    )
+    _check_interrupted(proc, proc.stderr, out)
+
+
 def test_the_api_raises_an_interrupt_that_came_inside_pyarrows_lazy_import(tmp_path: Path) -> None:
     """process_file in a program that keeps Python's own Ctrl-C handling: KeyboardInterrupt, no output."""
     src = synthetic_csv(tmp_path / "in.csv", 2000)

@@ -7,6 +7,7 @@ add the module to ``COMMANDS`` below.
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import warnings
 from typing import Sequence
@@ -43,3 +44,18 @@ def main(argv: Sequence[str] | None = None) -> int:
         except KeyboardInterrupt:
             print("gyrocore: interrupted; no partial output was left", file=sys.stderr)
             return 130
+
+
+def run() -> None:
+    """The ``gyrocore`` program: :func:`main` with the process's arguments, then exit with its code.
+
+    After an interrupt the process ends with ``os._exit(130)``: CPython otherwise kills itself
+    with SIGINT at exit, whatever the exit code, once a KeyboardInterrupt has passed through an
+    ``eval`` (``collections.namedtuple`` builds classes with one, so an import that a Ctrl-C
+    interrupts can do it)."""
+    code = main()
+    if code == 130:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(code)
+    sys.exit(code)

@@ -1,7 +1,5 @@
 """``python -m gyrocore.cli``."""
 
-import sys
+from . import run
 
-from . import main
-
-sys.exit(main())
+run()
