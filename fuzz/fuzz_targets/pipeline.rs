@@ -18,7 +18,8 @@ struct Input {
     threshold: Option<f64>,
     lowpass: Option<f64>,
     delag: bool,
-    hdr: Option<(f64, f64, f64, f64, f64, f64)>,
+    hdr: Option<(f64, f64, f64, f64, f64, f64, f64)>,
+    noise_scaled: (Option<f64>, Option<f64>),
     rectangle: bool,
     initial_heading: f64,
     non_finite: u8,
@@ -51,13 +52,14 @@ fn config(i: &Input) -> PipelineConfig {
         lowpass: i.lowpass.map(|tau| LowPassConfig { tau }),
         delag: i.delag,
         hdr: i.hdr.map(
-            |(increment, turn_threshold, c1, c2, interval, tau)| HdrConfig {
+            |(increment, turn_threshold, c1, c2, interval, tau, max_correction)| HdrConfig {
                 increment,
                 turn_threshold,
                 c1,
                 c2,
                 interval,
                 tau,
+                max_correction,
             },
         ),
         integrator: IntegratorConfig {
@@ -81,6 +83,10 @@ fn config(i: &Input) -> PipelineConfig {
                 GapAction::Bridge
             },
         },
+        noise_scaled: NoiseScaled {
+            threshold_sigmas: i.noise_scaled.0,
+            hdr_bound_sigmas: i.noise_scaled.1,
+        },
     }
 }
 
@@ -92,12 +98,7 @@ fn run_block(
 ) -> Result<Vec<[u64; 3]>, Error> {
     let n = t.len();
     let (mut h, mut ra, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    p.process_block(
-        t,
-        r,
-        temp,
-        Outputs::all(&mut h, &mut ra, &mut d),
-    )?;
+    p.process_block(t, r, temp, Outputs::all(&mut h, &mut ra, &mut d))?;
     Ok((0..n)
         .map(|k| [h[k].to_bits(), ra[k].to_bits(), d[k].to_bits()])
         .collect())
