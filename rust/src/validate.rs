@@ -165,6 +165,30 @@ pub(crate) fn check_finite_all(what: &'static str, values: &[f64]) -> Result<(),
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::{Outputs, Pipeline, Preset};
+
+    /// The loop's sum of readings is a fast test only: finite readings whose sum overflows are
+    /// taken (the exact check clears them), and a non-finite one anywhere is refused by index.
+    #[test]
+    fn readings_whose_sum_overflows_are_taken_and_a_non_finite_one_is_named() {
+        let t: Vec<f64> = (0..8).map(f64::from).collect();
+        let mut rate = vec![f64::MAX; 8];
+        let mut heading = vec![0.0; 8];
+        let mut checks = Checks::default();
+        rate.iter().for_each(|&r| checks.reading(r, None));
+        assert!(!checks.passed(), "the sum overflows");
+        let mut p = Pipeline::new(Preset::Raw.config()).unwrap();
+        p.process_block(&t, &rate, None, Outputs::heading(&mut heading))
+            .unwrap();
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            rate[5] = bad;
+            let mut p = Pipeline::new(Preset::Combined.config()).unwrap();
+            let e = p
+                .process_block(&t, &rate, None, Outputs::heading(&mut heading))
+                .unwrap_err();
+            assert_eq!(e.index(), Some(5), "{e}");
+        }
+    }
 
     /// `interval_key(dt) <= interval_key(longest)` exactly when `0 < dt <= longest`.
     #[test]
