@@ -171,9 +171,9 @@ mod tests {
     /// taken (the exact check clears them), and a non-finite one anywhere is refused by index.
     #[test]
     fn readings_whose_sum_overflows_are_taken_and_a_non_finite_one_is_named() {
-        let t: Vec<f64> = (0..8).map(f64::from).collect();
-        let mut rate = vec![f64::MAX; 8];
-        let mut heading = vec![0.0; 8];
+        let t: [f64; 8] = core::array::from_fn(|i| i as f64);
+        let mut rate = [f64::MAX; 8];
+        let mut heading = [0.0; 8];
         let mut checks = Checks::default();
         rate.iter().for_each(|&r| checks.reading(r, None));
         assert!(!checks.passed(), "the sum overflows");
