@@ -104,10 +104,11 @@ pub(crate) fn interval_key(dt: f64) -> u64 {
 pub(crate) struct Checks {
     /// The largest [`interval_key`] seen.
     worst_interval: u64,
-    /// The sum of the readings seen: finite unless one was not (or the sum overflowed, which
-    /// the caller's exact check then clears). One floating-point addition per reading, where
-    /// testing its exponent's bits took six integer operations and two registers.
-    readings: f64,
+    /// The largest bits of a reading seen, shifted left past the sign: the bits of a
+    /// magnitude grow with it, and a NaN's or an infinity's (all exponent bits set) are above
+    /// every finite one's. An integer maximum, so the readings' check needs no floating-point
+    /// register, which the chain needs for its state (`docs/performance.md`).
+    worst_reading: u64,
 }
 
 impl Checks {
@@ -120,9 +121,9 @@ impl Checks {
     /// A finite rate and, when there is one, a finite temperature.
     #[inline(always)]
     pub(crate) fn reading(&mut self, rate: f64, temperature: Option<f64>) {
-        self.readings += rate;
+        self.worst_reading = self.worst_reading.max(rate.to_bits() << 1);
         if let Some(celsius) = temperature {
-            self.readings += celsius;
+            self.worst_reading = self.worst_reading.max(celsius.to_bits() << 1);
         }
     }
 
@@ -133,10 +134,9 @@ impl Checks {
             .then(|| f64::from_bits(self.worst_interval + 1))
     }
 
-    /// True if every value and interval seen was valid (false too if the readings' sum
-    /// overflowed: the caller's exact check decides).
+    /// True if every value and interval seen was valid.
     pub(crate) fn passed(&self) -> bool {
-        self.longest_interval().is_some() && self.readings.is_finite()
+        self.longest_interval().is_some() && self.worst_reading < f64::INFINITY.to_bits() << 1
     }
 }
 
@@ -167,16 +167,24 @@ mod tests {
     use super::*;
     use crate::{Outputs, Pipeline, Preset};
 
-    /// The loop's sum of readings is a fast test only: finite readings whose sum overflows are
-    /// taken (the exact check clears them), and a non-finite one anywhere is refused by index.
+    /// The loop's check of the readings: the largest finite ones pass, and a NaN or an
+    /// infinity of either sign anywhere is refused by its index.
     #[test]
-    fn readings_whose_sum_overflows_are_taken_and_a_non_finite_one_is_named() {
+    fn the_largest_finite_readings_are_taken_and_a_non_finite_one_is_named() {
         let t: [f64; 8] = core::array::from_fn(|i| i as f64);
         let mut rate = [f64::MAX; 8];
         let mut heading = [0.0; 8];
         let mut checks = Checks::default();
-        rate.iter().for_each(|&r| checks.reading(r, None));
-        assert!(!checks.passed(), "the sum overflows");
+        for r in [f64::MAX, -f64::MAX, 0.0, -0.0, f64::MIN_POSITIVE] {
+            checks.reading(r, Some(-r));
+        }
+        assert!(checks.passed());
+        for bad in [f64::NAN, -f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let (mut rate_check, mut temperature_check) = (checks, checks);
+            rate_check.reading(bad, None);
+            temperature_check.reading(0.0, Some(bad));
+            assert!(!rate_check.passed() && !temperature_check.passed(), "{bad}");
+        }
         let mut p = Pipeline::new(Preset::Raw.config()).unwrap();
         p.process_block(&t, &rate, None, Outputs::heading(&mut heading))
             .unwrap();
