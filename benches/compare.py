@@ -1,15 +1,18 @@
-"""Side-by-side benchmark on one 10^7-sample log: gyrocore's `combined` pipeline against the same
-algorithm as a pure-Python loop and compiled with Numba (benches/reference.py, one source), against
-`numpy.cumsum` over the same array (a memory-bound one-pass scan: the practical floor), and against
-imufusion's gyroscope bias stage (FusionBias, formerly FusionOffset) (a peer library's per-sample gyro filter).
+"""Side-by-side benchmark on one 10^7-sample log: gyrocore's `combined` pipeline asked for the
+heading only (`gyrocore.process(..., outputs=("heading",))`, one output array like numpy.cumsum)
+against `numpy.cumsum` over the same array (a memory-bound one-pass scan: the practical floor) and
+against the same algorithm compiled with Numba with the same output (benches/reference.py, one
+source); beside them both with all three outputs, the pure-Python loop, and imufusion's gyroscope
+bias stage (FusionBias, formerly FusionOffset) (a peer library's per-sample gyro filter).
 
-Prints ns/sample (median of --repeats rounds, in each of which every fast implementation runs once,
-in turn; the pure-Python and imufusion loops run once, on a prefix, and say so) and the ratios
-(median of the per-round ratios), and checks that the implementations agree: the reference must
-give the same heading as gyrocore to 1e-9 rad. Exit status 1 if they do not.
+Prints the CPU model, ns/sample (median of --repeats rounds, in each of which every fast
+implementation runs once, in turn; the pure-Python and imufusion loops run once, on a prefix, and
+say so) and the ratios (median of the per-round ratios), and checks that the implementations
+agree: the reference must give the same heading as gyrocore to 1e-9 rad. Exit status 1 if they
+do not.
 
-    pip install ".[bench]" && python benches/compare.py            # 10^7 samples
-    python benches/compare.py --samples 1000000 --json             # quicker, machine-readable
+    pip install ".[bench]" && python benches/compare.py --repeats 9   # 10^7 samples
+    python benches/compare.py --samples 1000000 --json                # quicker, machine-readable
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ import json
 import os
 import platform
 import statistics
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -71,10 +75,29 @@ def reference_args() -> tuple[float, ...]:
     )
 
 
-def run_reference(impl: Callable[..., None], t: np.ndarray, rate: np.ndarray) -> np.ndarray:
-    heading, out_rate, drift = (np.empty(len(t)) for _ in range(3))
-    impl(t, rate, heading, out_rate, drift, *reference_args())
+def run_reference(impl: Callable[..., None], t: np.ndarray, rate: np.ndarray, all_outputs: bool = True) -> np.ndarray:
+    """The heading of `impl` into fresh arrays: three outputs, or the heading alone."""
+    heading = np.empty(len(t))
+    others = (np.empty(len(t)), np.empty(len(t))) if all_outputs else (None, None)
+    impl(t, rate, heading, *others, *reference_args())
     return heading
+
+
+def cpu_model() -> str:
+    """The CPU's model name (/proc/cpuinfo, else lscpu, else what Python knows), so that figures
+    from different machines are never read as one."""
+    sources = [lambda: Path("/proc/cpuinfo").read_text(), lambda: subprocess.run(
+        ["lscpu"], capture_output=True, text=True, timeout=10).stdout]
+    for read in sources:
+        try:
+            text = read()
+        except (OSError, subprocess.SubprocessError):
+            continue
+        for line in text.splitlines():
+            key, _, value = line.partition(":")
+            if key.strip().lower() == "model name" and value.strip():
+                return value.strip()
+    return platform.processor() or f"unknown {platform.machine()} CPU"
 
 
 def main() -> int:
@@ -92,24 +115,28 @@ def main() -> int:
     def add(name: str, seconds: list[float], samples: int, note: str = "") -> None:
         rows.append({"implementation": name, "seconds": seconds, "samples": samples, "note": note})
 
-    gyro = gyrocore.process(t, rate, "combined", bias=BIAS)
+    gyro = gyrocore.process(t, rate, "combined", bias=BIAS, outputs=("heading",))
     runs: dict[str, Callable[[], object]] = {
-        "gyrocore combined (gyrocore.process)": lambda: gyrocore.process(t, rate, "combined", bias=BIAS),
+        "gyrocore, heading only": lambda: gyrocore.process(t, rate, "combined", bias=BIAS, outputs=("heading",)),
         "numpy.cumsum (floor)": lambda: np.cumsum(rate),
+        "gyrocore, three outputs": lambda: gyrocore.process(t, rate, "combined", bias=BIAS),
     }
     failures = []
     try:
         import numba
 
         jitted = numba.njit(cache=False)(reference.combined)
-        numba_heading = run_reference(jitted, t, rate)  # compiles; not timed
-        runs["Numba (same algorithm)"] = lambda: run_reference(jitted, t, rate)
-        # The loop alone: outputs allocated and faulted in once, outside the timing (criterion
+        # compiles both versions (not timed)
+        numba_headings = [run_reference(jitted, t, rate, all_outputs) for all_outputs in (False, True)]
+        runs["Numba, heading only (same algorithm)"] = lambda: run_reference(jitted, t, rate, False)
+        runs["Numba, three outputs"] = lambda: run_reference(jitted, t, rate)
+        # The loop alone: its output allocated and faulted in once, outside the timing (criterion
         # times gyrocore's Rust loop the same way).
-        reused = [np.empty(n) for _ in range(3)]
-        runs["Numba, into reused arrays (the loop alone)"] = lambda: jitted(t, rate, *reused, *reference_args())
-        if not np.allclose(numba_heading, gyro.heading, rtol=0, atol=1e-9):
-            failures.append(f"Numba differs from gyrocore by {np.abs(numba_heading - gyro.heading).max():.3g} rad")
+        reused = np.empty(n)
+        runs["Numba, heading only, into a reused array"] = lambda: jitted(t, rate, reused, None, None, *reference_args())
+        for numba_heading in numba_headings:
+            if not np.allclose(numba_heading, gyro.heading, rtol=0, atol=1e-9):
+                failures.append(f"Numba differs from gyrocore by {np.abs(numba_heading - gyro.heading).max():.3g} rad")
     except ImportError:
         print("(numba not installed: pip install '.[bench]')", file=sys.stderr)
     for name, seconds in interleaved_seconds(runs, args.repeats).items():
@@ -152,7 +179,7 @@ def main() -> int:
         r["x_gyrocore"] = ratio(per_sample(r), ours)
         del r["seconds"]
     machine = {
-        "cpu": platform.processor() or platform.machine(),
+        "cpu": cpu_model(),
         "cores": os.cpu_count(),
         "python": platform.python_version(),
         "numpy": np.__version__,
@@ -163,6 +190,7 @@ def main() -> int:
     if args.json:
         print(json.dumps({"machine": machine, "rows": rows, "agree": not failures, "failures": failures}, indent=2))
     else:
+        print(f"CPU: {machine['cpu']}")
         print(f"{n} samples, median of {args.repeats} interleaved rounds (ratios: median of per-round ratios); {machine}")
         print(f"{'implementation':<46} {'ns/sample':>10} {'x cumsum':>9} {'x gyrocore':>11}  note")
         for r in rows:

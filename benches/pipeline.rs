@@ -3,7 +3,7 @@
 //! one straightforward loop (no validation, gaps or options), the yardstick of
 //! `benches/compare.py`'s Numba version.
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use gyrocore::*;
 use std::hint::black_box;
 
@@ -229,5 +229,29 @@ fn stages(c: &mut Criterion) {
     group.finish();
 }
 
+/// The CPU's model name (`/proc/cpuinfo`, else `lscpu`), so that figures from different machines
+/// are never read as one; the architecture alone where neither says.
+fn cpu_model() -> String {
+    let field = |text: &str, key: &str| {
+        text.lines().find_map(|line| {
+            let (name, value) = line.split_once(':')?;
+            (name.trim().eq_ignore_ascii_case(key)).then(|| value.trim().to_string())
+        })
+    };
+    std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|text| field(&text, "model name"))
+        .or_else(|| {
+            let out = std::process::Command::new("lscpu").output().ok()?;
+            field(&String::from_utf8_lossy(&out.stdout), "Model name")
+        })
+        .unwrap_or_else(|| format!("unknown {} CPU", std::env::consts::ARCH))
+}
+
 criterion_group!(benches, pipeline, stages);
-criterion_main!(benches);
+
+fn main() {
+    println!("CPU: {}", cpu_model());
+    benches();
+    Criterion::default().configure_from_args().final_summary();
+}

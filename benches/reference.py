@@ -17,8 +17,8 @@ def combined(
     t: np.ndarray,
     rate: np.ndarray,
     heading_out: np.ndarray,
-    rate_out: np.ndarray,
-    drift_out: np.ndarray,
+    rate_out: np.ndarray | None,
+    drift_out: np.ndarray | None,
     bias: float,
     scale: float,
     offset: float,
@@ -30,7 +30,8 @@ def combined(
     c2: float,
     interval: float,
 ) -> None:
-    """Fill the three outputs for one whole log (fixed bias, no temperature, trapezoid rule)."""
+    """Fill the outputs for one whole log (fixed bias, no temperature, trapezoid rule); a None
+    ``rate_out`` or ``drift_out`` is not filled (Numba compiles a version without it)."""
     last_t = 0.0
     lp_prev = 0.0  # per-sample low-pass (eq 7)
     dl_prev = 0.0  # de-lag input memory (eq 13)
@@ -95,5 +96,7 @@ def combined(
             heading += 0.5 * (out + integ_prev) * dt
         integ_prev = out
         heading_out[i] = heading
-        rate_out[i] = out
-        drift_out[i] = -applied
+        if rate_out is not None:
+            rate_out[i] = out
+        if drift_out is not None:
+            drift_out[i] = -applied

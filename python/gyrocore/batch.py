@@ -132,9 +132,21 @@ def split_options(options: dict[str, Any]) -> tuple[io.ReadOptions, dict[str, An
 class _FileJob:
     """One input streamed to one output; counts rows as it goes so a failure can say how far it got."""
 
-    def __init__(self, path: Path, out: Path, preset: str, heading: str, chunk_rows: int, options: dict[str, Any]):
+    def __init__(
+        self,
+        path: Path,
+        out: Path,
+        preset: str,
+        heading: str,
+        chunk_rows: int,
+        options: dict[str, Any],
+        columns: Sequence[str] = io.OUTPUT_COLUMNS,
+    ):
         self.path, self.out, self.preset, self.heading, self.chunk_rows = path, out, preset, heading, chunk_rows
         self.read_options, self.overrides = split_options(options)
+        self.columns = io.check_columns(columns)
+        # the core computes the heading always, the rate and drift only for a column of theirs
+        self.outputs = ("heading", *(c for c in ("rate", "drift") if c in self.columns))
         self.rows_in = 0
 
     def run(self, progress: Progress | None = None) -> FileReport:
@@ -165,12 +177,14 @@ class _FileJob:
                 )
         pipeline = Pipeline(self.preset, **overrides)
         check = io.UnitCheck(source.options)
-        with io.HeadingWriter(self.out, heading=self.heading) as writer:
+        with io.HeadingWriter(self.out, heading=self.heading, columns=self.columns) as writer:
             for chunk in source.chunks(self.chunk_rows):
                 _signals.check()  # a signal whose KeyboardInterrupt a library swallowed stops here
                 check.update(chunk.t, chunk.rate)
                 try:
-                    result = pipeline.process(chunk.t, chunk.rate, index_offset=chunk.first_row)
+                    result = pipeline.process(
+                        chunk.t, chunk.rate, index_offset=chunk.first_row, outputs=self.outputs
+                    )
                 except SampleError as e:
                     # a timestamp beyond the core's limits is most often an epoch in a smaller unit
                     fix = check.time_fix() if e.what == "t" else None
@@ -238,6 +252,7 @@ def process_file(
     heading: str = "enu",
     chunk_rows: int = io.DEFAULT_CHUNK_ROWS,
     progress: Progress | None = None,
+    columns: Sequence[str] = io.OUTPUT_COLUMNS,
     **options: Any,
 ) -> FileReport:
     """Stream one log through the pipeline into a heading table, with flat memory.
@@ -251,6 +266,8 @@ def process_file(
             north); see :func:`gyrocore.io.convert_heading`.
         chunk_rows: samples per chunk (memory; the output does not depend on it).
         progress: called after each chunk (see :data:`Progress`); may raise to stop.
+        columns: the output's columns, in this order (some of ``t``, ``heading``, ``rate``,
+            ``drift``); the pipeline computes the rate and the drift only for their columns.
         **options: reader options (``time_col``, ``rate_col``, ``time_unit``, ``rate_unit``,
             ``topic``, ``delimiter``) and pipeline parameters (``bias_window=(t0, t1)`` [s] in
             the log's time base, or a :class:`gyrocore.window.Window` whose bounds may count from
@@ -265,7 +282,7 @@ def process_file(
         ValueError: a malformed file or bad samples (naming the file and line or row), an output
             over the input, invalid options. No output is left then.
     """
-    return _FileJob(Path(path), Path(out), preset, heading, chunk_rows, options).run(progress)
+    return _FileJob(Path(path), Path(out), preset, heading, chunk_rows, options, columns).run(progress)
 
 
 def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
@@ -344,6 +361,7 @@ def process_many(
     heading: str = "enu",
     chunk_rows: int = io.DEFAULT_CHUNK_ROWS,
     progress: bool = False,
+    columns: Sequence[str] = io.OUTPUT_COLUMNS,
     **options: Any,
 ) -> BatchReport:
     """Process a fleet of logs in parallel: threads on this machine, or a Dask cluster.
@@ -358,7 +376,7 @@ def process_many(
         jobs: threads (default: every core). The Rust core and pyarrow release the GIL, so files
             run in parallel. Ignored with a Dask client.
         fmt: ``csv`` or ``parquet``.
-        heading, chunk_rows, **options: as for :func:`process_file`.
+        heading, chunk_rows, columns, **options: as for :func:`process_file`.
         progress: show a bar over the files on a terminal.
 
     Returns:
@@ -383,12 +401,13 @@ def process_many(
         raise ValueError(f"chunk_rows must be >= 1, got {chunk_rows}")
     if heading not in io.HEADING_CONVENTIONS:
         raise ValueError(f"heading convention {heading!r} is not one of {', '.join(io.HEADING_CONVENTIONS)}")
+    io.check_columns(columns)
     _, overrides = split_options(options)
     # invalid parameters fail here, before any work (a stand-in bias keeps the check quiet)
     Pipeline(preset, **(overrides if has_bias_source(overrides) else {**overrides, "bias": 0.0}))
     outputs = output_paths(inputs, Path(out_dir), fmt)
     Path(out_dir).mkdir(parents=True, exist_ok=True)
-    jobs_list = [_FileJob(p, o, preset, heading, chunk_rows, options) for p, o in zip(inputs, outputs)]
+    jobs_list = [_FileJob(p, o, preset, heading, chunk_rows, options, columns) for p, o in zip(inputs, outputs)]
     if client is not None:
         reports = _run_on_dask(client, jobs_list, progress)
     else:

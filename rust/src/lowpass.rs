@@ -46,55 +46,51 @@ impl LowPassKernel {
     }
 }
 
-impl Kernel for LowPassKernel {
-    type Config = LowPassConfig;
-    type State = f64;
-    const REMEMBERS: bool = true;
+/// Implements [`Kernel`] for a filter of the rate whose state is one rate (the low-pass its last
+/// output, the de-lag its last input): the first sample passes unchanged and is that state;
+/// `$step` (of the config `$c`, the state `$state`, the interval `$dt` and the rate `$rate`) is
+/// every later sample's output.
+macro_rules! rate_filter_kernel {
+    ($ty:ty, |$c:ident, $state:ident, $dt:ident, $rate:ident| $step:expr) => {
+        impl Kernel for $ty {
+            type Config = LowPassConfig;
+            type State = f64;
+            const REMEMBERS: bool = true;
 
-    fn start(_config: &LowPassConfig) -> f64 {
-        0.0
-    }
+            fn start(_config: &LowPassConfig) -> f64 {
+                0.0
+            }
 
-    #[inline(always)]
-    fn first(_config: &LowPassConfig, state: &mut f64, x: Signal) -> Signal {
-        *state = x.rate;
-        x
-    }
+            #[inline(always)]
+            fn first(_config: &LowPassConfig, state: &mut f64, x: Signal) -> Signal {
+                *state = x.rate;
+                x
+            }
 
-    #[inline(always)]
-    fn step(config: &LowPassConfig, state: &mut f64, dt: f64, x: Signal) -> Signal {
-        *state = Self::filter(config.tau, *state, dt, x.rate);
-        Signal { rate: *state, ..x }
-    }
+            #[inline(always)]
+            fn step($c: &LowPassConfig, $state: &mut f64, $dt: f64, x: Signal) -> Signal {
+                let $rate = x.rate;
+                Signal { rate: $step, ..x }
+            }
+        }
+    };
 }
+
+rate_filter_kernel!(LowPassKernel, |c, state, dt, rate| {
+    *state = LowPassKernel::filter(c.tau, *state, dt, rate);
+    *state
+});
 
 /// De-lag, HDR eq 13: `w_d,i = w_i + tau / T_i (w_i - w_{i-1})`, the inverse of eq 7. The first
 /// sample passes unchanged. State: the last input.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct DeLagKernel;
 
-impl Kernel for DeLagKernel {
-    type Config = LowPassConfig;
-    type State = f64;
-    const REMEMBERS: bool = true;
-
-    fn start(_config: &LowPassConfig) -> f64 {
-        0.0
-    }
-
-    #[inline(always)]
-    fn first(_config: &LowPassConfig, state: &mut f64, x: Signal) -> Signal {
-        *state = x.rate;
-        x
-    }
-
-    #[inline(always)]
-    fn step(config: &LowPassConfig, state: &mut f64, dt: f64, x: Signal) -> Signal {
-        let y = x.rate + config.tau / dt * (x.rate - *state);
-        *state = x.rate;
-        Signal { rate: y, ..x }
-    }
-}
+rate_filter_kernel!(DeLagKernel, |c, state, dt, rate| {
+    let y = rate + c.tau / dt * (rate - *state);
+    *state = rate;
+    y
+});
 
 settings_are_config!(LowPassKernel, DeLagKernel);
 

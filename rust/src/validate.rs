@@ -98,28 +98,20 @@ pub(crate) fn all_finite(values: &[f64]) -> bool {
     all_below(values, f64::INFINITY)
 }
 
-/// True if every value is finite and below `limit` in magnitude (`limit` a power of two, or
-/// infinity). Branch-free integer arithmetic, so it vectorises.
+/// True if every value is finite and below `limit` in magnitude. Branch-free integer
+/// arithmetic, so it vectorises.
 #[inline]
 fn all_below(values: &[f64], limit: f64) -> bool {
-    values
-        .iter()
-        .fold(0u64, |acc, &v| acc | exponent_carry(v, limit))
-        & CARRY
-        == 0
+    let worst = values.iter().fold(0u64, |m, &v| m.max(magnitude_key(v)));
+    worst < magnitude_key(limit)
 }
 
-/// The bit that [`exponent_carry`] sets for a value at or beyond its limit.
-const CARRY: u64 = 1 << 63;
-
-/// For `limit` = 2^k (or infinity, for finiteness): a double's magnitude reaches 2^k exactly when
-/// its 11-bit exponent field reaches that of 2^k, and adding what takes that field to 2^11 then
-/// carries into the top bit ([`CARRY`]); NaN and infinity have the largest field. OR-ed over
-/// many values, the carry survives.
+/// A value's bits shifted left past the sign: an integer that orders magnitudes, since the bits
+/// of a magnitude grow with it, and puts NaN and the infinities (all exponent bits set) above
+/// every finite value. `magnitude_key(v) < magnitude_key(limit)` exactly when `|v| < limit`.
 #[inline(always)]
-fn exponent_carry(v: f64, limit: f64) -> u64 {
-    const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
-    (v.to_bits() & EXPONENT) + (CARRY - (limit.to_bits() & EXPONENT))
+fn magnitude_key(v: f64) -> u64 {
+    v.to_bits() << 1
 }
 
 /// A reading the pipeline takes as it is: a rate and, if there is one, a temperature, finite and
@@ -141,14 +133,19 @@ pub(crate) fn interval_key(dt: f64) -> u64 {
 }
 
 /// Validity of a block's samples, accumulated branch-free while the block is processed (see
-/// [`Pipeline::process_block`](crate::Pipeline::process_block)): a few integer operations per
-/// sample and no early exit, instead of a separate pass over the block.
+/// [`Pipeline::process_block`](crate::Pipeline::process_block)): a few operations per sample
+/// and no early exit, instead of a separate pass over the block (which would wait for the
+/// memory the loop's work hides).
 #[derive(Debug, Default, Clone, Copy)]
 pub(crate) struct Checks {
     /// The largest [`interval_key`] seen.
     worst_interval: u64,
-    /// [`exponent_carry`] of every value seen, OR-ed.
-    carry: u64,
+    /// The largest [`magnitude_key`] of a reading seen. An integer maximum, so the readings'
+    /// check needs no floating-point register, which the chain needs for its state
+    /// (`docs/performance.md`).
+    worst_reading: u64,
+    /// The largest [`magnitude_key`] of a timestamp checked.
+    worst_time: u64,
 }
 
 impl Checks {
@@ -162,9 +159,9 @@ impl Checks {
     /// [`MAX_READING`].
     #[inline(always)]
     pub(crate) fn reading(&mut self, rate: f64, temperature: Option<f64>) {
-        self.carry |= exponent_carry(rate, MAX_READING);
+        self.worst_reading = self.worst_reading.max(magnitude_key(rate));
         if let Some(celsius) = temperature {
-            self.carry |= exponent_carry(celsius, MAX_READING);
+            self.worst_reading = self.worst_reading.max(magnitude_key(celsius));
         }
     }
 
@@ -172,7 +169,7 @@ impl Checks {
     /// its samples: between them, time increases).
     #[inline(always)]
     pub(crate) fn time(&mut self, t: f64) {
-        self.carry |= exponent_carry(t, MAX_TIME);
+        self.worst_time = self.worst_time.max(magnitude_key(t));
     }
 
     /// The longest interval seen [s], if every one was valid (finite and >= [`MIN_INTERVAL`]);
@@ -184,7 +181,9 @@ impl Checks {
 
     /// True if every value and interval seen was valid.
     pub(crate) fn passed(&self) -> bool {
-        self.longest_interval().is_some() && self.carry & CARRY == 0
+        self.longest_interval().is_some()
+            && self.worst_reading < magnitude_key(MAX_READING)
+            && self.worst_time < magnitude_key(MAX_TIME)
     }
 }
 
@@ -232,6 +231,49 @@ pub(crate) fn check_finite_all(what: &'static str, values: &[f64]) -> Result<(),
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::{Outputs, Pipeline, Preset};
+
+    /// The loop's check of the readings: the largest usable ones (just inside
+    /// [`MAX_READING`]) pass, and a NaN, an infinity or a reading at the limit, of either sign
+    /// and anywhere, is refused by its index.
+    #[test]
+    fn the_largest_usable_readings_are_taken_and_any_other_is_named() {
+        let top = f64::from_bits(MAX_READING.to_bits() - 1);
+        let t: [f64; 8] = core::array::from_fn(|i| i as f64);
+        let mut rate = [top; 8];
+        let mut heading = [0.0; 8];
+        let mut checks = Checks::default();
+        for r in [top, -top, 0.0, -0.0, f64::MIN_POSITIVE] {
+            checks.reading(r, Some(-r));
+        }
+        assert!(checks.passed());
+        let bad = [
+            f64::NAN,
+            -f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            MAX_READING,
+            -MAX_READING,
+            f64::MAX,
+        ];
+        for bad in bad {
+            let (mut rate_check, mut temperature_check) = (checks, checks);
+            rate_check.reading(bad, None);
+            temperature_check.reading(0.0, Some(bad));
+            assert!(!rate_check.passed() && !temperature_check.passed(), "{bad}");
+        }
+        let mut p = Pipeline::new(Preset::Raw.config()).unwrap();
+        p.process_block(&t, &rate, None, Outputs::heading(&mut heading))
+            .unwrap();
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, -MAX_READING] {
+            rate[5] = bad;
+            let mut p = Pipeline::new(Preset::Combined.config()).unwrap();
+            let e = p
+                .process_block(&t, &rate, None, Outputs::heading(&mut heading))
+                .unwrap_err();
+            assert_eq!(e.index(), Some(5), "{e}");
+        }
+    }
 
     /// `interval_key(dt) <= interval_key(longest)` exactly when `MIN_INTERVAL <= dt <= longest`.
     #[test]

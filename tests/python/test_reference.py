@@ -34,3 +34,17 @@ def test_combined_matches_the_reference_implementation(seed: int, rate_hz: float
     np.testing.assert_allclose(ours.drift, drift, rtol=1e-12, atol=1e-18)
     np.testing.assert_allclose(ours.heading, heading, rtol=0, atol=1e-9)
     np.testing.assert_allclose(ours.rate, rate, rtol=1e-9, atol=1e-12)
+
+
+def test_heading_only_reference_matches_heading_only_gyrocore() -> None:
+    """benches/compare.py's single-output comparison: both sides fill the heading alone."""
+    d = gyrocore.sim.car_drive(duration=300.0, rate_hz=100.0, seed=3)
+    p = gyrocore.preset_params("combined")
+    heading = np.empty(len(d.t))
+    reference.combined(
+        d.t, d.rate_measured, heading, None, None, 0.0087, p["scale"], p["offset"], p["threshold"],
+        p["lowpass_tau"], p["hdr_increment"], p["hdr_turn_threshold"], p["hdr_c1"], p["hdr_c2"], p["hdr_interval"],
+    )
+    ours = gyrocore.process(d.t, d.rate_measured, "combined", bias=0.0087, outputs=("heading",))
+    assert ours.rate is None and ours.drift is None
+    np.testing.assert_allclose(ours.heading, heading, rtol=0, atol=1e-9)

@@ -69,6 +69,12 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     out.add_argument(
         "--format", choices=("csv", "parquet"), default="csv", help="file format in an output folder (default csv)"
     )
+    out.add_argument(
+        "--columns",
+        metavar="LIST",
+        help=f"the columns to write, comma-separated, e.g. t,heading (default {','.join(io.OUTPUT_COLUMNS)}); "
+        "rate and drift are computed only when written",
+    )
     out.add_argument("--jobs", type=int, help="parallel files (default: all cores)")
     out.add_argument("--scheduler", metavar="ADDRESS", help="run on this Dask scheduler (tcp://host:8786)")
     out.add_argument(
@@ -93,10 +99,17 @@ def options(args: argparse.Namespace) -> dict[str, Any]:
     return {**reading_options(args), **pipeline_overrides(args, named)}
 
 
+def columns(args: argparse.Namespace) -> tuple[str, ...]:
+    """The output columns of ``--columns`` (all by default)."""
+    if args.columns is None:
+        return io.OUTPUT_COLUMNS
+    return io.check_columns([c.strip() for c in args.columns.split(",")], "--columns")
+
+
 def run(args: argparse.Namespace) -> int:
     inputs = expand_inputs(args.inputs)
     out = Path(args.out)
-    kwargs = options(args)
+    kwargs = {**options(args), "columns": columns(args)}
     try:
         with warnings.catch_warnings():
             # every file's report carries these; print them once, with the file's name

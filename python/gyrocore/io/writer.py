@@ -9,7 +9,7 @@ from __future__ import annotations
 import json
 import math
 import os
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from pathlib import Path
 from types import TracebackType
 from typing import TYPE_CHECKING, Any
@@ -45,8 +45,19 @@ def convert_heading(result: HeadingResult, convention: str = "enu") -> HeadingRe
     if convention == "enu":
         return result
     if convention == "compass":
-        return HeadingResult(result.t, math.pi / 2 - result.heading, -result.output("rate"), -result.output("drift"))
+        rate, drift = (None if a is None else -a for a in (result.rate, result.drift))
+        return HeadingResult(result.t, math.pi / 2 - result.heading, rate, drift)
     raise ValueError(f"heading convention {convention!r} is not one of {', '.join(HEADING_CONVENTIONS)}")
+
+
+def check_columns(columns: Sequence[str], what: str = "columns") -> tuple[str, ...]:
+    """``columns`` as a tuple, if it names one or more of :data:`OUTPUT_COLUMNS`, each once; else a
+    ``ValueError`` that names ``what`` was given (a parameter, an option) and the valid columns."""
+    unknown = [c for c in columns if c not in OUTPUT_COLUMNS]
+    if isinstance(columns, str) or not columns or unknown or len(set(columns)) != len(columns):
+        problem = f"unknown column {', '.join(map(repr, unknown))}" if unknown else "each column once"
+        raise ValueError(f"{what} {','.join(columns)}: {problem}; choose from {', '.join(OUTPUT_COLUMNS)}")
+    return tuple(columns)
 
 
 def output_format(path: Path) -> str:
@@ -75,7 +86,7 @@ def check_not_input(out: Path, inputs: Iterable[Path]) -> None:
 
 
 class HeadingWriter:
-    """Writes a heading table (columns t, heading, rate, drift) chunk after chunk.
+    """Writes a heading table (columns t, heading, rate, drift, or those asked for) chunk after chunk.
 
     Use as a context manager: the table goes to a temporary file next to ``path``, which replaces
     ``path`` only when the block ends without error; on an error or an interruption it is removed.
@@ -85,10 +96,13 @@ class HeadingWriter:
     Args:
         path: ``.csv`` or ``.parquet`` output.
         heading: ``enu`` (default) or ``compass`` (see :func:`convert_heading`).
+        columns: the columns to write, in this order (see :func:`check_columns`); the results
+            written need only hold those (``outputs=`` of :meth:`gyrocore.Pipeline.process`).
     """
 
-    def __init__(self, path: str | Path, *, heading: str = "enu") -> None:
+    def __init__(self, path: str | Path, *, heading: str = "enu", columns: Sequence[str] = OUTPUT_COLUMNS) -> None:
         self.path = Path(path)
+        self.columns = check_columns(columns)
         self.format = output_format(self.path)
         if heading not in HEADING_CONVENTIONS:
             raise ValueError(f"heading convention {heading!r} is not one of {', '.join(HEADING_CONVENTIONS)}")
@@ -110,10 +124,10 @@ class HeadingWriter:
         try:
             if self.format == "csv":
                 self._sink = open(tmp, "wb")
-                self._sink.write(",".join(OUTPUT_COLUMNS).encode() + b"\n")
+                self._sink.write(",".join(self.columns).encode() + b"\n")
             else:
                 units = {"t": "s", "heading": "rad", "rate": "rad/s", "drift": "rad/s"}
-                self._schema = pa.schema([(c, pa.float64()) for c in OUTPUT_COLUMNS]).with_metadata(
+                self._schema = pa.schema([(c, pa.float64()) for c in self.columns]).with_metadata(
                     {"gyrocore": json.dumps({"heading": self.heading, "units": units})}
                 )
                 # dictionary encoding only costs memory and time on float signals that never repeat
@@ -126,7 +140,7 @@ class HeadingWriter:
     def write(self, result: HeadingResult) -> None:
         """Append the rows of one chunk."""
         r = convert_heading(result, self.heading)
-        columns = [r.t, r.heading, r.output("rate"), r.output("drift")]
+        columns = [r.t if c == "t" else r.output(c) for c in self.columns]
         if self.format == "csv":
             # formatted in Rust without the GIL (pyarrow's float-to-text cast was the slow part);
             # + 0.0 turns -0.0 (the compass rate of a gyro at rest) into 0.0, a sign that is not there

@@ -171,10 +171,10 @@ impl<C: Kernel> Chain<C> {
     /// The loop: every sample from `cursor.next` on through [`Kernel::step`], its output into
     /// `out`.
     ///
-    /// Each sample is taken as it comes and checked on the way (a few integer operations that
-    /// run beside the chain's floating-point work, see [`Checks`]); the caller rejects the block
-    /// if any failed. Unless `STOPS`, the loop takes every sample; with `STOPS`, it stops before
-    /// a sample whose interval's [`interval_key`] exceeds `stop_key` (a gap the input policy
+    /// Each sample is taken as it comes and checked on the way (a few operations that run
+    /// beside the chain's floating-point work, see [`Checks`]); the caller rejects the block if
+    /// any failed. Unless `STOPS`, the loop takes every sample; with `STOPS`, it stops before a
+    /// sample whose interval's [`interval_key`] exceeds `stop_key` (a gap the input policy
     /// restarts at, or a timestamp that does not move forward) or whose reading is not usable
     /// (not finite or too large, which the policy holds or skips): such a sample needs the slow
     /// path.
@@ -187,9 +187,30 @@ impl<C: Kernel> Chain<C> {
         out: &mut Outputs<'_>,
     ) {
         let n = block.t.len();
+        // The loop compiled with and without a temperature, so that it does not ask on every
+        // sample whether there is one.
+        match block.temperature {
+            None => self.run_with::<STOPS>(block, |_| None, cursor, stop_key, out),
+            Some(temp) => {
+                let temp = &temp[..n];
+                self.run_with::<STOPS>(block, |i| Some(temp[i]), cursor, stop_key, out);
+            }
+        }
+    }
+
+    /// [`Chain::run`] with `temperature(i)` the temperature of sample `i`, if any.
+    #[inline(always)]
+    fn run_with<const STOPS: bool>(
+        &mut self,
+        block: &Block<'_>,
+        temperature: impl Fn(usize) -> Option<f64>,
+        cursor: &mut Cursor,
+        stop_key: u64,
+        out: &mut Outputs<'_>,
+    ) {
+        let n = block.t.len();
         // Slices of one length, so the loop carries no bounds checks.
         let (t, rate) = (block.t, &block.rate[..n]);
-        let temperature = block.temperature.map(|temp| &temp[..n]);
         let mut out = out.first(n);
         let config = &self.config;
         // Local copies, so that the loop keeps them in registers.
@@ -197,7 +218,7 @@ impl<C: Kernel> Chain<C> {
         let mut c = *cursor;
         for i in c.next..n {
             let dt = t[i] - c.previous;
-            let temp = temperature.map(|temp| temp[i]);
+            let temp = temperature(i);
             if STOPS && (interval_key(dt) > stop_key || !usable_reading(rate[i], temp)) {
                 break;
             }
