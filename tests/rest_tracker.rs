@@ -80,7 +80,7 @@ fn a_bias_step_is_caught_at_a_stop_found_from_speed() {
     let tracker = p.rest_tracker().unwrap();
     let rests: Vec<_> = tracker.recent_rests().collect();
     assert_eq!(rests.len(), 2, "{rests:?}");
-    // Each rest without its first and last 1 s block; times count from the first sample.
+    // Each rest without its first and last block; times count from the first sample.
     assert!(rests[0].start >= 30.0 && rests[0].end <= 45.0, "{rests:?}");
     assert!(rests[1].start >= 90.0 && rests[1].end <= 110.0, "{rests:?}");
     for (rest, truth) in rests.iter().zip([b0, b1]) {
@@ -140,9 +140,15 @@ fn rests_are_found_from_the_rate_alone_once_the_noise_at_rest_is_known() {
 
 #[test]
 fn a_short_stop_is_not_a_rest() {
-    // 2.5 s stopped: after dropping its first and last block, less than min_duration is left.
+    // 2.5 s stopped: after dropping its first and last 1 s block, less than 3 s is left.
     let (t, r, s) = drive(60.0, &[(20.0, 22.5)], 0.01, 0.01, 0.0, 0.005);
-    let mut p = Pipeline::new(tracked(StaticBias::Fixed(0.0))).unwrap();
+    let mut config = tracked(StaticBias::Fixed(0.0));
+    config.rest_tracker = config.rest_tracker.map(|c| RestTrackerConfig {
+        block: 1.0,
+        min_duration: 3.0,
+        ..c
+    });
+    let mut p = Pipeline::new(config).unwrap();
     run(&mut p, &t, &r, Some(&s)).unwrap();
     assert_eq!(p.rest_tracker().unwrap().rests_found(), 0);
     assert_eq!(p.rest_tracker().unwrap().bias(), 0.0);
@@ -154,7 +160,7 @@ fn the_rules_name_the_parameter_at_fault() {
         ("rest_block", |c| c.block = 0.0),
         ("rest_min_duration", |c| c.min_duration = 1.5 * c.block),
         ("rest_noise_ratio", |c| c.noise_ratio = 0.5),
-        ("rest_change_sigmas", |c| c.change_sigmas = f64::NAN),
+        ("rest_change_sigmas", |c| c.change_sigmas = 0.0),
         ("rest_speed_threshold", |c| c.speed_threshold = -1.0),
         ("rest_bias_walk", |c| c.bias_walk = f64::INFINITY),
         ("rest_gate_sigmas", |c| c.gate_sigmas = 0.0),
