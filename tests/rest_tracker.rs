@@ -156,7 +156,8 @@ fn a_short_stop_is_not_a_rest() {
 
 #[test]
 fn the_rules_name_the_parameter_at_fault() {
-    let cases: [(&str, fn(&mut RestTrackerConfig)); 8] = [
+    type Spoil = fn(&mut RestTrackerConfig);
+    let cases: [(&str, Spoil); 8] = [
         ("rest_block", |c| c.block = 0.0),
         ("rest_min_duration", |c| c.min_duration = 1.5 * c.block),
         ("rest_noise_ratio", |c| c.noise_ratio = 0.5),
@@ -174,9 +175,12 @@ fn the_rules_name_the_parameter_at_fault() {
             other => panic!("{name}: {other:?}"),
         }
     }
-    let mut ok = RestTrackerConfig::default();
-    ok.gate_sigmas = f64::INFINITY;
-    assert!(ok.validate().is_ok());
+    let ungated = RestTrackerConfig {
+        gate_sigmas: f64::INFINITY,
+        change_sigmas: f64::INFINITY,
+        ..RestTrackerConfig::default()
+    };
+    assert!(ungated.validate().is_ok());
 }
 
 #[test]

@@ -57,6 +57,9 @@ pub(crate) struct Chain<C: Kernel> {
 /// The chain a configuration runs.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// The tracker's variant holds its recent rests (about 2 KB): one engine per pipeline, and the
+// crate allocates nothing (no_std), so it is not boxed.
+#[allow(clippy::large_enum_variant)]
 pub(crate) enum Engine {
     Plain(Chain<PlainChain>),
     Hdr(Chain<HdrChain>),
