@@ -155,6 +155,38 @@ fn a_short_stop_is_not_a_rest() {
 }
 
 #[test]
+fn the_dead_band_follows_the_noise_of_the_first_rest() {
+    // No rest window: the dead band in noise units has nothing to scale until the stop at 30 s.
+    let (t, r, s) = drive(90.0, &[(30.0, 45.0)], 0.01, 0.01, 0.0, 0.005);
+    let mut config = tracked(StaticBias::Fixed(0.0));
+    config.noise_scaled.threshold_sigmas = Some(3.0);
+    let mut p = Pipeline::new(config).unwrap();
+    let out = run(&mut p, &t, &r, Some(&s)).unwrap();
+    let rest = p.rest_tracker().unwrap().recent_rests().next().unwrap();
+    let zeroed = |a: f64, b: f64| {
+        t.iter()
+            .zip(&out)
+            .filter(|(&ti, o)| ti > a && ti < b && o.rate == 0.0)
+            .count()
+    };
+    assert_eq!(zeroed(0.0, 30.0), 0);
+    // After the rest every corrected rate below 3 sigmas (0.015 rad/s) is zeroed: the turn passes
+    // zero twice a period and the stopped car reads noise only.
+    let band = 3.0 * 0.005;
+    let below = t
+        .iter()
+        .zip(&r)
+        .filter(|(&ti, &ri)| ti > rest.end + 1.5 && (ri - rest.filtered).abs() < band * 0.9)
+        .count();
+    assert!(below > 100);
+    assert!(
+        zeroed(rest.end + 1.5, 90.0) >= below,
+        "{} < {below}",
+        zeroed(rest.end + 1.5, 90.0)
+    );
+}
+
+#[test]
 fn the_rules_name_the_parameter_at_fault() {
     type Spoil = fn(&mut RestTrackerConfig);
     let cases: [(&str, Spoil); 8] = [
