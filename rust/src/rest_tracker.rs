@@ -128,7 +128,8 @@ impl RestTrackerConfig {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Rest {
-    /// Start and end of the part measured \[s\] (the rest without its first and last block).
+    /// Start and end of the part measured \[s since the first sample\] (the rest without its first
+    /// and last block).
     pub start: f64,
     /// See `start`.
     pub end: f64,
@@ -218,7 +219,7 @@ struct Filling {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RestTracker {
-    origin: Option<f64>,
+    /// The time since the first sample \[s\] (the sum of the intervals: kernels see no clock).
     now: f64,
     block: Filling,
     /// The last finished block (its mean and sample count), for the change test.
@@ -241,6 +242,7 @@ impl RestTracker {
         RestTracker {
             bias,
             noise: config.noise,
+            block: Filling::start(0),
             ..RestTracker::default()
         }
     }
@@ -273,8 +275,7 @@ impl RestTracker {
     fn observe(&mut self, c: &RestTrackerConfig, e: Event, rate: f64, speed: f64) -> Option<Rest> {
         let t = self.now + e.dt;
         self.now = t;
-        let origin = *self.origin.get_or_insert(t);
-        let index = ((t - origin) / c.block) as u64;
+        let index = (t / c.block) as u64;
         if e.measuring {
             // The rest window is the pipeline's to measure; blocks start after it.
             self.block = Filling::start(index);

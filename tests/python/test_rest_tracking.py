@@ -63,6 +63,7 @@ def test_a_bias_step_is_caught_at_a_mid_drive_stop() -> None:
 
 def test_chunks_and_pickle_give_the_same_heading_and_rests() -> None:
     t, r, speed, _ = drive()
+    t = t + 1.65e9  # Unix time: the rests are reported in the log's own clock
     whole = gyrocore.process(t, r, "recommended", speed=speed, **tracked())
     p = gyrocore.Pipeline("recommended", **tracked())
     parts = []
@@ -74,6 +75,8 @@ def test_chunks_and_pickle_give_the_same_heading_and_rests() -> None:
     assert heading.tobytes() == whole.heading.tobytes()
     assert p.rests == list(whole.rests)
     assert [x for part in parts for x in part.rests] == list(whole.rests)
+    for rest, (a, b) in zip(whole.rests, STOPS):
+        assert 1.65e9 + a <= rest.start < rest.end <= 1.65e9 + b
 
 
 def test_a_speed_series_at_its_own_times_is_interpolated_onto_the_gyros() -> None:
