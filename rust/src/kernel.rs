@@ -118,6 +118,10 @@ pub trait Kernel {
     /// policy says so, it starts again as at the first sample.
     const REMEMBERS: bool = false;
 
+    /// True for a chain whose stages read [`Signal::speed`]: only such a chain's loop reads the
+    /// speed, so the others carry none.
+    const READS_SPEED: bool = false;
+
     /// True for a stage that must not run while the static bias is still measured (HDR: it would
     /// only chase the running estimate of the bias); the signal passes it unchanged.
     const WAITS_FOR_BIAS: bool = false;

@@ -488,6 +488,8 @@ impl<C: Kernel> Kernel for Tracked<C> {
     type Config = TrackedConfig<C::Config>;
     type State = TrackedState<C::Config, C::State>;
 
+    const READS_SPEED: bool = true;
+
     fn start(config: &Self::Config) -> Self::State {
         TrackedState {
             tracker: RestTracker::new(&config.tracker.config, config.bias),

@@ -220,7 +220,7 @@ impl<C: Kernel> Chain<C> {
         // Slices of one length, so the loop carries no bounds checks.
         let (t, rate) = (block.t, &block.rate[..n]);
         let temperature = block.temperature.map(|temp| &temp[..n]);
-        let speed = block.speed.map(|s| &s[..n]);
+        let speed = block.speed.filter(|_| C::READS_SPEED).map(|s| &s[..n]);
         let mut out = out.first(n);
         let config = &self.config;
         // Local copies, so that the loop keeps them in registers.
@@ -235,10 +235,10 @@ impl<C: Kernel> Chain<C> {
             c.previous = t[i];
             c.checks.interval(dt);
             c.checks.reading(rate[i], temp);
-            let x = Signal {
-                speed: speed.map_or(f64::NAN, |s| s[i]),
-                ..Signal::reading(rate[i], temp.unwrap_or(f64::NAN))
-            };
+            let mut x = Signal::reading(rate[i], temp.unwrap_or(f64::NAN));
+            if C::READS_SPEED {
+                x.speed = speed.map_or(f64::NAN, |s| s[i]);
+            }
             c.last = Output::of(C::step(config, &mut state, dt, x));
             out.set(i, c.last);
             c.next = i + 1;
