@@ -187,6 +187,43 @@ fn the_dead_band_follows_the_noise_of_the_first_rest() {
 }
 
 #[test]
+fn hdrs_bound_grows_with_the_bias_walk_between_rests() {
+    // A rest window, then driving straight (speed 5 m/s: no rest) with the bias 0.008 rad/s
+    // higher than the window measured: HDR's I chases that residual as far as its bound lets it.
+    let (t, r, _) = drive(90.0, &[(0.0, 90.0)], 0.01, 0.018, 10.0, 0.005);
+    let speed = vec![5.0; t.len()];
+    let mut config = tracked(StaticBias::Window {
+        start: 0.0,
+        end: 10.0,
+    });
+    let tuned = Preset::Tuned.config();
+    config.lowpass = tuned.lowpass;
+    config.delag = tuned.delag;
+    config.hdr = tuned.hdr.map(|h| gyrocore::HdrConfig {
+        increment: 1e-3,
+        ..h
+    });
+    config.noise_scaled = tuned.noise_scaled;
+    let mut p = Pipeline::new(config).unwrap();
+    let out = run(&mut p, &t, &r, Some(&speed)).unwrap();
+    assert_eq!(p.rest_tracker().unwrap().rests_found(), 0);
+    // The window's bound alone: 14.3 standard errors of its bias.
+    let window_bound = 14.3 * p.rest_statistics().unwrap().bias_std_error;
+    assert!(window_bound < 4e-3, "{window_bound}");
+    let largest = out.iter().map(|o| o.drift.abs()).fold(0.0, f64::max);
+    assert!(
+        largest > 6e-3,
+        "HDR stayed within the window's bound: {largest}"
+    );
+    let error = p
+        .rest_tracker()
+        .unwrap()
+        .std_error(&config.rest_tracker.unwrap())
+        .unwrap();
+    assert!(out.last().unwrap().drift.abs() <= 14.3 * error);
+}
+
+#[test]
 fn the_rules_name_the_parameter_at_fault() {
     type Spoil = fn(&mut RestTrackerConfig);
     let cases: [(&str, Spoil); 8] = [

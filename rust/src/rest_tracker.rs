@@ -22,9 +22,12 @@
 //! so moves the bias little.
 
 use crate::error::{check_positive, check_range};
-use crate::kernel::{Event, Kernel, Measured, Signal};
+use crate::kernel::Event;
 use crate::rest::RestStatistics;
 use crate::Error;
+
+mod tracked;
+pub use tracked::{Tracked, TrackedConfig, TrackedState, TrackerSettings};
 
 /// How many of the latest rests the tracker keeps for [`RestTracker::recent_rests`].
 pub const HISTORY: usize = 8;
@@ -416,116 +419,5 @@ impl Filling {
         self.previous_rate = Some(rate);
         self.all_speeds &= !speed.is_nan();
         self.moving |= libm::fabs(speed) >= threshold;
-    }
-}
-
-/// The tracker's settings and the bounds it scales (as [`crate::pipeline::NoiseScaled`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct TrackerSettings {
-    /// The detection and the filter.
-    pub config: RestTrackerConfig,
-    /// Dead band in noise standard deviations, set at each rest.
-    pub threshold_sigmas: Option<f64>,
-    /// HDR's bound in standard errors of the filtered bias, set at each rest.
-    pub hdr_bound_sigmas: Option<f64>,
-}
-
-/// The configuration of a chain run under the tracker.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct TrackedConfig<K> {
-    /// The tracker's settings.
-    pub tracker: TrackerSettings,
-    /// The bias the chain starts with [rad/s] (the filter's until a rest says otherwise).
-    pub bias: f64,
-    /// The chain's configuration as built.
-    pub inner: K,
-}
-
-/// The tracker and the chain it drives: the chain's configuration lives in the state, because
-/// each rest changes the bias, the dead band and HDR's bound in it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct TrackedState<K, S> {
-    /// Detection and filter.
-    pub tracker: RestTracker,
-    /// The chain's configuration now.
-    pub config: K,
-    /// The chain's state.
-    pub state: S,
-}
-
-/// A chain `C` under rest tracking: each reading goes to the tracker, then through `C`; a rest
-/// that ends hands `C` the filtered bias and the bounds it scales (see [`Measured`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Tracked<C>(core::marker::PhantomData<C>);
-
-impl<C: Kernel> Tracked<C> {
-    /// The reading through the tracker, and the chain's configuration updated by a rest it ends.
-    #[inline(always)]
-    fn track(
-        s: &TrackerSettings,
-        state: &mut TrackedState<C::Config, C::State>,
-        e: Event,
-        x: Signal,
-    ) {
-        if let Some(_rest) = state.tracker.observe(&s.config, e, x.rate, x.speed) {
-            let noise = state.tracker.noise.unwrap_or(0.0);
-            let error = state.tracker.std_error(&s.config).unwrap_or(0.0);
-            let m = Measured {
-                bias: Some(state.tracker.bias),
-                threshold: s.threshold_sigmas.map(|k| k * noise),
-                hdr_bound: s.hdr_bound_sigmas.map(|k| k * error),
-                rest: None,
-            };
-            C::measured(&mut state.config, &mut state.state, &m);
-        }
-    }
-}
-
-impl<C: Kernel> Kernel for Tracked<C> {
-    type Config = TrackedConfig<C::Config>;
-    type State = TrackedState<C::Config, C::State>;
-
-    const READS_SPEED: bool = true;
-
-    fn start(config: &Self::Config) -> Self::State {
-        TrackedState {
-            tracker: RestTracker::new(&config.tracker.config, config.bias),
-            config: config.inner,
-            state: C::start(&config.inner),
-        }
-    }
-
-    fn first(config: &Self::Config, state: &mut Self::State, x: Signal) -> Signal {
-        let e = Event {
-            dt: 0.0,
-            kind: crate::kernel::EventKind::First,
-            measuring: false,
-        };
-        Self::event(config, state, e, x)
-    }
-
-    #[inline(always)]
-    fn step(config: &Self::Config, state: &mut Self::State, dt: f64, x: Signal) -> Signal {
-        let e = Event {
-            dt,
-            kind: crate::kernel::EventKind::Step,
-            measuring: false,
-        };
-        Self::track(&config.tracker, state, e, x);
-        C::step(&state.config, &mut state.state, dt, x)
-    }
-
-    fn event(config: &Self::Config, state: &mut Self::State, e: Event, x: Signal) -> Signal {
-        Self::track(&config.tracker, state, e, x);
-        C::event(&state.config, &mut state.state, e, x)
-    }
-
-    fn measured(config: &mut Self::Config, state: &mut Self::State, m: &Measured) {
-        let _ = config;
-        state.tracker.prior(m.bias, m.rest);
-        C::measured(&mut state.config, &mut state.state, m);
     }
 }
