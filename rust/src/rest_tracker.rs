@@ -421,3 +421,16 @@ impl Filling {
         self.moving |= libm::fabs(speed) >= threshold;
     }
 }
+
+/// Fails unless `speed` holds `n` samples, none of them infinite (NaN is "no speed here").
+pub(crate) fn check_speed(speed: &[f64], n: usize) -> Result<(), Error> {
+    crate::stage::check_len("speed", speed.len(), n)?;
+    match speed.iter().position(|s| s.is_infinite()) {
+        Some(index) => Err(Error::NonFinite {
+            what: "speed",
+            index,
+            value: speed[index],
+        }),
+        None => Ok(()),
+    }
+}

@@ -19,7 +19,7 @@ use crate::input::{GapAction, InputReport, NonFinite};
 use crate::kernel::{Event, EventKind, Measured, Signal};
 use crate::rest::BiasEstimate;
 use crate::rest::RestStatistics;
-use crate::rest_tracker::RestTracker;
+use crate::rest_tracker::{check_speed, RestTracker};
 use crate::stage::{check_len, Clock};
 use crate::validate::{check_block, check_lengths, finite_reading, interval_key, Checks};
 use crate::Error;
@@ -477,19 +477,6 @@ impl Pipeline {
             hdr_bound: scaled.hdr_bound_sigmas.map(|k| k * rest.bias_std_error),
             rest: Some(rest),
         });
-    }
-}
-
-/// Fails unless `speed` holds `n` samples, none of them infinite (NaN is "no speed here").
-fn check_speed(speed: &[f64], n: usize) -> Result<(), Error> {
-    check_len("speed", speed.len(), n)?;
-    match speed.iter().position(|s| s.is_infinite()) {
-        Some(index) => Err(Error::NonFinite {
-            what: "speed",
-            index,
-            value: speed[index],
-        }),
-        None => Ok(()),
     }
 }
 
