@@ -25,10 +25,15 @@ fn pipeline(c: &mut Criterion) {
     // to another loop (see `Correction::apply_directed`).
     let mut split = Preset::Combined.config();
     split.correction.c_cw = 1.01;
+    // `tuned` under the rest tracker (the general chain wrapped in `Tracked`), no speed.
+    let tracked = PipelineConfig {
+        rest_tracker: Some(RestTrackerConfig::default()),
+        ..Preset::Tuned.config()
+    };
     let configs = Preset::ALL
         .iter()
         .map(|p| (p.name(), p.config()))
-        .chain([("combined_cw_ccw", split)]);
+        .chain([("combined_cw_ccw", split), ("tuned_track_rests", tracked)]);
     for (name, mut config) in configs {
         config.correction.bias = StaticBias::Fixed(0.01);
         let (mut h, mut r, mut d) = (vec![0.0; N], vec![0.0; N], vec![0.0; N]);

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from . import _gyrocore
+from . import _gyrocore, rests
 from ._arrays import FloatArray, as_float_array
 from ._checks import warn, warn_units
 from .window import time_range
@@ -125,12 +125,15 @@ class HeadingResult:
         heading: continuous (unwrapped) heading [rad], counter-clockwise positive.
         rate: corrected rate that was integrated [rad/s].
         drift: HDR's drift estimate ``-I`` applied to each sample [rad/s] (0 without HDR).
+        rests: with ``track_rests=True``, the rests that ended in these samples (each one's span,
+            the bias it measured and its standard error; see :class:`gyrocore.rests.Rest`).
     """
 
     t: FloatArray
     heading: FloatArray
     rate: FloatArray | None = None
     drift: FloatArray | None = None
+    rests: tuple[rests.Rest, ...] = ()
 
     def output(self, name: str) -> FloatArray:
         """The output ``name`` (one of :data:`OUTPUTS`); a ``ValueError`` if it was not asked for."""
@@ -179,7 +182,8 @@ class Pipeline:
         self._preset = preset
         self._units_checked = False
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
-        if uses_static_bias(preset) and not has_bias_source(si):
+        self._rests: list[rests.Rest] = []
+        if uses_static_bias(preset) and not has_bias_source(si) and not si.get("track_rests"):
             warn(
                 f"preset {preset!r} removes a static bias, but no bias, bias_window or bias_duration "
                 "was given: the bias is taken as 0"
@@ -208,6 +212,8 @@ class Pipeline:
         temperature: ArrayLike | None = None,
         index_offset: int = 0,
         outputs: tuple[str, ...] = OUTPUTS,
+        speed: ArrayLike | None = None,
+        speed_t: ArrayLike | None = None,
     ) -> HeadingResult:
         """Process the next chunk of samples.
 
@@ -218,6 +224,10 @@ class Pipeline:
             index_offset: index of this chunk's first sample in the whole log; errors count from it.
             outputs: which of ``heading``, ``rate`` and ``drift`` to compute (the heading always);
                 the others are None and cost nothing: ``("heading",)`` fills one array, not three.
+            speed: the vehicle's speed [m/s] for ``track_rests``: one per sample, or a series at its
+                own times ``speed_t`` (e.g. a log folder's ``odometry.csv``), interpolated onto
+                ``t``; outside its span, and without it, rests are judged by the rate alone.
+            speed_t: the times [s] of ``speed``, strictly increasing, in the gyro's clock.
 
         Raises:
             SampleError: (a ValueError) non-increasing or non-finite timestamps, or NaN/inf readings
@@ -240,12 +250,46 @@ class Pipeline:
             warn_units(ta, ra)
             self._units_checked = True
         flags = output_flags(outputs)
+        if (speed is not None or speed_t is not None) and not self.params["track_rests"]:
+            raise ValueError("speed is given but rest tracking is off: pass track_rests=True, or no speed")
+        sa = None if speed is None else rests.speed_at(ta, speed, speed_t)
         before = self._inner.report()
-        heading, out_rate, drift = self._inner.process(ta, ra, temp, index_offset, flags)
+        heading, out_rate, drift, found = self._run(ta, ra, temp, index_offset, flags, sa)
         self._warn_repairs(before, self._inner.report(), ta, ra, temp)
         if self._first_time is None and len(ta):
             self._first_time = float(ta[0])
-        return HeadingResult(ta, heading, out_rate, drift)
+        self._rests.extend(found)
+        return HeadingResult(ta, heading, out_rate, drift, tuple(found))
+
+    def _run(
+        self,
+        t: FloatArray,
+        rate: FloatArray,
+        temp: FloatArray | None,
+        index_offset: int,
+        flags: tuple[bool, bool],
+        speed: FloatArray | None,
+    ) -> tuple[FloatArray, FloatArray | None, FloatArray | None, list[rests.Rest]]:
+        """The core over the chunk, and the rests that ended in it (see :func:`rests.run`)."""
+        if self._inner.rest_tracker() is None:
+            return (*self._inner.process(t, rate, temp, index_offset, flags, speed), [])
+        origin = self._first_time if self._first_time is not None else float(t[0]) if len(t) else 0.0
+        self._inner, heading, out_rate, drift, found = rests.run(
+            self._inner, t, rate, temp, index_offset, flags, speed, origin
+        )
+        return heading, out_rate, drift, found
+
+    @property
+    def rests(self) -> list[rests.Rest]:
+        """With ``track_rests=True``, every rest found so far, in order (see :class:`gyrocore.rests.Rest`)."""
+        return list(self._rests)
+
+    @property
+    def tracked_bias(self) -> tuple[float, float | None] | None:
+        """With ``track_rests=True``, the filtered bias [rad/s] and its standard error now [rad/s]
+        (None before the first rest or rest window); None without rest tracking."""
+        tracker = self._inner.rest_tracker()
+        return None if tracker is None else (tracker[0], tracker[1])
 
     def finish(self) -> None:
         """Call after the last chunk of a log: raises :class:`RestWindowError` if the rest window
@@ -275,6 +319,7 @@ class Pipeline:
         """Return to the state before the first sample (same parameters)."""
         self._inner.reset()
         self._first_time = None
+        self._rests = []
 
     def _warn_repairs(
         self,
@@ -356,13 +401,19 @@ class Pipeline:
         )
 
     def __getstate__(self) -> dict[str, Any]:
-        return {"preset": self._preset, "state": self._inner.state_json(), "first_time": self._first_time}
+        return {
+            "preset": self._preset,
+            "state": self._inner.state_json(),
+            "first_time": self._first_time,
+            "rests": self._rests,
+        }
 
     def __setstate__(self, state: dict[str, Any]) -> None:
         self._preset = state["preset"]
         self._inner = _gyrocore.Pipeline.from_state_json(state["state"])
         self._units_checked = self._inner.last_time() is not None
         self._first_time = state.get("first_time")
+        self._rests = list(state.get("rests", []))
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"
@@ -375,10 +426,13 @@ def process(
     *,
     temperature: ArrayLike | None = None,
     outputs: tuple[str, ...] = OUTPUTS,
+    speed: ArrayLike | None = None,
+    speed_t: ArrayLike | None = None,
     **overrides: Any,
 ) -> HeadingResult:
     """Heading of a whole log: ``Pipeline(preset, **overrides).process(t, rate)``; ``outputs``
-    chooses which of ``heading``, ``rate`` and ``drift`` are computed (see :meth:`Pipeline.process`).
+    chooses which of ``heading``, ``rate`` and ``drift`` are computed, ``speed`` (and its own times
+    ``speed_t``) feed rest tracking (``track_rests=True``; see :meth:`Pipeline.process`).
 
     Example:
         >>> import numpy as np, gyrocore
@@ -388,7 +442,7 @@ def process(
         True
     """
     pipeline = Pipeline(preset, **overrides)
-    result = pipeline.process(t, rate, temperature=temperature, outputs=outputs)
+    result = pipeline.process(t, rate, temperature=temperature, outputs=outputs, speed=speed, speed_t=speed_t)
     pipeline.finish()
     return result
 

@@ -35,6 +35,8 @@ pub struct Signal {
     pub heading: f64,
     /// The sensor temperature \[degC\], NaN where there is none.
     pub temperature: f64,
+    /// The vehicle's speed [m/s], NaN where none is given (read by the rest tracker alone).
+    pub speed: f64,
 }
 
 impl Signal {
@@ -47,6 +49,7 @@ impl Signal {
             drift: 0.0,
             heading: 0.0,
             temperature,
+            speed: f64::NAN,
         }
     }
 
@@ -91,6 +94,8 @@ pub struct Measured {
     pub threshold: Option<f64>,
     /// The bound on HDR's correction [rad/s], if it scales with the bias's standard error.
     pub hdr_bound: Option<f64>,
+    /// What the rest window measured besides the bias, once it is over (for the rest tracker).
+    pub rest: Option<crate::rest::RestStatistics>,
 }
 
 /// One stage of the per-sample chain.
@@ -112,6 +117,10 @@ pub trait Kernel {
     /// True for a stage that keeps a memory of the recent signal: after a gap, when the input
     /// policy says so, it starts again as at the first sample.
     const REMEMBERS: bool = false;
+
+    /// True for a chain whose stages read [`Signal::speed`]: only such a chain's loop reads the
+    /// speed, so the others carry none.
+    const READS_SPEED: bool = false;
 
     /// True for a stage that must not run while the static bias is still measured (HDR: it would
     /// only chase the running estimate of the bias); the signal passes it unchanged.

@@ -52,6 +52,7 @@ pub mod kernel;
 pub mod lowpass;
 pub mod pipeline;
 pub mod rest;
+pub mod rest_tracker;
 #[cfg(feature = "serde")]
 mod serde_float;
 pub mod sim;
@@ -70,6 +71,7 @@ pub use kernel::{Kernel, Signal, Streaming};
 pub use lowpass::{DeLag, LowPass, LowPassConfig};
 pub use pipeline::{NoiseScaled, Output, Outputs, Pipeline, PipelineConfig, Preset};
 pub use rest::{static_bias_test, RestStatistics, StaticBiasTest};
+pub use rest_tracker::{Rest, RestTracker, RestTrackerConfig};
 pub use sim::{GyroModel, GyroModelConfig, GyroSample, TemperatureProfile};
 pub use stage::{Clock, Stage};
 pub use threshold::{Threshold, ThresholdConfig};

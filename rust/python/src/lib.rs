@@ -97,6 +97,9 @@ struct PyPipeline {
     inner: Pipeline,
 }
 
+/// What [`PyPipeline::rest_tracker`] returns.
+type TrackerView = (f64, Option<f64>, u64, Vec<(f64, f64, f64, f64, bool, f64)>);
+
 fn build_preset(name: &str) -> PyResult<Preset> {
     Preset::from_name(name).ok_or_else(|| {
         let names: Vec<&str> = Preset::ALL.iter().map(|p| p.name()).collect();
@@ -129,8 +132,8 @@ impl PyPipeline {
     /// Processes a block; returns (heading, rate, drift), rate and drift None unless asked for
     /// in `outputs` (rate, drift). Nothing is processed from an invalid block; its error counts
     /// sample indices from `index_offset`.
-    #[pyo3(signature = (t, rate, temperature=None, index_offset=0, outputs=(true, true)))]
-    #[allow(clippy::type_complexity)]
+    #[pyo3(signature = (t, rate, temperature=None, index_offset=0, outputs=(true, true), speed=None))]
+    #[allow(clippy::type_complexity, clippy::too_many_arguments)]
     fn process<'py>(
         &mut self,
         py: Python<'py>,
@@ -139,12 +142,14 @@ impl PyPipeline {
         temperature: Option<PyReadonlyArray1<'py, f64>>,
         index_offset: usize,
         outputs: (bool, bool),
+        speed: Option<PyReadonlyArray1<'py, f64>>,
     ) -> PyResult<(Array<'py>, Option<Array<'py>>, Option<Array<'py>>)> {
         let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
         let temperature = temperature
             .as_ref()
             .map(|a| slice("temperature", a))
             .transpose()?;
+        let speed = speed.as_ref().map(|a| slice("speed", a)).transpose()?;
         let n = t.len();
         let wanted = |on: bool| on.then(|| zeros(py, n));
         let (heading, out_rate, drift) = (zeros(py, n), wanted(outputs.0), wanted(outputs.1));
@@ -158,7 +163,7 @@ impl PyPipeline {
                         rate: r,
                         drift: d,
                     };
-                    inner.process_block(t, rate, temperature, out)
+                    inner.process_block_with_speed(t, rate, temperature, speed, out)
                 })
             },
         )?
@@ -187,6 +192,25 @@ impl PyPipeline {
         self.inner
             .rest_statistics()
             .map(|r| (r.noise, r.bias_std_error))
+    }
+
+    /// The rest tracker, or None without one: (filtered bias [rad/s], its standard error [rad/s]
+    /// or None before any rest, rests found, the latest rests as (start, end [s since the first
+    /// sample], bias, standard error [rad/s], accepted, filtered bias after it [rad/s])).
+    #[allow(clippy::type_complexity)]
+    fn rest_tracker(&self) -> Option<TrackerView> {
+        let tracker = self.inner.rest_tracker()?;
+        let config = self.inner.config().rest_tracker?;
+        let rests = tracker
+            .recent_rests()
+            .map(|r| (r.start, r.end, r.bias, r.std_error, r.accepted, r.filtered))
+            .collect();
+        Some((
+            tracker.bias(),
+            tracker.std_error(&config),
+            tracker.rests_found(),
+            rests,
+        ))
     }
 
     /// What the input policy did so far: held, skipped, gaps, longest_gap [s].

@@ -3,8 +3,8 @@
 //! This is the one place that knows the names; presets come from the core crate.
 
 use gyrocore::{
-    GapAction, HdrConfig, Method, NonFinite, PipelineConfig, StaticBias, TemperatureScale,
-    ThresholdConfig,
+    GapAction, HdrConfig, Method, NonFinite, PipelineConfig, RestTrackerConfig, StaticBias,
+    TemperatureScale, ThresholdConfig,
 };
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -79,6 +79,36 @@ pub const NAMES: &[(&str, &str)] = &[
     (
         "gap_action",
         "at a gap: 'bridge' (default) or 'reset' HDR, low-pass and de-lag",
+    ),
+    (
+        "track_rests",
+        "find rests while driving and re-measure the bias at each (a Kalman filter) [bool]",
+    ),
+    ("rest_block", "rest detection block length [s]"),
+    (
+        "rest_min_duration",
+        "shortest rest that counts, without its first and last block [s]",
+    ),
+    (
+        "rest_noise_ratio",
+        "without speed: a still block's noise at most this times the noise at rest [1]",
+    ),
+    (
+        "rest_change_sigmas",
+        "without speed: a still block's mean within this many standard errors of the previous block's [1]",
+    ),
+    ("rest_speed_threshold", "speed below which the vehicle is at rest [m/s]"),
+    (
+        "rest_bias_walk",
+        "random-walk intensity of the bias q [rad^2/s^3] (see gyrocore.rests.bias_walk)",
+    ),
+    (
+        "rest_gate_sigmas",
+        "refuse a rest further than this many innovation standard deviations from the bias [1] (inf: none)",
+    ),
+    (
+        "rest_noise",
+        "reading noise at rest [rad/s] if known beforehand; None: from the rest window or the first rest",
     ),
 ];
 
@@ -171,6 +201,20 @@ pub fn apply(config: &mut PipelineConfig, overrides: &Bound<'_, PyDict>) -> PyRe
                     other => return Err(choice_error("gap_action", other, "'bridge' or 'reset'")),
                 }
             }
+            "track_rests" => {
+                let on: bool = value.extract()?;
+                config.rest_tracker = on.then(|| config.rest_tracker.unwrap_or_default());
+            }
+            "rest_block" => tracker_of(config, name)?.block = value.extract()?,
+            "rest_min_duration" => tracker_of(config, name)?.min_duration = value.extract()?,
+            "rest_noise_ratio" => tracker_of(config, name)?.noise_ratio = value.extract()?,
+            "rest_change_sigmas" => tracker_of(config, name)?.change_sigmas = value.extract()?,
+            "rest_speed_threshold" => {
+                tracker_of(config, name)?.speed_threshold = value.extract()?
+            }
+            "rest_bias_walk" => tracker_of(config, name)?.bias_walk = value.extract()?,
+            "rest_gate_sigmas" => tracker_of(config, name)?.gate_sigmas = value.extract()?,
+            "rest_noise" => tracker_of(config, name)?.noise = Some(value.extract()?),
             _ => return Err(unknown(name)),
         }
         if BIAS_SOURCES.contains(&name) {
@@ -202,6 +246,18 @@ fn hdr_of<'a>(config: &'a mut PipelineConfig, name: &str) -> PyResult<&'a mut Hd
     config.hdr.as_mut().ok_or_else(|| {
         PyValueError::new_err(format!(
             "{name} is set but HDR is off; pass hdr=True to enable it"
+        ))
+    })
+}
+
+/// The rest tracker's settings, or an error naming `name` when tracking is off.
+fn tracker_of<'a>(
+    config: &'a mut PipelineConfig,
+    name: &str,
+) -> PyResult<&'a mut RestTrackerConfig> {
+    config.rest_tracker.as_mut().ok_or_else(|| {
+        PyValueError::new_err(format!(
+            "{name} is set but rest tracking is off; pass track_rests=True to enable it"
         ))
     })
 }
@@ -279,5 +335,16 @@ pub fn to_dict<'py>(py: Python<'py>, config: &PipelineConfig) -> PyResult<Bound<
             "bridge"
         },
     )?;
+    d.set_item("track_rests", config.rest_tracker.is_some())?;
+    if let Some(r) = config.rest_tracker {
+        d.set_item("rest_block", r.block)?;
+        d.set_item("rest_min_duration", r.min_duration)?;
+        d.set_item("rest_noise_ratio", r.noise_ratio)?;
+        d.set_item("rest_change_sigmas", r.change_sigmas)?;
+        d.set_item("rest_speed_threshold", r.speed_threshold)?;
+        d.set_item("rest_bias_walk", r.bias_walk)?;
+        d.set_item("rest_gate_sigmas", r.gate_sigmas)?;
+        d.set_item("rest_noise", r.noise)?;
+    }
     Ok(d)
 }

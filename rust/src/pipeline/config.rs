@@ -7,6 +7,7 @@ use crate::hdr::HdrConfig;
 use crate::input::InputPolicy;
 use crate::integrate::IntegratorConfig;
 use crate::lowpass::LowPassConfig;
+use crate::rest_tracker::RestTrackerConfig;
 use crate::threshold::ThresholdConfig;
 use crate::Error;
 
@@ -32,6 +33,9 @@ pub struct PipelineConfig {
     pub input: InputPolicy,
     /// Dead band and HDR bound scaled to the rest window's noise.
     pub noise_scaled: NoiseScaled,
+    /// Rests found while driving re-measure the bias (see [`crate::rest_tracker`]); `None`: the
+    /// bias is the one given or measured in the rest window, for the whole stream.
+    pub rest_tracker: Option<RestTrackerConfig>,
 }
 
 impl PipelineConfig {
@@ -72,7 +76,11 @@ impl PipelineConfig {
         }
         self.integrator.validate()?;
         self.input.validate()?;
-        self.noise_scaled.validate()
+        self.noise_scaled.validate()?;
+        match self.rest_tracker {
+            Some(r) => r.validate(),
+            None => Ok(()),
+        }
     }
 
     /// Sets the low-pass time constant `tau` \[s\] of HDR eq 7 for the samples and for HDR's

@@ -11,6 +11,7 @@ use crate::hdr::{HdrKernel, HdrRule};
 use crate::integrate::{IntegratorKernel, Method, TrapezoidKernel};
 use crate::kernel::{Event, Kernel, Measured, Signal};
 use crate::lowpass::{DeLagKernel, LowPassKernel};
+use crate::rest_tracker::{RestTracker, Tracked, TrackedConfig, TrackerSettings};
 use crate::threshold::{ThresholdConfig, ThresholdKernel};
 use crate::validate::{interval_key, usable_reading, Checks};
 
@@ -41,6 +42,9 @@ pub(crate) type GeneralChain = (
     IntegratorKernel,
 );
 
+/// The general chain under the rest tracker (a configuration with `rest_tracker`).
+pub(crate) type TrackedChain = Tracked<GeneralChain>;
+
 /// A chain's configuration and state.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -53,10 +57,14 @@ pub(crate) struct Chain<C: Kernel> {
 /// The chain a configuration runs.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// The tracker's variant holds its recent rests (about 2 KB): one engine per pipeline, and the
+// crate allocates nothing (no_std), so it is not boxed.
+#[allow(clippy::large_enum_variant)]
 pub(crate) enum Engine {
     Plain(Chain<PlainChain>),
     Hdr(Chain<HdrChain>),
     General(Chain<GeneralChain>),
+    Tracked(Chain<TrackedChain>),
 }
 
 /// Runs `$body` with `$chain` bound to the engine's chain, whichever it is.
@@ -66,6 +74,7 @@ macro_rules! with_chain {
             Engine::Plain($chain) => $body,
             Engine::Hdr($chain) => $body,
             Engine::General($chain) => $body,
+            Engine::Tracked($chain) => $body,
         }
     };
 }
@@ -82,6 +91,25 @@ impl Engine {
             && c.temperature.is_none()
             && config.integrator.method == Method::Trapezoid;
         let integrator = config.integrator;
+        let general = (
+            calibration,
+            threshold,
+            config.lowpass,
+            config.hdr.map(HdrRule::new),
+            config.lowpass.filter(|_| config.delag),
+            integrator,
+        );
+        if let Some(tracker) = config.rest_tracker {
+            return Engine::Tracked(Chain::new(TrackedConfig {
+                tracker: TrackerSettings {
+                    config: tracker,
+                    threshold_sigmas: config.noise_scaled.threshold_sigmas,
+                    hdr_bound_sigmas: config.noise_scaled.hdr_bound_sigmas,
+                },
+                bias: calibration.bias,
+                inner: general,
+            }));
+        }
         match (common, config.lowpass, config.hdr, config.delag) {
             (true, None, None, false) => {
                 Engine::Plain(Chain::new((calibration, threshold, integrator)))
@@ -94,20 +122,21 @@ impl Engine {
                 lowpass,
                 integrator,
             ))),
-            _ => Engine::General(Chain::new((
-                calibration,
-                threshold,
-                config.lowpass,
-                config.hdr.map(HdrRule::new),
-                config.lowpass.filter(|_| config.delag),
-                integrator,
-            ))),
+            _ => Engine::General(Chain::new(general)),
         }
     }
 
     /// One sample on the slow path (see [`Event`]).
     pub(crate) fn event(&mut self, e: Event, x: Signal) -> Signal {
         with_chain!(self, |chain| chain.event(e, x))
+    }
+
+    /// The rest tracker, when the configuration has one.
+    pub(crate) fn rest_tracker(&self) -> Option<&RestTracker> {
+        match self {
+            Engine::Tracked(chain) => Some(&chain.state.tracker),
+            _ => None,
+        }
     }
 
     /// Hands what the pipeline measured to every stage.
@@ -137,6 +166,8 @@ pub(crate) struct Block<'a> {
     pub(crate) t: &'a [f64],
     pub(crate) rate: &'a [f64],
     pub(crate) temperature: Option<&'a [f64]>,
+    /// The vehicle's speed [m/s] per sample, for the rest tracker.
+    pub(crate) speed: Option<&'a [f64]>,
 }
 
 /// Where the loop over a block stands.
@@ -211,6 +242,7 @@ impl<C: Kernel> Chain<C> {
         let n = block.t.len();
         // Slices of one length, so the loop carries no bounds checks.
         let (t, rate) = (block.t, &block.rate[..n]);
+        let speed = block.speed.filter(|_| C::READS_SPEED).map(|s| &s[..n]);
         let mut out = out.first(n);
         let config = &self.config;
         // Local copies, so that the loop keeps them in registers.
@@ -225,7 +257,10 @@ impl<C: Kernel> Chain<C> {
             c.previous = t[i];
             c.checks.interval(dt);
             c.checks.reading(rate[i], temp);
-            let x = Signal::reading(rate[i], temp.unwrap_or(f64::NAN));
+            let mut x = Signal::reading(rate[i], temp.unwrap_or(f64::NAN));
+            if C::READS_SPEED {
+                x.speed = speed.map_or(f64::NAN, |s| s[i]);
+            }
             c.last = Output::of(C::step(config, &mut state, dt, x));
             out.set(i, c.last);
             c.next = i + 1;

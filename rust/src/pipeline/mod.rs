@@ -19,6 +19,7 @@ use crate::input::{GapAction, InputReport, NonFinite};
 use crate::kernel::{Event, EventKind, Measured, Signal};
 use crate::rest::BiasEstimate;
 use crate::rest::RestStatistics;
+use crate::rest_tracker::{check_speed, RestTracker};
 use crate::stage::{check_len, Clock};
 use crate::validate::{check_block, check_lengths, interval_key, usable_reading, Checks};
 use crate::Error;
@@ -149,7 +150,7 @@ impl Pipeline {
                 ..Output::default()
             },
             report: InputReport::default(),
-            scaling_pending: config.noise_scaled.any(),
+            scaling_pending: config.noise_scaled.any() || config.rest_tracker.is_some(),
         })
     }
 
@@ -192,6 +193,11 @@ impl Pipeline {
         self.bias.rest_statistics()
     }
 
+    /// The rest tracker (the filtered bias and the rests found), when the configuration has one.
+    pub fn rest_tracker(&self) -> Option<&RestTracker> {
+        self.engine.rest_tracker()
+    }
+
     /// Feeds one sample (`t` \[s\], `rate` [rad/s]) without a temperature.
     #[inline]
     pub fn update(&mut self, t: f64, rate: f64) -> Output {
@@ -212,6 +218,18 @@ impl Pipeline {
         rate: f64,
         temperature: Option<f64>,
     ) -> Output {
+        self.update_with_speed(t, rate, temperature, f64::NAN)
+    }
+
+    /// [`Pipeline::update_with_temperature`] with the vehicle's speed [m/s] for the rest tracker
+    /// (NaN: none for this sample, the tracker judges it by the rate alone).
+    pub fn update_with_speed(
+        &mut self,
+        t: f64,
+        rate: f64,
+        temperature: Option<f64>,
+        speed: f64,
+    ) -> Output {
         let first = self.clock.last().is_none();
         let Some((dt, rate, temperature)) = self.admit(t, rate, temperature) else {
             self.report.skipped += 1;
@@ -220,7 +238,7 @@ impl Pipeline {
                 ..self.last_output
             };
         };
-        self.last_output = self.take(first, t, dt, rate, temperature);
+        self.last_output = self.take(first, dt, rate, temperature, speed);
         self.last_output
     }
 
@@ -237,17 +255,35 @@ impl Pipeline {
         t: &[f64],
         rate: &[f64],
         temperature: Option<&[f64]>,
+        out: Outputs<'_>,
+    ) -> Result<(), Error> {
+        self.process_block_with_speed(t, rate, temperature, None, out)
+    }
+
+    /// [`Pipeline::process_block`] with the vehicle's speed [m/s] per sample for the rest
+    /// tracker (NaN where there is none: the tracker judges that sample by the rate alone). A
+    /// speed of the wrong length is an error, and an infinite one is refused (naming its index).
+    pub fn process_block_with_speed(
+        &mut self,
+        t: &[f64],
+        rate: &[f64],
+        temperature: Option<&[f64]>,
+        speed: Option<&[f64]>,
         mut out: Outputs<'_>,
     ) -> Result<(), Error> {
         if self.config.correction.temperature.is_some() && temperature.is_none() {
             return Err(Error::MissingTemperature);
         }
         check_lengths(t, rate, temperature)?;
+        if let Some(s) = speed {
+            check_speed(s, t.len())?;
+        }
         out.check(t.len())?;
         let block = Block {
             t,
             rate,
             temperature,
+            speed,
         };
         let before = self.clone();
         let result = self.feed(&block, &mut out);
@@ -353,7 +389,8 @@ impl Pipeline {
             must_be_finite,
         )
         .map_err(|e| e.with_index_offset(i))?;
-        let out = self.update_with_temperature(t, rate, temperature);
+        let speed = block.speed.map_or(f64::NAN, |s| s[i]);
+        let out = self.update_with_speed(t, rate, temperature, speed);
         match self.bias.missed(t).filter(|_| !self.bias.learning()) {
             Some(e) => Err(e),
             None => Ok(out),
@@ -392,11 +429,12 @@ impl Pipeline {
     fn take(
         &mut self,
         first: bool,
-        t: f64,
         dt: f64,
         rate: f64,
         temperature: Option<f64>,
+        speed: f64,
     ) -> Output {
+        let t = self.clock.last().unwrap_or(f64::NAN);
         let policy = self.config.input;
         let kind = if first {
             EventKind::First
@@ -425,7 +463,10 @@ impl Pipeline {
             kind,
             measuring,
         };
-        let x = Signal::reading(rate, temperature.unwrap_or(f64::NAN));
+        let x = Signal {
+            speed,
+            ..Signal::reading(rate, temperature.unwrap_or(f64::NAN))
+        };
         Output::of(self.engine.event(e, x))
     }
 
@@ -440,6 +481,7 @@ impl Pipeline {
             bias: None,
             threshold: scaled.threshold_sigmas.map(|k| k * rest.noise),
             hdr_bound: scaled.hdr_bound_sigmas.map(|k| k * rest.bias_std_error),
+            rest: Some(rest),
         });
     }
 }

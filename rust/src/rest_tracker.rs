@@ -1,0 +1,436 @@
+//! Rest tracking: the rests of a drive found as it streams, each one re-measuring the static bias
+//! through a one-state Kalman filter, so that a bias that wanders, or a log that starts moving,
+//! still gets its bias removed from the first stop on.
+//!
+//! Not in the papers, which measure the bias once (HDR eq 2). Time is cut into blocks of
+//! [`RestTrackerConfig::block`] seconds from the first sample (so the blocks, and everything
+//! found, are the same however the stream is chunked). A finished block is *still* when the
+//! vehicle's speed stayed below [`RestTrackerConfig::speed_threshold`] in all its samples; where
+//! no speed is given, when its reading noise is at most [`RestTrackerConfig::noise_ratio`] times
+//! the noise at rest; and in both cases, when its mean moved from the previous block's by no more
+//! than [`RestTrackerConfig::change_sigmas`] standard errors (a rest reads a constant plus noise). A run
+//! of still blocks is a rest; its first and last blocks are dropped (the vehicle may be settling
+//! or starting), and the rest counts once what is left lasts [`RestTrackerConfig::min_duration`].
+//!
+//! A finished rest is a measurement of the bias: its time-weighted mean reading, with the
+//! batch-means standard error of its blocks (never below the white-noise error
+//! `noise / sqrt(n)`). The filter's state is the bias, a random walk of intensity
+//! [`RestTrackerConfig::bias_walk`] (`K^2` from the rate random walk, plus the bias instability's
+//! share, see `gyrocore.rests.bias_walk`): predict `P += q dt`, gate the innovation at
+//! [`RestTrackerConfig::gate_sigmas`], update `b += P/(P+R) (z - b)`, `P = P R/(P+R)`. A rest that
+//! stopped short or crept gives a mean with a large standard error, or one the gate refuses, and
+//! so moves the bias little.
+
+use crate::error::{check_positive, check_range};
+use crate::kernel::Event;
+use crate::rest::RestStatistics;
+use crate::Error;
+
+mod tracked;
+pub use tracked::{Tracked, TrackedConfig, TrackedState, TrackerSettings};
+
+/// How many of the latest rests the tracker keeps for [`RestTracker::recent_rests`].
+pub const HISTORY: usize = 8;
+
+/// Settings of the rest tracker (see the module doc).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RestTrackerConfig {
+    /// Length of a detection block \[s\], > 0.
+    pub block: f64,
+    /// Shortest rest that counts, after its first and last block are dropped \[s\]; at least two
+    /// blocks (the standard error needs two block means).
+    pub min_duration: f64,
+    /// Without speed: a still block's reading noise is at most this many times the noise at
+    /// rest, >= 1.
+    pub noise_ratio: f64,
+    /// A still block's mean is within this many standard errors (from its own noise) of the
+    /// previous block's, > 0 (`inf`: no such test).
+    #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
+    pub change_sigmas: f64,
+    /// Speed below which the vehicle is at rest [m/s], > 0 (its magnitude: reversing counts).
+    pub speed_threshold: f64,
+    /// Random-walk intensity `q` of the bias [rad^2/s^3], >= 0.
+    pub bias_walk: f64,
+    /// A rest whose mean is further than this many standard deviations of the innovation from
+    /// the filtered bias is refused (`inf`: none), > 0.
+    #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
+    pub gate_sigmas: f64,
+    /// The reading noise at rest [rad/s] when known beforehand (Allan's `N / sqrt(dt)`); `None`
+    /// takes it from the rest window or the first rest found with speed. Until it is known, rests
+    /// are found from speed only.
+    pub noise: Option<f64>,
+}
+
+/// The grid point with the lowest mean E_psi ratio to static-bias removal over the 18 real logs,
+/// also the choice of most leave-one-log-out folds (docs/rest_tracking.md).
+impl Default for RestTrackerConfig {
+    fn default() -> Self {
+        RestTrackerConfig {
+            block: 0.5,
+            min_duration: 1.0,
+            noise_ratio: 1.5,
+            change_sigmas: 4.0,
+            speed_threshold: 0.05,
+            bias_walk: 1e-9,
+            gate_sigmas: 3.0,
+            noise: None,
+        }
+    }
+}
+
+impl RestTrackerConfig {
+    /// Checks every field; the error names the first invalid one (as `rest_<field>`).
+    pub fn validate(&self) -> Result<(), Error> {
+        check_positive("rest_block", self.block)?;
+        check_range(
+            "rest_min_duration",
+            self.min_duration,
+            2.0 * self.block,
+            f64::MAX,
+            "finite and at least two blocks (2 * rest_block): a rest's standard error needs two \
+             block means",
+        )?;
+        check_range(
+            "rest_noise_ratio",
+            self.noise_ratio,
+            1.0,
+            f64::MAX,
+            "finite and >= 1",
+        )?;
+        check_range(
+            "rest_change_sigmas",
+            self.change_sigmas,
+            f64::MIN_POSITIVE,
+            f64::INFINITY,
+            "> 0 (inf: no test)",
+        )?;
+        check_positive("rest_speed_threshold", self.speed_threshold)?;
+        check_range(
+            "rest_bias_walk",
+            self.bias_walk,
+            0.0,
+            f64::MAX,
+            "finite and >= 0",
+        )?;
+        check_range(
+            "rest_gate_sigmas",
+            self.gate_sigmas,
+            f64::MIN_POSITIVE,
+            f64::INFINITY,
+            "> 0 (inf: no gate)",
+        )?;
+        if let Some(noise) = self.noise {
+            check_range("rest_noise", noise, 0.0, f64::MAX, "finite and >= 0")?;
+        }
+        Ok(())
+    }
+}
+
+/// One rest the tracker found.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Rest {
+    /// Start and end of the part measured \[s since the first sample\] (the rest without its first
+    /// and last block).
+    pub start: f64,
+    /// See `start`.
+    pub end: f64,
+    /// The mean reading over it [rad/s]: the bias it measured.
+    pub bias: f64,
+    /// That mean's standard error [rad/s].
+    pub std_error: f64,
+    /// False when the filter's gate refused it.
+    pub accepted: bool,
+    /// The filtered bias after this rest [rad/s].
+    pub filtered: f64,
+}
+
+/// Sums over one block, or over the blocks of a rest.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+struct Sums {
+    start: f64,
+    end: f64,
+    /// Integral of the readings [rad] and time covered \[s\] (the rectangle rule, as the static
+    /// bias test weighs them).
+    integral: f64,
+    duration: f64,
+    samples: u64,
+    squared_differences: f64,
+    differences: u64,
+    /// Block means and their squares (a rest's batch means).
+    blocks: u64,
+    means: f64,
+    squared_means: f64,
+}
+
+impl Sums {
+    fn mean(&self) -> f64 {
+        if self.duration > 0.0 {
+            self.integral / self.duration
+        } else {
+            0.0
+        }
+    }
+
+    /// One reading's noise from successive differences (as [`RestStatistics::noise`]).
+    fn noise(&self) -> f64 {
+        libm::sqrt(self.squared_differences / (2.0 * self.differences.max(1) as f64))
+    }
+
+    /// Adds a finished block to a rest.
+    fn add(&mut self, b: &Sums) {
+        if self.blocks == 0 {
+            self.start = b.start;
+        }
+        self.end = b.end;
+        self.integral += b.integral;
+        self.duration += b.duration;
+        self.samples += b.samples;
+        self.squared_differences += b.squared_differences;
+        self.differences += b.differences;
+        let m = b.mean();
+        self.blocks += 1;
+        self.means += m;
+        self.squared_means += m * m;
+    }
+
+    /// The batch-means standard error of a rest's mean, at least the white-noise error.
+    fn std_error(&self) -> f64 {
+        let k = self.blocks as f64;
+        let mean = self.means / k;
+        let spread = (self.squared_means - k * mean * mean).max(0.0) / (k - 1.0);
+        let white = self.noise() / libm::sqrt(self.samples as f64);
+        libm::sqrt(spread / k).max(white)
+    }
+}
+
+/// The block being filled.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+struct Filling {
+    index: u64,
+    sums: Sums,
+    previous_rate: Option<f64>,
+    /// Every sample had a speed, and some was at or above the threshold.
+    all_speeds: bool,
+    moving: bool,
+}
+
+/// The rest tracker's state: detection and the bias filter.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RestTracker {
+    /// The time since the first sample \[s\] (the sum of the intervals: kernels see no clock).
+    now: f64,
+    block: Filling,
+    /// The last finished block (its mean and sample count), for the change test.
+    previous: Option<(f64, u64)>,
+    /// The still run: its blocks so far but the latest, which waits in `pending`.
+    run: Option<(Sums, Option<Sums>)>,
+    /// The filtered bias [rad/s] and its variance [rad^2/s^2] (`None`: nothing known yet), at
+    /// time `updated`.
+    bias: f64,
+    variance: Option<f64>,
+    updated: f64,
+    /// The reading noise at rest [rad/s], once known.
+    noise: Option<f64>,
+    rests: [Rest; HISTORY],
+    found: u64,
+}
+
+impl RestTracker {
+    fn new(config: &RestTrackerConfig, bias: f64) -> Self {
+        RestTracker {
+            bias,
+            noise: config.noise,
+            block: Filling::start(0),
+            ..RestTracker::default()
+        }
+    }
+
+    /// The filtered bias [rad/s].
+    pub fn bias(&self) -> f64 {
+        self.bias
+    }
+
+    /// Its standard error now [rad/s] (the variance at the last rest plus the random walk since),
+    /// `None` before the first rest or rest window.
+    pub fn std_error(&self, config: &RestTrackerConfig) -> Option<f64> {
+        self.variance
+            .map(|p| libm::sqrt(p + config.bias_walk * (self.now - self.updated).max(0.0)))
+    }
+
+    /// How many rests were found (accepted or not).
+    pub fn rests_found(&self) -> u64 {
+        self.found
+    }
+
+    /// The latest rests found, oldest first (at most [`HISTORY`]).
+    pub fn recent_rests(&self) -> impl Iterator<Item = Rest> + '_ {
+        let kept = self.found.min(HISTORY as u64);
+        (self.found - kept..self.found).map(|i| self.rests[(i % HISTORY as u64) as usize])
+    }
+
+    /// Takes one reading (`speed` NaN where none is given); returns the measurement of a rest
+    /// that this reading ended, once filtered.
+    fn observe(&mut self, c: &RestTrackerConfig, e: Event, rate: f64, speed: f64) -> Option<Rest> {
+        let t = self.now + e.dt;
+        self.now = t;
+        let index = (t / c.block) as u64;
+        if e.measuring {
+            // The rest window is the pipeline's to measure; blocks start after it.
+            self.block = Filling::start(index);
+            (self.previous, self.run) = (None, None);
+            return None;
+        }
+        let mut found = None;
+        if index != self.block.index {
+            let finished = self.block;
+            let still = index == finished.index + 1 && self.still(c, &finished);
+            self.previous = Some((finished.sums.mean(), finished.sums.samples));
+            found = self.extend_run(c, still, &finished.sums);
+            self.block = Filling::start(index);
+        }
+        self.block.take(t, e.dt, rate, speed, c.speed_threshold);
+        found
+    }
+
+    /// Whether a finished block is still (see the module doc).
+    fn still(&self, c: &RestTrackerConfig, b: &Filling) -> bool {
+        let Some((previous, n)) = self.previous.filter(|_| b.sums.samples >= 2) else {
+            return false;
+        };
+        // The change test with the block's own noise: a vehicle that creeps or turns slowly
+        // while its speed reads zero changes its mean faster than its noise explains.
+        let own = b.sums.noise();
+        let error = own * libm::sqrt(1.0 / b.sums.samples as f64 + 1.0 / n.max(1) as f64);
+        let constant = libm::fabs(b.sums.mean() - previous) <= c.change_sigmas * error;
+        constant
+            && if b.all_speeds {
+                !b.moving
+            } else {
+                self.noise.is_some_and(|noise| own <= c.noise_ratio * noise)
+            }
+    }
+
+    /// Grows the still run by a block, or ends it; returns a rest that ended.
+    fn extend_run(&mut self, c: &RestTrackerConfig, still: bool, b: &Sums) -> Option<Rest> {
+        match (still, &mut self.run) {
+            (true, None) => {
+                // The first block of a rest is dropped.
+                self.run = Some((Sums::default(), None));
+                None
+            }
+            (true, Some((sums, pending))) => {
+                if let Some(p) = pending.replace(*b) {
+                    sums.add(&p);
+                }
+                None
+            }
+            (false, run) => {
+                // The latest block (in `pending`) is dropped: the vehicle may have been starting.
+                let (sums, _) = run.take()?;
+                (sums.blocks >= 2 && sums.duration >= c.min_duration).then(|| self.filter(c, &sums))
+            }
+        }
+    }
+
+    /// The Kalman update with a rest's mean (see the module doc).
+    fn filter(&mut self, c: &RestTrackerConfig, sums: &Sums) -> Rest {
+        let z = sums.mean();
+        let r = sums.std_error() * sums.std_error();
+        let at = 0.5 * (sums.start + sums.end);
+        let accepted = match self.variance {
+            None => {
+                self.bias = z;
+                self.variance = Some(r);
+                true
+            }
+            Some(p) => {
+                let p = p + c.bias_walk * (at - self.updated).max(0.0);
+                let s = p + r;
+                let innovation = z - self.bias;
+                let accepted = libm::fabs(innovation) <= c.gate_sigmas * libm::sqrt(s);
+                if accepted && s > 0.0 {
+                    self.bias += p / s * innovation;
+                    self.variance = Some(p * r / s);
+                } else {
+                    self.variance = Some(p);
+                }
+                accepted
+            }
+        };
+        self.updated = at;
+        if self.noise.is_none() && accepted {
+            self.noise = Some(sums.noise());
+        }
+        let rest = Rest {
+            start: sums.start,
+            end: sums.end,
+            bias: z,
+            std_error: libm::sqrt(r),
+            accepted,
+            filtered: self.bias,
+        };
+        self.rests[(self.found % HISTORY as u64) as usize] = rest;
+        self.found += 1;
+        rest
+    }
+
+    /// Takes what the rest window measured: its mean as the bias, and its standard error and
+    /// noise once it is over.
+    fn prior(&mut self, bias: Option<f64>, rest: Option<RestStatistics>) {
+        if let Some(b) = bias {
+            self.bias = b;
+        }
+        if let Some(r) = rest {
+            self.variance = Some(r.bias_std_error * r.bias_std_error);
+            self.updated = self.now;
+            self.noise.get_or_insert(r.noise);
+        }
+    }
+}
+
+impl Filling {
+    fn start(index: u64) -> Self {
+        Filling {
+            index,
+            all_speeds: true,
+            ..Filling::default()
+        }
+    }
+
+    fn take(&mut self, t: f64, dt: f64, rate: f64, speed: f64, threshold: f64) {
+        let s = &mut self.sums;
+        if s.samples == 0 {
+            s.start = t;
+        } else {
+            s.integral += rate * dt;
+            s.duration += dt;
+        }
+        s.end = t;
+        s.samples += 1;
+        if let Some(p) = self.previous_rate {
+            s.squared_differences += (rate - p) * (rate - p);
+            s.differences += 1;
+        }
+        self.previous_rate = Some(rate);
+        self.all_speeds &= !speed.is_nan();
+        self.moving |= libm::fabs(speed) >= threshold;
+    }
+}
+
+/// Fails unless `speed` holds `n` samples, none of them infinite (NaN is "no speed here").
+pub(crate) fn check_speed(speed: &[f64], n: usize) -> Result<(), Error> {
+    crate::stage::check_len("speed", speed.len(), n)?;
+    match speed.iter().position(|s| s.is_infinite()) {
+        Some(index) => Err(Error::NonFinite {
+            what: "speed",
+            index,
+            value: speed[index],
+        }),
+        None => Ok(()),
+    }
+}

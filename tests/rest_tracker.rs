@@ -1,0 +1,336 @@
+//! The rest tracker: rests found from speed and from the rate alone, the bias filter, its rules,
+//! and the stream's invariants (chunking, per-sample updates, snapshots).
+
+mod common;
+
+use common::bits;
+use gyrocore::{
+    Error, Output, Outputs, Pipeline, PipelineConfig, Preset, RestTrackerConfig, StaticBias,
+};
+use proptest::prelude::*;
+
+/// A drive at 100 Hz: `(t, rate, speed)`, with white noise of `noise` [rad/s] (a fixed
+/// generator) and a bias that steps from `b0` to `b1` at `step` s. It drives (turning, at
+/// 5 m/s) except in `stops` (start, end) [s], where the rate is the bias and noise.
+fn drive(
+    length: f64,
+    stops: &[(f64, f64)],
+    b0: f64,
+    b1: f64,
+    step: f64,
+    noise: f64,
+) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let n = (length * 100.0) as usize;
+    let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut uniform = move || {
+        seed = seed
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let (mut t, mut r, mut s) = (vec![], vec![], vec![]);
+    for i in 0..n {
+        let ti = i as f64 * 0.01;
+        let stopped = stops.iter().any(|&(a, b)| ti >= a && ti <= b);
+        let turn = if stopped { 0.0 } else { 0.2 * (0.3 * ti).sin() };
+        let bias = if ti < step { b0 } else { b1 };
+        // Sum of uniforms: near-normal noise of standard deviation `noise`.
+        let w = (0..4).map(|_| uniform()).sum::<f64>() * noise * (3.0f64).sqrt();
+        t.push(ti);
+        r.push(turn + bias + w);
+        s.push(if stopped { 0.0 } else { 5.0 });
+    }
+    (t, r, s)
+}
+
+/// The drives' bias walk: a step of 0.01 rad/s within a minute is about one standard deviation of
+/// a random walk of this intensity [rad^2/s^3].
+const WALK: f64 = 1e-6;
+
+fn tracked(bias: StaticBias) -> PipelineConfig {
+    let mut c = Preset::StaticBias.config();
+    c.correction.bias = bias;
+    c.rest_tracker = Some(RestTrackerConfig {
+        bias_walk: WALK,
+        ..RestTrackerConfig::default()
+    });
+    c
+}
+
+fn run(p: &mut Pipeline, t: &[f64], r: &[f64], s: Option<&[f64]>) -> Result<Vec<Output>, Error> {
+    let n = t.len();
+    let (mut h, mut ra, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    p.process_block_with_speed(t, r, None, s, Outputs::all(&mut h, &mut ra, &mut d))?;
+    Ok((0..n)
+        .map(|i| Output {
+            heading: h[i],
+            rate: ra[i],
+            drift: d[i],
+        })
+        .collect())
+}
+
+#[test]
+fn a_bias_step_is_caught_at_a_stop_found_from_speed() {
+    // No rest at the start; the bias steps at 60 s; the car stops at 30-45 s and 90-110 s.
+    let (b0, b1) = (0.01, 0.02);
+    let (t, r, s) = drive(150.0, &[(30.0, 45.0), (90.0, 110.0)], b0, b1, 60.0, 0.005);
+    let mut p = Pipeline::new(tracked(StaticBias::Fixed(0.0))).unwrap();
+    let out = run(&mut p, &t, &r, Some(&s)).unwrap();
+    let tracker = p.rest_tracker().unwrap();
+    let rests: Vec<_> = tracker.recent_rests().collect();
+    assert_eq!(rests.len(), 2, "{rests:?}");
+    // Each rest without its first and last block; times count from the first sample.
+    assert!(rests[0].start >= 30.0 && rests[0].end <= 45.0, "{rests:?}");
+    assert!(rests[1].start >= 90.0 && rests[1].end <= 110.0, "{rests:?}");
+    for (rest, truth) in rests.iter().zip([b0, b1]) {
+        assert!(rest.accepted);
+        assert!((rest.bias - truth).abs() < 4.0 * rest.std_error, "{rest:?}");
+        // An honest standard error: about the noise over sqrt(samples), not far below it.
+        let white = 0.005 / ((rest.end - rest.start) * 100.0).sqrt();
+        assert!(rest.std_error >= white * 0.9, "{rest:?}");
+    }
+    // The filtered bias follows the step within its own standard error.
+    let bias = tracker.bias();
+    let e = tracker
+        .std_error(&tracked(StaticBias::Fixed(0.0)).rest_tracker.unwrap())
+        .unwrap();
+    assert!(
+        (bias - b1).abs() < 4.0 * e + 1e-12,
+        "bias {bias}, std error {e}"
+    );
+    // After the second stop, the corrected rate is the turn with no bias left.
+    let after = t.iter().position(|&ti| ti > 112.0).unwrap();
+    let drift: f64 = out[after..]
+        .iter()
+        .zip(&t[after..])
+        .map(|(o, ti)| o.rate - 0.2 * (0.3 * ti).sin())
+        .sum::<f64>()
+        / (out.len() - after) as f64;
+    assert!(drift.abs() < 1e-3, "residual bias {drift}");
+}
+
+#[test]
+fn rests_are_found_from_the_rate_alone_once_the_noise_at_rest_is_known() {
+    // A rest window at the start gives the noise; the mid-drive stop is found without speed.
+    let (t, r, _) = drive(
+        120.0,
+        &[(0.0, 10.0), (50.0, 65.0)],
+        0.01,
+        0.015,
+        30.0,
+        0.005,
+    );
+    let mut p = Pipeline::new(tracked(StaticBias::Window {
+        start: 0.0,
+        end: 10.0,
+    }))
+    .unwrap();
+    run(&mut p, &t, &r, None).unwrap();
+    let tracker = p.rest_tracker().unwrap();
+    let rests: Vec<_> = tracker.recent_rests().collect();
+    assert_eq!(rests.len(), 1, "{rests:?}");
+    assert!(rests[0].start >= 50.0 && rests[0].end <= 65.0, "{rests:?}");
+    assert!((tracker.bias() - 0.015).abs() < 1e-3, "{}", tracker.bias());
+    // Without the window there is no noise at rest to judge by, and no speed: nothing is found.
+    let mut p = Pipeline::new(tracked(StaticBias::Fixed(0.0))).unwrap();
+    run(&mut p, &t, &r, None).unwrap();
+    assert_eq!(p.rest_tracker().unwrap().rests_found(), 0);
+}
+
+#[test]
+fn a_short_stop_is_not_a_rest() {
+    // 2.5 s stopped: after dropping its first and last 1 s block, less than 3 s is left.
+    let (t, r, s) = drive(60.0, &[(20.0, 22.5)], 0.01, 0.01, 0.0, 0.005);
+    let mut config = tracked(StaticBias::Fixed(0.0));
+    config.rest_tracker = config.rest_tracker.map(|c| RestTrackerConfig {
+        block: 1.0,
+        min_duration: 3.0,
+        ..c
+    });
+    let mut p = Pipeline::new(config).unwrap();
+    run(&mut p, &t, &r, Some(&s)).unwrap();
+    assert_eq!(p.rest_tracker().unwrap().rests_found(), 0);
+    assert_eq!(p.rest_tracker().unwrap().bias(), 0.0);
+}
+
+#[test]
+fn the_dead_band_follows_the_noise_of_the_first_rest() {
+    // No rest window: the dead band in noise units has nothing to scale until the stop at 30 s.
+    let (t, r, s) = drive(90.0, &[(30.0, 45.0)], 0.01, 0.01, 0.0, 0.005);
+    let mut config = tracked(StaticBias::Fixed(0.0));
+    config.noise_scaled.threshold_sigmas = Some(3.0);
+    let mut p = Pipeline::new(config).unwrap();
+    let out = run(&mut p, &t, &r, Some(&s)).unwrap();
+    let rest = p.rest_tracker().unwrap().recent_rests().next().unwrap();
+    let zeroed = |a: f64, b: f64| {
+        t.iter()
+            .zip(&out)
+            .filter(|(&ti, o)| ti > a && ti < b && o.rate == 0.0)
+            .count()
+    };
+    assert_eq!(zeroed(0.0, 30.0), 0);
+    // After the rest every corrected rate below 3 sigmas (0.015 rad/s) is zeroed: the turn passes
+    // zero twice a period and the stopped car reads noise only.
+    let band = 3.0 * 0.005;
+    let below = t
+        .iter()
+        .zip(&r)
+        .filter(|(&ti, &ri)| ti > rest.end + 1.5 && (ri - rest.filtered).abs() < band * 0.9)
+        .count();
+    assert!(below > 100);
+    assert!(
+        zeroed(rest.end + 1.5, 90.0) >= below,
+        "{} < {below}",
+        zeroed(rest.end + 1.5, 90.0)
+    );
+}
+
+#[test]
+fn hdrs_bound_grows_with_the_bias_walk_between_rests() {
+    // A rest window, then driving straight (speed 5 m/s: no rest) with the bias 0.008 rad/s
+    // higher than the window measured: HDR's I chases that residual as far as its bound lets it.
+    let (t, r, _) = drive(90.0, &[(0.0, 90.0)], 0.01, 0.018, 10.0, 0.005);
+    let speed = vec![5.0; t.len()];
+    let mut config = tracked(StaticBias::Window {
+        start: 0.0,
+        end: 10.0,
+    });
+    let tuned = Preset::Tuned.config();
+    config.lowpass = tuned.lowpass;
+    config.delag = tuned.delag;
+    config.hdr = tuned.hdr.map(|h| gyrocore::HdrConfig {
+        increment: 1e-3,
+        ..h
+    });
+    config.noise_scaled = tuned.noise_scaled;
+    let mut p = Pipeline::new(config).unwrap();
+    let out = run(&mut p, &t, &r, Some(&speed)).unwrap();
+    assert_eq!(p.rest_tracker().unwrap().rests_found(), 0);
+    // The window's bound alone: 14.3 standard errors of its bias.
+    let window_bound = 14.3 * p.rest_statistics().unwrap().bias_std_error;
+    assert!(window_bound < 4e-3, "{window_bound}");
+    let largest = out.iter().map(|o| o.drift.abs()).fold(0.0, f64::max);
+    assert!(
+        largest > 6e-3,
+        "HDR stayed within the window's bound: {largest}"
+    );
+    let error = p
+        .rest_tracker()
+        .unwrap()
+        .std_error(&config.rest_tracker.unwrap())
+        .unwrap();
+    assert!(out.last().unwrap().drift.abs() <= 14.3 * error);
+}
+
+#[test]
+fn the_rules_name_the_parameter_at_fault() {
+    type Spoil = fn(&mut RestTrackerConfig);
+    let cases: [(&str, Spoil); 8] = [
+        ("rest_block", |c| c.block = 0.0),
+        ("rest_min_duration", |c| c.min_duration = 1.5 * c.block),
+        ("rest_noise_ratio", |c| c.noise_ratio = 0.5),
+        ("rest_change_sigmas", |c| c.change_sigmas = 0.0),
+        ("rest_speed_threshold", |c| c.speed_threshold = -1.0),
+        ("rest_bias_walk", |c| c.bias_walk = f64::INFINITY),
+        ("rest_gate_sigmas", |c| c.gate_sigmas = 0.0),
+        ("rest_noise", |c| c.noise = Some(-1.0)),
+    ];
+    for (name, spoil) in cases {
+        let mut config = tracked(StaticBias::Fixed(0.0));
+        spoil(config.rest_tracker.as_mut().unwrap());
+        match Pipeline::new(config) {
+            Err(Error::InvalidParameter { name: n, .. }) => assert_eq!(n, name),
+            other => panic!("{name}: {other:?}"),
+        }
+    }
+    let ungated = RestTrackerConfig {
+        gate_sigmas: f64::INFINITY,
+        change_sigmas: f64::INFINITY,
+        ..RestTrackerConfig::default()
+    };
+    assert!(ungated.validate().is_ok());
+}
+
+#[test]
+fn bad_speed_is_refused_with_its_index_and_changes_nothing() {
+    let (t, r, mut s) = drive(10.0, &[], 0.0, 0.0, 0.0, 0.001);
+    let mut p = Pipeline::new(tracked(StaticBias::Fixed(0.0))).unwrap();
+    let before = p.clone();
+    let e = run(&mut p, &t, &r, Some(&s[..5])).unwrap_err();
+    assert!(
+        matches!(e, Error::LengthMismatch { what: "speed", .. }),
+        "{e}"
+    );
+    s[7] = f64::INFINITY;
+    let e = run(&mut p, &t, &r, Some(&s)).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::NonFinite {
+                what: "speed",
+                index: 7,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert_eq!(p, before);
+}
+
+/// Per-sample updates, in order.
+fn run_updates(p: &mut Pipeline, t: &[f64], r: &[f64], s: &[f64]) -> Vec<Output> {
+    (0..t.len())
+        .map(|i| p.update_with_speed(t[i], r[i], None, s[i]))
+        .collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+
+    #[test]
+    fn chunks_updates_and_snapshots_are_bit_identical(
+        cuts in proptest::collection::vec(0usize..9000, 0..6),
+        snapshot in 0usize..9000,
+        window in any::<bool>(),
+        hdr in any::<bool>(),
+    ) {
+        let (t, r, s) = drive(90.0, &[(0.0, 8.0), (25.0, 40.0), (60.0, 75.0)], 0.01, 0.02, 50.0, 0.004);
+        // Speed only for part of the drive: the rest is judged by the rate.
+        let s: Vec<f64> = s.iter().enumerate().map(|(i, &v)| if i < 4500 { v } else { f64::NAN }).collect();
+        let mut config = tracked(if window {
+            StaticBias::Window { start: 0.0, end: 8.0 }
+        } else {
+            StaticBias::Fixed(0.0)
+        });
+        if hdr {
+            let tuned = Preset::Tuned.config();
+            config = PipelineConfig { correction: config.correction, rest_tracker: config.rest_tracker, ..tuned };
+        }
+        let mut whole = Pipeline::new(config).unwrap();
+        let expected = run(&mut whole, &t, &r, Some(&s)).unwrap();
+        prop_assert!(whole.rest_tracker().unwrap().rests_found() >= 2);
+
+        let mut cuts = cuts;
+        cuts.sort_unstable();
+        let mut chunked = Pipeline::new(config).unwrap();
+        let mut got = vec![];
+        let mut from = 0;
+        for &c in cuts.iter().chain([&t.len()]) {
+            got.extend(run(&mut chunked, &t[from..c.max(from)], &r[from..c.max(from)], Some(&s[from..c.max(from)])).unwrap());
+            from = c.max(from);
+        }
+        prop_assert_eq!(bits(&got), bits(&expected));
+        prop_assert_eq!(&chunked, &whole);
+
+        let mut single = Pipeline::new(config).unwrap();
+        prop_assert_eq!(bits(&run_updates(&mut single, &t, &r, &s)), bits(&expected));
+
+        let mut first = Pipeline::new(config).unwrap();
+        let mut got = run(&mut first, &t[..snapshot], &r[..snapshot], Some(&s[..snapshot])).unwrap();
+        let json = serde_json::to_string(&first).unwrap();
+        let mut restored: Pipeline = serde_json::from_str(&json).unwrap();
+        got.extend(run(&mut restored, &t[snapshot..], &r[snapshot..], Some(&s[snapshot..])).unwrap());
+        prop_assert_eq!(bits(&got), bits(&expected));
+    }
+}
