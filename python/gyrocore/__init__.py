@@ -11,7 +11,7 @@ counter-clockwise positive; the bias is what the gyro reads at rest.
     True
 """
 
-from . import allan, batch, calibration, deadband, deadreckon, evaluate, io, motion, paper, sim, tune
+from . import allan, batch, calibration, deadband, deadreckon, evaluate, io, motion, paper, sim, tune, wholelog
 from ._checks import InputWarning
 from ._gyrocore import SampleError, __version__
 from .evaluate import HeadingErrors, heading_errors
@@ -56,4 +56,5 @@ __all__ = [
     "recommended_preset",
     "sim",
     "tune",
+    "wholelog",
 ]

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -17,6 +17,9 @@ from numpy.typing import ArrayLike
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
 from ._checks import warn, warn_units
+
+if TYPE_CHECKING:
+    from .wholelog import Rest
 
 #: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling.
 _RATE_PARAMETERS = ("bias", "offset", "threshold", "hdr_increment", "hdr_turn_threshold")
@@ -82,12 +85,17 @@ class HeadingResult:
         heading: continuous (unwrapped) heading [rad], counter-clockwise positive.
         rate: corrected rate that was integrated [rad/s].
         drift: HDR's drift estimate ``-I`` applied to each sample [rad/s] (0 without HDR).
+        bias_source: where the static bias came from (set by :func:`process` and
+            :meth:`gyrocore.Log.process`; empty from a streaming :class:`Pipeline`).
+        rests: the rests whose bias was used in whole mode (:class:`gyrocore.wholelog.Rest`).
     """
 
     t: FloatArray
     heading: FloatArray
     rate: FloatArray
     drift: FloatArray
+    bias_source: str = ""
+    rests: tuple[Rest, ...] = ()
 
     @property
     def heading_deg(self) -> FloatArray:
@@ -274,9 +282,19 @@ def process(
     preset: str = "hdr",
     *,
     temperature: ArrayLike | None = None,
+    mode: str = "whole",
+    speed: ArrayLike | None = None,
     **overrides: Any,
 ) -> HeadingResult:
-    """Heading of a whole log: ``Pipeline(preset, **overrides).process(t, rate)``.
+    """Heading of a whole log.
+
+    ``mode="whole"`` (default): the static bias is known before the first sample, from the given
+    ``bias_window`` / ``bias_duration`` wherever it lies (its mean applies from the first sample)
+    or, when none is given, from every rest found in the log (from the rate, and from ``speed``
+    [m/s, one per sample] where given); several rests give a bias interpolated between them (see
+    :mod:`gyrocore.wholelog`). ``mode="causal"``: what a streaming ``Pipeline(preset,
+    **overrides)`` gives, sample after sample (a rest corrects only what follows it). The result's
+    ``bias_source`` and ``rests`` say where the bias came from.
 
     Example:
         >>> import numpy as np, gyrocore
@@ -285,7 +303,9 @@ def process(
         >>> bool(abs(r.heading[-1]) < 1e-9)
         True
     """
-    return Pipeline(preset, **overrides).process(t, rate, temperature=temperature)
+    from .wholelog import process_log  # it builds on this module
+
+    return process_log(t, rate, preset, mode=mode, temperature=temperature, speed=speed, **overrides)
 
 
 def integrate(

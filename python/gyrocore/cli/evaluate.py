@@ -7,7 +7,7 @@ import math
 from pathlib import Path
 from typing import Any
 
-from ..evaluate import compare, format_table
+from ..evaluate import compare, format_bias_sources, format_table
 from ..pipeline import preset_names
 from ..tune import ParameterSet
 from ._common import add_command, print_json
@@ -39,6 +39,15 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         help="for logs with no rest window: measure the static bias over the first S seconds while driving "
         "(only sound when the drive starts straight; the same S for every log)",
     )
+    p.add_argument(
+        "--causal",
+        action="store_true",
+        help="score what a streaming pipeline gives (a rest corrects only what follows it) instead of the "
+        "whole log's bias from every rest, known from the first sample",
+    )
+    p.add_argument(
+        "--no-speed", action="store_true", help="do not find rests where odometry.csv's speed is zero (whole mode)"
+    )
     p.add_argument("--json", action="store_true", help="print one JSON list, an object per (log, method)")
     p.add_argument("--plot-dir", metavar="DIR", help="write <log>.png (heading and error vs time) there")
 
@@ -51,11 +60,20 @@ def run(args: argparse.Namespace) -> int:
     for path in args.logs:
         if not Path(path).is_dir():
             raise ValueError(f"{path}: not a log folder")
-    rows = compare(args.logs, presets, params, bias_duration=args.bias_duration, plot_dir=args.plot_dir)
+    rows = compare(
+        args.logs,
+        presets,
+        params,
+        bias_duration=args.bias_duration,
+        plot_dir=args.plot_dir,
+        mode="causal" if args.causal else "whole",
+        use_speed=not args.no_speed,
+    )
     if args.json:
         print_json([_finite(r.as_dict()) for r in rows])
     else:
         format_table(rows)
+        format_bias_sources(rows)
         if args.plot_dir:
             print(f"plots in {args.plot_dir}")
     return 0

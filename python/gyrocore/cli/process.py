@@ -48,7 +48,16 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     read.add_argument("--topic", help="bag topic with sensor_msgs/Imu (default: the only one)")
     read.add_argument("--delimiter", default=",", help="CSV delimiter (default ,)")
 
-    bias = p.add_argument_group("static bias (default: the rest window of a log folder's meta.json)")
+    bias = p.add_argument_group(
+        "static bias (default: the rest window of a log folder's meta.json, else every rest found in the log, "
+        "applied from the first sample; finding rests reads the log's times and rates into memory, 16 bytes a sample)"
+    )
+    bias.add_argument(
+        "--causal",
+        action="store_true",
+        help="what a streaming pipeline gives: a rest corrects only what follows it, no rest search (one pass)",
+    )
+    bias.add_argument("--no-speed", action="store_true", help="do not find rests where odometry.csv's speed is zero")
     group = bias.add_mutually_exclusive_group()
     group.add_argument(
         "--bias-window", nargs=2, type=float, metavar=("T0", "T1"), help="rest window [s], the log's time base"
@@ -155,7 +164,15 @@ def _one(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[s
         raise ValueError(f"--out {out} is one file but there are {len(inputs)} inputs; give a folder")
     with progress_bar(inputs[0].name) as bar:
         report = process_file(
-            inputs[0], out, preset=args.preset, heading=args.heading, chunk_rows=args.chunk_rows, progress=bar, **kwargs
+            inputs[0],
+            out,
+            preset=args.preset,
+            heading=args.heading,
+            chunk_rows=args.chunk_rows,
+            progress=bar,
+            mode="causal" if args.causal else "whole",
+            use_speed=not args.no_speed,
+            **kwargs,
         )
     for w in report.warnings:
         warn(f"{report.input}: {w}")
@@ -177,6 +194,8 @@ def _many(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[
         heading=args.heading,
         chunk_rows=args.chunk_rows,
         progress=True,
+        mode="causal" if args.causal else "whole",
+        use_speed=not args.no_speed,
         **kwargs,
     )
     for report in summary.files:
