@@ -276,8 +276,12 @@ class Method:
         """
         overrides = dict(self.overrides)
         if uses_static_bias(self.preset) and not has_bias_source(overrides):
-            if mode == "causal" or log.stationary is not None or bias_duration is not None:
+            if log.stationary is not None or bias_duration is not None:
                 overrides.update(log_bias(log, bias_duration=bias_duration)[0])
+            elif mode == "causal":
+                # said here rather than warned by the pipeline: a bias of 0 is the causal baseline
+                bias, source = log_bias(log)
+                return log.process(self.preset, mode=mode, **overrides, **bias), f"{source} (causal)"
         result = log.process(self.preset, mode=mode, use_speed=use_speed, **overrides)
         return result, result.bias_source
 
