@@ -111,20 +111,24 @@ def test_no_rest_at_all_warns_and_is_the_causal_result() -> None:
 
 def test_noise_scaled_preset_gets_the_bound_of_its_rest() -> None:
     # tuned bounds HDR by hdr_bound_sigmas standard errors of the rest: whole mode passes that
-    # bound explicitly, as the causal pipeline would set it at the end of the rest.
-    t, rate, _ = drive(120.0, [(50.0, 62.0)], seed=3)
+    # bound explicitly, as the causal pipeline would set it at the end of the rest. Here the gyro
+    # drives straight with a bias 0.002 rad/s above the rest's, so HDR's correction runs into a
+    # bound of 0.5 standard errors (about 1.4e-4 rad/s).
+    t, rate, _ = drive(120.0, [(0.0, 120.0)], bias=lambda t: 0.012 - 0.002 * (np.abs(t - t[0] - 56.0) < 6.0), seed=3)
     w = window(t, 50.0, 62.0)
-    p = gyrocore.Pipeline("tuned", bias_window=w)
+    p = gyrocore.Pipeline("tuned", bias_window=w, hdr_bound_sigmas=0.5)
     p.process(t, rate)
     stats = p.rest_statistics
     assert stats is not None
-    k = gyrocore.preset_params("tuned")["hdr_bound_sigmas"]
-    expected = gyrocore.process(t, rate, "tuned", bias=p.bias, hdr_max_correction=k * stats["bias_std_error"])
-    whole = gyrocore.process(t, rate, "tuned", bias_window=w)
+    bound = 0.5 * stats["bias_std_error"]
+    expected = gyrocore.process(t, rate, "tuned", bias=p.bias, hdr_max_correction=bound)
+    whole = gyrocore.process(t, rate, "tuned", bias_window=w, hdr_bound_sigmas=0.5)
     assert whole.rests[0].bias_std_error == stats["bias_std_error"] and whole.rests[0].noise == stats["noise"]
     assert heading_gap(whole, expected) < 1e-9
-    # without the bound (the preset's 5e-5 rad/s for no rest) the heading differs
-    assert heading_gap(whole, gyrocore.process(t, rate, "tuned", bias=p.bias)) > 1e-6
+    assert np.max(np.abs(whole.drift)) == pytest.approx(bound, rel=1e-9)  # the bound is reached
+    # a bound 1 % wider gives another heading
+    wider = gyrocore.process(t, rate, "tuned", bias=p.bias, hdr_max_correction=1.01 * bound)
+    assert heading_gap(whole, wider) > 1e-6
 
 
 def test_speed_finds_stops_and_drops_steady_driving() -> None:
