@@ -24,7 +24,7 @@ def _paper_band(ax: Any, bound: float) -> None:
 def _eq6_corrected(d: sim.Drive, cal: calibration.Calibration) -> FloatArray:
     """The reading scaled by FOG eq 6 (and the direction factors of eq 2-4) at each sample's
     temperature, by the pipeline's correction stage, before any static bias is taken out."""
-    overrides = {k: v for k, v in cal.overrides(include_bias=False).items() if k != "bias"}
+    overrides: dict[str, Any] = {k: v for k, v in cal.overrides(include_bias=False).items() if k != "bias"}
     corrected: FloatArray = process(d.t, d.rate_measured, "raw", temperature=d.temperature, **overrides).rate
     return corrected
 
