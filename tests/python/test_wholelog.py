@@ -220,3 +220,11 @@ def test_cli_evaluate_prints_the_bias_source_and_rests_of_each_method() -> None:
     (row,) = json.loads(causal.stdout)
     assert row["rests"] == [] and "(causal)" in row["bias_source"]
     assert row["e_psi_deg"] > json.loads(run_cli("evaluate", path, "--preset", "static_bias", "--json").stdout)[0]["e_psi_deg"]
+
+
+def test_cli_evaluate_says_once_that_a_log_has_no_rest() -> None:
+    proc = run_cli("evaluate", str(real_log_path("comma_seg40")), "--preset", "static_bias", "--preset", "hdr")
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stderr.splitlines()
+    assert len(lines) == 2 and all(line.startswith("gyrocore: warning: preset '") for line in lines)
+    assert "no rest was found" in lines[0] and "static_bias, hdr: none: no rest found in the log; bias 0" in proc.stdout

@@ -4,13 +4,15 @@ from __future__ import annotations
 
 import argparse
 import math
+import warnings
 from pathlib import Path
 from typing import Any
 
+from .._checks import InputWarning
 from ..evaluate import compare, format_bias_sources, format_table
 from ..pipeline import preset_names
 from ..tune import ParameterSet
-from ._common import add_command, print_json
+from ._common import add_command, print_json, warn
 
 
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
@@ -60,15 +62,19 @@ def run(args: argparse.Namespace) -> int:
     for path in args.logs:
         if not Path(path).is_dir():
             raise ValueError(f"{path}: not a log folder")
-    rows = compare(
-        args.logs,
-        presets,
-        params,
-        bias_duration=args.bias_duration,
-        plot_dir=args.plot_dir,
-        mode="causal" if args.causal else "whole",
-        use_speed=not args.no_speed,
-    )
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", InputWarning)
+        rows = compare(
+            args.logs,
+            presets,
+            params,
+            bias_duration=args.bias_duration,
+            plot_dir=args.plot_dir,
+            mode="causal" if args.causal else "whole",
+            use_speed=not args.no_speed,
+        )
+    for message in dict.fromkeys(str(w.message) for w in caught):  # one line each, not one per method
+        warn(message)
     if args.json:
         print_json([_finite(r.as_dict()) for r in rows])
     else:
