@@ -50,7 +50,8 @@ SPEED_THRESHOLD = 0.05
 #: A rest lasts at least this long [s] (as :func:`gyrocore.calibration.rest_windows`' default).
 MIN_REST = 1.0
 #: A speed rest whose mean rate exceeds this [rad/s] is a turn on the spot, not a rest
-#: (:func:`gyrocore.calibration.rest_windows`' ``max_rate``).
+#: (:func:`gyrocore.calibration.rest_windows`' ``max_rate``; a gyro with a larger bias needs its
+#: rest window given).
 MAX_REST_RATE = 0.05
 
 
@@ -150,7 +151,8 @@ def find_rests(t: FloatArray, rate: FloatArray, speed: FloatArray | None = None)
     if np.count_nonzero(finite) >= 8:
         found = [(a, b, "rate") for a, b in rest_windows(t[finite], rate[finite], min_duration=MIN_REST)]
     if speed is not None:
-        stopped = np.abs(speed) <= SPEED_THRESHOLD  # NaN (unknown speed) is not stopped
+        # NaN (no speed known there) is neither stopped nor moving
+        stopped = np.abs(speed) <= SPEED_THRESHOLD
         moving = np.abs(speed) > SPEED_THRESHOLD
         found = [w for w in found if not moving[(t >= w[0]) & (t <= w[1])].any()]
         for a, b in _runs(t, stopped, MIN_REST):
@@ -177,7 +179,10 @@ def _merge(windows: list[tuple[float, float, str]]) -> list[tuple[float, float, 
 
 
 def measure_rest(
-    chunks: Iterable[tuple[FloatArray, FloatArray, int]], window: tuple[float, float], found_by: str, nonfinite: Any
+    chunks: Iterable[tuple[FloatArray, FloatArray, int]],
+    window: tuple[float, float],
+    found_by: str,
+    nonfinite: str | None,
 ) -> Rest:
     """The bias, noise and standard error of the rest ``window``, measured by the core's own rest
     window over ``chunks`` of ``(t, rate, index of the first sample)``, read only up to the first
@@ -397,9 +402,10 @@ def process_log(
     sp = None if speed is None else as_float_array("speed", speed)
     if sp is not None and len(sp) != len(ta):
         raise ValueError(f"speed has {len(sp)} samples but t has {len(ta)}: give one speed per gyro sample")
-    if len(ta) != len(ra) or not times_ok(ta):
-        # The pipeline is the one place that names the bad sample.
-        return Pipeline(preset, **overrides).process(ta, ra, temperature=temperature)
+    if len(ta) != len(ra) or len(ta) == 0 or not times_ok(ta):
+        # The pipeline is the one place that names the bad sample (and gives an empty log back).
+        result = Pipeline(preset, **overrides).process(ta, ra, temperature=temperature)
+        return replace(result, bias_source=causal_source(preset, si))
     bias_plan = plan_arrays(preset, si, ta, ra, sp)
     if bias_plan.warning:
         warn(bias_plan.warning)
