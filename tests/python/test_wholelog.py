@@ -228,3 +228,16 @@ def test_cli_evaluate_says_once_that_a_log_has_no_rest() -> None:
     lines = proc.stderr.splitlines()
     assert len(lines) == 2 and all(line.startswith("gyrocore: warning: preset '") for line in lines)
     assert "no rest was found" in lines[0] and "static_bias, hdr: none: no rest found in the log; bias 0" in proc.stdout
+
+
+@pytest.mark.parametrize("name", ["f110_ds1", "f110_ds5"])
+def test_f110_logs_without_a_rest_at_the_start_beat_raw_integration(name: str) -> None:
+    # Issue 17's bar: the stop later in the drive serves the whole log.
+    log = gyrocore.read_log(real_log_path(name))
+    assert log.stationary is None
+    raw = log.process("raw")
+    for preset in ("static_bias", "recommended"):
+        r = log.process(preset)
+        assert r.rests and gyrocore.heading_errors(r.t, r.heading, *log.reference()).e_psi_deg < 0.7 * (
+            gyrocore.heading_errors(raw.t, raw.heading, *log.reference()).e_psi_deg
+        )
