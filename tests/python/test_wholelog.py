@@ -241,3 +241,17 @@ def test_f110_logs_without_a_rest_at_the_start_beat_raw_integration(name: str) -
         assert r.rests and gyrocore.heading_errors(r.t, r.heading, *log.reference()).e_psi_deg < 0.7 * (
             gyrocore.heading_errors(raw.t, raw.heading, *log.reference()).e_psi_deg
         )
+
+
+def test_batch_is_whole_by_default_and_causal_on_request(tmp_path: Path) -> None:
+    from gyrocore.batch import process_many
+
+    logs = [real_log_path("f110_ds1"), real_log_path("broad_10")]
+    whole = process_many(logs, preset="static_bias", out_dir=tmp_path / "w", jobs=1)
+    with pytest.warns(gyrocore.InputWarning, match="no bias"):
+        causal = process_many(logs, preset="static_bias", out_dir=tmp_path / "c", jobs=1, mode="causal")
+    assert [len(r.rests) for r in whole.files] == [1, 1] and [len(r.rests) for r in causal.files] == [0, 0]
+    assert whole.files[1].rests[0].found_by == "given" and all("(causal)" in (r.bias_source or "") for r in causal.files)
+    with pytest.raises(ValueError, match="mode must be one of whole, causal"):
+        process_many(logs, preset="static_bias", out_dir=tmp_path / "x", mode="offline")
+    assert not (tmp_path / "x").exists()  # refused before any work
