@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -18,6 +18,9 @@ from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
 from ._checks import warn, warn_units
 from .window import time_range
+
+if TYPE_CHECKING:
+    from .wholelog import Rest
 
 #: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling.
 _RATE_PARAMETERS = ("bias", "offset", "threshold", "hdr_increment", "hdr_turn_threshold")
@@ -129,12 +132,17 @@ class HeadingResult:
         heading: continuous (unwrapped) heading [rad], counter-clockwise positive.
         rate: corrected rate that was integrated [rad/s].
         drift: HDR's drift estimate ``-I`` applied to each sample [rad/s] (0 without HDR).
+        bias_source: where the static bias came from (set by :func:`process` and
+            :meth:`gyrocore.Log.process`; empty from a streaming :class:`Pipeline`).
+        rests: the rests whose bias was used in whole mode (:class:`gyrocore.wholelog.Rest`).
     """
 
     t: FloatArray
     heading: FloatArray
     rate: FloatArray | None = None
     drift: FloatArray | None = None
+    bias_source: str = ""
+    rests: tuple[Rest, ...] = ()
 
     def output(self, name: str) -> FloatArray:
         """The output ``name`` (one of :data:`OUTPUTS`); a ``ValueError`` if it was not asked for."""
@@ -406,10 +414,20 @@ def process(
     *,
     temperature: ArrayLike | None = None,
     outputs: tuple[str, ...] = OUTPUTS,
+    mode: str = "whole",
+    speed: ArrayLike | None = None,
     **overrides: Any,
 ) -> HeadingResult:
-    """Heading of a whole log: ``Pipeline(preset, **overrides).process(t, rate)``; ``outputs``
-    chooses which of ``heading``, ``rate`` and ``drift`` are computed (see :meth:`Pipeline.process`).
+    """Heading of a whole log; ``outputs`` chooses which of ``heading``, ``rate`` and ``drift`` are
+    computed (see :meth:`Pipeline.process`).
+
+    ``mode="whole"`` (default): the static bias is known before the first sample, from the given
+    ``bias_window`` / ``bias_duration`` wherever it lies (its mean applies from the first sample)
+    or, when none is given, from every rest found in the log (from the rate, and from ``speed``
+    [m/s, one per sample] where given), smoothed between rests (see :mod:`gyrocore.wholelog`).
+    ``mode="causal"``: what a streaming ``Pipeline(preset, **overrides)`` gives, sample after
+    sample (a rest corrects only what follows it). The result's ``bias_source`` and ``rests`` say
+    where the bias came from.
 
     Example:
         >>> import numpy as np, gyrocore
@@ -418,10 +436,11 @@ def process(
         >>> bool(abs(r.heading[-1]) < 1e-9)
         True
     """
-    pipeline = Pipeline(preset, **overrides)
-    result = pipeline.process(t, rate, temperature=temperature, outputs=outputs)
-    pipeline.finish()
-    return result
+    from .wholelog import process_log  # it builds on this module
+
+    return process_log(
+        t, rate, preset, mode=mode, temperature=temperature, speed=speed, outputs=outputs, **overrides
+    )
 
 
 def integrate(
