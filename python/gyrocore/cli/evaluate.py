@@ -63,7 +63,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         "whole log's bias from every rest, known from the first sample",
     )
     p.add_argument(
-        "--no-speed", action="store_true", help="do not find rests where odometry.csv's speed is zero (whole mode)"
+        "--no-speed", action="store_true", help="whole mode: find rests from the rate alone, not where odometry.csv's speed is zero"
     )
     p.add_argument("--json", action="store_true", help="print one JSON list, an object per (log, method)")
     p.add_argument("--plot-dir", metavar="DIR", help="write <log>.png (heading and error vs time) there")

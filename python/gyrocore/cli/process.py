@@ -56,7 +56,9 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         action="store_true",
         help="what a streaming pipeline gives: a rest corrects only what follows it, no rest search (one pass)",
     )
-    bias.add_argument("--no-speed", action="store_true", help="do not find rests where odometry.csv's speed is zero")
+    bias.add_argument(
+        "--no-speed", action="store_true", help="find rests from the rate alone, not where odometry.csv's speed is zero"
+    )
     group = bias.add_mutually_exclusive_group()
     group.add_argument("--bias-window", nargs=2, metavar=("T0", "T1"), help=f"rest window: {WINDOW_HELP}")
     group.add_argument("--bias-duration", type=float, metavar="S", help="rest during the first S seconds")
