@@ -334,3 +334,40 @@ def test_whole_mode_does_not_harm_the_kitti_true_rate_drives(name: str) -> None:
     raw = e_psi(log.process("raw"))
     for preset in ("static_bias", "recommended"):
         assert e_psi(log.process(preset)) <= raw + 0.5
+
+
+def test_a_wandering_bias_is_followed_within_its_standard_error() -> None:
+    # Six stops of 8 s in 260 s; the bias walks with K = 2e-4 rad/s/sqrt(s) (about 3e-3 rad/s
+    # over the drive, ten standard errors of a stop), and whole mode is told that K.
+    k, rng = 2e-4, np.random.default_rng(11)
+    grid = np.arange(0.0, 261.0, 0.01)
+    walk = 0.01 + np.concatenate(([0.0], np.cumsum(rng.normal(0.0, k * math.sqrt(0.01), len(grid) - 1))))
+    stops = [(s, s + 8.0) for s in (5.0, 50.0, 100.0, 150.0, 200.0, 245.0)]
+    t, rate, true = drive(260.0, stops, bias=lambda t: np.interp(t - t[0], grid, walk), seed=5)
+    bias_true = np.interp(t - t[0], grid, walk)
+    whole = gyrocore.process(t, rate, "static_bias", bias_walk=k)
+    assert len(whole.rests) == 6 and all(r.refused is None for r in whole.rests)
+    plan = gyrocore.wholelog.plan_arrays("static_bias", {}, t, rate, None, gyrocore.wholelog.Options(bias_walk=k))
+    assert plan.smoothed is not None
+    mean, sd = plan.smoothed.at(t)
+    np.testing.assert_allclose(applied_bias(whole, rate), mean, rtol=0, atol=1e-12)
+    z = (mean - bias_true) / sd
+    assert np.max(np.abs(z)) < 4.0 and np.sqrt(np.mean(z**2)) < 2.0  # its standard error is honest
+    # and it beats one constant bias from the same rests (walk 0) on the heading
+    constant = gyrocore.process(t, rate, "static_bias", bias_walk=0.0)
+    truth = gyrocore.integrate(t, true)
+    assert np.mean(np.abs(whole.heading - truth)) < 0.5 * np.mean(np.abs(constant.heading - truth))
+
+
+def test_found_rests_give_a_noise_scaled_preset_its_bound_and_dead_band() -> None:
+    t, rate, _ = drive(150.0, [(10.0, 25.0), (120.0, 135.0)], bias=lambda t: 0.004 + 0.0002 * (t - t[0]))
+    overrides = {"hdr_bound_sigmas": 2.0, "threshold_sigmas": 3.0}
+    plan = gyrocore.wholelog.plan_arrays("tuned", overrides, t, rate, None, gyrocore.wholelog.Options())
+    assert plan.smoothed is not None and len(plan.used) == 2
+    sd = plan.smoothed.at(t)[1]
+    assert plan.overrides["hdr_max_correction"] == pytest.approx(2.0 * math.sqrt(float(np.mean(sd**2))), rel=1e-12)
+    noise = math.sqrt(sum(r.noise**2 * r.samples for r in plan.used) / sum(r.samples for r in plan.used))
+    assert plan.overrides["threshold"] == pytest.approx(3.0 * noise, rel=1e-12)
+    whole = gyrocore.process(t, rate, "tuned", **overrides)
+    expected = gyrocore.process(t, rate - plan.bias(t), "tuned", **plan.overrides)
+    np.testing.assert_array_equal(whole.heading, expected.heading)
