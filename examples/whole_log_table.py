@@ -49,8 +49,7 @@ def score_log(log: gyrocore.Log) -> tuple[dict[str, float], Grid, str]:
         grid[(preset, *choice)] = e_psi(log, method.run(log, mode="whole")[0])
     result = log.process("static_bias", mode="whole")
     lines = [f"  {log.name:<28} {result.bias_source}"]
-    if not result.bias_source.startswith("rest "):  # else the one rest is that line
-        lines += [f"  {'':<28}   rest {r}" for r in result.rests]
+    lines += gyrocore.wholelog.rest_lines(result.bias_source, result.rests, " " * 33)
     return fixed, grid, "\n".join(lines)
 
 

@@ -88,8 +88,7 @@ class FileReport:
             f"ok     {self.input}: {self.rows_in} rows in, {self.rows_out} out -> {self.output} ({self.seconds:.2f} s)",
             f"       bias: {self.bias_source}",
         ]
-        if len(self.rests) > 1:
-            lines += [f"         rest {r}" for r in self.rests]
+        lines += wholelog.rest_lines(self.bias_source or "", self.rests, " " * 9)
         return "\n".join(lines)
 
 
@@ -467,7 +466,10 @@ def process_many(
     wholelog.check_mode(mode)
     _, overrides = split_options(options)
     # invalid parameters fail here, before any work (a stand-in bias keeps the check quiet)
-    Pipeline(preset, **(overrides if has_bias_source(overrides) else {**overrides, "bias": 0.0}))
+    pipeline_overrides = _to_si(overrides)
+    if mode == "whole":
+        wholelog.Options.pop(pipeline_overrides)
+    Pipeline(preset, **(pipeline_overrides if has_bias_source(overrides) else {**pipeline_overrides, "bias": 0.0}))
     outputs = output_paths(inputs, Path(out_dir), fmt)
     Path(out_dir).mkdir(parents=True, exist_ok=True)
     jobs_list = [

@@ -24,7 +24,7 @@ from ._arrays import FloatArray, as_float_array
 from ._extras import pyplot
 from .io import Log, read_log
 from .pipeline import HeadingResult, has_bias_source, process, recommended_preset, uses_static_bias
-from .wholelog import Rest, check_mode
+from .wholelog import Rest, check_mode, rest_lines
 
 #: An interval longer than this many times the median interval is a gap (a logger or tracking
 #: outage). Irregular ROS logging stays below about 5 times its median (f110_ds3: 4.1).
@@ -484,6 +484,5 @@ def format_bias_sources(rows: Sequence[Score], *, file: Any = None) -> None:
     print("bias source:", file=out)
     for (log, source, rests), names in groups.items():
         print(f"  {log:<14} {', '.join(names)}: {source}", file=out)
-        if len(rests) > 1:
-            for rest in rests:
-                print(f"  {'':<14}   rest {rest}", file=out)
+        for line in rest_lines(source, rests, " " * 19):
+            print(line, file=out)

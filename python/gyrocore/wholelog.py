@@ -42,8 +42,8 @@ from ._smoother import SmoothedBias, smooth
 from .pipeline import OUTPUTS, BIAS_SOURCES, HeadingResult, Pipeline, _to_si, preset_params, uses_static_bias
 
 __all__ = [
-    "BIAS_WALK", "MIN_REST", "MODES", "SPEED_THRESHOLD", "WHOLE_OPTIONS", "BiasPlan", "Options", "Rest", "process_log",
-    "speed_on",
+    "BIAS_SIGMAS", "BIAS_WALK", "MIN_REST", "MODES", "SPEED_THRESHOLD", "WHOLE_OPTIONS", "BiasPlan", "Options", "Rest",
+    "check_mode", "plan_arrays", "plan_stream", "process_log", "rest_lines", "speed_on",
 ]
 
 #: The ways to process a whole log: ``whole`` (bias from every rest, known from the first sample)
@@ -102,6 +102,14 @@ class BiasPlan:
     def result(self, result: HeadingResult) -> HeadingResult:
         """``result`` saying where its bias came from."""
         return replace(result, bias_source=self.source, rests=self.rests)
+
+
+def rest_lines(source: str, rests: tuple[Rest, ...], indent: str) -> list[str]:
+    """The lines listing ``rests`` under a report's ``source`` line (none when that line is the
+    one rest used)."""
+    if len(rests) == 1 and source.startswith("rest "):
+        return []
+    return [f"{indent}rest {r}" for r in rests]
 
 
 def _bias_source(si: dict[str, Any]) -> str | None:
