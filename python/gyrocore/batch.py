@@ -231,6 +231,7 @@ class _FileJob:
         """Where the bias comes from: in whole mode a first pass over the file (see
         :func:`gyrocore.wholelog.plan_stream`), in causal mode the pipeline's own rest window."""
         if self.mode == "causal":
+            wholelog.refuse_whole_options(_to_si(overrides))
             causal = wholelog.causal_source(self.preset, _to_si(overrides))
             warning = None
             if uses_static_bias(self.preset) and not has_bias_source(overrides):
@@ -469,6 +470,8 @@ def process_many(
     pipeline_overrides = _to_si(overrides)
     if mode == "whole":
         wholelog.Options.pop(pipeline_overrides)
+    else:
+        wholelog.refuse_whole_options(pipeline_overrides)
     Pipeline(preset, **(pipeline_overrides if has_bias_source(overrides) else {**pipeline_overrides, "bias": 0.0}))
     outputs = output_paths(inputs, Path(out_dir), fmt)
     Path(out_dir).mkdir(parents=True, exist_ok=True)

@@ -43,7 +43,7 @@ from .pipeline import OUTPUTS, BIAS_SOURCES, HeadingResult, Pipeline, _to_si, pr
 
 __all__ = [
     "BIAS_SIGMAS", "BIAS_WALK", "MIN_REST", "MODES", "SPEED_THRESHOLD", "WHOLE_OPTIONS", "BiasPlan", "Options", "Rest",
-    "check_mode", "plan_arrays", "plan_stream", "process_log", "rest_lines", "speed_on",
+    "check_mode", "plan_arrays", "plan_stream", "process_log", "refuse_whole_options", "rest_lines", "speed_on",
 ]
 
 #: The ways to process a whole log: ``whole`` (bias from every rest, known from the first sample)
@@ -65,6 +65,16 @@ def check_mode(mode: str) -> None:
     """Refuse a mode that is not one of :data:`MODES`."""
     if mode not in MODES:
         raise ValueError(f"mode must be one of {', '.join(MODES)}, got {mode!r}")
+
+
+def refuse_whole_options(si: dict[str, Any], speed: bool = False) -> None:
+    """Refuse, in causal mode, what only whole mode uses (a speed, :data:`WHOLE_OPTIONS`)."""
+    given = (["speed"] if speed else []) + [name for name in WHOLE_OPTIONS if si.get(name) is not None]
+    if given:
+        raise ValueError(
+            f"{', '.join(given)}: used by mode='whole' only (the causal pipeline does not look for rests); "
+            "leave it out or process the whole log (without --causal)"
+        )
 
 
 @dataclass(frozen=True)
@@ -295,11 +305,7 @@ def process_log(
     check_mode(mode)
     si = _to_si(overrides)
     if mode == "causal":
-        if speed is not None or any(si.get(name) is not None for name in WHOLE_OPTIONS):
-            raise ValueError(
-                f"speed, {' and '.join(WHOLE_OPTIONS)} are used by mode='whole' only: the causal pipeline does not "
-                "look for rests"
-            )
+        refuse_whole_options(si, speed is not None)
         pipeline = Pipeline(preset, **overrides)
         result = pipeline.process(t, rate, temperature=temperature, outputs=outputs)
         pipeline.finish()

@@ -321,6 +321,8 @@ def test_batch_is_whole_by_default_and_causal_on_request(tmp_path: Path) -> None
         process_many(logs, preset="static_bias", out_dir=tmp_path / "x", mode="offline")
     with pytest.raises(ValueError, match="invalid parameter min_rest = -1"):
         process_many(logs, preset="static_bias", out_dir=tmp_path / "x", min_rest=-1)
+    with pytest.raises(ValueError, match="bias_walk: used by mode='whole' only"):
+        process_many(logs, preset="static_bias", out_dir=tmp_path / "x", mode="causal", bias_walk=1e-4)
     strict = process_many(logs[:1], preset="static_bias", out_dir=tmp_path / "s", jobs=1, bias_sigmas=100.0)
     assert "standard errors of 0: bias 0" in (strict.files[0].bias_source or "")
     assert not (tmp_path / "x").exists()  # refused before any work
