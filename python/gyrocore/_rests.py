@@ -208,7 +208,9 @@ def accept(rests: list[Rest], walk: float) -> list[Rest]:
     """``rests`` (found ones) with those that are not rests marked ``refused`` (see the module doc)."""
     noise = float(np.median([r.noise for r in rests])) if rests else 0.0
     out = [
-        r if r.noise <= NOISE_RATIO * noise else _refuse(r, f"noise {r.noise / noise:.1f} x the rests' median")
+        r
+        if r.noise <= NOISE_RATIO * noise
+        else _refuse(r, f"noise {math.degrees(r.noise):.2g} deg/s, over {NOISE_RATIO:g} x the rests' median")
         for r in rests
     ]
     while True:

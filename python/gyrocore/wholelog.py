@@ -57,7 +57,7 @@ BIAS_WALK = 1e-3
 WHOLE_OPTIONS = ("bias_walk", "min_rest", "bias_sigmas")
 #: Default of :attr:`Options.bias_sigmas`, chosen by leave-one-log-out (docs/whole_log.md).
 BIAS_SIGMAS = 5.0
-#: Chunk = ``(t, rate)`` of a log read piece by piece.
+#: ``chunks()``: the ``(t, rate)`` pieces of a log from its start, anew at each call.
 Chunks = Callable[[], Iterable[tuple[FloatArray, FloatArray]]]
 
 

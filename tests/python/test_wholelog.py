@@ -380,3 +380,18 @@ def test_found_rests_give_a_noise_scaled_preset_its_bound_and_dead_band() -> Non
     whole = gyrocore.process(t, rate, "tuned", **overrides)
     expected = gyrocore.process(t, rate - plan.bias(t), "tuned", **plan.overrides)
     np.testing.assert_array_equal(whole.heading, expected.heading)
+
+
+def test_bias_free_gyros_are_not_harmed() -> None:
+    # A perfect gyro and a noisy bias-free one stopping three times (found by the rate and by
+    # the speed): their stops read no bias, so whole mode integrates them as raw integration does.
+    stops = [(10.0, 20.0), (60.0, 63.0), (100.0, 112.0)]
+    t, noisy, perfect = drive(120.0, stops, bias=0.0, seed=9)
+    speed = np.full_like(t, 4.0)
+    for a, b in stops:
+        speed[(t >= t[0] + a) & (t <= t[0] + b)] = 0.0
+    for rate in (perfect, noisy):
+        for kwargs in ({}, {"speed": speed}):
+            whole = gyrocore.process(t, rate, "static_bias", **kwargs)
+            assert len(whole.rests) == 3 and "standard errors of 0: bias 0" in whole.bias_source
+            np.testing.assert_array_equal(whole.heading, gyrocore.process(t, rate, "raw").heading)
