@@ -157,6 +157,11 @@ def _scaled(preset: str, si: dict[str, Any], used: tuple[Rest, ...], sd: float) 
     return out
 
 
+def _smooth(rests: tuple[Rest, ...], walk: float) -> SmoothedBias:
+    """The smoother over ``rests``, each a measurement at its middle."""
+    return smooth([r.middle for r in rests], [r.bias for r in rests], [r.bias_std_error for r in rests], walk)
+
+
 def plan(
     preset: str,
     si: dict[str, Any],
@@ -189,24 +194,24 @@ def plan(
         window = (t_start, t_start + float(si["bias_duration"])) if key == "bias_duration" else si["bias_window"]
         rest = measure((float(window[0]), float(window[1])), f"given: {key}")
         label = f"first {si['bias_duration']:g} s: " if key == "bias_duration" else ""
-        smoothed = smooth([rest.middle], [rest.bias], [rest.bias_std_error], 0.0)
+        smoothed = _smooth((rest,), 0.0)
         overrides = {**rest_of, "bias": 0.0, **_scaled(preset, rest_of, (rest,), rest.bias_std_error)}
         return BiasPlan(f"{label}rest {rest}, applied from the first sample", (rest,), overrides, smoothed)
     rests = accept([measure((a, b), how) for a, b, how in find()], walk)
     used = tuple(r for r in rests if r.refused is None)
-    if not used:
+    if not used:  # none found (accept keeps at least half of them)
         warning = (
             f"preset {preset!r} removes a static bias, but no bias, bias_window or bias_duration was given, "
             "the log gives no rest window and no rest was found in it: the bias is taken as 0, as in causal "
             "mode (on the command line: --bias-window, --bias-duration or --bias-dps)"
         )
         return BiasPlan("none: no rest found in the log; bias 0", tuple(rests), {**rest_of, "bias": 0.0}, None, warning)
-    smoothed = smooth([r.middle for r in used], [r.bias for r in used], [r.bias_std_error for r in used], walk)
+    smoothed = _smooth(used, walk)
     sd = smoothed.at(times)[1] if times is not None else np.sqrt(smoothed.variance)
     overrides = {**rest_of, "bias": 0.0, **_scaled(preset, rest_of, used, float(np.sqrt(np.mean(sd**2))))}
     refused = f"; {len(rests) - len(used)} refused" if len(rests) > len(used) else ""
     # the inverse-variance mean of the rests (the smoother without a walk): is there a bias at all?
-    level = smooth([r.middle for r in used], [r.bias for r in used], [r.bias_std_error for r in used], 0.0)
+    level = _smooth(used, 0.0)
     mean, error = float(level.mean[0]), math.sqrt(float(level.variance[0]))
     if abs(mean) <= bias_sigmas * error:
         source = (
