@@ -237,24 +237,3 @@ fn long_blocks_with_gaps_and_bad_readings_equal_updates() {
         }
     }
 }
-
-/// Finite readings whose heading overflows to infinity are not an error: the block, checked
-/// again after its heading turned out non-finite, gives what `update` gives.
-#[test]
-fn a_heading_that_overflows_from_finite_readings_is_processed() {
-    let (t, _) = stream(300);
-    let r = vec![1e308; t.len()];
-    for preset in Preset::ALL {
-        let mut c = preset.config();
-        c.correction.bias = StaticBias::Fixed(0.0);
-        let mut a = Pipeline::new(c).unwrap();
-        let updates: Vec<Output> = t.iter().zip(&r).map(|(&x, &y)| a.update(x, y)).collect();
-        assert!(
-            updates.iter().any(|o| !o.heading.is_finite()),
-            "{preset:?} overflows"
-        );
-        let mut b = Pipeline::new(c).unwrap();
-        let got = block(&mut b, &t, &r).unwrap();
-        assert_eq!(common::bits(&got), common::bits(&updates), "{preset:?}");
-    }
-}

@@ -127,6 +127,10 @@ fuzz_target!(|input: Input| {
         Err(_) => assert_eq!(format!("{pipeline:?}"), format!("{before:?}")),
         Ok(out) => {
             assert_eq!(out, updates);
+            // Every heading and drift of an accepted block is finite (a skipped sample's rate is
+            // NaN by design).
+            let finite = |bits: u64| f64::from_bits(bits).is_finite();
+            assert!(out.iter().all(|o| finite(o[0]) && finite(o[2])), "{out:?}");
             // And any split into two blocks gives the same bits.
             let mut split = before.clone();
             let at = usize::from(input.split) % (t.len() + 1);

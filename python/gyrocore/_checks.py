@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import os
 import sys
 import types
@@ -41,8 +42,11 @@ def unit_problems(t: FloatArray, rate: FloatArray) -> list[str]:
                 f"rates look like deg/s, not rad/s: 99 % of |rate| are below {p99:.3g}, which is "
                 f"{np.degrees(p99):.3g} deg/s if read as rad/s (convert with numpy.radians)"
             )
-    if len(t) > 1:
-        mean_dt = float(t[-1] - t[0]) / (len(t) - 1)
+    # Python floats: a span that overflows (timestamps near +-1e308) is inf without a warning, and
+    # the core refuses those timestamps itself.
+    span = float(t[-1]) - float(t[0]) if len(t) > 1 else math.nan
+    if math.isfinite(span):
+        mean_dt = span / (len(t) - 1)
         if mean_dt > INTERVAL_LIMIT:
             problems.append(
                 f"timestamps look like ms, us or ns, not seconds: the mean interval is {mean_dt:.6g} "

@@ -197,7 +197,9 @@ class _FileJob:
                 try:
                     result = pipeline.process(chunk.t, chunk.rate - plan.bias(chunk.t), index_offset=chunk.first_row)
                 except SampleError as e:
-                    raise ValueError(source.locate(e)) from None
+                    # a timestamp beyond the core's limits is most often an epoch in a smaller unit
+                    fix = check.time_fix() if e.what == "t" else None
+                    raise ValueError(source.locate(e) + (f"; {fix}" if fix else "")) from None
                 except ValueError as e:
                     raise _in_file(source, e, from_meta) from None
                 writer.write(result)

@@ -26,10 +26,6 @@ if TYPE_CHECKING:
 _RATE_PARAMETERS = ("bias", "offset", "threshold", "hdr_increment", "hdr_turn_threshold")
 
 
-#: The shortest mean interval between timestamps taken [s] (a 1 THz gyro).
-MIN_MEAN_INTERVAL = 1e-12
-
-
 class RestWindowError(ValueError):
     """The rest window (``bias_window``, ``bias_duration``) does not fit the log: it holds no
     sample, or reaches past the log's end."""
@@ -247,7 +243,6 @@ class Pipeline:
         ta = as_float_array("t", t)
         ra = as_float_array("rate", rate)
         temp = None if temperature is None else as_float_array("temperature", temperature)
-        self._check_time_range(ta)
         self._check_bias_window(ta, ra, temp)
         if not self._units_checked and len(ta):
             warn_units(ta, ra)
@@ -329,32 +324,6 @@ class Pipeline:
     def report(self) -> dict[str, float]:
         """What the input policy did so far: ``held``, ``skipped``, ``gaps``, ``longest_gap`` [s]."""
         return dict(self._inner.report())
-
-    def _check_time_range(self, t: FloatArray) -> None:
-        """Refuse timestamps so far apart that an interval overflows to infinity (|t| near 1e308),
-        or so close that their mean interval is below :data:`MIN_MEAN_INTERVAL` (intervals near
-        1e-310 s make HDR's steps and the de-lag divide by almost nothing): either makes the
-        heading NaN. For increasing times no interval exceeds the span from the previous chunk's
-        last time to this chunk's last, so two numbers are checked, not all; a single tiny
-        interval among normal ones is the core's to refuse."""
-        if len(t) == 0:
-            return
-        last = self._inner.last_time()
-        first = float(t[0]) if last is None else last
-        end = float(t[-1])
-        if not (math.isfinite(first) and math.isfinite(end)):
-            return  # the core names the sample
-        intervals = len(t) - (1 if last is None else 0)
-        if not math.isfinite(end - first):
-            raise ValueError(
-                f"timestamps from {first} to {end} s are too far apart: their interval overflows; "
-                "give times in a smaller range (e.g. t - t[0])"
-            )
-        if intervals and 0 < end - first < MIN_MEAN_INTERVAL * intervals:
-            raise ValueError(
-                f"timestamps from {first} to {end} s are {(end - first) / intervals:.3g} s apart on average, "
-                f"below {MIN_MEAN_INTERVAL:g} s: no gyro samples that fast; give them in seconds"
-            )
 
     def _check_bias_window(self, t: FloatArray, rate: FloatArray, temperature: FloatArray | None) -> None:
         """Refuse, before anything is processed, a chunk that would close the rest window with no

@@ -5,11 +5,11 @@
 //! (`r_m - eps0`), the linear calibration `s_bar * (.) + b_bar` follows, and the scale factors
 //! multiply the result. The bias is what the gyro reads at rest (corrected = measured - bias).
 
-use crate::error::{check_finite, check_positive, check_range};
+use crate::error::{check_duration, check_factor, check_finite, check_range, check_reading};
 use crate::kernel::{Kernel, Measured, Signal};
 use crate::rest::{BiasEstimate, RestStatistics};
 use crate::stage::{Clock, Stage};
-use crate::Error;
+use crate::{Error, MAX_READING};
 
 /// Where the static bias `eps0` comes from (HDR eq 1-2, FOG section 2).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,10 +51,15 @@ pub struct TemperatureScale {
 }
 
 impl TemperatureScale {
-    /// Correction factor `C_T` at temperature `celsius` (FOG eq 6).
+    /// Correction factor `C_T` at temperature `celsius` (FOG eq 6), at most
+    /// [`MAX_READING`]: where the model's turn error reaches -100 % (a zero
+    /// denominator) no factor is right, and a bounded one keeps the heading finite.
     #[inline]
     pub fn factor(&self, celsius: f64) -> f64 {
-        1.0 / libm::fabs(1.0 + self.slope * celsius + self.offset)
+        1.0 / libm::fmax(
+            libm::fabs(1.0 + self.slope * celsius + self.offset),
+            1.0 / MAX_READING,
+        )
     }
 }
 
@@ -93,7 +98,7 @@ impl CorrectionConfig {
     /// Checks every field; the error names the first invalid one.
     pub fn validate(&self) -> Result<(), Error> {
         match self.bias {
-            StaticBias::Fixed(b) => check_finite("bias", b)?,
+            StaticBias::Fixed(b) => check_reading("bias", b)?,
             StaticBias::Window { start, end } => {
                 check_finite("bias_window.start", start)?;
                 check_finite("bias_window.end", end)?;
@@ -105,15 +110,15 @@ impl CorrectionConfig {
                     "finite and >= start",
                 )?;
             }
-            StaticBias::Leading { duration } => check_positive("bias_duration", duration)?,
+            StaticBias::Leading { duration } => check_duration("bias_duration", duration)?,
         }
-        check_positive("scale", self.scale)?;
-        check_finite("offset", self.offset)?;
-        check_positive("c_cw", self.c_cw)?;
-        check_positive("c_ccw", self.c_ccw)?;
+        check_factor("scale", self.scale)?;
+        check_reading("offset", self.offset)?;
+        check_factor("c_cw", self.c_cw)?;
+        check_factor("c_ccw", self.c_ccw)?;
         if let Some(m) = self.temperature {
-            check_finite("temperature.slope", m.slope)?;
-            check_finite("temperature.offset", m.offset)?;
+            check_reading("temperature.slope", m.slope)?;
+            check_reading("temperature.offset", m.offset)?;
         }
         Ok(())
     }

@@ -2,6 +2,8 @@
 
 use core::fmt;
 
+use crate::{MAX_READING, MAX_TIME, MIN_INTERVAL};
+
 /// Everything that can go wrong in the core: invalid configuration, and invalid sample blocks
 /// handed to the block-processing functions (per-sample `update` never fails).
 #[non_exhaustive]
@@ -32,6 +34,29 @@ pub enum Error {
         /// Index of the first bad sample within the block.
         index: usize,
         /// The value found.
+        value: f64,
+    },
+    /// A sample lies at or beyond its limit in magnitude
+    /// ([`MAX_TIME`](crate::MAX_TIME) for `t`, [`MAX_READING`](crate::MAX_READING)
+    /// for a reading).
+    OutOfRange {
+        /// `"t"`, `"rate"` or `"temperature"`.
+        what: &'static str,
+        /// Index of the first bad sample within the block.
+        index: usize,
+        /// The value found.
+        value: f64,
+        /// The limit of its magnitude.
+        limit: f64,
+    },
+    /// A timestamp follows the one before by less than
+    /// [`MIN_INTERVAL`](crate::MIN_INTERVAL).
+    TooClose {
+        /// Index within the block of the offending timestamp.
+        index: usize,
+        /// The timestamp before it (from this block or the previous one).
+        previous: f64,
+        /// The offending timestamp.
         value: f64,
     },
     /// Timestamps do not strictly increase at `index` (a duplicate or a step back).
@@ -69,7 +94,10 @@ impl Error {
     /// The index of the offending sample, for errors about one sample.
     pub fn index(&self) -> Option<usize> {
         match *self {
-            Error::NonFinite { index, .. } | Error::NotIncreasing { index, .. } => Some(index),
+            Error::NonFinite { index, .. }
+            | Error::OutOfRange { index, .. }
+            | Error::TooClose { index, .. }
+            | Error::NotIncreasing { index, .. } => Some(index),
             _ => None,
         }
     }
@@ -81,6 +109,26 @@ impl Error {
             Error::NonFinite { what, index, value } => Error::NonFinite {
                 what,
                 index: index + offset,
+                value,
+            },
+            Error::OutOfRange {
+                what,
+                index,
+                value,
+                limit,
+            } => Error::OutOfRange {
+                what,
+                index: index + offset,
+                value,
+                limit,
+            },
+            Error::TooClose {
+                index,
+                previous,
+                value,
+            } => Error::TooClose {
+                index: index + offset,
+                previous,
                 value,
             },
             Error::NotIncreasing {
@@ -101,6 +149,7 @@ impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
             Error::InvalidParameter { name, value, valid } => {
+                let value = Num(value);
                 write!(f, "invalid parameter {name} = {value}: must be {valid}")
             }
             Error::LengthMismatch {
@@ -114,6 +163,42 @@ impl fmt::Display for Error {
             Error::NonFinite { what, index, value } => write!(
                 f,
                 "{what}[{index}] is {value}: samples must be finite (drop or fill them first)"
+            ),
+            Error::OutOfRange {
+                what,
+                index,
+                value,
+                limit,
+            } => {
+                let (unit, hint) = match what {
+                    "t" => (
+                        "s",
+                        "give seconds, e.g. from the first sample or a recent epoch \
+                         (nanoseconds read as seconds are this large)",
+                    ),
+                    "temperature" => ("degC", "give degrees Celsius"),
+                    _ => (
+                        "rad/s",
+                        "no gyro reads that fast: check the unit and the column",
+                    ),
+                };
+                let value = Num(value);
+                write!(
+                    f,
+                    "{what}[{index}] = {value} {unit} is beyond +-{limit} {unit}: {hint}"
+                )
+            }
+            Error::TooClose {
+                index,
+                previous,
+                value,
+            } => write!(
+                f,
+                "t[{index}] = {} follows {} by {:e} s, under the shortest interval of \
+                 {MIN_INTERVAL:e} s: drop duplicate samples, or give the times in seconds",
+                Num(value),
+                Num(previous),
+                value - previous
             ),
             Error::NotIncreasing {
                 index,
@@ -149,6 +234,21 @@ impl fmt::Display for Error {
 
 impl core::error::Error for Error {}
 
+/// A number as a message shows it: in full where that is short (a timestamp keeps its digits),
+/// in exponent form where it is extreme (`1e308`, not 309 digits).
+struct Num(f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let magnitude = libm::fabs(self.0);
+        if magnitude >= 1e15 || (magnitude < 1e-6 && magnitude > 0.0) {
+            write!(f, "{:e}", self.0)
+        } else {
+            write!(f, "{}", self.0)
+        }
+    }
+}
+
 /// Checks that `value` lies in `[lo, hi]` (both finite or infinite bounds allowed, NaN rejected).
 pub(crate) fn check_range(
     name: &'static str,
@@ -175,6 +275,30 @@ pub(crate) fn check_positive(name: &'static str, value: f64) -> Result<(), Error
             valid: "finite and > 0",
         })
     }
+}
+
+/// Checks a bias, offset or other value in the units of a reading: at most
+/// [`MAX_READING`] in magnitude.
+pub(crate) fn check_reading(name: &'static str, value: f64) -> Result<(), Error> {
+    check_range(
+        name,
+        value,
+        -MAX_READING,
+        MAX_READING,
+        "finite and at most 2^20 = 1048576 in magnitude (the limit of a reading)",
+    )
+}
+
+/// Checks a scale factor: > 0 and at most [`MAX_READING`].
+pub(crate) fn check_factor(name: &'static str, value: f64) -> Result<(), Error> {
+    let valid = "> 0 and at most 2^20 = 1048576";
+    check_range(name, value, f64::MIN_POSITIVE, MAX_READING, valid)
+}
+
+/// Checks a duration \[s\]: > 0 and at most [`MAX_TIME`].
+pub(crate) fn check_duration(name: &'static str, value: f64) -> Result<(), Error> {
+    let valid = "> 0 and at most 2^40 s (about 35,000 years)";
+    check_range(name, value, f64::MIN_POSITIVE, MAX_TIME, valid)
 }
 
 /// Checks that `value` is finite.

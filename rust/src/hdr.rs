@@ -14,7 +14,7 @@
 //! HDR off on straight roads and on for every left turn.
 
 use crate::block::BlockMean;
-use crate::error::{check_positive, check_range};
+use crate::error::{check_duration, check_positive, check_range};
 use crate::kernel::{Kernel, Measured, Signal, Streaming, Validated};
 use crate::lowpass::{LowPassConfig, LowPassKernel};
 use crate::Error;
@@ -83,7 +83,7 @@ impl HdrConfig {
         )?;
         check_range("hdr_c1", self.c1, 0.0, f64::MAX, "finite and >= 0")?;
         check_positive("hdr_c2", self.c2)?;
-        check_positive("hdr_interval", self.interval)?;
+        check_duration("hdr_interval", self.interval)?;
         check_range(
             "hdr_max_correction",
             self.max_correction,

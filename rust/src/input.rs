@@ -3,7 +3,7 @@
 //! them, and the per-sample `update` (which cannot fail) skips such a sample untouched.
 
 use crate::error::check_range;
-use crate::Error;
+use crate::{Error, MIN_INTERVAL};
 
 /// What to do with a NaN or infinite rate (or temperature) reading.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -60,9 +60,9 @@ impl InputPolicy {
         check_range(
             "gap_limit",
             self.gap_limit,
-            f64::MIN_POSITIVE,
+            MIN_INTERVAL,
             f64::INFINITY,
-            "> 0 (infinity: no gap detection)",
+            ">= 1e-12 s, the shortest interval (infinity: no gap detection)",
         )
     }
 }

@@ -323,7 +323,7 @@ impl<K: Validated> Streaming<K> {
 impl<K: Validated> Stage for Streaming<K> {
     type Output = f64;
 
-    /// Feeds one sample. A sample whose timestamp does not move forward (or is not finite)
+    /// Feeds one sample. A sample whose timestamp [`Clock::interval`] refuses
     /// leaves the stage as it was and gets the last output again (0 before the first).
     #[inline]
     fn update(&mut self, t: f64, rate: f64) -> f64 {

@@ -73,7 +73,7 @@ pub use rest::{static_bias_test, RestStatistics, StaticBiasTest};
 pub use sim::{GyroModel, GyroModelConfig, GyroSample, TemperatureProfile};
 pub use stage::{Clock, Stage};
 pub use threshold::{Threshold, ThresholdConfig};
-pub use validate::check_block;
+pub use validate::{check_block, MAX_READING, MAX_TIME, MIN_INTERVAL};
 
 // The README's Rust example compiles and runs with the doctests.
 #[cfg(doctest)]

@@ -7,7 +7,7 @@
 
 use crate::error::check_range;
 use crate::kernel::{settings_are_config, Kernel, Signal, Streaming};
-use crate::Error;
+use crate::{Error, MAX_TIME};
 
 /// Configuration shared by [`LowPass`] and [`DeLag`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -20,7 +20,13 @@ pub struct LowPassConfig {
 impl LowPassConfig {
     /// Checks `tau`.
     pub fn validate(&self) -> Result<(), Error> {
-        check_range("lowpass_tau", self.tau, 0.0, f64::MAX, "finite and >= 0")
+        check_range(
+            "lowpass_tau",
+            self.tau,
+            0.0,
+            MAX_TIME,
+            ">= 0 and at most 2^40 s (about 35,000 years)",
+        )
     }
 }
 

@@ -1,6 +1,7 @@
 //! What every streaming stage shares: the [`Stage`] trait and the [`Clock`] that turns
 //! timestamps into the actual interval `T_i` of each sample.
 
+use crate::validate::{MAX_TIME, MIN_INTERVAL};
 use crate::Error;
 
 /// A streaming stage: validated config + private state, fed one sample at a time.
@@ -47,9 +48,10 @@ pub(crate) fn check_len(what: &'static str, len: usize, expected: usize) -> Resu
 
 /// Remembers the last timestamp and gives the interval `T_i = t_i - t_{i-1}` of each sample.
 ///
-/// The first sample has no interval (`T_0 = 0`). A timestamp that does not move forward, or is
-/// not finite, also gets `T_i = 0`, so such a sample adds nothing to any integral and cannot
-/// divide by zero; block processing rejects those timestamps before they get here.
+/// The first sample has no interval (`T_0 = 0`). A timestamp that does not move forward by at
+/// least [`MIN_INTERVAL`], or is not finite or beyond [`MAX_TIME`], also gets `T_i = 0`, so such a
+/// sample adds nothing to any integral and cannot divide by zero; block processing rejects those
+/// timestamps before they get here.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Clock {
@@ -58,7 +60,7 @@ pub struct Clock {
 
 impl Clock {
     /// Interval since the previous timestamp, in seconds (0 for the first sample, and 0 for a
-    /// timestamp that does not move forward, which is then not taken as the last one).
+    /// timestamp [`Clock::interval`] refuses, which is then not taken as the last one).
     #[inline]
     pub fn tick(&mut self, t: f64) -> f64 {
         match self.interval(t) {
@@ -70,14 +72,18 @@ impl Clock {
         }
     }
 
-    /// The interval `t` would have (0 for the first sample), or `None` if `t` is not finite or does
-    /// not move forward. Does not change the clock.
+    /// The interval `t` would have (0 for the first sample), or `None` if `t` is not finite, lies
+    /// beyond [`MAX_TIME`] or does not move forward by at least [`MIN_INTERVAL`] (the limits of
+    /// [`check_block`](crate::check_block)). Does not change the clock.
     #[inline]
     pub fn interval(&self, t: f64) -> Option<f64> {
+        // also false for NaN
+        let within = libm::fabs(t) < MAX_TIME;
         match self.last {
-            Some(last) if t > last && t.is_finite() => Some(t - last),
-            None if t.is_finite() => Some(0.0),
-            _ => None,
+            _ if !within => None,
+            Some(last) if t - last >= MIN_INTERVAL => Some(t - last),
+            Some(_) => None,
+            None => Some(0.0),
         }
     }
 

@@ -1,11 +1,30 @@
-//! Checks of a block of samples before any stage sees it.
+//! Checks of a block of samples before any stage sees it, and the limits of a valid sample.
+//!
+//! The limits keep every output finite for every input the checks accept: with readings below
+//! [`MAX_READING`], factors and biases below it too (each stage's `validate`), timestamps below
+//! [`MAX_TIME`] and intervals of at least [`MIN_INTERVAL`], no sum or quotient in the pipeline
+//! can reach the largest float.
 
 use crate::stage::check_len;
 use crate::Error;
 
-/// Checks one block: `rate` (and `temperature`, when given) as long as `t`, `t` finite and
-/// strictly increasing, also across the previous block whose last timestamp was `previous_t`, and,
-/// when `readings_must_be_finite`, every reading finite.
+/// The largest magnitude of a reading: a rate \[rad/s\] (and a temperature \[degC\]) must lie
+/// strictly within +-2^20 (1,048,576), far beyond any gyro; a rate there is a wrong unit or a
+/// corrupt sample. Biases, offsets and scale factors are bounded by it too.
+pub const MAX_READING: f64 = 1_048_576.0;
+
+/// The largest magnitude of a timestamp \[s\]: +-2^40 s (about 35,000 years), so that any
+/// interval and any heading stays finite. Epoch seconds fit; nanoseconds read as seconds do not.
+pub const MAX_TIME: f64 = 1_099_511_627_776.0;
+
+/// The shortest interval between two samples \[s\] (1 ps): closer timestamps are duplicates or
+/// times in a wrong unit, and dividing by such an interval would overflow.
+pub const MIN_INTERVAL: f64 = 1e-12;
+
+/// Checks one block: `rate` (and `temperature`, when given) as long as `t`; `t` finite, within
+/// [`MAX_TIME`] and increasing by at least [`MIN_INTERVAL`], also after the previous block whose
+/// last timestamp was `previous_t`; and, when `readings_must_be_finite`, every reading finite
+/// and within [`MAX_READING`] (otherwise the input policy holds or skips the ones that are not).
 ///
 /// The error names the first offending index, so nothing is processed from a bad block.
 pub fn check_block(
@@ -17,33 +36,46 @@ pub fn check_block(
 ) -> Result<(), Error> {
     check_lengths(t, rate, temperature)?;
     if readings_must_be_finite {
-        check_finite_all("rate", rate)?;
+        check_bounded("rate", rate, MAX_READING)?;
         if let Some(temp) = temperature {
-            check_finite_all("temperature", temp)?;
+            check_bounded("temperature", temp, MAX_READING)?;
         }
     }
-    check_finite_all("t", t)?;
+    check_bounded("t", t, MAX_TIME)?;
     // Fast path first (branch-free, vectorisable); search for the index only when it fails.
     let continues = previous_t
         .zip(t.first())
-        .is_none_or(|(p, &first)| first > p);
+        .is_none_or(|(p, &first)| spaced(p, first));
     if continues && increasing(t) {
         return Ok(());
     }
     let mut previous = previous_t;
     for (index, &value) in t.iter().enumerate() {
-        if let Some(p) = previous {
-            if value <= p {
+        match previous {
+            Some(p) if value <= p => {
                 return Err(Error::NotIncreasing {
                     index,
                     previous: p,
                     value,
-                });
+                })
             }
+            Some(p) if !spaced(p, value) => {
+                return Err(Error::TooClose {
+                    index,
+                    previous: p,
+                    value,
+                })
+            }
+            _ => previous = Some(value),
         }
-        previous = Some(value);
     }
     Ok(())
+}
+
+/// True if `value` comes at least [`MIN_INTERVAL`] after `previous`.
+#[inline(always)]
+fn spaced(previous: f64, value: f64) -> bool {
+    value - previous >= MIN_INTERVAL
 }
 
 /// Fails with [`Error::LengthMismatch`] unless `rate` (and `temperature`, when given) is as long
@@ -63,37 +95,49 @@ pub(crate) fn check_lengths(
 /// True if every value is finite. Branch-free integer arithmetic, so it vectorises.
 #[inline]
 pub(crate) fn all_finite(values: &[f64]) -> bool {
-    values.iter().fold(0u64, |acc, &v| acc | exponent_carry(v)) & CARRY == 0
+    all_below(values, f64::INFINITY)
 }
 
-/// The bit that [`exponent_carry`] sets for a non-finite value.
+/// True if every value is finite and below `limit` in magnitude (`limit` a power of two, or
+/// infinity). Branch-free integer arithmetic, so it vectorises.
+#[inline]
+fn all_below(values: &[f64], limit: f64) -> bool {
+    values
+        .iter()
+        .fold(0u64, |acc, &v| acc | exponent_carry(v, limit))
+        & CARRY
+        == 0
+}
+
+/// The bit that [`exponent_carry`] sets for a value at or beyond its limit.
 const CARRY: u64 = 1 << 63;
 
-/// A double is NaN or infinite exactly when its 11 exponent bits are all set, and adding one to
-/// the exponent field then carries into the top bit ([`CARRY`]); OR-ed over many values, the
-/// carry survives.
+/// For `limit` = 2^k (or infinity, for finiteness): a double's magnitude reaches 2^k exactly when
+/// its 11-bit exponent field reaches that of 2^k, and adding what takes that field to 2^11 then
+/// carries into the top bit ([`CARRY`]); NaN and infinity have the largest field. OR-ed over
+/// many values, the carry survives.
 #[inline(always)]
-fn exponent_carry(v: f64) -> u64 {
+fn exponent_carry(v: f64, limit: f64) -> u64 {
     const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
-    const EXPONENT_ONE: u64 = 0x0010_0000_0000_0000;
-    (v.to_bits() & EXPONENT) + EXPONENT_ONE
+    (v.to_bits() & EXPONENT) + (CARRY - (limit.to_bits() & EXPONENT))
 }
 
-/// A reading the pipeline takes as it is: a finite rate and, if there is one, a finite
-/// temperature (any other the input policy holds or skips).
+/// A reading the pipeline takes as it is: a rate and, if there is one, a temperature, finite and
+/// within [`MAX_READING`] (any other the input policy holds or skips).
 #[inline(always)]
-pub(crate) fn finite_reading(rate: f64, temperature: Option<f64>) -> bool {
-    rate.is_finite() && temperature.is_none_or(f64::is_finite)
+pub(crate) fn usable_reading(rate: f64, temperature: Option<f64>) -> bool {
+    let usable = |v: f64| libm::fabs(v) < MAX_READING;
+    usable(rate) && temperature.is_none_or(usable)
 }
 
-/// An interval as an integer that orders the valid ones: for a finite `limit` > 0,
-/// `interval_key(dt) <= interval_key(limit)` exactly when `0 < dt <= limit`. The bits of a
-/// positive float grow with its value; 0 wraps around to the largest key, and a negative
-/// interval (sign bit set) or NaN lands above every finite one. One comparison thus checks that
-/// time moves forward, by a finite step and without a gap.
+/// An interval as an integer that orders the valid ones: for a finite `limit` >= [`MIN_INTERVAL`],
+/// `interval_key(dt) <= interval_key(limit)` exactly when `MIN_INTERVAL <= dt <= limit`. The bits
+/// of a positive float grow with its value; an interval below [`MIN_INTERVAL`] wraps around to
+/// the largest keys, and a negative interval (sign bit set) or NaN lands above every finite one.
+/// One comparison thus checks that time moves forward, by a valid step and without a gap.
 #[inline(always)]
 pub(crate) fn interval_key(dt: f64) -> u64 {
-    dt.to_bits().wrapping_sub(1)
+    dt.to_bits().wrapping_sub(MIN_INTERVAL.to_bits())
 }
 
 /// Validity of a block's samples, accumulated branch-free while the block is processed (see
@@ -114,32 +158,28 @@ impl Checks {
         self.worst_interval = self.worst_interval.max(interval_key(dt));
     }
 
-    /// A finite value (a timestamp or a reading).
-    #[inline(always)]
-    pub(crate) fn finite(&mut self, value: f64) {
-        self.carry |= exponent_carry(value);
-    }
-
-    /// A finite rate and, when there is one, a finite temperature.
+    /// A usable reading: a rate and, when there is one, a temperature, finite and within
+    /// [`MAX_READING`].
     #[inline(always)]
     pub(crate) fn reading(&mut self, rate: f64, temperature: Option<f64>) {
-        self.finite(rate);
-        self.temperature(temperature);
-    }
-
-    /// A finite temperature, when there is one.
-    #[inline(always)]
-    pub(crate) fn temperature(&mut self, temperature: Option<f64>) {
+        self.carry |= exponent_carry(rate, MAX_READING);
         if let Some(celsius) = temperature {
-            self.finite(celsius);
+            self.carry |= exponent_carry(celsius, MAX_READING);
         }
     }
 
-    /// The longest interval seen [s], if every one was valid (finite and > 0); the smallest
-    /// positive float if none was seen.
+    /// A timestamp finite and within [`MAX_TIME`] (the loop checks the first and the last of
+    /// its samples: between them, time increases).
+    #[inline(always)]
+    pub(crate) fn time(&mut self, t: f64) {
+        self.carry |= exponent_carry(t, MAX_TIME);
+    }
+
+    /// The longest interval seen [s], if every one was valid (finite and >= [`MIN_INTERVAL`]);
+    /// [`MIN_INTERVAL`] if none was seen.
     pub(crate) fn longest_interval(&self) -> Option<f64> {
         (self.worst_interval <= interval_key(f64::MAX))
-            .then(|| f64::from_bits(self.worst_interval + 1))
+            .then(|| f64::from_bits(self.worst_interval.wrapping_add(MIN_INTERVAL.to_bits())))
     }
 
     /// True if every value and interval seen was valid.
@@ -148,11 +188,30 @@ impl Checks {
     }
 }
 
-/// True if every value is larger than the one before (branch-free, so it vectorises).
+/// True if every value comes at least [`MIN_INTERVAL`] after the one before (branch-free, so it
+/// vectorises).
 #[inline]
 fn increasing(values: &[f64]) -> bool {
     let pairs = values.iter().zip(values.iter().skip(1));
-    pairs.fold(0u32, |bad, (a, b)| bad | u32::from(b <= a)) == 0
+    pairs.fold(0u32, |bad, (&a, &b)| bad | u32::from(!spaced(a, b))) == 0
+}
+
+/// Fails with [`Error::NonFinite`] naming the first NaN or infinite value, or with
+/// [`Error::OutOfRange`] naming the first value at or beyond `limit` in magnitude.
+fn check_bounded(what: &'static str, values: &[f64], limit: f64) -> Result<(), Error> {
+    check_finite_all(what, values)?;
+    if all_below(values, limit) {
+        return Ok(());
+    }
+    match values.iter().position(|v| libm::fabs(*v) >= limit) {
+        Some(index) => Err(Error::OutOfRange {
+            what,
+            index,
+            value: values[index],
+            limit,
+        }),
+        None => Ok(()),
+    }
 }
 
 /// Fails with [`Error::NonFinite`] naming the first NaN or infinite value.
@@ -174,15 +233,18 @@ pub(crate) fn check_finite_all(what: &'static str, values: &[f64]) -> Result<(),
 mod tests {
     use super::*;
 
-    /// `interval_key(dt) <= interval_key(longest)` exactly when `0 < dt <= longest`.
+    /// `interval_key(dt) <= interval_key(longest)` exactly when `MIN_INTERVAL <= dt <= longest`.
     #[test]
     fn interval_key_orders_the_valid_intervals() {
         let above = |x: f64| f64::from_bits(x.to_bits() + 1);
+        let below = |x: f64| f64::from_bits(x.to_bits() - 1);
         let intervals = [
             0.0,
             -0.0,
             f64::from_bits(1),
             1e-300,
+            below(MIN_INTERVAL),
+            MIN_INTERVAL,
             0.005,
             0.01,
             above(0.01),
@@ -195,10 +257,10 @@ mod tests {
             f64::NAN,
             -f64::NAN,
         ];
-        for longest in [f64::from_bits(1), 0.01, 2.0, f64::MAX] {
+        for longest in [MIN_INTERVAL, 0.01, 2.0, f64::MAX] {
             for dt in intervals {
                 let by_key = interval_key(dt) <= interval_key(longest);
-                let valid = dt > 0.0 && dt <= longest;
+                let valid = dt >= MIN_INTERVAL && dt <= longest;
                 assert_eq!(by_key, valid, "dt {dt:e}, longest {longest:e}");
             }
         }

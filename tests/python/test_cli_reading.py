@@ -48,9 +48,9 @@ def write_csv(path: Path, header: list[str], columns: list[np.ndarray], fmt: str
     return path
 
 
-def euroc(path: Path, log: gyrocore.Log, time_header: str = "#timestamp [ns]") -> Path:
+def euroc(path: Path, log: gyrocore.Log, time_header: str = "#timestamp [ns]", epoch_ns: int = EPOCH_NS) -> Path:
     """The log as EuRoC writes it: ns since the epoch, three axes in rad/s, units in the header."""
-    t_ns = EPOCH_NS + np.round(log.t * 1e9).astype(np.int64)
+    t_ns = epoch_ns + np.round(log.t * 1e9).astype(np.int64)
     rows = [f"{t},0.001,-0.002,{r!r}" for t, r in zip(t_ns, log.rate.tolist())]
     header = f"{time_header},w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1]"
     path.write_text("\n".join([header, *rows]) + "\n")
@@ -126,12 +126,26 @@ def test_a_header_unit_that_is_not_read_or_contradicts_an_option_stops(tmp_path:
 
 
 def test_timestamps_that_are_all_gaps_are_an_error_not_a_warning(tmp_path: Path, broad: gyrocore.Log) -> None:
-    src = euroc(tmp_path / "data.csv", broad, time_header="#timestamp")  # ns, but the header does not say
+    # ns from the first sample, but the header does not say: every interval read as seconds is a gap
+    src = euroc(tmp_path / "data.csv", broad, time_header="#timestamp", epoch_ns=0)
     out = tmp_path / "heading.csv"
     message = one_error(gyrocore_cli("process", src, "--time-col", "timestamp", "--rate-col", "w_RS_S_z",
                                      "--out", out, code=2))
     assert f"each of the {len(broad.t) - 1} intervals is longer than 2 s" in message
     assert "--time-unit ns" in message
+    assert not out.exists()
+
+
+def test_an_epoch_in_ns_read_as_seconds_is_refused_naming_the_option(tmp_path: Path, broad: gyrocore.Log) -> None:
+    """Beyond the core's limit of a timestamp (2^40 s): the first chunk is refused, and the error
+    says which unit the timestamps look like."""
+    src = euroc(tmp_path / "data.csv", broad, time_header="#timestamp")
+    out = tmp_path / "heading.csv"
+    message = one_error(gyrocore_cli("process", src, "--time-col", "timestamp", "--rate-col", "w_RS_S_z",
+                                     "--out", out, code=2))
+    first = repr(float(EPOCH_NS)).replace("e+", "e")  # as the core writes an extreme number
+    assert f"t[0] = {first} s is beyond +-1099511627776 s" in message and f"{src}, line 2" in message
+    assert "timestamps look like ns, not s" in message and "--time-unit ns" in message
     assert not out.exists()
 
 

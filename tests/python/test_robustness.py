@@ -129,13 +129,17 @@ def test_a_panic_in_rust_is_a_python_exception_not_an_abort() -> None:
 @pytest.mark.parametrize(
     ("overrides", "message"),
     [
-        ({"lowpass_tau": -1.0}, "lowpass_tau = -1: must be finite and >= 0"),
+        ({"lowpass_tau": -1.0}, "lowpass_tau = -1: must be >= 0 and at most 2\\^40 s"),
         ({"hdr_c2": -0.5}, "hdr_c2 = -0.5: must be finite and > 0"),
         ({"threshold": -0.1}, "threshold = -0.1: must be finite and >= 0"),
-        ({"hdr_interval": 0.0}, "hdr_interval = 0: must be finite and > 0"),
-        ({"gap_limit": -1.0}, "gap_limit = -1: must be > 0"),
-        ({"scale": float("nan")}, "scale = NaN: must be finite and > 0"),
+        ({"hdr_interval": 0.0}, "hdr_interval = 0: must be > 0 and at most 2\\^40 s"),
+        ({"gap_limit": -1.0}, "gap_limit = -1: must be >= 1e-12 s"),
+        ({"scale": float("nan")}, "scale = NaN: must be > 0 and at most 2\\^20"),
         ({"bias_window": (5.0, 1.0)}, "bias_window.end = 1: must be finite and >= start"),
+        # beyond the core's limits (issue: 1e308 was accepted, and a rate of 1e308 overflowed)
+        ({"lowpass_tau": 1e308}, "lowpass_tau = 1e308: must be >= 0 and at most 2\\^40 s"),
+        ({"scale": 2.0**21}, "scale = 2097152: must be > 0 and at most 2\\^20"),
+        ({"bias": 1e7}, "bias = 10000000: must be finite and at most 2\\^20"),
     ],
 )
 def test_invalid_parameters_name_the_parameter_and_range(overrides: dict[str, object], message: str) -> None:

@@ -42,16 +42,19 @@ def test_timedelta_columns_of_numpy_files_carry_their_unit(tmp_path: Path) -> No
         gyrocore.read_log(tmp_path / "e.npy")
 
 
-def test_timestamps_whose_interval_overflows_are_refused_before_processing() -> None:
-    """+-1.5e308 are finite, but their interval is not: the heading was NaN."""
-    with pytest.raises(ValueError, match=r"^timestamps from -1\.5e\+308 to 1\.5e\+308 s are too far apart"):
+def test_timestamps_beyond_the_cores_limit_are_refused_before_processing() -> None:
+    """+-1.5e308 are finite, but their interval is not: the heading was NaN. The core refuses a
+    timestamp beyond +-2^40 s (gyrocore::MAX_TIME), naming it."""
+    with pytest.raises(gyrocore.SampleError, match=r"^t\[0\] = -1\.5e308 s is beyond \+-1099511627776 s") as e:
         gyrocore.process([-1.5e308, 0.0, 1.5e308], [0.1, 0.1, 0.1], "recommended", bias=0.0)
+    assert (e.value.index, e.value.what) == (0, "t")
     pipeline = gyrocore.Pipeline("raw")
-    pipeline.process([-1.5e308], [0.1])
-    with pytest.raises(ValueError, match="too far apart"):  # also across chunks
-        pipeline.process([1.5e308], [0.1])
-    far = pipeline.process([0.0], [0.1])  # 1.5e308 s later: an interval that is finite
-    assert np.isfinite(far.heading).all()
+    pipeline.process([0.0], [0.1])
+    with pytest.raises(gyrocore.SampleError, match=r"^t\[1\] = 1\.5e308 s is beyond"):  # also in a later chunk
+        pipeline.process([1.0, 1.5e308], [0.1, 0.1])
+    # the chunk changed nothing, and the widest timestamps the core takes give a finite heading
+    far = pipeline.process([1.0, 2.0**40 * (1 - 1e-9)], [0.1, 0.1])
+    assert np.isfinite(far.heading).all() and far.heading[-1] > 1e10
 
 
 @pytest.mark.parametrize("unit", ["as", "fs", "ps", "m", "h", "D", "W"])
@@ -78,8 +81,16 @@ def test_timedelta_units_without_a_fixed_length_are_refused(tmp_path: Path) -> N
 
 @pytest.mark.parametrize("interval", [1e-301, 1e-310, 1e-13])
 def test_timestamps_closer_than_a_picosecond_are_refused(interval: float) -> None:
-    """Intervals near 1e-310 s gave a NaN heading with the HDR presets."""
+    """Intervals near 1e-310 s gave a NaN heading with the HDR presets. The core refuses an
+    interval below 1e-12 s (gyrocore::MIN_INTERVAL), naming the sample, also one among normal ones."""
     t = np.arange(100) * interval
-    with pytest.raises(ValueError, match=r"apart on average, below 1e-12 s: no gyro samples that fast"):
+    with pytest.raises(gyrocore.SampleError, match=r"^t\[1\] = .* under the shortest interval of 1e-12 s") as e:
         gyrocore.process(t, np.full(100, 0.1), "hdr", bias=0.0)
-    assert np.isfinite(gyrocore.process(np.arange(100) * 1e-12, np.full(100, 0.1), "hdr", bias=0.0).heading).all()
+    assert (e.value.index, e.value.what) == (1, "t")
+    normal = np.arange(100) * 0.01
+    normal[50] = normal[49] + interval
+    with pytest.raises(gyrocore.SampleError, match=r"t\[50\] = "):  # below float spacing: a duplicate
+        gyrocore.process(normal, np.full(100, 0.1), "hdr", bias=0.0)
+    # just above the limit (exactly 1e-12 apart, float rounding puts some intervals below it)
+    at_limit = np.arange(100) * 1.01e-12
+    assert np.isfinite(gyrocore.process(at_limit, np.full(100, 0.1), "hdr", bias=0.0).heading).all()

@@ -45,6 +45,8 @@ SMALL_RATE_DPS = 3.0
 SHORT_INTERVAL = 1e-4
 #: Timestamps beyond this [s] (the year 5138) are an epoch in ms, us or ns.
 EPOCH_LIMIT = 1e11
+#: How the problem that names another time unit begins.
+_TIME_PROBLEM = "timestamps look like"
 #: Intervals and large rates are judged on this many first samples, whatever the chunks are.
 HEAD_SAMPLES = 1 << 16
 
@@ -104,9 +106,15 @@ class UnitCheck:
             return None
         if self._first is None:
             self._judge_head()
-        fixes = [p for p in self._first or [] if p.startswith("timestamps look like")]
-        fix = fixes[0] if fixes else f"give the unit of the time column with --time-unit ({', '.join(TIME_UNITS)})"
+        fix = self.time_fix() or f"give the unit of the time column with --time-unit ({', '.join(TIME_UNITS)})"
         return f"each of the {self._intervals} intervals is longer than {INTERVAL_LIMIT:g} s, a gap: {fix}"
+
+    def time_fix(self) -> str | None:
+        """The problem that says which time unit the timestamps look like, if one does (so an
+        error about a timestamp can name the option that fixes it)."""
+        if self._first is None:
+            self._judge_head()
+        return next((p for p in self._first or [] if p.startswith(_TIME_PROBLEM)), None)
 
     def _judge_head(self) -> None:
         """Judge the first samples (at most :data:`HEAD_SAMPLES`, whatever the chunks were), once
@@ -139,7 +147,7 @@ class UnitCheck:
             fits = []
         if fits:
             problems.append(
-                f"timestamps look like {' or '.join(fits)}, not {unit}: {why}; "
+                f"{_TIME_PROBLEM} {' or '.join(fits)}, not {unit}: {why}; "
                 f"use time_unit='{fits[0]}' (--time-unit {fits[0]})"
             )
         return problems

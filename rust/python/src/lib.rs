@@ -20,7 +20,8 @@ pyo3::create_exception!(
     _gyrocore,
     SampleError,
     PyValueError,
-    "A sample that cannot be processed: NaN/inf or a timestamp that does not increase. \
+    "A sample that cannot be processed: NaN/inf, beyond the limits of a sample, or a timestamp \
+     that does not increase by at least 1e-12 s. \
      Attributes: index (of the sample), what ('t', 'rate' or 'temperature')."
 );
 
@@ -31,7 +32,7 @@ fn value_error(e: Error) -> PyErr {
         return PyValueError::new_err(e.to_string());
     };
     let what = match e {
-        Error::NonFinite { what, .. } => what,
+        Error::NonFinite { what, .. } | Error::OutOfRange { what, .. } => what,
         _ => "t",
     };
     Python::attach(|py| {

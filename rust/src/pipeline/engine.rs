@@ -12,7 +12,7 @@ use crate::integrate::{IntegratorKernel, Method, TrapezoidKernel};
 use crate::kernel::{Event, Kernel, Measured, Signal};
 use crate::lowpass::{DeLagKernel, LowPassKernel};
 use crate::threshold::{ThresholdConfig, ThresholdKernel};
-use crate::validate::{finite_reading, interval_key, Checks};
+use crate::validate::{interval_key, usable_reading, Checks};
 
 use super::{Output, Outputs, PipelineConfig};
 
@@ -175,8 +175,9 @@ impl<C: Kernel> Chain<C> {
     /// run beside the chain's floating-point work, see [`Checks`]); the caller rejects the block
     /// if any failed. Unless `STOPS`, the loop takes every sample; with `STOPS`, it stops before
     /// a sample whose interval's [`interval_key`] exceeds `stop_key` (a gap the input policy
-    /// restarts at, or a timestamp that does not move forward) or whose reading is not finite
-    /// (which the policy holds or skips): such a sample needs the slow path.
+    /// restarts at, or a timestamp that does not move forward) or whose reading is not usable
+    /// (not finite or too large, which the policy holds or skips): such a sample needs the slow
+    /// path.
     #[inline(always)]
     fn run<const STOPS: bool>(
         &mut self,
@@ -197,7 +198,7 @@ impl<C: Kernel> Chain<C> {
         for i in c.next..n {
             let dt = t[i] - c.previous;
             let temp = temperature.map(|temp| temp[i]);
-            if STOPS && (interval_key(dt) > stop_key || !finite_reading(rate[i], temp)) {
+            if STOPS && (interval_key(dt) > stop_key || !usable_reading(rate[i], temp)) {
                 break;
             }
             c.previous = t[i];

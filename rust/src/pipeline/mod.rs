@@ -20,7 +20,7 @@ use crate::kernel::{Event, EventKind, Measured, Signal};
 use crate::rest::BiasEstimate;
 use crate::rest::RestStatistics;
 use crate::stage::{check_len, Clock};
-use crate::validate::{check_block, check_lengths, finite_reading, interval_key, Checks};
+use crate::validate::{check_block, check_lengths, interval_key, usable_reading, Checks};
 use crate::Error;
 
 /// Per-sample output of the pipeline.
@@ -200,8 +200,9 @@ impl Pipeline {
 
     /// Feeds one sample with the sensor temperature \[degC\] for the temperature scale model.
     ///
-    /// Infallible and allocation-free. A sample whose timestamp does not move forward is skipped,
-    /// and so is a non-finite reading unless the policy holds the last one (a missing
+    /// Infallible and allocation-free. A sample whose timestamp [`Clock::interval`] refuses is
+    /// skipped, and so is a reading that is not finite or lies beyond
+    /// [`MAX_READING`](crate::MAX_READING) unless the policy holds the last one (a missing
     /// temperature where the model needs one counts as non-finite): a skipped sample leaves every
     /// stage untouched and gets the last heading and drift with a NaN rate (counted in
     /// [`Pipeline::report`]). Use [`Pipeline::process_block`] to have bad input rejected instead.
@@ -306,6 +307,11 @@ impl Pipeline {
             });
         self.engine.run(block, &mut cursor, stops, out);
         let end = cursor.next;
+        if end > from {
+            // time increases within the samples taken, so their ends bound them all
+            cursor.checks.time(block.t[from]);
+            cursor.checks.time(block.t[end - 1]);
+        }
         let (t, rate) = (&block.t[from..end], &block.rate[from..end]);
         let temperature = block.temperature.map(|temp| &temp[from..end]);
         if !cursor.checks.passed() {
@@ -365,7 +371,7 @@ impl Pipeline {
         let dt = self.clock.interval(t)?;
         let needs_temperature = self.config.correction.temperature.is_some();
         let reading =
-            if finite_reading(rate, temperature) && (temperature.is_some() || !needs_temperature) {
+            if usable_reading(rate, temperature) && (temperature.is_some() || !needs_temperature) {
                 self.last_reading = Some((rate, temperature));
                 (rate, temperature)
             } else {
