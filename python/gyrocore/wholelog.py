@@ -37,6 +37,7 @@ from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
 from ._checks import warn
+from ._gyrocore import SampleError
 from ._rests import MIN_REST, SPEED_THRESHOLD, Rest, accept, find_rests, measure_rest, speed_on
 from ._smoother import SmoothedBias, smooth
 from .pipeline import OUTPUTS, BIAS_SOURCES, HeadingResult, Pipeline, _to_si, preset_params, uses_static_bias
@@ -324,7 +325,12 @@ def process_log(
         # The pipeline is the one place that names the bad sample (and gives an empty log back).
         result = Pipeline(preset, **si).process(ta, ra, temperature=temperature, outputs=outputs)
         return replace(result, bias_source=causal_source(preset, si))
-    bias_plan = plan_arrays(preset, si, ta, ra, sp, options)
+    try:
+        bias_plan = plan_arrays(preset, si, ta, ra, sp, options)
+    except SampleError:
+        # A rest's measurement saw a slice of the log: the pipeline names the sample in the log.
+        Pipeline(preset, **{**si, "bias": 0.0}).process(ta, ra, temperature=temperature)
+        raise
     if bias_plan.warning:
         warn(bias_plan.warning)
     pipeline = Pipeline(preset, **bias_plan.overrides)

@@ -395,3 +395,17 @@ def test_bias_free_gyros_are_not_harmed() -> None:
             whole = gyrocore.process(t, rate, "static_bias", **kwargs)
             assert len(whole.rests) == 3 and "standard errors of 0: bias 0" in whole.bias_source
             np.testing.assert_array_equal(whole.heading, gyrocore.process(t, rate, "raw").heading)
+
+
+def test_a_bad_sample_is_named_where_it_is_in_the_log(tmp_path: Path) -> None:
+    # Nanoseconds read as seconds: the core refuses them. Whole mode measures its rests on slices
+    # of the log first; the error must still name the log's first sample and its row.
+    t = 1.7e18 + np.arange(0.0, 60.0, 0.01) * 1e9
+    rate = np.where((t > t[0] + 20e9) & (t < t[0] + 30e9), 0.01, 0.3)
+    with pytest.raises(gyrocore.SampleError, match=r"^t\[0\] = 1.7e\+?18 s is beyond") as e:
+        gyrocore.process(t, rate, "static_bias")
+    assert e.value.index == 0
+    src = tmp_path / "ns.csv"
+    pa_csv.write_csv(pa.table({"t": t, "gyro_z": rate}), src)
+    proc = run_cli("process", str(src), "--out", str(tmp_path / "h.csv"), "--preset", "static_bias")
+    assert proc.returncode != 0 and "line 2" in proc.stderr and not (tmp_path / "h.csv").exists()
