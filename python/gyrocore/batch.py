@@ -19,16 +19,20 @@ import os
 import sys
 import threading
 import time
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 from typing import Any
 
-from . import _signals, io
+from . import _signals, io, rests, wholelog
+from ._arrays import FloatArray
+from ._checks import warn
 from ._extras import require, tqdm_class
 from ._gyrocore import SampleError
-from .pipeline import Pipeline, RestWindowError, has_bias_source, uses_static_bias
+from .io._columns import concat
+from .io._logfolder import read_odometry
+from .pipeline import Pipeline, RestWindowError, _to_si, has_bias_source, uses_static_bias
 from .window import Window, time_range
 
 #: ``progress(done, total, unit)``: called after each chunk with the progress through the input.
@@ -49,6 +53,8 @@ class FileReport:
         seconds: wall time.
         error: why the file failed, or None.
         warnings: what looked wrong but was processed (units, a missing rest window, repairs).
+        bias_source: where the static bias came from (None if the file failed).
+        rests: the rests whose bias was used in whole mode.
     """
 
     input: str
@@ -58,6 +64,8 @@ class FileReport:
     seconds: float
     error: str | None = None
     warnings: tuple[str, ...] = ()
+    bias_source: str | None = None
+    rests: tuple[wholelog.Rest, ...] = ()
 
     @property
     def ok(self) -> bool:
@@ -66,14 +74,22 @@ class FileReport:
 
     def as_dict(self) -> dict[str, Any]:
         """Plain data for JSON."""
-        return {**asdict(self), "warnings": list(self.warnings), "ok": self.ok}
+        return {
+            **asdict(self),
+            "warnings": list(self.warnings),
+            "rests": [r.as_dict() for r in self.rests],
+            "ok": self.ok,
+        }
 
     def __str__(self) -> str:
         if not self.ok:  # most reasons already name the file
             return f"FAILED {self.error}" if self.input in (self.error or "") else f"FAILED {self.input}: {self.error}"
-        return (
-            f"ok     {self.input}: {self.rows_in} rows in, {self.rows_out} out -> {self.output} ({self.seconds:.2f} s)"
-        )
+        lines = [
+            f"ok     {self.input}: {self.rows_in} rows in, {self.rows_out} out -> {self.output} ({self.seconds:.2f} s)",
+            f"       bias: {self.bias_source}",
+        ]
+        lines += wholelog.rest_lines(self.bias_source or "", self.rests, " " * 9)
+        return "\n".join(lines)
 
 
 @dataclass(frozen=True)
@@ -141,8 +157,11 @@ class _FileJob:
         chunk_rows: int,
         options: dict[str, Any],
         columns: Sequence[str] = io.OUTPUT_COLUMNS,
+        mode: str = "whole",
+        use_speed: bool = True,
     ):
         self.path, self.out, self.preset, self.heading, self.chunk_rows = path, out, preset, heading, chunk_rows
+        self.mode, self.use_speed = mode, use_speed
         self.read_options, self.overrides = split_options(options)
         self.columns = io.check_columns(columns)
         # the core computes the heading always, the rate and drift only for a column of theirs
@@ -166,16 +185,14 @@ class _FileJob:
                 )
         notes: list[str] = []
         from_meta = False
-        if uses_static_bias(self.preset) and not has_bias_source(overrides):
-            if source.stationary is not None:
-                overrides["bias_window"], from_meta = source.stationary, True
-            else:
-                notes.append(
-                    f"preset {self.preset!r} removes a static bias but the log gives no rest window: "
-                    "the bias is taken as 0 (give bias_window, bias_duration or bias; "
-                    "--bias-window, --bias-duration or --bias-dps)"
-                )
-        pipeline = Pipeline(self.preset, **overrides)
+        if uses_static_bias(self.preset) and not has_bias_source(overrides) and source.stationary is not None:
+            overrides["bias_window"], from_meta = source.stationary, True
+        plan = self._plan(source, overrides, from_meta)
+        if plan.warning and self.mode == "whole":  # a causal pipeline warns itself
+            warn(plan.warning)
+        if plan.warning:
+            notes.append(plan.warning)
+        pipeline = Pipeline(self.preset, **plan.overrides)
         check = io.UnitCheck(source.options)
         with io.HeadingWriter(self.out, heading=self.heading, columns=self.columns) as writer:
             for chunk in source.chunks(self.chunk_rows):
@@ -183,7 +200,10 @@ class _FileJob:
                 check.update(chunk.t, chunk.rate)
                 try:
                     result = pipeline.process(
-                        chunk.t, chunk.rate, index_offset=chunk.first_row, outputs=self.outputs
+                        chunk.t,
+                        chunk.rate - plan.bias(chunk.t),
+                        index_offset=chunk.first_row,
+                        outputs=self.outputs,
                     )
                 except SampleError as e:
                     # a timestamp beyond the core's limits is most often an epoch in a smaller unit
@@ -207,8 +227,53 @@ class _FileJob:
                 raise RuntimeError(f"{self.path}: {self.rows_in} rows read but {writer.rows} written")
         notes += check.problems() + _repairs(pipeline.report)
         return FileReport(
-            str(self.path), str(self.out), self.rows_in, writer.rows, time.perf_counter() - start, None, tuple(notes)
+            str(self.path),
+            str(self.out),
+            self.rows_in,
+            writer.rows,
+            time.perf_counter() - start,
+            None,
+            tuple(notes),
+            plan.source,
+            plan.rests,
         )
+
+    def _plan(self, source: io.GyroSource, overrides: dict[str, Any], from_meta: bool) -> wholelog.BiasPlan:
+        """Where the bias comes from: in whole mode a first pass over the file (see
+        :func:`gyrocore.wholelog.plan_stream`), in causal mode the pipeline's own rest window."""
+        if self.mode == "causal":
+            wholelog.refuse_whole_options(_to_si(overrides))
+            causal = wholelog.causal_source(self.preset, _to_si(overrides))
+            warning = None
+            if uses_static_bias(self.preset) and not has_bias_source(overrides):
+                warning = (
+                    f"preset {self.preset!r} removes a static bias but the log gives no rest window: "
+                    "the bias is taken as 0 (give bias_window, bias_duration or bias; "
+                    "--bias-window, --bias-duration or --bias-dps)"
+                )
+            return wholelog.BiasPlan(causal, overrides=overrides, warning=warning)
+        wholelog.refuse_tracking(_to_si(overrides))
+
+        def chunks() -> Iterator[tuple[FloatArray, FloatArray]]:
+            for chunk in source.chunks(self.chunk_rows):
+                yield chunk.t, chunk.rate
+
+        def read_all() -> tuple[FloatArray, FloatArray, FloatArray | None]:
+            read = list(source.chunks(self.chunk_rows))
+            t, rate = concat([c.t for c in read]), concat([c.rate for c in read])
+            odometry = read_odometry(source.path) if self.use_speed and source.kind == "log folder" else {}
+            if not odometry:
+                return t, rate, None
+            where = str(source.path / "odometry.csv")
+            return t, rate, rests.speed_on(t, odometry["t"], odometry["speed"], where=where)
+
+        try:
+            return wholelog.plan_stream(self.preset, overrides, chunks, read_all)
+        except SampleError:
+            # A rest's measurement saw a slice of the log: the streamed pass names the row.
+            return wholelog.BiasPlan("none: the log has invalid samples", overrides={**_to_si(overrides), "bias": 0.0})
+        except ValueError as e:
+            raise _in_file(source, e, from_meta) from None
 
     def failure(self, error: BaseException, seconds: float) -> FileReport:
         reason = str(error) if isinstance(error, (ValueError, TypeError, OSError, ImportError)) else repr(error)
@@ -225,11 +290,15 @@ def _first_time(source: io.GyroSource) -> float:
     if first is None:
         raise ValueError(f"{source.data_path}: no samples")
     return float(first.t[0])
+
+
 def _in_file(source: io.GyroSource, error: ValueError, window_from_meta: bool) -> ValueError:
-    """The pipeline's error about a file, naming it (and meta.json where the rest window is its)."""
+    """The pipeline's error about a file, naming it (unless a reader did) and meta.json where
+    the rest window is its."""
     meta = window_from_meta and isinstance(error, RestWindowError)
     where = f" (the rest window is the stationary of {source.path / 'meta.json'})" if meta else ""
-    return ValueError(f"{source.data_path}: {error}{where}")
+    text = str(error)
+    return ValueError(f"{text if str(source.data_path) in text else f'{source.data_path}: {text}'}{where}")
 
 
 def _repairs(report: dict[str, float]) -> list[str]:
@@ -253,6 +322,8 @@ def process_file(
     chunk_rows: int = io.DEFAULT_CHUNK_ROWS,
     progress: Progress | None = None,
     columns: Sequence[str] = io.OUTPUT_COLUMNS,
+    mode: str = "whole",
+    use_speed: bool = True,
     **options: Any,
 ) -> FileReport:
     """Stream one log through the pipeline into a heading table, with flat memory.
@@ -268,6 +339,12 @@ def process_file(
         progress: called after each chunk (see :data:`Progress`); may raise to stop.
         columns: the output's columns, in this order (some of ``t``, ``heading``, ``rate``,
             ``drift``); the pipeline computes the rate and the drift only for their columns.
+        mode: ``whole`` (default): the bias from the log's rest window, or from every rest found in
+            it (and where a log folder's odometry.csv speed is zero, unless ``use_speed`` is
+            False), known from the first sample (:mod:`gyrocore.wholelog`). A given rest window is
+            measured by a first pass up to its end (flat memory); finding the rests reads the
+            log's times and rates into memory first (16 bytes a sample); the heading is then
+            streamed. ``causal``: one streamed pass, what a :class:`gyrocore.Pipeline` gives.
         **options: reader options (``time_col``, ``rate_col``, ``time_unit``, ``rate_unit``,
             ``topic``, ``delimiter``) and pipeline parameters (``bias_window=(t0, t1)`` [s] in
             the log's time base, or a :class:`gyrocore.window.Window` whose bounds may count from
@@ -282,7 +359,10 @@ def process_file(
         ValueError: a malformed file or bad samples (naming the file and line or row), an output
             over the input, invalid options. No output is left then.
     """
-    return _FileJob(Path(path), Path(out), preset, heading, chunk_rows, options, columns).run(progress)
+    wholelog.check_mode(mode)
+    return _FileJob(
+        Path(path), Path(out), preset, heading, chunk_rows, options, columns, mode, use_speed
+    ).run(progress)
 
 
 def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
@@ -362,6 +442,8 @@ def process_many(
     chunk_rows: int = io.DEFAULT_CHUNK_ROWS,
     progress: bool = False,
     columns: Sequence[str] = io.OUTPUT_COLUMNS,
+    mode: str = "whole",
+    use_speed: bool = True,
     **options: Any,
 ) -> BatchReport:
     """Process a fleet of logs in parallel: threads on this machine, or a Dask cluster.
@@ -376,7 +458,7 @@ def process_many(
         jobs: threads (default: every core). The Rust core and pyarrow release the GIL, so files
             run in parallel. Ignored with a Dask client.
         fmt: ``csv`` or ``parquet``.
-        heading, chunk_rows, columns, **options: as for :func:`process_file`.
+        heading, chunk_rows, columns, mode, use_speed, **options: as for :func:`process_file`.
         progress: show a bar over the files on a terminal.
 
     Returns:
@@ -402,12 +484,22 @@ def process_many(
     if heading not in io.HEADING_CONVENTIONS:
         raise ValueError(f"heading convention {heading!r} is not one of {', '.join(io.HEADING_CONVENTIONS)}")
     io.check_columns(columns)
+    wholelog.check_mode(mode)
     _, overrides = split_options(options)
     # invalid parameters fail here, before any work (a stand-in bias keeps the check quiet)
-    Pipeline(preset, **(overrides if has_bias_source(overrides) else {**overrides, "bias": 0.0}))
+    pipeline_overrides = _to_si(overrides)
+    if mode == "whole":
+        wholelog.refuse_tracking(pipeline_overrides)
+        wholelog.Options.pop(pipeline_overrides)
+    else:
+        wholelog.refuse_whole_options(pipeline_overrides)
+    Pipeline(preset, **(pipeline_overrides if has_bias_source(overrides) else {**pipeline_overrides, "bias": 0.0}))
     outputs = output_paths(inputs, Path(out_dir), fmt)
     Path(out_dir).mkdir(parents=True, exist_ok=True)
-    jobs_list = [_FileJob(p, o, preset, heading, chunk_rows, options, columns) for p, o in zip(inputs, outputs)]
+    jobs_list = [
+        _FileJob(p, o, preset, heading, chunk_rows, options, columns, mode, use_speed)
+        for p, o in zip(inputs, outputs)
+    ]
     if client is not None:
         reports = _run_on_dask(client, jobs_list, progress)
     else:

@@ -24,6 +24,7 @@ from ._arrays import FloatArray, as_float_array
 from ._extras import pyplot
 from .io import Log, read_log
 from .pipeline import HeadingResult, has_bias_source, process, recommended_preset, uses_static_bias
+from .wholelog import Rest, check_mode, rest_lines
 
 #: An interval longer than this many times the median interval is a gap (a logger or tracking
 #: outage). Irregular ROS logging stays below about 5 times its median (f110_ds3: 4.1).
@@ -265,14 +266,27 @@ class Method:
         """The preset as it is; ``recommended`` keeps its name and runs what it stands for."""
         return cls(preset, recommended_preset() if preset == "recommended" else preset)
 
-    def run(self, log: Log, *, bias_duration: float | None = None) -> tuple[HeadingResult, str]:
-        """Heading of ``log`` and a description of where the static bias came from (:func:`log_bias`)."""
-        if not uses_static_bias(self.preset):
-            return log.process(self.preset, **self.overrides), "none (preset has no static bias)"
-        if has_bias_source(dict(self.overrides)):
-            return log.process(self.preset, **self.overrides), "given by the method"
-        bias, source = log_bias(log, bias_duration=bias_duration)
-        return log.process(self.preset, **self.overrides, **bias), source
+    def run(
+        self, log: Log, *, bias_duration: float | None = None, mode: str = "whole", use_speed: bool = True
+    ) -> tuple[HeadingResult, str]:
+        """Heading of ``log`` and where its static bias came from (the result's ``bias_source``).
+
+        The bias: the method's own, else the log's rest window or ``bias_duration``
+        (:func:`log_bias`), else in whole mode every rest found in the log (with its odometry's
+        speed unless ``use_speed`` is False), in causal mode 0.
+        """
+        overrides = dict(self.overrides)
+        if uses_static_bias(self.preset) and has_bias_source(overrides):
+            return log.process(self.preset, mode=mode, use_speed=use_speed, **overrides), "given by the method"
+        if uses_static_bias(self.preset):
+            if log.stationary is not None or bias_duration is not None:
+                overrides.update(log_bias(log, bias_duration=bias_duration)[0])
+            elif mode == "causal":
+                # said here rather than warned by the pipeline: a bias of 0 is the causal baseline
+                bias, source = log_bias(log)
+                return log.process(self.preset, mode=mode, **overrides, **bias), f"{source} (causal)"
+        result = log.process(self.preset, mode=mode, use_speed=use_speed, **overrides)
+        return result, result.bias_source
 
 
 def log_bias(log: Log, *, bias_duration: float | None = None) -> tuple[dict[str, Any], str]:
@@ -302,15 +316,18 @@ class Score:
     """Return orientation error (FOG section 4.1) where the reference path is closed, else None."""
     position: deadreckon.PositionErrors | None = None
     """Dead reckoning with this heading and the log's odometry, against the reference track."""
+    rests: tuple[Rest, ...] = ()
+    """The rests whose bias the method used in whole mode."""
 
     def as_dict(self) -> dict[str, Any]:
         """Flat JSON-ready dict: ``log``, ``preset`` (the method's name), ``base_preset``, the
-        heading metrics, ``improvement``, ``bias_source``, ``return_error_deg`` and, where the log has
+        heading metrics, ``improvement``, ``bias_source``, ``rests``, ``return_error_deg`` and, where the log has
         odometry, ``position_*_m`` and ``position_final_error_percent``."""
         row: dict[str, Any] = {"log": self.log, "preset": self.method.name, "base_preset": self.method.preset}
         row.update(self.errors.as_dict())
         row["improvement"] = self.improvement
         row["bias_source"] = self.bias_source
+        row["rests"] = [r.as_dict() for r in self.rests]
         row["return_error_deg"] = self.return_error_deg
         if self.position is not None:
             row.update({f"position_{k}": v for k, v in self.position.as_dict().items()})
@@ -341,7 +358,9 @@ def score(log: Log, method: Method, result: HeadingResult, raw: HeadingErrors, b
     if log.has_track and log.t_odometry is not None and log.speed is not None:
         track = deadreckon.dead_reckon_log(log, result)
         position = deadreckon.position_errors(track, *log.track())
-    return Score(log.name, method, errors, improvement(raw, errors), bias_source, return_error, position)
+    return Score(
+        log.name, method, errors, improvement(raw, errors), bias_source, return_error, position, result.rests
+    )
 
 
 def compare(
@@ -351,6 +370,8 @@ def compare(
     *,
     bias_duration: float | None = None,
     plot_dir: str | Path | None = None,
+    mode: str = "whole",
+    use_speed: bool = True,
 ) -> list[Score]:
     """Score every method on every log: one :class:`Score` per (log, method), logs in order.
 
@@ -363,7 +384,11 @@ def compare(
             used for every such log: never tune it per log.
         plot_dir: write ``<log>.png`` there (heading vs reference and error vs time of each method;
             needs matplotlib).
+        mode: ``whole`` (the bias from every rest, known from the first sample) or ``causal``
+            (see :func:`gyrocore.process`).
+        use_speed: in whole mode, also find rests where the odometry's speed is zero.
     """
+    check_mode(mode)
     methods = [m if isinstance(m, Method) else Method.from_preset(m) for m in presets] + list(params or [])
     if not methods:
         raise ValueError("no method to compare: give at least one preset or parameter set")
@@ -378,7 +403,7 @@ def compare(
             raw = heading_errors(raw_result.t, raw_result.heading, *reference)
             results = {}
             for method in methods:
-                result, source = method.run(log, bias_duration=bias_duration)
+                result, source = method.run(log, bias_duration=bias_duration, mode=mode, use_speed=use_speed)
                 results[method.name] = result
                 rows.append(score(log, method, result, raw, source))
         except ValueError as e:  # name the log, once
@@ -447,3 +472,17 @@ def format_table(rows: Sequence[Score], *, file: Any = None) -> None:
             p = r.position
             line += " " + (f"{p.mean_error_m:>9.2f} {p.final_error_m:>8.2f}" if p else f"{'-':>9} {'-':>8}")
         print(line, file=out)
+
+
+def format_bias_sources(rows: Sequence[Score], *, file: Any = None) -> None:
+    """Print where each method's static bias came from, per log; methods that share a source
+    (and its rests) share a line, and each rest used is listed under it."""
+    out = file or sys.stdout
+    groups: dict[tuple[str, str, tuple[Rest, ...]], list[str]] = {}
+    for r in rows:
+        groups.setdefault((r.log, r.bias_source, r.rests), []).append(r.method.name)
+    print("bias source:", file=out)
+    for (log, source, rests), names in groups.items():
+        print(f"  {log:<14} {', '.join(names)}: {source}", file=out)
+        for line in rest_lines(source, rests, " " * 19):
+            print(line, file=out)

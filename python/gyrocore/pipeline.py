@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -17,7 +17,11 @@ from numpy.typing import ArrayLike
 from . import _gyrocore, rests
 from ._arrays import FloatArray, as_float_array
 from ._checks import warn, warn_units
+from .rests import Rest as TrackedRest
 from .window import time_range
+
+if TYPE_CHECKING:
+    from .wholelog import Rest
 
 #: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling.
 _RATE_PARAMETERS = ("bias", "offset", "threshold", "hdr_increment", "hdr_turn_threshold")
@@ -125,15 +129,21 @@ class HeadingResult:
         heading: continuous (unwrapped) heading [rad], counter-clockwise positive.
         rate: corrected rate that was integrated [rad/s].
         drift: HDR's drift estimate ``-I`` applied to each sample [rad/s] (0 without HDR).
-        rests: with ``track_rests=True``, the rests that ended in these samples (each one's span,
-            the bias it measured and its standard error; see :class:`gyrocore.rests.Rest`).
+        rests: the rests whose bias was used in whole mode (:class:`gyrocore.wholelog.Rest`).
+        tracked_rests: with ``track_rests=True``, the rests the core's tracker found in these
+            samples (each one's span, the bias it measured and its standard error; see
+            :class:`gyrocore.rests.Rest`).
+        bias_source: where the static bias came from (set by :func:`process` and
+            :meth:`gyrocore.Log.process`; empty from a streaming :class:`Pipeline`).
     """
 
     t: FloatArray
     heading: FloatArray
     rate: FloatArray | None = None
     drift: FloatArray | None = None
-    rests: tuple[rests.Rest, ...] = ()
+    bias_source: str = ""
+    rests: tuple[Rest, ...] = ()
+    tracked_rests: tuple[TrackedRest, ...] = ()
 
     def output(self, name: str) -> FloatArray:
         """The output ``name`` (one of :data:`OUTPUTS`); a ``ValueError`` if it was not asked for."""
@@ -259,7 +269,7 @@ class Pipeline:
         if self._first_time is None and len(ta):
             self._first_time = float(ta[0])
         self._rests.extend(found)
-        return HeadingResult(ta, heading, out_rate, drift, tuple(found))
+        return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found))
 
     def _run(
         self,
@@ -426,13 +436,22 @@ def process(
     *,
     temperature: ArrayLike | None = None,
     outputs: tuple[str, ...] = OUTPUTS,
+    mode: str = "whole",
     speed: ArrayLike | None = None,
     speed_t: ArrayLike | None = None,
     **overrides: Any,
 ) -> HeadingResult:
-    """Heading of a whole log: ``Pipeline(preset, **overrides).process(t, rate)``; ``outputs``
-    chooses which of ``heading``, ``rate`` and ``drift`` are computed, ``speed`` (and its own times
-    ``speed_t``) feed rest tracking (``track_rests=True``; see :meth:`Pipeline.process`).
+    """Heading of a whole log; ``outputs`` chooses which of ``heading``, ``rate`` and ``drift`` are
+    computed (see :meth:`Pipeline.process`).
+
+    ``mode="whole"`` (default): the static bias is known before the first sample, from the given
+    ``bias_window`` / ``bias_duration`` wherever it lies (its mean applies from the first sample)
+    or, when none is given, from every rest found in the log (from the rate, and from ``speed``
+    [m/s] where given: one per sample, or at its own times ``speed_t``), smoothed between rests
+    (see :mod:`gyrocore.wholelog`). ``mode="causal"``: what a streaming
+    ``Pipeline(preset, **overrides)`` gives, sample after sample (a rest corrects only what
+    follows it; ``speed`` then feeds the core's rest tracker, ``track_rests=True``). The result's
+    ``bias_source`` and ``rests`` say where the bias came from.
 
     Example:
         >>> import numpy as np, gyrocore
@@ -441,10 +460,12 @@ def process(
         >>> bool(abs(r.heading[-1]) < 1e-9)
         True
     """
-    pipeline = Pipeline(preset, **overrides)
-    result = pipeline.process(t, rate, temperature=temperature, outputs=outputs, speed=speed, speed_t=speed_t)
-    pipeline.finish()
-    return result
+    from .wholelog import process_log  # it builds on this module
+
+    return process_log(
+        t, rate, preset, mode=mode, temperature=temperature, speed=speed, speed_t=speed_t, outputs=outputs,
+        **overrides,
+    )
 
 
 def integrate(

@@ -74,19 +74,32 @@ def speed_at(t: FloatArray, speed: ArrayLike, speed_t: ArrayLike | None = None) 
                 "or the speed's own times as speed_t"
             )
         return s
-    ts = as_float_array("speed_t", speed_t)
-    if len(ts) != len(s):
-        raise ValueError(f"speed_t has {len(ts)} samples but speed has {len(s)}: give one time per speed")
-    _first_bad("speed_t", ts)
+    return speed_on(t, speed_t, s, where="speed")
+
+
+def speed_on(t: FloatArray, t_speed: ArrayLike, speed: ArrayLike, *, where: str = "speed") -> FloatArray:
+    """A speed series at its own times, interpolated linearly onto the gyro's times ``t``.
+
+    Outside the series' span the speed is unknown (NaN), so no rest is taken from there.
+
+    Raises:
+        ValueError: lengths differ, a time or speed is not finite, or the times do not strictly
+            increase (naming ``where`` and the index).
+    """
+    ts, vs = as_float_array(f"{where} times", t_speed), as_float_array(where, speed)
+    if len(ts) != len(vs):
+        raise ValueError(f"{where}: {len(ts)} times but {len(vs)} speeds")
+    for label, a in (("time", ts), ("speed", vs)):
+        bad = np.flatnonzero(~np.isfinite(a))
+        if len(bad):
+            raise ValueError(f"{where}: {label} at index {bad[0]} is {a[bad[0]]}; speeds must be finite")
     steps = np.flatnonzero(np.diff(ts) <= 0)
     if len(steps):
         i = int(steps[0]) + 1
-        raise ValueError(f"speed_t must strictly increase, but speed_t[{i}] = {ts[i]} follows {ts[i - 1]}")
+        raise ValueError(f"{where}: times must strictly increase, but index {i} ({ts[i]}) follows {ts[i - 1]}")
     if len(ts) == 0:
         return np.full(len(t), np.nan)
-    out: FloatArray = np.interp(t, ts, s)
-    out[(t < ts[0]) | (t > ts[-1])] = np.nan
-    return out
+    return np.asarray(np.interp(t, ts, vs, left=np.nan, right=np.nan), dtype=np.float64)
 
 
 def pieces(t: FloatArray, min_duration: float) -> list[slice]:

@@ -214,9 +214,14 @@ def test_empty_input_is_an_error_without_output(tmp_path: Path) -> None:
 
 def test_missing_rest_window_is_reported(tmp_path: Path) -> None:
     src = synthetic_csv(tmp_path / "in.csv", 500)
+    # Causal: no rest window given, so no bias.
     with pytest.warns(UserWarning, match="removes a static bias"):
-        report = process_file(src, tmp_path / "h.csv", preset="static_bias")
+        report = process_file(src, tmp_path / "h.csv", preset="static_bias", mode="causal")
     assert any("no rest window" in w for w in report.warnings)
+    # Whole mode finds the rest the file is made of, and says so.
+    report = process_file(src, tmp_path / "w.csv", preset="static_bias")
+    assert not report.warnings and report.bias_source is not None and "(rate)" in report.bias_source
+    assert len(report.rests) == 1 and report.rests[0].bias == pytest.approx(0.004, abs=0.002)
 
 
 # --- batches -------------------------------------------------------------------------------

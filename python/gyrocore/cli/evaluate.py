@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import argparse
 import math
+import warnings
 from pathlib import Path
 from typing import Any
 
-from ..evaluate import Method, compare, format_table
+from .._checks import InputWarning
+from ..evaluate import Method, compare, format_bias_sources, format_table
 from ..io import check_not_input, read_log
 from ..pipeline import preset_names
 from ..tune import ParameterSet
@@ -18,6 +20,7 @@ from ._common import (
     pipeline_overrides,
     print_json,
     reading_options,
+    warn,
 )
 
 
@@ -53,6 +56,15 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
                       help="known bias [deg/s] (what the gyro reads at rest), for every method and log")
     add_override_options(p.add_argument_group("pipeline parameters for every method"))
     add_reading_options(p)
+    p.add_argument(
+        "--causal",
+        action="store_true",
+        help="score what a streaming pipeline gives (a rest corrects only what follows it) instead of the "
+        "whole log's bias from every rest, known from the first sample",
+    )
+    p.add_argument(
+        "--no-speed", action="store_true", help="whole mode: find rests from the rate alone, not where odometry.csv's speed is zero"
+    )
     p.add_argument("--json", action="store_true", help="print one JSON list, an object per (log, method)")
     p.add_argument("--plot-dir", metavar="DIR", help="write <log>.png (heading and error vs time) there")
 
@@ -70,11 +82,23 @@ def run(args: argparse.Namespace) -> int:
     if args.plot_dir:
         check_not_input(Path(args.plot_dir), [Path(p) for p in args.logs])
     logs = [read_log(path, **reading_options(args)) for path in args.logs]
-    rows = compare(logs, methods, bias_duration=args.bias_duration, plot_dir=args.plot_dir)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", InputWarning)
+        rows = compare(
+            logs,
+            methods,
+            bias_duration=args.bias_duration,
+            plot_dir=args.plot_dir,
+            mode="causal" if args.causal else "whole",
+            use_speed=not args.no_speed,
+        )
+    for message in dict.fromkeys(str(w.message) for w in caught):  # one line each, not one per method
+        warn(message)
     if args.json:
         print_json([_finite(r.as_dict()) for r in rows])
     else:
         format_table(rows)
+        format_bias_sources(rows)
         if args.plot_dir:
             print(f"plots in {args.plot_dir}")
     return 0

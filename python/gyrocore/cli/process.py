@@ -47,7 +47,18 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
 
     add_reading_options(p)
 
-    bias = p.add_argument_group("static bias (default: the rest window of a log folder's meta.json)")
+    bias = p.add_argument_group(
+        "static bias (default: the rest window of a log folder's meta.json, else every rest found in the log, "
+        "applied from the first sample; finding rests reads the log's times and rates into memory, 16 bytes a sample)"
+    )
+    bias.add_argument(
+        "--causal",
+        action="store_true",
+        help="what a streaming pipeline gives: a rest corrects only what follows it, no rest search (one pass)",
+    )
+    bias.add_argument(
+        "--no-speed", action="store_true", help="find rests from the rate alone, not where odometry.csv's speed is zero"
+    )
     group = bias.add_mutually_exclusive_group()
     group.add_argument("--bias-window", nargs=2, metavar=("T0", "T1"), help=f"rest window: {WINDOW_HELP}")
     group.add_argument("--bias-duration", type=float, metavar="S", help="rest during the first S seconds")
@@ -127,7 +138,15 @@ def _one(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[s
     check_outside_inputs(args.inputs, out)
     with progress_bar(inputs[0].name) as bar:
         report = process_file(
-            inputs[0], out, preset=args.preset, heading=args.heading, chunk_rows=args.chunk_rows, progress=bar, **kwargs
+            inputs[0],
+            out,
+            preset=args.preset,
+            heading=args.heading,
+            chunk_rows=args.chunk_rows,
+            progress=bar,
+            mode="causal" if args.causal else "whole",
+            use_speed=not args.no_speed,
+            **kwargs,
         )
     for w in report.warnings:
         warn(f"{report.input}: {w}")
@@ -149,6 +168,8 @@ def _many(out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
         heading=args.heading,
         chunk_rows=args.chunk_rows,
         progress=True,
+        mode="causal" if args.causal else "whole",
+        use_speed=not args.no_speed,
         **kwargs,
     )
     for report in summary.files:

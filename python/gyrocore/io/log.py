@@ -19,6 +19,7 @@ from ..pipeline import (
     process,
     uses_static_bias,
 )
+from ..rests import speed_on
 from ._columns import concat
 from ._logfolder import read_odometry, read_reference
 from .source import open_source
@@ -89,12 +90,27 @@ class Log:
             raise ValueError(f"log {self.name}: no reference positions (x, y in reference.csv)")
         return self.t_ref, self.x_ref, self.y_ref
 
-    def process(self, preset: str = "recommended", **overrides: Any) -> HeadingResult:
-        """Run a preset on this log; the static bias comes from the rest window unless given."""
+    def speed_on_gyro_times(self) -> FloatArray | None:
+        """The odometry speed [m/s] interpolated onto the gyro's times (NaN outside the odometry's
+        span), or None without odometry."""
+        if self.t_odometry is None or self.speed is None:
+            return None
+        return speed_on(self.t, self.t_odometry, self.speed, where=f"log {self.name}: odometry speed")
+
+    def process(
+        self, preset: str = "recommended", *, mode: str = "whole", use_speed: bool = True, **overrides: Any
+    ) -> HeadingResult:
+        """Run a preset on this log (see :func:`gyrocore.process` for ``mode``).
+
+        The static bias comes from the rest window of meta.json unless given; in whole mode,
+        without either, from every rest found in the log, with the odometry's speed unless
+        ``use_speed`` is False. The result's ``bias_source`` and ``rests`` say which.
+        """
+        speed = self.speed_on_gyro_times() if mode == "whole" and use_speed else None
         if self.stationary is None or not uses_static_bias(preset) or has_bias_source(overrides):
-            return process(self.t, self.rate, preset, **overrides)
+            return process(self.t, self.rate, preset, mode=mode, speed=speed, **overrides)
         try:
-            return process(self.t, self.rate, preset, bias_window=self.stationary, **overrides)
+            return process(self.t, self.rate, preset, mode=mode, speed=speed, bias_window=self.stationary, **overrides)
         except RestWindowError as e:
             raise RestWindowError(f"log {self.name}: {e} (the rest window is the stationary of its meta.json)") from None
 

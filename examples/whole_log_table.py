@@ -1,0 +1,91 @@
+"""E_psi [deg] of raw integration, static-bias removal and the recommended preset on every real
+log, causal (what a streaming pipeline gives: a rest corrects only what follows it; a log
+without a rest window gets no bias) and whole-log (the bias smoothed from every rest, known from
+the first sample), with whole mode's two choices (``bias_walk``, ``min_rest``) made by
+leave-one-log-out: each log is scored with the choice that is best on the other logs (lowest
+mean log E_psi of static_bias), never with one fitted to it. Prints the README's table
+(Markdown), the choice on all logs (the default a new log gets), and the rests each log used.
+
+    python examples/whole_log_table.py [DATA_DIR]     # default ../shared/data/real; a few minutes
+"""
+
+import itertools
+import math
+import sys
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+import gyrocore
+from gyrocore import evaluate
+
+PRESETS = ("static_bias", "recommended")
+#: The grid whole mode's choices (bias_walk [rad/s/sqrt(s)], min_rest [s], bias_sigmas) are made
+#: on, each axis from the most cautious choice (the least change to the readings) to the least:
+#: :func:`min` keeps the first of equally good choices, so a tie goes to caution.
+WALKS = (0.0, 1e-5, 1e-4, 1e-3)
+MIN_RESTS = (2.0, 1.0, 0.5)
+SIGMAS = (5.0, 4.0, 3.0, 2.0, 0.0)
+GRID = list(itertools.product(WALKS, MIN_RESTS, SIGMAS))
+
+
+def e_psi(log: gyrocore.Log, result: gyrocore.HeadingResult) -> float:
+    return evaluate.heading_errors(result.t, result.heading, *log.reference()).e_psi_deg
+
+
+Grid = dict[tuple[str, float, float, float], float]
+
+
+def score_log(log: gyrocore.Log) -> tuple[dict[str, float], Grid, str]:
+    """Causal scores, whole-mode scores on the grid, and the rests at the default choice."""
+    fixed = {"raw": e_psi(log, log.process("raw", mode="causal"))}
+    for preset in PRESETS:
+        fixed[f"{preset} causal"] = e_psi(log, evaluate.Method.from_preset(preset).run(log, mode="causal")[0])
+    grid = {}
+    for preset, choice in itertools.product(PRESETS, GRID):
+        options = dict(zip(("bias_walk", "min_rest", "bias_sigmas"), choice))
+        method = evaluate.Method(preset, evaluate.Method.from_preset(preset).preset, options)
+        grid[(preset, *choice)] = e_psi(log, method.run(log, mode="whole")[0])
+    result = log.process("static_bias", mode="whole")
+    lines = [f"  {log.name:<28} {result.bias_source}"]
+    lines += gyrocore.wholelog.rest_lines(result.bias_source, result.rests, " " * 33)
+    return fixed, grid, "\n".join(lines)
+
+
+def best(grids: list[Grid]) -> tuple[float, float, float]:
+    """The choice with the lowest mean log E_psi of static_bias over ``grids``."""
+    return min(GRID, key=lambda c: float(np.mean([math.log(g["static_bias", *c]) for g in grids])))
+
+
+def main(data: Path) -> None:
+    logs = [gyrocore.read_log(p) for p in sorted(data.iterdir()) if (p / "gyro.csv").is_file()]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrocore.InputWarning)  # the bias sources are printed below
+        scored = [score_log(log) for log in logs]
+    grids = [g for _, g, _ in scored]
+    print("| log | raw | static_bias causal | static_bias whole | recommended causal | recommended whole | choice (walk, min_rest, sigmas) |")
+    print("|---|---|---|---|---|---|---|")
+    worse, harmed = [], []
+    for i, (log, (fixed, _, _)) in enumerate(zip(logs, scored)):
+        choice = best(grids[:i] + grids[i + 1 :])  # leave this log out
+        sb, rec = grids[i]["static_bias", *choice], grids[i]["recommended", *choice]
+        cells = [fixed["raw"], fixed["static_bias causal"], sb, fixed["recommended causal"], rec]
+        print(f"| {log.name} | " + " | ".join(f"{v:.2f}" for v in cells) + f" | {choice[0]:g}, {choice[1]:g}, {choice[2]:g} |")
+        if rec > sb - 0.005:  # a tie at the table's precision counts
+            worse.append(f"{log.name} ({rec:.2f} >= {sb:.2f})")
+        if max(sb, rec) > fixed["raw"] + 0.5:
+            harmed.append(f"{log.name} (raw {fixed['raw']:.2f}, static_bias {sb:.2f}, recommended {rec:.2f})")
+    print(f"\nrecommended does not beat static_bias (whole, leave-one-log-out) on {len(worse)} logs: {', '.join(worse) or 'none'}")
+    print(f"whole mode more than 0.5 deg above raw on {len(harmed)} logs: {', '.join(harmed) or 'none'}")
+    walk, min_rest, sigmas = best(grids)
+    print(
+        f"\nchoice on all {len(logs)} logs (the defaults): bias_walk {walk:g} rad/s/sqrt(s), min_rest {min_rest:g} s, "
+        f"bias_sigmas {sigmas:g}"
+    )
+    print("\nwhole-log bias of static_bias at the defaults:")
+    print("\n".join(text for _, _, text in scored))
+
+
+if __name__ == "__main__":
+    main(Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parents[1] / ".." / "shared" / "data" / "real")

@@ -1,0 +1,209 @@
+"""The rests of a whole log: found, measured and accepted (for :mod:`gyrocore.wholelog`).
+
+A rest is found where a given speed shows the vehicle standing still (speed below
+:data:`SPEED_THRESHOLD` m/s throughout) or, where no speed is known, from the rate alone
+(:func:`gyrocore.calibration.rest_windows`). Each is measured by the core's static bias test (the estimator of the pipeline's
+rest window; FOG section 2, HDR eq 1-2): its time-weighted mean, the noise of one reading and
+the batch-means standard error, which stays honest when slow motion or low-frequency noise
+moves the mean. A found rest is used only when it lasts :data:`MIN_REST` seconds, its noise is
+at most :data:`NOISE_RATIO` times the median of the rests' noise (a stop with the engine
+shaking or the vehicle creeping is not a rest) and, among three or more, its mean agrees with
+what the others give within :data:`OUTLIER_SIGMAS` (leave-one-out, through the smoother).
+
+Units: s, rad/s, m/s.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from dataclasses import asdict, dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from . import _gyrocore
+from ._arrays import FloatArray, as_float_array
+from ._smoother import leave_one_out
+from .pipeline import RestWindowError
+from .window import time_range
+
+#: Below this speed [m/s] the vehicle stands still (wheel and CAN speeds read a few cm/s of noise).
+SPEED_THRESHOLD = 0.05
+#: A stop whose mean rate exceeds this [rad/s] is a turn on the spot, not a rest (as
+#: :func:`gyrocore.calibration.rest_windows`' ``max_rate``).
+MAX_REST_RATE = 0.05
+#: Left out at each end of a stop the speed shows [s] (at most a quarter of the stop).
+EDGE = 0.5
+#: A found rest lasts at least this long [s] by default (chosen by leave-one-log-out; docs/whole_log.md).
+MIN_REST = 1.0
+#: A found rest whose noise exceeds this many times the median of the rests' noise is refused.
+NOISE_RATIO = 2.0
+#: Among three or more rests, one whose mean is this many standard deviations from what the
+#: others give (leave-one-out) is refused, the worst first, one at a time.
+OUTLIER_SIGMAS = 4.0
+
+
+@dataclass(frozen=True)
+class Rest:
+    """One rest of the log and what it measured.
+
+    Attributes:
+        start, end: first and last time of the window [s, the log's time base].
+        bias: mean reading over the window [rad/s], time-weighted as the pipeline's rest window.
+        bias_std_error: standard error of ``bias`` [rad/s]: the batch-means error, at least the
+            white-noise error ``noise / sqrt(samples)``.
+        noise: standard deviation of one reading [rad/s].
+        samples: readings inside the window.
+        found_by: ``given`` (bias_window, bias_duration, meta.json), ``speed`` or ``rate``.
+        refused: why the rest was not used, or None when it was.
+    """
+
+    start: float
+    end: float
+    bias: float
+    bias_std_error: float
+    noise: float
+    samples: int
+    found_by: str
+    refused: str | None = None
+
+    @property
+    def middle(self) -> float:
+        """The time the rest's bias stands for [s]."""
+        return (self.start + self.end) / 2
+
+    def as_dict(self) -> dict[str, Any]:
+        """Plain data for JSON (SI units)."""
+        return asdict(self)
+
+    def __str__(self) -> str:
+        text = (
+            f"[{self.start:.3f}, {self.end:.3f}] s ({self.found_by}): bias {math.degrees(self.bias):.5f} "
+            f"+- {math.degrees(self.bias_std_error):.2g} deg/s"
+        )
+        return text if self.refused is None else f"{text}, not used: {self.refused}"
+
+
+def _runs(t: FloatArray, flag: np.ndarray) -> list[tuple[float, float]]:
+    """Stretches where ``flag`` holds, from their first to their last time."""
+    edges = np.diff(np.concatenate(([0], flag.astype(np.int8), [0])))
+    starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1) - 1
+    return [(float(t[a]), float(t[b])) for a, b in zip(starts, ends)]
+
+
+def find_rests(
+    t: FloatArray, rate: FloatArray, speed: FloatArray | None = None, min_rest: float = MIN_REST
+) -> list[tuple[float, float, str]]:
+    """Every candidate rest of the log as ``(start, end, found_by)``, in time order.
+
+    Where the speed (one per sample, NaN where unknown) is known, a rest is where it stays below
+    :data:`SPEED_THRESHOLD` for ``min_rest`` [s] (``speed``), less :data:`EDGE` at each end (at
+    most a quarter of the stop: braking and pulling off rock the vehicle, and a speed sampled
+    slower than the gyro lags) and unless its mean rate exceeds :data:`MAX_REST_RATE` (a turn on
+    the spot). Where it is not, a rest is where the rate alone shows one
+    (:func:`gyrocore.calibration.rest_windows`, ``rate``).
+    """
+    from .calibration import rest_windows  # calibration builds on the pipeline module too
+
+    finite = np.isfinite(rate)
+    found: list[tuple[float, float, str]] = []
+    known = np.zeros(len(t), dtype=bool) if speed is None else np.isfinite(speed)
+    if speed is not None:
+        for a, b in _runs(t, known & (np.abs(np.where(known, speed, 0.0)) <= SPEED_THRESHOLD)):
+            trim = min(EDGE, (b - a) / 4)
+            inside = (t >= a + trim) & (t <= b - trim) & finite
+            if b - a >= min_rest and inside.any() and abs(float(np.mean(rate[inside]))) <= MAX_REST_RATE:
+                found.append((a + trim, b - trim, "speed"))
+    if np.count_nonzero(finite) >= 8 and not known.all():
+        try:
+            windows = rest_windows(t[finite], rate[finite], min_duration=min_rest)
+        except ValueError:  # too sparse to judge a rest from the rate: none is found (the plan warns)
+            windows = []
+        found += [(a, b, "rate") for a, b in windows if not known[(t >= a) & (t <= b)].any()]
+    return sorted(found)
+
+
+def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[float, float], found_by: str) -> Rest:
+    """The rest ``window`` measured over ``chunks`` of ``(t, rate)`` (read only up to the first
+    sample after the window: flat memory for a streamed file); non-finite readings are left out.
+    ``found_by`` ``given: bias_duration`` names a window that is the first seconds of the log.
+
+    Raises:
+        RestWindowError: the window ends before the first sample, holds no reading, or reaches
+            past the end of the log.
+    """
+    start, end = window
+    first = last = math.nan
+    kept_t: list[FloatArray] = []
+    kept_r: list[FloatArray] = []
+    for t, rate in chunks:
+        if len(t) == 0:
+            continue
+        if math.isnan(first):
+            first = float(t[0])
+        last = float(t[-1])
+        i0 = max(int(np.searchsorted(t, start, side="left")) - 1, 0)  # the reading before weighs the first
+        i1 = int(np.searchsorted(t, end, side="right")) + 1
+        kept_t.append(t[i0:i1])
+        kept_r.append(rate[i0:i1])
+        if last > end:
+            break
+    if math.isnan(first):
+        raise RestWindowError(f"the bias window [{start}, {end}] s: the log has no sample")
+    if end < first:
+        raise RestWindowError(
+            f"the bias window [{start}, {end}] s ends before the first sample (t[0] = {first}); "
+            "give the window in the log's own time base"
+        )
+    if last < end and found_by == "given: bias_duration":
+        raise RestWindowError(
+            f"bias_duration = {end - start} s is longer than the log ({time_range(first, last)}); "
+            "give a shorter rest at the start, or a bias_window"
+        )
+    if last < end:
+        raise RestWindowError(
+            f"the bias window [{start}, {end}] s reaches past the end of the log ({time_range(first, last)}); "
+            "give a rest window inside the log, in its own time base"
+        )
+    ts, rs = np.concatenate(kept_t), np.concatenate(kept_r)
+    finite = np.isfinite(rs)
+    ts, rs = ts[finite], rs[finite]
+    samples = int(np.count_nonzero((ts >= start) & (ts <= end)))
+    if samples == 0:
+        raise RestWindowError(f"the bias window [{start}, {end}] s holds no finite reading of the log ({time_range(first, last)})")
+    bias, _, noise, batch_error = _gyrocore.static_bias_test(ts, rs, start, end)
+    white_noise = noise if noise is not None else float(np.std(rs[(ts >= start) & (ts <= end)]))
+    error = white_noise / math.sqrt(samples)
+    return Rest(start, end, bias, max(error, batch_error or 0.0), white_noise, samples, found_by.split(":")[0])
+
+
+def accept(rests: list[Rest], walk: float) -> list[Rest]:
+    """``rests`` (found ones) with those that are not rests marked ``refused`` (see the module doc)."""
+    noise = float(np.median([r.noise for r in rests])) if rests else 0.0
+    out = [
+        r
+        if r.noise <= NOISE_RATIO * noise
+        else _refuse(r, f"noise {math.degrees(r.noise):.2g} deg/s, over {NOISE_RATIO:g} x the rests' median")
+        for r in rests
+    ]
+    while True:
+        used = [i for i, r in enumerate(out) if r.refused is None]
+        if len(used) < 3:
+            return out
+        z = leave_one_out(
+            np.array([out[i].middle for i in used]),
+            np.array([out[i].bias for i in used]),
+            np.array([out[i].bias_std_error for i in used]),
+            walk,
+        )
+        worst = int(np.argmax(np.abs(z)))
+        if abs(z[worst]) <= OUTLIER_SIGMAS:
+            return out
+        i = used[worst]
+        out[i] = _refuse(out[i], f"{abs(z[worst]):.1f} sigma from what the other rests give")
+
+
+def _refuse(rest: Rest, why: str) -> Rest:
+    return Rest(rest.start, rest.end, rest.bias, rest.bias_std_error, rest.noise, rest.samples, rest.found_by, why)

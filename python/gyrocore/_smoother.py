@@ -1,0 +1,112 @@
+"""The bias of a whole log from its rests: a Rauch-Tung-Striebel smoother of a random-walk bias.
+
+The bias ``b(t)`` is modelled as a random walk, ``Var[b(t + dt) - b(t)] = walk**2 * dt`` (the
+gyro's rate random walk ``K`` of IEEE 952, ``walk`` in rad/s/sqrt(s)); each rest ``k`` measures
+``b`` at its middle ``t_k`` with variance ``R_k``, its standard error squared. A forward Kalman
+filter over the rests (with a diffuse prior: the first rest starts it) and the RTS backward pass
+give the bias at every rest from all of them; between two rests the smoothed bias is linear in
+time (the mean of a Brownian bridge between the smoothed end points), and before the first and
+after the last it is constant, growing less certain with the distance. A rest measured far less
+precisely than its neighbours, relative to how far the bias can walk between them, barely moves
+the estimate; with ``walk = 0`` the bias is the inverse-variance weighted mean of the rests.
+
+Units: s, rad/s.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ._arrays import FloatArray
+
+#: A rest's variance never counts as below this [rad^2/s^2] (a noiseless or quantized gyro reads
+#: one value throughout a rest: a standard error of 0 would make the filter divide by nothing).
+MIN_VARIANCE = 1e-24
+
+
+@dataclass(frozen=True)
+class SmoothedBias:
+    """The smoothed bias at the rests' middles, and from there at any time.
+
+    Attributes:
+        times: the rests' middles [s], increasing.
+        mean: the smoothed bias at each [rad/s].
+        variance: its variance [rad^2/s^2].
+        cross: the covariance of the smoothed bias at neighbouring rests (one fewer than ``times``).
+        walk: the random walk's strength [rad/s/sqrt(s)].
+    """
+
+    times: FloatArray
+    mean: FloatArray
+    variance: FloatArray
+    cross: FloatArray
+    walk: float
+
+    def at(self, t: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        """The smoothed bias [rad/s] and its standard error [rad/s] at the times ``t``."""
+        ta = np.asarray(t, dtype=np.float64)
+        q = self.walk**2
+        n = len(self.times)
+        k = np.clip(np.searchsorted(self.times, ta, side="right") - 1, 0, max(n - 2, 0))
+        if n == 1:
+            distance = np.abs(ta - self.times[0])
+            return np.full(ta.shape, self.mean[0]), np.sqrt(self.variance[0] + q * distance)
+        t0, t1 = self.times[k], self.times[k + 1]
+        w = np.clip((ta - t0) / (t1 - t0), 0.0, 1.0)
+        mean = (1 - w) * self.mean[k] + w * self.mean[k + 1]
+        variance = (1 - w) ** 2 * self.variance[k] + w**2 * self.variance[k + 1] + 2 * w * (1 - w) * self.cross[k]
+        # the bridge's own spread between two rests, and the walk beyond the first or last
+        inside = np.clip(ta, t0, t1)
+        variance += q * (inside - t0) * (t1 - inside) / (t1 - t0)
+        variance += q * (np.maximum(self.times[0] - ta, 0.0) + np.maximum(ta - self.times[-1], 0.0))
+        return mean, np.sqrt(np.maximum(variance, 0.0))
+
+
+def smooth(times: ArrayLike, values: ArrayLike, std_errors: ArrayLike, walk: float) -> SmoothedBias:
+    """The RTS smoother of a random-walk bias measured at ``times`` (increasing) as ``values`` with
+    standard errors ``std_errors``.
+
+    Raises:
+        ValueError: no measurement, times not increasing, or ``walk`` negative or not finite.
+    """
+    ts, z = np.asarray(times, dtype=np.float64), np.asarray(values, dtype=np.float64)
+    r = np.maximum(np.asarray(std_errors, dtype=np.float64) ** 2, MIN_VARIANCE)
+    if len(ts) == 0:
+        raise ValueError("no rest to smooth")
+    if (np.diff(ts) <= 0).any():
+        raise ValueError("the rests' times must increase")
+    if not (np.isfinite(walk) and walk >= 0):
+        raise ValueError(f"bias_walk must be finite and >= 0, got {walk}")
+    q = walk**2
+    n = len(ts)
+    filtered, filtered_var = np.empty(n), np.empty(n)
+    predicted_var = np.empty(n)
+    filtered[0], filtered_var[0], predicted_var[0] = z[0], r[0], np.inf  # diffuse prior: the first rest alone
+    for k in range(1, n):
+        p = filtered_var[k - 1] + q * (ts[k] - ts[k - 1])
+        gain = p / (p + r[k])
+        predicted_var[k] = p
+        filtered[k] = filtered[k - 1] + gain * (z[k] - filtered[k - 1])
+        filtered_var[k] = (1 - gain) * p
+    mean, variance, cross = filtered.copy(), filtered_var.copy(), np.empty(n - 1)
+    for k in range(n - 2, -1, -1):
+        g = filtered_var[k] / predicted_var[k + 1]
+        mean[k] = filtered[k] + g * (mean[k + 1] - filtered[k])
+        variance[k] = filtered_var[k] + g * g * (variance[k + 1] - predicted_var[k + 1])
+        cross[k] = g * variance[k + 1]
+    return SmoothedBias(ts, mean, variance, cross, float(walk))
+
+
+def leave_one_out(times: FloatArray, values: FloatArray, std_errors: FloatArray, walk: float) -> FloatArray:
+    """Each rest's normalized innovation against the smoother of the others: ``(z_k - b_k) /
+    sqrt(R_k + Var b_k)``, with ``b_k`` the bias the other rests give at ``t_k``."""
+    out = np.empty(len(times))
+    for k in range(len(times)):
+        others = np.arange(len(times)) != k
+        mean, sd = smooth(times[others], values[others], std_errors[others], walk).at(times[k : k + 1])
+        spread = np.sqrt(max(std_errors[k] ** 2, MIN_VARIANCE) + sd[0] ** 2)
+        out[k] = (values[k] - mean[0]) / spread
+    return out

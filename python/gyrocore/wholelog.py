@@ -1,0 +1,360 @@
+"""Whole-log processing: the bias known before the first sample, from every rest in the log.
+
+A causal pipeline (:class:`gyrocore.Pipeline`, a robot on the move) can only use a rest once it
+has seen it: a rest in the middle of a log corrects only what follows it. A whole log is all
+there, so whole mode (``mode="whole"``, the default of :func:`gyrocore.process`,
+:meth:`gyrocore.Log.process`, :mod:`gyrocore.batch`, ``gyrocore process`` and ``gyrocore
+evaluate``) takes the bias from the rests wherever they lie and applies it from the first sample:
+
+* a given rest window (``bias_window``, ``bias_duration``, or a log folder's meta.json
+  ``stationary``): its mean, from the first sample on, exactly as ``bias=`` that mean would;
+* otherwise every rest found in the log (:mod:`gyrocore._rests`: from the rate, where a speed is
+  given only where the vehicle stands still; too short, too noisy or inconsistent ones refused),
+  each a measurement of the bias with its own standard error, smoothed as a random walk of
+  strength ``bias_walk`` [rad/s/sqrt(s)] by a Rauch-Tung-Striebel smoother
+  (:mod:`gyrocore._smoother`): one rest gives its bias, several a bias that follows the
+  wandering only as far as the rests' precision supports;
+* no rest at all: a warning, and the bias is 0, as in causal mode.
+
+The bias series is subtracted from the rate and the pipeline runs with ``bias=0``. Presets whose
+dead band or HDR bound scale with the rest's noise (``threshold_sigmas``, ``hdr_bound_sigmas``)
+get the explicit ``threshold`` (the rests' pooled noise) and ``hdr_max_correction`` (the smoothed
+bias's standard error, root mean square over the log), so a single rest at the start gives what
+the causal pipeline gives.
+
+Units: s, rad/s, m/s.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ._arrays import FloatArray, as_float_array
+from ._checks import warn
+from ._gyrocore import SampleError
+from ._rests import MIN_REST, SPEED_THRESHOLD, Rest, accept, find_rests, measure_rest
+from ._smoother import SmoothedBias, smooth
+from .rests import speed_on
+from .pipeline import OUTPUTS, BIAS_SOURCES, HeadingResult, Pipeline, _to_si, preset_params, uses_static_bias
+
+__all__ = [
+    "BIAS_SIGMAS", "BIAS_WALK", "MIN_REST", "MODES", "SPEED_THRESHOLD", "WHOLE_OPTIONS", "BiasPlan", "Options", "Rest",
+    "check_mode", "plan_arrays", "plan_stream", "process_log", "refuse_tracking", "refuse_whole_options", "rest_lines",
+]
+
+#: The ways to process a whole log: ``whole`` (bias from every rest, known from the first sample)
+#: or ``causal`` (what a streaming :class:`gyrocore.Pipeline` gives, sample after sample).
+MODES = ("whole", "causal")
+#: Default random walk of the bias between rests [rad/s/sqrt(s)], chosen by leave-one-log-out on
+#: the real logs (docs/whole_log.md). A gyro whose rate random walk ``K`` is known
+#: (:func:`gyrocore.allan.noise_parameters`) can give it as ``bias_walk=K``.
+BIAS_WALK = 1e-3
+#: The keywords whole mode takes besides the pipeline's parameters (:class:`Options`).
+WHOLE_OPTIONS = ("bias_walk", "min_rest", "bias_sigmas")
+#: Default of :attr:`Options.bias_sigmas`, chosen by leave-one-log-out (docs/whole_log.md).
+BIAS_SIGMAS = 5.0
+#: ``chunks()``: the ``(t, rate)`` pieces of a log from its start, anew at each call.
+Chunks = Callable[[], Iterable[tuple[FloatArray, FloatArray]]]
+
+
+def check_mode(mode: str) -> None:
+    """Refuse a mode that is not one of :data:`MODES`."""
+    if mode not in MODES:
+        raise ValueError(f"mode must be one of {', '.join(MODES)}, got {mode!r}")
+
+
+def refuse_whole_options(si: dict[str, Any]) -> None:
+    """Refuse, in causal mode, what only whole mode uses (:data:`WHOLE_OPTIONS`)."""
+    given = [name for name in WHOLE_OPTIONS if si.get(name) is not None]
+    if given:
+        raise ValueError(
+            f"{', '.join(given)}: used by mode='whole' only (the causal pipeline does not look for rests); "
+            "leave it out or process the whole log (without --causal)"
+        )
+
+
+def refuse_tracking(si: dict[str, Any]) -> None:
+    """Refuse, in whole mode, the core's causal rest tracker: whole mode already takes the bias
+    from every rest of the log."""
+    if si.get("track_rests"):
+        raise ValueError(
+            "track_rests follows the bias as a stream goes; whole mode already takes it from every "
+            "rest of the log: leave track_rests out, or pass mode='causal' (--causal)"
+        )
+
+
+@dataclass(frozen=True)
+class BiasPlan:
+    """Where whole mode takes the bias from, before the first sample is processed.
+
+    Attributes:
+        source: one line saying so (for reports).
+        rests: every rest measured, in time order; those with ``refused`` set were not used.
+        overrides: what the pipeline then runs with (``bias=0`` when the smoothed bias is
+            subtracted from the rate, and the explicit dead band and HDR bound).
+        smoothed: the smoothed bias, or None (a given bias, or none).
+        warning: what the user should know (no rest found), or None.
+    """
+
+    source: str
+    rests: tuple[Rest, ...] = ()
+    overrides: dict[str, Any] = field(default_factory=dict)
+    smoothed: SmoothedBias | None = None
+    warning: str | None = None
+
+    def bias(self, t: FloatArray) -> FloatArray | float:
+        """The bias to subtract at the times ``t`` [rad/s] (0 without rests)."""
+        if self.smoothed is None:
+            return 0.0
+        if len(self.smoothed.times) == 1:  # exactly the rest's mean, as bias= would give
+            return float(self.smoothed.mean[0])
+        return self.smoothed.at(t)[0]
+
+    @property
+    def used(self) -> tuple[Rest, ...]:
+        """The rests whose bias was used."""
+        return tuple(r for r in self.rests if r.refused is None)
+
+    def result(self, result: HeadingResult) -> HeadingResult:
+        """``result`` saying where its bias came from."""
+        return replace(result, bias_source=self.source, rests=self.rests)
+
+
+def rest_lines(source: str, rests: tuple[Rest, ...], indent: str) -> list[str]:
+    """The lines listing ``rests`` under a report's ``source`` line (none when that line is the
+    one rest used)."""
+    if len(rests) == 1 and source.startswith("rest "):
+        return []
+    return [f"{indent}rest {r}" for r in rests]
+
+
+def _bias_source(si: dict[str, Any]) -> str | None:
+    """Which bias source the (SI) overrides set, or None."""
+    return next((k for k in BIAS_SOURCES if si.get(k) is not None), None)
+
+
+def causal_source(preset: str, si: dict[str, Any]) -> str:
+    """One line saying where the causal pipeline takes the bias from."""
+    if not uses_static_bias(preset):
+        return "none (the preset removes no static bias)"
+    key = _bias_source(si)
+    if key == "bias":
+        return f"given: {math.degrees(si['bias']):.5f} deg/s"
+    if key == "bias_window":
+        a, b = si["bias_window"]
+        return f"rest window [{a:.3f}, {b:.3f}] s (given), applied from its end (causal)"
+    if key == "bias_duration":
+        return f"first {si['bias_duration']:g} s, applied from their end (causal)"
+    return "none: no bias or rest window given; bias 0 (causal)"
+
+
+def _scaled(preset: str, si: dict[str, Any], used: tuple[Rest, ...], sd: float) -> dict[str, float]:
+    """The explicit dead band and HDR bound a noise-scaled preset gets: ``threshold_sigmas`` times
+    the rests' pooled noise (root mean square weighted by readings), ``hdr_bound_sigmas`` times
+    the smoothed bias's standard error ``sd``."""
+    params = preset_params(preset, **si)
+    out: dict[str, float] = {}
+    if params.get("threshold_sigmas") is not None:
+        weights = [r.samples for r in used]
+        noise = math.sqrt(float(np.average([r.noise**2 for r in used], weights=weights)))
+        out["threshold"] = params["threshold_sigmas"] * noise
+    if params.get("hdr_bound_sigmas") is not None:
+        out["hdr_max_correction"] = params["hdr_bound_sigmas"] * sd
+    return out
+
+
+def _smooth(rests: tuple[Rest, ...], walk: float) -> SmoothedBias:
+    """The smoother over ``rests``, each a measurement at its middle."""
+    return smooth([r.middle for r in rests], [r.bias for r in rests], [r.bias_std_error for r in rests], walk)
+
+
+def plan(
+    preset: str,
+    si: dict[str, Any],
+    t_start: float,
+    measure: Callable[[tuple[float, float], str], Rest],
+    find: Callable[[], list[tuple[float, float, str]]],
+    times: FloatArray | None,
+    walk: float,
+    bias_sigmas: float,
+) -> BiasPlan:
+    """Where whole mode takes the bias from.
+
+    Args:
+        preset: the preset.
+        si: the user's overrides in SI names.
+        t_start: the log's first time [s] (``bias_duration`` counts from it).
+        measure: ``measure(window, found_by) -> Rest``.
+        find: ``find() -> [(start, end, found_by)]``, called only when no bias source is given.
+        times: the log's times where known (found rests): the HDR bound is the smoothed bias's
+            standard error over them.
+        walk: the bias's random walk [rad/s/sqrt(s)].
+        bias_sigmas: found rests whose mean bias is within this many standard errors of 0 leave
+            the bias at 0 (a calibrated gyro, whose rests show how it reads at rest, not a bias).
+    """
+    rest_of = {k: v for k, v in si.items() if k not in BIAS_SOURCES}
+    key = _bias_source(si)
+    if not uses_static_bias(preset) or key == "bias":
+        return BiasPlan(causal_source(preset, si), overrides=si)
+    if key is not None:  # the user's window: the bias of the whole log, constant
+        window = (t_start, t_start + float(si["bias_duration"])) if key == "bias_duration" else si["bias_window"]
+        rest = measure((float(window[0]), float(window[1])), f"given: {key}")
+        label = f"first {si['bias_duration']:g} s: " if key == "bias_duration" else ""
+        smoothed = _smooth((rest,), 0.0)
+        overrides = {**rest_of, "bias": 0.0, **_scaled(preset, rest_of, (rest,), rest.bias_std_error)}
+        return BiasPlan(f"{label}rest {rest}, applied from the first sample", (rest,), overrides, smoothed)
+    rests = accept([measure((a, b), how) for a, b, how in find()], walk)
+    used = tuple(r for r in rests if r.refused is None)
+    if not used:  # none found (accept keeps at least half of them)
+        warning = (
+            f"preset {preset!r} removes a static bias, but no bias, bias_window or bias_duration was given, "
+            "the log gives no rest window and no rest was found in it: the bias is taken as 0, as in causal "
+            "mode (on the command line: --bias-window, --bias-duration or --bias-dps)"
+        )
+        return BiasPlan("none: no rest found in the log; bias 0", tuple(rests), {**rest_of, "bias": 0.0}, None, warning)
+    smoothed = _smooth(used, walk)
+    sd = smoothed.at(times)[1] if times is not None else np.sqrt(smoothed.variance)
+    overrides = {**rest_of, "bias": 0.0, **_scaled(preset, rest_of, used, float(np.sqrt(np.mean(sd**2))))}
+    refused = f"; {len(rests) - len(used)} refused" if len(rests) > len(used) else ""
+    # the inverse-variance mean of the rests (the smoother without a walk): is there a bias at all?
+    level = _smooth(used, 0.0)
+    mean, error = float(level.mean[0]), math.sqrt(float(level.variance[0]))
+    if abs(mean) <= bias_sigmas * error:
+        source = (
+            f"{len(used)} rest(s) read {math.degrees(mean):.5f} +- {math.degrees(error):.2g} deg/s, within "
+            f"{bias_sigmas:g} standard errors of 0: bias 0{refused}"
+        )
+        return BiasPlan(source, tuple(rests), overrides)
+    source = (
+        f"rest {used[0]}, applied from the first sample"
+        if len(used) == 1
+        else f"{len(used)} rests, bias smoothed between them (bias_walk {walk:.3g} rad/s/sqrt(s))"
+    )
+    return BiasPlan(source + refused, tuple(rests), overrides, smoothed)
+
+
+@dataclass(frozen=True)
+class Options:
+    """What whole mode takes besides the pipeline's parameters (keywords of :func:`gyrocore.process`).
+
+    Attributes:
+        bias_walk: the bias's random walk between rests [rad/s/sqrt(s)].
+        min_rest: the shortest rest found in the log that is used [s].
+        bias_sigmas: found rests whose mean is within this many standard errors of 0 leave the
+            bias at 0.
+    """
+
+    bias_walk: float = BIAS_WALK
+    min_rest: float = MIN_REST
+    bias_sigmas: float = BIAS_SIGMAS
+
+    @classmethod
+    def pop(cls, si: dict[str, Any]) -> Options:
+        """The options in ``si`` (removed from it), checked."""
+        given = {name: si.pop(name) for name in WHOLE_OPTIONS if si.get(name) is not None}
+        for name, value in given.items():
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not (math.isfinite(value) and value >= 0):
+                raise ValueError(f"invalid parameter {name} = {value!r}: must be a finite number >= 0")
+        for name in WHOLE_OPTIONS:
+            si.pop(name, None)
+        return cls(**{k: float(v) for k, v in given.items()})
+
+
+def plan_arrays(
+    preset: str, si: dict[str, Any], t: FloatArray, rate: FloatArray, speed: FloatArray | None, options: Options
+) -> BiasPlan:
+    """:func:`plan` for a log in memory (times already checked by :func:`times_ok`)."""
+    return plan(
+        preset,
+        si,
+        float(t[0]),
+        lambda window, how: measure_rest([(t, rate)], window, how),
+        lambda: find_rests(t, rate, speed, options.min_rest),
+        t,
+        options.bias_walk,
+        options.bias_sigmas,
+    )
+
+
+def plan_stream(
+    preset: str,
+    overrides: dict[str, Any],
+    chunks: Chunks,
+    read_all: Callable[[], tuple[FloatArray, FloatArray, FloatArray | None]],
+) -> BiasPlan:
+    """:func:`plan` for a log read chunk after chunk (``gyrocore process``): a given rest window is
+    measured by a first pass that reads only up to the window's end (flat memory); finding the
+    rests needs the whole log's times and rates (16 bytes a sample) from ``read_all() -> (t, rate,
+    speed or None)``. The heading itself is then a second, streamed pass."""
+    si = _to_si(overrides)
+    options = Options.pop(si)
+    if uses_static_bias(preset) and _bias_source(si) is None:
+        t, rate, speed = read_all()
+        if len(t) == 0 or not times_ok(t):
+            # The second pass, through the pipeline, names the bad sample.
+            return BiasPlan("none: the log's times are invalid", overrides={**si, "bias": 0.0})
+        return plan_arrays(preset, si, t, rate, speed, options)
+    t_start = 0.0
+    if si.get("bias_duration") is not None:  # counts from the first sample
+        t_start = next((float(t[0]) for t, _ in chunks() if len(t)), 0.0)
+    return plan(preset, si, t_start, lambda window, how: measure_rest(chunks(), window, how), list, None, options.bias_walk, options.bias_sigmas)
+
+
+def process_log(
+    t: ArrayLike,
+    rate: ArrayLike,
+    preset: str,
+    *,
+    mode: str = "whole",
+    temperature: ArrayLike | None = None,
+    speed: ArrayLike | None = None,
+    speed_t: ArrayLike | None = None,
+    outputs: tuple[str, ...] = OUTPUTS,
+    **overrides: Any,
+) -> HeadingResult:
+    """:func:`gyrocore.process` (see there and the module doc); in whole mode ``bias_walk``
+    [rad/s/sqrt(s)] and ``min_rest`` [s] change :class:`Options`. In causal mode a ``speed`` feeds
+    the core's rest tracker (``track_rests=True``), which whole mode refuses: it already uses every
+    rest of the log."""
+    check_mode(mode)
+    si = _to_si(overrides)
+    if mode == "causal":
+        refuse_whole_options(si)
+        pipeline = Pipeline(preset, **overrides)
+        result = pipeline.process(
+            t, rate, temperature=temperature, outputs=outputs, speed=speed, speed_t=speed_t
+        )
+        pipeline.finish()
+        return replace(result, bias_source=causal_source(preset, si))
+    refuse_tracking(si)
+    options = Options.pop(si)
+    ta, ra = as_float_array("t", t), as_float_array("rate", rate)
+    sp = None if speed is None else as_float_array("speed", speed) if speed_t is None else speed_on(ta, speed_t, speed)
+    if sp is not None and len(sp) != len(ta):
+        raise ValueError(f"speed has {len(sp)} samples but t has {len(ta)}: give one speed per gyro sample")
+    if len(ta) != len(ra) or len(ta) == 0 or not times_ok(ta):
+        # The pipeline is the one place that names the bad sample (and gives an empty log back).
+        result = Pipeline(preset, **si).process(ta, ra, temperature=temperature, outputs=outputs)
+        return replace(result, bias_source=causal_source(preset, si))
+    try:
+        bias_plan = plan_arrays(preset, si, ta, ra, sp, options)
+    except SampleError:
+        # A rest's measurement saw a slice of the log: the pipeline names the sample in the log.
+        Pipeline(preset, **{**si, "bias": 0.0}).process(ta, ra, temperature=temperature)
+        raise
+    if bias_plan.warning:
+        warn(bias_plan.warning)
+    pipeline = Pipeline(preset, **bias_plan.overrides)
+    result = pipeline.process(ta, ra - bias_plan.bias(ta), temperature=temperature, outputs=outputs)
+    return bias_plan.result(result)
+
+
+def times_ok(t: FloatArray) -> bool:
+    """Finite, strictly increasing times (otherwise the pipeline refuses them, naming the sample)."""
+    return bool(np.isfinite(t).all() and (np.diff(t) > 0).all())
