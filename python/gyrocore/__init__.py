@@ -36,12 +36,12 @@ from .pipeline import (
 )
 
 if TYPE_CHECKING:
-    from . import allan, batch, calibration, deadband, deadreckon, evaluate, io, motion, paper, sim, tune
+    from . import allan, batch, calibration, datasets, deadband, deadreckon, evaluate, io, motion, paper, sim, tune
     from .evaluate import HeadingErrors, heading_errors
     from .io import Log, read_log
 
-_SUBMODULES = ("allan", "batch", "calibration", "deadband", "deadreckon", "evaluate", "io", "motion", "paper",
-               "sim", "tune")
+_SUBMODULES = ("allan", "batch", "calibration", "datasets", "deadband", "deadreckon", "evaluate", "io", "motion",
+               "paper", "sim", "tune")
 #: Names of the package taken from a submodule, loaded with it.
 _FROM = {"HeadingErrors": "evaluate", "heading_errors": "evaluate", "Log": "io", "read_log": "io"}
 
