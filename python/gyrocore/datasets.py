@@ -18,6 +18,7 @@ shell, ``python -m gyrocore.datasets FOLDER`` does the same.
 
 from __future__ import annotations
 
+import argparse
 import json
 import sys
 from pathlib import Path
@@ -30,9 +31,9 @@ from ._arrays import FloatArray
 from .io.atomic import atomic_path
 from .io.log import Log
 
-#: What :func:`sample_drive` simulates: ``gyrocore.sim.car_drive(**SAMPLE)``.
-#: Downtown streets, the first seed: a drive with many corners (it turns through 11 rad), so that the
-#: scale fit and the heading methods have something to show.
+#: What :func:`sample_drive` simulates: ``gyrocore.sim.car_drive(**SAMPLE)``. Downtown streets, the
+#: first seed: a drive with many corners (it turns through 11 rad), so that the scale fit and the
+#: heading methods have something to show.
 SAMPLE: dict[str, Any] = {
     "duration": 300.0, "rate_hz": 100.0, "seed": 0, "rest": 60.0, "mix": "downtown", "sensor_name": "crs03",
 }
@@ -68,7 +69,8 @@ def write_sample(folder: str | Path = "sample_drive") -> Path:
     """Write the sample log as a log folder (created if missing) and return its path.
 
     Numbers are written in full (shortest round-trip form), so the folder reads back as
-    :func:`sample_drive` exactly.
+    :func:`sample_drive` exactly. The files appear whole or not at all: an error or an interrupt
+    removes those this call wrote.
 
     Raises:
         FileExistsError: one of :data:`FILES` is already in ``folder``; nothing is written.
@@ -82,10 +84,17 @@ def write_sample(folder: str | Path = "sample_drive") -> Path:
         raise FileExistsError(f"{path}: already holds {', '.join(taken)}; give another folder (nothing was written)")
     gyro, reference, odometry, meta = _sample()
     path.mkdir(parents=True, exist_ok=True)
-    for name, columns in zip(FILES, (gyro, reference, odometry)):
-        _write_csv(path / name, columns)
-    with atomic_path(path / "meta.json") as tmp:
-        tmp.write_text(json.dumps(meta, indent=2) + "\n", encoding="utf-8")
+    texts = [_csv(columns) for columns in (gyro, reference, odometry)] + [json.dumps(meta, indent=2) + "\n"]
+    written: list[Path] = []
+    try:
+        for name, text in zip(FILES, texts):
+            with atomic_path(path / name) as tmp:
+                tmp.write_text(text, encoding="utf-8")
+            written.append(path / name)
+    except BaseException:
+        for done in written:
+            done.unlink(missing_ok=True)
+        raise
     return path
 
 
@@ -114,26 +123,27 @@ def _sample() -> tuple[dict[str, FloatArray], dict[str, FloatArray], dict[str, F
     return gyro, reference, odometry, meta
 
 
-def _write_csv(path: Path, columns: dict[str, FloatArray]) -> None:
+def _csv(columns: dict[str, FloatArray]) -> str:
     # repr of a float is its shortest form that reads back as the same number
     rows = zip(*(np.asarray(c).tolist() for c in columns.values()))
-    text = ",".join(columns) + "\n" + "".join(",".join(map(repr, row)) + "\n" for row in rows)
-    with atomic_path(path) as tmp:
-        tmp.write_text(text, encoding="utf-8")
+    return ",".join(columns) + "\n" + "".join(",".join(map(repr, row)) + "\n" for row in rows)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """``python -m gyrocore.datasets [FOLDER]``: write the sample log (default ``sample_drive``)."""
-    args = list(sys.argv[1:] if argv is None else argv)
-    if len(args) > 1 or any(a.startswith("-") for a in args):
-        print("usage: python -m gyrocore.datasets [FOLDER]  (writes the simulated sample log there; "
-              "default ./sample_drive)", file=sys.stderr)
-        return 2
+    parser = argparse.ArgumentParser(prog="python -m gyrocore.datasets",
+                                     description="Write the simulated sample log as a log folder.")
+    parser.add_argument("folder", nargs="?", default="sample_drive",
+                        help="folder to write (created if missing; default sample_drive)")
+    args = parser.parse_args(argv)
     try:
-        folder = write_sample(*args)
+        folder = write_sample(args.folder)
     except OSError as e:
         print(f"gyrocore.datasets: error: {e}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print("gyrocore.datasets: interrupted; no file was left", file=sys.stderr)
+        return 130
     print(f"wrote the simulated sample log to {folder}: {', '.join(FILES)}; try "
           f"gyrocore process {folder} --out heading.csv")
     return 0

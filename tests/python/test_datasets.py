@@ -3,9 +3,11 @@ command that reads a log accepts through the real command line."""
 
 from __future__ import annotations
 
+import contextlib
 import json
 import subprocess
 import sys
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -55,6 +57,22 @@ def test_nothing_in_the_folder_is_overwritten(tmp_path: Path) -> None:
     assert (tmp_path / "reference.csv").read_text() == "mine\n"
     with pytest.raises(NotADirectoryError, match="not a folder"):
         datasets.write_sample(tmp_path / "reference.csv")
+
+
+def test_an_interrupted_write_leaves_no_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    real = datasets.atomic_path
+
+    @contextlib.contextmanager
+    def interrupted_at_the_third(path: Path) -> Iterator[Path]:
+        if path.name == datasets.FILES[2]:
+            raise KeyboardInterrupt
+        with real(path) as tmp:
+            yield tmp
+
+    monkeypatch.setattr(datasets, "atomic_path", interrupted_at_the_third)
+    with pytest.raises(KeyboardInterrupt):
+        datasets.write_sample(tmp_path)
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_python_m_gyrocore_datasets_writes_the_folder_once(tmp_path: Path) -> None:
