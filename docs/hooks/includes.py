@@ -10,7 +10,8 @@ A page line ``<!-- include WHAT -->`` is replaced when the site is built by:
 - ``CHANGELOG.md``: the whole changelog;
 - ``gyrocore --help``: the help of the command and of every subcommand, from their argparse parsers.
 
-A missing section stops the build naming it. Every page in docs/ is in the navigation: those that
+The docstrings' Sphinx roles (``:func:``) are dropped from the pages, their names kept as code. A
+missing section stops the build naming it. Every page in docs/ is in the navigation: those that
 mkdocs.yml's ``nav`` does not list are added after it, in file-name order.
 """
 
@@ -27,6 +28,7 @@ from mkdocs.exceptions import PluginError
 ROOT = Path(__file__).resolve().parents[2]
 INCLUDE = re.compile(r"^<!-- include (.+?) -->$", re.M)
 HEADING = re.compile(r"^(#+) (.*)$")
+SPHINX_ROLE = re.compile(r":(?:func|class|meth|mod|data|attr|exc|obj):(?=<code>)")
 
 
 def on_files(files: Any, config: Any) -> Any:
@@ -41,6 +43,11 @@ def on_files(files: Any, config: Any) -> Any:
 def on_page_markdown(markdown: str, page: Any, config: Any, files: Any) -> str:
     """Replace every include line of the page with what it names."""
     return INCLUDE.sub(lambda m: _include(m.group(1), page.file.src_uri), markdown)
+
+
+def on_page_content(html: str, page: Any, config: Any, files: Any) -> str:
+    """Drop the Sphinx roles of the docstrings (``:func:`name```), which Markdown shows as text."""
+    return SPHINX_ROLE.sub("", html)
 
 
 def _nav_paths(nav: list[Any]) -> list[str]:
