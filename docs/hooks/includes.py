@@ -111,7 +111,7 @@ def _cli_reference() -> str:
     from gyrocore.cli import build_parser
 
     columns = os.environ.get("COLUMNS")
-    os.environ["COLUMNS"] = "100"  # argparse wraps at the terminal's width: the same page on every machine
+    os.environ["COLUMNS"] = "80"  # argparse wraps at the terminal's width: the page's, on every machine
     try:
         parser = build_parser()
         sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
