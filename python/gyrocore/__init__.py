@@ -36,12 +36,14 @@ from .pipeline import (
 )
 
 if TYPE_CHECKING:
-    from . import allan, batch, calibration, deadband, deadreckon, evaluate, io, motion, paper, sim, tune, wholelog
+    from . import (
+        allan, batch, calibration, datasets, deadband, deadreckon, evaluate, io, motion, paper, sim, tune, wholelog,
+    )
     from .evaluate import HeadingErrors, heading_errors
     from .io import Log, read_log
 
-_SUBMODULES = ("allan", "batch", "calibration", "deadband", "deadreckon", "evaluate", "io", "motion", "paper",
-               "sim", "tune", "wholelog")
+_SUBMODULES = ("allan", "batch", "calibration", "datasets", "deadband", "deadreckon", "evaluate", "io", "motion",
+               "paper", "sim", "tune", "wholelog")
 #: Names of the package taken from a submodule, loaded with it.
 _FROM = {"HeadingErrors": "evaluate", "heading_errors": "evaluate", "Log": "io", "read_log": "io"}
 

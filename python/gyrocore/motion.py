@@ -15,6 +15,8 @@ Profiles:
 - :func:`rotary_table`: the FOG paper's rotary-table runs, 360 deg cw then ccw at 30 deg/s.
 - :func:`robot_run`: the Hong & Park robot run: 160 s, the first 20 s calibration motion, up to 2 m/s.
 
+For example, a square path ends where it began, heading as it started:
+
     >>> import numpy as np, gyrocore.motion as motion
     >>> m = motion.square_path(runs=1)
     >>> truth = m.sample(np.array([0.0, m.duration]))
