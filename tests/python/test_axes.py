@@ -58,6 +58,13 @@ THREE_AXES = ("--gyro-cols", "gx,gy,gz")
 # --- one axis: the one asked for, in every kind of input --------------------------------------
 
 
+@pytest.mark.parametrize("command", ["process", "allan", "calibrate", "evaluate", "tune"])
+def test_every_command_that_reads_a_file_takes_the_three_axis_options(command: str) -> None:
+    out = gyrocore_cli(command, "--help", code=0).stdout
+    for option in ("--gyro-cols", "--accel-cols", "--up", "--up-window"):
+        assert option in out, f"gyrocore {command} lacks {option}"
+
+
 @pytest.mark.parametrize("ros1", [True, False], ids=["ros1", "ros2"])
 def test_bag_rate_col_reads_the_axis_named(tmp_path: Path, ros1: bool) -> None:
     n = 300

@@ -11,8 +11,6 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator, Sequence
 from pathlib import Path
-from typing import Union
-
 import numpy as np
 
 from .._arrays import FloatArray
@@ -36,10 +34,11 @@ LEAST_GRAVITY = GRAVITY / 2
 #: How ``up`` is written: an axis with an optional sign, three numbers, or the measured one.
 UP_HELP = "x, y, z, -x, -y, -z, a vector X,Y,Z (normalised), or accel (the accelerometer at rest)"
 
-Up = Union[str, tuple[float, float, float]]
+#: ``up`` as :class:`ReadOptions` keeps it.
+UpValue = str | tuple[float, float, float]
 
 
-def parse_up(value: str | Sequence[float]) -> Up:
+def parse_up(value: str | Sequence[float]) -> UpValue:
     """``up`` as :class:`ReadOptions` keeps it: :data:`MEASURED` or a vector (not normalised).
 
     Raises:

@@ -18,14 +18,14 @@ import numpy as np
 
 from .._arrays import FloatArray, durations_in_seconds
 from .._gyrocore import SampleError
+from ..window import Window
+from ._axes import MEASURED, measure_up, parse_up, project, three_names
 from ._columns import import_pyarrow_lazy_modules
 from ._csvfile import _csv_header, csv_chunks
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta
 from ._npyfile import npy_chunks, npy_header, npz_chunks
 from ._parquetfile import parquet_chunks, parquet_file
 from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder
-from ..window import Window
-from ._axes import MEASURED, measure_up, parse_up, project, three_names
 from .units import RATE_UNITS, TIME_UNITS, header_options
 
 #: Samples per chunk, at most (a CSV chunk also ends with a block of :data:`CSV_BLOCK_BYTES`).
