@@ -42,6 +42,7 @@
 #![warn(missing_docs)]
 
 pub mod allan;
+pub mod axis;
 mod block;
 pub mod correction;
 mod error;
@@ -61,6 +62,7 @@ pub mod threshold;
 mod validate;
 
 pub use allan::Variance;
+pub use axis::Up;
 pub use block::{Downsample, DownsampleConfig};
 pub use correction::{Correction, CorrectionConfig, StaticBias, TemperatureScale};
 pub use error::Error;

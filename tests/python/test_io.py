@@ -259,25 +259,38 @@ def test_timestamps_that_are_all_gaps_stop_with_the_option_to_add(tmp_path: Path
 
 
 def write_bag(
-    path: Path, stamps_ns: list[int], rates: list[float], *, ros1: bool, topics: tuple[str, ...] = ("/imu",)
+    path: Path,
+    stamps_ns: list[int],
+    rates: list[float],
+    *,
+    ros1: bool,
+    topics: tuple[str, ...] = ("/imu",),
+    gyro: np.ndarray | None = None,
+    accel: np.ndarray | None = None,
 ) -> None:
-    """A bag written by rosbags' own writer (sensor_msgs/Imu)."""
+    """A bag written by rosbags' own writer (sensor_msgs/Imu): angular velocity (0.1, -0.2, rate)
+    and linear acceleration (0, 0, 9.81), or the rows of ``gyro`` and ``accel`` (samples x 3)."""
     typesys = pytest.importorskip("rosbags.typesys")
     store = typesys.get_typestore(typesys.Stores.ROS1_NOETIC if ros1 else typesys.Stores.ROS2_HUMBLE)
     types = store.types
     header_type = types["std_msgs/msg/Header"]
     vector, quaternion = types["geometry_msgs/msg/Vector3"], types["geometry_msgs/msg/Quaternion"]
 
-    def imu(ns: int, z: float) -> object:
+    n = len(stamps_ns)
+    gyro_rows = np.column_stack([np.full(n, 0.1), np.full(n, -0.2), rates]) if gyro is None else gyro
+    accel_rows = np.tile([0.0, 0.0, 9.81], (n, 1)) if accel is None else accel
+
+    def imu(k: int, ns: int) -> object:
         stamp = types["builtin_interfaces/msg/Time"](sec=ns // 10**9, nanosec=ns % 10**9)
         header = header_type(seq=0, stamp=stamp, frame_id="imu") if ros1 else header_type(stamp=stamp, frame_id="imu")
+        (gx, gy, gz), (ax, ay, az) = map(float, gyro_rows[k]), map(float, accel_rows[k])
         return types["sensor_msgs/msg/Imu"](
             header=header,
             orientation=quaternion(x=0.0, y=0.0, z=0.0, w=1.0),
             orientation_covariance=np.zeros(9),
-            angular_velocity=vector(x=0.1, y=-0.2, z=z),
+            angular_velocity=vector(x=gx, y=gy, z=gz),
             angular_velocity_covariance=np.zeros(9),
-            linear_acceleration=vector(x=0.0, y=0.0, z=9.81),
+            linear_acceleration=vector(x=ax, y=ay, z=az),
             linear_acceleration_covariance=np.zeros(9),
         )
 
@@ -291,17 +304,17 @@ def write_bag(
 
         with Writer(path) as writer:
             connections = [writer.add_connection(t, msgtype, typestore=store) for t in topics]
-            for k, (ns, z) in enumerate(zip(stamps_ns, rates)):
+            for k, ns in enumerate(stamps_ns):
                 for c in connections:
-                    writer.write(c, received(k), store.serialize_ros1(imu(ns, z), msgtype))
+                    writer.write(c, received(k), store.serialize_ros1(imu(k, ns), msgtype))
     else:
         from rosbags.rosbag2 import Writer
 
         with Writer(path, version=9) as writer:
             connections = [writer.add_connection(t, msgtype, typestore=store) for t in topics]
-            for k, (ns, z) in enumerate(zip(stamps_ns, rates)):
+            for k, ns in enumerate(stamps_ns):
                 for c in connections:
-                    writer.write(c, received(k), store.serialize_cdr(imu(ns, z), msgtype))
+                    writer.write(c, received(k), store.serialize_cdr(imu(k, ns), msgtype))
 
 
 STAMPS = [1_700_000_000_000_000_000 + 9_999_937 * i for i in range(250)]

@@ -63,12 +63,45 @@ def add_reading_options(parser: argparse.ArgumentParser) -> None:
                       help="unit of the rate column (default: the header's, else rad/s)")
     read.add_argument("--topic", help="bag topic with sensor_msgs/Imu (default: the only one)")
     read.add_argument("--delimiter", help="CSV delimiter (default ,)")
+    axes = parser.add_argument_group(
+        "three-axis input (the yaw rate is the gyro's component along up; a bag reads angular_velocity "
+        "and linear_acceleration)"
+    )
+    axes.add_argument("--gyro-cols", metavar="GX,GY,GZ", help="the gyro's x, y and z columns (in --rate-unit)")
+    axes.add_argument("--accel-cols", metavar="AX,AY,AZ",
+                      help="the accelerometer's x, y and z columns [m/s^2]: up is their mean over the rest window")
+    axes.add_argument("--up", metavar="UP", help=f"the sensor axis that points up: {io.UP_HELP}; "
+                      "write --up=-x for a negative one")
+    axes.add_argument("--up-window", nargs=2, metavar=("T0", "T1"),
+                      help=f"rest window over which up is measured: {WINDOW_HELP} (default: --bias-window, "
+                      "--bias-duration, or a log folder's rest window)")
 
 
 def reading_options(args: argparse.Namespace) -> dict[str, Any]:
-    """The reading options given on the command line, as :class:`gyrocore.io.ReadOptions` fields."""
-    names = ("time_col", "rate_col", "time_unit", "rate_unit", "topic", "delimiter")
-    return {name: getattr(args, name) for name in names if getattr(args, name) is not None}
+    """The reading options given on the command line, as :class:`gyrocore.io.ReadOptions` fields.
+
+    ``up`` is measured over ``--up-window``, else over the command's own rest window
+    (``--bias-window``, ``--bias-duration``), which the static bias is measured over too."""
+    names = ("time_col", "rate_col", "time_unit", "rate_unit", "topic", "delimiter", "gyro_cols", "accel_cols", "up")
+    out = {name: getattr(args, name) for name in names if getattr(args, name) is not None}
+    window = _rest_window(args)
+    # the bias's rest window serves three-axis input only; --up-window alone is refused by ReadOptions
+    if window is not None and ({"gyro_cols", "accel_cols", "up"} & out.keys() or args.up_window is not None):
+        out["up_window"] = window
+    return out
+
+
+def _rest_window(args: argparse.Namespace) -> Window | None:
+    """The rest window the command line gives, in the order ``--up-window``, ``--bias-window``,
+    ``--bias-duration`` (the first S seconds), or None."""
+    for option in ("up_window", "bias_window"):
+        bounds = getattr(args, option, None)
+        if bounds is not None:
+            return Window.parse(bounds, "--" + option.replace("_", "-"))
+    duration = getattr(args, "bias_duration", None)
+    if duration is not None:
+        return Window(0.0, duration, (True, True), "--bias-duration")
+    return None
 
 
 def add_override_options(group: argparse._ArgumentGroup) -> None:

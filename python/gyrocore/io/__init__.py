@@ -14,8 +14,14 @@ Parquet       columns ``time_col`` and ``rate_col``; a timestamp column carries 
 log folder    ``gyro.csv`` (t, gyro_z), ``reference.csv`` (t, heading, x, y), ``odometry.csv``
               (t, speed) and ``meta.json`` with the ``stationary`` rest window
 ROS bag       a ROS 1 ``.bag`` file or a ROS 2 bag folder (``metadata.yaml``): sensor_msgs/Imu
-              ``angular_velocity.z`` stamped by ``header.stamp`` (needs ``gyrocore[ros]``)
+              ``angular_velocity.z`` (or the ``rate_col`` ``angular_velocity.x`` or ``.y``) stamped
+              by ``header.stamp`` (needs ``gyrocore[ros]``)
 ============  =====================================================================================
+
+Three-axis input (``gyro_cols``, ``accel_cols``, ``up``): the yaw rate is the gyro's component along
+``up``, the sensor axis that points up, given or measured as the mean accelerometer reading over
+the rest window (``up_window``, else a log folder's); a bag's gyro is ``angular_velocity`` and its
+accelerometer ``linear_acceleration``.
 
 Units of the file are options: ``time_unit`` one of ``s``, ``ms``, ``us``, ``ns`` and ``rate_unit``
 ``rad/s`` or ``deg/s``; a sanity check warns when the values look like another unit. Malformed
@@ -40,11 +46,13 @@ Modules (import the names from ``gyrocore.io``, which has them all):
 ``_rosbag``         the ROS bag reader (rosbags)
 ``_logfolder``      the log-folder layout: ``meta.json``, ``reference.csv``, ``odometry.csv``
 ``_columns``        what the readers share: finding the named columns, column data as arrays
+``_axes``           three-axis input: ``up`` given or measured, the projection ``gyro . up``
 ==================  ===============================================================================
 """
 
 from __future__ import annotations
 
+from ._axes import GRAVITY, UP_HELP
 from ._csvfile import CSV_BLOCK_BYTES, read_csv_columns
 from ._logfolder import read_reference_file
 from .atomic import StagedFile, atomic_path
@@ -68,6 +76,7 @@ __all__ = [
     "DEFAULT_CHUNK_ROWS",
     "EPOCH_LIMIT",
     "FILE_SUFFIXES",
+    "GRAVITY",
     "HEADING_CONVENTIONS",
     "OUTPUT_COLUMNS",
     "PARQUET_ROW_GROUP",
@@ -75,6 +84,7 @@ __all__ = [
     "SHORT_INTERVAL",
     "SMALL_RATE_DPS",
     "TIME_UNITS",
+    "UP_HELP",
     "Chunk",
     "GyroSource",
     "HeadingWriter",

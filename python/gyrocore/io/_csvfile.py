@@ -203,25 +203,27 @@ def _skip_lines(f: Any, count: int) -> None:
         return
 
 
-def csv_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
-    """CSV blocks of at most ``rows`` samples; an empty time is an error, an empty rate is NaN."""
+def csv_chunks(src: GyroSource, rows: int, columns: tuple[str, ...]) -> Iterator[tuple[np.ndarray, list[np.ndarray], float, int]]:
+    """CSV blocks of at most ``rows`` samples of the time and ``columns``; an empty time is an
+    error, an empty value is NaN."""
     o = src.options
     path = src.data_path
     block = min(CSV_BLOCK_BYTES, max(4096, rows * _bytes_per_line(path)))
     header = None
     required = {o.time: "timestamp"}
-    blocks = _read_csv(path, (o.time, o.rate), delimiter=o.delimiter, block_bytes=block, required=required)
+    blocks = _read_csv(path, (o.time, *columns), delimiter=o.delimiter, block_bytes=block, required=required)
     for first, cols, done in blocks:
         t = cols[o.time]
         bad = first_null(t)
         if bad is not None:
             header = header or _csv_header(path, o.delimiter)
-            blank = cols[o.rate][bad].as_py() is None
+            blank = all(cols[c][bad].as_py() is None for c in columns)
             raise ValueError(
                 f"{path}: line {first + bad + 2}, column {header.index(o.time) + 1} ({o.time}): "
                 + ("blank line" if blank else "empty timestamp")
             )
-        yield t.to_numpy(), cols[o.rate].to_numpy(zero_copy_only=False), o.counts_per_second, done
+        values = [cols[c].to_numpy(zero_copy_only=False) for c in columns]
+        yield t.to_numpy(), values, o.counts_per_second, done
 
 
 def _bytes_per_line(path: Path) -> int:

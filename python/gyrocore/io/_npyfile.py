@@ -1,7 +1,7 @@
 """Reading NumPy files: ``.npy`` a block of rows at a time, ``.npz`` whole.
 
-An ``.npy`` file holds a structured array with time and rate fields, or a 2-D array (samples x
-columns) in C or Fortran order; an ``.npz`` archive holds the time and rate as 1-D arrays.
+An ``.npy`` file holds a structured array with time and rate (or three-axis) fields, or a 2-D
+array (samples x columns) in C or Fortran order; an ``.npz`` archive holds them as 1-D arrays.
 """
 
 from __future__ import annotations
@@ -30,25 +30,28 @@ def npy_header(path: Path, f: Any) -> tuple[tuple[int, ...], bool, np.dtype[Any]
     return shape, fortran, dtype
 
 
-def npy_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
+def npy_chunks(
+    src: GyroSource, rows: int, columns: tuple[str, ...]
+) -> Iterator[tuple[np.ndarray, list[np.ndarray], float, int]]:
     """Read an .npy file a block of rows at a time with plain reads (a memory map would count the
-    whole file in the resident memory by the end)."""
+    whole file in the resident memory by the end). ``columns``: the fields to read beside the
+    time, or for a plain 2-D array column numbers (the rate's default is 1)."""
     per_second = src.options.counts_per_second
+    o = src.options
     with open(src.path, "rb") as f:
         shape, fortran, dtype = npy_header(src.path, f)
         offset = f.tell()
         if dtype.names:
             if len(shape) != 1:
                 raise ValueError(f"{src.path}: a structured array must be 1-D, got shape {shape}")
-            o = src.options
-            column_positions(src.path, list(dtype.names), (o.time, o.rate))
-            for name in (o.time, o.rate):
+            column_positions(src.path, list(dtype.names), (o.time, *columns))
+            for name in (o.time, *columns):
                 _check_numbers(src, name, dtype[name], time=name == o.time)
             n = shape[0]
             for start in range(0, n, rows):
                 rec = np.fromfile(f, dtype=dtype, count=min(rows, n - start))
                 _check_read(src, rec, min(rows, n - start))
-                yield rec[o.time], rec[o.rate], per_second, start + len(rec)
+                yield rec[o.time], [rec[c] for c in columns], per_second, start + len(rec)
             return
         if len(shape) != 2 or shape[1] < 2:
             raise ValueError(
@@ -57,25 +60,25 @@ def npy_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndar
             )
         _check_numbers(src, "the array", dtype)
         n, width = shape
-        ti, ri = (
-            _column_number(src, c, default, width)
-            for c, default in ((src.options.time_col, 0), (src.options.rate_col, 1))
-        )
+        numbers = [_column_number(src, o.time_col, 0, width)]
+        if columns == (o.rate,) and o.rate_col is None:  # a plain array's rate is column 1, not gyro_z
+            numbers.append(1)
+        else:
+            numbers += [_column_number(src, c, 1, width) for c in columns]
         for start in range(0, n, rows):
             count = min(rows, n - start)
-            if fortran:  # columns are contiguous: read the two column segments
+            if fortran:  # columns are contiguous: read the column segments
                 cols = []
-                for j in (ti, ri):
+                for j in numbers:
                     f.seek(offset + (j * n + start) * dtype.itemsize)
                     cols.append(np.fromfile(f, dtype=dtype, count=count))
                     _check_read(src, cols[-1], count)
-                t, rate = cols
             else:
                 block = np.fromfile(f, dtype=dtype, count=count * width)
                 _check_read(src, block, count * width)
                 block = block.reshape(count, width)
-                t, rate = block[:, ti], block[:, ri]
-            yield t, rate, per_second, start + count
+                cols = [block[:, j] for j in numbers]
+            yield cols[0], cols[1:], per_second, start + count
 
 
 def _check_numbers(src: GyroSource, name: str, dtype: np.dtype[Any], *, time: bool = False) -> None:
@@ -102,24 +105,28 @@ def _column_number(src: GyroSource, name: str | None, default: int, width: int) 
     return int(name)
 
 
-def npz_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
+def npz_chunks(
+    src: GyroSource, rows: int, columns: tuple[str, ...]
+) -> Iterator[tuple[np.ndarray, list[np.ndarray], float, int]]:
     o = src.options
+    wanted = (o.time, *columns)
     try:
         with np.load(src.path, allow_pickle=False) as archive:
             names = list(archive.files)
-            arrays = {k: archive[k] for k in (o.time, o.rate) if k in names}
+            arrays = {k: archive[k] for k in wanted if k in names}
     except Exception as e:  # np.load raises EOFError, BadZipFile, ValueError, OSError, ... on bad bytes
         raise ValueError(f"{src.path}: not a readable NumPy .npz file ({type(e).__name__}: {e})") from None
-    column_positions(src.path, names, (o.time, o.rate))
-    t, rate = arrays[o.time], arrays[o.rate]
-    for name, a in ((o.time, t), (o.rate, rate)):
+    column_positions(src.path, names, wanted)
+    for name in wanted:
+        a = arrays[name]
         if not isinstance(a, np.ndarray):  # a member not stored as .npy comes back as raw bytes
             raise ValueError(f"{src.path}: member {name} is not a NumPy array")
         _check_numbers(src, f"array {name}", a.dtype, time=name == o.time)
         if a.ndim != 1:
             raise ValueError(f"{src.path}: array {name} must be 1-D, got shape {a.shape}")
-    if len(t) != len(rate):
-        raise ValueError(f"{src.path}: {o.time} has {len(t)} samples but {o.rate} has {len(rate)}")
+        if len(a) != len(arrays[o.time]):
+            raise ValueError(f"{src.path}: {o.time} has {len(arrays[o.time])} samples but {name} has {len(a)}")
+    t = arrays[o.time]
     for start in range(0, len(t), rows):
         end = min(len(t), start + rows)
-        yield t[start:end], rate[start:end], o.counts_per_second, end
+        yield t[start:end], [arrays[c][start:end] for c in columns], o.counts_per_second, end

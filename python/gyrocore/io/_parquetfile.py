@@ -1,4 +1,4 @@
-"""Reading Parquet files: the time and rate columns, a batch of rows at a time.
+"""Reading Parquet files: the time and rate (or three-axis) columns, a batch of rows at a time.
 
 A timestamp or duration column carries its own unit; numeric columns may be integers, floats or
 decimals (nulls in the rate become NaN).
@@ -33,15 +33,17 @@ def parquet_file(path: Path) -> Any:
         raise ValueError(f"{path}: not a readable Parquet file ({e})") from None
 
 
-def parquet_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
+def parquet_chunks(
+    src: GyroSource, rows: int, columns: tuple[str, ...]
+) -> Iterator[tuple[np.ndarray, list[np.ndarray], float, int]]:
     o = src.options
     pf = parquet_file(src.path)
     header = pf.schema_arrow.names
-    column_positions(src.path, header, (o.time, o.rate))
+    column_positions(src.path, header, (o.time, *columns))
     import pyarrow as pa
 
     first = 0
-    batches = pf.iter_batches(batch_size=rows, columns=[o.time, o.rate])
+    batches = pf.iter_batches(batch_size=rows, columns=[o.time, *columns])
     while True:
         try:
             batch = next(batches, None)
@@ -49,12 +51,13 @@ def parquet_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.
             raise ValueError(f"{src.path}: unreadable Parquet data after row {first} ({e})") from None
         if batch is None:
             return
-        if batch.num_columns != 2:
-            raise ValueError(f"{src.path}: columns {o.time!r} and {o.rate!r} do not read as two columns")
+        if batch.num_columns != 1 + len(columns):
+            named = ", ".join(map(repr, (o.time, *columns)))
+            raise ValueError(f"{src.path}: columns {named} do not read as {1 + len(columns)} columns")
         t, per_second = _arrow_time(src, batch.column(0), first)
-        rate = _arrow_numbers(src, o.rate, batch.column(1))
+        values = [_arrow_numbers(src, c, batch.column(i + 1)) for i, c in enumerate(columns)]
         first += batch.num_rows
-        yield t, rate, per_second, first
+        yield t, values, per_second, first
 
 
 def _arrow_time(src: GyroSource, array: pa.Array, first: int) -> tuple[np.ndarray, float]:

@@ -1,4 +1,5 @@
-"""Reading ROS bags: sensor_msgs/Imu ``angular_velocity.z`` stamped by ``header.stamp``.
+"""Reading ROS bags: sensor_msgs/Imu ``angular_velocity.x|y|z`` (``z`` unless told, or all three)
+and ``linear_acceleration`` stamped by ``header.stamp``.
 
 A ROS 1 ``.bag`` file or a ROS 2 bag folder (``metadata.yaml``), read with rosbags (the optional
 dependency ``gyrocore[ros]``), message after message.
@@ -7,6 +8,7 @@ dependency ``gyrocore[ros]``), message after message.
 from __future__ import annotations
 
 from collections.abc import Iterator
+from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -15,9 +17,12 @@ import numpy as np
 from .._extras import require
 
 if TYPE_CHECKING:
-    from .source import GyroSource
+    from .source import GyroSource, ReadOptions
 
 _IMU = "sensor_msgs/msg/Imu"
+#: The fields of an Imu message read as a column: the gyro's and the accelerometer's axes.
+GYRO_FIELDS = ("angular_velocity.x", "angular_velocity.y", "angular_velocity.z")
+ACCEL_FIELDS = ("linear_acceleration.x", "linear_acceleration.y", "linear_acceleration.z")
 
 
 def is_bag_folder(path: Path) -> bool:
@@ -61,28 +66,68 @@ def imu_topic(path: Path, topic: str | None) -> tuple[str, int]:
     return topic, counts[topic]
 
 
-def bag_chunks(src: GyroSource, rows: int) -> Iterator[tuple[np.ndarray, np.ndarray, float, int]]:
-    """sensor_msgs/Imu ``angular_velocity.z`` [rad/s] stamped by ``header.stamp`` [ns].
+def bag_columns(path: Path, options: ReadOptions) -> ReadOptions:
+    """``options`` with the Imu fields a bag is read by: ``rate_col`` (default
+    ``angular_velocity.z``), or for three-axis input ``gyro_cols`` and, to measure up,
+    ``accel_cols`` (default all three axes).
+
+    Raises:
+        ValueError: a name that is not such a field, listing the valid ones.
+    """
+    if not options.three_axis:
+        rate = options.rate_col or GYRO_FIELDS[2]
+        _check_fields(path, "rate_col", (rate,), GYRO_FIELDS)
+        return replace(options, rate_col=rate)
+    gyro = options.gyro_cols or GYRO_FIELDS
+    _check_fields(path, "gyro_cols", gyro, GYRO_FIELDS)
+    accel = options.accel_cols
+    if options.measures_up:
+        accel = accel or ACCEL_FIELDS
+        _check_fields(path, "accel_cols", accel, ACCEL_FIELDS)
+    return replace(options, gyro_cols=gyro, accel_cols=accel)
+
+
+def _check_fields(path: Path, name: str, given: tuple[str, ...], valid: tuple[str, ...]) -> None:
+    bad = [v for v in given if v not in valid]
+    if bad:
+        option = "--" + name.replace("_", "-")
+        raise ValueError(
+            f"{path}: {name} ({option}) {', '.join(map(repr, bad))} is not a field of {_IMU}; "
+            f"a bag reads {', '.join(valid)}"
+        )
+
+
+def bag_chunks(
+    src: GyroSource, rows: int, columns: tuple[str, ...]
+) -> Iterator[tuple[np.ndarray, list[np.ndarray], float, int]]:
+    """The Imu fields ``columns`` (``angular_velocity.z``, ...) stamped by ``header.stamp`` [ns].
 
     rosbags deserialises message by message (a Python loop: about 70 000 messages/s).
     """
+    fields = [tuple(c.split(".")) for c in columns]
     reader = _bag_reader(src.path)
     try:
         connections = [c for c in reader.connections if c.msgtype == _IMU and c.topic == src.options.topic]
         stamps: list[int] = []
-        rates: list[float] = []
+        values: list[list[float]] = []
         done = 0
         for connection, _, raw in reader.messages(connections=connections):
             msg: Any = reader.deserialize(raw, connection.msgtype)
             stamps.append(msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec)
-            rates.append(msg.angular_velocity.z)
+            values.append([getattr(getattr(msg, vector), axis) for vector, axis in fields])
             if len(stamps) == rows:
                 done += rows
-                yield np.array(stamps, dtype=np.int64), np.array(rates), 1e9, done
-                stamps, rates = [], []
+                yield _block(stamps, values, len(columns)) + (1e9, done)
+                stamps, values = [], []
         if stamps:
-            yield np.array(stamps, dtype=np.int64), np.array(rates), 1e9, done + len(stamps)
+            yield _block(stamps, values, len(columns)) + (1e9, done + len(stamps))
     except Exception as e:  # rosbags reports damage as its ReaderErrors, AssertionError, struct.error, ...
         raise ValueError(f"{src.path}: damaged bag ({type(e).__name__}: {e})") from None
     finally:
         reader.close()
+
+
+def _block(stamps: list[int], values: list[list[float]], width: int) -> tuple[np.ndarray, list[np.ndarray]]:
+    """The stamps and one array per field of a block of messages."""
+    table = np.array(values, dtype=np.float64).reshape(len(stamps), width)
+    return np.array(stamps, dtype=np.int64), [table[:, j] for j in range(width)]

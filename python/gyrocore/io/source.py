@@ -9,7 +9,7 @@ reader of its format and converts them to s and rad/s (what ``gyrocore process``
 from __future__ import annotations
 
 import os
-from collections.abc import Iterator
+from collections.abc import Generator, Iterator
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
@@ -18,12 +18,14 @@ import numpy as np
 
 from .._arrays import FloatArray, durations_in_seconds
 from .._gyrocore import SampleError
+from ..window import Window
+from ._axes import MEASURED, measure_up, parse_up, project, three_names
 from ._columns import import_pyarrow_lazy_modules
 from ._csvfile import _csv_header, csv_chunks
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta
 from ._npyfile import npy_chunks, npy_header, npz_chunks
 from ._parquetfile import parquet_chunks, parquet_file
-from ._rosbag import bag_chunks, imu_topic, is_bag_folder
+from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder
 from .units import RATE_UNITS, TIME_UNITS, header_options
 
 #: Samples per chunk, at most (a CSV chunk also ends with a block of :data:`CSV_BLOCK_BYTES`).
@@ -49,6 +51,16 @@ class ReadOptions:
         delimiter: CSV field delimiter.
         static: the log was recorded at rest (for an Allan deviation): rates that stay small do
             not suggest a log in rad/s read as deg/s.
+        gyro_cols: three-axis input: the gyro's x, y and z columns (in ``rate_unit``; a text
+            ``gx,gy,gz`` is split); the yaw rate is their component along ``up``. A bag's are
+            ``angular_velocity.x``, ``.y``, ``.z``.
+        accel_cols: the accelerometer's x, y and z columns [m/s^2], to measure ``up`` over the
+            rest window (a bag's are ``linear_acceleration.x``, ``.y``, ``.z``).
+        up: the sensor axis that points up (``x``, ``-y``, ...), a vector ``(x, y, z)`` or
+            ``"x,y,z"`` (normalised), or ``accel``: measured from the accelerometer (the
+            default when ``accel_cols`` is given). Giving any of the three reads three axes.
+        up_window: the rest window ``(t0, t1)`` [s] or :class:`gyrocore.window.Window` over
+            which ``up`` is measured; ``None``: the rest window of a log folder's meta.json.
     """
 
     time_col: str | None = None
@@ -58,8 +70,33 @@ class ReadOptions:
     topic: str | None = None
     delimiter: str = ","
     static: bool = False
+    gyro_cols: tuple[str, str, str] | None = None
+    accel_cols: tuple[str, str, str] | None = None
+    up: str | tuple[float, float, float] | None = None
+    up_window: tuple[float, float] | Window | None = None
 
     def __post_init__(self) -> None:
+        # normalised forms (the dataclass is frozen): column triples as tuples, up parsed
+        if self.gyro_cols is not None:
+            object.__setattr__(self, "gyro_cols", three_names(self.gyro_cols, "gyro_cols (--gyro-cols)"))
+        if self.accel_cols is not None:
+            object.__setattr__(self, "accel_cols", three_names(self.accel_cols, "accel_cols (--accel-cols)"))
+        if self.up is not None:
+            object.__setattr__(self, "up", parse_up(self.up))
+        if self.gyro_cols is not None and self.rate_col is not None:
+            raise ValueError(
+                f"rate_col {self.rate_col!r} (--rate-col) reads one axis and gyro_cols (--gyro-cols) three: give one"
+            )
+        if self.up_window is not None and not self.three_axis:
+            raise ValueError(
+                "up_window (--up-window) is where up is measured, for three-axis input: give gyro_cols and "
+                "accel_cols (--gyro-cols, --accel-cols) too"
+            )
+        if self.accel_cols is not None and self.up not in (None, MEASURED):
+            raise ValueError(
+                "up is given (--up) and accel_cols (--accel-cols) would measure it: give one "
+                f"(--up {MEASURED} with --accel-cols measures it)"
+            )
         if self.time_unit is not None and self.time_unit not in TIME_UNITS:
             raise ValueError(f"time_unit {self.time_unit!r} is not one of {', '.join(TIME_UNITS)}")
         if self.rate_unit is not None and self.rate_unit not in RATE_UNITS:
@@ -81,6 +118,16 @@ class ReadOptions:
     def rate(self) -> str:
         """The rate column of a named layout."""
         return self.rate_col or "gyro_z"
+
+    @property
+    def three_axis(self) -> bool:
+        """Whether the yaw rate is the projection of three gyro axes on ``up``."""
+        return self.gyro_cols is not None or self.accel_cols is not None or self.up is not None
+
+    @property
+    def measures_up(self) -> bool:
+        """Whether ``up`` is measured from the accelerometer (not given)."""
+        return self.three_axis and not isinstance(self.up, tuple)
 
 
 @dataclass(frozen=True, repr=False)
@@ -147,33 +194,69 @@ class GyroSource:
         return f"{error} ({self.data_path}, {self.where(error.index)})"
 
     def chunks(self, rows: int = DEFAULT_CHUNK_ROWS) -> Iterator[Chunk]:
-        """The samples, at most ``rows`` at a time, converted to SI units.
+        """The samples, at most ``rows`` at a time, converted to SI units (three-axis input: the
+        rate along :meth:`up`, projected chunk after chunk).
 
         Raises:
             ValueError: a malformed file (naming the file and the line, row or message), a missing
-                column, or an empty timestamp.
+                column, an empty timestamp, or an ``up`` that cannot be measured.
             ImportError: a bag without the ``rosbags`` package.
         """
         if rows < 1:
             raise ValueError(f"rows per chunk must be >= 1, got {rows}")
         import_pyarrow_lazy_modules()
-        readers = {
-            "csv": csv_chunks,
-            "log folder": csv_chunks,
-            "parquet": parquet_chunks,
-            "npy": npy_chunks,
-            "npz": npz_chunks,
-            "bag": bag_chunks,
-        }
+        o = self.options
+        up = self.up()
+        columns = (o.rate,) if o.gyro_cols is None else o.gyro_cols
         first = 0
-        for t_raw, rate_raw, per_second, done in readers[self.kind](self, rows):
-            t = _seconds(t_raw, per_second)
-            rate = np.asarray(rate_raw, dtype=np.float64)
-            if self.options.rate_unit == "deg/s":
+        for t, values, done in self._read(rows, columns):
+            rate = np.asarray(values[0] if up is None else project(values, up), dtype=np.float64)
+            if o.rate_unit == "deg/s":
                 rate = np.radians(rate)
             for start in range(0, len(t), rows):  # a CSV block can hold more than ``rows``
                 yield Chunk(t[start : start + rows], rate[start : start + rows], first + start, done)
             first += len(t)
+
+    def up(self) -> tuple[float, float, float] | None:
+        """The vector that points up in the sensor frame (not normalised), for three-axis input:
+        the one given, or the mean accelerometer reading over the rest window (``up_window``, else
+        the log folder's), which reads the file up to the window's end. None for one axis.
+
+        Raises:
+            ValueError: no rest window, or one without accelerometer readings or in which the
+                accelerometer does not read gravity (naming the file and the window).
+        """
+        o = self.options
+        if not o.three_axis:
+            return None
+        if isinstance(o.up, tuple):
+            return o.up
+        window = o.up_window if o.up_window is not None else self.stationary
+        if window is None or o.accel_cols is None:
+            raise ValueError(
+                f"{self.data_path}: up is measured from the accelerometer at rest, and no rest window is "
+                "given: give one (--bias-window or --bias-duration; up_window=), or give up (--up, up=)"
+            )
+        samples = self._read(DEFAULT_CHUNK_ROWS, o.accel_cols)
+        try:
+            return measure_up(self.data_path, window, ((t, values) for t, values, _ in samples))
+        finally:
+            samples.close()  # the reader closes its file
+
+    def _read(self, rows: int, columns: tuple[str, ...]) -> Generator[tuple[FloatArray, list[np.ndarray], int]]:
+        """(t [s], the ``columns`` as read, progress) of the format's reader, block after block."""
+        for t_raw, values, per_second, done in _READERS[self.kind](self, rows, columns):
+            yield _seconds(t_raw, per_second), values, done
+
+
+_READERS = {
+    "csv": csv_chunks,
+    "log folder": csv_chunks,
+    "parquet": parquet_chunks,
+    "npy": npy_chunks,
+    "npz": npz_chunks,
+    "bag": bag_chunks,
+}
 
 
 def _seconds(raw: np.ndarray, per_second: float) -> FloatArray:
@@ -201,7 +284,11 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
         options = ReadOptions(**kwargs)
     elif kwargs:
         raise TypeError("give either options or keywords, not both")
-    p = Path(path)
+    return _check_axes(_recognise(Path(path), options))
+
+
+def _recognise(p: Path, options: ReadOptions) -> GyroSource:
+    """The input ``p`` by its suffix or layout, its headers read."""
     if not p.exists():
         raise FileNotFoundError(_missing(p))
     if p.is_dir():
@@ -250,8 +337,26 @@ def _missing(path: Path) -> str:
 
 def _open_bag(path: Path, options: ReadOptions) -> GyroSource:
     """A bag on its Imu topic (the one given, or the only one), with the topic's message count."""
+    options = bag_columns(path, options)
     topic, count = imu_topic(path, options.topic)
     return GyroSource(path, "bag", path, replace(options, topic=topic), progress_total=count)
+
+
+def _check_axes(source: GyroSource) -> GyroSource:
+    """A three-axis file names its gyro columns, and its accelerometer's where up is measured
+    (a bag has them by name)."""
+    o = source.options
+    if o.three_axis and o.gyro_cols is None:
+        raise ValueError(
+            f"{source.data_path}: three-axis input (up, accel_cols) needs the gyro's three columns: "
+            "gyro_cols (--gyro-cols GX,GY,GZ)"
+        )
+    if o.three_axis and o.measures_up and o.accel_cols is None:
+        raise ValueError(
+            f"{source.data_path}: up is measured from the accelerometer: give its three columns, accel_cols "
+            "(--accel-cols AX,AY,AZ), or give up (--up x|y|z|-x|-y|-z|X,Y,Z)"
+        )
+    return source
 
 
 def is_input(path: Path) -> bool:

@@ -220,11 +220,21 @@ def header_options(path: Path, header: list[str] | None, options: ReadOptions) -
     if header is None:
         return replace(options, time_unit=options.time_unit or "s", rate_unit=options.rate_unit or "rad/s")
     time = _header_column(path, header, options.time, "--time-col")
-    rate = _header_column(path, header, options.rate, "--rate-col")
-    return replace(
-        options,
-        time_col=time,
-        rate_col=rate,
-        time_unit=_stated_unit(path, time, options.time_unit, "--time-unit", "s"),
-        rate_unit=_stated_unit(path, rate, options.rate_unit, "--rate-unit", "rad/s"),
-    )
+    time_unit = _stated_unit(path, time, options.time_unit, "--time-unit", "s")
+    if options.gyro_cols is None:
+        rate = _header_column(path, header, options.rate, "--rate-col")
+        rate_unit = _stated_unit(path, rate, options.rate_unit, "--rate-unit", "rad/s")
+        return replace(options, time_col=time, rate_col=rate, time_unit=time_unit, rate_unit=rate_unit)
+    gyro = _header_columns(path, header, options.gyro_cols, "--gyro-cols")
+    units = [_stated_unit(path, c, options.rate_unit, "--rate-unit", "rad/s") for c in gyro]
+    if len(set(units)) > 1:
+        read = ", ".join(f"{c!r} as {u}" for c, u in zip(gyro, units))
+        raise ValueError(f"{path}: the gyro columns read in different units ({read}): give each its unit in the header")
+    accel = None if options.accel_cols is None else _header_columns(path, header, options.accel_cols, "--accel-cols")
+    return replace(options, time_col=time, gyro_cols=gyro, accel_cols=accel, time_unit=time_unit, rate_unit=units[0])
+
+
+def _header_columns(path: Path, header: list[str], wanted: tuple[str, str, str], option: str) -> tuple[str, str, str]:
+    """The header names of the three columns ``wanted`` (see :func:`_header_column`)."""
+    x, y, z = (_header_column(path, header, c, option) for c in wanted)
+    return (x, y, z)

@@ -9,7 +9,7 @@ mod table;
 
 use gyrocore::{
     check_block, Downsample, DownsampleConfig, Error, Integrator, IntegratorConfig, Outputs,
-    Pipeline, PipelineConfig, Preset, Stage,
+    Pipeline, PipelineConfig, Preset, Stage, Up,
 };
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
@@ -306,6 +306,22 @@ fn integrate<'py>(
     Ok(heading)
 }
 
+/// The yaw rate of a three-axis gyro: `(x, y, z) . up` per sample, `up` normalised.
+#[pyfunction]
+fn project_up<'py>(
+    py: Python<'py>,
+    x: PyReadonlyArray1<'py, f64>,
+    y: PyReadonlyArray1<'py, f64>,
+    z: PyReadonlyArray1<'py, f64>,
+    up: [f64; 3],
+) -> PyResult<Array<'py>> {
+    let (x, y, z) = (slice("x", &x)?, slice("y", &y)?, slice("z", &z)?);
+    let up = Up::new(up).map_err(value_error)?;
+    let rate = zeros(py, x.len());
+    fill([&rate], |[r]| py.detach(|| up.project_block(x, y, z, r)))?.map_err(value_error)?;
+    Ok(rate)
+}
+
 /// The static bias test over `[start, end]`: (bias [rad/s], readings, noise [rad/s] or None,
 /// bias standard error [rad/s] or None), by the estimator the pipeline's rest window uses.
 #[pyfunction]
@@ -374,6 +390,7 @@ fn _gyrocore(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
     m.add_function(wrap_pyfunction!(downsample, m)?)?;
     m.add_function(wrap_pyfunction!(static_bias_test, m)?)?;
+    m.add_function(wrap_pyfunction!(project_up, m)?)?;
     allan::register(m)?;
     sim::register(m)?;
     table::register(m)?;
