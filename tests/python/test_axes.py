@@ -183,6 +183,9 @@ def test_up_x_on_a_euroc_like_log_is_the_x_axis_exactly(tmp_path: Path) -> None:
     # an axis pointing down reads the rate with its sign turned
     gyrocore_cli("process", euroc, *common, *gyro_cols, "--up=-x", "--out", tmp_path / "down.csv", code=0)
     assert np.array_equal(read_heading(tmp_path / "down.csv")[:, 1], -read_heading(tmp_path / "up.csv")[:, 1])
+    # and written as two words, as a user types it
+    gyrocore_cli("process", euroc, *common, *gyro_cols, "--up", "-x", "--out", tmp_path / "down2.csv", code=0)
+    assert (tmp_path / "down2.csv").read_bytes() == (tmp_path / "down.csv").read_bytes()
 
 
 def test_a_bag_measures_up_from_linear_acceleration(tmp_path: Path) -> None:

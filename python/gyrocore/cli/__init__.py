@@ -28,13 +28,29 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+#: Options whose value may begin with ``-`` (an axis such as ``-x``), which argparse would take
+#: for an option of its own.
+SIGNED_VALUES = ("--up",)
+
+
+def attach_signed_values(argv: Sequence[str]) -> list[str]:
+    """``--up -x`` as ``--up=-x``: the value that follows an option of :data:`SIGNED_VALUES` is
+    its value, whatever it begins with."""
+    out: list[str] = []
+    args = iter(argv)
+    for arg in args:
+        value = next(args, None) if arg in SIGNED_VALUES else None
+        out.append(arg if value is None else f"{arg}={value}")
+    return out
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command; user errors print one line ``gyrocore: error: ...`` and return 2, warnings
     one line ``gyrocore: warning: ...``; Ctrl-C or SIGTERM, whenever it comes, returns 130 with
     every output as it was before the run."""
     with _signals.handled():
         try:
-            args = build_parser().parse_args(argv)
+            args = build_parser().parse_args(attach_signed_values(sys.argv[1:] if argv is None else argv))
             with warnings.catch_warnings():
                 warnings.showwarning = show_warning
                 return int(args.func(args))

@@ -70,8 +70,7 @@ def add_reading_options(parser: argparse.ArgumentParser) -> None:
     axes.add_argument("--gyro-cols", metavar="GX,GY,GZ", help="the gyro's x, y and z columns (in --rate-unit)")
     axes.add_argument("--accel-cols", metavar="AX,AY,AZ",
                       help="the accelerometer's x, y and z columns [m/s^2]: up is their mean over the rest window")
-    axes.add_argument("--up", metavar="UP", help=f"the sensor axis that points up: {io.UP_HELP}; "
-                      "write --up=-x for a negative one")
+    axes.add_argument("--up", metavar="UP", help=f"the sensor axis that points up: {io.UP_HELP}")
     axes.add_argument("--up-window", nargs=2, metavar=("T0", "T1"),
                       help=f"rest window over which up is measured: {WINDOW_HELP} (default: --bias-window, "
                       "--bias-duration, or a log folder's rest window)")
