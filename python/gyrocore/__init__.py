@@ -36,14 +36,15 @@ from .pipeline import (
 )
 
 if TYPE_CHECKING:
-    from . import allan, batch, calibration, deadband, deadreckon, evaluate, io, motion, paper, sim, tune
+    from . import allan, batch, calibration, deadband, deadreckon, evaluate, fixes, io, motion, paper, sim, tune
+    from .fixes import fuse
     from .evaluate import HeadingErrors, heading_errors
     from .io import Log, read_log
 
-_SUBMODULES = ("allan", "batch", "calibration", "deadband", "deadreckon", "evaluate", "io", "motion", "paper",
-               "sim", "tune")
+_SUBMODULES = ("allan", "batch", "calibration", "deadband", "deadreckon", "evaluate", "fixes", "io", "motion",
+               "paper", "sim", "tune")
 #: Names of the package taken from a submodule, loaded with it.
-_FROM = {"HeadingErrors": "evaluate", "heading_errors": "evaluate", "Log": "io", "read_log": "io"}
+_FROM = {"HeadingErrors": "evaluate", "heading_errors": "evaluate", "Log": "io", "read_log": "io", "fuse": "fixes"}
 
 
 def __getattr__(name: str) -> Any:
@@ -75,6 +76,8 @@ __all__ = [
     "deadreckon",
     "downsample",
     "evaluate",
+    "fixes",
+    "fuse",
     "heading_errors",
     "integrate",
     "io",
