@@ -24,6 +24,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
+from ._extras import require
 from .io._csvfile import read_csv_columns
 
 #: The filter's settings and their units (defaults: the core's ``FusionConfig::default``).
@@ -176,3 +177,40 @@ def read_fixes_csv(path: str | Path) -> Fixes:
     """A log folder's ``fixes.csv``: t [s], heading [rad, CCW from east], sigma [rad]."""
     cols = read_csv_columns(Path(path), ("t", "heading", "sigma"))
     return Fixes(cols["t"], cols["heading"], cols["sigma"])
+
+
+#: Metres per second in a knot and in a km/h (NMEA's speed units).
+KNOT, KMH = 1852.0 / 3600.0, 1.0 / 3.6
+
+
+def read_nmea(path: str | Path, **options: float) -> Fixes:
+    """Fixes from NMEA 0183 sentences (parsed by pynmea2, the ``nmea`` extra): course over ground
+    and speed of valid RMC sentences, at their UTC date and time as Unix seconds; a VTG sentence
+    supplies the course of the RMC/GGA epoch just before it where that RMC had none. Other
+    sentences are skipped; a line pynmea2 cannot parse is an error naming the file and line. The
+    times are UTC: shift them onto the gyro's clock before fusing. ``options`` go to
+    :func:`from_gnss`.
+    """
+    pynmea2 = require("pynmea2", "reading NMEA sentences")
+    path = Path(path)
+    epochs: dict[float, tuple[float, float]] = {}
+    last: float | None = None
+    with path.open(encoding="ascii", errors="replace") as f:
+        for number, line in enumerate(f, start=1):
+            if not line.strip():
+                continue
+            try:
+                msg = pynmea2.parse(line.strip())
+            except pynmea2.ParseError as e:
+                raise ValueError(f"{path}: line {number}: not an NMEA sentence ({e}); remove or repair the line") from None
+            if isinstance(msg, pynmea2.RMC) and msg.status == "A" and msg.datestamp and msg.timestamp:
+                last = msg.datetime.timestamp()
+                if msg.true_course is not None and msg.spd_over_grnd is not None:
+                    epochs[last] = (float(msg.true_course), float(msg.spd_over_grnd) * KNOT)
+            elif isinstance(msg, pynmea2.VTG) and last is not None and last not in epochs:
+                if msg.true_track is not None and msg.spd_over_grnd_kmph is not None:
+                    epochs[last] = (float(msg.true_track), float(msg.spd_over_grnd_kmph) * KMH)
+    t = np.array(sorted(epochs), dtype=float)
+    course = np.array([epochs[k][0] for k in t], dtype=float)
+    speed = np.array([epochs[k][1] for k in t], dtype=float)
+    return from_gnss(t, course, speed, **options)

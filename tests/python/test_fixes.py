@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import gyrocore
-from gyrocore.fixes import Fixes, Fusion, from_gnss, fuse, read_fixes_csv, read_gnss_csv
+from gyrocore.fixes import Fixes, Fusion, from_gnss, fuse, read_fixes_csv, read_gnss_csv, read_nmea
 
 DATA = Path(__file__).resolve().parents[3] / "shared" / "data" / "real"
 BIAS, SCALE = 0.01, 0.02
@@ -138,3 +138,22 @@ def test_a_fixes_csv_is_read(tmp_path: Path) -> None:
     path.write_text("t,heading,sigma\n0.5,1.0,0.01\n1.5,1.1,0.02\n")
     fixes = read_fixes_csv(path)
     assert list(fixes.t) == [0.5, 1.5] and list(fixes.heading) == [1.0, 1.1] and list(fixes.sigma) == [0.01, 0.02]
+
+
+def test_nmea_rmc_and_vtg_become_fixes(tmp_path: Path) -> None:
+    pynmea2 = pytest.importorskip("pynmea2")
+    rmc = [("123519", "084.4", "022.4"), ("123520", "", ""), ("123521", "270.0", "010.0")]
+    lines = [str(pynmea2.RMC("GP", "RMC", (time, "A", "4807.038", "N", "01131.000", "E", speed, course, "230394",
+                                                "003.1", "W"))) for time, course, speed in rmc]
+    # The VTG after the second RMC gives that epoch its course (180 deg true, 36 km/h).
+    lines.insert(2, str(pynmea2.VTG("GP", "VTG", ("180.0", "T", "", "M", "", "N", "36.0", "K"))))
+    path = tmp_path / "drive.nmea"
+    path.write_text("\n".join(lines) + "\n")
+    fixes = read_nmea(path)
+    t0 = 764426119.0  # 1994-03-23 12:35:19 UTC
+    np.testing.assert_array_equal(fixes.t, [t0, t0 + 1, t0 + 2])
+    expected = np.radians([90 - 84.4, -90.0, 180.0])
+    np.testing.assert_allclose(np.angle(np.exp(1j * (fixes.heading - expected))), 0.0, atol=1e-12)
+    path.write_text(lines[0] + "\nnot nmea\n")
+    with pytest.raises(ValueError, match=r"drive.nmea: line 2: not an NMEA sentence"):
+        read_nmea(path)
