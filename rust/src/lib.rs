@@ -47,6 +47,7 @@ mod block;
 pub mod correction;
 mod error;
 pub mod fixes;
+mod fixes_error;
 pub mod fixes_smooth;
 pub mod hdr;
 pub mod input;
