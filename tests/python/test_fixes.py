@@ -157,3 +157,13 @@ def test_nmea_rmc_and_vtg_become_fixes(tmp_path: Path) -> None:
     path.write_text(lines[0] + "\nnot nmea\n")
     with pytest.raises(ValueError, match=r"drive.nmea: line 2: not an NMEA sentence"):
         read_nmea(path)
+
+
+def test_a_stream_names_a_fix_older_than_its_samples() -> None:
+    t, heading, rate = drive(20.0)
+    stream = Fusion()
+    stream.process(t[:500], rate[:500])
+    late = Fixes.of([t[100]], [0.0], 0.01)
+    with pytest.raises(ValueError, match=r"fix 0: t = 2 comes before the last gyro sample processed"):
+        stream.process(t[500:], rate[500:], late)
+    assert stream.counts() == {"applied": 0, "rejected": 0, "before_start": 0, "waiting": 0}
