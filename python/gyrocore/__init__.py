@@ -37,15 +37,17 @@ from .pipeline import (
 
 if TYPE_CHECKING:
     from . import (
-        allan, batch, calibration, datasets, deadband, deadreckon, evaluate, io, motion, paper, sim, tune, wholelog,
+        allan, batch, calibration, datasets, deadband, deadreckon, evaluate, fixes, io, motion, paper, sim, tune,
+        wholelog,
     )
     from .evaluate import HeadingErrors, heading_errors
+    from .fixes import fuse
     from .io import Log, read_log
 
-_SUBMODULES = ("allan", "batch", "calibration", "datasets", "deadband", "deadreckon", "evaluate", "io", "motion",
-               "paper", "sim", "tune", "wholelog")
+_SUBMODULES = ("allan", "batch", "calibration", "datasets", "deadband", "deadreckon", "evaluate", "fixes", "io",
+               "motion", "paper", "sim", "tune", "wholelog")
 #: Names of the package taken from a submodule, loaded with it.
-_FROM = {"HeadingErrors": "evaluate", "heading_errors": "evaluate", "Log": "io", "read_log": "io"}
+_FROM = {"HeadingErrors": "evaluate", "heading_errors": "evaluate", "Log": "io", "read_log": "io", "fuse": "fixes"}
 
 
 def __getattr__(name: str) -> Any:
@@ -77,6 +79,8 @@ __all__ = [
     "deadreckon",
     "downsample",
     "evaluate",
+    "fixes",
+    "fuse",
     "heading_errors",
     "integrate",
     "io",

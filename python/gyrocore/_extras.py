@@ -20,6 +20,7 @@ EXTRAS = {
     "rosbags": "ros",
     "dask": "dask",
     "distributed": "dask",
+    "pynmea2": "nmea",
 }
 
 

@@ -9,8 +9,9 @@ _F = NDArray[np.float64]
 
 __all__ = [
     "Pipeline", "SampleError", "preset_params", "preset_names", "parameter_names", "preset_uses_static_bias",
-    "_panic_for_test", "integrate", "downsample", "static_bias_test", "project_up", "allan_variances", "gyro_measure", "gyro_sample_times",
-    "gyro_allan_deviation", "gyro_parameter_names", "format_csv_rows", "__version__",
+    "_panic_for_test", "integrate", "downsample", "static_bias_test", "project_up", "allan_variances", "gyro_measure",
+    "gyro_sample_times", "gyro_allan_deviation", "gyro_parameter_names", "format_csv_rows", "fuse", "Fusion",
+    "__version__",
 ]
 
 __version__: str
@@ -56,6 +57,24 @@ def static_bias_test(
 ) -> tuple[float, int, float | None, float | None]: ...
 def project_up(x: _F, y: _F, z: _F, up: tuple[float, float, float]) -> _F: ...
 def _panic_for_test() -> None: ...
+def fuse(
+    t: _F,
+    rate: _F,
+    fix_t: _F,
+    fix_heading: _F,
+    fix_sigma: _F,
+    settings: dict[str, float] | None = None,
+    smoothed: bool = False,
+) -> tuple[_F, _F, _F, _F, dict[str, int]]: ...
+@final
+class Fusion:
+    def __new__(cls, settings: dict[str, float] | None = None) -> Fusion: ...
+    def process(self, t: _F, rate: _F, fix_t: _F, fix_heading: _F, fix_sigma: _F) -> tuple[_F, _F, _F, _F]: ...
+    def counts(self) -> tuple[int, int, int, int]: ...
+    def settings(self) -> dict[str, float]: ...
+    def state_json(self) -> str: ...
+    @staticmethod
+    def from_state_json(state: str) -> Fusion: ...
 def allan_variances(
     data: _F, tau0: float, factors: list[int], kind: str, is_rate: bool
 ) -> tuple[_F, NDArray[np.uint64]]: ...

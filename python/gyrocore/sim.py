@@ -25,13 +25,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, field, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _gyrocore, motion
 from ._arrays import FloatArray, as_float_array
+
+if TYPE_CHECKING:
+    from .fixes import Fixes
 
 _DEG = math.pi / 180.0
 _HOUR = 3600.0
@@ -370,3 +373,33 @@ def car_drive(
     """
     route = motion.car(duration, mix=mix, seed=seed, rest=rest)
     return simulate(route, sensor(sensor_name, rate_hz=rate_hz, **changes), seed=seed)
+
+
+def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: float = 1.0,
+               sigma_deg: float = 1.0, outages: tuple[tuple[float, float], ...] = ()) -> Fixes:
+    """SIMULATED heading fixes of a GNSS receiver following a reference track (not measured).
+
+    A fix every ``1 / rate_hz`` seconds from the reference's first time, its heading the reference
+    (unwrapped and linearly interpolated, rad, counter-clockwise from east) plus white Gaussian
+    noise of ``sigma_deg``, which is also the fix's sigma; none inside any outage ``(start, end)``
+    [s, on the reference's clock]. Same arguments, same fixes (numpy's PCG64 seeded with ``seed``).
+    """
+    from .fixes import Fixes
+
+    t = as_float_array("t_ref", t_ref)
+    psi = np.unwrap(as_float_array("heading_ref", heading_ref))
+    if len(t) < 2:
+        raise ValueError("the reference needs at least two samples")
+    for name, value in (("rate_hz", rate_hz), ("sigma_deg", sigma_deg)):
+        if not (math.isfinite(value) and value > 0):
+            raise ValueError(f"{name} must be finite and > 0, got {value}")
+    tf = t[0] + np.arange(int((t[-1] - t[0]) * rate_hz) + 1) / rate_hz
+    keep = np.ones(len(tf), dtype=bool)
+    for start, end in outages:
+        if not end > start:
+            raise ValueError(f"an outage must end after it starts, got ({start}, {end})")
+        keep &= (tf < start) | (tf >= end)
+    rng = np.random.Generator(np.random.PCG64(_seed(seed)))
+    sigma = math.radians(sigma_deg)
+    noisy = np.interp(tf, t, psi) + sigma * rng.standard_normal(len(tf))
+    return Fixes.of(tf[keep], np.angle(np.exp(1j * noisy[keep])), sigma)

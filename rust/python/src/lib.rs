@@ -2,6 +2,7 @@
 //! core, and move results into numpy without copying.
 
 mod allan;
+mod fixes;
 mod params;
 mod prefault;
 mod sim;
@@ -392,6 +393,7 @@ fn _gyrocore(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(static_bias_test, m)?)?;
     m.add_function(wrap_pyfunction!(project_up, m)?)?;
     allan::register(m)?;
+    fixes::register(m)?;
     sim::register(m)?;
     table::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -1,0 +1,216 @@
+"""Absolute heading fixes fused with the gyro: heading, bias and scale estimated online.
+
+A fix is ``(t, heading, sigma)``: time [s] on the gyro's clock, heading [rad, counter-clockwise
+from east, as the logs' ``reference.csv``] and its standard deviation [rad]. Fixes come from a
+GNSS receiver's course over ground (:func:`from_gnss`, :func:`read_gnss_csv`), a log folder's
+``fixes.csv`` (:func:`read_fixes_csv`), or a simulated receiver (:func:`gyrocore.sim.gnss_fixes`).
+
+:func:`fuse` runs the core's 3-state Kalman filter (heading, and Hong eq 3's scale and bias: the
+recursive form of Hong eq 4-7's least squares) over a whole log, causal or smoothed
+(Rauch-Tung-Striebel); :class:`Fusion` is the same filter for a stream, bit-identical however the
+stream is cut, and picklable. The noise settings are the gyro's Allan parameters: ``arw`` (N,
+rad/sqrt(s)) and ``bias_walk`` (rate random walk K, rad/s/sqrt(s)); see docs/fixes.md.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from . import _gyrocore
+from ._arrays import FloatArray, as_float_array
+from ._extras import require
+from .io._csvfile import read_csv_columns
+
+#: The filter's settings and their units (defaults: the core's ``FusionConfig::default``).
+SETTINGS = ("arw", "bias_walk", "scale_walk", "initial_heading", "initial_heading_sigma", "initial_bias",
+            "initial_bias_sigma", "initial_scale_sigma", "gate")
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class Fixes:
+    """Absolute headings: times [s], headings [rad, CCW from east], standard deviations [rad]."""
+
+    t: FloatArray
+    heading: FloatArray
+    sigma: FloatArray
+
+    def __post_init__(self) -> None:
+        if not (len(self.t) == len(self.heading) == len(self.sigma)):
+            raise ValueError(f"fix t, heading and sigma must have one length, got {len(self.t)}, "
+                             f"{len(self.heading)} and {len(self.sigma)}")
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    def __repr__(self) -> str:
+        return f"Fixes({len(self)} fixes)"
+
+    @classmethod
+    def of(cls, t: ArrayLike, heading: ArrayLike, sigma: ArrayLike | float) -> Fixes:
+        """Fixes from arrays (``sigma`` may be one number for all)."""
+        tt = as_float_array("fix t", t)
+        s = np.full(len(tt), sigma) if isinstance(sigma, (int, float)) else as_float_array("fix sigma", sigma)
+        return cls(tt, as_float_array("fix heading", heading), s)
+
+    @classmethod
+    def empty(cls) -> Fixes:
+        """No fixes."""
+        return cls.of([], [], [])
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class FusionResult:
+    """Per gyro sample: heading [rad, continuous], its standard deviation [rad], bias [rad/s,
+    what the gyro reads at rest] and scale error (Hong eq 1: the gyro reads ``(1 + s) r + b``)."""
+
+    t: FloatArray
+    heading: FloatArray
+    heading_sigma: FloatArray
+    bias: FloatArray
+    scale: FloatArray
+    counts: dict[str, int]
+    """Fixes ``applied``, ``rejected`` by the outlier gate, ``before_start`` (before the first gyro
+    sample: skipped) and ``after_end`` (after the last: unused)."""
+
+    def __repr__(self) -> str:
+        return f"FusionResult({len(self.t)} samples, fixes {self.counts})"
+
+
+def fuse(t: ArrayLike, rate: ArrayLike, fixes: Fixes, *, mode: Literal["causal", "smoothed"] = "causal",
+         **settings: float) -> FusionResult:
+    """Heading, bias and scale of a whole log from its gyro and its fixes.
+
+    Args:
+        t: gyro times [s], strictly increasing.
+        rate: gyro readings [rad/s], counter-clockwise positive.
+        fixes: the absolute headings (sorted by time; NaN, sigma <= 0 or a step back is an error
+            naming the fix; fixes before the first gyro sample are counted and skipped).
+        mode: ``"causal"`` (each sample sees the fixes up to its time) or ``"smoothed"`` (the
+            Rauch-Tung-Striebel smoother: each sees all fixes; whole logs only).
+        settings: filter settings (:data:`SETTINGS`), SI units.
+    """
+    if mode not in ("causal", "smoothed"):
+        raise ValueError(f"mode must be 'causal' or 'smoothed', got {mode!r}")
+    tt, r = as_float_array("t", t), as_float_array("rate", rate)
+    h, s, b, sc, counts = _gyrocore.fuse(tt, r, fixes.t, fixes.heading, fixes.sigma, _settings(settings),
+                                          mode == "smoothed")
+    return FusionResult(tt, h, s, b, sc, dict(counts))
+
+
+def _settings(settings: dict[str, float]) -> dict[str, float]:
+    unknown = sorted(set(settings) - set(SETTINGS))
+    if unknown:
+        raise TypeError(f"unknown fusion setting(s) {', '.join(unknown)}; choose from {', '.join(SETTINGS)}")
+    return {k: float(v) for k, v in settings.items()}
+
+
+class Fusion:
+    """The filter for a stream: ``process(t, rate, fixes)`` per block, the fixes of a block given
+    with it or earlier (fixes past the block's last sample wait for the next block). Chunked runs
+    and pickled copies are bit-identical to one call."""
+
+    def __init__(self, **settings: float) -> None:
+        self._inner = _gyrocore.Fusion(_settings(settings))
+
+    def process(self, t: ArrayLike, rate: ArrayLike, fixes: Fixes | None = None) -> FusionResult:
+        """Processes one block; returns the estimate after each of its samples."""
+        f = Fixes.empty() if fixes is None else fixes
+        tt, r = as_float_array("t", t), as_float_array("rate", rate)
+        h, s, b, sc = self._inner.process(tt, r, f.t, f.heading, f.sigma)
+        return FusionResult(tt, h, s, b, sc, self.counts())
+
+    def counts(self) -> dict[str, int]:
+        """Fixes applied, rejected, before_start, and waiting for a later block."""
+        applied, rejected, before, waiting = self._inner.counts()
+        return {"applied": applied, "rejected": rejected, "before_start": before, "waiting": waiting}
+
+    def settings(self) -> dict[str, float]:
+        """The filter's settings."""
+        return dict(self._inner.settings())
+
+    def __getstate__(self) -> dict[str, Any]:
+        return {"state": self._inner.state_json()}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self._inner = _gyrocore.Fusion.from_state_json(state["state"])
+
+
+def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_speed: float = 2.0,
+              speed_sigma: float = 0.2, min_sigma_deg: float = 0.5) -> Fixes:
+    """Fixes from a GNSS receiver's course over ground.
+
+    The bearing is clockwise from north [deg]; the project's heading is counter-clockwise from
+    east, so ``heading = pi/2 - radians(bearing)``. Course over ground is the direction of the
+    velocity, so its error grows as the speed falls: ``sigma = hypot(min_sigma, speed_sigma /
+    speed)`` [rad] for a velocity error ``speed_sigma`` [m/s]; below ``min_speed`` [m/s] the
+    course is meaningless (a car at rest has none) and the sample is dropped. Assumes the vehicle
+    moves the way it points (no side slip, forward gear).
+    """
+    tt = as_float_array("t", t)
+    bearing = as_float_array("bearing_deg", bearing_deg)
+    v = as_float_array("speed", speed)
+    if not (len(tt) == len(bearing) == len(v)):
+        raise ValueError(f"t, bearing_deg and speed must have one length, got {len(tt)}, {len(bearing)}, {len(v)}")
+    for name, value in (("min_speed", min_speed), ("speed_sigma", speed_sigma), ("min_sigma_deg", min_sigma_deg)):
+        if not (math.isfinite(value) and value > 0):
+            raise ValueError(f"{name} must be finite and > 0, got {value}")
+    keep = np.isfinite(bearing) & np.isfinite(v) & (v >= min_speed)
+    heading = np.angle(np.exp(1j * (math.pi / 2 - np.radians(bearing[keep]))))
+    sigma = np.hypot(math.radians(min_sigma_deg), speed_sigma / v[keep])
+    return Fixes(tt[keep], heading, sigma)
+
+
+def read_gnss_csv(path: str | Path, **options: float) -> Fixes:
+    """Fixes from a ``gnss.csv`` like comma_seg40's (t, speed [m/s], bearing [deg, clockwise from
+    north]), through :func:`from_gnss` (its options pass on)."""
+    cols = read_csv_columns(Path(path), ("t", "speed", "bearing"))
+    return from_gnss(cols["t"], cols["bearing"], cols["speed"], **options)
+
+
+def read_fixes_csv(path: str | Path) -> Fixes:
+    """A log folder's ``fixes.csv``: t [s], heading [rad, CCW from east], sigma [rad]."""
+    cols = read_csv_columns(Path(path), ("t", "heading", "sigma"))
+    return Fixes(cols["t"], cols["heading"], cols["sigma"])
+
+
+#: Metres per second in a knot and in a km/h (NMEA's speed units).
+KNOT, KMH = 1852.0 / 3600.0, 1.0 / 3.6
+
+
+def read_nmea(path: str | Path, **options: float) -> Fixes:
+    """Fixes from NMEA 0183 sentences (parsed by pynmea2, the ``nmea`` extra): course over ground
+    and speed of valid RMC sentences, at their UTC date and time as Unix seconds; a VTG sentence
+    supplies the course of the RMC/GGA epoch just before it where that RMC had none. Other
+    sentences are skipped; a line pynmea2 cannot parse is an error naming the file and line. The
+    times are UTC: shift them onto the gyro's clock before fusing. ``options`` go to
+    :func:`from_gnss`.
+    """
+    pynmea2 = require("pynmea2", "reading NMEA sentences")
+    path = Path(path)
+    epochs: dict[float, tuple[float, float]] = {}
+    last: float | None = None
+    with path.open(encoding="ascii", errors="replace") as f:
+        for number, line in enumerate(f, start=1):
+            if not line.strip():
+                continue
+            try:
+                msg = pynmea2.parse(line.strip())
+            except pynmea2.ParseError as e:
+                raise ValueError(f"{path}: line {number}: not an NMEA sentence ({e}); remove or repair the line") from None
+            if isinstance(msg, pynmea2.RMC) and msg.status == "A" and msg.datestamp and msg.timestamp:
+                last = msg.datetime.timestamp()
+                if msg.true_course is not None and msg.spd_over_grnd is not None:
+                    epochs[last] = (float(msg.true_course), float(msg.spd_over_grnd) * KNOT)
+            elif isinstance(msg, pynmea2.VTG) and last is not None and last not in epochs:
+                if msg.true_track is not None and msg.spd_over_grnd_kmph is not None:
+                    epochs[last] = (float(msg.true_track), float(msg.spd_over_grnd_kmph) * KMH)
+    t = np.array(sorted(epochs), dtype=float)
+    course = np.array([epochs[k][0] for k in t], dtype=float)
+    speed = np.array([epochs[k][1] for k in t], dtype=float)
+    return from_gnss(t, course, speed, **options)

@@ -1,0 +1,281 @@
+//! Bindings of the heading-fix filter and its smoother (`gyrocore.fixes` documents the Python
+//! API). Settings arrive as a flat dict of SI values named like the core's `FusionConfig`.
+
+use gyrocore::fixes_smooth::Step;
+use gyrocore::{smooth, Fix, FixCounts, Fusion, FusionConfig, FusionError, FusionOutputs};
+use numpy::PyReadonlyArray1;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::{fill, slice, value_error, zeros, Array};
+
+/// The settings keys, with their units.
+const FIELDS: &[&str] = &[
+    "arw [rad/sqrt(s)]",
+    "bias_walk [rad/s/sqrt(s)]",
+    "scale_walk [1/sqrt(s)]",
+    "initial_heading [rad]",
+    "initial_heading_sigma [rad]",
+    "initial_bias [rad/s]",
+    "initial_bias_sigma [rad/s]",
+    "initial_scale_sigma [1]",
+    "gate [1]",
+];
+
+/// The core configuration from the settings dict (defaults for the keys it lacks).
+fn config_from(settings: Option<&Bound<'_, PyDict>>) -> PyResult<FusionConfig> {
+    let mut c = FusionConfig::default();
+    let Some(settings) = settings else {
+        return Ok(c);
+    };
+    for (key, value) in settings.iter() {
+        let key: String = key.extract()?;
+        let value: f64 = value.extract().map_err(|_| {
+            PyValueError::new_err(format!("fusion setting '{key}' must be a number"))
+        })?;
+        let field = match key.as_str() {
+            "arw" => &mut c.arw,
+            "bias_walk" => &mut c.bias_walk,
+            "scale_walk" => &mut c.scale_walk,
+            "initial_heading" => &mut c.initial_heading,
+            "initial_heading_sigma" => &mut c.initial_heading_sigma,
+            "initial_bias" => &mut c.initial_bias,
+            "initial_bias_sigma" => &mut c.initial_bias_sigma,
+            "initial_scale_sigma" => &mut c.initial_scale_sigma,
+            "gate" => &mut c.gate,
+            _ => {
+                return Err(PyValueError::new_err(format!(
+                    "unknown fusion setting '{key}'; choose from {}",
+                    FIELDS.join(", ")
+                )))
+            }
+        };
+        *field = value;
+    }
+    c.validate().map_err(value_error)?;
+    Ok(c)
+}
+
+fn fusion_error(e: FusionError) -> PyErr {
+    match e {
+        FusionError::Gyro(e) => value_error(e),
+        e => PyValueError::new_err(e.to_string()),
+    }
+}
+
+/// Fixes from three arrays of one length.
+fn fixes_from(
+    t: &PyReadonlyArray1<'_, f64>,
+    heading: &PyReadonlyArray1<'_, f64>,
+    sigma: &PyReadonlyArray1<'_, f64>,
+) -> PyResult<Vec<Fix>> {
+    let (t, h, s) = (
+        slice("fix t", t)?,
+        slice("fix heading", heading)?,
+        slice("fix sigma", sigma)?,
+    );
+    if h.len() != t.len() || s.len() != t.len() {
+        return Err(PyValueError::new_err(format!(
+            "fix t, heading and sigma must have one length, got {}, {} and {}",
+            t.len(),
+            h.len(),
+            s.len()
+        )));
+    }
+    Ok(t.iter()
+        .zip(h)
+        .zip(s)
+        .map(|((&t, &heading), &sigma)| Fix { t, heading, sigma })
+        .collect())
+}
+
+fn counts_dict<'py>(
+    py: Python<'py>,
+    c: FixCounts,
+    after_end: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("applied", c.applied)?;
+    d.set_item("rejected", c.rejected)?;
+    d.set_item("before_start", c.before_start)?;
+    d.set_item("after_end", after_end)?;
+    Ok(d)
+}
+
+type Columns<'py> = (Array<'py>, Array<'py>, Array<'py>, Array<'py>);
+
+/// Runs the filter over one block into four new arrays; `steps` collects the smoother's steps.
+fn run<'py>(
+    py: Python<'py>,
+    fusion: &mut Fusion,
+    t: &[f64],
+    rate: &[f64],
+    fixes: &[Fix],
+    steps: Option<&mut Vec<Step>>,
+) -> PyResult<(Columns<'py>, usize)> {
+    let n = t.len();
+    let cols = (zeros(py, n), zeros(py, n), zeros(py, n), zeros(py, n));
+    let used = fill([&cols.0, &cols.1, &cols.2, &cols.3], |[h, s, b, sc]| {
+        py.detach(|| {
+            let out = FusionOutputs {
+                heading: h,
+                heading_sigma: s,
+                bias: b,
+                scale: sc,
+            };
+            match steps {
+                Some(steps) => {
+                    steps.reserve(n + fixes.len());
+                    fusion.process_block_recording(t, rate, fixes, out, |s| steps.push(s))
+                }
+                None => fusion.process_block(t, rate, fixes, out),
+            }
+        })
+    })?
+    .map_err(fusion_error)?;
+    Ok((cols, used))
+}
+
+/// Whole-log fusion: (heading, heading_sigma, bias, scale, counts), causal or smoothed.
+#[pyfunction]
+#[pyo3(signature = (t, rate, fix_t, fix_heading, fix_sigma, settings=None, smoothed=false))]
+#[allow(clippy::too_many_arguments)]
+fn fuse<'py>(
+    py: Python<'py>,
+    t: PyReadonlyArray1<'py, f64>,
+    rate: PyReadonlyArray1<'py, f64>,
+    fix_t: PyReadonlyArray1<'py, f64>,
+    fix_heading: PyReadonlyArray1<'py, f64>,
+    fix_sigma: PyReadonlyArray1<'py, f64>,
+    settings: Option<&Bound<'py, PyDict>>,
+    smoothed: bool,
+) -> PyResult<(
+    Array<'py>,
+    Array<'py>,
+    Array<'py>,
+    Array<'py>,
+    Bound<'py, PyDict>,
+)> {
+    let mut fusion = Fusion::new(config_from(settings)?).map_err(value_error)?;
+    let fixes = fixes_from(&fix_t, &fix_heading, &fix_sigma)?;
+    let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
+    let mut steps = Vec::new();
+    let (cols, used) = run(
+        py,
+        &mut fusion,
+        t,
+        rate,
+        &fixes,
+        smoothed.then_some(&mut steps),
+    )?;
+    if smoothed {
+        fill([&cols.0, &cols.1, &cols.2, &cols.3], |[h, s, b, sc]| {
+            py.detach(|| {
+                // Singular steps cannot happen with validated settings (all variances > 0).
+                smooth(&mut steps);
+                let samples = steps.iter().filter(|s| s.sample).map(Step::estimate);
+                for (k, e) in samples.enumerate() {
+                    (h[k], s[k], b[k], sc[k]) = (e.heading, e.heading_sigma, e.bias, e.scale);
+                }
+            })
+        })?;
+    }
+    let counts = counts_dict(py, fusion.counts(), fixes.len() - used)?;
+    Ok((cols.0, cols.1, cols.2, cols.3, counts))
+}
+
+/// The streaming filter with the fixes given ahead of the samples that reach them.
+#[pyclass(module = "gyrocore._gyrocore", name = "Fusion")]
+#[derive(Clone)]
+struct PyFusion {
+    inner: Fusion,
+    pending: Vec<Fix>,
+}
+
+#[pymethods]
+impl PyFusion {
+    #[new]
+    #[pyo3(signature = (settings=None))]
+    fn new(settings: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let inner = Fusion::new(config_from(settings)?).map_err(value_error)?;
+        Ok(PyFusion {
+            inner,
+            pending: Vec::new(),
+        })
+    }
+
+    /// Processes a block with new fixes (after any given before); returns (heading,
+    /// heading_sigma, bias, scale). Fixes after the block's last sample wait for the next block.
+    fn process<'py>(
+        &mut self,
+        py: Python<'py>,
+        t: PyReadonlyArray1<'py, f64>,
+        rate: PyReadonlyArray1<'py, f64>,
+        fix_t: PyReadonlyArray1<'py, f64>,
+        fix_heading: PyReadonlyArray1<'py, f64>,
+        fix_sigma: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Columns<'py>> {
+        let mut fixes = self.pending.clone();
+        fixes.extend(fixes_from(&fix_t, &fix_heading, &fix_sigma)?);
+        let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
+        let (cols, used) = run(py, &mut self.inner, t, rate, &fixes, None).map_err(|e| {
+            // Name the fix as the caller numbered it: the new ones follow the pending ones.
+            let pending = self.pending.len();
+            match e.value(py).str() {
+                Ok(m) if pending > 0 => PyValueError::new_err(format!(
+                    "{m} (fix numbers count {pending} fixes still waiting from earlier calls first)"
+                )),
+                _ => e,
+            }
+        })?;
+        self.pending = fixes.split_off(used);
+        Ok(cols)
+    }
+
+    /// (applied, rejected, before_start, waiting) fix counts.
+    fn counts(&self) -> (u64, u64, u64, usize) {
+        let c = self.inner.counts();
+        (c.applied, c.rejected, c.before_start, self.pending.len())
+    }
+
+    /// The settings as a dict.
+    fn settings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let c = self.inner.config();
+        let d = PyDict::new(py);
+        for (k, v) in [
+            ("arw", c.arw),
+            ("bias_walk", c.bias_walk),
+            ("scale_walk", c.scale_walk),
+            ("initial_heading", c.initial_heading),
+            ("initial_heading_sigma", c.initial_heading_sigma),
+            ("initial_bias", c.initial_bias),
+            ("initial_bias_sigma", c.initial_bias_sigma),
+            ("initial_scale_sigma", c.initial_scale_sigma),
+            ("gate", c.gate),
+        ] {
+            d.set_item(k, v)?;
+        }
+        Ok(d)
+    }
+
+    /// Complete state as JSON; floats round-trip exactly.
+    fn state_json(&self) -> PyResult<String> {
+        serde_json::to_string(&(&self.inner, &self.pending))
+            .map_err(|e| PyValueError::new_err(e.to_string()))
+    }
+
+    /// Rebuilds a filter from `state_json()`.
+    #[staticmethod]
+    fn from_state_json(state: &str) -> PyResult<Self> {
+        let (inner, pending) = serde_json::from_str(state)
+            .map_err(|e| PyValueError::new_err(format!("not a gyrocore fusion state: {e}")))?;
+        Ok(PyFusion { inner, pending })
+    }
+}
+
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyFusion>()?;
+    m.add_function(wrap_pyfunction!(fuse, m)?)?;
+    Ok(())
+}

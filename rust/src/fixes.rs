@@ -1,0 +1,441 @@
+//! Heading fixes: absolute headings `(t, heading, sigma)` (GNSS course over ground, a surveyed
+//! landmark, map matching) fused with the gyro by a 3-state Kalman filter that estimates the
+//! heading and the gyro's bias and scale online.
+//!
+//! The filter is the recursive form of Hong & Park's least-squares self-calibration (Hong eq 4-7).
+//! Their eq 1 models the gyro as `r_m = (1 + s) r + b`; eq 3 inverts it to
+//! `r = s_bar r_m + b_bar` with `s_bar = 1 / (1 + s)` and `b_bar = -b / (1 + s)`, and eq 4
+//! propagates the heading as `psi(k+1) = psi(k) + h (s_bar r_m(k) + b_bar)`. The state is
+//! therefore `x = [psi, s_bar, b_bar]`: in eq 3's coefficients the heading is *linear* in the
+//! state, so the filter is an exact linear Kalman filter (no linearisation), and with no process
+//! noise on `s_bar` and `b_bar` it is exactly the recursive least squares of eq 6-7. The outputs
+//! report eq 1's `b` (what the gyro reads at rest, the project's bias convention) and `s`.
+//!
+//! Between two gyro samples the rate is taken as linear in time (the trapezoid rule of the
+//! [`Integrator`](crate::Integrator)); a fix between two samples is applied at its own time by
+//! propagating to it with the rate interpolated there, so that how the samples and fixes are
+//! split into blocks changes nothing: a chunked run is bit-identical to one call.
+//!
+//! Process noise comes from the gyro's Allan parameters: the angle random walk `N` drives the
+//! heading, the rate random walk `K` the bias, and an optional scale random walk the scale.
+//! Innovations are wrapped to (-pi, pi]; a fix whose normalised innovation squared exceeds the
+//! gate (chi-square, one degree of freedom) is rejected and counted. Fixes before the first gyro
+//! sample are counted and skipped (nothing to attach them to); a NaN, a `sigma <= 0`, or a fix
+//! earlier than the one before it or than a sample already processed is an error naming the fix.
+//!
+//! [`smooth`](crate::fixes_smooth::smooth) runs the Rauch-Tung-Striebel backward pass over the
+//! steps [`Fusion::process_block_recording`] stores, for whole logs.
+
+use core::f64::consts::PI;
+
+use crate::error::{check_positive, check_range};
+pub use crate::fixes_error::{FixProblem, FusionError};
+use crate::fixes_smooth::{Mat3, Step};
+use crate::{check_block, Error, MAX_TIME};
+
+/// One absolute heading.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Fix {
+    /// Time \[s\], on the gyro's clock.
+    pub t: f64,
+    /// Heading \[rad\], counter-clockwise from east (any turn: only its value modulo 2 pi counts).
+    pub heading: f64,
+    /// Its standard deviation \[rad\], > 0.
+    pub sigma: f64,
+}
+
+/// Noise settings and initial uncertainty of the filter.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct FusionConfig {
+    /// Angle random walk `N` \[rad/sqrt(s)\] (Allan deviation at 1 s of the rate), >= 0.
+    pub arw: f64,
+    /// Rate random walk `K` of the bias \[rad/s/sqrt(s)\], >= 0.
+    pub bias_walk: f64,
+    /// Random walk of the scale error \[1/sqrt(s)\], >= 0.
+    pub scale_walk: f64,
+    /// Heading before the first fix \[rad\].
+    pub initial_heading: f64,
+    /// Its standard deviation \[rad\], > 0 (pi: unknown).
+    pub initial_heading_sigma: f64,
+    /// Bias (Hong eq 1's `b`, what the gyro reads at rest) before any fix \[rad/s\].
+    pub initial_bias: f64,
+    /// Its standard deviation \[rad/s\], > 0.
+    pub initial_bias_sigma: f64,
+    /// Standard deviation of the scale error `s` before any fix, in (0, 0.5].
+    pub initial_scale_sigma: f64,
+    /// Outlier gate: a fix whose innovation squared over its variance exceeds this is rejected
+    /// (> 0; 10.83 rejects 0.1 % of good fixes; infinity turns the gate off).
+    #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
+    pub gate: f64,
+}
+
+impl Default for FusionConfig {
+    /// A consumer MEMS gyro on a car: the noise of the simulated KITTI MEMS twins, unknown
+    /// initial heading, bias within about 1 deg/s, scale within 5 %.
+    fn default() -> Self {
+        FusionConfig {
+            arw: 5.2e-4,
+            bias_walk: 8.7e-5,
+            scale_walk: 1e-5,
+            initial_heading: 0.0,
+            initial_heading_sigma: PI,
+            initial_bias: 0.0,
+            initial_bias_sigma: 0.02,
+            initial_scale_sigma: 0.05,
+            gate: 10.83,
+        }
+    }
+}
+
+impl FusionConfig {
+    /// Checks every parameter (the error names it).
+    pub fn validate(&self) -> Result<(), Error> {
+        let walk = "finite and >= 0";
+        check_range("arw", self.arw, 0.0, f64::MAX, walk)?;
+        check_range("bias_walk", self.bias_walk, 0.0, f64::MAX, walk)?;
+        check_range("scale_walk", self.scale_walk, 0.0, f64::MAX, walk)?;
+        check_range(
+            "initial_heading",
+            self.initial_heading,
+            -MAX_TIME,
+            MAX_TIME,
+            "finite",
+        )?;
+        check_positive("initial_heading_sigma", self.initial_heading_sigma)?;
+        check_range(
+            "initial_bias",
+            self.initial_bias,
+            -1e3,
+            1e3,
+            "within +-1000 rad/s",
+        )?;
+        check_positive("initial_bias_sigma", self.initial_bias_sigma)?;
+        // s_bar = 1/(1+s) must stay away from 0 for eq 1's b and s to exist.
+        let scale = "> 0 and at most 0.5";
+        check_range(
+            "initial_scale_sigma",
+            self.initial_scale_sigma,
+            f64::MIN_POSITIVE,
+            0.5,
+            scale,
+        )?;
+        check_range(
+            "gate",
+            self.gate,
+            f64::MIN_POSITIVE,
+            f64::INFINITY,
+            "> 0 (inf: no gate)",
+        )
+    }
+}
+
+/// How the fixes given so far were used.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct FixCounts {
+    /// Applied as a measurement.
+    pub applied: u64,
+    /// Rejected by the outlier gate.
+    pub rejected: u64,
+    /// Skipped because they came before the first gyro sample.
+    pub before_start: u64,
+}
+
+/// The estimate at one time: heading and its standard deviation, and Hong eq 1's bias and scale.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Estimate {
+    /// Heading \[rad\], continuous (not wrapped).
+    pub heading: f64,
+    /// Its standard deviation \[rad\].
+    pub heading_sigma: f64,
+    /// Bias `b` \[rad/s\]: what the gyro reads at rest.
+    pub bias: f64,
+    /// Scale error `s`: the gyro reads `(1 + s)` times the true rate.
+    pub scale: f64,
+}
+
+impl Estimate {
+    /// The estimate of state `x = [psi, s_bar, b_bar]` with covariance `p` (Hong eq 3 to eq 1).
+    pub(crate) fn of(x: &[f64; 3], p: &Mat3) -> Self {
+        Estimate {
+            heading: x[0],
+            heading_sigma: libm::sqrt(p[0][0]),
+            bias: -x[2] / x[1],
+            scale: 1.0 / x[1] - 1.0,
+        }
+    }
+}
+
+/// Output slices of [`Fusion::process_block`], one value per gyro sample.
+#[derive(Debug)]
+pub struct FusionOutputs<'a> {
+    /// Heading \[rad\].
+    pub heading: &'a mut [f64],
+    /// Its standard deviation \[rad\].
+    pub heading_sigma: &'a mut [f64],
+    /// Bias \[rad/s\].
+    pub bias: &'a mut [f64],
+    /// Scale error.
+    pub scale: &'a mut [f64],
+}
+
+/// The last gyro sample and the point the state is propagated to (a sample or a fix time).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+struct Anchor {
+    sample_t: f64,
+    sample_rate: f64,
+    t: f64,
+    rate: f64,
+}
+
+/// The streaming filter: a validated config and its state (`Copy`, serialisable).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Fusion {
+    config: FusionConfig,
+    x: [f64; 3],
+    p: Mat3,
+    anchor: Option<Anchor>,
+    last_fix: Option<f64>,
+    counts: FixCounts,
+}
+
+/// Wraps an angle to (-pi, pi].
+#[inline]
+pub fn wrap_angle(a: f64) -> f64 {
+    a - 2.0 * PI * libm::ceil((a - PI) / (2.0 * PI))
+}
+
+impl Fusion {
+    /// A filter before its first sample.
+    pub fn new(config: FusionConfig) -> Result<Self, Error> {
+        config.validate()?;
+        let mut p = [[0.0; 3]; 3];
+        p[0][0] = config.initial_heading_sigma * config.initial_heading_sigma;
+        // d s_bar / d s = -1/(1+s)^2 and d b_bar / d b = -1/(1+s): both -1 at s = 0.
+        p[1][1] = config.initial_scale_sigma * config.initial_scale_sigma;
+        p[2][2] = config.initial_bias_sigma * config.initial_bias_sigma;
+        Ok(Fusion {
+            config,
+            x: [config.initial_heading, 1.0, -config.initial_bias],
+            p,
+            anchor: None,
+            last_fix: None,
+            counts: FixCounts::default(),
+        })
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &FusionConfig {
+        &self.config
+    }
+
+    /// How the fixes were used so far.
+    pub fn counts(&self) -> FixCounts {
+        self.counts
+    }
+
+    /// The current estimate.
+    pub fn estimate(&self) -> Estimate {
+        Estimate::of(&self.x, &self.p)
+    }
+
+    /// The time the state stands at (the last sample or fix processed), or None.
+    pub fn last_time(&self) -> Option<f64> {
+        self.anchor.map(|a| a.t)
+    }
+
+    /// Returns the filter to its state before the first sample.
+    pub fn reset(&mut self) {
+        if let Ok(fresh) = Fusion::new(self.config) {
+            *self = fresh;
+        }
+    }
+
+    /// Processes a block of gyro samples with the fixes that fall in it (sorted by time), writing
+    /// the estimate after each sample. Returns how many fixes it used (applied, rejected or before
+    /// the first sample): the rest lie after the block's last sample and belong to the next call.
+    /// Nothing is processed from a block with a bad sample or fix.
+    pub fn process_block(
+        &mut self,
+        t: &[f64],
+        rate: &[f64],
+        fixes: &[Fix],
+        out: FusionOutputs<'_>,
+    ) -> Result<usize, FusionError> {
+        self.process_block_recording(t, rate, fixes, out, |_| {})
+    }
+
+    /// [`process_block`](Self::process_block), handing every step (sample or fix) to `record`
+    /// for the smoother.
+    pub fn process_block_recording(
+        &mut self,
+        t: &[f64],
+        rate: &[f64],
+        fixes: &[Fix],
+        out: FusionOutputs<'_>,
+        mut record: impl FnMut(Step),
+    ) -> Result<usize, FusionError> {
+        let n = t.len();
+        for (what, len) in [
+            ("heading", out.heading.len()),
+            ("heading_sigma", out.heading_sigma.len()),
+            ("bias", out.bias.len()),
+            ("scale", out.scale.len()),
+        ] {
+            if len != n {
+                return Err(Error::LengthMismatch {
+                    what,
+                    len,
+                    expected: n,
+                }
+                .into());
+            }
+        }
+        check_block(t, rate, None, self.anchor.map(|a| a.sample_t), true)?;
+        self.check_fixes(fixes)?;
+        let mut next = 0;
+        for (k, (&tk, &rk)) in t.iter().zip(rate).enumerate() {
+            next += self.sample(tk, rk, &fixes[next..], &mut record);
+            let e = self.estimate();
+            out.heading[k] = e.heading;
+            out.heading_sigma[k] = e.heading_sigma;
+            out.bias[k] = e.bias;
+            out.scale[k] = e.scale;
+        }
+        Ok(next)
+    }
+
+    fn check_fixes(&self, fixes: &[Fix]) -> Result<(), FusionError> {
+        let mut previous = self.last_fix;
+        for (index, f) in fixes.iter().enumerate() {
+            let bad = |what, value, problem| FusionError::Fix {
+                index,
+                what,
+                value,
+                problem,
+            };
+            if !f.t.is_finite() {
+                return Err(bad("t", f.t, FixProblem::NonFinite));
+            }
+            if f.t.abs() >= MAX_TIME {
+                return Err(bad("t", f.t, FixProblem::OutOfRange));
+            }
+            if !f.heading.is_finite() {
+                return Err(bad("heading", f.heading, FixProblem::NonFinite));
+            }
+            if !f.sigma.is_finite() {
+                return Err(bad("sigma", f.sigma, FixProblem::NonFinite));
+            }
+            if f.sigma <= 0.0 {
+                return Err(bad("sigma", f.sigma, FixProblem::NotPositive));
+            }
+            if let Some(p) = previous.filter(|&p| f.t < p) {
+                return Err(bad("t", f.t, FixProblem::OutOfOrder { previous: p }));
+            }
+            if let Some(a) = self.anchor.filter(|a| f.t < a.t) {
+                return Err(bad("t", f.t, FixProblem::Late { processed: a.t }));
+            }
+            previous = Some(f.t);
+        }
+        Ok(())
+    }
+
+    /// One gyro sample and the fixes up to its time; returns how many fixes it used.
+    fn sample(&mut self, t: f64, rate: f64, fixes: &[Fix], record: &mut impl FnMut(Step)) -> usize {
+        let mut used = 0;
+        let first = Anchor {
+            sample_t: t,
+            sample_rate: rate,
+            t,
+            rate,
+        };
+        let mut a = self.anchor.unwrap_or(first);
+        if self.anchor.is_none() {
+            used = fixes.iter().take_while(|f| f.t < t).count();
+            self.counts.before_start += used as u64;
+        }
+        for f in fixes[used..].iter().take_while(|f| f.t <= t) {
+            // The rate is linear between samples: its value at the fix's time.
+            let at_fix = if f.t == t {
+                rate
+            } else {
+                let frac = (f.t - a.sample_t) / (t - a.sample_t);
+                a.sample_rate + (rate - a.sample_rate) * frac
+            };
+            let step = self.propagate(&mut a, f.t, at_fix);
+            let step = self.correct(step, f);
+            self.last_fix = Some(f.t);
+            record(step);
+            used += 1;
+        }
+        let step = self.propagate(&mut a, t, rate);
+        (a.sample_t, a.sample_rate) = (t, rate);
+        self.anchor = Some(a);
+        record(step.at_sample());
+        used
+    }
+
+    /// Propagates the state from the anchor `a` to `t` where the rate reads `rate` (Hong eq 4
+    /// with the mean rate of the interval, and the covariance with the discretised process
+    /// noise), and moves the anchor there.
+    fn propagate(&mut self, a: &mut Anchor, t: f64, rate: f64) -> Step {
+        let dt = t - a.t;
+        let m = 0.5 * (a.rate + rate);
+        (a.t, a.rate) = (t, rate);
+        if dt <= 0.0 {
+            return Step::new(0.0, 0.0, &self.x, &self.p);
+        }
+        let (x, p) = (&mut self.x, &mut self.p);
+        x[0] += dt * (x[1] * m + x[2]);
+        let (am, c) = (dt * m, dt);
+        // F P F^T for F = [[1, am, c], [0, 1, 0], [0, 0, 1]].
+        let p01 = p[0][1] + am * p[1][1] + c * p[1][2];
+        let p02 = p[0][2] + am * p[1][2] + c * p[2][2];
+        let p00 = p[0][0]
+            + 2.0 * am * p[0][1]
+            + 2.0 * c * p[0][2]
+            + am * am * p[1][1]
+            + 2.0 * am * c * p[1][2]
+            + c * c * p[2][2];
+        // Q of white noise on psi' (N^2), s_bar' (scale walk^2) and b_bar' (K^2) over dt.
+        let (qa, qs, qb) = (
+            self.config.arw * self.config.arw,
+            self.config.scale_walk * self.config.scale_walk,
+            self.config.bias_walk * self.config.bias_walk,
+        );
+        let dt2 = dt * dt;
+        p[0][0] = p00 + qa * dt + (qs * m * m + qb) * dt2 * dt / 3.0;
+        p[0][1] = p01 + qs * m * dt2 / 2.0;
+        p[0][2] = p02 + qb * dt2 / 2.0;
+        p[1][0] = p[0][1];
+        p[2][0] = p[0][2];
+        p[1][1] += qs * dt;
+        p[2][2] += qb * dt;
+        Step::new(am, c, &self.x, &self.p)
+    }
+
+    /// The Kalman update with a fix (H = [1, 0, 0]), unless the gate rejects it.
+    fn correct(&mut self, mut step: Step, fix: &Fix) -> Step {
+        let s = self.p[0][0] + fix.sigma * fix.sigma;
+        let nu = wrap_angle(fix.heading - self.x[0]);
+        if nu * nu > self.config.gate * s {
+            self.counts.rejected += 1;
+            return step;
+        }
+        self.counts.applied += 1;
+        let k = [self.p[0][0] / s, self.p[1][0] / s, self.p[2][0] / s];
+        let row = self.p[0];
+        for ((x, p), k) in self.x.iter_mut().zip(self.p.iter_mut()).zip(k) {
+            *x += k * nu;
+            for (pij, r) in p.iter_mut().zip(row) {
+                *pij -= k * r;
+            }
+        }
+        step.set_filtered(&self.x, &self.p);
+        step
+    }
+}

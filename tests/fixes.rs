@@ -1,0 +1,368 @@
+//! The heading-fix filter and its smoother (rust/src/fixes.rs, fixes_smooth.rs).
+
+use gyrocore::fixes::{wrap_angle, FixProblem};
+use gyrocore::fixes_smooth::Step;
+use gyrocore::{smooth, Fix, Fusion, FusionConfig, FusionError, FusionOutputs};
+
+/// A deterministic normal generator (xorshift64* and Box-Muller), so the tests need no crate.
+struct Normal(u64);
+
+impl Normal {
+    fn uniform(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        ((self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    }
+    fn next(&mut self) -> f64 {
+        let (u, v) = (self.uniform(), self.uniform());
+        (-2.0 * u.ln()).sqrt() * (2.0 * std::f64::consts::PI * v).cos()
+    }
+}
+
+const BIAS: f64 = 0.01;
+const SCALE: f64 = 0.02;
+
+/// A drive at 100 Hz turning both ways: (t, true heading, gyro reading with Hong eq 1's error).
+fn drive(seconds: f64) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let mut noise = Normal(0x9E37_79B9_7F4A_7C15);
+    let n = (seconds * 100.0) as usize;
+    let t: Vec<f64> = (0..n).map(|k| k as f64 * 0.01).collect();
+    let true_rate = |t: f64| 0.3 * (0.05 * t).sin() + 0.2 * (0.13 * t).cos();
+    // The integral of true_rate, so the true heading is exact.
+    let heading =
+        |t: f64| 0.3 / 0.05 * (1.0 - (0.05 * t).cos()) + 0.2 / 0.13 * (0.13 * t).sin() + 1.0;
+    let psi = t.iter().map(|&t| heading(t)).collect();
+    let rate = t
+        .iter()
+        .map(|&t| (1.0 + SCALE) * true_rate(t) + BIAS + 1e-3 * noise.next())
+        .collect();
+    (t, psi, rate)
+}
+
+/// Fixes every `every` seconds with 1 deg noise, none inside `outage` (start, end).
+fn fixes(t: &[f64], psi: &[f64], every: usize, outage: (f64, f64)) -> Vec<Fix> {
+    let mut noise = Normal(7);
+    let sigma = 1f64.to_radians();
+    (0..t.len())
+        .step_by(every)
+        .filter(|&k| t[k] < outage.0 || t[k] >= outage.1)
+        .map(|k| Fix {
+            t: t[k] + 0.003,
+            heading: wrap_angle(psi[k] + sigma * noise.next()),
+            sigma,
+        })
+        .collect()
+}
+
+fn config() -> FusionConfig {
+    FusionConfig {
+        arw: 1e-3 * 0.1,
+        bias_walk: 1e-5,
+        ..FusionConfig::default()
+    }
+}
+
+struct Run {
+    heading: Vec<f64>,
+    sigma: Vec<f64>,
+    bias: Vec<f64>,
+    scale: Vec<f64>,
+}
+
+fn run(
+    fusion: &mut Fusion,
+    t: &[f64],
+    rate: &[f64],
+    fixes: &[Fix],
+) -> Result<(Run, usize), FusionError> {
+    let n = t.len();
+    let mut r = Run {
+        heading: vec![0.0; n],
+        sigma: vec![0.0; n],
+        bias: vec![0.0; n],
+        scale: vec![0.0; n],
+    };
+    let out = FusionOutputs {
+        heading: &mut r.heading,
+        heading_sigma: &mut r.sigma,
+        bias: &mut r.bias,
+        scale: &mut r.scale,
+    };
+    let used = fusion.process_block(t, rate, fixes, out)?;
+    Ok((r, used))
+}
+
+#[test]
+fn a_simulated_drive_with_known_bias_and_scale_converges() {
+    let (t, psi, rate) = drive(600.0);
+    let fx = fixes(&t, &psi, 100, (0.0, 0.0));
+    // No gate: a gate also rejects about 0.1 % of good fixes, which would make counts random.
+    let mut f = Fusion::new(FusionConfig {
+        gate: f64::INFINITY,
+        ..config()
+    })
+    .unwrap();
+    let (r, used) = run(&mut f, &t, &rate, &fx).unwrap();
+    assert_eq!(used, fx.len());
+    assert_eq!(f.counts().applied, fx.len() as u64);
+    assert_eq!(f.counts().rejected, 0);
+    let last = t.len() - 1;
+    assert!((r.bias[last] - BIAS).abs() < 2e-4, "bias {}", r.bias[last]);
+    assert!(
+        (r.scale[last] - SCALE).abs() < 2e-3,
+        "scale {}",
+        r.scale[last]
+    );
+    // After the first minute the heading stays within 3 of its own sigmas and within 0.5 deg.
+    for k in 6000..t.len() {
+        let e = wrap_angle(r.heading[k] - psi[k]);
+        assert!(e.abs() < 0.5f64.to_radians(), "t = {}: error {e}", t[k]);
+        assert!(
+            e.abs() < 4.0 * r.sigma[k],
+            "t = {}: error {e} sigma {}",
+            t[k],
+            r.sigma[k]
+        );
+    }
+}
+
+#[test]
+fn chunked_and_snapshotted_runs_are_bit_identical_to_one_call() {
+    let (t, psi, rate) = drive(120.0);
+    let fx = fixes(&t, &psi, 37, (0.0, 0.0));
+    let mut whole = Fusion::new(config()).unwrap();
+    let (one, _) = run(&mut whole, &t, &rate, &fx).unwrap();
+    let mut chunked = Fusion::new(config()).unwrap();
+    let mut pending: &[Fix] = &fx;
+    let mut heading = Vec::new();
+    for (k, chunk) in [0..1, 1..500, 500..501, 501..4321, 4321..t.len()]
+        .into_iter()
+        .enumerate()
+    {
+        if k == 3 {
+            // A copy taken mid-run carries on exactly as the original.
+            chunked = Fusion::clone(&chunked);
+        }
+        let (r, used) = run(&mut chunked, &t[chunk.clone()], &rate[chunk], pending).unwrap();
+        pending = &pending[used..];
+        heading.extend(r.heading);
+    }
+    assert!(pending.is_empty());
+    assert_eq!(whole, chunked);
+    assert_eq!(
+        one.heading.iter().map(|h| h.to_bits()).collect::<Vec<_>>(),
+        heading.iter().map(|h| h.to_bits()).collect::<Vec<_>>()
+    );
+}
+
+#[test]
+fn a_fix_half_a_turn_off_is_rejected_and_counted() {
+    let (t, psi, rate) = drive(120.0);
+    let good = fixes(&t, &psi, 100, (0.0, 0.0));
+    let mut fx = good.clone();
+    fx[90].heading = wrap_angle(fx[90].heading + std::f64::consts::PI);
+    let (mut clean, mut f) = (
+        Fusion::new(config()).unwrap(),
+        Fusion::new(config()).unwrap(),
+    );
+    let (expected, _) = run(&mut clean, &t, &rate, &good).unwrap();
+    let (r, _) = run(&mut f, &t, &rate, &fx).unwrap();
+    // Exactly one more rejection than without the bad fix, and the heading stays with the clean run's.
+    assert_eq!(f.counts().rejected, clean.counts().rejected + 1);
+    assert_eq!(f.counts().applied + 1, clean.counts().applied);
+    let k = 9100;
+    assert!(wrap_angle(r.heading[k] - psi[k]).abs() < 0.5f64.to_radians());
+    assert!(wrap_angle(r.heading[k] - expected.heading[k]).abs() < 0.1f64.to_radians());
+}
+
+#[test]
+fn bad_fixes_are_named() {
+    let (t, psi, rate) = drive(10.0);
+    let good = fixes(&t, &psi, 100, (0.0, 0.0));
+    let cases: [(usize, Fix, &str, FixProblem); 4] = [
+        (
+            3,
+            Fix {
+                sigma: 0.0,
+                ..good[3]
+            },
+            "sigma",
+            FixProblem::NotPositive,
+        ),
+        (
+            4,
+            Fix {
+                heading: f64::NAN,
+                ..good[4]
+            },
+            "heading",
+            FixProblem::NonFinite,
+        ),
+        (
+            5,
+            Fix {
+                t: good[3].t - 1.0,
+                ..good[5]
+            },
+            "t",
+            FixProblem::OutOfOrder {
+                previous: good[4].t,
+            },
+        ),
+        (
+            2,
+            Fix {
+                sigma: -1.0,
+                ..good[2]
+            },
+            "sigma",
+            FixProblem::NotPositive,
+        ),
+    ];
+    for (index, bad, what, problem) in cases {
+        let mut fx = good.clone();
+        fx[index] = bad;
+        let mut f = Fusion::new(config()).unwrap();
+        let before = f;
+        let err = run(&mut f, &t, &rate, &fx).err().unwrap();
+        let FusionError::Fix {
+            index: i,
+            what: w,
+            problem: p,
+            ..
+        } = err
+        else {
+            panic!("{err:?}")
+        };
+        assert_eq!((i, w, p), (index, what, problem));
+        assert!(
+            err.to_string()
+                .starts_with(&format!("fix {index}: {what} = ")),
+            "{err}"
+        );
+        assert_eq!(f, before, "nothing is processed from a bad block");
+    }
+    // A fix older than a sample already processed cannot be applied at its time.
+    let mut f = Fusion::new(config()).unwrap();
+    run(&mut f, &t[..500], &rate[..500], &[]).unwrap();
+    let err = run(&mut f, &t[500..], &rate[500..], &good[..1])
+        .err()
+        .unwrap();
+    assert!(
+        matches!(
+            err,
+            FusionError::Fix {
+                index: 0,
+                problem: FixProblem::Late { .. },
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+}
+
+#[test]
+fn fixes_before_the_first_sample_are_counted_and_skipped() {
+    let (t, psi, rate) = drive(10.0);
+    let mut fx = fixes(&t, &psi, 100, (0.0, 0.0));
+    fx.insert(
+        0,
+        Fix {
+            t: -2.0,
+            heading: 3.0,
+            sigma: 0.01,
+        },
+    );
+    fx.insert(
+        1,
+        Fix {
+            t: -1.0,
+            heading: 3.0,
+            sigma: 0.01,
+        },
+    );
+    let mut f = Fusion::new(config()).unwrap();
+    let (_, used) = run(&mut f, &t, &rate, &fx).unwrap();
+    assert_eq!(used, fx.len());
+    assert_eq!(f.counts().before_start, 2);
+    assert_eq!(f.counts().applied, fx.len() as u64 - 2);
+}
+
+#[test]
+fn bad_settings_are_named() {
+    for (name, config) in [
+        (
+            "arw",
+            FusionConfig {
+                arw: -1.0,
+                ..config()
+            },
+        ),
+        (
+            "gate",
+            FusionConfig {
+                gate: 0.0,
+                ..config()
+            },
+        ),
+        (
+            "initial_scale_sigma",
+            FusionConfig {
+                initial_scale_sigma: 0.9,
+                ..config()
+            },
+        ),
+        (
+            "initial_heading_sigma",
+            FusionConfig {
+                initial_heading_sigma: f64::NAN,
+                ..config()
+            },
+        ),
+    ] {
+        let err = Fusion::new(config).unwrap_err();
+        assert!(err.to_string().contains(name), "{err}");
+    }
+}
+
+#[test]
+fn the_smoother_beats_the_filter_inside_an_outage() {
+    let (t, psi, rate) = drive(600.0);
+    let outage = (300.0, 420.0);
+    let fx = fixes(&t, &psi, 100, outage);
+    let mut f = Fusion::new(config()).unwrap();
+    let n = t.len();
+    let (mut h, mut s, mut b, mut sc) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let out = FusionOutputs {
+        heading: &mut h,
+        heading_sigma: &mut s,
+        bias: &mut b,
+        scale: &mut sc,
+    };
+    let mut steps: Vec<Step> = Vec::new();
+    f.process_block_recording(&t, &rate, &fx, out, |s| steps.push(s))
+        .unwrap();
+    assert_eq!(steps.len(), n + fx.len());
+    assert_eq!(smooth(&mut steps), 0);
+    let smoothed: Vec<_> = steps
+        .iter()
+        .filter(|s| s.sample)
+        .map(Step::estimate)
+        .collect();
+    let inside: Vec<usize> = (0..n)
+        .filter(|&k| t[k] >= outage.0 && t[k] < outage.1)
+        .collect();
+    let mean_abs = |e: &dyn Fn(usize) -> f64| {
+        inside.iter().map(|&k| e(k).abs()).sum::<f64>() / inside.len() as f64
+    };
+    let causal = mean_abs(&|k| wrap_angle(h[k] - psi[k]));
+    let smooth_err = mean_abs(&|k| wrap_angle(smoothed[k].heading - psi[k]));
+    assert!(
+        smooth_err < 0.5 * causal,
+        "smoothed {smooth_err} vs causal {causal}"
+    );
+    // The smoother is also more certain inside the outage.
+    let mid = inside[inside.len() / 2];
+    assert!(smoothed[mid].heading_sigma < s[mid]);
+}
