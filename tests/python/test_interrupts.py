@@ -18,6 +18,7 @@ import pytest
 
 from gyrocore import _signals
 from gyrocore.batch import process_file
+from gyrocore.cli import main
 from gyrocore.io import StagedFile
 
 from .test_batch import leftovers, read_table, synthetic_csv
@@ -223,3 +224,22 @@ def test_an_interrupted_batch_leaves_each_output_previous_or_complete(tmp_path: 
     assert kept, "the signal came before the first of the four files was done"
     for p in set(out.iterdir()) - set(kept):
         assert len(read_table(p)) == 300_000
+
+
+def test_an_interrupt_right_after_a_temporary_file_is_made_leaves_nothing(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A signal between the staged file's creation and its writer's ``finally`` (found by the
+    test above, rarely): the command removes it on the way out."""
+    src = synthetic_csv(tmp_path / "in.csv", 2000)
+    out = tmp_path / "h.csv"
+    out.write_text(PREVIOUS)
+    made = StagedFile.__init__
+
+    def interrupted(self: StagedFile, path: Path) -> None:
+        made(self, path)
+        raise KeyboardInterrupt  # the file exists, and nobody holds it yet
+
+    monkeypatch.setattr(StagedFile, "__init__", interrupted)
+    assert main(_command(src, out)) == 130
+    assert out.read_text() == PREVIOUS and leftovers(tmp_path) == []

@@ -15,6 +15,7 @@ from typing import Sequence
 from .. import _signals
 from . import allan, calibrate, demo, evaluate, presets, process, reproduce, simulate, tune
 from .._extras import MissingExtra
+from ..io.atomic import discard_all
 from ._common import show_warning
 
 COMMANDS = (demo, process, presets, allan, calibrate, evaluate, tune, simulate, reproduce)
@@ -58,6 +59,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             print(f"gyrocore: error: {e}", file=sys.stderr)
             return 2
         except KeyboardInterrupt:
+            discard_all()
             print("gyrocore: interrupted; no partial output was left", file=sys.stderr)
             return 130
 

@@ -14,6 +14,11 @@ from pathlib import Path
 
 from .. import _signals
 
+#: This process's temporary files not yet committed or discarded. A name is added before its file
+#: exists, so an interrupt at any moment (even between creating the file and the caller's
+#: ``try``) leaves it known to :func:`discard_all`.
+_live: set[Path] = set()
+
 
 class StagedFile:
     """A temporary file next to ``path`` that becomes ``path`` on :meth:`commit`.
@@ -27,15 +32,19 @@ class StagedFile:
         self.path = path
         for _ in range(3):
             tmp = path.parent / f".{path.name}.{secrets.token_hex(6)}.tmp"
+            _live.add(tmp)
             try:
                 # created exclusively with the umask's permissions (mkstemp's 0600 would hide the
                 # output from other users)
                 os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
-            except FileExistsError:
+            except FileExistsError:  # another's file: never ours to remove
+                _live.discard(tmp)
                 continue
             except (FileNotFoundError, NotADirectoryError):  # named after the output, not the hidden file
+                _live.discard(tmp)
                 raise FileNotFoundError(f"{path}: the folder {path.parent} does not exist") from None
             except PermissionError as e:
+                _live.discard(tmp)
                 raise PermissionError(f"{path}: cannot write in {path.parent} ({e.strerror})") from None
             self.tmp = tmp
             return
@@ -54,10 +63,20 @@ class StagedFile:
             os.close(fd)
         _signals.check()
         os.replace(self.tmp, self.path)
+        _live.discard(self.tmp)
 
     def discard(self) -> None:
         """Remove the temporary file if it is still there."""
         self.tmp.unlink(missing_ok=True)
+        _live.discard(self.tmp)
+
+
+def discard_all() -> None:
+    """Remove every temporary file of this process not yet committed or discarded: after an
+    interrupt, also one that came before its writer's ``finally`` was in place."""
+    for tmp in list(_live):
+        tmp.unlink(missing_ok=True)
+        _live.discard(tmp)
 
 
 @contextmanager
