@@ -20,6 +20,8 @@ struct Input {
     delag: bool,
     hdr: Option<(f64, f64, f64, f64, f64, f64, f64)>,
     noise_scaled: (Option<f64>, Option<f64>),
+    #[allow(clippy::type_complexity)]
+    rest_tracker: Option<(f64, f64, f64, f64, f64, f64, f64, Option<f64>)>,
     rectangle: bool,
     initial_heading: f64,
     non_finite: u8,
@@ -87,6 +89,29 @@ fn config(i: &Input) -> PipelineConfig {
             threshold_sigmas: i.noise_scaled.0,
             hdr_bound_sigmas: i.noise_scaled.1,
         },
+        rest_tracker: i.rest_tracker.map(
+            |(
+                block,
+                min_duration,
+                noise_ratio,
+                change_sigmas,
+                speed_threshold,
+                bias_walk,
+                gate_sigmas,
+                noise,
+            )| {
+                RestTrackerConfig {
+                    block,
+                    min_duration,
+                    noise_ratio,
+                    change_sigmas,
+                    speed_threshold,
+                    bias_walk,
+                    gate_sigmas,
+                    noise,
+                }
+            },
+        ),
     }
 }
 
