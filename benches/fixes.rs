@@ -25,6 +25,17 @@ fn samples() -> (Vec<f64>, Vec<f64>, Vec<Fix>) {
     (t, rate, fixes)
 }
 
+/// The four output columns as the filter writes them.
+fn outputs(out: &mut [Vec<f64>; 4]) -> FusionOutputs<'_> {
+    let [heading, heading_sigma, bias, scale] = out;
+    FusionOutputs {
+        heading,
+        heading_sigma,
+        bias,
+        scale,
+    }
+}
+
 fn filter(c: &mut Criterion) {
     let (t, rate, fixes) = samples();
     let mut out = [vec![0.0; N], vec![0.0; N], vec![0.0; N], vec![0.0; N]];
@@ -34,13 +45,7 @@ fn filter(c: &mut Criterion) {
         group.bench_with_input(BenchmarkId::from_parameter(name), given, |b, given| {
             b.iter(|| {
                 let mut f = Fusion::new(FusionConfig::default()).unwrap();
-                let [h, s, bias, scale] = &mut out;
-                let o = FusionOutputs {
-                    heading: h,
-                    heading_sigma: s,
-                    bias,
-                    scale,
-                };
+                let o = outputs(&mut out);
                 f.process_block(black_box(&t), black_box(&rate), black_box(given), o)
                     .unwrap()
             })
@@ -51,13 +56,7 @@ fn filter(c: &mut Criterion) {
         b.iter(|| {
             steps.clear();
             let mut f = Fusion::new(FusionConfig::default()).unwrap();
-            let [h, s, bias, scale] = &mut out;
-            let o = FusionOutputs {
-                heading: h,
-                heading_sigma: s,
-                bias,
-                scale,
-            };
+            let o = outputs(&mut out);
             f.process_block_recording(black_box(&t), black_box(&rate), &fixes, o, |s| {
                 steps.push(s)
             })

@@ -4,9 +4,7 @@
 mod common;
 
 use common::bits;
-use gyrocore::{
-    Error, Output, Outputs, Pipeline, PipelineConfig, Preset, RestTrackerConfig, StaticBias,
-};
+use gyrocore::{Error, Output, Pipeline, PipelineConfig, Preset, RestTrackerConfig, StaticBias};
 use proptest::prelude::*;
 
 /// A drive at 100 Hz: `(t, rate, speed)`, with white noise of `noise` [rad/s] (a fixed
@@ -58,16 +56,7 @@ fn tracked(bias: StaticBias) -> PipelineConfig {
 }
 
 fn run(p: &mut Pipeline, t: &[f64], r: &[f64], s: Option<&[f64]>) -> Result<Vec<Output>, Error> {
-    let n = t.len();
-    let (mut h, mut ra, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    p.process_block_with_speed(t, r, None, s, Outputs::all(&mut h, &mut ra, &mut d))?;
-    Ok((0..n)
-        .map(|i| Output {
-            heading: h[i],
-            rate: ra[i],
-            drift: d[i],
-        })
-        .collect())
+    common::try_block_with_speed(p, t, r, s)
 }
 
 #[test]

@@ -5,10 +5,20 @@ use gyrocore::{Error, Output, Outputs, Pipeline};
 
 /// Feeds one block through `p`, returning the per-sample outputs.
 pub fn try_block(p: &mut Pipeline, t: &[f64], r: &[f64]) -> Result<Vec<Output>, Error> {
+    try_block_with_speed(p, t, r, None)
+}
+
+/// [`try_block`] with a speed per sample (`None`: no speed).
+pub fn try_block_with_speed(
+    p: &mut Pipeline,
+    t: &[f64],
+    r: &[f64],
+    speed: Option<&[f64]>,
+) -> Result<Vec<Output>, Error> {
     let n = t.len();
     let (mut h, mut ra, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let out = Outputs::all(&mut h, &mut ra, &mut d);
-    p.process_block(t, r, None, out)?;
+    p.process_block_with_speed(t, r, None, speed, out)?;
     Ok((0..n)
         .map(|i| Output {
             heading: h[i],
