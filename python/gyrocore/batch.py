@@ -271,7 +271,8 @@ class _FileJob:
             return wholelog.plan_stream(self.preset, overrides, chunks, read_all)
         except SampleError:
             # A rest's measurement saw a slice of the log: the streamed pass names the row.
-            return wholelog.BiasPlan("none: the log has invalid samples", overrides={**_to_si(overrides), "bias": 0.0})
+            plain = wholelog.untracked({**_to_si(overrides), "bias": 0.0})
+            return wholelog.BiasPlan("none: the log has invalid samples", overrides=plain)
         except ValueError as e:
             raise _in_file(source, e, from_meta) from None
 

@@ -193,10 +193,11 @@ class Pipeline:
         self._units_checked = False
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
         self._rests: list[rests.Rest] = []
-        if uses_static_bias(preset) and not has_bias_source(si) and not si.get("track_rests"):
+        if uses_static_bias(preset) and not has_bias_source(si):
+            until = " until the rest tracker measures one at a stop" if self.params["track_rests"] else ""
             warn(
                 f"preset {preset!r} removes a static bias, but no bias, bias_window or bias_duration "
-                "was given: the bias is taken as 0"
+                f"was given: the bias is taken as 0{until}"
             )
 
     @property

@@ -45,7 +45,7 @@ from .pipeline import OUTPUTS, BIAS_SOURCES, HeadingResult, Pipeline, _to_si, pr
 
 __all__ = [
     "BIAS_SIGMAS", "BIAS_WALK", "MIN_REST", "MODES", "SPEED_THRESHOLD", "WHOLE_OPTIONS", "BiasPlan", "Options", "Rest",
-    "check_mode", "plan_arrays", "plan_stream", "process_log", "refuse_tracking", "refuse_whole_options", "rest_lines",
+    "check_mode", "plan_arrays", "plan_stream", "process_log", "refuse_tracking", "refuse_whole_options", "rest_lines", "untracked",
 ]
 
 #: The ways to process a whole log: ``whole`` (bias from every rest, known from the first sample)
@@ -89,6 +89,12 @@ def refuse_tracking(si: dict[str, Any]) -> None:
         )
 
 
+def untracked(si: dict[str, Any]) -> dict[str, Any]:
+    """``si`` with the preset's own rest tracker off: whole mode takes the bias from the whole log,
+    and the tracker, which follows it as a stream goes, gives way."""
+    return {**si, "track_rests": False}
+
+
 @dataclass(frozen=True)
 class BiasPlan:
     """Where whole mode takes the bias from, before the first sample is processed.
@@ -107,6 +113,8 @@ class BiasPlan:
     overrides: dict[str, Any] = field(default_factory=dict)
     smoothed: SmoothedBias | None = None
     warning: str | None = None
+    bias_error: float = 0.0
+    """The smoothed bias's standard error, root mean square over the log [rad/s] (0 without rests)."""
 
     def bias(self, t: FloatArray) -> FloatArray | float:
         """The bias to subtract at the times ``t`` [rad/s] (0 without rests)."""
@@ -120,6 +128,11 @@ class BiasPlan:
     def used(self) -> tuple[Rest, ...]:
         """The rests whose bias was used."""
         return tuple(r for r in self.rests if r.refused is None)
+
+    def scaled(self, preset: str, si: dict[str, Any]) -> dict[str, float]:
+        """The explicit dead band and HDR bound of ``preset`` with ``si`` on this log (see
+        :func:`_scaled`; none without a rest)."""
+        return _scaled(preset, si, self.used, self.bias_error) if self.used else {}
 
     def result(self, result: HeadingResult) -> HeadingResult:
         """``result`` saying where its bias came from."""
@@ -198,17 +211,18 @@ def plan(
         bias_sigmas: found rests whose mean bias is within this many standard errors of 0 leave
             the bias at 0 (a calibrated gyro, whose rests show how it reads at rest, not a bias).
     """
-    rest_of = {k: v for k, v in si.items() if k not in BIAS_SOURCES}
+    rest_of = untracked({k: v for k, v in si.items() if k not in BIAS_SOURCES})
     key = _bias_source(si)
     if not uses_static_bias(preset) or key == "bias":
-        return BiasPlan(causal_source(preset, si), overrides=si)
+        return BiasPlan(causal_source(preset, si), overrides=untracked(si))
     if key is not None:  # the user's window: the bias of the whole log, constant
         window = (t_start, t_start + float(si["bias_duration"])) if key == "bias_duration" else si["bias_window"]
         rest = measure((float(window[0]), float(window[1])), f"given: {key}")
         label = f"first {si['bias_duration']:g} s: " if key == "bias_duration" else ""
         smoothed = _smooth((rest,), 0.0)
         overrides = {**rest_of, "bias": 0.0, **_scaled(preset, rest_of, (rest,), rest.bias_std_error)}
-        return BiasPlan(f"{label}rest {rest}, applied from the first sample", (rest,), overrides, smoothed)
+        source = f"{label}rest {rest}, applied from the first sample"
+        return BiasPlan(source, (rest,), overrides, smoothed, bias_error=rest.bias_std_error)
     rests = accept([measure((a, b), how) for a, b, how in find()], walk)
     used = tuple(r for r in rests if r.refused is None)
     if not used:  # none found (accept keeps at least half of them)
@@ -220,7 +234,8 @@ def plan(
         return BiasPlan("none: no rest found in the log; bias 0", tuple(rests), {**rest_of, "bias": 0.0}, None, warning)
     smoothed = _smooth(used, walk)
     sd = smoothed.at(times)[1] if times is not None else np.sqrt(smoothed.variance)
-    overrides = {**rest_of, "bias": 0.0, **_scaled(preset, rest_of, used, float(np.sqrt(np.mean(sd**2))))}
+    bias_error = float(np.sqrt(np.mean(sd**2)))
+    overrides = {**rest_of, "bias": 0.0, **_scaled(preset, rest_of, used, bias_error)}
     refused = f"; {len(rests) - len(used)} refused" if len(rests) > len(used) else ""
     # the inverse-variance mean of the rests (the smoother without a walk): is there a bias at all?
     level = _smooth(used, 0.0)
@@ -230,13 +245,13 @@ def plan(
             f"{len(used)} rest(s) read {math.degrees(mean):.5f} +- {math.degrees(error):.2g} deg/s, within "
             f"{bias_sigmas:g} standard errors of 0: bias 0{refused}"
         )
-        return BiasPlan(source, tuple(rests), overrides)
+        return BiasPlan(source, tuple(rests), overrides, bias_error=bias_error)
     source = (
         f"rest {used[0]}, applied from the first sample"
         if len(used) == 1
         else f"{len(used)} rests, bias smoothed between them (bias_walk {walk:.3g} rad/s/sqrt(s))"
     )
-    return BiasPlan(source + refused, tuple(rests), overrides, smoothed)
+    return BiasPlan(source + refused, tuple(rests), overrides, smoothed, bias_error=bias_error)
 
 
 @dataclass(frozen=True)
@@ -298,7 +313,7 @@ def plan_stream(
         t, rate, speed = read_all()
         if len(t) == 0 or not times_ok(t):
             # The second pass, through the pipeline, names the bad sample.
-            return BiasPlan("none: the log's times are invalid", overrides={**si, "bias": 0.0})
+            return BiasPlan("none: the log's times are invalid", overrides=untracked({**si, "bias": 0.0}))
         return plan_arrays(preset, si, t, rate, speed, options)
     t_start = 0.0
     if si.get("bias_duration") is not None:  # counts from the first sample
@@ -340,13 +355,13 @@ def process_log(
         raise ValueError(f"speed has {len(sp)} samples but t has {len(ta)}: give one speed per gyro sample")
     if len(ta) != len(ra) or len(ta) == 0 or not times_ok(ta):
         # The pipeline is the one place that names the bad sample (and gives an empty log back).
-        result = Pipeline(preset, **si).process(ta, ra, temperature=temperature, outputs=outputs)
+        result = Pipeline(preset, **untracked(si)).process(ta, ra, temperature=temperature, outputs=outputs)
         return replace(result, bias_source=causal_source(preset, si))
     try:
         bias_plan = plan_arrays(preset, si, ta, ra, sp, options)
     except SampleError:
         # A rest's measurement saw a slice of the log: the pipeline names the sample in the log.
-        Pipeline(preset, **{**si, "bias": 0.0}).process(ta, ra, temperature=temperature)
+        Pipeline(preset, **untracked({**si, "bias": 0.0})).process(ta, ra, temperature=temperature)
         raise
     if bias_plan.warning:
         warn(bias_plan.warning)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -141,11 +142,37 @@ def test_leave_one_out_scores_each_drive_with_the_others_fit(cases: list[tune.Ca
 
 
 def test_real_log_case_uses_the_rest_window_or_the_bias_duration() -> None:
-    f110 = tune.Case.from_log(gyrocore.read_log(real_log_path("f110_ds3")))
+    f110 = tune.Case.from_log(gyrocore.read_log(real_log_path("f110_ds3")), mode="causal")
     assert "bias_window" in f110.bias
-    comma = tune.Case.from_log(gyrocore.read_log(real_log_path("comma_seg40")), bias_duration=10.0)
+    comma = tune.Case.from_log(gyrocore.read_log(real_log_path("comma_seg40")), bias_duration=10.0, mode="causal")
     assert comma.bias == {"bias_duration": 10.0}
     assert comma.score("static_bias", {}).e_psi_deg < 10.0
+
+
+@pytest.mark.parametrize("name", ["f110_ds3", "f110_ds5", "kitti_2011_09_30_0027_mems", "comma_seg40"])
+def test_a_whole_mode_case_gives_what_the_log_gives(name: str) -> None:
+    # The bias planned once per log (a given rest window, a rest found by the odometry's speed,
+    # two rests smoothed, none) gives every preset and override exactly the whole log's heading.
+    log = gyrocore.read_log(real_log_path(name))
+    case = tune.Case.from_log(log)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrocore.InputWarning)  # comma_seg40: no rest, bias 0
+        for preset, overrides in [("raw", {}), ("static_bias", {}), ("tuned", {}), ("tuned", {"hdr_bound_sigmas": 3.0}),
+                                  ("hong_park", {"threshold_sigmas": 2.0})]:
+            assert np.array_equal(case.heading(preset, overrides).heading, log.process(preset, **overrides).heading)
+
+
+def test_the_log_ratio_objective_is_zero_for_static_bias_removal_and_negative_where_it_is_beaten(
+    cases: list[tune.Case],
+) -> None:
+    assert tune.mean_log_ratio(tune.score_cases(cases, "static_bias", {})) == 0.0
+    scores = tune.score_cases(cases, "hdr", {})
+    expected = np.mean([math.log(c.score("hdr", {}).e_psi_deg / c.score("static_bias", {}).e_psi_deg) for c in cases])
+    assert tune.mean_log_ratio(scores) == pytest.approx(expected, rel=1e-12)
+    fit = tune.tune(cases, preset="hdr", names=("hdr_increment",), max_evaluations=30, objective="log_ratio")
+    assert fit.objective == pytest.approx(tune.mean_log_ratio(fit.train), rel=1e-12) and fit.objective <= fit.start_objective
+    with pytest.raises(ValueError, match="unknown objective 'mean'"):
+        tune.tune(cases, objective="mean")
 
 
 def test_cli_tune_writes_a_loadable_file(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

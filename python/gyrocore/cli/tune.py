@@ -60,6 +60,11 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     add("--no-harm", action="store_true", help="no do-no-harm constraint")
     add("--harm-limit", type=float, default=0.5, metavar="DEG",
         help="allowed E_psi above the baseline on a do-no-harm drive [deg] (default 0.5)")
+    add("--objective", choices=tune.OBJECTIVES, default="ne_psi",
+        help="minimise the mean NE_psi (HDR section 5.3; default) or the mean log ratio of E_psi to "
+        "static-bias removal's (scale-free: for real logs of 0.4-116 deg)")
+    add("--causal", action="store_true",
+        help="run the logs as a streaming pipeline would (default: whole mode, as gyrocore evaluate)")
     add("--bias-duration", type=float, metavar="S", help="static bias of logs without a rest window: first S seconds")
     add("--leave-one-out", action="store_true", help="also report the leave-one-out score (one fit per drive)")
     add("--max-evals", type=int, default=2000, metavar="N", help="objective evaluations per fit (default 2000)")
@@ -126,14 +131,19 @@ def run(args: argparse.Namespace) -> int:
     progress = (lambda msg: print(msg, file=sys.stderr)) if not args.json else None
     sim_options = {"rate_hz": args.rate_hz, "sensor_name": args.sensor, "time_scale": args.time_scale}
     reading = reading_options(args)
-    cases = [tune.Case.from_log(read_log(p, **reading), bias_duration=args.bias_duration) for p in args.logs]
+    mode = "causal" if args.causal else "whole"
+
+    def log_cases(paths: Sequence[str]) -> list[tune.Case]:
+        return [tune.Case.from_log(read_log(p, **reading), bias_duration=args.bias_duration, mode=mode) for p in paths]
+
+    cases = log_cases(args.logs)
     for table in args.sim_table or []:
         cases += tune.simulated_cases(_TABLES[table], **sim_options)
     if args.sim_drive:
         cases += tune.simulated_cases(_parse_drives(args.sim_drive), first_seed=_DRIVE_SEED, **sim_options)
     if not cases:
         raise ValueError("no training drive: give log folders, --sim-table and/or --sim-drive")
-    tests = [tune.Case.from_log(read_log(p, **reading), bias_duration=args.bias_duration) for p in args.test]
+    tests = log_cases(args.test)
     for table in args.test_sim_table or []:
         tests += tune.simulated_cases(_TABLES[table], first_seed=_TEST_SEED, **sim_options)
     harm_options: dict[str, Any] = {
@@ -152,7 +162,7 @@ def run(args: argparse.Namespace) -> int:
         "preset": args.preset, "names": names or None, "bounds": bounds, "harm": harm,
         "harm_limit_deg": args.harm_limit, "fixed": _parse_fixed(args.set or []),
         "max_evaluations": args.max_evals, "seed": args.seed,
-        "optimiser": args.optimiser,
+        "optimiser": args.optimiser, "objective": args.objective,
     }
     if progress:
         progress(f"tuning {args.preset} on {len(cases)} drive(s), {len(harm)} do-no-harm drive(s), "
@@ -169,6 +179,7 @@ def run(args: argparse.Namespace) -> int:
     extra["harm_held_out_deg"] = {s.case: s.harm_deg for s in held[1]}
     if loo:
         extra["leave_one_out_ne_psi_deg_per_min"] = tune.mean_ne_psi(loo)
+        extra["leave_one_out_log_ratio"] = tune.mean_log_ratio(loo)
     if test:
         extra["test"] = {t.case: t.ne_psi_deg_per_min for t in test}
         extra["test_score_ne_psi_deg_per_min"] = tune.mean_ne_psi(test)
@@ -210,8 +221,9 @@ def _print_report(
     if test:
         _print_scores("test", test_start, test)
     if loo:
-        print(f"leave-one-out mean NE_psi: {tune.mean_ne_psi(loo):.4f} deg/min "
-              f"(training {result.train_score:.4f})")
+        _print_held_out(loo)
+        print(f"leave-one-out mean NE_psi: {tune.mean_ne_psi(loo):.4f} deg/min (training {result.train_score:.4f}); "
+              f"mean log(E_psi / static_bias's): {tune.mean_log_ratio(loo):+.4f} (training {tune.mean_log_ratio(result.train):+.4f})")
     if result.harm:
         _print_harm("the fit's drives", result.harm_start, result.harm, result.harm_limit_deg)
 
@@ -229,3 +241,10 @@ def _print_scores(label: str, start: Sequence[tune.CaseScore], tuned: Sequence[t
         print(f"{b.case:<44} {b.raw_e_psi_deg:>10.2f} {a.e_psi_deg:>12.3f} {b.e_psi_deg:>12.3f} "
               f"{b.ne_psi_deg_per_min:>13.4f}")
     print(f"{'mean NE_psi [deg/min]':<44} {'':>10} {tune.mean_ne_psi(start):>12.4f} {tune.mean_ne_psi(tuned):>12.4f}")
+
+
+def _print_held_out(loo: Sequence[tune.CaseScore]) -> None:
+    """Each drive scored with the parameters fitted without it, beside static-bias removal."""
+    print(f"{'held-out drive (leave-one-out)':<44} {'raw E_psi':>10} {'static_bias':>12} {'tuned E_psi':>12}")
+    for s in loo:
+        print(f"{s.case:<44} {s.raw_e_psi_deg:>10.2f} {s.static_bias_e_psi_deg:>12.3f} {s.e_psi_deg:>12.3f}")

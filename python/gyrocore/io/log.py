@@ -16,10 +16,12 @@ from ..pipeline import (
     HeadingResult,
     RestWindowError,
     has_bias_source,
+    preset_params,
     process,
     uses_static_bias,
 )
 from ..rests import speed_on
+from ..wholelog import WHOLE_OPTIONS
 from ._columns import concat
 from ._logfolder import read_odometry, read_reference
 from .source import open_source
@@ -106,13 +108,24 @@ class Log:
         without either, from every rest found in the log, with the odometry's speed unless
         ``use_speed`` is False. The result's ``bias_source`` and ``rests`` say which.
         """
-        speed = self.speed_on_gyro_times() if mode == "whole" and use_speed else None
+        speed: dict[str, Any] = {}
+        if use_speed and mode == "whole":
+            speed["speed"] = self.speed_on_gyro_times()
+        elif use_speed and self.speed is not None and _tracks_rests(preset, overrides):
+            # the odometry at its own times: the tracker interpolates it, and knows no speed outside it
+            speed.update(speed=self.speed, speed_t=self.t_odometry)
         if self.stationary is None or not uses_static_bias(preset) or has_bias_source(overrides):
-            return process(self.t, self.rate, preset, mode=mode, speed=speed, **overrides)
+            return process(self.t, self.rate, preset, mode=mode, **speed, **overrides)
         try:
-            return process(self.t, self.rate, preset, mode=mode, speed=speed, bias_window=self.stationary, **overrides)
+            return process(self.t, self.rate, preset, mode=mode, bias_window=self.stationary, **speed, **overrides)
         except RestWindowError as e:
             raise RestWindowError(f"log {self.name}: {e} (the rest window is the stationary of its meta.json)") from None
+
+
+def _tracks_rests(preset: str, overrides: dict[str, Any]) -> bool:
+    """Whether ``preset`` with ``overrides`` runs the core's rest tracker (whole mode's options,
+    which causal mode refuses with its own message, left out)."""
+    return bool(preset_params(preset, **{k: v for k, v in overrides.items() if k not in WHOLE_OPTIONS})["track_rests"])
 
 
 def read_log(path: str | Path, **options: Any) -> Log:
