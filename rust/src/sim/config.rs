@@ -35,8 +35,8 @@ impl TemperatureProfile {
     }
 }
 
-/// Configuration of [`GyroModel`]; SI units (s, rad/s, degC). [`GyroModelConfig::ideal`] is a
-/// perfect gyro to start from.
+/// Configuration of [`GyroModel`](super::GyroModel); SI units (s, rad/s, degC).
+/// [`GyroModelConfig::ideal`] is a perfect gyro to start from.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct GyroModelConfig {
