@@ -1,4 +1,4 @@
-"""The accuracy bar of the recommended preset (README, "Results on the real logs"): E_psi on the
+"""The accuracy bar of the recommended preset (docs/results.md): E_psi on the
 real logs beside static-bias removal, and do-no-harm checks on gyros without bias.
 
 - real logs: E_psi [deg] against each log's reference, the static bias from its rest window
@@ -7,7 +7,7 @@ real logs beside static-bias removal, and do-no-harm checks on gyros without bia
   long gentle curves (gyrocore.tune.harm_cases, seeds not used in tuning);
 - reference rate: the same on each real log's own reference, differentiated (a gyro without bias);
 - noisy gyro: the CRS03's noise without bias or drift on the same roads, E_psi above static-bias
-  removal, mean and worst (not part of the bar; see the README).
+  removal, mean and worst (not part of the bar; see docs/results.md).
 
     python examples/accuracy_bar.py [DATA_DIR]     # default ../shared/data/real
 """

@@ -3,7 +3,7 @@ log, causal (what a streaming pipeline gives: a rest corrects only what follows 
 without a rest window gets no bias) and whole-log (the bias smoothed from every rest, known from
 the first sample), with whole mode's two choices (``bias_walk``, ``min_rest``) made by
 leave-one-log-out: each log is scored with the choice that is best on the other logs (lowest
-mean log E_psi of static_bias), never with one fitted to it. Prints the README's table
+mean log E_psi of static_bias), never with one fitted to it. Prints the table of docs/results.md
 (Markdown), the choice on all logs (the default a new log gets), and the rests each log used.
 
     python examples/whole_log_table.py [DATA_DIR]     # default ../shared/data/real; a few minutes

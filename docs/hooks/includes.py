@@ -3,15 +3,11 @@ elsewhere and can drift from it.
 
 A page line ``<!-- include WHAT -->`` is replaced when the site is built by:
 
-- ``README.md:intro``: the README's title and first paragraphs (before its first ``##`` section);
-- ``README.md#TITLE`` (one ``#`` or more): the README's section whose heading starts with TITLE,
-  with its subsections, its heading at the level given by the number of ``#`` (``#``: the page's
-  title, ``##``: as in the README);
 - ``CHANGELOG.md``: the whole changelog;
 - ``gyrocore --help``: the help of the command and of every subcommand, from their argparse parsers.
 
-The docstrings' Sphinx roles (``:func:``) are dropped from the pages, their names kept as code. A
-missing section stops the build naming it. Every page in docs/ is in the navigation: those that
+The docstrings' Sphinx roles (``:func:``) are dropped from the pages, their names kept as code. Anything
+else to include stops the build naming it. Every page in docs/ is in the navigation: those that
 mkdocs.yml's ``nav`` does not list are added after it, in file-name order.
 """
 
@@ -27,7 +23,6 @@ from mkdocs.exceptions import PluginError
 
 ROOT = Path(__file__).resolve().parents[2]
 INCLUDE = re.compile(r"^<!-- include (.+?) -->$", re.M)
-HEADING = re.compile(r"^(#+) (.*)$")
 SPHINX_ROLE = re.compile(r":(?:func|class|meth|mod|data|attr|exc|obj):(?=<code>)")
 
 
@@ -63,48 +58,7 @@ def _include(what: str, page: str) -> str:
         return (ROOT / "CHANGELOG.md").read_text(encoding="utf-8")
     if what == "gyrocore --help":
         return _cli_reference()
-    if what == "README.md:intro":
-        return "\n".join(_readme_lines()[: _section_starts()[0][0]])
-    m = re.fullmatch(r"README\.md(#+)(.+)", what)
-    if m is None:
-        raise PluginError(f"docs/{page}: cannot include {what!r} (see docs/hooks/includes.py)")
-    return _readme_section(m.group(2), len(m.group(1)), page)
-
-
-def _readme_lines() -> list[str]:
-    return (ROOT / "README.md").read_text(encoding="utf-8").splitlines()
-
-
-def _headings(lines: list[str]) -> list[tuple[int, int, str]]:
-    """(line index, level, title) of every heading outside code blocks."""
-    out, fenced = [], False
-    for i, line in enumerate(lines):
-        if line.startswith("```"):
-            fenced = not fenced
-        elif not fenced and (m := HEADING.match(line)):
-            out.append((i, len(m.group(1)), m.group(2)))
-    return out
-
-
-def _section_starts() -> list[tuple[int, str]]:
-    return [(i, title) for i, level, title in _headings(_readme_lines()) if level == 2]
-
-
-def _readme_section(title: str, level: int, page: str) -> str:
-    lines = _readme_lines()
-    starts = _section_starts()
-    found = [k for k, (_, t) in enumerate(starts) if t.startswith(title)]
-    if len(found) != 1:
-        raise PluginError(f"docs/{page}: README.md has {len(found)} sections whose heading starts with {title!r} "
-                         f"(its ## sections: {', '.join(t for _, t in starts)})")
-    begin = starts[found[0]][0]
-    end = starts[found[0] + 1][0] if found[0] + 1 < len(starts) else len(lines)
-    section = lines[begin:end]
-    shift = level - 2
-    for i, old, text in _headings(section):
-        section[i] = "#" * max(1, old + shift) + " " + text
-    # the README links pages of the site as docs/NAME.md
-    return re.sub(r"\]\(docs/", "](", "\n".join(section))
+    raise PluginError(f"docs/{page}: cannot include {what!r} (see docs/hooks/includes.py)")
 
 
 def _cli_reference() -> str:

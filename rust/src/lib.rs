@@ -85,7 +85,11 @@ pub use stage::{Clock, Stage};
 pub use threshold::{Threshold, ThresholdConfig};
 pub use validate::{check_block, MAX_READING, MAX_TIME, MIN_INTERVAL};
 
-// The README's Rust example compiles and runs with the doctests.
+// The Rust examples of the README and of the docs' engine page compile and run with the doctests.
 #[cfg(doctest)]
 #[doc = include_str!("../../README.md")]
 struct ReadmeExamples;
+
+#[cfg(doctest)]
+#[doc = include_str!("../../docs/engine.md")]
+struct EngineDocExamples;

@@ -124,8 +124,8 @@ def test_allan_runs_on_the_samples_rest(sample: Path, tmp_path: Path) -> None:
     assert taus[0] == pytest.approx(0.01, rel=0.05) and 10 < taus[-1] < 60
 
 
-def test_the_readmes_sample_commands_run(tmp_path: Path) -> None:
-    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
+def test_the_docs_sample_commands_run(tmp_path: Path) -> None:
+    readme = (Path(__file__).resolve().parents[2] / "docs" / "index.md").read_text(encoding="utf-8")
     commands = [line.split() for line in readme.splitlines()
                 if "sample_drive" in line and line.startswith(("gyrocore ", "python -m gyrocore.datasets"))]
     assert [c[:2] for c in commands] == [["python", "-m"], ["gyrocore", "process"], ["gyrocore", "evaluate"],

@@ -108,7 +108,7 @@ def _why_recommended(rows: list[dict[str, Any]]) -> str:
         f"{recommended_preset()} is not the lowest E_psi here ({best['preset']} is): it was chosen to do no harm "
         "(within 0.5 deg of plain integration on a gyro without bias, and better than static_bias on every "
         "real log with a rest), so it corrects less on strongly drifting gyros like these "
-        "(README: Results on the real logs)"
+        "(docs/results.md)"
     )
 
 

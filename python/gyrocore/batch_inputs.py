@@ -1,0 +1,76 @@
+"""A batch's inputs (paths, folders of logs, glob patterns) and its outputs' names, refusing an output
+that would land among the inputs; :mod:`gyrocore.batch` re-exports the public names."""
+
+from __future__ import annotations
+
+import glob
+import os
+from collections.abc import Iterable, Sequence
+from pathlib import Path
+
+from . import io
+
+
+def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
+    """Files and folders from paths, folders of logs and glob patterns (``logs/**/*.csv``).
+
+    A log folder or ROS 2 bag folder is one input; any other folder stands for the inputs directly
+    in it. Every path named, and every name with an input's suffix that a folder or pattern gives,
+    is kept even if it cannot be read (a dangling symbolic link, a loop, no permission): it fails
+    later with its reason instead of silently dropping out. Raises ValueError for an item that
+    matches nothing.
+    """
+    found: list[Path] = []
+    for item in items:
+        named, matches = _matches(item)
+        for m in matches:
+            if m.is_dir() and not io.is_input(m):
+                inside = sorted(c for c in m.iterdir() if _named_as_input(c))
+                if not inside and named:
+                    raise ValueError(f"{m}: no logs in this folder ({', '.join(io.FILE_SUFFIXES)}, log or bag folders)")
+                found += inside
+            elif named or _named_as_input(m):
+                found.append(m)
+    return list(dict.fromkeys(found))
+
+
+def check_outside_inputs(items: Iterable[str | Path], out: Path, inputs: Sequence[Path] = ()) -> None:
+    """Refuse an output (file or folder) that is, or lies inside, a folder given as input (directly
+    or by a pattern), or an output folder that holds one of ``inputs``: a later run over that
+    folder would read the outputs as logs (and a CSV output could be its own input)."""
+    io.check_not_input(out, [m for item in items for m in _matches(item)[1] if m.is_dir()])
+    for p in inputs:
+        if p.parent.resolve() == out.resolve():
+            raise ValueError(
+                f"refusing to write into {out}: it holds the input {p}, and the outputs would be read as "
+                "logs by a later run over it; give an output folder outside the inputs"
+            )
+
+
+def _matches(item: str | Path) -> tuple[bool, list[Path]]:
+    """Whether ``item`` names a path itself, and the paths it stands for (itself, or a pattern's
+    matches); raises ValueError if it matches nothing."""
+    p = Path(item)
+    if os.path.lexists(p):  # also true for a dangling link, which exists() is not
+        return True, [p]
+    matches = [Path(m) for m in sorted(glob.glob(str(item), recursive=True))]
+    if not matches:
+        raise ValueError(f"{item}: no such file or folder, and no file matches it")
+    return False, matches
+
+
+def _named_as_input(path: Path) -> bool:
+    """An input, or a name that says it is one but cannot be read as one (a dangling link)."""
+    return io.is_input(path) or (not path.is_dir() and path.suffix.lower() in io.FILE_SUFFIXES)
+
+
+def output_paths(inputs: Sequence[Path], out_dir: Path, fmt: str) -> list[Path]:
+    """``out_dir/<input name without suffix>.<fmt>`` for each input; refuses two inputs that would
+    share an output."""
+    outs = [out_dir / f"{p.name if p.is_dir() else p.stem}.{fmt}" for p in inputs]
+    seen: dict[Path, Path] = {}
+    for p, o in zip(inputs, outs):
+        if o in seen:
+            raise ValueError(f"{seen[o]} and {p} would both be written to {o}; process them separately")
+        seen[o] = p
+    return outs

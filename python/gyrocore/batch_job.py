@@ -1,0 +1,298 @@
+"""One file's job in a batch: stream a log through the pipeline into its output table, with the
+report of what it did (:class:`FileReport`) and a batch's (:class:`BatchReport`);
+:mod:`gyrocore.batch` re-exports the public names."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import asdict, dataclass, fields
+from pathlib import Path
+from typing import Any
+
+from . import _signals, io, rests, wholelog
+from ._arrays import FloatArray
+from ._checks import warn
+from ._gyrocore import SampleError
+from .io._columns import concat
+from .io._logfolder import read_odometry
+from .pipeline import Pipeline, RestWindowError, _to_si, has_bias_source, uses_static_bias
+from .window import Window, time_range
+
+#: ``progress(done, total, unit)``: called after each chunk with the progress through the input.
+Progress = Callable[[int, "int | None", str], None]
+
+_READ_OPTIONS = {f.name for f in fields(io.ReadOptions)}
+
+
+@dataclass(frozen=True)
+class FileReport:
+    """What happened to one input.
+
+    Attributes:
+        input: the input path.
+        output: the heading table written, or None if the file failed.
+        rows_in: samples read (up to the failure, for a failed file).
+        rows_out: rows written (equal to ``rows_in`` for a file that succeeded; 0 if it failed).
+        seconds: wall time.
+        error: why the file failed, or None.
+        warnings: what looked wrong but was processed (units, a missing rest window, repairs).
+        bias_source: where the static bias came from (None if the file failed).
+        rests: the rests whose bias was used in whole mode.
+    """
+
+    input: str
+    output: str | None
+    rows_in: int
+    rows_out: int
+    seconds: float
+    error: str | None = None
+    warnings: tuple[str, ...] = ()
+    bias_source: str | None = None
+    rests: tuple[wholelog.Rest, ...] = ()
+
+    @property
+    def ok(self) -> bool:
+        """Whether the file was processed completely."""
+        return self.error is None
+
+    def as_dict(self) -> dict[str, Any]:
+        """Plain data for JSON."""
+        return {
+            **asdict(self),
+            "warnings": list(self.warnings),
+            "rests": [r.as_dict() for r in self.rests],
+            "ok": self.ok,
+        }
+
+    def __str__(self) -> str:
+        if not self.ok:  # most reasons already name the file
+            return f"FAILED {self.error}" if self.input in (self.error or "") else f"FAILED {self.input}: {self.error}"
+        lines = [
+            f"ok     {self.input}: {self.rows_in} rows in, {self.rows_out} out -> {self.output} ({self.seconds:.2f} s)",
+            f"       bias: {self.bias_source}",
+        ]
+        lines += wholelog.rest_lines(self.bias_source or "", self.rests, " " * 9)
+        return "\n".join(lines)
+
+
+@dataclass(frozen=True)
+class BatchReport:
+    """The reports of a batch, in the order of the inputs."""
+
+    files: tuple[FileReport, ...]
+    seconds: float
+
+    @property
+    def succeeded(self) -> tuple[FileReport, ...]:
+        """The files processed completely."""
+        return tuple(r for r in self.files if r.ok)
+
+    @property
+    def failed(self) -> tuple[FileReport, ...]:
+        """The files that failed, with their reason."""
+        return tuple(r for r in self.files if not r.ok)
+
+    @property
+    def rows_in(self) -> int:
+        """Samples read, over all files."""
+        return sum(r.rows_in for r in self.files)
+
+    @property
+    def rows_out(self) -> int:
+        """Rows written, over all files."""
+        return sum(r.rows_out for r in self.files)
+
+    def as_dict(self) -> dict[str, Any]:
+        """Plain data for JSON."""
+        return {
+            "ok": len(self.succeeded),
+            "failed": len(self.failed),
+            "rows_in": self.rows_in,
+            "rows_out": self.rows_out,
+            "seconds": self.seconds,
+            "files": [r.as_dict() for r in self.files],
+        }
+
+    def __str__(self) -> str:
+        lines = [str(r) for r in self.files]
+        lines.append(
+            f"{len(self.succeeded)} of {len(self.files)} files processed, {len(self.failed)} failed; "
+            f"{self.rows_in} rows in, {self.rows_out} out, {self.seconds:.2f} s"
+        )
+        return "\n".join(lines)
+
+
+def split_options(options: dict[str, Any]) -> tuple[io.ReadOptions, dict[str, Any]]:
+    """Separate reader options (:class:`gyrocore.io.ReadOptions` fields) from pipeline overrides."""
+    read = {k: v for k, v in options.items() if k in _READ_OPTIONS}
+    return io.ReadOptions(**read), {k: v for k, v in options.items() if k not in _READ_OPTIONS}
+
+
+class _FileJob:
+    """One input streamed to one output; counts rows as it goes so a failure can say how far it got."""
+
+    def __init__(
+        self,
+        path: Path,
+        out: Path,
+        preset: str,
+        heading: str,
+        chunk_rows: int,
+        options: dict[str, Any],
+        columns: Sequence[str] = io.OUTPUT_COLUMNS,
+        mode: str = "whole",
+        use_speed: bool = True,
+    ):
+        self.path, self.out, self.preset, self.heading, self.chunk_rows = path, out, preset, heading, chunk_rows
+        self.mode, self.use_speed = mode, use_speed
+        self.read_options, self.overrides = split_options(options)
+        self.columns = io.check_columns(columns)
+        # the core computes the heading always, the rate and drift only for a column of theirs
+        self.outputs = ("heading", *(c for c in ("rate", "drift") if c in self.columns))
+        self.rows_in = 0
+
+    def run(self, progress: Progress | None = None) -> FileReport:
+        start = time.perf_counter()
+        source = io.open_source(self.path, self.read_options)
+        io.check_output(self.out, source)
+        overrides = dict(self.overrides)
+        window = overrides.get("bias_window")
+        if window is not None:
+            t0 = _first_time(source)
+            if isinstance(window, Window):  # a window after the first sample: the log says where that is
+                overrides["bias_window"] = window.resolve(t0)
+            if overrides["bias_window"][1] < t0:
+                raise ValueError(
+                    f"{source.data_path}: the rest window {_window_text(window)} ends before the first sample; "
+                    + time_range(t0)
+                )
+        notes: list[str] = []
+        from_meta = False
+        if uses_static_bias(self.preset) and not has_bias_source(overrides) and source.stationary is not None:
+            overrides["bias_window"], from_meta = source.stationary, True
+        plan = self._plan(source, overrides, from_meta)
+        if plan.warning and self.mode == "whole":  # a causal pipeline warns itself
+            warn(plan.warning)
+        if plan.warning:
+            notes.append(plan.warning)
+        pipeline = Pipeline(self.preset, **plan.overrides)
+        check = io.UnitCheck(source.options)
+        with io.HeadingWriter(self.out, heading=self.heading, columns=self.columns) as writer:
+            for chunk in source.chunks(self.chunk_rows):
+                _signals.check()  # a signal whose KeyboardInterrupt a library swallowed stops here
+                check.update(chunk.t, chunk.rate)
+                try:
+                    result = pipeline.process(
+                        chunk.t,
+                        chunk.rate - plan.bias(chunk.t),
+                        index_offset=chunk.first_row,
+                        outputs=self.outputs,
+                    )
+                except SampleError as e:
+                    # a timestamp beyond the core's limits is most often an epoch in a smaller unit
+                    fix = check.time_fix() if e.what == "t" else None
+                    raise ValueError(source.locate(e) + (f"; {fix}" if fix else "")) from None
+                except ValueError as e:
+                    raise _in_file(source, e, from_meta) from None
+                writer.write(result)
+                self.rows_in += len(chunk)
+                if progress is not None:
+                    progress(chunk.done, source.progress_total, source.progress_unit)
+            if self.rows_in == 0:
+                raise ValueError(f"{source.data_path}: no samples")
+            if check.error() is not None:
+                raise ValueError(f"{source.data_path}: {check.error()}")
+            try:
+                pipeline.finish()
+            except ValueError as e:
+                raise _in_file(source, e, from_meta) from None
+            if writer.rows != self.rows_in:  # the pipeline returns one row per sample; prove it
+                raise RuntimeError(f"{self.path}: {self.rows_in} rows read but {writer.rows} written")
+        notes += check.problems() + _repairs(pipeline.report)
+        return FileReport(
+            str(self.path),
+            str(self.out),
+            self.rows_in,
+            writer.rows,
+            time.perf_counter() - start,
+            None,
+            tuple(notes),
+            plan.source,
+            plan.rests,
+        )
+
+    def _plan(self, source: io.GyroSource, overrides: dict[str, Any], from_meta: bool) -> wholelog.BiasPlan:
+        """Where the bias comes from: in whole mode a first pass over the file (see
+        :func:`gyrocore.wholelog.plan_stream`), in causal mode the pipeline's own rest window."""
+        if self.mode == "causal":
+            wholelog.refuse_whole_options(_to_si(overrides))
+            causal = wholelog.causal_source(self.preset, _to_si(overrides))
+            warning = None
+            if uses_static_bias(self.preset) and not has_bias_source(overrides):
+                warning = (
+                    f"preset {self.preset!r} removes a static bias but the log gives no rest window: "
+                    "the bias is taken as 0 (give bias_window, bias_duration or bias; "
+                    "--bias-window, --bias-duration or --bias-dps)"
+                )
+            return wholelog.BiasPlan(causal, overrides=overrides, warning=warning)
+        wholelog.refuse_tracking(_to_si(overrides))
+
+        def chunks() -> Iterator[tuple[FloatArray, FloatArray]]:
+            for chunk in source.chunks(self.chunk_rows):
+                yield chunk.t, chunk.rate
+
+        def read_all() -> tuple[FloatArray, FloatArray, FloatArray | None]:
+            read = list(source.chunks(self.chunk_rows))
+            t, rate = concat([c.t for c in read]), concat([c.rate for c in read])
+            odometry = read_odometry(source.path) if self.use_speed and source.kind == "log folder" else {}
+            if not odometry:
+                return t, rate, None
+            where = str(source.path / "odometry.csv")
+            return t, rate, rests.speed_on(t, odometry["t"], odometry["speed"], where=where)
+
+        try:
+            return wholelog.plan_stream(self.preset, overrides, chunks, read_all)
+        except SampleError:
+            # A rest's measurement saw a slice of the log: the streamed pass names the row.
+            plain = wholelog.untracked({**_to_si(overrides), "bias": 0.0})
+            return wholelog.BiasPlan("none: the log has invalid samples", overrides=plain)
+        except ValueError as e:
+            raise _in_file(source, e, from_meta) from None
+
+    def failure(self, error: BaseException, seconds: float) -> FileReport:
+        reason = str(error) if isinstance(error, (ValueError, TypeError, OSError, ImportError)) else repr(error)
+        return FileReport(str(self.path), None, self.rows_in, 0, seconds, reason or type(error).__name__)
+
+
+def _window_text(window: Window | tuple[float, float]) -> str:
+    return str(window) if isinstance(window, Window) else f"{window[0]:.10g} .. {window[1]:.10g} s"
+
+
+def _first_time(source: io.GyroSource) -> float:
+    """The first timestamp of an input [s] (reads its first block only)."""
+    first = next(source.chunks(1), None)  # the reader closes its file as the generator goes
+    if first is None:
+        raise ValueError(f"{source.data_path}: no samples")
+    return float(first.t[0])
+
+
+def _in_file(source: io.GyroSource, error: ValueError, window_from_meta: bool) -> ValueError:
+    """The pipeline's error about a file, naming it (unless a reader did) and meta.json where
+    the rest window is its."""
+    meta = window_from_meta and isinstance(error, RestWindowError)
+    where = f" (the rest window is the stationary of {source.path / 'meta.json'})" if meta else ""
+    text = str(error)
+    return ValueError(f"{text if str(source.data_path) in text else f'{source.data_path}: {text}'}{where}")
+
+
+def _repairs(report: dict[str, float]) -> list[str]:
+    """What the pipeline's input policy repaired (NaN readings held or skipped, gaps)."""
+    notes = []
+    if report["held"]:
+        notes.append(f"{int(report['held'])} non-finite readings replaced by the last finite one")
+    if report["skipped"]:
+        notes.append(f"{int(report['skipped'])} samples skipped (non-finite readings; their rows have a NaN rate)")
+    if report["gaps"]:
+        notes.append(f"{int(report['gaps'])} gaps, the longest {report['longest_gap']:.6g} s")
+    return notes

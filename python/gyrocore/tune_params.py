@@ -1,0 +1,100 @@
+"""Parameter sets: a base preset with overrides, as a versioned JSON preset file
+(``gyrocore evaluate --params FILE``); :mod:`gyrocore.tune` re-exports the public names."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Mapping
+
+from .evaluate import Method
+from .pipeline import BIAS_SOURCES, Pipeline, parameters
+
+#: Version of the preset-file format written by :meth:`ParameterSet.write`.
+FORMAT_VERSION = 1
+FORMAT_NAME = "gyrocore-params"
+
+
+
+def validate(preset: str, overrides: Mapping[str, Any]) -> None:
+    """Raise ValueError unless the core accepts ``overrides`` on ``preset`` (it checks every value
+    when a pipeline is built)."""
+    Pipeline(preset, **overrides, bias=0.0)
+
+
+
+@dataclass(frozen=True)
+class ParameterSet:
+    """A base preset with parameter overrides (SI names and units, see :func:`gyrocore.parameters`).
+
+    ``Pipeline(ps.preset, **ps.overrides)`` runs it; the static bias is not part of a parameter set
+    (it belongs to each log: its rest window, or a bias duration).
+    """
+
+    name: str
+    preset: str
+    overrides: Mapping[str, Any]
+    tuning: Mapping[str, Any] = field(default_factory=dict)
+    """How the set was found (training drives, scores, optimiser); informative only."""
+
+    def __post_init__(self) -> None:
+        bias = [k for k in self.overrides if k in BIAS_SOURCES or k[:-4] in BIAS_SOURCES]
+        if bias:
+            raise ValueError(
+                f"parameter set {self.name!r}: {', '.join(bias)} cannot be part of a parameter set; "
+                "the static bias comes from each log (its rest window, or a bias duration)"
+            )
+        validate(self.preset, self.overrides)
+
+    def pipeline(self, **bias: Any) -> Pipeline:
+        """A pipeline with these parameters; ``bias`` gives the static bias (e.g. ``bias_window=...``)."""
+        return Pipeline(self.preset, **self.overrides, **bias)
+
+    def method(self) -> Method:
+        """This set as a method for :func:`gyrocore.evaluate.compare`."""
+        return Method(self.name, self.preset, dict(self.overrides))
+
+    def to_json(self) -> dict[str, Any]:
+        """The preset-file content: format, version, name, preset, SI overrides, their units, tuning."""
+        units = parameters()
+        return {
+            "format": FORMAT_NAME,
+            "version": FORMAT_VERSION,
+            "name": self.name,
+            "preset": self.preset,
+            "overrides": dict(self.overrides),
+            "units": {k: units.get(k, "") for k in self.overrides},
+            "tuning": dict(self.tuning),
+        }
+
+    def write(self, path: str | Path) -> None:
+        """Write the preset file (JSON) atomically."""
+        from .cli._common import write_atomically
+
+        text = json.dumps(self.to_json(), indent=2) + "\n"
+        write_atomically(Path(path), lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
+
+    @classmethod
+    def read(cls, path: str | Path) -> "ParameterSet":
+        """Read a preset file written by :meth:`write` (ValueError naming the file on bad content)."""
+        p = Path(path)
+        try:
+            data = json.loads(p.read_text(encoding="utf-8"))
+        except json.JSONDecodeError as e:
+            raise ValueError(f"{p}: line {e.lineno} column {e.colno}: {e.msg}") from None
+        if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
+            raise ValueError(f"{p}: not a gyrocore parameter file (no \"format\": \"{FORMAT_NAME}\")")
+        if data.get("version") != FORMAT_VERSION:
+            raise ValueError(
+                f"{p}: parameter file version {data.get('version')!r}; this gyrocore reads {FORMAT_VERSION}"
+            )
+        missing = [k for k in ("name", "preset", "overrides") if k not in data]
+        if missing:
+            raise ValueError(f"{p}: missing key(s) {', '.join(missing)}")
+        if not isinstance(data["overrides"], dict):
+            raise ValueError(f"{p}: \"overrides\" must be an object of parameter names to SI values")
+        try:
+            return cls(str(data["name"]), str(data["preset"]), data["overrides"], data.get("tuning", {}))
+        except (ValueError, TypeError) as e:
+            raise ValueError(f"{p}: {e}") from None
