@@ -4,7 +4,9 @@
 mod common;
 
 use common::bits;
-use gyrocore::{Error, Output, Pipeline, PipelineConfig, Preset, RestTrackerConfig, StaticBias};
+use gyrocore::{
+    Error, Output, Outputs, Pipeline, PipelineConfig, Preset, Rest, RestTrackerConfig, StaticBias,
+};
 use proptest::prelude::*;
 
 /// A drive at 100 Hz: `(t, rate, speed)`, with white noise of `noise` [rad/s] (a fixed
@@ -59,6 +61,33 @@ fn run(p: &mut Pipeline, t: &[f64], r: &[f64], s: Option<&[f64]>) -> Result<Vec<
     common::try_block_with_speed(p, t, r, s)
 }
 
+/// The outputs of a block and the rests the pipeline hands over while it takes it.
+fn run_reporting(
+    p: &mut Pipeline,
+    t: &[f64],
+    r: &[f64],
+    s: Option<&[f64]>,
+) -> (Vec<Output>, Vec<Rest>) {
+    let n = t.len();
+    let (mut h, mut ra, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let mut rests = vec![];
+    let out = Outputs::all(&mut h, &mut ra, &mut d);
+    p.process_block_reporting(t, r, None, s, out, &mut |rest| rests.push(rest))
+        .unwrap();
+    let outputs = (0..n)
+        .map(|i| Output {
+            heading: h[i],
+            rate: ra[i],
+            drift: d[i],
+        })
+        .collect();
+    (outputs, rests)
+}
+
+fn rests_of(p: &mut Pipeline, t: &[f64], r: &[f64], s: Option<&[f64]>) -> Vec<Rest> {
+    run_reporting(p, t, r, s).1
+}
+
 #[test]
 fn a_bias_step_is_caught_at_a_stop_found_from_speed() {
     // No rest at the start; the bias steps at 60 s; the car stops at 30-45 s and 90-110 s.
@@ -66,9 +95,19 @@ fn a_bias_step_is_caught_at_a_stop_found_from_speed() {
     let (t, r, s) = drive(150.0, &[(30.0, 45.0), (90.0, 110.0)], b0, b1, 60.0, 0.005);
     let mut p = Pipeline::new(tracked(StaticBias::Fixed(0.0))).unwrap();
     let out = run(&mut p, &t, &r, Some(&s)).unwrap();
+    let rests = rests_of(
+        &mut Pipeline::new(tracked(StaticBias::Fixed(0.0))).unwrap(),
+        &t,
+        &r,
+        Some(&s),
+    );
     let tracker = p.rest_tracker().unwrap();
-    let rests: Vec<_> = tracker.recent_rests().collect();
     assert_eq!(rests.len(), 2, "{rests:?}");
+    assert_eq!(tracker.last_rest(), rests.last().copied());
+    assert!(
+        rests.iter().all(|r| r.by_speed && r.samples > 0),
+        "{rests:?}"
+    );
     // Each rest without its first and last block; times count from the first sample.
     assert!(rests[0].start >= 30.0 && rests[0].end <= 45.0, "{rests:?}");
     assert!(rests[1].start >= 90.0 && rests[1].end <= 110.0, "{rests:?}");
@@ -100,6 +139,31 @@ fn a_bias_step_is_caught_at_a_stop_found_from_speed() {
 }
 
 #[test]
+fn every_rest_of_a_long_drive_is_reported() {
+    // 100 stops of 6 s, one every 20 s: each reaches the caller, however the stream is cut.
+    let stops: Vec<(f64, f64)> = (0..100)
+        .map(|k| (20.0 * k as f64 + 10.0, 20.0 * k as f64 + 16.0))
+        .collect();
+    let (t, r, s) = drive(2005.0, &stops, 0.01, 0.01, 0.0, 0.005);
+    let config = tracked(StaticBias::Fixed(0.0));
+    let whole = rests_of(&mut Pipeline::new(config).unwrap(), &t, &r, Some(&s));
+    assert_eq!(whole.len(), 100);
+    for (rest, (a, b)) in whole.iter().zip(&stops) {
+        assert!(
+            *a <= rest.start && rest.end <= *b,
+            "{rest:?} outside {a}..{b}"
+        );
+    }
+    let mut p = Pipeline::new(config).unwrap();
+    let mut chunked = vec![];
+    for (tc, (rc, sc)) in t.chunks(4321).zip(r.chunks(4321).zip(s.chunks(4321))) {
+        chunked.extend(rests_of(&mut p, tc, rc, Some(sc)));
+    }
+    assert_eq!(chunked, whole);
+    assert_eq!(p.rest_tracker().unwrap().rests_found(), 100);
+}
+
+#[test]
 fn rests_are_found_from_the_rate_alone_once_the_noise_at_rest_is_known() {
     // A rest window at the start gives the noise; the mid-drive stop is found without speed.
     let (t, r, _) = drive(
@@ -115,10 +179,12 @@ fn rests_are_found_from_the_rate_alone_once_the_noise_at_rest_is_known() {
         end: 10.0,
     }))
     .unwrap();
-    run(&mut p, &t, &r, None).unwrap();
+    let rests = rests_of(&mut p, &t, &r, None);
     let tracker = p.rest_tracker().unwrap();
-    let rests: Vec<_> = tracker.recent_rests().collect();
     assert_eq!(rests.len(), 1, "{rests:?}");
+    assert!(!rests[0].by_speed);
+    // The noise of one reading, as simulated.
+    assert!((rests[0].noise / 0.005 - 1.0).abs() < 0.1, "{rests:?}");
     assert!(rests[0].start >= 50.0 && rests[0].end <= 65.0, "{rests:?}");
     assert!((tracker.bias() - 0.015).abs() < 1e-3, "{}", tracker.bias());
     // Without the window there is no noise at rest to judge by, and no speed: nothing is found.
@@ -151,7 +217,7 @@ fn the_dead_band_follows_the_noise_of_the_first_rest() {
     config.noise_scaled.threshold_sigmas = Some(3.0);
     let mut p = Pipeline::new(config).unwrap();
     let out = run(&mut p, &t, &r, Some(&s)).unwrap();
-    let rest = p.rest_tracker().unwrap().recent_rests().next().unwrap();
+    let rest = p.rest_tracker().unwrap().last_rest().unwrap();
     let zeroed = |a: f64, b: f64| {
         t.iter()
             .zip(&out)
@@ -172,6 +238,55 @@ fn the_dead_band_follows_the_noise_of_the_first_rest() {
         zeroed(rest.end + 1.5, 90.0) >= below,
         "{} < {below}",
         zeroed(rest.end + 1.5, 90.0)
+    );
+}
+
+#[test]
+fn the_dead_band_widens_with_the_bias_walk_between_stops() {
+    // Stops at 0-10 s and 150-165 s (noise 0.005 rad/s); between them the car drives straight
+    // and noise-free with the rate 0.025 rad/s over the bias. The band, 3 standard deviations of
+    // the noise and the bias's error (sqrt(0.005^2 + q dt) with q = 1e-6), passes that rate until
+    // about 44 s after the first stop (3 sqrt(2.5e-5 + 1e-6 dt) = 0.025) and cuts it after.
+    let (b, delta, noise) = (0.01, 0.025, 0.005);
+    let (mut t, mut r, mut s) = (vec![], vec![], vec![]);
+    let stopped = |ti: f64| ti < 10.0 || (150.0..=165.0).contains(&ti);
+    let mut seed: u64 = 7;
+    for i in 0..20_000 {
+        let ti = i as f64 * 0.01;
+        seed = seed
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        // A square wave of the noise's size: its successive differences give the noise exactly.
+        let w = if seed >> 63 == 0 { noise } else { -noise };
+        t.push(ti);
+        r.push(if stopped(ti) { b + w } else { b + delta });
+        s.push(if stopped(ti) { 0.0 } else { 5.0 });
+    }
+    let mut config = tracked(StaticBias::Fixed(0.0));
+    config.noise_scaled.threshold_sigmas = Some(3.0);
+    let mut p = Pipeline::new(config).unwrap();
+    let out = run(&mut p, &t, &r, Some(&s)).unwrap();
+    let passed = |a: f64, z: f64| {
+        t.iter()
+            .zip(&out)
+            .filter(|(&ti, _)| ti > a && ti < z)
+            .all(|(_, o)| (o.rate - delta).abs() < 2e-3)
+    };
+    let cut = |a: f64, z: f64| {
+        t.iter()
+            .zip(&out)
+            .filter(|(&ti, _)| ti > a && ti < z)
+            .all(|(_, o)| o.rate == 0.0)
+    };
+    assert!(
+        passed(12.0, 40.0),
+        "the band was wide right after the first stop"
+    );
+    assert!(cut(60.0, 150.0), "the band did not widen between the stops");
+    // The second stop measures the bias again: the band is narrow again after it.
+    assert!(
+        passed(167.0, 190.0),
+        "the band stayed wide after the second stop"
     );
 }
 
@@ -271,13 +386,6 @@ fn bad_speed_is_refused_with_its_index_and_changes_nothing() {
     assert_eq!(p, before);
 }
 
-/// Per-sample updates, in order.
-fn run_updates(p: &mut Pipeline, t: &[f64], r: &[f64], s: &[f64]) -> Vec<Output> {
-    (0..t.len())
-        .map(|i| p.update_with_speed(t[i], r[i], None, s[i]))
-        .collect()
-}
-
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(16))]
 
@@ -301,23 +409,39 @@ proptest! {
             config = PipelineConfig { correction: config.correction, rest_tracker: config.rest_tracker, ..tuned };
         }
         let mut whole = Pipeline::new(config).unwrap();
-        let expected = run(&mut whole, &t, &r, Some(&s)).unwrap();
-        prop_assert!(whole.rest_tracker().unwrap().rests_found() >= 2);
+        let (expected, rests) = run_reporting(&mut whole, &t, &r, Some(&s));
+        prop_assert!(rests.len() >= 2);
+        prop_assert_eq!(rests.len() as u64, whole.rest_tracker().unwrap().rests_found());
 
         let mut cuts = cuts;
         cuts.sort_unstable();
         let mut chunked = Pipeline::new(config).unwrap();
-        let mut got = vec![];
+        let (mut got, mut got_rests) = (vec![], vec![]);
         let mut from = 0;
         for &c in cuts.iter().chain([&t.len()]) {
-            got.extend(run(&mut chunked, &t[from..c.max(from)], &r[from..c.max(from)], Some(&s[from..c.max(from)])).unwrap());
-            from = c.max(from);
+            let c = c.max(from);
+            let (o, found) = run_reporting(&mut chunked, &t[from..c], &r[from..c], Some(&s[from..c]));
+            got.extend(o);
+            got_rests.extend(found);
+            from = c;
         }
         prop_assert_eq!(bits(&got), bits(&expected));
+        prop_assert_eq!(&got_rests, &rests);
         prop_assert_eq!(&chunked, &whole);
 
+        // Sample by sample, each rest is read after the sample that ends it.
         let mut single = Pipeline::new(config).unwrap();
-        prop_assert_eq!(bits(&run_updates(&mut single, &t, &r, &s)), bits(&expected));
+        let mut single_rests = vec![];
+        let mut outputs = vec![];
+        for i in 0..t.len() {
+            outputs.push(single.update_with_speed(t[i], r[i], None, s[i]));
+            let tracker = single.rest_tracker().unwrap();
+            if tracker.ended_rest() {
+                single_rests.extend(tracker.last_rest());
+            }
+        }
+        prop_assert_eq!(bits(&outputs), bits(&expected));
+        prop_assert_eq!(&single_rests, &rests);
 
         // a serde snapshot mid-stream (the snapshot needs the crate's serde feature)
         #[cfg(feature = "serde")]

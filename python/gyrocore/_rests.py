@@ -1,4 +1,5 @@
-"""The rests of a whole log: found, measured and accepted (for :mod:`gyrocore.wholelog`).
+"""The rests of a whole log: found, measured and accepted (for :mod:`gyrocore.wholelog`), as
+:class:`gyrocore.rests.Rest` records.
 
 A rest is found where a given speed shows the vehicle standing still (speed below
 :data:`SPEED_THRESHOLD` m/s throughout) or, where no speed is known, from the rate alone
@@ -17,8 +18,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
-from dataclasses import asdict, dataclass
-from typing import Any
+from dataclasses import replace
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -27,6 +27,7 @@ from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
 from ._smoother import leave_one_out
 from .pipeline import RestWindowError
+from .rests import Rest
 from .window import time_range
 
 #: Below this speed [m/s] the vehicle stands still (wheel and CAN speeds read a few cm/s of noise).
@@ -43,47 +44,6 @@ NOISE_RATIO = 2.0
 #: Among three or more rests, one whose mean is this many standard deviations from what the
 #: others give (leave-one-out) is refused, the worst first, one at a time.
 OUTLIER_SIGMAS = 4.0
-
-
-@dataclass(frozen=True)
-class Rest:
-    """One rest of the log and what it measured.
-
-    Attributes:
-        start, end: first and last time of the window [s, the log's time base].
-        bias: mean reading over the window [rad/s], time-weighted as the pipeline's rest window.
-        bias_std_error: standard error of ``bias`` [rad/s]: the batch-means error, at least the
-            white-noise error ``noise / sqrt(samples)``.
-        noise: standard deviation of one reading [rad/s].
-        samples: readings inside the window.
-        found_by: ``given`` (bias_window, bias_duration, meta.json), ``speed`` or ``rate``.
-        refused: why the rest was not used, or None when it was.
-    """
-
-    start: float
-    end: float
-    bias: float
-    bias_std_error: float
-    noise: float
-    samples: int
-    found_by: str
-    refused: str | None = None
-
-    @property
-    def middle(self) -> float:
-        """The time the rest's bias stands for [s]."""
-        return (self.start + self.end) / 2
-
-    def as_dict(self) -> dict[str, Any]:
-        """Plain data for JSON (SI units)."""
-        return asdict(self)
-
-    def __str__(self) -> str:
-        text = (
-            f"[{self.start:.3f}, {self.end:.3f}] s ({self.found_by}): bias {math.degrees(self.bias):.5f} "
-            f"+- {math.degrees(self.bias_std_error):.2g} deg/s"
-        )
-        return text if self.refused is None else f"{text}, not used: {self.refused}"
 
 
 def _runs(t: FloatArray, flag: np.ndarray) -> list[tuple[float, float]]:
@@ -206,4 +166,4 @@ def accept(rests: list[Rest], walk: float) -> list[Rest]:
 
 
 def _refuse(rest: Rest, why: str) -> Rest:
-    return Rest(rest.start, rest.end, rest.bias, rest.bias_std_error, rest.noise, rest.samples, rest.found_by, why)
+    return replace(rest, refused=why)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -17,11 +17,8 @@ from numpy.typing import ArrayLike
 from . import _gyrocore, rests
 from ._arrays import FloatArray, as_float_array
 from ._checks import warn, warn_units
-from .rests import Rest as TrackedRest
+from .rests import Rest
 from .window import time_range
-
-if TYPE_CHECKING:
-    from .wholelog import Rest
 
 #: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling.
 _RATE_PARAMETERS = ("bias", "offset", "threshold", "hdr_increment", "hdr_turn_threshold")
@@ -129,10 +126,10 @@ class HeadingResult:
         heading: continuous (unwrapped) heading [rad], counter-clockwise positive.
         rate: corrected rate that was integrated [rad/s].
         drift: HDR's drift estimate ``-I`` applied to each sample [rad/s] (0 without HDR).
-        rests: the rests whose bias was used in whole mode (:class:`gyrocore.wholelog.Rest`).
-        tracked_rests: with ``track_rests=True``, the rests the core's tracker found in these
-            samples (each one's span, the bias it measured and its standard error; see
-            :class:`gyrocore.rests.Rest`).
+        rests: the rests whose bias was used in whole mode (:class:`gyrocore.rests.Rest`).
+        tracked_rests: with ``track_rests=True``, every rest the core's tracker found in these
+            samples, in order (each one's span, the bias it measured, its standard error and the
+            filtered bias after it; :class:`gyrocore.rests.Rest`).
         bias_source: where the static bias came from (set by :func:`process` and
             :meth:`gyrocore.Log.process`; empty from a streaming :class:`Pipeline`).
     """
@@ -143,7 +140,7 @@ class HeadingResult:
     drift: FloatArray | None = None
     bias_source: str = ""
     rests: tuple[Rest, ...] = ()
-    tracked_rests: tuple[TrackedRest, ...] = ()
+    tracked_rests: tuple[Rest, ...] = ()
 
     def output(self, name: str) -> FloatArray:
         """The output ``name`` (one of :data:`OUTPUTS`); a ``ValueError`` if it was not asked for."""
@@ -192,7 +189,7 @@ class Pipeline:
         self._preset = preset
         self._units_checked = False
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
-        self._rests: list[rests.Rest] = []
+        self._rests: list[Rest] = []
         if uses_static_bias(preset) and not has_bias_source(si):
             until = " until the rest tracker measures one at a stop" if self.params["track_rests"] else ""
             warn(
@@ -280,18 +277,15 @@ class Pipeline:
         index_offset: int,
         flags: tuple[bool, bool],
         speed: FloatArray | None,
-    ) -> tuple[FloatArray, FloatArray | None, FloatArray | None, list[rests.Rest]]:
-        """The core over the chunk, and the rests that ended in it (see :func:`rests.run`)."""
-        if self._inner.rest_tracker() is None:
-            return (*self._inner.process(t, rate, temp, index_offset, flags, speed), [])
+    ) -> tuple[FloatArray, FloatArray | None, FloatArray | None, list[Rest]]:
+        """The core over the chunk, and the rests that ended in it (every one: the core hands
+        each over as it ends)."""
+        heading, out_rate, drift, found = self._inner.process(t, rate, temp, index_offset, flags, speed)
         origin = self._first_time if self._first_time is not None else float(t[0]) if len(t) else 0.0
-        self._inner, heading, out_rate, drift, found = rests.run(
-            self._inner, t, rate, temp, index_offset, flags, speed, origin
-        )
-        return heading, out_rate, drift, found
+        return heading, out_rate, drift, [rests.from_core(r, origin) for r in found]
 
     @property
-    def rests(self) -> list[rests.Rest]:
+    def rests(self) -> list[Rest]:
         """With ``track_rests=True``, every rest found so far, in order (see :class:`gyrocore.rests.Rest`)."""
         return list(self._rests)
 

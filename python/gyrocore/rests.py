@@ -2,16 +2,16 @@
 re-measuring the static bias through a one-state Kalman filter (see rust/src/rest_tracker.rs and
 docs/rest_tracking.md).
 
-This module holds the Python side: the speed a caller gives (per gyro sample, or a series at its own
-times such as a log folder's ``odometry.csv``, interpolated onto the gyro's), the rests as
-:class:`Rest` records, and :func:`bias_walk`, the filter's process noise from a gyro's Allan
-parameters.
+This module holds the Python side: :class:`Rest`, the one record of a rest for the tracker and for
+whole-log processing; the speed a caller gives (per gyro sample, or a series at its own times such
+as a log folder's ``odometry.csv``, interpolated onto the gyro's); and :func:`bias_walk`, the
+filter's process noise from a gyro's Allan parameters.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from typing import Any
 
 import numpy as np
@@ -22,20 +22,72 @@ from ._arrays import FloatArray, as_float_array
 
 @dataclass(frozen=True)
 class Rest:
-    """One rest the tracker found (times in the log's own clock)."""
+    """One rest of a log and what it measured: found by whole-log processing
+    (``HeadingResult.rests``, :mod:`gyrocore.wholelog`) or by the streaming rest tracker
+    (``HeadingResult.tracked_rests``, :attr:`gyrocore.Pipeline.rests`). Times are in the log's own
+    clock; rates in rad/s.
+
+    Attributes:
+        start, end: first and last time of the part measured [s] (the tracker leaves out a stop's
+            first and last detection block, whole mode a stop's edges).
+        bias: mean reading over it [rad/s]: the bias it measured, time-weighted as the pipeline's
+            rest window.
+        bias_std_error: standard error of ``bias`` [rad/s]: the batch-means error, at least the
+            white-noise error ``noise / sqrt(samples)``.
+        noise: standard deviation of one reading [rad/s].
+        samples: readings inside it.
+        found_by: ``given`` (bias_window, bias_duration, meta.json), ``speed`` (a speed below the
+            threshold) or ``rate`` (the rate alone).
+        refused: why the rest was not used (whole mode's noise and outlier tests, the tracker's
+            gate), or None when it was.
+        filtered: for the tracker, the filtered bias after this rest [rad/s]: what the pipeline
+            subtracts from then on; None in whole mode.
+    """
 
     start: float
-    """Start of the part measured [s] (the rest without its first and last detection block)."""
     end: float
-    """End of the part measured [s]."""
     bias: float
-    """Mean reading over it [rad/s]: the bias it measured."""
-    std_error: float
-    """Standard error of that mean [rad/s] (batch means of its blocks, at least the white-noise error)."""
-    accepted: bool
-    """False when the filter's gate refused it (too far from the bias for its standard errors)."""
-    filtered: float
-    """The filtered bias after this rest [rad/s]: what the pipeline subtracts from then on."""
+    bias_std_error: float
+    noise: float
+    samples: int
+    found_by: str
+    refused: str | None = None
+    filtered: float | None = None
+
+    @property
+    def accepted(self) -> bool:
+        """True when the rest was used (not refused)."""
+        return self.refused is None
+
+    @property
+    def middle(self) -> float:
+        """The time the rest's bias stands for [s]."""
+        return (self.start + self.end) / 2
+
+    def as_dict(self) -> dict[str, Any]:
+        """Plain data for JSON (SI units)."""
+        return asdict(self)
+
+    def __str__(self) -> str:
+        text = (
+            f"[{self.start:.3f}, {self.end:.3f}] s ({self.found_by}): bias {math.degrees(self.bias):.5f} "
+            f"+- {math.degrees(self.bias_std_error):.2g} deg/s"
+        )
+        return text if self.refused is None else f"{text}, not used: {self.refused}"
+
+
+#: Why the tracker did not use a rest it found.
+GATE_REFUSED = "its mean is further from the filtered bias than rest_gate_sigmas standard deviations allow"
+
+
+def from_core(rest: tuple[float, float, float, float, float, int, bool, bool, float], origin: float) -> Rest:
+    """A rest as the core's tracker reports it (times since the first sample), with times from
+    ``origin`` [s] (the first sample's time) on."""
+    start, end, bias, error, noise, samples, by_speed, accepted, filtered = rest
+    return Rest(
+        origin + start, origin + end, bias, error, noise, samples, "speed" if by_speed else "rate",
+        None if accepted else GATE_REFUSED, filtered,
+    )
 
 
 def bias_walk(*, rate_random_walk: float, bias_instability: float, horizon: float = 60.0) -> float:
@@ -100,65 +152,3 @@ def speed_on(t: FloatArray, t_speed: ArrayLike, speed: ArrayLike, *, where: str 
     if len(ts) == 0:
         return np.full(len(t), np.nan)
     return np.asarray(np.interp(t, ts, vs, left=np.nan, right=np.nan), dtype=np.float64)
-
-
-def pieces(t: FloatArray, min_duration: float) -> list[slice]:
-    """The block cut where ``t`` passes multiples of ``4 * min_duration`` from its start: the core
-    keeps the latest 8 rests, and rests end at least ``min_duration`` apart, so no piece ends more
-    than it keeps."""
-    if len(t) == 0:
-        return [slice(0, 0)]
-    span = 4.0 * min_duration
-    count = int((t[-1] - t[0]) // span)
-    cuts = np.searchsorted(t, t[0] + span * np.arange(1, count + 1)).tolist() if count else []
-    edges = [0, *cuts, len(t)]
-    return [slice(a, b) for a, b in zip(edges[:-1], edges[1:]) if b > a] or [slice(0, 0)]
-
-
-def found(inner: Any) -> int:
-    """How many rests the core pipeline ``inner`` has found (0 without rest tracking)."""
-    tracker = inner.rest_tracker()
-    return 0 if tracker is None else int(tracker[2])
-
-
-def new_rests(inner: Any, before: int, origin: float) -> list[Rest]:
-    """The rests the core found since it had found ``before``, with times from ``origin`` [s] (the
-    first sample's time) on."""
-    _, _, found, latest = inner.rest_tracker()
-    new = found - before
-    if new > len(latest):
-        raise RuntimeError(f"{new} rests ended in one piece but the core keeps {len(latest)}")
-    return [
-        Rest(origin + a, origin + b, bias, error, accepted, filtered)
-        for a, b, bias, error, accepted, filtered in latest[len(latest) - new :]
-    ]
-
-
-def run(
-    inner: Any,
-    t: FloatArray,
-    rate: FloatArray,
-    temp: FloatArray | None,
-    index_offset: int,
-    flags: tuple[bool, bool],
-    speed: FloatArray | None,
-    origin: float,
-) -> tuple[Any, FloatArray, FloatArray | None, FloatArray | None, list[Rest]]:
-    """A chunk through a copy of the core pipeline ``inner`` in :func:`pieces`, collecting every
-    rest that ends (the outputs are those of one call: the core is chunk-invariant). Returns the
-    advanced copy, the outputs and the rests; on an error ``inner`` is as it was."""
-    work = inner.__copy__()
-    outs, found_now = [], []
-    for part in pieces(t, work.params()["rest_min_duration"]):
-        before = found(work)
-        temp_p, speed_p = (None if a is None else a[part] for a in (temp, speed))
-        offset = index_offset + (part.start or 0)
-        outs.append(work.process(t[part], rate[part], temp_p, offset, flags, speed_p))
-        found_now += new_rests(work, before, origin)
-
-    def joined(k: int) -> FloatArray | None:
-        parts = [a for o in outs if (a := o[k]) is not None]
-        return np.concatenate(parts) if len(parts) == len(outs) else None
-
-    heading: FloatArray = np.concatenate([o[0] for o in outs])
-    return work, heading, joined(1), joined(2), found_now

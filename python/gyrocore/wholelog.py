@@ -38,10 +38,10 @@ from numpy.typing import ArrayLike
 from ._arrays import FloatArray, as_float_array
 from ._checks import warn
 from ._gyrocore import SampleError
-from ._rests import MIN_REST, SPEED_THRESHOLD, Rest, accept, find_rests, measure_rest
+from ._rests import MIN_REST, SPEED_THRESHOLD, accept, find_rests, measure_rest
 from ._smoother import SmoothedBias, smooth
-from .rests import speed_on
 from .pipeline import OUTPUTS, BIAS_SOURCES, HeadingResult, Pipeline, _to_si, preset_params, uses_static_bias
+from .rests import Rest, speed_on
 
 __all__ = [
     "BIAS_SIGMAS", "BIAS_WALK", "MIN_REST", "MODES", "SPEED_THRESHOLD", "WHOLE_OPTIONS", "BiasPlan", "Options", "Rest",

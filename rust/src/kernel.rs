@@ -149,6 +149,14 @@ pub trait Kernel {
         Self::first(config, state, x)
     }
 
+    /// True when the sample just taken ended something the caller is told of at once (a rest the
+    /// tracker found): the chain's loop stops after it. No other stage does.
+    #[inline(always)]
+    fn stop_after(state: &Self::State) -> bool {
+        let _ = state;
+        false
+    }
+
     /// Takes what the pipeline measured (see [`Measured`]); most stages need none of it.
     fn measured(config: &mut Self::Config, state: &mut Self::State, m: &Measured) {
         let _ = (config, state, m);

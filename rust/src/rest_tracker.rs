@@ -29,9 +29,6 @@ use crate::Error;
 mod tracked;
 pub use tracked::{Tracked, TrackedConfig, TrackedState, TrackerSettings};
 
-/// How many of the latest rests the tracker keeps for [`RestTracker::recent_rests`].
-pub const HISTORY: usize = 8;
-
 /// Settings of the rest tracker (see the module doc).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -140,6 +137,13 @@ pub struct Rest {
     pub bias: f64,
     /// That mean's standard error [rad/s].
     pub std_error: f64,
+    /// The noise of one reading over it [rad/s] (from successive differences).
+    pub noise: f64,
+    /// The readings it holds.
+    pub samples: u64,
+    /// True when a speed below the threshold found it (every sample had a speed), false when the
+    /// rate alone did.
+    pub by_speed: bool,
     /// False when the filter's gate refused it.
     pub accepted: bool,
     /// The filtered bias after this rest [rad/s].
@@ -163,6 +167,8 @@ struct Sums {
     blocks: u64,
     means: f64,
     squared_means: f64,
+    /// Every block added had a speed for every sample.
+    by_speed: bool,
 }
 
 impl Sums {
@@ -180,10 +186,12 @@ impl Sums {
     }
 
     /// Adds a finished block to a rest.
-    fn add(&mut self, b: &Sums) {
+    fn add(&mut self, b: &Sums, by_speed: bool) {
         if self.blocks == 0 {
             self.start = b.start;
+            self.by_speed = true;
         }
+        self.by_speed &= by_speed;
         self.end = b.end;
         self.integral += b.integral;
         self.duration += b.duration;
@@ -228,7 +236,7 @@ pub struct RestTracker {
     /// The last finished block (its mean and sample count), for the change test.
     previous: Option<(f64, u64)>,
     /// The still run: its blocks so far but the latest, which waits in `pending`.
-    run: Option<(Sums, Option<Sums>)>,
+    run: Option<(Sums, Option<Filling>)>,
     /// The filtered bias [rad/s] and its variance [rad^2/s^2] (`None`: nothing known yet), at
     /// time `updated`.
     bias: f64,
@@ -236,8 +244,11 @@ pub struct RestTracker {
     updated: f64,
     /// The reading noise at rest [rad/s], once known.
     noise: Option<f64>,
-    rests: [Rest; HISTORY],
+    /// The latest rest found, how many were found, and whether the latest sample ended one
+    /// (the pipeline hands each to its caller as it ends: nothing is kept but the latest).
+    last: Option<Rest>,
     found: u64,
+    ended: bool,
 }
 
 impl RestTracker {
@@ -256,7 +267,7 @@ impl RestTracker {
     }
 
     /// Its standard error now [rad/s] (the variance at the last rest plus the random walk since),
-    /// `None` before the first rest or rest window.
+    /// `None` before the first rest or rest window. The dead band and HDR's bound follow it.
     pub fn std_error(&self, config: &RestTrackerConfig) -> Option<f64> {
         self.variance
             .map(|p| libm::sqrt(p + config.bias_walk * (self.now - self.updated).max(0.0)))
@@ -267,10 +278,17 @@ impl RestTracker {
         self.found
     }
 
-    /// The latest rests found, oldest first (at most [`HISTORY`]).
-    pub fn recent_rests(&self) -> impl Iterator<Item = Rest> + '_ {
-        let kept = self.found.min(HISTORY as u64);
-        (self.found - kept..self.found).map(|i| self.rests[(i % HISTORY as u64) as usize])
+    /// The latest rest found, if any. Every rest reaches the caller of
+    /// [`crate::Pipeline::process_block_reporting`] as it ends; a caller of
+    /// [`crate::Pipeline::update_with_speed`] reads it here after each sample that
+    /// [`RestTracker::ended_rest`].
+    pub fn last_rest(&self) -> Option<Rest> {
+        self.last
+    }
+
+    /// True when the latest sample ended a rest (it is [`RestTracker::last_rest`]).
+    pub fn ended_rest(&self) -> bool {
+        self.ended
     }
 
     /// Takes one reading (`speed` NaN where none is given); returns the measurement of a rest
@@ -278,6 +296,7 @@ impl RestTracker {
     fn observe(&mut self, c: &RestTrackerConfig, e: Event, rate: f64, speed: f64) -> Option<Rest> {
         let t = self.now + e.dt;
         self.now = t;
+        self.ended = false;
         let index = (t / c.block) as u64;
         if e.measuring {
             // The rest window is the pipeline's to measure; blocks start after it.
@@ -290,7 +309,7 @@ impl RestTracker {
             let finished = self.block;
             let still = index == finished.index + 1 && self.still(c, &finished);
             self.previous = Some((finished.sums.mean(), finished.sums.samples));
-            found = self.extend_run(c, still, &finished.sums);
+            found = self.extend_run(c, still, &finished);
             self.block = Filling::start(index);
         }
         self.block.take(t, e.dt, rate, speed, c.speed_threshold);
@@ -316,7 +335,7 @@ impl RestTracker {
     }
 
     /// Grows the still run by a block, or ends it; returns a rest that ended.
-    fn extend_run(&mut self, c: &RestTrackerConfig, still: bool, b: &Sums) -> Option<Rest> {
+    fn extend_run(&mut self, c: &RestTrackerConfig, still: bool, b: &Filling) -> Option<Rest> {
         match (still, &mut self.run) {
             (true, None) => {
                 // The first block of a rest is dropped.
@@ -325,7 +344,7 @@ impl RestTracker {
             }
             (true, Some((sums, pending))) => {
                 if let Some(p) = pending.replace(*b) {
-                    sums.add(&p);
+                    sums.add(&p.sums, p.all_speeds);
                 }
                 None
             }
@@ -371,11 +390,15 @@ impl RestTracker {
             end: sums.end,
             bias: z,
             std_error: libm::sqrt(r),
+            noise: sums.noise(),
+            samples: sums.samples,
+            by_speed: sums.by_speed,
             accepted,
             filtered: self.bias,
         };
-        self.rests[(self.found % HISTORY as u64) as usize] = rest;
+        self.last = Some(rest);
         self.found += 1;
+        self.ended = true;
         rest
     }
 

@@ -208,7 +208,11 @@ README_FLOOR = {"f110_ds3": 1.5, "broad_10": 1.1, "comma_seg40": 0.1}
 def test_heading_fit_on_real_logs_reaches_the_data_readme_floor(name: str) -> None:
     log = gyrocore.read_log(real_log_path(name))
     assert log.t_ref is not None and log.heading_ref is not None
-    c = cal.heading_reference(log.t, log.rate, log.t_ref, log.heading_ref)
+    if name == "comma_seg40":  # its reference turns by 0.02 rad: the scale cannot be told, the bias is fitted
+        with pytest.warns(gyrocore.InputWarning, match="too little to determine the scale"):
+            c = cal.heading_reference(log.t, log.rate, log.t_ref, log.heading_ref)
+    else:
+        c = cal.heading_reference(log.t, log.rate, log.t_ref, log.heading_ref)
     result = gyrocore.process(log.t, log.rate, "raw", **c.overrides())
     e_psi = gyrocore.heading_errors(result.t, result.heading, log.t_ref, log.heading_ref).e_psi_deg
     assert abs(e_psi - README_FLOOR[name]) <= 0.1, e_psi

@@ -10,7 +10,7 @@ mod table;
 
 use gyrocore::{
     check_block, Downsample, DownsampleConfig, Error, Integrator, IntegratorConfig, Outputs,
-    Pipeline, PipelineConfig, Preset, Stage, Up,
+    Pipeline, PipelineConfig, Preset, Rest, Stage, Up,
 };
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
@@ -98,8 +98,10 @@ struct PyPipeline {
     inner: Pipeline,
 }
 
-/// What [`PyPipeline::rest_tracker`] returns.
-type TrackerView = (f64, Option<f64>, u64, Vec<(f64, f64, f64, f64, bool, f64)>);
+/// A rest the tracker found, as [`PyPipeline::process`] returns it: (start, end [s since the
+/// first sample], bias, standard error, noise [rad/s], samples, found by speed, accepted,
+/// filtered bias after it [rad/s]).
+type RestView = (f64, f64, f64, f64, f64, u64, bool, bool, f64);
 
 fn build_preset(name: &str) -> PyResult<Preset> {
     Preset::from_name(name).ok_or_else(|| {
@@ -130,9 +132,10 @@ impl PyPipeline {
         })
     }
 
-    /// Processes a block; returns (heading, rate, drift), rate and drift None unless asked for
-    /// in `outputs` (rate, drift). Nothing is processed from an invalid block; its error counts
-    /// sample indices from `index_offset`.
+    /// Processes a block; returns (heading, rate, drift, rests), rate and drift None unless
+    /// asked for in `outputs` (rate, drift), rests the ones the tracker found in the block (see
+    /// [`RestView`]). Nothing is processed from an invalid block; its error counts sample indices
+    /// from `index_offset`.
     #[pyo3(signature = (t, rate, temperature=None, index_offset=0, outputs=(true, true), speed=None))]
     #[allow(clippy::type_complexity, clippy::too_many_arguments)]
     fn process<'py>(
@@ -144,7 +147,12 @@ impl PyPipeline {
         index_offset: usize,
         outputs: (bool, bool),
         speed: Option<PyReadonlyArray1<'py, f64>>,
-    ) -> PyResult<(Array<'py>, Option<Array<'py>>, Option<Array<'py>>)> {
+    ) -> PyResult<(
+        Array<'py>,
+        Option<Array<'py>>,
+        Option<Array<'py>>,
+        Vec<RestView>,
+    )> {
         let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
         let temperature = temperature
             .as_ref()
@@ -155,6 +163,20 @@ impl PyPipeline {
         let wanted = |on: bool| on.then(|| zeros(py, n));
         let (heading, out_rate, drift) = (zeros(py, n), wanted(outputs.0), wanted(outputs.1));
         let inner = &mut self.inner;
+        let mut rests = Vec::new();
+        let mut on_rest = |r: Rest| {
+            rests.push((
+                r.start,
+                r.end,
+                r.bias,
+                r.std_error,
+                r.noise,
+                r.samples,
+                r.by_speed,
+                r.accepted,
+                r.filtered,
+            ))
+        };
         fill_some(
             [Some(&heading), out_rate.as_ref(), drift.as_ref()],
             |[h, r, d]| {
@@ -164,12 +186,12 @@ impl PyPipeline {
                         rate: r,
                         drift: d,
                     };
-                    inner.process_block_with_speed(t, rate, temperature, speed, out)
+                    inner.process_block_reporting(t, rate, temperature, speed, out, &mut on_rest)
                 })
             },
         )?
         .map_err(|e| value_error(e.with_index_offset(index_offset)))?;
-        Ok((heading, out_rate, drift))
+        Ok((heading, out_rate, drift, rests))
     }
 
     /// Returns the pipeline to its state before the first sample.
@@ -195,22 +217,15 @@ impl PyPipeline {
             .map(|r| (r.noise, r.bias_std_error))
     }
 
-    /// The rest tracker, or None without one: (filtered bias [rad/s], its standard error [rad/s]
-    /// or None before any rest, rests found, the latest rests as (start, end [s since the first
-    /// sample], bias, standard error [rad/s], accepted, filtered bias after it [rad/s])).
-    #[allow(clippy::type_complexity)]
-    fn rest_tracker(&self) -> Option<TrackerView> {
+    /// The rest tracker, or None without one: (filtered bias [rad/s], its standard error now
+    /// [rad/s] or None before any rest, rests found).
+    fn rest_tracker(&self) -> Option<(f64, Option<f64>, u64)> {
         let tracker = self.inner.rest_tracker()?;
         let config = self.inner.config().rest_tracker?;
-        let rests = tracker
-            .recent_rests()
-            .map(|r| (r.start, r.end, r.bias, r.std_error, r.accepted, r.filtered))
-            .collect();
         Some((
             tracker.bias(),
             tracker.std_error(&config),
             tracker.rests_found(),
-            rests,
         ))
     }
 

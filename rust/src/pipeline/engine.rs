@@ -11,7 +11,7 @@ use crate::hdr::{HdrKernel, HdrRule};
 use crate::integrate::{IntegratorKernel, Method, TrapezoidKernel};
 use crate::kernel::{Event, Kernel, Measured, Signal};
 use crate::lowpass::{DeLagKernel, LowPassKernel};
-use crate::rest_tracker::{RestTracker, Tracked, TrackedConfig, TrackerSettings};
+use crate::rest_tracker::{Rest, RestTracker, Tracked, TrackedConfig, TrackerSettings};
 use crate::threshold::{ThresholdConfig, ThresholdKernel};
 use crate::validate::{interval_key, usable_reading, Checks};
 
@@ -57,8 +57,9 @@ pub(crate) struct Chain<C: Kernel> {
 /// The chain a configuration runs.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-// The tracker's variant holds its recent rests (about 2 KB): one engine per pipeline, and the
-// crate allocates nothing (no_std), so it is not boxed.
+// The tracker's variant holds the general chain's configuration twice (as built and as the rests
+// changed it) and the tracker (about 1.6 KB): one engine per pipeline, and the crate allocates
+// nothing (no_std), so it is not boxed.
 #[allow(clippy::large_enum_variant)]
 pub(crate) enum Engine {
     Plain(Chain<PlainChain>),
@@ -139,6 +140,17 @@ impl Engine {
         }
     }
 
+    /// Hands `on_rest` the rest the tracker found since it had found `found` (at most one: the
+    /// loop stops after each), and counts it; true if there was one.
+    pub(crate) fn report_rest(&self, found: &mut u64, on_rest: &mut dyn FnMut(Rest)) -> bool {
+        let Some(tracker) = self.rest_tracker().filter(|r| r.rests_found() > *found) else {
+            return false;
+        };
+        *found = tracker.rests_found();
+        tracker.last_rest().into_iter().for_each(on_rest);
+        true
+    }
+
     /// Hands what the pipeline measured to every stage.
     pub(crate) fn measured(&mut self, m: &Measured) {
         with_chain!(self, |chain| chain.measured(m))
@@ -200,7 +212,8 @@ impl<C: Kernel> Chain<C> {
     }
 
     /// The loop: every sample from `cursor.next` on through [`Kernel::step`], its output into
-    /// `out`.
+    /// `out`, until the end of the block or a sample after which [`Kernel::stop_after`] (a rest
+    /// ended: the pipeline hands it to its caller, then runs the loop on).
     ///
     /// Each sample is taken as it comes and checked on the way (a few operations that run
     /// beside the chain's floating-point work, see [`Checks`]); the caller rejects the block if
@@ -264,6 +277,9 @@ impl<C: Kernel> Chain<C> {
             c.last = Output::of(C::step(config, &mut state, dt, x));
             out.set(i, c.last);
             c.next = i + 1;
+            if C::stop_after(&state) {
+                break;
+            }
         }
         self.state = state;
         *cursor = c;

@@ -19,7 +19,7 @@ use crate::input::{GapAction, InputReport, NonFinite};
 use crate::kernel::{Event, EventKind, Measured, Signal};
 use crate::rest::BiasEstimate;
 use crate::rest::RestStatistics;
-use crate::rest_tracker::{check_speed, RestTracker};
+use crate::rest_tracker::{check_speed, Rest, RestTracker};
 use crate::stage::{check_len, Clock};
 use crate::validate::{check_block, check_lengths, interval_key, usable_reading, Checks};
 use crate::Error;
@@ -269,7 +269,22 @@ impl Pipeline {
         rate: &[f64],
         temperature: Option<&[f64]>,
         speed: Option<&[f64]>,
+        out: Outputs<'_>,
+    ) -> Result<(), Error> {
+        self.process_block_reporting(t, rate, temperature, speed, out, &mut |_| {})
+    }
+
+    /// [`Pipeline::process_block_with_speed`] that hands `on_rest` every rest the tracker finds,
+    /// as it ends, in order (however many: nothing is kept). On an error the pipeline is as it
+    /// was before the block, and the rests handed over during the call are void.
+    pub fn process_block_reporting(
+        &mut self,
+        t: &[f64],
+        rate: &[f64],
+        temperature: Option<&[f64]>,
+        speed: Option<&[f64]>,
         mut out: Outputs<'_>,
+        on_rest: &mut dyn FnMut(Rest),
     ) -> Result<(), Error> {
         if self.config.correction.temperature.is_some() && temperature.is_none() {
             return Err(Error::MissingTemperature);
@@ -286,7 +301,7 @@ impl Pipeline {
             speed,
         };
         let before = self.clone();
-        let result = self.feed(&block, &mut out);
+        let result = self.feed(&block, &mut out, on_rest);
         if result.is_err() {
             *self = before;
         }
@@ -294,12 +309,22 @@ impl Pipeline {
     }
 
     /// [`Pipeline::process_block`] after its checks of lengths.
-    fn feed(&mut self, block: &Block<'_>, out: &mut Outputs<'_>) -> Result<(), Error> {
+    fn feed(
+        &mut self,
+        block: &Block<'_>,
+        out: &mut Outputs<'_>,
+        on_rest: &mut dyn FnMut(Rest),
+    ) -> Result<(), Error> {
         let n = block.t.len();
         let mut next = 0;
+        let mut found = self.rest_tracker().map_or(0, RestTracker::rests_found);
         while next < n {
             if self.settled() {
                 next = self.run(block, next, out)?;
+                // The loop stops after a sample that ends a rest: hand it over, and go on.
+                if self.engine.report_rest(&mut found, on_rest) {
+                    continue;
+                }
                 if next == n {
                     break;
                 }
@@ -307,6 +332,7 @@ impl Pipeline {
             let o = self.sample_of_block(block, next)?;
             out.first(n).set(next, o);
             next += 1;
+            self.engine.report_rest(&mut found, on_rest);
         }
         Ok(())
     }

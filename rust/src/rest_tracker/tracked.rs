@@ -10,9 +10,10 @@ use crate::kernel::{Event, EventKind, Kernel, Measured, Signal};
 pub struct TrackerSettings {
     /// The detection and the filter.
     pub config: RestTrackerConfig,
-    /// Dead band in noise standard deviations, set at each rest.
+    /// Dead band in standard deviations of the noise at rest and the filtered bias's standard
+    /// error together, set at each rest and each new block.
     pub threshold_sigmas: Option<f64>,
-    /// HDR's bound in standard errors of the filtered bias, set at each rest.
+    /// HDR's bound in standard errors of the filtered bias, set at each rest and each new block.
     pub hdr_bound_sigmas: Option<f64>,
 }
 
@@ -48,8 +49,8 @@ pub struct Tracked<C>(core::marker::PhantomData<C>);
 
 impl<C: Kernel> Tracked<C> {
     /// The reading through the tracker, and the chain's configuration updated: by a rest it
-    /// ends (the filtered bias, the dead band from the noise at rest, HDR's bound from the
-    /// bias's standard error), or, at each new block, HDR's bound grown with the random walk.
+    /// ends (the filtered bias), and then and at each new block the bounds that follow the
+    /// bias's standard error now, which grows with the random walk between rests.
     #[inline(always)]
     fn track(
         s: &TrackerSettings,
@@ -58,26 +59,27 @@ impl<C: Kernel> Tracked<C> {
         x: Signal,
     ) {
         let block = state.tracker.block.index;
-        let rest = state.tracker.observe(&s.config, e, x.rate, x.speed);
-        let error = state.tracker.std_error(&s.config);
-        let hdr_bound = s.hdr_bound_sigmas.zip(error).map(|(k, e)| k * e);
-        let m = if rest.is_some() {
-            Measured {
-                bias: Some(state.tracker.bias),
-                threshold: s
-                    .threshold_sigmas
-                    .zip(state.tracker.noise)
-                    .map(|(k, n)| k * n),
-                hdr_bound,
-                rest: None,
-            }
-        } else if state.tracker.block.index != block && hdr_bound.is_some() {
-            Measured {
-                hdr_bound,
-                ..Measured::default()
-            }
-        } else {
+        let ended = state
+            .tracker
+            .observe(&s.config, e, x.rate, x.speed)
+            .is_some();
+        if !ended && state.tracker.block.index == block {
             return;
+        }
+        let Some(error) = state.tracker.std_error(&s.config) else {
+            return;
+        };
+        // A reading at rest, once the bias is removed, is off zero by its noise and by the
+        // bias's error: the dead band is `threshold_sigmas` standard deviations of both.
+        let threshold = s
+            .threshold_sigmas
+            .zip(state.tracker.noise)
+            .map(|(k, n)| k * libm::sqrt(n * n + error * error));
+        let m = Measured {
+            bias: ended.then_some(state.tracker.bias),
+            threshold,
+            hdr_bound: s.hdr_bound_sigmas.map(|k| k * error),
+            rest: None,
         };
         C::measured(&mut state.config, &mut state.state, &m);
     }
@@ -120,6 +122,11 @@ impl<C: Kernel> Kernel for Tracked<C> {
     fn event(config: &Self::Config, state: &mut Self::State, e: Event, x: Signal) -> Signal {
         Self::track(&config.tracker, state, e, x);
         C::event(&state.config, &mut state.state, e, x)
+    }
+
+    #[inline(always)]
+    fn stop_after(state: &Self::State) -> bool {
+        state.tracker.ended
     }
 
     fn measured(config: &mut Self::Config, state: &mut Self::State, m: &Measured) {

@@ -1,0 +1,218 @@
+"""Least-squares self-calibration of scale and bias against a rate or heading reference
+(Hong eq 4-9)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .._arrays import FloatArray, as_float_array, as_window
+from .._checks import warn
+from ..evaluate import unwrap
+from ..pipeline import integrate
+from .inputs import check_series
+from .result import Calibration
+
+
+def _solve(g: NDArray[np.float64], z: FloatArray) -> tuple[FloatArray, FloatArray, float, float]:
+    """Least squares ``z = G q`` with equilibrated columns (SVD via lstsq): returns q, its
+    covariance from the residuals, the residual RMS and the condition number of scaled G."""
+    norms = np.linalg.norm(g, axis=0)
+    if np.any(norms == 0):
+        return np.full(2, np.nan), np.full((2, 2), np.nan), math.nan, math.inf
+    scaled = g / norms
+    q_scaled, _, rank, sv = np.linalg.lstsq(scaled, z, rcond=None)
+    cond = float(sv[0] / sv[-1]) if rank == g.shape[1] and sv[-1] > 0 else math.inf
+    q = q_scaled / norms
+    resid = z - g @ q
+    dof = max(len(z) - 2, 1)
+    sigma2 = float(resid @ resid) / dof
+    cov = sigma2 * np.linalg.pinv(scaled.T @ scaled) / np.outer(norms, norms)
+    return q, cov, float(np.sqrt(np.mean(resid**2))), cond
+
+
+#: A least-squares problem whose reference motion is worse conditioned than this cannot
+#: separate scale from bias (Hong: "the robot should be changing rate during the calibration").
+MAX_CONDITION = 1e6
+
+
+def _calibration_from_q(
+    method: str, q: FloatArray, cov: FloatArray, rms: float, cond: float, window: tuple[float, float], n: int
+) -> Calibration:
+    """s and b from ``q = (s_bar, b_bar)`` (Hong eq 3 inverted), with first-order standard errors."""
+    s_bar, b_bar = float(q[0]), float(q[1])
+    if not s_bar > 0:
+        raise ValueError(
+            f"the fit gives s_bar = {s_bar:.4g} <= 0 (the gyro would read against the motion): "
+            "the rate must change during calibration, and the reference must match the gyro's axis and sign"
+        )
+    scale_error = 1.0 / s_bar - 1.0
+    bias = -b_bar / s_bar
+    # Jacobians of s = 1/s_bar - 1 and b = -b_bar/s_bar with respect to (s_bar, b_bar).
+    js = np.array([-1.0 / s_bar**2, 0.0])
+    jb = np.array([b_bar / s_bar**2, -1.0 / s_bar])
+    return Calibration(
+        method=method,
+        bias=bias,
+        scale_error=scale_error,
+        bias_stderr=float(np.sqrt(max(jb @ cov @ jb, 0.0))),
+        scale_error_stderr=float(np.sqrt(max(js @ cov @ js, 0.0))),
+        residual_rms=rms,
+        condition_number=cond,
+        window=window,
+        samples=n,
+    )
+
+
+#: :func:`heading_reference` fits the bias alone when the least-squares standard error of the scale
+#: error exceeds this [1]. On the real logs that turn (f110, KITTI, broad: 1-21 rad) it is at most
+#: 0.33 %; on comma_seg40, whose reference turns by 0.02 rad, 4.9 % (for a fitted scale error of
+#: 56 %), and more on straight simulated drives (docs/rest_tracking.md): a typical gyro's scale
+#: error is a percent or two, so a fit less certain than that cannot tell it.
+MAX_SCALE_STDERR = 0.01
+
+
+def _bias_only(g: NDArray[np.float64], z: FloatArray, window: tuple[float, float], n: int, note: str) -> Calibration:
+    """Hong eq 5 with ``s_bar = 1``: the heading change less the gyro's angle is ``b_bar`` times the
+    elapsed time; the bias ``b = -b_bar``."""
+    angle, time = g[:, 0], g[:, 1]
+    b_bar = float((z - angle) @ time) / float(time @ time)
+    resid = z - angle - b_bar * time
+    sigma2 = float(resid @ resid) / max(len(z) - 1, 1)
+    return Calibration(
+        method="heading_reference",
+        bias=-b_bar,
+        bias_stderr=math.sqrt(sigma2 / float(time @ time)),
+        residual_rms=float(np.sqrt(np.mean(resid**2))),
+        window=window,
+        samples=n,
+        notes=(note,),
+    )
+
+
+def _excited(reference_design: NDArray[np.float64], what: str) -> None:
+    """Raise unless the reference motion excites the scale factor (columns not collinear)."""
+    norms = np.linalg.norm(reference_design, axis=0)
+    cond = math.inf
+    if np.all(norms > 0):
+        sv = np.linalg.svd(reference_design / norms, compute_uv=False)
+        cond = float(sv[0] / sv[-1]) if sv[-1] > 0 else math.inf
+    if not cond < MAX_CONDITION:
+        raise ValueError(
+            f"the rate must change during calibration: {what} cannot separate the scale error "
+            f"from the bias (condition number {cond:.3g}); calibrate over a motion with turns of "
+            "different rates (Hong section 3.1)"
+        )
+
+
+def rate_reference(rate_measured: ArrayLike, rate_reference: ArrayLike) -> Calibration:
+    """Least squares against a reference rate at the same instants (Hong eq 8-9).
+
+    Minimises ``sum (r - s_bar r_m - b_bar)^2`` for ``q = (s_bar, b_bar)``. Hong eq 8 as printed
+    has the columns of its matrix swapped (its first row reads ``sum r_m * s_bar + sum r_m^2 *
+    b_bar = sum r r_m``); the normal equations of this fit are
+    ``[[sum r_m^2, sum r_m], [sum r_m, n]] q = [sum r r_m, sum r]``, which is what is solved
+    (by SVD on column-scaled data rather than by Cramer's rule, for conditioning).
+
+    Args:
+        rate_measured: gyro readings r_m [rad/s].
+        rate_reference: true rates r at the same instants [rad/s].
+
+    Raises:
+        ValueError: unequal lengths, NaN, fewer than 3 samples, or a reference rate that does not
+            change ("the rate must change during calibration").
+    """
+    rm = as_float_array("rate_measured", rate_measured)
+    r = as_float_array("rate_reference", rate_reference)
+    if len(rm) != len(r):
+        raise ValueError(f"rate_measured has {len(rm)} samples but rate_reference has {len(r)}")
+    if len(rm) < 3:
+        raise ValueError(f"need at least 3 samples to fit scale and bias, got {len(rm)}")
+    for name, a in (("rate_measured", rm), ("rate_reference", r)):
+        bad = np.flatnonzero(~np.isfinite(a))
+        if len(bad):
+            raise ValueError(f"{name}[{bad[0]}] is {a[bad[0]]}: samples must be finite")
+    ones = np.ones_like(r)
+    _excited(np.column_stack([r, ones]), "a constant reference rate")
+    q, cov, rms, cond = _solve(np.column_stack([rm, ones]), r)
+    if not cond < MAX_CONDITION:
+        raise ValueError(
+            f"the rate must change during calibration: the gyro's readings are constant (condition number {cond:.3g})"
+        )
+    return _calibration_from_q("rate_reference", q, cov, rms, cond, (0.0, float(len(r) - 1)), len(r))
+
+
+def heading_reference(
+    t: ArrayLike,
+    rate_measured: ArrayLike,
+    t_ref: ArrayLike,
+    heading_ref: ArrayLike,
+    *,
+    window: tuple[float, float] | None = None,
+) -> Calibration:
+    """Least squares against a reference heading (Hong eq 4-7), at the reference's own times.
+
+    Hong eq 5 stacks ``psi(k+n) - psi(k) = s_bar h sum r_m + n h b_bar``: the heading change
+    since the first reference sample equals ``s_bar`` times the gyro's integral plus ``b_bar``
+    times the elapsed time. Here the gyro's integral (trapezoid over its actual intervals) is
+    interpolated at each reference time, so the reference may come at another rate and at
+    other instants (the paper: 20 Hz reference, 100 Hz gyro); rows are the reference samples
+    inside the gyro's span (and ``window``). With a regular gyro and a reference at its sample
+    times this is eq 6-7 with the trapezoid rule for eq 4's sum.
+
+    Args:
+        t, rate_measured: gyro timestamps [s] and readings [rad/s].
+        t_ref, heading_ref: reference times [s, same time base] and heading [rad, may be
+            wrapped to (-pi, pi]; it is unwrapped].
+        window: ``(start, end)`` [s] to calibrate over (Hong used the first 20 s); None: all.
+
+    The residuals of a heading fit are correlated (they are integrals), so ``bias_stderr`` and
+    ``scale_error_stderr`` are optimistic; the residual RMS is in rad. A reference that turns too
+    little to determine the scale (the scale's standard error over :data:`MAX_SCALE_STDERR`, which
+    a barely turning drive reaches however little noise it has) gets the bias alone: scale error
+    0, no ``scale_error_stderr``, a note saying why, and an :class:`~gyrocore.InputWarning`.
+
+    Raises:
+        ValueError: bad samples, fewer than 3 reference samples inside the gyro's span, or a
+            motion that does not change rate ("the rate must change during calibration").
+    """
+    ta, ra = check_series(t, rate_measured, rate_name="rate_measured")
+    tr, hr = check_series(t_ref, heading_ref, t_name="t_ref", rate_name="heading_ref")
+    lo, hi = ta[0], ta[-1]
+    if window is not None:
+        start, end = as_window("window", window)
+        lo, hi = max(lo, start), min(hi, end)
+    inside = np.flatnonzero((tr >= lo) & (tr <= hi))
+    if len(inside) < 3:
+        raise ValueError(
+            f"only {len(inside)} reference sample(s) fall inside the gyro's span {lo} .. {hi} s; "
+            "need at least 3 (are both in the same time base?)"
+        )
+    origin = ta[0]
+    angle = integrate(ta - origin, ra)
+    times = tr[inside] - origin
+    psi = unwrap(hr)[inside]
+    g1 = np.interp(times, ta - origin, angle)
+    g = np.column_stack([g1 - g1[0], times - times[0]])
+    z = psi - psi[0]
+    _excited(
+        np.column_stack([z, times - times[0]])[1:],
+        "a reference heading that turns at one constant rate (or not at all)",
+    )
+    q, cov, rms, cond = _solve(g[1:], z[1:])
+    span = (float(tr[inside[0]]), float(tr[inside[-1]]))
+    # The scale error's standard error, to first order (for s_bar <= 0 too: a confident fit against
+    # the motion, a reference of the other sign, still gets its error from _calibration_from_q).
+    s_bar, stderr = float(q[0]), math.sqrt(max(float(cov[0, 0]), 0.0))
+    stderr = stderr / s_bar**2 if s_bar != 0 else math.inf
+    if stderr <= MAX_SCALE_STDERR:
+        return _calibration_from_q("heading_reference", q, cov, rms, cond, span, len(inside))
+    note = (
+        f"the reference turns by {np.ptp(z):.3g} rad, too little to determine the scale (its standard "
+        f"error would be {100 * stderr:.3g} %, over {100 * MAX_SCALE_STDERR:g} %): the bias alone was "
+        "fitted (scale error 0); calibrate over a drive with turns for the scale"
+    )
+    warn(f"heading_reference: {note}")
+    return _bias_only(g[1:], z[1:], span, len(inside), note)

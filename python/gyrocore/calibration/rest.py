@@ -1,0 +1,213 @@
+"""Rests found from the rate alone, and the static bias test over one (FOG section 2, HDR eq 1-2)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .. import _gyrocore
+from .._arrays import FloatArray, as_window
+from .inputs import check_series
+from .result import Calibration
+
+
+def rest_windows(
+    t: ArrayLike,
+    rate: ArrayLike,
+    *,
+    min_duration: float = 1.0,
+    block: float = 0.25,
+    noise_factor: float = 3.0,
+    max_rate: float = 0.05,
+    consistency: float = 4.5,
+) -> list[tuple[float, float]]:
+    """Every stretch where the gyro rests, found from the rate alone.
+
+    The log is cut into blocks of ``block`` seconds (at least 4 sample intervals). A block is
+    quiet when its standard deviation is at most ``noise_factor`` times the noise floor (the
+    median standard deviation of the quietest 1 % of blocks, at least 3) and its mean is within
+    ``max_rate`` [rad/s] of zero: a gyro at rest reads only its bias and noise, while a steadier
+    than noise reading beyond ``max_rate`` (0.05 rad/s = 2.9 deg/s by default; raise it for a gyro
+    with a larger bias) is a steady turn. Consecutive quiet blocks form a rest as long as each
+    block's mean agrees with the rest's mean so far within ``consistency`` standard errors (the
+    white-noise errors from the floor, scaled by the factor that the readings' correlation within
+    quiet blocks gives their means: a gyro's noise may be correlated over a few samples; a
+    rest has a constant level; slow motion drifts; one stray block between agreeing ones is
+    kept, as a 4-sigma block is expected now and then in a long rest). Rests shorter than
+    ``min_duration`` [s] are dropped. Returns ``(start, end)`` pairs [s] in the log's time base,
+    from the first to the last sample of the quiet blocks.
+    """
+    ta, ra = check_series(t, rate)
+    for name, value in (("min_duration", min_duration), ("block", block), ("noise_factor", noise_factor),
+                        ("max_rate", max_rate), ("consistency", consistency)):
+        if not (math.isfinite(value) and value > 0):
+            raise ValueError(f"{name} must be finite and > 0, got {value}")
+    if len(ta) < 8:
+        raise ValueError(f"need at least 8 samples to find a rest, got {len(ta)}")
+    rel = ta - ta[0]  # epoch timestamps lose precision in arithmetic
+    width = max(block, 4.0 * float(np.median(np.diff(rel))))
+    k = np.floor(rel / width).astype(np.int64)
+    nb = int(k[-1]) + 1
+    count = np.bincount(k, minlength=nb)
+    total = np.bincount(k, ra, minlength=nb)
+    mean = total / np.maximum(count, 1)
+    dev = ra - mean[k]
+    var = np.bincount(k, dev * dev, minlength=nb) / np.maximum(count - 1, 1)
+    sd = np.sqrt(var)
+    usable = count >= 3
+    if not usable.any():
+        raise ValueError(f"no block of {width:.3g} s holds 3 samples: the log is too sparse to find a rest")
+    quietest = np.sort(sd[usable])
+    floor = float(np.median(quietest[: max(3, len(quietest) // 100)]))
+    if floor == 0.0:  # a quantized gyro may read one value throughout a block
+        steps = np.abs(np.diff(ra))
+        floor = float(steps[steps > 0].min()) / math.sqrt(12.0) if (steps > 0).any() else 0.0
+    quiet = usable & (sd <= noise_factor * floor) & (np.abs(mean) <= max_rate)
+    spread = floor * _correlation_factor(dev, k, quiet)
+    runs: list[tuple[int, int]] = []
+    start = -1
+    level = weight = 0.0
+
+    def agrees(b: int) -> bool:
+        return bool(quiet[b]) and abs(mean[b] - level) <= consistency * math.sqrt(
+            spread**2 / count[b] + spread**2 / weight
+        )
+
+    for b in range(nb):
+        # One stray block whose successor agrees again is an outlier, not the end of the rest.
+        if start >= 0 and (agrees(b) or (quiet[b] and b + 1 < nb and agrees(b + 1))):
+            level = (level * weight + total[b]) / (weight + count[b])
+            weight += count[b]
+            continue
+        if start >= 0:
+            runs.append((start, b - 1))
+            start = -1
+        if quiet[b]:
+            start, level, weight = b, mean[b], float(count[b])
+    if start >= 0:
+        runs.append((start, nb - 1))
+    windows = []
+    first_index = np.searchsorted(k, np.arange(nb), side="left")
+    last_index = np.searchsorted(k, np.arange(nb), side="right") - 1
+    for a, b in runs:
+        t0, t1 = ta[first_index[a]], ta[last_index[b]]
+        if t1 - t0 >= min_duration:
+            windows.append((float(t0), float(t1)))
+    return windows
+
+
+def _correlation_factor(dev: FloatArray, k: NDArray[np.int64], quiet: NDArray[np.bool_]) -> float:
+    """How much more a quiet block's mean scatters than white noise of the same size would make
+    it (at least 1), from the lag-one correlation ``rho`` of the readings about their block's
+    mean in the quiet blocks: ``sqrt((1 + rho) / (1 - rho))``, the first-order (AR(1)) variance
+    factor of a mean. A gyro's noise is correlated over a few samples when its bandwidth is below
+    half its sampling rate (the CRS03's 10 Hz at 100 Hz: rho 0.53, a factor of 1.8), and a level
+    test that assumed white noise would cut a rest into pieces. Within a block, motion that
+    changes from block to block does not count."""
+    same = (k[1:] == k[:-1]) & quiet[k[1:]]
+    power = float(np.sum(dev[1:][same] ** 2))
+    if power == 0.0:
+        return 1.0
+    rho = float(np.sum(dev[1:][same] * dev[:-1][same])) / power
+    return math.sqrt((1.0 + rho) / (1.0 - rho)) if 0.0 < rho < 1.0 else 1.0
+
+
+def detect_rest(
+    t: ArrayLike,
+    rate: ArrayLike,
+    *,
+    min_duration: float = 1.0,
+    which: Literal["first", "longest"] = "first",
+    **options: float,
+) -> tuple[float, float]:
+    """The first (or longest) rest of at least ``min_duration`` seconds, as ``(start, end)`` [s].
+
+    ``options`` go to :func:`rest_windows` (``block``, ``noise_factor``, ``max_rate``,
+    ``consistency``). Raises ValueError "no rest found" with what the quietest stretch looked like.
+    """
+    if which not in ("first", "longest"):
+        raise ValueError(f"which must be 'first' or 'longest', got {which!r}")
+    windows = rest_windows(t, rate, min_duration=min_duration, **options)
+    if not windows:
+        max_rate = options.get("max_rate", 0.05)
+        raise ValueError(
+            f"no rest found: no stretch of at least {min_duration:g} s where the rate is as steady as "
+            f"the log's quietest blocks and within {max_rate:g} rad/s of zero (give the rest window, "
+            "or a shorter min_duration / larger max_rate if this gyro's bias is large)"
+        )
+    if which == "first":
+        return windows[0]
+    return max(windows, key=lambda w: w[1] - w[0])
+
+
+def time_weights(t: FloatArray) -> FloatArray:
+    """Weight of each reading: the interval since the previous one (the first gets none), the
+    rectangle rule of HDR eq 3 that the pipeline's static bias uses too."""
+    w = np.empty_like(t)
+    w[0] = 0.0
+    w[1:] = np.diff(t)
+    return w
+
+
+def static_bias(
+    t: ArrayLike,
+    rate: ArrayLike,
+    window: tuple[float, float] | None = None,
+    *,
+    min_duration: float = 1.0,
+    **detect_options: Any,
+) -> Calibration:
+    """Static bias test (FOG section 2; HDR eq 1-2's ``eps0``): the mean reading at rest.
+
+    Args:
+        t: timestamps [s], strictly increasing (any time base, e.g. Unix epoch).
+        rate: readings [rad/s].
+        window: ``(start, end)`` rest window [s, log time base]; None finds the first rest of at
+            least ``min_duration`` seconds (:func:`detect_rest`, which takes ``detect_options``).
+        min_duration: shortest acceptable rest [s] (also for a given window).
+
+    The bias and its standard error come from the core's static bias test, the one the
+    pipeline's ``bias_window`` runs, so ``bias=cal.bias`` gives the bias that
+    ``bias_window=cal.window`` ends with (the pipeline uses its running mean inside the window):
+    the mean weighs each reading by the interval since the previous one, and the standard error
+    is that of the means of the window's eight equal parts (batch means), which stays honest
+    when the noise is correlated (bias instability); for white noise it equals ``sd / sqrt(n)``.
+    Returns a :class:`Calibration` with ``bias``, ``bias_stderr``,
+    ``residual_rms`` (the readings' standard deviation) and the ``window`` used.
+
+    Raises:
+        ValueError: bad samples, a window shorter than ``min_duration`` or holding fewer than 2
+            readings, or no rest found.
+    """
+    ta, ra = check_series(t, rate)
+    if window is None:
+        window = detect_rest(ta, ra, min_duration=min_duration, **detect_options)
+    start, end = as_window("the rest window", window)
+    inside = np.flatnonzero((ta >= start) & (ta <= end))
+    if len(inside) < 2:
+        raise ValueError(
+            f"the rest window [{start}, {end}] s holds {len(inside)} reading(s) of the log "
+            f"({ta[0]} .. {ta[-1]} s); give it in the log's own time base"
+        )
+    tw, rw = ta[inside] - ta[inside[0]], ra[inside]
+    duration = float(tw[-1])
+    if duration < min_duration:
+        raise ValueError(
+            f"the rest window [{start}, {end}] s covers {duration:.3g} s of readings, shorter than "
+            f"min_duration = {min_duration:g} s: the bias would be mostly noise"
+        )
+    bias, _, _, batch_stderr = _gyrocore.static_bias_test(ta, ra, start, end)
+    sd = float(np.sqrt(np.sum(time_weights(tw) * (rw - bias) ** 2) / duration))
+    # The batch means need readings in two parts of the window; with fewer, the white-noise error.
+    stderr = sd / math.sqrt(len(rw)) if batch_stderr is None else batch_stderr
+    return Calibration(
+        method="static_bias",
+        bias=bias,
+        bias_stderr=stderr,
+        residual_rms=sd,
+        window=(float(ta[inside[0]]), float(ta[inside[-1]])),
+        samples=len(rw),
+    )

@@ -1,0 +1,229 @@
+"""The calibration record: :class:`Calibration` (what a calibration found and how, with units,
+saved to and loaded from versioned JSON) and :class:`BiasTable` (FOG section 2)."""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import asdict, dataclass, field, fields
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .._arrays import FloatArray, as_float_array, as_window
+
+#: Saved calibrations carry this format name and version.
+FORMAT = "gyrocore-calibration"
+VERSION = 1
+
+_UNITS = {
+    "bias": "rad/s (what the gyro reads at rest; corrected = measured - bias)",
+    "bias_stderr": "rad/s",
+    "scale_error": "1 (s of Hong eq 1: r_m = (1 + s) r + b)",
+    "scale_error_stderr": "1",
+    "residual_rms": "rad/s, or rad for heading_reference",
+    "condition_number": "1",
+    "window": "s (log time base)",
+    "samples": "count",
+    "c_cw": "1 (FOG eq 2a)",
+    "c_ccw": "1 (FOG eq 2b)",
+    "temp_slope": "1/degC (FOG eq 5's E_T slope / 360 deg)",
+    "temp_offset": "1 (FOG eq 5's E_T at 0 degC / 360 deg)",
+    "bias_table": "temperatures degC, biases rad/s",
+}
+#: What a saved field of each type must be, for the errors of :meth:`Calibration.from_dict`.
+_KINDS = {"str": "text", "int": "a whole number"}
+
+
+@dataclass(frozen=True)
+class BiasTable:
+    """Bias versus temperature look-up table (FOG section 2), linearly interpolated.
+
+    Beyond the table's temperatures the nearest entry is used: extrapolating a thermal bias
+    curve is unreliable.
+
+    Attributes:
+        temperatures: mean temperature of each bin [degC], increasing.
+        biases: mean rest reading in each bin [rad/s].
+        stderr: standard error of each bias [rad/s] (white-noise estimate within the bin).
+        counts: readings per bin.
+    """
+
+    temperatures: tuple[float, ...]
+    biases: tuple[float, ...]
+    stderr: tuple[float, ...]
+    counts: tuple[int, ...]
+
+    def __call__(self, temperature: ArrayLike) -> FloatArray:
+        """Bias [rad/s] at ``temperature`` [degC] (scalar or array)."""
+        return np.interp(np.asarray(temperature, dtype=np.float64), self.temperatures, self.biases)
+
+    def correct(self, rate: ArrayLike, temperature: ArrayLike) -> FloatArray:
+        """``rate - bias(temperature)`` [rad/s]; give the result to the pipeline with ``bias=0``."""
+        r = as_float_array("rate", rate)
+        temp = as_float_array("temperature", temperature)
+        if len(r) != len(temp):
+            raise ValueError(f"rate has {len(r)} samples but temperature has {len(temp)}")
+        return r - self(temp)
+
+
+@dataclass(frozen=True, repr=False)
+class Calibration:
+    """A gyro calibration and how it was obtained (units in :data:`_UNITS` and the JSON).
+
+    Attributes:
+        method: ``static_bias``, ``rate_reference``, ``heading_reference`` or ``rotary_table``.
+        bias: ``b`` [rad/s], what the gyro reads at rest (for ``rotary_table``: the mean of the
+            static tests before the turns, informative only).
+        scale_error: ``s`` of Hong eq 1 [1] (0 where not estimated).
+        bias_stderr, scale_error_stderr: their standard errors (None where not estimated).
+        residual_rms: RMS of the fit's residuals (rad/s; rad for ``heading_reference``); for the
+            static bias the standard deviation of the readings.
+        condition_number: of the column-scaled least-squares problem (None without one).
+        window: the time span used [s]: the rest window of a static bias test, the fitted span.
+        samples: readings used.
+        c_cw, c_ccw: direction correction factors (FOG eq 2).
+        temp_slope, temp_offset: temperature-linear scale factor (FOG eq 5-6, per 360 deg).
+        bias_table: bias versus temperature (FOG section 2).
+    """
+
+    method: str
+    bias: float = 0.0
+    scale_error: float = 0.0
+    bias_stderr: float | None = None
+    scale_error_stderr: float | None = None
+    residual_rms: float | None = None
+    condition_number: float | None = None
+    window: tuple[float, float] | None = None
+    samples: int = 0
+    c_cw: float = 1.0
+    c_ccw: float = 1.0
+    temp_slope: float | None = None
+    temp_offset: float | None = None
+    bias_table: BiasTable | None = None
+    notes: tuple[str, ...] = field(default=())
+
+    @property
+    def s_bar(self) -> float:
+        """``s_bar = 1/(1+s)`` (Hong eq 3) [1]."""
+        return 1.0 / (1.0 + self.scale_error)
+
+    @property
+    def b_bar(self) -> float:
+        """``b_bar = -b/(1+s)`` (Hong eq 3) [rad/s]."""
+        return -self.bias / (1.0 + self.scale_error)
+
+    def overrides(self, *, include_bias: bool | None = None) -> dict[str, float]:
+        """Parameters for ``gyrocore.Pipeline(preset, **overrides)`` (and ``process``).
+
+        The least-squares fits give Hong eq 3 as ``s_bar * (r_m - b)``, which equals
+        ``s_bar r_m + b_bar``: ``scale = s_bar``, ``offset = 0`` and ``bias = b``, so the pipeline
+        has an explicit bias and does not measure another one over a rest window. Pass
+        ``include_bias=False`` to keep only the scale (and let the pipeline measure a fresh
+        static bias). A rotary-table calibration gives the scale factors only (its static biases
+        belong to the table runs; FOG section 2 measures the bias again before use).
+        """
+        if include_bias is None:
+            include_bias = self.method != "rotary_table"
+        out: dict[str, float] = {}
+        if include_bias:
+            out["bias"] = self.bias
+        if self.method in ("rate_reference", "heading_reference"):
+            out["scale"] = self.s_bar
+            out["offset"] = 0.0
+        if self.method == "rotary_table":
+            out["c_cw"] = self.c_cw
+            out["c_ccw"] = self.c_ccw
+            if self.temp_slope is not None and self.temp_offset is not None:
+                out["temp_slope"] = self.temp_slope
+                out["temp_offset"] = self.temp_offset
+        return out
+
+    def __repr__(self) -> str:
+        parts = [self.method]
+        err = "" if self.bias_stderr is None else f" +- {self.bias_stderr:.3g}"
+        parts.append(f"bias = {self.bias:.6g}{err} rad/s ({math.degrees(self.bias):.4g} deg/s)")
+        if self.method in ("rate_reference", "heading_reference"):
+            serr = "" if self.scale_error_stderr is None else f" +- {100 * self.scale_error_stderr:.3g}"
+            parts.append(f"scale error = {100 * self.scale_error:.4g}{serr} %")
+            parts.append(f"s_bar = {self.s_bar:.6g}, b_bar = {self.b_bar:.6g} rad/s")
+        if self.method == "rotary_table":
+            parts.append(f"c_cw = {self.c_cw:.6g}, c_ccw = {self.c_ccw:.6g}")
+            if self.temp_slope is not None and self.temp_offset is not None:
+                parts.append(
+                    f"E_T = {360 * self.temp_slope:.4g} deg/degC * T + {360 * self.temp_offset:.4g} deg"
+                )
+        if self.bias_table is not None:
+            parts.append(f"bias table of {len(self.bias_table.temperatures)} temperatures")
+        if self.residual_rms is not None:
+            unit = "rad" if self.method == "heading_reference" else "rad/s"
+            parts.append(f"residual rms = {self.residual_rms:.4g} {unit}")
+        if self.condition_number is not None:
+            parts.append(f"condition number = {self.condition_number:.3g}")
+        if self.window is not None:
+            parts.append(f"window {self.window[0]:.12g} .. {self.window[1]:.12g} s")
+        parts.append(f"{self.samples} samples")
+        parts += [f"note: {n}" for n in self.notes]
+        return f"Calibration({', '.join(parts)})"
+
+    # --- JSON ---
+
+    def to_dict(self) -> dict[str, Any]:
+        """The saved form: format, version, units and the values."""
+        values = asdict(self)
+        values["window"] = None if self.window is None else list(self.window)
+        values["notes"] = list(self.notes)
+        return {"format": FORMAT, "version": VERSION, "units": dict(_UNITS), "calibration": values}
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> Calibration:
+        """Rebuild from :meth:`to_dict`; raises ValueError on another format or version."""
+        if not isinstance(data, dict) or data.get("format") != FORMAT:
+            found = data.get("format") if isinstance(data, dict) else None
+            raise ValueError(f"not a gyrocore calibration (format {found!r})")
+        if data.get("version") != VERSION:
+            raise ValueError(f"calibration format version {data.get('version')!r} is not supported (this is {VERSION})")
+        if not isinstance(data.get("calibration"), dict):
+            raise ValueError("no calibration object")
+        values = dict(data["calibration"])
+        known = {f.name for f in fields(cls)}
+        unknown = sorted(set(values) - known)
+        if unknown:
+            raise ValueError(f"unknown calibration field(s): {', '.join(unknown)}")
+        for f in fields(cls):  # JSON types: a number must not be text ("bias": "abc")
+            value = values.get(f.name)
+            if value is None or f.name in ("window", "bias_table", "notes"):
+                continue
+            expected = {"str": str, "int": int}.get(str(f.type), (int, float))
+            if isinstance(value, bool) or not isinstance(value, expected):
+                raise ValueError(f"{f.name} must be {_KINDS.get(str(f.type), 'a number')}, got {value!r}")
+        if values.get("window") is not None:
+            values["window"] = as_window("window", values["window"])
+        if values.get("bias_table") is not None:
+            table = values["bias_table"]
+            if not isinstance(table, dict):
+                raise ValueError(f"bias_table must be an object of lists, got {table!r}")
+            values["bias_table"] = BiasTable(**{k: tuple(v) for k, v in table.items()})
+        values["notes"] = tuple(values.get("notes", ()))
+        return cls(**values)
+
+    def save(self, path: str | Path) -> None:
+        """Write the calibration as JSON (see :meth:`to_dict`)."""
+        Path(path).write_text(json.dumps(self.to_dict(), indent=2) + "\n", encoding="utf-8")
+
+    @classmethod
+    def load(cls, path: str | Path) -> Calibration:
+        """Read a calibration saved by :meth:`save`."""
+        p = Path(path)
+        try:
+            data = json.loads(p.read_text(encoding="utf-8"))
+        except json.JSONDecodeError as e:
+            raise ValueError(f"{p}: line {e.lineno} column {e.colno}: {e.msg}") from None
+        except UnicodeDecodeError as e:
+            raise ValueError(f"{p}: not UTF-8 text (at byte offset {e.start}: {e.reason})") from None
+        try:
+            return cls.from_dict(data)
+        except (KeyError, TypeError, ValueError) as e:  # missing keys, wrong shapes and types
+            raise ValueError(f"{p}: not a valid calibration: {e}") from None

@@ -1,0 +1,95 @@
+"""gyrocore.calibration where the data limit it: a reference that turns too little to tell the
+scale (bias alone, with a warning), and rests in a gyro whose noise is correlated over a few
+samples (found whole, not cut into pieces)."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import gyrocore
+from gyrocore import calibration as cal
+from gyrocore import datasets, motion, sim
+
+
+def straight(seed: int) -> sim.Drive:
+    """Five minutes of driving straight at 5 m/s, read by the CRS03 (bias about 0.024 rad/s)."""
+    route = motion.Motion("straight", np.array([0.0, 300.0]), np.zeros(2), np.full(2, 5.0))
+    return sim.simulate(route, "crs03", seed=seed)
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3, 4, 5, 6])
+def test_a_straight_drive_gets_the_bias_alone_and_a_warning(seed: int) -> None:
+    drive = straight(seed)
+    rng = np.random.default_rng(seed)
+    t_ref = drive.t[::10]
+    heading_ref = drive.heading_true[::10] + rng.normal(0.0, 0.002, len(t_ref))  # a 10 Hz reference
+    with pytest.warns(gyrocore.InputWarning, match="too little to determine the scale"):
+        c = cal.heading_reference(drive.t, drive.rate_measured, t_ref, heading_ref)
+    assert c.scale_error == 0.0 and c.scale_error_stderr is None
+    assert c.notes and "the bias alone was fitted" in c.notes[0] and "note:" in repr(c)
+    # The bias is still the gyro's (its mean over the drive).
+    assert c.bias_stderr is not None
+    truth = drive.bias + float(np.mean(drive.drift))
+    assert abs(c.bias - truth) < 1e-3, (c.bias, truth)
+    assert c.overrides() == {"bias": c.bias, "scale": 1.0, "offset": 0.0}
+
+
+def test_a_drive_with_turns_gets_its_scale_without_a_warning() -> None:
+    log = datasets.sample_drive()  # a 2.5 % scale error, 11 rad of turns
+    assert log.t_ref is not None and log.heading_ref is not None
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        c = cal.heading_reference(log.t, log.rate, log.t_ref, log.heading_ref)
+    assert c.scale_error_stderr is not None and c.scale_error_stderr <= cal.MAX_SCALE_STDERR
+    assert c.scale_error == pytest.approx(0.025, abs=0.005) and not c.notes
+
+
+def correlated_rest(seed: int, rho: float) -> tuple[np.ndarray, np.ndarray]:
+    """60 s at rest (bias 0.02 rad/s, AR(1) noise of lag-one correlation ``rho``), then 60 s of
+    turning, at 100 Hz."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(0.0, 120.0, 0.01)
+    w = np.empty(len(t))
+    w[0] = 0.0
+    e = rng.normal(0.0, 0.005 * np.sqrt(1 - rho**2), len(t))
+    for i in range(1, len(t)):
+        w[i] = rho * w[i - 1] + e[i]
+    return t, 0.02 + w + np.where(t < 60.0, 0.0, 0.3 * np.sin(0.5 * (t - 60.0)))
+
+
+@pytest.mark.parametrize("rho", [0.0, 0.3, 0.55])
+def test_a_rest_with_correlated_noise_is_found_whole(rho: float) -> None:
+    # A first-order sensor bandwidth of 10 Hz sampled at 100 Hz (the CRS03 of the sample log)
+    # correlates successive readings by exp(-2 pi 10 / 100) = 0.53: a block's mean then scatters
+    # about twice as much as white noise of the same size would make it, and a level test that
+    # assumed white noise cut the rest into pieces (at 0.55: after 7-57 s on these seeds).
+    for seed in range(8):
+        t, r = correlated_rest(seed, rho)
+        windows = cal.rest_windows(t, r)
+        assert windows[0][0] == 0.0 and 59.9 <= windows[0][1] <= 60.5, (rho, seed, windows[:3])
+
+
+def test_gyrocore_calibrate_finds_the_sample_logs_whole_rest(tmp_path: Path) -> None:
+    folder = datasets.write_sample(tmp_path / "sample")
+    proc = subprocess.run(
+        [sys.executable, "-m", "gyrocore.cli", "calibrate", str(folder), "--json"], capture_output=True, text=True
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert "Traceback" not in proc.stderr
+    report = json.loads(proc.stdout)
+    start, end = report["static_bias"]["window"]
+    # The rest is 0-60 s; the straight road after it reads the same to a gyro (no speed is read).
+    assert start == 0.0 and end >= 59.9, (start, end)
+    log = datasets.sample_drive()
+    drive = sim.car_drive(**datasets.SAMPLE)
+    inside = (drive.t >= start) & (drive.t <= end)
+    truth = drive.bias + float(np.mean(drive.drift[inside]))
+    assert abs(report["static_bias"]["bias"] - truth) < 4 * report["static_bias"]["bias_stderr"] + 1e-4
+    assert len(log.t) == len(drive.t)
