@@ -15,9 +15,9 @@ rad/sqrt(s)) and ``bias_walk`` (rate random walk K, rad/s/sqrt(s)); see docs/fix
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -25,7 +25,10 @@ from numpy.typing import ArrayLike
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
 from ._extras import require
-from .io._csvfile import read_csv_columns
+from .io._csvfile import _csv_header as csv_header, read_csv_columns
+
+if TYPE_CHECKING:
+    from .pipeline import HeadingResult
 
 #: The filter's settings and their units (defaults: the core's ``FusionConfig::default``).
 SETTINGS = ("arw", "bias_walk", "scale_walk", "initial_heading", "initial_heading_sigma", "initial_bias",
@@ -125,6 +128,11 @@ class Fusion:
         h, s, b, sc = self._inner.process(tt, r, f.t, f.heading, f.sigma)
         return FusionResult(tt, h, s, b, sc, self.counts())
 
+    def check(self, fixes: Fixes) -> None:
+        """Raises the error :meth:`process` would raise for ``fixes``, processing nothing (a
+        pipeline checks its fixes before any of its stages runs on a block)."""
+        self._inner.check(fixes.t, fixes.heading, fixes.sigma)
+
     def counts(self) -> dict[str, int]:
         """Fixes applied, rejected, before_start, and waiting for a later block."""
         applied, rejected, before, waiting = self._inner.counts()
@@ -139,6 +147,23 @@ class Fusion:
 
     def __setstate__(self, state: dict[str, Any]) -> None:
         self._inner = _gyrocore.Fusion.from_state_json(state["state"])
+
+
+def stage_settings(params: dict[str, Any], settings: dict[str, float] | None) -> dict[str, float]:
+    """The fix stage's settings in a pipeline with the parameters ``params``: it starts from the
+    pipeline's initial heading unless ``settings`` say otherwise."""
+    return {"initial_heading": float(params["initial_heading"]), **(settings or {})}
+
+
+def smoothed_stage(result: HeadingResult, fixes: FixesLike, settings: dict[str, float],
+                   outputs: tuple[str, ...]) -> HeadingResult:
+    """The fix stage of a whole log: the smoother over the pipeline's corrected rate (``result``
+    computed with the ``rate`` output); ``outputs`` are the ones the caller asked for."""
+    if result.rate is None:
+        raise ValueError("the fix stage needs the pipeline's rate output")
+    fused = fuse(result.t, result.rate, as_fixes(fixes), mode="smoothed", **settings)
+    return replace(result, heading=fused.heading, rate=result.rate if "rate" in outputs else None,
+                   heading_sigma=fused.heading_sigma, fusion=fused)
 
 
 def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_speed: float = 2.0,
@@ -177,6 +202,42 @@ def read_fixes_csv(path: str | Path) -> Fixes:
     """A log folder's ``fixes.csv``: t [s], heading [rad, CCW from east], sigma [rad]."""
     cols = read_csv_columns(Path(path), ("t", "heading", "sigma"))
     return Fixes(cols["t"], cols["heading"], cols["sigma"])
+
+
+#: The columns of the two fix files :func:`read_fixes_file` reads.
+FIXES_COLUMNS, GNSS_COLUMNS = ("t", "heading", "sigma"), ("t", "speed", "bearing")
+
+
+def read_fixes_file(path: str | Path) -> Fixes:
+    """A fixes file, by its header: ``fixes.csv``'s columns (t, heading [rad, CCW from east],
+    sigma [rad]) or comma_seg40's ``gnss.csv`` (t, speed [m/s], bearing [deg, CW from north],
+    through :func:`read_gnss_csv` with its defaults)."""
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"{path}: no such fixes file")
+    header = set(csv_header(path, ","))
+    if set(FIXES_COLUMNS) <= header:
+        return read_fixes_csv(path)
+    if set(GNSS_COLUMNS) <= header:
+        return read_gnss_csv(path)
+    raise ValueError(f"{path}: a fixes file has the columns {', '.join(FIXES_COLUMNS)} (headings in rad, CCW "
+                     f"from east) or {', '.join(GNSS_COLUMNS)} (a gnss.csv); its header has {', '.join(sorted(header))}")
+
+
+#: What may be given as fixes: :class:`Fixes`, a fixes file, or ``(t, heading, sigma)`` arrays.
+FixesLike: TypeAlias = Fixes | str | Path | tuple[ArrayLike, ArrayLike, ArrayLike]
+
+
+def as_fixes(fixes: FixesLike) -> Fixes:
+    """``fixes`` as :class:`Fixes` (a path is read by :func:`read_fixes_file`)."""
+    if isinstance(fixes, Fixes):
+        return fixes
+    if isinstance(fixes, (str, Path)):
+        return read_fixes_file(fixes)
+    if isinstance(fixes, tuple) and len(fixes) == 3:
+        return Fixes.of(*fixes)
+    raise TypeError(f"fixes must be gyrocore.fixes.Fixes, a fixes file or a (t, heading, sigma) tuple, "
+                    f"got {type(fixes).__name__}")
 
 
 #: Metres per second in a knot and in a km/h (NMEA's speed units).

@@ -21,6 +21,7 @@ from .rests import Rest as TrackedRest
 from .window import time_range
 
 if TYPE_CHECKING:
+    from .fixes import Fixes, FixesLike, Fusion, FusionResult
     from .wholelog import Rest
 
 #: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling.
@@ -135,6 +136,10 @@ class HeadingResult:
             :class:`gyrocore.rests.Rest`).
         bias_source: where the static bias came from (set by :func:`process` and
             :meth:`gyrocore.Log.process`; empty from a streaming :class:`Pipeline`).
+        heading_sigma: with heading fixes, the filter's standard deviation of the heading [rad]
+            (None without fixes).
+        fusion: with heading fixes, the fix stage's estimates per sample (its bias and scale
+            error of the corrected rate, and the fix counts; :class:`gyrocore.fixes.FusionResult`).
     """
 
     t: FloatArray
@@ -144,10 +149,15 @@ class HeadingResult:
     bias_source: str = ""
     rests: tuple[Rest, ...] = ()
     tracked_rests: tuple[TrackedRest, ...] = ()
+    heading_sigma: FloatArray | None = None
+    fusion: FusionResult | None = None
 
     def output(self, name: str) -> FloatArray:
-        """The output ``name`` (one of :data:`OUTPUTS`); a ``ValueError`` if it was not asked for."""
-        value: FloatArray | None = getattr(self, name) if name in OUTPUTS else None
+        """The output ``name`` (one of :data:`OUTPUTS`, or ``heading_sigma``); a ``ValueError`` if it
+        was not asked for (or, for ``heading_sigma``, there were no fixes)."""
+        value: FloatArray | None = getattr(self, name) if name in (*OUTPUTS, "heading_sigma") else None
+        if value is None and name == "heading_sigma":
+            raise ValueError("the 'heading_sigma' output comes with heading fixes, and there were none")
         if value is None:
             raise ValueError(f"the {name!r} output was not computed: ask for it in outputs=")
         return value
@@ -179,11 +189,15 @@ class Pipeline:
 
     Args:
         preset: ``raw``, ``static_bias``, ``hong_park``, ``hdr``, ``combined`` or ``recommended``.
+        fusion: settings of the heading-fix stage (:data:`gyrocore.fixes.SETTINGS`; ``{}`` for the
+            defaults): it runs last, on the corrected rate, from the first sample, so that fixes may
+            come in any later block. Without it the stage starts with the first block that brings
+            fixes, which must be the first block (docs/fixes.md).
         **overrides: parameters to change (see :func:`parameters`), e.g. ``bias_window=(t0, t1)``,
             ``bias=0.01`` [rad/s], ``threshold_dps=0.3``, ``hdr_increment=...``.
     """
 
-    def __init__(self, preset: str = "hdr", **overrides: Any) -> None:
+    def __init__(self, preset: str = "hdr", *, fusion: dict[str, float] | None = None, **overrides: Any) -> None:
         si = _to_si(overrides)
         try:
             self._inner = _gyrocore.Pipeline(preset, si)
@@ -193,6 +207,8 @@ class Pipeline:
         self._units_checked = False
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
         self._rests: list[rests.Rest] = []
+        self._fusion_settings = fusion
+        self._fusion = None if fusion is None else self._new_fusion()
         if uses_static_bias(preset) and not has_bias_source(si) and not si.get("track_rests"):
             warn(
                 f"preset {preset!r} removes a static bias, but no bias, bias_window or bias_duration "
@@ -224,6 +240,7 @@ class Pipeline:
         outputs: tuple[str, ...] = OUTPUTS,
         speed: ArrayLike | None = None,
         speed_t: ArrayLike | None = None,
+        fixes: FixesLike | None = None,
     ) -> HeadingResult:
         """Process the next chunk of samples.
 
@@ -238,6 +255,11 @@ class Pipeline:
                 own times ``speed_t`` (e.g. a log folder's ``odometry.csv``), interpolated onto
                 ``t``; outside its span, and without it, rests are judged by the rate alone.
             speed_t: the times [s] of ``speed``, strictly increasing, in the gyro's clock.
+            fixes: absolute headings (:class:`gyrocore.fixes.Fixes`, a fixes file, or ``(t,
+                heading, sigma)``) for the fix stage, merged by time: each is applied when the
+                samples reach its time (those past this chunk wait for the next); one earlier than
+                a sample already processed is an error. The heading is then the filter's, with its
+                ``heading_sigma`` and the result's ``fusion`` (docs/fixes.md).
 
         Raises:
             SampleError: (a ValueError) non-increasing or non-finite timestamps, or NaN/inf readings
@@ -260,6 +282,9 @@ class Pipeline:
             warn_units(ta, ra)
             self._units_checked = True
         flags = output_flags(outputs)
+        fix_block = self._fix_block(fixes)
+        if fix_block is not None:
+            flags = (True, flags[1])  # the fix stage runs on the corrected rate
         if (speed is not None or speed_t is not None) and not self.params["track_rests"]:
             raise ValueError("speed is given but rest tracking is off: pass track_rests=True, or no speed")
         sa = None if speed is None else rests.speed_at(ta, speed, speed_t)
@@ -269,7 +294,36 @@ class Pipeline:
         if self._first_time is None and len(ta):
             self._first_time = float(ta[0])
         self._rests.extend(found)
-        return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found))
+        if self._fusion is None or fix_block is None or out_rate is None:
+            return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found))
+        fused = self._fusion.process(ta, out_rate, fix_block)
+        return HeadingResult(ta, fused.heading, out_rate if "rate" in outputs else None, drift,
+                             tracked_rests=tuple(found), heading_sigma=fused.heading_sigma, fusion=fused)
+
+    def _new_fusion(self) -> Fusion:
+        """The fix stage, starting from the pipeline's initial heading unless its settings say."""
+        from .fixes import Fusion, stage_settings
+
+        return Fusion(**stage_settings(self.params, self._fusion_settings))
+
+    def _fix_block(self, fixes: FixesLike | None) -> Fixes | None:
+        """This block's fixes for the fix stage (checked before any stage runs: a bad fix leaves
+        the pipeline as it was), or None without a fix stage."""
+        from .fixes import Fixes, as_fixes
+
+        if fixes is not None and self._fusion is None:
+            if self._inner.last_time() is not None:
+                raise ValueError(
+                    "fixes given to a pipeline that has processed samples without a fix stage: create it "
+                    "with Pipeline(..., fusion={}) to give fixes in a later block"
+                )
+            self._fusion_settings = {}
+            self._fusion = self._new_fusion()
+        if self._fusion is None:
+            return None
+        block = Fixes.empty() if fixes is None else as_fixes(fixes)
+        self._fusion.check(block)
+        return block
 
     def _run(
         self,
@@ -328,6 +382,7 @@ class Pipeline:
     def reset(self) -> None:
         """Return to the state before the first sample (same parameters)."""
         self._inner.reset()
+        self._fusion = None if self._fusion_settings is None else self._new_fusion()
         self._first_time = None
         self._rests = []
 
@@ -416,6 +471,7 @@ class Pipeline:
             "state": self._inner.state_json(),
             "first_time": self._first_time,
             "rests": self._rests,
+            "fusion": (self._fusion_settings, self._fusion),
         }
 
     def __setstate__(self, state: dict[str, Any]) -> None:
@@ -424,6 +480,7 @@ class Pipeline:
         self._units_checked = self._inner.last_time() is not None
         self._first_time = state.get("first_time")
         self._rests = list(state.get("rests", []))
+        self._fusion_settings, self._fusion = state.get("fusion", (None, None))
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"
@@ -439,10 +496,16 @@ def process(
     mode: str = "whole",
     speed: ArrayLike | None = None,
     speed_t: ArrayLike | None = None,
+    fixes: FixesLike | None = None,
+    fusion: dict[str, float] | None = None,
     **overrides: Any,
 ) -> HeadingResult:
     """Heading of a whole log; ``outputs`` chooses which of ``heading``, ``rate`` and ``drift`` are
     computed (see :meth:`Pipeline.process`).
+
+    ``fixes`` (absolute headings, see :meth:`Pipeline.process`) add the fix stage after the
+    pipeline, with the settings ``fusion``: in whole mode the Rauch-Tung-Striebel smoother (each
+    sample sees every fix), in causal mode the filter (each sees the fixes up to its time).
 
     ``mode="whole"`` (default): the static bias is known before the first sample, from the given
     ``bias_window`` / ``bias_duration`` wherever it lies (its mean applies from the first sample)
@@ -464,7 +527,7 @@ def process(
 
     return process_log(
         t, rate, preset, mode=mode, temperature=temperature, speed=speed, speed_t=speed_t, outputs=outputs,
-        **overrides,
+        fixes=fixes, fusion=fusion, **overrides,
     )
 
 
