@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from pathlib import Path
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 import numpy as np
@@ -155,13 +156,61 @@ def stage_settings(params: dict[str, Any], settings: dict[str, float] | None) ->
     return {"initial_heading": float(params["initial_heading"]), **(settings or {})}
 
 
+Estimate = tuple[float, float, float, float]
+"""One row of a :class:`FusionResult`: heading, heading_sigma, bias, scale."""
+_COLUMNS = ("heading", "heading_sigma", "bias", "scale")
+
+
+def _prior(fusion: Fusion) -> Estimate:
+    """The estimate before any sample: the filter's initial heading, bias and their sigmas."""
+    s = fusion.settings()
+    return s["initial_heading"], s["initial_heading_sigma"], s["initial_bias"], 0.0
+
+
+def _on_kept(run: Callable[[FloatArray, FloatArray], FusionResult], t: FloatArray, rate: FloatArray,
+             before: Estimate) -> FusionResult:
+    """``run`` over the samples a pipeline kept: one it skipped (``nonfinite="skip"``: its rate is
+    NaN) is left out of the filter, and its row repeats the estimate before it (``before`` ahead
+    of the block's first kept sample), as the pipeline's own row repeats its heading."""
+    kept = np.isfinite(rate)
+    if kept.all():
+        return run(t, rate)
+    part = run(t[kept], rate[kept])
+    at = np.cumsum(kept)  # 1 + the kept sample at or before each row; 0 before the first
+    h, s, b, sc = (np.concatenate(([first], getattr(part, name)))[at] for name, first in zip(_COLUMNS, before))
+    return FusionResult(t, h, s, b, sc, part.counts)
+
+
+class FixStage:
+    """The fix stage of a :class:`gyrocore.Pipeline`: the filter on the pipeline's corrected rate,
+    block after block (picklable with the pipeline)."""
+
+    def __init__(self, settings: dict[str, float]) -> None:
+        self.fusion = Fusion(**settings)
+        self.last = _prior(self.fusion)
+
+    def check(self, fixes: Fixes) -> None:
+        """The error :meth:`process` would raise for ``fixes``, before any stage runs."""
+        self.fusion.check(fixes)
+
+    def process(self, t: FloatArray, rate: FloatArray, fixes: Fixes) -> FusionResult:
+        """One block of the corrected rate (NaN where the pipeline skipped a sample)."""
+        result = _on_kept(lambda tt, rr: self.fusion.process(tt, rr, fixes), t, rate, self.last)
+        if len(result.t):
+            self.last = (float(result.heading[-1]), float(result.heading_sigma[-1]), float(result.bias[-1]),
+                         float(result.scale[-1]))
+        return result
+
+
 def smoothed_stage(result: HeadingResult, fixes: FixesLike, settings: dict[str, float],
                    outputs: tuple[str, ...]) -> HeadingResult:
     """The fix stage of a whole log: the smoother over the pipeline's corrected rate (``result``
     computed with the ``rate`` output); ``outputs`` are the ones the caller asked for."""
     if result.rate is None:
         raise ValueError("the fix stage needs the pipeline's rate output")
-    fused = fuse(result.t, result.rate, as_fixes(fixes), mode="smoothed", **settings)
+    given = as_fixes(fixes)
+    fused = _on_kept(lambda tt, rr: fuse(tt, rr, given, mode="smoothed", **settings), result.t, result.rate,
+                     _prior(Fusion(**settings)))
     return replace(result, heading=fused.heading, rate=result.rate if "rate" in outputs else None,
                    heading_sigma=fused.heading_sigma, fusion=fused)
 

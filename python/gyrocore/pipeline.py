@@ -21,7 +21,7 @@ from .rests import Rest as TrackedRest
 from .window import time_range
 
 if TYPE_CHECKING:
-    from .fixes import Fixes, FixesLike, Fusion, FusionResult
+    from .fixes import Fixes, FixesLike, FixStage, FusionResult
     from .wholelog import Rest
 
 #: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling.
@@ -300,11 +300,11 @@ class Pipeline:
         return HeadingResult(ta, fused.heading, out_rate if "rate" in outputs else None, drift,
                              tracked_rests=tuple(found), heading_sigma=fused.heading_sigma, fusion=fused)
 
-    def _new_fusion(self) -> Fusion:
+    def _new_fusion(self) -> FixStage:
         """The fix stage, starting from the pipeline's initial heading unless its settings say."""
-        from .fixes import Fusion, stage_settings
+        from .fixes import FixStage, stage_settings
 
-        return Fusion(**stage_settings(self.params, self._fusion_settings))
+        return FixStage(stage_settings(self.params, self._fusion_settings))
 
     def _fix_block(self, fixes: FixesLike | None) -> Fixes | None:
         """This block's fixes for the fix stage (checked before any stage runs: a bad fix leaves

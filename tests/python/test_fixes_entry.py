@@ -4,6 +4,7 @@ a log folder's fixes.csv, and `gyrocore process/evaluate --fixes/--sim-fixes`.""
 from __future__ import annotations
 
 import json
+import math
 import pickle
 import subprocess
 import sys
@@ -49,7 +50,7 @@ def test_chunked_and_pickled_pipeline_with_fixes_is_bit_identical_to_one_call() 
         joined = np.concatenate([getattr(p, name) for p in parts])
         assert joined.tobytes() == getattr(whole, name).tobytes(), name
     assert np.concatenate([p.fusion.bias for p in parts if p.fusion]).tobytes() == whole.fusion.bias.tobytes()
-    assert stream._fusion is not None and stream._fusion.counts()["applied"] == whole.fusion.counts["applied"]
+    assert parts[-1].fusion is not None and parts[-1].fusion.counts["applied"] == whole.fusion.counts["applied"]
 
 
 def test_the_fix_stage_runs_last_on_the_corrected_rate() -> None:
@@ -91,6 +92,27 @@ def test_a_fix_older_than_the_samples_leaves_the_pipeline_as_it_was() -> None:
         stream.process(t[1000:], rate[1000:], fixes=stale)
     rest = stream.process(t[1000:], rate[1000:], fixes=part(fixes, fixes.t >= t[1000]))
     assert np.concatenate([first.heading, rest.heading]).tobytes() == whole.heading.tobytes()
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_skipped_samples_are_left_out_of_the_fix_stage(mode: str) -> None:
+    t, heading, rate = drive(60.0)
+    fixes = fixes_of(t, heading)
+    bad = rate.copy()
+    bad[[0, 1, 700, 1500]] = np.nan  # the first rows too: before the filter has any sample
+    with pytest.warns(gyrocore.InputWarning):
+        result = gyrocore.process(t, bad, "raw", mode=mode, nonfinite="skip", fixes=fixes)
+    good = np.isfinite(bad)
+    alone = gyrocore.process(t[good], rate[good], "raw", mode=mode, fixes=fixes)
+    assert result.heading[good].tobytes() == alone.heading.tobytes()
+    assert result.heading[700] == result.heading[699] and result.heading[1500] == result.heading[1499]
+    assert result.heading_sigma is not None and result.heading_sigma[0] == math.pi  # the prior: unknown
+    if mode == "causal":  # cut at a skipped sample, pickled between
+        stream = gyrocore.Pipeline("raw", nonfinite="skip", fusion={})
+        with pytest.warns(gyrocore.InputWarning):
+            first = stream.process(t[:700], bad[:700], fixes=fixes)
+            second = pickle.loads(pickle.dumps(stream)).process(t[700:], bad[700:])
+        assert np.concatenate([first.heading, second.heading]).tobytes() == result.heading.tobytes()
 
 
 @pytest.mark.parametrize("mode", ["whole", "causal"])
