@@ -228,3 +228,11 @@ def test_cli_evaluate_scores_a_simulated_outage_apart(folder_with_fixes: Path) -
 )
 def test_cli_bad_sim_fixes_are_one_line_errors(folder_with_fixes: Path, spec: str, message: str) -> None:
     one_line_error(cli("evaluate", str(folder_with_fixes), "--preset", "hdr", "--sim-fixes", spec), message)
+
+
+def test_a_fleet_run_says_it_does_not_use_fixes_csv(folder_with_fixes: Path, tmp_path: Path) -> None:
+    plain = gyrocore.datasets.write_sample(tmp_path / "plain")
+    proc = cli("process", str(folder_with_fixes), str(plain), "--out", str(tmp_path / "out"), "--jobs", "1")
+    assert proc.returncode == 0, proc.stderr
+    assert "fixes.csv is not used when logs are streamed" in proc.stderr
+    assert proc.stderr.count("fixes.csv is not used") == 1  # only the folder that has one

@@ -17,7 +17,7 @@ from ..fixes import Fixes, read_fixes_file
 from ..io import Log, read_log
 from ..io._logfolder import FIXES_CSV
 from ..window import Window
-from ._common import print_json, warn
+from ._common import print_json
 
 FIXES_HELP = (
     "absolute headings fused with the gyro (docs/fixes.md): a CSV with columns t [s], heading [rad, CCW from "
@@ -84,20 +84,14 @@ def _fixes_of(log: Log, sim: SimFixes | None, given: Fixes | None,
 
 def uses_fixes(args: argparse.Namespace, inputs: Sequence[Path]) -> bool:
     """Whether ``process`` fuses fixes: ``--fixes``, or one log folder with ``fixes.csv``; with
-    several inputs a folder's ``fixes.csv`` is not used (a warning says so)."""
+    several inputs a folder's ``fixes.csv`` is not used (its report says so)."""
     if args.no_fixes:
         return False
     if args.fixes is not None:
         if len(inputs) != 1:
             raise ValueError(f"--fixes {args.fixes} is for one input, got {len(inputs)}")
         return True
-    with_fixes = [p for p in inputs if (p / FIXES_CSV).is_file()]
-    if len(inputs) == 1:
-        return bool(with_fixes)
-    for p in with_fixes:
-        warn(f"{p / FIXES_CSV} is not used in a run over several inputs: process {p} alone "
-             "(or pass --no-fixes to silence this)")
-    return False
+    return len(inputs) == 1 and (inputs[0] / FIXES_CSV).is_file()
 
 
 def process_with_fixes(args: argparse.Namespace, path: Path, out: Path, options: dict[str, Any],
