@@ -198,6 +198,8 @@ def test_cli_bad_fixes_are_one_line_errors(folder_with_fixes: Path, tmp_path: Pa
     one_line_error(cli("evaluate", str(folder_with_fixes), "--fixes", str(wrong)), "a fixes file has the columns")
     one_line_error(cli("process", str(folder_with_fixes), "--out", str(out), "--fixes", str(tmp_path / "none.csv")),
                    "no such fixes file")
+    one_line_error(cli("process", str(folder_with_fixes), "--out", str(out), "--no-fixes", "--columns", "t,heading_sigma"),
+                   "--columns heading_sigma: it comes with heading fixes")
 
 
 def test_cli_evaluate_scores_a_simulated_outage_apart(folder_with_fixes: Path) -> None:

@@ -131,6 +131,9 @@ def run(args: argparse.Namespace) -> int:
                 if out.suffix.lower() not in (".csv", ".parquet", ".pq"):
                     raise ValueError(f"--out {out}: with heading fixes the output is one .csv or .parquet file")
                 return process_with_fixes(args, inputs[0], out, options(args), kwargs["columns"])
+            if "heading_sigma" in kwargs["columns"]:
+                raise ValueError("--columns heading_sigma: it comes with heading fixes (--fixes FILE, or one log "
+                                 "folder with fixes.csv)")
             if out.suffix.lower() in (".csv", ".parquet", ".pq"):
                 return _one(inputs, out, args, kwargs)
             return _many(out, args, kwargs)
