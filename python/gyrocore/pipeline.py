@@ -208,7 +208,7 @@ class Pipeline:
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
         self._rests: list[rests.Rest] = []
         self._fusion_settings = fusion
-        self._fusion = None if fusion is None else self._new_fusion()
+        self._fusion = None if fusion is None else self._new_fusion(fusion)
         if uses_static_bias(preset) and not has_bias_source(si) and not si.get("track_rests"):
             warn(
                 f"preset {preset!r} removes a static bias, but no bias, bias_window or bias_duration "
@@ -300,29 +300,31 @@ class Pipeline:
         return HeadingResult(ta, fused.heading, out_rate if "rate" in outputs else None, drift,
                              tracked_rests=tuple(found), heading_sigma=fused.heading_sigma, fusion=fused)
 
-    def _new_fusion(self) -> FixStage:
-        """The fix stage, starting from the pipeline's initial heading unless its settings say."""
+    def _new_fusion(self, settings: dict[str, float]) -> FixStage:
+        """The fix stage, starting from the pipeline's initial heading unless ``settings`` say."""
         from .fixes import FixStage, stage_settings
 
-        return FixStage(stage_settings(self.params, self._fusion_settings))
+        return FixStage(stage_settings(self.params, settings))
 
     def _fix_block(self, fixes: FixesLike | None) -> Fixes | None:
         """This block's fixes for the fix stage (checked before any stage runs: a bad fix leaves
         the pipeline as it was), or None without a fix stage."""
         from .fixes import Fixes, as_fixes
 
-        if fixes is not None and self._fusion is None:
+        stage = self._fusion
+        if fixes is not None and stage is None:
             if self._inner.last_time() is not None:
                 raise ValueError(
                     "fixes given to a pipeline that has processed samples without a fix stage: create it "
                     "with Pipeline(..., fusion={}) to give fixes in a later block"
                 )
-            self._fusion_settings = {}
-            self._fusion = self._new_fusion()
-        if self._fusion is None:
+            stage = self._new_fusion({})
+        if stage is None:
             return None
         block = Fixes.empty() if fixes is None else as_fixes(fixes)
-        self._fusion.check(block)
+        stage.check(block)
+        if self._fusion is None:  # the stage starts with this block's good fixes
+            self._fusion_settings, self._fusion = {}, stage
         return block
 
     def _run(
@@ -382,7 +384,7 @@ class Pipeline:
     def reset(self) -> None:
         """Return to the state before the first sample (same parameters)."""
         self._inner.reset()
-        self._fusion = None if self._fusion_settings is None else self._new_fusion()
+        self._fusion = None if self._fusion_settings is None else self._new_fusion(self._fusion_settings)
         self._first_time = None
         self._rests = []
 

@@ -81,6 +81,14 @@ def test_fixes_need_the_stage_from_the_first_block() -> None:
     assert early.process(t[100:], rate[100:], fixes=part(fixes, fixes.t >= t[100])).fusion is not None
 
 
+def test_a_bad_first_fix_starts_no_stage() -> None:
+    t, _, rate = drive(10.0)
+    pipeline = gyrocore.Pipeline("raw")
+    with pytest.raises(ValueError, match="fix 0: sigma = 0 must be > 0"):
+        pipeline.process(t, rate, fixes=Fixes.of([1.0], [0.0], 0.0))
+    assert pipeline.process(t, rate).heading_sigma is None
+
+
 def test_a_fix_older_than_the_samples_leaves_the_pipeline_as_it_was() -> None:
     t, heading, rate = drive(60.0)
     fixes = fixes_of(t, heading)
