@@ -118,8 +118,9 @@ class FixScore:
     scale: float
 
     def as_dict(self) -> dict[str, Any]:
-        """A JSON-ready dict."""
-        return {k: getattr(self, k) for k in self.__dataclass_fields__}
+        """A JSON-ready dict (JSON has no NaN: an outage without a reference sample is null)."""
+        row = {k: getattr(self, k) for k in self.__dataclass_fields__}
+        return {k: None if isinstance(v, float) and not math.isfinite(v) else v for k, v in row.items()}
 
 
 def _mean_in(tr: np.ndarray, err: np.ndarray, window: tuple[float, float] | None) -> float | None:
