@@ -189,6 +189,11 @@ class FixStage:
         self.fusion = Fusion(**settings)
         self.last = _prior(self.fusion)
 
+    @classmethod
+    def of(cls, params: dict[str, Any], settings: dict[str, float]) -> FixStage:
+        """The stage of a pipeline with the parameters ``params`` (see :func:`stage_settings`)."""
+        return cls(stage_settings(params, settings))
+
     def check(self, fixes: Fixes) -> None:
         """The error :meth:`process` would raise for ``fixes``, before any stage runs."""
         self.fusion.check(fixes)
@@ -200,6 +205,23 @@ class FixStage:
             self.last = (float(result.heading[-1]), float(result.heading_sigma[-1]), float(result.bias[-1]),
                          float(result.scale[-1]))
         return result
+
+
+def stage_block(stage: FixStage | None, fixes: FixesLike | None, processed: bool,
+                params: dict[str, Any]) -> tuple[FixStage | None, Fixes | None]:
+    """A pipeline's fix stage and this block's fixes for it, checked before any stage runs (a bad
+    fix leaves the pipeline as it was); ``(None, None)`` without a stage. Fixes given to a pipeline
+    without one start it (defaults), if it has ``processed`` no sample yet."""
+    if fixes is not None and stage is None:
+        if processed:
+            raise ValueError("fixes given to a pipeline that has processed samples without a fix stage: create "
+                             "it with Pipeline(..., fusion={}) to give fixes in a later block")
+        stage = FixStage.of(params, {})
+    if stage is None:
+        return None, None
+    block = Fixes.empty() if fixes is None else as_fixes(fixes)
+    stage.check(block)
+    return stage, block
 
 
 def smoothed_stage(result: HeadingResult, fixes: FixesLike, settings: dict[str, float],

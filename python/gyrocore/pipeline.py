@@ -136,10 +136,9 @@ class HeadingResult:
             :class:`gyrocore.rests.Rest`).
         bias_source: where the static bias came from (set by :func:`process` and
             :meth:`gyrocore.Log.process`; empty from a streaming :class:`Pipeline`).
-        heading_sigma: with heading fixes, the filter's standard deviation of the heading [rad]
-            (None without fixes).
-        fusion: with heading fixes, the fix stage's estimates per sample (its bias and scale
-            error of the corrected rate, and the fix counts; :class:`gyrocore.fixes.FusionResult`).
+        heading_sigma: with heading fixes, the filter's heading standard deviation [rad], else None.
+        fusion: with heading fixes, the fix stage's :class:`gyrocore.fixes.FusionResult` (bias and
+            scale error of the corrected rate, fix counts), else None.
     """
 
     t: FloatArray
@@ -189,10 +188,9 @@ class Pipeline:
 
     Args:
         preset: ``raw``, ``static_bias``, ``hong_park``, ``hdr``, ``combined`` or ``recommended``.
-        fusion: settings of the heading-fix stage (:data:`gyrocore.fixes.SETTINGS`; ``{}`` for the
-            defaults): it runs last, on the corrected rate, from the first sample, so that fixes may
-            come in any later block. Without it the stage starts with the first block that brings
-            fixes, which must be the first block (docs/fixes.md).
+        fusion: settings of the heading-fix stage (:data:`gyrocore.fixes.SETTINGS`, ``{}``: defaults),
+            run last on the corrected rate from the first sample; without it, fixes start the stage
+            only in the first block (docs/fixes.md).
         **overrides: parameters to change (see :func:`parameters`), e.g. ``bias_window=(t0, t1)``,
             ``bias=0.01`` [rad/s], ``threshold_dps=0.3``, ``hdr_increment=...``.
     """
@@ -208,7 +206,7 @@ class Pipeline:
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
         self._rests: list[rests.Rest] = []
         self._fusion_settings = fusion
-        self._fusion = None if fusion is None else self._new_fusion(fusion)
+        self._fusion = _fix_stage(self.params, fusion)
         if uses_static_bias(preset) and not has_bias_source(si) and not si.get("track_rests"):
             warn(
                 f"preset {preset!r} removes a static bias, but no bias, bias_window or bias_duration "
@@ -255,11 +253,9 @@ class Pipeline:
                 own times ``speed_t`` (e.g. a log folder's ``odometry.csv``), interpolated onto
                 ``t``; outside its span, and without it, rests are judged by the rate alone.
             speed_t: the times [s] of ``speed``, strictly increasing, in the gyro's clock.
-            fixes: absolute headings (:class:`gyrocore.fixes.Fixes`, a fixes file, or ``(t,
-                heading, sigma)``) for the fix stage, merged by time: each is applied when the
-                samples reach its time (those past this chunk wait for the next); one earlier than
-                a sample already processed is an error. The heading is then the filter's, with its
-                ``heading_sigma`` and the result's ``fusion`` (docs/fixes.md).
+            fixes: absolute headings (:data:`gyrocore.fixes.FixesLike`) merged by time (those past
+                this chunk wait for the next; one before a processed sample is an error); the heading
+                is then the filter's, with ``heading_sigma`` and ``fusion`` (docs/fixes.md).
 
         Raises:
             SampleError: (a ValueError) non-increasing or non-finite timestamps, or NaN/inf readings
@@ -300,31 +296,13 @@ class Pipeline:
         return HeadingResult(ta, fused.heading, out_rate if "rate" in outputs else None, drift,
                              tracked_rests=tuple(found), heading_sigma=fused.heading_sigma, fusion=fused)
 
-    def _new_fusion(self, settings: dict[str, float]) -> FixStage:
-        """The fix stage, starting from the pipeline's initial heading unless ``settings`` say."""
-        from .fixes import FixStage, stage_settings
-
-        return FixStage(stage_settings(self.params, settings))
-
     def _fix_block(self, fixes: FixesLike | None) -> Fixes | None:
-        """This block's fixes for the fix stage (checked before any stage runs: a bad fix leaves
-        the pipeline as it was), or None without a fix stage."""
-        from .fixes import Fixes, as_fixes
+        """This block's fixes for the fix stage, or None without one (:func:`gyrocore.fixes.stage_block`)."""
+        from .fixes import stage_block
 
-        stage = self._fusion
-        if fixes is not None and stage is None:
-            if self._inner.last_time() is not None:
-                raise ValueError(
-                    "fixes given to a pipeline that has processed samples without a fix stage: create it "
-                    "with Pipeline(..., fusion={}) to give fixes in a later block"
-                )
-            stage = self._new_fusion({})
-        if stage is None:
-            return None
-        block = Fixes.empty() if fixes is None else as_fixes(fixes)
-        stage.check(block)
-        if self._fusion is None:  # the stage starts with this block's good fixes
-            self._fusion_settings, self._fusion = {}, stage
+        self._fusion, block = stage_block(self._fusion, fixes, self._inner.last_time() is not None, self.params)
+        if self._fusion is not None and self._fusion_settings is None:
+            self._fusion_settings = {}
         return block
 
     def _run(
@@ -384,7 +362,7 @@ class Pipeline:
     def reset(self) -> None:
         """Return to the state before the first sample (same parameters)."""
         self._inner.reset()
-        self._fusion = None if self._fusion_settings is None else self._new_fusion(self._fusion_settings)
+        self._fusion = _fix_stage(self.params, self._fusion_settings)
         self._first_time = None
         self._rests = []
 
@@ -488,6 +466,14 @@ class Pipeline:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"
 
 
+def _fix_stage(params: dict[str, Any], settings: dict[str, float] | None) -> FixStage | None:
+    """The fix stage with ``settings`` (None: no stage); :mod:`gyrocore.fixes` is imported on first
+    use (it reads files through :mod:`gyrocore.io`, which builds on this module)."""
+    from .fixes import FixStage
+
+    return None if settings is None else FixStage.of(params, settings)
+
+
 def process(
     t: ArrayLike,
     rate: ArrayLike,
@@ -505,9 +491,8 @@ def process(
     """Heading of a whole log; ``outputs`` chooses which of ``heading``, ``rate`` and ``drift`` are
     computed (see :meth:`Pipeline.process`).
 
-    ``fixes`` (absolute headings, see :meth:`Pipeline.process`) add the fix stage after the
-    pipeline, with the settings ``fusion``: in whole mode the Rauch-Tung-Striebel smoother (each
-    sample sees every fix), in causal mode the filter (each sees the fixes up to its time).
+    ``fixes`` (see :meth:`Pipeline.process`) add the fix stage with the settings ``fusion``: in
+    whole mode the Rauch-Tung-Striebel smoother, in causal mode the filter.
 
     ``mode="whole"`` (default): the static bias is known before the first sample, from the given
     ``bias_window`` / ``bias_duration`` wherever it lies (its mean applies from the first sample)
