@@ -15,7 +15,7 @@ from ._arrays import FloatArray
 from ._checks import warn
 from ._gyrocore import SampleError
 from .io._columns import concat
-from .io._logfolder import read_odometry
+from .io._logfolder import FIXES_CSV, read_odometry
 from .pipeline import Pipeline, RestWindowError, _to_si, has_bias_source, uses_static_bias
 from .window import Window, time_range
 
@@ -168,6 +168,9 @@ class _FileJob:
                     + time_range(t0)
                 )
         notes: list[str] = []
+        if source.kind == "log folder" and (source.path / FIXES_CSV).is_file():
+            notes.append(f"{FIXES_CSV} is not used when logs are streamed: process the log alone with "
+                         "`gyrocore process` or gyrocore.Log.process to fuse its heading fixes")
         from_meta = False
         if uses_static_bias(self.preset) and not has_bias_source(overrides) and source.stationary is not None:
             overrides["bias_window"], from_meta = source.stationary, True

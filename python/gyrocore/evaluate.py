@@ -138,12 +138,15 @@ class Reference:
         self.gap_factor = gap_factor
         self.time_weighted = time_weighted
 
-    def compared(self, t: ArrayLike, heading: ArrayLike) -> tuple[FloatArray, FloatArray, np.ndarray]:
+    def compared(
+        self, t: ArrayLike, heading: ArrayLike, *, absolute: bool = False
+    ) -> tuple[FloatArray, FloatArray, np.ndarray]:
         """The estimate's error at the compared reference times.
 
         Returns ``(t_compared, error [rad], gap_after)``: the error is estimate minus reference,
-        both aligned to 0 at the first compared time; ``gap_after[k]`` says whether the interval
-        after sample ``k`` crosses a gap (of either side) and so is not scored.
+        both aligned to 0 at the first compared time (with ``absolute``, not aligned: wrapped to
+        (-pi, pi], for a heading made absolute by fixes); ``gap_after[k]`` says whether the
+        interval after sample ``k`` crosses a gap (of either side) and so is not scored.
         """
         te = as_float_array("t", t)
         est_all = as_float_array("heading", heading)
@@ -165,11 +168,14 @@ class Reference:
         for j in np.flatnonzero(np.diff(seg) != 0):
             turns = round(((est[j + 1] - est[j]) - (ref[j + 1] - ref[j])) / (2 * math.pi))
             ref[j + 1 :] += 2 * math.pi * turns
+        if absolute:
+            return tr, np.angle(np.exp(1j * (est - ref))), gap_after
         return tr, (est - est[0]) - (ref - ref[0]), gap_after
 
-    def errors(self, t: ArrayLike, heading: ArrayLike) -> HeadingErrors:
-        """Score an estimated heading (continuous, rad) against this reference (HDR eq 15-16)."""
-        tr, err_rad, gap_after = self.compared(t, heading)
+    def errors(self, t: ArrayLike, heading: ArrayLike, *, absolute: bool = False) -> HeadingErrors:
+        """Score an estimated heading (continuous, rad) against this reference (HDR eq 15-16;
+        ``absolute``: see :meth:`compared`)."""
+        tr, err_rad, gap_after = self.compared(t, heading, absolute=absolute)
         abs_err = np.degrees(np.abs(err_rad))
         weights = None
         if self.time_weighted:
@@ -202,6 +208,7 @@ def heading_errors(
     *,
     gap_factor: float = GAP_FACTOR,
     time_weighted: bool = False,
+    absolute: bool = False,
 ) -> HeadingErrors:
     """Compare an estimated heading with a reference heading (HDR eq 15-16, Hong Table 1).
 
@@ -210,8 +217,10 @@ def heading_errors(
     compared reference time (only relative heading is meaningful), and E_psi averages the absolute
     difference over the reference samples (HDR eq 15), NE_psi divides it by the duration in minutes
     (eq 16). Gaps are skipped as :class:`Reference` describes; both sides may have irregular rates.
+    ``absolute``: no alignment, the wrapped difference (a heading made absolute by fixes).
     """
-    return Reference(t_ref, heading_ref, gap_factor=gap_factor, time_weighted=time_weighted).errors(t, heading)
+    reference = Reference(t_ref, heading_ref, gap_factor=gap_factor, time_weighted=time_weighted)
+    return reference.errors(t, heading, absolute=absolute)
 
 
 def improvement(raw: HeadingErrors, method: HeadingErrors) -> float:
@@ -348,11 +357,12 @@ def is_closed_path(x: ArrayLike, y: ArrayLike, *, fraction: float = CLOSED_FRACT
 
 
 def score(log: Log, method: Method, result: HeadingResult, raw: HeadingErrors, bias_source: str) -> Score:
-    """Score one heading of ``log`` (see :class:`Score`); ``raw`` is plain integration's errors."""
-    errors = heading_errors(result.t, result.heading, *log.reference())
+    """Score one heading of ``log`` (see :class:`Score`); ``raw`` is plain integration's errors. A
+    heading fused with fixes is absolute, and scored so (no alignment at the start)."""
+    errors = heading_errors(result.t, result.heading, *log.reference(), absolute=result.fusion is not None)
     # Aligned at the start, the error at the end of a closed path is its measured minus its actual
     # rotation: the return orientation error.
-    closed = log.has_track and is_closed_path(*log.track()[1:])
+    closed = log.has_track and is_closed_path(*log.track()[1:]) and result.fusion is None
     return_error = errors.final_error_deg if closed else None
     position = None
     if log.has_track and log.t_odometry is not None and log.speed is not None:

@@ -15,9 +15,10 @@ rad/sqrt(s)) and ``bias_walk`` (rate random walk K, rad/s/sqrt(s)); see docs/fix
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any, Literal
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -25,7 +26,10 @@ from numpy.typing import ArrayLike
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
 from ._extras import require
-from .io._csvfile import read_csv_columns
+from .io._csvfile import _csv_header as csv_header, read_csv_columns
+
+if TYPE_CHECKING:
+    from .pipeline import HeadingResult
 
 #: The filter's settings and their units (defaults: the core's ``FusionConfig::default``).
 SETTINGS = ("arw", "bias_walk", "scale_walk", "initial_heading", "initial_heading_sigma", "initial_bias",
@@ -125,6 +129,11 @@ class Fusion:
         h, s, b, sc = self._inner.process(tt, r, f.t, f.heading, f.sigma)
         return FusionResult(tt, h, s, b, sc, self.counts())
 
+    def check(self, fixes: Fixes) -> None:
+        """Raises the error :meth:`process` would raise for ``fixes``, processing nothing (a
+        pipeline checks its fixes before any of its stages runs on a block)."""
+        self._inner.check(fixes.t, fixes.heading, fixes.sigma)
+
     def counts(self) -> dict[str, int]:
         """Fixes applied, rejected, before_start, and waiting for a later block."""
         applied, rejected, before, waiting = self._inner.counts()
@@ -139,6 +148,93 @@ class Fusion:
 
     def __setstate__(self, state: dict[str, Any]) -> None:
         self._inner = _gyrocore.Fusion.from_state_json(state["state"])
+
+
+def stage_settings(params: dict[str, Any], settings: dict[str, float] | None) -> dict[str, float]:
+    """The fix stage's settings in a pipeline with the parameters ``params``: it starts from the
+    pipeline's initial heading unless ``settings`` say otherwise."""
+    return {"initial_heading": float(params["initial_heading"]), **(settings or {})}
+
+
+Estimate = tuple[float, float, float, float]
+"""One row of a :class:`FusionResult`: heading, heading_sigma, bias, scale."""
+_COLUMNS = ("heading", "heading_sigma", "bias", "scale")
+
+
+def _prior(fusion: Fusion) -> Estimate:
+    """The estimate before any sample: the filter's initial heading, bias and their sigmas."""
+    s = fusion.settings()
+    return s["initial_heading"], s["initial_heading_sigma"], s["initial_bias"], 0.0
+
+
+def _on_kept(run: Callable[[FloatArray, FloatArray], FusionResult], t: FloatArray, rate: FloatArray,
+             before: Estimate) -> FusionResult:
+    """``run`` over the samples a pipeline kept: one it skipped (``nonfinite="skip"``: its rate is
+    NaN) is left out of the filter, and its row repeats the estimate before it (``before`` ahead
+    of the block's first kept sample), as the pipeline's own row repeats its heading."""
+    kept = np.isfinite(rate)
+    if kept.all():
+        return run(t, rate)
+    part = run(t[kept], rate[kept])
+    at = np.cumsum(kept)  # 1 + the kept sample at or before each row; 0 before the first
+    h, s, b, sc = (np.concatenate(([first], getattr(part, name)))[at] for name, first in zip(_COLUMNS, before))
+    return FusionResult(t, h, s, b, sc, part.counts)
+
+
+class FixStage:
+    """The fix stage of a :class:`gyrocore.Pipeline`: the filter on the pipeline's corrected rate,
+    block after block (picklable with the pipeline)."""
+
+    def __init__(self, settings: dict[str, float]) -> None:
+        self.fusion = Fusion(**settings)
+        self.last = _prior(self.fusion)
+
+    @classmethod
+    def of(cls, params: dict[str, Any], settings: dict[str, float]) -> FixStage:
+        """The stage of a pipeline with the parameters ``params`` (see :func:`stage_settings`)."""
+        return cls(stage_settings(params, settings))
+
+    def check(self, fixes: Fixes) -> None:
+        """The error :meth:`process` would raise for ``fixes``, before any stage runs."""
+        self.fusion.check(fixes)
+
+    def process(self, t: FloatArray, rate: FloatArray, fixes: Fixes) -> FusionResult:
+        """One block of the corrected rate (NaN where the pipeline skipped a sample)."""
+        result = _on_kept(lambda tt, rr: self.fusion.process(tt, rr, fixes), t, rate, self.last)
+        if len(result.t):
+            self.last = (float(result.heading[-1]), float(result.heading_sigma[-1]), float(result.bias[-1]),
+                         float(result.scale[-1]))
+        return result
+
+
+def stage_block(stage: FixStage | None, fixes: FixesLike | None, processed: bool,
+                params: dict[str, Any]) -> tuple[FixStage | None, Fixes | None]:
+    """A pipeline's fix stage and this block's fixes for it, checked before any stage runs (a bad
+    fix leaves the pipeline as it was); ``(None, None)`` without a stage. Fixes given to a pipeline
+    without one start it (defaults), if it has ``processed`` no sample yet."""
+    if fixes is not None and stage is None:
+        if processed:
+            raise ValueError("fixes given to a pipeline that has processed samples without a fix stage: create "
+                             "it with Pipeline(..., fusion={}) to give fixes in a later block")
+        stage = FixStage.of(params, {})
+    if stage is None:
+        return None, None
+    block = Fixes.empty() if fixes is None else as_fixes(fixes)
+    stage.check(block)
+    return stage, block
+
+
+def smoothed_stage(result: HeadingResult, fixes: FixesLike, settings: dict[str, float],
+                   outputs: tuple[str, ...]) -> HeadingResult:
+    """The fix stage of a whole log: the smoother over the pipeline's corrected rate (``result``
+    computed with the ``rate`` output); ``outputs`` are the ones the caller asked for."""
+    if result.rate is None:
+        raise ValueError("the fix stage needs the pipeline's rate output")
+    given = as_fixes(fixes)
+    fused = _on_kept(lambda tt, rr: fuse(tt, rr, given, mode="smoothed", **settings), result.t, result.rate,
+                     _prior(Fusion(**settings)))
+    return replace(result, heading=fused.heading, rate=result.rate if "rate" in outputs else None,
+                   heading_sigma=fused.heading_sigma, fusion=fused)
 
 
 def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_speed: float = 2.0,
@@ -177,6 +273,42 @@ def read_fixes_csv(path: str | Path) -> Fixes:
     """A log folder's ``fixes.csv``: t [s], heading [rad, CCW from east], sigma [rad]."""
     cols = read_csv_columns(Path(path), ("t", "heading", "sigma"))
     return Fixes(cols["t"], cols["heading"], cols["sigma"])
+
+
+#: The columns of the two fix files :func:`read_fixes_file` reads.
+FIXES_COLUMNS, GNSS_COLUMNS = ("t", "heading", "sigma"), ("t", "speed", "bearing")
+
+
+def read_fixes_file(path: str | Path) -> Fixes:
+    """A fixes file, by its header: ``fixes.csv``'s columns (t, heading [rad, CCW from east],
+    sigma [rad]) or comma_seg40's ``gnss.csv`` (t, speed [m/s], bearing [deg, CW from north],
+    through :func:`read_gnss_csv` with its defaults)."""
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"{path}: no such fixes file")
+    header = set(csv_header(path, ","))
+    if set(FIXES_COLUMNS) <= header:
+        return read_fixes_csv(path)
+    if set(GNSS_COLUMNS) <= header:
+        return read_gnss_csv(path)
+    raise ValueError(f"{path}: a fixes file has the columns {', '.join(FIXES_COLUMNS)} (headings in rad, CCW "
+                     f"from east) or {', '.join(GNSS_COLUMNS)} (a gnss.csv); its header has {', '.join(sorted(header))}")
+
+
+#: What may be given as fixes: :class:`Fixes`, a fixes file, or ``(t, heading, sigma)`` arrays.
+FixesLike: TypeAlias = Fixes | str | Path | tuple[ArrayLike, ArrayLike, ArrayLike]
+
+
+def as_fixes(fixes: FixesLike) -> Fixes:
+    """``fixes`` as :class:`Fixes` (a path is read by :func:`read_fixes_file`)."""
+    if isinstance(fixes, Fixes):
+        return fixes
+    if isinstance(fixes, (str, Path)):
+        return read_fixes_file(fixes)
+    if isinstance(fixes, tuple) and len(fixes) == 3:
+        return Fixes.of(*fixes)
+    raise TypeError(f"fixes must be gyrocore.fixes.Fixes, a fixes file or a (t, heading, sigma) tuple, "
+                    f"got {type(fixes).__name__}")
 
 
 #: Metres per second in a knot and in a km/h (NMEA's speed units).

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -19,6 +19,9 @@ from ._arrays import FloatArray, as_float_array
 from ._checks import warn, warn_units
 from .rests import Rest
 from .window import time_range
+
+if TYPE_CHECKING:
+    from .fixes import Fixes, FixesLike, FixStage, FusionResult
 
 #: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling.
 _RATE_PARAMETERS = ("bias", "offset", "threshold", "hdr_increment", "hdr_turn_threshold")
@@ -132,6 +135,9 @@ class HeadingResult:
             filtered bias after it; :class:`gyrocore.rests.Rest`).
         bias_source: where the static bias came from (set by :func:`process` and
             :meth:`gyrocore.Log.process`; empty from a streaming :class:`Pipeline`).
+        heading_sigma: with heading fixes, the filter's heading standard deviation [rad], else None.
+        fusion: with heading fixes, the fix stage's :class:`gyrocore.fixes.FusionResult` (bias and
+            scale error of the corrected rate, fix counts), else None.
     """
 
     t: FloatArray
@@ -141,10 +147,15 @@ class HeadingResult:
     bias_source: str = ""
     rests: tuple[Rest, ...] = ()
     tracked_rests: tuple[Rest, ...] = ()
+    heading_sigma: FloatArray | None = None
+    fusion: FusionResult | None = None
 
     def output(self, name: str) -> FloatArray:
-        """The output ``name`` (one of :data:`OUTPUTS`); a ``ValueError`` if it was not asked for."""
-        value: FloatArray | None = getattr(self, name) if name in OUTPUTS else None
+        """The output ``name`` (one of :data:`OUTPUTS`, or ``heading_sigma``); a ``ValueError`` if it
+        was not asked for (or, for ``heading_sigma``, there were no fixes)."""
+        value: FloatArray | None = getattr(self, name) if name in (*OUTPUTS, "heading_sigma") else None
+        if value is None and name == "heading_sigma":
+            raise ValueError("the 'heading_sigma' output comes with heading fixes, and there were none")
         if value is None:
             raise ValueError(f"the {name!r} output was not computed: ask for it in outputs=")
         return value
@@ -176,11 +187,14 @@ class Pipeline:
 
     Args:
         preset: ``raw``, ``static_bias``, ``hong_park``, ``hdr``, ``combined`` or ``recommended``.
+        fusion: settings of the heading-fix stage (:data:`gyrocore.fixes.SETTINGS`, ``{}``: defaults),
+            run last on the corrected rate from the first sample; without it, fixes start the stage
+            only in the first block (docs/fixes.md).
         **overrides: parameters to change (see :func:`parameters`), e.g. ``bias_window=(t0, t1)``,
             ``bias=0.01`` [rad/s], ``threshold_dps=0.3``, ``hdr_increment=...``.
     """
 
-    def __init__(self, preset: str = "hdr", **overrides: Any) -> None:
+    def __init__(self, preset: str = "hdr", *, fusion: dict[str, float] | None = None, **overrides: Any) -> None:
         si = _to_si(overrides)
         try:
             self._inner = _gyrocore.Pipeline(preset, si)
@@ -190,6 +204,8 @@ class Pipeline:
         self._units_checked = False
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
         self._rests: list[Rest] = []
+        self._fusion_settings = fusion
+        self._fusion = _fix_stage(self.params, fusion)
         if uses_static_bias(preset) and not has_bias_source(si):
             until = " until the rest tracker measures one at a stop" if self.params["track_rests"] else ""
             warn(
@@ -222,6 +238,7 @@ class Pipeline:
         outputs: tuple[str, ...] = OUTPUTS,
         speed: ArrayLike | None = None,
         speed_t: ArrayLike | None = None,
+        fixes: FixesLike | None = None,
     ) -> HeadingResult:
         """Process the next chunk of samples.
 
@@ -236,6 +253,9 @@ class Pipeline:
                 own times ``speed_t`` (e.g. a log folder's ``odometry.csv``), interpolated onto
                 ``t``; outside its span, and without it, rests are judged by the rate alone.
             speed_t: the times [s] of ``speed``, strictly increasing, in the gyro's clock.
+            fixes: absolute headings (:data:`gyrocore.fixes.FixesLike`) merged by time (those past
+                this chunk wait for the next; one before a processed sample is an error); the heading
+                is then the filter's, with ``heading_sigma`` and ``fusion`` (docs/fixes.md).
 
         Raises:
             SampleError: (a ValueError) non-increasing or non-finite timestamps, or NaN/inf readings
@@ -258,6 +278,9 @@ class Pipeline:
             warn_units(ta, ra)
             self._units_checked = True
         flags = output_flags(outputs)
+        fix_block = self._fix_block(fixes)
+        if fix_block is not None:
+            flags = (True, flags[1])  # the fix stage runs on the corrected rate
         if (speed is not None or speed_t is not None) and not self.params["track_rests"]:
             raise ValueError("speed is given but rest tracking is off: pass track_rests=True, or no speed")
         sa = None if speed is None else rests.speed_at(ta, speed, speed_t)
@@ -267,7 +290,20 @@ class Pipeline:
         if self._first_time is None and len(ta):
             self._first_time = float(ta[0])
         self._rests.extend(found)
-        return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found))
+        if self._fusion is None or fix_block is None or out_rate is None:
+            return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found))
+        fused = self._fusion.process(ta, out_rate, fix_block)
+        return HeadingResult(ta, fused.heading, out_rate if "rate" in outputs else None, drift,
+                             tracked_rests=tuple(found), heading_sigma=fused.heading_sigma, fusion=fused)
+
+    def _fix_block(self, fixes: FixesLike | None) -> Fixes | None:
+        """This block's fixes for the fix stage, or None without one (:func:`gyrocore.fixes.stage_block`)."""
+        from .fixes import stage_block
+
+        self._fusion, block = stage_block(self._fusion, fixes, self._inner.last_time() is not None, self.params)
+        if self._fusion is not None and self._fusion_settings is None:
+            self._fusion_settings = {}
+        return block
 
     def _run(
         self,
@@ -323,6 +359,7 @@ class Pipeline:
     def reset(self) -> None:
         """Return to the state before the first sample (same parameters)."""
         self._inner.reset()
+        self._fusion = _fix_stage(self.params, self._fusion_settings)
         self._first_time = None
         self._rests = []
 
@@ -411,6 +448,7 @@ class Pipeline:
             "state": self._inner.state_json(),
             "first_time": self._first_time,
             "rests": self._rests,
+            "fusion": (self._fusion_settings, self._fusion),
         }
 
     def __setstate__(self, state: dict[str, Any]) -> None:
@@ -419,9 +457,18 @@ class Pipeline:
         self._units_checked = self._inner.last_time() is not None
         self._first_time = state.get("first_time")
         self._rests = list(state.get("rests", []))
+        self._fusion_settings, self._fusion = state.get("fusion", (None, None))
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"
+
+
+def _fix_stage(params: dict[str, Any], settings: dict[str, float] | None) -> FixStage | None:
+    """The fix stage with ``settings`` (None: no stage); :mod:`gyrocore.fixes` is imported on first
+    use (it reads files through :mod:`gyrocore.io`, which builds on this module)."""
+    from .fixes import FixStage
+
+    return None if settings is None else FixStage.of(params, settings)
 
 
 def process(
@@ -434,10 +481,15 @@ def process(
     mode: str = "whole",
     speed: ArrayLike | None = None,
     speed_t: ArrayLike | None = None,
+    fixes: FixesLike | None = None,
+    fusion: dict[str, float] | None = None,
     **overrides: Any,
 ) -> HeadingResult:
     """Heading of a whole log; ``outputs`` chooses which of ``heading``, ``rate`` and ``drift`` are
     computed (see :meth:`Pipeline.process`).
+
+    ``fixes`` (see :meth:`Pipeline.process`) add the fix stage with the settings ``fusion``: in
+    whole mode the Rauch-Tung-Striebel smoother, in causal mode the filter.
 
     ``mode="whole"`` (default): the static bias is known before the first sample, from the given
     ``bias_window`` / ``bias_duration`` wherever it lies (its mean applies from the first sample)
@@ -459,7 +511,7 @@ def process(
 
     return process_log(
         t, rate, preset, mode=mode, temperature=temperature, speed=speed, speed_t=speed_t, outputs=outputs,
-        **overrides,
+        fixes=fixes, fusion=fusion, **overrides,
     )
 
 

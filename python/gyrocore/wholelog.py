@@ -30,7 +30,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -42,6 +42,9 @@ from ._rests import MIN_REST, SPEED_THRESHOLD, accept, find_rests, measure_rest
 from ._smoother import SmoothedBias, smooth
 from .pipeline import OUTPUTS, BIAS_SOURCES, HeadingResult, Pipeline, _to_si, preset_params, uses_static_bias
 from .rests import Rest, speed_on
+
+if TYPE_CHECKING:
+    from .fixes import FixesLike
 
 __all__ = [
     "BIAS_SIGMAS", "BIAS_WALK", "MIN_REST", "MODES", "SPEED_THRESHOLD", "WHOLE_OPTIONS", "BiasPlan", "Options", "Rest",
@@ -331,6 +334,8 @@ def process_log(
     speed: ArrayLike | None = None,
     speed_t: ArrayLike | None = None,
     outputs: tuple[str, ...] = OUTPUTS,
+    fixes: FixesLike | None = None,
+    fusion: dict[str, float] | None = None,
     **overrides: Any,
 ) -> HeadingResult:
     """:func:`gyrocore.process` (see there and the module doc); in whole mode ``bias_walk``
@@ -341,9 +346,9 @@ def process_log(
     si = _to_si(overrides)
     if mode == "causal":
         refuse_whole_options(si)
-        pipeline = Pipeline(preset, **overrides)
+        pipeline = Pipeline(preset, fusion=fusion if fixes is not None else None, **overrides)
         result = pipeline.process(
-            t, rate, temperature=temperature, outputs=outputs, speed=speed, speed_t=speed_t
+            t, rate, temperature=temperature, outputs=outputs, speed=speed, speed_t=speed_t, fixes=fixes
         )
         pipeline.finish()
         return replace(result, bias_source=causal_source(preset, si))
@@ -366,8 +371,13 @@ def process_log(
     if bias_plan.warning:
         warn(bias_plan.warning)
     pipeline = Pipeline(preset, **bias_plan.overrides)
-    result = pipeline.process(ta, ra - bias_plan.bias(ta), temperature=temperature, outputs=outputs)
-    return bias_plan.result(result)
+    if fixes is None:
+        result = pipeline.process(ta, ra - bias_plan.bias(ta), temperature=temperature, outputs=outputs)
+        return bias_plan.result(result)
+    from .fixes import smoothed_stage, stage_settings  # the fix stage over the whole log
+
+    result = pipeline.process(ta, ra - bias_plan.bias(ta), temperature=temperature, outputs=(*outputs, "rate"))
+    return bias_plan.result(smoothed_stage(result, fixes, stage_settings(pipeline.params, fusion), outputs))
 
 
 def times_ok(t: FloatArray) -> bool:

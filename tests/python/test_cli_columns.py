@@ -85,9 +85,9 @@ def test_columns_to_parquet(tmp_path: Path) -> None:
 @pytest.mark.parametrize(
     ("columns", "message"),
     [
-        ("t,yaw", "--columns t,yaw: unknown column 'yaw'; choose from t, heading, rate, drift"),
-        ("t,,heading", "--columns t,,heading: unknown column ''; choose from t, heading, rate, drift"),
-        ("t,t", "--columns t,t: each column once; choose from t, heading, rate, drift"),
+        ("t,yaw", "--columns t,yaw: unknown column 'yaw'; choose from t, heading, rate, drift, heading_sigma"),
+        ("t,,heading", "--columns t,,heading: unknown column ''; choose from t, heading, rate, drift, heading_sigma"),
+        ("t,t", "--columns t,t: each column once; choose from t, heading, rate, drift, heading_sigma"),
     ],
 )
 def test_bad_columns_are_a_one_line_usage_error_before_any_output(tmp_path: Path, columns: str, message: str) -> None:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 import warnings
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -13,6 +14,7 @@ from ..evaluate import Method, compare, format_bias_sources, format_table
 from ..io import check_not_input, read_log
 from ..pipeline import preset_names
 from ..tune import ParameterSet
+from ._fixes import add_fix_options, evaluate_with_fixes, fixes_wanted
 from ._common import (
     add_command,
     add_override_options,
@@ -65,6 +67,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p.add_argument(
         "--no-speed", action="store_true", help="whole mode: find rests from the rate alone, not where odometry.csv's speed is zero"
     )
+    add_fix_options(p, evaluate=True)
     p.add_argument("--json", action="store_true", help="print one JSON list, an object per (log, method)")
     p.add_argument("--plot-dir", metavar="DIR", help="write <log>.png (heading and error vs time) there")
 
@@ -82,6 +85,9 @@ def run(args: argparse.Namespace) -> int:
     if args.plot_dir:
         check_not_input(Path(args.plot_dir), [Path(p) for p in args.logs])
     logs = [read_log(path, **reading_options(args)) for path in args.logs]
+    if fixes_wanted(args, logs):
+        return evaluate_with_fixes(args, logs, methods)
+    logs = [replace(log, fixes=None) for log in logs]  # --no-fixes
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", InputWarning)
         rows = compare(

@@ -10,6 +10,7 @@ from typing import Any
 from .. import io
 from .._checks import InputWarning
 from ..batch import check_outside_inputs, expand_inputs, process_file, process_many
+from ._fixes import add_fix_options, process_with_fixes, uses_fixes
 from ._common import (
     WINDOW_HELP,
     add_command,
@@ -95,6 +96,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         help=f"samples per chunk (default {io.DEFAULT_CHUNK_ROWS})",
     )
     out.add_argument("--json", action="store_true", help="print the report as JSON")
+    add_fix_options(p, evaluate=False)
 
 
 def options(args: argparse.Namespace) -> dict[str, Any]:
@@ -125,6 +127,13 @@ def run(args: argparse.Namespace) -> int:
         with warnings.catch_warnings():
             # every file's report carries these; print them once, with the file's name
             warnings.simplefilter("ignore", InputWarning)
+            if uses_fixes(args, inputs):
+                if out.suffix.lower() not in (".csv", ".parquet", ".pq"):
+                    raise ValueError(f"--out {out}: with heading fixes the output is one .csv or .parquet file")
+                return process_with_fixes(args, inputs[0], out, options(args), kwargs["columns"])
+            if "heading_sigma" in kwargs["columns"]:
+                raise ValueError("--columns heading_sigma: it comes with heading fixes (--fixes FILE, or one log "
+                                 "folder with fixes.csv)")
             if out.suffix.lower() in (".csv", ".parquet", ".pq"):
                 return _one(inputs, out, args, kwargs)
             return _many(out, args, kwargs)

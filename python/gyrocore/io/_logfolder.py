@@ -1,5 +1,5 @@
 """The log-folder layout: ``gyro.csv`` (t, gyro_z), ``reference.csv`` (t, heading, x, y),
-``odometry.csv`` (t, speed) and ``meta.json`` (the ``stationary`` rest window, and whatever else
+``odometry.csv`` (t, speed), ``fixes.csv`` (t, heading, sigma: heading fixes) and ``meta.json`` (the ``stationary`` rest window, and whatever else
 describes the log).
 
 ``gyro.csv`` is read like any CSV input; this module reads the rest. Only ``gyro.csv`` is required.
@@ -10,13 +10,18 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .._arrays import FloatArray
 from ._csvfile import _csv_header, read_csv_columns
 
+if TYPE_CHECKING:
+    from ..fixes import Fixes
+
 #: The gyro samples of a log folder; a folder with this file is a log folder.
 GYRO_CSV = "gyro.csv"
+#: A log folder's heading fixes, used by the processing entry points when present.
+FIXES_CSV = "fixes.csv"
 
 
 def is_log_folder(path: Path) -> bool:
@@ -39,6 +44,14 @@ def read_reference(folder: Path) -> dict[str, FloatArray]:
 def read_odometry(folder: Path) -> dict[str, FloatArray]:
     """Columns t and speed of ``odometry.csv``; empty without the file."""
     return _read_table(folder / "odometry.csv", ("t", "speed"))
+
+
+def read_fixes(folder: Path) -> Fixes | None:
+    """``fixes.csv`` (t, heading, sigma: :func:`gyrocore.fixes.read_fixes_csv`); None without it."""
+    from ..fixes import read_fixes_csv  # it reads through this package
+
+    path = folder / FIXES_CSV
+    return read_fixes_csv(path) if path.is_file() else None
 
 
 def read_reference_file(path: Path) -> dict[str, FloatArray]:

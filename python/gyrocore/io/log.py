@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .._arrays import FloatArray
 from .._checks import warn
@@ -23,9 +23,12 @@ from ..pipeline import (
 from ..rests import speed_on
 from ..wholelog import WHOLE_OPTIONS
 from ._columns import concat
-from ._logfolder import read_odometry, read_reference
+from ._logfolder import read_fixes, read_odometry, read_reference
 from .source import open_source
 from .units import UnitCheck
+
+if TYPE_CHECKING:
+    from ..fixes import Fixes, FixesLike
 
 
 @dataclass(frozen=True, repr=False)
@@ -47,6 +50,8 @@ class Log:
     stationary: tuple[float, float] | None = None
     """Rest window ``(t0, t1)`` at the start, in the log's time base, or None."""
     meta: dict[str, Any] = field(default_factory=dict)
+    fixes: Fixes | None = None
+    """Heading fixes (a log folder's ``fixes.csv``), or None."""
 
     def __repr__(self) -> str:
         """A summary (the arrays run to millions of samples)."""
@@ -57,6 +62,8 @@ class Log:
             parts.append(f"reference {len(self.t_ref)} samples" + (" with track" if self.has_track else ""))
         if self.t_odometry is not None:
             parts.append(f"odometry {len(self.t_odometry)} samples")
+        if self.fixes is not None:
+            parts.append(f"{len(self.fixes)} heading fixes")
         if self.stationary is not None:
             t0 = float(self.t[0])
             parts.append(f"rest +{self.stationary[0] - t0:.6g} .. +{self.stationary[1] - t0:.6g} s")
@@ -100,13 +107,23 @@ class Log:
         return speed_on(self.t, self.t_odometry, self.speed, where=f"log {self.name}: odometry speed")
 
     def process(
-        self, preset: str = "recommended", *, mode: str = "whole", use_speed: bool = True, **overrides: Any
+        self,
+        preset: str = "recommended",
+        *,
+        mode: str = "whole",
+        use_speed: bool = True,
+        fixes: FixesLike | None = None,
+        use_fixes: bool = True,
+        fusion: dict[str, float] | None = None,
+        **overrides: Any,
     ) -> HeadingResult:
-        """Run a preset on this log (see :func:`gyrocore.process` for ``mode``).
+        """Run a preset on this log (see :func:`gyrocore.process` for ``mode``, ``fixes`` and
+        ``fusion``).
 
         The static bias comes from the rest window of meta.json unless given; in whole mode,
         without either, from every rest found in the log, with the odometry's speed unless
-        ``use_speed`` is False. The result's ``bias_source`` and ``rests`` say which.
+        ``use_speed`` is False. The result's ``bias_source`` and ``rests`` say which. Heading
+        fixes: ``fixes`` if given, else the log's own (``fixes.csv``) unless ``use_fixes`` is False.
         """
         speed: dict[str, Any] = {}
         if use_speed and mode == "whole":
@@ -114,10 +131,14 @@ class Log:
         elif use_speed and self.speed is not None and _tracks_rests(preset, overrides):
             # the odometry at its own times: the tracker interpolates it, and knows no speed outside it
             speed.update(speed=self.speed, speed_t=self.t_odometry)
+        given = fixes if fixes is not None else self.fixes if use_fixes else None
         if self.stationary is None or not uses_static_bias(preset) or has_bias_source(overrides):
-            return process(self.t, self.rate, preset, mode=mode, **speed, **overrides)
+            return process(self.t, self.rate, preset, mode=mode, fixes=given, fusion=fusion, **speed, **overrides)
         try:
-            return process(self.t, self.rate, preset, mode=mode, bias_window=self.stationary, **speed, **overrides)
+            return process(
+                self.t, self.rate, preset, mode=mode, bias_window=self.stationary, fixes=given, fusion=fusion,
+                **speed, **overrides,
+            )
         except RestWindowError as e:
             raise RestWindowError(f"log {self.name}: {e} (the rest window is the stationary of its meta.json)") from None
 
@@ -129,7 +150,7 @@ def _tracks_rests(preset: str, overrides: dict[str, Any]) -> bool:
 
 
 def read_log(path: str | Path, **options: Any) -> Log:
-    """Read a whole log into memory: a log folder (with its reference and odometry) or any file
+    """Read a whole log into memory: a log folder (with its reference, odometry and fixes) or any file
     :func:`open_source` reads (``options``: the :class:`ReadOptions` fields).
 
     Raises ValueError for a malformed input, naming the file and where, for one without samples,
@@ -157,8 +178,9 @@ def read_log(path: str | Path, **options: Any) -> Log:
         warn(f"{src.data_path}: {problem}")
     ref: dict[str, FloatArray] = {}
     odo: dict[str, FloatArray] = {}
+    fixes = None
     if src.kind == "log folder":
-        ref, odo = read_reference(src.path), read_odometry(src.path)
+        ref, odo, fixes = read_reference(src.path), read_odometry(src.path), read_fixes(src.path)
     return Log(
         name=src.name,
         t=concat(ts),
@@ -171,4 +193,5 @@ def read_log(path: str | Path, **options: Any) -> Log:
         speed=odo.get("speed"),
         stationary=src.stationary,
         meta=src.meta,
+        fixes=fixes,
     )

@@ -10,6 +10,7 @@ import json
 import math
 import os
 from collections.abc import Iterable, Sequence
+from dataclasses import replace
 from pathlib import Path
 from types import TracebackType
 from typing import TYPE_CHECKING, Any
@@ -28,6 +29,8 @@ if TYPE_CHECKING:
 HEADING_CONVENTIONS = ("enu", "compass")
 #: Columns of a heading table.
 OUTPUT_COLUMNS = ("t", "heading", "rate", "drift")
+#: Columns written only when asked for: the heading's standard deviation from heading fixes.
+FIX_COLUMNS = ("heading_sigma",)
 #: Rows per Parquet row group written (256 Ki rows: 8 MiB of doubles per column; larger groups
 #: raised the peak memory without writing faster).
 PARQUET_ROW_GROUP = 1 << 18
@@ -46,17 +49,19 @@ def convert_heading(result: HeadingResult, convention: str = "enu") -> HeadingRe
         return result
     if convention == "compass":
         rate, drift = (None if a is None else -a for a in (result.rate, result.drift))
-        return HeadingResult(result.t, math.pi / 2 - result.heading, rate, drift)
+        return replace(result, heading=math.pi / 2 - result.heading, rate=rate, drift=drift)
     raise ValueError(f"heading convention {convention!r} is not one of {', '.join(HEADING_CONVENTIONS)}")
 
 
 def check_columns(columns: Sequence[str], what: str = "columns") -> tuple[str, ...]:
-    """``columns`` as a tuple, if it names one or more of :data:`OUTPUT_COLUMNS`, each once; else a
+    """``columns`` as a tuple, if it names one or more of :data:`OUTPUT_COLUMNS` (or
+    :data:`FIX_COLUMNS`), each once; else a
     ``ValueError`` that names ``what`` was given (a parameter, an option) and the valid columns."""
-    unknown = [c for c in columns if c not in OUTPUT_COLUMNS]
+    valid = OUTPUT_COLUMNS + FIX_COLUMNS
+    unknown = [c for c in columns if c not in valid]
     if isinstance(columns, str) or not columns or unknown or len(set(columns)) != len(columns):
         problem = f"unknown column {', '.join(map(repr, unknown))}" if unknown else "each column once"
-        raise ValueError(f"{what} {','.join(columns)}: {problem}; choose from {', '.join(OUTPUT_COLUMNS)}")
+        raise ValueError(f"{what} {','.join(columns)}: {problem}; choose from {', '.join(valid)}")
     return tuple(columns)
 
 
@@ -126,7 +131,7 @@ class HeadingWriter:
                 self._sink = open(tmp, "wb")
                 self._sink.write(",".join(self.columns).encode() + b"\n")
             else:
-                units = {"t": "s", "heading": "rad", "rate": "rad/s", "drift": "rad/s"}
+                units = {"t": "s", "heading": "rad", "rate": "rad/s", "drift": "rad/s", "heading_sigma": "rad"}
                 self._schema = pa.schema([(c, pa.float64()) for c in self.columns]).with_metadata(
                     {"gyrocore": json.dumps({"heading": self.heading, "units": units})}
                 )

@@ -193,6 +193,31 @@ struct PyFusion {
     pending: Vec<Fix>,
 }
 
+impl PyFusion {
+    /// The fixes still waiting, then the new ones.
+    fn with_pending(
+        &self,
+        t: &PyReadonlyArray1<'_, f64>,
+        heading: &PyReadonlyArray1<'_, f64>,
+        sigma: &PyReadonlyArray1<'_, f64>,
+    ) -> PyResult<Vec<Fix>> {
+        let mut fixes = self.pending.clone();
+        fixes.extend(fixes_from(t, heading, sigma)?);
+        Ok(fixes)
+    }
+
+    /// Names the fix as the caller numbered it: the new ones follow the pending ones.
+    fn renumbered(&self, py: Python<'_>, e: PyErr) -> PyErr {
+        let pending = self.pending.len();
+        match e.value(py).str() {
+            Ok(m) if pending > 0 => PyValueError::new_err(format!(
+                "{m} (fix numbers count {pending} fixes still waiting from earlier calls first)"
+            )),
+            _ => e,
+        }
+    }
+}
+
 #[pymethods]
 impl PyFusion {
     #[new]
@@ -216,21 +241,26 @@ impl PyFusion {
         fix_heading: PyReadonlyArray1<'py, f64>,
         fix_sigma: PyReadonlyArray1<'py, f64>,
     ) -> PyResult<Columns<'py>> {
-        let mut fixes = self.pending.clone();
-        fixes.extend(fixes_from(&fix_t, &fix_heading, &fix_sigma)?);
+        let mut fixes = self.with_pending(&fix_t, &fix_heading, &fix_sigma)?;
         let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
-        let (cols, used) = run(py, &mut self.inner, t, rate, &fixes, None).map_err(|e| {
-            // Name the fix as the caller numbered it: the new ones follow the pending ones.
-            let pending = self.pending.len();
-            match e.value(py).str() {
-                Ok(m) if pending > 0 => PyValueError::new_err(format!(
-                    "{m} (fix numbers count {pending} fixes still waiting from earlier calls first)"
-                )),
-                _ => e,
-            }
-        })?;
+        let (cols, used) =
+            run(py, &mut self.inner, t, rate, &fixes, None).map_err(|e| self.renumbered(py, e))?;
         self.pending = fixes.split_off(used);
         Ok(cols)
+    }
+
+    /// Checks new fixes as `process` would, processing nothing (the same error).
+    fn check(
+        &self,
+        py: Python<'_>,
+        fix_t: PyReadonlyArray1<'_, f64>,
+        fix_heading: PyReadonlyArray1<'_, f64>,
+        fix_sigma: PyReadonlyArray1<'_, f64>,
+    ) -> PyResult<()> {
+        let fixes = self.with_pending(&fix_t, &fix_heading, &fix_sigma)?;
+        self.inner
+            .check_fixes(&fixes)
+            .map_err(|e| self.renumbered(py, fusion_error(e)))
     }
 
     /// (applied, rejected, before_start, waiting) fix counts.

@@ -1,0 +1,169 @@
+"""Scoring a heading fused with fixes against a log's reference (``gyrocore evaluate --fixes`` and
+``--sim-fixes``), and the simulated fixes the ``--sim-fixes`` specification asks for.
+
+A heading fused with fixes is absolute, so it is scored without alignment at the start (the
+wrapped difference from the reference, :meth:`gyrocore.evaluate.Reference.compared` with
+``absolute``); raw integration, which knows no absolute heading, is aligned at the start as
+everywhere (HDR eq 15), which is the same as giving it the reference's heading at the first
+compared time. Inside an outage both are the mean over the reference samples in it, from the same
+error series as the whole drive's.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from .evaluate import Method, Reference
+from .fixes import Fixes
+from .io import Log
+from .pipeline import process
+
+
+@dataclass(frozen=True)
+class SimFixes:
+    """``--sim-fixes rate=1,sigma_deg=1,outage=START:LENGTH,seed=N``: SIMULATED fixes from the log's
+    reference (:func:`gyrocore.sim.gnss_fixes`), at ``rate`` [Hz] with white noise ``sigma_deg``
+    [deg], none during ``LENGTH`` seconds from ``START`` seconds after the log's first sample."""
+
+    rate: float = 1.0
+    sigma_deg: float = 1.0
+    outage: tuple[float, float] | None = None
+    seed: int = 0
+
+    @classmethod
+    def parse(cls, text: str, option: str = "--sim-fixes") -> SimFixes:
+        """The specification ``key=value,...``; a ``ValueError`` naming the bad part."""
+        keys = ("rate", "sigma_deg", "outage", "seed")
+        values: dict[str, Any] = {}
+        for part in filter(None, (p.strip() for p in text.split(","))):
+            key, sep, value = (s.strip() for s in part.partition("="))
+            if not sep or key not in keys:
+                raise ValueError(f"{option} {text}: {part!r} is not key=value with a key of {', '.join(keys)}")
+            if key in values:
+                raise ValueError(f"{option} {text}: {key} is given twice")
+            values[key] = _value(option, key, value)
+        return cls(**values)
+
+    def window(self, log: Log) -> tuple[float, float] | None:
+        """The outage on the log's clock, or None; a ``ValueError`` if it starts after the log."""
+        if self.outage is None:
+            return None
+        start = float(log.t[0]) + self.outage[0]
+        if start >= float(log.t[-1]):
+            raise ValueError(f"log {log.name}: the outage starts {self.outage[0]:g} s after the first sample, "
+                             f"after the log's end ({log.duration:.6g} s); give a smaller START")
+        return start, start + self.outage[1]
+
+    def fixes(self, log: Log) -> Fixes:
+        """The simulated fixes of ``log`` (from its reference heading)."""
+        from .sim import gnss_fixes
+
+        window = self.window(log)
+        outages = () if window is None else (window,)
+        return gnss_fixes(*log.reference(), seed=self.seed, rate_hz=self.rate, sigma_deg=self.sigma_deg,
+                          outages=outages)
+
+    def __str__(self) -> str:
+        outage = "" if self.outage is None else f", outage of {self.outage[1]:g} s from {self.outage[0]:g} s after the start"
+        return (f"SIMULATED fixes from the log's own reference: {self.rate:g} Hz, {self.sigma_deg:g} deg white noise"
+                f"{outage}, seed {self.seed}")
+
+
+def _value(option: str, key: str, text: str) -> Any:
+    """One value of a :class:`SimFixes` specification, checked."""
+    where = f"{option}: {key}={text}"
+    if key == "outage":
+        start, sep, length = text.partition(":")
+        try:
+            window = (float(start), float(length)) if sep else None
+        except ValueError:
+            window = None
+        if window is None or not all(math.isfinite(v) for v in window) or window[0] < 0 or window[1] <= 0:
+            raise ValueError(f"{where}: give START:LENGTH in seconds (START >= 0 after the log's first sample, LENGTH > 0)")
+        return window
+    if key == "seed":
+        if not text.isdigit():
+            raise ValueError(f"{where}: the seed is a whole number >= 0")
+        return int(text)
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f"{where}: must be a number > 0")
+    return value
+
+
+@dataclass(frozen=True)
+class FixScore:
+    """One method with fixes on one log: E_psi [deg] over the drive and inside the outage, beside
+    raw integration's; the fix counts; the residual bias [deg/s] and scale error the fix stage
+    estimated at the last sample (of the rate the pipeline corrected)."""
+
+    log: str
+    method: str
+    fixes: str
+    counts: dict[str, int]
+    e_psi_deg: float
+    raw_e_psi_deg: float
+    outage: tuple[float, float] | None
+    outage_e_psi_deg: float | None
+    raw_outage_e_psi_deg: float | None
+    bias_deg_s: float
+    scale: float
+
+    def as_dict(self) -> dict[str, Any]:
+        """A JSON-ready dict (JSON has no NaN: an outage without a reference sample is null)."""
+        row = {k: getattr(self, k) for k in self.__dataclass_fields__}
+        return {k: None if isinstance(v, float) and not math.isfinite(v) else v for k, v in row.items()}
+
+
+def _mean_in(tr: np.ndarray, err: np.ndarray, window: tuple[float, float] | None) -> float | None:
+    """Mean absolute error [deg] at the compared times inside ``window`` (NaN if none)."""
+    if window is None:
+        return None
+    inside = (tr >= window[0]) & (tr < window[1])
+    return float(np.degrees(np.abs(err[inside])).mean()) if inside.any() else math.nan
+
+
+def score_with_fixes(log: Log, methods: Sequence[Method], fixes: Fixes, label: str,
+                     window: tuple[float, float] | None, **run: Any) -> list[FixScore]:
+    """Every method on ``log`` with ``fixes`` (``run``: :meth:`Method.run`'s keywords)."""
+    reference = Reference(*log.reference())
+    tr_raw, err_raw, _ = reference.compared(log.t, process(log.t, log.rate, "raw").heading)
+    raw = float(np.degrees(np.abs(err_raw)).mean())
+    with_fixes = replace(log, fixes=fixes)
+    rows = []
+    for method in methods:
+        result, _ = method.run(with_fixes, **run)
+        assert result.fusion is not None  # the log has fixes
+        tr, err, _ = reference.compared(result.t, result.heading, absolute=True)
+        rows.append(FixScore(
+            log.name, method.name, label, dict(result.fusion.counts), float(np.degrees(np.abs(err)).mean()), raw,
+            window, _mean_in(tr, err, window), _mean_in(tr_raw, err_raw, window),
+            math.degrees(float(result.fusion.bias[-1])), float(result.fusion.scale[-1]),
+        ))
+    return rows
+
+
+def format_fix_scores(rows: Sequence[FixScore]) -> None:
+    """The table ``gyrocore evaluate`` prints with fixes."""
+    print("E_psi [deg]: with fixes, the absolute heading error (no alignment at the start); raw integration "
+          "aligned at the start (HDR eq 15)")
+    print(f"{'log':<28} {'method':<16} {'E_psi':>7} {'raw':>7} {'outage':>7} {'raw':>7} "
+          f"{'bias dps':>9} {'scale':>8}  fixes")
+    for r in rows:
+        out = "-" if r.outage_e_psi_deg is None else f"{r.outage_e_psi_deg:.2f}"
+        raw_out = "-" if r.raw_outage_e_psi_deg is None else f"{r.raw_outage_e_psi_deg:.2f}"
+        counts = ", ".join(f"{k} {v}" for k, v in r.counts.items())
+        print(f"{r.log:<28} {r.method:<16} {r.e_psi_deg:7.2f} {r.raw_e_psi_deg:7.2f} {out:>7} {raw_out:>7} "
+              f"{r.bias_deg_s:9.4f} {r.scale:8.4f}  {counts}")
+    for label in dict.fromkeys(r.fixes for r in rows):
+        print(f"fixes: {label}")
+    for name, (start, end) in {r.log: r.outage for r in rows if r.outage is not None}.items():
+        print(f"outage of {name}: [{start:.3f}, {end:.3f}) s")

@@ -1,0 +1,125 @@
+"""Heading fixes on the command line: ``--fixes FILE``, ``--no-fixes`` (``gyrocore process`` and
+``evaluate``) and ``--sim-fixes SPEC`` (``evaluate``); docs/fixes.md."""
+
+from __future__ import annotations
+
+import argparse
+from dataclasses import fields
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from .. import io
+from .._fixes_eval import FixScore, SimFixes, format_fix_scores, score_with_fixes
+from ..batch import check_outside_inputs
+from ..evaluate import Method
+from ..fixes import Fixes, read_fixes_file
+from ..io import Log, read_log
+from ..io._logfolder import FIXES_CSV
+from ..window import Window
+from ._common import print_json
+
+FIXES_HELP = (
+    "absolute headings fused with the gyro (docs/fixes.md): a CSV with columns t [s], heading [rad, CCW from "
+    f"east], sigma [rad], or a gnss.csv (t, speed [m/s], bearing [deg, CW from north]); default: a log folder's {FIXES_CSV}"
+)
+
+
+def add_fix_options(parser: argparse.ArgumentParser, *, evaluate: bool) -> None:
+    """``--fixes``, ``--no-fixes`` and, for ``evaluate``, ``--sim-fixes``."""
+    group = parser.add_argument_group("heading fixes").add_mutually_exclusive_group()
+    group.add_argument("--fixes", metavar="FILE", help=FIXES_HELP)
+    if evaluate:
+        group.add_argument(
+            "--sim-fixes",
+            metavar="SPEC",
+            help="SIMULATED fixes from each log's reference: rate=HZ,sigma_deg=DEG[,outage=START:LENGTH][,seed=N] "
+            "(START seconds after the first sample; defaults rate=1, sigma_deg=1, seed=0); E_psi inside the "
+            "outage is reported apart",
+        )
+    group.add_argument("--no-fixes", action="store_true", help=f"ignore a log folder's {FIXES_CSV}")
+
+
+def fixes_wanted(args: argparse.Namespace, logs: Sequence[Log]) -> bool:
+    """Whether ``evaluate`` scores with fixes: given, simulated, or a log's own ``fixes.csv``."""
+    if args.no_fixes:
+        return False
+    return args.fixes is not None or args.sim_fixes is not None or any(log.fixes is not None for log in logs)
+
+
+def evaluate_with_fixes(args: argparse.Namespace, logs: Sequence[Log], methods: Sequence[Method]) -> int:
+    """``gyrocore evaluate`` with fixes: the table of :func:`gyrocore._fixes_eval.format_fix_scores`."""
+    if args.fixes is not None and len(logs) != 1:
+        raise ValueError(f"--fixes {args.fixes} is for one log, got {len(logs)}; give each log folder its {FIXES_CSV}")
+    if args.plot_dir:
+        raise ValueError("--plot-dir draws no plots with fixes; leave it out, or pass --no-fixes")
+    sim = None if args.sim_fixes is None else SimFixes.parse(args.sim_fixes)
+    given = None if args.fixes is None else read_fixes_file(args.fixes)
+    run = {"bias_duration": args.bias_duration, "mode": "causal" if args.causal else "whole",
+           "use_speed": not args.no_speed}
+    rows: list[FixScore] = []
+    for log in logs:
+        try:
+            fixes, label, window = _fixes_of(log, sim, given, args.fixes)
+            rows += score_with_fixes(log, methods, fixes, label, window, **run)
+        except ValueError as e:  # name the log, once
+            raise ValueError(str(e) if str(e).startswith(f"log {log.name}:") else f"log {log.name}: {e}") from None
+    if args.json:
+        print_json([r.as_dict() for r in rows])
+    else:
+        format_fix_scores(rows)
+    return 0
+
+
+def _fixes_of(log: Log, sim: SimFixes | None, given: Fixes | None,
+              path: str | None) -> tuple[Fixes, str, tuple[float, float] | None]:
+    """The fixes ``log`` is scored with, how to name them, and the simulated outage."""
+    if sim is not None:
+        return sim.fixes(log), str(sim), sim.window(log)
+    if given is not None:
+        return given, f"{path} (as given)", None
+    assert log.fixes is not None  # fixes_wanted
+    return log.fixes, f"{log.name}/{FIXES_CSV} (as given)", None
+
+
+def uses_fixes(args: argparse.Namespace, inputs: Sequence[Path]) -> bool:
+    """Whether ``process`` fuses fixes: ``--fixes``, or one log folder with ``fixes.csv``; with
+    several inputs a folder's ``fixes.csv`` is not used (its report says so)."""
+    if args.no_fixes:
+        return False
+    if args.fixes is not None:
+        if len(inputs) != 1:
+            raise ValueError(f"--fixes {args.fixes} is for one input, got {len(inputs)}")
+        return True
+    return len(inputs) == 1 and (inputs[0] / FIXES_CSV).is_file()
+
+
+def process_with_fixes(args: argparse.Namespace, path: Path, out: Path, options: dict[str, Any],
+                       columns: tuple[str, ...]) -> int:
+    """``gyrocore process`` of one input with fixes: the log read into memory (the smoother of whole
+    mode needs every sample), processed by :meth:`gyrocore.Log.process`, written in one piece."""
+    check_outside_inputs(args.inputs, out)
+    names = {f.name for f in fields(io.ReadOptions)}
+    overrides = {k: v for k, v in options.items() if k not in names}
+    log = read_log(path, **{k: v for k, v in options.items() if k in names})
+    io.check_not_input(out, [path])
+    window = overrides.get("bias_window")
+    if isinstance(window, Window):  # a window after the first sample: the log says where that is
+        overrides["bias_window"] = window.resolve(float(log.t[0]))
+    fixes = None if args.fixes is None else read_fixes_file(args.fixes)
+    result = log.process(args.preset, mode="causal" if args.causal else "whole", use_speed=not args.no_speed,
+                         fixes=fixes, **overrides)
+    if args.columns is None:
+        columns = (*columns, "heading_sigma")
+    with io.HeadingWriter(out, heading=args.heading, columns=columns) as writer:
+        writer.write(result)
+    assert result.fusion is not None  # the log has fixes
+    report = {"input": str(path), "output": str(out), "rows": len(result), "bias_source": result.bias_source,
+              "fixes": dict(result.fusion.counts), "fixes_file": args.fixes or str(path / FIXES_CSV)}
+    if args.json:
+        print_json(report)
+    else:
+        counts = ", ".join(f"{k} {v}" for k, v in result.fusion.counts.items())
+        print(f"{path} -> {out}: {len(result)} rows; bias: {result.bias_source}; fixes from "
+              f"{report['fixes_file']}: {counts}")
+    return 0

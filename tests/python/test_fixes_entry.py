@@ -1,0 +1,248 @@
+"""Heading fixes through the normal entry points: Pipeline.process, gyrocore.process, Log.process,
+a log folder's fixes.csv, and `gyrocore process/evaluate --fixes/--sim-fixes`."""
+
+from __future__ import annotations
+
+import json
+import math
+import pickle
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import gyrocore
+from gyrocore.fixes import Fixes, fuse
+from gyrocore.io import read_log
+
+from .test_fixes import BIAS, drive
+
+
+def fixes_of(t: np.ndarray, heading: np.ndarray, seed: int = 5, rate_hz: float = 2.0) -> Fixes:
+    return gyrocore.sim.gnss_fixes(t, heading, seed=seed, rate_hz=rate_hz)
+
+
+def part(fixes: Fixes, keep: np.ndarray) -> Fixes:
+    return Fixes(fixes.t[keep], fixes.heading[keep], fixes.sigma[keep])
+
+
+def test_chunked_and_pickled_pipeline_with_fixes_is_bit_identical_to_one_call() -> None:
+    t, heading, rate = drive(120.0)
+    fixes = fixes_of(t, heading)
+    whole = gyrocore.Pipeline("hdr", bias=BIAS).process(t, rate, fixes=fixes)
+    assert whole.heading_sigma is not None and whole.fusion is not None
+    stream = gyrocore.Pipeline("hdr", bias=BIAS, fusion={})
+    cuts = [0, 1, 700, 701, 3000, len(t)]
+    parts = []
+    for k, (a, b) in enumerate(zip(cuts, cuts[1:])):
+        if k == 2:
+            stream = pickle.loads(pickle.dumps(stream))
+        end = t[b] if b < len(t) else np.inf
+        mine = (fixes.t >= (t[a] if a else -np.inf)) & (fixes.t < end)
+        if k == 3:
+            mine = fixes.t >= t[a]  # all the rest ahead of time: they wait for the samples
+        elif k == 4:
+            mine = np.zeros(len(fixes), dtype=bool)
+        parts.append(stream.process(t[a:b], rate[a:b], fixes=part(fixes, mine)))
+    for name in ("heading", "heading_sigma", "rate", "drift"):
+        joined = np.concatenate([getattr(p, name) for p in parts])
+        assert joined.tobytes() == getattr(whole, name).tobytes(), name
+    assert np.concatenate([p.fusion.bias for p in parts if p.fusion]).tobytes() == whole.fusion.bias.tobytes()
+    assert parts[-1].fusion is not None and parts[-1].fusion.counts["applied"] == whole.fusion.counts["applied"]
+
+
+def test_the_fix_stage_runs_last_on_the_corrected_rate() -> None:
+    t, heading, rate = drive(200.0)
+    fixes = fixes_of(t, heading)
+    corrected = gyrocore.Pipeline("hdr", bias=BIAS).process(t, rate)
+    assert corrected.rate is not None
+    fused = gyrocore.Pipeline("hdr", bias=BIAS).process(t, rate, fixes=fixes)
+    assert fused.rate is not None and fused.rate.tobytes() == corrected.rate.tobytes()
+    alone = fuse(t, corrected.rate, fixes, initial_heading=0.0)
+    assert fused.heading.tobytes() == alone.heading.tobytes()
+    # The static bias is gone before the stage: it finds a residual near 0, not the gyro's bias.
+    assert fused.fusion is not None and abs(fused.fusion.bias[-1]) < 0.2 * BIAS
+    raw = gyrocore.Pipeline("raw").process(t, rate, fixes=fixes)
+    assert raw.fusion is not None and abs(raw.fusion.bias[-1] - BIAS) < 0.1 * BIAS
+
+
+def test_fixes_need_the_stage_from_the_first_block() -> None:
+    t, heading, rate = drive(30.0)
+    fixes = fixes_of(t, heading)
+    late = gyrocore.Pipeline("raw")
+    late.process(t[:100], rate[:100])
+    with pytest.raises(ValueError, match=r"fusion=\{\}"):
+        late.process(t[100:], rate[100:], fixes=fixes)
+    early = gyrocore.Pipeline("raw", fusion={})
+    first = early.process(t[:100], rate[:100])
+    assert first.heading_sigma is not None  # the stage runs, with no fix yet
+    assert early.process(t[100:], rate[100:], fixes=part(fixes, fixes.t >= t[100])).fusion is not None
+
+
+def test_a_bad_first_fix_starts_no_stage() -> None:
+    t, _, rate = drive(10.0)
+    pipeline = gyrocore.Pipeline("raw")
+    with pytest.raises(ValueError, match="fix 0: sigma = 0 must be > 0"):
+        pipeline.process(t, rate, fixes=Fixes.of([1.0], [0.0], 0.0))
+    assert pipeline.process(t, rate).heading_sigma is None
+
+
+def test_a_fix_older_than_the_samples_leaves_the_pipeline_as_it_was() -> None:
+    t, heading, rate = drive(60.0)
+    fixes = fixes_of(t, heading)
+    whole = gyrocore.Pipeline("hdr", bias=BIAS).process(t, rate, fixes=fixes)
+    stream = gyrocore.Pipeline("hdr", bias=BIAS, fusion={})
+    first = stream.process(t[:1000], rate[:1000], fixes=part(fixes, fixes.t < t[1000]))
+    stale = Fixes.of([t[995]], [0.0], 0.01)  # after the last fix given, before the last sample
+    with pytest.raises(ValueError, match=r"fix 0: t = .* comes before the last gyro sample processed"):
+        stream.process(t[1000:], rate[1000:], fixes=stale)
+    rest = stream.process(t[1000:], rate[1000:], fixes=part(fixes, fixes.t >= t[1000]))
+    assert np.concatenate([first.heading, rest.heading]).tobytes() == whole.heading.tobytes()
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_skipped_samples_are_left_out_of_the_fix_stage(mode: str) -> None:
+    t, heading, rate = drive(60.0)
+    fixes = fixes_of(t, heading)
+    bad = rate.copy()
+    bad[[0, 1, 700, 1500]] = np.nan  # the first rows too: before the filter has any sample
+    with pytest.warns(gyrocore.InputWarning):
+        result = gyrocore.process(t, bad, "raw", mode=mode, nonfinite="skip", fixes=fixes)
+    good = np.isfinite(bad)
+    alone = gyrocore.process(t[good], rate[good], "raw", mode=mode, fixes=fixes)
+    assert result.heading[good].tobytes() == alone.heading.tobytes()
+    assert result.heading[700] == result.heading[699] and result.heading[1500] == result.heading[1499]
+    assert result.heading_sigma is not None and result.heading_sigma[0] == math.pi  # the prior: unknown
+    if mode == "causal":  # cut at a skipped sample, pickled between
+        stream = gyrocore.Pipeline("raw", nonfinite="skip", fusion={})
+        with pytest.warns(gyrocore.InputWarning):
+            first = stream.process(t[:700], bad[:700], fixes=fixes)
+            second = pickle.loads(pickle.dumps(stream)).process(t[700:], bad[700:])
+        assert np.concatenate([first.heading, second.heading]).tobytes() == result.heading.tobytes()
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_process_smooths_a_whole_log_and_filters_a_causal_one(mode: str) -> None:
+    t, heading, rate = drive(120.0)
+    fixes = fixes_of(t, heading)
+    result = gyrocore.process(t, rate, "hdr", mode=mode, bias=BIAS, fixes=fixes, fusion={"arw": 1e-3})
+    corrected = gyrocore.process(t, rate, "hdr", mode=mode, bias=BIAS)
+    assert corrected.rate is not None and result.fusion is not None
+    expected = fuse(t, corrected.rate, fixes, mode="smoothed" if mode == "whole" else "causal", arw=1e-3)
+    assert result.heading.tobytes() == expected.heading.tobytes()
+    assert result.heading_sigma is not None and result.heading_sigma.tobytes() == expected.heading_sigma.tobytes()
+    assert result.fusion.counts["applied"] == len(fixes)
+
+
+def test_a_log_folder_fixes_csv_is_used_unless_turned_off(tmp_path: Path) -> None:
+    folder = gyrocore.datasets.write_sample(tmp_path / "drive")
+    plain = read_log(folder)
+    assert plain.fixes is None and plain.process().fusion is None
+    fixes = fixes_of(*plain.reference(), rate_hz=1.0)
+    write_fixes(folder / "fixes.csv", fixes)
+    log = read_log(folder)
+    assert log.fixes is not None and len(log.fixes) == len(fixes) and "heading fixes" in repr(log)
+    result = log.process("hdr")
+    assert result.fusion is not None and result.fusion.counts["applied"] == len(fixes)
+    assert log.process("hdr", use_fixes=False).fusion is None
+
+
+def write_fixes(path: Path, fixes: Fixes) -> None:
+    rows = "".join(f"{float(a)!r},{float(b)!r},{float(c)!r}\n" for a, b, c in zip(fixes.t, fixes.heading, fixes.sigma))
+    path.write_text("t,heading,sigma\n" + rows)
+
+
+def cli(*args: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([sys.executable, "-m", "gyrocore.cli", *args], capture_output=True, text=True)
+
+
+def one_line_error(proc: subprocess.CompletedProcess[str], text: str) -> None:
+    assert proc.returncode == 2, proc.stderr
+    assert "Traceback" not in proc.stderr and len(proc.stderr.strip().splitlines()) == 1, proc.stderr
+    assert text in proc.stderr, proc.stderr
+
+
+@pytest.fixture(scope="module")
+def folder_with_fixes(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    folder = gyrocore.datasets.write_sample(tmp_path_factory.mktemp("log") / "drive")
+    log = read_log(folder)
+    write_fixes(folder / "fixes.csv", fixes_of(*log.reference(), rate_hz=1.0))
+    return folder
+
+
+def test_cli_process_uses_the_folder_fixes_or_a_given_file(folder_with_fixes: Path, tmp_path: Path) -> None:
+    out = tmp_path / "h.csv"
+    proc = cli("process", str(folder_with_fixes), "--out", str(out), "--preset", "hdr")
+    assert proc.returncode == 0, proc.stderr
+    assert "fixes.csv" in proc.stdout and "applied" in proc.stdout
+    table = np.genfromtxt(out, delimiter=",", names=True)
+    expected = read_log(folder_with_fixes).process("hdr")
+    assert table.dtype.names == ("t", "heading", "rate", "drift", "heading_sigma")
+    np.testing.assert_allclose(table["heading"], expected.heading, rtol=0, atol=1e-12)
+    assert cli("process", str(folder_with_fixes), "--out", str(out), "--no-fixes").returncode == 0
+    assert out.read_text().splitlines()[0] == "t,heading,rate,drift"
+    given = tmp_path / "given.csv"
+    given.write_bytes((folder_with_fixes / "fixes.csv").read_bytes())
+    bare = tmp_path / "bare.csv"
+    log = read_log(folder_with_fixes)
+    bare.write_text("t,gyro_z\n" + "".join(f"{float(a)!r},{float(b)!r}\n" for a, b in zip(log.t, log.rate)))
+    proc = cli("process", str(bare), "--out", str(out), "--preset", "raw", "--causal", "--fixes", str(given))
+    assert proc.returncode == 0, proc.stderr
+    causal = gyrocore.process(log.t, log.rate, "raw", mode="causal", fixes=given)
+    np.testing.assert_allclose(np.genfromtxt(out, delimiter=",", names=True)["heading"], causal.heading, atol=1e-12)
+
+
+def test_cli_bad_fixes_are_one_line_errors(folder_with_fixes: Path, tmp_path: Path) -> None:
+    out = tmp_path / "h.csv"
+    bad = tmp_path / "bad.csv"
+    bad.write_text("t,heading,sigma\n1,0.1,0.01\n2,0.2,-1\n")
+    one_line_error(cli("process", str(folder_with_fixes), "--out", str(out), "--fixes", str(bad)),
+                   "fix 1: sigma = -1 must be > 0")
+    assert not out.exists()
+    wrong = tmp_path / "wrong.csv"
+    wrong.write_text("t,yaw\n1,0.1\n")
+    one_line_error(cli("evaluate", str(folder_with_fixes), "--fixes", str(wrong)), "a fixes file has the columns")
+    one_line_error(cli("process", str(folder_with_fixes), "--out", str(out), "--fixes", str(tmp_path / "none.csv")),
+                   "no such fixes file")
+    one_line_error(cli("process", str(folder_with_fixes), "--out", str(out), "--no-fixes", "--columns", "t,heading_sigma"),
+                   "--columns heading_sigma: it comes with heading fixes")
+
+
+def test_cli_evaluate_scores_a_simulated_outage_apart(folder_with_fixes: Path) -> None:
+    spec = "rate=1,sigma_deg=1,outage=40:30,seed=7"
+    proc = cli("evaluate", str(folder_with_fixes), "--preset", "hdr", "--sim-fixes", spec, "--json")
+    assert proc.returncode == 0, proc.stderr
+    (row,) = json.loads(proc.stdout)
+    assert row["fixes"].startswith("SIMULATED") and "seed 7" in row["fixes"]
+    log = read_log(folder_with_fixes)
+    assert row["outage"] == [log.t[0] + 40, log.t[0] + 70]
+    assert 0 < row["outage_e_psi_deg"] and row["e_psi_deg"] < row["raw_e_psi_deg"]
+    again = json.loads(cli("evaluate", str(folder_with_fixes), "--preset", "hdr", "--sim-fixes", spec, "--json").stdout)
+    assert again == [row]  # seeded
+    text = cli("evaluate", str(folder_with_fixes), "--preset", "hdr", "--sim-fixes", spec)
+    assert "SIMULATED" in text.stdout and f"outage of {log.name}: " in text.stdout
+
+
+@pytest.mark.parametrize(
+    ("spec", "message"),
+    [
+        ("rate=0", "rate=0: must be a number > 0"),
+        ("sigma_deg=abc", "sigma_deg=abc: must be a number > 0"),
+        ("outage=5", "outage=5: give START:LENGTH"),
+        ("seed=-1", "the seed is a whole number"),
+        ("speed=1", "'speed=1' is not key=value with a key of rate"),
+        ("outage=9999:10", "the outage starts 9999 s after the first sample"),
+    ],
+)
+def test_cli_bad_sim_fixes_are_one_line_errors(folder_with_fixes: Path, spec: str, message: str) -> None:
+    one_line_error(cli("evaluate", str(folder_with_fixes), "--preset", "hdr", "--sim-fixes", spec), message)
+
+
+def test_a_fleet_run_says_it_does_not_use_fixes_csv(folder_with_fixes: Path, tmp_path: Path) -> None:
+    plain = gyrocore.datasets.write_sample(tmp_path / "plain")
+    proc = cli("process", str(folder_with_fixes), str(plain), "--out", str(tmp_path / "out"), "--jobs", "1")
+    assert proc.returncode == 0, proc.stderr
+    assert "fixes.csv is not used when logs are streamed" in proc.stderr
+    assert proc.stderr.count("fixes.csv is not used") == 1  # only the folder that has one
