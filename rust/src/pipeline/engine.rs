@@ -219,21 +219,32 @@ impl<C: Kernel> Chain<C> {
     ) {
         let n = block.t.len();
         let mut out = out.first(n);
-        // The loop compiled for all three outputs, the common case, which then writes them
-        // without asking on every sample which are wanted.
-        if let Outputs {
-            heading: Some(h),
-            rate: Some(r),
-            drift: Some(d),
-        } = &mut out
-        {
-            let (h, r, d) = (&mut h[..n], &mut r[..n], &mut d[..n]);
-            let write = |i: usize, o: Output| {
-                h[i] = o.heading;
-                r[i] = o.rate;
-                d[i] = o.drift;
-            };
-            return self.run_into::<STOPS>(block, write, cursor, stop_key);
+        // The loop compiled for the two output sets asked for most, all three and the heading
+        // alone, which then write what is wanted without asking on every sample.
+        match &mut out {
+            Outputs {
+                heading: Some(h),
+                rate: Some(r),
+                drift: Some(d),
+            } => {
+                let (h, r, d) = (&mut h[..n], &mut r[..n], &mut d[..n]);
+                let write = |i: usize, o: Output| {
+                    h[i] = o.heading;
+                    r[i] = o.rate;
+                    d[i] = o.drift;
+                };
+                return self.run_into::<STOPS>(block, write, cursor, stop_key);
+            }
+            Outputs {
+                heading: Some(h),
+                rate: None,
+                drift: None,
+            } => {
+                let h = &mut h[..n];
+                let write = |i: usize, o: Output| h[i] = o.heading;
+                return self.run_into::<STOPS>(block, write, cursor, stop_key);
+            }
+            _ => {}
         }
         self.run_into::<STOPS>(block, |i, o| out.set(i, o), cursor, stop_key);
     }
