@@ -142,10 +142,12 @@ pub(crate) fn interval_key(dt: f64) -> u64 {
 pub(crate) struct Checks {
     /// The largest [`interval_key`] seen.
     worst_interval: u64,
-    /// The readings' bits rotated left by one (the sign to the lowest bit), OR-ed: at least the
-    /// largest [`magnitude_key`], and below [`MAX_READING`]'s key exactly when every reading was
-    /// below 2 rad/s or the like (see [`Checks::passed`]).
+    /// The rates' bits rotated left by one (the sign to the lowest bit), OR-ed: at least the
+    /// largest [`magnitude_key`] (see [`Checks::passed`]).
     readings: u64,
+    /// The largest [`magnitude_key`] of a temperature seen: exact, since temperatures straddle
+    /// powers of two (2, 4, ... 32 degC) where an OR would fail on valid ones.
+    worst_temperature: u64,
     /// The largest [`magnitude_key`] of a timestamp checked.
     worst_time: u64,
 }
@@ -163,7 +165,7 @@ impl Checks {
     pub(crate) fn reading(&mut self, rate: f64, temperature: Option<f64>) {
         self.readings |= rate.to_bits().rotate_left(1);
         if let Some(celsius) = temperature {
-            self.readings |= celsius.to_bits().rotate_left(1);
+            self.worst_temperature = self.worst_temperature.max(magnitude_key(celsius));
         }
     }
 
@@ -181,13 +183,13 @@ impl Checks {
             .then(|| f64::from_bits(self.worst_interval.wrapping_add(MIN_INTERVAL.to_bits())))
     }
 
-    /// True if every value and interval seen was certainly valid. The readings' check is
-    /// conservative: an OR is never below the largest of its operands, so an invalid reading
-    /// always fails it, but so may valid readings of 2 or more in magnitude (their exponent bits
-    /// OR-ed with others' can reach the limit's); the caller then checks the block exactly.
+    /// True if every value and interval seen was certainly valid. The rates' check is
+    /// conservative: an OR is never below the largest of its operands, so an invalid rate always
+    /// fails it, but so may valid rates of 2 or more in magnitude (their exponent bits OR-ed with
+    /// others' can reach the limit's); the caller then checks the block exactly.
     pub(crate) fn passed(&self) -> bool {
         self.longest_interval().is_some()
-            && self.readings < magnitude_key(MAX_READING)
+            && self.readings.max(self.worst_temperature) < magnitude_key(MAX_READING)
             && self.worst_time < magnitude_key(MAX_TIME)
     }
 }
@@ -239,17 +241,19 @@ mod tests {
     use crate::{Outputs, Pipeline, Preset};
 
     /// The loop's check of the readings: a NaN, an infinity or a reading at the limit, of
-    /// either sign, fails it whatever valid readings come with it; the usual readings (below 2
-    /// rad/s) pass it, so that no exact check follows; and the pipeline takes the largest usable
+    /// either sign, fails it whatever valid readings come with it; the usual readings (rates
+    /// below 2 rad/s, any temperature from -40 to 85 degC) pass it, so that no exact check
+    /// follows; and the pipeline takes the largest usable
     /// readings (just inside [`MAX_READING`], mixed with others, where the loop's bound fails and
     /// the exact check decides) and refuses any other by its index.
     #[test]
     fn the_largest_usable_readings_are_taken_and_any_other_is_named() {
         let top = f64::from_bits(MAX_READING.to_bits() - 1);
         let usual = [1.999, -1.999, 0.0, -0.0, f64::MIN_POSITIVE, 0.3];
+        let celsius = [25.0, -5.0, 0.5, 85.0, -40.0, 1.0];
         let mut checks = Checks::default();
-        for r in usual {
-            checks.reading(r, Some(-r));
+        for (r, c) in usual.into_iter().zip(celsius) {
+            checks.reading(r, Some(c));
         }
         assert!(checks.passed());
         let mut all = checks;
