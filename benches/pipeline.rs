@@ -7,6 +7,8 @@ use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use gyrocore::*;
 use std::hint::black_box;
 
+mod common;
+
 const N: usize = 1_000_000;
 
 fn samples() -> (Vec<f64>, Vec<f64>) {
@@ -94,7 +96,9 @@ fn pipeline(c: &mut Criterion) {
             &config,
         )
     };
-    interleaved(&mut engine, &mut plain);
+    if measuring() {
+        interleaved(&mut engine, &mut plain);
+    }
 
     let mut group = c.benchmark_group("pipeline_update");
     group.throughput(Throughput::Elements(1));
@@ -251,6 +255,13 @@ fn stages(c: &mut Criterion) {
     group.finish();
 }
 
+/// True when the bench measures (`cargo bench`, which passes `--bench`), not when it is listed
+/// (`--list`) or run once as a test (`cargo test --benches`).
+fn measuring() -> bool {
+    let args: Vec<String> = std::env::args().collect();
+    args.iter().any(|a| a == "--bench") && !args.iter().any(|a| a == "--list")
+}
+
 /// Rounds of [`interleaved`]: `GYROCORE_BENCH_ROUNDS`, else 31.
 fn rounds() -> usize {
     std::env::var("GYROCORE_BENCH_ROUNDS")
@@ -303,29 +314,10 @@ fn interleaved(engine: &mut dyn FnMut(), plain: &mut dyn FnMut()) {
     }
 }
 
-/// The CPU's model name (`/proc/cpuinfo`, else `lscpu`), so that figures from different machines
-/// are never read as one; the architecture alone where neither says.
-fn cpu_model() -> String {
-    let field = |text: &str, key: &str| {
-        text.lines().find_map(|line| {
-            let (name, value) = line.split_once(':')?;
-            (name.trim().eq_ignore_ascii_case(key)).then(|| value.trim().to_string())
-        })
-    };
-    std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|text| field(&text, "model name"))
-        .or_else(|| {
-            let out = std::process::Command::new("lscpu").output().ok()?;
-            field(&String::from_utf8_lossy(&out.stdout), "Model name")
-        })
-        .unwrap_or_else(|| format!("unknown {} CPU", std::env::consts::ARCH))
-}
-
 criterion_group!(benches, pipeline, stages);
 
 fn main() {
-    println!("CPU: {}", cpu_model());
+    common::print_cpu_model();
     benches();
     Criterion::default().configure_from_args().final_summary();
 }
