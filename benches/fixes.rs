@@ -2,10 +2,12 @@
 //! 100 Hz without fixes and with a fix every second (10,000 fixes), reported as gyro samples per
 //! second, and the whole-log smoother (forward pass storing its steps, then the backward pass).
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use gyrocore::fixes_smooth::Step;
 use gyrocore::{smooth, Fix, Fusion, FusionConfig, FusionOutputs};
 use std::hint::black_box;
+
+mod common;
 
 const N: usize = 1_000_000;
 
@@ -68,4 +70,9 @@ fn filter(c: &mut Criterion) {
 }
 
 criterion_group!(benches, filter);
-criterion_main!(benches);
+
+fn main() {
+    common::print_cpu_model();
+    benches();
+    Criterion::default().configure_from_args().final_summary();
+}

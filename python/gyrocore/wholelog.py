@@ -358,8 +358,11 @@ def process_log(
     sp = None if speed is None else as_float_array("speed", speed) if speed_t is None else speed_on(ta, speed_t, speed)
     if sp is not None and len(sp) != len(ta):
         raise ValueError(f"speed has {len(sp)} samples but t has {len(ta)}: give one speed per gyro sample")
-    if len(ta) != len(ra) or len(ta) == 0 or not times_ok(ta):
-        # The pipeline is the one place that names the bad sample (and gives an empty log back).
+    given = fixes is None and (not uses_static_bias(preset) or _bias_source(si) == "bias")
+    if given or len(ta) != len(ra) or len(ta) == 0 or not times_ok(ta):
+        # A given bias (or none to remove) and no fixes need no plan: the log goes to the pipeline
+        # as it is, with no pass over it here (what plan() would give). Bad times: the pipeline is
+        # the one place that names the bad sample (and gives an empty log back).
         result = Pipeline(preset, **untracked(si)).process(ta, ra, temperature=temperature, outputs=outputs)
         return replace(result, bias_source=causal_source(preset, si))
     try:

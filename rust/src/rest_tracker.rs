@@ -307,7 +307,7 @@ impl RestTracker {
         let mut found = None;
         if index != self.block.index {
             let finished = self.block;
-            let still = index == finished.index + 1 && self.still(c, &finished);
+            let still = finished.index.checked_add(1) == Some(index) && self.still(c, &finished);
             self.previous = Some((finished.sums.mean(), finished.sums.samples));
             found = self.extend_run(c, still, &finished);
             self.block = Filling::start(index);

@@ -133,17 +133,21 @@ pub(crate) fn interval_key(dt: f64) -> u64 {
 }
 
 /// Validity of a block's samples, accumulated branch-free while the block is processed (see
-/// [`Pipeline::process_block`](crate::Pipeline::process_block)): a few operations per sample
-/// and no early exit, instead of a separate pass over the block (which would wait for the
-/// memory the loop's work hides).
+/// [`Pipeline::process_block`](crate::Pipeline::process_block)): a few integer operations per
+/// sample and no early exit, instead of a separate pass over the block (which would wait for the
+/// memory the loop's work hides). Integer operations that SSE2 has no instruction for (a
+/// maximum, a rotation), so that they stay in the integer registers and leave the vector
+/// registers to the chain's state (`docs/performance.md`).
 #[derive(Debug, Default, Clone, Copy)]
 pub(crate) struct Checks {
     /// The largest [`interval_key`] seen.
     worst_interval: u64,
-    /// The largest [`magnitude_key`] of a reading seen. An integer maximum, so the readings'
-    /// check needs no floating-point register, which the chain needs for its state
-    /// (`docs/performance.md`).
-    worst_reading: u64,
+    /// The rates' bits rotated left by one (the sign to the lowest bit), OR-ed: at least the
+    /// largest [`magnitude_key`] (see [`Checks::passed`]).
+    readings: u64,
+    /// The largest [`magnitude_key`] of a temperature seen: exact, since temperatures straddle
+    /// powers of two (2, 4, ... 32 degC) where an OR would fail on valid ones.
+    worst_temperature: u64,
     /// The largest [`magnitude_key`] of a timestamp checked.
     worst_time: u64,
 }
@@ -159,9 +163,9 @@ impl Checks {
     /// [`MAX_READING`].
     #[inline(always)]
     pub(crate) fn reading(&mut self, rate: f64, temperature: Option<f64>) {
-        self.worst_reading = self.worst_reading.max(magnitude_key(rate));
+        self.readings |= rate.to_bits().rotate_left(1);
         if let Some(celsius) = temperature {
-            self.worst_reading = self.worst_reading.max(magnitude_key(celsius));
+            self.worst_temperature = self.worst_temperature.max(magnitude_key(celsius));
         }
     }
 
@@ -179,10 +183,13 @@ impl Checks {
             .then(|| f64::from_bits(self.worst_interval.wrapping_add(MIN_INTERVAL.to_bits())))
     }
 
-    /// True if every value and interval seen was valid.
+    /// True if every value and interval seen was certainly valid. The rates' check is
+    /// conservative: an OR is never below the largest of its operands, so an invalid rate always
+    /// fails it, but so may valid rates of 2 or more in magnitude (their exponent bits OR-ed with
+    /// others' can reach the limit's); the caller then checks the block exactly.
     pub(crate) fn passed(&self) -> bool {
         self.longest_interval().is_some()
-            && self.worst_reading < magnitude_key(MAX_READING)
+            && self.readings.max(self.worst_temperature) < magnitude_key(MAX_READING)
             && self.worst_time < magnitude_key(MAX_TIME)
     }
 }
@@ -233,20 +240,26 @@ mod tests {
     use super::*;
     use crate::{Outputs, Pipeline, Preset};
 
-    /// The loop's check of the readings: the largest usable ones (just inside
-    /// [`MAX_READING`]) pass, and a NaN, an infinity or a reading at the limit, of either sign
-    /// and anywhere, is refused by its index.
+    /// The loop's check of the readings: a NaN, an infinity or a reading at the limit, of
+    /// either sign, fails it whatever valid readings come with it; the usual readings (rates
+    /// below 2 rad/s, any temperature from -40 to 85 degC) pass it, so that no exact check
+    /// follows; and the pipeline takes the largest usable
+    /// readings (just inside [`MAX_READING`], mixed with others, where the loop's bound fails and
+    /// the exact check decides) and refuses any other by its index.
     #[test]
     fn the_largest_usable_readings_are_taken_and_any_other_is_named() {
         let top = f64::from_bits(MAX_READING.to_bits() - 1);
-        let t: [f64; 8] = core::array::from_fn(|i| i as f64);
-        let mut rate = [top; 8];
-        let mut heading = [0.0; 8];
+        let usual = [1.999, -1.999, 0.0, -0.0, f64::MIN_POSITIVE, 0.3];
+        let celsius = [25.0, -5.0, 0.5, 85.0, -40.0, 1.0];
         let mut checks = Checks::default();
-        for r in [top, -top, 0.0, -0.0, f64::MIN_POSITIVE] {
-            checks.reading(r, Some(-r));
+        for (r, c) in usual.into_iter().zip(celsius) {
+            checks.reading(r, Some(c));
         }
         assert!(checks.passed());
+        let mut all = checks;
+        for r in [top, -top] {
+            all.reading(r, Some(r));
+        }
         let bad = [
             f64::NAN,
             -f64::NAN,
@@ -257,11 +270,16 @@ mod tests {
             f64::MAX,
         ];
         for bad in bad {
-            let (mut rate_check, mut temperature_check) = (checks, checks);
-            rate_check.reading(bad, None);
-            temperature_check.reading(0.0, Some(bad));
-            assert!(!rate_check.passed() && !temperature_check.passed(), "{bad}");
+            for with in [Checks::default(), checks, all] {
+                let (mut rate_check, mut temperature_check) = (with, with);
+                rate_check.reading(bad, None);
+                temperature_check.reading(0.0, Some(bad));
+                assert!(!rate_check.passed() && !temperature_check.passed(), "{bad}");
+            }
         }
+        let t: [f64; 8] = core::array::from_fn(|i| i as f64);
+        let mut rate = [top, -top, 0.0, -0.0, f64::MIN_POSITIVE, top, 0.3, -top];
+        let mut heading = [0.0; 8];
         let mut p = Pipeline::new(Preset::Raw.config()).unwrap();
         p.process_block(&t, &rate, None, Outputs::heading(&mut heading))
             .unwrap();
@@ -273,6 +291,26 @@ mod tests {
                 .unwrap_err();
             assert_eq!(e.index(), Some(5), "{e}");
         }
+    }
+
+    /// Intervals on both sides of a power of two (0.75 s and 1.5 s, under a gap limit of 2 s)
+    /// count no gap, and a gap among them is reported at its own length.
+    #[test]
+    fn gaps_are_counted_at_their_length() {
+        let mut t = [0.0; 9];
+        for i in 1..t.len() {
+            t[i] = t[i - 1] + if i % 2 == 0 { 0.75 } else { 1.5 };
+        }
+        let rate = [0.01; 9];
+        let mut heading = [0.0; 9];
+        let mut p = Pipeline::new(Preset::Raw.config()).unwrap();
+        p.process_block(&t, &rate, None, Outputs::heading(&mut heading))
+            .unwrap();
+        assert_eq!(p.report().gaps, 0);
+        let later = t.map(|x| x + t[8] + 2.5);
+        p.process_block(&later, &rate, None, Outputs::heading(&mut heading))
+            .unwrap();
+        assert_eq!((p.report().gaps, p.report().longest_gap), (1, 2.5));
     }
 
     /// `interval_key(dt) <= interval_key(longest)` exactly when `MIN_INTERVAL <= dt <= longest`.

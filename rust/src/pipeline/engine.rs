@@ -231,13 +231,54 @@ impl<C: Kernel> Chain<C> {
         out: &mut Outputs<'_>,
     ) {
         let n = block.t.len();
+        let mut out = out.first(n);
+        // The loop compiled for the two output sets asked for most, all three and the heading
+        // alone, which then write what is wanted without asking on every sample.
+        match &mut out {
+            Outputs {
+                heading: Some(h),
+                rate: Some(r),
+                drift: Some(d),
+            } => {
+                let (h, r, d) = (&mut h[..n], &mut r[..n], &mut d[..n]);
+                let write = |i: usize, o: Output| {
+                    h[i] = o.heading;
+                    r[i] = o.rate;
+                    d[i] = o.drift;
+                };
+                return self.run_into::<STOPS>(block, write, cursor, stop_key);
+            }
+            Outputs {
+                heading: Some(h),
+                rate: None,
+                drift: None,
+            } => {
+                let h = &mut h[..n];
+                let write = |i: usize, o: Output| h[i] = o.heading;
+                return self.run_into::<STOPS>(block, write, cursor, stop_key);
+            }
+            _ => {}
+        }
+        self.run_into::<STOPS>(block, |i, o| out.set(i, o), cursor, stop_key);
+    }
+
+    /// [`Chain::run`] with `write(i, output)` storing sample `i`'s output.
+    #[inline(always)]
+    fn run_into<const STOPS: bool>(
+        &mut self,
+        block: &Block<'_>,
+        write: impl FnMut(usize, Output),
+        cursor: &mut Cursor,
+        stop_key: u64,
+    ) {
+        let n = block.t.len();
         // The loop compiled with and without a temperature, so that it does not ask on every
         // sample whether there is one.
         match block.temperature {
-            None => self.run_with::<STOPS>(block, |_| None, cursor, stop_key, out),
+            None => self.run_with::<STOPS>(block, |_| None, write, cursor, stop_key),
             Some(temp) => {
                 let temp = &temp[..n];
-                self.run_with::<STOPS>(block, |i| Some(temp[i]), cursor, stop_key, out);
+                self.run_with::<STOPS>(block, |i| Some(temp[i]), write, cursor, stop_key);
             }
         }
     }
@@ -248,15 +289,14 @@ impl<C: Kernel> Chain<C> {
         &mut self,
         block: &Block<'_>,
         temperature: impl Fn(usize) -> Option<f64>,
+        mut write: impl FnMut(usize, Output),
         cursor: &mut Cursor,
         stop_key: u64,
-        out: &mut Outputs<'_>,
     ) {
         let n = block.t.len();
         // Slices of one length, so the loop carries no bounds checks.
         let (t, rate) = (block.t, &block.rate[..n]);
         let speed = block.speed.filter(|_| C::READS_SPEED).map(|s| &s[..n]);
-        let mut out = out.first(n);
         let config = &self.config;
         // Local copies, so that the loop keeps them in registers.
         let mut state = self.state;
@@ -275,7 +315,7 @@ impl<C: Kernel> Chain<C> {
                 x.speed = speed.map_or(f64::NAN, |s| s[i]);
             }
             c.last = Output::of(C::step(config, &mut state, dt, x));
-            out.set(i, c.last);
+            write(i, c.last);
             c.next = i + 1;
             if C::stop_after(&state) {
                 break;
