@@ -106,9 +106,8 @@ def _why_recommended(rows: list[dict[str, Any]]) -> str:
         return f"{recommended_preset()} has the lowest E_psi here"
     return (
         f"{recommended_preset()} is not the lowest E_psi here ({best['preset']} is): it was chosen to do no harm "
-        "(within 0.5 deg of plain integration on a gyro without bias, and better than static_bias on every "
-        "real log with a rest), so it corrects less on strongly drifting gyros like these "
-        "(docs/results.md)"
+        "(within 0.5 deg of its baseline on a gyro without bias) and chosen on real logs, so it corrects "
+        "less on strongly drifting gyros like these (docs/results.md)"
     )
 
 
