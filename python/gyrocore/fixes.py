@@ -346,3 +346,13 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
     course = np.array([epochs[k][0] for k in t], dtype=float)
     speed = np.array([epochs[k][1] for k in t], dtype=float)
     return from_gnss(t, course, speed, **options)
+
+
+# Fixes from a track of positions live in their own module, which builds on Fixes above.
+from .fixes_track import from_latlon, from_positions  # noqa: E402
+
+__all__ = [
+    "FIXES_COLUMNS", "GNSS_COLUMNS", "KMH", "KNOT", "SETTINGS", "Fixes", "FixesLike", "FixStage", "Fusion", "FusionResult",
+    "as_fixes", "from_gnss", "from_latlon", "from_positions", "fuse", "read_fixes_csv", "read_fixes_file",
+    "read_gnss_csv", "read_nmea", "smoothed_stage", "stage_block", "stage_settings",
+]

@@ -1,0 +1,80 @@
+"""Heading fixes from a track of positions (gyrocore.fixes.from_positions, from_latlon): exact on
+a circle, the sigma and the slow steps, named errors, and a real KITTI track fused with its MEMS twin."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import gyrocore
+from gyrocore import fixes
+
+from .conftest import real_log_path
+
+
+def test_a_chord_of_a_circle_driven_at_constant_speed_points_along_the_middle_tangent() -> None:
+    t = np.sort(np.random.default_rng(1).uniform(0.0, 60.0, 200))   # irregular times
+    radius, omega = 50.0, 0.2                                       # 10 m/s, counter-clockwise
+    x, y = radius * np.cos(omega * t), radius * np.sin(omega * t)
+    f = fixes.from_positions(t, x, y)
+    assert len(f) == len(t) - 1 - int(np.sum(np.diff(t) * radius * omega < 2.0 * np.diff(t)))
+    middle = 0.5 * (t[:-1] + t[1:])
+    np.testing.assert_allclose(f.t, middle)
+    tangent = omega * middle + math.pi / 2
+    assert np.max(np.abs(np.angle(np.exp(1j * (f.heading - tangent))))) < 1e-9
+
+
+def test_sigma_grows_as_the_step_shrinks_and_slow_or_unknown_steps_give_no_fix() -> None:
+    t = np.arange(6.0)
+    x = np.array([0.0, 10.0, 15.0, 16.0, np.nan, 30.0])   # steps of 10, 5, 1 m, then a gap in the track
+    f = fixes.from_positions(t, x, np.zeros(6), position_sigma=0.5, min_speed=2.0, min_sigma_deg=0.5)
+    np.testing.assert_array_equal(f.t, [0.5, 1.5])
+    np.testing.assert_array_equal(f.heading, [0.0, 0.0])
+    expected = np.hypot(math.radians(0.5), math.sqrt(2.0) * 0.5 / np.array([10.0, 5.0]))
+    np.testing.assert_allclose(f.sigma, expected)
+    backwards = fixes.from_positions(t, -x, np.zeros(6))
+    np.testing.assert_allclose(np.abs(backwards.heading), math.pi)
+
+
+def test_latitude_and_longitude_give_the_course_counter_clockwise_from_east() -> None:
+    t = np.arange(10.0)
+    north = fixes.from_latlon(t, 48.0 + 1e-4 * t, np.full(10, 11.0))   # about 11 m/s north
+    np.testing.assert_allclose(north.heading, math.pi / 2, atol=1e-9)
+    east = fixes.from_latlon(t, np.full(10, 48.0), 11.0 + 1e-4 * t)
+    np.testing.assert_allclose(east.heading, 0.0, atol=1e-9)
+    across = fixes.from_latlon(t, np.full(10, 0.0), (179.9995 + 1e-4 * t + 180.0) % 360.0 - 180.0)
+    assert len(across) == 9
+    np.testing.assert_allclose(across.heading, 0.0, atol=1e-9)   # eastward across the antimeridian
+
+
+@pytest.mark.parametrize(
+    ("call", "message"),
+    [
+        (lambda: fixes.from_positions([0.0, 1.0], [0.0], [0.0, 1.0]), "t, x and y must have one length, got 2, 1 and 2"),
+        (lambda: fixes.from_positions([0.0, 1.0, 1.0], [0, 5, 9], [0, 0, 0]), r"t\[2\] = 1.0 s is not after t\[1\]"),
+        (lambda: fixes.from_positions([0.0, np.nan], [0, 5], [0, 0]), r"t\[1\] is nan: position times must be finite"),
+        (lambda: fixes.from_positions([0.0, 1.0], [0, 5], [0, 0], position_sigma=0.0), "position_sigma must be finite and > 0"),
+        (lambda: fixes.from_latlon([0.0, 1.0], [10.0, 95.0], [0.0, 0.0]), r"lat_deg\[1\] is 95.0"),
+        (lambda: fixes.from_latlon([0.0, 1.0], [np.nan, np.nan], [0.0, 0.0]), "no finite latitude and longitude"),
+    ],
+)
+def test_bad_tracks_are_named(call: object, message: str) -> None:
+    with pytest.raises(ValueError, match=message):
+        call()  # type: ignore[operator]
+
+
+def test_a_real_track_fixes_its_mems_twin() -> None:
+    # KITTI 0018's reference track (OXTS positions, 10 Hz), one position a second, as the only
+    # heading source of the twin's simulated MEMS gyro (0.5 deg/s bias, 2 % scale error; raw
+    # integration 70.6 deg).
+    log = gyrocore.read_log(real_log_path("kitti_2011_09_30_0018_mems"))
+    t, x, y = log.track()
+    f = fixes.from_positions(t[::10], x[::10], y[::10], position_sigma=0.1)
+    reference = np.interp(f.t, log.t_ref, np.unwrap(log.heading_ref))
+    assert np.median(np.abs(np.angle(np.exp(1j * (f.heading - reference))))) < math.radians(0.5)
+    for mode, limit in (("causal", 1.5), ("smoothed", 1.0)):
+        fused = fixes.fuse(log.t, log.rate, f, mode=mode)
+        e_psi = gyrocore.heading_errors(log.t, fused.heading, log.t_ref, log.heading_ref, absolute=True).e_psi_deg
+        assert e_psi < limit, (mode, e_psi)
