@@ -1,7 +1,7 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)] // each test binary uses its own subset of the helpers
 
-use gyrocore::{Error, Output, Outputs, Pipeline};
+use gyrocore::{Error, GyroModel, GyroSample, Output, Outputs, Pipeline};
 
 /// Feeds one block through `p`, returning the per-sample outputs.
 pub fn try_block(p: &mut Pipeline, t: &[f64], r: &[f64]) -> Result<Vec<Output>, Error> {
@@ -33,4 +33,15 @@ pub fn bits(o: &[Output]) -> Vec<[u64; 3]> {
     o.iter()
         .map(|o| [o.heading.to_bits(), o.rate.to_bits(), o.drift.to_bits()])
         .collect()
+}
+
+/// `x` degrees in radians.
+pub fn deg(x: f64) -> f64 {
+    x.to_radians()
+}
+
+/// Readings of `model` at rest at `n` samples of `1 / rate_hz` seconds.
+pub fn at_rest(model: &mut GyroModel, n: usize) -> Vec<GyroSample> {
+    let dt = 1.0 / model.config().rate_hz;
+    (0..n).map(|i| model.measure(i as f64 * dt, 0.0)).collect()
 }
