@@ -95,3 +95,7 @@ struct ReadmeExamples;
 #[cfg(doctest)]
 #[doc = include_str!("../../docs/engine.md")]
 struct EngineDocExamples;
+
+#[cfg(doctest)]
+#[doc = include_str!("../../docs/fixes.md")]
+struct FixesDocExamples;
