@@ -1,10 +1,15 @@
 //! Criterion bench of the heading-fix filter (rust/src/fixes.rs): 1,000,000 gyro samples at
 //! 100 Hz without fixes and with a fix every second (10,000 fixes), reported as gyro samples per
-//! second, and the whole-log smoother (forward pass storing its steps, then the backward pass).
+//! second, and the whole-log smoother (forward pass storing its steps, then the backward pass);
+//! then the recommended pipeline alone against the same pipeline with its fix stage and 1 Hz
+//! fixes (`FusedPipeline`), in criterion and in interleaved rounds (issue 18: within 10 %).
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use gyrocore::fixes_smooth::Step;
-use gyrocore::{smooth, Fix, Fusion, FusionConfig, FusionOutputs};
+use gyrocore::{
+    smooth, Fix, FusedOutputs, FusedPipeline, Fusion, FusionConfig, FusionOutputs, Outputs,
+    Pipeline, PipelineConfig, Preset, Samples, StaticBias,
+};
 use std::hint::black_box;
 
 mod common;
@@ -69,7 +74,72 @@ fn filter(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, filter);
+/// The recommended preset with a known bias, as benches/pipeline.rs runs the presets.
+fn pipeline_config() -> PipelineConfig {
+    let mut config = Preset::RECOMMENDED.config();
+    config.correction.bias = StaticBias::Fixed(0.01);
+    config
+}
+
+/// Six columns of N samples for [`fused_run`].
+fn columns() -> [Vec<f64>; 6] {
+    core::array::from_fn(|_| vec![0.0; N])
+}
+
+/// A fresh fused pipeline over the samples with the fixes `given`, into `cols`.
+fn fused_run(
+    config: PipelineConfig,
+    t: &[f64],
+    rate: &[f64],
+    given: &[Fix],
+    cols: &mut [Vec<f64>; 6],
+) {
+    let mut p = FusedPipeline::new(config, FusionConfig::default()).unwrap();
+    let [h, s, b, sc, r, d] = cols;
+    let out = FusedOutputs {
+        heading: h,
+        heading_sigma: s,
+        bias: b,
+        scale: sc,
+        rate: r,
+        drift: Some(d),
+    };
+    let samples = Samples::new(black_box(t), black_box(rate));
+    assert_eq!(
+        p.process_block(samples, black_box(given), out),
+        Ok(given.len())
+    );
+}
+
+fn fused(c: &mut Criterion) {
+    let (t, rate, fixes) = samples();
+    let config = pipeline_config();
+    // each run its own columns, as the two alternate
+    let [mut h0, mut r0, mut d0] = core::array::from_fn(|_| vec![0.0; N]);
+    let mut alone = || {
+        let mut p = Pipeline::new(config).unwrap();
+        let out = Outputs::all(&mut h0, &mut r0, &mut d0);
+        p.process_block(black_box(&t), black_box(&rate), None, out)
+            .unwrap();
+    };
+    let (mut with_cols, mut without_cols) = (columns(), columns());
+    let mut with_fixes = || fused_run(config, &t, &rate, &fixes, &mut with_cols);
+    let mut without = || fused_run(config, &t, &rate, &[], &mut without_cols);
+    let mut group = c.benchmark_group("fused_pipeline");
+    group.throughput(Throughput::Elements(N as u64));
+    group.bench_function("pipeline_alone", |b| b.iter(&mut alone));
+    group.bench_function("fused_no_fixes", |b| b.iter(&mut without));
+    group.bench_function("fused_fixes_1hz", |b| b.iter(&mut with_fixes));
+    group.finish();
+    if common::measuring() {
+        let names = ["fused_fixes_1hz", "pipeline_alone"];
+        common::interleaved(names, N, &mut with_fixes, &mut alone);
+        let names = ["fused_fixes_1hz", "fused_no_fixes"];
+        common::interleaved(names, N, &mut with_fixes, &mut without);
+    }
+}
+
+criterion_group!(benches, filter, fused);
 
 fn main() {
     common::print_cpu_model();

@@ -96,8 +96,9 @@ fn pipeline(c: &mut Criterion) {
             &config,
         )
     };
-    if measuring() {
-        interleaved(&mut engine, &mut plain);
+    if common::measuring() {
+        let names = ["combined", "straightforward_combined"];
+        common::interleaved(names, N, &mut engine, &mut plain);
     }
 
     let mut group = c.benchmark_group("pipeline_update");
@@ -253,65 +254,6 @@ fn stages(c: &mut Criterion) {
         Integrator::new(IntegratorConfig::default()).unwrap()
     );
     group.finish();
-}
-
-/// True when the bench measures (`cargo bench`, which passes `--bench`), not when it is listed
-/// (`--list`) or run once as a test (`cargo test --benches`).
-fn measuring() -> bool {
-    let args: Vec<String> = std::env::args().collect();
-    args.iter().any(|a| a == "--bench") && !args.iter().any(|a| a == "--list")
-}
-
-/// Rounds of [`interleaved`]: `GYROCORE_BENCH_ROUNDS`, else 31.
-fn rounds() -> usize {
-    std::env::var("GYROCORE_BENCH_ROUNDS")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(31)
-}
-
-/// The calling thread's CPU time [ns]: what it ran, without the time it waited for a core.
-fn thread_cpu_ns() -> f64 {
-    let mut ts = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: clock_gettime writes the timespec it is given and nothing else.
-    unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    ts.tv_sec as f64 * 1e9 + ts.tv_nsec as f64
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
-
-/// `combined` through the pipeline and the straightforward loop in alternation, [`rounds`]
-/// rounds: on a machine shared with other work, criterion's one-after-the-other figures move
-/// more between the two benches than the difference sought, while within a round both are slowed
-/// alike. Prints the medians and the median of the per-round ratios, by wall time and by the
-/// thread's CPU time (which leaves out waiting for a core).
-fn interleaved(engine: &mut dyn FnMut(), plain: &mut dyn FnMut()) {
-    let time = |f: &mut dyn FnMut()| {
-        let (wall, cpu) = (std::time::Instant::now(), thread_cpu_ns());
-        f();
-        (wall.elapsed().as_secs_f64() * 1e9, thread_cpu_ns() - cpu)
-    };
-    let rounds: Vec<_> = (0..rounds()).map(|_| (time(engine), time(plain))).collect();
-    let per_sample = |ns: f64| ns / N as f64;
-    for (clock, pick) in [
-        ("wall", (|x: (f64, f64)| x.0) as fn((f64, f64)) -> f64),
-        ("thread CPU", |x: (f64, f64)| x.1),
-    ] {
-        let engine = median(rounds.iter().map(|r| per_sample(pick(r.0))).collect());
-        let plain = median(rounds.iter().map(|r| per_sample(pick(r.1))).collect());
-        let ratio = median(rounds.iter().map(|r| pick(r.0) / pick(r.1)).collect());
-        println!(
-            "interleaved, {} rounds, {clock} time: combined {engine:.3} ns/sample, \
-             straightforward_combined {plain:.3} ns/sample, ratio {ratio:.3} (median of per-round ratios)",
-            rounds.len()
-        );
-    }
 }
 
 criterion_group!(benches, pipeline, stages);

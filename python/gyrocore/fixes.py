@@ -152,8 +152,8 @@ class Fusion:
 
 def stage_settings(params: dict[str, Any], settings: dict[str, float] | None) -> dict[str, float]:
     """The fix stage's settings in a pipeline with the parameters ``params``: it starts from the
-    pipeline's initial heading unless ``settings`` say otherwise."""
-    return {"initial_heading": float(params["initial_heading"]), **(settings or {})}
+    pipeline's initial heading unless ``settings`` say otherwise (an unknown name is a TypeError)."""
+    return _settings({"initial_heading": float(params["initial_heading"]), **(settings or {})})
 
 
 Estimate = tuple[float, float, float, float]
@@ -179,49 +179,6 @@ def _on_kept(run: Callable[[FloatArray, FloatArray], FusionResult], t: FloatArra
     at = np.cumsum(kept)  # 1 + the kept sample at or before each row; 0 before the first
     h, s, b, sc = (np.concatenate(([first], getattr(part, name)))[at] for name, first in zip(_COLUMNS, before))
     return FusionResult(t, h, s, b, sc, part.counts)
-
-
-class FixStage:
-    """The fix stage of a :class:`gyrocore.Pipeline`: the filter on the pipeline's corrected rate,
-    block after block (picklable with the pipeline)."""
-
-    def __init__(self, settings: dict[str, float]) -> None:
-        self.fusion = Fusion(**settings)
-        self.last = _prior(self.fusion)
-
-    @classmethod
-    def of(cls, params: dict[str, Any], settings: dict[str, float]) -> FixStage:
-        """The stage of a pipeline with the parameters ``params`` (see :func:`stage_settings`)."""
-        return cls(stage_settings(params, settings))
-
-    def check(self, fixes: Fixes) -> None:
-        """The error :meth:`process` would raise for ``fixes``, before any stage runs."""
-        self.fusion.check(fixes)
-
-    def process(self, t: FloatArray, rate: FloatArray, fixes: Fixes) -> FusionResult:
-        """One block of the corrected rate (NaN where the pipeline skipped a sample)."""
-        result = _on_kept(lambda tt, rr: self.fusion.process(tt, rr, fixes), t, rate, self.last)
-        if len(result.t):
-            self.last = (float(result.heading[-1]), float(result.heading_sigma[-1]), float(result.bias[-1]),
-                         float(result.scale[-1]))
-        return result
-
-
-def stage_block(stage: FixStage | None, fixes: FixesLike | None, processed: bool,
-                params: dict[str, Any]) -> tuple[FixStage | None, Fixes | None]:
-    """A pipeline's fix stage and this block's fixes for it, checked before any stage runs (a bad
-    fix leaves the pipeline as it was); ``(None, None)`` without a stage. Fixes given to a pipeline
-    without one start it (defaults), if it has ``processed`` no sample yet."""
-    if fixes is not None and stage is None:
-        if processed:
-            raise ValueError("fixes given to a pipeline that has processed samples without a fix stage: create "
-                             "it with Pipeline(..., fusion={}) to give fixes in a later block")
-        stage = FixStage.of(params, {})
-    if stage is None:
-        return None, None
-    block = Fixes.empty() if fixes is None else as_fixes(fixes)
-    stage.check(block)
-    return stage, block
 
 
 def smoothed_stage(result: HeadingResult, fixes: FixesLike, settings: dict[str, float],
@@ -352,7 +309,7 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
 from .fixes_track import from_latlon, from_positions  # noqa: E402
 
 __all__ = [
-    "FIXES_COLUMNS", "GNSS_COLUMNS", "KMH", "KNOT", "SETTINGS", "Fixes", "FixesLike", "FixStage", "Fusion", "FusionResult",
+    "FIXES_COLUMNS", "GNSS_COLUMNS", "KMH", "KNOT", "SETTINGS", "Fixes", "FixesLike", "Fusion", "FusionResult",
     "as_fixes", "from_gnss", "from_latlon", "from_positions", "fuse", "read_fixes_csv", "read_fixes_file",
-    "read_gnss_csv", "read_nmea", "smoothed_stage", "stage_block", "stage_settings",
+    "read_gnss_csv", "read_nmea", "smoothed_stage", "stage_settings",
 ]

@@ -8,7 +8,6 @@ accept a degree-per-second spelling with a ``_dps`` suffix (``threshold_dps=0.3`
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -17,11 +16,16 @@ from numpy.typing import ArrayLike
 from . import _gyrocore, rests
 from ._arrays import FloatArray, as_float_array
 from ._checks import warn, warn_units
+from .result import OUTPUTS as OUTPUTS, HeadingResult as HeadingResult, output_flags as output_flags
 from .rests import Rest
 from .window import time_range
 
 if TYPE_CHECKING:
-    from .fixes import Fixes, FixesLike, FixStage, FusionResult
+    from .fixes import Fixes, FixesLike
+
+#: The fix stage's columns of a block from the core: heading sigma, bias, scale, and the fix
+#: counts (applied, rejected, before the first sample, waiting for a later block).
+_Fused = tuple[FloatArray, FloatArray, FloatArray, tuple[int, int, int, int]]
 
 #: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling.
 _RATE_PARAMETERS = ("bias", "offset", "threshold", "hdr_increment", "hdr_turn_threshold")
@@ -102,83 +106,6 @@ def _named_type_error(preset: str, si: dict[str, Any], error: TypeError) -> Type
     return error
 
 
-#: The per-sample outputs of the pipeline, in the order of :class:`HeadingResult`.
-OUTPUTS = ("heading", "rate", "drift")
-
-
-def output_flags(outputs: tuple[str, ...] | list[str]) -> tuple[bool, bool]:
-    """Whether ``outputs`` asks for the rate and the drift (the heading is always computed);
-    a name not in :data:`OUTPUTS`, or no heading, is a ``ValueError``."""
-    if isinstance(outputs, str) or any(o not in OUTPUTS for o in outputs) or "heading" not in outputs:
-        raise ValueError(
-            f"outputs={outputs!r}: give a tuple of names from {', '.join(OUTPUTS)}, with heading "
-            "(the heading is always computed)"
-        )
-    return "rate" in outputs, "drift" in outputs
-
-
-@dataclass(frozen=True, repr=False)
-class HeadingResult:
-    """Per-sample output of the pipeline (all arrays float64, one entry per input sample).
-
-    ``rate`` and ``drift`` are None when not asked for (``outputs=`` of :func:`process` and
-    :meth:`Pipeline.process`): they were never computed or stored.
-
-    Attributes:
-        t: timestamps [s], as given.
-        heading: continuous (unwrapped) heading [rad], counter-clockwise positive.
-        rate: corrected rate that was integrated [rad/s].
-        drift: HDR's drift estimate ``-I`` applied to each sample [rad/s] (0 without HDR).
-        rests: the rests whose bias was used in whole mode (:class:`gyrocore.rests.Rest`).
-        tracked_rests: with ``track_rests=True``, every rest the core's tracker found in these
-            samples, in order (each one's span, the bias it measured, its standard error and the
-            filtered bias after it; :class:`gyrocore.rests.Rest`).
-        bias_source: where the static bias came from (set by :func:`process` and
-            :meth:`gyrocore.Log.process`; empty from a streaming :class:`Pipeline`).
-        heading_sigma: with heading fixes, the filter's heading standard deviation [rad], else None.
-        fusion: with heading fixes, the fix stage's :class:`gyrocore.fixes.FusionResult` (bias and
-            scale error of the corrected rate, fix counts), else None.
-    """
-
-    t: FloatArray
-    heading: FloatArray
-    rate: FloatArray | None = None
-    drift: FloatArray | None = None
-    bias_source: str = ""
-    rests: tuple[Rest, ...] = ()
-    tracked_rests: tuple[Rest, ...] = ()
-    heading_sigma: FloatArray | None = None
-    fusion: FusionResult | None = None
-
-    def output(self, name: str) -> FloatArray:
-        """The output ``name`` (one of :data:`OUTPUTS`, or ``heading_sigma``); a ``ValueError`` if it
-        was not asked for (or, for ``heading_sigma``, there were no fixes)."""
-        value: FloatArray | None = getattr(self, name) if name in (*OUTPUTS, "heading_sigma") else None
-        if value is None and name == "heading_sigma":
-            raise ValueError("the 'heading_sigma' output comes with heading fixes, and there were none")
-        if value is None:
-            raise ValueError(f"the {name!r} output was not computed: ask for it in outputs=")
-        return value
-
-    @property
-    def heading_deg(self) -> FloatArray:
-        """Heading in degrees."""
-        return np.degrees(self.heading)
-
-    def __len__(self) -> int:
-        return len(self.t)
-
-    def __repr__(self) -> str:
-        if len(self.t) == 0:
-            return "HeadingResult(empty)"
-        parts = [f"n={len(self.t)}", f"duration={self.t[-1] - self.t[0]:.3f} s"]
-        first, last = math.degrees(self.heading[0]), math.degrees(self.heading[-1])
-        parts.append(f"heading {first:.3f} -> {last:.3f} deg")
-        if self.drift is not None:
-            parts.append(f"final drift estimate {math.degrees(self.drift[-1]):.4f} deg/s")
-        return f"HeadingResult({', '.join(parts)})"
-
-
 class Pipeline:
     """Streaming heading pipeline (correction -> threshold -> low-pass -> HDR -> de-lag -> integrate).
 
@@ -204,8 +131,8 @@ class Pipeline:
         self._units_checked = False
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
         self._rests: list[Rest] = []
-        self._fusion_settings = fusion
-        self._fusion = _fix_stage(self.params, fusion)
+        if fusion is not None:
+            self._inner.start_fusion(_stage_settings(self.params, fusion))
         if uses_static_bias(preset) and not has_bias_source(si):
             until = " until the rest tracker measures one at a stop" if self.params["track_rests"] else ""
             warn(
@@ -278,47 +205,61 @@ class Pipeline:
             warn_units(ta, ra)
             self._units_checked = True
         flags = output_flags(outputs)
-        fix_block = self._fix_block(fixes)
-        if fix_block is not None:
-            flags = (True, flags[1])  # the fix stage runs on the corrected rate
+        inner, fix_block = self._fix_block(fixes)
         if (speed is not None or speed_t is not None) and not self.params["track_rests"]:
             raise ValueError("speed is given but rest tracking is off: pass track_rests=True, or no speed")
         sa = None if speed is None else rests.speed_at(ta, speed, speed_t)
-        before = self._inner.report()
-        heading, out_rate, drift, found = self._run(ta, ra, temp, index_offset, flags, sa)
-        self._warn_repairs(before, self._inner.report(), ta, ra, temp)
+        before = inner.report()
+        heading, out_rate, drift, found, fused = self._run(inner, ta, ra, temp, index_offset, flags, sa, fix_block)
+        self._inner = inner  # with the fix stage the first fixes started, now that they were good
+        self._warn_repairs(before, inner.report(), ta, ra, temp)
         if self._first_time is None and len(ta):
             self._first_time = float(ta[0])
         self._rests.extend(found)
-        if self._fusion is None or fix_block is None or out_rate is None:
+        if fused is None:
             return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found))
-        fused = self._fusion.process(ta, out_rate, fix_block)
-        return HeadingResult(ta, fused.heading, out_rate if "rate" in outputs else None, drift,
-                             tracked_rests=tuple(found), heading_sigma=fused.heading_sigma, fusion=fused)
+        from .fixes import FusionResult
 
-    def _fix_block(self, fixes: FixesLike | None) -> Fixes | None:
-        """This block's fixes for the fix stage, or None without one (:func:`gyrocore.fixes.stage_block`)."""
-        from .fixes import stage_block
+        sigma, bias, scale, (applied, rejected, before_start, waiting) = fused
+        counts = {"applied": applied, "rejected": rejected, "before_start": before_start, "waiting": waiting}
+        return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found), heading_sigma=sigma,
+                             fusion=FusionResult(ta, heading, sigma, bias, scale, counts))
 
-        self._fusion, block = stage_block(self._fusion, fixes, self._inner.last_time() is not None, self.params)
-        if self._fusion is not None and self._fusion_settings is None:
-            self._fusion_settings = {}
-        return block
+    def _fix_block(self, fixes: FixesLike | None) -> tuple[_gyrocore.Pipeline, Fixes | None]:
+        """The core to run this block on and its fixes: fixes given to a pipeline without the fix
+        stage start it (defaults) on a copy, if it has processed no sample yet, so that a bad fix
+        leaves the pipeline without one."""
+        if fixes is None:
+            return self._inner, None
+        from .fixes import as_fixes
+
+        block = as_fixes(fixes)
+        if self._inner.fused():
+            return self._inner, block
+        if self._inner.last_time() is not None:
+            raise ValueError("fixes given to a pipeline that has processed samples without a fix stage: create "
+                             "it with Pipeline(..., fusion={}) to give fixes in a later block")
+        inner = self._inner.__copy__()
+        inner.start_fusion(_stage_settings(self.params, {}))
+        return inner, block
 
     def _run(
         self,
+        inner: _gyrocore.Pipeline,
         t: FloatArray,
         rate: FloatArray,
         temp: FloatArray | None,
         index_offset: int,
         flags: tuple[bool, bool],
         speed: FloatArray | None,
-    ) -> tuple[FloatArray, FloatArray | None, FloatArray | None, list[Rest]]:
-        """The core over the chunk, and the rests that ended in it (every one: the core hands
-        each over as it ends)."""
-        heading, out_rate, drift, found = self._inner.process(t, rate, temp, index_offset, flags, speed)
+        fixes: Fixes | None,
+    ) -> tuple[FloatArray, FloatArray | None, FloatArray | None, list[Rest], _Fused | None]:
+        """The core over the chunk (with the fix stage's columns where it has one), and the rests
+        that ended in it (every one: the core hands each over as it ends)."""
+        given = None if fixes is None else (fixes.t, fixes.heading, fixes.sigma)
+        heading, out_rate, drift, found, fused = inner.process(t, rate, temp, index_offset, flags, speed, given)
         origin = self._first_time if self._first_time is not None else float(t[0]) if len(t) else 0.0
-        return heading, out_rate, drift, [rests.from_core(r, origin) for r in found]
+        return heading, out_rate, drift, [rests.from_core(r, origin) for r in found], fused
 
     @property
     def rests(self) -> list[Rest]:
@@ -359,7 +300,6 @@ class Pipeline:
     def reset(self) -> None:
         """Return to the state before the first sample (same parameters)."""
         self._inner.reset()
-        self._fusion = _fix_stage(self.params, self._fusion_settings)
         self._first_time = None
         self._rests = []
 
@@ -448,7 +388,6 @@ class Pipeline:
             "state": self._inner.state_json(),
             "first_time": self._first_time,
             "rests": self._rests,
-            "fusion": (self._fusion_settings, self._fusion),
         }
 
     def __setstate__(self, state: dict[str, Any]) -> None:
@@ -457,18 +396,17 @@ class Pipeline:
         self._units_checked = self._inner.last_time() is not None
         self._first_time = state.get("first_time")
         self._rests = list(state.get("rests", []))
-        self._fusion_settings, self._fusion = state.get("fusion", (None, None))
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"
 
 
-def _fix_stage(params: dict[str, Any], settings: dict[str, float] | None) -> FixStage | None:
-    """The fix stage with ``settings`` (None: no stage); :mod:`gyrocore.fixes` is imported on first
-    use (it reads files through :mod:`gyrocore.io`, which builds on this module)."""
-    from .fixes import FixStage
+def _stage_settings(params: dict[str, Any], settings: dict[str, float]) -> dict[str, float]:
+    """The fix stage's settings (:func:`gyrocore.fixes.stage_settings`); :mod:`gyrocore.fixes` is
+    imported on first use (it reads files through :mod:`gyrocore.io`, which builds on this module)."""
+    from .fixes import stage_settings
 
-    return None if settings is None else FixStage.of(params, settings)
+    return stage_settings(params, settings)
 
 
 def process(

@@ -347,8 +347,15 @@ impl Fusion {
         Ok(())
     }
 
-    /// One gyro sample and the fixes up to its time; returns how many fixes it used.
-    fn sample(&mut self, t: f64, rate: f64, fixes: &[Fix], record: &mut impl FnMut(Step)) -> usize {
+    /// One gyro sample and the fixes up to its time; returns how many fixes it used. The caller
+    /// has checked the sample and the fixes ([`check_block`], [`Fusion::check_fixes`]).
+    pub(crate) fn sample(
+        &mut self,
+        t: f64,
+        rate: f64,
+        fixes: &[Fix],
+        record: &mut impl FnMut(Step),
+    ) -> usize {
         let mut used = 0;
         let first = Anchor {
             sample_t: t,

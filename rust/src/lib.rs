@@ -25,7 +25,7 @@
 //! | Hong eq 12, threshold | [`Threshold`] |
 //! | FOG eq 2-4, cw/ccw correction factors | [`CorrectionConfig::c_cw`], [`CorrectionConfig::c_ccw`] |
 //! | FOG eq 5-6, temperature-linear scale factor | [`correction::TemperatureScale`] |
-//! | Hong eq 3-7, recursive least squares of scale and bias with heading fixes (a Kalman filter), and its smoother | [`Fusion`], [`smooth`] |
+//! | Hong eq 3-7, recursive least squares of scale and bias with heading fixes (a Kalman filter), and its smoother | [`Fusion`], [`smooth`], on the pipeline's rate: [`FusedPipeline`] |
 //! | Allan, overlapping, modified and Hadamard variances (IEEE 952, Hong section 2.1) | [`allan`] |
 //!
 //! ```
@@ -50,6 +50,7 @@ mod error;
 pub mod fixes;
 mod fixes_error;
 pub mod fixes_smooth;
+pub mod fused;
 pub mod hdr;
 pub mod input;
 pub mod integrate;
@@ -72,6 +73,7 @@ pub use correction::{Correction, CorrectionConfig, StaticBias, TemperatureScale}
 pub use error::Error;
 pub use fixes::{Fix, FixCounts, Fusion, FusionConfig, FusionError, FusionOutputs};
 pub use fixes_smooth::smooth;
+pub use fused::{FusedOutputs, FusedPipeline, Samples};
 pub use hdr::{Hdr, HdrConfig};
 pub use input::{GapAction, InputPolicy, InputReport, NonFinite};
 pub use integrate::{Integrator, IntegratorConfig, Method};
@@ -93,3 +95,7 @@ struct ReadmeExamples;
 #[cfg(doctest)]
 #[doc = include_str!("../../docs/engine.md")]
 struct EngineDocExamples;
+
+#[cfg(doctest)]
+#[doc = include_str!("../../docs/fixes.md")]
+struct FixesDocExamples;

@@ -24,7 +24,7 @@ const FIELDS: &[&str] = &[
 ];
 
 /// The core configuration from the settings dict (defaults for the keys it lacks).
-fn config_from(settings: Option<&Bound<'_, PyDict>>) -> PyResult<FusionConfig> {
+pub(crate) fn config_from(settings: Option<&Bound<'_, PyDict>>) -> PyResult<FusionConfig> {
     let mut c = FusionConfig::default();
     let Some(settings) = settings else {
         return Ok(c);
@@ -57,7 +57,7 @@ fn config_from(settings: Option<&Bound<'_, PyDict>>) -> PyResult<FusionConfig> {
     Ok(c)
 }
 
-fn fusion_error(e: FusionError) -> PyErr {
+pub(crate) fn fusion_error(e: FusionError) -> PyErr {
     match e {
         FusionError::Gyro(e) => value_error(e),
         e => PyValueError::new_err(e.to_string()),
@@ -65,7 +65,7 @@ fn fusion_error(e: FusionError) -> PyErr {
 }
 
 /// Fixes from three arrays of one length.
-fn fixes_from(
+pub(crate) fn fixes_from(
     t: &PyReadonlyArray1<'_, f64>,
     heading: &PyReadonlyArray1<'_, f64>,
     sigma: &PyReadonlyArray1<'_, f64>,
@@ -206,15 +206,18 @@ impl PyFusion {
         Ok(fixes)
     }
 
-    /// Names the fix as the caller numbered it: the new ones follow the pending ones.
     fn renumbered(&self, py: Python<'_>, e: PyErr) -> PyErr {
-        let pending = self.pending.len();
-        match e.value(py).str() {
-            Ok(m) if pending > 0 => PyValueError::new_err(format!(
-                "{m} (fix numbers count {pending} fixes still waiting from earlier calls first)"
-            )),
-            _ => e,
-        }
+        renumbered(py, self.pending.len(), e)
+    }
+}
+
+/// Names the fix as the caller numbered it: the new ones follow the `pending` ones.
+pub(crate) fn renumbered(py: Python<'_>, pending: usize, e: PyErr) -> PyErr {
+    match e.value(py).str() {
+        Ok(m) if pending > 0 => PyValueError::new_err(format!(
+            "{m} (fix numbers count {pending} fixes still waiting from earlier calls first)"
+        )),
+        _ => e,
     }
 }
 

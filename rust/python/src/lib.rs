@@ -3,14 +3,15 @@
 
 mod allan;
 mod fixes;
+mod fused;
 mod params;
 mod prefault;
 mod sim;
 mod table;
 
 use gyrocore::{
-    check_block, Downsample, DownsampleConfig, Error, Integrator, IntegratorConfig, Outputs,
-    Pipeline, PipelineConfig, Preset, Rest, Stage, Up,
+    check_block, Downsample, DownsampleConfig, Error, Integrator, IntegratorConfig, Pipeline,
+    PipelineConfig, Preset, Rest, Stage, Up,
 };
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
@@ -95,7 +96,7 @@ pub(crate) fn fill_some<const N: usize, R>(
 #[pyclass(module = "gyrocore._gyrocore", name = "Pipeline")]
 #[derive(Clone)]
 struct PyPipeline {
-    inner: Pipeline,
+    inner: fused::Core,
 }
 
 /// A rest the tracker found, as [`PyPipeline::process`] returns it: (start, end [s since the
@@ -128,15 +129,17 @@ impl PyPipeline {
     fn new(preset: &str, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
         let config = build_config(preset, overrides)?;
         Ok(PyPipeline {
-            inner: Pipeline::new(config).map_err(value_error)?,
+            inner: fused::Core::Plain(Box::new(Pipeline::new(config).map_err(value_error)?)),
         })
     }
 
-    /// Processes a block; returns (heading, rate, drift, rests), rate and drift None unless
-    /// asked for in `outputs` (rate, drift), rests the ones the tracker found in the block (see
-    /// [`RestView`]). Nothing is processed from an invalid block; its error counts sample indices
-    /// from `index_offset`.
-    #[pyo3(signature = (t, rate, temperature=None, index_offset=0, outputs=(true, true), speed=None))]
+    /// Processes a block; returns (heading, rate, drift, rests, fused), rate and drift None
+    /// unless asked for in `outputs` (rate, drift), rests the ones the tracker found in the block
+    /// (see [`RestView`]), fused the fix stage's (heading_sigma, bias, scale, counts) when the
+    /// pipeline has one (the heading is then the filter's). `fixes` are (t, heading, sigma)
+    /// arrays, after any still waiting. Nothing is processed from an invalid block; its error
+    /// counts sample indices from `index_offset`.
+    #[pyo3(signature = (t, rate, temperature=None, index_offset=0, outputs=(true, true), speed=None, fixes=None))]
     #[allow(clippy::type_complexity, clippy::too_many_arguments)]
     fn process<'py>(
         &mut self,
@@ -147,22 +150,23 @@ impl PyPipeline {
         index_offset: usize,
         outputs: (bool, bool),
         speed: Option<PyReadonlyArray1<'py, f64>>,
+        fixes: Option<[PyReadonlyArray1<'py, f64>; 3]>,
     ) -> PyResult<(
         Array<'py>,
         Option<Array<'py>>,
         Option<Array<'py>>,
         Vec<RestView>,
+        Option<fused::FusedColumns<'py>>,
     )> {
-        let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
-        let temperature = temperature
-            .as_ref()
-            .map(|a| slice("temperature", a))
-            .transpose()?;
-        let speed = speed.as_ref().map(|a| slice("speed", a)).transpose()?;
-        let n = t.len();
-        let wanted = |on: bool| on.then(|| zeros(py, n));
-        let (heading, out_rate, drift) = (zeros(py, n), wanted(outputs.0), wanted(outputs.1));
-        let inner = &mut self.inner;
+        let block = fused::Block {
+            t: slice("t", &t)?,
+            rate: slice("rate", &rate)?,
+            temperature: temperature
+                .as_ref()
+                .map(|a| slice("temperature", a))
+                .transpose()?,
+            speed: speed.as_ref().map(|a| slice("speed", a)).transpose()?,
+        };
         let mut rests = Vec::new();
         let mut on_rest = |r: Rest| {
             rests.push((
@@ -177,21 +181,22 @@ impl PyPipeline {
                 r.filtered,
             ))
         };
-        fill_some(
-            [Some(&heading), out_rate.as_ref(), drift.as_ref()],
-            |[h, r, d]| {
-                py.detach(|| {
-                    let out = Outputs {
-                        heading: h,
-                        rate: r,
-                        drift: d,
-                    };
-                    inner.process_block_reporting(t, rate, temperature, speed, out, &mut on_rest)
-                })
-            },
-        )?
-        .map_err(|e| value_error(e.with_index_offset(index_offset)))?;
-        Ok((heading, out_rate, drift, rests))
+        let (heading, out_rate, drift, fused) =
+            self.inner
+                .process(py, &block, fixes, outputs, index_offset, &mut on_rest)?;
+        Ok((heading, out_rate, drift, rests, fused))
+    }
+
+    /// Adds the heading-fix stage (settings as `gyrocore._gyrocore.Fusion` takes them) to a
+    /// pipeline before its first sample.
+    #[pyo3(signature = (settings=None))]
+    fn start_fusion(&mut self, settings: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
+        self.inner.start_fusion(settings)
+    }
+
+    /// Whether the pipeline has the fix stage.
+    fn fused(&self) -> bool {
+        matches!(self.inner, fused::Core::Fused { .. })
     }
 
     /// Returns the pipeline to its state before the first sample.
@@ -201,18 +206,20 @@ impl PyPipeline {
 
     /// The configuration as a flat parameter dict.
     fn params<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        params::to_dict(py, self.inner.config())
+        params::to_dict(py, self.inner.pipeline().config())
     }
 
     /// (bias [rad/s], number of readings it averages, still measuring?).
     fn bias(&self) -> (f64, u64, bool) {
-        let (b, n) = self.inner.bias();
-        (b, n, self.inner.bias_learning())
+        let p = self.inner.pipeline();
+        let (b, n) = p.bias();
+        (b, n, p.bias_learning())
     }
 
     /// (noise [rad/s], bias standard error [rad/s]) of the rest window once it is over, or None.
     fn rest_statistics(&self) -> Option<(f64, f64)> {
         self.inner
+            .pipeline()
             .rest_statistics()
             .map(|r| (r.noise, r.bias_std_error))
     }
@@ -220,8 +227,8 @@ impl PyPipeline {
     /// The rest tracker, or None without one: (filtered bias [rad/s], its standard error now
     /// [rad/s] or None before any rest, rests found).
     fn rest_tracker(&self) -> Option<(f64, Option<f64>, u64)> {
-        let tracker = self.inner.rest_tracker()?;
-        let config = self.inner.config().rest_tracker?;
+        let tracker = self.inner.pipeline().rest_tracker()?;
+        let config = self.inner.pipeline().config().rest_tracker?;
         Some((
             tracker.bias(),
             tracker.std_error(&config),
@@ -231,7 +238,7 @@ impl PyPipeline {
 
     /// What the input policy did so far: held, skipped, gaps, longest_gap [s].
     fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let r = self.inner.report();
+        let r = self.inner.pipeline().report();
         let d = PyDict::new(py);
         d.set_item("held", r.held)?;
         d.set_item("skipped", r.skipped)?;
@@ -242,20 +249,20 @@ impl PyPipeline {
 
     /// The last timestamp processed, or None.
     fn last_time(&self) -> Option<f64> {
-        self.inner.last_time()
+        self.inner.pipeline().last_time()
     }
 
     /// Complete state (configuration included) as JSON; floats round-trip exactly.
     fn state_json(&self) -> PyResult<String> {
-        serde_json::to_string(&self.inner).map_err(|e| PyValueError::new_err(e.to_string()))
+        self.inner.state_json()
     }
 
     /// Rebuilds a pipeline from `state_json()`.
     #[staticmethod]
     fn from_state_json(state: &str) -> PyResult<Self> {
-        let inner: Pipeline = serde_json::from_str(state)
-            .map_err(|e| PyValueError::new_err(format!("not a gyrocore pipeline state: {e}")))?;
-        Ok(PyPipeline { inner })
+        Ok(PyPipeline {
+            inner: fused::Core::from_state_json(state)?,
+        })
     }
 
     fn __copy__(&self) -> Self {

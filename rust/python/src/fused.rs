@@ -1,0 +1,197 @@
+//! The core behind `gyrocore.Pipeline`: the pipeline alone, or with its heading-fix stage (the
+//! core's `FusedPipeline`) and the fixes given ahead of the samples that reach them.
+
+use gyrocore::{
+    Fix, FusedOutputs, FusedPipeline, Outputs, Pipeline, PipelineConfig, Rest, Samples,
+};
+use numpy::PyReadonlyArray1;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::fixes::{config_from, fixes_from, fusion_error, renumbered};
+use crate::{fill_some, value_error, zeros, Array};
+
+/// The pipeline, with or without the fix stage (boxed: each is a few kB).
+#[derive(Clone)]
+pub(crate) enum Core {
+    Plain(Box<Pipeline>),
+    Fused {
+        inner: Box<FusedPipeline>,
+        /// Fixes after the last block's last sample, for the next block.
+        pending: Vec<Fix>,
+    },
+}
+
+/// A block's samples as the binding received them.
+pub(crate) struct Block<'a> {
+    pub(crate) t: &'a [f64],
+    pub(crate) rate: &'a [f64],
+    pub(crate) temperature: Option<&'a [f64]>,
+    pub(crate) speed: Option<&'a [f64]>,
+}
+
+/// The fix stage's columns of a block: heading sigma, bias, scale, and the fix counts (applied,
+/// rejected, before the first sample, waiting for a later block).
+pub(crate) type FusedColumns<'py> = (Array<'py>, Array<'py>, Array<'py>, (u64, u64, u64, usize));
+
+/// What a block gives: heading, rate, drift (rate and drift None unless asked for), and the fix
+/// stage's columns with it.
+pub(crate) type Processed<'py> = (
+    Array<'py>,
+    Option<Array<'py>>,
+    Option<Array<'py>>,
+    Option<FusedColumns<'py>>,
+);
+
+impl Core {
+    /// The pipeline (its configuration, bias, tracker, report).
+    pub(crate) fn pipeline(&self) -> &Pipeline {
+        match self {
+            Core::Plain(p) => p,
+            Core::Fused { inner, .. } => inner.pipeline(),
+        }
+    }
+
+    /// Back to the state before the first sample (a fix stage stays, without its fixes).
+    pub(crate) fn reset(&mut self) {
+        match self {
+            Core::Plain(p) => p.reset(),
+            Core::Fused { inner, pending } => {
+                inner.reset();
+                pending.clear();
+            }
+        }
+    }
+
+    /// Adds the fix stage with `settings` to a pipeline that has no sample yet.
+    pub(crate) fn start_fusion(&mut self, settings: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
+        let config: PipelineConfig = *self.pipeline().config();
+        if self.pipeline().last_time().is_some() || matches!(self, Core::Fused { .. }) {
+            return Err(PyValueError::new_err(
+                "the fix stage starts before the first sample, once",
+            ));
+        }
+        let inner = FusedPipeline::new(config, config_from(settings)?).map_err(value_error)?;
+        let inner = Box::new(inner);
+        *self = Core::Fused {
+            inner,
+            pending: Vec::new(),
+        };
+        Ok(())
+    }
+
+    /// Runs a block; `fixes` (t, heading, sigma) only with the fix stage. Errors count sample
+    /// indices from `index_offset`.
+    pub(crate) fn process<'py>(
+        &mut self,
+        py: Python<'py>,
+        block: &Block<'_>,
+        fixes: Option<[PyReadonlyArray1<'py, f64>; 3]>,
+        outputs: (bool, bool),
+        index_offset: usize,
+        on_rest: &mut (dyn FnMut(Rest) + Send),
+    ) -> PyResult<Processed<'py>> {
+        let n = block.t.len();
+        let wanted = |on: bool| on.then(|| zeros(py, n));
+        let Block {
+            t,
+            rate,
+            temperature,
+            speed,
+        } = *block;
+        let (inner, pending) = match self {
+            Core::Plain(pipeline) => {
+                if fixes.is_some() {
+                    return Err(PyValueError::new_err(
+                        "fixes given to a pipeline without a fix stage",
+                    ));
+                }
+                let (heading, out_rate, drift) =
+                    (zeros(py, n), wanted(outputs.0), wanted(outputs.1));
+                fill_some(
+                    [Some(&heading), out_rate.as_ref(), drift.as_ref()],
+                    |[h, r, d]| {
+                        py.detach(|| {
+                            let out = Outputs {
+                                heading: h,
+                                rate: r,
+                                drift: d,
+                            };
+                            pipeline.process_block_reporting(
+                                t,
+                                rate,
+                                temperature,
+                                speed,
+                                out,
+                                on_rest,
+                            )
+                        })
+                    },
+                )?
+                .map_err(|e| value_error(e.with_index_offset(index_offset)))?;
+                return Ok((heading, out_rate, drift, None));
+            }
+            Core::Fused { inner, pending } => (inner, pending),
+        };
+        let mut all = pending.clone();
+        if let Some([ft, fh, fs]) = &fixes {
+            all.extend(fixes_from(ft, fh, fs)?);
+        }
+        // The filter runs on the corrected rate: it is computed whether asked for or not.
+        let (heading, out_rate, drift) = (zeros(py, n), zeros(py, n), wanted(outputs.1));
+        let (sigma, bias, scale) = (zeros(py, n), zeros(py, n), zeros(py, n));
+        let arrays = [&heading, &out_rate, &sigma, &bias, &scale].map(Some);
+        let [h, r, s, b] = [arrays[0], arrays[1], arrays[2], arrays[3]];
+        let used = fill_some(
+            [h, r, s, b, arrays[4], drift.as_ref()],
+            |[h, r, s, bi, sc, dr]| {
+                py.detach(|| {
+                    let out = FusedOutputs {
+                        heading: h.unwrap_or_default(),
+                        heading_sigma: s.unwrap_or_default(),
+                        bias: bi.unwrap_or_default(),
+                        scale: sc.unwrap_or_default(),
+                        rate: r.unwrap_or_default(),
+                        drift: dr,
+                    };
+                    let samples = Samples {
+                        t,
+                        rate,
+                        temperature,
+                        speed,
+                    };
+                    inner.process_block_reporting(samples, &all, out, on_rest)
+                })
+            },
+        )?
+        .map_err(|e| match e {
+            gyrocore::FusionError::Gyro(e) => value_error(e.with_index_offset(index_offset)),
+            e => renumbered(py, pending.len(), fusion_error(e)),
+        })?;
+        *pending = all.split_off(used);
+        let c = inner.counts();
+        let counts = (c.applied, c.rejected, c.before_start, pending.len());
+        let out_rate = outputs.0.then_some(out_rate);
+        Ok((heading, out_rate, drift, Some((sigma, bias, scale, counts))))
+    }
+
+    /// The complete state as JSON (the plain pipeline's as before the fix stage existed).
+    pub(crate) fn state_json(&self) -> PyResult<String> {
+        match self {
+            Core::Plain(p) => serde_json::to_string(p),
+            Core::Fused { inner, pending } => serde_json::to_string(&(inner, pending)),
+        }
+        .map_err(|e| PyValueError::new_err(e.to_string()))
+    }
+
+    /// Rebuilds from [`Core::state_json`].
+    pub(crate) fn from_state_json(state: &str) -> PyResult<Self> {
+        if let Ok(p) = serde_json::from_str(state) {
+            return Ok(Core::Plain(Box::new(p)));
+        }
+        let (inner, pending) = serde_json::from_str(state)
+            .map_err(|e| PyValueError::new_err(format!("not a gyrocore pipeline state: {e}")))?;
+        Ok(Core::Fused { inner, pending })
+    }
+}

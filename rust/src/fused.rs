@@ -1,0 +1,212 @@
+//! The pipeline with heading fixes: a [`Pipeline`] whose corrected rate feeds the heading-fix
+//! filter [`Fusion`] (the recursive form of Hong eq 4-7), sample after sample, in one call.
+//!
+//! A block of samples comes with the fixes that fall in it or before it, sorted by time; the
+//! pipeline runs first, then the filter takes its corrected rate with the fixes merged by time,
+//! and the heading written is the filter's. Fixes after the block's last sample are not used: the
+//! call returns how many it used, and the caller passes the rest again with the next block (no
+//! fix is stored, so nothing allocates). A sample the pipeline skips (its input policy, its rate
+//! then NaN) is left out of the filter and repeats the estimate before it. However the samples
+//! and fixes are cut into blocks, the outputs are bit-identical.
+//!
+//! ```
+//! use gyrocore::{Fix, FusedOutputs, FusedPipeline, FusionConfig, Preset, Samples};
+//! let mut fused = FusedPipeline::new(Preset::Raw.config(), FusionConfig::default()).unwrap();
+//! let t: Vec<f64> = (0..500).map(|i| i as f64 * 0.01).collect();
+//! let rate = vec![0.1; t.len()]; // a steady turn of 0.1 rad/s
+//! // a fix every second: the heading of that turn from 1.0 rad
+//! let fixes: Vec<Fix> = (0..5)
+//!     .map(|s| Fix { t: s as f64, heading: 1.0 + 0.1 * s as f64, sigma: 0.01 })
+//!     .collect();
+//! let mut cols = [vec![0.0; t.len()], vec![0.0; t.len()], vec![0.0; t.len()], vec![0.0; t.len()]];
+//! let mut corrected = vec![0.0; t.len()];
+//! let [heading, heading_sigma, bias, scale] = &mut cols;
+//! let out = FusedOutputs { heading, heading_sigma, bias, scale, rate: &mut corrected, drift: None };
+//! let used = fused.process_block(Samples::new(&t, &rate), &fixes, out).unwrap();
+//! assert_eq!(used, 5); // every fix lies within the block
+//! assert!((cols[0][499] - (1.0 + 0.1 * 4.99)).abs() < 0.02);
+//! assert!(cols[1][499] < 0.05); // the filter's heading sigma [rad]
+//! ```
+
+use crate::fixes::{Fix, FixCounts, Fusion, FusionConfig, FusionError};
+use crate::pipeline::{Outputs, Pipeline, PipelineConfig};
+use crate::rest_tracker::Rest;
+use crate::stage::check_len;
+use crate::Error;
+
+/// A block of gyro samples: times \[s\] and rates \[rad/s\], with the temperature \[degC\] where the
+/// pipeline's temperature model needs it and the vehicle's speed [m/s] for its rest tracker.
+#[derive(Debug, Clone, Copy)]
+pub struct Samples<'a> {
+    /// Times \[s\], strictly increasing (also across blocks).
+    pub t: &'a [f64],
+    /// Yaw rates [rad/s], counter-clockwise positive.
+    pub rate: &'a [f64],
+    /// Temperatures \[degC\] (see [`Pipeline::process_block`]).
+    pub temperature: Option<&'a [f64]>,
+    /// Speeds [m/s] (see [`Pipeline::process_block_with_speed`]).
+    pub speed: Option<&'a [f64]>,
+}
+
+impl<'a> Samples<'a> {
+    /// Times and rates alone.
+    pub fn new(t: &'a [f64], rate: &'a [f64]) -> Self {
+        Samples {
+            t,
+            rate,
+            temperature: None,
+            speed: None,
+        }
+    }
+}
+
+/// Where [`FusedPipeline::process_block`] writes, one value per sample (each slice as long as
+/// the block).
+#[derive(Debug)]
+pub struct FusedOutputs<'a> {
+    /// The filter's heading \[rad\], continuous.
+    pub heading: &'a mut [f64],
+    /// Its standard deviation \[rad\].
+    pub heading_sigma: &'a mut [f64],
+    /// The bias of the corrected rate left to the filter [rad/s] (Hong eq 1's `b`).
+    pub bias: &'a mut [f64],
+    /// The scale error of the corrected rate (Hong eq 1's `s`).
+    pub scale: &'a mut [f64],
+    /// The pipeline's corrected rate, the filter's input [rad/s] (NaN where a sample was skipped).
+    pub rate: &'a mut [f64],
+    /// HDR's drift estimate [rad/s], if wanted.
+    pub drift: Option<&'a mut [f64]>,
+}
+
+/// A [`Pipeline`] and a [`Fusion`] on its corrected rate; its state is `Clone` and serialisable
+/// (a copy, restored, carries on bit-identically).
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct FusedPipeline {
+    pipeline: Pipeline,
+    fusion: Fusion,
+    /// The last (heading, heading sigma, bias, scale) written, repeated for a skipped sample.
+    last: [f64; 4],
+}
+
+impl FusedPipeline {
+    /// Validates both configurations and builds the pipeline and its filter (the filter's
+    /// initial heading is its own, [`FusionConfig::initial_heading`]).
+    pub fn new(pipeline: PipelineConfig, fusion: FusionConfig) -> Result<Self, Error> {
+        let fusion = Fusion::new(fusion)?;
+        Ok(FusedPipeline {
+            pipeline: Pipeline::new(pipeline)?,
+            last: prior(fusion.config()),
+            fusion,
+        })
+    }
+
+    /// The pipeline (its bias, rest tracker, input report).
+    pub fn pipeline(&self) -> &Pipeline {
+        &self.pipeline
+    }
+
+    /// The filter (its estimate now, its configuration).
+    pub fn fusion(&self) -> &Fusion {
+        &self.fusion
+    }
+
+    /// How the fixes were used so far.
+    pub fn counts(&self) -> FixCounts {
+        self.fusion.counts()
+    }
+
+    /// Returns both to their state before the first sample.
+    pub fn reset(&mut self) {
+        self.pipeline.reset();
+        self.fusion.reset();
+        self.last = prior(self.fusion.config());
+    }
+
+    /// Processes a block of samples with the fixes up to its last sample (sorted by time; any
+    /// after it are left for the next call). Returns how many fixes it used: pass
+    /// `&fixes[used..]` again, ahead of any new ones, with the next block.
+    ///
+    /// A bad fix ([`FusionError::Fix`], its index in `fixes`) or a bad sample
+    /// ([`FusionError::Gyro`], its index in the block) leaves the state as it was before the
+    /// call (the outputs are not).
+    pub fn process_block(
+        &mut self,
+        samples: Samples<'_>,
+        fixes: &[Fix],
+        out: FusedOutputs<'_>,
+    ) -> Result<usize, FusionError> {
+        self.process_block_reporting(samples, fixes, out, &mut |_| {})
+    }
+
+    /// [`FusedPipeline::process_block`] that hands `on_rest` every rest the pipeline's tracker
+    /// finds (see [`Pipeline::process_block_reporting`]).
+    pub fn process_block_reporting(
+        &mut self,
+        samples: Samples<'_>,
+        fixes: &[Fix],
+        out: FusedOutputs<'_>,
+        on_rest: &mut dyn FnMut(Rest),
+    ) -> Result<usize, FusionError> {
+        let n = samples.t.len();
+        let FusedOutputs {
+            heading,
+            heading_sigma,
+            bias,
+            scale,
+            rate,
+            drift,
+        } = out;
+        for (what, len) in [
+            ("heading_sigma", heading_sigma.len()),
+            ("bias", bias.len()),
+            ("scale", scale.len()),
+        ] {
+            check_len(what, len, n)?;
+        }
+        // Checked before the pipeline runs, so that a bad fix changes nothing.
+        self.fusion.check_fixes(fixes)?;
+        // Without a drift output the sigma column holds it meanwhile: the pipeline's loop is
+        // fastest with all three outputs, and the filter overwrites the column below.
+        let outputs = Outputs {
+            heading: Some(&mut *heading),
+            rate: Some(&mut *rate),
+            drift: Some(drift.unwrap_or(&mut *heading_sigma)),
+        };
+        // On an error the pipeline restores itself, and the filter has not moved.
+        self.pipeline.process_block_reporting(
+            samples.t,
+            samples.rate,
+            samples.temperature,
+            samples.speed,
+            outputs,
+            on_rest,
+        )?;
+        // The pipeline accepted every timestamp (finite, strictly increasing), and its corrected
+        // rate is finite wherever it took a sample: the filter takes those one by one, as
+        // `Fusion::process_block` would, and leaves out the ones the pipeline skipped.
+        let mut used = 0;
+        for k in 0..n {
+            let r = rate[k];
+            if r.is_finite() {
+                used += self
+                    .fusion
+                    .sample(samples.t[k], r, &fixes[used..], &mut |_| {});
+                let e = self.fusion.estimate();
+                self.last = [e.heading, e.heading_sigma, e.bias, e.scale];
+            }
+            [heading[k], heading_sigma[k], bias[k], scale[k]] = self.last;
+        }
+        Ok(used)
+    }
+}
+
+/// The estimate before the first sample: the filter's initial heading and bias and their sigmas.
+fn prior(c: &FusionConfig) -> [f64; 4] {
+    [
+        c.initial_heading,
+        c.initial_heading_sigma,
+        c.initial_bias,
+        0.0,
+    ]
+}
