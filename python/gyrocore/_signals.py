@@ -15,6 +15,7 @@ interrupted then would go on and replace its output. Two defences:
 from __future__ import annotations
 
 import signal
+import sys
 import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -46,11 +47,21 @@ def handled() -> Iterator[None]:
         _received.set()
         raise KeyboardInterrupt
 
+    hook = sys.unraisablehook
+
+    def keep_quiet(unraisable: Any) -> None:
+        # A signal that lands where Python cannot raise (a weakref callback of the import system,
+        # a __del__) would print "Exception ignored ... Traceback"; the flag already keeps it.
+        if not (isinstance(unraisable.exc_value, KeyboardInterrupt) and _received.is_set()):
+            hook(unraisable)
+
     _received.clear()
     previous = {s: signal.signal(s, interrupt) for s in _SIGNALS}
+    sys.unraisablehook = keep_quiet
     try:
         yield
     finally:
+        sys.unraisablehook = hook
         for s, handler in previous.items():
             signal.signal(s, handler)
 

@@ -243,3 +243,33 @@ def test_an_interrupt_right_after_a_temporary_file_is_made_leaves_nothing(
     monkeypatch.setattr(StagedFile, "__init__", interrupted)
     assert main(_command(src, out)) == 130
     assert out.read_text() == PREVIOUS and leftovers(tmp_path) == []
+
+
+def test_an_interrupt_where_python_cannot_raise_it_is_kept_without_a_traceback(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # A signal inside a weakref callback or a __del__ (the import system's module locks) cannot
+    # raise there: Python hands it to sys.unraisablehook, which prints "Exception ignored ...
+    # Traceback", and goes on. The flag keeps the interrupt for the next check, quietly; any
+    # other unraisable exception still reaches the hook.
+    import sys
+
+    from gyrocore import _signals
+
+    reached: list[type[BaseException]] = []
+    monkeypatch.setattr(sys, "unraisablehook", lambda u: reached.append(type(u.exc_value)))
+
+    class RaisesWhenCollected:
+        def __init__(self, error: type[BaseException]) -> None:
+            self.error = error
+
+        def __del__(self) -> None:
+            _signals._received.set()
+            raise self.error
+
+    with _signals.handled():
+        RaisesWhenCollected(KeyboardInterrupt)
+        RaisesWhenCollected(ValueError)
+        with pytest.raises(KeyboardInterrupt):
+            _signals.check()
+    assert reached == [ValueError]
