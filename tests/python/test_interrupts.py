@@ -253,11 +253,14 @@ def test_an_interrupt_where_python_cannot_raise_it_is_kept_without_a_traceback(
     # Traceback", and goes on. The flag keeps the interrupt for the next check, quietly; any
     # other unraisable exception still reaches the hook.
     import sys
+    import threading
 
     from gyrocore import _signals
 
     reached: list[type[BaseException]] = []
     monkeypatch.setattr(sys, "unraisablehook", lambda u: reached.append(type(u.exc_value)))
+    # a flag of this test's own: the module's stays clear for the tests after it
+    monkeypatch.setattr(_signals, "_received", threading.Event())
 
     class RaisesWhenCollected:
         def __init__(self, error: type[BaseException]) -> None:
