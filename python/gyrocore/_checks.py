@@ -72,3 +72,36 @@ def warn_units(t: FloatArray, rate: FloatArray) -> None:
     """Emit an :class:`InputWarning` for each unit problem."""
     for message in unit_problems(t, rate):
         warn(message)
+
+
+def _prefix(context: str) -> str:
+    return f"{context}: " if context else ""
+
+
+def require_finite(name: str, values: FloatArray, *, context: str = "") -> None:
+    """A ValueError naming the first value of ``values`` that is not finite (the core's words)."""
+    bad = np.flatnonzero(~np.isfinite(values))
+    if len(bad):
+        i = int(bad[0])
+        raise ValueError(f"{_prefix(context)}{name}[{i}] is {values[i]}: samples must be finite (drop or fill them first)")
+
+
+def require_increasing(name: str, t: FloatArray, *, context: str = "") -> None:
+    """A ValueError naming the first time of ``t`` that is not after the one before it."""
+    back = np.flatnonzero(np.diff(t) <= 0)
+    if len(back):
+        i = int(back[0]) + 1
+        raise ValueError(
+            f"{_prefix(context)}{name} must strictly increase: {name}[{i}] = {t[i]} follows {t[i - 1]} "
+            "(sort them and drop duplicate times)"
+        )
+
+
+def require_series(t_name: str, t: FloatArray, name: str, values: FloatArray, *, context: str = "") -> None:
+    """Values at times: equal lengths, every value finite, times strictly increasing; a
+    ValueError naming ``context``, the array and the first offending index otherwise."""
+    if len(t) != len(values):
+        raise ValueError(f"{_prefix(context)}{name} has {len(values)} samples but {t_name} has {len(t)}")
+    require_finite(t_name, t, context=context)
+    require_finite(name, values, context=context)
+    require_increasing(t_name, t, context=context)

@@ -21,10 +21,9 @@ from collections.abc import Iterable
 from dataclasses import replace
 
 import numpy as np
-from numpy.typing import ArrayLike
 
 from . import _gyrocore
-from ._arrays import FloatArray, as_float_array
+from ._arrays import FloatArray
 from ._smoother import leave_one_out
 from .pipeline import RestWindowError
 from .rests import Rest

@@ -17,6 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
+from ._checks import require_series
 from .io import Log
 from .pipeline import HeadingResult
 
@@ -68,18 +69,8 @@ def dead_reckon(
     v = as_float_array("speed", speed)
     th = as_float_array("t_heading", t_heading)
     psi = as_float_array("heading", heading)
-    if len(ts) != len(v) or len(th) != len(psi):
-        raise ValueError("t_speed/speed and t_heading/heading must have equal lengths")
-    for name, a in (("t_speed", ts), ("speed", v), ("t_heading", th), ("heading", psi)):
-        bad = ~np.isfinite(a)
-        if bad.any():
-            i = int(np.flatnonzero(bad)[0])
-            raise ValueError(f"{name}: non-finite value at index {i}")
-    for name, a in (("t_speed", ts), ("t_heading", th)):
-        back = np.diff(a) <= 0
-        if back.any():
-            i = int(np.flatnonzero(back)[0]) + 1
-            raise ValueError(f"{name}: times must strictly increase, but [{i}] = {a[i]} follows {a[i - 1]}")
+    require_series("t_speed", ts, "speed", v)
+    require_series("t_heading", th, "heading", psi)
     if len(th) < 2:
         raise ValueError("need at least two heading samples")
     inside = (ts >= th[0]) & (ts <= th[-1])

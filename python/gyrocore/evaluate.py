@@ -21,6 +21,7 @@ from numpy.typing import ArrayLike
 
 from . import deadreckon
 from ._arrays import FloatArray, as_float_array
+from ._checks import require_series
 from ._extras import pyplot
 from .io import Log, read_log
 from .pipeline import HeadingResult, has_bias_source, process, recommended_preset, uses_static_bias
@@ -62,21 +63,6 @@ class HeadingErrors:
 def unwrap(heading: ArrayLike) -> np.ndarray:
     """Continuous heading [rad] from one wrapped to (-pi, pi]."""
     return np.unwrap(as_float_array("heading", heading))
-
-
-def _check_series(name: str, t: FloatArray, values: FloatArray) -> None:
-    """Equal lengths, finite values and strictly increasing times, or a ValueError naming the index."""
-    if len(t) != len(values):
-        raise ValueError(f"{name}: times and values have different lengths ({len(t)} and {len(values)})")
-    for label, a in (("time", t), ("value", values)):
-        bad = ~np.isfinite(a)
-        if bad.any():
-            i = int(np.flatnonzero(bad)[0])
-            raise ValueError(f"{name}: non-finite {label} at index {i} ({a[i]})")
-    steps = np.diff(t) <= 0
-    if steps.any():
-        i = int(np.flatnonzero(steps)[0]) + 1
-        raise ValueError(f"{name}: times must strictly increase, but t[{i}] = {t[i]} follows {t[i - 1]}")
 
 
 def find_gaps(t: ArrayLike, *, gap_factor: float = GAP_FACTOR) -> np.ndarray:
@@ -121,7 +107,7 @@ class Reference:
     ) -> None:
         t = as_float_array("t_ref", t_ref)
         psi = as_float_array("heading_ref", heading_ref)
-        _check_series("reference", t, psi)
+        require_series("t", t, "heading", psi, context="reference")
         gaps = find_gaps(t, gap_factor=gap_factor)
         # Segment k starts after the k-th gap; unwrap within segments only.
         segment = np.concatenate(([0], np.cumsum(gaps)))
@@ -150,7 +136,7 @@ class Reference:
         """
         te = as_float_array("t", t)
         est_all = as_float_array("heading", heading)
-        _check_series("estimate", te, est_all)
+        require_series("t", te, "heading", est_all, context="estimate")
         if len(te) < 2:
             raise ValueError("need at least two heading samples to compare")
         inside = (self.t >= te[0]) & (self.t <= te[-1])
@@ -246,7 +232,7 @@ def return_orientation_error(
     """
     te = as_float_array("t", t)
     psi = as_float_array("heading", heading)
-    _check_series("heading", te, psi)
+    require_series("t", te, "heading", psi)
     t0 = te[0] if t_start is None else t_start
     t1 = te[-1] if t_end is None else t_end
     if not te[0] <= t0 < t1 <= te[-1]:

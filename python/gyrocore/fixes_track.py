@@ -20,7 +20,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._arrays import FloatArray, as_float_array
+from ._arrays import as_float_array
+from ._checks import require_finite, require_increasing
 from .fixes import Fixes
 
 #: Mean Earth radius [m] (IUGG), for :func:`from_latlon`'s local plane.
@@ -40,7 +41,8 @@ def from_positions(t: ArrayLike, x: ArrayLike, y: ArrayLike, *, position_sigma: 
                         ("min_sigma_deg", min_sigma_deg)):
         if not (math.isfinite(value) and value > 0):
             raise ValueError(f"{name} must be finite and > 0, got {value}")
-    _check_times(tt)
+    require_finite("t", tt, context="positions")
+    require_increasing("t", tt, context="positions")
     dt, dx, dy = np.diff(tt), np.diff(xx), np.diff(yy)
     distance = np.hypot(dx, dy)
     with np.errstate(invalid="ignore"):
@@ -69,15 +71,3 @@ def from_latlon(t: ArrayLike, lat_deg: ArrayLike, lon_deg: ArrayLike, **options:
     x = EARTH_RADIUS * math.cos(lat0) * dlon
     y = EARTH_RADIUS * (np.radians(lat) - lat0)
     return from_positions(t, x, y, **options)
-
-
-def _check_times(t: FloatArray) -> None:
-    """A ValueError naming the first time that is not finite or not after the one before."""
-    bad = np.flatnonzero(~np.isfinite(t))
-    if len(bad):
-        raise ValueError(f"t[{bad[0]}] is {t[bad[0]]}: position times must be finite")
-    back = np.flatnonzero(np.diff(t) <= 0)
-    if len(back):
-        i = int(back[0]) + 1
-        raise ValueError(f"t[{i}] = {float(t[i])!r} s is not after t[{i - 1}] = {float(t[i - 1])!r} s: position times must "
-                         "increase strictly (sort them, and drop repeated positions)")

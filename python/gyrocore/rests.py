@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
+from ._checks import require_finite, require_series
 
 
 @dataclass(frozen=True)
@@ -105,20 +106,12 @@ def bias_walk(*, rate_random_walk: float, bias_instability: float, horizon: floa
     return rate_random_walk**2 + (FLICKER_FLOOR * bias_instability) ** 2 / horizon
 
 
-def _first_bad(name: str, values: FloatArray) -> None:
-    """A ValueError naming the first non-finite value of ``values``, if any."""
-    bad = ~np.isfinite(values)
-    if bad.any():
-        i = int(np.flatnonzero(bad)[0])
-        raise ValueError(f"{name}[{i}] is {values[i]}: speeds must be finite (drop or fill them first)")
-
-
 def speed_at(t: FloatArray, speed: ArrayLike, speed_t: ArrayLike | None = None) -> FloatArray:
     """The speed [m/s] at each gyro time ``t``: ``speed`` itself (one per sample), or, with its own
     strictly increasing times ``speed_t``, interpolated linearly; NaN (no speed: the tracker judges
     those samples by the rate) outside ``speed_t``'s span. Errors name the offending index."""
     s = as_float_array("speed", speed)
-    _first_bad("speed", s)
+    require_finite("speed", s)
     if speed_t is None:
         if len(s) != len(t):
             raise ValueError(
@@ -139,16 +132,7 @@ def speed_on(t: FloatArray, t_speed: ArrayLike, speed: ArrayLike, *, where: str 
             increase (naming ``where`` and the index).
     """
     ts, vs = as_float_array(f"{where} times", t_speed), as_float_array(where, speed)
-    if len(ts) != len(vs):
-        raise ValueError(f"{where}: {len(ts)} times but {len(vs)} speeds")
-    for label, a in (("time", ts), ("speed", vs)):
-        bad = np.flatnonzero(~np.isfinite(a))
-        if len(bad):
-            raise ValueError(f"{where}: {label} at index {bad[0]} is {a[bad[0]]}; speeds must be finite")
-    steps = np.flatnonzero(np.diff(ts) <= 0)
-    if len(steps):
-        i = int(steps[0]) + 1
-        raise ValueError(f"{where}: times must strictly increase, but index {i} ({ts[i]}) follows {ts[i - 1]}")
+    require_series("t", ts, "speed", vs, context=where)
     if len(ts) == 0:
         return np.full(len(t), np.nan)
     return np.asarray(np.interp(t, ts, vs, left=np.nan, right=np.nan), dtype=np.float64)

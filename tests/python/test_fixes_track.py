@@ -53,8 +53,8 @@ def test_latitude_and_longitude_give_the_course_counter_clockwise_from_east() ->
     ("call", "message"),
     [
         (lambda: fixes.from_positions([0.0, 1.0], [0.0], [0.0, 1.0]), "t, x and y must have one length, got 2, 1 and 2"),
-        (lambda: fixes.from_positions([0.0, 1.0, 1.0], [0, 5, 9], [0, 0, 0]), r"t\[2\] = 1.0 s is not after t\[1\]"),
-        (lambda: fixes.from_positions([0.0, np.nan], [0, 5], [0, 0]), r"t\[1\] is nan: position times must be finite"),
+        (lambda: fixes.from_positions([0.0, 1.0, 1.0], [0, 5, 9], [0, 0, 0]), r"positions: t must strictly increase: t\[2\] = 1.0 follows 1.0"),
+        (lambda: fixes.from_positions([0.0, np.nan], [0, 5], [0, 0]), r"positions: t\[1\] is nan: samples must be finite"),
         (lambda: fixes.from_positions([0.0, 1.0], [0, 5], [0, 0], position_sigma=0.0), "position_sigma must be finite and > 0"),
         (lambda: fixes.from_latlon([0.0, 1.0], [10.0, 95.0], [0.0, 0.0]), r"lat_deg\[1\] is 95.0"),
         (lambda: fixes.from_latlon([0.0, 1.0], [np.nan, np.nan], [0.0, 0.0]), "no finite latitude and longitude"),

@@ -102,9 +102,9 @@ def test_without_speed_rests_are_found_from_the_rate_after_a_rest_window() -> No
     [
         ({"speed": [0.0] * 5}, "speed has 5 samples but t has 15000"),
         ({"speed": np.where(np.arange(15000) == 7, np.nan, 1.0)}, r"speed\[7\] is nan"),
-        ({"speed": [1.0, 2.0], "speed_t": [0.0, 1.0, 2.0]}, "speed: 3 times but 2 speeds"),
-        ({"speed": [1.0, 2.0, 3.0], "speed_t": [0.0, 2.0, 1.0]}, r"speed: times must strictly increase, but index 2 \(1.0\) follows 2.0"),
-        ({"speed": [1.0, 2.0], "speed_t": [0.0, np.inf]}, r"speed: time at index 1 is inf"),
+        ({"speed": [1.0, 2.0], "speed_t": [0.0, 1.0, 2.0]}, "speed: speed has 2 samples but t has 3"),
+        ({"speed": [1.0, 2.0, 3.0], "speed_t": [0.0, 2.0, 1.0]}, r"speed: t must strictly increase: t\[2\] = 1.0 follows 2.0"),
+        ({"speed": [1.0, 2.0], "speed_t": [0.0, np.inf]}, r"speed: t\[1\] is inf"),
     ],
 )
 def test_bad_speed_is_named_and_nothing_is_processed(kwargs: dict[str, object], message: str) -> None:
