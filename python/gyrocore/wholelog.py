@@ -133,9 +133,24 @@ class BiasPlan:
         return tuple(r for r in self.rests if r.refused is None)
 
     def scaled(self, preset: str, si: dict[str, Any]) -> dict[str, float]:
-        """The explicit dead band and HDR bound of ``preset`` with ``si`` on this log (see
-        :func:`_scaled`; none without a rest)."""
-        return _scaled(preset, si, self.used, self.bias_error) if self.used else {}
+        """The explicit dead band and HDR bound a noise-scaled ``preset`` with ``si`` gets on this
+        log: ``threshold_sigmas`` times the used rests' pooled noise (root mean square weighted by
+        readings), ``hdr_bound_sigmas`` times the smoothed bias's standard error (none without a rest)."""
+        used = self.used
+        if not used:
+            return {}
+        params = preset_params(preset, **si)
+        out: dict[str, float] = {}
+        if params.get("threshold_sigmas") is not None:
+            noise = math.sqrt(float(np.average([r.noise**2 for r in used], weights=[r.samples for r in used])))
+            out["threshold"] = params["threshold_sigmas"] * noise
+        if params.get("hdr_bound_sigmas") is not None:
+            out["hdr_max_correction"] = params["hdr_bound_sigmas"] * self.bias_error
+        return out
+
+    def with_scaled(self, preset: str, si: dict[str, Any]) -> BiasPlan:
+        """This plan with :meth:`scaled`'s dead band and HDR bound among its overrides."""
+        return replace(self, overrides={**self.overrides, **self.scaled(preset, si)})
 
     def result(self, result: HeadingResult) -> HeadingResult:
         """``result`` saying where its bias came from."""
@@ -168,21 +183,6 @@ def causal_source(preset: str, si: dict[str, Any]) -> str:
     if key == "bias_duration":
         return f"first {si['bias_duration']:g} s, applied from their end (causal)"
     return "none: no bias or rest window given; bias 0 (causal)"
-
-
-def _scaled(preset: str, si: dict[str, Any], used: tuple[Rest, ...], sd: float) -> dict[str, float]:
-    """The explicit dead band and HDR bound a noise-scaled preset gets: ``threshold_sigmas`` times
-    the rests' pooled noise (root mean square weighted by readings), ``hdr_bound_sigmas`` times
-    the smoothed bias's standard error ``sd``."""
-    params = preset_params(preset, **si)
-    out: dict[str, float] = {}
-    if params.get("threshold_sigmas") is not None:
-        weights = [r.samples for r in used]
-        noise = math.sqrt(float(np.average([r.noise**2 for r in used], weights=weights)))
-        out["threshold"] = params["threshold_sigmas"] * noise
-    if params.get("hdr_bound_sigmas") is not None:
-        out["hdr_max_correction"] = params["hdr_bound_sigmas"] * sd
-    return out
 
 
 def _smooth(rests: tuple[Rest, ...], walk: float) -> SmoothedBias:
@@ -223,9 +223,9 @@ def plan(
         rest = measure((float(window[0]), float(window[1])), f"given: {key}")
         label = f"first {si['bias_duration']:g} s: " if key == "bias_duration" else ""
         smoothed = _smooth((rest,), 0.0)
-        overrides = {**rest_of, "bias": 0.0, **_scaled(preset, rest_of, (rest,), rest.bias_std_error)}
         source = f"{label}rest {rest}, applied from the first sample"
-        return BiasPlan(source, (rest,), overrides, smoothed, bias_error=rest.bias_std_error)
+        given = BiasPlan(source, (rest,), {**rest_of, "bias": 0.0}, smoothed, bias_error=rest.bias_std_error)
+        return given.with_scaled(preset, rest_of)
     rests = accept([measure((a, b), how) for a, b, how in find()], walk)
     used = tuple(r for r in rests if r.refused is None)
     if not used:  # none found (accept keeps at least half of them)
@@ -238,7 +238,7 @@ def plan(
     smoothed = _smooth(used, walk)
     sd = smoothed.at(times)[1] if times is not None else np.sqrt(smoothed.variance)
     bias_error = float(np.sqrt(np.mean(sd**2)))
-    overrides = {**rest_of, "bias": 0.0, **_scaled(preset, rest_of, used, bias_error)}
+    overrides = {**rest_of, "bias": 0.0}
     refused = f"; {len(rests) - len(used)} refused" if len(rests) > len(used) else ""
     # the inverse-variance mean of the rests (the smoother without a walk): is there a bias at all?
     level = _smooth(used, 0.0)
@@ -248,13 +248,13 @@ def plan(
             f"{len(used)} rest(s) read {math.degrees(mean):.5f} +- {math.degrees(error):.2g} deg/s, within "
             f"{bias_sigmas:g} standard errors of 0: bias 0{refused}"
         )
-        return BiasPlan(source, tuple(rests), overrides, bias_error=bias_error)
+        return BiasPlan(source, tuple(rests), overrides, bias_error=bias_error).with_scaled(preset, rest_of)
     source = (
         f"rest {used[0]}, applied from the first sample"
         if len(used) == 1
         else f"{len(used)} rests, bias smoothed between them (bias_walk {walk:.3g} rad/s/sqrt(s))"
     )
-    return BiasPlan(source + refused, tuple(rests), overrides, smoothed, bias_error=bias_error)
+    return BiasPlan(source + refused, tuple(rests), overrides, smoothed, bias_error=bias_error).with_scaled(preset, rest_of)
 
 
 @dataclass(frozen=True)
