@@ -377,13 +377,19 @@ def process_log(
         raise
     if bias_plan.warning:
         warn(bias_plan.warning)
-    pipeline = Pipeline(preset, **bias_plan.overrides)
+    bias = bias_plan.bias(ta)
+    if isinstance(bias, float):
+        # One bias for the whole log: the core subtracts it as the first operation on each
+        # reading, as `ra - bias` would (and `x - 0.0` is `x`), with no pass and no copy here.
+        pipeline, corrected = Pipeline(preset, **{**bias_plan.overrides, "bias": bias}), ra
+    else:
+        pipeline, corrected = Pipeline(preset, **bias_plan.overrides), ra - bias
     if fixes is None:
-        result = pipeline.process(ta, ra - bias_plan.bias(ta), temperature=temperature, outputs=outputs, out=out)
+        result = pipeline.process(ta, corrected, temperature=temperature, outputs=outputs, out=out)
         return bias_plan.result(result)
     from .fixes import smoothed_stage, stage_settings  # the fix stage over the whole log
 
-    result = pipeline.process(ta, ra - bias_plan.bias(ta), temperature=temperature, outputs=(*outputs, "rate"))
+    result = pipeline.process(ta, corrected, temperature=temperature, outputs=(*outputs, "rate"))
     fused = smoothed_stage(result, fixes, stage_settings(pipeline.params, fusion), outputs)
     return bias_plan.result(filled(fused, arrays))
 
