@@ -16,7 +16,9 @@ evaluate``) takes the bias from the rests wherever they lie and applies it from 
   wandering only as far as the rests' precision supports;
 * no rest at all: a warning, and the bias is 0, as in causal mode.
 
-The bias series is subtracted from the rate and the pipeline runs with ``bias=0``. Presets whose
+The bias series is subtracted from the rate and the pipeline runs with ``bias=0``; a bias that is
+one number over the whole log goes to the pipeline as ``bias=`` instead (the same subtraction, in
+the core, with no copy of the rate). Presets whose
 dead band or HDR bound scale with the rest's noise (``threshold_sigmas``, ``hdr_bound_sigmas``)
 get the explicit ``threshold`` (the rests' pooled noise) and ``hdr_max_correction`` (the smoothed
 bias's standard error, root mean square over the log), so a single rest at the start gives what
