@@ -380,9 +380,12 @@ def process_log(
     if bias_plan.warning:
         warn(bias_plan.warning)
     bias = bias_plan.bias(ta)
-    if isinstance(bias, float):
-        # One bias for the whole log: the core subtracts it as the first operation on each
-        # reading, as `ra - bias` would (and `x - 0.0` is `x`), with no pass and no copy here.
+    if bias_plan.smoothed is None:  # nothing to subtract (the overrides say which bias, if any)
+        pipeline, corrected = Pipeline(preset, **bias_plan.overrides), ra
+    elif isinstance(bias, float):
+        # One bias for the whole log, where the overrides say bias=0: the core subtracts it as
+        # the first operation on each reading, as `ra - bias` would (and `x - 0.0` is `x`), with
+        # no pass and no copy here.
         pipeline, corrected = Pipeline(preset, **{**bias_plan.overrides, "bias": bias}), ra
     else:
         pipeline, corrected = Pipeline(preset, **bias_plan.overrides), ra - bias
