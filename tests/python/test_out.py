@@ -121,7 +121,7 @@ ENTRIES: dict[str, Call] = {
 }
 
 
-def _bad_outs(t: np.ndarray, rate: np.ndarray) -> list[tuple[dict[str, Any], type[Exception], str]]:
+def _bad_outs(t: np.ndarray) -> list[tuple[dict[str, Any], type[Exception], str]]:
     n = len(t)
     read_only = np.empty(n)
     read_only.flags.writeable = False
@@ -147,7 +147,7 @@ def _bad_outs(t: np.ndarray, rate: np.ndarray) -> list[tuple[dict[str, Any], typ
 @pytest.mark.parametrize("entry", ENTRIES)
 def test_bad_out_arrays_are_refused_by_name_before_anything_is_processed(entry: str) -> None:
     t, rate = _log(500)
-    for kwargs, error, message in _bad_outs(t, rate):
+    for kwargs, error, message in _bad_outs(t):
         with pytest.raises(error, match=message):
             ENTRIES[entry](t, rate, **kwargs)
 
