@@ -10,9 +10,8 @@ FusionOffset) (a peer library's per-sample gyro filter).
 Prints the CPU model, ns/sample (median of --repeats rounds, in each of which every fast
 implementation runs once, in turn; the pure-Python and imufusion loops run once, on a prefix, and
 say so) and the ratios (median of the per-round ratios) with the targets they are held to, and
-checks that the implementations
-agree: the reference must give the same heading as gyrocore to 1e-9 rad. Exit status 1 if they
-do not.
+checks that the implementations agree: the reference must give the same heading as gyrocore to
+1e-9 rad, and gyrocore with out= the same as without, bit for bit. Exit status 1 if they do not.
 
     pip install ".[bench]" && python benches/compare.py --repeats 9   # 10^7 samples
     python benches/compare.py --samples 1000000 --json                # quicker, machine-readable
