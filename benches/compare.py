@@ -2,14 +2,16 @@
 heading only (`gyrocore.process(..., outputs=("heading",))`, one output array like numpy.cumsum)
 against `numpy.cumsum` over the same array (a memory-bound one-pass scan: the practical floor) and
 against the same algorithm compiled with Numba with the same output (benches/reference.py, one
-source); beside them both with all three outputs, the pure-Python loop, and imufusion's gyroscope
-bias stage (FusionBias, formerly FusionOffset) (a peer library's per-sample gyro filter).
+source); beside them both with all three outputs, both writing the heading into an array
+allocated once outside the timing (gyrocore through ``out=``: the loop without the page faults of
+a fresh array), the pure-Python loop, and imufusion's gyroscope bias stage (FusionBias, formerly
+FusionOffset) (a peer library's per-sample gyro filter).
 
 Prints the CPU model, ns/sample (median of --repeats rounds, in each of which every fast
 implementation runs once, in turn; the pure-Python and imufusion loops run once, on a prefix, and
-say so) and the ratios (median of the per-round ratios), and checks that the implementations
-agree: the reference must give the same heading as gyrocore to 1e-9 rad. Exit status 1 if they
-do not.
+say so) and the ratios (median of the per-round ratios) with the targets they are held to, and
+checks that the implementations agree: the reference must give the same heading as gyrocore to
+1e-9 rad, and gyrocore with out= the same as without, bit for bit. Exit status 1 if they do not.
 
     pip install ".[bench]" && python benches/compare.py --repeats 9   # 10^7 samples
     python benches/compare.py --samples 1000000 --json                # quicker, machine-readable
@@ -116,12 +118,21 @@ def main() -> int:
         rows.append({"implementation": name, "seconds": seconds, "samples": samples, "note": note})
 
     gyro = gyrocore.process(t, rate, "combined", bias=BIAS, outputs=("heading",))
+    # The loop alone: its output allocated and faulted in once, outside the timing (criterion
+    # times gyrocore's Rust loop the same way), for gyrocore through out= and for Numba below.
+    reused = np.empty(n)
     runs: dict[str, Callable[[], object]] = {
         "gyrocore, heading only": lambda: gyrocore.process(t, rate, "combined", bias=BIAS, outputs=("heading",)),
         "numpy.cumsum (floor)": lambda: np.cumsum(rate),
         "gyrocore, three outputs": lambda: gyrocore.process(t, rate, "combined", bias=BIAS),
+        "gyrocore, heading only, out= a reused array": lambda: gyrocore.process(
+            t, rate, "combined", bias=BIAS, outputs=("heading",), out=reused
+        ),
     }
     failures = []
+    into = gyrocore.process(t, rate, "combined", bias=BIAS, outputs=("heading",), out=reused).heading
+    if not np.array_equal(into.view(np.uint64), gyro.heading.view(np.uint64)):
+        failures.append("gyrocore's heading with out= differs from its heading without")
     try:
         import numba
 
@@ -130,9 +141,6 @@ def main() -> int:
         numba_headings = [run_reference(jitted, t, rate, all_outputs) for all_outputs in (False, True)]
         runs["Numba, heading only (same algorithm)"] = lambda: run_reference(jitted, t, rate, False)
         runs["Numba, three outputs"] = lambda: run_reference(jitted, t, rate)
-        # The loop alone: its output allocated and faulted in once, outside the timing (criterion
-        # times gyrocore's Rust loop the same way).
-        reused = np.empty(n)
         runs["Numba, heading only, into a reused array"] = lambda: jitted(t, rate, reused, None, None, *reference_args())
         for numba_heading in numba_headings:
             if not np.allclose(numba_heading, gyro.heading, rtol=0, atol=1e-9):
@@ -173,6 +181,16 @@ def main() -> int:
         return [x / r["samples"] * 1e9 for x in r["seconds"]]  # type: ignore[attr-defined, operator]
 
     floor, ours = per_sample(rows[1]), per_sample(rows[0])
+    timed = {str(r["implementation"]): per_sample(r) for r in rows}
+    # The targets, each a median of per-round ratios: (what, ratio, target, met).
+    targets = [("gyrocore heading only / numpy.cumsum", ratio(ours, floor), "at most 1.5", ratio(ours, floor) <= 1.5)]
+    for mine, numba in [
+        ("gyrocore, heading only", "Numba, heading only (same algorithm)"),
+        ("gyrocore, heading only, out= a reused array", "Numba, heading only, into a reused array"),
+    ]:
+        if numba in timed:
+            x = ratio(timed[numba], timed[mine])
+            targets.append((f"{numba} / {mine}", x, "above 1 (gyrocore faster)", x > 1.0))
     for r in rows:
         r["ns_per_sample"] = statistics.median(per_sample(r))
         r["x_cumsum"] = ratio(per_sample(r), floor)
@@ -188,7 +206,9 @@ def main() -> int:
         "repeats": args.repeats,
     }
     if args.json:
-        print(json.dumps({"machine": machine, "rows": rows, "agree": not failures, "failures": failures}, indent=2))
+        goals = [{"ratio": what, "value": x, "target": target, "met": met} for what, x, target, met in targets]
+        print(json.dumps({"machine": machine, "rows": rows, "targets": goals, "agree": not failures,
+                          "failures": failures}, indent=2))
     else:
         print(f"CPU: {machine['cpu']}")
         print(f"{n} samples, median of {args.repeats} interleaved rounds (ratios: median of per-round ratios); {machine}")
@@ -198,6 +218,8 @@ def main() -> int:
                 f"{r['implementation']:<46} {r['ns_per_sample']:>10.2f} {r['x_cumsum']:>9.2f} "
                 f"{r['x_gyrocore']:>11.2f}  {r['note']}"
             )
+        for what, x, target, met in targets:
+            print(f"{what}: {x:.2f} (target {target}: {'met' if met else 'NOT met'})")
         print("outputs agree" if not failures else "DISAGREE: " + "; ".join(failures))
     return 0 if not failures else 1
 

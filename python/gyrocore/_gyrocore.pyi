@@ -32,6 +32,7 @@ class Pipeline:
         outputs: tuple[bool, bool] = ...,  # (rate, drift); both by default
         speed: _F | None = None,
         fixes: tuple[_F, _F, _F] | None = None,  # (t, heading, sigma), with the fix stage only
+        out: tuple[_F | None, _F | None, _F | None] | None = None,  # (heading, rate, drift) to fill
     ) -> tuple[
         _F,
         _F | None,

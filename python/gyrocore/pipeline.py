@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike
 from . import _gyrocore, rests
 from ._arrays import FloatArray, as_float_array
 from ._checks import warn, warn_units
-from .result import OUTPUTS as OUTPUTS, HeadingResult as HeadingResult, output_flags as output_flags
+from .result import OUTPUTS as OUTPUTS, Filled, HeadingResult as HeadingResult, OutArrays, out_arrays, output_flags
 from .rests import Rest
 from .window import time_range
 
@@ -166,6 +166,7 @@ class Pipeline:
         speed: ArrayLike | None = None,
         speed_t: ArrayLike | None = None,
         fixes: FixesLike | None = None,
+        out: OutArrays | None = None,
     ) -> HeadingResult:
         """Process the next chunk of samples.
 
@@ -183,14 +184,21 @@ class Pipeline:
             fixes: absolute headings (:data:`gyrocore.fixes.FixesLike`) merged by time (those past
                 this chunk wait for the next; one before a processed sample is an error); the heading
                 is then the filter's, with ``heading_sigma`` and ``fusion`` (docs/fixes.md).
+            out: arrays to fill instead of fresh ones, which the result then holds: one per name
+                in ``outputs``, in that order (with ``outputs=("heading",)`` the array itself),
+                each float64, C-contiguous, writeable, as long as ``t`` and apart from the inputs
+                and from each other. A caller that processes many logs or chunks of one length
+                reuses them and so pays for no new memory. After an error their contents are
+                unspecified.
 
         Raises:
             SampleError: (a ValueError) non-increasing or non-finite timestamps, or NaN/inf readings
                 under ``nonfinite="error"``; its ``index`` and ``what`` name the first bad sample.
-            ValueError: mismatched lengths; timestamps whose interval overflows (near +-1e308);
+            ValueError: mismatched lengths; timestamps whose interval overflows (near +-1e308); an
+                ``out`` array of the wrong shape or layout, read-only, or sharing memory;
                 :class:`RestWindowError` for a rest window that holds no sample (known once a
                 reading after its end comes). Nothing of the chunk is processed after any of these.
-            TypeError: non-numeric arrays.
+            TypeError: non-numeric arrays; an ``out`` array that is not float64.
 
         Warns:
             InputWarning: rates or timestamps that look like another unit (checked on the first
@@ -209,8 +217,12 @@ class Pipeline:
         if (speed is not None or speed_t is not None) and not self.params["track_rests"]:
             raise ValueError("speed is given but rest tracking is off: pass track_rests=True, or no speed")
         sa = None if speed is None else rests.speed_at(ta, speed, speed_t)
+        inputs = {"t": (t, ta), "rate": (rate, ra), "temperature": (temperature, temp), "speed": (speed, sa)}
+        given = out_arrays(out, outputs, len(ta), inputs)
         before = inner.report()
-        heading, out_rate, drift, found, fused = self._run(inner, ta, ra, temp, index_offset, flags, sa, fix_block)
+        heading, out_rate, drift, found, fused = self._run(
+            inner, ta, ra, temp, index_offset, flags, sa, fix_block, given
+        )
         self._inner = inner  # with the fix stage the first fixes started, now that they were good
         self._warn_repairs(before, inner.report(), ta, ra, temp)
         if self._first_time is None and len(ta):
@@ -253,11 +265,13 @@ class Pipeline:
         flags: tuple[bool, bool],
         speed: FloatArray | None,
         fixes: Fixes | None,
+        out: Filled | None,
     ) -> tuple[FloatArray, FloatArray | None, FloatArray | None, list[Rest], _Fused | None]:
-        """The core over the chunk (with the fix stage's columns where it has one), and the rests
-        that ended in it (every one: the core hands each over as it ends)."""
+        """The core over the chunk (with the fix stage's columns where it has one; into the
+        caller's arrays ``out`` where given), and the rests that ended in it (every one: the core
+        hands each over as it ends)."""
         given = None if fixes is None else (fixes.t, fixes.heading, fixes.sigma)
-        heading, out_rate, drift, found, fused = inner.process(t, rate, temp, index_offset, flags, speed, given)
+        heading, out_rate, drift, found, fused = inner.process(t, rate, temp, index_offset, flags, speed, given, out)
         origin = self._first_time if self._first_time is not None else float(t[0]) if len(t) else 0.0
         return heading, out_rate, drift, [rests.from_core(r, origin) for r in found], fused
 
@@ -421,10 +435,11 @@ def process(
     speed_t: ArrayLike | None = None,
     fixes: FixesLike | None = None,
     fusion: dict[str, float] | None = None,
+    out: OutArrays | None = None,
     **overrides: Any,
 ) -> HeadingResult:
     """Heading of a whole log; ``outputs`` chooses which of ``heading``, ``rate`` and ``drift`` are
-    computed (see :meth:`Pipeline.process`).
+    computed, and ``out`` gives arrays to fill with them (see :meth:`Pipeline.process`).
 
     ``fixes`` (see :meth:`Pipeline.process`) add the fix stage with the settings ``fusion``: in
     whole mode the Rauch-Tung-Striebel smoother, in causal mode the filter.
@@ -449,7 +464,7 @@ def process(
 
     return process_log(
         t, rate, preset, mode=mode, temperature=temperature, speed=speed, speed_t=speed_t, outputs=outputs,
-        fixes=fixes, fusion=fusion, **overrides,
+        fixes=fixes, fusion=fusion, out=out, **overrides,
     )
 
 

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Union
 
 import numpy as np
 
@@ -28,6 +29,79 @@ def output_flags(outputs: tuple[str, ...] | list[str]) -> tuple[bool, bool]:
             "(the heading is always computed)"
         )
     return "rate" in outputs, "drift" in outputs
+
+
+#: What ``out=`` takes: one float64 array per output asked for, in the order of ``outputs``, or
+#: the array itself when the heading alone is asked for.
+OutArrays = Union[FloatArray, Sequence[FloatArray]]
+#: The caller's arrays for (heading, rate, drift), None where there is none.
+Filled = tuple[Union[FloatArray, None], Union[FloatArray, None], Union[FloatArray, None]]
+
+
+def out_arrays(
+    out: OutArrays | None, outputs: tuple[str, ...], n: int, inputs: Mapping[str, Sequence[object]]
+) -> Filled | None:
+    """The caller's arrays of ``out=`` as (heading, rate, drift), each checked: a float64 numpy
+    array of ``n`` elements, C-contiguous and writeable, sharing no memory with an input (the
+    values of ``inputs``, by name: the caller's arrays and what the core reads) or with another
+    output. None without ``out``. A ``TypeError`` or ``ValueError`` names the array and says what
+    to give instead."""
+    output_flags(outputs)
+    if out is None:
+        return None
+    names = tuple(outputs)
+    if len(set(names)) != len(names):
+        raise ValueError(f"outputs={names!r} names an output twice: with out=, name each output once")
+    arrays: tuple[object, ...]
+    if isinstance(out, np.ndarray):
+        arrays, labels = (out,), ["out"]
+    elif isinstance(out, (tuple, list)):
+        arrays, labels = tuple(out), [f"out[{i}]" for i in range(len(out))]
+    else:
+        raise TypeError(f"out must be a float64 array, or a tuple of one per output in outputs={names!r}; "
+                        f"got {type(out).__name__}")
+    if len(arrays) != len(names):
+        raise ValueError(f"out gives {len(arrays)} array(s) for the {len(names)} output(s) {names!r}: give one "
+                         "float64 array per output, in the order of outputs")
+    taken: list[tuple[str, FloatArray]] = []
+    for label, name, a in zip(labels, names, arrays):
+        what = f"{label} ({name})"
+        if not isinstance(a, np.ndarray):
+            raise TypeError(f"{what} must be a numpy float64 array, got {type(a).__name__}")
+        if a.dtype != np.float64:
+            raise TypeError(f"{what} holds {a.dtype}, not float64: give numpy.empty(len(t)) (float64)")
+        if a.shape != (n,):
+            raise ValueError(f"{what} has shape {a.shape}, but t has {n} samples: give a 1-D array of one "
+                             "element per sample")
+        if not a.flags.c_contiguous:
+            raise ValueError(f"{what} is not C-contiguous (a strided view cannot be filled in place): give a "
+                             "contiguous array, e.g. numpy.empty(len(t))")
+        if not a.flags.writeable:
+            raise ValueError(f"{what} is read-only: give a writeable array")
+        for source, values in inputs.items():
+            if any(isinstance(v, np.ndarray) and np.shares_memory(a, v) for v in values):
+                raise ValueError(f"{what} shares memory with the input {source}, which filling it would "
+                                 "overwrite: give an array of its own")
+        for other, b in taken:
+            if np.shares_memory(a, b):
+                raise ValueError(f"{what} shares memory with {other}: give each output an array of its own")
+        taken.append((what, a))
+    given = dict(zip(names, (a for _, a in taken)))
+    return given.get("heading"), given.get("rate"), given.get("drift")
+
+
+def filled(result: HeadingResult, arrays: Filled | None) -> HeadingResult:
+    """``result`` with its outputs copied into the caller's ``arrays`` (from :func:`out_arrays`),
+    which it then holds; for results computed elsewhere than in the arrays (the fix stage's
+    smoother)."""
+    if arrays is None:
+        return result
+    for name, a in zip(OUTPUTS, arrays):
+        if a is not None:
+            np.copyto(a, result.output(name))
+    heading, rate, drift = arrays
+    return replace(result, heading=result.heading if heading is None else heading,
+                   rate=result.rate if rate is None else rate, drift=result.drift if drift is None else drift)
 
 
 @dataclass(frozen=True, repr=False)

@@ -16,7 +16,9 @@ evaluate``) takes the bias from the rests wherever they lie and applies it from 
   wandering only as far as the rests' precision supports;
 * no rest at all: a warning, and the bias is 0, as in causal mode.
 
-The bias series is subtracted from the rate and the pipeline runs with ``bias=0``. Presets whose
+The bias series is subtracted from the rate and the pipeline runs with ``bias=0``; a bias that is
+one number over the whole log goes to the pipeline as ``bias=`` instead (the same subtraction, in
+the core, with no copy of the rate). Presets whose
 dead band or HDR bound scale with the rest's noise (``threshold_sigmas``, ``hdr_bound_sigmas``)
 get the explicit ``threshold`` (the rests' pooled noise) and ``hdr_max_correction`` (the smoothed
 bias's standard error, root mean square over the log), so a single rest at the start gives what
@@ -41,6 +43,7 @@ from ._gyrocore import SampleError
 from ._rests import MIN_REST, SPEED_THRESHOLD, accept, find_rests, measure_rest
 from ._smoother import SmoothedBias, smooth
 from .pipeline import OUTPUTS, BIAS_SOURCES, HeadingResult, Pipeline, _to_si, preset_params, uses_static_bias
+from .result import OutArrays, filled, out_arrays
 from .rests import Rest, speed_on
 
 if TYPE_CHECKING:
@@ -336,6 +339,7 @@ def process_log(
     outputs: tuple[str, ...] = OUTPUTS,
     fixes: FixesLike | None = None,
     fusion: dict[str, float] | None = None,
+    out: OutArrays | None = None,
     **overrides: Any,
 ) -> HeadingResult:
     """:func:`gyrocore.process` (see there and the module doc); in whole mode ``bias_walk``
@@ -348,7 +352,7 @@ def process_log(
         refuse_whole_options(si)
         pipeline = Pipeline(preset, fusion=fusion if fixes is not None else None, **overrides)
         result = pipeline.process(
-            t, rate, temperature=temperature, outputs=outputs, speed=speed, speed_t=speed_t, fixes=fixes
+            t, rate, temperature=temperature, outputs=outputs, speed=speed, speed_t=speed_t, fixes=fixes, out=out
         )
         pipeline.finish()
         return replace(result, bias_source=causal_source(preset, si))
@@ -358,12 +362,14 @@ def process_log(
     sp = None if speed is None else as_float_array("speed", speed) if speed_t is None else speed_on(ta, speed_t, speed)
     if sp is not None and len(sp) != len(ta):
         raise ValueError(f"speed has {len(sp)} samples but t has {len(ta)}: give one speed per gyro sample")
+    inputs = {"t": (t, ta), "rate": (rate, ra), "temperature": (temperature,), "speed": (speed, sp)}
+    arrays = out_arrays(out, outputs, len(ta), inputs)  # checked before any work
     given = fixes is None and (not uses_static_bias(preset) or _bias_source(si) == "bias")
     if given or len(ta) != len(ra) or len(ta) == 0 or not times_ok(ta):
         # A given bias (or none to remove) and no fixes need no plan: the log goes to the pipeline
         # as it is, with no pass over it here (what plan() would give). Bad times: the pipeline is
         # the one place that names the bad sample (and gives an empty log back).
-        result = Pipeline(preset, **untracked(si)).process(ta, ra, temperature=temperature, outputs=outputs)
+        result = Pipeline(preset, **untracked(si)).process(ta, ra, temperature=temperature, outputs=outputs, out=out)
         return replace(result, bias_source=causal_source(preset, si))
     try:
         bias_plan = plan_arrays(preset, si, ta, ra, sp, options)
@@ -373,14 +379,24 @@ def process_log(
         raise
     if bias_plan.warning:
         warn(bias_plan.warning)
-    pipeline = Pipeline(preset, **bias_plan.overrides)
+    bias = bias_plan.bias(ta)
+    if bias_plan.smoothed is None:  # nothing to subtract (the overrides say which bias, if any)
+        pipeline, corrected = Pipeline(preset, **bias_plan.overrides), ra
+    elif isinstance(bias, float):
+        # One bias for the whole log, where the overrides say bias=0: the core subtracts it as
+        # the first operation on each reading, as `ra - bias` would (and `x - 0.0` is `x`), with
+        # no pass and no copy here.
+        pipeline, corrected = Pipeline(preset, **{**bias_plan.overrides, "bias": bias}), ra
+    else:
+        pipeline, corrected = Pipeline(preset, **bias_plan.overrides), ra - bias
     if fixes is None:
-        result = pipeline.process(ta, ra - bias_plan.bias(ta), temperature=temperature, outputs=outputs)
+        result = pipeline.process(ta, corrected, temperature=temperature, outputs=outputs, out=out)
         return bias_plan.result(result)
     from .fixes import smoothed_stage, stage_settings  # the fix stage over the whole log
 
-    result = pipeline.process(ta, ra - bias_plan.bias(ta), temperature=temperature, outputs=(*outputs, "rate"))
-    return bias_plan.result(smoothed_stage(result, fixes, stage_settings(pipeline.params, fusion), outputs))
+    result = pipeline.process(ta, corrected, temperature=temperature, outputs=(*outputs, "rate"))
+    fused = smoothed_stage(result, fixes, stage_settings(pipeline.params, fusion), outputs)
+    return bias_plan.result(filled(fused, arrays))
 
 
 def times_ok(t: FloatArray) -> bool:

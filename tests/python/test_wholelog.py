@@ -413,3 +413,27 @@ def test_a_bad_sample_is_named_where_it_is_in_the_log(tmp_path: Path) -> None:
     pa_csv.write_csv(pa.table({"t": t, "gyro_z": rate}), src)
     proc = run_cli("process", str(src), "--out", str(tmp_path / "h.csv"), "--preset", "static_bias")
     assert proc.returncode != 0 and "line 2" in proc.stderr and not (tmp_path / "h.csv").exists()
+
+
+@pytest.mark.parametrize("options", [{"bias_duration": 10.0}, {}, {"bias_window": (1050.0, 1060.0)}])
+def test_one_bias_for_the_log_is_the_cores_bias_with_no_copy_of_the_rate(
+    options: dict[str, object], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A bias constant over the log (a given rest window, or the one rest found) is subtracted by
+    the core, bit for bit as ``bias=`` that mean: the rate reaches the pipeline as the caller's
+    array, not as a copy with the bias taken off."""
+    t, rate, _ = drive(120.0, [(0.0, 12.0), (50.0, 60.0)] if "bias_window" in options else [(0.0, 12.0)])
+    seen: list[np.ndarray] = []
+    process = gyrocore.Pipeline.process
+
+    def spy(self: gyrocore.Pipeline, t: np.ndarray, rate: np.ndarray, **kwargs: object) -> gyrocore.HeadingResult:
+        seen.append(rate)
+        return process(self, t, rate, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(gyrocore.Pipeline, "process", spy)
+    whole = gyrocore.process(t, rate, "combined", **options)  # type: ignore[arg-type]
+    (used,) = [r for r in whole.rests if r.refused is None]
+    assert seen[-1] is rate and "applied from the first sample" in whole.bias_source
+    exact = gyrocore.process(t, rate, "combined", bias=used.bias)
+    for name in ("heading", "rate", "drift"):
+        np.testing.assert_array_equal(whole.output(name).view(np.uint64), exact.output(name).view(np.uint64))

@@ -10,7 +10,15 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::fixes::{config_from, fixes_from, fusion_error, renumbered};
-use crate::{fill_some, value_error, zeros, Array};
+use crate::{fill_some, output, value_error, zeros, Array};
+
+/// The names of the caller's output arrays, as the binding's `out` holds them.
+const OUT: [&str; 3] = ["out[0] (heading)", "out[1] (rate)", "out[2] (drift)"];
+
+/// Output `i` (0 heading, 1 rate, 2 drift) with its name, if there is one.
+fn named<'a, 'py>(i: usize, a: Option<&'a Array<'py>>) -> Option<(&'static str, &'a Array<'py>)> {
+    a.map(|a| (OUT[i], a))
+}
 
 /// The pipeline, with or without the fix stage (boxed: each is a few kB).
 #[derive(Clone)]
@@ -81,19 +89,24 @@ impl Core {
         Ok(())
     }
 
-    /// Runs a block; `fixes` (t, heading, sigma) only with the fix stage. Errors count sample
-    /// indices from `index_offset`.
+    /// Runs a block; `fixes` (t, heading, sigma) only with the fix stage; `outputs` says whether
+    /// the rate and the drift are asked for, and where the caller gave arrays for (heading,
+    /// rate, drift) they are filled (see [`output`]). Errors count sample indices from
+    /// `index_offset`.
     pub(crate) fn process<'py>(
         &mut self,
         py: Python<'py>,
         block: &Block<'_>,
         fixes: Option<[PyReadonlyArray1<'py, f64>; 3]>,
-        outputs: (bool, bool),
+        (outputs, given): ((bool, bool), Option<[Option<Array<'py>>; 3]>),
         index_offset: usize,
         on_rest: &mut (dyn FnMut(Rest) + Send),
     ) -> PyResult<Processed<'py>> {
         let n = block.t.len();
-        let wanted = |on: bool| on.then(|| zeros(py, n));
+        let [given_heading, given_rate, given_drift] = given.unwrap_or_default();
+        let heading = output(py, OUT[0], given_heading, n, true)?.unwrap_or_else(|| zeros(py, n));
+        let out_rate = output(py, OUT[1], given_rate, n, outputs.0)?;
+        let drift = output(py, OUT[2], given_drift, n, outputs.1)?;
         let Block {
             t,
             rate,
@@ -107,10 +120,12 @@ impl Core {
                         "fixes given to a pipeline without a fix stage",
                     ));
                 }
-                let (heading, out_rate, drift) =
-                    (zeros(py, n), wanted(outputs.0), wanted(outputs.1));
                 fill_some(
-                    [Some(&heading), out_rate.as_ref(), drift.as_ref()],
+                    [
+                        named(0, Some(&heading)),
+                        named(1, out_rate.as_ref()),
+                        named(2, drift.as_ref()),
+                    ],
                     |[h, r, d]| {
                         py.detach(|| {
                             let out = Outputs {
@@ -139,12 +154,17 @@ impl Core {
             all.extend(fixes_from(ft, fh, fs)?);
         }
         // The filter runs on the corrected rate: it is computed whether asked for or not.
-        let (heading, out_rate, drift) = (zeros(py, n), zeros(py, n), wanted(outputs.1));
+        let rate_column = out_rate.unwrap_or_else(|| zeros(py, n));
         let (sigma, bias, scale) = (zeros(py, n), zeros(py, n), zeros(py, n));
-        let arrays = [&heading, &out_rate, &sigma, &bias, &scale].map(Some);
-        let [h, r, s, b] = [arrays[0], arrays[1], arrays[2], arrays[3]];
         let used = fill_some(
-            [h, r, s, b, arrays[4], drift.as_ref()],
+            [
+                named(0, Some(&heading)),
+                named(1, Some(&rate_column)),
+                Some(("heading_sigma", &sigma)),
+                Some(("bias", &bias)),
+                Some(("scale", &scale)),
+                named(2, drift.as_ref()),
+            ],
             |[h, r, s, bi, sc, dr]| {
                 py.detach(|| {
                     let out = FusedOutputs {
@@ -172,7 +192,7 @@ impl Core {
         *pending = all.split_off(used);
         let c = inner.counts();
         let counts = (c.applied, c.rejected, c.before_start, pending.len());
-        let out_rate = outputs.0.then_some(out_rate);
+        let out_rate = outputs.0.then_some(rate_column);
         Ok((heading, out_rate, drift, Some((sigma, bias, scale, counts))))
     }
 

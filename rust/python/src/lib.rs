@@ -13,7 +13,7 @@ use gyrocore::{
     check_block, Downsample, DownsampleConfig, Error, Integrator, IntegratorConfig, Pipeline,
     PipelineConfig, Preset, Rest, Stage, Up,
 };
-use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
+use numpy::{BorrowError, PyArray1, PyArrayMethods, PyReadonlyArray1, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -70,26 +70,73 @@ pub(crate) fn fill<const N: usize, R>(
     f: impl FnOnce([&mut [f64]; N]) -> R,
 ) -> PyResult<R> {
     // Every array is given, so every view is there.
-    fill_some(arrays.map(Some), |slices| {
+    fill_some(arrays.map(|a| Some(("output array", a))), |slices| {
         f(slices.map(Option::unwrap_or_default))
     })
 }
 
-/// [`fill`] for outputs that may not be asked for (`None`).
+/// [`fill`] for outputs that may not be asked for (`None`), each named for its errors: a
+/// caller's array (see [`output`]) may be read-only, or overlap an input still borrowed for
+/// reading or another output.
 pub(crate) fn fill_some<const N: usize, R>(
-    arrays: [Option<&Array<'_>>; N],
+    arrays: [Option<(&str, &Array<'_>)>; N],
     f: impl FnOnce([Option<&mut [f64]>; N]) -> R,
 ) -> PyResult<R> {
-    let mut guards = arrays.map(|a| a.map(|a| a.readwrite()));
-    let slices = guards
-        .each_mut()
-        .map(|g| g.as_mut().map(|g| g.as_slice_mut()).transpose());
-    if slices.iter().any(Result::is_err) {
-        return Err(PyValueError::new_err("output array is not contiguous"));
+    let mut guards = Vec::with_capacity(N);
+    for (name, a) in arrays.into_iter().flatten() {
+        guards.push(a.try_readwrite().map_err(|e| {
+            PyValueError::new_err(match e {
+                BorrowError::NotWriteable => format!("{name} is read-only: give a writeable array"),
+                _ => format!(
+                    "{name} overlaps an input or another output: give it an array of its own"
+                ),
+            })
+        })?);
     }
-    let slices = slices.map(|s| s.ok().flatten());
+    let mut views = Vec::with_capacity(N);
+    for g in &mut guards {
+        views.push(
+            g.as_slice_mut()
+                .map_err(|_| PyValueError::new_err("output array is not contiguous"))?,
+        );
+    }
+    // The views back in the places of the arrays they view, in order.
+    let mut views = views.into_iter();
+    let slices = arrays.map(|a| a.and_then(|_| views.next()));
     let pages = prefault::Pages::of(slices.iter().flatten());
     Ok(pages.while_faulting_in(|| f(slices)))
+}
+
+/// The array output `name` goes into: the caller's `given` array (one element per sample,
+/// C-contiguous; whether it is writeable and apart from the inputs [`fill_some`] checks), or a
+/// fresh one if the output is `wanted`. An array given for an output not asked for is an error.
+pub(crate) fn output<'py>(
+    py: Python<'py>,
+    name: &str,
+    given: Option<Array<'py>>,
+    n: usize,
+    wanted: bool,
+) -> PyResult<Option<Array<'py>>> {
+    let Some(a) = given else {
+        return Ok(wanted.then(|| zeros(py, n)));
+    };
+    if !wanted {
+        return Err(PyValueError::new_err(format!(
+            "{name} is given, but that output is not asked for: ask for it in outputs, or give None"
+        )));
+    }
+    if a.len() != n {
+        return Err(PyValueError::new_err(format!(
+            "{name} has {} elements but t has {n} samples: give one element per sample",
+            a.len()
+        )));
+    }
+    if !a.is_c_contiguous() {
+        return Err(PyValueError::new_err(format!(
+            "{name} is not C-contiguous: give a contiguous float64 array, e.g. numpy.empty(len(t))"
+        )));
+    }
+    Ok(Some(a))
 }
 
 /// The streaming pipeline of the core crate (see `gyrocore.Pipeline` for the documented API).
@@ -137,9 +184,11 @@ impl PyPipeline {
     /// unless asked for in `outputs` (rate, drift), rests the ones the tracker found in the block
     /// (see [`RestView`]), fused the fix stage's (heading_sigma, bias, scale, counts) when the
     /// pipeline has one (the heading is then the filter's). `fixes` are (t, heading, sigma)
-    /// arrays, after any still waiting. Nothing is processed from an invalid block; its error
-    /// counts sample indices from `index_offset`.
-    #[pyo3(signature = (t, rate, temperature=None, index_offset=0, outputs=(true, true), speed=None, fixes=None))]
+    /// arrays, after any still waiting. `out` are the caller's (heading, rate, drift) arrays to
+    /// fill instead of fresh ones (each None or one per output asked for; see [`output`]).
+    /// Nothing is processed from an invalid block; its error counts sample indices from
+    /// `index_offset`.
+    #[pyo3(signature = (t, rate, temperature=None, index_offset=0, outputs=(true, true), speed=None, fixes=None, out=None))]
     #[allow(clippy::type_complexity, clippy::too_many_arguments)]
     fn process<'py>(
         &mut self,
@@ -151,6 +200,7 @@ impl PyPipeline {
         outputs: (bool, bool),
         speed: Option<PyReadonlyArray1<'py, f64>>,
         fixes: Option<[PyReadonlyArray1<'py, f64>; 3]>,
+        out: Option<[Option<Array<'py>>; 3]>,
     ) -> PyResult<(
         Array<'py>,
         Option<Array<'py>>,
@@ -181,9 +231,14 @@ impl PyPipeline {
                 r.filtered,
             ))
         };
-        let (heading, out_rate, drift, fused) =
-            self.inner
-                .process(py, &block, fixes, outputs, index_offset, &mut on_rest)?;
+        let (heading, out_rate, drift, fused) = self.inner.process(
+            py,
+            &block,
+            fixes,
+            (outputs, out),
+            index_offset,
+            &mut on_rest,
+        )?;
         Ok((heading, out_rate, drift, rests, fused))
     }
 
