@@ -31,9 +31,21 @@ pub(crate) struct Block<'a> {
     pub(crate) speed: Option<&'a [f64]>,
 }
 
-/// The fix stage's columns of a block: heading sigma, bias, scale, and the fix counts (applied,
-/// rejected, before the first sample, waiting for a later block).
-pub(crate) type FusedColumns<'py> = (Array<'py>, Array<'py>, Array<'py>, (u64, u64, u64, usize));
+/// The fix stage's columns of a block: heading sigma, bias, scale (each None unless asked for),
+/// and the fix counts (applied, rejected, before the first sample, waiting for a later block).
+pub(crate) type FusedColumns<'py> = (
+    Option<Array<'py>>,
+    Option<Array<'py>>,
+    Option<Array<'py>>,
+    (u64, u64, u64, usize),
+);
+
+/// Which outputs a block computes: the pipeline's (rate, drift) and the fix stage's (heading
+/// sigma, bias, scale); the heading always.
+pub(crate) struct Wanted {
+    pub(crate) pipeline: (bool, bool),
+    pub(crate) fixes: (bool, bool, bool),
+}
 
 /// What a block gives: heading, rate, drift (rate and drift None unless asked for), and the fix
 /// stage's columns with it.
@@ -88,12 +100,13 @@ impl Core {
         py: Python<'py>,
         block: &Block<'_>,
         fixes: Option<[PyReadonlyArray1<'py, f64>; 3]>,
-        outputs: (bool, bool),
+        wanted: Wanted,
         index_offset: usize,
         on_rest: &mut (dyn FnMut(Rest) + Send),
     ) -> PyResult<Processed<'py>> {
         let n = block.t.len();
-        let wanted = |on: bool| on.then(|| zeros(py, n));
+        let outputs = wanted.pipeline;
+        let wanted_array = |on: bool| on.then(|| zeros(py, n));
         let Block {
             t,
             rate,
@@ -107,8 +120,11 @@ impl Core {
                         "fixes given to a pipeline without a fix stage",
                     ));
                 }
-                let (heading, out_rate, drift) =
-                    (zeros(py, n), wanted(outputs.0), wanted(outputs.1));
+                let (heading, out_rate, drift) = (
+                    zeros(py, n),
+                    wanted_array(outputs.0),
+                    wanted_array(outputs.1),
+                );
                 fill_some(
                     [Some(&heading), out_rate.as_ref(), drift.as_ref()],
                     |[h, r, d]| {
@@ -139,19 +155,25 @@ impl Core {
             all.extend(fixes_from(ft, fh, fs)?);
         }
         // The filter runs on the corrected rate: it is computed whether asked for or not.
-        let (heading, out_rate, drift) = (zeros(py, n), zeros(py, n), wanted(outputs.1));
-        let (sigma, bias, scale) = (zeros(py, n), zeros(py, n), zeros(py, n));
-        let arrays = [&heading, &out_rate, &sigma, &bias, &scale].map(Some);
-        let [h, r, s, b] = [arrays[0], arrays[1], arrays[2], arrays[3]];
+        let (heading, out_rate, drift) = (zeros(py, n), zeros(py, n), wanted_array(outputs.1));
+        let (fs, fb, fsc) = wanted.fixes;
+        let (sigma, bias, scale) = (wanted_array(fs), wanted_array(fb), wanted_array(fsc));
         let used = fill_some(
-            [h, r, s, b, arrays[4], drift.as_ref()],
+            [
+                Some(&heading),
+                Some(&out_rate),
+                sigma.as_ref(),
+                bias.as_ref(),
+                scale.as_ref(),
+                drift.as_ref(),
+            ],
             |[h, r, s, bi, sc, dr]| {
                 py.detach(|| {
                     let out = FusedOutputs {
                         heading: h.unwrap_or_default(),
-                        heading_sigma: s.unwrap_or_default(),
-                        bias: bi.unwrap_or_default(),
-                        scale: sc.unwrap_or_default(),
+                        heading_sigma: s,
+                        bias: bi,
+                        scale: sc,
                         rate: r.unwrap_or_default(),
                         drift: dr,
                     };

@@ -136,10 +136,11 @@ impl PyPipeline {
     /// Processes a block; returns (heading, rate, drift, rests, fused), rate and drift None
     /// unless asked for in `outputs` (rate, drift), rests the ones the tracker found in the block
     /// (see [`RestView`]), fused the fix stage's (heading_sigma, bias, scale, counts) when the
-    /// pipeline has one (the heading is then the filter's). `fixes` are (t, heading, sigma)
+    /// pipeline has one (the heading is then the filter's; each column None unless asked for in
+    /// `fix_outputs`, each costing per sample when it is). `fixes` are (t, heading, sigma)
     /// arrays, after any still waiting. Nothing is processed from an invalid block; its error
     /// counts sample indices from `index_offset`.
-    #[pyo3(signature = (t, rate, temperature=None, index_offset=0, outputs=(true, true), speed=None, fixes=None))]
+    #[pyo3(signature = (t, rate, temperature=None, index_offset=0, outputs=(true, true), speed=None, fixes=None, fix_outputs=(true, true, true)))]
     #[allow(clippy::type_complexity, clippy::too_many_arguments)]
     fn process<'py>(
         &mut self,
@@ -151,6 +152,7 @@ impl PyPipeline {
         outputs: (bool, bool),
         speed: Option<PyReadonlyArray1<'py, f64>>,
         fixes: Option<[PyReadonlyArray1<'py, f64>; 3]>,
+        fix_outputs: (bool, bool, bool),
     ) -> PyResult<(
         Array<'py>,
         Option<Array<'py>>,
@@ -181,9 +183,13 @@ impl PyPipeline {
                 r.filtered,
             ))
         };
+        let wanted = fused::Wanted {
+            pipeline: outputs,
+            fixes: fix_outputs,
+        };
         let (heading, out_rate, drift, fused) =
             self.inner
-                .process(py, &block, fixes, outputs, index_offset, &mut on_rest)?;
+                .process(py, &block, fixes, wanted, index_offset, &mut on_rest)?;
         Ok((heading, out_rate, drift, rests, fused))
     }
 
