@@ -30,6 +30,7 @@ use core::f64::consts::PI;
 
 use crate::error::{check_positive, check_range};
 pub use crate::fixes_error::{FixProblem, FusionError};
+use crate::fixes_output::calibration_of;
 pub use crate::fixes_output::{Estimate, FusionOutputs};
 use crate::fixes_smooth::{Mat3, Step};
 use crate::{check_block, Error, MAX_TIME};
@@ -207,12 +208,6 @@ impl Fusion {
         Estimate::of(&self.x, &self.p)
     }
 
-    /// Writes the current estimate as sample `k`'s, where `out` wants it.
-    #[inline(always)]
-    pub(crate) fn write(&self, out: &mut FusionOutputs<'_>, k: usize) {
-        out.set(k, &self.x, &self.p);
-    }
-
     /// The time the state stands at (the last sample or fix processed), or None.
     pub fn last_time(&self) -> Option<f64> {
         self.anchor.map(|a| a.t)
@@ -252,15 +247,52 @@ impl Fusion {
         out.check(t.len())?;
         check_block(t, rate, None, self.anchor.map(|a| a.sample_t), true)?;
         self.check_fixes(fixes)?;
+        Ok(self.run(t, rate, fixes, &mut out, &mut record))
+    }
+
+    /// The samples of a block (`t` and `rate` as long as `out`) with their fixes, writing the
+    /// estimate after each; returns how many fixes it used. The caller has checked the times and
+    /// the fixes ([`check_block`], [`Fusion::check_fixes`]); a sample whose rate is not finite
+    /// (one the pipeline skipped) is left out, and its row repeats the estimate before it.
+    #[inline(always)]
+    pub(crate) fn run(
+        &mut self,
+        t: &[f64],
+        rate: &[f64],
+        fixes: &[Fix],
+        out: &mut FusionOutputs<'_>,
+        record: &mut impl FnMut(Step),
+    ) -> usize {
         // The filter runs on a copy, which the compiler can keep in registers.
         let mut fusion = *self;
-        let mut next = 0;
-        for (k, (&tk, &rk)) in t.iter().zip(rate).enumerate() {
-            next += fusion.sample(tk, rk, &fixes[next..], &mut record);
-            fusion.write(&mut out, k);
+        let n = t.len();
+        let (t, rate, mut out) = (&t[..n], &rate[..n], out.first(n));
+        let (mut k, mut used) = (0, 0);
+        while k < n {
+            // Up to the next fix, a sample only propagates: a loop with nothing else in it.
+            let next_fix = fixes.get(used).map_or(f64::INFINITY, |f| f.t);
+            let calibration = calibration_of(&fusion.x);
+            if let Some(mut a) = fusion.anchor {
+                while k < n && t[k] < next_fix {
+                    if rate[k].is_finite() {
+                        fusion.take_sample(&mut a, t[k], rate[k], record);
+                    }
+                    out.set(k, &fusion.x, &fusion.p, calibration);
+                    k += 1;
+                }
+                fusion.anchor = Some(a);
+            }
+            // The first sample, or one at or past a fix: the fixes up to it, then the sample.
+            if k < n {
+                if rate[k].is_finite() {
+                    used += fusion.sample(t[k], rate[k], &fixes[used..], record);
+                }
+                out.set(k, &fusion.x, &fusion.p, calibration_of(&fusion.x));
+                k += 1;
+            }
         }
         *self = fusion;
-        Ok(next)
+        used
     }
 
     /// Checks `fixes` as the next call would, processing nothing: the error names the first bad
@@ -304,13 +336,7 @@ impl Fusion {
     /// has checked the sample and the fixes ([`check_block`], [`Fusion::check_fixes`]). A
     /// `record` that keeps nothing costs nothing: the steps are built only for it.
     #[inline(always)]
-    pub(crate) fn sample(
-        &mut self,
-        t: f64,
-        rate: f64,
-        fixes: &[Fix],
-        record: &mut impl FnMut(Step),
-    ) -> usize {
+    fn sample(&mut self, t: f64, rate: f64, fixes: &[Fix], record: &mut impl FnMut(Step)) -> usize {
         let mut used = 0;
         let first = Anchor {
             sample_t: t,
@@ -340,11 +366,17 @@ impl Fusion {
             record(step);
             used += 1;
         }
-        let (am, c) = self.propagate(&mut a, t, rate);
-        (a.sample_t, a.sample_rate) = (t, rate);
+        self.take_sample(&mut a, t, rate, record);
         self.anchor = Some(a);
-        record(Step::new(am, c, &self.x, &self.p).at_sample());
         used
+    }
+
+    /// Propagates from the anchor `a` to the gyro sample `(t, rate)`, which becomes its sample.
+    #[inline(always)]
+    fn take_sample(&mut self, a: &mut Anchor, t: f64, rate: f64, record: &mut impl FnMut(Step)) {
+        let (am, c) = self.propagate(a, t, rate);
+        (a.sample_t, a.sample_rate) = (t, rate);
+        record(Step::new(am, c, &self.x, &self.p).at_sample());
     }
 
     /// Propagates the state from the anchor `a` to `t` where the rate reads `rate` (Hong eq 4

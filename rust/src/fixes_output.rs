@@ -36,6 +36,13 @@ fn heading_sigma_of(p: &Mat3) -> f64 {
     libm::sqrt(p[0][0])
 }
 
+/// Hong eq 1's bias and scale error of state `x`: they change only at a fix (the propagation
+/// moves the heading alone), so a run of samples between two fixes takes them once.
+#[inline(always)]
+pub(crate) fn calibration_of(x: &[f64; 3]) -> (f64, f64) {
+    (bias_of(x), scale_of(x))
+}
+
 /// Hong eq 1's bias `b = -b_bar / s_bar` of state `x` (eq 3 inverted).
 #[inline(always)]
 fn bias_of(x: &[f64; 3]) -> f64 {
@@ -48,7 +55,7 @@ fn scale_of(x: &[f64; 3]) -> f64 {
     1.0 / x[1] - 1.0
 }
 
-/// Output slices of [`Fusion::process_block`], one value per gyro sample: the heading, and each
+/// Output slices of [`Fusion::process_block`](crate::Fusion::process_block), one value per gyro sample: the heading, and each
 /// other estimate where wanted (`None` costs nothing; each one wanted costs per sample, the sigma
 /// a square root, the bias and the scale a division each).
 #[derive(Debug)]
@@ -104,18 +111,31 @@ impl<'a> FusionOutputs<'a> {
         Ok(())
     }
 
-    /// Writes the estimate of state `x` with covariance `p` as sample `k`'s, where it is wanted.
+    /// The first `n` samples of each slice (all it has, after [`FusionOutputs::check`]), so that
+    /// indexing below `n` needs no bounds check.
     #[inline(always)]
-    pub(crate) fn set(&mut self, k: usize, x: &[f64; 3], p: &Mat3) {
+    pub(crate) fn first(&mut self, n: usize) -> FusionOutputs<'_> {
+        FusionOutputs {
+            heading: &mut self.heading[..n],
+            heading_sigma: self.heading_sigma.as_deref_mut().map(|s| &mut s[..n]),
+            bias: self.bias.as_deref_mut().map(|s| &mut s[..n]),
+            scale: self.scale.as_deref_mut().map(|s| &mut s[..n]),
+        }
+    }
+
+    /// Writes the estimate of state `x` with covariance `p` as sample `k`'s, where it is wanted,
+    /// given the state's [`calibration_of`].
+    #[inline(always)]
+    pub(crate) fn set(&mut self, k: usize, x: &[f64; 3], p: &Mat3, calibration: (f64, f64)) {
         self.heading[k] = x[0];
         if let Some(s) = &mut self.heading_sigma {
             s[k] = heading_sigma_of(p);
         }
         if let Some(s) = &mut self.bias {
-            s[k] = bias_of(x);
+            s[k] = calibration.0;
         }
         if let Some(s) = &mut self.scale {
-            s[k] = scale_of(x);
+            s[k] = calibration.1;
         }
     }
 }

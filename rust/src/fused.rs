@@ -186,16 +186,8 @@ impl FusedPipeline {
         // rate is finite wherever it took a sample: the filter takes those one by one, as
         // `Fusion::process_block` would, and leaves out the ones the pipeline skipped: the
         // state stands still over those, so the estimate written for one repeats the row before.
-        // The filter runs on a copy, which the compiler can keep in registers.
-        let mut fusion = self.fusion;
-        let mut used = 0;
-        for (k, (&tk, &r)) in samples.t.iter().zip(&*rate).enumerate() {
-            if r.is_finite() {
-                used += fusion.sample(tk, r, &fixes[used..], &mut |_| {});
-            }
-            fusion.write(&mut estimates, k);
-        }
-        self.fusion = fusion;
-        Ok(used)
+        Ok(self
+            .fusion
+            .run(samples.t, rate, fixes, &mut estimates, &mut |_| {}))
     }
 }
