@@ -2,7 +2,8 @@
 //! 100 Hz without fixes and with a fix every second (10,000 fixes), reported as gyro samples per
 //! second, and the whole-log smoother (forward pass storing its steps, then the backward pass);
 //! then the recommended pipeline alone against the same pipeline with its fix stage and 1 Hz
-//! fixes (`FusedPipeline`), in criterion and in interleaved rounds (issue 18: within 10 %).
+//! fixes (`FusedPipeline`), with every output and with the heading alone, in criterion and in
+//! interleaved rounds (issue 18: within 10 %).
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use gyrocore::fixes_smooth::Step;
