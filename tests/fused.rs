@@ -419,3 +419,27 @@ fn estimates_not_asked_for_are_left_alone_and_change_nothing() {
         .unwrap_err();
     assert!(e.to_string().contains("scale"), "{e}");
 }
+
+#[test]
+fn samples_skipped_before_the_first_one_taken_hold_the_prior() {
+    let (t, mut rate) = drive(10.0);
+    rate[0] = f64::NAN;
+    rate[1] = f64::NAN;
+    let all = fixes(&t);
+    let (c, f) = config();
+    let mut fused = FusedPipeline::new(c, f).unwrap();
+    let mut cols = columns(t.len());
+    block(&mut fused, &t, &rate, &all, &mut cols, 0).unwrap();
+    let prior = [
+        f.initial_heading,
+        f.initial_heading_sigma,
+        f.initial_bias,
+        0.0,
+    ];
+    for k in 0..2 {
+        let row: Vec<f64> = cols[..4].iter().map(|col| col[k]).collect();
+        assert_eq!(bits(&row), bits(&prior), "row {k}");
+    }
+    // the samples taken after them reach the fixes
+    assert!(cols[1][t.len() - 1] < 0.1, "{}", cols[1][t.len() - 1]);
+}
