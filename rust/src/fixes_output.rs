@@ -55,9 +55,9 @@ fn scale_of(x: &[f64; 3]) -> f64 {
     1.0 / x[1] - 1.0
 }
 
-/// Output slices of [`Fusion::process_block`](crate::Fusion::process_block), one value per gyro sample: the heading, and each
-/// other estimate where wanted (`None` costs nothing; each one wanted costs per sample, the sigma
-/// a square root, the bias and the scale a division each).
+/// Output slices of [`Fusion::process_block`](crate::Fusion::process_block), one value per gyro
+/// sample: the heading, and each other estimate where wanted (`None` is not computed; the sigma
+/// takes a square root per sample, and each column a pass of stores).
 #[derive(Debug)]
 pub struct FusionOutputs<'a> {
     /// Heading \[rad\].

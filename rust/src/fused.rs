@@ -67,8 +67,8 @@ impl<'a> Samples<'a> {
 }
 
 /// Where [`FusedPipeline::process_block`] writes, one value per sample (each slice as long as
-/// the block); `None` for an estimate the caller does not need (it then costs nothing: the
-/// sigma takes a square root per sample, the bias and the scale a division each).
+/// the block); `None` for an estimate the caller does not need (it is then not computed: the
+/// sigma takes a square root per sample, and each column a pass of stores).
 #[derive(Debug)]
 pub struct FusedOutputs<'a> {
     /// The filter's heading \[rad\], continuous.
