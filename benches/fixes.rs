@@ -2,7 +2,8 @@
 //! 100 Hz without fixes and with a fix every second (10,000 fixes), reported as gyro samples per
 //! second, and the whole-log smoother (forward pass storing its steps, then the backward pass);
 //! then the recommended pipeline alone against the same pipeline with its fix stage and 1 Hz
-//! fixes (`FusedPipeline`), in criterion and in interleaved rounds (issue 18: within 10 %).
+//! fixes (`FusedPipeline`), with every output and with the heading alone, in criterion and in
+//! interleaved rounds (issue 18: within 10 %).
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use gyrocore::fixes_smooth::Step;
@@ -35,12 +36,7 @@ fn samples() -> (Vec<f64>, Vec<f64>, Vec<Fix>) {
 /// The four output columns as the filter writes them.
 fn outputs(out: &mut [Vec<f64>; 4]) -> FusionOutputs<'_> {
     let [heading, heading_sigma, bias, scale] = out;
-    FusionOutputs {
-        heading,
-        heading_sigma,
-        bias,
-        scale,
-    }
+    FusionOutputs::all(heading, heading_sigma, bias, scale)
 }
 
 fn filter(c: &mut Criterion) {
@@ -86,23 +82,44 @@ fn columns() -> [Vec<f64>; 6] {
     core::array::from_fn(|_| vec![0.0; N])
 }
 
-/// A fresh fused pipeline over the samples with the fixes `given`, into `cols`.
+/// A fresh pipeline over the samples into `cols`: every output, or the heading alone.
+fn pipeline_run(
+    config: PipelineConfig,
+    t: &[f64],
+    rate: &[f64],
+    all: bool,
+    cols: &mut [Vec<f64>; 6],
+) {
+    let mut p = Pipeline::new(config).unwrap();
+    let [h, r, d, ..] = cols;
+    let out = if all {
+        Outputs::all(h, r, d)
+    } else {
+        Outputs::heading(h)
+    };
+    p.process_block(black_box(t), black_box(rate), None, out)
+        .unwrap();
+}
+
+/// A fresh fused pipeline over the samples with the fixes `given`, into `cols`: every output,
+/// or the heading alone (with the corrected rate, the filter's input).
 fn fused_run(
     config: PipelineConfig,
     t: &[f64],
     rate: &[f64],
     given: &[Fix],
+    all: bool,
     cols: &mut [Vec<f64>; 6],
 ) {
     let mut p = FusedPipeline::new(config, FusionConfig::default()).unwrap();
     let [h, s, b, sc, r, d] = cols;
     let out = FusedOutputs {
         heading: h,
-        heading_sigma: s,
-        bias: b,
-        scale: sc,
+        heading_sigma: all.then_some(&mut s[..]),
+        bias: all.then_some(&mut b[..]),
+        scale: all.then_some(&mut sc[..]),
         rate: r,
-        drift: Some(d),
+        drift: all.then_some(&mut d[..]),
     };
     let samples = Samples::new(black_box(t), black_box(rate));
     assert_eq!(
@@ -114,28 +131,29 @@ fn fused_run(
 fn fused(c: &mut Criterion) {
     let (t, rate, fixes) = samples();
     let config = pipeline_config();
-    // each run its own columns, as the two alternate
-    let [mut h0, mut r0, mut d0] = core::array::from_fn(|_| vec![0.0; N]);
-    let mut alone = || {
-        let mut p = Pipeline::new(config).unwrap();
-        let out = Outputs::all(&mut h0, &mut r0, &mut d0);
-        p.process_block(black_box(&t), black_box(&rate), None, out)
-            .unwrap();
-    };
-    let (mut with_cols, mut without_cols) = (columns(), columns());
-    let mut with_fixes = || fused_run(config, &t, &rate, &fixes, &mut with_cols);
-    let mut without = || fused_run(config, &t, &rate, &[], &mut without_cols);
+    // each run its own columns, as they alternate
+    let mut cols: [[Vec<f64>; 6]; 5] = core::array::from_fn(|_| columns());
+    let [c_alone, c_with, c_without, c_alone_h, c_with_h] = &mut cols;
+    let mut alone = || pipeline_run(config, &t, &rate, true, c_alone);
+    let mut with_fixes = || fused_run(config, &t, &rate, &fixes, true, c_with);
+    let mut without = || fused_run(config, &t, &rate, &[], true, c_without);
+    let mut alone_h = || pipeline_run(config, &t, &rate, false, c_alone_h);
+    let mut with_fixes_h = || fused_run(config, &t, &rate, &fixes, false, c_with_h);
     let mut group = c.benchmark_group("fused_pipeline");
     group.throughput(Throughput::Elements(N as u64));
     group.bench_function("pipeline_alone", |b| b.iter(&mut alone));
     group.bench_function("fused_no_fixes", |b| b.iter(&mut without));
     group.bench_function("fused_fixes_1hz", |b| b.iter(&mut with_fixes));
+    group.bench_function("pipeline_alone_heading", |b| b.iter(&mut alone_h));
+    group.bench_function("fused_fixes_1hz_heading", |b| b.iter(&mut with_fixes_h));
     group.finish();
     if common::measuring() {
         let names = ["fused_fixes_1hz", "pipeline_alone"];
         common::interleaved(names, N, &mut with_fixes, &mut alone);
         let names = ["fused_fixes_1hz", "fused_no_fixes"];
         common::interleaved(names, N, &mut with_fixes, &mut without);
+        let names = ["fused_fixes_1hz_heading", "pipeline_alone_heading"];
+        common::interleaved(names, N, &mut with_fixes_h, &mut alone_h);
     }
 }
 

@@ -83,12 +83,7 @@ fn run(
         bias: vec![0.0; n],
         scale: vec![0.0; n],
     };
-    let out = FusionOutputs {
-        heading: &mut r.heading,
-        heading_sigma: &mut r.sigma,
-        bias: &mut r.bias,
-        scale: &mut r.scale,
-    };
+    let out = FusionOutputs::all(&mut r.heading, &mut r.sigma, &mut r.bias, &mut r.scale);
     let used = fusion.process_block(t, rate, fixes, out)?;
     Ok((r, used))
 }
@@ -334,12 +329,7 @@ fn the_smoother_beats_the_filter_inside_an_outage() {
     let mut f = Fusion::new(config()).unwrap();
     let n = t.len();
     let (mut h, mut s, mut b, mut sc) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let out = FusionOutputs {
-        heading: &mut h,
-        heading_sigma: &mut s,
-        bias: &mut b,
-        scale: &mut sc,
-    };
+    let out = FusionOutputs::all(&mut h, &mut s, &mut b, &mut sc);
     let mut steps: Vec<Step> = Vec::new();
     f.process_block_recording(&t, &rate, &fx, out, |s| steps.push(s))
         .unwrap();

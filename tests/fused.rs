@@ -81,9 +81,9 @@ fn block(
     let [h, s, b, sc, r, d] = cols;
     let out = FusedOutputs {
         heading: &mut h[from..from + n],
-        heading_sigma: &mut s[from..from + n],
-        bias: &mut b[from..from + n],
-        scale: &mut sc[from..from + n],
+        heading_sigma: Some(&mut s[from..from + n]),
+        bias: Some(&mut b[from..from + n]),
+        scale: Some(&mut sc[from..from + n]),
         rate: &mut r[from..from + n],
         drift: Some(&mut d[from..from + n]),
     };
@@ -150,12 +150,7 @@ fn equals_the_pipeline_then_the_filter() {
     let mut filter = Fusion::new(f).unwrap();
     let mut est: [Vec<f64>; 4] = core::array::from_fn(|_| vec![0.0; kept.len()]);
     let [eh, es, eb, esc] = &mut est;
-    let out = FusionOutputs {
-        heading: eh,
-        heading_sigma: es,
-        bias: eb,
-        scale: esc,
-    };
+    let out = FusionOutputs::all(eh, es, eb, esc);
     assert_eq!(
         filter.process_block(&tk, &rk, &all, out).unwrap(),
         all.len()
@@ -326,9 +321,9 @@ fn without_a_drift_output_and_with_wrong_lengths() {
     let mut short = vec![0.0; n - 1];
     let out = FusedOutputs {
         heading: h,
-        heading_sigma: s,
-        bias: &mut short,
-        scale: sc,
+        heading_sigma: Some(s),
+        bias: Some(&mut short),
+        scale: Some(sc),
         rate: r,
         drift: None,
     };
@@ -339,9 +334,9 @@ fn without_a_drift_output_and_with_wrong_lengths() {
     assert_eq!(fused, FusedPipeline::new(c, f).unwrap());
     let out = FusedOutputs {
         heading: h,
-        heading_sigma: s,
-        bias: b,
-        scale: sc,
+        heading_sigma: Some(s),
+        bias: Some(b),
+        scale: Some(sc),
         rate: r,
         drift: None,
     };
@@ -351,4 +346,100 @@ fn without_a_drift_output_and_with_wrong_lengths() {
     for c in 0..5 {
         assert_eq!(bits(&cols[c]), bits(&whole[c]), "column {c}");
     }
+}
+
+#[test]
+fn estimates_not_asked_for_are_left_alone_and_change_nothing() {
+    let (t, mut rate) = drive(40.0);
+    rate[1234] = f64::NAN; // skipped: every estimate asked for repeats the row before it
+    let all = fixes(&t);
+    let (whole, whole_state) = chunked(&t, &rate, &all, &[]);
+    let (c, f) = config();
+    let n = t.len();
+    // each subset of (heading sigma, bias, scale), in two blocks cut between fixes
+    for wanted in 0..8u8 {
+        let on = |bit: u8| wanted & (1 << bit) != 0;
+        let mut fused = FusedPipeline::new(c, f).unwrap();
+        // columns not asked for keep the marker they start with
+        let mut cols: Columns = core::array::from_fn(|_| vec![-7.0; n]);
+        let mut pending = 0;
+        for (start, end) in [(0, 1550), (1550, n)] {
+            let [h, s, b, sc, r, _] = &mut cols;
+            let out = FusedOutputs {
+                heading: &mut h[start..end],
+                heading_sigma: on(0).then_some(&mut s[start..end]),
+                bias: on(1).then_some(&mut b[start..end]),
+                scale: on(2).then_some(&mut sc[start..end]),
+                rate: &mut r[start..end],
+                drift: None,
+            };
+            let samples = Samples::new(&t[start..end], &rate[start..end]);
+            pending += fused.process_block(samples, &all[pending..], out).unwrap();
+        }
+        assert_eq!(pending, all.len());
+        assert_eq!(fused, whole_state, "outputs {wanted:03b}");
+        for (col, asked) in [(0, true), (1, on(0)), (2, on(1)), (3, on(2)), (4, true)] {
+            if asked {
+                assert_eq!(bits(&cols[col]), bits(&whole[col]), "column {col}");
+                if col < 4 {
+                    assert_eq!(cols[col][1234].to_bits(), cols[col][1233].to_bits());
+                }
+            } else {
+                assert!(cols[col].iter().all(|&v| v == -7.0), "column {col} written");
+            }
+        }
+    }
+
+    // the filter alone: the heading by itself is the heading of all four
+    let (tk, rk): (Vec<f64>, Vec<f64>) = (0..n)
+        .filter(|&k| rate[k].is_finite())
+        .map(|k| (t[k], rate[k]))
+        .unzip();
+    let m = tk.len();
+    let mut four: [Vec<f64>; 4] = core::array::from_fn(|_| vec![0.0; m]);
+    let [h, s, b, sc] = &mut four;
+    let mut full = Fusion::new(f).unwrap();
+    full.process_block(&tk, &rk, &all, FusionOutputs::all(h, s, b, sc))
+        .unwrap();
+    let mut alone = vec![0.0; m];
+    let mut lean = Fusion::new(f).unwrap();
+    lean.process_block(&tk, &rk, &all, FusionOutputs::heading(&mut alone))
+        .unwrap();
+    assert_eq!(bits(&alone), bits(&four[0]));
+    assert_eq!(lean, full);
+    // an estimate asked for with the wrong length is named, and nothing moved
+    let mut short = vec![0.0; m - 1];
+    let out = FusionOutputs {
+        scale: Some(&mut short),
+        ..FusionOutputs::heading(&mut alone)
+    };
+    let e = Fusion::new(f)
+        .unwrap()
+        .process_block(&tk, &rk, &all, out)
+        .unwrap_err();
+    assert!(e.to_string().contains("scale"), "{e}");
+}
+
+#[test]
+fn samples_skipped_before_the_first_one_taken_hold_the_prior() {
+    let (t, mut rate) = drive(10.0);
+    rate[0] = f64::NAN;
+    rate[1] = f64::NAN;
+    let all = fixes(&t);
+    let (c, f) = config();
+    let mut fused = FusedPipeline::new(c, f).unwrap();
+    let mut cols = columns(t.len());
+    block(&mut fused, &t, &rate, &all, &mut cols, 0).unwrap();
+    let prior = [
+        f.initial_heading,
+        f.initial_heading_sigma,
+        f.initial_bias,
+        0.0,
+    ];
+    for k in 0..2 {
+        let row: Vec<f64> = cols[..4].iter().map(|col| col[k]).collect();
+        assert_eq!(bits(&row), bits(&prior), "row {k}");
+    }
+    // the samples taken after them reach the fixes
+    assert!(cols[1][t.len() - 1] < 0.1, "{}", cols[1][t.len() - 1]);
 }

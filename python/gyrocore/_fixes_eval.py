@@ -141,12 +141,14 @@ def score_with_fixes(log: Log, methods: Sequence[Method], fixes: Fixes, label: s
     rows = []
     for method in methods:
         result, _ = method.run(with_fixes, **run)
-        assert result.fusion is not None  # the log has fixes
+        fusion = result.fusion
+        # the log has fixes, and every output is computed by default
+        assert fusion is not None and fusion.bias is not None and fusion.scale is not None
         tr, err, _ = reference.compared(result.t, result.heading, absolute=True)
         rows.append(FixScore(
-            log.name, method.name, label, dict(result.fusion.counts), float(np.degrees(np.abs(err)).mean()), raw,
+            log.name, method.name, label, dict(fusion.counts), float(np.degrees(np.abs(err)).mean()), raw,
             window, _mean_in(tr, err, window), _mean_in(tr_raw, err_raw, window),
-            math.degrees(float(result.fusion.bias[-1])), float(result.fusion.scale[-1]),
+            math.degrees(float(fusion.bias[-1])), float(fusion.scale[-1]),
         ))
     return rows
 

@@ -33,12 +33,14 @@ class Pipeline:
         speed: _F | None = None,
         fixes: tuple[_F, _F, _F] | None = None,  # (t, heading, sigma), with the fix stage only
         out: tuple[_F | None, _F | None, _F | None] | None = None,  # (heading, rate, drift) to fill
+        fix_outputs: tuple[bool, bool, bool] = ...,  # (heading_sigma, bias, scale); all by default
     ) -> tuple[
         _F,
         _F | None,
         _F | None,
         list[tuple[float, float, float, float, float, int, bool, bool, float]],
-        tuple[_F, _F, _F, tuple[int, int, int, int]] | None,  # the fix stage's sigma, bias, scale, counts
+        # the fix stage's sigma, bias, scale (None unless asked for), counts
+        tuple[_F | None, _F | None, _F | None, tuple[int, int, int, int]] | None,
     ]: ...
     def start_fusion(self, settings: dict[str, float] | None = None) -> None: ...
     def fused(self) -> bool: ...

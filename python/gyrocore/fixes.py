@@ -27,6 +27,7 @@ from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
 from ._extras import require
 from .io._csvfile import _csv_header as csv_header, read_csv_columns
+from .result import fix_output_flags
 
 if TYPE_CHECKING:
     from .pipeline import HeadingResult
@@ -71,13 +72,15 @@ class Fixes:
 @dataclass(frozen=True, repr=False, eq=False)
 class FusionResult:
     """Per gyro sample: heading [rad, continuous], its standard deviation [rad], bias [rad/s,
-    what the gyro reads at rest] and scale error (Hong eq 1: the gyro reads ``(1 + s) r + b``)."""
+    what the gyro reads at rest] and scale error (Hong eq 1: the gyro reads ``(1 + s) r + b``).
+    From a pipeline's fix stage, a column that ``outputs=`` left out (``heading_sigma``,
+    ``fusion_bias``, ``fusion_scale``) is None: it was never computed."""
 
     t: FloatArray
     heading: FloatArray
-    heading_sigma: FloatArray
-    bias: FloatArray
-    scale: FloatArray
+    heading_sigma: FloatArray | None
+    bias: FloatArray | None
+    scale: FloatArray | None
     counts: dict[str, int]
     """Fixes ``applied``, ``rejected`` by the outlier gate, ``before_start`` (before the first gyro
     sample: skipped) and ``after_end`` (after the last: unused)."""
@@ -184,14 +187,18 @@ def _on_kept(run: Callable[[FloatArray, FloatArray], FusionResult], t: FloatArra
 def smoothed_stage(result: HeadingResult, fixes: FixesLike, settings: dict[str, float],
                    outputs: tuple[str, ...]) -> HeadingResult:
     """The fix stage of a whole log: the smoother over the pipeline's corrected rate (``result``
-    computed with the ``rate`` output); ``outputs`` are the ones the caller asked for."""
+    computed with the ``rate`` output); ``outputs`` are the ones the caller asked for (the smoother
+    computes the whole state of each sample: the columns left out are dropped)."""
     if result.rate is None:
         raise ValueError("the fix stage needs the pipeline's rate output")
     given = as_fixes(fixes)
     fused = _on_kept(lambda tt, rr: fuse(tt, rr, given, mode="smoothed", **settings), result.t, result.rate,
                      _prior(Fusion(**settings)))
+    sigma, bias, scale = (column if wanted else None for column, wanted in
+                          zip((fused.heading_sigma, fused.bias, fused.scale), fix_output_flags(outputs)))
+    fused = replace(fused, heading_sigma=sigma, bias=bias, scale=scale)
     return replace(result, heading=fused.heading, rate=result.rate if "rate" in outputs else None,
-                   heading_sigma=fused.heading_sigma, fusion=fused)
+                   heading_sigma=sigma, fusion=fused)
 
 
 def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_speed: float = 2.0,

@@ -16,7 +16,8 @@ from numpy.typing import ArrayLike
 from . import _gyrocore, rests
 from ._arrays import FloatArray, as_float_array
 from ._checks import warn, warn_units
-from .result import OUTPUTS as OUTPUTS, Filled, HeadingResult as HeadingResult, OutArrays, out_arrays, output_flags
+from .result import ALL_OUTPUTS as ALL_OUTPUTS, OUTPUTS as OUTPUTS, Filled, HeadingResult as HeadingResult
+from .result import OutArrays, fix_output_flags, out_arrays, output_flags as output_flags
 from .rests import Rest
 from .window import time_range
 
@@ -25,7 +26,7 @@ if TYPE_CHECKING:
 
 #: The fix stage's columns of a block from the core: heading sigma, bias, scale, and the fix
 #: counts (applied, rejected, before the first sample, waiting for a later block).
-_Fused = tuple[FloatArray, FloatArray, FloatArray, tuple[int, int, int, int]]
+_Fused = tuple[FloatArray | None, FloatArray | None, FloatArray | None, tuple[int, int, int, int]]
 
 #: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling.
 _RATE_PARAMETERS = ("bias", "offset", "threshold", "hdr_increment", "hdr_turn_threshold")
@@ -162,7 +163,7 @@ class Pipeline:
         *,
         temperature: ArrayLike | None = None,
         index_offset: int = 0,
-        outputs: tuple[str, ...] = OUTPUTS,
+        outputs: tuple[str, ...] = ALL_OUTPUTS,
         speed: ArrayLike | None = None,
         speed_t: ArrayLike | None = None,
         fixes: FixesLike | None = None,
@@ -175,8 +176,10 @@ class Pipeline:
             rate: yaw rate [rad/s], counter-clockwise positive.
             temperature: sensor temperature [degC], needed when ``temp_slope``/``temp_offset`` are set.
             index_offset: index of this chunk's first sample in the whole log; errors count from it.
-            outputs: which of ``heading``, ``rate`` and ``drift`` to compute (the heading always);
-                the others are None and cost nothing: ``("heading",)`` fills one array, not three.
+            outputs: which of ``heading``, ``rate`` and ``drift`` to compute (the heading always),
+                and with fixes which of the fix stage's :data:`gyrocore.result.FIX_OUTPUTS`
+                (``heading_sigma``, ``fusion_bias``, ``fusion_scale``); the others are None and cost
+                nothing: ``("heading",)`` fills one array, not three (six with fixes).
             speed: the vehicle's speed [m/s] for ``track_rests``: one per sample, or a series at its
                 own times ``speed_t`` (e.g. a log folder's ``odometry.csv``), interpolated onto
                 ``t``; outside its span, and without it, rests are judged by the rate alone.
@@ -185,7 +188,8 @@ class Pipeline:
                 this chunk wait for the next; one before a processed sample is an error); the heading
                 is then the filter's, with ``heading_sigma`` and ``fusion`` (docs/fixes.md).
             out: arrays to fill instead of fresh ones, which the result then holds: one per name
-                in ``outputs``, in that order (with ``outputs=("heading",)`` the array itself),
+                of ``heading``, ``rate`` and ``drift`` in ``outputs``, in that order (with
+                ``outputs=("heading",)`` the array itself; the fix stage's columns are fresh),
                 each float64, C-contiguous, writeable, as long as ``t`` and apart from the inputs
                 and from each other. A caller that processes many logs or chunks of one length
                 reuses them and so pays for no new memory. After an error their contents are
@@ -221,7 +225,7 @@ class Pipeline:
         given = out_arrays(out, outputs, len(ta), inputs)
         before = inner.report()
         heading, out_rate, drift, found, fused = self._run(
-            inner, ta, ra, temp, index_offset, flags, sa, fix_block, given
+            inner, ta, ra, temp, index_offset, (flags, fix_output_flags(outputs)), sa, fix_block, given
         )
         self._inner = inner  # with the fix stage the first fixes started, now that they were good
         self._warn_repairs(before, inner.report(), ta, ra, temp)
@@ -262,7 +266,7 @@ class Pipeline:
         rate: FloatArray,
         temp: FloatArray | None,
         index_offset: int,
-        flags: tuple[bool, bool],
+        flags: tuple[tuple[bool, bool], tuple[bool, bool, bool]],
         speed: FloatArray | None,
         fixes: Fixes | None,
         out: Filled | None,
@@ -271,7 +275,8 @@ class Pipeline:
         caller's arrays ``out`` where given), and the rests that ended in it (every one: the core
         hands each over as it ends)."""
         given = None if fixes is None else (fixes.t, fixes.heading, fixes.sigma)
-        heading, out_rate, drift, found, fused = inner.process(t, rate, temp, index_offset, flags, speed, given, out)
+        heading, out_rate, drift, found, fused = inner.process(t, rate, temp, index_offset, flags[0], speed, given, out,
+                                                              flags[1])
         origin = self._first_time if self._first_time is not None else float(t[0]) if len(t) else 0.0
         return heading, out_rate, drift, [rests.from_core(r, origin) for r in found], fused
 
@@ -429,7 +434,7 @@ def process(
     preset: str = "hdr",
     *,
     temperature: ArrayLike | None = None,
-    outputs: tuple[str, ...] = OUTPUTS,
+    outputs: tuple[str, ...] = ALL_OUTPUTS,
     mode: str = "whole",
     speed: ArrayLike | None = None,
     speed_t: ArrayLike | None = None,
@@ -438,8 +443,9 @@ def process(
     out: OutArrays | None = None,
     **overrides: Any,
 ) -> HeadingResult:
-    """Heading of a whole log; ``outputs`` chooses which of ``heading``, ``rate`` and ``drift`` are
-    computed, and ``out`` gives arrays to fill with them (see :meth:`Pipeline.process`).
+    """Heading of a whole log; ``outputs`` chooses which of ``heading``, ``rate`` and ``drift`` (and
+    with fixes ``heading_sigma``, ``fusion_bias``, ``fusion_scale``) are computed, and ``out`` gives
+    arrays to fill with the first three (see :meth:`Pipeline.process`).
 
     ``fixes`` (see :meth:`Pipeline.process`) add the fix stage with the settings ``fusion``: in
     whole mode the Rauch-Tung-Striebel smoother, in causal mode the filter.

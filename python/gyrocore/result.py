@@ -18,21 +18,27 @@ if TYPE_CHECKING:
 
 #: The per-sample outputs of the pipeline, in the order of :class:`HeadingResult`.
 OUTPUTS = ("heading", "rate", "drift")
+#: The fix stage's per-sample outputs, with heading fixes: :attr:`HeadingResult.heading_sigma`, and the
+#: bias and scale error of :class:`gyrocore.fixes.FusionResult` (``fusion.bias``, ``fusion.scale``).
+FIX_OUTPUTS = ("heading_sigma", "fusion_bias", "fusion_scale")
+#: Every output: the default of ``outputs=`` (the fix stage's only with fixes).
+ALL_OUTPUTS = OUTPUTS + FIX_OUTPUTS
 
 
 def output_flags(outputs: tuple[str, ...] | list[str]) -> tuple[bool, bool]:
     """Whether ``outputs`` asks for the rate and the drift (the heading is always computed);
-    a name not in :data:`OUTPUTS`, or no heading, is a ``ValueError``."""
-    if isinstance(outputs, str) or any(o not in OUTPUTS for o in outputs) or "heading" not in outputs:
+    a name not in :data:`ALL_OUTPUTS`, or no heading, is a ``ValueError``."""
+    if isinstance(outputs, str) or any(o not in ALL_OUTPUTS for o in outputs) or "heading" not in outputs:
         raise ValueError(
-            f"outputs={outputs!r}: give a tuple of names from {', '.join(OUTPUTS)}, with heading "
+            f"outputs={outputs!r}: give a tuple of names from {', '.join(ALL_OUTPUTS)}, with heading "
             "(the heading is always computed)"
         )
     return "rate" in outputs, "drift" in outputs
 
 
-#: What ``out=`` takes: one float64 array per output asked for, in the order of ``outputs``, or
-#: the array itself when the heading alone is asked for.
+#: What ``out=`` takes: one float64 array per pipeline output (heading, rate, drift) asked for, in
+#: the order of ``outputs``, or the array itself when the heading alone is asked for (the fix
+#: stage's columns are always fresh arrays).
 OutArrays = Union[FloatArray, Sequence[FloatArray]]
 #: The caller's arrays for (heading, rate, drift), None where there is none.
 Filled = tuple[Union[FloatArray, None], Union[FloatArray, None], Union[FloatArray, None]]
@@ -49,7 +55,7 @@ def out_arrays(
     output_flags(outputs)
     if out is None:
         return None
-    names = tuple(outputs)
+    names = tuple(o for o in outputs if o in OUTPUTS)
     if len(set(names)) != len(names):
         raise ValueError(f"outputs={names!r} names an output twice: with out=, name each output once")
     arrays: tuple[object, ...]
@@ -102,6 +108,10 @@ def filled(result: HeadingResult, arrays: Filled | None) -> HeadingResult:
     heading, rate, drift = arrays
     return replace(result, heading=result.heading if heading is None else heading,
                    rate=result.rate if rate is None else rate, drift=result.drift if drift is None else drift)
+def fix_output_flags(outputs: tuple[str, ...] | list[str]) -> tuple[bool, bool, bool]:
+    """Whether ``outputs`` (checked by :func:`output_flags`) asks for each of :data:`FIX_OUTPUTS`."""
+    heading_sigma, bias, scale = (name in outputs for name in FIX_OUTPUTS)
+    return heading_sigma, bias, scale
 
 
 @dataclass(frozen=True, repr=False)
@@ -122,7 +132,8 @@ class HeadingResult:
             filtered bias after it; :class:`gyrocore.rests.Rest`).
         bias_source: where the static bias came from (set by :func:`process` and
             :meth:`gyrocore.Log.process`; empty from a streaming :class:`Pipeline`).
-        heading_sigma: with heading fixes, the filter's heading standard deviation [rad], else None.
+        heading_sigma: with heading fixes, the filter's heading standard deviation [rad] (unless
+            ``outputs=`` left it out), else None.
         fusion: with heading fixes, the fix stage's :class:`gyrocore.fixes.FusionResult` (bias and
             scale error of the corrected rate, fix counts), else None.
     """
@@ -141,7 +152,7 @@ class HeadingResult:
         """The output ``name`` (one of :data:`OUTPUTS`, or ``heading_sigma``); a ``ValueError`` if it
         was not asked for (or, for ``heading_sigma``, there were no fixes)."""
         value: FloatArray | None = getattr(self, name) if name in (*OUTPUTS, "heading_sigma") else None
-        if value is None and name == "heading_sigma":
+        if value is None and name == "heading_sigma" and self.fusion is None:
             raise ValueError("the 'heading_sigma' output comes with heading fixes, and there were none")
         if value is None:
             raise ValueError(f"the {name!r} output was not computed: ask for it in outputs=")

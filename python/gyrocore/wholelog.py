@@ -42,7 +42,7 @@ from ._checks import warn
 from ._gyrocore import SampleError
 from ._rests import MIN_REST, SPEED_THRESHOLD, accept, find_rests, measure_rest
 from ._smoother import SmoothedBias, smooth
-from .pipeline import OUTPUTS, BIAS_SOURCES, HeadingResult, Pipeline, _to_si, preset_params, uses_static_bias
+from .pipeline import ALL_OUTPUTS, BIAS_SOURCES, HeadingResult, Pipeline, _to_si, preset_params, uses_static_bias
 from .result import OutArrays, filled, out_arrays
 from .rests import Rest, speed_on
 
@@ -336,7 +336,7 @@ def process_log(
     temperature: ArrayLike | None = None,
     speed: ArrayLike | None = None,
     speed_t: ArrayLike | None = None,
-    outputs: tuple[str, ...] = OUTPUTS,
+    outputs: tuple[str, ...] = ALL_OUTPUTS,
     fixes: FixesLike | None = None,
     fusion: dict[str, float] | None = None,
     out: OutArrays | None = None,

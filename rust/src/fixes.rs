@@ -30,6 +30,8 @@ use core::f64::consts::PI;
 
 use crate::error::{check_positive, check_range};
 pub use crate::fixes_error::{FixProblem, FusionError};
+use crate::fixes_output::calibration_of;
+pub use crate::fixes_output::{Estimate, FusionOutputs};
 use crate::fixes_smooth::{Mat3, Step};
 use crate::{check_block, Error, MAX_TIME};
 
@@ -144,44 +146,6 @@ pub struct FixCounts {
     pub before_start: u64,
 }
 
-/// The estimate at one time: heading and its standard deviation, and Hong eq 1's bias and scale.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Estimate {
-    /// Heading \[rad\], continuous (not wrapped).
-    pub heading: f64,
-    /// Its standard deviation \[rad\].
-    pub heading_sigma: f64,
-    /// Bias `b` \[rad/s\]: what the gyro reads at rest.
-    pub bias: f64,
-    /// Scale error `s`: the gyro reads `(1 + s)` times the true rate.
-    pub scale: f64,
-}
-
-impl Estimate {
-    /// The estimate of state `x = [psi, s_bar, b_bar]` with covariance `p` (Hong eq 3 to eq 1).
-    pub(crate) fn of(x: &[f64; 3], p: &Mat3) -> Self {
-        Estimate {
-            heading: x[0],
-            heading_sigma: libm::sqrt(p[0][0]),
-            bias: -x[2] / x[1],
-            scale: 1.0 / x[1] - 1.0,
-        }
-    }
-}
-
-/// Output slices of [`Fusion::process_block`], one value per gyro sample.
-#[derive(Debug)]
-pub struct FusionOutputs<'a> {
-    /// Heading \[rad\].
-    pub heading: &'a mut [f64],
-    /// Its standard deviation \[rad\].
-    pub heading_sigma: &'a mut [f64],
-    /// Bias \[rad/s\].
-    pub bias: &'a mut [f64],
-    /// Scale error.
-    pub scale: &'a mut [f64],
-}
-
 /// The last gyro sample and the point the state is propagated to (a sample or a fix time).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -277,37 +241,58 @@ impl Fusion {
         t: &[f64],
         rate: &[f64],
         fixes: &[Fix],
-        out: FusionOutputs<'_>,
+        mut out: FusionOutputs<'_>,
         mut record: impl FnMut(Step),
     ) -> Result<usize, FusionError> {
-        let n = t.len();
-        for (what, len) in [
-            ("heading", out.heading.len()),
-            ("heading_sigma", out.heading_sigma.len()),
-            ("bias", out.bias.len()),
-            ("scale", out.scale.len()),
-        ] {
-            if len != n {
-                return Err(Error::LengthMismatch {
-                    what,
-                    len,
-                    expected: n,
-                }
-                .into());
-            }
-        }
+        out.check(t.len())?;
         check_block(t, rate, None, self.anchor.map(|a| a.sample_t), true)?;
         self.check_fixes(fixes)?;
-        let mut next = 0;
-        for (k, (&tk, &rk)) in t.iter().zip(rate).enumerate() {
-            next += self.sample(tk, rk, &fixes[next..], &mut record);
-            let e = self.estimate();
-            out.heading[k] = e.heading;
-            out.heading_sigma[k] = e.heading_sigma;
-            out.bias[k] = e.bias;
-            out.scale[k] = e.scale;
+        Ok(self.run(t, rate, fixes, &mut out, &mut record))
+    }
+
+    /// The samples of a block (`t` and `rate` as long as `out`) with their fixes, writing the
+    /// estimate after each; returns how many fixes it used. The caller has checked the times and
+    /// the fixes ([`check_block`], [`Fusion::check_fixes`]); a sample whose rate is not finite
+    /// (one the pipeline skipped) is left out, and its row repeats the estimate before it.
+    #[inline(always)]
+    pub(crate) fn run(
+        &mut self,
+        t: &[f64],
+        rate: &[f64],
+        fixes: &[Fix],
+        out: &mut FusionOutputs<'_>,
+        record: &mut impl FnMut(Step),
+    ) -> usize {
+        // The filter runs on a copy, which the compiler can keep in registers.
+        let mut fusion = *self;
+        let n = t.len();
+        let (t, rate, mut out) = (&t[..n], &rate[..n], out.first(n));
+        let (mut k, mut used) = (0, 0);
+        while k < n {
+            // Up to the next fix, a sample only propagates: a loop with nothing else in it.
+            let next_fix = fixes.get(used).map_or(f64::INFINITY, |f| f.t);
+            let calibration = calibration_of(&fusion.x);
+            if let Some(mut a) = fusion.anchor {
+                while k < n && t[k] < next_fix {
+                    if rate[k].is_finite() {
+                        fusion.take_sample(&mut a, t[k], rate[k], record);
+                    }
+                    out.set(k, &fusion.x, &fusion.p, calibration);
+                    k += 1;
+                }
+                fusion.anchor = Some(a);
+            }
+            // The first sample, or one at or past a fix: the fixes up to it, then the sample.
+            if k < n {
+                if rate[k].is_finite() {
+                    used += fusion.sample(t[k], rate[k], &fixes[used..], record);
+                }
+                out.set(k, &fusion.x, &fusion.p, calibration_of(&fusion.x));
+                k += 1;
+            }
         }
-        Ok(next)
+        *self = fusion;
+        used
     }
 
     /// Checks `fixes` as the next call would, processing nothing: the error names the first bad
@@ -348,14 +333,10 @@ impl Fusion {
     }
 
     /// One gyro sample and the fixes up to its time; returns how many fixes it used. The caller
-    /// has checked the sample and the fixes ([`check_block`], [`Fusion::check_fixes`]).
-    pub(crate) fn sample(
-        &mut self,
-        t: f64,
-        rate: f64,
-        fixes: &[Fix],
-        record: &mut impl FnMut(Step),
-    ) -> usize {
+    /// has checked the sample and the fixes ([`check_block`], [`Fusion::check_fixes`]). A
+    /// `record` that keeps nothing costs nothing: the steps are built only for it.
+    #[inline(always)]
+    fn sample(&mut self, t: f64, rate: f64, fixes: &[Fix], record: &mut impl FnMut(Step)) -> usize {
         let mut used = 0;
         let first = Anchor {
             sample_t: t,
@@ -376,41 +357,42 @@ impl Fusion {
                 let frac = (f.t - a.sample_t) / (t - a.sample_t);
                 a.sample_rate + (rate - a.sample_rate) * frac
             };
-            let step = self.propagate(&mut a, f.t, at_fix);
-            let step = self.correct(step, f);
+            let (am, c) = self.propagate(&mut a, f.t, at_fix);
+            let mut step = Step::new(am, c, &self.x, &self.p);
+            if self.correct(f) {
+                step.set_filtered(&self.x, &self.p);
+            }
             self.last_fix = Some(f.t);
             record(step);
             used += 1;
         }
-        let step = self.propagate(&mut a, t, rate);
-        (a.sample_t, a.sample_rate) = (t, rate);
+        self.take_sample(&mut a, t, rate, record);
         self.anchor = Some(a);
-        record(step.at_sample());
         used
+    }
+
+    /// Propagates from the anchor `a` to the gyro sample `(t, rate)`, which becomes its sample.
+    #[inline(always)]
+    fn take_sample(&mut self, a: &mut Anchor, t: f64, rate: f64, record: &mut impl FnMut(Step)) {
+        let (am, c) = self.propagate(a, t, rate);
+        (a.sample_t, a.sample_rate) = (t, rate);
+        record(Step::new(am, c, &self.x, &self.p).at_sample());
     }
 
     /// Propagates the state from the anchor `a` to `t` where the rate reads `rate` (Hong eq 4
     /// with the mean rate of the interval, and the covariance with the discretised process
-    /// noise), and moves the anchor there.
-    fn propagate(&mut self, a: &mut Anchor, t: f64, rate: f64) -> Step {
+    /// noise), and moves the anchor there. Returns the transition's `F[0][1]` and `F[0][2]`.
+    #[inline(always)]
+    fn propagate(&mut self, a: &mut Anchor, t: f64, rate: f64) -> (f64, f64) {
         let dt = t - a.t;
         let m = 0.5 * (a.rate + rate);
         (a.t, a.rate) = (t, rate);
         if dt <= 0.0 {
-            return Step::new(0.0, 0.0, &self.x, &self.p);
+            return (0.0, 0.0);
         }
         let (x, p) = (&mut self.x, &mut self.p);
         x[0] += dt * (x[1] * m + x[2]);
         let (am, c) = (dt * m, dt);
-        // F P F^T for F = [[1, am, c], [0, 1, 0], [0, 0, 1]].
-        let p01 = p[0][1] + am * p[1][1] + c * p[1][2];
-        let p02 = p[0][2] + am * p[1][2] + c * p[2][2];
-        let p00 = p[0][0]
-            + 2.0 * am * p[0][1]
-            + 2.0 * c * p[0][2]
-            + am * am * p[1][1]
-            + 2.0 * am * c * p[1][2]
-            + c * c * p[2][2];
         // Q of white noise on psi' (N^2), s_bar' (scale walk^2) and b_bar' (K^2) over dt.
         let (qa, qs, qb) = (
             self.config.arw * self.config.arw,
@@ -418,23 +400,37 @@ impl Fusion {
             self.config.bias_walk * self.config.bias_walk,
         );
         let dt2 = dt * dt;
-        p[0][0] = p00 + qa * dt + (qs * m * m + qb) * dt2 * dt / 3.0;
-        p[0][1] = p01 + qs * m * dt2 / 2.0;
-        p[0][2] = p02 + qb * dt2 / 2.0;
+        // F P F^T + Q for F = [[1, am, c], [0, 1, 0], [0, 0, 1]]. Each element's increment is
+        // summed first and then added: the element is one add from its value a sample before
+        // (the chain that runs from sample to sample), not the head of a chain of six adds.
+        let d01 = am * p[1][1] + c * p[1][2] + qs * m * dt2 / 2.0;
+        let d02 = am * p[1][2] + c * p[2][2] + qb * dt2 / 2.0;
+        let d00 = 2.0 * am * p[0][1]
+            + 2.0 * c * p[0][2]
+            + am * am * p[1][1]
+            + 2.0 * am * c * p[1][2]
+            + c * c * p[2][2]
+            + qa * dt
+            + (qs * m * m + qb) * dt2 * dt / 3.0;
+        p[0][0] += d00;
+        p[0][1] += d01;
+        p[0][2] += d02;
         p[1][0] = p[0][1];
         p[2][0] = p[0][2];
         p[1][1] += qs * dt;
         p[2][2] += qb * dt;
-        Step::new(am, c, &self.x, &self.p)
+        (am, c)
     }
 
-    /// The Kalman update with a fix (H = [1, 0, 0]), unless the gate rejects it.
-    fn correct(&mut self, mut step: Step, fix: &Fix) -> Step {
+    /// The Kalman update with a fix (H = [1, 0, 0]), unless the gate rejects it; returns
+    /// whether it was applied.
+    #[inline(always)]
+    fn correct(&mut self, fix: &Fix) -> bool {
         let s = self.p[0][0] + fix.sigma * fix.sigma;
         let nu = wrap_angle(fix.heading - self.x[0]);
         if nu * nu > self.config.gate * s {
             self.counts.rejected += 1;
-            return step;
+            return false;
         }
         self.counts.applied += 1;
         let k = [self.p[0][0] / s, self.p[1][0] / s, self.p[2][0] / s];
@@ -445,7 +441,6 @@ impl Fusion {
                 *pij -= k * r;
             }
         }
-        step.set_filtered(&self.x, &self.p);
-        step
+        true
     }
 }

@@ -21,17 +21,23 @@
 //! let mut cols = [vec![0.0; t.len()], vec![0.0; t.len()], vec![0.0; t.len()], vec![0.0; t.len()]];
 //! let mut corrected = vec![0.0; t.len()];
 //! let [heading, heading_sigma, bias, scale] = &mut cols;
-//! let out = FusedOutputs { heading, heading_sigma, bias, scale, rate: &mut corrected, drift: None };
+//! let out = FusedOutputs {
+//!     heading,
+//!     heading_sigma: Some(&mut heading_sigma[..]), // None for an estimate not needed
+//!     bias: Some(&mut bias[..]),
+//!     scale: Some(&mut scale[..]),
+//!     rate: &mut corrected,
+//!     drift: None,
+//! };
 //! let used = fused.process_block(Samples::new(&t, &rate), &fixes, out).unwrap();
 //! assert_eq!(used, 5); // every fix lies within the block
 //! assert!((cols[0][499] - (1.0 + 0.1 * 4.99)).abs() < 0.02);
 //! assert!(cols[1][499] < 0.05); // the filter's heading sigma [rad]
 //! ```
 
-use crate::fixes::{Fix, FixCounts, Fusion, FusionConfig, FusionError};
+use crate::fixes::{Fix, FixCounts, Fusion, FusionConfig, FusionError, FusionOutputs};
 use crate::pipeline::{Outputs, Pipeline, PipelineConfig};
 use crate::rest_tracker::Rest;
-use crate::stage::check_len;
 use crate::Error;
 
 /// A block of gyro samples: times \[s\] and rates \[rad/s\], with the temperature \[degC\] where the
@@ -61,17 +67,18 @@ impl<'a> Samples<'a> {
 }
 
 /// Where [`FusedPipeline::process_block`] writes, one value per sample (each slice as long as
-/// the block).
+/// the block); `None` for an estimate the caller does not need (it is then not computed: the
+/// sigma takes a square root per sample, and each column a pass of stores).
 #[derive(Debug)]
 pub struct FusedOutputs<'a> {
     /// The filter's heading \[rad\], continuous.
     pub heading: &'a mut [f64],
     /// Its standard deviation \[rad\].
-    pub heading_sigma: &'a mut [f64],
+    pub heading_sigma: Option<&'a mut [f64]>,
     /// The bias of the corrected rate left to the filter [rad/s] (Hong eq 1's `b`).
-    pub bias: &'a mut [f64],
+    pub bias: Option<&'a mut [f64]>,
     /// The scale error of the corrected rate (Hong eq 1's `s`).
-    pub scale: &'a mut [f64],
+    pub scale: Option<&'a mut [f64]>,
     /// The pipeline's corrected rate, the filter's input [rad/s] (NaN where a sample was skipped).
     pub rate: &'a mut [f64],
     /// HDR's drift estimate [rad/s], if wanted.
@@ -85,19 +92,15 @@ pub struct FusedOutputs<'a> {
 pub struct FusedPipeline {
     pipeline: Pipeline,
     fusion: Fusion,
-    /// The last (heading, heading sigma, bias, scale) written, repeated for a skipped sample.
-    last: [f64; 4],
 }
 
 impl FusedPipeline {
     /// Validates both configurations and builds the pipeline and its filter (the filter's
     /// initial heading is its own, [`FusionConfig::initial_heading`]).
     pub fn new(pipeline: PipelineConfig, fusion: FusionConfig) -> Result<Self, Error> {
-        let fusion = Fusion::new(fusion)?;
         Ok(FusedPipeline {
+            fusion: Fusion::new(fusion)?,
             pipeline: Pipeline::new(pipeline)?,
-            last: prior(fusion.config()),
-            fusion,
         })
     }
 
@@ -120,7 +123,6 @@ impl FusedPipeline {
     pub fn reset(&mut self) {
         self.pipeline.reset();
         self.fusion.reset();
-        self.last = prior(self.fusion.config());
     }
 
     /// Processes a block of samples with the fixes up to its last sample (sorted by time; any
@@ -157,21 +159,19 @@ impl FusedPipeline {
             rate,
             drift,
         } = out;
-        for (what, len) in [
-            ("heading_sigma", heading_sigma.len()),
-            ("bias", bias.len()),
-            ("scale", scale.len()),
-        ] {
-            check_len(what, len, n)?;
-        }
+        let mut estimates = FusionOutputs {
+            heading,
+            heading_sigma,
+            bias,
+            scale,
+        };
+        estimates.check(n)?;
         // Checked before the pipeline runs, so that a bad fix changes nothing.
         self.fusion.check_fixes(fixes)?;
-        // Without a drift output the sigma column holds it meanwhile: the pipeline's loop is
-        // fastest with all three outputs, and the filter overwrites the column below.
         let outputs = Outputs {
-            heading: Some(&mut *heading),
+            heading: None,
             rate: Some(&mut *rate),
-            drift: Some(drift.unwrap_or(&mut *heading_sigma)),
+            drift,
         };
         // On an error the pipeline restores itself, and the filter has not moved.
         self.pipeline.process_block_reporting(
@@ -184,29 +184,10 @@ impl FusedPipeline {
         )?;
         // The pipeline accepted every timestamp (finite, strictly increasing), and its corrected
         // rate is finite wherever it took a sample: the filter takes those one by one, as
-        // `Fusion::process_block` would, and leaves out the ones the pipeline skipped.
-        let mut used = 0;
-        for k in 0..n {
-            let r = rate[k];
-            if r.is_finite() {
-                used += self
-                    .fusion
-                    .sample(samples.t[k], r, &fixes[used..], &mut |_| {});
-                let e = self.fusion.estimate();
-                self.last = [e.heading, e.heading_sigma, e.bias, e.scale];
-            }
-            [heading[k], heading_sigma[k], bias[k], scale[k]] = self.last;
-        }
-        Ok(used)
+        // `Fusion::process_block` would, and leaves out the ones the pipeline skipped: the
+        // state stands still over those, so the estimate written for one repeats the row before.
+        Ok(self
+            .fusion
+            .run(samples.t, rate, fixes, &mut estimates, &mut |_| {}))
     }
-}
-
-/// The estimate before the first sample: the filter's initial heading and bias and their sigmas.
-fn prior(c: &FusionConfig) -> [f64; 4] {
-    [
-        c.initial_heading,
-        c.initial_heading_sigma,
-        c.initial_bias,
-        0.0,
-    ]
 }

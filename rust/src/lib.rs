@@ -49,6 +49,7 @@ pub mod correction;
 mod error;
 pub mod fixes;
 mod fixes_error;
+mod fixes_output;
 pub mod fixes_smooth;
 pub mod fused;
 pub mod hdr;

@@ -100,17 +100,27 @@ def _fixes(t: np.ndarray) -> Fixes:
 
 
 @pytest.mark.parametrize("mode", ["whole", "causal"])
-@pytest.mark.parametrize("outputs", [("heading",), ("heading", "drift"), ("heading", "rate", "drift")])
+@pytest.mark.parametrize("outputs", [("heading",), ("heading", "drift"), ("heading", "rate", "drift"),
+                                     ("heading", "heading_sigma"), ("heading", "rate", "fusion_bias", "fusion_scale")])
 def test_out_with_heading_fixes(mode: str, outputs: tuple[str, ...]) -> None:
+    """out= fills the pipeline's outputs asked for; the fix stage's columns asked for come fresh."""
     t, rate = _log()
     fixes = _fixes(t)
     fresh = gyrocore.process(t, rate, "hdr", bias=0.004, fixes=fixes, mode=mode, outputs=outputs)
-    arrays = _garbage(len(t), len(outputs))
+    filled = [o for o in outputs if o in ("heading", "rate", "drift")]
+    arrays = _garbage(len(t), len(filled))
     given = gyrocore.process(t, rate, "hdr", bias=0.004, fixes=fixes, mode=mode, outputs=outputs, out=tuple(arrays))
     _same(given, fresh)
     assert given.fusion is not None
-    for name, a in zip(outputs, arrays):
+    assert fresh.fusion is not None
+    if "fusion_bias" in outputs:
+        assert given.fusion.bias is not None and fresh.fusion.bias is not None
+        np.testing.assert_array_equal(_bits(given.fusion.bias), _bits(fresh.fusion.bias))
+    else:
+        assert given.fusion.bias is None
+    for name, a in zip(filled, arrays):
         assert given.output(name) is a, name
+    assert (given.heading_sigma is None) == ("heading_sigma" not in outputs)
 
 
 Call = Callable[..., gyrocore.HeadingResult]

@@ -118,18 +118,17 @@ fn run<'py>(
     let cols = (zeros(py, n), zeros(py, n), zeros(py, n), zeros(py, n));
     let used = fill([&cols.0, &cols.1, &cols.2, &cols.3], |[h, s, b, sc]| {
         py.detach(|| {
-            let out = FusionOutputs {
-                heading: h,
-                heading_sigma: s,
-                bias: b,
-                scale: sc,
-            };
             match steps {
                 Some(steps) => {
                     steps.reserve(n + fixes.len());
+                    // The smoother overwrites every column: the forward pass writes one.
+                    let out = FusionOutputs::heading(h);
                     fusion.process_block_recording(t, rate, fixes, out, |s| steps.push(s))
                 }
-                None => fusion.process_block(t, rate, fixes, out),
+                None => {
+                    let out = FusionOutputs::all(h, s, b, sc);
+                    fusion.process_block(t, rate, fixes, out)
+                }
             }
         })
     })?

@@ -39,9 +39,23 @@ pub(crate) struct Block<'a> {
     pub(crate) speed: Option<&'a [f64]>,
 }
 
-/// The fix stage's columns of a block: heading sigma, bias, scale, and the fix counts (applied,
-/// rejected, before the first sample, waiting for a later block).
-pub(crate) type FusedColumns<'py> = (Array<'py>, Array<'py>, Array<'py>, (u64, u64, u64, usize));
+/// The fix stage's columns of a block: heading sigma, bias, scale (each None unless asked for),
+/// and the fix counts (applied, rejected, before the first sample, waiting for a later block).
+pub(crate) type FusedColumns<'py> = (
+    Option<Array<'py>>,
+    Option<Array<'py>>,
+    Option<Array<'py>>,
+    (u64, u64, u64, usize),
+);
+
+/// Which outputs a block computes: the pipeline's (rate, drift) and the fix stage's (heading
+/// sigma, bias, scale); the heading always. `given` are the caller's arrays for (heading, rate,
+/// drift) to fill instead of fresh ones (see [`output`]).
+pub(crate) struct Wanted<'py> {
+    pub(crate) pipeline: (bool, bool),
+    pub(crate) fixes: (bool, bool, bool),
+    pub(crate) given: Option<[Option<Array<'py>>; 3]>,
+}
 
 /// What a block gives: heading, rate, drift (rate and drift None unless asked for), and the fix
 /// stage's columns with it.
@@ -89,21 +103,21 @@ impl Core {
         Ok(())
     }
 
-    /// Runs a block; `fixes` (t, heading, sigma) only with the fix stage; `outputs` says whether
-    /// the rate and the drift are asked for, and where the caller gave arrays for (heading,
-    /// rate, drift) they are filled (see [`output`]). Errors count sample indices from
-    /// `index_offset`.
+    /// Runs a block; `fixes` (t, heading, sigma) only with the fix stage; `wanted` says which
+    /// outputs are asked for and which arrays of the caller's are filled. Errors count sample
+    /// indices from `index_offset`.
     pub(crate) fn process<'py>(
         &mut self,
         py: Python<'py>,
         block: &Block<'_>,
         fixes: Option<[PyReadonlyArray1<'py, f64>; 3]>,
-        (outputs, given): ((bool, bool), Option<[Option<Array<'py>>; 3]>),
+        wanted: Wanted<'py>,
         index_offset: usize,
         on_rest: &mut (dyn FnMut(Rest) + Send),
     ) -> PyResult<Processed<'py>> {
         let n = block.t.len();
-        let [given_heading, given_rate, given_drift] = given.unwrap_or_default();
+        let [given_heading, given_rate, given_drift] = wanted.given.unwrap_or_default();
+        let outputs = wanted.pipeline;
         let heading = output(py, OUT[0], given_heading, n, true)?.unwrap_or_else(|| zeros(py, n));
         let out_rate = output(py, OUT[1], given_rate, n, outputs.0)?;
         let drift = output(py, OUT[2], given_drift, n, outputs.1)?;
@@ -155,23 +169,25 @@ impl Core {
         }
         // The filter runs on the corrected rate: it is computed whether asked for or not.
         let rate_column = out_rate.unwrap_or_else(|| zeros(py, n));
-        let (sigma, bias, scale) = (zeros(py, n), zeros(py, n), zeros(py, n));
+        let wanted_array = |on: bool| on.then(|| zeros(py, n));
+        let (fs, fb, fsc) = wanted.fixes;
+        let (sigma, bias, scale) = (wanted_array(fs), wanted_array(fb), wanted_array(fsc));
         let used = fill_some(
             [
                 named(0, Some(&heading)),
                 named(1, Some(&rate_column)),
-                Some(("heading_sigma", &sigma)),
-                Some(("bias", &bias)),
-                Some(("scale", &scale)),
+                sigma.as_ref().map(|a| ("heading_sigma", a)),
+                bias.as_ref().map(|a| ("bias", a)),
+                scale.as_ref().map(|a| ("scale", a)),
                 named(2, drift.as_ref()),
             ],
             |[h, r, s, bi, sc, dr]| {
                 py.detach(|| {
                     let out = FusedOutputs {
                         heading: h.unwrap_or_default(),
-                        heading_sigma: s.unwrap_or_default(),
-                        bias: bi.unwrap_or_default(),
-                        scale: sc.unwrap_or_default(),
+                        heading_sigma: s,
+                        bias: bi,
+                        scale: sc,
                         rate: r.unwrap_or_default(),
                         drift: dr,
                     };

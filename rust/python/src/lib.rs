@@ -183,12 +183,13 @@ impl PyPipeline {
     /// Processes a block; returns (heading, rate, drift, rests, fused), rate and drift None
     /// unless asked for in `outputs` (rate, drift), rests the ones the tracker found in the block
     /// (see [`RestView`]), fused the fix stage's (heading_sigma, bias, scale, counts) when the
-    /// pipeline has one (the heading is then the filter's). `fixes` are (t, heading, sigma)
+    /// pipeline has one (the heading is then the filter's; each column None unless asked for in
+    /// `fix_outputs`, each costing per sample when it is). `fixes` are (t, heading, sigma)
     /// arrays, after any still waiting. `out` are the caller's (heading, rate, drift) arrays to
     /// fill instead of fresh ones (each None or one per output asked for; see [`output`]).
     /// Nothing is processed from an invalid block; its error counts sample indices from
     /// `index_offset`.
-    #[pyo3(signature = (t, rate, temperature=None, index_offset=0, outputs=(true, true), speed=None, fixes=None, out=None))]
+    #[pyo3(signature = (t, rate, temperature=None, index_offset=0, outputs=(true, true), speed=None, fixes=None, out=None, fix_outputs=(true, true, true)))]
     #[allow(clippy::type_complexity, clippy::too_many_arguments)]
     fn process<'py>(
         &mut self,
@@ -201,6 +202,7 @@ impl PyPipeline {
         speed: Option<PyReadonlyArray1<'py, f64>>,
         fixes: Option<[PyReadonlyArray1<'py, f64>; 3]>,
         out: Option<[Option<Array<'py>>; 3]>,
+        fix_outputs: (bool, bool, bool),
     ) -> PyResult<(
         Array<'py>,
         Option<Array<'py>>,
@@ -231,14 +233,14 @@ impl PyPipeline {
                 r.filtered,
             ))
         };
-        let (heading, out_rate, drift, fused) = self.inner.process(
-            py,
-            &block,
-            fixes,
-            (outputs, out),
-            index_offset,
-            &mut on_rest,
-        )?;
+        let wanted = fused::Wanted {
+            pipeline: outputs,
+            fixes: fix_outputs,
+            given: out,
+        };
+        let (heading, out_rate, drift, fused) =
+            self.inner
+                .process(py, &block, fixes, wanted, index_offset, &mut on_rest)?;
         Ok((heading, out_rate, drift, rests, fused))
     }
 

@@ -1,0 +1,79 @@
+"""The fix stage's outputs are computed only where asked for (``outputs=`` of Pipeline.process and
+gyrocore.process): the ones asked for equal those of a run with every output, bit for bit."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import gyrocore
+from gyrocore.result import ALL_OUTPUTS, FIX_OUTPUTS
+
+from .test_fixes import BIAS, drive
+from .test_fixes_entry import fixes_of
+
+#: Each fix output and where a result holds it.
+WHERE = {"heading_sigma": ("heading_sigma",), "fusion_bias": ("fusion", "bias"), "fusion_scale": ("fusion", "scale")}
+
+
+def column(result: gyrocore.HeadingResult, name: str) -> np.ndarray | None:
+    value: object = result
+    for attribute in WHERE[name]:
+        value = getattr(value, attribute)
+    assert value is None or isinstance(value, np.ndarray)
+    return value
+
+
+@pytest.mark.parametrize("outputs", [("heading",), ("heading", "heading_sigma"), ("heading", "rate", "fusion_scale"),
+                                     ("heading", "drift", "fusion_bias", "fusion_scale")])
+def test_the_pipeline_computes_the_fix_outputs_asked_for(outputs: tuple[str, ...]) -> None:
+    t, heading, rate = drive(90.0)
+    rate[2500] = np.nan  # skipped: its row repeats the one before, in every column asked for
+    fixes = fixes_of(t, heading)
+    with pytest.warns(gyrocore.InputWarning, match="1 non-finite reading"):
+        every = gyrocore.Pipeline("hdr", bias=BIAS, nonfinite="skip").process(t, rate, fixes=fixes)
+    with pytest.warns(gyrocore.InputWarning, match="1 non-finite reading"):
+        some = gyrocore.Pipeline("hdr", bias=BIAS, nonfinite="skip").process(t, rate, fixes=fixes, outputs=outputs)
+    assert some.heading.tobytes() == every.heading.tobytes()
+    assert some.fusion is not None and every.fusion is not None
+    assert some.fusion.heading.tobytes() == every.heading.tobytes()
+    assert some.fusion.counts == every.fusion.counts
+    for name in ("rate", "drift"):
+        asked = getattr(some, name)
+        assert (asked is not None) == (name in outputs), name
+    for name in FIX_OUTPUTS:
+        asked, full = column(some, name), column(every, name)
+        assert full is not None
+        if name in outputs:
+            assert asked is not None and asked.tobytes() == full.tobytes(), name
+            assert asked[2500] == asked[2499]
+        else:
+            assert asked is None, name
+    if "heading_sigma" not in outputs:
+        with pytest.raises(ValueError, match="'heading_sigma' output was not computed: ask for it in outputs="):
+            some.output("heading_sigma")
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_process_returns_only_the_fix_outputs_asked_for(mode: str) -> None:
+    t, heading, rate = drive(120.0)
+    fixes = fixes_of(t, heading)
+    every = gyrocore.process(t, rate, "hdr", mode=mode, fixes=fixes, bias=BIAS)
+    lean = gyrocore.process(t, rate, "hdr", mode=mode, fixes=fixes, bias=BIAS, outputs=("heading", "fusion_bias"))
+    assert lean.heading.tobytes() == every.heading.tobytes()
+    assert lean.rate is None and lean.drift is None and lean.heading_sigma is None
+    assert lean.fusion is not None and every.fusion is not None and every.fusion.bias is not None
+    assert lean.fusion.bias is not None and lean.fusion.bias.tobytes() == every.fusion.bias.tobytes()
+    assert lean.fusion.scale is None and lean.fusion.heading_sigma is None
+    # the default is every output
+    assert every.heading_sigma is not None and every.fusion.scale is not None and every.rate is not None
+
+
+def test_fix_outputs_without_fixes_and_unknown_names() -> None:
+    t, _, rate = drive(20.0)
+    plain = gyrocore.Pipeline("hdr", bias=BIAS).process(t, rate, outputs=("heading", "heading_sigma"))
+    assert plain.heading_sigma is None and plain.fusion is None and plain.rate is None
+    with pytest.raises(ValueError, match="comes with heading fixes, and there were none"):
+        plain.output("heading_sigma")
+    with pytest.raises(ValueError, match="give a tuple of names from " + ", ".join(ALL_OUTPUTS)):
+        gyrocore.Pipeline("hdr", bias=BIAS).process(t, rate, outputs=("heading", "sigma"))
