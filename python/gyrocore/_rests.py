@@ -69,18 +69,25 @@ def find_rests(
     finite = np.isfinite(rate)
     found: list[tuple[float, float, str]] = []
     known = np.zeros(len(t), dtype=bool) if speed is None else np.isfinite(speed)
+
+    def within(a: float, b: float) -> slice:
+        # the samples of [a, b] (t increases): a slice, not a mask over the whole log per rest,
+        # so that a log with many stops costs no more than its length times a few
+        return slice(int(np.searchsorted(t, a, side="left")), int(np.searchsorted(t, b, side="right")))
+
     if speed is not None:
         for a, b in _runs(t, known & (np.abs(np.where(known, speed, 0.0)) <= SPEED_THRESHOLD)):
             trim = min(EDGE, (b - a) / 4)
-            inside = (t >= a + trim) & (t <= b - trim) & finite
-            if b - a >= min_rest and inside.any() and abs(float(np.mean(rate[inside]))) <= MAX_REST_RATE:
+            inside = within(a + trim, b - trim)
+            readings = rate[inside][finite[inside]]
+            if b - a >= min_rest and len(readings) and abs(float(np.mean(readings))) <= MAX_REST_RATE:
                 found.append((a + trim, b - trim, "speed"))
     if np.count_nonzero(finite) >= 8 and not known.all():
         try:
             windows = rest_windows(t[finite], rate[finite], min_duration=min_rest)
         except ValueError:  # too sparse to judge a rest from the rate: none is found (the plan warns)
             windows = []
-        found += [(a, b, "rate") for a, b in windows if not known[(t >= a) & (t <= b)].any()]
+        found += [(a, b, "rate") for a, b in windows if not known[within(a, b)].any()]
     return sorted(found)
 
 
@@ -147,21 +154,17 @@ def accept(rests: list[Rest], walk: float) -> list[Rest]:
         else _refuse(r, f"noise {math.degrees(r.noise):.2g} deg/s, over {NOISE_RATIO:g} x the rests' median")
         for r in rests
     ]
-    while True:
-        used = [i for i, r in enumerate(out) if r.refused is None]
-        if len(used) < 3:
-            return out
-        z = leave_one_out(
-            np.array([out[i].middle for i in used]),
-            np.array([out[i].bias for i in used]),
-            np.array([out[i].bias_std_error for i in used]),
-            walk,
-        )
+    middle, bias, error = (np.array([getattr(r, name) for r in out]) for name in ("middle", "bias", "bias_std_error"))
+    used = np.array([r.refused is None for r in out], dtype=bool)
+    while np.count_nonzero(used) >= 3:
+        z = leave_one_out(middle[used], bias[used], error[used], walk)
         worst = int(np.argmax(np.abs(z)))
         if abs(z[worst]) <= OUTLIER_SIGMAS:
-            return out
-        i = used[worst]
+            break
+        i = int(np.flatnonzero(used)[worst])
+        used[i] = False
         out[i] = _refuse(out[i], f"{abs(z[worst]):.1f} sigma from what the other rests give")
+    return out
 
 
 def _refuse(rest: Rest, why: str) -> Rest:

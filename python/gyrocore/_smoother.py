@@ -15,6 +15,7 @@ Units: s, rad/s.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -90,7 +91,8 @@ def smooth(times: ArrayLike, values: ArrayLike, std_errors: ArrayLike, walk: flo
         gain = p / (p + r[k])
         predicted_var[k] = p
         filtered[k] = filtered[k - 1] + gain * (z[k] - filtered[k - 1])
-        filtered_var[k] = (1 - gain) * p
+        # not below a rest's floor: a noiseless rest would leave 0, and 0/0 in the backward pass
+        filtered_var[k] = max((1 - gain) * p, MIN_VARIANCE)
     mean, variance, cross = filtered.copy(), filtered_var.copy(), np.empty(n - 1)
     for k in range(n - 2, -1, -1):
         g = filtered_var[k] / predicted_var[k + 1]
@@ -100,13 +102,43 @@ def smooth(times: ArrayLike, values: ArrayLike, std_errors: ArrayLike, walk: flo
     return SmoothedBias(ts, mean, variance, cross, float(walk))
 
 
+def _predictions(ts: FloatArray, z: FloatArray, r: FloatArray, q: float) -> tuple[FloatArray, FloatArray]:
+    """The forward filter's prediction at each rest from the rests before it alone: mean and
+    variance (infinite at the first: the diffuse prior)."""
+    # Python floats: the recurrence runs once per rest in every round of refusals, and indexing
+    # numpy arrays element by element costs several times the arithmetic.
+    tl, zl, rl = ts.tolist(), z.tolist(), r.tolist()
+    mean, variance = [0.0] * len(tl), [math.inf] * len(tl)
+    m, p = zl[0], rl[0]
+    for k in range(1, len(tl)):
+        v = p + q * abs(tl[k] - tl[k - 1])  # backward, the times decrease
+        mean[k], variance[k] = m, v
+        gain = v / (v + rl[k])
+        m += gain * (zl[k] - m)
+        p = (1 - gain) * v
+        if p < MIN_VARIANCE:  # as in smooth()
+            p = MIN_VARIANCE
+    return np.array(mean), np.array(variance)
+
+
 def leave_one_out(times: FloatArray, values: FloatArray, std_errors: FloatArray, walk: float) -> FloatArray:
     """Each rest's normalized innovation against the smoother of the others: ``(z_k - b_k) /
-    sqrt(R_k + Var b_k)``, with ``b_k`` the bias the other rests give at ``t_k``."""
-    out = np.empty(len(times))
-    for k in range(len(times)):
-        others = np.arange(len(times)) != k
-        mean, sd = smooth(times[others], values[others], std_errors[others], walk).at(times[k : k + 1])
-        spread = np.sqrt(max(std_errors[k] ** 2, MIN_VARIANCE) + sd[0] ** 2)
-        out[k] = (values[k] - mean[0]) / spread
-    return out
+    sqrt(R_k + Var b_k)``, with ``b_k`` the bias the other rests give at ``t_k``.
+
+    For a random walk, the bias at ``t_k`` given the other rests combines the filter forward over
+    the rests before ``k`` with the filter backward over those after it, each predicted to
+    ``t_k`` (the two-filter form of the smoother): two passes for all ``k``, not a smoother per
+    rest, so that refusing outliers among many rests stays linear per round."""
+    ts, z = np.asarray(times, dtype=np.float64), np.asarray(values, dtype=np.float64)
+    r = np.maximum(np.asarray(std_errors, dtype=np.float64) ** 2, MIN_VARIANCE)
+    if len(ts) < 2:
+        raise ValueError("leaving one rest out needs at least two rests")
+    q = walk**2
+    ahead, ahead_var = _predictions(ts, z, r, q)
+    behind, behind_var = (a[::-1] for a in _predictions(ts[::-1], z[::-1], r[::-1], q))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        info = 1.0 / ahead_var + 1.0 / behind_var  # 0 from a side with no rest (infinite variance)
+        variance = 1.0 / info
+        mean = variance * (np.where(np.isinf(ahead_var), 0.0, ahead / ahead_var)
+                           + np.where(np.isinf(behind_var), 0.0, behind / behind_var))
+    return np.asarray((z - mean) / np.sqrt(r + variance), dtype=np.float64)
