@@ -81,18 +81,8 @@ def smooth(times: ArrayLike, values: ArrayLike, std_errors: ArrayLike, walk: flo
         raise ValueError("the rests' times must increase")
     if not (np.isfinite(walk) and walk >= 0):
         raise ValueError(f"bias_walk must be finite and >= 0, got {walk}")
-    q = walk**2
     n = len(ts)
-    filtered, filtered_var = np.empty(n), np.empty(n)
-    predicted_var = np.empty(n)
-    filtered[0], filtered_var[0], predicted_var[0] = z[0], r[0], np.inf  # diffuse prior: the first rest alone
-    for k in range(1, n):
-        p = filtered_var[k - 1] + q * (ts[k] - ts[k - 1])
-        gain = p / (p + r[k])
-        predicted_var[k] = p
-        filtered[k] = filtered[k - 1] + gain * (z[k] - filtered[k - 1])
-        # not below a rest's floor: a noiseless rest would leave 0, and 0/0 in the backward pass
-        filtered_var[k] = max((1 - gain) * p, MIN_VARIANCE)
+    filtered, filtered_var, predicted_var = _forward(ts, z, r, walk**2)
     mean, variance, cross = filtered.copy(), filtered_var.copy(), np.empty(n - 1)
     for k in range(n - 2, -1, -1):
         g = filtered_var[k] / predicted_var[k + 1]
@@ -102,23 +92,22 @@ def smooth(times: ArrayLike, values: ArrayLike, std_errors: ArrayLike, walk: flo
     return SmoothedBias(ts, mean, variance, cross, float(walk))
 
 
-def _predictions(ts: FloatArray, z: FloatArray, r: FloatArray, q: float) -> tuple[FloatArray, FloatArray]:
-    """The forward filter's prediction at each rest from the rests before it alone: mean and
-    variance (infinite at the first: the diffuse prior)."""
+def _forward(ts: FloatArray, z: FloatArray, r: FloatArray, q: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The Kalman filter over the rests in the order given (times increasing, or decreasing for
+    the backward pass): the filtered mean and variance at each rest, and the variance predicted
+    there from the rests before it (infinite at the first: the diffuse prior, the first rest alone)."""
     # Python floats: the recurrence runs once per rest in every round of refusals, and indexing
     # numpy arrays element by element costs several times the arithmetic.
     tl, zl, rl = ts.tolist(), z.tolist(), r.tolist()
-    mean, variance = [0.0] * len(tl), [math.inf] * len(tl)
-    m, p = zl[0], rl[0]
+    mean, variance, predicted = [zl[0]] * len(tl), [rl[0]] * len(tl), [math.inf] * len(tl)
     for k in range(1, len(tl)):
-        v = p + q * abs(tl[k] - tl[k - 1])  # backward, the times decrease
-        mean[k], variance[k] = m, v
-        gain = v / (v + rl[k])
-        m += gain * (zl[k] - m)
-        p = (1 - gain) * v
-        if p < MIN_VARIANCE:  # as in smooth()
-            p = MIN_VARIANCE
-    return np.array(mean), np.array(variance)
+        p = variance[k - 1] + q * abs(tl[k] - tl[k - 1])
+        gain = p / (p + rl[k])
+        predicted[k] = p
+        mean[k] = mean[k - 1] + gain * (zl[k] - mean[k - 1])
+        # not below a rest's floor: a noiseless rest would leave 0, and 0/0 in the backward pass
+        variance[k] = max((1 - gain) * p, MIN_VARIANCE)
+    return np.array(mean), np.array(variance), np.array(predicted)
 
 
 def leave_one_out(times: FloatArray, values: FloatArray, std_errors: FloatArray, walk: float) -> FloatArray:
@@ -134,8 +123,11 @@ def leave_one_out(times: FloatArray, values: FloatArray, std_errors: FloatArray,
     if len(ts) < 2:
         raise ValueError("leaving one rest out needs at least two rests")
     q = walk**2
-    ahead, ahead_var = _predictions(ts, z, r, q)
-    behind, behind_var = (a[::-1] for a in _predictions(ts[::-1], z[::-1], r[::-1], q))
+    # the prediction at each rest from one side: the filtered mean of the rest before it
+    filtered, _, ahead_var = _forward(ts, z, r, q)
+    ahead = np.concatenate(([0.0], filtered[:-1]))
+    filtered, _, behind_var = (a[::-1] for a in _forward(ts[::-1], z[::-1], r[::-1], q))
+    behind = np.concatenate((filtered[1:], [0.0]))
     with np.errstate(divide="ignore", invalid="ignore"):
         info = 1.0 / ahead_var + 1.0 / behind_var  # 0 from a side with no rest (infinite variance)
         variance = 1.0 / info
