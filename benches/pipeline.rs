@@ -40,23 +40,14 @@ fn pipeline(c: &mut Criterion) {
         config.correction.bias = StaticBias::Fixed(0.01);
         let (mut h, mut r, mut d) = (vec![0.0; N], vec![0.0; N], vec![0.0; N]);
         group.bench_with_input(BenchmarkId::from_parameter(name), &config, |b, &config| {
-            b.iter(|| {
-                let mut p = Pipeline::new(config).unwrap();
-                let out = Outputs::all(&mut h, &mut r, &mut d);
-                p.process_block(black_box(&t), black_box(&rate), None, out)
-                    .unwrap();
-            })
+            b.iter(|| run_pipeline(config, &t, &rate, Outputs::all(&mut h, &mut r, &mut d)))
         });
     }
     let mut config = Preset::Combined.config();
     config.correction.bias = StaticBias::Fixed(0.01);
     let (mut h, mut r, mut d) = (vec![0.0; N], vec![0.0; N], vec![0.0; N]);
     let (mut sh, mut sr, mut sd) = (vec![0.0; N], vec![0.0; N], vec![0.0; N]);
-    let out = Outputs::all(&mut h, &mut r, &mut d);
-    Pipeline::new(config)
-        .unwrap()
-        .process_block(&t, &rate, None, out)
-        .unwrap();
+    run_pipeline(config, &t, &rate, Outputs::all(&mut h, &mut r, &mut d));
     straightforward_combined(&t, &rate, &mut sh, &mut sr, &mut sd, &config);
     let worst = h
         .iter()
@@ -67,25 +58,6 @@ fn pipeline(c: &mut Criterion) {
         worst < 1e-9,
         "the straightforward loop differs by {worst} rad"
     );
-    group.bench_function("straightforward_combined", |b| {
-        b.iter(|| {
-            straightforward_combined(
-                black_box(&t),
-                black_box(&rate),
-                &mut sh,
-                &mut sr,
-                &mut sd,
-                &config,
-            )
-        })
-    });
-    group.finish();
-    let mut engine = || {
-        let mut p = Pipeline::new(config).unwrap();
-        let out = Outputs::all(&mut h, &mut r, &mut d);
-        p.process_block(black_box(&t), black_box(&rate), None, out)
-            .unwrap();
-    };
     let mut plain = || {
         straightforward_combined(
             black_box(&t),
@@ -96,6 +68,9 @@ fn pipeline(c: &mut Criterion) {
             &config,
         )
     };
+    group.bench_function("straightforward_combined", |b| b.iter(&mut plain));
+    group.finish();
+    let mut engine = || run_pipeline(config, &t, &rate, Outputs::all(&mut h, &mut r, &mut d));
     if common::measuring() {
         let names = ["combined", "straightforward_combined"];
         common::interleaved(names, N, &mut engine, &mut plain);
@@ -112,6 +87,13 @@ fn pipeline(c: &mut Criterion) {
         })
     });
     group.finish();
+}
+
+/// One block through a fresh pipeline of `config`, into `out`: what each pipeline bench times.
+fn run_pipeline(config: PipelineConfig, t: &[f64], rate: &[f64], out: Outputs<'_>) {
+    let mut p = Pipeline::new(config).unwrap();
+    p.process_block(black_box(t), black_box(rate), None, out)
+        .unwrap();
 }
 
 /// `benches/reference.py` (static bias, Hong eq 3 and 12, HDR eq 7-13, trapezoid rule) as a
