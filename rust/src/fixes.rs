@@ -14,7 +14,9 @@
 //! Between two gyro samples the rate is taken as linear in time (the trapezoid rule of the
 //! [`Integrator`](crate::Integrator)); a fix between two samples is applied at its own time by
 //! propagating to it with the rate interpolated there, so that how the samples and fixes are
-//! split into blocks changes nothing: a chunked run is bit-identical to one call.
+//! split into blocks changes nothing: a chunked run is bit-identical to one call. From one fix
+//! to the next, the state and its covariance move in closed form (rust/src/fixes_segment.rs):
+//! the same filter as a covariance step per sample, in a few operations per sample.
 //!
 //! Process noise comes from the gyro's Allan parameters: the angle random walk `N` drives the
 //! heading, the rate random walk `K` the bias, and an optional scale random walk the scale.
@@ -30,8 +32,8 @@ use core::f64::consts::PI;
 
 use crate::error::{check_positive, check_range};
 pub use crate::fixes_error::{FixProblem, FusionError};
-use crate::fixes_output::calibration_of;
 pub use crate::fixes_output::{Estimate, FusionOutputs};
+use crate::fixes_segment::Segment;
 use crate::fixes_smooth::{Mat3, Step};
 use crate::{check_block, Error, MAX_TIME};
 
@@ -156,13 +158,13 @@ struct Anchor {
     rate: f64,
 }
 
-/// The streaming filter: a validated config and its state (`Copy`, serialisable).
+/// The streaming filter: a validated config and its state (`Copy`, serialisable). Between fixes
+/// the state moves in closed form from the last fix applied (rust/src/fixes_segment.rs).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Fusion {
     config: FusionConfig,
-    x: [f64; 3],
-    p: Mat3,
+    segment: Segment,
     anchor: Option<Anchor>,
     last_fix: Option<f64>,
     counts: FixCounts,
@@ -183,10 +185,10 @@ impl Fusion {
         // d s_bar / d s = -1/(1+s)^2 and d b_bar / d b = -1/(1+s): both -1 at s = 0.
         p[1][1] = config.initial_scale_sigma * config.initial_scale_sigma;
         p[2][2] = config.initial_bias_sigma * config.initial_bias_sigma;
+        let x = [config.initial_heading, 1.0, -config.initial_bias];
         Ok(Fusion {
             config,
-            x: [config.initial_heading, 1.0, -config.initial_bias],
-            p,
+            segment: Segment::new(0.0, x, p),
             anchor: None,
             last_fix: None,
             counts: FixCounts::default(),
@@ -205,7 +207,15 @@ impl Fusion {
 
     /// The current estimate.
     pub fn estimate(&self) -> Estimate {
-        Estimate::of(&self.x, &self.p)
+        let (s, now) = (&self.segment, self.now());
+        Estimate::of(&s.state(now), &s.covariance(now, &self.config))
+    }
+
+    /// The time the state stands at: the last sample or fix processed, or before the first
+    /// sample the knot's (0, where nothing has moved).
+    #[inline(always)]
+    fn now(&self) -> f64 {
+        self.anchor.map_or(0.0, |a| a.t)
     }
 
     /// The time the state stands at (the last sample or fix processed), or None.
@@ -269,15 +279,16 @@ impl Fusion {
         let (t, rate, mut out) = (&t[..n], &rate[..n], out.first(n));
         let (mut k, mut used) = (0, 0);
         while k < n {
-            // Up to the next fix, a sample only propagates: a loop with nothing else in it.
+            // Up to the next fix, a sample only moves the segment on: a loop with nothing else
+            // in it, which takes the segment's calibration once.
             let next_fix = fixes.get(used).map_or(f64::INFINITY, |f| f.t);
-            let calibration = calibration_of(&fusion.x);
+            let calibration = fusion.segment.calibration();
             if let Some(mut a) = fusion.anchor {
                 while k < n && t[k] < next_fix {
                     if rate[k].is_finite() {
                         fusion.take_sample(&mut a, t[k], rate[k], record);
                     }
-                    out.set(k, &fusion.x, &fusion.p, calibration);
+                    out.set(k, &fusion.segment, a.t, &fusion.config, calibration);
                     k += 1;
                 }
                 fusion.anchor = Some(a);
@@ -287,7 +298,8 @@ impl Fusion {
                 if rate[k].is_finite() {
                     used += fusion.sample(t[k], rate[k], &fixes[used..], record);
                 }
-                out.set(k, &fusion.x, &fusion.p, calibration_of(&fusion.x));
+                let (segment, now) = (&fusion.segment, fusion.now());
+                out.set(k, segment, now, &fusion.config, segment.calibration());
                 k += 1;
             }
         }
@@ -348,6 +360,7 @@ impl Fusion {
         if self.anchor.is_none() {
             used = fixes.iter().take_while(|f| f.t < t).count();
             self.counts.before_start += used as u64;
+            self.segment = self.segment.starting_at(t);
         }
         for f in fixes[used..].iter().take_while(|f| f.t <= t) {
             // The rate is linear between samples: its value at the fix's time.
@@ -357,10 +370,15 @@ impl Fusion {
                 let frac = (f.t - a.sample_t) / (t - a.sample_t);
                 a.sample_rate + (rate - a.sample_rate) * frac
             };
-            let (am, c) = self.propagate(&mut a, f.t, at_fix);
-            let mut step = Step::new(am, c, &self.x, &self.p);
-            if self.correct(f) {
-                step.set_filtered(&self.x, &self.p);
+            let (am, c) = self.advance(&mut a, f.t, at_fix);
+            let (x, p) = (
+                self.segment.state(f.t),
+                self.segment.covariance(f.t, &self.config),
+            );
+            let mut step = Step::new(am, c, &x, &p);
+            if let Some((x, p)) = self.correct(f, x, p) {
+                self.segment = Segment::new(f.t, x, p);
+                step.set_filtered(&x, &p);
             }
             self.last_fix = Some(f.t);
             record(step);
@@ -371,76 +389,51 @@ impl Fusion {
         used
     }
 
-    /// Propagates from the anchor `a` to the gyro sample `(t, rate)`, which becomes its sample.
+    /// Moves from the anchor `a` to the gyro sample `(t, rate)`, which becomes its sample.
     #[inline(always)]
     fn take_sample(&mut self, a: &mut Anchor, t: f64, rate: f64, record: &mut impl FnMut(Step)) {
-        let (am, c) = self.propagate(a, t, rate);
+        let (am, c) = self.advance(a, t, rate);
         (a.sample_t, a.sample_rate) = (t, rate);
-        record(Step::new(am, c, &self.x, &self.p).at_sample());
+        let (x, p) = (
+            self.segment.state(t),
+            self.segment.covariance(t, &self.config),
+        );
+        record(Step::new(am, c, &x, &p).at_sample());
     }
 
-    /// Propagates the state from the anchor `a` to `t` where the rate reads `rate` (Hong eq 4
-    /// with the mean rate of the interval, and the covariance with the discretised process
-    /// noise), and moves the anchor there. Returns the transition's `F[0][1]` and `F[0][2]`.
+    /// Moves the state from the anchor `a` to `t` where the rate reads `rate` (Hong eq 4 with
+    /// the mean rate of the interval; the covariance follows in closed form, see [`Segment`]),
+    /// and the anchor there. Returns the interval's transition `F[0][1]` and `F[0][2]`.
     #[inline(always)]
-    fn propagate(&mut self, a: &mut Anchor, t: f64, rate: f64) -> (f64, f64) {
+    fn advance(&mut self, a: &mut Anchor, t: f64, rate: f64) -> (f64, f64) {
         let dt = t - a.t;
         let m = 0.5 * (a.rate + rate);
         (a.t, a.rate) = (t, rate);
         if dt <= 0.0 {
             return (0.0, 0.0);
         }
-        let (x, p) = (&mut self.x, &mut self.p);
-        x[0] += dt * (x[1] * m + x[2]);
-        let (am, c) = (dt * m, dt);
-        // Q of white noise on psi' (N^2), s_bar' (scale walk^2) and b_bar' (K^2) over dt.
-        let (qa, qs, qb) = (
-            self.config.arw * self.config.arw,
-            self.config.scale_walk * self.config.scale_walk,
-            self.config.bias_walk * self.config.bias_walk,
-        );
-        let dt2 = dt * dt;
-        // F P F^T + Q for F = [[1, am, c], [0, 1, 0], [0, 0, 1]]. Each element's increment is
-        // summed first and then added: the element is one add from its value a sample before
-        // (the chain that runs from sample to sample), not the head of a chain of six adds.
-        let d01 = am * p[1][1] + c * p[1][2] + qs * m * dt2 / 2.0;
-        let d02 = am * p[1][2] + c * p[2][2] + qb * dt2 / 2.0;
-        let d00 = 2.0 * am * p[0][1]
-            + 2.0 * c * p[0][2]
-            + am * am * p[1][1]
-            + 2.0 * am * c * p[1][2]
-            + c * c * p[2][2]
-            + qa * dt
-            + (qs * m * m + qb) * dt2 * dt / 3.0;
-        p[0][0] += d00;
-        p[0][1] += d01;
-        p[0][2] += d02;
-        p[1][0] = p[0][1];
-        p[2][0] = p[0][2];
-        p[1][1] += qs * dt;
-        p[2][2] += qb * dt;
-        (am, c)
+        (self.segment.extend(dt, m), dt)
     }
 
-    /// The Kalman update with a fix (H = [1, 0, 0]), unless the gate rejects it; returns
-    /// whether it was applied.
+    /// The Kalman update of state `x` with covariance `p` by a fix (H = [1, 0, 0]): the updated
+    /// pair, or None if the gate rejects the fix.
     #[inline(always)]
-    fn correct(&mut self, fix: &Fix) -> bool {
-        let s = self.p[0][0] + fix.sigma * fix.sigma;
-        let nu = wrap_angle(fix.heading - self.x[0]);
+    fn correct(&mut self, fix: &Fix, mut x: [f64; 3], mut p: Mat3) -> Option<([f64; 3], Mat3)> {
+        let s = p[0][0] + fix.sigma * fix.sigma;
+        let nu = wrap_angle(fix.heading - x[0]);
         if nu * nu > self.config.gate * s {
             self.counts.rejected += 1;
-            return false;
+            return None;
         }
         self.counts.applied += 1;
-        let k = [self.p[0][0] / s, self.p[1][0] / s, self.p[2][0] / s];
-        let row = self.p[0];
-        for ((x, p), k) in self.x.iter_mut().zip(self.p.iter_mut()).zip(k) {
+        let k = [p[0][0] / s, p[1][0] / s, p[2][0] / s];
+        let row = p[0];
+        for ((x, p), k) in x.iter_mut().zip(p.iter_mut()).zip(k) {
             *x += k * nu;
             for (pij, r) in p.iter_mut().zip(row) {
                 *pij -= k * r;
             }
         }
-        true
+        Some((x, p))
     }
 }

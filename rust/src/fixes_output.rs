@@ -1,6 +1,8 @@
 //! What the heading-fix filter ([`Fusion`](crate::Fusion)) reports: its [`Estimate`] at one
 //! time, and the per-sample [`FusionOutputs`] of a block, each written only where wanted.
 
+use crate::fixes::FusionConfig;
+use crate::fixes_segment::Segment;
 use crate::fixes_smooth::Mat3;
 use crate::stage::check_len;
 use crate::Error;
@@ -37,7 +39,7 @@ fn heading_sigma_of(p: &Mat3) -> f64 {
 }
 
 /// Hong eq 1's bias and scale error of state `x`: they change only at a fix (the propagation
-/// moves the heading alone), so a run of samples between two fixes takes them once.
+/// moves the heading alone), so a segment between two fixes takes them once.
 #[inline(always)]
 pub(crate) fn calibration_of(x: &[f64; 3]) -> (f64, f64) {
     (bias_of(x), scale_of(x))
@@ -123,13 +125,20 @@ impl<'a> FusionOutputs<'a> {
         }
     }
 
-    /// Writes the estimate of state `x` with covariance `p` as sample `k`'s, where it is wanted,
-    /// given the state's [`calibration_of`].
+    /// Writes the estimate at `t` (the last point of `segment`) as sample `k`'s, where it is
+    /// wanted, given the segment's [`Segment::calibration`] (taken once per segment).
     #[inline(always)]
-    pub(crate) fn set(&mut self, k: usize, x: &[f64; 3], p: &Mat3, calibration: (f64, f64)) {
-        self.heading[k] = x[0];
+    pub(crate) fn set(
+        &mut self,
+        k: usize,
+        segment: &Segment,
+        t: f64,
+        config: &FusionConfig,
+        calibration: (f64, f64),
+    ) {
+        self.heading[k] = segment.heading(t);
         if let Some(s) = &mut self.heading_sigma {
-            s[k] = heading_sigma_of(p);
+            s[k] = libm::sqrt(segment.heading_variance(t, config));
         }
         if let Some(s) = &mut self.bias {
             s[k] = calibration.0;

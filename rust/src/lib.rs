@@ -50,6 +50,7 @@ mod error;
 pub mod fixes;
 mod fixes_error;
 mod fixes_output;
+mod fixes_segment;
 pub mod fixes_smooth;
 pub mod fused;
 pub mod hdr;
