@@ -126,9 +126,30 @@ class BiasPlan:
         """The bias to subtract at the times ``t`` [rad/s] (0 without rests)."""
         if self.smoothed is None:
             return 0.0
-        if len(self.smoothed.times) == 1:  # exactly the rest's mean, as bias= would give
-            return float(self.smoothed.mean[0])
-        return self.smoothed.at(t)[0]
+        constant = self._constant()
+        return self.smoothed.at(t)[0] if constant is None else constant
+
+    def pipeline(self, preset: str) -> Pipeline:
+        """The pipeline this plan runs, on the readings of :meth:`corrected`. A bias that is one
+        number over the whole log goes to the core as ``bias=`` (the overrides say ``bias=0``): it
+        subtracts it as the first operation on each reading, as ``rate - bias`` would (and
+        ``x - 0.0`` is ``x``), with no pass over the rate and no copy of it."""
+        constant = self._constant()
+        return Pipeline(preset, **(self.overrides if constant is None else {**self.overrides, "bias": constant}))
+
+    def corrected(self, t: FloatArray, rate: FloatArray) -> FloatArray:
+        """The readings at the times ``t`` as :meth:`pipeline` takes them: ``rate`` less the bias
+        where it varies over the log, else ``rate`` itself (none, or the core's ``bias=``)."""
+        if self.smoothed is None or self._constant() is not None:
+            return rate
+        return rate - self.smoothed.at(t)[0]
+
+    def _constant(self) -> float | None:
+        """The bias when it is one number over the whole log (exactly one rest's mean, as
+        ``bias=`` would give), else None (it varies, or there is none to subtract)."""
+        if self.smoothed is None or len(self.smoothed.times) > 1:
+            return None
+        return float(self.smoothed.mean[0])
 
     @property
     def used(self) -> tuple[Rest, ...]:
@@ -379,16 +400,7 @@ def process_log(
         raise
     if bias_plan.warning:
         warn(bias_plan.warning)
-    bias = bias_plan.bias(ta)
-    if bias_plan.smoothed is None:  # nothing to subtract (the overrides say which bias, if any)
-        pipeline, corrected = Pipeline(preset, **bias_plan.overrides), ra
-    elif isinstance(bias, float):
-        # One bias for the whole log, where the overrides say bias=0: the core subtracts it as
-        # the first operation on each reading, as `ra - bias` would (and `x - 0.0` is `x`), with
-        # no pass and no copy here.
-        pipeline, corrected = Pipeline(preset, **{**bias_plan.overrides, "bias": bias}), ra
-    else:
-        pipeline, corrected = Pipeline(preset, **bias_plan.overrides), ra - bias
+    pipeline, corrected = bias_plan.pipeline(preset), bias_plan.corrected(ta, ra)
     if fixes is None:
         result = pipeline.process(ta, corrected, temperature=temperature, outputs=outputs, out=out)
         return bias_plan.result(result)
