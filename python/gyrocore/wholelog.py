@@ -30,7 +30,7 @@ Units: s, rad/s, m/s.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
@@ -156,14 +156,17 @@ class BiasPlan:
         """The rests whose bias was used."""
         return tuple(r for r in self.rests if r.refused is None)
 
-    def scaled(self, preset: str, si: dict[str, Any]) -> dict[str, float]:
+    def scaled(self, preset: str, si: dict[str, Any], params: Mapping[str, Any] | None = None) -> dict[str, float]:
         """The explicit dead band and HDR bound a noise-scaled ``preset`` with ``si`` gets on this
         log: ``threshold_sigmas`` times the used rests' pooled noise (root mean square weighted by
-        readings), ``hdr_bound_sigmas`` times the smoothed bias's standard error (none without a rest)."""
+        readings), ``hdr_bound_sigmas`` times the smoothed bias's standard error (none without a rest).
+        ``params``: ``preset_params(preset, **si)`` where the caller has it (a tuning run builds
+        the preset's once and lays each evaluation's fitted values over them)."""
         used = self.used
         if not used:
             return {}
-        params = preset_params(preset, **si)
+        if params is None:
+            params = preset_params(preset, **si)
         out: dict[str, float] = {}
         if params.get("threshold_sigmas") is not None:
             noise = math.sqrt(float(np.average([r.noise**2 for r in used], weights=[r.samples for r in used])))
