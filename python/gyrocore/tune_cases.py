@@ -57,7 +57,7 @@ class Case:
             return cls(log.name, log.t, log.rate, reference, bias)
         wholelog.check_mode(mode)
         given = log_bias(log, bias_duration=bias_duration)[0] if log.stationary is not None or bias_duration is not None else {}
-        plan = wholelog.plan_arrays("static_bias", given, log.t, log.rate, log.speed_on_gyro_times(), wholelog.Options())
+        plan = wholelog.plan_log("static_bias", given, log.t, log.rate, log.speed_on_gyro_times(), wholelog.Options())
         return cls(log.name, log.t, log.rate, reference, {"bias": 0.0}, plan=plan)
 
     @classmethod

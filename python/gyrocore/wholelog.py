@@ -51,7 +51,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "BIAS_SIGMAS", "BIAS_WALK", "MIN_REST", "MODES", "SPEED_THRESHOLD", "WHOLE_OPTIONS", "BiasPlan", "Options", "Rest",
-    "check_mode", "plan_arrays", "plan_stream", "process_log", "refuse_tracking", "refuse_whole_options", "rest_lines", "untracked",
+    "check_mode", "plan_arrays", "plan_log", "plan_stream", "process_log", "refuse_tracking", "refuse_whole_options", "rest_lines", "untracked",
 ]
 
 #: The ways to process a whole log: ``whole`` (bias from every rest, known from the first sample)
@@ -327,6 +327,18 @@ def plan_arrays(
     )
 
 
+def plan_log(
+    preset: str, si: dict[str, Any], t: FloatArray, rate: FloatArray, speed: FloatArray | None, options: Options
+) -> BiasPlan:
+    """:func:`plan_arrays` for a log in memory whose times are not checked yet: times that are not
+    finite and strictly increasing (or none) plan no bias, and the pipeline, which runs the log
+    next, names the bad sample where it is."""
+    if len(t) == 0 or not times_ok(t):
+        rest_of = {k: v for k, v in si.items() if k not in BIAS_SOURCES}
+        return BiasPlan("none: the log's times are invalid", overrides=untracked({**rest_of, "bias": 0.0}))
+    return plan_arrays(preset, si, t, rate, speed, options)
+
+
 def plan_stream(
     preset: str,
     overrides: dict[str, Any],
@@ -340,11 +352,7 @@ def plan_stream(
     si = _to_si(overrides)
     options = Options.pop(si)
     if uses_static_bias(preset) and _bias_source(si) is None:
-        t, rate, speed = read_all()
-        if len(t) == 0 or not times_ok(t):
-            # The second pass, through the pipeline, names the bad sample.
-            return BiasPlan("none: the log's times are invalid", overrides=untracked({**si, "bias": 0.0}))
-        return plan_arrays(preset, si, t, rate, speed, options)
+        return plan_log(preset, si, *read_all(), options)  # the second pass names a bad sample
     t_start = 0.0
     if si.get("bias_duration") is not None:  # counts from the first sample
         t_start = next((float(t[0]) for t, _ in chunks() if len(t)), 0.0)
