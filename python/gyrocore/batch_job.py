@@ -258,8 +258,7 @@ class _FileJob:
             return wholelog.plan_stream(self.preset, overrides, chunks, read_all)
         except SampleError:
             # A rest's measurement saw a slice of the log: the streamed pass names the row.
-            plain = wholelog.untracked({**_to_si(overrides), "bias": 0.0})
-            return wholelog.BiasPlan("none: the log has invalid samples", overrides=plain)
+            return wholelog.BiasPlan("none: the log has invalid samples", overrides=wholelog.without_bias(_to_si(overrides)))
         except ValueError as e:
             raise _in_file(source, e, from_meta) from None
 

@@ -52,6 +52,7 @@ if TYPE_CHECKING:
 __all__ = [
     "BIAS_SIGMAS", "BIAS_WALK", "MIN_REST", "MODES", "SPEED_THRESHOLD", "WHOLE_OPTIONS", "BiasPlan", "Options", "Rest",
     "check_mode", "plan_arrays", "plan_log", "plan_stream", "process_log", "refuse_tracking", "refuse_whole_options", "rest_lines", "untracked",
+    "without_bias",
 ]
 
 #: The ways to process a whole log: ``whole`` (bias from every rest, known from the first sample)
@@ -192,6 +193,15 @@ def rest_lines(source: str, rests: tuple[Rest, ...], indent: str) -> list[str]:
     return [f"{indent}rest {r}" for r in rests]
 
 
+def without_bias(si: dict[str, Any]) -> dict[str, Any]:
+    """``si`` with ``bias=0`` in place of its bias source (a pipeline refuses both), without
+    :data:`WHOLE_OPTIONS` (a pipeline does not take them) and with the preset's rest tracker off:
+    what the pipeline runs with where whole mode takes the bias off the rate itself, or takes none
+    (a sample the core refuses: the pipeline then names it)."""
+    kept = {k: v for k, v in si.items() if k not in BIAS_SOURCES and k not in WHOLE_OPTIONS}
+    return {**untracked(kept), "bias": 0.0}
+
+
 def _bias_source(si: dict[str, Any]) -> str | None:
     """Which bias source the (SI) overrides set, or None."""
     return next((k for k in BIAS_SOURCES if si.get(k) is not None), None)
@@ -241,7 +251,7 @@ def plan(
         bias_sigmas: found rests whose mean bias is within this many standard errors of 0 leave
             the bias at 0 (a calibrated gyro, whose rests show how it reads at rest, not a bias).
     """
-    rest_of = untracked({k: v for k, v in si.items() if k not in BIAS_SOURCES})
+    rest_of, overrides = untracked({k: v for k, v in si.items() if k not in BIAS_SOURCES}), without_bias(si)
     key = _bias_source(si)
     if not uses_static_bias(preset) or key == "bias":
         return BiasPlan(causal_source(preset, si), overrides=untracked(si))
@@ -251,7 +261,7 @@ def plan(
         label = f"first {si['bias_duration']:g} s: " if key == "bias_duration" else ""
         smoothed = _smooth((rest,), 0.0)
         source = f"{label}rest {rest}, applied from the first sample"
-        given = BiasPlan(source, (rest,), {**rest_of, "bias": 0.0}, smoothed, bias_error=rest.bias_std_error)
+        given = BiasPlan(source, (rest,), overrides, smoothed, bias_error=rest.bias_std_error)
         return given.with_scaled(preset, rest_of)
     rests = accept([measure((a, b), how) for a, b, how in find()], walk)
     used = tuple(r for r in rests if r.refused is None)
@@ -261,11 +271,10 @@ def plan(
             "the log gives no rest window and no rest was found in it: the bias is taken as 0, as in causal "
             "mode (on the command line: --bias-window, --bias-duration or --bias-dps)"
         )
-        return BiasPlan("none: no rest found in the log; bias 0", tuple(rests), {**rest_of, "bias": 0.0}, None, warning)
+        return BiasPlan("none: no rest found in the log; bias 0", tuple(rests), overrides, None, warning)
     smoothed = _smooth(used, walk)
     sd = smoothed.at(times)[1] if times is not None else np.sqrt(smoothed.variance)
     bias_error = float(np.sqrt(np.mean(sd**2)))
-    overrides = {**rest_of, "bias": 0.0}
     refused = f"; {len(rests) - len(used)} refused" if len(rests) > len(used) else ""
     # the inverse-variance mean of the rests (the smoother without a walk): is there a bias at all?
     level = _smooth(used, 0.0)
@@ -334,8 +343,7 @@ def plan_log(
     finite and strictly increasing (or none) plan no bias, and the pipeline, which runs the log
     next, names the bad sample where it is."""
     if len(t) == 0 or not times_ok(t):
-        rest_of = {k: v for k, v in si.items() if k not in BIAS_SOURCES}
-        return BiasPlan("none: the log's times are invalid", overrides=untracked({**rest_of, "bias": 0.0}))
+        return BiasPlan("none: the log's times are invalid", overrides=without_bias(si))
     return plan_arrays(preset, si, t, rate, speed, options)
 
 
@@ -407,7 +415,7 @@ def process_log(
         bias_plan = plan_arrays(preset, si, ta, ra, sp, options)
     except SampleError:
         # A rest's measurement saw a slice of the log: the pipeline names the sample in the log.
-        Pipeline(preset, **untracked({**si, "bias": 0.0})).process(ta, ra, temperature=temperature)
+        Pipeline(preset, **without_bias(si)).process(ta, ra, temperature=temperature)
         raise
     if bias_plan.warning:
         warn(bias_plan.warning)

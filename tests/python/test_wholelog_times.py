@@ -1,5 +1,5 @@
 """Whole mode checks a log's times once per path (gyrocore.process, a batch file, a tuning case),
-and a bad time is named by the pipeline where it is in the log."""
+and a bad time is named by the pipeline where it is in the log, whatever the rest options."""
 
 from __future__ import annotations
 
@@ -17,7 +17,7 @@ import gyrocore._checks
 from gyrocore import tune, wholelog
 from gyrocore.batch import process_file
 
-from .test_wholelog import drive
+from .test_wholelog import drive, run_cli
 
 
 def make_log(t: np.ndarray, rate: np.ndarray, stationary: tuple[float, float] | None = None) -> gyrocore.Log:
@@ -67,3 +67,26 @@ def test_a_tuning_case_with_a_bad_time_names_it_where_it_is_in_the_log() -> None
         with pytest.raises(gyrocore.SampleError, match=r"^t\[3000\] is NaN: samples must be finite") as e:
             case.score("static_bias", {})
     assert e.value.index == 3000
+
+
+@pytest.mark.parametrize(
+    "options", [{"bias_window": (1.7e18 + 20e9, 1.7e18 + 30e9)}, {"bias_duration": 10.0}, {"bias_walk": 1e-3}]
+)
+def test_a_sample_the_core_refuses_is_named_whatever_the_rest_options(options: dict[str, object], tmp_path: Path) -> None:
+    # Nanoseconds read as seconds: the rest's measurement refuses them first, and the pipeline
+    # that runs instead with no bias must name the sample, not refuse the options it was given.
+    t = 1.7e18 + np.arange(0.0, 60.0, 0.01) * 1e9
+    rate = np.where((t > t[0] + 20e9) & (t < t[0] + 30e9), 0.01, 0.3)
+    src, out = tmp_path / "ns.csv", tmp_path / "h.csv"
+    pa_csv.write_csv(pa.table({"t": t, "gyro_z": rate}), src)
+    beyond = r"t\[0\] = 1.7e\+?18 s is beyond"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrocore.InputWarning)
+        with pytest.raises(gyrocore.SampleError, match="^" + beyond):
+            gyrocore.process(t, rate, "static_bias", **options)  # type: ignore[arg-type]
+        with pytest.raises(ValueError, match=beyond + r".*\(.*ns\.csv, line 2\)"):
+            process_file(src, out, preset="static_bias", **options)
+    assert not out.exists()
+    if "bias_duration" in options:
+        proc = run_cli("process", str(src), "--out", str(out), "--preset", "static_bias", "--bias-duration", "10")
+        assert proc.returncode != 0 and "line 2" in proc.stderr and "is beyond" in proc.stderr and not out.exists()
