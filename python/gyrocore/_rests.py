@@ -55,7 +55,8 @@ def _runs(t: FloatArray, flag: np.ndarray) -> list[tuple[float, float]]:
 def find_rests(
     t: FloatArray, rate: FloatArray, speed: FloatArray | None = None, min_rest: float = MIN_REST
 ) -> list[tuple[float, float, str]]:
-    """Every candidate rest of the log as ``(start, end, found_by)``, in time order.
+    """Every candidate rest of the log as ``(start, end, found_by)``, in time order; ``t`` is
+    finite and strictly increasing (the plan's caller checked it: :func:`gyrocore.wholelog.times_ok`).
 
     Where the speed (one per sample, NaN where unknown) is known, a rest is where it stays below
     :data:`SPEED_THRESHOLD` for ``min_rest`` [s] (``speed``), less :data:`EDGE` at each end (at
@@ -64,7 +65,7 @@ def find_rests(
     the spot). Where it is not, a rest is where the rate alone shows one
     (:func:`gyrocore.calibration.rest_windows`, ``rate``).
     """
-    from .calibration import rest_windows  # calibration builds on the pipeline module too
+    from .calibration.rest import rest_windows_of_checked  # calibration builds on the pipeline module too
 
     finite = np.isfinite(rate)
     found: list[tuple[float, float, str]] = []
@@ -84,7 +85,8 @@ def find_rests(
                 found.append((a + trim, b - trim, "speed"))
     if np.count_nonzero(finite) >= 8 and not known.all():
         try:
-            windows = rest_windows(t[finite], rate[finite], min_duration=min_rest)
+            # the times were checked once for the whole log, and these are its finite readings
+            windows = rest_windows_of_checked(t[finite], rate[finite], min_rest)
         except ValueError:  # too sparse to judge a rest from the rate: none is found (the plan warns)
             windows = []
         found += [(a, b, "rate") for a, b in windows if not known[within(a, b)].any()]

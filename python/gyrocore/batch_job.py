@@ -16,7 +16,7 @@ from ._checks import warn
 from ._gyrocore import SampleError
 from .io._columns import concat
 from .io._logfolder import FIXES_CSV, read_odometry
-from .pipeline import Pipeline, RestWindowError, _to_si, has_bias_source, uses_static_bias
+from .pipeline import RestWindowError, _to_si, has_bias_source, uses_static_bias
 from .window import Window, time_range
 
 #: ``progress(done, total, unit)``: called after each chunk with the progress through the input.
@@ -179,7 +179,7 @@ class _FileJob:
             warn(plan.warning)
         if plan.warning:
             notes.append(plan.warning)
-        pipeline = Pipeline(self.preset, **plan.overrides)
+        pipeline = plan.pipeline(self.preset)  # a bias constant over the log: the core's bias=, no copy per chunk
         check = io.UnitCheck(source.options)
         with io.HeadingWriter(self.out, heading=self.heading, columns=self.columns) as writer:
             for chunk in source.chunks(self.chunk_rows):
@@ -188,7 +188,7 @@ class _FileJob:
                 try:
                     result = pipeline.process(
                         chunk.t,
-                        chunk.rate - plan.bias(chunk.t),
+                        plan.corrected(chunk.t, chunk.rate),
                         index_offset=chunk.first_row,
                         outputs=self.outputs,
                     )
@@ -258,8 +258,7 @@ class _FileJob:
             return wholelog.plan_stream(self.preset, overrides, chunks, read_all)
         except SampleError:
             # A rest's measurement saw a slice of the log: the streamed pass names the row.
-            plain = wholelog.untracked({**_to_si(overrides), "bias": 0.0})
-            return wholelog.BiasPlan("none: the log has invalid samples", overrides=plain)
+            return wholelog.BiasPlan("none: the log has invalid samples", overrides=wholelog.without_bias(_to_si(overrides)))
         except ValueError as e:
             raise _in_file(source, e, from_meta) from None
 

@@ -23,7 +23,7 @@ from typing import Any, Callable, Mapping, Sequence
 import numpy as np
 
 from ._extras import require
-from .pipeline import preset_params
+from .pipeline import _to_si, preset_params
 from .tune_cases import (
     HARM_MIXES,
     OBJECTIVES,
@@ -211,10 +211,13 @@ def tune(
         return {**fixed, **{n: float(math.exp(v)) for n, v in zip(names, np.clip(x, lo, hi))}}
 
     def objective_of(overrides: Mapping[str, float]) -> float:
-        scores = score_cases(cases, preset, overrides)
+        # The preset's parameters with the fixed ones were built and checked once, above; an
+        # evaluation lays its fitted values over them (each pipeline checks its own as it is built).
+        params = {**base, **_to_si({n: overrides[n] for n in names})}
+        scores = score_cases(cases, preset, overrides, params)
         value = mean_ne_psi(scores) if objective == "ne_psi" else mean_log_ratio(scores)
         if harm:
-            value += HARM_WEIGHT * harm_excess(score_cases(harm, preset, overrides), harm_limit_deg)
+            value += HARM_WEIGHT * harm_excess(score_cases(harm, preset, overrides, params), harm_limit_deg)
         return value
 
     evaluations = 0

@@ -57,7 +57,7 @@ class Case:
             return cls(log.name, log.t, log.rate, reference, bias)
         wholelog.check_mode(mode)
         given = log_bias(log, bias_duration=bias_duration)[0] if log.stationary is not None or bias_duration is not None else {}
-        plan = wholelog.plan_arrays("static_bias", given, log.t, log.rate, log.speed_on_gyro_times(), wholelog.Options())
+        plan = wholelog.plan_log("static_bias", given, log.t, log.rate, log.speed_on_gyro_times(), wholelog.Options())
         return cls(log.name, log.t, log.rate, reference, {"bias": 0.0}, plan=plan)
 
     @classmethod
@@ -81,13 +81,17 @@ class Case:
         t, rate = grid[:-1] + 0.5 * step, np.diff(heading) / step
         return cls(f"{log.name} (reference rate)", t, rate, Reference(t_ref, heading_ref), {"bias": 0.0})
 
-    def heading(self, preset: str, overrides: Mapping[str, Any]) -> HeadingResult:
-        """The heading of this drive with ``preset`` and ``overrides``."""
+    def heading(
+        self, preset: str, overrides: Mapping[str, Any], params: Mapping[str, Any] | None = None
+    ) -> HeadingResult:
+        """The heading of this drive with ``preset`` and ``overrides``; ``params``:
+        ``preset_params(preset, **overrides)`` where the caller has it (whole mode's dead band and
+        HDR bound scale with them: :meth:`gyrocore.wholelog.BiasPlan.scaled`)."""
         if not uses_static_bias(preset):
             return Pipeline(preset, **overrides).process(self.t, self.rate)
         if self.plan is None:
             return Pipeline(preset, **overrides, **self.bias).process(self.t, self.rate)
-        scaled = self.plan.scaled(preset, dict(overrides))
+        scaled = self.plan.scaled(preset, dict(overrides), params)
         return Pipeline(preset, **{**overrides, **scaled}, **self.bias).process(self.t, self._whole_rate)
 
     @cached_property
@@ -96,9 +100,11 @@ class Case:
         assert self.plan is not None
         return self.rate - self.plan.bias(self.t)
 
-    def score(self, preset: str, overrides: Mapping[str, Any]) -> HeadingErrors:
-        """Heading errors of ``preset`` with ``overrides`` on this drive."""
-        r = self.heading(preset, overrides)
+    def score(
+        self, preset: str, overrides: Mapping[str, Any], params: Mapping[str, Any] | None = None
+    ) -> HeadingErrors:
+        """Heading errors of ``preset`` with ``overrides`` on this drive (``params``: see :meth:`heading`)."""
+        r = self.heading(preset, overrides, params)
         return self.reference.errors(r.t, r.heading)
 
     @cached_property
@@ -220,11 +226,13 @@ class CaseScore:
         return {**asdict(self), "harm_deg": self.harm_deg}
 
 
-def score_cases(cases: Sequence[Case], preset: str, overrides: Mapping[str, Any]) -> tuple[CaseScore, ...]:
-    """Score ``preset`` with ``overrides`` on each case."""
+def score_cases(
+    cases: Sequence[Case], preset: str, overrides: Mapping[str, Any], params: Mapping[str, Any] | None = None
+) -> tuple[CaseScore, ...]:
+    """Score ``preset`` with ``overrides`` on each case (``params``: see :meth:`Case.heading`)."""
     out = []
     for c in cases:
-        e = c.score(preset, overrides)
+        e = c.score(preset, overrides, params)
         out.append(CaseScore(c.name, e.e_psi_deg, e.ne_psi_deg_per_min, c.raw.e_psi_deg, c.baseline_errors.e_psi_deg,
                              c.plain("static_bias").e_psi_deg))
     return tuple(out)

@@ -30,7 +30,7 @@ Units: s, rad/s, m/s.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
@@ -51,7 +51,8 @@ if TYPE_CHECKING:
 
 __all__ = [
     "BIAS_SIGMAS", "BIAS_WALK", "MIN_REST", "MODES", "SPEED_THRESHOLD", "WHOLE_OPTIONS", "BiasPlan", "Options", "Rest",
-    "check_mode", "plan_arrays", "plan_stream", "process_log", "refuse_tracking", "refuse_whole_options", "rest_lines", "untracked",
+    "check_mode", "plan_arrays", "plan_log", "plan_stream", "process_log", "refuse_tracking", "refuse_whole_options", "rest_lines", "untracked",
+    "without_bias",
 ]
 
 #: The ways to process a whole log: ``whole`` (bias from every rest, known from the first sample)
@@ -126,23 +127,47 @@ class BiasPlan:
         """The bias to subtract at the times ``t`` [rad/s] (0 without rests)."""
         if self.smoothed is None:
             return 0.0
-        if len(self.smoothed.times) == 1:  # exactly the rest's mean, as bias= would give
-            return float(self.smoothed.mean[0])
-        return self.smoothed.at(t)[0]
+        constant = self._constant()
+        return self.smoothed.at(t)[0] if constant is None else constant
+
+    def pipeline(self, preset: str) -> Pipeline:
+        """The pipeline this plan runs, on the readings of :meth:`corrected`. A bias that is one
+        number over the whole log goes to the core as ``bias=`` (the overrides say ``bias=0``): it
+        subtracts it as the first operation on each reading, as ``rate - bias`` would (and
+        ``x - 0.0`` is ``x``), with no pass over the rate and no copy of it."""
+        constant = self._constant()
+        return Pipeline(preset, **(self.overrides if constant is None else {**self.overrides, "bias": constant}))
+
+    def corrected(self, t: FloatArray, rate: FloatArray) -> FloatArray:
+        """The readings at the times ``t`` as :meth:`pipeline` takes them: ``rate`` less the bias
+        where it varies over the log, else ``rate`` itself (none, or the core's ``bias=``)."""
+        if self.smoothed is None or self._constant() is not None:
+            return rate
+        return rate - self.smoothed.at(t)[0]
+
+    def _constant(self) -> float | None:
+        """The bias when it is one number over the whole log (exactly one rest's mean, as
+        ``bias=`` would give), else None (it varies, or there is none to subtract)."""
+        if self.smoothed is None or len(self.smoothed.times) > 1:
+            return None
+        return float(self.smoothed.mean[0])
 
     @property
     def used(self) -> tuple[Rest, ...]:
         """The rests whose bias was used."""
         return tuple(r for r in self.rests if r.refused is None)
 
-    def scaled(self, preset: str, si: dict[str, Any]) -> dict[str, float]:
+    def scaled(self, preset: str, si: dict[str, Any], params: Mapping[str, Any] | None = None) -> dict[str, float]:
         """The explicit dead band and HDR bound a noise-scaled ``preset`` with ``si`` gets on this
         log: ``threshold_sigmas`` times the used rests' pooled noise (root mean square weighted by
-        readings), ``hdr_bound_sigmas`` times the smoothed bias's standard error (none without a rest)."""
+        readings), ``hdr_bound_sigmas`` times the smoothed bias's standard error (none without a rest).
+        ``params``: ``preset_params(preset, **si)`` where the caller has it (a tuning run builds
+        the preset's once and lays each evaluation's fitted values over them)."""
         used = self.used
         if not used:
             return {}
-        params = preset_params(preset, **si)
+        if params is None:
+            params = preset_params(preset, **si)
         out: dict[str, float] = {}
         if params.get("threshold_sigmas") is not None:
             noise = math.sqrt(float(np.average([r.noise**2 for r in used], weights=[r.samples for r in used])))
@@ -166,6 +191,15 @@ def rest_lines(source: str, rests: tuple[Rest, ...], indent: str) -> list[str]:
     if len(rests) == 1 and source.startswith("rest "):
         return []
     return [f"{indent}rest {r}" for r in rests]
+
+
+def without_bias(si: dict[str, Any]) -> dict[str, Any]:
+    """``si`` with ``bias=0`` in place of its bias source (a pipeline refuses both), without
+    :data:`WHOLE_OPTIONS` (a pipeline does not take them) and with the preset's rest tracker off:
+    what the pipeline runs with where whole mode takes the bias off the rate itself, or takes none
+    (a sample the core refuses: the pipeline then names it)."""
+    kept = {k: v for k, v in si.items() if k not in BIAS_SOURCES and k not in WHOLE_OPTIONS}
+    return {**untracked(kept), "bias": 0.0}
 
 
 def _bias_source(si: dict[str, Any]) -> str | None:
@@ -217,7 +251,7 @@ def plan(
         bias_sigmas: found rests whose mean bias is within this many standard errors of 0 leave
             the bias at 0 (a calibrated gyro, whose rests show how it reads at rest, not a bias).
     """
-    rest_of = untracked({k: v for k, v in si.items() if k not in BIAS_SOURCES})
+    rest_of, overrides = untracked({k: v for k, v in si.items() if k not in BIAS_SOURCES}), without_bias(si)
     key = _bias_source(si)
     if not uses_static_bias(preset) or key == "bias":
         return BiasPlan(causal_source(preset, si), overrides=untracked(si))
@@ -227,7 +261,7 @@ def plan(
         label = f"first {si['bias_duration']:g} s: " if key == "bias_duration" else ""
         smoothed = _smooth((rest,), 0.0)
         source = f"{label}rest {rest}, applied from the first sample"
-        given = BiasPlan(source, (rest,), {**rest_of, "bias": 0.0}, smoothed, bias_error=rest.bias_std_error)
+        given = BiasPlan(source, (rest,), overrides, smoothed, bias_error=rest.bias_std_error)
         return given.with_scaled(preset, rest_of)
     rests = accept([measure((a, b), how) for a, b, how in find()], walk)
     used = tuple(r for r in rests if r.refused is None)
@@ -237,11 +271,10 @@ def plan(
             "the log gives no rest window and no rest was found in it: the bias is taken as 0, as in causal "
             "mode (on the command line: --bias-window, --bias-duration or --bias-dps)"
         )
-        return BiasPlan("none: no rest found in the log; bias 0", tuple(rests), {**rest_of, "bias": 0.0}, None, warning)
+        return BiasPlan("none: no rest found in the log; bias 0", tuple(rests), overrides, None, warning)
     smoothed = _smooth(used, walk)
     sd = smoothed.at(times)[1] if times is not None else np.sqrt(smoothed.variance)
     bias_error = float(np.sqrt(np.mean(sd**2)))
-    overrides = {**rest_of, "bias": 0.0}
     refused = f"; {len(rests) - len(used)} refused" if len(rests) > len(used) else ""
     # the inverse-variance mean of the rests (the smoother without a walk): is there a bias at all?
     level = _smooth(used, 0.0)
@@ -303,6 +336,17 @@ def plan_arrays(
     )
 
 
+def plan_log(
+    preset: str, si: dict[str, Any], t: FloatArray, rate: FloatArray, speed: FloatArray | None, options: Options
+) -> BiasPlan:
+    """:func:`plan_arrays` for a log in memory whose times are not checked yet: times that are not
+    finite and strictly increasing (or none) plan no bias, and the pipeline, which runs the log
+    next, names the bad sample where it is."""
+    if len(t) == 0 or not times_ok(t):
+        return BiasPlan("none: the log's times are invalid", overrides=without_bias(si))
+    return plan_arrays(preset, si, t, rate, speed, options)
+
+
 def plan_stream(
     preset: str,
     overrides: dict[str, Any],
@@ -316,11 +360,7 @@ def plan_stream(
     si = _to_si(overrides)
     options = Options.pop(si)
     if uses_static_bias(preset) and _bias_source(si) is None:
-        t, rate, speed = read_all()
-        if len(t) == 0 or not times_ok(t):
-            # The second pass, through the pipeline, names the bad sample.
-            return BiasPlan("none: the log's times are invalid", overrides=untracked({**si, "bias": 0.0}))
-        return plan_arrays(preset, si, t, rate, speed, options)
+        return plan_log(preset, si, *read_all(), options)  # the second pass names a bad sample
     t_start = 0.0
     if si.get("bias_duration") is not None:  # counts from the first sample
         t_start = next((float(t[0]) for t, _ in chunks() if len(t)), 0.0)
@@ -375,20 +415,11 @@ def process_log(
         bias_plan = plan_arrays(preset, si, ta, ra, sp, options)
     except SampleError:
         # A rest's measurement saw a slice of the log: the pipeline names the sample in the log.
-        Pipeline(preset, **untracked({**si, "bias": 0.0})).process(ta, ra, temperature=temperature)
+        Pipeline(preset, **without_bias(si)).process(ta, ra, temperature=temperature)
         raise
     if bias_plan.warning:
         warn(bias_plan.warning)
-    bias = bias_plan.bias(ta)
-    if bias_plan.smoothed is None:  # nothing to subtract (the overrides say which bias, if any)
-        pipeline, corrected = Pipeline(preset, **bias_plan.overrides), ra
-    elif isinstance(bias, float):
-        # One bias for the whole log, where the overrides say bias=0: the core subtracts it as
-        # the first operation on each reading, as `ra - bias` would (and `x - 0.0` is `x`), with
-        # no pass and no copy here.
-        pipeline, corrected = Pipeline(preset, **{**bias_plan.overrides, "bias": bias}), ra
-    else:
-        pipeline, corrected = Pipeline(preset, **bias_plan.overrides), ra - bias
+    pipeline, corrected = bias_plan.pipeline(preset), bias_plan.corrected(ta, ra)
     if fixes is None:
         result = pipeline.process(ta, corrected, temperature=temperature, outputs=outputs, out=out)
         return bias_plan.result(result)

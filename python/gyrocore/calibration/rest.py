@@ -14,15 +14,19 @@ from .inputs import check_series
 from .result import Calibration
 
 
+#: Defaults of :func:`rest_windows`: ``block`` [s], ``noise_factor``, ``max_rate`` [rad/s], ``consistency``.
+BLOCK, NOISE_FACTOR, MAX_RATE, CONSISTENCY = 0.25, 3.0, 0.05, 4.5
+
+
 def rest_windows(
     t: ArrayLike,
     rate: ArrayLike,
     *,
     min_duration: float = 1.0,
-    block: float = 0.25,
-    noise_factor: float = 3.0,
-    max_rate: float = 0.05,
-    consistency: float = 4.5,
+    block: float = BLOCK,
+    noise_factor: float = NOISE_FACTOR,
+    max_rate: float = MAX_RATE,
+    consistency: float = CONSISTENCY,
 ) -> list[tuple[float, float]]:
     """Every stretch where the gyro rests, found from the rate alone.
 
@@ -41,6 +45,15 @@ def rest_windows(
     from the first to the last sample of the quiet blocks.
     """
     ta, ra = check_series(t, rate)
+    return rest_windows_of_checked(ta, ra, min_duration, block, noise_factor, max_rate, consistency)
+
+
+def rest_windows_of_checked(
+    ta: FloatArray, ra: FloatArray, min_duration: float, block: float = BLOCK, noise_factor: float = NOISE_FACTOR,
+    max_rate: float = MAX_RATE, consistency: float = CONSISTENCY,
+) -> list[tuple[float, float]]:
+    """:func:`rest_windows` of samples already checked (equal lengths, finite values, strictly
+    increasing times), for a caller that checks them once: whole mode, once per log."""
     for name, value in (("min_duration", min_duration), ("block", block), ("noise_factor", noise_factor),
                         ("max_rate", max_rate), ("consistency", consistency)):
         if not (math.isfinite(value) and value > 0):
