@@ -273,6 +273,25 @@ impl Fusion {
         out: &mut FusionOutputs<'_>,
         record: &mut impl FnMut(Step),
     ) -> usize {
+        // The loop compiled with and without the bias and scale columns, so that a caller who
+        // wants neither does not test for them on every sample.
+        if out.wants_calibration() {
+            self.run_into::<true>(t, rate, fixes, out, record)
+        } else {
+            self.run_into::<false>(t, rate, fixes, out, record)
+        }
+    }
+
+    /// [`Fusion::run`], writing the bias and scale where wanted only if `CALIBRATION`.
+    #[inline(always)]
+    fn run_into<const CALIBRATION: bool>(
+        &mut self,
+        t: &[f64],
+        rate: &[f64],
+        fixes: &[Fix],
+        out: &mut FusionOutputs<'_>,
+        record: &mut impl FnMut(Step),
+    ) -> usize {
         // The filter runs on a copy, which the compiler can keep in registers.
         let mut fusion = *self;
         let n = t.len();
@@ -288,7 +307,8 @@ impl Fusion {
                     if rate[k].is_finite() {
                         fusion.take_sample(&mut a, t[k], rate[k], record);
                     }
-                    out.set(k, &fusion.segment, a.t, &fusion.config, calibration);
+                    let (segment, config) = (&fusion.segment, &fusion.config);
+                    out.set::<CALIBRATION>(k, segment, a.t, config, calibration);
                     k += 1;
                 }
                 fusion.anchor = Some(a);
@@ -299,7 +319,8 @@ impl Fusion {
                     used += fusion.sample(t[k], rate[k], &fixes[used..], record);
                 }
                 let (segment, now) = (&fusion.segment, fusion.now());
-                out.set(k, segment, now, &fusion.config, segment.calibration());
+                let calibration = segment.calibration();
+                out.set::<CALIBRATION>(k, segment, now, &fusion.config, calibration);
                 k += 1;
             }
         }

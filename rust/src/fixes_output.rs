@@ -126,9 +126,11 @@ impl<'a> FusionOutputs<'a> {
     }
 
     /// Writes the estimate at `t` (the last point of `segment`) as sample `k`'s, where it is
-    /// wanted, given the segment's [`Segment::calibration`] (taken once per segment).
+    /// wanted, given the segment's [`Segment::calibration`] (taken once per segment). Unless
+    /// `CALIBRATION`, the bias and scale are not asked for (a caller that wants neither runs a
+    /// loop that does not test for them on every sample).
     #[inline(always)]
-    pub(crate) fn set(
+    pub(crate) fn set<const CALIBRATION: bool>(
         &mut self,
         k: usize,
         segment: &Segment,
@@ -140,11 +142,19 @@ impl<'a> FusionOutputs<'a> {
         if let Some(s) = &mut self.heading_sigma {
             s[k] = libm::sqrt(segment.heading_variance(t, config));
         }
+        if !CALIBRATION {
+            return;
+        }
         if let Some(s) = &mut self.bias {
             s[k] = calibration.0;
         }
         if let Some(s) = &mut self.scale {
             s[k] = calibration.1;
         }
+    }
+
+    /// True if the bias or the scale is wanted.
+    pub(crate) fn wants_calibration(&self) -> bool {
+        self.bias.is_some() || self.scale.is_some()
     }
 }
