@@ -275,20 +275,20 @@ impl Fusion {
     ) -> usize {
         // The loop compiled with and without the bias and scale columns, so that a caller who
         // wants neither does not test for them on every sample.
+        let input = (t, rate, fixes);
         if out.wants_calibration() {
-            self.run_into::<true>(t, rate, fixes, out, record)
+            self.run_into::<true>(input, out, record)
         } else {
-            self.run_into::<false>(t, rate, fixes, out, record)
+            self.run_into::<false>(input, out, record)
         }
     }
 
-    /// [`Fusion::run`], writing the bias and scale where wanted only if `CALIBRATION`.
+    /// [`Fusion::run`] over `(t, rate, fixes)`, writing the bias and scale where wanted only if
+    /// `CALIBRATION`.
     #[inline(always)]
     fn run_into<const CALIBRATION: bool>(
         &mut self,
-        t: &[f64],
-        rate: &[f64],
-        fixes: &[Fix],
+        (t, rate, fixes): (&[f64], &[f64], &[Fix]),
         out: &mut FusionOutputs<'_>,
         record: &mut impl FnMut(Step),
     ) -> usize {
