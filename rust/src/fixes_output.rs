@@ -4,7 +4,7 @@
 use crate::fixes::FusionConfig;
 use crate::fixes_segment::Segment;
 use crate::fixes_smooth::Mat3;
-use crate::stage::check_len;
+use crate::stage::check_outputs;
 use crate::Error;
 
 /// The estimate at one time: heading and its standard deviation, and Hong eq 1's bias and scale.
@@ -100,17 +100,15 @@ impl<'a> FusionOutputs<'a> {
 
     /// Fails unless every slice given holds `n` samples.
     pub(crate) fn check(&self, n: usize) -> Result<(), Error> {
-        check_len("heading", self.heading.len(), n)?;
-        for (what, slice) in [
-            ("heading_sigma", &self.heading_sigma),
-            ("bias", &self.bias),
-            ("scale", &self.scale),
-        ] {
-            if let Some(s) = slice {
-                check_len(what, s.len(), n)?;
-            }
-        }
-        Ok(())
+        check_outputs(
+            [
+                ("heading", Some(&*self.heading)),
+                ("heading_sigma", self.heading_sigma.as_deref()),
+                ("bias", self.bias.as_deref()),
+                ("scale", self.scale.as_deref()),
+            ],
+            n,
+        )
     }
 
     /// The first `n` samples of each slice (all it has, after [`FusionOutputs::check`]), so that

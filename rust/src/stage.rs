@@ -46,6 +46,17 @@ pub(crate) fn check_len(what: &'static str, len: usize, expected: usize) -> Resu
     }
 }
 
+/// [`check_len`] of each output slice given (`None`: not wanted), by name.
+pub(crate) fn check_outputs<const N: usize>(
+    slices: [(&'static str, Option<&[f64]>); N],
+    expected: usize,
+) -> Result<(), Error> {
+    slices
+        .into_iter()
+        .filter_map(|(what, s)| s.map(|s| (what, s.len())))
+        .try_for_each(|(what, len)| check_len(what, len, expected))
+}
+
 /// Remembers the last timestamp and gives the interval `T_i = t_i - t_{i-1}` of each sample.
 ///
 /// The first sample has no interval (`T_0 = 0`). A timestamp that does not move forward by at

@@ -1,7 +1,7 @@
 //! What the pipeline writes: one [`Output`] per sample, into the slices an [`Outputs`] names.
 
 use crate::kernel::Signal;
-use crate::stage::check_len;
+use crate::stage::check_outputs;
 use crate::Error;
 
 /// Per-sample output of the pipeline.
@@ -60,16 +60,14 @@ impl<'a> Outputs<'a> {
 
     /// Fails unless every slice given holds `n` samples.
     pub(super) fn check(&self, n: usize) -> Result<(), Error> {
-        for (what, slice) in [
-            ("heading", &self.heading),
-            ("rate out", &self.rate),
-            ("drift", &self.drift),
-        ] {
-            if let Some(s) = slice {
-                check_len(what, s.len(), n)?;
-            }
-        }
-        Ok(())
+        check_outputs(
+            [
+                ("heading", self.heading.as_deref()),
+                ("rate out", self.rate.as_deref()),
+                ("drift", self.drift.as_deref()),
+            ],
+            n,
+        )
     }
 
     /// The first `n` samples of each slice (all it has, after [`Outputs::check`]).
