@@ -1,7 +1,7 @@
 //! The heading-fix filter and its smoother (rust/src/fixes.rs, fixes_smooth.rs).
 
 use gyrocore::fixes::{wrap_angle, FixProblem};
-use gyrocore::fixes_smooth::Step;
+use gyrocore::fixes_smooth::Knot;
 use gyrocore::{smooth, Fix, Fusion, FusionConfig, FusionError, FusionOutputs};
 
 /// A deterministic normal generator (xorshift64* and Box-Muller), so the tests need no crate.
@@ -330,16 +330,20 @@ fn the_smoother_beats_the_filter_inside_an_outage() {
     let n = t.len();
     let (mut h, mut s, mut b, mut sc) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let out = FusionOutputs::all(&mut h, &mut s, &mut b, &mut sc);
-    let mut steps: Vec<Step> = Vec::new();
-    f.process_block_recording(&t, &rate, &fx, out, |s| steps.push(s))
+    let mut knots: Vec<Knot> = Vec::new();
+    f.process_block_recording(&t, &rate, &fx, out, |k| knots.push(k))
         .unwrap();
-    assert_eq!(steps.len(), n + fx.len());
-    assert_eq!(smooth(&mut steps), 0);
-    let smoothed: Vec<_> = steps
-        .iter()
-        .filter(|s| s.sample)
-        .map(Step::estimate)
-        .collect();
+    // one at the first sample, one per fix applied
+    assert_eq!(knots.len() as u64, 1 + f.counts().applied);
+    assert_eq!(smooth(&mut knots), 0);
+    let (mut sh, mut ss, mut sb, mut ssc) =
+        (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let out = FusionOutputs::all(&mut sh, &mut ss, &mut sb, &mut ssc);
+    let mut again = Fusion::new(config()).unwrap();
+    assert_eq!(
+        again.process_block_smoothed(&t, &rate, &fx, &knots, out),
+        Ok(fx.len())
+    );
     let inside: Vec<usize> = (0..n)
         .filter(|&k| t[k] >= outage.0 && t[k] < outage.1)
         .collect();
@@ -347,12 +351,12 @@ fn the_smoother_beats_the_filter_inside_an_outage() {
         inside.iter().map(|&k| e(k).abs()).sum::<f64>() / inside.len() as f64
     };
     let causal = mean_abs(&|k| wrap_angle(h[k] - psi[k]));
-    let smooth_err = mean_abs(&|k| wrap_angle(smoothed[k].heading - psi[k]));
+    let smooth_err = mean_abs(&|k| wrap_angle(sh[k] - psi[k]));
     assert!(
         smooth_err < 0.5 * causal,
         "smoothed {smooth_err} vs causal {causal}"
     );
     // The smoother is also more certain inside the outage.
     let mid = inside[inside.len() / 2];
-    assert!(smoothed[mid].heading_sigma < s[mid]);
+    assert!(ss[mid] < s[mid]);
 }

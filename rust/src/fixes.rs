@@ -26,7 +26,8 @@
 //! earlier than the one before it or than a sample already processed is an error naming the fix.
 //!
 //! [`smooth`](crate::fixes_smooth::smooth) runs the Rauch-Tung-Striebel backward pass over the
-//! steps [`Fusion::process_block_recording`] stores, for whole logs.
+//! knots [`Fusion::process_block_recording`] stores, and [`Fusion::process_block_smoothed`]
+//! writes the smoothed estimates, for whole logs.
 
 use core::f64::consts::PI;
 
@@ -34,7 +35,7 @@ use crate::error::{check_positive, check_range};
 pub use crate::fixes_error::{FixProblem, FusionError};
 pub use crate::fixes_output::{Estimate, FusionOutputs};
 use crate::fixes_segment::Segment;
-use crate::fixes_smooth::{Mat3, Step};
+use crate::fixes_smooth::{smoothed, Knot, Mat3};
 use crate::{check_block, Error, MAX_TIME};
 
 /// One absolute heading.
@@ -244,20 +245,50 @@ impl Fusion {
         self.process_block_recording(t, rate, fixes, out, |_| {})
     }
 
-    /// [`process_block`](Self::process_block), handing every step (sample or fix) to `record`
-    /// for the smoother.
+    /// [`process_block`](Self::process_block), handing `record` a [`Knot`] for the smoother at
+    /// the first sample and at every fix applied.
     pub fn process_block_recording(
         &mut self,
         t: &[f64],
         rate: &[f64],
         fixes: &[Fix],
         mut out: FusionOutputs<'_>,
-        mut record: impl FnMut(Step),
+        mut record: impl FnMut(Knot),
     ) -> Result<usize, FusionError> {
+        self.check_inputs(t, rate, fixes, &out)?;
+        Ok(self.run(t, rate, fixes, &mut out, &mut record))
+    }
+
+    /// The second forward pass of the smoother: [`process_block`](Self::process_block) of a
+    /// fresh filter (the same configuration as the pass that recorded `knots`) over the same
+    /// samples and fixes, writing each sample's smoothed estimate, given the knots after
+    /// [`smooth`](crate::smooth). Knots that do not belong to these samples give no error, only
+    /// estimates that are not smoothed (where a knot is missing) or wrong.
+    pub fn process_block_smoothed(
+        &mut self,
+        t: &[f64],
+        rate: &[f64],
+        fixes: &[Fix],
+        knots: &[Knot],
+        out: FusionOutputs<'_>,
+    ) -> Result<usize, FusionError> {
+        self.check_inputs(t, rate, fixes, &out)?;
+        let n = t.len();
+        let mut out = Smoothing { out, knots };
+        Ok(self.run_into((&t[..n], &rate[..n], fixes), &mut out, &mut |_| {}))
+    }
+
+    /// The checks of a block before any sample: the outputs' lengths, the samples, the fixes.
+    fn check_inputs(
+        &self,
+        t: &[f64],
+        rate: &[f64],
+        fixes: &[Fix],
+        out: &FusionOutputs<'_>,
+    ) -> Result<(), FusionError> {
         out.check(t.len())?;
         check_block(t, rate, None, self.anchor.map(|a| a.sample_t), true)?;
-        self.check_fixes(fixes)?;
-        Ok(self.run(t, rate, fixes, &mut out, &mut record))
+        self.check_fixes(fixes)
     }
 
     /// The samples of a block (`t` and `rate` as long as `out`) with their fixes, writing the
@@ -271,31 +302,33 @@ impl Fusion {
         rate: &[f64],
         fixes: &[Fix],
         out: &mut FusionOutputs<'_>,
-        record: &mut impl FnMut(Step),
+        record: &mut impl FnMut(Knot),
     ) -> usize {
         // The loop compiled with and without the bias and scale columns, so that a caller who
         // wants neither does not test for them on every sample.
-        let input = (t, rate, fixes);
+        let n = t.len();
+        let input = (&t[..n], &rate[..n], fixes);
+        let out = out.first(n);
         if out.wants_calibration() {
-            self.run_into::<true>(input, out, record)
+            self.run_into(input, &mut Columns::<true>(out), record)
         } else {
-            self.run_into::<false>(input, out, record)
+            self.run_into(input, &mut Columns::<false>(out), record)
         }
     }
 
-    /// [`Fusion::run`] over `(t, rate, fixes)`, writing the bias and scale where wanted only if
-    /// `CALIBRATION`.
+    /// [`Fusion::run`] over `(t, rate, fixes)` (`rate` as long as `t`, and `out` too), each
+    /// sample's estimate through `out`.
     #[inline(always)]
-    fn run_into<const CALIBRATION: bool>(
+    fn run_into(
         &mut self,
         (t, rate, fixes): (&[f64], &[f64], &[Fix]),
-        out: &mut FusionOutputs<'_>,
-        record: &mut impl FnMut(Step),
+        out: &mut impl Write,
+        record: &mut impl FnMut(Knot),
     ) -> usize {
         // The filter runs on a copy, which the compiler can keep in registers.
         let mut fusion = *self;
         let n = t.len();
-        let (t, rate, mut out) = (&t[..n], &rate[..n], out.first(n));
+        let rate = &rate[..n];
         let (mut k, mut used) = (0, 0);
         while k < n {
             // Up to the next fix, a sample only moves the segment on: a loop with nothing else
@@ -305,10 +338,9 @@ impl Fusion {
             if let Some(mut a) = fusion.anchor {
                 while k < n && t[k] < next_fix {
                     if rate[k].is_finite() {
-                        fusion.take_sample(&mut a, t[k], rate[k], record);
+                        fusion.take_sample(&mut a, t[k], rate[k]);
                     }
-                    let (segment, config) = (&fusion.segment, &fusion.config);
-                    out.set::<CALIBRATION>(k, segment, a.t, config, calibration);
+                    out.write(k, &fusion, a.t, calibration);
                     k += 1;
                 }
                 fusion.anchor = Some(a);
@@ -318,9 +350,8 @@ impl Fusion {
                 if rate[k].is_finite() {
                     used += fusion.sample(t[k], rate[k], &fixes[used..], record);
                 }
-                let (segment, now) = (&fusion.segment, fusion.now());
-                let calibration = segment.calibration();
-                out.set::<CALIBRATION>(k, segment, now, &fusion.config, calibration);
+                let calibration = fusion.segment.calibration();
+                out.write(k, &fusion, fusion.now(), calibration);
                 k += 1;
             }
         }
@@ -367,9 +398,9 @@ impl Fusion {
 
     /// One gyro sample and the fixes up to its time; returns how many fixes it used. The caller
     /// has checked the sample and the fixes ([`check_block`], [`Fusion::check_fixes`]). A
-    /// `record` that keeps nothing costs nothing: the steps are built only for it.
+    /// `record` that keeps nothing costs nothing: the knots are built only for it.
     #[inline(always)]
-    fn sample(&mut self, t: f64, rate: f64, fixes: &[Fix], record: &mut impl FnMut(Step)) -> usize {
+    fn sample(&mut self, t: f64, rate: f64, fixes: &[Fix], record: &mut impl FnMut(Knot)) -> usize {
         let mut used = 0;
         let first = Anchor {
             sample_t: t,
@@ -382,6 +413,11 @@ impl Fusion {
             used = fixes.iter().take_while(|f| f.t < t).count();
             self.counts.before_start += used as u64;
             self.segment = self.segment.starting_at(t);
+            let (x, p) = (
+                self.segment.state(t),
+                self.segment.covariance(t, &self.config),
+            );
+            record(Knot::new(t, 0.0, (x, p), x, p));
         }
         for f in fixes[used..].iter().take_while(|f| f.t <= t) {
             // The rate is linear between samples: its value at the fix's time.
@@ -391,49 +427,41 @@ impl Fusion {
                 let frac = (f.t - a.sample_t) / (t - a.sample_t);
                 a.sample_rate + (rate - a.sample_rate) * frac
             };
-            let (am, c) = self.advance(&mut a, f.t, at_fix);
+            self.advance(&mut a, f.t, at_fix);
             let (x, p) = (
                 self.segment.state(f.t),
                 self.segment.covariance(f.t, &self.config),
             );
-            let mut step = Step::new(am, c, &x, &p);
-            if let Some((x, p)) = self.correct(f, x, p) {
-                self.segment = Segment::new(f.t, x, p);
-                step.set_filtered(&x, &p);
+            if let Some((x_fixed, p_fixed)) = self.correct(f, x, p) {
+                record(Knot::new(f.t, self.segment.a(), (x, p), x_fixed, p_fixed));
+                self.segment = Segment::new(f.t, x_fixed, p_fixed);
             }
             self.last_fix = Some(f.t);
-            record(step);
             used += 1;
         }
-        self.take_sample(&mut a, t, rate, record);
+        self.take_sample(&mut a, t, rate);
         self.anchor = Some(a);
         used
     }
 
     /// Moves from the anchor `a` to the gyro sample `(t, rate)`, which becomes its sample.
     #[inline(always)]
-    fn take_sample(&mut self, a: &mut Anchor, t: f64, rate: f64, record: &mut impl FnMut(Step)) {
-        let (am, c) = self.advance(a, t, rate);
+    fn take_sample(&mut self, a: &mut Anchor, t: f64, rate: f64) {
+        self.advance(a, t, rate);
         (a.sample_t, a.sample_rate) = (t, rate);
-        let (x, p) = (
-            self.segment.state(t),
-            self.segment.covariance(t, &self.config),
-        );
-        record(Step::new(am, c, &x, &p).at_sample());
     }
 
     /// Moves the state from the anchor `a` to `t` where the rate reads `rate` (Hong eq 4 with
     /// the mean rate of the interval; the covariance follows in closed form, see [`Segment`]),
-    /// and the anchor there. Returns the interval's transition `F[0][1]` and `F[0][2]`.
+    /// and the anchor there.
     #[inline(always)]
-    fn advance(&mut self, a: &mut Anchor, t: f64, rate: f64) -> (f64, f64) {
+    fn advance(&mut self, a: &mut Anchor, t: f64, rate: f64) {
         let dt = t - a.t;
         let m = 0.5 * (a.rate + rate);
         (a.t, a.rate) = (t, rate);
-        if dt <= 0.0 {
-            return (0.0, 0.0);
+        if dt > 0.0 {
+            self.segment.extend(dt, m);
         }
-        (self.segment.extend(dt, m), dt)
     }
 
     /// The Kalman update of state `x` with covariance `p` by a fix (H = [1, 0, 0]): the updated
@@ -456,5 +484,48 @@ impl Fusion {
             }
         }
         Some((x, p))
+    }
+}
+
+/// Where [`Fusion::run`] writes each sample's estimate.
+pub(crate) trait Write {
+    /// Sample `k`'s estimate: the filter `fusion` standing at `now`, whose segment's calibration
+    /// is `calibration`.
+    fn write(&mut self, k: usize, fusion: &Fusion, now: f64, calibration: (f64, f64));
+}
+
+/// The filtered estimate into the columns, the bias and scale only if `CALIBRATION`.
+struct Columns<'a, const CALIBRATION: bool>(FusionOutputs<'a>);
+
+impl<const CALIBRATION: bool> Write for Columns<'_, CALIBRATION> {
+    #[inline(always)]
+    fn write(&mut self, k: usize, fusion: &Fusion, now: f64, calibration: (f64, f64)) {
+        let (segment, config) = (&fusion.segment, &fusion.config);
+        self.0
+            .set::<CALIBRATION>(k, segment, now, config, calibration);
+    }
+}
+
+/// The smoothed estimate into the columns, from the filtered one and the next knot's correction.
+struct Smoothing<'a, 'k> {
+    out: FusionOutputs<'a>,
+    knots: &'k [Knot],
+}
+
+impl Write for Smoothing<'_, '_> {
+    #[inline(always)]
+    fn write(&mut self, k: usize, fusion: &Fusion, now: f64, _calibration: (f64, f64)) {
+        let s = &fusion.segment;
+        let (x, p) = (s.state(now), s.covariance(now, &fusion.config));
+        // The segment's knot is the first sample's or the last fix applied: the next is the
+        // knot after it, if any.
+        let next = usize::try_from(fusion.counts.applied)
+            .ok()
+            .and_then(|j| self.knots.get(j + 1));
+        let (x, p) = match next {
+            Some(next) => smoothed(&x, &p, next.a - s.a(), next.t - now, &next.w, &next.e),
+            None => (x, p),
+        };
+        self.out.set_estimate(k, &Estimate::of(&x, &p));
     }
 }

@@ -151,6 +151,21 @@ impl<'a> FusionOutputs<'a> {
         }
     }
 
+    /// Writes the estimate `e` as sample `k`'s, where it is wanted.
+    #[inline(always)]
+    pub(crate) fn set_estimate(&mut self, k: usize, e: &Estimate) {
+        self.heading[k] = e.heading;
+        for (column, value) in [
+            (&mut self.heading_sigma, e.heading_sigma),
+            (&mut self.bias, e.bias),
+            (&mut self.scale, e.scale),
+        ] {
+            if let Some(s) = column {
+                s[k] = value;
+            }
+        }
+    }
+
     /// True if the bias or the scale is wanted.
     pub(crate) fn wants_calibration(&self) -> bool {
         self.bias.is_some() || self.scale.is_some()

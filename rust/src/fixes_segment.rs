@@ -61,16 +61,19 @@ impl Segment {
         Segment::new(t, self.x, self.p)
     }
 
-    /// Extends the segment by an interval `dt` \[s\] over which the rate's mean is `m` \[rad/s\];
-    /// returns the interval's `dt m` (the transition's `F[0][1]`).
+    /// Extends the segment by an interval `dt` \[s\] over which the rate's mean is `m` \[rad/s\].
     #[inline(always)]
-    pub(crate) fn extend(&mut self, dt: f64, m: f64) -> f64 {
-        let step = dt * m;
-        let (a0, a1) = (self.a, self.a + step);
+    pub(crate) fn extend(&mut self, dt: f64, m: f64) {
+        let (a0, a1) = (self.a, self.a + dt * m);
         self.i1_2 += dt * (a0 + a1);
         self.i2_3 += dt * (a0 * a0 + a0 * a1 + a1 * a1);
         self.a = a1;
-        step
+    }
+
+    /// `A`: the rate's integral from the knot to the last point \[rad\].
+    #[inline(always)]
+    pub(crate) fn a(&self) -> f64 {
+        self.a
     }
 
     /// Hong eq 1's bias and scale error of the segment (constant until the next fix).

@@ -1,63 +1,60 @@
 //! The Rauch-Tung-Striebel smoother of the [`Fusion`](crate::fixes::Fusion) filter, for whole
-//! logs: the forward pass stores one [`Step`] per gyro sample and per fix
-//! ([`Fusion::process_block_recording`](crate::fixes::Fusion::process_block_recording)), the
-//! backward pass ([`smooth`]) corrects each step with everything after it, so that an outage
-//! bracketed by fixes gets the fixes after it too.
+//! logs: an outage bracketed by fixes gets the fixes after it too.
 //!
-//! Backward recursion (Rauch, Tung and Striebel 1965), for steps k = n-2 down to 0:
-//! `C = P_k F_{k+1}^T (P^-_{k+1})^-1`, `x^s_k = x_k + C (x^s_{k+1} - x^-_{k+1})`,
-//! `P^s_k = P_k + C (P^s_{k+1} - P^-_{k+1}) C^T`.
-
-use crate::fixes::Estimate;
+//! Between two fixes the filter has no measurement, so the smoother needs its state only where
+//! one was applied: the forward pass ([`Fusion::process_block_recording`]) stores one [`Knot`]
+//! per fix applied (and one at the first sample), the backward pass ([`smooth`]) runs over the
+//! knots, and a second forward pass ([`Fusion::process_block_smoothed`]) writes every sample's
+//! smoothed estimate from its filtered one and the next knot's correction.
+//!
+//! Backward recursion over the knots (Rauch, Tung and Striebel 1965), for j = n-2 down to 0, with
+//! `F` the transition from knot j to knot j+1 and `P^-` the prediction at j+1:
+//! `G = P_j F^T (P^-_{j+1})^-1`, `x^s_j = x_j + G (x^s_{j+1} - x^-_{j+1})`,
+//! `P^s_j = P_j + G (P^s_{j+1} - P^-_{j+1}) G^T`. A sample k between knots j and j+1 takes the
+//! same form with its own filtered `x_k`, `P_k` and the transition `F_k` from it to knot j+1
+//! (no measurement lies between, and the noise after k is independent of `x_k`): with
+//! `w = (P^-_{j+1})^-1 (x^s_{j+1} - x^-_{j+1})` and `E = (P^-_{j+1})^-1 (P^s_{j+1} - P^-_{j+1})
+//! (P^-_{j+1})^-1`, both kept at knot j+1, `x^s_k = x_k + P_k F_k^T w` and
+//! `P^s_k = P_k + P_k F_k^T E F_k P_k`. Samples after the last knot keep their filtered estimate.
+//!
+//! [`Fusion::process_block_recording`]: crate::fixes::Fusion::process_block_recording
+//! [`Fusion::process_block_smoothed`]: crate::fixes::Fusion::process_block_smoothed
 
 /// A symmetric 3x3 matrix, row-major.
 pub type Mat3 = [[f64; 3]; 3];
 
-/// What the smoother needs of one filter step: the transition into it, the predicted state and
-/// covariance, and the filtered ones (replaced by the smoothed ones by [`smooth`]).
+/// The filter where a fix was applied (or at the first sample): what the smoother needs of it.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Step {
-    /// `F[0][1]` of the transition into this step (interval times mean rate).
-    a: f64,
-    /// `F[0][2]` of the transition (the interval).
-    c: f64,
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Knot {
+    /// Its time \[s\].
+    pub(crate) t: f64,
+    /// `F[0][1]` of the transition from the knot before (the rate's integral over the interval).
+    pub(crate) a: f64,
     x_pred: [f64; 3],
     p_pred: Mat3,
+    /// Filtered, then smoothed by [`smooth`].
     x: [f64; 3],
     p: Mat3,
-    /// A gyro sample (not a fix).
-    pub sample: bool,
+    /// After [`smooth`]: `w` and `E` of the module's text, for the samples before this knot.
+    pub(crate) w: [f64; 3],
+    pub(crate) e: Mat3,
 }
 
-impl Step {
-    /// A step with transition `[[1, a, c], [0, 1, 0], [0, 0, 1]]` predicting `(x, p)`, before any
-    /// update (filtered = predicted).
-    pub(crate) fn new(a: f64, c: f64, x: &[f64; 3], p: &Mat3) -> Self {
-        Step {
+impl Knot {
+    /// A knot at `t`, `a` after the one before, predicting `(x_pred, p_pred)` and updated to
+    /// `(x, p)`.
+    pub(crate) fn new(t: f64, a: f64, predicted: ([f64; 3], Mat3), x: [f64; 3], p: Mat3) -> Self {
+        Knot {
+            t,
             a,
-            c,
-            x_pred: *x,
-            p_pred: *p,
-            x: *x,
-            p: *p,
-            sample: false,
+            x_pred: predicted.0,
+            p_pred: predicted.1,
+            x,
+            p,
+            w: [0.0; 3],
+            e: [[0.0; 3]; 3],
         }
-    }
-
-    /// The step marked as a gyro sample.
-    pub(crate) fn at_sample(mut self) -> Self {
-        self.sample = true;
-        self
-    }
-
-    /// Sets the filtered state after a fix's update.
-    pub(crate) fn set_filtered(&mut self, x: &[f64; 3], p: &Mat3) {
-        (self.x, self.p) = (*x, *p);
-    }
-
-    /// The estimate of this step (filtered, or smoothed after [`smooth`]).
-    pub fn estimate(&self) -> Estimate {
-        Estimate::of(&self.x, &self.p)
     }
 }
 
@@ -83,45 +80,63 @@ fn inverse(m: &Mat3) -> Option<Mat3> {
 }
 
 fn mul(a: &Mat3, b: &Mat3) -> Mat3 {
-    let mut out = [[0.0; 3]; 3];
-    for (i, row) in out.iter_mut().enumerate() {
-        for (j, v) in row.iter_mut().enumerate() {
-            *v = (0..3).map(|k| a[i][k] * b[k][j]).sum();
-        }
-    }
-    out
+    core::array::from_fn(|i| core::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
 }
 
-/// The Rauch-Tung-Striebel backward pass over the steps of one forward run, in place: each
-/// step's estimate becomes the smoothed one. Returns the number of steps it had to leave
-/// filtered because a predicted covariance was singular (0 for any valid configuration).
-pub fn smooth(steps: &mut [Step]) -> usize {
+fn mul_vec(a: &Mat3, v: &[f64; 3]) -> [f64; 3] {
+    core::array::from_fn(|i| (0..3).map(|k| a[i][k] * v[k]).sum())
+}
+
+/// `P F^T` for `F = [[1, a, c], [0, 1, 0], [0, 0, 1]]`: only column 0 differs from `P`.
+pub(crate) fn times_f_transposed(p: &Mat3, a: f64, c: f64) -> Mat3 {
+    let mut pft = *p;
+    for row in pft.iter_mut() {
+        row[0] += a * row[1] + c * row[2];
+    }
+    pft
+}
+
+/// The smoothed state and covariance of a point with filtered `(x, p)` whose transition to the
+/// next knot is `F = [[1, a, c], ...]`, given that knot's `w` and `E` (see the module's text).
+#[inline(always)]
+pub(crate) fn smoothed(
+    x: &[f64; 3],
+    p: &Mat3,
+    a: f64,
+    c: f64,
+    w: &[f64; 3],
+    e: &Mat3,
+) -> ([f64; 3], Mat3) {
+    let pft = times_f_transposed(p, a, c);
+    let dx = mul_vec(&pft, w);
+    let pe = mul(&pft, e);
+    let xs = core::array::from_fn(|i| x[i] + dx[i]);
+    let ps = core::array::from_fn(|i| {
+        core::array::from_fn(|j| p[i][j] + (0..3).map(|l| pe[i][l] * pft[j][l]).sum::<f64>())
+    });
+    (xs, ps)
+}
+
+/// The Rauch-Tung-Striebel backward pass over the knots of one forward run, in place: each
+/// knot's estimate becomes the smoothed one, and each keeps the correction of the samples before
+/// it. Returns the number of knots it had to leave filtered because a predicted covariance was
+/// singular (0 for any valid configuration).
+pub fn smooth(knots: &mut [Knot]) -> usize {
     let mut left = 0;
-    for k in (0..steps.len().saturating_sub(1)).rev() {
-        let next = steps[k + 1];
+    for j in (0..knots.len().saturating_sub(1)).rev() {
+        let next = &mut knots[j + 1];
         let Some(inv) = inverse(&next.p_pred) else {
             left += 1;
             continue;
         };
-        let step = &mut steps[k];
-        // P_k F^T: only F's first row differs from the identity, so only column 0 changes.
-        let mut pft = step.p;
-        for row in pft.iter_mut() {
-            row[0] += next.a * row[1] + next.c * row[2];
-        }
-        let gain = mul(&pft, &inv);
         let dx: [f64; 3] = core::array::from_fn(|i| next.x[i] - next.x_pred[i]);
         let dp: Mat3 =
-            core::array::from_fn(|i| core::array::from_fn(|j| next.p[i][j] - next.p_pred[i][j]));
-        for (i, xi) in step.x.iter_mut().enumerate() {
-            *xi += (0..3).map(|j| gain[i][j] * dx[j]).sum::<f64>();
-        }
-        let gdp = mul(&gain, &dp);
-        for (row, g) in step.p.iter_mut().zip(&gdp) {
-            for (pij, gain_j) in row.iter_mut().zip(&gain) {
-                *pij += (0..3).map(|l| g[l] * gain_j[l]).sum::<f64>();
-            }
-        }
+            core::array::from_fn(|i| core::array::from_fn(|k| next.p[i][k] - next.p_pred[i][k]));
+        next.w = mul_vec(&inv, &dx);
+        next.e = mul(&mul(&inv, &dp), &inv);
+        let (w, e, a, c) = (next.w, next.e, next.a, next.t - knots[j].t);
+        let knot = &mut knots[j];
+        (knot.x, knot.p) = smoothed(&knot.x, &knot.p, a, c, &w, &e);
     }
     left
 }

@@ -1,7 +1,7 @@
 //! Bindings of the heading-fix filter and its smoother (`gyrocore.fixes` documents the Python
 //! API). Settings arrive as a flat dict of SI values named like the core's `FusionConfig`.
 
-use gyrocore::fixes_smooth::Step;
+use gyrocore::fixes_smooth::Knot;
 use gyrocore::{smooth, Fix, FixCounts, Fusion, FusionConfig, FusionError, FusionOutputs};
 use numpy::PyReadonlyArray1;
 use pyo3::exceptions::PyValueError;
@@ -105,31 +105,31 @@ fn counts_dict<'py>(
 
 type Columns<'py> = (Array<'py>, Array<'py>, Array<'py>, Array<'py>);
 
-/// Runs the filter over one block into four new arrays; `steps` collects the smoother's steps.
+/// Runs the filter over one block into four new arrays: its estimates, or with `knots` the
+/// smoothed ones (a forward pass recording the knots, the backward pass over them, and a second
+/// forward pass of a fresh filter writing the smoothed estimates).
 fn run<'py>(
     py: Python<'py>,
     fusion: &mut Fusion,
     t: &[f64],
     rate: &[f64],
     fixes: &[Fix],
-    steps: Option<&mut Vec<Step>>,
+    knots: Option<&mut Vec<Knot>>,
 ) -> PyResult<(Columns<'py>, usize)> {
     let n = t.len();
     let cols = (zeros(py, n), zeros(py, n), zeros(py, n), zeros(py, n));
     let used = fill([&cols.0, &cols.1, &cols.2, &cols.3], |[h, s, b, sc]| {
         py.detach(|| {
-            match steps {
-                Some(steps) => {
-                    steps.reserve(n + fixes.len());
-                    // The smoother overwrites every column: the forward pass writes one.
-                    let out = FusionOutputs::heading(h);
-                    fusion.process_block_recording(t, rate, fixes, out, |s| steps.push(s))
-                }
-                None => {
-                    let out = FusionOutputs::all(h, s, b, sc);
-                    fusion.process_block(t, rate, fixes, out)
-                }
-            }
+            let Some(knots) = knots else {
+                return fusion.process_block(t, rate, fixes, FusionOutputs::all(h, s, b, sc));
+            };
+            let mut again = Fusion::new(*fusion.config())?;
+            // The smoother overwrites every column: the forward pass writes one.
+            let out = FusionOutputs::heading(h);
+            fusion.process_block_recording(t, rate, fixes, out, |k| knots.push(k))?;
+            // Singular knots cannot happen with validated settings (all variances > 0).
+            smooth(knots);
+            again.process_block_smoothed(t, rate, fixes, knots, FusionOutputs::all(h, s, b, sc))
         })
     })?
     .map_err(fusion_error)?;
@@ -159,27 +159,9 @@ fn fuse<'py>(
     let mut fusion = Fusion::new(config_from(settings)?).map_err(value_error)?;
     let fixes = fixes_from(&fix_t, &fix_heading, &fix_sigma)?;
     let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
-    let mut steps = Vec::new();
-    let (cols, used) = run(
-        py,
-        &mut fusion,
-        t,
-        rate,
-        &fixes,
-        smoothed.then_some(&mut steps),
-    )?;
-    if smoothed {
-        fill([&cols.0, &cols.1, &cols.2, &cols.3], |[h, s, b, sc]| {
-            py.detach(|| {
-                // Singular steps cannot happen with validated settings (all variances > 0).
-                smooth(&mut steps);
-                let samples = steps.iter().filter(|s| s.sample).map(Step::estimate);
-                for (k, e) in samples.enumerate() {
-                    (h[k], s[k], b[k], sc[k]) = (e.heading, e.heading_sigma, e.bias, e.scale);
-                }
-            })
-        })?;
-    }
+    let mut knots = Vec::new();
+    let knots = smoothed.then_some(&mut knots);
+    let (cols, used) = run(py, &mut fusion, t, rate, &fixes, knots)?;
     let counts = counts_dict(py, fusion.counts(), fixes.len() - used)?;
     Ok((cols.0, cols.1, cols.2, cols.3, counts))
 }
