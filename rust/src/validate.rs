@@ -41,14 +41,11 @@ pub fn check_block(
             check_bounded("temperature", temp, MAX_READING)?;
         }
     }
-    check_bounded("t", t, MAX_TIME)?;
-    // Fast path first (branch-free, vectorisable); search for the index only when it fails.
-    let continues = previous_t
-        .zip(t.first())
-        .is_none_or(|(p, &first)| spaced(p, first));
-    if continues && increasing(t) {
+    // Fast path first (one branch-free pass); search for the first fault only when it fails.
+    if times_ok(t, previous_t) {
         return Ok(());
     }
+    check_bounded("t", t, MAX_TIME)?;
     let mut previous = previous_t;
     for (index, &value) in t.iter().enumerate() {
         match previous {
@@ -194,21 +191,30 @@ impl Checks {
     }
 }
 
-/// True if every value comes at least [`MIN_INTERVAL`] after the one before (branch-free, so it
-/// vectorises).
+/// True if every timestamp lies within [`MAX_TIME`] (so is finite) and comes at least
+/// [`MIN_INTERVAL`] after the one before, the first after `previous_t`: one branch-free pass
+/// over the timestamps, so it vectorises.
 #[inline]
-fn increasing(values: &[f64]) -> bool {
-    let pairs = values.iter().zip(values.iter().skip(1));
-    pairs.fold(0u32, |bad, (&a, &b)| bad | u32::from(!spaced(a, b))) == 0
+fn times_ok(t: &[f64], previous_t: Option<f64>) -> bool {
+    let continues = previous_t
+        .zip(t.first())
+        .is_none_or(|(p, &first)| spaced(p, first));
+    let first = t.first().map_or(0, |&v| magnitude_key(v));
+    let pairs = t.iter().zip(t.iter().skip(1));
+    let (worst, bad) = pairs.fold((first, 0u32), |(worst, bad), (&a, &b)| {
+        (worst.max(magnitude_key(b)), bad | u32::from(!spaced(a, b)))
+    });
+    continues && worst < magnitude_key(MAX_TIME) && bad == 0
 }
 
 /// Fails with [`Error::NonFinite`] naming the first NaN or infinite value, or with
 /// [`Error::OutOfRange`] naming the first value at or beyond `limit` in magnitude.
 fn check_bounded(what: &'static str, values: &[f64], limit: f64) -> Result<(), Error> {
-    check_finite_all(what, values)?;
+    // One pass for the common case: below the limit means finite too.
     if all_below(values, limit) {
         return Ok(());
     }
+    check_finite_all(what, values)?;
     match values.iter().position(|v| libm::fabs(*v) >= limit) {
         Some(index) => Err(Error::OutOfRange {
             what,
