@@ -74,7 +74,7 @@ pub use block::{Downsample, DownsampleConfig};
 pub use correction::{Correction, CorrectionConfig, StaticBias, TemperatureScale};
 pub use error::Error;
 pub use fixes::{Fix, FixCounts, Fusion, FusionConfig, FusionError, FusionOutputs};
-pub use fixes_smooth::smooth;
+pub use fixes_smooth::{smooth, Knot};
 pub use fused::{FusedOutputs, FusedPipeline, Samples};
 pub use hdr::{Hdr, HdrConfig};
 pub use input::{GapAction, InputPolicy, InputReport, NonFinite};
