@@ -264,6 +264,34 @@ impl Fusion {
     /// samples and fixes, writing each sample's smoothed estimate, given the knots after
     /// [`smooth`](crate::smooth). Knots that do not belong to these samples give no error, only
     /// estimates that are not smoothed (where a knot is missing) or wrong.
+    ///
+    /// ```
+    /// use gyrocore::{smooth, Fix, Fusion, FusionConfig, FusionOutputs, Knot};
+    /// let t: Vec<f64> = (0..3000).map(|i| i as f64 * 0.01).collect();
+    /// let rate = vec![0.1 + 0.002; t.len()]; // a steady turn, read with a bias of 0.002 rad/s
+    /// // a fix a second, none from 10 s to 25 s
+    /// let fixes: Vec<Fix> = (0..30)
+    ///     .filter(|&s| !(10..25).contains(&s))
+    ///     .map(|s| Fix { t: s as f64, heading: 0.1 * s as f64, sigma: 0.01 })
+    ///     .collect();
+    /// let config = FusionConfig::default();
+    /// let n = t.len();
+    /// let mut cols = [vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+    /// let [heading, sigma, bias, scale] = &mut cols;
+    /// // forward, keeping a knot at the first sample and at every fix applied
+    /// let mut knots: Vec<Knot> = Vec::new();
+    /// let mut forward = Fusion::new(config).unwrap();
+    /// let out = FusionOutputs::heading(heading);
+    /// forward.process_block_recording(&t, &rate, &fixes, out, |k| knots.push(k)).unwrap();
+    /// assert_eq!(smooth(&mut knots), 0);
+    /// // again from the start, writing the smoothed estimates
+    /// let out = FusionOutputs::all(heading, sigma, bias, scale);
+    /// let mut again = Fusion::new(config).unwrap();
+    /// again.process_block_smoothed(&t, &rate, &fixes, &knots, out).unwrap();
+    /// let k = 1750; // 17.5 s, inside the gap, bracketed by fixes
+    /// assert!((cols[0][k] - 0.1 * 17.5).abs() < 0.01);
+    /// assert!(cols[1][k] < 0.05); // sigma [rad]
+    /// ```
     pub fn process_block_smoothed(
         &mut self,
         t: &[f64],
