@@ -48,6 +48,7 @@ mod block;
 pub mod correction;
 mod error;
 pub mod fixes;
+mod fixes_config;
 mod fixes_error;
 mod fixes_output;
 mod fixes_segment;

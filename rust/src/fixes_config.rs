@@ -1,0 +1,94 @@
+//! The settings of the heading-fix filter ([`Fusion`](crate::Fusion)): the gyro's noise (from
+//! its Allan parameters), the uncertainty before the first fix, and the outlier gate.
+
+use core::f64::consts::PI;
+
+use crate::error::{check_positive, check_range};
+use crate::{Error, MAX_TIME};
+
+/// Noise settings and initial uncertainty of the filter.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct FusionConfig {
+    /// Angle random walk `N` \[rad/sqrt(s)\] (Allan deviation at 1 s of the rate), >= 0.
+    pub arw: f64,
+    /// Rate random walk `K` of the bias \[rad/s/sqrt(s)\], >= 0.
+    pub bias_walk: f64,
+    /// Random walk of the scale error \[1/sqrt(s)\], >= 0.
+    pub scale_walk: f64,
+    /// Heading before the first fix \[rad\].
+    pub initial_heading: f64,
+    /// Its standard deviation \[rad\], > 0 (pi: unknown).
+    pub initial_heading_sigma: f64,
+    /// Bias (Hong eq 1's `b`, what the gyro reads at rest) before any fix \[rad/s\].
+    pub initial_bias: f64,
+    /// Its standard deviation \[rad/s\], > 0.
+    pub initial_bias_sigma: f64,
+    /// Standard deviation of the scale error `s` before any fix, in (0, 0.5].
+    pub initial_scale_sigma: f64,
+    /// Outlier gate: a fix whose innovation squared over its variance exceeds this is rejected
+    /// (> 0; 10.83 rejects 0.1 % of good fixes; infinity turns the gate off).
+    #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
+    pub gate: f64,
+}
+
+impl Default for FusionConfig {
+    /// A consumer MEMS gyro on a car: the noise settings every fold chose leave-one-log-out
+    /// over the twelve KITTI logs (docs/fixes.md; the twins' true `N` is 5.2e-4, `K` 8.7e-5),
+    /// unknown initial heading, bias within about 1 deg/s, scale within 5 %.
+    fn default() -> Self {
+        FusionConfig {
+            arw: 1e-3,
+            bias_walk: 8e-5,
+            scale_walk: 1e-5,
+            initial_heading: 0.0,
+            initial_heading_sigma: PI,
+            initial_bias: 0.0,
+            initial_bias_sigma: 0.02,
+            initial_scale_sigma: 0.05,
+            gate: 10.83,
+        }
+    }
+}
+
+impl FusionConfig {
+    /// Checks every parameter (the error names it).
+    pub fn validate(&self) -> Result<(), Error> {
+        let walk = "finite and >= 0";
+        check_range("arw", self.arw, 0.0, f64::MAX, walk)?;
+        check_range("bias_walk", self.bias_walk, 0.0, f64::MAX, walk)?;
+        check_range("scale_walk", self.scale_walk, 0.0, f64::MAX, walk)?;
+        check_range(
+            "initial_heading",
+            self.initial_heading,
+            -MAX_TIME,
+            MAX_TIME,
+            "finite",
+        )?;
+        check_positive("initial_heading_sigma", self.initial_heading_sigma)?;
+        check_range(
+            "initial_bias",
+            self.initial_bias,
+            -1e3,
+            1e3,
+            "within +-1000 rad/s",
+        )?;
+        check_positive("initial_bias_sigma", self.initial_bias_sigma)?;
+        // s_bar = 1/(1+s) must stay away from 0 for eq 1's b and s to exist.
+        let scale = "> 0 and at most 0.5";
+        check_range(
+            "initial_scale_sigma",
+            self.initial_scale_sigma,
+            f64::MIN_POSITIVE,
+            0.5,
+            scale,
+        )?;
+        check_range(
+            "gate",
+            self.gate,
+            f64::MIN_POSITIVE,
+            f64::INFINITY,
+            "> 0 (inf: no gate)",
+        )
+    }
+}
