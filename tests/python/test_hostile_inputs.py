@@ -7,6 +7,8 @@ from pathlib import Path
 
 import pytest
 
+from gyrocore.calibration import Calibration
+
 from .test_batch import synthetic_csv
 from .test_errors_named import run_cli
 
@@ -41,3 +43,18 @@ def test_a_deeply_nested_json_file_is_named(tmp_path: Path, option: str) -> None
     proc = run_cli(*args, option, path)
     assert proc.returncode == 2
     assert proc.stderr == f"gyrocore: error: {path}: JSON nested too deeply to read (arrays or objects inside each other)\n"
+
+
+@pytest.mark.parametrize("option", ["--fixes", "--calibration"])
+def test_a_file_an_option_names_is_never_the_output(tmp_path: Path, option: str) -> None:
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    given = tmp_path / "given.csv"  # a calibration is JSON whatever its file is called
+    if option == "--fixes":
+        given.write_text("t,heading,sigma\n1700000001,0.1,0.05\n")
+    else:
+        Calibration(method="static", bias=0.001).save(given)
+    before = given.read_bytes()
+    proc = run_cli("process", log, "--out", given, option, given)
+    assert proc.returncode == 2
+    assert proc.stderr == f"gyrocore: error: refusing to write {given} over or inside the input {given}; write it elsewhere\n"
+    assert given.read_bytes() == before
