@@ -5,8 +5,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
+import gyrocore
 from gyrocore.calibration import Calibration
 
 from .test_batch import synthetic_csv
@@ -58,3 +60,40 @@ def test_a_file_an_option_names_is_never_the_output(tmp_path: Path, option: str)
     assert proc.returncode == 2
     assert proc.stderr == f"gyrocore: error: refusing to write {given} over or inside the input {given}; write it elsewhere\n"
     assert given.read_bytes() == before
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+@pytest.mark.parametrize(
+    ("overrides", "message"),
+    [
+        ({"bias_window": (1, 2, 3)}, "invalid parameter bias_window = (1, 2, 3): expected tuple of length 2, but got "
+         "tuple of length 3; bias_window is (start, end) rest window"),
+        ({"bias_window": (1,)}, "invalid parameter bias_window = (1,): expected tuple of length 2"),
+        ({"bias_window": "ab"}, "invalid parameter bias_window = 'ab': 'str' object is not an instance of 'tuple'"),
+        ({"bias_duration": 0}, "invalid parameter bias_duration = 0: must be > 0"),
+        ({"bias_duration": -1}, "invalid parameter bias_duration = -1: must be > 0"),
+        ({"bias_duration": "5"}, "invalid parameter bias_duration = '5': must be real number, not str"),
+    ],
+)
+def test_a_bad_rest_window_is_named_in_either_mode(mode: str, overrides: dict[str, object], message: str) -> None:
+    t = np.arange(0.0, 60.0, 0.01)
+    with pytest.raises((TypeError, ValueError)) as info:
+        gyrocore.process(t, np.full_like(t, 0.002), "recommended", mode=mode, **overrides)
+    assert str(info.value).startswith(message)
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (("--bias-duration", "0"), "invalid parameter bias_duration = 0: must be > 0"),
+        (("--bias-duration", "-5"), "invalid parameter bias_duration = -5: must be > 0"),
+        (("--param", "bias_window=1,2,3"), "invalid parameter bias_window = (1.0, 2.0, 3.0): expected tuple of length 2"),
+        (("--param", "bias_window=abc"), "invalid parameter bias_window = 'abc': 'str' object is not an instance"),
+    ],
+)
+def test_the_command_line_names_a_bad_rest_window(tmp_path: Path, args: tuple[str, ...], message: str) -> None:
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    proc = run_cli("process", log, "--out", tmp_path / "h.csv", *args)
+    assert proc.returncode == 2
+    assert proc.stderr.startswith(f"gyrocore: error: {message}")
+    assert not (tmp_path / "h.csv").exists()
