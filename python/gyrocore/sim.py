@@ -371,8 +371,12 @@ def car_drive(
     One seed fixes the route, the drift and the noise; the route and the drift do not depend on
     ``rate_hz``.
     """
+    spec = sensor(sensor_name, rate_hz=rate_hz, **changes)
+    # the simulator refuses more samples than it makes; asked first, before the route of such a
+    # drive (1e12 s) is built manoeuvre by manoeuvre, which had not ended after 120 s
+    sample_times(spec, 0.0, duration, seed=seed)
     route = motion.car(duration, mix=mix, seed=seed, rest=rest)
-    return simulate(route, sensor(sensor_name, rate_hz=rate_hz, **changes), seed=seed)
+    return simulate(route, spec, seed=seed)
 
 
 def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: float = 1.0,

@@ -97,3 +97,16 @@ def test_the_command_line_names_a_bad_rest_window(tmp_path: Path, args: tuple[st
     assert proc.returncode == 2
     assert proc.stderr.startswith(f"gyrocore: error: {message}")
     assert not (tmp_path / "h.csv").exists()
+
+
+@pytest.mark.parametrize(
+    "args",
+    [("demo", "--duration", "1e12"), ("simulate", "--duration", "1e12", "--out", "drive.csv"),
+     ("tune", "--sim-drive", "city:1e12")],
+)
+def test_a_drive_too_long_to_simulate_is_refused_at_once(tmp_path: Path, args: tuple[str, ...]) -> None:
+    # the route of such a drive was built manoeuvre by manoeuvre before the sample count was checked
+    proc = run_cli(*(str(tmp_path / a) if a.endswith(".csv") else a for a in args))
+    assert proc.returncode == 2
+    assert "samples requested" in proc.stderr and "more than 1e9; is the duration in seconds?" in proc.stderr
+    assert not list(tmp_path.iterdir())
