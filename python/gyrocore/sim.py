@@ -379,6 +379,11 @@ def car_drive(
     return simulate(route, spec, seed=seed)
 
 
+#: The most fixes :func:`gnss_fixes` makes: more than a 100 Hz receiver gives in a day (8.6e6);
+#: a rate of 1e9 Hz over a minute asked for 6e10 and did not end.
+MAX_FIXES = 1e7
+
+
 def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: float = 1.0,
                sigma_deg: float = 1.0, outages: tuple[tuple[float, float], ...] = ()) -> Fixes:
     """SIMULATED heading fixes of a GNSS receiver following a reference track (not measured).
@@ -397,7 +402,11 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     for name, value in (("rate_hz", rate_hz), ("sigma_deg", sigma_deg)):
         if not (math.isfinite(value) and value > 0):
             raise ValueError(f"{name} must be finite and > 0, got {value}")
-    tf = t[0] + np.arange(int((t[-1] - t[0]) * rate_hz) + 1) / rate_hz
+    count = (t[-1] - t[0]) * rate_hz
+    if count > MAX_FIXES:
+        raise ValueError(f"{count:.3e} fixes requested ({t[-1] - t[0]:g} s at {rate_hz:g} Hz): more than "
+                         f"{MAX_FIXES:.0e}; is the rate in Hz?")
+    tf = t[0] + np.arange(int(count) + 1) / rate_hz
     keep = np.ones(len(tf), dtype=bool)
     for start, end in outages:
         if not end > start:

@@ -3,6 +3,7 @@ to do, never a traceback, a silent wrong result or an overwritten input."""
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -11,6 +12,7 @@ import pytest
 import gyrocore
 from gyrocore.calibration import Calibration
 
+from .conftest import real_log_path
 from .test_batch import synthetic_csv
 from .test_errors_named import run_cli
 
@@ -110,3 +112,11 @@ def test_a_drive_too_long_to_simulate_is_refused_at_once(tmp_path: Path, args: t
     assert proc.returncode == 2
     assert "samples requested" in proc.stderr and "more than 1e9; is the duration in seconds?" in proc.stderr
     assert not list(tmp_path.iterdir())
+
+
+def test_simulated_fixes_at_an_absurd_rate_are_refused_at_once() -> None:
+    # 1e9 Hz over the log's two minutes asked numpy for 1.3e11 fixes, and the command did not end
+    proc = run_cli("evaluate", real_log_path("f110_ds3"), "--sim-fixes", "rate=1e9")
+    assert proc.returncode == 2
+    assert re.fullmatch(r"gyrocore: error: log f110_ds3: \S+ fixes requested \(\S+ s at 1e\+09 Hz\): more than "
+                        r"1e\+07; is the rate in Hz\?\n", proc.stderr)
