@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import gyrocore
+from gyrocore import fixes
 from gyrocore.calibration import Calibration
 
 from .conftest import real_log_path
@@ -120,3 +121,24 @@ def test_simulated_fixes_at_an_absurd_rate_are_refused_at_once() -> None:
     assert proc.returncode == 2
     assert re.fullmatch(r"gyrocore: error: log f110_ds3: \S+ fixes requested \(\S+ s at 1e\+09 Hz\): more than "
                         r"1e\+07; is the rate in Hz\?\n", proc.stderr)
+
+
+def test_fixes_of_one_int_sigma_are_fused() -> None:
+    # one sigma given as an int made an int64 array, which the core refused as "type mismatch"
+    t = np.arange(0.0, 10.0, 0.01)
+    as_int = fixes.fuse(t, np.zeros_like(t), fixes.Fixes.of([1.0, 2.0], [0.1, 0.2], 1))
+    as_float = fixes.fuse(t, np.zeros_like(t), fixes.Fixes.of([1.0, 2.0], [0.1, 0.2], 1.0))
+    assert np.array_equal(as_int.heading, as_float.heading)
+    with pytest.raises(TypeError, match="fix sigma must hold real numbers, got dtype bool"):
+        fixes.Fixes.of([1.0, 2.0], [0.1, 0.2], True)
+    # a (t, heading, sigma) tuple, as gyrocore.process takes it
+    assert np.array_equal(fixes.fuse(t, np.zeros_like(t), ([1.0, 2.0], [0.1, 0.2], [1.0, 1.0])).heading, as_float.heading)
+
+
+@pytest.mark.parametrize("value", ["abc", None, True])
+def test_a_fusion_setting_that_is_no_number_is_named(value: object) -> None:
+    t = np.arange(0.0, 10.0, 0.01)
+    with pytest.raises(TypeError, match=rf"^fusion setting arw = {re.escape(repr(value))}: must be a number"):
+        fixes.fuse(t, np.zeros_like(t), fixes.Fixes.empty(), arw=value)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="^fusion setting arw"):
+        gyrocore.process(t, np.zeros_like(t), "raw", fixes=fixes.Fixes.empty(), fusion={"arw": value})
