@@ -42,6 +42,12 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
 
     Raises TypeError for non-numeric data and ValueError for a wrong shape.
     """
+    masked = np.flatnonzero(np.ma.getmaskarray(values)) if np.ma.isMaskedArray(values) else np.empty(0, np.intp)
+    if len(masked):  # numpy.asarray drops the mask: the hidden values would be processed as valid
+        raise ValueError(
+            f"{name} is a masked array with {len(masked)} masked value(s), the first at index {masked[0]}: give "
+            f"{name}.filled(numpy.nan) (with nonfinite='hold' or 'skip') or leave those samples out"
+        )
     a = durations_in_seconds(name, np.asarray(values))
     if a.dtype.kind == "M":
         raise TypeError(

@@ -142,3 +142,14 @@ def test_a_fusion_setting_that_is_no_number_is_named(value: object) -> None:
         fixes.fuse(t, np.zeros_like(t), fixes.Fixes.empty(), arw=value)  # type: ignore[arg-type]
     with pytest.raises(TypeError, match="^fusion setting arw"):
         gyrocore.process(t, np.zeros_like(t), "raw", fixes=fixes.Fixes.empty(), fusion={"arw": value})
+
+
+def test_a_masked_array_is_not_processed_as_if_unmasked() -> None:
+    t = np.arange(0.0, 60.0, 0.01)
+    rate = np.ma.masked_array(np.full_like(t, 0.002), mask=t >= 30.0)
+    with pytest.raises(ValueError, match=r"^rate is a masked array with 3000 masked value\(s\), the first at index "
+                       r"3000: give rate.filled\(numpy.nan\)"):
+        gyrocore.process(t, rate, "hdr")
+    # nothing masked: the values as they are
+    assert np.array_equal(gyrocore.process(t, np.ma.masked_array(rate.data), "hdr").heading,
+                          gyrocore.process(t, rate.data, "hdr").heading)
