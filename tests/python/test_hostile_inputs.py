@@ -11,7 +11,7 @@ import pytest
 
 import gyrocore
 from gyrocore import fixes
-from gyrocore.calibration import Calibration
+from gyrocore.calibration import Calibration, static_bias
 
 from .conftest import real_log_path
 from .test_batch import synthetic_csv
@@ -153,3 +153,8 @@ def test_a_masked_array_is_not_processed_as_if_unmasked() -> None:
     # nothing masked: the values as they are
     assert np.array_equal(gyrocore.process(t, np.ma.masked_array(rate.data), "hdr").heading,
                           gyrocore.process(t, rate.data, "hdr").heading)
+
+
+def test_the_static_bias_of_no_samples_is_named() -> None:
+    with pytest.raises(ValueError, match=r"^the rest window \[0.0, 1.0\] s holds 0 reading\(s\) of the log \(which has none\)"):
+        static_bias([], [], (0.0, 1.0))
