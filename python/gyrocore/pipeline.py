@@ -75,15 +75,25 @@ def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
         if isinstance(value, (list, np.ndarray)):
             value = tuple(value.tolist() if isinstance(value, np.ndarray) else value)
         if key.endswith("_dps") and key[:-4] in _RATE_PARAMETERS:
-            name, value = key[:-4], None if value is None else math.radians(value)
+            name, value = key[:-4], _radians(key, value)
         elif key == "initial_heading_deg":
-            name, value = "initial_heading", None if value is None else math.radians(value)
+            name, value = "initial_heading", _radians(key, value)
         else:
             name = key
         if name in si:
             raise ValueError(f"{name} is given twice (as {name} and in degrees)")
         si[name] = value
     return si
+
+
+def _radians(key: str, value: Any) -> float | None:
+    """The value of a parameter given in degrees (``key``), in radians; None stays None."""
+    if value is None:
+        return None
+    try:
+        return math.radians(value)
+    except TypeError:
+        raise TypeError(f"invalid parameter {key} = {value!r}: must be a number of degrees") from None
 
 
 def preset_params(preset: str = "hdr", **overrides: Any) -> dict[str, Any]:

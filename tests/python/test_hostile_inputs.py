@@ -158,3 +158,10 @@ def test_a_masked_array_is_not_processed_as_if_unmasked() -> None:
 def test_the_static_bias_of_no_samples_is_named() -> None:
     with pytest.raises(ValueError, match=r"^the rest window \[0.0, 1.0\] s holds 0 reading\(s\) of the log \(which has none\)"):
         static_bias([], [], (0.0, 1.0))
+
+
+@pytest.mark.parametrize(("key", "value"), [("threshold_dps", "0.1"), ("bias_dps", (1, 2)), ("initial_heading_deg", "x")])
+def test_a_parameter_in_degrees_that_is_no_number_is_named(key: str, value: object) -> None:
+    t = np.arange(0.0, 10.0, 0.01)
+    with pytest.raises(TypeError, match=rf"^invalid parameter {key} = {re.escape(repr(value))}: must be a number of degrees"):
+        gyrocore.process(t, np.zeros_like(t), "hdr", **{key: value})
