@@ -165,3 +165,14 @@ def test_a_parameter_in_degrees_that_is_no_number_is_named(key: str, value: obje
     t = np.arange(0.0, 10.0, 0.01)
     with pytest.raises(TypeError, match=rf"^invalid parameter {key} = {re.escape(repr(value))}: must be a number of degrees"):
         gyrocore.process(t, np.zeros_like(t), "hdr", **{key: value})
+
+
+@pytest.mark.parametrize("args", [("--time-col", "t", "--rate-col", "t"), ("--rate-col", "t"), ("--time-col", "gyro_z")])
+def test_the_time_column_read_as_the_rate_is_refused(tmp_path: Path, args: tuple[str, ...]) -> None:
+    # the times were read as rates too, with only a warning that the rates looked like deg/s
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    proc = run_cli("process", log, "--out", tmp_path / "h.csv", *args)
+    assert proc.returncode == 2
+    assert proc.stderr.startswith("gyrocore: error: the time column ")
+    assert "is also a rate column (rate_col, --rate-col; gyro_cols, --gyro-cols): give each its own column" in proc.stderr
+    assert not (tmp_path / "h.csv").exists()
