@@ -176,3 +176,21 @@ def test_the_time_column_read_as_the_rate_is_refused(tmp_path: Path, args: tuple
     assert proc.stderr.startswith("gyrocore: error: the time column ")
     assert "is also a rate column (rate_col, --rate-col; gyro_cols, --gyro-cols): give each its own column" in proc.stderr
     assert not (tmp_path / "h.csv").exists()
+
+
+def log_folder_with(tmp_path: Path, name: str, text: str) -> Path:
+    """A log folder of a synthetic drive whose file ``name`` holds ``text``."""
+    folder = tmp_path / "log"
+    folder.mkdir()
+    synthetic_csv(folder / "gyro.csv", 3000)
+    (folder / name).write_text(text)
+    return folder
+
+
+def test_a_reference_with_no_samples_is_named(tmp_path: Path) -> None:
+    folder = log_folder_with(tmp_path, "reference.csv", "t,heading,x,y\n")
+    proc = run_cli("evaluate", folder)
+    assert proc.returncode == 2
+    assert proc.stderr == ("gyrocore: error: log log: reference: 0 sample(s); a heading error needs at least two "
+                           "reference samples\n")
+
