@@ -194,3 +194,11 @@ def test_a_reference_with_no_samples_is_named(tmp_path: Path) -> None:
     assert proc.stderr == ("gyrocore: error: log log: reference: 0 sample(s); a heading error needs at least two "
                            "reference samples\n")
 
+
+def test_a_reference_without_positions_is_evaluated(tmp_path: Path) -> None:
+    # the heading is all E_psi needs; x and y were required in a log folder, not in --reference
+    folder = log_folder_with(tmp_path, "reference.csv", "t,heading\n1700000000.5,0.1\n1700000010.5,0.2\n1700000020.5,0.3\n")
+    proc = run_cli("evaluate", folder, "--preset", "raw", "--json")
+    assert proc.returncode == 0, proc.stderr
+    assert '"preset": "raw"' in proc.stdout
+

@@ -37,8 +37,9 @@ def read_meta(folder: Path) -> tuple[dict[str, Any], tuple[float, float] | None]
 
 
 def read_reference(folder: Path) -> dict[str, FloatArray]:
-    """Columns t, heading, x and y of ``reference.csv``; empty without the file."""
-    return _read_table(folder / "reference.csv", ("t", "heading", "x", "y"))
+    """``reference.csv`` (:func:`read_reference_file`); empty without the file."""
+    path = folder / "reference.csv"
+    return read_reference_file(path) if path.is_file() else {}
 
 
 def read_odometry(folder: Path) -> dict[str, FloatArray]:
