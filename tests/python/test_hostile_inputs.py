@@ -202,3 +202,10 @@ def test_a_reference_without_positions_is_evaluated(tmp_path: Path) -> None:
     assert proc.returncode == 0, proc.stderr
     assert '"preset": "raw"' in proc.stdout
 
+
+def test_a_missing_column_of_a_log_folder_file_says_which_it_needs(tmp_path: Path) -> None:
+    folder = log_folder_with(tmp_path, "odometry.csv", "t,v\n1700000000.5,1\n")
+    proc = run_cli("process", folder, "--out", tmp_path / "h.csv")
+    assert proc.returncode == 2
+    # no reading option (--time-col, --rate-col) names the columns of odometry.csv
+    assert proc.stderr.endswith("odometry.csv: missing column(s) speed; it has t, v (odometry.csv has the columns t, speed)\n")
