@@ -209,3 +209,16 @@ def test_a_missing_column_of_a_log_folder_file_says_which_it_needs(tmp_path: Pat
     assert proc.returncode == 2
     # no reading option (--time-col, --rate-col) names the columns of odometry.csv
     assert proc.stderr.endswith("odometry.csv: missing column(s) speed; it has t, v (odometry.csv has the columns t, speed)\n")
+
+
+@pytest.mark.parametrize("rrw", ["-1", "nan", "0"])
+def test_a_rate_random_walk_that_is_no_density_is_not_written(tmp_path: Path, rrw: str) -> None:
+    # Kalibr's gyroscope_random_walk was written as -1 or nan
+    rng = np.random.default_rng(0)
+    log = tmp_path / "rest.csv"
+    log.write_text("t,gyro_z\n" + "".join(f"{i * 0.01:.2f},{v:.6f}\n" for i, v in enumerate(rng.normal(0.0, 0.01, 20_000))))
+    proc = run_cli("allan", log, "--kalibr", tmp_path / "imu.yaml", "--rrw", rrw)
+    assert proc.returncode == 2
+    assert proc.stderr.startswith(f"gyrocore: error: rrw (--rrw) = {float(rrw)!r}: give the rate random walk K, a finite "
+                                  "number > 0")
+    assert not (tmp_path / "imu.yaml").exists()
