@@ -229,6 +229,9 @@ class Pipeline:
                 chunk), readings held or skipped (``nonfinite="hold"/"skip"``), gaps longer than
                 ``gap_limit``.
         """
+        if isinstance(index_offset, bool) or not isinstance(index_offset, (int, np.integer)) or index_offset < 0:
+            raise ValueError(f"index_offset = {index_offset!r}: give the index of the chunk's first sample in the "
+                             "whole log, an int >= 0")
         ta = as_float_array("t", t)
         ra = as_float_array("rate", rate)
         temp = None if temperature is None else as_float_array("temperature", temperature)

@@ -222,3 +222,12 @@ def test_a_rate_random_walk_that_is_no_density_is_not_written(tmp_path: Path, rr
     assert proc.stderr.startswith(f"gyrocore: error: rrw (--rrw) = {float(rrw)!r}: give the rate random walk K, a finite "
                                   "number > 0")
     assert not (tmp_path / "imu.yaml").exists()
+
+
+@pytest.mark.parametrize("offset", [-1, "a", 1.5, True])
+def test_a_bad_index_offset_is_named_and_changes_nothing(offset: object) -> None:
+    t = np.arange(0.0, 10.0, 0.01)
+    pipeline, fresh = gyrocore.Pipeline("hdr", bias=0.0), gyrocore.Pipeline("hdr", bias=0.0)
+    with pytest.raises(ValueError, match=rf"^index_offset = {re.escape(repr(offset))}: give the index"):
+        pipeline.process(t, np.zeros_like(t), index_offset=offset)  # type: ignore[arg-type]
+    assert np.array_equal(pipeline.process(t, np.ones_like(t)).heading, fresh.process(t, np.ones_like(t)).heading)
