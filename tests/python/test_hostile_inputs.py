@@ -231,3 +231,14 @@ def test_a_bad_index_offset_is_named_and_changes_nothing(offset: object) -> None
     with pytest.raises(ValueError, match=rf"^index_offset = {re.escape(repr(offset))}: give the index"):
         pipeline.process(t, np.zeros_like(t), index_offset=offset)  # type: ignore[arg-type]
     assert np.array_equal(pipeline.process(t, np.ones_like(t)).heading, fresh.process(t, np.ones_like(t)).heading)
+
+
+def test_an_output_folder_that_is_a_file_is_named(tmp_path: Path) -> None:
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    taken = tmp_path / "notes.txt"  # not .csv or .parquet: --out names a folder
+    taken.write_text("mine")
+    proc = run_cli("process", log, "--out", taken)
+    assert proc.returncode == 2
+    assert proc.stderr == (f"gyrocore: error: {taken}: not a folder, so no outputs can go into it; give a folder, "
+                           "or one output file ending in .csv or .parquet\n")
+    assert taken.read_text() == "mine"
