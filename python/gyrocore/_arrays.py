@@ -48,7 +48,11 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
             f"{name} is a masked array with {len(masked)} masked value(s), the first at index {masked[0]}: give "
             f"{name}.filled(numpy.nan) (with nonfinite='hold' or 'skip') or leave those samples out"
         )
-    a = durations_in_seconds(name, np.asarray(values))
+    try:
+        array = np.asarray(values)
+    except ValueError as e:  # a ragged list: numpy's message names neither the argument nor a fix
+        raise ValueError(f"{name} must be one flat sequence of numbers ({e})") from None
+    a = durations_in_seconds(name, array)
     if a.dtype.kind == "M":
         raise TypeError(
             f"{name} holds {a.dtype} times: give seconds, e.g. ({name} - {name}[0]) / numpy.timedelta64(1, 's')"

@@ -242,3 +242,8 @@ def test_an_output_folder_that_is_a_file_is_named(tmp_path: Path) -> None:
     assert proc.stderr == (f"gyrocore: error: {taken}: not a folder, so no outputs can go into it; give a folder, "
                            "or one output file ending in .csv or .parquet\n")
     assert taken.read_text() == "mine"
+
+
+def test_a_ragged_list_is_named() -> None:
+    with pytest.raises(ValueError, match=r"^t must be one flat sequence of numbers \(setting an array element"):
+        gyrocore.process([[0.0, 0.01], [0.02]], [0.1, 0.2])
