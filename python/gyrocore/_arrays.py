@@ -42,7 +42,17 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
 
     Raises TypeError for non-numeric data and ValueError for a wrong shape.
     """
-    a = durations_in_seconds(name, np.asarray(values))
+    masked = np.flatnonzero(np.ma.getmaskarray(values)) if np.ma.isMaskedArray(values) else np.empty(0, np.intp)
+    if len(masked):  # numpy.asarray drops the mask: the hidden values would be processed as valid
+        raise ValueError(
+            f"{name} is a masked array with {len(masked)} masked value(s), the first at index {masked[0]}: give "
+            f"{name}.filled(numpy.nan) (with nonfinite='hold' or 'skip') or leave those samples out"
+        )
+    try:
+        array = np.asarray(values)
+    except ValueError as e:  # a ragged list: numpy's message names neither the argument nor a fix
+        raise ValueError(f"{name} must be one flat sequence of numbers ({e})") from None
+    a = durations_in_seconds(name, array)
     if a.dtype.kind == "M":
         raise TypeError(
             f"{name} holds {a.dtype} times: give seconds, e.g. ({name} - {name}[0]) / numpy.timedelta64(1, 's')"

@@ -93,6 +93,9 @@ class NoiseParameters:
         """
         if self.arw is None:
             raise ValueError("the angle random walk was not found on the curve; cannot write a noise density")
+        if rrw is not None and not (isinstance(rrw, (int, float)) and math.isfinite(rrw) and rrw > 0):
+            raise ValueError(f"rrw (--rrw) = {rrw!r}: give the rate random walk K, a finite number > 0 "
+                             "[rad/s^2/sqrt(Hz)]")
         k = rrw if rrw is not None else (None if self.rrw is None else self.rrw.value)
         if k is None:
             raise ValueError(

@@ -149,6 +149,9 @@ def process_many(
         wholelog.refuse_whole_options(pipeline_overrides)
     Pipeline(preset, **(pipeline_overrides if has_bias_source(overrides) else {**pipeline_overrides, "bias": 0.0}))
     outputs = output_paths(inputs, Path(out_dir), fmt)
+    if Path(out_dir).exists() and not Path(out_dir).is_dir():  # mkdir would say only "File exists"
+        raise ValueError(f"{out_dir}: not a folder, so no outputs can go into it; give a folder, or one output "
+                         "file ending in .csv or .parquet")
     Path(out_dir).mkdir(parents=True, exist_ok=True)
     jobs_list = [
         _FileJob(p, o, preset, heading, chunk_rows, options, columns, mode, use_speed)

@@ -157,6 +157,7 @@ class _FileJob:
         source = io.open_source(self.path, self.read_options)
         io.check_output(self.out, source)
         overrides = dict(self.overrides)
+        wholelog.check_parameters(self.preset, overrides)
         window = overrides.get("bias_window")
         if window is not None:
             t0 = _first_time(source)

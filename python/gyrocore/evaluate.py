@@ -108,6 +108,8 @@ class Reference:
         t = as_float_array("t_ref", t_ref)
         psi = as_float_array("heading_ref", heading_ref)
         require_series("t", t, "heading", psi, context="reference")
+        if len(t) < 2:
+            raise ValueError(f"reference: {len(t)} sample(s); a heading error needs at least two reference samples")
         gaps = find_gaps(t, gap_factor=gap_factor)
         # Segment k starts after the k-th gap; unwrap within segments only.
         segment = np.concatenate(([0], np.cumsum(gaps)))

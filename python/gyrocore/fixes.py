@@ -60,7 +60,8 @@ class Fixes:
     def of(cls, t: ArrayLike, heading: ArrayLike, sigma: ArrayLike | float) -> Fixes:
         """Fixes from arrays (``sigma`` may be one number for all)."""
         tt = as_float_array("fix t", t)
-        s = np.full(len(tt), sigma) if isinstance(sigma, (int, float)) else as_float_array("fix sigma", sigma)
+        # one number for all is checked like an array (an int becomes float, a bool is refused)
+        s = as_float_array("fix sigma", np.full(len(tt), sigma) if np.ndim(sigma) == 0 else sigma)
         return cls(tt, as_float_array("fix heading", heading), s)
 
     @classmethod
@@ -89,14 +90,14 @@ class FusionResult:
         return f"FusionResult({len(self.t)} samples, fixes {self.counts})"
 
 
-def fuse(t: ArrayLike, rate: ArrayLike, fixes: Fixes, *, mode: Literal["causal", "smoothed"] = "causal",
+def fuse(t: ArrayLike, rate: ArrayLike, fixes: FixesLike, *, mode: Literal["causal", "smoothed"] = "causal",
          **settings: float) -> FusionResult:
     """Heading, bias and scale of a whole log from its gyro and its fixes.
 
     Args:
         t: gyro times [s], strictly increasing.
         rate: gyro readings [rad/s], counter-clockwise positive.
-        fixes: the absolute headings (sorted by time; NaN, sigma <= 0 or a step back is an error
+        fixes: the absolute headings (:data:`FixesLike`; sorted by time; NaN, sigma <= 0 or a step back is an error
             naming the fix; fixes before the first gyro sample are counted and skipped).
         mode: ``"causal"`` (each sample sees the fixes up to its time) or ``"smoothed"`` (the
             Rauch-Tung-Striebel smoother: each sees all fixes; whole logs only).
@@ -105,7 +106,8 @@ def fuse(t: ArrayLike, rate: ArrayLike, fixes: Fixes, *, mode: Literal["causal",
     if mode not in ("causal", "smoothed"):
         raise ValueError(f"mode must be 'causal' or 'smoothed', got {mode!r}")
     tt, r = as_float_array("t", t), as_float_array("rate", rate)
-    h, s, b, sc, counts = _gyrocore.fuse(tt, r, fixes.t, fixes.heading, fixes.sigma, _settings(settings),
+    fx = as_fixes(fixes)
+    h, s, b, sc, counts = _gyrocore.fuse(tt, r, fx.t, fx.heading, fx.sigma, _settings(settings),
                                           mode == "smoothed")
     return FusionResult(tt, h, s, b, sc, dict(counts))
 
@@ -114,6 +116,9 @@ def _settings(settings: dict[str, float]) -> dict[str, float]:
     unknown = sorted(set(settings) - set(SETTINGS))
     if unknown:
         raise TypeError(f"unknown fusion setting(s) {', '.join(unknown)}; choose from {', '.join(SETTINGS)}")
+    for name, value in settings.items():
+        if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
+            raise TypeError(f"fusion setting {name} = {value!r}: must be a number (SI units, docs/fixes.md)")
     return {k: float(v) for k, v in settings.items()}
 
 

@@ -75,9 +75,9 @@ def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
         if isinstance(value, (list, np.ndarray)):
             value = tuple(value.tolist() if isinstance(value, np.ndarray) else value)
         if key.endswith("_dps") and key[:-4] in _RATE_PARAMETERS:
-            name, value = key[:-4], None if value is None else math.radians(value)
+            name, value = key[:-4], _radians(key, value)
         elif key == "initial_heading_deg":
-            name, value = "initial_heading", None if value is None else math.radians(value)
+            name, value = "initial_heading", _radians(key, value)
         else:
             name = key
         if name in si:
@@ -86,24 +86,47 @@ def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
     return si
 
 
+def _radians(key: str, value: Any) -> float | None:
+    """The value of a parameter given in degrees (``key``), in radians; None stays None."""
+    if value is None:
+        return None
+    try:
+        return math.radians(value)
+    except TypeError:
+        raise TypeError(f"invalid parameter {key} = {value!r}: must be a number of degrees") from None
+
+
 def preset_params(preset: str = "hdr", **overrides: Any) -> dict[str, Any]:
     """The flat SI parameters of ``preset`` with ``overrides`` applied (validated by the core)."""
     si = _to_si(overrides)
     try:
         return dict(_gyrocore.preset_params(preset, si))
-    except TypeError as e:
-        raise _named_type_error(preset, si, e) from None
+    except (TypeError, ValueError) as e:
+        raise _named_error(preset, si, e) from None
 
 
-def _named_type_error(preset: str, si: dict[str, Any], error: TypeError) -> TypeError:
-    """The core's TypeError ("must be real number, not str") with the parameter it is about and
-    what that parameter takes (the core checks them all at once and names none)."""
+def core_pipeline(preset: str, si: dict[str, Any]) -> _gyrocore.Pipeline:
+    """The core's pipeline of ``preset`` with the SI parameters ``si``: each parameter and the
+    rules between them checked (``PipelineConfig::validate``), the one in error named."""
+    try:
+        return _gyrocore.Pipeline(preset, si)
+    except (TypeError, ValueError) as e:
+        raise _named_error(preset, si, e) from None
+
+
+def _named_error(preset: str, si: dict[str, Any], error: TypeError | ValueError) -> TypeError | ValueError:
+    """The core's error with the parameter it is about and what that parameter takes, where its
+    message names no parameter (a conversion: "must be real number, not str", "expected tuple of
+    length 2, but got tuple of length 3"; the core converts them all at once)."""
+    for key, value in si.items():
+        if key in str(error):  # the core's own words name it already
+            return error
     for key, value in si.items():
         try:
             _gyrocore.preset_params(preset, {key: value})
-        except TypeError as e:
+        except type(error) as e:
             what = parameters().get(key, "")
-            return TypeError(f"invalid parameter {key} = {value!r}: {e}; {key} is {what}")
+            return type(error)(f"invalid parameter {key} = {value!r}: {e}; {key} is {what}")
     return error
 
 
@@ -124,10 +147,7 @@ class Pipeline:
 
     def __init__(self, preset: str = "hdr", *, fusion: dict[str, float] | None = None, **overrides: Any) -> None:
         si = _to_si(overrides)
-        try:
-            self._inner = _gyrocore.Pipeline(preset, si)
-        except TypeError as e:
-            raise _named_type_error(preset, si, e) from None
+        self._inner = core_pipeline(preset, si)
         self._preset = preset
         self._units_checked = False
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
@@ -209,6 +229,9 @@ class Pipeline:
                 chunk), readings held or skipped (``nonfinite="hold"/"skip"``), gaps longer than
                 ``gap_limit``.
         """
+        if isinstance(index_offset, bool) or not isinstance(index_offset, (int, np.integer)) or index_offset < 0:
+            raise ValueError(f"index_offset = {index_offset!r}: give the index of the chunk's first sample in the "
+                             "whole log, an int >= 0")
         ta = as_float_array("t", t)
         ra = as_float_array("rate", rate)
         temp = None if temperature is None else as_float_array("temperature", temperature)

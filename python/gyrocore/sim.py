@@ -371,8 +371,17 @@ def car_drive(
     One seed fixes the route, the drift and the noise; the route and the drift do not depend on
     ``rate_hz``.
     """
+    spec = sensor(sensor_name, rate_hz=rate_hz, **changes)
+    # the simulator refuses more samples than it makes; asked first, before the route of such a
+    # drive (1e12 s) is built manoeuvre by manoeuvre, which had not ended after 120 s
+    sample_times(spec, 0.0, duration, seed=seed)
     route = motion.car(duration, mix=mix, seed=seed, rest=rest)
-    return simulate(route, sensor(sensor_name, rate_hz=rate_hz, **changes), seed=seed)
+    return simulate(route, spec, seed=seed)
+
+
+#: The most fixes :func:`gnss_fixes` makes: more than a 100 Hz receiver gives in a day (8.6e6);
+#: a rate of 1e9 Hz over a minute asked for 6e10 and did not end.
+MAX_FIXES = 1e7
 
 
 def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: float = 1.0,
@@ -393,7 +402,11 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     for name, value in (("rate_hz", rate_hz), ("sigma_deg", sigma_deg)):
         if not (math.isfinite(value) and value > 0):
             raise ValueError(f"{name} must be finite and > 0, got {value}")
-    tf = t[0] + np.arange(int((t[-1] - t[0]) * rate_hz) + 1) / rate_hz
+    count = (t[-1] - t[0]) * rate_hz
+    if count > MAX_FIXES:
+        raise ValueError(f"{count:.3e} fixes requested ({t[-1] - t[0]:g} s at {rate_hz:g} Hz): more than "
+                         f"{MAX_FIXES:.0e}; is the rate in Hz?")
+    tf = t[0] + np.arange(int(count) + 1) / rate_hz
     keep = np.ones(len(tf), dtype=bool)
     for start, end in outages:
         if not end > start:

@@ -9,6 +9,7 @@ from pathlib import Path
 from typing import Any, Mapping
 
 from .evaluate import Method
+from .io._jsonfile import read_json
 from .pipeline import BIAS_SOURCES, Pipeline, parameters
 
 #: Version of the preset-file format written by :meth:`ParameterSet.write`.
@@ -79,10 +80,7 @@ class ParameterSet:
     def read(cls, path: str | Path) -> "ParameterSet":
         """Read a preset file written by :meth:`write` (ValueError naming the file on bad content)."""
         p = Path(path)
-        try:
-            data = json.loads(p.read_text(encoding="utf-8"))
-        except json.JSONDecodeError as e:
-            raise ValueError(f"{p}: line {e.lineno} column {e.colno}: {e.msg}") from None
+        data = read_json(p)
         if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
             raise ValueError(f"{p}: not a gyrocore parameter file (no \"format\": \"{FORMAT_NAME}\")")
         if data.get("version") != FORMAT_VERSION:

@@ -42,9 +42,19 @@ from ._checks import warn
 from ._gyrocore import SampleError
 from ._rests import MIN_REST, SPEED_THRESHOLD, accept, find_rests, measure_rest
 from ._smoother import SmoothedBias, smooth
-from .pipeline import ALL_OUTPUTS, BIAS_SOURCES, HeadingResult, Pipeline, _to_si, preset_params, uses_static_bias
+from .pipeline import (
+    ALL_OUTPUTS,
+    BIAS_SOURCES,
+    HeadingResult,
+    Pipeline,
+    _to_si,
+    core_pipeline,
+    preset_params,
+    uses_static_bias,
+)
 from .result import OutArrays, filled, out_arrays
 from .rests import Rest, speed_on
+from .window import Window
 
 if TYPE_CHECKING:
     from .fixes import FixesLike
@@ -84,6 +94,14 @@ def refuse_whole_options(si: dict[str, Any]) -> None:
             f"{', '.join(given)}: used by mode='whole' only (the causal pipeline does not look for rests); "
             "leave it out or process the whole log (without --causal)"
         )
+
+
+def check_parameters(preset: str, overrides: dict[str, Any]) -> None:
+    """Refuse, naming it, a parameter of ``overrides`` that the core refuses (whole mode's own
+    options and a window still counted from the first sample aside), before whole mode reads the
+    rest window itself: a window of three bounds was read in part, and a zero ``bias_duration`` was
+    blamed on the HDR bound derived from it."""
+    core_pipeline(preset, _to_si({k: v for k, v in overrides.items() if k not in WHOLE_OPTIONS and not isinstance(v, Window)}))
 
 
 def refuse_tracking(si: dict[str, Any]) -> None:
@@ -398,6 +416,7 @@ def process_log(
         return replace(result, bias_source=causal_source(preset, si))
     refuse_tracking(si)
     options = Options.pop(si)
+    check_parameters(preset, si)
     ta, ra = as_float_array("t", t), as_float_array("rate", rate)
     sp = None if speed is None else as_float_array("speed", speed) if speed_t is None else speed_on(ta, speed_t, speed)
     if sp is not None and len(sp) != len(ta):

@@ -201,9 +201,10 @@ def static_bias(
     start, end = as_window("the rest window", window)
     inside = np.flatnonzero((ta >= start) & (ta <= end))
     if len(inside) < 2:
+        span = f"{ta[0]} .. {ta[-1]} s" if len(ta) else "which has none"
         raise ValueError(
             f"the rest window [{start}, {end}] s holds {len(inside)} reading(s) of the log "
-            f"({ta[0]} .. {ta[-1]} s); give it in the log's own time base"
+            f"({span}); give it in the log's own time base"
         )
     tw, rw = ta[inside] - ta[inside[0]], ra[inside]
     duration = float(tw[-1])

@@ -13,6 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._arrays import FloatArray, as_float_array, as_window
+from ..io._jsonfile import read_json
 
 #: Saved calibrations carry this format name and version.
 FORMAT = "gyrocore-calibration"
@@ -217,12 +218,7 @@ class Calibration:
     def load(cls, path: str | Path) -> Calibration:
         """Read a calibration saved by :meth:`save`."""
         p = Path(path)
-        try:
-            data = json.loads(p.read_text(encoding="utf-8"))
-        except json.JSONDecodeError as e:
-            raise ValueError(f"{p}: line {e.lineno} column {e.colno}: {e.msg}") from None
-        except UnicodeDecodeError as e:
-            raise ValueError(f"{p}: not UTF-8 text (at byte offset {e.start}: {e.reason})") from None
+        data = read_json(p)
         try:
             return cls.from_dict(data)
         except (KeyError, TypeError, ValueError) as e:  # missing keys, wrong shapes and types

@@ -122,6 +122,8 @@ def columns(args: argparse.Namespace) -> tuple[str, ...]:
 def run(args: argparse.Namespace) -> int:
     inputs = expand_inputs(args.inputs)
     out = Path(args.out)
+    # the files that options name are inputs too: none may become the output
+    io.check_not_input(out, [Path(p) for p in (args.fixes, args.calibration) if p is not None])
     kwargs = {**options(args), "columns": columns(args)}
     try:
         with warnings.catch_warnings():

@@ -17,8 +17,8 @@ COLUMNS = ("t", "gyro_z", "temperature", "rate_true", "heading_true", "x", "y", 
 
 
 def _profiles(args: argparse.Namespace) -> dict[str, Callable[[], motion.Motion]]:
+    """The motions of the profiles other than ``car`` (:func:`gyrocore.sim.car_drive` builds its own)."""
     return {
-        "car": lambda: motion.car(args.duration, mix=args.mix, seed=args.seed),
         "hdr-figure3": lambda: motion.hdr_figure3(),
         "robot": lambda: motion.robot_run(),
         "square": lambda: motion.square_path(runs=args.runs),
@@ -60,8 +60,12 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--seed must be >= 0, got {args.seed}")
     if args.runs < 1:
         raise ValueError(f"--runs must be >= 1, got {args.runs}")
-    route = _profiles(args)[args.profile]()
-    drive = sim.simulate(route, args.sensor, seed=args.seed, rate_hz=args.rate_hz)
+    if args.profile == "car":  # car_drive refuses a drive of too many samples before building its route
+        rate_hz = sim.sensor(args.sensor).rate_hz if args.rate_hz is None else args.rate_hz
+        drive = sim.car_drive(args.duration, rate_hz, seed=args.seed, mix=args.mix, sensor_name=args.sensor)
+    else:
+        drive = sim.simulate(_profiles(args)[args.profile](), args.sensor, seed=args.seed, rate_hz=args.rate_hz)
+    route = drive.motion
     table = np.column_stack(
         [drive.t, drive.rate_measured, drive.temperature, drive.rate_true, drive.heading_true,
          drive.x, drive.y, drive.speed, drive.drift]

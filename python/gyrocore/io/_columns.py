@@ -17,8 +17,15 @@ if TYPE_CHECKING:
     import pyarrow as pa
 
 
-def column_positions(path: Path, header: list[str], columns: tuple[str, ...]) -> dict[str, int]:
-    """Where each of ``columns`` is in ``header`` (column, field or array names of ``path``).
+#: What to do about a missing column of gyro data: the reading options name another.
+CHOOSE_COLUMNS = "choose with time_col/rate_col, --time-col/--rate-col"
+
+
+def column_positions(
+    path: Path, header: list[str], columns: tuple[str, ...], choose: str = CHOOSE_COLUMNS
+) -> dict[str, int]:
+    """Where each of ``columns`` is in ``header`` (column, field or array names of ``path``);
+    ``choose`` says what to do about a missing one.
 
     Raises:
         ValueError: a column is missing or appears more than once.
@@ -29,7 +36,7 @@ def column_positions(path: Path, header: list[str], columns: tuple[str, ...]) ->
         short = f"; a name may leave out its unit, e.g. {with_unit[0][0]}" if with_unit else ""
         raise ValueError(
             f"{path}: missing column(s) {', '.join(missing)}; it has {', '.join(map(str, header))} "
-            f"(choose with time_col/rate_col, --time-col/--rate-col{short})"
+            f"({choose}{short})"
         )
     twice = [c for c in columns if header.count(c) > 1]
     if twice:

@@ -19,7 +19,7 @@ import numpy as np
 
 from .._arrays import FloatArray
 from .._extras import require
-from ._columns import column_positions, concat, first_null, import_pyarrow_lazy_modules
+from ._columns import CHOOSE_COLUMNS, column_positions, concat, first_null, import_pyarrow_lazy_modules
 
 if TYPE_CHECKING:
     import pyarrow as pa
@@ -58,13 +58,15 @@ def _read_csv(
     delimiter: str = ",",
     block_bytes: int = CSV_BLOCK_BYTES,
     required: dict[str, str] | None = None,
+    choose: str = CHOOSE_COLUMNS,
 ) -> Iterator[tuple[int, dict[str, pa.Array], int]]:
     """Yield ``(first_row, {column: pyarrow array}, bytes read)`` of a CSV file, block by block.
 
     Empty values become nulls; blank lines are rows of nulls, so that row ``k`` is line ``k + 2``
     (for files with one sample per line: a quoted line break would shift the line numbers).
     ``required`` names the columns whose empty value the caller refuses, with what to call it
-    (``{"t": "timestamp"}``), so that an error in a block names the first bad line of either kind.
+    (``{"t": "timestamp"}``), so that an error in a block names the first bad line of either kind;
+    ``choose`` says what to do about a missing column (:func:`column_positions`).
     pyarrow needs every line inside one block: at a longer line (a long text in a column that is
     not read) the reading goes on from that line with blocks four times larger, so that neither
     the chunk size nor the block size decides whether a file can be read.
@@ -73,7 +75,7 @@ def _read_csv(
     pa_csv = require("pyarrow.csv", f"{path}: reading CSV files")
 
     header = _csv_header(path, delimiter)
-    positions = column_positions(path, header, columns)
+    positions = column_positions(path, header, columns, choose)
     keys = {c: f"{positions[c]}:{c}" for c in columns}
     convert = pa_csv.ConvertOptions(
         include_columns=list(keys.values()),
@@ -242,7 +244,8 @@ def read_csv_columns(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArr
     import_pyarrow_lazy_modules()
     parts: dict[str, list[np.ndarray]] = {c: [] for c in columns}
     header = _csv_header(path, ",")
-    for first, cols, _ in _read_csv(path, columns, required=dict.fromkeys(columns, "value")):
+    choose = f"{path.name} has the columns {', '.join(columns)}"  # not gyro data: no reading option names them
+    for first, cols, _ in _read_csv(path, columns, required=dict.fromkeys(columns, "value"), choose=choose):
         for c in columns:
             bad = first_null(cols[c])
             if bad is not None:

@@ -7,13 +7,13 @@ describes the log).
 
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .._arrays import FloatArray
 from ._csvfile import _csv_header, read_csv_columns
+from ._jsonfile import read_json
 
 if TYPE_CHECKING:
     from ..fixes import Fixes
@@ -37,8 +37,9 @@ def read_meta(folder: Path) -> tuple[dict[str, Any], tuple[float, float] | None]
 
 
 def read_reference(folder: Path) -> dict[str, FloatArray]:
-    """Columns t, heading, x and y of ``reference.csv``; empty without the file."""
-    return _read_table(folder / "reference.csv", ("t", "heading", "x", "y"))
+    """``reference.csv`` (:func:`read_reference_file`); empty without the file."""
+    path = folder / "reference.csv"
+    return read_reference_file(path) if path.is_file() else {}
 
 
 def read_odometry(folder: Path) -> dict[str, FloatArray]:
@@ -74,22 +75,25 @@ def _rest_window(path: Path, window: Any) -> tuple[float, float] | None:
     if not (
         isinstance(window, list)
         and len(window) == 2
-        and all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in window)
+        and all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(_as_float(v)) for v in window)
         and window[0] <= window[1]
     ):
         raise ValueError(f"{path}: stationary must be [t0, t1] in seconds (finite, t0 <= t1) or null, got {window!r}")
     return float(window[0]), float(window[1])
 
 
+def _as_float(value: int | float) -> float:
+    """``value`` as a float; an integer too long for one (JSON has no limit) is infinite."""
+    try:
+        return float(value)
+    except OverflowError:
+        return math.inf
+
+
 def _read_json(path: Path) -> dict[str, Any]:
     if not path.is_file():
         return {}
-    try:
-        meta = json.loads(path.read_text(encoding="utf-8"))
-    except json.JSONDecodeError as e:
-        raise ValueError(f"{path}: line {e.lineno} column {e.colno}: {e.msg}") from None
-    except UnicodeDecodeError as e:
-        raise ValueError(f"{path}: not UTF-8 text (at byte offset {e.start}: {e.reason}); save it as UTF-8") from None
+    meta = read_json(path)
     if not isinstance(meta, dict):
         raise ValueError(f"{path}: expected a JSON object")
     return meta

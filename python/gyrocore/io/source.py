@@ -103,6 +103,12 @@ class ReadOptions:
             raise ValueError(f"rate_unit {self.rate_unit!r} is not one of {', '.join(RATE_UNITS)}")
         if len(self.delimiter) != 1:
             raise ValueError(f"delimiter must be one character, got {self.delimiter!r}")
+        rates = self.gyro_cols if self.gyro_cols is not None else (self.rate,)
+        if self.time in rates:  # the times would be read as rates too
+            raise ValueError(
+                f"the time column {self.time!r} (time_col, --time-col) is also a rate column (rate_col, "
+                "--rate-col; gyro_cols, --gyro-cols): give each its own column"
+            )
 
     @property
     def counts_per_second(self) -> float:

@@ -1,0 +1,26 @@
+"""Reading the JSON files a user gives (a log folder's ``meta.json``, a calibration, a parameter
+file): any content that is not JSON text is a ValueError naming the file and what is wrong."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+
+def read_json(path: Path) -> Any:
+    """The JSON value of the file ``path``.
+
+    Raises:
+        ValueError: naming ``path``: not UTF-8, not JSON (with the line and column), or nested
+            deeper than Python's JSON parser goes (it raises RecursionError there).
+        OSError: the file cannot be read.
+    """
+    try:
+        return json.loads(path.read_text(encoding="utf-8"))
+    except json.JSONDecodeError as e:
+        raise ValueError(f"{path}: line {e.lineno} column {e.colno}: {e.msg}") from None
+    except UnicodeDecodeError as e:
+        raise ValueError(f"{path}: not UTF-8 text (at byte offset {e.start}: {e.reason}); save it as UTF-8") from None
+    except RecursionError:
+        raise ValueError(f"{path}: JSON nested too deeply to read (arrays or objects inside each other)") from None

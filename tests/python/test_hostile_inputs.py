@@ -1,0 +1,249 @@
+"""Inputs a hostile user gives: each refused with one line naming the file or parameter and what
+to do, never a traceback, a silent wrong result or an overwritten input."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import gyrocore
+from gyrocore import fixes
+from gyrocore.calibration import Calibration, static_bias
+
+from .conftest import real_log_path
+from .test_batch import synthetic_csv
+from .test_errors_named import run_cli
+
+#: JSON that Python's parser cannot read without running out of recursion.
+DEEP_JSON = "[" * 100_000 + "]" * 100_000
+
+
+@pytest.mark.parametrize(
+    ("content", "message"),
+    [
+        (DEEP_JSON, "JSON nested too deeply to read"),
+        ('{"stationary": [0, 1' + "0" * 400 + "]}", "stationary must be [t0, t1] in seconds"),
+    ],
+)
+def test_a_hostile_meta_json_is_named(tmp_path: Path, content: str, message: str) -> None:
+    folder = tmp_path / "log"
+    folder.mkdir()
+    synthetic_csv(folder / "gyro.csv", 3000)
+    (folder / "meta.json").write_text(content)
+    for args in (("process", folder, "--out", tmp_path / "h.csv"), ("allan", folder)):
+        proc = run_cli(*args)
+        assert proc.returncode == 2
+        assert proc.stderr.startswith(f"gyrocore: error: {folder / 'meta.json'}: {message}")
+
+
+@pytest.mark.parametrize("option", ["--calibration", "--params"])
+def test_a_deeply_nested_json_file_is_named(tmp_path: Path, option: str) -> None:
+    path = tmp_path / "deep.json"
+    path.write_text(DEEP_JSON)
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    args = ("process", log, "--out", tmp_path / "h.csv") if option == "--calibration" else ("evaluate", tmp_path)
+    proc = run_cli(*args, option, path)
+    assert proc.returncode == 2
+    assert proc.stderr == f"gyrocore: error: {path}: JSON nested too deeply to read (arrays or objects inside each other)\n"
+
+
+@pytest.mark.parametrize("option", ["--fixes", "--calibration"])
+def test_a_file_an_option_names_is_never_the_output(tmp_path: Path, option: str) -> None:
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    given = tmp_path / "given.csv"  # a calibration is JSON whatever its file is called
+    if option == "--fixes":
+        given.write_text("t,heading,sigma\n1700000001,0.1,0.05\n")
+    else:
+        Calibration(method="static", bias=0.001).save(given)
+    before = given.read_bytes()
+    proc = run_cli("process", log, "--out", given, option, given)
+    assert proc.returncode == 2
+    assert proc.stderr == f"gyrocore: error: refusing to write {given} over or inside the input {given}; write it elsewhere\n"
+    assert given.read_bytes() == before
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+@pytest.mark.parametrize(
+    ("overrides", "message"),
+    [
+        ({"bias_window": (1, 2, 3)}, "invalid parameter bias_window = (1, 2, 3): expected tuple of length 2, but got "
+         "tuple of length 3; bias_window is (start, end) rest window"),
+        ({"bias_window": (1,)}, "invalid parameter bias_window = (1,): expected tuple of length 2"),
+        ({"bias_window": "ab"}, "invalid parameter bias_window = 'ab': 'str' object is not an instance of 'tuple'"),
+        ({"bias_duration": 0}, "invalid parameter bias_duration = 0: must be > 0"),
+        ({"bias_duration": -1}, "invalid parameter bias_duration = -1: must be > 0"),
+        ({"bias_duration": "5"}, "invalid parameter bias_duration = '5': must be real number, not str"),
+    ],
+)
+def test_a_bad_rest_window_is_named_in_either_mode(mode: str, overrides: dict[str, object], message: str) -> None:
+    t = np.arange(0.0, 60.0, 0.01)
+    with pytest.raises((TypeError, ValueError)) as info:
+        gyrocore.process(t, np.full_like(t, 0.002), "recommended", mode=mode, **overrides)
+    assert str(info.value).startswith(message)
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (("--bias-duration", "0"), "invalid parameter bias_duration = 0: must be > 0"),
+        (("--bias-duration", "-5"), "invalid parameter bias_duration = -5: must be > 0"),
+        (("--param", "bias_window=1,2,3"), "invalid parameter bias_window = (1.0, 2.0, 3.0): expected tuple of length 2"),
+        (("--param", "bias_window=abc"), "invalid parameter bias_window = 'abc': 'str' object is not an instance"),
+    ],
+)
+def test_the_command_line_names_a_bad_rest_window(tmp_path: Path, args: tuple[str, ...], message: str) -> None:
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    proc = run_cli("process", log, "--out", tmp_path / "h.csv", *args)
+    assert proc.returncode == 2
+    assert proc.stderr.startswith(f"gyrocore: error: {message}")
+    assert not (tmp_path / "h.csv").exists()
+
+
+@pytest.mark.parametrize(
+    "args",
+    [("demo", "--duration", "1e12"), ("simulate", "--duration", "1e12", "--out", "drive.csv"),
+     ("tune", "--sim-drive", "city:1e12")],
+)
+def test_a_drive_too_long_to_simulate_is_refused_at_once(tmp_path: Path, args: tuple[str, ...]) -> None:
+    # the route of such a drive was built manoeuvre by manoeuvre before the sample count was checked
+    proc = run_cli(*(str(tmp_path / a) if a.endswith(".csv") else a for a in args))
+    assert proc.returncode == 2
+    assert "samples requested" in proc.stderr and "more than 1e9; is the duration in seconds?" in proc.stderr
+    assert not list(tmp_path.iterdir())
+
+
+def test_simulated_fixes_at_an_absurd_rate_are_refused_at_once() -> None:
+    # 1e9 Hz over the log's two minutes asked numpy for 1.3e11 fixes, and the command did not end
+    proc = run_cli("evaluate", real_log_path("f110_ds3"), "--sim-fixes", "rate=1e9")
+    assert proc.returncode == 2
+    assert re.fullmatch(r"gyrocore: error: log f110_ds3: \S+ fixes requested \(\S+ s at 1e\+09 Hz\): more than "
+                        r"1e\+07; is the rate in Hz\?\n", proc.stderr)
+
+
+def test_fixes_of_one_int_sigma_are_fused() -> None:
+    # one sigma given as an int made an int64 array, which the core refused as "type mismatch"
+    t = np.arange(0.0, 10.0, 0.01)
+    as_int = fixes.fuse(t, np.zeros_like(t), fixes.Fixes.of([1.0, 2.0], [0.1, 0.2], 1))
+    as_float = fixes.fuse(t, np.zeros_like(t), fixes.Fixes.of([1.0, 2.0], [0.1, 0.2], 1.0))
+    assert np.array_equal(as_int.heading, as_float.heading)
+    with pytest.raises(TypeError, match="fix sigma must hold real numbers, got dtype bool"):
+        fixes.Fixes.of([1.0, 2.0], [0.1, 0.2], True)
+    # a (t, heading, sigma) tuple, as gyrocore.process takes it
+    assert np.array_equal(fixes.fuse(t, np.zeros_like(t), ([1.0, 2.0], [0.1, 0.2], [1.0, 1.0])).heading, as_float.heading)
+
+
+@pytest.mark.parametrize("value", ["abc", None, True])
+def test_a_fusion_setting_that_is_no_number_is_named(value: object) -> None:
+    t = np.arange(0.0, 10.0, 0.01)
+    with pytest.raises(TypeError, match=rf"^fusion setting arw = {re.escape(repr(value))}: must be a number"):
+        fixes.fuse(t, np.zeros_like(t), fixes.Fixes.empty(), arw=value)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="^fusion setting arw"):
+        gyrocore.process(t, np.zeros_like(t), "raw", fixes=fixes.Fixes.empty(), fusion={"arw": value})
+
+
+def test_a_masked_array_is_not_processed_as_if_unmasked() -> None:
+    t = np.arange(0.0, 60.0, 0.01)
+    rate = np.ma.masked_array(np.full_like(t, 0.002), mask=t >= 30.0)
+    with pytest.raises(ValueError, match=r"^rate is a masked array with 3000 masked value\(s\), the first at index "
+                       r"3000: give rate.filled\(numpy.nan\)"):
+        gyrocore.process(t, rate, "hdr")
+    # nothing masked: the values as they are
+    assert np.array_equal(gyrocore.process(t, np.ma.masked_array(rate.data), "hdr").heading,
+                          gyrocore.process(t, rate.data, "hdr").heading)
+
+
+def test_the_static_bias_of_no_samples_is_named() -> None:
+    with pytest.raises(ValueError, match=r"^the rest window \[0.0, 1.0\] s holds 0 reading\(s\) of the log \(which has none\)"):
+        static_bias([], [], (0.0, 1.0))
+
+
+@pytest.mark.parametrize(("key", "value"), [("threshold_dps", "0.1"), ("bias_dps", (1, 2)), ("initial_heading_deg", "x")])
+def test_a_parameter_in_degrees_that_is_no_number_is_named(key: str, value: object) -> None:
+    t = np.arange(0.0, 10.0, 0.01)
+    with pytest.raises(TypeError, match=rf"^invalid parameter {key} = {re.escape(repr(value))}: must be a number of degrees"):
+        gyrocore.process(t, np.zeros_like(t), "hdr", **{key: value})
+
+
+@pytest.mark.parametrize("args", [("--time-col", "t", "--rate-col", "t"), ("--rate-col", "t"), ("--time-col", "gyro_z")])
+def test_the_time_column_read_as_the_rate_is_refused(tmp_path: Path, args: tuple[str, ...]) -> None:
+    # the times were read as rates too, with only a warning that the rates looked like deg/s
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    proc = run_cli("process", log, "--out", tmp_path / "h.csv", *args)
+    assert proc.returncode == 2
+    assert proc.stderr.startswith("gyrocore: error: the time column ")
+    assert "is also a rate column (rate_col, --rate-col; gyro_cols, --gyro-cols): give each its own column" in proc.stderr
+    assert not (tmp_path / "h.csv").exists()
+
+
+def log_folder_with(tmp_path: Path, name: str, text: str) -> Path:
+    """A log folder of a synthetic drive whose file ``name`` holds ``text``."""
+    folder = tmp_path / "log"
+    folder.mkdir()
+    synthetic_csv(folder / "gyro.csv", 3000)
+    (folder / name).write_text(text)
+    return folder
+
+
+def test_a_reference_with_no_samples_is_named(tmp_path: Path) -> None:
+    folder = log_folder_with(tmp_path, "reference.csv", "t,heading,x,y\n")
+    proc = run_cli("evaluate", folder)
+    assert proc.returncode == 2
+    assert proc.stderr == ("gyrocore: error: log log: reference: 0 sample(s); a heading error needs at least two "
+                           "reference samples\n")
+
+
+def test_a_reference_without_positions_is_evaluated(tmp_path: Path) -> None:
+    # the heading is all E_psi needs; x and y were required in a log folder, not in --reference
+    folder = log_folder_with(tmp_path, "reference.csv", "t,heading\n1700000000.5,0.1\n1700000010.5,0.2\n1700000020.5,0.3\n")
+    proc = run_cli("evaluate", folder, "--preset", "raw", "--json")
+    assert proc.returncode == 0, proc.stderr
+    assert '"preset": "raw"' in proc.stdout
+
+
+def test_a_missing_column_of_a_log_folder_file_says_which_it_needs(tmp_path: Path) -> None:
+    folder = log_folder_with(tmp_path, "odometry.csv", "t,v\n1700000000.5,1\n")
+    proc = run_cli("process", folder, "--out", tmp_path / "h.csv")
+    assert proc.returncode == 2
+    # no reading option (--time-col, --rate-col) names the columns of odometry.csv
+    assert proc.stderr.endswith("odometry.csv: missing column(s) speed; it has t, v (odometry.csv has the columns t, speed)\n")
+
+
+@pytest.mark.parametrize("rrw", ["-1", "nan", "0"])
+def test_a_rate_random_walk_that_is_no_density_is_not_written(tmp_path: Path, rrw: str) -> None:
+    # Kalibr's gyroscope_random_walk was written as -1 or nan
+    rng = np.random.default_rng(0)
+    log = tmp_path / "rest.csv"
+    log.write_text("t,gyro_z\n" + "".join(f"{i * 0.01:.2f},{v:.6f}\n" for i, v in enumerate(rng.normal(0.0, 0.01, 20_000))))
+    proc = run_cli("allan", log, "--kalibr", tmp_path / "imu.yaml", "--rrw", rrw)
+    assert proc.returncode == 2
+    assert proc.stderr.startswith(f"gyrocore: error: rrw (--rrw) = {float(rrw)!r}: give the rate random walk K, a finite "
+                                  "number > 0")
+    assert not (tmp_path / "imu.yaml").exists()
+
+
+@pytest.mark.parametrize("offset", [-1, "a", 1.5, True])
+def test_a_bad_index_offset_is_named_and_changes_nothing(offset: object) -> None:
+    t = np.arange(0.0, 10.0, 0.01)
+    pipeline, fresh = gyrocore.Pipeline("hdr", bias=0.0), gyrocore.Pipeline("hdr", bias=0.0)
+    with pytest.raises(ValueError, match=rf"^index_offset = {re.escape(repr(offset))}: give the index"):
+        pipeline.process(t, np.zeros_like(t), index_offset=offset)  # type: ignore[arg-type]
+    assert np.array_equal(pipeline.process(t, np.ones_like(t)).heading, fresh.process(t, np.ones_like(t)).heading)
+
+
+def test_an_output_folder_that_is_a_file_is_named(tmp_path: Path) -> None:
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    taken = tmp_path / "notes.txt"  # not .csv or .parquet: --out names a folder
+    taken.write_text("mine")
+    proc = run_cli("process", log, "--out", taken)
+    assert proc.returncode == 2
+    assert proc.stderr == (f"gyrocore: error: {taken}: not a folder, so no outputs can go into it; give a folder, "
+                           "or one output file ending in .csv or .parquet\n")
+    assert taken.read_text() == "mine"
+
+
+def test_a_ragged_list_is_named() -> None:
+    with pytest.raises(ValueError, match=r"^t must be one flat sequence of numbers \(setting an array element"):
+        gyrocore.process([[0.0, 0.01], [0.02]], [0.1, 0.2])
