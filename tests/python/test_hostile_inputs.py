@@ -115,6 +115,20 @@ def test_a_drive_too_long_to_simulate_is_refused_at_once(tmp_path: Path, args: t
     assert not list(tmp_path.iterdir())
 
 
+@pytest.mark.parametrize("profile", ["square", "rotary"])
+def test_too_many_runs_to_simulate_are_refused_at_once(tmp_path: Path, profile: str) -> None:
+    # a billion runs were built one by one before the sample count was checked (not ended in 120 s)
+    out = tmp_path / "drive.csv"
+    proc = run_cli("simulate", "--profile", profile, "--runs", "1000000000", "--out", out)
+    assert proc.returncode == 2
+    assert proc.stderr.startswith(f"gyrocore: error: --runs 1000000000 of the {profile} profile: ")
+    assert "samples requested" in proc.stderr and "Traceback" not in proc.stderr
+    assert not out.exists()
+    # a sensible count still runs
+    assert run_cli("simulate", "--profile", profile, "--runs", "2", "--out", out).returncode == 0
+    assert out.exists()
+
+
 def test_simulated_fixes_at_an_absurd_rate_are_refused_at_once() -> None:
     # 1e9 Hz over the log's two minutes asked numpy for 1.3e11 fixes, and the command did not end
     proc = run_cli("evaluate", real_log_path("f110_ds3"), "--sim-fixes", "rate=1e9")

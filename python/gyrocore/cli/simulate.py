@@ -16,13 +16,16 @@ from ._common import add_command, write_atomically
 COLUMNS = ("t", "gyro_z", "temperature", "rate_true", "heading_true", "x", "y", "speed", "drift")
 
 
+#: The profiles made of ``--runs`` repetitions of one run.
+_REPEATED: dict[str, Callable[..., motion.Motion]] = {"square": motion.square_path, "rotary": motion.rotary_table}
+
+
 def _profiles(args: argparse.Namespace) -> dict[str, Callable[[], motion.Motion]]:
     """The motions of the profiles other than ``car`` (:func:`gyrocore.sim.car_drive` builds its own)."""
     return {
         "hdr-figure3": lambda: motion.hdr_figure3(),
         "robot": lambda: motion.robot_run(),
-        "square": lambda: motion.square_path(runs=args.runs),
-        "rotary": lambda: motion.rotary_table(runs=args.runs),
+        **{name: (lambda build=build: build(runs=args.runs)) for name, build in _REPEATED.items()},
     }
 
 
@@ -60,10 +63,18 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--seed must be >= 0, got {args.seed}")
     if args.runs < 1:
         raise ValueError(f"--runs must be >= 1, got {args.runs}")
+    rate_hz = sim.sensor(args.sensor).rate_hz if args.rate_hz is None else args.rate_hz
     if args.profile == "car":  # car_drive refuses a drive of too many samples before building its route
-        rate_hz = sim.sensor(args.sensor).rate_hz if args.rate_hz is None else args.rate_hz
         drive = sim.car_drive(args.duration, rate_hz, seed=args.seed, mix=args.mix, sensor_name=args.sensor)
     else:
+        if args.profile in _REPEATED:
+            # the simulator's sample limit, asked for all the runs before they are built one by one
+            # (a billion runs would take hours to build before the limit said no)
+            seconds = float(_REPEATED[args.profile](runs=1).knots[-1]) * args.runs
+            try:
+                sim.sample_times(sim.sensor(args.sensor, rate_hz=rate_hz), 0.0, seconds, seed=args.seed)
+            except ValueError as e:
+                raise ValueError(f"--runs {args.runs} of the {args.profile} profile: {e}") from None
         drive = sim.simulate(_profiles(args)[args.profile](), args.sensor, seed=args.seed, rate_hz=args.rate_hz)
     route = drive.motion
     table = np.column_stack(
