@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import functools
 import math
 from pathlib import Path
 from typing import Callable
@@ -25,7 +26,7 @@ def _profiles(args: argparse.Namespace) -> dict[str, Callable[[], motion.Motion]
     return {
         "hdr-figure3": lambda: motion.hdr_figure3(),
         "robot": lambda: motion.robot_run(),
-        **{name: (lambda build=build: build(runs=args.runs)) for name, build in _REPEATED.items()},
+        **{name: functools.partial(build, runs=args.runs) for name, build in _REPEATED.items()},
     }
 
 
