@@ -22,12 +22,11 @@ from typing import TYPE_CHECKING, Any
 
 from ._checks import InputWarning
 from ._gyrocore import SampleError, __version__
+from .integration import downsample, integrate
 from .pipeline import (
     HeadingResult,
     Pipeline,
     RestWindowError,
-    downsample,
-    integrate,
     parameters,
     preset_names,
     preset_params,

@@ -13,7 +13,7 @@ from numpy.typing import ArrayLike, NDArray
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
 from .allan_edf import _TABLES, ONE_SIGMA, confidence_interval, equivalent_dof
-from .pipeline import integrate
+from .integration import integrate
 
 Kind = Literal["allan", "modified", "hadamard"]
 TauSpec = Literal["octave", "decade", "log", "all"]

@@ -495,22 +495,3 @@ def process(
         t, rate, preset, mode=mode, temperature=temperature, speed=speed, speed_t=speed_t, outputs=outputs,
         fixes=fixes, fusion=fusion, out=out, **overrides,
     )
-
-
-def integrate(
-    t: ArrayLike, rate: ArrayLike, method: str = "trapezoid", *, initial_heading: float = 0.0
-) -> FloatArray:
-    """Continuous heading [rad] from rate [rad/s]: ``trapezoid`` or ``rectangle`` (HDR eq 3)."""
-    heading: FloatArray = _gyrocore.integrate(
-        as_float_array("t", t), as_float_array("rate", rate), method, initial_heading
-    )
-    return heading
-
-
-def downsample(t: ArrayLike, rate: ArrayLike, interval: float = 1.0) -> tuple[FloatArray, FloatArray]:
-    """Block means over ``interval`` seconds (the HDR paper's down-sampling, its second eq 14).
-
-    Returns the end time of each complete block and its time-weighted mean rate.
-    """
-    tb, rb = _gyrocore.downsample(as_float_array("t", t), as_float_array("rate", rate), interval)
-    return tb, rb

@@ -11,7 +11,7 @@ from numpy.typing import ArrayLike, NDArray
 from .._arrays import FloatArray, as_float_array, as_window
 from .._checks import warn
 from ..evaluate import unwrap
-from ..pipeline import integrate
+from ..integration import integrate
 from .inputs import check_series
 from .result import Calibration
 

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..pipeline import integrate
+from ..integration import integrate
 from .inputs import check_series, check_temperature
 from .rest import rest_windows, static_bias
 from .result import Calibration

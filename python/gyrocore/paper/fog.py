@@ -11,7 +11,8 @@ import numpy as np
 
 from .. import calibration, evaluate, motion, sim
 from .._arrays import FloatArray
-from ..pipeline import integrate, process
+from ..integration import integrate
+from ..pipeline import process
 from ._report import Row, _Report
 
 

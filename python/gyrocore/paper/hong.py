@@ -15,7 +15,8 @@ import numpy as np
 
 from .. import calibration, deadband, evaluate, motion, sim
 from .._arrays import FloatArray
-from ..pipeline import downsample, preset_params, process
+from ..integration import downsample
+from ..pipeline import preset_params, process
 from ._report import Row, _Report, format_table
 from .hong_sensor import HONG_B, HONG_S, AllanReproduction, HongCalibration, _reference, hong_allan, hong_calibration
 

@@ -11,7 +11,7 @@ import numpy as np
 
 from .. import allan, calibration, motion, sim
 from .._arrays import FloatArray
-from ..pipeline import integrate
+from ..integration import integrate
 from ._report import Row, _Report
 
 _DEG = math.pi / 180.0
