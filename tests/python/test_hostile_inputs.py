@@ -129,6 +129,32 @@ def test_too_many_runs_to_simulate_are_refused_at_once(tmp_path: Path, profile: 
     assert out.exists()
 
 
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [(("--profile", "robot", "--duration", "100"), "--duration applies to the car profile only, not to --profile robot"),
+     (("--profile", "square", "--mix", "city"), "--mix applies to the car profile only, not to --profile square"),
+     (("--profile", "car", "--runs", "3"),
+      "--runs applies to the square and rotary profiles only, not to --profile car")],
+)
+def test_an_option_the_simulated_profile_does_not_take_is_refused(
+    tmp_path: Path, args: tuple[str, ...], message: str
+) -> None:
+    # it was ignored without a word: a robot run of 100 s came out as the paper's 160 s
+    out = tmp_path / "drive.csv"
+    proc = run_cli("simulate", *args, "--out", out)
+    assert proc.returncode == 2
+    assert proc.stderr == f"gyrocore: error: {message}\n"
+    assert not out.exists()
+
+
+def test_a_rate_random_walk_without_a_kalibr_file_is_refused() -> None:
+    # --rrw only goes into --kalibr's YAML; alone it was accepted and did nothing
+    proc = run_cli("allan", real_log_path("broad_10"), "--rrw", "1e-5")
+    assert proc.returncode == 2
+    assert proc.stderr == ("gyrocore: error: --rrw is the rate random walk written by --kalibr: give --kalibr FILE "
+                           "too, or leave --rrw out\n")
+
+
 def test_simulated_fixes_at_an_absurd_rate_are_refused_at_once() -> None:
     # 1e9 Hz over the log's two minutes asked numpy for 1.3e11 fixes, and the command did not end
     proc = run_cli("evaluate", real_log_path("f110_ds3"), "--sim-fixes", "rate=1e9")

@@ -38,6 +38,8 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
 def run(args: argparse.Namespace) -> int:
     src = Path(args.input)
     window = None if args.window is None else Window.parse(args.window, "--window")
+    if args.rrw is not None and args.kalibr is None:
+        raise ValueError("--rrw is the rate random walk written by --kalibr: give --kalibr FILE too, or leave --rrw out")
     for out in (args.plot, args.kalibr):
         if out is not None:
             io.check_not_input(out, [src])

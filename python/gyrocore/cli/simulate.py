@@ -17,6 +17,9 @@ from ._common import add_command, write_atomically
 COLUMNS = ("t", "gyro_z", "temperature", "rate_true", "heading_true", "x", "y", "speed", "drift")
 
 
+#: The defaults of the options that apply to some profiles only.
+DURATION, MIX, RUNS = 600.0, "mixed", 10
+
 #: The profiles made of ``--runs`` repetitions of one run.
 _REPEATED: dict[str, Callable[..., motion.Motion]] = {"square": motion.square_path, "rotary": motion.rotary_table}
 
@@ -28,6 +31,20 @@ def _profiles(args: argparse.Namespace) -> dict[str, Callable[[], motion.Motion]
         "robot": lambda: motion.robot_run(),
         **{name: functools.partial(build, runs=args.runs) for name, build in _REPEATED.items()},
     }
+
+
+def _options_of_the_profile(args: argparse.Namespace) -> None:
+    """Refuses an option the profile does not take (it would be ignored without a word), and sets
+    the defaults of those it takes."""
+    takes = {"--duration": args.profile == "car", "--mix": args.profile == "car", "--runs": args.profile in _REPEATED}
+    given = {"--duration": args.duration, "--mix": args.mix, "--runs": args.runs}
+    for option, value in given.items():
+        if value is not None and not takes[option]:
+            which = "the car profile" if option != "--runs" else "the square and rotary profiles"
+            raise ValueError(f"{option} applies to {which} only, not to --profile {args.profile}")
+    args.duration = DURATION if args.duration is None else args.duration
+    args.mix = MIX if args.mix is None else args.mix
+    args.runs = RUNS if args.runs is None else args.runs
 
 
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
@@ -48,9 +65,9 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     )
     p.add_argument("--sensor", choices=sorted(sim.SENSORS), default="crs03", help="simulated gyro (default crs03)")
     p.add_argument("--rate-hz", type=float, help="sample rate [Hz] (default: the sensor's)")
-    p.add_argument("--duration", type=float, default=600.0, help="car drive length [s] (default 600)")
-    p.add_argument("--mix", choices=sorted(motion.ROAD_MIXES), default="mixed", help="car road mix (default mixed)")
-    p.add_argument("--runs", type=int, default=10, help="runs of the square path or rotary table (default 10)")
+    p.add_argument("--duration", type=float, help=f"car drive length [s] (default {DURATION:g})")
+    p.add_argument("--mix", choices=sorted(motion.ROAD_MIXES), help=f"car road mix (default {MIX})")
+    p.add_argument("--runs", type=int, help=f"runs of the square path or rotary table (default {RUNS})")
     p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
 
 
@@ -62,6 +79,7 @@ def run(args: argparse.Namespace) -> int:
         raise OSError(f"{out.parent}: no such folder")
     if args.seed < 0:
         raise ValueError(f"--seed must be >= 0, got {args.seed}")
+    _options_of_the_profile(args)
     if args.runs < 1:
         raise ValueError(f"--runs must be >= 1, got {args.runs}")
     rate_hz = sim.sensor(args.sensor).rate_hz if args.rate_hz is None else args.rate_hz
