@@ -10,7 +10,7 @@ _F = NDArray[np.float64]
 __all__ = [
     "Pipeline", "SampleError", "preset_params", "preset_names", "parameter_names", "preset_uses_static_bias",
     "_panic_for_test", "integrate", "downsample", "static_bias_test", "project_up", "allan_variances", "gyro_measure",
-    "gyro_sample_times", "gyro_allan_deviation", "gyro_parameter_names", "format_csv_rows", "fuse", "Fusion",
+    "gyro_sample_times", "gyro_check_span", "gyro_allan_deviation", "gyro_parameter_names", "format_csv_rows", "fuse", "Fusion",
     "__version__",
 ]
 
@@ -93,6 +93,7 @@ def allan_variances(
 # Simulated gyro (rust/python/src/sim.rs); `config` is GyroSpec.si()'s flat SI dict.
 def gyro_measure(config: dict[str, float], seed: int, t: _F, rate: _F) -> tuple[_F, _F, _F, _F]: ...
 def gyro_sample_times(config: dict[str, float], seed: int, start: float, end: float) -> _F: ...
+def gyro_check_span(config: dict[str, float], start: float, end: float) -> None: ...
 def gyro_allan_deviation(config: dict[str, float], taus: _F) -> _F: ...
 def gyro_parameter_names() -> list[tuple[str, str]]: ...
 

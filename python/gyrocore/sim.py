@@ -235,6 +235,13 @@ def sample_times(spec: GyroSpec, start: float, end: float, *, seed: int) -> Floa
     return t
 
 
+def check_span(spec: GyroSpec, start: float, end: float) -> None:
+    """Refuses the span ``[start, end)`` as :func:`sample_times` would (not finite, empty, or more
+    samples than the simulator makes: a duration in the wrong unit), without making the samples:
+    asked before a long route is built manoeuvre by manoeuvre."""
+    _gyrocore.gyro_check_span(spec.si(), float(start), float(end))
+
+
 @dataclass(frozen=True, repr=False, eq=False)
 class Reading:
     """What the simulated gyro reads and the truth about its errors, per sample.
@@ -372,9 +379,8 @@ def car_drive(
     ``rate_hz``.
     """
     spec = sensor(sensor_name, rate_hz=rate_hz, **changes)
-    # the simulator refuses more samples than it makes; asked first, before the route of such a
-    # drive (1e12 s) is built manoeuvre by manoeuvre, which had not ended after 120 s
-    sample_times(spec, 0.0, duration, seed=seed)
+    # a drive of 1e12 s was built manoeuvre by manoeuvre before the simulator refused it
+    check_span(spec, 0.0, duration)
     route = motion.car(duration, mix=mix, seed=seed, rest=rest)
     return simulate(route, spec, seed=seed)
 

@@ -91,7 +91,7 @@ def run(args: argparse.Namespace) -> int:
             # (a billion runs would take hours to build before the limit said no)
             seconds = float(_REPEATED[args.profile](runs=1).knots[-1]) * args.runs
             try:
-                sim.sample_times(sim.sensor(args.sensor, rate_hz=rate_hz), 0.0, seconds, seed=args.seed)
+                sim.check_span(sim.sensor(args.sensor, rate_hz=rate_hz), 0.0, seconds)
             except ValueError as e:
                 raise ValueError(f"--runs {args.runs} of the {args.profile} profile: {e}") from None
         drive = sim.simulate(_profiles(args)[args.profile](), args.sensor, seed=args.seed, rate_hz=args.rate_hz)

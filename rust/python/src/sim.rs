@@ -133,16 +133,9 @@ fn gyro_measure<'py>(
     Ok((r, temp, b, s))
 }
 
-/// The kept sampling instants in `[start, end)` [s] (jittered grid, dropped samples left out).
-#[pyfunction]
-fn gyro_sample_times<'py>(
-    py: Python<'py>,
-    config: &Bound<'py, PyDict>,
-    seed: u64,
-    start: f64,
-    end: f64,
-) -> PyResult<Array<'py>> {
-    let c = config_from(config)?;
+/// How many samples `[start, end)` asks for at the configured rate: an error naming the span
+/// unless it is finite and not empty, and holds at most [`MAX_SAMPLES`].
+fn sample_count(c: &GyroModelConfig, start: f64, end: f64) -> PyResult<f64> {
     if !(start.is_finite() && end.is_finite() && end > start) {
         return Err(PyValueError::new_err(format!(
             "the sampling span must be finite with end > start, got [{start}, {end})"
@@ -157,6 +150,27 @@ fn gyro_sample_times<'py>(
             c.rate_hz
         )));
     }
+    Ok(expected)
+}
+
+/// Checks a sampling span as `gyro_sample_times` does, making no samples (asked before a long
+/// route is built).
+#[pyfunction]
+fn gyro_check_span(config: &Bound<'_, PyDict>, start: f64, end: f64) -> PyResult<()> {
+    sample_count(&config_from(config)?, start, end).map(|_| ())
+}
+
+/// The kept sampling instants in `[start, end)` [s] (jittered grid, dropped samples left out).
+#[pyfunction]
+fn gyro_sample_times<'py>(
+    py: Python<'py>,
+    config: &Bound<'py, PyDict>,
+    seed: u64,
+    start: f64,
+    end: f64,
+) -> PyResult<Array<'py>> {
+    let c = config_from(config)?;
+    let expected = sample_count(&c, start, end)?;
     let model = GyroModel::new(c, seed).map_err(|e| PyValueError::new_err(e.to_string()))?;
     let times = py.detach(|| {
         let mut times = Vec::with_capacity(expected as usize + 1);
@@ -195,6 +209,7 @@ fn gyro_parameter_names() -> Vec<(&'static str, &'static str)> {
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(gyro_measure, m)?)?;
     m.add_function(wrap_pyfunction!(gyro_sample_times, m)?)?;
+    m.add_function(wrap_pyfunction!(gyro_check_span, m)?)?;
     m.add_function(wrap_pyfunction!(gyro_allan_deviation, m)?)?;
     m.add_function(wrap_pyfunction!(gyro_parameter_names, m)?)?;
     Ok(())
