@@ -2,7 +2,8 @@
 heading only (`gyrocore.process(..., outputs=("heading",))`, one output array like numpy.cumsum)
 against `numpy.cumsum` over the same array (a memory-bound one-pass scan: the practical floor) and
 against the same algorithm compiled with Numba with the same output (benches/reference.py, one
-source); beside them both with all three outputs, both writing the heading into an array
+source), both as the equations are printed (eq 7 and 13 stage after stage) and in the closed form
+gyrocore computes (eq 13 inverts eq 7: rust/src/lag_free.rs); beside them both with all three outputs, both writing the heading into an array
 allocated once outside the timing (gyrocore through ``out=``: the loop without the page faults of
 a fresh array), the pure-Python loop, and imufusion's gyroscope bias stage (FusionBias, formerly
 FusionOffset) (a peer library's per-sample gyro filter).
@@ -77,11 +78,14 @@ def reference_args() -> tuple[float, ...]:
     )
 
 
-def run_reference(impl: Callable[..., None], t: np.ndarray, rate: np.ndarray, all_outputs: bool = True) -> np.ndarray:
-    """The heading of `impl` into fresh arrays: three outputs, or the heading alone."""
+def run_reference(
+    impl: Callable[..., None], t: np.ndarray, rate: np.ndarray, all_outputs: bool = True, lag_free: bool = False
+) -> np.ndarray:
+    """The heading of `impl` into fresh arrays: three outputs, or the heading alone; eq 7 and 13
+    stage after stage, or in closed form (``lag_free``, as gyrocore computes them)."""
     heading = np.empty(len(t))
     others = (np.empty(len(t)), np.empty(len(t))) if all_outputs else (None, None)
-    impl(t, rate, heading, *others, *reference_args())
+    impl(t, rate, heading, *others, *reference_args(), lag_free)
     return heading
 
 
@@ -138,10 +142,16 @@ def main() -> int:
 
         jitted = numba.njit(cache=False)(reference.combined)
         # compiles both versions (not timed)
-        numba_headings = [run_reference(jitted, t, rate, all_outputs) for all_outputs in (False, True)]
+        numba_headings = [
+            run_reference(jitted, t, rate, all_outputs, lag_free) for all_outputs in (False, True) for lag_free in (False, True)
+        ]
         runs["Numba, heading only (same algorithm)"] = lambda: run_reference(jitted, t, rate, False)
+        runs["Numba, heading only, eq 7+13 closed form"] = lambda: run_reference(jitted, t, rate, False, True)
         runs["Numba, three outputs"] = lambda: run_reference(jitted, t, rate)
         runs["Numba, heading only, into a reused array"] = lambda: jitted(t, rate, reused, None, None, *reference_args())
+        runs["Numba, heading only, closed form, reused array"] = lambda: jitted(
+            t, rate, reused, None, None, *reference_args(), True
+        )
         for numba_heading in numba_headings:
             if not np.allclose(numba_heading, gyro.heading, rtol=0, atol=1e-9):
                 failures.append(f"Numba differs from gyrocore by {np.abs(numba_heading - gyro.heading).max():.3g} rad")
@@ -186,7 +196,9 @@ def main() -> int:
     targets = [("gyrocore heading only / numpy.cumsum", ratio(ours, floor), "at most 1.5", ratio(ours, floor) <= 1.5)]
     for mine, numba in [
         ("gyrocore, heading only", "Numba, heading only (same algorithm)"),
+        ("gyrocore, heading only", "Numba, heading only, eq 7+13 closed form"),
         ("gyrocore, heading only, out= a reused array", "Numba, heading only, into a reused array"),
+        ("gyrocore, heading only, out= a reused array", "Numba, heading only, closed form, reused array"),
     ]:
         if numba in timed:
             x = ratio(timed[numba], timed[mine])

@@ -58,6 +58,7 @@ pub mod hdr;
 pub mod input;
 pub mod integrate;
 pub mod kernel;
+mod lag_free;
 pub mod lowpass;
 pub mod pipeline;
 pub mod rest;

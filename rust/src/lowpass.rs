@@ -2,8 +2,8 @@
 //!
 //! Both use the actual interval `T_i` of each sample, so the time constant keeps its meaning at
 //! any (and at an irregular) sample rate. De-lag after low-pass restores the input exactly (up to
-//! rounding): in the pipeline the low-pass only shapes what HDR decides on, and the de-lag removes
-//! its lag from the heading.
+//! rounding), so the pipeline runs the two around HDR in closed form (`lag_free.rs`); these are
+//! the stand-alone stages, the equations as printed.
 
 use crate::error::check_range;
 use crate::kernel::{settings_are_config, Kernel, Signal, Streaming};

@@ -10,7 +10,8 @@ use crate::correction::{Calibration, CorrectionKernel, SingleFactorKernel};
 use crate::hdr::{HdrKernel, HdrRule};
 use crate::integrate::{IntegratorKernel, Method, TrapezoidKernel};
 use crate::kernel::{Event, Kernel, Measured, Signal};
-use crate::lowpass::{DeLagKernel, LowPassKernel};
+use crate::lag_free::{LagFree, LagFreeConfig};
+use crate::lowpass::LowPassKernel;
 use crate::rest_tracker::{Rest, RestTracker, Tracked, TrackedConfig, TrackerSettings};
 use crate::threshold::{ThresholdConfig, ThresholdKernel};
 use crate::validate::{interval_key, usable_reading, Checks};
@@ -21,24 +22,22 @@ use super::{Output, Outputs, PipelineConfig};
 pub(crate) type PlainChain = (SingleFactorKernel, ThresholdKernel, TrapezoidKernel);
 
 /// The HDR presets (`hdr`, `combined`, `tuned`): HDR eq 7-13 between the dead band and the
-/// trapezoid rule.
+/// trapezoid rule, the low-pass and the de-lag in closed form (see [`LagFree`]).
 pub(crate) type HdrChain = (
     SingleFactorKernel,
     ThresholdKernel,
-    LowPassKernel,
-    HdrKernel,
-    DeLagKernel,
+    LagFree<HdrKernel>,
     TrapezoidKernel,
 );
 
 /// Any other configuration: factors per turn direction, a temperature model, the rectangle
-/// rule, or any subset of the filters.
+/// rule, or any subset of the filters. The low-pass runs as a stage of its own only without the
+/// de-lag; with it, the two are [`LagFree`]'s `tau`.
 pub(crate) type GeneralChain = (
     CorrectionKernel,
     ThresholdKernel,
     Option<LowPassKernel>,
-    Option<HdrKernel>,
-    Option<DeLagKernel>,
+    LagFree<Option<HdrKernel>>,
     IntegratorKernel,
 );
 
@@ -92,12 +91,18 @@ impl Engine {
             && c.temperature.is_none()
             && config.integrator.method == Method::Trapezoid;
         let integrator = config.integrator;
+        let delag_tau = config
+            .lowpass
+            .filter(|_| config.delag)
+            .map_or(0.0, |l| l.tau);
         let general = (
             calibration,
             threshold,
-            config.lowpass,
-            config.hdr.map(HdrRule::new),
-            config.lowpass.filter(|_| config.delag),
+            config.lowpass.filter(|_| !config.delag),
+            LagFreeConfig {
+                inner: config.hdr.map(HdrRule::new),
+                tau: delag_tau,
+            },
             integrator,
         );
         if let Some(tracker) = config.rest_tracker {
@@ -118,9 +123,10 @@ impl Engine {
             (true, Some(lowpass), Some(hdr), true) => Engine::Hdr(Chain::new((
                 calibration,
                 threshold,
-                lowpass,
-                HdrRule::new(hdr),
-                lowpass,
+                LagFreeConfig {
+                    inner: HdrRule::new(hdr),
+                    tau: lowpass.tau,
+                },
                 integrator,
             ))),
             _ => Engine::General(Chain::new(general)),
