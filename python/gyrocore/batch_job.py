@@ -249,11 +249,7 @@ class _FileJob:
         def read_all() -> tuple[FloatArray, FloatArray, FloatArray | None]:
             read = list(source.chunks(self.chunk_rows))
             t, rate = concat([c.t for c in read]), concat([c.rate for c in read])
-            odometry = read_odometry(source.path) if self.use_speed and source.kind == "log folder" else {}
-            if not odometry:
-                return t, rate, None
-            where = str(source.path / "odometry.csv")
-            return t, rate, rests.speed_on(t, odometry["t"], odometry["speed"], where=where)
+            return t, rate, self._speed(source, t)
 
         try:
             return wholelog.plan_stream(self.preset, overrides, chunks, read_all)
@@ -262,6 +258,20 @@ class _FileJob:
             return wholelog.BiasPlan("none: the log has invalid samples", overrides=wholelog.without_bias(_to_si(overrides)))
         except ValueError as e:
             raise _in_file(source, e, from_meta) from None
+
+    def _speed(self, source: io.GyroSource, t: FloatArray) -> FloatArray | None:
+        """The speed [m/s] at each of the gyro's times ``t`` whose stops whole mode takes as rests:
+        a log folder's odometry.csv, a file's ``speed`` column; None without one or with
+        ``--no-speed``."""
+        if not self.use_speed:
+            return None
+        if source.kind != "log folder":
+            return source.speed(self.chunk_rows)
+        odometry = read_odometry(source.path)
+        if not odometry:
+            return None
+        where = str(source.path / "odometry.csv")
+        return rests.speed_on(t, odometry["t"], odometry["speed"], where=where)
 
     def failure(self, error: BaseException, seconds: float) -> FileReport:
         reason = str(error) if isinstance(error, (ValueError, TypeError, OSError, ImportError)) else repr(error)

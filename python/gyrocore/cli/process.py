@@ -58,7 +58,10 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         help="what a streaming pipeline gives: a rest corrects only what follows it, no rest search (one pass)",
     )
     bias.add_argument(
-        "--no-speed", action="store_true", help="find rests from the rate alone, not where odometry.csv's speed is zero"
+        "--no-speed",
+        action="store_true",
+        help="find rests from the rate alone, not where the speed is zero (a log folder's odometry.csv, "
+        "a file's speed column [m/s])",
     )
     group = bias.add_mutually_exclusive_group()
     group.add_argument("--bias-window", nargs=2, metavar=("T0", "T1"), help=f"rest window: {WINDOW_HELP}")

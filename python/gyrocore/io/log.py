@@ -151,7 +151,8 @@ def _tracks_rests(preset: str, overrides: dict[str, Any]) -> bool:
 
 def read_log(path: str | Path, **options: Any) -> Log:
     """Read a whole log into memory: a log folder (with its reference, odometry and fixes) or any file
-    :func:`open_source` reads (``options``: the :class:`ReadOptions` fields).
+    :func:`open_source` reads (``options``: the :class:`ReadOptions` fields; a CSV or Parquet
+    file's ``speed`` column [m/s] is the log's speed, as a folder's odometry).
 
     Raises ValueError for a malformed input, naming the file and where, for one without samples,
     and when every interval is a gap (timestamps in another unit).
@@ -179,11 +180,15 @@ def read_log(path: str | Path, **options: Any) -> Log:
     ref: dict[str, FloatArray] = {}
     odo: dict[str, FloatArray] = {}
     fixes = None
+    t = concat(ts)
     if src.kind == "log folder":
         ref, odo, fixes = read_reference(src.path), read_odometry(src.path), read_fixes(src.path)
+    else:
+        speed = src.speed()
+        odo = {} if speed is None else {"t": t, "speed": speed}
     return Log(
         name=src.name,
-        t=concat(ts),
+        t=t,
         rate=concat(rates),
         t_ref=ref.get("t"),
         heading_ref=ref.get("heading"),

@@ -20,7 +20,7 @@ from .._arrays import FloatArray, durations_in_seconds
 from .._gyrocore import SampleError
 from ..window import Window
 from ._axes import MEASURED, measure_up, parse_up, project, three_names
-from ._columns import import_pyarrow_lazy_modules
+from ._columns import concat, import_pyarrow_lazy_modules
 from ._csvfile import _csv_header, csv_chunks
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta
 from ._npyfile import npy_chunks, npy_header, npz_chunks
@@ -30,6 +30,10 @@ from .units import RATE_UNITS, TIME_UNITS, header_options
 
 #: Samples per chunk, at most (a CSV chunk also ends with a block of :data:`CSV_BLOCK_BYTES`).
 DEFAULT_CHUNK_ROWS = 1 << 16
+
+#: The column of a CSV or Parquet file that holds the vehicle's speed [m/s] per sample (what
+#: ``gyrocore simulate`` writes): whole mode takes its stops as rests, as a log folder's odometry.
+SPEED_COLUMN = "speed"
 #: Suffixes of the files :func:`open_source` reads.
 FILE_SUFFIXES = (".csv", ".parquet", ".pq", ".npy", ".npz", ".bag")
 
@@ -222,6 +226,20 @@ class GyroSource:
             for start in range(0, len(t), rows):  # a CSV block can hold more than ``rows``
                 yield Chunk(t[start : start + rows], rate[start : start + rows], first + start, done)
             first += len(t)
+
+    def speed(self, rows: int = DEFAULT_CHUNK_ROWS) -> FloatArray | None:
+        """The vehicle's speed [m/s] per sample from a CSV or Parquet file's :data:`SPEED_COLUMN`
+        (an empty value NaN: unknown there), or None for an input without one (a log folder's
+        speed is its odometry.csv, which :func:`gyrocore.io.read_log` reads)."""
+        if self.kind == "csv":
+            names = _csv_header(self.data_path, self.options.delimiter)
+        elif self.kind == "parquet":
+            names = parquet_file(self.data_path).schema_arrow.names
+        else:
+            return None
+        if SPEED_COLUMN not in names:
+            return None
+        return concat([np.asarray(v[0], dtype=np.float64) for _, v, _ in self._read(rows, (SPEED_COLUMN,))])
 
     def up(self) -> tuple[float, float, float] | None:
         """The vector that points up in the sensor frame (not normalised), for three-axis input:

@@ -1,0 +1,74 @@
+"""A CSV or Parquet file's ``speed`` column [m/s] marks rests in whole mode, as a log folder's
+odometry.csv does: the drive ``gyrocore simulate`` writes (a rest, then a car at 10 Hz whose
+gentle curves the rate alone takes for rests) gets its bias from where the car stood."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import gyrocore
+
+pa_csv = pytest.importorskip("pyarrow.csv")
+pq = pytest.importorskip("pyarrow.parquet")
+
+
+def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
+    proc = subprocess.run([sys.executable, "-m", "gyrocore.cli", *args], capture_output=True, text=True, timeout=300)
+    assert "Traceback" not in proc.stderr
+    assert proc.returncode == 0, proc.stderr
+    return proc
+
+
+@pytest.fixture(scope="module")
+def drive(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    path = tmp_path_factory.mktemp("speed") / "drive.csv"
+    run_cli("simulate", "--out", str(path))  # car, 600 s at 10 Hz, rest window 0..20 s, seed 0
+    return path
+
+
+def heading_error(written: Path, drive: Path) -> float:
+    truth = pa_csv.read_csv(drive)["heading_true"].to_numpy()
+    return float(np.degrees(np.abs(pa_csv.read_csv(written)["heading"].to_numpy() - truth).max()))
+
+
+def test_process_takes_the_rests_from_a_files_speed_column(drive: Path, tmp_path: Path) -> None:
+    with_speed = run_cli("process", str(drive), "--out", str(tmp_path / "s.csv"), "--preset", "static_bias")
+    rate_only = run_cli("process", str(drive), "--out", str(tmp_path / "r.csv"), "--preset", "static_bias", "--no-speed")
+    assert "(speed)" in with_speed.stdout and "(speed)" not in rate_only.stdout
+    # the simulated rest window, 0..20 s, less the trim at its ends
+    assert "rest [0.500, 19.500] s (speed)" in with_speed.stdout
+    # the rate alone takes 1.1 s of a gentle curve for the rest: a bias 0.24 deg/s off
+    assert heading_error(tmp_path / "s.csv", drive) < heading_error(tmp_path / "r.csv", drive) / 3
+    table = pa_csv.read_csv(drive)
+    t, rate, speed = (table[c].to_numpy() for c in ("t", "gyro_z", "speed"))
+    expected = gyrocore.process(t, rate, "static_bias", speed=speed).heading
+    written = pa_csv.read_csv(tmp_path / "s.csv")["heading"].to_numpy()
+    np.testing.assert_allclose(written, expected, rtol=0, atol=1e-12)
+
+
+def test_a_parquet_files_speed_column_counts_as_a_csvs(drive: Path, tmp_path: Path) -> None:
+    parquet = tmp_path / "drive.parquet"
+    pq.write_table(pa_csv.read_csv(drive), parquet)
+    run_cli("process", str(drive), "--out", str(tmp_path / "c.csv"), "--preset", "recommended")
+    out = run_cli("process", str(parquet), "--out", str(tmp_path / "p.csv"), "--preset", "recommended")
+    assert "(speed)" in out.stdout
+    np.testing.assert_array_equal(
+        pa_csv.read_csv(tmp_path / "p.csv")["heading"].to_numpy(), pa_csv.read_csv(tmp_path / "c.csv")["heading"].to_numpy()
+    )
+
+
+def test_read_log_gives_the_speed_column_as_the_logs_speed(drive: Path, tmp_path: Path) -> None:
+    log = gyrocore.read_log(drive)
+    speed = pa_csv.read_csv(drive)["speed"].to_numpy()
+    assert log.speed is not None and log.t_odometry is not None
+    np.testing.assert_array_equal(log.speed, speed)
+    np.testing.assert_array_equal(log.t_odometry, log.t)
+    assert any(r.found_by == "speed" for r in log.process("static_bias").rests)
+    without = tmp_path / "no_speed.csv"
+    pa_csv.write_csv(pa_csv.read_csv(drive).drop_columns(["speed"]), without)
+    assert gyrocore.read_log(without).speed is None
