@@ -238,8 +238,9 @@ impl<C: Kernel> Chain<C> {
     ) {
         let n = block.t.len();
         let mut out = out.first(n);
-        // The loop compiled for the two output sets asked for most, all three and the heading
-        // alone, which then write what is wanted without asking on every sample.
+        // The loop compiled for the output sets asked for most, all three, the heading alone and
+        // the rate alone (what the heading-fix filter reads), which then write what is wanted
+        // without asking on every sample.
         match &mut out {
             Outputs {
                 heading: Some(h),
@@ -261,6 +262,15 @@ impl<C: Kernel> Chain<C> {
             } => {
                 let h = &mut h[..n];
                 let write = |i: usize, o: Output| h[i] = o.heading;
+                return self.run_into::<STOPS>(block, write, cursor, stop_key);
+            }
+            Outputs {
+                heading: None,
+                rate: Some(r),
+                drift: None,
+            } => {
+                let r = &mut r[..n];
+                let write = |i: usize, o: Output| r[i] = o.rate;
                 return self.run_into::<STOPS>(block, write, cursor, stop_key);
             }
             _ => {}
