@@ -287,3 +287,26 @@ def test_an_output_folder_that_is_a_file_is_named(tmp_path: Path) -> None:
 def test_a_ragged_list_is_named() -> None:
     with pytest.raises(ValueError, match=r"^t must be one flat sequence of numbers \(setting an array element"):
         gyrocore.process([[0.0, 0.01], [0.02]], [0.1, 0.2])
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        # a bag's topic, given for a CSV file, was ignored without a word
+        (("--topic", "/imu"), "topic '/imu' (--topic) picks a ROS bag's Imu topic, and this is a CSV file"),
+        # 1e400 reads as infinity, which became a NaN vector and a message about its length
+        (("--up", "1e400,0,0"), "up '1e400,0,0': its components must be finite numbers"),
+        # a quote cannot separate fields: the whole header was one column, reported as missing ones
+        (("--delimiter", '"'), "delimiter '\"' cannot separate fields (it quotes a field or ends a line)"),
+        # a wrong delimiter leaves the header one field: say so
+        (("--delimiter", ";"), "the header line is one field: give the file's delimiter"),
+    ],
+)
+def test_a_reading_option_that_does_not_fit_the_input_is_named(
+    tmp_path: Path, args: tuple[str, ...], message: str
+) -> None:
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    proc = run_cli("process", log, "--out", tmp_path / "h.csv", *args)
+    assert proc.returncode == 2, proc.stderr
+    assert proc.stderr.startswith("gyrocore: error: ") and message in proc.stderr, proc.stderr
+    assert not (tmp_path / "h.csv").exists()

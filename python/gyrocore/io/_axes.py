@@ -61,6 +61,8 @@ def parse_up(value: str | Sequence[float]) -> UpValue:
         vector = ()
     if len(vector) != 3:
         raise ValueError(f"up {value!r}: give {UP_HELP}")
+    if not all(math.isfinite(c) for c in vector):  # 1e400 reads as infinity
+        raise ValueError(f"up {value!r}: its components must be finite numbers")
     try:  # the core's rule: finite and of some length
         project_up(np.empty(0), np.empty(0), np.empty(0), (vector[0], vector[1], vector[2]))
     except ValueError as e:

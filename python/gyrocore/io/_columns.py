@@ -34,6 +34,8 @@ def column_positions(
     if missing:
         with_unit = [split_unit(str(h)) for h in header if split_unit(str(h))[1] is not None]
         short = f"; a name may leave out its unit, e.g. {with_unit[0][0]}" if with_unit else ""
+        if len(header) == 1 and any(d in str(header[0]) for d in ",;\t|"):
+            short = "; the header line is one field: give the file's delimiter (delimiter=, --delimiter)"
         raise ValueError(
             f"{path}: missing column(s) {', '.join(missing)}; it has {', '.join(map(str, header))} "
             f"({choose}{short})"

@@ -107,6 +107,11 @@ class ReadOptions:
             raise ValueError(f"rate_unit {self.rate_unit!r} is not one of {', '.join(RATE_UNITS)}")
         if len(self.delimiter) != 1:
             raise ValueError(f"delimiter must be one character, got {self.delimiter!r}")
+        if self.delimiter in ('"', "\n", "\r"):
+            raise ValueError(
+                f"delimiter {self.delimiter!r} cannot separate fields (it quotes a field or ends a line): "
+                "give ',', ';', a tab or another character"
+            )
         rates = self.gyro_cols if self.gyro_cols is not None else (self.rate,)
         if self.time in rates:  # the times would be read as rates too
             raise ValueError(
@@ -308,7 +313,7 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
         options = ReadOptions(**kwargs)
     elif kwargs:
         raise TypeError("give either options or keywords, not both")
-    return _check_axes(_recognise(Path(path), options))
+    return _check_topic(_check_axes(_recognise(Path(path), options)))
 
 
 def _recognise(p: Path, options: ReadOptions) -> GyroSource:
@@ -379,6 +384,19 @@ def _check_axes(source: GyroSource) -> GyroSource:
         raise ValueError(
             f"{source.data_path}: up is measured from the accelerometer: give its three columns, accel_cols "
             "(--accel-cols AX,AY,AZ), or give up (--up x|y|z|-x|-y|-z|X,Y,Z)"
+        )
+    return source
+
+
+_KIND_NAMES = {"csv": "CSV file", "parquet": "Parquet file", "npy": ".npy file", "npz": ".npz file"}
+
+
+def _check_topic(source: GyroSource) -> GyroSource:
+    """A topic is a bag's: given for another input, it would be ignored without a word."""
+    if source.options.topic is not None and source.kind != "bag":
+        raise ValueError(
+            f"{source.path}: topic {source.options.topic!r} (--topic) picks a ROS bag's Imu topic, and this "
+            f"is a {_KIND_NAMES.get(source.kind, source.kind)}: leave it out for this input"
         )
     return source
 
