@@ -48,18 +48,25 @@ fn pipeline(c: &mut Criterion) {
     let (mut h, mut r, mut d) = (vec![0.0; N], vec![0.0; N], vec![0.0; N]);
     let (mut sh, mut sr, mut sd) = (vec![0.0; N], vec![0.0; N], vec![0.0; N]);
     run_pipeline(config, &t, &rate, Outputs::all(&mut h, &mut r, &mut d));
-    straightforward_combined(&t, &rate, &mut sh, &mut sr, &mut sd, &config);
-    let worst = h
-        .iter()
-        .zip(&sh)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max);
-    assert!(
-        worst < 1e-9,
-        "the straightforward loop differs by {worst} rad"
-    );
+    for closed in [false, true] {
+        let run = [
+            straightforward_combined::<false>,
+            straightforward_combined::<true>,
+        ][closed as usize];
+        run(&t, &rate, &mut sh, &mut sr, &mut sd, &config);
+        let worst = h
+            .iter()
+            .zip(&sh)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            worst < 1e-9,
+            "the straightforward loop (closed form: {closed}) differs by {worst} rad"
+        );
+    }
+    let (mut ch, mut cr, mut cd) = (vec![0.0; N], vec![0.0; N], vec![0.0; N]);
     let mut plain = || {
-        straightforward_combined(
+        straightforward_combined::<false>(
             black_box(&t),
             black_box(&rate),
             &mut sh,
@@ -68,12 +75,27 @@ fn pipeline(c: &mut Criterion) {
             &config,
         )
     };
+    let mut closed = || {
+        straightforward_combined::<true>(
+            black_box(&t),
+            black_box(&rate),
+            &mut ch,
+            &mut cr,
+            &mut cd,
+            &config,
+        )
+    };
     group.bench_function("straightforward_combined", |b| b.iter(&mut plain));
+    group.bench_function("straightforward_combined_closed_form", |b| {
+        b.iter(&mut closed)
+    });
     group.finish();
     let mut engine = || run_pipeline(config, &t, &rate, Outputs::all(&mut h, &mut r, &mut d));
     if common::measuring() {
         let names = ["combined", "straightforward_combined"];
         common::interleaved(names, N, &mut engine, &mut plain);
+        let names = ["combined", "straightforward_combined_closed_form"];
+        common::interleaved(names, N, &mut engine, &mut closed);
     }
 
     let mut group = c.benchmark_group("pipeline_update");
@@ -99,7 +121,9 @@ fn run_pipeline(config: PipelineConfig, t: &[f64], rate: &[f64], out: Outputs<'_
 /// `benches/reference.py` (static bias, Hong eq 3 and 12, HDR eq 7-13, trapezoid rule) as a
 /// plain Rust loop, statement for statement: what the pipeline would be without validation, gap
 /// handling, a rest window or stages that may be off. Checked against the pipeline above.
-fn straightforward_combined(
+/// `CLOSED`: eq 7 and 13 in closed form as the pipeline computes them (`rust/src/lag_free.rs`;
+/// `reference.combined(..., lag_free=True)`), the de-lag's division out of line.
+fn straightforward_combined<const CLOSED: bool>(
     t: &[f64],
     rate: &[f64],
     heading_out: &mut [f64],
@@ -135,7 +159,7 @@ fn straightforward_combined(
             r = 0.0;
         }
         let corrected = r;
-        let lp = if i == 0 {
+        let lp = if i == 0 || CLOSED {
             corrected
         } else {
             let inv = 1.0 / (dt + tau);
@@ -181,12 +205,14 @@ fn straightforward_combined(
             }
         }
         let w = lp + applied;
-        let out = if i == 0 {
+        let out = if i == 0 || (CLOSED && applied == dl_prev) {
             w
+        } else if CLOSED {
+            w + delagged_step(tau, dt, applied - dl_prev)
         } else {
             w + tau / dt * (w - dl_prev)
         };
-        dl_prev = w;
+        dl_prev = if CLOSED { applied } else { w };
         if i > 0 {
             heading += 0.5 * (out + integ_prev) * dt;
         }
@@ -195,6 +221,14 @@ fn straightforward_combined(
         rate_out[i] = out;
         drift_out[i] = -applied;
     }
+}
+
+/// Eq 13's `tau / T_i jump`, out of line: taken once per HDR step at most (inline, the compiler
+/// divides on every sample and selects).
+#[cold]
+#[inline(never)]
+fn delagged_step(tau: f64, dt: f64, jump: f64) -> f64 {
+    tau / dt * jump
 }
 
 fn stages(c: &mut Criterion) {
