@@ -210,7 +210,7 @@ def test_a_log_without_reference_is_refused_by_name(tmp_path: Path, capsys: pyte
     np.savetxt(folder / "gyro.csv", np.column_stack([drive.t, drive.rate_measured]), delimiter=",",
                header="t,gyro_z", comments="")
     assert main(["evaluate", str(folder), "--preset", "raw"]) == 2
-    assert "log no_reference: no reference heading (reference.csv)" in capsys.readouterr().err
+    assert f"{folder}: no reference heading to score against (a log folder's reference.csv" in capsys.readouterr().err
     # A log folder has both: the reference and the positions come back as read.
     real = gyrocore.read_log(real_log_path("f110_ds3"))
     t_ref, heading_ref = real.reference()

@@ -1,4 +1,5 @@
-"""``gyrocore evaluate``: score methods on log folders against their reference (HDR eq 15-16)."""
+"""``gyrocore evaluate``: score methods on log folders (or a file with its truth, as ``gyrocore
+simulate`` writes it) against their reference (HDR eq 15-16)."""
 
 from __future__ import annotations
 
@@ -30,12 +31,14 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p = add_command(
         sub,
         "evaluate",
-        "score presets and tuned parameter sets on log folders against their reference heading",
+        "score presets and tuned parameter sets on log folders (or files gyrocore simulate wrote) against "
+        "their reference heading",
         "gyrocore evaluate ../shared/data/real/* --preset static_bias --preset recommended --bias-duration 10",
         run,
     )
     p.add_argument("logs", nargs="+", metavar="LOGDIR",
-                   help="log folders (gyro.csv, reference.csv, meta.json); the reading options apply to gyro.csv")
+                   help="log folders (gyro.csv, reference.csv, meta.json), or CSV or Parquet files with a heading_true "
+                   "column [rad] (what gyrocore simulate writes); the reading options apply to the gyro's file")
     p.add_argument(
         "--preset",
         action="append",
@@ -65,7 +68,10 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         "whole log's bias from every rest, known from the first sample",
     )
     p.add_argument(
-        "--no-speed", action="store_true", help="whole mode: find rests from the rate alone, not where odometry.csv's speed is zero"
+        "--no-speed",
+        action="store_true",
+        help="whole mode: find rests from the rate alone, not where the speed is zero (a log folder's "
+        "odometry.csv, a file's speed column [m/s])",
     )
     add_fix_options(p, evaluate=True)
     p.add_argument("--json", action="store_true", help="print one JSON list, an object per (log, method)")
@@ -79,12 +85,15 @@ def run(args: argparse.Namespace) -> int:
     params = [ParameterSet.read(f).method() for f in args.params or []]
     presets = args.preset if args.preset else ([] if params else preset_names())
     methods = [_with(m if isinstance(m, Method) else Method.from_preset(m), extra) for m in [*presets, *params]]
-    for path in args.logs:
-        if not Path(path).is_dir():
-            raise ValueError(f"{path}: not a log folder")
     if args.plot_dir:
         check_not_input(Path(args.plot_dir), [Path(p) for p in args.logs])
     logs = [read_log(path, **reading_options(args)) for path in args.logs]
+    for path, log in zip(args.logs, logs):
+        if log.heading_ref is None:
+            raise ValueError(
+                f"{path}: no reference heading to score against (a log folder's reference.csv, or a CSV or "
+                "Parquet file's heading_true column [rad], as gyrocore simulate writes it)"
+            )
     if fixes_wanted(args, logs):
         return evaluate_with_fixes(args, logs, methods)
     logs = [replace(log, fixes=None) for log in logs]  # --no-fixes

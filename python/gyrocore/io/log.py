@@ -24,7 +24,7 @@ from ..rests import speed_on
 from ..wholelog import WHOLE_OPTIONS
 from ._columns import concat
 from ._logfolder import read_fixes, read_odometry, read_reference
-from .source import open_source
+from .source import GyroSource, open_source
 from .units import UnitCheck
 
 if TYPE_CHECKING:
@@ -81,7 +81,7 @@ class Log:
             ValueError: the log has none (a log folder without reference.csv, or a bare file).
         """
         if self.t_ref is None or self.heading_ref is None:
-            raise ValueError(f"log {self.name}: no reference heading (reference.csv)")
+            raise ValueError(f"log {self.name}: no reference heading (a log folder's reference.csv, a file's heading_true column)")
         return self.t_ref, self.heading_ref
 
     @property
@@ -149,10 +149,30 @@ def _tracks_rests(preset: str, overrides: dict[str, Any]) -> bool:
     return bool(preset_params(preset, **{k: v for k, v in overrides.items() if k not in WHOLE_OPTIONS})["track_rests"])
 
 
+#: The columns of a file that hold the drive's truth at each sample, as ``gyrocore simulate``
+#: writes it: the reference heading [rad, counter-clockwise], and the positions [m].
+TRUTH_COLUMNS = {"heading": "heading_true", "x": "x", "y": "y"}
+
+
+def _truth_columns(src: GyroSource, t: FloatArray) -> dict[str, FloatArray]:
+    """A file's reference at its own samples' times: the heading of :data:`TRUTH_COLUMNS` (with
+    the positions where it has both), or nothing without the heading."""
+    heading = src.optional_column(TRUTH_COLUMNS["heading"])
+    if heading is None:
+        return {}
+    ref = {"t": t, "heading": heading}
+    x, y = (src.optional_column(TRUTH_COLUMNS[c]) for c in ("x", "y"))
+    if x is not None and y is not None:
+        ref.update(x=x, y=y)
+    return ref
+
+
 def read_log(path: str | Path, **options: Any) -> Log:
     """Read a whole log into memory: a log folder (with its reference, odometry and fixes) or any file
     :func:`open_source` reads (``options``: the :class:`ReadOptions` fields; a CSV or Parquet
-    file's ``speed`` column [m/s] is the log's speed, as a folder's odometry).
+    file's ``speed`` column [m/s] is the log's speed, as a folder's odometry, and its
+    ``heading_true`` column [rad] (with ``x``, ``y`` [m]) its reference, as ``gyrocore simulate``
+    writes them).
 
     Raises ValueError for a malformed input, naming the file and where, for one without samples,
     and when every interval is a gap (timestamps in another unit).
@@ -186,6 +206,7 @@ def read_log(path: str | Path, **options: Any) -> Log:
     else:
         speed = src.speed()
         odo = {} if speed is None else {"t": t, "speed": speed}
+        ref = _truth_columns(src, t)
     return Log(
         name=src.name,
         t=t,

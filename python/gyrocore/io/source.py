@@ -236,15 +236,21 @@ class GyroSource:
         """The vehicle's speed [m/s] per sample from a CSV or Parquet file's :data:`SPEED_COLUMN`
         (an empty value NaN: unknown there), or None for an input without one (a log folder's
         speed is its odometry.csv, which :func:`gyrocore.io.read_log` reads)."""
+        return self.optional_column(SPEED_COLUMN, rows)
+
+    def optional_column(self, name: str, rows: int = DEFAULT_CHUNK_ROWS) -> FloatArray | None:
+        """Column ``name`` of a CSV or Parquet file, one value per sample (an empty value NaN), or
+        None for an input without it (another format, or a log folder: its tables are files of
+        their own)."""
         if self.kind == "csv":
             names = _csv_header(self.data_path, self.options.delimiter)
         elif self.kind == "parquet":
             names = parquet_file(self.data_path).schema_arrow.names
         else:
             return None
-        if SPEED_COLUMN not in names:
+        if name not in names:
             return None
-        return concat([np.asarray(v[0], dtype=np.float64) for _, v, _ in self._read(rows, (SPEED_COLUMN,))])
+        return concat([np.asarray(v[0], dtype=np.float64) for _, v, _ in self._read(rows, (name,))])
 
     def up(self) -> tuple[float, float, float] | None:
         """The vector that points up in the sensor frame (not normalised), for three-axis input:

@@ -1,9 +1,11 @@
-"""A CSV or Parquet file's ``speed`` column [m/s] marks rests in whole mode, as a log folder's
-odometry.csv does: the drive ``gyrocore simulate`` writes (a rest, then a car at 10 Hz whose
-gentle curves the rate alone takes for rests) gets its bias from where the car stood."""
+"""The file ``gyrocore simulate`` writes is a whole log. Its ``speed`` column [m/s] marks rests in
+whole mode, as a log folder's odometry.csv does: the simulated drive (a rest, then a car at
+10 Hz whose gentle curves the rate alone takes for rests) gets its bias from where the car stood.
+Its ``heading_true`` column is the reference ``gyrocore evaluate`` scores against."""
 
 from __future__ import annotations
 
+import json
 import subprocess
 import sys
 from pathlib import Path
@@ -72,3 +74,28 @@ def test_read_log_gives_the_speed_column_as_the_logs_speed(drive: Path, tmp_path
     without = tmp_path / "no_speed.csv"
     pa_csv.write_csv(pa_csv.read_csv(drive).drop_columns(["speed"]), without)
     assert gyrocore.read_log(without).speed is None
+
+
+def test_evaluate_scores_a_simulated_file_against_its_truth(drive: Path, tmp_path: Path) -> None:
+    proc = run_cli("evaluate", str(drive), "--preset", "raw", "--preset", "static_bias", "--json")
+    rows = {r["preset"]: r for r in json.loads(proc.stdout)}
+    table = pa_csv.read_csv(drive)
+    t, rate, truth = (table[c].to_numpy() for c in ("t", "gyro_z", "heading_true"))
+    for preset, heading in (
+        ("raw", gyrocore.integrate(t, rate)),
+        ("static_bias", gyrocore.process(t, rate, "static_bias", speed=table["speed"].to_numpy()).heading),
+    ):
+        expected = gyrocore.evaluate.heading_errors(t, heading, t, truth).e_psi_deg
+        assert rows[preset]["e_psi_deg"] == pytest.approx(expected, rel=1e-12)
+    assert rows["static_bias"]["e_psi_deg"] < rows["raw"]["e_psi_deg"] / 10
+
+
+def test_evaluate_names_a_file_without_a_reference(drive: Path, tmp_path: Path) -> None:
+    bare = tmp_path / "bare.csv"
+    pa_csv.write_csv(pa_csv.read_csv(drive).drop_columns(["heading_true"]), bare)
+    proc = subprocess.run(
+        [sys.executable, "-m", "gyrocore.cli", "evaluate", str(bare)], capture_output=True, text=True, timeout=300
+    )
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+    assert proc.stderr.startswith(f"gyrocore: error: {bare}: no reference heading to score against"), proc.stderr
+    assert gyrocore.read_log(bare).heading_ref is None
