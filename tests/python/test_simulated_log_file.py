@@ -15,6 +15,8 @@ import pytest
 
 import gyrocore
 
+from .conftest import real_log_path
+
 pa_csv = pytest.importorskip("pyarrow.csv")
 pq = pytest.importorskip("pyarrow.parquet")
 
@@ -99,3 +101,28 @@ def test_evaluate_names_a_file_without_a_reference(drive: Path, tmp_path: Path) 
     assert proc.returncode == 2 and "Traceback" not in proc.stderr
     assert proc.stderr.startswith(f"gyrocore: error: {bare}: no reference heading to score against"), proc.stderr
     assert gyrocore.read_log(bare).heading_ref is None
+
+
+def calibrate_json(path: Path) -> dict[str, object]:
+    return dict(json.loads(run_cli("calibrate", str(path), "--json").stdout))
+
+
+def test_calibrate_takes_the_first_rest_the_speed_or_the_rate_shows(drive: Path) -> None:
+    # The simulated rest, 0..20 s (trimmed): the rate alone found 1.1 s of a curve at 27.7 s.
+    out = calibrate_json(drive)
+    assert out["rest_found_by"] == "speed"
+    assert out["static_bias"]["window"] == [0.5, 19.5]  # type: ignore[index]
+    # A real stop where the rate finds no rest (a MEMS twin of KITTI at 10 Hz): the bias whole
+    # mode measures over the same stop.
+    twin = real_log_path("kitti_2011_09_30_0027_mems")
+    out = calibrate_json(twin)
+    assert out["rest_found_by"] == "speed"
+    log = gyrocore.read_log(twin)
+    first = gyrocore.process(log.t, log.rate, "static_bias", speed=log.speed_on_gyro_times()).rests[0]
+    start, end = out["static_bias"]["window"]  # type: ignore[index]
+    # its first and last sample inside the stop (the stop's bounds lie between samples)
+    assert first.start <= start < first.start + 0.11 and first.end - 0.11 < end <= first.end
+    assert out["static_bias"]["bias"] == pytest.approx(first.bias, rel=1e-9)  # type: ignore[index]
+    # The rate's rest comes first on f110_ds3 (its first stop is too short to measure): kept.
+    out = calibrate_json(real_log_path("f110_ds3"))
+    assert out["rest_found_by"] == "rate"

@@ -11,6 +11,8 @@ from pathlib import Path
 from typing import Any
 
 from .. import calibration, io
+from .._rests import find_rests
+from ..wholelog import times_ok
 from ..window import Window
 from ._common import (
     REFERENCE_HELP,
@@ -79,9 +81,18 @@ def run(args: argparse.Namespace) -> int:
         if given is not None:
             given.samples(log.t, minimum=2)  # an empty window is a usage error, with the log's range
     try:
-        window = None if rest is None else rest.resolve(float(log.t[0]))
+        window, found_by = (None, "rate") if rest is None else (rest.resolve(float(log.t[0])), "given")
+        if window is None and (stop := _first_stop(log, args.min_duration)) is not None:
+            # the first rest of the log: the speed's first stop unless the rate shows one before it
+            try:
+                from_rate = calibration.detect_rest(log.t, log.rate, min_duration=args.min_duration, **options)
+            except ValueError:
+                from_rate = None
+            if from_rate is None or stop[0] < from_rate[0]:
+                window, found_by = stop, "speed"
         static = calibration.static_bias(log.t, log.rate, window, min_duration=args.min_duration, **options)
         results["static_bias"] = static.to_dict()["calibration"]
+        results["rest_found_by"] = found_by
     except ValueError as e:
         results["static_bias"] = {"error": str(e)}
     fit: calibration.Calibration | None = None
@@ -109,7 +120,9 @@ def run(args: argparse.Namespace) -> int:
     if static is not None and static.window is not None:
         w = static.window
         print(f"  static bias: {static!r}")
-        print(f"  rest window used: {w[0] - t0:.4f} .. {w[1] - t0:.4f} s after the first sample")
+        how = {"speed": " (the first stop the speed shows)", "rate": " (found from the rate)"}
+        print(f"  rest window used: {w[0] - t0:.4f} .. {w[1] - t0:.4f} s after the first sample"
+              + how.get(results["rest_found_by"], ""))
     else:
         print(f"  static bias: {results['static_bias']['error']}")
     if log.stationary is not None:
@@ -122,3 +135,16 @@ def run(args: argparse.Namespace) -> int:
     if args.save is not None:
         print(f"  saved the {chosen.method} calibration to {args.save}")
     return 0
+
+
+def _first_stop(log: io.Log, min_duration: float) -> tuple[float, float] | None:
+    """The first stop the log's speed shows (a log folder's odometry, a file's speed column),
+    trimmed at its ends as whole mode trims it and then at least ``min_duration`` [s] long (what
+    the static bias test asks of its window); None without a speed or such a stop (the rest is
+    then found from the rate)."""
+    speed = log.speed_on_gyro_times()
+    if speed is None or not (math.isfinite(min_duration) and min_duration > 0) or not times_ok(log.t):
+        return None
+    found = find_rests(log.t, log.rate, speed, min_duration)
+    stops = [(a, b) for a, b, how in found if how == "speed" and b - a >= min_duration]
+    return stops[0] if stops else None
