@@ -10,6 +10,8 @@ from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from . import _signals, io, rests, wholelog
 from ._arrays import FloatArray
 from ._checks import warn
@@ -266,7 +268,14 @@ class _FileJob:
         if not self.use_speed:
             return None
         if source.kind != "log folder":
-            return source.speed(self.chunk_rows)
+            speed = source.speed(self.chunk_rows)
+            if speed is not None and np.isinf(speed).any():
+                i = int(np.flatnonzero(np.isinf(speed))[0])
+                raise ValueError(
+                    f"{source.data_path}: {source.where(i)}, column speed: {speed[i]} is not a finite speed [m/s] "
+                    "(leave it empty where it is unknown, or give --no-speed)"
+                )
+            return speed
         odometry = read_odometry(source.path)
         if not odometry:
             return None

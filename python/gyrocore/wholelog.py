@@ -421,6 +421,9 @@ def process_log(
     sp = None if speed is None else as_float_array("speed", speed) if speed_t is None else speed_on(ta, speed_t, speed)
     if sp is not None and len(sp) != len(ta):
         raise ValueError(f"speed has {len(sp)} samples but t has {len(ta)}: give one speed per gyro sample")
+    if sp is not None and np.isinf(sp).any():  # as the causal mode's tracker refuses it
+        i = int(np.flatnonzero(np.isinf(sp))[0])
+        raise ValueError(f"speed[{i}] is {sp[i]}: give a finite speed [m/s], or NaN where it is unknown")
     inputs = {"t": (t, ta), "rate": (rate, ra), "temperature": (temperature,), "speed": (speed, sp)}
     arrays = out_arrays(out, outputs, len(ta), inputs)  # checked before any work
     given = fixes is None and (not uses_static_bias(preset) or _bias_source(si) == "bias")

@@ -126,3 +126,24 @@ def test_calibrate_takes_the_first_rest_the_speed_or_the_rate_shows(drive: Path)
     # The rate's rest comes first on f110_ds3 (its first stop is too short to measure): kept.
     out = calibrate_json(real_log_path("f110_ds3"))
     assert out["rest_found_by"] == "rate"
+
+
+def test_an_infinite_speed_is_named_in_whole_mode_as_in_causal_mode(drive: Path, tmp_path: Path) -> None:
+    # whole mode took an infinite speed for an unknown one; the causal tracker refuses it
+    table = pa_csv.read_csv(drive)
+    t, rate, speed = (table[c].to_numpy() for c in ("t", "gyro_z", "speed"))
+    speed = speed.copy()
+    speed[100] = np.inf
+    with pytest.raises(ValueError, match=r"^speed\[100\] is inf: give a finite speed \[m/s\], or NaN where it is unknown"):
+        gyrocore.process(t, rate, "static_bias", speed=speed)
+    bad = tmp_path / "inf_speed.csv"
+    pa_csv.write_csv(table.set_column(table.column_names.index("speed"), "speed", [speed]), bad)
+    proc = subprocess.run(
+        [sys.executable, "-m", "gyrocore.cli", "process", str(bad), "--out", str(tmp_path / "h.csv")],
+        capture_output=True, text=True, timeout=300,
+    )
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+    assert f"{bad}: line 102, column speed: inf is not a finite speed [m/s]" in proc.stderr, proc.stderr
+    assert not (tmp_path / "h.csv").exists()
+    # --no-speed reads the file without the column
+    run_cli("process", str(bad), "--out", str(tmp_path / "h.csv"), "--no-speed")
