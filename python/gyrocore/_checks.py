@@ -86,6 +86,13 @@ def require_finite(name: str, values: FloatArray, *, context: str = "") -> None:
         raise ValueError(f"{_prefix(context)}{name}[{i}] is {values[i]}: samples must be finite (drop or fill them first)")
 
 
+def first_infinite(values: FloatArray) -> int | None:
+    """The index of the first infinite value of ``values``, or None (NaN is no infinity: a value
+    unknown there, where the caller allows one)."""
+    bad = np.flatnonzero(np.isinf(values))
+    return int(bad[0]) if len(bad) else None
+
+
 def require_increasing(name: str, t: FloatArray, *, context: str = "") -> None:
     """A ValueError naming the first time of ``t`` that is not after the one before it."""
     back = np.flatnonzero(np.diff(t) <= 0)

@@ -10,11 +10,9 @@ from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from . import _signals, io, rests, wholelog
 from ._arrays import FloatArray
-from ._checks import warn
+from ._checks import first_infinite, warn
 from ._gyrocore import SampleError
 from .io._columns import concat
 from .io._logfolder import FIXES_CSV, read_odometry
@@ -269,8 +267,7 @@ class _FileJob:
             return None
         if source.kind != "log folder":
             speed = source.speed(self.chunk_rows)
-            if speed is not None and np.isinf(speed).any():
-                i = int(np.flatnonzero(np.isinf(speed))[0])
+            if speed is not None and (i := first_infinite(speed)) is not None:
                 raise ValueError(
                     f"{source.data_path}: {source.where(i)}, column speed: {speed[i]} is not a finite speed [m/s] "
                     "(leave it empty where it is unknown, or give --no-speed)"

@@ -118,9 +118,8 @@ def _named_error(preset: str, si: dict[str, Any], error: TypeError | ValueError)
     """The core's error with the parameter it is about and what that parameter takes, where its
     message names no parameter (a conversion: "must be real number, not str", "expected tuple of
     length 2, but got tuple of length 3"; the core converts them all at once)."""
-    for key, value in si.items():
-        if key in str(error):  # the core's own words name it already
-            return error
+    if any(key in str(error) for key in si):  # the core's own words name it already
+        return error
     for key, value in si.items():
         try:
             _gyrocore.preset_params(preset, {key: value})

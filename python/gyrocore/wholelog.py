@@ -38,7 +38,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
-from ._checks import warn
+from ._checks import first_infinite, warn
 from ._gyrocore import SampleError
 from ._rests import MIN_REST, SPEED_THRESHOLD, accept, find_rests, measure_rest
 from ._smoother import SmoothedBias, smooth
@@ -421,8 +421,7 @@ def process_log(
     sp = None if speed is None else as_float_array("speed", speed) if speed_t is None else speed_on(ta, speed_t, speed)
     if sp is not None and len(sp) != len(ta):
         raise ValueError(f"speed has {len(sp)} samples but t has {len(ta)}: give one speed per gyro sample")
-    if sp is not None and np.isinf(sp).any():  # as the causal mode's tracker refuses it
-        i = int(np.flatnonzero(np.isinf(sp))[0])
+    if sp is not None and (i := first_infinite(sp)) is not None:  # as the causal mode's tracker refuses it
         raise ValueError(f"speed[{i}] is {sp[i]}: give a finite speed [m/s], or NaN where it is unknown")
     inputs = {"t": (t, ta), "rate": (rate, ra), "temperature": (temperature,), "speed": (speed, sp)}
     arrays = out_arrays(out, outputs, len(ta), inputs)  # checked before any work

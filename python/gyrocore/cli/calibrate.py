@@ -88,8 +88,8 @@ def run(args: argparse.Namespace) -> int:
                 from_rate = calibration.detect_rest(log.t, log.rate, min_duration=args.min_duration, **options)
             except ValueError:
                 from_rate = None
-            if from_rate is None or stop[0] < from_rate[0]:
-                window, found_by = stop, "speed"
+            # detected once: the rate's rest is then the window static_bias would detect itself
+            window, found_by = (stop, "speed") if from_rate is None or stop[0] < from_rate[0] else (from_rate, "rate")
         static = calibration.static_bias(log.t, log.rate, window, min_duration=args.min_duration, **options)
         results["static_bias"] = static.to_dict()["calibration"]
         results["rest_found_by"] = found_by

@@ -24,7 +24,7 @@ from ..rests import speed_on
 from ..wholelog import WHOLE_OPTIONS
 from ._columns import concat
 from ._logfolder import read_fixes, read_odometry, read_reference
-from .source import GyroSource, open_source
+from .source import SPEED_COLUMN, GyroSource, open_source
 from .units import UnitCheck
 
 if TYPE_CHECKING:
@@ -154,17 +154,18 @@ def _tracks_rests(preset: str, overrides: dict[str, Any]) -> bool:
 TRUTH_COLUMNS = {"heading": "heading_true", "x": "x", "y": "y"}
 
 
-def _truth_columns(src: GyroSource, t: FloatArray) -> dict[str, FloatArray]:
-    """A file's reference at its own samples' times: the heading of :data:`TRUTH_COLUMNS` (with
-    the positions where it has both), or nothing without the heading."""
-    heading = src.optional_column(TRUTH_COLUMNS["heading"])
-    if heading is None:
-        return {}
-    ref = {"t": t, "heading": heading}
-    x, y = (src.optional_column(TRUTH_COLUMNS[c]) for c in ("x", "y"))
-    if x is not None and y is not None:
-        ref.update(x=x, y=y)
-    return ref
+def _file_tables(src: GyroSource, t: FloatArray) -> tuple[dict[str, FloatArray], dict[str, FloatArray]]:
+    """A file's reference and odometry at its own samples' times, from its columns (one pass):
+    the heading of :data:`TRUTH_COLUMNS` (with the positions where it has both) and the speed of
+    :data:`~gyrocore.io.source.SPEED_COLUMN`, each empty without its column."""
+    columns = src.optional_columns((*TRUTH_COLUMNS.values(), SPEED_COLUMN))
+    ref: dict[str, FloatArray] = {}
+    if TRUTH_COLUMNS["heading"] in columns:
+        ref = {"t": t, "heading": columns[TRUTH_COLUMNS["heading"]]}
+        if TRUTH_COLUMNS["x"] in columns and TRUTH_COLUMNS["y"] in columns:
+            ref.update(x=columns[TRUTH_COLUMNS["x"]], y=columns[TRUTH_COLUMNS["y"]])
+    odo = {"t": t, "speed": columns[SPEED_COLUMN]} if SPEED_COLUMN in columns else {}
+    return ref, odo
 
 
 def read_log(path: str | Path, **options: Any) -> Log:
@@ -204,9 +205,7 @@ def read_log(path: str | Path, **options: Any) -> Log:
     if src.kind == "log folder":
         ref, odo, fixes = read_reference(src.path), read_odometry(src.path), read_fixes(src.path)
     else:
-        speed = src.speed()
-        odo = {} if speed is None else {"t": t, "speed": speed}
-        ref = _truth_columns(src, t)
+        ref, odo = _file_tables(src, t)
     return Log(
         name=src.name,
         t=t,

@@ -236,21 +236,26 @@ class GyroSource:
         """The vehicle's speed [m/s] per sample from a CSV or Parquet file's :data:`SPEED_COLUMN`
         (an empty value NaN: unknown there), or None for an input without one (a log folder's
         speed is its odometry.csv, which :func:`gyrocore.io.read_log` reads)."""
-        return self.optional_column(SPEED_COLUMN, rows)
+        return self.optional_columns((SPEED_COLUMN,), rows).get(SPEED_COLUMN)
 
-    def optional_column(self, name: str, rows: int = DEFAULT_CHUNK_ROWS) -> FloatArray | None:
-        """Column ``name`` of a CSV or Parquet file, one value per sample (an empty value NaN), or
-        None for an input without it (another format, or a log folder: its tables are files of
-        their own)."""
+    def optional_columns(self, names: tuple[str, ...], rows: int = DEFAULT_CHUNK_ROWS) -> dict[str, FloatArray]:
+        """Those of the columns ``names`` that a CSV or Parquet file has, one value per sample (an
+        empty value NaN), read in one pass; none for another input (another format, or a log
+        folder: its tables are files of their own)."""
         if self.kind == "csv":
-            names = _csv_header(self.data_path, self.options.delimiter)
+            header = _csv_header(self.data_path, self.options.delimiter)
         elif self.kind == "parquet":
-            names = parquet_file(self.data_path).schema_arrow.names
+            header = parquet_file(self.data_path).schema_arrow.names
         else:
-            return None
-        if name not in names:
-            return None
-        return concat([np.asarray(v[0], dtype=np.float64) for _, v, _ in self._read(rows, (name,))])
+            return {}
+        present = tuple(n for n in names if n in header)
+        if not present:
+            return {}
+        parts: list[list[np.ndarray]] = [[] for _ in present]
+        for _, values, _ in self._read(rows, present):
+            for part, v in zip(parts, values):
+                part.append(np.asarray(v, dtype=np.float64))
+        return {n: concat(part) for n, part in zip(present, parts)}
 
     def up(self) -> tuple[float, float, float] | None:
         """The vector that points up in the sensor frame (not normalised), for three-axis input:
