@@ -95,11 +95,17 @@ def test_a_bad_rest_window_is_named_in_either_mode(mode: str, overrides: dict[st
     ],
 )
 def test_the_command_line_names_a_bad_rest_window(tmp_path: Path, args: tuple[str, ...], message: str) -> None:
+    assert refused_process(tmp_path, *args).startswith(f"gyrocore: error: {message}")
+
+
+def refused_process(tmp_path: Path, *args: str) -> str:
+    """``gyrocore process`` of a synthetic log with ``args``, which it refuses (exit status 2)
+    without writing its output: the error it printed."""
     log = synthetic_csv(tmp_path / "log.csv", 3000)
     proc = run_cli("process", log, "--out", tmp_path / "h.csv", *args)
-    assert proc.returncode == 2
-    assert proc.stderr.startswith(f"gyrocore: error: {message}")
+    assert proc.returncode == 2, proc.stderr
     assert not (tmp_path / "h.csv").exists()
+    return proc.stderr
 
 
 @pytest.mark.parametrize(
@@ -210,12 +216,9 @@ def test_a_parameter_in_degrees_that_is_no_number_is_named(key: str, value: obje
 @pytest.mark.parametrize("args", [("--time-col", "t", "--rate-col", "t"), ("--rate-col", "t"), ("--time-col", "gyro_z")])
 def test_the_time_column_read_as_the_rate_is_refused(tmp_path: Path, args: tuple[str, ...]) -> None:
     # the times were read as rates too, with only a warning that the rates looked like deg/s
-    log = synthetic_csv(tmp_path / "log.csv", 3000)
-    proc = run_cli("process", log, "--out", tmp_path / "h.csv", *args)
-    assert proc.returncode == 2
-    assert proc.stderr.startswith("gyrocore: error: the time column ")
-    assert "is also a rate column (rate_col, --rate-col; gyro_cols, --gyro-cols): give each its own column" in proc.stderr
-    assert not (tmp_path / "h.csv").exists()
+    error = refused_process(tmp_path, *args)
+    assert error.startswith("gyrocore: error: the time column ")
+    assert "is also a rate column (rate_col, --rate-col; gyro_cols, --gyro-cols): give each its own column" in error
 
 
 def log_folder_with(tmp_path: Path, name: str, text: str) -> Path:
@@ -305,8 +308,5 @@ def test_a_ragged_list_is_named() -> None:
 def test_a_reading_option_that_does_not_fit_the_input_is_named(
     tmp_path: Path, args: tuple[str, ...], message: str
 ) -> None:
-    log = synthetic_csv(tmp_path / "log.csv", 3000)
-    proc = run_cli("process", log, "--out", tmp_path / "h.csv", *args)
-    assert proc.returncode == 2, proc.stderr
-    assert proc.stderr.startswith("gyrocore: error: ") and message in proc.stderr, proc.stderr
-    assert not (tmp_path / "h.csv").exists()
+    error = refused_process(tmp_path, *args)
+    assert error.startswith("gyrocore: error: ") and message in error, error
