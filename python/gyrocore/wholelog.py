@@ -20,8 +20,9 @@ The bias series is subtracted from the rate and the pipeline runs with ``bias=0`
 one number over the whole log goes to the pipeline as ``bias=`` instead (the same subtraction, in
 the core, with no copy of the rate). Presets whose
 dead band or HDR bound scale with the rest's noise (``threshold_sigmas``, ``hdr_bound_sigmas``)
-get the explicit ``threshold`` (the rests' pooled noise) and ``hdr_max_correction`` (the smoothed
-bias's standard error, root mean square over the log), so a single rest at the start gives what
+get the explicit ``threshold`` (the rests' pooled noise) and ``hdr_max_correction`` (the bias's
+standard error, root mean square over the log, growing away from the rests with ``hdr_bound_walk``:
+how far HDR may correct there, a setting of its own), so a single rest at the start gives what
 the causal pipeline gives.
 
 Units: s, rad/s, m/s.
@@ -60,7 +61,7 @@ if TYPE_CHECKING:
     from .fixes import FixesLike
 
 __all__ = [
-    "BIAS_SIGMAS", "BIAS_WALK", "MIN_REST", "MODES", "SPEED_THRESHOLD", "WHOLE_OPTIONS", "BiasPlan", "Options", "Rest",
+    "BIAS_SIGMAS", "BIAS_WALK", "HDR_BOUND_WALK", "MIN_REST", "MODES", "SPEED_THRESHOLD", "WHOLE_OPTIONS", "BiasPlan", "Options", "Rest",
     "check_mode", "plan_arrays", "plan_log", "plan_stream", "process_log", "refuse_tracking", "refuse_whole_options", "rest_lines", "untracked",
     "without_bias",
 ]
@@ -71,9 +72,13 @@ MODES = ("whole", "causal")
 #: Default random walk of the bias between rests [rad/s/sqrt(s)], chosen by leave-one-log-out on
 #: the real logs (docs/whole_log.md). A gyro whose rate random walk ``K`` is known
 #: (:func:`gyrocore.allan.noise_parameters`) can give it as ``bias_walk=K``.
-BIAS_WALK = 1e-3
+BIAS_WALK = 1e-4
+#: Default walk of the bias's uncertainty that HDR's bound (``hdr_bound_sigmas``) grows with away
+#: from the rests [rad/s/sqrt(s)]: how far HDR may correct, not the bias's own walk; the value
+#: ``recommended`` was fitted with (docs/whole_log.md).
+HDR_BOUND_WALK = 1e-3
 #: The keywords whole mode takes besides the pipeline's parameters (:class:`Options`).
-WHOLE_OPTIONS = ("bias_walk", "min_rest", "bias_sigmas")
+WHOLE_OPTIONS = ("bias_walk", "min_rest", "bias_sigmas", "hdr_bound_walk")
 #: Default of :attr:`Options.bias_sigmas`, chosen by leave-one-log-out (docs/whole_log.md).
 BIAS_SIGMAS = 5.0
 #: ``chunks()``: the ``(t, rate)`` pieces of a log from its start, anew at each call.
@@ -252,8 +257,7 @@ def plan(
     measure: Callable[[tuple[float, float], str], Rest],
     find: Callable[[], list[tuple[float, float, str]]],
     times: FloatArray | None,
-    walk: float,
-    bias_sigmas: float,
+    options: Options,
 ) -> BiasPlan:
     """Where whole mode takes the bias from.
 
@@ -264,11 +268,12 @@ def plan(
         measure: ``measure(window, found_by) -> Rest``.
         find: ``find() -> [(start, end, found_by)]``, called only when no bias source is given.
         times: the log's times where known (found rests): the HDR bound is the smoothed bias's
-            standard error over them.
-        walk: the bias's random walk [rad/s/sqrt(s)].
-        bias_sigmas: found rests whose mean bias is within this many standard errors of 0 leave
-            the bias at 0 (a calibrated gyro, whose rests show how it reads at rest, not a bias).
+            standard error over them (its walk ``options.hdr_bound_walk``).
+        options: the bias's walk, the significance test (``bias_sigmas``: found rests whose mean
+            is within this many standard errors of 0 leave the bias at 0: a calibrated gyro, whose
+            rests show how it reads at rest, not a bias) and the HDR bound's walk.
     """
+    walk = options.bias_walk
     rest_of, overrides = untracked({k: v for k, v in si.items() if k not in BIAS_SOURCES}), without_bias(si)
     key = _bias_source(si)
     if not uses_static_bias(preset) or key == "bias":
@@ -291,16 +296,17 @@ def plan(
         )
         return BiasPlan("none: no rest found in the log; bias 0", tuple(rests), overrides, None, warning)
     smoothed = _smooth(used, walk)
-    sd = smoothed.at(times)[1] if times is not None else np.sqrt(smoothed.variance)
+    bound = _smooth(used, options.hdr_bound_walk)
+    sd = bound.at(times)[1] if times is not None else np.sqrt(bound.variance)
     bias_error = float(np.sqrt(np.mean(sd**2)))
     refused = f"; {len(rests) - len(used)} refused" if len(rests) > len(used) else ""
     # the inverse-variance mean of the rests (the smoother without a walk): is there a bias at all?
     level = _smooth(used, 0.0)
     mean, error = float(level.mean[0]), math.sqrt(float(level.variance[0]))
-    if abs(mean) <= bias_sigmas * error:
+    if abs(mean) <= options.bias_sigmas * error:
         source = (
             f"{len(used)} rest(s) read {math.degrees(mean):.5f} +- {math.degrees(error):.2g} deg/s, within "
-            f"{bias_sigmas:g} standard errors of 0: bias 0{refused}"
+            f"{options.bias_sigmas:g} standard errors of 0: bias 0{refused}"
         )
         return BiasPlan(source, tuple(rests), overrides, bias_error=bias_error).with_scaled(preset, rest_of)
     source = (
@@ -320,11 +326,14 @@ class Options:
         min_rest: the shortest rest found in the log that is used [s].
         bias_sigmas: found rests whose mean is within this many standard errors of 0 leave the
             bias at 0.
+        hdr_bound_walk: the walk of the bias's uncertainty that HDR's bound grows with away from
+            the rests [rad/s/sqrt(s)].
     """
 
     bias_walk: float = BIAS_WALK
     min_rest: float = MIN_REST
     bias_sigmas: float = BIAS_SIGMAS
+    hdr_bound_walk: float = HDR_BOUND_WALK
 
     @classmethod
     def pop(cls, si: dict[str, Any]) -> Options:
@@ -349,8 +358,7 @@ def plan_arrays(
         lambda window, how: measure_rest([(t, rate)], window, how),
         lambda: find_rests(t, rate, speed, options.min_rest),
         t,
-        options.bias_walk,
-        options.bias_sigmas,
+        options,
     )
 
 
@@ -382,7 +390,7 @@ def plan_stream(
     t_start = 0.0
     if si.get("bias_duration") is not None:  # counts from the first sample
         t_start = next((float(t[0]) for t, _ in chunks() if len(t)), 0.0)
-    return plan(preset, si, t_start, lambda window, how: measure_rest(chunks(), window, how), list, None, options.bias_walk, options.bias_sigmas)
+    return plan(preset, si, t_start, lambda window, how: measure_rest(chunks(), window, how), list, None, options)
 
 
 def process_log(
@@ -400,8 +408,8 @@ def process_log(
     out: OutArrays | None = None,
     **overrides: Any,
 ) -> HeadingResult:
-    """:func:`gyrocore.process` (see there and the module doc); in whole mode ``bias_walk``
-    [rad/s/sqrt(s)] and ``min_rest`` [s] change :class:`Options`. In causal mode a ``speed`` feeds
+    """:func:`gyrocore.process` (see there and the module doc); in whole mode ``bias_walk``,
+    ``min_rest``, ``bias_sigmas`` and ``hdr_bound_walk`` change :class:`Options`. In causal mode a ``speed`` feeds
     the core's rest tracker (``track_rests=True``), which whole mode refuses: it already uses every
     rest of the log."""
     check_mode(mode)
