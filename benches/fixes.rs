@@ -4,7 +4,8 @@
 //! second forward pass writing the smoothed estimates);
 //! then the recommended pipeline alone against the same pipeline with its fix stage and 1 Hz
 //! fixes (`FusedPipeline`), with every output and with the heading alone, in criterion and in
-//! interleaved rounds (issue 18: within 10 %).
+//! interleaved rounds (issue 18: within 10 %); last, that fused pipeline fed in small blocks, each
+//! with every fix still to come (the rest of the 10,000), as a caller holding them all may do.
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use gyrocore::fixes_smooth::Knot;
@@ -163,7 +164,57 @@ fn fused(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, filter, fused);
+/// The fused pipeline (heading only) over the samples in blocks of `size`, each block given every
+/// fix not used yet; returns how many it used.
+fn streamed_run(
+    config: PipelineConfig,
+    t: &[f64],
+    rate: &[f64],
+    fixes: &[Fix],
+    size: usize,
+    cols: &mut [Vec<f64>; 6],
+) -> usize {
+    let mut p = FusedPipeline::new(config, FusionConfig::default()).unwrap();
+    let [h, _, _, _, r, _] = cols;
+    let (mut start, mut used) = (0, 0);
+    while start < t.len() {
+        let end = (start + size).min(t.len());
+        let out = FusedOutputs {
+            heading: &mut h[start..end],
+            heading_sigma: None,
+            bias: None,
+            scale: None,
+            rate: &mut r[start..end],
+            drift: None,
+        };
+        let samples = Samples::new(black_box(&t[start..end]), black_box(&rate[start..end]));
+        used += p.process_block(samples, &fixes[used..], out).unwrap();
+        start = end;
+    }
+    used
+}
+
+fn streamed(c: &mut Criterion) {
+    let (t, rate, fixes) = samples();
+    let config = pipeline_config();
+    let mut cols = columns();
+    let mut group = c.benchmark_group("fused_streamed");
+    group.throughput(Throughput::Elements(N as u64));
+    group.sample_size(10);
+    for size in [N, 1000, 100, 1] {
+        group.bench_with_input(BenchmarkId::new("block", size), &size, |b, &size| {
+            b.iter(|| {
+                assert_eq!(
+                    streamed_run(config, &t, &rate, &fixes, size, &mut cols),
+                    fixes.len()
+                )
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, filter, fused, streamed);
 
 fn main() {
     common::print_cpu_model();

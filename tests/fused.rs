@@ -277,6 +277,67 @@ fn a_bad_fix_or_sample_changes_nothing_and_is_named() {
 }
 
 #[test]
+fn every_waiting_fix_may_ride_along_and_a_bad_one_fails_the_block_that_reaches_it() {
+    // A caller may hand over every fix still to come with each block, here one sample a block:
+    // one call's result, bit for bit. A block checks the fixes it reaches (and the first past
+    // it), so that such a caller pays per block for those, not for all that wait.
+    let (t, rate) = drive(30.0);
+    let all = fixes(&t);
+    let (whole, whole_state) = chunked(&t, &rate, &all, &[]);
+    let (c, f) = config();
+    let mut fused = FusedPipeline::new(c, f).unwrap();
+    let mut cols = columns(t.len());
+    let mut used = 0;
+    for i in 0..t.len() {
+        let one = i..i + 1;
+        used += block(
+            &mut fused,
+            &t[one.clone()],
+            &rate[one],
+            &all[used..],
+            &mut cols,
+            i,
+        )
+        .unwrap();
+    }
+    assert_eq!(used, all.len());
+    for c in 0..6 {
+        assert_eq!(bits(&cols[c]), bits(&whole[c]), "column {c}");
+    }
+    assert_eq!(fused, whole_state);
+
+    // a bad fix at 16 s rides along unread with the first 10 s, and fails the block that reaches it
+    let mut bad = all.clone();
+    bad[15].heading = f64::NAN;
+    let mut fused = FusedPipeline::new(c, f).unwrap();
+    let used = block(&mut fused, &t[..1000], &rate[..1000], &bad, &mut cols, 0).unwrap();
+    assert_eq!(used, 9);
+    let snapshot = fused.clone();
+    let e = block(
+        &mut fused,
+        &t[1000..2000],
+        &rate[1000..2000],
+        &bad[used..],
+        &mut cols,
+        1000,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            FusionError::Fix {
+                index: 6,
+                what: "heading",
+                problem: FixProblem::NonFinite,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    assert_eq!(fused, snapshot);
+}
+
+#[test]
 fn a_copy_resumes_bit_identically() {
     let (t, rate) = drive(40.0);
     let all = fixes(&t);

@@ -138,8 +138,9 @@ class Fusion:
         return FusionResult(tt, h, s, b, sc, self.counts())
 
     def check(self, fixes: Fixes) -> None:
-        """Raises the error :meth:`process` would raise for ``fixes``, processing nothing (a
-        pipeline checks its fixes before any of its stages runs on a block)."""
+        """Raises the error of the first bad fix among the waiting ones and ``fixes``, every one,
+        processing nothing (:meth:`process` checks those its block reaches, and the first past it:
+        a bad fix further on fails the block that reaches it)."""
         self._inner.check(fixes.t, fixes.heading, fixes.sigma)
 
     def counts(self) -> dict[str, int]:
@@ -268,6 +269,15 @@ def read_fixes_file(path: str | Path) -> Fixes:
 FixesLike: TypeAlias = Fixes | str | Path | tuple[ArrayLike, ArrayLike, ArrayLike]
 
 
+def check_all(fixes: FixesLike) -> Fixes:
+    """``fixes`` as :class:`Fixes`, every one checked (NaN, ``sigma <= 0``, out of time order): a
+    whole log's fixes are checked at once, those after its last sample too, where a stream's block
+    checks the ones it reaches."""
+    checked = as_fixes(fixes)
+    Fusion().check(checked)
+    return checked
+
+
 def as_fixes(fixes: FixesLike) -> Fixes:
     """``fixes`` as :class:`Fixes` (a path is read by :func:`read_fixes_file`)."""
     if isinstance(fixes, Fixes):
@@ -322,6 +332,6 @@ from .fixes_track import from_latlon, from_positions  # noqa: E402
 
 __all__ = [
     "FIXES_COLUMNS", "GNSS_COLUMNS", "KMH", "KNOT", "SETTINGS", "Fixes", "FixesLike", "Fusion", "FusionResult",
-    "as_fixes", "from_gnss", "from_latlon", "from_positions", "fuse", "read_fixes_csv", "read_fixes_file",
+    "as_fixes", "check_all", "from_gnss", "from_latlon", "from_positions", "fuse", "read_fixes_csv", "read_fixes_file",
     "read_gnss_csv", "read_nmea", "smoothed_stage", "stage_settings",
 ]

@@ -416,6 +416,10 @@ def process_log(
     si = _to_si(overrides)
     if mode == "causal":
         refuse_whole_options(si)
+        if fixes is not None:
+            from .fixes import check_all  # a whole log: every fix, not only those its samples reach
+
+            fixes = check_all(fixes)
         pipeline = Pipeline(preset, fusion=fusion if fixes is not None else None, **overrides)
         result = pipeline.process(
             t, rate, temperature=temperature, outputs=outputs, speed=speed, speed_t=speed_t, fixes=fixes, out=out

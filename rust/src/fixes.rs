@@ -147,7 +147,8 @@ impl Fusion {
     /// Processes a block of gyro samples with the fixes that fall in it (sorted by time), writing
     /// the estimate after each sample. Returns how many fixes it used (applied, rejected or before
     /// the first sample): the rest lie after the block's last sample and belong to the next call.
-    /// Nothing is processed from a block with a bad sample or fix.
+    /// Nothing is processed from a block with a bad sample or a bad fix among those it checks
+    /// ([`reachable`]: the ones it reaches, and the first past them).
     pub fn process_block(
         &mut self,
         t: &[f64],
@@ -229,7 +230,7 @@ impl Fusion {
     ) -> Result<(), FusionError> {
         out.check(t.len())?;
         check_block(t, rate, None, self.anchor.map(|a| a.sample_t), true)?;
-        self.check_fixes(fixes)
+        self.check_fixes(reachable(fixes, t.last().copied()))
     }
 
     /// The samples of a block (`t` and `rate` as long as `out`) with their fixes, writing the
@@ -300,8 +301,10 @@ impl Fusion {
         used
     }
 
-    /// Checks `fixes` as the next call would, processing nothing: the error names the first bad
-    /// fix (a stage after other stages checks its fixes before any stage runs).
+    /// Checks every fix of `fixes`, processing nothing: the error names the first bad one (a
+    /// stage after other stages checks its fixes before any stage runs). A block checks the fixes
+    /// it reaches ([`reachable`]): a bad fix past its last sample is an error of the block that
+    /// reaches it.
     pub fn check_fixes(&self, fixes: &[Fix]) -> Result<(), FusionError> {
         let mut previous = self.last_fix;
         for (index, f) in fixes.iter().enumerate() {
@@ -426,6 +429,18 @@ impl Fusion {
         }
         Some((x, p))
     }
+}
+
+/// The fixes a block whose last sample is at `last` (None: an empty block) reaches, and the first
+/// one past it: the ones it checks. The rest wait for a later block, which checks them when it
+/// reaches them, so that a caller who passes every fix still to come with each block (as
+/// [`Fusion::process_block`] asks: the unused ones again) pays for the fixes a block reaches, not
+/// for all of them on every call.
+pub fn reachable(fixes: &[Fix], last: Option<f64>) -> &[Fix] {
+    let until = last.unwrap_or(f64::NEG_INFINITY);
+    // `<=` is false for a NaN time: the scan stops there and the NaN fix is checked
+    let before = fixes.iter().take_while(|f| f.t <= until).count();
+    &fixes[..fixes.len().min(before + 1)]
 }
 
 /// Where [`Fusion::run`] writes each sample's estimate.

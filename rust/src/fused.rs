@@ -35,7 +35,7 @@
 //! assert!(cols[1][499] < 0.05); // the filter's heading sigma [rad]
 //! ```
 
-use crate::fixes::{Fix, FixCounts, Fusion, FusionConfig, FusionError, FusionOutputs};
+use crate::fixes::{reachable, Fix, FixCounts, Fusion, FusionConfig, FusionError, FusionOutputs};
 use crate::pipeline::{Outputs, Pipeline, PipelineConfig};
 use crate::rest_tracker::Rest;
 use crate::Error;
@@ -129,9 +129,9 @@ impl FusedPipeline {
     /// after it are left for the next call). Returns how many fixes it used: pass
     /// `&fixes[used..]` again, ahead of any new ones, with the next block.
     ///
-    /// A bad fix ([`FusionError::Fix`], its index in `fixes`) or a bad sample
-    /// ([`FusionError::Gyro`], its index in the block) leaves the state as it was before the
-    /// call (the outputs are not).
+    /// A bad fix ([`FusionError::Fix`], its index in `fixes`; the block checks those it reaches,
+    /// see [`reachable`]) or a bad sample ([`FusionError::Gyro`], its index in the block) leaves
+    /// the state as it was before the call (the outputs are not).
     pub fn process_block(
         &mut self,
         samples: Samples<'_>,
@@ -167,7 +167,8 @@ impl FusedPipeline {
         };
         estimates.check(n)?;
         // Checked before the pipeline runs, so that a bad fix changes nothing.
-        self.fusion.check_fixes(fixes)?;
+        self.fusion
+            .check_fixes(reachable(fixes, samples.t.last().copied()))?;
         let outputs = Outputs {
             heading: None,
             rate: Some(&mut *rate),

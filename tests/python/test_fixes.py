@@ -159,6 +159,32 @@ def test_nmea_rmc_and_vtg_become_fixes(tmp_path: Path) -> None:
         read_nmea(path)
 
 
+def test_a_bad_fix_waits_unread_until_a_block_reaches_it() -> None:
+    # A stream checks the fixes a block reaches: one given early (every fix in the first call)
+    # waits, and the block that reaches a bad one fails, names it as the caller counts, and
+    # leaves the stream as it was. A whole log checks every fix, those after its end too.
+    t, heading, rate = drive(20.0)
+    fixes = gyrocore.sim.gnss_fixes(t, heading, seed=4)
+    fixes.heading[12] = np.nan  # at 12 s (the simulated receiver starts at 0 s)
+    stream = Fusion()
+    stream.process(t[:500], rate[:500], fixes)  # 0-10 s: the bad fix is not reached
+    waiting = stream.counts()["waiting"]
+    assert waiting == len(fixes) - 10
+    copy = pickle.dumps(stream)
+    late = Fixes.of([19.5], [0.0], 0.01)
+    message = rf"fix 2: heading = NaN is not finite; drop or repair the fix \(fix numbers count {waiting} fixes still"
+    with pytest.raises(ValueError, match=message):
+        stream.process(t[500:], rate[500:], late)
+    assert stream.counts()["waiting"] == waiting  # the failed block's new fix is not kept
+    assert pickle.dumps(stream) == copy
+    for mode in ("causal", "smoothed"):
+        with pytest.raises(ValueError, match="fix 12: heading = NaN is not finite"):
+            fuse(t[:500], rate[:500], fixes, mode=mode)
+    for mode in ("causal", "whole"):
+        with pytest.raises(ValueError, match="fix 12: heading = NaN is not finite"):
+            gyrocore.process(t[:500], rate[:500], "raw", fixes=fixes, mode=mode)
+
+
 def test_a_stream_names_a_fix_older_than_its_samples() -> None:
     t, heading, rate = drive(20.0)
     stream = Fusion()

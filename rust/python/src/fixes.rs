@@ -8,6 +8,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::pending::Pending;
 use crate::{fill, slice, value_error, zeros, Array};
 
 /// The settings keys, with their units.
@@ -158,6 +159,9 @@ fn fuse<'py>(
 )> {
     let mut fusion = Fusion::new(config_from(settings)?).map_err(value_error)?;
     let fixes = fixes_from(&fix_t, &fix_heading, &fix_sigma)?;
+    // A whole log checks every fix given, those after its last sample too (a block of a stream
+    // checks the ones it reaches).
+    fusion.check_fixes(&fixes).map_err(fusion_error)?;
     let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
     let mut knots = Vec::new();
     let knots = smoothed.then_some(&mut knots);
@@ -171,25 +175,7 @@ fn fuse<'py>(
 #[derive(Clone)]
 struct PyFusion {
     inner: Fusion,
-    pending: Vec<Fix>,
-}
-
-impl PyFusion {
-    /// The fixes still waiting, then the new ones.
-    fn with_pending(
-        &self,
-        t: &PyReadonlyArray1<'_, f64>,
-        heading: &PyReadonlyArray1<'_, f64>,
-        sigma: &PyReadonlyArray1<'_, f64>,
-    ) -> PyResult<Vec<Fix>> {
-        let mut fixes = self.pending.clone();
-        fixes.extend(fixes_from(t, heading, sigma)?);
-        Ok(fixes)
-    }
-
-    fn renumbered(&self, py: Python<'_>, e: PyErr) -> PyErr {
-        renumbered(py, self.pending.len(), e)
-    }
+    pending: Pending,
 }
 
 /// Names the fix as the caller numbered it: the new ones follow the `pending` ones.
@@ -210,7 +196,7 @@ impl PyFusion {
         let inner = Fusion::new(config_from(settings)?).map_err(value_error)?;
         Ok(PyFusion {
             inner,
-            pending: Vec::new(),
+            pending: Pending::default(),
         })
     }
 
@@ -225,26 +211,39 @@ impl PyFusion {
         fix_heading: PyReadonlyArray1<'py, f64>,
         fix_sigma: PyReadonlyArray1<'py, f64>,
     ) -> PyResult<Columns<'py>> {
-        let mut fixes = self.with_pending(&fix_t, &fix_heading, &fix_sigma)?;
         let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
-        let (cols, used) =
-            run(py, &mut self.inner, t, rate, &fixes, None).map_err(|e| self.renumbered(py, e))?;
-        self.pending = fixes.split_off(used);
-        Ok(cols)
+        let mark = self
+            .pending
+            .append(fixes_from(&fix_t, &fix_heading, &fix_sigma)?);
+        match run(py, &mut self.inner, t, rate, self.pending.waiting(), None) {
+            Ok((cols, used)) => {
+                self.pending.consume(used);
+                Ok(cols)
+            }
+            Err(e) => {
+                let before = self.pending.before(mark);
+                self.pending.undo(mark);
+                Err(renumbered(py, before, e))
+            }
+        }
     }
 
-    /// Checks new fixes as `process` would, processing nothing (the same error).
+    /// Checks the waiting fixes and new ones, every one, processing nothing: the error the first
+    /// bad one gives when a block reaches it.
     fn check(
-        &self,
+        &mut self,
         py: Python<'_>,
         fix_t: PyReadonlyArray1<'_, f64>,
         fix_heading: PyReadonlyArray1<'_, f64>,
         fix_sigma: PyReadonlyArray1<'_, f64>,
     ) -> PyResult<()> {
-        let fixes = self.with_pending(&fix_t, &fix_heading, &fix_sigma)?;
-        self.inner
-            .check_fixes(&fixes)
-            .map_err(|e| self.renumbered(py, fusion_error(e)))
+        let mark = self
+            .pending
+            .append(fixes_from(&fix_t, &fix_heading, &fix_sigma)?);
+        let checked = self.inner.check_fixes(self.pending.waiting());
+        let before = self.pending.before(mark);
+        self.pending.undo(mark);
+        checked.map_err(|e| renumbered(py, before, fusion_error(e)))
     }
 
     /// (applied, rejected, before_start, waiting) fix counts.
@@ -275,16 +274,19 @@ impl PyFusion {
 
     /// Complete state as JSON; floats round-trip exactly.
     fn state_json(&self) -> PyResult<String> {
-        serde_json::to_string(&(&self.inner, &self.pending))
+        serde_json::to_string(&(&self.inner, self.pending.waiting()))
             .map_err(|e| PyValueError::new_err(e.to_string()))
     }
 
     /// Rebuilds a filter from `state_json()`.
     #[staticmethod]
     fn from_state_json(state: &str) -> PyResult<Self> {
-        let (inner, pending) = serde_json::from_str(state)
+        let (inner, pending): (Fusion, Vec<Fix>) = serde_json::from_str(state)
             .map_err(|e| PyValueError::new_err(format!("not a gyrocore fusion state: {e}")))?;
-        Ok(PyFusion { inner, pending })
+        Ok(PyFusion {
+            inner,
+            pending: pending.into(),
+        })
     }
 }
 

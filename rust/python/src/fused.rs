@@ -10,6 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::fixes::{config_from, fixes_from, fusion_error, renumbered};
+use crate::pending::Pending;
 use crate::{fill_some, output, value_error, zeros, Array};
 
 /// The names of the caller's output arrays, as the binding's `out` holds them.
@@ -27,7 +28,7 @@ pub(crate) enum Core {
     Fused {
         inner: Box<FusedPipeline>,
         /// Fixes after the last block's last sample, for the next block.
-        pending: Vec<Fix>,
+        pending: Pending,
     },
 }
 
@@ -98,7 +99,7 @@ impl Core {
         let inner = Box::new(inner);
         *self = Core::Fused {
             inner,
-            pending: Vec::new(),
+            pending: Pending::default(),
         };
         Ok(())
     }
@@ -163,16 +164,18 @@ impl Core {
             }
             Core::Fused { inner, pending } => (inner, pending),
         };
-        let mut all = pending.clone();
-        if let Some([ft, fh, fs]) = &fixes {
-            all.extend(fixes_from(ft, fh, fs)?);
-        }
+        let new = match &fixes {
+            Some([ft, fh, fs]) => fixes_from(ft, fh, fs)?,
+            None => Vec::new(),
+        };
         // The filter runs on the corrected rate: it is computed whether asked for or not.
         let rate_column = out_rate.unwrap_or_else(|| zeros(py, n));
         let wanted_array = |on: bool| on.then(|| zeros(py, n));
         let (fs, fb, fsc) = wanted.fixes;
         let (sigma, bias, scale) = (wanted_array(fs), wanted_array(fb), wanted_array(fsc));
-        let used = fill_some(
+        let mark = pending.append(new);
+        let waiting = pending.waiting();
+        let result = fill_some(
             [
                 named(0, Some(&heading)),
                 named(1, Some(&rate_column)),
@@ -197,15 +200,29 @@ impl Core {
                         temperature,
                         speed,
                     };
-                    inner.process_block_reporting(samples, &all, out, on_rest)
+                    inner.process_block_reporting(samples, waiting, out, on_rest)
                 })
             },
-        )?
-        .map_err(|e| match e {
-            gyrocore::FusionError::Gyro(e) => value_error(e.with_index_offset(index_offset)),
-            e => renumbered(py, pending.len(), fusion_error(e)),
-        })?;
-        *pending = all.split_off(used);
+        );
+        // A failed block changes nothing: its new fixes go again.
+        let used = match result {
+            Ok(Ok(used)) => used,
+            Ok(Err(e)) => {
+                let before = pending.before(mark);
+                pending.undo(mark);
+                return Err(match e {
+                    gyrocore::FusionError::Gyro(e) => {
+                        value_error(e.with_index_offset(index_offset))
+                    }
+                    e => renumbered(py, before, fusion_error(e)),
+                });
+            }
+            Err(e) => {
+                pending.undo(mark);
+                return Err(e);
+            }
+        };
+        pending.consume(used);
         let c = inner.counts();
         let counts = (c.applied, c.rejected, c.before_start, pending.len());
         let out_rate = outputs.0.then_some(rate_column);
@@ -216,7 +233,7 @@ impl Core {
     pub(crate) fn state_json(&self) -> PyResult<String> {
         match self {
             Core::Plain(p) => serde_json::to_string(p),
-            Core::Fused { inner, pending } => serde_json::to_string(&(inner, pending)),
+            Core::Fused { inner, pending } => serde_json::to_string(&(inner, pending.waiting())),
         }
         .map_err(|e| PyValueError::new_err(e.to_string()))
     }
@@ -226,8 +243,11 @@ impl Core {
         if let Ok(p) = serde_json::from_str(state) {
             return Ok(Core::Plain(Box::new(p)));
         }
-        let (inner, pending) = serde_json::from_str(state)
+        let (inner, pending): (Box<FusedPipeline>, Vec<Fix>) = serde_json::from_str(state)
             .map_err(|e| PyValueError::new_err(format!("not a gyrocore pipeline state: {e}")))?;
-        Ok(Core::Fused { inner, pending })
+        Ok(Core::Fused {
+            inner,
+            pending: pending.into(),
+        })
     }
 }

@@ -5,6 +5,7 @@ mod allan;
 mod fixes;
 mod fused;
 mod params;
+mod pending;
 mod prefault;
 mod sim;
 mod table;
