@@ -300,12 +300,18 @@ fn hdrs_bound_grows_with_the_bias_walk_between_rests() {
         start: 0.0,
         end: 10.0,
     });
-    let tuned = Preset::Tuned.config();
-    config.lowpass = tuned.lowpass;
-    config.delag = tuned.delag;
-    config.hdr = tuned.hdr.map(|h| gyrocore::HdrConfig {
+    // an HDR that chases quickly (an earlier tuned preset's shape with a large increment)
+    let tau = 1.41;
+    config.lowpass = Some(gyrocore::LowPassConfig { tau });
+    config.delag = true;
+    config.hdr = Some(gyrocore::HdrConfig {
         increment: 1e-3,
-        ..h
+        turn_threshold: 1.05e-2,
+        c1: 0.690,
+        c2: 0.402,
+        interval: 1.0,
+        tau,
+        max_correction: 5e-5,
     });
     // a wide bound (the value an earlier tuned preset had), so that HDR reaches past the window's
     config.noise_scaled = gyrocore::NoiseScaled {

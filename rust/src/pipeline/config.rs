@@ -158,9 +158,10 @@ pub enum Preset {
     /// minimise the mean log ratio of E_psi to static-bias removal's over the 18 real logs (in
     /// whole mode) and nine simulated 3-minute town drives, under a do-no-harm limit of 0.5 deg on
     /// 18 simulated gyros without bias (perfect and noisy); the README gives the command and the
-    /// leave-one-log-out figures. HDR's bound is 0.149 standard errors of the static bias
-    /// ([`NoiseScaled`]; 5e-5 rad/s without a rest), no dead band; i_c 0.00234 deg/s, Theta_w
-    /// 0.601 deg/s, tau 1.41 s, c1 0.690, c2 0.402.
+    /// leave-one-log-out figures. Three parameters were fitted, the rest are Table III's (tau
+    /// 0.75 s, c1 0.16, c2 1.80): i_c 0.00686 deg/s, Theta_w 3.65 deg/s, and HDR's bound, 0.211
+    /// standard errors of the static bias ([`NoiseScaled`]; 5e-5 rad/s without a rest); no dead
+    /// band.
     Tuned,
     /// [`Preset::Tuned`] with the bias re-measured at every rest it finds while driving
     /// ([`crate::rest_tracker`]). Give it a speed where there is one: from the rate alone, a long
@@ -223,27 +224,19 @@ impl Preset {
             },
             Preset::Hdr => hdr,
             Preset::Combined => PipelineConfig { threshold, ..hdr },
-            Preset::Tuned => {
-                let tau = 1.41;
-                PipelineConfig {
-                    lowpass: Some(LowPassConfig { tau }),
-                    delag: true,
-                    hdr: Some(HdrConfig {
-                        increment: 4.09e-5,
-                        turn_threshold: 1.05e-2,
-                        c1: 0.690,
-                        c2: 0.402,
-                        interval: 1.0,
-                        tau,
-                        max_correction: 5e-5,
-                    }),
-                    noise_scaled: NoiseScaled {
-                        threshold_sigmas: None,
-                        hdr_bound_sigmas: Some(0.149),
-                    },
-                    ..PipelineConfig::default()
-                }
-            }
+            Preset::Tuned => PipelineConfig {
+                hdr: Some(HdrConfig {
+                    increment: 1.20e-4,
+                    turn_threshold: 6.37e-2,
+                    max_correction: 5e-5,
+                    ..HdrConfig::table_iii()
+                }),
+                noise_scaled: NoiseScaled {
+                    threshold_sigmas: None,
+                    hdr_bound_sigmas: Some(0.211),
+                },
+                ..hdr
+            },
             Preset::Tracked => PipelineConfig {
                 rest_tracker: Some(RestTrackerConfig::default()),
                 ..Preset::Tuned.config()
