@@ -49,8 +49,8 @@ def e_psi(log: Log, ref: Reference, preset: str, track: dict[str, Any] | None) -
         extra = {"track_rests": True, **settings(track)}
         if log.speed is not None:
             extra.update(speed=log.speed, speed_t=log.t_odometry)
-    r = process(log.t, log.rate, preset, outputs=("heading",), **bias, **extra)
-    return ref.errors(r.t, r.heading).e_psi_deg, sum(x.accepted for x in r.rests)
+    r = process(log.t, log.rate, preset, mode="causal", outputs=("heading",), **bias, **extra)
+    return ref.errors(r.t, r.heading).e_psi_deg, sum(x.accepted for x in r.tracked_rests)
 
 
 def main(argv: list[str]) -> None:
