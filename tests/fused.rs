@@ -122,6 +122,29 @@ fn bits(v: &[f64]) -> Vec<u64> {
     v.iter().map(|x| x.to_bits()).collect()
 }
 
+/// Runs the block of 10-20 s with `fixes`: it must fail on fix `index`'s field `what` with
+/// `problem`, and leave `fused` as it was.
+fn fails_on_fix(
+    fused: &mut FusedPipeline,
+    (t, rate): (&[f64], &[f64]),
+    fixes: &[Fix],
+    cols: &mut Columns,
+    (index, what, problem): (usize, &str, FixProblem),
+) {
+    let before = fused.clone();
+    let e = block(fused, &t[1000..2000], &rate[1000..2000], fixes, cols, 1000).unwrap_err();
+    match e {
+        FusionError::Fix {
+            index: i,
+            what: w,
+            problem: p,
+            ..
+        } => assert_eq!((i, w, p), (index, what, problem), "{e:?}"),
+        other => panic!("expected a fix error, got {other:?}"),
+    }
+    assert_eq!(*fused, before);
+}
+
 #[test]
 fn equals_the_pipeline_then_the_filter() {
     let (t, mut rate) = drive(120.0);
@@ -219,28 +242,8 @@ fn a_bad_fix_or_sample_changes_nothing_and_is_named() {
 
     let mut bad = all[used..].to_vec();
     bad[2].sigma = 0.0;
-    let e = block(
-        &mut fused,
-        &t[1000..2000],
-        &rate[1000..2000],
-        &bad,
-        &mut cols,
-        1000,
-    )
-    .unwrap_err();
-    assert!(
-        matches!(
-            e,
-            FusionError::Fix {
-                index: 2,
-                what: "sigma",
-                problem: FixProblem::NotPositive,
-                ..
-            }
-        ),
-        "{e:?}"
-    );
-    assert_eq!(fused, snapshot);
+    let sigma = (2, "sigma", FixProblem::NotPositive);
+    fails_on_fix(&mut fused, (&t, &rate), &bad, &mut cols, sigma);
 
     let mut bad_t = t[1000..2000].to_vec();
     bad_t[500] = bad_t[499];
@@ -312,29 +315,8 @@ fn every_waiting_fix_may_ride_along_and_a_bad_one_fails_the_block_that_reaches_i
     let mut fused = FusedPipeline::new(c, f).unwrap();
     let used = block(&mut fused, &t[..1000], &rate[..1000], &bad, &mut cols, 0).unwrap();
     assert_eq!(used, 9);
-    let snapshot = fused.clone();
-    let e = block(
-        &mut fused,
-        &t[1000..2000],
-        &rate[1000..2000],
-        &bad[used..],
-        &mut cols,
-        1000,
-    )
-    .unwrap_err();
-    assert!(
-        matches!(
-            e,
-            FusionError::Fix {
-                index: 6,
-                what: "heading",
-                problem: FixProblem::NonFinite,
-                ..
-            }
-        ),
-        "{e:?}"
-    );
-    assert_eq!(fused, snapshot);
+    let heading = (6, "heading", FixProblem::NonFinite);
+    fails_on_fix(&mut fused, (&t, &rate), &bad[used..], &mut cols, heading);
 }
 
 #[test]
