@@ -108,31 +108,41 @@ fn pipeline_run(
         .unwrap();
 }
 
-/// A fresh fused pipeline over the samples with the fixes `given`, into `cols`: every output,
-/// or the heading alone (with the corrected rate, the filter's input).
+/// A fresh fused pipeline over the samples with the fixes `given`, in blocks of `size` samples
+/// (each handed every fix not used yet), into `cols`: every output, or the heading alone (with the
+/// corrected rate, the filter's input). Every fix must be used.
 fn fused_run(
     config: PipelineConfig,
     t: &[f64],
     rate: &[f64],
     given: &[Fix],
     all: bool,
+    size: usize,
     cols: &mut [Vec<f64>; 6],
 ) {
     let mut p = FusedPipeline::new(config, FusionConfig::default()).unwrap();
     let [h, s, b, sc, r, d] = cols;
-    let out = FusedOutputs {
-        heading: h,
-        heading_sigma: all.then_some(&mut s[..]),
-        bias: all.then_some(&mut b[..]),
-        scale: all.then_some(&mut sc[..]),
-        rate: r,
-        drift: all.then_some(&mut d[..]),
-    };
-    let samples = Samples::new(black_box(t), black_box(rate));
-    assert_eq!(
-        p.process_block(samples, black_box(given), out),
-        Ok(given.len())
-    );
+    let (mut start, mut used) = (0, 0);
+    while start < t.len() {
+        let block = start..(start + size).min(t.len());
+        let out = FusedOutputs {
+            heading: &mut h[block.clone()],
+            heading_sigma: all.then(|| &mut s[block.clone()]),
+            bias: all.then(|| &mut b[block.clone()]),
+            scale: all.then(|| &mut sc[block.clone()]),
+            rate: &mut r[block.clone()],
+            drift: all.then(|| &mut d[block.clone()]),
+        };
+        let samples = Samples::new(
+            black_box(&t[block.clone()]),
+            black_box(&rate[block.clone()]),
+        );
+        used += p
+            .process_block(samples, black_box(&given[used..]), out)
+            .unwrap();
+        start = block.end;
+    }
+    assert_eq!(used, given.len());
 }
 
 fn fused(c: &mut Criterion) {
@@ -142,10 +152,10 @@ fn fused(c: &mut Criterion) {
     let mut cols: [[Vec<f64>; 6]; 5] = core::array::from_fn(|_| columns());
     let [c_alone, c_with, c_without, c_alone_h, c_with_h] = &mut cols;
     let mut alone = || pipeline_run(config, &t, &rate, true, c_alone);
-    let mut with_fixes = || fused_run(config, &t, &rate, &fixes, true, c_with);
-    let mut without = || fused_run(config, &t, &rate, &[], true, c_without);
+    let mut with_fixes = || fused_run(config, &t, &rate, &fixes, true, N, c_with);
+    let mut without = || fused_run(config, &t, &rate, &[], true, N, c_without);
     let mut alone_h = || pipeline_run(config, &t, &rate, false, c_alone_h);
-    let mut with_fixes_h = || fused_run(config, &t, &rate, &fixes, false, c_with_h);
+    let mut with_fixes_h = || fused_run(config, &t, &rate, &fixes, false, N, c_with_h);
     let mut group = c.benchmark_group("fused_pipeline");
     group.throughput(Throughput::Elements(N as u64));
     group.bench_function("pipeline_alone", |b| b.iter(&mut alone));
@@ -164,36 +174,6 @@ fn fused(c: &mut Criterion) {
     }
 }
 
-/// The fused pipeline (heading only) over the samples in blocks of `size`, each block given every
-/// fix not used yet; returns how many it used.
-fn streamed_run(
-    config: PipelineConfig,
-    t: &[f64],
-    rate: &[f64],
-    fixes: &[Fix],
-    size: usize,
-    cols: &mut [Vec<f64>; 6],
-) -> usize {
-    let mut p = FusedPipeline::new(config, FusionConfig::default()).unwrap();
-    let [h, _, _, _, r, _] = cols;
-    let (mut start, mut used) = (0, 0);
-    while start < t.len() {
-        let end = (start + size).min(t.len());
-        let out = FusedOutputs {
-            heading: &mut h[start..end],
-            heading_sigma: None,
-            bias: None,
-            scale: None,
-            rate: &mut r[start..end],
-            drift: None,
-        };
-        let samples = Samples::new(black_box(&t[start..end]), black_box(&rate[start..end]));
-        used += p.process_block(samples, &fixes[used..], out).unwrap();
-        start = end;
-    }
-    used
-}
-
 fn streamed(c: &mut Criterion) {
     let (t, rate, fixes) = samples();
     let config = pipeline_config();
@@ -203,12 +183,7 @@ fn streamed(c: &mut Criterion) {
     group.sample_size(10);
     for size in [N, 1000, 100, 1] {
         group.bench_with_input(BenchmarkId::new("block", size), &size, |b, &size| {
-            b.iter(|| {
-                assert_eq!(
-                    streamed_run(config, &t, &rate, &fixes, size, &mut cols),
-                    fixes.len()
-                )
-            })
+            b.iter(|| fused_run(config, &t, &rate, &fixes, false, size, &mut cols))
         });
     }
     group.finish();
