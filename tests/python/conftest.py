@@ -1,7 +1,10 @@
-"""Shared fixtures: the real logs in ../shared/data (read in place, never copied)."""
+"""Shared fixtures: the real logs in ../shared/data (read in place, never copied), and the
+command line run as a user runs it."""
 
 from __future__ import annotations
 
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -17,6 +20,18 @@ def real_log_path(name: str) -> Path:
     if not path.is_dir():
         pytest.skip(f"shared data not found at {path}")
     return path
+
+
+def gyrocore_cli(*args: str | Path, code: int | None = None, timeout: float = 300) -> subprocess.CompletedProcess[str]:
+    """Run ``gyrocore ARGS`` in a new process; check that it prints no traceback and, where
+    ``code`` is given, that it exits with it."""
+    proc = subprocess.run(
+        [sys.executable, "-m", "gyrocore.cli", *map(str, args)], capture_output=True, text=True, timeout=timeout
+    )
+    if code is not None:
+        assert proc.returncode == code, proc.stderr
+    assert "Traceback" not in proc.stderr
+    return proc
 
 
 @pytest.fixture(scope="session", params=REAL_LOGS)

@@ -4,23 +4,18 @@ an input folder: through the command line and process_many."""
 from __future__ import annotations
 
 import os
-import subprocess
-import sys
+from functools import partial
 from pathlib import Path
 
 import pytest
 
 from gyrocore.batch import process_many
 
+from .conftest import gyrocore_cli
 from .test_batch import synthetic_csv
 
 
-def gyrocore(*args: str | Path) -> subprocess.CompletedProcess[str]:
-    proc = subprocess.run(
-        [sys.executable, "-m", "gyrocore.cli", *map(str, args)], capture_output=True, text=True, timeout=120
-    )
-    assert "Traceback" not in proc.stderr
-    return proc
+gyrocore = partial(gyrocore_cli, timeout=120)
 
 
 def broken_links(folder: Path) -> dict[str, str]:

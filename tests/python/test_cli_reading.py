@@ -7,7 +7,6 @@ from __future__ import annotations
 import json
 import math
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -16,20 +15,10 @@ import pytest
 import gyrocore
 from gyrocore.calibration import Calibration
 
-from .conftest import real_log_path
+from .conftest import gyrocore_cli, real_log_path
 
 #: EuRoC's epoch of the first sample [ns].
 EPOCH_NS = 1403636579758555392
-
-
-def gyrocore_cli(*args: str | Path, code: int) -> subprocess.CompletedProcess[str]:
-    """Run ``gyrocore ARGS``; check the exit code and that no traceback is printed."""
-    proc = subprocess.run(
-        [sys.executable, "-m", "gyrocore.cli", *map(str, args)], capture_output=True, text=True, timeout=300
-    )
-    assert proc.returncode == code, proc.stderr
-    assert "Traceback" not in proc.stderr
-    return proc
 
 
 def one_error(proc: subprocess.CompletedProcess[str]) -> str:

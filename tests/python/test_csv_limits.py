@@ -4,8 +4,6 @@ a long header) read the same with any --chunk-rows; a header without samples is 
 from __future__ import annotations
 
 import gzip
-import subprocess
-import sys
 from collections.abc import Callable
 from pathlib import Path
 
@@ -17,19 +15,13 @@ import pytest
 import gyrocore
 from gyrocore.io import CSV_BLOCK_BYTES
 
+from .conftest import gyrocore_cli as run_cli
+
 N = 200
 
 
 def expected_t() -> np.ndarray:
     return np.arange(N) * 0.01
-
-
-def run_cli(*args: str | Path) -> subprocess.CompletedProcess[str]:
-    proc = subprocess.run(
-        [sys.executable, "-m", "gyrocore.cli", *map(str, args)], capture_output=True, text=True, timeout=300
-    )
-    assert "Traceback" not in proc.stderr
-    return proc
 
 
 def long_field_csv(path: Path) -> Path:

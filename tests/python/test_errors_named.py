@@ -5,10 +5,9 @@ from __future__ import annotations
 
 import json
 import re
-import subprocess
-import sys
 import warnings
 from collections.abc import Callable
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -19,16 +18,13 @@ from gyrocore import allan
 from gyrocore.calibration import Calibration, static_bias
 from gyrocore.evaluate import compare
 
+from .conftest import gyrocore_cli
+
 T = np.arange(0, 10, 0.01)
 RATE = np.random.default_rng(0).normal(0.0, 0.01, len(T))
 
 
-def run_cli(*args: str | Path) -> subprocess.CompletedProcess[str]:
-    proc = subprocess.run(
-        [sys.executable, "-m", "gyrocore.cli", *map(str, args)], capture_output=True, text=True, timeout=120
-    )
-    assert "Traceback" not in proc.stderr
-    return proc
+run_cli = partial(gyrocore_cli, timeout=120)
 
 
 def test_a_window_may_be_a_list_or_an_array() -> None:

@@ -3,9 +3,8 @@ the same first samples whatever the chunk size."""
 
 from __future__ import annotations
 
-import subprocess
-import sys
 import warnings
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -13,6 +12,8 @@ import pytest
 
 import gyrocore
 from gyrocore import SampleError
+
+from .conftest import gyrocore_cli
 
 
 def test_no_finite_rate_is_a_sample_error_at_index_0() -> None:
@@ -37,12 +38,7 @@ def test_no_finite_first_reading_is_skipped_under_hold_and_skip(nonfinite: str) 
     assert np.array_equal(only_nan.heading, [0.0, 0.0])
 
 
-def run_cli(*args: str | Path) -> subprocess.CompletedProcess[str]:
-    proc = subprocess.run(
-        [sys.executable, "-m", "gyrocore.cli", *map(str, args)], capture_output=True, text=True, timeout=120
-    )
-    assert "Traceback" not in proc.stderr
-    return proc
+run_cli = partial(gyrocore_cli, timeout=120)
 
 
 def test_a_csv_whose_first_rates_are_empty(tmp_path: Path) -> None:

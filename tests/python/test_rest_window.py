@@ -6,9 +6,8 @@ from __future__ import annotations
 
 import json
 import pickle
-import subprocess
-import sys
 import warnings
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -17,6 +16,7 @@ import pytest
 import gyrocore
 from gyrocore import Pipeline, RestWindowError
 
+from . import conftest
 from .test_batch import synthetic_csv
 
 STEP = 0.1
@@ -107,12 +107,7 @@ def test_a_rest_window_past_the_end_of_the_log_is_an_error(overrides: dict[str, 
     assert len(gyrocore.process(t, rate(t), "hdr", **end)) == len(t)
 
 
-def gyrocore_cli(*args: str | Path) -> subprocess.CompletedProcess[str]:
-    proc = subprocess.run(
-        [sys.executable, "-m", "gyrocore.cli", *map(str, args)], capture_output=True, text=True, timeout=120
-    )
-    assert "Traceback" not in proc.stderr
-    return proc
+gyrocore_cli = partial(conftest.gyrocore_cli, timeout=120)
 
 
 def test_the_command_line_refuses_a_window_after_the_log(tmp_path: Path) -> None:

@@ -6,8 +6,7 @@ Its ``heading_true`` column is the reference ``gyrocore evaluate`` scores agains
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -15,17 +14,13 @@ import pytest
 
 import gyrocore
 
-from .conftest import real_log_path
+from .conftest import gyrocore_cli, real_log_path
 
 pa_csv = pytest.importorskip("pyarrow.csv")
 pq = pytest.importorskip("pyarrow.parquet")
 
 
-def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
-    proc = subprocess.run([sys.executable, "-m", "gyrocore.cli", *args], capture_output=True, text=True, timeout=300)
-    assert "Traceback" not in proc.stderr
-    assert proc.returncode == 0, proc.stderr
-    return proc
+run_cli = partial(gyrocore_cli, code=0)
 
 
 @pytest.fixture(scope="module")
@@ -95,10 +90,7 @@ def test_evaluate_scores_a_simulated_file_against_its_truth(drive: Path, tmp_pat
 def test_evaluate_names_a_file_without_a_reference(drive: Path, tmp_path: Path) -> None:
     bare = tmp_path / "bare.csv"
     pa_csv.write_csv(pa_csv.read_csv(drive).drop_columns(["heading_true"]), bare)
-    proc = subprocess.run(
-        [sys.executable, "-m", "gyrocore.cli", "evaluate", str(bare)], capture_output=True, text=True, timeout=300
-    )
-    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+    proc = gyrocore_cli("evaluate", bare, code=2)
     assert proc.stderr.startswith(f"gyrocore: error: {bare}: no reference heading to score against"), proc.stderr
     assert gyrocore.read_log(bare).heading_ref is None
 
@@ -138,11 +130,7 @@ def test_an_infinite_speed_is_named_in_whole_mode_as_in_causal_mode(drive: Path,
         gyrocore.process(t, rate, "static_bias", speed=speed)
     bad = tmp_path / "inf_speed.csv"
     pa_csv.write_csv(table.set_column(table.column_names.index("speed"), "speed", [speed]), bad)
-    proc = subprocess.run(
-        [sys.executable, "-m", "gyrocore.cli", "process", str(bad), "--out", str(tmp_path / "h.csv")],
-        capture_output=True, text=True, timeout=300,
-    )
-    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+    proc = gyrocore_cli("process", bad, "--out", tmp_path / "h.csv", code=2)
     assert f"{bad}: line 102, column speed: inf is not a finite speed [m/s]" in proc.stderr, proc.stderr
     assert not (tmp_path / "h.csv").exists()
     # --no-speed reads the file without the column

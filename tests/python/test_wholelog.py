@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import json
 import math
-import subprocess
-import sys
 import warnings
 from collections.abc import Callable
 from pathlib import Path
@@ -20,7 +18,7 @@ from gyrocore import calibration
 from gyrocore.batch import process_file
 from gyrocore._smoother import smooth
 
-from .conftest import real_log_path
+from .conftest import gyrocore_cli as run_cli, real_log_path
 
 RATE_HZ = 100.0
 NOISE = 0.01  # rad/s, one reading
@@ -255,12 +253,6 @@ def test_file_streamed_in_chunks_measures_a_given_window_as_in_memory(tmp_path: 
         expected = gyrocore.process(t_read, r_read, "recommended", **kwargs)
         np.testing.assert_allclose(out, expected.heading, rtol=0, atol=1e-12)
         assert report.rests == expected.rests and report.bias_source == expected.bias_source
-
-
-def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
-    proc = subprocess.run([sys.executable, "-m", "gyrocore.cli", *args], capture_output=True, text=True, timeout=300)
-    assert "Traceback" not in proc.stderr
-    return proc
 
 
 def test_cli_process_whole_by_default_and_causal_on_request(tmp_path: Path) -> None:
