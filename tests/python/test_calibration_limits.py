@@ -93,3 +93,32 @@ def test_gyrocore_calibrate_finds_the_sample_logs_whole_rest(tmp_path: Path) -> 
     truth = drive.bias + float(np.mean(drive.drift[inside]))
     assert abs(report["static_bias"]["bias"] - truth) < 4 * report["static_bias"]["bias_stderr"] + 1e-4
     assert len(log.t) == len(drive.t)
+
+
+def rest_then_turning(start: float, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+    """20 s at rest (bias 0.01 rad/s, noise 0.001) then 40 s of turning, at 100 Hz from ``start``."""
+    t = start + np.arange(6000) * 0.01
+    rate = 0.01 + rng.normal(0.0, 0.001, len(t)) + np.where(t - start > 20.0, 0.3 * np.sin(t - start), 0.0)
+    return t, rate
+
+
+@pytest.mark.parametrize("jump", [1e3, 1e9])
+def test_a_clock_jump_costs_no_memory_and_ends_a_rest(jump: float) -> None:
+    # A log whose clock jumps (boot time, then epoch time) is searched in memory that follows its
+    # samples, not its time span: one bin per 0.25 s of a 1e9 s span would be 32 GB. Each part's
+    # rest is found where it is, and none spans the jump.
+    rng = np.random.default_rng(1)
+    (t1, r1), (t2, r2) = rest_then_turning(0.0, rng), rest_then_turning(jump, rng)
+    windows = cal.rest_windows(np.r_[t1, t2], np.r_[r1, r2])
+    assert len(windows) == 2
+    for (start, end), part in zip(windows, (t1, t2)):
+        assert part[0] <= start < part[0] + 0.5 and part[0] + 19.5 < end <= part[0] + 20.0
+
+
+def test_a_gap_between_two_quiet_stretches_ends_the_rest() -> None:
+    # Two rests at the same level, 10 s apart with no sample between them: two windows, as a
+    # block with no sample is no evidence of rest.
+    rng = np.random.default_rng(2)
+    t = np.r_[np.arange(0.0, 5.0, 0.01), np.arange(15.0, 20.0, 0.01)]
+    windows = cal.rest_windows(t, 0.01 + rng.normal(0.0, 0.001, len(t)))
+    assert [(round(a, 2), round(b, 2)) for a, b in windows] == [(0.0, 4.99), (15.0, 19.99)]

@@ -62,13 +62,15 @@ def rest_windows_of_checked(
         raise ValueError(f"need at least 8 samples to find a rest, got {len(ta)}")
     rel = ta - ta[0]  # epoch timestamps lose precision in arithmetic
     width = max(block, 4.0 * float(np.median(np.diff(rel))))
-    k = np.floor(rel / width).astype(np.int64)
-    nb = int(k[-1]) + 1
-    count = np.bincount(k, minlength=nb)
-    total = np.bincount(k, ra, minlength=nb)
-    mean = total / np.maximum(count, 1)
+    # The blocks that hold samples, numbered 0, 1, ... in time order: a gap or a jump of the
+    # clock costs nothing (one bin per block of the time span would grow with the jump).
+    number = np.floor(rel / width).astype(np.int64)
+    k = np.concatenate(([0], np.cumsum(np.diff(number) != 0)))
+    count = np.bincount(k)
+    total = np.bincount(k, ra)
+    mean = total / count
     dev = ra - mean[k]
-    var = np.bincount(k, dev * dev, minlength=nb) / np.maximum(count - 1, 1)
+    var = np.bincount(k, dev * dev) / np.maximum(count - 1, 1)
     sd = np.sqrt(var)
     usable = count >= 3
     if not usable.any():
@@ -80,36 +82,45 @@ def rest_windows_of_checked(
         floor = float(steps[steps > 0].min()) / math.sqrt(12.0) if (steps > 0).any() else 0.0
     quiet = usable & (sd <= noise_factor * floor) & (np.abs(mean) <= max_rate)
     spread = floor * _correlation_factor(dev, k, quiet)
+    # A rest spans quiet blocks only, and no gap (a block that is not quiet, or holds no sample,
+    # ends it), so the level test runs over each stretch of quiet neighbours, not every block.
+    blocks = number[np.flatnonzero(np.diff(k, prepend=-1))]
+    joined = quiet[:-1] & quiet[1:] & (np.diff(blocks) == 1)
+    firsts = np.flatnonzero(quiet & ~np.concatenate(([False], joined)))
+    ends = np.flatnonzero(quiet & ~np.concatenate((joined, [False]))) + 1
+    runs = [run for first, end in zip(firsts.tolist(), ends.tolist())
+            for run in _level_runs(first, end, mean, count, total, spread, consistency)]
+    if not runs:
+        return []
+    first_block, last_block = np.array(runs).T
+    t0 = ta[np.searchsorted(k, first_block, side="left")]
+    t1 = ta[np.searchsorted(k, last_block, side="right") - 1]
+    return [(float(a), float(b)) for a, b in zip(t0, t1) if b - a >= min_duration]
+
+
+def _level_runs(
+    first: int, end: int, mean: FloatArray, count: NDArray[np.intp], total: NDArray[Any], spread: float,
+    consistency: float,
+) -> list[tuple[int, int]]:
+    """The runs of blocks ``first .. end - 1`` (all quiet) whose means agree with their run's mean
+    so far within ``consistency`` standard errors, as ``(first block, last block)`` pairs."""
+    means, counts, totals = mean[first:end].tolist(), count[first:end].tolist(), total[first:end].tolist()
     runs: list[tuple[int, int]] = []
-    start = -1
-    level = weight = 0.0
+    start, level, weight = 0, means[0], float(counts[0])
 
     def agrees(b: int) -> bool:
-        return bool(quiet[b]) and abs(mean[b] - level) <= consistency * math.sqrt(
-            spread**2 / count[b] + spread**2 / weight
-        )
+        return bool(abs(means[b] - level) <= consistency * math.sqrt(spread**2 / counts[b] + spread**2 / weight))
 
-    for b in range(nb):
+    for b in range(1, end - first):
         # One stray block whose successor agrees again is an outlier, not the end of the rest.
-        if start >= 0 and (agrees(b) or (quiet[b] and b + 1 < nb and agrees(b + 1))):
-            level = (level * weight + total[b]) / (weight + count[b])
-            weight += count[b]
+        if agrees(b) or (b + 1 < end - first and agrees(b + 1)):
+            level = (level * weight + totals[b]) / (weight + counts[b])
+            weight += counts[b]
             continue
-        if start >= 0:
-            runs.append((start, b - 1))
-            start = -1
-        if quiet[b]:
-            start, level, weight = b, mean[b], float(count[b])
-    if start >= 0:
-        runs.append((start, nb - 1))
-    windows = []
-    first_index = np.searchsorted(k, np.arange(nb), side="left")
-    last_index = np.searchsorted(k, np.arange(nb), side="right") - 1
-    for a, b in runs:
-        t0, t1 = ta[first_index[a]], ta[last_index[b]]
-        if t1 - t0 >= min_duration:
-            windows.append((float(t0), float(t1)))
-    return windows
+        runs.append((first + start, first + b - 1))
+        start, level, weight = b, means[b], float(counts[b])
+    runs.append((first + start, end - 1))
+    return runs
 
 
 def _correlation_factor(dev: FloatArray, k: NDArray[np.int64], quiet: NDArray[np.bool_]) -> float:
