@@ -86,7 +86,8 @@ def find_rests(
     if np.count_nonzero(finite) >= 8 and not known.all():
         try:
             # the times were checked once for the whole log, and these are its finite readings
-            windows = rest_windows_of_checked(t[finite], rate[finite], min_rest)
+            every = finite.all()  # then no copy of the log
+            windows = rest_windows_of_checked(t if every else t[finite], rate if every else rate[finite], min_rest)
         except ValueError:  # too sparse to judge a rest from the rate: none is found (the plan warns)
             windows = []
         found += [(a, b, "rate") for a, b in windows if not known[within(a, b)].any()]

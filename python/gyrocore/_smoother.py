@@ -49,21 +49,41 @@ class SmoothedBias:
     def at(self, t: ArrayLike) -> tuple[FloatArray, FloatArray]:
         """The smoothed bias [rad/s] and its standard error [rad/s] at the times ``t``."""
         ta = np.asarray(t, dtype=np.float64)
+        return self.mean_at(ta), np.sqrt(self.variance_at(ta))
+
+    def mean_at(self, t: ArrayLike) -> FloatArray:
+        """The smoothed bias [rad/s] at the times ``t``: linear between two rests, constant before
+        the first and after the last."""
+        return np.asarray(np.interp(np.asarray(t, dtype=np.float64), self.times, self.mean), dtype=np.float64)
+
+    def variance_at(self, t: ArrayLike) -> FloatArray:
+        """The smoothed bias's variance [rad^2/s^2] at the times ``t``, computed a slice at a time
+        (a whole log's temporaries would each be as large as the log)."""
+        ta = np.asarray(t, dtype=np.float64)
+        out = np.empty(ta.shape)
+        flat, into = ta.reshape(-1), out.reshape(-1)
+        for i in range(0, len(flat), _SLICE):
+            into[i : i + _SLICE] = self._variance(flat[i : i + _SLICE])
+        return out
+
+    def _variance(self, ta: FloatArray) -> FloatArray:
         q = self.walk**2
         n = len(self.times)
-        k = np.clip(np.searchsorted(self.times, ta, side="right") - 1, 0, max(n - 2, 0))
         if n == 1:
-            distance = np.abs(ta - self.times[0])
-            return np.full(ta.shape, self.mean[0]), np.sqrt(self.variance[0] + q * distance)
+            return np.asarray(self.variance[0] + q * np.abs(ta - self.times[0]), dtype=np.float64)
+        k = np.clip(np.searchsorted(self.times, ta, side="right") - 1, 0, n - 2)
         t0, t1 = self.times[k], self.times[k + 1]
         w = np.clip((ta - t0) / (t1 - t0), 0.0, 1.0)
-        mean = (1 - w) * self.mean[k] + w * self.mean[k + 1]
         variance = (1 - w) ** 2 * self.variance[k] + w**2 * self.variance[k + 1] + 2 * w * (1 - w) * self.cross[k]
         # the bridge's own spread between two rests, and the walk beyond the first or last
         inside = np.clip(ta, t0, t1)
         variance += q * (inside - t0) * (t1 - inside) / (t1 - t0)
         variance += q * (np.maximum(self.times[0] - ta, 0.0) + np.maximum(ta - self.times[-1], 0.0))
-        return mean, np.sqrt(np.maximum(variance, 0.0))
+        return np.maximum(variance, 0.0)
+
+
+#: Samples per slice in :meth:`SmoothedBias.variance_at` (its temporaries stay in the cache).
+_SLICE = 1 << 15
 
 
 def smooth(times: ArrayLike, values: ArrayLike, std_errors: ArrayLike, walk: float) -> SmoothedBias:

@@ -151,7 +151,7 @@ class BiasPlan:
         if self.smoothed is None:
             return 0.0
         constant = self._constant()
-        return self.smoothed.at(t)[0] if constant is None else constant
+        return self.smoothed.mean_at(t) if constant is None else constant
 
     def pipeline(self, preset: str) -> Pipeline:
         """The pipeline this plan runs, on the readings of :meth:`corrected`. A bias that is one
@@ -166,7 +166,8 @@ class BiasPlan:
         where it varies over the log, else ``rate`` itself (none, or the core's ``bias=``)."""
         if self.smoothed is None or self._constant() is not None:
             return rate
-        return rate - self.smoothed.at(t)[0]
+        bias = self.smoothed.mean_at(t)
+        return np.subtract(rate, bias, out=bias)  # no second array as long as the log
 
     def _constant(self) -> float | None:
         """The bias when it is one number over the whole log (exactly one rest's mean, as
@@ -297,8 +298,7 @@ def plan(
         return BiasPlan("none: no rest found in the log; bias 0", tuple(rests), overrides, None, warning)
     smoothed = _smooth(used, walk)
     bound = _smooth(used, options.hdr_bound_walk)
-    sd = bound.at(times)[1] if times is not None else np.sqrt(bound.variance)
-    bias_error = float(np.sqrt(np.mean(sd**2)))
+    bias_error = math.sqrt(float(np.mean(bound.variance_at(times) if times is not None else bound.variance)))
     refused = f"; {len(rests) - len(used)} refused" if len(rests) > len(used) else ""
     # the inverse-variance mean of the rests (the smoother without a walk): is there a bias at all?
     level = _smooth(used, 0.0)
