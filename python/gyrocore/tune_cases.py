@@ -76,7 +76,14 @@ class Case:
         if len(t_ref) < 2:
             raise ValueError(f"log {log.name}: a reference heading needs two samples for a rate, got {len(t_ref)}")
         step = float(np.median(np.diff(t_ref)))
-        grid = t_ref[0] + step * np.arange(int((t_ref[-1] - t_ref[0]) / step) + 1)
+        points = int((t_ref[-1] - t_ref[0]) / step) + 1
+        if points > 10 * len(t_ref):  # a gap or a jump of its clock: a grid as long as the span
+            gap = int(np.argmax(np.diff(t_ref)))
+            raise ValueError(
+                f"log {log.name}: its reference jumps from t = {t_ref[gap]:.6g} to {t_ref[gap + 1]:.6g} s "
+                f"(median interval {step:.3g} s): no rate can be taken from it across that gap"
+            )
+        grid = t_ref[0] + step * np.arange(points)
         heading = np.interp(grid, t_ref, np.unwrap(heading_ref))
         t, rate = grid[:-1] + 0.5 * step, np.diff(heading) / step
         return cls(f"{log.name} (reference rate)", t, rate, Reference(t_ref, heading_ref), {"bias": 0.0})
