@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import math
 import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -154,6 +155,30 @@ def pipeline_overrides(args: argparse.Namespace, named: dict[str, Any]) -> dict[
         out[name] = parse_value(value)
         sources[name] = "--param"
     return out
+
+
+def _bounded(low: float, *, above: bool, integer: bool = False) -> Callable[[str], float]:
+    """An argparse ``type``: a finite number (an integer where ``integer``) above ``low``, or at
+    least ``low``; argparse's error names the option, this one the value and the bound."""
+    wanted = f"{'an integer' if integer else 'a finite number'} {'>' if above else '>='} {low:g}"
+
+    def parse(text: str) -> float:
+        try:
+            value: float = int(text) if integer else float(text)
+        except ValueError:
+            value = math.nan
+        if not (math.isfinite(value) and (value > low if above else value >= low)):
+            raise argparse.ArgumentTypeError(f"must be {wanted}, got {text!r}")
+        return value
+
+    return parse
+
+
+#: argparse types of numeric options: checked as the command line is read, before any work.
+POSITIVE = _bounded(0.0, above=True)
+NON_NEGATIVE = _bounded(0.0, above=False)
+COUNT = _bounded(1, above=False, integer=True)
+SEED = _bounded(0, above=False, integer=True)
 
 
 def write_atomically(path: str | Path, write: Callable[[str], object]) -> None:

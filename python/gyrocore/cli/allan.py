@@ -9,7 +9,7 @@ from pathlib import Path
 from .. import allan, io
 from .._extras import pyplot
 from ..window import Window
-from ._common import WINDOW_HELP, add_command, add_reading_options, reading_options, write_atomically
+from ._common import POSITIVE, WINDOW_HELP, add_command, add_reading_options, reading_options, write_atomically
 
 
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
@@ -30,7 +30,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
                    help=f"analyse only this span, e.g. the rest: {WINDOW_HELP}")
     p.add_argument("--plot", type=Path, help="write a log-log plot (PNG) to this file")
     p.add_argument("--kalibr", type=Path, help="write a Kalibr-style IMU noise YAML to this file")
-    p.add_argument("--rrw", type=float, default=None,
+    p.add_argument("--rrw", type=POSITIVE, default=None,
                    help="rate random walk K [rad/s^2/sqrt(Hz)] for --kalibr when the record is too short to show it")
     add_reading_options(p)
 

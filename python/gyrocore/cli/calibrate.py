@@ -15,6 +15,7 @@ from .._rests import find_rests
 from ..wholelog import times_ok
 from ..window import Window
 from ._common import (
+    POSITIVE,
     REFERENCE_HELP,
     WINDOW_HELP,
     add_command,
@@ -39,8 +40,8 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
                    help=f"reference heading of a file input: {REFERENCE_HELP}")
     p.add_argument("--window", nargs=2, metavar=("T0", "T1"),
                    help=f"rest window instead of finding one: {WINDOW_HELP}")
-    p.add_argument("--min-duration", type=float, default=1.0, help="shortest rest [s] (default 1)")
-    p.add_argument("--max-rate-dps", type=float, default=None,
+    p.add_argument("--min-duration", type=POSITIVE, default=1.0, help="shortest rest [s] (default 1)")
+    p.add_argument("--max-rate-dps", type=POSITIVE, default=None,
                    help="largest reading at rest [deg/s] (default 2.9); raise it for a gyro with a large bias")
     p.add_argument("--fit-window", nargs=2, metavar=("T0", "T1"),
                    help=f"span for the reference fit (default: the whole log): {WINDOW_HELP}")
