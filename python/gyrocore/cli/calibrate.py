@@ -15,12 +15,14 @@ from .._rests import find_rests
 from ..wholelog import times_ok
 from ..window import Window
 from ._common import (
-    POSITIVE,
     REFERENCE_HELP,
+    POSITIVE,
     WINDOW_HELP,
     add_command,
+    add_overwrite_option,
     add_reading_options,
     reading_options,
+    refuse_existing,
     with_reference,
     write_atomically,
 )
@@ -49,6 +51,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p.add_argument("--save", type=Path,
                    help="write the calibration (JSON): the reference fit where the log has a reference, "
                         "else the static bias")
+    add_overwrite_option(p)
     add_reading_options(p)
 
 
@@ -70,6 +73,7 @@ def run(args: argparse.Namespace) -> int:
     span = None if args.fit_window is None else Window.parse(args.fit_window, "--fit-window")
     if args.save is not None:
         io.check_not_input(args.save, [source])  # e.g. the log's own meta.json
+        refuse_existing([args.save], args.overwrite)
     log = io.read_log(source, **reading_options(args))
     if args.reference is not None:
         log = with_reference(log, args.reference)

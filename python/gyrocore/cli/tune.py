@@ -18,9 +18,11 @@ from ._common import (
     POSITIVE,
     SEED,
     add_command,
+    add_overwrite_option,
     add_reading_options,
     print_json,
     reading_options,
+    refuse_existing,
 )
 
 _TABLES = {"II": motion.TABLE_II_DRIVES, "IV": motion.TABLE_IV_DRIVES}
@@ -82,6 +84,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     add("--name", help="name of the parameter set (default <preset>_tuned)")
     add("--out", metavar="FILE", help="write the parameter file (JSON) here")
     add("--json", action="store_true", help="print the result as JSON")
+    add_overwrite_option(p)
     add_reading_options(p)
 
 
@@ -143,6 +146,7 @@ def _parse_fixed(specs: Sequence[str]) -> dict[str, float]:
 def run(args: argparse.Namespace) -> int:
     if args.out is not None:  # before the fit, which takes minutes
         check_not_input(Path(args.out), [Path(p) for p in args.logs + args.test])
+        refuse_existing([Path(args.out)], args.overwrite)
     require("scipy.optimize", "tuning")  # before the drives are built
     names, bounds = _parse_params(args.param or [])
     progress = (lambda msg: print(msg, file=sys.stderr)) if not args.json else None
