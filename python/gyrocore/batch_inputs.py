@@ -9,6 +9,7 @@ from collections.abc import Iterable, Sequence
 from pathlib import Path
 
 from . import io
+from .io._logfolder import lacks_gyro
 
 
 def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
@@ -16,15 +17,16 @@ def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
 
     A log folder or ROS 2 bag folder is one input; any other folder stands for the inputs directly
     in it. Every path named, and every name with an input's suffix that a folder or pattern gives,
-    is kept even if it cannot be read (a dangling symbolic link, a loop, no permission): it fails
-    later with its reason instead of silently dropping out. Raises ValueError for an item that
+    is kept even if it cannot be read (a dangling symbolic link, a loop, no permission, a log
+    folder without gyro.csv): it fails later with its reason instead of silently dropping out, or
+    its other files being read as logs. Raises ValueError for an item that
     matches nothing.
     """
     found: list[Path] = []
     for item in items:
         named, matches = _matches(item)
         for m in matches:
-            if m.is_dir() and not io.is_input(m):
+            if m.is_dir() and not _named_as_input(m):
                 inside = sorted(c for c in m.iterdir() if _named_as_input(c))
                 if not inside and named:
                     raise ValueError(f"{m}: no logs in this folder ({', '.join(io.FILE_SUFFIXES)}, log or bag folders)")
@@ -60,8 +62,9 @@ def _matches(item: str | Path) -> tuple[bool, list[Path]]:
 
 
 def _named_as_input(path: Path) -> bool:
-    """An input, or a name that says it is one but cannot be read as one (a dangling link)."""
-    return io.is_input(path) or (not path.is_dir() and path.suffix.lower() in io.FILE_SUFFIXES)
+    """An input, or a path that says it is one but cannot be read as one (a dangling link, a log
+    folder without gyro.csv)."""
+    return io.is_input(path) or lacks_gyro(path) or (not path.is_dir() and path.suffix.lower() in io.FILE_SUFFIXES)
 
 
 def output_paths(inputs: Sequence[Path], out_dir: Path, fmt: str) -> list[Path]:

@@ -408,8 +408,13 @@ def compare(
             named = str(e) if str(e).startswith(f"log {log.name}:") else f"log {log.name}: {e}"
             raise ValueError(named) from None
         if plot_dir is not None:
-            plot_log(Path(plot_dir) / f"{log.name}.png", log, results)
+            plot_log(plot_path(plot_dir, log), log, results)
     return rows
+
+
+def plot_path(plot_dir: str | Path, log: Log) -> Path:
+    """Where :func:`compare` draws the plot of ``log``: ``<plot_dir>/<log name>.png``."""
+    return Path(plot_dir) / f"{log.name}.png"
 
 
 def _pyplot() -> Any:

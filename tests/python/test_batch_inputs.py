@@ -122,3 +122,15 @@ def test_evaluate_and_tune_refuse_to_write_into_a_log_folder(tmp_path: Path) -> 
         assert proc.returncode == 2, proc.stderr
         assert proc.stderr.startswith(f"gyrocore: error: refusing to write {args[-1]} over or inside the input {log}")
     assert sorted(p.name for p in log.iterdir()) == ["gyro.csv"]
+
+
+def test_a_log_folder_without_gyro_csv_is_named_not_read_as_logs(tmp_path: Path) -> None:
+    log = tmp_path / "gm"
+    log.mkdir()
+    for name in ("odometry.csv", "reference.csv"):
+        synthetic_csv(log / name, 300)
+    why = f"{log}: not a log folder (no gyro.csv)"
+    assert gyrocore("process", log, "--out", tmp_path / "x.csv", code=2).stderr.startswith(f"gyrocore: error: {why}")
+    proc = gyrocore("process", log, "--out", tmp_path / "out", code=1)
+    assert f"FAILED {why}" in proc.stdout
+    assert not (tmp_path / "x.csv").exists() and not list((tmp_path / "out").iterdir())

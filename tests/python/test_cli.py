@@ -14,7 +14,7 @@ import pytest
 from gyrocore import InputWarning
 from gyrocore.cli import main
 
-from .conftest import real_log_path
+from .conftest import gyrocore_cli, real_log_path
 
 
 def test_demo_prints_every_preset_and_writes_a_plot(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
@@ -207,3 +207,25 @@ def test_reproduce_prints_paper_beside_ours_and_writes_figures(
     captured = capsys.readouterr()
     assert "unknown experiment 'hong-tabel-1'" in captured.err and "1.111" not in captured.out
     assert not (tmp_path / "typo").exists()
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (("calibrate", "{log}", "--min-duration", "nan"), "argument --min-duration: must be a finite number > 0, got 'nan'"),
+        (("calibrate", "{log}", "--max-rate-dps", "-1"), "argument --max-rate-dps: must be a finite number > 0, got '-1'"),
+        (("allan", "{log}", "--kalibr", "{tmp}/k.yaml", "--rrw", "inf"),
+         "argument --rrw: must be a finite number > 0, got 'inf'"),
+        (("tune", "{log}", "--harm-limit", "-1"), "argument --harm-limit: must be a finite number >= 0, got '-1'"),
+        (("tune", "{log}", "--bias-duration", "-1"), "argument --bias-duration: must be a finite number > 0, got '-1'"),
+        (("tune", "{log}", "--max-evals", "0"), "argument --max-evals: must be an integer >= 1, got '0'"),
+        (("tune", "{log}", "--set", "hdr_c2=nan"), "--set hdr_c2=nan: the value must be a finite number (SI)"),
+        (("tune", "{log}", "--param", "hdr_c2=1:nan"), "--param hdr_c2=1:nan: bounds must read LOW:HIGH, finite"),
+        (("tune", "--sim-drive", "mixed:nan"), "--sim-drive mixed:nan: need a road mix of"),
+    ],
+)
+def test_numeric_options_are_checked_before_any_work(tmp_path: Path, args: tuple[str, ...], message: str) -> None:
+    log = real_log_path("broad_10")
+    proc = gyrocore_cli(*(a.format(log=log, tmp=tmp_path) for a in args), code=2, timeout=60)
+    assert message in proc.stderr.splitlines()[-1], proc.stderr
+    assert not list(tmp_path.iterdir())

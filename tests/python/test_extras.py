@@ -73,7 +73,8 @@ def test_the_quick_start_demo_needs_only_the_plot_extra(tmp_path: Path) -> None:
     stderr = cli_without(tuple(m for m in OPTIONAL if m != "matplotlib"),
                          "demo", "--duration", "120", "--drives", "1", "--plot", plot, code=0)
     assert stderr == "" and plot.read_bytes()[:4] == b"\x89PNG"
-    stderr = cli_without(OPTIONAL, "demo", "--duration", "120", "--drives", "1", "--plot", plot, code=0)
+    stderr = cli_without(OPTIONAL, "demo", "--duration", "120", "--drives", "1", "--plot", tmp_path / "no.png", code=0)
+    assert not (tmp_path / "no.png").exists()
     assert "(no plot: the demo's plot needs matplotlib: pip install 'gyrocore[plot]')" in stderr
 
 

@@ -181,17 +181,19 @@ def test_cli_process_uses_the_folder_fixes_or_a_given_file(folder_with_fixes: Pa
     expected = read_log(folder_with_fixes).process("hdr")
     assert table.dtype.names == ("t", "heading", "rate", "drift", "heading_sigma")
     np.testing.assert_allclose(table["heading"], expected.heading, rtol=0, atol=1e-12)
-    assert cli("process", str(folder_with_fixes), "--out", str(out), "--no-fixes").returncode == 0
-    assert out.read_text().splitlines()[0] == "t,heading,rate,drift"
+    without = tmp_path / "without.csv"
+    assert cli("process", str(folder_with_fixes), "--out", str(without), "--no-fixes").returncode == 0
+    assert without.read_text().splitlines()[0] == "t,heading,rate,drift"
     given = tmp_path / "given.csv"
     given.write_bytes((folder_with_fixes / "fixes.csv").read_bytes())
     bare = tmp_path / "bare.csv"
     log = read_log(folder_with_fixes)
     bare.write_text("t,gyro_z\n" + "".join(f"{float(a)!r},{float(b)!r}\n" for a, b in zip(log.t, log.rate)))
-    proc = cli("process", str(bare), "--out", str(out), "--preset", "raw", "--causal", "--fixes", str(given))
+    fused = tmp_path / "fused.csv"
+    proc = cli("process", str(bare), "--out", str(fused), "--preset", "raw", "--causal", "--fixes", str(given))
     assert proc.returncode == 0, proc.stderr
     causal = gyrocore.process(log.t, log.rate, "raw", mode="causal", fixes=given)
-    np.testing.assert_allclose(np.genfromtxt(out, delimiter=",", names=True)["heading"], causal.heading, atol=1e-12)
+    np.testing.assert_allclose(np.genfromtxt(fused, delimiter=",", names=True)["heading"], causal.heading, atol=1e-12)
 
 
 def test_cli_bad_fixes_are_one_line_errors(folder_with_fixes: Path, tmp_path: Path) -> None:

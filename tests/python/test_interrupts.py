@@ -28,7 +28,8 @@ INTERRUPTED = "gyrocore: interrupted; no partial output was left"
 
 
 def _command(src: Path, out: Path) -> list[str]:
-    return ["process", str(src), "--out", str(out), "--preset", "raw", "--chunk-rows", "5000"]
+    """A run that replaces the previous output ``out``."""
+    return ["process", str(src), "--out", str(out), "--preset", "raw", "--chunk-rows", "5000", "--overwrite"]
 
 
 def _owns_signals(pid: int) -> bool:
@@ -208,7 +209,7 @@ def test_an_interrupted_batch_leaves_each_output_previous_or_complete(tmp_path: 
         (out / f"d{i}.csv").write_text(PREVIOUS)
     proc = subprocess.Popen(
         [sys.executable, "-m", "gyrocore.cli", "process", str(logs), "--out", str(out), "--preset", "raw",
-         "--jobs", "2", "--chunk-rows", "5000"],
+         "--jobs", "2", "--chunk-rows", "5000", "--overwrite"],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,

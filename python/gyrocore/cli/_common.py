@@ -5,8 +5,10 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import math
+import os
 import sys
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
@@ -154,6 +156,50 @@ def pipeline_overrides(args: argparse.Namespace, named: dict[str, Any]) -> dict[
         out[name] = parse_value(value)
         sources[name] = "--param"
     return out
+
+
+def add_overwrite_option(parser: argparse.ArgumentParser | argparse._ArgumentGroup) -> None:
+    """``--overwrite``: the command replaces output files that exist already (see :func:`refuse_existing`)."""
+    parser.add_argument("--overwrite", action="store_true",
+                        help="replace output files that exist already (default: refuse them, before any work)")
+
+
+def refuse_existing(outputs: Iterable[Path], overwrite: bool) -> None:
+    """Refuse, before any work, outputs that exist already unless ``--overwrite`` was given:
+    nothing a user has is replaced without being asked (a dangling link counts, its target too)."""
+    if overwrite:
+        return
+    taken = [str(p) for p in outputs if os.path.lexists(p)]
+    if not taken:
+        return
+    shown = ", ".join(taken[:3]) + (f" and {len(taken) - 3} more" if len(taken) > 3 else "")
+    verb, them = ("exists", "it") if len(taken) == 1 else ("exist", "them")
+    raise FileExistsError(f"{shown} already {verb}; pass --overwrite to replace {them}, or write elsewhere "
+                          "(nothing was written)")
+
+
+def _bounded(low: float, *, above: bool, integer: bool = False) -> Callable[[str], float]:
+    """An argparse ``type``: a finite number (an integer where ``integer``) above ``low``, or at
+    least ``low``; argparse's error names the option, this one the value and the bound."""
+    wanted = f"{'an integer' if integer else 'a finite number'} {'>' if above else '>='} {low:g}"
+
+    def parse(text: str) -> float:
+        try:
+            value: float = int(text) if integer else float(text)
+        except ValueError:
+            value = math.nan
+        if not (math.isfinite(value) and (value > low if above else value >= low)):
+            raise argparse.ArgumentTypeError(f"must be {wanted}, got {text!r}")
+        return value
+
+    return parse
+
+
+#: argparse types of numeric options: checked as the command line is read, before any work.
+POSITIVE = _bounded(0.0, above=True)
+NON_NEGATIVE = _bounded(0.0, above=False)
+COUNT = _bounded(1, above=False, integer=True)
+SEED = _bounded(0, above=False, integer=True)
 
 
 def write_atomically(path: str | Path, write: Callable[[str], object]) -> None:

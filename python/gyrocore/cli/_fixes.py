@@ -11,7 +11,6 @@ from typing import Any
 
 from .. import io
 from .._fixes_eval import FixScore, SimFixes, format_fix_scores, score_with_fixes
-from ..batch import check_outside_inputs
 from ..evaluate import Method
 from ..fixes import Fixes, read_fixes_file
 from ..io import Log, read_log
@@ -98,7 +97,6 @@ def process_with_fixes(args: argparse.Namespace, path: Path, out: Path, options:
                        columns: tuple[str, ...]) -> int:
     """``gyrocore process`` of one input with fixes: the log read into memory (the smoother of whole
     mode needs every sample), processed by :meth:`gyrocore.Log.process`, written in one piece."""
-    check_outside_inputs(args.inputs, out)
     names = {f.name for f in fields(io.ReadOptions)}
     overrides = {k: v for k, v in options.items() if k not in names}
     log = read_log(path, **{k: v for k, v in options.items() if k in names})

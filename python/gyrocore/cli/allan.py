@@ -9,7 +9,16 @@ from pathlib import Path
 from .. import allan, io
 from .._extras import pyplot
 from ..window import Window
-from ._common import WINDOW_HELP, add_command, add_reading_options, reading_options, write_atomically
+from ._common import (
+    POSITIVE,
+    WINDOW_HELP,
+    add_command,
+    add_overwrite_option,
+    add_reading_options,
+    reading_options,
+    refuse_existing,
+    write_atomically,
+)
 
 
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
@@ -30,8 +39,9 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
                    help=f"analyse only this span, e.g. the rest: {WINDOW_HELP}")
     p.add_argument("--plot", type=Path, help="write a log-log plot (PNG) to this file")
     p.add_argument("--kalibr", type=Path, help="write a Kalibr-style IMU noise YAML to this file")
-    p.add_argument("--rrw", type=float, default=None,
+    p.add_argument("--rrw", type=POSITIVE, default=None,
                    help="rate random walk K [rad/s^2/sqrt(Hz)] for --kalibr when the record is too short to show it")
+    add_overwrite_option(p)
     add_reading_options(p)
 
 
@@ -40,9 +50,10 @@ def run(args: argparse.Namespace) -> int:
     window = None if args.window is None else Window.parse(args.window, "--window")
     if args.rrw is not None and args.kalibr is None:
         raise ValueError("--rrw is the rate random walk written by --kalibr: give --kalibr FILE too, or leave --rrw out")
-    for out in (args.plot, args.kalibr):
-        if out is not None:
-            io.check_not_input(out, [src])
+    outputs = [out for out in (args.plot, args.kalibr) if out is not None]
+    for out in outputs:
+        io.check_not_input(out, [src])
+    refuse_existing(outputs, args.overwrite)
     plt = None if args.plot is None else pyplot("--plot")  # before the work
     # A record for the Allan deviation is taken at rest: small rates are no sign of a unit mistake.
     log = io.read_log(src, static=True, **reading_options(args))

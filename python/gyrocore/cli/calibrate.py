@@ -16,10 +16,13 @@ from ..wholelog import times_ok
 from ..window import Window
 from ._common import (
     REFERENCE_HELP,
+    POSITIVE,
     WINDOW_HELP,
     add_command,
+    add_overwrite_option,
     add_reading_options,
     reading_options,
+    refuse_existing,
     with_reference,
     write_atomically,
 )
@@ -39,8 +42,8 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
                    help=f"reference heading of a file input: {REFERENCE_HELP}")
     p.add_argument("--window", nargs=2, metavar=("T0", "T1"),
                    help=f"rest window instead of finding one: {WINDOW_HELP}")
-    p.add_argument("--min-duration", type=float, default=1.0, help="shortest rest [s] (default 1)")
-    p.add_argument("--max-rate-dps", type=float, default=None,
+    p.add_argument("--min-duration", type=POSITIVE, default=1.0, help="shortest rest [s] (default 1)")
+    p.add_argument("--max-rate-dps", type=POSITIVE, default=None,
                    help="largest reading at rest [deg/s] (default 2.9); raise it for a gyro with a large bias")
     p.add_argument("--fit-window", nargs=2, metavar=("T0", "T1"),
                    help=f"span for the reference fit (default: the whole log): {WINDOW_HELP}")
@@ -48,6 +51,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p.add_argument("--save", type=Path,
                    help="write the calibration (JSON): the reference fit where the log has a reference, "
                         "else the static bias")
+    add_overwrite_option(p)
     add_reading_options(p)
 
 
@@ -69,6 +73,7 @@ def run(args: argparse.Namespace) -> int:
     span = None if args.fit_window is None else Window.parse(args.fit_window, "--fit-window")
     if args.save is not None:
         io.check_not_input(args.save, [source])  # e.g. the log's own meta.json
+        refuse_existing([args.save], args.overwrite)
     log = io.read_log(source, **reading_options(args))
     if args.reference is not None:
         log = with_reference(log, args.reference)

@@ -18,7 +18,11 @@ import numpy as np
 from .. import evaluate, motion, sim, tune
 from .._extras import MissingExtra, pyplot
 from ..pipeline import HeadingResult, preset_names, recommended_preset
-from ._common import add_command, write_atomically
+from ._common import add_command, add_overwrite_option, refuse_existing, write_atomically
+
+
+#: The demo's own plot: each run replaces the previous run's (a file named with --plot is the user's).
+PLOT = "gyrocore_demo.png"
 
 
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
@@ -37,11 +41,15 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
                    help="simulated gyro (default crs03, the HDR paper's)")
     p.add_argument("--mix", choices=sorted(motion.ROAD_MIXES), default="mixed",
                    help="road mix of the drive (default mixed, the HDR paper's Mixed Drive)")
-    p.add_argument("--plot", default="gyrocore_demo.png", help="PNG to write ('' for none)")
+    p.add_argument("--plot", default=PLOT, help=f"PNG to write ('' for none; default {PLOT}, which each run "
+                   "replaces; another file that exists is refused unless --overwrite)")
+    add_overwrite_option(p)
     p.add_argument("--json", action="store_true", help="print the table as JSON")
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.plot and Path(args.plot) != Path(PLOT):
+        refuse_existing([Path(args.plot)], args.overwrite)
     if args.seed < 0:
         raise ValueError(f"--seed must be >= 0, got {args.seed}")
     if args.drives < 1:

@@ -11,18 +11,20 @@ from pathlib import Path
 from typing import Any
 
 from .._checks import InputWarning
-from ..evaluate import Method, compare, format_bias_sources, format_table
+from ..evaluate import Method, compare, format_bias_sources, format_table, plot_path
 from ..io import check_not_input, read_log
 from ..pipeline import preset_names
 from ..tune import ParameterSet
 from ._fixes import add_fix_options, evaluate_with_fixes, fixes_wanted
 from ._common import (
     add_command,
+    add_overwrite_option,
     add_override_options,
     add_reading_options,
     pipeline_overrides,
     print_json,
     reading_options,
+    refuse_existing,
     warn,
 )
 
@@ -76,6 +78,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     add_fix_options(p, evaluate=True)
     p.add_argument("--json", action="store_true", help="print one JSON list, an object per (log, method)")
     p.add_argument("--plot-dir", metavar="DIR", help="write <log>.png (heading and error vs time) there")
+    add_overwrite_option(p)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -96,6 +99,8 @@ def run(args: argparse.Namespace) -> int:
             )
     if fixes_wanted(args, logs):
         return evaluate_with_fixes(args, logs, methods)
+    if args.plot_dir:
+        refuse_existing([plot_path(args.plot_dir, log) for log in logs], args.overwrite)
     logs = [replace(log, fixes=None) for log in logs]  # --no-fixes
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", InputWarning)

@@ -9,17 +9,19 @@ from typing import Any
 
 from .. import io
 from .._checks import InputWarning
-from ..batch import check_outside_inputs, expand_inputs, process_file, process_many
+from ..batch import check_outside_inputs, expand_inputs, output_paths, process_file, process_many
 from ._fixes import add_fix_options, process_with_fixes, uses_fixes
 from ._common import (
     WINDOW_HELP,
     add_command,
+    add_overwrite_option,
     add_override_options,
     add_reading_options,
     pipeline_overrides,
     print_json,
     progress_bar,
     reading_options,
+    refuse_existing,
     warn,
 )
 
@@ -27,7 +29,8 @@ _EPILOG = """
 IN is a CSV, Parquet, .npy or .npz file, a ROS 1 .bag or ROS 2 bag folder, a log folder, a
 folder of those, or a glob; give several. OUT ending in .csv or .parquet is one output file (one
 input); otherwise a folder that receives <name>.csv (or --format parquet) per input, processed in
-parallel (--jobs, or a Dask cluster with --scheduler). Exit code 0: all done; 1: some files
+parallel (--jobs, or a Dask cluster with --scheduler). An output that exists already is refused
+before any work unless --overwrite is given. Exit code 0: all done; 1: some files
 failed (listed with their reason); 2: bad usage or input (one line); 130: interrupted.
 """
 
@@ -99,6 +102,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         help=f"samples per chunk (default {io.DEFAULT_CHUNK_ROWS})",
     )
     out.add_argument("--json", action="store_true", help="print the report as JSON")
+    add_overwrite_option(out)
     add_fix_options(p, evaluate=False)
 
 
@@ -125,21 +129,26 @@ def columns(args: argparse.Namespace) -> tuple[str, ...]:
 def run(args: argparse.Namespace) -> int:
     inputs = expand_inputs(args.inputs)
     out = Path(args.out)
-    # the files that options name are inputs too: none may become the output
-    io.check_not_input(out, [Path(p) for p in (args.fixes, args.calibration) if p is not None])
+    # the files that options name are inputs too: none may become the output (said before that the
+    # output exists; an input that cannot be read fails later with its reason)
+    named = [Path(p) for p in (args.fixes, args.calibration) if p is not None]
+    io.check_not_input(out, [*(p for p in inputs if p.exists()), *named])
+    check_outside_inputs(args.inputs, out, inputs)
     kwargs = {**options(args), "columns": columns(args)}
+    one_file = out.suffix.lower() in (".csv", ".parquet", ".pq")
+    refuse_existing([out] if one_file else output_paths(inputs, out, args.format), args.overwrite)
     try:
         with warnings.catch_warnings():
             # every file's report carries these; print them once, with the file's name
             warnings.simplefilter("ignore", InputWarning)
             if uses_fixes(args, inputs):
-                if out.suffix.lower() not in (".csv", ".parquet", ".pq"):
+                if not one_file:
                     raise ValueError(f"--out {out}: with heading fixes the output is one .csv or .parquet file")
                 return process_with_fixes(args, inputs[0], out, options(args), kwargs["columns"])
             if "heading_sigma" in kwargs["columns"]:
                 raise ValueError("--columns heading_sigma: it comes with heading fixes (--fixes FILE, or one log "
                                  "folder with fixes.csv)")
-            if out.suffix.lower() in (".csv", ".parquet", ".pq"):
+            if one_file:
                 return _one(inputs, out, args, kwargs)
             return _many(out, args, kwargs)
     except ImportError as e:  # an optional dependency the input needs: the user can install it
@@ -149,7 +158,6 @@ def run(args: argparse.Namespace) -> int:
 def _one(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
     if len(inputs) != 1:
         raise ValueError(f"--out {out} is one file but there are {len(inputs)} inputs; give a folder")
-    check_outside_inputs(args.inputs, out)
     with progress_bar(inputs[0].name) as bar:
         report = process_file(
             inputs[0],

@@ -6,7 +6,7 @@ import argparse
 from pathlib import Path
 
 from .. import paper
-from ._common import add_command
+from ._common import add_command, add_overwrite_option, refuse_existing
 
 
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
@@ -21,6 +21,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
                    help=f"experiments (default: all): {', '.join(paper.REPRODUCTIONS)}")
     p.add_argument("--out", type=Path, default=Path("."), help="folder for the figures (PNG; created if missing)")
     p.add_argument("--no-figures", action="store_true", help="print the tables only")
+    add_overwrite_option(p)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -29,6 +30,8 @@ def run(args: argparse.Namespace) -> int:
     if unknown:  # before anything runs, so a typo costs no time
         choices = ", ".join(paper.REPRODUCTIONS)
         raise ValueError(f"unknown experiment {', '.join(map(repr, unknown))}; choose from {choices}")
+    if not args.no_figures:
+        refuse_existing([args.out / paper.REPRODUCTIONS[name][1] for name in names], args.overwrite)
     for i, name in enumerate(names):
         if i:
             print()

@@ -11,7 +11,7 @@ from typing import Callable
 import numpy as np
 
 from .. import motion, sim
-from ._common import add_command, write_atomically
+from ._common import add_command, add_overwrite_option, refuse_existing, write_atomically
 
 #: Column order of the CSV: what a log has (t, gyro_z, temperature), then the truth.
 COLUMNS = ("t", "gyro_z", "temperature", "rate_true", "heading_true", "x", "y", "speed", "drift")
@@ -69,6 +69,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p.add_argument("--mix", choices=sorted(motion.ROAD_MIXES), help=f"car road mix (default {MIX})")
     p.add_argument("--runs", type=int, help=f"runs of the square path or rotary table (default {RUNS})")
     p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    add_overwrite_option(p)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -77,6 +78,7 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"{out}: output must end in .csv")
     if not out.parent.is_dir():
         raise OSError(f"{out.parent}: no such folder")
+    refuse_existing([out], args.overwrite)
     if args.seed < 0:
         raise ValueError(f"--seed must be >= 0, got {args.seed}")
     _options_of_the_profile(args)

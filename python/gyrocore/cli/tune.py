@@ -12,7 +12,18 @@ from .. import motion, tune
 from .._extras import require
 from ..io import check_not_input, read_log
 from ..pipeline import parameters
-from ._common import add_command, add_reading_options, print_json, reading_options
+from ._common import (
+    COUNT,
+    NON_NEGATIVE,
+    POSITIVE,
+    SEED,
+    add_command,
+    add_overwrite_option,
+    add_reading_options,
+    print_json,
+    reading_options,
+    refuse_existing,
+)
 
 _TABLES = {"II": motion.TABLE_II_DRIVES, "IV": motion.TABLE_IV_DRIVES}
 #: Seeds of the simulated test drives start here, away from the training drives' seeds.
@@ -48,31 +59,32 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     add("--set", action="append", metavar="NAME=VALUE", help="hold a parameter at an SI value (repeatable)")
     add("--test-sim-table", action="append", choices=sorted(_TABLES), help="simulated test drives (other seeds)")
     add("--test", action="append", default=[], metavar="LOGDIR", help="real log folder to test on (not trained on)")
-    add("--time-scale", type=float, default=1.0, metavar="F", help="scale the simulated drives' durations (default 1)")
-    add("--rate-hz", type=float, default=10.0, metavar="HZ",
+    add("--time-scale", type=POSITIVE, default=1.0, metavar="F", help="scale the simulated drives' durations (default 1)")
+    add("--rate-hz", type=POSITIVE, default=10.0, metavar="HZ",
         help="sample rate of the simulated drives [Hz] (default 10)")
     add("--sensor", default="crs03", metavar="NAME", help="simulated gyro (gyrocore.sim.SENSORS; default crs03)")
     add("--harm-mix", action="append", metavar="MIX", help="road mixes of the do-no-harm drives "
         f"(default {', '.join(tune.HARM_MIXES)})")
-    add("--harm-per-mix", type=int, default=2, metavar="N", help="do-no-harm drives per road mix and gyro (default 2)")
+    add("--harm-per-mix", type=COUNT, default=2, metavar="N", help="do-no-harm drives per road mix and gyro (default 2)")
     add("--harm-noisy", action="store_true",
         help="also unbiased gyros with noise, against static bias removal (see gyrocore.tune)")
     add("--no-harm", action="store_true", help="no do-no-harm constraint")
-    add("--harm-limit", type=float, default=0.5, metavar="DEG",
+    add("--harm-limit", type=NON_NEGATIVE, default=0.5, metavar="DEG",
         help="allowed E_psi above the baseline on a do-no-harm drive [deg] (default 0.5)")
     add("--objective", choices=tune.OBJECTIVES, default="ne_psi",
         help="minimise the mean NE_psi (HDR section 5.3; default) or the mean log ratio of E_psi to "
         "static-bias removal's (scale-free: for real logs of 0.4-116 deg)")
     add("--causal", action="store_true",
         help="run the logs as a streaming pipeline would (default: whole mode, as gyrocore evaluate)")
-    add("--bias-duration", type=float, metavar="S", help="static bias of logs without a rest window: first S seconds")
+    add("--bias-duration", type=POSITIVE, metavar="S", help="static bias of logs without a rest window: first S seconds")
     add("--leave-one-out", action="store_true", help="also report the leave-one-out score (one fit per drive)")
-    add("--max-evals", type=int, default=2000, metavar="N", help="objective evaluations per fit (default 2000)")
-    add("--seed", type=int, default=0, metavar="N", help="optimiser seed (default 0)")
+    add("--max-evals", type=COUNT, default=2000, metavar="N", help="objective evaluations per fit (default 2000)")
+    add("--seed", type=SEED, default=0, metavar="N", help="optimiser seed (default 0)")
     add("--optimiser", choices=tune.OPTIMISERS, default="differential_evolution")
     add("--name", help="name of the parameter set (default <preset>_tuned)")
     add("--out", metavar="FILE", help="write the parameter file (JSON) here")
     add("--json", action="store_true", help="print the result as JSON")
+    add_overwrite_option(p)
     add_reading_options(p)
 
 
@@ -85,14 +97,20 @@ def _parse_params(specs: Sequence[str]) -> tuple[list[str], dict[str, tuple[floa
             raise ValueError(f"--param {spec}: unknown parameter {name!r}")
         names.append(name)
         if rng:
-            low, sep, high = rng.partition(":")
-            try:
-                bounds[name] = (float(low), float(high))
-            except ValueError:
-                raise ValueError(f"--param {spec}: bounds must read LOW:HIGH (SI numbers)") from None
-            if not sep:
-                raise ValueError(f"--param {spec}: bounds must read LOW:HIGH (SI numbers)")
+            bounds[name] = _bounds(spec, rng)
     return names, bounds
+
+
+def _bounds(spec: str, text: str) -> tuple[float, float]:
+    """The bounds ``LOW:HIGH`` of ``--param spec``: finite numbers, LOW below HIGH."""
+    low, _, high = text.partition(":")
+    try:
+        lo, hi = float(low), float(high)
+    except ValueError:
+        lo = hi = math.nan
+    if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+        raise ValueError(f"--param {spec}: bounds must read LOW:HIGH, finite SI numbers with LOW < HIGH")
+    return lo, hi
 
 
 def _parse_drives(specs: Sequence[str]) -> list[motion.DriveSpec]:
@@ -103,7 +121,7 @@ def _parse_drives(specs: Sequence[str]) -> list[motion.DriveSpec]:
             mix, minutes, count = parts[0], float(parts[1]), int(parts[2]) if len(parts) > 2 else 1
         except (IndexError, ValueError):
             raise ValueError(f"--sim-drive {spec}: must read MIX:MINUTES[:COUNT]") from None
-        if mix not in motion.ROAD_MIXES or len(parts) > 3 or minutes <= 0 or count < 1:
+        if mix not in motion.ROAD_MIXES or len(parts) > 3 or not 0 < minutes < math.inf or count < 1:
             raise ValueError(f"--sim-drive {spec}: need a road mix of {', '.join(motion.ROAD_MIXES)}, "
                              "minutes > 0 and a count >= 1")
         drives += [motion.DriveSpec(f"{mix} {minutes:g} min", minutes, mix, "--sim-drive")] * count
@@ -119,13 +137,16 @@ def _parse_fixed(specs: Sequence[str]) -> dict[str, float]:
         try:
             fixed[name] = float(value)
         except ValueError:
-            raise ValueError(f"--set {spec}: the value must be a number (SI)") from None
+            fixed[name] = math.nan
+        if not math.isfinite(fixed[name]):
+            raise ValueError(f"--set {spec}: the value must be a finite number (SI)")
     return fixed
 
 
 def run(args: argparse.Namespace) -> int:
     if args.out is not None:  # before the fit, which takes minutes
         check_not_input(Path(args.out), [Path(p) for p in args.logs + args.test])
+        refuse_existing([Path(args.out)], args.overwrite)
     require("scipy.optimize", "tuning")  # before the drives are built
     names, bounds = _parse_params(args.param or [])
     progress = (lambda msg: print(msg, file=sys.stderr)) if not args.json else None

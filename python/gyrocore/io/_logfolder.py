@@ -22,6 +22,8 @@ if TYPE_CHECKING:
 GYRO_CSV = "gyro.csv"
 #: A log folder's heading fixes, used by the processing entry points when present.
 FIXES_CSV = "fixes.csv"
+#: The other files of a log folder, each optional.
+META_JSON, REFERENCE_CSV, ODOMETRY_CSV = "meta.json", "reference.csv", "odometry.csv"
 
 
 def is_log_folder(path: Path) -> bool:
@@ -29,22 +31,29 @@ def is_log_folder(path: Path) -> bool:
     return (path / GYRO_CSV).is_file()
 
 
+def lacks_gyro(path: Path) -> bool:
+    """Whether ``path`` is a folder with a log folder's other files but no ``gyro.csv``: a log
+    folder without its samples, not a folder of logs whose CSV files are the logs."""
+    others = (META_JSON, REFERENCE_CSV, ODOMETRY_CSV, FIXES_CSV)
+    return path.is_dir() and not is_log_folder(path) and any((path / name).is_file() for name in others)
+
+
 def read_meta(folder: Path) -> tuple[dict[str, Any], tuple[float, float] | None]:
     """``meta.json`` (empty without the file) and its rest window ``(t0, t1)`` [s] (or None)."""
-    path = folder / "meta.json"
+    path = folder / META_JSON
     meta = _read_json(path)
     return meta, _rest_window(path, meta.get("stationary"))
 
 
 def read_reference(folder: Path) -> dict[str, FloatArray]:
     """``reference.csv`` (:func:`read_reference_file`); empty without the file."""
-    path = folder / "reference.csv"
+    path = folder / REFERENCE_CSV
     return read_reference_file(path) if path.is_file() else {}
 
 
 def read_odometry(folder: Path) -> dict[str, FloatArray]:
     """Columns t and speed of ``odometry.csv``; empty without the file."""
-    return _read_table(folder / "odometry.csv", ("t", "speed"))
+    return _read_table(folder / ODOMETRY_CSV, ("t", "speed"))
 
 
 def read_fixes(folder: Path) -> Fixes | None:

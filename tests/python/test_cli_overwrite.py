@@ -1,0 +1,98 @@
+"""No command replaces a file the user has: an output that exists already is refused before any
+work, in one line naming it, unless ``--overwrite`` is given; the output is never an input, even
+with ``--overwrite``."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from gyrocore import datasets
+from gyrocore.cli import main
+
+from .conftest import gyrocore_cli
+from .test_batch import synthetic_csv
+
+MINE = "the user's own file\n"
+
+#: Every command that writes a file named on its command line: its arguments ({log}: a log folder
+#: with a reference, {tmp}: a scratch folder holding small.csv) and the file it would write.
+WRITERS = {
+    "process to a file": (("process", "{tmp}/small.csv", "--out", "{tmp}/victim.csv"), "victim.csv"),
+    "process to a folder": (("process", "{tmp}/small.csv", "--out", "{tmp}/outF"), "outF/small.csv"),
+    "simulate": (("simulate", "--out", "{tmp}/victim.csv", "--duration", "30"), "victim.csv"),
+    "calibrate": (("calibrate", "{log}", "--save", "{tmp}/victim.json"), "victim.json"),
+    "tune": (("tune", "{log}", "--out", "{tmp}/victim.json"), "victim.json"),
+    "allan plot": (("allan", "{log}", "--plot", "{tmp}/victim.png"), "victim.png"),
+    "allan kalibr": (("allan", "{log}", "--kalibr", "{tmp}/victim.yaml"), "victim.yaml"),
+    "evaluate": (  # the plot is named after meta.json's name
+        ("evaluate", "{log}", "--preset", "raw", "--plot-dir", "{tmp}/plots"), "plots/sample_drive.png"),
+    "reproduce": (("reproduce", "hong-allan", "--out", "{tmp}/figures"), "figures/hong_allan.png"),
+    "demo": (("demo", "--duration", "60", "--drives", "1", "--plot", "{tmp}/victim.png"), "victim.png"),
+}
+
+
+@pytest.fixture(scope="module")
+def log(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    return datasets.write_sample(tmp_path_factory.mktemp("logs") / "drive")
+
+
+def _command(name: str, log: Path, tmp: Path) -> tuple[list[str], Path]:
+    """The arguments of the writer ``name`` and the file it writes, with a user's file there."""
+    args, target = WRITERS[name]
+    synthetic_csv(tmp / "small.csv", 3000)
+    path = tmp / target
+    path.parent.mkdir(exist_ok=True)
+    path.write_text(MINE)
+    return [a.format(log=log, tmp=tmp) for a in args], path
+
+
+@pytest.mark.parametrize("name", WRITERS)
+def test_an_output_that_exists_is_refused_before_any_work(name: str, log: Path, tmp_path: Path) -> None:
+    args, target = _command(name, log, tmp_path)
+    before = sorted(p.relative_to(tmp_path) for p in tmp_path.rglob("*"))
+    # tune would fit for minutes, the demo simulate for seconds: the refusal comes first
+    proc = gyrocore_cli(*args, code=2, timeout=60)
+    assert proc.stderr == (f"gyrocore: error: {target} already exists; pass --overwrite to replace it, or write "
+                           "elsewhere (nothing was written)\n")
+    assert target.read_text() == MINE
+    assert sorted(p.relative_to(tmp_path) for p in tmp_path.rglob("*")) == before
+
+
+@pytest.mark.parametrize("name", ["process to a file", "process to a folder", "simulate", "calibrate", "allan kalibr"])
+def test_overwrite_replaces_the_output(name: str, log: Path, tmp_path: Path) -> None:
+    args, target = _command(name, log, tmp_path)
+    gyrocore_cli(*args, "--overwrite", code=0)
+    assert target.read_text() != MINE
+    assert not list(target.parent.glob(".*.tmp"))
+
+
+def test_an_output_folder_is_checked_for_every_file_before_any_is_written(tmp_path: Path) -> None:
+    inputs = [synthetic_csv(tmp_path / f"{name}.csv", 3000) for name in ("a", "b", "c")]
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "b.csv").write_text(MINE)
+    (out / "c.csv").write_text(MINE)
+    proc = gyrocore_cli("process", *inputs, "--out", out, code=2)
+    assert proc.stderr.startswith(f"gyrocore: error: {out / 'b.csv'}, {out / 'c.csv'} already exist; "
+                                  "pass --overwrite to replace them")
+    assert sorted(p.name for p in out.iterdir()) == ["b.csv", "c.csv"]
+    assert (out / "b.csv").read_text() == MINE
+
+
+@pytest.mark.parametrize("overwrite", [(), ("--overwrite",)])
+def test_the_input_is_never_the_output(tmp_path: Path, overwrite: tuple[str, ...]) -> None:
+    src = synthetic_csv(tmp_path / "in.csv", 300)
+    before = src.read_bytes()
+    proc = gyrocore_cli("process", src, "--out", src, *overwrite, code=2)
+    assert proc.stderr.startswith(f"gyrocore: error: refusing to write {src} over or inside the input")
+    assert src.read_bytes() == before
+
+
+def test_the_demo_replaces_its_own_plot(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    pytest.importorskip("matplotlib")
+    monkeypatch.chdir(tmp_path)
+    Path("gyrocore_demo.png").write_text("the previous run's plot")
+    assert main(["demo", "--duration", "60", "--drives", "1"]) == 0
+    assert Path("gyrocore_demo.png").read_bytes().startswith(b"\x89PNG")
