@@ -130,18 +130,20 @@ class Fusion:
     def __init__(self, **settings: float) -> None:
         self._inner = _gyrocore.Fusion(_settings(settings))
 
-    def process(self, t: ArrayLike, rate: ArrayLike, fixes: Fixes | None = None) -> FusionResult:
-        """Processes one block; returns the estimate after each of its samples."""
-        f = Fixes.empty() if fixes is None else fixes
+    def process(self, t: ArrayLike, rate: ArrayLike, fixes: FixesLike | None = None) -> FusionResult:
+        """Processes one block (``fixes``: :data:`FixesLike`, as every entry point takes them);
+        returns the estimate after each of its samples."""
+        f = Fixes.empty() if fixes is None else as_fixes(fixes)
         tt, r = as_float_array("t", t), as_float_array("rate", rate)
         h, s, b, sc = self._inner.process(tt, r, f.t, f.heading, f.sigma)
         return FusionResult(tt, h, s, b, sc, self.counts())
 
-    def check(self, fixes: Fixes) -> None:
+    def check(self, fixes: FixesLike) -> None:
         """Raises the error of the first bad fix among the waiting ones and ``fixes``, every one,
         processing nothing (:meth:`process` checks those its block reaches, and the first past it:
         a bad fix further on fails the block that reaches it)."""
-        self._inner.check(fixes.t, fixes.heading, fixes.sigma)
+        f = as_fixes(fixes)
+        self._inner.check(f.t, f.heading, f.sigma)
 
     def counts(self) -> dict[str, int]:
         """Fixes applied, rejected, before_start, and waiting for a later block."""

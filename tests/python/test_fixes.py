@@ -229,3 +229,16 @@ def test_true_rate_drives_bridge_an_outage_causally_with_their_gyros_grade(drive
     est = np.interp(log.t_ref[inside], r.t, r.heading)
     e_psi = np.degrees(np.abs(np.angle(np.exp(1j * (est - log.heading_ref[inside]))))).mean()
     assert e_psi < 5.0
+
+
+def test_a_stream_takes_fixes_in_every_form_the_entry_points_take(tmp_path: Path) -> None:
+    t, heading, rate = drive(20.0)
+    fixes = gyrocore.sim.gnss_fixes(t, heading, seed=8)
+    path = tmp_path / "fixes.csv"
+    path.write_text("t,heading,sigma\n" + "".join(f"{a!r},{b!r},{c!r}\n" for a, b, c in zip(
+        fixes.t.tolist(), fixes.heading.tolist(), fixes.sigma.tolist())))
+    expected = Fusion().process(t, rate, fixes).heading.tobytes()
+    for given in ((fixes.t, fixes.heading, fixes.sigma), path, str(path)):
+        stream = Fusion()
+        stream.check(given)
+        assert stream.process(t, rate, given).heading.tobytes() == expected
