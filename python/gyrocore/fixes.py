@@ -32,6 +32,11 @@ from .result import fix_output_flags
 if TYPE_CHECKING:
     from .pipeline import HeadingResult
 
+#: The largest magnitude of a fix's heading [rad], as of a gyro reading in the core (2^20): headings
+#: may be continuous (unwrapped), but one beyond this is another unit or a corrupt value, and the
+#: filter's wrapped innovation would lose its precision (at 2^20 rad a double still resolves 2e-10 rad).
+MAX_HEADING = 2.0**20
+
 #: The filter's settings and their units (defaults: the core's ``FusionConfig::default``).
 SETTINGS = ("arw", "bias_walk", "scale_walk", "initial_heading", "initial_heading_sigma", "initial_bias",
             "initial_bias_sigma", "initial_scale_sigma", "gate")
@@ -39,7 +44,10 @@ SETTINGS = ("arw", "bias_walk", "scale_walk", "initial_heading", "initial_headin
 
 @dataclass(frozen=True, repr=False, eq=False)
 class Fixes:
-    """Absolute headings: times [s], headings [rad, CCW from east], standard deviations [rad]."""
+    """Absolute headings: times [s], headings [rad, CCW from east], standard deviations [rad].
+
+    A heading beyond +-:data:`MAX_HEADING` is an error when the fixes are built; NaN, ``sigma <= 0``
+    and the time order are checked by the filter, for the fixes it reaches (docs/fixes.md)."""
 
     t: FloatArray
     heading: FloatArray
@@ -49,6 +57,11 @@ class Fixes:
         if not (len(self.t) == len(self.heading) == len(self.sigma)):
             raise ValueError(f"fix t, heading and sigma must have one length, got {len(self.t)}, "
                              f"{len(self.heading)} and {len(self.sigma)}")
+        far = np.flatnonzero(np.abs(self.heading) > MAX_HEADING)  # NaN is not beyond: the filter names it
+        if len(far):
+            i = int(far[0])
+            raise ValueError(f"fix {i}: heading = {float(self.heading[i])!r} is beyond +-2^20 rad ({MAX_HEADING:.0f}); headings "
+                             "are in rad, counter-clockwise from east (wrapped or continuous): check the column and unit")
 
     def __len__(self) -> int:
         return len(self.t)
@@ -333,7 +346,7 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
 from .fixes_track import from_latlon, from_positions  # noqa: E402
 
 __all__ = [
-    "FIXES_COLUMNS", "GNSS_COLUMNS", "KMH", "KNOT", "SETTINGS", "Fixes", "FixesLike", "Fusion", "FusionResult",
+    "FIXES_COLUMNS", "GNSS_COLUMNS", "KMH", "KNOT", "MAX_HEADING", "SETTINGS", "Fixes", "FixesLike", "Fusion", "FusionResult",
     "as_fixes", "check_all", "from_gnss", "from_latlon", "from_positions", "fuse", "read_fixes_csv", "read_fixes_file",
     "read_gnss_csv", "read_nmea", "smoothed_stage", "stage_settings",
 ]

@@ -242,3 +242,22 @@ def test_a_stream_takes_fixes_in_every_form_the_entry_points_take(tmp_path: Path
         stream = Fusion()
         stream.check(given)
         assert stream.process(t, rate, given).heading.tobytes() == expected
+
+
+def test_a_heading_beyond_two_to_the_twenty_radians_is_named() -> None:
+    t, heading, rate = drive(20.0)
+    fixes = gyrocore.sim.gnss_fixes(t, heading, seed=9)
+    far = fixes.heading.copy()
+    far[4] = 1e300
+    message = r"fix 4: heading = 1e\+300 is beyond \+-2\^20 rad \(1048576\)"
+    with pytest.raises(ValueError, match=message):
+        Fixes(fixes.t, far, fixes.sigma)
+    for mode in ("causal", "whole"):
+        with pytest.raises(ValueError, match=message):
+            gyrocore.process(t, rate, "raw", mode=mode, fixes=(fixes.t, far, fixes.sigma))
+    far[4] = -np.inf
+    with pytest.raises(ValueError, match="fix 4: heading = -inf is beyond"):
+        Fusion().process(t, rate, (fixes.t, far, fixes.sigma))
+    # continuous headings, many turns from the start, are headings
+    turns = fixes.heading + 2**20 - 10.0
+    assert fuse(t, rate, Fixes(fixes.t, turns, fixes.sigma)).counts["applied"] == len(fixes)
