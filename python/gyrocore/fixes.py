@@ -15,6 +15,7 @@ rad/sqrt(s)) and ``bias_walk`` (rate random walk K, rad/s/sqrt(s)); see docs/fix
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, replace
 from pathlib import Path
 from collections.abc import Callable
@@ -27,6 +28,7 @@ from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
 from ._extras import require
 from .io._csvfile import _csv_header as csv_header, read_csv_columns
+from .io.units import HEADER_TIME_UNITS, _normal as normal_unit, split_unit
 from .result import fix_output_flags
 
 if TYPE_CHECKING:
@@ -250,33 +252,91 @@ def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_spe
 def read_gnss_csv(path: str | Path, **options: float) -> Fixes:
     """Fixes from a ``gnss.csv`` like comma_seg40's (t, speed [m/s], bearing [deg, clockwise from
     north]), through :func:`from_gnss` (its options pass on)."""
-    cols = read_csv_columns(Path(path), ("t", "speed", "bearing"))
+    path = Path(path)
+    cols = _read_rows(path, GNSS_COLUMNS)
     return from_gnss(cols["t"], cols["bearing"], cols["speed"], **options)
 
 
 def read_fixes_csv(path: str | Path) -> Fixes:
-    """A log folder's ``fixes.csv``: t [s], heading [rad, CCW from east], sigma [rad]."""
-    cols = read_csv_columns(Path(path), ("t", "heading", "sigma"))
-    return Fixes(cols["t"], cols["heading"], cols["sigma"])
+    """A log folder's ``fixes.csv``: t [s], heading [rad, CCW from east], sigma [rad] (a column
+    name may state its unit, if it is that one: ``t [s]``, ``heading [rad]``). Every fix is
+    checked as it is read: a bad one is an error naming the file, line and column."""
+    path = Path(path)
+    header = csv_header(path, ",")
+    names = _fix_columns(path, header)
+    cols = _read_rows(path, tuple(names.values()))
+    try:
+        return check_all(Fixes(*(cols[names[c]] for c in FIXES_COLUMNS)))
+    except ValueError as e:
+        raise ValueError(_at_line(path, header, names, e)) from None
 
 
 #: The columns of the two fix files :func:`read_fixes_file` reads.
 FIXES_COLUMNS, GNSS_COLUMNS = ("t", "heading", "sigma"), ("t", "speed", "bearing")
+#: The units a ``fixes.csv`` column may state in its name (``t [s]``, ``heading (rad)``), as
+#: :func:`gyrocore.io.units.split_unit` reads them; any other unit is refused, not converted.
+_SECONDS = tuple(u for u, si in HEADER_TIME_UNITS.items() if si == "s")
+_RADIANS = ("rad", "radian", "radians")
+_FIX_UNITS = {"t": ("s", _SECONDS), "heading": ("rad", _RADIANS), "sigma": ("rad", _RADIANS)}
+_FIXES_HEADER = (f"a fixes.csv has the header {','.join(FIXES_COLUMNS)}: t [s] on the gyro's clock, heading [rad, "
+                 "counter-clockwise from east], sigma [rad] (a name may state its unit: t [s], heading [rad])")
+
+
+def _fix_columns(path: Path, header: list[str]) -> dict[str, str]:
+    """The header name of each of :data:`FIXES_COLUMNS` in ``header``: the name itself or with its
+    unit; a column missing, given twice or in another unit is an error saying what is expected."""
+    names = {}
+    for wanted, (unit, spellings) in _FIX_UNITS.items():
+        found = [h for h in header if split_unit(h)[0] == wanted]
+        if len(found) != 1:
+            problem = "no column" if not found else f"{len(found)} columns"
+            raise ValueError(f"{path}: {problem} {wanted}; {_FIXES_HEADER}; its header is {','.join(header)}")
+        given = split_unit(found[0])[1]
+        if given is not None and normal_unit(given) not in spellings:
+            how = " (numpy.radians for degrees)" if unit == "rad" else ""
+            raise ValueError(f"{path}: column {found[0]!r} is in {given}, not {unit}: convert it to {unit}{how} "
+                             f"and name it {wanted} or {wanted} [{unit}]")
+        names[wanted] = found[0]
+    return names
+
+
+def _read_rows(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:
+    """The named columns of a fixes file, which must have a row: a file of no fix is refused, as a
+    gyro file of no sample is, rather than fusing nothing."""
+    cols = read_csv_columns(path, columns)
+    if len(cols[columns[0]]) == 0:
+        raise ValueError(f"{path}: no row after the header line, so no fix; add the fixes (one per line) or "
+                         "remove the file")
+    return cols
+
+
+#: How the filter (and :class:`Fixes`) begin the error of a bad fix: ``fix N: column = value ...``.
+_FIX_ERROR = re.compile(r"fix (\d+): (t|heading|sigma) = ")
+
+
+def _at_line(path: Path, header: list[str], names: dict[str, str], error: ValueError) -> str:
+    """``error``, about one fix of the file ``path``, with the line and column of its value in
+    front (fix N is row N: line N + 2, after the header; blank lines are refused by the reader)."""
+    m = _FIX_ERROR.match(str(error))
+    if m is None:
+        return f"{path}: {error}"
+    column = names[m[2]]
+    return f"{path}: line {int(m[1]) + 2}, column {header.index(column) + 1} ({column}): {error}"
 
 
 def read_fixes_file(path: str | Path) -> Fixes:
     """A fixes file, by its header: ``fixes.csv``'s columns (t, heading [rad, CCW from east],
-    sigma [rad]) or comma_seg40's ``gnss.csv`` (t, speed [m/s], bearing [deg, CW from north],
-    through :func:`read_gnss_csv` with its defaults)."""
+    sigma [rad], :func:`read_fixes_csv`) or comma_seg40's ``gnss.csv`` (t, speed [m/s], bearing
+    [deg, CW from north], through :func:`read_gnss_csv` with its defaults)."""
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"{path}: no such fixes file")
-    header = set(csv_header(path, ","))
-    if set(FIXES_COLUMNS) <= header:
+    header = csv_header(path, ",")
+    if set(FIXES_COLUMNS) <= {split_unit(h)[0] for h in header}:
         return read_fixes_csv(path)
-    if set(GNSS_COLUMNS) <= header:
+    if set(GNSS_COLUMNS) <= set(header):
         return read_gnss_csv(path)
-    raise ValueError(f"{path}: a fixes file has the columns {', '.join(FIXES_COLUMNS)} (headings in rad, CCW "
+    raise ValueError(f"{path}: a fixes file has the columns {', '.join(FIXES_COLUMNS)} (t [s], headings in rad, CCW "
                      f"from east) or {', '.join(GNSS_COLUMNS)} (a gnss.csv); its header has {', '.join(sorted(header))}")
 
 

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import gyrocore
-from gyrocore.fixes import Fixes, Fusion, from_gnss, fuse, read_fixes_csv, read_gnss_csv, read_nmea
+from gyrocore.fixes import Fixes, Fusion, from_gnss, fuse, read_fixes_csv, read_fixes_file, read_gnss_csv, read_nmea
 
 DATA = Path(__file__).resolve().parents[3] / "shared" / "data" / "real"
 BIAS, SCALE = 0.01, 0.02
@@ -138,6 +138,37 @@ def test_a_fixes_csv_is_read(tmp_path: Path) -> None:
     path.write_text("t,heading,sigma\n0.5,1.0,0.01\n1.5,1.1,0.02\n")
     fixes = read_fixes_csv(path)
     assert list(fixes.t) == [0.5, 1.5] and list(fixes.heading) == [1.0, 1.1] and list(fixes.sigma) == [0.01, 0.02]
+
+
+@pytest.mark.parametrize(
+    ("rows", "message"),
+    [
+        ("1,0.1,0.01\n2,nan,0.01\n", r"fixes.csv: line 3, column 2 \(heading\): fix 1: heading = NaN is not finite"),
+        ("1,0.1,0.01\n2,0.2,-0.05\n", r"fixes.csv: line 3, column 3 \(sigma\): fix 1: sigma = -0.05 must be > 0"),
+        ("2,0.1,0.01\n1,0.2,0.01\n", r"fixes.csv: line 3, column 1 \(t\): fix 1: t = 1 comes before the fix before"),
+        ("1,1e300,0.01\n", r"fixes.csv: line 2, column 2 \(heading\): fix 0: heading = 1e\+300 is beyond"),
+        ("", "fixes.csv: no row after the header line, so no fix; add the fixes"),
+    ],
+)
+def test_a_bad_fixes_csv_is_refused_naming_its_line_and_column(tmp_path: Path, rows: str, message: str) -> None:
+    path = tmp_path / "fixes.csv"
+    path.write_text("t,heading,sigma\n" + rows)
+    for read in (read_fixes_csv, read_fixes_file):
+        with pytest.raises(ValueError, match=message):
+            read(path)
+
+
+def test_a_fixes_csv_header_may_state_seconds_and_radians_only(tmp_path: Path) -> None:
+    path = tmp_path / "fixes.csv"
+    path.write_text("t [s],heading (rad),sigma [radians]\n0.5,1.0,0.01\n")
+    assert list(read_fixes_file(path).heading) == [1.0]
+    path.write_text("t [s],heading [deg],sigma [deg]\n0.5,57.3,0.5\n")
+    with pytest.raises(ValueError, match=r"column 'heading \[deg\]' is in deg, not rad: convert it to rad \(numpy.radians"):
+        read_fixes_file(path)
+    path.write_text("t,yaw,sigma\n0.5,1.0,0.01\n")
+    with pytest.raises(ValueError, match=r"no column heading; a fixes.csv has the header t,heading,sigma: t \[s\].*"
+                                         r"heading \[rad, counter-clockwise from east\]"):
+        read_fixes_csv(path)
 
 
 def test_nmea_rmc_and_vtg_become_fixes(tmp_path: Path) -> None:

@@ -199,7 +199,7 @@ def test_cli_bad_fixes_are_one_line_errors(folder_with_fixes: Path, tmp_path: Pa
     bad = tmp_path / "bad.csv"
     bad.write_text("t,heading,sigma\n1,0.1,0.01\n2,0.2,-1\n")
     one_line_error(cli("process", str(folder_with_fixes), "--out", str(out), "--fixes", str(bad)),
-                   "fix 1: sigma = -1 must be > 0")
+                   "bad.csv: line 3, column 3 (sigma): fix 1: sigma = -1 must be > 0")
     assert not out.exists()
     wrong = tmp_path / "wrong.csv"
     wrong.write_text("t,yaw\n1,0.1\n")
