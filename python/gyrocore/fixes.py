@@ -26,6 +26,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
+from ._checks import warn
 from ._extras import require
 from .io._csvfile import _csv_header as csv_header, read_csv_columns
 from .io.units import HEADER_TIME_UNITS, _normal as normal_unit, split_unit
@@ -232,8 +233,11 @@ def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_spe
     east, so ``heading = pi/2 - radians(bearing)``. Course over ground is the direction of the
     velocity, so its error grows as the speed falls: ``sigma = hypot(min_sigma, speed_sigma /
     speed)`` [rad] for a velocity error ``speed_sigma`` [m/s]; below ``min_speed`` [m/s] the
-    course is meaningless (a car at rest has none) and the sample is dropped. Assumes the vehicle
-    moves the way it points (no side slip, forward gear).
+    course is meaningless (a car at rest has none) and the sample is dropped, as is one without a
+    bearing (NaN). Assumes the vehicle moves the way it points (no side slip, forward gear).
+
+    A speed that is negative, NaN or infinite is an error naming its index; samples that give no
+    fix at all warn why (an :class:`~gyrocore.InputWarning` with the speeds seen).
     """
     tt = as_float_array("t", t)
     bearing = as_float_array("bearing_deg", bearing_deg)
@@ -243,18 +247,41 @@ def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_spe
     for name, value in (("min_speed", min_speed), ("speed_sigma", speed_sigma), ("min_sigma_deg", min_sigma_deg)):
         if not (math.isfinite(value) and value > 0):
             raise ValueError(f"{name} must be finite and > 0, got {value}")
-    keep = np.isfinite(bearing) & np.isfinite(v) & (v >= min_speed)
+    bad = np.flatnonzero(~(v >= 0) | np.isinf(v))  # ~(v >= 0): negative or NaN
+    if len(bad):
+        i = int(bad[0])
+        raise ValueError(f"speed[{i}] is {v[i]}: a speed over ground is finite and >= 0 [m/s]; drop or repair the sample")
+    course = np.isfinite(bearing)
+    keep = course & (v >= min_speed)
+    if len(tt) and not keep.any():
+        warn_no_fix(f"{len(tt)} GNSS samples", v[course], min_speed)
     heading = np.angle(np.exp(1j * (math.pi / 2 - np.radians(bearing[keep]))))
     sigma = np.hypot(math.radians(min_sigma_deg), speed_sigma / v[keep])
     return Fixes(tt[keep], heading, sigma)
+
+
+def warn_no_fix(given: str, speeds: FloatArray, min_speed: float) -> None:
+    """Warns that ``given`` (``"58 GNSS samples"``) gave no fix, and why: ``speeds`` [m/s] are those
+    of the samples or steps that had a course, every one below ``min_speed``, or none."""
+    if len(speeds):
+        why = (f"every speed is below min_speed = {min_speed:g} m/s (speeds from {speeds.min():.3g} to "
+               f"{speeds.max():.3g} m/s): too slow for a course; check the units (speeds in m/s, positions in m, "
+               "times in s), or lower min_speed")
+    else:
+        why = "none has a course (every bearing or position is NaN)"
+    warn(f"no heading fix from {given}: {why}")
 
 
 def read_gnss_csv(path: str | Path, **options: float) -> Fixes:
     """Fixes from a ``gnss.csv`` like comma_seg40's (t, speed [m/s], bearing [deg, clockwise from
     north]), through :func:`from_gnss` (its options pass on)."""
     path = Path(path)
+    header = csv_header(path, ",")
     cols = _read_rows(path, GNSS_COLUMNS)
-    return from_gnss(cols["t"], cols["bearing"], cols["speed"], **options)
+    try:
+        return from_gnss(cols["t"], cols["bearing"], cols["speed"], **options)
+    except ValueError as e:
+        raise ValueError(_at_line(path, header, {"speed": "speed"}, e)) from None
 
 
 def read_fixes_csv(path: str | Path) -> Fixes:
@@ -310,18 +337,20 @@ def _read_rows(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:
     return cols
 
 
-#: How the filter (and :class:`Fixes`) begin the error of a bad fix: ``fix N: column = value ...``.
-_FIX_ERROR = re.compile(r"fix (\d+): (t|heading|sigma) = ")
+#: How an error about one row begins: the filter's (and :class:`Fixes`') ``fix N: column = value``,
+#: or :func:`from_gnss`'s ``column[N] is value``.
+_ROW_ERROR = re.compile(r"fix (\d+): (\w+) = |(\w+)\[(\d+)\] is ")
 
 
 def _at_line(path: Path, header: list[str], names: dict[str, str], error: ValueError) -> str:
-    """``error``, about one fix of the file ``path``, with the line and column of its value in
-    front (fix N is row N: line N + 2, after the header; blank lines are refused by the reader)."""
-    m = _FIX_ERROR.match(str(error))
-    if m is None:
+    """``error``, about row N of the file ``path``, with the line and column of its value in front
+    (row N is line N + 2, after the header; blank lines are refused by the reader). ``names``
+    maps the column an error names to the header's name, for the errors whose N is the file's row."""
+    m = _ROW_ERROR.match(str(error))
+    column = None if m is None else names.get(m[2] or m[3])
+    if m is None or column is None:
         return f"{path}: {error}"
-    column = names[m[2]]
-    return f"{path}: line {int(m[1]) + 2}, column {header.index(column) + 1} ({column}): {error}"
+    return f"{path}: line {int(m[1] or m[4]) + 2}, column {header.index(column) + 1} ({column}): {error}"
 
 
 def read_fixes_file(path: str | Path) -> Fixes:

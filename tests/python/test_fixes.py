@@ -125,6 +125,24 @@ def test_gnss_bearing_becomes_a_heading_counter_clockwise_from_east() -> None:
     assert fixes.sigma[2] < fixes.sigma[0]  # faster, surer
 
 
+@pytest.mark.parametrize("bad", [-1.0, np.nan, np.inf])
+def test_a_speed_that_is_negative_or_not_finite_is_named(bad: float, tmp_path: Path) -> None:
+    with pytest.raises(ValueError, match=rf"speed\[2\] is {bad}: a speed over ground is finite and >= 0"):
+        from_gnss([0.0, 1.0, 2.0], [0.0, 90.0, 180.0], [10.0, 10.0, bad])
+    path = tmp_path / "gnss.csv"
+    path.write_text(f"t,speed,bearing\n0,10,0\n1,10,90\n2,{bad},180\n")
+    with pytest.raises(ValueError, match=r"gnss.csv: line 4, column 2 \(speed\): speed\[2\] is"):
+        read_gnss_csv(path)
+
+
+def test_gnss_samples_that_give_no_fix_say_why() -> None:
+    with pytest.warns(gyrocore.InputWarning, match=r"no heading fix from 3 GNSS samples: every speed is below "
+                                                   r"min_speed = 2 m/s \(speeds from 0 to 1.5 m/s\)"):
+        assert len(from_gnss([0.0, 1.0, 2.0], [0.0, 90.0, 180.0], [0.0, 1.5, 0.5])) == 0
+    with pytest.warns(gyrocore.InputWarning, match="none has a course"):
+        from_gnss([0.0, 1.0], [np.nan, np.nan], [10.0, 10.0])
+
+
 def test_comma_gnss_agrees_with_its_reference() -> None:
     log = gyrocore.read_log(DATA / "comma_seg40")
     fixes = read_gnss_csv(DATA / "comma_seg40" / "gnss.csv")
