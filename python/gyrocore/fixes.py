@@ -114,7 +114,8 @@ def fuse(t: ArrayLike, rate: ArrayLike, fixes: FixesLike, *, mode: Literal["caus
         t: gyro times [s], strictly increasing.
         rate: gyro readings [rad/s], counter-clockwise positive.
         fixes: the absolute headings (:data:`FixesLike`; sorted by time; NaN, sigma <= 0 or a step back is an error
-            naming the fix; fixes before the first gyro sample are counted and skipped).
+            naming the fix; fixes before the first gyro sample are counted and skipped, and a warning
+            says so when under a tenth of them fall within the gyro's time span).
         mode: ``"causal"`` (each sample sees the fixes up to its time) or ``"smoothed"`` (the
             Rauch-Tung-Striebel smoother: each sees all fixes; whole logs only).
         settings: filter settings (:data:`SETTINGS`), SI units.
@@ -125,7 +126,28 @@ def fuse(t: ArrayLike, rate: ArrayLike, fixes: FixesLike, *, mode: Literal["caus
     fx = as_fixes(fixes)
     h, s, b, sc, counts = _gyrocore.fuse(tt, r, fx.t, fx.heading, fx.sigma, _settings(settings),
                                           mode == "smoothed")
+    warn_outside(tt, fx)
     return FusionResult(tt, h, s, b, sc, dict(counts))
+
+
+#: A whole log's run warns when fewer than this share of its fixes fall within the gyro's time
+#: span: fixes on another clock (UTC seconds against seconds since boot) all fall outside it,
+#: and are skipped without changing the heading.
+MIN_SHARE_INSIDE = 0.1
+
+
+def warn_outside(t: FloatArray, fixes: Fixes) -> None:
+    """Warns (:class:`~gyrocore.InputWarning`) when ``fixes`` were given for a whole log's gyro
+    times ``t`` but none, or under :data:`MIN_SHARE_INSIDE` of them, fall within ``t``'s span.
+    Both are checked (finite, in time order)."""
+    if not len(fixes) or not len(t):
+        return
+    inside = int(np.count_nonzero((fixes.t >= t[0]) & (fixes.t <= t[-1])))
+    if inside >= MIN_SHARE_INSIDE * len(fixes):
+        return
+    warn(f"{'none' if inside == 0 else f'only {inside}'} of the {len(fixes)} heading fixes fall within the gyro's "
+         f"time span (gyro {t[0]:.3f} to {t[-1]:.3f} s, fixes {fixes.t[0]:.3f} to {fixes.t[-1]:.3f} s), and a fix "
+         "outside it is not used: give the fixes' times on the gyro's clock, in seconds")
 
 
 def _settings(settings: dict[str, float]) -> dict[str, float]:
@@ -436,6 +458,6 @@ from .fixes_track import from_latlon, from_positions  # noqa: E402
 
 __all__ = [
     "FIXES_COLUMNS", "GNSS_COLUMNS", "KMH", "KNOT", "MAX_HEADING", "SETTINGS", "Fixes", "FixesLike", "Fusion", "FusionResult",
-    "as_fixes", "check_all", "from_gnss", "from_latlon", "from_positions", "fuse", "read_fixes_csv", "read_fixes_file",
-    "read_gnss_csv", "read_nmea", "smoothed_stage", "stage_settings",
+    "MIN_SHARE_INSIDE", "as_fixes", "check_all", "from_gnss", "from_latlon", "from_positions", "fuse", "read_fixes_csv", "read_fixes_file",
+    "read_gnss_csv", "read_nmea", "smoothed_stage", "stage_settings", "warn_outside",
 ]
