@@ -6,8 +6,9 @@ wrapped difference from the reference, :meth:`gyrocore.evaluate.Reference.compar
 ``absolute``); raw integration, which knows no absolute heading, is aligned at the start as
 everywhere (HDR eq 15), which is the same as giving it the reference's heading at the first
 compared time. A run that applied no fix (all outside the log's time span, or all rejected) has
-no absolute heading either: it is scored aligned at the start, as without fixes, and says so. Inside an outage both are the mean over the reference samples in it, from the same
-error series as the whole drive's.
+no absolute heading either: it is scored aligned at the start, as without fixes, and says so.
+Inside an outage both are the mean over the reference samples in it, from the same error series
+as the whole drive's.
 """
 
 from __future__ import annotations

@@ -63,8 +63,9 @@ class Fixes:
         far = np.flatnonzero(np.abs(self.heading) > MAX_HEADING)  # NaN is not beyond: the filter names it
         if len(far):
             i = int(far[0])
-            raise ValueError(f"fix {i}: heading = {float(self.heading[i])!r} is beyond +-2^20 rad ({MAX_HEADING:.0f}); headings "
-                             "are in rad, counter-clockwise from east (wrapped or continuous): check the column and unit")
+            raise ValueError(f"fix {i}: heading = {float(self.heading[i])!r} is beyond +-2^20 rad ({MAX_HEADING:.0f}); "
+                             "headings are in rad, counter-clockwise from east (wrapped or continuous): check the "
+                             "column and unit")
 
     def __len__(self) -> int:
         return len(self.t)
@@ -272,7 +273,8 @@ def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_spe
     bad = np.flatnonzero(~(v >= 0) | np.isinf(v))  # ~(v >= 0): negative or NaN
     if len(bad):
         i = int(bad[0])
-        raise ValueError(f"speed[{i}] is {v[i]}: a speed over ground is finite and >= 0 [m/s]; drop or repair the sample")
+        raise ValueError(f"speed[{i}] is {v[i]}: a speed over ground is finite and >= 0 [m/s]; drop or repair the "
+                         "sample")
     course = np.isfinite(bearing)
     keep = course & (v >= min_speed)
     if len(tt) and not keep.any():

@@ -181,7 +181,8 @@ def test_a_fixes_csv_header_may_state_seconds_and_radians_only(tmp_path: Path) -
     path.write_text("t [s],heading (rad),sigma [radians]\n0.5,1.0,0.01\n")
     assert list(read_fixes_file(path).heading) == [1.0]
     path.write_text("t [s],heading [deg],sigma [deg]\n0.5,57.3,0.5\n")
-    with pytest.raises(ValueError, match=r"column 'heading \[deg\]' is in deg, not rad: convert it to rad \(numpy.radians"):
+    degrees = r"column 'heading \[deg\]' is in deg, not rad: convert it to rad \(numpy.radians"
+    with pytest.raises(ValueError, match=degrees):
         read_fixes_file(path)
     path.write_text("t,yaw,sigma\n0.5,1.0,0.01\n")
     with pytest.raises(ValueError, match=r"no column heading; a fixes.csv has the header t,heading,sigma: t \[s\].*"
