@@ -49,7 +49,8 @@ def from_positions(t: ArrayLike, x: ArrayLike, y: ArrayLike, *, position_sigma: 
     with np.errstate(invalid="ignore"):
         keep = np.isfinite(distance) & (distance >= min_speed * dt)
     if len(tt) and not keep.any():
-        warn_no_fix(f"{len(tt)} positions", distance[np.isfinite(distance)] / dt[np.isfinite(distance)], min_speed)
+        known = np.isfinite(distance)
+        warn_no_fix(f"{len(tt)} positions", distance[known] / dt[known], min_speed)
     middle = 0.5 * (tt[:-1] + tt[1:])
     sigma = np.hypot(math.radians(min_sigma_deg), math.sqrt(2.0) * position_sigma / distance[keep])
     return Fixes(middle[keep], np.arctan2(dy[keep], dx[keep]), sigma)
@@ -80,7 +81,7 @@ def from_latlon(t: ArrayLike, lat_deg: ArrayLike, lon_deg: ArrayLike, **options:
     fixes = from_positions(t, x, y, **options)
     if not len(fixes) and _look_like_radians(lat[finite], lon[finite]):
         warn("the latitudes and longitudes look like radians (every |lat| <= pi/2 and |lon| <= pi, "
-             "as degrees a patch of open sea off Africa): from_latlon takes degrees; convert with numpy.degrees")
+             "as degrees open sea near 0 N 0 E): from_latlon takes degrees; convert with numpy.degrees")
     return fixes
 
 
