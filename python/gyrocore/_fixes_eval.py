@@ -5,8 +5,10 @@ A heading fused with fixes is absolute, so it is scored without alignment at the
 wrapped difference from the reference, :meth:`gyrocore.evaluate.Reference.compared` with
 ``absolute``); raw integration, which knows no absolute heading, is aligned at the start as
 everywhere (HDR eq 15), which is the same as giving it the reference's heading at the first
-compared time. Inside an outage both are the mean over the reference samples in it, from the same
-error series as the whole drive's.
+compared time. A run that applied no fix (all outside the log's time span, or all rejected) has
+no absolute heading either: it is scored aligned at the start, as without fixes, and says so.
+Inside an outage both are the mean over the reference samples in it, from the same error series
+as the whole drive's.
 """
 
 from __future__ import annotations
@@ -103,7 +105,8 @@ def _value(option: str, key: str, text: str) -> Any:
 class FixScore:
     """One method with fixes on one log: E_psi [deg] over the drive and inside the outage, beside
     raw integration's; the fix counts; the residual bias [deg/s] and scale error the fix stage
-    estimated at the last sample (of the rate the pipeline corrected)."""
+    estimated at the last sample (of the rate the pipeline corrected). ``absolute``: E_psi is the
+    absolute error; False when no fix was applied, and E_psi is aligned at the start."""
 
     log: str
     method: str
@@ -116,6 +119,7 @@ class FixScore:
     raw_outage_e_psi_deg: float | None
     bias_deg_s: float
     scale: float
+    absolute: bool
 
     def as_dict(self) -> dict[str, Any]:
         """A JSON-ready dict (JSON has no NaN: an outage without a reference sample is null)."""
@@ -144,11 +148,12 @@ def score_with_fixes(log: Log, methods: Sequence[Method], fixes: Fixes, label: s
         fusion = result.fusion
         # the log has fixes, and every output is computed by default
         assert fusion is not None and fusion.bias is not None and fusion.scale is not None
-        tr, err, _ = reference.compared(result.t, result.heading, absolute=True)
+        absolute = fusion.counts["applied"] > 0  # else the heading is the gyro's alone: no absolute heading
+        tr, err, _ = reference.compared(result.t, result.heading, absolute=absolute)
         rows.append(FixScore(
             log.name, method.name, label, dict(fusion.counts), float(np.degrees(np.abs(err)).mean()), raw,
             window, _mean_in(tr, err, window), _mean_in(tr_raw, err_raw, window),
-            math.degrees(float(fusion.bias[-1])), float(fusion.scale[-1]),
+            math.degrees(float(fusion.bias[-1])), float(fusion.scale[-1]), absolute,
         ))
     return rows
 
@@ -167,5 +172,8 @@ def format_fix_scores(rows: Sequence[FixScore]) -> None:
               f"{r.bias_deg_s:9.4f} {r.scale:8.4f}  {counts}")
     for label in dict.fromkeys(r.fixes for r in rows):
         print(f"fixes: {label}")
+    for r in rows:
+        if not r.absolute:
+            print(f"no fix applied on {r.log} with {r.method}: its E_psi is aligned at the start, as without fixes")
     for name, (start, end) in {r.log: r.outage for r in rows if r.outage is not None}.items():
         print(f"outage of {name}: [{start:.3f}, {end:.3f}) s")

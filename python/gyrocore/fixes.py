@@ -15,6 +15,7 @@ rad/sqrt(s)) and ``bias_walk`` (rate random walk K, rad/s/sqrt(s)); see docs/fix
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, replace
 from pathlib import Path
 from collections.abc import Callable
@@ -25,12 +26,19 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
+from ._checks import warn
 from ._extras import require
 from .io._csvfile import _csv_header as csv_header, read_csv_columns
+from .io.units import HEADER_TIME_UNITS, _normal as normal_unit, split_unit
 from .result import fix_output_flags
 
 if TYPE_CHECKING:
     from .pipeline import HeadingResult
+
+#: The largest magnitude of a fix's heading [rad], as of a gyro reading in the core (2^20): headings
+#: may be continuous (unwrapped), but one beyond this is another unit or a corrupt value, and the
+#: filter's wrapped innovation would lose its precision (at 2^20 rad a double still resolves 2e-10 rad).
+MAX_HEADING = 2.0**20
 
 #: The filter's settings and their units (defaults: the core's ``FusionConfig::default``).
 SETTINGS = ("arw", "bias_walk", "scale_walk", "initial_heading", "initial_heading_sigma", "initial_bias",
@@ -39,7 +47,10 @@ SETTINGS = ("arw", "bias_walk", "scale_walk", "initial_heading", "initial_headin
 
 @dataclass(frozen=True, repr=False, eq=False)
 class Fixes:
-    """Absolute headings: times [s], headings [rad, CCW from east], standard deviations [rad]."""
+    """Absolute headings: times [s], headings [rad, CCW from east], standard deviations [rad].
+
+    A heading beyond +-:data:`MAX_HEADING` is an error when the fixes are built; NaN, ``sigma <= 0``
+    and the time order are checked by the filter, for the fixes it reaches (docs/fixes.md)."""
 
     t: FloatArray
     heading: FloatArray
@@ -49,6 +60,12 @@ class Fixes:
         if not (len(self.t) == len(self.heading) == len(self.sigma)):
             raise ValueError(f"fix t, heading and sigma must have one length, got {len(self.t)}, "
                              f"{len(self.heading)} and {len(self.sigma)}")
+        far = np.flatnonzero(np.abs(self.heading) > MAX_HEADING)  # NaN is not beyond: the filter names it
+        if len(far):
+            i = int(far[0])
+            raise ValueError(f"fix {i}: heading = {float(self.heading[i])!r} is beyond +-2^20 rad ({MAX_HEADING:.0f}); "
+                             "headings are in rad, counter-clockwise from east (wrapped or continuous): check the "
+                             "column and unit")
 
     def __len__(self) -> int:
         return len(self.t)
@@ -98,7 +115,8 @@ def fuse(t: ArrayLike, rate: ArrayLike, fixes: FixesLike, *, mode: Literal["caus
         t: gyro times [s], strictly increasing.
         rate: gyro readings [rad/s], counter-clockwise positive.
         fixes: the absolute headings (:data:`FixesLike`; sorted by time; NaN, sigma <= 0 or a step back is an error
-            naming the fix; fixes before the first gyro sample are counted and skipped).
+            naming the fix; fixes before the first gyro sample are counted and skipped, and a warning
+            says so when under a tenth of them fall within the gyro's time span).
         mode: ``"causal"`` (each sample sees the fixes up to its time) or ``"smoothed"`` (the
             Rauch-Tung-Striebel smoother: each sees all fixes; whole logs only).
         settings: filter settings (:data:`SETTINGS`), SI units.
@@ -109,7 +127,28 @@ def fuse(t: ArrayLike, rate: ArrayLike, fixes: FixesLike, *, mode: Literal["caus
     fx = as_fixes(fixes)
     h, s, b, sc, counts = _gyrocore.fuse(tt, r, fx.t, fx.heading, fx.sigma, _settings(settings),
                                           mode == "smoothed")
+    warn_outside(tt, fx)
     return FusionResult(tt, h, s, b, sc, dict(counts))
+
+
+#: A whole log's run warns when fewer than this share of its fixes fall within the gyro's time
+#: span: fixes on another clock (UTC seconds against seconds since boot) all fall outside it,
+#: and are skipped without changing the heading.
+MIN_SHARE_INSIDE = 0.1
+
+
+def warn_outside(t: FloatArray, fixes: Fixes) -> None:
+    """Warns (:class:`~gyrocore.InputWarning`) when ``fixes`` were given for a whole log's gyro
+    times ``t`` but none, or under :data:`MIN_SHARE_INSIDE` of them, fall within ``t``'s span.
+    Both are checked (finite, in time order)."""
+    if not len(fixes) or not len(t):
+        return
+    inside = int(np.count_nonzero((fixes.t >= t[0]) & (fixes.t <= t[-1])))
+    if inside >= MIN_SHARE_INSIDE * len(fixes):
+        return
+    warn(f"{'none' if inside == 0 else f'only {inside}'} of the {len(fixes)} heading fixes fall within the gyro's "
+         f"time span (gyro {t[0]:.3f} to {t[-1]:.3f} s, fixes {fixes.t[0]:.3f} to {fixes.t[-1]:.3f} s), and a fix "
+         "outside it is not used: give the fixes' times on the gyro's clock, in seconds")
 
 
 def _settings(settings: dict[str, float]) -> dict[str, float]:
@@ -130,18 +169,20 @@ class Fusion:
     def __init__(self, **settings: float) -> None:
         self._inner = _gyrocore.Fusion(_settings(settings))
 
-    def process(self, t: ArrayLike, rate: ArrayLike, fixes: Fixes | None = None) -> FusionResult:
-        """Processes one block; returns the estimate after each of its samples."""
-        f = Fixes.empty() if fixes is None else fixes
+    def process(self, t: ArrayLike, rate: ArrayLike, fixes: FixesLike | None = None) -> FusionResult:
+        """Processes one block (``fixes``: :data:`FixesLike`, as every entry point takes them);
+        returns the estimate after each of its samples."""
+        f = Fixes.empty() if fixes is None else as_fixes(fixes)
         tt, r = as_float_array("t", t), as_float_array("rate", rate)
         h, s, b, sc = self._inner.process(tt, r, f.t, f.heading, f.sigma)
         return FusionResult(tt, h, s, b, sc, self.counts())
 
-    def check(self, fixes: Fixes) -> None:
+    def check(self, fixes: FixesLike) -> None:
         """Raises the error of the first bad fix among the waiting ones and ``fixes``, every one,
         processing nothing (:meth:`process` checks those its block reaches, and the first past it:
         a bad fix further on fails the block that reaches it)."""
-        self._inner.check(fixes.t, fixes.heading, fixes.sigma)
+        f = as_fixes(fixes)
+        self._inner.check(f.t, f.heading, f.sigma)
 
     def counts(self) -> dict[str, int]:
         """Fixes applied, rejected, before_start, and waiting for a later block."""
@@ -215,8 +256,11 @@ def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_spe
     east, so ``heading = pi/2 - radians(bearing)``. Course over ground is the direction of the
     velocity, so its error grows as the speed falls: ``sigma = hypot(min_sigma, speed_sigma /
     speed)`` [rad] for a velocity error ``speed_sigma`` [m/s]; below ``min_speed`` [m/s] the
-    course is meaningless (a car at rest has none) and the sample is dropped. Assumes the vehicle
-    moves the way it points (no side slip, forward gear).
+    course is meaningless (a car at rest has none) and the sample is dropped, as is one without a
+    bearing (NaN). Assumes the vehicle moves the way it points (no side slip, forward gear).
+
+    A speed that is negative, NaN or infinite is an error naming its index; samples that give no
+    fix at all warn why (an :class:`~gyrocore.InputWarning` with the speeds seen).
     """
     tt = as_float_array("t", t)
     bearing = as_float_array("bearing_deg", bearing_deg)
@@ -226,42 +270,126 @@ def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_spe
     for name, value in (("min_speed", min_speed), ("speed_sigma", speed_sigma), ("min_sigma_deg", min_sigma_deg)):
         if not (math.isfinite(value) and value > 0):
             raise ValueError(f"{name} must be finite and > 0, got {value}")
-    keep = np.isfinite(bearing) & np.isfinite(v) & (v >= min_speed)
+    bad = np.flatnonzero(~(v >= 0) | np.isinf(v))  # ~(v >= 0): negative or NaN
+    if len(bad):
+        i = int(bad[0])
+        raise ValueError(f"speed[{i}] is {v[i]}: a speed over ground is finite and >= 0 [m/s]; drop or repair the "
+                         "sample")
+    course = np.isfinite(bearing)
+    keep = course & (v >= min_speed)
+    if len(tt) and not keep.any():
+        warn_no_fix(f"{len(tt)} GNSS samples", v[course], min_speed)
     heading = np.angle(np.exp(1j * (math.pi / 2 - np.radians(bearing[keep]))))
     sigma = np.hypot(math.radians(min_sigma_deg), speed_sigma / v[keep])
     return Fixes(tt[keep], heading, sigma)
 
 
+def warn_no_fix(given: str, speeds: FloatArray, min_speed: float) -> None:
+    """Warns that ``given`` (``"58 GNSS samples"``) gave no fix, and why: ``speeds`` [m/s] are those
+    of the samples or steps that had a course, every one below ``min_speed``, or none."""
+    if len(speeds):
+        why = (f"every speed is below min_speed = {min_speed:g} m/s (speeds from {speeds.min():.3g} to "
+               f"{speeds.max():.3g} m/s): too slow for a course; check the units (speeds in m/s, positions in m, "
+               "times in s), or lower min_speed")
+    else:
+        why = "none has a course (every bearing or position is NaN)"
+    warn(f"no heading fix from {given}: {why}")
+
+
 def read_gnss_csv(path: str | Path, **options: float) -> Fixes:
     """Fixes from a ``gnss.csv`` like comma_seg40's (t, speed [m/s], bearing [deg, clockwise from
     north]), through :func:`from_gnss` (its options pass on)."""
-    cols = read_csv_columns(Path(path), ("t", "speed", "bearing"))
-    return from_gnss(cols["t"], cols["bearing"], cols["speed"], **options)
+    path = Path(path)
+    header = csv_header(path, ",")
+    cols = _read_rows(path, GNSS_COLUMNS)
+    try:
+        return from_gnss(cols["t"], cols["bearing"], cols["speed"], **options)
+    except ValueError as e:
+        raise ValueError(_at_line(path, header, {"speed": "speed"}, e)) from None
 
 
 def read_fixes_csv(path: str | Path) -> Fixes:
-    """A log folder's ``fixes.csv``: t [s], heading [rad, CCW from east], sigma [rad]."""
-    cols = read_csv_columns(Path(path), ("t", "heading", "sigma"))
-    return Fixes(cols["t"], cols["heading"], cols["sigma"])
+    """A log folder's ``fixes.csv``: t [s], heading [rad, CCW from east], sigma [rad] (a column
+    name may state its unit, if it is that one: ``t [s]``, ``heading [rad]``). Every fix is
+    checked as it is read: a bad one is an error naming the file, line and column."""
+    path = Path(path)
+    header = csv_header(path, ",")
+    names = _fix_columns(path, header)
+    cols = _read_rows(path, tuple(names.values()))
+    try:
+        return check_all(Fixes(*(cols[names[c]] for c in FIXES_COLUMNS)))
+    except ValueError as e:
+        raise ValueError(_at_line(path, header, names, e)) from None
 
 
 #: The columns of the two fix files :func:`read_fixes_file` reads.
 FIXES_COLUMNS, GNSS_COLUMNS = ("t", "heading", "sigma"), ("t", "speed", "bearing")
+#: The units a ``fixes.csv`` column may state in its name (``t [s]``, ``heading (rad)``), as
+#: :func:`gyrocore.io.units.split_unit` reads them; any other unit is refused, not converted.
+_SECONDS = tuple(u for u, si in HEADER_TIME_UNITS.items() if si == "s")
+_RADIANS = ("rad", "radian", "radians")
+_FIX_UNITS = {"t": ("s", _SECONDS), "heading": ("rad", _RADIANS), "sigma": ("rad", _RADIANS)}
+_FIXES_HEADER = (f"a fixes.csv has the header {','.join(FIXES_COLUMNS)}: t [s] on the gyro's clock, heading [rad, "
+                 "counter-clockwise from east], sigma [rad] (a name may state its unit: t [s], heading [rad])")
+
+
+def _fix_columns(path: Path, header: list[str]) -> dict[str, str]:
+    """The header name of each of :data:`FIXES_COLUMNS` in ``header``: the name itself or with its
+    unit; a column missing, given twice or in another unit is an error saying what is expected."""
+    names = {}
+    for wanted, (unit, spellings) in _FIX_UNITS.items():
+        found = [h for h in header if split_unit(h)[0] == wanted]
+        if len(found) != 1:
+            problem = "no column" if not found else f"{len(found)} columns"
+            raise ValueError(f"{path}: {problem} {wanted}; {_FIXES_HEADER}; its header is {','.join(header)}")
+        given = split_unit(found[0])[1]
+        if given is not None and normal_unit(given) not in spellings:
+            how = " (numpy.radians for degrees)" if unit == "rad" else ""
+            raise ValueError(f"{path}: column {found[0]!r} is in {given}, not {unit}: convert it to {unit}{how} "
+                             f"and name it {wanted} or {wanted} [{unit}]")
+        names[wanted] = found[0]
+    return names
+
+
+def _read_rows(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:
+    """The named columns of a fixes file, which must have a row: a file of no fix is refused, as a
+    gyro file of no sample is, rather than fusing nothing."""
+    cols = read_csv_columns(path, columns)
+    if len(cols[columns[0]]) == 0:
+        raise ValueError(f"{path}: no row after the header line, so no fix; add the fixes (one per line) or "
+                         "remove the file")
+    return cols
+
+
+#: How an error about one row begins: the filter's (and :class:`Fixes`') ``fix N: column = value``,
+#: or :func:`from_gnss`'s ``column[N] is value``.
+_ROW_ERROR = re.compile(r"fix (\d+): (\w+) = |(\w+)\[(\d+)\] is ")
+
+
+def _at_line(path: Path, header: list[str], names: dict[str, str], error: ValueError) -> str:
+    """``error``, about row N of the file ``path``, with the line and column of its value in front
+    (row N is line N + 2, after the header; blank lines are refused by the reader). ``names``
+    maps the column an error names to the header's name, for the errors whose N is the file's row."""
+    m = _ROW_ERROR.match(str(error))
+    column = None if m is None else names.get(m[2] or m[3])
+    if m is None or column is None:
+        return f"{path}: {error}"
+    return f"{path}: line {int(m[1] or m[4]) + 2}, column {header.index(column) + 1} ({column}): {error}"
 
 
 def read_fixes_file(path: str | Path) -> Fixes:
     """A fixes file, by its header: ``fixes.csv``'s columns (t, heading [rad, CCW from east],
-    sigma [rad]) or comma_seg40's ``gnss.csv`` (t, speed [m/s], bearing [deg, CW from north],
-    through :func:`read_gnss_csv` with its defaults)."""
+    sigma [rad], :func:`read_fixes_csv`) or comma_seg40's ``gnss.csv`` (t, speed [m/s], bearing
+    [deg, CW from north], through :func:`read_gnss_csv` with its defaults)."""
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"{path}: no such fixes file")
-    header = set(csv_header(path, ","))
-    if set(FIXES_COLUMNS) <= header:
+    header = csv_header(path, ",")
+    if set(FIXES_COLUMNS) <= {split_unit(h)[0] for h in header}:
         return read_fixes_csv(path)
-    if set(GNSS_COLUMNS) <= header:
+    if set(GNSS_COLUMNS) <= set(header):
         return read_gnss_csv(path)
-    raise ValueError(f"{path}: a fixes file has the columns {', '.join(FIXES_COLUMNS)} (headings in rad, CCW "
+    raise ValueError(f"{path}: a fixes file has the columns {', '.join(FIXES_COLUMNS)} (t [s], headings in rad, CCW "
                      f"from east) or {', '.join(GNSS_COLUMNS)} (a gnss.csv); its header has {', '.join(sorted(header))}")
 
 
@@ -331,7 +459,7 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
 from .fixes_track import from_latlon, from_positions  # noqa: E402
 
 __all__ = [
-    "FIXES_COLUMNS", "GNSS_COLUMNS", "KMH", "KNOT", "SETTINGS", "Fixes", "FixesLike", "Fusion", "FusionResult",
-    "as_fixes", "check_all", "from_gnss", "from_latlon", "from_positions", "fuse", "read_fixes_csv", "read_fixes_file",
-    "read_gnss_csv", "read_nmea", "smoothed_stage", "stage_settings",
+    "FIXES_COLUMNS", "GNSS_COLUMNS", "KMH", "KNOT", "MAX_HEADING", "SETTINGS", "Fixes", "FixesLike", "Fusion", "FusionResult",
+    "MIN_SHARE_INSIDE", "as_fixes", "check_all", "from_gnss", "from_latlon", "from_positions", "fuse", "read_fixes_csv", "read_fixes_file",
+    "read_gnss_csv", "read_nmea", "smoothed_stage", "stage_settings", "warn_outside",
 ]

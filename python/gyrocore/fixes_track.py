@@ -20,9 +20,9 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._arrays import as_float_array
-from ._checks import require_finite, require_increasing
-from .fixes import Fixes
+from ._arrays import FloatArray, as_float_array
+from ._checks import require_finite, require_increasing, warn
+from .fixes import Fixes, warn_no_fix
 
 #: Mean Earth radius [m] (IUGG), for :func:`from_latlon`'s local plane.
 EARTH_RADIUS = 6_371_008.8
@@ -33,7 +33,8 @@ def from_positions(t: ArrayLike, x: ArrayLike, y: ArrayLike, *, position_sigma: 
     """Fixes from positions ``x`` (east) and ``y`` (north) [m] at strictly increasing times ``t``
     [s]: the direction of each step, at its middle time, with ``sigma = hypot(min_sigma,
     sqrt(2) * position_sigma / distance)`` [rad]. Steps slower than ``min_speed`` [m/s] and steps
-    with a non-finite position are left out."""
+    with a non-finite position are left out; positions that give no fix at all warn why (an
+    :class:`~gyrocore.InputWarning` with the step speeds seen)."""
     tt, xx, yy = (as_float_array(name, a) for name, a in (("t", t), ("x", x), ("y", y)))
     if not (len(tt) == len(xx) == len(yy)):
         raise ValueError(f"t, x and y must have one length, got {len(tt)}, {len(xx)} and {len(yy)}")
@@ -47,6 +48,9 @@ def from_positions(t: ArrayLike, x: ArrayLike, y: ArrayLike, *, position_sigma: 
     distance = np.hypot(dx, dy)
     with np.errstate(invalid="ignore"):
         keep = np.isfinite(distance) & (distance >= min_speed * dt)
+    if len(tt) and not keep.any():
+        known = np.isfinite(distance)
+        warn_no_fix(f"{len(tt)} positions", distance[known] / dt[known], min_speed)
     middle = 0.5 * (tt[:-1] + tt[1:])
     sigma = np.hypot(math.radians(min_sigma_deg), math.sqrt(2.0) * position_sigma / distance[keep])
     return Fixes(middle[keep], np.arctan2(dy[keep], dx[keep]), sigma)
@@ -55,7 +59,11 @@ def from_positions(t: ArrayLike, x: ArrayLike, y: ArrayLike, *, position_sigma: 
 def from_latlon(t: ArrayLike, lat_deg: ArrayLike, lon_deg: ArrayLike, **options: float) -> Fixes:
     """:func:`from_positions` for latitude and longitude [deg], projected onto the plane tangent
     at the first finite position (east = x, north = y; equirectangular, good to about 0.1 % of
-    a heading's tangent within 100 km of that point). ``options`` go to :func:`from_positions`."""
+    a heading's tangent within 100 km of that point). ``options`` go to :func:`from_positions`.
+
+    No fix from a track whose every latitude lies within +-pi/2 and longitude within +-pi warns
+    that they look like radians (read as degrees, a drive in radians moves 57 times too little
+    for a course)."""
     lat, lon = as_float_array("lat_deg", lat_deg), as_float_array("lon_deg", lon_deg)
     if len(lat) != len(lon):
         raise ValueError(f"lat_deg and lon_deg must have one length, got {len(lat)} and {len(lon)}")
@@ -70,4 +78,14 @@ def from_latlon(t: ArrayLike, lat_deg: ArrayLike, lon_deg: ArrayLike, **options:
     dlon = np.angle(np.exp(1j * (np.radians(lon) - lon0)))
     x = EARTH_RADIUS * math.cos(lat0) * dlon
     y = EARTH_RADIUS * (np.radians(lat) - lat0)
-    return from_positions(t, x, y, **options)
+    fixes = from_positions(t, x, y, **options)
+    if not len(fixes) and _look_like_radians(lat[finite], lon[finite]):
+        warn("the latitudes and longitudes look like radians (every |lat| <= pi/2 and |lon| <= pi, "
+             "as degrees open sea near 0 N 0 E): from_latlon takes degrees; convert with numpy.degrees")
+    return fixes
+
+
+def _look_like_radians(lat: FloatArray, lon: FloatArray) -> bool:
+    """Every latitude within +-pi/2 and longitude within +-pi: radians, or a track within 175 km of
+    0 N 0 E (open sea)."""
+    return bool(np.all(np.abs(lat) <= math.pi / 2) and np.all(np.abs(lon) <= math.pi))

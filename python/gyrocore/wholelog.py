@@ -58,7 +58,7 @@ from .rests import Rest, speed_on
 from .window import Window
 
 if TYPE_CHECKING:
-    from .fixes import FixesLike
+    from .fixes import Fixes, FixesLike
 
 __all__ = [
     "BIAS_SIGMAS", "BIAS_WALK", "HDR_BOUND_WALK", "MIN_REST", "MODES", "SPEED_THRESHOLD", "WHOLE_OPTIONS", "BiasPlan", "Options", "Rest",
@@ -416,15 +416,16 @@ def process_log(
     si = _to_si(overrides)
     if mode == "causal":
         refuse_whole_options(si)
-        if fixes is not None:
-            from .fixes import check_all  # a whole log: every fix, not only those its samples reach
-
-            fixes = check_all(fixes)
-        pipeline = Pipeline(preset, fusion=fusion if fixes is not None else None, **overrides)
+        checked = None if fixes is None else _checked(fixes)
+        pipeline = Pipeline(preset, fusion=fusion if checked is not None else None, **overrides)
         result = pipeline.process(
-            t, rate, temperature=temperature, outputs=outputs, speed=speed, speed_t=speed_t, fixes=fixes, out=out
+            t, rate, temperature=temperature, outputs=outputs, speed=speed, speed_t=speed_t, fixes=checked, out=out
         )
         pipeline.finish()
+        if checked is not None:
+            from .fixes import warn_outside  # as fuse warns for a whole log (the smoothed fix stage's)
+
+            warn_outside(result.t, checked)
         return replace(result, bias_source=causal_source(preset, si))
     refuse_tracking(si)
     options = Options.pop(si)
@@ -461,6 +462,14 @@ def process_log(
     result = pipeline.process(ta, corrected, temperature=temperature, outputs=(*outputs, "rate"))
     fused = smoothed_stage(result, fixes, stage_settings(pipeline.params, fusion), outputs)
     return bias_plan.result(filled(fused, arrays))
+
+
+def _checked(fixes: FixesLike) -> Fixes:
+    """A whole log's fixes, every one checked, not only those its samples reach
+    (:func:`gyrocore.fixes.check_all`; imported here, as :mod:`gyrocore.fixes` builds on this module)."""
+    from .fixes import check_all
+
+    return check_all(fixes)
 
 
 def times_ok(t: FloatArray) -> bool:

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import gyrocore
-from gyrocore.fixes import Fixes, Fusion, from_gnss, fuse, read_fixes_csv, read_gnss_csv, read_nmea
+from gyrocore.fixes import Fixes, Fusion, from_gnss, fuse, read_fixes_csv, read_fixes_file, read_gnss_csv, read_nmea
 
 DATA = Path(__file__).resolve().parents[3] / "shared" / "data" / "real"
 BIAS, SCALE = 0.01, 0.02
@@ -125,6 +125,24 @@ def test_gnss_bearing_becomes_a_heading_counter_clockwise_from_east() -> None:
     assert fixes.sigma[2] < fixes.sigma[0]  # faster, surer
 
 
+@pytest.mark.parametrize("bad", [-1.0, np.nan, np.inf])
+def test_a_speed_that_is_negative_or_not_finite_is_named(bad: float, tmp_path: Path) -> None:
+    with pytest.raises(ValueError, match=rf"speed\[2\] is {bad}: a speed over ground is finite and >= 0"):
+        from_gnss([0.0, 1.0, 2.0], [0.0, 90.0, 180.0], [10.0, 10.0, bad])
+    path = tmp_path / "gnss.csv"
+    path.write_text(f"t,speed,bearing\n0,10,0\n1,10,90\n2,{bad},180\n")
+    with pytest.raises(ValueError, match=r"gnss.csv: line 4, column 2 \(speed\): speed\[2\] is"):
+        read_gnss_csv(path)
+
+
+def test_gnss_samples_that_give_no_fix_say_why() -> None:
+    with pytest.warns(gyrocore.InputWarning, match=r"no heading fix from 3 GNSS samples: every speed is below "
+                                                   r"min_speed = 2 m/s \(speeds from 0 to 1.5 m/s\)"):
+        assert len(from_gnss([0.0, 1.0, 2.0], [0.0, 90.0, 180.0], [0.0, 1.5, 0.5])) == 0
+    with pytest.warns(gyrocore.InputWarning, match="none has a course"):
+        from_gnss([0.0, 1.0], [np.nan, np.nan], [10.0, 10.0])
+
+
 def test_comma_gnss_agrees_with_its_reference() -> None:
     log = gyrocore.read_log(DATA / "comma_seg40")
     fixes = read_gnss_csv(DATA / "comma_seg40" / "gnss.csv")
@@ -138,6 +156,38 @@ def test_a_fixes_csv_is_read(tmp_path: Path) -> None:
     path.write_text("t,heading,sigma\n0.5,1.0,0.01\n1.5,1.1,0.02\n")
     fixes = read_fixes_csv(path)
     assert list(fixes.t) == [0.5, 1.5] and list(fixes.heading) == [1.0, 1.1] and list(fixes.sigma) == [0.01, 0.02]
+
+
+@pytest.mark.parametrize(
+    ("rows", "message"),
+    [
+        ("1,0.1,0.01\n2,nan,0.01\n", r"fixes.csv: line 3, column 2 \(heading\): fix 1: heading = NaN is not finite"),
+        ("1,0.1,0.01\n2,0.2,-0.05\n", r"fixes.csv: line 3, column 3 \(sigma\): fix 1: sigma = -0.05 must be > 0"),
+        ("2,0.1,0.01\n1,0.2,0.01\n", r"fixes.csv: line 3, column 1 \(t\): fix 1: t = 1 comes before the fix before"),
+        ("1,1e300,0.01\n", r"fixes.csv: line 2, column 2 \(heading\): fix 0: heading = 1e\+300 is beyond"),
+        ("", "fixes.csv: no row after the header line, so no fix; add the fixes"),
+    ],
+)
+def test_a_bad_fixes_csv_is_refused_naming_its_line_and_column(tmp_path: Path, rows: str, message: str) -> None:
+    path = tmp_path / "fixes.csv"
+    path.write_text("t,heading,sigma\n" + rows)
+    for read in (read_fixes_csv, read_fixes_file):
+        with pytest.raises(ValueError, match=message):
+            read(path)
+
+
+def test_a_fixes_csv_header_may_state_seconds_and_radians_only(tmp_path: Path) -> None:
+    path = tmp_path / "fixes.csv"
+    path.write_text("t [s],heading (rad),sigma [radians]\n0.5,1.0,0.01\n")
+    assert list(read_fixes_file(path).heading) == [1.0]
+    path.write_text("t [s],heading [deg],sigma [deg]\n0.5,57.3,0.5\n")
+    degrees = r"column 'heading \[deg\]' is in deg, not rad: convert it to rad \(numpy.radians"
+    with pytest.raises(ValueError, match=degrees):
+        read_fixes_file(path)
+    path.write_text("t,yaw,sigma\n0.5,1.0,0.01\n")
+    with pytest.raises(ValueError, match=r"no column heading; a fixes.csv has the header t,heading,sigma: t \[s\].*"
+                                         r"heading \[rad, counter-clockwise from east\]"):
+        read_fixes_csv(path)
 
 
 def test_nmea_rmc_and_vtg_become_fixes(tmp_path: Path) -> None:
@@ -229,3 +279,35 @@ def test_true_rate_drives_bridge_an_outage_causally_with_their_gyros_grade(drive
     est = np.interp(log.t_ref[inside], r.t, r.heading)
     e_psi = np.degrees(np.abs(np.angle(np.exp(1j * (est - log.heading_ref[inside]))))).mean()
     assert e_psi < 5.0
+
+
+def test_a_stream_takes_fixes_in_every_form_the_entry_points_take(tmp_path: Path) -> None:
+    t, heading, rate = drive(20.0)
+    fixes = gyrocore.sim.gnss_fixes(t, heading, seed=8)
+    path = tmp_path / "fixes.csv"
+    path.write_text("t,heading,sigma\n" + "".join(f"{a!r},{b!r},{c!r}\n" for a, b, c in zip(
+        fixes.t.tolist(), fixes.heading.tolist(), fixes.sigma.tolist())))
+    expected = Fusion().process(t, rate, fixes).heading.tobytes()
+    for given in ((fixes.t, fixes.heading, fixes.sigma), path, str(path)):
+        stream = Fusion()
+        stream.check(given)
+        assert stream.process(t, rate, given).heading.tobytes() == expected
+
+
+def test_a_heading_beyond_two_to_the_twenty_radians_is_named() -> None:
+    t, heading, rate = drive(20.0)
+    fixes = gyrocore.sim.gnss_fixes(t, heading, seed=9)
+    far = fixes.heading.copy()
+    far[4] = 1e300
+    message = r"fix 4: heading = 1e\+300 is beyond \+-2\^20 rad \(1048576\)"
+    with pytest.raises(ValueError, match=message):
+        Fixes(fixes.t, far, fixes.sigma)
+    for mode in ("causal", "whole"):
+        with pytest.raises(ValueError, match=message):
+            gyrocore.process(t, rate, "raw", mode=mode, fixes=(fixes.t, far, fixes.sigma))
+    far[4] = -np.inf
+    with pytest.raises(ValueError, match="fix 4: heading = -inf is beyond"):
+        Fusion().process(t, rate, (fixes.t, far, fixes.sigma))
+    # continuous headings, many turns from the start, are headings
+    turns = fixes.heading + 2**20 - 10.0
+    assert fuse(t, rate, Fixes(fixes.t, turns, fixes.sigma)).counts["applied"] == len(fixes)

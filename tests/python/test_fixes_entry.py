@@ -8,6 +8,7 @@ import math
 import pickle
 import subprocess
 import sys
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -136,6 +137,24 @@ def test_process_smooths_a_whole_log_and_filters_a_causal_one(mode: str) -> None
     assert result.fusion.counts["applied"] == len(fixes)
 
 
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_fixes_on_another_clock_than_the_gyro_are_warned_about(mode: str) -> None:
+    t, heading, rate = drive(60.0)
+    fixes = fixes_of(t, heading)
+    span = r"the gyro's time span \(gyro 1700000000.000 to 1700000059.980 s, fixes 0.000 to 59.500 s\)"
+    with pytest.warns(gyrocore.InputWarning, match=rf"none of the {len(fixes)} heading fixes fall within {span}"):
+        result = gyrocore.process(t + 1.7e9, rate, "raw", mode=mode, fixes=fixes)
+    assert result.fusion is not None and result.fusion.counts["applied"] == 0
+    late = Fixes(fixes.t + 59.0, fixes.heading, fixes.sigma)  # two of them at the gyro's last second
+    with pytest.warns(gyrocore.InputWarning, match=rf"only 2 of the {len(fixes)} heading fixes fall within"):
+        gyrocore.process(t, rate, "raw", mode=mode, fixes=late)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        gyrocore.process(t, rate, "raw", mode=mode, fixes=fixes)
+    with pytest.warns(gyrocore.InputWarning, match="none of the"):
+        fuse(t + 1.7e9, rate, fixes)
+
+
 def test_a_log_folder_fixes_csv_is_used_unless_turned_off(tmp_path: Path) -> None:
     folder = gyrocore.datasets.write_sample(tmp_path / "drive")
     plain = read_log(folder)
@@ -201,7 +220,7 @@ def test_cli_bad_fixes_are_one_line_errors(folder_with_fixes: Path, tmp_path: Pa
     bad = tmp_path / "bad.csv"
     bad.write_text("t,heading,sigma\n1,0.1,0.01\n2,0.2,-1\n")
     one_line_error(cli("process", str(folder_with_fixes), "--out", str(out), "--fixes", str(bad)),
-                   "fix 1: sigma = -1 must be > 0")
+                   "bad.csv: line 3, column 3 (sigma): fix 1: sigma = -1 must be > 0")
     assert not out.exists()
     wrong = tmp_path / "wrong.csv"
     wrong.write_text("t,yaw\n1,0.1\n")
@@ -210,6 +229,28 @@ def test_cli_bad_fixes_are_one_line_errors(folder_with_fixes: Path, tmp_path: Pa
                    "no such fixes file")
     one_line_error(cli("process", str(folder_with_fixes), "--out", str(out), "--no-fixes", "--columns", "t,heading_sigma"),
                    "--columns heading_sigma: it comes with heading fixes")
+
+
+def test_cli_warns_of_fixes_outside_the_log_and_scores_them_as_no_fixes(folder_with_fixes: Path,
+                                                                         tmp_path: Path) -> None:
+    late = tmp_path / "late.csv"
+    write_fixes(late, Fixes.of([1e6, 1e6 + 1], [0.0, 0.1], 0.01))
+    out = tmp_path / "h.csv"
+    proc = cli("process", str(folder_with_fixes), "--out", str(out), "--fixes", str(late), "--json")
+    assert proc.returncode == 0, proc.stderr
+    warning = "none of the 2 heading fixes fall within the gyro's time span"
+    assert f"gyrocore: warning: {folder_with_fixes}: {warning}" in proc.stderr
+    assert warning in json.loads(proc.stdout)["warnings"][0]
+    proc = cli("evaluate", str(folder_with_fixes), "--preset", "hdr", "--fixes", str(late), "--json")
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr.count(warning) == 1
+    (row,) = json.loads(proc.stdout)
+    (plain,) = json.loads(cli("evaluate", str(folder_with_fixes), "--preset", "hdr", "--no-fixes", "--json").stdout)
+    assert row["absolute"] is False and row["counts"]["applied"] == 0
+    assert row["e_psi_deg"] == pytest.approx(plain["e_psi_deg"], abs=1e-6)
+    text = cli("evaluate", str(folder_with_fixes), "--preset", "hdr", "--fixes", str(late)).stdout
+    name = read_log(folder_with_fixes).name
+    assert f"no fix applied on {name} with hdr: its E_psi is aligned at the start, as without fixes" in text
 
 
 def test_cli_evaluate_scores_a_simulated_outage_apart(folder_with_fixes: Path) -> None:

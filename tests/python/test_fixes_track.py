@@ -4,6 +4,7 @@ a circle, the sigma and the slow steps, named errors, and a real KITTI track fus
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -63,6 +64,26 @@ def test_latitude_and_longitude_give_the_course_counter_clockwise_from_east() ->
 def test_bad_tracks_are_named(call: object, message: str) -> None:
     with pytest.raises(ValueError, match=message):
         call()  # type: ignore[operator]
+
+
+def test_a_track_that_gives_no_fix_says_why() -> None:
+    t = np.arange(10.0)
+    with pytest.warns(gyrocore.InputWarning, match=r"no heading fix from 10 positions: every speed is below min_speed "
+                                                   r"= 2 m/s \(speeds from 1 to 1 m/s\)"):
+        assert len(fixes.from_positions(t, t, np.zeros(10))) == 0
+
+
+def test_latitudes_and_longitudes_in_radians_are_told_to_be_degrees() -> None:
+    t = np.arange(60.0)
+    lat, lon = 48.0 + 1e-4 * t, np.full(60, 11.0)   # about 11 m/s north
+    with pytest.warns(gyrocore.InputWarning) as caught:
+        assert len(fixes.from_latlon(t, np.radians(lat), np.radians(lon))) == 0
+    messages = [str(w.message) for w in caught]
+    assert "no heading fix from 60 positions: every speed is below min_speed" in messages[0]
+    assert "look like radians" in messages[1] and "from_latlon takes degrees; convert with numpy.degrees" in messages[1]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert len(fixes.from_latlon(t, lat, lon)) == 59
 
 
 def test_a_real_track_fixes_its_mems_twin() -> None:

@@ -4,19 +4,22 @@
 from __future__ import annotations
 
 import argparse
+import warnings
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import fields
-from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 from .. import io
+from .._checks import InputWarning
 from .._fixes_eval import FixScore, SimFixes, format_fix_scores, score_with_fixes
 from ..evaluate import Method
 from ..fixes import Fixes, read_fixes_file
 from ..io import Log, read_log
 from ..io._logfolder import FIXES_CSV
 from ..window import Window
-from ._common import print_json
+from ._common import print_json, warn
 
 FIXES_HELP = (
     "absolute headings fused with the gyro (docs/fixes.md): a CSV with columns t [s], heading [rad, CCW from "
@@ -60,14 +63,28 @@ def evaluate_with_fixes(args: argparse.Namespace, logs: Sequence[Log], methods: 
     for log in logs:
         try:
             fixes, label, window = _fixes_of(log, sim, given, args.fixes)
-            rows += score_with_fixes(log, methods, fixes, label, window, **run)
+            with input_warnings() as messages:
+                rows += score_with_fixes(log, methods, fixes, label, window, **run)
         except ValueError as e:  # name the log, once
             raise ValueError(str(e) if str(e).startswith(f"log {log.name}:") else f"log {log.name}: {e}") from None
+        for message in messages:
+            warn(f"log {log.name}: {message}")
     if args.json:
         print_json([r.as_dict() for r in rows])
     else:
         format_fix_scores(rows)
     return 0
+
+
+@contextmanager
+def input_warnings() -> Iterator[list[str]]:
+    """The messages of the warnings raised inside (every :class:`~gyrocore.InputWarning`, though
+    each method run on a log repeats it), each once, for the caller to print with the log's name."""
+    messages: list[str] = []
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", InputWarning)
+        yield messages
+    messages += dict.fromkeys(str(w.message) for w in caught)
 
 
 def _fixes_of(log: Log, sim: SimFixes | None, given: Fixes | None,
@@ -99,21 +116,25 @@ def process_with_fixes(args: argparse.Namespace, path: Path, out: Path, options:
     mode needs every sample), processed by :meth:`gyrocore.Log.process`, written in one piece."""
     names = {f.name for f in fields(io.ReadOptions)}
     overrides = {k: v for k, v in options.items() if k not in names}
-    log = read_log(path, **{k: v for k, v in options.items() if k in names})
-    io.check_not_input(out, [path])
-    window = overrides.get("bias_window")
-    if isinstance(window, Window):  # a window after the first sample: the log says where that is
-        overrides["bias_window"] = window.resolve(float(log.t[0]))
-    fixes = None if args.fixes is None else read_fixes_file(args.fixes)
-    result = log.process(args.preset, mode="causal" if args.causal else "whole", use_speed=not args.no_speed,
-                         fixes=fixes, **overrides)
+    with input_warnings() as messages:
+        log = read_log(path, **{k: v for k, v in options.items() if k in names})
+        io.check_not_input(out, [path])
+        window = overrides.get("bias_window")
+        if isinstance(window, Window):  # a window after the first sample: the log says where that is
+            overrides["bias_window"] = window.resolve(float(log.t[0]))
+        fixes = None if args.fixes is None else read_fixes_file(args.fixes)
+        result = log.process(args.preset, mode="causal" if args.causal else "whole", use_speed=not args.no_speed,
+                             fixes=fixes, **overrides)
+    for message in messages:
+        warn(f"{path}: {message}")
     if args.columns is None:
         columns = (*columns, "heading_sigma")
     with io.HeadingWriter(out, heading=args.heading, columns=columns) as writer:
         writer.write(result)
     assert result.fusion is not None  # the log has fixes
     report = {"input": str(path), "output": str(out), "rows": len(result), "bias_source": result.bias_source,
-              "fixes": dict(result.fusion.counts), "fixes_file": args.fixes or str(path / FIXES_CSV)}
+              "fixes": dict(result.fusion.counts), "fixes_file": args.fixes or str(path / FIXES_CSV),
+              "warnings": messages}
     if args.json:
         print_json(report)
     else:
