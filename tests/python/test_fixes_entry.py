@@ -289,3 +289,19 @@ def test_a_fleet_run_says_it_does_not_use_fixes_csv(folder_with_fixes: Path, tmp
     assert proc.returncode == 0, proc.stderr
     assert "fixes.csv is not used when logs are streamed" in proc.stderr
     assert proc.stderr.count("fixes.csv is not used") == 1  # only the folder that has one
+
+
+def test_a_bad_fixes_csv_stops_only_what_uses_it(tmp_path: Path) -> None:
+    # A folder's fixes.csv is read where it is used: evaluate and process refuse a bad one
+    # (naming its line), evaluate --no-fixes and calibrate, which do not use it, go on.
+    folder = gyrocore.datasets.write_sample(tmp_path / "drive")
+    (folder / "fixes.csv").write_text("t,heading,sigma\n1,0.1,0.01\n2,0.2,-1\n")
+    message = "fixes.csv: line 3, column 3 (sigma): fix 1: sigma = -1 must be > 0"
+    one_line_error(cli("evaluate", str(folder)), message)
+    one_line_error(cli("process", str(folder), "--out", str(tmp_path / "h.csv")), message)
+    for args in (("evaluate", str(folder), "--no-fixes"), ("calibrate", str(folder))):
+        proc = cli(*args)
+        assert proc.returncode == 0, proc.stderr
+    assert read_log(folder, use_fixes=False).fixes is None
+    with pytest.raises(ValueError, match="line 3"):
+        read_log(folder)

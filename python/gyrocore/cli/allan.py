@@ -56,7 +56,7 @@ def run(args: argparse.Namespace) -> int:
     refuse_existing(outputs, args.overwrite)
     plt = None if args.plot is None else pyplot("--plot")  # before the work
     # A record for the Allan deviation is taken at rest: small rates are no sign of a unit mistake.
-    log = io.read_log(src, static=True, **reading_options(args))
+    log = io.read_log(src, static=True, use_fixes=False, **reading_options(args))
     t, rate = log.t, log.rate
     if window is not None:
         inside = window.samples(t, minimum=3)

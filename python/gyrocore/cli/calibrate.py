@@ -74,7 +74,7 @@ def run(args: argparse.Namespace) -> int:
     if args.save is not None:
         io.check_not_input(args.save, [source])  # e.g. the log's own meta.json
         refuse_existing([args.save], args.overwrite)
-    log = io.read_log(source, **reading_options(args))
+    log = io.read_log(source, use_fixes=False, **reading_options(args))
     if args.reference is not None:
         log = with_reference(log, args.reference)
     results: dict[str, Any] = {"log": log.name, "meta_stationary": log.stationary}

@@ -90,7 +90,7 @@ def run(args: argparse.Namespace) -> int:
     methods = [_with(m if isinstance(m, Method) else Method.from_preset(m), extra) for m in [*presets, *params]]
     if args.plot_dir:
         check_not_input(Path(args.plot_dir), [Path(p) for p in args.logs])
-    logs = [read_log(path, **reading_options(args)) for path in args.logs]
+    logs = [read_log(path, use_fixes=not args.no_fixes, **reading_options(args)) for path in args.logs]
     for path, log in zip(args.logs, logs):
         if log.heading_ref is None:
             raise ValueError(

@@ -155,7 +155,7 @@ def run(args: argparse.Namespace) -> int:
     mode = "causal" if args.causal else "whole"
 
     def log_cases(paths: Sequence[str]) -> list[tune.Case]:
-        return [tune.Case.from_log(read_log(p, **reading), bias_duration=args.bias_duration, mode=mode) for p in paths]
+        return [tune.Case.from_log(read_log(p, use_fixes=False, **reading), bias_duration=args.bias_duration, mode=mode) for p in paths]
 
     cases = log_cases(args.logs)
     for table in args.sim_table or []:

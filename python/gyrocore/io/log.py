@@ -168,12 +168,13 @@ def _file_tables(src: GyroSource, t: FloatArray) -> tuple[dict[str, FloatArray],
     return ref, odo
 
 
-def read_log(path: str | Path, **options: Any) -> Log:
+def read_log(path: str | Path, *, use_fixes: bool = True, **options: Any) -> Log:
     """Read a whole log into memory: a log folder (with its reference, odometry and fixes) or any file
     :func:`open_source` reads (``options``: the :class:`ReadOptions` fields; a CSV or Parquet
     file's ``speed`` column [m/s] is the log's speed, as a folder's odometry, and its
     ``heading_true`` column [rad] (with ``x``, ``y`` [m]) its reference, as ``gyrocore simulate``
-    writes them).
+    writes them). ``use_fixes=False`` leaves a log folder's ``fixes.csv`` unread (a command that
+    does not use it is not stopped by a bad one).
 
     Raises ValueError for a malformed input, naming the file and where, for one without samples,
     and when every interval is a gap (timestamps in another unit).
@@ -203,7 +204,8 @@ def read_log(path: str | Path, **options: Any) -> Log:
     fixes = None
     t = concat(ts)
     if src.kind == "log folder":
-        ref, odo, fixes = read_reference(src.path), read_odometry(src.path), read_fixes(src.path)
+        ref, odo = read_reference(src.path), read_odometry(src.path)
+        fixes = read_fixes(src.path) if use_fixes else None
     else:
         ref, odo = _file_tables(src, t)
     return Log(
