@@ -252,6 +252,25 @@ fn bad_input_is_an_error_naming_what_and_where() {
             len: 11
         })
     );
+    // A factor far beyond the record (its spans overflowed usize): too short, not a panic.
+    for kind in [
+        Variance::Allan,
+        Variance::OverlappingAllan,
+        Variance::ModifiedAllan,
+        Variance::Hadamard,
+        Variance::OverlappingHadamard,
+    ] {
+        for m in [usize::MAX / 3 + 1, usize::MAX / 2 + 1, usize::MAX] {
+            assert!(
+                matches!(
+                    variance(&x, 1.0, m, kind),
+                    Err(Error::TooShort { len: 11, .. })
+                ),
+                "{kind:?} m = {m}"
+            );
+            assert_eq!(kind.terms(x.len(), m), 0);
+        }
+    }
     assert!(matches!(
         variance(&x, 0.0, 1, Variance::Allan),
         Err(Error::InvalidParameter { name: "tau0", .. })

@@ -175,7 +175,7 @@ fn a_fix_half_a_turn_off_is_rejected_and_counted() {
 fn bad_fixes_are_named() {
     let (t, psi, rate) = drive(10.0);
     let good = fixes(&t, &psi, 100, (0.0, 0.0));
-    let cases: [(usize, Fix, &str, FixProblem); 4] = [
+    let cases: [(usize, Fix, &str, FixProblem); 7] = [
         (
             3,
             Fix {
@@ -213,6 +213,35 @@ fn bad_fixes_are_named() {
             },
             "sigma",
             FixProblem::NotPositive,
+        ),
+        // Wrapped, 1e17 rad is 0: it would pass for a fix that agrees exactly.
+        (
+            6,
+            Fix {
+                heading: 1e17,
+                ..good[6]
+            },
+            "heading",
+            FixProblem::OutOfRange,
+        ),
+        // Its square is 0: two such fixes at one time divide 0 by 0.
+        (
+            7,
+            Fix {
+                sigma: 1e-200,
+                ..good[7]
+            },
+            "sigma",
+            FixProblem::OutOfRange,
+        ),
+        (
+            1,
+            Fix {
+                sigma: 1e7,
+                ..good[1]
+            },
+            "sigma",
+            FixProblem::OutOfRange,
         ),
     ];
     for (index, bad, what, problem) in cases {
@@ -312,6 +341,21 @@ fn bad_settings_are_named() {
             "initial_heading_sigma",
             FusionConfig {
                 initial_heading_sigma: f64::NAN,
+                ..config()
+            },
+        ),
+        // Squares of these overflowed: every estimate NaN after the first fix.
+        (
+            "bias_walk",
+            FusionConfig {
+                bias_walk: 1e200,
+                ..config()
+            },
+        ),
+        (
+            "initial_bias_sigma",
+            FusionConfig {
+                initial_bias_sigma: 1e200,
                 ..config()
             },
         ),

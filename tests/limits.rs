@@ -67,6 +67,25 @@ fn inputs_at_the_limits_give_finite_outputs() {
     }
 }
 
+/// HDR at its largest increment, stepping often, with the attenuator's power at 1024 and
+/// `c_1 = 0` (R = 1: the formula alone gives 0 * inf once `r^c_2` overflows): finite throughout.
+#[test]
+fn hdr_at_its_largest_settings_stays_finite() {
+    let t = extreme_times();
+    let r: Vec<f64> = (0..t.len())
+        .map(|i| if i % 3 == 0 { 1e-3 } else { -1e-3 })
+        .collect();
+    let mut c = Preset::Hdr.config();
+    c.correction.bias = StaticBias::Fixed(0.0);
+    let h = c.hdr.as_mut().unwrap();
+    (h.increment, h.interval, h.c1, h.c2) = (MAX_READING, 1e-6, 0.0, 1024.0);
+    assert_eq!(h.attenuation(1 << 20), 1.0);
+    let out = common::try_block(&mut Pipeline::new(c).unwrap(), &t, &r).unwrap();
+    assert!(out
+        .iter()
+        .all(|o| o.heading.is_finite() && o.drift.is_finite()));
+}
+
 /// FOG eq 6's factor where the model's turn error reaches -100 %: bounded, not infinite.
 #[test]
 fn the_temperature_factor_stays_finite_where_its_denominator_vanishes() {
@@ -76,6 +95,8 @@ fn the_temperature_factor_stays_finite_where_its_denominator_vanishes() {
     };
     assert_eq!(m.factor(2.0), MAX_READING);
     assert_eq!(m.factor(1.0), 2.0);
+    // No temperature measured: NaN, not the bound (2^20 times the reading).
+    assert!(m.factor(f64::NAN).is_nan());
 }
 
 fn stream(n: usize) -> (Vec<f64>, Vec<f64>) {
@@ -184,7 +205,7 @@ fn a_sample_beyond_a_limit_is_rejected_naming_it() {
 fn parameters_beyond_their_limits_are_refused() {
     let above = |x: f64| f64::from_bits(x.to_bits() + 1);
     type Set = fn(&mut PipelineConfig, f64);
-    let set: [(&str, Set, f64); 8] = [
+    let set: [(&str, Set, f64); 11] = [
         (
             "bias",
             |c, v| c.correction.bias = StaticBias::Fixed(-v),
@@ -208,6 +229,31 @@ fn parameters_beyond_their_limits_are_refused() {
             "gap_limit",
             |c, v| c.input.gap_limit = v,
             MIN_INTERVAL / 2.0,
+        ),
+        (
+            "hdr_increment",
+            |c, v| c.hdr.as_mut().unwrap().increment = v,
+            above(MAX_READING),
+        ),
+        (
+            "rest_bias_walk",
+            |c, v| {
+                c.rest_tracker = Some(RestTrackerConfig {
+                    bias_walk: v,
+                    ..Default::default()
+                })
+            },
+            above(MAX_READING),
+        ),
+        (
+            "rest_block",
+            |c, v| {
+                c.rest_tracker = Some(RestTrackerConfig {
+                    block: v,
+                    ..Default::default()
+                })
+            },
+            above(MAX_TIME),
         ),
     ];
     for (name, apply, value) in set {

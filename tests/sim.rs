@@ -223,12 +223,36 @@ fn invalid_configuration_names_the_field() {
     let ok = GyroModelConfig::ideal(100.0);
     assert_eq!(bad(GyroModelConfig { rate_hz: 0.0, ..ok }), "rate_hz");
     assert_eq!(bad(GyroModelConfig { jitter: 0.01, ..ok }), "jitter");
+    // Above 0.99, each sample loops through ever more dropped draws (1 - 1e-16: never returns).
     assert_eq!(
         bad(GyroModelConfig {
-            drop_probability: 1.0,
+            drop_probability: 0.995,
             ..ok
         }),
         "drop_probability"
+    );
+    assert_eq!(
+        bad(GyroModelConfig {
+            rate_hz: 1e-310,
+            ..ok
+        }),
+        "rate_hz"
+    );
+    // Values whose readings would overflow to infinity.
+    assert_eq!(
+        bad(GyroModelConfig {
+            arw: f64::MAX,
+            ..ok
+        }),
+        "arw"
+    );
+    assert_eq!(bad(GyroModelConfig { bias: 1e300, ..ok }), "bias");
+    assert_eq!(
+        bad(GyroModelConfig {
+            drift_step: f64::MAX,
+            ..ok
+        }),
+        "drift_step"
     );
     assert_eq!(
         bad(GyroModelConfig {
@@ -291,4 +315,41 @@ fn non_finite_input_gives_a_reading_and_no_panic() {
     // A timestamp years ahead jumps the slow bias there instead of stepping through every grid point.
     assert!(m.measure(1.0e9, 0.0).rate.is_finite());
     let _ = m.measure(f64::INFINITY, 0.0);
+    // Long before the first sample the temperature is the profile's start (its exponential
+    // overflowed: 0 * inf = NaN even at a constant temperature).
+    let mut m = GyroModel::new(GyroModelConfig::ideal(10.0), 0).unwrap();
+    m.measure(0.0, 0.0);
+    let early = m.measure(-1e4, 0.5);
+    assert_eq!((early.rate, early.temperature), (0.5, 25.0));
+}
+
+/// Its own defaults (no filter, no range: infinities) read back from JSON; a state read back
+/// without validation (a negative range or period) gives readings, not a panic.
+#[cfg(feature = "serde")]
+#[test]
+fn a_model_round_trips_through_json_and_an_unchecked_one_does_not_panic() {
+    let config = GyroModelConfig {
+        jitter: 1e-3,
+        ..GyroModelConfig::ideal(100.0)
+    };
+    let json = serde_json::to_string(&config).unwrap();
+    assert_eq!(
+        serde_json::from_str::<GyroModelConfig>(&json).unwrap(),
+        config
+    );
+    let model = GyroModel::new(config, 3).unwrap();
+    let json = serde_json::to_string(&model).unwrap();
+    let mut back: GyroModel = serde_json::from_str(&json).unwrap();
+    assert_eq!(back, model);
+    let mut broken: GyroModel =
+        serde_json::from_str(&json.replace("\"range\":\"inf\"", "\"range\":-1.0")).unwrap();
+    assert_ne!(broken, model);
+    assert!(broken.measure(0.0, 0.1).rate.is_finite());
+    back.measure(0.0, 0.1);
+    let sampler = model.sampler(0.0);
+    let json = serde_json::to_string(&sampler)
+        .unwrap()
+        .replace("\"period\":0.01", "\"period\":-0.01");
+    let mut broken: Sampler = serde_json::from_str(&json).unwrap();
+    assert!(broken.nth(3).is_some());
 }

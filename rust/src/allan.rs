@@ -76,9 +76,10 @@ impl Variance {
         match self {
             Variance::Allan => spans.saturating_sub(1),
             Variance::Hadamard => spans.saturating_sub(2),
-            Variance::OverlappingAllan => n.saturating_sub(2 * m),
-            Variance::OverlappingHadamard => n.saturating_sub(3 * m),
-            Variance::ModifiedAllan => (n + 1).saturating_sub(3 * m),
+            // saturating: a factor beyond the record (up to usize::MAX) leaves no term
+            Variance::OverlappingAllan => n.saturating_sub(m.saturating_mul(2)),
+            Variance::OverlappingHadamard => n.saturating_sub(m.saturating_mul(3)),
+            Variance::ModifiedAllan => n.saturating_add(1).saturating_sub(m.saturating_mul(3)),
         }
     }
 }
@@ -281,8 +282,8 @@ fn check_factor(kind: Variance, n: usize, m: usize) -> Result<(), Error> {
     if kind.terms(n, m) == 0 {
         // The shortest record with one term: order * m + 1 samples (3m for the modified variance).
         let needed = match kind {
-            Variance::ModifiedAllan => 3 * m,
-            _ => kind.order() * m + 1,
+            Variance::ModifiedAllan => m.saturating_mul(3),
+            _ => m.saturating_mul(kind.order()).saturating_add(1),
         };
         return Err(Error::TooShort { needed, len: n });
     }
@@ -326,7 +327,7 @@ impl Blocks {
     fn new(kind: Variance, n: usize, m: usize) -> Self {
         let len = match kind {
             // A block restarts the modified variance's running inner sum (see modified_block).
-            Variance::ModifiedAllan => BLOCK.max(64 * m),
+            Variance::ModifiedAllan => BLOCK.max(m.saturating_mul(64)),
             _ => BLOCK,
         };
         Blocks {

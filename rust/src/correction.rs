@@ -53,13 +53,16 @@ pub struct TemperatureScale {
 impl TemperatureScale {
     /// Correction factor `C_T` at temperature `celsius` (FOG eq 6), at most
     /// [`MAX_READING`]: where the model's turn error reaches -100 % (a zero
-    /// denominator) no factor is right, and a bounded one keeps the heading finite.
+    /// denominator) no factor is right, and a bounded one keeps the heading finite. NaN for a
+    /// NaN temperature (none measured).
     #[inline]
     pub fn factor(&self, celsius: f64) -> f64 {
-        1.0 / libm::fmax(
-            libm::fabs(1.0 + self.slope * celsius + self.offset),
-            1.0 / MAX_READING,
-        )
+        let denominator = libm::fabs(1.0 + self.slope * celsius + self.offset);
+        if denominator.is_nan() {
+            // A missing temperature: fmax would take the bound for it, a factor of 2^20.
+            return f64::NAN;
+        }
+        1.0 / libm::fmax(denominator, 1.0 / MAX_READING)
     }
 }
 

@@ -31,12 +31,12 @@
 
 use core::f64::consts::PI;
 
-pub use crate::fixes_config::FusionConfig;
+pub use crate::fixes_config::{FusionConfig, MIN_FIX_SIGMA};
 pub use crate::fixes_error::{FixProblem, FusionError};
 pub use crate::fixes_output::{Estimate, FusionOutputs};
 use crate::fixes_segment::Segment;
 use crate::fixes_smooth::{smoothed, Knot, Mat3};
-use crate::{check_block, Error, MAX_TIME};
+use crate::{check_block, Error, MAX_READING, MAX_TIME};
 
 /// One absolute heading.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -44,9 +44,10 @@ use crate::{check_block, Error, MAX_TIME};
 pub struct Fix {
     /// Time \[s\], on the gyro's clock.
     pub t: f64,
-    /// Heading \[rad\], counter-clockwise from east (any turn: only its value modulo 2 pi counts).
+    /// Heading \[rad\], counter-clockwise from east, within +-2^20 (any turn: only its value
+    /// modulo 2 pi counts).
     pub heading: f64,
-    /// Its standard deviation \[rad\], > 0.
+    /// Its standard deviation \[rad\], in \[[`MIN_FIX_SIGMA`], 2^20\].
     pub sigma: f64,
 }
 
@@ -323,11 +324,21 @@ impl Fusion {
             if !f.heading.is_finite() {
                 return Err(bad("heading", f.heading, FixProblem::NonFinite));
             }
+            // Beyond about 1e16 rad, wrapping the innovation gives 0: the fix would pass for one
+            // that agrees exactly.
+            if f.heading.abs() > MAX_READING {
+                return Err(bad("heading", f.heading, FixProblem::OutOfRange));
+            }
             if !f.sigma.is_finite() {
                 return Err(bad("sigma", f.sigma, FixProblem::NonFinite));
             }
             if f.sigma <= 0.0 {
                 return Err(bad("sigma", f.sigma, FixProblem::NotPositive));
+            }
+            // Its square must be a normal number: two fixes of sigma 1e-200 at one time gave an
+            // innovation variance of 0, and 0 / 0 from then on.
+            if !(MIN_FIX_SIGMA..=MAX_READING).contains(&f.sigma) {
+                return Err(bad("sigma", f.sigma, FixProblem::OutOfRange));
             }
             if let Some(p) = previous.filter(|&p| f.t < p) {
                 return Err(bad("t", f.t, FixProblem::OutOfOrder { previous: p }));

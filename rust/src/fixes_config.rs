@@ -3,8 +3,8 @@
 
 use core::f64::consts::PI;
 
-use crate::error::{check_positive, check_range};
-use crate::{Error, MAX_TIME};
+use crate::error::check_range;
+use crate::{Error, MAX_READING, MAX_TIME};
 
 /// Noise settings and initial uncertainty of the filter.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -32,6 +32,10 @@ pub struct FusionConfig {
     pub gate: f64,
 }
 
+/// The smallest standard deviation of a fix \[rad\] (about 2e-10 deg): its square stays a normal
+/// number, so an innovation's variance is never 0.
+pub const MIN_FIX_SIGMA: f64 = 1e-12;
+
 impl Default for FusionConfig {
     /// A consumer MEMS gyro on a car: the noise settings every fold chose leave-one-log-out
     /// over the twelve KITTI logs (docs/fixes.md; the twins' true `N` is 5.2e-4, `K` 8.7e-5),
@@ -54,10 +58,12 @@ impl Default for FusionConfig {
 impl FusionConfig {
     /// Checks every parameter (the error names it).
     pub fn validate(&self) -> Result<(), Error> {
-        let walk = "finite and >= 0";
-        check_range("arw", self.arw, 0.0, f64::MAX, walk)?;
-        check_range("bias_walk", self.bias_walk, 0.0, f64::MAX, walk)?;
-        check_range("scale_walk", self.scale_walk, 0.0, f64::MAX, walk)?;
+        // At most 2^20, as a reading: their squares, summed over any time span, stay finite.
+        let walk = "finite, >= 0 and at most 2^20";
+        check_range("arw", self.arw, 0.0, MAX_READING, walk)?;
+        check_range("bias_walk", self.bias_walk, 0.0, MAX_READING, walk)?;
+        check_range("scale_walk", self.scale_walk, 0.0, MAX_READING, walk)?;
+        let sigma = "> 0 and at most 2^20";
         check_range(
             "initial_heading",
             self.initial_heading,
@@ -65,7 +71,14 @@ impl FusionConfig {
             MAX_TIME,
             "finite",
         )?;
-        check_positive("initial_heading_sigma", self.initial_heading_sigma)?;
+        let (least, most) = (f64::MIN_POSITIVE, MAX_READING);
+        check_range(
+            "initial_heading_sigma",
+            self.initial_heading_sigma,
+            least,
+            most,
+            sigma,
+        )?;
         check_range(
             "initial_bias",
             self.initial_bias,
@@ -73,7 +86,13 @@ impl FusionConfig {
             1e3,
             "within +-1000 rad/s",
         )?;
-        check_positive("initial_bias_sigma", self.initial_bias_sigma)?;
+        check_range(
+            "initial_bias_sigma",
+            self.initial_bias_sigma,
+            least,
+            most,
+            sigma,
+        )?;
         // s_bar = 1/(1+s) must stay away from 0 for eq 1's b and s to exist.
         let scale = "> 0 and at most 0.5";
         check_range(

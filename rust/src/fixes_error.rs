@@ -12,7 +12,8 @@ pub enum FixProblem {
     NonFinite,
     /// A sigma that is not > 0.
     NotPositive,
-    /// A time beyond +-2^40 s.
+    /// A time beyond +-2^40 s, a heading beyond +-2^20 rad, or a sigma outside
+    /// [[`MIN_FIX_SIGMA`](crate::fixes::MIN_FIX_SIGMA), 2^20] rad.
     OutOfRange,
     /// Earlier than the fix before it (at `previous`).
     OutOfOrder {
@@ -65,7 +66,11 @@ impl fmt::Display for FusionError {
         match problem {
             FixProblem::NonFinite => f.write_str("is not finite; drop or repair the fix"),
             FixProblem::NotPositive => f.write_str("must be > 0 (a standard deviation in rad)"),
-            FixProblem::OutOfRange => f.write_str("is beyond +-2^40 s; check the time unit"),
+            FixProblem::OutOfRange => f.write_str(match what {
+                "t" => "is beyond +-2^40 s; check the time unit",
+                "heading" => "is beyond +-2^20 rad; check the unit (radians)",
+                _ => "is outside [1e-12, 2^20] rad; check the unit (radians)",
+            }),
             FixProblem::OutOfOrder { previous } => write!(
                 f,
                 "comes before the fix before it (t = {previous}); sort the fixes by time"

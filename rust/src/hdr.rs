@@ -17,6 +17,7 @@ use crate::block::BlockMean;
 use crate::error::{check_duration, check_positive, check_range};
 use crate::kernel::{Kernel, Measured, Signal, Streaming, Validated};
 use crate::lowpass::{LowPassConfig, LowPassKernel};
+use crate::validate::MAX_READING;
 use crate::Error;
 
 /// Number of precomputed attenuation values `R(1..=N)` (eq 10); larger counts use `pow`.
@@ -71,8 +72,8 @@ impl HdrConfig {
             "hdr_increment",
             self.increment,
             0.0,
-            f64::MAX,
-            "finite and >= 0",
+            MAX_READING,
+            "finite, >= 0 and at most 2^20 rad/s",
         )?;
         check_range(
             "hdr_turn_threshold",
@@ -96,6 +97,10 @@ impl HdrConfig {
 
     /// Repetition attenuator `R = (1 + c_1) / (1 + c_1 r^c_2)` (HDR eq 10).
     pub fn attenuation(&self, repetitions: u32) -> f64 {
+        if self.c1 == 0.0 {
+            // R = 1 for every r; the formula would give 0 * inf = NaN once r^c2 overflows.
+            return 1.0;
+        }
         (1.0 + self.c1) / (1.0 + self.c1 * libm::pow(repetitions as f64, self.c2))
     }
 }

@@ -21,10 +21,10 @@
 //! stopped short or crept gives a mean with a large standard error, or one the gate refuses, and
 //! so moves the bias little.
 
-use crate::error::{check_positive, check_range};
+use crate::error::{check_duration, check_positive, check_range};
 use crate::kernel::Event;
 use crate::rest::RestStatistics;
-use crate::Error;
+use crate::{Error, MAX_READING};
 
 mod tracked;
 pub use tracked::{Tracked, TrackedConfig, TrackedState, TrackerSettings};
@@ -79,7 +79,7 @@ impl Default for RestTrackerConfig {
 impl RestTrackerConfig {
     /// Checks every field; the error names the first invalid one (as `rest_<field>`).
     pub fn validate(&self) -> Result<(), Error> {
-        check_positive("rest_block", self.block)?;
+        check_duration("rest_block", self.block)?;
         check_range(
             "rest_min_duration",
             self.min_duration,
@@ -107,8 +107,8 @@ impl RestTrackerConfig {
             "rest_bias_walk",
             self.bias_walk,
             0.0,
-            f64::MAX,
-            "finite and >= 0",
+            MAX_READING,
+            "finite, >= 0 and at most 2^20 rad/s/sqrt(s)",
         )?;
         check_range(
             "rest_gate_sigmas",
@@ -118,7 +118,8 @@ impl RestTrackerConfig {
             "> 0 (inf: no gate)",
         )?;
         if let Some(noise) = self.noise {
-            check_range("rest_noise", noise, 0.0, f64::MAX, "finite and >= 0")?;
+            let valid = "finite, >= 0 and at most 2^20 rad/s";
+            check_range("rest_noise", noise, 0.0, MAX_READING, valid)?;
         }
         Ok(())
     }

@@ -148,7 +148,7 @@ impl GyroModel {
         } else {
             0.0
         };
-        let mut reading = ((1.0 + scale) * rate + bias + white).clamp(-c.range, c.range);
+        let mut reading = clip((1.0 + scale) * rate + bias + white, c.range);
         if c.resolution > 0.0 {
             reading = libm::round(reading / c.resolution) * c.resolution;
         }
@@ -197,6 +197,17 @@ impl Stage for GyroModel {
     }
 }
 
+/// `x` clipped to `[-bound, bound]`, a NaN staying NaN; a bound that is not >= 0 (a state read
+/// back without validation) clips nothing, where `f64::clamp` would panic.
+#[inline]
+fn clip(x: f64, bound: f64) -> f64 {
+    if bound >= 0.0 {
+        x.clamp(-bound, bound)
+    } else {
+        x
+    }
+}
+
 /// Sampling instants of a logger: the nominal grid `start + k / rate_hz`, each instant after the
 /// first moved by a Gaussian jitter (clipped to 0.45 of a period, so the order holds), and each
 /// sample lost with `drop_probability`. An endless iterator of the kept instants \[s\].
@@ -234,7 +245,7 @@ impl Iterator for Sampler {
             let mut t = self.start + k as f64 * self.period;
             if k > 0 && self.jitter > 0.0 {
                 let limit = 0.45 * self.period;
-                t += (self.jitter * self.rng.sample()).clamp(-limit, limit);
+                t += clip(self.jitter * self.rng.sample(), limit);
             }
             // The first sample is always kept: it fixes the model's time origin.
             if k == 0 || self.drop_probability == 0.0 || self.rng.uniform() >= self.drop_probability

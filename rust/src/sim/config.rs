@@ -2,8 +2,8 @@
 //! noise terms) and its temperature profile.
 
 use super::{FLICKER_TERMS_PER_DECADE, MAX_FLICKER_TERMS};
-use crate::error::{check_finite, check_positive, check_range};
-use crate::Error;
+use crate::error::{check_duration, check_positive, check_range};
+use crate::{Error, MAX_READING};
 
 /// Sensor temperature over time: an exponential approach from `start` to `end`, as after power-up
 /// (FOG Figure 2) or when a car's cabin warms up (HDR section 5.2). Constant when `start == end`.
@@ -28,10 +28,11 @@ impl TemperatureProfile {
         }
     }
 
-    /// The temperature `elapsed` seconds after the first sample \[degC\].
+    /// The temperature `elapsed` seconds after the first sample \[degC\] (`start` before it:
+    /// the approach begins at the first sample, and `exp` of a large positive power overflows).
     #[inline]
     pub fn at(&self, elapsed: f64) -> f64 {
-        self.end + (self.start - self.end) * libm::exp(-elapsed / self.time_constant)
+        self.end + (self.start - self.end) * libm::exp(-elapsed.max(0.0) / self.time_constant)
     }
 }
 
@@ -45,7 +46,7 @@ pub struct GyroModelConfig {
     /// Standard deviation of each sampling instant about the nominal grid \[s\], in
     /// `[0, 0.25 / rate_hz]`; deviations are clipped to 0.45 of a period so instants keep their order.
     pub jitter: f64,
-    /// Probability that a sample is lost before it reaches the log, in `[0, 1)`.
+    /// Probability that a sample is lost before it reaches the log, in `[0, 0.99]`.
     pub drop_probability: f64,
     /// Scale error `s` of Hong eq 1 at the reference temperature \[1\], > -1 (e.g. -0.1 reads 10 % low).
     pub scale_error: f64,
@@ -61,6 +62,7 @@ pub struct GyroModelConfig {
     pub arw: f64,
     /// Corner frequency of the sensor's first-order low-pass on the white noise \[Hz\], > 0
     /// (infinity: none).
+    #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
     pub bandwidth: f64,
     /// Bias instability `B` [rad/s], >= 0: flicker noise whose Allan deviation is flat at
     /// `sqrt(2 ln 2 / pi) B = 0.664 B` between the correlation times below.
@@ -83,6 +85,7 @@ pub struct GyroModelConfig {
     /// Resolution (one least significant bit) [rad/s], >= 0 (0: no quantisation).
     pub resolution: f64,
     /// Measurement range: readings are clipped to `[-range, range]` [rad/s], > 0 (infinity: none).
+    #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
     pub range: f64,
 }
 
@@ -114,7 +117,7 @@ impl GyroModelConfig {
 
     /// Checks every field; the error names the first invalid one.
     pub fn validate(&self) -> Result<(), Error> {
-        check_positive("rate_hz", self.rate_hz)?;
+        check_range("rate_hz", self.rate_hz, 1e-6, 1e9, "in [1e-6, 1e9] Hz")?;
         check_range(
             "jitter",
             self.jitter,
@@ -126,27 +129,42 @@ impl GyroModelConfig {
             "drop_probability",
             self.drop_probability,
             0.0,
-            1.0 - f64::EPSILON,
-            "in [0, 1)",
+            0.99,
+            "in [0, 0.99] (a logger that loses more keeps next to nothing)",
         )?;
         check_range(
             "scale_error",
             self.scale_error,
             -1.0 + f64::EPSILON,
-            f64::MAX,
-            "finite and > -1",
+            MAX_READING,
+            "> -1 and at most 2^20",
         )?;
-        check_finite("scale_asymmetry", self.scale_asymmetry)?;
-        check_finite("scale_temperature", self.scale_temperature)?;
-        check_finite("bias", self.bias)?;
-        check_finite("bias_temperature", self.bias_temperature)?;
+        let t = self.temperature;
+        for (name, value) in [
+            ("scale_asymmetry", self.scale_asymmetry),
+            ("scale_temperature", self.scale_temperature),
+            ("bias", self.bias),
+            ("bias_temperature", self.bias_temperature),
+            ("temperature.start", t.start),
+            ("temperature.end", t.end),
+            ("reference_temperature", self.reference_temperature),
+        ] {
+            check_range(name, value, -MAX_READING, MAX_READING, "within +-2^20")?;
+        }
         for (name, value) in [
             ("arw", self.arw),
             ("bias_instability", self.bias_instability),
             ("rrw", self.rrw),
             ("resolution", self.resolution),
         ] {
-            check_range(name, value, 0.0, f64::MAX, "finite and >= 0")?;
+            // at most 2^20, as a reading: a reading made of them stays finite
+            check_range(
+                name,
+                value,
+                0.0,
+                MAX_READING,
+                "finite, >= 0 and at most 2^20",
+            )?;
         }
         check_range(
             "bandwidth",
@@ -155,7 +173,7 @@ impl GyroModelConfig {
             f64::INFINITY,
             "> 0 (infinity: no filter)",
         )?;
-        check_positive("flicker_min", self.flicker_min)?;
+        check_duration("flicker_min", self.flicker_min)?;
         check_range(
             "flicker_max",
             self.flicker_max,
@@ -163,7 +181,7 @@ impl GyroModelConfig {
             self.flicker_min * 1.0e7,
             "between flicker_min and 1e7 times flicker_min",
         )?;
-        check_positive("drift_step", self.drift_step)?;
+        check_duration("drift_step", self.drift_step)?;
         if self.bias_instability > 0.0 {
             check_range(
                 "drift_step",
@@ -173,11 +191,7 @@ impl GyroModelConfig {
                 "at most flicker_min (the grid must resolve the fastest flicker term)",
             )?;
         }
-        let t = self.temperature;
-        check_finite("temperature.start", t.start)?;
-        check_finite("temperature.end", t.end)?;
         check_positive("temperature.time_constant", t.time_constant)?;
-        check_finite("reference_temperature", self.reference_temperature)?;
         check_range(
             "range",
             self.range,
