@@ -6,6 +6,7 @@ from __future__ import annotations
 import sys
 import threading
 import time
+import uuid
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from typing import Any
 
@@ -13,8 +14,9 @@ from ._extras import require, tqdm_class
 from .batch_job import FileReport, _FileJob
 
 
-def _run_job(job: _FileJob, stop: threading.Event | None = None) -> FileReport:
-    """Run one job; any error becomes a failed report (a bad file fails alone)."""
+def _run_job(job: _FileJob, stop: threading.Event | Any = None) -> FileReport:
+    """Run one job; any error becomes a failed report (a bad file fails alone). ``stop`` (a
+    thread's or a Dask cluster's event) ends it at its next chunk once set."""
     start = time.perf_counter()
 
     def check_stop(done: int, total: int | None, unit: str) -> None:
@@ -76,8 +78,12 @@ def _run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[File
         client = Client(client)
     reports: dict[int, FileReport] = {}
     try:
+        # The workers' files check it at every chunk, as the threads' files check theirs: a task
+        # already running on a worker is not stopped by cancelling its future.
+        stop = distributed.Event(f"gyrocore-stop-{uuid.uuid4().hex}", client=client)
         futures = [
-            client.submit(_run_job, job, key=f"gyrocore-{i}-{job.path.name}", pure=False) for i, job in enumerate(jobs)
+            client.submit(_run_job, job, stop, key=f"gyrocore-{i}-{job.path.name}", pure=False)
+            for i, job in enumerate(jobs)
         ]
         index = {f.key: i for i, f in enumerate(futures)}
         with _bar(len(jobs), progress) as bar:
@@ -90,9 +96,31 @@ def _run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[File
                         reports[i] = jobs[i].failure(e, 0.0)
                     bar.update(1)
             except BaseException:
-                client.cancel(futures)
+                _stop_on_cluster(distributed, stop, futures)
                 raise
     finally:
         if own:
             client.close()
     return [reports[i] for i in range(len(jobs))]
+
+
+#: How long an interrupted batch waits for the cluster's running files to stop [s].
+STOP_TIMEOUT = 30.0
+
+
+def _stop_on_cluster(distributed: Any, stop: Any, futures: list[Any]) -> None:
+    """Stops the files still waiting and those running (each at its next chunk, removing its
+    temporary output), and waits for the running ones; says so if one does not stop in time
+    (a lost connection to the scheduler, a worker stuck in one chunk)."""
+    pending = [f for f in futures if not f.done()]
+    try:
+        stop.set()
+        distributed.wait(pending, timeout=STOP_TIMEOUT)
+    except Exception:  # noqa: BLE001 - the scheduler gone or the wait timed out: say so below
+        pass
+    running = [f for f in pending if not f.done()]
+    for future in pending:
+        future.cancel()
+    if running:
+        print(f"gyrocore: warning: {len(running)} file(s) on the Dask cluster did not stop within "
+              f"{STOP_TIMEOUT:g} s: their output may still be written", file=sys.stderr)

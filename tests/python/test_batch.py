@@ -273,6 +273,32 @@ def test_batch_on_a_dask_cluster(fleet: list[Path], tmp_path: Path) -> None:
     assert read_table(tmp_path / "again" / "drive0.csv").equals(read_table(tmp_path / "out" / "drive0.csv"))
 
 
+def test_an_interrupted_batch_stops_the_files_running_on_the_cluster(tmp_path: Path,
+                                                                     monkeypatch: pytest.MonkeyPatch) -> None:
+    # Cancelling a future does not stop a task a worker already runs: the long file went on and
+    # wrote its output after the command had said "no partial output was left". Interrupted
+    # when the short file is done, the long one stops at its next chunk and leaves nothing.
+    distributed = pytest.importorskip("dask.distributed")
+    from gyrocore import batch_run
+
+    files = [synthetic_csv(tmp_path / "short.csv", 1000), synthetic_csv(tmp_path / "long.csv", 3_000_000)]
+
+    def interrupt(self: object, n: int = 1) -> None:
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(batch_run._NoBar, "update", interrupt)
+    out = tmp_path / "out"
+    with (
+        distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None) as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        with pytest.raises(KeyboardInterrupt):
+            process_many(files, out_dir=out, client=client, preset="raw", bias=0.0)
+        time.sleep(2.0)  # what a running task would still write
+        assert not (out / "long.csv").exists()
+        assert [p.name for p in out.iterdir()] == ["short.csv"]
+
+
 def test_batch_inputs_from_folders_and_globs(tmp_path: Path) -> None:
     for k in range(3):
         synthetic_csv(tmp_path / f"d{k}.csv", 100)
