@@ -229,3 +229,17 @@ def test_numeric_options_are_checked_before_any_work(tmp_path: Path, args: tuple
     proc = gyrocore_cli(*(a.format(log=log, tmp=tmp_path) for a in args), code=2, timeout=60)
     assert message in proc.stderr.splitlines()[-1], proc.stderr
     assert not list(tmp_path.iterdir())
+
+
+def test_a_reader_that_closes_the_pipe_ends_the_command_quietly(tmp_path: Path) -> None:
+    # `gyrocore process ... | head -0`: the output is written in full; only its report has no
+    # reader. That is no usage error (exit 2 with "[Errno 32] Broken pipe"): the shell's SIGPIPE
+    # code, and nothing on stderr.
+    out = tmp_path / "h.csv"
+    proc = subprocess.Popen([sys.executable, "-m", "gyrocore.cli", "process", str(real_log_path("f110_ds3")),
+                             "--out", str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    assert proc.stdout is not None and proc.stderr is not None
+    proc.stdout.close()
+    assert proc.wait(timeout=120) == 141
+    assert proc.stderr.read() == b""
+    assert len(out.read_text().splitlines()) == 2737  # a header and every sample

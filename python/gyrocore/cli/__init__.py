@@ -47,14 +47,19 @@ def attach_signed_values(argv: Sequence[str]) -> list[str]:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command; user errors print one line ``gyrocore: error: ...`` and return 2, warnings
-    one line ``gyrocore: warning: ...``; Ctrl-C or SIGTERM, whenever it comes, returns 130 with
-    every output as it was before the run."""
+    one line ``gyrocore: warning: ...``; a closed pipe on stdout returns 141 quietly; Ctrl-C or
+    SIGTERM, whenever it comes, returns 130 with every output as it was before the run."""
     with _signals.handled():
         try:
             args = build_parser().parse_args(attach_signed_values(sys.argv[1:] if argv is None else argv))
             with warnings.catch_warnings():
                 warnings.showwarning = show_warning
                 return int(args.func(args))
+        except BrokenPipeError:
+            # The reader went away (`gyrocore ... | head`): what was asked is done, and the
+            # report has no one to read it. Quiet, with the shell's code for SIGPIPE.
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+            return 141
         except (ValueError, TypeError, OSError, MissingExtra) as e:
             print(f"gyrocore: error: {e}", file=sys.stderr)
             return 2
