@@ -10,6 +10,7 @@ import warnings
 
 import numpy as np
 
+from . import _gyrocore
 from ._arrays import FloatArray
 
 #: Above this the rates are implausible in rad/s (about 1150 deg/s) and likely deg/s.
@@ -17,6 +18,10 @@ RATE_LIMIT = 20.0
 #: A mean interval above this [s] suggests timestamps in ms, us or ns (no gyro for heading
 #: reports slower than 0.5 Hz).
 INTERVAL_LIMIT = 2.0
+#: The core's limit of a reading (``gyrocore::MAX_READING``): a rate [rad/s] or temperature
+#: [degC] must lie strictly within +-2^20; the core refuses any other (or, under
+#: ``nonfinite="hold"/"skip"``, holds or skips it like a NaN).
+MAX_READING = 2.0**20
 #: Enough samples for a percentile; longer arrays are checked on a regular subset. The unit
 #: mistakes differ by a factor of 57 (deg/s read as rad/s), far more than the percentile of
 #: 10,000 values can be off; 100,000 took 2.5 ms of a 10^7-sample call (0.1 ms now).
@@ -72,6 +77,26 @@ def warn_units(t: FloatArray, rate: FloatArray) -> None:
     """Emit an :class:`InputWarning` for each unit problem."""
     for message in unit_problems(t, rate):
         warn(message)
+
+
+def usable(values: FloatArray) -> np.ndarray:
+    """Which of ``values`` the core takes as readings: finite and within :data:`MAX_READING`
+    (the others it refuses, or holds or skips)."""
+    return np.asarray(np.abs(values) < MAX_READING)  # NaN compares False
+
+
+def require_readings(what: str, values: FloatArray) -> None:
+    """The core's :class:`~gyrocore.SampleError` for the first of ``values`` (``what``: ``rate`` or
+    ``temperature``) that is not finite or beyond :data:`MAX_READING`, naming its index; nothing if
+    every value is usable. The core checks a block before any stage sees it; here it checks the
+    values up to the first bad one only, so that its words and limit are the one rule."""
+    bad = np.flatnonzero(~usable(values))
+    if not len(bad):
+        return
+    head = values[: int(bad[0]) + 1]
+    times = np.arange(len(head), dtype=np.float64)  # valid times: the reading is what fails
+    rate, temperature = (head, None) if what == "rate" else (np.zeros(len(head)), head)
+    _gyrocore.Pipeline("raw", {}).process(times, rate, temperature)
 
 
 def _prefix(context: str) -> str:

@@ -309,9 +309,11 @@ def _repairs(report: dict[str, float]) -> list[str]:
     """What the pipeline's input policy repaired (NaN readings held or skipped, gaps)."""
     notes = []
     if report["held"]:
-        notes.append(f"{int(report['held'])} non-finite readings replaced by the last finite one")
+        notes.append(f"{int(report['held'])} readings not finite or beyond +-2^20 replaced by the last usable one")
     if report["skipped"]:
-        notes.append(f"{int(report['skipped'])} samples skipped (non-finite readings; their rows have a NaN rate)")
+        notes.append(
+            f"{int(report['skipped'])} samples skipped (readings not finite or beyond +-2^20; their rows have a NaN rate)"
+        )
     if report["gaps"]:
         notes.append(f"{int(report['gaps'])} gaps, the longest {report['longest_gap']:.6g} s")
     return notes

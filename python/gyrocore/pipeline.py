@@ -15,7 +15,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore, rests
 from ._arrays import FloatArray, as_float_array
-from ._checks import warn, warn_units
+from ._checks import MAX_READING, usable, warn, warn_units
 from .result import ALL_OUTPUTS as ALL_OUTPUTS, OUTPUTS as OUTPUTS, Filled, HeadingResult as HeadingResult
 from .result import OutArrays, fix_output_flags, out_arrays, output_flags as output_flags
 from .rests import Rest
@@ -352,17 +352,14 @@ class Pipeline:
         rate: FloatArray,
         temperature: FloatArray | None,
     ) -> None:
-        """Say what the input policy repaired in this chunk (indices are within the chunk)."""
-        for key, verb in (("held", "replaced by the last finite reading"), ("skipped", "skipped")):
+        """Say what the input policy repaired in this chunk (indices are within the chunk): the
+        readings the core does not take, NaN and infinities as well as finite ones beyond its
+        limit (:data:`~gyrocore._checks.MAX_READING`, a wrong unit or a corrupt sample)."""
+        for key, verb in (("held", "replaced by the last usable reading"), ("skipped", "skipped")):
             n = int(after[key] - before[key])
-            if not n:
-                continue
-            bad = ~np.isfinite(rate)
-            if temperature is not None:
-                bad |= ~np.isfinite(temperature)
-            if bad.any():
-                first = int(np.flatnonzero(bad)[0])
-                warn(f"{n} non-finite reading(s) {verb} (first at index {first}, t = {t[first]})")
+            if n:
+                where = _first_unusable(t, rate, temperature)
+                warn(f"{n} reading(s) not finite or beyond +-{MAX_READING:.0f} {verb} ({where})")
         gaps = int(after["gaps"] - before["gaps"])
         if gaps:
             limit = self._inner.params()["gap_limit"]
@@ -440,6 +437,15 @@ class Pipeline:
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"
+
+
+def _first_unusable(t: FloatArray, rate: FloatArray, temperature: FloatArray | None) -> str:
+    """Where the first reading the core does not take is, and what it reads."""
+    readings = [("rate", rate, "rad/s")] + ([] if temperature is None else [("temperature", temperature, "degC")])
+    bad = np.logical_or.reduce([~usable(values) for _, values, _ in readings])
+    i = int(np.argmax(bad))  # the core counted at least one
+    what, values, unit = next(r for r in readings if not usable(r[1][i : i + 1])[0])
+    return f"first at index {i}, t = {t[i]}: {what} {values[i]} {unit}"
 
 
 def _stage_settings(params: dict[str, Any], settings: dict[str, float]) -> dict[str, float]:
