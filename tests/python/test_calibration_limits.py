@@ -122,3 +122,20 @@ def test_a_gap_between_two_quiet_stretches_ends_the_rest() -> None:
     t = np.r_[np.arange(0.0, 5.0, 0.01), np.arange(15.0, 20.0, 0.01)]
     windows = cal.rest_windows(t, 0.01 + rng.normal(0.0, 0.001, len(t)))
     assert [(round(a, 2), round(b, 2)) for a, b in windows] == [(0.0, 4.99), (15.0, 19.99)]
+
+
+@pytest.mark.parametrize("bad", [-1e12, -1e8, 2.0**20])
+def test_a_temperature_beyond_the_limit_is_named_not_binned(bad: float) -> None:
+    t = np.arange(0.0, 120.0, 0.01)
+    temperature = 20.0 + t / 10
+    temperature[5] = bad
+    with pytest.raises(gyrocore.SampleError, match=r"temperature\[5\] = .* degC is beyond \+-1048576 degC") as info:
+        cal.bias_temperature_table(t, np.full_like(t, 0.01), temperature)
+    assert (info.value.index, info.value.what) == (5, "temperature")
+
+
+def test_the_temperature_bins_follow_the_readings_not_the_span() -> None:
+    t = np.arange(0.0, 120.0, 0.01)
+    temperature = np.where(t < 60.0, 20.0, 1e6)  # two clusters 10^6 bins of 0.001 degC apart
+    table = cal.bias_temperature_table(t, np.where(t < 60.0, 0.01, 0.02), temperature, bin_width=1e-3)
+    assert table.temperatures == pytest.approx((20.0, 1e6)) and table.biases == pytest.approx((0.01, 0.02))
