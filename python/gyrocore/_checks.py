@@ -32,6 +32,11 @@ class InputWarning(UserWarning):
     """Input that gyrocore processed but that looks wrong (units) or was repaired (NaN, gaps)."""
 
 
+class UnitError(ValueError):
+    """Input refused because it is in another unit than the one asked for (a heading in degrees
+    given as radians): a mistake to correct, not a property of the data to work around."""
+
+
 def unit_problems(t: FloatArray, rate: FloatArray) -> list[str]:
     """Messages for rates or timestamps that look like another unit (empty if none)."""
     problems = []
@@ -58,6 +63,25 @@ def unit_problems(t: FloatArray, rate: FloatArray) -> list[str]:
                 "(convert to seconds first)"
             )
     return problems
+
+
+#: A step of a reference heading [rad] between two samples beyond this is a heading in degrees:
+#: one in radians steps by at most 2 pi where it wraps (28 turns between two samples would be
+#: needed), one in degrees by about 360.
+DEGREE_STEP = 180.0
+
+
+def require_radians(name: str, t: FloatArray, heading: FloatArray) -> None:
+    """A :class:`UnitError` if the heading ``name`` [rad] at the times ``t`` looks like degrees: a step
+    between two samples beyond :data:`DEGREE_STEP` (a wrap at +-180 or 0/360 deg)."""
+    steps = np.abs(np.diff(heading))
+    i = int(np.argmax(steps)) if len(steps) else 0
+    if len(steps) and steps[i] > DEGREE_STEP:
+        raise UnitError(
+            f"{name} looks like degrees, not radians: it jumps by {heading[i + 1] - heading[i]:.6g} from "
+            f"{heading[i]:.6g} at t = {t[i]} to {heading[i + 1]:.6g} at t = {t[i + 1]} s (a heading in degrees "
+            "wrapping by 360); convert it to radians (numpy.radians)"
+        )
 
 
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))

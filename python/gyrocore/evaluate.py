@@ -21,7 +21,7 @@ from numpy.typing import ArrayLike
 
 from . import deadreckon
 from ._arrays import FloatArray, as_float_array
-from ._checks import require_series
+from ._checks import require_radians, require_series
 from ._extras import pyplot
 from .io import Log, read_log
 from .pipeline import HeadingResult, has_bias_source, process, recommended_preset, uses_static_bias
@@ -108,6 +108,7 @@ class Reference:
         t = as_float_array("t_ref", t_ref)
         psi = as_float_array("heading_ref", heading_ref)
         require_series("t", t, "heading", psi, context="reference")
+        require_radians("the reference heading", t, psi)
         if len(t) < 2:
             raise ValueError(f"reference: {len(t)} sample(s); a heading error needs at least two reference samples")
         gaps = find_gaps(t, gap_factor=gap_factor)
