@@ -240,7 +240,8 @@ class Pipeline:
             self._units_checked = True
         flags = output_flags(outputs)
         inner, fix_block = self._fix_block(fixes)
-        if (speed is not None or speed_t is not None) and not self.params["track_rests"]:
+        rests.refuse_speed_t_alone(speed, speed_t)
+        if speed is not None and not self.params["track_rests"]:
             raise ValueError("speed is given but rest tracking is off: pass track_rests=True, or no speed")
         sa = None if speed is None else rests.speed_at(ta, speed, speed_t)
         inputs = {"t": (t, ta), "rate": (rate, ra), "temperature": (temperature, temp), "speed": (speed, sa)}
