@@ -15,7 +15,7 @@ from ._arrays import FloatArray
 
 #: Above this the rates are implausible in rad/s (about 1150 deg/s) and likely deg/s.
 RATE_LIMIT = 20.0
-#: A mean interval above this [s] suggests timestamps in ms, us or ns (no gyro for heading
+#: A median interval above this [s] suggests timestamps in ms, us or ns (no gyro for heading
 #: reports slower than 0.5 Hz).
 INTERVAL_LIMIT = 2.0
 #: The core's limit of a reading (``gyrocore::MAX_READING``): a rate [rad/s] or temperature
@@ -37,6 +37,17 @@ class UnitError(ValueError):
     given as radians): a mistake to correct, not a property of the data to work around."""
 
 
+def typical_interval(t: FloatArray) -> float:
+    """The median interval of ``t`` [s] (NaN with fewer than two finite times), on a regular subset
+    of a long log (the median of its steps over as many samples): one gap or clock jump, which
+    made the mean interval look like ms, moves it by nothing."""
+    step = max(1, len(t) // _SUBSET)
+    with np.errstate(invalid="ignore", over="ignore"):  # times near +-1e308 or NaN: the core names them
+        intervals = np.diff(t[::step]) / step
+    intervals = intervals[np.isfinite(intervals)]
+    return float(np.median(intervals)) if len(intervals) else math.nan
+
+
 def unit_problems(t: FloatArray, rate: FloatArray) -> list[str]:
     """Messages for rates or timestamps that look like another unit (empty if none)."""
     problems = []
@@ -52,16 +63,12 @@ def unit_problems(t: FloatArray, rate: FloatArray) -> list[str]:
                 f"rates look like deg/s, not rad/s: 99 % of |rate| are below {p99:.3g}, which is "
                 f"{np.degrees(p99):.3g} deg/s if read as rad/s (convert with numpy.radians)"
             )
-    # Python floats: a span that overflows (timestamps near +-1e308) is inf without a warning, and
-    # the core refuses those timestamps itself.
-    span = float(t[-1]) - float(t[0]) if len(t) > 1 else math.nan
-    if math.isfinite(span):
-        mean_dt = span / (len(t) - 1)
-        if mean_dt > INTERVAL_LIMIT:
-            problems.append(
-                f"timestamps look like ms, us or ns, not seconds: the mean interval is {mean_dt:.6g} "
-                "(convert to seconds first)"
-            )
+    interval = typical_interval(t)
+    if interval > INTERVAL_LIMIT:
+        problems.append(
+            f"timestamps look like ms, us or ns, not seconds: the median interval is {interval:.6g} "
+            "(convert to seconds first)"
+        )
     return problems
 
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 import pickle
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -14,6 +15,8 @@ from hypothesis import strategies as st
 
 import gyrocore
 from gyrocore import _gyrocore
+
+from .conftest import gyrocore_cli
 
 
 @st.composite
@@ -214,3 +217,23 @@ def test_the_rate_unit_check_agrees_with_the_99th_percentile(n: int) -> None:
         expected = np.percentile(np.abs(subset), 99) > RATE_LIMIT
         warned = any(p.startswith("rates look like deg/s") for p in unit_problems(t, rate))
         assert warned == expected, (n, share)
+
+
+@pytest.mark.parametrize("mode", ["causal", "whole"])
+def test_one_gap_does_not_make_the_timestamps_look_like_ms(mode: str) -> None:
+    t = np.r_[np.arange(0.0, 30.0, 0.01), 1e5 + np.arange(0.0, 30.0, 0.01)]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        gyrocore.process(t, 0.01 * np.sin(t), "hdr", bias=0.0, mode=mode)
+    messages = [str(w.message) for w in caught]
+    assert not [m for m in messages if "look like" in m] and any("1 gap(s)" in m for m in messages), messages
+    with pytest.warns(gyrocore.InputWarning, match="timestamps look like ms, us or ns, not seconds: the median interval is 10 "):
+        gyrocore.process(t * 1000.0, np.zeros_like(t), "raw", gap_limit=math.inf, mode=mode)
+
+
+def test_a_file_with_one_gap_is_read_in_seconds(tmp_path: Path) -> None:
+    src = tmp_path / "gap.csv"
+    t = np.r_[np.arange(0.0, 30.0, 0.01), 1e5 + np.arange(0.0, 30.0, 0.01)]
+    np.savetxt(src, np.c_[t, np.zeros_like(t)], delimiter=",", header="t,gyro_z", comments="", fmt="%.10g")
+    proc = gyrocore_cli("process", src, "--out", tmp_path / "h.csv", "--causal", "--bias-dps", "0", code=0)
+    assert proc.stderr == f"gyrocore: warning: {src}: 1 gaps, the longest 99970 s\n"
