@@ -26,7 +26,7 @@ from . import _gyrocore
 from ._arrays import FloatArray
 from ._checks import usable
 from ._smoother import leave_one_out
-from .pipeline import RestWindowError
+from .pipeline import RestWindowError, refuse_few_readings, refuse_start_before
 from .rests import Rest
 from .window import time_range
 
@@ -103,7 +103,8 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
 
     Raises:
         RestWindowError: the window ends before the first sample, holds no reading, or reaches
-            past the end of the log.
+            past the end of the log; a given window that starts before the first sample, or holds
+            fewer than :data:`~gyrocore.pipeline.MIN_WINDOW_READINGS` readings.
     """
     start, end = window
     first = last = math.nan
@@ -128,6 +129,8 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
             f"the bias window [{start}, {end}] s ends before the first sample (t[0] = {first}); "
             "give the window in the log's own time base"
         )
+    if found_by == "given: bias_window":
+        refuse_start_before(start, end, first)
     if last < end and found_by == "given: bias_duration":
         raise RestWindowError(
             f"bias_duration = {end - start} s is longer than the log ({time_range(first, last)}); "
@@ -147,7 +150,10 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
             f"the bias window [{start}, {end}] s holds no usable reading (finite, within +-2^20 rad/s) of the log "
             f"({time_range(first, last)})"
         )
-    bias, _, noise, batch_error = _gyrocore.static_bias_test(ts, rs, start, end)
+    bias, _, noise, batch_error = _gyrocore.static_bias_test(ts, rs, start, end)  # first: it names a bad sample
+    if found_by.startswith("given"):
+        given = f"bias_duration = {end - start} s" if found_by == "given: bias_duration" else f"the bias window [{start}, {end}] s"
+        refuse_few_readings(given, samples)
     white_noise = noise if noise is not None else float(np.std(rs[(ts >= start) & (ts <= end)]))
     error = white_noise / math.sqrt(samples)
     return Rest(start, end, bias, max(error, batch_error or 0.0), white_noise, samples, found_by.split(":")[0])

@@ -28,6 +28,9 @@ if TYPE_CHECKING:
 #: counts (applied, rejected, before the first sample, waiting for a later block).
 _Fused = tuple[FloatArray | None, FloatArray | None, FloatArray | None, tuple[int, int, int, int]]
 
+#: Parameters of FOG eq 5's temperature model: without one, a temperature given is not used.
+TEMPERATURE_MODEL = ("temp_slope", "temp_offset")
+
 #: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling.
 _RATE_PARAMETERS = ("bias", "offset", "threshold", "hdr_increment", "hdr_turn_threshold")
 
@@ -35,6 +38,39 @@ _RATE_PARAMETERS = ("bias", "offset", "threshold", "hdr_increment", "hdr_turn_th
 class RestWindowError(ValueError):
     """The rest window (``bias_window``, ``bias_duration``) does not fit the log: it holds no
     sample, or reaches past the log's end."""
+
+
+#: A rest window must hold at least this many readings: the mean of fewer is mostly noise, and
+#: its spread unknown (one reading gave a bias "+- 0").
+MIN_WINDOW_READINGS = 3
+
+
+def refuse_few_readings(window: str, readings: int) -> None:
+    """A :class:`RestWindowError` if the rest ``window`` (as the user gave it) held fewer than
+    :data:`MIN_WINDOW_READINGS` readings."""
+    if readings < MIN_WINDOW_READINGS:
+        raise RestWindowError(
+            f"{window} holds {readings} reading(s): the bias needs at least {MIN_WINDOW_READINGS}; "
+            "give a longer rest window"
+        )
+
+
+def refuse_start_before(start: float, end: float, first: float) -> None:
+    """A :class:`RestWindowError` for a ``bias_window`` that starts before the log's first sample
+    ``first``: the bias would be measured over less than asked, as for one that reaches past its end."""
+    if start < first <= end:
+        raise RestWindowError(
+            f"the bias window [{start}, {end}] s starts before the first sample (t[0] = {first}): the bias would be "
+            f"measured over [{first}, {end}] s only; give a rest window inside the log, in its own time base"
+        )
+
+
+def _window_text(params: dict[str, Any]) -> str:
+    """The rest window of ``params`` as the user gave it."""
+    if params.get("bias_window"):
+        start, end = params["bias_window"]
+        return f"the bias window [{start}, {end}] s"
+    return f"bias_duration = {params['bias_duration']} s"
 
 
 def preset_names() -> list[str]:
@@ -224,9 +260,9 @@ class Pipeline:
             TypeError: non-numeric arrays; an ``out`` array that is not float64.
 
         Warns:
-            InputWarning: rates or timestamps that look like another unit (checked on the first
-                chunk), readings held or skipped (``nonfinite="hold"/"skip"``), gaps longer than
-                ``gap_limit``.
+            InputWarning: rates or timestamps that look like another unit, or a temperature
+                without a temperature model (checked on the first chunk), readings held or skipped
+                (``nonfinite="hold"/"skip"``), gaps longer than ``gap_limit``.
         """
         if isinstance(index_offset, bool) or not isinstance(index_offset, (int, np.integer)) or index_offset < 0:
             raise ValueError(f"index_offset = {index_offset!r}: give the index of the chunk's first sample in the "
@@ -237,6 +273,11 @@ class Pipeline:
         self._check_bias_window(ta, ra, temp)
         if not self._units_checked and len(ta):
             warn_units(ta, ra)
+            if temp is not None and not any(self.params.get(k) is not None for k in TEMPERATURE_MODEL):
+                warn(
+                    f"temperature is given but no temperature model ({', '.join(TEMPERATURE_MODEL)}) is set: it is "
+                    "not used; set the model (e.g. calibration.rotary_table's) or leave the temperature out"
+                )
             self._units_checked = True
         flags = output_flags(outputs)
         inner, fix_block = self._fix_block(fixes)
@@ -318,15 +359,19 @@ class Pipeline:
     def finish(self) -> None:
         """Call after the last chunk of a log: raises :class:`RestWindowError` if the rest window
         reaches past the log's end (a ``bias_window`` after the log, or a ``bias_duration`` longer
-        than the log), so that the bias was measured over less than asked, or not at all (0).
-        Changes nothing.
+        than the log), so that the bias was measured over less than asked, or not at all (0), or
+        if it held fewer than :data:`MIN_WINDOW_READINGS` readings. Changes nothing.
         """
         p = self._inner.params()
         last = self._inner.last_time()
-        if not self._inner.bias()[2] or last is None or self._first_time is None:
-            return  # a fixed bias, a window that is over, or no sample
+        _, count, learning = self._inner.bias()
+        if last is None or self._first_time is None or not (p.get("bias_window") or p.get("bias_duration")):
+            return  # no sample, or a fixed bias
+        if not learning:  # the window is over
+            refuse_few_readings(_window_text(p), count)
+            return
         span = time_range(self._first_time, last)
-        if "bias_window" in p:
+        if p.get("bias_window"):
             start, end = p["bias_window"]
             if last < end:
                 raise RestWindowError(
@@ -397,12 +442,14 @@ class Pipeline:
         last = self._inner.last_time()
         if not (np.isfinite(t).all() and (np.diff(t) > 0).all() and (last is None or t[0] > last)):
             return
-        taken = np.isfinite(rate)  # the readings the filters see: skipped ones are not
+        taken = usable(rate)  # the readings the filters see: skipped ones are not
         if temperature is not None and len(temperature) == len(t):
-            taken &= np.isfinite(temperature)
+            taken &= usable(temperature)
         if p["nonfinite"] == "hold":  # held once there was a finite reading
             taken |= np.logical_or.accumulate(taken) | (last is not None)
         start, end = p["bias_window"]
+        if last is None:  # the log's first chunk
+            refuse_start_before(start, end, float(t[0]))
         after = np.flatnonzero(taken & (t > end))
         if len(after) == 0:
             return
