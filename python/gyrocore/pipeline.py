@@ -37,7 +37,8 @@ _RATE_PARAMETERS = ("bias", "offset", "threshold", "hdr_increment", "hdr_turn_th
 
 class RestWindowError(ValueError):
     """The rest window (``bias_window``, ``bias_duration``) does not fit the log: it holds no
-    sample, or reaches past the log's end."""
+    sample or fewer than :data:`MIN_WINDOW_READINGS`, starts before the log's first sample, or
+    reaches past its end."""
 
 
 #: A rest window must hold at least this many readings: the mean of fewer is mostly noise, and
