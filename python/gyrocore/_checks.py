@@ -44,8 +44,8 @@ def typical_interval(t: FloatArray) -> float:
     step = max(1, len(t) // _SUBSET)
     with np.errstate(invalid="ignore", over="ignore"):  # times near +-1e308 or NaN: the core names them
         intervals = np.diff(t[::step]) / step
-    intervals = intervals[np.isfinite(intervals)]
-    return float(np.median(intervals)) if len(intervals) else math.nan
+        intervals = intervals[np.isfinite(intervals)]
+        return float(np.median(intervals)) if len(intervals) else math.nan
 
 
 def unit_problems(t: FloatArray, rate: FloatArray) -> list[str]:

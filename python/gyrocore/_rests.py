@@ -152,8 +152,8 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
         )
     bias, _, noise, batch_error = _gyrocore.static_bias_test(ts, rs, start, end)  # first: it names a bad sample
     if found_by.startswith("given"):
-        given = f"bias_duration = {end - start} s" if found_by == "given: bias_duration" else f"the bias window [{start}, {end}] s"
-        refuse_few_readings(given, samples)
+        duration = found_by == "given: bias_duration"
+        refuse_few_readings(f"bias_duration = {end - start} s" if duration else f"the bias window [{start}, {end}] s", samples)
     white_noise = noise if noise is not None else float(np.std(rs[(ts >= start) & (ts <= end)]))
     error = white_noise / math.sqrt(samples)
     return Rest(start, end, bias, max(error, batch_error or 0.0), white_noise, samples, found_by.split(":")[0])

@@ -329,7 +329,8 @@ def _repairs(report: dict[str, float]) -> list[str]:
         notes.append(f"{int(report['held'])} readings not finite or beyond +-2^20 replaced by the last usable one")
     if report["skipped"]:
         notes.append(
-            f"{int(report['skipped'])} samples skipped (readings not finite or beyond +-2^20; their rows have a NaN rate)"
+            f"{int(report['skipped'])} samples skipped "
+            "(readings not finite or beyond +-2^20; their rows have a NaN rate)"
         )
     if report["gaps"]:
         notes.append(f"{int(report['gaps'])} gaps, the longest {report['longest_gap']:.6g} s")

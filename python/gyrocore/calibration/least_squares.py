@@ -55,8 +55,8 @@ def _check_units(method: str, s_bar: float, scale_error: float) -> None:
         )
     if abs(scale_error) > MAX_SCALE_ERROR:
         warn(
-            f"{method}: the fitted scale error is {100 * scale_error:+.3g} %, beyond +-{100 * MAX_SCALE_ERROR:g} % for any "
-            f"gyro: the units of the gyro's rate (rad/s) or of the reference ({unit}) look wrong"
+            f"{method}: the fitted scale error is {100 * scale_error:+.3g} %, beyond +-{100 * MAX_SCALE_ERROR:g} % "
+            f"for any gyro: the units of the gyro's rate (rad/s) or of the reference ({unit}) look wrong"
         )
 
 

@@ -40,7 +40,9 @@ def bias_temperature_table(
     w[0] = w[1] if len(w) > 1 else 1.0
     position = np.floor((temp - temp.min()) / bin_width)
     if not np.isfinite(position).all():
-        raise ValueError(f"bin_width = {bin_width:g} degC is too small for temperatures spanning {np.ptp(temp):.6g} degC")
+        raise ValueError(
+            f"bin_width = {bin_width:g} degC is too small for temperatures spanning {np.ptp(temp):.6g} degC"
+        )
     # The bins that hold readings, numbered 0, 1, ... in temperature order: memory follows the
     # readings, not the span of temperatures over the bin width.
     _, k = np.unique(position, return_inverse=True)
