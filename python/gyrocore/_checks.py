@@ -10,13 +10,18 @@ import warnings
 
 import numpy as np
 
+from . import _gyrocore
 from ._arrays import FloatArray
 
 #: Above this the rates are implausible in rad/s (about 1150 deg/s) and likely deg/s.
 RATE_LIMIT = 20.0
-#: A mean interval above this [s] suggests timestamps in ms, us or ns (no gyro for heading
+#: A median interval above this [s] suggests timestamps in ms, us or ns (no gyro for heading
 #: reports slower than 0.5 Hz).
 INTERVAL_LIMIT = 2.0
+#: The core's limit of a reading (``gyrocore::MAX_READING``): a rate [rad/s] or temperature
+#: [degC] must lie strictly within +-2^20; the core refuses any other (or, under
+#: ``nonfinite="hold"/"skip"``, holds or skips it like a NaN).
+MAX_READING = 2.0**20
 #: Enough samples for a percentile; longer arrays are checked on a regular subset. The unit
 #: mistakes differ by a factor of 57 (deg/s read as rad/s), far more than the percentile of
 #: 10,000 values can be off; 100,000 took 2.5 ms of a 10^7-sample call (0.1 ms now).
@@ -25,6 +30,22 @@ _SUBSET = 10_000
 
 class InputWarning(UserWarning):
     """Input that gyrocore processed but that looks wrong (units) or was repaired (NaN, gaps)."""
+
+
+class UnitError(ValueError):
+    """Input refused because it is in another unit than the one asked for (a heading in degrees
+    given as radians): a mistake to correct, not a property of the data to work around."""
+
+
+def typical_interval(t: FloatArray) -> float:
+    """The median interval of ``t`` [s] (NaN with fewer than two finite times), on a regular subset
+    of a long log (the median of its steps over as many samples): one gap or clock jump, which
+    made the mean interval look like ms, moves it by nothing."""
+    step = max(1, len(t) // _SUBSET)
+    with np.errstate(invalid="ignore", over="ignore"):  # times near +-1e308 or NaN: the core names them
+        intervals = np.diff(t[::step]) / step
+        intervals = intervals[np.isfinite(intervals)]
+        return float(np.median(intervals)) if len(intervals) else math.nan
 
 
 def unit_problems(t: FloatArray, rate: FloatArray) -> list[str]:
@@ -42,17 +63,32 @@ def unit_problems(t: FloatArray, rate: FloatArray) -> list[str]:
                 f"rates look like deg/s, not rad/s: 99 % of |rate| are below {p99:.3g}, which is "
                 f"{np.degrees(p99):.3g} deg/s if read as rad/s (convert with numpy.radians)"
             )
-    # Python floats: a span that overflows (timestamps near +-1e308) is inf without a warning, and
-    # the core refuses those timestamps itself.
-    span = float(t[-1]) - float(t[0]) if len(t) > 1 else math.nan
-    if math.isfinite(span):
-        mean_dt = span / (len(t) - 1)
-        if mean_dt > INTERVAL_LIMIT:
-            problems.append(
-                f"timestamps look like ms, us or ns, not seconds: the mean interval is {mean_dt:.6g} "
-                "(convert to seconds first)"
-            )
+    interval = typical_interval(t)
+    if interval > INTERVAL_LIMIT:
+        problems.append(
+            f"timestamps look like ms, us or ns, not seconds: the median interval is {interval:.6g} "
+            "(convert to seconds first)"
+        )
     return problems
+
+
+#: A step of a reference heading [rad] between two samples beyond this is a heading in degrees:
+#: one in radians steps by at most 2 pi where it wraps (28 turns between two samples would be
+#: needed), one in degrees by about 360.
+DEGREE_STEP = 180.0
+
+
+def require_radians(name: str, t: FloatArray, heading: FloatArray) -> None:
+    """A :class:`UnitError` if the heading ``name`` [rad] at the times ``t`` looks like degrees: a step
+    between two samples beyond :data:`DEGREE_STEP` (a wrap at +-180 or 0/360 deg)."""
+    steps = np.abs(np.diff(heading))
+    i = int(np.argmax(steps)) if len(steps) else 0
+    if len(steps) and steps[i] > DEGREE_STEP:
+        raise UnitError(
+            f"{name} looks like degrees, not radians: it jumps by {heading[i + 1] - heading[i]:.6g} from "
+            f"{heading[i]:.6g} at t = {t[i]} to {heading[i + 1]:.6g} at t = {t[i + 1]} s (a heading in degrees "
+            "wrapping by 360); convert it to radians (numpy.radians)"
+        )
 
 
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
@@ -72,6 +108,26 @@ def warn_units(t: FloatArray, rate: FloatArray) -> None:
     """Emit an :class:`InputWarning` for each unit problem."""
     for message in unit_problems(t, rate):
         warn(message)
+
+
+def usable(values: FloatArray) -> np.ndarray:
+    """Which of ``values`` the core takes as readings: finite and within :data:`MAX_READING`
+    (the others it refuses, or holds or skips)."""
+    return np.asarray(np.abs(values) < MAX_READING)  # NaN compares False
+
+
+def require_readings(what: str, values: FloatArray) -> None:
+    """The core's :class:`~gyrocore.SampleError` for the first of ``values`` (``what``: ``rate`` or
+    ``temperature``) that is not finite or beyond :data:`MAX_READING`, naming its index; nothing if
+    every value is usable. The core checks a block before any stage sees it; here it checks the
+    values up to the first bad one only, so that its words and limit are the one rule."""
+    bad = np.flatnonzero(~usable(values))
+    if not len(bad):
+        return
+    head = values[: int(bad[0]) + 1]
+    times = np.arange(len(head), dtype=np.float64)  # valid times: the reading is what fails
+    rate, temperature = (head, None) if what == "rate" else (np.zeros(len(head)), head)
+    _gyrocore.Pipeline("raw", {}).process(times, rate, temperature)
 
 
 def _prefix(context: str) -> str:

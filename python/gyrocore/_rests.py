@@ -24,8 +24,9 @@ import numpy as np
 
 from . import _gyrocore
 from ._arrays import FloatArray
+from ._checks import usable
 from ._smoother import leave_one_out
-from .pipeline import RestWindowError
+from .pipeline import RestWindowError, refuse_few_readings, refuse_start_before
 from .rests import Rest
 from .window import time_range
 
@@ -67,7 +68,7 @@ def find_rests(
     """
     from .calibration.rest import rest_windows_of_checked  # calibration builds on the pipeline module too
 
-    finite = np.isfinite(rate)
+    taken = usable(rate)  # the readings the pipeline takes (a NaN or 1e300 would spoil a block's variance)
     found: list[tuple[float, float, str]] = []
     known = np.zeros(len(t), dtype=bool) if speed is None else np.isfinite(speed)
 
@@ -80,14 +81,14 @@ def find_rests(
         for a, b in _runs(t, known & (np.abs(np.where(known, speed, 0.0)) <= SPEED_THRESHOLD)):
             trim = min(EDGE, (b - a) / 4)
             inside = within(a + trim, b - trim)
-            readings = rate[inside][finite[inside]]
+            readings = rate[inside][taken[inside]]
             if b - a >= min_rest and len(readings) and abs(float(np.mean(readings))) <= MAX_REST_RATE:
                 found.append((a + trim, b - trim, "speed"))
-    if np.count_nonzero(finite) >= 8 and not known.all():
+    if np.count_nonzero(taken) >= 8 and not known.all():
         try:
-            # the times were checked once for the whole log, and these are its finite readings
-            every = finite.all()  # then no copy of the log
-            windows = rest_windows_of_checked(t if every else t[finite], rate if every else rate[finite], min_rest)
+            # the times were checked once for the whole log, and these are its usable readings
+            every = taken.all()  # then no copy of the log
+            windows = rest_windows_of_checked(t if every else t[taken], rate if every else rate[taken], min_rest)
         except ValueError:  # too sparse to judge a rest from the rate: none is found (the plan warns)
             windows = []
         found += [(a, b, "rate") for a, b in windows if not known[within(a, b)].any()]
@@ -96,12 +97,14 @@ def find_rests(
 
 def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[float, float], found_by: str) -> Rest:
     """The rest ``window`` measured over ``chunks`` of ``(t, rate)`` (read only up to the first
-    sample after the window: flat memory for a streamed file); non-finite readings are left out.
+    sample after the window: flat memory for a streamed file); readings the pipeline does not take
+    (not finite, or beyond its limit) are left out, as the pipeline holds or skips them.
     ``found_by`` ``given: bias_duration`` names a window that is the first seconds of the log.
 
     Raises:
         RestWindowError: the window ends before the first sample, holds no reading, or reaches
-            past the end of the log.
+            past the end of the log; a given window that starts before the first sample, or holds
+            fewer than :data:`~gyrocore.pipeline.MIN_WINDOW_READINGS` readings.
     """
     start, end = window
     first = last = math.nan
@@ -126,6 +129,8 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
             f"the bias window [{start}, {end}] s ends before the first sample (t[0] = {first}); "
             "give the window in the log's own time base"
         )
+    if found_by == "given: bias_window":
+        refuse_start_before(start, end, first)
     if last < end and found_by == "given: bias_duration":
         raise RestWindowError(
             f"bias_duration = {end - start} s is longer than the log ({time_range(first, last)}); "
@@ -137,12 +142,18 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
             "give a rest window inside the log, in its own time base"
         )
     ts, rs = np.concatenate(kept_t), np.concatenate(kept_r)
-    finite = np.isfinite(rs)
-    ts, rs = ts[finite], rs[finite]
+    taken = usable(rs)
+    ts, rs = ts[taken], rs[taken]
     samples = int(np.count_nonzero((ts >= start) & (ts <= end)))
     if samples == 0:
-        raise RestWindowError(f"the bias window [{start}, {end}] s holds no finite reading of the log ({time_range(first, last)})")
-    bias, _, noise, batch_error = _gyrocore.static_bias_test(ts, rs, start, end)
+        raise RestWindowError(
+            f"the bias window [{start}, {end}] s holds no usable reading (finite, within +-2^20 rad/s) of the log "
+            f"({time_range(first, last)})"
+        )
+    bias, _, noise, batch_error = _gyrocore.static_bias_test(ts, rs, start, end)  # first: it names a bad sample
+    if found_by.startswith("given"):
+        duration = found_by == "given: bias_duration"
+        refuse_few_readings(f"bias_duration = {end - start} s" if duration else f"the bias window [{start}, {end}] s", samples)
     white_noise = noise if noise is not None else float(np.std(rs[(ts >= start) & (ts <= end)]))
     error = white_noise / math.sqrt(samples)
     return Rest(start, end, bias, max(error, batch_error or 0.0), white_noise, samples, found_by.split(":")[0])

@@ -12,6 +12,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
+from ._checks import MAX_READING, require_readings
 from .allan_edf import _TABLES, ONE_SIGMA, confidence_interval, equivalent_dof
 from .integration import integrate
 
@@ -112,7 +113,9 @@ def deviation(
             -1 flicker (bias instability), -2 random walk (rate random walk).
 
     Raises:
-        ValueError: NaN/inf (naming the index), too few samples, a tau that is not a whole
+        SampleError: a rate that is NaN, infinite or beyond +-2^20 (the pipeline's limit), naming
+            the index.
+        ValueError: too few samples, a tau that is not a whole
             multiple of dt or too long for the record, an unknown option.
     """
     data = as_float_array("rate", rate)
@@ -167,7 +170,9 @@ def deviation_from_timestamps(
     ra = as_float_array("rate", rate)
     if len(ta) < 3:
         raise ValueError(f"need at least 3 samples for an Allan deviation, got {len(ta)}")
-    angle = integrate(ta - ta[0], ra, method="rectangle")  # validates lengths, NaN, increasing t
+    # The core validates lengths, NaN, the readings' range and increasing t, naming the values as
+    # given; its intervals are the same as from ta - ta[0] (a difference of two close floats is exact).
+    angle = integrate(ta, ra, method="rectangle")
     _refuse_gaps(ta)
     span = ta[-1] - ta[0]
     # The mean interval keeps a regular log's grid on its samples (a median of float-rounded
@@ -232,8 +237,12 @@ def _curve(
     overlapping = overlapping or kind == "modified"
     variance = _VARIANCE[(kind, overlapping)]
     n_phase = len(data) + 1 if is_rate else len(data)
-    if is_rate and not math.isfinite(float(np.sum(np.abs(data[np.isfinite(data)]))) * dt):
-        raise ValueError(f"dt = {dt} s: the angle, the sum of rate x dt, overflows; give dt in seconds")
+    if is_rate:
+        # The pipeline's limit (a rate of 1e300 made the deviation inf, and +-1e300 made it 0); it
+        # also bounds the angle, the sum of rate x dt, without a pass over the rates.
+        require_readings("rate", data)
+        if not math.isfinite(MAX_READING * len(data) * dt):
+            raise ValueError(f"dt = {dt} s: the angle, the sum of rate x dt, could overflow; give dt in seconds")
     factors = _factors(taus, n_phase, float(dt), variance)
     try:
         var, terms = _gyrocore.allan_variances(data, float(dt), factors.tolist(), variance, is_rate)

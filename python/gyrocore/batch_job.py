@@ -5,14 +5,16 @@ report of what it did (:class:`FileReport`) and a batch's (:class:`BatchReport`)
 from __future__ import annotations
 
 import time
+import warnings
 from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 from typing import Any
 
 from . import _signals, io, rests, wholelog
 from ._arrays import FloatArray
-from ._checks import first_infinite, warn
+from ._checks import InputWarning, first_infinite, warn
 from ._gyrocore import SampleError
 from .io._columns import concat
 from .io._logfolder import FIXES_CSV, read_odometry
@@ -175,7 +177,8 @@ class _FileJob:
         from_meta = False
         if uses_static_bias(self.preset) and not has_bias_source(overrides) and source.stationary is not None:
             overrides["bias_window"], from_meta = source.stationary, True
-        plan = self._plan(source, overrides, from_meta)
+        with _noted(notes):  # e.g. an odometry.csv in another clock, which whole mode then does without
+            plan = self._plan(source, overrides, from_meta)
         if plan.warning and self.mode == "whole":  # a causal pipeline warns itself
             warn(plan.warning)
         if plan.warning:
@@ -284,6 +287,20 @@ class _FileJob:
         return FileReport(str(self.path), None, self.rows_in, 0, seconds, reason or type(error).__name__)
 
 
+@contextmanager
+def _noted(notes: list[str]) -> Iterator[None]:
+    """Run the block keeping each :class:`InputWarning` it raises as a note of the file's report
+    (the command line prints the notes, with the file's name), and raise every warning again for a
+    caller of the API."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", InputWarning)
+        yield
+    for w in caught:
+        if issubclass(w.category, InputWarning):
+            notes.append(str(w.message))
+        warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+
+
 def _window_text(window: Window | tuple[float, float]) -> str:
     return str(window) if isinstance(window, Window) else f"{window[0]:.10g} .. {window[1]:.10g} s"
 
@@ -309,9 +326,12 @@ def _repairs(report: dict[str, float]) -> list[str]:
     """What the pipeline's input policy repaired (NaN readings held or skipped, gaps)."""
     notes = []
     if report["held"]:
-        notes.append(f"{int(report['held'])} non-finite readings replaced by the last finite one")
+        notes.append(f"{int(report['held'])} readings not finite or beyond +-2^20 replaced by the last usable one")
     if report["skipped"]:
-        notes.append(f"{int(report['skipped'])} samples skipped (non-finite readings; their rows have a NaN rate)")
+        notes.append(
+            f"{int(report['skipped'])} samples skipped "
+            "(readings not finite or beyond +-2^20; their rows have a NaN rate)"
+        )
     if report["gaps"]:
         notes.append(f"{int(report['gaps'])} gaps, the longest {report['longest_gap']:.6g} s")
     return notes

@@ -21,7 +21,7 @@ from numpy.typing import ArrayLike
 
 from . import deadreckon
 from ._arrays import FloatArray, as_float_array
-from ._checks import require_series
+from ._checks import require_radians, require_series, warn
 from ._extras import pyplot
 from .io import Log, read_log
 from .pipeline import HeadingResult, has_bias_source, process, recommended_preset, uses_static_bias
@@ -108,6 +108,7 @@ class Reference:
         t = as_float_array("t_ref", t_ref)
         psi = as_float_array("heading_ref", heading_ref)
         require_series("t", t, "heading", psi, context="reference")
+        require_radians("the reference heading", t, psi)
         if len(t) < 2:
             raise ValueError(f"reference: {len(t)} sample(s); a heading error needs at least two reference samples")
         gaps = find_gaps(t, gap_factor=gap_factor)
@@ -353,12 +354,28 @@ def score(log: Log, method: Method, result: HeadingResult, raw: HeadingErrors, b
     closed = log.has_track and is_closed_path(*log.track()[1:]) and result.fusion is None
     return_error = errors.final_error_deg if closed else None
     position = None
-    if log.has_track and log.t_odometry is not None and log.speed is not None:
+    if log.has_track and log.t_odometry is not None and log.speed is not None and _odometry_overlaps(log, result):
         track = deadreckon.dead_reckon_log(log, result)
         position = deadreckon.position_errors(track, *log.track())
     return Score(
         log.name, method, errors, improvement(raw, errors), bias_source, return_error, position, result.rests
     )
+
+
+def _odometry_overlaps(log: Log, result: HeadingResult) -> bool:
+    """Whether two odometry samples lie inside the heading's span (dead reckoning needs them); if
+    not, a warning: the log is scored without its track, as ``gyrocore process`` finds its rests
+    without the speed (an odometry.csv in another time base, e.g. relative against epoch seconds)."""
+    assert log.t_odometry is not None  # the caller checked
+    inside = np.count_nonzero((log.t_odometry >= result.t[0]) & (log.t_odometry <= result.t[-1]))
+    if inside >= 2:
+        return True
+    warn(
+        f"log {log.name}: {inside} odometry sample(s) (times {log.t_odometry[0]:.10g} .. {log.t_odometry[-1]:.10g} s) "
+        f"lie inside the heading's {result.t[0]:.10g} .. {result.t[-1]:.10g} s: no dead reckoning; give the "
+        "odometry's times in the gyro's clock, in seconds"
+    )
+    return False
 
 
 def compare(

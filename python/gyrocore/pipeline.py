@@ -15,7 +15,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore, rests
 from ._arrays import FloatArray, as_float_array
-from ._checks import warn, warn_units
+from ._checks import MAX_READING, usable, warn, warn_units
 from .result import ALL_OUTPUTS as ALL_OUTPUTS, OUTPUTS as OUTPUTS, Filled, HeadingResult as HeadingResult
 from .result import OutArrays, fix_output_flags, out_arrays, output_flags as output_flags
 from .rests import Rest
@@ -28,13 +28,50 @@ if TYPE_CHECKING:
 #: counts (applied, rejected, before the first sample, waiting for a later block).
 _Fused = tuple[FloatArray | None, FloatArray | None, FloatArray | None, tuple[int, int, int, int]]
 
+#: Parameters of FOG eq 5's temperature model: without one, a temperature given is not used.
+TEMPERATURE_MODEL = ("temp_slope", "temp_offset")
+
 #: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling.
 _RATE_PARAMETERS = ("bias", "offset", "threshold", "hdr_increment", "hdr_turn_threshold")
 
 
 class RestWindowError(ValueError):
     """The rest window (``bias_window``, ``bias_duration``) does not fit the log: it holds no
-    sample, or reaches past the log's end."""
+    sample or fewer than :data:`MIN_WINDOW_READINGS`, starts before the log's first sample, or
+    reaches past its end."""
+
+
+#: A rest window must hold at least this many readings: the mean of fewer is mostly noise, and
+#: its spread unknown (one reading gave a bias "+- 0").
+MIN_WINDOW_READINGS = 3
+
+
+def refuse_few_readings(window: str, readings: int) -> None:
+    """A :class:`RestWindowError` if the rest ``window`` (as the user gave it) held fewer than
+    :data:`MIN_WINDOW_READINGS` readings."""
+    if readings < MIN_WINDOW_READINGS:
+        raise RestWindowError(
+            f"{window} holds {readings} reading(s): the bias needs at least {MIN_WINDOW_READINGS}; "
+            "give a longer rest window"
+        )
+
+
+def refuse_start_before(start: float, end: float, first: float) -> None:
+    """A :class:`RestWindowError` for a ``bias_window`` that starts before the log's first sample
+    ``first``: the bias would be measured over less than asked, as for one that reaches past its end."""
+    if start < first <= end:
+        raise RestWindowError(
+            f"the bias window [{start}, {end}] s starts before the first sample (t[0] = {first}): the bias would be "
+            f"measured over [{first}, {end}] s only; give a rest window inside the log, in its own time base"
+        )
+
+
+def _window_text(params: dict[str, Any]) -> str:
+    """The rest window of ``params`` as the user gave it."""
+    if params.get("bias_window"):
+        start, end = params["bias_window"]
+        return f"the bias window [{start}, {end}] s"
+    return f"bias_duration = {params['bias_duration']} s"
 
 
 def preset_names() -> list[str]:
@@ -224,9 +261,9 @@ class Pipeline:
             TypeError: non-numeric arrays; an ``out`` array that is not float64.
 
         Warns:
-            InputWarning: rates or timestamps that look like another unit (checked on the first
-                chunk), readings held or skipped (``nonfinite="hold"/"skip"``), gaps longer than
-                ``gap_limit``.
+            InputWarning: rates or timestamps that look like another unit, or a temperature
+                without a temperature model (checked on the first chunk), readings held or skipped
+                (``nonfinite="hold"/"skip"``), gaps longer than ``gap_limit``.
         """
         if isinstance(index_offset, bool) or not isinstance(index_offset, (int, np.integer)) or index_offset < 0:
             raise ValueError(f"index_offset = {index_offset!r}: give the index of the chunk's first sample in the "
@@ -237,10 +274,16 @@ class Pipeline:
         self._check_bias_window(ta, ra, temp)
         if not self._units_checked and len(ta):
             warn_units(ta, ra)
+            if temp is not None and not any(self.params.get(k) is not None for k in TEMPERATURE_MODEL):
+                warn(
+                    f"temperature is given but no temperature model ({', '.join(TEMPERATURE_MODEL)}) is set: it is "
+                    "not used; set the model (e.g. calibration.rotary_table's) or leave the temperature out"
+                )
             self._units_checked = True
         flags = output_flags(outputs)
         inner, fix_block = self._fix_block(fixes)
-        if (speed is not None or speed_t is not None) and not self.params["track_rests"]:
+        rests.refuse_speed_t_alone(speed, speed_t)
+        if speed is not None and not self.params["track_rests"]:
             raise ValueError("speed is given but rest tracking is off: pass track_rests=True, or no speed")
         sa = None if speed is None else rests.speed_at(ta, speed, speed_t)
         inputs = {"t": (t, ta), "rate": (rate, ra), "temperature": (temperature, temp), "speed": (speed, sa)}
@@ -317,15 +360,19 @@ class Pipeline:
     def finish(self) -> None:
         """Call after the last chunk of a log: raises :class:`RestWindowError` if the rest window
         reaches past the log's end (a ``bias_window`` after the log, or a ``bias_duration`` longer
-        than the log), so that the bias was measured over less than asked, or not at all (0).
-        Changes nothing.
+        than the log), so that the bias was measured over less than asked, or not at all (0), or
+        if it held fewer than :data:`MIN_WINDOW_READINGS` readings. Changes nothing.
         """
         p = self._inner.params()
         last = self._inner.last_time()
-        if not self._inner.bias()[2] or last is None or self._first_time is None:
-            return  # a fixed bias, a window that is over, or no sample
+        _, count, learning = self._inner.bias()
+        if last is None or self._first_time is None or not (p.get("bias_window") or p.get("bias_duration")):
+            return  # no sample, or a fixed bias
+        if not learning:  # the window is over
+            refuse_few_readings(_window_text(p), count)
+            return
         span = time_range(self._first_time, last)
-        if "bias_window" in p:
+        if p.get("bias_window"):
             start, end = p["bias_window"]
             if last < end:
                 raise RestWindowError(
@@ -352,17 +399,14 @@ class Pipeline:
         rate: FloatArray,
         temperature: FloatArray | None,
     ) -> None:
-        """Say what the input policy repaired in this chunk (indices are within the chunk)."""
-        for key, verb in (("held", "replaced by the last finite reading"), ("skipped", "skipped")):
+        """Say what the input policy repaired in this chunk (indices are within the chunk): the
+        readings the core does not take, NaN and infinities as well as finite ones beyond its
+        limit (:data:`~gyrocore._checks.MAX_READING`, a wrong unit or a corrupt sample)."""
+        for key, verb in (("held", "replaced by the last usable reading"), ("skipped", "skipped")):
             n = int(after[key] - before[key])
-            if not n:
-                continue
-            bad = ~np.isfinite(rate)
-            if temperature is not None:
-                bad |= ~np.isfinite(temperature)
-            if bad.any():
-                first = int(np.flatnonzero(bad)[0])
-                warn(f"{n} non-finite reading(s) {verb} (first at index {first}, t = {t[first]})")
+            if n:
+                where = _first_unusable(t, rate, temperature)
+                warn(f"{n} reading(s) not finite or beyond +-{MAX_READING:.0f} {verb} ({where})")
         gaps = int(after["gaps"] - before["gaps"])
         if gaps:
             limit = self._inner.params()["gap_limit"]
@@ -399,12 +443,14 @@ class Pipeline:
         last = self._inner.last_time()
         if not (np.isfinite(t).all() and (np.diff(t) > 0).all() and (last is None or t[0] > last)):
             return
-        taken = np.isfinite(rate)  # the readings the filters see: skipped ones are not
+        taken = usable(rate)  # the readings the filters see: skipped ones are not
         if temperature is not None and len(temperature) == len(t):
-            taken &= np.isfinite(temperature)
+            taken &= usable(temperature)
         if p["nonfinite"] == "hold":  # held once there was a finite reading
             taken |= np.logical_or.accumulate(taken) | (last is not None)
         start, end = p["bias_window"]
+        if last is None:  # the log's first chunk
+            refuse_start_before(start, end, float(t[0]))
         after = np.flatnonzero(taken & (t > end))
         if len(after) == 0:
             return
@@ -440,6 +486,15 @@ class Pipeline:
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"
+
+
+def _first_unusable(t: FloatArray, rate: FloatArray, temperature: FloatArray | None) -> str:
+    """Where the first reading the core does not take is, and what it reads."""
+    readings = [("rate", rate, "rad/s")] + ([] if temperature is None else [("temperature", temperature, "degC")])
+    bad = np.logical_or.reduce([~usable(values) for _, values, _ in readings])
+    i = int(np.argmax(bad))  # the core counted at least one
+    what, values, unit = next(r for r in readings if not usable(r[1][i : i + 1])[0])
+    return f"first at index {i}, t = {t[i]}: {what} {values[i]} {unit}"
 
 
 def _stage_settings(params: dict[str, Any], settings: dict[str, float]) -> dict[str, float]:

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
-from ._checks import require_finite, require_series
+from ._checks import require_finite, require_series, warn
 
 
 @dataclass(frozen=True)
@@ -122,10 +122,18 @@ def speed_at(t: FloatArray, speed: ArrayLike, speed_t: ArrayLike | None = None) 
     return speed_on(t, speed_t, s, where="speed")
 
 
+def refuse_speed_t_alone(speed: ArrayLike | None, speed_t: ArrayLike | None) -> None:
+    """Refuse ``speed_t`` without ``speed`` (it would be ignored without a word)."""
+    if speed_t is not None and speed is None:
+        raise ValueError("speed_t is given without speed: give the speed [m/s] at those times too, or leave speed_t out")
+
+
 def speed_on(t: FloatArray, t_speed: ArrayLike, speed: ArrayLike, *, where: str = "speed") -> FloatArray:
     """A speed series at its own times, interpolated linearly onto the gyro's times ``t``.
 
-    Outside the series' span the speed is unknown (NaN), so no rest is taken from there.
+    Outside the series' span the speed is unknown (NaN), so no rest is taken from there; a series
+    that covers less than half of the gyro's span, or has fewer than two samples in it, warns
+    (:class:`~gyrocore.InputWarning`: another time base or unit).
 
     Raises:
         ValueError: lengths differ, a time or speed is not finite, or the times do not strictly
@@ -133,6 +141,32 @@ def speed_on(t: FloatArray, t_speed: ArrayLike, speed: ArrayLike, *, where: str 
     """
     ts, vs = as_float_array(f"{where} times", t_speed), as_float_array(where, speed)
     require_series("t", ts, "speed", vs, context=where)
+    _warn_overlap(t, ts, where)
     if len(ts) == 0:
         return np.full(len(t), np.nan)
     return np.asarray(np.interp(t, ts, vs, left=np.nan, right=np.nan), dtype=np.float64)
+
+
+#: A speed series that covers less than this share of the gyro's time span, or fewer than two of
+#: whose samples fall in it, is in another time base or unit (e.g. relative time against epoch
+#: seconds, or ns): a warning says so.
+MIN_OVERLAP = 0.5
+
+
+def _warn_overlap(t: FloatArray, ts: FloatArray, where: str) -> None:
+    """Warn when the speed's times ``ts`` barely overlap the gyro's ``t``: rests are then judged
+    by the rate alone where the speed is unknown, which no error would otherwise reveal."""
+    if len(t) < 2 or not (np.isfinite(t[0]) and np.isfinite(t[-1]) and t[-1] > t[0]):
+        return  # no span to overlap (the pipeline names bad times)
+    first, last = float(t[0]), float(t[-1])
+    lo, hi = (max(first, float(ts[0])), min(last, float(ts[-1]))) if len(ts) else (0.0, 0.0)
+    share = max(hi - lo, 0.0) / (last - first)
+    inside = int(np.count_nonzero((ts >= first) & (ts <= last)))
+    if share >= MIN_OVERLAP and inside >= 2:
+        return
+    spans = f"[{ts[0]:.10g}, {ts[-1]:.10g}] s" if len(ts) else "no sample"
+    warn(
+        f"{where}: its times ({spans}) cover {100 * share:.3g} % of the gyro's [{first:.10g}, {last:.10g}] s, "
+        f"with {inside} speed sample(s) inside it: the speed is unknown elsewhere, and rests there are found "
+        "from the rate alone; give the speed's times in the gyro's clock, in seconds"
+    )

@@ -18,6 +18,11 @@ from .io import Log
 from .pipeline import HeadingResult, Pipeline, uses_static_bias
 
 
+#: :meth:`Case.from_reference_rate`'s regular grid holds at most this many points per reference
+#: sample (memory follows the samples, not the span of their times).
+MAX_GRID_PER_SAMPLE = 10
+
+
 @dataclass(frozen=True, repr=False)
 class Case:
     """One drive to tune or test on: gyro samples, a reference heading and the static-bias source.
@@ -76,14 +81,14 @@ class Case:
         if len(t_ref) < 2:
             raise ValueError(f"log {log.name}: a reference heading needs two samples for a rate, got {len(t_ref)}")
         step = float(np.median(np.diff(t_ref)))
-        points = int((t_ref[-1] - t_ref[0]) / step) + 1
-        if points > 10 * len(t_ref):  # a gap or a jump of its clock: a grid as long as the span
-            gap = int(np.argmax(np.diff(t_ref)))
+        points = (t_ref[-1] - t_ref[0]) / step
+        if points > MAX_GRID_PER_SAMPLE * len(t_ref):  # a jump of the clock would ask for a grid over it
             raise ValueError(
-                f"log {log.name}: its reference jumps from t = {t_ref[gap]:.6g} to {t_ref[gap + 1]:.6g} s "
-                f"(median interval {step:.3g} s): no rate can be taken from it across that gap"
+                f"log {log.name}: the reference spans {t_ref[-1] - t_ref[0]:.6g} s, {points:.3g} of its median "
+                f"intervals ({step:.3g} s) for {len(t_ref)} samples: it has a gap or a jump of its clock; "
+                "cut the log at it"
             )
-        grid = t_ref[0] + step * np.arange(points)
+        grid = t_ref[0] + step * np.arange(int(points) + 1)
         heading = np.interp(grid, t_ref, np.unwrap(heading_ref))
         t, rate = grid[:-1] + 0.5 * step, np.diff(heading) / step
         return cls(f"{log.name} (reference rate)", t, rate, Reference(t_ref, heading_ref), {"bias": 0.0})

@@ -54,7 +54,7 @@ from .pipeline import (
     uses_static_bias,
 )
 from .result import OutArrays, filled, out_arrays
-from .rests import Rest, speed_on
+from .rests import Rest, refuse_speed_t_alone, speed_on
 from .window import Window
 
 if TYPE_CHECKING:
@@ -413,6 +413,7 @@ def process_log(
     the core's rest tracker (``track_rests=True``), which whole mode refuses: it already uses every
     rest of the log."""
     check_mode(mode)
+    refuse_speed_t_alone(speed, speed_t)
     si = _to_si(overrides)
     if mode == "causal":
         refuse_whole_options(si)

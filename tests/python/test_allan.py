@@ -134,7 +134,7 @@ def test_bad_input_is_rejected_with_where_and_what() -> None:
     rate = white_noise(1000, 0.1, 1.0, 6)
     bad = rate.copy()
     bad[17] = np.nan
-    with pytest.raises(ValueError, match=r"rate\[17\] is nan"):
+    with pytest.raises(ValueError, match=r"rate\[17\] is NaN"):
         allan.deviation(bad, 0.1)
     with pytest.raises(ValueError, match=r"taus\[1\] = 0.25 s is not a whole multiple"):
         allan.deviation(rate, 0.1, taus=[0.2, 0.25])
@@ -290,3 +290,26 @@ def test_result_prints_and_serialises() -> None:
     assert "overlapping allan" in repr(r) and "5000 samples" in repr(r)
     d = r.as_dict()
     assert d["taus"] == r.taus.tolist() and d["n"] == r.n.tolist()
+
+
+@pytest.mark.parametrize(
+    ("rate", "index", "shown"),
+    [
+        (np.full(1000, 1e300), 0, "1e300"),
+        (np.where(np.arange(1000) % 2, 1e300, -1e300), 0, "-1e300"),
+        (np.random.default_rng(0).normal(0.0, 1e200, 1000), 0, "1.2573022109339328e199"),
+        (np.r_[np.zeros(9), 2.0**20, np.zeros(990)], 9, "1048576"),
+    ],
+)
+def test_a_rate_beyond_the_limit_is_named_as_integrate_names_it(rate: np.ndarray, index: int, shown: str) -> None:
+    with pytest.raises(gyrocore.SampleError, match=rf"rate\[{index}\] = {shown} rad/s is beyond \+-1048576") as info:
+        allan.deviation(rate, 0.01)
+    assert (info.value.index, info.value.what) == (index, "rate")
+    with pytest.raises(gyrocore.SampleError, match=rf"rate\[{index}\] = {shown} rad/s is beyond"):
+        allan.deviation_from_timestamps(np.arange(len(rate)) * 0.01, rate)
+
+
+def test_unsorted_timestamps_are_shown_as_given() -> None:
+    t = 100.0 + np.arange(0.0, 50.0, 0.01)[::-1]
+    with pytest.raises(gyrocore.SampleError, match=r"t\[1\] = 149.98\d* follows 149.99 "):
+        allan.deviation_from_timestamps(t, np.zeros(len(t)))

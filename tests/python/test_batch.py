@@ -129,9 +129,9 @@ def test_nan_rate_names_the_line_or_is_held_and_reported(tmp_path: Path) -> None
     src.write_text("t,gyro_z\n" + "".join(f"{i},{'nan' if i == 70 else 0.001}\n" for i in range(100)))
     with pytest.raises(ValueError, match=rf"rate\[70\] is NaN.*\({src}, line 72\)"):
         process_file(src, tmp_path / "h.csv", preset="raw", chunk_rows=30)
-    with pytest.warns(gyrocore.InputWarning, match="replaced by the last finite reading"):
+    with pytest.warns(gyrocore.InputWarning, match="replaced by the last usable reading"):
         report = process_file(src, tmp_path / "h.csv", preset="raw", chunk_rows=30, nonfinite="hold")
-    assert report.rows_out == 100 and any("1 non-finite readings replaced" in w for w in report.warnings)
+    assert report.rows_out == 100 and any("1 readings not finite or beyond +-2^20 replaced" in w for w in report.warnings)
 
 
 def test_output_is_never_the_input(tmp_path: Path) -> None:

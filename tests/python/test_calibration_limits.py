@@ -9,6 +9,7 @@ import subprocess
 import sys
 import warnings
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -16,6 +17,8 @@ import pytest
 import gyrocore
 from gyrocore import calibration as cal
 from gyrocore import datasets, motion, sim
+
+from .conftest import gyrocore_cli
 
 
 def straight(seed: int) -> sim.Drive:
@@ -122,3 +125,67 @@ def test_a_gap_between_two_quiet_stretches_ends_the_rest() -> None:
     t = np.r_[np.arange(0.0, 5.0, 0.01), np.arange(15.0, 20.0, 0.01)]
     windows = cal.rest_windows(t, 0.01 + rng.normal(0.0, 0.001, len(t)))
     assert [(round(a, 2), round(b, 2)) for a, b in windows] == [(0.0, 4.99), (15.0, 19.99)]
+
+
+@pytest.mark.parametrize("bad", [-1e12, -1e8, 2.0**20])
+def test_a_temperature_beyond_the_limit_is_named_not_binned(bad: float) -> None:
+    t = np.arange(0.0, 120.0, 0.01)
+    temperature = 20.0 + t / 10
+    temperature[5] = bad
+    with pytest.raises(gyrocore.SampleError, match=r"temperature\[5\] = .* degC is beyond \+-1048576 degC") as info:
+        cal.bias_temperature_table(t, np.full_like(t, 0.01), temperature)
+    assert (info.value.index, info.value.what) == (5, "temperature")
+
+
+def test_the_temperature_bins_follow_the_readings_not_the_span() -> None:
+    t = np.arange(0.0, 120.0, 0.01)
+    temperature = np.where(t < 60.0, 20.0, 1e6)  # two clusters 10^6 bins of 0.001 degC apart
+    table = cal.bias_temperature_table(t, np.where(t < 60.0, 0.01, 0.02), temperature, bin_width=1e-3)
+    assert table.temperatures == pytest.approx((20.0, 1e6)) and table.biases == pytest.approx((0.01, 0.02))
+
+
+def _wrapped_degrees(heading: np.ndarray) -> np.ndarray:
+    return np.degrees(np.angle(np.exp(1j * heading)))
+
+
+@pytest.mark.parametrize(("to_degrees", "message"), [
+    (np.degrees, r"the reference changes 5\d.\d+ times as much as the gyro \(s_bar\).*heading_ref looks like degrees"),
+    (_wrapped_degrees, r"heading_ref looks like degrees, not radians: it jumps by -3\d\d"),
+])
+def test_a_reference_heading_in_degrees_is_refused(to_degrees: Any, message: str) -> None:
+    log = datasets.sample_drive()
+    assert log.t_ref is not None and log.heading_ref is not None
+    with pytest.raises(ValueError, match=message + ".*convert it to rad"):
+        cal.heading_reference(log.t, log.rate, log.t_ref, to_degrees(log.heading_ref))
+
+
+def test_a_scale_error_no_gyro_has_warns_that_a_unit_looks_wrong() -> None:
+    log = datasets.sample_drive()
+    assert log.t_ref is not None and log.heading_ref is not None
+    with pytest.warns(gyrocore.InputWarning, match=r"scale error is -6\d.\d %, beyond \+-50 %.*units .* look wrong"):
+        cal.heading_reference(log.t, log.rate / 3.0, log.t_ref, log.heading_ref)
+    truth = np.sin(np.linspace(0.0, 20.0, 500))
+    with pytest.warns(gyrocore.InputWarning, match=r"rate_reference: the fitted scale error is \+200 %.*\(rad/s\) look wrong"):
+        cal.rate_reference(3.0 * truth, truth)
+
+
+def _sample_with_reference_in_degrees(folder: Path) -> Path:
+    datasets.write_sample(folder)
+    reference = folder / "reference.csv"
+    lines = reference.read_text().splitlines()
+    column = lines[0].split(",").index("heading")
+    rows = [line.split(",") for line in lines[1:]]
+    for row in rows:
+        row[column] = repr(float(_wrapped_degrees(np.array([float(row[column])]))[0]))
+    reference.write_text("\n".join([lines[0], *(",".join(row) for row in rows)]) + "\n")
+    return folder
+
+
+def test_the_command_line_refuses_a_reference_in_degrees(tmp_path: Path) -> None:
+    folder = _sample_with_reference_in_degrees(tmp_path / "deg")
+    saved = tmp_path / "c.json"
+    proc = gyrocore_cli("calibrate", folder, "--save", saved, code=2)
+    assert "looks like degrees, not radians" in proc.stderr and "convert it to radians" in proc.stderr
+    assert not saved.exists()
+    proc = gyrocore_cli("evaluate", folder, code=2)
+    assert "the reference heading looks like degrees, not radians" in proc.stderr

@@ -79,7 +79,7 @@ def test_evaluate_names_the_log_of_an_error() -> None:
     [
         (lambda: allan.deviation(RATE, 0.01, taus=[np.nan]), r"taus\[0\] = nan: averaging times must be finite"),
         (lambda: allan.deviation_from_timestamps(T, RATE, dt=1e-9), r"dt = 1e-09 s would resample the 1000 samples"),
-        (lambda: allan.deviation(RATE, 1e308), r"dt = 1e\+308 s: the angle, the sum of rate x dt, overflows"),
+        (lambda: allan.deviation(RATE, 1e308), r"dt = 1e\+308 s: the angle, the sum of rate x dt, could overflow"),
         (lambda: static_bias(T, RATE, (5.0,)), r"the rest window must be \(start, end\) in seconds, got \(5\.0,\)"),
         (lambda: static_bias(T, RATE, (5.0, 1.0)), r"the rest window \(5\.0, 1\.0\) must be finite with end > start"),
     ],

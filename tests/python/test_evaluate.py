@@ -215,3 +215,20 @@ def test_a_log_without_reference_is_refused_by_name(tmp_path: Path, capsys: pyte
     real = gyrocore.read_log(real_log_path("f110_ds3"))
     t_ref, heading_ref = real.reference()
     assert real.has_track and real.track()[0] is t_ref and heading_ref is real.heading_ref
+
+
+def test_an_odometry_in_relative_time_warns_in_process_and_evaluate_alike(tmp_path: Path) -> None:
+    from .conftest import gyrocore_cli
+
+    folder = gyrocore.datasets.write_sample(tmp_path / "rel")
+    odometry = np.loadtxt(folder / "odometry.csv", delimiter=",", skiprows=1)
+    odometry[:, 0] += 1000.0  # another clock: none of it overlaps the gyro's
+    np.savetxt(folder / "odometry.csv", odometry, delimiter=",", header="t,speed", comments="", fmt="%.17g")
+    meta = json.loads((folder / "meta.json").read_text())
+    (folder / "meta.json").write_text(json.dumps({**meta, "stationary": None}))  # rests found, with the speed
+    processed = gyrocore_cli("process", folder, "--out", tmp_path / "h.csv", code=0)
+    evaluated = gyrocore_cli("evaluate", folder, code=0)
+    for proc in (processed, evaluated):
+        assert "odometry.csv: its times" in proc.stderr or "odometry speed: its times" in proc.stderr, proc.stderr
+        assert "cover 0 % of the gyro's" in proc.stderr
+    assert "0 odometry sample(s) (times 1000 .. " in evaluated.stderr and "no dead reckoning" in evaluated.stderr

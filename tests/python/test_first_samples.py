@@ -28,7 +28,7 @@ def test_no_finite_rate_is_a_sample_error_at_index_0() -> None:
 def test_no_finite_first_reading_is_skipped_under_hold_and_skip(nonfinite: str) -> None:
     t = np.arange(4) * 0.01
     r = np.array([np.nan, np.nan, 0.1, 0.1])
-    with pytest.warns(gyrocore.InputWarning, match=r"2 non-finite reading\(s\) skipped \(first at index 0"):
+    with pytest.warns(gyrocore.InputWarning, match=r"2 reading\(s\) not finite or beyond \+-1048576 skipped \(first at index 0"):
         result = gyrocore.process(t, r, "raw", nonfinite=nonfinite)
     # nothing to hold yet: both are left out, and the heading starts at the first finite reading
     assert np.array_equal(result.heading, [0.0, 0.0, 0.0, 0.5 * (0.1 + 0.1) * (t[3] - t[2])])
@@ -53,7 +53,7 @@ def test_a_csv_whose_first_rates_are_empty(tmp_path: Path) -> None:
     proc = run_cli("process", src, "--out", out, "--preset", "raw", "--nonfinite", "skip")
     assert proc.returncode == 0
     assert proc.stderr == (
-        f"gyrocore: warning: {src}: 2 samples skipped (non-finite readings; their rows have a NaN rate)\n"
+        f"gyrocore: warning: {src}: 2 samples skipped (readings not finite or beyond +-2^20; their rows have a NaN rate)\n"
     )
 
 
@@ -74,3 +74,12 @@ def test_unit_warnings_do_not_depend_on_the_chunk_size(tmp_path: Path, chunk_row
     assert len(warned) == 2
     assert warned[0].startswith(f"gyrocore: warning: {src}: rates look like deg/s, not rad/s")
     assert warned[1].startswith(f"gyrocore: warning: {src}: timestamps look like ms, not s")
+
+
+def test_a_reading_beyond_the_limit_is_reported_without_a_numpy_warning(tmp_path: Path) -> None:
+    src = tmp_path / "big.csv"
+    src.write_text("t,gyro_z\n" + "".join(f"{i / 100},{1e300 if i == 7 else 0.01}\n" for i in range(3000)))
+    proc = run_cli("process", src, "--out", tmp_path / "h.csv", "--nonfinite", "hold")  # whole mode finds rests
+    assert proc.returncode == 0
+    assert f"gyrocore: warning: {src}: 1 readings not finite or beyond +-2^20 replaced by the last usable one\n" in proc.stderr
+    assert "overflow" not in proc.stderr

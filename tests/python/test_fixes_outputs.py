@@ -30,9 +30,9 @@ def test_the_pipeline_computes_the_fix_outputs_asked_for(outputs: tuple[str, ...
     t, heading, rate = drive(90.0)
     rate[2500] = np.nan  # skipped: its row repeats the one before, in every column asked for
     fixes = fixes_of(t, heading)
-    with pytest.warns(gyrocore.InputWarning, match="1 non-finite reading"):
+    with pytest.warns(gyrocore.InputWarning, match="1 reading.s. not finite"):
         every = gyrocore.Pipeline("hdr", bias=BIAS, nonfinite="skip").process(t, rate, fixes=fixes)
-    with pytest.warns(gyrocore.InputWarning, match="1 non-finite reading"):
+    with pytest.warns(gyrocore.InputWarning, match="1 reading.s. not finite"):
         some = gyrocore.Pipeline("hdr", bias=BIAS, nonfinite="skip").process(t, rate, fixes=fixes, outputs=outputs)
     assert some.heading.tobytes() == every.heading.tobytes()
     assert some.fusion is not None and every.fusion is not None

@@ -237,3 +237,24 @@ def test_the_dead_band_widens_with_the_bias_uncertainty_between_two_stops() -> N
     assert all(bands_ok) and len(bands_ok) > 150
     assert sigma[148] > 3 * sigma[15], (sigma[15], sigma[148])
     assert sigma[170] < sigma[148] / 2, (sigma[148], sigma[170])
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+@pytest.mark.parametrize(("shift", "scale", "covered", "inside"), [(1.7e9, 1.0, "0", 0), (0.0, 1e9, "100", 1), (45.0, 1.0, "25", 150)])
+def test_a_speed_in_another_time_base_or_unit_warns(mode: str, shift: float, scale: float, covered: str, inside: int) -> None:
+    t = np.arange(0.0, 60.0, 0.01)
+    speed = np.where((t > 20) & (t < 30), 0.0, 5.0)
+    rate = 0.003 + np.where(speed > 0, 0.1 * np.sin(t), 0.0)
+    causal = {"track_rests": True, "bias": 0.0} if mode == "causal" else {}
+    speed_t = t[::10] * scale + shift
+    with pytest.warns(gyrocore.InputWarning, match=rf"speed: its times \(\[.*\] s\) cover {covered} % of the gyro's \[0, 59.99\] s, "
+                      rf"with {inside} speed sample\(s\) inside it: .*in the gyro's clock, in seconds"):
+        gyrocore.process(t, rate, "static_bias", mode=mode, speed=speed[::10], speed_t=speed_t, **causal)
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_speed_times_without_a_speed_are_refused(mode: str) -> None:
+    t = np.arange(0.0, 10.0, 0.01)
+    causal = {"track_rests": True, "bias": 0.0} if mode == "causal" else {}
+    with pytest.raises(ValueError, match="speed_t is given without speed: give the speed"):
+        gyrocore.process(t, np.zeros_like(t), "static_bias", mode=mode, speed_t=t, **causal)

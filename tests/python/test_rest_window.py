@@ -158,3 +158,28 @@ def test_a_bad_meta_json_is_named(log_folder: Path, tmp_path: Path, content: byt
     proc = gyrocore_cli("process", log_folder, "--out", tmp_path / "h.csv")
     assert proc.returncode == 2
     assert proc.stderr.strip() == f"gyrocore: error: {log_folder / 'meta.json'}: {message}"
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+@pytest.mark.parametrize(("overrides", "message"), [
+    ({"bias_window": (5.0, 5.0)}, r"the bias window \[5.0, 5.0\] s holds 1 reading\(s\): the bias needs at least 3"),
+    ({"bias_duration": 0.015}, r"bias_duration = 0.015 s holds 2 reading\(s\): the bias needs at least 3"),
+    ({"bias_window": (-100.0, 1.0)}, r"the bias window \[-100.0, 1.0\] s starts before the first sample \(t\[0\] = 0.0\): "
+                                     r"the bias would be measured over \[0.0, 1.0\] s only"),
+])
+def test_a_rest_window_too_short_or_partly_before_the_log_is_refused(
+    mode: str, overrides: dict[str, object], message: str
+) -> None:
+    t = np.arange(0.0, 60.0, 0.01)
+    with pytest.raises(gyrocore.RestWindowError, match=message):
+        gyrocore.process(t, 0.01 + 0.1 * np.sin(t), "hdr", mode=mode, **overrides)
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_a_temperature_without_a_temperature_model_warns_that_it_is_not_used(mode: str) -> None:
+    t = np.arange(0.0, 10.0, 0.01)
+    with pytest.warns(gyrocore.InputWarning, match=r"temperature is given but no temperature model \(temp_slope, temp_offset\)"):
+        gyrocore.process(t, np.zeros_like(t), "hdr", bias=0.0, mode=mode, temperature=np.full_like(t, 20.0))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        gyrocore.process(t, np.zeros_like(t), "hdr", bias=0.0, mode=mode, temperature=np.full_like(t, 20.0), temp_slope=1e-4)

@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 import pickle
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -14,6 +15,8 @@ from hypothesis import strategies as st
 
 import gyrocore
 from gyrocore import _gyrocore
+
+from .conftest import gyrocore_cli
 
 
 @st.composite
@@ -80,16 +83,54 @@ def test_nan_policies_and_their_warnings() -> None:
     r[[500, 501, 900]] = np.nan
     with pytest.raises(ValueError, match=r"rate\[500\] is NaN"):
         gyrocore.process(t, r, "hdr", bias=0.0)
-    with pytest.warns(gyrocore.InputWarning, match=r"3 non-finite reading\(s\) replaced by the last finite reading \(first at index 500"):
+    with pytest.warns(gyrocore.InputWarning, match=r"3 reading\(s\) not finite or beyond \+-1048576 replaced by the last usable reading \(first at index 500"):
         held = gyrocore.process(t, r, "raw", nonfinite="hold")
     assert held.heading[-1] == pytest.approx(0.1 * t[-1])
     p = gyrocore.Pipeline("raw", nonfinite="skip")
-    with pytest.warns(gyrocore.InputWarning, match=r"3 non-finite reading\(s\) skipped"):
+    with pytest.warns(gyrocore.InputWarning, match=r"3 reading\(s\) not finite or beyond \+-1048576 skipped"):
         skipped = p.process(t, r)
     assert np.isnan(skipped.rate[[500, 501, 900]]).all() and np.isfinite(skipped.heading).all()
     assert p.report["skipped"] == 3
     with pytest.raises(ValueError, match="unknown nonfinite 'drop'"):
         gyrocore.Pipeline("raw", nonfinite="drop")
+
+
+@pytest.mark.parametrize("mode", ["causal", "whole"])
+@pytest.mark.parametrize("nonfinite", ["hold", "skip"])
+@pytest.mark.parametrize("value", [5e6, 1e300])
+def test_a_reading_beyond_the_limit_is_repaired_with_a_warning(mode: str, nonfinite: str, value: float) -> None:
+    t = np.arange(0.0, 60.0, 0.01)
+    r = 0.01 + 0.1 * np.sin(t)
+    r[7] = value
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        gyrocore.process(t, r, "recommended", nonfinite=nonfinite, mode=mode, bias=0.0 if mode == "causal" else None)
+    messages = [f"{w.category.__name__}: {w.message}" for w in caught]
+    assert not [m for m in messages if not m.startswith("InputWarning")], messages  # no numpy overflow leaks
+    assert any(
+        f"1 reading(s) not finite or beyond +-1048576 {'replaced by the last usable reading' if nonfinite == 'hold' else 'skipped'} "
+        f"(first at index 7, t = 0.07: rate {value} rad/s)" in m
+        for m in messages
+    ), messages
+
+
+def test_a_temperature_beyond_the_limit_is_named_when_held() -> None:
+    t = np.arange(0.0, 10.0, 0.01)
+    temperature = np.full_like(t, 20.0)
+    temperature[3] = -1e12
+    with pytest.warns(gyrocore.InputWarning, match=r"first at index 3, t = 0.03: temperature -1000000000000.0 degC"):
+        gyrocore.process(t, np.zeros_like(t), "hdr", bias=0.0, nonfinite="hold", mode="causal", temperature=temperature,
+                         temp_slope=1e-4)
+
+
+def test_the_limit_of_a_reading_is_the_cores() -> None:
+    from gyrocore._checks import MAX_READING, usable
+
+    edge = np.array([np.nextafter(MAX_READING, 0.0), MAX_READING])
+    assert usable(edge).tolist() == [True, False]
+    gyrocore.integrate([0.0, 1.0], [edge[0], -edge[0]])
+    with pytest.raises(gyrocore.SampleError, match=r"rate\[1\] = 1048576 rad/s is beyond"):
+        gyrocore.integrate([0.0, 1.0], [0.0, MAX_READING])
 
 
 def test_gaps_are_reported_and_reset_on_request() -> None:
@@ -176,3 +217,23 @@ def test_the_rate_unit_check_agrees_with_the_99th_percentile(n: int) -> None:
         expected = np.percentile(np.abs(subset), 99) > RATE_LIMIT
         warned = any(p.startswith("rates look like deg/s") for p in unit_problems(t, rate))
         assert warned == expected, (n, share)
+
+
+@pytest.mark.parametrize("mode", ["causal", "whole"])
+def test_one_gap_does_not_make_the_timestamps_look_like_ms(mode: str) -> None:
+    t = np.r_[np.arange(0.0, 30.0, 0.01), 1e5 + np.arange(0.0, 30.0, 0.01)]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        gyrocore.process(t, 0.01 * np.sin(t), "hdr", bias=0.0, mode=mode)
+    messages = [str(w.message) for w in caught]
+    assert not [m for m in messages if "look like" in m] and any("1 gap(s)" in m for m in messages), messages
+    with pytest.warns(gyrocore.InputWarning, match="timestamps look like ms, us or ns, not seconds: the median interval is 10 "):
+        gyrocore.process(t * 1000.0, np.zeros_like(t), "raw", gap_limit=math.inf, mode=mode)
+
+
+def test_a_file_with_one_gap_is_read_in_seconds(tmp_path: Path) -> None:
+    src = tmp_path / "gap.csv"
+    t = np.r_[np.arange(0.0, 30.0, 0.01), 1e5 + np.arange(0.0, 30.0, 0.01)]
+    np.savetxt(src, np.c_[t, np.zeros_like(t)], delimiter=",", header="t,gyro_z", comments="", fmt="%.10g")
+    proc = gyrocore_cli("process", src, "--out", tmp_path / "h.csv", "--causal", "--bias-dps", "0", code=0)
+    assert proc.stderr == f"gyrocore: warning: {src}: 1 gaps, the longest 99970 s\n"

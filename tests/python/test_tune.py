@@ -199,11 +199,3 @@ def test_cli_tune_writes_a_loadable_file(tmp_path: Path, capsys: pytest.CaptureF
     harm = json.loads(capsys.readouterr().out)["harm"]
     assert [h["case"].split(",")[0] for h in harm] == ["perfect gyro", "unbiased noisy gyro"]
 
-
-def test_a_reference_whose_clock_jumps_is_refused_not_gridded() -> None:
-    # Its rate is taken on a regular grid over the reference's span: across a jump of 1e9 s that
-    # grid would hold 1e11 points. The error names the jump instead.
-    t_ref = np.r_[np.arange(0.0, 10.0, 0.1), 1e9 + np.arange(0.0, 10.0, 0.1)]
-    log = gyrocore.Log("jumpy", t_ref, np.zeros(len(t_ref)), t_ref=t_ref, heading_ref=np.zeros(len(t_ref)))
-    with pytest.raises(ValueError, match=r"log jumpy: its reference jumps from t = 9.9 to 1e\+09 s"):
-        tune.Case.from_reference_rate(log)

@@ -58,3 +58,13 @@ def test_fitted_values_over_the_presets_parameters_are_what_the_core_builds(pres
             fitted = {n: float(np.exp(rng.uniform(*np.log(tune.BOUNDS[n])))) for n in names}
             laid = {**gyrocore.preset_params(preset, **fixed), **fitted}
             assert laid == gyrocore.preset_params(preset, **fixed, **fitted), (fixed, fitted)
+
+
+def test_a_reference_whose_clock_jumps_is_refused_before_a_grid_over_the_jump() -> None:
+    from gyrocore.io import Log
+    from gyrocore.tune_cases import Case
+
+    t = np.r_[np.arange(0.0, 10.0, 0.1), 1e9 + np.arange(0.0, 10.0, 0.1)]
+    log = Log(name="jump", t=t, rate=np.zeros(len(t)), t_ref=t, heading_ref=np.zeros(len(t)))
+    with pytest.raises(ValueError, match="log jump: the reference spans 1e\\+09 s.*a gap or a jump of its clock"):
+        Case.from_reference_rate(log)

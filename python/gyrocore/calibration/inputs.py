@@ -5,7 +5,7 @@ from __future__ import annotations
 from numpy.typing import ArrayLike
 
 from .._arrays import FloatArray, as_float_array
-from .._checks import require_finite, require_series
+from .._checks import require_readings, require_series
 
 
 def check_series(
@@ -18,9 +18,10 @@ def check_series(
 
 
 def check_temperature(temperature: ArrayLike, n: int) -> FloatArray:
-    """The temperature record [degC], checked: as long as the timestamps, every value finite."""
+    """The temperature record [degC], checked: as long as the timestamps, every value finite and
+    within the pipeline's +-2^20 degC (a :class:`~gyrocore.SampleError` naming the first that is not)."""
     temp = as_float_array("temperature", temperature)
     if len(temp) != n:
         raise ValueError(f"temperature has {len(temp)} samples but t has {n}")
-    require_finite("temperature", temp)
+    require_readings("temperature", temp)
     return temp

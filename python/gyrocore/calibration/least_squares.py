@@ -9,7 +9,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._arrays import FloatArray, as_float_array, as_window
-from .._checks import warn
+from .._checks import UnitError, require_radians, warn
 from ..evaluate import unwrap
 from ..integration import integrate
 from .inputs import check_series
@@ -38,6 +38,28 @@ def _solve(g: NDArray[np.float64], z: FloatArray) -> tuple[FloatArray, FloatArra
 MAX_CONDITION = 1e6
 
 
+#: A fitted scale error beyond this [1] is a wrong unit, not a gyro (the real logs reach 28 %).
+MAX_SCALE_ERROR = 0.5
+#: A fitted ``s_bar`` within this factor of 180/pi: the reference is in degrees, the gyro in radians.
+DEGREE_FACTOR = 2.0
+
+
+def _check_units(method: str, s_bar: float, scale_error: float) -> None:
+    """Refuse a fit whose reference is in degrees (it changes about 180/pi times as much as the
+    gyro's rate or angle), and warn of a scale error no gyro has (a wrong unit of either)."""
+    reference, unit = ("heading_ref", "rad") if method == "heading_reference" else ("rate_reference", "rad/s")
+    if 1.0 / DEGREE_FACTOR < s_bar / math.degrees(1.0) < DEGREE_FACTOR:
+        raise UnitError(
+            f"{method}: the reference changes {s_bar:.4g} times as much as the gyro (s_bar), about 180/pi = 57.3: "
+            f"{reference} looks like degrees; convert it to {unit} (numpy.radians)"
+        )
+    if abs(scale_error) > MAX_SCALE_ERROR:
+        warn(
+            f"{method}: the fitted scale error is {100 * scale_error:+.3g} %, beyond +-{100 * MAX_SCALE_ERROR:g} % "
+            f"for any gyro: the units of the gyro's rate (rad/s) or of the reference ({unit}) look wrong"
+        )
+
+
 def _calibration_from_q(
     method: str, q: FloatArray, cov: FloatArray, rms: float, cond: float, window: tuple[float, float], n: int
 ) -> Calibration:
@@ -49,6 +71,7 @@ def _calibration_from_q(
             "the rate must change during calibration, and the reference must match the gyro's axis and sign"
         )
     scale_error = 1.0 / s_bar - 1.0
+    _check_units(method, s_bar, scale_error)
     bias = -b_bar / s_bar
     # Jacobians of s = 1/s_bar - 1 and b = -b_bar/s_bar with respect to (s_bar, b_bar).
     js = np.array([-1.0 / s_bar**2, 0.0])
@@ -174,12 +197,17 @@ def heading_reference(
     a barely turning drive reaches however little noise it has) gets the bias alone: scale error
     0, no ``scale_error_stderr``, a note saying why, and an :class:`~gyrocore.InputWarning`.
 
+    A scale error beyond :data:`MAX_SCALE_ERROR` (50 %) warns that a unit looks wrong.
+
     Raises:
-        ValueError: bad samples, fewer than 3 reference samples inside the gyro's span, or a
-            motion that does not change rate ("the rate must change during calibration").
+        ValueError: bad samples, fewer than 3 reference samples inside the gyro's span, a
+            motion that does not change rate ("the rate must change during calibration"), or a
+            reference in degrees (a step of over 180 between two samples, or a fit that finds it
+            changing about 180/pi times as much as the gyro's angle).
     """
     ta, ra = check_series(t, rate_measured, rate_name="rate_measured")
     tr, hr = check_series(t_ref, heading_ref, t_name="t_ref", rate_name="heading_ref")
+    require_radians("heading_ref", tr, hr)
     lo, hi = ta[0], ta[-1]
     if window is not None:
         start, end = as_window("window", window)

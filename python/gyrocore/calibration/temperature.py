@@ -26,6 +26,11 @@ def bias_temperature_table(
     least ``min_samples`` readings gives one entry: its mean temperature and its time-weighted
     mean reading (as :func:`static_bias`). The record must be at rest throughout (cut it to the
     rest first); the temperature should change slowly (a warm-up after power-on).
+
+    Raises:
+        SampleError: a temperature that is not finite or beyond +-2^20 degC (the pipeline's
+            limit), naming the sample.
+        ValueError: bad samples otherwise, or fewer than two bins with ``min_samples`` readings.
     """
     ta, ra = check_series(t, rate)
     temp = check_temperature(temperature, len(ta))
@@ -33,7 +38,14 @@ def bias_temperature_table(
         raise ValueError(f"bin_width must be finite and > 0 [degC], got {bin_width}")
     w = time_weights(ta - ta[0])
     w[0] = w[1] if len(w) > 1 else 1.0
-    k = np.floor((temp - temp.min()) / bin_width).astype(np.int64)
+    position = np.floor((temp - temp.min()) / bin_width)
+    if not np.isfinite(position).all():
+        raise ValueError(
+            f"bin_width = {bin_width:g} degC is too small for temperatures spanning {np.ptp(temp):.6g} degC"
+        )
+    # The bins that hold readings, numbered 0, 1, ... in temperature order: memory follows the
+    # readings, not the span of temperatures over the bin width.
+    _, k = np.unique(position, return_inverse=True)
     nb = int(k.max()) + 1
     counts = np.bincount(k, minlength=nb)
     wsum = np.bincount(k, w, nb)

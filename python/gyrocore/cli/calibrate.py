@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from .. import calibration, io
+from .._checks import UnitError
 from .._rests import find_rests
 from ..wholelog import times_ok
 from ..window import Window
@@ -106,6 +107,8 @@ def run(args: argparse.Namespace) -> int:
         try:
             fit = calibration.heading_reference(log.t, log.rate, log.t_ref, log.heading_ref, window=fit_window)
             results["heading_reference"] = fit.to_dict()["calibration"]
+        except UnitError as e:  # a reference to correct: no calibration is saved from the log
+            raise ValueError(f"{source}: {e}") from None
         except ValueError as e:
             results["heading_reference"] = {"error": str(e)}
     chosen = fit or static

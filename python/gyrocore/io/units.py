@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .._arrays import FloatArray
-from .._checks import INTERVAL_LIMIT, unit_problems
+from .._checks import INTERVAL_LIMIT, typical_interval, unit_problems
 
 if TYPE_CHECKING:
     from .source import ReadOptions
@@ -41,7 +41,7 @@ HEADER_RATE_UNITS = {
 _BRACKETED = re.compile(r"^(?P<base>.*?)\s*(?:\[(?P<square>[^\]]*)\]|\((?P<round>[^)]*)\))$")
 #: A yaw rate that never exceeds this [deg/s] over a whole log is more likely in rad/s.
 SMALL_RATE_DPS = 3.0
-#: A mean interval below this [s] (above 10 kHz) suggests timestamps in a larger unit.
+#: A median interval below this [s] (above 10 kHz) suggests timestamps in a larger unit.
 SHORT_INTERVAL = 1e-4
 #: Timestamps beyond this [s] (the year 5138) are an epoch in ms, us or ns.
 EPOCH_LIMIT = 1e11
@@ -133,16 +133,16 @@ class UnitCheck:
             problems += [f"{p}; or use rate_unit='deg/s' (--rate-unit deg/s)" for p in unit_problems(t[:1], rate)]
         unit = o.time_unit or "s"
         t0 = abs(float(t[0]))
-        mean_dt = float(t[-1] - t[0]) / (len(t) - 1) if len(t) > 1 else 0.0
+        interval = typical_interval(t) if len(t) > 1 else 0.0  # one gap does not make it look like ms
         if t0 > EPOCH_LIMIT:
             # an epoch read in too small a unit: which unit puts it between 1973 and 2286?
             counts = t0 * TIME_UNITS[unit]
             fits = [u for u, k in TIME_UNITS.items() if 1e8 <= counts / k <= 1e10]
             why = f"t[0] = {t[0]:.6g} s is after the year 5000"
-        elif mean_dt > 0 and not SHORT_INTERVAL <= mean_dt <= INTERVAL_LIMIT:
-            counts = mean_dt * TIME_UNITS[unit]
+        elif interval > 0 and not SHORT_INTERVAL <= interval <= INTERVAL_LIMIT:
+            counts = interval * TIME_UNITS[unit]
             fits = [u for u, k in TIME_UNITS.items() if SHORT_INTERVAL <= counts / k <= INTERVAL_LIMIT]
-            why = f"the mean interval is {mean_dt:.3g} s, a {1 / mean_dt:.3g} Hz gyro"
+            why = f"the median interval is {interval:.3g} s, a {1 / interval:.3g} Hz gyro"
         else:
             fits = []
         if fits:
