@@ -9,6 +9,7 @@ from collections.abc import Iterable, Sequence
 from pathlib import Path
 
 from . import io
+from ._checks import warn
 from .io._logfolder import lacks_gyro
 
 
@@ -26,14 +27,45 @@ def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
     for item in items:
         named, matches = _matches(item)
         for m in matches:
+            if not named and _in_log_folder(m):  # a pattern's reference.csv: part of its log
+                m = m.parent
             if m.is_dir() and not _named_as_input(m):
-                inside = sorted(c for c in m.iterdir() if _named_as_input(c))
+                entries = sorted(m.iterdir())
+                inside = [c for c in entries if _named_as_input(c)]
                 if not inside and named:
                     raise ValueError(f"{m}: no logs in this folder ({', '.join(io.FILE_SUFFIXES)}, log or bag folders)")
+                _warn_unsearched(m, [c for c in entries if c.is_dir() and not _named_as_input(c)])
                 found += inside
             elif named or _named_as_input(m):
                 found.append(m)
-    return list(dict.fromkeys(found))
+    # One input per file or folder however it was reached (a pattern through a link that loops
+    # back reaches the same files under ever longer names).
+    unique: dict[Path, Path] = {}
+    for p in found:
+        unique.setdefault(_identity(p), p)
+    return list(unique.values())
+
+
+def _in_log_folder(path: Path) -> bool:
+    """Whether ``path`` is a file of a log folder (its samples, reference, odometry, fixes)."""
+    return path.is_file() and (io.is_input(path.parent) or lacks_gyro(path.parent))
+
+
+def _identity(path: Path) -> Path:
+    """The file or folder ``path`` stands for (itself where it cannot be resolved: a loop)."""
+    try:
+        return path.resolve(strict=True)
+    except (OSError, RuntimeError):
+        return path
+
+
+def _warn_unsearched(folder: Path, subfolders: list[Path]) -> None:
+    """Say which subfolders of a folder of logs were not searched (a folder stands for the inputs
+    directly in it), and how to include them."""
+    if subfolders:
+        names = ", ".join(p.name for p in subfolders[:3]) + (" ..." if len(subfolders) > 3 else "")
+        warn(f"{folder}: {len(subfolders)} subfolder(s) not searched ({names}): a folder stands for the logs "
+             f"directly in it; give '{folder}/**/*.csv' (or the subfolders) to include theirs")
 
 
 def check_outside_inputs(items: Iterable[str | Path], out: Path, inputs: Sequence[Path] = ()) -> None:

@@ -134,3 +134,31 @@ def test_a_log_folder_without_gyro_csv_is_named_not_read_as_logs(tmp_path: Path)
     proc = gyrocore("process", log, "--out", tmp_path / "out", code=1)
     assert f"FAILED {why}" in proc.stdout
     assert not (tmp_path / "x.csv").exists() and not list((tmp_path / "out").iterdir())
+
+
+def test_a_recursive_pattern_takes_each_log_folder_once_and_ends_at_a_loop(tmp_path: Path) -> None:
+    # "fleet/**/*.csv" matched a log folder's reference.csv and odometry.csv as logs, sent every
+    # log folder's gyro.csv to one output name, and followed a link back to the fleet 40 levels
+    # deep. Each log folder is one input, and each file is taken once however it was reached.
+    import gyrocore
+    from gyrocore.batch import expand_inputs
+
+    fleet = tmp_path / "fleet"
+    for name in ("a", "b"):
+        gyrocore.datasets.write_sample(fleet / name)
+    (fleet / "sub").mkdir()
+    synthetic_csv(fleet / "sub" / "drive.csv", 100)
+    (fleet / "sub" / "loop").symlink_to(fleet, target_is_directory=True)
+    found = expand_inputs([f"{fleet}/**/*.csv"])
+    assert [p.relative_to(fleet).as_posix() for p in found] == ["a", "b", "sub/drive.csv"]
+
+
+def test_a_folder_of_logs_names_the_subfolders_it_does_not_search(tmp_path: Path) -> None:
+    from gyrocore import InputWarning
+    from gyrocore.batch import expand_inputs
+
+    synthetic_csv(tmp_path / "top.csv", 100)
+    (tmp_path / "day1").mkdir()
+    synthetic_csv(tmp_path / "day1" / "drive.csv", 100)
+    with pytest.warns(InputWarning, match=r"1 subfolder\(s\) not searched \(day1\).*\*\*/\*\.csv"):
+        assert [p.name for p in expand_inputs([tmp_path])] == ["top.csv"]
