@@ -60,17 +60,22 @@ def rest_windows_of_checked(
             raise ValueError(f"{name} must be finite and > 0, got {value}")
     if len(ta) < 8:
         raise ValueError(f"need at least 8 samples to find a rest, got {len(ta)}")
+    # Temporaries as long as the log are made in place where they can be: a whole log of 10^8
+    # samples is searched in memory.
     rel = ta - ta[0]  # epoch timestamps lose precision in arithmetic
-    width = max(block, 4.0 * float(np.median(np.diff(rel))))
+    width = max(block, 4.0 * float(np.median(np.diff(rel), overwrite_input=True)))
     # The blocks that hold samples, numbered 0, 1, ... in time order: a gap or a jump of the
     # clock costs nothing (one bin per block of the time span would grow with the jump).
-    number = np.floor(rel / width).astype(np.int64)
-    k = np.concatenate(([0], np.cumsum(np.diff(number) != 0)))
+    number = np.floor(np.divide(rel, width, out=rel)).astype(np.int64)
+    del rel
+    k = np.zeros(len(number), dtype=np.intp)
+    np.cumsum(np.diff(number) != 0, out=k[1:])
     count = np.bincount(k)
     total = np.bincount(k, ra)
     mean = total / count
-    dev = ra - mean[k]
-    var = np.bincount(k, dev * dev) / np.maximum(count - 1, 1)
+    dev = mean[k]
+    np.subtract(ra, dev, out=dev)
+    var = np.bincount(k, np.square(dev)) / np.maximum(count - 1, 1)
     sd = np.sqrt(var)
     usable = count >= 3
     if not usable.any():
