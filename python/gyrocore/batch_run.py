@@ -29,6 +29,28 @@ def _run_job(job: _FileJob, stop: threading.Event | Any = None) -> FileReport:
         return job.failure(e, time.perf_counter() - start)
 
 
+class BatchInterrupted(KeyboardInterrupt):
+    """A batch stopped by Ctrl-C or SIGTERM: the files it finished before (their outputs complete;
+    the others left no output), to say which (``str``: empty when none was)."""
+
+    def __init__(self, finished: list[FileReport]) -> None:
+        super().__init__()
+        self.finished = finished
+
+    def __str__(self) -> str:
+        done = [r.output for r in self.finished if r.output is not None]
+        if not done:
+            return ""
+        shown = ", ".join(done[:3]) + (f" and {len(done) - 3} more" if len(done) > 3 else "")
+        return f"{len(done)} file(s) finished before it, complete: {shown}"
+
+
+def _interrupted(e: BaseException, reports: dict[int, FileReport]) -> None:
+    """An interrupt of the batch becomes :class:`BatchInterrupted` with the files it finished."""
+    if isinstance(e, KeyboardInterrupt) and not isinstance(e, BatchInterrupted):
+        raise BatchInterrupted([reports[i] for i in sorted(reports)]) from e
+
+
 class _Stopped(Exception):
     """The batch was interrupted; the file's temporary output is removed."""
 
@@ -62,9 +84,10 @@ def _run_on_threads(jobs: list[_FileJob], workers: int, progress: bool) -> list[
             for future in as_completed(futures):
                 reports[futures[future]] = future.result()
                 bar.update(1)
-        except BaseException:
+        except BaseException as e:
             stop.set()  # running files stop at their next chunk and remove their temporary output
             executor.shutdown(wait=True, cancel_futures=True)
+            _interrupted(e, reports)
             raise
         executor.shutdown()
     return [reports[i] for i in range(len(jobs))]
@@ -95,8 +118,9 @@ def _run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[File
                     except Exception as e:  # noqa: BLE001 - a lost worker fails its file only
                         reports[i] = jobs[i].failure(e, 0.0)
                     bar.update(1)
-            except BaseException:
+            except BaseException as e:
                 _stop_on_cluster(distributed, stop, futures)
+                _interrupted(e, reports)
                 raise
     finally:
         if own:

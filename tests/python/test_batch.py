@@ -292,11 +292,29 @@ def test_an_interrupted_batch_stops_the_files_running_on_the_cluster(tmp_path: P
         distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None) as cluster,
         distributed.Client(cluster) as client,
     ):
-        with pytest.raises(KeyboardInterrupt):
+        with pytest.raises(batch_run.BatchInterrupted) as interrupted:
             process_many(files, out_dir=out, client=client, preset="raw", bias=0.0)
         time.sleep(2.0)  # what a running task would still write
         assert not (out / "long.csv").exists()
         assert [p.name for p in out.iterdir()] == ["short.csv"]
+    assert [r.output for r in interrupted.value.finished] == [str(out / "short.csv")]
+
+
+def test_an_interrupted_batch_says_which_files_it_finished(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # Their outputs are complete; without the list a user could only guess which to run again.
+    from gyrocore import batch_run
+
+    files = [synthetic_csv(tmp_path / "short.csv", 1000), synthetic_csv(tmp_path / "long.csv", 3_000_000)]
+
+    def interrupt(self: object, n: int = 1) -> None:
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(batch_run._NoBar, "update", interrupt)
+    out = tmp_path / "out"
+    with pytest.raises(batch_run.BatchInterrupted) as interrupted:
+        process_many(files, out_dir=out, jobs=2, preset="raw", bias=0.0)
+    assert str(interrupted.value) == f"1 file(s) finished before it, complete: {out / 'short.csv'}"
+    assert sorted(p.name for p in out.iterdir()) == ["short.csv"]
 
 
 def test_batch_inputs_from_folders_and_globs(tmp_path: Path) -> None:

@@ -15,6 +15,7 @@ from typing import Sequence
 from .. import _signals
 from . import allan, calibrate, demo, evaluate, presets, process, reproduce, simulate, tune
 from .._extras import MissingExtra
+from ..batch_run import BatchInterrupted
 from ..io.atomic import discard_all
 from ._common import show_warning
 
@@ -63,9 +64,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         except (ValueError, TypeError, OSError, MissingExtra) as e:
             print(f"gyrocore: error: {e}", file=sys.stderr)
             return 2
-        except KeyboardInterrupt:
+        except KeyboardInterrupt as e:
             discard_all()
-            print("gyrocore: interrupted; no partial output was left", file=sys.stderr)
+            finished = f"; {e}" if isinstance(e, BatchInterrupted) and str(e) else ""
+            print(f"gyrocore: interrupted; no partial output was left{finished}", file=sys.stderr)
             return 130
 
 
