@@ -14,9 +14,8 @@ from typing import Sequence
 
 from .. import _signals
 from . import allan, calibrate, demo, evaluate, presets, process, reproduce, simulate, tune
-from .._extras import MissingExtra
 from ..io.atomic import discard_all
-from ._common import show_warning
+from ._common import USER_ERRORS, show_warning
 
 COMMANDS = (demo, process, presets, allan, calibrate, evaluate, tune, simulate, reproduce)
 
@@ -55,7 +54,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             with warnings.catch_warnings():
                 warnings.showwarning = show_warning
                 return int(args.func(args))
-        except (ValueError, TypeError, OSError, MissingExtra) as e:
+        except USER_ERRORS as e:
             print(f"gyrocore: error: {e}", file=sys.stderr)
             return 2
         except KeyboardInterrupt:
