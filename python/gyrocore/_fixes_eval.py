@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from .evaluate import Method, Reference
+from .evaluate import Failed, Method, Reference
 from .fixes import Fixes
 from .io import Log
 from .pipeline import process
@@ -120,10 +120,19 @@ class FixScore:
     bias_deg_s: float
     scale: float
     absolute: bool
+    path: str | None = None
+    """Where the log was read, as given (:attr:`gyrocore.Log.path`)."""
+
+    @property
+    def label(self) -> str:
+        """How tables name the log: its path (names repeat), else its name."""
+        return self.path if self.path is not None else self.log
 
     def as_dict(self) -> dict[str, Any]:
-        """A JSON-ready dict (JSON has no NaN: an outage without a reference sample is null)."""
-        row = {k: getattr(self, k) for k in self.__dataclass_fields__}
+        """A JSON-ready dict, the log's ``path`` and ``name`` first (JSON has no NaN: an outage
+        without a reference sample is null)."""
+        row = {"path": self.path, "name": self.log}
+        row.update((k, getattr(self, k)) for k in self.__dataclass_fields__ if k not in ("path", "log"))
         return {k: None if isinstance(v, float) and not math.isfinite(v) else v for k, v in row.items()}
 
 
@@ -153,27 +162,33 @@ def score_with_fixes(log: Log, methods: Sequence[Method], fixes: Fixes, label: s
         rows.append(FixScore(
             log.name, method.name, label, dict(fusion.counts), float(np.degrees(np.abs(err)).mean()), raw,
             window, _mean_in(tr, err, window), _mean_in(tr_raw, err_raw, window),
-            math.degrees(float(fusion.bias[-1])), float(fusion.scale[-1]), absolute,
+            math.degrees(float(fusion.bias[-1])), float(fusion.scale[-1]), absolute, log.path,
         ))
     return rows
 
 
-def format_fix_scores(rows: Sequence[FixScore]) -> None:
-    """The table ``gyrocore evaluate`` prints with fixes."""
+def format_fix_scores(rows: Sequence[FixScore | Failed]) -> None:
+    """The table ``gyrocore evaluate`` prints with fixes, a log that failed as its ``FAILED`` line
+    where it comes."""
+    scores = [r for r in rows if isinstance(r, FixScore)]
+    width = max([28, *(len(r.label) for r in scores)])
     print("E_psi [deg]: with fixes, the absolute heading error (no alignment at the start); raw integration "
           "aligned at the start (HDR eq 15)")
-    print(f"{'log':<28} {'method':<16} {'E_psi':>7} {'raw':>7} {'outage':>7} {'raw':>7} "
+    print(f"{'log':<{width}} {'method':<16} {'E_psi':>7} {'raw':>7} {'outage':>7} {'raw':>7} "
           f"{'bias dps':>9} {'scale':>8}  fixes")
     for r in rows:
+        if isinstance(r, Failed):
+            print(r)
+            continue
         out = "-" if r.outage_e_psi_deg is None else f"{r.outage_e_psi_deg:.2f}"
         raw_out = "-" if r.raw_outage_e_psi_deg is None else f"{r.raw_outage_e_psi_deg:.2f}"
         counts = ", ".join(f"{k} {v}" for k, v in r.counts.items())
-        print(f"{r.log:<28} {r.method:<16} {r.e_psi_deg:7.2f} {r.raw_e_psi_deg:7.2f} {out:>7} {raw_out:>7} "
+        print(f"{r.label:<{width}} {r.method:<16} {r.e_psi_deg:7.2f} {r.raw_e_psi_deg:7.2f} {out:>7} {raw_out:>7} "
               f"{r.bias_deg_s:9.4f} {r.scale:8.4f}  {counts}")
-    for label in dict.fromkeys(r.fixes for r in rows):
+    for label in dict.fromkeys(r.fixes for r in scores):
         print(f"fixes: {label}")
-    for r in rows:
+    for r in scores:
         if not r.absolute:
-            print(f"no fix applied on {r.log} with {r.method}: its E_psi is aligned at the start, as without fixes")
-    for name, (start, end) in {r.log: r.outage for r in rows if r.outage is not None}.items():
+            print(f"no fix applied on {r.label} with {r.method}: its E_psi is aligned at the start, as without fixes")
+    for name, (start, end) in {r.label: r.outage for r in scores if r.outage is not None}.items():
         print(f"outage of {name}: [{start:.3f}, {end:.3f}) s")

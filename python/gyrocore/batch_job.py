@@ -68,14 +68,20 @@ class FileReport:
         }
 
     def __str__(self) -> str:
-        if not self.ok:  # most reasons already name the file
-            return f"FAILED {self.error}" if self.input in (self.error or "") else f"FAILED {self.input}: {self.error}"
+        if not self.ok:
+            return failed_line(self.input, self.error or "")
         lines = [
             f"ok     {self.input}: {self.rows_in} rows in, {self.rows_out} out -> {self.output} ({self.seconds:.2f} s)",
             f"       bias: {self.bias_source}",
         ]
         lines += wholelog.rest_lines(self.bias_source or "", self.rests, " " * 9)
         return "\n".join(lines)
+
+
+def failed_line(input: str, error: str) -> str:
+    """How a run over many inputs reports one that failed: ``FAILED <input>: <reason>``, the input
+    named once (most reasons name it already)."""
+    return f"FAILED {error}" if input in error else f"FAILED {input}: {error}"
 
 
 @dataclass(frozen=True)

@@ -23,6 +23,7 @@ from . import deadreckon
 from ._arrays import FloatArray, as_float_array
 from ._checks import require_radians, require_series, warn
 from ._extras import pyplot
+from .batch_job import failed_line
 from .io import Log, read_log
 from .pipeline import HeadingResult, has_bias_source, process, recommended_preset, uses_static_bias
 from .wholelog import Rest, check_mode, rest_lines
@@ -149,7 +150,11 @@ class Reference:
             inside &= ~(est_gaps[k] & (self.t > te[k]) & (self.t < te[np.minimum(k + 1, len(te) - 1)]))
         idx = np.flatnonzero(inside)
         if len(idx) < 2:
-            raise ValueError("the reference has fewer than two samples inside the heading's time span")
+            raise ValueError(
+                "the reference has fewer than two samples inside the heading's time span: the reference runs "
+                f"from t = {self.t[0]:.3f} to {self.t[-1]:.3f} s, the heading from t = {te[0]:.3f} to {te[-1]:.3f} s; "
+                "give both on the same clock"
+            )
         tr, ref, seg = self.t[idx], self.heading[idx].copy(), self.segment[idx]
         est = np.interp(tr, te, est_all)
         # Consecutive compared samples not adjacent in the reference skipped an estimate gap.
@@ -316,12 +321,21 @@ class Score:
     """Dead reckoning with this heading and the log's odometry, against the reference track."""
     rests: tuple[Rest, ...] = ()
     """The rests whose bias the method used in whole mode."""
+    path: str | None = None
+    """Where the log was read, as given (:attr:`gyrocore.Log.path`); None for a log built in memory."""
+
+    @property
+    def label(self) -> str:
+        """How tables name the log: its path (names repeat), else its name."""
+        return self.path if self.path is not None else self.log
 
     def as_dict(self) -> dict[str, Any]:
-        """Flat JSON-ready dict: ``log``, ``preset`` (the method's name), ``base_preset``, the
-        heading metrics, ``improvement``, ``bias_source``, ``rests``, ``return_error_deg`` and, where the log has
-        odometry, ``position_*_m`` and ``position_final_error_percent``."""
-        row: dict[str, Any] = {"log": self.log, "preset": self.method.name, "base_preset": self.method.preset}
+        """Flat JSON-ready dict: ``path`` and ``name`` (the log's), ``preset`` (the method's name),
+        ``base_preset``, the heading metrics, ``improvement``, ``bias_source``, ``rests``,
+        ``return_error_deg`` and, where the log has odometry, ``position_*_m`` and
+        ``position_final_error_percent``."""
+        row: dict[str, Any] = {"path": self.path, "name": self.log, "preset": self.method.name,
+                               "base_preset": self.method.preset}
         row.update(self.errors.as_dict())
         row["improvement"] = self.improvement
         row["bias_source"] = self.bias_source
@@ -358,7 +372,7 @@ def score(log: Log, method: Method, result: HeadingResult, raw: HeadingErrors, b
         track = deadreckon.dead_reckon_log(log, result)
         position = deadreckon.position_errors(track, *log.track())
     return Score(
-        log.name, method, errors, improvement(raw, errors), bias_source, return_error, position, result.rests
+        log.name, method, errors, improvement(raw, errors), bias_source, return_error, position, result.rests, log.path
     )
 
 
@@ -421,12 +435,34 @@ def compare(
                 result, source = method.run(log, bias_duration=bias_duration, mode=mode, use_speed=use_speed)
                 results[method.name] = result
                 rows.append(score(log, method, result, raw, source))
-        except ValueError as e:  # name the log, once
-            named = str(e) if str(e).startswith(f"log {log.name}:") else f"log {log.name}: {e}"
-            raise ValueError(named) from None
+        except ValueError as e:
+            raise named_error(log, e) from None
         if plot_dir is not None:
             plot_log(plot_path(plot_dir, log), log, results)
     return rows
+
+
+def named_error(log: Log, error: ValueError) -> ValueError:
+    """``error``, raised on ``log``, naming the log once: by its path where it was read from one
+    (the log's own checks name it ``log NAME``, and names repeat), else as ``log NAME``."""
+    text = str(error).removeprefix(f"log {log.name}: ")
+    label = log.path if log.path is not None else f"log {log.name}"
+    return ValueError(text if text.startswith(f"{label}: ") else f"{label}: {text}")
+
+
+@dataclass(frozen=True)
+class Failed:
+    """A log that could not be scored, in a run over many: the path it was given as, and why."""
+
+    path: str
+    error: str
+
+    def as_dict(self) -> dict[str, Any]:
+        """JSON-ready: ``path`` and ``error``."""
+        return {"path": self.path, "error": self.error}
+
+    def __str__(self) -> str:
+        return failed_line(self.path, self.error)
 
 
 def plot_path(plot_dir: str | Path, log: Log) -> Path:
@@ -470,22 +506,28 @@ def plot_log(path: Path, log: Log, results: Mapping[str, HeadingResult]) -> None
     plt.close(fig)
 
 
-def format_table(rows: Sequence[Score], *, file: Any = None) -> None:
-    """Print ``rows`` as a table (E_psi, NE_psi, final and maximum error, improvement vs raw)."""
+def format_table(rows: Sequence[Score | Failed], *, file: Any = None) -> None:
+    """Print ``rows`` as a table (E_psi, NE_psi, final and maximum error, improvement vs raw), a
+    log that failed as its ``FAILED`` line where it comes."""
     out = file or sys.stdout
-    has_position = any(r.position is not None for r in rows)
+    scores = [r for r in rows if isinstance(r, Score)]
+    has_position = any(r.position is not None for r in scores)
+    width = max([14, *(len(r.label) for r in scores)])
     header = (
-        f"{'log':<14} {'method':<16} {'E_psi':>8} {'NE_psi':>9} {'final':>8} {'max':>8} {'vs raw':>8}"
+        f"{'log':<{width}} {'method':<16} {'E_psi':>8} {'NE_psi':>9} {'final':>8} {'max':>8} {'vs raw':>8}"
         f" {'return':>8}" + (f" {'pos mean':>9} {'pos end':>8}" if has_position else "")
     )
     print(header, file=out)
-    print(f"{'':<14} {'':<16} {'[deg]':>8} {'[deg/min]':>9} {'[deg]':>8} {'[deg]':>8} {'':>8} {'[deg]':>8}"
+    print(f"{'':<{width}} {'':<16} {'[deg]':>8} {'[deg/min]':>9} {'[deg]':>8} {'[deg]':>8} {'':>8} {'[deg]':>8}"
           + (f" {'[m]':>9} {'[m]':>8}" if has_position else ""), file=out)
     for r in rows:
+        if isinstance(r, Failed):
+            print(r, file=out)
+            continue
         e = r.errors
         ret = "-" if r.return_error_deg is None else f"{r.return_error_deg:.2f}"
         line = (
-            f"{r.log:<14} {r.method.name:<16} {e.e_psi_deg:>8.3f} {e.ne_psi_deg_per_min:>9.4f} "
+            f"{r.label:<{width}} {r.method.name:<16} {e.e_psi_deg:>8.3f} {e.ne_psi_deg_per_min:>9.4f} "
             f"{e.final_error_deg:>8.2f} {e.max_error_deg:>8.2f} {r.improvement:>7.1f}x {ret:>8}"
         )
         if has_position:
@@ -494,15 +536,18 @@ def format_table(rows: Sequence[Score], *, file: Any = None) -> None:
         print(line, file=out)
 
 
-def format_bias_sources(rows: Sequence[Score], *, file: Any = None) -> None:
+def format_bias_sources(rows: Sequence[Score | Failed], *, file: Any = None) -> None:
     """Print where each method's static bias came from, per log; methods that share a source
-    (and its rests) share a line, and each rest used is listed under it."""
+    (and its rests) share a line, and each rest used is listed under it. Logs that failed have none."""
     out = file or sys.stdout
     groups: dict[tuple[str, str, tuple[Rest, ...]], list[str]] = {}
-    for r in rows:
-        groups.setdefault((r.log, r.bias_source, r.rests), []).append(r.method.name)
+    for r in (r for r in rows if isinstance(r, Score)):
+        names = groups.setdefault((r.label, r.bias_source, r.rests), [])
+        if r.method.name not in names:  # a log given twice is one line
+            names.append(r.method.name)
+    width = max([14, *(len(log) for log, _, _ in groups)])
     print("bias source:", file=out)
     for (log, source, rests), names in groups.items():
-        print(f"  {log:<14} {', '.join(names)}: {source}", file=out)
+        print(f"  {log:<{width}} {', '.join(names)}: {source}", file=out)
         for line in rest_lines(source, rests, " " * 19):
             print(line, file=out)

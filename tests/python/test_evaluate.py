@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import json
 import math
+import shutil
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -14,7 +16,7 @@ import gyrocore
 from gyrocore import evaluate
 from gyrocore.cli import main
 
-from .conftest import REAL_LOGS, real_log_path
+from .conftest import REAL_LOGS, gyrocore_cli, real_log_path
 
 
 def irregular_times(duration: float, mean_dt: float, seed: int) -> np.ndarray:
@@ -163,7 +165,7 @@ def test_without_a_bias_option_a_log_without_rest_gets_no_bias() -> None:
     assert rows[1].errors.e_psi_deg == pytest.approx(rows[0].errors.e_psi_deg, rel=1e-9)
 
 
-KEYS = {"log", "preset", "e_psi_deg", "ne_psi_deg_per_min", "final_error_deg", "max_error_deg"}
+KEYS = {"path", "name", "preset", "e_psi_deg", "ne_psi_deg_per_min", "final_error_deg", "max_error_deg"}
 
 
 def test_cli_json_has_one_object_per_log_and_preset(capsys: pytest.CaptureFixture[str]) -> None:
@@ -171,9 +173,9 @@ def test_cli_json_has_one_object_per_log_and_preset(capsys: pytest.CaptureFixtur
     assert main(["evaluate", *logs, "--preset", "static_bias", "--preset", "recommended",
                  "--bias-duration", "10", "--json"]) == 0
     rows = json.loads(capsys.readouterr().out)
-    assert [(r["log"], r["preset"]) for r in rows] == [
-        ("f110_ds3", "static_bias"), ("f110_ds3", "recommended"),
-        ("comma_seg40", "static_bias"), ("comma_seg40", "recommended"),
+    assert [(r["path"], r["name"], r["preset"]) for r in rows] == [
+        (logs[0], "f110_ds3", "static_bias"), (logs[0], "f110_ds3", "recommended"),
+        (logs[1], "comma_seg40", "static_bias"), (logs[1], "comma_seg40", "recommended"),
     ]
     assert all(KEYS <= set(r) for r in rows)
     assert rows[0]["e_psi_deg"] == pytest.approx(3.7, abs=0.05)
@@ -182,7 +184,7 @@ def test_cli_json_has_one_object_per_log_and_preset(capsys: pytest.CaptureFixtur
 def test_cli_table_and_errors(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
     assert main(["evaluate", str(real_log_path("broad_10")), "--preset", "raw", "--preset", "hdr"]) == 0
     out = capsys.readouterr().out
-    assert "E_psi" in out and "\nbroad_10       hdr " in out
+    assert "E_psi" in out and f"\n{real_log_path('broad_10')} hdr " in out
     assert main(["evaluate", str(tmp_path), "--preset", "raw"]) == 2
     assert main(["evaluate", str(real_log_path("broad_10")), "--preset", "nonsense"]) == 2
     assert main(["evaluate", str(real_log_path("broad_10")), "--bias-duration", "-1"]) == 2
@@ -201,7 +203,7 @@ def test_a_log_without_reference_is_refused_by_name(tmp_path: Path, capsys: pyte
     for attempt in (log.reference, log.track):
         with pytest.raises(ValueError, match="log bare: no reference"):
             attempt()
-    with pytest.raises(ValueError, match="log bare: no reference heading"):
+    with pytest.raises(ValueError, match=f"^{src}: no reference heading"):  # named by its path, once
         evaluate.compare([log], ["raw"])
     with pytest.raises(ValueError, match="log bare: no reference heading"):
         gyrocore.tune.Case.from_log(log)
@@ -218,8 +220,6 @@ def test_a_log_without_reference_is_refused_by_name(tmp_path: Path, capsys: pyte
 
 
 def test_an_odometry_in_relative_time_warns_in_process_and_evaluate_alike(tmp_path: Path) -> None:
-    from .conftest import gyrocore_cli
-
     folder = gyrocore.datasets.write_sample(tmp_path / "rel")
     odometry = np.loadtxt(folder / "odometry.csv", delimiter=",", skiprows=1)
     odometry[:, 0] += 1000.0  # another clock: none of it overlaps the gyro's
@@ -232,3 +232,113 @@ def test_an_odometry_in_relative_time_warns_in_process_and_evaluate_alike(tmp_pa
         assert "odometry.csv: its times" in proc.stderr or "odometry speed: its times" in proc.stderr, proc.stderr
         assert "cover 0 % of the gyro's" in proc.stderr
     assert "0 odometry sample(s) (times 1000 .. " in evaluated.stderr and "no dead reckoning" in evaluated.stderr
+
+
+def broken_copy(tmp_path: Path, name: str, file: str, edit: Callable[[list[str]], list[str] | None]) -> Path:
+    """A copy of f110_ds3 in ``tmp_path/name`` whose ``file`` has its lines edited (None: removed)."""
+    folder = tmp_path / name
+    shutil.copytree(real_log_path("f110_ds3"), folder)
+    for path in folder.iterdir():
+        path.chmod(0o644)
+    lines = edit((folder / file).read_text().splitlines())
+    if lines is None:
+        (folder / file).unlink()
+    else:
+        (folder / file).write_text("\n".join(lines) + "\n")
+    return folder
+
+
+def with_line(number: int, text: Callable[[str], str]) -> Callable[[list[str]], list[str]]:
+    """An edit that rewrites line ``number`` (1 is the header)."""
+    return lambda lines: [text(line) if k == number else line for k, line in enumerate(lines, start=1)]
+
+
+def cells(line: str, **values: str) -> str:
+    """A reference.csv line (t,heading,x,y) with some of its cells replaced."""
+    row = dict(zip(("t", "heading", "x", "y"), line.split(",")))
+    return ",".join({**row, **values}.values())
+
+
+def test_a_fleet_run_reports_every_log_and_fails_the_bad_ones_alone(tmp_path: Path) -> None:
+    good = real_log_path("f110_ds3")
+    bad = {
+        "malformed gyro": (broken_copy(tmp_path, "malformed", "gyro.csv", with_line(50, lambda s: s.split(",")[0])),
+                           "gyro.csv: line 50: 1 field, but the header has 2"),
+        "no reference": (broken_copy(tmp_path, "noref", "reference.csv", lambda lines: None),
+                         "noref: no reference heading to score against"),
+        "empty reference": (broken_copy(tmp_path, "emptyref", "reference.csv", lambda lines: lines[:1]),
+                            "emptyref: reference: 0 sample(s)"),
+        "other clock": (broken_copy(tmp_path, "clock", "reference.csv", lambda lines: lines[:1] + [
+                            cells(s, t=str(float(s.split(",")[0]) - 1e6)) for s in lines[1:]]),
+                        "clock: the reference has fewer than two samples inside the heading's time span"),
+    }
+    folders = [str(folder) for folder, _ in bad.values()]
+    proc = gyrocore_cli("evaluate", good, *folders, "--preset", "raw", "--preset", "static_bias", code=1)
+    lines = proc.stdout.splitlines()
+    assert sum(line.startswith(f"{good} ") for line in lines) == 2  # its two methods scored
+    failed = [line for line in lines if line.startswith("FAILED ")]
+    assert len(failed) == len(bad)
+    for line, (folder, message) in zip(failed, bad.values()):
+        assert line.startswith(f"FAILED {folder}") and message in line
+        assert line.count(str(folder)) == 1  # named once
+    assert f"1 of {1 + len(bad)} logs scored, {len(bad)} failed" in proc.stdout
+    rows = json.loads(gyrocore_cli("evaluate", good, *folders, "--preset", "raw", "--json", code=1).stdout)
+    assert [r["path"] for r in rows] == [str(good), *folders]
+    assert rows[0]["name"] == "f110_ds3" and "error" not in rows[0]
+    assert [message in r["error"] for r, (_, message) in zip(rows[1:], bad.values())] == [True] * len(bad)
+    twice = gyrocore_cli("evaluate", good, good, "--preset", "raw", code=0).stdout
+    assert twice.count(f"\n{good} ") == 2 and f"  {good} raw: none" in twice
+
+
+def test_a_single_log_that_cannot_be_scored_is_a_one_line_error(tmp_path: Path) -> None:
+    folder = broken_copy(tmp_path, "clock", "reference.csv", lambda lines: lines[:1] + [
+        cells(s, t=str(float(s.split(",")[0]) - 1e6)) for s in lines[1:]])
+    proc = gyrocore_cli("evaluate", folder, "--preset", "raw", code=2)
+    assert proc.stdout == ""
+    (line,) = proc.stderr.splitlines()
+    # both time spans, so that another clock shows
+    assert line.startswith(f"gyrocore: error: {folder}: the reference has fewer than two samples inside")
+    assert "the reference runs from t = 1650541251.826 to 1650541378.813 s" in line
+    assert "the heading from t = 1651541251.831 to 1651541378.824 s" in line
+
+
+def test_logs_of_the_same_name_are_told_apart_by_their_path(tmp_path: Path) -> None:
+    first, second = (tmp_path / "a" / "drive", tmp_path / "b" / "drive")
+    for folder in (first, second):
+        shutil.copytree(real_log_path("f110_ds3"), folder)
+    proc = gyrocore_cli("evaluate", first, second, "--preset", "raw", "--preset", "static_bias", code=0)
+    for folder in (first, second):
+        assert proc.stdout.count(f"\n{folder} ") == 2  # a row per method
+        assert f"  {folder} static_bias: rest [1651541251.831, " in proc.stdout  # its own bias-source line
+    rows = json.loads(gyrocore_cli("evaluate", first, second, "--preset", "raw", "--json", code=0).stdout)
+    assert [(r["path"], r["name"]) for r in rows] == [(str(first), "f110_ds3"), (str(second), "f110_ds3")]
+
+
+def test_a_nan_reference_heading_is_named_by_its_line(tmp_path: Path) -> None:
+    folder = broken_copy(tmp_path, "nan", "reference.csv", with_line(102, lambda s: cells(s, heading="nan")))
+    proc = gyrocore_cli("evaluate", folder, "--preset", "raw", code=2)
+    assert f"{folder}/reference.csv: line 102, column 2 (heading): nan" in proc.stderr
+
+
+def test_an_empty_position_drops_the_positions_and_the_heading_is_scored(tmp_path: Path) -> None:
+    folder = broken_copy(tmp_path, "nopos", "reference.csv", with_line(102, lambda s: cells(s, y="")))
+    with pytest.warns(gyrocore.InputWarning, match=r"reference.csv: line 102, column 4 \(y\): empty"):
+        log = gyrocore.read_log(folder)
+    assert not log.has_track and log.heading_ref is not None
+    (row,) = evaluate.compare([log], ["static_bias"])
+    assert row.errors.e_psi_deg == pytest.approx(3.7, abs=0.05) and row.position is None
+    assert row.return_error_deg is None
+
+
+def test_a_fleet_run_with_simulated_fixes_fails_the_bad_logs_alone(tmp_path: Path) -> None:
+    good = real_log_path("f110_ds3")
+    bad = broken_copy(tmp_path, "noref", "reference.csv", lambda lines: None)
+    args = ("evaluate", good, bad, good, "--preset", "hdr", "--sim-fixes", "rate=1")
+    proc = gyrocore_cli(*args, code=1)
+    assert proc.stdout.count(f"\n{good} ") == 2
+    assert f"\nFAILED {bad}: no reference heading to score against" in proc.stdout
+    rows = json.loads(gyrocore_cli(*args, "--json", code=1).stdout)
+    assert [r["path"] for r in rows] == [str(good), str(bad), str(good)]
+    assert rows[0]["name"] == "f110_ds3" and "no reference heading" in rows[1]["error"]
+    late = gyrocore_cli("evaluate", good, bad, "--preset", "hdr", "--sim-fixes", "outage=200:10", code=1)
+    assert f"FAILED {good}: the outage starts 200 s after the first sample" in late.stdout

@@ -249,8 +249,7 @@ def test_cli_warns_of_fixes_outside_the_log_and_scores_them_as_no_fixes(folder_w
     assert row["absolute"] is False and row["counts"]["applied"] == 0
     assert row["e_psi_deg"] == pytest.approx(plain["e_psi_deg"], abs=1e-6)
     text = cli("evaluate", str(folder_with_fixes), "--preset", "hdr", "--fixes", str(late)).stdout
-    name = read_log(folder_with_fixes).name
-    assert f"no fix applied on {name} with hdr: its E_psi is aligned at the start, as without fixes" in text
+    assert f"no fix applied on {folder_with_fixes} with hdr: its E_psi is aligned at the start, as without fixes" in text
 
 
 def test_cli_evaluate_scores_a_simulated_outage_apart(folder_with_fixes: Path) -> None:
@@ -265,7 +264,7 @@ def test_cli_evaluate_scores_a_simulated_outage_apart(folder_with_fixes: Path) -
     again = json.loads(cli("evaluate", str(folder_with_fixes), "--preset", "hdr", "--sim-fixes", spec, "--json").stdout)
     assert again == [row]  # seeded
     text = cli("evaluate", str(folder_with_fixes), "--preset", "hdr", "--sim-fixes", spec)
-    assert "SIMULATED" in text.stdout and f"outage of {log.name}: " in text.stdout
+    assert "SIMULATED" in text.stdout and f"outage of {folder_with_fixes}: " in text.stdout
 
 
 @pytest.mark.parametrize(

@@ -165,7 +165,7 @@ def test_simulated_fixes_at_an_absurd_rate_are_refused_at_once() -> None:
     # 1e9 Hz over the log's two minutes asked numpy for 1.3e11 fixes, and the command did not end
     proc = run_cli("evaluate", real_log_path("f110_ds3"), "--sim-fixes", "rate=1e9")
     assert proc.returncode == 2
-    assert re.fullmatch(r"gyrocore: error: log f110_ds3: \S+ fixes requested \(\S+ s at 1e\+09 Hz\): more than "
+    assert re.fullmatch(rf"gyrocore: error: {re.escape(str(real_log_path('f110_ds3')))}: \S+ fixes requested \(\S+ s at 1e\+09 Hz\): more than "
                         r"1e\+07; is the rate in Hz\?\n", proc.stderr)
 
 
@@ -234,7 +234,7 @@ def test_a_reference_with_no_samples_is_named(tmp_path: Path) -> None:
     folder = log_folder_with(tmp_path, "reference.csv", "t,heading,x,y\n")
     proc = run_cli("evaluate", folder)
     assert proc.returncode == 2
-    assert proc.stderr == ("gyrocore: error: log log: reference: 0 sample(s); a heading error needs at least two "
+    assert proc.stderr == (f"gyrocore: error: {folder}: reference: 0 sample(s); a heading error needs at least two "
                            "reference samples\n")
 
 

@@ -221,8 +221,9 @@ def test_a_speed_series_must_increase() -> None:
         gyrocore.wholelog.speed_on(t, [0.0, 2.0, 1.0], [0.0, 0.0, 0.0], where="odometry")
     with pytest.raises(ValueError, match=r"odometry: speed\[1\] is nan: samples must be finite"):
         gyrocore.wholelog.speed_on(t, [0.0, 2.0], [0.0, np.nan], where="odometry")
-    # outside the series the speed is unknown, not held
-    assert np.isnan(gyrocore.wholelog.speed_on(t, [1.0, 2.0], [0.0, 0.0])[[0, -1]]).all()
+    # outside the series the speed is unknown, not held (and a series covering a tenth says so)
+    with pytest.warns(gyrocore.InputWarning, match=r"speed: its times \(\[1, 2\] s\) cover 10.1 %"):
+        assert np.isnan(gyrocore.wholelog.speed_on(t, [1.0, 2.0], [0.0, 0.0])[[0, -1]]).all()
 
 
 def test_log_process_on_a_real_log_without_a_rest_at_the_start() -> None:
@@ -287,7 +288,8 @@ def test_cli_evaluate_says_once_that_a_log_has_no_rest() -> None:
     proc = run_cli("evaluate", str(real_log_path("comma_seg40")), "--preset", "static_bias", "--preset", "hdr")
     assert proc.returncode == 0, proc.stderr
     lines = proc.stderr.splitlines()
-    assert len(lines) == 2 and all(line.startswith("gyrocore: warning: preset '") for line in lines)
+    warned = f"gyrocore: warning: {real_log_path('comma_seg40')}: preset '"  # named by the path given
+    assert len(lines) == 2 and all(line.startswith(warned) for line in lines)
     assert "no rest was found" in lines[0] and "static_bias, hdr: none: no rest found in the log; bias 0" in proc.stdout
 
 

@@ -14,10 +14,9 @@ from typing import Sequence
 
 from .. import _signals
 from . import allan, calibrate, demo, evaluate, presets, process, reproduce, simulate, tune
-from .._extras import MissingExtra
 from ..batch_run import BatchInterrupted
 from ..io.atomic import discard_all
-from ._common import show_warning
+from ._common import USER_ERRORS, show_warning
 
 COMMANDS = (demo, process, presets, allan, calibrate, evaluate, tune, simulate, reproduce)
 
@@ -61,7 +60,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             # report has no one to read it. Quiet, with the shell's code for SIGPIPE.
             os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
             return 141
-        except (ValueError, TypeError, OSError, MissingExtra) as e:
+        except USER_ERRORS as e:
             print(f"gyrocore: error: {e}", file=sys.stderr)
             return 2
         except KeyboardInterrupt as e:

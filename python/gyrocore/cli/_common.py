@@ -8,17 +8,57 @@ import json
 import math
 import os
 import sys
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 from .. import io
-from .._extras import tqdm_class
+from .._extras import MissingExtra, tqdm_class
 from ..calibration import Calibration
+from ..evaluate import Failed
 from ..io import atomic_path
 from ..pipeline import has_bias_source
 from ..window import Window
+
+
+#: The errors a user can act on: one line ``gyrocore: error: ...`` and exit 2, or, for one log of
+#: many, its ``FAILED`` line.
+USER_ERRORS = (ValueError, TypeError, OSError, MissingExtra)
+
+_Row = TypeVar("_Row")
+
+
+def each_log(items: Sequence[str | io.Log | Failed], work: Callable[[Any], Sequence[_Row]], *,
+             alone: bool) -> list[_Row | Failed]:
+    """The rows of ``work(item)`` for each log (a path or a log read from one), in order; a log
+    that failed already stays as it is. The only log of a run (``alone``) fails the command (one
+    line, exit 2); of several, a log that fails becomes its :class:`~gyrocore.evaluate.Failed`
+    row, named by its path, and the others go on."""
+    rows: list[_Row | Failed] = []
+    for item in items:
+        if isinstance(item, Failed):
+            rows.append(item)
+            continue
+        try:
+            rows += work(item)
+        except USER_ERRORS as e:
+            if alone:
+                raise
+            rows.append(Failed(item.path or item.name if isinstance(item, io.Log) else item, str(e)))
+    return rows
+
+
+def print_failures(rows: Sequence[object], logs: int) -> None:
+    """Under a table of several logs where some failed: how many were scored."""
+    failed = sum(isinstance(r, Failed) for r in rows)
+    if failed:
+        print(f"{logs - failed} of {logs} logs scored, {failed} failed")
+
+
+def exit_code(rows: Sequence[object]) -> int:
+    """1 when a log failed (as ``gyrocore process`` over a folder), else 0."""
+    return 1 if any(isinstance(r, Failed) for r in rows) else 0
 
 
 def add_command(

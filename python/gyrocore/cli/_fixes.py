@@ -14,12 +14,12 @@ from typing import Any
 from .. import io
 from .._checks import InputWarning
 from .._fixes_eval import FixScore, SimFixes, format_fix_scores, score_with_fixes
-from ..evaluate import Method
+from ..evaluate import Failed, Method, named_error
 from ..fixes import Fixes, read_fixes_file
 from ..io import Log, read_log
 from ..io._logfolder import FIXES_CSV
 from ..window import Window
-from ._common import print_json, warn
+from ._common import each_log, exit_code, print_failures, print_json, warn
 
 FIXES_HELP = (
     "absolute headings fused with the gyro (docs/fixes.md): a CSV with columns t [s], heading [rad, CCW from "
@@ -49,8 +49,9 @@ def fixes_wanted(args: argparse.Namespace, logs: Sequence[Log]) -> bool:
     return args.fixes is not None or args.sim_fixes is not None or any(log.fixes is not None for log in logs)
 
 
-def evaluate_with_fixes(args: argparse.Namespace, logs: Sequence[Log], methods: Sequence[Method]) -> int:
-    """``gyrocore evaluate`` with fixes: the table of :func:`gyrocore._fixes_eval.format_fix_scores`."""
+def evaluate_with_fixes(args: argparse.Namespace, logs: Sequence[Log | Failed], methods: Sequence[Method]) -> int:
+    """``gyrocore evaluate`` with fixes: the table of :func:`gyrocore._fixes_eval.format_fix_scores`;
+    ``logs`` as read, or failed already."""
     if args.fixes is not None and len(logs) != 1:
         raise ValueError(f"--fixes {args.fixes} is for one log, got {len(logs)}; give each log folder its {FIXES_CSV}")
     if args.plot_dir:
@@ -59,21 +60,25 @@ def evaluate_with_fixes(args: argparse.Namespace, logs: Sequence[Log], methods: 
     given = None if args.fixes is None else read_fixes_file(args.fixes)
     run = {"bias_duration": args.bias_duration, "mode": "causal" if args.causal else "whole",
            "use_speed": not args.no_speed}
-    rows: list[FixScore] = []
-    for log in logs:
+
+    def score(log: Log) -> list[FixScore]:
         try:
             fixes, label, window = _fixes_of(log, sim, given, args.fixes)
             with input_warnings() as messages:
-                rows += score_with_fixes(log, methods, fixes, label, window, **run)
-        except ValueError as e:  # name the log, once
-            raise ValueError(str(e) if str(e).startswith(f"log {log.name}:") else f"log {log.name}: {e}") from None
+                rows = score_with_fixes(log, methods, fixes, label, window, **run)
+        except ValueError as e:
+            raise named_error(log, e) from None
         for message in messages:
-            warn(f"log {log.name}: {message}")
+            warn(f"{log.path}: {message}")
+        return rows
+
+    rows = each_log(logs, score, alone=len(logs) == 1)
     if args.json:
         print_json([r.as_dict() for r in rows])
     else:
         format_fix_scores(rows)
-    return 0
+        print_failures(rows, len(logs))
+    return exit_code(rows)
 
 
 @contextmanager
@@ -95,7 +100,7 @@ def _fixes_of(log: Log, sim: SimFixes | None, given: Fixes | None,
     if given is not None:
         return given, f"{path} (as given)", None
     assert log.fixes is not None  # fixes_wanted
-    return log.fixes, f"{log.name}/{FIXES_CSV} (as given)", None
+    return log.fixes, f"{Path(log.path or log.name) / FIXES_CSV} (as given)", None
 
 
 def uses_fixes(args: argparse.Namespace, inputs: Sequence[Path]) -> bool:

@@ -5,19 +5,20 @@ from __future__ import annotations
 
 import argparse
 import math
-import warnings
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
-from .._checks import InputWarning
-from ..evaluate import Method, compare, format_bias_sources, format_table, plot_path
-from ..io import check_not_input, read_log
+from ..evaluate import Method, Score, compare, format_bias_sources, format_table, plot_path
+from ..io import Log, check_not_input, read_log
 from ..pipeline import preset_names
 from ..tune import ParameterSet
-from ._fixes import add_fix_options, evaluate_with_fixes, fixes_wanted
+from ._fixes import add_fix_options, evaluate_with_fixes, fixes_wanted, input_warnings
 from ._common import (
     add_command,
+    each_log,
+    exit_code,
+    print_failures,
     add_overwrite_option,
     add_override_options,
     add_reading_options,
@@ -90,38 +91,57 @@ def run(args: argparse.Namespace) -> int:
     methods = [_with(m if isinstance(m, Method) else Method.from_preset(m), extra) for m in [*presets, *params]]
     if args.plot_dir:
         check_not_input(Path(args.plot_dir), [Path(p) for p in args.logs])
-    logs = [read_log(path, use_fixes=not args.no_fixes, **reading_options(args)) for path in args.logs]
-    for path, log in zip(args.logs, logs):
-        if log.heading_ref is None:
-            raise ValueError(
-                f"{path}: no reference heading to score against (a log folder's reference.csv, or a CSV or "
-                "Parquet file's heading_true column [rad], as gyrocore simulate writes it)"
-            )
-    if fixes_wanted(args, logs):
+    alone = len(args.logs) == 1
+    logs = each_log(args.logs, lambda path: [_read(path, args)], alone=alone)
+    read = [log for log in logs if isinstance(log, Log)]
+    if fixes_wanted(args, read):
         return evaluate_with_fixes(args, logs, methods)
     if args.plot_dir:
-        refuse_existing([plot_path(args.plot_dir, log) for log in logs], args.overwrite)
-    logs = [replace(log, fixes=None) for log in logs]  # --no-fixes
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", InputWarning)
-        rows = compare(
-            logs,
-            methods,
-            bias_duration=args.bias_duration,
-            plot_dir=args.plot_dir,
-            mode="causal" if args.causal else "whole",
-            use_speed=not args.no_speed,
-        )
-    for message in dict.fromkeys(str(w.message) for w in caught):  # one line each, not one per method
-        warn(message)
+        refuse_existing(_plot_paths(args.plot_dir, read), args.overwrite)
+
+    def score(log: Log) -> list[Score]:
+        with input_warnings() as messages:
+            rows = compare([replace(log, fixes=None)], methods, bias_duration=args.bias_duration,  # --no-fixes
+                           plot_dir=args.plot_dir, mode="causal" if args.causal else "whole",
+                           use_speed=not args.no_speed)
+        for message in messages:
+            warn(f"{log.path}: {message}")
+        return rows
+
+    rows = each_log(logs, score, alone=alone)
     if args.json:
         print_json([_finite(r.as_dict()) for r in rows])
     else:
         format_table(rows)
         format_bias_sources(rows)
+        print_failures(rows, len(args.logs))
         if args.plot_dir:
             print(f"plots in {args.plot_dir}")
-    return 0
+    return exit_code(rows)
+
+
+def _read(path: str, args: argparse.Namespace) -> Log:
+    """The log at ``path``, which must have a reference heading."""
+    log = read_log(path, use_fixes=not args.no_fixes, **reading_options(args))
+    if log.heading_ref is None:
+        raise ValueError(
+            f"{path}: no reference heading to score against (a log folder's reference.csv, or a CSV or "
+            "Parquet file's heading_true column [rad], as gyrocore simulate writes it)"
+        )
+    return log
+
+
+def _plot_paths(plot_dir: str, logs: list[Log]) -> list[Path]:
+    """Where the logs' plots go (named by the logs' names); two logs of one name are refused,
+    before any work, as one plot would replace the other."""
+    paths: dict[Path, Log] = {}
+    for log in logs:
+        path = plot_path(plot_dir, log)
+        if path in paths:
+            raise ValueError(f"--plot-dir: {paths[path].path} and {log.path} would both be plotted to {path} "
+                             f"(both logs are named {log.name}); plot them in separate runs")
+        paths[path] = log
+    return list(paths)
 
 
 def _with(method: Method, extra: dict[str, Any]) -> Method:

@@ -235,20 +235,23 @@ def _bytes_per_line(path: Path) -> int:
     return max(1, len(head) // max(1, head.count(b"\n")))
 
 
-def read_csv_columns(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:
-    """Read the named columns of a CSV file with a header line (all of it, as float64).
+def read_csv_columns(path: Path, columns: tuple[str, ...], *, optional: tuple[str, ...] = ()) -> dict[str, FloatArray]:
+    """Read the named columns of a CSV file with a header line (all of it, as float64); an empty
+    value of an ``optional`` column is NaN (the caller decides what a missing value means).
 
-    Raises ValueError naming the file, line and column of a malformed or empty value.
+    Raises ValueError naming the file, line and column of a malformed value, or of an empty value
+    of another column. Row ``k`` is line ``k + 2``.
     """
     path = Path(path)
     import_pyarrow_lazy_modules()
     parts: dict[str, list[np.ndarray]] = {c: [] for c in columns}
     header = _csv_header(path, ",")
     choose = f"{path.name} has the columns {', '.join(columns)}"  # not gyro data: no reading option names them
-    for first, cols, _ in _read_csv(path, columns, required=dict.fromkeys(columns, "value"), choose=choose):
+    required = [c for c in columns if c not in optional]
+    for first, cols, _ in _read_csv(path, columns, required=dict.fromkeys(required, "value"), choose=choose):
         for c in columns:
-            bad = first_null(cols[c])
+            bad = None if c in optional else first_null(cols[c])
             if bad is not None:
                 raise ValueError(f"{path}: line {first + bad + 2}, column {header.index(c) + 1} ({c}): empty value")
-            parts[c].append(cols[c].to_numpy())
+            parts[c].append(cols[c].to_numpy(zero_copy_only=False))  # with nulls: NaN
     return {c: concat(parts[c]) for c in columns}

@@ -11,7 +11,10 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
 from .._arrays import FloatArray
+from .._checks import warn
 from ._csvfile import _csv_header, read_csv_columns
 from ._jsonfile import read_json
 
@@ -66,11 +69,38 @@ def read_fixes(folder: Path) -> Fixes | None:
 
 def read_reference_file(path: Path) -> dict[str, FloatArray]:
     """A reference heading given apart from its log: a CSV file like ``reference.csv``, with
-    columns t [s] and heading [rad], and x and y [m] where it has both."""
+    columns t [s] and heading [rad], and x and y [m] where it has both.
+
+    A t or heading that is not a finite number is an error naming its line. An x or y that is
+    empty or not finite leaves the positions out, with a warning naming its line: the heading is
+    still scored, while dead reckoning and the closed-path check need every position.
+    """
     if not path.is_file():
         raise FileNotFoundError(f"{path}: no such reference file")
     header = _csv_header(path, ",")
-    return read_csv_columns(path, ("t", "heading") + (("x", "y") if {"x", "y"} <= set(header) else ()))
+    track = ("x", "y") if {"x", "y"} <= set(header) else ()
+    ref = read_csv_columns(path, ("t", "heading", *track), optional=track)
+    for name in ("t", "heading"):
+        where = _not_finite(path, header, ref, name, "nan")
+        if where is not None:
+            raise ValueError(f"{where}; a reference's t and heading must be finite numbers: fill it in or drop the line")
+    for name in track:
+        where = _not_finite(path, header, ref, name, "empty or nan")  # an empty position is read as NaN
+        if where is not None:
+            warn(f"{where}; the reference's positions are left out (its heading is still used)")
+            return {"t": ref["t"], "heading": ref["heading"]}
+    return ref
+
+
+def _not_finite(path: Path, header: list[str], columns: dict[str, FloatArray], name: str, nan: str) -> str | None:
+    """Where the first value of column ``name`` that is not finite is, and what it is (a NaN
+    said as ``nan``), or None (row k is line k + 2, as :func:`read_csv_columns` reads)."""
+    bad = np.flatnonzero(~np.isfinite(columns[name]))
+    if len(bad) == 0:
+        return None
+    value = columns[name][bad[0]]
+    what = nan if np.isnan(value) else str(value)
+    return f"{path}: line {int(bad[0]) + 2}, column {header.index(name) + 1} ({name}): {what}"
 
 
 def _read_table(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:

@@ -52,6 +52,9 @@ class Log:
     meta: dict[str, Any] = field(default_factory=dict)
     fixes: Fixes | None = None
     """Heading fixes (a log folder's ``fixes.csv``), or None."""
+    path: str | None = None
+    """Where :func:`read_log` read the log, as given (two log folders may share meta.json's name),
+    or None for a log built in memory."""
 
     def __repr__(self) -> str:
         """A summary (the arrays run to millions of samples)."""
@@ -221,4 +224,5 @@ def read_log(path: str | Path, *, use_fixes: bool = True, **options: Any) -> Log
         stationary=src.stationary,
         meta=src.meta,
         fixes=fixes,
+        path=str(path),
     )
