@@ -300,6 +300,23 @@ fn bad_input_is_an_error_naming_what_and_where() {
         phase_from_rate(&rate, 0.1, &mut out[..10]),
         Err(Error::LengthMismatch { .. })
     ));
+    // 1e308 and -1e308 sum to a finite mean, and gave a NaN phase.
+    let huge = [0.0, 1e308, -1e308, 0.0];
+    assert!(matches!(
+        phase_from_rate(&huge, 0.1, &mut out[..5]),
+        Err(Error::OutOfRange {
+            what: "rate",
+            index: 1,
+            ..
+        })
+    ));
+    // A variance divides by tau0^2: 1e-300 s gave infinity, 1e300 s a silent 0.
+    for tau0 in [1e-300, 1e300] {
+        assert!(matches!(
+            variance(&x, tau0, 1, Variance::Allan),
+            Err(Error::InvalidParameter { name: "tau0", .. })
+        ));
+    }
     let (mut v, mut n) = (vec![0.0; 1], vec![0u64; 2]);
     assert!(matches!(
         variances(&x, 1.0, &[1], Variance::Allan, &mut v, &mut n),

@@ -23,10 +23,10 @@
 //!
 //! These are Stable32's estimators; `tests/allan.rs` checks them against its output.
 
-use crate::error::check_positive;
+use crate::error::check_range;
 use crate::stage::check_len;
-use crate::validate::check_finite_all;
-use crate::Error;
+use crate::validate::{check_bounded, check_finite_all};
+use crate::{Error, MAX_READING, MAX_TIME, MIN_INTERVAL};
 use core::ops::Range;
 
 mod differences;
@@ -94,13 +94,12 @@ impl Variance {
 ///
 /// Errors: `dt` not finite and positive, `x` of the wrong length, a non-finite rate (by index).
 pub fn phase_from_rate(rate: &[f64], dt: f64, x: &mut [f64]) -> Result<(), Error> {
-    check_positive("dt", dt)?;
+    check_interval("dt", dt)?;
     check_len("phase", x.len(), rate.len() + 1)?;
+    // Readings within +-2^20 (as the pipeline's), so that the phase stays finite: 1e308 and
+    // -1e308 summed to a finite mean and a NaN phase.
+    check_bounded("rate", rate, MAX_READING)?;
     let total = sum_of(rate.len(), |i| rate[i]);
-    // A NaN or infinity makes the sum non-finite, so a finite sum spares a pass over the rate.
-    if !total.is_finite() {
-        check_finite_all("rate", rate)?;
-    }
     let mean = if rate.is_empty() {
         0.0
     } else {
@@ -237,7 +236,7 @@ fn check_request(
     variance: &[f64],
     terms: &[u64],
 ) -> Result<(), Error> {
-    check_positive("tau0", tau0)?;
+    check_interval("tau0", tau0)?;
     check_len("variance", variance.len(), factors.len())?;
     check_len("terms", terms.len(), factors.len())?;
     for &m in factors {
@@ -269,6 +268,13 @@ fn check_phase(x: &[f64], kind: Variance, factors: &[usize], sums: &[f64]) -> Re
 fn reads_every_sample(kind: Variance, n: usize, m: usize) -> bool {
     let overlapping = kind.overlapping() || (m == 1 && kind != Variance::ModifiedAllan);
     overlapping && kind.terms(n, m) >= m
+}
+
+/// A sample interval within [`MIN_INTERVAL`], [`MAX_TIME`]: a variance divides by its square
+/// (1e-300 s gave infinity, 1e300 s a silent 0).
+fn check_interval(name: &'static str, value: f64) -> Result<(), Error> {
+    let valid = "between 1e-12 s and 2^40 s";
+    check_range(name, value, MIN_INTERVAL, MAX_TIME, valid)
 }
 
 fn check_factor(kind: Variance, n: usize, m: usize) -> Result<(), Error> {

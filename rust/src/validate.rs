@@ -209,7 +209,7 @@ fn times_ok(t: &[f64], previous_t: Option<f64>) -> bool {
 
 /// Fails with [`Error::NonFinite`] naming the first NaN or infinite value, or with
 /// [`Error::OutOfRange`] naming the first value at or beyond `limit` in magnitude.
-fn check_bounded(what: &'static str, values: &[f64], limit: f64) -> Result<(), Error> {
+pub(crate) fn check_bounded(what: &'static str, values: &[f64], limit: f64) -> Result<(), Error> {
     // One pass for the common case: below the limit means finite too.
     if all_below(values, limit) {
         return Ok(());
