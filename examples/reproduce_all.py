@@ -1,8 +1,9 @@
 """Every reproduction of the papers' experiments in turn (under ten seconds): tables to the
 terminal, figures (PNG) into the folder given as the first argument (default: the current folder).
-The same as ``gyrocore reproduce --out OUT_DIR``.
+The same as ``gyrocore reproduce --out OUT_DIR``; figures there already are refused unless
+``--overwrite`` follows (the other examples write the same figures into the current folder).
 
-    python examples/reproduce_all.py [OUT_DIR]
+    python examples/reproduce_all.py [OUT_DIR] [--overwrite]
 """
 
 import sys
@@ -10,4 +11,6 @@ import sys
 from gyrocore.cli import main
 
 if __name__ == "__main__":
-    sys.exit(main(["reproduce", "--out", sys.argv[1] if len(sys.argv) > 1 else "."]))
+    args = [a for a in sys.argv[1:] if a != "--overwrite"]
+    overwrite = ["--overwrite"] if "--overwrite" in sys.argv[1:] else []
+    sys.exit(main(["reproduce", "--out", args[0] if args else ".", *overwrite]))

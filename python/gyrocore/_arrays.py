@@ -63,7 +63,24 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
         raise TypeError(f"{name} must hold real numbers, got dtype {a.dtype}")
     if a.ndim != 1:
         raise ValueError(f"{name} must be one-dimensional, got shape {a.shape}")
+    if name == "t":
+        warn_coarse_times(a)
     return np.ascontiguousarray(a, dtype=np.float64)
+
+
+def warn_coarse_times(t: np.ndarray, per_second: float = 1.0) -> None:
+    """Warn when times stored as float32 (``per_second`` counts a second) cannot tell samples apart:
+    near epoch seconds (1.7e9) float32 steps by 128 s, so neighbouring samples read as equal or
+    reversed, and the error that follows ("t[1] = ... follows ...") would not say why. One message
+    for every chunk of a file (float32 steps by powers of two)."""
+    if t.dtype != np.float32 or not np.isfinite(t).any():
+        return
+    spacing = float(np.spacing(np.float32(np.nanmax(np.abs(t))))) / per_second
+    if spacing > 1e-3:
+        from ._checks import warn  # _checks builds on this module
+
+        warn(f"the times are float32, which at their size resolve only {spacing:g} s: store them as float64 "
+             "(or as seconds from the first sample)")
 
 
 def as_window(name: str, window: object) -> tuple[float, float]:

@@ -3,6 +3,7 @@ made a heading 1000x too large); datetime64 is refused with what to do, in the A
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -94,3 +95,26 @@ def test_timestamps_closer_than_a_picosecond_are_refused(interval: float) -> Non
     # just above the limit (exactly 1e-12 apart, float rounding puts some intervals below it)
     at_limit = np.arange(100) * 1.01e-12
     assert np.isfinite(gyrocore.process(at_limit, np.full(100, 0.1), "hdr", bias=0.0).heading).all()
+
+
+def test_float32_epoch_times_say_why_they_do_not_increase(tmp_path: Path) -> None:
+    # Near 1.7e9 s, float32 steps by 128 s: 100 Hz samples read as equal, and the error alone
+    # ("t[1] = 1700000000 follows 1700000000") did not say why.
+    t = (1.7e9 + np.arange(200) * 0.01).astype(np.float32)
+    with pytest.warns(gyrocore.InputWarning, match=r"the times are float32, which at their size resolve only 128 s"):
+        with pytest.raises(gyrocore.SampleError, match="must strictly increase"):
+            gyrocore.process(t, np.zeros(len(t)), "raw", mode="causal")
+    pa = pytest.importorskip("pyarrow")
+    import pyarrow.parquet as pq
+
+    from .conftest import gyrocore_cli
+
+    path = tmp_path / "f32.parquet"
+    pq.write_table(pa.table({"t": pa.array(t, pa.float32()), "gyro_z": np.zeros(len(t))}), path)
+    proc = gyrocore_cli("process", path, "--out", tmp_path / "h.csv", code=2)
+    assert "gyrocore: warning:" in proc.stderr and "resolve only 128 s" in proc.stderr
+    assert "must strictly increase" in proc.stderr.splitlines()[-1]
+    # seconds from the first sample fit float32 well enough: no warning
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", gyrocore.InputWarning)
+        gyrocore.process((np.arange(200) * 0.01).astype(np.float32), np.zeros(200), "raw", mode="causal")

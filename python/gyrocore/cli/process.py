@@ -158,18 +158,25 @@ def run(args: argparse.Namespace) -> int:
 def _one(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
     if len(inputs) != 1:
         raise ValueError(f"--out {out} is one file but there are {len(inputs)} inputs; give a folder")
-    with progress_bar(inputs[0].name) as bar:
-        report = process_file(
-            inputs[0],
-            out,
-            preset=args.preset,
-            heading=args.heading,
-            chunk_rows=args.chunk_rows,
-            progress=bar,
-            mode="causal" if args.causal else "whole",
-            use_speed=not args.no_speed,
-            **kwargs,
-        )
+    with progress_bar(inputs[0].name) as bar, warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", InputWarning)
+        try:
+            report = process_file(
+                inputs[0],
+                out,
+                preset=args.preset,
+                heading=args.heading,
+                chunk_rows=args.chunk_rows,
+                progress=bar,
+                mode="causal" if args.causal else "whole",
+                use_speed=not args.no_speed,
+                **kwargs,
+            )
+        except Exception:
+            # what looked wrong before the error often says why (float32 times, a unit)
+            for message in dict.fromkeys(str(w.message) for w in caught if issubclass(w.category, InputWarning)):
+                warn(f"{inputs[0]}: {message}")
+            raise
     for w in report.warnings:
         warn(f"{report.input}: {w}")
     if args.json:

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from .._arrays import FloatArray, durations_in_seconds
+from .._arrays import FloatArray, durations_in_seconds, warn_coarse_times
 from .._gyrocore import SampleError
 from ..window import Window
 from ._axes import MEASURED, measure_up, parse_up, project, three_names
@@ -304,6 +304,7 @@ def _seconds(raw: np.ndarray, per_second: float) -> FloatArray:
     Durations (timedelta64 in .npy and .npz files) carry their own unit."""
     if raw.dtype.kind == "m":
         return np.asarray(durations_in_seconds("the time column", raw), dtype=np.float64)
+    warn_coarse_times(raw, per_second)
     t = np.asarray(raw, dtype=np.float64)
     return t if per_second == 1.0 else t / per_second
 
