@@ -5,8 +5,11 @@ from __future__ import annotations
 import math
 import os
 import sys
+import threading
 import types
 import warnings
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 import numpy as np
 
@@ -94,8 +97,31 @@ def require_radians(name: str, t: FloatArray, heading: FloatArray) -> None:
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
 
 
+#: Where :func:`warn` puts its messages on this thread instead of raising them (see :func:`collected`).
+_collector = threading.local()
+
+
+@contextmanager
+def collected(notes: list[str]) -> Iterator[None]:
+    """Within the block, :func:`warn` on this thread appends its message to ``notes`` instead of
+    raising it. The warnings module's filters and hooks are global (``catch_warnings`` is not
+    thread-safe), so files of a batch on parallel threads recording their warnings with it lost or
+    swapped each other's."""
+    previous = getattr(_collector, "notes", None)
+    _collector.notes = notes
+    try:
+        yield
+    finally:
+        _collector.notes = previous
+
+
 def warn(message: str) -> None:
-    """Emit an :class:`InputWarning` attributed to the first caller outside this package."""
+    """Emit an :class:`InputWarning` attributed to the first caller outside this package (or
+    collect it, inside :func:`collected` on this thread)."""
+    notes = getattr(_collector, "notes", None)
+    if notes is not None:
+        notes.append(message)
+        return
     # stacklevel 1 is this function; 2 its caller, and so on up to the first frame outside.
     level = 2
     frame: types.FrameType | None = sys._getframe(1)

@@ -5,7 +5,6 @@ report of what it did (:class:`FileReport`) and a batch's (:class:`BatchReport`)
 from __future__ import annotations
 
 import time
-import warnings
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import asdict, dataclass, fields
@@ -14,7 +13,7 @@ from typing import Any
 
 from . import _signals, io, rests, wholelog
 from ._arrays import FloatArray
-from ._checks import InputWarning, first_infinite, warn
+from ._checks import collected, first_infinite, warn
 from ._gyrocore import SampleError
 from .io._columns import concat
 from .io._logfolder import FIXES_CSV, read_odometry
@@ -159,6 +158,8 @@ class _FileJob:
         # the core computes the heading always, the rate and drift only for a column of theirs
         self.outputs = ("heading", *(c for c in ("rate", "drift") if c in self.columns))
         self.rows_in = 0
+        #: what looked wrong so far, for the report even of a file that then fails
+        self.notes: list[str] = []
 
     def run(self, progress: Progress | None = None) -> FileReport:
         start = time.perf_counter()
@@ -176,7 +177,7 @@ class _FileJob:
                     f"{source.data_path}: the rest window {_window_text(window)} ends before the first sample; "
                     + time_range(t0)
                 )
-        notes: list[str] = []
+        notes = self.notes = []
         if source.kind == "log folder" and (source.path / FIXES_CSV).is_file():
             notes.append(f"{FIXES_CSV} is not used when logs are streamed: process the log alone with "
                          "`gyrocore process` or gyrocore.Log.process to fuse its heading fixes")
@@ -230,7 +231,7 @@ class _FileJob:
             writer.rows,
             time.perf_counter() - start,
             None,
-            tuple(notes),
+            tuple(dict.fromkeys(notes)),
             plan.source,
             plan.rests,
         )
@@ -290,7 +291,8 @@ class _FileJob:
 
     def failure(self, error: BaseException, seconds: float) -> FileReport:
         reason = str(error) if isinstance(error, (ValueError, TypeError, OSError, ImportError)) else repr(error)
-        return FileReport(str(self.path), None, self.rows_in, 0, seconds, reason or type(error).__name__)
+        failed = reason or type(error).__name__
+        return FileReport(str(self.path), None, self.rows_in, 0, seconds, failed, tuple(dict.fromkeys(self.notes)))
 
 
 @contextmanager
@@ -298,13 +300,13 @@ def _noted(notes: list[str]) -> Iterator[None]:
     """Run the block keeping each :class:`InputWarning` it raises as a note of the file's report
     (the command line prints the notes, with the file's name), and raise every warning again for a
     caller of the API."""
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", InputWarning)
-        yield
-    for w in caught:
-        if issubclass(w.category, InputWarning):
-            notes.append(str(w.message))
-        warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    start = len(notes)
+    try:
+        with collected(notes):  # per thread: the files of a batch run side by side
+            yield
+    finally:  # also when the block fails: what came before an error often says why
+        for message in notes[start:]:
+            warn(message)
 
 
 def _window_text(window: Window | tuple[float, float]) -> str:

@@ -114,6 +114,13 @@ def test_float32_epoch_times_say_why_they_do_not_increase(tmp_path: Path) -> Non
     proc = gyrocore_cli("process", path, "--out", tmp_path / "h.csv", code=2)
     assert "gyrocore: warning:" in proc.stderr and "resolve only 128 s" in proc.stderr
     assert "must strictly increase" in proc.stderr.splitlines()[-1]
+    # in a batch, the failed file's report keeps what came before its error, the files on
+    # parallel threads each their own (the warnings module's hooks are global)
+    good = tmp_path / "good.csv"
+    good.write_text("t,gyro_z\n" + "".join(f"{k * 0.01},0.001\n" for k in range(300)))
+    batch = gyrocore_cli("process", path, good, "--out", tmp_path / "outs", "--jobs", "2", code=1)
+    assert f"gyrocore: warning: {path}: the times are float32" in batch.stderr
+    assert f"{good}: the times are float32" not in batch.stderr
     # seconds from the first sample fit float32 well enough: no warning
     with warnings.catch_warnings():
         warnings.simplefilter("error", gyrocore.InputWarning)
