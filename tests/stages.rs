@@ -102,6 +102,17 @@ fn leading_bias_window_starts_at_the_first_sample() {
     run(&mut c, &[100.0, 101.0, 102.0, 103.0], &[0.2, 0.4, 0.6, 9.0]);
     assert!(close(c.bias(), 0.5));
     assert_eq!(c.bias_sample_count(), 3);
+    // A time the clock refuses, or a NaN or out-of-range reading, is corrected but teaches the
+    // bias nothing: the window starts at the first usable sample, and the bias stays finite (a
+    // NaN first time left it unlearned forever, a NaN reading made every output NaN).
+    c.reset();
+    let t = [f64::NAN, 100.0, 101.0, 101.5, 102.0, 103.0];
+    let rate = [7.0, 0.2, 0.4, f64::NAN, 0.6, 9.0];
+    let out = run(&mut c, &t, &rate);
+    assert!(close(c.bias(), 0.5), "bias {}", c.bias());
+    assert_eq!(c.bias_sample_count(), 3);
+    assert!(!c.bias_learning());
+    assert!(out[3].is_nan() && close(out[5], 8.5), "{out:?}");
 }
 
 #[test]

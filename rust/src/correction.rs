@@ -272,8 +272,12 @@ impl Correction {
     /// `r = (s_bar * (r_m - eps0) + b_bar) * C_dir * C_T` (HDR eq 2, Hong eq 3, FOG eq 3-4 and 6).
     #[inline]
     pub fn apply(&mut self, t: f64, rate: f64, temperature: Option<f64>) -> f64 {
-        let dt = self.clock.tick(t);
-        if self.bias.learning() {
+        // A time the clock refuses, or a reading beyond the limits, is corrected as any other but
+        // left out of the bias, as if absent (the next interval spans it): a NaN first time made
+        // the window (NaN, NaN), never learned, and one NaN reading in it made every output NaN.
+        let usable = |clock: &Clock| libm::fabs(rate) < MAX_READING && clock.interval(t).is_some();
+        if self.bias.learning() && usable(&self.clock) {
+            let dt = self.clock.tick(t);
             self.bias.learn(self.calibration.config.bias, t, dt, rate);
             self.calibration.bias = self.bias.value();
         }
