@@ -111,9 +111,6 @@ def test_float32_epoch_times_say_why_they_do_not_increase(tmp_path: Path) -> Non
 
     path = tmp_path / "f32.parquet"
     pq.write_table(pa.table({"t": pa.array(t, pa.float32()), "gyro_z": np.zeros(len(t))}), path)
-    proc = gyrocore_cli("process", path, "--out", tmp_path / "h.csv", code=2)
-    assert "gyrocore: warning:" in proc.stderr and "resolve only 128 s" in proc.stderr
-    assert "must strictly increase" in proc.stderr.splitlines()[-1]
     # in a batch, the failed file's report keeps what came before its error, the files on
     # parallel threads each their own (the warnings module's hooks are global)
     good = tmp_path / "good.csv"

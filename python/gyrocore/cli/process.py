@@ -158,25 +158,8 @@ def run(args: argparse.Namespace) -> int:
 def _one(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
     if len(inputs) != 1:
         raise ValueError(f"--out {out} is one file but there are {len(inputs)} inputs; give a folder")
-    with progress_bar(inputs[0].name) as bar, warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", InputWarning)
-        try:
-            report = process_file(
-                inputs[0],
-                out,
-                preset=args.preset,
-                heading=args.heading,
-                chunk_rows=args.chunk_rows,
-                progress=bar,
-                mode="causal" if args.causal else "whole",
-                use_speed=not args.no_speed,
-                **kwargs,
-            )
-        except Exception:
-            # what looked wrong before the error often says why (float32 times, a unit)
-            for message in dict.fromkeys(str(w.message) for w in caught if issubclass(w.category, InputWarning)):
-                warn(f"{inputs[0]}: {message}")
-            raise
+    with progress_bar(inputs[0].name) as bar:
+        report = process_file(inputs[0], out, progress=bar, **_run_options(args), **kwargs)
     for w in report.warnings:
         warn(f"{report.input}: {w}")
     if args.json:
@@ -186,19 +169,21 @@ def _one(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[s
     return 0
 
 
+def _run_options(args: argparse.Namespace) -> dict[str, Any]:
+    """What one file and a batch are run with alike."""
+    return {"preset": args.preset, "heading": args.heading, "chunk_rows": args.chunk_rows,
+            "mode": "causal" if args.causal else "whole", "use_speed": not args.no_speed}
+
+
 def _many(out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
     summary = process_many(
         args.inputs,  # as given: the folders among them are where no output may go
-        preset=args.preset,
         out_dir=out,
         client=args.scheduler,
         jobs=args.jobs,
         fmt=args.format,
-        heading=args.heading,
-        chunk_rows=args.chunk_rows,
         progress=True,
-        mode="causal" if args.causal else "whole",
-        use_speed=not args.no_speed,
+        **_run_options(args),
         **kwargs,
     )
     for report in summary.files:
