@@ -26,7 +26,7 @@ from . import _gyrocore
 from ._arrays import FloatArray
 from ._checks import usable
 from ._smoother import leave_one_out
-from .pipeline import RestWindowError, refuse_few_readings, refuse_start_before
+from .pipeline import RestWindowError, refuse_few_readings, refuse_start_before, rest_window_text
 from .rests import Rest
 from .window import time_range
 
@@ -152,8 +152,8 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
         )
     bias, _, noise, batch_error = _gyrocore.static_bias_test(ts, rs, start, end)  # first: it names a bad sample
     if found_by.startswith("given"):
-        duration = found_by == "given: bias_duration"
-        refuse_few_readings(f"bias_duration = {end - start} s" if duration else f"the bias window [{start}, {end}] s", samples)
+        given = {"bias_duration": end - start} if found_by == "given: bias_duration" else {"bias_window": (start, end)}
+        refuse_few_readings(rest_window_text(given), samples)
     white_noise = noise if noise is not None else float(np.std(rs[(ts >= start) & (ts <= end)]))
     error = white_noise / math.sqrt(samples)
     return Rest(start, end, bias, max(error, batch_error or 0.0), white_noise, samples, found_by.split(":")[0])

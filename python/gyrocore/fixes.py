@@ -26,7 +26,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
-from ._checks import warn
+from ._checks import MAX_READING, warn
 from ._extras import require
 from .io._csvfile import _csv_header as csv_header, read_csv_columns
 from .io.units import HEADER_TIME_UNITS, _normal as normal_unit, split_unit
@@ -35,10 +35,11 @@ from .result import fix_output_flags
 if TYPE_CHECKING:
     from .pipeline import HeadingResult
 
-#: The largest magnitude of a fix's heading [rad], as of a gyro reading in the core (2^20): headings
-#: may be continuous (unwrapped), but one beyond this is another unit or a corrupt value, and the
-#: filter's wrapped innovation would lose its precision (at 2^20 rad a double still resolves 2e-10 rad).
-MAX_HEADING = 2.0**20
+#: The largest magnitude of a fix's heading [rad], the core's limit of a fix heading as of a reading
+#: (2^20): headings may be continuous (unwrapped), but one beyond this is another unit or a corrupt
+#: value, and the filter's wrapped innovation would lose its precision (at 2^20 rad a double still
+#: resolves 2e-10 rad).
+MAX_HEADING = MAX_READING
 
 #: The filter's settings and their units (defaults: the core's ``FusionConfig::default``).
 SETTINGS = ("arw", "bias_walk", "scale_walk", "initial_heading", "initial_heading_sigma", "initial_bias",

@@ -66,7 +66,7 @@ def refuse_start_before(start: float, end: float, first: float) -> None:
         )
 
 
-def _window_text(params: dict[str, Any]) -> str:
+def rest_window_text(params: dict[str, Any]) -> str:
     """The rest window of ``params`` as the user gave it."""
     if params.get("bias_window"):
         start, end = params["bias_window"]
@@ -369,7 +369,7 @@ class Pipeline:
         if last is None or self._first_time is None or not (p.get("bias_window") or p.get("bias_duration")):
             return  # no sample, or a fixed bias
         if not learning:  # the window is over
-            refuse_few_readings(_window_text(p), count)
+            refuse_few_readings(rest_window_text(p), count)
             return
         span = time_range(self._first_time, last)
         if p.get("bias_window"):

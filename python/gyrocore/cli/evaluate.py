@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import argparse
 import math
-from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -101,7 +100,7 @@ def run(args: argparse.Namespace) -> int:
 
     def score(log: Log) -> list[Score]:
         with input_warnings() as messages:
-            rows = compare([replace(log, fixes=None)], methods, bias_duration=args.bias_duration,  # --no-fixes
+            rows = compare([log], methods, bias_duration=args.bias_duration,
                            plot_dir=args.plot_dir, mode="causal" if args.causal else "whole",
                            use_speed=not args.no_speed)
         for message in messages:
