@@ -8,6 +8,7 @@ import threading
 import time
 import uuid
 from concurrent.futures import ThreadPoolExecutor, as_completed
+from collections.abc import Iterable
 from typing import Any
 
 from ._extras import require, tqdm_class
@@ -45,10 +46,23 @@ class BatchInterrupted(KeyboardInterrupt):
         return f"{len(done)} file(s) finished before it, complete: {shown}"
 
 
+def _finished_meanwhile(futures: Iterable[tuple[int, Any]], reports: dict[int, FileReport]) -> None:
+    """Adds the reports of the files that finished while the batch stopped: past their last chunk
+    when the signal came, they complete, and their outputs are whole."""
+    for i, future in futures:
+        if i in reports or not future.done() or future.cancelled():
+            continue
+        try:
+            reports[i] = future.result()
+        except Exception:  # noqa: BLE001 - a lost worker: no report, and no output
+            continue
+
+
 def _interrupted(e: BaseException, reports: dict[int, FileReport]) -> None:
-    """An interrupt of the batch becomes :class:`BatchInterrupted` with the files it finished."""
+    """An interrupt of the batch becomes :class:`BatchInterrupted` with the files it finished (the
+    ones stopped or failed left no output)."""
     if isinstance(e, KeyboardInterrupt) and not isinstance(e, BatchInterrupted):
-        raise BatchInterrupted([reports[i] for i in sorted(reports)]) from e
+        raise BatchInterrupted([reports[i] for i in sorted(reports) if reports[i].ok]) from e
 
 
 class _Stopped(Exception):
@@ -79,6 +93,7 @@ def _run_on_threads(jobs: list[_FileJob], workers: int, progress: bool) -> list[
     reports: dict[int, FileReport] = {}
     with _bar(len(jobs), progress) as bar:
         executor = ThreadPoolExecutor(max_workers=min(workers, len(jobs)), thread_name_prefix="gyrocore")
+        futures: dict[Any, int] = {}
         try:
             futures = {executor.submit(_run_job, job, stop): i for i, job in enumerate(jobs)}
             for future in as_completed(futures):
@@ -87,6 +102,7 @@ def _run_on_threads(jobs: list[_FileJob], workers: int, progress: bool) -> list[
         except BaseException as e:
             stop.set()  # running files stop at their next chunk and remove their temporary output
             executor.shutdown(wait=True, cancel_futures=True)
+            _finished_meanwhile(((i, f) for f, i in futures.items()), reports)
             _interrupted(e, reports)
             raise
         executor.shutdown()
@@ -120,6 +136,7 @@ def _run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[File
                     bar.update(1)
             except BaseException as e:
                 _stop_on_cluster(distributed, stop, futures)
+                _finished_meanwhile(enumerate(futures), reports)
                 _interrupted(e, reports)
                 raise
     finally:
@@ -143,7 +160,7 @@ def _stop_on_cluster(distributed: Any, stop: Any, futures: list[Any]) -> None:
     except Exception:  # noqa: BLE001 - the scheduler gone or the wait timed out: say so below
         pass
     running = [f for f in pending if not f.done()]
-    for future in pending:
+    for future in running:  # a finished one keeps its report (its output is complete)
         future.cancel()
     if running:
         print(f"gyrocore: warning: {len(running)} file(s) on the Dask cluster did not stop within "
