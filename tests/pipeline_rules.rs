@@ -139,6 +139,49 @@ fn a_block_that_passes_an_empty_rest_window_changes_nothing() {
 }
 
 #[test]
+fn a_sample_stream_tells_when_it_passed_an_empty_rest_window() {
+    let (t, r) = stream(3000);
+    let mut c = Preset::Tuned.config();
+    c.correction.bias = StaticBias::Window {
+        start: 75.0,
+        end: 80.0,
+    };
+    // No sample between 70 and 90 s: the window is passed without a reading inside.
+    let t: Vec<f64> = t
+        .iter()
+        .map(|&x| if x > 70.0 { x + 20.0 } else { x })
+        .collect();
+    let mut p = Pipeline::new(c).unwrap();
+    let mut missed = Vec::new();
+    for (&ti, &ri) in t.iter().zip(&r) {
+        p.update(ti, ri);
+        missed.push(p.rest_window_missed());
+    }
+    // Silent until the first sample past the window's end, then the block path's own error.
+    let first_past = t.iter().position(|&x| x > 80.0).unwrap();
+    assert!(missed[..first_past].iter().all(Option::is_none));
+    let e = missed[first_past].clone().unwrap();
+    assert!(
+        matches!(e, Error::EmptyRestWindow { start: 75.0, end: 80.0, first: 50.0, last }
+            if last == t[first_past]),
+        "{e:?}"
+    );
+    assert!(missed[first_past..].iter().all(Option::is_some));
+    let mut whole = Pipeline::new(c).unwrap();
+    assert_eq!(common::try_block(&mut whole, &t, &r).unwrap_err(), e);
+    // A window that holds readings is never reported.
+    c.correction.bias = StaticBias::Window {
+        start: 60.0,
+        end: 65.0,
+    };
+    let mut held = Pipeline::new(c).unwrap();
+    for (&ti, &ri) in t.iter().zip(&r) {
+        held.update(ti, ri);
+        assert_eq!(held.rest_window_missed(), None);
+    }
+}
+
+#[test]
 fn the_static_bias_test_is_the_pipelines_rest_window() {
     let (t, r) = stream(4000);
     let (start, end) = (60.0, 90.0);

@@ -103,6 +103,16 @@ impl Pipeline {
         self.bias.rest_statistics()
     }
 
+    /// The error for a rest window that the stream has passed without a reading inside it, once a
+    /// sample past the window's end has come (`None` before, and for every other bias source).
+    ///
+    /// [`Pipeline::process_block`] returns this error itself; a caller of the infallible
+    /// [`Pipeline::update`] asks here, because such a pipeline goes on with a bias of 0.
+    pub fn rest_window_missed(&self) -> Option<Error> {
+        let last = self.clock.last()?;
+        self.bias.missed(last).filter(|_| !self.bias.learning())
+    }
+
     /// The rest tracker (the filtered bias and the rests found), when the configuration has one.
     pub fn rest_tracker(&self) -> Option<&RestTracker> {
         self.engine.rest_tracker()
@@ -121,7 +131,9 @@ impl Pipeline {
     /// [`MAX_READING`](crate::MAX_READING) unless the policy holds the last one (a missing
     /// temperature where the model needs one counts as non-finite): a skipped sample leaves every
     /// stage untouched and gets the last heading and drift with a NaN rate (counted in
-    /// [`Pipeline::report`]). Use [`Pipeline::process_block`] to have bad input rejected instead.
+    /// [`Pipeline::report`]). Use [`Pipeline::process_block`] to have bad input rejected instead;
+    /// a rest window the samples pass without a reading inside leaves the bias at 0 here, which
+    /// [`Pipeline::rest_window_missed`] tells.
     pub fn update_with_temperature(
         &mut self,
         t: f64,
@@ -327,7 +339,7 @@ impl Pipeline {
         .map_err(|e| e.with_index_offset(i))?;
         let speed = block.speed.map_or(f64::NAN, |s| s[i]);
         let out = self.update_with_speed(t, rate, temperature, speed);
-        match self.bias.missed(t).filter(|_| !self.bias.learning()) {
+        match self.rest_window_missed() {
             Some(e) => Err(e),
             None => Ok(out),
         }
