@@ -289,6 +289,13 @@ pub(crate) fn check_reading(name: &'static str, value: f64) -> Result<(), Error>
     )
 }
 
+/// Checks a size (a noise density, a random walk, an increment): >= 0 and at most
+/// [`MAX_READING`], as a reading, so that its square summed over any time span stays finite.
+pub(crate) fn check_magnitude(name: &'static str, value: f64) -> Result<(), Error> {
+    let valid = "finite, >= 0 and at most 2^20 = 1048576 (the limit of a reading)";
+    check_range(name, value, 0.0, MAX_READING, valid)
+}
+
 /// Checks a scale factor: > 0 and at most [`MAX_READING`].
 pub(crate) fn check_factor(name: &'static str, value: f64) -> Result<(), Error> {
     let valid = "> 0 and at most 2^20 = 1048576";

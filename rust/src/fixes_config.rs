@@ -3,7 +3,7 @@
 
 use core::f64::consts::PI;
 
-use crate::error::check_range;
+use crate::error::{check_magnitude, check_range};
 use crate::{Error, MAX_READING, MAX_TIME};
 
 /// Noise settings and initial uncertainty of the filter.
@@ -58,11 +58,9 @@ impl Default for FusionConfig {
 impl FusionConfig {
     /// Checks every parameter (the error names it).
     pub fn validate(&self) -> Result<(), Error> {
-        // At most 2^20, as a reading: their squares, summed over any time span, stay finite.
-        let walk = "finite, >= 0 and at most 2^20";
-        check_range("arw", self.arw, 0.0, MAX_READING, walk)?;
-        check_range("bias_walk", self.bias_walk, 0.0, MAX_READING, walk)?;
-        check_range("scale_walk", self.scale_walk, 0.0, MAX_READING, walk)?;
+        check_magnitude("arw", self.arw)?;
+        check_magnitude("bias_walk", self.bias_walk)?;
+        check_magnitude("scale_walk", self.scale_walk)?;
         let sigma = "> 0 and at most 2^20";
         check_range(
             "initial_heading",

@@ -14,10 +14,9 @@
 //! HDR off on straight roads and on for every left turn.
 
 use crate::block::BlockMean;
-use crate::error::{check_duration, check_positive, check_range};
+use crate::error::{check_duration, check_magnitude, check_positive, check_range};
 use crate::kernel::{Kernel, Measured, Signal, Streaming, Validated};
 use crate::lowpass::{LowPassConfig, LowPassKernel};
-use crate::validate::MAX_READING;
 use crate::Error;
 
 /// Number of precomputed attenuation values `R(1..=N)` (eq 10); larger counts use `pow`.
@@ -68,13 +67,7 @@ impl HdrConfig {
 
     /// Checks every field; the error names the first invalid one.
     pub fn validate(&self) -> Result<(), Error> {
-        check_range(
-            "hdr_increment",
-            self.increment,
-            0.0,
-            MAX_READING,
-            "finite, >= 0 and at most 2^20 rad/s",
-        )?;
+        check_magnitude("hdr_increment", self.increment)?;
         check_range(
             "hdr_turn_threshold",
             self.turn_threshold,

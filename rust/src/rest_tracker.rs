@@ -21,10 +21,10 @@
 //! stopped short or crept gives a mean with a large standard error, or one the gate refuses, and
 //! so moves the bias little.
 
-use crate::error::{check_duration, check_positive, check_range};
+use crate::error::{check_duration, check_magnitude, check_positive, check_range};
 use crate::kernel::Event;
 use crate::rest::RestStatistics;
-use crate::{Error, MAX_READING};
+use crate::Error;
 
 mod tracked;
 pub use tracked::{Tracked, TrackedConfig, TrackedState, TrackerSettings};
@@ -103,13 +103,7 @@ impl RestTrackerConfig {
             "> 0 (inf: no test)",
         )?;
         check_positive("rest_speed_threshold", self.speed_threshold)?;
-        check_range(
-            "rest_bias_walk",
-            self.bias_walk,
-            0.0,
-            MAX_READING,
-            "finite, >= 0 and at most 2^20 rad/s/sqrt(s)",
-        )?;
+        check_magnitude("rest_bias_walk", self.bias_walk)?;
         check_range(
             "rest_gate_sigmas",
             self.gate_sigmas,
@@ -118,8 +112,7 @@ impl RestTrackerConfig {
             "> 0 (inf: no gate)",
         )?;
         if let Some(noise) = self.noise {
-            let valid = "finite, >= 0 and at most 2^20 rad/s";
-            check_range("rest_noise", noise, 0.0, MAX_READING, valid)?;
+            check_magnitude("rest_noise", noise)?;
         }
         Ok(())
     }

@@ -2,7 +2,7 @@
 //! noise terms) and its temperature profile.
 
 use super::{FLICKER_TERMS_PER_DECADE, MAX_FLICKER_TERMS};
-use crate::error::{check_duration, check_positive, check_range};
+use crate::error::{check_duration, check_magnitude, check_positive, check_range};
 use crate::{Error, MAX_READING};
 
 /// Sensor temperature over time: an exponential approach from `start` to `end`, as after power-up
@@ -158,13 +158,7 @@ impl GyroModelConfig {
             ("resolution", self.resolution),
         ] {
             // at most 2^20, as a reading: a reading made of them stays finite
-            check_range(
-                name,
-                value,
-                0.0,
-                MAX_READING,
-                "finite, >= 0 and at most 2^20",
-            )?;
+            check_magnitude(name, value)?;
         }
         check_range(
             "bandwidth",
