@@ -280,6 +280,49 @@ fn a_bad_fix_or_sample_changes_nothing_and_is_named() {
 }
 
 #[test]
+fn a_bad_sample_deep_in_a_long_block_changes_nothing_and_is_named() {
+    // A long block runs in chunks: an error in a later chunk undoes the chunks before it.
+    let (t, rate) = drive(60.0);
+    let all = fixes(&t);
+    let (c, f) = config();
+    let mut fused = FusedPipeline::new(c, f).unwrap();
+    let mut cols = columns(t.len());
+    let used = block(&mut fused, &t[..500], &rate[..500], &all, &mut cols, 0).unwrap();
+    let before = fused.clone();
+    for bad in [1023, 1024, 2500, 5499] {
+        let mut bad_t = t[500..6000].to_vec();
+        bad_t[bad] = bad_t[bad - 1];
+        let e = block(
+            &mut fused,
+            &bad_t,
+            &rate[500..6000],
+            &all[used..],
+            &mut cols,
+            500,
+        );
+        match e.unwrap_err() {
+            FusionError::Gyro(g) => assert_eq!(g.index(), Some(bad), "{g}"),
+            other => panic!("expected a sample error, got {other:?}"),
+        }
+        assert_eq!(fused, before, "sample {bad}");
+    }
+    let rest = block(
+        &mut fused,
+        &t[500..],
+        &rate[500..],
+        &all[used..],
+        &mut cols,
+        500,
+    )
+    .unwrap();
+    assert_eq!(used + rest, all.len());
+    let (whole, _) = chunked(&t, &rate, &all, &[]);
+    for c in 0..6 {
+        assert_eq!(bits(&cols[c]), bits(&whole[c]), "column {c}");
+    }
+}
+
+#[test]
 fn every_waiting_fix_may_ride_along_and_a_bad_one_fails_the_block_that_reaches_it() {
     // A caller may hand over every fix still to come with each block, here one sample a block:
     // one call's result, bit for bit. A block checks the fixes it reaches (and the first past
