@@ -4,6 +4,7 @@ left out."""
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import pytest
@@ -31,3 +32,14 @@ def test_a_link_loop_an_option_names_is_an_error_not_a_traceback(tmp_path: Path,
     assert proc.returncode == 2
     assert proc.stderr.startswith("gyrocore: error: ") and proc.stderr.count("\n") == 1, proc.stderr
     assert str(given) in proc.stderr
+
+
+@pytest.mark.parametrize(("command", "option"), [("process", "--calibration"), ("evaluate", "--params")])
+def test_a_named_pipe_given_as_a_json_file_is_refused_not_waited_on(tmp_path: Path, command: str, option: str) -> None:
+    pipe = tmp_path / "settings.json"
+    os.mkfifo(pipe)  # nothing writes to it: reading it would wait for ever
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    args = ("--out", tmp_path / "h.csv") if command == "process" else ()
+    proc = run_cli(command, log, *args, option, pipe)
+    assert proc.returncode == 2
+    assert proc.stderr == f"gyrocore: error: {pipe}: a named pipe, socket or device, not a file\n"

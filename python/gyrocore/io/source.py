@@ -8,7 +8,6 @@ reader of its format and converts them to s and rad/s (what ``gyrocore process``
 
 from __future__ import annotations
 
-import os
 from collections.abc import Generator, Iterator
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -25,6 +24,7 @@ from ._csvfile import _csv_header, csv_chunks
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta
 from ._npyfile import npy_chunks, npy_header, npz_chunks
 from ._parquetfile import parquet_chunks, parquet_file
+from ._paths import missing
 from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder
 from .units import RATE_UNITS, TIME_UNITS, header_options
 
@@ -331,7 +331,7 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
 def _recognise(p: Path, options: ReadOptions) -> GyroSource:
     """The input ``p`` by its suffix or layout, its headers read."""
     if not p.exists():
-        raise FileNotFoundError(_missing(p))
+        raise FileNotFoundError(missing(p))
     if p.is_dir():
         if is_log_folder(p):
             meta, stationary = read_meta(p)
@@ -362,18 +362,6 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
     raise ValueError(
         f"{p}: unknown kind of file (read are {', '.join(FILE_SUFFIXES)}, log folders and ROS 2 bag folders)"
     )
-
-
-def _missing(path: Path) -> str:
-    """Why ``path``, which does not exist, cannot be read: no such file, or a broken link."""
-    if not path.is_symlink():
-        return f"{path}: no such file or folder"
-    reason = "no such file"
-    try:
-        path.stat()
-    except OSError as e:  # a dangling link, or a loop (ELOOP)
-        reason = e.strerror or reason
-    return f"{path}: a symbolic link to {os.readlink(path)!r}, which cannot be followed ({reason})"
 
 
 def _open_bag(path: Path, options: ReadOptions) -> GyroSource:
