@@ -9,6 +9,8 @@ from pathlib import Path
 
 import pytest
 
+import gyrocore
+
 from .test_batch import synthetic_csv
 from .test_errors_named import run_cli
 from .test_hostile_inputs import log_folder_with
@@ -43,3 +45,36 @@ def test_a_named_pipe_given_as_a_json_file_is_refused_not_waited_on(tmp_path: Pa
     proc = run_cli(command, log, *args, option, pipe)
     assert proc.returncode == 2
     assert proc.stderr == f"gyrocore: error: {pipe}: a named pipe, socket or device, not a file\n"
+
+
+def not_a_file(path: Path, kind: str) -> str:
+    """Put a ``kind`` of thing that is no regular file at ``path``; what an error says of it."""
+    if kind == "folder":
+        path.mkdir()
+        return "a folder, not a file"
+    if kind == "pipe":
+        os.mkfifo(path)
+        return "a named pipe, socket or device, not a file"
+    path.symlink_to(path if kind == "loop" else path.with_name("gone"))
+    return "which cannot be followed (" + ("Too many levels of symbolic links" if kind == "loop" else "No such file")
+
+
+@pytest.mark.parametrize("kind", ["folder", "pipe", "loop", "dangling link"])
+@pytest.mark.parametrize("name", ["gyro.csv", "meta.json", "reference.csv", "odometry.csv", "fixes.csv"])
+def test_a_log_folder_file_that_is_no_file_is_named_not_left_out(tmp_path: Path, name: str, kind: str) -> None:
+    # left out, a meta.json's rest window or an odometry's speed was lost without a word, and a
+    # gyro.csv was said to be missing
+    folder = log_folder_with(tmp_path, "reference.csv", REFERENCE)
+    (folder / name).unlink(missing_ok=True)
+    said = not_a_file(folder / name, kind)
+    with pytest.raises((ValueError, OSError)) as e:
+        gyrocore.read_log(folder)
+    assert str(e.value).startswith(f"{folder / name}: ") and said in str(e.value)
+
+
+def test_evaluate_names_a_meta_json_that_is_a_folder(tmp_path: Path) -> None:
+    folder = log_folder_with(tmp_path, "reference.csv", REFERENCE)
+    (folder / "meta.json").mkdir()
+    proc = run_cli("evaluate", folder, "--preset", "raw")
+    assert proc.returncode == 2
+    assert proc.stderr == f"gyrocore: error: {folder / 'meta.json'}: a folder, not a file\n"

@@ -33,3 +33,13 @@ def check_file(path: Path) -> None:
         raise FileNotFoundError(missing(path))
     what = "a folder" if path.is_dir() else "a named pipe, socket or device"
     raise ValueError(f"{path}: {what}, not a file")
+
+
+def has_file(path: Path) -> bool:
+    """Whether the optional file ``path`` is there: False if nothing has its name, True for a
+    regular file. Anything else of that name is an error (:func:`check_file`): taken for no file,
+    a log folder's meta.json would lose its rest window, its odometry its speed, without a word."""
+    if not os.path.lexists(path):
+        return False
+    check_file(path)
+    return True

@@ -24,7 +24,7 @@ from ._csvfile import _csv_header, csv_chunks
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta
 from ._npyfile import npy_chunks, npy_header, npz_chunks
 from ._parquetfile import parquet_chunks, parquet_file
-from ._paths import missing
+from ._paths import check_file, missing
 from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder
 from .units import RATE_UNITS, TIME_UNITS, header_options
 
@@ -334,8 +334,9 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
         raise FileNotFoundError(missing(p))
     if p.is_dir():
         if is_log_folder(p):
-            meta, stationary = read_meta(p)
             data = p / GYRO_CSV
+            check_file(data)
+            meta, stationary = read_meta(p)
             options = header_options(data, _csv_header(data, options.delimiter), options)
             return GyroSource(p, "log folder", data, options, stationary, data.stat().st_size, "B", meta)
         if is_bag_folder(p):
