@@ -150,12 +150,14 @@ def _odometry_overlaps(log: Log, result: HeadingResult) -> bool:
     """Whether two odometry samples lie inside the heading's span (dead reckoning needs them); if
     not, a warning: the log is scored without its track, as ``gyrocore process`` finds its rests
     without the speed (an odometry.csv in another time base, e.g. relative against epoch seconds)."""
-    assert log.t_odometry is not None  # the caller checked
-    inside = np.count_nonzero((log.t_odometry >= result.t[0]) & (log.t_odometry <= result.t[-1]))
+    t = log.t_odometry
+    assert t is not None  # the caller checked
+    inside = np.count_nonzero((t >= result.t[0]) & (t <= result.t[-1]))
     if inside >= 2:
         return True
+    times = f"times {t[0]:.10g} .. {t[-1]:.10g} s" if len(t) else "the odometry has none"
     warn(
-        f"log {log.name}: {inside} odometry sample(s) (times {log.t_odometry[0]:.10g} .. {log.t_odometry[-1]:.10g} s) "
+        f"log {log.name}: {inside} odometry sample(s) ({times}) "
         f"lie inside the heading's {result.t[0]:.10g} .. {result.t[-1]:.10g} s: no dead reckoning; give the "
         "odometry's times in the gyro's clock, in seconds"
     )
