@@ -6,6 +6,7 @@ re-exports the public names.
 from __future__ import annotations
 
 import math
+import os
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -238,8 +239,20 @@ class Failed:
 
 
 def plot_path(plot_dir: str | Path, log: Log) -> Path:
-    """Where :func:`compare` draws the plot of ``log``: ``<plot_dir>/<log name>.png``."""
-    return Path(plot_dir) / f"{log.name}.png"
+    """Where :func:`compare` draws the plot of ``log``: ``<plot_dir>/<log name>.png``.
+
+    Raises:
+        ValueError: a name that is a path: its plot would land outside ``plot_dir`` (a
+            meta.json's name ``/home/me/x`` wrote ``/home/me/x.png``).
+    """
+    name = log.name
+    if os.path.basename(name) != name or "\0" in name:  # NUL: no file name either
+        label = log.path if log.path is not None else f"log {log.name}"
+        raise ValueError(
+            f"{label}: the log's name {name!r} is no file name for its plot ({plot_dir}/<name>.png): "
+            "give the log a name without a folder (meta.json's name)"
+        )
+    return Path(plot_dir) / f"{name}.png"
 
 
 def _pyplot() -> Any:

@@ -1,10 +1,12 @@
-"""Paths that are not plain files where a file is expected: symbolic links that cannot be followed,
-folders and named pipes. Each is an error naming it, never a traceback, a hang or a file quietly
-left out."""
+"""Paths that are not plain files where a file is expected (symbolic links that cannot be followed,
+folders, named pipes), and a log's name that is a path where it names a file. Each is an error
+naming it, never a traceback, a hang, a file quietly left out or one written elsewhere."""
 
 from __future__ import annotations
 
+import json
 import os
+import re
 from pathlib import Path
 
 import pytest
@@ -78,3 +80,26 @@ def test_evaluate_names_a_meta_json_that_is_a_folder(tmp_path: Path) -> None:
     proc = run_cli("evaluate", folder, "--preset", "raw")
     assert proc.returncode == 2
     assert proc.stderr == f"gyrocore: error: {folder / 'meta.json'}: a folder, not a file\n"
+
+
+@pytest.mark.parametrize("name", ["../outside", "PLOTS/../../outside", "TMP/outside"])
+def test_a_log_name_that_is_a_path_never_puts_its_plot_outside_the_plot_folder(tmp_path: Path, name: str) -> None:
+    folder = log_folder_with(tmp_path, "reference.csv", REFERENCE)
+    plots = tmp_path / "plots"
+    (folder / "meta.json").write_text(json.dumps({"name": name.replace("PLOTS", str(plots)).replace("TMP", str(tmp_path))}))
+    proc = run_cli("evaluate", folder, "--preset", "raw", "--plot-dir", plots)
+    assert proc.returncode == 2
+    assert proc.stderr.startswith(f"gyrocore: error: {folder}: the log's name ") and "is no file name for its plot" in proc.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["log"]
+
+
+@pytest.mark.parametrize("name", [5, ["a"], "", " "])
+def test_a_meta_json_name_that_is_no_text_is_named(tmp_path: Path, name: object) -> None:
+    folder = log_folder_with(tmp_path, "meta.json", json.dumps({"name": name}))
+    with pytest.raises(ValueError, match=re.escape(f"{folder / 'meta.json'}: name must be the log's name as text")):
+        gyrocore.read_log(folder)
+
+
+def test_a_meta_json_name_of_null_is_the_folders_name(tmp_path: Path) -> None:
+    folder = log_folder_with(tmp_path, "meta.json", json.dumps({"name": None}))
+    assert gyrocore.read_log(folder).name == "log"

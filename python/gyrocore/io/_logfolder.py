@@ -45,9 +45,13 @@ def lacks_gyro(path: Path) -> bool:
 
 
 def read_meta(folder: Path) -> tuple[dict[str, Any], tuple[float, float] | None]:
-    """``meta.json`` (empty without the file) and its rest window ``(t0, t1)`` [s] (or None)."""
+    """``meta.json`` (empty without the file) and its rest window ``(t0, t1)`` [s] (or None); its
+    ``name``, when not null, must be text (it names the log in tables and its plot's file)."""
     path = folder / META_JSON
     meta = _read_json(path)
+    name = meta.get("name")
+    if name is not None and not (isinstance(name, str) and name.strip()):
+        raise ValueError(f"{path}: name must be the log's name as text (or null: the folder's name), got {name!r}")
     return meta, _rest_window(path, meta.get("stationary"))
 
 

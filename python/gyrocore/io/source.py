@@ -194,7 +194,7 @@ class GyroSource:
     @property
     def name(self) -> str:
         """The log's name: the file name without its suffix, or the folder name."""
-        return str(self.meta.get("name", self.path.stem if self.path.is_file() else self.path.name))
+        return str(self.meta.get("name") or (self.path.stem if self.path.is_file() else self.path.name))
 
     def where(self, row: int) -> str:
         """Where sample ``row`` (0-based) is in the file, in the file's own terms."""
