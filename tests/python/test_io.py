@@ -202,6 +202,18 @@ def test_truncated_npy_is_an_error_not_short_data(tmp_path: Path) -> None:
         read_all(path, rows=100)
 
 
+@pytest.mark.parametrize("fortran", [False, True])
+def test_an_npy_header_claiming_more_than_the_file_holds_is_refused_before_reading(tmp_path: Path, fortran: bool) -> None:
+    # a block of rows of this shape asked numpy for terabytes (MemoryError)
+    path = tmp_path / "wide.npy"
+    with open(path, "wb") as f:
+        np.lib.format.write_array_header_1_0(f, {"descr": "<f8", "fortran_order": fortran, "shape": (3, 10**12)})
+        f.write(np.zeros(6).tobytes())
+    with pytest.raises(ValueError, match=r"wide\.npy: file ends early \(truncated \.npy\): its header's shape "
+                       r"\(3, 1000000000000\) of float64 takes 24000000000000 bytes, the file holds 48 after"):
+        read_all(path)
+
+
 # --- unit checks ---------------------------------------------------------------------------
 
 
