@@ -133,6 +133,10 @@ def test_read_csv_columns_still_reads_named_columns(tmp_path: Path) -> None:
         ("t,gyro_z\n0,1\n\n2,3\n", "line 3, column 1 (t): blank line"),
         ("t,gyro_z\n0,1\n,3\n", "line 3, column 1 (t): empty timestamp"),
         ("x,t,gyro_z\n0,0,1\n0,1_000,2\n", "line 3, column 2 (t): '1_000' is not a number"),
+        # numbers to Python's float(), not to pyarrow: the error named no line
+        ("t,gyro_z\n0,1\n1,\u0663\n", "line 3, column 2 (gyro_z): '\u0663' is not a number"),
+        ("t,gyro_z\n0,1\n1,2\u00a0\n", "line 3, column 2 (gyro_z): '2\\xa0' is not a number"),
+        ("t,gyro_z\n0,1\n1,2\v\n", "line 3, column 2 (gyro_z): '2\\x0b' is not a number"),
         ("time,gyro_z\n0,1\n", "missing column(s) t"),
         ("", "line 1: no header line"),
     ],

@@ -148,7 +148,7 @@ def _csv_error(
             if len(fields) != len(header):
                 return f"{path}: line {line}: {_count(len(fields), 'field')}, but the header has {len(header)}"
             for name, pos in positions.items():
-                value = fields[pos].strip()
+                value = fields[pos].strip(" \t")  # what pyarrow trims
                 where = f"{path}: line {line}, column {pos + 1} ({name})"
                 if fields[pos] and not value:
                     return f"{where}: blank value {fields[pos]!r} (leave it empty for a missing value)"
@@ -177,8 +177,10 @@ def _count(n: int, noun: str) -> str:
 
 
 def _is_number(text: str) -> bool:
-    """Whether pyarrow reads ``text`` as a float (Python's float() also takes ``1_000``)."""
-    if "_" in text:
+    """Whether pyarrow reads ``text`` (trimmed of spaces and tabs) as a float. Python's float() also
+    takes ``1_000``, digits beyond ASCII (``\u0663``) and other white space around (a no-break
+    space), which pyarrow refuses: taken for numbers, the search passed the bad value by."""
+    if "_" in text or not text.isascii() or text.strip() != text:
         return False
     try:
         float(text)
