@@ -4,6 +4,7 @@ a long header) read the same with any --chunk-rows; a header without samples is 
 from __future__ import annotations
 
 import gzip
+import re
 from collections.abc import Callable
 from pathlib import Path
 
@@ -95,3 +96,13 @@ def test_a_compressed_file_named_csv_is_refused_without_printing_its_bytes(tmp_p
     assert proc.stderr == (
         f"gyrocore: error: {path}: not a text CSV file (binary data on line 1; decompress a .gz file first)\n"
     )
+
+
+@pytest.mark.parametrize("encoding", ["utf-16", "utf-16-be", "utf-32"])
+def test_a_csv_in_utf16_is_named_as_such(tmp_path: Path, encoding: str) -> None:
+    # its zero bytes read as binary data, and the error said to decompress the file
+    path = tmp_path / "excel.csv"
+    text = "t,gyro_z\n0,0.1\n0.01,0.1\n"
+    path.write_bytes(text.encode(encoding) if encoding != "utf-16-be" else b"\xfe\xff" + text.encode(encoding))
+    with pytest.raises(ValueError, match=rf"^{re.escape(str(path))}: text in UTF-16 \(or UTF-32\), not UTF-8: save it as UTF-8$"):
+        gyrocore.read_log(path)

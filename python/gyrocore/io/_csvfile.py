@@ -33,6 +33,9 @@ CSV_BLOCK_BYTES = 1 << 20
 MAX_LINE_BYTES = 1 << 28
 _FIELD_LIMIT_LOCK = threading.Lock()
 _GZIP = b"\x1f\x8b"
+#: Byte order marks of UTF-16 (and UTF-32, which begins like it), as Excel's "Unicode Text" and
+#: Windows PowerShell's ``>`` write text.
+_UTF16_BOMS = (b"\xff\xfe", b"\xfe\xff")
 
 
 def _csv_header(path: Path, delimiter: str) -> list[str]:
@@ -40,6 +43,8 @@ def _csv_header(path: Path, delimiter: str) -> list[str]:
         line = f.readline()
     if not line.strip():
         raise ValueError(f"{path}: line 1: no header line (expected column names)")
+    if line.startswith(_UTF16_BOMS):
+        raise ValueError(f"{path}: text in UTF-16 (or UTF-32), not UTF-8: save it as UTF-8")
     if line.startswith(_GZIP) or any(b < 32 and b not in b"\t\r\n" for b in line[:4096]):
         # naming the columns would print the binary bytes
         raise ValueError(f"{path}: not a text CSV file (binary data on line 1; decompress a .gz file first)")
