@@ -198,6 +198,15 @@ def test_malformed_binary_files_name_the_file_and_problem(
     assert message in str(e.value)
 
 
+@pytest.mark.parametrize("option", ["time_col", "rate_col"])
+def test_a_column_number_that_is_no_text_is_named(tmp_path: Path, option: str) -> None:
+    # an int reached the reader, whose str methods raised AttributeError
+    path = tmp_path / "plain.npy"
+    np.save(path, np.column_stack([T, RATE]))
+    with pytest.raises(TypeError, match=rf"^{option} must be text: .* \({option}='1'\), got 1$"):
+        gyrocore.read_log(path, **{option: 1})
+
+
 def test_truncated_npy_is_an_error_not_short_data(tmp_path: Path) -> None:
     path = tmp_path / "cut.npy"
     np.save(path, np.column_stack([T, RATE]))

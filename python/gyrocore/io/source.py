@@ -80,6 +80,13 @@ class ReadOptions:
     up_window: tuple[float, float] | Window | None = None
 
     def __post_init__(self) -> None:
+        for name in ("time_col", "rate_col"):
+            value = getattr(self, name)
+            if value is not None and not isinstance(value, str):  # a number failed deep in the reader
+                raise TypeError(
+                    f"{name} must be text: a column name, or a plain .npy array's column number as text "
+                    f"({name}='{value}'), got {value!r}"
+                )
         # normalised forms (the dataclass is frozen): column triples as tuples, up parsed
         if self.gyro_cols is not None:
             object.__setattr__(self, "gyro_cols", three_names(self.gyro_cols, "gyro_cols (--gyro-cols)"))
