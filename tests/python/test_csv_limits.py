@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import gzip
 import re
+import tracemalloc
 from collections.abc import Callable
 from pathlib import Path
 
@@ -14,7 +15,7 @@ import pyarrow.parquet as pq
 import pytest
 
 import gyrocore
-from gyrocore.io import CSV_BLOCK_BYTES
+from gyrocore.io import CSV_BLOCK_BYTES, _csvfile
 
 from .conftest import gyrocore_cli as run_cli
 
@@ -86,6 +87,24 @@ def test_a_header_without_samples_is_an_error(tmp_path: Path, suffix: str) -> No
         gyrocore.read_log(path)
     proc = run_cli("process", path, "--out", tmp_path / "h.csv")
     assert proc.returncode == 2 and proc.stderr == f"gyrocore: error: {path}: no samples\n"
+
+
+def test_a_first_line_longer_than_any_read_is_refused_without_reading_it_whole(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # the header was read up to the first line end however far: a file of gigabytes without one
+    # took three times its size in memory before the line was refused
+    monkeypatch.setattr(_csvfile, "MAX_LINE_BYTES", 1 << 20)
+    path = tmp_path / "one_line.csv"
+    path.write_bytes(b"t,gyro_z," + b"x" * (32 << 20))
+    tracemalloc.start()
+    try:
+        with pytest.raises(ValueError, match=rf"^{re.escape(str(path))}: line 1 is longer than 1048576 bytes, the longest read$"):
+            gyrocore.read_log(path)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 8 << 20
 
 
 def test_a_compressed_file_named_csv_is_refused_without_printing_its_bytes(tmp_path: Path) -> None:

@@ -40,7 +40,7 @@ _UTF16_BOMS = (b"\xff\xfe", b"\xfe\xff")
 
 def _csv_header(path: Path, delimiter: str) -> list[str]:
     with open(path, "rb") as f:
-        line = f.readline()
+        line = f.readline(MAX_LINE_BYTES + 1)  # bounded: a file of gigabytes without a line end
     if not line.strip():
         raise ValueError(f"{path}: line 1: no header line (expected column names)")
     if line.startswith(_UTF16_BOMS):
@@ -48,6 +48,8 @@ def _csv_header(path: Path, delimiter: str) -> list[str]:
     if line.startswith(_GZIP) or any(b < 32 and b not in b"\t\r\n" for b in line[:4096]):
         # naming the columns would print the binary bytes
         raise ValueError(f"{path}: not a text CSV file (binary data on line 1; decompress a .gz file first)")
+    if len(line) > MAX_LINE_BYTES:
+        raise ValueError(f"{path}: line 1 is longer than {MAX_LINE_BYTES} bytes, the longest read")
     text = line.decode("utf-8-sig", errors="replace").rstrip("\r\n")
     try:
         with _long_fields():
