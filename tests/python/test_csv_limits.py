@@ -4,6 +4,8 @@ a long header) read the same with any --chunk-rows; a header without samples is 
 from __future__ import annotations
 
 import gzip
+import re
+import tracemalloc
 from collections.abc import Callable
 from pathlib import Path
 
@@ -13,7 +15,7 @@ import pyarrow.parquet as pq
 import pytest
 
 import gyrocore
-from gyrocore.io import CSV_BLOCK_BYTES
+from gyrocore.io import CSV_BLOCK_BYTES, _csvfile
 
 from .conftest import gyrocore_cli as run_cli
 
@@ -87,6 +89,24 @@ def test_a_header_without_samples_is_an_error(tmp_path: Path, suffix: str) -> No
     assert proc.returncode == 2 and proc.stderr == f"gyrocore: error: {path}: no samples\n"
 
 
+def test_a_first_line_longer_than_any_read_is_refused_without_reading_it_whole(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # the header was read up to the first line end however far: a file of gigabytes without one
+    # took three times its size in memory before the line was refused
+    monkeypatch.setattr(_csvfile, "MAX_LINE_BYTES", 1 << 20)
+    path = tmp_path / "one_line.csv"
+    path.write_bytes(b"t,gyro_z," + b"x" * (32 << 20))
+    tracemalloc.start()
+    try:
+        with pytest.raises(ValueError, match=rf"^{re.escape(str(path))}: line 1 is longer than 1048576 bytes, the longest read$"):
+            gyrocore.read_log(path)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 8 << 20
+
+
 def test_a_compressed_file_named_csv_is_refused_without_printing_its_bytes(tmp_path: Path) -> None:
     path = tmp_path / "drive.csv"
     path.write_bytes(gzip.compress(b"t,gyro_z\n0,0\n0.01,0\n"))
@@ -95,3 +115,13 @@ def test_a_compressed_file_named_csv_is_refused_without_printing_its_bytes(tmp_p
     assert proc.stderr == (
         f"gyrocore: error: {path}: not a text CSV file (binary data on line 1; decompress a .gz file first)\n"
     )
+
+
+@pytest.mark.parametrize("encoding", ["utf-16", "utf-16-be", "utf-32"])
+def test_a_csv_in_utf16_is_named_as_such(tmp_path: Path, encoding: str) -> None:
+    # its zero bytes read as binary data, and the error said to decompress the file
+    path = tmp_path / "excel.csv"
+    text = "t,gyro_z\n0,0.1\n0.01,0.1\n"
+    path.write_bytes(text.encode(encoding) if encoding != "utf-16-be" else b"\xfe\xff" + text.encode(encoding))
+    with pytest.raises(ValueError, match=rf"^{re.escape(str(path))}: text in UTF-16 \(or UTF-32\), not UTF-8: save it as UTF-8$"):
+        gyrocore.read_log(path)

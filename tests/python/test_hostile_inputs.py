@@ -309,3 +309,13 @@ def test_a_reading_option_that_does_not_fit_the_input_is_named(
 ) -> None:
     error = refused_process(tmp_path, *args)
     assert error.startswith("gyrocore: error: ") and message in error, error
+
+
+def test_an_odometry_with_a_header_only_is_scored_without_dead_reckoning(tmp_path: Path) -> None:
+    # the warning that no odometry sample lies inside the heading indexed the first of none
+    folder = log_folder_with(tmp_path, "odometry.csv", "t,speed\n")
+    (folder / "reference.csv").write_text("t,heading,x,y\n1700000000.5,0.1,0,0\n1700000010.5,0.2,1,0\n1700000020.5,0.3,2,0\n")
+    proc = run_cli("evaluate", folder, "--preset", "raw", "--json")
+    assert proc.returncode == 0, proc.stderr
+    assert "0 odometry sample(s) (the odometry has none) lie inside the heading's" in proc.stderr
+    assert '"position_mean_error_m"' not in proc.stdout

@@ -133,6 +133,10 @@ def test_read_csv_columns_still_reads_named_columns(tmp_path: Path) -> None:
         ("t,gyro_z\n0,1\n\n2,3\n", "line 3, column 1 (t): blank line"),
         ("t,gyro_z\n0,1\n,3\n", "line 3, column 1 (t): empty timestamp"),
         ("x,t,gyro_z\n0,0,1\n0,1_000,2\n", "line 3, column 2 (t): '1_000' is not a number"),
+        # numbers to Python's float(), not to pyarrow: the error named no line
+        ("t,gyro_z\n0,1\n1,\u0663\n", "line 3, column 2 (gyro_z): '\u0663' is not a number"),
+        ("t,gyro_z\n0,1\n1,2\u00a0\n", "line 3, column 2 (gyro_z): '2\\xa0' is not a number"),
+        ("t,gyro_z\n0,1\n1,2\v\n", "line 3, column 2 (gyro_z): '2\\x0b' is not a number"),
         ("time,gyro_z\n0,1\n", "missing column(s) t"),
         ("", "line 1: no header line"),
     ],
@@ -194,12 +198,33 @@ def test_malformed_binary_files_name_the_file_and_problem(
     assert message in str(e.value)
 
 
+@pytest.mark.parametrize("option", ["time_col", "rate_col"])
+def test_a_column_number_that_is_no_text_is_named(tmp_path: Path, option: str) -> None:
+    # an int reached the reader, whose str methods raised AttributeError
+    path = tmp_path / "plain.npy"
+    np.save(path, np.column_stack([T, RATE]))
+    with pytest.raises(TypeError, match=rf"^{option} must be text: .* \({option}='1'\), got 1$"):
+        gyrocore.read_log(path, **{option: 1})
+
+
 def test_truncated_npy_is_an_error_not_short_data(tmp_path: Path) -> None:
     path = tmp_path / "cut.npy"
     np.save(path, np.column_stack([T, RATE]))
     path.write_bytes(path.read_bytes()[:-100])
     with pytest.raises(ValueError, match="file ends early"):
         read_all(path, rows=100)
+
+
+@pytest.mark.parametrize("fortran", [False, True])
+def test_an_npy_header_claiming_more_than_the_file_holds_is_refused_before_reading(tmp_path: Path, fortran: bool) -> None:
+    # a block of rows of this shape asked numpy for terabytes (MemoryError)
+    path = tmp_path / "wide.npy"
+    with open(path, "wb") as f:
+        np.lib.format.write_array_header_1_0(f, {"descr": "<f8", "fortran_order": fortran, "shape": (3, 10**12)})
+        f.write(np.zeros(6).tobytes())
+    with pytest.raises(ValueError, match=r"wide\.npy: file ends early \(truncated \.npy\): its header's shape "
+                       r"\(3, 1000000000000\) of float64 takes 24000000000000 bytes, the file holds 48 after"):
+        read_all(path)
 
 
 # --- unit checks ---------------------------------------------------------------------------

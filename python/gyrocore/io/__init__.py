@@ -47,6 +47,7 @@ Modules (import the names from ``gyrocore.io``, which has them all):
 ``_logfolder``      the log-folder layout: ``meta.json``, ``reference.csv``, ``odometry.csv``
 ``_columns``        what the readers share: finding the named columns, column data as arrays
 ``_axes``           three-axis input: ``up`` given or measured, the projection ``gyro . up``
+``_paths``          what stands where a file is read: a regular file, nothing, or an error naming it
 ==================  ===============================================================================
 """
 

@@ -33,16 +33,23 @@ CSV_BLOCK_BYTES = 1 << 20
 MAX_LINE_BYTES = 1 << 28
 _FIELD_LIMIT_LOCK = threading.Lock()
 _GZIP = b"\x1f\x8b"
+#: Byte order marks of UTF-16 (and UTF-32, which begins like it), as Excel's "Unicode Text" and
+#: Windows PowerShell's ``>`` write text.
+_UTF16_BOMS = (b"\xff\xfe", b"\xfe\xff")
 
 
 def _csv_header(path: Path, delimiter: str) -> list[str]:
     with open(path, "rb") as f:
-        line = f.readline()
+        line = f.readline(MAX_LINE_BYTES + 1)  # bounded: a file of gigabytes without a line end
     if not line.strip():
         raise ValueError(f"{path}: line 1: no header line (expected column names)")
+    if line.startswith(_UTF16_BOMS):
+        raise ValueError(f"{path}: text in UTF-16 (or UTF-32), not UTF-8: save it as UTF-8")
     if line.startswith(_GZIP) or any(b < 32 and b not in b"\t\r\n" for b in line[:4096]):
         # naming the columns would print the binary bytes
         raise ValueError(f"{path}: not a text CSV file (binary data on line 1; decompress a .gz file first)")
+    if len(line) > MAX_LINE_BYTES:
+        raise ValueError(f"{path}: line 1 is longer than {MAX_LINE_BYTES} bytes, the longest read")
     text = line.decode("utf-8-sig", errors="replace").rstrip("\r\n")
     try:
         with _long_fields():
@@ -148,7 +155,7 @@ def _csv_error(
             if len(fields) != len(header):
                 return f"{path}: line {line}: {_count(len(fields), 'field')}, but the header has {len(header)}"
             for name, pos in positions.items():
-                value = fields[pos].strip()
+                value = fields[pos].strip(" \t")  # what pyarrow trims
                 where = f"{path}: line {line}, column {pos + 1} ({name})"
                 if fields[pos] and not value:
                     return f"{where}: blank value {fields[pos]!r} (leave it empty for a missing value)"
@@ -177,8 +184,10 @@ def _count(n: int, noun: str) -> str:
 
 
 def _is_number(text: str) -> bool:
-    """Whether pyarrow reads ``text`` as a float (Python's float() also takes ``1_000``)."""
-    if "_" in text:
+    """Whether pyarrow reads ``text`` (trimmed of spaces and tabs) as a float. Python's float() also
+    takes ``1_000``, digits beyond ASCII (``\u0663``) and other white space around (a no-break
+    space), which pyarrow refuses: taken for numbers, the search passed the bad value by."""
+    if "_" in text or not text.isascii() or text.strip() != text:
         return False
     try:
         float(text)

@@ -7,15 +7,19 @@ import json
 from pathlib import Path
 from typing import Any
 
+from ._paths import check_file
+
 
 def read_json(path: Path) -> Any:
     """The JSON value of the file ``path``.
 
     Raises:
-        ValueError: naming ``path``: not UTF-8, not JSON (with the line and column), or nested
-            deeper than Python's JSON parser goes (it raises RecursionError there).
+        ValueError: naming ``path``: not a regular file (a named pipe would be waited on for
+            ever), not UTF-8, not JSON (with the line and column), or nested deeper than Python's
+            JSON parser goes (it raises RecursionError there).
         OSError: the file cannot be read.
     """
+    check_file(path)
     try:
         return json.loads(path.read_text(encoding="utf-8"))
     except json.JSONDecodeError as e:

@@ -8,6 +8,7 @@ describes the log).
 from __future__ import annotations
 
 import math
+import os
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -17,6 +18,7 @@ from .._arrays import FloatArray
 from .._checks import warn
 from ._csvfile import _csv_header, read_csv_columns
 from ._jsonfile import read_json
+from ._paths import has_file
 
 if TYPE_CHECKING:
     from ..fixes import Fixes
@@ -30,8 +32,9 @@ META_JSON, REFERENCE_CSV, ODOMETRY_CSV = "meta.json", "reference.csv", "odometry
 
 
 def is_log_folder(path: Path) -> bool:
-    """Whether the folder ``path`` is a log folder (it has ``gyro.csv``)."""
-    return (path / GYRO_CSV).is_file()
+    """Whether the folder ``path`` is a log folder: it has ``gyro.csv``, or something of that name
+    (a folder, a link that cannot be followed), which reading the log then names."""
+    return os.path.lexists(path / GYRO_CSV)
 
 
 def lacks_gyro(path: Path) -> bool:
@@ -42,16 +45,20 @@ def lacks_gyro(path: Path) -> bool:
 
 
 def read_meta(folder: Path) -> tuple[dict[str, Any], tuple[float, float] | None]:
-    """``meta.json`` (empty without the file) and its rest window ``(t0, t1)`` [s] (or None)."""
+    """``meta.json`` (empty without the file) and its rest window ``(t0, t1)`` [s] (or None); its
+    ``name``, when not null, must be text (it names the log in tables and its plot's file)."""
     path = folder / META_JSON
     meta = _read_json(path)
+    name = meta.get("name")
+    if name is not None and not (isinstance(name, str) and name.strip()):
+        raise ValueError(f"{path}: name must be the log's name as text (or null: the folder's name), got {name!r}")
     return meta, _rest_window(path, meta.get("stationary"))
 
 
 def read_reference(folder: Path) -> dict[str, FloatArray]:
     """``reference.csv`` (:func:`read_reference_file`); empty without the file."""
     path = folder / REFERENCE_CSV
-    return read_reference_file(path) if path.is_file() else {}
+    return read_reference_file(path) if has_file(path) else {}
 
 
 def read_odometry(folder: Path) -> dict[str, FloatArray]:
@@ -64,7 +71,7 @@ def read_fixes(folder: Path) -> Fixes | None:
     from ..fixes import read_fixes_csv  # it reads through this package
 
     path = folder / FIXES_CSV
-    return read_fixes_csv(path) if path.is_file() else None
+    return read_fixes_csv(path) if has_file(path) else None
 
 
 def read_reference_file(path: Path) -> dict[str, FloatArray]:
@@ -104,7 +111,7 @@ def _not_finite(path: Path, header: list[str], columns: dict[str, FloatArray], n
 
 
 def _read_table(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:
-    return read_csv_columns(path, columns) if path.is_file() else {}
+    return read_csv_columns(path, columns) if has_file(path) else {}
 
 
 def _rest_window(path: Path, window: Any) -> tuple[float, float] | None:
@@ -130,7 +137,7 @@ def _as_float(value: int | float) -> float:
 
 
 def _read_json(path: Path) -> dict[str, Any]:
-    if not path.is_file():
+    if not has_file(path):
         return {}
     meta = read_json(path)
     if not isinstance(meta, dict):

@@ -6,6 +6,7 @@ array (samples x columns) in C or Fortran order; an ``.npz`` archive holds them 
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -41,6 +42,7 @@ def npy_chunks(
     with open(src.path, "rb") as f:
         shape, fortran, dtype = npy_header(src.path, f)
         offset = f.tell()
+        _check_size(src, shape, dtype, offset)
         if dtype.names:
             if len(shape) != 1:
                 raise ValueError(f"{src.path}: a structured array must be 1-D, got shape {shape}")
@@ -89,7 +91,20 @@ def _check_numbers(src: GyroSource, name: str, dtype: np.dtype[Any], *, time: bo
         raise ValueError(f"{src.path}: {name} holds {dtype}, which has no fixed length in seconds")
 
 
+def _check_size(src: GyroSource, shape: tuple[int, ...], dtype: np.dtype[Any], offset: int) -> None:
+    """Refuse a header that claims more data than the file holds, before any block is allocated
+    (a shape of (3, 10**12) asked numpy for terabytes for the first block of rows)."""
+    need = math.prod(shape) * dtype.itemsize
+    have = src.path.stat().st_size - offset
+    if have < need:
+        raise ValueError(
+            f"{src.path}: file ends early (truncated .npy): its header's shape {shape} of {dtype} takes "
+            f"{need} bytes, the file holds {have} after the header"
+        )
+
+
 def _check_read(src: GyroSource, data: np.ndarray, expected: int) -> None:
+    """Refuse a block read short: the file shrank after its size was checked."""
     if len(data) != expected:
         raise ValueError(f"{src.path}: file ends early (truncated .npy)")
 

@@ -8,7 +8,6 @@ reader of its format and converts them to s and rad/s (what ``gyrocore process``
 
 from __future__ import annotations
 
-import os
 from collections.abc import Generator, Iterator
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -25,6 +24,7 @@ from ._csvfile import _csv_header, csv_chunks
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta
 from ._npyfile import npy_chunks, npy_header, npz_chunks
 from ._parquetfile import parquet_chunks, parquet_file
+from ._paths import check_file, missing
 from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder
 from .units import RATE_UNITS, TIME_UNITS, header_options
 
@@ -80,6 +80,13 @@ class ReadOptions:
     up_window: tuple[float, float] | Window | None = None
 
     def __post_init__(self) -> None:
+        for name in ("time_col", "rate_col"):
+            value = getattr(self, name)
+            if value is not None and not isinstance(value, str):  # a number failed deep in the reader
+                raise TypeError(
+                    f"{name} must be text: a column name, or a plain .npy array's column number as text "
+                    f"({name}='{value}'), got {value!r}"
+                )
         # normalised forms (the dataclass is frozen): column triples as tuples, up parsed
         if self.gyro_cols is not None:
             object.__setattr__(self, "gyro_cols", three_names(self.gyro_cols, "gyro_cols (--gyro-cols)"))
@@ -194,7 +201,7 @@ class GyroSource:
     @property
     def name(self) -> str:
         """The log's name: the file name without its suffix, or the folder name."""
-        return str(self.meta.get("name", self.path.stem if self.path.is_file() else self.path.name))
+        return str(self.meta.get("name") or (self.path.stem if self.path.is_file() else self.path.name))
 
     def where(self, row: int) -> str:
         """Where sample ``row`` (0-based) is in the file, in the file's own terms."""
@@ -331,11 +338,12 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
 def _recognise(p: Path, options: ReadOptions) -> GyroSource:
     """The input ``p`` by its suffix or layout, its headers read."""
     if not p.exists():
-        raise FileNotFoundError(_missing(p))
+        raise FileNotFoundError(missing(p))
     if p.is_dir():
         if is_log_folder(p):
-            meta, stationary = read_meta(p)
             data = p / GYRO_CSV
+            check_file(data)
+            meta, stationary = read_meta(p)
             options = header_options(data, _csv_header(data, options.delimiter), options)
             return GyroSource(p, "log folder", data, options, stationary, data.stat().st_size, "B", meta)
         if is_bag_folder(p):
@@ -362,18 +370,6 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
     raise ValueError(
         f"{p}: unknown kind of file (read are {', '.join(FILE_SUFFIXES)}, log folders and ROS 2 bag folders)"
     )
-
-
-def _missing(path: Path) -> str:
-    """Why ``path``, which does not exist, cannot be read: no such file, or a broken link."""
-    if not path.is_symlink():
-        return f"{path}: no such file or folder"
-    reason = "no such file"
-    try:
-        path.stat()
-    except OSError as e:  # a dangling link, or a loop (ELOOP)
-        reason = e.strerror or reason
-    return f"{path}: a symbolic link to {os.readlink(path)!r}, which cannot be followed ({reason})"
 
 
 def _open_bag(path: Path, options: ReadOptions) -> GyroSource:

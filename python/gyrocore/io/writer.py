@@ -83,10 +83,14 @@ def check_output(out: Path, source: GyroSource) -> None:
 def check_not_input(out: Path, inputs: Iterable[Path]) -> None:
     """Refuse an output that is one of ``inputs`` (also through a link) or lies inside one that is
     a folder: nothing a user gave is overwritten, and no output becomes part of a log."""
-    target = out.resolve()
+    # realpath, not Path.resolve: a symbolic link loop (given as the output or as a file an option
+    # names) makes resolve raise RuntimeError; realpath leaves the loop's name, which reading or
+    # writing it then names as an error
+    target = Path(os.path.realpath(out))
     for p in inputs:
-        inside = p.is_dir() and p.resolve() in target.parents
-        if target == p.resolve() or inside or (out.exists() and p.exists() and os.path.samefile(out, p)):
+        real = Path(os.path.realpath(p))
+        inside = p.is_dir() and real in target.parents
+        if target == real or inside or (out.exists() and p.exists() and os.path.samefile(out, p)):
             raise ValueError(f"refusing to write {out} over or inside the input {p}; write it elsewhere")
 
 

@@ -1,0 +1,338 @@
+"""Methods (a preset with overrides) run on logs and scored against each log's reference, the
+tables of the scores and plots of heading and error against time; :mod:`gyrocore.evaluate`
+re-exports the public names.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from . import deadreckon
+from ._arrays import as_float_array
+from ._checks import warn
+from ._extras import pyplot
+from .batch_job import failed_line
+from .evaluate_metrics import HeadingErrors, Reference, heading_errors, improvement
+from .io import Log, read_log
+from .pipeline import HeadingResult, has_bias_source, process, recommended_preset, uses_static_bias
+from .wholelog import Rest, check_mode, rest_lines
+
+
+@dataclass(frozen=True)
+class Method:
+    """A way to compute the heading: a preset with parameter overrides (SI names, see
+    :func:`gyrocore.parameters`). ``name`` labels it in tables and plots."""
+
+    name: str
+    preset: str
+    overrides: Mapping[str, Any] = field(default_factory=dict)
+
+    @classmethod
+    def from_preset(cls, preset: str) -> "Method":
+        """The preset as it is; ``recommended`` keeps its name and runs what it stands for."""
+        return cls(preset, recommended_preset() if preset == "recommended" else preset)
+
+    def run(
+        self, log: Log, *, bias_duration: float | None = None, mode: str = "whole", use_speed: bool = True
+    ) -> tuple[HeadingResult, str]:
+        """Heading of ``log`` and where its static bias came from (the result's ``bias_source``).
+
+        The bias: the method's own, else the log's rest window or ``bias_duration``
+        (:func:`log_bias`), else in whole mode every rest found in the log (with its odometry's
+        speed unless ``use_speed`` is False), in causal mode 0.
+        """
+        overrides = dict(self.overrides)
+        if uses_static_bias(self.preset) and has_bias_source(overrides):
+            return log.process(self.preset, mode=mode, use_speed=use_speed, **overrides), "given by the method"
+        if uses_static_bias(self.preset):
+            if log.stationary is not None or bias_duration is not None:
+                overrides.update(log_bias(log, bias_duration=bias_duration)[0])
+            elif mode == "causal":
+                # said here rather than warned by the pipeline: a bias of 0 is the causal baseline
+                bias, source = log_bias(log)
+                return log.process(self.preset, mode=mode, **overrides, **bias), f"{source} (causal)"
+        result = log.process(self.preset, mode=mode, use_speed=use_speed, **overrides)
+        return result, result.bias_source
+
+
+def log_bias(log: Log, *, bias_duration: float | None = None) -> tuple[dict[str, Any], str]:
+    """Where the static bias of ``log`` comes from: pipeline overrides and a description.
+
+    The log's rest window (meta.json) when it has one; otherwise the first ``bias_duration``
+    seconds while moving (good only if the drive starts straight) when given, else a bias of 0.
+    """
+    if log.stationary is not None:
+        return {"bias_window": log.stationary}, f"rest window [{log.stationary[0]:.3f}, {log.stationary[1]:.3f}] s"
+    if bias_duration is not None:
+        return {"bias_duration": bias_duration}, f"first {bias_duration:g} s (moving)"
+    return {"bias": 0.0}, "none (no rest window; 0)"
+
+
+@dataclass(frozen=True)
+class Score:
+    """One method scored on one log."""
+
+    log: str
+    method: Method
+    errors: HeadingErrors
+    improvement: float
+    """E_psi of plain integration / E_psi of this method (HDR Table II)."""
+    bias_source: str
+    return_error_deg: float | None = None
+    """Return orientation error (FOG section 4.1) where the reference path is closed, else None."""
+    position: deadreckon.PositionErrors | None = None
+    """Dead reckoning with this heading and the log's odometry, against the reference track."""
+    rests: tuple[Rest, ...] = ()
+    """The rests whose bias the method used in whole mode."""
+    path: str | None = None
+    """Where the log was read, as given (:attr:`gyrocore.Log.path`); None for a log built in memory."""
+
+    @property
+    def label(self) -> str:
+        """How tables name the log: its path (names repeat), else its name."""
+        return self.path if self.path is not None else self.log
+
+    def as_dict(self) -> dict[str, Any]:
+        """Flat JSON-ready dict: ``path`` and ``name`` (the log's), ``preset`` (the method's name),
+        ``base_preset``, the heading metrics, ``improvement``, ``bias_source``, ``rests``,
+        ``return_error_deg`` and, where the log has odometry, ``position_*_m`` and
+        ``position_final_error_percent``."""
+        row: dict[str, Any] = {"path": self.path, "name": self.log, "preset": self.method.name,
+                               "base_preset": self.method.preset}
+        row.update(self.errors.as_dict())
+        row["improvement"] = self.improvement
+        row["bias_source"] = self.bias_source
+        row["rests"] = [r.as_dict() for r in self.rests]
+        row["return_error_deg"] = self.return_error_deg
+        if self.position is not None:
+            row.update({f"position_{k}": v for k, v in self.position.as_dict().items()})
+        if self.method.overrides:
+            row["overrides"] = dict(self.method.overrides)
+        return row
+
+
+#: A reference path that ends within this fraction of its length from its start is closed.
+CLOSED_FRACTION = 0.01
+
+
+def is_closed_path(x: ArrayLike, y: ArrayLike, *, fraction: float = CLOSED_FRACTION) -> bool:
+    """Whether a track [m] ends within ``fraction`` of its length from where it started."""
+    xa, ya = as_float_array("x", x), as_float_array("y", y)
+    length = float(np.hypot(np.diff(xa), np.diff(ya)).sum())
+    return length > 0 and math.hypot(xa[-1] - xa[0], ya[-1] - ya[0]) <= fraction * length
+
+
+def score(log: Log, method: Method, result: HeadingResult, raw: HeadingErrors, bias_source: str) -> Score:
+    """Score one heading of ``log`` (see :class:`Score`); ``raw`` is plain integration's errors. A
+    heading fused with fixes is absolute, and scored so (no alignment at the start)."""
+    errors = heading_errors(result.t, result.heading, *log.reference(), absolute=result.fusion is not None)
+    # Aligned at the start, the error at the end of a closed path is its measured minus its actual
+    # rotation: the return orientation error.
+    closed = log.has_track and is_closed_path(*log.track()[1:]) and result.fusion is None
+    return_error = errors.final_error_deg if closed else None
+    position = None
+    if log.has_track and log.t_odometry is not None and log.speed is not None and _odometry_overlaps(log, result):
+        track = deadreckon.dead_reckon_log(log, result)
+        position = deadreckon.position_errors(track, *log.track())
+    return Score(
+        log.name, method, errors, improvement(raw, errors), bias_source, return_error, position, result.rests, log.path
+    )
+
+
+def _odometry_overlaps(log: Log, result: HeadingResult) -> bool:
+    """Whether two odometry samples lie inside the heading's span (dead reckoning needs them); if
+    not, a warning: the log is scored without its track, as ``gyrocore process`` finds its rests
+    without the speed (an odometry.csv in another time base, e.g. relative against epoch seconds)."""
+    t = log.t_odometry
+    assert t is not None  # the caller checked
+    inside = np.count_nonzero((t >= result.t[0]) & (t <= result.t[-1]))
+    if inside >= 2:
+        return True
+    times = f"times {t[0]:.10g} .. {t[-1]:.10g} s" if len(t) else "the odometry has none"
+    warn(
+        f"log {log.name}: {inside} odometry sample(s) ({times}) "
+        f"lie inside the heading's {result.t[0]:.10g} .. {result.t[-1]:.10g} s: no dead reckoning; give the "
+        "odometry's times in the gyro's clock, in seconds"
+    )
+    return False
+
+
+def compare(
+    logs: Sequence[Log | str | Path],
+    presets: Sequence[str | Method],
+    params: Sequence[Method] | None = None,
+    *,
+    bias_duration: float | None = None,
+    plot_dir: str | Path | None = None,
+    mode: str = "whole",
+    use_speed: bool = True,
+) -> list[Score]:
+    """Score every method on every log: one :class:`Score` per (log, method), logs in order.
+
+    Args:
+        logs: :class:`Log` objects or log folders.
+        presets: preset names (``recommended`` runs the preset the README recommends) or methods.
+        params: further methods, e.g. tuned parameter sets (:meth:`gyrocore.tune.ParameterSet.method`).
+        bias_duration: for logs without a rest window, measure the static bias over the first
+            ``bias_duration`` seconds while moving [s] (see :meth:`Method.run`). The same value is
+            used for every such log: never tune it per log.
+        plot_dir: write ``<log>.png`` there (heading vs reference and error vs time of each method;
+            needs matplotlib).
+        mode: ``whole`` (the bias from every rest, known from the first sample) or ``causal``
+            (see :func:`gyrocore.process`).
+        use_speed: in whole mode, also find rests where the odometry's speed is zero.
+    """
+    check_mode(mode)
+    methods = [m if isinstance(m, Method) else Method.from_preset(m) for m in presets] + list(params or [])
+    if not methods:
+        raise ValueError("no method to compare: give at least one preset or parameter set")
+    if plot_dir is not None:
+        _pyplot()  # fail before the work if plots cannot be drawn
+    rows: list[Score] = []
+    for item in logs:
+        log = item if isinstance(item, Log) else read_log(item)
+        try:
+            reference = log.reference()  # before any work
+            raw_result = process(log.t, log.rate, "raw")
+            raw = heading_errors(raw_result.t, raw_result.heading, *reference)
+            results = {}
+            for method in methods:
+                result, source = method.run(log, bias_duration=bias_duration, mode=mode, use_speed=use_speed)
+                results[method.name] = result
+                rows.append(score(log, method, result, raw, source))
+        except ValueError as e:
+            raise named_error(log, e) from None
+        if plot_dir is not None:
+            plot_log(plot_path(plot_dir, log), log, results)
+    return rows
+
+
+def named_error(log: Log, error: ValueError) -> ValueError:
+    """``error``, raised on ``log``, naming the log once: by its path where it was read from one
+    (the log's own checks name it ``log NAME``, and names repeat), else as ``log NAME``."""
+    text = str(error).removeprefix(f"log {log.name}: ")
+    label = log.path if log.path is not None else f"log {log.name}"
+    return ValueError(text if text.startswith(f"{label}: ") else f"{label}: {text}")
+
+
+@dataclass(frozen=True)
+class Failed:
+    """A log that could not be scored, in a run over many: the path it was given as, and why."""
+
+    path: str
+    error: str
+
+    def as_dict(self) -> dict[str, Any]:
+        """JSON-ready: ``path`` and ``error``."""
+        return {"path": self.path, "error": self.error}
+
+    def __str__(self) -> str:
+        return failed_line(self.path, self.error)
+
+
+def plot_path(plot_dir: str | Path, log: Log) -> Path:
+    """Where :func:`compare` draws the plot of ``log``: ``<plot_dir>/<log name>.png``.
+
+    Raises:
+        ValueError: a name that is a path: its plot would land outside ``plot_dir`` (a
+            meta.json's name ``/home/me/x`` wrote ``/home/me/x.png``).
+    """
+    name = log.name
+    if os.path.basename(name) != name or "\0" in name:  # NUL: no file name either
+        label = log.path if log.path is not None else f"log {log.name}"
+        raise ValueError(
+            f"{label}: the log's name {name!r} is no file name for its plot ({plot_dir}/<name>.png): "
+            "give the log a name without a folder (meta.json's name)"
+        )
+    return Path(plot_dir) / f"{name}.png"
+
+
+def _pyplot() -> Any:
+    return pyplot("plotting the evaluation")
+
+
+def plot_log(path: Path, log: Log, results: Mapping[str, HeadingResult]) -> None:
+    """Write a PNG: heading of each method and the reference (top), error against time (bottom).
+
+    Headings are aligned with the reference at the first compared time, in degrees.
+    """
+    plt = _pyplot()
+    from .cli._common import write_atomically
+
+    reference = Reference(*log.reference())
+    t0 = float(log.t[0])
+    fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(10, 6.5))
+    for k, (name, r) in enumerate(results.items()):
+        tr, err, _ = reference.compared(r.t, r.heading)
+        start = np.interp(tr[0], r.t, r.heading)
+        if k == 0:
+            # The aligned reference is the aligned estimate minus its error.
+            ref = np.interp(tr, r.t, r.heading) - start - err
+            ax1.plot(tr - t0, np.degrees(ref), "k", lw=2.2, label="reference")
+        ax1.plot(r.t - t0, np.degrees(r.heading - start), lw=1, label=name)
+        ax2.plot(tr - t0, np.degrees(err), lw=1, label=name)
+    ax1.set_title(f"{log.name}: heading against the reference")
+    ax1.set_ylabel("heading change [deg]")
+    ax2.set_ylabel("error [deg]")
+    ax2.set_xlabel(f"t - t0 [s] (t0 = {t0:.3f} s)")
+    ax2.axhline(0.0, color="k", lw=0.5)
+    ax1.legend(fontsize=8, ncol=2)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    write_atomically(path, lambda tmp: fig.savefig(tmp, format="png", dpi=100))
+    plt.close(fig)
+
+
+def format_table(rows: Sequence[Score | Failed], *, file: Any = None) -> None:
+    """Print ``rows`` as a table (E_psi, NE_psi, final and maximum error, improvement vs raw), a
+    log that failed as its ``FAILED`` line where it comes."""
+    out = file or sys.stdout
+    scores = [r for r in rows if isinstance(r, Score)]
+    has_position = any(r.position is not None for r in scores)
+    width = max([14, *(len(r.label) for r in scores)])
+    header = (
+        f"{'log':<{width}} {'method':<16} {'E_psi':>8} {'NE_psi':>9} {'final':>8} {'max':>8} {'vs raw':>8}"
+        f" {'return':>8}" + (f" {'pos mean':>9} {'pos end':>8}" if has_position else "")
+    )
+    print(header, file=out)
+    print(f"{'':<{width}} {'':<16} {'[deg]':>8} {'[deg/min]':>9} {'[deg]':>8} {'[deg]':>8} {'':>8} {'[deg]':>8}"
+          + (f" {'[m]':>9} {'[m]':>8}" if has_position else ""), file=out)
+    for r in rows:
+        if isinstance(r, Failed):
+            print(r, file=out)
+            continue
+        e = r.errors
+        ret = "-" if r.return_error_deg is None else f"{r.return_error_deg:.2f}"
+        line = (
+            f"{r.label:<{width}} {r.method.name:<16} {e.e_psi_deg:>8.3f} {e.ne_psi_deg_per_min:>9.4f} "
+            f"{e.final_error_deg:>8.2f} {e.max_error_deg:>8.2f} {r.improvement:>7.1f}x {ret:>8}"
+        )
+        if has_position:
+            p = r.position
+            line += " " + (f"{p.mean_error_m:>9.2f} {p.final_error_m:>8.2f}" if p else f"{'-':>9} {'-':>8}")
+        print(line, file=out)
+
+
+def format_bias_sources(rows: Sequence[Score | Failed], *, file: Any = None) -> None:
+    """Print where each method's static bias came from, per log; methods that share a source
+    (and its rests) share a line, and each rest used is listed under it. Logs that failed have none."""
+    out = file or sys.stdout
+    groups: dict[tuple[str, str, tuple[Rest, ...]], list[str]] = {}
+    for r in (r for r in rows if isinstance(r, Score)):
+        names = groups.setdefault((r.label, r.bias_source, r.rests), [])
+        if r.method.name not in names:  # a log given twice is one line
+            names.append(r.method.name)
+    width = max([14, *(len(log) for log, _, _ in groups)])
+    print("bias source:", file=out)
+    for (log, source, rests), names in groups.items():
+        print(f"  {log:<{width}} {', '.join(names)}: {source}", file=out)
+        for line in rest_lines(source, rests, " " * 19):
+            print(line, file=out)

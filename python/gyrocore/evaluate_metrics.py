@@ -1,0 +1,240 @@
+"""The papers' heading metrics: the error of a heading against a reference (E_psi, HDR eq 15;
+NE_psi, HDR eq 16; Hong Table 1's mean and standard deviation), the improvement factor over plain
+integration (HDR Table II) and the return orientation error of a closed path (FOG section 4.1).
+:mod:`gyrocore.evaluate` re-exports the public names.
+
+Units: radians inside, degrees in the fields named ``*_deg``; times in seconds.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ._arrays import FloatArray, as_float_array
+from ._checks import require_radians, require_series
+
+#: An interval longer than this many times the median interval is a gap (a logger or tracking
+#: outage). Irregular ROS logging stays below about 5 times its median (f110_ds3: 4.1).
+GAP_FACTOR = 10.0
+
+
+@dataclass(frozen=True)
+class HeadingErrors:
+    """Heading error against a reference, in degrees (compared at the reference's times)."""
+
+    e_psi_deg: float
+    """Average absolute heading error E_psi (HDR eq 15)."""
+    ne_psi_deg_per_min: float
+    """E_psi per minute of duration, NE_psi (HDR eq 16)."""
+    mean_error_deg: float
+    """Mean absolute error (Hong Table 1's mean error; equal to E_psi)."""
+    std_error_deg: float
+    """Standard deviation of the absolute error (Hong Table 1)."""
+    final_error_deg: float
+    """Signed error (estimate - reference) at the last compared reference time."""
+    max_error_deg: float
+    """Largest absolute error."""
+    duration_min: float
+    """Compared duration T_d [min], from the first to the last compared reference time."""
+    n: int
+    """Number of reference samples compared."""
+    gaps: int = 0
+    """Gaps (of the reference or of the estimate) inside the compared span that were skipped."""
+
+    def as_dict(self) -> dict[str, float]:
+        """The metrics as a plain dict (for JSON)."""
+        return asdict(self)
+
+
+def unwrap(heading: ArrayLike) -> np.ndarray:
+    """Continuous heading [rad] from one wrapped to (-pi, pi]."""
+    return np.unwrap(as_float_array("heading", heading))
+
+
+def find_gaps(t: ArrayLike, *, gap_factor: float = GAP_FACTOR) -> np.ndarray:
+    """Which intervals ``t[k] -> t[k+1]`` are gaps: longer than ``gap_factor`` times the median.
+
+    Returns a boolean array of length ``len(t) - 1``.
+    """
+    if gap_factor <= 1:
+        raise ValueError(f"gap_factor must be > 1, got {gap_factor}")
+    dt = np.diff(as_float_array("t", t))
+    if len(dt) == 0:
+        return np.zeros(0, dtype=bool)
+    return np.asarray(dt > gap_factor * float(np.median(dt)))
+
+
+class Reference:
+    """A reference heading prepared once and scored against many estimates (tuning does thousands).
+
+    The reference (rad, may be wrapped to (-pi, pi]) is unwrapped between its gaps. Across a gap
+    its number of whole turns is unknown, so the turn count is chosen that makes the reference's
+    change over the gap closest to the estimate's: the error stays continuous as long as the
+    estimate does not drift by half a turn during the gap.
+
+    Args:
+        t_ref: reference times [s], strictly increasing, any rate.
+        heading_ref: reference heading [rad], counter-clockwise positive.
+        gap_factor: an interval longer than this many times the median interval is a gap, on the
+            reference and on the estimate. Reference samples inside a gap of the estimate are not
+            scored (the estimate there is only an interpolation).
+        time_weighted: average the absolute error over time instead of over samples. HDR eq 15
+            averages samples (its reference came at a regular 1 Hz); with a bursty reference the
+            time average weighs each moment equally. Gap intervals get no weight.
+    """
+
+    def __init__(
+        self,
+        t_ref: ArrayLike,
+        heading_ref: ArrayLike,
+        *,
+        gap_factor: float = GAP_FACTOR,
+        time_weighted: bool = False,
+    ) -> None:
+        t = as_float_array("t_ref", t_ref)
+        psi = as_float_array("heading_ref", heading_ref)
+        require_series("t", t, "heading", psi, context="reference")
+        require_radians("the reference heading", t, psi)
+        if len(t) < 2:
+            raise ValueError(f"reference: {len(t)} sample(s); a heading error needs at least two reference samples")
+        gaps = find_gaps(t, gap_factor=gap_factor)
+        # Segment k starts after the k-th gap; unwrap within segments only.
+        segment = np.concatenate(([0], np.cumsum(gaps)))
+        unwrapped = psi.copy()
+        for s in range(int(segment[-1]) + 1):
+            mask = segment == s
+            unwrapped[mask] = np.unwrap(psi[mask])
+        self.t = t
+        """Reference times [s]."""
+        self.heading = unwrapped
+        """Reference heading [rad], unwrapped within each stretch between gaps."""
+        self.segment = segment
+        """Index of the stretch between gaps that each sample belongs to."""
+        self.gap_factor = gap_factor
+        self.time_weighted = time_weighted
+
+    def compared(
+        self, t: ArrayLike, heading: ArrayLike, *, absolute: bool = False
+    ) -> tuple[FloatArray, FloatArray, np.ndarray]:
+        """The estimate's error at the compared reference times.
+
+        Returns ``(t_compared, error [rad], gap_after)``: the error is estimate minus reference,
+        both aligned to 0 at the first compared time (with ``absolute``, not aligned: wrapped to
+        (-pi, pi], for a heading made absolute by fixes); ``gap_after[k]`` says whether the
+        interval after sample ``k`` crosses a gap (of either side) and so is not scored.
+        """
+        te = as_float_array("t", t)
+        est_all = as_float_array("heading", heading)
+        require_series("t", te, "heading", est_all, context="estimate")
+        if len(te) < 2:
+            raise ValueError("need at least two heading samples to compare")
+        inside = (self.t >= te[0]) & (self.t <= te[-1])
+        est_gaps = find_gaps(te, gap_factor=self.gap_factor)
+        if est_gaps.any():
+            k = np.clip(np.searchsorted(te, self.t, side="right") - 1, 0, len(est_gaps) - 1)
+            inside &= ~(est_gaps[k] & (self.t > te[k]) & (self.t < te[np.minimum(k + 1, len(te) - 1)]))
+        idx = np.flatnonzero(inside)
+        if len(idx) < 2:
+            raise ValueError(
+                "the reference has fewer than two samples inside the heading's time span: the reference runs "
+                f"from t = {self.t[0]:.3f} to {self.t[-1]:.3f} s, the heading from t = {te[0]:.3f} to {te[-1]:.3f} s; "
+                "give both on the same clock"
+            )
+        tr, ref, seg = self.t[idx], self.heading[idx].copy(), self.segment[idx]
+        est = np.interp(tr, te, est_all)
+        # Consecutive compared samples not adjacent in the reference skipped an estimate gap.
+        gap_after = (np.diff(idx) > 1) | (np.diff(seg) != 0)
+        for j in np.flatnonzero(np.diff(seg) != 0):
+            turns = round(((est[j + 1] - est[j]) - (ref[j + 1] - ref[j])) / (2 * math.pi))
+            ref[j + 1 :] += 2 * math.pi * turns
+        if absolute:
+            return tr, np.angle(np.exp(1j * (est - ref))), gap_after
+        return tr, (est - est[0]) - (ref - ref[0]), gap_after
+
+    def errors(self, t: ArrayLike, heading: ArrayLike, *, absolute: bool = False) -> HeadingErrors:
+        """Score an estimated heading (continuous, rad) against this reference (HDR eq 15-16;
+        ``absolute``: see :meth:`compared`)."""
+        tr, err_rad, gap_after = self.compared(t, heading, absolute=absolute)
+        abs_err = np.degrees(np.abs(err_rad))
+        weights = None
+        if self.time_weighted:
+            # Each sample weighs half of each scored interval next to it (trapezoid rule).
+            dt = np.where(gap_after, 0.0, np.diff(tr))
+            weights = np.concatenate((dt, [0.0])) / 2 + np.concatenate(([0.0], dt)) / 2
+            if weights.sum() == 0:
+                weights = None
+        e_psi = float(np.average(abs_err, weights=weights))
+        std = float(np.sqrt(np.average((abs_err - e_psi) ** 2, weights=weights)))
+        duration_min = float(tr[-1] - tr[0]) / 60.0
+        return HeadingErrors(
+            e_psi_deg=e_psi,
+            ne_psi_deg_per_min=e_psi / duration_min if duration_min > 0 else math.nan,
+            mean_error_deg=e_psi,
+            std_error_deg=std,
+            final_error_deg=float(np.degrees(err_rad[-1])),
+            max_error_deg=float(abs_err.max()),
+            duration_min=duration_min,
+            n=len(tr),
+            gaps=int(gap_after.sum()),
+        )
+
+
+def heading_errors(
+    t: ArrayLike,
+    heading: ArrayLike,
+    t_ref: ArrayLike,
+    heading_ref: ArrayLike,
+    *,
+    gap_factor: float = GAP_FACTOR,
+    time_weighted: bool = False,
+    absolute: bool = False,
+) -> HeadingErrors:
+    """Compare an estimated heading with a reference heading (HDR eq 15-16, Hong Table 1).
+
+    The estimate (continuous, rad) is linearly interpolated at the reference's times inside its
+    own time span; the reference (rad, may be wrapped) is unwrapped. Both are aligned at the first
+    compared reference time (only relative heading is meaningful), and E_psi averages the absolute
+    difference over the reference samples (HDR eq 15), NE_psi divides it by the duration in minutes
+    (eq 16). Gaps are skipped as :class:`Reference` describes; both sides may have irregular rates.
+    ``absolute``: no alignment, the wrapped difference (a heading made absolute by fixes).
+    """
+    reference = Reference(t_ref, heading_ref, gap_factor=gap_factor, time_weighted=time_weighted)
+    return reference.errors(t, heading, absolute=absolute)
+
+
+def improvement(raw: HeadingErrors, method: HeadingErrors) -> float:
+    """Relative improvement over plain integration: E_psi without / E_psi with (HDR Table II)."""
+    return raw.e_psi_deg / method.e_psi_deg if method.e_psi_deg > 0 else math.inf
+
+
+def return_orientation_error(
+    t: ArrayLike,
+    heading: ArrayLike,
+    *,
+    t_start: float | None = None,
+    t_end: float | None = None,
+    rotation: float | None = None,
+) -> float:
+    """Return orientation error E_g of a closed path [rad] (FOG section 4.1).
+
+    The rotation measured from ``t_start`` to ``t_end`` (default: the whole record; the heading is
+    interpolated at both) minus the actual rotation ``rotation`` [rad]. Without a reference the
+    actual rotation of a closed lap is a whole number of turns; by default the whole number nearest
+    to the measured rotation (right while the error stays below half a turn). Positive: the
+    estimate turned further counter-clockwise than the vehicle.
+    """
+    te = as_float_array("t", t)
+    psi = as_float_array("heading", heading)
+    require_series("t", te, "heading", psi)
+    t0 = te[0] if t_start is None else t_start
+    t1 = te[-1] if t_end is None else t_end
+    if not te[0] <= t0 < t1 <= te[-1]:
+        raise ValueError(f"the lap [{t0}, {t1}] s must lie inside the record [{te[0]}, {te[-1]}] s")
+    measured = float(np.interp(t1, te, psi) - np.interp(t0, te, psi))
+    if rotation is None:
+        rotation = 2 * math.pi * round(measured / (2 * math.pi))
+    return measured - rotation
