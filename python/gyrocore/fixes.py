@@ -29,6 +29,7 @@ from ._arrays import FloatArray, as_float_array
 from ._checks import MAX_READING, warn
 from ._extras import require
 from .io._csvfile import _csv_header as csv_header, read_csv_columns
+from .io._paths import check_file
 from .io.units import HEADER_TIME_UNITS, _normal as normal_unit, split_unit
 from .result import fix_output_flags
 
@@ -383,8 +384,7 @@ def read_fixes_file(path: str | Path) -> Fixes:
     sigma [rad], :func:`read_fixes_csv`) or comma_seg40's ``gnss.csv`` (t, speed [m/s], bearing
     [deg, CW from north], through :func:`read_gnss_csv` with its defaults)."""
     path = Path(path)
-    if not path.is_file():
-        raise FileNotFoundError(f"{path}: no such fixes file")
+    check_file(path)  # a folder or a pipe given as the fixes is named as such, not "missing"
     header = csv_header(path, ",")
     if set(FIXES_COLUMNS) <= {split_unit(h)[0] for h in header}:
         return read_fixes_csv(path)

@@ -226,7 +226,10 @@ def test_cli_bad_fixes_are_one_line_errors(folder_with_fixes: Path, tmp_path: Pa
     wrong.write_text("t,yaw\n1,0.1\n")
     one_line_error(cli("evaluate", str(folder_with_fixes), "--fixes", str(wrong)), "a fixes file has the columns")
     one_line_error(cli("process", str(folder_with_fixes), "--out", str(out), "--fixes", str(tmp_path / "none.csv")),
-                   "no such fixes file")
+                   "none.csv: no such file")
+    (tmp_path / "fixes_folder").mkdir()
+    one_line_error(cli("process", str(folder_with_fixes), "--out", str(out), "--fixes", str(tmp_path / "fixes_folder")),
+                   "fixes_folder: a folder, not a file")
     one_line_error(cli("process", str(folder_with_fixes), "--out", str(out), "--no-fixes", "--columns", "t,heading_sigma"),
                    "--columns heading_sigma: it comes with heading fixes")
 

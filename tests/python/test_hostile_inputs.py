@@ -246,6 +246,21 @@ def test_a_reference_without_positions_is_evaluated(tmp_path: Path) -> None:
     assert '"preset": "raw"' in proc.stdout
 
 
+def test_a_reference_with_x_but_no_y_says_its_positions_are_left_out(tmp_path: Path) -> None:
+    folder = log_folder_with(tmp_path, "reference.csv",
+                             "t,heading,x\n1700000000.5,0.1,0\n1700000010.5,0.2,1\n1700000020.5,0.3,2\n")
+    with pytest.warns(UserWarning, match="reference.csv: column x without y: the reference's positions are left out"):
+        log = gyrocore.io.read_log(folder)
+    assert log.x_ref is None and log.heading_ref is not None
+    # a file with its truth in columns: the same rule, the same words
+    rows = "".join(f"{i * 0.01:.2f},0.01,0.0,{i}\n" for i in range(500))
+    single = tmp_path / "drive.csv"
+    single.write_text("t,gyro_z,heading_true,y\n" + rows)
+    with pytest.warns(UserWarning, match="drive.csv: column y without x"):
+        log = gyrocore.io.read_log(single)
+    assert log.x_ref is None and log.heading_ref is not None
+
+
 def test_a_missing_column_of_a_log_folder_file_says_which_it_needs(tmp_path: Path) -> None:
     folder = log_folder_with(tmp_path, "odometry.csv", "t,v\n1700000000.5,1\n")
     proc = run_cli("process", folder, "--out", tmp_path / "h.csv")

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 import os
 from pathlib import Path
+from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -18,7 +19,7 @@ from .._arrays import FloatArray
 from .._checks import warn
 from ._csvfile import _csv_header, read_csv_columns
 from ._jsonfile import read_json
-from ._paths import has_file
+from ._paths import check_file, has_file
 
 if TYPE_CHECKING:
     from ..fixes import Fixes
@@ -74,6 +75,18 @@ def read_fixes(folder: Path) -> Fixes | None:
     return read_fixes_csv(path) if has_file(path) else None
 
 
+def has_track(where: str, columns: Iterable[str], names: tuple[str, str] = ("x", "y")) -> bool:
+    """Whether a reference holds positions: both columns ``names`` (x and y [m]). One without
+    the other warns: dead reckoning and the closed-path check are then left out, and the user
+    should know why."""
+    present = [name for name in names if name in set(columns)]
+    if len(present) == 1:
+        other = names[1] if present[0] == names[0] else names[0]
+        warn(f"{where}: column {present[0]} without {other}: the reference's positions are left out "
+             "(its heading is still used)")
+    return len(present) == 2
+
+
 def read_reference_file(path: Path) -> dict[str, FloatArray]:
     """A reference heading given apart from its log: a CSV file like ``reference.csv``, with
     columns t [s] and heading [rad], and x and y [m] where it has both.
@@ -82,10 +95,9 @@ def read_reference_file(path: Path) -> dict[str, FloatArray]:
     empty or not finite leaves the positions out, with a warning naming its line: the heading is
     still scored, while dead reckoning and the closed-path check need every position.
     """
-    if not path.is_file():
-        raise FileNotFoundError(f"{path}: no such reference file")
+    check_file(path)
     header = _csv_header(path, ",")
-    track = ("x", "y") if {"x", "y"} <= set(header) else ()
+    track = ("x", "y") if has_track(str(path), header) else ()
     ref = read_csv_columns(path, ("t", "heading", *track), optional=track)
     for name in ("t", "heading"):
         where = _not_finite(path, header, ref, name, "nan")

@@ -23,7 +23,7 @@ from ..pipeline import (
 from ..rests import speed_on
 from ..wholelog import WHOLE_OPTIONS
 from ._columns import concat
-from ._logfolder import read_fixes, read_odometry, read_reference
+from ._logfolder import has_track, read_fixes, read_odometry, read_reference
 from .source import SPEED_COLUMN, GyroSource, open_source
 from .units import UnitCheck
 
@@ -165,7 +165,7 @@ def _file_tables(src: GyroSource, t: FloatArray) -> tuple[dict[str, FloatArray],
     ref: dict[str, FloatArray] = {}
     if TRUTH_COLUMNS["heading"] in columns:
         ref = {"t": t, "heading": columns[TRUTH_COLUMNS["heading"]]}
-        if TRUTH_COLUMNS["x"] in columns and TRUTH_COLUMNS["y"] in columns:
+        if has_track(str(src.path), columns, (TRUTH_COLUMNS["x"], TRUTH_COLUMNS["y"])):
             ref.update(x=columns[TRUTH_COLUMNS["x"]], y=columns[TRUTH_COLUMNS["y"]])
     odo = {"t": t, "speed": columns[SPEED_COLUMN]} if SPEED_COLUMN in columns else {}
     return ref, odo
