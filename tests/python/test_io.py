@@ -94,8 +94,14 @@ def test_parquet_timestamp_columns_carry_their_unit(tmp_path: Path) -> None:
     ns = np.array([1_700_000_000_000_000_000, 1_700_000_000_010_000_000, 1_700_000_000_020_000_000])
     stamps = pa.array(ns).cast(pa.timestamp("ns"))
     pq.write_table(pa.table({"t": stamps, "gyro_z": [0.1, 0.2, 0.3]}), tmp_path / "a.parquet")
-    t, _ = read_all(tmp_path / "a.parquet", time_unit="ms")  # the type's unit wins
+    with pytest.warns(UserWarning, match=r"a.parquet: column t is a timestamp\[ns\] with its own unit \(ns\): "
+                                         "time_unit 'ms' \\(--time-unit\\) is not used"):
+        t, _ = read_all(tmp_path / "a.parquet", time_unit="ms")  # the type's unit wins
     assert t.tolist() == [1.7e9, 1.70000000001e9, 1.70000000002e9]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # the unit the column has, or none given: nothing to say
+        for unit in ("ns", None):
+            assert read_all(tmp_path / "a.parquet", time_unit=unit)[0].tolist() == t.tolist()
 
 
 def test_log_folder_gives_the_rest_window_of_its_meta_json() -> None:

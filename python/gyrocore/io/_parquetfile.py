@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._checks import warn
 from .._extras import require
 from ._columns import column_positions, first_null
 from .units import TIME_UNITS
@@ -31,6 +32,19 @@ def parquet_file(path: Path) -> Any:
         return pq.ParquetFile(path)
     except (pa.ArrowInvalid, OSError) as e:
         raise ValueError(f"{path}: not a readable Parquet file ({e})") from None
+
+
+def warn_given_time_unit(path: Path, pf: Any, time_col: str, given: str | None) -> None:
+    """Warn that a time unit the user gave (``given``) is not used where the time column is a
+    timestamp or duration type, which carries its own: the user expects the option to act."""
+    import pyarrow as pa
+
+    if given is None or time_col not in pf.schema_arrow.names:
+        return
+    kind = pf.schema_arrow.field(time_col).type
+    if (pa.types.is_timestamp(kind) or pa.types.is_duration(kind)) and kind.unit != given:
+        warn(f"{path}: column {time_col} is a {kind} with its own unit ({kind.unit}): time_unit {given!r} "
+             "(--time-unit) is not used")
 
 
 def parquet_chunks(

@@ -23,7 +23,7 @@ from ._columns import concat, import_pyarrow_lazy_modules
 from ._csvfile import _csv_header, csv_chunks
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta
 from ._npyfile import npy_chunks, npy_header, npz_chunks
-from ._parquetfile import parquet_chunks, parquet_file
+from ._parquetfile import parquet_chunks, parquet_file, warn_given_time_unit
 from ._paths import check_file, missing
 from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder
 from .units import RATE_UNITS, TIME_UNITS, header_options
@@ -357,6 +357,7 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
         return GyroSource(p, "csv", p, options, progress_total=p.stat().st_size, progress_unit="B")
     if suffix in (".parquet", ".pq"):
         pf = parquet_file(p)
+        warn_given_time_unit(p, pf, options.time, options.time_unit)
         options = header_options(p, pf.schema_arrow.names, options)
         return GyroSource(p, "parquet", p, options, progress_total=pf.metadata.num_rows)
     if suffix == ".npy":
