@@ -246,6 +246,15 @@ def test_a_reference_without_positions_is_evaluated(tmp_path: Path) -> None:
     assert '"preset": "raw"' in proc.stdout
 
 
+def test_infinite_times_get_the_one_error_that_names_them(tmp_path: Path) -> None:
+    # numpy's "invalid value encountered in subtract" came before it, from the unit check
+    log = tmp_path / "inf.csv"
+    log.write_text("t,gyro_z\n" + "inf,0.1\n" * 50)
+    proc = run_cli("process", log, "--out", tmp_path / "h.csv")
+    assert proc.returncode == 2
+    assert proc.stderr == f"gyrocore: error: t[0] is inf: samples must be finite (drop or fill them first) ({log}, line 2)\n"
+
+
 def test_a_reference_with_x_but_no_y_says_its_positions_are_left_out(tmp_path: Path) -> None:
     folder = log_folder_with(tmp_path, "reference.csv",
                              "t,heading,x\n1700000000.5,0.1,0\n1700000010.5,0.2,1\n1700000020.5,0.3,2\n")

@@ -77,7 +77,10 @@ class UnitCheck:
         if len(t):
             edges = t if self._last_time is None else np.concatenate(([self._last_time], t))
             self._intervals += len(edges) - 1
-            self._short_intervals += int(np.count_nonzero(np.diff(edges) <= INTERVAL_LIMIT))
+            # Times that are not finite (inf - inf) are the core's error right after this, which
+            # names the sample: numpy's "invalid value" warning before it would only confuse.
+            with np.errstate(invalid="ignore"):
+                self._short_intervals += int(np.count_nonzero(np.diff(edges) <= INTERVAL_LIMIT))
             self._last_time = float(t[-1])
         if self._first is None:
             self._head.append((t[:HEAD_SAMPLES], rate[:HEAD_SAMPLES]))
