@@ -54,8 +54,8 @@ def _finished_meanwhile(futures: Iterable[tuple[int, Any]], reports: dict[int, F
             continue
         try:
             reports[i] = future.result()
-        except Exception:  # noqa: BLE001 - a lost worker: no report, and no output
-            continue
+        except (Exception, KeyboardInterrupt):  # noqa: BLE001 - no report, and no output: a lost
+            continue  # worker, or a file the signal stopped (its thread raises at its next check)
 
 
 def _interrupted(e: BaseException, reports: dict[int, FileReport]) -> None:
