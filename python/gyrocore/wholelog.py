@@ -49,11 +49,11 @@ from .pipeline import (
     BIAS_SOURCES,
     HeadingResult,
     Pipeline,
-    _to_si,
     core_pipeline,
     preset_params,
     uses_static_bias,
 )
+from .pipeline_params import _to_si
 from .result import OutArrays, filled, out_arrays
 from .rests import Rest, refuse_speed_t_alone, speed_on
 from .window import Window
