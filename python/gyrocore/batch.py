@@ -21,7 +21,8 @@ from pathlib import Path
 from typing import Any
 
 from . import io, wholelog
-from .pipeline import Pipeline, _to_si, has_bias_source
+from .pipeline import Pipeline, has_bias_source
+from .pipeline_params import _to_si
 from .batch_inputs import check_outside_inputs, expand_inputs, output_paths
 from .batch_job import BatchReport, FileReport, Progress, _FileJob, split_options
 from .batch_run import _run_on_dask, _run_on_threads

@@ -17,7 +17,8 @@ from ._checks import collected, first_infinite, warn
 from ._gyrocore import SampleError
 from .io._columns import concat
 from .io._logfolder import FIXES_CSV, read_odometry
-from .pipeline import RestWindowError, _to_si, has_bias_source, uses_static_bias
+from .pipeline import RestWindowError, has_bias_source, uses_static_bias
+from .pipeline_params import _to_si
 from .window import Window, time_range
 
 #: ``progress(done, total, unit)``: called after each chunk with the progress through the input.

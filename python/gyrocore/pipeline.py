@@ -2,12 +2,13 @@
 
 Units are SI at every API: seconds, rad, rad/s, counter-clockwise positive. Rate parameters also
 accept a degree-per-second spelling with a ``_dps`` suffix (``threshold_dps=0.3``), and
-``initial_heading_deg`` is the degree spelling of ``initial_heading``.
+``initial_heading_deg`` is the degree spelling of ``initial_heading``. The presets and the
+parameters' names, spellings and checks are in :mod:`gyrocore.pipeline_params`, whose public names
+this module re-exports.
 """
 
 from __future__ import annotations
 
-import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -16,6 +17,17 @@ from numpy.typing import ArrayLike
 from . import _gyrocore, rests
 from ._arrays import FloatArray, as_float_array
 from ._checks import MAX_READING, usable, warn, warn_units
+from .pipeline_params import (
+    BIAS_SOURCES,
+    _to_si,
+    core_pipeline,
+    has_bias_source,
+    parameters,
+    preset_names,
+    preset_params,
+    recommended_preset,
+    uses_static_bias,
+)
 from .result import ALL_OUTPUTS as ALL_OUTPUTS, OUTPUTS as OUTPUTS, Filled, HeadingResult as HeadingResult
 from .result import OutArrays, fix_output_flags, out_arrays, output_flags as output_flags
 from .rests import Rest
@@ -24,15 +36,18 @@ from .window import time_range
 if TYPE_CHECKING:
     from .fixes import Fixes, FixesLike
 
+__all__ = [
+    "ALL_OUTPUTS", "BIAS_SOURCES", "MIN_WINDOW_READINGS", "OUTPUTS", "TEMPERATURE_MODEL", "HeadingResult", "Pipeline",
+    "RestWindowError", "core_pipeline", "has_bias_source", "output_flags", "parameters", "preset_names", "preset_params",
+    "process", "recommended_preset", "refuse_few_readings", "refuse_start_before", "rest_window_text", "uses_static_bias",
+]
+
 #: The fix stage's columns of a block from the core: heading sigma, bias, scale, and the fix
 #: counts (applied, rejected, before the first sample, waiting for a later block).
 _Fused = tuple[FloatArray | None, FloatArray | None, FloatArray | None, tuple[int, int, int, int]]
 
 #: Parameters of FOG eq 5's temperature model: without one, a temperature given is not used.
 TEMPERATURE_MODEL = ("temp_slope", "temp_offset")
-
-#: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling.
-_RATE_PARAMETERS = ("bias", "offset", "threshold", "hdr_increment", "hdr_turn_threshold")
 
 
 class RestWindowError(ValueError):
@@ -72,98 +87,6 @@ def rest_window_text(params: dict[str, Any]) -> str:
         start, end = params["bias_window"]
         return f"the bias window [{start}, {end}] s"
     return f"bias_duration = {params['bias_duration']} s"
-
-
-def preset_names() -> list[str]:
-    """Names of the presets, in order of increasing processing (``recommended`` is an alias)."""
-    names, _ = _gyrocore.preset_names()
-    return list(names)
-
-
-def recommended_preset() -> str:
-    """The preset that ``"recommended"`` stands for."""
-    return str(_gyrocore.preset_names()[1])
-
-
-#: Parameters that each give the static bias (or where to measure it); at most one may be set.
-BIAS_SOURCES = ("bias", "bias_window", "bias_duration")
-
-
-def uses_static_bias(preset: str) -> bool:
-    """Whether ``preset`` subtracts a static bias (and so wants a bias or a rest window)."""
-    return bool(_gyrocore.preset_uses_static_bias(preset))
-
-
-def has_bias_source(overrides: dict[str, Any]) -> bool:
-    """Whether ``overrides`` (SI or degree spelling) set the static bias or its rest window."""
-    return any(_to_si(overrides).get(k) is not None for k in BIAS_SOURCES)
-
-
-def parameters() -> dict[str, str]:
-    """Every pipeline parameter with its description and unit."""
-    return dict(_gyrocore.parameter_names())
-
-
-def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
-    """Convert ``*_dps`` / ``*_deg`` spellings to the SI parameter names, and a list or array (a
-    window) to the tuple the core takes."""
-    si: dict[str, Any] = {}
-    for key, value in overrides.items():
-        if isinstance(value, (list, np.ndarray)):
-            value = tuple(value.tolist() if isinstance(value, np.ndarray) else value)
-        if key.endswith("_dps") and key[:-4] in _RATE_PARAMETERS:
-            name, value = key[:-4], _radians(key, value)
-        elif key == "initial_heading_deg":
-            name, value = "initial_heading", _radians(key, value)
-        else:
-            name = key
-        if name in si:
-            raise ValueError(f"{name} is given twice (as {name} and in degrees)")
-        si[name] = value
-    return si
-
-
-def _radians(key: str, value: Any) -> float | None:
-    """The value of a parameter given in degrees (``key``), in radians; None stays None."""
-    if value is None:
-        return None
-    try:
-        return math.radians(value)
-    except TypeError:
-        raise TypeError(f"invalid parameter {key} = {value!r}: must be a number of degrees") from None
-
-
-def preset_params(preset: str = "hdr", **overrides: Any) -> dict[str, Any]:
-    """The flat SI parameters of ``preset`` with ``overrides`` applied (validated by the core)."""
-    si = _to_si(overrides)
-    try:
-        return dict(_gyrocore.preset_params(preset, si))
-    except (TypeError, ValueError) as e:
-        raise _named_error(preset, si, e) from None
-
-
-def core_pipeline(preset: str, si: dict[str, Any]) -> _gyrocore.Pipeline:
-    """The core's pipeline of ``preset`` with the SI parameters ``si``: each parameter and the
-    rules between them checked (``PipelineConfig::validate``), the one in error named."""
-    try:
-        return _gyrocore.Pipeline(preset, si)
-    except (TypeError, ValueError) as e:
-        raise _named_error(preset, si, e) from None
-
-
-def _named_error(preset: str, si: dict[str, Any], error: TypeError | ValueError) -> TypeError | ValueError:
-    """The core's error with the parameter it is about and what that parameter takes, where its
-    message names no parameter (a conversion: "must be real number, not str", "expected tuple of
-    length 2, but got tuple of length 3"; the core converts them all at once)."""
-    if any(key in str(error) for key in si):  # the core's own words name it already
-        return error
-    for key, value in si.items():
-        try:
-            _gyrocore.preset_params(preset, {key: value})
-        except type(error) as e:
-            what = parameters().get(key, "")
-            return type(error)(f"invalid parameter {key} = {value!r}: {e}; {key} is {what}")
-    return error
 
 
 class Pipeline:

@@ -23,7 +23,8 @@ from typing import Any, Callable, Mapping, Sequence
 import numpy as np
 
 from ._extras import require
-from .pipeline import _to_si, preset_params
+from .pipeline import preset_params
+from .pipeline_params import _to_si
 from .tune_cases import (
     HARM_MIXES,
     OBJECTIVES,

@@ -33,6 +33,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -48,11 +49,11 @@ from .pipeline import (
     BIAS_SOURCES,
     HeadingResult,
     Pipeline,
-    _to_si,
     core_pipeline,
     preset_params,
     uses_static_bias,
 )
+from .pipeline_params import _to_si
 from .result import OutArrays, filled, out_arrays
 from .rests import Rest, refuse_speed_t_alone, speed_on
 from .window import Window
@@ -143,8 +144,29 @@ class BiasPlan:
     overrides: dict[str, Any] = field(default_factory=dict)
     smoothed: SmoothedBias | None = None
     warning: str | None = None
-    bias_error: float = 0.0
-    """The smoothed bias's standard error, root mean square over the log [rad/s] (0 without rests)."""
+    given_error: float = 0.0
+    """A given rest window's standard error [rad/s]: :attr:`bias_error` where there is no ``bound``."""
+    bound: SmoothedBias | None = None
+    """The used rests' bias smoothed with the walk of HDR's bound (``hdr_bound_walk``), or None (a
+    given rest window, or no rest)."""
+    times: FloatArray | None = None
+    """The log's times, over which :attr:`bias_error` is the root mean square of ``bound``'s
+    standard error (None: over the rests' middles)."""
+
+    @cached_property
+    def bias_error(self) -> float:
+        """The bias's standard error that HDR's bound (``hdr_bound_sigmas``) scales with, root mean
+        square over the log [rad/s] (0 without rests).
+
+        Computed on first use, by :meth:`scaled` for a configuration with that bound: over every
+        sample of a long log it is about a third of whole mode's time, which a configuration
+        without one does not pay. Whether there is one is known only from the parameters that
+        finally run, not from the plan's preset (a tuning run plans a log once and lays each
+        evaluation's fitted values over the preset's)."""
+        if self.bound is None:
+            return self.given_error
+        variance = self.bound.variance_at(self.times) if self.times is not None else self.bound.variance
+        return math.sqrt(float(np.mean(variance)))
 
     def bias(self, t: FloatArray) -> FloatArray | float:
         """The bias to subtract at the times ``t`` [rad/s] (0 without rests)."""
@@ -269,7 +291,7 @@ def plan(
         measure: ``measure(window, found_by) -> Rest``.
         find: ``find() -> [(start, end, found_by)]``, called only when no bias source is given.
         times: the log's times where known (found rests): the HDR bound is the smoothed bias's
-            standard error over them (its walk ``options.hdr_bound_walk``).
+            standard error over them (its walk ``options.hdr_bound_walk``; :attr:`BiasPlan.bias_error`).
         options: the bias's walk, the significance test (``bias_sigmas``: found rests whose mean
             is within this many standard errors of 0 leave the bias at 0: a calibrated gyro, whose
             rests show how it reads at rest, not a bias) and the HDR bound's walk.
@@ -285,7 +307,7 @@ def plan(
         label = f"first {si['bias_duration']:g} s: " if key == "bias_duration" else ""
         smoothed = _smooth((rest,), 0.0)
         source = f"{label}rest {rest}, applied from the first sample"
-        given = BiasPlan(source, (rest,), overrides, smoothed, bias_error=rest.bias_std_error)
+        given = BiasPlan(source, (rest,), overrides, smoothed, given_error=rest.bias_std_error)
         return given.with_scaled(preset, rest_of)
     rests = accept([measure((a, b), how) for a, b, how in find()], walk)
     used = tuple(r for r in rests if r.refused is None)
@@ -296,9 +318,7 @@ def plan(
             "mode (on the command line: --bias-window, --bias-duration or --bias-dps)"
         )
         return BiasPlan("none: no rest found in the log; bias 0", tuple(rests), overrides, None, warning)
-    smoothed = _smooth(used, walk)
-    bound = _smooth(used, options.hdr_bound_walk)
-    bias_error = math.sqrt(float(np.mean(bound.variance_at(times) if times is not None else bound.variance)))
+    smoothed, bound = _smooth(used, walk), _smooth(used, options.hdr_bound_walk)
     refused = f"; {len(rests) - len(used)} refused" if len(rests) > len(used) else ""
     # the inverse-variance mean of the rests (the smoother without a walk): is there a bias at all?
     level = _smooth(used, 0.0)
@@ -308,13 +328,14 @@ def plan(
             f"{len(used)} rest(s) read {math.degrees(mean):.5f} +- {math.degrees(error):.2g} deg/s, within "
             f"{options.bias_sigmas:g} standard errors of 0: bias 0{refused}"
         )
-        return BiasPlan(source, tuple(rests), overrides, bias_error=bias_error).with_scaled(preset, rest_of)
+        return BiasPlan(source, tuple(rests), overrides, bound=bound, times=times).with_scaled(preset, rest_of)
     source = (
         f"rest {used[0]}, applied from the first sample"
         if len(used) == 1
         else f"{len(used)} rests, bias smoothed between them (bias_walk {walk:.3g} rad/s/sqrt(s))"
     )
-    return BiasPlan(source + refused, tuple(rests), overrides, smoothed, bias_error=bias_error).with_scaled(preset, rest_of)
+    found = BiasPlan(source + refused, tuple(rests), overrides, smoothed, bound=bound, times=times)
+    return found.with_scaled(preset, rest_of)
 
 
 @dataclass(frozen=True)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import inspect
 import math
 import pickle
 import warnings
@@ -242,3 +243,15 @@ def test_parameter_rules_are_the_cores_with_its_message() -> None:
     for overrides in ({"lowpass_tau": 0.4, "hdr": True}, {"hdr": True, "lowpass_tau": 0.4}):
         p = gyrocore.Pipeline("static_bias", bias=0.0, delag=True, **overrides)
         assert p.params["lowpass_tau"] == 0.4 and p.params["hdr"]
+
+
+def test_the_pipeline_module_re_exports_every_public_name_of_its_presets_and_parameters_part() -> None:
+    # gyrocore.pipeline_params is a part of gyrocore.pipeline: its names are the pipeline's, in
+    # its __all__ (from which the docs site renders the module)
+    from gyrocore import pipeline, pipeline_params
+
+    own = [name for name, value in vars(pipeline_params).items() if not name.startswith("_")
+           and not inspect.ismodule(value) and getattr(value, "__module__", pipeline_params.__name__) == pipeline_params.__name__]
+    assert {"preset_params", "parameters", "BIAS_SOURCES"} <= set(own) <= set(pipeline.__all__)
+    assert all(getattr(pipeline, name) is getattr(pipeline_params, name) for name in own)
+    assert all(hasattr(pipeline, name) for name in pipeline.__all__)
