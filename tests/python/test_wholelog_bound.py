@@ -109,3 +109,15 @@ def test_a_tuning_case_computes_the_bound_once_for_the_first_evaluation_with_one
         assert variance_calls == ([] if i <= 2 else [len(t)])  # none before the first bounded evaluation
         np.testing.assert_array_equal(case.heading(preset, overrides).heading.view(np.uint64), heading.view(np.uint64))
     assert variance_calls == [len(t)]  # and none after it
+
+
+@pytest.mark.parametrize("preset", ["static_bias", "recommended"])
+def test_a_streamed_plan_keeps_no_copy_of_the_log_times(preset: str) -> None:
+    # gyrocore process plans a file (its rests found over the whole log), then streams it: the
+    # bound is scaled by then, and the times would only hold 8 bytes a sample through that pass.
+    t, rate, _ = wandering()
+    chunks = lambda: iter([(t, rate)])  # noqa: E731 - the stream of one chunk
+    plan = wholelog.plan_stream(preset, {}, chunks, lambda: (t, rate, None))
+    assert plan.times is None and plan.used
+    in_memory = wholelog.plan_arrays(preset, {}, t, rate, None, wholelog.Options())
+    assert plan.overrides == in_memory.overrides and plan.source == in_memory.source
