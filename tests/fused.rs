@@ -145,6 +145,24 @@ fn fails_on_fix(
     assert_eq!(*fused, before);
 }
 
+/// Runs the rest of the drive from sample `from` (the fixes from `used` on) after errors that
+/// changed nothing: every column must be what one uninterrupted run writes.
+fn carries_on_as_one_run(
+    fused: &mut FusedPipeline,
+    (t, rate): (&[f64], &[f64]),
+    all: &[Fix],
+    used: usize,
+    cols: &mut Columns,
+    from: usize,
+) {
+    let rest = block(fused, &t[from..], &rate[from..], &all[used..], cols, from).unwrap();
+    assert_eq!(used + rest, all.len());
+    let (whole, _) = chunked(t, rate, all, &[]);
+    for c in 0..6 {
+        assert_eq!(bits(&cols[c]), bits(&whole[c]), "column {c}");
+    }
+}
+
 #[test]
 fn equals_the_pipeline_then_the_filter() {
     let (t, mut rate) = drive(120.0);
@@ -263,25 +281,12 @@ fn a_bad_fix_or_sample_changes_nothing_and_is_named() {
     assert_eq!(fused, snapshot);
 
     // carrying on after both errors gives what an uninterrupted run gives
-    let rest = block(
-        &mut fused,
-        &t[1000..],
-        &rate[1000..],
-        &all[used..],
-        &mut cols,
-        1000,
-    )
-    .unwrap();
-    assert_eq!(used + rest, all.len());
-    let (whole, _) = chunked(&t, &rate, &all, &[]);
-    for c in 0..6 {
-        assert_eq!(bits(&cols[c]), bits(&whole[c]), "column {c}");
-    }
+    carries_on_as_one_run(&mut fused, (&t, &rate), &all, used, &mut cols, 1000);
 }
 
 #[test]
 fn a_bad_sample_deep_in_a_long_block_changes_nothing_and_is_named() {
-    // A long block runs in chunks: an error in a later chunk undoes the chunks before it.
+    // An error anywhere in a long block, early or late, undoes the whole block.
     let (t, rate) = drive(60.0);
     let all = fixes(&t);
     let (c, f) = config();
@@ -306,20 +311,7 @@ fn a_bad_sample_deep_in_a_long_block_changes_nothing_and_is_named() {
         }
         assert_eq!(fused, before, "sample {bad}");
     }
-    let rest = block(
-        &mut fused,
-        &t[500..],
-        &rate[500..],
-        &all[used..],
-        &mut cols,
-        500,
-    )
-    .unwrap();
-    assert_eq!(used + rest, all.len());
-    let (whole, _) = chunked(&t, &rate, &all, &[]);
-    for c in 0..6 {
-        assert_eq!(bits(&cols[c]), bits(&whole[c]), "column {c}");
-    }
+    carries_on_as_one_run(&mut fused, (&t, &rate), &all, used, &mut cols, 500);
 }
 
 #[test]

@@ -99,19 +99,25 @@ fn an_output_of_the_wrong_length_is_an_error() {
     ));
 }
 
-#[test]
-fn a_block_that_passes_an_empty_rest_window_changes_nothing() {
+/// A stream with a gap over its rest window, [75, 80] s: no sample between 70 and 90 s (20 s to
+/// 40 s after the start), so none inside the window.
+fn stream_past_an_empty_window() -> (Vec<f64>, Vec<f64>, PipelineConfig) {
     let (t, r) = stream(3000);
     let mut c = Preset::Tuned.config();
-    // The stream has a gap over the whole window: 20 s to 40 s after the start, none inside.
     c.correction.bias = StaticBias::Window {
         start: 75.0,
         end: 80.0,
     };
-    let t: Vec<f64> = t
+    let t = t
         .iter()
         .map(|&x| if x > 70.0 { x + 20.0 } else { x })
         .collect();
+    (t, r, c)
+}
+
+#[test]
+fn a_block_that_passes_an_empty_rest_window_changes_nothing() {
+    let (t, r, c) = stream_past_an_empty_window();
     let mut p = Pipeline::new(c).unwrap();
     let head = 500;
     common::try_block(&mut p, &t[..head], &r[..head]).unwrap();
@@ -140,17 +146,7 @@ fn a_block_that_passes_an_empty_rest_window_changes_nothing() {
 
 #[test]
 fn a_sample_stream_tells_when_it_passed_an_empty_rest_window() {
-    let (t, r) = stream(3000);
-    let mut c = Preset::Tuned.config();
-    c.correction.bias = StaticBias::Window {
-        start: 75.0,
-        end: 80.0,
-    };
-    // No sample between 70 and 90 s: the window is passed without a reading inside.
-    let t: Vec<f64> = t
-        .iter()
-        .map(|&x| if x > 70.0 { x + 20.0 } else { x })
-        .collect();
+    let (t, r, mut c) = stream_past_an_empty_window();
     let mut p = Pipeline::new(c).unwrap();
     let mut missed = Vec::new();
     for (&ti, &ri) in t.iter().zip(&r) {
@@ -160,7 +156,7 @@ fn a_sample_stream_tells_when_it_passed_an_empty_rest_window() {
     // Silent until the first sample past the window's end, then the block path's own error.
     let first_past = t.iter().position(|&x| x > 80.0).unwrap();
     assert!(missed[..first_past].iter().all(Option::is_none));
-    let e = missed[first_past].clone().unwrap();
+    let e = missed[first_past].unwrap();
     assert!(
         matches!(e, Error::EmptyRestWindow { start: 75.0, end: 80.0, first: 50.0, last }
             if last == t[first_past]),
