@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Iterator, Sequence
-from contextlib import contextmanager
+from contextlib import AbstractContextManager, contextmanager
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 from typing import Any
@@ -163,6 +163,24 @@ class _FileJob:
 
     def run(self, progress: Progress | None = None) -> FileReport:
         start = time.perf_counter()
+        # every warning the file raises, from opening it to its last chunk, is a note of its
+        # report, also of a file that then fails (what came before an error often says why)
+        with _noted(self.notes):
+            plan, rows_out = self._stream(progress)
+        return FileReport(
+            str(self.path),
+            str(self.out),
+            self.rows_in,
+            rows_out,
+            time.perf_counter() - start,
+            None,
+            tuple(dict.fromkeys(self.notes)),
+            plan.source,
+            plan.rests,
+        )
+
+    def _stream(self, progress: Progress | None) -> tuple[wholelog.BiasPlan, int]:
+        """Plan the bias and stream the file into its output: the plan, and the rows written."""
         source = io.open_source(self.path, self.read_options)
         io.check_output(self.out, source)
         overrides = dict(self.overrides)
@@ -177,32 +195,30 @@ class _FileJob:
                     f"{source.data_path}: the rest window {_window_text(window)} ends before the first sample; "
                     + time_range(t0)
                 )
-        notes = self.notes = []
         if source.kind == "log folder" and (source.path / FIXES_CSV).is_file():
-            notes.append(f"{FIXES_CSV} is not used when logs are streamed: process the log alone with "
-                         "`gyrocore process` or gyrocore.Log.process to fuse its heading fixes")
+            warn(f"{FIXES_CSV} is not used when logs are streamed: process the log alone with "
+                 "`gyrocore process` or gyrocore.Log.process to fuse its heading fixes")
         from_meta = False
         if uses_static_bias(self.preset) and not has_bias_source(overrides) and source.stationary is not None:
             overrides["bias_window"], from_meta = source.stationary, True
-        with _noted(notes):  # e.g. an odometry.csv in another clock, which whole mode then does without
-            plan = self._plan(source, overrides, from_meta)
-        if plan.warning and self.mode == "whole":  # a causal pipeline warns itself
-            warn(plan.warning)
+        plan = self._plan(source, overrides, from_meta)
         if plan.warning:
-            notes.append(plan.warning)
-        pipeline = plan.pipeline(self.preset)  # a bias constant over the log: the core's bias=, no copy per chunk
+            warn(plan.warning)
+        with _said_for_the_file():
+            pipeline = plan.pipeline(self.preset)  # a bias constant over the log: the core's bias=, no copy per chunk
         check = io.UnitCheck(source.options)
         with io.HeadingWriter(self.out, heading=self.heading, columns=self.columns) as writer:
             for chunk in source.chunks(self.chunk_rows):
                 _signals.check()  # a signal whose KeyboardInterrupt a library swallowed stops here
                 check.update(chunk.t, chunk.rate)
                 try:
-                    result = pipeline.process(
-                        chunk.t,
-                        plan.corrected(chunk.t, chunk.rate),
-                        index_offset=chunk.first_row,
-                        outputs=self.outputs,
-                    )
+                    with _said_for_the_file():
+                        result = pipeline.process(
+                            chunk.t,
+                            plan.corrected(chunk.t, chunk.rate),
+                            index_offset=chunk.first_row,
+                            outputs=self.outputs,
+                        )
                 except SampleError as e:
                     # a timestamp beyond the core's limits is most often an epoch in a smaller unit
                     fix = check.time_fix() if e.what == "t" else None
@@ -223,18 +239,9 @@ class _FileJob:
                 raise _in_file(source, e, from_meta) from None
             if writer.rows != self.rows_in:  # the pipeline returns one row per sample; prove it
                 raise RuntimeError(f"{self.path}: {self.rows_in} rows read but {writer.rows} written")
-        notes += check.problems() + _repairs(pipeline.report)
-        return FileReport(
-            str(self.path),
-            str(self.out),
-            self.rows_in,
-            writer.rows,
-            time.perf_counter() - start,
-            None,
-            tuple(dict.fromkeys(notes)),
-            plan.source,
-            plan.rests,
-        )
+        for message in check.problems() + _repairs(pipeline.report):
+            warn(message)
+        return plan, writer.rows
 
     def _plan(self, source: io.GyroSource, overrides: dict[str, Any], from_meta: bool) -> wholelog.BiasPlan:
         """Where the bias comes from: in whole mode a first pass over the file (see
@@ -295,17 +302,24 @@ class _FileJob:
         return FileReport(str(self.path), None, self.rows_in, 0, seconds, failed, tuple(dict.fromkeys(self.notes)))
 
 
+def _said_for_the_file() -> AbstractContextManager[None]:
+    """Drops the warnings the pipeline raises about one chunk (its units, on the first; what it
+    repaired so far; no bias in causal mode): the file's report says each once for the whole file,
+    whatever the chunks, naming the options that fix it (the unit check, :func:`_repairs`, the
+    plan's warning), and a caller of the API gets the report's warnings, no others."""
+    return collected([])
+
+
 @contextmanager
 def _noted(notes: list[str]) -> Iterator[None]:
     """Run the block keeping each :class:`InputWarning` it raises as a note of the file's report
     (the command line prints the notes, with the file's name), and raise every warning again for a
-    caller of the API."""
-    start = len(notes)
+    caller of the API, each once."""
     try:
         with collected(notes):  # per thread: the files of a batch run side by side
             yield
     finally:  # also when the block fails: what came before an error often says why
-        for message in notes[start:]:
+        for message in dict.fromkeys(notes):
             warn(message)
 
 

@@ -8,6 +8,7 @@ import signal
 import subprocess
 import sys
 import time
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -129,7 +130,7 @@ def test_nan_rate_names_the_line_or_is_held_and_reported(tmp_path: Path) -> None
     src.write_text("t,gyro_z\n" + "".join(f"{i},{'nan' if i == 70 else 0.001}\n" for i in range(100)))
     with pytest.raises(ValueError, match=rf"rate\[70\] is NaN.*\({src}, line 72\)"):
         process_file(src, tmp_path / "h.csv", preset="raw", chunk_rows=30)
-    with pytest.warns(gyrocore.InputWarning, match="replaced by the last usable reading"):
+    with pytest.warns(gyrocore.InputWarning, match="replaced by the last usable one"):  # the report's words
         report = process_file(src, tmp_path / "h.csv", preset="raw", chunk_rows=30, nonfinite="hold")
     assert report.rows_out == 100 and any("1 readings not finite or beyond +-2^20 replaced" in w for w in report.warnings)
 
@@ -339,3 +340,39 @@ def test_batch_rejects_invalid_parameters_before_any_work(tmp_path: Path) -> Non
     synthetic_csv(tmp_path / "a.csv", 100)
     with pytest.raises(ValueError, match="hdr_c2"):
         process_many([tmp_path / "a.csv"], out_dir=tmp_path / "out", preset="hdr", hdr_c2=-1.0)
+
+
+def drive_with_repairs(path: Path, *, repeat: int | None = None) -> Path:
+    """A Parquet log whose float32 times resolve only 1/128 s (still increasing at 100 Hz), with a
+    forward clock jump of 10 s (a gap, bridged) and a NaN reading (held); ``repeat``: that row's
+    time repeats the one before, an error after all of them."""
+    t = 1e5 + np.arange(3000) * 0.01
+    t[2000:] += 10.0
+    if repeat is not None:
+        t[repeat] = t[repeat - 1]
+    rate = np.full(len(t), 0.001)
+    rate[2500] = np.nan
+    pq.write_table(pa.table({"t": pa.array(t, pa.float32()), "gyro_z": rate}), path)
+    return path
+
+
+@pytest.mark.filterwarnings("ignore::gyrocore.InputWarning")  # the batch's, raised again on its threads
+def test_a_files_report_holds_every_warning_it_raised(tmp_path: Path) -> None:
+    # a given bias: the file is read once, as it streams, and everything it warns about comes then
+    good = drive_with_repairs(tmp_path / "jump.parquet")
+    bad = drive_with_repairs(tmp_path / "repeat.parquet", repeat=2800)
+    options = {"bias_dps": 0.0, "nonfinite": "hold", "chunk_rows": 1000}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        report = process_file(good, tmp_path / "h.csv", **options)
+    float32 = "the times are float32, which at their size resolve only 0.0078125 s"
+    assert any(w.startswith(float32) for w in report.warnings), report.warnings
+    assert any(w.startswith("1 gaps, the longest 10.0") for w in report.warnings), report.warnings  # float32 rounds
+    # a caller of the API gets those same warnings, and no others, each from the line that called
+    assert sorted(str(w.message) for w in caught) == sorted(report.warnings)
+    assert {w.filename for w in caught} == {__file__}
+    # in a batch on parallel threads, each file's own, also of the file that failed
+    summary = process_many([good, bad], out_dir=tmp_path / "out", jobs=2, **options)
+    assert summary.files[0].warnings == report.warnings
+    assert not summary.files[1].ok and "must strictly increase" in (summary.files[1].error or "")
+    assert any(w.startswith(float32) for w in summary.files[1].warnings), summary.files[1].warnings
