@@ -4,11 +4,12 @@ from __future__ import annotations
 
 import argparse
 import warnings
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
 from .. import io
-from .._checks import InputWarning
+from .._checks import InputWarning, collected
 from ..batch import check_outside_inputs, expand_inputs, output_paths, process_file, process_many
 from ._fixes import add_fix_options, process_with_fixes, uses_fixes
 from ._common import (
@@ -158,15 +159,29 @@ def run(args: argparse.Namespace) -> int:
 def _one(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
     if len(inputs) != 1:
         raise ValueError(f"--out {out} is one file but there are {len(inputs)} inputs; give a folder")
-    with progress_bar(inputs[0].name) as bar:
-        report = process_file(inputs[0], out, progress=bar, **_run_options(args), **kwargs)
-    for w in report.warnings:
-        warn(f"{report.input}: {w}")
+    raised: list[str] = []
+    try:
+        # a file that fails has no report to carry its warnings: they are collected here (as
+        # warnings they are ignored, see run)
+        with progress_bar(inputs[0].name) as bar, collected(raised):
+            report = process_file(inputs[0], out, progress=bar, **_run_options(args), **kwargs)
+    except Exception:
+        # what looked wrong before the error often says why (float32 times that cannot increase);
+        # the error follows, in one line
+        _warn_about(inputs[0], raised)
+        raise
+    _warn_about(inputs[0], report.warnings)
     if args.json:
         print_json(report.as_dict())
     else:
         print(report)
     return 0
+
+
+def _warn_about(path: str | Path, messages: Iterable[str]) -> None:
+    """A file's warnings on stderr, each naming the file (its report's warnings do not)."""
+    for message in messages:
+        warn(f"{path}: {message}")
 
 
 def _run_options(args: argparse.Namespace) -> dict[str, Any]:
@@ -187,8 +202,7 @@ def _many(out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
         **kwargs,
     )
     for report in summary.files:
-        for w in report.warnings:
-            warn(f"{report.input}: {w}")
+        _warn_about(report.input, report.warnings)
     if args.json:
         print_json(summary.as_dict())
     else:
