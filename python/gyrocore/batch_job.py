@@ -5,7 +5,7 @@ report of what it did (:class:`FileReport`) and a batch's (:class:`BatchReport`)
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import AbstractContextManager, contextmanager
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
@@ -40,6 +40,11 @@ class FileReport:
         warnings: what looked wrong but was processed (units, a missing rest window, repairs).
         bias_source: where the static bias came from (None if the file failed).
         rests: the rests whose bias was used in whole mode.
+        held, skipped: readings not finite or beyond +-2^20 that the input policy held or skipped
+            (``nonfinite``); 0 if the file failed.
+        gaps, longest_gap: intervals longer than ``gap_limit``, bridged or reset (``gap_action``),
+            and the longest [s]; 0 if the file failed. These four are named as the keys of
+            :attr:`gyrocore.Pipeline.report`, and said in the warnings too.
     """
 
     input: str
@@ -51,6 +56,10 @@ class FileReport:
     warnings: tuple[str, ...] = ()
     bias_source: str | None = None
     rests: tuple[wholelog.Rest, ...] = ()
+    held: int = 0
+    skipped: int = 0
+    gaps: int = 0
+    longest_gap: float = 0.0
 
     @property
     def ok(self) -> bool:
@@ -70,9 +79,12 @@ class FileReport:
         if not self.ok:
             return failed_line(self.input, self.error or "")
         lines = [
-            f"ok     {self.input}: {self.rows_in} rows in, {self.rows_out} out -> {self.output} ({self.seconds:.2f} s)",
-            f"       bias: {self.bias_source}",
+            f"ok     {self.input}: {self.rows_in} rows in, {self.rows_out} out -> {self.output} ({self.seconds:.2f} s)"
         ]
+        policy = _repairs(vars(self))
+        if policy:  # also among the warnings, on stderr: the report is the file's record, kept with its output
+            lines.append(f"       input policy: {'; '.join(policy)}")
+        lines.append(f"       bias: {self.bias_source}")
         lines += wholelog.rest_lines(self.bias_source or "", self.rests, " " * 9)
         return "\n".join(lines)
 
@@ -162,25 +174,14 @@ class _FileJob:
         self.notes: list[str] = []
 
     def run(self, progress: Progress | None = None) -> FileReport:
-        start = time.perf_counter()
         # every warning the file raises, from opening it to its last chunk, is a note of its
         # report, also of a file that then fails (what came before an error often says why)
         with _noted(self.notes):
-            plan, rows_out = self._stream(progress)
-        return FileReport(
-            str(self.path),
-            str(self.out),
-            self.rows_in,
-            rows_out,
-            time.perf_counter() - start,
-            None,
-            tuple(dict.fromkeys(self.notes)),
-            plan.source,
-            plan.rests,
-        )
+            return self._stream(progress)
 
-    def _stream(self, progress: Progress | None) -> tuple[wholelog.BiasPlan, int]:
-        """Plan the bias and stream the file into its output: the plan, and the rows written."""
+    def _stream(self, progress: Progress | None) -> FileReport:
+        """Plan the bias and stream the file into its output."""
+        start = time.perf_counter()
         source = io.open_source(self.path, self.read_options)
         io.check_output(self.out, source)
         overrides = dict(self.overrides)
@@ -239,9 +240,24 @@ class _FileJob:
                 raise _in_file(source, e, from_meta) from None
             if writer.rows != self.rows_in:  # the pipeline returns one row per sample; prove it
                 raise RuntimeError(f"{self.path}: {self.rows_in} rows read but {writer.rows} written")
-        for message in check.problems() + _repairs(pipeline.report):
+        policy = pipeline.report
+        for message in check.problems() + _repairs(policy):
             warn(message)
-        return plan, writer.rows
+        return FileReport(
+            str(self.path),
+            str(self.out),
+            self.rows_in,
+            writer.rows,
+            time.perf_counter() - start,
+            None,
+            tuple(dict.fromkeys(self.notes)),  # all of them: each warning is collected as it is raised
+            plan.source,
+            plan.rests,
+            int(policy["held"]),
+            int(policy["skipped"]),
+            int(policy["gaps"]),
+            policy["longest_gap"],
+        )
 
     def _plan(self, source: io.GyroSource, overrides: dict[str, Any], from_meta: bool) -> wholelog.BiasPlan:
         """Where the bias comes from: in whole mode a first pass over the file (see
@@ -344,8 +360,9 @@ def _in_file(source: io.GyroSource, error: ValueError, window_from_meta: bool) -
     return ValueError(f"{text if str(source.data_path) in text else f'{source.data_path}: {text}'}{where}")
 
 
-def _repairs(report: dict[str, float]) -> list[str]:
-    """What the pipeline's input policy repaired (NaN readings held or skipped, gaps)."""
+def _repairs(report: Mapping[str, float]) -> list[str]:
+    """What the pipeline's input policy repaired (NaN readings held or skipped, gaps), from its
+    :attr:`~gyrocore.Pipeline.report` or a file's report: the warnings and the ok line say the same."""
     notes = []
     if report["held"]:
         notes.append(f"{int(report['held'])} readings not finite or beyond +-2^20 replaced by the last usable one")

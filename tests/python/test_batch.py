@@ -376,3 +376,21 @@ def test_a_files_report_holds_every_warning_it_raised(tmp_path: Path) -> None:
     assert summary.files[0].warnings == report.warnings
     assert not summary.files[1].ok and "must strictly increase" in (summary.files[1].error or "")
     assert any(w.startswith(float32) for w in summary.files[1].warnings), summary.files[1].warnings
+
+
+@pytest.mark.filterwarnings("ignore::gyrocore.InputWarning")  # the same words, raised
+def test_the_ok_line_says_what_the_input_policy_did(tmp_path: Path) -> None:
+    t = 1.7e9 + np.arange(3000) * 0.01
+    t[1500:] += 10.0  # a forward clock jump: a gap, bridged
+    rate = np.full(len(t), 0.001)
+    rate[[700, 2000]] = np.nan
+    pa_csv.write_csv(pa.table({"t": t, "gyro_z": rate}), src := tmp_path / "jump.csv")
+    summary = process_many([src], out_dir=tmp_path / "out", nonfinite="hold")
+    said = "2 readings not finite or beyond +-2^20 replaced by the last usable one; 1 gaps, the longest 10.01 s"
+    ok_line, policy = str(summary).splitlines()[:2]
+    assert ok_line.startswith(f"ok     {src}: 3000 rows in, 3000 out") and policy == f"       input policy: {said}"
+    report = summary.files[0].as_dict()
+    assert (report["held"], report["skipped"], report["gaps"]) == (2, 0, 1)
+    assert report["longest_gap"] == pytest.approx(10.01)
+    # a file the policy left alone says nothing of it
+    assert "input policy" not in str(process_file(synthetic_csv(tmp_path / "plain.csv", 3000), tmp_path / "h.csv"))
