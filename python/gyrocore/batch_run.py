@@ -54,7 +54,9 @@ def _finished_meanwhile(futures: Iterable[tuple[int, Any]], reports: dict[int, F
             continue
         try:
             reports[i] = future.result()
-        except Exception:  # noqa: BLE001 - a lost worker: no report, and no output
+        # a file the signal stopped (its chunk check raised the KeyboardInterrupt, see _signals),
+        # or a lost worker: no report, and no output; the batch's own interrupt is raised after
+        except (Exception, KeyboardInterrupt):  # noqa: BLE001
             continue
 
 

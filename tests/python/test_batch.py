@@ -7,6 +7,7 @@ import os
 import signal
 import subprocess
 import sys
+import threading
 import time
 import warnings
 from pathlib import Path
@@ -301,19 +302,26 @@ def test_an_interrupted_batch_stops_the_files_running_on_the_cluster(tmp_path: P
     assert [r.output for r in interrupted.value.finished] == [str(out / "short.csv")]
 
 
-def test_an_interrupted_batch_says_which_files_it_finished(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+@pytest.mark.parametrize("signal_flag", [False, True])
+def test_an_interrupted_batch_says_which_files_it_finished(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, signal_flag: bool
+) -> None:
     # Their outputs are complete; without the list a user could only guess which to run again.
-    from gyrocore import batch_run
+    from gyrocore import _signals, batch_run
 
     files = [synthetic_csv(tmp_path / "short.csv", 1000), synthetic_csv(tmp_path / "long.csv", 3_000_000)]
+    monkeypatch.setattr(_signals, "_received", threading.Event())
 
     def interrupt(self: object, n: int = 1) -> None:
+        if signal_flag:  # as a signal's handler does: the running file then stops with a KeyboardInterrupt
+            _signals._received.set()
         raise KeyboardInterrupt
 
     monkeypatch.setattr(batch_run._NoBar, "update", interrupt)
     out = tmp_path / "out"
-    with pytest.raises(batch_run.BatchInterrupted) as interrupted:
+    with pytest.raises(KeyboardInterrupt) as interrupted:
         process_many(files, out_dir=out, jobs=2, preset="raw", bias=0.0)
+    assert isinstance(interrupted.value, batch_run.BatchInterrupted)
     assert str(interrupted.value) == f"1 file(s) finished before it, complete: {out / 'short.csv'}"
     assert sorted(p.name for p in out.iterdir()) == ["short.csv"]
 
