@@ -15,6 +15,7 @@ from . import _signals, io, rests, wholelog
 from ._arrays import FloatArray
 from ._checks import collected, first_infinite, warn
 from ._gyrocore import SampleError
+from .batch_inputs import complete_output
 from .io._columns import concat
 from .io._logfolder import FIXES_CSV, read_odometry
 from .pipeline import RestWindowError, _to_si, has_bias_source, uses_static_bias
@@ -45,6 +46,8 @@ class FileReport:
         gaps, longest_gap: intervals longer than ``gap_limit``, bridged or reset (``gap_action``),
             and the longest [s]; 0 if the file failed. These four are named as the keys of
             :attr:`gyrocore.Pipeline.report`, and said in the warnings too.
+        output_existed: the file was skipped, not processed: its output existed already
+            (``skip_existing``).
     """
 
     input: str
@@ -60,11 +63,12 @@ class FileReport:
     skipped: int = 0
     gaps: int = 0
     longest_gap: float = 0.0
+    output_existed: bool = False
 
     @property
     def ok(self) -> bool:
-        """Whether the file was processed completely."""
-        return self.error is None
+        """Whether the file was processed completely (by this run: not a file skipped)."""
+        return self.error is None and not self.output_existed
 
     def as_dict(self) -> dict[str, Any]:
         """Plain data for JSON."""
@@ -76,6 +80,8 @@ class FileReport:
         }
 
     def __str__(self) -> str:
+        if self.output_existed:
+            return f"skipped {self.input}: {self.output} exists already"
         if not self.ok:
             return failed_line(self.input, self.error or "")
         lines = [
@@ -110,7 +116,12 @@ class BatchReport:
     @property
     def failed(self) -> tuple[FileReport, ...]:
         """The files that failed, with their reason."""
-        return tuple(r for r in self.files if not r.ok)
+        return tuple(r for r in self.files if r.error is not None)
+
+    @property
+    def skipped(self) -> tuple[FileReport, ...]:
+        """The files not processed, since their outputs existed already."""
+        return tuple(r for r in self.files if r.output_existed)
 
     @property
     def rows_in(self) -> int:
@@ -127,6 +138,7 @@ class BatchReport:
         return {
             "ok": len(self.succeeded),
             "failed": len(self.failed),
+            "skipped": len(self.skipped),
             "rows_in": self.rows_in,
             "rows_out": self.rows_out,
             "seconds": self.seconds,
@@ -135,8 +147,9 @@ class BatchReport:
 
     def __str__(self) -> str:
         lines = [str(r) for r in self.files]
+        skipped = f", {len(self.skipped)} skipped (their outputs exist already)" if self.skipped else ""
         lines.append(
-            f"{len(self.succeeded)} of {len(self.files)} files processed, {len(self.failed)} failed; "
+            f"{len(self.succeeded)} of {len(self.files)} files processed{skipped}, {len(self.failed)} failed; "
             f"{self.rows_in} rows in, {self.rows_out} out, {self.seconds:.2f} s"
         )
         return "\n".join(lines)
@@ -162,9 +175,10 @@ class _FileJob:
         columns: Sequence[str] = io.OUTPUT_COLUMNS,
         mode: str = "whole",
         use_speed: bool = True,
+        skip_existing: bool = False,
     ):
         self.path, self.out, self.preset, self.heading, self.chunk_rows = path, out, preset, heading, chunk_rows
-        self.mode, self.use_speed = mode, use_speed
+        self.mode, self.use_speed, self.skip_existing = mode, use_speed, skip_existing
         self.read_options, self.overrides = split_options(options)
         self.columns = io.check_columns(columns)
         # the core computes the heading always, the rate and drift only for a column of theirs
@@ -174,6 +188,9 @@ class _FileJob:
         self.notes: list[str] = []
 
     def run(self, progress: Progress | None = None) -> FileReport:
+        # checked where the file is written (a Dask worker): its input is not even opened
+        if self.skip_existing and complete_output(self.out):
+            return FileReport(str(self.path), str(self.out), 0, 0, 0.0, output_existed=True)
         # every warning the file raises, from opening it to its last chunk, is a note of its
         # report, also of a file that then fails (what came before an error often says why)
         with _noted(self.notes):
