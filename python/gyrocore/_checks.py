@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import sys
@@ -9,7 +10,6 @@ import threading
 import types
 import warnings
 from collections.abc import Iterator
-from contextlib import contextmanager
 
 import numpy as np
 
@@ -95,13 +95,16 @@ def require_radians(name: str, t: FloatArray, heading: FloatArray) -> None:
 
 
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
+#: A context manager of the package that warns as it exits (a file's notes, raised again) is left
+#: through contextlib's frames, which are no caller's either.
+_CONTEXTLIB = os.path.abspath(contextlib.__file__)
 
 
 #: Where :func:`warn` puts its messages on this thread instead of raising them (see :func:`collected`).
 _collector = threading.local()
 
 
-@contextmanager
+@contextlib.contextmanager
 def collected(notes: list[str]) -> Iterator[None]:
     """Within the block, :func:`warn` on this thread appends its message to ``notes`` instead of
     raising it. The warnings module's filters and hooks are global (``catch_warnings`` is not
@@ -125,9 +128,14 @@ def warn(message: str) -> None:
     # stacklevel 1 is this function; 2 its caller, and so on up to the first frame outside.
     level = 2
     frame: types.FrameType | None = sys._getframe(1)
-    while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(_PACKAGE_DIR):
+    while frame is not None and _inside(os.path.abspath(frame.f_code.co_filename)):
         level, frame = level + 1, frame.f_back
     warnings.warn(message, InputWarning, stacklevel=level)
+
+
+def _inside(path: str) -> bool:
+    """Whether code in the file ``path`` is the package's (or contextlib's, running the package's)."""
+    return path.startswith(_PACKAGE_DIR) or path == _CONTEXTLIB
 
 
 def warn_units(t: FloatArray, rate: FloatArray) -> None:

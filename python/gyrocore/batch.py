@@ -23,12 +23,12 @@ from typing import Any
 from . import io, wholelog
 from .pipeline import Pipeline, has_bias_source
 from .pipeline_params import _to_si
-from .batch_inputs import check_outside_inputs, expand_inputs, output_paths
+from .batch_inputs import check_outside_inputs, complete_output, expand_inputs, output_paths
 from .batch_job import BatchReport, FileReport, Progress, _FileJob, split_options
 from .batch_run import _run_on_dask, _run_on_threads
 
 __all__ = [
-    "BatchReport", "FileReport", "Progress", "check_outside_inputs", "expand_inputs", "output_paths",
+    "BatchReport", "FileReport", "Progress", "check_outside_inputs", "complete_output", "expand_inputs", "output_paths",
     "process_file", "process_many", "split_options",
 ]
 
@@ -99,6 +99,7 @@ def process_many(
     columns: Sequence[str] = io.OUTPUT_COLUMNS,
     mode: str = "whole",
     use_speed: bool = True,
+    skip_existing: bool = False,
     **options: Any,
 ) -> BatchReport:
     """Process a fleet of logs in parallel: threads on this machine, or a Dask cluster.
@@ -115,10 +116,15 @@ def process_many(
         fmt: ``csv`` or ``parquet``.
         heading, chunk_rows, columns, mode, use_speed, **options: as for :func:`process_file`.
         progress: show a bar over the files on a terminal.
+        skip_existing: a file whose output exists already is not processed, and its report says
+            it was skipped (:attr:`BatchReport.skipped`): a batch that was interrupted or failed in
+            part goes on where it stopped. An output that exists is complete (see
+            :func:`complete_output`); neither its input nor its options are compared. Without it
+            an existing output is replaced.
 
     Returns:
-        Reports of all files, in input order: the ones that failed with their reason, the others
-        with rows in and out.
+        Reports of all files, in input order: the ones that failed with their reason, the ones
+        skipped, the others with rows in and out.
 
     Raises:
         ValueError: no input, invalid options, two inputs mapping to one output, or an output
@@ -155,7 +161,7 @@ def process_many(
                          "file ending in .csv or .parquet")
     Path(out_dir).mkdir(parents=True, exist_ok=True)
     jobs_list = [
-        _FileJob(p, o, preset, heading, chunk_rows, options, columns, mode, use_speed)
+        _FileJob(p, o, preset, heading, chunk_rows, options, columns, mode, use_speed, skip_existing)
         for p, o in zip(inputs, outputs)
     ]
     if client is not None:

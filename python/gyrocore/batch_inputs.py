@@ -99,6 +99,14 @@ def _named_as_input(path: Path) -> bool:
     return io.is_input(path) or lacks_gyro(path) or (not path.is_dir() and path.suffix.lower() in io.FILE_SUFFIXES)
 
 
+def complete_output(path: Path) -> bool:
+    """Whether a run finished the output ``path``: it is a regular file. Outputs are written under a
+    hidden temporary name, synced and renamed over ``path`` only once every row is through
+    (:mod:`gyrocore.io.atomic`), so an output that exists is complete; an interrupted or failed run
+    leaves none (a hard kill may leave the hidden temporary file, never ``path``)."""
+    return path.is_file()
+
+
 def output_paths(inputs: Sequence[Path], out_dir: Path, fmt: str) -> list[Path]:
     """``out_dir/<input name without suffix>.<fmt>`` for each input; refuses two inputs that would
     share an output."""

@@ -5,8 +5,8 @@ report of what it did (:class:`FileReport`) and a batch's (:class:`BatchReport`)
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from contextlib import AbstractContextManager, contextmanager
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 from typing import Any
@@ -15,6 +15,7 @@ from . import _signals, io, rests, wholelog
 from ._arrays import FloatArray
 from ._checks import collected, first_infinite, warn
 from ._gyrocore import SampleError
+from .batch_inputs import complete_output
 from .io._columns import concat
 from .io._logfolder import FIXES_CSV, read_odometry
 from .pipeline import RestWindowError, has_bias_source, uses_static_bias
@@ -41,6 +42,13 @@ class FileReport:
         warnings: what looked wrong but was processed (units, a missing rest window, repairs).
         bias_source: where the static bias came from (None if the file failed).
         rests: the rests whose bias was used in whole mode.
+        held, skipped: readings not finite or beyond +-2^20 that the input policy held or skipped
+            (``nonfinite``); 0 if the file failed.
+        gaps, longest_gap: intervals longer than ``gap_limit``, bridged or reset (``gap_action``),
+            and the longest [s]; 0 if the file failed. These four are named as the keys of
+            :attr:`gyrocore.Pipeline.report`, and said in the warnings too.
+        output_existed: the file was skipped, not processed: its output existed already
+            (``skip_existing``).
     """
 
     input: str
@@ -52,11 +60,16 @@ class FileReport:
     warnings: tuple[str, ...] = ()
     bias_source: str | None = None
     rests: tuple[wholelog.Rest, ...] = ()
+    held: int = 0
+    skipped: int = 0
+    gaps: int = 0
+    longest_gap: float = 0.0
+    output_existed: bool = False
 
     @property
     def ok(self) -> bool:
-        """Whether the file was processed completely."""
-        return self.error is None
+        """Whether the file was processed completely (by this run: not a file skipped)."""
+        return self.error is None and not self.output_existed
 
     def as_dict(self) -> dict[str, Any]:
         """Plain data for JSON."""
@@ -68,12 +81,17 @@ class FileReport:
         }
 
     def __str__(self) -> str:
+        if self.output_existed:
+            return f"skipped {self.input}: {self.output} exists already"
         if not self.ok:
             return failed_line(self.input, self.error or "")
         lines = [
-            f"ok     {self.input}: {self.rows_in} rows in, {self.rows_out} out -> {self.output} ({self.seconds:.2f} s)",
-            f"       bias: {self.bias_source}",
+            f"ok     {self.input}: {self.rows_in} rows in, {self.rows_out} out -> {self.output} ({self.seconds:.2f} s)"
         ]
+        policy = _repairs(vars(self))
+        if policy:  # also among the warnings, on stderr: the report is the file's record, kept with its output
+            lines.append(f"       input policy: {'; '.join(policy)}")
+        lines.append(f"       bias: {self.bias_source}")
         lines += wholelog.rest_lines(self.bias_source or "", self.rests, " " * 9)
         return "\n".join(lines)
 
@@ -99,7 +117,12 @@ class BatchReport:
     @property
     def failed(self) -> tuple[FileReport, ...]:
         """The files that failed, with their reason."""
-        return tuple(r for r in self.files if not r.ok)
+        return tuple(r for r in self.files if r.error is not None)
+
+    @property
+    def skipped(self) -> tuple[FileReport, ...]:
+        """The files not processed, since their outputs existed already."""
+        return tuple(r for r in self.files if r.output_existed)
 
     @property
     def rows_in(self) -> int:
@@ -116,6 +139,7 @@ class BatchReport:
         return {
             "ok": len(self.succeeded),
             "failed": len(self.failed),
+            "skipped": len(self.skipped),
             "rows_in": self.rows_in,
             "rows_out": self.rows_out,
             "seconds": self.seconds,
@@ -124,8 +148,9 @@ class BatchReport:
 
     def __str__(self) -> str:
         lines = [str(r) for r in self.files]
+        skipped = f", {len(self.skipped)} skipped (their outputs exist already)" if self.skipped else ""
         lines.append(
-            f"{len(self.succeeded)} of {len(self.files)} files processed, {len(self.failed)} failed; "
+            f"{len(self.succeeded)} of {len(self.files)} files processed{skipped}, {len(self.failed)} failed; "
             f"{self.rows_in} rows in, {self.rows_out} out, {self.seconds:.2f} s"
         )
         return "\n".join(lines)
@@ -151,9 +176,10 @@ class _FileJob:
         columns: Sequence[str] = io.OUTPUT_COLUMNS,
         mode: str = "whole",
         use_speed: bool = True,
+        skip_existing: bool = False,
     ):
         self.path, self.out, self.preset, self.heading, self.chunk_rows = path, out, preset, heading, chunk_rows
-        self.mode, self.use_speed = mode, use_speed
+        self.mode, self.use_speed, self.skip_existing = mode, use_speed, skip_existing
         self.read_options, self.overrides = split_options(options)
         self.columns = io.check_columns(columns)
         # the core computes the heading always, the rate and drift only for a column of theirs
@@ -163,6 +189,16 @@ class _FileJob:
         self.notes: list[str] = []
 
     def run(self, progress: Progress | None = None) -> FileReport:
+        # checked where the file is written (a Dask worker): its input is not even opened
+        if self.skip_existing and complete_output(self.out):
+            return FileReport(str(self.path), str(self.out), 0, 0, 0.0, output_existed=True)
+        # every warning the file raises, from opening it to its last chunk, is a note of its
+        # report, also of a file that then fails (what came before an error often says why)
+        with _noted(self.notes):
+            return self._stream(progress)
+
+    def _stream(self, progress: Progress | None) -> FileReport:
+        """Plan the bias and stream the file into its output."""
         start = time.perf_counter()
         source = io.open_source(self.path, self.read_options)
         io.check_output(self.out, source)
@@ -178,32 +214,30 @@ class _FileJob:
                     f"{source.data_path}: the rest window {_window_text(window)} ends before the first sample; "
                     + time_range(t0)
                 )
-        notes = self.notes = []
         if source.kind == "log folder" and (source.path / FIXES_CSV).is_file():
-            notes.append(f"{FIXES_CSV} is not used when logs are streamed: process the log alone with "
-                         "`gyrocore process` or gyrocore.Log.process to fuse its heading fixes")
+            warn(f"{FIXES_CSV} is not used when logs are streamed: process the log alone with "
+                 "`gyrocore process` or gyrocore.Log.process to fuse its heading fixes")
         from_meta = False
         if uses_static_bias(self.preset) and not has_bias_source(overrides) and source.stationary is not None:
             overrides["bias_window"], from_meta = source.stationary, True
-        with _noted(notes):  # e.g. an odometry.csv in another clock, which whole mode then does without
-            plan = self._plan(source, overrides, from_meta)
-        if plan.warning and self.mode == "whole":  # a causal pipeline warns itself
-            warn(plan.warning)
+        plan = self._plan(source, overrides, from_meta)
         if plan.warning:
-            notes.append(plan.warning)
-        pipeline = plan.pipeline(self.preset)  # a bias constant over the log: the core's bias=, no copy per chunk
+            warn(plan.warning)
+        with _said_for_the_file():
+            pipeline = plan.pipeline(self.preset)  # a bias constant over the log: the core's bias=, no copy per chunk
         check = io.UnitCheck(source.options)
         with io.HeadingWriter(self.out, heading=self.heading, columns=self.columns) as writer:
             for chunk in source.chunks(self.chunk_rows):
                 _signals.check()  # a signal whose KeyboardInterrupt a library swallowed stops here
                 check.update(chunk.t, chunk.rate)
                 try:
-                    result = pipeline.process(
-                        chunk.t,
-                        plan.corrected(chunk.t, chunk.rate),
-                        index_offset=chunk.first_row,
-                        outputs=self.outputs,
-                    )
+                    with _said_for_the_file():
+                        result = pipeline.process(
+                            chunk.t,
+                            plan.corrected(chunk.t, chunk.rate),
+                            index_offset=chunk.first_row,
+                            outputs=self.outputs,
+                        )
                 except SampleError as e:
                     # a timestamp beyond the core's limits is most often an epoch in a smaller unit
                     fix = check.time_fix() if e.what == "t" else None
@@ -224,7 +258,9 @@ class _FileJob:
                 raise _in_file(source, e, from_meta) from None
             if writer.rows != self.rows_in:  # the pipeline returns one row per sample; prove it
                 raise RuntimeError(f"{self.path}: {self.rows_in} rows read but {writer.rows} written")
-        notes += check.problems() + _repairs(pipeline.report)
+        policy = pipeline.report
+        for message in check.problems() + _repairs(policy):
+            warn(message)
         return FileReport(
             str(self.path),
             str(self.out),
@@ -232,9 +268,13 @@ class _FileJob:
             writer.rows,
             time.perf_counter() - start,
             None,
-            tuple(dict.fromkeys(notes)),
+            tuple(dict.fromkeys(self.notes)),  # all of them: each warning is collected as it is raised
             plan.source,
             plan.rests,
+            int(policy["held"]),
+            int(policy["skipped"]),
+            int(policy["gaps"]),
+            policy["longest_gap"],
         )
 
     def _plan(self, source: io.GyroSource, overrides: dict[str, Any], from_meta: bool) -> wholelog.BiasPlan:
@@ -296,17 +336,24 @@ class _FileJob:
         return FileReport(str(self.path), None, self.rows_in, 0, seconds, failed, tuple(dict.fromkeys(self.notes)))
 
 
+def _said_for_the_file() -> AbstractContextManager[None]:
+    """Drops the warnings the pipeline raises about one chunk (its units, on the first; what it
+    repaired so far; no bias in causal mode): the file's report says each once for the whole file,
+    whatever the chunks, naming the options that fix it (the unit check, :func:`_repairs`, the
+    plan's warning), and a caller of the API gets the report's warnings, no others."""
+    return collected([])
+
+
 @contextmanager
 def _noted(notes: list[str]) -> Iterator[None]:
     """Run the block keeping each :class:`InputWarning` it raises as a note of the file's report
     (the command line prints the notes, with the file's name), and raise every warning again for a
-    caller of the API."""
-    start = len(notes)
+    caller of the API, each once."""
     try:
         with collected(notes):  # per thread: the files of a batch run side by side
             yield
     finally:  # also when the block fails: what came before an error often says why
-        for message in notes[start:]:
+        for message in dict.fromkeys(notes):
             warn(message)
 
 
@@ -331,8 +378,9 @@ def _in_file(source: io.GyroSource, error: ValueError, window_from_meta: bool) -
     return ValueError(f"{text if str(source.data_path) in text else f'{source.data_path}: {text}'}{where}")
 
 
-def _repairs(report: dict[str, float]) -> list[str]:
-    """What the pipeline's input policy repaired (NaN readings held or skipped, gaps)."""
+def _repairs(report: Mapping[str, float]) -> list[str]:
+    """What the pipeline's input policy repaired (NaN readings held or skipped, gaps), from its
+    :attr:`~gyrocore.Pipeline.report` or a file's report: the warnings and the ok line say the same."""
     notes = []
     if report["held"]:
         notes.append(f"{int(report['held'])} readings not finite or beyond +-2^20 replaced by the last usable one")

@@ -54,8 +54,10 @@ def _finished_meanwhile(futures: Iterable[tuple[int, Any]], reports: dict[int, F
             continue
         try:
             reports[i] = future.result()
-        except (Exception, KeyboardInterrupt):  # noqa: BLE001 - no report, and no output: a lost
-            continue  # worker, or a file the signal stopped (its thread raises at its next check)
+        # a file the signal stopped (its chunk check raised the KeyboardInterrupt, see _signals),
+        # or a lost worker: no report, and no output; the batch's own interrupt is raised after
+        except (Exception, KeyboardInterrupt):  # noqa: BLE001
+            continue
 
 
 def _interrupted(e: BaseException, reports: dict[int, FileReport]) -> None:

@@ -7,7 +7,9 @@ import os
 import signal
 import subprocess
 import sys
+import threading
 import time
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -129,7 +131,7 @@ def test_nan_rate_names_the_line_or_is_held_and_reported(tmp_path: Path) -> None
     src.write_text("t,gyro_z\n" + "".join(f"{i},{'nan' if i == 70 else 0.001}\n" for i in range(100)))
     with pytest.raises(ValueError, match=rf"rate\[70\] is NaN.*\({src}, line 72\)"):
         process_file(src, tmp_path / "h.csv", preset="raw", chunk_rows=30)
-    with pytest.warns(gyrocore.InputWarning, match="replaced by the last usable reading"):
+    with pytest.warns(gyrocore.InputWarning, match="replaced by the last usable one"):  # the report's words
         report = process_file(src, tmp_path / "h.csv", preset="raw", chunk_rows=30, nonfinite="hold")
     assert report.rows_out == 100 and any("1 readings not finite or beyond +-2^20 replaced" in w for w in report.warnings)
 
@@ -300,19 +302,26 @@ def test_an_interrupted_batch_stops_the_files_running_on_the_cluster(tmp_path: P
     assert [r.output for r in interrupted.value.finished] == [str(out / "short.csv")]
 
 
-def test_an_interrupted_batch_says_which_files_it_finished(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+@pytest.mark.parametrize("signal_flag", [False, True])
+def test_an_interrupted_batch_says_which_files_it_finished(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, signal_flag: bool
+) -> None:
     # Their outputs are complete; without the list a user could only guess which to run again.
-    from gyrocore import batch_run
+    from gyrocore import _signals, batch_run
 
     files = [synthetic_csv(tmp_path / "short.csv", 1000), synthetic_csv(tmp_path / "long.csv", 3_000_000)]
+    monkeypatch.setattr(_signals, "_received", threading.Event())
 
     def interrupt(self: object, n: int = 1) -> None:
+        if signal_flag:  # as a signal's handler does: the running file then stops with a KeyboardInterrupt
+            _signals._received.set()
         raise KeyboardInterrupt
 
     monkeypatch.setattr(batch_run._NoBar, "update", interrupt)
     out = tmp_path / "out"
-    with pytest.raises(batch_run.BatchInterrupted) as interrupted:
+    with pytest.raises(KeyboardInterrupt) as interrupted:
         process_many(files, out_dir=out, jobs=2, preset="raw", bias=0.0)
+    assert isinstance(interrupted.value, batch_run.BatchInterrupted)
     assert str(interrupted.value) == f"1 file(s) finished before it, complete: {out / 'short.csv'}"
     assert sorted(p.name for p in out.iterdir()) == ["short.csv"]
 
@@ -339,3 +348,57 @@ def test_batch_rejects_invalid_parameters_before_any_work(tmp_path: Path) -> Non
     synthetic_csv(tmp_path / "a.csv", 100)
     with pytest.raises(ValueError, match="hdr_c2"):
         process_many([tmp_path / "a.csv"], out_dir=tmp_path / "out", preset="hdr", hdr_c2=-1.0)
+
+
+def drive_with_repairs(path: Path, *, repeat: int | None = None) -> Path:
+    """A Parquet log whose float32 times resolve only 1/128 s (still increasing at 100 Hz), with a
+    forward clock jump of 10 s (a gap, bridged) and a NaN reading (held); ``repeat``: that row's
+    time repeats the one before, an error after all of them."""
+    t = 1e5 + np.arange(3000) * 0.01
+    t[2000:] += 10.0
+    if repeat is not None:
+        t[repeat] = t[repeat - 1]
+    rate = np.full(len(t), 0.001)
+    rate[2500] = np.nan
+    pq.write_table(pa.table({"t": pa.array(t, pa.float32()), "gyro_z": rate}), path)
+    return path
+
+
+@pytest.mark.filterwarnings("ignore::gyrocore.InputWarning")  # the batch's, raised again on its threads
+def test_a_files_report_holds_every_warning_it_raised(tmp_path: Path) -> None:
+    # a given bias: the file is read once, as it streams, and everything it warns about comes then
+    good = drive_with_repairs(tmp_path / "jump.parquet")
+    bad = drive_with_repairs(tmp_path / "repeat.parquet", repeat=2800)
+    options = {"bias_dps": 0.0, "nonfinite": "hold", "chunk_rows": 1000}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        report = process_file(good, tmp_path / "h.csv", **options)
+    float32 = "the times are float32, which at their size resolve only 0.0078125 s"
+    assert any(w.startswith(float32) for w in report.warnings), report.warnings
+    assert any(w.startswith("1 gaps, the longest 10.0") for w in report.warnings), report.warnings  # float32 rounds
+    # a caller of the API gets those same warnings, and no others, each from the line that called
+    assert sorted(str(w.message) for w in caught) == sorted(report.warnings)
+    assert {w.filename for w in caught} == {__file__}
+    # in a batch on parallel threads, each file's own, also of the file that failed
+    summary = process_many([good, bad], out_dir=tmp_path / "out", jobs=2, **options)
+    assert summary.files[0].warnings == report.warnings
+    assert not summary.files[1].ok and "must strictly increase" in (summary.files[1].error or "")
+    assert any(w.startswith(float32) for w in summary.files[1].warnings), summary.files[1].warnings
+
+
+@pytest.mark.filterwarnings("ignore::gyrocore.InputWarning")  # the same words, raised
+def test_the_ok_line_says_what_the_input_policy_did(tmp_path: Path) -> None:
+    t = 1.7e9 + np.arange(3000) * 0.01
+    t[1500:] += 10.0  # a forward clock jump: a gap, bridged
+    rate = np.full(len(t), 0.001)
+    rate[[700, 2000]] = np.nan
+    pa_csv.write_csv(pa.table({"t": t, "gyro_z": rate}), src := tmp_path / "jump.csv")
+    summary = process_many([src], out_dir=tmp_path / "out", nonfinite="hold")
+    said = "2 readings not finite or beyond +-2^20 replaced by the last usable one; 1 gaps, the longest 10.01 s"
+    ok_line, policy = str(summary).splitlines()[:2]
+    assert ok_line.startswith(f"ok     {src}: 3000 rows in, 3000 out") and policy == f"       input policy: {said}"
+    report = summary.files[0].as_dict()
+    assert (report["held"], report["skipped"], report["gaps"]) == (2, 0, 1)
+    assert report["longest_gap"] == pytest.approx(10.01)
+    # a file the policy left alone says nothing of it
+    assert "input policy" not in str(process_file(synthetic_csv(tmp_path / "plain.csv", 3000), tmp_path / "h.csv"))

@@ -243,3 +243,18 @@ def test_a_reader_that_closes_the_pipe_ends_the_command_quietly(tmp_path: Path) 
     assert proc.wait(timeout=120) == 141
     assert proc.stderr.read() == b""
     assert len(out.read_text().splitlines()) == 2737  # a header and every sample
+
+
+def test_process_of_one_file_that_fails_prints_the_warnings_before_its_error(tmp_path: Path) -> None:
+    # float32 epoch times cannot increase: the warning that says why comes first, the error stays one line
+    pa = pytest.importorskip("pyarrow")
+    import pyarrow.parquet as pq
+
+    path = tmp_path / "f32.parquet"
+    t = (1.7e9 + np.arange(200) * 0.01).astype(np.float32)
+    pq.write_table(pa.table({"t": pa.array(t, pa.float32()), "gyro_z": np.zeros(len(t))}), path)
+    proc = gyrocore_cli("process", path, "--out", tmp_path / "h.csv", code=2)
+    warned, error = proc.stderr.splitlines()
+    assert warned.startswith(f"gyrocore: warning: {path}: the times are float32, which at their size resolve only 128 s")
+    assert error.startswith("gyrocore: error: ") and "must strictly increase" in error
+    assert not (tmp_path / "h.csv").exists()

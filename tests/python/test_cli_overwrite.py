@@ -1,18 +1,19 @@
 """No command replaces a file the user has: an output that exists already is refused before any
-work, in one line naming it, unless ``--overwrite`` is given; the output is never an input, even
-with ``--overwrite``."""
+work, in one line naming it, unless ``--overwrite`` is given (or, for a batch, ``--skip-existing``
+keeps it and skips its input); the output is never an input, even with ``--overwrite``."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
 
-from gyrocore import datasets
+from gyrocore import batch_run, datasets
 from gyrocore.cli import main
 
 from .conftest import gyrocore_cli
-from .test_batch import synthetic_csv
+from .test_batch import read_table, synthetic_csv
 
 MINE = "the user's own file\n"
 
@@ -96,3 +97,51 @@ def test_the_demo_replaces_its_own_plot(tmp_path: Path, monkeypatch: pytest.Monk
     Path("gyrocore_demo.png").write_text("the previous run's plot")
     assert main(["demo", "--duration", "60", "--drives", "1"]) == 0
     assert Path("gyrocore_demo.png").read_bytes().startswith(b"\x89PNG")
+
+
+def test_skip_existing_resumes_an_interrupted_batch(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    short, long = synthetic_csv(logs / "short.csv", 1000), synthetic_csv(logs / "long.csv", 3_000_000)
+    out = tmp_path / "out"
+    args = ["process", str(logs), "--out", str(out), "--preset", "raw", "--jobs", "2"]
+
+    def interrupt(self: object, n: int = 1) -> None:  # as the first file is done
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(batch_run._NoBar, "update", interrupt)
+    assert main(args) == 130
+    line = capsys.readouterr().err.strip()
+    assert line.startswith("gyrocore: interrupted; no partial output was left; 1 file(s) finished before it")
+    assert line.endswith("; to go on, run it again with --skip-existing: it processes only the inputs without an "
+                         "output")
+    monkeypatch.undo()
+    finished = (out / "short.csv").read_bytes()
+    assert sorted(p.name for p in out.iterdir()) == ["short.csv"]
+    # the finished output is kept, its input named as skipped and counted; the other one is processed
+    assert main([*args, "--skip-existing"]) == 0
+    stdout = capsys.readouterr().out
+    assert f"skipped {short}: {out / 'short.csv'} exists already\n" in stdout and f"ok     {long}: " in stdout
+    assert "1 of 2 files processed, 1 skipped (their outputs exist already), 0 failed; " in stdout
+    assert (out / "short.csv").read_bytes() == finished and len(read_table(out / "long.csv")) == 3_000_000
+    assert main([*args, "--skip-existing", "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert (summary["ok"], summary["skipped"], summary["failed"], summary["rows_in"]) == (0, 2, 0, 0)
+    assert all(f["output_existed"] and not f["ok"] and f["error"] is None for f in summary["files"])
+
+
+def test_skip_existing_is_for_an_output_folder_without_overwrite(tmp_path: Path) -> None:
+    src = synthetic_csv(tmp_path / "small.csv", 300)
+    folder = tmp_path / "outF"
+    proc = gyrocore_cli("process", src, "--out", folder, "--skip-existing", "--overwrite", code=2)
+    assert "argument --overwrite: not allowed with argument --skip-existing" in proc.stderr
+    proc = gyrocore_cli("process", src, "--out", tmp_path / "h.csv", "--skip-existing", code=2)
+    assert proc.stderr == (f"gyrocore: error: --skip-existing is for a batch into an output folder, and --out "
+                           f"{tmp_path / 'h.csv'} is one file: leave the option out (an output that exists is "
+                           "refused unless --overwrite is given)\n")
+    # no run writes a folder where an output goes: that is refused before any work, as without the option
+    (folder / "small.csv").mkdir(parents=True)
+    proc = gyrocore_cli("process", src, "--out", folder, "--skip-existing", code=2)
+    assert proc.stderr.startswith(f"gyrocore: error: {folder / 'small.csv'} already exists; pass --overwrite")

@@ -65,7 +65,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             return 2
         except KeyboardInterrupt as e:
             discard_all()
-            finished = f"; {e}" if isinstance(e, BatchInterrupted) and str(e) else ""
+            finished = ""
+            if isinstance(e, BatchInterrupted) and str(e):  # their outputs are complete: no need to redo them
+                finished = (f"; {e}; to go on, run it again with --skip-existing: it processes only the inputs "
+                            "without an output")
             print(f"gyrocore: interrupted; no partial output was left{finished}", file=sys.stderr)
             return 130
 

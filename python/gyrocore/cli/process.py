@@ -4,12 +4,20 @@ from __future__ import annotations
 
 import argparse
 import warnings
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
 from .. import io
-from .._checks import InputWarning
-from ..batch import check_outside_inputs, expand_inputs, output_paths, process_file, process_many
+from .._checks import InputWarning, collected
+from ..batch import (
+    check_outside_inputs,
+    complete_output,
+    expand_inputs,
+    output_paths,
+    process_file,
+    process_many,
+)
 from ._fixes import add_fix_options, process_with_fixes, uses_fixes
 from ._common import (
     WINDOW_HELP,
@@ -30,7 +38,8 @@ IN is a CSV, Parquet, .npy or .npz file, a ROS 1 .bag or ROS 2 bag folder, a log
 folder of those, or a glob; give several. OUT ending in .csv or .parquet is one output file (one
 input); otherwise a folder that receives <name>.csv (or --format parquet) per input, processed in
 parallel (--jobs, or a Dask cluster with --scheduler). An output that exists already is refused
-before any work unless --overwrite is given. Exit code 0: all done; 1: some files
+before any work unless --overwrite is given, or, in an output folder, --skip-existing (which skips
+its input: outputs are written whole or not at all). Exit code 0: all done; 1: some files
 failed (listed with their reason); 2: bad usage or input (one line); 130: interrupted.
 """
 
@@ -102,7 +111,14 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         help=f"samples per chunk (default {io.DEFAULT_CHUNK_ROWS})",
     )
     out.add_argument("--json", action="store_true", help="print the report as JSON")
-    add_overwrite_option(out)
+    existing = out.add_mutually_exclusive_group()
+    add_overwrite_option(existing)
+    existing.add_argument(
+        "--skip-existing",
+        action="store_true",
+        help="in an output folder, skip each input whose output exists already (named and counted in the "
+        "report): an interrupted batch goes on where it stopped (an output appears only once complete)",
+    )
     add_fix_options(p, evaluate=False)
 
 
@@ -136,7 +152,12 @@ def run(args: argparse.Namespace) -> int:
     check_outside_inputs(args.inputs, out, inputs)
     kwargs = {**options(args), "columns": columns(args)}
     one_file = out.suffix.lower() in (".csv", ".parquet", ".pq")
-    refuse_existing([out] if one_file else output_paths(inputs, out, args.format), args.overwrite)
+    if args.skip_existing and one_file:
+        raise ValueError(f"--skip-existing is for a batch into an output folder, and --out {out} is one file: "
+                         "leave the option out (an output that exists is refused unless --overwrite is given)")
+    outputs = [out] if one_file else output_paths(inputs, out, args.format)
+    # a complete output that --skip-existing keeps is not refused; anything else there is
+    refuse_existing([p for p in outputs if not (args.skip_existing and complete_output(p))], args.overwrite)
     try:
         with warnings.catch_warnings():
             # every file's report carries these; print them once, with the file's name
@@ -158,15 +179,29 @@ def run(args: argparse.Namespace) -> int:
 def _one(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
     if len(inputs) != 1:
         raise ValueError(f"--out {out} is one file but there are {len(inputs)} inputs; give a folder")
-    with progress_bar(inputs[0].name) as bar:
-        report = process_file(inputs[0], out, progress=bar, **_run_options(args), **kwargs)
-    for w in report.warnings:
-        warn(f"{report.input}: {w}")
+    raised: list[str] = []
+    try:
+        # a file that fails has no report to carry its warnings: they are collected here (as
+        # warnings they are ignored, see run)
+        with progress_bar(inputs[0].name) as bar, collected(raised):
+            report = process_file(inputs[0], out, progress=bar, **_run_options(args), **kwargs)
+    except Exception:
+        # what looked wrong before the error often says why (float32 times that cannot increase);
+        # the error follows, in one line
+        _warn_about(inputs[0], raised)
+        raise
+    _warn_about(inputs[0], report.warnings)
     if args.json:
         print_json(report.as_dict())
     else:
         print(report)
     return 0
+
+
+def _warn_about(path: str | Path, messages: Iterable[str]) -> None:
+    """A file's warnings on stderr, each naming the file (its report's warnings do not)."""
+    for message in messages:
+        warn(f"{path}: {message}")
 
 
 def _run_options(args: argparse.Namespace) -> dict[str, Any]:
@@ -183,12 +218,12 @@ def _many(out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
         jobs=args.jobs,
         fmt=args.format,
         progress=True,
+        skip_existing=args.skip_existing,
         **_run_options(args),
         **kwargs,
     )
     for report in summary.files:
-        for w in report.warnings:
-            warn(f"{report.input}: {w}")
+        _warn_about(report.input, report.warnings)
     if args.json:
         print_json(summary.as_dict())
     else:
