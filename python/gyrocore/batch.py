@@ -26,6 +26,7 @@ from .pipeline_params import _to_si
 from .batch_inputs import check_outside_inputs, complete_output, expand_inputs, output_paths
 from .batch_job import BatchReport, FileReport, Progress, _FileJob, split_options
 from .batch_run import _run_on_dask, _run_on_threads
+from .io._paths import unfollowable
 
 __all__ = [
     "BatchReport", "FileReport", "Progress", "check_outside_inputs", "complete_output", "expand_inputs", "output_paths",
@@ -156,8 +157,9 @@ def process_many(
         wholelog.refuse_whole_options(pipeline_overrides)
     Pipeline(preset, **(pipeline_overrides if has_bias_source(overrides) else {**pipeline_overrides, "bias": 0.0}))
     outputs = output_paths(inputs, Path(out_dir), fmt)
-    if Path(out_dir).exists() and not Path(out_dir).is_dir():  # mkdir would say only "File exists"
-        raise ValueError(f"{out_dir}: not a folder, so no outputs can go into it; give a folder, or one output "
+    if os.path.lexists(out_dir) and not Path(out_dir).is_dir():  # mkdir would say only "File exists"
+        what = "not a folder" if Path(out_dir).exists() else unfollowable(Path(out_dir))
+        raise ValueError(f"{out_dir}: {what}, so no outputs can go into it; give a folder, or one output "
                          "file ending in .csv or .parquet")
     Path(out_dir).mkdir(parents=True, exist_ok=True)
     jobs_list = [

@@ -74,7 +74,8 @@ def check_outside_inputs(items: Iterable[str | Path], out: Path, inputs: Sequenc
     folder would read the outputs as logs (and a CSV output could be its own input)."""
     io.check_not_input(out, [m for item in items for m in _matches(item)[1] if m.is_dir()])
     for p in inputs:
-        if p.parent.resolve() == out.resolve():
+        # realpath, not Path.resolve, which raises RuntimeError on a link loop (see io.check_not_input)
+        if os.path.realpath(p.parent) == os.path.realpath(out):
             raise ValueError(
                 f"refusing to write into {out}: it holds the input {p}, and the outputs would be read as "
                 "logs by a later run over it; give an output folder outside the inputs"

@@ -38,6 +38,22 @@ def test_a_link_loop_an_option_names_is_an_error_not_a_traceback(tmp_path: Path,
     assert str(given) in proc.stderr
 
 
+@pytest.mark.parametrize("batch", [False, True])
+def test_a_link_loop_given_as_the_output_is_an_error_not_a_traceback(tmp_path: Path, batch: bool) -> None:
+    # one output file, or the output folder of a folder of logs
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    src = synthetic_csv(logs / "log.csv", 3000)
+    given = loop(tmp_path / ("out" if batch else "h.csv"))
+    proc = run_cli("process", logs if batch else src, "--out", given)
+    assert proc.returncode == 2
+    assert proc.stderr.startswith("gyrocore: error: ") and proc.stderr.count("\n") == 1, proc.stderr
+    assert str(given) in proc.stderr and "Traceback" not in proc.stderr
+    if batch:
+        assert "a symbolic link to" in proc.stderr and "which cannot be followed" in proc.stderr
+    assert given.is_symlink() and os.readlink(given) == str(given)  # left as it was
+
+
 @pytest.mark.parametrize(("command", "option"), [("process", "--calibration"), ("evaluate", "--params")])
 def test_a_named_pipe_given_as_a_json_file_is_refused_not_waited_on(tmp_path: Path, command: str, option: str) -> None:
     pipe = tmp_path / "settings.json"

@@ -12,12 +12,17 @@ def missing(path: Path) -> str:
     """Why ``path``, which does not exist, cannot be read: no such file, or a broken link."""
     if not path.is_symlink():
         return f"{path}: no such file or folder"
+    return f"{path}: {unfollowable(path)}"
+
+
+def unfollowable(link: Path) -> str:
+    """What a symbolic link that leads nowhere is: dangling, or a loop."""
     reason = "no such file"
     try:
-        path.stat()
+        link.stat()
     except OSError as e:  # a dangling link, or a loop (ELOOP)
         reason = e.strerror or reason
-    return f"{path}: a symbolic link to {os.readlink(path)!r}, which cannot be followed ({reason})"
+    return f"a symbolic link to {os.readlink(link)!r}, which cannot be followed ({reason})"
 
 
 def check_file(path: Path) -> None:
