@@ -19,7 +19,7 @@ from .batch_inputs import complete_output
 from .io._columns import concat
 from .io._logfolder import FIXES_CSV, read_odometry
 from .pipeline import RestWindowError, has_bias_source, uses_static_bias
-from .pipeline_params import _to_si
+from .pipeline_params import _to_si, unmeasured_bias
 from .window import Window, time_range
 
 #: ``progress(done, total, unit)``: called after each chunk with the progress through the input.
@@ -283,13 +283,9 @@ class _FileJob:
         if self.mode == "causal":
             wholelog.refuse_whole_options(_to_si(overrides))
             causal = wholelog.causal_source(self.preset, _to_si(overrides))
-            warning = None
-            if uses_static_bias(self.preset) and not has_bias_source(overrides):
-                warning = (
-                    f"preset {self.preset!r} removes a static bias but the log gives no rest window: "
-                    "the bias is taken as 0 (give bias_window, bias_duration or bias; "
-                    "--bias-window, --bias-duration or --bias-dps)"
-                )
+            warning = unmeasured_bias(self.preset, _to_si(overrides))
+            if warning is not None:  # the log gave no rest window either (its meta.json's is taken)
+                warning += " (on the command line: --bias-window, --bias-duration or --bias-dps)"
             return wholelog.BiasPlan(causal, overrides=overrides, warning=warning)
         wholelog.refuse_tracking(_to_si(overrides))
 

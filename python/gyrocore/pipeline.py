@@ -26,6 +26,7 @@ from .pipeline_params import (
     preset_names,
     preset_params,
     recommended_preset,
+    unmeasured_bias,
     uses_static_bias,
 )
 from .result import ALL_OUTPUTS as ALL_OUTPUTS, OUTPUTS as OUTPUTS, Filled, HeadingResult as HeadingResult
@@ -113,12 +114,9 @@ class Pipeline:
         self._rests: list[Rest] = []
         if fusion is not None:
             self._inner.start_fusion(_stage_settings(self.params, fusion))
-        if uses_static_bias(preset) and not has_bias_source(si):
-            until = " until the rest tracker measures one at a stop" if self.params["track_rests"] else ""
-            warn(
-                f"preset {preset!r} removes a static bias, but no bias, bias_window or bias_duration "
-                f"was given: the bias is taken as 0{until}"
-            )
+        unmeasured = unmeasured_bias(preset, si)
+        if unmeasured is not None:
+            warn(unmeasured)
 
     @property
     def preset(self) -> str:

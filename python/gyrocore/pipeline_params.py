@@ -41,6 +41,17 @@ def has_bias_source(overrides: dict[str, Any]) -> bool:
     return any(_to_si(overrides).get(k) is not None for k in BIAS_SOURCES)
 
 
+def unmeasured_bias(preset: str, si: dict[str, Any]) -> str | None:
+    """What a causal run of ``preset`` with the SI parameters ``si`` should say when the preset
+    removes a static bias that nothing gives (no bias, rest window or leading duration): it is 0,
+    until the rest tracker measures one where the run has a tracker. None when there is a source."""
+    if not uses_static_bias(preset) or has_bias_source(si):
+        return None
+    until = " until the rest tracker measures one at a stop" if preset_params(preset, **si)["track_rests"] else ""
+    return (f"preset {preset!r} removes a static bias, but no bias, bias_window or bias_duration was given: "
+            f"the bias is taken as 0{until}")
+
+
 def parameters() -> dict[str, str]:
     """Every pipeline parameter with its description and unit."""
     return dict(_gyrocore.parameter_names())

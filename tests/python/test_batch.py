@@ -219,7 +219,13 @@ def test_missing_rest_window_is_reported(tmp_path: Path) -> None:
     # Causal: no rest window given, so no bias.
     with pytest.warns(UserWarning, match="removes a static bias"):
         report = process_file(src, tmp_path / "h.csv", preset="static_bias", mode="causal")
-    assert any("no rest window" in w for w in report.warnings)
+    assert any(w.endswith("was given: the bias is taken as 0 (on the command line: --bias-window, --bias-duration "
+                          "or --bias-dps)") for w in report.warnings), report.warnings
+    # A preset with a rest tracker says what the Python pipeline says: 0 until it measures one.
+    with pytest.warns(UserWarning, match="removes a static bias"):
+        report = process_file(src, tmp_path / "t.csv", preset="tracked", mode="causal")
+    assert any("the bias is taken as 0 until the rest tracker measures one at a stop (on the command line" in w
+               for w in report.warnings), report.warnings
     # Whole mode finds the rest the file is made of, and says so.
     report = process_file(src, tmp_path / "w.csv", preset="static_bias")
     assert not report.warnings and report.bias_source is not None and "(rate)" in report.bias_source

@@ -311,7 +311,7 @@ def test_batch_is_whole_by_default_and_causal_on_request(tmp_path: Path) -> None
 
     logs = [real_log_path("f110_ds1"), real_log_path("broad_10")]
     whole = process_many(logs, preset="static_bias", out_dir=tmp_path / "w", jobs=1)
-    with pytest.warns(gyrocore.InputWarning, match="removes a static bias but the log gives no rest window"):
+    with pytest.warns(gyrocore.InputWarning, match="removes a static bias, but no bias, bias_window or bias_duration was given"):
         causal = process_many(logs, preset="static_bias", out_dir=tmp_path / "c", jobs=1, mode="causal")
     assert [len(r.rests) for r in whole.files] == [1, 1] and [len(r.rests) for r in causal.files] == [0, 0]
     assert whole.files[1].rests[0].found_by == "given" and all("(causal)" in (r.bias_source or "") for r in causal.files)
