@@ -40,7 +40,8 @@ if TYPE_CHECKING:
 __all__ = [
     "ALL_OUTPUTS", "BIAS_SOURCES", "MIN_WINDOW_READINGS", "OUTPUTS", "TEMPERATURE_MODEL", "HeadingResult", "Pipeline",
     "RestWindowError", "core_pipeline", "has_bias_source", "output_flags", "parameters", "preset_names", "preset_params",
-    "process", "recommended_preset", "refuse_few_readings", "refuse_start_before", "rest_window_text", "uses_static_bias",
+    "process", "recommended_preset", "refuse_few_readings", "refuse_start_before", "rest_window_text", "unmeasured_bias",
+    "uses_static_bias",
 ]
 
 #: The fix stage's columns of a block from the core: heading sigma, bias, scale, and the fix

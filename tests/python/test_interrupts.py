@@ -153,6 +153,9 @@ def test_the_api_raises_an_interrupt_that_came_inside_pyarrows_lazy_import(tmp_p
     script = textwrap.dedent(
         f"""
         import os, signal, sys
+        # Python's own Ctrl-C handling, also where the test runs with SIGINT ignored (a shell's
+        # background job), which a child inherits and Python then leaves alone
+        signal.signal(signal.SIGINT, signal.default_int_handler)
         class SignalDuringImport:
             def find_spec(self, name, path=None, target=None):
                 if name == "pandas":
