@@ -379,12 +379,12 @@ def _repairs(report: Mapping[str, float]) -> list[str]:
     :attr:`~gyrocore.Pipeline.report` or a file's report: the warnings and the ok line say the same."""
     notes = []
     if report["held"]:
-        notes.append(f"{int(report['held'])} readings not finite or beyond +-2^20 replaced by the last usable one")
+        notes.append(f"{int(report['held'])} reading(s) not finite or beyond +-2^20 replaced by the last usable one")
     if report["skipped"]:
         notes.append(
-            f"{int(report['skipped'])} samples skipped "
+            f"{int(report['skipped'])} sample(s) skipped "
             "(readings not finite or beyond +-2^20; their rows have a NaN rate)"
         )
     if report["gaps"]:
-        notes.append(f"{int(report['gaps'])} gaps, the longest {report['longest_gap']:.6g} s")
+        notes.append(f"{int(report['gaps'])} gap(s), the longest {report['longest_gap']:.6g} s")
     return notes

@@ -133,7 +133,7 @@ def test_nan_rate_names_the_line_or_is_held_and_reported(tmp_path: Path) -> None
         process_file(src, tmp_path / "h.csv", preset="raw", chunk_rows=30)
     with pytest.warns(gyrocore.InputWarning, match="replaced by the last usable one"):  # the report's words
         report = process_file(src, tmp_path / "h.csv", preset="raw", chunk_rows=30, nonfinite="hold")
-    assert report.rows_out == 100 and any("1 readings not finite or beyond +-2^20 replaced" in w for w in report.warnings)
+    assert report.rows_out == 100 and any("1 reading(s) not finite or beyond +-2^20 replaced" in w for w in report.warnings)
 
 
 def test_output_is_never_the_input(tmp_path: Path) -> None:
@@ -381,7 +381,7 @@ def test_a_files_report_holds_every_warning_it_raised(tmp_path: Path) -> None:
         report = process_file(good, tmp_path / "h.csv", **options)
     float32 = "the times are float32, which at their size resolve only 0.0078125 s"
     assert any(w.startswith(float32) for w in report.warnings), report.warnings
-    assert any(w.startswith("1 gaps, the longest 10.0") for w in report.warnings), report.warnings  # float32 rounds
+    assert any(w.startswith("1 gap(s), the longest 10.0") for w in report.warnings), report.warnings  # float32 rounds
     # a caller of the API gets those same warnings, and no others, each from the line that called
     assert sorted(str(w.message) for w in caught) == sorted(report.warnings)
     assert {w.filename for w in caught} == {__file__}
@@ -400,7 +400,7 @@ def test_the_ok_line_says_what_the_input_policy_did(tmp_path: Path) -> None:
     rate[[700, 2000]] = np.nan
     pa_csv.write_csv(pa.table({"t": t, "gyro_z": rate}), src := tmp_path / "jump.csv")
     summary = process_many([src], out_dir=tmp_path / "out", nonfinite="hold")
-    said = "2 readings not finite or beyond +-2^20 replaced by the last usable one; 1 gaps, the longest 10.01 s"
+    said = "2 reading(s) not finite or beyond +-2^20 replaced by the last usable one; 1 gap(s), the longest 10.01 s"
     ok_line, policy = str(summary).splitlines()[:2]
     assert ok_line.startswith(f"ok     {src}: 3000 rows in, 3000 out") and policy == f"       input policy: {said}"
     report = summary.files[0].as_dict()

@@ -53,7 +53,7 @@ def test_a_csv_whose_first_rates_are_empty(tmp_path: Path) -> None:
     proc = run_cli("process", src, "--out", out, "--preset", "raw", "--nonfinite", "skip")
     assert proc.returncode == 0
     assert proc.stderr == (
-        f"gyrocore: warning: {src}: 2 samples skipped (readings not finite or beyond +-2^20; their rows have a NaN rate)\n"
+        f"gyrocore: warning: {src}: 2 sample(s) skipped (readings not finite or beyond +-2^20; their rows have a NaN rate)\n"
     )
 
 
@@ -81,5 +81,5 @@ def test_a_reading_beyond_the_limit_is_reported_without_a_numpy_warning(tmp_path
     src.write_text("t,gyro_z\n" + "".join(f"{i / 100},{1e300 if i == 7 else 0.01}\n" for i in range(3000)))
     proc = run_cli("process", src, "--out", tmp_path / "h.csv", "--nonfinite", "hold")  # whole mode finds rests
     assert proc.returncode == 0
-    assert f"gyrocore: warning: {src}: 1 readings not finite or beyond +-2^20 replaced by the last usable one\n" in proc.stderr
+    assert f"gyrocore: warning: {src}: 1 reading(s) not finite or beyond +-2^20 replaced by the last usable one\n" in proc.stderr
     assert "overflow" not in proc.stderr
