@@ -239,6 +239,7 @@ def test_the_dead_band_widens_with_the_bias_uncertainty_between_two_stops() -> N
     assert sigma[170] < sigma[148] / 2, (sigma[148], sigma[170])
 
 
+@pytest.mark.filterwarnings("ignore:preset 'static_bias' removes a static bias")  # where no rest is found: not the subject
 @pytest.mark.parametrize("mode", ["whole", "causal"])
 @pytest.mark.parametrize(("shift", "scale", "covered", "inside"), [(1.7e9, 1.0, "0", 0), (0.0, 1e9, "100", 1), (45.0, 1.0, "25", 150)])
 def test_a_speed_in_another_time_base_or_unit_warns(mode: str, shift: float, scale: float, covered: str, inside: int) -> None:

@@ -194,6 +194,7 @@ def test_noise_scaled_preset_gets_the_bound_of_its_rest() -> None:
     assert heading_gap(whole, wider) > 1e-6
 
 
+@pytest.mark.filterwarnings("ignore:preset 'static_bias' removes a static bias")  # before a refused causal call
 def test_speed_finds_stops_and_drops_steady_driving() -> None:
     t, rate, _ = drive(120.0, [(30.0, 40.0), (70.0, 80.0)])
     speed = np.full_like(t, 8.0)
