@@ -153,15 +153,11 @@ def usable(values: FloatArray) -> np.ndarray:
 def require_readings(what: str, values: FloatArray) -> None:
     """The core's :class:`~gyrocore.SampleError` for the first of ``values`` (``what``: ``rate`` or
     ``temperature``) that is not finite or beyond :data:`MAX_READING`, naming its index; nothing if
-    every value is usable. The core checks a block before any stage sees it; here it checks the
-    values up to the first bad one only, so that its words and limit are the one rule."""
-    bad = np.flatnonzero(~usable(values))
-    if not len(bad):
-        return
-    head = values[: int(bad[0]) + 1]
-    times = np.arange(len(head), dtype=np.float64)  # valid times: the reading is what fails
-    rate, temperature = (head, None) if what == "rate" else (np.zeros(len(head)), head)
-    _gyrocore.Pipeline("raw", {}).process(times, rate, temperature)
+    every value is usable. The core's own check of a block, so that its words and limit are the
+    one rule."""
+    times = np.arange(len(values), dtype=np.float64)  # valid times: the reading is what fails
+    rate, temperature = (values, None) if what == "rate" else (np.zeros(len(values)), values)
+    _gyrocore.check_samples(times, rate, temperature)
 
 
 def _prefix(context: str) -> str:

@@ -237,3 +237,32 @@ def test_a_file_with_one_gap_is_read_in_seconds(tmp_path: Path) -> None:
     np.savetxt(src, np.c_[t, np.zeros_like(t)], delimiter=",", header="t,gyro_z", comments="", fmt="%.10g")
     proc = gyrocore_cli("process", src, "--out", tmp_path / "h.csv", "--causal", "--bias-dps", "0", code=0)
     assert proc.stderr == f"gyrocore: warning: {src}: 1 gap(s), the longest 99970 s\n"
+
+
+@pytest.mark.parametrize("bad", ["t_repeat", "t_nan", "rate_nan", "rate_huge", "temperature_inf", "lengths", "none"])
+def test_the_sample_check_says_what_a_pipeline_says(bad: str) -> None:
+    # _checks.require_readings and the Python checks of Allan and calibration inputs name a bad
+    # sample with the core's own check: the same error, word for word, as a pipeline's block
+    t, rate, temperature = np.arange(20) * 0.01, np.full(20, 0.1), np.full(20, 25.0)
+    if bad == "t_repeat":
+        t[7] = t[6]
+    elif bad == "t_nan":
+        t[3] = np.nan
+    elif bad == "rate_nan":
+        rate[5] = np.nan
+    elif bad == "rate_huge":
+        rate[9] = 5e6
+    elif bad == "temperature_inf":
+        temperature[2] = np.inf
+    elif bad == "lengths":
+        rate = rate[:-1]
+    errors = []
+    for check in (lambda: _gyrocore.check_samples(t, rate, temperature),
+                  lambda: _gyrocore.Pipeline("raw", {}).process(t, rate, temperature)):
+        try:
+            check()
+            errors.append(None)
+        except ValueError as e:
+            errors.append((type(e), str(e), getattr(e, "index", None), getattr(e, "what", None)))
+    assert errors[0] == errors[1]
+    assert (errors[0] is None) == (bad == "none")

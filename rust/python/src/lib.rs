@@ -360,6 +360,24 @@ fn parameter_names() -> Vec<(&'static str, &'static str)> {
     params::NAMES.to_vec()
 }
 
+/// The core's checks of a block of samples ([`check_block`]: lengths; finite, strictly
+/// increasing times; finite readings and temperatures within the limit of a reading), processing
+/// nothing: the error names the first bad sample, as a pipeline's would.
+#[pyfunction]
+#[pyo3(signature = (t, rate, temperature=None))]
+fn check_samples<'py>(
+    t: PyReadonlyArray1<'py, f64>,
+    rate: PyReadonlyArray1<'py, f64>,
+    temperature: Option<PyReadonlyArray1<'py, f64>>,
+) -> PyResult<()> {
+    let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
+    let temperature = match &temperature {
+        Some(x) => Some(slice("temperature", x)?),
+        None => None,
+    };
+    check_block(t, rate, temperature, None, true).map_err(value_error)
+}
+
 /// Integrates rate into a continuous heading.
 #[pyfunction]
 #[pyo3(signature = (t, rate, method="trapezoid", initial_heading=0.0))]
@@ -468,6 +486,7 @@ fn _gyrocore(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(parameter_names, m)?)?;
     m.add_function(wrap_pyfunction!(preset_uses_static_bias, m)?)?;
     m.add_function(wrap_pyfunction!(_panic_for_test, m)?)?;
+    m.add_function(wrap_pyfunction!(check_samples, m)?)?;
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
     m.add_function(wrap_pyfunction!(downsample, m)?)?;
     m.add_function(wrap_pyfunction!(static_bias_test, m)?)?;
