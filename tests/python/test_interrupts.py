@@ -289,3 +289,22 @@ def test_an_interrupt_where_python_cannot_raise_it_is_kept_without_a_traceback(
         with pytest.raises(KeyboardInterrupt):
             _signals.check()
     assert reached == [ValueError]
+
+
+def test_an_interrupt_where_the_extension_first_meets_numpy_is_no_panic(tmp_path: Path) -> None:
+    """The extension's first use of NumPy's C API ran numpy's version check, Python code that a
+    Ctrl-C can interrupt, and a KeyboardInterrupt there became a Rust panic with a traceback (seen
+    when a signal came at a command's first chunk): the API is found as the module is imported."""
+    script = textwrap.dedent(
+        """
+        import numpy, numpy.lib
+        import gyrocore
+        def interrupted(*args, **kwargs):
+            raise KeyboardInterrupt
+        numpy.lib.NumpyVersion = interrupted  # what a later first use of the C API would run
+        heading = gyrocore.integrate(numpy.arange(3.0), numpy.ones(3))
+        print(heading.tolist())
+        """
+    )
+    proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0 and proc.stdout == "[0.0, 1.0, 2.0]\n", proc.stderr

@@ -479,6 +479,10 @@ fn _panic_for_test(py: Python<'_>) {
 
 #[pymodule]
 fn _gyrocore(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // rust-numpy finds NumPy's C API on its first use, running Python code (numpy's version
+    // check) that a Ctrl-C can interrupt, and then panics. Found here, as the module is imported,
+    // before any command owns its signals, no later call meets it.
+    numpy::PyArray1::<f64>::zeros(m.py(), 0, false);
     m.add_class::<PyPipeline>()?;
     m.add("SampleError", m.py().get_type::<SampleError>())?;
     m.add_function(wrap_pyfunction!(preset_params, m)?)?;
