@@ -388,6 +388,10 @@ def car_drive(
 #: The most fixes :func:`gnss_fixes` makes: more than a 100 Hz receiver gives in a day (8.6e6);
 #: a rate of 1e9 Hz over a minute asked for 6e10 and did not end.
 MAX_FIXES = 1e7
+#: The range of the simulated fixes' noise [deg]: from the core's smallest fix sigma (1e-12 rad),
+#: which it refuses below, to half a turn, beyond which a heading's error wraps and the noise is
+#: no longer what the sigma says.
+SIGMA_DEG = (math.degrees(1e-12), 180.0)
 
 
 def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: float = 1.0,
@@ -405,9 +409,10 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     psi = np.unwrap(as_float_array("heading_ref", heading_ref))
     if len(t) < 2:
         raise ValueError("the reference needs at least two samples")
-    for name, value in (("rate_hz", rate_hz), ("sigma_deg", sigma_deg)):
-        if not (math.isfinite(value) and value > 0):
-            raise ValueError(f"{name} must be finite and > 0, got {value}")
+    if not (math.isfinite(rate_hz) and rate_hz > 0):
+        raise ValueError(f"rate_hz must be finite and > 0, got {rate_hz}")
+    if not SIGMA_DEG[0] <= sigma_deg <= SIGMA_DEG[1]:
+        raise ValueError(f"sigma_deg must be in [{SIGMA_DEG[0]:.3g}, {SIGMA_DEG[1]:g}] deg, got {sigma_deg}")
     count = (t[-1] - t[0]) * rate_hz
     if count > MAX_FIXES:
         raise ValueError(f"{count:.3e} fixes requested ({t[-1] - t[0]:g} s at {rate_hz:g} Hz): more than "
