@@ -32,6 +32,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore, motion
 from ._arrays import FloatArray, as_float_array
+from ._checks import require_series
 
 if TYPE_CHECKING:
     from .fixes import Fixes
@@ -402,11 +403,16 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     (unwrapped and linearly interpolated, rad, counter-clockwise from east) plus white Gaussian
     noise of ``sigma_deg``, which is also the fix's sigma; none inside any outage ``(start, end)``
     [s, on the reference's clock]. Same arguments, same fixes (numpy's PCG64 seeded with ``seed``).
+    The reference is finite, its times strictly increasing: a ValueError names its first sample
+    that is not.
     """
     from .fixes import Fixes
 
-    t = as_float_array("t_ref", t_ref)
-    psi = np.unwrap(as_float_array("heading_ref", heading_ref))
+    t, heading = as_float_array("t_ref", t_ref), as_float_array("heading_ref", heading_ref)
+    # checked before unwrapping: one NaN heading made every later fix NaN, times out of order
+    # made no fix, and lengths apart failed inside numpy.interp
+    require_series("t_ref", t, "heading_ref", heading, context="the reference")
+    psi = np.unwrap(heading)
     if len(t) < 2:
         raise ValueError("the reference needs at least two samples")
     if not (math.isfinite(rate_hz) and rate_hz > 0):
