@@ -260,7 +260,8 @@ def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_spe
     course is meaningless (a car at rest has none) and the sample is dropped, as is one without a
     bearing (NaN). Assumes the vehicle moves the way it points (no side slip, forward gear).
 
-    A speed that is negative, NaN or infinite is an error naming its index; samples that give no
+    A speed that is negative, NaN or infinite, or a bearing that is infinite or beyond +-2^20 deg, is
+    an error naming its index; samples that give no
     fix at all warn why (an :class:`~gyrocore.InputWarning` with the speeds seen).
     """
     tt = as_float_array("t", t)
@@ -276,6 +277,13 @@ def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_spe
         i = int(bad[0])
         raise ValueError(f"speed[{i}] is {v[i]}: a speed over ground is finite and >= 0 [m/s]; drop or repair the "
                          "sample")
+    # NaN is a sample without a course (dropped); an infinite or huge bearing is a corrupt value,
+    # which wrapped into an arbitrary heading or was dropped as if it were NaN
+    far = np.flatnonzero(np.abs(bearing) > MAX_HEADING)
+    if len(far):
+        i = int(far[0])
+        raise ValueError(f"bearing_deg[{i}] is {bearing[i]}: beyond +-2^20 deg; a course over ground is in degrees "
+                         "clockwise from north (NaN where there is none); drop or repair the sample")
     course = np.isfinite(bearing)
     keep = course & (v >= min_speed)
     if len(tt) and not keep.any():
@@ -306,7 +314,7 @@ def read_gnss_csv(path: str | Path, **options: float) -> Fixes:
     try:
         return from_gnss(cols["t"], cols["bearing"], cols["speed"], **options)
     except ValueError as e:
-        raise ValueError(_at_line(path, header, {"speed": "speed"}, e)) from None
+        raise ValueError(_at_line(path, header, {"speed": "speed", "bearing_deg": "bearing"}, e)) from None
 
 
 def read_fixes_csv(path: str | Path) -> Fixes:
