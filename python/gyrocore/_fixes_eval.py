@@ -24,6 +24,7 @@ from .evaluate import Failed, Method, Reference
 from .fixes import Fixes
 from .io import Log
 from .pipeline import process
+from .sim import SIGMA_DEG, gnss_fixes
 
 
 @dataclass(frozen=True)
@@ -63,8 +64,6 @@ class SimFixes:
 
     def fixes(self, log: Log) -> Fixes:
         """The simulated fixes of ``log`` (from its reference heading)."""
-        from .sim import gnss_fixes
-
         window = self.window(log)
         outages = () if window is None else (window,)
         return gnss_fixes(*log.reference(), seed=self.seed, rate_hz=self.rate, sigma_deg=self.sigma_deg,
@@ -89,8 +88,9 @@ def _value(option: str, key: str, text: str) -> Any:
             raise ValueError(f"{where}: give START:LENGTH in seconds (START >= 0 after the log's first sample, LENGTH > 0)")
         return window
     if key == "seed":
-        if not text.isdigit():
-            raise ValueError(f"{where}: the seed is a whole number >= 0")
+        # isdigit() is True for "²", which int() refuses; the simulator's seeds end below 2^64
+        if not (text.isascii() and text.isdigit() and int(text) < 2**64):
+            raise ValueError(f"{where}: the seed is a whole number >= 0 and below 2^64")
         return int(text)
     try:
         value = float(text)
@@ -98,6 +98,8 @@ def _value(option: str, key: str, text: str) -> Any:
         value = math.nan
     if not (math.isfinite(value) and value > 0):
         raise ValueError(f"{where}: must be a number > 0")
+    if key == "sigma_deg" and not SIGMA_DEG[0] <= value <= SIGMA_DEG[1]:
+        raise ValueError(f"{where}: the fixes' noise must be in [{SIGMA_DEG[0]:.3g}, {SIGMA_DEG[1]:g}] deg")
     return value
 
 

@@ -27,7 +27,6 @@ from numpy.typing import ArrayLike
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
 from ._checks import MAX_READING, warn
-from ._extras import require
 from .io._csvfile import _csv_header as csv_header, read_csv_columns
 from .io._paths import check_file
 from .io.units import HEADER_TIME_UNITS, _normal as normal_unit, split_unit
@@ -261,7 +260,8 @@ def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_spe
     course is meaningless (a car at rest has none) and the sample is dropped, as is one without a
     bearing (NaN). Assumes the vehicle moves the way it points (no side slip, forward gear).
 
-    A speed that is negative, NaN or infinite is an error naming its index; samples that give no
+    A speed that is negative, NaN or infinite, or a bearing that is infinite or beyond +-2^20 deg, is
+    an error naming its index; samples that give no
     fix at all warn why (an :class:`~gyrocore.InputWarning` with the speeds seen).
     """
     tt = as_float_array("t", t)
@@ -277,6 +277,13 @@ def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_spe
         i = int(bad[0])
         raise ValueError(f"speed[{i}] is {v[i]}: a speed over ground is finite and >= 0 [m/s]; drop or repair the "
                          "sample")
+    # NaN is a sample without a course (dropped); an infinite or huge bearing is a corrupt value,
+    # which wrapped into an arbitrary heading or was dropped as if it were NaN
+    far = np.flatnonzero(np.abs(bearing) > MAX_HEADING)
+    if len(far):
+        i = int(far[0])
+        raise ValueError(f"bearing_deg[{i}] is {bearing[i]}: beyond +-2^20 deg; a course over ground is in degrees "
+                         "clockwise from north (NaN where there is none); drop or repair the sample")
     course = np.isfinite(bearing)
     keep = course & (v >= min_speed)
     if len(tt) and not keep.any():
@@ -307,7 +314,7 @@ def read_gnss_csv(path: str | Path, **options: float) -> Fixes:
     try:
         return from_gnss(cols["t"], cols["bearing"], cols["speed"], **options)
     except ValueError as e:
-        raise ValueError(_at_line(path, header, {"speed": "speed"}, e)) from None
+        raise ValueError(_at_line(path, header, {"speed": "speed", "bearing_deg": "bearing"}, e)) from None
 
 
 def read_fixes_csv(path: str | Path) -> Fixes:
@@ -419,45 +426,10 @@ def as_fixes(fixes: FixesLike) -> Fixes:
                     f"got {type(fixes).__name__}")
 
 
-#: Metres per second in a knot and in a km/h (NMEA's speed units).
-KNOT, KMH = 1852.0 / 3600.0, 1.0 / 3.6
-
-
-def read_nmea(path: str | Path, **options: float) -> Fixes:
-    """Fixes from NMEA 0183 sentences (parsed by pynmea2, the ``nmea`` extra): course over ground
-    and speed of valid RMC sentences, at their UTC date and time as Unix seconds; a VTG sentence
-    supplies the course of the RMC/GGA epoch just before it where that RMC had none. Other
-    sentences are skipped; a line pynmea2 cannot parse is an error naming the file and line. The
-    times are UTC: shift them onto the gyro's clock before fusing. ``options`` go to
-    :func:`from_gnss`.
-    """
-    pynmea2 = require("pynmea2", "reading NMEA sentences")
-    path = Path(path)
-    epochs: dict[float, tuple[float, float]] = {}
-    last: float | None = None
-    with path.open(encoding="ascii", errors="replace") as f:
-        for number, line in enumerate(f, start=1):
-            if not line.strip():
-                continue
-            try:
-                msg = pynmea2.parse(line.strip())
-            except pynmea2.ParseError as e:
-                raise ValueError(f"{path}: line {number}: not an NMEA sentence ({e}); remove or repair the line") from None
-            if isinstance(msg, pynmea2.RMC) and msg.status == "A" and msg.datestamp and msg.timestamp:
-                last = msg.datetime.timestamp()
-                if msg.true_course is not None and msg.spd_over_grnd is not None:
-                    epochs[last] = (float(msg.true_course), float(msg.spd_over_grnd) * KNOT)
-            elif isinstance(msg, pynmea2.VTG) and last is not None and last not in epochs:
-                if msg.true_track is not None and msg.spd_over_grnd_kmph is not None:
-                    epochs[last] = (float(msg.true_track), float(msg.spd_over_grnd_kmph) * KMH)
-    t = np.array(sorted(epochs), dtype=float)
-    course = np.array([epochs[k][0] for k in t], dtype=float)
-    speed = np.array([epochs[k][1] for k in t], dtype=float)
-    return from_gnss(t, course, speed, **options)
-
-
-# Fixes from a track of positions live in their own module, which builds on Fixes above.
+# Fixes from a track of positions and from NMEA sentences live in their own modules, which build
+# on Fixes and from_gnss above.
 from .fixes_track import from_latlon, from_positions  # noqa: E402
+from .fixes_nmea import KMH, KNOT, read_nmea  # noqa: E402
 
 __all__ = [
     "FIXES_COLUMNS", "GNSS_COLUMNS", "KMH", "KNOT", "MAX_HEADING", "SETTINGS", "Fixes", "FixesLike", "Fusion", "FusionResult",

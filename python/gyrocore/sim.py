@@ -32,6 +32,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore, motion
 from ._arrays import FloatArray, as_float_array
+from ._checks import require_series
 
 if TYPE_CHECKING:
     from .fixes import Fixes
@@ -388,6 +389,10 @@ def car_drive(
 #: The most fixes :func:`gnss_fixes` makes: more than a 100 Hz receiver gives in a day (8.6e6);
 #: a rate of 1e9 Hz over a minute asked for 6e10 and did not end.
 MAX_FIXES = 1e7
+#: The range of the simulated fixes' noise [deg]: from the core's smallest fix sigma (1e-12 rad),
+#: which it refuses below, to half a turn, beyond which a heading's error wraps and the noise is
+#: no longer what the sigma says.
+SIGMA_DEG = (math.degrees(1e-12), 180.0)
 
 
 def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: float = 1.0,
@@ -398,16 +403,22 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     (unwrapped and linearly interpolated, rad, counter-clockwise from east) plus white Gaussian
     noise of ``sigma_deg``, which is also the fix's sigma; none inside any outage ``(start, end)``
     [s, on the reference's clock]. Same arguments, same fixes (numpy's PCG64 seeded with ``seed``).
+    The reference is finite, its times strictly increasing: a ValueError names its first sample
+    that is not.
     """
     from .fixes import Fixes
 
-    t = as_float_array("t_ref", t_ref)
-    psi = np.unwrap(as_float_array("heading_ref", heading_ref))
+    t, heading = as_float_array("t_ref", t_ref), as_float_array("heading_ref", heading_ref)
+    # checked before unwrapping: one NaN heading made every later fix NaN, times out of order
+    # made no fix, and lengths apart failed inside numpy.interp
+    require_series("t_ref", t, "heading_ref", heading, context="the reference")
+    psi = np.unwrap(heading)
     if len(t) < 2:
         raise ValueError("the reference needs at least two samples")
-    for name, value in (("rate_hz", rate_hz), ("sigma_deg", sigma_deg)):
-        if not (math.isfinite(value) and value > 0):
-            raise ValueError(f"{name} must be finite and > 0, got {value}")
+    if not (math.isfinite(rate_hz) and rate_hz > 0):
+        raise ValueError(f"rate_hz must be finite and > 0, got {rate_hz}")
+    if not SIGMA_DEG[0] <= sigma_deg <= SIGMA_DEG[1]:
+        raise ValueError(f"sigma_deg must be in [{SIGMA_DEG[0]:.3g}, {SIGMA_DEG[1]:g}] deg, got {sigma_deg}")
     count = (t[-1] - t[0]) * rate_hz
     if count > MAX_FIXES:
         raise ValueError(f"{count:.3e} fixes requested ({t[-1] - t[0]:g} s at {rate_hz:g} Hz): more than "

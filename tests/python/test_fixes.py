@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import pickle
+import re
 from pathlib import Path
 
 import numpy as np
@@ -132,6 +133,17 @@ def test_a_speed_that_is_negative_or_not_finite_is_named(bad: float, tmp_path: P
     path = tmp_path / "gnss.csv"
     path.write_text(f"t,speed,bearing\n0,10,0\n1,10,90\n2,{bad},180\n")
     with pytest.raises(ValueError, match=r"gnss.csv: line 4, column 2 \(speed\): speed\[2\] is"):
+        read_gnss_csv(path)
+
+
+@pytest.mark.parametrize("bad", [np.inf, -1e300])
+def test_a_bearing_that_is_infinite_or_huge_is_named(bad: float, tmp_path: Path) -> None:
+    # an infinite bearing was dropped as if it were NaN, a huge one wrapped into any heading
+    with pytest.raises(ValueError, match=rf"bearing_deg\[1\] is {re.escape(str(bad))}: beyond \+-2\^20 deg"):
+        from_gnss([0.0, 1.0, 2.0], [0.0, bad, 180.0], [10.0, 10.0, 10.0])
+    path = tmp_path / "gnss.csv"
+    path.write_text(f"t,speed,bearing\n0,10,0\n1,10,{bad}\n")
+    with pytest.raises(ValueError, match=r"gnss.csv: line 3, column 3 \(bearing\): bearing_deg\[1\] is"):
         read_gnss_csv(path)
 
 

@@ -232,3 +232,26 @@ def test_demo_takes_a_sensor_and_a_road_mix(tmp_path: Path, capsys: pytest.Captu
     out = capsys.readouterr().out
     assert "'downtown' roads, Epson XV3500 at 20 Hz" in out
     assert "\nhdr " in out
+
+
+@pytest.mark.parametrize("sigma_deg", [1e-20, 181.0, 1e9])
+def test_simulated_fixes_refuse_a_noise_the_filter_cannot_use(sigma_deg: float) -> None:
+    # below 1e-12 rad the filter refused the fixes made; beyond half a turn the noise wraps
+    t = np.arange(100.0)
+    with pytest.raises(ValueError, match=r"sigma_deg must be in \[5.73e-11, 180\] deg"):
+        sim.gnss_fixes(t, 0.01 * t, seed=0, sigma_deg=sigma_deg)
+
+
+@pytest.mark.parametrize(
+    ("t", "heading", "message"),
+    [
+        # one NaN heading made 90 of the 100 fixes NaN (numpy.unwrap carries it on)
+        (np.arange(100.0), np.where(np.arange(100) == 10, np.nan, 0.0), r"heading_ref\[10\] is nan"),
+        # times in reverse made no fix at all, without a word
+        (np.arange(100.0)[::-1], np.zeros(100), r"t_ref must strictly increase: t_ref\[1\] = 98.0 follows 99.0"),
+        (np.arange(100.0), np.zeros(99), "heading_ref has 99 samples but t_ref has 100"),
+    ],
+)
+def test_simulated_fixes_refuse_a_reference_that_is_no_track(t: np.ndarray, heading: np.ndarray, message: str) -> None:
+    with pytest.raises(ValueError, match=r"the reference: " + message):
+        sim.gnss_fixes(t, heading, seed=0)
