@@ -33,10 +33,9 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
     """Fixes from NMEA 0183 sentences: course over ground and speed of valid RMC sentences, at
     their UTC date and time as Unix seconds; a VTG sentence supplies the course of the RMC/GGA
     epoch just before it where that RMC had none. Other sentences are skipped (those pynmea2 does
-not know too); a line that is no
-    sentence, or whose fields are not values, is an error naming the file and line, as is a file of
-    no sentence; sentences that give no fix warn with their counts (void RMC, RMC without a
-    course). The times are UTC: shift them onto the gyro's clock before fusing. ``options`` go to
+    not know too); a line that is no sentence, or whose fields are not values, is an error naming
+    the file and line, as is a file of no sentence; sentences that give no fix warn with their
+    counts (void RMC, RMC without a course). The times are UTC: shift them onto the gyro's clock before fusing. ``options`` go to
     :func:`gyrocore.fixes.from_gnss`.
     """
     pynmea2 = require("pynmea2", "reading NMEA sentences")
