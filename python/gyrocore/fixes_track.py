@@ -57,9 +57,11 @@ def from_positions(t: ArrayLike, x: ArrayLike, y: ArrayLike, *, position_sigma: 
 
 
 def from_latlon(t: ArrayLike, lat_deg: ArrayLike, lon_deg: ArrayLike, **options: float) -> Fixes:
-    """:func:`from_positions` for latitude and longitude [deg], projected onto the plane tangent
-    at the first finite position (east = x, north = y; equirectangular, good to about 0.1 % of
-    a heading's tangent within 100 km of that point). ``options`` go to :func:`from_positions`.
+    """:func:`from_positions` for latitude and longitude [deg] on a sphere: each step between two
+    positions is laid out east (x) and north (y) at its own middle latitude, so a fix's course is
+    the step's local one wherever the drive goes (a plane tangent at the first position alone
+    skews the east-west scale by the cosine of the latitude travelled since: 0.46 deg on a
+    north-east course 100 km north of it at 45 deg). ``options`` go to :func:`from_positions`.
 
     No fix from a track whose every latitude lies within +-pi/2 and longitude within +-pi warns
     that they look like radians (read as degrees, a drive in radians moves 57 times too little
@@ -73,11 +75,15 @@ def from_latlon(t: ArrayLike, lat_deg: ArrayLike, lon_deg: ArrayLike, **options:
     finite = np.flatnonzero(np.isfinite(lat) & np.isfinite(lon))
     if len(finite) == 0:
         raise ValueError("no finite latitude and longitude: no position to take a course from")
-    lat0, lon0 = np.radians(lat[finite[0]]), np.radians(lon[finite[0]])
-    # the longitude's difference wrapped into (-pi, pi], so a track across the antimeridian stays whole
-    dlon = np.angle(np.exp(1j * (np.radians(lon) - lon0)))
-    x = EARTH_RADIUS * math.cos(lat0) * dlon
-    y = EARTH_RADIUS * (np.radians(lat) - lat0)
+    phi, lam = np.radians(lat), np.radians(lon)
+    # each step's longitude difference wrapped into (-pi, pi], so a track across the antimeridian
+    # stays whole, and scaled by the cosine of the step's middle latitude
+    east = EARTH_RADIUS * np.cos(0.5 * (phi[1:] + phi[:-1])) * np.angle(np.exp(1j * np.diff(lam)))
+    # positions whose consecutive differences are those steps (a step to or from a position that
+    # is not finite gives no fix, and adds nothing here)
+    x = np.concatenate(([0.0], np.cumsum(np.where(np.isfinite(east), east, 0.0))))
+    x[~(np.isfinite(lat) & np.isfinite(lon))] = np.nan
+    y = EARTH_RADIUS * (phi - phi[finite[0]])
     fixes = from_positions(t, x, y, **options)
     if not len(fixes) and _look_like_radians(lat[finite], lon[finite]):
         warn("the latitudes and longitudes look like radians (every |lat| <= pi/2 and |lon| <= pi, "
