@@ -222,6 +222,13 @@ def test_reproduce_prints_paper_beside_ours_and_writes_figures(
         (("tune", "{log}", "--set", "hdr_c2=nan"), "--set hdr_c2=nan: the value must be a finite number (SI)"),
         (("tune", "{log}", "--param", "hdr_c2=1:nan"), "--param hdr_c2=1:nan: bounds must read LOW:HIGH, finite"),
         (("tune", "--sim-drive", "mixed:nan"), "--sim-drive mixed:nan: need a road mix of"),
+        (("simulate", "--out", "{tmp}/s.csv", "--duration", "nan"), "argument --duration: must be a finite number > 0, got 'nan'"),
+        (("simulate", "--out", "{tmp}/s.csv", "--rate-hz", "-1"), "argument --rate-hz: must be a finite number > 0, got '-1'"),
+        (("simulate", "--out", "{tmp}/s.csv", "--profile", "square", "--runs", "0"), "argument --runs: must be an integer >= 1"),
+        (("simulate", "--out", "{tmp}/s.csv", "--seed", "1.5"), "argument --seed: must be an integer >= 0, got '1.5'"),
+        # a log whose rest window cannot give its bias is not written
+        (("simulate", "--out", "{tmp}/s.csv", "--rate-hz", "1e-6"),
+         "--rate-hz 1e-06 puts 1 sample(s) in the drive's rest window [0, 20] s, and its bias needs at least 3"),
     ],
 )
 def test_numeric_options_are_checked_before_any_work(tmp_path: Path, args: tuple[str, ...], message: str) -> None:

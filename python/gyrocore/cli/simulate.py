@@ -11,7 +11,8 @@ from typing import Callable
 import numpy as np
 
 from .. import motion, sim
-from ._common import add_command, add_overwrite_option, refuse_existing, write_atomically
+from ..pipeline import MIN_WINDOW_READINGS
+from ._common import COUNT, POSITIVE, SEED, add_command, add_overwrite_option, refuse_existing, write_atomically
 
 #: Column order of the CSV: what a log has (t, gyro_z, temperature), then the truth.
 COLUMNS = ("t", "gyro_z", "temperature", "rate_true", "heading_true", "x", "y", "speed", "drift")
@@ -47,6 +48,20 @@ def _options_of_the_profile(args: argparse.Namespace) -> None:
     args.runs = RUNS if args.runs is None else args.runs
 
 
+def _refuse_a_rest_too_short(drive: sim.Drive, rate_hz: float) -> None:
+    """A log whose rest window holds too few samples to measure its bias (a rate of 1e-6 Hz) is
+    refused here, with the option to change, rather than by every command that reads it later."""
+    if drive.stationary is None:
+        return
+    start, end = drive.stationary
+    readings = int(np.count_nonzero((drive.t >= start) & (drive.t <= end)))
+    if readings < MIN_WINDOW_READINGS:
+        raise ValueError(
+            f"--rate-hz {rate_hz:g} puts {readings} sample(s) in the drive's rest window [{start:g}, {end:g}] s, "
+            f"and its bias needs at least {MIN_WINDOW_READINGS}: give a higher rate"
+        )
+
+
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
     p = add_command(
         sub,
@@ -64,11 +79,11 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         "the FOG square path or rotary table (--runs) (default car)",
     )
     p.add_argument("--sensor", choices=sorted(sim.SENSORS), default="crs03", help="simulated gyro (default crs03)")
-    p.add_argument("--rate-hz", type=float, help="sample rate [Hz] (default: the sensor's)")
-    p.add_argument("--duration", type=float, help=f"car drive length [s] (default {DURATION:g})")
+    p.add_argument("--rate-hz", type=POSITIVE, help="sample rate [Hz] (default: the sensor's)")
+    p.add_argument("--duration", type=POSITIVE, help=f"car drive length [s] (default {DURATION:g})")
     p.add_argument("--mix", choices=sorted(motion.ROAD_MIXES), help=f"car road mix (default {MIX})")
-    p.add_argument("--runs", type=int, help=f"runs of the square path or rotary table (default {RUNS})")
-    p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    p.add_argument("--runs", type=COUNT, help=f"runs of the square path or rotary table (default {RUNS})")
+    p.add_argument("--seed", type=SEED, default=0, help="random seed (default 0)")
     add_overwrite_option(p)
 
 
@@ -79,11 +94,7 @@ def run(args: argparse.Namespace) -> int:
     if not out.parent.is_dir():
         raise OSError(f"{out.parent}: no such folder")
     refuse_existing([out], args.overwrite)
-    if args.seed < 0:
-        raise ValueError(f"--seed must be >= 0, got {args.seed}")
     _options_of_the_profile(args)
-    if args.runs < 1:
-        raise ValueError(f"--runs must be >= 1, got {args.runs}")
     rate_hz = sim.sensor(args.sensor).rate_hz if args.rate_hz is None else args.rate_hz
     if args.profile == "car":  # car_drive refuses a drive of too many samples before building its route
         drive = sim.car_drive(args.duration, rate_hz, seed=args.seed, mix=args.mix, sensor_name=args.sensor)
@@ -97,6 +108,7 @@ def run(args: argparse.Namespace) -> int:
             except ValueError as e:
                 raise ValueError(f"--runs {args.runs} of the {args.profile} profile: {e}") from None
         drive = sim.simulate(_profiles(args)[args.profile](), args.sensor, seed=args.seed, rate_hz=args.rate_hz)
+    _refuse_a_rest_too_short(drive, rate_hz)
     route = drive.motion
     table = np.column_stack(
         [drive.t, drive.rate_measured, drive.temperature, drive.rate_true, drive.heading_true,
