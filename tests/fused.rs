@@ -122,6 +122,26 @@ fn bits(v: &[f64]) -> Vec<u64> {
     v.iter().map(|x| x.to_bits()).collect()
 }
 
+/// Runs the block `(t, rate)` (written from sample `from`) with its sample `bad`'s time
+/// repeating the one before: it must fail naming that sample by its index in the block, and leave
+/// `fused` as it was.
+fn fails_on_sample(
+    fused: &mut FusedPipeline,
+    (t, rate): (&[f64], &[f64]),
+    fixes: &[Fix],
+    cols: &mut Columns,
+    (from, bad): (usize, usize),
+) {
+    let before = fused.clone();
+    let mut bad_t = t.to_vec();
+    bad_t[bad] = bad_t[bad - 1];
+    match block(fused, &bad_t, rate, fixes, cols, from).unwrap_err() {
+        FusionError::Gyro(g) => assert_eq!(g.index(), Some(bad), "{g}"),
+        other => panic!("expected a sample error, got {other:?}"),
+    }
+    assert_eq!(*fused, before, "sample {bad}");
+}
+
 /// Runs the block of 10-20 s with `fixes`: it must fail on fix `index`'s field `what` with
 /// `problem`, and leave `fused` as it was.
 fn fails_on_fix(
@@ -263,21 +283,8 @@ fn a_bad_fix_or_sample_changes_nothing_and_is_named() {
     let sigma = (2, "sigma", FixProblem::NotPositive);
     fails_on_fix(&mut fused, (&t, &rate), &bad, &mut cols, sigma);
 
-    let mut bad_t = t[1000..2000].to_vec();
-    bad_t[500] = bad_t[499];
-    let e = block(
-        &mut fused,
-        &bad_t,
-        &rate[1000..2000],
-        &all[used..],
-        &mut cols,
-        1000,
-    )
-    .unwrap_err();
-    match e {
-        FusionError::Gyro(g) => assert_eq!(g.index(), Some(500), "{g}"),
-        other => panic!("expected a sample error, got {other:?}"),
-    }
+    let block_of = (&t[1000..2000], &rate[1000..2000]);
+    fails_on_sample(&mut fused, block_of, &all[used..], &mut cols, (1000, 500));
     assert_eq!(fused, snapshot);
 
     // carrying on after both errors gives what an uninterrupted run gives
@@ -293,23 +300,9 @@ fn a_bad_sample_deep_in_a_long_block_changes_nothing_and_is_named() {
     let mut fused = FusedPipeline::new(c, f).unwrap();
     let mut cols = columns(t.len());
     let used = block(&mut fused, &t[..500], &rate[..500], &all, &mut cols, 0).unwrap();
-    let before = fused.clone();
     for bad in [1023, 1024, 2500, 5499] {
-        let mut bad_t = t[500..6000].to_vec();
-        bad_t[bad] = bad_t[bad - 1];
-        let e = block(
-            &mut fused,
-            &bad_t,
-            &rate[500..6000],
-            &all[used..],
-            &mut cols,
-            500,
-        );
-        match e.unwrap_err() {
-            FusionError::Gyro(g) => assert_eq!(g.index(), Some(bad), "{g}"),
-            other => panic!("expected a sample error, got {other:?}"),
-        }
-        assert_eq!(fused, before, "sample {bad}");
+        let block_of = (&t[500..6000], &rate[500..6000]);
+        fails_on_sample(&mut fused, block_of, &all[used..], &mut cols, (500, bad));
     }
     carries_on_as_one_run(&mut fused, (&t, &rate), &all, used, &mut cols, 500);
 }
