@@ -285,7 +285,7 @@ class _FileJob:
             causal = wholelog.causal_source(self.preset, _to_si(overrides))
             warning = unmeasured_bias(self.preset, _to_si(overrides))
             if warning is not None:  # the log gave no rest window either (its meta.json's is taken)
-                warning += " (on the command line: --bias-window, --bias-duration or --bias-dps)"
+                warning += f" {wholelog.BIAS_OPTIONS_HINT}"
             return wholelog.BiasPlan(causal, overrides=overrides, warning=warning)
         wholelog.refuse_tracking(_to_si(overrides))
 

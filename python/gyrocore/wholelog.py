@@ -70,6 +70,8 @@ __all__ = [
 #: The ways to process a whole log: ``whole`` (bias from every rest, known from the first sample)
 #: or ``causal`` (what a streaming :class:`gyrocore.Pipeline` gives, sample after sample).
 MODES = ("whole", "causal")
+#: What a warning that no bias is known says a command-line user can give.
+BIAS_OPTIONS_HINT = "(on the command line: --bias-window, --bias-duration or --bias-dps)"
 #: Default random walk of the bias between rests [rad/s/sqrt(s)], chosen by leave-one-log-out on
 #: the real logs (docs/whole_log.md). A gyro whose rate random walk ``K`` is known
 #: (:func:`gyrocore.allan.noise_parameters`) can give it as ``bias_walk=K``.
@@ -314,8 +316,8 @@ def plan(
     if not used:  # none found (accept keeps at least half of them)
         warning = (
             f"preset {preset!r} removes a static bias, but no bias, bias_window or bias_duration was given, "
-            "the log gives no rest window and no rest was found in it: the bias is taken as 0, as in causal "
-            "mode (on the command line: --bias-window, --bias-duration or --bias-dps)"
+            f"the log gives no rest window and no rest was found in it: the bias is taken as 0, as in causal "
+            f"mode {BIAS_OPTIONS_HINT}"
         )
         return BiasPlan("none: no rest found in the log; bias 0", tuple(rests), overrides, None, warning)
     smoothed, bound = _smooth(used, walk), _smooth(used, options.hdr_bound_walk)

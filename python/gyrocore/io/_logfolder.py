@@ -79,7 +79,8 @@ def has_track(where: str, columns: Iterable[str], names: tuple[str, str] = ("x",
     """Whether a reference holds positions: both columns ``names`` (x and y [m]). One without
     the other warns: dead reckoning and the closed-path check are then left out, and the user
     should know why."""
-    present = [name for name in names if name in set(columns)]
+    have = set(columns)
+    present = [name for name in names if name in have]
     if len(present) == 1:
         other = names[1] if present[0] == names[0] else names[0]
         warn(f"{where}: column {present[0]} without {other}: the reference's positions are left out "
