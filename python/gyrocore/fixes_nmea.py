@@ -41,7 +41,6 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
     pynmea2 = require("pynmea2", "reading NMEA sentences")
     path = Path(path)
     epochs: dict[float, tuple[float, float, int]] = {}  # time -> course [deg], speed [m/s], line
-    dated: set[float] = set()  # the times of the valid RMC sentences, with a course or not
     tally: Counter[str] = Counter()
     last: float | None = None
     for number, text in _sentences(path):
@@ -53,14 +52,14 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
         except pynmea2.ParseError as e:
             raise ValueError(f"{path}: line {number}: not an NMEA sentence ({e}); remove or repair the line") from None
         try:
-            last = _read(pynmea2, msg, last, number, epochs, dated, tally)
+            last = _read(pynmea2, msg, last, number, epochs, tally)
         except (ValueError, TypeError) as e:
             raise ValueError(f"{path}: line {number}: an {msg.sentence_type} sentence whose fields cannot be read "
                              f"({e}); remove or repair the line") from None
     if not tally["sentences"]:
         raise ValueError(f"{path}: no NMEA sentence, so no fix; give a file of RMC (and VTG) sentences")
     if not epochs:
-        _warn_no_epoch(path, tally, len(dated))
+        _warn_no_epoch(path, tally)
     times = sorted(epochs)
     course, speed, lines = (np.array([epochs[k][i] for k in times], dtype=float) for i in range(3))
     try:
@@ -89,7 +88,7 @@ def _sentences(path: Path) -> Iterator[tuple[int, str]]:
 
 
 def _read(pynmea2: Any, msg: Any, last: float | None, number: int, epochs: dict[float, tuple[float, float, int]],
-          dated: set[float], tally: Counter[str]) -> float | None:
+          tally: Counter[str]) -> float | None:
     """Takes the course of ``msg`` into ``epochs`` (at line ``number``); returns the time of the
     epoch a VTG after it belongs to. A field that is not a value raises ValueError or TypeError."""
     if isinstance(msg, pynmea2.RMC):
@@ -100,22 +99,23 @@ def _read(pynmea2: Any, msg: Any, last: float | None, number: int, epochs: dict[
             tally["undated"] += 1
         else:
             last = msg.datetime.timestamp()
-            dated.add(last)
             if msg.true_course is not None and msg.spd_over_grnd is not None:
                 epochs[last] = (float(msg.true_course), float(msg.spd_over_grnd) * KNOT, number)
+            else:
+                tally["courseless"] += 1
     elif isinstance(msg, pynmea2.VTG) and last is not None and last not in epochs:
         if msg.true_track is not None and msg.spd_over_grnd_kmph is not None:
             epochs[last] = (float(msg.true_track), float(msg.spd_over_grnd_kmph) * KMH, number)
     return last
 
 
-def _warn_no_epoch(path: Path, tally: Counter[str], dated: int) -> None:
+def _warn_no_epoch(path: Path, tally: Counter[str]) -> None:
     """Warns that the sentences of ``path`` gave no course, with the counts that say why."""
     if not tally["RMC"]:
         why = "none is RMC"
     else:
         counts = {"void (status V)": tally["void"], "without a date or time": tally["undated"],
-                  "without a course": dated}
+                  "without a course": tally["courseless"]}
         why = f"{tally['RMC']} are RMC: " + ", ".join(f"{n} {what}" for what, n in counts.items() if n)
     warn(f"no heading fix from {path}: of its {tally['sentences']} sentences, {why}; fixes come from valid RMC "
          "sentences with a course (or the VTG after one)")
