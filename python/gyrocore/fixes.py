@@ -26,7 +26,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
-from ._checks import MAX_READING, warn
+from ._checks import MAX_READING, require_finite, require_increasing, warn
 from .io._csvfile import _csv_header as csv_header, read_csv_columns
 from .io._paths import check_file
 from .io.units import HEADER_TIME_UNITS, _normal as normal_unit, split_unit
@@ -260,9 +260,10 @@ def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_spe
     course is meaningless (a car at rest has none) and the sample is dropped, as is one without a
     bearing (NaN). Assumes the vehicle moves the way it points (no side slip, forward gear).
 
-    A speed that is negative, NaN or infinite, or a bearing that is infinite or beyond +-2^20 deg, is
-    an error naming its index; samples that give no
-    fix at all warn why (an :class:`~gyrocore.InputWarning` with the speeds seen).
+    A time that is not finite or not after the one before, a speed that is negative, NaN or
+    infinite, or a bearing that is infinite or beyond +-2^20 deg, is an error naming its index;
+    samples that give no fix at all warn why (an :class:`~gyrocore.InputWarning` with the speeds
+    seen).
     """
     tt = as_float_array("t", t)
     bearing = as_float_array("bearing_deg", bearing_deg)
@@ -272,6 +273,10 @@ def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_spe
     for name, value in (("min_speed", min_speed), ("speed_sigma", speed_sigma), ("min_sigma_deg", min_sigma_deg)):
         if not (math.isfinite(value) and value > 0):
             raise ValueError(f"{name} must be finite and > 0, got {value}")
+    # checked here, by the sample's own index: the filter would name a bad time by its place
+    # among the fixes kept, after the slow and course-less samples were dropped
+    require_finite("t", tt)
+    require_increasing("t", tt)
     bad = np.flatnonzero(~(v >= 0) | np.isinf(v))  # ~(v >= 0): negative or NaN
     if len(bad):
         i = int(bad[0])
@@ -314,7 +319,7 @@ def read_gnss_csv(path: str | Path, **options: float) -> Fixes:
     try:
         return from_gnss(cols["t"], cols["bearing"], cols["speed"], **options)
     except ValueError as e:
-        raise ValueError(_at_line(path, header, {"speed": "speed", "bearing_deg": "bearing"}, e)) from None
+        raise ValueError(_at_line(path, header, {"t": "t", "speed": "speed", "bearing_deg": "bearing"}, e)) from None
 
 
 def read_fixes_csv(path: str | Path) -> Fixes:
@@ -371,8 +376,8 @@ def _read_rows(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:
 
 
 #: How an error about one row begins: the filter's (and :class:`Fixes`') ``fix N: column = value``,
-#: or :func:`from_gnss`'s ``column[N] is value``.
-_ROW_ERROR = re.compile(r"fix (\d+): (\w+) = |(\w+)\[(\d+)\] is ")
+#: or :func:`from_gnss`'s ``column[N] is value`` and ``column must strictly increase: column[N] =``.
+_ROW_ERROR = re.compile(r"fix (\d+): (\w+) = |(?:\w+ must strictly increase: )?(\w+)\[(\d+)\] (?:is|=) ")
 
 
 def _at_line(path: Path, header: list[str], names: dict[str, str], error: ValueError) -> str:
