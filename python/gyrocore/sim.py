@@ -32,7 +32,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore, motion
 from ._arrays import FloatArray, as_float_array
-from ._checks import require_series
+from ._checks import check_number, require_series
 
 if TYPE_CHECKING:
     from .fixes import Fixes
@@ -378,7 +378,16 @@ def car_drive(
 
     One seed fixes the route, the drift and the noise; the route and the drift do not depend on
     ``rate_hz``.
+
+    Raises:
+        TypeError: a ``duration``, ``rate_hz`` or ``rest`` that is no number (a bool, text).
+        ValueError: a ``duration`` or ``rate_hz`` that is not finite and > 0, a ``rest`` that is not
+            finite and >= 0 or not shorter than the drive, a ``seed`` outside [0, 2^64).
     """
+    # each named as given: text was a bare "'<' not supported", True a drive of 1 s or a gyro at 1 Hz,
+    # a negative rest "must be shorter than the drive", and seed=-1 numpy's "expected non-negative integer"
+    duration, rate_hz = check_number("duration", duration, unit=" [s]"), check_number("rate_hz", rate_hz, unit=" [Hz]")
+    rest, seed = check_number("rest", rest, strict=False, unit=" [s]"), _seed(seed)
     spec = sensor(sensor_name, rate_hz=rate_hz, **changes)
     # a drive of 1e12 s was built manoeuvre by manoeuvre before the simulator refused it
     check_span(spec, 0.0, duration)
@@ -415,8 +424,7 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     psi = np.unwrap(heading)
     if len(t) < 2:
         raise ValueError("the reference needs at least two samples")
-    if not (math.isfinite(rate_hz) and rate_hz > 0):
-        raise ValueError(f"rate_hz must be finite and > 0, got {rate_hz}")
+    rate_hz = check_number("rate_hz", rate_hz)
     if not SIGMA_DEG[0] <= sigma_deg <= SIGMA_DEG[1]:
         raise ValueError(f"sigma_deg must be in [{SIGMA_DEG[0]:.3g}, {SIGMA_DEG[1]:g}] deg, got {sigma_deg}")
     count = (t[-1] - t[0]) * rate_hz

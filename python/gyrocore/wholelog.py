@@ -40,7 +40,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
-from ._checks import first_infinite, warn
+from ._checks import MAX_READING, first_infinite, real_number, warn
 from ._gyrocore import SampleError
 from ._rests import MIN_REST, SPEED_THRESHOLD, accept, find_rests, measure_rest
 from ._smoother import SmoothedBias, smooth
@@ -362,12 +362,18 @@ class Options:
     def pop(cls, si: dict[str, Any]) -> Options:
         """The options in ``si`` (removed from it), checked."""
         given = {name: si.pop(name) for name in WHOLE_OPTIONS if si.get(name) is not None}
+        checked = {}
         for name, value in given.items():
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not (math.isfinite(value) and value >= 0):
-                raise ValueError(f"invalid parameter {name} = {value!r}: must be a finite number >= 0")
+            # A numpy float32 was refused as no number. A walk is a rate's (per sqrt(s)), within a
+            # reading's limit: 1e300 overflowed the smoother (a bare OverflowError).
+            x, high = real_number(value), MAX_READING if name.endswith("_walk") else math.inf
+            if x is None or not (math.isfinite(x) and 0 <= x <= high):
+                most = f" and at most 2^20 = {MAX_READING:.0f}" if name.endswith("_walk") else ""
+                raise ValueError(f"invalid parameter {name} = {value!r}: must be a finite number >= 0{most}")
+            checked[name] = x
         for name in WHOLE_OPTIONS:
             si.pop(name, None)
-        return cls(**{k: float(v) for k, v in given.items()})
+        return cls(**checked)
 
 
 def plan_arrays(

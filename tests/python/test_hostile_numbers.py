@@ -1,0 +1,91 @@
+"""Numbers a hostile user gives the API's functions (calibration, Allan deviation, simulation,
+whole mode's options): text, bools, NaN, infinities and huge values, each refused with the
+argument's name, never a bare Python or numpy error, an overflow or a silently odd result."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable
+
+import numpy as np
+import pytest
+
+import gyrocore
+from gyrocore import allan, calibration, deadband, rests, sim
+
+T = np.arange(0.0, 60.0, 0.01)
+RATE = 0.002 + np.random.default_rng(0).normal(0.0, 0.001, len(T))
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "message"),
+    [
+        (lambda: calibration.static_bias(T, RATE, min_duration="1"), TypeError, "min_duration must be a number, got '1'"),
+        (lambda: calibration.rest_windows(T, RATE, min_duration=True), TypeError, "min_duration must be a number, got True"),
+        (lambda: calibration.rest_windows(T, RATE, consistency="a"), TypeError, "consistency must be a number, got 'a'"),
+        (lambda: calibration.rotary_table(T, RATE, turn_angle=0), ValueError, "turn_angle must be finite and > 0, got 0"),
+        (lambda: calibration.rotary_table(T, RATE, tolerance=np.nan), ValueError, "tolerance must be finite and > 0"),
+        (lambda: calibration.rotary_table(T, RATE, min_rest=np.nan), ValueError, "min_rest must be finite and > 0"),
+        (lambda: calibration.rotary_table(T, RATE, min_pause=-1), ValueError, "min_pause must be finite and > 0, got -1"),
+        (lambda: calibration.bias_temperature_table(T, RATE, 20 + T / 10, min_samples=0), ValueError,
+         "min_samples must be a whole number >= 1, got 0"),
+        (lambda: calibration.bias_temperature_table(T, RATE, 20 + T / 10, min_samples=2.5), ValueError,
+         "min_samples must be a whole number >= 1, got 2.5"),
+        (lambda: calibration.bias_temperature_table(T, RATE, 20 + T / 10, bin_width=True), TypeError,
+         "bin_width must be a number [degC], got True"),
+        (lambda: allan.deviation(RATE, "0.01"), TypeError, "dt must be a number [s], got '0.01'"),
+        (lambda: allan.deviation(RATE, True), TypeError, "dt must be a number [s], got True"),
+        (lambda: allan.deviation(RATE, 0.01, overlapping="no"), TypeError, "overlapping must be True or False, got 'no'"),
+        (lambda: allan.deviation(RATE, 0.01, confidence="0.5"), TypeError, "confidence must be a number, got '0.5'"),
+        (lambda: allan.deviation_from_timestamps(T, RATE, dt="x"), TypeError, "dt must be a number [s], got 'x'"),
+        (lambda: allan.settings_from_noise(arw="1e-3", bias_instability=1e-5, dt=0.01), TypeError,
+         "arw must be a number, got '1e-3'"),
+        (lambda: allan.settings_from_noise(arw=1e300, bias_instability=1e-300, dt=0.01), ValueError,
+         "arw = 1e+300 and bias_instability = 1e-300 give T_bias = (N / 0.664 B)^2 = inf s, beyond the pipeline's 2^40 s"),
+        (lambda: allan.noise_parameters(allan.deviation(RATE, 0.01), slope_tolerance=np.nan), ValueError,
+         "slope_tolerance must be finite and > 0, got nan"),
+        (lambda: allan.confidence_interval([1.0, 2.0], [3.0]), ValueError, "dev has 2 values but edf has 1"),
+        (lambda: allan.confidence_interval([1.0], [0.0]), ValueError, "edf[0] = 0.0: must be finite and > 0"),
+        (lambda: allan.confidence_interval([1.0], [np.nan]), ValueError, "edf[0] = nan: must be finite and > 0"),
+        (lambda: allan.confidence_interval([1.0], [3.0], 1.0), ValueError, "confidence must lie in (0, 1), got 1.0"),
+        (lambda: rests.bias_walk(rate_random_walk="1", bias_instability=1e-5), TypeError,
+         "rate_random_walk must be a number, got '1'"),
+        (lambda: rests.bias_walk(rate_random_walk=1e300, bias_instability=1e-5), ValueError,
+         "rate_random_walk must be finite and >= 0 and at most 1.04858e+06, got 1e+300"),
+        (lambda: deadband.expected_output([0.1], "a", 0.02), TypeError, "noise_rms must be a number, got 'a'"),
+        (lambda: deadband.bias_leak(True, 0.02), TypeError, "noise_rms must be a number, got True"),
+        (lambda: sim.car_drive(duration="30"), TypeError, "duration must be a number [s], got '30'"),
+        (lambda: sim.car_drive(duration=30, rate_hz=True), TypeError, "rate_hz must be a number [Hz], got True"),
+        (lambda: sim.car_drive(duration=30, rest=-1), ValueError, "rest must be finite and >= 0 [s], got -1"),
+        (lambda: sim.car_drive(duration=30, rest="1"), TypeError, "rest must be a number [s], got '1'"),
+        (lambda: sim.car_drive(duration=30, seed=-1), ValueError, "seed must be an integer in [0, 2**64), got -1"),
+    ],
+)
+def test_a_number_argument_that_is_no_number_or_out_of_range_is_named(
+    call: Callable[[], object], error: type[Exception], message: str
+) -> None:
+    with pytest.raises(error, match="^" + re.escape(message)):
+        call()
+
+
+def test_numbers_of_every_real_type_are_taken_as_they_are() -> None:
+    """numpy scalars and 0-d arrays are numbers (whole mode refused a float32 as none)."""
+    assert calibration.rest_windows(T, RATE, min_duration=np.float32(1.0)) == calibration.rest_windows(T, RATE)
+    assert allan.deviation(RATE, np.float64(0.01)).dt == allan.deviation(RATE, np.array(0.01)).dt == 0.01
+    low, high = allan.confidence_interval(1.0, 3.0)
+    assert np.ndim(low) == np.ndim(high) == 0 and 0 < low < 1 < high  # one deviation in, one out
+    single = gyrocore.process(T, RATE, "recommended", bias_walk=np.float32(1e-4))
+    double = gyrocore.process(T, RATE, "recommended", bias_walk=float(np.float32(1e-4)))
+    assert np.array_equal(single.heading, double.heading)
+
+
+@pytest.mark.parametrize("name", ["bias_walk", "hdr_bound_walk"])
+def test_a_walk_beyond_a_readings_limit_is_refused_not_overflowed(name: str) -> None:
+    t = np.arange(0.0, 120.0, 0.01)
+    rate = np.where((t > 40) & (t < 80), 0.3, 0.002) + np.random.default_rng(1).normal(0.0, 1e-3, len(t))
+    with pytest.raises(ValueError, match=rf"^invalid parameter {name} = 1e\+300: must be a finite number >= 0 and at "
+                                         r"most 2\^20 = 1048576"):
+        gyrocore.process(t, rate, "recommended", **{name: 1e300})
+    with pytest.raises(ValueError, match=rf"^invalid parameter {name} = True: must be a finite number"):
+        gyrocore.process(t, rate, "recommended", **{name: True})
+    assert np.isfinite(gyrocore.process(t, rate, "recommended", **{name: 2.0**20}).heading).all()  # the limit itself
