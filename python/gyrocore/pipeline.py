@@ -58,6 +58,10 @@ class RestWindowError(ValueError):
     reaches past its end."""
 
 
+#: :meth:`Pipeline.process`'s ``index_offset`` is below this: any index of a chunk added to it fits
+#: the core's 64-bit index.
+MAX_INDEX = 2**63
+
 #: A rest window must hold at least this many readings: the mean of fewer is mostly noise, and
 #: its spread unknown (one reading gave a bias "+- 0").
 MIN_WINDOW_READINGS = 3
@@ -104,6 +108,11 @@ class Pipeline:
             only in the first block (docs/fixes.md).
         **overrides: parameters to change (see :func:`parameters`), e.g. ``bias_window=(t0, t1)``,
             ``bias=0.01`` [rad/s], ``threshold_dps=0.3``, ``hdr_increment=...``.
+
+    Raises:
+        ValueError: an unknown preset or parameter, or a parameter's value the core refuses.
+        TypeError: a preset that is no name; a parameter of the wrong type (text for a number, a
+            bool for anything but the switches ``delag``, ``hdr`` and ``track_rests``).
     """
 
     def __init__(self, preset: str = "hdr", *, fusion: dict[str, float] | None = None, **overrides: Any) -> None:
@@ -177,19 +186,24 @@ class Pipeline:
             SampleError: (a ValueError) non-increasing or non-finite timestamps, or NaN/inf readings
                 under ``nonfinite="error"``; its ``index`` and ``what`` name the first bad sample.
             ValueError: mismatched lengths; timestamps whose interval overflows (near +-1e308); an
-                ``out`` array of the wrong shape or layout, read-only, or sharing memory;
+                ``index_offset`` that is no int in [0, 2^63); an ``out`` array of the wrong shape or
+                layout, read-only, or sharing memory;
                 :class:`RestWindowError` for a rest window that holds no sample (known once a
                 reading after its end comes). Nothing of the chunk is processed after any of these.
-            TypeError: non-numeric arrays; an ``out`` array that is not float64.
+            TypeError: non-numeric arrays; ``outputs`` that is no tuple of names (None); an ``out``
+                array that is not float64.
 
         Warns:
             InputWarning: rates or timestamps that look like another unit, or a temperature
                 without a temperature model (checked on the first chunk), readings held or skipped
                 (``nonfinite="hold"/"skip"``), gaps longer than ``gap_limit``.
         """
-        if isinstance(index_offset, bool) or not isinstance(index_offset, (int, np.integer)) or index_offset < 0:
+        # below 2^63: the core adds it to an index within the chunk, which wrapped past 2^64 (2^64 - 1
+        # named a bad fifth sample rate[4]) and 2^64 was a bare OverflowError
+        if (isinstance(index_offset, bool) or not isinstance(index_offset, (int, np.integer))
+                or not 0 <= index_offset < MAX_INDEX):
             raise ValueError(f"index_offset = {index_offset!r}: give the index of the chunk's first sample in the "
-                             "whole log, an int >= 0")
+                             "whole log, an int >= 0 and below 2^63")
         ta = as_float_array("t", t)
         ra = as_float_array("rate", rate)
         temp = None if temperature is None else as_float_array("temperature", temperature)

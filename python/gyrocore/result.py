@@ -27,12 +27,13 @@ ALL_OUTPUTS = OUTPUTS + FIX_OUTPUTS
 
 def output_flags(outputs: tuple[str, ...] | list[str]) -> tuple[bool, bool]:
     """Whether ``outputs`` asks for the rate and the drift (the heading is always computed);
-    a name not in :data:`ALL_OUTPUTS`, or no heading, is a ``ValueError``."""
-    if isinstance(outputs, str) or any(o not in ALL_OUTPUTS for o in outputs) or "heading" not in outputs:
-        raise ValueError(
-            f"outputs={outputs!r}: give a tuple of names from {', '.join(ALL_OUTPUTS)}, with heading "
-            "(the heading is always computed)"
-        )
+    a name not in :data:`ALL_OUTPUTS`, or no heading, is a ``ValueError``; no sequence of names
+    (``None``, a number) a ``TypeError``."""
+    give = f"give a tuple of names from {', '.join(ALL_OUTPUTS)}, with heading (the heading is always computed)"
+    if not isinstance(outputs, (tuple, list, set, frozenset)):  # None was a bare "'NoneType' object is not iterable"
+        raise (ValueError if isinstance(outputs, str) else TypeError)(f"outputs={outputs!r}: {give}")
+    if any(o not in ALL_OUTPUTS for o in outputs) or "heading" not in outputs:
+        raise ValueError(f"outputs={outputs!r}: {give}")
     return "rate" in outputs, "drift" in outputs
 
 
