@@ -113,6 +113,11 @@ class Pipeline:
         ValueError: an unknown preset or parameter, or a parameter's value the core refuses.
         TypeError: a preset that is no name; a parameter of the wrong type (text for a number, a
             bool for anything but the switches ``delag``, ``hdr`` and ``track_rests``).
+
+    Warns:
+        InputWarning: a preset that removes a static bias given none (no ``bias``, ``bias_window``
+            or ``bias_duration``), once, as its first samples are processed (a first chunk that is
+            refused warns of nothing).
     """
 
     def __init__(self, preset: str = "hdr", *, fusion: dict[str, float] | None = None, **overrides: Any) -> None:
@@ -124,9 +129,9 @@ class Pipeline:
         self._rests: list[Rest] = []
         if fusion is not None:
             self._inner.start_fusion(_stage_settings(self.params, fusion))
-        unmeasured = unmeasured_bias(preset, si)
-        if unmeasured is not None:
-            warn(unmeasured)
+        # Said once the first samples are processed, not here: a run whose first chunk is refused
+        # (a NaN reading, times out of order) warned of a bias it never used before its error.
+        self._unmeasured = unmeasured_bias(preset, si)
 
     @property
     def preset(self) -> str:
@@ -230,6 +235,9 @@ class Pipeline:
         )
         self._inner = inner  # with the fix stage the first fixes started, now that they were good
         self._warn_repairs(before, inner.report(), ta, ra, temp)
+        if self._unmeasured is not None and len(ta):
+            warn(self._unmeasured)
+            self._unmeasured = None
         if self._first_time is None and len(ta):
             self._first_time = float(ta[0])
         self._rests.extend(found)
@@ -411,6 +419,7 @@ class Pipeline:
             "state": self._inner.state_json(),
             "first_time": self._first_time,
             "rests": self._rests,
+            "unmeasured": self._unmeasured,
         }
 
     def __setstate__(self, state: dict[str, Any]) -> None:
@@ -419,6 +428,7 @@ class Pipeline:
         self._units_checked = self._inner.last_time() is not None
         self._first_time = state.get("first_time")
         self._rests = list(state.get("rests", []))
+        self._unmeasured = state.get("unmeasured")
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"

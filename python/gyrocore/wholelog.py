@@ -484,17 +484,17 @@ def process_log(
         # A rest's measurement saw a slice of the log: the pipeline names the sample in the log.
         Pipeline(preset, **without_bias(si)).process(ta, ra, temperature=temperature)
         raise
-    if bias_plan.warning:
-        warn(bias_plan.warning)
     pipeline, corrected = bias_plan.pipeline(preset), bias_plan.corrected(ta, ra)
     if fixes is None:
         result = pipeline.process(ta, corrected, temperature=temperature, outputs=outputs, out=out)
-        return bias_plan.result(result)
-    from .fixes import smoothed_stage, stage_settings  # the fix stage over the whole log
+    else:
+        from .fixes import smoothed_stage, stage_settings  # the fix stage over the whole log
 
-    result = pipeline.process(ta, corrected, temperature=temperature, outputs=(*outputs, "rate"))
-    fused = smoothed_stage(result, fixes, stage_settings(pipeline.params, fusion), outputs)
-    return bias_plan.result(filled(fused, arrays))
+        result = pipeline.process(ta, corrected, temperature=temperature, outputs=(*outputs, "rate"))
+        result = filled(smoothed_stage(result, fixes, stage_settings(pipeline.params, fusion), outputs), arrays)
+    if bias_plan.warning:  # after the run: a log the pipeline refuses (a NaN temperature) warned before its error
+        warn(bias_plan.warning)
+    return bias_plan.result(result)
 
 
 def _checked(fixes: FixesLike) -> Fixes:
