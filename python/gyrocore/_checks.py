@@ -172,18 +172,27 @@ def real_number(value: object) -> float | None:
     return float(value)
 
 
-def check_number(name: str, value: object, *, low: float = 0.0, strict: bool = True, high: float | None = None,
-           unit: str = "") -> float:
+def check_number(
+    name: str, value: object, *, low: float | None = 0.0, strict: bool = True, high: float | None = None, unit: str = ""
+) -> float:
     """``value`` as a float, checked: a real number (:func:`real_number`; else a TypeError), finite,
-    above ``low`` (at least ``low`` with ``strict=False``) and at most ``high`` where given (else a
-    ValueError), each naming ``name`` with its ``unit`` (e.g. ``" [s]"``)."""
+    above ``low`` (at least ``low`` with ``strict=False``; any with None) and at most ``high`` where
+    given (else a ValueError), each naming ``name`` with its ``unit`` (e.g. ``" [s]"``)."""
     x = real_number(value)
     if x is None:
         raise TypeError(f"{name} must be a number{unit}, got {value!r}")
-    if not (math.isfinite(x) and (x > low if strict else x >= low) and (high is None or x <= high)):
+    above = low is None or (x > low if strict else x >= low)
+    if not (math.isfinite(x) and above and (high is None or x <= high)):
+        least = "" if low is None else f" and {'>' if strict else '>='} {low:g}"
         most = "" if high is None else f" and at most {high:g}"
-        raise ValueError(f"{name} must be finite and {'>' if strict else '>='} {low:g}{most}{unit}, got {value}")
+        raise ValueError(f"{name} must be finite{least}{most}{unit}, got {value}")
     return x
+
+
+def require_flag(name: str, value: object) -> None:
+    """A TypeError unless ``value`` is a bool: a switch given as text ("no") read as True."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be True or False, got {value!r}")
 
 
 def _prefix(context: str) -> str:

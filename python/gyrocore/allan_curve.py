@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
-from ._checks import MAX_READING, check_number, require_readings
+from ._checks import MAX_READING, check_number, require_flag, require_readings
 from .allan_edf import _TABLES, ONE_SIGMA, confidence_interval, equivalent_dof
 from .integration import integrate
 
@@ -229,8 +229,7 @@ def _curve(
     dt = check_number("dt", dt, unit=" [s]")
     if not 0.0 < check_number("confidence", confidence) < 1.0:
         raise ValueError(f"confidence must lie in (0, 1), got {confidence}")
-    if not isinstance(overlapping, (bool, np.bool_)):  # "no" was a KeyError, 0 and 1 worked by chance
-        raise TypeError(f"overlapping must be True or False, got {overlapping!r}")
+    require_flag("overlapping", overlapping)  # "no" was a KeyError, 0 and 1 worked by chance
     if noise_alpha not in _TABLES:
         raise ValueError(f"noise_alpha must be 0 (white), -1 (flicker) or -2 (random walk), got {noise_alpha}")
     overlapping = overlapping or kind == "modified"

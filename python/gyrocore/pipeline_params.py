@@ -33,6 +33,7 @@ BIAS_SOURCES = ("bias", "bias_window", "bias_duration")
 
 def uses_static_bias(preset: str) -> bool:
     """Whether ``preset`` subtracts a static bias (and so wants a bias or a rest window)."""
+    _check_preset(preset)
     return bool(_gyrocore.preset_uses_static_bias(preset))
 
 
