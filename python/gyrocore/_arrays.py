@@ -69,17 +69,18 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
 
 
 def warn_coarse_times(t: np.ndarray, per_second: float = 1.0) -> None:
-    """Warn when times stored as float32 (``per_second`` counts a second) cannot tell samples apart:
-    near epoch seconds (1.7e9) float32 steps by 128 s, so neighbouring samples read as equal or
-    reversed, and the error that follows ("t[1] = ... follows ...") would not say why. One message
-    for every chunk of a file (float32 steps by powers of two)."""
-    if t.dtype != np.float32 or not np.isfinite(t).any():
+    """Warn when times stored as float32 or float16 (``per_second`` counts a second) cannot tell
+    samples apart: near epoch seconds (1.7e9) float32 steps by 128 s, and float16 by 1/64 s from
+    16 s on, so neighbouring samples read as equal or reversed, and the error that follows ("t[1] =
+    ... follows ...") would not say why. One message for every chunk of a file (both step by powers
+    of two)."""
+    if t.dtype not in (np.float16, np.float32) or not np.isfinite(t).any():
         return
-    spacing = float(np.spacing(np.float32(np.nanmax(np.abs(t))))) / per_second
+    spacing = float(np.spacing(t.dtype.type(np.nanmax(np.abs(t))))) / per_second
     if spacing > 1e-3:
         from ._checks import warn  # _checks builds on this module
 
-        warn(f"the times are float32, which at their size resolve only {spacing:g} s: store them as float64 "
+        warn(f"the times are {t.dtype}, which at their size resolve only {spacing:g} s: store them as float64 "
              "(or as seconds from the first sample)")
 
 
@@ -90,7 +91,9 @@ def as_window(name: str, window: object) -> tuple[float, float]:
         pair = np.asarray(window, dtype=np.float64)
     except (TypeError, ValueError):
         pair = np.empty(0)
-    if pair.shape != (2,):
+    # bools are refused: (False, True) was the window 0 .. 1 s
+    if pair.shape != (2,) or np.asarray(window).dtype == np.bool_ or any(isinstance(v, bool) for v in np.ravel(
+            np.asarray(window, dtype=object))):
         raise ValueError(f"{name} must be (start, end) in seconds, got {window!r}")
     start, end = float(pair[0]), float(pair[1])
     if not (math.isfinite(start) and math.isfinite(end) and end > start):

@@ -5,6 +5,7 @@ argument's name, never a bare Python or numpy error, an overflow or a silently o
 from __future__ import annotations
 
 import re
+import warnings
 from collections.abc import Callable
 
 import numpy as np
@@ -59,6 +60,14 @@ RATE = 0.002 + np.random.default_rng(0).normal(0.0, 0.001, len(T))
         (lambda: sim.car_drive(duration=30, rest=-1), ValueError, "rest must be finite and >= 0 [s], got -1"),
         (lambda: sim.car_drive(duration=30, rest="1"), TypeError, "rest must be a number [s], got '1'"),
         (lambda: sim.car_drive(duration=30, seed=-1), ValueError, "seed must be an integer in [0, 2**64), got -1"),
+        (lambda: gyrocore.integrate(T, RATE, initial_heading="0"), TypeError, "initial_heading must be a number [rad], got '0'"),
+        (lambda: gyrocore.integrate(T, RATE, initial_heading=True), TypeError, "initial_heading must be a number [rad], got True"),
+        (lambda: gyrocore.integrate(T, RATE, None), TypeError, "method must be 'trapezoid' or 'rectangle', got None"),
+        (lambda: gyrocore.downsample(T, RATE, "1"), TypeError, "interval must be a number [s], got '1'"),
+        (lambda: gyrocore.downsample(T, RATE, True), TypeError, "interval must be a number [s], got True"),
+        (lambda: calibration.bias_temperature_table(T, RATE * 1e300, 20 + T / 10), gyrocore.SampleError, "rate[0] = 2"),
+        (lambda: calibration.static_bias(T, RATE, (False, True)), ValueError,
+         "the rest window must be (start, end) in seconds, got (False, True)"),
     ],
 )
 def test_a_number_argument_that_is_no_number_or_out_of_range_is_named(
@@ -89,3 +98,27 @@ def test_a_walk_beyond_a_readings_limit_is_refused_not_overflowed(name: str) -> 
     with pytest.raises(ValueError, match=rf"^invalid parameter {name} = True: must be a finite number"):
         gyrocore.process(t, rate, "recommended", **{name: True})
     assert np.isfinite(gyrocore.process(t, rate, "recommended", **{name: 2.0**20}).heading).all()  # the limit itself
+
+
+def test_a_reading_beyond_the_limit_is_named_not_overflowed_in_a_fit() -> None:
+    """1e300 overflowed the squares of rate_reference's fit (a numpy warning, then "the gyro's
+    readings are constant") and gave bias_temperature_table's bins nonsense."""
+    with pytest.raises(ValueError, match=r"^rate_measured\[0\] = .* rad/s is beyond \+-2\^20 rad/s"):
+        calibration.rate_reference(RATE * 1e300, RATE)
+    with pytest.raises(ValueError, match=r"^rate_reference\[0\] = .* rad/s is beyond \+-2\^20 rad/s"):
+        calibration.rate_reference(RATE, RATE * 1e300)
+    good = calibration.rate_reference(1.01 * RATE + 0.003, RATE)  # the limits take every plausible reading
+    assert good.bias == pytest.approx(0.003, rel=1e-9)
+
+
+@pytest.mark.parametrize("dtype", [np.float16, np.float32])
+def test_times_too_coarse_for_their_samples_say_why_they_repeat(dtype: type) -> None:
+    """float16 times step by 1/32 s near a minute: samples at 100 Hz repeat, and the error
+    ("t[1602] = 16.015625 follows 16.015625") said nothing of the type."""
+    t = (T + (1.7e9 if dtype == np.float32 else 0.0)).astype(dtype)
+    with pytest.warns(gyrocore.InputWarning, match=rf"^the times are {np.dtype(dtype)}, which at their size resolve only"):
+        with pytest.raises(gyrocore.SampleError, match="must strictly increase"):
+            gyrocore.process(t, RATE, "raw")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # float16 times that resolve their samples are taken without a word
+        assert len(gyrocore.process(np.arange(0.0, 1.0, 0.01).astype(np.float16), RATE[:100], "raw")) == 100
