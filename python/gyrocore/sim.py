@@ -24,7 +24,7 @@ drive can be sampled at any rate; only the white noise depends on the sample int
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import asdict, dataclass, field, fields, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -32,7 +32,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore, motion
 from ._arrays import FloatArray, as_float_array
-from ._checks import check_number, require_series
+from ._checks import check_number, real_number, require_series
 
 if TYPE_CHECKING:
     from .fixes import Fixes
@@ -120,7 +120,28 @@ class GyroSpec:
         }
 
     def replace(self, **changes: Any) -> GyroSpec:
-        """A copy with some fields changed (``spec.replace(rate_hz=10.0)``)."""
+        """A copy with some fields changed (``spec.replace(rate_hz=10.0)``).
+
+        Raises:
+            TypeError: a name that is no field, or a value of the wrong kind for its field: text or
+                a bool for a number (``bias_dps="x"`` failed inside a multiplication, ``True`` was
+                1 deg/s), anything but two numbers for a pair. The core checks the numbers' ranges.
+        """
+        kinds = {f.name: f.type for f in fields(self)}
+        unknown = sorted(set(changes) - set(kinds))
+        if unknown:  # dataclasses' "GyroSpec.__init__() got an unexpected keyword argument"
+            raise TypeError(f"unknown sensor field(s) {', '.join(unknown)}; the fields are {', '.join(kinds)}")
+        for key, value in changes.items():
+            kind = str(kinds[key])  # the annotation's text (postponed annotations)
+            if kind == "str":
+                ok, what = isinstance(value, str), "text"
+            elif kind.startswith("tuple"):
+                ok = isinstance(value, (tuple, list)) and len(value) == 2 and all(real_number(v) is not None for v in value)
+                what = "two numbers"
+            else:
+                ok, what = real_number(value) is not None, "a number"
+            if not ok:
+                raise TypeError(f"sensor field {key} must be {what}, got {value!r}")
         return replace(self, **changes)
 
     @property
