@@ -189,6 +189,14 @@ def check_number(
     return x
 
 
+def check_seed(seed: object) -> int:
+    """``seed`` as an int in [0, 2^64) (numpy's PCG64 and the core's generators take no other); a
+    ValueError otherwise (numpy's own for -1 was "expected non-negative integer")."""
+    if not isinstance(seed, (int, np.integer)) or isinstance(seed, bool) or not 0 <= seed < 2**64:
+        raise ValueError(f"seed must be an integer in [0, 2**64), got {seed!r}")
+    return int(seed)
+
+
 def require_flag(name: str, value: object) -> None:
     """A TypeError unless ``value`` is a bool: a switch given as text ("no") read as True."""
     if not isinstance(value, (bool, np.bool_)):

@@ -32,7 +32,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore, motion
 from ._arrays import FloatArray, as_float_array
-from ._checks import check_number, real_number, require_series
+from ._checks import check_number, check_seed, real_number, require_series
 
 if TYPE_CHECKING:
     from .fixes import Fixes
@@ -243,17 +243,11 @@ def sensor(name: str | GyroSpec, **changes: Any) -> GyroSpec:
     return spec.replace(**changes) if changes else spec
 
 
-def _seed(seed: int) -> int:
-    if not isinstance(seed, (int, np.integer)) or isinstance(seed, bool) or not 0 <= seed < 2**64:
-        raise ValueError(f"seed must be an integer in [0, 2**64), got {seed!r}")
-    return int(seed)
-
-
 def sample_times(spec: GyroSpec, start: float, end: float, *, seed: int) -> FloatArray:
     """The instants [s] in ``[start, end)`` at which the log receives samples: the grid of
     ``spec.rate_hz`` with the spec's jitter and dropped samples (the first sample is never moved or
     dropped)."""
-    t: FloatArray = _gyrocore.gyro_sample_times(spec.si(), _seed(seed), float(start), float(end))
+    t: FloatArray = _gyrocore.gyro_sample_times(spec.si(), check_seed(seed), float(start), float(end))
     return t
 
 
@@ -288,7 +282,7 @@ def measure(spec: GyroSpec, t: ArrayLike, rate_true: ArrayLike, *, seed: int) ->
     """Readings of the gyro ``spec`` for the true rate [rad/s] at times ``t`` [s] (strictly
     increasing; the first is the model's time origin)."""
     ta, ra = as_float_array("t", t), as_float_array("rate_true", rate_true)
-    rate, temperature, bias, scale = _gyrocore.gyro_measure(spec.si(), _seed(seed), ta, ra)
+    rate, temperature, bias, scale = _gyrocore.gyro_measure(spec.si(), check_seed(seed), ta, ra)
     return Reading(rate, temperature, bias, scale)
 
 
@@ -353,7 +347,7 @@ def simulate(trajectory: motion.Motion, spec: GyroSpec | str, *, seed: int, rate
     ``rate_hz`` overrides the spec's rate. Same arguments, same drive.
     """
     spec = sensor(spec) if rate_hz is None else sensor(spec, rate_hz=rate_hz)
-    seed = _seed(seed)
+    seed = check_seed(seed)
     t = sample_times(spec, 0.0, trajectory.duration, seed=seed)
     truth = trajectory.sample(t)
     reading = measure(spec, t, truth.rate, seed=seed)
@@ -408,7 +402,7 @@ def car_drive(
     # each named as given: text was a bare "'<' not supported", True a drive of 1 s or a gyro at 1 Hz,
     # a negative rest "must be shorter than the drive", and seed=-1 numpy's "expected non-negative integer"
     duration, rate_hz = check_number("duration", duration, unit=" [s]"), check_number("rate_hz", rate_hz, unit=" [Hz]")
-    rest, seed = check_number("rest", rest, strict=False, unit=" [s]"), _seed(seed)
+    rest, seed = check_number("rest", rest, strict=False, unit=" [s]"), check_seed(seed)
     spec = sensor(sensor_name, rate_hz=rate_hz, **changes)
     # a drive of 1e12 s was built manoeuvre by manoeuvre before the simulator refused it
     check_span(spec, 0.0, duration)
@@ -458,7 +452,7 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
         if not end > start:
             raise ValueError(f"an outage must end after it starts, got ({start}, {end})")
         keep &= (tf < start) | (tf >= end)
-    rng = np.random.Generator(np.random.PCG64(_seed(seed)))
+    rng = np.random.Generator(np.random.PCG64(check_seed(seed)))
     sigma = math.radians(sigma_deg)
     noisy = np.interp(tf, t, psi) + sigma * rng.standard_normal(len(tf))
     return Fixes.of(tf[keep], np.angle(np.exp(1j * noisy[keep])), sigma)

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import gyrocore
-from gyrocore import allan, calibration, deadband, rests, sim
+from gyrocore import allan, calibration, deadband, motion, rests, sim
 
 T = np.arange(0.0, 60.0, 0.01)
 RATE = 0.002 + np.random.default_rng(0).normal(0.0, 0.001, len(T))
@@ -64,6 +64,17 @@ RATE = 0.002 + np.random.default_rng(0).normal(0.0, 0.001, len(T))
         (lambda: sim.car_drive(duration=30, bias_dps=True), TypeError, "sensor field bias_dps must be a number, got True"),
         (lambda: sim.sensor("crs03", temperature_c=20), TypeError, "sensor field temperature_c must be two numbers, got 20"),
         (lambda: sim.sensor("crs03", foo=1), TypeError, "unknown sensor field(s) foo; the fields are name, rate_hz"),
+        (lambda: motion.rotary_table(runs=2, rate_dps=0), ValueError, "rate_dps must be finite and > 0, got 0"),
+        (lambda: motion.rotary_table(runs=2, pause=-1), ValueError, "pause must be finite and >= 0 [s], got -1"),
+        (lambda: motion.rotary_table(runs=1.5), ValueError, "runs must be a whole number >= 1, got 1.5"),
+        (lambda: motion.square_path(speed=0), ValueError, "speed must be finite and > 0, got 0"),
+        (lambda: motion.square_path(accel=np.nan), ValueError, "accel must be finite and > 0, got nan"),
+        (lambda: motion.hdr_figure3(speed=np.nan), ValueError, "speed must be finite and > 0, got nan"),
+        (lambda: motion.hdr_figure3(curve_dps=np.nan), ValueError, "curve_dps must be finite [deg/s], got nan"),
+        (lambda: motion.robot_run(max_speed=np.nan), ValueError, "max_speed must be finite and > 0, got nan"),
+        (lambda: motion.car(60, swerve_dps="a"), TypeError, "swerve_dps must be a number [deg/s], got 'a'"),
+        (lambda: motion.car(60, swerve_dps=np.nan), ValueError, "swerve_dps must be finite [deg/s], got nan"),
+        (lambda: motion.car(60, seed=-1), ValueError, "seed must be an integer in [0, 2**64), got -1"),
         (lambda: gyrocore.integrate(T, RATE, initial_heading="0"), TypeError, "initial_heading must be a number [rad], got '0'"),
         (lambda: gyrocore.integrate(T, RATE, initial_heading=True), TypeError, "initial_heading must be a number [rad], got True"),
         (lambda: gyrocore.integrate(T, RATE, None), TypeError, "method must be 'trapezoid' or 'rectangle', got None"),
@@ -126,3 +137,19 @@ def test_times_too_coarse_for_their_samples_say_why_they_repeat(dtype: type) -> 
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # float16 times that resolve their samples are taken without a word
         assert len(gyrocore.process(np.arange(0.0, 1.0, 0.01).astype(np.float16), RATE[:100], "raw")) == 100
+
+
+@pytest.mark.parametrize(
+    ("build", "what"),
+    [(lambda: motion.rotary_table(runs=10**9), "the rotary table of 1000000000 runs would last 4.8e+10 s"),
+     (lambda: motion.square_path(runs=10**9), "the square path of 1000000000 runs would last 1.69e+11 s"),
+     (lambda: motion.car(1e9), "the drive would last 1e+09 s"),
+     (lambda: motion.hdr_figure3(duration=1e9), "the drive would last 1e+09 s"),
+     (lambda: motion.robot_run(duration=1e9), "the robot run would last 1e+09 s")],
+)
+def test_a_motion_too_long_to_build_is_refused_before_it_is_built(build: Callable[[], object], what: str) -> None:
+    """A billion runs, or a drive of a billion seconds, were built manoeuvre by manoeuvre until the
+    memory ran out (a car drive of 1e6 s took over a minute)."""
+    with pytest.raises(ValueError, match="^" + re.escape(what) + r", more than the 131072 s a motion may last"):
+        build()
+    assert motion.rotary_table(runs=2730).knots[-1] <= motion.MAX_DURATION  # up to the limit they are built
