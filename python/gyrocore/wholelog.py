@@ -362,18 +362,15 @@ class Options:
     def pop(cls, si: dict[str, Any]) -> Options:
         """The options in ``si`` (removed from it), checked."""
         given = {name: si.pop(name) for name in WHOLE_OPTIONS if si.get(name) is not None}
-        checked = {}
-        for name, value in given.items():
-            # A numpy float32 was refused as no number. A walk is a rate's (per sqrt(s)), within a
-            # reading's limit: 1e300 overflowed the smoother (a bare OverflowError).
-            x, high = real_number(value), MAX_READING if name.endswith("_walk") else math.inf
-            if x is None or not (math.isfinite(x) and 0 <= x <= high):
-                most = f" and at most 2^20 = {MAX_READING:.0f}" if name.endswith("_walk") else ""
+        for name, value in given.items():  # a numpy float32 was refused as no number
+            high = MAX_READING if name.endswith("_walk") else math.inf  # a rate's limit: 1e300 overflowed the smoother
+            if (x := real_number(value)) is None or not (math.isfinite(x) and 0 <= x <= high):
+                most = f" and at most 2^20 = {MAX_READING:.0f}" if high < math.inf else ""
                 raise ValueError(f"invalid parameter {name} = {value!r}: must be a finite number >= 0{most}")
-            checked[name] = x
+            given[name] = x
         for name in WHOLE_OPTIONS:
             si.pop(name, None)
-        return cls(**checked)
+        return cls(**given)
 
 
 def plan_arrays(
