@@ -345,7 +345,15 @@ def simulate(trajectory: motion.Motion, spec: GyroSpec | str, *, seed: int, rate
 
     The samples fall on the spec's grid (with its jitter and drops) over the motion's duration.
     ``rate_hz`` overrides the spec's rate. Same arguments, same drive.
+
+    Raises:
+        TypeError: a ``trajectory`` that is no :class:`gyrocore.motion.Motion` (None was "'NoneType'
+            object has no attribute 'duration'"), a ``rate_hz`` that is no number.
+        ValueError: an unknown sensor, a ``seed`` outside [0, 2^64), a span the simulator refuses.
     """
+    if not isinstance(trajectory, motion.Motion):
+        raise TypeError(f"trajectory must be a gyrocore.motion.Motion (e.g. gyrocore.motion.car(600)), got "
+                        f"{type(trajectory).__name__}")
     spec = sensor(spec) if rate_hz is None else sensor(spec, rate_hz=rate_hz)
     seed = check_seed(seed)
     t = sample_times(spec, 0.0, trajectory.duration, seed=seed)

@@ -64,6 +64,8 @@ RATE = 0.002 + np.random.default_rng(0).normal(0.0, 0.001, len(T))
         (lambda: sim.car_drive(duration=30, bias_dps=True), TypeError, "sensor field bias_dps must be a number, got True"),
         (lambda: sim.sensor("crs03", temperature_c=20), TypeError, "sensor field temperature_c must be two numbers, got 20"),
         (lambda: sim.sensor("crs03", foo=1), TypeError, "unknown sensor field(s) foo; the fields are name, rate_hz"),
+        (lambda: sim.simulate(None, "crs03", seed=0), TypeError,  # type: ignore[arg-type]
+         "trajectory must be a gyrocore.motion.Motion (e.g. gyrocore.motion.car(600)), got NoneType"),
         (lambda: motion.rotary_table(runs=2, rate_dps=0), ValueError, "rate_dps must be finite and > 0, got 0"),
         (lambda: motion.rotary_table(runs=2, pause=-1), ValueError, "pause must be finite and >= 0 [s], got -1"),
         (lambda: motion.rotary_table(runs=1.5), ValueError, "runs must be a whole number >= 1, got 1.5"),
