@@ -155,3 +155,15 @@ def test_a_motion_too_long_to_build_is_refused_before_it_is_built(build: Callabl
     with pytest.raises(ValueError, match="^" + re.escape(what) + r", more than the 131072 s a motion may last"):
         build()
     assert motion.rotary_table(runs=2730).knots[-1] <= motion.MAX_DURATION  # up to the limit they are built
+
+
+def test_a_calibration_of_rates_in_degrees_says_so_as_the_pipeline_does() -> None:
+    """A static bias of 641 "rad/s" (a log in deg/s) came without a word."""
+    rate_dps = np.degrees(RATE) * 100.0
+    with pytest.warns(gyrocore.InputWarning, match=r"^rates look like deg/s, not rad/s"):
+        calibration.static_bias(T, rate_dps, (0.0, 10.0))
+    with pytest.warns(gyrocore.InputWarning, match=r"^timestamps look like ms, us or ns, not seconds"):
+        calibration.static_bias(T * 1000.0, RATE, (0.0, 10000.0))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # rad/s and seconds: no word
+        calibration.static_bias(T, RATE, (0.0, 10.0))
