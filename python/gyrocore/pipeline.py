@@ -328,6 +328,9 @@ class Pipeline:
                 f"bias_duration = {p['bias_duration']} s is longer than the log ({span}); "
                 "give a shorter rest at the start, or a bias_window"
             )
+        # A log that ends at the window's end leaves it open (no reading came after it): its
+        # readings are all there is, as whole mode counts them (one at t = 0 of (0, 0) passed).
+        refuse_few_readings(rest_window_text(p), count)
 
     def reset(self) -> None:
         """Return to the state before the first sample (same parameters)."""

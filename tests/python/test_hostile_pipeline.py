@@ -69,3 +69,18 @@ def test_an_index_offset_past_the_cores_index_is_refused(offset: int) -> None:
     assert np.array_equal(pipeline.process(T, RATE).heading, fresh.process(T, RATE).heading)  # nothing changed
     with pytest.raises(gyrocore.SampleError, match=rf"^rate\[{2**63 + 4}\] is NaN"):  # the largest offset taken
         gyrocore.Pipeline("hdr", bias=0.0).process(T[:10], rate, index_offset=2**63 - 1)
+
+
+@pytest.mark.parametrize(("t", "overrides"), [([0.0], {"bias_window": (0.0, 0.0)}),
+                                              ([0.0, 0.01], {"bias_window": (0.0, 0.01)}),
+                                              ([0.0, 0.01], {"bias_duration": 0.01})])
+def test_a_log_that_ends_at_its_rest_windows_end_needs_its_readings_in_either_mode(
+    t: list[float], overrides: dict[str, object]
+) -> None:
+    """The window stayed open (no reading came after it), and causal mode took one reading as the
+    bias, where whole mode refused it."""
+    for mode in ("whole", "causal"):
+        with pytest.raises(gyrocore.RestWindowError, match=rf"holds {len(t)} reading\(s\): the bias needs at least 3"):
+            gyrocore.process(t, [0.1] * len(t), "hdr", mode=mode, **overrides)
+    three = gyrocore.process([0.0, 0.01, 0.02], [0.1] * 3, "hdr", mode="causal", bias_window=(0.0, 0.02))
+    assert np.array_equal(three.heading, np.zeros(3))  # enough readings: the bias is theirs
