@@ -151,8 +151,10 @@ class HeadingResult:
 
     def output(self, name: str) -> FloatArray:
         """The output ``name`` (one of :data:`OUTPUTS`, or ``heading_sigma``); a ``ValueError`` if it
-        was not asked for (or, for ``heading_sigma``, there were no fixes)."""
-        value: FloatArray | None = getattr(self, name) if name in (*OUTPUTS, "heading_sigma") else None
+        was not asked for (or, for ``heading_sigma``, there were no fixes), or is no output's name."""
+        if name not in (*OUTPUTS, "heading_sigma"):  # "'foo' output was not computed: ask for it" misled
+            raise ValueError(f"no output is named {name!r}: give one of {', '.join(OUTPUTS)}, heading_sigma")
+        value: FloatArray | None = getattr(self, name)
         if value is None and name == "heading_sigma" and self.fusion is None:
             raise ValueError("the 'heading_sigma' output comes with heading fixes, and there were none")
         if value is None:

@@ -84,3 +84,12 @@ def test_a_log_that_ends_at_its_rest_windows_end_needs_its_readings_in_either_mo
             gyrocore.process(t, [0.1] * len(t), "hdr", mode=mode, **overrides)
     three = gyrocore.process([0.0, 0.01, 0.02], [0.1] * 3, "hdr", mode="causal", bias_window=(0.0, 0.02))
     assert np.array_equal(three.heading, np.zeros(3))  # enough readings: the bias is theirs
+
+
+def test_an_output_of_no_name_is_named_as_such() -> None:
+    result = gyrocore.process(T, RATE, "raw", outputs=("heading",))
+    with pytest.raises(ValueError, match=r"^no output is named 'headings': give one of heading, rate, drift, heading_sigma$"):
+        result.output("headings")
+    with pytest.raises(ValueError, match=r"^the 'rate' output was not computed: ask for it in outputs="):
+        result.output("rate")
+    assert result.output("heading") is result.heading
