@@ -40,14 +40,9 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
     ``timedelta64`` values are durations and become seconds, whatever their unit (NaT becomes NaN);
     ``datetime64`` is refused, since which epoch a time counts from is the caller's choice.
 
-    Raises TypeError for non-numeric data and ValueError for a wrong shape.
+    Raises TypeError for non-numeric data and ValueError for a wrong shape or masked values.
     """
-    masked = np.flatnonzero(np.ma.getmaskarray(values)) if np.ma.isMaskedArray(values) else np.empty(0, np.intp)
-    if len(masked):  # numpy.asarray drops the mask: the hidden values would be processed as valid
-        raise ValueError(
-            f"{name} is a masked array with {len(masked)} masked value(s), the first at index {masked[0]}: give "
-            f"{name}.filled(numpy.nan) (with nonfinite='hold' or 'skip') or leave those samples out"
-        )
+    refuse_masked(name, values)
     try:
         array = np.asarray(values)
     except ValueError as e:  # a ragged list: numpy's message names neither the argument nor a fix
@@ -66,6 +61,22 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
     if name == "t":
         warn_coarse_times(a)
     return np.ascontiguousarray(a, dtype=np.float64)
+
+
+def refuse_masked(name: str, values: object) -> None:
+    """A ValueError for a numpy masked array with masked values, naming how many and where the
+    first is: numpy.asarray drops the mask, so the hidden values would be processed as valid.
+    (Treating them as missing would hide a choice the caller should make: ``filled(numpy.nan)``
+    with ``nonfinite="hold"`` or ``"skip"`` says it.)"""
+    if not np.ma.isMaskedArray(values):
+        return
+    masked = np.flatnonzero(np.ma.getmaskarray(values))
+    if len(masked):
+        first = masked[0] if np.ndim(values) <= 1 else tuple(int(i) for i in np.unravel_index(masked[0], np.shape(values)))
+        raise ValueError(
+            f"{name} is a masked array with {len(masked)} masked value(s), the first at index {first}: give "
+            f"{name}.filled(numpy.nan) (with nonfinite='hold' or 'skip') or leave those samples out"
+        )
 
 
 def warn_coarse_times(t: np.ndarray, per_second: float = 1.0) -> None:

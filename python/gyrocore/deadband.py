@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._arrays import FloatArray
+from ._arrays import FloatArray, refuse_masked
 from ._checks import check_number
 from ._extras import require
 
@@ -55,6 +55,7 @@ def expected_output(rate: ArrayLike, noise_rms: float, threshold: float) -> Floa
     """The expected output of the dead band (Hong eq 12) for a true ``rate`` (any shape) plus
     Gaussian noise of rms ``noise_rms``, in the units of the arguments."""
     _check(noise_rms, threshold)
+    refuse_masked("rate", rate)  # the masked values were used as data
     b = np.asarray(rate, dtype=np.float64)
     a = (threshold - b) / noise_rms
     c = (-threshold - b) / noise_rms

@@ -167,3 +167,17 @@ def test_a_calibration_of_rates_in_degrees_says_so_as_the_pipeline_does() -> Non
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # rad/s and seconds: no word
         calibration.static_bias(T, RATE, (0.0, 10.0))
+
+
+def test_masked_values_are_refused_where_any_shape_is_taken() -> None:
+    """numpy.asarray dropped the mask: the hidden values were computed with as data."""
+    rate = np.ma.masked_array([[0.1, 0.2], [0.3, 0.4]], mask=[[False, False], [True, False]])
+    with pytest.raises(ValueError, match=r"^rate is a masked array with 1 masked value\(s\), the first at index \(1, 0\)"):
+        deadband.expected_output(rate, 0.01, 0.02)
+    table = calibration.bias_temperature_table(T, RATE, 20 + T / 10)
+    with pytest.raises(ValueError, match=r"^temperature is a masked array with 1 masked value\(s\), the first at index 2"):
+        table(np.ma.masked_array([20.0, 21.0, 22.0], mask=[False, False, True]))
+    unmasked = np.ma.masked_array([20.0, 21.0, 22.0])
+    assert np.array_equal(table(unmasked), table(unmasked.data))  # nothing masked: the values
+    assert np.array_equal(deadband.expected_output(rate.data, 0.01, 0.02),
+                          deadband.expected_output(np.ma.masked_array(rate.data), 0.01, 0.02))
