@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import numbers
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -52,6 +53,12 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
         raise TypeError(
             f"{name} holds {a.dtype} times: give seconds, e.g. ({name} - {name}[0]) / numpy.timedelta64(1, 's')"
         )
+    if a.dtype == np.object_ and a.ndim == 1:  # None, pandas.NA or text among numbers: say which and where
+        odd = next((i for i, v in enumerate(a) if isinstance(v, (bool, str, bytes)) or not isinstance(v, numbers.Real)), None)
+        if odd is not None:
+            raise TypeError(f"{name} must hold real numbers, got dtype object: {name}[{odd}] is {a[odd]!r} (give "
+                            "numbers, NaN where a value is missing)")
+        a = a.astype(np.float64)  # every one a number (Decimal is none; Fraction, a huge int are)
     if a.dtype == np.bool_ or not (
         np.issubdtype(a.dtype, np.floating) or np.issubdtype(a.dtype, np.integer)
     ):

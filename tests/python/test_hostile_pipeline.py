@@ -93,3 +93,16 @@ def test_an_output_of_no_name_is_named_as_such() -> None:
     with pytest.raises(ValueError, match=r"^the 'rate' output was not computed: ask for it in outputs="):
         result.output("rate")
     assert result.output("heading") is result.heading
+
+
+def test_an_object_array_names_its_first_value_that_is_no_number_and_takes_numbers() -> None:
+    """None among numbers (a pandas column with gaps) was "must hold real numbers, got dtype
+    object", naming neither the value nor where it is."""
+    for value in (None, "a", {}):
+        rate = np.array([0.0, value, 1.0], dtype=object)
+        with pytest.raises(TypeError, match=rf"^rate must hold real numbers, got dtype object: rate\[1\] is "
+                                            rf"{re.escape(repr(value))} \(give numbers, NaN where a value is missing\)"):
+            gyrocore.process([0.0, 1.0, 2.0], rate, "raw")
+    numbers = np.array([0.0, 1, np.float32(2.0)], dtype=object)  # numbers of any type, stored as objects
+    assert np.array_equal(gyrocore.process([0.0, 1.0, 2.0], numbers, "raw").heading,
+                          gyrocore.process([0.0, 1.0, 2.0], [0.0, 1.0, 2.0], "raw").heading)
