@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import numbers
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -40,14 +41,9 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
     ``timedelta64`` values are durations and become seconds, whatever their unit (NaT becomes NaN);
     ``datetime64`` is refused, since which epoch a time counts from is the caller's choice.
 
-    Raises TypeError for non-numeric data and ValueError for a wrong shape.
+    Raises TypeError for non-numeric data and ValueError for a wrong shape or masked values.
     """
-    masked = np.flatnonzero(np.ma.getmaskarray(values)) if np.ma.isMaskedArray(values) else np.empty(0, np.intp)
-    if len(masked):  # numpy.asarray drops the mask: the hidden values would be processed as valid
-        raise ValueError(
-            f"{name} is a masked array with {len(masked)} masked value(s), the first at index {masked[0]}: give "
-            f"{name}.filled(numpy.nan) (with nonfinite='hold' or 'skip') or leave those samples out"
-        )
+    refuse_masked(name, values)
     try:
         array = np.asarray(values)
     except ValueError as e:  # a ragged list: numpy's message names neither the argument nor a fix
@@ -57,6 +53,12 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
         raise TypeError(
             f"{name} holds {a.dtype} times: give seconds, e.g. ({name} - {name}[0]) / numpy.timedelta64(1, 's')"
         )
+    if a.dtype == np.object_ and a.ndim == 1:  # None, pandas.NA or text among numbers: say which and where
+        odd = next((i for i, v in enumerate(a) if isinstance(v, (bool, str, bytes)) or not isinstance(v, numbers.Real)), None)
+        if odd is not None:
+            raise TypeError(f"{name} must hold real numbers, got dtype object: {name}[{odd}] is {a[odd]!r} (give "
+                            "numbers, NaN where a value is missing)")
+        a = a.astype(np.float64)  # every one a number (Decimal is none; Fraction, a huge int are)
     if a.dtype == np.bool_ or not (
         np.issubdtype(a.dtype, np.floating) or np.issubdtype(a.dtype, np.integer)
     ):
@@ -68,18 +70,35 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
     return np.ascontiguousarray(a, dtype=np.float64)
 
 
-def warn_coarse_times(t: np.ndarray, per_second: float = 1.0) -> None:
-    """Warn when times stored as float32 (``per_second`` counts a second) cannot tell samples apart:
-    near epoch seconds (1.7e9) float32 steps by 128 s, so neighbouring samples read as equal or
-    reversed, and the error that follows ("t[1] = ... follows ...") would not say why. One message
-    for every chunk of a file (float32 steps by powers of two)."""
-    if t.dtype != np.float32 or not np.isfinite(t).any():
+def refuse_masked(name: str, values: object) -> None:
+    """A ValueError for a numpy masked array with masked values, naming how many and where the
+    first is: numpy.asarray drops the mask, so the hidden values would be processed as valid.
+    (Treating them as missing would hide a choice the caller should make: ``filled(numpy.nan)``
+    with ``nonfinite="hold"`` or ``"skip"`` says it.)"""
+    if not np.ma.isMaskedArray(values):
         return
-    spacing = float(np.spacing(np.float32(np.nanmax(np.abs(t))))) / per_second
+    masked = np.flatnonzero(np.ma.getmaskarray(values))
+    if len(masked):
+        first = masked[0] if np.ndim(values) <= 1 else tuple(int(i) for i in np.unravel_index(masked[0], np.shape(values)))
+        raise ValueError(
+            f"{name} is a masked array with {len(masked)} masked value(s), the first at index {first}: give "
+            f"{name}.filled(numpy.nan) (with nonfinite='hold' or 'skip') or leave those samples out"
+        )
+
+
+def warn_coarse_times(t: np.ndarray, per_second: float = 1.0) -> None:
+    """Warn when times stored as float32 or float16 (``per_second`` counts a second) cannot tell
+    samples apart: near epoch seconds (1.7e9) float32 steps by 128 s, and float16 by 1/64 s from
+    16 s on, so neighbouring samples read as equal or reversed, and the error that follows ("t[1] =
+    ... follows ...") would not say why. One message for every chunk of a file (both step by powers
+    of two)."""
+    if t.dtype not in (np.float16, np.float32) or not np.isfinite(t).any():
+        return
+    spacing = float(np.spacing(t.dtype.type(np.nanmax(np.abs(t))))) / per_second
     if spacing > 1e-3:
         from ._checks import warn  # _checks builds on this module
 
-        warn(f"the times are float32, which at their size resolve only {spacing:g} s: store them as float64 "
+        warn(f"the times are {t.dtype}, which at their size resolve only {spacing:g} s: store them as float64 "
              "(or as seconds from the first sample)")
 
 
@@ -90,7 +109,9 @@ def as_window(name: str, window: object) -> tuple[float, float]:
         pair = np.asarray(window, dtype=np.float64)
     except (TypeError, ValueError):
         pair = np.empty(0)
-    if pair.shape != (2,):
+    # bools are refused: (False, True) was the window 0 .. 1 s
+    if pair.shape != (2,) or np.asarray(window).dtype == np.bool_ or any(isinstance(v, bool) for v in np.ravel(
+            np.asarray(window, dtype=object))):
         raise ValueError(f"{name} must be (start, end) in seconds, got {window!r}")
     start, end = float(pair[0]), float(pair[1])
     if not (math.isfinite(start) and math.isfinite(end) and end > start):

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import numbers
 import os
 import sys
 import threading
@@ -158,6 +159,48 @@ def require_readings(what: str, values: FloatArray) -> None:
     times = np.arange(len(values), dtype=np.float64)  # valid times: the reading is what fails
     rate, temperature = (values, None) if what == "rate" else (np.zeros(len(values)), values)
     _gyrocore.check_samples(times, rate, temperature)
+
+
+def real_number(value: object) -> float | None:
+    """``value`` as a float if it is one real number (an int, a float, a numpy scalar of either, or a
+    0-d array of one), else None: not a bool, whose True would pass for 1 (``bias=True`` was a bias
+    of 1 rad/s), nor text, which ``float()`` would parse ("0.01" passed for a number), nor None."""
+    if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iuf":
+        return float(value)
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        return None
+    return float(value)
+
+
+def check_number(
+    name: str, value: object, *, low: float | None = 0.0, strict: bool = True, high: float | None = None, unit: str = ""
+) -> float:
+    """``value`` as a float, checked: a real number (:func:`real_number`; else a TypeError), finite,
+    above ``low`` (at least ``low`` with ``strict=False``; any with None) and at most ``high`` where
+    given (else a ValueError), each naming ``name`` with its ``unit`` (e.g. ``" [s]"``)."""
+    x = real_number(value)
+    if x is None:
+        raise TypeError(f"{name} must be a number{unit}, got {value!r}")
+    above = low is None or (x > low if strict else x >= low)
+    if not (math.isfinite(x) and above and (high is None or x <= high)):
+        least = "" if low is None else f" and {'>' if strict else '>='} {low:g}"
+        most = "" if high is None else f" and at most {high:g}"
+        raise ValueError(f"{name} must be finite{least}{most}{unit}, got {value}")
+    return x
+
+
+def check_seed(seed: object) -> int:
+    """``seed`` as an int in [0, 2^64) (numpy's PCG64 and the core's generators take no other); a
+    ValueError otherwise (numpy's own for -1 was "expected non-negative integer")."""
+    if not isinstance(seed, (int, np.integer)) or isinstance(seed, bool) or not 0 <= seed < 2**64:
+        raise ValueError(f"seed must be an integer in [0, 2**64), got {seed!r}")
+    return int(seed)
+
+
+def require_flag(name: str, value: object) -> None:
+    """A TypeError unless ``value`` is a bool: a switch given as text ("no") read as True."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be True or False, got {value!r}")
 
 
 def _prefix(context: str) -> str:

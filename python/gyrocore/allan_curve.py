@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
-from ._checks import MAX_READING, require_readings
+from ._checks import MAX_READING, check_number, require_flag, require_readings
 from .allan_edf import _TABLES, ONE_SIGMA, confidence_interval, equivalent_dof
 from .integration import integrate
 
@@ -177,7 +177,8 @@ def deviation_from_timestamps(
     span = ta[-1] - ta[0]
     # The mean interval keeps a regular log's grid on its samples (a median of float-rounded
     # epoch intervals would drift off them over a long log).
-    step = span / (len(ta) - 1) if dt is None else float(dt)
+    # dt="x" was a bare ValueError of float(), and "0.01" or True passed for a number
+    step = span / (len(ta) - 1) if dt is None else check_number("dt", dt, unit=" [s]")
     if not (math.isfinite(step) and step > 0):
         raise ValueError(f"dt must be finite and > 0, got {step}")
     if span / step > MAX_OVERSAMPLING * len(ta):  # a finer grid only interpolates (and 1e-9 s asked for 738 GiB)
@@ -224,14 +225,11 @@ def _curve(
 ) -> AllanResult:
     if kind not in ("allan", "modified", "hadamard"):
         raise ValueError(f"unknown kind {kind!r}: use 'allan', 'modified' or 'hadamard'")
-    try:
-        dt = float(dt)
-    except (TypeError, ValueError):
-        raise TypeError(f"dt must be a number [s], got {dt!r}") from None
-    if not (math.isfinite(dt) and dt > 0):
-        raise ValueError(f"dt must be a finite number > 0 [s], got {dt!r}")
-    if not 0.0 < confidence < 1.0:
+    # a bool or text passed for a number (dt=True was 1 s, "0.01" was parsed)
+    dt = check_number("dt", dt, unit=" [s]")
+    if not 0.0 < check_number("confidence", confidence) < 1.0:
         raise ValueError(f"confidence must lie in (0, 1), got {confidence}")
+    require_flag("overlapping", overlapping)  # "no" was a KeyError, 0 and 1 worked by chance
     if noise_alpha not in _TABLES:
         raise ValueError(f"noise_alpha must be 0 (white), -1 (flicker) or -2 (random walk), got {noise_alpha}")
     overlapping = overlapping or kind == "modified"

@@ -11,7 +11,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._arrays import FloatArray
+from ._arrays import FloatArray, as_float_array
+from ._checks import check_number
 from ._extras import require
 
 #: Two-sided confidence of one standard deviation, erf(1/sqrt(2)) (Stable32's 0.683).
@@ -117,10 +118,27 @@ def confidence_interval(
     dev: ArrayLike, edf: ArrayLike, confidence: float = ONE_SIGMA
 ) -> tuple[FloatArray, FloatArray]:
     """Chi-squared interval of a deviation with ``edf`` degrees of freedom (NIST SP 1065 eq 45):
-    ``dev * sqrt(edf / chi2_{(1+c)/2})`` .. ``dev * sqrt(edf / chi2_{(1-c)/2})``."""
+    ``dev * sqrt(edf / chi2_{(1+c)/2})`` .. ``dev * sqrt(edf / chi2_{(1-c)/2})``.
+
+    Raises:
+        ValueError: ``dev`` and ``edf`` of different lengths, a ``dev`` that is not finite and >= 0,
+            an ``edf`` that is not finite and > 0 (naming the first), or ``confidence`` outside (0, 1).
+        TypeError: arrays or a ``confidence`` that are not real numbers.
+    """
     chi2 = require("scipy.stats", "the Allan deviation").chi2  # scipy's only use here
 
-    d = np.asarray(dev, dtype=np.float64)
-    e = np.asarray(edf, dtype=np.float64)
+    # Checked: one edf for two deviations was broadcast over both, and an edf of 0, -1 or NaN gave
+    # NaN bounds (a confidence of 1 an infinite one) without a word.
+    d, e = as_float_array("dev", np.atleast_1d(dev)), as_float_array("edf", np.atleast_1d(edf))
+    if len(d) != len(e):
+        raise ValueError(f"dev has {len(d)} values but edf has {len(e)}: give one edf per deviation")
+    for name, values, ok in (("dev", d, d >= 0), ("edf", e, e > 0)):
+        bad = np.flatnonzero(~(np.isfinite(values) & ok))
+        if len(bad):
+            raise ValueError(f"{name}[{bad[0]}] = {values[bad[0]]}: must be finite and {'>=' if name == 'dev' else '>'} 0")
+    if not 0.0 < check_number("confidence", confidence) < 1.0:
+        raise ValueError(f"confidence must lie in (0, 1), got {confidence}")
+    if np.ndim(dev) == 0 and np.ndim(edf) == 0:  # one deviation given as a number: one back, as before
+        d, e = d.reshape(()), e.reshape(())
     tail = (1.0 - confidence) / 2.0
     return d * np.sqrt(e / chi2.ppf(1.0 - tail, e)), d * np.sqrt(e / chi2.ppf(tail, e))

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ._arrays import FloatArray
+from ._checks import check_number
 
 if TYPE_CHECKING:  # pragma: no cover
     # only a type here: importing the curve module at run time would import the pipeline, which
@@ -23,6 +24,8 @@ _SQRT_HOUR = 60.0
 _HOUR = 3600.0
 #: IEEE 952: the Allan deviation's flat floor is sqrt(2 ln 2 / pi) = 0.664 times the bias instability.
 FLICKER_FLOOR = math.sqrt(2.0 * math.log(2.0) / math.pi)
+#: The pipeline's longest duration [s] (``bias_duration``, ``lowpass_tau``: the core's ``MAX_TIME``).
+MAX_SECONDS = 2.0**40
 
 
 
@@ -143,6 +146,7 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
         raise ValueError(f"the curve has {len(result.taus)} taus; need at least 3 to read slopes")
     taus, dev, w = result.taus, result.adev, result.edf
     notes: list[str] = []
+    check_number("slope_tolerance", slope_tolerance)  # NaN or -1 found no slope without a word
     arw = _slope_line(taus, dev, w, -0.5, 1.0, slope_tolerance)
     rrw = _slope_line(taus, dev, w, 0.5, 3.0, slope_tolerance)
     arw_p = rrw_p = None
@@ -297,13 +301,18 @@ def settings_from_noise(
        ``sqrt(N^2 / T_h + e_b^2)``; ``Theta_w = turn_sigmas`` times that, so noise on a straight
        road rarely (0.3 % at 3 sigma) suspends HDR, and anything larger is taken as a turn.
     """
-    for name, value in (("arw", arw), ("bias_instability", bias_instability), ("dt", dt),
-                        ("hdr_interval", hdr_interval), ("threshold_factor", threshold_factor),
-                        ("turn_sigmas", turn_sigmas)):
-        if not (math.isfinite(value) and value > 0):
-            raise ValueError(f"{name} must be finite and > 0, got {value}")
+    # a bool or text passed for a number ("1e-3" was a bare TypeError of math, True a value of 1)
+    arw, bias_instability, dt, hdr_interval, threshold_factor, turn_sigmas = (
+        check_number(name, value) for name, value in (
+            ("arw", arw), ("bias_instability", bias_instability), ("dt", dt), ("hdr_interval", hdr_interval),
+            ("threshold_factor", threshold_factor), ("turn_sigmas", turn_sigmas)))
     floor = FLICKER_FLOOR * bias_instability
-    t_bias = (arw / floor) ** 2
+    t_bias = (arw / floor) ** 2 if arw / floor < MAX_SECONDS else math.inf  # ** overflowed: a bare OverflowError
+    if t_bias > MAX_SECONDS:
+        raise ValueError(
+            f"arw = {arw:g} and bias_instability = {bias_instability:g} give T_bias = (N / 0.664 B)^2 = {t_bias:.3g} s, "
+            f"beyond the pipeline's 2^40 s: are both in rad/s units (N in rad/sqrt(s), B in rad/s)?"
+        )
     bias_error = math.sqrt(arw**2 / t_bias + floor**2)
     return NoiseSettings(
         threshold=threshold_factor * arw / math.sqrt(dt),

@@ -25,7 +25,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._arrays import FloatArray
+from ._arrays import FloatArray, refuse_masked
+from ._checks import check_number
 from ._extras import require
 
 
@@ -45,16 +46,16 @@ def _pdf(x: FloatArray | float) -> FloatArray:
 
 
 def _check(noise_rms: float, threshold: float) -> None:
-    if not (np.isfinite(noise_rms) and noise_rms > 0):
-        raise ValueError(f"noise_rms must be finite and > 0, got {noise_rms!r}")
-    if not (np.isfinite(threshold) and threshold >= 0):
-        raise ValueError(f"threshold must be finite and >= 0, got {threshold!r}")
+    # text was numpy's bare "ufunc 'isfinite' not supported", and True a noise of 1
+    check_number("noise_rms", noise_rms)
+    check_number("threshold", threshold, strict=False)
 
 
 def expected_output(rate: ArrayLike, noise_rms: float, threshold: float) -> FloatArray:
     """The expected output of the dead band (Hong eq 12) for a true ``rate`` (any shape) plus
     Gaussian noise of rms ``noise_rms``, in the units of the arguments."""
     _check(noise_rms, threshold)
+    refuse_masked("rate", rate)  # the masked values were used as data
     b = np.asarray(rate, dtype=np.float64)
     a = (threshold - b) / noise_rms
     c = (-threshold - b) / noise_rms

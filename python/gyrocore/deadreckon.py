@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
-from ._checks import require_series
+from ._checks import check_number, require_finite, require_series
 from .io import Log
 from .pipeline import HeadingResult
 
@@ -64,7 +64,15 @@ def dead_reckon(
 
     Returns:
         The track at the odometry times used.
+
+    Raises:
+        ValueError: samples that are not finite, times not strictly increasing, lengths apart, too
+            few samples inside the heading's span; a ``position`` that is not two finite numbers or
+            a ``heading_offset`` that is not finite (NaN made every position NaN).
+        TypeError: a ``position`` or ``heading_offset`` that is no number (text failed inside numpy).
     """
+    x0, y0 = _point("position", position)
+    heading_offset = check_number("heading_offset", heading_offset, low=None, unit=" [rad]")
     ts = as_float_array("t_speed", t_speed)
     v = as_float_array("speed", speed)
     th = as_float_array("t_heading", t_heading)
@@ -84,8 +92,8 @@ def dead_reckon(
     # A chord of an arc that turns by d: length s * sin(d/2)/(d/2), along the mean heading.
     chord = distance * np.sinc(turn / (2 * math.pi))
     mid = psi_s[:-1] + 0.5 * turn
-    x = position[0] + np.concatenate(([0.0], np.cumsum(chord * np.cos(mid))))
-    y = position[1] + np.concatenate(([0.0], np.cumsum(chord * np.sin(mid))))
+    x = x0 + np.concatenate(([0.0], np.cumsum(chord * np.cos(mid))))
+    y = y0 + np.concatenate(([0.0], np.cumsum(chord * np.sin(mid))))
     return Track(ts, x, y, psi_s)
 
 
@@ -132,10 +140,17 @@ class PositionErrors:
 
 
 def position_errors(track: Track, t_ref: ArrayLike, x_ref: ArrayLike, y_ref: ArrayLike) -> PositionErrors:
-    """Compare ``track`` (interpolated) with the reference positions inside the track's time span."""
+    """Compare ``track`` (interpolated) with the reference positions inside the track's time span.
+
+    Raises:
+        ValueError: reference samples that are not finite (a NaN position made every metric NaN),
+            times not strictly increasing, lengths apart, or fewer than two inside the track's span.
+    """
     tr, xr, yr = as_float_array("t_ref", t_ref), as_float_array("x_ref", x_ref), as_float_array("y_ref", y_ref)
     if not len(tr) == len(xr) == len(yr):
         raise ValueError("t_ref, x_ref and y_ref must have equal lengths")
+    require_series("t_ref", tr, "x_ref", xr, context="reference")
+    require_finite("y_ref", yr, context="reference")
     inside = (tr >= track.t[0]) & (tr <= track.t[-1])
     if inside.sum() < 2:
         raise ValueError("the reference has fewer than two samples inside the track's time span")
@@ -157,7 +172,23 @@ def return_position_error(track: Track, *, displacement: tuple[float, float] = (
 
     The distance between where the track ends and where it should end: its start plus the true
     ``displacement`` [m] from start to end (zero for a path that returns to its start).
+
+    Raises:
+        ValueError: a ``displacement`` that is not two finite numbers (NaN gave NaN).
+        TypeError: a ``displacement`` that is no pair of numbers.
     """
-    dx = track.x[-1] - track.x[0] - displacement[0]
-    dy = track.y[-1] - track.y[0] - displacement[1]
+    east, north = _point("displacement", displacement)
+    dx = track.x[-1] - track.x[0] - east
+    dy = track.y[-1] - track.y[0] - north
     return math.hypot(dx, dy)
+
+
+def _point(name: str, value: object) -> tuple[float, float]:
+    """``value`` as ``(x, y)`` [m]: two finite numbers (a TypeError or ValueError naming ``name``
+    otherwise: text failed inside numpy, and three numbers were taken as two)."""
+    if isinstance(value, (str, bytes)) or not isinstance(value, (tuple, list, np.ndarray)):
+        raise TypeError(f"{name} must be (x, y) in metres, got {value!r}")
+    if len(value) != 2:
+        raise ValueError(f"{name} must be (x, y) in metres, two numbers, got {value!r}")
+    return (check_number(f"{name}[0]", value[0], low=None, unit=" [m]"),
+            check_number(f"{name}[1]", value[1], low=None, unit=" [m]"))

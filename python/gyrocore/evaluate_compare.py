@@ -17,13 +17,13 @@ from numpy.typing import ArrayLike
 
 from . import deadreckon
 from ._arrays import as_float_array
-from ._checks import warn
+from ._checks import check_number, require_finite, require_flag, warn
 from ._extras import pyplot
 from .batch_job import failed_line
 from .evaluate_metrics import HeadingErrors, Reference, heading_errors, improvement
 from .io import Log, read_log
 from .pipeline import HeadingResult, has_bias_source, process, recommended_preset, uses_static_bias
-from .wholelog import Rest, check_mode, rest_lines
+from .wholelog import Rest, check_mode, check_parameters, rest_lines
 
 
 @dataclass(frozen=True)
@@ -124,8 +124,18 @@ CLOSED_FRACTION = 0.01
 
 
 def is_closed_path(x: ArrayLike, y: ArrayLike, *, fraction: float = CLOSED_FRACTION) -> bool:
-    """Whether a track [m] ends within ``fraction`` of its length from where it started."""
+    """Whether a track [m] ends within ``fraction`` of its length from where it started.
+
+    Raises:
+        ValueError: ``x`` and ``y`` of different lengths, or a position or ``fraction`` that is not
+            finite (``fraction`` >= 0), naming the first: each answered False.
+    """
     xa, ya = as_float_array("x", x), as_float_array("y", y)
+    if len(xa) != len(ya):
+        raise ValueError(f"y has {len(ya)} samples but x has {len(xa)}")
+    require_finite("x", xa)
+    require_finite("y", ya)
+    check_number("fraction", fraction, strict=False)
     length = float(np.hypot(np.diff(xa), np.diff(ya)).sum())
     return length > 0 and math.hypot(xa[-1] - xa[0], ya[-1] - ya[0]) <= fraction * length
 
@@ -189,11 +199,28 @@ def compare(
         mode: ``whole`` (the bias from every rest, known from the first sample) or ``causal``
             (see :func:`gyrocore.process`).
         use_speed: in whole mode, also find rests where the odometry's speed is zero.
+
+    One log (a path or a :class:`Log`) or one preset may be given alone, as a list of one.
+
+    Raises:
+        ValueError: a mode, preset, method parameter or ``bias_duration`` that is refused (before
+            any log is read), or a log that cannot be read or scored (naming it).
+        TypeError: a preset that is no name, a ``bias_duration`` that is no number, a
+            ``use_speed`` that is no bool.
     """
     check_mode(mode)
+    # One path was taken as a sequence of one-letter logs ("/: not a log folder"), one preset as
+    # one-letter presets ("unknown preset 'h'", blamed on the log).
+    logs = [logs] if isinstance(logs, (str, os.PathLike, Log)) else logs
+    presets = [presets] if isinstance(presets, (str, Method)) else presets
     methods = [m if isinstance(m, Method) else Method.from_preset(m) for m in presets] + list(params or [])
     if not methods:
         raise ValueError("no method to compare: give at least one preset or parameter set")
+    for method in methods:  # before any log is read, not as an error of the first log
+        check_parameters(method.preset, dict(method.overrides))
+    if bias_duration is not None:  # "5" failed as a format code, NaN as the first log's error
+        check_number("bias_duration", bias_duration, unit=" [s]")
+    require_flag("use_speed", use_speed)  # "no" was True
     if plot_dir is not None:
         _pyplot()  # fail before the work if plots cannot be drawn
     rows: list[Score] = []

@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
-from ._checks import require_radians, require_series
+from ._checks import check_number, require_finite, require_flag, require_increasing, require_radians, require_series
 
 #: An interval longer than this many times the median interval is a gap (a logger or tracking
 #: outage). Irregular ROS logging stays below about 5 times its median (f110_ds3: 4.1).
@@ -59,10 +59,17 @@ def find_gaps(t: ArrayLike, *, gap_factor: float = GAP_FACTOR) -> np.ndarray:
     """Which intervals ``t[k] -> t[k+1]`` are gaps: longer than ``gap_factor`` times the median.
 
     Returns a boolean array of length ``len(t) - 1``.
+
+    Raises:
+        ValueError: a ``gap_factor`` that is not finite and > 1 (NaN found no gap), times that are
+            not finite or not strictly increasing (a NaN time hid the gap around it), naming the first.
+        TypeError: a ``gap_factor`` that is no number.
     """
-    if gap_factor <= 1:
-        raise ValueError(f"gap_factor must be > 1, got {gap_factor}")
-    dt = np.diff(as_float_array("t", t))
+    check_number("gap_factor", gap_factor, low=1.0)
+    ta = as_float_array("t", t)
+    require_finite("t", ta)
+    require_increasing("t", ta)
+    dt = np.diff(ta)
     if len(dt) == 0:
         return np.zeros(0, dtype=bool)
     return np.asarray(dt > gap_factor * float(np.median(dt)))
@@ -202,6 +209,8 @@ def heading_errors(
     (eq 16). Gaps are skipped as :class:`Reference` describes; both sides may have irregular rates.
     ``absolute``: no alignment, the wrapped difference (a heading made absolute by fixes).
     """
+    for name, flag in (("time_weighted", time_weighted), ("absolute", absolute)):
+        require_flag(name, flag)
     reference = Reference(t_ref, heading_ref, gap_factor=gap_factor, time_weighted=time_weighted)
     return reference.errors(t, heading, absolute=absolute)
 
@@ -230,6 +239,10 @@ def return_orientation_error(
     te = as_float_array("t", t)
     psi = as_float_array("heading", heading)
     require_series("t", te, "heading", psi)
+    if len(te) < 2:  # no sample was a bare IndexError
+        raise ValueError(f"a return orientation error needs at least two samples, got {len(te)}")
+    if rotation is not None:  # NaN gave NaN, text a bare TypeError of the subtraction
+        rotation = check_number("rotation", rotation, low=None, unit=" [rad]")
     t0 = te[0] if t_start is None else t_start
     t1 = te[-1] if t_end is None else t_end
     if not te[0] <= t0 < t1 <= te[-1]:

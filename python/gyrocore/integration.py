@@ -7,14 +7,25 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
+from ._checks import check_number
 
 
 def integrate(
     t: ArrayLike, rate: ArrayLike, method: str = "trapezoid", *, initial_heading: float = 0.0
 ) -> FloatArray:
-    """Continuous heading [rad] from rate [rad/s]: ``trapezoid`` or ``rectangle`` (HDR eq 3)."""
+    """Continuous heading [rad] from rate [rad/s]: ``trapezoid`` or ``rectangle`` (HDR eq 3).
+
+    Raises:
+        SampleError: (a ValueError) a time or reading the core refuses, naming the first.
+        ValueError: lengths apart, an unknown ``method``, an ``initial_heading`` that is not finite.
+        TypeError: non-numeric arrays, a ``method`` that is no name, an ``initial_heading`` that is
+            no number (the core's "must be real number, not str" named neither; True was 1 rad).
+    """
+    if not isinstance(method, str):
+        raise TypeError(f"method must be 'trapezoid' or 'rectangle', got {method!r}")
     heading: FloatArray = _gyrocore.integrate(
-        as_float_array("t", t), as_float_array("rate", rate), method, initial_heading
+        as_float_array("t", t), as_float_array("rate", rate), method,
+        check_number("initial_heading", initial_heading, low=None, unit=" [rad]"),
     )
     return heading
 
@@ -23,6 +34,12 @@ def downsample(t: ArrayLike, rate: ArrayLike, interval: float = 1.0) -> tuple[Fl
     """Block means over ``interval`` seconds (the HDR paper's down-sampling, its second eq 14).
 
     Returns the end time of each complete block and its time-weighted mean rate.
+
+    Raises:
+        TypeError: an ``interval`` that is no number (text was the core's unnamed "must be real
+            number", True an interval of 1 s).
+        ValueError: an ``interval`` that is not finite and > 0, samples the core refuses.
     """
-    tb, rb = _gyrocore.downsample(as_float_array("t", t), as_float_array("rate", rate), interval)
+    tb, rb = _gyrocore.downsample(as_float_array("t", t), as_float_array("rate", rate),
+                                  check_number("interval", interval, unit=" [s]"))
     return tb, rb

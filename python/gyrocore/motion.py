@@ -31,7 +31,7 @@ public name is here.
 from __future__ import annotations
 
 from .motion_lab import robot_run, rotary_table, square_path
-from .motion_model import GRID, Motion, Segment, Truth
+from .motion_model import GRID, MAX_DURATION, Motion, Segment, Truth
 from .motion_roads import (
     ROAD_MIXES,
     ROADS,
@@ -44,6 +44,6 @@ from .motion_roads import (
 )
 
 __all__ = [
-    "GRID", "ROADS", "ROAD_MIXES", "TABLE_II_DRIVES", "TABLE_IV_DRIVES", "DriveSpec", "Motion", "Road", "Segment",
-    "Truth", "car", "hdr_figure3", "robot_run", "rotary_table", "square_path",
+    "GRID", "MAX_DURATION", "ROADS", "ROAD_MIXES", "TABLE_II_DRIVES", "TABLE_IV_DRIVES", "DriveSpec", "Motion", "Road",
+    "Segment", "Truth", "car", "hdr_figure3", "robot_run", "rotary_table", "square_path",
 ]

@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import math
 
-from .motion_model import _DEG, Motion, _Track
+from ._checks import check_number
+from .motion_model import _DEG, Motion, _Track, check_duration, check_positive, check_runs
 
 
 def square_path(
@@ -22,9 +23,20 @@ def square_path(
     counter-clockwise lap of a ``side`` x ``side`` m square, each lap preceded by a static bias test
     of ``rest`` seconds. Straight sides at up to ``speed`` [m/s] (from rest to rest), four
     on-the-spot 90-degree turns at up to ``turn_dps``. With the defaults a lap takes 64 s, as in the
-    paper. Segments: ``rest``, ``lap_cw``, ``lap_ccw`` (each lap's ``angle`` is -+2 pi)."""
-    if runs < 1:
-        raise ValueError(f"runs must be >= 1, got {runs}")
+    paper. Segments: ``rest``, ``lap_cw``, ``lap_ccw`` (each lap's ``angle`` is -+2 pi).
+
+    Raises:
+        ValueError: ``runs`` that is no whole number >= 1 or that would last longer than
+            :data:`gyrocore.motion.MAX_DURATION`, a ``rest`` that is not finite and >= 0,
+            another argument that is not finite and > 0 (each named).
+    """
+    runs = check_runs(runs)
+    check_positive(side=side, speed=speed, accel=accel, turn_dps=turn_dps, turn_accel_dps2=turn_accel_dps2)
+    check_number("rest", rest, strict=False, unit=" [s]")
+    if runs > 1:  # one run's length times runs, before they are built one by one
+        one = square_path(runs=1, side=side, speed=speed, accel=accel, turn_dps=turn_dps, turn_accel_dps2=turn_accel_dps2,
+                          rest=rest)
+        check_duration(f"the square path of {runs} runs", float(one.knots[-1]) * runs)
     tr = _Track()
     for _ in range(runs):
         for direction, sign in (("cw", -1.0), ("ccw", 1.0)):
@@ -50,9 +62,18 @@ def rotary_table(
     seconds, a clockwise 360 deg turn, a ``pause``, a counter-clockwise turn and a pause, turning
     at ``rate_dps`` with ramps of ``accel_dps2``; with the defaults a run takes 48 s, and 150 runs
     span the 2 hours the paper's gyro needed to reach a steady temperature.
-    Segments: ``rest``, ``turn_cw``, ``turn_ccw``."""
-    if runs < 1:
-        raise ValueError(f"runs must be >= 1, got {runs}")
+    Segments: ``rest``, ``turn_cw``, ``turn_ccw``.
+
+    Raises:
+        ValueError: as :func:`square_path` (``pause`` finite and >= 0, as ``rest``).
+    """
+    runs = check_runs(runs)
+    check_positive(rate_dps=rate_dps, accel_dps2=accel_dps2)
+    check_number("rest", rest, strict=False, unit=" [s]")
+    check_number("pause", pause, strict=False, unit=" [s]")  # a negative pause was taken
+    if runs > 1:
+        one = rotary_table(runs=1, rate_dps=rate_dps, accel_dps2=accel_dps2, rest=rest, pause=pause)
+        check_duration(f"the rotary table of {runs} runs", float(one.knots[-1]) * runs)
     tr = _Track()
     for _ in range(runs):
         tr.rest(rest)
@@ -76,6 +97,8 @@ def robot_run(
     ``calibration``: the rate must change for the least squares of Hong eq 7 and 9), then drives
     straight legs at up to ``max_speed`` [m/s] with on-the-spot turns of ``turn_deg`` (> 0) to
     alternate sides, so the heading stays within +-``turn_deg``."""
+    check_positive(duration=duration, max_speed=max_speed)  # NaN speed: numpy's "arange: cannot compute length"
+    check_duration("the robot run", duration)
     if not 0 < power_up < calibration < duration:
         raise ValueError("need 0 < power_up < calibration < duration")
     if not 0 < turn_deg <= 180:

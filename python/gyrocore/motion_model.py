@@ -13,10 +13,36 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
+from ._checks import check_number
 
 #: Knot spacing used for swerving and for integrating the position [s].
 GRID = 0.05
 _DEG = math.pi / 180.0
+#: The longest motion built [s], 36 hours: a motion is built manoeuvre by manoeuvre in memory, and
+#: one of 1e6 s (a car drive's 20 million knots) took over a minute, of a billion s or runs until the
+#: memory ran out.
+MAX_DURATION = 2.0**17
+
+
+def check_duration(what: str, seconds: float) -> None:
+    """A ValueError if a motion of ``seconds`` (``what`` says whose) is longer than :data:`MAX_DURATION`."""
+    if seconds > MAX_DURATION:
+        raise ValueError(f"{what} would last {seconds:.6g} s, more than the {MAX_DURATION:.0f} s a motion may last "
+                         "(is the duration in seconds?)")
+
+
+def check_positive(**values: float) -> None:
+    """Refuse, naming it, a value that is not a finite number > 0 (a speed, rate or ramp of 0 was a
+    ZeroDivisionError, NaN numpy's "arange: cannot compute length")."""
+    for name, value in values.items():
+        check_number(name, value)
+
+
+def check_runs(runs: object) -> int:
+    """``runs`` as an int >= 1 (1.5 was "'float' object cannot be interpreted as an integer")."""
+    if isinstance(runs, (bool, np.bool_)) or not isinstance(runs, (int, np.integer)) or runs < 1:
+        raise ValueError(f"runs must be a whole number >= 1, got {runs!r}")
+    return int(runs)
 
 
 @dataclass(frozen=True)

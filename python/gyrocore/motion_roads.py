@@ -8,7 +8,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .motion_model import _DEG, Motion, _Track
+from ._checks import check_number, check_seed
+from .motion_model import _DEG, Motion, _Track, check_duration, check_positive
 
 
 def hdr_figure3(
@@ -25,7 +26,11 @@ def hdr_figure3(
     driving with a very slight 0.1 Hz sinusoidal swerve (amplitude ``swerve_dps``), slow curving at
     ``curve_dps`` from ``curve_start`` to ``curve_end`` (1 s ramps centred there), then straight
     again until ``duration``."""
-    if not rest < curve_start < curve_end < duration:
+    check_positive(duration=duration, speed=speed)
+    check_duration("the drive", duration)
+    for name, value in (("curve_dps", curve_dps), ("swerve_dps", swerve_dps)):
+        check_number(name, value, low=None, unit=" [deg/s]")  # NaN made every rate NaN
+    if not 0 <= rest < curve_start < curve_end < duration:
         raise ValueError("need rest < curve_start < curve_end < duration")
     tr = _Track()
     tr.rest(rest)
@@ -119,7 +124,18 @@ def car(duration: float, *, mix: str = "mixed", seed: int = 0, rest: float = 20.
     swaying (small random steering corrections), curves, 90-degree turns, and stops.
 
     Same arguments, same drive.
+
+    Raises:
+        ValueError: an unknown ``mix``, a ``duration`` that is not finite and > 0 or longer than
+            :data:`gyrocore.motion.MAX_DURATION`, a ``rest`` not in [0, duration), a
+            ``swerve_dps`` that is not finite, a ``seed`` outside [0, 2^64).
+        TypeError: a number argument that is text or a bool.
     """
+    duration = check_number("duration", duration, unit=" [s]")
+    check_duration("the drive", duration)  # built manoeuvre by manoeuvre: 1e9 s ran out of memory
+    rest = check_number("rest", rest, strict=False, unit=" [s]")
+    check_number("swerve_dps", swerve_dps, low=None, unit=" [deg/s]")  # NaN, 1e300: every rate NaN or beyond reading
+    seed = check_seed(seed)
     if mix not in ROAD_MIXES:
         raise ValueError(f"unknown road mix {mix!r}; choose one of {', '.join(ROAD_MIXES)}")
     if not 0 <= rest < duration:

@@ -58,6 +58,10 @@ class RestWindowError(ValueError):
     reaches past its end."""
 
 
+#: :meth:`Pipeline.process`'s ``index_offset`` is below this: any index of a chunk added to it fits
+#: the core's 64-bit index.
+MAX_INDEX = 2**63
+
 #: A rest window must hold at least this many readings: the mean of fewer is mostly noise, and
 #: its spread unknown (one reading gave a bias "+- 0").
 MIN_WINDOW_READINGS = 3
@@ -104,6 +108,16 @@ class Pipeline:
             only in the first block (docs/fixes.md).
         **overrides: parameters to change (see :func:`parameters`), e.g. ``bias_window=(t0, t1)``,
             ``bias=0.01`` [rad/s], ``threshold_dps=0.3``, ``hdr_increment=...``.
+
+    Raises:
+        ValueError: an unknown preset or parameter, or a parameter's value the core refuses.
+        TypeError: a preset that is no name; a parameter of the wrong type (text for a number, a
+            bool for anything but the switches ``delag``, ``hdr`` and ``track_rests``).
+
+    Warns:
+        InputWarning: a preset that removes a static bias given none (no ``bias``, ``bias_window``
+            or ``bias_duration``), once, as its first samples are processed (a first chunk that is
+            refused warns of nothing).
     """
 
     def __init__(self, preset: str = "hdr", *, fusion: dict[str, float] | None = None, **overrides: Any) -> None:
@@ -115,9 +129,9 @@ class Pipeline:
         self._rests: list[Rest] = []
         if fusion is not None:
             self._inner.start_fusion(_stage_settings(self.params, fusion))
-        unmeasured = unmeasured_bias(preset, si)
-        if unmeasured is not None:
-            warn(unmeasured)
+        # Said once the first samples are processed, not here: a run whose first chunk is refused
+        # (a NaN reading, times out of order) warned of a bias it never used before its error.
+        self._unmeasured = unmeasured_bias(preset, si)
 
     @property
     def preset(self) -> str:
@@ -177,19 +191,24 @@ class Pipeline:
             SampleError: (a ValueError) non-increasing or non-finite timestamps, or NaN/inf readings
                 under ``nonfinite="error"``; its ``index`` and ``what`` name the first bad sample.
             ValueError: mismatched lengths; timestamps whose interval overflows (near +-1e308); an
-                ``out`` array of the wrong shape or layout, read-only, or sharing memory;
+                ``index_offset`` that is no int in [0, 2^63); an ``out`` array of the wrong shape or
+                layout, read-only, or sharing memory;
                 :class:`RestWindowError` for a rest window that holds no sample (known once a
                 reading after its end comes). Nothing of the chunk is processed after any of these.
-            TypeError: non-numeric arrays; an ``out`` array that is not float64.
+            TypeError: non-numeric arrays; ``outputs`` that is no tuple of names (None); an ``out``
+                array that is not float64.
 
         Warns:
             InputWarning: rates or timestamps that look like another unit, or a temperature
                 without a temperature model (checked on the first chunk), readings held or skipped
                 (``nonfinite="hold"/"skip"``), gaps longer than ``gap_limit``.
         """
-        if isinstance(index_offset, bool) or not isinstance(index_offset, (int, np.integer)) or index_offset < 0:
+        # below 2^63: the core adds it to an index within the chunk, which wrapped past 2^64 (2^64 - 1
+        # named a bad fifth sample rate[4]) and 2^64 was a bare OverflowError
+        if (isinstance(index_offset, bool) or not isinstance(index_offset, (int, np.integer))
+                or not 0 <= index_offset < MAX_INDEX):
             raise ValueError(f"index_offset = {index_offset!r}: give the index of the chunk's first sample in the "
-                             "whole log, an int >= 0")
+                             "whole log, an int >= 0 and below 2^63")
         ta = as_float_array("t", t)
         ra = as_float_array("rate", rate)
         temp = None if temperature is None else as_float_array("temperature", temperature)
@@ -216,6 +235,9 @@ class Pipeline:
         )
         self._inner = inner  # with the fix stage the first fixes started, now that they were good
         self._warn_repairs(before, inner.report(), ta, ra, temp)
+        if self._unmeasured is not None and len(ta):
+            warn(self._unmeasured)
+            self._unmeasured = None
         if self._first_time is None and len(ta):
             self._first_time = float(ta[0])
         self._rests.extend(found)
@@ -306,6 +328,9 @@ class Pipeline:
                 f"bias_duration = {p['bias_duration']} s is longer than the log ({span}); "
                 "give a shorter rest at the start, or a bias_window"
             )
+        # A log that ends at the window's end leaves it open (no reading came after it): its
+        # readings are all there is, as whole mode counts them (one at t = 0 of (0, 0) passed).
+        refuse_few_readings(rest_window_text(p), count)
 
     def reset(self) -> None:
         """Return to the state before the first sample (same parameters)."""
@@ -397,6 +422,7 @@ class Pipeline:
             "state": self._inner.state_json(),
             "first_time": self._first_time,
             "rests": self._rests,
+            "unmeasured": self._unmeasured,
         }
 
     def __setstate__(self, state: dict[str, Any]) -> None:
@@ -405,6 +431,7 @@ class Pipeline:
         self._units_checked = self._inner.last_time() is not None
         self._first_time = state.get("first_time")
         self._rests = list(state.get("rests", []))
+        self._unmeasured = state.get("unmeasured")
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"

@@ -33,6 +33,7 @@ BIAS_SOURCES = ("bias", "bias_window", "bias_duration")
 
 def uses_static_bias(preset: str) -> bool:
     """Whether ``preset`` subtracts a static bias (and so wants a bias or a rest window)."""
+    _check_preset(preset)
     return bool(_gyrocore.preset_uses_static_bias(preset))
 
 
@@ -62,8 +63,11 @@ def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
     window) to the tuple the core takes."""
     si: dict[str, Any] = {}
     for key, value in overrides.items():
+        if isinstance(value, np.ndarray) and value.ndim == 0:  # a number from numpy (tuple() of it failed)
+            value = value.item()
         if isinstance(value, (list, np.ndarray)):
             value = tuple(value.tolist() if isinstance(value, np.ndarray) else value)
+        _refuse_bool(key, value)
         if key.endswith("_dps") and key[:-4] in _RATE_PARAMETERS:
             name, value = key[:-4], _radians(key, value)
         elif key == "initial_heading_deg":
@@ -74,6 +78,25 @@ def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
             raise ValueError(f"{name} is given twice (as {name} and in degrees)")
         si[name] = value
     return si
+
+
+def _refuse_bool(key: str, value: Any) -> None:
+    """A TypeError for a bool given to a parameter that is no switch: the core reads a bool as a
+    number (``bias=True`` was a bias of 1 rad/s, ``bias_window=(False, True)`` the window 0 .. 1 s)."""
+    if isinstance(value, (bool, np.bool_)) or (isinstance(value, tuple) and any(isinstance(v, (bool, np.bool_)) for v in value)):
+        every = parameters()
+        what = every.get(key[:-4] if key.endswith("_dps") else "initial_heading" if key == "initial_heading_deg" else key)
+        if what is not None and not what.endswith("[bool]"):
+            switches = ", ".join(k for k, v in every.items() if v.endswith("[bool]"))
+            raise TypeError(f"invalid parameter {key} = {value!r}: a bool, but {key} is {what} (the switches, which "
+                            f"take one, are {switches})")
+
+
+def _check_preset(preset: object) -> None:
+    """A TypeError for a preset that is no name (the core's "'None' is not an instance of 'str'"
+    said neither which argument nor what to give)."""
+    if not isinstance(preset, str):
+        raise TypeError(f"preset must be the name of a preset ({', '.join(preset_names())}, recommended), got {preset!r}")
 
 
 def _radians(key: str, value: Any) -> float | None:
@@ -88,6 +111,7 @@ def _radians(key: str, value: Any) -> float | None:
 
 def preset_params(preset: str = "hdr", **overrides: Any) -> dict[str, Any]:
     """The flat SI parameters of ``preset`` with ``overrides`` applied (validated by the core)."""
+    _check_preset(preset)
     si = _to_si(overrides)
     try:
         return dict(_gyrocore.preset_params(preset, si))
@@ -98,6 +122,7 @@ def preset_params(preset: str = "hdr", **overrides: Any) -> dict[str, Any]:
 def core_pipeline(preset: str, si: dict[str, Any]) -> _gyrocore.Pipeline:
     """The core's pipeline of ``preset`` with the SI parameters ``si``: each parameter and the
     rules between them checked (``PipelineConfig::validate``), the one in error named."""
+    _check_preset(preset)
     try:
         return _gyrocore.Pipeline(preset, si)
     except (TypeError, ValueError) as e:

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
-from ._checks import require_finite, require_series, warn
+from ._checks import MAX_READING, check_number, require_finite, require_series, warn
 
 
 @dataclass(frozen=True)
@@ -96,11 +96,11 @@ def bias_walk(*, rate_random_walk: float, bias_instability: float, horizon: floa
     the rate random walk K [rad/s/sqrt(s)], plus the bias instability's floor ``(0.664 B)^2``
     [B in rad/s] spread over ``horizon`` seconds (a flicker bias wanders by about its floor over
     the time between stops; a random walk is the filter's one-state stand-in for it)."""
-    for name, value in (("rate_random_walk", rate_random_walk), ("bias_instability", bias_instability)):
-        if not (math.isfinite(value) and value >= 0):
-            raise ValueError(f"{name} must be finite and >= 0, got {value}")
-    if not (math.isfinite(horizon) and horizon > 0):
-        raise ValueError(f"horizon must be finite and > 0 [s], got {horizon}")
+    # within a reading's limit: 1e300 overflowed (a bare OverflowError); text was math's bare TypeError
+    rate_random_walk, bias_instability = (
+        check_number(name, value, strict=False, high=MAX_READING)
+        for name, value in (("rate_random_walk", rate_random_walk), ("bias_instability", bias_instability)))
+    horizon = check_number("horizon", horizon, unit=" [s]")
     from .allan import FLICKER_FLOOR  # allan imports the pipeline, which imports this module
 
     return rate_random_walk**2 + (FLICKER_FLOOR * bias_instability) ** 2 / horizon

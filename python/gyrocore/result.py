@@ -27,12 +27,13 @@ ALL_OUTPUTS = OUTPUTS + FIX_OUTPUTS
 
 def output_flags(outputs: tuple[str, ...] | list[str]) -> tuple[bool, bool]:
     """Whether ``outputs`` asks for the rate and the drift (the heading is always computed);
-    a name not in :data:`ALL_OUTPUTS`, or no heading, is a ``ValueError``."""
-    if isinstance(outputs, str) or any(o not in ALL_OUTPUTS for o in outputs) or "heading" not in outputs:
-        raise ValueError(
-            f"outputs={outputs!r}: give a tuple of names from {', '.join(ALL_OUTPUTS)}, with heading "
-            "(the heading is always computed)"
-        )
+    a name not in :data:`ALL_OUTPUTS`, or no heading, is a ``ValueError``; no sequence of names
+    (``None``, a number) a ``TypeError``."""
+    give = f"give a tuple of names from {', '.join(ALL_OUTPUTS)}, with heading (the heading is always computed)"
+    if not isinstance(outputs, (tuple, list, set, frozenset)):  # None was a bare "'NoneType' object is not iterable"
+        raise (ValueError if isinstance(outputs, str) else TypeError)(f"outputs={outputs!r}: {give}")
+    if any(o not in ALL_OUTPUTS for o in outputs) or "heading" not in outputs:
+        raise ValueError(f"outputs={outputs!r}: {give}")
     return "rate" in outputs, "drift" in outputs
 
 
@@ -150,8 +151,10 @@ class HeadingResult:
 
     def output(self, name: str) -> FloatArray:
         """The output ``name`` (one of :data:`OUTPUTS`, or ``heading_sigma``); a ``ValueError`` if it
-        was not asked for (or, for ``heading_sigma``, there were no fixes)."""
-        value: FloatArray | None = getattr(self, name) if name in (*OUTPUTS, "heading_sigma") else None
+        was not asked for (or, for ``heading_sigma``, there were no fixes), or is no output's name."""
+        if name not in (*OUTPUTS, "heading_sigma"):  # "'foo' output was not computed: ask for it" misled
+            raise ValueError(f"no output is named {name!r}: give one of {', '.join(OUTPUTS)}, heading_sigma")
+        value: FloatArray | None = getattr(self, name)
         if value is None and name == "heading_sigma" and self.fusion is None:
             raise ValueError("the 'heading_sigma' output comes with heading fixes, and there were none")
         if value is None:

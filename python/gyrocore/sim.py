@@ -24,7 +24,7 @@ drive can be sampled at any rate; only the white noise depends on the sample int
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import asdict, dataclass, field, fields, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -32,7 +32,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore, motion
 from ._arrays import FloatArray, as_float_array
-from ._checks import require_series
+from ._checks import check_number, check_seed, real_number, require_series
 
 if TYPE_CHECKING:
     from .fixes import Fixes
@@ -120,7 +120,28 @@ class GyroSpec:
         }
 
     def replace(self, **changes: Any) -> GyroSpec:
-        """A copy with some fields changed (``spec.replace(rate_hz=10.0)``)."""
+        """A copy with some fields changed (``spec.replace(rate_hz=10.0)``).
+
+        Raises:
+            TypeError: a name that is no field, or a value of the wrong kind for its field: text or
+                a bool for a number (``bias_dps="x"`` failed inside a multiplication, ``True`` was
+                1 deg/s), anything but two numbers for a pair. The core checks the numbers' ranges.
+        """
+        kinds = {f.name: f.type for f in fields(self)}
+        unknown = sorted(set(changes) - set(kinds))
+        if unknown:  # dataclasses' "GyroSpec.__init__() got an unexpected keyword argument"
+            raise TypeError(f"unknown sensor field(s) {', '.join(unknown)}; the fields are {', '.join(kinds)}")
+        for key, value in changes.items():
+            kind = str(kinds[key])  # the annotation's text (postponed annotations)
+            if kind == "str":
+                ok, what = isinstance(value, str), "text"
+            elif kind.startswith("tuple"):
+                ok = isinstance(value, (tuple, list)) and len(value) == 2 and all(real_number(v) is not None for v in value)
+                what = "two numbers"
+            else:
+                ok, what = real_number(value) is not None, "a number"
+            if not ok:
+                raise TypeError(f"sensor field {key} must be {what}, got {value!r}")
         return replace(self, **changes)
 
     @property
@@ -222,17 +243,11 @@ def sensor(name: str | GyroSpec, **changes: Any) -> GyroSpec:
     return spec.replace(**changes) if changes else spec
 
 
-def _seed(seed: int) -> int:
-    if not isinstance(seed, (int, np.integer)) or isinstance(seed, bool) or not 0 <= seed < 2**64:
-        raise ValueError(f"seed must be an integer in [0, 2**64), got {seed!r}")
-    return int(seed)
-
-
 def sample_times(spec: GyroSpec, start: float, end: float, *, seed: int) -> FloatArray:
     """The instants [s] in ``[start, end)`` at which the log receives samples: the grid of
     ``spec.rate_hz`` with the spec's jitter and dropped samples (the first sample is never moved or
     dropped)."""
-    t: FloatArray = _gyrocore.gyro_sample_times(spec.si(), _seed(seed), float(start), float(end))
+    t: FloatArray = _gyrocore.gyro_sample_times(spec.si(), check_seed(seed), float(start), float(end))
     return t
 
 
@@ -267,7 +282,7 @@ def measure(spec: GyroSpec, t: ArrayLike, rate_true: ArrayLike, *, seed: int) ->
     """Readings of the gyro ``spec`` for the true rate [rad/s] at times ``t`` [s] (strictly
     increasing; the first is the model's time origin)."""
     ta, ra = as_float_array("t", t), as_float_array("rate_true", rate_true)
-    rate, temperature, bias, scale = _gyrocore.gyro_measure(spec.si(), _seed(seed), ta, ra)
+    rate, temperature, bias, scale = _gyrocore.gyro_measure(spec.si(), check_seed(seed), ta, ra)
     return Reading(rate, temperature, bias, scale)
 
 
@@ -330,9 +345,17 @@ def simulate(trajectory: motion.Motion, spec: GyroSpec | str, *, seed: int, rate
 
     The samples fall on the spec's grid (with its jitter and drops) over the motion's duration.
     ``rate_hz`` overrides the spec's rate. Same arguments, same drive.
+
+    Raises:
+        TypeError: a ``trajectory`` that is no :class:`gyrocore.motion.Motion` (None was "'NoneType'
+            object has no attribute 'duration'"), a ``rate_hz`` that is no number.
+        ValueError: an unknown sensor, a ``seed`` outside [0, 2^64), a span the simulator refuses.
     """
+    if not isinstance(trajectory, motion.Motion):
+        raise TypeError(f"trajectory must be a gyrocore.motion.Motion (e.g. gyrocore.motion.car(600)), got "
+                        f"{type(trajectory).__name__}")
     spec = sensor(spec) if rate_hz is None else sensor(spec, rate_hz=rate_hz)
-    seed = _seed(seed)
+    seed = check_seed(seed)
     t = sample_times(spec, 0.0, trajectory.duration, seed=seed)
     truth = trajectory.sample(t)
     reading = measure(spec, t, truth.rate, seed=seed)
@@ -378,7 +401,16 @@ def car_drive(
 
     One seed fixes the route, the drift and the noise; the route and the drift do not depend on
     ``rate_hz``.
+
+    Raises:
+        TypeError: a ``duration``, ``rate_hz`` or ``rest`` that is no number (a bool, text).
+        ValueError: a ``duration`` or ``rate_hz`` that is not finite and > 0, a ``rest`` that is not
+            finite and >= 0 or not shorter than the drive, a ``seed`` outside [0, 2^64).
     """
+    # each named as given: text was a bare "'<' not supported", True a drive of 1 s or a gyro at 1 Hz,
+    # a negative rest "must be shorter than the drive", and seed=-1 numpy's "expected non-negative integer"
+    duration, rate_hz = check_number("duration", duration, unit=" [s]"), check_number("rate_hz", rate_hz, unit=" [Hz]")
+    rest, seed = check_number("rest", rest, strict=False, unit=" [s]"), check_seed(seed)
     spec = sensor(sensor_name, rate_hz=rate_hz, **changes)
     # a drive of 1e12 s was built manoeuvre by manoeuvre before the simulator refused it
     check_span(spec, 0.0, duration)
@@ -415,8 +447,7 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     psi = np.unwrap(heading)
     if len(t) < 2:
         raise ValueError("the reference needs at least two samples")
-    if not (math.isfinite(rate_hz) and rate_hz > 0):
-        raise ValueError(f"rate_hz must be finite and > 0, got {rate_hz}")
+    rate_hz = check_number("rate_hz", rate_hz)
     if not SIGMA_DEG[0] <= sigma_deg <= SIGMA_DEG[1]:
         raise ValueError(f"sigma_deg must be in [{SIGMA_DEG[0]:.3g}, {SIGMA_DEG[1]:g}] deg, got {sigma_deg}")
     count = (t[-1] - t[0]) * rate_hz
@@ -429,7 +460,7 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
         if not end > start:
             raise ValueError(f"an outage must end after it starts, got ({start}, {end})")
         keep &= (tf < start) | (tf >= end)
-    rng = np.random.Generator(np.random.PCG64(_seed(seed)))
+    rng = np.random.Generator(np.random.PCG64(check_seed(seed)))
     sigma = math.radians(sigma_deg)
     noisy = np.interp(tf, t, psi) + sigma * rng.standard_normal(len(tf))
     return Fixes.of(tf[keep], np.angle(np.exp(1j * noisy[keep])), sigma)

@@ -40,7 +40,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
-from ._checks import first_infinite, warn
+from ._checks import MAX_READING, first_infinite, real_number, warn
 from ._gyrocore import SampleError
 from ._rests import MIN_REST, SPEED_THRESHOLD, accept, find_rests, measure_rest
 from ._smoother import SmoothedBias, smooth
@@ -362,12 +362,15 @@ class Options:
     def pop(cls, si: dict[str, Any]) -> Options:
         """The options in ``si`` (removed from it), checked."""
         given = {name: si.pop(name) for name in WHOLE_OPTIONS if si.get(name) is not None}
-        for name, value in given.items():
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not (math.isfinite(value) and value >= 0):
-                raise ValueError(f"invalid parameter {name} = {value!r}: must be a finite number >= 0")
+        for name, value in given.items():  # a numpy float32 was refused as no number
+            high = MAX_READING if name.endswith("_walk") else math.inf  # a rate's limit: 1e300 overflowed the smoother
+            if (x := real_number(value)) is None or not (math.isfinite(x) and 0 <= x <= high):
+                most = f" and at most 2^20 = {MAX_READING:.0f}" if high < math.inf else ""
+                raise ValueError(f"invalid parameter {name} = {value!r}: must be a finite number >= 0{most}")
+            given[name] = x
         for name in WHOLE_OPTIONS:
             si.pop(name, None)
-        return cls(**{k: float(v) for k, v in given.items()})
+        return cls(**given)
 
 
 def plan_arrays(
@@ -478,17 +481,17 @@ def process_log(
         # A rest's measurement saw a slice of the log: the pipeline names the sample in the log.
         Pipeline(preset, **without_bias(si)).process(ta, ra, temperature=temperature)
         raise
-    if bias_plan.warning:
-        warn(bias_plan.warning)
     pipeline, corrected = bias_plan.pipeline(preset), bias_plan.corrected(ta, ra)
     if fixes is None:
         result = pipeline.process(ta, corrected, temperature=temperature, outputs=outputs, out=out)
-        return bias_plan.result(result)
-    from .fixes import smoothed_stage, stage_settings  # the fix stage over the whole log
+    else:
+        from .fixes import smoothed_stage, stage_settings  # the fix stage over the whole log
 
-    result = pipeline.process(ta, corrected, temperature=temperature, outputs=(*outputs, "rate"))
-    fused = smoothed_stage(result, fixes, stage_settings(pipeline.params, fusion), outputs)
-    return bias_plan.result(filled(fused, arrays))
+        result = pipeline.process(ta, corrected, temperature=temperature, outputs=(*outputs, "rate"))
+        result = filled(smoothed_stage(result, fixes, stage_settings(pipeline.params, fusion), outputs), arrays)
+    if bias_plan.warning:  # after the run: a log the pipeline refuses (a NaN temperature) warned before its error
+        warn(bias_plan.warning)
+    return bias_plan.result(result)
 
 
 def _checked(fixes: FixesLike) -> Fixes:

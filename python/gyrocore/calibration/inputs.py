@@ -5,15 +5,22 @@ from __future__ import annotations
 from numpy.typing import ArrayLike
 
 from .._arrays import FloatArray, as_float_array
-from .._checks import require_readings, require_series
+from .._checks import require_readings, require_series, warn_units
 
 
 def check_series(
-    t: ArrayLike, rate: ArrayLike, *, t_name: str = "t", rate_name: str = "rate"
+    t: ArrayLike, rate: ArrayLike, *, t_name: str = "t", rate_name: str = "rate", readings: bool = True
 ) -> tuple[FloatArray, FloatArray]:
-    """Equal lengths, finite values, strictly increasing times; ValueError naming the index."""
+    """Equal lengths, finite values, strictly increasing times; ValueError naming the index. With
+    ``readings`` (a gyro's rates, not a reference heading) each within the pipeline's +-2^20 rad/s
+    too (a :class:`~gyrocore.SampleError`): 1e300 overflowed the fits' squares into nonsense; and
+    an :class:`~gyrocore.InputWarning` where they look like deg/s or the times like ms, as the
+    pipeline says (a static bias of 641 "rad/s" came without a word)."""
     ta, ra = as_float_array(t_name, t), as_float_array(rate_name, rate)
     require_series(t_name, ta, rate_name, ra)
+    if readings:
+        require_readings("rate", ra)
+        warn_units(ta, ra)
     return ta, ra
 
 

@@ -9,7 +9,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._arrays import FloatArray, as_float_array, as_window
-from .._checks import UnitError, require_radians, warn
+from .._checks import UnitError, require_radians, usable, warn
 from ..evaluate import unwrap
 from ..integration import integrate
 from .inputs import check_series
@@ -144,8 +144,8 @@ def rate_reference(rate_measured: ArrayLike, rate_reference: ArrayLike) -> Calib
         rate_reference: true rates r at the same instants [rad/s].
 
     Raises:
-        ValueError: unequal lengths, NaN, fewer than 3 samples, or a reference rate that does not
-            change ("the rate must change during calibration").
+        ValueError: unequal lengths, NaN or a rate beyond +-2^20 rad/s, fewer than 3 samples, or a
+            reference rate that does not change ("the rate must change during calibration").
     """
     rm = as_float_array("rate_measured", rate_measured)
     r = as_float_array("rate_reference", rate_reference)
@@ -154,9 +154,12 @@ def rate_reference(rate_measured: ArrayLike, rate_reference: ArrayLike) -> Calib
     if len(rm) < 3:
         raise ValueError(f"need at least 3 samples to fit scale and bias, got {len(rm)}")
     for name, a in (("rate_measured", rm), ("rate_reference", r)):
-        bad = np.flatnonzero(~np.isfinite(a))
+        bad = np.flatnonzero(~usable(a))  # beyond a reading's limit, 1e300 overflowed into "constant readings"
         if len(bad):
-            raise ValueError(f"{name}[{bad[0]}] is {a[bad[0]]}: samples must be finite")
+            i = bad[0]
+            if not np.isfinite(a[i]):
+                raise ValueError(f"{name}[{i}] is {a[i]}: samples must be finite")
+            raise ValueError(f"{name}[{i}] = {a[i]} rad/s is beyond +-2^20 rad/s (the limit of a reading): check the unit")
     ones = np.ones_like(r)
     _excited(np.column_stack([r, ones]), "a constant reference rate")
     q, cov, rms, cond = _solve(np.column_stack([rm, ones]), r)
@@ -206,7 +209,7 @@ def heading_reference(
             changing about 180/pi times as much as the gyro's angle).
     """
     ta, ra = check_series(t, rate_measured, rate_name="rate_measured")
-    tr, hr = check_series(t_ref, heading_ref, t_name="t_ref", rate_name="heading_ref")
+    tr, hr = check_series(t_ref, heading_ref, t_name="t_ref", rate_name="heading_ref", readings=False)
     require_radians("heading_ref", tr, hr)
     lo, hi = ta[0], ta[-1]
     if window is not None:

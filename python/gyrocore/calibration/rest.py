@@ -10,6 +10,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _gyrocore
 from .._arrays import FloatArray, as_window
+from .._checks import check_number
 from .inputs import check_series
 from .result import Calibration
 
@@ -56,8 +57,7 @@ def rest_windows_of_checked(
     increasing times), for a caller that checks them once: whole mode, once per log."""
     for name, value in (("min_duration", min_duration), ("block", block), ("noise_factor", noise_factor),
                         ("max_rate", max_rate), ("consistency", consistency)):
-        if not (math.isfinite(value) and value > 0):
-            raise ValueError(f"{name} must be finite and > 0, got {value}")
+        check_number(name, value)
     if len(ta) < 8:
         raise ValueError(f"need at least 8 samples to find a rest, got {len(ta)}")
     # Temporaries as long as the log are made in place where they can be: a whole log of 10^8

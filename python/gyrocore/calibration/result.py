@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._arrays import FloatArray, as_float_array, as_window
+from .._arrays import FloatArray, as_float_array, as_window, refuse_masked
 from ..io._jsonfile import read_json
 
 #: Saved calibrations carry this format name and version.
@@ -58,7 +58,9 @@ class BiasTable:
     counts: tuple[int, ...]
 
     def __call__(self, temperature: ArrayLike) -> FloatArray:
-        """Bias [rad/s] at ``temperature`` [degC] (scalar or array)."""
+        """Bias [rad/s] at ``temperature`` [degC] (scalar or array; a masked one with masked values is
+        refused, as everywhere)."""
+        refuse_masked("temperature", temperature)
         return np.interp(np.asarray(temperature, dtype=np.float64), self.temperatures, self.biases)
 
     def correct(self, rate: ArrayLike, temperature: ArrayLike) -> FloatArray:

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .._checks import check_number
 from ..integration import integrate
 from .inputs import check_series, check_temperature
 from .rest import rest_windows, static_bias
@@ -95,6 +96,11 @@ def rotary_table(
         ValueError: bad samples, no rest before the first turn, a motion that is not a turn of
             ``turn_angle``, or no turn at all.
     """
+    # checked here: a turn_angle or tolerance of 0 or NaN gave "no turn found", a NaN min_rest "no rest of
+    # at least nan s", and min_pause was named min_duration (rest_windows' name for it)
+    for name, value in (("turn_angle", turn_angle), ("tolerance", tolerance), ("min_rest", min_rest),
+                        ("min_pause", min_pause)):
+        check_number(name, value)
     ta, ra = check_series(t, rate)
     temp = None if temperature is None else check_temperature(temperature, len(ta))
     pauses = rest_windows(ta, ra, min_duration=min_pause, **rest_options)

@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .._checks import check_number
 from .inputs import check_series, check_temperature
 from .rest import time_weights
 from .result import BiasTable
@@ -34,8 +34,8 @@ def bias_temperature_table(
     """
     ta, ra = check_series(t, rate)
     temp = check_temperature(temperature, len(ta))
-    if not (math.isfinite(bin_width) and bin_width > 0):
-        raise ValueError(f"bin_width must be finite and > 0 [degC], got {bin_width}")
+    check_number("bin_width", bin_width, unit=" [degC]")
+    _count("min_samples", min_samples)
     w = time_weights(ta - ta[0])
     w[0] = w[1] if len(w) > 1 else 1.0
     position = np.floor((temp - temp.min()) / bin_width)
@@ -67,3 +67,10 @@ def bias_temperature_table(
         stderr=tuple(float(v) for v in stderr[order]),
         counts=tuple(int(v) for v in counts[order]),
     )
+
+
+def _count(name: str, value: object) -> None:
+    """Refuse a ``value`` that is not a whole number >= 1 (a bool, 2.5 or 0 readings per bin were
+    taken: 0 kept bins of no reading)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or value < 1:
+        raise ValueError(f"{name} must be a whole number >= 1, got {value!r}")

@@ -1,0 +1,101 @@
+"""Scoring and dead reckoning under hostile arguments (``gyrocore.evaluate``,
+``gyrocore.deadreckon``): NaN positions, switches given as text, a path where a list of logs is
+asked for; each refused naming the argument, never a NaN score or an answer to another question."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable
+
+import numpy as np
+import pytest
+
+from gyrocore import deadreckon, evaluate
+
+from .conftest import real_log_path
+
+T = np.arange(0.0, 60.0, 0.01)
+HEADING = 0.01 * T
+SPEED = np.full_like(T, 10.0)
+TRACK = deadreckon.dead_reckon(T, SPEED, T, np.zeros_like(T))
+
+
+def _nan_at(values: np.ndarray, i: int) -> np.ndarray:
+    out = values.astype(np.float64, copy=True)
+    out[i] = np.nan
+    return out
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "message"),
+    [
+        (lambda: evaluate.find_gaps(_nan_at(T, 3)), ValueError, "t[3] is nan: samples must be finite"),
+        (lambda: evaluate.find_gaps(T[::-1]), ValueError, "t must strictly increase: t[1] = 59.98"),
+        (lambda: evaluate.find_gaps(T, gap_factor=np.nan), ValueError, "gap_factor must be finite and > 1, got nan"),
+        (lambda: evaluate.heading_errors(T, HEADING, T, HEADING, gap_factor="x"), TypeError,
+         "gap_factor must be a number, got 'x'"),
+        (lambda: evaluate.heading_errors(T, HEADING, T, HEADING, time_weighted="no"), TypeError,
+         "time_weighted must be True or False, got 'no'"),
+        (lambda: evaluate.heading_errors(T, HEADING, T, HEADING, absolute=1), TypeError,
+         "absolute must be True or False, got 1"),
+        (lambda: evaluate.is_closed_path([0.0, 1.0, 0.0], [0.0, 1.0]), ValueError, "y has 2 samples but x has 3"),
+        (lambda: evaluate.is_closed_path([0.0, np.nan, 0.0], [0.0, 1.0, 0.0]), ValueError, "x[1] is nan"),
+        (lambda: evaluate.is_closed_path([0.0, 1.0, 0.0], [0.0, 1.0, 0.0], fraction=np.nan), ValueError,
+         "fraction must be finite and >= 0, got nan"),
+        (lambda: evaluate.return_orientation_error([], []), ValueError,
+         "a return orientation error needs at least two samples, got 0"),
+        (lambda: evaluate.return_orientation_error(T, HEADING, rotation=np.nan), ValueError,
+         "rotation must be finite [rad], got nan"),
+        (lambda: evaluate.return_orientation_error(T, HEADING, rotation="a"), TypeError,
+         "rotation must be a number [rad], got 'a'"),
+        (lambda: deadreckon.dead_reckon(T, SPEED, T, HEADING, position=(np.nan, 0.0)), ValueError,
+         "position[0] must be finite [m], got nan"),
+        (lambda: deadreckon.dead_reckon(T, SPEED, T, HEADING, position="ab"), TypeError,  # type: ignore[arg-type]
+         "position must be (x, y) in metres, got 'ab'"),
+        (lambda: deadreckon.dead_reckon(T, SPEED, T, HEADING, position=(1.0, 2.0, 3.0)), ValueError,  # type: ignore[arg-type]
+         "position must be (x, y) in metres, two numbers, got (1.0, 2.0, 3.0)"),
+        (lambda: deadreckon.dead_reckon(T, SPEED, T, HEADING, heading_offset=np.nan), ValueError,
+         "heading_offset must be finite [rad], got nan"),
+        (lambda: deadreckon.dead_reckon(T, SPEED, T, HEADING, heading_offset="0"), TypeError,  # type: ignore[arg-type]
+         "heading_offset must be a number [rad], got '0'"),
+        (lambda: deadreckon.position_errors(TRACK, T, _nan_at(SPEED * T, 5), np.zeros_like(T)), ValueError,
+         "reference: x_ref[5] is nan"),
+        (lambda: deadreckon.position_errors(TRACK, T, SPEED * T, _nan_at(np.zeros_like(T), 7)), ValueError,
+         "reference: y_ref[7] is nan"),
+        (lambda: deadreckon.return_position_error(TRACK, displacement=(0.0, np.inf)), ValueError,
+         "displacement[1] must be finite [m], got inf"),
+    ],
+)
+def test_a_hostile_argument_of_scoring_or_dead_reckoning_is_named(
+    call: Callable[[], object], error: type[Exception], message: str
+) -> None:
+    with pytest.raises(error, match="^" + re.escape(message)):
+        call()
+
+
+def test_valid_arguments_score_as_before() -> None:
+    assert not evaluate.find_gaps(T).any() and evaluate.find_gaps(np.r_[T, 100.0])[-1]
+    assert evaluate.is_closed_path([0.0, 1.0, 0.0], [0.0, 1.0, 0.0])
+    assert evaluate.return_orientation_error(T, HEADING, rotation=0.0) == pytest.approx(HEADING[-1])
+    shifted = deadreckon.dead_reckon(T, SPEED, T, np.zeros_like(T), position=np.array([1.0, 2.0]))
+    assert shifted.x[-1] - TRACK.x[-1] == pytest.approx(1.0) and shifted.y[-1] - TRACK.y[-1] == pytest.approx(2.0)
+    assert deadreckon.return_position_error(TRACK, displacement=(TRACK.x[-1], 0.0)) == pytest.approx(0.0, abs=1e-9)
+
+
+def test_compare_names_a_bad_method_before_reading_a_log_and_takes_one_log_or_preset_alone() -> None:
+    path = real_log_path("f110_ds1")
+    missing = "/nonexistent/log"  # never read: each argument is checked first
+    with pytest.raises(ValueError, match=r"^unknown preset 'hdrr'"):  # it was blamed on the first log
+        evaluate.compare([missing], ["hdrr"])
+    with pytest.raises(TypeError, match=r"^preset must be the name of a preset"):
+        evaluate.compare([missing], [None])  # type: ignore[list-item]
+    with pytest.raises(ValueError, match=r"^bias_duration must be finite and > 0 \[s\], got nan"):
+        evaluate.compare([missing], ["hdr"], bias_duration=np.nan)
+    with pytest.raises(TypeError, match=r"^bias_duration must be a number \[s\], got '5'"):
+        evaluate.compare([missing], ["hdr"], bias_duration="5")  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match=r"^use_speed must be True or False, got 'no'"):
+        evaluate.compare([missing], ["hdr"], use_speed="no")  # type: ignore[arg-type]
+    # one path was read as one-letter logs ("/: not a log folder"), one preset as one-letter presets
+    (alone,) = evaluate.compare(str(path), "hdr")  # type: ignore[arg-type]
+    (listed,) = evaluate.compare([path], ["hdr"])
+    assert alone.errors == listed.errors and alone.method == listed.method
