@@ -18,6 +18,7 @@ from ._gyrocore import SampleError
 from .batch_inputs import complete_output
 from .io._columns import concat
 from .io._logfolder import FIXES_CSV, read_odometry
+from .io._paths import error_text
 from .pipeline import RestWindowError, has_bias_source, uses_static_bias
 from .pipeline_params import _to_si, unmeasured_bias
 from .window import Window, time_range
@@ -327,7 +328,7 @@ class _FileJob:
         return rests.speed_on(t, odometry["t"], odometry["speed"], where=where)
 
     def failure(self, error: BaseException, seconds: float) -> FileReport:
-        reason = str(error) if isinstance(error, (ValueError, TypeError, OSError, ImportError)) else repr(error)
+        reason = error_text(error) if isinstance(error, (ValueError, TypeError, OSError, ImportError)) else repr(error)
         failed = reason or type(error).__name__
         return FileReport(str(self.path), None, self.rows_in, 0, seconds, failed, tuple(dict.fromkeys(self.notes)))
 

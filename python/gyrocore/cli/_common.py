@@ -18,6 +18,7 @@ from .._extras import MissingExtra, tqdm_class
 from ..calibration import Calibration
 from ..evaluate import Failed
 from ..io import atomic_path
+from ..io._paths import error_text
 from ..pipeline import has_bias_source
 from ..window import Window
 
@@ -45,7 +46,7 @@ def each_log(items: Sequence[str | io.Log | Failed], work: Callable[[Any], Seque
         except USER_ERRORS as e:
             if alone:
                 raise
-            rows.append(Failed(item.path or item.name if isinstance(item, io.Log) else item, str(e)))
+            rows.append(Failed(item.path or item.name if isinstance(item, io.Log) else item, error_text(e)))
     return rows
 
 
