@@ -48,6 +48,10 @@ def _csv_header(path: Path, delimiter: str) -> list[str]:
     if line.startswith(_GZIP) or any(b < 32 and b not in b"\t\r\n" for b in line[:4096]):
         # naming the columns would print the binary bytes
         raise ValueError(f"{path}: not a text CSV file (binary data on line 1; decompress a .gz file first)")
+    if not line.endswith(b"\n") and b"\r" in line.rstrip(b"\r"):
+        # classic Mac OS line ends: the reader splits lines at \n only, so the whole file is "line 1"
+        raise ValueError(f"{path}: lines end in a bare carriage return (classic Mac OS line ends), not a line "
+                         "feed: convert them, e.g. tr '\\r' '\\n' < old.csv > new.csv")
     if len(line) > MAX_LINE_BYTES:
         raise ValueError(f"{path}: line 1 is longer than {MAX_LINE_BYTES} bytes, the longest read")
     text = line.decode("utf-8-sig", errors="replace").rstrip("\r\n")

@@ -1,0 +1,45 @@
+"""Hostile files and command lines for ``process``, ``evaluate``, ``calibrate``, ``allan`` and
+``simulate``: one line naming the file (or option) and what to do, exit 2, nothing of the user's
+overwritten."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from .test_batch import synthetic_csv
+from .test_errors_named import run_cli
+from .test_hostile_inputs import log_folder_with
+
+
+def mac_line_ends(path: Path) -> Path:
+    """``path`` rewritten with classic Mac OS line ends (a bare carriage return)."""
+    path.write_bytes(path.read_bytes().replace(b"\n", b"\r"))
+    return path
+
+
+def test_a_csv_with_carriage_return_line_ends_says_so(tmp_path: Path) -> None:
+    log = mac_line_ends(synthetic_csv(tmp_path / "mac.csv", 3000))
+    message = (f"gyrocore: error: {log}: lines end in a bare carriage return (classic Mac OS line ends), not a line "
+               "feed: convert them, e.g. tr '\\r' '\\n' < old.csv > new.csv\n")
+    for args in (("process", log, "--out", tmp_path / "h.csv"), ("allan", log), ("calibrate", log)):
+        proc = run_cli(*args)
+        assert (proc.returncode, proc.stderr) == (2, message)
+    assert not (tmp_path / "h.csv").exists()
+
+
+def test_a_reference_with_carriage_return_line_ends_is_named(tmp_path: Path) -> None:
+    folder = log_folder_with(tmp_path, "reference.csv", "t,heading\r1700000000.5,0.1\r1700000010.5,0.2\r")
+    proc = run_cli("evaluate", folder, "--preset", "raw")
+    assert proc.returncode == 2
+    assert proc.stderr.startswith(f"gyrocore: error: {folder / 'reference.csv'}: lines end in a bare carriage return")
+
+
+def test_windows_line_ends_are_read_as_unix_ones(tmp_path: Path) -> None:
+    unix = synthetic_csv(tmp_path / "unix.csv", 3000)
+    windows = tmp_path / "windows.csv"
+    windows.write_bytes(unix.read_bytes().replace(b"\n", b"\r\n"))
+    for log in (unix, windows):
+        run_cli("process", log, "--out", tmp_path / f"{log.stem}.out.csv", "--columns", "t,heading", code=0)
+    assert (tmp_path / "unix.out.csv").read_bytes() == (tmp_path / "windows.out.csv").read_bytes()
