@@ -43,3 +43,21 @@ def test_windows_line_ends_are_read_as_unix_ones(tmp_path: Path) -> None:
     for log in (unix, windows):
         run_cli("process", log, "--out", tmp_path / f"{log.stem}.out.csv", "--columns", "t,heading", code=0)
     assert (tmp_path / "unix.out.csv").read_bytes() == (tmp_path / "windows.out.csv").read_bytes()
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (("--duration", "0.001"), "--duration 0.001: a car drive begins with a 20 s rest (its static bias test); "
+         "give a longer drive"),
+        (("--duration", "20"), "--duration 20: a car drive begins with a 20 s rest"),
+        (("--duration", "1e15"), "--duration 1e+15 at --rate-hz 10: 1.000e16 samples requested"),
+        (("--duration", "100", "--rate-hz", "1e9"), "--duration 100 at --rate-hz 1e+09: 1.000e11 samples requested"),
+        (("--profile", "robot", "--rate-hz", "1e12"), "--rate-hz 1e+12: gyro model: invalid parameter rate_hz"),
+    ],
+)
+def test_simulate_names_the_option_that_does_not_fit(tmp_path: Path, args: tuple[str, ...], message: str) -> None:
+    proc = run_cli("simulate", "--out", tmp_path / "s.csv", *args)
+    assert proc.returncode == 2
+    assert proc.stderr.startswith(f"gyrocore: error: {message}") and proc.stderr.count("\n") == 1, proc.stderr
+    assert not (tmp_path / "s.csv").exists()

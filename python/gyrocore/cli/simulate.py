@@ -96,7 +96,19 @@ def run(args: argparse.Namespace) -> int:
     refuse_existing([out], args.overwrite)
     _options_of_the_profile(args)
     rate_hz = sim.sensor(args.sensor).rate_hz if args.rate_hz is None else args.rate_hz
+    try:
+        spec = sim.sensor(args.sensor, rate_hz=rate_hz)
+        sim.check_span(spec, 0.0, 1.0)  # the core checks the model, its rate among it
+    except ValueError as e:  # "gyro model: invalid parameter rate_hz = ...": the option by its name
+        raise ValueError(f"--rate-hz {rate_hz:g}: {e}") from None
     if args.profile == "car":  # car_drive refuses a drive of too many samples before building its route
+        if args.duration <= sim.CAR_REST:  # the simulator's words named neither the option nor the fix
+            raise ValueError(f"--duration {args.duration:g}: a car drive begins with a {sim.CAR_REST:g} s rest "
+                             "(its static bias test); give a longer drive")
+        try:
+            sim.check_span(spec, 0.0, args.duration)
+        except ValueError as e:
+            raise ValueError(f"--duration {args.duration:g} at --rate-hz {rate_hz:g}: {e}") from None
         drive = sim.car_drive(args.duration, rate_hz, seed=args.seed, mix=args.mix, sensor_name=args.sensor)
     else:
         if args.profile in _REPEATED:
@@ -104,7 +116,7 @@ def run(args: argparse.Namespace) -> int:
             # (a billion runs would take hours to build before the limit said no)
             seconds = float(_REPEATED[args.profile](runs=1).knots[-1]) * args.runs
             try:
-                sim.check_span(sim.sensor(args.sensor, rate_hz=rate_hz), 0.0, seconds)
+                sim.check_span(spec, 0.0, seconds)
             except ValueError as e:
                 raise ValueError(f"--runs {args.runs} of the {args.profile} profile: {e}") from None
         drive = sim.simulate(_profiles(args)[args.profile](), args.sensor, seed=args.seed, rate_hz=args.rate_hz)
