@@ -61,3 +61,36 @@ def test_simulate_names_the_option_that_does_not_fit(tmp_path: Path, args: tuple
     assert proc.returncode == 2
     assert proc.stderr.startswith(f"gyrocore: error: {message}") and proc.stderr.count("\n") == 1, proc.stderr
     assert not (tmp_path / "s.csv").exists()
+
+
+@pytest.mark.parametrize(
+    ("yaml", "where"),
+    [
+        ("rosbag2_bagfile_information:\n  version: 5\n  bad: [unclosed\n    more: x\n",
+         "line 4, column 9: expected ',' or ']', but got ':' (while parsing a flow sequence)"),
+        ("a: 1\na: 2\n", 'line 2, column 1: found duplicate key "a" with value "2"'),
+    ],
+)
+def test_a_bag_with_broken_metadata_yaml_is_one_line_naming_the_spot(tmp_path: Path, yaml: str, where: str) -> None:
+    pytest.importorskip("rosbags.highlevel")
+    bag = tmp_path / "bag"
+    bag.mkdir()
+    (bag / "metadata.yaml").write_text(yaml)
+    for args in (("process", bag, "--out", tmp_path / "h.csv"), ("allan", bag)):
+        proc = run_cli(*args)
+        assert proc.returncode == 2
+        assert proc.stderr.count("\n") == 1, proc.stderr
+        assert proc.stderr.startswith(f"gyrocore: error: {bag / 'metadata.yaml'}: {where}")
+        assert proc.stderr.endswith(f"not valid YAML, so {bag} is not a readable ROS 2 bag; mend the file, or take it "
+                                    "from the bag's recording again\n")
+
+
+def test_a_damaged_bag_s_message_of_several_lines_is_one(tmp_path: Path) -> None:
+    pytest.importorskip("rosbags.highlevel")
+    bag = tmp_path / "bag"
+    bag.mkdir()
+    (bag / "metadata.yaml").write_text('a: "\t\x01')  # a character YAML refuses: no line and column
+    proc = run_cli("process", bag, "--out", tmp_path / "h.csv")
+    assert proc.returncode == 2
+    assert proc.stderr.count("\n") == 1, proc.stderr
+    assert proc.stderr.startswith(f"gyrocore: error: {bag}: not a readable ROS bag (")
