@@ -94,3 +94,36 @@ def test_a_damaged_bag_s_message_of_several_lines_is_one(tmp_path: Path) -> None
     assert proc.returncode == 2
     assert proc.stderr.count("\n") == 1, proc.stderr
     assert proc.stderr.startswith(f"gyrocore: error: {bag}: not a readable ROS bag (")
+
+
+def _edit_line(path: Path, line: int, text: str) -> Path:
+    """``path`` with its line ``line`` (1 is the header) replaced by ``text``."""
+    lines = path.read_text().splitlines()
+    lines[line - 1] = text
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+@pytest.mark.parametrize(
+    ("edit", "message"),
+    [
+        (lambda lines: _edit_line(lines, 52, "1700000000.5,nan"),
+         "rate[50] is NaN: samples must be finite (drop or fill them first) ({log}, line 52)"),
+        (lambda lines: _edit_line(lines, 53, "1700000000.0,0.1"),
+         "timestamps must strictly increase: t[51] = 1700000000 follows "),
+    ],
+)
+def test_allan_names_the_file_and_line_of_a_bad_sample(tmp_path: Path, edit: object, message: str) -> None:
+    log = edit(synthetic_csv(tmp_path / "log.csv", 3000))  # type: ignore[operator]
+    proc = run_cli("allan", log)
+    assert proc.returncode == 2
+    assert proc.stderr.startswith(f"gyrocore: error: {message.format(log=log)}") and proc.stderr.count("\n") == 1
+    assert proc.stderr.rstrip().endswith(f"({log}, line {53 if 'increase' in message else 52})")
+
+
+def test_allan_names_the_file_of_a_record_it_cannot_analyse(tmp_path: Path) -> None:
+    log = tmp_path / "short.csv"
+    log.write_text("t,gyro_z\n0,0.1\n0.01,0.1\n")
+    proc = run_cli("allan", log)
+    assert (proc.returncode, proc.stderr) == (2, f"gyrocore: error: {log}: need at least 3 samples for an Allan "
+                                                 "deviation, got 2\n")

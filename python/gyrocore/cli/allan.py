@@ -6,7 +6,10 @@ import argparse
 import json
 from pathlib import Path
 
+import numpy as np
+
 from .. import allan, io
+from .._gyrocore import SampleError
 from .._extras import pyplot
 from ..window import Window
 from ._common import (
@@ -58,12 +61,19 @@ def run(args: argparse.Namespace) -> int:
     # A record for the Allan deviation is taken at rest: small rates are no sign of a unit mistake.
     log = io.read_log(src, static=True, use_fixes=False, **reading_options(args))
     t, rate = log.t, log.rate
+    inside = np.arange(len(t))
     if window is not None:
         inside = window.samples(t, minimum=3)
         t, rate = t[inside], rate[inside]
-    result = allan.deviation_from_timestamps(
-        t, rate, taus=args.taus, overlapping=not args.non_overlapping, kind=args.kind
-    )
+    try:
+        result = allan.deviation_from_timestamps(
+            t, rate, taus=args.taus, overlapping=not args.non_overlapping, kind=args.kind
+        )
+    except SampleError as e:  # a NaN, times out of order: named with the file and its line, as process does
+        source = io.open_source(src, **reading_options(args))
+        raise ValueError(f"{e} ({source.data_path}, {source.where(int(inside[e.index]))})") from None
+    except ValueError as e:  # a gap, too few samples: which log
+        raise ValueError(f"{src}: {e}") from None
     params = allan.noise_parameters(result) if args.kind == "allan" else None
     if args.json:
         out = {"input": str(src), "allan": result.as_dict(), "noise": None if params is None else params.as_dict()}
