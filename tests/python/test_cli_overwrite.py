@@ -144,4 +144,19 @@ def test_skip_existing_is_for_an_output_folder_without_overwrite(tmp_path: Path)
     # no run writes a folder where an output goes: that is refused before any work, as without the option
     (folder / "small.csv").mkdir(parents=True)
     proc = gyrocore_cli("process", src, "--out", folder, "--skip-existing", code=2)
-    assert proc.stderr.startswith(f"gyrocore: error: {folder / 'small.csv'} already exists; pass --overwrite")
+    assert proc.stderr.startswith(f"gyrocore: error: {folder / 'small.csv'}: a folder, where an output file goes")
+
+
+@pytest.mark.parametrize("name", [n for n in WRITERS if n != "process to a folder"])
+@pytest.mark.parametrize("overwrite", [False, True])
+def test_a_folder_where_the_output_file_goes_is_refused_before_any_work(name: str, overwrite: bool, log: Path,
+                                                                        tmp_path: Path) -> None:
+    args, target = _command(name, log, tmp_path)
+    target.unlink()
+    target.mkdir()
+    (target / "keep.txt").write_text(MINE)
+    proc = gyrocore_cli(*args, *(["--overwrite"] if overwrite else []), code=2, timeout=60)
+    assert proc.stderr == (f"gyrocore: error: {target}: a folder, where an output file goes; move it or write elsewhere "
+                           "(--overwrite replaces files, never a folder; nothing was written)\n")
+    assert proc.stdout == ""  # refused before any work: no report
+    assert [p.name for p in target.iterdir()] == ["keep.txt"] and (target / "keep.txt").read_text() == MINE

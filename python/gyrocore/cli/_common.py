@@ -207,7 +207,14 @@ def add_overwrite_option(parser: argparse.ArgumentParser | argparse._ArgumentGro
 
 def refuse_existing(outputs: Iterable[Path], overwrite: bool) -> None:
     """Refuse, before any work, outputs that exist already unless ``--overwrite`` was given:
-    nothing a user has is replaced without being asked (a dangling link counts, its target too)."""
+    nothing a user has is replaced without being asked (a dangling link counts, its target too).
+    A folder where an output file goes is refused even with ``--overwrite``: the output could not
+    be renamed over it, and that failed only once the work was done."""
+    outputs = list(outputs)
+    folder = next((p for p in outputs if p.is_dir()), None)
+    if folder is not None:
+        raise IsADirectoryError(f"{folder}: a folder, where an output file goes; move it or write elsewhere "
+                                "(--overwrite replaces files, never a folder; nothing was written)")
     if overwrite:
         return
     taken = [str(p) for p in outputs if os.path.lexists(p)]
