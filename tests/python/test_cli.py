@@ -33,7 +33,9 @@ def test_demo_json_rows_beat_raw(capsys: pytest.CaptureFixture[str]) -> None:
     # The table's figures are the means of the per-drive ones.
     assert rows["hdr"]["e_psi_deg"] == pytest.approx(np.mean(rows["hdr"]["e_psi_deg_per_drive"]))
     assert len(rows["hdr"]["e_psi_deg_per_drive"]) == 3 and 0 <= rows["hdr"]["beats_static_bias"] <= 3
-    assert main(["demo", "--drives", "0"]) == 2
+    with pytest.raises(SystemExit) as info:  # refused as the command line is read
+        main(["demo", "--drives", "0"])
+    assert info.value.code == 2
 
 
 def test_process_writes_csv_with_one_row_per_sample(tmp_path: Path) -> None:
@@ -226,6 +228,21 @@ def test_reproduce_prints_paper_beside_ours_and_writes_figures(
         (("simulate", "--out", "{tmp}/s.csv", "--rate-hz", "-1"), "argument --rate-hz: must be a finite number > 0, got '-1'"),
         (("simulate", "--out", "{tmp}/s.csv", "--profile", "square", "--runs", "0"), "argument --runs: must be an integer >= 1"),
         (("simulate", "--out", "{tmp}/s.csv", "--seed", "1.5"), "argument --seed: must be an integer >= 0, got '1.5'"),
+        (("process", "{log}", "--out", "{tmp}/h.csv", "--bias-duration", "0"),
+         "argument --bias-duration: must be a finite number > 0, got '0'"),
+        (("process", "{log}", "--out", "{tmp}/h.csv", "--bias-duration", "nan"),
+         "argument --bias-duration: must be a finite number > 0, got 'nan'"),
+        (("process", "{log}", "--out", "{tmp}/h.csv", "--bias-dps", "inf"), "argument --bias-dps: must be a finite number, got 'inf'"),
+        (("process", "{log}", "--out", "{tmp}/h.csv", "--gap-limit", "-1"),
+         "argument --gap-limit: must be a finite number > 0 (or inf), got '-1'"),
+        (("process", "{log}", "--out", "{tmp}/h.csv", "--jobs", "0"), "argument --jobs: must be an integer >= 1, got '0'"),
+        (("process", "{log}", "--out", "{tmp}/h.csv", "--chunk-rows", "-5"),
+         "argument --chunk-rows: must be an integer >= 1, got '-5'"),
+        (("evaluate", "{log}", "--bias-duration", "-1"), "argument --bias-duration: must be a finite number > 0, got '-1'"),
+        (("evaluate", "{log}", "--bias-dps", "nan"), "argument --bias-dps: must be a finite number, got 'nan'"),
+        (("demo", "--duration", "nan", "--plot", "{tmp}/d.png"), "argument --duration: must be a finite number > 0, got 'nan'"),
+        (("demo", "--rate-hz", "0", "--plot", "{tmp}/d.png"), "argument --rate-hz: must be a finite number > 0, got '0'"),
+        (("demo", "--duration", "10", "--plot", "{tmp}/d.png"), "--duration 10: a car drive begins with a 20 s rest"),
         # a log whose rest window cannot give its bias is not written
         (("simulate", "--out", "{tmp}/s.csv", "--rate-hz", "1e-6"),
          "--rate-hz 1e-06 puts 1 sample(s) in the drive's rest window [0, 20] s, and its bias needs at least 3"),

@@ -226,21 +226,35 @@ def refuse_existing(outputs: Iterable[Path], overwrite: bool) -> None:
                           "(nothing was written)")
 
 
-def _bounded(low: float, *, above: bool, integer: bool = False) -> Callable[[str], float]:
-    """An argparse ``type``: a finite number (an integer where ``integer``) above ``low``, or at
-    least ``low``; argparse's error names the option, this one the value and the bound."""
+def _bounded(low: float, *, above: bool, integer: bool = False, infinite: bool = False) -> Callable[[str], float]:
+    """An argparse ``type``: a finite number (an integer where ``integer``; also +inf where
+    ``infinite``) above ``low``, or at least ``low``; argparse's error names the option, this one
+    the value and the bound."""
     wanted = f"{'an integer' if integer else 'a finite number'} {'>' if above else '>='} {low:g}"
+    wanted += " (or inf)" if infinite else ""
 
     def parse(text: str) -> float:
         try:
             value: float = int(text) if integer else float(text)
         except ValueError:
             value = math.nan
-        if not (math.isfinite(value) and (value > low if above else value >= low)):
+        if not ((math.isfinite(value) or (infinite and value == math.inf))
+                and (value > low if above else value >= low)):
             raise argparse.ArgumentTypeError(f"must be {wanted}, got {text!r}")
         return value
 
     return parse
+
+
+def finite(text: str) -> float:
+    """An argparse ``type``: a finite number of either sign (a bias)."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"must be a finite number, got {text!r}")
+    return value
 
 
 #: argparse types of numeric options: checked as the command line is read, before any work.
@@ -248,6 +262,9 @@ POSITIVE = _bounded(0.0, above=True)
 NON_NEGATIVE = _bounded(0.0, above=False)
 COUNT = _bounded(1, above=False, integer=True)
 SEED = _bounded(0, above=False, integer=True)
+#: A time span that may be infinite (``--gap-limit inf``: no gap detection).
+POSITIVE_OR_INF = _bounded(0.0, above=True, infinite=True)
+FINITE = finite
 
 
 def write_atomically(path: str | Path, write: Callable[[str], object]) -> None:

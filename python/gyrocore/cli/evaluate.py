@@ -14,6 +14,8 @@ from ..pipeline import preset_names
 from ..tune import ParameterSet
 from ._fixes import add_fix_options, evaluate_with_fixes, fixes_wanted, input_warnings
 from ._common import (
+    FINITE,
+    POSITIVE,
     add_command,
     each_log,
     exit_code,
@@ -54,12 +56,12 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     bias = p.add_mutually_exclusive_group()
     bias.add_argument(
         "--bias-duration",
-        type=float,
+        type=POSITIVE,
         metavar="S",
         help="for logs with no rest window: measure the static bias over the first S seconds while driving "
         "(only sound when the drive starts straight; the same S for every log)",
     )
-    bias.add_argument("--bias-dps", type=float, metavar="B",
+    bias.add_argument("--bias-dps", type=FINITE, metavar="B",
                       help="known bias [deg/s] (what the gyro reads at rest), for every method and log")
     add_override_options(p.add_argument_group("pipeline parameters for every method"))
     add_reading_options(p)
