@@ -127,3 +127,20 @@ def test_allan_names_the_file_of_a_record_it_cannot_analyse(tmp_path: Path) -> N
     proc = run_cli("allan", log)
     assert (proc.returncode, proc.stderr) == (2, f"gyrocore: error: {log}: need at least 3 samples for an Allan "
                                                  "deviation, got 2\n")
+
+
+@pytest.mark.parametrize(
+    ("line", "text", "message"),
+    [
+        (2900, "1700000028.98,nan", "rate[2898] is nan: samples must be finite (drop or fill them first)"),
+        (2900, "1700000028.98,", "rate[2898] is nan: samples must be finite"),  # an empty rate
+        (53, "1700000000.0,0.1", "timestamps must strictly increase: t[51] = 1700000000 follows "),
+    ],
+)
+def test_calibrate_names_the_file_and_line_of_a_bad_sample(tmp_path: Path, line: int, text: str, message: str) -> None:
+    log = _edit_line(synthetic_csv(tmp_path / "log.csv", 3000), line, text)
+    proc = run_cli("calibrate", log, "--save", tmp_path / "c.json")
+    assert proc.returncode == 2
+    assert proc.stderr.startswith(f"gyrocore: error: {message}") and proc.stderr.count("\n") == 1, proc.stderr
+    assert proc.stderr.rstrip().endswith(f"({log}, line {line})")
+    assert not (tmp_path / "c.json").exists()

@@ -13,6 +13,8 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, TypeVar
 
+import numpy as np
+
 from .. import io
 from .._extras import MissingExtra, tqdm_class
 from ..calibration import Calibration
@@ -144,6 +146,28 @@ def _rest_window(args: argparse.Namespace) -> Window | None:
     if duration is not None:
         return Window(0.0, duration, (True, True), "--bias-duration")
     return None
+
+
+def check_samples(path: Path, log: io.Log, args: argparse.Namespace) -> None:
+    """Refuse a log with a NaN or infinite time or rate, or times that do not increase, naming the
+    first such sample by its file and line (row, message), as ``gyrocore process`` does; the
+    analyses (calibration) name only its index."""
+    t, rate = log.t, log.rate
+    found: list[tuple[int, str]] = []
+    for name, values in (("t", t), ("rate", rate)):
+        bad = np.flatnonzero(~np.isfinite(values))
+        if len(bad):
+            found.append((int(bad[0]), f"{name}[{bad[0]}] is {values[bad[0]]}: samples must be finite "
+                                       "(drop or fill them first)"))
+    back = np.flatnonzero(~(np.diff(t) > 0) & np.isfinite(t[1:]) & np.isfinite(t[:-1]))
+    if len(back):
+        k = int(back[0]) + 1
+        found.append((k, f"timestamps must strictly increase: t[{k}] = {t[k]:.17g} follows {t[k - 1]:.17g} "
+                         "(sort the log and drop duplicate timestamps)"))
+    if found:
+        row, what = min(found)
+        source = io.open_source(path, **reading_options(args))
+        raise ValueError(f"{what} ({source.data_path}, {source.where(row)})")
 
 
 def add_override_options(group: argparse._ArgumentGroup) -> None:

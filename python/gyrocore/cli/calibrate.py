@@ -20,6 +20,7 @@ from ._common import (
     POSITIVE,
     WINDOW_HELP,
     add_command,
+    check_samples,
     add_overwrite_option,
     add_reading_options,
     reading_options,
@@ -76,6 +77,7 @@ def run(args: argparse.Namespace) -> int:
         io.check_not_input(args.save, [source])  # e.g. the log's own meta.json
         refuse_existing([args.save], args.overwrite)
     log = io.read_log(source, use_fixes=False, **reading_options(args))
+    check_samples(source, log, args)
     if args.reference is not None:
         log = with_reference(log, args.reference)
     results: dict[str, Any] = {"log": log.name, "meta_stationary": log.stationary}
