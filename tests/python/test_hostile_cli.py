@@ -11,6 +11,7 @@ import pytest
 from .test_batch import synthetic_csv
 from .test_errors_named import run_cli
 from .test_hostile_inputs import log_folder_with
+from .test_hostile_paths import REFERENCE
 
 
 def mac_line_ends(path: Path) -> Path:
@@ -144,3 +145,14 @@ def test_calibrate_names_the_file_and_line_of_a_bad_sample(tmp_path: Path, line:
     assert proc.stderr.startswith(f"gyrocore: error: {message}") and proc.stderr.count("\n") == 1, proc.stderr
     assert proc.stderr.rstrip().endswith(f"({log}, line {line})")
     assert not (tmp_path / "c.json").exists()
+
+
+def test_a_plot_dir_that_is_a_file_is_refused_before_any_work(tmp_path: Path) -> None:
+    folder = log_folder_with(tmp_path, "reference.csv", REFERENCE)
+    mine = tmp_path / "notes.txt"
+    mine.write_text("the user's own file\n")
+    proc = run_cli("evaluate", folder, "--preset", "raw", "--plot-dir", mine)
+    assert (proc.returncode, proc.stdout) == (2, "")
+    assert proc.stderr == (f"gyrocore: error: --plot-dir {mine}: not a folder; give a folder for the plots (one that "
+                           "does not exist is made)\n")
+    assert mine.read_text() == "the user's own file\n"

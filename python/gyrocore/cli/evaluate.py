@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 from pathlib import Path
 from typing import Any
 
@@ -92,6 +93,9 @@ def run(args: argparse.Namespace) -> int:
     methods = [_with(m if isinstance(m, Method) else Method.from_preset(m), extra) for m in [*presets, *params]]
     if args.plot_dir:
         check_not_input(Path(args.plot_dir), [Path(p) for p in args.logs])
+        if os.path.lexists(args.plot_dir) and not Path(args.plot_dir).is_dir():  # found only once plotting
+            raise NotADirectoryError(f"--plot-dir {args.plot_dir}: not a folder; give a folder for the plots "
+                                     "(one that does not exist is made)")
     alone = len(args.logs) == 1
     logs = each_log(args.logs, lambda path: [_read(path, args)], alone=alone)
     read = [log for log in logs if isinstance(log, Log)]
