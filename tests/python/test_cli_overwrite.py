@@ -160,3 +160,21 @@ def test_a_folder_where_the_output_file_goes_is_refused_before_any_work(name: st
                            "(--overwrite replaces files, never a folder; nothing was written)\n")
     assert proc.stdout == ""  # refused before any work: no report
     assert [p.name for p in target.iterdir()] == ["keep.txt"] and (target / "keep.txt").read_text() == MINE
+
+
+@pytest.mark.parametrize("name", [n for n in WRITERS if n not in ("process to a folder", "evaluate", "reproduce")])
+@pytest.mark.parametrize("parent", ["missing", "file"])
+def test_an_output_without_its_folder_is_refused_before_any_work(name: str, parent: str, log: Path,
+                                                                 tmp_path: Path) -> None:
+    args, target = _command(name, log, tmp_path)
+    target.unlink()
+    folder = tmp_path / "not_here"
+    if parent == "file":
+        folder.write_text(MINE)
+    moved = folder / target.name
+    args = [str(moved) if a == str(target) else a for a in args]
+    proc = gyrocore_cli(*args, code=2, timeout=60)
+    reason = f"{folder} is not a folder; write the output elsewhere" if parent == "file" else (
+        f"the folder {folder} does not exist; create it or write elsewhere")
+    assert (proc.stdout, proc.stderr) == ("", f"gyrocore: error: {moved}: {reason}\n")
+    assert not folder.is_dir() and (parent == "missing" or folder.read_text() == MINE)

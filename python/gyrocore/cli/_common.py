@@ -20,6 +20,7 @@ from .._extras import MissingExtra, tqdm_class
 from ..calibration import Calibration
 from ..evaluate import Failed
 from ..io import atomic_path
+from ..io.atomic import check_output_folder
 from ..io._paths import error_text
 from ..pipeline import has_bias_source
 from ..window import Window
@@ -229,12 +230,16 @@ def add_overwrite_option(parser: argparse.ArgumentParser | argparse._ArgumentGro
                         help="replace output files that exist already (default: refuse them, before any work)")
 
 
-def refuse_existing(outputs: Iterable[Path], overwrite: bool) -> None:
-    """Refuse, before any work, outputs that exist already unless ``--overwrite`` was given:
+def refuse_existing(outputs: Iterable[Path], overwrite: bool, *, folders_exist: bool = True) -> None:
+    """Refuse, before any work, outputs whose folder is missing (unless the command makes it: not
+    ``folders_exist``), and outputs that exist already unless ``--overwrite`` was given:
     nothing a user has is replaced without being asked (a dangling link counts, its target too).
     A folder where an output file goes is refused even with ``--overwrite``: the output could not
     be renamed over it, and that failed only once the work was done."""
     outputs = list(outputs)
+    if folders_exist:
+        for p in outputs:
+            check_output_folder(p)
     folder = next((p for p in outputs if p.is_dir()), None)
     if folder is not None:
         raise IsADirectoryError(f"{folder}: a folder, where an output file goes; move it or write elsewhere "

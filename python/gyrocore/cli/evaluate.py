@@ -102,7 +102,7 @@ def run(args: argparse.Namespace) -> int:
     if fixes_wanted(args, read):
         return evaluate_with_fixes(args, logs, methods)
     if args.plot_dir:
-        refuse_existing(_plot_paths(args.plot_dir, read), args.overwrite)
+        refuse_existing(_plot_paths(args.plot_dir, read), args.overwrite, folders_exist=False)  # made
 
     def score(log: Log) -> list[Score]:
         with input_warnings() as messages:

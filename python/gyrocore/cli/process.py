@@ -161,7 +161,8 @@ def run(args: argparse.Namespace) -> int:
                          "leave the option out (an output that exists is refused unless --overwrite is given)")
     outputs = [out] if one_file else output_paths(inputs, out, args.format)
     # a complete output that --skip-existing keeps is not refused; anything else there is
-    refuse_existing([p for p in outputs if not (args.skip_existing and complete_output(p))], args.overwrite)
+    refuse_existing([p for p in outputs if not (args.skip_existing and complete_output(p))], args.overwrite,
+                    folders_exist=one_file)  # an output folder is made
     try:
         with warnings.catch_warnings():
             # every file's report carries these; print them once, with the file's name

@@ -113,8 +113,6 @@ def run(args: argparse.Namespace) -> int:
     out = Path(args.out)
     if out.suffix.lower() != ".csv":
         raise ValueError(f"{out}: output must end in .csv")
-    if not out.parent.is_dir():
-        raise OSError(f"{out.parent}: no such folder")
     refuse_existing([out], args.overwrite)
     _options_of_the_profile(args)
     rate_hz = sim.sensor(args.sensor).rate_hz if args.rate_hz is None else args.rate_hz

@@ -20,6 +20,20 @@ from .. import _signals
 _live: set[Path] = set()
 
 
+def output_folder_missing(path: Path) -> str:
+    """Why the output ``path`` cannot be written for want of its folder: none, or a file there."""
+    parent = path.parent
+    if os.path.lexists(parent) and not parent.is_dir():
+        return f"{path}: {parent} is not a folder; write the output elsewhere"
+    return f"{path}: the folder {parent} does not exist; create it or write elsewhere"
+
+
+def check_output_folder(path: Path) -> None:
+    """Refuse, before any work, an output whose folder is missing or is no folder (it was found
+    only when the output was written, after the work, or after a report had been printed)."""
+    if not path.parent.is_dir():
+        raise FileNotFoundError(output_folder_missing(path))
+
 class StagedFile:
     """A temporary file next to ``path`` that becomes ``path`` on :meth:`commit`.
 
@@ -42,7 +56,7 @@ class StagedFile:
                 continue
             except (FileNotFoundError, NotADirectoryError):  # named after the output, not the hidden file
                 _live.discard(tmp)
-                raise FileNotFoundError(f"{path}: the folder {path.parent} does not exist") from None
+                raise FileNotFoundError(output_folder_missing(path)) from None
             except PermissionError as e:
                 _live.discard(tmp)
                 raise PermissionError(f"{path}: cannot write in {path.parent} ({e.strerror})") from None
