@@ -156,3 +156,15 @@ def test_a_plot_dir_that_is_a_file_is_refused_before_any_work(tmp_path: Path) ->
     assert proc.stderr == (f"gyrocore: error: --plot-dir {mine}: not a folder; give a folder for the plots (one that "
                            "does not exist is made)\n")
     assert mine.read_text() == "the user's own file\n"
+
+
+def test_calibrate_never_saves_over_its_reference_file(tmp_path: Path) -> None:
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    reference = tmp_path / "reference.json"  # a CSV reference, whatever its file is called
+    reference.write_text("t,heading\n1700000000.5,0.1\n1700000010.5,0.2\n1700000020.5,0.3\n")
+    before = reference.read_bytes()
+    proc = run_cli("calibrate", log, "--reference", reference, "--save", reference, "--overwrite")
+    assert proc.returncode == 2
+    assert proc.stderr == (f"gyrocore: error: refusing to write {reference} over or inside the input {reference}; "
+                           "write it elsewhere\n")
+    assert reference.read_bytes() == before

@@ -74,7 +74,8 @@ def run(args: argparse.Namespace) -> int:
     rest = None if args.window is None else Window.parse(args.window, "--window")
     span = None if args.fit_window is None else Window.parse(args.fit_window, "--fit-window")
     if args.save is not None:
-        io.check_not_input(args.save, [source])  # e.g. the log's own meta.json
+        # e.g. the log's own meta.json, or the --reference file (a reference may be named .json)
+        io.check_not_input(args.save, [source, *([args.reference] if args.reference is not None else [])])
         refuse_existing([args.save], args.overwrite)
     log = io.read_log(source, use_fixes=False, **reading_options(args))
     check_samples(source, log, args)
