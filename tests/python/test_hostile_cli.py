@@ -168,3 +168,13 @@ def test_calibrate_never_saves_over_its_reference_file(tmp_path: Path) -> None:
     assert proc.stderr == (f"gyrocore: error: refusing to write {reference} over or inside the input {reference}; "
                            "write it elsewhere\n")
     assert reference.read_bytes() == before
+
+
+def test_a_parquet_file_with_a_column_twice_is_refused_without_a_line(tmp_path: Path) -> None:
+    pa = pytest.importorskip("pyarrow")
+    pq = pytest.importorskip("pyarrow.parquet")
+    path = tmp_path / "twice.parquet"
+    column = pa.array([0.0, 0.01, 0.02])
+    pq.write_table(pa.Table.from_arrays([column, column, column], names=["t", "gyro_z", "gyro_z"]), path)
+    proc = run_cli("process", path, "--out", tmp_path / "h.csv")
+    assert (proc.returncode, proc.stderr) == (2, f"gyrocore: error: {path}: column(s) gyro_z appear more than once\n")

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import io as _io
 import tracemalloc
+import warnings
 import zipfile
 from pathlib import Path
 
@@ -90,3 +91,16 @@ def test_npz_members_named_without_npy_are_read_as_np_load_reads_them(tmp_path: 
     path = _with_member(tmp_path / "bare.npz", {"t": _npy(t), "gyro_z": _npy(rate)})
     log = io.read_log(path)
     assert np.array_equal(log.t, t) and np.array_equal(log.rate, rate.astype(np.float64))
+
+
+@pytest.mark.parametrize("second", ["gyro_z.npy", "gyro_z"])
+def test_two_npz_members_of_one_name_are_refused_not_one_taken(tmp_path: Path, second: str) -> None:
+    path = tmp_path / "twice.npz"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # zipfile's "Duplicate name": such archives exist all the same
+        _with_member(path, {"t.npy": _npy(np.arange(3.0)), "gyro_z.npy": _npy(np.zeros(3))})
+        with zipfile.ZipFile(path, "a") as z:
+            z.writestr(second, _npy(np.ones(3)))
+    with pytest.raises(ValueError) as info:
+        io.read_log(path)
+    assert str(info.value) == f"{path}: column(s) gyro_z appear more than once"

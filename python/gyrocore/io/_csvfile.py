@@ -86,7 +86,7 @@ def _read_csv(
     pa_csv = require("pyarrow.csv", f"{path}: reading CSV files")
 
     header = _csv_header(path, delimiter)
-    positions = column_positions(path, header, columns, choose)
+    positions = column_positions(path, header, columns, choose, where="line 1: ")
     keys = {c: f"{positions[c]}:{c}" for c in columns}
     convert = pa_csv.ConvertOptions(
         include_columns=list(keys.values()),

@@ -134,8 +134,11 @@ def npz_chunks(
     o = src.options
     wanted = (o.time, *columns)
     with _npz_archive(src.path) as archive, ExitStack() as members:
-        names = {(n[:-4] if n.endswith(".npy") else n): n for n in archive.namelist()}  # as np.load names them
-        column_positions(src.path, list(names), wanted)
+        # as np.load names them; two members of one name (t.npy twice, or t and t.npy) are refused,
+        # not one of them taken without a word
+        members_named = [(n[:-4] if n.endswith(".npy") else n, n) for n in archive.namelist()]
+        column_positions(src.path, [name for name, _ in members_named], wanted)
+        names = dict(members_named)
         streams, dtypes, lengths = {}, {}, {}
         for name in wanted:
             f = members.enter_context(_npz_member(src.path, archive, names[name]))
