@@ -4,6 +4,7 @@ report of what it did (:class:`FileReport`) and a batch's (:class:`BatchReport`)
 
 from __future__ import annotations
 
+import os
 import time
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import AbstractContextManager, contextmanager
@@ -372,7 +373,9 @@ def _in_file(source: io.GyroSource, error: ValueError, window_from_meta: bool) -
     meta = window_from_meta and isinstance(error, RestWindowError)
     where = f" (the rest window is the stationary of {source.path / 'meta.json'})" if meta else ""
     text = str(error)
-    return ValueError(f"{text if str(source.data_path) in text else f'{source.data_path}: {text}'}{where}")
+    # named already: by the data file, or by another file of its log folder (odometry.csv)
+    named = str(source.data_path) in text or (source.path.is_dir() and text.startswith(f"{source.path}{os.sep}"))
+    return ValueError(f"{text if named else f'{source.data_path}: {text}'}{where}")
 
 
 def _repairs(report: Mapping[str, float]) -> list[str]:

@@ -178,3 +178,31 @@ def test_a_parquet_file_with_a_column_twice_is_refused_without_a_line(tmp_path: 
     pq.write_table(pa.Table.from_arrays([column, column, column], names=["t", "gyro_z", "gyro_z"]), path)
     proc = run_cli("process", path, "--out", tmp_path / "h.csv")
     assert (proc.returncode, proc.stderr) == (2, f"gyrocore: error: {path}: column(s) gyro_z appear more than once\n")
+
+
+@pytest.mark.parametrize("option", ["meta.json", "--params", "--calibration"])
+def test_a_json_key_given_twice_is_refused_not_the_last_taken(tmp_path: Path, option: str) -> None:
+    if option == "meta.json":
+        folder = log_folder_with(tmp_path, "meta.json", '{"stationary": [1700000000, 1700000010], "stationary": [0, 1]}')
+        given, args = folder / "meta.json", ("process", folder, "--out", tmp_path / "h.csv")
+    elif option == "--params":
+        given = tmp_path / "params.json"
+        given.write_text('{"format": "gyrocore-params", "version": 1, "name": "a", "name": "b", "preset": "hdr", '
+                         '"overrides": {}}')
+        args = ("evaluate", log_folder_with(tmp_path, "reference.csv", REFERENCE), "--params", given)
+    else:
+        given = tmp_path / "calibration.json"
+        given.write_text('{"bias": 0.1, "bias": 0.2}')
+        args = ("process", synthetic_csv(tmp_path / "log.csv", 3000), "--out", tmp_path / "h.csv", "--calibration", given)
+    proc = run_cli(*args)
+    key = {"meta.json": "stationary", "--params": "name", "--calibration": "bias"}[option]
+    assert (proc.returncode, proc.stderr) == (
+        2, f"gyrocore: error: {given}: the key {key!r} is given twice in one object; keep one\n")
+    assert not (tmp_path / "h.csv").exists()
+
+
+def test_an_odometry_error_names_the_odometry_file_once(tmp_path: Path) -> None:
+    folder = log_folder_with(tmp_path, "odometry.csv", "t,speed\n1700000000,0\n1700000010,nan\n")
+    proc = run_cli("process", folder, "--out", tmp_path / "h.csv")
+    assert proc.returncode == 2
+    assert proc.stderr.startswith(f"gyrocore: error: {folder / 'odometry.csv'}: speed[1] is nan"), proc.stderr
