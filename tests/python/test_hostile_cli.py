@@ -206,3 +206,16 @@ def test_an_odometry_error_names_the_odometry_file_once(tmp_path: Path) -> None:
     proc = run_cli("process", folder, "--out", tmp_path / "h.csv")
     assert proc.returncode == 2
     assert proc.stderr.startswith(f"gyrocore: error: {folder / 'odometry.csv'}: speed[1] is nan"), proc.stderr
+
+
+@pytest.mark.parametrize("second", ["1700000000.5", "1700000010.5"])  # back in time; repeated
+def test_a_reference_out_of_order_names_its_file_and_line(tmp_path: Path, second: str) -> None:
+    text = f"t,heading\n1700000010.5,0.1\n{second},0.2\n1700000020.5,0.3\n"
+    folder = log_folder_with(tmp_path, "reference.csv", text)
+    (tmp_path / "ref.csv").write_text(text)
+    for args, where in ((("evaluate", folder, "--preset", "raw"), folder / "reference.csv"),
+                        (("calibrate", folder / "gyro.csv", "--reference", tmp_path / "ref.csv"), tmp_path / "ref.csv")):
+        proc = run_cli(*args)
+        assert (proc.returncode, proc.stderr) == (2, f"gyrocore: error: {where}: line 3, column 1 (t): {second} does not "
+                                                     "come after 1700000010.5 on line 2; a reference's times must strictly "
+                                                     "increase: sort the file and drop repeated times\n")
