@@ -219,3 +219,12 @@ def test_a_reference_out_of_order_names_its_file_and_line(tmp_path: Path, second
         assert (proc.returncode, proc.stderr) == (2, f"gyrocore: error: {where}: line 3, column 1 (t): {second} does not "
                                                      "come after 1700000010.5 on line 2; a reference's times must strictly "
                                                      "increase: sort the file and drop repeated times\n")
+
+
+def test_a_file_name_with_a_line_break_keeps_the_error_on_one_line(tmp_path: Path) -> None:
+    log = _edit_line(synthetic_csv(tmp_path / "drive\nlog.csv", 3000), 52, "1700000000.5,nan")
+    proc = run_cli("process", log, "--out", tmp_path / "h.csv")
+    assert proc.returncode == 2
+    shown = str(log).replace("\n", "\\n")
+    assert proc.stderr == ("gyrocore: error: rate[50] is NaN: samples must be finite (drop or fill them first) "
+                           f"({shown}, line 52)\n")

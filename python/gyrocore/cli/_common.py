@@ -307,9 +307,15 @@ def print_json(data: Any) -> None:
     print(json.dumps(data, indent=2))
 
 
+def one_line(text: str) -> str:
+    """``text`` on one line: a control character (a line break or terminal escape in a file's
+    name) shown as its escape, ``\\n``, so that an error or warning stays one line."""
+    return "".join(repr(c)[1:-1] if c.isprintable() is False and c != " " else c for c in text)
+
+
 def warn(message: str) -> None:
     """One line on stderr: ``gyrocore: warning: ...``."""
-    print(f"gyrocore: warning: {message}", file=sys.stderr)
+    print(f"gyrocore: warning: {one_line(message)}", file=sys.stderr)
 
 
 def show_warning(
