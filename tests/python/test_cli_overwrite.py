@@ -178,3 +178,20 @@ def test_an_output_without_its_folder_is_refused_before_any_work(name: str, pare
         f"the folder {folder} does not exist; create it or write elsewhere")
     assert (proc.stdout, proc.stderr) == ("", f"gyrocore: error: {moved}: {reason}\n")
     assert not folder.is_dir() and (parent == "missing" or folder.read_text() == MINE)
+
+
+@pytest.mark.parametrize("name", ["process to a folder", "evaluate", "reproduce"])
+def test_a_file_in_the_way_of_a_folder_a_command_makes_is_refused_before_any_work(name: str, log: Path,
+                                                                                   tmp_path: Path) -> None:
+    args, target = _command(name, log, tmp_path)
+    folder = target.parent  # outF, plots, figures: made by the command where missing
+    target.unlink()
+    folder.rmdir()
+    blocker = tmp_path / "notes.txt"
+    blocker.write_text(MINE)
+    args = [a.replace(str(folder), str(blocker / "sub")) for a in args]
+    proc = gyrocore_cli(*args, code=2, timeout=60)
+    output = blocker / "sub" / target.name
+    assert (proc.stdout, proc.stderr) == ("", f"gyrocore: error: {output}: {blocker} is not a folder; write the "
+                                              "output elsewhere\n")
+    assert blocker.read_text() == MINE

@@ -237,9 +237,8 @@ def refuse_existing(outputs: Iterable[Path], overwrite: bool, *, folders_exist: 
     A folder where an output file goes is refused even with ``--overwrite``: the output could not
     be renamed over it, and that failed only once the work was done."""
     outputs = list(outputs)
-    if folders_exist:
-        for p in outputs:
-            check_output_folder(p)
+    for p in outputs:
+        check_output_folder(p, made=not folders_exist)
     folder = next((p for p in outputs if p.is_dir()), None)
     if folder is not None:
         raise IsADirectoryError(f"{folder}: a folder, where an output file goes; move it or write elsewhere "

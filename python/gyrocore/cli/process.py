@@ -11,6 +11,7 @@ from typing import Any
 from .. import io
 from .._checks import InputWarning, collected
 from ..batch import (
+    check_out_dir,
     check_outside_inputs,
     complete_output,
     expand_inputs,
@@ -159,6 +160,8 @@ def run(args: argparse.Namespace) -> int:
     if args.skip_existing and one_file:
         raise ValueError(f"--skip-existing is for a batch into an output folder, and --out {out} is one file: "
                          "leave the option out (an output that exists is refused unless --overwrite is given)")
+    if not one_file:
+        check_out_dir(out)
     outputs = [out] if one_file else output_paths(inputs, out, args.format)
     # a complete output that --skip-existing keeps is not refused; anything else there is
     refuse_existing([p for p in outputs if not (args.skip_existing and complete_output(p))], args.overwrite,

@@ -28,11 +28,19 @@ def output_folder_missing(path: Path) -> str:
     return f"{path}: the folder {parent} does not exist; create it or write elsewhere"
 
 
-def check_output_folder(path: Path) -> None:
+def check_output_folder(path: Path, *, made: bool = False) -> None:
     """Refuse, before any work, an output whose folder is missing or is no folder (it was found
-    only when the output was written, after the work, or after a report had been printed)."""
-    if not path.parent.is_dir():
-        raise FileNotFoundError(output_folder_missing(path))
+    only when the output was written, after the work, or after a report had been printed). Where
+    the command makes the folder (``made``), only a file in its way is refused."""
+    if not made:
+        if not path.parent.is_dir():
+            raise FileNotFoundError(output_folder_missing(path))
+        return
+    ancestor = path.parent
+    while not os.path.lexists(ancestor) and ancestor != ancestor.parent:
+        ancestor = ancestor.parent
+    if os.path.lexists(ancestor) and not ancestor.is_dir():
+        raise NotADirectoryError(f"{path}: {ancestor} is not a folder; write the output elsewhere")
 
 class StagedFile:
     """A temporary file next to ``path`` that becomes ``path`` on :meth:`commit`.
