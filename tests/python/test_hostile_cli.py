@@ -228,3 +228,14 @@ def test_a_file_name_with_a_line_break_keeps_the_error_on_one_line(tmp_path: Pat
     shown = str(log).replace("\n", "\\n")
     assert proc.stderr == ("gyrocore: error: rate[50] is NaN: samples must be finite (drop or fill them first) "
                            f"({shown}, line 52)\n")
+
+
+@pytest.mark.parametrize("kalibr", ["same.out", "sub/../same.out"])
+def test_allan_refuses_one_file_for_its_plot_and_its_yaml(tmp_path: Path, kalibr: str) -> None:
+    (tmp_path / "sub").mkdir()
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    proc = run_cli("allan", log, "--plot", tmp_path / "same.out", "--kalibr", f"{tmp_path}/{kalibr}")
+    assert (proc.returncode, proc.stdout) == (2, "")
+    assert proc.stderr == (f"gyrocore: error: --plot {tmp_path / 'same.out'} and --kalibr {tmp_path}/{kalibr} are one "
+                           "file; give each its own\n")
+    assert not (tmp_path / "same.out").exists()

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 from pathlib import Path
 
 import numpy as np
@@ -54,6 +55,9 @@ def run(args: argparse.Namespace) -> int:
     if args.rrw is not None and args.kalibr is None:
         raise ValueError("--rrw is the rate random walk written by --kalibr: give --kalibr FILE too, or leave --rrw out")
     outputs = [out for out in (args.plot, args.kalibr) if out is not None]
+    if len(outputs) == 2 and os.path.abspath(outputs[0]) == os.path.abspath(outputs[1]):
+        # the YAML would replace the plot just written
+        raise ValueError(f"--plot {args.plot} and --kalibr {args.kalibr} are one file; give each its own")
     for out in outputs:
         io.check_not_input(out, [src])
     refuse_existing(outputs, args.overwrite)
