@@ -239,3 +239,13 @@ def test_allan_refuses_one_file_for_its_plot_and_its_yaml(tmp_path: Path, kalibr
     assert proc.stderr == (f"gyrocore: error: --plot {tmp_path / 'same.out'} and --kalibr {tmp_path}/{kalibr} are one "
                            "file; give each its own\n")
     assert not (tmp_path / "same.out").exists()
+
+
+@pytest.mark.parametrize("content", [b"\xef\xbb\xbf", b"\xef\xbb\xbf\r\n", b"\n\n"])
+def test_a_csv_of_a_byte_order_mark_alone_has_no_header(tmp_path: Path, content: bytes) -> None:
+    log = tmp_path / "empty.csv"
+    log.write_bytes(content)
+    for args in (("process", log, "--out", tmp_path / "h.csv"), ("allan", log), ("calibrate", log), ("evaluate", log)):
+        proc = run_cli(*args)
+        assert (proc.returncode, proc.stderr) == (2, f"gyrocore: error: {log}: line 1: no header line (expected column "
+                                                     "names)\n")

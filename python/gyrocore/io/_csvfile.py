@@ -36,12 +36,13 @@ _GZIP = b"\x1f\x8b"
 #: Byte order marks of UTF-16 (and UTF-32, which begins like it), as Excel's "Unicode Text" and
 #: Windows PowerShell's ``>`` write text.
 _UTF16_BOMS = (b"\xff\xfe", b"\xfe\xff")
+_UTF8_BOM = b"\xef\xbb\xbf"
 
 
 def _csv_header(path: Path, delimiter: str) -> list[str]:
     with open(path, "rb") as f:
         line = f.readline(MAX_LINE_BYTES + 1)  # bounded: a file of gigabytes without a line end
-    if not line.strip():
+    if not line.removeprefix(_UTF8_BOM).strip():  # an empty file that an editor saved with its BOM too
         raise ValueError(f"{path}: line 1: no header line (expected column names)")
     if line.startswith(_UTF16_BOMS):
         raise ValueError(f"{path}: text in UTF-16 (or UTF-32), not UTF-8: save it as UTF-8")
