@@ -249,3 +249,18 @@ def test_a_csv_of_a_byte_order_mark_alone_has_no_header(tmp_path: Path, content:
         proc = run_cli(*args)
         assert (proc.returncode, proc.stderr) == (2, f"gyrocore: error: {log}: line 1: no header line (expected column "
                                                      "names)\n")
+
+
+@pytest.mark.parametrize("value", ["NaN", "1e30"])
+def test_a_calibration_value_the_pipeline_refuses_names_the_file(tmp_path: Path, value: str) -> None:
+    from gyrocore.calibration import Calibration
+
+    given = tmp_path / "calibration.json"
+    Calibration(method="static", bias=0.001).save(given)
+    given.write_text(given.read_text().replace('"bias": 0.001', f'"bias": {value}'))
+    for args in (("process", synthetic_csv(tmp_path / "log.csv", 3000), "--out", tmp_path / "h.csv"),
+                 ("evaluate", log_folder_with(tmp_path, "reference.csv", REFERENCE), "--preset", "raw")):
+        proc = run_cli(*args, "--calibration", given)
+        assert proc.returncode == 2
+        assert proc.stderr.startswith(f"gyrocore: error: --calibration {given}: invalid parameter bias = {value}: "
+                                      "must be finite"), proc.stderr

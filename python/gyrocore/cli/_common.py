@@ -22,7 +22,7 @@ from ..evaluate import Failed
 from ..io import atomic_path
 from ..io.atomic import check_output_folder
 from ..io._paths import error_text
-from ..pipeline import has_bias_source
+from ..pipeline import Pipeline, has_bias_source, recommended_preset
 from ..window import Window
 
 
@@ -209,6 +209,11 @@ def pipeline_overrides(args: argparse.Namespace, named: dict[str, Any]) -> dict[
     if args.calibration is not None:
         # a bias given on the command line (or a rest window) replaces the calibration's bias
         found = Calibration.load(args.calibration).overrides(include_bias=False if has_bias_source(out) else None)
+        try:  # checked here, where the file is known: the pipeline's error would name the value alone
+            checked: dict[str, Any] = {"bias": 0.0, **found}
+            Pipeline(recommended_preset(), **checked)  # the core checks each value as it is built
+        except (TypeError, ValueError) as e:
+            raise ValueError(f"--calibration {args.calibration}: {e}") from None
         out.update(found)
         sources.update(dict.fromkeys(found, f"--calibration {args.calibration}"))
     for item in args.param:
