@@ -264,3 +264,18 @@ def test_a_calibration_value_the_pipeline_refuses_names_the_file(tmp_path: Path,
         assert proc.returncode == 2
         assert proc.stderr.startswith(f"gyrocore: error: --calibration {given}: invalid parameter bias = {value}: "
                                       "must be finite"), proc.stderr
+
+
+def test_allan_refuses_kalibr_of_another_kind_before_any_work(tmp_path: Path) -> None:
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    proc = run_cli("allan", log, "--kind", "hadamard", "--kalibr", tmp_path / "k.yaml")
+    assert (proc.returncode, proc.stdout) == (2, "")  # no report printed before the error
+    assert proc.stderr == ("gyrocore: error: --kalibr needs --kind allan (the noise parameters are read off the Allan "
+                           "deviation), not --kind hadamard\n")
+
+
+def test_allan_names_the_log_and_the_window_too_short_for_noise_parameters(tmp_path: Path) -> None:
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    proc = run_cli("allan", log, "--window", "+0", "+0.02")
+    assert (proc.returncode, proc.stderr) == (2, f"gyrocore: error: {log}: the curve has 1 taus; need at least 3 to "
+                                                 "read slopes (give a longer --window)\n")
