@@ -279,3 +279,13 @@ def test_allan_names_the_log_and_the_window_too_short_for_noise_parameters(tmp_p
     proc = run_cli("allan", log, "--window", "+0", "+0.02")
     assert (proc.returncode, proc.stderr) == (2, f"gyrocore: error: {log}: the curve has 1 taus; need at least 3 to "
                                                  "read slopes (give a longer --window)\n")
+
+
+@pytest.mark.parametrize("window", [("+0", "+1000"), ("1699999999", "1700000010")])
+def test_calibrate_refuses_a_rest_window_outside_the_log(tmp_path: Path, window: tuple[str, str]) -> None:
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    proc = run_cli("calibrate", log, "--window", *window, "--save", tmp_path / "c.json")
+    assert proc.returncode == 2
+    assert proc.stderr.startswith(f"gyrocore: error: --window {window[0]} .. {window[1]} s reaches outside the log "
+                                  "(the log runs from 1700000000 to ")
+    assert proc.stderr.endswith("give a rest window inside it\n") and not (tmp_path / "c.json").exists()

@@ -14,7 +14,7 @@ from .. import calibration, io
 from .._checks import UnitError
 from .._rests import find_rests
 from ..wholelog import times_ok
-from ..window import Window
+from ..window import Window, time_range
 from ._common import (
     REFERENCE_HELP,
     POSITIVE,
@@ -89,6 +89,11 @@ def run(args: argparse.Namespace) -> int:
     for given in (rest, span):
         if given is not None:
             given.samples(log.t, minimum=2)  # an empty window is a usage error, with the log's range
+    if rest is not None:  # cut to the log without a word, the bias was not measured where asked
+        start, end = rest.resolve(float(log.t[0]))
+        if start < log.t[0] or end > log.t[-1]:
+            raise ValueError(f"--window {rest} reaches outside the log ({time_range(float(log.t[0]), float(log.t[-1]))}); "
+                             "give a rest window inside it")
     try:
         window, found_by = (None, "rate") if rest is None else (rest.resolve(float(log.t[0])), "given")
         if window is None and (stop := _first_stop(log, args.min_duration)) is not None:
