@@ -19,7 +19,7 @@ from ._gyrocore import SampleError
 from .batch_inputs import complete_output
 from .io._columns import concat
 from .io._logfolder import FIXES_CSV, read_odometry
-from .io._paths import error_text
+from .io._paths import error_text, one_line
 from .pipeline import RestWindowError, has_bias_source, uses_static_bias
 from .pipeline_params import _to_si, unmeasured_bias
 from .window import Window, time_range
@@ -101,7 +101,7 @@ class FileReport:
 def failed_line(input: str, error: str) -> str:
     """How a run over many inputs reports one that failed: ``FAILED <input>: <reason>``, the input
     named once (most reasons name it already)."""
-    return f"FAILED {error}" if input in error else f"FAILED {input}: {error}"
+    return one_line(f"FAILED {error}" if input in error else f"FAILED {input}: {error}")
 
 
 @dataclass(frozen=True)

@@ -289,3 +289,15 @@ def test_calibrate_refuses_a_rest_window_outside_the_log(tmp_path: Path, window:
     assert proc.stderr.startswith(f"gyrocore: error: --window {window[0]} .. {window[1]} s reaches outside the log "
                                   "(the log runs from 1700000000 to ")
     assert proc.stderr.endswith("give a rest window inside it\n") and not (tmp_path / "c.json").exists()
+
+
+def test_a_failed_line_of_a_batch_stays_one_line(tmp_path: Path) -> None:
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    bad = _edit_line(synthetic_csv(logs / "drive\nlog.csv", 3000), 52, "1700000000.5,nan")
+    synthetic_csv(logs / "good.csv", 3000)
+    proc = run_cli("process", logs, "--out", tmp_path / "out")
+    assert proc.returncode == 1
+    shown = str(bad).replace("\n", "\\n")
+    assert (f"FAILED rate[50] is NaN: samples must be finite (drop or fill them first) ({shown}, line 52)\n"
+            in proc.stdout)

@@ -15,9 +15,9 @@ from typing import Sequence
 from .. import _signals
 from . import allan, calibrate, demo, evaluate, presets, process, reproduce, simulate, tune
 from ..batch_run import BatchInterrupted
-from ..io._paths import error_text
+from ..io._paths import error_text, one_line
 from ..io.atomic import discard_all
-from ._common import USER_ERRORS, one_line, show_warning
+from ._common import USER_ERRORS, show_warning
 
 COMMANDS = (demo, process, presets, allan, calibrate, evaluate, tune, simulate, reproduce)
 

@@ -21,7 +21,7 @@ from ..calibration import Calibration
 from ..evaluate import Failed
 from ..io import atomic_path
 from ..io.atomic import check_output_folder
-from ..io._paths import error_text
+from ..io._paths import error_text, one_line
 from ..pipeline import Pipeline, has_bias_source, recommended_preset
 from ..window import Window
 
@@ -309,12 +309,6 @@ def write_atomically(path: str | Path, write: Callable[[str], object]) -> None:
 def print_json(data: Any) -> None:
     """Machine output on stdout."""
     print(json.dumps(data, indent=2))
-
-
-def one_line(text: str) -> str:
-    """``text`` on one line: a control character (a line break or terminal escape in a file's
-    name) shown as its escape, ``\\n``, so that an error or warning stays one line."""
-    return "".join(repr(c)[1:-1] if c.isprintable() is False and c != " " else c for c in text)
 
 
 def warn(message: str) -> None:

@@ -85,3 +85,10 @@ def error_text(error: BaseException) -> str:
         return (f"{error.filename}: permission denied: this user may not open it; change its permissions "
                 "(chmod) or use another path")
     return str(error)
+
+
+def one_line(text: str) -> str:
+    """``text`` on one line: a control character (a line break or terminal escape in a file's
+    name) shown as its escape, ``\\n``, so that an error, a warning or a ``FAILED`` line stays one
+    line."""
+    return "".join(c if c.isprintable() or c == " " else repr(c)[1:-1] for c in text)
