@@ -301,3 +301,10 @@ def test_a_failed_line_of_a_batch_stays_one_line(tmp_path: Path) -> None:
     shown = str(bad).replace("\n", "\\n")
     assert (f"FAILED rate[50] is NaN: samples must be finite (drop or fill them first) ({shown}, line 52)\n"
             in proc.stdout)
+
+
+def test_a_csv_given_as_a_json_file_is_said_not_to_be_json(tmp_path: Path) -> None:
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    proc = run_cli("process", log, "--out", tmp_path / "h.csv", "--calibration", log)
+    assert proc.returncode == 2
+    assert proc.stderr.startswith(f"gyrocore: error: {log}: not valid JSON: line 1 column ")

@@ -25,7 +25,8 @@ def read_json(path: Path) -> Any:
     except _KeyTwice as e:
         raise ValueError(f"{path}: the key {e.args[0]!r} is given twice in one object; keep one") from None
     except json.JSONDecodeError as e:
-        raise ValueError(f"{path}: line {e.lineno} column {e.colno}: {e.msg}") from None
+        # "Expecting value" alone does not say the file is not JSON at all (a CSV given as --calibration)
+        raise ValueError(f"{path}: not valid JSON: line {e.lineno} column {e.colno}: {e.msg}") from None
     except UnicodeDecodeError as e:
         raise ValueError(f"{path}: not UTF-8 text (at byte offset {e.start}: {e.reason}); save it as UTF-8") from None
     except RecursionError:
