@@ -13,6 +13,7 @@ import pytest
 
 from gyrocore import InputWarning
 from gyrocore.cli import main
+from gyrocore.pipeline import recommended_preset
 
 from .conftest import gyrocore_cli, real_log_path
 
@@ -282,3 +283,10 @@ def test_process_of_one_file_that_fails_prints_the_warnings_before_its_error(tmp
     assert warned.startswith(f"gyrocore: warning: {path}: the times are float32, which at their size resolve only 128 s")
     assert error.startswith("gyrocore: error: ") and "must strictly increase" in error
     assert not (tmp_path / "h.csv").exists()
+
+
+def test_python_dash_m_gyrocore_is_the_command() -> None:
+    proc = subprocess.run([sys.executable, "-m", "gyrocore", "presets", "--json"], capture_output=True, text=True,
+                          timeout=60)
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout)["recommended"] == recommended_preset()
