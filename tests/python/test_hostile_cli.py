@@ -308,3 +308,23 @@ def test_a_csv_given_as_a_json_file_is_said_not_to_be_json(tmp_path: Path) -> No
     proc = run_cli("process", log, "--out", tmp_path / "h.csv", "--calibration", log)
     assert proc.returncode == 2
     assert proc.stderr.startswith(f"gyrocore: error: {log}: not valid JSON: line 1 column ")
+
+
+@pytest.mark.parametrize("degrees", [True, False])
+def test_evaluate_warns_of_a_reference_heading_in_degrees(tmp_path: Path, degrees: bool) -> None:
+    drive = tmp_path / "drive.csv"
+    run_cli("simulate", "--out", drive, "--duration", "120", code=0)
+    if degrees:  # the truth column of a simulated log, in degrees: never a 360 wrap between two samples
+        lines = drive.read_text().splitlines()
+        column = lines[0].split(",").index("heading_true")
+        rows = [line.split(",") for line in lines[1:]]
+        for row in rows:
+            row[column] = repr(float(row[column]) * 57.29577951308232)
+        drive.write_text("\n".join([lines[0], *(",".join(row) for row in rows)]) + "\n")
+    proc = run_cli("evaluate", drive, "--preset", "raw", code=0)
+    warned = [line for line in proc.stderr.splitlines() if "looks like degrees" in line]
+    assert len(warned) == (1 if degrees else 0), proc.stderr
+    if degrees:
+        assert warned[0].startswith(f"gyrocore: warning: {drive}: the reference heading changes ")
+        assert warned[0].endswith("times as much as the gyro turns, about 180/pi = 57.3: it looks like degrees, and it "
+                                  "is read as radians (convert it with numpy.radians); its scores would be wrong")

@@ -9,6 +9,8 @@ import os
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from ..evaluate import Method, Score, compare, format_bias_sources, format_table, plot_path
 from ..io import Log, check_not_input, read_log
 from ..pipeline import preset_names
@@ -133,7 +135,35 @@ def _read(path: str, args: argparse.Namespace) -> Log:
             f"{path}: no reference heading to score against (a log folder's reference.csv, or a CSV or "
             "Parquet file's heading_true column [rad], as gyrocore simulate writes it)"
         )
+    degrees = _reference_in_degrees(log)
+    if degrees is not None:
+        warn(f"{path}: {degrees}")
     return log
+
+
+def _reference_in_degrees(log: Log) -> str | None:
+    """Why the reference heading looks like degrees, or None: over the reference's span it changes
+    about 180/pi times as much as the gyro turns (its rate less the median, integrated; within a
+    factor 2, as ``calibrate`` judges a fit). A reference in degrees that never wraps by 360 between two samples
+    passed the reader's check and was scored as radians: E_psi of hundreds of degrees, no word."""
+    t, rate, t_ref, heading = log.t, log.rate, log.t_ref, log.heading_ref
+    if t_ref is None or heading is None or len(heading) < 2:
+        return None
+    inside = (t >= t_ref[0]) & (t <= t_ref[-1])
+    if np.count_nonzero(inside) < 2:
+        return None
+    with np.errstate(invalid="ignore", over="ignore"):
+        # less the median rate, about the bias: a large one (1.4 deg/s) looked like turning
+        rate_in = rate[inside]
+        turned = float(np.sum(np.abs(rate_in[1:] - np.median(rate_in)) * np.diff(t[inside])))
+        changed = float(np.sum(np.abs(np.diff(np.unwrap(heading)))))
+    if not (math.isfinite(turned) and math.isfinite(changed) and turned > 0):
+        return None
+    ratio = changed / turned
+    if not 0.5 * math.degrees(1) <= ratio <= 2 * math.degrees(1):
+        return None
+    return (f"the reference heading changes {ratio:.3g} times as much as the gyro turns, about 180/pi = 57.3: it "
+            "looks like degrees, and it is read as radians (convert it with numpy.radians); its scores would be wrong")
 
 
 def _plot_paths(plot_dir: str, logs: list[Log]) -> list[Path]:
