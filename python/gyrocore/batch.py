@@ -86,6 +86,15 @@ def process_file(
     ).run(progress)
 
 
+def check_out_dir(out_dir: Path) -> None:
+    """Refuse an output folder that is a file or a link that cannot be followed (mkdir would say
+    only "File exists")."""
+    if os.path.lexists(out_dir) and not out_dir.is_dir():
+        what = "not a folder" if out_dir.exists() else unfollowable(out_dir)
+        raise ValueError(f"{out_dir}: {what}, so no outputs can go into it; give a folder, or one output "
+                         "file ending in .csv or .parquet")
+
+
 def process_many(
     paths: Iterable[str | Path],
     *,
@@ -157,10 +166,7 @@ def process_many(
         wholelog.refuse_whole_options(pipeline_overrides)
     Pipeline(preset, **(pipeline_overrides if has_bias_source(overrides) else {**pipeline_overrides, "bias": 0.0}))
     outputs = output_paths(inputs, Path(out_dir), fmt)
-    if os.path.lexists(out_dir) and not Path(out_dir).is_dir():  # mkdir would say only "File exists"
-        what = "not a folder" if Path(out_dir).exists() else unfollowable(Path(out_dir))
-        raise ValueError(f"{out_dir}: {what}, so no outputs can go into it; give a folder, or one output "
-                         "file ending in .csv or .parquet")
+    check_out_dir(Path(out_dir))
     Path(out_dir).mkdir(parents=True, exist_ok=True)
     jobs_list = [
         _FileJob(p, o, preset, heading, chunk_rows, options, columns, mode, use_speed, skip_existing)

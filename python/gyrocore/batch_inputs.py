@@ -11,6 +11,7 @@ from pathlib import Path
 from . import io
 from ._checks import warn
 from .io._logfolder import lacks_gyro
+from .io._paths import check_readable
 
 
 def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
@@ -30,6 +31,7 @@ def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
             if not named and _in_log_folder(m):  # a pattern's reference.csv: part of its log
                 m = m.parent
             if m.is_dir() and not _named_as_input(m):
+                check_readable(m)
                 entries = sorted(m.iterdir())
                 inside = [c for c in entries if _named_as_input(c)]
                 if not inside and named:

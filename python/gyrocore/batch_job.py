@@ -4,6 +4,7 @@ report of what it did (:class:`FileReport`) and a batch's (:class:`BatchReport`)
 
 from __future__ import annotations
 
+import os
 import time
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import AbstractContextManager, contextmanager
@@ -18,6 +19,7 @@ from ._gyrocore import SampleError
 from .batch_inputs import complete_output
 from .io._columns import concat
 from .io._logfolder import FIXES_CSV, read_odometry
+from .io._paths import error_text, one_line
 from .pipeline import RestWindowError, has_bias_source, uses_static_bias
 from .pipeline_params import _to_si, unmeasured_bias
 from .window import Window, time_range
@@ -99,7 +101,7 @@ class FileReport:
 def failed_line(input: str, error: str) -> str:
     """How a run over many inputs reports one that failed: ``FAILED <input>: <reason>``, the input
     named once (most reasons name it already)."""
-    return f"FAILED {error}" if input in error else f"FAILED {input}: {error}"
+    return one_line(f"FAILED {error}" if input in error else f"FAILED {input}: {error}")
 
 
 @dataclass(frozen=True)
@@ -327,7 +329,7 @@ class _FileJob:
         return rests.speed_on(t, odometry["t"], odometry["speed"], where=where)
 
     def failure(self, error: BaseException, seconds: float) -> FileReport:
-        reason = str(error) if isinstance(error, (ValueError, TypeError, OSError, ImportError)) else repr(error)
+        reason = error_text(error) if isinstance(error, (ValueError, TypeError, OSError, ImportError)) else repr(error)
         failed = reason or type(error).__name__
         return FileReport(str(self.path), None, self.rows_in, 0, seconds, failed, tuple(dict.fromkeys(self.notes)))
 
@@ -371,7 +373,9 @@ def _in_file(source: io.GyroSource, error: ValueError, window_from_meta: bool) -
     meta = window_from_meta and isinstance(error, RestWindowError)
     where = f" (the rest window is the stationary of {source.path / 'meta.json'})" if meta else ""
     text = str(error)
-    return ValueError(f"{text if str(source.data_path) in text else f'{source.data_path}: {text}'}{where}")
+    # named already: by the data file, or by another file of its log folder (odometry.csv)
+    named = str(source.data_path) in text or (source.path.is_dir() and text.startswith(f"{source.path}{os.sep}"))
+    return ValueError(f"{text if named else f'{source.data_path}: {text}'}{where}")
 
 
 def _repairs(report: Mapping[str, float]) -> list[str]:

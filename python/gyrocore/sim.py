@@ -384,12 +384,16 @@ def simulate(trajectory: motion.Motion, spec: GyroSpec | str, *, seed: int, rate
     )
 
 
+#: The rest that begins a car drive by default [s] (its static bias test).
+CAR_REST = 20.0
+
+
 def car_drive(
     duration: float = 600.0,
     rate_hz: float = 100.0,
     *,
     seed: int = 0,
-    rest: float = 20.0,
+    rest: float = CAR_REST,
     mix: str = "mixed",
     sensor_name: str | GyroSpec = "crs03",
     **changes: Any,

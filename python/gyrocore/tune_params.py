@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import json
+import reprlib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
@@ -90,9 +91,17 @@ class ParameterSet:
         missing = [k for k in ("name", "preset", "overrides") if k not in data]
         if missing:
             raise ValueError(f"{p}: missing key(s) {', '.join(missing)}")
+        # str() would take 5 for the name "5" and ["hdr"] for a preset "['hdr']": refused instead
+        for key in ("name", "preset"):
+            if not isinstance(data[key], str):
+                raise ValueError(f"{p}: \"{key}\" must be a string, got {reprlib.repr(data[key])}")
+            if not data[key].strip():
+                raise ValueError(f"{p}: \"{key}\" must not be empty")
         if not isinstance(data["overrides"], dict):
             raise ValueError(f"{p}: \"overrides\" must be an object of parameter names to SI values")
+        if not isinstance(data.get("tuning", {}), dict):
+            raise ValueError(f"{p}: \"tuning\" must be an object (how the set was found), got {reprlib.repr(data['tuning'])}")
         try:
-            return cls(str(data["name"]), str(data["preset"]), data["overrides"], data.get("tuning", {}))
+            return cls(data["name"], data["preset"], data["overrides"], data.get("tuning", {}))
         except (ValueError, TypeError) as e:
             raise ValueError(f"{p}: {e}") from None

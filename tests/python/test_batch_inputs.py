@@ -57,7 +57,7 @@ def test_an_unreadable_file_fails_with_its_reason(tmp_path: Path) -> None:
     locked.chmod(0)
     proc = gyrocore("process", locked, synthetic_csv(tmp_path / "good.csv", 300), "--out", tmp_path / "out")
     assert proc.returncode == 1
-    assert "Permission denied" in next(line for line in proc.stdout.splitlines() if "locked.csv" in line)
+    assert "permission denied" in next(line for line in proc.stdout.splitlines() if "locked.csv" in line)
 
 
 def test_a_named_pipe_is_refused_not_waited_on(tmp_path: Path) -> None:

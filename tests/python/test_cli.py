@@ -13,6 +13,7 @@ import pytest
 
 from gyrocore import InputWarning
 from gyrocore.cli import main
+from gyrocore.pipeline import recommended_preset
 
 from .conftest import gyrocore_cli, real_log_path
 
@@ -33,7 +34,9 @@ def test_demo_json_rows_beat_raw(capsys: pytest.CaptureFixture[str]) -> None:
     # The table's figures are the means of the per-drive ones.
     assert rows["hdr"]["e_psi_deg"] == pytest.approx(np.mean(rows["hdr"]["e_psi_deg_per_drive"]))
     assert len(rows["hdr"]["e_psi_deg_per_drive"]) == 3 and 0 <= rows["hdr"]["beats_static_bias"] <= 3
-    assert main(["demo", "--drives", "0"]) == 2
+    with pytest.raises(SystemExit) as info:  # refused as the command line is read
+        main(["demo", "--drives", "0"])
+    assert info.value.code == 2
 
 
 def test_process_writes_csv_with_one_row_per_sample(tmp_path: Path) -> None:
@@ -226,6 +229,21 @@ def test_reproduce_prints_paper_beside_ours_and_writes_figures(
         (("simulate", "--out", "{tmp}/s.csv", "--rate-hz", "-1"), "argument --rate-hz: must be a finite number > 0, got '-1'"),
         (("simulate", "--out", "{tmp}/s.csv", "--profile", "square", "--runs", "0"), "argument --runs: must be an integer >= 1"),
         (("simulate", "--out", "{tmp}/s.csv", "--seed", "1.5"), "argument --seed: must be an integer >= 0, got '1.5'"),
+        (("process", "{log}", "--out", "{tmp}/h.csv", "--bias-duration", "0"),
+         "argument --bias-duration: must be a finite number > 0, got '0'"),
+        (("process", "{log}", "--out", "{tmp}/h.csv", "--bias-duration", "nan"),
+         "argument --bias-duration: must be a finite number > 0, got 'nan'"),
+        (("process", "{log}", "--out", "{tmp}/h.csv", "--bias-dps", "inf"), "argument --bias-dps: must be a finite number, got 'inf'"),
+        (("process", "{log}", "--out", "{tmp}/h.csv", "--gap-limit", "-1"),
+         "argument --gap-limit: must be a finite number > 0 (or inf), got '-1'"),
+        (("process", "{log}", "--out", "{tmp}/h.csv", "--jobs", "0"), "argument --jobs: must be an integer >= 1, got '0'"),
+        (("process", "{log}", "--out", "{tmp}/h.csv", "--chunk-rows", "-5"),
+         "argument --chunk-rows: must be an integer >= 1, got '-5'"),
+        (("evaluate", "{log}", "--bias-duration", "-1"), "argument --bias-duration: must be a finite number > 0, got '-1'"),
+        (("evaluate", "{log}", "--bias-dps", "nan"), "argument --bias-dps: must be a finite number, got 'nan'"),
+        (("demo", "--duration", "nan", "--plot", "{tmp}/d.png"), "argument --duration: must be a finite number > 0, got 'nan'"),
+        (("demo", "--rate-hz", "0", "--plot", "{tmp}/d.png"), "argument --rate-hz: must be a finite number > 0, got '0'"),
+        (("demo", "--duration", "10", "--plot", "{tmp}/d.png"), "--duration 10: a car drive begins with a 20 s rest"),
         # a log whose rest window cannot give its bias is not written
         (("simulate", "--out", "{tmp}/s.csv", "--rate-hz", "1e-6"),
          "--rate-hz 1e-06 puts 1 sample(s) in the drive's rest window [0, 20] s, and its bias needs at least 3"),
@@ -265,3 +283,10 @@ def test_process_of_one_file_that_fails_prints_the_warnings_before_its_error(tmp
     assert warned.startswith(f"gyrocore: warning: {path}: the times are float32, which at their size resolve only 128 s")
     assert error.startswith("gyrocore: error: ") and "must strictly increase" in error
     assert not (tmp_path / "h.csv").exists()
+
+
+def test_python_dash_m_gyrocore_is_the_command() -> None:
+    proc = subprocess.run([sys.executable, "-m", "gyrocore", "presets", "--json"], capture_output=True, text=True,
+                          timeout=60)
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout)["recommended"] == recommended_preset()

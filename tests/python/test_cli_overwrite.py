@@ -144,4 +144,54 @@ def test_skip_existing_is_for_an_output_folder_without_overwrite(tmp_path: Path)
     # no run writes a folder where an output goes: that is refused before any work, as without the option
     (folder / "small.csv").mkdir(parents=True)
     proc = gyrocore_cli("process", src, "--out", folder, "--skip-existing", code=2)
-    assert proc.stderr.startswith(f"gyrocore: error: {folder / 'small.csv'} already exists; pass --overwrite")
+    assert proc.stderr.startswith(f"gyrocore: error: {folder / 'small.csv'}: a folder, where an output file goes")
+
+
+@pytest.mark.parametrize("name", [n for n in WRITERS if n != "process to a folder"])
+@pytest.mark.parametrize("overwrite", [False, True])
+def test_a_folder_where_the_output_file_goes_is_refused_before_any_work(name: str, overwrite: bool, log: Path,
+                                                                        tmp_path: Path) -> None:
+    args, target = _command(name, log, tmp_path)
+    target.unlink()
+    target.mkdir()
+    (target / "keep.txt").write_text(MINE)
+    proc = gyrocore_cli(*args, *(["--overwrite"] if overwrite else []), code=2, timeout=60)
+    assert proc.stderr == (f"gyrocore: error: {target}: a folder, where an output file goes; move it or write elsewhere "
+                           "(--overwrite replaces files, never a folder; nothing was written)\n")
+    assert proc.stdout == ""  # refused before any work: no report
+    assert [p.name for p in target.iterdir()] == ["keep.txt"] and (target / "keep.txt").read_text() == MINE
+
+
+@pytest.mark.parametrize("name", [n for n in WRITERS if n not in ("process to a folder", "evaluate", "reproduce")])
+@pytest.mark.parametrize("parent", ["missing", "file"])
+def test_an_output_without_its_folder_is_refused_before_any_work(name: str, parent: str, log: Path,
+                                                                 tmp_path: Path) -> None:
+    args, target = _command(name, log, tmp_path)
+    target.unlink()
+    folder = tmp_path / "not_here"
+    if parent == "file":
+        folder.write_text(MINE)
+    moved = folder / target.name
+    args = [str(moved) if a == str(target) else a for a in args]
+    proc = gyrocore_cli(*args, code=2, timeout=60)
+    reason = f"{folder} is not a folder; write the output elsewhere" if parent == "file" else (
+        f"the folder {folder} does not exist; create it or write elsewhere")
+    assert (proc.stdout, proc.stderr) == ("", f"gyrocore: error: {moved}: {reason}\n")
+    assert not folder.is_dir() and (parent == "missing" or folder.read_text() == MINE)
+
+
+@pytest.mark.parametrize("name", ["process to a folder", "evaluate", "reproduce"])
+def test_a_file_in_the_way_of_a_folder_a_command_makes_is_refused_before_any_work(name: str, log: Path,
+                                                                                   tmp_path: Path) -> None:
+    args, target = _command(name, log, tmp_path)
+    folder = target.parent  # outF, plots, figures: made by the command where missing
+    target.unlink()
+    folder.rmdir()
+    blocker = tmp_path / "notes.txt"
+    blocker.write_text(MINE)
+    args = [a.replace(str(folder), str(blocker / "sub")) for a in args]
+    proc = gyrocore_cli(*args, code=2, timeout=60)
+    output = blocker / "sub" / target.name
+    assert (proc.stdout, proc.stderr) == ("", f"gyrocore: error: {output}: {blocker} is not a folder; write the "
+                                              "output elsewhere\n")
+    assert blocker.read_text() == MINE

@@ -63,7 +63,7 @@ def test_a_missing_output_folder_is_named_not_the_hidden_file(tmp_path: Path) ->
     out = tmp_path / "missing" / "h.csv"
     proc = run_cli("process", src, "--out", out, "--preset", "raw")
     assert proc.returncode == 2
-    assert proc.stderr == f"gyrocore: error: {out}: the folder {out.parent} does not exist\n"
+    assert proc.stderr == f"gyrocore: error: {out}: the folder {out.parent} does not exist; create it or write elsewhere\n"
 
 
 def test_evaluate_names_the_log_of_an_error() -> None:

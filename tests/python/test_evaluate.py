@@ -187,7 +187,7 @@ def test_cli_table_and_errors(capsys: pytest.CaptureFixture[str], tmp_path: Path
     assert "E_psi" in out and f"\n{real_log_path('broad_10')} hdr " in out
     assert main(["evaluate", str(tmp_path), "--preset", "raw"]) == 2
     assert main(["evaluate", str(real_log_path("broad_10")), "--preset", "nonsense"]) == 2
-    assert main(["evaluate", str(real_log_path("broad_10")), "--bias-duration", "-1"]) == 2
+    assert main(["evaluate", str(real_log_path("broad_10")), "--param", "bias_duration=-1"]) == 2
     err = capsys.readouterr().err
     assert err.count("gyrocore: error:") == 3
 

@@ -222,7 +222,7 @@ def test_simulate_command_refuses_bad_output(tmp_path: Path, capsys: pytest.Capt
     assert main(["simulate", "--out", str(tmp_path / "x.txt")]) == 2
     assert main(["simulate", "--out", str(tmp_path / "missing" / "x.csv")]) == 2
     err = capsys.readouterr().err  # (a bad --runs is refused as it is read: test_cli)
-    assert "must end in .csv" in err and "no such folder" in err
+    assert "must end in .csv" in err and "does not exist; create it or write elsewhere" in err
 
 
 def test_demo_takes_a_sensor_and_a_road_mix(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

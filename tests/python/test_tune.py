@@ -81,6 +81,13 @@ HEAD = '{"format": "gyrocore-params", "version": 1, "name": "x", "preset": "hdr"
         (HEAD + '"overrides": {"bias_window": [0, 10]}}', "bias_window cannot be part"),
         (HEAD + '"overrides": {"hdr_increment": -1}}', "hdr_increment = -1"),
         ('{"format": "gyrocore-params", "version": 1, "name": "x", "preset": "nope", "overrides": {}}', "nope"),
+        ('{"format": "gyrocore-params", "version": 1, "name": 5, "preset": "hdr", "overrides": {}}',
+         '"name" must be a string, got 5'),
+        ('{"format": "gyrocore-params", "version": 1, "name": "x", "preset": ["hdr"], "overrides": {}}',
+         '"preset" must be a string, got [\'hdr\']'),
+        ('{"format": "gyrocore-params", "version": 1, "name": "", "preset": "hdr", "overrides": {}}',
+         '"name" must not be empty'),
+        (HEAD + '"overrides": {}, "tuning": 3}', '"tuning" must be an object'),
     ],
 )
 def test_bad_parameter_files_name_the_file_and_the_problem(tmp_path: Path, content: str, message: str) -> None:

@@ -15,6 +15,7 @@ from typing import Sequence
 from .. import _signals
 from . import allan, calibrate, demo, evaluate, presets, process, reproduce, simulate, tune
 from ..batch_run import BatchInterrupted
+from ..io._paths import error_text, one_line
 from ..io.atomic import discard_all
 from ._common import USER_ERRORS, show_warning
 
@@ -61,7 +62,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
             return 141
         except USER_ERRORS as e:
-            print(f"gyrocore: error: {e}", file=sys.stderr)
+            print(f"gyrocore: error: {one_line(error_text(e))}", file=sys.stderr)
             return 2
         except KeyboardInterrupt as e:
             discard_all()

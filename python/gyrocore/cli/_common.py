@@ -13,12 +13,16 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, TypeVar
 
+import numpy as np
+
 from .. import io
 from .._extras import MissingExtra, tqdm_class
 from ..calibration import Calibration
 from ..evaluate import Failed
 from ..io import atomic_path
-from ..pipeline import has_bias_source
+from ..io.atomic import check_output_folder
+from ..io._paths import error_text, one_line
+from ..pipeline import Pipeline, has_bias_source, recommended_preset
 from ..window import Window
 
 
@@ -45,7 +49,7 @@ def each_log(items: Sequence[str | io.Log | Failed], work: Callable[[Any], Seque
         except USER_ERRORS as e:
             if alone:
                 raise
-            rows.append(Failed(item.path or item.name if isinstance(item, io.Log) else item, str(e)))
+            rows.append(Failed(item.path or item.name if isinstance(item, io.Log) else item, error_text(e)))
     return rows
 
 
@@ -145,6 +149,28 @@ def _rest_window(args: argparse.Namespace) -> Window | None:
     return None
 
 
+def check_samples(path: Path, log: io.Log, args: argparse.Namespace) -> None:
+    """Refuse a log with a NaN or infinite time or rate, or times that do not increase, naming the
+    first such sample by its file and line (row, message), as ``gyrocore process`` does; the
+    analyses (calibration) name only its index."""
+    t, rate = log.t, log.rate
+    found: list[tuple[int, str]] = []
+    for name, values in (("t", t), ("rate", rate)):
+        bad = np.flatnonzero(~np.isfinite(values))
+        if len(bad):
+            found.append((int(bad[0]), f"{name}[{bad[0]}] is {values[bad[0]]}: samples must be finite "
+                                       "(drop or fill them first)"))
+    back = np.flatnonzero(~(np.diff(t) > 0) & np.isfinite(t[1:]) & np.isfinite(t[:-1]))
+    if len(back):
+        k = int(back[0]) + 1
+        found.append((k, f"timestamps must strictly increase: t[{k}] = {t[k]:.17g} follows {t[k - 1]:.17g} "
+                         "(sort the log and drop duplicate timestamps)"))
+    if found:
+        row, what = min(found)
+        source = io.open_source(path, **reading_options(args))
+        raise ValueError(f"{what} ({source.data_path}, {source.where(row)})")
+
+
 def add_override_options(group: argparse._ArgumentGroup) -> None:
     """``--param`` and ``--calibration``: pipeline parameters beyond the command's own options."""
     group.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
@@ -183,6 +209,11 @@ def pipeline_overrides(args: argparse.Namespace, named: dict[str, Any]) -> dict[
     if args.calibration is not None:
         # a bias given on the command line (or a rest window) replaces the calibration's bias
         found = Calibration.load(args.calibration).overrides(include_bias=False if has_bias_source(out) else None)
+        try:  # checked here, where the file is known: the pipeline's error would name the value alone
+            checked: dict[str, Any] = {"bias": 0.0, **found}
+            Pipeline(recommended_preset(), **checked)  # the core checks each value as it is built
+        except (TypeError, ValueError) as e:
+            raise ValueError(f"--calibration {args.calibration}: {e}") from None
         out.update(found)
         sources.update(dict.fromkeys(found, f"--calibration {args.calibration}"))
     for item in args.param:
@@ -204,9 +235,19 @@ def add_overwrite_option(parser: argparse.ArgumentParser | argparse._ArgumentGro
                         help="replace output files that exist already (default: refuse them, before any work)")
 
 
-def refuse_existing(outputs: Iterable[Path], overwrite: bool) -> None:
-    """Refuse, before any work, outputs that exist already unless ``--overwrite`` was given:
-    nothing a user has is replaced without being asked (a dangling link counts, its target too)."""
+def refuse_existing(outputs: Iterable[Path], overwrite: bool, *, folders_exist: bool = True) -> None:
+    """Refuse, before any work, outputs whose folder is missing (unless the command makes it: not
+    ``folders_exist``), and outputs that exist already unless ``--overwrite`` was given:
+    nothing a user has is replaced without being asked (a dangling link counts, its target too).
+    A folder where an output file goes is refused even with ``--overwrite``: the output could not
+    be renamed over it, and that failed only once the work was done."""
+    outputs = list(outputs)
+    for p in outputs:
+        check_output_folder(p, made=not folders_exist)
+    folder = next((p for p in outputs if p.is_dir()), None)
+    if folder is not None:
+        raise IsADirectoryError(f"{folder}: a folder, where an output file goes; move it or write elsewhere "
+                                "(--overwrite replaces files, never a folder; nothing was written)")
     if overwrite:
         return
     taken = [str(p) for p in outputs if os.path.lexists(p)]
@@ -218,21 +259,35 @@ def refuse_existing(outputs: Iterable[Path], overwrite: bool) -> None:
                           "(nothing was written)")
 
 
-def _bounded(low: float, *, above: bool, integer: bool = False) -> Callable[[str], float]:
-    """An argparse ``type``: a finite number (an integer where ``integer``) above ``low``, or at
-    least ``low``; argparse's error names the option, this one the value and the bound."""
+def _bounded(low: float, *, above: bool, integer: bool = False, infinite: bool = False) -> Callable[[str], float]:
+    """An argparse ``type``: a finite number (an integer where ``integer``; also +inf where
+    ``infinite``) above ``low``, or at least ``low``; argparse's error names the option, this one
+    the value and the bound."""
     wanted = f"{'an integer' if integer else 'a finite number'} {'>' if above else '>='} {low:g}"
+    wanted += " (or inf)" if infinite else ""
 
     def parse(text: str) -> float:
         try:
             value: float = int(text) if integer else float(text)
         except ValueError:
             value = math.nan
-        if not (math.isfinite(value) and (value > low if above else value >= low)):
+        if not ((math.isfinite(value) or (infinite and value == math.inf))
+                and (value > low if above else value >= low)):
             raise argparse.ArgumentTypeError(f"must be {wanted}, got {text!r}")
         return value
 
     return parse
+
+
+def finite(text: str) -> float:
+    """An argparse ``type``: a finite number of either sign (a bias)."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"must be a finite number, got {text!r}")
+    return value
 
 
 #: argparse types of numeric options: checked as the command line is read, before any work.
@@ -240,6 +295,9 @@ POSITIVE = _bounded(0.0, above=True)
 NON_NEGATIVE = _bounded(0.0, above=False)
 COUNT = _bounded(1, above=False, integer=True)
 SEED = _bounded(0, above=False, integer=True)
+#: A time span that may be infinite (``--gap-limit inf``: no gap detection).
+POSITIVE_OR_INF = _bounded(0.0, above=True, infinite=True)
+FINITE = finite
 
 
 def write_atomically(path: str | Path, write: Callable[[str], object]) -> None:
@@ -255,7 +313,7 @@ def print_json(data: Any) -> None:
 
 def warn(message: str) -> None:
     """One line on stderr: ``gyrocore: warning: ...``."""
-    print(f"gyrocore: warning: {message}", file=sys.stderr)
+    print(f"gyrocore: warning: {one_line(message)}", file=sys.stderr)
 
 
 def show_warning(

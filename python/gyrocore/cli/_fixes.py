@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import warnings
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
@@ -112,7 +113,8 @@ def uses_fixes(args: argparse.Namespace, inputs: Sequence[Path]) -> bool:
         if len(inputs) != 1:
             raise ValueError(f"--fixes {args.fixes} is for one input, got {len(inputs)}")
         return True
-    return len(inputs) == 1 and (inputs[0] / FIXES_CSV).is_file()
+    # os.path.isfile is False in a folder this user may not enter, which reading it then names
+    return len(inputs) == 1 and os.path.isfile(inputs[0] / FIXES_CSV)
 
 
 def process_with_fixes(args: argparse.Namespace, path: Path, out: Path, options: dict[str, Any],

@@ -4,9 +4,13 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 from pathlib import Path
 
+import numpy as np
+
 from .. import allan, io
+from .._gyrocore import SampleError
 from .._extras import pyplot
 from ..window import Window
 from ._common import (
@@ -50,7 +54,13 @@ def run(args: argparse.Namespace) -> int:
     window = None if args.window is None else Window.parse(args.window, "--window")
     if args.rrw is not None and args.kalibr is None:
         raise ValueError("--rrw is the rate random walk written by --kalibr: give --kalibr FILE too, or leave --rrw out")
+    if args.kalibr is not None and args.kind != "allan":  # before the work, not once its report is printed
+        raise ValueError(f"--kalibr needs --kind allan (the noise parameters are read off the Allan deviation), "
+                         f"not --kind {args.kind}")
     outputs = [out for out in (args.plot, args.kalibr) if out is not None]
+    if len(outputs) == 2 and os.path.abspath(outputs[0]) == os.path.abspath(outputs[1]):
+        # the YAML would replace the plot just written
+        raise ValueError(f"--plot {args.plot} and --kalibr {args.kalibr} are one file; give each its own")
     for out in outputs:
         io.check_not_input(out, [src])
     refuse_existing(outputs, args.overwrite)
@@ -58,13 +68,23 @@ def run(args: argparse.Namespace) -> int:
     # A record for the Allan deviation is taken at rest: small rates are no sign of a unit mistake.
     log = io.read_log(src, static=True, use_fixes=False, **reading_options(args))
     t, rate = log.t, log.rate
+    inside = np.arange(len(t))
     if window is not None:
         inside = window.samples(t, minimum=3)
         t, rate = t[inside], rate[inside]
-    result = allan.deviation_from_timestamps(
-        t, rate, taus=args.taus, overlapping=not args.non_overlapping, kind=args.kind
-    )
-    params = allan.noise_parameters(result) if args.kind == "allan" else None
+    try:
+        result = allan.deviation_from_timestamps(
+            t, rate, taus=args.taus, overlapping=not args.non_overlapping, kind=args.kind
+        )
+    except SampleError as e:  # a NaN, times out of order: named with the file and its line, as process does
+        source = io.open_source(src, **reading_options(args))
+        raise ValueError(f"{e} ({source.data_path}, {source.where(int(inside[e.index]))})") from None
+    except ValueError as e:  # a gap, too few samples: which log
+        raise ValueError(f"{src}: {e}") from None
+    try:
+        params = allan.noise_parameters(result) if args.kind == "allan" else None
+    except ValueError as e:  # too short a record (or --window) for the curve's slopes
+        raise ValueError(f"{src}: {e}" + (" (give a longer --window)" if window is not None else "")) from None
     if args.json:
         out = {"input": str(src), "allan": result.as_dict(), "noise": None if params is None else params.as_dict()}
         print(json.dumps(out, indent=2))
@@ -83,8 +103,7 @@ def run(args: argparse.Namespace) -> int:
         write_atomically(args.plot, lambda tmp: fig.savefig(tmp, format="png", dpi=120))
         plt.close(fig)
     if args.kalibr is not None:
-        if params is None:
-            raise ValueError("--kalibr needs --kind allan")
+        assert params is not None  # --kind allan, checked before the work
         text = params.kalibr_yaml(rrw=args.rrw)
         write_atomically(args.kalibr, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
     return 0

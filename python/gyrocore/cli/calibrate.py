@@ -14,12 +14,13 @@ from .. import calibration, io
 from .._checks import UnitError
 from .._rests import find_rests
 from ..wholelog import times_ok
-from ..window import Window
+from ..window import Window, time_range
 from ._common import (
     REFERENCE_HELP,
     POSITIVE,
     WINDOW_HELP,
     add_command,
+    check_samples,
     add_overwrite_option,
     add_reading_options,
     reading_options,
@@ -73,9 +74,11 @@ def run(args: argparse.Namespace) -> int:
     rest = None if args.window is None else Window.parse(args.window, "--window")
     span = None if args.fit_window is None else Window.parse(args.fit_window, "--fit-window")
     if args.save is not None:
-        io.check_not_input(args.save, [source])  # e.g. the log's own meta.json
+        # e.g. the log's own meta.json, or the --reference file (a reference may be named .json)
+        io.check_not_input(args.save, [source, *([args.reference] if args.reference is not None else [])])
         refuse_existing([args.save], args.overwrite)
     log = io.read_log(source, use_fixes=False, **reading_options(args))
+    check_samples(source, log, args)
     if args.reference is not None:
         log = with_reference(log, args.reference)
     results: dict[str, Any] = {"log": log.name, "meta_stationary": log.stationary}
@@ -86,6 +89,11 @@ def run(args: argparse.Namespace) -> int:
     for given in (rest, span):
         if given is not None:
             given.samples(log.t, minimum=2)  # an empty window is a usage error, with the log's range
+    if rest is not None:  # cut to the log without a word, the bias was not measured where asked
+        start, end = rest.resolve(float(log.t[0]))
+        if start < log.t[0] or end > log.t[-1]:
+            raise ValueError(f"--window {rest} reaches outside the log ({time_range(float(log.t[0]), float(log.t[-1]))}); "
+                             "give a rest window inside it")
     try:
         window, found_by = (None, "rate") if rest is None else (rest.resolve(float(log.t[0])), "given")
         if window is None and (stop := _first_stop(log, args.min_duration)) is not None:

@@ -18,7 +18,8 @@ import numpy as np
 from .. import evaluate, motion, sim, tune
 from .._extras import MissingExtra, pyplot
 from ..pipeline import HeadingResult, preset_names, recommended_preset
-from ._common import add_command, add_overwrite_option, refuse_existing, write_atomically
+from ._common import COUNT, POSITIVE, SEED, add_command, add_overwrite_option, refuse_existing, write_atomically
+from .simulate import check_car_drive, checked_sensor
 
 
 #: The demo's own plot: each run replaces the previous run's (a file named with --plot is the user's).
@@ -33,10 +34,10 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         "gyrocore demo --duration 900 --seed 3 --drives 10",
         run,
     )
-    p.add_argument("--duration", type=float, default=600.0, help="drive length [s] (default 600)")
-    p.add_argument("--rate-hz", type=float, default=100.0, help="gyro sample rate [Hz] (default 100)")
-    p.add_argument("--seed", type=int, default=0, help="random seed of the first drive (default 0)")
-    p.add_argument("--drives", type=int, default=5, help="drives to average, seeds from --seed (default 5)")
+    p.add_argument("--duration", type=POSITIVE, default=600.0, help="drive length [s] (default 600)")
+    p.add_argument("--rate-hz", type=POSITIVE, default=100.0, help="gyro sample rate [Hz] (default 100)")
+    p.add_argument("--seed", type=SEED, default=0, help="random seed of the first drive (default 0)")
+    p.add_argument("--drives", type=COUNT, default=5, help="drives to average, seeds from --seed (default 5)")
     p.add_argument("--sensor", choices=sorted(sim.SENSORS), default="crs03",
                    help="simulated gyro (default crs03, the HDR paper's)")
     p.add_argument("--mix", choices=sorted(motion.ROAD_MIXES), default="mixed",
@@ -50,10 +51,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
 def run(args: argparse.Namespace) -> int:
     if args.plot and Path(args.plot) != Path(PLOT):
         refuse_existing([Path(args.plot)], args.overwrite)
-    if args.seed < 0:
-        raise ValueError(f"--seed must be >= 0, got {args.seed}")
-    if args.drives < 1:
-        raise ValueError(f"--drives must be >= 1, got {args.drives}")
+    check_car_drive(checked_sensor(args.sensor, args.rate_hz), args.duration)
     drives = [
         sim.car_drive(duration=args.duration, rate_hz=args.rate_hz, seed=args.seed + k, mix=args.mix,
                       sensor_name=args.sensor)

@@ -5,8 +5,11 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 from ..evaluate import Method, Score, compare, format_bias_sources, format_table, plot_path
 from ..io import Log, check_not_input, read_log
@@ -14,6 +17,8 @@ from ..pipeline import preset_names
 from ..tune import ParameterSet
 from ._fixes import add_fix_options, evaluate_with_fixes, fixes_wanted, input_warnings
 from ._common import (
+    FINITE,
+    POSITIVE,
     add_command,
     each_log,
     exit_code,
@@ -54,12 +59,12 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     bias = p.add_mutually_exclusive_group()
     bias.add_argument(
         "--bias-duration",
-        type=float,
+        type=POSITIVE,
         metavar="S",
         help="for logs with no rest window: measure the static bias over the first S seconds while driving "
         "(only sound when the drive starts straight; the same S for every log)",
     )
-    bias.add_argument("--bias-dps", type=float, metavar="B",
+    bias.add_argument("--bias-dps", type=FINITE, metavar="B",
                       help="known bias [deg/s] (what the gyro reads at rest), for every method and log")
     add_override_options(p.add_argument_group("pipeline parameters for every method"))
     add_reading_options(p)
@@ -90,13 +95,16 @@ def run(args: argparse.Namespace) -> int:
     methods = [_with(m if isinstance(m, Method) else Method.from_preset(m), extra) for m in [*presets, *params]]
     if args.plot_dir:
         check_not_input(Path(args.plot_dir), [Path(p) for p in args.logs])
+        if os.path.lexists(args.plot_dir) and not Path(args.plot_dir).is_dir():  # found only once plotting
+            raise NotADirectoryError(f"--plot-dir {args.plot_dir}: not a folder; give a folder for the plots "
+                                     "(one that does not exist is made)")
     alone = len(args.logs) == 1
     logs = each_log(args.logs, lambda path: [_read(path, args)], alone=alone)
     read = [log for log in logs if isinstance(log, Log)]
     if fixes_wanted(args, read):
         return evaluate_with_fixes(args, logs, methods)
     if args.plot_dir:
-        refuse_existing(_plot_paths(args.plot_dir, read), args.overwrite)
+        refuse_existing(_plot_paths(args.plot_dir, read), args.overwrite, folders_exist=False)  # made
 
     def score(log: Log) -> list[Score]:
         with input_warnings() as messages:
@@ -127,7 +135,35 @@ def _read(path: str, args: argparse.Namespace) -> Log:
             f"{path}: no reference heading to score against (a log folder's reference.csv, or a CSV or "
             "Parquet file's heading_true column [rad], as gyrocore simulate writes it)"
         )
+    degrees = _reference_in_degrees(log)
+    if degrees is not None:
+        warn(f"{path}: {degrees}")
     return log
+
+
+def _reference_in_degrees(log: Log) -> str | None:
+    """Why the reference heading looks like degrees, or None: over the reference's span it changes
+    about 180/pi times as much as the gyro turns (its rate less the median, integrated; within a
+    factor 2, as ``calibrate`` judges a fit). A reference in degrees that never wraps by 360 between two samples
+    passed the reader's check and was scored as radians: E_psi of hundreds of degrees, no word."""
+    t, rate, t_ref, heading = log.t, log.rate, log.t_ref, log.heading_ref
+    if t_ref is None or heading is None or len(heading) < 2:
+        return None
+    inside = (t >= t_ref[0]) & (t <= t_ref[-1])
+    if np.count_nonzero(inside) < 2:
+        return None
+    with np.errstate(invalid="ignore", over="ignore"):
+        # less the median rate, about the bias: a large one (1.4 deg/s) looked like turning
+        rate_in = rate[inside]
+        turned = float(np.sum(np.abs(rate_in[1:] - np.median(rate_in)) * np.diff(t[inside])))
+        changed = float(np.sum(np.abs(np.diff(np.unwrap(heading)))))
+    if not (math.isfinite(turned) and math.isfinite(changed) and turned > 0):
+        return None
+    ratio = changed / turned
+    if not 0.5 * math.degrees(1) <= ratio <= 2 * math.degrees(1):
+        return None
+    return (f"the reference heading changes {ratio:.3g} times as much as the gyro turns, about 180/pi = 57.3: it "
+            "looks like degrees, and it is read as radians (convert it with numpy.radians); its scores would be wrong")
 
 
 def _plot_paths(plot_dir: str, logs: list[Log]) -> list[Path]:

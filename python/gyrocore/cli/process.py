@@ -11,6 +11,7 @@ from typing import Any
 from .. import io
 from .._checks import InputWarning, collected
 from ..batch import (
+    check_out_dir,
     check_outside_inputs,
     complete_output,
     expand_inputs,
@@ -20,6 +21,10 @@ from ..batch import (
 )
 from ._fixes import add_fix_options, process_with_fixes, uses_fixes
 from ._common import (
+    COUNT,
+    FINITE,
+    POSITIVE,
+    POSITIVE_OR_INF,
     WINDOW_HELP,
     add_command,
     add_overwrite_option,
@@ -77,12 +82,12 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     )
     group = bias.add_mutually_exclusive_group()
     group.add_argument("--bias-window", nargs=2, metavar=("T0", "T1"), help=f"rest window: {WINDOW_HELP}")
-    group.add_argument("--bias-duration", type=float, metavar="S", help="rest during the first S seconds")
-    group.add_argument("--bias-dps", type=float, metavar="B", help="known bias [deg/s] (what the gyro reads at rest)")
+    group.add_argument("--bias-duration", type=POSITIVE, metavar="S", help="rest during the first S seconds")
+    group.add_argument("--bias-dps", type=FINITE, metavar="B", help="known bias [deg/s] (what the gyro reads at rest)")
 
     pipe = p.add_argument_group("pipeline")
     pipe.add_argument("--nonfinite", choices=("error", "hold", "skip"), help="NaN/inf readings (default error)")
-    pipe.add_argument("--gap-limit", type=float, metavar="S", help="longest interval that is not a gap [s] (default 2)")
+    pipe.add_argument("--gap-limit", type=POSITIVE_OR_INF, metavar="S", help="longest interval that is not a gap [s] (default 2)")
     pipe.add_argument("--gap-action", choices=("bridge", "reset"), help="at a gap (default bridge)")
     add_override_options(pipe)
 
@@ -102,11 +107,11 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         help=f"the columns to write, comma-separated, e.g. t,heading (default {','.join(io.OUTPUT_COLUMNS)}); "
         "rate and drift are computed only when written",
     )
-    out.add_argument("--jobs", type=int, help="parallel files (default: all cores)")
+    out.add_argument("--jobs", type=COUNT, help="parallel files (default: all cores)")
     out.add_argument("--scheduler", metavar="ADDRESS", help="run on this Dask scheduler (tcp://host:8786)")
     out.add_argument(
         "--chunk-rows",
-        type=int,
+        type=COUNT,
         default=io.DEFAULT_CHUNK_ROWS,
         help=f"samples per chunk (default {io.DEFAULT_CHUNK_ROWS})",
     )
@@ -155,9 +160,12 @@ def run(args: argparse.Namespace) -> int:
     if args.skip_existing and one_file:
         raise ValueError(f"--skip-existing is for a batch into an output folder, and --out {out} is one file: "
                          "leave the option out (an output that exists is refused unless --overwrite is given)")
+    if not one_file:
+        check_out_dir(out)
     outputs = [out] if one_file else output_paths(inputs, out, args.format)
     # a complete output that --skip-existing keeps is not refused; anything else there is
-    refuse_existing([p for p in outputs if not (args.skip_existing and complete_output(p))], args.overwrite)
+    refuse_existing([p for p in outputs if not (args.skip_existing and complete_output(p))], args.overwrite,
+                    folders_exist=one_file)  # an output folder is made
     try:
         with warnings.catch_warnings():
             # every file's report carries these; print them once, with the file's name

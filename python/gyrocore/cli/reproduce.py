@@ -31,7 +31,8 @@ def run(args: argparse.Namespace) -> int:
         choices = ", ".join(paper.REPRODUCTIONS)
         raise ValueError(f"unknown experiment {', '.join(map(repr, unknown))}; choose from {choices}")
     if not args.no_figures:
-        refuse_existing([args.out / paper.REPRODUCTIONS[name][1] for name in names], args.overwrite)
+        refuse_existing([args.out / paper.REPRODUCTIONS[name][1] for name in names], args.overwrite,
+                        folders_exist=False)  # the figures' folder is made
     for i, name in enumerate(names):
         if i:
             print()

@@ -62,6 +62,28 @@ def _refuse_a_rest_too_short(drive: sim.Drive, rate_hz: float) -> None:
         )
 
 
+def checked_sensor(name: str, rate_hz: float) -> sim.GyroSpec:
+    """The simulated gyro ``name`` at ``--rate-hz``; a rate it refuses is named by the option."""
+    try:
+        spec = sim.sensor(name, rate_hz=rate_hz)
+        sim.check_span(spec, 0.0, 1.0)  # the core checks the model, its rate among it
+    except ValueError as e:  # "gyro model: invalid parameter rate_hz = ...": the option by its name
+        raise ValueError(f"--rate-hz {rate_hz:g}: {e}") from None
+    return spec
+
+
+def check_car_drive(spec: sim.GyroSpec, duration: float) -> None:
+    """Refuse a car drive of ``--duration`` that is no longer than its rest, or that asks for more
+    samples than the simulator makes, naming the options (the simulator's words named neither)."""
+    if duration <= sim.CAR_REST:
+        raise ValueError(f"--duration {duration:g}: a car drive begins with a {sim.CAR_REST:g} s rest "
+                         "(its static bias test); give a longer drive")
+    try:
+        sim.check_span(spec, 0.0, duration)
+    except ValueError as e:
+        raise ValueError(f"--duration {duration:g} at --rate-hz {spec.rate_hz:g}: {e}") from None
+
+
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
     p = add_command(
         sub,
@@ -91,12 +113,12 @@ def run(args: argparse.Namespace) -> int:
     out = Path(args.out)
     if out.suffix.lower() != ".csv":
         raise ValueError(f"{out}: output must end in .csv")
-    if not out.parent.is_dir():
-        raise OSError(f"{out.parent}: no such folder")
     refuse_existing([out], args.overwrite)
     _options_of_the_profile(args)
     rate_hz = sim.sensor(args.sensor).rate_hz if args.rate_hz is None else args.rate_hz
+    spec = checked_sensor(args.sensor, rate_hz)
     if args.profile == "car":  # car_drive refuses a drive of too many samples before building its route
+        check_car_drive(spec, args.duration)
         drive = sim.car_drive(args.duration, rate_hz, seed=args.seed, mix=args.mix, sensor_name=args.sensor)
     else:
         if args.profile in _REPEATED:
@@ -104,7 +126,7 @@ def run(args: argparse.Namespace) -> int:
             # (a billion runs would take hours to build before the limit said no)
             seconds = float(_REPEATED[args.profile](runs=1).knots[-1]) * args.runs
             try:
-                sim.check_span(sim.sensor(args.sensor, rate_hz=rate_hz), 0.0, seconds)
+                sim.check_span(spec, 0.0, seconds)
             except ValueError as e:
                 raise ValueError(f"--runs {args.runs} of the {args.profile} profile: {e}") from None
         drive = sim.simulate(_profiles(args)[args.profile](), args.sensor, seed=args.seed, rate_hz=args.rate_hz)

@@ -10,7 +10,7 @@ CSV           a header line, then one sample per line; columns ``time_col`` (def
 Parquet       columns ``time_col`` and ``rate_col``; a timestamp column carries its own unit
 ``.npy``      a structured array with fields ``time_col``/``rate_col``, or a 2-D array
               (samples x columns: time in column 0, rate in column 1 unless numbered otherwise)
-``.npz``      arrays named ``time_col`` and ``rate_col`` (loaded whole)
+``.npz``      1-D arrays named ``time_col`` and ``rate_col`` (streamed member by member)
 log folder    ``gyro.csv`` (t, gyro_z), ``reference.csv`` (t, heading, x, y), ``odometry.csv``
               (t, speed) and ``meta.json`` with the ``stationary`` rest window
 ROS bag       a ROS 1 ``.bag`` file or a ROS 2 bag folder (``metadata.yaml``): sensor_msgs/Imu

@@ -22,10 +22,11 @@ CHOOSE_COLUMNS = "choose with time_col/rate_col, --time-col/--rate-col"
 
 
 def column_positions(
-    path: Path, header: list[str], columns: tuple[str, ...], choose: str = CHOOSE_COLUMNS
+    path: Path, header: list[str], columns: tuple[str, ...], choose: str = CHOOSE_COLUMNS, *, where: str = ""
 ) -> dict[str, int]:
     """Where each of ``columns`` is in ``header`` (column, field or array names of ``path``);
-    ``choose`` says what to do about a missing one.
+    ``choose`` says what to do about a missing one; ``where`` is the header's place in an error
+    (``"line 1: "`` in a CSV file; a Parquet file or an archive has no lines).
 
     Raises:
         ValueError: a column is missing or appears more than once.
@@ -42,7 +43,7 @@ def column_positions(
         )
     twice = [c for c in columns if header.count(c) > 1]
     if twice:
-        raise ValueError(f"{path}: line 1: column(s) {', '.join(twice)} appear more than once")
+        raise ValueError(f"{path}: {where}column(s) {', '.join(twice)} appear more than once")
     return {c: header.index(c) for c in columns}
 
 

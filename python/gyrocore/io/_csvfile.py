@@ -36,18 +36,23 @@ _GZIP = b"\x1f\x8b"
 #: Byte order marks of UTF-16 (and UTF-32, which begins like it), as Excel's "Unicode Text" and
 #: Windows PowerShell's ``>`` write text.
 _UTF16_BOMS = (b"\xff\xfe", b"\xfe\xff")
+_UTF8_BOM = b"\xef\xbb\xbf"
 
 
 def _csv_header(path: Path, delimiter: str) -> list[str]:
     with open(path, "rb") as f:
         line = f.readline(MAX_LINE_BYTES + 1)  # bounded: a file of gigabytes without a line end
-    if not line.strip():
+    if not line.removeprefix(_UTF8_BOM).strip():  # an empty file that an editor saved with its BOM too
         raise ValueError(f"{path}: line 1: no header line (expected column names)")
     if line.startswith(_UTF16_BOMS):
         raise ValueError(f"{path}: text in UTF-16 (or UTF-32), not UTF-8: save it as UTF-8")
     if line.startswith(_GZIP) or any(b < 32 and b not in b"\t\r\n" for b in line[:4096]):
         # naming the columns would print the binary bytes
         raise ValueError(f"{path}: not a text CSV file (binary data on line 1; decompress a .gz file first)")
+    if not line.endswith(b"\n") and b"\r" in line.rstrip(b"\r"):
+        # classic Mac OS line ends: the reader splits lines at \n only, so the whole file is "line 1"
+        raise ValueError(f"{path}: lines end in a bare carriage return (classic Mac OS line ends), not a line "
+                         "feed: convert them, e.g. tr '\\r' '\\n' < old.csv > new.csv")
     if len(line) > MAX_LINE_BYTES:
         raise ValueError(f"{path}: line 1 is longer than {MAX_LINE_BYTES} bytes, the longest read")
     text = line.decode("utf-8-sig", errors="replace").rstrip("\r\n")
@@ -82,7 +87,7 @@ def _read_csv(
     pa_csv = require("pyarrow.csv", f"{path}: reading CSV files")
 
     header = _csv_header(path, delimiter)
-    positions = column_positions(path, header, columns, choose)
+    positions = column_positions(path, header, columns, choose, where="line 1: ")
     keys = {c: f"{positions[c]}:{c}" for c in columns}
     convert = pa_csv.ConvertOptions(
         include_columns=list(keys.values()),

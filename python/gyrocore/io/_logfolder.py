@@ -104,6 +104,12 @@ def read_reference_file(path: Path) -> dict[str, FloatArray]:
         where = _not_finite(path, header, ref, name, "nan")
         if where is not None:
             raise ValueError(f"{where}; a reference's t and heading must be finite numbers: fill it in or drop the line")
+    back = np.flatnonzero(np.diff(ref["t"]) <= 0)
+    if len(back):  # the scores named only an index, and the log rather than this file
+        k = int(back[0]) + 1
+        raise ValueError(f"{path}: line {k + 2}, column {header.index('t') + 1} (t): {ref['t'][k]:.17g} does not come "
+                         f"after {ref['t'][k - 1]:.17g} on line {k + 1}; a reference's times must strictly increase: "
+                         "sort the file and drop repeated times")
     for name in track:
         where = _not_finite(path, header, ref, name, "empty or nan")  # an empty position is read as NaN
         if where is not None:

@@ -1,4 +1,5 @@
-"""Reading NumPy files: ``.npy`` a block of rows at a time, ``.npz`` whole.
+"""Reading NumPy files a block of rows at a time: ``.npy`` with plain reads, ``.npz`` member by
+member from its zip archive.
 
 An ``.npy`` file holds a structured array with time and rate (or three-axis) fields, or a 2-D
 array (samples x columns) in C or Fortran order; an ``.npz`` archive holds them as 1-D arrays.
@@ -6,10 +7,13 @@ array (samples x columns) in C or Fortran order; an ``.npz`` archive holds them 
 
 from __future__ import annotations
 
+import io
 import math
+import zipfile
 from collections.abc import Iterator
+from contextlib import ExitStack, contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import IO, TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -19,8 +23,9 @@ if TYPE_CHECKING:
     from .source import GyroSource
 
 
-def npy_header(path: Path, f: Any) -> tuple[tuple[int, ...], bool, np.dtype[Any]]:
-    """(shape, Fortran order, dtype) of an .npy file; ``f`` is left at the start of the data."""
+def npy_header(path: Path | str, f: Any) -> tuple[tuple[int, ...], bool, np.dtype[Any]]:
+    """(shape, Fortran order, dtype) of an .npy file (``path`` names it in an error, an .npz
+    member by the archive and its name); ``f`` is left at the start of the data."""
     fmt = np.lib.format
     try:
         version = fmt.read_magic(f)
@@ -123,25 +128,83 @@ def _column_number(src: GyroSource, name: str | None, default: int, width: int) 
 def npz_chunks(
     src: GyroSource, rows: int, columns: tuple[str, ...]
 ) -> Iterator[tuple[np.ndarray, list[np.ndarray], float, int]]:
+    """Read the 1-D arrays of an .npz archive a block of rows at a time, each member streamed from
+    the zip file (decompressed as it goes where it is compressed): the memory a block takes, not
+    the archive's (``np.load`` reads a member whole, a 10 GB one into 10 GB)."""
     o = src.options
     wanted = (o.time, *columns)
+    with _npz_archive(src.path) as archive, ExitStack() as members:
+        # as np.load names them; two members of one name (t.npy twice, or t and t.npy) are refused,
+        # not one of them taken without a word
+        members_named = [(n[:-4] if n.endswith(".npy") else n, n) for n in archive.namelist()]
+        column_positions(src.path, [name for name, _ in members_named], wanted)
+        names = dict(members_named)
+        streams, dtypes, lengths = {}, {}, {}
+        for name in wanted:
+            f = members.enter_context(_npz_member(src.path, archive, names[name]))
+            shape, _, dtype = _member_header(src.path, name, f)
+            _check_numbers(src, f"array {name}", dtype, time=name == o.time)
+            if len(shape) != 1:
+                raise ValueError(f"{src.path}: array {name} must be 1-D, got shape {shape}")
+            have = archive.getinfo(names[name]).file_size - f.tell()
+            if have < shape[0] * dtype.itemsize:  # before any block is allocated for it
+                raise ValueError(f"{src.path}: member {name} ends early (truncated .npz): its header's shape "
+                                 f"{shape} of {dtype} takes {shape[0] * dtype.itemsize} bytes, it holds {have}")
+            streams[name], dtypes[name], lengths[name] = f, dtype, shape[0]
+        n = lengths[o.time]
+        for name in wanted:
+            if lengths[name] != n:
+                raise ValueError(f"{src.path}: {o.time} has {n} samples but {name} has {lengths[name]}")
+        for start in range(0, n, rows):
+            count = min(rows, n - start)
+            block = [_member_block(src.path, name, streams[name], dtypes[name], count) for name in wanted]
+            yield block[0], block[1:], o.counts_per_second, start + count
+
+
+@contextmanager
+def _npz_archive(path: Path) -> Iterator[zipfile.ZipFile]:
+    """The .npz file ``path`` open as a zip archive; bad bytes are a ValueError naming it."""
     try:
-        with np.load(src.path, allow_pickle=False) as archive:
-            names = list(archive.files)
-            arrays = {k: archive[k] for k in wanted if k in names}
-    except Exception as e:  # np.load raises EOFError, BadZipFile, ValueError, OSError, ... on bad bytes
-        raise ValueError(f"{src.path}: not a readable NumPy .npz file ({type(e).__name__}: {e})") from None
-    column_positions(src.path, names, wanted)
-    for name in wanted:
-        a = arrays[name]
-        if not isinstance(a, np.ndarray):  # a member not stored as .npy comes back as raw bytes
-            raise ValueError(f"{src.path}: member {name} is not a NumPy array")
-        _check_numbers(src, f"array {name}", a.dtype, time=name == o.time)
-        if a.ndim != 1:
-            raise ValueError(f"{src.path}: array {name} must be 1-D, got shape {a.shape}")
-        if len(a) != len(arrays[o.time]):
-            raise ValueError(f"{src.path}: {o.time} has {len(arrays[o.time])} samples but {name} has {len(a)}")
-    t = arrays[o.time]
-    for start in range(0, len(t), rows):
-        end = min(len(t), start + rows)
-        yield t[start:end], [arrays[c][start:end] for c in columns], o.counts_per_second, end
+        archive = zipfile.ZipFile(path)
+    except Exception as e:  # BadZipFile, EOFError, ... on bad bytes
+        raise ValueError(f"{path}: not a readable NumPy .npz file ({type(e).__name__}: {e})") from None
+    with archive:
+        yield archive
+
+
+@contextmanager
+def _npz_member(path: Path, archive: zipfile.ZipFile, member: str) -> Iterator[IO[bytes]]:
+    try:
+        f = archive.open(member)
+    except Exception as e:  # a damaged local header, an unsupported compression, encryption
+        raise ValueError(f"{path}: not a readable NumPy .npz file ({type(e).__name__}: {e})") from None
+    with f:
+        yield f
+
+
+def _member_header(path: Path, name: str, f: IO[bytes]) -> tuple[tuple[int, ...], bool, np.dtype[Any]]:
+    """The .npy header of the member ``name``: one that is no .npy (np.load's raw bytes) is named."""
+    try:
+        magic = f.read(len(np.lib.format.MAGIC_PREFIX))
+    except Exception as e:
+        raise ValueError(f"{path}: damaged .npz file (member {name}: {type(e).__name__}: {e})") from None
+    if magic != np.lib.format.MAGIC_PREFIX:
+        raise ValueError(f"{path}: member {name} is not a NumPy array")
+    # the header read to its end and no further: a seek would stop zipfile checking the CRC
+    version = f.read(2)
+    size = f.read(2 if version[:1] == b"\x01" else 4)
+    length = int.from_bytes(size, "little") if len(size) in (2, 4) else 0
+    header = io.BytesIO(magic + version + size + f.read(length))
+    return npy_header(f"{path}: member {name}", header)
+
+
+def _member_block(path: Path, name: str, f: IO[bytes], dtype: np.dtype[Any], count: int) -> np.ndarray:
+    """The next ``count`` values of a member; a short read or a damaged (bad CRC, bad deflate)
+    member is a ValueError naming the file and member."""
+    try:
+        data = f.read(count * dtype.itemsize)
+    except Exception as e:  # zipfile's BadZipFile (CRC), zlib.error
+        raise ValueError(f"{path}: damaged .npz file (member {name}: {type(e).__name__}: {e})") from None
+    if len(data) != count * dtype.itemsize:
+        raise ValueError(f"{path}: member {name} ends early (truncated .npz)")
+    return np.frombuffer(data, dtype=dtype)

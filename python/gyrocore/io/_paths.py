@@ -33,6 +33,7 @@ def check_file(path: Path) -> None:
         ValueError: a folder, or a named pipe, socket or device (reading one would wait for ever).
     """
     if path.is_file():
+        check_readable(path)
         return
     if not path.exists():
         raise FileNotFoundError(missing(path))
@@ -48,3 +49,46 @@ def has_file(path: Path) -> bool:
         return False
     check_file(path)
     return True
+
+
+def denied(path: str | Path) -> str:
+    """Why ``path`` cannot be read for lack of permission, and what to do (Python's own words,
+    ``[Errno 13] Permission denied: 'x'``, say neither whether it is read or what to change)."""
+    if Path(path).is_dir():
+        return (f"{path}: permission denied: this user may not list the folder; make it readable "
+                f"(chmod +rx {path}) or copy it somewhere readable")
+    return (f"{path}: permission denied: this user may not read the file; make it readable "
+            f"(chmod +r {path}) or copy it somewhere readable")
+
+
+def check_readable(path: Path) -> None:
+    """Refuse a file or folder ``path`` this user may not read (PermissionError, :func:`denied`).
+
+    Opening it is the only true test (``os.access`` ignores ACLs, and root reads anything); a
+    folder is listed, and one that may be listed but not entered fails on its first entry."""
+    try:
+        if path.is_dir():
+            with os.scandir(path) as entries:
+                for entry in entries:
+                    entry.stat(follow_symlinks=False)
+                    break
+        else:
+            os.close(os.open(path, os.O_RDONLY))
+    except PermissionError:
+        raise PermissionError(denied(path)) from None
+
+
+def error_text(error: BaseException) -> str:
+    """The one line that says what went wrong: a PermissionError of Python's as :func:`denied`,
+    anything else as it reads."""
+    if isinstance(error, PermissionError) and error.filename is not None and "[Errno" in str(error):
+        return (f"{error.filename}: permission denied: this user may not open it; change its permissions "
+                "(chmod) or use another path")
+    return str(error)
+
+
+def one_line(text: str) -> str:
+    """``text`` on one line: a control character (a line break or terminal escape in a file's
+    name) shown as its escape, ``\\n``, so that an error, a warning or a ``FAILED`` line stays one
+    line."""
+    return "".join(c if c.isprintable() or c == " " else repr(c)[1:-1] for c in text)

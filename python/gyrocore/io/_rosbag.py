@@ -41,10 +41,33 @@ def _bag_reader(path: Path) -> Any:
         reader = AnyReader([path], default_typestore=get_typestore(Stores.LATEST))
         reader.open()
     except AnyReaderError as e:
-        raise ValueError(f"{path}: not a readable ROS bag ({e})") from None
+        yaml = _yaml_error(e)
+        if yaml is not None:
+            raise ValueError(f"{path / 'metadata.yaml'}: {yaml}: not valid YAML, so {path} is not a readable "
+                             "ROS 2 bag; mend the file, or take it from the bag's recording again") from None
+        raise ValueError(f"{path}: not a readable ROS bag ({_one_line(e)})") from None
     except Exception as e:  # rosbags' parser reports some corruption as AssertionError, KeyError, ...
-        raise ValueError(f"{path}: not a readable ROS bag ({type(e).__name__}: {e})") from None
+        raise ValueError(f"{path}: not a readable ROS bag ({type(e).__name__}: {_one_line(e)})") from None
     return reader
+
+
+def _yaml_error(error: BaseException) -> str | None:
+    """Where and what the YAML error behind ``error`` is (``line 5, column 9: expected ',' or ']',
+    but got ':' (while parsing a flow sequence)``), or None. The YAML parser's own message spans
+    several lines, with a drawing of the spot, which an error of one line cannot carry."""
+    cause: BaseException | None = error
+    while cause is not None:
+        mark, problem = getattr(cause, "problem_mark", None), getattr(cause, "problem", None)
+        if mark is not None and problem:
+            context = getattr(cause, "context", None)
+            return f"line {mark.line + 1}, column {mark.column + 1}: {problem}" + (f" ({context})" if context else "")
+        cause = cause.__cause__ or cause.__context__
+    return None
+
+
+def _one_line(error: BaseException) -> str:
+    """``error``'s message on one line (rosbags passes on others' messages of several lines)."""
+    return " ".join(str(error).split())
 
 
 def imu_topic(path: Path, topic: str | None) -> tuple[str, int]:
@@ -122,7 +145,7 @@ def bag_chunks(
         if stamps:
             yield _block(stamps, values, len(columns)) + (1e9, done + len(stamps))
     except Exception as e:  # rosbags reports damage as its ReaderErrors, AssertionError, struct.error, ...
-        raise ValueError(f"{src.path}: damaged bag ({type(e).__name__}: {e})") from None
+        raise ValueError(f"{src.path}: damaged bag ({type(e).__name__}: {_one_line(e)})") from None
     finally:
         reader.close()
 

@@ -20,6 +20,28 @@ from .. import _signals
 _live: set[Path] = set()
 
 
+def output_folder_missing(path: Path) -> str:
+    """Why the output ``path`` cannot be written for want of its folder: none, or a file there."""
+    parent = path.parent
+    if os.path.lexists(parent) and not parent.is_dir():
+        return f"{path}: {parent} is not a folder; write the output elsewhere"
+    return f"{path}: the folder {parent} does not exist; create it or write elsewhere"
+
+
+def check_output_folder(path: Path, *, made: bool = False) -> None:
+    """Refuse, before any work, an output whose folder is missing or is no folder (it was found
+    only when the output was written, after the work, or after a report had been printed). Where
+    the command makes the folder (``made``), only a file in its way is refused."""
+    if not made:
+        if not path.parent.is_dir():
+            raise FileNotFoundError(output_folder_missing(path))
+        return
+    ancestor = path.parent
+    while not os.path.lexists(ancestor) and ancestor != ancestor.parent:
+        ancestor = ancestor.parent
+    if os.path.lexists(ancestor) and not ancestor.is_dir():
+        raise NotADirectoryError(f"{path}: {ancestor} is not a folder; write the output elsewhere")
+
 class StagedFile:
     """A temporary file next to ``path`` that becomes ``path`` on :meth:`commit`.
 
@@ -42,7 +64,7 @@ class StagedFile:
                 continue
             except (FileNotFoundError, NotADirectoryError):  # named after the output, not the hidden file
                 _live.discard(tmp)
-                raise FileNotFoundError(f"{path}: the folder {path.parent} does not exist") from None
+                raise FileNotFoundError(output_folder_missing(path)) from None
             except PermissionError as e:
                 _live.discard(tmp)
                 raise PermissionError(f"{path}: cannot write in {path.parent} ({e.strerror})") from None

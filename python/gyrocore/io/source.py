@@ -24,7 +24,7 @@ from ._csvfile import _csv_header, csv_chunks
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta
 from ._npyfile import npy_chunks, npy_header, npz_chunks
 from ._parquetfile import parquet_chunks, parquet_file, warn_given_time_unit
-from ._paths import check_file, missing
+from ._paths import check_file, check_readable, missing
 from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder
 from .units import RATE_UNITS, TIME_UNITS, header_options
 
@@ -340,6 +340,7 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
     if not p.exists():
         raise FileNotFoundError(missing(p))
     if p.is_dir():
+        check_readable(p)  # unlisted, it would be "not a log folder"
         if is_log_folder(p):
             data = p / GYRO_CSV
             check_file(data)
@@ -351,6 +352,7 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
         raise ValueError(f"{p}: not a log folder (no gyro.csv) nor a ROS 2 bag (no metadata.yaml)")
     if not p.is_file():  # reading a named pipe or a device would wait for ever, or never end
         raise ValueError(f"{p}: not a regular file (a named pipe, socket or device); give a file or folder")
+    check_readable(p)
     suffix = p.suffix.lower()
     if suffix == ".csv":
         options = header_options(p, _csv_header(p, options.delimiter), options)
@@ -413,5 +415,9 @@ def _check_topic(source: GyroSource) -> GyroSource:
 def is_input(path: Path) -> bool:
     """Whether ``path`` is something :func:`open_source` reads (by suffix or folder layout)."""
     if path.is_dir():
+        try:
+            check_readable(path)
+        except PermissionError:  # kept as an input: reading it names the folder and what to do
+            return True
         return is_log_folder(path) or is_bag_folder(path)
     return path.is_file() and path.suffix.lower() in FILE_SUFFIXES
