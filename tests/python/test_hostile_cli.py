@@ -4,10 +4,12 @@ overwritten."""
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import pytest
 
+from .conftest import DATA
 from .test_batch import synthetic_csv
 from .test_errors_named import run_cli
 from .test_hostile_inputs import log_folder_with
@@ -310,21 +312,46 @@ def test_a_csv_given_as_a_json_file_is_said_not_to_be_json(tmp_path: Path) -> No
     assert proc.stderr.startswith(f"gyrocore: error: {log}: not valid JSON: line 1 column ")
 
 
-@pytest.mark.parametrize("degrees", [True, False])
-def test_evaluate_warns_of_a_reference_heading_in_degrees(tmp_path: Path, degrees: bool) -> None:
+@pytest.mark.parametrize("degrees", [None, "heading_true", "gyro_z"])
+def test_evaluate_warns_of_a_reference_heading_or_a_gyro_in_degrees(tmp_path: Path, degrees: str | None) -> None:
     drive = tmp_path / "drive.csv"
     run_cli("simulate", "--out", drive, "--duration", "120", code=0)
-    if degrees:  # the truth column of a simulated log, in degrees: never a 360 wrap between two samples
+    if degrees:  # a column of a simulated log in degrees: the truth never wraps by 360 between two samples
         lines = drive.read_text().splitlines()
-        column = lines[0].split(",").index("heading_true")
+        column = lines[0].split(",").index(degrees)
         rows = [line.split(",") for line in lines[1:]]
         for row in rows:
             row[column] = repr(float(row[column]) * 57.29577951308232)
         drive.write_text("\n".join([lines[0], *(",".join(row) for row in rows)]) + "\n")
     proc = run_cli("evaluate", drive, "--preset", "raw", code=0)
-    warned = [line for line in proc.stderr.splitlines() if "looks like degrees" in line]
+    warned = [line for line in proc.stderr.splitlines() if "57.3: " in line]
     assert len(warned) == (1 if degrees else 0), proc.stderr
-    if degrees:
+    if degrees == "heading_true":
         assert warned[0].startswith(f"gyrocore: warning: {drive}: the reference heading changes ")
         assert warned[0].endswith("times as much as the gyro turns, about 180/pi = 57.3: it looks like degrees, and it "
                                   "is read as radians (convert it with numpy.radians); its scores would be wrong")
+    if degrees == "gyro_z":
+        assert warned[0].startswith(f"gyrocore: warning: {drive}: the gyro turns ")
+        assert warned[0].endswith("times as much as the reference heading changes, about 180/pi = 57.3: its rates look "
+                                  "like deg/s, and they are read as rad/s (convert them with numpy.radians); its scores "
+                                  "would be wrong")
+
+
+def test_evaluate_warns_of_a_gentle_real_drive_in_deg_s(tmp_path: Path) -> None:
+    # comma_seg40 on the highway: 99 % of its rates lie below 4.8 deg/s, below the pipeline's
+    # check of rates in deg/s (20), so the reference was what could tell
+    source = DATA / "real" / "comma_seg40"
+    if not source.is_dir():
+        pytest.skip("../shared/data/real is not beside the checkout")
+    log = tmp_path / "comma_dps"
+    log.mkdir()
+    for name in ("reference.csv", "meta.json"):
+        (log / name).write_text((source / name).read_text())
+    lines = (source / "gyro.csv").read_text().splitlines()
+    rows = [line.split(",") for line in lines[1:]]
+    for row in rows:  # t, rate [rad/s]
+        row[1] = repr(math.degrees(float(row[1])))
+    (log / "gyro.csv").write_text("\n".join([lines[0], *(",".join(row) for row in rows)]) + "\n")
+    proc = run_cli("evaluate", log, "--preset", "raw", code=0)
+    assert f"gyrocore: warning: {log}: the gyro turns " in proc.stderr, proc.stderr
+    assert "57.3" not in run_cli("evaluate", source, "--preset", "raw", code=0).stderr

@@ -135,17 +135,19 @@ def _read(path: str, args: argparse.Namespace) -> Log:
             f"{path}: no reference heading to score against (a log folder's reference.csv, or a CSV or "
             "Parquet file's heading_true column [rad], as gyrocore simulate writes it)"
         )
-    degrees = _reference_in_degrees(log)
-    if degrees is not None:
-        warn(f"{path}: {degrees}")
+    units = _units_apart(log)
+    if units is not None:
+        warn(f"{path}: {units}")
     return log
 
 
-def _reference_in_degrees(log: Log) -> str | None:
-    """Why the reference heading looks like degrees, or None: over the reference's span it changes
-    about 180/pi times as much as the gyro turns (its rate less the median, integrated; within a
-    factor 2, as ``calibrate`` judges a fit). A reference in degrees that never wraps by 360 between two samples
-    passed the reader's check and was scored as radians: E_psi of hundreds of degrees, no word."""
+def _units_apart(log: Log) -> str | None:
+    """Why the reference heading or the gyro looks like degrees, or None: over the reference's span
+    the reference changes about 180/pi times as much as the gyro turns (its rate less the median,
+    integrated), or the gyro turns about 180/pi times as much (each within a factor 2, as
+    ``calibrate`` judges a fit). A reference in degrees that never wraps by 360 between two samples
+    passed the reader's check, and a gyro in deg/s on a gentle drive (99 % of a highway's rates
+    below 5 deg/s) passed the pipeline's; either was scored without a word."""
     t, rate, t_ref, heading = log.t, log.rate, log.t_ref, log.heading_ref
     if t_ref is None or heading is None or len(heading) < 2:
         return None
@@ -157,13 +159,18 @@ def _reference_in_degrees(log: Log) -> str | None:
         rate_in = rate[inside]
         turned = float(np.sum(np.abs(rate_in[1:] - np.median(rate_in)) * np.diff(t[inside])))
         changed = float(np.sum(np.abs(np.diff(np.unwrap(heading)))))
-    if not (math.isfinite(turned) and math.isfinite(changed) and turned > 0):
+    if not (math.isfinite(turned) and math.isfinite(changed) and turned > 0 and changed > 0):
         return None
-    ratio = changed / turned
-    if not 0.5 * math.degrees(1) <= ratio <= 2 * math.degrees(1):
-        return None
-    return (f"the reference heading changes {ratio:.3g} times as much as the gyro turns, about 180/pi = 57.3: it "
-            "looks like degrees, and it is read as radians (convert it with numpy.radians); its scores would be wrong")
+    ratio, factor = changed / turned, math.degrees(1)
+    if 0.5 * factor <= ratio <= 2 * factor:
+        return (f"the reference heading changes {ratio:.3g} times as much as the gyro turns, about 180/pi = 57.3: it "
+                "looks like degrees, and it is read as radians (convert it with numpy.radians); its scores would be "
+                "wrong")
+    if 0.5 * factor <= 1 / ratio <= 2 * factor:
+        return (f"the gyro turns {1 / ratio:.3g} times as much as the reference heading changes, about 180/pi = 57.3: "
+                "its rates look like deg/s, and they are read as rad/s (convert them with numpy.radians); its scores "
+                "would be wrong")
+    return None
 
 
 def _plot_paths(plot_dir: str, logs: list[Log]) -> list[Path]:
