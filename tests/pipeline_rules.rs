@@ -22,6 +22,19 @@ fn invalid_name(config: PipelineConfig) -> &'static str {
 }
 
 #[test]
+fn an_initial_heading_beyond_2_pow_20_rad_is_refused() {
+    // at 1e300 rad every sample's increment was lost: the heading never moved
+    for bad in [1e300, -1e300, MAX_READING * 2.0] {
+        let mut c = Preset::Raw.config();
+        c.integrator.initial_heading = bad;
+        assert_eq!(invalid_name(c), "initial_heading");
+    }
+    let mut c = Preset::Raw.config();
+    c.integrator.initial_heading = -MAX_READING;
+    assert!(Pipeline::new(c).is_ok());
+}
+
+#[test]
 fn delag_needs_a_lowpass() {
     let mut c = Preset::Hdr.config();
     c.lowpass = None;

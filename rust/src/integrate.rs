@@ -5,9 +5,9 @@
 //! at every step; the text defines `psi_0` as the heading at the start of the drive, so it is used
 //! once, as the starting value: `psi_i = psi_{i-1} + w_d,i T_i`, `psi` at the first sample = `psi_0`.
 
-use crate::error::check_finite;
+use crate::error::{check_finite, check_range};
 use crate::kernel::{settings_are_config, Kernel, Signal, Streaming};
-use crate::Error;
+use crate::{Error, MAX_READING};
 
 /// Integration rule.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -31,9 +31,19 @@ pub struct IntegratorConfig {
 }
 
 impl IntegratorConfig {
-    /// Checks the initial heading.
+    /// Checks the initial heading: finite and within +-[`MAX_READING`] (2^20 rad), where a
+    /// double still resolves 2e-10 rad; beyond, a sample's increment is lost (at 1e300 rad the
+    /// heading never moved).
     pub fn validate(&self) -> Result<(), Error> {
-        check_finite("initial_heading", self.initial_heading)
+        check_finite("initial_heading", self.initial_heading)?;
+        let most = MAX_READING;
+        check_range(
+            "initial_heading",
+            self.initial_heading,
+            -most,
+            most,
+            "within +-2^20 rad (continuous headings may turn many times; wrap a larger one)",
+        )
     }
 }
 

@@ -31,6 +31,16 @@ def test_a_bool_for_a_parameter_that_is_no_switch_is_refused(key: str, value: ob
         gyrocore.preset_params("hdr", **{key: value})
 
 
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_an_initial_heading_beyond_2_pow_20_rad_is_refused(mode: str) -> None:
+    """At 1e300 rad every sample's increment was lost: the heading stayed 1e300 without a word."""
+    with pytest.raises(ValueError, match=r"^invalid parameter initial_heading = 1e300: must be within \+-2\^20 rad"):
+        gyrocore.process(T, RATE, "raw", mode=mode, initial_heading=1e300)
+    turned = gyrocore.process(T, RATE, "raw", mode=mode, initial_heading=2.0**20)
+    # at 2^20 rad a double resolves 2.3e-10 rad: each of the 6,000 steps rounds by at most that
+    assert turned.heading[-1] - turned.heading[0] == pytest.approx(0.002 * (T[-1] - T[0]), abs=6000 * 2.4e-10)
+
+
 def test_the_switches_take_bools_and_a_number_from_numpy_is_a_number() -> None:
     params = gyrocore.preset_params("hdr", delag=False, hdr=np.True_, track_rests=False, bias=np.array(0.002))
     assert params["delag"] is False and params["hdr"] is True and params["bias"] == 0.002
