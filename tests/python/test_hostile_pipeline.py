@@ -5,11 +5,13 @@ index."""
 from __future__ import annotations
 
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import gyrocore
+from gyrocore import datasets
 
 T = np.arange(0.0, 60.0, 0.01)
 RATE = np.full_like(T, 0.002)
@@ -116,3 +118,18 @@ def test_an_object_array_names_its_first_value_that_is_no_number_and_takes_numbe
     numbers = np.array([0.0, 1, np.float32(2.0)], dtype=object)  # numbers of any type, stored as objects
     assert np.array_equal(gyrocore.process([0.0, 1.0, 2.0], numbers, "raw").heading,
                           gyrocore.process([0.0, 1.0, 2.0], [0.0, 1.0, 2.0], "raw").heading)
+
+
+@pytest.mark.parametrize("switch", ["use_speed", "use_fixes"])
+def test_a_log_switch_given_as_text_is_refused(switch: str) -> None:
+    """``Log.process(use_speed="no")`` was read as True: the log's odometry found its rests."""
+    log = datasets.sample_drive()
+    with pytest.raises(TypeError, match=rf"^{switch} must be True or False, got 'no'$"):
+        log.process("static_bias", **{switch: "no"})  # type: ignore[arg-type]
+    assert len(log.process("static_bias", **{switch: False}).heading) == len(log.t)
+
+
+def test_read_log_refuses_use_fixes_given_as_text(tmp_path: Path) -> None:
+    folder = datasets.write_sample(tmp_path / "drive")
+    with pytest.raises(TypeError, match=r"^use_fixes must be True or False, got 0$"):
+        gyrocore.read_log(folder, use_fixes=0)  # type: ignore[arg-type]

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .._arrays import FloatArray
-from .._checks import warn
+from .._checks import require_flag, warn
 from ..pipeline import (
     HeadingResult,
     RestWindowError,
@@ -127,7 +127,10 @@ class Log:
         without either, from every rest found in the log, with the odometry's speed unless
         ``use_speed`` is False. The result's ``bias_source`` and ``rests`` say which. Heading
         fixes: ``fixes`` if given, else the log's own (``fixes.csv``) unless ``use_fixes`` is False.
+        A switch that is no bool (``use_speed="no"`` read as True) is a TypeError.
         """
+        require_flag("use_speed", use_speed)
+        require_flag("use_fixes", use_fixes)
         speed: dict[str, Any] = {}
         if use_speed and mode == "whole":
             speed["speed"] = self.speed_on_gyro_times()
@@ -177,7 +180,7 @@ def read_log(path: str | Path, *, use_fixes: bool = True, **options: Any) -> Log
     file's ``speed`` column [m/s] is the log's speed, as a folder's odometry, and its
     ``heading_true`` column [rad] (with ``x``, ``y`` [m]) its reference, as ``gyrocore simulate``
     writes them). ``use_fixes=False`` leaves a log folder's ``fixes.csv`` unread (a command that
-    does not use it is not stopped by a bad one).
+    does not use it is not stopped by a bad one; a value that is no bool is a TypeError).
 
     Raises ValueError for a malformed input, naming the file and where, for one without samples,
     and when every interval is a gap (timestamps in another unit).
@@ -188,6 +191,7 @@ def read_log(path: str | Path, *, use_fixes: bool = True, **options: Any) -> Log
         >>> log = gyrocore.read_log("../shared/data/real/f110_ds3")  # doctest: +SKIP
         >>> log = gyrocore.read_log("drive.csv", time_col="time", time_unit="ms", rate_unit="deg/s")  # doctest: +SKIP
     """
+    require_flag("use_fixes", use_fixes)
     src = open_source(path, **options)
     check = UnitCheck(src.options)
     ts, rates = [], []
