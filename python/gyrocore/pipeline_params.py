@@ -67,25 +67,28 @@ def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
             value = value.item()
         if isinstance(value, (list, np.ndarray)):
             value = tuple(value.tolist() if isinstance(value, np.ndarray) else value)
-        _refuse_bool(key, value)
         if key.endswith("_dps") and key[:-4] in _RATE_PARAMETERS:
-            name, value = key[:-4], _radians(key, value)
+            name = key[:-4]
         elif key == "initial_heading_deg":
-            name, value = "initial_heading", _radians(key, value)
+            name = "initial_heading"
         else:
             name = key
+        _refuse_bool(key, name, value)
+        if name != key:  # given in degrees
+            value = _radians(key, value)
         if name in si:
             raise ValueError(f"{name} is given twice (as {name} and in degrees)")
         si[name] = value
     return si
 
 
-def _refuse_bool(key: str, value: Any) -> None:
-    """A TypeError for a bool given to a parameter that is no switch: the core reads a bool as a
-    number (``bias=True`` was a bias of 1 rad/s, ``bias_window=(False, True)`` the window 0 .. 1 s)."""
+def _refuse_bool(key: str, name: str, value: Any) -> None:
+    """A TypeError for a bool given as ``key`` to the parameter ``name`` that is no switch: the core
+    reads a bool as a number (``bias=True`` was a bias of 1 rad/s, ``bias_window=(False, True)`` the
+    window 0 .. 1 s)."""
     if isinstance(value, (bool, np.bool_)) or (isinstance(value, tuple) and any(isinstance(v, (bool, np.bool_)) for v in value)):
         every = parameters()
-        what = every.get(key[:-4] if key.endswith("_dps") else "initial_heading" if key == "initial_heading_deg" else key)
+        what = every.get(name)
         if what is not None and not what.endswith("[bool]"):
             switches = ", ".join(k for k, v in every.items() if v.endswith("[bool]"))
             raise TypeError(f"invalid parameter {key} = {value!r}: a bool, but {key} is {what} (the switches, which "
