@@ -189,6 +189,15 @@ def check_number(
     return x
 
 
+def check_count(name: str, value: object) -> int:
+    """``value`` as an int >= 1 (a count: runs, readings per bin); a ValueError naming ``name``
+    otherwise (a bool, 2.5 or 0 were taken, or failed as "'float' object cannot be interpreted as
+    an integer")."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or value < 1:
+        raise ValueError(f"{name} must be a whole number >= 1, got {value!r}")
+    return int(value)
+
+
 def check_seed(seed: object) -> int:
     """``seed`` as an int in [0, 2^64) (numpy's PCG64 and the core's generators take no other); a
     ValueError otherwise (numpy's own for -1 was "expected non-negative integer")."""

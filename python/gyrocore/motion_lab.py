@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import math
 
-from ._checks import check_number
-from .motion_model import _DEG, Motion, _Track, check_duration, check_positive, check_runs
+from ._checks import check_count, check_number
+from .motion_model import _DEG, Motion, _Track, check_duration, check_positive
 
 
 def square_path(
@@ -30,7 +30,7 @@ def square_path(
             :data:`gyrocore.motion.MAX_DURATION`, a ``rest`` that is not finite and >= 0,
             another argument that is not finite and > 0 (each named).
     """
-    runs = check_runs(runs)
+    runs = check_count("runs", runs)
     check_positive(side=side, speed=speed, accel=accel, turn_dps=turn_dps, turn_accel_dps2=turn_accel_dps2)
     check_number("rest", rest, strict=False, unit=" [s]")
     if runs > 1:  # one run's length times runs, before they are built one by one
@@ -67,7 +67,7 @@ def rotary_table(
     Raises:
         ValueError: as :func:`square_path` (``pause`` finite and >= 0, as ``rest``).
     """
-    runs = check_runs(runs)
+    runs = check_count("runs", runs)
     check_positive(rate_dps=rate_dps, accel_dps2=accel_dps2)
     check_number("rest", rest, strict=False, unit=" [s]")
     check_number("pause", pause, strict=False, unit=" [s]")  # a negative pause was taken

@@ -38,13 +38,6 @@ def check_positive(**values: float) -> None:
         check_number(name, value)
 
 
-def check_runs(runs: object) -> int:
-    """``runs`` as an int >= 1 (1.5 was "'float' object cannot be interpreted as an integer")."""
-    if isinstance(runs, (bool, np.bool_)) or not isinstance(runs, (int, np.integer)) or runs < 1:
-        raise ValueError(f"runs must be a whole number >= 1, got {runs!r}")
-    return int(runs)
-
-
 @dataclass(frozen=True)
 class Segment:
     """A labelled stretch of a motion: ``kind`` (``rest``, ``straight``, ``turn``, ``curve``, ...)

@@ -2,11 +2,10 @@
 
 from __future__ import annotations
 
-
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._checks import check_number
+from .._checks import check_count, check_number
 from .inputs import check_series, check_temperature
 from .rest import time_weights
 from .result import BiasTable
@@ -35,7 +34,7 @@ def bias_temperature_table(
     ta, ra = check_series(t, rate)
     temp = check_temperature(temperature, len(ta))
     check_number("bin_width", bin_width, unit=" [degC]")
-    _count("min_samples", min_samples)
+    check_count("min_samples", min_samples)  # 0 kept bins of no reading
     w = time_weights(ta - ta[0])
     w[0] = w[1] if len(w) > 1 else 1.0
     position = np.floor((temp - temp.min()) / bin_width)
@@ -67,10 +66,3 @@ def bias_temperature_table(
         stderr=tuple(float(v) for v in stderr[order]),
         counts=tuple(int(v) for v in counts[order]),
     )
-
-
-def _count(name: str, value: object) -> None:
-    """Refuse a ``value`` that is not a whole number >= 1 (a bool, 2.5 or 0 readings per bin were
-    taken: 0 kept bins of no reading)."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or value < 1:
-        raise ValueError(f"{name} must be a whole number >= 1, got {value!r}")
