@@ -135,8 +135,8 @@ def test_allan_names_the_file_of_a_record_it_cannot_analyse(tmp_path: Path) -> N
 @pytest.mark.parametrize(
     ("line", "text", "message"),
     [
-        (2900, "1700000028.98,nan", "rate[2898] is nan: samples must be finite (drop or fill them first)"),
-        (2900, "1700000028.98,", "rate[2898] is nan: samples must be finite"),  # an empty rate
+        (2900, "1700000028.98,nan", "rate[2898] is NaN: samples must be finite (drop or fill them first)"),
+        (2900, "1700000028.98,", "rate[2898] is NaN: samples must be finite"),  # an empty rate
         (53, "1700000000.0,0.1", "timestamps must strictly increase: t[51] = 1700000000 follows "),
     ],
 )

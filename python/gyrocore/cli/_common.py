@@ -13,10 +13,9 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, TypeVar
 
-import numpy as np
-
-from .. import io
+from .. import _gyrocore, io
 from .._extras import MissingExtra, tqdm_class
+from .._gyrocore import SampleError
 from ..calibration import Calibration
 from ..evaluate import Failed
 from ..io import atomic_path
@@ -151,24 +150,13 @@ def _rest_window(args: argparse.Namespace) -> Window | None:
 
 def check_samples(path: Path, log: io.Log, args: argparse.Namespace) -> None:
     """Refuse a log with a NaN or infinite time or rate, or times that do not increase, naming the
-    first such sample by its file and line (row, message), as ``gyrocore process`` does; the
+    first such sample by its file and line, in the core's words, as ``gyrocore process`` does; the
     analyses (calibration) name only its index."""
-    t, rate = log.t, log.rate
-    found: list[tuple[int, str]] = []
-    for name, values in (("t", t), ("rate", rate)):
-        bad = np.flatnonzero(~np.isfinite(values))
-        if len(bad):
-            found.append((int(bad[0]), f"{name}[{bad[0]}] is {values[bad[0]]}: samples must be finite "
-                                       "(drop or fill them first)"))
-    back = np.flatnonzero(~(np.diff(t) > 0) & np.isfinite(t[1:]) & np.isfinite(t[:-1]))
-    if len(back):
-        k = int(back[0]) + 1
-        found.append((k, f"timestamps must strictly increase: t[{k}] = {t[k]:.17g} follows {t[k - 1]:.17g} "
-                         "(sort the log and drop duplicate timestamps)"))
-    if found:
-        row, what = min(found)
+    try:
+        _gyrocore.check_samples(log.t, log.rate)
+    except SampleError as e:
         source = io.open_source(path, **reading_options(args))
-        raise ValueError(f"{what} ({source.data_path}, {source.where(row)})")
+        raise ValueError(f"{e} ({source.data_path}, {source.where(e.index)})") from None
 
 
 def add_override_options(group: argparse._ArgumentGroup) -> None:
