@@ -79,8 +79,9 @@ def check_readable(path: Path) -> None:
 
 
 def error_text(error: BaseException) -> str:
-    """The one line that says what went wrong: a PermissionError of Python's as :func:`denied`,
-    anything else as it reads."""
+    """The one line that says what went wrong: a PermissionError of Python's (``[Errno 13]``) as
+    the path and what to change, worded for any access (it may come from a read or a write, where
+    :func:`denied` is a read's), anything else as it reads."""
     if isinstance(error, PermissionError) and error.filename is not None and "[Errno" in str(error):
         return (f"{error.filename}: permission denied: this user may not open it; change its permissions "
                 "(chmod) or use another path")
