@@ -8,8 +8,9 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::arrays::{fill, slice, zeros, Array};
 use crate::pending::Pending;
-use crate::{fill, slice, value_error, zeros, Array};
+use crate::value_error;
 
 /// The settings keys, with their units.
 const FIELDS: &[&str] = &[

@@ -9,9 +9,10 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::arrays::{fill_some, output, zeros, Array};
 use crate::fixes::{config_from, fixes_from, fusion_error, renumbered};
 use crate::pending::Pending;
-use crate::{fill_some, output, value_error, zeros, Array};
+use crate::value_error;
 
 /// The names of the caller's output arrays, as the binding's `out` holds them.
 const OUT: [&str; 3] = ["out[0] (heading)", "out[1] (rate)", "out[2] (drift)"];

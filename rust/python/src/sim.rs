@@ -7,7 +7,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::{fill, slice, zeros, Array};
+use crate::arrays::{fill, slice, zeros, Array};
 
 /// The accepted configuration keys, with their units.
 const FIELDS: &[(&str, &str)] = &[
