@@ -45,9 +45,9 @@ def _bag_reader(path: Path) -> Any:
         if yaml is not None:
             raise ValueError(f"{path / 'metadata.yaml'}: {yaml}: not valid YAML, so {path} is not a readable "
                              "ROS 2 bag; mend the file, or take it from the bag's recording again") from None
-        raise ValueError(f"{path}: not a readable ROS bag ({_one_line(e)})") from None
+        raise ValueError(f"{path}: not a readable ROS bag ({_joined_message(e)})") from None
     except Exception as e:  # rosbags' parser reports some corruption as AssertionError, KeyError, ...
-        raise ValueError(f"{path}: not a readable ROS bag ({type(e).__name__}: {_one_line(e)})") from None
+        raise ValueError(f"{path}: not a readable ROS bag ({type(e).__name__}: {_joined_message(e)})") from None
     return reader
 
 
@@ -65,7 +65,7 @@ def _yaml_error(error: BaseException) -> str | None:
     return None
 
 
-def _one_line(error: BaseException) -> str:
+def _joined_message(error: BaseException) -> str:
     """``error``'s message on one line (rosbags passes on others' messages of several lines)."""
     return " ".join(str(error).split())
 
@@ -145,7 +145,7 @@ def bag_chunks(
         if stamps:
             yield _block(stamps, values, len(columns)) + (1e9, done + len(stamps))
     except Exception as e:  # rosbags reports damage as its ReaderErrors, AssertionError, struct.error, ...
-        raise ValueError(f"{src.path}: damaged bag ({type(e).__name__}: {_one_line(e)})") from None
+        raise ValueError(f"{src.path}: damaged bag ({type(e).__name__}: {_joined_message(e)})") from None
     finally:
         reader.close()
 
