@@ -49,6 +49,15 @@ def test_process_writes_csv_with_one_row_per_sample(tmp_path: Path) -> None:
     assert not list(tmp_path.glob(".*tmp")), "no temporary file may be left behind"
 
 
+def test_out_has_the_short_form_o(tmp_path: Path) -> None:
+    # -o is --out for every command that writes one file or folder, as most command lines spell it
+    drive, heading = tmp_path / "drive.csv", tmp_path / "heading.csv"
+    assert main(["simulate", "-o", str(drive), "--duration", "30"]) == 0
+    assert main(["process", str(drive), "-o", str(heading), "--preset", "raw"]) == 0
+    assert heading.read_text().splitlines()[0] == "t,heading,rate,drift"
+    assert len(heading.read_text().splitlines()) == len(drive.read_text().splitlines())
+
+
 def test_process_refuses_to_write_into_the_input(tmp_path: Path) -> None:
     src = tmp_path / "in.csv"
     src.write_text("t,gyro_z\n0,0\n1,0\n")

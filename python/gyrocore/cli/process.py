@@ -60,7 +60,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p.epilog = f"{p.epilog}\n{_EPILOG}"
     p.formatter_class = argparse.RawDescriptionHelpFormatter
     p.add_argument("inputs", nargs="+", metavar="IN", help="input files, folders or glob patterns")
-    p.add_argument("--out", required=True, help="output .csv/.parquet file, or a folder for several inputs")
+    p.add_argument("-o", "--out", required=True, help="output .csv/.parquet file, or a folder for several inputs")
     p.add_argument("--preset", default="recommended", help="preset name (default recommended)")
 
     add_reading_options(p)

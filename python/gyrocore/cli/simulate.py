@@ -92,7 +92,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         "gyrocore simulate --profile car --sensor crs03 --duration 1200 --out drive.csv",
         run,
     )
-    p.add_argument("--out", required=True, help="output CSV; columns " + ", ".join(COLUMNS))
+    p.add_argument("-o", "--out", required=True, help="output CSV; columns " + ", ".join(COLUMNS))
     p.add_argument(
         "--profile",
         choices=("car", "hdr-figure3", "robot", "square", "rotary"),

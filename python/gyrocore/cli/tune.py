@@ -82,7 +82,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     add("--seed", type=SEED, default=0, metavar="N", help="optimiser seed (default 0)")
     add("--optimiser", choices=tune.OPTIMISERS, default="differential_evolution")
     add("--name", help="name of the parameter set (default <preset>_tuned)")
-    add("--out", metavar="FILE", help="write the parameter file (JSON) here")
+    add("-o", "--out", metavar="FILE", help="write the parameter file (JSON) here")
     add("--json", action="store_true", help="print the result as JSON")
     add_overwrite_option(p)
     add_reading_options(p)
