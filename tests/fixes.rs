@@ -365,6 +365,45 @@ fn bad_settings_are_named() {
     }
 }
 
+/// The filter's initial heading has the pipeline's limit and words (`IntegratorConfig`): at 2^40
+/// rad a double's spacing (2.4e-4 rad) swallowed every increment below it.
+#[test]
+fn an_initial_heading_beyond_2_pow_20_rad_is_refused_as_the_pipeline_refuses_it() {
+    let pipeline = gyrocore::IntegratorConfig {
+        initial_heading: 2f64.powi(30),
+        ..Default::default()
+    }
+    .validate()
+    .unwrap_err()
+    .to_string();
+    for heading in [2f64.powi(30), -2f64.powi(21), f64::INFINITY, f64::NAN] {
+        let err = Fusion::new(FusionConfig {
+            initial_heading: heading,
+            ..config()
+        })
+        .unwrap_err()
+        .to_string();
+        assert!(err.contains("initial_heading"), "{err}");
+        if heading.is_finite() {
+            assert!(err.contains("within +-2^20 rad"), "{err}");
+        }
+    }
+    let fusion = Fusion::new(FusionConfig {
+        initial_heading: 2f64.powi(30),
+        ..config()
+    })
+    .unwrap_err()
+    .to_string();
+    assert_eq!(fusion, pipeline);
+    for heading in [2f64.powi(20), -2f64.powi(20)] {
+        assert!(Fusion::new(FusionConfig {
+            initial_heading: heading,
+            ..config()
+        })
+        .is_ok());
+    }
+}
+
 #[test]
 fn the_smoother_beats_the_filter_inside_an_outage() {
     let (t, psi, rate) = drive(600.0);

@@ -217,11 +217,13 @@ def _prefix(context: str) -> str:
 
 
 def require_finite(name: str, values: FloatArray, *, context: str = "") -> None:
-    """A ValueError naming the first value of ``values`` that is not finite (the core's words)."""
+    """A ValueError naming the first value of ``values`` that is not finite (the core's words): its
+    index (``rate[3]``, of an array of more dimensions ``rate[1, 2]``; a 0-d array: ``rate``)."""
     bad = np.flatnonzero(~np.isfinite(values))
     if len(bad):
-        i = int(bad[0])
-        raise ValueError(f"{_prefix(context)}{name}[{i}] is {values[i]}: samples must be finite (drop or fill them first)")
+        where = tuple(int(k) for k in np.unravel_index(bad[0], np.shape(values)))
+        label = f"{name}[{', '.join(map(str, where))}]" if where else name
+        raise ValueError(f"{_prefix(context)}{label} is {values[where]}: samples must be finite (drop or fill them first)")
 
 
 def first_infinite(values: FloatArray) -> int | None:

@@ -223,8 +223,6 @@ class _FileJob:
         if uses_static_bias(self.preset) and not has_bias_source(overrides) and source.stationary is not None:
             overrides["bias_window"], from_meta = source.stationary, True
         plan = self._plan(source, overrides, from_meta)
-        if plan.warning:
-            warn(plan.warning)
         with _said_for_the_file():
             pipeline = plan.pipeline(self.preset)  # a bias constant over the log: the core's bias=, no copy per chunk
         check = io.UnitCheck(source.options)
@@ -261,7 +259,9 @@ class _FileJob:
             if writer.rows != self.rows_in:  # the pipeline returns one row per sample; prove it
                 raise RuntimeError(f"{self.path}: {self.rows_in} rows read but {writer.rows} written")
         policy = pipeline.report
-        for message in check.problems() + _repairs(policy):
+        # the plan's warning is about the bias of the output (taken as 0 in causal mode without a
+        # rest window): said once the output is written, not for a file that fails on the way
+        for message in [*([plan.warning] if plan.warning else []), *check.problems(), *_repairs(policy)]:
             warn(message)
         return FileReport(
             str(self.path),

@@ -26,7 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, refuse_masked
-from ._checks import check_number
+from ._checks import check_number, require_finite
 from ._extras import require
 
 
@@ -53,10 +53,12 @@ def _check(noise_rms: float, threshold: float) -> None:
 
 def expected_output(rate: ArrayLike, noise_rms: float, threshold: float) -> FloatArray:
     """The expected output of the dead band (Hong eq 12) for a true ``rate`` (any shape) plus
-    Gaussian noise of rms ``noise_rms``, in the units of the arguments."""
+    Gaussian noise of rms ``noise_rms``, in the units of the arguments. A rate that is not finite
+    is a ValueError naming its index."""
     _check(noise_rms, threshold)
     refuse_masked("rate", rate)  # the masked values were used as data
     b = np.asarray(rate, dtype=np.float64)
+    require_finite("rate", b)  # NaN came back as the expected output, without a word
     a = (threshold - b) / noise_rms
     c = (-threshold - b) / noise_rms
     out: FloatArray = b * (_cdf(-a, "the dead band's expected output") + _cdf(c, "the dead band's expected output")) + noise_rms * (_pdf(a) - _pdf(c))

@@ -26,6 +26,12 @@ from .fixes import Fixes, warn_no_fix
 
 #: Mean Earth radius [m] (IUGG), for :func:`from_latlon`'s local plane.
 EARTH_RADIUS = 6_371_008.8
+#: The largest latitude [deg] :func:`from_latlon` takes, 11 km from a pole. Nearer, a step's
+#: longitude difference grows to a sizeable angle (180 deg for one across the pole), and laying it
+#: out east at its middle latitude no longer gives its course; the course from east, which the
+#: fixes are, turns by the step's longitude difference times the sine of the latitude as it goes.
+MAX_LATITUDE = 89.9
+_POLAR_KM = EARTH_RADIUS * math.radians(90.0 - MAX_LATITUDE) / 1000.0
 
 
 def from_positions(t: ArrayLike, x: ArrayLike, y: ArrayLike, *, position_sigma: float = 1.0,
@@ -63,15 +69,19 @@ def from_latlon(t: ArrayLike, lat_deg: ArrayLike, lon_deg: ArrayLike, **options:
     skews the east-west scale by the cosine of the latitude travelled since: 0.46 deg on a
     north-east course 100 km north of it at 45 deg). ``options`` go to :func:`from_positions`.
 
+    Latitudes lie within +-:data:`MAX_LATITUDE` (89.9 deg; nearer a pole the local east/north
+    layout of a step breaks down) and longitudes within -180 and 180 deg or 0 and 360 (each step's
+    longitude difference is wrapped, so either convention, and a track across the antimeridian or
+    across 0 deg in the second, gives the same fixes); a ValueError names the first that does not.
+    NaN is a position unknown there: the steps to and from it give no fix.
+
     No fix from a track whose every latitude lies within +-pi/2 and longitude within +-pi warns
     that they look like radians (read as degrees, a drive in radians moves 57 times too little
     for a course)."""
     lat, lon = as_float_array("lat_deg", lat_deg), as_float_array("lon_deg", lon_deg)
     if len(lat) != len(lon):
         raise ValueError(f"lat_deg and lon_deg must have one length, got {len(lat)} and {len(lon)}")
-    bad = np.flatnonzero(np.isfinite(lat) & (np.abs(lat) >= 90.0))
-    if len(bad):
-        raise ValueError(f"lat_deg[{bad[0]}] is {lat[bad[0]]}: a latitude lies strictly between -90 and 90 deg")
+    _check_latlon(lat, lon)
     finite = np.flatnonzero(np.isfinite(lat) & np.isfinite(lon))
     if len(finite) == 0:
         raise ValueError("no finite latitude and longitude: no position to take a course from")
@@ -89,6 +99,26 @@ def from_latlon(t: ArrayLike, lat_deg: ArrayLike, lon_deg: ArrayLike, **options:
         warn("the latitudes and longitudes look like radians (every |lat| <= pi/2 and |lon| <= pi, "
              "as degrees open sea near 0 N 0 E): from_latlon takes degrees; convert with numpy.degrees")
     return fixes
+
+
+def _check_latlon(lat: FloatArray, lon: FloatArray) -> None:
+    """A ValueError naming the first latitude beyond +-:data:`MAX_LATITUDE` (or beyond +-90, no
+    latitude) and the first longitude beyond +-360 (in neither convention); NaN is a position
+    unknown there."""
+    with np.errstate(invalid="ignore"):
+        near_pole, far = np.flatnonzero(np.abs(lat) > MAX_LATITUDE), np.flatnonzero(np.abs(lon) > 360.0)
+    if len(near_pole):
+        i = int(near_pole[0])
+        if abs(lat[i]) > 90.0:
+            raise ValueError(f"lat_deg[{i}] is {lat[i]}: a latitude lies within -90 and 90 deg")
+        raise ValueError(
+            f"lat_deg[{i}] is {lat[i]}: within {_POLAR_KM:.0f} km of a pole, east and north turn with every "
+            "step's longitude, so a step's local east/north layout (and a course from east) breaks down "
+            f"there; from_latlon takes latitudes within +-{MAX_LATITUDE} deg"
+        )
+    if len(far):
+        i = int(far[0])
+        raise ValueError(f"lon_deg[{i}] is {lon[i]}: a longitude lies within -180 and 180 deg (or 0 and 360)")
 
 
 def _look_like_radians(lat: FloatArray, lon: FloatArray) -> bool:

@@ -4,7 +4,8 @@
 use core::f64::consts::PI;
 
 use crate::error::{check_magnitude, check_range};
-use crate::{Error, MAX_READING, MAX_TIME};
+use crate::integrate::check_initial_heading;
+use crate::{Error, MAX_READING};
 
 /// Noise settings and initial uncertainty of the filter.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -16,7 +17,8 @@ pub struct FusionConfig {
     pub bias_walk: f64,
     /// Random walk of the scale error \[1/sqrt(s)\], >= 0.
     pub scale_walk: f64,
-    /// Heading before the first fix \[rad\].
+    /// Heading before the first fix \[rad\], finite and within +-2^20 (the pipeline's limit,
+    /// [`IntegratorConfig::validate`](crate::IntegratorConfig::validate)).
     pub initial_heading: f64,
     /// Its standard deviation \[rad\], > 0 (pi: unknown).
     pub initial_heading_sigma: f64,
@@ -62,13 +64,8 @@ impl FusionConfig {
         check_magnitude("bias_walk", self.bias_walk)?;
         check_magnitude("scale_walk", self.scale_walk)?;
         let sigma = "> 0 and at most 2^20";
-        check_range(
-            "initial_heading",
-            self.initial_heading,
-            -MAX_TIME,
-            MAX_TIME,
-            "finite",
-        )?;
+        // the pipeline's limit, where a sample's increment still counts
+        check_initial_heading(self.initial_heading)?;
         let (least, most) = (f64::MIN_POSITIVE, MAX_READING);
         check_range(
             "initial_heading_sigma",

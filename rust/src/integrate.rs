@@ -33,18 +33,26 @@ pub struct IntegratorConfig {
 impl IntegratorConfig {
     /// Checks the initial heading: finite and within +-[`MAX_READING`] (2^20 rad), where a
     /// double still resolves 2e-10 rad; beyond, a sample's increment is lost (at 1e300 rad the
-    /// heading never moved).
+    /// heading never moved). The heading-fix filter's initial heading has the same check.
     pub fn validate(&self) -> Result<(), Error> {
-        check_finite("initial_heading", self.initial_heading)?;
-        let most = MAX_READING;
-        check_range(
-            "initial_heading",
-            self.initial_heading,
-            -most,
-            most,
-            "within +-2^20 rad (continuous headings may turn many times; wrap a larger one)",
-        )
+        check_initial_heading(self.initial_heading)
     }
+}
+
+/// Checks an initial heading \[rad\] (the integrator's, and the heading-fix filter's): finite and
+/// within +-[`MAX_READING`] (2^20 rad), where a double still resolves 2e-10 rad; beyond, a
+/// sample's increment is lost (at 1e300 rad the heading never moved; at 2^40 rad an increment
+/// below 2.4e-4 rad).
+pub(crate) fn check_initial_heading(heading: f64) -> Result<(), Error> {
+    check_finite("initial_heading", heading)?;
+    let most = MAX_READING;
+    check_range(
+        "initial_heading",
+        heading,
+        -most,
+        most,
+        "within +-2^20 rad (continuous headings may turn many times; wrap a larger one)",
+    )
 }
 
 /// What an integrator remembers: the heading so far and the last rate.

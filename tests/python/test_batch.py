@@ -408,3 +408,20 @@ def test_the_ok_line_says_what_the_input_policy_did(tmp_path: Path) -> None:
     assert report["longest_gap"] == pytest.approx(10.01)
     # a file the policy left alone says nothing of it
     assert "input policy" not in str(process_file(synthetic_csv(tmp_path / "plain.csv", 3000), tmp_path / "h.csv"))
+
+
+def test_causal_mode_warns_of_an_unmeasured_bias_only_for_files_it_processes(tmp_path: Path) -> None:
+    good = synthetic_csv(tmp_path / "good.csv", 300)
+    bad = synthetic_csv(tmp_path / "bad.csv", 300)
+    lines = bad.read_text().splitlines()
+    lines[100] = lines[100].split(",")[0] + ",nan"  # a NaN rate: the file fails at its row
+    bad.write_text("\n".join(lines) + "\n")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        report = process_many([good, bad], out_dir=tmp_path / "out", preset="static_bias", mode="causal", jobs=1)
+    done, failed = report.files
+    assert failed.error is not None and done.error is None, report
+    assert any("removes a static bias" in w for w in done.warnings), done.warnings
+    # the failed file was not processed: no bias of its output was taken as 0
+    assert not any("removes a static bias" in w for w in failed.warnings), failed.warnings
+    assert sum("removes a static bias" in str(w.message) for w in caught) == 1, [str(w.message) for w in caught]

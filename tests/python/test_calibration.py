@@ -394,3 +394,20 @@ def test_cli_calibrate_without_rest_or_reference_exits_2(tmp_path: Path, capsys:
                header="t,gyro_z", comments="")
     assert main(["calibrate", str(tmp_path)]) == 2
     assert "nothing to calibrate from: no rest found" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    ("rate", "temperature", "message"),
+    [
+        ([0.1, 0.2, 0.3], [15.0, math.nan, 20.0], r"temperature\[1\] is NaN: samples must be finite"),
+        ([0.1, math.inf, 0.3], [15.0, 16.0, 20.0], r"rate\[1\] is inf: samples must be finite"),
+        ([0.1, 0.2, 0.3], [15.0, 16.0, 1e300], r"temperature\[2\] = 1e\+?300 degC is beyond"),
+        ([0.1, 0.2, 0.3], [15.0, 16.0], "rate has 3 samples but temperature has 2"),
+    ],
+)
+def test_a_bias_table_names_a_reading_it_cannot_correct(rate: list[float], temperature: list[float],
+                                                        message: str) -> None:
+    # a NaN temperature (or rate) came back as a NaN corrected rate
+    table = cal.BiasTable((10.0, 20.0), (0.001, 0.002), (1e-5, 1e-5), (100, 100))
+    with pytest.raises(ValueError, match=message):
+        table.correct(rate, temperature)

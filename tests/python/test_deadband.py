@@ -68,3 +68,18 @@ def test_noise_rms_is_what_the_simulated_gyro_gives() -> None:
 def test_bad_parameters_are_refused(noise_rms: float, threshold: float) -> None:
     with pytest.raises(ValueError, match="noise_rms|threshold"):
         deadband.bias_leak(noise_rms, threshold)
+
+
+@pytest.mark.parametrize(
+    ("rate", "message"),
+    [
+        ([0.1, math.nan, 0.2], r"rate\[1\] is nan: samples must be finite"),
+        ([0.1, 0.2, -math.inf], r"rate\[2\] is -inf: samples must be finite"),
+        ([[0.1, 0.2], [0.3, math.nan]], r"rate\[1, 1\] is nan: samples must be finite"),
+        (math.nan, r"rate is nan: samples must be finite"),
+    ],
+)
+def test_a_rate_that_is_not_finite_is_named(rate: object, message: str) -> None:
+    # NaN came back as the expected output without a word
+    with pytest.raises(ValueError, match=message):
+        deadband.expected_output(rate, noise_rms=1.0, threshold=1.0)

@@ -341,3 +341,16 @@ def test_a_heading_beyond_two_to_the_twenty_radians_is_named() -> None:
     # continuous headings, many turns from the start, are headings
     turns = fixes.heading + 2**20 - 10.0
     assert fuse(t, rate, Fixes(fixes.t, turns, fixes.sigma)).counts["applied"] == len(fixes)
+
+
+def test_an_initial_heading_beyond_2_pow_20_rad_is_refused_as_the_pipeline_refuses_it() -> None:
+    """At 2^40 rad (the limit before) a double's spacing, 2.4e-4 rad, swallowed every increment."""
+    t, heading, rate = drive(5.0)
+    words = r"initial_heading = 1073741824: must be within \+-2\^20 rad"
+    with pytest.raises(ValueError, match=words):
+        Fusion(initial_heading=2.0**30)
+    with pytest.raises(ValueError, match=words):
+        fuse(t, rate, Fixes.empty(), initial_heading=2.0**30)
+    with pytest.raises(ValueError, match=words):  # the pipeline's own words
+        gyrocore.Pipeline("raw", initial_heading=2.0**30)
+    assert Fusion(initial_heading=-(2.0**20)).settings()["initial_heading"] == -(2.0**20)

@@ -77,6 +77,10 @@ def test_a_long_drive_at_one_course_gives_that_course_far_from_its_start(bearing
         (lambda: fixes.from_positions([0.0, np.nan], [0, 5], [0, 0]), r"positions: t\[1\] is nan: samples must be finite"),
         (lambda: fixes.from_positions([0.0, 1.0], [0, 5], [0, 0], position_sigma=0.0), "position_sigma must be finite and > 0"),
         (lambda: fixes.from_latlon([0.0, 1.0], [10.0, 95.0], [0.0, 0.0]), r"lat_deg\[1\] is 95.0"),
+        (lambda: fixes.from_latlon([0.0, 1.0, 2.0], [89.0, 89.95, 90.5], [0.0, 0.0, 0.0]),
+         r"lat_deg\[1\] is 89.95: within 11 km of a pole, .* from_latlon takes latitudes within \+-89.9 deg"),
+        (lambda: fixes.from_latlon([0.0, 1.0, 2.0], [10.0, 10.0, 10.0], [0.0, 360.0, 400.0]),
+         r"lon_deg\[2\] is 400.0: a longitude lies within -180 and 180 deg \(or 0 and 360\)"),
         (lambda: fixes.from_latlon([0.0, 1.0], [np.nan, np.nan], [0.0, 0.0]), "no finite latitude and longitude"),
     ],
 )
@@ -118,3 +122,25 @@ def test_a_real_track_fixes_its_mems_twin() -> None:
         fused = fixes.fuse(log.t, log.rate, f, mode=mode)
         e_psi = gyrocore.heading_errors(log.t, fused.heading, log.t_ref, log.heading_ref, absolute=True).e_psi_deg
         assert e_psi < limit, (mode, e_psi)
+
+
+def test_a_track_near_a_pole_is_refused_where_its_steps_lose_their_course() -> None:
+    # 4.4 m from the north pole, a step across it (8.9 m, north then south) was laid out as 14 m east
+    t = np.arange(3.0)
+    with pytest.raises(ValueError, match=r"lat_deg\[0\] is 89.99996: within 11 km of a pole"):
+        fixes.from_latlon(t, [89.99996, 89.99996, 89.99996], [0.0, 180.0, 0.0])
+    with pytest.raises(ValueError, match=r"lat_deg\[2\] is -90.0: within 11 km of a pole"):
+        fixes.from_latlon(t, [-89.0, -89.5, -90.0], [0.0, 0.0, 0.0])
+    # up to the limit a track's fixes are the course of its steps
+    lat = 89.9 - 1e-4 * t
+    assert np.degrees(fixes.from_latlon(t, lat, np.zeros(3)).heading) == pytest.approx([-90.0, -90.0])
+
+
+def test_longitudes_from_0_to_360_give_the_fixes_of_those_from_minus_180() -> None:
+    t = np.arange(5.0)
+    lat = np.full(5, 10.0)
+    lon = np.array([359.9998, 359.9999, 0.0, 0.0001, 0.0002])
+    wrapped = fixes.from_latlon(t, lat, lon)
+    assert len(wrapped) == 4
+    np.testing.assert_allclose(wrapped.heading, fixes.from_latlon(t, lat, np.where(lon > 180, lon - 360, lon)).heading,
+                               atol=1e-9)

@@ -13,6 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._arrays import FloatArray, as_float_array, as_window, refuse_masked
+from .._checks import require_readings
 from ..io._jsonfile import read_json
 
 #: Saved calibrations carry this format name and version.
@@ -64,11 +65,17 @@ class BiasTable:
         return np.interp(np.asarray(temperature, dtype=np.float64), self.temperatures, self.biases)
 
     def correct(self, rate: ArrayLike, temperature: ArrayLike) -> FloatArray:
-        """``rate - bias(temperature)`` [rad/s]; give the result to the pipeline with ``bias=0``."""
+        """``rate - bias(temperature)`` [rad/s]; give the result to the pipeline with ``bias=0``.
+
+        Both are readings as the pipeline takes them: a value that is not finite or beyond
+        +-2^20 is a :class:`~gyrocore.SampleError` (a ValueError) naming its index (a NaN
+        temperature gave a NaN rate); arrays of two lengths are a ValueError."""
         r = as_float_array("rate", rate)
         temp = as_float_array("temperature", temperature)
         if len(r) != len(temp):
             raise ValueError(f"rate has {len(r)} samples but temperature has {len(temp)}")
+        require_readings("rate", r)
+        require_readings("temperature", temp)
         return r - self(temp)
 
 
