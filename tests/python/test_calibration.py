@@ -411,3 +411,15 @@ def test_a_bias_table_names_a_reading_it_cannot_correct(rate: list[float], tempe
     table = cal.BiasTable((10.0, 20.0), (0.001, 0.002), (1e-5, 1e-5), (100, 100))
     with pytest.raises(ValueError, match=message):
         table.correct(rate, temperature)
+
+
+@pytest.mark.parametrize("temperature, message", [
+    (float("nan"), r"^temperature is nan: samples must be finite"),
+    ([15.0, float("inf")], r"^temperature\[1\] is inf: samples must be finite"),
+])
+def test_a_bias_table_names_a_temperature_it_cannot_look_up(temperature: object, message: str) -> None:
+    # the table called with a NaN temperature gave a NaN bias
+    table = cal.BiasTable((10.0, 20.0), (0.001, 0.002), (1e-5, 1e-5), (100, 100))
+    with pytest.raises(ValueError, match=message):
+        table(temperature)
+    assert table([15.0, 25.0]) == pytest.approx([0.0015, 0.002])

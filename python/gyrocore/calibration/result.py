@@ -13,7 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._arrays import FloatArray, as_float_array, as_window, refuse_masked
-from .._checks import require_readings
+from .._checks import require_finite, require_readings
 from ..io._jsonfile import read_json
 
 #: Saved calibrations carry this format name and version.
@@ -60,9 +60,12 @@ class BiasTable:
 
     def __call__(self, temperature: ArrayLike) -> FloatArray:
         """Bias [rad/s] at ``temperature`` [degC] (scalar or array; a masked one with masked values is
-        refused, as everywhere)."""
+        refused, as everywhere, and a temperature that is not finite is a ValueError naming it: it
+        gave a NaN bias)."""
         refuse_masked("temperature", temperature)
-        return np.interp(np.asarray(temperature, dtype=np.float64), self.temperatures, self.biases)
+        temp = np.asarray(temperature, dtype=np.float64)
+        require_finite("temperature", temp)
+        return np.interp(temp, self.temperatures, self.biases)
 
     def correct(self, rate: ArrayLike, temperature: ArrayLike) -> FloatArray:
         """``rate - bias(temperature)`` [rad/s]; give the result to the pipeline with ``bias=0``.
