@@ -135,6 +135,29 @@ REFERENCE_TEXT = "t,heading,x,y\n0,0.1,0,0\n1,0.2,1,0\n2,0.3,2,0\n"
 FIXES_TEXT = "t,heading,sigma\n0,0.1,0.05\n1,0.2,0.05\n"
 
 
+@pytest.mark.parametrize("tail", ["\n", "\n\n", "\r\n\r\n", "\n\n\n\n\n"])
+def test_blank_lines_at_the_end_of_a_csv_are_read_as_its_end(tmp_path: Path, tail: str) -> None:
+    # an editor's extra line end carries no data, as numpy.loadtxt and pandas read it; it was
+    # "line 202, column 1 (t): blank line" (an empty value in a reference or fixes file)
+    gyro = tmp_path / "gyro.csv"
+    gyro.write_bytes((gyro_text() + tail).encode())
+    np.testing.assert_array_equal(gyrocore.read_log(gyro).t, expected_t())
+    reference = tmp_path / "reference.csv"
+    reference.write_bytes((REFERENCE_TEXT + tail).encode())
+    assert gyrocore.io.read_reference_file(reference)["heading"].tolist() == [0.1, 0.2, 0.3]
+    fixes = tmp_path / "fixes.csv"
+    fixes.write_bytes((FIXES_TEXT + tail).encode())
+    assert len(gyrocore.fixes.read_fixes_csv(fixes).t) == 2
+
+
+def test_a_blank_line_before_the_last_sample_is_an_error_naming_it(tmp_path: Path) -> None:
+    # a blank line inside the data may be a lost sample: never skipped (a reference's was an "empty value")
+    reference = tmp_path / "reference.csv"
+    reference.write_text("t,heading\n0,0.1\n\n2,0.3\n\n")
+    with pytest.raises(ValueError, match=rf"^{re.escape(str(reference))}: line 3, column 1 \(t\): blank line$"):
+        gyrocore.io.read_reference_file(reference)
+
+
 COMMENTS = "# recorded 2024-05-01 on the test car\n# sensor: CRS03, 100 Hz, rates in rad/s\n"
 
 

@@ -1,7 +1,7 @@
 """Reading CSV files: pyarrow's streaming reader, and the line and column of a malformed value.
 
 A CSV file has a header line (after any comment lines, :func:`csv_layout`), then one sample per
-line. pyarrow parses it block by block on its own
+line, then maybe blank lines, which are left out. pyarrow parses it block by block on its own
 thread; when it rejects a value, the file is read again from that block with Python's csv module to
 find the line and column, which pyarrow's message does not name.
 """
@@ -15,7 +15,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, BinaryIO
+from typing import TYPE_CHECKING, Any, BinaryIO, TypeAlias
 
 import numpy as np
 
@@ -39,6 +39,8 @@ _GZIP = b"\x1f\x8b"
 #: Windows PowerShell's ``>`` write text.
 _UTF16_BOMS = (b"\xff\xfe", b"\xfe\xff")
 _UTF8_BOM = b"\xef\xbb\xbf"
+#: Rows read from a CSV file and not yet handed out: first row, columns, bytes read, rows.
+_HeldRows: TypeAlias = "tuple[int, dict[str, pa.Array], int, int]"
 
 
 @dataclass(frozen=True)
@@ -138,7 +140,7 @@ def _read_csv(
 
     Empty values become nulls; blank lines are rows of nulls, so that row ``k`` is line
     ``layout.line(k)`` (for files with one sample per line: a quoted line break would shift the
-    line numbers).
+    line numbers), except the blank lines that end the file, which hold no sample and are left out.
     ``required`` names the columns whose empty value the caller refuses, with what to call it
     (``{"t": "timestamp"}``), so that an error in a block names the first bad line of either kind;
     ``choose`` says what to do about a missing column (:func:`column_positions`).
@@ -160,9 +162,13 @@ def _read_csv(
         quoted_strings_can_be_null=True,
     )
     parse = pa_csv.ParseOptions(delimiter=delimiter, ignore_empty_lines=False)
-    first, block = 0, block_bytes
-    if _line_offset(path, layout.header_lines) >= path.stat().st_size:
-        return  # a header and no samples (pyarrow would call the file empty)
+    blank_tail = _blank_tail_rows(path, _line_offset(path, layout.header_lines))
+    if blank_tail is None:
+        return  # a header and no samples, or only blank lines after it (pyarrow would call the file empty)
+    # rows are held back until blank_tail rows follow them: the last blank_tail rows read are the
+    # blank lines that end the file, known as such only once pyarrow has read to its end
+    held: list[_HeldRows] = []
+    read, block = 0, block_bytes
     while True:
         options = pa_csv.ReadOptions(
             column_names=[f"{i}:{name}" for i, name in enumerate(header)],  # unique even if the header is not
@@ -171,23 +177,52 @@ def _read_csv(
         )
         # pyarrow reads the file itself, on its own thread and without the GIL
         with pa.OSFile(str(path)) as f:
-            f.seek(_line_offset(path, layout.header_lines + first))  # past the header (which may be longer than a block)
+            f.seek(_line_offset(path, layout.header_lines + read))  # past the header (which may be longer than a block)
             try:
                 for batch in pa_csv.open_csv(f, read_options=options, parse_options=parse, convert_options=convert):
-                    yield first, {c: batch.column(keys[c]) for c in columns}, f.tell()
-                    first += batch.num_rows
+                    held.append((read, {c: batch.column(keys[c]) for c in columns}, f.tell(), batch.num_rows))
+                    read += batch.num_rows
+                    while held and read - (held[0][0] + held[0][3]) >= blank_tail:
+                        yield held.pop(0)[:3]
+                for first, cols, done, rows in held:
+                    # the blank tail's rows are blank lines (line ends alone), so nothing is dropped but them
+                    keep = min(rows, read - blank_tail - first)
+                    if keep > 0:
+                        yield first, {c: a.slice(0, keep) for c, a in cols.items()}, done
                 return
             except pa.ArrowInvalid as e:
                 if "straddl" not in str(e):
+                    # the search starts at the first row not handed out: an empty value held back is the first error
+                    unchecked = held[0][0] if held else read
                     raise ValueError(
-                        _csv_error(path, e, layout.line(first), header, positions, delimiter, required or {})
+                        _csv_error(path, e, layout.line(unchecked), header, positions, delimiter, required or {})
                     ) from None
                 if block >= MAX_LINE_BYTES:
                     raise ValueError(
-                        f"{path}: a line after line {layout.line(first) - 1} is longer than {MAX_LINE_BYTES} bytes, "
+                        f"{path}: a line after line {layout.line(read) - 1} is longer than {MAX_LINE_BYTES} bytes, "
                         "the longest read"
                     ) from None
                 block = min(4 * block, MAX_LINE_BYTES)
+
+
+def _blank_tail_rows(path: Path, start: int) -> int | None:
+    """How many rows pyarrow reads from the blank lines that end the file, whose samples begin at
+    byte ``start`` (the line ends after the last byte that is none, less the one that ends its
+    line; ``\\r\\n``, ``\\n`` and a bare ``\\r`` each end one, as pyarrow counts them); None when
+    nothing but line ends follows ``start``."""
+    tail, end = b"", path.stat().st_size
+    with open(path, "rb") as f:
+        while end > start:
+            size = min(1 << 16, end - start)
+            f.seek(end - size)
+            block = f.read(size)
+            data = block.rstrip(b"\r\n")
+            tail = block[len(data):] + tail
+            if data:
+                ends = tail.count(b"\n") + tail.count(b"\r") - tail.count(b"\r\n")
+                return max(0, ends - 1)
+            end -= size
+    return None
 
 
 def _line_offset(path: Path, lines: int) -> int:
