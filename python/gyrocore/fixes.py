@@ -27,7 +27,7 @@ from numpy.typing import ArrayLike
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
 from ._checks import MAX_READING, require_finite, require_increasing, warn
-from .io._csvfile import _csv_header as csv_header, read_csv_columns
+from .io._csvfile import CsvLayout, csv_layout, read_csv_columns
 from .io._paths import check_file
 from .io.units import HEADER_TIME_UNITS, _normal as normal_unit, split_unit
 from .result import fix_output_flags
@@ -314,12 +314,12 @@ def read_gnss_csv(path: str | Path, **options: float) -> Fixes:
     """Fixes from a ``gnss.csv`` like comma_seg40's (t, speed [m/s], bearing [deg, clockwise from
     north]), through :func:`from_gnss` (its options pass on)."""
     path = Path(path)
-    header = csv_header(path, ",")
+    layout = csv_layout(path, ",")
     cols = _read_rows(path, GNSS_COLUMNS)
     try:
         return from_gnss(cols["t"], cols["bearing"], cols["speed"], **options)
     except ValueError as e:
-        raise ValueError(_at_line(path, header, {"t": "t", "speed": "speed", "bearing_deg": "bearing"}, e)) from None
+        raise ValueError(_at_line(path, layout, {"t": "t", "speed": "speed", "bearing_deg": "bearing"}, e)) from None
 
 
 def read_fixes_csv(path: str | Path) -> Fixes:
@@ -327,13 +327,13 @@ def read_fixes_csv(path: str | Path) -> Fixes:
     name may state its unit, if it is that one: ``t [s]``, ``heading [rad]``). Every fix is
     checked as it is read: a bad one is an error naming the file, line and column."""
     path = Path(path)
-    header = csv_header(path, ",")
-    names = _fix_columns(path, header)
+    layout = csv_layout(path, ",")
+    names = _fix_columns(path, layout.header)
     cols = _read_rows(path, tuple(names.values()))
     try:
         return check_all(Fixes(*(cols[names[c]] for c in FIXES_COLUMNS)))
     except ValueError as e:
-        raise ValueError(_at_line(path, header, names, e)) from None
+        raise ValueError(_at_line(path, layout, names, e)) from None
 
 
 #: The columns of the two fix files :func:`read_fixes_file` reads.
@@ -380,15 +380,15 @@ def _read_rows(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:
 _ROW_ERROR = re.compile(r"fix (\d+): (\w+) = |(?:\w+ must strictly increase: )?(\w+)\[(\d+)\] (?:is|=) ")
 
 
-def _at_line(path: Path, header: list[str], names: dict[str, str], error: ValueError) -> str:
+def _at_line(path: Path, layout: CsvLayout, names: dict[str, str], error: ValueError) -> str:
     """``error``, about row N of the file ``path``, with the line and column of its value in front
-    (row N is line N + 2, after the header; blank lines are refused by the reader). ``names``
+    (row N is ``layout.line(N)``, after the header; blank lines are refused by the reader). ``names``
     maps the column an error names to the header's name, for the errors whose N is the file's row."""
     m = _ROW_ERROR.match(str(error))
     column = None if m is None else names.get(m[2] or m[3])
     if m is None or column is None:
         return f"{path}: {error}"
-    return f"{path}: line {int(m[1] or m[4]) + 2}, column {header.index(column) + 1} ({column}): {error}"
+    return f"{path}: line {layout.line(int(m[1] or m[4]))}, column {layout.header.index(column) + 1} ({column}): {error}"
 
 
 def read_fixes_file(path: str | Path) -> Fixes:
@@ -397,7 +397,7 @@ def read_fixes_file(path: str | Path) -> Fixes:
     [deg, CW from north], through :func:`read_gnss_csv` with its defaults)."""
     path = Path(path)
     check_file(path)  # a folder or a pipe given as the fixes is named as such, not "missing"
-    header = csv_header(path, ",")
+    header = csv_layout(path, ",").header
     if set(FIXES_COLUMNS) <= {split_unit(h)[0] for h in header}:
         return read_fixes_csv(path)
     if set(GNSS_COLUMNS) <= set(header):

@@ -125,3 +125,81 @@ def test_a_csv_in_utf16_is_named_as_such(tmp_path: Path, encoding: str) -> None:
     path.write_bytes(text.encode(encoding) if encoding != "utf-16-be" else b"\xfe\xff" + text.encode(encoding))
     with pytest.raises(ValueError, match=rf"^{re.escape(str(path))}: text in UTF-16 \(or UTF-32\), not UTF-8: save it as UTF-8$"):
         gyrocore.read_log(path)
+
+
+def gyro_text() -> str:
+    return "t,gyro_z\n" + "".join(f"{float(t)!r},0.01\n" for t in expected_t())
+
+
+REFERENCE_TEXT = "t,heading,x,y\n0,0.1,0,0\n1,0.2,1,0\n2,0.3,2,0\n"
+FIXES_TEXT = "t,heading,sigma\n0,0.1,0.05\n1,0.2,0.05\n"
+
+
+@pytest.mark.parametrize("tail", ["\n", "\n\n", "\r\n\r\n", "\n\n\n\n\n"])
+def test_blank_lines_at_the_end_of_a_csv_are_read_as_its_end(tmp_path: Path, tail: str) -> None:
+    # an editor's extra line end carries no data, as numpy.loadtxt and pandas read it; it was
+    # "line 202, column 1 (t): blank line" (an empty value in a reference or fixes file)
+    gyro = tmp_path / "gyro.csv"
+    gyro.write_bytes((gyro_text() + tail).encode())
+    np.testing.assert_array_equal(gyrocore.read_log(gyro).t, expected_t())
+    reference = tmp_path / "reference.csv"
+    reference.write_bytes((REFERENCE_TEXT + tail).encode())
+    assert gyrocore.io.read_reference_file(reference)["heading"].tolist() == [0.1, 0.2, 0.3]
+    fixes = tmp_path / "fixes.csv"
+    fixes.write_bytes((FIXES_TEXT + tail).encode())
+    assert len(gyrocore.fixes.read_fixes_csv(fixes).t) == 2
+
+
+def test_a_blank_line_before_the_last_sample_is_an_error_naming_it(tmp_path: Path) -> None:
+    # a blank line inside the data may be a lost sample: never skipped (a reference's was an "empty value")
+    reference = tmp_path / "reference.csv"
+    reference.write_text("t,heading\n0,0.1\n\n2,0.3\n\n")
+    with pytest.raises(ValueError, match=rf"^{re.escape(str(reference))}: line 3, column 1 \(t\): blank line$"):
+        gyrocore.io.read_reference_file(reference)
+
+
+COMMENTS = "# recorded 2024-05-01 on the test car\n# sensor: CRS03, 100 Hz, rates in rad/s\n"
+
+
+def test_comment_lines_before_the_header_are_skipped_and_lines_still_counted(tmp_path: Path) -> None:
+    # it was "missing column(s) t, gyro_z; it has # recorded 2024-05-01 on the test car"
+    gyro = tmp_path / "gyro.csv"
+    gyro.write_text(COMMENTS + gyro_text())
+    np.testing.assert_array_equal(gyrocore.read_log(gyro).t, expected_t())
+    reference = tmp_path / "reference.csv"
+    reference.write_text(COMMENTS + REFERENCE_TEXT)
+    assert gyrocore.io.read_reference_file(reference)["t"].tolist() == [0.0, 1.0, 2.0]
+    fixes = tmp_path / "fixes.csv"
+    fixes.write_text(COMMENTS + FIXES_TEXT)
+    assert len(gyrocore.fixes.read_fixes_csv(fixes).t) == 2
+    # lines are the file's lines, comments counted
+    reference.write_text(COMMENTS + "t,heading\n0,0.1\n1,nan\n")
+    with pytest.raises(ValueError, match=r"reference\.csv: line 5, column 2 \(heading\): nan"):
+        gyrocore.io.read_reference_file(reference)
+    gyro.write_text(COMMENTS + "t,gyro_z\n0,0.1\n0.01,abc\n")
+    with pytest.raises(ValueError, match=r"gyro\.csv: line 5, column 2 \(gyro_z\): 'abc' is not a number"):
+        gyrocore.read_log(gyro)
+    gyro.write_text(COMMENTS + "t,gyro_z\n" + "".join(f"{i / 100},0.01\n" for i in range(100)) + "1,nan\n")
+    proc = run_cli("process", gyro, "--out", tmp_path / "h.csv", "--preset", "raw")
+    assert proc.returncode == 2 and f"({gyro}, line 104)" in proc.stderr, proc.stderr
+
+
+def test_a_header_that_starts_with_a_hash_is_still_the_header(tmp_path: Path) -> None:
+    # EuRoC's "#timestamp [ns],w_RS_S_x ..." is its header: the line after it is a sample
+    gyro = tmp_path / "data.csv"
+    gyro.write_text("# EuRoC MAV\n#timestamp [ns],gyro_z\n" + "".join(f"{i * 10**7},0.01\n" for i in range(N)))
+    np.testing.assert_allclose(gyrocore.read_log(gyro, time_col="timestamp").t, expected_t())
+
+
+def test_a_csv_not_in_utf8_names_the_line_and_byte(tmp_path: Path) -> None:
+    # a Latin-1 degree sign (byte 0xB0) was shown as U+FFFD in "missing column(s) ...; it has ..."
+    gyro = tmp_path / "gyro.csv"
+    gyro.write_bytes("t,gyro_z [°/s]\n0,1\n".encode("latin-1"))
+    message = (f"{gyro}: line 1: not UTF-8 (byte 0xb0 at byte offset 10 of the file): save it as UTF-8, "
+               "e.g. iconv -f latin1 -t utf-8 old.csv > new.csv")
+    with pytest.raises(ValueError, match=f"^{re.escape(message)}$"):
+        gyrocore.read_log(gyro)
+    reference = tmp_path / "reference.csv"
+    reference.write_bytes(b"# r\xe9f\xe9rence\nt,heading [\xb0]\n0,1\n")
+    with pytest.raises(ValueError, match=rf"^{re.escape(str(reference))}: line 2: not UTF-8 \(byte 0xb0 at byte offset 23 "):
+        gyrocore.io.read_reference_file(reference)

@@ -342,3 +342,13 @@ def test_a_fleet_run_with_simulated_fixes_fails_the_bad_logs_alone(tmp_path: Pat
     assert rows[0]["name"] == "f110_ds3" and "no reference heading" in rows[1]["error"]
     late = gyrocore_cli("evaluate", good, bad, "--preset", "hdr", "--sim-fixes", "outage=200:10", code=1)
     assert f"FAILED {good}: the outage starts 200 s after the first sample" in late.stdout
+
+
+def test_a_nan_heading_true_is_named_by_its_file_and_line(tmp_path: Path) -> None:
+    # it was "reference: heading[9] is nan", an index into the log, not a line of the file
+    rows = [f"{i * 0.01:.2f},0.01,{i * 1e-4!r}" for i in range(500)]
+    rows[9] = "0.09,0.01,nan"
+    drive = tmp_path / "drive.csv"
+    drive.write_text("t,gyro_z,heading_true\n" + "\n".join(rows) + "\n")
+    proc = gyrocore_cli("evaluate", drive, "--preset", "raw", code=2)
+    assert f"{drive}: line 11, column heading_true: empty or nan; a reference's t and heading must be finite" in proc.stderr

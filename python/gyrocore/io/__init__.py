@@ -5,8 +5,9 @@ Every reader returns SI units: timestamps [s] and yaw rate [rad/s], counter-cloc
 ============  =====================================================================================
 format        what is read
 ============  =====================================================================================
-CSV           a header line, then one sample per line; columns ``time_col`` (default ``t``) and
-              ``rate_col`` (default ``gyro_z``); other columns are ignored (pyarrow, streaming)
+CSV           a header line (after ``#`` comment lines), then one sample per line, in UTF-8;
+              columns ``time_col`` (default ``t``) and ``rate_col`` (default ``gyro_z``); other
+              columns are ignored (pyarrow, streaming)
 Parquet       columns ``time_col`` and ``rate_col``; a timestamp column carries its own unit
 ``.npy``      a structured array with fields ``time_col``/``rate_col``, or a 2-D array
               (samples x columns: time in column 0, rate in column 1 unless numbered otherwise)

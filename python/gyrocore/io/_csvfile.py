@@ -1,6 +1,7 @@
 """Reading CSV files: pyarrow's streaming reader, and the line and column of a malformed value.
 
-A CSV file has a header line, then one sample per line. pyarrow parses it block by block on its own
+A CSV file has a header line (after any comment lines, :func:`csv_layout`), then one sample per
+line, then maybe blank lines, which are left out. pyarrow parses it block by block on its own
 thread; when it rejects a value, the file is read again from that block with Python's csv module to
 find the line and column, which pyarrow's message does not name.
 """
@@ -12,8 +13,9 @@ import io as _io
 import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, BinaryIO, TypeAlias
 
 import numpy as np
 
@@ -37,11 +39,56 @@ _GZIP = b"\x1f\x8b"
 #: Windows PowerShell's ``>`` write text.
 _UTF16_BOMS = (b"\xff\xfe", b"\xfe\xff")
 _UTF8_BOM = b"\xef\xbb\xbf"
+#: Rows read from a CSV file and not yet handed out: first row, columns, bytes read, rows.
+_HeldRows: TypeAlias = "tuple[int, dict[str, pa.Array], int, int]"
 
 
-def _csv_header(path: Path, delimiter: str) -> list[str]:
+@dataclass(frozen=True)
+class CsvLayout:
+    """Where a CSV file's samples begin: its column names and the lines up to and including the
+    header (comment lines and the header), so that sample ``row`` is line :meth:`line`."""
+
+    header: list[str]
+    header_lines: int
+
+    def line(self, row: int) -> int:
+        """The line of sample ``row`` (0-based), as an editor numbers the file's lines."""
+        return row + self.header_lines + 1
+
+
+def csv_layout(path: Path, delimiter: str) -> CsvLayout:
+    """The header of a CSV file, after the comment lines (``#``) before it.
+
+    A leading line that starts with ``#`` is a comment, unless the line after it is already a
+    sample: then it is the header, as EuRoC writes it (``#timestamp [ns],w_RS_S_x ...``), and
+    :func:`~gyrocore.io.units.split_unit` reads its names without the ``#``.
+
+    Raises:
+        ValueError: no header, binary data, UTF-16, classic Mac OS line ends, a line longer than
+            :data:`MAX_LINE_BYTES`, or a header that is not UTF-8 or not a CSV line, naming the line.
+    """
     with open(path, "rb") as f:
-        line = f.readline(MAX_LINE_BYTES + 1)  # bounded: a file of gigabytes without a line end
+        line = _first_line(path, f)
+        number, offset = 1, 0
+        while line.removeprefix(_UTF8_BOM).startswith(b"#"):
+            following = f.readline(MAX_LINE_BYTES + 1)
+            if not following.strip() or _is_sample(following, delimiter):
+                break
+            number, offset, line = number + 1, offset + len(line), following
+            if len(line) > MAX_LINE_BYTES:
+                raise ValueError(f"{path}: line {number} is longer than {MAX_LINE_BYTES} bytes, the longest read")
+    text = _decode(path, number, offset, line).rstrip("\r\n")
+    try:
+        with _long_fields():
+            header = [name.strip() for name in next(csv.reader([text], delimiter=delimiter))]
+    except csv.Error as e:  # e.g. a bare carriage return inside the header
+        raise ValueError(f"{path}: line {number}: malformed header: {e}") from None
+    return CsvLayout(header, number)
+
+
+def _first_line(path: Path, f: BinaryIO) -> bytes:
+    """The first line of the file ``f``, refused if it shows the file is no UTF-8 text CSV."""
+    line = f.readline(MAX_LINE_BYTES + 1)  # bounded: a file of gigabytes without a line end
     if not line.removeprefix(_UTF8_BOM).strip():  # an empty file that an editor saved with its BOM too
         raise ValueError(f"{path}: line 1: no header line (expected column names)")
     if line.startswith(_UTF16_BOMS):
@@ -55,16 +102,33 @@ def _csv_header(path: Path, delimiter: str) -> list[str]:
                          "feed: convert them, e.g. tr '\\r' '\\n' < old.csv > new.csv")
     if len(line) > MAX_LINE_BYTES:
         raise ValueError(f"{path}: line 1 is longer than {MAX_LINE_BYTES} bytes, the longest read")
-    text = line.decode("utf-8-sig", errors="replace").rstrip("\r\n")
+    return line
+
+
+def _is_sample(line: bytes, delimiter: str) -> bool:
+    """Whether ``line`` is a sample: every value that is not empty is a number (a header has names)."""
+    values = [v.strip(" \t") for v in line.decode("utf-8", errors="replace").rstrip("\r\n").split(delimiter)]
+    return any(values) and all(_is_number(v) for v in values if v)
+
+
+def _decode(path: Path, number: int, offset: int, line: bytes) -> str:
+    """Line ``number`` of ``path``, which starts at byte ``offset``, as text, or an error naming
+    the first byte that is not UTF-8 (decoded with replacement characters, a Latin-1 ``°`` was
+    shown as U+FFFD in the column names)."""
+    body = line.removeprefix(_UTF8_BOM) if number == 1 else line
     try:
-        with _long_fields():
-            return [name.strip() for name in next(csv.reader([text], delimiter=delimiter))]
-    except csv.Error as e:  # e.g. a bare carriage return inside the header
-        raise ValueError(f"{path}: line 1: malformed header: {e}") from None
+        return body.decode("utf-8")
+    except UnicodeDecodeError as e:
+        at = offset + len(line) - len(body) + e.start
+        raise ValueError(
+            f"{path}: line {number}: not UTF-8 (byte 0x{body[e.start]:02x} at byte offset {at} of the file): "
+            "save it as UTF-8, e.g. iconv -f latin1 -t utf-8 old.csv > new.csv"
+        ) from None
 
 
 def _read_csv(
     path: Path,
+    layout: CsvLayout,
     columns: tuple[str, ...],
     *,
     delimiter: str = ",",
@@ -74,8 +138,9 @@ def _read_csv(
 ) -> Iterator[tuple[int, dict[str, pa.Array], int]]:
     """Yield ``(first_row, {column: pyarrow array}, bytes read)`` of a CSV file, block by block.
 
-    Empty values become nulls; blank lines are rows of nulls, so that row ``k`` is line ``k + 2``
-    (for files with one sample per line: a quoted line break would shift the line numbers).
+    Empty values become nulls; blank lines are rows of nulls, so that row ``k`` is line
+    ``layout.line(k)`` (for files with one sample per line: a quoted line break would shift the
+    line numbers), except the blank lines that end the file, which hold no sample and are left out.
     ``required`` names the columns whose empty value the caller refuses, with what to call it
     (``{"t": "timestamp"}``), so that an error in a block names the first bad line of either kind;
     ``choose`` says what to do about a missing column (:func:`column_positions`).
@@ -86,8 +151,8 @@ def _read_csv(
     pa = require("pyarrow", f"{path}: reading CSV files")
     pa_csv = require("pyarrow.csv", f"{path}: reading CSV files")
 
-    header = _csv_header(path, delimiter)
-    positions = column_positions(path, header, columns, choose, where="line 1: ")
+    header = layout.header
+    positions = column_positions(path, header, columns, choose, where=f"line {layout.header_lines}: ")
     keys = {c: f"{positions[c]}:{c}" for c in columns}
     convert = pa_csv.ConvertOptions(
         include_columns=list(keys.values()),
@@ -97,31 +162,67 @@ def _read_csv(
         quoted_strings_can_be_null=True,
     )
     parse = pa_csv.ParseOptions(delimiter=delimiter, ignore_empty_lines=False)
-    first, block = 0, block_bytes
-    if _line_offset(path, 1) >= path.stat().st_size:
-        return  # a header and no samples (pyarrow would call the file empty)
+    blank_tail = _blank_tail_rows(path, _line_offset(path, layout.header_lines))
+    if blank_tail is None:
+        return  # a header and no samples, or only blank lines after it (pyarrow would call the file empty)
+    # rows are held back until blank_tail rows follow them: the last blank_tail rows read are the
+    # blank lines that end the file, known as such only once pyarrow has read to its end
+    held: list[_HeldRows] = []
+    read, block = 0, block_bytes
     while True:
-        read = pa_csv.ReadOptions(
+        options = pa_csv.ReadOptions(
             column_names=[f"{i}:{name}" for i, name in enumerate(header)],  # unique even if the header is not
             block_size=block,
             use_threads=False,  # parallel files scale better than parallel blocks (and it was not faster)
         )
         # pyarrow reads the file itself, on its own thread and without the GIL
         with pa.OSFile(str(path)) as f:
-            f.seek(_line_offset(path, first + 1))  # past the header (which may be longer than a block)
+            f.seek(_line_offset(path, layout.header_lines + read))  # past the header (which may be longer than a block)
             try:
-                for batch in pa_csv.open_csv(f, read_options=read, parse_options=parse, convert_options=convert):
-                    yield first, {c: batch.column(keys[c]) for c in columns}, f.tell()
-                    first += batch.num_rows
+                for batch in pa_csv.open_csv(f, read_options=options, parse_options=parse, convert_options=convert):
+                    held.append((read, {c: batch.column(keys[c]) for c in columns}, f.tell(), batch.num_rows))
+                    read += batch.num_rows
+                    while held and read - (held[0][0] + held[0][3]) >= blank_tail:
+                        yield held.pop(0)[:3]
+                for first, cols, done, rows in held:
+                    # the blank tail's rows are blank lines (line ends alone), so nothing is dropped but them
+                    keep = min(rows, read - blank_tail - first)
+                    if keep > 0:
+                        yield first, {c: a.slice(0, keep) for c, a in cols.items()}, done
                 return
             except pa.ArrowInvalid as e:
                 if "straddl" not in str(e):
-                    raise ValueError(_csv_error(path, e, first + 2, header, positions, delimiter, required or {})) from None
+                    # the search starts at the first row not handed out: an empty value held back is the first error
+                    unchecked = held[0][0] if held else read
+                    raise ValueError(
+                        _csv_error(path, e, layout.line(unchecked), header, positions, delimiter, required or {})
+                    ) from None
                 if block >= MAX_LINE_BYTES:
                     raise ValueError(
-                        f"{path}: a line after line {first + 1} is longer than {MAX_LINE_BYTES} bytes, the longest read"
+                        f"{path}: a line after line {layout.line(read) - 1} is longer than {MAX_LINE_BYTES} bytes, "
+                        "the longest read"
                     ) from None
                 block = min(4 * block, MAX_LINE_BYTES)
+
+
+def _blank_tail_rows(path: Path, start: int) -> int | None:
+    """How many rows pyarrow reads from the blank lines that end the file, whose samples begin at
+    byte ``start`` (the line ends after the last byte that is none, less the one that ends its
+    line; ``\\r\\n``, ``\\n`` and a bare ``\\r`` each end one, as pyarrow counts them); None when
+    nothing but line ends follows ``start``."""
+    tail, end = b"", path.stat().st_size
+    with open(path, "rb") as f:
+        while end > start:
+            size = min(1 << 16, end - start)
+            f.seek(end - size)
+            block = f.read(size)
+            data = block.rstrip(b"\r\n")
+            tail = block[len(data):] + tail
+            if data:
+                ends = tail.count(b"\n") + tail.count(b"\r") - tail.count(b"\r\n")
+                return max(0, ends - 1)
+            end -= size
+    return None
 
 
 def _line_offset(path: Path, lines: int) -> int:
@@ -225,21 +326,24 @@ def csv_chunks(src: GyroSource, rows: int, columns: tuple[str, ...]) -> Iterator
     o = src.options
     path = src.data_path
     block = min(CSV_BLOCK_BYTES, max(4096, rows * _bytes_per_line(path)))
-    header = None
+    layout = csv_layout(path, o.delimiter)
     required = {o.time: "timestamp"}
-    blocks = _read_csv(path, (o.time, *columns), delimiter=o.delimiter, block_bytes=block, required=required)
+    blocks = _read_csv(path, layout, (o.time, *columns), delimiter=o.delimiter, block_bytes=block, required=required)
     for first, cols, done in blocks:
         t = cols[o.time]
         bad = first_null(t)
         if bad is not None:
-            header = header or _csv_header(path, o.delimiter)
-            blank = all(cols[c][bad].as_py() is None for c in columns)
-            raise ValueError(
-                f"{path}: line {first + bad + 2}, column {header.index(o.time) + 1} ({o.time}): "
-                + ("blank line" if blank else "empty timestamp")
-            )
+            raise ValueError(_empty(path, layout, cols, first, bad, o.time, "empty timestamp"))
         values = [cols[c].to_numpy(zero_copy_only=False) for c in columns]
         yield t.to_numpy(), values, o.counts_per_second, done
+
+
+def _empty(path: Path, layout: CsvLayout, cols: dict[str, pa.Array], first: int, bad: int, name: str, what: str) -> str:
+    """Where the empty value ``bad`` of the block of row ``first`` in column ``name`` is, and what:
+    ``what``, or a blank line if every column read is empty there."""
+    blank = all(a[bad].as_py() is None for a in cols.values())
+    column = layout.header.index(name) + 1
+    return f"{path}: line {layout.line(first + bad)}, column {column} ({name}): {'blank line' if blank else what}"
 
 
 def _bytes_per_line(path: Path) -> int:
@@ -254,18 +358,18 @@ def read_csv_columns(path: Path, columns: tuple[str, ...], *, optional: tuple[st
     value of an ``optional`` column is NaN (the caller decides what a missing value means).
 
     Raises ValueError naming the file, line and column of a malformed value, or of an empty value
-    of another column. Row ``k`` is line ``k + 2``.
+    of another column. Row ``k`` is line ``csv_layout(path, ",").line(k)``.
     """
     path = Path(path)
     import_pyarrow_lazy_modules()
     parts: dict[str, list[np.ndarray]] = {c: [] for c in columns}
-    header = _csv_header(path, ",")
+    layout = csv_layout(path, ",")
     choose = f"{path.name} has the columns {', '.join(columns)}"  # not gyro data: no reading option names them
-    required = [c for c in columns if c not in optional]
-    for first, cols, _ in _read_csv(path, columns, required=dict.fromkeys(required, "value"), choose=choose):
+    required = dict.fromkeys((c for c in columns if c not in optional), "value")
+    for first, cols, _ in _read_csv(path, layout, columns, required=required, choose=choose):
         for c in columns:
             bad = None if c in optional else first_null(cols[c])
             if bad is not None:
-                raise ValueError(f"{path}: line {first + bad + 2}, column {header.index(c) + 1} ({c}): empty value")
+                raise ValueError(_empty(path, layout, cols, first, bad, c, "empty value"))
             parts[c].append(cols[c].to_numpy(zero_copy_only=False))  # with nulls: NaN
     return {c: concat(parts[c]) for c in columns}

@@ -17,7 +17,7 @@ import numpy as np
 
 from .._arrays import FloatArray
 from .._checks import warn
-from ._csvfile import _csv_header, read_csv_columns
+from ._csvfile import CsvLayout, csv_layout, read_csv_columns
 from ._jsonfile import read_json
 from ._paths import check_file, has_file
 
@@ -97,36 +97,37 @@ def read_reference_file(path: Path) -> dict[str, FloatArray]:
     still scored, while dead reckoning and the closed-path check need every position.
     """
     check_file(path)
-    header = _csv_header(path, ",")
+    layout = csv_layout(path, ",")
+    header = layout.header
     track = ("x", "y") if has_track(str(path), header) else ()
     ref = read_csv_columns(path, ("t", "heading", *track), optional=track)
     for name in ("t", "heading"):
-        where = _not_finite(path, header, ref, name, "nan")
+        where = _not_finite(path, layout, ref, name, "nan")
         if where is not None:
             raise ValueError(f"{where}; a reference's t and heading must be finite numbers: fill it in or drop the line")
     back = np.flatnonzero(np.diff(ref["t"]) <= 0)
     if len(back):  # the scores named only an index, and the log rather than this file
         k = int(back[0]) + 1
-        raise ValueError(f"{path}: line {k + 2}, column {header.index('t') + 1} (t): {ref['t'][k]:.17g} does not come "
-                         f"after {ref['t'][k - 1]:.17g} on line {k + 1}; a reference's times must strictly increase: "
+        raise ValueError(f"{path}: line {layout.line(k)}, column {header.index('t') + 1} (t): {ref['t'][k]:.17g} does not come "
+                         f"after {ref['t'][k - 1]:.17g} on line {layout.line(k - 1)}; a reference's times must strictly increase: "
                          "sort the file and drop repeated times")
     for name in track:
-        where = _not_finite(path, header, ref, name, "empty or nan")  # an empty position is read as NaN
+        where = _not_finite(path, layout, ref, name, "empty or nan")  # an empty position is read as NaN
         if where is not None:
             warn(f"{where}; the reference's positions are left out (its heading is still used)")
             return {"t": ref["t"], "heading": ref["heading"]}
     return ref
 
 
-def _not_finite(path: Path, header: list[str], columns: dict[str, FloatArray], name: str, nan: str) -> str | None:
+def _not_finite(path: Path, layout: CsvLayout, columns: dict[str, FloatArray], name: str, nan: str) -> str | None:
     """Where the first value of column ``name`` that is not finite is, and what it is (a NaN
-    said as ``nan``), or None (row k is line k + 2, as :func:`read_csv_columns` reads)."""
+    said as ``nan``), or None (row k is ``layout.line(k)``, as :func:`read_csv_columns` reads)."""
     bad = np.flatnonzero(~np.isfinite(columns[name]))
     if len(bad) == 0:
         return None
     value = columns[name][bad[0]]
     what = nan if np.isnan(value) else str(value)
-    return f"{path}: line {int(bad[0]) + 2}, column {header.index(name) + 1} ({name}): {what}"
+    return f"{path}: line {layout.line(int(bad[0]))}, column {layout.header.index(name) + 1} ({name}): {what}"
 
 
 def _read_table(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:

@@ -10,6 +10,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
 from .._arrays import FloatArray
 from .._checks import require_flag, warn
 from ..pipeline import (
@@ -167,7 +169,14 @@ def _file_tables(src: GyroSource, t: FloatArray) -> tuple[dict[str, FloatArray],
     columns = src.optional_columns((*TRUTH_COLUMNS.values(), SPEED_COLUMN))
     ref: dict[str, FloatArray] = {}
     if TRUTH_COLUMNS["heading"] in columns:
-        ref = {"t": t, "heading": columns[TRUTH_COLUMNS["heading"]]}
+        heading = columns[TRUTH_COLUMNS["heading"]]
+        bad = np.flatnonzero(~np.isfinite(heading))
+        if len(bad):  # scoring named it heading[k], an index, not where in the file it is
+            k = int(bad[0])
+            what = "empty or nan" if np.isnan(heading[k]) else str(heading[k])
+            raise ValueError(f"{src.data_path}: {src.where(k)}, column {TRUTH_COLUMNS['heading']}: {what}; a reference's "
+                             "t and heading must be finite numbers: fill it in or drop that sample")
+        ref = {"t": t, "heading": heading}
         if has_track(str(src.path), columns, (TRUTH_COLUMNS["x"], TRUTH_COLUMNS["y"])):
             ref.update(x=columns[TRUTH_COLUMNS["x"]], y=columns[TRUTH_COLUMNS["y"]])
     odo = {"t": t, "speed": columns[SPEED_COLUMN]} if SPEED_COLUMN in columns else {}

@@ -20,7 +20,7 @@ from .._gyrocore import SampleError
 from ..window import Window
 from ._axes import MEASURED, measure_up, parse_up, project, three_names
 from ._columns import concat, import_pyarrow_lazy_modules
-from ._csvfile import _csv_header, csv_chunks
+from ._csvfile import csv_chunks, csv_layout
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta
 from ._npyfile import npy_chunks, npy_header, npz_chunks
 from ._parquetfile import parquet_chunks, parquet_file, warn_given_time_unit
@@ -187,6 +187,8 @@ class GyroSource:
         stationary: rest window ``(t0, t1)`` [s] from a log folder's meta.json, or None.
         progress_total: size of the input in :attr:`progress_unit`, or None if unknown.
         progress_unit: ``B`` (bytes of a CSV file) or ``rows``.
+        meta: a log folder's meta.json.
+        header_lines: a CSV file's lines before its first sample (comment lines and the header).
     """
 
     path: Path
@@ -197,6 +199,7 @@ class GyroSource:
     progress_total: int | None = None
     progress_unit: str = "rows"
     meta: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
+    header_lines: int = 1
 
     @property
     def name(self) -> str:
@@ -206,7 +209,7 @@ class GyroSource:
     def where(self, row: int) -> str:
         """Where sample ``row`` (0-based) is in the file, in the file's own terms."""
         if self.kind in ("csv", "log folder"):
-            return f"line {row + 2}"
+            return f"line {row + self.header_lines + 1}"
         if self.kind == "bag":
             return f"message {row} on {self.options.topic}"
         return f"row {row}"
@@ -250,7 +253,7 @@ class GyroSource:
         empty value NaN), read in one pass; none for another input (another format, or a log
         folder: its tables are files of their own)."""
         if self.kind == "csv":
-            header = _csv_header(self.data_path, self.options.delimiter)
+            header = csv_layout(self.data_path, self.options.delimiter).header
         elif self.kind == "parquet":
             header = parquet_file(self.data_path).schema_arrow.names
         else:
@@ -345,8 +348,10 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
             data = p / GYRO_CSV
             check_file(data)
             meta, stationary = read_meta(p)
-            options = header_options(data, _csv_header(data, options.delimiter), options)
-            return GyroSource(p, "log folder", data, options, stationary, data.stat().st_size, "B", meta)
+            layout = csv_layout(data, options.delimiter)
+            options = header_options(data, layout.header, options)
+            return GyroSource(p, "log folder", data, options, stationary, data.stat().st_size, "B", meta,
+                              layout.header_lines)
         if is_bag_folder(p):
             return _open_bag(p, header_options(p, None, options))
         raise ValueError(f"{p}: not a log folder (no gyro.csv) nor a ROS 2 bag (no metadata.yaml)")
@@ -355,8 +360,10 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
     check_readable(p)
     suffix = p.suffix.lower()
     if suffix == ".csv":
-        options = header_options(p, _csv_header(p, options.delimiter), options)
-        return GyroSource(p, "csv", p, options, progress_total=p.stat().st_size, progress_unit="B")
+        layout = csv_layout(p, options.delimiter)
+        options = header_options(p, layout.header, options)
+        return GyroSource(p, "csv", p, options, progress_total=p.stat().st_size, progress_unit="B",
+                          header_lines=layout.header_lines)
     if suffix in (".parquet", ".pq"):
         pf = parquet_file(p)
         warn_given_time_unit(p, pf, options.time, options.time_unit)
