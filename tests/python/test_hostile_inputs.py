@@ -323,7 +323,8 @@ def test_a_ragged_list_is_named() -> None:
         # a quote cannot separate fields: the whole header was one column, reported as missing ones
         (("--delimiter", '"'), "delimiter '\"' cannot separate fields (it quotes a field or ends a line)"),
         # a wrong delimiter leaves the header one field: say so
-        (("--delimiter", ";"), "the header line is one field: give the file's delimiter"),
+        (("--delimiter", ";"), "the header line is one field, with ',' in it: give the file's delimiter "
+                               "(delimiter=',', --delimiter ',')"),
     ],
 )
 def test_a_reading_option_that_does_not_fit_the_input_is_named(
@@ -341,3 +342,45 @@ def test_an_odometry_with_a_header_only_is_scored_without_dead_reckoning(tmp_pat
     assert proc.returncode == 0, proc.stderr
     assert "0 odometry sample(s) (the odometry has none) lie inside the heading's" in proc.stderr
     assert '"position_mean_error_m"' not in proc.stdout
+
+
+def test_tab_separated_values_are_read_from_a_tsv_file_and_with_delimiter_tab(tmp_path: Path) -> None:
+    # a .tsv was "unknown kind of file"; --delimiter '\t' (as a shell passes it) and tab were refused
+    # as more than one character, and a tab cannot be typed on a command line
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    tabbed = log.read_text().replace(",", "\t")
+    (tmp_path / "log.tsv").write_text(tabbed)
+    (tmp_path / "tabs.csv").write_text(tabbed)
+    runs = {
+        "comma": (log,),
+        "tsv": (tmp_path / "log.tsv",),
+        "backslash-t": (tmp_path / "tabs.csv", "--delimiter", "\\t"),
+        "tab": (tmp_path / "tabs.csv", "--delimiter", "tab"),
+    }
+    for name, (src, *args) in runs.items():
+        proc = run_cli("process", src, "--out", tmp_path / f"{name}.csv", "--preset", "raw", *args)
+        assert proc.returncode == 0, (name, proc.stderr)
+    assert len({(tmp_path / f"{name}.csv").read_text() for name in runs}) == 1
+    # a .tsv whose fields are not tab-separated says which delimiter its header holds
+    (tmp_path / "commas.tsv").write_text(log.read_text())
+    proc = run_cli("process", tmp_path / "commas.tsv", "--out", tmp_path / "x.csv")
+    assert proc.returncode == 2 and "with ',' in it: give the file's delimiter" in proc.stderr, proc.stderr
+    (tmp_path / "semi.csv").write_text(log.read_text().replace(",", ";"))
+    proc = run_cli("process", tmp_path / "semi.csv", "--out", tmp_path / "x.csv")
+    assert "the header line is one field, with ';' in it: give the file's delimiter (delimiter=';', --delimiter ';')" in (
+        proc.stderr
+    ), proc.stderr
+
+
+def test_a_decimal_comma_is_named_as_such(tmp_path: Path) -> None:
+    # '0,005' is not a number, with no word of why: numbers written with a decimal comma
+    src = tmp_path / "komma.csv"
+    src.write_text("t;gyro_z\n0,000;0,010\n0,005;0,010\n")
+    proc = run_cli("process", src, "--out", tmp_path / "o.csv", "--delimiter", ";")
+    assert proc.returncode == 2
+    assert "line 2, column 1 (t): '0,000' is not a number (a decimal comma: write numbers with a decimal point)" in (
+        proc.stderr
+    ), proc.stderr
+    src.write_text("t;gyro_z\n0;1,2,3\n")  # not a decimal comma
+    proc = run_cli("process", src, "--out", tmp_path / "o.csv", "--delimiter", ";")
+    assert "'1,2,3' is not a number\n" in proc.stderr, proc.stderr

@@ -94,6 +94,12 @@ def with_reference(log: io.Log, path: Path) -> io.Log:
     return dataclasses.replace(log, t_ref=ref["t"], heading_ref=ref["heading"], x_ref=ref.get("x"), y_ref=ref.get("y"))
 
 
+def delimiter(text: str) -> str:
+    """A ``--delimiter``: ``tab`` or ``\\t`` (as a shell passes them) mean a tab, which is hard to
+    type on a command line; any other text is the delimiter itself (checked where it is used)."""
+    return "\t" if text.lower() in ("tab", "\\t") else text
+
+
 def add_reading_options(parser: argparse.ArgumentParser) -> None:
     """The options that say how to read a file input, the same for every command that reads one."""
     read = parser.add_argument_group(
@@ -107,7 +113,8 @@ def add_reading_options(parser: argparse.ArgumentParser) -> None:
     read.add_argument("--rate-unit", choices=io.RATE_UNITS,
                       help="unit of the rate column (default: the header's, else rad/s)")
     read.add_argument("--topic", help="bag topic with sensor_msgs/Imu (default: the only one)")
-    read.add_argument("--delimiter", help="CSV delimiter (default ,)")
+    read.add_argument("--delimiter", type=delimiter, help="CSV delimiter (default , and a tab for .tsv; "
+                      "'tab' or '\\t' for a tab)")
     axes = parser.add_argument_group(
         "three-axis input (the yaw rate is the gyro's component along up; a bag reads angular_velocity "
         "and linear_acceleration)"

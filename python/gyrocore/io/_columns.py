@@ -35,8 +35,12 @@ def column_positions(
     if missing:
         with_unit = [split_unit(str(h)) for h in header if split_unit(str(h))[1] is not None]
         short = f"; a name may leave out its unit, e.g. {with_unit[0][0]}" if with_unit else ""
-        if len(header) == 1 and any(d in str(header[0]) for d in ",;\t|"):
-            short = "; the header line is one field: give the file's delimiter (delimiter=, --delimiter)"
+        found = [d for d in ",;\t|" if len(header) == 1 and d in str(header[0])]
+        if found:
+            shown = "a tab" if found[0] == "\t" else repr(found[0])
+            arg = "tab" if found[0] == "\t" else repr(found[0])
+            short = (f"; the header line is one field, with {shown} in it: give the file's delimiter "
+                     f"(delimiter={found[0]!r}, --delimiter {arg})")
         raise ValueError(
             f"{path}: missing column(s) {', '.join(missing)}; it has {', '.join(map(str, header))} "
             f"({choose}{short})"

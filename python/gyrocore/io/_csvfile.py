@@ -266,7 +266,9 @@ def _csv_error(
                 if fields[pos] and not value:
                     return f"{where}: blank value {fields[pos]!r} (leave it empty for a missing value)"
                 if value and not _is_number(value):
-                    return f"{where}: {value!r} is not a number"
+                    comma = _is_number(value.replace(",", ".", 1)) and "," in value
+                    hint = " (a decimal comma: write numbers with a decimal point)" if comma else ""
+                    return f"{where}: {value!r} is not a number{hint}"
                 if not fields[pos] and name in required:
                     return f"{where}: empty {required[name]}"
     return f"{path}: after line {first_line}: {error}"
@@ -326,9 +328,9 @@ def csv_chunks(src: GyroSource, rows: int, columns: tuple[str, ...]) -> Iterator
     o = src.options
     path = src.data_path
     block = min(CSV_BLOCK_BYTES, max(4096, rows * _bytes_per_line(path)))
-    layout = csv_layout(path, o.delimiter)
+    layout = csv_layout(path, src.delimiter)
     required = {o.time: "timestamp"}
-    blocks = _read_csv(path, layout, (o.time, *columns), delimiter=o.delimiter, block_bytes=block, required=required)
+    blocks = _read_csv(path, layout, (o.time, *columns), delimiter=src.delimiter, block_bytes=block, required=required)
     for first, cols, done in blocks:
         t = cols[o.time]
         bad = first_null(t)

@@ -35,7 +35,7 @@ DEFAULT_CHUNK_ROWS = 1 << 16
 #: ``gyrocore simulate`` writes): whole mode takes its stops as rests, as a log folder's odometry.
 SPEED_COLUMN = "speed"
 #: Suffixes of the files :func:`open_source` reads.
-FILE_SUFFIXES = (".csv", ".parquet", ".pq", ".npy", ".npz", ".bag")
+FILE_SUFFIXES = (".csv", ".tsv", ".parquet", ".pq", ".npy", ".npz", ".bag")
 
 
 @dataclass(frozen=True)
@@ -52,7 +52,7 @@ class ReadOptions:
         rate_unit: ``rad/s`` or ``deg/s``; ``None``: the unit the column's name states
             (``w_z [rad s^-1]``, ``gyro_z_dps``), else ``rad/s``.
         topic: the bag topic with sensor_msgs/Imu messages (``None``: the only one).
-        delimiter: CSV field delimiter.
+        delimiter: CSV field delimiter; ``None``: a tab for a ``.tsv`` file, else ``,``.
         static: the log was recorded at rest (for an Allan deviation): rates that stay small do
             not suggest a log in rad/s read as deg/s.
         gyro_cols: three-axis input: the gyro's x, y and z columns (in ``rate_unit``; a text
@@ -72,7 +72,7 @@ class ReadOptions:
     time_unit: str | None = None
     rate_unit: str | None = None
     topic: str | None = None
-    delimiter: str = ","
+    delimiter: str | None = None
     static: bool = False
     gyro_cols: tuple[str, str, str] | None = None
     accel_cols: tuple[str, str, str] | None = None
@@ -112,7 +112,7 @@ class ReadOptions:
             raise ValueError(f"time_unit {self.time_unit!r} is not one of {', '.join(TIME_UNITS)}")
         if self.rate_unit is not None and self.rate_unit not in RATE_UNITS:
             raise ValueError(f"rate_unit {self.rate_unit!r} is not one of {', '.join(RATE_UNITS)}")
-        if len(self.delimiter) != 1:
+        if self.delimiter is not None and len(self.delimiter) != 1:
             raise ValueError(f"delimiter must be one character, got {self.delimiter!r}")
         if self.delimiter in ('"', "\n", "\r"):
             raise ValueError(
@@ -202,6 +202,11 @@ class GyroSource:
     header_lines: int = 1
 
     @property
+    def delimiter(self) -> str:
+        """The CSV delimiter of :attr:`data_path` (:func:`csv_delimiter`)."""
+        return csv_delimiter(self.data_path, self.options)
+
+    @property
     def name(self) -> str:
         """The log's name: the file name without its suffix, or the folder name."""
         return str(self.meta.get("name") or (self.path.stem if self.path.is_file() else self.path.name))
@@ -253,7 +258,7 @@ class GyroSource:
         empty value NaN), read in one pass; none for another input (another format, or a log
         folder: its tables are files of their own)."""
         if self.kind == "csv":
-            header = csv_layout(self.data_path, self.options.delimiter).header
+            header = csv_layout(self.data_path, self.delimiter).header
         elif self.kind == "parquet":
             header = parquet_file(self.data_path).schema_arrow.names
         else:
@@ -319,11 +324,19 @@ def _seconds(raw: np.ndarray, per_second: float) -> FloatArray:
     return t if per_second == 1.0 else t / per_second
 
 
+def csv_delimiter(path: Path, options: ReadOptions) -> str:
+    """The delimiter of the CSV file ``path``: the one ``options`` give, else a tab for a ``.tsv``
+    file (tab-separated values) and ``,`` for any other."""
+    if options.delimiter is not None:
+        return options.delimiter
+    return "\t" if path.suffix.lower() == ".tsv" else ","
+
+
 def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: Any) -> GyroSource:
     """Recognise an input by its suffix or layout; read nothing but headers and metadata yet.
 
     Args:
-        path: a ``.csv``, ``.parquet``/``.pq``, ``.npy``, ``.npz`` or ``.bag`` file, a log folder
+        path: a ``.csv`` (``.tsv``: tab-separated), ``.parquet``/``.pq``, ``.npy``, ``.npz`` or ``.bag`` file, a log folder
             (with ``gyro.csv``) or a ROS 2 bag folder (with ``metadata.yaml``).
         options: columns and units; or give the :class:`ReadOptions` fields as keywords.
 
@@ -348,7 +361,7 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
             data = p / GYRO_CSV
             check_file(data)
             meta, stationary = read_meta(p)
-            layout = csv_layout(data, options.delimiter)
+            layout = csv_layout(data, csv_delimiter(data, options))
             options = header_options(data, layout.header, options)
             return GyroSource(p, "log folder", data, options, stationary, data.stat().st_size, "B", meta,
                               layout.header_lines)
@@ -359,8 +372,8 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
         raise ValueError(f"{p}: not a regular file (a named pipe, socket or device); give a file or folder")
     check_readable(p)
     suffix = p.suffix.lower()
-    if suffix == ".csv":
-        layout = csv_layout(p, options.delimiter)
+    if suffix in (".csv", ".tsv"):
+        layout = csv_layout(p, csv_delimiter(p, options))
         options = header_options(p, layout.header, options)
         return GyroSource(p, "csv", p, options, progress_total=p.stat().st_size, progress_unit="B",
                           header_lines=layout.header_lines)
