@@ -384,3 +384,25 @@ def test_a_decimal_comma_is_named_as_such(tmp_path: Path) -> None:
     src.write_text("t;gyro_z\n0;1,2,3\n")  # not a decimal comma
     proc = run_cli("process", src, "--out", tmp_path / "o.csv", "--delimiter", ";")
     assert "'1,2,3' is not a number\n" in proc.stderr, proc.stderr
+
+
+def test_a_delimiter_given_for_a_file_that_is_no_csv_is_said_once_naming_it(tmp_path: Path) -> None:
+    # --delimiter for a Parquet or .npy file was ignored without a word; the reader's warnings that
+    # name their file (a Parquet timestamp's own unit) were printed with its name twice
+    pq = pytest.importorskip("pyarrow.parquet")
+    import pyarrow as pa
+
+    t = np.arange(0.0, 30.0, 0.01)
+    src = tmp_path / "log.parquet"
+    pq.write_table(pa.table({"t": (t * 1e9).astype("datetime64[ns]"), "gyro_z": 0.01 + 0 * t}), src)
+    proc = run_cli("process", src, "--out", tmp_path / "h.csv", "--delimiter", ";", "--time-unit", "ms")
+    assert proc.returncode == 0, proc.stderr
+    said = [line for line in proc.stderr.splitlines() if "is not used" in line or "--delimiter" in line]
+    assert sorted(said) == [  # each once, in the order sorted() gives
+        f"gyrocore: warning: {src}: column t is a timestamp[ns] with its own unit (ns): time_unit 'ms' "
+        "(--time-unit) is not used",
+        f"gyrocore: warning: {src}: delimiter ';' (--delimiter) separates a CSV file's fields, and this is a "
+        "Parquet file: it is read without one",
+    ], proc.stderr
+    with pytest.warns(gyrocore.InputWarning, match=r"delimiter '\\t' \(--delimiter\) separates a CSV file's fields"):
+        gyrocore.read_log(src, delimiter="\t")

@@ -207,9 +207,10 @@ def _one(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[s
 
 
 def _warn_about(path: str | Path, messages: Iterable[str]) -> None:
-    """A file's warnings on stderr, each naming the file (its report's warnings do not)."""
+    """A file's warnings on stderr, each naming the file once (most of its report's warnings do
+    not name it; those its reader raises do)."""
     for message in messages:
-        warn(f"{path}: {message}")
+        warn(message if message.startswith(f"{path}: ") else f"{path}: {message}")
 
 
 def _run_options(args: argparse.Namespace) -> dict[str, Any]:

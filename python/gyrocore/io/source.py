@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from .._arrays import FloatArray, durations_in_seconds, warn_coarse_times
+from .._checks import warn
 from .._gyrocore import SampleError
 from ..window import Window
 from ._axes import MEASURED, measure_up, parse_up, project, three_names
@@ -348,7 +349,7 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
         options = ReadOptions(**kwargs)
     elif kwargs:
         raise TypeError("give either options or keywords, not both")
-    return _check_topic(_check_axes(_recognise(Path(path), options)))
+    return _note_delimiter(_check_topic(_check_axes(_recognise(Path(path), options))))
 
 
 def _recognise(p: Path, options: ReadOptions) -> GyroSource:
@@ -428,6 +429,18 @@ def _check_topic(source: GyroSource) -> GyroSource:
         raise ValueError(
             f"{source.path}: topic {source.options.topic!r} (--topic) picks a ROS bag's Imu topic, and this "
             f"is a {_KIND_NAMES.get(source.kind, source.kind)}: leave it out for this input"
+        )
+    return source
+
+
+def _note_delimiter(source: GyroSource) -> GyroSource:
+    """A delimiter given for an input that is no CSV file was ignored without a word: a warning
+    says so (not an error: a batch of CSV and Parquet files takes one ``--delimiter`` for its CSV
+    files)."""
+    if source.options.delimiter is not None and source.kind not in ("csv", "log folder"):
+        warn(
+            f"{source.path}: delimiter {source.options.delimiter!r} (--delimiter) separates a CSV file's fields, "
+            f"and this is a {_KIND_NAMES.get(source.kind, source.kind)}: it is read without one"
         )
     return source
 
