@@ -23,7 +23,7 @@ from typing import Any, Callable, Mapping, Sequence
 import numpy as np
 
 from ._extras import require
-from .pipeline import preset_params
+from .pipeline import BIAS_SOURCES, parameters, preset_params
 from .pipeline_params import _to_si
 from .tune_cases import (
     HARM_MIXES,
@@ -44,7 +44,7 @@ from .tune_params import FORMAT_NAME, FORMAT_VERSION, ParameterSet, validate
 __all__ = [
     "BOUNDS", "FORMAT_NAME", "FORMAT_VERSION", "HARM_MIXES", "HARM_WEIGHT", "OBJECTIVES", "OPTIMISERS", "Case", "CaseScore",
     "ParameterSet", "TuningResult", "default_parameters", "harm_cases", "harm_excess", "leave_one_out",
-    "mean_log_ratio", "mean_ne_psi", "perfect_gyro", "score_cases", "simulated_cases", "tune", "unbiased_gyro", "validate",
+    "mean_log_ratio", "mean_ne_psi", "perfect_gyro", "score_cases", "search_box", "simulated_cases", "tune", "unbiased_gyro", "validate",
 ]
 
 #: Objective cost [deg/min] per degree that a harm drive's E_psi exceeds the limit.
@@ -138,6 +138,52 @@ class TuningResult:
 OPTIMISERS = ("differential_evolution", "nelder-mead")
 
 
+def search_box(
+    preset: str,
+    names: Sequence[str] | None = None,
+    bounds: Mapping[str, tuple[float, float]] | None = None,
+    fixed: Mapping[str, Any] | None = None,
+) -> dict[str, tuple[float, float]]:
+    """The search range of each parameter :func:`tune` fits (``names``, default
+    :func:`default_parameters`), checked with the ``fixed`` ones before any drive is scored (the
+    command line checks them before it builds its drives): a ValueError for a name that is no
+    parameter, a static bias (each drive's own), a parameter without bounds or with bounds that are
+    not ``0 < low < high``, one that takes no number, or one both fitted and fixed."""
+    names = tuple(names or default_parameters(preset))
+    fixed = dict(fixed or {})
+    known, given = parameters(), (*names, *_to_si(fixed))  # a fixed one may be spelled *_dps or *_deg
+    unknown = [n for n in given if n not in known]
+    if unknown:
+        raise ValueError(f"unknown parameter(s) {', '.join(unknown)}; the pipeline's are {', '.join(known)}")
+    bias = [n for n in given if n in BIAS_SOURCES]
+    if bias:
+        raise ValueError(f"{', '.join(bias)}: the static bias comes from each drive (its rest window, or a bias "
+                         "duration: --bias-duration); it is neither fitted nor fixed")
+    for n in names:
+        try:
+            validate(preset, {n: 1.0})
+        except TypeError as e:  # a switch or a choice: tune searches numbers > 0
+            raise ValueError(f"{n} cannot be fitted, it takes no number ({e})") from None
+        except ValueError:  # a number out of its range here: the bounds are checked below
+            pass
+    all_bounds = {**BOUNDS, **(bounds or {})}
+    unbounded = [n for n in names if n not in all_bounds]
+    if unbounded:
+        raise ValueError(f"no search bounds for {', '.join(unbounded)}; give them, e.g. "
+                         f"bounds={{{unbounded[0]!r}: (low, high)}} (--param {unbounded[0]}=LOW:HIGH), in SI units")
+    box = {n: all_bounds[n] for n in names}
+    for n, (low, high) in box.items():
+        if not 0 < low < high:
+            raise ValueError(f"bounds of {n} must satisfy 0 < low < high, got ({low}, {high})")
+        validate(preset, {n: low})
+        validate(preset, {n: high})
+    overlap = [n for n in names if n in fixed]
+    if overlap:
+        raise ValueError(f"{', '.join(overlap)} cannot be both fitted and fixed")
+    validate(preset, fixed)
+    return box
+
+
 def tune(
     cases: Sequence[Case],
     *,
@@ -183,22 +229,8 @@ def tune(
         raise ValueError(f"unknown optimiser {optimiser!r}: use one of {', '.join(OPTIMISERS)}")
     if max_evaluations < 1:
         raise ValueError(f"max_evaluations must be >= 1, got {max_evaluations}")
-    names = tuple(names or default_parameters(preset))
-    all_bounds = {**BOUNDS, **(bounds or {})}
-    unknown = [n for n in names if n not in all_bounds]
-    if unknown:
-        raise ValueError(f"no search bounds for {', '.join(unknown)}; give bounds={{name: (low, high)}}")
-    box = {n: all_bounds[n] for n in names}
-    for n, (low, high) in box.items():
-        if not 0 < low < high:
-            raise ValueError(f"bounds of {n} must satisfy 0 < low < high, got ({low}, {high})")
-        validate(preset, {n: low})
-        validate(preset, {n: high})
-    fixed = dict(fixed or {})
-    overlap = [n for n in names if n in fixed]
-    if overlap:
-        raise ValueError(f"{', '.join(overlap)} cannot be both fitted and fixed")
-    validate(preset, fixed)
+    box = search_box(preset, names, bounds, fixed)
+    names, fixed = tuple(box), dict(fixed or {})
     base = preset_params(preset, **fixed)
     # A parameter the preset leaves unset (None) starts in the middle of its bounds.
     given = {n: (start or {}).get(n, base.get(n)) for n in names}

@@ -206,3 +206,38 @@ def test_cli_tune_writes_a_loadable_file(tmp_path: Path, capsys: pytest.CaptureF
     harm = json.loads(capsys.readouterr().out)["harm"]
     assert [h["case"].split(",")[0] for h in harm] == ["perfect gyro", "unbiased noisy gyro"]
 
+
+
+@pytest.mark.parametrize(
+    ("names", "bounds", "fixed", "message"),
+    [
+        (("hdr_gain",), None, None, r"^unknown parameter\(s\) hdr_gain; the pipeline's are bias, "),
+        # a static bias in the fit or held fixed reached Pipeline(..., bias=0.0) twice: a TypeError
+        # "got multiple values for keyword argument 'bias'"
+        (("bias",), {"bias": (1e-4, 1e-2)}, None, r"^bias: the static bias comes from each drive"),
+        (None, None, {"bias": 0.001}, r"^bias: the static bias comes from each drive"),
+        (None, None, {"bias_duration": 10.0}, r"^bias_duration: the static bias comes from each drive"),
+        # a switch or a choice was told to have bounds, and with bounds failed as "0 < low < high"
+        (("nonfinite",), None, None, r"^nonfinite cannot be fitted, it takes no number \(invalid parameter nonfinite"),
+        (("track_rests",), {"track_rests": (0.1, 1.0)}, None, r"^track_rests cannot be fitted, it takes no number"),
+        (("hdr_interval",), None, None,
+         r"^no search bounds for hdr_interval; give them, e.g. bounds=\{'hdr_interval': \(low, high\)\} "
+         r"\(--param hdr_interval=LOW:HIGH\)"),
+        (("hdr_c1",), {"hdr_c1": (2.0, 1.0)}, None, r"^bounds of hdr_c1 must satisfy 0 < low < high"),
+    ],
+)
+def test_what_cannot_be_fitted_or_fixed_is_named_before_any_drive_is_scored(
+    names: tuple[str, ...] | None, bounds: dict[str, tuple[float, float]] | None, fixed: dict[str, float] | None,
+    message: str, cases: list[tune.Case],
+) -> None:
+    with pytest.raises(ValueError, match=message):
+        tune.search_box("hdr", names, bounds, fixed)
+    with pytest.raises(ValueError, match=message):  # tune() checks the same, before its first evaluation
+        tune.tune(cases[:1], preset="hdr", names=names, bounds=bounds, fixed=fixed, max_evaluations=2)
+    assert tune.search_box("hdr", ("hdr_interval",), {"hdr_interval": (0.5, 2.0)}) == {"hdr_interval": (0.5, 2.0)}
+
+
+def test_the_command_line_refuses_a_fixed_bias_before_it_builds_its_drives(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["tune", "--sim-table", "II", "--set", "bias=0.001", "--max-evals", "2", "--no-harm"]) == 2
+    err = capsys.readouterr().err
+    assert "bias: the static bias comes from each drive" in err and "tuning hdr on" not in err, err

@@ -93,8 +93,6 @@ def _parse_params(specs: Sequence[str]) -> tuple[list[str], dict[str, tuple[floa
     bounds: dict[str, tuple[float, float]] = {}
     for spec in specs:
         name, _, rng = spec.partition("=")
-        if name not in parameters():
-            raise ValueError(f"--param {spec}: unknown parameter {name!r}")
         names.append(name)
         if rng:
             bounds[name] = _bounds(spec, rng)
@@ -149,6 +147,8 @@ def run(args: argparse.Namespace) -> int:
         refuse_existing([Path(args.out)], args.overwrite)
     require("scipy.optimize", "tuning")  # before the drives are built
     names, bounds = _parse_params(args.param or [])
+    fixed = _parse_fixed(args.set or [])
+    tune.search_box(args.preset, names or None, bounds, fixed)  # before the drives are built
     progress = (lambda msg: print(msg, file=sys.stderr)) if not args.json else None
     sim_options = {"rate_hz": args.rate_hz, "sensor_name": args.sensor, "time_scale": args.time_scale}
     reading = reading_options(args)
@@ -181,7 +181,7 @@ def run(args: argparse.Namespace) -> int:
     harm_test = harm_drives(first_seed=_HARM_TEST_SEED)
     options: dict[str, Any] = {
         "preset": args.preset, "names": names or None, "bounds": bounds, "harm": harm,
-        "harm_limit_deg": args.harm_limit, "fixed": _parse_fixed(args.set or []),
+        "harm_limit_deg": args.harm_limit, "fixed": fixed,
         "max_evaluations": args.max_evals, "seed": args.seed,
         "optimiser": args.optimiser, "objective": args.objective,
     }
