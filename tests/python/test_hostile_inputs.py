@@ -406,3 +406,14 @@ def test_a_delimiter_given_for_a_file_that_is_no_csv_is_said_once_naming_it(tmp_
     ], proc.stderr
     with pytest.warns(gyrocore.InputWarning, match=r"delimiter '\\t' \(--delimiter\) separates a CSV file's fields"):
         gyrocore.read_log(src, delimiter="\t")
+
+
+def test_out_dash_is_refused_not_made_a_folder(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # `--out -`, standard output on most command lines, made a folder named "-" with the output in it
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    monkeypatch.chdir(tmp_path)
+    proc = run_cli("process", log, "--out", "-")
+    assert proc.returncode == 2
+    assert proc.stderr == ("gyrocore: error: --out -: the headings go to a file (the report goes to standard output): "
+                           "give a .csv or .parquet file, or a folder for several inputs\n")
+    assert not (tmp_path / "-").exists()

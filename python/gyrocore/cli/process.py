@@ -148,6 +148,9 @@ def columns(args: argparse.Namespace) -> tuple[str, ...]:
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.out == "-":  # the Unix spelling of standard output became a folder named "-"
+        raise ValueError("--out -: the headings go to a file (the report goes to standard output): give a .csv "
+                         "or .parquet file, or a folder for several inputs")
     inputs = expand_inputs(args.inputs)
     out = Path(args.out)
     # the files that options name are inputs too: none may become the output (said before that the
