@@ -6,6 +6,7 @@ even when the writer fails or is interrupted (:class:`StagedFile`, :func:`atomic
 
 from __future__ import annotations
 
+import errno
 import os
 import secrets
 from collections.abc import Iterator
@@ -41,6 +42,22 @@ def check_output_folder(path: Path, *, made: bool = False) -> None:
         ancestor = ancestor.parent
     if os.path.lexists(ancestor) and not ancestor.is_dir():
         raise NotADirectoryError(f"{path}: {ancestor} is not a folder; write the output elsewhere")
+
+#: What a write fails with when there is no room for the file: a full disk, a user's quota, a file
+#: larger than the filesystem takes.
+_NO_ROOM = (errno.ENOSPC, errno.EDQUOT, errno.EFBIG)
+
+
+def named_if_no_room(path: Path, error: BaseException) -> BaseException:
+    """``error``, or for a write that found no room for ``path`` (an OSError that names no file:
+    ``[Errno 28] No space left on device``) one that says which output and what to do."""
+    if not (isinstance(error, OSError) and error.errno in _NO_ROOM and error.filename is None):
+        return error
+    named = OSError(f"{path}: {error.strerror} while writing it (the output is not written, and a file of that name "
+                    "is left as it was): free space, or write elsewhere")
+    named.errno = error.errno
+    return named
+
 
 class StagedFile:
     """A temporary file next to ``path`` that becomes ``path`` on :meth:`commit`.
@@ -109,5 +126,7 @@ def atomic_path(path: Path) -> Iterator[Path]:
     try:
         yield staged.tmp
         staged.commit()
+    except OSError as e:
+        raise named_if_no_room(path, e) from None
     finally:
         staged.discard()

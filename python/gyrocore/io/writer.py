@@ -19,7 +19,7 @@ from .. import _gyrocore
 from .._extras import require
 from ..pipeline import HeadingResult
 from ._columns import import_pyarrow_lazy_modules
-from .atomic import StagedFile
+from .atomic import StagedFile, named_if_no_room
 
 if TYPE_CHECKING:
     from .source import GyroSource
@@ -180,5 +180,9 @@ class HeadingWriter:
                 self._sink.close()
             if error is None:
                 self._staged.commit()
+        except OSError as e:  # closing flushes the last rows: a full disk shows here too
+            raise named_if_no_room(self.path, e) from None
         finally:
             self._staged.discard()
+        if error is not None and (named := named_if_no_room(self.path, error)) is not error:
+            raise named from None

@@ -1,0 +1,76 @@
+"""A disk that fills while an output is written: the error names the output and what to do (it was
+"[Errno 28] No space left on device" alone), no partial or temporary file is left, and a file of
+that name stays as it was."""
+
+from __future__ import annotations
+
+import errno
+import io
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+import gyrocore.io.writer
+from gyrocore.batch import process_file
+from gyrocore.cli import main
+from gyrocore.io import atomic_path
+
+from .test_batch import leftovers, synthetic_csv
+
+FULL = "No space left on device while writing it (the output is not written, and a file of that name is left as it was): free space, or write elsewhere"
+
+
+class _FillingFile(io.RawIOBase):
+    """A file that takes the header and then finds the disk full."""
+
+    def __init__(self, room: int) -> None:
+        self.room = room
+
+    def writable(self) -> bool:
+        return True
+
+    def write(self, data: Any) -> int:
+        if len(data) > self.room:
+            raise OSError(errno.ENOSPC, "No space left on device")
+        self.room -= len(data)
+        return len(data)
+
+
+@pytest.fixture
+def full_disk(monkeypatch: pytest.MonkeyPatch) -> None:
+    real_open = open
+
+    def filling_open(path: Any, mode: str = "r", *args: Any, **kwargs: Any) -> Any:
+        if "w" in mode:
+            real_open(path, mode).close()  # the temporary file is there, as on a real disk
+            return _FillingFile(room=64)
+        return real_open(path, mode, *args, **kwargs)
+
+    monkeypatch.setattr(gyrocore.io.writer, "open", filling_open, raising=False)
+
+
+@pytest.mark.usefixtures("full_disk")
+def test_a_full_disk_names_the_output_and_keeps_the_file_there(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    src = synthetic_csv(tmp_path / "log.csv", 3000)
+    out = tmp_path / "heading.csv"
+    out.write_text("previous output\n")
+    with pytest.raises(OSError, match="^" + str(out) + ": " + FULL.replace("(", r"\(").replace(")", r"\)") + "$") as e:
+        process_file(src, out, preset="raw")
+    assert e.value.errno == errno.ENOSPC
+    assert out.read_text() == "previous output\n" and not leftovers(tmp_path)
+    assert main(["process", str(src), "--out", str(out), "--overwrite"]) == 2
+    assert capsys.readouterr().err == f"gyrocore: error: {out}: {FULL}\n"
+    assert out.read_text() == "previous output\n" and not leftovers(tmp_path)
+
+
+def test_a_full_disk_under_atomic_path_names_the_output(tmp_path: Path) -> None:
+    out = tmp_path / "calibration.json"
+    with pytest.raises(OSError, match=f"^{out}: Disk quota exceeded while writing it .*: free space, or write elsewhere$") as e:
+        with atomic_path(out) as tmp:
+            tmp.write_text("{")
+            raise OSError(errno.EDQUOT, "Disk quota exceeded")
+    assert e.value.errno == errno.EDQUOT and not out.exists() and not leftovers(tmp_path)
+    with pytest.raises(OSError, match=r"^\[Errno 5\] Input/output error$"):  # any other error is as it was
+        with atomic_path(out):
+            raise OSError(errno.EIO, "Input/output error")
