@@ -27,6 +27,7 @@ from .batch_inputs import check_outside_inputs, complete_output, expand_inputs, 
 from .batch_job import BatchReport, FileReport, Progress, _FileJob, split_options
 from .batch_run import _run_on_dask, _run_on_threads
 from .io._paths import unfollowable
+from .io.atomic import make_folder
 
 __all__ = [
     "BatchReport", "FileReport", "Progress", "check_outside_inputs", "complete_output", "expand_inputs", "output_paths",
@@ -167,7 +168,7 @@ def process_many(
     Pipeline(preset, **(pipeline_overrides if has_bias_source(overrides) else {**pipeline_overrides, "bias": 0.0}))
     outputs = output_paths(inputs, Path(out_dir), fmt)
     check_out_dir(Path(out_dir))
-    Path(out_dir).mkdir(parents=True, exist_ok=True)
+    make_folder(Path(out_dir))
     jobs_list = [
         _FileJob(p, o, preset, heading, chunk_rows, options, columns, mode, use_speed, skip_existing)
         for p, o in zip(inputs, outputs)

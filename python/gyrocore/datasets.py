@@ -28,7 +28,7 @@ import numpy as np
 
 from . import __version__, sim
 from ._arrays import FloatArray
-from .io.atomic import atomic_path
+from .io.atomic import atomic_path, make_folder
 from .io.log import Log
 
 #: What :func:`sample_drive` simulates: ``gyrocore.sim.car_drive(**SAMPLE)``. Downtown streets, the
@@ -83,7 +83,7 @@ def write_sample(folder: str | Path = "sample_drive") -> Path:
     if taken:
         raise FileExistsError(f"{path}: already holds {', '.join(taken)}; give another folder (nothing was written)")
     gyro, reference, odometry, meta = _sample()
-    path.mkdir(parents=True, exist_ok=True)
+    make_folder(path)
     texts = [_csv(columns) for columns in (gyro, reference, odometry)] + [json.dumps(meta, indent=2) + "\n"]
     written: list[Path] = []
     try:

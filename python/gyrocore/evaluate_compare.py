@@ -22,6 +22,7 @@ from ._extras import pyplot
 from .batch_job import failed_line
 from .evaluate_metrics import HeadingErrors, Reference, heading_errors, improvement
 from .io import Log, read_log
+from .io.atomic import make_folder
 from .pipeline import HeadingResult, has_bias_source, process, recommended_preset, uses_static_bias
 from .wholelog import Rest, check_mode, check_parameters, rest_lines
 
@@ -313,7 +314,7 @@ def plot_log(path: Path, log: Log, results: Mapping[str, HeadingResult]) -> None
     ax2.axhline(0.0, color="k", lw=0.5)
     ax1.legend(fontsize=8, ncol=2)
     fig.tight_layout()
-    path.parent.mkdir(parents=True, exist_ok=True)
+    make_folder(path.parent)
     write_atomically(path, lambda tmp: fig.savefig(tmp, format="png", dpi=100))
     plt.close(fig)
 

@@ -29,6 +29,24 @@ def output_folder_missing(path: Path) -> str:
     return f"{path}: the folder {parent} does not exist; create it or write elsewhere"
 
 
+def cannot_write_in(path: Path, why: str | None) -> str:
+    """Why the output ``path`` cannot be written in its folder (named, not the hidden temporary file's)."""
+    return f"{path}: cannot write in {path.parent} ({why}); write the output elsewhere"
+
+
+def make_folder(path: Path) -> None:
+    """Make the output folder ``path`` (and its parents) if it is missing; an error that names it
+    and what to do where it cannot be made (a read-only filesystem, no permission, a full disk)."""
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except FileExistsError:  # a file in the way: the caller's check names it, before any work
+        raise NotADirectoryError(f"{path}: a file, where the output folder goes; write the output elsewhere") from None
+    except OSError as e:
+        if e.errno not in (errno.EROFS, errno.EACCES, errno.EPERM, *_NO_ROOM):
+            raise
+        raise PermissionError(f"{path}: cannot make the output folder ({e.strerror}); write the output elsewhere") from None
+
+
 def check_output_folder(path: Path, *, made: bool = False) -> None:
     """Refuse, before any work, an output whose folder is missing or is no folder (it was found
     only when the output was written, after the work, or after a report had been printed). Where
@@ -36,6 +54,8 @@ def check_output_folder(path: Path, *, made: bool = False) -> None:
     if not made:
         if not path.parent.is_dir():
             raise FileNotFoundError(output_folder_missing(path))
+        if not os.access(path.parent, os.W_OK):  # a read-only filesystem too (EROFS), even for root
+            raise PermissionError(cannot_write_in(path, "no permission to write there, or a read-only filesystem"))
         return
     ancestor = path.parent
     while not os.path.lexists(ancestor) and ancestor != ancestor.parent:
@@ -84,7 +104,12 @@ class StagedFile:
                 raise FileNotFoundError(output_folder_missing(path)) from None
             except PermissionError as e:
                 _live.discard(tmp)
-                raise PermissionError(f"{path}: cannot write in {path.parent} ({e.strerror})") from None
+                raise PermissionError(cannot_write_in(path, e.strerror)) from None
+            except OSError as e:
+                _live.discard(tmp)
+                if e.errno != errno.EROFS:
+                    raise
+                raise PermissionError(cannot_write_in(path, e.strerror)) from None
             self.tmp = tmp
             return
         raise FileExistsError(f"{path.parent}: cannot create a temporary file for {path.name}")

@@ -30,6 +30,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Callable
 
+from ..io.atomic import make_folder
 from ._report import Row, _Report, format_table
 from .fog import FogRotaryTable, FogSquarePath, fog_rotary_table, fog_square_path
 from .hdr import DriveResult, HdrFigures, HdrTables, hdr_figures, hdr_tables
@@ -92,7 +93,7 @@ def reproduce(name: str, *, out_dir: str | Path | None = ".") -> _Report:
     result = run()
     print(result.table())
     if out_dir is not None:
-        Path(out_dir).mkdir(parents=True, exist_ok=True)
+        make_folder(Path(out_dir))
         path = result.plot(Path(out_dir) / figure)
         if path is not None:
             print(f"wrote {path}")

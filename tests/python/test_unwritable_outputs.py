@@ -1,6 +1,8 @@
-"""A disk that fills while an output is written: the error names the output and what to do (it was
-"[Errno 28] No space left on device" alone), no partial or temporary file is left, and a file of
-that name stays as it was."""
+"""Outputs that cannot be written: a disk that fills while an output is written, a read-only
+filesystem. The error names the output and what to do (it was "[Errno 28] No space left on device"
+alone, or "[Errno 30] Read-only file system" naming the hidden temporary file), no partial or
+temporary file is left, and a file of that name stays as it was. (Checked by hand on a 64 kB and a
+read-only tmpfs; here the operating system's answers are stood in for.)"""
 
 from __future__ import annotations
 
@@ -11,10 +13,12 @@ from typing import Any
 
 import pytest
 
+import gyrocore.io.atomic
 import gyrocore.io.writer
 from gyrocore.batch import process_file
 from gyrocore.cli import main
-from gyrocore.io import atomic_path
+from gyrocore.io import StagedFile, atomic_path
+from gyrocore.io.atomic import make_folder
 
 from .test_batch import leftovers, synthetic_csv
 
@@ -74,3 +78,30 @@ def test_a_full_disk_under_atomic_path_names_the_output(tmp_path: Path) -> None:
     with pytest.raises(OSError, match=r"^\[Errno 5\] Input/output error$"):  # any other error is as it was
         with atomic_path(out):
             raise OSError(errno.EIO, "Input/output error")
+
+
+def test_a_read_only_filesystem_names_the_output_not_the_temporary_file(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    src = synthetic_csv(tmp_path / "log.csv", 3000)
+    out = tmp_path / "heading.csv"
+
+    def read_only(*args: Any, **kwargs: Any) -> Any:
+        raise OSError(errno.EROFS, "Read-only file system", str(args[0]))
+
+    with monkeypatch.context() as m:  # the temporary file cannot be made
+        m.setattr(gyrocore.io.atomic.os, "open", read_only)
+        with pytest.raises(PermissionError, match=f"^{out}: cannot write in {tmp_path} \\(Read-only file system\\); "
+                           "write the output elsewhere$"):
+            StagedFile(out)
+    with monkeypatch.context() as m:  # the output folder cannot be made
+        m.setattr(Path, "mkdir", read_only)
+        with pytest.raises(PermissionError, match=f"^{tmp_path / 'new'}: cannot make the output folder \\(Read-only "
+                           "file system\\); write the output elsewhere$"):
+            make_folder(tmp_path / "new")
+    with monkeypatch.context() as m:  # the folder is there but cannot be written: said before any work
+        m.setattr(gyrocore.io.atomic.os, "access", lambda path, mode: False)
+        assert main(["process", str(src), "--out", str(out)]) == 2
+    assert capsys.readouterr().err == (f"gyrocore: error: {out}: cannot write in {tmp_path} (no permission to write "
+                                       "there, or a read-only filesystem); write the output elsewhere\n")
+    assert not out.exists() and not leftovers(tmp_path)
