@@ -39,8 +39,8 @@ from ._common import (
 )
 
 _EPILOG = """
-IN is a CSV, Parquet, .npy or .npz file, a ROS 1 .bag or ROS 2 bag folder, a log folder, a
-folder of those, or a glob; give several. OUT ending in .csv or .parquet is one output file (one
+IN is a CSV (or tab-separated .tsv), Parquet, .npy or .npz file, a ROS 1 .bag or ROS 2 bag
+folder, a log folder, a folder of those, or a glob; give several. OUT ending in .csv or .parquet is one output file (one
 input); otherwise a folder that receives <name>.csv (or --format parquet) per input, processed in
 parallel (--jobs, or a Dask cluster with --scheduler). An output that exists already is refused
 before any work unless --overwrite is given, or, in an output folder, --skip-existing (which skips
