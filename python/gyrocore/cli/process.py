@@ -40,12 +40,13 @@ from ._common import (
 
 _EPILOG = """
 IN is a CSV (or tab-separated .tsv), Parquet, .npy or .npz file, a ROS 1 .bag or ROS 2 bag
-folder, a log folder, a folder of those, or a glob; give several. OUT ending in .csv or .parquet is one output file (one
-input); otherwise a folder that receives <name>.csv (or --format parquet) per input, processed in
-parallel (--jobs, or a Dask cluster with --scheduler). An output that exists already is refused
-before any work unless --overwrite is given, or, in an output folder, --skip-existing (which skips
-its input: outputs are written whole or not at all). Exit code 0: all done; 1: some files
-failed (listed with their reason); 2: bad usage or input (one line); 130: interrupted.
+folder, a log folder, a folder of those, or a glob; give several. OUT ending in .csv or .parquet
+is one output file (one input); otherwise a folder that receives <name>.csv (or --format
+parquet) per input, processed in parallel (--jobs, or a Dask cluster with --scheduler). An
+output that exists already is refused before any work unless --overwrite is given, or, in an
+output folder, --skip-existing (which skips its input: outputs are written whole or not at all).
+Exit code 0: all done; 1: some files failed (listed with their reason); 2: bad usage or input
+(one line); 130: interrupted.
 """
 
 
