@@ -203,3 +203,8 @@ def test_a_csv_not_in_utf8_names_the_line_and_byte(tmp_path: Path) -> None:
     reference.write_bytes(b"# r\xe9f\xe9rence\nt,heading [\xb0]\n0,1\n")
     with pytest.raises(ValueError, match=rf"^{re.escape(str(reference))}: line 2: not UTF-8 \(byte 0xb0 at byte offset 23 "):
         gyrocore.io.read_reference_file(reference)
+    # in a sample's value, the byte was shown as U+FFFD in "is not a number", with no word of why
+    gyro.write_bytes(b"t,gyro_z\n0,0.1\n0.01,0.1\xb0\n0.02,0.1\n")
+    with pytest.raises(ValueError, match=r"line 3, column 2 \(gyro_z\): '0.1\ufffd' is not a number \(bytes that are not "
+                       r"UTF-8: save the file as UTF-8, e\.g\. iconv"):
+        gyrocore.read_log(gyro)

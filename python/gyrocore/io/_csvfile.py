@@ -232,6 +232,16 @@ def _line_offset(path: Path, lines: int) -> int:
         return f.tell()
 
 
+def _why_not_a_number(value: str) -> str:
+    """A hint for a value that is no number, where its form says why: a decimal comma, or bytes
+    that are not UTF-8 (read as U+FFFD)."""
+    if "\ufffd" in value:
+        return " (bytes that are not UTF-8: save the file as UTF-8, e.g. iconv -f latin1 -t utf-8 old.csv > new.csv)"
+    if "," in value and _is_number(value.replace(",", ".", 1)):
+        return " (a decimal comma: write numbers with a decimal point)"
+    return ""
+
+
 def _csv_error(
     path: Path,
     error: Exception,
@@ -266,9 +276,7 @@ def _csv_error(
                 if fields[pos] and not value:
                     return f"{where}: blank value {fields[pos]!r} (leave it empty for a missing value)"
                 if value and not _is_number(value):
-                    comma = _is_number(value.replace(",", ".", 1)) and "," in value
-                    hint = " (a decimal comma: write numbers with a decimal point)" if comma else ""
-                    return f"{where}: {value!r} is not a number{hint}"
+                    return f"{where}: {value!r} is not a number{_why_not_a_number(value)}"
                 if not fields[pos] and name in required:
                     return f"{where}: empty {required[name]}"
     return f"{path}: after line {first_line}: {error}"
