@@ -39,21 +39,6 @@ def test_demo_json_rows_beat_raw(capsys: pytest.CaptureFixture[str]) -> None:
     assert info.value.code == 2
 
 
-def test_the_demo_replaces_its_own_plot_and_no_other_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    # the default plot was replaced whatever it was: a user's own gyrocore_demo.png was lost
-    pytest.importorskip("matplotlib")
-    monkeypatch.chdir(tmp_path)
-    mine = tmp_path / "gyrocore_demo.png"
-    mine.write_bytes(b"\x89PNG\r\n\x1a\n a picture of the user's own")
-    assert main(["demo", "--duration", "120", "--drives", "1"]) == 2
-    assert mine.read_bytes() == b"\x89PNG\r\n\x1a\n a picture of the user's own"
-    mine.unlink()
-    assert main(["demo", "--duration", "120", "--drives", "1"]) == 0
-    first = mine.read_bytes()
-    assert main(["demo", "--duration", "120", "--drives", "1", "--seed", "9"]) == 0  # its own: replaced
-    assert mine.read_bytes() != first and mine.read_bytes().startswith(b"\x89PNG")
-
-
 def test_process_writes_csv_with_one_row_per_sample(tmp_path: Path) -> None:
     log = real_log_path("f110_ds3")
     out = tmp_path / "heading.csv"

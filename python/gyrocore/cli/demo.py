@@ -24,9 +24,6 @@ from .simulate import check_car_drive, checked_sensor
 
 #: The demo's own plot: each run replaces the previous run's (a file named with --plot is the user's).
 PLOT = "gyrocore_demo.png"
-#: What the demo writes into its plot's PNG (a tEXt chunk "Software"): the default plot it finds
-#: there is its own from an earlier run, which it replaces; any other file of that name is the user's.
-MARK = "gyrocore demo"
 
 
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
@@ -45,14 +42,14 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
                    help="simulated gyro (default crs03, the HDR paper's)")
     p.add_argument("--mix", choices=sorted(motion.ROAD_MIXES), default="mixed",
                    help="road mix of the drive (default mixed, the HDR paper's Mixed Drive)")
-    p.add_argument("--plot", default=PLOT, help=f"PNG to write ('' for none; default {PLOT}, which a run replaces "
-                   "where an earlier demo wrote it; any other file that exists is refused unless --overwrite)")
+    p.add_argument("--plot", default=PLOT, help=f"PNG to write ('' for none; default {PLOT}, which each run "
+                   "replaces; another file that exists is refused unless --overwrite)")
     add_overwrite_option(p)
     p.add_argument("--json", action="store_true", help="print the table as JSON")
 
 
 def run(args: argparse.Namespace) -> int:
-    if args.plot and not (Path(args.plot) == Path(PLOT) and _demo_plot(Path(PLOT))):
+    if args.plot and Path(args.plot) != Path(PLOT):
         refuse_existing([Path(args.plot)], args.overwrite)
     check_car_drive(checked_sensor(args.sensor, args.rate_hz), args.duration)
     drives = [
@@ -120,27 +117,6 @@ def _why_recommended(rows: list[dict[str, Any]]) -> str:
     )
 
 
-def _demo_plot(path: Path) -> bool:
-    """Whether ``path`` is missing or a plot an earlier demo wrote (a PNG whose tEXt chunk
-    "Software" is :data:`MARK`): the PNG's chunks read up to its image data, no image library."""
-    try:
-        with open(path, "rb") as f:
-            if f.read(8) != b"\x89PNG\r\n\x1a\n":
-                return False
-            while (head := f.read(8)) and len(head) == 8:
-                size, kind = int.from_bytes(head[:4], "big"), head[4:]
-                if kind == b"IDAT":  # matplotlib writes its text before the image
-                    return False
-                data = f.read(size + 4)[:size]  # and the chunk's CRC
-                if kind == b"tEXt" and data == b"Software\0" + MARK.encode():
-                    return True
-    except FileNotFoundError:
-        return True
-    except OSError:  # unreadable, or a folder: the user's, and refuse_existing names it
-        return False
-    return False
-
-
 def _plot_demo(path: Path, drive: sim.Drive, results: dict[str, HeadingResult], title: str) -> None:
     try:
         plt = pyplot("the demo's plot")
@@ -162,6 +138,6 @@ def _plot_demo(path: Path, drive: sim.Drive, results: dict[str, HeadingResult], 
     ax1.legend(fontsize=8)
     ax1.set_title(title)
     fig.tight_layout()
-    write_atomically(path, lambda tmp: fig.savefig(tmp, format="png", dpi=100, metadata={"Software": MARK}))
+    write_atomically(path, lambda tmp: fig.savefig(tmp, format="png", dpi=100))
     plt.close(fig)
     print(f"wrote {path}")
