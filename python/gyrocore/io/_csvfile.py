@@ -336,7 +336,7 @@ def csv_chunks(src: GyroSource, rows: int, columns: tuple[str, ...]) -> Iterator
     o = src.options
     path = src.data_path
     block = min(CSV_BLOCK_BYTES, max(4096, rows * _bytes_per_line(path)))
-    layout = csv_layout(path, src.delimiter)
+    layout = src.csv_table()  # read as the file was opened
     required = {o.time: "timestamp"}
     blocks = _read_csv(path, layout, (o.time, *columns), delimiter=src.delimiter, block_bytes=block, required=required)
     for first, cols, done in blocks:

@@ -19,6 +19,9 @@ from .. import _signals
 #: exists, so an interrupt at any moment (even between creating the file and the caller's
 #: ``try``) leaves it known to :func:`discard_all`.
 _live: set[Path] = set()
+#: What a write fails with when there is no room for the file: a full disk, a user's quota, a file
+#: larger than the filesystem takes.
+_NO_ROOM = (errno.ENOSPC, errno.EDQUOT, errno.EFBIG)
 
 
 def output_folder_missing(path: Path) -> str:
@@ -63,10 +66,6 @@ def check_output_folder(path: Path, *, made: bool = False) -> None:
     if os.path.lexists(ancestor) and not ancestor.is_dir():
         raise NotADirectoryError(f"{path}: {ancestor} is not a folder; write the output elsewhere")
 
-#: What a write fails with when there is no room for the file: a full disk, a user's quota, a file
-#: larger than the filesystem takes.
-_NO_ROOM = (errno.ENOSPC, errno.EDQUOT, errno.EFBIG)
-
 
 def named_if_no_room(path: Path, error: BaseException) -> BaseException:
     """``error``, or for a write that found no room for ``path`` (an OSError that names no file:
@@ -102,12 +101,9 @@ class StagedFile:
             except (FileNotFoundError, NotADirectoryError):  # named after the output, not the hidden file
                 _live.discard(tmp)
                 raise FileNotFoundError(output_folder_missing(path)) from None
-            except PermissionError as e:
-                _live.discard(tmp)
-                raise PermissionError(cannot_write_in(path, e.strerror)) from None
             except OSError as e:
                 _live.discard(tmp)
-                if e.errno != errno.EROFS:
+                if not isinstance(e, PermissionError) and e.errno != errno.EROFS:
                     raise
                 raise PermissionError(cannot_write_in(path, e.strerror)) from None
             self.tmp = tmp

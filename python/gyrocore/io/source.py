@@ -21,7 +21,7 @@ from .._gyrocore import SampleError
 from ..window import Window
 from ._axes import MEASURED, measure_up, parse_up, project, three_names
 from ._columns import concat, import_pyarrow_lazy_modules
-from ._csvfile import csv_chunks, csv_layout
+from ._csvfile import CsvLayout, csv_chunks, csv_layout
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta
 from ._npyfile import npy_chunks, npy_header, npz_chunks
 from ._parquetfile import parquet_chunks, parquet_file, warn_given_time_unit
@@ -189,7 +189,8 @@ class GyroSource:
         progress_total: size of the input in :attr:`progress_unit`, or None if unknown.
         progress_unit: ``B`` (bytes of a CSV file) or ``rows``.
         meta: a log folder's meta.json.
-        header_lines: a CSV file's lines before its first sample (comment lines and the header).
+        layout: a CSV file's (a log folder's gyro.csv's) header and the lines before its first
+            sample, as read when it was opened; None for another input.
     """
 
     path: Path
@@ -200,12 +201,16 @@ class GyroSource:
     progress_total: int | None = None
     progress_unit: str = "rows"
     meta: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
-    header_lines: int = 1
+    layout: CsvLayout | None = field(default=None, repr=False, compare=False)
 
     @property
     def delimiter(self) -> str:
         """The CSV delimiter of :attr:`data_path` (:func:`csv_delimiter`)."""
         return csv_delimiter(self.data_path, self.options)
+
+    def csv_table(self) -> CsvLayout:
+        """:attr:`layout`, or for a source built without it, the file's layout read now."""
+        return self.layout if self.layout is not None else csv_layout(self.data_path, self.delimiter)
 
     @property
     def name(self) -> str:
@@ -215,7 +220,7 @@ class GyroSource:
     def where(self, row: int) -> str:
         """Where sample ``row`` (0-based) is in the file, in the file's own terms."""
         if self.kind in ("csv", "log folder"):
-            return f"line {row + self.header_lines + 1}"
+            return f"line {self.csv_table().line(row)}"
         if self.kind == "bag":
             return f"message {row} on {self.options.topic}"
         return f"row {row}"
@@ -259,7 +264,7 @@ class GyroSource:
         empty value NaN), read in one pass; none for another input (another format, or a log
         folder: its tables are files of their own)."""
         if self.kind == "csv":
-            header = csv_layout(self.data_path, self.delimiter).header
+            header = self.csv_table().header
         elif self.kind == "parquet":
             header = parquet_file(self.data_path).schema_arrow.names
         else:
@@ -364,8 +369,7 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
             meta, stationary = read_meta(p)
             layout = csv_layout(data, csv_delimiter(data, options))
             options = header_options(data, layout.header, options)
-            return GyroSource(p, "log folder", data, options, stationary, data.stat().st_size, "B", meta,
-                              layout.header_lines)
+            return GyroSource(p, "log folder", data, options, stationary, data.stat().st_size, "B", meta, layout)
         if is_bag_folder(p):
             return _open_bag(p, header_options(p, None, options))
         raise ValueError(f"{p}: not a log folder (no gyro.csv) nor a ROS 2 bag (no metadata.yaml)")
@@ -376,8 +380,7 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
     if suffix in (".csv", ".tsv"):
         layout = csv_layout(p, csv_delimiter(p, options))
         options = header_options(p, layout.header, options)
-        return GyroSource(p, "csv", p, options, progress_total=p.stat().st_size, progress_unit="B",
-                          header_lines=layout.header_lines)
+        return GyroSource(p, "csv", p, options, progress_total=p.stat().st_size, progress_unit="B", layout=layout)
     if suffix in (".parquet", ".pq"):
         pf = parquet_file(p)
         warn_given_time_unit(p, pf, options.time, options.time_unit)
