@@ -116,7 +116,7 @@ def _run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[File
     Client, dask_completed = distributed.Client, distributed.as_completed
     own = not isinstance(client, Client)
     if own:
-        client = Client(client)
+        client = _connect(Client, client)
     reports: dict[int, FileReport] = {}
     try:
         # The workers' files check it at every chunk, as the threads' files check theirs: a task
@@ -145,6 +145,21 @@ def _run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[File
         if own:
             client.close()
     return [reports[i] for i in range(len(jobs))]
+
+
+def _connect(Client: Any, address: Any) -> Any:
+    """A client of the scheduler at ``address``; an address Dask cannot read, or a scheduler it
+    cannot reach, is an error that says which and what to check (Dask's own words named neither
+    the option nor the address's form, and the dashboard's http:// address is a common mistake)."""
+    form = "the scheduler's address as `dask scheduler` prints it (tcp://host:8786; the dashboard's http://host:8787 is another)"
+    try:
+        return Client(address)
+    except ValueError as e:
+        raise ValueError(f"scheduler address {address!r}: {e}; give {form}") from e
+    except OSError as e:
+        raise ConnectionError(f"no Dask scheduler answered at {address!r}: {e}; check that it runs and that this machine "
+                              f"reaches it, and that {address!r} is {form}; without a scheduler the files run on "
+                              "this machine's cores") from e
 
 
 #: How long an interrupted batch waits for the cluster's running files to stop [s].

@@ -281,6 +281,25 @@ def test_batch_on_a_dask_cluster(fleet: list[Path], tmp_path: Path) -> None:
     assert read_table(tmp_path / "again" / "drive0.csv").equals(read_table(tmp_path / "out" / "drive0.csv"))
 
 
+@pytest.mark.parametrize("address, said", [
+    ("http://127.0.0.1:8787", "scheduler address 'http://127.0.0.1:8787': unknown address scheme 'http'"),
+    ("127.0.0.1", "scheduler address '127.0.0.1': missing port number"),
+    ("tcp://127.0.0.1:9", "no Dask scheduler answered at 'tcp://127.0.0.1:9'"),
+])
+def test_a_scheduler_that_cannot_be_reached_is_named_with_what_to_check(fleet: list[Path], tmp_path: Path,
+                                                                        address: str, said: str) -> None:
+    # Dask's own "Timed out trying to connect" named neither the option nor the address's form.
+    # A command of its own: a client that failed to start leaves Dask's event loop unusable for
+    # the next one in the same process.
+    pytest.importorskip("dask.distributed")
+    env = {**os.environ, "DASK_DISTRIBUTED__COMM__TIMEOUTS__CONNECT": "1s"}
+    run = subprocess.run([sys.executable, "-m", "gyrocore", "process", str(fleet[0]), "--scheduler", address,
+                          "--out", str(tmp_path / "out"), "--bias-duration", "10"],
+                         capture_output=True, text=True, env=env, timeout=120)
+    assert run.returncode == 2 and said in run.stderr and "tcp://host:8786" in run.stderr, run.stderr
+    assert not (tmp_path / "out").exists() or leftovers(tmp_path / "out") == []
+
+
 def test_an_interrupted_batch_stops_the_files_running_on_the_cluster(tmp_path: Path,
                                                                      monkeypatch: pytest.MonkeyPatch) -> None:
     # Cancelling a future does not stop a task a worker already runs: the long file went on and
