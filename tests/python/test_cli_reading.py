@@ -92,6 +92,25 @@ def test_a_missing_column_error_says_a_name_may_leave_out_its_unit(tmp_path: Pat
     message = one_error(gyrocore_cli("allan", euroc(tmp_path / "data.csv", broad), code=2))
     assert "missing column(s) t, gyro_z; it has #timestamp [ns], w_RS_S_x [rad s^-1]" in message
     assert "a name may leave out its unit, e.g. timestamp" in message
+    assert message.endswith("; --time-col timestamp --rate-col w_RS_S_z look like them)")
+
+
+@pytest.mark.parametrize("header, hint, reads", [
+    (["timestamp", "gx", "gy", "gz"], "--time-col timestamp --rate-col gz look like them", True),
+    (["time_ns", "yaw_rate_dps"], "--time-col time --rate-col yaw_rate look like them", True),
+    (["time", "gyro_z"], "--time-col time looks like it", True),
+    (["t", "omega_z [deg/s]"], "--rate-col omega_z looks like it", True),
+    (["stamp", "wx", "wz", "gz"], "--time-col stamp looks like it", False),  # two yaw rates: no guess
+    (["a", "b"], None, False),
+])
+def test_a_missing_default_column_names_the_option_of_the_one_that_looks_like_it(
+        tmp_path: Path, header: list[str], hint: str | None, reads: bool) -> None:
+    src = write_csv(tmp_path / "imu.csv", header, [np.arange(3.0) * 0.01] + [np.full(3, 0.5)] * (len(header) - 1))
+    message = one_error(gyrocore_cli("process", src, "--out", tmp_path / "h.csv", code=2))
+    assert message.endswith(f"; {hint})") if hint else "look like" not in message and "looks like" not in message
+    if reads:  # following the hint reads the file
+        options = hint.rpartition(" look")[0].split()
+        gyrocore_cli("process", src, *options, "--out", tmp_path / "h.csv", "--preset", "raw", code=0)
 
 
 def test_unit_suffixes_t_ms_and_gyro_z_dps_are_read_by_the_default_columns(tmp_path: Path, broad: gyrocore.Log) -> None:

@@ -4,6 +4,7 @@ arrays, and pyarrow's lazy import done where an interrupt is not lost."""
 from __future__ import annotations
 
 import functools
+import re
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -41,6 +42,8 @@ def column_positions(
             arg = "tab" if found[0] == "\t" else repr(found[0])
             short = (f"; the header line is one field, with {shown} in it: give the file's delimiter "
                      f"(delimiter={found[0]!r}, --delimiter {arg})")
+        if choose == CHOOSE_COLUMNS:
+            short += _look_like(header, missing)
         raise ValueError(
             f"{path}: missing column(s) {', '.join(missing)}; it has {', '.join(map(str, header))} "
             f"({choose}{short})"
@@ -49,6 +52,35 @@ def column_positions(
     if twice:
         raise ValueError(f"{path}: {where}column(s) {', '.join(twice)} appear more than once")
     return {c: header.index(c) for c in columns}
+
+
+#: Header names (lower case, letters and digits only) that say "time" and "yaw rate" in the words
+#: loggers use: an IMU's ``timestamp``, ``time_ns``, ``gz``, ``wz``, EuRoC's ``w_RS_S_z``, ``yaw_rate``.
+_LIKE = {
+    "t": re.compile(r".*(time|stamp).*|ts|sec|secs|seconds"),
+    "gyro_z": re.compile(r"(gyr|gyro|gyroscope|g|w|omega|angular|angvel|angularvelocity|rot)[a-z0-9]*z|.*yawrate.*"),
+}
+_OPTION = {"t": "--time-col", "gyro_z": "--rate-col"}
+
+
+def _look_like(header: list[str], missing: list[str]) -> str:
+    """The options that name the one column of ``header`` that looks like each missing default
+    column (a time, a yaw rate), as a hint; empty where none or several do."""
+    said = []
+    for column in missing:
+        if column not in _LIKE:
+            continue
+        bases = {split_unit(str(h))[0] for h in header}
+        like = sorted(b for b in bases if _LIKE[column].fullmatch(re.sub(r"[^a-z0-9]", "", b.lower())))
+        if len(like) == 1:
+            name = like[0]
+            said.append(f"{_OPTION[column]} {_quoted(name)}")
+    return f"; {' '.join(said)} look{'s' if len(said) == 1 else ''} like {'it' if len(said) == 1 else 'them'}" if said else ""
+
+
+def _quoted(name: str) -> str:
+    """``name`` as typed on a command line: quoted where the shell would split or read it."""
+    return name if re.fullmatch(r"[\w.+-]+", name) else repr(name)
 
 
 def first_null(array: pa.Array) -> int | None:
