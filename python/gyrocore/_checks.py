@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import contextlib
+import difflib
 import math
 import numbers
 import os
@@ -10,7 +11,7 @@ import sys
 import threading
 import types
 import warnings
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 
 import numpy as np
 
@@ -252,3 +253,29 @@ def require_series(t_name: str, t: FloatArray, name: str, values: FloatArray, *,
     require_finite(t_name, t, context=context)
     require_finite(name, values, context=context)
     require_increasing(t_name, t, context=context)
+
+
+def require_choice(what: str, value: object, choices: Iterable[str]) -> None:
+    """Refuse ``value`` unless it is one of ``choices``: ``unknown <what> 'x' (did you mean
+    'y'?); choose one of ...``, the one form of every such error."""
+    names = tuple(choices)
+    if value not in names:
+        raise ValueError(f"unknown {what} {value!r}{did_you_mean(value, names)}; choose one of {', '.join(names)}")
+
+
+def did_you_mean(value: object, choices: Iterable[str]) -> str:
+    """`` (did you mean 'x'?)`` for the one of ``choices`` that ``value`` is a likely typo or another
+    case of (``recomended``, ``HDR``, ``lowpas_tau``), to follow the name in an error; empty when
+    none is close. Every "unknown name" error of the package says it the same way, also the
+    extension's (which calls this)."""
+    if not isinstance(value, str):
+        return ""
+    lowered = {c.lower(): c for c in choices}
+    def closeness(choice: str) -> float:
+        return difflib.SequenceMatcher(None, value.lower(), choice).ratio()
+
+    ranked = sorted(((closeness(c), c) for c in lowered), reverse=True)
+    if not ranked or ranked[0][0] < 0.75 or (len(ranked) > 1 and ranked[1][0] == ranked[0][0]):
+        return ""  # nothing close, or two as close (hdr_c: hdr_c1 or hdr_c2?)
+    best = lowered[ranked[0][1]]
+    return f" (did you mean {best!r}?)" if best != value else ""

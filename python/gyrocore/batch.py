@@ -21,6 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from . import io, wholelog
+from ._checks import require_choice
 from .pipeline import Pipeline, has_bias_source
 from .pipeline_params import _to_si
 from .batch_inputs import check_outside_inputs, complete_output, expand_inputs, output_paths
@@ -153,8 +154,7 @@ def process_many(
         raise ValueError(f"jobs must be >= 1, got {jobs}")
     if chunk_rows < 1:
         raise ValueError(f"chunk_rows must be >= 1, got {chunk_rows}")
-    if heading not in io.HEADING_CONVENTIONS:
-        raise ValueError(f"heading convention {heading!r} is not one of {', '.join(io.HEADING_CONVENTIONS)}")
+    require_choice("heading convention", heading, io.HEADING_CONVENTIONS)
     io.check_columns(columns)
     wholelog.check_mode(mode)
     _, overrides = split_options(options)

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._checks import check_number, check_seed
+from ._checks import check_number, check_seed, require_choice
 from .motion_model import _DEG, Motion, _Track, check_duration, check_positive
 
 
@@ -136,8 +136,7 @@ def car(duration: float, *, mix: str = "mixed", seed: int = 0, rest: float = 20.
     rest = check_number("rest", rest, strict=False, unit=" [s]")
     check_number("swerve_dps", swerve_dps, low=None, unit=" [deg/s]")  # NaN, 1e300: every rate NaN or beyond reading
     seed = check_seed(seed)
-    if mix not in ROAD_MIXES:
-        raise ValueError(f"unknown road mix {mix!r}; choose one of {', '.join(ROAD_MIXES)}")
+    require_choice("road mix", mix, ROAD_MIXES)
     if not 0 <= rest < duration:
         raise ValueError(f"the rest ({rest} s) must be shorter than the drive ({duration} s)")
     rng = np.random.default_rng([seed, 0x5EED])

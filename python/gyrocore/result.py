@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Union
 import numpy as np
 
 from ._arrays import FloatArray
+from ._checks import require_choice
 from .rests import Rest
 
 if TYPE_CHECKING:
@@ -153,7 +154,7 @@ class HeadingResult:
         """The output ``name`` (one of :data:`OUTPUTS`, or ``heading_sigma``); a ``ValueError`` if it
         was not asked for (or, for ``heading_sigma``, there were no fixes), or is no output's name."""
         if name not in (*OUTPUTS, "heading_sigma"):  # "'foo' output was not computed: ask for it" misled
-            raise ValueError(f"no output is named {name!r}: give one of {', '.join(OUTPUTS)}, heading_sigma")
+            require_choice("output", name, (*OUTPUTS, "heading_sigma"))
         value: FloatArray | None = getattr(self, name)
         if value is None and name == "heading_sigma" and self.fusion is None:
             raise ValueError("the 'heading_sigma' output comes with heading fixes, and there were none")

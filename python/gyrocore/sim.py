@@ -32,7 +32,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore, motion
 from ._arrays import FloatArray, as_float_array
-from ._checks import check_number, check_seed, real_number, require_series
+from ._checks import check_number, check_seed, real_number, require_choice, require_series
 
 if TYPE_CHECKING:
     from .fixes import Fixes
@@ -236,10 +236,8 @@ def sensor(name: str | GyroSpec, **changes: Any) -> GyroSpec:
     if isinstance(name, GyroSpec):
         spec = name
     else:
-        try:
-            spec = SENSORS[name]
-        except KeyError:
-            raise ValueError(f"unknown sensor {name!r}; choose one of {', '.join(SENSORS)}") from None
+        require_choice("sensor", name, SENSORS)
+        spec = SENSORS[name]
     return spec.replace(**changes) if changes else spec
 
 

@@ -22,6 +22,7 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
+from ._checks import did_you_mean, require_choice
 from ._extras import require
 from .pipeline import BIAS_SOURCES, parameters, preset_params
 from .pipeline_params import _to_si
@@ -154,7 +155,8 @@ def search_box(
     known, given = parameters(), (*names, *_to_si(fixed))  # a fixed one may be spelled *_dps or *_deg
     unknown = [n for n in given if n not in known]
     if unknown:
-        raise ValueError(f"unknown parameter(s) {', '.join(unknown)}; the pipeline's are {', '.join(known)}")
+        said = ", ".join(f"{n}{did_you_mean(n, known)}" for n in unknown)
+        raise ValueError(f"unknown parameter(s) {said}; the pipeline's are {', '.join(known)}")
     bias = [n for n in given if n in BIAS_SOURCES]
     if bias:
         raise ValueError(f"{', '.join(bias)}: the static bias comes from each drive (its rest window, or a bias "
@@ -223,10 +225,8 @@ def tune(
 
     if not cases:
         raise ValueError("no training drive given")
-    if objective not in OBJECTIVES:
-        raise ValueError(f"unknown objective {objective!r}: use one of {', '.join(OBJECTIVES)}")
-    if optimiser not in OPTIMISERS:
-        raise ValueError(f"unknown optimiser {optimiser!r}: use one of {', '.join(OPTIMISERS)}")
+    require_choice("objective", objective, OBJECTIVES)
+    require_choice("optimiser", optimiser, OPTIMISERS)
     if max_evaluations < 1:
         raise ValueError(f"max_evaluations must be >= 1, got {max_evaluations}")
     box = search_box(preset, names, bounds, fixed)

@@ -11,7 +11,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from ._checks import MAX_READING, real_number
+from ._checks import MAX_READING, real_number, require_choice
 from ._rests import MIN_REST
 
 #: The ways to process a whole log: ``whole`` (bias from every rest, known from the first sample)
@@ -35,8 +35,7 @@ BIAS_SIGMAS = 5.0
 
 def check_mode(mode: str) -> None:
     """Refuse a mode that is not one of :data:`MODES`."""
-    if mode not in MODES:
-        raise ValueError(f"mode must be one of {', '.join(MODES)}, got {mode!r}")
+    require_choice("mode", mode, MODES)
 
 
 def refuse_whole_options(si: dict[str, Any]) -> None:

@@ -100,7 +100,7 @@ def test_a_log_that_ends_at_its_rest_windows_end_needs_its_readings_in_either_mo
 
 def test_an_output_of_no_name_is_named_as_such() -> None:
     result = gyrocore.process(T, RATE, "raw", outputs=("heading",))
-    with pytest.raises(ValueError, match=r"^no output is named 'headings': give one of heading, rate, drift, heading_sigma$"):
+    with pytest.raises(ValueError, match=r"^unknown output 'headings' \(did you mean 'heading'\?\); choose one of heading, rate, drift, heading_sigma$"):
         result.output("headings")
     with pytest.raises(ValueError, match=r"^the 'rate' output was not computed: ask for it in outputs="):
         result.output("rate")

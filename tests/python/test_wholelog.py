@@ -212,7 +212,7 @@ def test_speed_finds_stops_and_drops_steady_driving() -> None:
         gyrocore.process(t, rate, "static_bias", speed=speed, mode="causal")
     with pytest.raises(ValueError, match="whole mode already takes it from every rest of the log"):
         gyrocore.process(t, rate, "static_bias", speed=speed, track_rests=True)
-    with pytest.raises(ValueError, match="mode must be one of whole, causal"):
+    with pytest.raises(ValueError, match="unknown mode .*; choose one of whole, causal"):
         gyrocore.process(t, rate, "static_bias", mode="smooth")
 
 
@@ -316,7 +316,7 @@ def test_batch_is_whole_by_default_and_causal_on_request(tmp_path: Path) -> None
         causal = process_many(logs, preset="static_bias", out_dir=tmp_path / "c", jobs=1, mode="causal")
     assert [len(r.rests) for r in whole.files] == [1, 1] and [len(r.rests) for r in causal.files] == [0, 0]
     assert whole.files[1].rests[0].found_by == "given" and all("(causal)" in (r.bias_source or "") for r in causal.files)
-    with pytest.raises(ValueError, match="mode must be one of whole, causal"):
+    with pytest.raises(ValueError, match="unknown mode .*; choose one of whole, causal"):
         process_many(logs, preset="static_bias", out_dir=tmp_path / "x", mode="offline")
     with pytest.raises(ValueError, match="invalid parameter min_rest = -1"):
         process_many(logs, preset="static_bias", out_dir=tmp_path / "x", min_rest=-1)

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from .._arrays import FloatArray, durations_in_seconds, warn_coarse_times
-from .._checks import warn
+from .._checks import require_choice, warn
 from .._gyrocore import SampleError
 from ..window import Window
 from ._axes import MEASURED, measure_up, parse_up, project, three_names
@@ -109,10 +109,10 @@ class ReadOptions:
                 "up is given (--up) and accel_cols (--accel-cols) would measure it: give one "
                 f"(--up {MEASURED} with --accel-cols measures it)"
             )
-        if self.time_unit is not None and self.time_unit not in TIME_UNITS:
-            raise ValueError(f"time_unit {self.time_unit!r} is not one of {', '.join(TIME_UNITS)}")
-        if self.rate_unit is not None and self.rate_unit not in RATE_UNITS:
-            raise ValueError(f"rate_unit {self.rate_unit!r} is not one of {', '.join(RATE_UNITS)}")
+        if self.time_unit is not None:
+            require_choice("time_unit", self.time_unit, TIME_UNITS)
+        if self.rate_unit is not None:
+            require_choice("rate_unit", self.rate_unit, RATE_UNITS)
         if self.delimiter is not None and len(self.delimiter) != 1:
             raise ValueError(f"delimiter must be one character, got {self.delimiter!r}")
         if self.delimiter in ('"', "\n", "\r"):

@@ -16,6 +16,7 @@ from types import TracebackType
 from typing import TYPE_CHECKING, Any
 
 from .. import _gyrocore
+from .._checks import require_choice
 from .._extras import require
 from ..pipeline import HeadingResult
 from ._columns import import_pyarrow_lazy_modules
@@ -45,12 +46,11 @@ def convert_heading(result: HeadingResult, convention: str = "enu") -> HeadingRe
     continuous (unwrapped); the yaw starts at the pipeline's ``initial_heading`` (default 0, east,
     which is 90 deg as a compass heading).
     """
+    require_choice("heading convention", convention, HEADING_CONVENTIONS)
     if convention == "enu":
         return result
-    if convention == "compass":
-        rate, drift = (None if a is None else -a for a in (result.rate, result.drift))
-        return replace(result, heading=math.pi / 2 - result.heading, rate=rate, drift=drift)
-    raise ValueError(f"heading convention {convention!r} is not one of {', '.join(HEADING_CONVENTIONS)}")
+    rate, drift = (None if a is None else -a for a in (result.rate, result.drift))  # compass: clockwise from north
+    return replace(result, heading=math.pi / 2 - result.heading, rate=rate, drift=drift)
 
 
 def check_columns(columns: Sequence[str], what: str = "columns") -> tuple[str, ...]:
@@ -113,8 +113,7 @@ class HeadingWriter:
         self.path = Path(path)
         self.columns = check_columns(columns)
         self.format = output_format(self.path)
-        if heading not in HEADING_CONVENTIONS:
-            raise ValueError(f"heading convention {heading!r} is not one of {', '.join(HEADING_CONVENTIONS)}")
+        require_choice("heading convention", heading, HEADING_CONVENTIONS)
         self.heading = heading
         self.rows = 0
         self._staged: StagedFile | None = None

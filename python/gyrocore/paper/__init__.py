@@ -30,6 +30,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Callable
 
+from .._checks import require_choice
 from ..io.atomic import make_folder
 from ._report import Row, _Report, format_table
 from .fog import FogRotaryTable, FogSquarePath, fog_rotary_table, fog_square_path
@@ -86,10 +87,8 @@ REPRODUCTIONS: dict[str, tuple[Callable[[], _Report], str]] = {
 def reproduce(name: str, *, out_dir: str | Path | None = ".") -> _Report:
     """Run the reproduction ``name`` (see :data:`REPRODUCTIONS`) with its defaults, print its
     table, and write its figure into ``out_dir`` (created if missing; None: no figure)."""
-    try:
-        run, figure = REPRODUCTIONS[name]
-    except KeyError:
-        raise ValueError(f"unknown reproduction {name!r}; choose one of {', '.join(REPRODUCTIONS)}") from None
+    require_choice("reproduction", name, REPRODUCTIONS)
+    run, figure = REPRODUCTIONS[name]
     result = run()
     print(result.table())
     if out_dir is not None:

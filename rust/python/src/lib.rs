@@ -65,10 +65,25 @@ type RestView = (f64, f64, f64, f64, f64, u64, bool, bool, f64);
 fn build_preset(name: &str) -> PyResult<Preset> {
     Preset::from_name(name).ok_or_else(|| {
         let names: Vec<&str> = Preset::ALL.iter().map(|p| p.name()).collect();
+        let mut choices = names.clone();
+        choices.push("recommended");
         PyValueError::new_err(format!(
-            "unknown preset '{name}'; choose one of {}, recommended",
+            "unknown preset '{name}'{}; choose one of {}, recommended",
+            did_you_mean(name, &choices),
             names.join(", ")
         ))
+    })
+}
+
+/// `" (did you mean 'x'?)"` for a likely typo of one of `choices`, by
+/// `gyrocore._checks.did_you_mean`, so that every unknown name of the package is answered the
+/// same way; empty when none is close (or the package cannot be imported).
+pub(crate) fn did_you_mean(name: &str, choices: &[&str]) -> String {
+    Python::attach(|py| {
+        py.import("gyrocore._checks")
+            .and_then(|m| m.call_method1("did_you_mean", (name, choices.to_vec())))
+            .and_then(|hint| hint.extract::<String>())
+            .unwrap_or_default()
     })
 }
 

@@ -115,7 +115,8 @@ pub const NAMES: &[(&str, &str)] = &[
 fn unknown(name: &str) -> PyErr {
     let valid: Vec<&str> = NAMES.iter().map(|(n, _)| *n).collect();
     PyValueError::new_err(format!(
-        "unknown parameter '{name}'; valid names: {}",
+        "unknown parameter '{name}'{}; valid names: {}",
+        crate::did_you_mean(name, &valid),
         valid.join(", ")
     ))
 }

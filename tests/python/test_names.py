@@ -1,0 +1,38 @@
+"""A name that is not one of its choices (a preset, a parameter, a mode, a sensor, ...) is refused
+in one form, with the choice it is a likely typo of: `unknown preset 'recomended' (did you mean
+'recommended'?); choose one of ...`."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+import pytest
+
+import gyrocore
+from gyrocore import io, sim, tune
+from gyrocore.motion_roads import car
+
+T, RATE = np.arange(3) * 0.01, np.zeros(3)
+
+
+@pytest.mark.parametrize("call, said", [
+    (lambda: gyrocore.Pipeline("recomended"), "unknown preset 'recomended' (did you mean 'recommended'?); choose one of raw,"),
+    (lambda: gyrocore.Pipeline("HDR"), "unknown preset 'HDR' (did you mean 'hdr'?); choose one of"),
+    (lambda: gyrocore.Pipeline("fast"), "unknown preset 'fast'; choose one of"),
+    (lambda: gyrocore.process(T, RATE, "hdr", bias=0.0, lowpas_tau=1.0),
+     "unknown parameter 'lowpas_tau' (did you mean 'lowpass_tau'?); valid names: bias,"),
+    (lambda: gyrocore.Pipeline("hdr", bias=0.0, hdr_c=1.0), "unknown parameter 'hdr_c'; valid names"),  # c1 or c2?
+    (lambda: gyrocore.process(T, RATE, "raw", mode="casual"), "unknown mode 'casual' (did you mean 'causal'?); choose one of whole, causal"),
+    (lambda: sim.sensor("crs3"), "unknown sensor 'crs3' (did you mean 'crs03'?); choose one of"),
+    (lambda: io.ReadOptions(time_unit="sec"), "unknown time_unit 'sec'"),
+    (lambda: io.ReadOptions(rate_unit="deg/S"), "unknown rate_unit 'deg/S' (did you mean 'deg/s'?)"),
+    (lambda: gyrocore.process(T, RATE, "raw").output("headings"), "unknown output 'headings' (did you mean 'heading'?)"),
+    (lambda: io.HeadingWriter("h.csv", heading="compas"), "unknown heading convention 'compas' (did you mean 'compass'?); choose one of enu, compass"),
+    (lambda: car(60.0, mix="downtwn"), "unknown road mix 'downtwn' (did you mean 'downtown'?)"),
+    (lambda: tune.search_box("hdr", ["hdr_incremnt"]), "unknown parameter(s) hdr_incremnt (did you mean 'hdr_increment'?); the pipeline's are"),
+])
+def test_an_unknown_name_is_refused_with_the_choice_it_is_a_typo_of(call: Callable[[], object], said: str) -> None:
+    with pytest.raises(ValueError) as e:
+        call()
+    assert str(e.value).startswith(said), str(e.value)
