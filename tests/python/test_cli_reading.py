@@ -101,6 +101,7 @@ def test_a_missing_column_error_says_a_name_may_leave_out_its_unit(tmp_path: Pat
     (["time", "gyro_z"], "--time-col time looks like it", True),
     (["t", "omega_z [deg/s]"], "--rate-col omega_z looks like it", True),
     (["stamp", "wx", "wz", "gz"], "--time-col stamp looks like it", False),  # two yaw rates: no guess
+    (["T", "GYRO_Z"], "--time-col T --rate-col GYRO_Z look like them", True),
     (["a", "b"], None, False),
 ])
 def test_a_missing_default_column_names_the_option_of_the_one_that_looks_like_it(

@@ -57,7 +57,7 @@ def column_positions(
 #: Header names (lower case, letters and digits only) that say "time" and "yaw rate" in the words
 #: loggers use: an IMU's ``timestamp``, ``time_ns``, ``gz``, ``wz``, EuRoC's ``w_RS_S_z``, ``yaw_rate``.
 _LIKE = {
-    "t": re.compile(r".*(time|stamp).*|ts|sec|secs|seconds"),
+    "t": re.compile(r".*(time|stamp).*|t|ts|sec|secs|seconds"),
     "gyro_z": re.compile(r"(gyr|gyro|gyroscope|g|w|omega|angular|angvel|angularvelocity|rot)[a-z0-9]*z|.*yawrate.*"),
 }
 _OPTION = {"t": "--time-col", "gyro_z": "--rate-col"}
