@@ -26,7 +26,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
-from ._checks import MAX_READING, require_finite, require_increasing, warn
+from ._checks import MAX_READING, require_finite, require_increasing, require_radians, warn
 from .io._csvfile import CsvLayout, csv_layout, read_csv_columns
 from .io._paths import check_file
 from .io.units import HEADER_TIME_UNITS, _normal as normal_unit, split_unit
@@ -40,6 +40,9 @@ if TYPE_CHECKING:
 #: value, and the filter's wrapped innovation would lose its precision (at 2^20 rad a double still
 #: resolves 2e-10 rad).
 MAX_HEADING = MAX_READING
+#: A median fix sigma at or above this [rad] (29 deg) is warned about: more likely degrees than a
+#: fix anyone would give.
+VAGUE_SIGMA = 0.5
 
 #: The filter's settings and their units (defaults: the core's ``FusionConfig::default``).
 SETTINGS = ("arw", "bias_walk", "scale_walk", "initial_heading", "initial_heading_sigma", "initial_bias",
@@ -67,6 +70,9 @@ class Fixes:
             raise ValueError(f"fix {i}: heading = {float(self.heading[i])!r} is beyond +-2^20 rad ({MAX_HEADING:.0f}); "
                              "headings are in rad, counter-clockwise from east (wrapped or continuous): check the "
                              "column and unit")
+        # Degrees read as radians turn the heading 57 times too far, and the outlier gate rejects
+        # fix after fix: the wrap at +-180 (or 0/360) gives them away.
+        require_radians("the fixes' heading", self.t, self.heading)
 
     def __len__(self) -> int:
         return len(self.t)
@@ -80,7 +86,18 @@ class Fixes:
         tt = as_float_array("fix t", t)
         # one number for all is checked like an array (an int becomes float, a bool is refused)
         s = as_float_array("fix sigma", np.full(len(tt), sigma) if np.ndim(sigma) == 0 else sigma)
-        return cls(tt, as_float_array("fix heading", heading), s)
+        return cls(tt, as_float_array("fix heading", heading), s).warn_if_vague()
+
+    def warn_if_vague(self) -> Fixes:
+        """These fixes, after a warning if their median sigma is :data:`VAGUE_SIGMA` or more: given
+        sigmas of a few units are more likely degrees than fixes that vague (the ones
+        :func:`from_positions` computes from short steps may be, and are not checked)."""
+        sigma = float(np.nanmedian(self.sigma)) if len(self.sigma) else 0.0
+        if sigma >= VAGUE_SIGMA:
+            warn(f"the fixes' sigma is {sigma:.6g} rad ({math.degrees(sigma):.3g} deg) at the median: a fix that vague "
+                 "barely moves the heading; sigmas are in rad (if they were written in degrees, convert them with "
+                 "numpy.radians)")
+        return self
 
     @classmethod
     def empty(cls) -> Fixes:
@@ -331,7 +348,7 @@ def read_fixes_csv(path: str | Path) -> Fixes:
     names = _fix_columns(path, layout.header)
     cols = _read_rows(path, tuple(names.values()))
     try:
-        return check_all(Fixes(*(cols[names[c]] for c in FIXES_COLUMNS)))
+        return check_all(Fixes(*(cols[names[c]] for c in FIXES_COLUMNS))).warn_if_vague()
     except ValueError as e:
         raise ValueError(_at_line(path, layout, names, e)) from None
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import pickle
 import re
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -354,3 +355,28 @@ def test_an_initial_heading_beyond_2_pow_20_rad_is_refused_as_the_pipeline_refus
     with pytest.raises(ValueError, match=words):  # the pipeline's own words
         gyrocore.Pipeline("raw", initial_heading=2.0**30)
     assert Fusion(initial_heading=-(2.0**20)).settings()["initial_heading"] == -(2.0**20)
+
+
+def test_fixes_in_degrees_are_refused_by_their_wrap_and_sigmas_in_degrees_warned_about(tmp_path: Path) -> None:
+    # read as radians, a drive's headings in degrees scored 87-105 deg E_psi without a word
+    t, heading, rate = drive(60.0)
+    fixes = gyrocore.sim.gnss_fixes(t, heading, seed=9)
+    wrapped = np.degrees(np.angle(np.exp(1j * fixes.heading)))
+    assert np.ptp(wrapped) > 300  # the drive turns through the wrap at +-180 deg
+    with pytest.raises(ValueError, match=r"the fixes' heading looks like degrees, not radians: it jumps by"):
+        Fixes(fixes.t, wrapped, fixes.sigma)
+    path = tmp_path / "fixes.csv"
+    np.savetxt(path, np.column_stack([fixes.t, wrapped, fixes.sigma]), delimiter=",", header="t,heading,sigma",
+               comments="")
+    with pytest.raises(ValueError, match=r"fixes.csv: the fixes' heading looks like degrees.*numpy.radians"):
+        gyrocore.process(t, rate, "raw", fixes=path)
+    vague = r"the fixes' sigma is 1 rad \(57.3 deg\) at the median"
+    with pytest.warns(gyrocore.InputWarning, match=vague):
+        Fixes.of(fixes.t, fixes.heading, 1.0)
+    np.savetxt(path, np.column_stack([fixes.t, fixes.heading, np.ones(len(fixes))]), delimiter=",",
+               header="t,heading,sigma", comments="")
+    with pytest.warns(gyrocore.InputWarning, match=vague):
+        read_fixes_file(path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        Fixes.of(fixes.t, fixes.heading, math.radians(5.0))  # vague, but plausibly meant
