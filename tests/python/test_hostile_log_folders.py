@@ -38,3 +38,32 @@ def test_a_bad_odometry_sample_is_named_by_its_file_line_and_column(
     where = folder / "odometry.csv"
     with pytest.raises(ValueError, match=f"^{re.escape(f'{where}: {message}')}"):
         gyrocore.read_log(folder)
+
+
+def test_a_meta_json_with_a_byte_order_mark_is_read(tmp_path: Path) -> None:
+    # Windows editors write one; it was "not valid JSON: line 1 column 1: Unexpected UTF-8 BOM"
+    folder = log_folder_with(tmp_path, "meta.json", "")
+    (folder / "meta.json").write_text('{"name": "drive", "stationary": [1700000001, 1700000010]}', encoding="utf-8-sig")
+    log = gyrocore.read_log(folder)
+    assert (log.name, log.stationary) == ("drive", (1700000001.0, 1700000010.0))
+    # a byte that is not UTF-8 is still named at its offset in the file, the mark counted
+    (folder / "meta.json").write_bytes(b'\xef\xbb\xbf{"name": "caf\xe9"}')
+    with pytest.raises(ValueError, match=r"meta.json: not UTF-8 text \(at byte offset 16: invalid continuation byte\)"):
+        gyrocore.read_log(folder)
+
+
+@pytest.mark.parametrize(
+    ("content", "got"),
+    [
+        ("[1, 2]", "an array: [1, 2]"),
+        ("12.5", "a number: 12.5"),
+        ('"drive"', 'a string: "drive"'),
+        ("null", "null"),
+        ("[" + ", ".join(["1000"] * 100) + "]", "an array: [" + "1000, " * 10 + "..."),  # its start
+    ],
+)
+def test_a_meta_json_that_is_no_object_says_what_it_holds(tmp_path: Path, content: str, got: str) -> None:
+    folder = log_folder_with(tmp_path, "meta.json", content)
+    message = f'{folder / "meta.json"}: expected a JSON object ({{"stationary": ..., "name": ...}}), got {got}'
+    with pytest.raises(ValueError, match=f"^{re.escape(message)}$"):
+        gyrocore.read_log(folder)

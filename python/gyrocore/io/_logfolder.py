@@ -18,7 +18,7 @@ import numpy as np
 from .._arrays import FloatArray
 from .._checks import warn
 from ._csvfile import CsvLayout, csv_layout, read_csv_columns
-from ._jsonfile import read_json
+from ._jsonfile import json_kind, read_json
 from ._paths import check_file, has_file
 
 if TYPE_CHECKING:
@@ -171,5 +171,5 @@ def _read_json(path: Path) -> dict[str, Any]:
         return {}
     meta = read_json(path)
     if not isinstance(meta, dict):
-        raise ValueError(f"{path}: expected a JSON object")
+        raise ValueError(f'{path}: expected a JSON object ({{"stationary": ..., "name": ...}}), got {json_kind(meta)}')
     return meta
