@@ -53,8 +53,9 @@ class Method:
         overrides = dict(self.overrides)
         if uses_static_bias(self.preset) and has_bias_source(overrides):
             return log.process(self.preset, mode=mode, use_speed=use_speed, **overrides), "given by the method"
-        if uses_static_bias(self.preset):
-            if log.stationary is not None or bias_duration is not None:
+        # the log's own rest window is Log.process's to apply: its error then names meta.json
+        if uses_static_bias(self.preset) and log.stationary is None:
+            if bias_duration is not None:
                 overrides.update(log_bias(log, bias_duration=bias_duration)[0])
             elif mode == "causal":
                 # said here rather than warned by the pipeline: a bias of 0 is the causal baseline
@@ -245,10 +246,12 @@ def compare(
 
 def named_error(log: Log, error: ValueError) -> ValueError:
     """``error``, raised on ``log``, naming the log once: by its path where it was read from one
-    (the log's own checks name it ``log NAME``, and names repeat), else as ``log NAME``."""
+    (the log's own checks name it ``log NAME``, and names repeat), else as ``log NAME``; an error
+    that names a file of the log's folder (``drive/meta.json``) names the log already."""
     text = str(error).removeprefix(f"log {log.name}: ")
     label = log.path if log.path is not None else f"log {log.name}"
-    return ValueError(text if text.startswith(f"{label}: ") else f"{label}: {text}")
+    named = text.startswith(f"{label}: ") or (log.path is not None and text.startswith(f"{os.path.join(log.path, '')}"))
+    return ValueError(text if named else f"{label}: {text}")
 
 
 @dataclass(frozen=True)

@@ -11,6 +11,7 @@ import pytest
 
 import gyrocore
 
+from .test_errors_named import run_cli
 from .test_hostile_inputs import log_folder_with
 
 #: Odometry samples inside the synthetic drive of :func:`log_folder_with` (1.7e9 s on, 30 s).
@@ -67,3 +68,26 @@ def test_a_meta_json_that_is_no_object_says_what_it_holds(tmp_path: Path, conten
     message = f'{folder / "meta.json"}: expected a JSON object ({{"stationary": ..., "name": ...}}), got {got}'
     with pytest.raises(ValueError, match=f"^{re.escape(message)}$"):
         gyrocore.read_log(folder)
+
+
+#: A reference over the whole synthetic drive of :func:`log_folder_with`.
+REFERENCE = "t,heading\n" + "".join(f"{1700000000 + i},0\n" for i in range(31))
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_a_rest_window_outside_the_log_names_meta_json_as_its_source(tmp_path: Path, mode: str) -> None:
+    # a window in another time base ([0, 1e12] for a log in epoch seconds) was blamed on the log
+    # alone in evaluate ("drive: the bias window ..."), and named meta.json only at its end in process
+    folder = log_folder_with(tmp_path, "reference.csv", REFERENCE)
+    (folder / "meta.json").write_text('{"stationary": [0, 1e12]}')
+    message = (f"{folder / 'meta.json'} (stationary): the bias window [0.0, 1000000000000.0] s starts before the "
+               "first sample (t[0] = 1700000000")
+    with pytest.raises(gyrocore.RestWindowError, match=f"^{re.escape(message)}"):
+        gyrocore.read_log(folder).process("static_bias", mode=mode)
+    with pytest.raises(ValueError, match=f"^{re.escape(message)}"):
+        gyrocore.evaluate.compare([folder], ["static_bias"], mode=mode)
+    causal = ("--causal",) if mode == "causal" else ()
+    for args in (("evaluate", folder, "--preset", "static_bias"), ("process", folder, "--out", tmp_path / "h.csv")):
+        proc = run_cli(*args, *causal)
+        assert proc.returncode == 2 and proc.stderr.startswith(f"gyrocore: error: {message}"), proc.stderr
+        assert "give a rest window inside the log, in its own time base" in proc.stderr

@@ -144,6 +144,13 @@ def _not_finite(path: Path, layout: CsvLayout, columns: dict[str, FloatArray], n
     return f"{path}: line {layout.line(int(bad[0]))}, column {layout.header.index(name) + 1} ({name}): {what}"
 
 
+def from_stationary(folder: str | Path, error: Exception) -> str:
+    """``error``, about the rest window of the log folder ``folder``, naming its source first:
+    its ``meta.json``'s ``stationary`` (a window in another time base, e.g. [0, 1e12] for a log in
+    epoch seconds, was blamed on the log alone)."""
+    return f"{Path(folder) / META_JSON} (stationary): {error}"
+
+
 def _rest_window(path: Path, window: Any) -> tuple[float, float] | None:
     """meta.json's ``stationary``: ``[t0, t1]`` [s] or null."""
     if window is None:
