@@ -5,11 +5,14 @@ the log said so."""
 from __future__ import annotations
 
 import re
+import warnings
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import gyrocore
+from gyrocore import deadreckon
 
 from .test_errors_named import run_cli
 from .test_hostile_inputs import log_folder_with
@@ -91,3 +94,32 @@ def test_a_rest_window_outside_the_log_names_meta_json_as_its_source(tmp_path: P
         proc = run_cli(*args, *causal)
         assert proc.returncode == 2 and proc.stderr.startswith(f"gyrocore: error: {message}"), proc.stderr
         assert "give a rest window inside the log, in its own time base" in proc.stderr
+
+
+def test_a_reference_over_part_of_the_log_warns_naming_both_spans(tmp_path: Path) -> None:
+    # it was scored over the overlap alone, and the table showed those scores as the log's
+    part = "t,heading\n" + "".join(f"{1700000000 + i},0\n" for i in range(5))  # 4 s of a 30 s drive
+    folder = log_folder_with(tmp_path, "reference.csv", part)
+    message = re.escape(f"{folder / 'reference.csv'}: the reference covers 4 s of the log's 30 s (13.3 %): it runs from "
+                        "t = 1700000000.000 to 1700000004.000 s, the gyro from t = 1700000000.00") + r"\d to 1700000029\.99\d s"
+    with pytest.warns(gyrocore.InputWarning, match=f"^{message}"):
+        gyrocore.evaluate.compare([folder], ["raw"])
+    proc = run_cli("evaluate", folder, "--preset", "raw")
+    assert proc.returncode == 0, proc.stderr
+    # named once: by its file, not by the folder again before it
+    assert re.match(f"gyrocore: warning: {message}.*; only that part is scored\n", proc.stderr), proc.stderr
+    # over half of the log: scored without a word
+    (folder / "reference.csv").write_text(REFERENCE.splitlines()[0] + "\n" + "\n".join(REFERENCE.splitlines()[1:17]) + "\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", gyrocore.InputWarning)
+        gyrocore.evaluate.compare([folder], ["raw"])
+
+
+def test_positions_apart_in_time_name_both_spans() -> None:
+    # "the reference has fewer than two samples inside the track's time span" said neither span
+    track = deadreckon.dead_reckon(np.array([0.0, 10.0]), np.array([1.0, 1.0]), np.array([0.0, 10.0]), np.zeros(2))
+    with pytest.raises(ValueError, match=re.escape(
+        "the reference has fewer than two samples inside the track's time span: the reference runs from "
+        "t = 1700000000.000 to 1700000010.000 s, the track from t = 0.000 to 10.000 s; give both on the same clock"
+    )):
+        deadreckon.position_errors(track, [1.7e9, 1.7e9 + 10], [0.0, 1.0], [0.0, 0.0])
