@@ -54,6 +54,11 @@ def test_a_meta_json_with_a_byte_order_mark_is_read(tmp_path: Path) -> None:
     (folder / "meta.json").write_bytes(b'\xef\xbb\xbf{"name": "caf\xe9"}')
     with pytest.raises(ValueError, match=r"meta.json: not UTF-8 text \(at byte offset 16: invalid continuation byte\)"):
         gyrocore.read_log(folder)
+    # every JSON file is read so: a parameter file too
+    params = tmp_path / "params.json"
+    gyrocore.tune.ParameterSet("mine", "hdr", {"hdr_c2": 0.5}).write(params)
+    params.write_bytes(b"\xef\xbb\xbf" + params.read_bytes())
+    assert gyrocore.tune.ParameterSet.read(params).overrides == {"hdr_c2": 0.5}
 
 
 @pytest.mark.parametrize(
