@@ -106,7 +106,8 @@ def test_a_reference_over_part_of_the_log_warns_naming_both_spans(tmp_path: Path
     part = "t,heading\n" + "".join(f"{1700000000 + i},0\n" for i in range(5))  # 4 s of a 30 s drive
     folder = log_folder_with(tmp_path, "reference.csv", part)
     message = re.escape(f"{folder / 'reference.csv'}: the reference covers 4 s of the log's 30 s (13.3 %): it runs from "
-                        "t = 1700000000.000 to 1700000004.000 s, the gyro from t = 1700000000.00") + r"\d to 1700000029\.99\d s"
+                        "t = 1700000000.000 to 1700000004.000 s, the gyro from t = 1700000000.00")
+    message += r"\d to 1700000029\.99\d s"  # the synthetic drive's times jitter by up to 1 ms
     with pytest.warns(gyrocore.InputWarning, match=f"^{message}"):
         gyrocore.evaluate.compare([folder], ["raw"])
     proc = run_cli("evaluate", folder, "--preset", "raw")
