@@ -117,3 +117,27 @@ def as_window(name: str, window: object) -> tuple[float, float]:
     if not (math.isfinite(start) and math.isfinite(end) and end > start):
         raise ValueError(f"{name} ({start}, {end}) must be finite with end > start")
     return start, end
+
+
+def covered_share(t: FloatArray, other: FloatArray) -> float:
+    """The share of the span of the times ``t`` (first to last, increasing) that the span of the
+    times ``other`` covers: 1 when it holds all of it, 0 when the two do not overlap, when
+    ``other`` is empty, or when ``t`` has no span (a series in another clock or unit shows as a
+    small share, which no error reveals where the overlap is scored alone)."""
+    if len(t) < 2 or len(other) == 0 or not t[-1] > t[0]:
+        return 0.0
+    first, last = float(t[0]), float(t[-1])
+    overlap = min(last, float(other[-1])) - max(first, float(other[0]))
+    return max(overlap, 0.0) / (last - first)
+
+
+def span_text(t: FloatArray) -> str:
+    """The span of the times ``t`` for a message: ``t = 1700000000.000 to 1700000030.000 s``."""
+    return f"t = {t[0]:.3f} to {t[-1]:.3f} s" if len(t) else "no sample"
+
+
+def too_few_inside(name: str, t: FloatArray, other: str, t_other: FloatArray) -> str:
+    """The error for the series ``name`` at the times ``t`` with fewer than two samples inside the
+    span of ``other`` (times ``t_other``): both spans, so that a clock or unit apart shows."""
+    return (f"{name} has fewer than two samples inside {other}'s time span: {name} runs from {span_text(t)}, "
+            f"{other} from {span_text(t_other)}; give both on the same clock")

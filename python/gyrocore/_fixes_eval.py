@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 
 from .evaluate import Failed, Method, Reference
+from .evaluate_compare import warn_partial_reference
 from .fixes import Fixes
 from .io import Log
 from .pipeline import process
@@ -150,6 +151,7 @@ def score_with_fixes(log: Log, methods: Sequence[Method], fixes: Fixes, label: s
                      window: tuple[float, float] | None, **run: Any) -> list[FixScore]:
     """Every method on ``log`` with ``fixes`` (``run``: :meth:`Method.run`'s keywords)."""
     reference = Reference(*log.reference())
+    warn_partial_reference(log)
     tr_raw, err_raw, _ = reference.compared(log.t, process(log.t, log.rate, "raw").heading)
     raw = float(np.degrees(np.abs(err_raw)).mean())
     with_fixes = replace(log, fixes=fixes)

@@ -18,7 +18,7 @@ from ._checks import collected, first_infinite, warn
 from ._gyrocore import SampleError
 from .batch_inputs import complete_output
 from .io._columns import concat
-from .io._logfolder import FIXES_CSV, read_odometry
+from .io._logfolder import FIXES_CSV, from_stationary, read_odometry
 from .io._paths import error_text, one_line
 from .pipeline import RestWindowError, has_bias_source, uses_static_bias
 from .pipeline_params import _to_si, unmeasured_bias
@@ -368,14 +368,14 @@ def _first_time(source: io.GyroSource) -> float:
 
 
 def _in_file(source: io.GyroSource, error: ValueError, window_from_meta: bool) -> ValueError:
-    """The pipeline's error about a file, naming it (unless a reader did) and meta.json where
+    """The pipeline's error about a file, naming it (unless a reader did), or meta.json where
     the rest window is its."""
-    meta = window_from_meta and isinstance(error, RestWindowError)
-    where = f" (the rest window is the stationary of {source.path / 'meta.json'})" if meta else ""
+    if window_from_meta and isinstance(error, RestWindowError):
+        return ValueError(from_stationary(source.path, error))
     text = str(error)
     # named already: by the data file, or by another file of its log folder (odometry.csv)
     named = str(source.data_path) in text or (source.path.is_dir() and text.startswith(f"{source.path}{os.sep}"))
-    return ValueError(f"{text if named else f'{source.data_path}: {text}'}{where}")
+    return ValueError(text if named else f"{source.data_path}: {text}")
 
 
 def _repairs(report: Mapping[str, float]) -> list[str]:

@@ -16,7 +16,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._arrays import FloatArray, as_float_array
+from ._arrays import FloatArray, as_float_array, too_few_inside
 from ._checks import check_number, require_finite, require_series
 from .io import Log
 from .pipeline import HeadingResult
@@ -153,7 +153,7 @@ def position_errors(track: Track, t_ref: ArrayLike, x_ref: ArrayLike, y_ref: Arr
     require_finite("y_ref", yr, context="reference")
     inside = (tr >= track.t[0]) & (tr <= track.t[-1])
     if inside.sum() < 2:
-        raise ValueError("the reference has fewer than two samples inside the track's time span")
+        raise ValueError(too_few_inside("the reference", tr, "the track", track.t))
     tr, xr, yr = tr[inside], xr[inside], yr[inside]
     err = np.hypot(np.interp(tr, track.t, track.x) - xr, np.interp(tr, track.t, track.y) - yr)
     distance = float(np.hypot(np.diff(xr), np.diff(yr)).sum())

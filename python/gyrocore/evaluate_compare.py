@@ -16,12 +16,13 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import deadreckon
-from ._arrays import as_float_array
+from ._arrays import as_float_array, covered_share, span_text
 from ._checks import check_number, require_finite, require_flag, warn
 from ._extras import pyplot
 from .batch_job import failed_line
 from .evaluate_metrics import HeadingErrors, Reference, heading_errors, improvement
 from .io import Log, read_log
+from .io._logfolder import REFERENCE_CSV
 from .io.atomic import make_folder
 from .pipeline import HeadingResult, has_bias_source, process, recommended_preset, uses_static_bias
 from .wholelog import Rest, check_mode, check_parameters, rest_lines
@@ -53,8 +54,9 @@ class Method:
         overrides = dict(self.overrides)
         if uses_static_bias(self.preset) and has_bias_source(overrides):
             return log.process(self.preset, mode=mode, use_speed=use_speed, **overrides), "given by the method"
-        if uses_static_bias(self.preset):
-            if log.stationary is not None or bias_duration is not None:
+        # the log's own rest window is Log.process's to apply: its error then names meta.json
+        if uses_static_bias(self.preset) and log.stationary is None:
+            if bias_duration is not None:
                 overrides.update(log_bias(log, bias_duration=bias_duration)[0])
             elif mode == "causal":
                 # said here rather than warned by the pipeline: a bias of 0 is the causal baseline
@@ -158,6 +160,33 @@ def score(log: Log, method: Method, result: HeadingResult, raw: HeadingErrors, b
     )
 
 
+#: A reference that covers less than this share of the log's time span: its scores are of that
+#: part alone, which a warning says (a reference.csv cut short, or partly in another clock).
+MIN_REFERENCE_SHARE = 0.5
+
+
+def warn_partial_reference(log: Log) -> None:
+    """Warn when the reference of ``log`` covers less than :data:`MIN_REFERENCE_SHARE` of its
+    gyro's time span, naming both spans and the reference's file: the table shows the scores of
+    the overlap as the log's. A reference with no overlap is left to the error of scoring it."""
+    t_ref, _ = log.reference()
+    share = covered_share(log.t, t_ref)
+    if 0 < share < MIN_REFERENCE_SHARE:
+        warn(
+            f"{_reference_source(log)}: the reference covers {share * log.duration:.3g} s of the log's "
+            f"{log.duration:.3g} s ({100 * share:.3g} %): it runs from {span_text(t_ref)}, the gyro from "
+            f"{span_text(log.t)}; only that part is scored"
+        )
+
+
+def _reference_source(log: Log) -> str:
+    """Where the reference of ``log`` was read: a log folder's reference.csv, the log's own file
+    (its heading_true column), or ``log NAME`` for a log built in memory."""
+    if log.path is None:
+        return f"log {log.name}"
+    return str(Path(log.path) / REFERENCE_CSV) if Path(log.path).is_dir() else log.path
+
+
 def _odometry_overlaps(log: Log, result: HeadingResult) -> bool:
     """Whether two odometry samples lie inside the heading's span (dead reckoning needs them); if
     not, a warning: the log is scored without its track, as ``gyrocore process`` finds its rests
@@ -229,6 +258,7 @@ def compare(
         log = item if isinstance(item, Log) else read_log(item)
         try:
             reference = log.reference()  # before any work
+            warn_partial_reference(log)
             raw_result = process(log.t, log.rate, "raw")
             raw = heading_errors(raw_result.t, raw_result.heading, *reference)
             results = {}
@@ -244,11 +274,18 @@ def compare(
 
 
 def named_error(log: Log, error: ValueError) -> ValueError:
-    """``error``, raised on ``log``, naming the log once: by its path where it was read from one
-    (the log's own checks name it ``log NAME``, and names repeat), else as ``log NAME``."""
-    text = str(error).removeprefix(f"log {log.name}: ")
+    """``error``, raised on ``log``, naming the log once (:func:`naming_log`)."""
+    return ValueError(naming_log(log, str(error)))
+
+
+def naming_log(log: Log, text: str) -> str:
+    """An error or warning about ``log`` that names it once: by its path where it was read from
+    one (the log's own checks name it ``log NAME``, and names repeat), else as ``log NAME``; a
+    text that names a file of the log's folder (``drive/meta.json``) names the log already."""
+    text = text.removeprefix(f"log {log.name}: ")
     label = log.path if log.path is not None else f"log {log.name}"
-    return ValueError(text if text.startswith(f"{label}: ") else f"{label}: {text}")
+    named = text.startswith(f"{label}: ") or (log.path is not None and text.startswith(os.path.join(log.path, "")))
+    return text if named else f"{label}: {text}"
 
 
 @dataclass(frozen=True)

@@ -14,7 +14,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._arrays import FloatArray, as_float_array
+from ._arrays import FloatArray, as_float_array, too_few_inside
 from ._checks import check_number, require_finite, require_flag, require_increasing, require_radians, require_series
 
 #: An interval longer than this many times the median interval is a gap (a logger or tracking
@@ -146,11 +146,7 @@ class Reference:
             inside &= ~(est_gaps[k] & (self.t > te[k]) & (self.t < te[np.minimum(k + 1, len(te) - 1)]))
         idx = np.flatnonzero(inside)
         if len(idx) < 2:
-            raise ValueError(
-                "the reference has fewer than two samples inside the heading's time span: the reference runs "
-                f"from t = {self.t[0]:.3f} to {self.t[-1]:.3f} s, the heading from t = {te[0]:.3f} to {te[-1]:.3f} s; "
-                "give both on the same clock"
-            )
+            raise ValueError(too_few_inside("the reference", self.t, "the heading", te))
         tr, ref, seg = self.t[idx], self.heading[idx].copy(), self.segment[idx]
         est = np.interp(tr, te, est_all)
         # Consecutive compared samples not adjacent in the reference skipped an estimate gap.

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._arrays import FloatArray, as_float_array
+from ._arrays import FloatArray, as_float_array, covered_share
 from ._checks import MAX_READING, check_number, require_finite, require_series, warn
 
 
@@ -159,8 +159,7 @@ def _warn_overlap(t: FloatArray, ts: FloatArray, where: str) -> None:
     if len(t) < 2 or not (np.isfinite(t[0]) and np.isfinite(t[-1]) and t[-1] > t[0]):
         return  # no span to overlap (the pipeline names bad times)
     first, last = float(t[0]), float(t[-1])
-    lo, hi = (max(first, float(ts[0])), min(last, float(ts[-1]))) if len(ts) else (0.0, 0.0)
-    share = max(hi - lo, 0.0) / (last - first)
+    share = covered_share(t, ts)
     inside = int(np.count_nonzero((ts >= first) & (ts <= last)))
     if share >= MIN_OVERLAP and inside >= 2:
         return

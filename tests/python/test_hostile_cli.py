@@ -207,7 +207,7 @@ def test_an_odometry_error_names_the_odometry_file_once(tmp_path: Path) -> None:
     folder = log_folder_with(tmp_path, "odometry.csv", "t,speed\n1700000000,0\n1700000010,nan\n")
     proc = run_cli("process", folder, "--out", tmp_path / "h.csv")
     assert proc.returncode == 2
-    assert proc.stderr.startswith(f"gyrocore: error: {folder / 'odometry.csv'}: speed[1] is nan"), proc.stderr
+    assert proc.stderr.startswith(f"gyrocore: error: {folder / 'odometry.csv'}: line 3, column 2 (speed): nan; "), proc.stderr
 
 
 @pytest.mark.parametrize("second", ["1700000000.5", "1700000010.5"])  # back in time; repeated

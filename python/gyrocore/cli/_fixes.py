@@ -16,6 +16,7 @@ from .. import io
 from .._checks import InputWarning
 from .._fixes_eval import FixScore, SimFixes, format_fix_scores, score_with_fixes
 from ..evaluate import Failed, Method, named_error
+from ..evaluate_compare import naming_log
 from ..fixes import Fixes, read_fixes_file
 from ..io import Log, read_log
 from ..io._logfolder import FIXES_CSV
@@ -70,7 +71,7 @@ def evaluate_with_fixes(args: argparse.Namespace, logs: Sequence[Log | Failed], 
         except ValueError as e:
             raise named_error(log, e) from None
         for message in messages:
-            warn(f"{log.path}: {message}")
+            warn(naming_log(log, message))
         return rows
 
     rows = each_log(logs, score, alone=len(logs) == 1)

@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 
 from ..evaluate import Method, Score, compare, format_bias_sources, format_table, plot_path
+from ..evaluate_compare import naming_log
 from ..io import Log, check_not_input, read_log
 from ..pipeline import preset_names
 from ..tune import ParameterSet
@@ -112,7 +113,7 @@ def run(args: argparse.Namespace) -> int:
                            plot_dir=args.plot_dir, mode="causal" if args.causal else "whole",
                            use_speed=not args.no_speed)
         for message in messages:
-            warn(f"{log.path}: {message}")
+            warn(naming_log(log, message))
         return rows
 
     rows = each_log(logs, score, alone=alone)

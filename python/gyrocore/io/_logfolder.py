@@ -18,7 +18,7 @@ import numpy as np
 from .._arrays import FloatArray
 from .._checks import warn
 from ._csvfile import CsvLayout, csv_layout, read_csv_columns
-from ._jsonfile import read_json
+from ._jsonfile import json_kind, read_json
 from ._paths import check_file, has_file
 
 if TYPE_CHECKING:
@@ -63,8 +63,14 @@ def read_reference(folder: Path) -> dict[str, FloatArray]:
 
 
 def read_odometry(folder: Path) -> dict[str, FloatArray]:
-    """Columns t and speed of ``odometry.csv``; empty without the file."""
-    return _read_table(folder / ODOMETRY_CSV, ("t", "speed"))
+    """Columns t and speed of ``odometry.csv``; empty without the file. A t or speed that is not
+    finite, or a time that does not come after the one before it, is an error naming its line."""
+    path = folder / ODOMETRY_CSV
+    if not has_file(path):
+        return {}
+    odometry = read_csv_columns(path, ("t", "speed"))
+    _require_samples(path, csv_layout(path, ","), odometry, ("t", "speed"), "the odometry")
+    return odometry
 
 
 def read_fixes(folder: Path) -> Fixes | None:
@@ -98,25 +104,33 @@ def read_reference_file(path: Path) -> dict[str, FloatArray]:
     """
     check_file(path)
     layout = csv_layout(path, ",")
-    header = layout.header
-    track = ("x", "y") if has_track(str(path), header) else ()
+    track = ("x", "y") if has_track(str(path), layout.header) else ()
     ref = read_csv_columns(path, ("t", "heading", *track), optional=track)
-    for name in ("t", "heading"):
-        where = _not_finite(path, layout, ref, name, "nan")
-        if where is not None:
-            raise ValueError(f"{where}; a reference's t and heading must be finite numbers: fill it in or drop the line")
-    back = np.flatnonzero(np.diff(ref["t"]) <= 0)
-    if len(back):  # the scores named only an index, and the log rather than this file
-        k = int(back[0]) + 1
-        raise ValueError(f"{path}: line {layout.line(k)}, column {header.index('t') + 1} (t): {ref['t'][k]:.17g} does not come "
-                         f"after {ref['t'][k - 1]:.17g} on line {layout.line(k - 1)}; a reference's times must strictly increase: "
-                         "sort the file and drop repeated times")
+    _require_samples(path, layout, ref, ("t", "heading"), "a reference")
     for name in track:
         where = _not_finite(path, layout, ref, name, "empty or nan")  # an empty position is read as NaN
         if where is not None:
             warn(f"{where}; the reference's positions are left out (its heading is still used)")
             return {"t": ref["t"], "heading": ref["heading"]}
     return ref
+
+
+def _require_samples(path: Path, layout: CsvLayout, table: dict[str, FloatArray], names: tuple[str, ...], what: str) -> None:
+    """Refuse a value of the columns ``names`` of the CSV file ``path`` that is not finite, and a
+    time ``t`` that does not come after the one before it, naming the file, line and column
+    (``what`` is whose samples they are: "a reference"). Checked later, on the arrays, the error
+    named only an index (``speed[3] is nan``), and the log rather than this file."""
+    for name in names:
+        where = _not_finite(path, layout, table, name, "nan")
+        if where is not None:
+            raise ValueError(f"{where}; {what}'s {' and '.join(names)} must be finite numbers: fill it in or drop the line")
+    t = table["t"]
+    back = np.flatnonzero(np.diff(t) <= 0)
+    if len(back):
+        k = int(back[0]) + 1
+        raise ValueError(f"{path}: line {layout.line(k)}, column {layout.header.index('t') + 1} (t): {t[k]:.17g} does not come "
+                         f"after {t[k - 1]:.17g} on line {layout.line(k - 1)}; {what}'s times must strictly increase: "
+                         "sort the file and drop repeated times")
 
 
 def _not_finite(path: Path, layout: CsvLayout, columns: dict[str, FloatArray], name: str, nan: str) -> str | None:
@@ -130,8 +144,11 @@ def _not_finite(path: Path, layout: CsvLayout, columns: dict[str, FloatArray], n
     return f"{path}: line {layout.line(int(bad[0]))}, column {layout.header.index(name) + 1} ({name}): {what}"
 
 
-def _read_table(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:
-    return read_csv_columns(path, columns) if has_file(path) else {}
+def from_stationary(folder: str | Path, error: Exception) -> str:
+    """``error``, about the rest window of the log folder ``folder``, naming its source first:
+    its ``meta.json``'s ``stationary`` (a window in another time base, e.g. [0, 1e12] for a log in
+    epoch seconds, was blamed on the log alone)."""
+    return f"{Path(folder) / META_JSON} (stationary): {error}"
 
 
 def _rest_window(path: Path, window: Any) -> tuple[float, float] | None:
@@ -161,5 +178,5 @@ def _read_json(path: Path) -> dict[str, Any]:
         return {}
     meta = read_json(path)
     if not isinstance(meta, dict):
-        raise ValueError(f"{path}: expected a JSON object")
+        raise ValueError(f'{path}: expected a JSON object ({{"stationary": ..., "name": ...}}), got {json_kind(meta)}')
     return meta

@@ -25,7 +25,7 @@ from ..pipeline import (
 from ..rests import speed_on
 from ..wholelog import WHOLE_OPTIONS
 from ._columns import concat
-from ._logfolder import has_track, read_fixes, read_odometry, read_reference
+from ._logfolder import from_stationary, has_track, read_fixes, read_odometry, read_reference
 from .source import SPEED_COLUMN, GyroSource, open_source
 from .units import UnitCheck
 
@@ -148,7 +148,8 @@ class Log:
                 **speed, **overrides,
             )
         except RestWindowError as e:
-            raise RestWindowError(f"log {self.name}: {e} (the rest window is the stationary of its meta.json)") from None
+            where = f"log {self.name}: {e} (the rest window is the log's stationary)"
+            raise RestWindowError(where if self.path is None else from_stationary(self.path, e)) from None
 
 
 def _tracks_rests(preset: str, overrides: dict[str, Any]) -> bool:

@@ -1,0 +1,131 @@
+"""A log folder's files under hostile input: each bad value named by its file, line and column,
+each file's source named where its value is refused, and a reference that scores only part of
+the log said so."""
+
+from __future__ import annotations
+
+import re
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import gyrocore
+from gyrocore import deadreckon
+
+from .test_errors_named import run_cli
+from .test_hostile_inputs import log_folder_with
+
+#: Odometry samples inside the synthetic drive of :func:`log_folder_with` (1.7e9 s on, 30 s).
+ODOMETRY = ["1700000000.5,0", "1700000010.5,1", "1700000020.5,2"]
+
+
+@pytest.mark.parametrize(
+    ("line", "value", "message"),
+    [
+        (3, "1700000010.5,nan", "line 3, column 2 (speed): nan; the odometry's t and speed must be finite numbers"),
+        (4, "inf,2", "line 4, column 1 (t): inf; the odometry's t and speed must be finite numbers"),
+        (4, "1700000010.5,2", "line 4, column 1 (t): 1700000010.5 does not come after 1700000010.5 on line 3; "
+                              "the odometry's times must strictly increase"),
+        (3, "1700000000.25,1", "line 3, column 1 (t): 1700000000.25 does not come after 1700000000.5 on line 2; "
+                               "the odometry's times must strictly increase"),
+    ],
+)
+def test_a_bad_odometry_sample_is_named_by_its_file_line_and_column(
+    tmp_path: Path, line: int, value: str, message: str
+) -> None:
+    # it was "odometry speed: speed[1] is nan", an index, read as the log's
+    rows = list(ODOMETRY)
+    rows[line - 2] = value
+    folder = log_folder_with(tmp_path, "odometry.csv", "t,speed\n" + "\n".join(rows) + "\n")
+    where = folder / "odometry.csv"
+    with pytest.raises(ValueError, match=f"^{re.escape(f'{where}: {message}')}"):
+        gyrocore.read_log(folder)
+
+
+def test_a_meta_json_with_a_byte_order_mark_is_read(tmp_path: Path) -> None:
+    # Windows editors write one; it was "not valid JSON: line 1 column 1: Unexpected UTF-8 BOM"
+    folder = log_folder_with(tmp_path, "meta.json", "")
+    (folder / "meta.json").write_text('{"name": "drive", "stationary": [1700000001, 1700000010]}', encoding="utf-8-sig")
+    log = gyrocore.read_log(folder)
+    assert (log.name, log.stationary) == ("drive", (1700000001.0, 1700000010.0))
+    # a byte that is not UTF-8 is still named at its offset in the file, the mark counted
+    (folder / "meta.json").write_bytes(b'\xef\xbb\xbf{"name": "caf\xe9"}')
+    with pytest.raises(ValueError, match=r"meta.json: not UTF-8 text \(at byte offset 16: invalid continuation byte\)"):
+        gyrocore.read_log(folder)
+    # every JSON file is read so: a parameter file too
+    params = tmp_path / "params.json"
+    gyrocore.tune.ParameterSet("mine", "hdr", {"hdr_c2": 0.5}).write(params)
+    params.write_bytes(b"\xef\xbb\xbf" + params.read_bytes())
+    assert gyrocore.tune.ParameterSet.read(params).overrides == {"hdr_c2": 0.5}
+
+
+@pytest.mark.parametrize(
+    ("content", "got"),
+    [
+        ("[1, 2]", "an array: [1, 2]"),
+        ("12.5", "a number: 12.5"),
+        ('"drive"', 'a string: "drive"'),
+        ("null", "null"),
+        ("[" + ", ".join(["1000"] * 100) + "]", "an array: [" + "1000, " * 10 + "..."),  # its start
+    ],
+)
+def test_a_meta_json_that_is_no_object_says_what_it_holds(tmp_path: Path, content: str, got: str) -> None:
+    folder = log_folder_with(tmp_path, "meta.json", content)
+    message = f'{folder / "meta.json"}: expected a JSON object ({{"stationary": ..., "name": ...}}), got {got}'
+    with pytest.raises(ValueError, match=f"^{re.escape(message)}$"):
+        gyrocore.read_log(folder)
+
+
+#: A reference over the whole synthetic drive of :func:`log_folder_with`.
+REFERENCE = "t,heading\n" + "".join(f"{1700000000 + i},0\n" for i in range(31))
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_a_rest_window_outside_the_log_names_meta_json_as_its_source(tmp_path: Path, mode: str) -> None:
+    # a window in another time base ([0, 1e12] for a log in epoch seconds) was blamed on the log
+    # alone in evaluate ("drive: the bias window ..."), and named meta.json only at its end in process
+    folder = log_folder_with(tmp_path, "reference.csv", REFERENCE)
+    (folder / "meta.json").write_text('{"stationary": [0, 1e12]}')
+    message = (f"{folder / 'meta.json'} (stationary): the bias window [0.0, 1000000000000.0] s starts before the "
+               "first sample (t[0] = 1700000000")
+    with pytest.raises(gyrocore.RestWindowError, match=f"^{re.escape(message)}"):
+        gyrocore.read_log(folder).process("static_bias", mode=mode)
+    with pytest.raises(ValueError, match=f"^{re.escape(message)}"):
+        gyrocore.evaluate.compare([folder], ["static_bias"], mode=mode)
+    causal = ("--causal",) if mode == "causal" else ()
+    for args in (("evaluate", folder, "--preset", "static_bias"), ("process", folder, "--out", tmp_path / "h.csv")):
+        proc = run_cli(*args, *causal)
+        assert proc.returncode == 2 and proc.stderr.startswith(f"gyrocore: error: {message}"), proc.stderr
+        assert "give a rest window inside the log, in its own time base" in proc.stderr
+
+
+def test_a_reference_over_part_of_the_log_warns_naming_both_spans(tmp_path: Path) -> None:
+    # it was scored over the overlap alone, and the table showed those scores as the log's
+    part = "t,heading\n" + "".join(f"{1700000000 + i},0\n" for i in range(5))  # 4 s of a 30 s drive
+    folder = log_folder_with(tmp_path, "reference.csv", part)
+    message = re.escape(f"{folder / 'reference.csv'}: the reference covers 4 s of the log's 30 s (13.3 %): it runs from "
+                        "t = 1700000000.000 to 1700000004.000 s, the gyro from t = 1700000000.00")
+    message += r"\d to 1700000029\.99\d s"  # the synthetic drive's times jitter by up to 1 ms
+    with pytest.warns(gyrocore.InputWarning, match=f"^{message}"):
+        gyrocore.evaluate.compare([folder], ["raw"])
+    proc = run_cli("evaluate", folder, "--preset", "raw")
+    assert proc.returncode == 0, proc.stderr
+    # named once: by its file, not by the folder again before it
+    assert re.match(f"gyrocore: warning: {message}.*; only that part is scored\n", proc.stderr), proc.stderr
+    # over half of the log: scored without a word
+    (folder / "reference.csv").write_text(REFERENCE.splitlines()[0] + "\n" + "\n".join(REFERENCE.splitlines()[1:17]) + "\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", gyrocore.InputWarning)
+        gyrocore.evaluate.compare([folder], ["raw"])
+
+
+def test_positions_apart_in_time_name_both_spans() -> None:
+    # "the reference has fewer than two samples inside the track's time span" said neither span
+    track = deadreckon.dead_reckon(np.array([0.0, 10.0]), np.array([1.0, 1.0]), np.array([0.0, 10.0]), np.zeros(2))
+    with pytest.raises(ValueError, match=re.escape(
+        "the reference has fewer than two samples inside the track's time span: the reference runs from "
+        "t = 1700000000.000 to 1700000010.000 s, the track from t = 0.000 to 10.000 s; give both on the same clock"
+    )):
+        deadreckon.position_errors(track, [1.7e9, 1.7e9 + 10], [0.0, 1.0], [0.0, 0.0])
