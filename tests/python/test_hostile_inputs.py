@@ -167,6 +167,7 @@ def test_simulated_fixes_at_an_absurd_rate_are_refused_at_once() -> None:
                         r"1e\+07; is the rate in Hz\?\n", proc.stderr)
 
 
+@pytest.mark.filterwarnings("ignore:the fixes' sigma is 1 rad")  # a sigma of 1 rad is the point here, not its size
 def test_fixes_of_one_int_sigma_are_fused() -> None:
     # one sigma given as an int made an int64 array, which the core refused as "type mismatch"
     t = np.arange(0.0, 10.0, 0.01)
