@@ -311,6 +311,13 @@ def warn(message: str) -> None:
     print(f"gyrocore: warning: {one_line(message)}", file=sys.stderr)
 
 
+def warn_about(path: str | Path, messages: Iterable[str]) -> None:
+    """A file's warnings, each naming the file once (most of a report's warnings do not name it;
+    those its reader raises do)."""
+    for message in messages:
+        warn(message if message.startswith(f"{path}: ") else f"{path}: {message}")
+
+
 def show_warning(
     message: Warning | str, category: type[Warning], filename: str, lineno: int, file: Any = None, line: Any = None
 ) -> None:

@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import allan, io
+from .._checks import collected
 from .._gyrocore import SampleError
 from .._extras import pyplot
 from ..window import Window
@@ -21,6 +22,7 @@ from ._common import (
     add_reading_options,
     reading_options,
     refuse_existing,
+    warn_about,
     write_atomically,
 )
 
@@ -72,15 +74,18 @@ def run(args: argparse.Namespace) -> int:
     if window is not None:
         inside = window.samples(t, minimum=3)
         t, rate = t[inside], rate[inside]
+    raised: list[str] = []
     try:
-        result = allan.deviation_from_timestamps(
-            t, rate, taus=args.taus, overlapping=not args.non_overlapping, kind=args.kind
-        )
+        with collected(raised):  # its warning of a moving gyro names the log, as a reader's would
+            result = allan.deviation_from_timestamps(
+                t, rate, taus=args.taus, overlapping=not args.non_overlapping, kind=args.kind
+            )
     except SampleError as e:  # a NaN, times out of order: named with the file and its line, as process does
         source = io.open_source(src, **reading_options(args))
         raise ValueError(f"{e} ({source.data_path}, {source.where(int(inside[e.index]))})") from None
     except ValueError as e:  # a gap, too few samples: which log
         raise ValueError(f"{src}: {e}") from None
+    warn_about(src, raised)
     try:
         params = allan.noise_parameters(result) if args.kind == "allan" else None
     except ValueError as e:  # too short a record (or --window) for the curve's slopes

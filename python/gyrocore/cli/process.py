@@ -35,7 +35,7 @@ from ._common import (
     progress_bar,
     reading_options,
     refuse_existing,
-    warn,
+    warn_about,
 )
 
 _EPILOG = """
@@ -200,21 +200,14 @@ def _one(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[s
     except Exception:
         # what looked wrong before the error often says why (float32 times that cannot increase);
         # the error follows, in one line
-        _warn_about(inputs[0], raised)
+        warn_about(inputs[0], raised)
         raise
-    _warn_about(inputs[0], report.warnings)
+    warn_about(inputs[0], report.warnings)
     if args.json:
         print_json(report.as_dict())
     else:
         print(report)
     return 0
-
-
-def _warn_about(path: str | Path, messages: Iterable[str]) -> None:
-    """A file's warnings on stderr, each naming the file once (most of its report's warnings do
-    not name it; those its reader raises do)."""
-    for message in messages:
-        warn(message if message.startswith(f"{path}: ") else f"{path}: {message}")
 
 
 def _run_options(args: argparse.Namespace) -> dict[str, Any]:
@@ -236,7 +229,7 @@ def _many(out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
         **kwargs,
     )
     for report in summary.files:
-        _warn_about(report.input, report.warnings)
+        warn_about(report.input, report.warnings)
     if args.json:
         print_json(summary.as_dict())
     else:

@@ -1,0 +1,58 @@
+"""An Allan deviation of a gyro in motion is the motion's, not the sensor's: such a record is
+warned about, and one at rest is not."""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+import gyrocore
+from gyrocore import allan, sim
+from gyrocore.allan_curve import MOTION_SHARE, moving_share
+
+from .conftest import gyrocore_cli, real_log_path
+
+MOVING = "the gyro seems to move"
+
+
+@pytest.mark.parametrize("name", ["f110_ds1", "kitti_2011_10_03_0042_mems", "comma_seg40"])
+def test_a_drive_is_warned_about_as_moving(name: str) -> None:
+    log = gyrocore.read_log(real_log_path(name))
+    with pytest.warns(gyrocore.InputWarning, match=MOVING + r": \d+% of its 0.5 s means differ"):
+        allan.deviation_from_timestamps(log.t, log.rate)
+
+
+@pytest.mark.parametrize("name, rest_end", [("broad_10", 36.0), ("broad_11", 32.0)])
+def test_a_real_rest_is_not(name: str, rest_end: float) -> None:
+    log = gyrocore.read_log(real_log_path(name))
+    inside = log.t < rest_end
+    share = moving_share(log.rate[inside], float(np.mean(np.diff(log.t[inside]))))
+    assert share is not None and share < MOTION_SHARE / 5
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        allan.deviation_from_timestamps(log.t[inside], log.rate[inside])
+
+
+@pytest.mark.parametrize("sensor", ["crs03", "fog", "xv3500"])
+def test_simulated_gyros_at_rest_for_an_hour_are_not(sensor: str) -> None:
+    # their bias instability and rate random walk move the means too, but far less than motion
+    spec = sim.sensor(sensor)
+    t = sim.sample_times(spec, 0.0, 3600.0, seed=1)
+    rate = sim.measure(spec, t, np.zeros(len(t)), seed=2).rate
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        allan.deviation(rate[1:], float(np.mean(np.diff(t))))
+
+
+def test_records_too_short_or_quantised_to_judge_are_not() -> None:
+    assert moving_share(np.random.default_rng(0).standard_normal(40), 0.1) is None  # 8 half-seconds
+    steps = np.repeat([0.0, 1.0, 0.0, 1.0], 500)  # a gyro that reads in whole steps and moves
+    assert moving_share(steps, 0.01) is None
+
+
+def test_the_command_names_the_log() -> None:
+    proc = gyrocore_cli("allan", real_log_path("f110_ds1"), code=0)
+    assert f"gyrocore: warning: {real_log_path('f110_ds1')}: {MOVING}" in proc.stderr
+    assert MOVING not in gyrocore_cli("allan", real_log_path("broad_10"), "--window", "0", "36", code=0).stderr
