@@ -25,6 +25,7 @@ import numpy as np
 from . import _gyrocore
 from ._arrays import FloatArray
 from ._checks import usable
+from ._motion import warn_if_turning
 from ._smoother import leave_one_out
 from .pipeline import RestWindowError, refuse_few_readings, refuse_start_before, rest_window_text
 from .rests import Rest
@@ -154,7 +155,10 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
     if found_by.startswith("given"):
         given = {"bias_duration": end - start} if found_by == "given: bias_duration" else {"bias_window": (start, end)}
         refuse_few_readings(rest_window_text(given), samples)
-    white_noise = noise if noise is not None else float(np.std(rs[(ts >= start) & (ts <= end)]))
+    inside = rs[(ts >= start) & (ts <= end)]
+    if found_by.startswith("given"):  # a found rest is still by its finder's rules
+        warn_if_turning(window, inside, bias)
+    white_noise = noise if noise is not None else float(np.std(inside))
     error = white_noise / math.sqrt(samples)
     return Rest(start, end, bias, max(error, batch_error or 0.0), white_noise, samples, found_by.split(":")[0])
 

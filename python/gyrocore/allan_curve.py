@@ -12,7 +12,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
-from ._checks import MAX_READING, check_number, require_flag, require_readings, warn
+from ._checks import MAX_READING, check_number, require_flag, require_readings
+from ._motion import warn_if_moving
 from .allan_edf import _TABLES, ONE_SIGMA, confidence_interval, equivalent_dof
 from .integration import integrate
 
@@ -121,7 +122,7 @@ def deviation(
     data = as_float_array("rate", rate)
     result = _curve(data, dt, is_rate=True, taus=taus, overlapping=overlapping, kind=kind,
                     confidence=confidence, noise_alpha=noise_alpha)
-    _warn_if_moving(data, dt)
+    warn_if_moving(data, dt)
     return result
 
 
@@ -192,46 +193,8 @@ def deviation_from_timestamps(
     phase = np.interp(grid, ta - ta[0], angle)
     result = phase_deviation(phase, step, taus=taus, overlapping=overlapping, kind=kind,
                              confidence=confidence, noise_alpha=noise_alpha)
-    _warn_if_moving(ra, span / (len(ta) - 1))
+    warn_if_moving(ra, span / (len(ta) - 1))
     return result
-
-
-#: The means compared by :func:`moving_share` span this long [s]: long enough to average the
-#: noise down, short enough that a turn or a swerve changes them.
-MOTION_BLOCK = 0.5
-#: A record whose share of such means that differ from the one before by more than
-#: :data:`MOTION_SIGMAS` standard errors is at least this is warned about as moving. Measured
-#: (`moving_share`): records at rest 0 (broad_10's and broad_11's rests, simulated CRS03 and
-#: XV-3500 gyros of 10 minutes to 4 hours) to 0.021 (the simulated FOG, whose bias instability
-#: shows at half a second); the 18 real drives 0.30 (comma_seg40, often stopped) to 0.75.
-MOTION_SHARE = 0.1
-MOTION_SIGMAS = 5.0
-
-
-def moving_share(rate: FloatArray, dt: float) -> float | None:
-    """The share of the record's consecutive :data:`MOTION_BLOCK` means that differ by more than
-    :data:`MOTION_SIGMAS` standard errors of white noise (from the readings' first differences, a
-    robust estimate that slow motion barely moves); None for a record of under 10 such means or
-    readings that never change from one to the next (a quantised gyro at rest)."""
-    n = max(4, int(round(MOTION_BLOCK / dt)))
-    blocks = len(rate) // n
-    steps = np.diff(rate)
-    noise = float(np.median(np.abs(steps - np.median(steps)))) / 0.6745 / math.sqrt(2.0) if len(steps) else 0.0
-    if blocks < 10 or noise == 0.0:
-        return None
-    means = rate[: blocks * n].reshape(blocks, n).mean(axis=1)
-    return float(np.mean(np.abs(np.diff(means)) > MOTION_SIGMAS * noise * math.sqrt(2.0 / n)))
-
-
-def _warn_if_moving(rate: FloatArray, dt: float) -> None:
-    """Warn when the record looks like a gyro in motion: its Allan deviation is then the motion's
-    (a car's f110_ds1 read as a rate random walk of 2.9 rad/s^2/sqrt(Hz), 10^7 times a MEMS gyro's)."""
-    share = moving_share(rate, dt)
-    if share is not None and share >= MOTION_SHARE:
-        warn(f"the gyro seems to move: {share:.0%} of its {MOTION_BLOCK:g} s means differ from the one before by more "
-             f"than {MOTION_SIGMAS:g} times their noise (at rest: under {MOTION_SHARE:.0%}); the Allan deviation then "
-             "shows the motion, not the sensor's noise: record the gyro at rest, or analyse a rest alone "
-             "(gyrocore allan --window T0 T1, or a slice of t and rate)")
 
 
 #: The grid of :func:`deviation_from_timestamps` holds at most this many points per sample.

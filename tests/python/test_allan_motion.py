@@ -10,7 +10,7 @@ import pytest
 
 import gyrocore
 from gyrocore import allan, sim
-from gyrocore.allan_curve import MOTION_SHARE, moving_share
+from gyrocore._motion import MOTION_SHARE, moving_share
 
 from .conftest import gyrocore_cli, real_log_path
 
@@ -56,3 +56,29 @@ def test_the_command_names_the_log() -> None:
     proc = gyrocore_cli("allan", real_log_path("f110_ds1"), code=0)
     assert f"gyrocore: warning: {real_log_path('f110_ds1')}: {MOVING}" in proc.stderr
     assert MOVING not in gyrocore_cli("allan", real_log_path("broad_10"), "--window", "0", "36", code=0).stderr
+
+
+TURNING = r"the rest window \[1650775094.7543092, 1650775099.7543092\] s does not look like a rest: its readings spread 5.86 times their sample-to-sample noise, 33.6 deg/s beyond it"
+
+
+def test_a_rest_window_in_which_the_gyro_turns_is_warned_about() -> None:
+    # f110_ds1 drives from its first sample: its first 5 s as the rest gave a bias of 40.7 deg/s
+    log = gyrocore.read_log(real_log_path("f110_ds1"))
+    window = (float(log.t[0]), float(log.t[0]) + 5.0)
+    with pytest.warns(gyrocore.InputWarning, match=TURNING + r".*its bias, 40.683 deg/s, holds the turn"):
+        gyrocore.calibration.static_bias(log.t, log.rate, window)
+    with pytest.warns(gyrocore.InputWarning, match=TURNING):
+        gyrocore.process(log.t, log.rate, "static_bias", bias_window=window)
+
+
+@pytest.mark.parametrize("name", ["broad_10", "f110_ds3", "kitti_2011_09_30_0018_mems", "kitti_2011_09_30_0027"])
+def test_the_real_logs_rests_are_not(name: str) -> None:
+    # their meta.json windows, and the rests whole mode finds by the speed, given as windows
+    log = gyrocore.read_log(real_log_path(name))
+    windows = {(r.start, r.end) for r in log.process("static_bias").rests or []}
+    assert windows
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for window in windows:
+            gyrocore.calibration.static_bias(log.t, log.rate, window, min_duration=0.1)
+            gyrocore.process(log.t, log.rate, "static_bias", bias_window=window)

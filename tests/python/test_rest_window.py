@@ -98,6 +98,7 @@ def test_the_check_before_processing_agrees_with_the_core(nonfinite: str, window
         ),
     ],
 )
+@pytest.mark.filterwarnings("ignore:the rest window")  # the synthetic rate turns throughout
 def test_a_rest_window_past_the_end_of_the_log_is_an_error(overrides: dict[str, object], message: str) -> None:
     t = span(0, 30)
     with pytest.raises(RestWindowError) as e:

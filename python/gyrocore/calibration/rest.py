@@ -11,6 +11,7 @@ from numpy.typing import ArrayLike, NDArray
 from .. import _gyrocore
 from .._arrays import FloatArray, as_window
 from .._checks import check_number
+from .._motion import warn_if_turning
 from .inputs import check_series
 from .result import Calibration
 
@@ -230,6 +231,7 @@ def static_bias(
             f"min_duration = {min_duration:g} s: the bias would be mostly noise"
         )
     bias, _, _, batch_stderr = _gyrocore.static_bias_test(ta, ra, start, end)
+    warn_if_turning((start, end), rw, bias)
     sd = float(np.sqrt(np.sum(time_weights(tw) * (rw - bias) ** 2) / duration))
     # The batch means need readings in two parts of the window; with fewer, the white-noise error.
     stderr = sd / math.sqrt(len(rw)) if batch_stderr is None else batch_stderr

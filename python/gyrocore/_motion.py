@@ -1,0 +1,92 @@
+"""Whether a gyro stood still: the checks behind two warnings. An Allan deviation of a record in
+motion is the motion's, and a static bias measured over a window in which the gyro turned is off
+by the turn. Both compare the readings with their white noise, estimated from the first
+differences (robustly: slow motion barely moves them, while it moves the readings' spread and
+their means)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ._arrays import FloatArray
+from ._checks import warn
+
+#: The means compared by :func:`moving_share` span this long [s]: long enough to average the
+#: noise down, short enough that a turn or a swerve changes them.
+MOTION_BLOCK = 0.5
+#: A record whose share of such means that differ from the one before by more than
+#: :data:`MOTION_SIGMAS` standard errors is at least this is warned about as moving. Measured
+#: (:func:`moving_share`): records at rest 0 (broad_10's and broad_11's rests, simulated CRS03 and
+#: XV-3500 gyros of 10 minutes to 4 hours) to 0.021 (the simulated FOG, whose bias instability
+#: shows at half a second); the 18 real drives 0.30 (comma_seg40, often stopped) to 0.75.
+MOTION_SHARE = 0.1
+MOTION_SIGMAS = 5.0
+#: A rest window whose readings spread more than this many times their white noise, and by more
+#: than :data:`REST_EXCESS` beyond it, is warned about. Measured: the real logs' given and found
+#: rests 0.42 to 2.50 times and at most 0.15 deg/s beyond; simulated CRS03 drives' rests at 100,
+#: 10 and 1 Hz (averaged) at most 1.51 times and 0.22 deg/s beyond (bias instability and drift
+#: also spread a rest's readings, most where averaging has taken the white noise away); the first
+#: 5 s of the real drives 1.7 (a car still stopped) to 44 times and 0.2 to 37 deg/s beyond.
+REST_SPREAD = 4.0
+REST_EXCESS = math.radians(0.5)
+#: Fewer readings than this do not tell a rest from a turn.
+MIN_READINGS = 10
+
+
+def white_noise(rate: FloatArray) -> float:
+    """The readings' white noise [their unit], from the median absolute deviation of their first
+    differences (each the difference of two noises: sqrt(2) times one); 0 for fewer than two
+    readings or readings that rarely change from one to the next (a coarsely quantised gyro)."""
+    if len(rate) < 2:
+        return 0.0
+    steps = np.diff(rate)
+    return float(np.median(np.abs(steps - np.median(steps)))) / 0.6745 / math.sqrt(2.0)
+
+
+def moving_share(rate: FloatArray, dt: float) -> float | None:
+    """The share of the record's consecutive :data:`MOTION_BLOCK` means that differ by more than
+    :data:`MOTION_SIGMAS` standard errors of its white noise; None for a record of under 10 such
+    means or one whose white noise reads 0 (:func:`white_noise`)."""
+    n = max(4, int(round(MOTION_BLOCK / dt)))
+    blocks = len(rate) // n
+    noise = white_noise(rate)
+    if blocks < 10 or noise == 0.0:
+        return None
+    means = rate[: blocks * n].reshape(blocks, n).mean(axis=1)
+    return float(np.mean(np.abs(np.diff(means)) > MOTION_SIGMAS * noise * math.sqrt(2.0 / n)))
+
+
+def warn_if_moving(rate: FloatArray, dt: float) -> None:
+    """Warn when the record looks like a gyro in motion: its Allan deviation is then the motion's
+    (a car's f110_ds1 read as a rate random walk of 2.9 rad/s^2/sqrt(Hz), 10^7 times a MEMS gyro's)."""
+    share = moving_share(rate, dt)
+    if share is not None and share >= MOTION_SHARE:
+        warn(f"the gyro seems to move: {share:.0%} of its {MOTION_BLOCK:g} s means differ from the one before by more "
+             f"than {MOTION_SIGMAS:g} times their noise (at rest: under {MOTION_SHARE:.0%}); the Allan deviation then "
+             "shows the motion, not the sensor's noise: record the gyro at rest, or analyse a rest alone "
+             "(gyrocore allan --window T0 T1, or a slice of t and rate)")
+
+
+def spread(rate: FloatArray) -> tuple[float, float] | None:
+    """The readings' standard deviation over their white noise (about 1 at rest, as a rest reads
+    its bias and noise alone) and how far it lies beyond it [rad/s, in quadrature]; None for fewer
+    than :data:`MIN_READINGS` readings or a white noise of 0."""
+    noise = white_noise(rate)
+    if len(rate) < MIN_READINGS or noise == 0.0:
+        return None
+    sd = float(np.std(rate))
+    return sd / noise, math.sqrt(max(sd * sd - noise * noise, 0.0))
+
+
+def warn_if_turning(window: tuple[float, float], rate: FloatArray, bias: float) -> None:
+    """Warn when the readings of the rest ``window`` spread far beyond their noise: the gyro
+    turned in it, and the ``bias`` measured there [rad/s] is off by the turn (f110_ds1's first
+    5 s, given as its rest, read 40.7 deg/s)."""
+    measured = spread(rate)
+    if measured is not None and measured[0] > REST_SPREAD and measured[1] > REST_EXCESS:
+        warn(f"the rest window [{window[0]}, {window[1]}] s does not look like a rest: its readings spread "
+             f"{measured[0]:.3g} times their sample-to-sample noise, {math.degrees(measured[1]):.3g} deg/s beyond it (at "
+             f"rest: about once, and at most {math.degrees(REST_EXCESS):g} deg/s beyond), so the gyro turned in it and its "
+             f"bias, {math.degrees(bias):.5g} deg/s, holds the turn: give a window in which the gyro stands still")
