@@ -94,8 +94,12 @@ def test_a_rest_window_outside_the_log_names_meta_json_as_its_source(tmp_path: P
         gyrocore.read_log(folder).process("static_bias", mode=mode)
     with pytest.raises(ValueError, match=f"^{re.escape(message)}"):
         gyrocore.evaluate.compare([folder], ["static_bias"], mode=mode)
+    # tune planned (whole) or took (causal) the window itself, and named neither meta.json nor the log
+    with pytest.raises(gyrocore.RestWindowError, match=f"^{re.escape(message)}"):
+        gyrocore.tune.Case.from_log(gyrocore.read_log(folder), mode=mode)
     causal = ("--causal",) if mode == "causal" else ()
-    for args in (("evaluate", folder, "--preset", "static_bias"), ("process", folder, "--out", tmp_path / "h.csv")):
+    for args in (("evaluate", folder, "--preset", "static_bias"), ("process", folder, "--out", tmp_path / "h.csv"),
+                 ("tune", folder, "--no-harm")):
         proc = run_cli(*args, *causal)
         assert proc.returncode == 2 and proc.stderr.startswith(f"gyrocore: error: {message}"), proc.stderr
         assert "give a rest window inside the log, in its own time base" in proc.stderr
