@@ -26,6 +26,7 @@ from ..pipeline import (
 )
 from ..rests import speed_on
 from ..wholelog import WHOLE_OPTIONS
+from ..window import in_log_clock
 from ._columns import concat
 from ._logfolder import from_stationary, has_track, read_fixes, read_odometry, read_reference
 from .source import SPEED_COLUMN, GyroSource, open_source
@@ -158,7 +159,7 @@ class Log:
         try:
             yield
         except RestWindowError as e:
-            where = f"log {self.name}: {e} (the rest window is the log's stationary)"
+            where = f"log {self.name}: {in_log_clock(str(e), e.span)} (the rest window is the log's stationary)"
             raise RestWindowError(where if self.path is None else from_stationary(self.path, e)) from None
 
 
