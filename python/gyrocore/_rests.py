@@ -135,12 +135,12 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
     if last < end and found_by == "given: bias_duration":
         raise RestWindowError(
             f"bias_duration = {end - start} s is longer than the log ({time_range(first, last)}); "
-            "give a shorter rest at the start, or a bias_window"
+            "give a shorter rest at the start, or a bias_window", (first, last)
         )
     if last < end:
         raise RestWindowError(
             f"the bias window [{start}, {end}] s reaches past the end of the log ({time_range(first, last)}); "
-            "give a rest window inside the log, in its own time base"
+            "give a rest window inside the log, in its own time base", (first, last)
         )
     ts, rs = np.concatenate(kept_t), np.concatenate(kept_r)
     taken = usable(rs)
@@ -149,7 +149,7 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
     if samples == 0:
         raise RestWindowError(
             f"the bias window [{start}, {end}] s holds no usable reading (finite, within +-2^20 rad/s) of the log "
-            f"({time_range(first, last)})"
+            f"({time_range(first, last)})", (first, last)
         )
     bias, _, noise, batch_error = _gyrocore.static_bias_test(ts, rs, start, end)  # first: it names a bad sample
     if found_by.startswith("given"):

@@ -55,7 +55,12 @@ TEMPERATURE_MODEL = ("temp_slope", "temp_offset")
 class RestWindowError(ValueError):
     """The rest window (``bias_window``, ``bias_duration``) does not fit the log: it holds no
     sample or fewer than :data:`MIN_WINDOW_READINGS`, starts before the log's first sample, or
-    reaches past its end."""
+    reaches past its end. ``span``: the log's first and last time [s] where the message shows them
+    (:func:`gyrocore.window.in_log_clock` tells a window from meta.json its clock there)."""
+
+    def __init__(self, message: str, span: tuple[float, float] | None = None) -> None:
+        super().__init__(message)
+        self.span = span
 
 
 #: :meth:`Pipeline.process`'s ``index_offset`` is below this: any index of a chunk added to it fits
@@ -321,12 +326,12 @@ class Pipeline:
             if last < end:
                 raise RestWindowError(
                     f"the bias window [{start}, {end}] s reaches past the end of the log ({span}); "
-                    "give a rest window inside the log, in its own time base"
+                    "give a rest window inside the log, in its own time base", (self._first_time, last)
                 )
         elif last < self._first_time + p["bias_duration"]:
             raise RestWindowError(
                 f"bias_duration = {p['bias_duration']} s is longer than the log ({span}); "
-                "give a shorter rest at the start, or a bias_window"
+                "give a shorter rest at the start, or a bias_window", (self._first_time, last)
             )
         # A log that ends at the window's end leaves it open (no reading came after it): its
         # readings are all there is, as whole mode counts them (one at t = 0 of (0, 0) passed).

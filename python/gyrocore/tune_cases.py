@@ -13,6 +13,7 @@ import numpy as np
 
 from . import motion, sim, wholelog
 from ._arrays import FloatArray
+from ._rests import measure_rest
 from .evaluate import HeadingErrors, Reference, log_bias
 from .io import Log
 from .pipeline import HeadingResult, Pipeline, uses_static_bias
@@ -59,10 +60,14 @@ class Case:
         reference = Reference(t_ref, heading_ref)
         if mode == "causal":
             bias, _ = log_bias(log, bias_duration=bias_duration)
+            if log.stationary is not None:  # refused here, before the fit, as whole mode and evaluate refuse it
+                with log.naming_stationary():
+                    measure_rest([(log.t, log.rate)], log.stationary, "given: bias_window")
             return cls(log.name, log.t, log.rate, reference, bias)
         wholelog.check_mode(mode)
         given = log_bias(log, bias_duration=bias_duration)[0] if log.stationary is not None or bias_duration is not None else {}
-        plan = wholelog.plan_log("static_bias", given, log.t, log.rate, log.speed_on_gyro_times(), wholelog.Options())
+        with log.naming_stationary():
+            plan = wholelog.plan_log("static_bias", given, log.t, log.rate, log.speed_on_gyro_times(), wholelog.Options())
         return cls(log.name, log.t, log.rate, reference, {"bias": 0.0}, plan=plan)
 
     @classmethod

@@ -98,9 +98,15 @@ class Window:
         return f"{bound(self.start, self.relative[0])} .. {bound(self.end, self.relative[1])} s"
 
 
-def time_range(first: float, last: float | None = None) -> str:
+def time_range(first: float, last: float | None = None, *, after_first: bool = True) -> str:
     """The span of a log (first and last timestamp [s], or only the first where the last is not
-    known yet) in both time bases, for an error about a window."""
+    known yet), for an error about a window: in both time bases where the window could be written
+    after the first sample (``after_first``: an option that takes ``+T``), else in the log's own
+    clock alone (meta.json's ``stationary`` takes plain seconds: ``+T`` there is no number)."""
+    if not after_first:
+        clock = "in its own clock, the one a window in plain seconds is written in"
+        return f"the log starts at {first:.10g} s {clock}" if last is None else (
+            f"the log runs from {first:.10g} to {last:.10g} s {clock}")
     hint = "write a bound as +T for T seconds after the first sample"
     if last is None:
         return f"the log starts at {first:.10g} s ({hint})"
@@ -108,3 +114,10 @@ def time_range(first: float, last: float | None = None) -> str:
         f"the log runs from {first:.10g} to {last:.10g} s (+0 .. +{last - first:.6g} s after its first sample; "
         f"{hint})"
     )
+
+
+def in_log_clock(message: str, span: tuple[float, float] | None) -> str:
+    """``message``, an error that shows the log's ``span`` (first and last time [s]) by
+    :func:`time_range`, for a window that takes plain seconds of the log's clock only: the span
+    then hints at that clock, not at ``+T``. Unchanged where ``span`` is None (none shown)."""
+    return message if span is None else message.replace(time_range(*span), time_range(*span, after_first=False))

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import re
 import warnings
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -94,11 +95,52 @@ def test_a_rest_window_outside_the_log_names_meta_json_as_its_source(tmp_path: P
         gyrocore.read_log(folder).process("static_bias", mode=mode)
     with pytest.raises(ValueError, match=f"^{re.escape(message)}"):
         gyrocore.evaluate.compare([folder], ["static_bias"], mode=mode)
+    # tune planned (whole) or took (causal) the window itself, and named neither meta.json nor the log
+    with pytest.raises(gyrocore.RestWindowError, match=f"^{re.escape(message)}"):
+        gyrocore.tune.Case.from_log(gyrocore.read_log(folder), mode=mode)
     causal = ("--causal",) if mode == "causal" else ()
-    for args in (("evaluate", folder, "--preset", "static_bias"), ("process", folder, "--out", tmp_path / "h.csv")):
+    for args in (("evaluate", folder, "--preset", "static_bias"), ("process", folder, "--out", tmp_path / "h.csv"),
+                 ("tune", folder, "--no-harm")):
         proc = run_cli(*args, *causal)
         assert proc.returncode == 2 and proc.stderr.startswith(f"gyrocore: error: {message}"), proc.stderr
         assert "give a rest window inside the log, in its own time base" in proc.stderr
+
+
+#: A rest window from 10 s into the synthetic drive of :func:`log_folder_with` to 70 s past its end.
+PAST_THE_END = (1700000010, 1700000100)
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_a_rest_window_past_the_end_is_told_the_clock_it_is_written_in(tmp_path: Path, mode: str) -> None:
+    # "write a bound as +T for T seconds after the first sample" was said of meta.json's window
+    # too, whose stationary takes plain seconds only
+    folder = log_folder_with(tmp_path, "reference.csv", REFERENCE)
+    (folder / "meta.json").write_text('{"stationary": [%d, %d]}' % PAST_THE_END)
+    span = "the log runs from 1700000000 to 1700000030 s"
+    in_clock = f"({span} in its own clock, the one a window in plain seconds is written in); "
+    log = gyrocore.read_log(folder)
+    meta = f"{folder / 'meta.json'} (stationary): "
+    refused = [
+        (meta, lambda: log.process("static_bias", mode=mode)),
+        (meta, lambda: gyrocore.tune.Case.from_log(log, mode=mode)),
+        ("log log: ", lambda: replace(log, path=None).process("static_bias", mode=mode)),  # built in memory
+    ]
+    for source, run in refused:
+        with pytest.raises(gyrocore.RestWindowError) as error:
+            run()
+        assert str(error.value).startswith(source) and in_clock in str(error.value), str(error.value)
+        assert "+T" not in str(error.value)
+    # the same window given as bias_window=, which takes +T, is told how to write one
+    plus_t = "+0 .. +29."  # the synthetic drive's times jitter
+    with pytest.raises(gyrocore.RestWindowError, match=re.escape(f"({span} ({plus_t}")) as error:
+        log.process("static_bias", mode=mode, bias_window=PAST_THE_END)
+    assert "; write a bound as +T for T seconds after the first sample)" in str(error.value)
+    # and so by the command line
+    causal = ("--causal",) if mode == "causal" else ()
+    given = ("--bias-window", *map(str, PAST_THE_END))
+    for args, told in ((causal, in_clock), ((*causal, *given), f"({span} ({plus_t}")):
+        proc = run_cli("process", folder, "--out", tmp_path / "h.csv", *args)
+        assert proc.returncode == 2 and told in proc.stderr, proc.stderr
 
 
 def test_a_reference_over_part_of_the_log_warns_naming_both_spans(tmp_path: Path) -> None:

@@ -17,6 +17,8 @@ import numpy as np
 
 from .._arrays import FloatArray
 from .._checks import warn
+from ..pipeline import RestWindowError
+from ..window import in_log_clock
 from ._csvfile import CsvLayout, csv_layout, read_csv_columns
 from ._jsonfile import json_kind, read_json
 from ._paths import check_file, has_file
@@ -144,11 +146,11 @@ def _not_finite(path: Path, layout: CsvLayout, columns: dict[str, FloatArray], n
     return f"{path}: line {layout.line(int(bad[0]))}, column {layout.header.index(name) + 1} ({name}): {what}"
 
 
-def from_stationary(folder: str | Path, error: Exception) -> str:
+def from_stationary(folder: str | Path, error: RestWindowError) -> str:
     """``error``, about the rest window of the log folder ``folder``, naming its source first:
     its ``meta.json``'s ``stationary`` (a window in another time base, e.g. [0, 1e12] for a log in
-    epoch seconds, was blamed on the log alone)."""
-    return f"{Path(folder) / META_JSON} (stationary): {error}"
+    epoch seconds, was blamed on the log alone), and the log's span in the clock it is written in."""
+    return f"{Path(folder) / META_JSON} (stationary): {in_log_clock(str(error), error.span)}"
 
 
 def _rest_window(path: Path, window: Any) -> tuple[float, float] | None:

@@ -6,6 +6,8 @@ look wrong, and joined; a log folder adds its reference, odometry and rest windo
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -24,6 +26,7 @@ from ..pipeline import (
 )
 from ..rests import speed_on
 from ..wholelog import WHOLE_OPTIONS
+from ..window import in_log_clock
 from ._columns import concat
 from ._logfolder import from_stationary, has_track, read_fixes, read_odometry, read_reference
 from .source import SPEED_COLUMN, GyroSource, open_source
@@ -142,13 +145,21 @@ class Log:
         given = fixes if fixes is not None else self.fixes if use_fixes else None
         if self.stationary is None or not uses_static_bias(preset) or has_bias_source(overrides):
             return process(self.t, self.rate, preset, mode=mode, fixes=given, fusion=fusion, **speed, **overrides)
-        try:
+        with self.naming_stationary():
             return process(
                 self.t, self.rate, preset, mode=mode, bias_window=self.stationary, fixes=given, fusion=fusion,
                 **speed, **overrides,
             )
+
+    @contextmanager
+    def naming_stationary(self) -> Iterator[None]:
+        """Re-raise a :class:`RestWindowError` about the log's own rest window (:attr:`stationary`)
+        naming where that window came from, its meta.json or the log: the pipeline's error names
+        the window alone, and a window in another time base was blamed on the log."""
+        try:
+            yield
         except RestWindowError as e:
-            where = f"log {self.name}: {e} (the rest window is the log's stationary)"
+            where = f"log {self.name}: {in_log_clock(str(e), e.span)} (the rest window is the log's stationary)"
             raise RestWindowError(where if self.path is None else from_stationary(self.path, e)) from None
 
 
