@@ -418,3 +418,16 @@ def test_out_dash_is_refused_not_made_a_folder(tmp_path: Path, monkeypatch: pyte
     assert proc.stderr == ("gyrocore: error: --out -: the headings go to a file (the report goes to standard output): "
                            "give a .csv or .parquet file, or a folder for several inputs\n")
     assert not (tmp_path / "-").exists()
+
+
+@pytest.mark.parametrize("name", ["heading.tsv", "heading.txt", "h.npy"])
+def test_an_output_named_like_a_file_of_another_kind_is_refused(tmp_path: Path, name: str) -> None:
+    # it became a folder holding log.csv
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    out = tmp_path / name
+    proc = run_cli("process", log, "--out", out)
+    assert proc.returncode == 2 and not out.exists()
+    assert proc.stderr == (f"gyrocore: error: --out {out}: gyrocore writes the headings to a .csv or .parquet file, "
+                           f"not {out.suffix}; give one of those, or a folder for the outputs (a folder named {name}: "
+                           f"--out {out}/)\n")
+    assert run_cli("process", log, "--out", f"{out}/").returncode == 0 and (out / "log.csv").is_file()

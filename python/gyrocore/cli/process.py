@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import argparse
+import os
+import re
 import warnings
 from collections.abc import Iterable
 from pathlib import Path
@@ -41,8 +43,8 @@ from ._common import (
 _EPILOG = """
 IN is a CSV (or tab-separated .tsv), Parquet, .npy or .npz file, a ROS 1 .bag or ROS 2 bag
 folder, a log folder, a folder of those, or a glob; give several. OUT ending in .csv or .parquet
-is one output file (one input); otherwise a folder that receives <name>.csv (or --format
-parquet) per input, processed in parallel (--jobs, or a Dask cluster with --scheduler). An
+is one output file (one input); otherwise a folder (a name without another file suffix, or
+ending in /) that receives <name>.csv (or --format parquet) per input, processed in parallel (--jobs, or a Dask cluster with --scheduler). An
 output that exists already is refused before any work unless --overwrite is given, or, in an
 output folder, --skip-existing (which skips its input: outputs are written whole or not at all).
 Exit code 0: all done; 1: some files failed (listed with their reason); 2: bad usage or input
@@ -165,6 +167,7 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--skip-existing is for a batch into an output folder, and --out {out} is one file: "
                          "leave the option out (an output that exists is refused unless --overwrite is given)")
     if not one_file:
+        _refuse_file_like_folder(args.out)
         check_out_dir(out)
     outputs = [out] if one_file else output_paths(inputs, out, args.format)
     # a complete output that --skip-existing keeps is not refused; anything else there is
@@ -208,6 +211,18 @@ def _one(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[s
     else:
         print(report)
     return 0
+
+
+def _refuse_file_like_folder(given: str) -> None:
+    """Refuse an output named like a file of another kind (``heading.tsv``, ``h.txt``, ``h.npy``),
+    which became a folder holding ``<input>.csv``: the user asked for a file. A folder that exists,
+    or a name ending in ``/``, is taken as the folder it names (a file that exists is refused as
+    no folder, by :func:`check_out_dir`)."""
+    out = Path(given)
+    if re.fullmatch(r"\.[A-Za-z]{1,5}", out.suffix) and not out.exists() and not given.endswith(("/", os.sep)):
+        raise ValueError(f"--out {given}: gyrocore writes the headings to a .csv or .parquet file, not {out.suffix}; "
+                         f"give one of those, or a folder for the outputs (a folder named {out.name}: "
+                         f"--out {given}/)")
 
 
 def _run_options(args: argparse.Namespace) -> dict[str, Any]:
