@@ -259,6 +259,8 @@ def require_choice(what: str, value: object, choices: Iterable[str]) -> None:
     """Refuse ``value`` unless it is one of ``choices``: ``unknown <what> 'x' (did you mean
     'y'?); choose one of ...``, the one form of every such error."""
     names = tuple(choices)
+    if not isinstance(value, str):  # a 1-element array of "whole" compared equal, and passed
+        raise TypeError(f"{what} must be a name, one of {', '.join(names)}; got {type(value).__name__} {value!r}")
     if value not in names:
         raise ValueError(f"unknown {what} {value!r}{did_you_mean(value, names)}; choose one of {', '.join(names)}")
 

@@ -36,3 +36,10 @@ def test_an_unknown_name_is_refused_with_the_choice_it_is_a_typo_of(call: Callab
     with pytest.raises(ValueError) as e:
         call()
     assert str(e.value).startswith(said), str(e.value)
+
+
+def test_a_name_that_is_no_text_is_refused_as_such() -> None:
+    # a one-element array of "whole" compared equal to "whole" and passed
+    for value in (np.array(["whole"]), None, 3):
+        with pytest.raises(TypeError, match=r"^mode must be a name, one of whole, causal; got "):
+            gyrocore.process(T, RATE, "raw", mode=value)  # type: ignore[arg-type]
