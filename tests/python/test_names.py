@@ -13,6 +13,8 @@ import gyrocore
 from gyrocore import io, sim, tune
 from gyrocore.motion_roads import car
 
+from .conftest import gyrocore_cli
+
 T, RATE = np.arange(3) * 0.01, np.zeros(3)
 
 
@@ -43,3 +45,13 @@ def test_a_name_that_is_no_text_is_refused_as_such() -> None:
     for value in (np.array(["whole"]), None, 3):
         with pytest.raises(TypeError, match=r"^mode must be a name, one of whole, causal; got "):
             gyrocore.process(T, RATE, "raw", mode=value)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("argv, said", [
+    (["prcess"], "argument command: invalid choice: 'prcess' (did you mean 'process'?) (choose from 'demo', 'process',"),
+    (["simulate", "--sensor", "crs3"], "argument --sensor: invalid choice: 'crs3' (did you mean 'crs03'?) (choose from"),
+    (["zz"], "argument command: invalid choice: 'zz' (choose from 'demo',"),
+])
+def test_a_command_line_choice_says_which_one_a_typo_is_likely_of(argv: list[str], said: str) -> None:
+    proc = gyrocore_cli(*argv, code=2)
+    assert said in proc.stderr, proc.stderr

@@ -10,9 +10,10 @@ import argparse
 import os
 import sys
 import warnings
-from typing import Sequence
+from typing import Any, Sequence
 
 from .. import _signals
+from .._checks import did_you_mean
 from . import allan, calibrate, demo, evaluate, presets, process, reproduce, simulate, tune
 from ..batch_run import BatchInterrupted
 from ..io._paths import error_text, one_line
@@ -22,8 +23,19 @@ from ._common import USER_ERRORS, show_warning
 COMMANDS = (demo, process, presets, allan, calibrate, evaluate, tune, simulate, reproduce)
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse's parser, whose "invalid choice" (a command, ``--heading``, ``--format``, ...)
+    says which choice a typo is likely of, as the package's own errors do."""
+
+    def _check_value(self, action: argparse.Action, value: Any) -> None:
+        if action.choices is not None and value not in action.choices:
+            choices = [str(c) for c in action.choices]
+            raise argparse.ArgumentError(action, f"invalid choice: {value!r}{did_you_mean(value, choices)} "
+                                                 f"(choose from {', '.join(map(repr, choices))})")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="gyrocore", description="Drift-free heading from a yaw-rate gyro.")
+    parser = _Parser(prog="gyrocore", description="Drift-free heading from a yaw-rate gyro.")
     sub = parser.add_subparsers(dest="command", required=True)
     for command in COMMANDS:
         command.register(sub)
