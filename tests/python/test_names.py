@@ -5,6 +5,7 @@ in one form, with the choice it is a likely typo of: `unknown preset 'recomended
 from __future__ import annotations
 
 from collections.abc import Callable
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -55,3 +56,12 @@ def test_a_name_that_is_no_text_is_refused_as_such() -> None:
 def test_a_command_line_choice_says_which_one_a_typo_is_likely_of(argv: list[str], said: str) -> None:
     proc = gyrocore_cli(*argv, code=2)
     assert said in proc.stderr, proc.stderr
+
+
+def test_an_unknown_option_is_refused_by_its_command_with_the_option_it_is_a_typo_of(tmp_path: Path) -> None:
+    proc = gyrocore_cli("process", tmp_path / "log.csv", "--out", tmp_path / "h.csv", "--bias-windw", "0", "1", code=2)
+    assert proc.stderr.splitlines()[-1] == ("gyrocore process: error: unrecognized arguments: --bias-windw 0 1 "
+                                            "(did you mean '--bias-window'?)")
+    assert proc.stderr.startswith("usage: gyrocore process")
+    assert gyrocore_cli("process", "x.csv", "-o", "h.csv", "--xyz", code=2).stderr.splitlines()[-1] == (
+        "gyrocore process: error: unrecognized arguments: --xyz")

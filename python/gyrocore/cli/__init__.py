@@ -24,8 +24,28 @@ COMMANDS = (demo, process, presets, allan, calibrate, evaluate, tune, simulate, 
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse's parser, whose "invalid choice" (a command, ``--heading``, ``--format``, ...)
-    says which choice a typo is likely of, as the package's own errors do."""
+    """argparse's parser, whose "invalid choice" (a command, ``--heading``, ``--format``, ...) and
+    "unrecognized arguments" say which choice or option a typo is likely of, as the package's own
+    errors do; an unknown option is refused by its command's parser, with that command's usage
+    (the top parser's named neither)."""
+
+    def parse_args(self, args: Sequence[str] | None = None, namespace: Any = None) -> Any:  # type: ignore[override]
+        namespace, extras = self.parse_known_args(args, namespace)
+        if extras:
+            parser = self._command_parser(namespace)
+            options = [o for action in parser._actions for o in action.option_strings]
+            hints = "".join(did_you_mean(e.split("=")[0], options) for e in extras if e.startswith("-"))
+            parser.error(f"unrecognized arguments: {' '.join(extras)}{hints}")
+        return namespace
+
+    def _command_parser(self, namespace: Any) -> argparse.ArgumentParser:
+        """The parser of the command ``namespace`` holds (this one without a command)."""
+        for action in self._actions:
+            command = getattr(namespace, action.dest, None)
+            if isinstance(action, argparse._SubParsersAction) and command in action.choices:
+                parser: argparse.ArgumentParser = action.choices[command]
+                return parser
+        return self
 
     def _check_value(self, action: argparse.Action, value: Any) -> None:
         if action.choices is not None and value not in action.choices:
