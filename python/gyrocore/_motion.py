@@ -31,17 +31,23 @@ MOTION_SIGMAS = 5.0
 #: 5 s of the real drives 1.7 (a car still stopped) to 44 times and 0.2 to 37 deg/s beyond.
 REST_SPREAD = 4.0
 REST_EXCESS = math.radians(0.5)
+#: The first differences :func:`white_noise` reads at most: its median absolute deviation is then
+#: within about 0.5 % of all of them.
+NOISE_STEPS = 100_000
 #: Fewer readings than this do not tell a rest from a turn.
 MIN_READINGS = 10
 
 
 def white_noise(rate: FloatArray) -> float:
     """The readings' white noise [their unit], from the median absolute deviation of their first
-    differences (each the difference of two noises: sqrt(2) times one); 0 for fewer than two
-    readings or readings that rarely change from one to the next (a coarsely quantised gyro)."""
+    differences (each the difference of two noises: sqrt(2) times one), of at most
+    :data:`NOISE_STEPS` of them spread over the record; 0 for fewer than two readings or readings
+    that rarely change from one to the next (a coarsely quantised gyro)."""
     if len(rate) < 2:
         return 0.0
-    steps = np.diff(rate)
+    # all of a 10^8-sample record's differences took 1.9 s, a third of its Allan deviation
+    at = np.linspace(0, len(rate) - 2, min(len(rate) - 1, NOISE_STEPS)).astype(np.int64)
+    steps = rate[at + 1] - rate[at]
     return float(np.median(np.abs(steps - np.median(steps)))) / 0.6745 / math.sqrt(2.0)
 
 
