@@ -67,14 +67,11 @@ def _look_like(header: list[str], missing: list[str]) -> str:
     """The options that name the one column of ``header`` that looks like each missing default
     column (a time, a yaw rate), as a hint; empty where none or several do."""
     said = []
-    for column in missing:
-        if column not in _LIKE:
-            continue
-        bases = {split_unit(str(h))[0] for h in header}
-        like = sorted(b for b in bases if _LIKE[column].fullmatch(re.sub(r"[^a-z0-9]", "", b.lower())))
+    bases = {split_unit(str(h))[0] for h in header}  # the names without their units, as the reader matches them
+    for column in (c for c in missing if c in _LIKE):
+        like = [b for b in bases if _LIKE[column].fullmatch(re.sub(r"[^a-z0-9]", "", b.lower()))]
         if len(like) == 1:
-            name = like[0]
-            said.append(f"{_OPTION[column]} {_quoted(name)}")
+            said.append(f"{_OPTION[column]} {_quoted(like[0])}")
     return f"; {' '.join(said)} look{'s' if len(said) == 1 else ''} like {'it' if len(said) == 1 else 'them'}" if said else ""
 
 
