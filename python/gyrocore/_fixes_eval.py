@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from ._checks import did_you_mean
 from .evaluate import Failed, Method, Reference
 from .evaluate_compare import warn_partial_reference
 from .fixes import Fixes
@@ -47,7 +48,8 @@ class SimFixes:
         for part in filter(None, (p.strip() for p in text.split(","))):
             key, sep, value = (s.strip() for s in part.partition("="))
             if not sep or key not in keys:
-                raise ValueError(f"{option} {text}: {part!r} is not key=value with a key of {', '.join(keys)}")
+                raise ValueError(f"{option} {text}: {part!r} is not key=value with a key of {', '.join(keys)}"
+                                 f"{did_you_mean(key, keys) if sep else ''}")
             if key in values:
                 raise ValueError(f"{option} {text}: {key} is given twice")
             values[key] = _value(option, key, value)

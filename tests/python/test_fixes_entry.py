@@ -284,6 +284,7 @@ def test_cli_evaluate_scores_a_simulated_outage_apart(folder_with_fixes: Path) -
         ("sigma_deg=1e9", "--sim-fixes: sigma_deg=1e9: the fixes' noise must be in [5.73e-11, 180] deg"),
         ("sigma_deg=1e-20", "sigma_deg=1e-20: the fixes' noise must be in"),
         ("speed=1", "'speed=1' is not key=value with a key of rate"),
+        ("sigma=1", "'sigma=1' is not key=value with a key of rate, sigma_deg, outage, seed (did you mean 'sigma_deg'?)"),
         ("outage=9999:10", "the outage starts 9999 s after the first sample"),
     ],
 )
