@@ -277,7 +277,7 @@ def did_you_mean(value: object, choices: Iterable[str]) -> str:
         return difflib.SequenceMatcher(None, value.lower(), choice).ratio()
 
     ranked = sorted(((closeness(c), c) for c in lowered), reverse=True)
-    if not ranked or ranked[0][0] < 0.75 or (len(ranked) > 1 and ranked[1][0] == ranked[0][0]):
+    if not ranked or ranked[0][0] < 0.7 or (len(ranked) > 1 and ranked[1][0] == ranked[0][0]):
         return ""  # nothing close, or two as close (hdr_c: hdr_c1 or hdr_c2?)
     best = lowered[ranked[0][1]]
     return f" (did you mean {best!r}?)" if best != value else ""
