@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from .._arrays import FloatArray, durations_in_seconds, warn_coarse_times
-from .._checks import require_choice, warn
+from .._checks import first_infinite, require_choice, warn
 from .._gyrocore import SampleError
 from ..window import Window
 from ._axes import MEASURED, measure_up, parse_up, project, three_names
@@ -257,7 +257,8 @@ class GyroSource:
         """The vehicle's speed [m/s] per sample from a CSV or Parquet file's :data:`SPEED_COLUMN`
         (an empty value NaN: unknown there), or None for an input without one (a log folder's
         speed is its odometry.csv, which :func:`gyrocore.io.read_log` reads)."""
-        return self.optional_columns((SPEED_COLUMN,), rows).get(SPEED_COLUMN)
+        speed = self.optional_columns((SPEED_COLUMN,), rows).get(SPEED_COLUMN)
+        return None if speed is None else finite_speed(self, speed)
 
     def optional_columns(self, names: tuple[str, ...], rows: int = DEFAULT_CHUNK_ROWS) -> dict[str, FloatArray]:
         """Those of the columns ``names`` that a CSV or Parquet file has, one value per sample (an
@@ -308,6 +309,18 @@ class GyroSource:
         """(t [s], the ``columns`` as read, progress) of the format's reader, block after block."""
         for t_raw, values, per_second, done in _READERS[self.kind](self, rows, columns):
             yield _seconds(t_raw, per_second), values, done
+
+
+def finite_speed(source: GyroSource, speed: FloatArray) -> FloatArray:
+    """``speed``, a file's speed column, if no value is infinite (NaN, an empty value, is a speed
+    unknown there); else a ValueError naming the file, the sample and the column."""
+    i = first_infinite(speed)
+    if i is not None:
+        raise ValueError(
+            f"{source.data_path}: {source.where(i)}, column {SPEED_COLUMN}: {speed[i]} is not a finite speed "
+            "[m/s] (leave it empty where it is unknown, or give --no-speed, use_speed=False)"
+        )
+    return speed
 
 
 _READERS = {

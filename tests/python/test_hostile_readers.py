@@ -1,0 +1,45 @@
+"""Parquet, NumPy and bag files built to break the readers: each gives its samples, or an error
+naming the file and where, never a wrong heading or an error that blames something else."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import gyrocore
+
+N = 2_000
+T = np.arange(N) * 0.01
+
+
+def speed_parquet(path: Path, speed: list[float | None]) -> Path:
+    """A Parquet file with a gyro at rest (bias 0.01 rad/s) in its first and last 5 s and turning
+    between, and the ``speed`` column given."""
+    pa = pytest.importorskip("pyarrow")
+    pq = pytest.importorskip("pyarrow.parquet")
+    rate = 0.01 + np.where((T > 5) & (T < 15), 0.2, 0.0)
+    pq.write_table(pa.table({"t": T, "gyro_z": rate, "speed": pa.array(speed, pa.float64())}), path)
+    return path
+
+
+def test_an_empty_speed_value_of_a_file_is_a_speed_unknown_there(tmp_path: Path) -> None:
+    # Log.process refused it (`log x: odometry speed: speed[3] is nan`) where gyrocore process took it
+    speed: list[float | None] = [0.0 if t < 5 or t > 15 else 3.0 for t in T]
+    speed[3] = None
+    log = gyrocore.read_log(speed_parquet(tmp_path / "x.parquet", speed))
+    given = np.array([np.nan if s is None else s for s in speed])
+    expected = gyrocore.process(log.t, log.rate, "static_bias", speed=given)
+    result = log.process("static_bias")
+    assert any(r.found_by == "speed" for r in result.rests)
+    np.testing.assert_array_equal(result.heading, expected.heading)
+
+
+def test_an_infinite_speed_of_a_file_is_named_where_it_is_read(tmp_path: Path) -> None:
+    # it was refused only by Log.process, as `odometry speed: speed[7] is inf`, without the file
+    speed: list[float | None] = [0.0] * N
+    speed[7] = float("inf")
+    path = speed_parquet(tmp_path / "x.parquet", speed)
+    with pytest.raises(ValueError, match=r"x\.parquet: row 7, column speed: inf is not a finite speed \[m/s\]"):
+        gyrocore.read_log(path)
