@@ -10,6 +10,8 @@ import pytest
 
 import gyrocore
 
+from .conftest import gyrocore_cli
+
 N = 2_000
 T = np.arange(N) * 0.01
 
@@ -43,3 +45,13 @@ def test_an_infinite_speed_of_a_file_is_named_where_it_is_read(tmp_path: Path) -
     path = speed_parquet(tmp_path / "x.parquet", speed)
     with pytest.raises(ValueError, match=r"x\.parquet: row 7, column speed: inf is not a finite speed \[m/s\]"):
         gyrocore.read_log(path)
+
+
+def test_a_nan_time_of_a_short_file_is_not_taken_for_another_unit(tmp_path: Path) -> None:
+    # every interval touched the NaN, and read as a gap: "each of the 2 intervals is longer than
+    # 2 s, a gap: give the unit of the time column"
+    path = tmp_path / "x.npy"
+    np.save(path, np.array([[0.0, 0.1], [np.nan, 0.1], [0.02, 0.1]]))
+    assert np.isnan(gyrocore.read_log(path).t[1])
+    proc = gyrocore_cli("process", path, "--out", tmp_path / "h.csv", code=2)
+    assert proc.stderr == f"gyrocore: error: t[1] is NaN: samples must be finite (drop or fill them first) ({path}, row 1)\n"
