@@ -3,6 +3,7 @@ naming the file and where, never a wrong heading or an error that blames somethi
 
 from __future__ import annotations
 
+import zipfile
 from pathlib import Path
 
 import numpy as np
@@ -55,3 +56,27 @@ def test_a_nan_time_of_a_short_file_is_not_taken_for_another_unit(tmp_path: Path
     assert np.isnan(gyrocore.read_log(path).t[1])
     proc = gyrocore_cli("process", path, "--out", tmp_path / "h.csv", code=2)
     assert proc.stderr == f"gyrocore: error: t[1] is NaN: samples must be finite (drop or fill them first) ({path}, row 1)\n"
+
+
+def npy_bytes(header: dict[str, object], data: bytes = b"") -> bytes:
+    """An .npy file of version 1.0 with ``header`` as written, whatever it says."""
+    text = repr(header).encode()
+    pad = -(10 + len(text) + 1) % 64
+    return b"\x93NUMPY\x01\x00" + (len(text) + pad + 1).to_bytes(2, "little") + text + b" " * pad + b"\n" + data
+
+
+NEGATIVE = {"descr": "<f8", "fortran_order": False, "shape": (-1, 2)}
+
+
+def test_a_negative_shape_is_no_npy_file(tmp_path: Path) -> None:
+    # numpy's header parser takes it, and the reader found "no samples" in a file that holds some
+    path = tmp_path / "x.npy"
+    path.write_bytes(npy_bytes(NEGATIVE, np.zeros(8).tobytes()))
+    with pytest.raises(ValueError, match=r"x\.npy: not a NumPy \.npy file \(its header's shape \(-1, 2\) has a negative size\)"):
+        gyrocore.read_log(path)
+    archive = tmp_path / "x.npz"
+    with zipfile.ZipFile(archive, "w") as z:
+        for name in ("t", "gyro_z"):
+            z.writestr(f"{name}.npy", npy_bytes({**NEGATIVE, "shape": (-2,)}))
+    with pytest.raises(ValueError, match=r"x\.npz: member t: not a NumPy \.npy file \(its header's shape \(-2,\)"):
+        gyrocore.read_log(archive)

@@ -33,6 +33,8 @@ def npy_header(path: Path | str, f: Any) -> tuple[tuple[int, ...], bool, np.dtyp
         shape, fortran, dtype = read_header(f)
     except Exception as e:  # numpy's header parser raises ValueError, SyntaxError, TokenError, ...
         raise ValueError(f"{path}: not a NumPy .npy file ({type(e).__name__}: {e})") from None
+    if any(n < 0 for n in shape):  # numpy's parser takes them; counted, they read as no samples
+        raise ValueError(f"{path}: not a NumPy .npy file (its header's shape {shape} has a negative size)")
     return shape, fortran, dtype
 
 
