@@ -80,3 +80,10 @@ def test_a_negative_shape_is_no_npy_file(tmp_path: Path) -> None:
             z.writestr(f"{name}.npy", npy_bytes({**NEGATIVE, "shape": (-2,)}))
     with pytest.raises(ValueError, match=r"x\.npz: member t: not a NumPy \.npy file \(its header's shape \(-2,\)"):
         gyrocore.read_log(archive)
+
+
+def test_an_empty_archive_says_it_has_no_arrays(tmp_path: Path) -> None:
+    path = tmp_path / "x.npz"
+    zipfile.ZipFile(path, "w").close()
+    with pytest.raises(ValueError, match=r"x\.npz: missing column\(s\) t, gyro_z; it has none \("):
+        gyrocore.read_log(path)

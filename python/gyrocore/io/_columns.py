@@ -45,7 +45,7 @@ def column_positions(
         if choose == CHOOSE_COLUMNS:
             short += _look_like(header, missing)
         raise ValueError(
-            f"{path}: missing column(s) {', '.join(missing)}; it has {', '.join(map(str, header))} "
+            f"{path}: missing column(s) {', '.join(missing)}; it has {', '.join(map(str, header)) or 'none'} "
             f"({choose}{short})"
         )
     twice = [c for c in columns if header.count(c) > 1]
