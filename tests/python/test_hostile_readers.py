@@ -3,6 +3,7 @@ naming the file and where, never a wrong heading or an error that blames somethi
 
 from __future__ import annotations
 
+import warnings
 import zipfile
 from pathlib import Path
 
@@ -87,3 +88,38 @@ def test_an_empty_archive_says_it_has_no_arrays(tmp_path: Path) -> None:
     zipfile.ZipFile(path, "w").close()
     with pytest.raises(ValueError, match=r"x\.npz: missing column\(s\) t, gyro_z; it has none \("):
         gyrocore.read_log(path)
+
+
+def durations_file(path: Path) -> Path:
+    """A log whose time is a timedelta64[ns] (a structured .npy array, or an .npz member)."""
+    t = (np.arange(100) * 10_000_000).astype("m8[ns]")
+    if path.suffix == ".npz":
+        np.savez(path, t=t, gyro_z=np.full(100, 0.1))
+    else:
+        np.save(path, np.rec.fromarrays([t, np.full(100, 0.1)], names=["t", "gyro_z"]))
+    return path
+
+
+@pytest.mark.parametrize("name", ["x.npy", "x.npz"])
+def test_a_time_unit_given_for_numpy_durations_says_it_is_not_used(tmp_path: Path, name: str) -> None:
+    # a Parquet duration column warned so; a NumPy one took its own unit without a word
+    path = durations_file(tmp_path / name)
+    with pytest.warns(gyrocore.InputWarning, match=rf"{name}: column t is a timedelta64\[ns\] with its own unit "
+                      r"\(ns\): time_unit 'ms' \(--time-unit\) is not used"):
+        log = gyrocore.read_log(path, time_unit="ms")
+    assert log.t[-1] == 0.99
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        gyrocore.read_log(path, time_unit="ns")
+
+
+def test_a_plain_array_of_more_than_two_columns_says_which_is_the_rate(tmp_path: Path) -> None:
+    # t, gx, gy, gz read gx as the yaw rate without a word
+    path = tmp_path / "imu.npy"
+    np.save(path, np.column_stack([T, np.full(N, 0.3), np.full(N, -0.2), np.full(N, 0.1)]))
+    with pytest.warns(gyrocore.InputWarning, match=r"imu\.npy: a plain array of 4 columns, and the rate is read "
+                      r"from column 1, the default: give rate_col \(--rate-col N\)"):
+        assert gyrocore.read_log(path).rate[0] == 0.3
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert gyrocore.read_log(path, rate_col="3").rate[0] == 0.1

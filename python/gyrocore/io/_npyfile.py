@@ -17,10 +17,11 @@ from typing import IO, TYPE_CHECKING, Any
 
 import numpy as np
 
-from ._columns import column_positions
+from .._checks import warn
+from ._columns import column_positions, warn_own_time_unit
 
 if TYPE_CHECKING:
-    from .source import GyroSource
+    from .source import GyroSource, ReadOptions
 
 
 def npy_header(path: Path | str, f: Any) -> tuple[tuple[int, ...], bool, np.dtype[Any]]:
@@ -38,6 +39,42 @@ def npy_header(path: Path | str, f: Any) -> tuple[tuple[int, ...], bool, np.dtyp
     return shape, fortran, dtype
 
 
+def npy_shape(path: Path, options: ReadOptions) -> tuple[int, ...]:
+    """The shape of the .npy file ``path``, read from its header, warning where the file would be
+    read otherwise than the options say or a user would expect: a time unit given for a duration
+    field, which carries its own; a plain array of more than two columns read with the default
+    rate column 1 (a ``t, gx, gy, gz`` array's is the x axis)."""
+    with open(path, "rb") as f:
+        shape, _, dtype = _sized_header(path, f)
+    if dtype.names:
+        if options.time in dtype.names:
+            _warn_own_time_unit(path, options.time, dtype[options.time], options.time_unit)
+    elif len(shape) == 2 and shape[1] > 2 and options.rate_col is None and options.gyro_cols is None:
+        warn(f"{path}: a plain array of {shape[1]} columns, and the rate is read from column 1, the default: "
+             "give rate_col (--rate-col N) to say which column is the yaw rate, or gyro_cols (--gyro-cols X,Y,Z) "
+             "for three axes")
+    return shape
+
+
+def npz_time_unit(path: Path, options: ReadOptions) -> None:
+    """Warn where a time unit is given for an .npz archive whose time array is a duration, which
+    carries its own (only then is the archive opened: its errors come when it is read)."""
+    if options.time_unit is None:
+        return
+    with _npz_archive(path) as archive:
+        member = dict(_member_names(archive)).get(options.time)
+        if member is not None:
+            with _npz_member(path, archive, member) as f:
+                dtype = _member_header(path, options.time, f)[2]
+            _warn_own_time_unit(path, options.time, dtype, options.time_unit)
+
+
+def _warn_own_time_unit(path: Path, name: str, dtype: np.dtype[Any], given: str | None) -> None:
+    """Warn that ``given`` is not used where the time column ``name`` is a timedelta64."""
+    if given is not None and dtype.kind == "m":
+        warn_own_time_unit(path, name, str(dtype), np.datetime_data(dtype)[0], given)
+
+
 def npy_chunks(
     src: GyroSource, rows: int, columns: tuple[str, ...]
 ) -> Iterator[tuple[np.ndarray, list[np.ndarray], float, int]]:
@@ -47,9 +84,8 @@ def npy_chunks(
     per_second = src.options.counts_per_second
     o = src.options
     with open(src.path, "rb") as f:
-        shape, fortran, dtype = npy_header(src.path, f)
+        shape, fortran, dtype = _sized_header(src.path, f)
         offset = f.tell()
-        _check_size(src, shape, dtype, offset)
         if dtype.names:
             if len(shape) != 1:
                 raise ValueError(f"{src.path}: a structured array must be 1-D, got shape {shape}")
@@ -98,16 +134,19 @@ def _check_numbers(src: GyroSource, name: str, dtype: np.dtype[Any], *, time: bo
         raise ValueError(f"{src.path}: {name} holds {dtype}, which has no fixed length in seconds")
 
 
-def _check_size(src: GyroSource, shape: tuple[int, ...], dtype: np.dtype[Any], offset: int) -> None:
-    """Refuse a header that claims more data than the file holds, before any block is allocated
-    (a shape of (3, 10**12) asked numpy for terabytes for the first block of rows)."""
+def _sized_header(path: Path, f: Any) -> tuple[tuple[int, ...], bool, np.dtype[Any]]:
+    """:func:`npy_header` of a file that holds all its header claims: one that claims more is
+    refused before any block is allocated (a shape of (3, 10**12) asked numpy for terabytes for the
+    first block of rows) or a warning about its shape is given."""
+    shape, fortran, dtype = npy_header(path, f)
     need = math.prod(shape) * dtype.itemsize
-    have = src.path.stat().st_size - offset
+    have = path.stat().st_size - f.tell()
     if have < need:
         raise ValueError(
-            f"{src.path}: file ends early (truncated .npy): its header's shape {shape} of {dtype} takes "
+            f"{path}: file ends early (truncated .npy): its header's shape {shape} of {dtype} takes "
             f"{need} bytes, the file holds {have} after the header"
         )
+    return shape, fortran, dtype
 
 
 def _check_read(src: GyroSource, data: np.ndarray, expected: int) -> None:
@@ -136,9 +175,9 @@ def npz_chunks(
     o = src.options
     wanted = (o.time, *columns)
     with _npz_archive(src.path) as archive, ExitStack() as members:
-        # as np.load names them; two members of one name (t.npy twice, or t and t.npy) are refused,
-        # not one of them taken without a word
-        members_named = [(n[:-4] if n.endswith(".npy") else n, n) for n in archive.namelist()]
+        # two members of one name (t.npy twice, or t and t.npy) are refused, not one of them taken
+        # without a word
+        members_named = _member_names(archive)
         column_positions(src.path, [name for name, _ in members_named], wanted)
         names = dict(members_named)
         streams, dtypes, lengths = {}, {}, {}
@@ -161,6 +200,11 @@ def npz_chunks(
             count = min(rows, n - start)
             block = [_member_block(src.path, name, streams[name], dtypes[name], count) for name in wanted]
             yield block[0], block[1:], o.counts_per_second, start + count
+
+
+def _member_names(archive: zipfile.ZipFile) -> list[tuple[str, str]]:
+    """(array name, member name) of each member, the array named as np.load names it."""
+    return [(n[:-4] if n.endswith(".npy") else n, n) for n in archive.namelist()]
 
 
 @contextmanager

@@ -23,7 +23,7 @@ from ._axes import MEASURED, measure_up, parse_up, project, three_names
 from ._columns import concat, import_pyarrow_lazy_modules
 from ._csvfile import CsvLayout, csv_chunks, csv_layout
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta
-from ._npyfile import npy_chunks, npy_header, npz_chunks
+from ._npyfile import npy_chunks, npy_shape, npz_chunks, npz_time_unit
 from ._parquetfile import parquet_chunks, parquet_file, warn_given_time_unit
 from ._paths import check_file, check_readable, missing
 from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder
@@ -400,10 +400,10 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
         options = header_options(p, pf.schema_arrow.names, options)
         return GyroSource(p, "parquet", p, options, progress_total=pf.metadata.num_rows)
     if suffix == ".npy":
-        with open(p, "rb") as f:
-            shape = npy_header(p, f)[0]
+        shape = npy_shape(p, options)
         return GyroSource(p, "npy", p, header_options(p, None, options), progress_total=shape[0] if shape else 0)
     if suffix == ".npz":
+        npz_time_unit(p, options)
         return GyroSource(p, "npz", p, header_options(p, None, options))
     if suffix == ".bag":
         return _open_bag(p, header_options(p, None, options))
