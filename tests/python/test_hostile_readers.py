@@ -11,8 +11,10 @@ import numpy as np
 import pytest
 
 import gyrocore
+from gyrocore import io
 
 from .conftest import gyrocore_cli
+from .test_io import write_bag
 
 N = 2_000
 T = np.arange(N) * 0.01
@@ -123,3 +125,15 @@ def test_a_plain_array_of_more_than_two_columns_says_which_is_the_rate(tmp_path:
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert gyrocore.read_log(path, rate_col="3").rate[0] == 0.1
+
+
+@pytest.mark.parametrize("ros1", [True, False], ids=["ros1", "ros2"])
+def test_a_bag_whose_stamps_were_never_set_says_so(tmp_path: Path, ros1: bool) -> None:
+    # it was "timestamps must strictly increase: t[1] = 0 follows 0 (sort the log and drop
+    # duplicate timestamps)"; a simulated clock's first stamp of 0 is read
+    unset, simulated = (tmp_path / name for name in (("x.bag", "y.bag") if ros1 else ("x", "y")))
+    write_bag(unset, [0, 10_000_000, 20_000_000, 0, 40_000_000], [0.1] * 5, ros1=ros1)
+    with pytest.raises(ValueError, match=r"x(\.bag)?: message 3 on /imu: header\.stamp is 0, a stamp its driver never set"):
+        list(io.open_source(unset).chunks(2))
+    write_bag(simulated, [k * 10_000_000 for k in range(5)], [0.1] * 5, ros1=ros1)
+    assert gyrocore.read_log(simulated).t.tolist() == [0.0, 0.01, 0.02, 0.03, 0.04]
