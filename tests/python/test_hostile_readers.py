@@ -137,3 +137,13 @@ def test_a_bag_whose_stamps_were_never_set_says_so(tmp_path: Path, ros1: bool) -
         list(io.open_source(unset).chunks(2))
     write_bag(simulated, [k * 10_000_000 for k in range(5)], [0.1] * 5, ros1=ros1)
     assert gyrocore.read_log(simulated).t.tolist() == [0.0, 0.01, 0.02, 0.03, 0.04]
+
+
+def test_the_storage_file_of_a_ros2_bag_names_its_folder(tmp_path: Path) -> None:
+    # it was "unknown kind of file", without a word that the folder is what is read
+    folder = tmp_path / "drive"
+    write_bag(folder, [0, 10_000_000], [0.1, 0.1], ros1=False)
+    (storage,) = folder.glob("*.db3")
+    with pytest.raises(ValueError, match=rf"unknown kind of file .*; {storage.name} is a file of the ROS 2 bag "
+                       rf"{folder}: give the bag's folder$"):
+        io.open_source(storage)

@@ -30,6 +30,14 @@ def is_bag_folder(path: Path) -> bool:
     return (path / "metadata.yaml").is_file()
 
 
+def storage_file_hint(path: Path) -> str:
+    """A hint for a file of a ROS 2 bag (its ``.db3`` or ``.mcap``) given in place of the bag's
+    folder, which alone holds what reading it takes (metadata.yaml); else empty."""
+    if path.suffix.lower() in (".db3", ".mcap") and is_bag_folder(path.parent):
+        return f"; {path.name} is a file of the ROS 2 bag {path.parent}: give the bag's folder"
+    return ""
+
+
 def _bag_reader(path: Path) -> Any:
     """An open rosbags AnyReader (ROS 1 or ROS 2)."""
     highlevel = require("rosbags.highlevel", f"{path}: reading ROS bags")

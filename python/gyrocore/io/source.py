@@ -26,7 +26,7 @@ from ._logfolder import GYRO_CSV, is_log_folder, read_meta
 from ._npyfile import npy_chunks, npy_shape, npz_chunks, npz_time_unit
 from ._parquetfile import parquet_chunks, parquet_file, warn_given_time_unit
 from ._paths import check_file, check_readable, missing
-from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder
+from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder, storage_file_hint
 from .units import RATE_UNITS, TIME_UNITS, header_options
 
 #: Samples per chunk, at most (a CSV chunk also ends with a block of :data:`CSV_BLOCK_BYTES`).
@@ -409,6 +409,7 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
         return _open_bag(p, header_options(p, None, options))
     raise ValueError(
         f"{p}: unknown kind of file (read are {', '.join(FILE_SUFFIXES)}, log folders and ROS 2 bag folders)"
+        f"{storage_file_hint(p)}"
     )
 
 
