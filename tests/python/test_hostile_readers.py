@@ -147,3 +147,15 @@ def test_the_storage_file_of_a_ros2_bag_names_its_folder(tmp_path: Path) -> None
     with pytest.raises(ValueError, match=rf"unknown kind of file .*; {storage.name} is a file of the ROS 2 bag "
                        rf"{folder}: give the bag's folder$"):
         io.open_source(storage)
+
+
+def test_a_field_named_beyond_latin_1_is_read_by_its_name(tmp_path: Path) -> None:
+    # np.save writes such a header as version 3.0 (UTF-8), which was read as Latin-1: "missing
+    # column(s) ω_z; it has t, Ï_z"
+    path = tmp_path / "x.npy"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # numpy: "Stored array in format 3.0"
+        np.save(path, np.rec.fromarrays([T, np.full(N, 0.1)], names=["t", "ω_z"]))
+    assert path.read_bytes()[6:8] == b"\x03\x00"
+    log = gyrocore.read_log(path, rate_col="ω_z")
+    assert np.array_equal(log.t, T) and np.all(log.rate == 0.1)

@@ -30,13 +30,25 @@ def npy_header(path: Path | str, f: Any) -> tuple[tuple[int, ...], bool, np.dtyp
     fmt = np.lib.format
     try:
         version = fmt.read_magic(f)
-        read_header = fmt.read_array_header_1_0 if version == (1, 0) else fmt.read_array_header_2_0
-        shape, fortran, dtype = read_header(f)
+        if version == (1, 0):
+            shape, fortran, dtype = fmt.read_array_header_1_0(f)
+        else:
+            shape, fortran, dtype = fmt.read_array_header_2_0(_ascii_header(f) if version == (3, 0) else f)
     except Exception as e:  # numpy's header parser raises ValueError, SyntaxError, TokenError, ...
         raise ValueError(f"{path}: not a NumPy .npy file ({type(e).__name__}: {e})") from None
     if any(n < 0 for n in shape):  # numpy's parser takes them; counted, they read as no samples
         raise ValueError(f"{path}: not a NumPy .npy file (its header's shape {shape} has a negative size)")
     return shape, fortran, dtype
+
+
+def _ascii_header(f: Any) -> io.BytesIO:
+    """The header of a version 3.0 file (UTF-8, which np.save writes for field names beyond
+    Latin-1) as the version 2.0 reader takes it: in ASCII, other characters escaped in its string
+    literals. numpy has no public reader of 3.0, and 2.0's decodes Latin-1 ('ω_z' read as 'Ï\x89_z').
+    ``f`` is left at the start of the data."""
+    size = f.read(4)
+    text = f.read(int.from_bytes(size, "little")).decode("utf-8").encode("ascii", "backslashreplace")
+    return io.BytesIO(len(text).to_bytes(4, "little") + text)
 
 
 def npy_shape(path: Path, options: ReadOptions) -> tuple[int, ...]:
