@@ -3,6 +3,8 @@ naming the file and where, never a wrong heading or an error that blames somethi
 
 from __future__ import annotations
 
+import gzip
+import re
 import warnings
 import zipfile
 from pathlib import Path
@@ -159,3 +161,43 @@ def test_a_field_named_beyond_latin_1_is_read_by_its_name(tmp_path: Path) -> Non
     assert path.read_bytes()[6:8] == b"\x03\x00"
     log = gyrocore.read_log(path, rate_col="ω_z")
     assert np.array_equal(log.t, T) and np.all(log.rate == 0.1)
+
+
+def samples_as(path: Path, kind: str) -> None:
+    """Write a small log to ``path`` as ``kind`` content, whatever its suffix says."""
+    t, rate = T[:10], np.full(10, 0.1)
+    if kind == "csv":
+        path.write_text("t,gyro_z\n" + "".join(f"{a},{b}\n" for a, b in zip(t, rate)))
+    elif kind == "parquet":
+        pa, pq = pytest.importorskip("pyarrow"), pytest.importorskip("pyarrow.parquet")
+        pq.write_table(pa.table({"t": t, "gyro_z": rate}), path)
+    elif kind == "gzip":
+        path.write_bytes(gzip.compress(b"t,gyro_z\n0,0.1\n"))
+    else:
+        with open(path, "wb") as f:
+            (np.savez if kind == "npz" else np.save)(f, np.column_stack([t, rate]))  # type: ignore[operator]
+
+
+@pytest.mark.parametrize(("name", "kind", "said"), [
+    ("x.parquet", "csv", "its content is text (a CSV file?): name it x.csv"),
+    ("x.npy", "npz", "its content is that of a zip archive (a NumPy .npz file?): name it x.npz"),
+    ("x.npz", "npy", "its content is that of a NumPy .npy file: name it x.npy"),
+    ("x.npy", "parquet", "its content is that of a Parquet file: name it x.parquet"),
+    ("x.dat", "npy", "its content is that of a NumPy .npy file: name it x.npy"),
+    ("x.npy", "gzip", "it is compressed with gzip: decompress it first"),
+])
+def test_a_file_whose_suffix_lies_says_what_it_holds(tmp_path: Path, name: str, kind: str, said: str) -> None:
+    # the reader's error alone said "Parquet magic bytes not found in footer", "File is not a zip file"
+    path = tmp_path / name
+    samples_as(path, kind)
+    with pytest.raises(ValueError, match=rf"{re.escape(name)}: .*; {re.escape(said)}$"):
+        io.open_source(path)
+
+
+def test_a_file_whose_suffix_is_right_gets_no_word_on_its_content(tmp_path: Path) -> None:
+    pa, pq = pytest.importorskip("pyarrow"), pytest.importorskip("pyarrow.parquet")
+    path = tmp_path / "x.pq"  # Parquet's other suffix
+    pq.write_table(pa.table({"t [ms]": T, "gyro_z": np.zeros(N)}), path)
+    with pytest.raises(ValueError, match=r"states the unit 'ms' but --time-unit s was given: leave out --time-unit "
+                       r"\(or correct the header\)$"):
+        io.open_source(path, time_col="t", time_unit="s")

@@ -68,14 +68,12 @@ def npy_shape(path: Path, options: ReadOptions) -> tuple[int, ...]:
     return shape
 
 
-def npz_time_unit(path: Path, options: ReadOptions) -> None:
-    """Warn where a time unit is given for an .npz archive whose time array is a duration, which
-    carries its own (only then is the archive opened: its errors come when it is read)."""
-    if options.time_unit is None:
-        return
+def check_npz(path: Path, options: ReadOptions) -> None:
+    """Open the .npz archive ``path`` (a file that is none is refused as it is opened) and warn
+    where a time unit is given and its time array is a duration, which carries its own."""
     with _npz_archive(path) as archive:
         member = dict(_member_names(archive)).get(options.time)
-        if member is not None:
+        if member is not None and options.time_unit is not None:
             with _npz_member(path, archive, member) as f:
                 dtype = _member_header(path, options.time, f)[2]
             _warn_own_time_unit(path, options.time, dtype, options.time_unit)

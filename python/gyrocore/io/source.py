@@ -23,9 +23,9 @@ from ._axes import MEASURED, measure_up, parse_up, project, three_names
 from ._columns import concat, import_pyarrow_lazy_modules
 from ._csvfile import CsvLayout, csv_chunks, csv_layout
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta
-from ._npyfile import npy_chunks, npy_shape, npz_chunks, npz_time_unit
+from ._npyfile import check_npz, npy_chunks, npy_shape, npz_chunks
 from ._parquetfile import parquet_chunks, parquet_file, warn_given_time_unit
-from ._paths import check_file, check_readable, missing
+from ._paths import check_file, check_readable, content_hint, missing
 from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder, storage_file_hint
 from .units import RATE_UNITS, TIME_UNITS, header_options
 
@@ -389,6 +389,17 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
     if not p.is_file():  # reading a named pipe or a device would wait for ever, or never end
         raise ValueError(f"{p}: not a regular file (a named pipe, socket or device); give a file or folder")
     check_readable(p)
+    try:
+        return _open_file(p, options)
+    except ValueError as e:
+        hint = content_hint(p)  # a suffix that lies: the reader's error does not say so
+        if hint:
+            raise ValueError(f"{e}{hint}") from None
+        raise
+
+
+def _open_file(p: Path, options: ReadOptions) -> GyroSource:
+    """The file ``p`` by its suffix, its headers read."""
     suffix = p.suffix.lower()
     if suffix in (".csv", ".tsv"):
         layout = csv_layout(p, csv_delimiter(p, options))
@@ -403,7 +414,7 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
         shape = npy_shape(p, options)
         return GyroSource(p, "npy", p, header_options(p, None, options), progress_total=shape[0] if shape else 0)
     if suffix == ".npz":
-        npz_time_unit(p, options)
+        check_npz(p, options)
         return GyroSource(p, "npz", p, header_options(p, None, options))
     if suffix == ".bag":
         return _open_bag(p, header_options(p, None, options))
