@@ -147,7 +147,7 @@ def _check_numbers(src: GyroSource, name: str, dtype: np.dtype[Any], *, time: bo
 def _sized_header(path: Path, f: Any) -> tuple[tuple[int, ...], bool, np.dtype[Any]]:
     """:func:`npy_header` of a file that holds all its header claims: one that claims more is
     refused before any block is allocated (a shape of (3, 10**12) asked numpy for terabytes for the
-    first block of rows) or a warning about its shape is given."""
+    first block of rows), and before a warning about its shape would speak of columns it lacks."""
     shape, fortran, dtype = npy_header(path, f)
     need = math.prod(shape) * dtype.itemsize
     have = path.stat().st_size - f.tell()
