@@ -14,7 +14,7 @@ from typing import Any
 
 from . import _signals, io, rests, wholelog
 from ._arrays import FloatArray
-from ._checks import collected, first_infinite, warn
+from ._checks import collected, warn
 from ._gyrocore import SampleError
 from .batch_inputs import complete_output
 from .io._columns import concat
@@ -315,13 +315,7 @@ class _FileJob:
         if not self.use_speed:
             return None
         if source.kind != "log folder":
-            speed = source.speed(self.chunk_rows)
-            if speed is not None and (i := first_infinite(speed)) is not None:
-                raise ValueError(
-                    f"{source.data_path}: {source.where(i)}, column speed: {speed[i]} is not a finite speed [m/s] "
-                    "(leave it empty where it is unknown, or give --no-speed)"
-                )
-            return speed
+            return source.speed(self.chunk_rows)
         odometry = read_odometry(source.path)
         if not odometry:
             return None

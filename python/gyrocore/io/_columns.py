@@ -12,6 +12,7 @@ import numpy as np
 
 from .. import _signals
 from .._arrays import FloatArray
+from .._checks import warn
 from .units import split_unit
 
 if TYPE_CHECKING:
@@ -45,7 +46,7 @@ def column_positions(
         if choose == CHOOSE_COLUMNS:
             short += _look_like(header, missing)
         raise ValueError(
-            f"{path}: missing column(s) {', '.join(missing)}; it has {', '.join(map(str, header))} "
+            f"{path}: missing column(s) {', '.join(missing)}; it has {', '.join(map(str, header)) or 'none'} "
             f"({choose}{short})"
         )
     twice = [c for c in columns if header.count(c) > 1]
@@ -78,6 +79,15 @@ def _look_like(header: list[str], missing: list[str]) -> str:
 def _quoted(name: str) -> str:
     """``name`` as typed on a command line: quoted where the shell would split or read it."""
     return name if re.fullmatch(r"[\w.+-]+", name) else repr(name)
+
+
+def warn_own_time_unit(path: Path, column: str, kind: str, unit: str, given: str) -> None:
+    """Warn that the time unit the user gave (``given``) is not used: the time column's type
+    (``kind``, a timestamp or duration) carries its own, ``unit``, and the user expects the option
+    to act."""
+    if unit != given:
+        warn(f"{path}: column {column} is a {kind} with its own unit ({unit}): time_unit {given!r} "
+             "(--time-unit) is not used")
 
 
 def first_null(array: pa.Array) -> int | None:

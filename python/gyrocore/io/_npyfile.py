@@ -17,10 +17,11 @@ from typing import IO, TYPE_CHECKING, Any
 
 import numpy as np
 
-from ._columns import column_positions
+from .._checks import warn
+from ._columns import column_positions, warn_own_time_unit
 
 if TYPE_CHECKING:
-    from .source import GyroSource
+    from .source import GyroSource, ReadOptions
 
 
 def npy_header(path: Path | str, f: Any) -> tuple[tuple[int, ...], bool, np.dtype[Any]]:
@@ -29,11 +30,59 @@ def npy_header(path: Path | str, f: Any) -> tuple[tuple[int, ...], bool, np.dtyp
     fmt = np.lib.format
     try:
         version = fmt.read_magic(f)
-        read_header = fmt.read_array_header_1_0 if version == (1, 0) else fmt.read_array_header_2_0
-        shape, fortran, dtype = read_header(f)
+        if version == (1, 0):
+            shape, fortran, dtype = fmt.read_array_header_1_0(f)
+        else:
+            shape, fortran, dtype = fmt.read_array_header_2_0(_ascii_header(f) if version == (3, 0) else f)
     except Exception as e:  # numpy's header parser raises ValueError, SyntaxError, TokenError, ...
         raise ValueError(f"{path}: not a NumPy .npy file ({type(e).__name__}: {e})") from None
+    if any(n < 0 for n in shape):  # numpy's parser takes them; counted, they read as no samples
+        raise ValueError(f"{path}: not a NumPy .npy file (its header's shape {shape} has a negative size)")
     return shape, fortran, dtype
+
+
+def _ascii_header(f: Any) -> io.BytesIO:
+    """The header of a version 3.0 file (UTF-8, which np.save writes for field names beyond
+    Latin-1) as the version 2.0 reader takes it: in ASCII, other characters escaped in its string
+    literals. numpy has no public reader of 3.0, and 2.0's decodes Latin-1 ('ω_z' read as 'Ï\x89_z').
+    ``f`` is left at the start of the data."""
+    size = f.read(4)
+    text = f.read(int.from_bytes(size, "little")).decode("utf-8").encode("ascii", "backslashreplace")
+    return io.BytesIO(len(text).to_bytes(4, "little") + text)
+
+
+def npy_shape(path: Path, options: ReadOptions) -> tuple[int, ...]:
+    """The shape of the .npy file ``path``, read from its header, warning where the file would be
+    read otherwise than the options say or a user would expect: a time unit given for a duration
+    field, which carries its own; a plain array of more than two columns read with the default
+    rate column 1 (a ``t, gx, gy, gz`` array's is the x axis)."""
+    with open(path, "rb") as f:
+        shape, _, dtype = _sized_header(path, f)
+    if dtype.names:
+        if options.time in dtype.names:
+            _warn_own_time_unit(path, options.time, dtype[options.time], options.time_unit)
+    elif len(shape) == 2 and shape[1] > 2 and options.rate_col is None and options.gyro_cols is None:
+        warn(f"{path}: a plain array of {shape[1]} columns, and the rate is read from column 1, the default: "
+             "give rate_col (--rate-col N) to say which column is the yaw rate, or gyro_cols (--gyro-cols X,Y,Z) "
+             "for three axes")
+    return shape
+
+
+def check_npz(path: Path, options: ReadOptions) -> None:
+    """Open the .npz archive ``path`` (a file that is none is refused as it is opened) and warn
+    where a time unit is given and its time array is a duration, which carries its own."""
+    with _npz_archive(path) as archive:
+        member = dict(_member_names(archive)).get(options.time)
+        if member is not None and options.time_unit is not None:
+            with _npz_member(path, archive, member) as f:
+                dtype = _member_header(path, options.time, f)[2]
+            _warn_own_time_unit(path, options.time, dtype, options.time_unit)
+
+
+def _warn_own_time_unit(path: Path, name: str, dtype: np.dtype[Any], given: str | None) -> None:
+    """Warn that ``given`` is not used where the time column ``name`` is a timedelta64."""
+    if given is not None and dtype.kind == "m":
+        warn_own_time_unit(path, name, str(dtype), np.datetime_data(dtype)[0], given)
 
 
 def npy_chunks(
@@ -45,9 +94,8 @@ def npy_chunks(
     per_second = src.options.counts_per_second
     o = src.options
     with open(src.path, "rb") as f:
-        shape, fortran, dtype = npy_header(src.path, f)
+        shape, fortran, dtype = _sized_header(src.path, f)
         offset = f.tell()
-        _check_size(src, shape, dtype, offset)
         if dtype.names:
             if len(shape) != 1:
                 raise ValueError(f"{src.path}: a structured array must be 1-D, got shape {shape}")
@@ -96,16 +144,19 @@ def _check_numbers(src: GyroSource, name: str, dtype: np.dtype[Any], *, time: bo
         raise ValueError(f"{src.path}: {name} holds {dtype}, which has no fixed length in seconds")
 
 
-def _check_size(src: GyroSource, shape: tuple[int, ...], dtype: np.dtype[Any], offset: int) -> None:
-    """Refuse a header that claims more data than the file holds, before any block is allocated
-    (a shape of (3, 10**12) asked numpy for terabytes for the first block of rows)."""
+def _sized_header(path: Path, f: Any) -> tuple[tuple[int, ...], bool, np.dtype[Any]]:
+    """:func:`npy_header` of a file that holds all its header claims: one that claims more is
+    refused before any block is allocated (a shape of (3, 10**12) asked numpy for terabytes for the
+    first block of rows), and before a warning about its shape would speak of columns it lacks."""
+    shape, fortran, dtype = npy_header(path, f)
     need = math.prod(shape) * dtype.itemsize
-    have = src.path.stat().st_size - offset
+    have = path.stat().st_size - f.tell()
     if have < need:
         raise ValueError(
-            f"{src.path}: file ends early (truncated .npy): its header's shape {shape} of {dtype} takes "
+            f"{path}: file ends early (truncated .npy): its header's shape {shape} of {dtype} takes "
             f"{need} bytes, the file holds {have} after the header"
         )
+    return shape, fortran, dtype
 
 
 def _check_read(src: GyroSource, data: np.ndarray, expected: int) -> None:
@@ -134,9 +185,9 @@ def npz_chunks(
     o = src.options
     wanted = (o.time, *columns)
     with _npz_archive(src.path) as archive, ExitStack() as members:
-        # as np.load names them; two members of one name (t.npy twice, or t and t.npy) are refused,
-        # not one of them taken without a word
-        members_named = [(n[:-4] if n.endswith(".npy") else n, n) for n in archive.namelist()]
+        # two members of one name (t.npy twice, or t and t.npy) are refused, not one of them taken
+        # without a word
+        members_named = _member_names(archive)
         column_positions(src.path, [name for name, _ in members_named], wanted)
         names = dict(members_named)
         streams, dtypes, lengths = {}, {}, {}
@@ -159,6 +210,11 @@ def npz_chunks(
             count = min(rows, n - start)
             block = [_member_block(src.path, name, streams[name], dtypes[name], count) for name in wanted]
             yield block[0], block[1:], o.counts_per_second, start + count
+
+
+def _member_names(archive: zipfile.ZipFile) -> list[tuple[str, str]]:
+    """(array name, member name) of each member, the array named as np.load names it."""
+    return [(n[:-4] if n.endswith(".npy") else n, n) for n in archive.namelist()]
 
 
 @contextmanager

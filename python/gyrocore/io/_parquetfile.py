@@ -12,9 +12,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._checks import warn
 from .._extras import require
-from ._columns import column_positions, first_null
+from ._columns import column_positions, first_null, warn_own_time_unit
 from .units import TIME_UNITS
 
 if TYPE_CHECKING:
@@ -42,9 +41,8 @@ def warn_given_time_unit(path: Path, pf: Any, time_col: str, given: str | None) 
     if given is None or time_col not in pf.schema_arrow.names:
         return
     kind = pf.schema_arrow.field(time_col).type
-    if (pa.types.is_timestamp(kind) or pa.types.is_duration(kind)) and kind.unit != given:
-        warn(f"{path}: column {time_col} is a {kind} with its own unit ({kind.unit}): time_unit {given!r} "
-             "(--time-unit) is not used")
+    if pa.types.is_timestamp(kind) or pa.types.is_duration(kind):
+        warn_own_time_unit(path, time_col, str(kind), kind.unit, given)
 
 
 def parquet_chunks(

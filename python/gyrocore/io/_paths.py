@@ -93,3 +93,43 @@ def one_line(text: str) -> str:
     name) shown as its escape, ``\\n``, so that an error, a warning or a ``FAILED`` line stays one
     line."""
     return "".join(c if c.isprintable() or c == " " else repr(c)[1:-1] for c in text)
+
+
+#: The first bytes of each kind of file read, the suffixes it is read by, and what it is called.
+_MAGIC = (
+    (b"PAR1", (".parquet", ".pq"), "a Parquet file"),
+    (b"\x93NUMPY", (".npy",), "a NumPy .npy file"),
+    (b"PK\x03\x04", (".npz",), "a zip archive (a NumPy .npz file?)"),
+    (b"#ROSBAG", (".bag",), "a ROS 1 bag"),
+)
+
+
+def content_hint(path: Path) -> str:
+    """What the content of the file ``path`` is where its suffix says another kind (a Parquet
+    file named .npy, CSV text named .parquet), with the name that reads it; else empty. The
+    reader's own error (bad magic bytes, not a zip file) does not say what the file is."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(512)
+    except OSError:
+        return ""
+    suffix = path.suffix.lower()
+    for magic, suffixes, what in _MAGIC:
+        if head.startswith(magic):
+            return "" if suffix in suffixes else f"; its content is that of {what}: name it {path.stem}{suffixes[0]}"
+    if suffix in (".csv", ".tsv"):  # the CSV reader names compressed data and other encodings itself
+        return ""
+    if head.startswith(b"\x1f\x8b"):
+        return "; it is compressed with gzip: decompress it first"
+    if head and b"\0" not in head and _is_text(head):
+        return f"; its content is text (a CSV file?): name it {path.stem}.csv"
+    return ""
+
+
+def _is_text(head: bytes) -> bool:
+    """Whether ``head``, a file's first bytes, is UTF-8 text (a character cut at its end aside)."""
+    try:
+        head.decode("utf-8")
+    except UnicodeDecodeError as e:
+        return e.start >= len(head) - 3 and e.reason == "unexpected end of data"
+    return True

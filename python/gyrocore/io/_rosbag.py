@@ -30,6 +30,14 @@ def is_bag_folder(path: Path) -> bool:
     return (path / "metadata.yaml").is_file()
 
 
+def storage_file_hint(path: Path) -> str:
+    """A hint for a file of a ROS 2 bag (its ``.db3`` or ``.mcap``) given in place of the bag's
+    folder, which alone holds what reading it takes (metadata.yaml); else empty."""
+    if path.suffix.lower() in (".db3", ".mcap") and is_bag_folder(path.parent):
+        return f"; {path.name} is a file of the ROS 2 bag {path.parent}: give the bag's folder"
+    return ""
+
+
 def _bag_reader(path: Path) -> Any:
     """An open rosbags AnyReader (ROS 1 or ROS 2)."""
     highlevel = require("rosbags.highlevel", f"{path}: reading ROS bags")
@@ -127,6 +135,29 @@ def bag_chunks(
 
     rosbags deserialises message by message (a Python loop: about 70 000 messages/s).
     """
+    for stamps, values, done in _messages(src, rows, columns):
+        _refuse_unset_stamps(src, stamps, done - len(stamps))
+        yield stamps, values, 1e9, done
+
+
+def _refuse_unset_stamps(src: GyroSource, stamps: np.ndarray, first: int) -> None:
+    """Refuse a header.stamp of 0 after the first message: a driver that never sets its stamps
+    leaves them 0, and the pipeline's "t[1] = 0 follows 0 (sort the log ...)" would not say so
+    (the first message may be stamped 0 by a simulated clock)."""
+    unset = np.flatnonzero(stamps == 0)
+    unset = unset[unset + first > 0]
+    if len(unset):
+        k = first + int(unset[0])
+        raise ValueError(
+            f"{src.path}: message {k} on {src.options.topic}: header.stamp is 0, a stamp its driver never set "
+            "(a message is read at its header.stamp): stamp the messages when recording, or restamp the bag"
+        )
+
+
+def _messages(
+    src: GyroSource, rows: int, columns: tuple[str, ...]
+) -> Iterator[tuple[np.ndarray, list[np.ndarray], int]]:
+    """Blocks of ``rows`` messages: their stamps [ns], one array per field, messages read so far."""
     fields = [tuple(c.split(".")) for c in columns]
     reader = _bag_reader(src.path)
     try:
@@ -140,10 +171,10 @@ def bag_chunks(
             values.append([getattr(getattr(msg, vector), axis) for vector, axis in fields])
             if len(stamps) == rows:
                 done += rows
-                yield _block(stamps, values, len(columns)) + (1e9, done)
+                yield _block(stamps, values, len(columns)) + (done,)
                 stamps, values = [], []
         if stamps:
-            yield _block(stamps, values, len(columns)) + (1e9, done + len(stamps))
+            yield _block(stamps, values, len(columns)) + (done + len(stamps),)
     except Exception as e:  # rosbags reports damage as its ReaderErrors, AssertionError, struct.error, ...
         raise ValueError(f"{src.path}: damaged bag ({type(e).__name__}: {_joined_message(e)})") from None
     finally:

@@ -29,7 +29,7 @@ from ..wholelog import WHOLE_OPTIONS
 from ..window import in_log_clock
 from ._columns import concat
 from ._logfolder import from_stationary, has_track, read_fixes, read_odometry, read_reference
-from .source import SPEED_COLUMN, GyroSource, open_source
+from .source import SPEED_COLUMN, GyroSource, finite_speed, open_source
 from .units import UnitCheck
 
 if TYPE_CHECKING:
@@ -112,6 +112,10 @@ class Log:
         span), or None without odometry."""
         if self.t_odometry is None or self.speed is None:
             return None
+        if np.array_equal(self.t_odometry, self.t):
+            # a file's speed column, one value per sample: nothing to interpolate, and an empty
+            # value (NaN) is a speed unknown there, as on the command line (interpolation refuses it)
+            return self.speed
         return speed_on(self.t, self.t_odometry, self.speed, where=f"log {self.name}: odometry speed")
 
     def process(
@@ -191,7 +195,7 @@ def _file_tables(src: GyroSource, t: FloatArray) -> tuple[dict[str, FloatArray],
         ref = {"t": t, "heading": heading}
         if has_track(str(src.path), columns, (TRUTH_COLUMNS["x"], TRUTH_COLUMNS["y"])):
             ref.update(x=columns[TRUTH_COLUMNS["x"]], y=columns[TRUTH_COLUMNS["y"]])
-    odo = {"t": t, "speed": columns[SPEED_COLUMN]} if SPEED_COLUMN in columns else {}
+    odo = {"t": t, "speed": finite_speed(src, columns[SPEED_COLUMN])} if SPEED_COLUMN in columns else {}
     return ref, odo
 
 

@@ -16,17 +16,17 @@ from typing import Any
 import numpy as np
 
 from .._arrays import FloatArray, durations_in_seconds, warn_coarse_times
-from .._checks import require_choice, warn
+from .._checks import first_infinite, require_choice, warn
 from .._gyrocore import SampleError
 from ..window import Window
 from ._axes import MEASURED, measure_up, parse_up, project, three_names
 from ._columns import concat, import_pyarrow_lazy_modules
 from ._csvfile import CsvLayout, csv_chunks, csv_layout
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta
-from ._npyfile import npy_chunks, npy_header, npz_chunks
+from ._npyfile import check_npz, npy_chunks, npy_shape, npz_chunks
 from ._parquetfile import parquet_chunks, parquet_file, warn_given_time_unit
-from ._paths import check_file, check_readable, missing
-from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder
+from ._paths import check_file, check_readable, content_hint, missing
+from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder, storage_file_hint
 from .units import RATE_UNITS, TIME_UNITS, header_options
 
 #: Samples per chunk, at most (a CSV chunk also ends with a block of :data:`CSV_BLOCK_BYTES`).
@@ -257,7 +257,8 @@ class GyroSource:
         """The vehicle's speed [m/s] per sample from a CSV or Parquet file's :data:`SPEED_COLUMN`
         (an empty value NaN: unknown there), or None for an input without one (a log folder's
         speed is its odometry.csv, which :func:`gyrocore.io.read_log` reads)."""
-        return self.optional_columns((SPEED_COLUMN,), rows).get(SPEED_COLUMN)
+        speed = self.optional_columns((SPEED_COLUMN,), rows).get(SPEED_COLUMN)
+        return None if speed is None else finite_speed(self, speed)
 
     def optional_columns(self, names: tuple[str, ...], rows: int = DEFAULT_CHUNK_ROWS) -> dict[str, FloatArray]:
         """Those of the columns ``names`` that a CSV or Parquet file has, one value per sample (an
@@ -308,6 +309,18 @@ class GyroSource:
         """(t [s], the ``columns`` as read, progress) of the format's reader, block after block."""
         for t_raw, values, per_second, done in _READERS[self.kind](self, rows, columns):
             yield _seconds(t_raw, per_second), values, done
+
+
+def finite_speed(source: GyroSource, speed: FloatArray) -> FloatArray:
+    """``speed``, a file's speed column, if no value is infinite (NaN, an empty value, is a speed
+    unknown there); else a ValueError naming the file, the sample and the column."""
+    i = first_infinite(speed)
+    if i is not None:
+        raise ValueError(
+            f"{source.data_path}: {source.where(i)}, column {SPEED_COLUMN}: {speed[i]} is not a finite speed "
+            "[m/s] (leave it empty where it is unknown, or give --no-speed, use_speed=False)"
+        )
+    return speed
 
 
 _READERS = {
@@ -376,6 +389,17 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
     if not p.is_file():  # reading a named pipe or a device would wait for ever, or never end
         raise ValueError(f"{p}: not a regular file (a named pipe, socket or device); give a file or folder")
     check_readable(p)
+    try:
+        return _open_file(p, options)
+    except ValueError as e:
+        hint = content_hint(p)  # a suffix that lies: the reader's error does not say so
+        if hint:
+            raise ValueError(f"{e}{hint}") from None
+        raise
+
+
+def _open_file(p: Path, options: ReadOptions) -> GyroSource:
+    """The file ``p`` by its suffix, its headers read."""
     suffix = p.suffix.lower()
     if suffix in (".csv", ".tsv"):
         layout = csv_layout(p, csv_delimiter(p, options))
@@ -387,15 +411,16 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
         options = header_options(p, pf.schema_arrow.names, options)
         return GyroSource(p, "parquet", p, options, progress_total=pf.metadata.num_rows)
     if suffix == ".npy":
-        with open(p, "rb") as f:
-            shape = npy_header(p, f)[0]
+        shape = npy_shape(p, options)
         return GyroSource(p, "npy", p, header_options(p, None, options), progress_total=shape[0] if shape else 0)
     if suffix == ".npz":
+        check_npz(p, options)
         return GyroSource(p, "npz", p, header_options(p, None, options))
     if suffix == ".bag":
         return _open_bag(p, header_options(p, None, options))
     raise ValueError(
         f"{p}: unknown kind of file (read are {', '.join(FILE_SUFFIXES)}, log folders and ROS 2 bag folders)"
+        f"{storage_file_hint(p)}"
     )
 
 

@@ -68,7 +68,7 @@ class UnitCheck:
         self._max_rate = 0.0
         self._last_time: float | None = None
         self._intervals = 0
-        self._short_intervals = 0  # not longer than INTERVAL_LIMIT: not a gap
+        self._gaps = 0  # intervals longer than INTERVAL_LIMIT
 
     def update(self, t: FloatArray, rate: FloatArray) -> None:
         """Account for one chunk (t [s], rate [rad/s])."""
@@ -78,9 +78,11 @@ class UnitCheck:
             edges = t if self._last_time is None else np.concatenate(([self._last_time], t))
             self._intervals += len(edges) - 1
             # Times that are not finite (inf - inf) are the core's error right after this, which
-            # names the sample: numpy's "invalid value" warning before it would only confuse.
+            # names the sample: numpy's "invalid value" warning before it would only confuse. An
+            # interval of such a time is no gap, so that it never reads as a unit's fault.
             with np.errstate(invalid="ignore"):
-                self._short_intervals += int(np.count_nonzero(np.diff(edges) <= INTERVAL_LIMIT))
+                d = np.diff(edges)
+                self._gaps += int(np.count_nonzero(np.isfinite(d) & (d > INTERVAL_LIMIT)))
             self._last_time = float(t[-1])
         if self._first is None:
             self._head.append((t[:HEAD_SAMPLES], rate[:HEAD_SAMPLES]))
@@ -105,7 +107,7 @@ class UnitCheck:
     def error(self) -> str | None:
         """Why the stream cannot be a gyro log in the units it was read in, or None: every interval
         is longer than a gap (a log in ns read as s has nothing but gaps)."""
-        if self._intervals == 0 or self._short_intervals > 0:
+        if self._intervals == 0 or self._gaps < self._intervals:
             return None
         if self._first is None:
             self._judge_head()
