@@ -266,18 +266,21 @@ def require_choice(what: str, value: object, choices: Iterable[str]) -> None:
 
 
 def did_you_mean(value: object, choices: Iterable[str]) -> str:
-    """`` (did you mean 'x'?)`` for the one of ``choices`` that ``value`` is a likely typo or another
-    case of (``recomended``, ``HDR``, ``lowpas_tau``), to follow the name in an error; empty when
-    none is close. Every "unknown name" error of the package says it the same way, also the
-    extension's (which calls this)."""
-    if not isinstance(value, str):
+    """`` (did you mean 'x'?)`` for the one of ``choices`` that ``value`` is a likely typo, another
+    case or the start of (``recomended``, ``HDR``, ``lowpas_tau``, ``sigma`` for ``sigma_deg``), to
+    follow the name in an error; empty when none or several are as close. Every "unknown name"
+    error of the package says it the same way, also the extension's (which calls this)."""
+    if not isinstance(value, str) or not value:
         return ""
     lowered = {c.lower(): c for c in choices}
-    def closeness(choice: str) -> float:
-        return difflib.SequenceMatcher(None, value.lower(), choice).ratio()
-
-    ranked = sorted(((closeness(c), c) for c in lowered), reverse=True)
-    if not ranked or ranked[0][0] < 0.7 or (len(ranked) > 1 and ranked[1][0] == ranked[0][0]):
-        return ""  # nothing close, or two as close (hdr_c: hdr_c1 or hdr_c2?)
-    best = lowered[ranked[0][1]]
+    typed = value.lower()
+    starts = [c for c in lowered if c.startswith(typed)]
+    if len(starts) == 1:
+        best = lowered[starts[0]]
+    else:
+        ranked = sorted(((difflib.SequenceMatcher(None, typed, c).ratio(), c) for c in lowered), reverse=True)
+        # 0.8: a typo of one or two letters in a name; --bias-window and --up-window share 0.75
+        if not ranked or ranked[0][0] < 0.8 or (len(ranked) > 1 and ranked[1][0] == ranked[0][0]):
+            return ""  # nothing close, or two as close (hdr_c: hdr_c1 or hdr_c2?)
+        best = lowered[ranked[0][1]]
     return f" (did you mean {best!r}?)" if best != value else ""

@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from ._arrays import FloatArray
-from ._checks import warn
+from ._checks import MAX_READING, warn
 
 #: The means compared by :func:`moving_share` span this long [s]: long enough to average the
 #: noise down, short enough that a turn or a swerve changes them.
@@ -86,13 +86,52 @@ def spread(rate: FloatArray) -> tuple[float, float] | None:
     return sd / noise, math.sqrt(max(sd * sd - noise * noise, 0.0))
 
 
+#: How the warning of :func:`warn_if_turning` begins, for a caller that passes it on alone.
+TURNING = "the rest window"
+
+
 def warn_if_turning(window: tuple[float, float], rate: FloatArray, bias: float) -> None:
     """Warn when the readings of the rest ``window`` spread far beyond their noise: the gyro
     turned in it, and the ``bias`` measured there [rad/s] is off by the turn (f110_ds1's first
     5 s, given as its rest, read 40.7 deg/s)."""
     measured = spread(rate)
     if measured is not None and measured[0] > REST_SPREAD and measured[1] > REST_EXCESS:
-        warn(f"the rest window [{window[0]}, {window[1]}] s does not look like a rest: its readings spread "
+        warn(f"{TURNING} [{window[0]}, {window[1]}] s does not look like a rest: its readings spread "
              f"{measured[0]:.3g} times their sample-to-sample noise, {math.degrees(measured[1]):.3g} deg/s beyond it (at "
              f"rest: about once, and at most {math.degrees(REST_EXCESS):g} deg/s beyond), so the gyro turned in it and its "
              f"bias, {math.degrees(bias):.5g} deg/s, holds the turn: give a window in which the gyro stands still")
+
+
+#: The readings of a streamed rest window :class:`WindowWatch` keeps at most (8 MB): a window of
+#: an hour at 1 kHz is checked on its first 1000 s, and memory stays flat however long it is.
+WATCHED = 1_000_000
+
+
+class WindowWatch:
+    """The readings of a causal pipeline's rest window, kept as its chunks stream by (up to
+    :data:`WATCHED`), and checked by :func:`warn_if_turning` once the window is over: the core
+    measures the window's bias itself, chunk by chunk, and saw no turn in it."""
+
+    def __init__(self) -> None:
+        self.readings: list[FloatArray] | None = []  # None once checked
+
+    @classmethod
+    def restored(cls, readings: list[FloatArray] | None) -> WindowWatch:
+        """A watch that holds ``readings`` (None: the window was checked), as a pickle kept it."""
+        watch = cls()
+        watch.readings = readings
+        return watch
+
+    def add(self, window: tuple[float, float], t: FloatArray, rate: FloatArray) -> None:
+        """Keep the readings of the chunk ``(t, rate)`` inside ``window`` that the core takes."""
+        if self.readings is None:
+            return
+        kept = sum(len(r) for r in self.readings)
+        inside = rate[(t >= window[0]) & (t <= window[1]) & (np.abs(rate) < MAX_READING)]
+        self.readings.append(inside[: max(WATCHED - kept, 0)])
+
+    def close(self, window: tuple[float, float], bias: float) -> None:
+        """The window is over: check its readings (once)."""
+        if self.readings is not None:
+            warn_if_turning(window, np.concatenate(self.readings) if self.readings else np.empty(0), bias)
+            self.readings = None

@@ -15,6 +15,7 @@ from typing import Any
 from . import _signals, io, rests, wholelog
 from ._arrays import FloatArray
 from ._checks import collected, warn
+from ._motion import TURNING
 from ._gyrocore import SampleError
 from .batch_inputs import complete_output
 from .io._columns import concat
@@ -226,12 +227,15 @@ class _FileJob:
         with _said_for_the_file():
             pipeline = plan.pipeline(self.preset)  # a bias constant over the log: the core's bias=, no copy per chunk
         check = io.UnitCheck(source.options)
+        # the chunks' warnings (_said_for_the_file): the file's report says all but one below; that
+        # one, a causal rest window with a turn in it, comes once, when its chunk closes the window
+        said: list[str] = []
         with io.HeadingWriter(self.out, heading=self.heading, columns=self.columns) as writer:
             for chunk in source.chunks(self.chunk_rows):
                 _signals.check()  # a signal whose KeyboardInterrupt a library swallowed stops here
                 check.update(chunk.t, chunk.rate)
                 try:
-                    with _said_for_the_file():
+                    with collected(said):
                         result = pipeline.process(
                             chunk.t,
                             plan.corrected(chunk.t, chunk.rate),
@@ -261,7 +265,8 @@ class _FileJob:
         policy = pipeline.report
         # the plan's warning is about the bias of the output (taken as 0 in causal mode without a
         # rest window): said once the output is written, not for a file that fails on the way
-        for message in [*([plan.warning] if plan.warning else []), *check.problems(), *_repairs(policy)]:
+        turned = [m for m in said if m.startswith(TURNING)]  # a causal rest window with a turn in it, once
+        for message in [*([plan.warning] if plan.warning else []), *check.problems(), *_repairs(policy), *turned]:
             warn(message)
         return FileReport(
             str(self.path),

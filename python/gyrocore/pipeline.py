@@ -17,6 +17,7 @@ from numpy.typing import ArrayLike
 from . import _gyrocore, rests
 from ._arrays import FloatArray, as_float_array
 from ._checks import MAX_READING, usable, warn, warn_units
+from ._motion import WindowWatch
 from .pipeline_params import (
     BIAS_SOURCES,
     _to_si,
@@ -132,6 +133,7 @@ class Pipeline:
         self._units_checked = False
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
         self._rests: list[Rest] = []
+        self._watch = WindowWatch()
         if fusion is not None:
             self._inner.start_fusion(_stage_settings(self.params, fusion))
         # Said once the first samples are processed, not here: a run whose first chunk is refused
@@ -235,10 +237,15 @@ class Pipeline:
         inputs = {"t": (t, ta), "rate": (rate, ra), "temperature": (temperature, temp), "speed": (speed, sa)}
         given = out_arrays(out, outputs, len(ta), inputs)
         before = inner.report()
+        window = self._window(ta)
+        if window is not None and inner.bias()[2]:
+            self._watch.add(window, ta, ra)
         heading, out_rate, drift, found, fused = self._run(
             inner, ta, ra, temp, index_offset, (flags, fix_output_flags(outputs)), sa, fix_block, given
         )
         self._inner = inner  # with the fix stage the first fixes started, now that they were good
+        if window is not None and not inner.bias()[2]:  # the window is over
+            self._watch.close(window, self.bias)
         self._warn_repairs(before, inner.report(), ta, ra, temp)
         if self._unmeasured is not None and len(ta):
             warn(self._unmeasured)
@@ -254,6 +261,17 @@ class Pipeline:
         counts = {"applied": applied, "rejected": rejected, "before_start": before_start, "waiting": waiting}
         return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found), heading_sigma=sigma,
                              fusion=FusionResult(ta, heading, sigma, bias, scale, counts))
+
+    def _window(self, t: FloatArray) -> tuple[float, float] | None:
+        """The rest window on the log's clock, once known (a ``bias_duration`` from the log's first
+        sample, in ``t`` if it is the first chunk); None with a fixed bias."""
+        p = self._inner.params()
+        first = self._first_time if self._first_time is not None else float(t[0]) if len(t) else None
+        if p.get("bias_window"):
+            return float(p["bias_window"][0]), float(p["bias_window"][1])
+        if p.get("bias_duration") and first is not None:
+            return first, first + float(p["bias_duration"])
+        return None
 
     def _fix_block(self, fixes: FixesLike | None) -> tuple[_gyrocore.Pipeline, Fixes | None]:
         """The core to run this block on and its fixes: fixes given to a pipeline without the fix
@@ -342,6 +360,7 @@ class Pipeline:
         self._inner.reset()
         self._first_time = None
         self._rests = []
+        self._watch = WindowWatch()
 
     def _warn_repairs(
         self,
@@ -428,6 +447,7 @@ class Pipeline:
             "first_time": self._first_time,
             "rests": self._rests,
             "unmeasured": self._unmeasured,
+            "watched": self._watch.readings,
         }
 
     def __setstate__(self, state: dict[str, Any]) -> None:
@@ -437,6 +457,7 @@ class Pipeline:
         self._first_time = state.get("first_time")
         self._rests = list(state.get("rests", []))
         self._unmeasured = state.get("unmeasured")
+        self._watch = WindowWatch.restored(state.get("watched", []))
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"

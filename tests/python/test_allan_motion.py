@@ -3,7 +3,9 @@ warned about, and one at rest is not."""
 
 from __future__ import annotations
 
+import pickle
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -82,3 +84,29 @@ def test_the_real_logs_rests_are_not(name: str) -> None:
         for window in windows:
             gyrocore.calibration.static_bias(log.t, log.rate, window, min_duration=0.1)
             gyrocore.process(log.t, log.rate, "static_bias", bias_window=window)
+
+
+def test_a_causal_rest_window_with_a_turn_in_it_is_warned_about_once_however_it_is_chunked() -> None:
+    log = gyrocore.read_log(real_log_path("f110_ds1"))
+    window = (float(log.t[0]), float(log.t[0]) + 5.0)
+    for step in (len(log.t), 7):
+        p = gyrocore.Pipeline("static_bias", bias_window=window)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            for i in range(0, len(log.t), step):
+                p.process(log.t[i:i + step], log.rate[i:i + step])
+        said = [str(w.message) for w in caught if "does not look like a rest" in str(w.message)]
+        assert len(said) == 1 and said[0].startswith("the rest window [1650775094.7543092, 1650775099.7543092] s")
+    # a pipeline pickled inside the window keeps what it has seen of it
+    p = gyrocore.Pipeline("static_bias", bias_duration=5.0)
+    p.process(log.t[:50], log.rate[:50])
+    again = pickle.loads(pickle.dumps(p))
+    with pytest.warns(gyrocore.InputWarning, match=TURNING):
+        again.process(log.t[50:], log.rate[50:])
+
+
+def test_the_command_warns_once_for_a_causal_run_of_a_file(tmp_path: Path) -> None:
+    proc = gyrocore_cli("process", real_log_path("f110_ds1"), "--causal", "--bias-duration", "5", "--chunk-rows", "7",
+                        "--out", tmp_path / "h.csv", code=0)
+    assert proc.stderr.count("does not look like a rest") == 1
+    assert f"gyrocore: warning: {real_log_path('f110_ds1')}: the rest window [" in proc.stderr

@@ -41,6 +41,7 @@ def test_chunked_streaming_is_bit_identical(preset: str) -> None:
         assert np.array_equal(joined, getattr(whole, name)), name
 
 
+@pytest.mark.filterwarnings("ignore:the rest window")  # its synthetic rate turns in the window
 def test_long_arrays_written_while_another_core_faults_their_pages_in_are_bit_identical() -> None:
     # From 2**18 samples on, the outputs' pages are faulted in by a helper thread as the pipeline
     # writes them; chunks below that size are written without it.

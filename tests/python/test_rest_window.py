@@ -31,6 +31,7 @@ def rate(t: np.ndarray) -> np.ndarray:
     return 0.01 + 0.2 * np.sin(t / 7.0)
 
 
+@pytest.mark.filterwarnings("ignore:the rest window")  # its synthetic rate turns in the window
 def test_a_chunk_that_closes_an_empty_window_changes_nothing() -> None:
     before_gap, after_gap, rest = span(0, 30), span(130, 160), span(30, 70)
     pipeline = Pipeline("hdr", bias_window=(50.0, 60.0))
