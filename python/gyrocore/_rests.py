@@ -27,9 +27,8 @@ from ._arrays import FloatArray
 from ._checks import usable
 from ._motion import warn_if_turning
 from ._smoother import leave_one_out
-from .pipeline import RestWindowError, refuse_few_readings, refuse_start_before, rest_window_text
 from .rests import Rest
-from .window import time_range
+from .window import RestWindowError, refuse_few_readings, refuse_start_before, rest_window_text, time_range
 
 #: Below this speed [m/s] the vehicle stands still (wheel and CAN speeds read a few cm/s of noise).
 SPEED_THRESHOLD = 0.05

@@ -21,7 +21,8 @@ from .batch_inputs import complete_output
 from .io._columns import concat
 from .io._logfolder import FIXES_CSV, from_stationary, read_odometry
 from .io._paths import error_text, one_line
-from .pipeline import RestWindowError, has_bias_source, uses_static_bias
+from .pipeline import has_bias_source, uses_static_bias
+from .window import RestWindowError
 from .pipeline_params import _to_si, unmeasured_bias
 from .window import Window, time_range
 

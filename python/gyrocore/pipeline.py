@@ -33,7 +33,14 @@ from .pipeline_params import (
 from .result import ALL_OUTPUTS as ALL_OUTPUTS, OUTPUTS as OUTPUTS, Filled, HeadingResult as HeadingResult
 from .result import OutArrays, fix_output_flags, out_arrays, output_flags as output_flags
 from .rests import Rest
-from .window import time_range
+from .window import (
+    MIN_WINDOW_READINGS,
+    RestWindowError,
+    refuse_few_readings,
+    refuse_start_before,
+    rest_window_text,
+    time_range,
+)
 
 if TYPE_CHECKING:
     from .fixes import Fixes, FixesLike
@@ -53,53 +60,9 @@ _Fused = tuple[FloatArray | None, FloatArray | None, FloatArray | None, tuple[in
 TEMPERATURE_MODEL = ("temp_slope", "temp_offset")
 
 
-class RestWindowError(ValueError):
-    """The rest window (``bias_window``, ``bias_duration``) does not fit the log: it holds no
-    sample or fewer than :data:`MIN_WINDOW_READINGS`, starts before the log's first sample, or
-    reaches past its end. ``span``: the log's first and last time [s] where the message shows them
-    (:func:`gyrocore.window.in_log_clock` tells a window from meta.json its clock there)."""
-
-    def __init__(self, message: str, span: tuple[float, float] | None = None) -> None:
-        super().__init__(message)
-        self.span = span
-
-
 #: :meth:`Pipeline.process`'s ``index_offset`` is below this: any index of a chunk added to it fits
 #: the core's 64-bit index.
 MAX_INDEX = 2**63
-
-#: A rest window must hold at least this many readings: the mean of fewer is mostly noise, and
-#: its spread unknown (one reading gave a bias "+- 0").
-MIN_WINDOW_READINGS = 3
-
-
-def refuse_few_readings(window: str, readings: int) -> None:
-    """A :class:`RestWindowError` if the rest ``window`` (as the user gave it) held fewer than
-    :data:`MIN_WINDOW_READINGS` readings."""
-    if readings < MIN_WINDOW_READINGS:
-        raise RestWindowError(
-            f"{window} holds {readings} reading(s): the bias needs at least {MIN_WINDOW_READINGS}; "
-            "give a longer rest window"
-        )
-
-
-def refuse_start_before(start: float, end: float, first: float) -> None:
-    """A :class:`RestWindowError` for a ``bias_window`` that starts before the log's first sample
-    ``first``: the bias would be measured over less than asked, as for one that reaches past its end."""
-    if start < first <= end:
-        raise RestWindowError(
-            f"the bias window [{start}, {end}] s starts before the first sample (t[0] = {first}): the bias would be "
-            f"measured over [{first}, {end}] s only; give a rest window inside the log, in its own time base"
-        )
-
-
-def rest_window_text(params: dict[str, Any]) -> str:
-    """The rest window of ``params`` as the user gave it."""
-    if params.get("bias_window"):
-        start, end = params["bias_window"]
-        return f"the bias window [{start}, {end}] s"
-    return f"bias_duration = {params['bias_duration']} s"
-
 
 class Pipeline:
     """Streaming heading pipeline (correction -> threshold -> low-pass -> HDR -> de-lag -> integrate).
@@ -133,7 +96,7 @@ class Pipeline:
         self._units_checked = False
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
         self._rests: list[Rest] = []
-        self._watch = WindowWatch()
+        self._watch = self._new_watch()
         if fusion is not None:
             self._inner.start_fusion(_stage_settings(self.params, fusion))
         # Said once the first samples are processed, not here: a run whose first chunk is refused
@@ -237,7 +200,7 @@ class Pipeline:
         inputs = {"t": (t, ta), "rate": (rate, ra), "temperature": (temperature, temp), "speed": (speed, sa)}
         given = out_arrays(out, outputs, len(ta), inputs)
         before = inner.report()
-        window = self._window(ta)
+        window = None if self._watch.readings is None else self._window(ta)  # none once it is checked
         if window is not None and inner.bias()[2]:
             self._watch.add(window, ta, ra)
         heading, out_rate, drift, found, fused = self._run(
@@ -261,6 +224,11 @@ class Pipeline:
         counts = {"applied": applied, "rejected": rejected, "before_start": before_start, "waiting": waiting}
         return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found), heading_sigma=sigma,
                              fusion=FusionResult(ta, heading, sigma, bias, scale, counts))
+
+    def _new_watch(self) -> WindowWatch:
+        """A watch of the rest window, done already with a fixed bias (nothing to watch per chunk)."""
+        p = self._inner.params()
+        return WindowWatch() if p.get("bias_window") or p.get("bias_duration") else WindowWatch.restored(None)
 
     def _window(self, t: FloatArray) -> tuple[float, float] | None:
         """The rest window on the log's clock, once known (a ``bias_duration`` from the log's first
@@ -360,7 +328,7 @@ class Pipeline:
         self._inner.reset()
         self._first_time = None
         self._rests = []
-        self._watch = WindowWatch()
+        self._watch = self._new_watch()
 
     def _warn_repairs(
         self,

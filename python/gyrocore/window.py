@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -121,3 +122,47 @@ def in_log_clock(message: str, span: tuple[float, float] | None) -> str:
     :func:`time_range`, for a window that takes plain seconds of the log's clock only: the span
     then hints at that clock, not at ``+T``. Unchanged where ``span`` is None (none shown)."""
     return message if span is None else message.replace(time_range(*span), time_range(*span, after_first=False))
+
+
+class RestWindowError(ValueError):
+    """The rest window (``bias_window``, ``bias_duration``) does not fit the log: it holds no
+    sample or fewer than :data:`MIN_WINDOW_READINGS`, starts before the log's first sample, or
+    reaches past its end. ``span``: the log's first and last time [s] where the message shows them
+    (:func:`gyrocore.window.in_log_clock` tells a window from meta.json its clock there)."""
+
+    def __init__(self, message: str, span: tuple[float, float] | None = None) -> None:
+        super().__init__(message)
+        self.span = span
+
+
+#: A rest window must hold at least this many readings: the mean of fewer is mostly noise, and
+#: its spread unknown (one reading gave a bias "+- 0").
+MIN_WINDOW_READINGS = 3
+
+
+def refuse_few_readings(window: str, readings: int) -> None:
+    """A :class:`RestWindowError` if the rest ``window`` (as the user gave it) held fewer than
+    :data:`MIN_WINDOW_READINGS` readings."""
+    if readings < MIN_WINDOW_READINGS:
+        raise RestWindowError(
+            f"{window} holds {readings} reading(s): the bias needs at least {MIN_WINDOW_READINGS}; "
+            "give a longer rest window"
+        )
+
+
+def refuse_start_before(start: float, end: float, first: float) -> None:
+    """A :class:`RestWindowError` for a ``bias_window`` that starts before the log's first sample
+    ``first``: the bias would be measured over less than asked, as for one that reaches past its end."""
+    if start < first <= end:
+        raise RestWindowError(
+            f"the bias window [{start}, {end}] s starts before the first sample (t[0] = {first}): the bias would be "
+            f"measured over [{first}, {end}] s only; give a rest window inside the log, in its own time base"
+        )
+
+
+def rest_window_text(params: dict[str, Any]) -> str:
+    """The rest window of ``params`` as the user gave it."""
+    if params.get("bias_window"):
+        start, end = params["bias_window"]
+        return f"the bias window [{start}, {end}] s"
+    return f"bias_duration = {params['bias_duration']} s"

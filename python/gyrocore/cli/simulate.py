@@ -11,7 +11,7 @@ from typing import Callable
 import numpy as np
 
 from .. import motion, sim
-from ..pipeline import MIN_WINDOW_READINGS
+from ..window import MIN_WINDOW_READINGS
 from ._common import COUNT, POSITIVE, SEED, add_command, add_overwrite_option, refuse_existing, write_atomically
 
 #: Column order of the CSV: what a log has (t, gyro_z, temperature), then the truth.

@@ -18,7 +18,6 @@ from .._arrays import FloatArray
 from .._checks import require_flag, warn
 from ..pipeline import (
     HeadingResult,
-    RestWindowError,
     has_bias_source,
     preset_params,
     process,
@@ -26,7 +25,7 @@ from ..pipeline import (
 )
 from ..rests import speed_on
 from ..wholelog import WHOLE_OPTIONS
-from ..window import in_log_clock
+from ..window import RestWindowError, in_log_clock
 from ._columns import concat
 from ._logfolder import from_stationary, has_track, read_fixes, read_odometry, read_reference
 from .source import SPEED_COLUMN, GyroSource, finite_speed, open_source
