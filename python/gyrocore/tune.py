@@ -44,7 +44,7 @@ from .tune_params import FORMAT_NAME, FORMAT_VERSION, ParameterSet, validate
 
 __all__ = [
     "BOUNDS", "FORMAT_NAME", "FORMAT_VERSION", "HARM_MIXES", "HARM_WEIGHT", "OBJECTIVES", "OPTIMISERS", "Case", "CaseScore",
-    "ParameterSet", "TuningResult", "default_parameters", "harm_cases", "harm_excess", "leave_one_out",
+    "ParameterSet", "TuningResult", "default_parameters", "harm_cases", "harm_excess", "check_leave_one_out", "leave_one_out",
     "mean_log_ratio", "mean_ne_psi", "perfect_gyro", "score_cases", "search_box", "simulated_cases", "tune", "unbiased_gyro", "validate",
 ]
 
@@ -320,6 +320,14 @@ def tune(
     )
 
 
+def check_leave_one_out(cases: Sequence[Case]) -> None:
+    """Refuse fewer than two drives for :func:`leave_one_out`, which fits once without each; the
+    command line asks before its main fit, which takes minutes (it failed only after it)."""
+    if len(cases) < 2:
+        raise ValueError(f"leave-one-out needs at least two training drives, got {len(cases)}: it fits once "
+                         "without each drive and scores that drive")
+
+
 def leave_one_out(
     cases: Sequence[Case], *, progress: Callable[[str], None] | None = None, **options: Any
 ) -> tuple[CaseScore, ...]:
@@ -328,8 +336,7 @@ def leave_one_out(
     The mean NE_psi of the result estimates how the tuned parameters do on a drive they were not
     fitted to (the paper's test set, section 5.3).
     """
-    if len(cases) < 2:
-        raise ValueError("leave-one-out needs at least two training drives")
+    check_leave_one_out(cases)
     preset = options.get("preset", "hdr")
     held_out: list[CaseScore] = []
     for i, case in enumerate(cases):

@@ -1,0 +1,37 @@
+"""Hostile command lines for ``gyrocore tune``: one line naming the option and what to do, exit 2,
+before the drives are built or the fit runs."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from .test_errors_named import run_cli
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        # the car model said only "the rest (20.0 s) must be shorter than the drive (18.0 s)"
+        (("--sim-drive", "city:0.3"), "--sim-drive city:0.3 (0.3 min at --time-scale 1): a car drive begins with a "
+                                      "20 s rest (its static bias test); give a longer drive"),
+        (("--sim-table", "II", "--time-scale", "0.01"), "--sim-table II (12.9 min at --time-scale 0.01): a car drive "
+                                                        "begins with a 20 s rest"),
+        (("--sim-drive", "city:30", "--time-scale", "0.015"), "the do-no-harm drives (20 min at --time-scale 0.015): a car "
+                                                           "drive begins with a 20 s rest"),
+        # it failed in the scoring: "reference: 1 sample(s); a heading error needs at least two ..."
+        (("--sim-drive", "city:1", "--rate-hz", "0.01"),
+         "--rate-hz 0.01 puts 1 sample(s) in the drive's rest window [0, 20] s, and its bias needs at least 3"),
+        # it failed only after the whole fit
+        (("--sim-drive", "city:1", "--leave-one-out"),
+         "leave-one-out needs at least two training drives, got 1: it fits once without each drive"),
+    ],
+)
+def test_a_tuning_that_cannot_run_is_refused_before_the_fit(tmp_path: Path, args: tuple[str, ...], message: str) -> None:
+    out = tmp_path / "p.json"
+    proc = run_cli("tune", *args, "--no-harm", "--out", out)
+    assert proc.returncode == 2, proc.stderr
+    assert proc.stderr.startswith("gyrocore: error: ") and message in proc.stderr, proc.stderr
+    assert "tuning hdr on" not in proc.stderr  # no fit began
+    assert not out.exists()
