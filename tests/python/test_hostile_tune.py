@@ -3,9 +3,14 @@ before the drives are built or the fit runs."""
 
 from __future__ import annotations
 
+import json
+import math
 from pathlib import Path
 
 import pytest
+
+import gyrocore
+from gyrocore import tune
 
 from .test_errors_named import run_cli
 
@@ -35,3 +40,19 @@ def test_a_tuning_that_cannot_run_is_refused_before_the_fit(tmp_path: Path, args
     assert proc.stderr.startswith("gyrocore: error: ") and message in proc.stderr, proc.stderr
     assert "tuning hdr on" not in proc.stderr  # no fit began
     assert not out.exists()
+
+
+def test_a_fixed_parameter_in_degrees_is_checked_and_saved_by_its_si_name(tmp_path: Path) -> None:
+    # --set refused hdr_increment_dps, which fixed= takes; fixed= took it beside a fitted hdr_increment,
+    # and every evaluation failed: "hdr_increment is given twice (as hdr_increment and in degrees)"
+    with pytest.raises(ValueError, match="^hdr_increment cannot be both fitted and fixed$"):
+        tune.search_box("hdr", fixed={"hdr_increment_dps": 0.01})
+    proc = run_cli("tune", "--sim-drive", "city:1", "--set", "hdr_incremnt=1", "--no-harm")
+    assert proc.returncode == 2 and "unknown parameter(s) hdr_incremnt (did you mean 'hdr_increment'?)" in proc.stderr
+    out = tmp_path / "p.json"
+    proc = run_cli("tune", "--sim-drive", "city:1", "--set", "hdr_increment_dps=0.01", "--param", "hdr_c1",
+                   "--no-harm", "--max-evals", "2", "--out", out)
+    assert proc.returncode == 0, proc.stderr
+    saved = tune.ParameterSet.read(out)  # what evaluate --params reads
+    assert saved.overrides["hdr_increment"] == pytest.approx(math.radians(0.01)) and "hdr_increment_dps" not in saved.overrides
+    assert json.loads(out.read_text())["units"]["hdr_increment"] == gyrocore.parameters()["hdr_increment"]

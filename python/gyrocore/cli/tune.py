@@ -130,10 +130,12 @@ def _parse_drives(specs: Sequence[str]) -> list[motion.DriveSpec]:
 
 
 def _parse_fixed(specs: Sequence[str]) -> dict[str, float]:
+    """The values of ``--set NAME=VALUE``; the names are :func:`gyrocore.tune.search_box`'s to
+    check, which suggests one for a typo and takes the ``*_dps`` / ``*_deg`` spellings."""
     fixed = {}
     for spec in specs:
         name, sep, value = spec.partition("=")
-        if not sep or name not in parameters():
+        if not sep or not name:
             raise ValueError(f"--set {spec}: must read NAME=VALUE with a parameter name")
         try:
             fixed[name] = float(value)
