@@ -16,7 +16,8 @@ from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array, too_few_inside
 from ._checks import (
-    check_number, require_finite, require_flag, require_increasing, require_radians, require_series, warn,
+    check_number, require_finite, require_flag, require_increasing, require_radians, require_series,
+    warn_if_wrapped,
 )
 
 #: An interval longer than this many times the median interval is a gap (a logger or tracking
@@ -142,7 +143,7 @@ class Reference:
         if len(te) < 2:
             raise ValueError("need at least two heading samples to compare")
         if not absolute:  # an absolute comparison wraps the difference, so a wrapped heading is fine there
-            _warn_if_wrapped(te, est_all)
+            warn_if_wrapped(te, est_all, " (or compare with absolute=True)")
         inside = (self.t >= te[0]) & (self.t <= te[-1])
         est_gaps = find_gaps(te, gap_factor=self.gap_factor)
         if est_gaps.any():
@@ -188,28 +189,6 @@ class Reference:
             n=len(tr),
             gaps=int(gap_after.sum()),
         )
-
-
-#: A step of an estimate [rad] between two samples beyond this, three quarters of a turn, is a wrap
-#: when the whole estimate stays within one turn: a wrap at +-pi steps by a turn less what the
-#: heading turns in one interval (a quarter turn per sample would be a 90 deg/s turn at 1 Hz);
-#: a continuous heading steps that far only across a gap or between sparse samples, where it
-#: has mostly turned beyond one turn's range.
-WRAP_STEP = 1.5 * math.pi
-
-
-def _warn_if_wrapped(t: FloatArray, heading: FloatArray) -> None:
-    """Warn where an estimate, compared as a continuous heading, stays within one turn and yet
-    steps by more than :data:`WRAP_STEP` between two samples: a heading wrapped to +-pi (or 0 .. 2
-    pi), each wrap of which adds a turn to its error (a wrapped heading scored 267 deg against its
-    own continuous self without a word)."""
-    steps = np.diff(heading)
-    i = int(np.argmax(np.abs(steps)))
-    if abs(steps[i]) > WRAP_STEP and np.ptp(heading) <= 2 * math.pi:
-        warn(f"the heading jumps by {steps[i]:.6g} rad from {heading[i]:.6g} at t = {t[i]} to {heading[i + 1]:.6g} "
-             f"at t = {t[i + 1]} s, more than half a turn between two samples: it looks wrapped, and it is scored "
-             "as a continuous heading, each wrap adding a turn to its error; give the continuous heading "
-             "(numpy.unwrap), or compare with absolute=True")
 
 
 def heading_errors(

@@ -114,3 +114,17 @@ def test_a_wrapped_estimate_warns_that_it_is_scored_as_continuous() -> None:
         warnings.simplefilter("error")
         assert evaluate.heading_errors(t, np.unwrap(wrapped), t, 0.1 * t).e_psi_deg < 1e-9
         assert evaluate.heading_errors(t, wrapped, t, 0.1 * t, absolute=True).e_psi_deg < 1e-9
+
+
+def test_dead_reckoning_refuses_a_heading_in_degrees_and_warns_of_a_wrapped_one() -> None:
+    # each wrap was interpolated across, and its step's chord shrank to nothing: 0.93 m of a 9.9 m drive
+    t = np.arange(0.0, 10.0, 0.1)
+    speed = np.ones_like(t)
+    wrapped = np.angle(np.exp(1j * t))
+    with pytest.raises(ValueError, match=r"^the heading looks like degrees, not radians: it jumps by -354\.27"):
+        deadreckon.dead_reckon(t, speed, t, np.degrees(wrapped))
+    with pytest.warns(gyrocore.InputWarning, match=r"^the heading jumps by -6\.1\d* rad .* it looks wrapped"):
+        deadreckon.dead_reckon(t, speed, t, wrapped)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert deadreckon.dead_reckon(t, speed, t, np.unwrap(wrapped)).distance == pytest.approx(9.9, rel=1e-3)
