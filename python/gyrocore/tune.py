@@ -237,6 +237,7 @@ def tune(
     if max_evaluations < 1:
         raise ValueError(f"max_evaluations must be >= 1, got {max_evaluations}")
     box = search_box(preset, names, bounds, fixed)
+    name = ParameterSet(name or f"{preset}_tuned", preset, {}).name  # a name the file cannot hold fails before the fit
     names, fixed = tuple(box), _to_si(dict(fixed or {}))  # a parameter file holds SI names, with their units
     base = preset_params(preset, **fixed)
     # A parameter the preset leaves unset (None) starts in the middle of its bounds.
@@ -297,7 +298,7 @@ def tune(
     train = score_cases(cases, preset, tuned)
     tuned_harm = score_cases(harm, preset, tuned)
     params = ParameterSet(
-        name or f"{preset}_tuned",
+        name,
         preset,
         tuned,
         {

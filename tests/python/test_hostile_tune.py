@@ -56,3 +56,13 @@ def test_a_fixed_parameter_in_degrees_is_checked_and_saved_by_its_si_name(tmp_pa
     saved = tune.ParameterSet.read(out)  # what evaluate --params reads
     assert saved.overrides["hdr_increment"] == pytest.approx(math.radians(0.01)) and "hdr_increment_dps" not in saved.overrides
     assert json.loads(out.read_text())["units"]["hdr_increment"] == gyrocore.parameters()["hdr_increment"]
+
+
+def test_a_name_the_parameter_file_cannot_hold_is_refused_before_the_fit(tmp_path: Path) -> None:
+    # the set was written with the name " ", and evaluate --params refused the file: "name" must not be empty
+    out = tmp_path / "p.json"
+    proc = run_cli("tune", "--sim-drive", "city:1", "--name", " ", "--no-harm", "--out", out)
+    assert proc.returncode == 2 and proc.stderr.endswith('gyrocore: error: "name" must not be empty\n'), proc.stderr
+    assert not out.exists()
+    with pytest.raises(ValueError, match='^"name" must be a string, got 5$'):
+        tune.ParameterSet(5, "hdr", {})  # type: ignore[arg-type]
