@@ -28,6 +28,10 @@ from .test_errors_named import run_cli
         # it failed in the scoring: "reference: 1 sample(s); a heading error needs at least two ..."
         (("--sim-drive", "city:1", "--rate-hz", "0.01"),
          "--rate-hz 0.01 puts 1 sample(s) in the drive's rest window [0, 20] s, and its bias needs at least 3"),
+        # the last was taken without a word
+        (("--sim-drive", "city:1", "--param", "hdr_c1=1:2", "--param", "hdr_c1=0.1:0.2"),
+         "--param hdr_c1 is given twice; give it once"),
+        (("--sim-drive", "city:1", "--set", "hdr_c2=1", "--set", "hdr_c2=2"), "--set hdr_c2 is given twice; give it once"),
         # it failed only after the whole fit
         (("--sim-drive", "city:1", "--leave-one-out"),
          "leave-one-out needs at least two training drives, got 1: it fits once without each drive"),

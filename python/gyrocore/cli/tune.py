@@ -91,7 +91,17 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     add_reading_options(p)
 
 
+def _refuse_twice(option: str, specs: Sequence[str]) -> None:
+    """Refuse a parameter given twice to ``option`` (``--param hdr_c1=1:2 --param hdr_c1=0.1:0.2``):
+    the last was taken without a word."""
+    names = [spec.partition("=")[0] for spec in specs]
+    twice = next((n for i, n in enumerate(names) if n in names[:i]), None)
+    if twice is not None:
+        raise ValueError(f"{option} {twice} is given twice; give it once")
+
+
 def _parse_params(specs: Sequence[str]) -> tuple[list[str], dict[str, tuple[float, float]]]:
+    _refuse_twice("--param", specs)
     names: list[str] = []
     bounds: dict[str, tuple[float, float]] = {}
     for spec in specs:
@@ -132,6 +142,7 @@ def _parse_drives(specs: Sequence[str]) -> list[motion.DriveSpec]:
 def _parse_fixed(specs: Sequence[str]) -> dict[str, float]:
     """The values of ``--set NAME=VALUE``; the names are :func:`gyrocore.tune.search_box`'s to
     check, which suggests one for a typo and takes the ``*_dps`` / ``*_deg`` spellings."""
+    _refuse_twice("--set", specs)
     fixed = {}
     for spec in specs:
         name, sep, value = spec.partition("=")
