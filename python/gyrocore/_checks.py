@@ -96,6 +96,28 @@ def require_radians(name: str, t: FloatArray, heading: FloatArray) -> None:
         )
 
 
+#: A step of a continuous heading [rad] between two samples beyond this, three quarters of a turn,
+#: is a wrap when the whole heading stays within one turn: a wrap at +-pi steps by a turn less what
+#: the heading turns in one interval (a quarter turn per sample would be a 90 deg/s turn at 1 Hz);
+#: a continuous heading steps that far only across a gap or between sparse samples, where it has
+#: mostly turned beyond one turn's range.
+WRAP_STEP = 1.5 * math.pi
+
+
+def warn_if_wrapped(t: FloatArray, heading: FloatArray, hint: str = "") -> None:
+    """Warn where a heading taken as continuous [rad] stays within one turn and yet steps by more
+    than :data:`WRAP_STEP` between two samples: a heading wrapped to +-pi (or 0 .. 2 pi), each wrap
+    of which counts as a turn (a wrapped estimate scored 267 deg against its own continuous self,
+    and dead reckoning lost each wrap's step without a word). ``hint``: another remedy, appended."""
+    steps = np.diff(heading)
+    i = int(np.argmax(np.abs(steps)))
+    if abs(steps[i]) > WRAP_STEP and np.ptp(heading) <= 2 * math.pi:
+        warn(f"the heading jumps by {steps[i]:.6g} rad from {heading[i]:.6g} at t = {t[i]} to {heading[i + 1]:.6g} "
+             f"at t = {t[i + 1]} s, more than three quarters of a turn between two samples: it looks wrapped, and "
+             f"it is taken as a continuous heading, each wrap counting as a turn; give the continuous heading "
+             f"(numpy.unwrap){hint}")
+
+
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
 #: A context manager of the package that warns as it exits (a file's notes, raised again) is left
 #: through contextlib's frames, which are no caller's either.

@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array, too_few_inside
-from ._checks import check_number, require_finite, require_series
+from ._checks import check_number, require_finite, require_radians, require_series, warn_if_wrapped
 from .io import Log
 from .pipeline import HeadingResult
 
@@ -66,10 +66,14 @@ def dead_reckon(
         The track at the odometry times used.
 
     Raises:
-        ValueError: samples that are not finite, times not strictly increasing, lengths apart, too
-            few samples inside the heading's span; a ``position`` that is not two finite numbers or
-            a ``heading_offset`` that is not finite (NaN made every position NaN).
+        ValueError: samples that are not finite, times not strictly increasing, lengths apart, a
+            heading that wraps by 360 (in degrees, which it says), too few samples
+            inside the heading's span; a ``position`` that is not two finite numbers or a
+            ``heading_offset`` that is not finite (NaN made every position NaN).
         TypeError: a ``position`` or ``heading_offset`` that is no number (text failed inside numpy).
+
+    Warns:
+        InputWarning: a heading that looks wrapped to +-pi (:func:`gyrocore._checks.warn_if_wrapped`).
     """
     x0, y0 = _point("position", position)
     heading_offset = check_number("heading_offset", heading_offset, low=None, unit=" [rad]")
@@ -81,6 +85,9 @@ def dead_reckon(
     require_series("t_heading", th, "heading", psi)
     if len(th) < 2:
         raise ValueError("need at least two heading samples")
+    # a heading that wraps is interpolated across each wrap and its step's chord shrinks to nothing there
+    require_radians("the heading", th, psi)
+    warn_if_wrapped(th, psi)
     inside = (ts >= th[0]) & (ts <= th[-1])
     if inside.sum() < 2:
         raise ValueError("fewer than two odometry samples lie inside the heading's time span")

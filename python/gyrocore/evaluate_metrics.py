@@ -15,7 +15,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array, too_few_inside
-from ._checks import check_number, require_finite, require_flag, require_increasing, require_radians, require_series
+from ._checks import (
+    check_number, require_finite, require_flag, require_increasing, require_radians, require_series,
+    warn_if_wrapped,
+)
 
 #: An interval longer than this many times the median interval is a gap (a logger or tracking
 #: outage). Irregular ROS logging stays below about 5 times its median (f110_ds3: 4.1).
@@ -139,6 +142,8 @@ class Reference:
         require_series("t", te, "heading", est_all, context="estimate")
         if len(te) < 2:
             raise ValueError("need at least two heading samples to compare")
+        if not absolute:  # an absolute comparison wraps the difference, so a wrapped heading is fine there
+            warn_if_wrapped(te, est_all, " (or compare with absolute=True)")
         inside = (self.t >= te[0]) & (self.t <= te[-1])
         est_gaps = find_gaps(te, gap_factor=self.gap_factor)
         if est_gaps.any():

@@ -119,20 +119,19 @@ class GyroSpec:
             "range": self.range_dps * _DEG,
         }
 
-    def replace(self, **changes: Any) -> GyroSpec:
-        """A copy with some fields changed (``spec.replace(rate_hz=10.0)``).
+    def __post_init__(self) -> None:
+        """Check each field's kind here, and its range in the core, so that a spec built directly
+        is checked as one from :meth:`replace` is, before any of its properties is read
+        (``GyroSpec(rate_hz=True)`` was a gyro at 1 Hz; ``noise_rms_dps`` of a rate of 0 raised
+        ZeroDivisionError, of -1 Hz gave 0.05 deg/s and of a negative ARW a negative rms).
 
         Raises:
-            TypeError: a name that is no field, or a value of the wrong kind for its field: text or
-                a bool for a number (``bias_dps="x"`` failed inside a multiplication, ``True`` was
-                1 deg/s), anything but two numbers for a pair. The core checks the numbers' ranges.
+            TypeError: a value of the wrong kind for its field: text or a bool for a number (``True``
+                was 1 deg/s), anything but two numbers for a pair.
+            ValueError: a number out of its range (``gyro model: invalid parameter rate_hz = -1: ...``).
         """
-        kinds = {f.name: f.type for f in fields(self)}
-        unknown = sorted(set(changes) - set(kinds))
-        if unknown:  # dataclasses' "GyroSpec.__init__() got an unexpected keyword argument"
-            raise TypeError(f"unknown sensor field(s) {', '.join(unknown)}; the fields are {', '.join(kinds)}")
-        for key, value in changes.items():
-            kind = str(kinds[key])  # the annotation's text (postponed annotations)
+        for f in fields(self):
+            value, kind = getattr(self, f.name), str(f.type)  # the annotation's text (postponed annotations)
             if kind == "str":
                 ok, what = isinstance(value, str), "text"
             elif kind.startswith("tuple"):
@@ -141,7 +140,20 @@ class GyroSpec:
             else:
                 ok, what = real_number(value) is not None, "a number"
             if not ok:
-                raise TypeError(f"sensor field {key} must be {what}, got {value!r}")
+                raise TypeError(f"sensor field {f.name} must be {what}, got {value!r}")
+        _gyrocore.gyro_check_span(self.si(), 0.0, 1.0)  # the core's checks of the model, one second of it
+
+    def replace(self, **changes: Any) -> GyroSpec:
+        """A copy with some fields changed (``spec.replace(rate_hz=10.0)``), checked as any spec is.
+
+        Raises:
+            TypeError: a name that is no field, or a value of the wrong kind for its field.
+            ValueError: a number out of its range.
+        """
+        unknown = sorted(set(changes) - {f.name for f in fields(self)})
+        if unknown:  # dataclasses' "GyroSpec.__init__() got an unexpected keyword argument"
+            raise TypeError(f"unknown sensor field(s) {', '.join(unknown)}; the fields are "
+                            f"{', '.join(f.name for f in fields(self))}")
         return replace(self, **changes)
 
     @property

@@ -44,7 +44,7 @@ from .tune_params import FORMAT_NAME, FORMAT_VERSION, ParameterSet, validate
 
 __all__ = [
     "BOUNDS", "FORMAT_NAME", "FORMAT_VERSION", "HARM_MIXES", "HARM_WEIGHT", "OBJECTIVES", "OPTIMISERS", "Case", "CaseScore",
-    "ParameterSet", "TuningResult", "default_parameters", "harm_cases", "harm_excess", "leave_one_out",
+    "ParameterSet", "TuningResult", "default_parameters", "harm_cases", "harm_excess", "check_leave_one_out", "leave_one_out",
     "mean_log_ratio", "mean_ne_psi", "perfect_gyro", "score_cases", "search_box", "simulated_cases", "tune", "unbiased_gyro", "validate",
 ]
 
@@ -179,11 +179,17 @@ def search_box(
             raise ValueError(f"bounds of {n} must satisfy 0 < low < high, got ({low}, {high})")
         validate(preset, {n: low})
         validate(preset, {n: high})
-    overlap = [n for n in names if n in fixed]
+    overlap = [n for n in names if n in _to_si(fixed)]  # hdr_increment_dps fixes hdr_increment
     if overlap:
         raise ValueError(f"{', '.join(overlap)} cannot be both fitted and fixed")
     validate(preset, fixed)
     return box
+
+
+class _BudgetSpent(Exception):
+    """Raised by an evaluation beyond ``max_evaluations``: it ends the optimiser, whose own limits
+    count generations (a population of 8 per parameter, evaluated whole, and at least one generation
+    more: ``--max-evals 3`` ran 81 evaluations of HDR's five parameters)."""
 
 
 def tune(
@@ -213,7 +219,8 @@ def tune(
         harm: perfect-gyro drives for the do-no-harm constraint (see the module doc).
         harm_limit_deg: how much worse than its baseline E_psi may get on a harm drive [deg].
         fixed: overrides held at these values (SI) in every evaluation and in the result.
-        max_evaluations: bound on objective evaluations (each runs every training and harm drive).
+        max_evaluations: the most objective evaluations (each runs every training and harm drive),
+            the start's among them.
         seed: fixes the optimiser's randomness.
         optimiser: ``differential_evolution`` (global, robust to the objective's steps; the start
             is part of its first population) or ``nelder-mead`` (local, from the start).
@@ -230,7 +237,8 @@ def tune(
     if max_evaluations < 1:
         raise ValueError(f"max_evaluations must be >= 1, got {max_evaluations}")
     box = search_box(preset, names, bounds, fixed)
-    names, fixed = tuple(box), dict(fixed or {})
+    name = ParameterSet(name or f"{preset}_tuned", preset, {}).name  # a name the file cannot hold fails before the fit
+    names, fixed = tuple(box), _to_si(dict(fixed or {}))  # a parameter file holds SI names, with their units
     base = preset_params(preset, **fixed)
     # A parameter the preset leaves unset (None) starts in the middle of its bounds.
     given = {n: (start or {}).get(n, base.get(n)) for n in names}
@@ -259,6 +267,8 @@ def tune(
 
     def evaluate(x: np.ndarray) -> float:
         nonlocal evaluations, best
+        if evaluations == max_evaluations:
+            raise _BudgetSpent
         evaluations += 1
         overrides = overrides_of(x)
         value = objective_of(overrides)
@@ -269,23 +279,26 @@ def tune(
     x0 = np.log([start_values[n] for n in names])
     start_objective = evaluate(x0)
     budget = max_evaluations - 1
-    if budget > 0 and optimiser == "differential_evolution":
-        popsize = 8  # population = popsize * len(names)
-        generations = max(1, budget // (popsize * len(names)) - 1)
-        optimize.differential_evolution(
-            evaluate, list(zip(lo, hi)), x0=x0, seed=seed, popsize=popsize, maxiter=generations,
-            polish=False, init="latinhypercube", tol=0.0, updating="immediate",
-        )
-    elif budget > 0:
-        optimize.minimize(
-            evaluate, x0, method="Nelder-Mead", bounds=list(zip(lo, hi)),
-            options={"maxfev": budget, "xatol": 1e-3, "fatol": 1e-6},
-        )
+    try:
+        if budget > 0 and optimiser == "differential_evolution":
+            popsize = 8  # population = popsize * len(names)
+            generations = max(1, budget // (popsize * len(names)) - 1)
+            optimize.differential_evolution(
+                evaluate, list(zip(lo, hi)), x0=x0, seed=seed, popsize=popsize, maxiter=generations,
+                polish=False, init="latinhypercube", tol=0.0, updating="immediate",
+            )
+        elif budget > 0:
+            optimize.minimize(
+                evaluate, x0, method="Nelder-Mead", bounds=list(zip(lo, hi)),
+                options={"maxfev": budget, "xatol": 1e-3, "fatol": 1e-6},
+            )
+    except _BudgetSpent:  # the best so far is the result
+        pass
     objective_value, tuned = best
     train = score_cases(cases, preset, tuned)
     tuned_harm = score_cases(harm, preset, tuned)
     params = ParameterSet(
-        name or f"{preset}_tuned",
+        name,
         preset,
         tuned,
         {
@@ -320,6 +333,14 @@ def tune(
     )
 
 
+def check_leave_one_out(cases: Sequence[Case]) -> None:
+    """Refuse fewer than two drives for :func:`leave_one_out`, which fits once without each; the
+    command line asks before its main fit, which takes minutes (it failed only after it)."""
+    if len(cases) < 2:
+        raise ValueError(f"leave-one-out needs at least two training drives, got {len(cases)}: it fits once "
+                         "without each drive and scores that drive")
+
+
 def leave_one_out(
     cases: Sequence[Case], *, progress: Callable[[str], None] | None = None, **options: Any
 ) -> tuple[CaseScore, ...]:
@@ -328,8 +349,7 @@ def leave_one_out(
     The mean NE_psi of the result estimates how the tuned parameters do on a drive they were not
     fitted to (the paper's test set, section 5.3).
     """
-    if len(cases) < 2:
-        raise ValueError("leave-one-out needs at least two training drives")
+    check_leave_one_out(cases)
     preset = options.get("preset", "hdr")
     held_out: list[CaseScore] = []
     for i, case in enumerate(cases):

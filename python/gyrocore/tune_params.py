@@ -41,6 +41,14 @@ class ParameterSet:
     """How the set was found (training drives, scores, optimiser); informative only."""
 
     def __post_init__(self) -> None:
+        # checked as the set is made, so that a set written (gyrocore tune --name " ") is one read
+        # back; str() would take 5 for the name "5" and ["hdr"] for a preset "['hdr']": refused instead
+        for key in ("name", "preset"):
+            value = getattr(self, key)
+            if not isinstance(value, str):
+                raise ValueError(f"\"{key}\" must be a string, got {reprlib.repr(value)}")
+            if not value.strip():
+                raise ValueError(f"\"{key}\" must not be empty")
         bias = [k for k in self.overrides if k in BIAS_SOURCES or k[:-4] in BIAS_SOURCES]
         if bias:
             raise ValueError(
@@ -91,12 +99,6 @@ class ParameterSet:
         missing = [k for k in ("name", "preset", "overrides") if k not in data]
         if missing:
             raise ValueError(f"{p}: missing key(s) {', '.join(missing)}")
-        # str() would take 5 for the name "5" and ["hdr"] for a preset "['hdr']": refused instead
-        for key in ("name", "preset"):
-            if not isinstance(data[key], str):
-                raise ValueError(f"{p}: \"{key}\" must be a string, got {reprlib.repr(data[key])}")
-            if not data[key].strip():
-                raise ValueError(f"{p}: \"{key}\" must not be empty")
         if not isinstance(data["overrides"], dict):
             raise ValueError(f"{p}: \"overrides\" must be an object of parameter names to SI values")
         if not isinstance(data.get("tuning", {}), dict):

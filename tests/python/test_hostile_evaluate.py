@@ -5,11 +5,13 @@ asked for; each refused naming the argument, never a NaN score or an answer to a
 from __future__ import annotations
 
 import re
+import warnings
 from collections.abc import Callable
 
 import numpy as np
 import pytest
 
+import gyrocore
 from gyrocore import deadreckon, evaluate
 
 from .conftest import real_log_path
@@ -99,3 +101,30 @@ def test_compare_names_a_bad_method_before_reading_a_log_and_takes_one_log_or_pr
     (alone,) = evaluate.compare(str(path), "hdr")  # type: ignore[arg-type]
     (listed,) = evaluate.compare([path], ["hdr"])
     assert alone.errors == listed.errors and alone.method == listed.method
+
+
+def test_a_wrapped_estimate_warns_that_it_is_scored_as_continuous() -> None:
+    # a heading wrapped to +-pi scored 267 deg against its own continuous self without a word
+    t = np.arange(0.0, 100.0, 0.1)
+    wrapped = np.angle(np.exp(1j * 0.1 * t))
+    with pytest.warns(gyrocore.InputWarning, match=r"the heading jumps by -6\.27\d* rad from 3\.14\d* at t = 31\.4"
+                      r"\d* to .* it looks wrapped, .* give the continuous heading \(numpy\.unwrap\)"):
+        evaluate.heading_errors(t, wrapped, t, 0.1 * t)
+    with warnings.catch_warnings():  # a continuous heading, and an absolute comparison, are scored as they are
+        warnings.simplefilter("error")
+        assert evaluate.heading_errors(t, np.unwrap(wrapped), t, 0.1 * t).e_psi_deg < 1e-9
+        assert evaluate.heading_errors(t, wrapped, t, 0.1 * t, absolute=True).e_psi_deg < 1e-9
+
+
+def test_dead_reckoning_refuses_a_heading_in_degrees_and_warns_of_a_wrapped_one() -> None:
+    # each wrap was interpolated across, and its step's chord shrank to nothing: 0.93 m of a 9.9 m drive
+    t = np.arange(0.0, 10.0, 0.1)
+    speed = np.ones_like(t)
+    wrapped = np.angle(np.exp(1j * t))
+    with pytest.raises(ValueError, match=r"^the heading looks like degrees, not radians: it jumps by -354\.27"):
+        deadreckon.dead_reckon(t, speed, t, np.degrees(wrapped))
+    with pytest.warns(gyrocore.InputWarning, match=r"^the heading jumps by -6\.1\d* rad .* it looks wrapped"):
+        deadreckon.dead_reckon(t, speed, t, wrapped)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert deadreckon.dead_reckon(t, speed, t, np.unwrap(wrapped)).distance == pytest.approx(9.9, rel=1e-3)

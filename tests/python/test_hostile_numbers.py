@@ -64,6 +64,12 @@ RATE = 0.002 + np.random.default_rng(0).normal(0.0, 0.001, len(T))
         (lambda: sim.car_drive(duration=30, bias_dps=True), TypeError, "sensor field bias_dps must be a number, got True"),
         (lambda: sim.sensor("crs03", temperature_c=20), TypeError, "sensor field temperature_c must be two numbers, got 20"),
         (lambda: sim.sensor("crs03", foo=1), TypeError, "unknown sensor field(s) foo; the fields are name, rate_hz"),
+        # a spec built directly was not checked: a gyro at 1 Hz, a ZeroDivisionError, 0.05 deg/s of noise at -1 Hz
+        (lambda: sim.GyroSpec(rate_hz=True), TypeError, "sensor field rate_hz must be a number, got True"),
+        (lambda: sim.GyroSpec(rate_hz=0).noise_rms_dps, ValueError,
+         "gyro model: invalid parameter rate_hz = 0: must be in [1e-6, 1e9] Hz"),
+        (lambda: sim.sensor("crs03", rate_hz=-1).noise_rms_dps, ValueError, "gyro model: invalid parameter rate_hz = -1"),
+        (lambda: sim.sensor("crs03", arw_deg_per_sqrt_h=-1), ValueError, "gyro model: invalid parameter arw = -0.00029"),
         (lambda: sim.simulate(None, "crs03", seed=0), TypeError,  # type: ignore[arg-type]
          "trajectory must be a gyrocore.motion.Motion (e.g. gyrocore.motion.car(600)), got NoneType"),
         (lambda: motion.rotary_table(runs=2, rate_dps=0), ValueError, "rate_dps must be finite and > 0, got 0"),

@@ -44,6 +44,13 @@ def test_tuning_improves_the_mean_ne_psi_over_its_start(tuned: tune.TuningResult
         assert low <= value <= high
 
 
+@pytest.mark.parametrize("optimiser", tune.OPTIMISERS)
+def test_a_budget_below_one_population_is_kept(cases: list[tune.Case], optimiser: str) -> None:
+    # differential evolution evaluated a whole population and a generation more: 3 asked, 81 run
+    r = tune.tune(cases[:1], preset="hdr", max_evaluations=3, optimiser=optimiser)
+    assert r.evaluations == 3 and r.objective <= r.start_objective
+
+
 def test_nelder_mead_also_improves(cases: list[tune.Case]) -> None:
     r = tune.tune(cases[:2], names=("hdr_increment",), optimiser="nelder-mead", max_evaluations=30)
     assert r.objective < r.start_objective and r.evaluations <= 30

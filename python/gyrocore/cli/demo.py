@@ -51,7 +51,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
 def run(args: argparse.Namespace) -> int:
     if args.plot and Path(args.plot) != Path(PLOT):
         refuse_existing([Path(args.plot)], args.overwrite)
-    check_car_drive(checked_sensor(args.sensor, args.rate_hz), args.duration)
+    check_car_drive(checked_sensor(args.sensor, args.rate_hz), args.duration, f"--duration {args.duration:g}")
     drives = [
         sim.car_drive(duration=args.duration, rate_hz=args.rate_hz, seed=args.seed + k, mix=args.mix,
                       sensor_name=args.sensor)

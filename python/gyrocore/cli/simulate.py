@@ -48,13 +48,14 @@ def _options_of_the_profile(args: argparse.Namespace) -> None:
     args.runs = RUNS if args.runs is None else args.runs
 
 
-def _refuse_a_rest_too_short(drive: sim.Drive, rate_hz: float) -> None:
-    """A log whose rest window holds too few samples to measure its bias (a rate of 1e-6 Hz) is
-    refused here, with the option to change, rather than by every command that reads it later."""
-    if drive.stationary is None:
+def refuse_a_rest_too_short(t: np.ndarray, window: tuple[float, float] | None, rate_hz: float) -> None:
+    """A log (sample times ``t``) whose rest window holds too few samples to measure its bias (a
+    rate of 1e-6 Hz) is refused here, with the option to change, rather than by every command that
+    reads it later (or, in ``tune``, by the scoring: "reference: 1 sample(s)")."""
+    if window is None:
         return
-    start, end = drive.stationary
-    readings = int(np.count_nonzero((drive.t >= start) & (drive.t <= end)))
+    start, end = window
+    readings = int(np.count_nonzero((t >= start) & (t <= end)))
     if readings < MIN_WINDOW_READINGS:
         raise ValueError(
             f"--rate-hz {rate_hz:g} puts {readings} sample(s) in the drive's rest window [{start:g}, {end:g}] s, "
@@ -72,16 +73,17 @@ def checked_sensor(name: str, rate_hz: float) -> sim.GyroSpec:
     return spec
 
 
-def check_car_drive(spec: sim.GyroSpec, duration: float) -> None:
-    """Refuse a car drive of ``--duration`` that is no longer than its rest, or that asks for more
-    samples than the simulator makes, naming the options (the simulator's words named neither)."""
+def check_car_drive(spec: sim.GyroSpec, duration: float, option: str) -> None:
+    """Refuse a car drive of ``duration`` seconds that is no longer than its rest, or that asks for
+    more samples than the simulator makes, naming the ``option`` that asks for it (``--duration
+    600``; the simulator's words named no option)."""
     if duration <= sim.CAR_REST:
-        raise ValueError(f"--duration {duration:g}: a car drive begins with a {sim.CAR_REST:g} s rest "
+        raise ValueError(f"{option}: a car drive begins with a {sim.CAR_REST:g} s rest "
                          "(its static bias test); give a longer drive")
     try:
         sim.check_span(spec, 0.0, duration)
     except ValueError as e:
-        raise ValueError(f"--duration {duration:g} at --rate-hz {spec.rate_hz:g}: {e}") from None
+        raise ValueError(f"{option} at --rate-hz {spec.rate_hz:g}: {e}") from None
 
 
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
@@ -118,7 +120,7 @@ def run(args: argparse.Namespace) -> int:
     rate_hz = sim.sensor(args.sensor).rate_hz if args.rate_hz is None else args.rate_hz
     spec = checked_sensor(args.sensor, rate_hz)
     if args.profile == "car":  # car_drive refuses a drive of too many samples before building its route
-        check_car_drive(spec, args.duration)
+        check_car_drive(spec, args.duration, f"--duration {args.duration:g}")
         drive = sim.car_drive(args.duration, rate_hz, seed=args.seed, mix=args.mix, sensor_name=args.sensor)
     else:
         if args.profile in _REPEATED:
@@ -130,7 +132,7 @@ def run(args: argparse.Namespace) -> int:
             except ValueError as e:
                 raise ValueError(f"--runs {args.runs} of the {args.profile} profile: {e}") from None
         drive = sim.simulate(_profiles(args)[args.profile](), args.sensor, seed=args.seed, rate_hz=args.rate_hz)
-    _refuse_a_rest_too_short(drive, rate_hz)
+    refuse_a_rest_too_short(drive.t, drive.stationary, rate_hz)
     route = drive.motion
     table = np.column_stack(
         [drive.t, drive.rate_measured, drive.temperature, drive.rate_true, drive.heading_true,

@@ -8,10 +8,11 @@ import sys
 from pathlib import Path
 from typing import Any, Sequence
 
-from .. import motion, tune
+from .. import motion, sim, tune
 from .._extras import require
 from ..io import check_not_input, read_log
 from ..pipeline import parameters
+from .simulate import check_car_drive, checked_sensor, refuse_a_rest_too_short
 from ._common import (
     COUNT,
     NON_NEGATIVE,
@@ -32,6 +33,8 @@ _TEST_SEED = 500
 _HARM_TEST_SEED = 2000
 #: Seeds of the --sim-drive training drives.
 _DRIVE_SEED = 300
+#: Length of the do-no-harm drives at --time-scale 1 [min].
+_HARM_MINUTES = 20.0
 
 
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
@@ -88,7 +91,17 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     add_reading_options(p)
 
 
+def _refuse_twice(option: str, specs: Sequence[str]) -> None:
+    """Refuse a parameter given twice to ``option`` (``--param hdr_c1=1:2 --param hdr_c1=0.1:0.2``):
+    the last was taken without a word."""
+    names = [spec.partition("=")[0] for spec in specs]
+    twice = next((n for i, n in enumerate(names) if n in names[:i]), None)
+    if twice is not None:
+        raise ValueError(f"{option} {twice} is given twice; give it once")
+
+
 def _parse_params(specs: Sequence[str]) -> tuple[list[str], dict[str, tuple[float, float]]]:
+    _refuse_twice("--param", specs)
     names: list[str] = []
     bounds: dict[str, tuple[float, float]] = {}
     for spec in specs:
@@ -127,10 +140,13 @@ def _parse_drives(specs: Sequence[str]) -> list[motion.DriveSpec]:
 
 
 def _parse_fixed(specs: Sequence[str]) -> dict[str, float]:
+    """The values of ``--set NAME=VALUE``; the names are :func:`gyrocore.tune.search_box`'s to
+    check, which suggests one for a typo and takes the ``*_dps`` / ``*_deg`` spellings."""
+    _refuse_twice("--set", specs)
     fixed = {}
     for spec in specs:
         name, sep, value = spec.partition("=")
-        if not sep or name not in parameters():
+        if not sep or not name:
             raise ValueError(f"--set {spec}: must read NAME=VALUE with a parameter name")
         try:
             fixed[name] = float(value)
@@ -141,6 +157,24 @@ def _parse_fixed(specs: Sequence[str]) -> dict[str, float]:
     return fixed
 
 
+def _check_simulated(args: argparse.Namespace) -> None:
+    """Refuse, before any drive is built, a simulated drive (training, test or do-no-harm, which
+    are always built for the held-out check) that --time-scale or --sim-drive makes no longer than
+    its rest, or a --rate-hz that leaves too few samples in its rest, naming the option: the car
+    model said only "the rest (20.0 s) must be shorter than the drive (18.0 s)", and a rate of
+    0.01 Hz failed in the scoring with "reference: 1 sample(s)"."""
+    spec = checked_sensor(args.sensor, args.rate_hz)
+    tables = {*(args.sim_table or []), *(args.test_sim_table or [])}
+    minutes = {f"--sim-table {t}": min(d.minutes for d in _TABLES[t]) for t in sorted(tables)}
+    minutes |= {f"--sim-drive {d.mix}:{d.minutes:g}": d.minutes for d in _parse_drives(args.sim_drive or [])}
+    minutes["the do-no-harm drives"] = _HARM_MINUTES
+    for what, m in minutes.items():
+        check_car_drive(spec, m * 60.0 * args.time_scale, f"{what} ({m:g} min at --time-scale {args.time_scale:g})")
+    # every simulated drive begins with the same rest: one drive of twice its length shows the samples in it
+    probe = sim.car_drive(2 * sim.CAR_REST, args.rate_hz, sensor_name=args.sensor)
+    refuse_a_rest_too_short(probe.t, probe.stationary, args.rate_hz)
+
+
 def run(args: argparse.Namespace) -> int:
     if args.out is not None:  # before the fit, which takes minutes
         check_not_input(Path(args.out), [Path(p) for p in args.logs + args.test])
@@ -149,6 +183,7 @@ def run(args: argparse.Namespace) -> int:
     names, bounds = _parse_params(args.param or [])
     fixed = _parse_fixed(args.set or [])
     tune.search_box(args.preset, names or None, bounds, fixed)  # before the drives are built
+    _check_simulated(args)
     progress = (lambda msg: print(msg, file=sys.stderr)) if not args.json else None
     sim_options = {"rate_hz": args.rate_hz, "sensor_name": args.sensor, "time_scale": args.time_scale}
     reading = reading_options(args)
@@ -164,11 +199,13 @@ def run(args: argparse.Namespace) -> int:
         cases += tune.simulated_cases(_parse_drives(args.sim_drive), first_seed=_DRIVE_SEED, **sim_options)
     if not cases:
         raise ValueError("no training drive: give log folders, --sim-table and/or --sim-drive")
+    if args.leave_one_out:  # before the main fit, not after it
+        tune.check_leave_one_out(cases)
     tests = log_cases(args.test)
     for table in args.test_sim_table or []:
         tests += tune.simulated_cases(_TABLES[table], first_seed=_TEST_SEED, **sim_options)
     harm_options: dict[str, Any] = {
-        "minutes": 20.0 * args.time_scale, "rate_hz": args.rate_hz, "mixes": args.harm_mix or tune.HARM_MIXES,
+        "minutes": _HARM_MINUTES * args.time_scale, "rate_hz": args.rate_hz, "mixes": args.harm_mix or tune.HARM_MIXES,
         "per_mix": args.harm_per_mix,
     }
     gyros = (False, True) if args.harm_noisy else (False,)

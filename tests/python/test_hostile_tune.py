@@ -1,0 +1,72 @@
+"""Hostile command lines for ``gyrocore tune``: one line naming the option and what to do, exit 2,
+before the drives are built or the fit runs."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pytest
+
+import gyrocore
+from gyrocore import tune
+
+from .test_errors_named import run_cli
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        # the car model said only "the rest (20.0 s) must be shorter than the drive (18.0 s)"
+        (("--sim-drive", "city:0.3"), "--sim-drive city:0.3 (0.3 min at --time-scale 1): a car drive begins with a "
+                                      "20 s rest (its static bias test); give a longer drive"),
+        (("--sim-table", "II", "--time-scale", "0.01"), "--sim-table II (12.9 min at --time-scale 0.01): a car drive "
+                                                        "begins with a 20 s rest"),
+        (("--sim-drive", "city:30", "--time-scale", "0.015"), "the do-no-harm drives (20 min at --time-scale 0.015): a car "
+                                                           "drive begins with a 20 s rest"),
+        # it failed in the scoring: "reference: 1 sample(s); a heading error needs at least two ..."
+        (("--sim-drive", "city:1", "--rate-hz", "0.01"),
+         "--rate-hz 0.01 puts 1 sample(s) in the drive's rest window [0, 20] s, and its bias needs at least 3"),
+        # the last was taken without a word
+        (("--sim-drive", "city:1", "--param", "hdr_c1=1:2", "--param", "hdr_c1=0.1:0.2"),
+         "--param hdr_c1 is given twice; give it once"),
+        (("--sim-drive", "city:1", "--set", "hdr_c2=1", "--set", "hdr_c2=2"), "--set hdr_c2 is given twice; give it once"),
+        # it failed only after the whole fit
+        (("--sim-drive", "city:1", "--leave-one-out"),
+         "leave-one-out needs at least two training drives, got 1: it fits once without each drive"),
+    ],
+)
+def test_a_tuning_that_cannot_run_is_refused_before_the_fit(tmp_path: Path, args: tuple[str, ...], message: str) -> None:
+    out = tmp_path / "p.json"
+    proc = run_cli("tune", *args, "--no-harm", "--out", out)
+    assert proc.returncode == 2, proc.stderr
+    assert proc.stderr.startswith("gyrocore: error: ") and message in proc.stderr, proc.stderr
+    assert "tuning hdr on" not in proc.stderr  # no fit began
+    assert not out.exists()
+
+
+def test_a_fixed_parameter_in_degrees_is_checked_and_saved_by_its_si_name(tmp_path: Path) -> None:
+    # --set refused hdr_increment_dps, which fixed= takes; fixed= took it beside a fitted hdr_increment,
+    # and every evaluation failed: "hdr_increment is given twice (as hdr_increment and in degrees)"
+    with pytest.raises(ValueError, match="^hdr_increment cannot be both fitted and fixed$"):
+        tune.search_box("hdr", fixed={"hdr_increment_dps": 0.01})
+    proc = run_cli("tune", "--sim-drive", "city:1", "--set", "hdr_incremnt=1", "--no-harm")
+    assert proc.returncode == 2 and "unknown parameter(s) hdr_incremnt (did you mean 'hdr_increment'?)" in proc.stderr
+    out = tmp_path / "p.json"
+    proc = run_cli("tune", "--sim-drive", "city:1", "--set", "hdr_increment_dps=0.01", "--param", "hdr_c1",
+                   "--no-harm", "--max-evals", "2", "--out", out)
+    assert proc.returncode == 0, proc.stderr
+    saved = tune.ParameterSet.read(out)  # what evaluate --params reads
+    assert saved.overrides["hdr_increment"] == pytest.approx(math.radians(0.01)) and "hdr_increment_dps" not in saved.overrides
+    assert json.loads(out.read_text())["units"]["hdr_increment"] == gyrocore.parameters()["hdr_increment"]
+
+
+def test_a_name_the_parameter_file_cannot_hold_is_refused_before_the_fit(tmp_path: Path) -> None:
+    # the set was written with the name " ", and evaluate --params refused the file: "name" must not be empty
+    out = tmp_path / "p.json"
+    proc = run_cli("tune", "--sim-drive", "city:1", "--name", " ", "--no-harm", "--out", out)
+    assert proc.returncode == 2 and proc.stderr.endswith('gyrocore: error: "name" must not be empty\n'), proc.stderr
+    assert not out.exists()
+    with pytest.raises(ValueError, match='^"name" must be a string, got 5$'):
+        tune.ParameterSet(5, "hdr", {})  # type: ignore[arg-type]
