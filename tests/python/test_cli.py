@@ -219,6 +219,11 @@ def test_reproduce_prints_paper_beside_ours_and_writes_figures(
     captured = capsys.readouterr()
     assert "unknown experiment 'hong-tabel-1'" in captured.err and "1.111" not in captured.out
     assert not (tmp_path / "typo").exists()
+    # A name given twice runs once.
+    assert main(["reproduce", "hong-calibration", "hong-calibration", "--no-figures"]) == 0
+    twice = capsys.readouterr().out
+    assert main(["reproduce", "hong-calibration", "--no-figures"]) == 0
+    assert twice == capsys.readouterr().out
 
 
 @pytest.mark.parametrize(

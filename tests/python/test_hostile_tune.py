@@ -66,7 +66,9 @@ def test_a_name_the_parameter_file_cannot_hold_is_refused_before_the_fit(tmp_pat
     # the set was written with the name " ", and evaluate --params refused the file: "name" must not be empty
     out = tmp_path / "p.json"
     proc = run_cli("tune", "--sim-drive", "city:1", "--name", " ", "--no-harm", "--out", out)
-    assert proc.returncode == 2 and proc.stderr.endswith('gyrocore: error: "name" must not be empty\n'), proc.stderr
+    assert proc.returncode == 2 and proc.stderr.endswith(
+        "gyrocore: error: --name ' ': give the parameter set a name that is not blank (or leave --name out: "
+        "hdr_tuned)\n"), proc.stderr
     assert not out.exists()
     with pytest.raises(ValueError, match='^"name" must be a string, got 5$'):
         tune.ParameterSet(5, "hdr", {})  # type: ignore[arg-type]

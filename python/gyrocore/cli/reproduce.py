@@ -6,6 +6,7 @@ import argparse
 from pathlib import Path
 
 from .. import paper
+from .._checks import require_choice
 from ._common import add_command, add_overwrite_option, refuse_existing
 
 
@@ -25,11 +26,9 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
 
 
 def run(args: argparse.Namespace) -> int:
-    names = args.names or list(paper.REPRODUCTIONS)
-    unknown = [n for n in names if n not in paper.REPRODUCTIONS]
-    if unknown:  # before anything runs, so a typo costs no time
-        choices = ", ".join(paper.REPRODUCTIONS)
-        raise ValueError(f"unknown experiment {', '.join(map(repr, unknown))}; choose from {choices}")
+    names = list(dict.fromkeys(args.names)) or list(paper.REPRODUCTIONS)  # a name given twice runs once
+    for name in names:  # before anything runs, so a typo costs no time
+        require_choice("experiment", name, paper.REPRODUCTIONS)
     if not args.no_figures:
         refuse_existing([args.out / paper.REPRODUCTIONS[name][1] for name in names], args.overwrite,
                         folders_exist=False)  # the figures' folder is made

@@ -176,6 +176,9 @@ def _check_simulated(args: argparse.Namespace) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.name is not None and not args.name.strip():  # the set's own check names no option
+        raise ValueError(f"--name {args.name!r}: give the parameter set a name that is not blank (or leave --name out: "
+                         f"{args.preset}_tuned)")
     if args.out is not None:  # before the fit, which takes minutes
         check_not_input(Path(args.out), [Path(p) for p in args.logs + args.test])
         refuse_existing([Path(args.out)], args.overwrite)
