@@ -35,7 +35,8 @@ def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
                 entries = sorted(m.iterdir())
                 inside = [c for c in entries if _named_as_input(c)]
                 if not inside and named:
-                    raise ValueError(f"{m}: no logs in this folder ({', '.join(io.FILE_SUFFIXES)}, log or bag folders)")
+                    raise ValueError(f"{m}: no logs in this folder ({', '.join(io.FILE_SUFFIXES)}, log or bag folders)"
+                                     + _dataset_hint(m))
                 _warn_unsearched(m, [c for c in entries if c.is_dir() and not _named_as_input(c)])
                 found += inside
             elif named or _named_as_input(m):
@@ -46,6 +47,17 @@ def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
     for p in found:
         unique.setdefault(_identity(p), p)
     return list(unique.values())
+
+
+def _dataset_hint(folder: Path) -> str:
+    """What to do with a folder that holds Parquet files in its subfolders only: a partitioned
+    dataset (pyarrow's ``write_to_dataset``, Spark), which gyrocore does not read as one log."""
+    parts = sorted(p for suffix in (".parquet", ".pq") for p in folder.glob(f"*/**/*{suffix}"))
+    if not parts:
+        return ""
+    return (f"; it holds {len(parts)} Parquet file(s) in its subfolders (a partitioned dataset?), and gyrocore reads "
+            "a log from one file: write it as one (pyarrow.parquet.write_table), or give the files "
+            f"('{folder}/**/*.parquet') if each is a log of its own")
 
 
 def _in_log_folder(path: Path) -> bool:

@@ -162,3 +162,22 @@ def test_a_folder_of_logs_names_the_subfolders_it_does_not_search(tmp_path: Path
     synthetic_csv(tmp_path / "day1" / "drive.csv", 100)
     with pytest.warns(InputWarning, match=r"1 subfolder\(s\) not searched \(day1\).*\*\*/\*\.csv"):
         assert [p.name for p in expand_inputs([tmp_path])] == ["top.csv"]
+
+
+def test_a_partitioned_parquet_dataset_is_told_how_to_give_it(tmp_path: Path) -> None:
+    # it said only "no logs in this folder", naming .parquet among what it looks for
+    import numpy as np
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    table = pa.table({"t": np.arange(100) * 0.01, "gyro_z": np.zeros(100), "part": np.repeat([0, 1], 50)})
+    pq.write_to_dataset(table, tmp_path / "ds.parquet", partition_cols=["part"])
+    proc = gyrocore_cli("process", tmp_path / "ds.parquet", "--out", tmp_path / "h.csv", code=2)
+    assert proc.stderr.rstrip().endswith(
+        "it holds 2 Parquet file(s) in its subfolders (a partitioned dataset?), and gyrocore reads a log from one "
+        f"file: write it as one (pyarrow.parquet.write_table), or give the files ('{tmp_path / 'ds.parquet'}/**/*.parquet') "
+        "if each is a log of its own")
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    assert gyrocore_cli("process", empty, "--out", tmp_path / "h.csv", code=2).stderr.rstrip().endswith(
+        "log or bag folders)")
