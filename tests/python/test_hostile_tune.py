@@ -72,3 +72,24 @@ def test_a_name_the_parameter_file_cannot_hold_is_refused_before_the_fit(tmp_pat
     assert not out.exists()
     with pytest.raises(ValueError, match='^"name" must be a string, got 5$'):
         tune.ParameterSet(5, "hdr", {})  # type: ignore[arg-type]
+
+
+def test_a_log_both_trained_on_and_tested_on_is_refused_before_the_fit() -> None:
+    from .conftest import real_log_path
+
+    log = str(real_log_path("f110_ds1"))
+    proc = run_cli("tune", log, "--test", log, "--no-harm")
+    assert proc.returncode == 2 and proc.stderr.endswith(
+        f"gyrocore: error: {log}: both a training log and a --test log; a test log is scored with parameters "
+        "fitted without it: give it as one of them\n"), proc.stderr
+
+
+def test_a_log_given_twice_is_fitted_on_once() -> None:
+    from .conftest import real_log_path
+
+    log = str(real_log_path("f110_ds1"))
+    proc = run_cli("tune", log, f"{log}/", "--no-harm", "--max-evals", "1", "--preset", "static_bias", "--param",
+                   "threshold=1e-4:1e-2")
+    assert proc.returncode == 0, proc.stderr
+    assert f"{log}/: given more than once as a training log; each is used once" in proc.stderr
+    assert "on 1 drive(s)" in proc.stderr

@@ -311,6 +311,19 @@ def warn(message: str) -> None:
     print(f"gyrocore: warning: {one_line(message)}", file=sys.stderr)
 
 
+def once_each(paths: Sequence[str], what: str) -> list[str]:
+    """``paths`` with each file or folder once (also when named two ways, through a link or ``..``),
+    warning of the others: a log given twice to ``tune`` weighed twice in its mean over the drives."""
+    seen: dict[str, str] = {}
+    for p in paths:
+        seen.setdefault(os.path.realpath(p), p)
+    twice = [p for p in paths if p not in seen.values() or paths.count(p) > 1]
+    if twice:
+        warn(f"{', '.join(dict.fromkeys(twice))}: given more than once as {what}; each is used once (a log given "
+             "twice weighed twice in the mean over the drives)")
+    return list(seen.values())
+
+
 def warn_about(path: str | Path, messages: Iterable[str]) -> None:
     """A file's warnings, each naming the file once (most of a report's warnings do not name it;
     those its reader raises do)."""

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import sys
 from pathlib import Path
 from typing import Any, Sequence
@@ -21,6 +22,7 @@ from ._common import (
     add_command,
     add_overwrite_option,
     add_reading_options,
+    once_each,
     print_json,
     reading_options,
     refuse_existing,
@@ -195,6 +197,11 @@ def run(args: argparse.Namespace) -> int:
     def log_cases(paths: Sequence[str]) -> list[tune.Case]:
         return [tune.Case.from_log(read_log(p, use_fixes=False, **reading), bias_duration=args.bias_duration, mode=mode) for p in paths]
 
+    args.logs, args.test = once_each(args.logs, "a training log"), once_each(args.test, "a --test log")
+    both = set(map(os.path.realpath, args.logs)) & set(map(os.path.realpath, args.test))
+    if both:  # its test score would be no held-out score
+        raise ValueError(f"{', '.join(p for p in args.test if os.path.realpath(p) in both)}: both a training log and a "
+                         "--test log; a test log is scored with parameters fitted without it: give it as one of them")
     cases = log_cases(args.logs)
     for table in args.sim_table or []:
         cases += tune.simulated_cases(_TABLES[table], **sim_options)
