@@ -92,26 +92,32 @@ def test_a_missing_column_error_says_a_name_may_leave_out_its_unit(tmp_path: Pat
     message = one_error(gyrocore_cli("allan", euroc(tmp_path / "data.csv", broad), code=2))
     assert "missing column(s) t, gyro_z; it has #timestamp [ns], w_RS_S_x [rad s^-1]" in message
     assert "a name may leave out its unit, e.g. timestamp" in message
-    assert message.endswith("; --time-col timestamp --rate-col w_RS_S_z look like them)")
+    assert message.endswith("; time_col='timestamp', rate_col='w_RS_S_z' (--time-col timestamp --rate-col w_RS_S_z) "
+                            "look like them)")
 
 
-@pytest.mark.parametrize("header, hint, reads", [
-    (["timestamp", "gx", "gy", "gz"], "--time-col timestamp --rate-col gz look like them", True),
-    (["time_ns", "yaw_rate_dps"], "--time-col time --rate-col yaw_rate look like them", True),
-    (["time", "gyro_z"], "--time-col time looks like it", True),
-    (["t", "omega_z [deg/s]"], "--rate-col omega_z looks like it", True),
-    (["stamp", "wx", "wz", "gz"], "--time-col stamp looks like it", False),  # two yaw rates: no guess
-    (["T", "GYRO_Z"], "--time-col T --rate-col GYRO_Z look like them", True),
-    (["a", "b"], None, False),
+@pytest.mark.parametrize("header, python, options, reads", [
+    (["timestamp", "gx", "gy", "gz"], "time_col='timestamp', rate_col='gz'", "--time-col timestamp --rate-col gz", True),
+    (["time_ns", "yaw_rate_dps"], "time_col='time', rate_col='yaw_rate'", "--time-col time --rate-col yaw_rate", True),
+    (["time", "gyro_z"], "time_col='time'", "--time-col time", True),
+    (["t", "omega_z [deg/s]"], "rate_col='omega_z'", "--rate-col omega_z", True),
+    (["stamp", "wx", "wz", "gz"], "time_col='stamp'", "--time-col stamp", False),  # two yaw rates: no guess
+    (["T", "GYRO_Z"], "time_col='T', rate_col='GYRO_Z'", "--time-col T --rate-col GYRO_Z", True),
+    (["a", "b"], None, None, False),
 ])
+@pytest.mark.filterwarnings("ignore::gyrocore.InputWarning")  # the samples' units: not the point here
 def test_a_missing_default_column_names_the_option_of_the_one_that_looks_like_it(
-        tmp_path: Path, header: list[str], hint: str | None, reads: bool) -> None:
+        tmp_path: Path, header: list[str], python: str | None, options: str | None, reads: bool) -> None:
     src = write_csv(tmp_path / "imu.csv", header, [np.arange(3.0) * 0.01] + [np.full(3, 0.5)] * (len(header) - 1))
     message = one_error(gyrocore_cli("process", src, "--out", tmp_path / "h.csv", code=2))
-    assert message.endswith(f"; {hint})") if hint else "look like" not in message and "looks like" not in message
-    if reads:  # following the hint reads the file
-        options = hint.rpartition(" look")[0].split()
-        gyrocore_cli("process", src, *options, "--out", tmp_path / "h.csv", "--preset", "raw", code=0)
+    if python is None:
+        assert "look like" not in message and "looks like" not in message
+        return
+    assert message.endswith(f"; {python} ({options}) {'look like them' if ',' in python else 'looks like it'})")
+    if reads:  # following the hint reads the file, on the command line and in Python
+        gyrocore_cli("process", src, *(options or "").split(), "--out", tmp_path / "h.csv", "--preset", "raw", code=0)
+        keywords = dict(kv.split("=") for kv in python.split(", "))
+        gyrocore.read_log(src, **{k: v.strip("'") for k, v in keywords.items()})
 
 
 def test_unit_suffixes_t_ms_and_gyro_z_dps_are_read_by_the_default_columns(tmp_path: Path, broad: gyrocore.Log) -> None:

@@ -61,19 +61,25 @@ _LIKE = {
     "t": re.compile(r".*(time|stamp).*|t|ts|sec|secs|seconds"),
     "gyro_z": re.compile(r"(gyr|gyro|gyroscope|g|w|omega|angular|angvel|angularvelocity|rot)[a-z0-9]*z|.*yawrate.*"),
 }
-_OPTION = {"t": "--time-col", "gyro_z": "--rate-col"}
+_OPTION = {"t": ("time_col", "--time-col"), "gyro_z": ("rate_col", "--rate-col")}
 
 
 def _look_like(header: list[str], missing: list[str]) -> str:
     """The options that name the one column of ``header`` that looks like each missing default
-    column (a time, a yaw rate), as a hint; empty where none or several do."""
-    said = []
+    column (a time, a yaw rate), as a hint in Python's words and the command line's; empty where
+    none or several do."""
+    said, typed = [], []
     bases = {split_unit(str(h))[0] for h in header}  # the names without their units, as the reader matches them
     for column in (c for c in missing if c in _LIKE):
         like = [b for b in bases if _LIKE[column].fullmatch(re.sub(r"[^a-z0-9]", "", b.lower()))]
         if len(like) == 1:
-            said.append(f"{_OPTION[column]} {_quoted(like[0])}")
-    return f"; {' '.join(said)} look{'s' if len(said) == 1 else ''} like {'it' if len(said) == 1 else 'them'}" if said else ""
+            keyword, option = _OPTION[column]
+            said.append(f"{keyword}={like[0]!r}")
+            typed.append(f"{option} {_quoted(like[0])}")
+    if not said:
+        return ""
+    one = len(said) == 1
+    return f"; {', '.join(said)} ({' '.join(typed)}) look{'s' if one else ''} like {'it' if one else 'them'}"
 
 
 def _quoted(name: str) -> str:
