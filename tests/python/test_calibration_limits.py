@@ -189,3 +189,23 @@ def test_the_command_line_refuses_a_reference_in_degrees(tmp_path: Path) -> None
     assert not saved.exists()
     proc = gyrocore_cli("evaluate", folder, code=2)
     assert "the reference heading looks like degrees, not radians" in proc.stderr
+
+
+def test_a_calibration_file_with_a_scale_error_of_minus_one_is_named_on_the_command_line(tmp_path: Path) -> None:
+    # s_bar = 1/(1 + s) raised ZeroDivisionError, a traceback, once the file was read
+    path = tmp_path / "cal.json"
+    data = cal.Calibration("rate_reference", bias=0.01, scale_error=0.01).to_dict()
+    data["calibration"]["scale_error"] = -1
+    path.write_text(json.dumps(data))
+    log = tmp_path / "log.csv"
+    log.write_text("t,gyro_z\n" + "".join(f"{i / 100},0.01\n" for i in range(300)))
+    proc = gyrocore_cli("process", log, "--calibration", path, "--out", tmp_path / "out.csv", code=2, timeout=60)
+    assert proc.stderr.splitlines()[-1] == (
+        f"gyrocore: error: {path}: not a valid calibration: scale_error must be > -1 (s_bar = 1/(1 + s) > 0), got -1"
+    )
+
+
+def test_a_bias_table_out_of_order_is_refused_as_it_is_made() -> None:
+    # np.interp gave the bias of 30 degC at 20 degC without a word
+    with pytest.raises(ValueError, match=r"temperatures\[1\] = 10 degC does not come after 30 degC"):
+        cal.BiasTable((30.0, 10.0, 20.0), (0.01, 0.02, 0.03), (0.0, 0.0, 0.0), (5, 5, 5))
