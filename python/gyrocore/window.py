@@ -160,6 +160,23 @@ def refuse_start_before(start: float, end: float, first: float) -> None:
         )
 
 
+def refuse_window_outside(start: float, end: float, first: float, last: float) -> None:
+    """A :class:`RestWindowError` for a given rest window ``[start, end]`` that does not lie
+    inside the log (``first`` .. ``last`` [s]): it ends before the log, starts before it, or
+    reaches past its end; the bias would be measured over less than asked, or nothing."""
+    if end < first:
+        raise RestWindowError(
+            f"the bias window [{start}, {end}] s ends before the first sample (t[0] = {first}); "
+            "give the window in the log's own time base"
+        )
+    refuse_start_before(start, end, first)
+    if last < end:
+        raise RestWindowError(
+            f"the bias window [{start}, {end}] s reaches past the end of the log ({time_range(first, last)}); "
+            "give a rest window inside the log, in its own time base", (first, last)
+        )
+
+
 def rest_window_text(params: dict[str, Any]) -> str:
     """The rest window of ``params`` as the user gave it."""
     if params.get("bias_window"):

@@ -5,6 +5,7 @@ samples (found whole, not cut into pieces)."""
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 import warnings
@@ -209,3 +210,24 @@ def test_a_bias_table_out_of_order_is_refused_as_it_is_made() -> None:
     # np.interp gave the bias of 30 degC at 20 degC without a word
     with pytest.raises(ValueError, match=r"temperatures\[1\] = 10 degC does not come after 30 degC"):
         cal.BiasTable((30.0, 10.0, 20.0), (0.01, 0.02, 0.03), (0.0, 0.0, 0.0), (5, 5, 5))
+
+
+@pytest.mark.parametrize(
+    ("window", "min_duration", "message"),
+    [
+        # each was measured without a word: over the part inside the log, or from two readings "+- 0"
+        ((5.0, 50.0), 1.0, "the bias window [5.0, 50.0] s reaches past the end of the log"),
+        ((-50.0, 5.0), 1.0, "the bias window [-50.0, 5.0] s starts before the first sample (t[0] = 0.0): the bias would "
+                            "be measured over [0.0, 5.0] s only"),
+        ((0.0, 0.01), 0.0, "the rest window [0.0, 0.01] s holds 2 reading(s) of the log (0.0 .. 9.99 s); the bias needs "
+                           "at least 3"),
+        ((0.0, 5.0), float("nan"), "min_duration must be finite and >= 0, got nan"),
+    ],
+)
+def test_a_static_bias_window_the_pipeline_refuses_is_refused(
+    window: tuple[float, float], min_duration: float, message: str
+) -> None:
+    t = np.arange(1000) * 0.01
+    rate = 0.01 + np.random.default_rng(0).normal(0.0, 0.001, len(t))
+    with pytest.raises(ValueError, match="^" + re.escape(message)):
+        cal.static_bias(t, rate, window, min_duration=min_duration)

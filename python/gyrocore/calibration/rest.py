@@ -12,6 +12,7 @@ from .. import _gyrocore
 from .._arrays import FloatArray, as_window
 from .._checks import check_number
 from .._motion import warn_if_turning
+from ..window import MIN_WINDOW_READINGS, RestWindowError, refuse_window_outside
 from .inputs import check_series
 from .result import Calibration
 
@@ -209,19 +210,23 @@ def static_bias(
     ``residual_rms`` (the readings' standard deviation) and the ``window`` used.
 
     Raises:
-        ValueError: bad samples, a window shorter than ``min_duration`` or holding fewer than 2
-            readings, or no rest found.
+        ValueError: bad samples, a window shorter than ``min_duration``, or no rest found.
+        RestWindowError: a given window that does not lie inside the log, or holds fewer than
+            :data:`~gyrocore.window.MIN_WINDOW_READINGS` readings (the pipeline's refusals).
     """
     ta, ra = check_series(t, rate)
+    min_duration = check_number("min_duration", min_duration, strict=False)  # NaN passed every window
     if window is None:
         window = detect_rest(ta, ra, min_duration=min_duration, **detect_options)
     start, end = as_window("the rest window", window)
+    if len(ta):  # the pipeline's refusals: a window cut to the log (or one of 2 readings, "+- 0") came without a word
+        refuse_window_outside(start, end, float(ta[0]), float(ta[-1]))
     inside = np.flatnonzero((ta >= start) & (ta <= end))
-    if len(inside) < 2:
+    if len(inside) < MIN_WINDOW_READINGS:
         span = f"{ta[0]} .. {ta[-1]} s" if len(ta) else "which has none"
-        raise ValueError(
+        raise RestWindowError(
             f"the rest window [{start}, {end}] s holds {len(inside)} reading(s) of the log "
-            f"({span}); give it in the log's own time base"
+            f"({span}); the bias needs at least {MIN_WINDOW_READINGS}: give a longer rest window"
         )
     tw, rw = ta[inside] - ta[inside[0]], ra[inside]
     duration = float(tw[-1])
