@@ -231,3 +231,16 @@ def test_a_static_bias_window_the_pipeline_refuses_is_refused(
     rate = 0.01 + np.random.default_rng(0).normal(0.0, 0.001, len(t))
     with pytest.raises(ValueError, match="^" + re.escape(message)):
         cal.static_bias(t, rate, window, min_duration=min_duration)
+
+
+def test_calibrate_refuses_a_fit_window_without_a_reference(tmp_path: Path) -> None:
+    # the span of a fit that cannot run was ignored without a word
+    t = np.arange(0.0, 30.0, 0.01)
+    log = tmp_path / "log.csv"
+    np.savetxt(log, np.column_stack([t, 0.01 + np.random.default_rng(1).normal(0.0, 1e-3, len(t))]), delimiter=",",
+               header="t,gyro_z", comments="")
+    proc = gyrocore_cli("calibrate", log, "--fit-window", "5", "10", code=2, timeout=60)
+    assert proc.stderr.splitlines()[-1] == (
+        f"gyrocore: error: --fit-window is the span of the reference fit, and {log} has no reference heading: give one "
+        "(--reference FILE, or reference.csv in a log folder) or leave --fit-window out"
+    )

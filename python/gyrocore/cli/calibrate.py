@@ -89,6 +89,9 @@ def run(args: argparse.Namespace) -> int:
     for given in (rest, span):
         if given is not None:
             given.samples(log.t, minimum=2)  # an empty window is a usage error, with the log's range
+    if span is not None and log.heading_ref is None:  # it was ignored without a word
+        raise ValueError(f"--fit-window is the span of the reference fit, and {source} has no reference heading: "
+                         "give one (--reference FILE, or reference.csv in a log folder) or leave --fit-window out")
     if rest is not None:  # cut to the log without a word, the bias was not measured where asked
         start, end = rest.resolve(float(log.t[0]))
         if start < log.t[0] or end > log.t[-1]:
