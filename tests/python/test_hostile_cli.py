@@ -289,13 +289,17 @@ def test_allan_names_the_log_and_the_window_too_short_for_noise_parameters(tmp_p
 
 
 @pytest.mark.parametrize("window", [("+0", "+1000"), ("1699999999", "1700000010")])
-def test_calibrate_refuses_a_rest_window_outside_the_log(tmp_path: Path, window: tuple[str, str]) -> None:
+@pytest.mark.parametrize(("command", "output"), [("calibrate", ("--save", "c.json")), ("allan", ("--kalibr", "c.yaml"))])
+def test_calibrate_and_allan_refuse_a_window_outside_the_log(tmp_path: Path, window: tuple[str, str], command: str,
+                                                            output: tuple[str, str]) -> None:
+    # allan analysed the part inside the log without a word
     log = synthetic_csv(tmp_path / "log.csv", 3000)
-    proc = run_cli("calibrate", log, "--window", *window, "--save", tmp_path / "c.json")
+    proc = run_cli(command, log, "--window", *window, output[0], tmp_path / output[1],
+                   *(("--rrw", "1e-5") if command == "allan" else ()))
     assert proc.returncode == 2
     assert proc.stderr.startswith(f"gyrocore: error: --window {window[0]} .. {window[1]} s reaches outside the log "
                                   "(the log runs from 1700000000 to ")
-    assert proc.stderr.endswith("give a rest window inside it\n") and not (tmp_path / "c.json").exists()
+    assert proc.stderr.endswith("give a window inside it\n") and not (tmp_path / output[1]).exists()
 
 
 def test_a_failed_line_of_a_batch_stays_one_line(tmp_path: Path) -> None:
