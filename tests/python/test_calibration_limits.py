@@ -244,3 +244,14 @@ def test_calibrate_refuses_a_fit_window_without_a_reference(tmp_path: Path) -> N
         f"gyrocore: error: --fit-window is the span of the reference fit, and {log} has no reference heading: give one "
         "(--reference FILE, or reference.csv in a log folder) or leave --fit-window out"
     )
+
+
+def test_no_rest_found_at_a_low_rate_says_which_block_finds_it() -> None:
+    # ten minutes at rest at 10 Hz: blocks of 4 readings scatter too much to show a rest, and the
+    # error only said to give the window
+    t = np.arange(6000) / 10.0
+    rate = 0.01 + np.random.default_rng(0).normal(0.0, 1e-3, len(t))
+    with pytest.raises(ValueError, match=r"at this log's 10 Hz a block of 0.25 s holds 4 readings, too few to tell a "
+                                         r"rest by its spread: give block=2.4 \(25 readings\) to find it$"):
+        cal.detect_rest(t, rate)
+    assert cal.detect_rest(t, rate, block=2.4) == pytest.approx((0.0, 599.9))

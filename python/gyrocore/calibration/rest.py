@@ -65,7 +65,7 @@ def rest_windows_of_checked(
     # Temporaries as long as the log are made in place where they can be: a whole log of 10^8
     # samples is searched in memory.
     rel = ta - ta[0]  # epoch timestamps lose precision in arithmetic
-    width = max(block, 4.0 * float(np.median(np.diff(rel), overwrite_input=True)))
+    width = _block_width(block, float(np.median(np.diff(rel), overwrite_input=True)))
     # The blocks that hold samples, numbered 0, 1, ... in time order: a gap or a jump of the
     # clock costs nothing (one bin per block of the time span would grow with the jump).
     number = np.floor(np.divide(rel, width, out=rel)).astype(np.int64)
@@ -103,6 +103,11 @@ def rest_windows_of_checked(
     t0 = ta[np.searchsorted(k, first_block, side="left")]
     t1 = ta[np.searchsorted(k, last_block, side="right") - 1]
     return [(float(a), float(b)) for a, b in zip(t0, t1) if b - a >= min_duration]
+
+
+def _block_width(block: float, interval: float) -> float:
+    """The width [s] of :func:`rest_windows`' blocks: ``block``, and at least 4 sample intervals."""
+    return max(block, 4.0 * interval)
 
 
 def _level_runs(
@@ -161,17 +166,30 @@ def detect_rest(
     """
     if which not in ("first", "longest"):
         raise ValueError(f"which must be 'first' or 'longest', got {which!r}")
-    windows = rest_windows(t, rate, min_duration=min_duration, **options)
+    ta, ra = check_series(t, rate)
+    windows = rest_windows_of_checked(ta, ra, min_duration, **options)
     if not windows:
-        max_rate = options.get("max_rate", 0.05)
+        max_rate = options.get("max_rate", MAX_RATE)
         raise ValueError(
             f"no rest found: no stretch of at least {min_duration:g} s where the rate is as steady as "
             f"the log's quietest blocks and within {max_rate:g} rad/s of zero (give the rest window, "
-            "or a shorter min_duration / larger max_rate if this gyro's bias is large)"
+            "or a shorter min_duration / larger max_rate if this gyro's bias is large)" + _few_readings_hint(ta, options)
         )
     if which == "first":
         return windows[0]
     return max(windows, key=lambda w: w[1] - w[0])
+
+
+def _few_readings_hint(ta: FloatArray, options: dict[str, float]) -> str:
+    """Where the log's blocks hold fewer than 25 readings, what to give instead: the spread of so
+    few scatters so much that a log wholly at rest at 10 Hz (4 readings a block) showed none."""
+    interval = float(np.median(np.diff(ta))) if len(ta) > 1 else 0.0
+    block = options.get("block", BLOCK)
+    readings = _block_width(block, interval) / interval if interval > 0 else math.inf
+    if readings >= 25.0:
+        return ""
+    return (f"; at this log's {1.0 / interval:.3g} Hz a block of {block:g} s holds {readings:.0f} readings, too few "
+            f"to tell a rest by its spread: give block={24.0 * interval:.3g} (25 readings) to find it")
 
 
 def time_weights(t: FloatArray) -> FloatArray:
