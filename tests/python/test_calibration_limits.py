@@ -255,3 +255,11 @@ def test_no_rest_found_at_a_low_rate_says_which_block_finds_it() -> None:
                                          r"rest by its spread: give block=2.4 \(25 readings\) to find it$"):
         cal.detect_rest(t, rate)
     assert cal.detect_rest(t, rate, block=2.4) == pytest.approx((0.0, 599.9))
+
+
+def test_a_fit_window_outside_the_log_is_named() -> None:
+    # it said "only 0 reference sample(s) fall inside the gyro's span 200.0 .. 119.99 s"
+    t = np.arange(0.0, 120.0, 0.01)
+    heading = np.cumsum(0.3 * np.sin(t / 5)) * 0.01
+    with pytest.raises(ValueError, match=r"^the window \[200.0, 300.0\] s lies outside the gyro's log \(0.0 \.\. 119.99"):
+        cal.heading_reference(t, 0.3 * np.sin(t / 5), t[::10], heading[::10], window=(200.0, 300.0))
