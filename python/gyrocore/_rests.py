@@ -28,7 +28,7 @@ from ._checks import usable
 from ._motion import warn_if_turning
 from ._smoother import leave_one_out
 from .rests import Rest
-from .window import RestWindowError, refuse_few_readings, refuse_start_before, rest_window_text, time_range
+from .window import RestWindowError, refuse_few_readings, refuse_window_outside, rest_window_text, time_range
 
 #: Below this speed [m/s] the vehicle stands still (wheel and CAN speeds read a few cm/s of noise).
 SPEED_THRESHOLD = 0.05
@@ -124,23 +124,12 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
             break
     if math.isnan(first):
         raise RestWindowError(f"the bias window [{start}, {end}] s: the log has no sample")
-    if end < first:
-        raise RestWindowError(
-            f"the bias window [{start}, {end}] s ends before the first sample (t[0] = {first}); "
-            "give the window in the log's own time base"
-        )
-    if found_by == "given: bias_window":
-        refuse_start_before(start, end, first)
-    if last < end and found_by == "given: bias_duration":
+    if last < end and found_by == "given: bias_duration":  # its start is the log's: its own words
         raise RestWindowError(
             f"bias_duration = {end - start} s is longer than the log ({time_range(first, last)}); "
             "give a shorter rest at the start, or a bias_window", (first, last)
         )
-    if last < end:
-        raise RestWindowError(
-            f"the bias window [{start}, {end}] s reaches past the end of the log ({time_range(first, last)}); "
-            "give a rest window inside the log, in its own time base", (first, last)
-        )
+    refuse_window_outside(start, end, first, last)  # a found rest lies inside the log
     ts, rs = np.concatenate(kept_t), np.concatenate(kept_r)
     taken = usable(rs)
     ts, rs = ts[taken], rs[taken]

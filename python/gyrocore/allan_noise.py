@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ._arrays import FloatArray
-from ._checks import check_number
+from ._checks import MAX_READING, check_number
 
 if TYPE_CHECKING:  # pragma: no cover
     # only a type here: importing the curve module at run time would import the pipeline, which
@@ -26,8 +26,12 @@ _HOUR = 3600.0
 FLICKER_FLOOR = math.sqrt(2.0 * math.log(2.0) / math.pi)
 #: The pipeline's longest duration [s] (``bias_duration``, ``lowpass_tau``: the core's ``MAX_TIME``).
 MAX_SECONDS = 2.0**40
-
-
+#: The shortest interval the core takes [s] (``gyrocore::MIN_INTERVAL``), for ``dt`` and ``hdr_interval``.
+MIN_INTERVAL = 1e-12
+#: The smallest noise :func:`settings_from_noise` takes (N [rad/sqrt(s)], B [rad/s]): 500 times
+#: below the best gyros' (a bias instability of 1e-4 deg/h is 5e-10 rad/s); far smaller values are
+#: a unit gone wrong, and below 1e-154 N^2 underflowed to settings of 0.
+MIN_NOISE = 1e-12
 
 
 @dataclass(frozen=True)
@@ -96,7 +100,12 @@ class NoiseParameters:
         """
         if self.arw is None:
             raise ValueError("the angle random walk was not found on the curve; cannot write a noise density")
-        if rrw is not None and not (isinstance(rrw, (int, float)) and math.isfinite(rrw) and rrw > 0):
+        if not (isinstance(rostopic, str) and rostopic.strip() and rostopic.isprintable() and " " not in rostopic):
+            # a line break wrote a YAML key of its own, and an empty topic a file Kalibr cannot use
+            raise ValueError(f"rostopic must be a ROS topic name (e.g. /imu0): text without spaces or line breaks, "
+                             f"got {rostopic!r}")
+        if rrw is not None and not (isinstance(rrw, (int, float)) and not isinstance(rrw, bool) and math.isfinite(rrw)
+                                    and rrw > 0):  # True was a rate random walk of 1
             raise ValueError(f"rrw (--rrw) = {rrw!r}: give the rate random walk K, a finite number > 0 "
                              "[rad/s^2/sqrt(Hz)]")
         k = rrw if rrw is not None else (None if self.rrw is None else self.rrw.value)
@@ -302,10 +311,14 @@ def settings_from_noise(
        road rarely (0.3 % at 3 sigma) suspends HDR, and anything larger is taken as a turn.
     """
     # a bool or text passed for a number ("1e-3" was a bare TypeError of math, True a value of 1)
-    arw, bias_instability, dt, hdr_interval, threshold_factor, turn_sigmas = (
-        check_number(name, value) for name, value in (
-            ("arw", arw), ("bias_instability", bias_instability), ("dt", dt), ("hdr_interval", hdr_interval),
-            ("threshold_factor", threshold_factor), ("turn_sigmas", turn_sigmas)))
+    # and within the pipeline's limits: 1e300 overflowed N^2 (a bare OverflowError), a dt of 1e300 s
+    # was taken, a noise of 1e-300 underflowed to settings of 0 that the pipeline refused by their names
+    arw, bias_instability = (check_number(name, value, low=MIN_NOISE, high=MAX_READING, unit=unit) for name, value, unit in
+                             (("arw", arw, " [rad/sqrt(s)]"), ("bias_instability", bias_instability, " [rad/s]")))
+    dt, hdr_interval = (check_number(name, value, low=MIN_INTERVAL, strict=False, high=MAX_SECONDS, unit=" [s]")
+                        for name, value in (("dt", dt), ("hdr_interval", hdr_interval)))
+    threshold_factor, turn_sigmas = (check_number(name, value) for name, value in (
+        ("threshold_factor", threshold_factor), ("turn_sigmas", turn_sigmas)))
     floor = FLICKER_FLOOR * bias_instability
     t_bias = (arw / floor) ** 2 if arw / floor < MAX_SECONDS else math.inf  # ** overflowed: a bare OverflowError
     if t_bias > MAX_SECONDS:

@@ -22,10 +22,12 @@ with ``sigma`` the rms of one sample (:attr:`gyrocore.sim.GyroSpec.noise_rms_dps
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._arrays import FloatArray, refuse_masked
+from ._arrays import FloatArray, as_float_array, refuse_masked
 from ._checks import check_number, require_finite
 from ._extras import require
 
@@ -57,7 +59,8 @@ def expected_output(rate: ArrayLike, noise_rms: float, threshold: float) -> Floa
     is a ValueError naming its index."""
     _check(noise_rms, threshold)
     refuse_masked("rate", rate)  # the masked values were used as data
-    b = np.asarray(rate, dtype=np.float64)
+    # the package's checks of an array, in any shape: text was numpy's "could not convert string to float"
+    b = as_float_array("rate", np.ravel(rate)).reshape(np.shape(rate))
     require_finite("rate", b)  # NaN came back as the expected output, without a word
     a = (threshold - b) / noise_rms
     c = (-threshold - b) / noise_rms
@@ -72,4 +75,6 @@ def bias_leak(noise_rms: float, threshold: float) -> float:
     ``k = 1.54``."""
     _check(noise_rms, threshold)
     k = threshold / noise_rms
+    if math.isinf(k):  # a threshold of 1e300 over a noise of 1e-300: inf * phi(inf) gave NaN, not "none passes"
+        return 0.0
     return float(2.0 * _cdf(-k, "the dead band's bias leak") + 2.0 * k * _pdf(k))

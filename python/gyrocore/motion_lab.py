@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 from ._checks import check_count, check_number
-from .motion_model import _DEG, Motion, _Track, check_duration, check_positive
+from .motion_model import _DEG, Motion, _Track, check_duration, check_positive, rest_window
 
 
 def square_path(
@@ -47,7 +47,7 @@ def square_path(
                 tr.turn(sign * math.pi / 2, turn_dps * _DEG, turn_accel_dps2 * _DEG)
             tr.label(f"lap_{direction}", start, sign * 2 * math.pi)
     tr.rest(1.0)
-    return tr.build("FOG square path", (0.0, rest))
+    return tr.build("FOG square path", rest_window(rest))
 
 
 def rotary_table(
@@ -80,7 +80,7 @@ def rotary_table(
         for direction, sign in (("cw", -1.0), ("ccw", 1.0)):
             tr.turn(sign * 2 * math.pi, rate_dps * _DEG, accel_dps2 * _DEG, kind=f"turn_{direction}")
             tr.rest(pause, kind="pause")
-    return tr.build("FOG rotary table", (0.0, rest))
+    return tr.build("FOG rotary table", rest_window(rest))
 
 
 def robot_run(

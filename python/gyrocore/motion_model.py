@@ -24,6 +24,12 @@ _DEG = math.pi / 180.0
 MAX_DURATION = 2.0**17
 
 
+def rest_window(rest: float) -> tuple[float, float] | None:
+    """The rest window of a motion that begins with ``rest`` seconds: none for no rest (a window
+    [0, 0] held one sample, too few for a bias)."""
+    return (0.0, rest) if rest > 0 else None
+
+
 def check_duration(what: str, seconds: float) -> None:
     """A ValueError if a motion of ``seconds`` (``what`` says whose) is longer than :data:`MAX_DURATION`."""
     if seconds > MAX_DURATION:

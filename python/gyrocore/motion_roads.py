@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import check_number, check_seed, require_choice
-from .motion_model import _DEG, Motion, _Track, check_duration, check_positive
+from .motion_model import _DEG, Motion, _Track, check_duration, check_positive, rest_window
 
 
 def hdr_figure3(
@@ -38,7 +38,7 @@ def hdr_figure3(
     tr.curve(curve_end - curve_start, curve_dps * _DEG)
     tr.drive(duration - tr.now, speed)
     tr.swerve(rest, duration, swerve_dps * _DEG, 0.1)
-    return tr.build("HDR Figure 3", (0.0, rest))
+    return tr.build("HDR Figure 3", rest_window(rest))
 
 
 @dataclass(frozen=True)
@@ -149,7 +149,7 @@ def car(duration: float, *, mix: str = "mixed", seed: int = 0, rest: float = 20.
         while tr.now < section_end:
             _manoeuvre(tr, ROADS[road_name], rng, section_end, swerve_dps * _DEG)
     # The last manoeuvre may run past the end: the drive is cut there.
-    return tr.build(f"car ({mix})", (0.0, rest) if rest > 0 else None, end=duration)
+    return tr.build(f"car ({mix})", rest_window(rest), end=duration)
 
 
 def _manoeuvre(tr: _Track, road: Road, rng: np.random.Generator, end: float, swerve: float) -> None:

@@ -33,6 +33,7 @@ from numpy.typing import ArrayLike
 from . import _gyrocore, motion
 from ._arrays import FloatArray, as_float_array
 from ._checks import check_number, check_seed, real_number, require_choice, require_series
+from .window import MIN_WINDOW_READINGS
 
 if TYPE_CHECKING:
     from .fixes import Fixes
@@ -359,7 +360,8 @@ def simulate(trajectory: motion.Motion, spec: GyroSpec | str, *, seed: int, rate
     Raises:
         TypeError: a ``trajectory`` that is no :class:`gyrocore.motion.Motion` (None was "'NoneType'
             object has no attribute 'duration'"), a ``rate_hz`` that is no number.
-        ValueError: an unknown sensor, a ``seed`` outside [0, 2^64), a span the simulator refuses.
+        ValueError: an unknown sensor, a ``seed`` outside [0, 2^64), a span the simulator refuses,
+            a rate that gives fewer than two samples or fewer than three in the motion's rest.
     """
     if not isinstance(trajectory, motion.Motion):
         raise TypeError(f"trajectory must be a gyrocore.motion.Motion (e.g. gyrocore.motion.car(600)), got "
@@ -367,6 +369,7 @@ def simulate(trajectory: motion.Motion, spec: GyroSpec | str, *, seed: int, rate
     spec = sensor(spec) if rate_hz is None else sensor(spec, rate_hz=rate_hz)
     seed = check_seed(seed)
     t = sample_times(spec, 0.0, trajectory.duration, seed=seed)
+    refuse_too_few_samples(t, trajectory.rest, spec.rate_hz)
     truth = trajectory.sample(t)
     reading = measure(spec, t, truth.rate, seed=seed)
     window = trajectory.rest
@@ -392,6 +395,23 @@ def simulate(trajectory: motion.Motion, spec: GyroSpec | str, *, seed: int, rate
         sensor=spec,
         seed=seed,
     )
+
+
+def refuse_too_few_samples(t: FloatArray, window: tuple[float, float] | None, rate_hz: float) -> None:
+    """Refuse a drive (sample times ``t``) whose rest ``window`` holds too few samples to measure
+    its bias, or of fewer than two samples: a rate of 0.01 Hz gave a one-sample drive without a
+    word, which every command that read it refused later (a heading error needs two samples)."""
+    if window is not None:
+        start, end = window
+        readings = int(np.count_nonzero((t >= start) & (t <= end)))
+        if readings < MIN_WINDOW_READINGS:
+            raise ValueError(
+                f"rate_hz {rate_hz:g} puts {readings} sample(s) in the drive's rest window [{start:g}, {end:g}] s, "
+                f"and its bias needs at least {MIN_WINDOW_READINGS}: give a higher rate (--rate-hz)"
+            )
+    if len(t) < 2:
+        raise ValueError(f"rate_hz {rate_hz:g} gives {len(t)} sample(s), and a drive needs at least 2: "
+                         "give a higher rate (--rate-hz)")
 
 
 #: The rest that begins a car drive by default [s] (its static bias test).

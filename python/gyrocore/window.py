@@ -75,11 +75,13 @@ class Window:
             self.end + t0 if self.relative[1] else self.end,
         )
 
-    def samples(self, t: FloatArray, *, minimum: int = 1) -> np.ndarray:
+    def samples(self, t: FloatArray, *, minimum: int = 1, within: bool = False) -> np.ndarray:
         """Indices of the samples of ``t`` inside the window (bounds included).
 
         Raises:
-            ValueError: fewer than ``minimum`` samples inside, naming the window and the log's range.
+            ValueError: fewer than ``minimum`` samples inside, or (``within``) a window that reaches
+                outside the log, which would be cut to it without a word; naming the window and the
+                log's range.
         """
         if len(t) == 0:
             raise ValueError(f"{self.option} {self}: the log has no samples")
@@ -90,6 +92,9 @@ class Window:
                 f"{self.option} {self} holds {len(inside)} sample(s), fewer than {minimum}; "
                 + time_range(float(t[0]), float(t[-1]))
             )
+        if within and (start < t[0] or end > t[-1]):
+            raise ValueError(f"{self.option} {self} reaches outside the log ({time_range(float(t[0]), float(t[-1]))}); "
+                             "give a window inside it")
         return inside
 
     def __str__(self) -> str:
@@ -157,6 +162,23 @@ def refuse_start_before(start: float, end: float, first: float) -> None:
         raise RestWindowError(
             f"the bias window [{start}, {end}] s starts before the first sample (t[0] = {first}): the bias would be "
             f"measured over [{first}, {end}] s only; give a rest window inside the log, in its own time base"
+        )
+
+
+def refuse_window_outside(start: float, end: float, first: float, last: float) -> None:
+    """A :class:`RestWindowError` for a given rest window ``[start, end]`` that does not lie
+    inside the log (``first`` .. ``last`` [s]): it ends before the log, starts before it, or
+    reaches past its end; the bias would be measured over less than asked, or nothing."""
+    if end < first:
+        raise RestWindowError(
+            f"the bias window [{start}, {end}] s ends before the first sample (t[0] = {first}); "
+            "give the window in the log's own time base"
+        )
+    refuse_start_before(start, end, first)
+    if last < end:
+        raise RestWindowError(
+            f"the bias window [{start}, {end}] s reaches past the end of the log ({time_range(first, last)}); "
+            "give a rest window inside the log, in its own time base", (first, last)
         )
 
 

@@ -230,6 +230,23 @@ def test_a_minimum_at_the_shortest_tau_is_only_an_upper_bound() -> None:
     assert any("shortest taus" in note and "upper bound" in note for note in p.notes)
 
 
+@pytest.mark.parametrize(
+    ("options", "message"),
+    [
+        # a line break wrote a YAML key of its own; True was a rate random walk of 1
+        ({"rostopic": "/imu0\nupdate_rate: 1"}, "rostopic must be a ROS topic name (e.g. /imu0): text without spaces "
+                                                 "or line breaks, got '/imu0\\nupdate_rate: 1'"),
+        ({"rostopic": ""}, "rostopic must be a ROS topic name"),
+        ({"rrw": True}, "rrw (--rrw) = True: give the rate random walk K, a finite number > 0"),
+    ],
+)
+def test_kalibr_yaml_refuses_a_topic_or_rate_random_walk_it_cannot_write(options: dict[str, object], message: str) -> None:
+    rate = np.random.default_rng(3).normal(0.0, 1e-3, 100_000)
+    p = allan.noise_parameters(allan.deviation(rate, 0.01))
+    with pytest.raises(ValueError, match="^" + re.escape(message)):
+        p.kalibr_yaml(**options)  # type: ignore[arg-type]
+
+
 def test_kalibr_yaml_states_units_and_values() -> None:
     dt = 0.1
     r = allan.deviation(synthetic_gyro(1_000_000, dt, 1e-3, 1e-5, 0.0, 10), dt)

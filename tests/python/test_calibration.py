@@ -156,7 +156,7 @@ def test_batch_means_widen_the_standard_error_of_a_wandering_bias() -> None:
     rng = np.random.default_rng(5)
     t = np.arange(0.0, 60.0, 0.01)
     rate = rng.normal(0.0, 0.002, len(t)) + np.cumsum(rng.normal(0.0, 2e-4, len(t)))
-    c = cal.static_bias(t, rate, (0.0, 60.0))
+    c = cal.static_bias(t, rate, (0.0, t[-1]))
     naive = float(np.std(rate) / math.sqrt(len(t)))
     assert c.bias_stderr is not None and c.bias_stderr > 3 * naive
 
@@ -187,7 +187,7 @@ def test_static_bias_failure_cases() -> None:
     rest = np.random.default_rng(6).normal(0.0, 0.001, len(t))
     with pytest.raises(ValueError, match="shorter than min_duration"):
         cal.static_bias(t, rest, (1.0, 1.5))
-    with pytest.raises(ValueError, match="holds 0 reading"):
+    with pytest.raises(ValueError, match="reaches past the end of the log"):
         cal.static_bias(t, rest, (1.65e9, 1.65e9 + 5))
     turning = 0.5 + 0.2 * np.sin(t) + rest
     with pytest.raises(ValueError, match="no rest found"):

@@ -5,6 +5,7 @@ samples (found whole, not cut into pieces)."""
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 import warnings
@@ -189,3 +190,76 @@ def test_the_command_line_refuses_a_reference_in_degrees(tmp_path: Path) -> None
     assert not saved.exists()
     proc = gyrocore_cli("evaluate", folder, code=2)
     assert "the reference heading looks like degrees, not radians" in proc.stderr
+
+
+def test_a_calibration_file_with_a_scale_error_of_minus_one_is_named_on_the_command_line(tmp_path: Path) -> None:
+    # s_bar = 1/(1 + s) raised ZeroDivisionError, a traceback, once the file was read
+    path = tmp_path / "cal.json"
+    data = cal.Calibration("rate_reference", bias=0.01, scale_error=0.01).to_dict()
+    data["calibration"]["scale_error"] = -1
+    path.write_text(json.dumps(data))
+    log = tmp_path / "log.csv"
+    log.write_text("t,gyro_z\n" + "".join(f"{i / 100},0.01\n" for i in range(300)))
+    proc = gyrocore_cli("process", log, "--calibration", path, "--out", tmp_path / "out.csv", code=2, timeout=60)
+    assert proc.stderr.splitlines()[-1] == (
+        f"gyrocore: error: {path}: not a valid calibration: scale_error must be > -1 (s_bar = 1/(1 + s) > 0), got -1"
+    )
+
+
+def test_a_bias_table_out_of_order_is_refused_as_it_is_made() -> None:
+    # np.interp gave the bias of 30 degC at 20 degC without a word
+    with pytest.raises(ValueError, match=r"temperatures\[1\] = 10 degC does not come after 30 degC"):
+        cal.BiasTable((30.0, 10.0, 20.0), (0.01, 0.02, 0.03), (0.0, 0.0, 0.0), (5, 5, 5))
+
+
+@pytest.mark.parametrize(
+    ("window", "min_duration", "message"),
+    [
+        # each was measured without a word: over the part inside the log, or from two readings "+- 0"
+        ((5.0, 50.0), 1.0, "the bias window [5.0, 50.0] s reaches past the end of the log"),
+        ((-50.0, 5.0), 1.0, "the bias window [-50.0, 5.0] s starts before the first sample (t[0] = 0.0): the bias would "
+                            "be measured over [0.0, 5.0] s only"),
+        ((0.0, 0.01), 0.0, "the rest window [0.0, 0.01] s holds 2 reading(s) of the log (0.0 .. 9.99 s); the bias needs "
+                           "at least 3"),
+        ((0.0, 5.0), float("nan"), "min_duration must be finite and >= 0, got nan"),
+    ],
+)
+def test_a_static_bias_window_the_pipeline_refuses_is_refused(
+    window: tuple[float, float], min_duration: float, message: str
+) -> None:
+    t = np.arange(1000) * 0.01
+    rate = 0.01 + np.random.default_rng(0).normal(0.0, 0.001, len(t))
+    with pytest.raises(ValueError, match="^" + re.escape(message)):
+        cal.static_bias(t, rate, window, min_duration=min_duration)
+
+
+def test_calibrate_refuses_a_fit_window_without_a_reference(tmp_path: Path) -> None:
+    # the span of a fit that cannot run was ignored without a word
+    t = np.arange(0.0, 30.0, 0.01)
+    log = tmp_path / "log.csv"
+    np.savetxt(log, np.column_stack([t, 0.01 + np.random.default_rng(1).normal(0.0, 1e-3, len(t))]), delimiter=",",
+               header="t,gyro_z", comments="")
+    proc = gyrocore_cli("calibrate", log, "--fit-window", "5", "10", code=2, timeout=60)
+    assert proc.stderr.splitlines()[-1] == (
+        f"gyrocore: error: --fit-window is the span of the reference fit, and {log} has no reference heading: give one "
+        "(--reference FILE, or reference.csv in a log folder) or leave --fit-window out"
+    )
+
+
+def test_no_rest_found_at_a_low_rate_says_which_block_finds_it() -> None:
+    # ten minutes at rest at 10 Hz: blocks of 4 readings scatter too much to show a rest, and the
+    # error only said to give the window
+    t = np.arange(6000) / 10.0
+    rate = 0.01 + np.random.default_rng(0).normal(0.0, 1e-3, len(t))
+    with pytest.raises(ValueError, match=r"at this log's 10 Hz a block of 0.25 s holds 4 readings, too few to tell a "
+                                         r"rest by its spread: give block=2.4 \(25 readings\) to find it$"):
+        cal.detect_rest(t, rate)
+    assert cal.detect_rest(t, rate, block=2.4) == pytest.approx((0.0, 599.9))
+
+
+def test_a_fit_window_outside_the_log_is_named() -> None:
+    # it said "only 0 reference sample(s) fall inside the gyro's span 200.0 .. 119.99 s"
+    t = np.arange(0.0, 120.0, 0.01)
+    heading = np.cumsum(0.3 * np.sin(t / 5)) * 0.01
+    with pytest.raises(ValueError, match=r"^the window \[200.0, 300.0\] s lies outside the gyro's log \(0.0 \.\. 119.99"):
+        cal.heading_reference(t, 0.3 * np.sin(t / 5), t[::10], heading[::10], window=(200.0, 300.0))

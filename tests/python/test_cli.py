@@ -260,7 +260,7 @@ def test_reproduce_prints_paper_beside_ours_and_writes_figures(
         (("demo", "--duration", "10", "--plot", "{tmp}/d.png"), "--duration 10: a car drive begins with a 20 s rest"),
         # a log whose rest window cannot give its bias is not written
         (("simulate", "--out", "{tmp}/s.csv", "--rate-hz", "1e-6"),
-         "--rate-hz 1e-06 puts 1 sample(s) in the drive's rest window [0, 20] s, and its bias needs at least 3"),
+         "rate_hz 1e-06 puts 1 sample(s) in the drive's rest window [0, 20] s, and its bias needs at least 3"),
     ],
 )
 def test_numeric_options_are_checked_before_any_work(tmp_path: Path, args: tuple[str, ...], message: str) -> None:

@@ -83,3 +83,14 @@ def test_a_rate_that_is_not_finite_is_named(rate: object, message: str) -> None:
     # NaN came back as the expected output without a word
     with pytest.raises(ValueError, match=message):
         deadband.expected_output(rate, noise_rms=1.0, threshold=1.0)
+
+
+def test_a_rate_of_text_is_named() -> None:
+    # it was numpy's "could not convert string to float: 'a'"
+    with pytest.raises(TypeError, match=r"^rate must hold real numbers, got dtype <U1"):
+        deadband.expected_output([["a"]], noise_rms=1.0, threshold=1.0)
+
+
+def test_a_threshold_infinitely_many_noises_wide_lets_no_bias_pass() -> None:
+    # threshold / noise_rms overflowed to inf, and inf * phi(inf) gave NaN
+    assert deadband.bias_leak(noise_rms=1e-300, threshold=1e300) == 0.0

@@ -96,7 +96,22 @@ def test_allan_and_calibration_inputs_are_named(call: Callable[[], object], mess
         ({"bias": True}, "bias must be a number, got True"),
         ({"samples": 2.5}, "samples must be a whole number, got 2.5"),
         ({"window": [1]}, r"window must be \(start, end\) in seconds, got \[1\]"),
-        ({"bias_table": "x"}, "bias_table must be an object of lists, got 'x'"),
+        ({"bias_table": "x"}, "bias_table must be an object of the lists temperatures, biases, stderr, counts, got 'x'"),
+        # each was taken without a word, or failed later: 1/0 in s_bar, numpy's "fp and xp are not
+        # of the same length", the bias of 30 degC read at 20 degC, notes of a letter each
+        ({"method": "static-bias"}, "method must be one of static_bias, rate_reference, heading_reference, "
+                                    "rotary_table, got 'static-bias'"),
+        ({"bias": float("nan")}, "bias must be finite, got nan"),
+        ({"scale_error": -1}, r"scale_error must be > -1 \(s_bar = 1/\(1 \+ s\) > 0\), got -1"),
+        ({"c_cw": 0}, "c_cw must be > 0, got 0"),
+        ({"samples": -5}, "samples must be >= 0, got -5"),
+        ({"temp_slope": 0.001}, "temp_slope and temp_offset make one temperature model: give both or neither"),
+        ({"notes": "checked"}, "notes must be a list of text, got 'checked'"),
+        ({"bias_table": {"temperatures": [30, 10, 20], "biases": [1, 2, 3], "stderr": [0, 0, 0], "counts": [5, 5, 5]}},
+         "bias table temperatures\\[1\\] = 10 degC does not come after 30 degC: a table's temperatures must strictly increase"),
+        ({"bias_table": {"temperatures": [10, 20], "biases": [1], "stderr": [0], "counts": [5]}},
+         "a bias table needs one temperature, bias, stderr and count per entry and at least one entry, got 2 "
+         "temperatures, 1 biases, 1 stderr, 1 counts"),
     ],
 )
 def test_a_corrupt_calibration_file_is_named(tmp_path: Path, change: dict[str, object], message: str) -> None:

@@ -253,19 +253,24 @@ def test_a_csv_of_a_byte_order_mark_alone_has_no_header(tmp_path: Path, content:
                                                      "names)\n")
 
 
-@pytest.mark.parametrize("value", ["NaN", "1e30"])
-def test_a_calibration_value_the_pipeline_refuses_names_the_file(tmp_path: Path, value: str) -> None:
+@pytest.mark.parametrize(
+    ("value", "message"),
+    [
+        ("NaN", "{given}: not a valid calibration: bias must be finite, got nan"),  # no calibration gives it
+        ("1e30", "--calibration {given}: invalid parameter bias = 1e30: must be finite"),
+    ],
+)
+def test_a_calibration_value_the_pipeline_refuses_names_the_file(tmp_path: Path, value: str, message: str) -> None:
     from gyrocore.calibration import Calibration
 
     given = tmp_path / "calibration.json"
-    Calibration(method="static", bias=0.001).save(given)
+    Calibration(method="static_bias", bias=0.001).save(given)
     given.write_text(given.read_text().replace('"bias": 0.001', f'"bias": {value}'))
     for args in (("process", synthetic_csv(tmp_path / "log.csv", 3000), "--out", tmp_path / "h.csv"),
                  ("evaluate", log_folder_with(tmp_path, "reference.csv", REFERENCE), "--preset", "raw")):
         proc = run_cli(*args, "--calibration", given)
         assert proc.returncode == 2
-        assert proc.stderr.startswith(f"gyrocore: error: --calibration {given}: invalid parameter bias = {value}: "
-                                      "must be finite"), proc.stderr
+        assert proc.stderr.startswith("gyrocore: error: " + message.format(given=given)), proc.stderr
 
 
 def test_allan_refuses_kalibr_of_another_kind_before_any_work(tmp_path: Path) -> None:
@@ -284,13 +289,17 @@ def test_allan_names_the_log_and_the_window_too_short_for_noise_parameters(tmp_p
 
 
 @pytest.mark.parametrize("window", [("+0", "+1000"), ("1699999999", "1700000010")])
-def test_calibrate_refuses_a_rest_window_outside_the_log(tmp_path: Path, window: tuple[str, str]) -> None:
+@pytest.mark.parametrize(("command", "output"), [("calibrate", ("--save", "c.json")), ("allan", ("--kalibr", "c.yaml"))])
+def test_calibrate_and_allan_refuse_a_window_outside_the_log(tmp_path: Path, window: tuple[str, str], command: str,
+                                                            output: tuple[str, str]) -> None:
+    # allan analysed the part inside the log without a word
     log = synthetic_csv(tmp_path / "log.csv", 3000)
-    proc = run_cli("calibrate", log, "--window", *window, "--save", tmp_path / "c.json")
+    proc = run_cli(command, log, "--window", *window, output[0], tmp_path / output[1],
+                   *(("--rrw", "1e-5") if command == "allan" else ()))
     assert proc.returncode == 2
     assert proc.stderr.startswith(f"gyrocore: error: --window {window[0]} .. {window[1]} s reaches outside the log "
                                   "(the log runs from 1700000000 to ")
-    assert proc.stderr.endswith("give a rest window inside it\n") and not (tmp_path / "c.json").exists()
+    assert proc.stderr.endswith("give a window inside it\n") and not (tmp_path / output[1]).exists()
 
 
 def test_a_failed_line_of_a_batch_stays_one_line(tmp_path: Path) -> None:

@@ -57,7 +57,7 @@ def test_a_file_an_option_names_is_never_the_output(tmp_path: Path, option: str)
     if option == "--fixes":
         given.write_text("t,heading,sigma\n1700000001,0.1,0.05\n")
     else:
-        Calibration(method="static", bias=0.001).save(given)
+        Calibration(method="static_bias", bias=0.001).save(given)
     before = given.read_bytes()
     proc = run_cli("process", log, "--out", given, option, given)
     assert proc.returncode == 2

@@ -27,7 +27,7 @@ from .test_errors_named import run_cli
                                                            "drive begins with a 20 s rest"),
         # it failed in the scoring: "reference: 1 sample(s); a heading error needs at least two ..."
         (("--sim-drive", "city:1", "--rate-hz", "0.01"),
-         "--rate-hz 0.01 puts 1 sample(s) in the drive's rest window [0, 20] s, and its bias needs at least 3"),
+         "rate_hz 0.01 puts 1 sample(s) in the drive's rest window [0, 20] s, and its bias needs at least 3"),
         # the last was taken without a word
         (("--sim-drive", "city:1", "--param", "hdr_c1=1:2", "--param", "hdr_c1=0.1:0.2"),
          "--param hdr_c1 is given twice; give it once"),

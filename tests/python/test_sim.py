@@ -4,6 +4,7 @@ exact truth, reproducibility, sampling, car drives, and the ``simulate`` command
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -254,3 +255,27 @@ def test_simulated_fixes_refuse_a_noise_the_filter_cannot_use(sigma_deg: float) 
 def test_simulated_fixes_refuse_a_reference_that_is_no_track(t: np.ndarray, heading: np.ndarray, message: str) -> None:
     with pytest.raises(ValueError, match=r"the reference: " + message):
         sim.gnss_fixes(t, heading, seed=0)
+
+
+@pytest.mark.parametrize(
+    ("build", "message"),
+    [
+        # each gave a one-sample drive without a word, which every command that read it refused later
+        (lambda: sim.car_drive(60, rate_hz=0.01),
+         "rate_hz 0.01 puts 1 sample(s) in the drive's rest window [0, 20] s, and its bias needs at least 3"),
+        (lambda: sim.simulate(motion.car(60), "crs03", seed=0, rate_hz=0.001), "rate_hz 0.001 puts 1 sample(s)"),
+        (lambda: sim.simulate(motion.car(60, rest=0), "crs03", seed=0, rate_hz=0.001),
+         "rate_hz 0.001 gives 1 sample(s), and a drive needs at least 2"),
+    ],
+)
+def test_a_rate_too_low_for_a_drive_is_refused(build: object, message: str) -> None:
+    with pytest.raises(ValueError, match=re.escape(message)):
+        build()  # type: ignore[operator]
+
+
+@pytest.mark.parametrize("profile", [motion.square_path, motion.rotary_table, motion.hdr_figure3])
+def test_a_motion_without_rest_has_no_rest_window(profile: object) -> None:
+    # rest=0 gave the window [0, 0], one sample, which no bias can come from
+    trajectory = profile(rest=0)  # type: ignore[operator]
+    assert trajectory.rest is None
+    assert len(sim.simulate(trajectory, "crs03", seed=0)) > 2

@@ -214,6 +214,9 @@ def heading_reference(
     lo, hi = ta[0], ta[-1]
     if window is not None:
         start, end = as_window("window", window)
+        if end < lo or start > hi:  # the span between them read "200.0 .. 119.99 s"
+            raise ValueError(f"the window [{start}, {end}] s lies outside the gyro's log ({lo} .. {hi} s); give it "
+                             "in the log's own time base")
         lo, hi = max(lo, start), min(hi, end)
     inside = np.flatnonzero((tr >= lo) & (tr <= hi))
     if len(inside) < 3:

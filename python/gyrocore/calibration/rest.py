@@ -12,6 +12,7 @@ from .. import _gyrocore
 from .._arrays import FloatArray, as_window
 from .._checks import check_number
 from .._motion import warn_if_turning
+from ..window import MIN_WINDOW_READINGS, RestWindowError, refuse_window_outside
 from .inputs import check_series
 from .result import Calibration
 
@@ -64,7 +65,7 @@ def rest_windows_of_checked(
     # Temporaries as long as the log are made in place where they can be: a whole log of 10^8
     # samples is searched in memory.
     rel = ta - ta[0]  # epoch timestamps lose precision in arithmetic
-    width = max(block, 4.0 * float(np.median(np.diff(rel), overwrite_input=True)))
+    width = _block_width(block, float(np.median(np.diff(rel), overwrite_input=True)))
     # The blocks that hold samples, numbered 0, 1, ... in time order: a gap or a jump of the
     # clock costs nothing (one bin per block of the time span would grow with the jump).
     number = np.floor(np.divide(rel, width, out=rel)).astype(np.int64)
@@ -102,6 +103,11 @@ def rest_windows_of_checked(
     t0 = ta[np.searchsorted(k, first_block, side="left")]
     t1 = ta[np.searchsorted(k, last_block, side="right") - 1]
     return [(float(a), float(b)) for a, b in zip(t0, t1) if b - a >= min_duration]
+
+
+def _block_width(block: float, interval: float) -> float:
+    """The width [s] of :func:`rest_windows`' blocks: ``block``, and at least 4 sample intervals."""
+    return max(block, 4.0 * interval)
 
 
 def _level_runs(
@@ -160,17 +166,30 @@ def detect_rest(
     """
     if which not in ("first", "longest"):
         raise ValueError(f"which must be 'first' or 'longest', got {which!r}")
-    windows = rest_windows(t, rate, min_duration=min_duration, **options)
+    ta, ra = check_series(t, rate)
+    windows = rest_windows_of_checked(ta, ra, min_duration, **options)
     if not windows:
-        max_rate = options.get("max_rate", 0.05)
+        max_rate = options.get("max_rate", MAX_RATE)
         raise ValueError(
             f"no rest found: no stretch of at least {min_duration:g} s where the rate is as steady as "
             f"the log's quietest blocks and within {max_rate:g} rad/s of zero (give the rest window, "
-            "or a shorter min_duration / larger max_rate if this gyro's bias is large)"
+            "or a shorter min_duration / larger max_rate if this gyro's bias is large)" + _few_readings_hint(ta, options)
         )
     if which == "first":
         return windows[0]
     return max(windows, key=lambda w: w[1] - w[0])
+
+
+def _few_readings_hint(ta: FloatArray, options: dict[str, float]) -> str:
+    """Where the log's blocks hold fewer than 25 readings, what to give instead: the spread of so
+    few scatters so much that a log wholly at rest at 10 Hz (4 readings a block) showed none."""
+    interval = float(np.median(np.diff(ta))) if len(ta) > 1 else 0.0
+    block = options.get("block", BLOCK)
+    readings = _block_width(block, interval) / interval if interval > 0 else math.inf
+    if readings >= 25.0:
+        return ""
+    return (f"; at this log's {1.0 / interval:.3g} Hz a block of {block:g} s holds {readings:.0f} readings, too few "
+            f"to tell a rest by its spread: give block={24.0 * interval:.3g} (25 readings) to find it")
 
 
 def time_weights(t: FloatArray) -> FloatArray:
@@ -209,19 +228,23 @@ def static_bias(
     ``residual_rms`` (the readings' standard deviation) and the ``window`` used.
 
     Raises:
-        ValueError: bad samples, a window shorter than ``min_duration`` or holding fewer than 2
-            readings, or no rest found.
+        ValueError: bad samples, a window shorter than ``min_duration``, or no rest found.
+        RestWindowError: a given window that does not lie inside the log, or holds fewer than
+            :data:`~gyrocore.window.MIN_WINDOW_READINGS` readings (the pipeline's refusals).
     """
     ta, ra = check_series(t, rate)
+    min_duration = check_number("min_duration", min_duration, strict=False)  # NaN passed every window
     if window is None:
         window = detect_rest(ta, ra, min_duration=min_duration, **detect_options)
     start, end = as_window("the rest window", window)
+    if len(ta):  # the pipeline's refusals: a window cut to the log (or one of 2 readings, "+- 0") came without a word
+        refuse_window_outside(start, end, float(ta[0]), float(ta[-1]))
     inside = np.flatnonzero((ta >= start) & (ta <= end))
-    if len(inside) < 2:
+    if len(inside) < MIN_WINDOW_READINGS:
         span = f"{ta[0]} .. {ta[-1]} s" if len(ta) else "which has none"
-        raise ValueError(
+        raise RestWindowError(
             f"the rest window [{start}, {end}] s holds {len(inside)} reading(s) of the log "
-            f"({span}); give it in the log's own time base"
+            f"({span}); the bias needs at least {MIN_WINDOW_READINGS}: give a longer rest window"
         )
     tw, rw = ta[inside] - ta[inside[0]], ra[inside]
     duration = float(tw[-1])

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import math
+import numbers
 from dataclasses import asdict, dataclass, field, fields
 from pathlib import Path
 from typing import Any
@@ -35,6 +36,8 @@ _UNITS = {
     "temp_offset": "1 (FOG eq 5's E_T at 0 degC / 360 deg)",
     "bias_table": "temperatures degC, biases rad/s",
 }
+#: The calibrations there are (``Calibration.method``).
+METHODS = ("static_bias", "rate_reference", "heading_reference", "rotary_table")
 #: What a saved field of each type must be, for the errors of :meth:`Calibration.from_dict`.
 _KINDS = {"str": "text", "int": "a whole number"}
 
@@ -57,6 +60,26 @@ class BiasTable:
     biases: tuple[float, ...]
     stderr: tuple[float, ...]
     counts: tuple[int, ...]
+
+    def __post_init__(self) -> None:
+        """Refuse a table ``np.interp`` would read wrongly without a word: temperatures out of order
+        (a loaded table of 30, 10, 20 degC gave the bias of 30 degC at 20 degC), values that are
+        not finite numbers, lists of two lengths (numpy's "fp and xp are not of the same length")
+        or no entry ("array of sample points is empty")."""
+        columns = {f.name: getattr(self, f.name) for f in fields(self)}
+        if len({len(v) for v in columns.values()}) != 1 or not self.temperatures:
+            sizes = ", ".join(f"{len(v)} {k}" for k, v in columns.items())
+            raise ValueError(f"a bias table needs one temperature, bias, stderr and count per entry and at least one "
+                             f"entry, got {sizes}")
+        for name, values in columns.items():
+            for i, v in enumerate(values):
+                if isinstance(v, bool) or not isinstance(v, numbers.Real) or not math.isfinite(v):
+                    raise ValueError(f"bias table {name}[{i}] is {v!r}: must be a finite number")
+        steps = np.diff(self.temperatures)
+        if (steps <= 0).any():
+            i = int(np.argmax(steps <= 0)) + 1
+            raise ValueError(f"bias table temperatures[{i}] = {self.temperatures[i]:g} degC does not come after "
+                             f"{self.temperatures[i - 1]:g} degC: a table's temperatures must strictly increase")
 
     def __call__(self, temperature: ArrayLike) -> FloatArray:
         """Bias [rad/s] at ``temperature`` [degC] (scalar or array; a masked one with masked values is
@@ -117,6 +140,31 @@ class Calibration:
     temp_offset: float | None = None
     bias_table: BiasTable | None = None
     notes: tuple[str, ...] = field(default=())
+
+    def __post_init__(self) -> None:
+        """Refuse values no calibration gives, so that a hand-edited or damaged file fails where it
+        is read: a scale error of -1 (``s_bar = 1/0``) raised ZeroDivisionError, and a NaN bias,
+        an unknown method or notes given as one text were taken without a word."""
+        if self.method not in METHODS:
+            raise ValueError(f"method must be one of {', '.join(METHODS)}, got {self.method!r}")
+        for name in ("bias", "scale_error", "c_cw", "c_ccw", "temp_slope", "temp_offset"):
+            value = getattr(self, name)
+            if value is not None and not math.isfinite(value):
+                raise ValueError(f"{name} must be finite, got {value!r}")
+        if not self.scale_error > -1.0:  # every fit refuses s_bar <= 0 (a gyro read against the motion)
+            raise ValueError(f"scale_error must be > -1 (s_bar = 1/(1 + s) > 0), got {self.scale_error!r}")
+        for name in ("c_cw", "c_ccw"):  # a factor of 0 wipes out every turn of its direction
+            if not getattr(self, name) > 0:
+                raise ValueError(f"{name} must be > 0, got {getattr(self, name)!r}")
+        for name in ("bias_stderr", "scale_error_stderr", "residual_rms", "condition_number",
+                     "samples"):
+            value = getattr(self, name)
+            if value is not None and not value >= 0:
+                raise ValueError(f"{name} must be >= 0, got {value!r}")
+        if (self.temp_slope is None) != (self.temp_offset is None):  # overrides() dropped the one alone
+            raise ValueError("temp_slope and temp_offset make one temperature model: give both or neither")
+        if not all(isinstance(n, str) for n in self.notes):
+            raise ValueError(f"notes must be a list of text, got {list(self.notes)!r}")
 
     @property
     def s_bar(self) -> float:
@@ -215,11 +263,11 @@ class Calibration:
         if values.get("window") is not None:
             values["window"] = as_window("window", values["window"])
         if values.get("bias_table") is not None:
-            table = values["bias_table"]
-            if not isinstance(table, dict):
-                raise ValueError(f"bias_table must be an object of lists, got {table!r}")
-            values["bias_table"] = BiasTable(**{k: tuple(v) for k, v in table.items()})
-        values["notes"] = tuple(values.get("notes", ()))
+            values["bias_table"] = _table_of(values["bias_table"])
+        notes = values.get("notes", [])
+        if not isinstance(notes, list):  # tuple("abc") made three notes of a letter each
+            raise ValueError(f"notes must be a list of text, got {notes!r}")
+        values["notes"] = tuple(notes)
         return cls(**values)
 
     def save(self, path: str | Path) -> None:
@@ -235,3 +283,12 @@ class Calibration:
             return cls.from_dict(data)
         except (KeyError, TypeError, ValueError) as e:  # missing keys, wrong shapes and types
             raise ValueError(f"{p}: not a valid calibration: {e}") from None
+
+
+def _table_of(table: Any) -> BiasTable:
+    """The :class:`BiasTable` of a saved ``bias_table``: an object of the table's four lists (a
+    number in place of a list was "'int' object is not iterable")."""
+    names = [f.name for f in fields(BiasTable)]
+    if not isinstance(table, dict) or sorted(table) != sorted(names) or not all(isinstance(v, list) for v in table.values()):
+        raise ValueError(f"bias_table must be an object of the lists {', '.join(names)}, got {table!r}")
+    return BiasTable(**{k: tuple(v) for k, v in table.items()})

@@ -72,7 +72,7 @@ def run(args: argparse.Namespace) -> int:
     t, rate = log.t, log.rate
     inside = np.arange(len(t))
     if window is not None:
-        inside = window.samples(t, minimum=3)
+        inside = window.samples(t, minimum=3, within=True)  # 0 .. 1000 s of a minute's record was cut to it
         t, rate = t[inside], rate[inside]
     raised: list[str] = []
     try:

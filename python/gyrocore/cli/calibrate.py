@@ -14,7 +14,7 @@ from .. import calibration, io
 from .._checks import UnitError
 from .._rests import find_rests
 from ..wholelog import times_ok
-from ..window import Window, time_range
+from ..window import Window
 from ._common import (
     REFERENCE_HELP,
     POSITIVE,
@@ -86,14 +86,12 @@ def run(args: argparse.Namespace) -> int:
     options: dict[str, Any] = {}
     if args.max_rate_dps is not None:
         options["max_rate"] = math.radians(args.max_rate_dps)
-    for given in (rest, span):
-        if given is not None:
-            given.samples(log.t, minimum=2)  # an empty window is a usage error, with the log's range
-    if rest is not None:  # cut to the log without a word, the bias was not measured where asked
-        start, end = rest.resolve(float(log.t[0]))
-        if start < log.t[0] or end > log.t[-1]:
-            raise ValueError(f"--window {rest} reaches outside the log ({time_range(float(log.t[0]), float(log.t[-1]))}); "
-                             "give a rest window inside it")
+    for given in (rest, span):  # an empty window is a usage error, with the log's range
+        if given is not None:  # a rest window cut to the log: the bias was not measured where asked
+            given.samples(log.t, minimum=2, within=given is rest)
+    if span is not None and log.heading_ref is None:  # it was ignored without a word
+        raise ValueError(f"--fit-window is the span of the reference fit, and {source} has no reference heading: "
+                         "give one (--reference FILE, or reference.csv in a log folder) or leave --fit-window out")
     try:
         window, found_by = (None, "rate") if rest is None else (rest.resolve(float(log.t[0])), "given")
         if window is None and (stop := _first_stop(log, args.min_duration)) is not None:

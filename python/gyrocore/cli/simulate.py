@@ -11,7 +11,6 @@ from typing import Callable
 import numpy as np
 
 from .. import motion, sim
-from ..window import MIN_WINDOW_READINGS
 from ._common import COUNT, POSITIVE, SEED, add_command, add_overwrite_option, refuse_existing, write_atomically
 
 #: Column order of the CSV: what a log has (t, gyro_z, temperature), then the truth.
@@ -46,21 +45,6 @@ def _options_of_the_profile(args: argparse.Namespace) -> None:
     args.duration = DURATION if args.duration is None else args.duration
     args.mix = MIX if args.mix is None else args.mix
     args.runs = RUNS if args.runs is None else args.runs
-
-
-def refuse_a_rest_too_short(t: np.ndarray, window: tuple[float, float] | None, rate_hz: float) -> None:
-    """A log (sample times ``t``) whose rest window holds too few samples to measure its bias (a
-    rate of 1e-6 Hz) is refused here, with the option to change, rather than by every command that
-    reads it later (or, in ``tune``, by the scoring: "reference: 1 sample(s)")."""
-    if window is None:
-        return
-    start, end = window
-    readings = int(np.count_nonzero((t >= start) & (t <= end)))
-    if readings < MIN_WINDOW_READINGS:
-        raise ValueError(
-            f"--rate-hz {rate_hz:g} puts {readings} sample(s) in the drive's rest window [{start:g}, {end:g}] s, "
-            f"and its bias needs at least {MIN_WINDOW_READINGS}: give a higher rate"
-        )
 
 
 def checked_sensor(name: str, rate_hz: float) -> sim.GyroSpec:
@@ -132,7 +116,6 @@ def run(args: argparse.Namespace) -> int:
             except ValueError as e:
                 raise ValueError(f"--runs {args.runs} of the {args.profile} profile: {e}") from None
         drive = sim.simulate(_profiles(args)[args.profile](), args.sensor, seed=args.seed, rate_hz=args.rate_hz)
-    refuse_a_rest_too_short(drive.t, drive.stationary, rate_hz)
     route = drive.motion
     table = np.column_stack(
         [drive.t, drive.rate_measured, drive.temperature, drive.rate_true, drive.heading_true,
