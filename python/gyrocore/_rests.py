@@ -28,7 +28,9 @@ from ._checks import usable
 from ._motion import warn_if_turning
 from ._smoother import leave_one_out
 from .rests import Rest
-from .window import RestWindowError, refuse_few_readings, refuse_window_outside, rest_window_text, time_range
+from .window import (
+    RestWindowError, refuse_few_readings, refuse_past_end, refuse_window_outside, rest_window_text, time_range,
+)
 
 #: Below this speed [m/s] the vehicle stands still (wheel and CAN speeds read a few cm/s of noise).
 SPEED_THRESHOLD = 0.05
@@ -124,11 +126,8 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
             break
     if math.isnan(first):
         raise RestWindowError(f"the bias window [{start}, {end}] s: the log has no sample")
-    if last < end and found_by == "given: bias_duration":  # its start is the log's: its own words
-        raise RestWindowError(
-            f"bias_duration = {end - start} s is longer than the log ({time_range(first, last)}); "
-            "give a shorter rest at the start, or a bias_window", (first, last)
-        )
+    if found_by == "given: bias_duration":  # its start is the log's: its own words
+        refuse_past_end(start, end, first, last, duration=end - start)
     refuse_window_outside(start, end, first, last)  # a found rest lies inside the log
     ts, rs = np.concatenate(kept_t), np.concatenate(kept_r)
     taken = usable(rs)

@@ -37,9 +37,9 @@ from .window import (
     MIN_WINDOW_READINGS,
     RestWindowError,
     refuse_few_readings,
+    refuse_past_end,
     refuse_start_before,
     rest_window_text,
-    time_range,
 )
 
 if TYPE_CHECKING:
@@ -306,19 +306,12 @@ class Pipeline:
         if not learning:  # the window is over
             refuse_few_readings(rest_window_text(p), count)
             return
-        span = time_range(self._first_time, last)
         if p.get("bias_window"):
             start, end = p["bias_window"]
-            if last < end:
-                raise RestWindowError(
-                    f"the bias window [{start}, {end}] s reaches past the end of the log ({span}); "
-                    "give a rest window inside the log, in its own time base", (self._first_time, last)
-                )
-        elif last < self._first_time + p["bias_duration"]:
-            raise RestWindowError(
-                f"bias_duration = {p['bias_duration']} s is longer than the log ({span}); "
-                "give a shorter rest at the start, or a bias_window", (self._first_time, last)
-            )
+            refuse_past_end(start, end, self._first_time, last)
+        else:
+            end = self._first_time + p["bias_duration"]
+            refuse_past_end(self._first_time, end, self._first_time, last, duration=p["bias_duration"])
         # A log that ends at the window's end leaves it open (no reading came after it): its
         # readings are all there is, as whole mode counts them (one at t = 0 of (0, 0) passed).
         refuse_few_readings(rest_window_text(p), count)

@@ -175,11 +175,21 @@ def refuse_window_outside(start: float, end: float, first: float, last: float) -
             "give the window in the log's own time base"
         )
     refuse_start_before(start, end, first)
-    if last < end:
-        raise RestWindowError(
-            f"the bias window [{start}, {end}] s reaches past the end of the log ({time_range(first, last)}); "
-            "give a rest window inside the log, in its own time base", (first, last)
-        )
+    refuse_past_end(start, end, first, last)
+
+
+def refuse_past_end(start: float, end: float, first: float, last: float, *, duration: float | None = None) -> None:
+    """A :class:`RestWindowError` for a rest window ``[start, end]`` that reaches past the log's
+    last sample ``last`` (the log begins at ``first``): one given as ``bias_duration`` (its
+    ``duration``, from the log's first sample) says so in its own words, else the bias window."""
+    if last >= end:
+        return
+    span = time_range(first, last)
+    if duration is not None:
+        raise RestWindowError(f"bias_duration = {duration} s is longer than the log ({span}); give a shorter rest at "
+                              "the start, or a bias_window", (first, last))
+    raise RestWindowError(f"the bias window [{start}, {end}] s reaches past the end of the log ({span}); give a rest "
+                          "window inside the log, in its own time base", (first, last))
 
 
 def rest_window_text(params: dict[str, Any]) -> str:
