@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from ._arrays import FloatArray
-from ._checks import MAX_READING, warn
+from ._checks import usable, warn
 
 #: The means compared by :func:`moving_share` span this long [s]: long enough to average the
 #: noise down, short enough that a turn or a swerve changes them.
@@ -127,7 +127,7 @@ class WindowWatch:
         if self.readings is None:
             return
         kept = sum(len(r) for r in self.readings)
-        inside = rate[(t >= window[0]) & (t <= window[1]) & (np.abs(rate) < MAX_READING)]
+        inside = rate[(t >= window[0]) & (t <= window[1]) & usable(rate)]
         self.readings.append(inside[: max(WATCHED - kept, 0)])
 
     def close(self, window: tuple[float, float], bias: float) -> None:

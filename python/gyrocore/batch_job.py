@@ -22,9 +22,8 @@ from .io._columns import concat
 from .io._logfolder import FIXES_CSV, from_stationary, read_odometry
 from .io._paths import error_text, one_line
 from .pipeline import has_bias_source, uses_static_bias
-from .window import RestWindowError
 from .pipeline_params import _to_si, unmeasured_bias
-from .window import Window, time_range
+from .window import RestWindowError, Window, time_range
 
 #: ``progress(done, total, unit)``: called after each chunk with the progress through the input.
 Progress = Callable[[int, "int | None", str], None]

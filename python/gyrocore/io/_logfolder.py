@@ -17,8 +17,7 @@ import numpy as np
 
 from .._arrays import FloatArray
 from .._checks import warn
-from ..window import RestWindowError
-from ..window import in_log_clock
+from ..window import RestWindowError, in_log_clock
 from ._csvfile import CsvLayout, csv_layout, read_csv_columns
 from ._jsonfile import json_kind, read_json
 from ._paths import check_file, has_file
