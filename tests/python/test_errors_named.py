@@ -99,8 +99,8 @@ def test_allan_and_calibration_inputs_are_named(call: Callable[[], object], mess
         ({"bias_table": "x"}, "bias_table must be an object of the lists temperatures, biases, stderr, counts, got 'x'"),
         # each was taken without a word, or failed later: 1/0 in s_bar, numpy's "fp and xp are not
         # of the same length", the bias of 30 degC read at 20 degC, notes of a letter each
-        ({"method": "static-bias"}, "method must be one of static_bias, rate_reference, heading_reference, "
-                                    "rotary_table, got 'static-bias'"),
+        ({"method": "static-bias"}, "unknown calibration method 'static-bias' \\(did you mean 'static_bias'\\?\\); "
+                                    "choose one of static_bias, rate_reference, heading_reference, rotary_table"),
         ({"bias": float("nan")}, "bias must be finite, got nan"),
         ({"scale_error": -1}, r"scale_error must be > -1 \(s_bar = 1/\(1 \+ s\) > 0\), got -1"),
         ({"c_cw": 0}, "c_cw must be > 0, got 0"),

@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._arrays import FloatArray, as_float_array, as_window, refuse_masked
-from .._checks import require_finite, require_readings
+from .._checks import require_choice, require_finite, require_readings
 from ..io._jsonfile import read_json
 
 #: Saved calibrations carry this format name and version.
@@ -145,8 +145,7 @@ class Calibration:
         """Refuse values no calibration gives, so that a hand-edited or damaged file fails where it
         is read: a scale error of -1 (``s_bar = 1/0``) raised ZeroDivisionError, and a NaN bias,
         an unknown method or notes given as one text were taken without a word."""
-        if self.method not in METHODS:
-            raise ValueError(f"method must be one of {', '.join(METHODS)}, got {self.method!r}")
+        require_choice("calibration method", self.method, METHODS)
         for name in ("bias", "scale_error", "c_cw", "c_ccw", "temp_slope", "temp_offset"):
             value = getattr(self, name)
             if value is not None and not math.isfinite(value):
