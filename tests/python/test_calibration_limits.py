@@ -219,8 +219,8 @@ def test_a_bias_table_out_of_order_is_refused_as_it_is_made() -> None:
         ((5.0, 50.0), 1.0, "the bias window [5.0, 50.0] s reaches past the end of the log"),
         ((-50.0, 5.0), 1.0, "the bias window [-50.0, 5.0] s starts before the first sample (t[0] = 0.0): the bias would "
                             "be measured over [0.0, 5.0] s only"),
-        ((0.0, 0.01), 0.0, "the rest window [0.0, 0.01] s holds 2 reading(s) of the log (0.0 .. 9.99 s); the bias needs "
-                           "at least 3"),
+        ((0.0, 0.01), 0.0, "the rest window [0.0, 0.01] s of the log (t = 0.000 to 9.990 s) holds 2 reading(s): the "
+                           "bias needs at least 3"),
         ((0.0, 5.0), float("nan"), "min_duration must be finite and >= 0, got nan"),
     ],
 )

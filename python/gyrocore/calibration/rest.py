@@ -9,10 +9,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import _gyrocore
-from .._arrays import FloatArray, as_window
+from .._arrays import FloatArray, as_window, span_text
 from .._checks import check_number
 from .._motion import warn_if_turning
-from ..window import MIN_WINDOW_READINGS, RestWindowError, refuse_window_outside
+from ..window import refuse_few_readings, refuse_window_outside
 from .inputs import check_series
 from .result import Calibration
 
@@ -240,12 +240,7 @@ def static_bias(
     if len(ta):  # the pipeline's refusals: a window cut to the log (or one of 2 readings, "+- 0") came without a word
         refuse_window_outside(start, end, float(ta[0]), float(ta[-1]))
     inside = np.flatnonzero((ta >= start) & (ta <= end))
-    if len(inside) < MIN_WINDOW_READINGS:
-        span = f"{ta[0]} .. {ta[-1]} s" if len(ta) else "which has none"
-        raise RestWindowError(
-            f"the rest window [{start}, {end}] s holds {len(inside)} reading(s) of the log "
-            f"({span}); the bias needs at least {MIN_WINDOW_READINGS}: give a longer rest window"
-        )
+    refuse_few_readings(f"the rest window [{start}, {end}] s of the log ({span_text(ta)})", len(inside))
     tw, rw = ta[inside] - ta[inside[0]], ra[inside]
     duration = float(tw[-1])
     if duration < min_duration:
