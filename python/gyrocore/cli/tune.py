@@ -172,9 +172,9 @@ def _check_simulated(args: argparse.Namespace) -> None:
     minutes["the do-no-harm drives"] = _HARM_MINUTES
     for what, m in minutes.items():
         check_car_drive(spec, m * 60.0 * args.time_scale, f"{what} ({m:g} min at --time-scale {args.time_scale:g})")
-    # every simulated drive begins with the same rest: one drive of twice its length, which the
-    # simulator refuses if the rest holds too few samples
-    sim.car_drive(2 * sim.CAR_REST, args.rate_hz, sensor_name=args.sensor)
+    # every simulated drive begins with the same rest, the samples of which the simulator counts
+    t = sim.sample_times(spec, 0.0, 2 * sim.CAR_REST, seed=0)
+    sim.refuse_too_few_samples(t, (0.0, sim.CAR_REST), spec.rate_hz)
 
 
 def run(args: argparse.Namespace) -> int:
