@@ -62,9 +62,13 @@ def expected_output(rate: ArrayLike, noise_rms: float, threshold: float) -> Floa
     # the package's checks of an array, in any shape: text was numpy's "could not convert string to float"
     b = as_float_array("rate", np.ravel(rate)).reshape(np.shape(rate))
     require_finite("rate", b)  # NaN came back as the expected output, without a word
-    a = (threshold - b) / noise_rms
-    c = (-threshold - b) / noise_rms
-    out: FloatArray = b * (_cdf(-a, "the dead band's expected output") + _cdf(c, "the dead band's expected output")) + noise_rms * (_pdf(a) - _pdf(c))
+    # a rate or threshold many noise levels wide overflows a, c or their squares to infinity, where
+    # the distribution (0 or 1) and the density (0) are their exact limits: no warning is due
+    with np.errstate(over="ignore"):
+        a = (threshold - b) / noise_rms
+        c = (-threshold - b) / noise_rms
+        what = "the dead band's expected output"
+        out: FloatArray = b * (_cdf(-a, what) + _cdf(c, what)) + noise_rms * (_pdf(a) - _pdf(c))
     return out
 
 

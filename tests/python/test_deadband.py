@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -94,3 +95,13 @@ def test_a_rate_of_text_is_named() -> None:
 def test_a_threshold_infinitely_many_noises_wide_lets_no_bias_pass() -> None:
     # threshold / noise_rms overflowed to inf, and inf * phi(inf) gave NaN
     assert deadband.bias_leak(noise_rms=1e-300, threshold=1e300) == 0.0
+
+
+def test_a_noise_far_below_the_rates_gives_the_dead_band_without_noise_and_no_warning() -> None:
+    # (1 - 1e300) / 1e-300 overflows, as did its square: numpy's overflow warnings came with the
+    # right answer, the noise-free dead band (0 inside, the rate outside, half of it on the edge)
+    rate = np.array([1e300, -1e300, 0.5, 1.0, 2.0, -2.0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        out = deadband.expected_output(rate, noise_rms=1e-300, threshold=1.0)
+    np.testing.assert_array_equal(out, [1e300, -1e300, 0.0, 0.5, 2.0, -2.0])
