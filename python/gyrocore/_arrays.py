@@ -102,6 +102,31 @@ def warn_coarse_times(t: np.ndarray, per_second: float = 1.0) -> None:
              "(or as seconds from the first sample)")
 
 
+def warn_merged_counts(raw: np.ndarray, t: FloatArray, per_second: float) -> None:
+    """Warn when time counts (``per_second`` of them a second) that may differ in the file are
+    one time ``t`` [s]: float64 resolves 2.4e-7 s near epoch seconds (1.7e9) and 256 ns near epoch
+    nanoseconds (1.7e18, as a CSV file's numbers are read), so nanoseconds closer than that merge,
+    and the error that follows ("sort the log and drop duplicate timestamps") names a fault the
+    file may not have. Integer counts that step forward are known to have merged."""
+    if len(t) < 2:
+        return
+    same = t[1:] <= t[:-1]
+    if raw.dtype.kind in "iu":
+        same &= raw[1:] > raw[:-1]
+    if not same.any():
+        return
+    i = int(np.argmax(same)) + 1
+    resolution = max(float(np.spacing(abs(t[i]))), float(np.spacing(abs(float(raw[i])))) / per_second)
+    if resolution >= 1e-7:  # a repeat of finer times is one in the file
+        from ._checks import warn  # _checks builds on this module
+
+        first = raw[0].item()  # a CSV file's counts are read as float64: shown as written
+        first_text = f"{first:.0f}" if isinstance(first, float) and first.is_integer() else str(first)
+        warn(f"two times read as one, {float(t[i]):.9f} s (counts of 1/{per_second:g} s), where float64 resolves only "
+             f"{resolution:.3g} s: if they differ in the file, give times from the first sample (subtract "
+             f"{first_text} from each)")
+
+
 def as_window(name: str, window: object) -> tuple[float, float]:
     """``(start, end)`` [s] as two finite floats with ``start < end``; ValueError naming ``name``
     for anything else (one number, three, text, NaN, a reversed window)."""

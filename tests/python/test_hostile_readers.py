@@ -201,3 +201,37 @@ def test_a_file_whose_suffix_is_right_gets_no_word_on_its_content(tmp_path: Path
     with pytest.raises(ValueError, match=r"states the unit 'ms' but --time-unit s was given: leave out --time-unit "
                        r"\(or correct the header\)$"):
         io.open_source(path, time_col="t", time_unit="s")
+
+
+EPOCH_NS = 1_700_000_000_000_000_000
+
+
+@pytest.mark.parametrize("kind", ["csv", "npy"])
+def test_nanoseconds_that_float64_seconds_cannot_tell_apart_say_so(tmp_path: Path, kind: str) -> None:
+    """Epoch nanoseconds 100 ns apart are one float64 time (it resolves 238-256 ns there): the
+    error said only "sort the log and drop duplicate timestamps", of a file with neither."""
+    t = EPOCH_NS + np.arange(100, dtype=np.int64) * 100
+    path = tmp_path / f"fast.{kind}"
+    if kind == "csv":
+        path.write_text("t,gyro_z\n" + "".join(f"{v},0.0\n" for v in t))
+    else:
+        np.save(path, np.rec.fromarrays([t, np.zeros(100)], names="t,gyro_z"))
+    with pytest.warns(gyrocore.InputWarning, match=r"two times read as one, 1700000000\.000000000 s \(counts of 1/1e\+09 s\), "
+                      r"where float64 resolves only 2\.\d+e-07 s: .*subtract 1700000000000000000 from each"):
+        with pytest.raises(ValueError, match="must strictly increase"):
+            gyrocore.read_log(path, time_unit="ns").process("raw")
+
+
+def test_a_repeated_time_the_file_holds_is_no_matter_of_resolution(tmp_path: Path) -> None:
+    """Nanosecond counts repeated in the file, or seconds repeated, are the file's duplicates."""
+    for name, t, unit in (("ns.npy", EPOCH_NS + np.array([0, 10**7, 10**7, 3 * 10**7]), "ns"),
+                          ("s.csv", 1.7e9 + np.array([0.0, 0.01, 0.01, 0.03]), "s")):
+        path = tmp_path / name
+        if name.endswith(".npy"):
+            np.save(path, np.rec.fromarrays([t, np.zeros(4)], names="t,gyro_z"))
+        else:
+            path.write_text("t,gyro_z\n" + "".join(f"{v:.2f},0.0\n" for v in t))
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            with pytest.raises(ValueError, match="must strictly increase"):
+                gyrocore.read_log(path, time_unit=unit).process("raw")

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from .._arrays import FloatArray, durations_in_seconds, warn_coarse_times
+from .._arrays import FloatArray, durations_in_seconds, warn_coarse_times, warn_merged_counts
 from .._checks import first_infinite, require_choice, warn
 from .._gyrocore import SampleError
 from ..window import Window
@@ -340,7 +340,11 @@ def _seconds(raw: np.ndarray, per_second: float) -> FloatArray:
         return np.asarray(durations_in_seconds("the time column", raw), dtype=np.float64)
     warn_coarse_times(raw, per_second)
     t = np.asarray(raw, dtype=np.float64)
-    return t if per_second == 1.0 else t / per_second
+    if per_second == 1.0:
+        return t
+    t = t / per_second
+    warn_merged_counts(raw, t, per_second)
+    return t
 
 
 def csv_delimiter(path: Path, options: ReadOptions) -> str:
