@@ -201,7 +201,7 @@ def test_a_masked_array_is_not_processed_as_if_unmasked() -> None:
 
 
 def test_the_static_bias_of_no_samples_is_named() -> None:
-    with pytest.raises(ValueError, match=r"^the rest window \[0.0, 1.0\] s holds 0 reading\(s\) of the log \(which has none\)"):
+    with pytest.raises(ValueError, match=r"^the rest window \[0.0, 1.0\] s of the log \(which has no sample\) holds 0 reading\(s\)"):
         static_bias([], [], (0.0, 1.0))
 
 

@@ -240,7 +240,8 @@ def static_bias(
     if len(ta):  # the pipeline's refusals: a window cut to the log (or one of 2 readings, "+- 0") came without a word
         refuse_window_outside(start, end, float(ta[0]), float(ta[-1]))
     inside = np.flatnonzero((ta >= start) & (ta <= end))
-    refuse_few_readings(f"the rest window [{start}, {end}] s of the log ({span_text(ta)})", len(inside))
+    log = span_text(ta) if len(ta) else "which has no sample"
+    refuse_few_readings(f"the rest window [{start}, {end}] s of the log ({log})", len(inside))
     tw, rw = ta[inside] - ta[inside[0]], ra[inside]
     duration = float(tw[-1])
     if duration < min_duration:
