@@ -155,3 +155,27 @@ fn every_waiting_fix_may_ride_along_and_a_bad_one_fails_the_block_that_reaches_i
     let heading = (6, "heading", FixProblem::NonFinite);
     fails_on_fix(&mut fused, (&t, &rate), &bad[used..], &mut cols, heading);
 }
+
+/// Both error types are `core::error::Error` with or without the `std` feature, so that a
+/// `no_std` embedder's `?` takes them alike (`cargo test --no-default-features --test
+/// fused_errors`); a fix's extreme value prints in exponent form, as the core error's do.
+#[test]
+fn a_fusion_error_is_an_error_without_std_and_prints_extreme_values_short() {
+    fn as_error<E: core::error::Error + 'static>(e: E) -> Box<dyn core::error::Error> {
+        Box::new(e)
+    }
+    let e = FusionError::Fix {
+        index: 2,
+        what: "heading",
+        value: 1e300,
+        problem: FixProblem::OutOfRange,
+    };
+    let text = as_error(e).to_string();
+    assert_eq!(
+        text,
+        "fix 2: heading = 1e300 is beyond +-2^20 rad; check the unit (radians)"
+    );
+    assert!(as_error(gyrocore::Error::MissingTemperature)
+        .to_string()
+        .contains("temperature"));
+}

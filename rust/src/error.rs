@@ -236,7 +236,7 @@ impl core::error::Error for Error {}
 
 /// A number as a message shows it: in full where that is short (a timestamp keeps its digits),
 /// in exponent form where it is extreme (`1e308`, not 309 digits).
-struct Num(f64);
+pub(crate) struct Num(pub(crate) f64);
 
 impl fmt::Display for Num {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
