@@ -347,3 +347,69 @@ fn invalid_parameters_name_the_parameter() {
         assert!(err.to_string().contains(name));
     }
 }
+
+/// A stand-alone stage skips a reading it cannot use, as the pipeline's `update` does: a NaN,
+/// an infinity or a rate beyond `MAX_READING` taken into the state made every later heading
+/// NaN (or, for HDR, its low-passed step mean NaN forever). The run equals one without it.
+#[test]
+fn a_stage_skips_an_unusable_reading_and_its_block_is_refused_by_index() {
+    fn check<S: Stage<Output = f64> + Clone + PartialEq + core::fmt::Debug>(fresh: S) {
+        let t: Vec<f64> = (0..40).map(|i| i as f64 * 0.1).collect();
+        let rate: Vec<f64> = (0..40).map(|i| 0.01 * (i % 7) as f64).collect();
+        let mut stage = fresh.clone();
+        let outputs = run(&mut stage, &t[..20], &rate[..20]);
+        for bad in [f64::NAN, f64::INFINITY, -MAX_READING, 1e300] {
+            let before = stage.clone();
+            let last = stage.update(t[20] - 0.05, bad);
+            assert_eq!((last.to_bits(), &stage), (outputs[19].to_bits(), &before));
+        }
+        let clean = run(&mut fresh.clone(), &t, &rate);
+        let mut dirty_t = t.clone();
+        dirty_t.insert(25, t[24] + 0.05);
+        let mut dirty_rate = rate.clone();
+        dirty_rate.insert(25, f64::NAN);
+        let mut dirty = run(&mut fresh.clone(), &dirty_t, &dirty_rate);
+        dirty.remove(25);
+        assert_eq!(clean, dirty);
+        // a block: refused by the first bad sample's index, nothing processed
+        let mut stage = fresh.clone();
+        let mut out = vec![0.0; t.len()];
+        let e = stage.process_block(&dirty_t[..30], &dirty_rate[..30], &mut out[..30]);
+        assert!(matches!(e, Err(Error::NonFinite { what: "rate", index: 25, .. })), "{e:?}");
+        assert_eq!(stage, fresh);
+        stage.process_block(&t[..10], &rate[..10], &mut out[..10]).unwrap();
+        let before = stage.clone();
+        let e = stage.process_block(&t[5..15], &rate[5..15], &mut out[..10]);
+        assert!(matches!(e, Err(Error::NotIncreasing { index: 0, .. })), "{e:?}");
+        assert_eq!(stage, before);
+    }
+    check(Integrator::new(IntegratorConfig::default()).unwrap());
+    check(Threshold::new(ThresholdConfig { threshold: 0.02 }).unwrap());
+    check(LowPass::new(LowPassConfig { tau: 0.75 }).unwrap());
+    check(DeLag::new(LowPassConfig { tau: 0.75 }).unwrap());
+    check(Hdr::new(HdrConfig::table_iii()).unwrap());
+}
+
+/// Down-sampling leaves out a reading it cannot use (a NaN made its block's mean NaN), refuses
+/// a bad block by index, and an interval beyond 2^40 s or below the smallest normal number.
+#[test]
+fn downsample_leaves_out_an_unusable_reading_and_refuses_a_bad_block() {
+    let config = DownsampleConfig { interval: 1.0 };
+    let mut d = Downsample::new(config).unwrap();
+    let t = [0.0, 0.5, 0.75, 1.0, 2.0];
+    let (mut ot, mut or) = ([0.0; 5], [0.0; 5]);
+    let e = d.process_block(&t, &[1.0, f64::NAN, 1.0, 1.0, 1.0], &mut ot, &mut or);
+    assert!(matches!(e, Err(Error::NonFinite { index: 1, .. })), "{e:?}");
+    assert_eq!(d, Downsample::new(config).unwrap());
+    let means = |d: &mut Downsample, t: &[f64], rate: &[f64]| -> Vec<_> {
+        t.iter().zip(rate).filter_map(|(&t, &r)| d.update(t, r)).collect()
+    };
+    let rate = [1.0, f64::NAN, 2.0, 3.0, 4.0];
+    let clean = means(&mut Downsample::new(config).unwrap(), &[0.0, 0.75, 1.0, 2.0], &[1.0, 2.0, 3.0, 4.0]);
+    assert_eq!(means(&mut d, &t, &rate), clean);
+    let e = d.process_block(&[1.5], &[1.0], &mut ot[..1], &mut or[..1]);
+    assert!(matches!(e, Err(Error::NotIncreasing { index: 0, .. })), "{e:?}");
+    for interval in [1e300, 1e-320, f64::NAN] {
+        assert!(Downsample::new(DownsampleConfig { interval }).is_err(), "{interval}");
+    }
+}

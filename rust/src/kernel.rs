@@ -9,6 +9,7 @@
 //! clock (the [`Stage`] trait), so each stage is also usable and testable on its own.
 
 use crate::stage::{Clock, Stage};
+use crate::validate::usable_reading;
 use crate::Error;
 
 /// Serde for configurations and states behind the `serde` feature (nothing without it).
@@ -340,17 +341,23 @@ impl<K: Validated> Streaming<K> {
 impl<K: Validated> Stage for Streaming<K> {
     type Output = f64;
 
-    /// Feeds one sample. A sample whose timestamp [`Clock::interval`] refuses
-    /// leaves the stage as it was and gets the last output again (0 before the first).
+    /// Feeds one sample. A sample whose timestamp [`Clock::interval`] refuses, or whose rate is
+    /// not finite or lies beyond [`MAX_READING`](crate::MAX_READING), leaves the stage as it was
+    /// and gets the last output again (0 before the first), as [`crate::Pipeline::update`] skips
+    /// it: a NaN taken into the state made every later output NaN.
     #[inline]
     fn update(&mut self, t: f64, rate: f64) -> f64 {
         match self.clock.interval(t) {
-            Some(dt) => {
+            Some(dt) if usable_reading(rate, None) => {
                 self.clock.set(t);
                 self.step(dt, rate)
             }
-            None => self.last,
+            _ => self.last,
         }
+    }
+
+    fn last_time(&self) -> Option<f64> {
+        self.clock.last()
     }
 
     fn reset(&mut self) {

@@ -1,12 +1,13 @@
 //! What every streaming stage shares: the [`Stage`] trait and the [`Clock`] that turns
 //! timestamps into the actual interval `T_i` of each sample.
 
-use crate::validate::{MAX_TIME, MIN_INTERVAL};
+use crate::validate::{check_block, MAX_TIME, MIN_INTERVAL};
 use crate::Error;
 
 /// A streaming stage: validated config + private state, fed one sample at a time.
 ///
-/// `update` never fails and never allocates; `process_block` is the same loop over a block.
+/// `update` never fails and never allocates; `process_block` checks the block as
+/// [`Pipeline::process_block`](crate::Pipeline::process_block) does, then runs the same loop.
 pub trait Stage {
     /// What the stage emits per sample.
     type Output: Copy;
@@ -17,14 +18,25 @@ pub trait Stage {
     /// Returns the stage to the state it had when it was created.
     fn reset(&mut self);
 
+    /// The last timestamp the stage took \[s\], if it keeps one: a block must start after it.
+    /// `None` (the default) checks each block on its own.
+    fn last_time(&self) -> Option<f64> {
+        None
+    }
+
     /// Feeds a block of samples; `out[i]` receives the output for sample `i`.
+    ///
+    /// The block is checked first ([`check_block`](crate::check_block): lengths, finite and
+    /// increasing times, also after [`Stage::last_time`], readings finite and within
+    /// [`MAX_READING`](crate::MAX_READING)), and the error names the first bad sample by its
+    /// index; nothing of a rejected block is processed.
     fn process_block(
         &mut self,
         t: &[f64],
         rate: &[f64],
         out: &mut [Self::Output],
     ) -> Result<(), Error> {
-        check_len("rate", rate.len(), t.len())?;
+        check_block(t, rate, None, self.last_time(), true)?;
         check_len("out", out.len(), t.len())?;
         for ((o, &ti), &ri) in out.iter_mut().zip(t).zip(rate) {
             *o = self.update(ti, ri);
