@@ -375,12 +375,27 @@ fn a_stage_skips_an_unusable_reading_and_its_block_is_refused_by_index() {
         let mut stage = fresh.clone();
         let mut out = vec![0.0; t.len()];
         let e = stage.process_block(&dirty_t[..30], &dirty_rate[..30], &mut out[..30]);
-        assert!(matches!(e, Err(Error::NonFinite { what: "rate", index: 25, .. })), "{e:?}");
+        assert!(
+            matches!(
+                e,
+                Err(Error::NonFinite {
+                    what: "rate",
+                    index: 25,
+                    ..
+                })
+            ),
+            "{e:?}"
+        );
         assert_eq!(stage, fresh);
-        stage.process_block(&t[..10], &rate[..10], &mut out[..10]).unwrap();
+        stage
+            .process_block(&t[..10], &rate[..10], &mut out[..10])
+            .unwrap();
         let before = stage.clone();
         let e = stage.process_block(&t[5..15], &rate[5..15], &mut out[..10]);
-        assert!(matches!(e, Err(Error::NotIncreasing { index: 0, .. })), "{e:?}");
+        assert!(
+            matches!(e, Err(Error::NotIncreasing { index: 0, .. })),
+            "{e:?}"
+        );
         assert_eq!(stage, before);
     }
     check(Integrator::new(IntegratorConfig::default()).unwrap());
@@ -402,14 +417,27 @@ fn downsample_leaves_out_an_unusable_reading_and_refuses_a_bad_block() {
     assert!(matches!(e, Err(Error::NonFinite { index: 1, .. })), "{e:?}");
     assert_eq!(d, Downsample::new(config).unwrap());
     let means = |d: &mut Downsample, t: &[f64], rate: &[f64]| -> Vec<_> {
-        t.iter().zip(rate).filter_map(|(&t, &r)| d.update(t, r)).collect()
+        t.iter()
+            .zip(rate)
+            .filter_map(|(&t, &r)| d.update(t, r))
+            .collect()
     };
     let rate = [1.0, f64::NAN, 2.0, 3.0, 4.0];
-    let clean = means(&mut Downsample::new(config).unwrap(), &[0.0, 0.75, 1.0, 2.0], &[1.0, 2.0, 3.0, 4.0]);
+    let clean = means(
+        &mut Downsample::new(config).unwrap(),
+        &[0.0, 0.75, 1.0, 2.0],
+        &[1.0, 2.0, 3.0, 4.0],
+    );
     assert_eq!(means(&mut d, &t, &rate), clean);
     let e = d.process_block(&[1.5], &[1.0], &mut ot[..1], &mut or[..1]);
-    assert!(matches!(e, Err(Error::NotIncreasing { index: 0, .. })), "{e:?}");
+    assert!(
+        matches!(e, Err(Error::NotIncreasing { index: 0, .. })),
+        "{e:?}"
+    );
     for interval in [1e300, 1e-320, f64::NAN] {
-        assert!(Downsample::new(DownsampleConfig { interval }).is_err(), "{interval}");
+        assert!(
+            Downsample::new(DownsampleConfig { interval }).is_err(),
+            "{interval}"
+        );
     }
 }

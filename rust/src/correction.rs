@@ -184,6 +184,13 @@ macro_rules! correction_kernel {
                     config.bias = bias;
                 }
             }
+
+            fn in_force(config: &Calibration) -> Measured {
+                Measured {
+                    bias: Some(config.bias),
+                    ..Measured::default()
+                }
+            }
         }
     };
 }

@@ -88,6 +88,9 @@ pub enum Error {
         /// Samples given.
         len: usize,
     },
+    /// A pipeline read back (`serde` feature) whose stages are not the ones its configuration
+    /// builds: a state edited by hand, damaged, or saved by another version.
+    StagesMismatch,
 }
 
 impl Error {
@@ -227,6 +230,11 @@ impl fmt::Display for Error {
                 f,
                 "the record is too short: {len} samples given, {needed} needed \
                  (choose a shorter averaging time or a longer record)"
+            ),
+            Error::StagesMismatch => f.write_str(
+                "the stored pipeline's stages do not match its stored configuration (a state \
+                 edited by hand, damaged, or saved by another version): to change a parameter, \
+                 build a new pipeline from the edited configuration",
             ),
         }
     }

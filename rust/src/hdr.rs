@@ -134,16 +134,53 @@ pub struct HdrState {
 
 /// HDR's configuration as the kernel reads it: the settings, eq 10's attenuation table and the
 /// bound on `|I|` in force.
+///
+/// Serialised without the table, which is rebuilt from the settings when read back: a float
+/// read back may differ from the one written in its last digit (`serde_json` without its
+/// `float_roundtrip` feature), and the table read back would then not be the one its settings
+/// give, which a restored [`Pipeline`](crate::Pipeline) refuses.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(from = "StoredRule", into = "StoredRule")
+)]
 pub struct HdrRule {
     config: HdrConfig,
     /// `R(r)` for `r = 1..=ATTENUATION_TABLE`: eq 10 costs a `pow`, and `r` is a small integer.
     attenuation: [f64; ATTENUATION_TABLE],
     /// The bound on `|I|` in force: [`HdrConfig::max_correction`], or the one a measured rest
     /// window sets (see [`crate::NoiseScaled`]). A property of the sensor: a restart keeps it.
-    #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
     bound: f64,
+}
+
+/// What an [`HdrRule`] stores: its settings and the bound in force.
+#[cfg(feature = "serde")]
+#[derive(serde::Serialize, serde::Deserialize)]
+struct StoredRule {
+    config: HdrConfig,
+    #[serde(with = "crate::serde_float")]
+    bound: f64,
+}
+
+#[cfg(feature = "serde")]
+impl From<StoredRule> for HdrRule {
+    fn from(stored: StoredRule) -> Self {
+        HdrRule {
+            bound: stored.bound,
+            ..HdrRule::new(stored.config)
+        }
+    }
+}
+
+#[cfg(feature = "serde")]
+impl From<HdrRule> for StoredRule {
+    fn from(rule: HdrRule) -> Self {
+        StoredRule {
+            config: rule.config,
+            bound: rule.bound,
+        }
+    }
 }
 
 impl HdrRule {
@@ -245,6 +282,13 @@ impl Kernel for HdrKernel {
         if let Some(bound) = m.hdr_bound {
             rule.bound = libm::fabs(bound);
             state.integrator = within(state.integrator, rule.bound);
+        }
+    }
+
+    fn in_force(rule: &HdrRule) -> Measured {
+        Measured {
+            hdr_bound: Some(rule.bound),
+            ..Measured::default()
         }
     }
 }

@@ -162,6 +162,26 @@ pub trait Kernel {
     fn measured(config: &mut Self::Config, state: &mut Self::State, m: &Measured) {
         let _ = (config, state, m);
     }
+
+    /// What [`Kernel::measured`] has set in `config` (`None` where the stage takes nothing): a
+    /// restored pipeline hands these to the stages its configuration builds, and is whole only
+    /// if they then equal the stored ones.
+    fn in_force(config: &Self::Config) -> Measured {
+        let _ = config;
+        Measured::default()
+    }
+}
+
+impl Measured {
+    /// Each value of `self`, or of `other` where `self` has none.
+    pub fn or(self, other: Measured) -> Measured {
+        Measured {
+            bias: self.bias.or(other.bias),
+            threshold: self.threshold.or(other.threshold),
+            hdr_bound: self.hdr_bound.or(other.hdr_bound),
+            rest: self.rest.or(other.rest),
+        }
+    }
 }
 
 /// A stage the configuration may leave out: `None` passes the signal unchanged. For the
@@ -203,6 +223,10 @@ impl<K: Kernel> Kernel for Option<K> {
             K::measured(c, s, m);
         }
     }
+
+    fn in_force(config: &Self::Config) -> Measured {
+        config.as_ref().map_or_else(Measured::default, K::in_force)
+    }
 }
 
 /// Composes kernels in a tuple: the signal passes them in order.
@@ -236,6 +260,10 @@ macro_rules! chain {
 
             fn measured(config: &mut Self::Config, state: &mut Self::State, m: &Measured) {
                 $($k::measured(&mut config.$i, &mut state.$i, m);)+
+            }
+
+            fn in_force(config: &Self::Config) -> Measured {
+                Measured::default()$(.or($k::in_force(&config.$i)))+
             }
         }
     };

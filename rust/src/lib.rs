@@ -64,6 +64,8 @@ pub mod pipeline;
 pub mod rest;
 pub mod rest_tracker;
 #[cfg(feature = "serde")]
+mod serde_checked;
+#[cfg(feature = "serde")]
 mod serde_float;
 pub mod sim;
 mod stage;
