@@ -441,3 +441,37 @@ fn downsample_leaves_out_an_unusable_reading_and_refuses_a_bad_block() {
         );
     }
 }
+
+/// `Streaming::step`, for a caller with its own clock, leaves the stage as it was for an
+/// interval no two valid timestamps have (NaN, 0, negative, below 1 ps, infinite): a NaN or
+/// negative one made the low-pass NaN for good, and a NaN one stopped HDR's steps.
+#[test]
+fn a_stage_stepped_by_a_bad_interval_stays_as_it_was() {
+    fn check<K: kernel::Validated + Copy + PartialEq + core::fmt::Debug>(mut stage: Streaming<K>) {
+        let first = stage.step(f64::NAN, 0.5);
+        let mut last = stage.step(0.1, 0.25);
+        for dt in [
+            f64::NAN,
+            0.0,
+            -0.75,
+            -1.0,
+            1e-13,
+            f64::INFINITY,
+            3.0 * MAX_TIME,
+        ] {
+            let before = stage;
+            assert_eq!(stage.step(dt, 2.0).to_bits(), last.to_bits(), "{dt}");
+            assert_eq!(stage, before, "{dt}");
+        }
+        assert!(first.is_finite());
+        for _ in 0..40 {
+            last = stage.step(0.1, 0.001);
+        }
+        assert!(last.is_finite());
+    }
+    check(LowPass::new(LowPassConfig { tau: 0.75 }).unwrap());
+    check(DeLag::new(LowPassConfig { tau: 0.75 }).unwrap());
+    check(Integrator::new(IntegratorConfig::default()).unwrap());
+    check(Hdr::new(HdrConfig::table_iii()).unwrap());
+    check(Threshold::new(ThresholdConfig { threshold: 0.01 }).unwrap());
+}

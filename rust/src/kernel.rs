@@ -9,7 +9,7 @@
 //! clock (the [`Stage`] trait), so each stage is also usable and testable on its own.
 
 use crate::stage::{Clock, Stage};
-use crate::validate::usable_reading;
+use crate::validate::{interval_key, usable_reading, MAX_TIME};
 use crate::Error;
 
 /// Serde for configurations and states behind the `serde` feature (nothing without it).
@@ -351,9 +351,25 @@ impl<K: Validated> Streaming<K> {
         (&mut self.config, &mut self.state)
     }
 
-    /// Feeds one sample whose interval is `dt` \[s\] > 0 (ignored for the stage's first sample).
+    /// Feeds one sample whose interval is `dt` \[s\] (ignored for the stage's first sample),
+    /// for a caller that keeps its own clock. An interval that is NaN, below
+    /// [`MIN_INTERVAL`](crate::MIN_INTERVAL) or beyond twice [`MAX_TIME`](crate::MAX_TIME) (no two
+    /// valid timestamps lie further apart), or a reading [`Stage::update`] skips, leaves the stage
+    /// as it was and gets the last output again: a NaN or negative interval made the low-pass
+    /// NaN for good, and a NaN one stopped HDR's steps.
     #[inline]
     pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
+        let interval_valid = !self.started || interval_key(dt) <= interval_key(2.0 * MAX_TIME);
+        if interval_valid && usable_reading(rate, None) {
+            self.take(dt, rate)
+        } else {
+            self.last
+        }
+    }
+
+    /// [`Streaming::step`] of a sample already checked.
+    #[inline(always)]
+    fn take(&mut self, dt: f64, rate: f64) -> f64 {
         let x = Signal::corrected(rate);
         let y = if self.started {
             K::step(&self.config, &mut self.state, dt, x)
@@ -378,7 +394,7 @@ impl<K: Validated> Stage for Streaming<K> {
         match self.clock.interval(t) {
             Some(dt) if usable_reading(rate, None) => {
                 self.clock.set(t);
-                self.step(dt, rate)
+                self.take(dt, rate)
             }
             _ => self.last,
         }
