@@ -475,3 +475,17 @@ fn a_stage_stepped_by_a_bad_interval_stays_as_it_was() {
     check(Hdr::new(HdrConfig::table_iii()).unwrap());
     check(Threshold::new(ThresholdConfig { threshold: 0.01 }).unwrap());
 }
+
+/// `Hdr::bound_correction` of NaN keeps the bound in force (NaN lifted every bound: `I` ran to
+/// 0.235 past a bound of 0.05); a negative bound is its magnitude, 0 turns HDR off.
+#[test]
+fn hdr_bound_of_nan_keeps_the_bound_in_force() {
+    let t: Vec<f64> = (0..6).map(f64::from).collect();
+    for (bound, drift) in [(f64::NAN, 0.05), (-0.05, 0.05), (0.0, 0.0)] {
+        let mut h = Hdr::new(hand_hdr()).unwrap();
+        h.bound_correction(0.05);
+        h.bound_correction(bound);
+        run(&mut h, &t, &[0.2; 6]);
+        assert!(close(h.drift(), drift), "{bound}: {}", h.drift());
+    }
+}

@@ -321,9 +321,13 @@ impl Hdr {
         self.parts().1.repetitions
     }
 
-    /// Replaces [`HdrConfig::max_correction`] as the bound on `|I|` by `bound` [rad/s]; `I` is
-    /// clamped to it at once. A bound of 0 turns HDR off.
+    /// Replaces [`HdrConfig::max_correction`] as the bound on `|I|` by `bound` [rad/s] (its
+    /// magnitude; infinity: no bound); `I` is clamped to it at once. A bound of 0 turns HDR off.
+    /// A NaN bound is no bound to set, and leaves the one in force (it lifted every bound).
     pub fn bound_correction(&mut self, bound: f64) {
+        if bound.is_nan() {
+            return;
+        }
         let (rule, state) = self.parts_mut();
         HdrKernel::measured(
             rule,
