@@ -353,7 +353,7 @@ impl<K: Validated> Streaming<K> {
 
     /// Feeds one sample whose interval is `dt` \[s\] (ignored for the stage's first sample),
     /// for a caller that keeps its own clock. An interval that is NaN, below
-    /// [`MIN_INTERVAL`](crate::MIN_INTERVAL) or beyond twice [`MAX_TIME`](crate::MAX_TIME) (no two
+    /// [`MIN_INTERVAL`](crate::MIN_INTERVAL) or beyond twice [`MAX_TIME`] (no two
     /// valid timestamps lie further apart), or a reading [`Stage::update`] skips, leaves the stage
     /// as it was and gets the last output again: a NaN or negative interval made the low-pass
     /// NaN for good, and a NaN one stopped HDR's steps.

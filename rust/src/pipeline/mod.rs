@@ -143,7 +143,10 @@ impl Pipeline {
         self.engine.rest_tracker()
     }
 
-    /// Feeds one sample (`t` \[s\], `rate` [rad/s]) without a temperature.
+    /// Feeds one sample (`t` \[s\], `rate` [rad/s]) without a temperature; see
+    /// [`Pipeline::update_with_temperature`] for what is skipped. With a temperature model
+    /// ([`CorrectionConfig::temperature`](crate::CorrectionConfig::temperature)) every sample
+    /// needs a temperature, and each one given here is skipped (counted in [`Pipeline::report`]).
     #[inline]
     pub fn update(&mut self, t: f64, rate: f64) -> Output {
         self.update_with_temperature(t, rate, None)
