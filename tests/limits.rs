@@ -284,3 +284,25 @@ fn extreme_values_read_short_in_messages() {
     .to_string();
     assert!(e.contains("t[1] = 1700000000 follows 1700000000.25"), "{e}");
 }
+
+/// An error's index moved by an offset near `usize::MAX` saturates (it overflowed: a panic in a
+/// debug build); errors of no sample keep no index.
+#[test]
+fn an_index_offset_near_the_largest_saturates() {
+    let e = Error::NotIncreasing {
+        index: 7,
+        previous: 1.0,
+        value: 0.5,
+    };
+    assert_eq!(
+        e.with_index_offset(usize::MAX - 3).index(),
+        Some(usize::MAX)
+    );
+    assert_eq!(e.with_index_offset(10).index(), Some(17));
+    assert_eq!(
+        Error::MissingTemperature
+            .with_index_offset(usize::MAX)
+            .index(),
+        None
+    );
+}
