@@ -489,3 +489,28 @@ fn hdr_bound_of_nan_keeps_the_bound_in_force() {
         assert!(close(h.drift(), drift), "{bound}: {}", h.drift());
     }
 }
+
+/// A correction or down-sampling read back is checked as `new` checks it: a scale of 0 or an
+/// interval of -1 edited into a stored state ran (every rate 0; a block closed at every sample).
+#[cfg(feature = "serde")]
+#[test]
+fn a_stage_read_back_is_checked_as_new_checks_it() {
+    let mut c = Correction::new(CorrectionConfig::default()).unwrap();
+    c.update(0.0, 0.1);
+    let json = serde_json::to_string(&c).unwrap();
+    assert_eq!(serde_json::from_str::<Correction>(&json).unwrap(), c);
+    let e = serde_json::from_str::<Correction>(&json.replace("\"scale\":1.0", "\"scale\":0.0"));
+    assert!(e
+        .unwrap_err()
+        .to_string()
+        .contains("invalid parameter scale = 0"));
+    let d = Downsample::new(DownsampleConfig { interval: 1.0 }).unwrap();
+    let json = serde_json::to_string(&d).unwrap();
+    assert_eq!(serde_json::from_str::<Downsample>(&json).unwrap(), d);
+    let e =
+        serde_json::from_str::<Downsample>(&json.replace("\"interval\":1.0", "\"interval\":-1.0"));
+    assert!(e
+        .unwrap_err()
+        .to_string()
+        .contains("invalid parameter interval = -1"));
+}

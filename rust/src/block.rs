@@ -59,10 +59,21 @@ pub struct DownsampleConfig {
     pub interval: f64,
 }
 
+impl DownsampleConfig {
+    /// Checks the interval: > 0 and at most 2^40 s, as HDR's.
+    pub fn validate(&self) -> Result<(), Error> {
+        check_duration("interval", self.interval)
+    }
+}
+
 /// Block down-sampling by averaging (the HDR paper's second eq 14:
 /// `w_i^{1Hz} = 1/10 sum_j w_{10i+j}^{10Hz}`), generalised to irregular timestamps.
 #[derive(Debug, Clone, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct Downsample {
     config: DownsampleConfig,
     block: BlockMean,
@@ -70,9 +81,9 @@ pub struct Downsample {
 }
 
 impl Downsample {
-    /// Validates `config` (an interval > 0 and at most 2^40 s, as HDR's) and builds the stage.
+    /// Validates `config` ([`DownsampleConfig::validate`]) and builds the stage.
     pub fn new(config: DownsampleConfig) -> Result<Self, Error> {
-        check_duration("interval", config.interval)?;
+        config.validate()?;
         Ok(Downsample {
             config,
             block: BlockMean::default(),
@@ -92,6 +103,11 @@ impl Downsample {
         self.block
             .push(self.config.interval, dt, rate)
             .map(|(mean, _)| (t, mean))
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &DownsampleConfig {
+        &self.config
     }
 
     /// Returns the stage to its initial state.

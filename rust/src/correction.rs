@@ -228,7 +228,11 @@ correction_kernel!(SingleFactorKernel, |c, x| c.linear(x.rate) * c.config.c_ccw)
 /// While a rest window is being measured, the running mean so far is used as the bias, so the
 /// stage is causal and streams; after the window the bias is frozen.
 #[derive(Debug, Clone, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct Correction {
     calibration: Calibration,
     bias: BiasEstimate,

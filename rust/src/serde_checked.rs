@@ -1,5 +1,5 @@
-//! Serde for a state that must be checked when it is read back: a [`Pipeline`](crate::Pipeline)
-//! or [`Fusion`](crate::Fusion) edited by hand, damaged, or saved by another version ran with
+//! Serde for a state that must be checked when it is read back: a [`Pipeline`], [`Fusion`],
+//! [`Correction`] or [`Downsample`] edited by hand, damaged, or saved by another version ran with
 //! values its `new` refuses (a negative low-pass `tau` in the stored stages gave NaN headings,
 //! a negative gate rejected every fix) or with stages other than its configuration says.
 //!
@@ -7,7 +7,8 @@
 //! [`checked_serde!`] implements the traits on them: serialising as derived, deserialising as
 //! derived and then checked, the check's error (the core's, in its words) the deserialiser's.
 
-use crate::{Error, Fusion, Pipeline};
+use crate::error::check_reading;
+use crate::{Correction, Downsample, Error, Fusion, Pipeline};
 
 /// Implements `Serialize` and `Deserialize` for `$ty` from its `remote = "Self"` derive, the
 /// deserialised value checked by `$check: fn(&$ty) -> Result<(), Error>`.
@@ -33,3 +34,8 @@ macro_rules! checked_serde {
 
 checked_serde!(Pipeline, Pipeline::check_restored);
 checked_serde!(Fusion, |fusion| fusion.config().validate());
+checked_serde!(Correction, |c| {
+    c.config().validate()?;
+    check_reading("bias", c.bias())
+});
+checked_serde!(Downsample, |d| d.config().validate());
