@@ -514,3 +514,27 @@ fn a_stage_read_back_is_checked_as_new_checks_it() {
         .to_string()
         .contains("invalid parameter interval = -1"));
 }
+
+/// A stand-alone stage read back is checked as `new` checks its settings: a low-pass `tau` of
+/// -0.75 edited into a stored state gave NaN from its second sample on, and an HDR bound of -1
+/// pinned the correction `I` at -1 rad/s.
+#[cfg(feature = "serde")]
+#[test]
+fn a_streaming_stage_read_back_is_checked() {
+    let mut l = LowPass::new(LowPassConfig { tau: 0.75 }).unwrap();
+    l.update(0.0, 0.1);
+    let json = serde_json::to_string(&l).unwrap();
+    assert_eq!(serde_json::from_str::<LowPass>(&json).unwrap(), l);
+    let e = serde_json::from_str::<LowPass>(&json.replace("\"tau\":0.75", "\"tau\":-0.75"));
+    assert!(e.unwrap_err().to_string().contains("lowpass_tau = -0.75"));
+    let h = Hdr::new(HdrConfig::table_iii()).unwrap();
+    let json = serde_json::to_string(&h).unwrap();
+    assert_eq!(serde_json::from_str::<Hdr>(&json).unwrap(), h);
+    let e = serde_json::from_str::<Hdr>(&json.replace("\"bound\":\"inf\"", "\"bound\":-1.0"));
+    assert!(e
+        .unwrap_err()
+        .to_string()
+        .contains("hdr_max_correction = -1"));
+    let e = serde_json::from_str::<Hdr>(&json.replace("\"c2\":1.8", "\"c2\":0.0"));
+    assert!(e.unwrap_err().to_string().contains("hdr_c2"));
+}

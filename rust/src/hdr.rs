@@ -300,6 +300,12 @@ impl Validated for HdrKernel {
         config.validate()?;
         Ok(HdrRule::new(config))
     }
+
+    fn check(rule: &HdrRule) -> Result<(), Error> {
+        rule.config.validate()?;
+        let valid = ">= 0 (inf: no bound)";
+        check_range("hdr_max_correction", rule.bound, 0.0, f64::INFINITY, valid)
+    }
 }
 
 /// HDR as a stand-alone stage: its output is the input rate plus `I` (eq 12).

@@ -284,6 +284,13 @@ pub trait Validated: Kernel {
     fn output(y: Signal) -> f64 {
         y.rate
     }
+
+    /// Checks a configuration read back (`serde` feature) as [`Validated::configure`] checks
+    /// settings; by default it takes any.
+    fn check(config: &Self::Config) -> Result<(), Error> {
+        let _ = config;
+        Ok(())
+    }
 }
 
 /// Implements [`Validated`] for kernels whose settings are their configuration (checked by its
@@ -301,6 +308,10 @@ macro_rules! settings_are_config {
             fn output(y: $crate::kernel::Signal) -> f64 {
                 ($out)(y)
             }
+
+            fn check(config: &Self::Config) -> Result<(), $crate::Error> {
+                config.validate()
+            }
         }
     };
     ($k:ty; output $out:expr) => {
@@ -315,9 +326,14 @@ pub(crate) use settings_are_config;
 /// A kernel as a stand-alone stage: its configuration, its state and its own [`Clock`], fed
 /// `(t, rate)` samples through the [`Stage`] trait. The pipeline does not use this wrapper: it
 /// keeps one clock for the whole chain.
+///
+/// Read back with the `serde` feature, its configuration is checked ([`Validated::check`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(bound = ""))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(bound = "", remote = "Self")
+)]
 pub struct Streaming<K: Kernel> {
     config: K::Config,
     state: K::State,

@@ -1,5 +1,5 @@
 //! Serde for a state that must be checked when it is read back: a [`Pipeline`], [`Fusion`],
-//! [`Correction`] or [`Downsample`] edited by hand, damaged, or saved by another version ran with
+//! [`Correction`], [`Downsample`] or stand-alone [`Streaming`] stage edited by hand, damaged, or saved by another version ran with
 //! values its `new` refuses (a negative low-pass `tau` in the stored stages gave NaN headings,
 //! a negative gate rejected every fix) or with stages other than its configuration says.
 //!
@@ -8,20 +8,22 @@
 //! derived and then checked, the check's error (the core's, in its words) the deserialiser's.
 
 use crate::error::check_reading;
-use crate::{Correction, Downsample, Error, Fusion, Pipeline};
+use crate::kernel::Validated;
+use crate::{Correction, Downsample, Error, Fusion, Pipeline, Streaming};
 
-/// Implements `Serialize` and `Deserialize` for `$ty` from its `remote = "Self"` derive, the
-/// deserialised value checked by `$check: fn(&$ty) -> Result<(), Error>`.
+/// Implements `Serialize` and `Deserialize` for `$ty` (generic over `[$g]`, if given) from its
+/// `remote = "Self"` derive, the deserialised value checked by `$check: fn(&$ty) -> Result<(),
+/// Error>`.
 macro_rules! checked_serde {
-    ($ty:ty, $check:expr) => {
-        impl serde::Serialize for $ty {
+    ([$($g:tt)*] $ty:ty, $check:expr) => {
+        impl<$($g)*> serde::Serialize for $ty {
             fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
                 // the derived (inherent) function, not this trait's
                 <$ty>::serialize(self, serializer)
             }
         }
 
-        impl<'de> serde::Deserialize<'de> for $ty {
+        impl<'de, $($g)*> serde::Deserialize<'de> for $ty {
             fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
                 let value = <$ty>::deserialize(deserializer)?;
                 let check: fn(&$ty) -> Result<(), Error> = $check;
@@ -29,6 +31,9 @@ macro_rules! checked_serde {
                 Ok(value)
             }
         }
+    };
+    ($ty:ty, $check:expr) => {
+        checked_serde!([] $ty, $check);
     };
 }
 
@@ -39,3 +44,4 @@ checked_serde!(Correction, |c| {
     check_reading("bias", c.bias())
 });
 checked_serde!(Downsample, |d| d.config().validate());
+checked_serde!([K: Validated] Streaming<K>, |s| K::check(s.parts().0));
