@@ -205,7 +205,7 @@ fn a_sample_beyond_a_limit_is_rejected_naming_it() {
 fn parameters_beyond_their_limits_are_refused() {
     let above = |x: f64| f64::from_bits(x.to_bits() + 1);
     type Set = fn(&mut PipelineConfig, f64);
-    let set: [(&str, Set, f64); 11] = [
+    let set: [(&str, Set, f64); 13] = [
         (
             "bias",
             |c, v| c.correction.bias = StaticBias::Fixed(-v),
@@ -217,6 +217,21 @@ fn parameters_beyond_their_limits_are_refused() {
         (
             "bias_duration",
             |c, v| c.correction.bias = StaticBias::Leading { duration: v },
+            above(MAX_TIME),
+        ),
+        (
+            "bias_window.end",
+            |c, v| c.correction.bias = StaticBias::Window { start: 0.0, end: v },
+            above(MAX_TIME),
+        ),
+        (
+            "bias_window.start",
+            |c, v| {
+                c.correction.bias = StaticBias::Window {
+                    start: -v,
+                    end: 0.0,
+                }
+            },
             above(MAX_TIME),
         ),
         ("lowpass_tau", |c, v| c.set_lowpass_tau(v), above(MAX_TIME)),
