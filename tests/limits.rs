@@ -321,3 +321,41 @@ fn an_index_offset_near_the_largest_saturates() {
         None
     );
 }
+
+/// A length mismatch names the slice it is measured against: the message said `but t has` of
+/// slices that have no `t` (a projection's `y` against `x`, the Allan outputs against the
+/// factors, the phase against the rate).
+#[test]
+fn a_length_mismatch_names_what_it_is_measured_against() {
+    let mut out = [0.0; 2];
+    let up = Up::new([0.0, 0.0, 1.0]).unwrap();
+    let e = up.project_block(&[1.0, 2.0], &[1.0], &[1.0, 2.0], &mut out);
+    assert_eq!(
+        e.unwrap_err().to_string(),
+        "length mismatch: y has 1 samples but x has 2"
+    );
+    let (mut v, mut n) = ([0.0; 1], [0u64; 2]);
+    let e = allan::variances(&[0.0; 8], 1.0, &[1], Variance::Allan, &mut v, &mut n);
+    assert!(e
+        .unwrap_err()
+        .to_string()
+        .ends_with("terms has 2 samples but factors has 1"));
+    let e = allan::phase_from_rate(&[0.0; 4], 1.0, &mut [0.0; 4]);
+    assert!(e.unwrap_err().to_string().ends_with("but rate + 1 has 5"));
+    let mut i = Integrator::new(IntegratorConfig::default()).unwrap();
+    let e = i.process_block(&[0.0, 1.0], &[0.0, 0.0], &mut out[..1]);
+    assert!(e
+        .unwrap_err()
+        .to_string()
+        .ends_with("out has 1 samples but the input has 2"));
+    let e = Pipeline::new(Preset::Raw.config()).unwrap().process_block(
+        &[0.0, 1.0],
+        &[0.0],
+        None,
+        Outputs::default(),
+    );
+    assert!(e
+        .unwrap_err()
+        .to_string()
+        .ends_with("rate has 1 samples but t has 2"));
+}

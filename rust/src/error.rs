@@ -24,7 +24,8 @@ pub enum Error {
         what: &'static str,
         /// Its length.
         len: usize,
-        /// The length of the timestamps.
+        /// The length it must have: the timestamps' (the message names what else, where it is
+        /// another slice: `x` of a projection, the Allan factors).
         expected: usize,
     },
     /// A sample is NaN or infinite.
@@ -134,7 +135,8 @@ impl fmt::Display for Error {
                 expected,
             } => write!(
                 f,
-                "length mismatch: {what} has {len} samples but t has {expected}"
+                "length mismatch: {what} has {len} samples but {} has {expected}",
+                measured_against(what)
             ),
             Error::NonFinite { what, index, value } => write!(
                 f,
@@ -214,6 +216,19 @@ impl fmt::Display for Error {
 }
 
 impl core::error::Error for Error {}
+
+/// What a slice named `what` in [`Error::LengthMismatch`] is measured against: the timestamps,
+/// but for the slices of a projection (`x`), of the Allan variances (their averaging factors, and
+/// the phase one longer than the rate) and an output slice (its input, whichever that is).
+fn measured_against(what: &str) -> &'static str {
+    match what {
+        "y" | "z" => "x",
+        "variance" | "terms" => "factors",
+        "phase" => "rate + 1",
+        "out" => "the input",
+        _ => "t",
+    }
+}
 
 /// A number as a message shows it: in full where that is short (a timestamp keeps its digits),
 /// in exponent form where it is extreme (`1e308`, not 309 digits).
