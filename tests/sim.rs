@@ -353,3 +353,23 @@ fn a_model_round_trips_through_json_and_an_unchecked_one_does_not_panic() {
     let mut broken: Sampler = serde_json::from_str(&json).unwrap();
     assert!(broken.nth(3).is_some());
 }
+
+/// The flicker term count of a configuration not validated, spanning 1e-300 to 1e308 s (an
+/// infinite number of decades), is the most there are (it overflowed: a panic in a debug build).
+#[test]
+fn flicker_terms_of_an_unchecked_span_saturate() {
+    let config = GyroModelConfig {
+        bias_instability: 1e-4,
+        flicker_min: 1e-300,
+        flicker_max: 1e308,
+        ..GyroModelConfig::ideal(100.0)
+    };
+    assert!(config.validate().is_err());
+    let most = GyroModelConfig {
+        bias_instability: 1e-4,
+        flicker_max: 1e7,
+        flicker_min: 1.0,
+        ..GyroModelConfig::ideal(100.0)
+    };
+    assert!(config.flicker_terms() >= most.flicker_terms());
+}

@@ -201,8 +201,10 @@ impl GyroModelConfig {
             return 0;
         }
         let decades = libm::log10(self.flicker_max / self.flicker_min);
-        let n = libm::ceil(decades * FLICKER_TERMS_PER_DECADE - 1e-9).max(0.0) as usize + 1;
-        n.min(MAX_FLICKER_TERMS)
+        // Saturating: a config not validated may span infinitely many decades (1e-300 to 1e308
+        // s), whose count converts to usize::MAX.
+        let n = libm::ceil(decades * FLICKER_TERMS_PER_DECADE - 1e-9).max(0.0) as usize;
+        n.saturating_add(1).min(MAX_FLICKER_TERMS)
     }
 
     /// Correlation time \[s\] and standard deviation [rad/s] of flicker term `k` (`k <` [`Self::flicker_terms`]).
