@@ -4,8 +4,8 @@
 mod fused_drive;
 
 use fused_drive::{bits, block, chunked, columns, config, drive, fixes, Columns};
-use gyrocore::fixes::FixProblem;
-use gyrocore::{Fix, FusedPipeline, FusionError};
+// what a caller of FusedPipeline matches and reads, from the crate's root
+use gyrocore::{Estimate, Fix, FixProblem, FusedPipeline, FusionError};
 
 /// Runs the block `(t, rate)` (written from sample `from`) with its sample `bad`'s time
 /// repeating the one before: it must fail naming that sample by its index in the block, and leave
@@ -95,6 +95,8 @@ fn a_bad_fix_or_sample_changes_nothing_and_is_named() {
     let block_of = (&t[1000..2000], &rate[1000..2000]);
     fails_on_sample(&mut fused, block_of, &all[used..], &mut cols, (1000, 500));
     assert_eq!(fused, snapshot);
+    let estimate: Estimate = fused.fusion().estimate();
+    assert_eq!(estimate, snapshot.fusion().estimate());
 
     // carrying on after both errors gives what an uninterrupted run gives
     carries_on_as_one_run(&mut fused, (&t, &rate), &all, used, &mut cols, 1000);

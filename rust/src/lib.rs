@@ -96,7 +96,9 @@ pub use axis::Up;
 pub use block::{Downsample, DownsampleConfig};
 pub use correction::{Correction, CorrectionConfig, StaticBias, TemperatureScale};
 pub use error::Error;
-pub use fixes::{Fix, FixCounts, Fusion, FusionConfig, FusionError, FusionOutputs};
+pub use fixes::{
+    Estimate, Fix, FixCounts, FixProblem, Fusion, FusionConfig, FusionError, FusionOutputs,
+};
 pub use fixes_smooth::{smooth, Knot};
 pub use fused::{FusedOutputs, FusedPipeline, Samples};
 pub use hdr::{Hdr, HdrConfig};
