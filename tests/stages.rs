@@ -538,3 +538,25 @@ fn a_streaming_stage_read_back_is_checked() {
     let e = serde_json::from_str::<Hdr>(&json.replace("\"c2\":1.8", "\"c2\":0.0"));
     assert!(e.unwrap_err().to_string().contains("hdr_c2"));
 }
+
+/// A stage's block checks its samples on the way (the pipeline's way) and exactly only where the
+/// quick check may have failed: rates of 2 rad/s and more (which its bound takes for suspects)
+/// and a first time of 2^40 - 1 s (where the first interval rounds to 0) give what `update`
+/// gives, sample for sample, and a NaN in the last sample still refuses the block whole.
+#[test]
+fn a_stage_block_equals_update_where_its_quick_check_is_unsure() {
+    let t: Vec<f64> = (0..50).map(|i| MAX_TIME - 1.0 - 50.0 + i as f64).collect();
+    let rate: Vec<f64> = (0..50).map(|i| 3.0 * (i % 5) as f64 - 6.0).collect();
+    let fresh = Hdr::new(HdrConfig::table_iii()).unwrap();
+    let (mut a, mut b) = (fresh, fresh);
+    let updates = run(&mut a, &t, &rate);
+    let mut out = vec![0.0; t.len()];
+    b.process_block(&t, &rate, &mut out).unwrap();
+    assert_eq!((out, b), (updates, a));
+    let mut bad = rate.clone();
+    bad[49] = f64::NAN;
+    let mut c = fresh;
+    let e = c.process_block(&t, &bad, &mut vec![0.0; t.len()]);
+    assert!(matches!(e, Err(Error::NonFinite { index: 49, .. })), "{e:?}");
+    assert_eq!(c, fresh);
+}

@@ -8,8 +8,10 @@
 //! (`pipeline/engine.rs`). [`Streaming`] wraps any kernel into a stand-alone stage with its own
 //! clock (the [`Stage`] trait), so each stage is also usable and testable on its own.
 
-use crate::stage::{Clock, Stage};
-use crate::validate::{interval_key, usable_reading, MAX_TIME};
+use crate::stage::{check_len, check_stage_block, Clock, Stage};
+use crate::validate::{
+    check_lengths, interval_key, usable_reading, Checks, MAX_TIME, MIN_INTERVAL,
+};
 use crate::Error;
 
 /// Serde for configurations and states behind the `serde` feature (nothing without it).
@@ -418,6 +420,44 @@ impl<K: Validated> Stage for Streaming<K> {
 
     fn last_time(&self) -> Option<f64> {
         self.clock.last()
+    }
+
+    /// Checked as [`Stage::process_block`] checks a block, the same outputs as
+    /// [`Stage::update`], at about the loop's cost alone: as the pipeline's loop does, each sample
+    /// is taken as it comes and checked on the way ([`Checks`], a few integer operations beside
+    /// the stage's work, where a pass of its own over a block too large for the cache cost as
+    /// much as the stage); only if one may have failed is the block checked exactly, and the
+    /// stage restored if it did.
+    fn process_block(&mut self, t: &[f64], rate: &[f64], out: &mut [f64]) -> Result<(), Error> {
+        check_lengths(t, rate, None)?;
+        check_len("out", out.len(), t.len())?;
+        let (Some(&first), Some(&end)) = (t.first(), t.last()) else {
+            return Ok(());
+        };
+        let before = (self.state, self.clock, self.started, self.last);
+        let mut checks = Checks::default();
+        // the stage's first sample has no interval (and ignores the one it is given)
+        let mut previous = match self.clock.last() {
+            Some(last) => last,
+            None => first - MIN_INTERVAL,
+        };
+        for ((o, &ti), &ri) in out.iter_mut().zip(t).zip(rate) {
+            let dt = ti - previous;
+            checks.interval(dt);
+            checks.reading(ri, None);
+            *o = self.take(dt, ri);
+            previous = ti;
+        }
+        checks.time(first);
+        checks.time(end);
+        self.clock.set(end);
+        if !checks.passed() {
+            if let Err(e) = check_stage_block(t, rate, out.len(), before.1.last()) {
+                (self.state, self.clock, self.started, self.last) = before;
+                return Err(e);
+            }
+        }
+        Ok(())
     }
 
     fn reset(&mut self) {

@@ -36,13 +36,24 @@ pub trait Stage {
         rate: &[f64],
         out: &mut [Self::Output],
     ) -> Result<(), Error> {
-        check_block(t, rate, None, self.last_time(), true)?;
-        check_len("out", out.len(), t.len())?;
+        check_stage_block(t, rate, out.len(), self.last_time())?;
         for ((o, &ti), &ri) in out.iter_mut().zip(t).zip(rate) {
             *o = self.update(ti, ri);
         }
         Ok(())
     }
+}
+
+/// The checks of [`Stage::process_block`]: the samples as [`check_block`] checks them after
+/// `previous` (the stage's last time), and an output slice of `out` values as long as them.
+pub(crate) fn check_stage_block(
+    t: &[f64],
+    rate: &[f64],
+    out: usize,
+    previous: Option<f64>,
+) -> Result<(), Error> {
+    check_block(t, rate, None, previous, true)?;
+    check_len("out", out, t.len())
 }
 
 /// Fails with [`Error::LengthMismatch`] unless `len == expected`.
