@@ -557,6 +557,9 @@ fn a_stage_block_equals_update_where_its_quick_check_is_unsure() {
     bad[49] = f64::NAN;
     let mut c = fresh;
     let e = c.process_block(&t, &bad, &mut vec![0.0; t.len()]);
-    assert!(matches!(e, Err(Error::NonFinite { index: 49, .. })), "{e:?}");
+    assert!(
+        matches!(e, Err(Error::NonFinite { index: 49, .. })),
+        "{e:?}"
+    );
     assert_eq!(c, fresh);
 }
