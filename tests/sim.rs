@@ -373,3 +373,18 @@ fn flicker_terms_of_an_unchecked_span_saturate() {
     };
     assert!(config.flicker_terms() >= most.flicker_terms());
 }
+
+/// A sampler read back with a drop probability of 1 or more (no validation) still gives
+/// instants: it kept nothing after the first, and `next` never returned.
+#[cfg(feature = "serde")]
+#[test]
+fn a_sampler_read_back_losing_every_sample_still_returns() {
+    let model = GyroModel::new(GyroModelConfig::ideal(100.0), 1).unwrap();
+    let json = serde_json::to_string(&model.sampler(0.0)).unwrap();
+    let json = json.replace("\"drop_probability\":0.0", "\"drop_probability\":1.5");
+    let mut broken: Sampler = serde_json::from_str(&json).unwrap();
+    let (sent, received) = std::sync::mpsc::channel();
+    std::thread::spawn(move || sent.send(broken.nth(3)));
+    let fourth = received.recv_timeout(std::time::Duration::from_secs(10));
+    assert!(fourth.expect("next never returned").is_some());
+}

@@ -1,7 +1,7 @@
 //! The simulated gyro's configuration ([`GyroModelConfig`], Hong eq 1 and 10-11 with the Allan
 //! noise terms) and its temperature profile.
 
-use super::{FLICKER_TERMS_PER_DECADE, MAX_FLICKER_TERMS};
+use super::{FLICKER_TERMS_PER_DECADE, MAX_DROP_PROBABILITY, MAX_FLICKER_TERMS};
 use crate::error::{check_duration, check_magnitude, check_positive, check_range};
 use crate::{Error, MAX_READING};
 
@@ -129,7 +129,7 @@ impl GyroModelConfig {
             "drop_probability",
             self.drop_probability,
             0.0,
-            0.99,
+            MAX_DROP_PROBABILITY,
             "in [0, 0.99] (a logger that loses more keeps next to nothing)",
         )?;
         check_range(
