@@ -29,7 +29,8 @@ pub trait Stage {
     /// The block is checked first ([`check_block`](crate::check_block): lengths, finite and
     /// increasing times, also after [`Stage::last_time`], readings finite and within
     /// [`MAX_READING`](crate::MAX_READING)), and the error names the first bad sample by its
-    /// index; nothing of a rejected block is processed.
+    /// index; a rejected block leaves the stage as it was (not `out`, which may have been
+    /// written, as [`Pipeline::process_block`](crate::Pipeline::process_block)'s outputs).
     fn process_block(
         &mut self,
         t: &[f64],
