@@ -370,11 +370,10 @@ impl<K: Validated> Streaming<K> {
     }
 
     /// Feeds one sample whose interval is `dt` \[s\] (ignored for the stage's first sample),
-    /// for a caller that keeps its own clock. An interval that is NaN, below
-    /// [`MIN_INTERVAL`] or beyond twice [`MAX_TIME`] (no two
-    /// valid timestamps lie further apart), or a reading [`Stage::update`] skips, leaves the stage
-    /// as it was and gets the last output again: a NaN or negative interval made the low-pass
-    /// NaN for good, and a NaN one stopped HDR's steps.
+    /// for a caller that keeps its own clock. An interval that is NaN, below [`MIN_INTERVAL`] or
+    /// beyond twice [`MAX_TIME`] (no two valid timestamps lie further apart), or a reading
+    /// [`Stage::update`] skips, leaves the stage as it was and gets the last output again: a NaN
+    /// or negative interval made the low-pass NaN for good, and a NaN one stopped HDR's steps.
     #[inline]
     pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
         let interval_valid = !self.started || interval_key(dt) <= interval_key(2.0 * MAX_TIME);
@@ -424,10 +423,10 @@ impl<K: Validated> Stage for Streaming<K> {
 
     /// Checked as [`Stage::process_block`] checks a block, the same outputs as
     /// [`Stage::update`], at about the loop's cost alone: as the pipeline's loop does, each sample
-    /// is taken as it comes and checked on the way (a few integer operations beside
-    /// the stage's work, where a pass of its own over a block too large for the cache cost as
-    /// much as the stage); only if one may have failed is the block checked exactly, and the
-    /// stage restored if it did.
+    /// is taken as it comes and checked on the way (a few integer operations beside the stage's
+    /// work, where a pass of its own over a block too large for the cache cost as much as the
+    /// stage); only if one may have failed is the block checked exactly, and the stage restored
+    /// if it did.
     fn process_block(&mut self, t: &[f64], rate: &[f64], out: &mut [f64]) -> Result<(), Error> {
         check_lengths(t, rate, None)?;
         check_len("out", out.len(), t.len())?;
