@@ -206,3 +206,24 @@ fn a_stage_block_equals_update_where_its_quick_check_is_unsure() {
     );
     assert_eq!(c, fresh);
 }
+
+/// A stage fed by `step` (its caller's clock) and then by `update` or a block takes their first
+/// sample as the start of its clock only: its interval was 0 there, and the de-lag's output
+/// -inf (a block: -7.5e11).
+#[test]
+fn a_stage_fed_by_step_then_by_time_starts_its_clock() {
+    let stepped = || {
+        let mut d = DeLag::new(LowPassConfig { tau: 0.75 }).unwrap();
+        d.step(0.1, 1.0);
+        let last = d.step(0.1, 2.0);
+        (d, last)
+    };
+    let (mut a, last) = stepped();
+    assert_eq!(a.update(5.0, 1.0), last);
+    assert!(a.update(5.1, 1.0).is_finite());
+    let (mut b, _) = stepped();
+    let mut out = [0.0; 2];
+    b.process_block(&[5.0, 5.1], &[1.0, 1.0], &mut out).unwrap();
+    assert_eq!(out[0], last);
+    assert_eq!(b, a);
+}

@@ -374,6 +374,8 @@ impl<K: Validated> Streaming<K> {
     /// beyond twice [`MAX_TIME`] (no two valid timestamps lie further apart), or a reading
     /// [`Stage::update`] skips, leaves the stage as it was and gets the last output again: a NaN
     /// or negative interval made the low-pass NaN for good, and a NaN one stopped HDR's steps.
+    /// It keeps no clock: a stage fed by `step`, then by [`Stage::update`] or
+    /// [`Stage::process_block`], takes their first sample as the start of its clock only.
     #[inline]
     pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
         let interval_valid = !self.started || interval_key(dt) <= interval_key(2.0 * MAX_TIME);
@@ -411,7 +413,9 @@ impl<K: Validated> Stage for Streaming<K> {
         match self.clock.interval(t) {
             Some(dt) if usable_reading(rate, None) => {
                 self.clock.set(t);
-                self.take(dt, rate)
+                // `step`, not `take`: after `step`, which keeps no clock, the clock's first
+                // interval is 0, which the stage must not take (the de-lag divided by it)
+                self.step(dt, rate)
             }
             _ => self.last,
         }
@@ -435,12 +439,18 @@ impl<K: Validated> Stage for Streaming<K> {
         };
         let before = (self.state, self.clock, self.started, self.last);
         let mut checks = Checks::default();
-        // the stage's first sample has no interval (and ignores the one it is given)
-        let mut previous = match self.clock.last() {
-            Some(last) => last,
-            None => first - MIN_INTERVAL,
+        checks.reading(rate[0], None);
+        // The stage's first sample has no interval (and ignores the one it is given); a stage
+        // fed by `step`, which keeps no clock, has none for the block's first sample, which only
+        // starts the clock (as `update` takes it).
+        let (mut previous, skip) = match (self.clock.last(), self.started) {
+            (Some(last), _) => (last, 0),
+            (None, true) => (first, 1),
+            (None, false) => (first - MIN_INTERVAL, 0),
         };
-        for ((o, &ti), &ri) in out.iter_mut().zip(t).zip(rate) {
+        out[..skip].fill(self.last);
+        let taken = out[skip..].iter_mut().zip(&t[skip..]).zip(&rate[skip..]);
+        for ((o, &ti), &ri) in taken {
             let dt = ti - previous;
             checks.interval(dt);
             checks.reading(ri, None);
