@@ -443,3 +443,35 @@ fn the_smoother_beats_the_filter_inside_an_outage() {
     let mid = inside[inside.len() / 2];
     assert!(ss[mid] < s[mid]);
 }
+
+/// An initial bias sigma beyond the bias's own range (1000 rad/s) is refused: 1e6 rad/s beside
+/// an unknown heading (sigma 2^20 rad) left the covariance to rounding at the first fix, and the
+/// heading sigma was NaN from there on, without an error. At the limit every estimate is finite.
+#[test]
+fn an_initial_bias_sigma_beyond_the_bias_range_is_refused() {
+    let wide = |initial_bias_sigma| FusionConfig {
+        initial_heading_sigma: 1048576.0,
+        initial_bias_sigma,
+        gate: f64::INFINITY,
+        ..config()
+    };
+    let err = Fusion::new(wide(1e6)).unwrap_err().to_string();
+    assert!(err.contains("initial_bias_sigma = 1000000"), "{err}");
+    let mut fusion = Fusion::new(wide(1e3)).unwrap();
+    let n = 3000;
+    let t: Vec<f64> = (0..n).map(|i| i as f64 * 0.01).collect();
+    let rate = vec![0.1; n];
+    let fixes: Vec<Fix> = (1..150)
+        .map(|k| Fix {
+            t: k as f64 * 0.2 + 0.003,
+            heading: 0.02 * k as f64,
+            sigma: 1e-6,
+        })
+        .collect();
+    let mut cols = [vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+    let [h, s, b, sc] = &mut cols;
+    fusion
+        .process_block(&t, &rate, &fixes, FusionOutputs::all(h, s, b, sc))
+        .unwrap();
+    assert!(cols.iter().flatten().all(|x| x.is_finite()));
+}

@@ -250,3 +250,30 @@ fn samples_skipped_before_the_first_one_taken_hold_the_prior() {
     // the samples taken after them reach the fixes
     assert!(cols[1][t.len() - 1] < 0.1, "{}", cols[1][t.len() - 1]);
 }
+
+/// A filter read back is checked as `Fusion::new` checks its configuration, alone and inside a
+/// fused pipeline: a gate of -1 edited into a stored state rejected every fix without a word.
+#[cfg(feature = "serde")]
+#[test]
+fn a_filter_read_back_is_checked_as_new_checks_it() {
+    let (c, f) = config();
+    let fused = FusedPipeline::new(c, f).unwrap();
+    let json = serde_json::to_string(&fused).unwrap();
+    let gate = format!("\"gate\":{}", f.gate);
+    assert!(json.contains(&gate));
+    let e = serde_json::from_str::<FusedPipeline>(&json.replace(&gate, "\"gate\":-1.0"));
+    assert!(e
+        .unwrap_err()
+        .to_string()
+        .contains("invalid parameter gate = -1"));
+    let alone = serde_json::to_string(fused.fusion()).unwrap();
+    let e = serde_json::from_str::<Fusion>(&alone.replace("\"arw\":", "\"arw\":-1.0,\"x\":"));
+    assert!(e
+        .unwrap_err()
+        .to_string()
+        .contains("invalid parameter arw = -1"));
+    assert_eq!(
+        serde_json::from_str::<Fusion>(&alone).unwrap(),
+        *fused.fusion()
+    );
+}

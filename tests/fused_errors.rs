@@ -4,8 +4,8 @@
 mod fused_drive;
 
 use fused_drive::{bits, block, chunked, columns, config, drive, fixes, Columns};
-use gyrocore::fixes::FixProblem;
-use gyrocore::{Fix, FusedPipeline, FusionError};
+// what a caller of FusedPipeline matches and reads, from the crate's root
+use gyrocore::{Estimate, Fix, FixProblem, FusedPipeline, FusionError};
 
 /// Runs the block `(t, rate)` (written from sample `from`) with its sample `bad`'s time
 /// repeating the one before: it must fail naming that sample by its index in the block, and leave
@@ -95,6 +95,8 @@ fn a_bad_fix_or_sample_changes_nothing_and_is_named() {
     let block_of = (&t[1000..2000], &rate[1000..2000]);
     fails_on_sample(&mut fused, block_of, &all[used..], &mut cols, (1000, 500));
     assert_eq!(fused, snapshot);
+    let estimate: Estimate = fused.fusion().estimate();
+    assert_eq!(estimate, snapshot.fusion().estimate());
 
     // carrying on after both errors gives what an uninterrupted run gives
     carries_on_as_one_run(&mut fused, (&t, &rate), &all, used, &mut cols, 1000);
@@ -154,4 +156,28 @@ fn every_waiting_fix_may_ride_along_and_a_bad_one_fails_the_block_that_reaches_i
     assert_eq!(used, 9);
     let heading = (6, "heading", FixProblem::NonFinite);
     fails_on_fix(&mut fused, (&t, &rate), &bad[used..], &mut cols, heading);
+}
+
+/// Both error types are `core::error::Error` with or without the `std` feature, so that a
+/// `no_std` embedder's `?` takes them alike (`cargo test --no-default-features --test
+/// fused_errors`); a fix's extreme value prints in exponent form, as the core error's do.
+#[test]
+fn a_fusion_error_is_an_error_without_std_and_prints_extreme_values_short() {
+    fn as_error<E: core::error::Error + 'static>(e: E) -> Box<dyn core::error::Error> {
+        Box::new(e)
+    }
+    let e = FusionError::Fix {
+        index: 2,
+        what: "heading",
+        value: 1e300,
+        problem: FixProblem::OutOfRange,
+    };
+    let text = as_error(e).to_string();
+    assert_eq!(
+        text,
+        "fix 2: heading = 1e300 is beyond +-2^20 rad; check the unit (radians)"
+    );
+    assert!(as_error(gyrocore::Error::MissingTemperature)
+        .to_string()
+        .contains("temperature"));
 }

@@ -205,7 +205,7 @@ fn a_sample_beyond_a_limit_is_rejected_naming_it() {
 fn parameters_beyond_their_limits_are_refused() {
     let above = |x: f64| f64::from_bits(x.to_bits() + 1);
     type Set = fn(&mut PipelineConfig, f64);
-    let set: [(&str, Set, f64); 11] = [
+    let set: [(&str, Set, f64); 13] = [
         (
             "bias",
             |c, v| c.correction.bias = StaticBias::Fixed(-v),
@@ -217,6 +217,21 @@ fn parameters_beyond_their_limits_are_refused() {
         (
             "bias_duration",
             |c, v| c.correction.bias = StaticBias::Leading { duration: v },
+            above(MAX_TIME),
+        ),
+        (
+            "bias_window.end",
+            |c, v| c.correction.bias = StaticBias::Window { start: 0.0, end: v },
+            above(MAX_TIME),
+        ),
+        (
+            "bias_window.start",
+            |c, v| {
+                c.correction.bias = StaticBias::Window {
+                    start: -v,
+                    end: 0.0,
+                }
+            },
             above(MAX_TIME),
         ),
         ("lowpass_tau", |c, v| c.set_lowpass_tau(v), above(MAX_TIME)),
@@ -283,4 +298,64 @@ fn extreme_values_read_short_in_messages() {
     .unwrap_err()
     .to_string();
     assert!(e.contains("t[1] = 1700000000 follows 1700000000.25"), "{e}");
+}
+
+/// An error's index moved by an offset near `usize::MAX` saturates (it overflowed: a panic in a
+/// debug build); errors of no sample keep no index.
+#[test]
+fn an_index_offset_near_the_largest_saturates() {
+    let e = Error::NotIncreasing {
+        index: 7,
+        previous: 1.0,
+        value: 0.5,
+    };
+    assert_eq!(
+        e.with_index_offset(usize::MAX - 3).index(),
+        Some(usize::MAX)
+    );
+    assert_eq!(e.with_index_offset(10).index(), Some(17));
+    assert_eq!(
+        Error::MissingTemperature
+            .with_index_offset(usize::MAX)
+            .index(),
+        None
+    );
+}
+
+/// A length mismatch names the slice it is measured against: the message said `but t has` of
+/// slices that have no `t` (a projection's `y` against `x`, the Allan outputs against the
+/// factors, the phase against the rate).
+#[test]
+fn a_length_mismatch_names_what_it_is_measured_against() {
+    let mut out = [0.0; 2];
+    let up = Up::new([0.0, 0.0, 1.0]).unwrap();
+    let e = up.project_block(&[1.0, 2.0], &[1.0], &[1.0, 2.0], &mut out);
+    assert_eq!(
+        e.unwrap_err().to_string(),
+        "length mismatch: y has 1 samples but x has 2"
+    );
+    let (mut v, mut n) = ([0.0; 1], [0u64; 2]);
+    let e = allan::variances(&[0.0; 8], 1.0, &[1], Variance::Allan, &mut v, &mut n);
+    assert!(e
+        .unwrap_err()
+        .to_string()
+        .ends_with("terms has 2 samples but factors has 1"));
+    let e = allan::phase_from_rate(&[0.0; 4], 1.0, &mut [0.0; 4]);
+    assert!(e.unwrap_err().to_string().ends_with("but rate + 1 has 5"));
+    let mut i = Integrator::new(IntegratorConfig::default()).unwrap();
+    let e = i.process_block(&[0.0, 1.0], &[0.0, 0.0], &mut out[..1]);
+    assert!(e
+        .unwrap_err()
+        .to_string()
+        .ends_with("out has 1 samples but the input has 2"));
+    let e = Pipeline::new(Preset::Raw.config()).unwrap().process_block(
+        &[0.0, 1.0],
+        &[0.0],
+        None,
+        Outputs::default(),
+    );
+    assert!(e
+        .unwrap_err()
+        .to_string()
+        .ends_with("rate has 1 samples but t has 2"));
 }

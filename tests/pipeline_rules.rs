@@ -206,3 +206,52 @@ fn the_static_bias_test_is_the_pipelines_rest_window() {
         Err(Error::EmptyRestWindow { .. })
     ));
 }
+
+/// A pipeline read back is checked as `Pipeline::new` checks a configuration, and its stages
+/// against the ones its configuration builds: a negative `tau` or a gap limit of -1 edited into a
+/// stored state ran (`tau` in the stored stages gave NaN headings), and a parameter edited in the
+/// configuration alone was kept as stored without a word. A setting whose float reads back a
+/// digit apart in both places (`serde_json` without `float_roundtrip`) is taken: HDR's eq 10
+/// table is rebuilt from it, not compared with the one written.
+#[cfg(feature = "serde")]
+#[test]
+fn a_pipeline_read_back_is_checked_against_its_configuration() {
+    let mut config = Preset::Tracked.config();
+    config.correction.bias = StaticBias::Leading { duration: 2.0 };
+    let mut p = Pipeline::new(config).unwrap();
+    let (t, r) = stream(500);
+    let mut h = vec![0.0; t.len()];
+    p.process_block(&t, &r, None, Outputs::heading(&mut h))
+        .unwrap();
+    let json = serde_json::to_string(&p).unwrap();
+    assert_eq!(serde_json::from_str::<Pipeline>(&json).unwrap(), p);
+    let read =
+        |edited: String| serde_json::from_str::<Pipeline>(&edited).map_err(|e| e.to_string());
+    // in the configuration (the first of each) and in the stages (the second)
+    for (from, to, named) in [
+        ("\"tau\":0.75", "\"tau\":-0.75", "lowpass_tau"),
+        ("\"gap_limit\":2.0", "\"gap_limit\":-1.0", "gap_limit"),
+        ("\"c2\":1.8", "\"c2\":-1.0", "hdr_c2"),
+        ("\"c2\":1.8", "\"c2\":2.0", "stages do not match"),
+    ] {
+        let e = read(json.replacen(from, to, 1)).unwrap_err();
+        assert!(e.contains(named), "{from}: {e}");
+        if json.matches(from).count() > 1 {
+            let second = json.rfind(from).unwrap();
+            let edited = format!("{}{to}{}", &json[..second], &json[second + from.len()..]);
+            assert!(
+                read(edited).unwrap_err().contains("stages do not match"),
+                "{from}"
+            );
+        }
+    }
+    let last = format!("\"last\":{}", p.last_time().unwrap());
+    let e = read(json.replace(&last, "\"last\":1e300")).unwrap_err();
+    assert!(e.contains("last_time"), "{e}");
+    let nudged = json.replace("\"c1\":0.16", "\"c1\":0.16000000000000003");
+    let restored = read(nudged).unwrap();
+    assert_eq!(restored.config().hdr.unwrap().c1, 0.16000000000000003);
+    // a state written with the table (before it was rebuilt) reads back as it was
+    let with_table = json.replace("\"bound\":", "\"attenuation\":[1.0,0.5],\"bound\":");
+    assert_eq!(read(with_table).unwrap(), p);
+}

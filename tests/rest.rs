@@ -192,15 +192,18 @@ fn the_scaled_bound_survives_a_gap_restart_and_a_reset_restores_the_configured_o
     assert_eq!(p, Pipeline::new(config).unwrap());
 }
 
+/// A factor beyond 2^20 is refused too: 1e308 over a noisy rest made the dead band infinite
+/// (every rate 0, and a state `serde_json` wrote but could not read back). At 2^20 over a rest
+/// whose readings swing by +-3 rad/s the pipeline round-trips.
 #[test]
-fn negative_or_non_finite_factors_are_rejected() {
+fn negative_non_finite_or_huge_factors_are_rejected() {
     type Set = fn(&mut NoiseScaled, f64);
     let settings: [(&str, Set); 2] = [
         ("threshold_sigmas", |n, v| n.threshold_sigmas = Some(v)),
         ("hdr_bound_sigmas", |n, v| n.hdr_bound_sigmas = Some(v)),
     ];
     for (field, set) in settings {
-        for bad in [-1.0, f64::NAN, f64::INFINITY] {
+        for bad in [-1.0, f64::NAN, f64::INFINITY, 1e308, 2.0 * MAX_READING] {
             let mut config = Preset::Hdr.config();
             set(&mut config.noise_scaled, bad);
             let err = Pipeline::new(config).unwrap_err();
@@ -210,4 +213,21 @@ fn negative_or_non_finite_factors_are_rejected() {
             );
         }
     }
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn the_largest_factors_over_a_noisy_rest_round_trip() {
+    let mut config = Preset::Tuned.config();
+    config.correction.bias = StaticBias::Leading { duration: 1.0 };
+    config.noise_scaled = NoiseScaled {
+        threshold_sigmas: Some(MAX_READING),
+        hdr_bound_sigmas: Some(MAX_READING),
+    };
+    let mut p = Pipeline::new(config).unwrap();
+    for i in 0..300 {
+        p.update(i as f64 * 0.01, if i % 2 == 0 { 3.0 } else { -3.0 });
+    }
+    let json = serde_json::to_string(&p).unwrap();
+    assert_eq!(serde_json::from_str::<Pipeline>(&json).unwrap(), p);
 }

@@ -353,3 +353,38 @@ fn a_model_round_trips_through_json_and_an_unchecked_one_does_not_panic() {
     let mut broken: Sampler = serde_json::from_str(&json).unwrap();
     assert!(broken.nth(3).is_some());
 }
+
+/// The flicker term count of a configuration not validated, spanning 1e-300 to 1e308 s (an
+/// infinite number of decades), is the most there are (it overflowed: a panic in a debug build).
+#[test]
+fn flicker_terms_of_an_unchecked_span_saturate() {
+    let config = GyroModelConfig {
+        bias_instability: 1e-4,
+        flicker_min: 1e-300,
+        flicker_max: 1e308,
+        ..GyroModelConfig::ideal(100.0)
+    };
+    assert!(config.validate().is_err());
+    let most = GyroModelConfig {
+        bias_instability: 1e-4,
+        flicker_max: 1e7,
+        flicker_min: 1.0,
+        ..GyroModelConfig::ideal(100.0)
+    };
+    assert!(config.flicker_terms() >= most.flicker_terms());
+}
+
+/// A sampler read back with a drop probability of 1 or more (no validation) still gives
+/// instants: it kept nothing after the first, and `next` never returned.
+#[cfg(feature = "serde")]
+#[test]
+fn a_sampler_read_back_losing_every_sample_still_returns() {
+    let model = GyroModel::new(GyroModelConfig::ideal(100.0), 1).unwrap();
+    let json = serde_json::to_string(&model.sampler(0.0)).unwrap();
+    let json = json.replace("\"drop_probability\":0.0", "\"drop_probability\":1.5");
+    let mut broken: Sampler = serde_json::from_str(&json).unwrap();
+    let (sent, received) = std::sync::mpsc::channel();
+    std::thread::spawn(move || sent.send(broken.nth(3)));
+    let fourth = received.recv_timeout(std::time::Duration::from_secs(10));
+    assert!(fourth.expect("next never returned").is_some());
+}

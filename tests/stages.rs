@@ -1,18 +1,13 @@
 //! Each stage against values worked out by hand from the papers' equations.
 
+mod common;
+use common::run;
 use gyrocore::*;
 
 const EPS: f64 = 1e-12;
 
 fn close(a: f64, b: f64) -> bool {
     (a - b).abs() <= EPS * (1.0 + b.abs())
-}
-
-fn run<S: Stage<Output = f64>>(stage: &mut S, t: &[f64], rate: &[f64]) -> Vec<f64> {
-    t.iter()
-        .zip(rate)
-        .map(|(&ti, &ri)| stage.update(ti, ri))
-        .collect()
 }
 
 #[test]
@@ -345,5 +340,19 @@ fn invalid_parameters_name_the_parameter() {
             other => panic!("expected InvalidParameter for {name}, got {other:?}"),
         }
         assert!(err.to_string().contains(name));
+    }
+}
+
+/// `Hdr::bound_correction` of NaN keeps the bound in force (NaN lifted every bound: `I` ran to
+/// 0.235 past a bound of 0.05); a negative bound is its magnitude, 0 turns HDR off.
+#[test]
+fn hdr_bound_of_nan_keeps_the_bound_in_force() {
+    let t: Vec<f64> = (0..6).map(f64::from).collect();
+    for (bound, drift) in [(f64::NAN, 0.05), (-0.05, 0.05), (0.0, 0.0)] {
+        let mut h = Hdr::new(hand_hdr()).unwrap();
+        h.bound_correction(0.05);
+        h.bound_correction(bound);
+        run(&mut h, &t, &[0.2; 6]);
+        assert!(close(h.drift(), drift), "{bound}: {}", h.drift());
     }
 }

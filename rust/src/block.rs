@@ -2,8 +2,9 @@
 //! and the decision clock of the HDR stage, which keeps Table III's per-1-s-step meaning at any
 //! input rate.
 
-use crate::error::check_positive;
+use crate::error::check_duration;
 use crate::stage::{check_len, Clock};
+use crate::validate::{check_block, usable_reading};
 use crate::Error;
 
 /// Time-weighted mean over consecutive blocks of `interval` seconds.
@@ -58,10 +59,21 @@ pub struct DownsampleConfig {
     pub interval: f64,
 }
 
+impl DownsampleConfig {
+    /// Checks the interval: > 0 and at most 2^40 s, as HDR's.
+    pub fn validate(&self) -> Result<(), Error> {
+        check_duration("interval", self.interval)
+    }
+}
+
 /// Block down-sampling by averaging (the HDR paper's second eq 14:
 /// `w_i^{1Hz} = 1/10 sum_j w_{10i+j}^{10Hz}`), generalised to irregular timestamps.
 #[derive(Debug, Clone, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct Downsample {
     config: DownsampleConfig,
     block: BlockMean,
@@ -69,9 +81,9 @@ pub struct Downsample {
 }
 
 impl Downsample {
-    /// Validates `config` and builds the stage.
+    /// Validates `config` ([`DownsampleConfig::validate`]) and builds the stage.
     pub fn new(config: DownsampleConfig) -> Result<Self, Error> {
-        check_positive("interval", config.interval)?;
+        config.validate()?;
         Ok(Downsample {
             config,
             block: BlockMean::default(),
@@ -79,13 +91,23 @@ impl Downsample {
         })
     }
 
-    /// Feeds one sample; returns `(t, mean rate)` when the sample at `t` closes a block.
+    /// Feeds one sample; returns `(t, mean rate)` when the sample at `t` closes a block. A
+    /// sample whose time the [`Clock`] refuses, or whose rate is not finite or lies beyond
+    /// [`MAX_READING`](crate::MAX_READING), is left out (a NaN made its block's mean NaN).
     #[inline]
     pub fn update(&mut self, t: f64, rate: f64) -> Option<(f64, f64)> {
+        if self.clock.interval(t).is_none() || !usable_reading(rate, None) {
+            return None;
+        }
         let dt = self.clock.tick(t);
         self.block
             .push(self.config.interval, dt, rate)
             .map(|(mean, _)| (t, mean))
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &DownsampleConfig {
+        &self.config
     }
 
     /// Returns the stage to its initial state.
@@ -95,7 +117,8 @@ impl Downsample {
     }
 
     /// Feeds a block; writes the closed blocks' end times and means to the front of `out_t` and
-    /// `out_rate` (which must be as long as `t`) and returns how many were written.
+    /// `out_rate` (which must be as long as `t`) and returns how many were written. The block is
+    /// checked first, as [`Stage::process_block`](crate::Stage::process_block) checks one.
     pub fn process_block(
         &mut self,
         t: &[f64],
@@ -103,7 +126,7 @@ impl Downsample {
         out_t: &mut [f64],
         out_rate: &mut [f64],
     ) -> Result<usize, Error> {
-        check_len("rate", rate.len(), t.len())?;
+        check_block(t, rate, None, self.clock.last(), true)?;
         check_len("out_t", out_t.len(), t.len())?;
         check_len("out_rate", out_rate.len(), t.len())?;
         let mut n = 0;

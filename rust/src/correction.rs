@@ -5,11 +5,11 @@
 //! (`r_m - eps0`), the linear calibration `s_bar * (.) + b_bar` follows, and the scale factors
 //! multiply the result. The bias is what the gyro reads at rest (corrected = measured - bias).
 
-use crate::error::{check_duration, check_factor, check_finite, check_range, check_reading};
+use crate::error::{check_duration, check_factor, check_range, check_reading};
 use crate::kernel::{Kernel, Measured, Signal};
 use crate::rest::{BiasEstimate, RestStatistics};
 use crate::stage::{Clock, Stage};
-use crate::{Error, MAX_READING};
+use crate::{Error, MAX_READING, MAX_TIME};
 
 /// Where the static bias `eps0` comes from (HDR eq 1-2, FOG section 2).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -103,8 +103,11 @@ impl CorrectionConfig {
         match self.bias {
             StaticBias::Fixed(b) => check_reading("bias", b)?,
             StaticBias::Window { start, end } => {
-                check_finite("bias_window.start", start)?;
-                check_finite("bias_window.end", end)?;
+                // No timestamp lies beyond +-2^40 s: a window past it was measured for ever, the
+                // whole drive averaged into the "static" bias (a window in ns, read as s).
+                let valid = "within +-2^40 s, the limit of a timestamp";
+                check_range("bias_window.start", start, -MAX_TIME, MAX_TIME, valid)?;
+                check_range("bias_window.end", end, -MAX_TIME, MAX_TIME, valid)?;
                 check_range(
                     "bias_window.end",
                     end,
@@ -184,6 +187,13 @@ macro_rules! correction_kernel {
                     config.bias = bias;
                 }
             }
+
+            fn in_force(config: &Calibration) -> Measured {
+                Measured {
+                    bias: Some(config.bias),
+                    ..Measured::default()
+                }
+            }
         }
     };
 }
@@ -221,7 +231,11 @@ correction_kernel!(SingleFactorKernel, |c, x| c.linear(x.rate) * c.config.c_ccw)
 /// While a rest window is being measured, the running mean so far is used as the bias, so the
 /// stage is causal and streams; after the window the bias is frozen.
 #[derive(Debug, Clone, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct Correction {
     calibration: Calibration,
     bias: BiasEstimate,

@@ -24,7 +24,8 @@ pub enum Error {
         what: &'static str,
         /// Its length.
         len: usize,
-        /// The length of the timestamps.
+        /// The length it must have: the timestamps' (the message names what else, where it is
+        /// another slice: `x` of a projection, the Allan factors).
         expected: usize,
     },
     /// A sample is NaN or infinite.
@@ -88,6 +89,9 @@ pub enum Error {
         /// Samples given.
         len: usize,
     },
+    /// A pipeline read back (`serde` feature) whose stages are not the ones its configuration
+    /// builds: a state edited by hand, damaged, or saved by another version.
+    StagesMismatch,
 }
 
 impl Error {
@@ -104,44 +108,17 @@ impl Error {
 
     /// The same error with its sample index counted from `offset` (a chunked reader passes the
     /// index of the chunk's first sample in the whole log, so messages name the log's sample).
-    pub fn with_index_offset(self, offset: usize) -> Self {
-        match self {
-            Error::NonFinite { what, index, value } => Error::NonFinite {
-                what,
-                index: index + offset,
-                value,
-            },
-            Error::OutOfRange {
-                what,
-                index,
-                value,
-                limit,
-            } => Error::OutOfRange {
-                what,
-                index: index + offset,
-                value,
-                limit,
-            },
-            Error::TooClose {
-                index,
-                previous,
-                value,
-            } => Error::TooClose {
-                index: index + offset,
-                previous,
-                value,
-            },
-            Error::NotIncreasing {
-                index,
-                previous,
-                value,
-            } => Error::NotIncreasing {
-                index: index + offset,
-                previous,
-                value,
-            },
-            other => other,
+    /// The sum saturates at `usize::MAX`: an offset near it (on a 32-bit target, the count of a
+    /// 50-day log at 1 kHz) overflowed, a panic in a debug build.
+    pub fn with_index_offset(mut self, offset: usize) -> Self {
+        match &mut self {
+            Error::NonFinite { index, .. }
+            | Error::OutOfRange { index, .. }
+            | Error::TooClose { index, .. }
+            | Error::NotIncreasing { index, .. } => *index = index.saturating_add(offset),
+            _ => {}
         }
+        self
     }
 }
 
@@ -158,7 +135,8 @@ impl fmt::Display for Error {
                 expected,
             } => write!(
                 f,
-                "length mismatch: {what} has {len} samples but t has {expected}"
+                "length mismatch: {what} has {len} samples but {} has {expected}",
+                measured_against(what)
             ),
             Error::NonFinite { what, index, value } => write!(
                 f,
@@ -228,15 +206,33 @@ impl fmt::Display for Error {
                 "the record is too short: {len} samples given, {needed} needed \
                  (choose a shorter averaging time or a longer record)"
             ),
+            Error::StagesMismatch => f.write_str(
+                "the stored pipeline's stages do not match its stored configuration (a state \
+                 edited by hand, damaged, or saved by another version): to change a parameter, \
+                 build a new pipeline from the edited configuration",
+            ),
         }
     }
 }
 
 impl core::error::Error for Error {}
 
+/// What a slice named `what` in [`Error::LengthMismatch`] is measured against: the timestamps,
+/// but for the slices of a projection (`x`), of the Allan variances (their averaging factors, and
+/// the phase one longer than the rate) and an output slice (its input, whichever that is).
+fn measured_against(what: &str) -> &'static str {
+    match what {
+        "y" | "z" => "x",
+        "variance" | "terms" => "factors",
+        "phase" => "rate + 1",
+        "out" => "the input",
+        _ => "t",
+    }
+}
+
 /// A number as a message shows it: in full where that is short (a timestamp keeps its digits),
 /// in exponent form where it is extreme (`1e308`, not 309 digits).
-struct Num(f64);
+pub(crate) struct Num(pub(crate) f64);
 
 impl fmt::Display for Num {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {

@@ -75,8 +75,14 @@ struct Anchor {
 
 /// The streaming filter: a validated config and its state (`Copy`, serialisable). Between fixes
 /// the state moves in closed form from the last fix applied (rust/src/fixes_segment.rs).
+///
+/// Read back (`serde` feature), its configuration is checked as [`Fusion::new`] checks it.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct Fusion {
     config: FusionConfig,
     segment: Segment,

@@ -24,7 +24,7 @@ pub struct FusionConfig {
     pub initial_heading_sigma: f64,
     /// Bias (Hong eq 1's `b`, what the gyro reads at rest) before any fix \[rad/s\].
     pub initial_bias: f64,
-    /// Its standard deviation \[rad/s\], > 0.
+    /// Its standard deviation \[rad/s\], > 0 and at most 1000, the range of the bias itself.
     pub initial_bias_sigma: f64,
     /// Standard deviation of the scale error `s` before any fix, in (0, 0.5].
     pub initial_scale_sigma: f64,
@@ -33,6 +33,9 @@ pub struct FusionConfig {
     #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
     pub gate: f64,
 }
+
+/// The largest initial bias and initial bias sigma \[rad/s\]: far beyond any gyro's.
+const MAX_INITIAL_BIAS: f64 = 1e3;
 
 /// The smallest standard deviation of a fix \[rad\] (about 2e-10 deg): its square stays a normal
 /// number, so an innovation's variance is never 0.
@@ -77,16 +80,18 @@ impl FusionConfig {
         check_range(
             "initial_bias",
             self.initial_bias,
-            -1e3,
-            1e3,
+            -MAX_INITIAL_BIAS,
+            MAX_INITIAL_BIAS,
             "within +-1000 rad/s",
         )?;
+        // Within the bias's own range: 1e6 rad/s beside an unknown heading (sigma 2^20) left the
+        // first fix's covariance to rounding (a variance of -1e-4, a NaN heading sigma for good).
         check_range(
             "initial_bias_sigma",
             self.initial_bias_sigma,
             least,
-            most,
-            sigma,
+            MAX_INITIAL_BIAS,
+            "> 0 and at most 1000 rad/s (the range of initial_bias)",
         )?;
         // s_bar = 1/(1+s) must stay away from 0 for eq 1's b and s to exist.
         let scale = "> 0 and at most 0.5";

@@ -3,6 +3,7 @@
 
 use core::fmt;
 
+use crate::error::Num;
 use crate::Error;
 
 /// What was wrong with a fix.
@@ -62,7 +63,7 @@ impl fmt::Display for FusionError {
                 problem,
             } => (index, what, value, problem),
         };
-        write!(f, "fix {index}: {what} = {value} ")?;
+        write!(f, "fix {index}: {what} = {} ", Num(value))?;
         match problem {
             FixProblem::NonFinite => f.write_str("is not finite; drop or repair the fix"),
             FixProblem::NotPositive => f.write_str("must be > 0 (a standard deviation in rad)"),
@@ -84,5 +85,6 @@ impl fmt::Display for FusionError {
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for FusionError {}
+// `core::error::Error`, as the core's `Error`: a `no_std` embedder's `?` into its own error type
+// (or `Box<dyn Error>`) takes both. No `source`: the message of `Gyro` is the core error's own.
+impl core::error::Error for FusionError {}

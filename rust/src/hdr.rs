@@ -134,16 +134,53 @@ pub struct HdrState {
 
 /// HDR's configuration as the kernel reads it: the settings, eq 10's attenuation table and the
 /// bound on `|I|` in force.
+///
+/// Serialised without the table, which is rebuilt from the settings when read back: a float
+/// read back may differ from the one written in its last digit (`serde_json` without its
+/// `float_roundtrip` feature), and the table read back would then not be the one its settings
+/// give, which a restored [`Pipeline`](crate::Pipeline) refuses.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(from = "StoredRule", into = "StoredRule")
+)]
 pub struct HdrRule {
     config: HdrConfig,
     /// `R(r)` for `r = 1..=ATTENUATION_TABLE`: eq 10 costs a `pow`, and `r` is a small integer.
     attenuation: [f64; ATTENUATION_TABLE],
     /// The bound on `|I|` in force: [`HdrConfig::max_correction`], or the one a measured rest
     /// window sets (see [`crate::NoiseScaled`]). A property of the sensor: a restart keeps it.
-    #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
     bound: f64,
+}
+
+/// What an [`HdrRule`] stores: its settings and the bound in force.
+#[cfg(feature = "serde")]
+#[derive(serde::Serialize, serde::Deserialize)]
+struct StoredRule {
+    config: HdrConfig,
+    #[serde(with = "crate::serde_float")]
+    bound: f64,
+}
+
+#[cfg(feature = "serde")]
+impl From<StoredRule> for HdrRule {
+    fn from(stored: StoredRule) -> Self {
+        HdrRule {
+            bound: stored.bound,
+            ..HdrRule::new(stored.config)
+        }
+    }
+}
+
+#[cfg(feature = "serde")]
+impl From<HdrRule> for StoredRule {
+    fn from(rule: HdrRule) -> Self {
+        StoredRule {
+            config: rule.config,
+            bound: rule.bound,
+        }
+    }
 }
 
 impl HdrRule {
@@ -247,6 +284,13 @@ impl Kernel for HdrKernel {
             state.integrator = within(state.integrator, rule.bound);
         }
     }
+
+    fn in_force(rule: &HdrRule) -> Measured {
+        Measured {
+            hdr_bound: Some(rule.bound),
+            ..Measured::default()
+        }
+    }
 }
 
 impl Validated for HdrKernel {
@@ -255,6 +299,12 @@ impl Validated for HdrKernel {
     fn configure(config: HdrConfig) -> Result<HdrRule, Error> {
         config.validate()?;
         Ok(HdrRule::new(config))
+    }
+
+    fn check(rule: &HdrRule) -> Result<(), Error> {
+        rule.config.validate()?;
+        let valid = ">= 0 (inf: no bound)";
+        check_range("hdr_max_correction", rule.bound, 0.0, f64::INFINITY, valid)
     }
 }
 
@@ -277,9 +327,13 @@ impl Hdr {
         self.parts().1.repetitions
     }
 
-    /// Replaces [`HdrConfig::max_correction`] as the bound on `|I|` by `bound` [rad/s]; `I` is
-    /// clamped to it at once. A bound of 0 turns HDR off.
+    /// Replaces [`HdrConfig::max_correction`] as the bound on `|I|` by `bound` [rad/s] (its
+    /// magnitude; infinity: no bound); `I` is clamped to it at once. A bound of 0 turns HDR off.
+    /// A NaN bound is no bound to set, and leaves the one in force (it lifted every bound).
     pub fn bound_correction(&mut self, bound: f64) {
+        if bound.is_nan() {
+            return;
+        }
         let (rule, state) = self.parts_mut();
         HdrKernel::measured(
             rule,

@@ -5,7 +5,9 @@
 use crate::error::check_range;
 use crate::{Error, MIN_INTERVAL};
 
-/// What to do with a NaN or infinite rate (or temperature) reading.
+/// What to do with a rate (or temperature) reading that is NaN, infinite or beyond
+/// [`MAX_READING`](crate::MAX_READING) in magnitude, or a temperature missing where the
+/// temperature model needs one.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum NonFinite {
@@ -71,9 +73,12 @@ impl InputPolicy {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct InputReport {
-    /// Non-finite readings replaced by the last finite one.
+    /// Readings [`NonFinite::Hold`] replaced by the last usable one.
     pub held: u64,
-    /// Samples left out (non-finite readings, or timestamps that do not move forward in `update`).
+    /// Samples left out: readings not finite or beyond [`MAX_READING`](crate::MAX_READING) (or
+    /// a missing temperature the model needs) that the policy does not hold, and, in `update`,
+    /// timestamps that are not finite, lie beyond [`MAX_TIME`](crate::MAX_TIME) or do not move
+    /// forward by [`MIN_INTERVAL`].
     pub skipped: u64,
     /// Intervals longer than the gap limit.
     pub gaps: u64,

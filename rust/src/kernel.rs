@@ -8,7 +8,10 @@
 //! (`pipeline/engine.rs`). [`Streaming`] wraps any kernel into a stand-alone stage with its own
 //! clock (the [`Stage`] trait), so each stage is also usable and testable on its own.
 
-use crate::stage::{Clock, Stage};
+use crate::stage::{check_len, check_stage_block, Clock, Stage};
+use crate::validate::{
+    check_lengths, interval_key, usable_reading, Checks, MAX_TIME, MIN_INTERVAL,
+};
 use crate::Error;
 
 /// Serde for configurations and states behind the `serde` feature (nothing without it).
@@ -161,6 +164,26 @@ pub trait Kernel {
     fn measured(config: &mut Self::Config, state: &mut Self::State, m: &Measured) {
         let _ = (config, state, m);
     }
+
+    /// What [`Kernel::measured`] has set in `config` (`None` where the stage takes nothing): a
+    /// restored pipeline hands these to the stages its configuration builds, and is whole only
+    /// if they then equal the stored ones.
+    fn in_force(config: &Self::Config) -> Measured {
+        let _ = config;
+        Measured::default()
+    }
+}
+
+impl Measured {
+    /// Each value of `self`, or of `other` where `self` has none.
+    pub fn or(self, other: Measured) -> Measured {
+        Measured {
+            bias: self.bias.or(other.bias),
+            threshold: self.threshold.or(other.threshold),
+            hdr_bound: self.hdr_bound.or(other.hdr_bound),
+            rest: self.rest.or(other.rest),
+        }
+    }
 }
 
 /// A stage the configuration may leave out: `None` passes the signal unchanged. For the
@@ -202,6 +225,10 @@ impl<K: Kernel> Kernel for Option<K> {
             K::measured(c, s, m);
         }
     }
+
+    fn in_force(config: &Self::Config) -> Measured {
+        config.as_ref().map_or_else(Measured::default, K::in_force)
+    }
 }
 
 /// Composes kernels in a tuple: the signal passes them in order.
@@ -236,6 +263,10 @@ macro_rules! chain {
             fn measured(config: &mut Self::Config, state: &mut Self::State, m: &Measured) {
                 $($k::measured(&mut config.$i, &mut state.$i, m);)+
             }
+
+            fn in_force(config: &Self::Config) -> Measured {
+                Measured::default()$(.or($k::in_force(&config.$i)))+
+            }
         }
     };
 }
@@ -255,6 +286,13 @@ pub trait Validated: Kernel {
     fn output(y: Signal) -> f64 {
         y.rate
     }
+
+    /// Checks a configuration read back (`serde` feature) as [`Validated::configure`] checks
+    /// settings; by default it takes any.
+    fn check(config: &Self::Config) -> Result<(), Error> {
+        let _ = config;
+        Ok(())
+    }
 }
 
 /// Implements [`Validated`] for kernels whose settings are their configuration (checked by its
@@ -272,6 +310,10 @@ macro_rules! settings_are_config {
             fn output(y: $crate::kernel::Signal) -> f64 {
                 ($out)(y)
             }
+
+            fn check(config: &Self::Config) -> Result<(), $crate::Error> {
+                config.validate()
+            }
         }
     };
     ($k:ty; output $out:expr) => {
@@ -286,9 +328,14 @@ pub(crate) use settings_are_config;
 /// A kernel as a stand-alone stage: its configuration, its state and its own [`Clock`], fed
 /// `(t, rate)` samples through the [`Stage`] trait. The pipeline does not use this wrapper: it
 /// keeps one clock for the whole chain.
+///
+/// Read back with the `serde` feature, its configuration is checked ([`Validated::check`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(bound = ""))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(bound = "", remote = "Self")
+)]
 pub struct Streaming<K: Kernel> {
     config: K::Config,
     state: K::State,
@@ -322,9 +369,26 @@ impl<K: Validated> Streaming<K> {
         (&mut self.config, &mut self.state)
     }
 
-    /// Feeds one sample whose interval is `dt` \[s\] > 0 (ignored for the stage's first sample).
+    /// Feeds one sample whose interval is `dt` \[s\] (ignored for the stage's first sample),
+    /// for a caller that keeps its own clock. An interval that is NaN, below [`MIN_INTERVAL`] or
+    /// beyond twice [`MAX_TIME`] (no two valid timestamps lie further apart), or a reading
+    /// [`Stage::update`] skips, leaves the stage as it was and gets the last output again: a NaN
+    /// or negative interval made the low-pass NaN for good, and a NaN one stopped HDR's steps.
+    /// It keeps no clock: a stage fed by `step`, then by [`Stage::update`] or
+    /// [`Stage::process_block`], takes their first sample as the start of its clock only.
     #[inline]
     pub fn step(&mut self, dt: f64, rate: f64) -> f64 {
+        let interval_valid = !self.started || interval_key(dt) <= interval_key(2.0 * MAX_TIME);
+        if interval_valid && usable_reading(rate, None) {
+            self.take(dt, rate)
+        } else {
+            self.last
+        }
+    }
+
+    /// [`Streaming::step`] of a sample already checked.
+    #[inline(always)]
+    fn take(&mut self, dt: f64, rate: f64) -> f64 {
         let x = Signal::corrected(rate);
         let y = if self.started {
             K::step(&self.config, &mut self.state, dt, x)
@@ -340,17 +404,69 @@ impl<K: Validated> Streaming<K> {
 impl<K: Validated> Stage for Streaming<K> {
     type Output = f64;
 
-    /// Feeds one sample. A sample whose timestamp [`Clock::interval`] refuses
-    /// leaves the stage as it was and gets the last output again (0 before the first).
+    /// Feeds one sample. A sample whose timestamp [`Clock::interval`] refuses, or whose rate is
+    /// not finite or lies beyond [`MAX_READING`](crate::MAX_READING), leaves the stage as it was
+    /// and gets the last output again (0 before the first), as [`crate::Pipeline::update`] skips
+    /// it: a NaN taken into the state made every later output NaN.
     #[inline]
     fn update(&mut self, t: f64, rate: f64) -> f64 {
         match self.clock.interval(t) {
-            Some(dt) => {
+            Some(dt) if usable_reading(rate, None) => {
                 self.clock.set(t);
+                // `step`, not `take`: after `step`, which keeps no clock, the clock's first
+                // interval is 0, which the stage must not take (the de-lag divided by it)
                 self.step(dt, rate)
             }
-            None => self.last,
+            _ => self.last,
         }
+    }
+
+    fn last_time(&self) -> Option<f64> {
+        self.clock.last()
+    }
+
+    /// Checked as [`Stage::process_block`] checks a block, the same outputs as
+    /// [`Stage::update`], at about the loop's cost alone: as the pipeline's loop does, each sample
+    /// is taken as it comes and checked on the way (a few integer operations beside the stage's
+    /// work, where a pass of its own over a block too large for the cache cost as much as the
+    /// stage); only if one may have failed is the block checked exactly, and the stage restored
+    /// if it did.
+    fn process_block(&mut self, t: &[f64], rate: &[f64], out: &mut [f64]) -> Result<(), Error> {
+        check_lengths(t, rate, None)?;
+        check_len("out", out.len(), t.len())?;
+        let (Some(&first), Some(&end)) = (t.first(), t.last()) else {
+            return Ok(());
+        };
+        let before = (self.state, self.clock, self.started, self.last);
+        let mut checks = Checks::default();
+        checks.reading(rate[0], None);
+        // The stage's first sample has no interval (and ignores the one it is given); a stage
+        // fed by `step`, which keeps no clock, has none for the block's first sample, which only
+        // starts the clock (as `update` takes it).
+        let (mut previous, skip) = match (self.clock.last(), self.started) {
+            (Some(last), _) => (last, 0),
+            (None, true) => (first, 1),
+            (None, false) => (first - MIN_INTERVAL, 0),
+        };
+        out[..skip].fill(self.last);
+        let taken = out[skip..].iter_mut().zip(&t[skip..]).zip(&rate[skip..]);
+        for ((o, &ti), &ri) in taken {
+            let dt = ti - previous;
+            checks.interval(dt);
+            checks.reading(ri, None);
+            *o = self.take(dt, ri);
+            previous = ti;
+        }
+        checks.time(first);
+        checks.time(end);
+        self.clock.set(end);
+        if !checks.passed() {
+            if let Err(e) = check_stage_block(t, rate, out.len(), before.1.last()) {
+                (self.state, self.clock, self.started, self.last) = before;
+                return Err(e);
+            }
+        }
+        Ok(())
     }
 
     fn reset(&mut self) {

@@ -105,4 +105,8 @@ impl<H: Kernel> Kernel for LagFree<H> {
     fn measured(config: &mut Self::Config, state: &mut Self::State, m: &Measured) {
         H::measured(&mut config.inner, &mut state.inner, m);
     }
+
+    fn in_force(config: &Self::Config) -> Measured {
+        H::in_force(&config.inner)
+    }
 }

@@ -38,6 +38,25 @@
 //!     assert!(out.heading.is_finite());
 //! }
 //! ```
+//!
+//! Where to go from there:
+//!
+//! - **Sample by sample** ([`Pipeline::update`], and `_with_temperature`, `_with_speed`): never
+//!   fails; a sample it cannot use (time not moving forward, a NaN or out-of-range reading, a
+//!   missing temperature the model needs) is skipped and counted in [`Pipeline::report`]
+//!   ([`InputReport`]); a rest window the stream passed without a reading is
+//!   [`Pipeline::rest_window_missed`].
+//! - **Block by block** ([`Pipeline::process_block`] with [`Outputs`]): a bad block is an
+//!   [`Error`] naming the first bad sample by its index, and leaves the pipeline as it was.
+//! - **Rests while driving**: [`Preset::Tracked`], with a speed per sample where there is one;
+//!   [`Pipeline::rest_tracker`] and [`Pipeline::process_block_reporting`] give the rests found.
+//! - **Heading fixes** (GNSS course, landmarks): [`FusedPipeline`], or [`Fusion`] on a rate of
+//!   your own; a bad fix is a [`FusionError`] naming it.
+//! - **Stop and resume** (`serde` feature): every state serialises and reads back bit for bit
+//!   (with `serde_json`, enable its `float_roundtrip` feature); a [`Pipeline`] or [`Fusion`] read
+//!   back is checked as `new` checks a configuration.
+//! - **One stage alone** ([`Integrator`], [`LowPass`], [`Hdr`], ...: the [`Stage`] trait) or a
+//!   stage of your own ([`Kernel`], `tests/custom_stage.rs`).
 #![cfg_attr(not(feature = "std"), no_std)]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
@@ -64,6 +83,8 @@ pub mod pipeline;
 pub mod rest;
 pub mod rest_tracker;
 #[cfg(feature = "serde")]
+mod serde_checked;
+#[cfg(feature = "serde")]
 mod serde_float;
 pub mod sim;
 mod stage;
@@ -75,7 +96,9 @@ pub use axis::Up;
 pub use block::{Downsample, DownsampleConfig};
 pub use correction::{Correction, CorrectionConfig, StaticBias, TemperatureScale};
 pub use error::Error;
-pub use fixes::{Fix, FixCounts, Fusion, FusionConfig, FusionError, FusionOutputs};
+pub use fixes::{
+    Estimate, Fix, FixCounts, FixProblem, Fusion, FusionConfig, FusionError, FusionOutputs,
+};
 pub use fixes_smooth::{smooth, Knot};
 pub use fused::{FusedOutputs, FusedPipeline, Samples};
 pub use hdr::{Hdr, HdrConfig};

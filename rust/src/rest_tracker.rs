@@ -262,6 +262,7 @@ impl RestTracker {
 
     /// Its standard error now [rad/s] (the variance at the last rest plus the random walk since),
     /// `None` before the first rest or rest window. The dead band and HDR's bound follow it.
+    /// `config` is the pipeline's (`pipeline.config().rest_tracker`), whose `bias_walk` it reads.
     pub fn std_error(&self, config: &RestTrackerConfig) -> Option<f64> {
         self.variance
             .map(|p| libm::sqrt(p + config.bias_walk * (self.now - self.updated).max(0.0)))

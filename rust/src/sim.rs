@@ -50,6 +50,9 @@ pub const MAX_FLICKER_TERMS: usize = 16;
 /// keep the flat part of the Allan deviation within about 3 % of `0.664 B` (tested).
 const FLICKER_TERMS_PER_DECADE: f64 = 2.0;
 
+/// The largest fraction of samples a logger may lose ([`GyroModelConfig::drop_probability`]).
+const MAX_DROP_PROBABILITY: f64 = 0.99;
+
 /// Stream numbers: each purpose draws from its own generator, so that changing how many samples are
 /// taken (the rate, the drops) does not change the drift.
 const STREAM_DRIFT: u64 = 1;
@@ -247,9 +250,11 @@ impl Iterator for Sampler {
                 let limit = 0.45 * self.period;
                 t += clip(self.jitter * self.rng.sample(), limit);
             }
-            // The first sample is always kept: it fixes the model's time origin.
-            if k == 0 || self.drop_probability == 0.0 || self.rng.uniform() >= self.drop_probability
-            {
+            // The first sample is always kept: it fixes the model's time origin. The probability
+            // is capped as `validate` caps it: a sampler read back with 1 or more (or NaN) kept
+            // nothing, and `next` never returned.
+            let drop = self.drop_probability.min(MAX_DROP_PROBABILITY);
+            if k == 0 || drop == 0.0 || self.rng.uniform() >= drop {
                 return Some(t);
             }
         }

@@ -1,12 +1,13 @@
 //! What every streaming stage shares: the [`Stage`] trait and the [`Clock`] that turns
 //! timestamps into the actual interval `T_i` of each sample.
 
-use crate::validate::{MAX_TIME, MIN_INTERVAL};
+use crate::validate::{check_block, MAX_TIME, MIN_INTERVAL};
 use crate::Error;
 
 /// A streaming stage: validated config + private state, fed one sample at a time.
 ///
-/// `update` never fails and never allocates; `process_block` is the same loop over a block.
+/// `update` never fails and never allocates; `process_block` checks the block as
+/// [`Pipeline::process_block`](crate::Pipeline::process_block) does, then runs the same loop.
 pub trait Stage {
     /// What the stage emits per sample.
     type Output: Copy;
@@ -17,20 +18,43 @@ pub trait Stage {
     /// Returns the stage to the state it had when it was created.
     fn reset(&mut self);
 
+    /// The last timestamp the stage took \[s\], if it keeps one: a block must start after it.
+    /// `None` (the default) checks each block on its own.
+    fn last_time(&self) -> Option<f64> {
+        None
+    }
+
     /// Feeds a block of samples; `out[i]` receives the output for sample `i`.
+    ///
+    /// The block is checked first ([`check_block`](crate::check_block): lengths, finite and
+    /// increasing times, also after [`Stage::last_time`], readings finite and within
+    /// [`MAX_READING`](crate::MAX_READING)), and the error names the first bad sample by its
+    /// index; a rejected block leaves the stage as it was (not `out`, which may have been
+    /// written, as [`Pipeline::process_block`](crate::Pipeline::process_block)'s outputs).
     fn process_block(
         &mut self,
         t: &[f64],
         rate: &[f64],
         out: &mut [Self::Output],
     ) -> Result<(), Error> {
-        check_len("rate", rate.len(), t.len())?;
-        check_len("out", out.len(), t.len())?;
+        check_stage_block(t, rate, out.len(), self.last_time())?;
         for ((o, &ti), &ri) in out.iter_mut().zip(t).zip(rate) {
             *o = self.update(ti, ri);
         }
         Ok(())
     }
+}
+
+/// The checks of [`Stage::process_block`]: the samples as [`check_block`] checks them after
+/// `previous` (the stage's last time), and an output slice of `out` values as long as them.
+pub(crate) fn check_stage_block(
+    t: &[f64],
+    rate: &[f64],
+    out: usize,
+    previous: Option<f64>,
+) -> Result<(), Error> {
+    check_block(t, rate, None, previous, true)?;
+    check_len("out", out, t.len())
 }
 
 /// Fails with [`Error::LengthMismatch`] unless `len == expected`.

@@ -61,6 +61,13 @@ impl Kernel for ThresholdKernel {
             config.threshold = threshold;
         }
     }
+
+    fn in_force(config: &ThresholdConfig) -> Measured {
+        Measured {
+            threshold: Some(config.threshold),
+            ..Measured::default()
+        }
+    }
 }
 
 settings_are_config!(ThresholdKernel);

@@ -1,7 +1,15 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)] // each test binary uses its own subset of the helpers
 
-use gyrocore::{Error, GyroModel, GyroSample, Output, Outputs, Pipeline};
+use gyrocore::{Error, GyroModel, GyroSample, Output, Outputs, Pipeline, Stage};
+
+/// Feeds `(t, rate)` through a stand-alone stage sample by sample, returning its outputs.
+pub fn run<S: Stage<Output = f64>>(stage: &mut S, t: &[f64], rate: &[f64]) -> Vec<f64> {
+    t.iter()
+        .zip(rate)
+        .map(|(&ti, &ri)| stage.update(ti, ri))
+        .collect()
+}
 
 /// Feeds one block through `p`, returning the per-sample outputs.
 pub fn try_block(p: &mut Pipeline, t: &[f64], r: &[f64]) -> Result<Vec<Output>, Error> {

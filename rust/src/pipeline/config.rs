@@ -9,7 +9,7 @@ use crate::integrate::IntegratorConfig;
 use crate::lowpass::LowPassConfig;
 use crate::rest_tracker::RestTrackerConfig;
 use crate::threshold::ThresholdConfig;
-use crate::Error;
+use crate::{Error, MAX_READING};
 
 /// Which stages run, and how. `None` disables a stage.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -122,14 +122,18 @@ pub struct NoiseScaled {
 }
 
 impl NoiseScaled {
-    /// Checks both factors; the error names the first invalid one.
+    /// Checks both factors (>= 0 and at most 2^20); the error names the first invalid one.
+    ///
+    /// Bounded so that a factor times the rest's noise (itself below 2^21 rad/s) stays finite: a
+    /// factor of 1e308 over a noisy rest made the dead band infinite, every rate 0, and a
+    /// pipeline state that `serde_json` writes but cannot read back (infinity as `null`).
     pub fn validate(&self) -> Result<(), Error> {
         for (name, value) in [
             ("threshold_sigmas", self.threshold_sigmas),
             ("hdr_bound_sigmas", self.hdr_bound_sigmas),
         ] {
             if let Some(v) = value {
-                check_range(name, v, 0.0, f64::MAX, "finite and >= 0")?;
+                check_range(name, v, 0.0, MAX_READING, "finite, >= 0 and at most 2^20")?;
             }
         }
         Ok(())

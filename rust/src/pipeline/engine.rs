@@ -17,6 +17,10 @@ use crate::threshold::{ThresholdConfig, ThresholdKernel};
 use crate::validate::{interval_key, usable_reading, Checks};
 
 use super::{Output, Outputs, PipelineConfig};
+#[cfg(feature = "serde")]
+use crate::error::{check_range, check_reading};
+#[cfg(feature = "serde")]
+use crate::Error;
 
 /// The presets without HDR (`raw`, `static_bias`, `hong_park`): correction, dead band, trapezoid.
 pub(crate) type PlainChain = (SingleFactorKernel, ThresholdKernel, TrapezoidKernel);
@@ -160,6 +164,51 @@ impl Engine {
     /// Hands what the pipeline measured to every stage.
     pub(crate) fn measured(&mut self, m: &Measured) {
         with_chain!(self, |chain| chain.measured(m))
+    }
+
+    /// What the stages have been handed so far (under the tracker, what it set in its chain).
+    #[cfg(feature = "serde")]
+    fn in_force(&self) -> Measured {
+        match self {
+            Engine::Plain(chain) => PlainChain::in_force(&chain.config),
+            Engine::Hdr(chain) => HdrChain::in_force(&chain.config),
+            Engine::General(chain) => GeneralChain::in_force(&chain.config),
+            Engine::Tracked(chain) => GeneralChain::in_force(&chain.state.config),
+        }
+    }
+
+    /// Checks an engine read back against `config` (valid): the values measured so far within
+    /// their ranges, and the stages `config` builds, handed those values, equal to the stored
+    /// ones (an edited copy of a setting runs as stored, whatever `config` says).
+    #[cfg(feature = "serde")]
+    pub(crate) fn check_restored(&self, config: &PipelineConfig) -> Result<(), Error> {
+        let measured = self.in_force();
+        if let Some(bias) = measured.bias {
+            check_reading("bias", bias)?;
+        }
+        if let Some(threshold) = measured.threshold {
+            check_range("threshold", threshold, 0.0, f64::MAX, "finite and >= 0")?;
+        }
+        if let Some(bound) = measured.hdr_bound {
+            let valid = ">= 0 (inf: no bound)";
+            check_range("hdr_max_correction", bound, 0.0, f64::INFINITY, valid)?;
+        }
+        let mut built = Engine::new(config);
+        built.measured(&measured);
+        let same = match (&built, self) {
+            (Engine::Plain(a), Engine::Plain(b)) => a.config == b.config,
+            (Engine::Hdr(a), Engine::Hdr(b)) => a.config == b.config,
+            (Engine::General(a), Engine::General(b)) => a.config == b.config,
+            (Engine::Tracked(a), Engine::Tracked(b)) => {
+                a.config == b.config && a.state.config == b.state.config
+            }
+            _ => false,
+        };
+        if same {
+            Ok(())
+        } else {
+            Err(Error::StagesMismatch)
+        }
     }
 
     /// The settled samples of `block` from `cursor.next` on, through the chain's loop; see

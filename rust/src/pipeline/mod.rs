@@ -26,10 +26,24 @@ use crate::rest_tracker::{check_speed, Rest, RestTracker};
 use crate::stage::Clock;
 use crate::validate::{check_block, check_lengths, interval_key, usable_reading, Checks};
 use crate::Error;
+#[cfg(feature = "serde")]
+use crate::{error::check_range, MAX_TIME};
 
 /// The composed pipeline; see the module doc for the order of the stages.
+///
+/// With the `serde` feature it serialises whole (its configuration, every stage's state and the
+/// input report), and a pipeline read back carries on bit for bit where it was (with
+/// `serde_json`, enable its `float_roundtrip` feature: without it the last digit of a float may
+/// change). Reading one back checks it as [`Pipeline::new`] checks a configuration, and checks
+/// that its stages are the ones the configuration builds: a state edited by hand or damaged is
+/// the deserialiser's error (with this crate's words), never a pipeline that runs on values
+/// `new` refuses. To change a parameter, build a new pipeline from the edited configuration.
 #[derive(Debug, Clone, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct Pipeline {
     config: PipelineConfig,
     engine: Engine,
@@ -67,6 +81,17 @@ impl Pipeline {
     /// The configuration.
     pub fn config(&self) -> &PipelineConfig {
         &self.config
+    }
+
+    /// The checks of a pipeline read back (see the type's doc): its configuration, its clock,
+    /// and its stages against the ones the configuration builds.
+    #[cfg(feature = "serde")]
+    pub(crate) fn check_restored(&self) -> Result<(), Error> {
+        self.config.validate()?;
+        if let Some(t) = self.clock.last() {
+            check_range("last_time", t, -MAX_TIME, MAX_TIME, "within +-2^40 s")?;
+        }
+        self.engine.check_restored(&self.config)
     }
 
     /// The static bias in use now [rad/s] and how many readings it averages.
@@ -118,7 +143,10 @@ impl Pipeline {
         self.engine.rest_tracker()
     }
 
-    /// Feeds one sample (`t` \[s\], `rate` [rad/s]) without a temperature.
+    /// Feeds one sample (`t` \[s\], `rate` [rad/s]) without a temperature; see
+    /// [`Pipeline::update_with_temperature`] for what is skipped. With a temperature model
+    /// ([`CorrectionConfig::temperature`](crate::CorrectionConfig::temperature)) every sample
+    /// needs a temperature, and each one given here is skipped (counted in [`Pipeline::report`]).
     #[inline]
     pub fn update(&mut self, t: f64, rate: f64) -> Output {
         self.update_with_temperature(t, rate, None)
@@ -171,7 +199,9 @@ impl Pipeline {
     ///
     /// The settled samples (after the first, past the rest window) run through the chain's loop,
     /// which checks them on the way; the pipeline is restored if any fails, and the block is
-    /// checked again only then, to name the first bad sample.
+    /// checked again only then, to name the first bad sample. The copy it restores from lives on
+    /// the stack for the call: `size_of::<Pipeline>()`, about 2.3 KB with the rest tracker's
+    /// chain (a small target's stack must hold it twice).
     pub fn process_block(
         &mut self,
         t: &[f64],

@@ -1,7 +1,7 @@
 //! The simulated gyro's configuration ([`GyroModelConfig`], Hong eq 1 and 10-11 with the Allan
 //! noise terms) and its temperature profile.
 
-use super::{FLICKER_TERMS_PER_DECADE, MAX_FLICKER_TERMS};
+use super::{FLICKER_TERMS_PER_DECADE, MAX_DROP_PROBABILITY, MAX_FLICKER_TERMS};
 use crate::error::{check_duration, check_magnitude, check_positive, check_range};
 use crate::{Error, MAX_READING};
 
@@ -129,7 +129,7 @@ impl GyroModelConfig {
             "drop_probability",
             self.drop_probability,
             0.0,
-            0.99,
+            MAX_DROP_PROBABILITY,
             "in [0, 0.99] (a logger that loses more keeps next to nothing)",
         )?;
         check_range(
@@ -201,8 +201,10 @@ impl GyroModelConfig {
             return 0;
         }
         let decades = libm::log10(self.flicker_max / self.flicker_min);
-        let n = libm::ceil(decades * FLICKER_TERMS_PER_DECADE - 1e-9).max(0.0) as usize + 1;
-        n.min(MAX_FLICKER_TERMS)
+        // Saturating: a config not validated may span infinitely many decades (1e-300 to 1e308
+        // s), whose count converts to usize::MAX.
+        let n = libm::ceil(decades * FLICKER_TERMS_PER_DECADE - 1e-9).max(0.0) as usize;
+        n.saturating_add(1).min(MAX_FLICKER_TERMS)
     }
 
     /// Correlation time \[s\] and standard deviation [rad/s] of flicker term `k` (`k <` [`Self::flicker_terms`]).
