@@ -266,3 +266,17 @@ def test_the_sample_check_says_what_a_pipeline_says(bad: str) -> None:
             errors.append((type(e), str(e), getattr(e, "index", None), getattr(e, "what", None)))
     assert errors[0] == errors[1]
     assert (errors[0] is None) == (bad == "none")
+
+
+@pytest.mark.parametrize("fixes", [False, True])
+def test_a_pickled_pipeline_edited_out_of_range_is_refused_with_its_reason(fixes: bool) -> None:
+    """A damaged state (a low-pass time constant made negative) was refused in the words of the
+    other shape of state ("invalid type: map, expected a tuple"), or taken (NaN headings after)."""
+    p = gyrocore.Pipeline("hdr", bias=0.0)
+    if fixes:
+        p.process(np.arange(10) * 0.01, np.zeros(10), fixes=([0.05], [0.0], [0.01]))
+    state = p.__getstate__()
+    assert '"tau":0.75' in state["state"]
+    edited = {**state, "state": state["state"].replace('"tau":0.75', '"tau":-1.0', 1)}
+    with pytest.raises(ValueError, match=r"^not a gyrocore pipeline state: invalid parameter lowpass_tau = -1: must be >= 0"):
+        gyrocore.Pipeline.__new__(gyrocore.Pipeline).__setstate__(edited)

@@ -239,13 +239,20 @@ impl Core {
         .map_err(|e| PyValueError::new_err(e.to_string()))
     }
 
-    /// Rebuilds from [`Core::state_json`].
+    /// Rebuilds from [`Core::state_json`]. The two shapes are told apart by their first
+    /// character (an object, or the fused pair as an array), so that a damaged state is refused
+    /// with its own reason, not the other shape's.
     pub(crate) fn from_state_json(state: &str) -> PyResult<Self> {
-        if let Ok(p) = serde_json::from_str(state) {
-            return Ok(Core::Plain(Box::new(p)));
+        let refused = |e: serde_json::Error| {
+            PyValueError::new_err(format!("not a gyrocore pipeline state: {e}"))
+        };
+        if !state.trim_start().starts_with('[') {
+            return Ok(Core::Plain(Box::new(
+                serde_json::from_str(state).map_err(refused)?,
+            )));
         }
-        let (inner, pending): (Box<FusedPipeline>, Vec<Fix>) = serde_json::from_str(state)
-            .map_err(|e| PyValueError::new_err(format!("not a gyrocore pipeline state: {e}")))?;
+        let (inner, pending): (Box<FusedPipeline>, Vec<Fix>) =
+            serde_json::from_str(state).map_err(refused)?;
         Ok(Core::Fused {
             inner,
             pending: pending.into(),
