@@ -27,6 +27,9 @@ INTERVAL_LIMIT = 2.0
 #: [degC] must lie strictly within +-2^20; the core refuses any other (or, under
 #: ``nonfinite="hold"/"skip"``, holds or skips it like a NaN).
 MAX_READING = 2.0**20
+#: The core's limit of a timestamp and a duration [s] (``gyrocore::MAX_TIME``): +-2^40 s, 35,000
+#: years (``bias_duration``, ``lowpass_tau``, a rest window's ends).
+MAX_SECONDS = 2.0**40
 #: Enough samples for a percentile; longer arrays are checked on a regular subset. The unit
 #: mistakes differ by a factor of 57 (deg/s read as rad/s), far more than the percentile of
 #: 10,000 values can be off; 100,000 took 2.5 ms of a 10^7-sample call (0.1 ms now).
@@ -182,6 +185,13 @@ def require_readings(what: str, values: FloatArray) -> None:
     times = np.arange(len(values), dtype=np.float64)  # valid times: the reading is what fails
     rate, temperature = (values, None) if what == "rate" else (np.zeros(len(values)), values)
     _gyrocore.check_samples(times, rate, temperature)
+
+
+def require_times(t: FloatArray) -> None:
+    """The core's :class:`~gyrocore.SampleError` for the first of the times ``t`` that is not
+    finite, does not increase or lies beyond +-2^40 s, naming its index; nothing if all are
+    usable. The core's own check of a block (the readings all valid), one rule and its words."""
+    _gyrocore.check_samples(t, np.zeros(len(t)), None)
 
 
 def real_number(value: object) -> float | None:

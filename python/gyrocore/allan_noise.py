@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ._arrays import FloatArray
-from ._checks import MAX_READING, check_number
+from ._checks import MAX_READING, MAX_SECONDS, check_number
 
 if TYPE_CHECKING:  # pragma: no cover
     # only a type here: importing the curve module at run time would import the pipeline, which
@@ -24,8 +24,6 @@ _SQRT_HOUR = 60.0
 _HOUR = 3600.0
 #: IEEE 952: the Allan deviation's flat floor is sqrt(2 ln 2 / pi) = 0.664 times the bias instability.
 FLICKER_FLOOR = math.sqrt(2.0 * math.log(2.0) / math.pi)
-#: The pipeline's longest duration [s] (``bias_duration``, ``lowpass_tau``: the core's ``MAX_TIME``).
-MAX_SECONDS = 2.0**40
 #: The shortest interval the core takes [s] (``gyrocore::MIN_INTERVAL``), for ``dt`` and ``hdr_interval``.
 MIN_INTERVAL = 1e-12
 #: The smallest noise :func:`settings_from_noise` takes (N [rad/sqrt(s)], B [rad/s]): 500 times

@@ -30,6 +30,7 @@ Units: s, rad/s, m/s.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field, replace
@@ -40,7 +41,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
-from ._checks import first_infinite, warn
+from ._checks import MAX_SECONDS, first_infinite, require_times, warn
 from ._gyrocore import SampleError
 from ._rests import MIN_REST, SPEED_THRESHOLD, accept, find_rests, measure_rest
 from ._smoother import SmoothedBias, smooth
@@ -326,8 +327,22 @@ def plan_log(
     finite and strictly increasing (or none) plan no bias, and the pipeline, which runs the log
     next, names the bad sample where it is."""
     if len(t) == 0 or not times_ok(t):
-        return BiasPlan("none: the log's times are invalid", overrides=without_bias(si))
+        return _no_plan(si)
     return plan_arrays(preset, si, t, rate, speed, options)
+
+
+def _no_plan(si: dict[str, Any]) -> BiasPlan:
+    """No bias for a log whose times the core refuses: the pipeline that runs it names the sample."""
+    return BiasPlan("none: the log's times are invalid", overrides=without_bias(si))
+
+
+def _window_beyond_time(si: dict[str, Any], t_start: float) -> bool:
+    """Whether the given rest window (``bias_window``, or ``bias_duration`` from ``t_start``)
+    reaches beyond the core's +-2^40 s, which the core refuses as a parameter: for times in
+    nanoseconds read as seconds, the bad time (and its unit) is the error to give first."""
+    window = si.get("bias_window") or ((t_start, t_start + float(si["bias_duration"])) if si.get("bias_duration")
+                                       is not None else (0.0, 0.0))
+    return max(abs(float(window[0])), abs(float(window[1]))) > MAX_SECONDS
 
 
 def plan_stream(
@@ -350,6 +365,8 @@ def plan_stream(
     t_start = 0.0
     if si.get("bias_duration") is not None:  # counts from the first sample
         t_start = next((float(t[0]) for t, _ in chunks() if len(t)), 0.0)
+    if _window_beyond_time(si, t_start) and not all(times_ok(t) for t, _ in itertools.islice(chunks(), 1)):
+        return _no_plan(si)
     return plan(preset, si, t_start, lambda window, how: measure_rest(chunks(), window, how), list, None, options)
 
 
@@ -390,8 +407,10 @@ def process_log(
         return replace(result, bias_source=causal_source(preset, si))
     refuse_tracking(si)
     options = Options.pop(si)
-    check_parameters(preset, si)
     ta, ra = as_float_array("t", t), as_float_array("rate", rate)
+    if len(ta) and _window_beyond_time(si, float(ta[0])) and not times_ok(ta):
+        require_times(ta)
+    check_parameters(preset, si)
     sp = None if speed is None else as_float_array("speed", speed) if speed_t is None else speed_on(ta, speed_t, speed)
     if sp is not None and len(sp) != len(ta):
         raise ValueError(f"speed has {len(sp)} samples but t has {len(ta)}: give one speed per gyro sample")
@@ -434,5 +453,7 @@ def _checked(fixes: FixesLike) -> Fixes:
 
 
 def times_ok(t: FloatArray) -> bool:
-    """Finite, strictly increasing times (otherwise the pipeline refuses them, naming the sample)."""
-    return bool(np.isfinite(t).all() and (np.diff(t) > 0).all())
+    """Finite, strictly increasing times within the core's +-2^40 s (otherwise the pipeline
+    refuses them, naming the sample; a rest found among epoch nanoseconds read as seconds was a
+    rest window the core refused by its own limit, without the unit's hint)."""
+    return bool(np.isfinite(t).all() and (np.diff(t) > 0).all() and np.abs(t).max(initial=0.0) <= MAX_SECONDS)

@@ -105,7 +105,7 @@ impl CorrectionConfig {
             StaticBias::Window { start, end } => {
                 // No timestamp lies beyond +-2^40 s: a window past it was measured for ever, the
                 // whole drive averaged into the "static" bias (a window in ns, read as s).
-                let valid = "within +-2^40 s, the limit of a timestamp";
+                let valid = "within +-2^40 s, the limit of a timestamp (epoch nanoseconds read as seconds lie beyond it)";
                 check_range("bias_window.start", start, -MAX_TIME, MAX_TIME, valid)?;
                 check_range("bias_window.end", end, -MAX_TIME, MAX_TIME, valid)?;
                 check_range(
