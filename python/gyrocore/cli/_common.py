@@ -100,8 +100,10 @@ def delimiter(text: str) -> str:
     return "\t" if text.lower() in ("tab", "\\t") else text
 
 
-def add_reading_options(parser: argparse.ArgumentParser) -> None:
-    """The options that say how to read a file input, the same for every command that reads one."""
+def add_reading_options(parser: argparse.ArgumentParser, rest_window: str) -> None:
+    """The options that say how to read a file input, the same for every command that reads one;
+    ``rest_window`` names the command's own rest window options, which ``--up-window`` defaults to
+    (each command has other ones, and a help naming options it lacks sent users nowhere)."""
     read = parser.add_argument_group(
         "reading (where the samples are; a header like 't [ms]' or 'gyro_z_dps' states its unit)"
     )
@@ -124,15 +126,16 @@ def add_reading_options(parser: argparse.ArgumentParser) -> None:
                       help="the accelerometer's x, y and z columns [m/s^2]: up is their mean over the rest window")
     axes.add_argument("--up", metavar="UP", help=f"the sensor axis that points up: {io.UP_HELP}")
     axes.add_argument("--up-window", nargs=2, metavar=("T0", "T1"),
-                      help=f"rest window over which up is measured: {WINDOW_HELP} (default: --bias-window, "
-                      "--bias-duration, or a log folder's rest window)")
+                      help=f"rest window over which up is measured: {WINDOW_HELP} (default: {rest_window}, "
+                      "else a log folder's rest window)")
 
 
 def reading_options(args: argparse.Namespace) -> dict[str, Any]:
     """The reading options given on the command line, as :class:`gyrocore.io.ReadOptions` fields.
 
     ``up`` is measured over ``--up-window``, else over the command's own rest window
-    (``--bias-window``, ``--bias-duration``), which the static bias is measured over too."""
+    (``--bias-window``, ``--bias-duration``; ``--window`` of calibrate and allan), which the static
+    bias (or the Allan deviation) is measured over too."""
     names = ("time_col", "rate_col", "time_unit", "rate_unit", "topic", "delimiter", "gyro_cols", "accel_cols", "up")
     out = {name: getattr(args, name) for name in names if getattr(args, name) is not None}
     window = _rest_window(args)
@@ -144,8 +147,8 @@ def reading_options(args: argparse.Namespace) -> dict[str, Any]:
 
 def _rest_window(args: argparse.Namespace) -> Window | None:
     """The rest window the command line gives, in the order ``--up-window``, ``--bias-window``,
-    ``--bias-duration`` (the first S seconds), or None."""
-    for option in ("up_window", "bias_window"):
+    ``--window`` (calibrate's and allan's rest), ``--bias-duration`` (the first S seconds), or None."""
+    for option in ("up_window", "bias_window", "window"):
         bounds = getattr(args, option, None)
         if bounds is not None:
             return Window.parse(bounds, "--" + option.replace("_", "-"))

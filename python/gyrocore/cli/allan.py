@@ -48,7 +48,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p.add_argument("--rrw", type=POSITIVE, default=None,
                    help="rate random walk K [rad/s^2/sqrt(Hz)] for --kalibr when the record is too short to show it")
     add_overwrite_option(p)
-    add_reading_options(p)
+    add_reading_options(p, "--window")
 
 
 def run(args: argparse.Namespace) -> int:

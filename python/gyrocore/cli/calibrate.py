@@ -54,7 +54,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
                    help="write the calibration (JSON): the reference fit where the log has a reference, "
                         "else the static bias")
     add_overwrite_option(p)
-    add_reading_options(p)
+    add_reading_options(p, "--window")
 
 
 #: What a folder needs to be calibrated from, said when it is not a log folder.

@@ -68,7 +68,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     bias.add_argument("--bias-dps", type=FINITE, metavar="B",
                       help="known bias [deg/s] (what the gyro reads at rest), for every method and log")
     add_override_options(p.add_argument_group("pipeline parameters for every method"))
-    add_reading_options(p)
+    add_reading_options(p, "--bias-duration")
     p.add_argument(
         "--causal",
         action="store_true",

@@ -66,7 +66,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p.add_argument("-o", "--out", required=True, help="output .csv/.parquet file, or a folder for several inputs")
     p.add_argument("--preset", default="recommended", help="preset name (default recommended)")
 
-    add_reading_options(p)
+    add_reading_options(p, "--bias-window or --bias-duration")
 
     bias = p.add_argument_group(
         "static bias (default: the rest window of a log folder's meta.json, else every rest found in the log, "

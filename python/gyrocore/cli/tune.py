@@ -90,7 +90,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     add("-o", "--out", metavar="FILE", help="write the parameter file (JSON) here")
     add("--json", action="store_true", help="print the result as JSON")
     add_overwrite_option(p)
-    add_reading_options(p)
+    add_reading_options(p, "--bias-duration")
 
 
 def _refuse_twice(option: str, specs: Sequence[str]) -> None:

@@ -297,7 +297,8 @@ class GyroSource:
         if window is None or o.accel_cols is None:
             raise ValueError(
                 f"{self.data_path}: up is measured from the accelerometer at rest, and no rest window is "
-                "given: give one (--bias-window or --bias-duration; up_window=), or give up (--up, up=)"
+                "given: give one (--up-window T0 T1, or the command's rest window: --bias-window, --bias-duration, or "
+                "--window of calibrate and allan; up_window=), or give up (--up, up=)"
             )
         samples = self._read(DEFAULT_CHUNK_ROWS, o.accel_cols)
         try:
