@@ -307,8 +307,9 @@ def plan(
 def plan_arrays(
     preset: str, si: dict[str, Any], t: FloatArray, rate: FloatArray, speed: FloatArray | None, options: Options
 ) -> BiasPlan:
-    """:func:`plan` for a log in memory (times already checked by :func:`times_ok`)."""
-    return plan(
+    """:func:`plan` for a log in memory (times already checked by :func:`times_ok`); where no rest
+    is found, its warning says what the steadiest stretch reads (a rate in deg/s, say)."""
+    found = plan(
         preset,
         si,
         float(t[0]),
@@ -317,6 +318,11 @@ def plan_arrays(
         t,
         options,
     )
+    if found.warning is None:
+        return found
+    from .calibration.rest import steady_stretch_hint  # calibration builds on the pipeline module too
+
+    return replace(found, warning=found.warning + steady_stretch_hint(t, rate, options.min_rest))
 
 
 def plan_log(
