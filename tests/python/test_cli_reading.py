@@ -355,3 +355,27 @@ def test_the_allan_plot_keeps_its_labels_inside_the_figure(tmp_path: Path, monke
         extent = text.get_window_extent(renderer)
         assert box.x0 <= extent.x0 and extent.x1 <= box.x1 and box.y0 <= extent.y0 and extent.y1 <= box.y1, text
     assert png.read_bytes()[:4] == b"\x89PNG"
+
+
+@pytest.mark.parametrize("units", ["s,deg/s", "[s],[deg/s]", "(s),(dps)"])
+def test_a_row_of_units_under_the_header_says_how_to_state_them(tmp_path: Path, units: str) -> None:
+    # phone apps and spreadsheets write one; it was only "'s' is not a number"
+    rows = "".join(f"{k * 0.01:.2f},{0.5 + k % 3},20\n" for k in range(300))
+    path = tmp_path / "phone.csv"
+    path.write_text(f"time,wz,temp\n{units},C\n{rows}")
+    error = one_error(gyrocore_cli("process", path, "--time-col", "time", "--rate-col", "wz", "--preset", "raw",
+                                   "--out", tmp_path / "h.csv", code=2))
+    assert error.startswith("gyrocore: error: ")
+    assert "phone.csv: line 2, column 1 (time): " in error
+    assert "a row of units: delete line 2 and state them in the header, time [s],wz [d" in error
+    # what the message says to do reads the file
+    path.write_text(f"time [s],wz [deg/s],temp\n{rows}")
+    log = gyrocore.read_log(path, time_col="time", rate_col="wz")
+    assert log.rate[0] == pytest.approx(np.radians(0.5))
+
+
+def test_a_word_that_is_no_unit_gets_no_units_row_hint(tmp_path: Path) -> None:
+    path = tmp_path / "x.csv"
+    path.write_text("t,gyro_z\nabc,0.1\n0.01,0.1\n")
+    with pytest.raises(ValueError, match=r"'abc' is not a number$"):
+        gyrocore.read_log(path)

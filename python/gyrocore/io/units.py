@@ -162,6 +162,14 @@ def _normal(unit: str) -> str:
     return re.sub(r"[\s*.^]", "", unit.lower())
 
 
+def is_unit(text: str) -> bool:
+    """Whether ``text`` is a time or rate unit as a header writes it, alone (``s``, ``[deg/s]``,
+    ``(ms)``): what a row of units under a header holds."""
+    m = _BRACKETED.match(text.strip())
+    unit = _normal(text if m is None or m["base"] else (m["square"] if m["square"] is not None else m["round"]))
+    return unit in HEADER_TIME_UNITS or unit in HEADER_RATE_UNITS
+
+
 def split_unit(column: str) -> tuple[str, str | None]:
     """A column name without the unit it states, and that unit as written (None if it states none).
 
