@@ -71,7 +71,9 @@ class Pipeline:
     whole log. Pickling keeps the full state, so a pipeline can be stopped and resumed.
 
     Args:
-        preset: ``raw``, ``static_bias``, ``hong_park``, ``hdr``, ``combined`` or ``recommended``.
+        preset: ``raw``, ``static_bias``, ``hong_park``, ``hdr``, ``combined``, ``tuned``, ``tracked``
+            or ``recommended`` (the default, as for :func:`process`, ``Log.process`` and the
+            command line).
         fusion: settings of the heading-fix stage (:data:`gyrocore.fixes.SETTINGS`, ``{}``: defaults),
             run last on the corrected rate from the first sample; without it, fixes start the stage
             only in the first block (docs/fixes.md).
@@ -89,7 +91,7 @@ class Pipeline:
             refused warns of nothing).
     """
 
-    def __init__(self, preset: str = "hdr", *, fusion: dict[str, float] | None = None, **overrides: Any) -> None:
+    def __init__(self, preset: str = "recommended", *, fusion: dict[str, float] | None = None, **overrides: Any) -> None:
         si = _to_si(overrides)
         self._inner = core_pipeline(preset, si)
         self._preset = preset
@@ -444,7 +446,7 @@ def _stage_settings(params: dict[str, Any], settings: dict[str, float]) -> dict[
 def process(
     t: ArrayLike,
     rate: ArrayLike,
-    preset: str = "hdr",
+    preset: str = "recommended",
     *,
     temperature: ArrayLike | None = None,
     outputs: tuple[str, ...] = ALL_OUTPUTS,
@@ -456,7 +458,8 @@ def process(
     out: OutArrays | None = None,
     **overrides: Any,
 ) -> HeadingResult:
-    """Heading of a whole log; ``outputs`` chooses which of ``heading``, ``rate`` and ``drift`` (and
+    """Heading of a whole log with ``preset`` (default ``recommended``, as everywhere: ``gyrocore
+    presets`` lists them); ``outputs`` chooses which of ``heading``, ``rate`` and ``drift`` (and
     with fixes ``heading_sigma``, ``fusion_bias``, ``fusion_scale``) are computed, and ``out`` gives
     arrays to fill with the first three (see :meth:`Pipeline.process`).
 
