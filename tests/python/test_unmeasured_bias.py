@@ -11,6 +11,8 @@ import pytest
 
 import gyrocore
 
+from .conftest import real_log_path
+
 T = np.arange(0.0, 60.0, 0.01)
 RATE = np.full_like(T, 0.002)
 
@@ -93,3 +95,12 @@ def test_a_steady_level_far_beyond_any_deg_per_s_rest_does_not_name_the_unit() -
         gyrocore.process(T, np.full_like(T, 5.0) + np.random.default_rng(4).normal(0, 0.002, len(T)), "static_bias")
     text = " ".join(str(w.message) for w in caught)
     assert "reads 5 rad/s" in text and "deg/s read as rad/s" not in text
+
+
+def test_a_highway_drive_in_rad_per_s_with_a_large_bias_is_not_said_to_be_in_deg_per_s() -> None:
+    # comma_seg40 drives straight with a bias of 0.068 rad/s: steady beyond 0.05 rad/s, turning little
+    log = gyrocore.read_log(real_log_path("comma_seg40"))
+    with pytest.warns(gyrocore.InputWarning) as caught:
+        log.process("static_bias", use_speed=False)
+    text = " ".join(str(w.message) for w in caught)
+    assert "or a rest or straight drive with a bias that large" in text and "deg/s read as rad/s" not in text

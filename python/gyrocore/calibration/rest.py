@@ -181,6 +181,11 @@ def detect_rest(
     return max(windows, key=lambda w: w[1] - w[0])
 
 
+#: Turns [rad/s] at the 99th percentile of ``|rate|`` beyond which a steady level that a deg/s rest
+#: would read names the unit: 115 deg/s, while a car in deg/s turns at 10 to 30.
+DEG_PER_S_TURNS = 2.0
+
+
 def steady_stretch_hint(ta: FloatArray, ra: FloatArray, min_duration: float, max_rate: float = MAX_RATE) -> str:
     """Where no rest was found: the longest stretch as steady as a rest whose level lies beyond
     ``max_rate`` [rad/s], and what it may be, as a clause to append to the "no rest" message ("" if
@@ -201,8 +206,10 @@ def steady_stretch_hint(ta: FloatArray, ra: FloatArray, min_duration: float, max
     level = float(np.mean(rate[np.searchsorted(t, a) : np.searchsorted(t, b, side="right")]))
     text = (f"; the steadiest stretch, {a - t[0]:.6g} .. {b - t[0]:.6g} s after the first sample, reads "
             f"{level:.4g} rad/s ({math.degrees(level):.4g} deg/s), as steady as a rest but beyond {max_rate:g} rad/s: "
-            "a steady turn, or a rest with a bias that large (give its window)")
-    if abs(math.radians(level)) <= max_rate:
+            "a steady turn, or a rest or straight drive with a bias that large (give a rest window or the bias)")
+    # deg/s read as rad/s: a level a deg/s rest reads, and turns a vehicle makes only in deg/s (a
+    # highway drive in rad/s with a large bias, comma_seg40, is steady beyond max_rate too)
+    if abs(math.radians(level)) <= max_rate and float(np.percentile(np.abs(rate), 99)) > DEG_PER_S_TURNS:
         text += ", or a rate in deg/s read as rad/s (give rate_unit='deg/s', --rate-unit deg/s)"
     return text
 
