@@ -41,3 +41,6 @@ def test_example_runs(page: str, index: int, code: str, tmp_path: Path) -> None:
     done = subprocess.run([sys.executable, script.name], cwd=work, capture_output=True, text=True, timeout=300)
     first_line = code.splitlines()[0]
     assert done.returncode == 0, f"{page} example {index} ({first_line}) failed:\n{done.stderr[-3000:]}"
+    # an example is what a reader copies: it must not show a misuse (processing.md's batch gave the
+    # first second of every real log as its rest, and 15 of them warned that the gyro turned in it)
+    assert "does not look like a rest" not in done.stderr, f"{page} example {index} gives a rest that is none"
