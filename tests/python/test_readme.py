@@ -75,3 +75,12 @@ def test_the_calibration_page_shows_what_its_example_prints() -> None:
     rest = (log.t >= cal.window[0]) & (log.t <= cal.window[1])
     noise = allan.noise_parameters(allan.deviation(log.rate[rest], 0.0035, taus="octave"))
     _in_order(_shown("docs/calibration.md", "noise"), str(noise))
+
+
+def test_the_python_page_says_what_the_result_holds_and_plots_it() -> None:
+    # it never said the heading's unit, that it is continuous, nor how to plot it beside a reference
+    text = " ".join((ROOT / "docs" / "python.md").read_text(encoding="utf-8").split())
+    assert "`heading` [rad] (float64, counter-clockwise positive, continuous" in text
+    assert "`heading_deg` the same in degrees" in text
+    assert any("plt.savefig(" in code and "r.heading_deg" in code for page, _, code in EXAMPLES
+               if page == "docs/python.md")
