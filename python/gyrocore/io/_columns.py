@@ -37,7 +37,8 @@ def column_positions(
     if missing:
         with_unit = [split_unit(str(h)) for h in header if split_unit(str(h))[1] is not None]
         short = f"; a name may leave out its unit, e.g. {with_unit[0][0]}" if with_unit else ""
-        found = [d for d in ",;\t|" if len(header) == 1 and d in str(header[0])]
+        # a space last: it may be part of a name, but one field cannot hold both of a log's columns
+        found = [d for d in ",;\t| " if len(header) == 1 and d in str(header[0]).strip()]
         if found:
             shown = "a tab" if found[0] == "\t" else repr(found[0])
             arg = "tab" if found[0] == "\t" else repr(found[0])
