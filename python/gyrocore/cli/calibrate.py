@@ -153,7 +153,12 @@ def run(args: argparse.Namespace) -> int:
     elif "heading_reference" in results:
         print(f"  reference fit: {results['heading_reference']['error']}")
     if args.save is not None:
-        print(f"  saved the {chosen.method} calibration to {args.save}")
+        print(f"  saved the {chosen.method} calibration to {args.save}; use it with gyrocore process ... "
+              f"--calibration {args.save}")
+    else:  # the bias printed is in rad/s, and how a run takes it was left to find
+        use = f"gyrocore process ... --bias-dps {math.degrees(static.bias):.6g}, or " if static is not None else ""
+        print(f"  to use it: {use}save it with --save FILE and give gyrocore process ... --calibration FILE "
+              f"(the {chosen.method} calibration: {'scale and bias' if fit is not None else 'its bias'})")
     return 0
 
 
