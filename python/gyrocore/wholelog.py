@@ -198,9 +198,9 @@ class BiasPlan:
 
 
 def rest_lines(source: str, rests: tuple[Rest, ...], indent: str) -> list[str]:
-    """The lines listing ``rests`` under a report's ``source`` line (none when that line is the
-    one rest used)."""
-    if len(rests) == 1 and source.startswith("rest "):
+    """The lines listing ``rests`` under a report's ``source`` line (none when that line names the
+    one rest used, as ``first 10 s: rest ...`` does too)."""
+    if len(rests) == 1 and f"rest {rests[0]}" in source:
         return []
     return [f"{indent}rest {r}" for r in rests]
 

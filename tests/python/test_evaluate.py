@@ -352,3 +352,10 @@ def test_a_nan_heading_true_is_named_by_its_file_and_line(tmp_path: Path) -> Non
     drive.write_text("t,gyro_z,heading_true\n" + "\n".join(rows) + "\n")
     proc = gyrocore_cli("evaluate", drive, "--preset", "raw", code=2)
     assert f"{drive}: line 11, column heading_true: empty or nan; a reference's t and heading must be finite" in proc.stderr
+
+
+def test_a_bias_duration_names_its_rest_once(capsys: pytest.CaptureFixture[str]) -> None:
+    # "first 10 s: rest [...] ..." was followed by a line that named the same rest again
+    assert main(["evaluate", str(real_log_path("comma_seg40")), "--preset", "static_bias", "--bias-duration", "10"]) == 0
+    sources = capsys.readouterr().out.split("bias source:")[1]
+    assert sources.count("rest [") == 1 and "first 10 s: rest [" in sources
