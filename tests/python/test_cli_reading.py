@@ -379,3 +379,20 @@ def test_a_word_that_is_no_unit_gets_no_units_row_hint(tmp_path: Path) -> None:
     path.write_text("t,gyro_z\nabc,0.1\n0.01,0.1\n")
     with pytest.raises(ValueError, match=r"'abc' is not a number$"):
         gyrocore.read_log(path)
+
+
+def test_a_unit_option_takes_the_spellings_a_header_takes(tmp_path: Path) -> None:
+    # a header's gyro_z_dps and t_msec were read, while --rate-unit dps and --time-unit msec were refused
+    path = tmp_path / "d.csv"
+    path.write_text("time,wz\n" + "".join(f"{k * 10},{1.5 + k % 4}\n" for k in range(300)))
+    spelled = {"time_col": "time", "rate_col": "wz", "time_unit": "msec", "rate_unit": "dps"}
+    canonical = {**spelled, "time_unit": "ms", "rate_unit": "deg/s"}
+    a, b = gyrocore.read_log(path, **spelled), gyrocore.read_log(path, **canonical)
+    assert np.array_equal(a.t, b.t) and np.array_equal(a.rate, b.rate)
+    for name, option in (("dps", ("--time-unit", "msec", "--rate-unit", "dps")),
+                         ("canonical", ("--time-unit", "ms", "--rate-unit", "deg/s"))):
+        gyrocore_cli("process", path, "--time-col", "time", "--rate-col", "wz", *option, "--preset", "raw",
+                     "--out", tmp_path / f"{name}.csv", code=0)
+    assert (tmp_path / "dps.csv").read_text() == (tmp_path / "canonical.csv").read_text()
+    with pytest.raises(ValueError, match="unknown rate_unit 'rpm'"):
+        gyrocore.read_log(path, time_col="time", rate_col="wz", rate_unit="rpm")

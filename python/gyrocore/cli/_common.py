@@ -20,6 +20,7 @@ from ..calibration import Calibration
 from ..evaluate import Failed
 from ..io import atomic_path
 from ..io.atomic import check_output_folder
+from ..io.units import rate_unit_named, time_unit_named
 from ..io._paths import error_text, one_line
 from ..pipeline import Pipeline, has_bias_source, recommended_preset
 from ..window import Window
@@ -110,10 +111,11 @@ def add_reading_options(parser: argparse.ArgumentParser, rest_window: str) -> No
     read.add_argument("--time-col", help="time column, with or without its unit (default t; "
                       "column number for a plain .npy array)")
     read.add_argument("--rate-col", help="rate column, with or without its unit (default gyro_z)")
-    read.add_argument("--time-unit", choices=tuple(io.TIME_UNITS),
+    # a unit as a header may spell it (sec, dps) is taken too: the type runs before the choices' check
+    read.add_argument("--time-unit", choices=tuple(io.TIME_UNITS), type=time_unit_named,
                       help="unit of the time column (default: the header's, else s)")
-    read.add_argument("--rate-unit", choices=io.RATE_UNITS,
-                      help="unit of the rate column (default: the header's, else rad/s)")
+    read.add_argument("--rate-unit", choices=io.RATE_UNITS, type=rate_unit_named,
+                      help="unit of the rate column (default: the header's, else rad/s; also dps)")
     read.add_argument("--topic", help="bag topic with sensor_msgs/Imu (default: the only one)")
     read.add_argument("--delimiter", type=delimiter, help="CSV delimiter (default , and a tab for .tsv; "
                       "'tab' or '\\t' for a tab)")

@@ -27,7 +27,7 @@ from ._npyfile import check_npz, npy_chunks, npy_shape, npz_chunks
 from ._parquetfile import parquet_chunks, parquet_file, warn_given_time_unit
 from ._paths import check_file, check_readable, content_hint, missing
 from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder, storage_file_hint
-from .units import RATE_UNITS, TIME_UNITS, header_options
+from .units import RATE_UNITS, TIME_UNITS, header_options, rate_unit_named, time_unit_named
 
 #: Samples per chunk, at most (a CSV chunk also ends with a block of :data:`CSV_BLOCK_BYTES`).
 DEFAULT_CHUNK_ROWS = 1 << 16
@@ -110,8 +110,10 @@ class ReadOptions:
                 f"(--up {MEASURED} with --accel-cols measures it)"
             )
         if self.time_unit is not None:
+            object.__setattr__(self, "time_unit", time_unit_named(self.time_unit))
             require_choice("time_unit", self.time_unit, TIME_UNITS)
         if self.rate_unit is not None:
+            object.__setattr__(self, "rate_unit", rate_unit_named(self.rate_unit))
             require_choice("rate_unit", self.rate_unit, RATE_UNITS)
         if self.delimiter is not None and len(self.delimiter) != 1:
             raise ValueError(f"delimiter must be one character, got {self.delimiter!r}")
