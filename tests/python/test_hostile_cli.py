@@ -229,7 +229,8 @@ def test_a_file_name_with_a_line_break_keeps_the_error_on_one_line(tmp_path: Pat
     assert proc.returncode == 2
     shown = str(log).replace("\n", "\\n")
     assert proc.stderr == ("gyrocore: error: rate[50] is NaN: samples must be finite (drop or fill them first) "
-                           f"({shown}, line 52)\n")
+                           f"({shown}, line 52); or keep the file as it is: nonfinite='hold' (--nonfinite hold) "
+                           "uses the last usable reading there, 'skip' leaves the sample out\n")
 
 
 @pytest.mark.parametrize("kalibr", ["same.out", "sub/../same.out"])
@@ -310,8 +311,9 @@ def test_a_failed_line_of_a_batch_stays_one_line(tmp_path: Path) -> None:
     proc = run_cli("process", logs, "--out", tmp_path / "out")
     assert proc.returncode == 1
     shown = str(bad).replace("\n", "\\n")
-    assert (f"FAILED rate[50] is NaN: samples must be finite (drop or fill them first) ({shown}, line 52)\n"
-            in proc.stdout)
+    assert (f"FAILED rate[50] is NaN: samples must be finite (drop or fill them first) ({shown}, line 52); or keep "
+            "the file as it is: nonfinite='hold' (--nonfinite hold) uses the last usable reading there, 'skip' leaves "
+            "the sample out\n" in proc.stdout)
 
 
 def test_a_csv_given_as_a_json_file_is_said_not_to_be_json(tmp_path: Path) -> None:
