@@ -359,3 +359,20 @@ def test_a_bias_duration_names_its_rest_once(capsys: pytest.CaptureFixture[str])
     assert main(["evaluate", str(real_log_path("comma_seg40")), "--preset", "static_bias", "--bias-duration", "10"]) == 0
     sources = capsys.readouterr().out.split("bias source:")[1]
     assert sources.count("rest [") == 1 and "first 10 s: rest [" in sources
+
+
+def test_a_nan_reading_is_named_by_its_line_with_the_option_that_takes_it(tmp_path: Path) -> None:
+    # it said "LOG: rate[498] is NaN: ... (drop or fill them first)", and --param nonfinite=hold,
+    # which every method took, still failed: the raw baseline refused the NaN
+    from gyrocore import datasets
+
+    log = datasets.write_sample(tmp_path / "drive")
+    lines = (log / "gyro.csv").read_text().splitlines()
+    lines[499] = lines[499].split(",")[0] + ","
+    (log / "gyro.csv").write_text("\n".join(lines) + "\n")
+    error = gyrocore_cli("evaluate", log, "--preset", "static_bias", code=2).stderr
+    assert f"rate[498] is NaN: samples must be finite (drop or fill them first) ({log / 'gyro.csv'}, line 500); " in error
+    assert "--param nonfinite=hold uses the last usable reading there" in error
+    rows = json.loads(gyrocore_cli("evaluate", log, "--preset", "static_bias", "--param", "nonfinite=hold", "--json",
+                                   code=0).stdout)
+    assert rows[0]["e_psi_deg"] < 10

@@ -160,15 +160,17 @@ def _rest_window(args: argparse.Namespace) -> Window | None:
     return None
 
 
-def check_samples(path: Path, log: io.Log, args: argparse.Namespace) -> None:
+def check_samples(path: Path, log: io.Log, args: argparse.Namespace, reading_fix: str = "") -> None:
     """Refuse a log with a NaN or infinite time or rate, or times that do not increase, naming the
     first such sample by its file and line, in the core's words, as ``gyrocore process`` does; the
-    analyses (calibration) name only its index."""
+    analyses (calibration) name only its index. ``reading_fix`` follows the error of a bad reading:
+    the option of the command that takes one."""
     try:
         _gyrocore.check_samples(log.t, log.rate)
     except SampleError as e:
         source = io.open_source(path, **reading_options(args))
-        raise ValueError(f"{e} ({source.data_path}, {source.where(e.index)})") from None
+        fix = f"; {reading_fix}" if reading_fix and e.what == "rate" else ""
+        raise ValueError(f"{e} ({source.data_path}, {source.where(e.index)}){fix}") from None
 
 
 def add_override_options(group: argparse._ArgumentGroup) -> None:

@@ -27,6 +27,7 @@ from ._common import (
     add_overwrite_option,
     add_override_options,
     add_reading_options,
+    check_samples,
     pipeline_overrides,
     print_json,
     reading_options,
@@ -131,6 +132,10 @@ def run(args: argparse.Namespace) -> int:
 def _read(path: str, args: argparse.Namespace) -> Log:
     """The log at ``path``, which must have a reference heading."""
     log = read_log(path, use_fixes=not args.no_fixes, **reading_options(args))
+    if not any(p.partition("=")[0].strip() == "nonfinite" for p in args.param):
+        # the pipeline's own refusal named neither the line nor the option (it names the log)
+        check_samples(Path(path), log, args, "or keep the file as it is: --param nonfinite=hold uses the last "
+                      "usable reading there, --param nonfinite=skip leaves the sample out")
     if log.heading_ref is None:
         raise ValueError(
             f"{path}: no reference heading to score against (a log folder's reference.csv, or a CSV or "
