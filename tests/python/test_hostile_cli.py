@@ -344,8 +344,8 @@ def test_evaluate_warns_of_a_reference_heading_or_a_gyro_in_degrees(tmp_path: Pa
     if degrees == "gyro_z":
         assert warned[0].startswith(f"gyrocore: warning: {drive}: the gyro turns ")
         assert warned[0].endswith("times as much as the reference heading changes, about 180/pi = 57.3: its rates look "
-                                  "like deg/s, and they are read as rad/s (convert them with numpy.radians); its scores "
-                                  "would be wrong")
+                                  "like deg/s, and they are read as rad/s (give --rate-unit deg/s); its scores "
+                                  "would be wrong")  # it said to convert them with numpy.radians
 
 
 def test_evaluate_warns_of_a_gentle_real_drive_in_deg_s(tmp_path: Path) -> None:

@@ -174,8 +174,8 @@ def _units_apart(log: Log) -> str | None:
                 "wrong")
     if 0.5 * factor <= 1 / ratio <= 2 * factor:
         return (f"the gyro turns {1 / ratio:.3g} times as much as the reference heading changes, about 180/pi = 57.3: "
-                "its rates look like deg/s, and they are read as rad/s (convert them with numpy.radians); its scores "
-                "would be wrong")
+                "its rates look like deg/s, and they are read as rad/s (give --rate-unit deg/s); its scores "
+                "would be wrong")  # the option, not a conversion: the command reads deg/s itself
     return None
 
 
