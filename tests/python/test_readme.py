@@ -84,3 +84,13 @@ def test_the_python_page_says_what_the_result_holds_and_plots_it() -> None:
     assert "`heading_deg` the same in degrees" in text
     assert any("plt.savefig(" in code and "r.heading_deg" in code for page, _, code in EXAMPLES
                if page == "docs/python.md")
+
+
+@pytest.mark.parametrize("page", ["python", "processing", "reading-logs", "evaluation", "calibration"])
+def test_a_guide_page_that_reads_the_real_logs_says_what_to_use_without_them(page: str) -> None:
+    # the first example of each read ../shared/data/real/..., which a user of the package does not have
+    text = " ".join((ROOT / "docs" / f"{page}.md").read_text(encoding="utf-8").split())
+    before = text[: text.index("```")]
+    assert "../shared/data/real" in text
+    assert "the project's test data, not part of the package" in before
+    assert "python -m gyrocore.datasets sample_drive" in before
