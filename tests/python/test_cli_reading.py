@@ -396,3 +396,20 @@ def test_a_unit_option_takes_the_spellings_a_header_takes(tmp_path: Path) -> Non
     assert (tmp_path / "dps.csv").read_text() == (tmp_path / "canonical.csv").read_text()
     with pytest.raises(ValueError, match="unknown rate_unit 'rpm'"):
         gyrocore.read_log(path, time_col="time", rate_col="wz", rate_unit="rpm")
+
+
+def test_a_log_folders_gyro_csv_given_alone_names_the_folder(tmp_path: Path) -> None:
+    # read as a plain file it lost the folder's rest window and odometry without a word: the sample
+    # log's straight roads became 21 "rests" found from the rate
+    from gyrocore import datasets
+
+    folder = datasets.write_sample(tmp_path / "drive")
+    proc = gyrocore_cli("process", folder / "gyro.csv", "--out", tmp_path / "h.csv", code=0)
+    assert (f"gyrocore: warning: {folder / 'gyro.csv'}: the gyro of the log folder {folder}, read as a file alone, "
+            f"without the meta.json, odometry.csv, reference.csv beside it; give the folder ({folder})") in proc.stderr
+    assert "warning" not in gyrocore_cli("process", folder, "--out", tmp_path / "f.csv", code=0).stderr
+    alone = tmp_path / "alone"
+    alone.mkdir()
+    (alone / "gyro.csv").write_bytes((folder / "gyro.csv").read_bytes())  # nothing beside it: no word
+    assert "the gyro of the log folder" not in gyrocore_cli("process", alone / "gyro.csv", "--out",
+                                                            tmp_path / "a.csv", code=0).stderr

@@ -215,8 +215,10 @@ def test_a_reference_out_of_order_names_its_file_and_line(tmp_path: Path, second
     text = f"t,heading\n1700000010.5,0.1\n{second},0.2\n1700000020.5,0.3\n"
     folder = log_folder_with(tmp_path, "reference.csv", text)
     (tmp_path / "ref.csv").write_text(text)
+    # the gyro as a file of its own: a log folder's gyro.csv given alone warns that the folder is left out
+    (tmp_path / "drive.csv").write_bytes((folder / "gyro.csv").read_bytes())
     for args, where in ((("evaluate", folder, "--preset", "raw"), folder / "reference.csv"),
-                        (("calibrate", folder / "gyro.csv", "--reference", tmp_path / "ref.csv"), tmp_path / "ref.csv")):
+                        (("calibrate", tmp_path / "drive.csv", "--reference", tmp_path / "ref.csv"), tmp_path / "ref.csv")):
         proc = run_cli(*args)
         assert (proc.returncode, proc.stderr) == (2, f"gyrocore: error: {where}: line 3, column 1 (t): {second} does not "
                                                      "come after 1700000010.5 on line 2; a reference's times must strictly "

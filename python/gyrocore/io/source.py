@@ -22,7 +22,7 @@ from ..window import Window
 from ._axes import MEASURED, measure_up, parse_up, project, three_names
 from ._columns import concat, import_pyarrow_lazy_modules
 from ._csvfile import CsvLayout, csv_chunks, csv_layout
-from ._logfolder import GYRO_CSV, is_log_folder, read_meta
+from ._logfolder import GYRO_CSV, is_log_folder, read_meta, warn_gyro_alone
 from ._npyfile import check_npz, npy_chunks, npy_shape, npz_chunks
 from ._parquetfile import parquet_chunks, parquet_file, warn_given_time_unit
 from ._paths import check_file, check_readable, content_hint, missing
@@ -392,6 +392,7 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
     if not p.is_file():  # reading a named pipe or a device would wait for ever, or never end
         raise ValueError(f"{p}: not a regular file (a named pipe, socket or device); give a file or folder")
     check_readable(p)
+    warn_gyro_alone(p)
     try:
         return _open_file(p, options)
     except ValueError as e:
