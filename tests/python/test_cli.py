@@ -338,3 +338,10 @@ def test_presets_say_what_each_parameter_means_and_its_unit() -> None:
     assert "  hdr_increment " in out and "i_c [rad/s per step]" in out
     meanings = json.loads(gyrocore_cli("presets", "--json", code=0).stdout)["parameters"]
     assert meanings["threshold"].startswith("dead band") and "[rad/s]" in meanings["threshold"]
+
+
+def test_version_is_printed() -> None:
+    # what a bug report asks for first; it was "the following arguments are required: command"
+    import gyrocore
+
+    assert gyrocore_cli("--version", code=0).stdout == f"gyrocore {gyrocore.__version__}\n"
