@@ -376,3 +376,14 @@ def test_a_nan_reading_is_named_by_its_line_with_the_option_that_takes_it(tmp_pa
     rows = json.loads(gyrocore_cli("evaluate", log, "--preset", "static_bias", "--param", "nonfinite=hold", "--json",
                                    code=0).stdout)
     assert rows[0]["e_psi_deg"] < 10
+
+
+def test_plot_dir_names_the_plots_it_wrote(tmp_path: Path) -> None:
+    # it said "plots in DIR", naming no file
+    pytest.importorskip("matplotlib")
+    from gyrocore import datasets
+
+    log = datasets.write_sample(tmp_path / "drive")
+    out = gyrocore_cli("evaluate", log, "--preset", "raw", "--plot-dir", tmp_path / "plots", code=0).stdout
+    assert out.splitlines()[-1] == f"wrote {tmp_path / 'plots' / 'sample_drive.png'}"
+    assert (tmp_path / "plots" / "sample_drive.png").is_file()

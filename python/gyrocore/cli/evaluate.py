@@ -124,8 +124,10 @@ def run(args: argparse.Namespace) -> int:
         format_table(rows)
         format_bias_sources(rows)
         print_failures(rows, len(args.logs))
-        if args.plot_dir:
-            print(f"plots in {args.plot_dir}")
+        if args.plot_dir:  # "plots in DIR" named no file, nor which logs got one (a failed log gets none)
+            scored = {r.path for r in rows if isinstance(r, Score)}
+            written = [str(p) for p in _plot_paths(args.plot_dir, [log for log in read if log.path in scored])]
+            print(f"wrote {', '.join(written)}" if written else f"no plot written in {args.plot_dir}")
     return exit_code(rows)
 
 
