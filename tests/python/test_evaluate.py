@@ -387,3 +387,13 @@ def test_plot_dir_names_the_plots_it_wrote(tmp_path: Path) -> None:
     out = gyrocore_cli("evaluate", log, "--preset", "raw", "--plot-dir", tmp_path / "plots", code=0).stdout
     assert out.splitlines()[-1] == f"wrote {tmp_path / 'plots' / 'sample_drive.png'}"
     assert (tmp_path / "plots" / "sample_drive.png").is_file()
+
+
+def test_the_evaluation_page_says_json_is_one_list(tmp_path: Path) -> None:
+    # it said "one JSON object per (log, method)", read as JSON lines; the output is one list
+    from gyrocore import datasets
+
+    page = (Path(__file__).resolve().parents[2] / "docs" / "evaluation.md").read_text(encoding="utf-8")
+    assert "--json   # one JSON list, an object per (log, method)" in page
+    out = gyrocore_cli("evaluate", datasets.write_sample(tmp_path / "d"), "--preset", "raw", "--json", code=0).stdout
+    assert isinstance(json.loads(out), list)
