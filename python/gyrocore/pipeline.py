@@ -91,7 +91,9 @@ class Pipeline:
             refused warns of nothing).
     """
 
-    def __init__(self, preset: str = "recommended", *, fusion: dict[str, float] | None = None, **overrides: Any) -> None:
+    def __init__(
+        self, preset: str = "recommended", *, fusion: dict[str, float] | None = None, **overrides: Any
+    ) -> None:
         si = _to_si(overrides)
         self._inner = core_pipeline(preset, si)
         self._preset = preset

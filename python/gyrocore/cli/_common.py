@@ -176,7 +176,8 @@ def check_samples(path: Path, log: io.Log, args: argparse.Namespace, reading_fix
 def add_override_options(group: argparse._ArgumentGroup) -> None:
     """``--param`` and ``--calibration``: pipeline parameters beyond the command's own options."""
     group.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
-                       help="any pipeline parameter, in SI units (gyrocore presets lists them, with their units); repeatable")
+                       help="any pipeline parameter, in SI units (gyrocore presets lists them, with their units); "
+                       "repeatable")
     group.add_argument("--calibration", type=Path, metavar="FILE",
                        help="a calibration written by gyrocore calibrate --save: its scale, and its bias "
                        "unless another bias option is given")

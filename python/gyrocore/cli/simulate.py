@@ -80,8 +80,9 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         "gyrocore simulate --profile car --sensor crs03 --duration 1200 --out drive.csv",
         run,
     )
-    p.add_argument("-o", "--out", required=True, help="output CSV; columns " + ", ".join(f"{c} [{u}]" for c, u in zip(COLUMNS, UNITS))
-                   + " (drift: the slow part of the gyro's bias, beyond its static bias)")
+    columns = ", ".join(f"{c} [{u}]" for c, u in zip(COLUMNS, UNITS))
+    p.add_argument("-o", "--out", required=True,
+                   help=f"output CSV; columns {columns} (drift: the slow part of the gyro's bias, beyond its static bias)")
     p.add_argument(
         "--profile",
         choices=("car", "hdr-figure3", "robot", "square", "rotary"),
