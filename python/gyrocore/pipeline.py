@@ -36,6 +36,7 @@ from .rests import Rest
 from .window import (
     MIN_WINDOW_READINGS,
     RestWindowError,
+    ends_before_first,
     refuse_few_readings,
     refuse_past_end,
     refuse_start_before,
@@ -395,10 +396,7 @@ class Pipeline:
             return
         before = t[k - 1] if k > 0 else last
         if before is None:
-            raise RestWindowError(
-                f"the bias window [{start}, {end}] s ends before the first sample (t[0] = {t[0]}); "
-                "give the window in the log's own time base"
-            )
+            raise ends_before_first(start, end, float(t[0]))
         raise RestWindowError(
             f"the bias window [{start}, {end}] s holds no sample of the log, which jumps from t = {before} "
             f"to t = {t[k]} s (index {k} of this chunk); give a window where the log has readings at rest. "
