@@ -29,6 +29,9 @@ from .window import RestWindowError, Window, time_range
 Progress = Callable[[int, "int | None", str], None]
 
 _READ_OPTIONS = {f.name for f in fields(io.ReadOptions)}
+#: What a file's reading that is not finite (or beyond the core's limit) can be given instead of an edit.
+NONFINITE_FIX = ("or keep the file as it is: nonfinite='hold' (--nonfinite hold) uses the last usable reading "
+                 "there, 'skip' leaves the sample out")
 
 
 @dataclass(frozen=True)
@@ -243,8 +246,10 @@ class _FileJob:
                             outputs=self.outputs,
                         )
                 except SampleError as e:
-                    # a timestamp beyond the core's limits is most often an epoch in a smaller unit
-                    fix = check.time_fix() if e.what == "t" else None
+                    # a timestamp beyond the core's limits is most often an epoch in a smaller unit;
+                    # a bad reading, an empty cell a phone app left, has an option ("drop or fill
+                    # them first" sent users to edit the file)
+                    fix = check.time_fix() if e.what == "t" else NONFINITE_FIX if e.what == "rate" else None
                     raise ValueError(source.locate(e) + (f"; {fix}" if fix else "")) from None
                 except ValueError as e:
                     raise _in_file(source, e, from_meta) from None

@@ -205,6 +205,11 @@ def _odometry_overlaps(log: Log, result: HeadingResult) -> bool:
     return False
 
 
+#: The parameters that say how a log's samples are taken, which the raw baseline shares with the
+#: methods scored against it.
+INPUT_POLICY = ("nonfinite", "gap_limit", "gap_action")
+
+
 def compare(
     logs: Sequence[Log | str | Path],
     presets: Sequence[str | Method],
@@ -253,13 +258,16 @@ def compare(
     require_flag("use_speed", use_speed)  # "no" was True
     if plot_dir is not None:
         _pyplot()  # fail before the work if plots cannot be drawn
+    policy = {k: v for k, v in methods[0].overrides.items() if k in INPUT_POLICY}
     rows: list[Score] = []
     for item in logs:
         log = item if isinstance(item, Log) else read_log(item)
         try:
             reference = log.reference()  # before any work
             warn_partial_reference(log)
-            raw_result = process(log.t, log.rate, "raw")
+            # under the methods' input policy: --param nonfinite=hold took a NaN for every method
+            # and the baseline refused it, so the log could not be scored at all
+            raw_result = process(log.t, log.rate, "raw", **policy)
             raw = heading_errors(raw_result.t, raw_result.heading, *reference)
             results = {}
             for method in methods:

@@ -36,6 +36,7 @@ from .rests import Rest
 from .window import (
     MIN_WINDOW_READINGS,
     RestWindowError,
+    ends_before_first,
     refuse_few_readings,
     refuse_past_end,
     refuse_start_before,
@@ -71,7 +72,9 @@ class Pipeline:
     whole log. Pickling keeps the full state, so a pipeline can be stopped and resumed.
 
     Args:
-        preset: ``raw``, ``static_bias``, ``hong_park``, ``hdr``, ``combined`` or ``recommended``.
+        preset: ``raw``, ``static_bias``, ``hong_park``, ``hdr``, ``combined``, ``tuned``, ``tracked``
+            or ``recommended`` (the default, as for :func:`process`, ``Log.process`` and the
+            command line).
         fusion: settings of the heading-fix stage (:data:`gyrocore.fixes.SETTINGS`, ``{}``: defaults),
             run last on the corrected rate from the first sample; without it, fixes start the stage
             only in the first block (docs/fixes.md).
@@ -89,7 +92,9 @@ class Pipeline:
             refused warns of nothing).
     """
 
-    def __init__(self, preset: str = "hdr", *, fusion: dict[str, float] | None = None, **overrides: Any) -> None:
+    def __init__(
+        self, preset: str = "recommended", *, fusion: dict[str, float] | None = None, **overrides: Any
+    ) -> None:
         si = _to_si(overrides)
         self._inner = core_pipeline(preset, si)
         self._preset = preset
@@ -391,10 +396,7 @@ class Pipeline:
             return
         before = t[k - 1] if k > 0 else last
         if before is None:
-            raise RestWindowError(
-                f"the bias window [{start}, {end}] s ends before the first sample (t[0] = {t[0]}); "
-                "give the window in the log's own time base"
-            )
+            raise ends_before_first(start, end, float(t[0]))
         raise RestWindowError(
             f"the bias window [{start}, {end}] s holds no sample of the log, which jumps from t = {before} "
             f"to t = {t[k]} s (index {k} of this chunk); give a window where the log has readings at rest. "
@@ -444,7 +446,7 @@ def _stage_settings(params: dict[str, Any], settings: dict[str, float]) -> dict[
 def process(
     t: ArrayLike,
     rate: ArrayLike,
-    preset: str = "hdr",
+    preset: str = "recommended",
     *,
     temperature: ArrayLike | None = None,
     outputs: tuple[str, ...] = ALL_OUTPUTS,
@@ -456,7 +458,8 @@ def process(
     out: OutArrays | None = None,
     **overrides: Any,
 ) -> HeadingResult:
-    """Heading of a whole log; ``outputs`` chooses which of ``heading``, ``rate`` and ``drift`` (and
+    """Heading of a whole log with ``preset`` (default ``recommended``, as everywhere: ``gyrocore
+    presets`` lists them); ``outputs`` chooses which of ``heading``, ``rate`` and ``drift`` (and
     with fixes ``heading_sigma``, ``fusion_bias``, ``fusion_scale``) are computed, and ``out`` gives
     arrays to fill with the first three (see :meth:`Pipeline.process`).
 

@@ -12,8 +12,11 @@ import numpy as np
 
 from . import _gyrocore
 
-#: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling.
-_RATE_PARAMETERS = ("bias", "offset", "threshold", "hdr_increment", "hdr_turn_threshold")
+#: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling (every one: the docs
+#: promise it, and ``hdr_max_correction_dps`` was an unknown parameter).
+_RATE_PARAMETERS = (
+    "bias", "offset", "threshold", "hdr_increment", "hdr_turn_threshold", "hdr_max_correction", "rest_noise"
+)
 
 
 def preset_names() -> list[str]:

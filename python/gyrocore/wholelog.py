@@ -199,9 +199,9 @@ class BiasPlan:
 
 
 def rest_lines(source: str, rests: tuple[Rest, ...], indent: str) -> list[str]:
-    """The lines listing ``rests`` under a report's ``source`` line (none when that line is the
-    one rest used)."""
-    if len(rests) == 1 and source.startswith("rest "):
+    """The lines listing ``rests`` under a report's ``source`` line (none when that line names the
+    one rest used, as ``first 10 s: rest ...`` does too)."""
+    if len(rests) == 1 and f"rest {rests[0]}" in source:
         return []
     return [f"{indent}rest {r}" for r in rests]
 
@@ -308,8 +308,9 @@ def plan(
 def plan_arrays(
     preset: str, si: dict[str, Any], t: FloatArray, rate: FloatArray, speed: FloatArray | None, options: Options
 ) -> BiasPlan:
-    """:func:`plan` for a log in memory (times already checked by :func:`times_ok`)."""
-    return plan(
+    """:func:`plan` for a log in memory (times already checked by :func:`times_ok`); where no rest
+    is found, its warning says what the steadiest stretch reads (a rate in deg/s, say)."""
+    found = plan(
         preset,
         si,
         float(t[0]),
@@ -318,6 +319,11 @@ def plan_arrays(
         t,
         options,
     )
+    if found.warning is None:
+        return found
+    from .calibration.rest import steady_stretch_hint  # calibration builds on the pipeline module too
+
+    return replace(found, warning=found.warning + steady_stretch_hint(t, rate, options.min_rest))
 
 
 def plan_log(

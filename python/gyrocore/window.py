@@ -165,15 +165,23 @@ def refuse_start_before(start: float, end: float, first: float) -> None:
         )
 
 
+def ends_before_first(start: float, end: float, first: float) -> RestWindowError:
+    """The error of a rest window ``[start, end]`` that ends before the log's first sample ``first``:
+    most often times after the first sample given for a log on a clock of its own (Unix epoch), so
+    it spells that window out in the log's time base."""
+    return RestWindowError(
+        f"the bias window [{start}, {end}] s ends before the first sample (t[0] = {first}); give the window in "
+        f"the log's own time base (as times after its first sample: ({first + start!r}, {first + end!r}), "
+        "t[0] + start and t[0] + end)"
+    )
+
+
 def refuse_window_outside(start: float, end: float, first: float, last: float) -> None:
     """A :class:`RestWindowError` for a given rest window ``[start, end]`` that does not lie
     inside the log (``first`` .. ``last`` [s]): it ends before the log, starts before it, or
     reaches past its end; the bias would be measured over less than asked, or nothing."""
     if end < first:
-        raise RestWindowError(
-            f"the bias window [{start}, {end}] s ends before the first sample (t[0] = {first}); "
-            "give the window in the log's own time base"
-        )
+        raise ends_before_first(start, end, first)
     refuse_start_before(start, end, first)
     refuse_past_end(start, end, first, last)
 

@@ -257,3 +257,12 @@ def test_the_pipeline_module_re_exports_every_public_name_of_its_presets_and_par
     assert {"preset_params", "parameters", "BIAS_SOURCES"} <= set(own) <= set(pipeline.__all__)
     assert all(getattr(pipeline, name) is getattr(pipeline_params, name) for name in own)
     assert all(hasattr(pipeline, name) for name in pipeline.__all__)
+
+
+def test_every_rate_parameter_takes_a_deg_per_s_spelling() -> None:
+    # docs/python.md promises one for each; hdr_max_correction_dps and rest_noise_dps were unknown
+    rates = [name for name, what in gyrocore.parameters().items() if "[rad/s]" in what and "window" not in name]
+    assert {"bias", "threshold", "hdr_max_correction", "rest_noise"} <= set(rates)
+    for name in rates:
+        given = gyrocore.pipeline.preset_params("tracked", **{f"{name}_dps": 0.25})
+        assert given[name] == pytest.approx(math.radians(0.25)), name

@@ -223,7 +223,8 @@ def six_axis(tmp_path_factory: pytest.TempPathFactory) -> Path:
     [
         ((*THREE_AXES, "--accel-cols", "ax,ay,az"),
          "imu.csv: up is measured from the accelerometer at rest, and no rest window is given: give one "
-         "(--bias-window or --bias-duration; up_window=), or give up (--up, up=)"),
+         "(--up-window T0 T1, or the command's rest window: --bias-window, --bias-duration, or --window of "
+         "calibrate and allan; up_window=), or give up (--up, up=)"),
         ((*THREE_AXES, "--accel-cols", "ax,ay,az", "--bias-window", "30", "40"),
          "imu.csv: the rest window 30 .. 40 s, over which up is measured, holds no accelerometer reading"),
         ((*THREE_AXES, "--accel-cols", "ax,ay,az", "--up-window", "400", "410", "--bias-duration", "20"),
@@ -247,6 +248,23 @@ def test_three_axis_errors_are_named(six_axis: Path, tmp_path: Path, options: tu
     error = one_error(gyrocore_cli("process", six_axis, *options, "--preset", "raw", "--out", out, code=2))
     assert message in error
     assert not out.exists()
+
+
+@pytest.mark.parametrize("command", ["calibrate", "allan"])
+def test_the_rest_window_of_calibrate_and_allan_is_where_up_is_measured(six_axis: Path, command: str) -> None:
+    # their rest window is --window: the error and the help named --bias-window, which they lack
+    options = (*THREE_AXES, "--accel-cols", "ax,ay,az")
+    gyrocore_cli(command, six_axis, *options, "--window", "+0", "+20", code=0)
+    error = one_error(gyrocore_cli(command, six_axis, *options, code=2))
+    assert "--up-window T0 T1" in error and "--window of calibrate and allan" in error
+
+
+@pytest.mark.parametrize(("command", "rest"), [("process", "--bias-window or --bias-duration"),
+                                                ("evaluate", "--bias-duration"), ("tune", "--bias-duration"),
+                                                ("calibrate", "--window"), ("allan", "--window")])
+def test_up_window_help_names_the_commands_own_rest_window(command: str, rest: str) -> None:
+    out = " ".join(gyrocore_cli(command, "--help", code=0).stdout.split())
+    assert f"(default: {rest}, else a log folder's rest window)" in out
 
 
 def test_gyro_columns_in_different_units_are_an_error(tmp_path: Path) -> None:

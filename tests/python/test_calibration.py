@@ -382,6 +382,23 @@ def test_cli_calibrate_saves_a_loadable_calibration(tmp_path: Path, capsys: pyte
     assert cal.Calibration.load(out).method == "heading_reference"
 
 
+def test_cli_calibrate_says_how_a_run_takes_what_it_found(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # it printed the bias in rad/s and left the option that takes it (in deg/s) to be found
+    t = np.arange(0.0, 60.0, 0.01)
+    rate = 0.01 + np.where((t > 20) & (t < 40), 0.0, 0.2 * np.sin(t / 5))
+    rate += np.random.default_rng(2).normal(0, 0.002, len(t))
+    (tmp_path / "log").mkdir()
+    np.savetxt(tmp_path / "log" / "gyro.csv", np.column_stack([t, rate]), delimiter=",", header="t,gyro_z",
+               comments="")
+    assert main(["calibrate", str(tmp_path / "log")]) == 0
+    line = capsys.readouterr().out.splitlines()[-1]
+    assert line.startswith("  to use it: gyrocore process ... --bias-dps ") and "--calibration FILE" in line
+    bias = cal.static_bias(t, rate).bias
+    assert float(line.split("--bias-dps ")[1].split(",")[0]) == pytest.approx(math.degrees(bias), rel=1e-5)
+    assert main(["calibrate", str(tmp_path / "log"), "--save", str(tmp_path / "c.json")]) == 0
+    assert f"use it with gyrocore process ... --calibration {tmp_path / 'c.json'}" in capsys.readouterr().out
+
+
 def test_cli_calibrate_reports_no_rest_and_still_fits(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["calibrate", str(real_log_path("comma_seg40"))]) == 0
     text = capsys.readouterr().out

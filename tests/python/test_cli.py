@@ -304,3 +304,44 @@ def test_python_dash_m_gyrocore_is_the_command() -> None:
                           timeout=60)
     assert proc.returncode == 0, proc.stderr
     assert json.loads(proc.stdout)["recommended"] == recommended_preset()
+
+
+def test_every_option_of_every_command_says_what_it_does() -> None:
+    # allan's --kind had no help: its --help listed the choices and nothing of what they are
+    import argparse
+
+    from gyrocore.cli import build_parser
+
+    parser = build_parser()
+    commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction)).choices
+    for name, command in commands.items():
+        for action in command._actions:
+            if action.option_strings:
+                assert action.help, f"gyrocore {name} {action.option_strings[-1]} has no help"
+
+
+@pytest.mark.parametrize(("command", "said"), [
+    ("simulate", "columns t [s], gyro_z [rad/s], temperature [degC], rate_true [rad/s], heading_true [rad], x [m]"),
+    ("process", "t [s], heading [rad], rate and drift [rad/s]"),
+    ("process", "either in radians and continuous"),
+    ("process", "any pipeline parameter, in SI units (gyrocore presets lists them, with their units)"),
+])
+def test_help_gives_the_units_of_what_a_command_writes_and_takes(command: str, said: str) -> None:
+    # the column names alone left degrees or radians a guess
+    assert said in " ".join(gyrocore_cli(command, "--help", code=0).stdout.split())
+
+
+def test_presets_say_what_each_parameter_means_and_its_unit() -> None:
+    # `--param` pointed to `gyrocore presets --json`, which gave values with neither meaning nor unit
+    out = gyrocore_cli("presets", code=0).stdout
+    assert "\nparameters (SI units; change one with --param NAME=VALUE;" in out
+    assert "  hdr_increment " in out and "i_c [rad/s per step]" in out
+    meanings = json.loads(gyrocore_cli("presets", "--json", code=0).stdout)["parameters"]
+    assert meanings["threshold"].startswith("dead band") and "[rad/s]" in meanings["threshold"]
+
+
+def test_version_is_printed() -> None:
+    # what a bug report asks for first; it was "the following arguments are required: command"
+    import gyrocore
+
+    assert gyrocore_cli("--version", code=0).stdout == f"gyrocore {gyrocore.__version__}\n"

@@ -355,3 +355,61 @@ def test_the_allan_plot_keeps_its_labels_inside_the_figure(tmp_path: Path, monke
         extent = text.get_window_extent(renderer)
         assert box.x0 <= extent.x0 and extent.x1 <= box.x1 and box.y0 <= extent.y0 and extent.y1 <= box.y1, text
     assert png.read_bytes()[:4] == b"\x89PNG"
+
+
+@pytest.mark.parametrize("units", ["s,deg/s", "[s],[deg/s]", "(s),(dps)"])
+def test_a_row_of_units_under_the_header_says_how_to_state_them(tmp_path: Path, units: str) -> None:
+    # phone apps and spreadsheets write one; it was only "'s' is not a number"
+    rows = "".join(f"{k * 0.01:.2f},{0.5 + k % 3},20\n" for k in range(300))
+    path = tmp_path / "phone.csv"
+    path.write_text(f"time,wz,temp\n{units},C\n{rows}")
+    error = one_error(gyrocore_cli("process", path, "--time-col", "time", "--rate-col", "wz", "--preset", "raw",
+                                   "--out", tmp_path / "h.csv", code=2))
+    assert error.startswith("gyrocore: error: ")
+    assert "phone.csv: line 2, column 1 (time): " in error
+    assert "a row of units: delete line 2 and state them in the header, time [s],wz [d" in error
+    # what the message says to do reads the file
+    path.write_text(f"time [s],wz [deg/s],temp\n{rows}")
+    log = gyrocore.read_log(path, time_col="time", rate_col="wz")
+    assert log.rate[0] == pytest.approx(np.radians(0.5))
+
+
+def test_a_word_that_is_no_unit_gets_no_units_row_hint(tmp_path: Path) -> None:
+    path = tmp_path / "x.csv"
+    path.write_text("t,gyro_z\nabc,0.1\n0.01,0.1\n")
+    with pytest.raises(ValueError, match=r"'abc' is not a number$"):
+        gyrocore.read_log(path)
+
+
+def test_a_unit_option_takes_the_spellings_a_header_takes(tmp_path: Path) -> None:
+    # a header's gyro_z_dps and t_msec were read, while --rate-unit dps and --time-unit msec were refused
+    path = tmp_path / "d.csv"
+    path.write_text("time,wz\n" + "".join(f"{k * 10},{1.5 + k % 4}\n" for k in range(300)))
+    spelled = {"time_col": "time", "rate_col": "wz", "time_unit": "msec", "rate_unit": "dps"}
+    canonical = {**spelled, "time_unit": "ms", "rate_unit": "deg/s"}
+    a, b = gyrocore.read_log(path, **spelled), gyrocore.read_log(path, **canonical)
+    assert np.array_equal(a.t, b.t) and np.array_equal(a.rate, b.rate)
+    for name, option in (("dps", ("--time-unit", "msec", "--rate-unit", "dps")),
+                         ("canonical", ("--time-unit", "ms", "--rate-unit", "deg/s"))):
+        gyrocore_cli("process", path, "--time-col", "time", "--rate-col", "wz", *option, "--preset", "raw",
+                     "--out", tmp_path / f"{name}.csv", code=0)
+    assert (tmp_path / "dps.csv").read_text() == (tmp_path / "canonical.csv").read_text()
+    with pytest.raises(ValueError, match="unknown rate_unit 'rpm'"):
+        gyrocore.read_log(path, time_col="time", rate_col="wz", rate_unit="rpm")
+
+
+def test_a_log_folders_gyro_csv_given_alone_names_the_folder(tmp_path: Path) -> None:
+    # read as a plain file it lost the folder's rest window and odometry without a word: the sample
+    # log's straight roads became 21 "rests" found from the rate
+    from gyrocore import datasets
+
+    folder = datasets.write_sample(tmp_path / "drive")
+    proc = gyrocore_cli("process", folder / "gyro.csv", "--out", tmp_path / "h.csv", code=0)
+    assert (f"gyrocore: warning: {folder / 'gyro.csv'}: the gyro of the log folder {folder}, read as a file alone, "
+            f"without the meta.json, odometry.csv, reference.csv beside it; give the folder ({folder})") in proc.stderr
+    assert "warning" not in gyrocore_cli("process", folder, "--out", tmp_path / "f.csv", code=0).stderr
+    alone = tmp_path / "alone"
+    alone.mkdir()
+    (alone / "gyro.csv").write_bytes((folder / "gyro.csv").read_bytes())  # nothing beside it: no word
+    assert "the gyro of the log folder" not in gyrocore_cli("process", alone / "gyro.csv", "--out",
+                                                            tmp_path / "a.csv", code=0).stderr

@@ -208,3 +208,16 @@ def test_a_csv_not_in_utf8_names_the_line_and_byte(tmp_path: Path) -> None:
     with pytest.raises(ValueError, match=r"line 3, column 2 \(gyro_z\): '0.1\ufffd' is not a number \(bytes that are not "
                        r"UTF-8: save the file as UTF-8, e\.g\. iconv"):
         gyrocore.read_log(gyro)
+
+
+@pytest.mark.parametrize(("rows", "header"), [("0,0.1\n0.01,0.1\n0.02,0.1\n", "t,gyro_z"),
+                                              ("0,0.1,5\n0.01,0.1,5\n", "t,gyro_z,col3")])
+def test_a_csv_without_a_header_line_is_said_to_have_none(tmp_path: Path, rows: str, header: str) -> None:
+    # "missing column(s) t, gyro_z; it has 0, 0.1" left the cause to guess
+    path = tmp_path / "bare.csv"
+    path.write_text(rows)
+    with pytest.raises(ValueError, match=re.escape("its first line holds numbers, not column names: the file has no "
+                                                   f"header line; add one as its first line, e.g. {header})")):
+        gyrocore.read_log(path)
+    path.write_text(f"{header}\n{rows}")  # what it says to do reads the file
+    assert len(gyrocore.read_log(path).t) == rows.count("\n")

@@ -118,6 +118,19 @@ def test_calibrate_finds_the_simulated_bias_and_scale(sample: Path, tmp_path: Pa
     assert abs(fit["scale_error"] - float(np.mean(drive.scale))) < 0.02
 
 
+def test_calibrate_ends_the_rates_rest_where_the_speed_shows_motion(sample: Path, tmp_path: Path) -> None:
+    # the rate alone ran the sample's 60 s rest on 5.5 s into the drive, which pulls off straight
+    assert "(found from the rate, ended where the speed shows motion)" in ok(gyrocore_cli("calibrate", sample,
+                                                                                          cwd=tmp_path))
+    result = json.loads(ok(gyrocore_cli("calibrate", sample, "--json", cwd=tmp_path)))
+    t0, t1 = result["static_bias"]["window"]
+    log = datasets.sample_drive()
+    speed = log.speed_on_gyro_times()
+    assert speed is not None and result["rest_found_by"] == "rate"
+    assert t0 == log.t[0] and 59.0 < t1 < 61.0
+    assert np.all(speed[(log.t >= t0) & (log.t <= t1)] <= 0.05)
+
+
 def test_allan_runs_on_the_samples_rest(sample: Path, tmp_path: Path) -> None:
     out = json.loads(ok(gyrocore_cli("allan", sample, "--window", "+0", "+60", "--json", cwd=tmp_path)))
     taus = out["allan"]["taus"]

@@ -352,3 +352,48 @@ def test_a_nan_heading_true_is_named_by_its_file_and_line(tmp_path: Path) -> Non
     drive.write_text("t,gyro_z,heading_true\n" + "\n".join(rows) + "\n")
     proc = gyrocore_cli("evaluate", drive, "--preset", "raw", code=2)
     assert f"{drive}: line 11, column heading_true: empty or nan; a reference's t and heading must be finite" in proc.stderr
+
+
+def test_a_bias_duration_names_its_rest_once(capsys: pytest.CaptureFixture[str]) -> None:
+    # "first 10 s: rest [...] ..." was followed by a line that named the same rest again
+    assert main(["evaluate", str(real_log_path("comma_seg40")), "--preset", "static_bias", "--bias-duration", "10"]) == 0
+    sources = capsys.readouterr().out.split("bias source:")[1]
+    assert sources.count("rest [") == 1 and "first 10 s: rest [" in sources
+
+
+def test_a_nan_reading_is_named_by_its_line_with_the_option_that_takes_it(tmp_path: Path) -> None:
+    # it said "LOG: rate[498] is NaN: ... (drop or fill them first)", and --param nonfinite=hold,
+    # which every method took, still failed: the raw baseline refused the NaN
+    from gyrocore import datasets
+
+    log = datasets.write_sample(tmp_path / "drive")
+    lines = (log / "gyro.csv").read_text().splitlines()
+    lines[499] = lines[499].split(",")[0] + ","
+    (log / "gyro.csv").write_text("\n".join(lines) + "\n")
+    error = gyrocore_cli("evaluate", log, "--preset", "static_bias", code=2).stderr
+    assert f"rate[498] is NaN: samples must be finite (drop or fill them first) ({log / 'gyro.csv'}, line 500); " in error
+    assert "--param nonfinite=hold uses the last usable reading there" in error
+    rows = json.loads(gyrocore_cli("evaluate", log, "--preset", "static_bias", "--param", "nonfinite=hold", "--json",
+                                   code=0).stdout)
+    assert rows[0]["e_psi_deg"] < 10
+
+
+def test_plot_dir_names_the_plots_it_wrote(tmp_path: Path) -> None:
+    # it said "plots in DIR", naming no file
+    pytest.importorskip("matplotlib")
+    from gyrocore import datasets
+
+    log = datasets.write_sample(tmp_path / "drive")
+    out = gyrocore_cli("evaluate", log, "--preset", "raw", "--plot-dir", tmp_path / "plots", code=0).stdout
+    assert out.splitlines()[-1] == f"wrote {tmp_path / 'plots' / 'sample_drive.png'}"
+    assert (tmp_path / "plots" / "sample_drive.png").is_file()
+
+
+def test_the_evaluation_page_says_json_is_one_list(tmp_path: Path) -> None:
+    # it said "one JSON object per (log, method)", read as JSON lines; the output is one list
+    from gyrocore import datasets
+
+    page = (Path(__file__).resolve().parents[2] / "docs" / "evaluation.md").read_text(encoding="utf-8")
+    assert "--json   # one JSON list, an object per (log, method)" in page
+    out = gyrocore_cli("evaluate", datasets.write_sample(tmp_path / "d"), "--preset", "raw", "--json", code=0).stdout
+    assert isinstance(json.loads(out), list)

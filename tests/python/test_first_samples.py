@@ -48,7 +48,9 @@ def test_a_csv_whose_first_rates_are_empty(tmp_path: Path) -> None:
     proc = run_cli("process", src, "--out", out, "--preset", "raw")
     assert proc.returncode == 2 and not out.exists()
     assert proc.stderr == (
-        f"gyrocore: error: rate[0] is NaN: samples must be finite (drop or fill them first) ({src}, line 2)\n"
+        f"gyrocore: error: rate[0] is NaN: samples must be finite (drop or fill them first) ({src}, line 2); "
+        "or keep the file as it is: nonfinite='hold' (--nonfinite hold) uses the last usable reading there, "
+        "'skip' leaves the sample out\n"  # the option, not only an edit of the file
     )
     proc = run_cli("process", src, "--out", out, "--preset", "raw", "--nonfinite", "skip")
     assert proc.returncode == 0

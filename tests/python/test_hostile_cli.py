@@ -215,8 +215,10 @@ def test_a_reference_out_of_order_names_its_file_and_line(tmp_path: Path, second
     text = f"t,heading\n1700000010.5,0.1\n{second},0.2\n1700000020.5,0.3\n"
     folder = log_folder_with(tmp_path, "reference.csv", text)
     (tmp_path / "ref.csv").write_text(text)
+    # the gyro as a file of its own: a log folder's gyro.csv given alone warns that the folder is left out
+    (tmp_path / "drive.csv").write_bytes((folder / "gyro.csv").read_bytes())
     for args, where in ((("evaluate", folder, "--preset", "raw"), folder / "reference.csv"),
-                        (("calibrate", folder / "gyro.csv", "--reference", tmp_path / "ref.csv"), tmp_path / "ref.csv")):
+                        (("calibrate", tmp_path / "drive.csv", "--reference", tmp_path / "ref.csv"), tmp_path / "ref.csv")):
         proc = run_cli(*args)
         assert (proc.returncode, proc.stderr) == (2, f"gyrocore: error: {where}: line 3, column 1 (t): {second} does not "
                                                      "come after 1700000010.5 on line 2; a reference's times must strictly "
@@ -229,7 +231,8 @@ def test_a_file_name_with_a_line_break_keeps_the_error_on_one_line(tmp_path: Pat
     assert proc.returncode == 2
     shown = str(log).replace("\n", "\\n")
     assert proc.stderr == ("gyrocore: error: rate[50] is NaN: samples must be finite (drop or fill them first) "
-                           f"({shown}, line 52)\n")
+                           f"({shown}, line 52); or keep the file as it is: nonfinite='hold' (--nonfinite hold) "
+                           "uses the last usable reading there, 'skip' leaves the sample out\n")
 
 
 @pytest.mark.parametrize("kalibr", ["same.out", "sub/../same.out"])
@@ -310,8 +313,9 @@ def test_a_failed_line_of_a_batch_stays_one_line(tmp_path: Path) -> None:
     proc = run_cli("process", logs, "--out", tmp_path / "out")
     assert proc.returncode == 1
     shown = str(bad).replace("\n", "\\n")
-    assert (f"FAILED rate[50] is NaN: samples must be finite (drop or fill them first) ({shown}, line 52)\n"
-            in proc.stdout)
+    assert (f"FAILED rate[50] is NaN: samples must be finite (drop or fill them first) ({shown}, line 52); or keep "
+            "the file as it is: nonfinite='hold' (--nonfinite hold) uses the last usable reading there, 'skip' leaves "
+            "the sample out\n" in proc.stdout)
 
 
 def test_a_csv_given_as_a_json_file_is_said_not_to_be_json(tmp_path: Path) -> None:
@@ -342,8 +346,8 @@ def test_evaluate_warns_of_a_reference_heading_or_a_gyro_in_degrees(tmp_path: Pa
     if degrees == "gyro_z":
         assert warned[0].startswith(f"gyrocore: warning: {drive}: the gyro turns ")
         assert warned[0].endswith("times as much as the reference heading changes, about 180/pi = 57.3: its rates look "
-                                  "like deg/s, and they are read as rad/s (convert them with numpy.radians); its scores "
-                                  "would be wrong")
+                                  "like deg/s, and they are read as rad/s (give --rate-unit deg/s); its scores "
+                                  "would be wrong")  # it said to convert them with numpy.radians
 
 
 def test_evaluate_warns_of_a_gentle_real_drive_in_deg_s(tmp_path: Path) -> None:

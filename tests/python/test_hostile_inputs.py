@@ -373,6 +373,20 @@ def test_tab_separated_values_are_read_from_a_tsv_file_and_with_delimiter_tab(tm
     ), proc.stderr
 
 
+def test_a_space_separated_file_is_told_its_delimiter(tmp_path: Path) -> None:
+    # "missing column(s) t, gyro_z; it has t gyro_z" named no delimiter: a space was not among those looked for
+    src = tmp_path / "spaces.csv"
+    src.write_text("t gyro_z\n0 0.1\n0.01 0.1\n0.02 0.1\n")
+    proc = run_cli("process", src, "--out", tmp_path / "o.csv", "--preset", "raw")
+    assert "the header line is one field, with ' ' in it: give the file's delimiter (delimiter=' ', --delimiter ' ')" in (
+        proc.stderr
+    ), proc.stderr
+    assert run_cli("process", src, "--out", tmp_path / "o.csv", "--preset", "raw", "--delimiter", " ").returncode == 0
+    (tmp_path / "one.csv").write_text("yaw rate \n0.1\n")  # one column, a name with a space in it
+    proc = run_cli("process", tmp_path / "one.csv", "--out", tmp_path / "p.csv", "--preset", "raw")
+    assert "with ' ' in it" in proc.stderr  # one field never holds both columns of a log
+
+
 def test_a_decimal_comma_is_named_as_such(tmp_path: Path) -> None:
     # '0,005' is not a number, with no word of why: numbers written with a decimal comma
     src = tmp_path / "komma.csv"

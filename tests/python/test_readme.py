@@ -41,3 +41,56 @@ def test_example_runs(page: str, index: int, code: str, tmp_path: Path) -> None:
     done = subprocess.run([sys.executable, script.name], cwd=work, capture_output=True, text=True, timeout=300)
     first_line = code.splitlines()[0]
     assert done.returncode == 0, f"{page} example {index} ({first_line}) failed:\n{done.stderr[-3000:]}"
+    # an example is what a reader copies: it must not show a misuse (processing.md's batch gave the
+    # first second of every real log as its rest, and 15 of them warned that the gyro turned in it)
+    assert "does not look like a rest" not in done.stderr, f"{page} example {index} gives a rest that is none"
+
+
+def _shown(page: str, expression: str) -> list[str]:
+    """The pieces, between its "...", of the comment that ``page`` shows after ``print(expression)``."""
+    text = (ROOT / page).read_text(encoding="utf-8")
+    found = re.search(rf"^print\({re.escape(expression)}\)\s+#\s*(.*)$", text, re.M)
+    assert found, f"{page} has no print({expression}) with its output"
+    return [p.strip(" ,;") for p in found[1].split("...") if p.strip(" ,;")]
+
+
+def _in_order(pieces: list[str], printed: str) -> None:
+    at = 0
+    for piece in pieces:
+        at = printed.find(piece, at)
+        assert at >= 0, f"shown {piece!r}, but it prints:\n{printed}"
+        at += len(piece)
+
+
+def test_the_calibration_page_shows_what_its_example_prints() -> None:
+    # it showed a standard error of 1.89e-05 and a one-line noise summary the package never printed
+    import gyrocore
+    from gyrocore import allan, calibration
+
+    from .conftest import real_log_path
+
+    log = gyrocore.read_log(real_log_path("broad_10"))
+    cal = calibration.static_bias(log.t, log.rate)
+    _in_order(_shown("docs/calibration.md", "cal"), repr(cal))
+    rest = (log.t >= cal.window[0]) & (log.t <= cal.window[1])
+    noise = allan.noise_parameters(allan.deviation(log.rate[rest], 0.0035, taus="octave"))
+    _in_order(_shown("docs/calibration.md", "noise"), str(noise))
+
+
+def test_the_python_page_says_what_the_result_holds_and_plots_it() -> None:
+    # it never said the heading's unit, that it is continuous, nor how to plot it beside a reference
+    text = " ".join((ROOT / "docs" / "python.md").read_text(encoding="utf-8").split())
+    assert "`heading` [rad] (float64, counter-clockwise positive, continuous" in text
+    assert "`heading_deg` the same in degrees" in text
+    assert any("plt.savefig(" in code and "r.heading_deg" in code for page, _, code in EXAMPLES
+               if page == "docs/python.md")
+
+
+@pytest.mark.parametrize("page", ["python", "processing", "reading-logs", "evaluation", "calibration"])
+def test_a_guide_page_that_reads_the_real_logs_says_what_to_use_without_them(page: str) -> None:
+    # the first example of each read ../shared/data/real/..., which a user of the package does not have
+    text = " ".join((ROOT / "docs" / f"{page}.md").read_text(encoding="utf-8").split())
+    before = text[: text.index("```")]
+    assert "../shared/data/real" in text
+    assert "the project's test data, not part of the package" in before
+    assert "python -m gyrocore.datasets sample_drive" in before

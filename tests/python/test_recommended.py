@@ -4,6 +4,7 @@ recommended preset on the real logs."""
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 import gyrocore
@@ -43,3 +44,13 @@ def test_a_causal_log_feeds_its_odometry_to_the_tracker() -> None:
                                     speed_t=log.t_odometry)
     assert result.heading.tobytes() == expected.heading.tobytes()
     assert result.tracked_rests
+
+
+def test_the_arrays_and_the_stream_default_to_the_recommended_preset_as_the_command_line_does() -> None:
+    # gyrocore.process(t, rate) and Pipeline() ran Table III's hdr, while Log.process, process_file
+    # and `gyrocore process` ran the recommended preset
+    t = np.arange(0.0, 120.0, 0.01)
+    rate = 0.01 + np.where((t > 40) & (t < 60), 0.0, 0.2 * np.sin(t / 5))
+    assert np.array_equal(gyrocore.process(t, rate).heading, gyrocore.process(t, rate, "recommended").heading)
+    assert not np.array_equal(gyrocore.process(t, rate).heading, gyrocore.process(t, rate, "hdr").heading)
+    assert gyrocore.Pipeline(bias=0.01).params == gyrocore.Pipeline("recommended", bias=0.01).params

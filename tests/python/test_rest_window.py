@@ -187,3 +187,14 @@ def test_a_temperature_without_a_temperature_model_warns_that_it_is_not_used(mod
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         gyrocore.process(t, np.zeros_like(t), "hdr", bias=0.0, mode=mode, temperature=np.full_like(t, 20.0), temp_slope=1e-4)
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_a_window_before_an_epoch_log_spells_it_out_in_the_logs_time_base(mode: str) -> None:
+    # "give the window in the log's own time base" left the sum to the user, whose window was
+    # most often in seconds after the first sample
+    t = 1.7e9 + np.arange(0.0, 120.0, 0.01)
+    with pytest.raises(gyrocore.RestWindowError, match=re.escape(
+            "give the window in the log's own time base (as times after its first sample: (1700000040.0, "
+            "1700000060.0), t[0] + start and t[0] + end)")):
+        gyrocore.process(t, np.zeros_like(t), "static_bias", bias_window=(40.0, 60.0), mode=mode)

@@ -11,6 +11,8 @@ import pytest
 
 import gyrocore
 
+from .conftest import real_log_path
+
 T = np.arange(0.0, 60.0, 0.01)
 RATE = np.full_like(T, 0.002)
 
@@ -69,3 +71,36 @@ def test_the_unmeasured_bias_is_said_once_as_the_first_samples_are_processed() -
             p.process(T[100:], RATE[100:])
     with pytest.warns(gyrocore.InputWarning, match="removes a static bias"):  # a run that goes on: said
         assert len(gyrocore.process(T, RATE, "recommended", mode="causal")) == len(T)
+
+
+def _stop_in_deg_per_s() -> np.ndarray:
+    """A drive with a stop from 20 to 40 s, a bias of 0.01 rad/s, written in deg/s: read as rad/s,
+    its turns (11 "rad/s") pass the unit check, and its stop reads 0.57 "rad/s", no rest."""
+    rng = np.random.default_rng(3)
+    rate = 0.01 + np.where((T > 20) & (T < 40), 0.0, 0.2 * np.sin(T / 5)) + rng.normal(0, 0.002, len(T))
+    return np.degrees(rate)
+
+
+def test_no_rest_found_says_what_the_steadiest_stretch_reads_and_names_the_unit() -> None:
+    # "no rest was found" alone left a rate in deg/s unsuspected
+    hint = r"the steadiest stretch, 20.* s after the first sample, reads 0\.57.* rad/s .*--rate-unit deg/s"
+    with pytest.warns(gyrocore.InputWarning, match="no rest was found in it.*" + hint):
+        gyrocore.process(T, _stop_in_deg_per_s(), "static_bias")
+    with pytest.raises(ValueError, match="no rest found.*" + hint):
+        gyrocore.calibration.static_bias(T, _stop_in_deg_per_s())
+
+
+def test_a_steady_level_far_beyond_any_deg_per_s_rest_does_not_name_the_unit() -> None:
+    with pytest.warns(gyrocore.InputWarning) as caught:
+        gyrocore.process(T, np.full_like(T, 5.0) + np.random.default_rng(4).normal(0, 0.002, len(T)), "static_bias")
+    text = " ".join(str(w.message) for w in caught)
+    assert "reads 5 rad/s" in text and "deg/s read as rad/s" not in text
+
+
+def test_a_highway_drive_in_rad_per_s_with_a_large_bias_is_not_said_to_be_in_deg_per_s() -> None:
+    # comma_seg40 drives straight with a bias of 0.068 rad/s: steady beyond 0.05 rad/s, turning little
+    log = gyrocore.read_log(real_log_path("comma_seg40"))
+    with pytest.warns(gyrocore.InputWarning) as caught:
+        log.process("static_bias", use_speed=False)
+    text = " ".join(str(w.message) for w in caught)
+    assert "or a rest or straight drive with a bias that large" in text and "deg/s read as rad/s" not in text

@@ -10,7 +10,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _gyrocore
 from .._arrays import FloatArray, as_window, span_text
-from .._checks import check_number
+from .._checks import MAX_READING, check_number, usable
 from .._motion import warn_if_turning
 from ..window import refuse_few_readings, refuse_window_outside
 from .inputs import check_series
@@ -174,10 +174,44 @@ def detect_rest(
             f"no rest found: no stretch of at least {min_duration:g} s where the rate is as steady as "
             f"the log's quietest blocks and within {max_rate:g} rad/s of zero (give the rest window, "
             "or a shorter min_duration / larger max_rate if this gyro's bias is large)" + _few_readings_hint(ta, options)
+            + steady_stretch_hint(ta, ra, min_duration, max_rate)
         )
     if which == "first":
         return windows[0]
     return max(windows, key=lambda w: w[1] - w[0])
+
+
+#: Turns [rad/s] at the 99th percentile of ``|rate|`` beyond which a steady level that a deg/s rest
+#: would read names the unit: 115 deg/s, while a car in deg/s turns at 10 to 30.
+DEG_PER_S_TURNS = 2.0
+
+
+def steady_stretch_hint(ta: FloatArray, ra: FloatArray, min_duration: float, max_rate: float = MAX_RATE) -> str:
+    """Where no rest was found: the longest stretch as steady as a rest whose level lies beyond
+    ``max_rate`` [rad/s], and what it may be, as a clause to append to the "no rest" message ("" if
+    there is none). A log in deg/s read as rad/s rests at 57 times its bias, beyond ``max_rate``, and
+    its turns stay under the unit check's 20 rad/s: "no rest found" alone left the unit unsuspected.
+    ``ta`` are checked times (finite, increasing); readings the core refuses are left out."""
+    taken = usable(ra)
+    if np.count_nonzero(taken) < 8:
+        return ""
+    t, rate = (ta, ra) if taken.all() else (ta[taken], ra[taken])
+    try:
+        windows = rest_windows_of_checked(t, rate, min_duration, max_rate=MAX_READING)  # any level
+    except ValueError:  # too sparse to judge: the caller's message says so, or nothing more
+        return ""
+    if not windows:
+        return ""
+    a, b = max(windows, key=lambda w: w[1] - w[0])
+    level = float(np.mean(rate[np.searchsorted(t, a) : np.searchsorted(t, b, side="right")]))
+    text = (f"; the steadiest stretch, {a - t[0]:.6g} .. {b - t[0]:.6g} s after the first sample, reads "
+            f"{level:.4g} rad/s ({math.degrees(level):.4g} deg/s), as steady as a rest but beyond {max_rate:g} rad/s: "
+            "a steady turn, or a rest or straight drive with a bias that large (give a rest window or the bias)")
+    # deg/s read as rad/s: a level a deg/s rest reads, and turns a vehicle makes only in deg/s (a
+    # highway drive in rad/s with a large bias, comma_seg40, is steady beyond max_rate too)
+    if abs(math.radians(level)) <= max_rate and float(np.percentile(np.abs(rate), 99)) > DEG_PER_S_TURNS:
+        text += ", or a rate in deg/s read as rad/s (give rate_unit='deg/s', --rate-unit deg/s)"
+    return text
 
 
 def _few_readings_hint(ta: FloatArray, options: dict[str, float]) -> str:

@@ -14,6 +14,7 @@ from typing import Any, Sequence
 
 from .. import _signals
 from .._checks import did_you_mean
+from .._gyrocore import __version__
 from . import allan, calibrate, demo, evaluate, presets, process, reproduce, simulate, tune
 from ..batch_run import BatchInterrupted
 from ..io._paths import error_text, one_line
@@ -56,6 +57,8 @@ class _Parser(argparse.ArgumentParser):
 
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="gyrocore", description="Drift-free heading from a yaw-rate gyro.")
+    # what a bug report asks for first; it was "the following arguments are required: command"
+    parser.add_argument("--version", action="version", version=f"gyrocore {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
     for command in COMMANDS:
         command.register(sub)

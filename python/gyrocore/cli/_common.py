@@ -20,6 +20,7 @@ from ..calibration import Calibration
 from ..evaluate import Failed
 from ..io import atomic_path
 from ..io.atomic import check_output_folder
+from ..io.units import rate_unit_named, time_unit_named
 from ..io._paths import error_text, one_line
 from ..pipeline import Pipeline, has_bias_source, recommended_preset
 from ..window import Window
@@ -100,18 +101,21 @@ def delimiter(text: str) -> str:
     return "\t" if text.lower() in ("tab", "\\t") else text
 
 
-def add_reading_options(parser: argparse.ArgumentParser) -> None:
-    """The options that say how to read a file input, the same for every command that reads one."""
+def add_reading_options(parser: argparse.ArgumentParser, rest_window: str) -> None:
+    """The options that say how to read a file input, the same for every command that reads one;
+    ``rest_window`` names the command's own rest window options, which ``--up-window`` defaults to
+    (each command has other ones, and a help naming options it lacks sent users nowhere)."""
     read = parser.add_argument_group(
         "reading (where the samples are; a header like 't [ms]' or 'gyro_z_dps' states its unit)"
     )
     read.add_argument("--time-col", help="time column, with or without its unit (default t; "
                       "column number for a plain .npy array)")
     read.add_argument("--rate-col", help="rate column, with or without its unit (default gyro_z)")
-    read.add_argument("--time-unit", choices=tuple(io.TIME_UNITS),
+    # a unit as a header may spell it (sec, dps) is taken too: the type runs before the choices' check
+    read.add_argument("--time-unit", choices=tuple(io.TIME_UNITS), type=time_unit_named,
                       help="unit of the time column (default: the header's, else s)")
-    read.add_argument("--rate-unit", choices=io.RATE_UNITS,
-                      help="unit of the rate column (default: the header's, else rad/s)")
+    read.add_argument("--rate-unit", choices=io.RATE_UNITS, type=rate_unit_named,
+                      help="unit of the rate column (default: the header's, else rad/s; also dps)")
     read.add_argument("--topic", help="bag topic with sensor_msgs/Imu (default: the only one)")
     read.add_argument("--delimiter", type=delimiter, help="CSV delimiter (default , and a tab for .tsv; "
                       "'tab' or '\\t' for a tab)")
@@ -124,15 +128,16 @@ def add_reading_options(parser: argparse.ArgumentParser) -> None:
                       help="the accelerometer's x, y and z columns [m/s^2]: up is their mean over the rest window")
     axes.add_argument("--up", metavar="UP", help=f"the sensor axis that points up: {io.UP_HELP}")
     axes.add_argument("--up-window", nargs=2, metavar=("T0", "T1"),
-                      help=f"rest window over which up is measured: {WINDOW_HELP} (default: --bias-window, "
-                      "--bias-duration, or a log folder's rest window)")
+                      help=f"rest window over which up is measured: {WINDOW_HELP} (default: {rest_window}, "
+                      "else a log folder's rest window)")
 
 
 def reading_options(args: argparse.Namespace) -> dict[str, Any]:
     """The reading options given on the command line, as :class:`gyrocore.io.ReadOptions` fields.
 
     ``up`` is measured over ``--up-window``, else over the command's own rest window
-    (``--bias-window``, ``--bias-duration``), which the static bias is measured over too."""
+    (``--bias-window``, ``--bias-duration``; ``--window`` of calibrate and allan), which the static
+    bias (or the Allan deviation) is measured over too."""
     names = ("time_col", "rate_col", "time_unit", "rate_unit", "topic", "delimiter", "gyro_cols", "accel_cols", "up")
     out = {name: getattr(args, name) for name in names if getattr(args, name) is not None}
     window = _rest_window(args)
@@ -144,8 +149,8 @@ def reading_options(args: argparse.Namespace) -> dict[str, Any]:
 
 def _rest_window(args: argparse.Namespace) -> Window | None:
     """The rest window the command line gives, in the order ``--up-window``, ``--bias-window``,
-    ``--bias-duration`` (the first S seconds), or None."""
-    for option in ("up_window", "bias_window"):
+    ``--window`` (calibrate's and allan's rest), ``--bias-duration`` (the first S seconds), or None."""
+    for option in ("up_window", "bias_window", "window"):
         bounds = getattr(args, option, None)
         if bounds is not None:
             return Window.parse(bounds, "--" + option.replace("_", "-"))
@@ -155,21 +160,24 @@ def _rest_window(args: argparse.Namespace) -> Window | None:
     return None
 
 
-def check_samples(path: Path, log: io.Log, args: argparse.Namespace) -> None:
+def check_samples(path: Path, log: io.Log, args: argparse.Namespace, reading_fix: str = "") -> None:
     """Refuse a log with a NaN or infinite time or rate, or times that do not increase, naming the
     first such sample by its file and line, in the core's words, as ``gyrocore process`` does; the
-    analyses (calibration) name only its index."""
+    analyses (calibration) name only its index. ``reading_fix`` follows the error of a bad reading:
+    the option of the command that takes one."""
     try:
         _gyrocore.check_samples(log.t, log.rate)
     except SampleError as e:
         source = io.open_source(path, **reading_options(args))
-        raise ValueError(f"{e} ({source.data_path}, {source.where(e.index)})") from None
+        fix = f"; {reading_fix}" if reading_fix and e.what == "rate" else ""
+        raise ValueError(f"{e} ({source.data_path}, {source.where(e.index)}){fix}") from None
 
 
 def add_override_options(group: argparse._ArgumentGroup) -> None:
     """``--param`` and ``--calibration``: pipeline parameters beyond the command's own options."""
     group.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
-                       help="any pipeline parameter (gyrocore presets --json); repeatable")
+                       help="any pipeline parameter, in SI units (gyrocore presets lists them, with their units); "
+                       "repeatable")
     group.add_argument("--calibration", type=Path, metavar="FILE",
                        help="a calibration written by gyrocore calibrate --save: its scale, and its bias "
                        "unless another bias option is given")

@@ -40,15 +40,17 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p.add_argument("--taus", choices=("octave", "decade", "log", "all"), default="octave",
                    help="averaging times (default octave: 1, 2, 4, ... samples)")
     p.add_argument("--non-overlapping", action="store_true", help="non-overlapping estimator")
-    p.add_argument("--kind", choices=("allan", "modified", "hadamard"), default="allan")
+    p.add_argument("--kind", choices=("allan", "modified", "hadamard"), default="allan",
+                   help="which deviation: allan, modified Allan (always overlapping) or hadamard (blind to a "
+                   "linear rate drift) (default allan)")
     p.add_argument("--window", nargs=2, metavar=("T0", "T1"),
                    help=f"analyse only this span, e.g. the rest: {WINDOW_HELP}")
-    p.add_argument("--plot", type=Path, help="write a log-log plot (PNG) to this file")
-    p.add_argument("--kalibr", type=Path, help="write a Kalibr-style IMU noise YAML to this file")
+    p.add_argument("--plot", type=Path, metavar="FILE", help="write a log-log plot (PNG) to this file")
+    p.add_argument("--kalibr", type=Path, metavar="FILE", help="write a Kalibr-style IMU noise YAML to this file")
     p.add_argument("--rrw", type=POSITIVE, default=None,
                    help="rate random walk K [rad/s^2/sqrt(Hz)] for --kalibr when the record is too short to show it")
     add_overwrite_option(p)
-    add_reading_options(p)
+    add_reading_options(p, "--window")
 
 
 def run(args: argparse.Namespace) -> int:

@@ -10,9 +10,11 @@ import math
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from .. import calibration, io
 from .._checks import UnitError
-from .._rests import find_rests
+from .._rests import SPEED_THRESHOLD, find_rests
 from ..wholelog import times_ok
 from ..window import Window
 from ._common import (
@@ -54,7 +56,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
                    help="write the calibration (JSON): the reference fit where the log has a reference, "
                         "else the static bias")
     add_overwrite_option(p)
-    add_reading_options(p)
+    add_reading_options(p, "--window")
 
 
 #: What a folder needs to be calibrated from, said when it is not a log folder.
@@ -92,6 +94,7 @@ def run(args: argparse.Namespace) -> int:
     if span is not None and log.heading_ref is None:  # it was ignored without a word
         raise ValueError(f"--fit-window is the span of the reference fit, and {source} has no reference heading: "
                          "give one (--reference FILE, or reference.csv in a log folder) or leave --fit-window out")
+    cut = False  # the rate's rest ended where the speed shows motion
     try:
         window, found_by = (None, "rate") if rest is None else (rest.resolve(float(log.t[0])), "given")
         if window is None and (stop := _first_stop(log, args.min_duration)) is not None:
@@ -100,8 +103,10 @@ def run(args: argparse.Namespace) -> int:
                 from_rate = calibration.detect_rest(log.t, log.rate, min_duration=args.min_duration, **options)
             except ValueError:
                 from_rate = None
+            still = _until_moving(log, from_rate, args.min_duration)
+            cut = still is not None and from_rate is not None and still[1] < from_rate[1] and still[0] <= stop[0]
             # detected once: the rate's rest is then the window static_bias would detect itself
-            window, found_by = (stop, "speed") if from_rate is None or stop[0] < from_rate[0] else (from_rate, "rate")
+            window, found_by = (stop, "speed") if still is None or stop[0] < still[0] else (still, "rate")
         static = calibration.static_bias(log.t, log.rate, window, min_duration=args.min_duration, **options)
         results["static_bias"] = static.to_dict()["calibration"]
         results["rest_found_by"] = found_by
@@ -134,7 +139,8 @@ def run(args: argparse.Namespace) -> int:
     if static is not None and static.window is not None:
         w = static.window
         print(f"  static bias: {static!r}")
-        how = {"speed": " (the first stop the speed shows)", "rate": " (found from the rate)"}
+        how = {"speed": " (the first stop the speed shows)",
+               "rate": " (found from the rate" + (", ended where the speed shows motion)" if cut else ")")}
         print(f"  rest window used: {w[0] - t0:.4f} .. {w[1] - t0:.4f} s after the first sample"
               + how.get(results["rest_found_by"], ""))
     else:
@@ -147,8 +153,31 @@ def run(args: argparse.Namespace) -> int:
     elif "heading_reference" in results:
         print(f"  reference fit: {results['heading_reference']['error']}")
     if args.save is not None:
-        print(f"  saved the {chosen.method} calibration to {args.save}")
+        print(f"  saved the {chosen.method} calibration to {args.save}; use it with gyrocore process ... "
+              f"--calibration {args.save}")
+    else:  # the bias printed is in rad/s, and how a run takes it was left to find
+        use = f"gyrocore process ... --bias-dps {math.degrees(static.bias):.6g}, or " if static is not None else ""
+        print(f"  to use it: {use}save it with --save FILE and give gyrocore process ... --calibration FILE "
+              f"(the {chosen.method} calibration: {'scale and bias' if fit is not None else 'its bias'})")
     return 0
+
+
+def _until_moving(log: io.Log, window: tuple[float, float] | None, min_duration: float) -> tuple[float, float] | None:
+    """The rest ``window`` the rate shows, ended at the last sample before the speed shows motion
+    (above whole mode's stop threshold): a drive that pulls off straight reads as steady as a rest,
+    and the sample log's 60 s rest ran on 5.5 s into the drive. None if it is then shorter than
+    ``min_duration`` [s] or starts in motion; ``window`` as it is where no speed is known."""
+    speed = log.speed_on_gyro_times()
+    if window is None or speed is None:
+        return window
+    first, end = np.searchsorted(log.t, window[0]), np.searchsorted(log.t, window[1], side="right")
+    moving = np.flatnonzero(np.abs(np.nan_to_num(speed[first:end])) > SPEED_THRESHOLD)  # NaN: unknown
+    if len(moving) == 0:
+        return window
+    if moving[0] == 0:
+        return None
+    cut = (window[0], float(log.t[first + moving[0] - 1]))
+    return cut if cut[1] - cut[0] >= min_duration else None
 
 
 def _first_stop(log: io.Log, min_duration: float) -> tuple[float, float] | None:

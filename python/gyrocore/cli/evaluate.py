@@ -27,6 +27,7 @@ from ._common import (
     add_overwrite_option,
     add_override_options,
     add_reading_options,
+    check_samples,
     pipeline_overrides,
     print_json,
     reading_options,
@@ -68,7 +69,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     bias.add_argument("--bias-dps", type=FINITE, metavar="B",
                       help="known bias [deg/s] (what the gyro reads at rest), for every method and log")
     add_override_options(p.add_argument_group("pipeline parameters for every method"))
-    add_reading_options(p)
+    add_reading_options(p, "--bias-duration")
     p.add_argument(
         "--causal",
         action="store_true",
@@ -123,14 +124,20 @@ def run(args: argparse.Namespace) -> int:
         format_table(rows)
         format_bias_sources(rows)
         print_failures(rows, len(args.logs))
-        if args.plot_dir:
-            print(f"plots in {args.plot_dir}")
+        if args.plot_dir:  # "plots in DIR" named no file, nor which logs got one (a failed log gets none)
+            scored = {r.path for r in rows if isinstance(r, Score)}
+            written = [str(p) for p in _plot_paths(args.plot_dir, [log for log in read if log.path in scored])]
+            print(f"wrote {', '.join(written)}" if written else f"no plot written in {args.plot_dir}")
     return exit_code(rows)
 
 
 def _read(path: str, args: argparse.Namespace) -> Log:
     """The log at ``path``, which must have a reference heading."""
     log = read_log(path, use_fixes=not args.no_fixes, **reading_options(args))
+    if not any(p.partition("=")[0].strip() == "nonfinite" for p in args.param):
+        # the pipeline's own refusal named neither the line nor the option (it names the log)
+        check_samples(Path(path), log, args, "or keep the file as it is: --param nonfinite=hold uses the last "
+                      "usable reading there, --param nonfinite=skip leaves the sample out")
     if log.heading_ref is None:
         raise ValueError(
             f"{path}: no reference heading to score against (a log folder's reference.csv, or a CSV or "
@@ -169,8 +176,8 @@ def _units_apart(log: Log) -> str | None:
                 "wrong")
     if 0.5 * factor <= 1 / ratio <= 2 * factor:
         return (f"the gyro turns {1 / ratio:.3g} times as much as the reference heading changes, about 180/pi = 57.3: "
-                "its rates look like deg/s, and they are read as rad/s (convert them with numpy.radians); its scores "
-                "would be wrong")
+                "its rates look like deg/s, and they are read as rad/s (give --rate-unit deg/s); its scores "
+                "would be wrong")  # the option, not a conversion: the command reads deg/s itself
     return None
 
 

@@ -66,7 +66,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p.add_argument("-o", "--out", required=True, help="output .csv/.parquet file, or a folder for several inputs")
     p.add_argument("--preset", default="recommended", help="preset name (default recommended)")
 
-    add_reading_options(p)
+    add_reading_options(p, "--bias-window or --bias-duration")
 
     bias = p.add_argument_group(
         "static bias (default: the rest window of a log folder's meta.json, else every rest found in the log, "
@@ -99,7 +99,8 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         "--heading",
         choices=io.HEADING_CONVENTIONS,
         default="enu",
-        help="enu: yaw CCW from east (default); compass: CW from north",
+        help="enu: yaw CCW from east (default); compass: CW from north; either in radians and continuous (not "
+        "wrapped to a turn), the yaw starting at initial_heading (--param; default 0: east)",
     )
     out.add_argument(
         "--format", choices=("csv", "parquet"), default="csv", help="file format in an output folder (default csv)"
@@ -107,8 +108,8 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     out.add_argument(
         "--columns",
         metavar="LIST",
-        help=f"the columns to write, comma-separated, e.g. t,heading (default {','.join(io.OUTPUT_COLUMNS)}); "
-        "rate and drift are computed only when written",
+        help=f"the columns to write, comma-separated, e.g. t,heading (default {','.join(io.OUTPUT_COLUMNS)}: "
+        "t [s], heading [rad], rate and drift [rad/s]); rate and drift are computed only when written",
     )
     out.add_argument("--jobs", type=COUNT, help="parallel files (default: all cores)")
     out.add_argument("--scheduler", metavar="ADDRESS", help="run on this Dask scheduler (tcp://host:8786)")

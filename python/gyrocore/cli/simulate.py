@@ -15,6 +15,8 @@ from ._common import COUNT, POSITIVE, SEED, add_command, add_overwrite_option, r
 
 #: Column order of the CSV: what a log has (t, gyro_z, temperature), then the truth.
 COLUMNS = ("t", "gyro_z", "temperature", "rate_true", "heading_true", "x", "y", "speed", "drift")
+#: The unit of each column, said by ``--help`` (the names alone left degrees or radians a guess).
+UNITS = ("s", "rad/s", "degC", "rad/s", "rad", "m", "m", "m/s", "rad/s")
 
 
 #: The defaults of the options that apply to some profiles only.
@@ -78,7 +80,9 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         "gyrocore simulate --profile car --sensor crs03 --duration 1200 --out drive.csv",
         run,
     )
-    p.add_argument("-o", "--out", required=True, help="output CSV; columns " + ", ".join(COLUMNS))
+    columns = ", ".join(f"{c} [{u}]" for c, u in zip(COLUMNS, UNITS))
+    p.add_argument("-o", "--out", required=True,
+                   help=f"output CSV; columns {columns} (drift: the slow part of the gyro's bias, beyond its static bias)")
     p.add_argument(
         "--profile",
         choices=("car", "hdr-figure3", "robot", "square", "rotary"),

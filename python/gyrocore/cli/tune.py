@@ -85,12 +85,14 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     add("--leave-one-out", action="store_true", help="also report the leave-one-out score (one fit per drive)")
     add("--max-evals", type=COUNT, default=2000, metavar="N", help="objective evaluations per fit (default 2000)")
     add("--seed", type=SEED, default=0, metavar="N", help="optimiser seed (default 0)")
-    add("--optimiser", choices=tune.OPTIMISERS, default="differential_evolution")
+    add("--optimiser", choices=tune.OPTIMISERS, default="differential_evolution",
+        help="differential_evolution (global; the start is part of its first population; default) or nelder-mead "
+        "(local, from the start)")
     add("--name", help="name of the parameter set (default <preset>_tuned)")
     add("-o", "--out", metavar="FILE", help="write the parameter file (JSON) here")
     add("--json", action="store_true", help="print the result as JSON")
     add_overwrite_option(p)
-    add_reading_options(p)
+    add_reading_options(p, "--bias-duration")
 
 
 def _refuse_twice(option: str, specs: Sequence[str]) -> None:

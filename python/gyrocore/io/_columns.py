@@ -37,7 +37,8 @@ def column_positions(
     if missing:
         with_unit = [split_unit(str(h)) for h in header if split_unit(str(h))[1] is not None]
         short = f"; a name may leave out its unit, e.g. {with_unit[0][0]}" if with_unit else ""
-        found = [d for d in ",;\t|" if len(header) == 1 and d in str(header[0])]
+        # a space last: it may be part of a name, but one field cannot hold both of a log's columns
+        found = [d for d in ",;\t| " if len(header) == 1 and d in str(header[0]).strip()]
         if found:
             shown = "a tab" if found[0] == "\t" else repr(found[0])
             arg = "tab" if found[0] == "\t" else repr(found[0])
@@ -45,6 +46,10 @@ def column_positions(
                      f"(delimiter={found[0]!r}, --delimiter {arg})")
         if choose == CHOOSE_COLUMNS:
             short += _look_like(header, missing)
+        if header and all(_is_number(str(h)) for h in header):  # "it has 0, 0.1" left the cause to guess
+            names = [*columns[: len(header)], *(f"col{k + 1}" for k in range(len(columns), len(header)))]
+            short += (f"; its first line holds numbers, not column names: the file has no header line; add one "
+                      f"as its first line, e.g. {','.join(names)}")
         raise ValueError(
             f"{path}: missing column(s) {', '.join(missing)}; it has {', '.join(map(str, header)) or 'none'} "
             f"({choose}{short})"
@@ -62,6 +67,14 @@ _LIKE = {
     "gyro_z": re.compile(r"(gyr|gyro|gyroscope|g|w|omega|angular|angvel|angularvelocity|rot)[a-z0-9]*z|.*yawrate.*"),
 }
 _OPTION = {"t": ("time_col", "--time-col"), "gyro_z": ("rate_col", "--rate-col")}
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
 
 
 def _look_like(header: list[str], missing: list[str]) -> str:

@@ -22,6 +22,7 @@ import numpy as np
 from .._arrays import FloatArray
 from .._extras import require
 from ._columns import CHOOSE_COLUMNS, column_positions, concat, first_null, import_pyarrow_lazy_modules
+from .units import is_unit
 
 if TYPE_CHECKING:
     import pyarrow as pa
@@ -242,6 +243,14 @@ def _why_not_a_number(value: str) -> str:
     return ""
 
 
+def _units_row_hint(line: int, header: list[str], fields: list[str], positions: dict[str, int]) -> str:
+    """What to do with a row of units under the header (``s,deg/s``; phone apps and spreadsheets
+    write one): state the units in the header, where gyrocore reads them, or give them as options."""
+    named = ",".join(f"{header[pos].strip()} [{fields[pos].strip(' []()')}]" for pos in sorted(positions.values()))
+    return (f" (a row of units: delete line {line} and state them in the header, {named}, or give them with "
+            "time_unit=/rate_unit=, --time-unit/--rate-unit)")
+
+
 def _csv_error(
     path: Path,
     error: Exception,
@@ -276,6 +285,8 @@ def _csv_error(
                 if fields[pos] and not value:
                     return f"{where}: blank value {fields[pos]!r} (leave it empty for a missing value)"
                 if value and not _is_number(value):
+                    if is_unit(value):
+                        return f"{where}: {value!r} is not a number{_units_row_hint(line, header, fields, positions)}"
                     return f"{where}: {value!r} is not a number{_why_not_a_number(value)}"
                 if not fields[pos] and name in required:
                     return f"{where}: empty {required[name]}"

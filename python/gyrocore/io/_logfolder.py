@@ -46,6 +46,16 @@ def lacks_gyro(path: Path) -> bool:
     return path.is_dir() and not is_log_folder(path) and any((path / name).is_file() for name in others)
 
 
+def warn_gyro_alone(path: Path) -> None:
+    """Warn when ``path`` is a log folder's ``gyro.csv`` given alone: read as a plain file, it loses
+    the folder's rest window, odometry and reference beside it (the sample log's gyro.csv found 21
+    "rests" on its straight roads, where the folder took its 60 s rest)."""
+    beside = [name for name in (META_JSON, ODOMETRY_CSV, REFERENCE_CSV, FIXES_CSV) if (path.parent / name).is_file()]
+    if path.name == GYRO_CSV and beside:
+        warn(f"{path}: the gyro of the log folder {path.parent}, read as a file alone, without the "
+             f"{', '.join(beside)} beside it; give the folder ({path.parent}) to read the log with them")
+
+
 def read_meta(folder: Path) -> tuple[dict[str, Any], tuple[float, float] | None]:
     """``meta.json`` (empty without the file) and its rest window ``(t0, t1)`` [s] (or None); its
     ``name``, when not null, must be text (it names the log in tables and its plot's file)."""

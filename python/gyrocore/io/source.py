@@ -22,12 +22,12 @@ from ..window import Window
 from ._axes import MEASURED, measure_up, parse_up, project, three_names
 from ._columns import concat, import_pyarrow_lazy_modules
 from ._csvfile import CsvLayout, csv_chunks, csv_layout
-from ._logfolder import GYRO_CSV, is_log_folder, read_meta
+from ._logfolder import GYRO_CSV, is_log_folder, read_meta, warn_gyro_alone
 from ._npyfile import check_npz, npy_chunks, npy_shape, npz_chunks
 from ._parquetfile import parquet_chunks, parquet_file, warn_given_time_unit
 from ._paths import check_file, check_readable, content_hint, missing
 from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder, storage_file_hint
-from .units import RATE_UNITS, TIME_UNITS, header_options
+from .units import RATE_UNITS, TIME_UNITS, header_options, rate_unit_named, time_unit_named
 
 #: Samples per chunk, at most (a CSV chunk also ends with a block of :data:`CSV_BLOCK_BYTES`).
 DEFAULT_CHUNK_ROWS = 1 << 16
@@ -110,8 +110,10 @@ class ReadOptions:
                 f"(--up {MEASURED} with --accel-cols measures it)"
             )
         if self.time_unit is not None:
+            object.__setattr__(self, "time_unit", time_unit_named(self.time_unit))
             require_choice("time_unit", self.time_unit, TIME_UNITS)
         if self.rate_unit is not None:
+            object.__setattr__(self, "rate_unit", rate_unit_named(self.rate_unit))
             require_choice("rate_unit", self.rate_unit, RATE_UNITS)
         if self.delimiter is not None and len(self.delimiter) != 1:
             raise ValueError(f"delimiter must be one character, got {self.delimiter!r}")
@@ -297,7 +299,8 @@ class GyroSource:
         if window is None or o.accel_cols is None:
             raise ValueError(
                 f"{self.data_path}: up is measured from the accelerometer at rest, and no rest window is "
-                "given: give one (--bias-window or --bias-duration; up_window=), or give up (--up, up=)"
+                "given: give one (--up-window T0 T1, or the command's rest window: --bias-window, --bias-duration, or "
+                "--window of calibrate and allan; up_window=), or give up (--up, up=)"
             )
         samples = self._read(DEFAULT_CHUNK_ROWS, o.accel_cols)
         try:
@@ -393,6 +396,7 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
     if not p.is_file():  # reading a named pipe or a device would wait for ever, or never end
         raise ValueError(f"{p}: not a regular file (a named pipe, socket or device); give a file or folder")
     check_readable(p)
+    warn_gyro_alone(p)
     try:
         return _open_file(p, options)
     except ValueError as e:

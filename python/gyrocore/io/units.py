@@ -162,6 +162,27 @@ def _normal(unit: str) -> str:
     return re.sub(r"[\s*.^]", "", unit.lower())
 
 
+def time_unit_named(text: str) -> str:
+    """``text`` as one of :data:`TIME_UNITS` where it is a spelling a header may state (``sec``,
+    ``msec``, ``nanoseconds``), else as given (and then refused where it is checked): the option
+    took only ``s`` where a header read ``t_sec``."""
+    return HEADER_TIME_UNITS.get(_normal(text), text) if isinstance(text, str) else text
+
+
+def rate_unit_named(text: str) -> str:
+    """``text`` as one of :data:`RATE_UNITS` where it is a spelling a header may state (``dps``,
+    ``deg/sec``, ``°/s``), else as given, as :func:`time_unit_named`."""
+    return HEADER_RATE_UNITS.get(_normal(text), text) if isinstance(text, str) else text
+
+
+def is_unit(text: str) -> bool:
+    """Whether ``text`` is a time or rate unit as a header writes it, alone (``s``, ``[deg/s]``,
+    ``(ms)``): what a row of units under a header holds."""
+    m = _BRACKETED.match(text.strip())
+    unit = _normal(text if m is None or m["base"] else (m["square"] if m["square"] is not None else m["round"]))
+    return unit in HEADER_TIME_UNITS or unit in HEADER_RATE_UNITS
+
+
 def split_unit(column: str) -> tuple[str, str | None]:
     """A column name without the unit it states, and that unit as written (None if it states none).
 
