@@ -346,9 +346,15 @@ def _window_beyond_time(si: dict[str, Any], t_start: float) -> bool:
     """Whether the given rest window (``bias_window``, or ``bias_duration`` from ``t_start``)
     reaches beyond the core's +-2^40 s, which the core refuses as a parameter: for times in
     nanoseconds read as seconds, the bad time (and its unit) is the error to give first."""
-    window = si.get("bias_window") or ((t_start, t_start + float(si["bias_duration"])) if si.get("bias_duration")
-                                       is not None else (0.0, 0.0))
-    return max(abs(float(window[0])), abs(float(window[1]))) > MAX_SECONDS
+    given = si.get("bias_window")
+    if si.get("bias_duration") is not None:
+        given = (t_start, t_start + float(si["bias_duration"]))
+    if given is None or isinstance(given, Window):  # none, or one counted from the first sample
+        return False
+    try:
+        return max(abs(float(given[0])), abs(float(given[1]))) > MAX_SECONDS
+    except (TypeError, ValueError, IndexError):  # no window: check_parameters names what it is
+        return False
 
 
 def plan_stream(

@@ -360,7 +360,7 @@ def test_the_allan_plot_keeps_its_labels_inside_the_figure(tmp_path: Path, monke
 @pytest.mark.parametrize("units", ["s,deg/s", "[s],[deg/s]", "(s),(dps)"])
 def test_a_row_of_units_under_the_header_says_how_to_state_them(tmp_path: Path, units: str) -> None:
     # phone apps and spreadsheets write one; it was only "'s' is not a number"
-    rows = "".join(f"{k * 0.01:.2f},{0.5 + k % 3},20\n" for k in range(300))
+    rows = "".join(f"{k * 0.01:.2f},{5 + 10 * (k % 3)},20\n" for k in range(300))
     path = tmp_path / "phone.csv"
     path.write_text(f"time,wz,temp\n{units},C\n{rows}")
     error = one_error(gyrocore_cli("process", path, "--time-col", "time", "--rate-col", "wz", "--preset", "raw",
@@ -371,7 +371,7 @@ def test_a_row_of_units_under_the_header_says_how_to_state_them(tmp_path: Path, 
     # what the message says to do reads the file
     path.write_text(f"time [s],wz [deg/s],temp\n{rows}")
     log = gyrocore.read_log(path, time_col="time", rate_col="wz")
-    assert log.rate[0] == pytest.approx(np.radians(0.5))
+    assert log.rate[0] == pytest.approx(np.radians(5))
 
 
 def test_a_word_that_is_no_unit_gets_no_units_row_hint(tmp_path: Path) -> None:

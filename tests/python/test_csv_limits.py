@@ -161,6 +161,7 @@ def test_a_blank_line_before_the_last_sample_is_an_error_naming_it(tmp_path: Pat
 COMMENTS = "# recorded 2024-05-01 on the test car\n# sensor: CRS03, 100 Hz, rates in rad/s\n"
 
 
+@pytest.mark.filterwarnings("ignore:.*read as a file alone")  # a gyro.csv beside the other files
 def test_comment_lines_before_the_header_are_skipped_and_lines_still_counted(tmp_path: Path) -> None:
     # it was "missing column(s) t, gyro_z; it has # recorded 2024-05-01 on the test car"
     gyro = tmp_path / "gyro.csv"
@@ -191,6 +192,7 @@ def test_a_header_that_starts_with_a_hash_is_still_the_header(tmp_path: Path) ->
     np.testing.assert_allclose(gyrocore.read_log(gyro, time_col="timestamp").t, expected_t())
 
 
+@pytest.mark.filterwarnings("ignore:.*read as a file alone")  # a gyro.csv beside the other files
 def test_a_csv_not_in_utf8_names_the_line_and_byte(tmp_path: Path) -> None:
     # a Latin-1 degree sign (byte 0xB0) was shown as U+FFFD in "missing column(s) ...; it has ..."
     gyro = tmp_path / "gyro.csv"

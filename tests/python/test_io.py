@@ -36,6 +36,7 @@ def write_csv(path: Path, text: str) -> Path:
 # --- formats -------------------------------------------------------------------------------
 
 
+@pytest.mark.filterwarnings("ignore:.*read as a file alone")  # the gyro file itself is what is compared
 @pytest.mark.parametrize("name", REAL_LOGS)
 def test_csv_reader_matches_numpy_loadtxt_bit_for_bit(name: str) -> None:
     gyro = real_log_path(name) / "gyro.csv"

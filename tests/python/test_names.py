@@ -28,8 +28,8 @@ T, RATE = np.arange(3) * 0.01, np.zeros(3)
     (lambda: gyrocore.Pipeline("hdr", bias=0.0, hdr_c=1.0), "unknown parameter 'hdr_c'; valid names"),  # c1 or c2?
     (lambda: gyrocore.process(T, RATE, "raw", mode="casual"), "unknown mode 'casual' (did you mean 'causal'?); choose one of whole, causal"),
     (lambda: sim.sensor("crs3"), "unknown sensor 'crs3' (did you mean 'crs03'?); choose one of"),
-    (lambda: io.ReadOptions(time_unit="sec"), "unknown time_unit 'sec'"),
-    (lambda: io.ReadOptions(rate_unit="deg/S"), "unknown rate_unit 'deg/S' (did you mean 'deg/s'?)"),
+    (lambda: io.ReadOptions(time_unit="sek"), "unknown time_unit 'sek'"),
+    (lambda: io.ReadOptions(rate_unit="dge/s"), "unknown rate_unit 'dge/s' (did you mean 'deg/s'?)"),
     (lambda: gyrocore.process(T, RATE, "raw").output("headings"), "unknown output 'headings' (did you mean 'heading'?)"),
     (lambda: io.HeadingWriter("h.csv", heading="compas"), "unknown heading convention 'compas' (did you mean 'compass'?); choose one of enu, compass"),
     (lambda: car(60.0, mix="downtwn"), "unknown road mix 'downtwn' (did you mean 'downtown'?)"),

@@ -79,15 +79,15 @@ def rest_windows_of_checked(
     np.subtract(ra, dev, out=dev)
     var = np.bincount(k, np.square(dev)) / np.maximum(count - 1, 1)
     sd = np.sqrt(var)
-    usable = count >= 3
-    if not usable.any():
+    filled = count >= 3
+    if not filled.any():
         raise ValueError(f"no block of {width:.3g} s holds 3 samples: the log is too sparse to find a rest")
-    quietest = np.sort(sd[usable])
+    quietest = np.sort(sd[filled])
     floor = float(np.median(quietest[: max(3, len(quietest) // 100)]))
     if floor == 0.0:  # a quantized gyro may read one value throughout a block
         steps = np.abs(np.diff(ra))
         floor = float(steps[steps > 0].min()) / math.sqrt(12.0) if (steps > 0).any() else 0.0
-    quiet = usable & (sd <= noise_factor * floor) & (np.abs(mean) <= max_rate)
+    quiet = filled & (sd <= noise_factor * floor) & (np.abs(mean) <= max_rate)
     spread = floor * _correlation_factor(dev, k, quiet)
     # A rest spans quiet blocks only, and no gap (a block that is not quiet, or holds no sample,
     # ends it), so the level test runs over each stretch of quiet neighbours, not every block.
