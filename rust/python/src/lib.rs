@@ -320,11 +320,9 @@ fn integrate<'py>(
     };
     let mut integrator = Integrator::new(config).map_err(value_error)?;
     let heading = zeros(py, t.len());
+    // the stage checks its block as it goes, refusing it by the first bad sample's index
     fill([&heading], |[h]| {
-        py.detach(|| {
-            check_block(t, rate, None, None, true)?;
-            integrator.process_block(t, rate, h)
-        })
+        py.detach(|| integrator.process_block(t, rate, h))
     })?
     .map_err(value_error)?;
     Ok(heading)
@@ -382,10 +380,7 @@ fn downsample<'py>(
     let mut stage = Downsample::new(DownsampleConfig { interval }).map_err(value_error)?;
     let (mut out_t, mut out_rate) = (vec![0.0; t.len()], vec![0.0; t.len()]);
     let n = py
-        .detach(|| {
-            check_block(t, rate, None, None, true)?;
-            stage.process_block(t, rate, &mut out_t, &mut out_rate)
-        })
+        .detach(|| stage.process_block(t, rate, &mut out_t, &mut out_rate))
         .map_err(value_error)?;
     out_t.truncate(n);
     out_rate.truncate(n);
