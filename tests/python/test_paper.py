@@ -150,6 +150,19 @@ def test_hdr_tables_improve_every_set_several_fold(hdr_tab: paper.HdrTables) -> 
     assert [d.spec.minutes for d in hdr_tab.tables["Table II"]][:3] == [19.4, 24.3, 20.0]
 
 
+def test_hdr_tables_set_the_papers_printed_figures_beside_ours(hdr_tab: paper.HdrTables) -> None:
+    # The paper's column holds what Tables II and IV print, not ratios or means recomputed from
+    # their rounded entries (City 1 reads 17 / 3.1 = 5.5 but prints 5.4x; the means 61 and 92).
+    rows = {line.split("  ")[0].strip(): line for line in hdr_tab.table().splitlines()}
+    for drive, factor in (("City 1", "5.4x"), ("Rural 1", "7.7x"), ("Highway 1", "29x"), ("Highway Mix", "4.4x"),
+                          ("City 2", "6.7x"), ("City 3", "4.3x")):
+        assert rows[drive].split()[-2] == factor, rows[drive]
+    summary = {r.quantity: r.paper for r in hdr_tab.rows()}
+    assert summary["Table II: mean E_psi without HDR"] == "61"
+    assert summary["Table II: mean E_psi with HDR"] == "7.0"
+    assert summary["Table IV: mean E_psi without HDR"] == "92"
+
+
 def test_fog_rotary_table_finds_eq_5_and_eq_6_brings_turns_within_a_quarter_degree(
     fog_table: paper.FogRotaryTable,
 ) -> None:
