@@ -163,6 +163,12 @@ def test_hdr_tables_set_the_papers_printed_figures_beside_ours(hdr_tab: paper.Hd
     assert summary["Table IV: mean E_psi without HDR"] == "92"
 
 
+def test_hdr_tables_state_the_cabin_temperatures_they_drew(hdr_tab: paper.HdrTables) -> None:
+    starts = [d.start_temperature for drives in hdr_tab.tables.values() for d in drives]
+    assert 5.0 <= min(starts) and max(starts) <= 15.0
+    assert "between 5 and 15 degC" in hdr_tab.table()
+
+
 def test_fog_rotary_table_finds_eq_5_and_eq_6_brings_turns_within_a_quarter_degree(
     fog_table: paper.FogRotaryTable,
 ) -> None:

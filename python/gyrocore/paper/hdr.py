@@ -213,7 +213,7 @@ class HdrTables(_Report):
 
     def notes(self) -> tuple[str, ...]:
         return (
-            "CRS03-04 preset at 10 Hz; each drive starts at a cabin temperature between 5 and 20 degC that "
+            "CRS03-04 preset at 10 Hz; each drive starts at a cabin temperature between 5 and 15 degC that "
             "warms to 22 degC (HDR section 5.2's discussion), 20 s static bias test, road mix of its description",
             "E_psi and NE_psi against the true heading at 1 Hz from the end of the rest (HDR eq 15-16)",
         )
@@ -245,7 +245,7 @@ def hdr_tables(*, seed: int = 0, rate_hz: float = 10.0, rest: float = 20.0, bias
     """HDR Tables II and IV: each drive of :data:`gyrocore.motion.TABLE_II_DRIVES` and
     :data:`~gyrocore.motion.TABLE_IV_DRIVES` simulated with its duration and road mix, read by the
     CRS03-04 preset at ``rate_hz`` whose cabin warms from a start temperature drawn between 5 and
-    20 degC to 22 degC (time constant 300-900 s); every drive processed with the same parameters."""
+    15 degC to 22 degC (time constant 300-900 s); every drive processed with the same parameters."""
     rng = np.random.default_rng([seed, 0x7AB1E])
     tables: dict[str, tuple[DriveResult, ...]] = {}
     k = 0
