@@ -225,6 +225,12 @@ def test_reproduce_creates_the_figure_folder(tmp_path: Path, capsys: pytest.Capt
     assert "1.111" in capsys.readouterr().out
 
 
+def test_reproduce_says_the_data_are_simulated_and_with_which_seed(capsys: pytest.CaptureFixture[str]) -> None:
+    paper.reproduce("hdr-figures", out_dir=None)
+    out = capsys.readouterr().out
+    assert "simulated data (no real log), seed 0; gyrocore.paper.hdr_figures(seed=N)" in out
+
+
 def test_reproduce_refuses_an_unknown_name() -> None:
     with pytest.raises(ValueError, match="unknown reproduction 'hdr-figure-9'"):
         paper.reproduce("hdr-figure-9")
