@@ -231,6 +231,12 @@ def test_reproduce_says_the_data_are_simulated_and_with_which_seed(capsys: pytes
     assert "simulated data (no real log), seed 0; gyrocore.paper.hdr_figures(seed=N)" in out
 
 
+def test_the_simulation_page_names_every_reproduction_and_its_figure() -> None:
+    page = (Path(__file__).parents[2] / "docs" / "simulation.md").read_text(encoding="utf-8")
+    for name, (_, figure) in paper.REPRODUCTIONS.items():
+        assert f"| `{name}` |" in page and f"| `{figure}` |" in page, name
+
+
 def test_reproduce_refuses_an_unknown_name() -> None:
     with pytest.raises(ValueError, match="unknown reproduction 'hdr-figure-9'"):
         paper.reproduce("hdr-figure-9")
