@@ -167,6 +167,8 @@ def test_hdr_tables_state_the_cabin_temperatures_they_drew(hdr_tab: paper.HdrTab
     starts = [d.start_temperature for drives in hdr_tab.tables.values() for d in drives]
     assert 5.0 <= min(starts) and max(starts) <= 15.0
     assert "between 5 and 15 degC" in hdr_tab.table()
+    # The paper's static bias test lasted 30 s (HDR section 2); ours is 20 s, and the note says so.
+    assert hdr_tab.rest == 20.0 and "20 s static bias test (the paper's T_bias: 30 s" in hdr_tab.table()
 
 
 def test_fog_rotary_table_finds_eq_5_and_eq_6_brings_turns_within_a_quarter_degree(
