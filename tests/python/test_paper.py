@@ -4,6 +4,7 @@ mathematics is exact, and the papers' qualitative claims and orderings elsewhere
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -237,6 +238,14 @@ def test_the_simulation_page_names_every_reproduction_and_its_figure() -> None:
     page = (Path(__file__).parents[2] / "docs" / "simulation.md").read_text(encoding="utf-8")
     for name, (_, figure) in paper.REPRODUCTIONS.items():
         assert f"| `{name}` |" in page and f"| `{figure}` |" in page, name
+
+
+def test_every_file_the_equations_page_points_to_exists() -> None:
+    root = Path(__file__).parents[2]
+    page = (root / "docs" / "equations.md").read_text(encoding="utf-8")
+    paths = re.findall(r"`((?:rust|python|tests)/[\w/.]+)`", page)
+    assert "python/gyrocore/calibration/least_squares.py" in paths
+    assert [p for p in paths if not (root / p).is_file()] == []
 
 
 def test_reproduce_refuses_an_unknown_name() -> None:
