@@ -248,6 +248,16 @@ def test_every_file_the_equations_page_points_to_exists() -> None:
     assert [p for p in paths if not (root / p).is_file()] == []
 
 
+def test_reproduce_help_says_seed_time_and_where_the_figures_go(capsys: pytest.CaptureFixture[str]) -> None:
+    from gyrocore.cli import main
+
+    with pytest.raises(SystemExit):
+        main(["reproduce", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "simulated data (seed 0)" in text and "about 15 s" in text
+    assert "default: the current folder" in text
+
+
 def test_reproduce_refuses_an_unknown_name() -> None:
     with pytest.raises(ValueError, match="unknown reproduction 'hdr-figure-9'"):
         paper.reproduce("hdr-figure-9")
