@@ -240,6 +240,26 @@ def test_the_simulation_page_names_every_reproduction_and_its_figure() -> None:
         assert f"| `{name}` |" in page and f"| `{figure}` |" in page, name
 
 
+def test_the_simulation_page_states_what_the_reproductions_print(
+    hong_cal: paper.HongCalibration, hong_t1: paper.HongTable1, hdr_fig: paper.HdrFigures, hdr_tab: paper.HdrTables
+) -> None:
+    # docs/simulation.md's "ours" column, as rounded there, from the same runs (seed 0).
+    page = (Path(__file__).parents[2] / "docs" / "simulation.md").read_text(encoding="utf-8")
+
+    def ne(table: str, which: str) -> float:
+        return float(np.mean([getattr(d, which).ne_psi_deg_per_min for d in hdr_tab.tables[table]]))
+
+    stated = [f"{hong_cal.rate.s_bar:.4f}, {hong_cal.rate.b_bar:.4f}",
+              "with XV3500 noise {:.2f} %, {:.2f} %".format(*hong_cal.errors(hong_cal.heading_noisy))]
+    stated += [f"| {hong_t1.mean_error(m):.2f} / {hong_t1.std_error(m):.2f} |" for m in paper.HongTable1.PAPER]
+    stated += [f"{ne(t, 'without'):.2f} / {ne(t, 'with_hdr'):.2f} deg/min; {hdr_tab.improvement(t):.1f}x"
+               for t in ("Table II", "Table IV")]
+    stated += [f"{hdr_fig.peak('without'):.2f} deg/s",
+               f"{hdr_fig.area('without'):.1f} deg without, {hdr_fig.area('with'):.1f} deg with "
+               f"({hdr_fig.area('with') / hdr_fig.area('without'):.2f}x)"]
+    assert [s for s in stated if s not in page] == []
+
+
 def test_every_file_the_equations_page_points_to_exists() -> None:
     root = Path(__file__).parents[2]
     page = (root / "docs" / "equations.md").read_text(encoding="utf-8")
