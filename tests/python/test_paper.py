@@ -260,6 +260,12 @@ def test_the_simulation_page_states_what_the_reproductions_print(
     assert [s for s in stated if s not in page] == []
 
 
+def test_the_xv3500_preset_cites_the_sections_its_values_come_from() -> None:
+    # Hong section 4.1 gives the 100 Hz sampling; section 2.2's rate table spans +-100 deg/s.
+    source = sim.sensor("xv3500").source
+    assert "100 Hz (4.1)" in source and "+-100 deg/s (the rate table's span in 2.2)" in source
+
+
 def test_every_file_the_equations_page_points_to_exists() -> None:
     root = Path(__file__).parents[2]
     page = (root / "docs" / "equations.md").read_text(encoding="utf-8")
