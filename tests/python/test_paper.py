@@ -231,7 +231,8 @@ def test_reproduce_creates_the_figure_folder(tmp_path: Path, capsys: pytest.Capt
 def test_reproduce_says_the_data_are_simulated_and_with_which_seed(capsys: pytest.CaptureFixture[str]) -> None:
     paper.reproduce("hdr-figures", out_dir=None)
     out = capsys.readouterr().out
-    assert "simulated data (no real log), seed 0; gyrocore.paper.hdr_figures(seed=N)" in out
+    assert "simulated data (no real log), seed 0 (each further run or drive the next one); " in out
+    assert "gyrocore.paper.hdr_figures(seed=N) reruns it from another" in out
 
 
 def test_the_simulation_page_names_every_reproduction_and_its_figure() -> None:

@@ -94,7 +94,8 @@ def reproduce(name: str, *, out_dir: str | Path | None = ".") -> _Report:
     result = run()
     print(result.table())
     seed = inspect.signature(run).parameters["seed"].default
-    print(f"simulated data (no real log), seed {seed}; gyrocore.paper.{run.__name__}(seed=N) reruns it with another")
+    print(f"simulated data (no real log), seed {seed} (each further run or drive the next one); "
+          f"gyrocore.paper.{run.__name__}(seed=N) reruns it from another")
     if out_dir is not None:
         make_folder(Path(out_dir))
         path = result.plot(Path(out_dir) / figure)
