@@ -1,4 +1,4 @@
-"""Every reproduction of the papers' experiments in turn (under ten seconds): tables to the
+"""Every reproduction of the papers' experiments in turn (about 15 seconds): tables to the
 terminal, figures (PNG) into the folder given as the first argument (default: the current folder).
 The same as ``gyrocore reproduce --out OUT_DIR``; figures there already are refused unless
 ``--overwrite`` follows (the other examples write the same figures into the current folder).

@@ -5,11 +5,12 @@ the first sample), with whole mode's choices (``bias_walk``, ``min_rest``, ``bia
 by leave-one-log-out: each log is scored with the choice that is best on the other logs (lowest
 mean log E_psi of static_bias, each log counted twice: with its speed, and from the rate alone as
 a log without odometry is processed), never with one fitted to it. Prints the table of
-docs/results.md (Markdown), the choice on all logs (the default a new log gets), and the rests
-each log used. The last column is no method a user can run: one constant scale and bias fitted to
+docs/results.md (Markdown) with the choice each log was scored with and without its "held out"
+column (that one is docs/recommended.md's leave-one-out fit), the choice on all logs (the default
+a new log gets), and the rests each log used. The last column is no method a user can run: one constant scale and bias fitted to
 the log's own reference (Hong eq 4-7), the floor of any constant calibration on that log.
 
-    python examples/whole_log_table.py [DATA_DIR]     # default ../shared/data/real; a few minutes
+    python examples/whole_log_table.py [DATA_DIR]     # default ../shared/data/real; about 10 s
 """
 
 import itertools

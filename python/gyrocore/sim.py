@@ -193,9 +193,9 @@ SENSORS: dict[str, GyroSpec] = {
         range_dps=100.0,
         source=(
             "Hong & Park: ARW 2.5 deg/sqrt(h), bias instability 18 deg/h (section 2.1), scale error "
-            "2.53 % (2.2), bias 0.75 deg/s (their estimate, 4.2), 100 Hz, +-100 deg/s (2.2); a 20 Hz "
-            "noise bandwidth gives Figure 8a's 2 deg/s peak-to-peak noise; assumed: RRW, flicker band, "
-            "0.01 deg/s/degC"
+            "2.53 % (2.2), bias 0.75 deg/s (their estimate, 4.2), 100 Hz (4.1), +-100 deg/s (the rate "
+            "table's span in 2.2); a 20 Hz noise bandwidth gives Figure 8a's 2 deg/s peak-to-peak noise; "
+            "assumed: RRW, flicker band, 0.01 deg/s/degC"
         ),
     ),
     "crs03": GyroSpec(

@@ -52,6 +52,14 @@ def test_sigma_and_terms_match_stable32(phase: np.ndarray, name: str, kind: str,
     np.testing.assert_allclose(r.adev, rows[:, 5], rtol=1e-4)
 
 
+def test_time_deviation_from_mdev_matches_stable32(phase: np.ndarray) -> None:
+    # docs/calibration.md: tdev is tau * mdev / sqrt(3); there is no function of its own.
+    rows = stable32("phase_dat_tdev.txt")
+    r = allan.phase_deviation(phase, 1.0, taus=rows[:, 1], overlapping=True, kind="modified")
+    np.testing.assert_array_equal(r.n, rows[:, 2])
+    np.testing.assert_allclose(r.adev * r.taus / math.sqrt(3.0), rows[:, 5], rtol=1e-4)
+
+
 @pytest.mark.parametrize(
     ("name", "overlapping"), [("phase_dat_adev_octave.txt", False), ("phase_dat_oadev_octave.txt", True)]
 )

@@ -14,13 +14,15 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p = add_command(
         sub,
         "reproduce",
-        "rerun the papers' experiments on simulated data: print paper beside ours, write the figures",
+        "rerun the papers' experiments on simulated data (seed 0): print paper beside ours, write the figures",
         "gyrocore reproduce hong-table-1 hong-table-1-sensitivity --out figures",
         run,
     )
     p.add_argument("names", nargs="*", metavar="NAME",
-                   help=f"experiments (default: all): {', '.join(paper.REPRODUCTIONS)}")
-    p.add_argument("-o", "--out", type=Path, default=Path("."), help="folder for the figures (PNG; created if missing)")
+                   help=f"experiments (default: all, about 15 s; docs/simulation.md gives each one's time): "
+                        f"{', '.join(paper.REPRODUCTIONS)}")
+    p.add_argument("-o", "--out", type=Path, default=Path("."),
+                   help="folder for the figures (PNG; created if missing; default: the current folder)")
     p.add_argument("--no-figures", action="store_true", help="print the tables only")
     add_overwrite_option(p)
 

@@ -27,6 +27,7 @@ in :data:`gyrocore.sim.SENSORS`.
 
 from __future__ import annotations
 
+import inspect
 from pathlib import Path
 from typing import Callable
 
@@ -86,11 +87,15 @@ REPRODUCTIONS: dict[str, tuple[Callable[[], _Report], str]] = {
 
 def reproduce(name: str, *, out_dir: str | Path | None = ".") -> _Report:
     """Run the reproduction ``name`` (see :data:`REPRODUCTIONS`) with its defaults, print its
-    table, and write its figure into ``out_dir`` (created if missing; None: no figure)."""
+    table and the seed it ran with, and write its figure into ``out_dir`` (created if missing;
+    None: no figure)."""
     require_choice("reproduction", name, REPRODUCTIONS)
     run, figure = REPRODUCTIONS[name]
     result = run()
     print(result.table())
+    seed = inspect.signature(run).parameters["seed"].default
+    print(f"simulated data (no real log), seed {seed} (each further run or drive the next one); "
+          f"gyrocore.paper.{run.__name__}(seed=N) reruns it from another")
     if out_dir is not None:
         make_folder(Path(out_dir))
         path = result.plot(Path(out_dir) / figure)
