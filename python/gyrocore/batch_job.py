@@ -246,6 +246,9 @@ class _FileJob:
                             outputs=self.outputs,
                         )
                 except SampleError as e:
+                    # a file's chunks repeating a time at their edge is the file's duplicate, which
+                    # sorting the log mends, not a stream's chunk sent again
+                    e.args = (getattr(e, "log_message", str(e)),)
                     # a timestamp beyond the core's limits is most often an epoch in a smaller unit;
                     # a bad reading, an empty cell a phone app left, has an option ("drop or fill
                     # them first" sent users to edit the file)

@@ -165,6 +165,8 @@ class Pipeline:
         Raises:
             SampleError: (a ValueError) non-increasing or non-finite timestamps, or NaN/inf readings
                 under ``nonfinite="error"``; its ``index`` and ``what`` name the first bad sample.
+                A chunk that starts at or before :attr:`last_time` (sent again, or after a resume
+                from a pickle that holds it already) says so: give only the samples after it.
             ValueError: mismatched lengths; timestamps whose interval overflows (near +-1e308); an
                 ``index_offset`` that is no int in [0, 2^63); an ``out`` array of the wrong shape or
                 layout, read-only, or sharing memory;
@@ -208,9 +210,13 @@ class Pipeline:
         window = None if self._watch.readings is None else self._window(ta)  # none once it is checked
         if window is not None and inner.bias()[2]:
             self._watch.add(window, ta, ra)
-        heading, out_rate, drift, found, fused = self._run(
-            inner, ta, ra, temp, index_offset, (flags, fix_output_flags(outputs)), sa, fix_block, given
-        )
+        try:
+            heading, out_rate, drift, found, fused = self._run(
+                inner, ta, ra, temp, index_offset, (flags, fix_output_flags(outputs)), sa, fix_block, given
+            )
+        except _gyrocore.SampleError as e:
+            _name_samples_sent_again(e, ta, inner.last_time(), index_offset)
+            raise
         self._inner = inner  # with the fix stage the first fixes started, now that they were good
         if window is not None and not inner.bias()[2]:  # the window is over
             self._watch.close(window, self.bias)
@@ -284,6 +290,13 @@ class Pipeline:
                                                               flags[1])
         origin = self._first_time if self._first_time is not None else float(t[0]) if len(t) else 0.0
         return heading, out_rate, drift, [rests.from_core(r, origin) for r in found], fused
+
+    @property
+    def last_time(self) -> float | None:
+        """The time [s] of the last sample processed (None before the first): the next chunk
+        starts after it. A pipeline resumed from a pickle holds every sample up to it, so a
+        stream that restarts gives only the samples after it."""
+        return self._inner.last_time()
 
     @property
     def rests(self) -> list[Rest]:
@@ -424,6 +437,21 @@ class Pipeline:
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"
+
+
+def _name_samples_sent_again(error: _gyrocore.SampleError, t: FloatArray, last: float | None,
+                             index_offset: int) -> None:
+    """Adds to the core's error about a chunk whose first sample comes at or before the last one
+    processed what a stream does about it: the core's words ask to sort a log, but a stream that
+    sends a chunk again, or resumes from a pickle and sends what the pickle holds already, has no
+    log to sort; it gives the samples after :attr:`Pipeline.last_time`."""
+    if error.what != "t" or error.index != index_offset or last is None or not len(t) or not t[0] <= last:
+        return
+    newer = int(np.count_nonzero(t > last))
+    error.log_message = str(error)  # type: ignore[attr-defined]  # a file's reader sorts the log instead
+    error.args = (f"{error}; the chunk starts at or before t = {last!r}, the last sample this pipeline processed "
+                  f"(Pipeline.last_time; a pipeline resumed from a pickle holds every sample up to it): give only "
+                  f"the samples after it ({newer} of this chunk's {len(t)}). Nothing of this chunk was processed",)
 
 
 def _first_unusable(t: FloatArray, rate: FloatArray, temperature: FloatArray | None) -> str:
