@@ -179,20 +179,56 @@ def _settings(settings: dict[str, float]) -> dict[str, float]:
     return {k: float(v) for k, v in settings.items()}
 
 
+#: The last fix a stream was given: time [s], heading [rad], sigma [rad].
+GivenFix = tuple[float, float, float]
+
+
+def refuse_behind_waiting(fixes: Fixes, waiting: GivenFix | None) -> None:
+    """Refuses a stream's new ``fixes`` whose first comes before ``waiting``, the last fix given
+    with an earlier block and still waiting for its samples (None if none waits), or is that fix
+    again. A stream keeps every fix it is given until the samples reach it, so a caller who gives
+    the waiting fixes again has them twice: the filter found the step back only once the samples
+    reached the end of the waiting ones, blocks later, and the waiting fix given again alone was
+    applied twice. (Two different fixes at one time stay allowed, as in one call.)"""
+    if waiting is None or not len(fixes):
+        return
+    first = (float(fixes.t[0]), float(fixes.heading[0]), float(fixes.sigma[0]))
+    if first[0] < waiting[0]:
+        how = f"comes before t = {waiting[0]!r}, a fix"
+    elif first == waiting:
+        how = "is the fix"
+    else:
+        return
+    raise ValueError(f"fix 0: t = {first[0]!r} {how} given with an earlier block that still waits for its samples: a "
+                     "stream keeps each fix it is given until the samples reach it, so give each fix once (only "
+                     "those after the ones given before), in time order. Nothing of this block was processed")
+
+
+def last_given(fixes: Fixes, before: GivenFix | None) -> GivenFix | None:
+    """The last fix a stream was given, after a block that brought ``fixes``."""
+    if not len(fixes):
+        return before
+    return float(fixes.t[-1]), float(fixes.heading[-1]), float(fixes.sigma[-1])
+
+
 class Fusion:
     """The filter for a stream: ``process(t, rate, fixes)`` per block, the fixes of a block given
-    with it or earlier (fixes past the block's last sample wait for the next block). Chunked runs
-    and pickled copies are bit-identical to one call."""
+    with it or earlier (fixes past the block's last sample wait for the next block; give each fix
+    once). Chunked runs and pickled copies are bit-identical to one call."""
 
     def __init__(self, **settings: float) -> None:
         self._inner = _gyrocore.Fusion(_settings(settings))
+        self._last_fix: GivenFix | None = None  # the last fix given, for refuse_behind_waiting
 
     def process(self, t: ArrayLike, rate: ArrayLike, fixes: FixesLike | None = None) -> FusionResult:
         """Processes one block (``fixes``: :data:`FixesLike`, as every entry point takes them);
-        returns the estimate after each of its samples."""
+        returns the estimate after each of its samples. A fix before one given with an earlier
+        block that still waits is an error (the fixes were given again)."""
         f = Fixes.empty() if fixes is None else as_fixes(fixes)
         tt, r = as_float_array("t", t), as_float_array("rate", rate)
+        refuse_behind_waiting(f, self._last_fix if self._inner.counts()[3] else None)
         h, s, b, sc = self._inner.process(tt, r, f.t, f.heading, f.sigma)
+        self._last_fix = last_given(f, self._last_fix)
         return FusionResult(tt, h, s, b, sc, self.counts())
 
     def check(self, fixes: FixesLike) -> None:
@@ -212,10 +248,11 @@ class Fusion:
         return dict(self._inner.settings())
 
     def __getstate__(self) -> dict[str, Any]:
-        return {"state": self._inner.state_json()}
+        return {"state": self._inner.state_json(), "last_fix": self._last_fix}
 
     def __setstate__(self, state: dict[str, Any]) -> None:
         self._inner = _gyrocore.Fusion.from_state_json(state["state"])
+        self._last_fix = state.get("last_fix")
 
 
 def stage_settings(params: dict[str, Any], settings: dict[str, float] | None) -> dict[str, float]:
@@ -456,5 +493,5 @@ from .fixes_nmea import KMH, KNOT, read_nmea  # noqa: E402
 __all__ = [
     "FIXES_COLUMNS", "GNSS_COLUMNS", "KMH", "KNOT", "MAX_HEADING", "SETTINGS", "Fixes", "FixesLike", "Fusion", "FusionResult",
     "MIN_SHARE_INSIDE", "as_fixes", "check_all", "from_gnss", "from_latlon", "from_positions", "fuse", "read_fixes_csv", "read_fixes_file",
-    "read_gnss_csv", "read_nmea", "smoothed_stage", "stage_settings", "warn_outside",
+    "read_gnss_csv", "read_nmea", "refuse_behind_waiting", "smoothed_stage", "stage_settings", "warn_outside",
 ]

@@ -44,7 +44,7 @@ from .window import (
 )
 
 if TYPE_CHECKING:
-    from .fixes import Fixes, FixesLike
+    from .fixes import Fixes, FixesLike, GivenFix
 
 __all__ = [
     "ALL_OUTPUTS", "BIAS_SOURCES", "MIN_WINDOW_READINGS", "OUTPUTS", "TEMPERATURE_MODEL", "HeadingResult", "Pipeline",
@@ -101,6 +101,7 @@ class Pipeline:
         self._units_checked = False
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
         self._rests: list[Rest] = []
+        self._last_fix: GivenFix | None = None  # the last fix given, which may still wait
         self._watch = self._new_watch()
         if fusion is not None:
             self._inner.start_fusion(_stage_settings(self.params, fusion))
@@ -152,8 +153,9 @@ class Pipeline:
                 ``t``; outside its span, and without it, rests are judged by the rate alone.
             speed_t: the times [s] of ``speed``, strictly increasing, in the gyro's clock.
             fixes: absolute headings (:data:`gyrocore.fixes.FixesLike`) merged by time (those past
-                this chunk wait for the next; one before a processed sample is an error); the heading
-                is then the filter's, with ``heading_sigma`` and ``fusion`` (docs/fixes.md).
+                this chunk wait for the next, so give each fix once; one before a processed sample or
+                before a waiting one is an error); the heading is then the filter's, with
+                ``heading_sigma`` and ``fusion`` (docs/fixes.md).
             out: arrays to fill instead of fresh ones, which the result then holds: one per name
                 of ``heading``, ``rate`` and ``drift`` in ``outputs``, in that order (with
                 ``outputs=("heading",)`` the array itself; the fix stage's columns are fresh),
@@ -218,6 +220,10 @@ class Pipeline:
             _name_samples_sent_again(e, ta, inner.last_time(), index_offset)
             raise
         self._inner = inner  # with the fix stage the first fixes started, now that they were good
+        if fix_block is not None:
+            from .fixes import last_given
+
+            self._last_fix = last_given(fix_block, self._last_fix)
         if window is not None and not inner.bias()[2]:  # the window is over
             self._watch.close(window, self.bias)
         self._warn_repairs(before, inner.report(), ta, ra, temp)
@@ -260,7 +266,13 @@ class Pipeline:
             return self._inner, None
         from .fixes import as_fixes
 
+        from .fixes import refuse_behind_waiting
+
         block = as_fixes(fixes)
+        last = self._inner.last_time()
+        # the last fix given waits unless a sample at or after its time was processed
+        waits = self._last_fix is not None and (last is None or self._last_fix[0] > last)
+        refuse_behind_waiting(block, self._last_fix if waits else None)
         if self._inner.fused():
             return self._inner, block
         if self._inner.last_time() is not None:
@@ -339,6 +351,7 @@ class Pipeline:
         self._inner.reset()
         self._first_time = None
         self._rests = []
+        self._last_fix = None
         self._watch = self._new_watch()
 
     def _warn_repairs(
@@ -424,6 +437,7 @@ class Pipeline:
             "rests": self._rests,
             "unmeasured": self._unmeasured,
             "watched": self._watch.readings,
+            "last_fix": self._last_fix,
         }
 
     def __setstate__(self, state: dict[str, Any]) -> None:
@@ -434,6 +448,7 @@ class Pipeline:
         self._rests = list(state.get("rests", []))
         self._unmeasured = state.get("unmeasured")
         self._watch = WindowWatch.restored(state.get("watched", []))
+        self._last_fix = state.get("last_fix")
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"

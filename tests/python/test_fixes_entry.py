@@ -314,3 +314,32 @@ def test_a_bad_fixes_csv_stops_only_what_uses_it(tmp_path: Path) -> None:
     assert read_log(folder, use_fixes=False).fixes is None
     with pytest.raises(ValueError, match="line 3"):
         read_log(folder)
+
+
+def test_fixes_given_again_while_they_wait_are_refused_at_once() -> None:
+    """A stream keeps the fixes it is given: one that hands the waiting fixes over again had them
+    twice (a lone one applied twice, a list refused only blocks later, at the end of the waiting)."""
+    t, heading, rate = drive(60.0)
+    fixes = fixes_of(t, heading)
+    stream = gyrocore.Pipeline("hdr", bias=BIAS, fusion={})
+    first = stream.process(t[:100], rate[:100], fixes=fixes)  # all of them: the later ones wait
+    state = pickle.dumps(stream)
+    again = part(fixes, fixes.t >= t[200])
+    with pytest.raises(ValueError, match=r"fix 0: t = .* comes before t = .*, a fix given with an earlier block that "
+                       r"still waits .* give each fix once"):
+        stream.process(t[100:200], rate[100:200], fixes=again)
+    assert pickle.dumps(stream) == state
+    rest = pickle.loads(state).process(t[100:], rate[100:])
+    whole = gyrocore.Pipeline("hdr", bias=BIAS).process(t, rate, fixes=fixes)
+    assert np.concatenate([first.heading, rest.heading]).tobytes() == whole.heading.tobytes()
+    lone = Fixes.of([t[150]], [0.2], 0.02)
+    for stage in (gyrocore.Pipeline("hdr", bias=BIAS, fusion={}), gyrocore.fixes.Fusion()):
+        stage.process(t[:100], rate[:100], fixes=lone)
+        with pytest.raises(ValueError, match=r"fix 0: t = 3.0 is the fix given with an earlier block"):
+            stage.process(t[100:200], rate[100:200], fixes=lone)
+        stage = pickle.loads(pickle.dumps(stage))
+        with pytest.raises(ValueError, match="is the fix given"):  # a resumed stream knows it too
+            stage.process(t[100:200], rate[100:200], fixes=lone)
+        done = stage.process(t[100:200], rate[100:200], fixes=Fixes.of([t[180]], [0.2], 0.02))
+        counts = done.fusion.counts if isinstance(done, gyrocore.HeadingResult) else done.counts
+        assert counts["applied"] + counts["rejected"] == 2 and counts["waiting"] == 0
