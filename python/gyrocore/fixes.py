@@ -179,6 +179,22 @@ def _settings(settings: dict[str, float]) -> dict[str, float]:
     return {k: float(v) for k, v in settings.items()}
 
 
+#: The core's words for a fix given after a sample past its time was processed.
+_LATE = "comes before the last gyro sample processed"
+
+
+def say_how_to_wait(error: ValueError) -> None:
+    """Adds to the core's error about a late fix what a live stream does about one: a receiver
+    delivers its fix after the gyro samples of its time came (its latency), and the core's words
+    (pass it with the block that reaches its time) did not say that this means holding the gyro's
+    samples back."""
+    if _LATE in str(error):
+        error.args = (f"{error}. A fix that arrives after the samples of its time (a receiver's latency) is used only if "
+                      "the gyro is held back that long: process the samples up to the newest sample's time less the "
+                      "latency, with every fix received, and keep the others for the next block (docs/fixes.md, "
+                      "\"Fixes that arrive late\"); or leave such a fix out. Nothing of this block was processed",)
+
+
 #: The last fix a stream was given: time [s], heading [rad], sigma [rad].
 GivenFix = tuple[float, float, float]
 
@@ -227,7 +243,11 @@ class Fusion:
         f = Fixes.empty() if fixes is None else as_fixes(fixes)
         tt, r = as_float_array("t", t), as_float_array("rate", rate)
         refuse_behind_waiting(f, self._last_fix if self._inner.counts()[3] else None)
-        h, s, b, sc = self._inner.process(tt, r, f.t, f.heading, f.sigma)
+        try:
+            h, s, b, sc = self._inner.process(tt, r, f.t, f.heading, f.sigma)
+        except ValueError as e:
+            say_how_to_wait(e)
+            raise
         self._last_fix = last_given(f, self._last_fix)
         return FusionResult(tt, h, s, b, sc, self.counts())
 
@@ -493,5 +513,5 @@ from .fixes_nmea import KMH, KNOT, read_nmea  # noqa: E402
 __all__ = [
     "FIXES_COLUMNS", "GNSS_COLUMNS", "KMH", "KNOT", "MAX_HEADING", "SETTINGS", "Fixes", "FixesLike", "Fusion", "FusionResult",
     "MIN_SHARE_INSIDE", "as_fixes", "check_all", "from_gnss", "from_latlon", "from_positions", "fuse", "read_fixes_csv", "read_fixes_file",
-    "read_gnss_csv", "read_nmea", "refuse_behind_waiting", "smoothed_stage", "stage_settings", "warn_outside",
+    "read_gnss_csv", "read_nmea", "refuse_behind_waiting", "say_how_to_wait", "smoothed_stage", "stage_settings", "warn_outside",
 ]

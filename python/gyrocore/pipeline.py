@@ -219,6 +219,11 @@ class Pipeline:
         except _gyrocore.SampleError as e:
             _name_samples_sent_again(e, ta, inner.last_time(), index_offset)
             raise
+        except ValueError as e:
+            from .fixes import say_how_to_wait
+
+            say_how_to_wait(e)
+            raise
         self._inner = inner  # with the fix stage the first fixes started, now that they were good
         if fix_block is not None:
             from .fixes import last_given

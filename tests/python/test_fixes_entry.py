@@ -343,3 +343,30 @@ def test_fixes_given_again_while_they_wait_are_refused_at_once() -> None:
         done = stage.process(t[100:200], rate[100:200], fixes=Fixes.of([t[180]], [0.2], 0.02))
         counts = done.fusion.counts if isinstance(done, gyrocore.HeadingResult) else done.counts
         assert counts["applied"] + counts["rejected"] == 2 and counts["waiting"] == 0
+
+
+
+def test_fixes_that_arrive_late_are_used_by_a_gyro_held_back_that_long() -> None:
+    """docs/fixes.md's recipe: the gyro held back by the receiver's latency gives one call's
+    headings; without it a late fix is refused with what to do."""
+    t, heading, rate = drive(60.0)
+    fixes = fixes_of(t, heading, rate_hz=5.0)
+    whole = gyrocore.Pipeline("hdr", bias=BIAS).process(t, rate, fixes=fixes)
+    latency, rng = 0.3, np.random.default_rng(0)
+    arrive = fixes.t + rng.uniform(0.05, latency, len(fixes))
+    stream = gyrocore.Pipeline("hdr", bias=BIAS, fusion={})
+    parts, came, held, given, k = [], 0, 0, 0, 0  # samples come, held from, fixes given, received
+    while came < len(t):
+        came = min(came + int(rng.integers(1, 9)), len(t))  # a chunk of the gyro comes
+        while k < len(fixes) and arrive[k] <= t[came - 1]:
+            k += 1  # the fixes received by then
+        end = came if came == len(t) else int(np.searchsorted(t, t[came - 1] - latency, side="right"))
+        new = (np.arange(len(fixes)) >= given) & (np.arange(len(fixes)) < (len(fixes) if came == len(t) else k))
+        parts.append(stream.process(t[held:end], rate[held:end], fixes=part(fixes, new)))
+        held, given = end, int(np.count_nonzero(new)) + given
+    assert np.concatenate([p.heading for p in parts]).tobytes() == whole.heading.tobytes()
+    for stage in (gyrocore.Pipeline("hdr", bias=BIAS, fusion={}), gyrocore.fixes.Fusion()):
+        stage.process(t[:100], rate[:100])
+        with pytest.raises(ValueError, match=r"comes before the last gyro sample processed .* held back that long: "
+                           r"process the samples up to the newest sample's time less the latency"):
+            stage.process(t[100:200], rate[100:200], fixes=Fixes.of([t[90]], [0.0], 0.02))
