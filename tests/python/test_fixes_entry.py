@@ -370,3 +370,20 @@ def test_fixes_that_arrive_late_are_used_by_a_gyro_held_back_that_long() -> None
         with pytest.raises(ValueError, match=r"comes before the last gyro sample processed .* held back that long: "
                            r"process the samples up to the newest sample's time less the latency"):
             stage.process(t[100:200], rate[100:200], fixes=Fixes.of([t[90]], [0.0], 0.02))
+
+
+def test_a_fix_on_the_last_sample_processed_changes_only_that_rows_past() -> None:
+    """A fix at exactly the time of the last sample processed, given with the next block, is
+    applied: the stream goes on as one call would, but the row it belongs to was returned already
+    (docs/fixes.md says so)."""
+    t, heading, rate = drive(30.0)
+    fixes = Fixes.of(t[10::50], heading[10::50], 0.02)
+    whole = gyrocore.Pipeline("hdr", bias=BIAS).process(t, rate, fixes=fixes)
+    stream = gyrocore.Pipeline("hdr", bias=BIAS, fusion={})
+    edge = 161  # fixes.t[3] is t[160], the first block's last sample
+    first = stream.process(t[:edge], rate[:edge], fixes=part(fixes, fixes.t < t[edge - 1]))
+    rest = stream.process(t[edge:], rate[edge:], fixes=part(fixes, fixes.t >= t[edge - 1]))
+    assert first.heading[:-1].tobytes() == whole.heading[:edge - 1].tobytes()
+    assert first.heading[-1] != whole.heading[edge - 1]  # returned before the fix came
+    assert rest.heading.tobytes() == whole.heading[edge:].tobytes()
+    assert rest.fusion is not None and whole.fusion is not None and rest.fusion.counts == whole.fusion.counts
