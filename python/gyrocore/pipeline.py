@@ -61,6 +61,9 @@ _Fused = tuple[FloatArray | None, FloatArray | None, FloatArray | None, tuple[in
 TEMPERATURE_MODEL = ("temp_slope", "temp_offset")
 
 
+#: Samples a stream's unit check waits for (one interval): a first chunk of one sample has none.
+UNIT_SAMPLES = 2
+
 #: :meth:`Pipeline.process`'s ``index_offset`` is below this: any index of a chunk added to it fits
 #: the core's 64-bit index.
 MAX_INDEX = 2**63
@@ -98,7 +101,8 @@ class Pipeline:
         si = _to_si(overrides)
         self._inner = core_pipeline(preset, si)
         self._preset = preset
-        self._units_checked = False
+        # the first samples, held until the unit check has an interval to judge (None once done)
+        self._unit_head: tuple[FloatArray, FloatArray] | None = (np.empty(0), np.empty(0))
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
         self._rests: list[Rest] = []
         self._last_fix: GivenFix | None = None  # the last fix given, which may still wait
@@ -179,7 +183,8 @@ class Pipeline:
 
         Warns:
             InputWarning: rates or timestamps that look like another unit, or a temperature
-                without a temperature model (checked on the first chunk), readings held or skipped
+                without a temperature model (checked once the stream has two samples, however
+                they were chunked; the temperature on the first chunk), readings held or skipped
                 (``nonfinite="hold"/"skip"``), gaps longer than ``gap_limit``.
         """
         # below 2^63: the core adds it to an index within the chunk, which wrapped past 2^64 (2^64 - 1
@@ -192,14 +197,8 @@ class Pipeline:
         ra = as_float_array("rate", rate)
         temp = None if temperature is None else as_float_array("temperature", temperature)
         self._check_bias_window(ta, ra, temp)
-        if not self._units_checked and len(ta):
-            warn_units(ta, ra)
-            if temp is not None and not any(self.params.get(k) is not None for k in TEMPERATURE_MODEL):
-                warn(
-                    f"temperature is given but no temperature model ({', '.join(TEMPERATURE_MODEL)}) is set: it is "
-                    "not used; set the model (e.g. calibration.rotary_table's) or leave the temperature out"
-                )
-            self._units_checked = True
+        if self._unit_head is not None and len(ta):
+            self._check_units(ta, ra, temp)
         flags = output_flags(outputs)
         inner, fix_block = self._fix_block(fixes)
         rests.refuse_speed_t_alone(speed, speed_t)
@@ -246,6 +245,25 @@ class Pipeline:
         counts = {"applied": applied, "rejected": rejected, "before_start": before_start, "waiting": waiting}
         return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found), heading_sigma=sigma,
                              fusion=FusionResult(ta, heading, sigma, bias, scale, counts))
+
+    def _check_units(self, t: FloatArray, rate: FloatArray, temperature: FloatArray | None) -> None:
+        """Warns of rates or timestamps that look like another unit, once the stream has an
+        interval to judge: a robot's first chunk of one sample has none, and its timestamps in ms
+        were never judged (the later chunks were not looked at), where one call warned."""
+        assert self._unit_head is not None
+        held_t, held_rate = self._unit_head
+        if not len(held_t) and temperature is not None and not any(
+                self.params.get(k) is not None for k in TEMPERATURE_MODEL):
+            warn(
+                f"temperature is given but no temperature model ({', '.join(TEMPERATURE_MODEL)}) is set: it is "
+                "not used; set the model (e.g. calibration.rotary_table's) or leave the temperature out"
+            )
+        head_t, head_rate = np.concatenate((held_t, t)), np.concatenate((held_rate, rate))
+        if len(head_t) < UNIT_SAMPLES:
+            self._unit_head = (head_t, head_rate)
+            return
+        warn_units(head_t, head_rate)
+        self._unit_head = None
 
     def _new_watch(self) -> WindowWatch:
         """A watch of the rest window, done already with a fixed bias (nothing to watch per chunk)."""
@@ -443,12 +461,14 @@ class Pipeline:
             "unmeasured": self._unmeasured,
             "watched": self._watch.readings,
             "last_fix": self._last_fix,
+            "unit_head": None if self._unit_head is None else [a.tolist() for a in self._unit_head],
         }
 
     def __setstate__(self, state: dict[str, Any]) -> None:
         self._preset = state["preset"]
         self._inner = _gyrocore.Pipeline.from_state_json(state["state"])
-        self._units_checked = self._inner.last_time() is not None
+        head = state.get("unit_head", None if self._inner.last_time() is not None else ([], []))
+        self._unit_head = None if head is None else (np.asarray(head[0], float), np.asarray(head[1], float))
         self._first_time = state.get("first_time")
         self._rests = list(state.get("rests", []))
         self._unmeasured = state.get("unmeasured")

@@ -287,3 +287,18 @@ def test_a_resumed_stream_says_where_it_stopped_and_refuses_samples_sent_again()
     with pytest.raises(gyrocore.SampleError) as inside:
         gyrocore.Pipeline("raw").process([0.0, 1.0, 0.5], [0.0, 0.0, 0.0])
     assert "last_time" not in str(inside.value)
+
+
+def test_a_stream_of_one_sample_chunks_has_its_units_judged() -> None:
+    """A robot's first chunk of one sample has no interval: timestamps in ms were never judged
+    (only the first chunk was), where one call over the same samples warns."""
+    t = np.arange(200) * 20.0  # ms
+    rate = np.full(len(t), 0.01)
+    stream = gyrocore.Pipeline("raw", gap_limit=100.0)  # the 20 "s" intervals are no gap to say
+    stream.process(t[:1], rate[:1])
+    stream = pickle.loads(pickle.dumps(stream))  # a restart in between keeps the sample held
+    with pytest.warns(gyrocore.InputWarning, match="timestamps look like ms"):
+        stream.process(t[1:2], rate[1:2])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", gyrocore.InputWarning)
+        gyrocore.Pipeline("raw").process(np.arange(5) * 0.02, rate[:5])  # seconds: nothing said
