@@ -209,8 +209,7 @@ class Pipeline:
         given = out_arrays(out, outputs, len(ta), inputs)
         before = inner.report()
         window = None if self._watch.readings is None else self._window(ta)  # none once it is checked
-        if window is not None and inner.bias()[2]:
-            self._watch.add(window, ta, ra)
+        measuring = window is not None and inner.bias()[2]
         try:
             heading, out_rate, drift, found, fused = self._run(
                 inner, ta, ra, temp, index_offset, (flags, fix_output_flags(outputs)), sa, fix_block, given
@@ -223,6 +222,10 @@ class Pipeline:
 
             say_how_to_wait(e)
             raise
+        # kept only once the core took the chunk: the readings of a refused one, sent again mended,
+        # were kept twice (a pickle of the refused pipeline differed from the one before)
+        if measuring and window is not None:
+            self._watch.add(window, ta, ra)
         self._inner = inner  # with the fix stage the first fixes started, now that they were good
         if fix_block is not None:
             from .fixes import last_given
