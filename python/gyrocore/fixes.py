@@ -119,7 +119,9 @@ class FusionResult:
     scale: FloatArray | None
     counts: dict[str, int]
     """Fixes ``applied``, ``rejected`` by the outlier gate, ``before_start`` (before the first gyro
-    sample: skipped) and ``after_end`` (after the last: unused)."""
+    sample: skipped) and, of a whole log, ``after_end`` (after the last: unused) or, of a stream,
+    ``waiting`` (past the block's last sample, for a later block). A stream's counts are its
+    totals since its first block (a pickle keeps them), not the block's own."""
 
     def __repr__(self) -> str:
         return f"FusionResult({len(self.t)} samples, fixes {self.counts})"

@@ -387,3 +387,14 @@ def test_a_fix_on_the_last_sample_processed_changes_only_that_rows_past() -> Non
     assert first.heading[-1] != whole.heading[edge - 1]  # returned before the fix came
     assert rest.heading.tobytes() == whole.heading[edge:].tobytes()
     assert rest.fusion is not None and whole.fusion is not None and rest.fusion.counts == whole.fusion.counts
+
+
+def test_a_streams_fix_counts_are_its_totals_since_the_first_block() -> None:
+    t, heading, rate = drive(30.0)
+    fixes = fixes_of(t, heading)
+    stream = gyrocore.Pipeline("hdr", bias=BIAS, fusion={})
+    first = stream.process(t[:700], rate[:700], fixes=part(fixes, fixes.t < t[700]))
+    second = pickle.loads(pickle.dumps(stream)).process(t[700:], rate[700:], fixes=part(fixes, fixes.t >= t[700]))
+    assert first.fusion is not None and second.fusion is not None
+    assert first.fusion.counts["applied"] == int(np.count_nonzero(fixes.t < t[700]))
+    assert second.fusion.counts["applied"] + second.fusion.counts["rejected"] == len(fixes)
