@@ -106,6 +106,7 @@ class Pipeline:
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
         self._rests: list[Rest] = []
         self._last_fix: GivenFix | None = None  # the last fix given, which may still wait
+        self._speed_said = False  # a chunk's samples outside its speed's times, said once
         self._watch = self._new_watch()
         if fusion is not None:
             self._inner.start_fusion(_stage_settings(self.params, fusion))
@@ -205,6 +206,8 @@ class Pipeline:
         if speed is not None and not self.params["track_rests"]:
             raise ValueError("speed is given but rest tracking is off: pass track_rests=True, or no speed")
         sa = None if speed is None else rests.speed_at(ta, speed, speed_t)
+        if speed_t is not None and sa is not None:
+            self._warn_speed_outside(ta, sa, speed_t)
         inputs = {"t": (t, ta), "rate": (rate, ra), "temperature": (temperature, temp), "speed": (speed, sa)}
         given = out_arrays(out, outputs, len(ta), inputs)
         before = inner.report()
@@ -267,6 +270,23 @@ class Pipeline:
             return
         warn_units(head_t, head_rate)
         self._unit_head = None
+
+    def _warn_speed_outside(self, t: FloatArray, speed: FloatArray, speed_t: ArrayLike) -> None:
+        """Warns, once, of a stream's chunk (not its first: one call's log may well outlast its
+        odometry) whose samples lie outside the times of the speed given with it: their speed is
+        unknown, so the tracker judged them by the rate alone, and a robot that gave each chunk
+        the odometry received so far found no rest where one call over its log found one."""
+        unknown = int(np.count_nonzero(np.isnan(speed)))
+        if self._speed_said or not unknown or self._inner.last_time() is None:
+            return
+        st = np.asarray(speed_t, dtype=np.float64)
+        span = f"{float(st[0])!r} to {float(st[-1])!r} s" if len(st) else "none"
+        warn(f"{unknown} of this chunk's {len(t)} gyro samples lie outside the times of the speed given with it "
+             f"({span}): their speed is unknown and the rest tracker judges them by the rate alone; where the speed "
+             "goes on, a stream then finds other rests than one call over the same samples: hold the gyro back "
+             "until the speed covers it, and give the speed from its last sample before the chunk's first on "
+             "(docs/python.md)")
+        self._speed_said = True
 
     def _new_watch(self) -> WindowWatch:
         """A watch of the rest window, done already with a fixed bias (nothing to watch per chunk)."""
@@ -477,6 +497,7 @@ class Pipeline:
         self._unmeasured = state.get("unmeasured")
         self._watch = WindowWatch.restored(state.get("watched", []))
         self._last_fix = state.get("last_fix")
+        self._speed_said = False
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"
