@@ -119,9 +119,10 @@ class FusionResult:
     scale: FloatArray | None
     counts: dict[str, int]
     """Fixes ``applied``, ``rejected`` by the outlier gate, ``before_start`` (before the first gyro
-    sample: skipped) and, of a whole log, ``after_end`` (after the last: unused) or, of a stream,
-    ``waiting`` (past the block's last sample, for a later block). A stream's counts are its
-    totals since its first block (a pickle keeps them), not the block's own."""
+    sample: skipped) and, from :func:`fuse` and whole mode's smoother, ``after_end`` (after the
+    last: unused) or, from a stream and causal mode (a :class:`~gyrocore.Pipeline`), ``waiting``
+    (past the last sample processed, for a later block). A stream's counts are its totals since
+    its first block (a pickle keeps them), not the block's own."""
 
     def __repr__(self) -> str:
         return f"FusionResult({len(self.t)} samples, fixes {self.counts})"
