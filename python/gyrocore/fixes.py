@@ -198,6 +198,29 @@ def say_how_to_wait(error: ValueError) -> None:
                       "\"Fixes that arrive late\"); or leave such a fix out. Nothing of this block was processed",)
 
 
+#: A stream's fixes that start this far [s] past its last gyro sample are warned about: live
+#: fixes come after the samples of their time, and a log's fixes given ahead wait for less than a
+#: day of samples; a day's wait is another clock.
+FAR_AHEAD = 86_400.0
+
+
+def warn_far_ahead(fixes: Fixes, last_sample: float | None) -> bool:
+    """Warns when a stream's new ``fixes`` start more than :data:`FAR_AHEAD` after its last gyro
+    sample ``last_sample`` [s], and says whether it did. Such fixes wait for samples that never
+    come (UTC seconds against a gyro's seconds since boot), without a word: a stream does not warn
+    of fixes outside its span, as a whole log does, since it may be given them ahead."""
+    if last_sample is None or not len(fixes):
+        return False
+    first = float(fixes.t[0])
+    if not first - last_sample > FAR_AHEAD:
+        return False
+    warn(f"the heading fixes given start at t = {first:.3f} s, {first - last_sample:.6g} s after the last gyro sample "
+         f"(t = {last_sample:.3f} s): a stream keeps each fix until the samples reach it, and these wait for more than "
+         "a day, so they look like another clock (UTC or GNSS seconds against a gyro's seconds since boot) and would "
+         "never be applied: give the fixes' times on the gyro's clock, in seconds")
+    return True
+
+
 #: The last fix a stream was given: time [s], heading [rad], sigma [rad].
 GivenFix = tuple[float, float, float]
 
@@ -238,6 +261,7 @@ class Fusion:
     def __init__(self, **settings: float) -> None:
         self._inner = _gyrocore.Fusion(_settings(settings))
         self._last_fix: GivenFix | None = None  # the last fix given, for refuse_behind_waiting
+        self._ahead_said = False  # fixes far ahead of the samples, said once
 
     def process(self, t: ArrayLike, rate: ArrayLike, fixes: FixesLike | None = None) -> FusionResult:
         """Processes one block (``fixes``: :data:`FixesLike`, as every entry point takes them);
@@ -252,6 +276,7 @@ class Fusion:
             say_how_to_wait(e)
             raise
         self._last_fix = last_given(f, self._last_fix)
+        self._ahead_said = self._ahead_said or warn_far_ahead(f, float(tt[-1]) if len(tt) else None)
         return FusionResult(tt, h, s, b, sc, self.counts())
 
     def check(self, fixes: FixesLike) -> None:
@@ -276,6 +301,7 @@ class Fusion:
     def __setstate__(self, state: dict[str, Any]) -> None:
         self._inner = _gyrocore.Fusion.from_state_json(state["state"])
         self._last_fix = state.get("last_fix")
+        self._ahead_said = False
 
 
 def stage_settings(params: dict[str, Any], settings: dict[str, float] | None) -> dict[str, float]:
@@ -516,5 +542,5 @@ from .fixes_nmea import KMH, KNOT, read_nmea  # noqa: E402
 __all__ = [
     "FIXES_COLUMNS", "GNSS_COLUMNS", "KMH", "KNOT", "MAX_HEADING", "SETTINGS", "Fixes", "FixesLike", "Fusion", "FusionResult",
     "MIN_SHARE_INSIDE", "as_fixes", "check_all", "from_gnss", "from_latlon", "from_positions", "fuse", "read_fixes_csv", "read_fixes_file",
-    "read_gnss_csv", "read_nmea", "refuse_behind_waiting", "say_how_to_wait", "smoothed_stage", "stage_settings", "warn_outside",
+    "read_gnss_csv", "read_nmea", "refuse_behind_waiting", "say_how_to_wait", "warn_far_ahead", "smoothed_stage", "stage_settings", "warn_outside",
 ]

@@ -107,6 +107,7 @@ class Pipeline:
         self._rests: list[Rest] = []
         self._last_fix: GivenFix | None = None  # the last fix given, which may still wait
         self._speed_said = False  # a chunk's samples outside its speed's times, said once
+        self._ahead_said = False  # fixes far ahead of the samples, said once
         self._watch = self._new_watch()
         if fusion is not None:
             self._inner.start_fusion(_stage_settings(self.params, fusion))
@@ -231,9 +232,10 @@ class Pipeline:
             self._watch.add(window, ta, ra)
         self._inner = inner  # with the fix stage the first fixes started, now that they were good
         if fix_block is not None:
-            from .fixes import last_given
+            from .fixes import last_given, warn_far_ahead
 
             self._last_fix = last_given(fix_block, self._last_fix)
+            self._ahead_said = self._ahead_said or warn_far_ahead(fix_block, inner.last_time())
         if window is not None and not inner.bias()[2]:  # the window is over
             self._watch.close(window, self.bias)
         self._warn_repairs(before, inner.report(), ta, ra, temp)
@@ -310,9 +312,7 @@ class Pipeline:
         leaves the pipeline without one."""
         if fixes is None:
             return self._inner, None
-        from .fixes import as_fixes
-
-        from .fixes import refuse_behind_waiting
+        from .fixes import as_fixes, refuse_behind_waiting
 
         block = as_fixes(fixes)
         last = self._inner.last_time()
@@ -498,6 +498,7 @@ class Pipeline:
         self._watch = WindowWatch.restored(state.get("watched", []))
         self._last_fix = state.get("last_fix")
         self._speed_said = False
+        self._ahead_said = False
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"

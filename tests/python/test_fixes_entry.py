@@ -398,3 +398,21 @@ def test_a_streams_fix_counts_are_its_totals_since_the_first_block() -> None:
     assert first.fusion is not None and second.fusion is not None
     assert first.fusion.counts["applied"] == int(np.count_nonzero(fixes.t < t[700]))
     assert second.fusion.counts["applied"] + second.fusion.counts["rejected"] == len(fixes)
+
+
+def test_a_streams_fixes_on_another_clock_are_warned_about_once() -> None:
+    """Fixes in UTC seconds given to a stream whose gyro counts from boot waited for ever, never
+    applied, without a word (a stream does not check the span, as it may be given fixes ahead)."""
+    t, heading, rate = drive(30.0)
+    fixes = fixes_of(t, heading)
+    utc = Fixes(fixes.t + 1.7e9, fixes.heading, fixes.sigma)
+    for stage in (gyrocore.Pipeline("hdr", bias=BIAS, fusion={}), gyrocore.fixes.Fusion()):
+        with pytest.warns(gyrocore.InputWarning, match=r"start at t = 1700000000\.\d+ s, 1\.7e\+09 s after the last gyro "
+                          r"sample .* another clock"):
+            stage.process(t[:500], rate[:500], fixes=part(utc, utc.t < 1.7e9 + t[500]))
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", gyrocore.InputWarning)  # once
+            stage.process(t[500:], rate[500:], fixes=part(utc, utc.t >= 1.7e9 + t[500]))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", gyrocore.InputWarning)  # a log's fixes all given ahead: no word
+        gyrocore.Pipeline("hdr", bias=BIAS, fusion={}).process(t[:10], rate[:10], fixes=fixes)
