@@ -416,3 +416,6 @@ def test_a_streams_fixes_on_another_clock_are_warned_about_once() -> None:
     with warnings.catch_warnings():
         warnings.simplefilter("error", gyrocore.InputWarning)  # a log's fixes all given ahead: no word
         gyrocore.Pipeline("hdr", bias=BIAS, fusion={}).process(t[:10], rate[:10], fixes=fixes)
+    with pytest.warns(gyrocore.InputWarning) as said:  # a whole log's own check says it, alone
+        gyrocore.process(t, rate, "raw", mode="causal", fixes=utc)
+    assert [str(w.message)[:12] for w in said] == ["none of the "]
