@@ -192,10 +192,11 @@ def say_how_to_wait(error: ValueError) -> None:
     (pass it with the block that reaches its time) did not say that this means holding the gyro's
     samples back."""
     if _LATE in str(error):
-        error.args = (f"{error}. A fix that arrives after the samples of its time (a receiver's latency) is used only if "
-                      "the gyro is held back that long: process the samples up to the newest sample's time less the "
-                      "latency, with every fix received, and keep the others for the next block (docs/fixes.md, "
-                      "\"Fixes that arrive late\"); or leave such a fix out. Nothing of this block was processed",)
+        error.args = (f"{error}. A fix that arrives after the samples of its time (a receiver's latency) is used "
+                      "only if the gyro is held back that long: process the samples up to the newest sample's "
+                      "time less the latency, with every fix received, and keep the others for the next block "
+                      "(docs/fixes.md, \"Fixes that arrive late\"); or leave such a fix out. Nothing of this "
+                      "block was processed",)
 
 
 #: A stream's fixes that start this far [s] past its last gyro sample are warned about: live
@@ -542,5 +543,6 @@ from .fixes_nmea import KMH, KNOT, read_nmea  # noqa: E402
 __all__ = [
     "FIXES_COLUMNS", "GNSS_COLUMNS", "KMH", "KNOT", "MAX_HEADING", "SETTINGS", "Fixes", "FixesLike", "Fusion", "FusionResult",
     "MIN_SHARE_INSIDE", "as_fixes", "check_all", "from_gnss", "from_latlon", "from_positions", "fuse", "read_fixes_csv", "read_fixes_file",
-    "read_gnss_csv", "read_nmea", "refuse_behind_waiting", "say_how_to_wait", "warn_far_ahead", "smoothed_stage", "stage_settings", "warn_outside",
+    "read_gnss_csv", "read_nmea", "refuse_behind_waiting", "say_how_to_wait", "warn_far_ahead", "smoothed_stage",
+    "stage_settings", "warn_outside",
 ]

@@ -407,8 +407,8 @@ def test_a_streams_fixes_on_another_clock_are_warned_about_once() -> None:
     fixes = fixes_of(t, heading)
     utc = Fixes(fixes.t + 1.7e9, fixes.heading, fixes.sigma)
     for stage in (gyrocore.Pipeline("hdr", bias=BIAS, fusion={}), gyrocore.fixes.Fusion()):
-        with pytest.warns(gyrocore.InputWarning, match=r"start at t = 1700000000\.\d+ s, 1\.7e\+09 s after the last gyro "
-                          r"sample .* another clock"):
+        with pytest.warns(gyrocore.InputWarning,
+                          match=r"start at t = 1700000000\.\d+ s, 1\.7e\+09 s after the last gyro sample .* clock"):
             stage.process(t[:500], rate[:500], fixes=part(utc, utc.t < 1.7e9 + t[500]))
         with warnings.catch_warnings():
             warnings.simplefilter("error", gyrocore.InputWarning)  # once
