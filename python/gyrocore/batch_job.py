@@ -41,7 +41,8 @@ class FileReport:
     Attributes:
         input: the input path.
         output: the heading table written, or None if the file failed.
-        rows_in: samples read (up to the failure, for a failed file).
+        rows_in: samples read (for a file that fails at a bad sample, the samples before it,
+            whatever ``chunk_rows``; for other failures, up to the last chunk read).
         rows_out: rows written (equal to ``rows_in`` for a file that succeeded; 0 if it failed).
         seconds: wall time.
         error: why the file failed, or None.
@@ -246,6 +247,12 @@ class _FileJob:
                             outputs=self.outputs,
                         )
                 except SampleError as e:
+                    # a file's chunks repeating a time at their edge is the file's duplicate, which
+                    # sorting the log mends, not a stream's chunk sent again
+                    e.args = (getattr(e, "log_message", str(e)),)
+                    # every sample before the bad one was read and is good: the count up to the
+                    # failure, whatever the chunks (it stopped at the last whole chunk before it)
+                    self.rows_in = int(e.index)
                     # a timestamp beyond the core's limits is most often an epoch in a smaller unit;
                     # a bad reading, an empty cell a phone app left, has an option ("drop or fill
                     # them first" sent users to edit the file)

@@ -119,7 +119,10 @@ class FusionResult:
     scale: FloatArray | None
     counts: dict[str, int]
     """Fixes ``applied``, ``rejected`` by the outlier gate, ``before_start`` (before the first gyro
-    sample: skipped) and ``after_end`` (after the last: unused)."""
+    sample: skipped) and, from :func:`fuse` and whole mode's smoother, ``after_end`` (after the
+    last: unused) or, from a stream and causal mode (a :class:`~gyrocore.Pipeline`), ``waiting``
+    (past the last sample processed, for a later block). A stream's counts are its totals since
+    its first block (a pickle keeps them), not the block's own."""
 
     def __repr__(self) -> str:
         return f"FusionResult({len(self.t)} samples, fixes {self.counts})"
@@ -179,20 +182,102 @@ def _settings(settings: dict[str, float]) -> dict[str, float]:
     return {k: float(v) for k, v in settings.items()}
 
 
+#: The core's words for a fix given after a sample past its time was processed.
+_LATE = "comes before the last gyro sample processed"
+
+
+def say_how_to_wait(error: ValueError) -> None:
+    """Adds to the core's error about a late fix what a live stream does about one: a receiver
+    delivers its fix after the gyro samples of its time came (its latency), and the core's words
+    (pass it with the block that reaches its time) did not say that this means holding the gyro's
+    samples back."""
+    if _LATE in str(error):
+        error.args = (f"{error}. A fix that arrives after the samples of its time (a receiver's latency) is used "
+                      "only if the gyro is held back that long: process the samples up to the newest sample's "
+                      "time less the latency, with every fix received, and keep the others for the next block "
+                      "(docs/fixes.md, \"Fixes that arrive late\"); or leave such a fix out. Nothing of this "
+                      "block was processed",)
+
+
+#: A stream's fixes that start this far [s] past its last gyro sample are warned about: live
+#: fixes come after the samples of their time, and a log's fixes given ahead wait for less than a
+#: day of samples; a day's wait is another clock.
+FAR_AHEAD = 86_400.0
+
+
+def warn_far_ahead(fixes: Fixes, last_sample: float | None) -> bool:
+    """Warns when a stream's new ``fixes`` start more than :data:`FAR_AHEAD` after its last gyro
+    sample ``last_sample`` [s], and says whether it did. Such fixes wait for samples that never
+    come (UTC seconds against a gyro's seconds since boot), without a word: a stream does not warn
+    of fixes outside its span, as a whole log does, since it may be given them ahead."""
+    if last_sample is None or not len(fixes):
+        return False
+    first = float(fixes.t[0])
+    if not first - last_sample > FAR_AHEAD:
+        return False
+    warn(f"the heading fixes given start at t = {first:.3f} s, {first - last_sample:.6g} s after the last gyro sample "
+         f"(t = {last_sample:.3f} s): a stream keeps each fix until the samples reach it, and these wait for more than "
+         "a day, so they look like another clock (UTC or GNSS seconds against a gyro's seconds since boot) and would "
+         "never be applied: give the fixes' times on the gyro's clock, in seconds")
+    return True
+
+
+#: The last fix a stream was given: time [s], heading [rad], sigma [rad].
+GivenFix = tuple[float, float, float]
+
+
+def refuse_behind_waiting(fixes: Fixes, waiting: GivenFix | None) -> None:
+    """Refuses a stream's new ``fixes`` whose first comes before ``waiting``, the last fix given
+    with an earlier block and still waiting for its samples (None if none waits), or is that fix
+    again. A stream keeps every fix it is given until the samples reach it, so a caller who gives
+    the waiting fixes again has them twice: the filter found the step back only once the samples
+    reached the end of the waiting ones, blocks later, and the waiting fix given again alone was
+    applied twice. (Two different fixes at one time stay allowed, as in one call.)"""
+    if waiting is None or not len(fixes):
+        return
+    first = (float(fixes.t[0]), float(fixes.heading[0]), float(fixes.sigma[0]))
+    if first[0] < waiting[0]:
+        how = f"comes before t = {waiting[0]!r}, a fix"
+    elif first == waiting:
+        how = "is the fix"
+    else:
+        return
+    raise ValueError(f"fix 0: t = {first[0]!r} {how} given with an earlier block that still waits for its samples: a "
+                     "stream keeps each fix it is given until the samples reach it, so give each fix once (only "
+                     "those after the ones given before), in time order. Nothing of this block was processed")
+
+
+def last_given(fixes: Fixes, before: GivenFix | None) -> GivenFix | None:
+    """The last fix a stream was given, after a block that brought ``fixes``."""
+    if not len(fixes):
+        return before
+    return float(fixes.t[-1]), float(fixes.heading[-1]), float(fixes.sigma[-1])
+
+
 class Fusion:
     """The filter for a stream: ``process(t, rate, fixes)`` per block, the fixes of a block given
-    with it or earlier (fixes past the block's last sample wait for the next block). Chunked runs
-    and pickled copies are bit-identical to one call."""
+    with it or earlier (fixes past the block's last sample wait for the next block; give each fix
+    once). Chunked runs and pickled copies are bit-identical to one call."""
 
     def __init__(self, **settings: float) -> None:
         self._inner = _gyrocore.Fusion(_settings(settings))
+        self._last_fix: GivenFix | None = None  # the last fix given, for refuse_behind_waiting
+        self._ahead_said = False  # fixes far ahead of the samples, said once
 
     def process(self, t: ArrayLike, rate: ArrayLike, fixes: FixesLike | None = None) -> FusionResult:
         """Processes one block (``fixes``: :data:`FixesLike`, as every entry point takes them);
-        returns the estimate after each of its samples."""
+        returns the estimate after each of its samples. A fix before one given with an earlier
+        block that still waits is an error (the fixes were given again)."""
         f = Fixes.empty() if fixes is None else as_fixes(fixes)
         tt, r = as_float_array("t", t), as_float_array("rate", rate)
-        h, s, b, sc = self._inner.process(tt, r, f.t, f.heading, f.sigma)
+        refuse_behind_waiting(f, self._last_fix if self._inner.counts()[3] else None)
+        try:
+            h, s, b, sc = self._inner.process(tt, r, f.t, f.heading, f.sigma)
+        except ValueError as e:
+            say_how_to_wait(e)
+            raise
+        self._last_fix = last_given(f, self._last_fix)
+        self._ahead_said = self._ahead_said or warn_far_ahead(f, float(tt[-1]) if len(tt) else None)
         return FusionResult(tt, h, s, b, sc, self.counts())
 
     def check(self, fixes: FixesLike) -> None:
@@ -212,10 +297,12 @@ class Fusion:
         return dict(self._inner.settings())
 
     def __getstate__(self) -> dict[str, Any]:
-        return {"state": self._inner.state_json()}
+        return {"state": self._inner.state_json(), "last_fix": self._last_fix}
 
     def __setstate__(self, state: dict[str, Any]) -> None:
         self._inner = _gyrocore.Fusion.from_state_json(state["state"])
+        self._last_fix = state.get("last_fix")
+        self._ahead_said = False
 
 
 def stage_settings(params: dict[str, Any], settings: dict[str, float] | None) -> dict[str, float]:
@@ -456,5 +543,6 @@ from .fixes_nmea import KMH, KNOT, read_nmea  # noqa: E402
 __all__ = [
     "FIXES_COLUMNS", "GNSS_COLUMNS", "KMH", "KNOT", "MAX_HEADING", "SETTINGS", "Fixes", "FixesLike", "Fusion", "FusionResult",
     "MIN_SHARE_INSIDE", "as_fixes", "check_all", "from_gnss", "from_latlon", "from_positions", "fuse", "read_fixes_csv", "read_fixes_file",
-    "read_gnss_csv", "read_nmea", "smoothed_stage", "stage_settings", "warn_outside",
+    "read_gnss_csv", "read_nmea", "refuse_behind_waiting", "say_how_to_wait", "warn_far_ahead", "smoothed_stage",
+    "stage_settings", "warn_outside",
 ]

@@ -44,7 +44,7 @@ from .window import (
 )
 
 if TYPE_CHECKING:
-    from .fixes import Fixes, FixesLike
+    from .fixes import Fixes, FixesLike, GivenFix
 
 __all__ = [
     "ALL_OUTPUTS", "BIAS_SOURCES", "MIN_WINDOW_READINGS", "OUTPUTS", "TEMPERATURE_MODEL", "HeadingResult", "Pipeline",
@@ -60,6 +60,9 @@ _Fused = tuple[FloatArray | None, FloatArray | None, FloatArray | None, tuple[in
 #: Parameters of FOG eq 5's temperature model: without one, a temperature given is not used.
 TEMPERATURE_MODEL = ("temp_slope", "temp_offset")
 
+
+#: Samples a stream's unit check waits for (one interval): a first chunk of one sample has none.
+UNIT_SAMPLES = 2
 
 #: :meth:`Pipeline.process`'s ``index_offset`` is below this: any index of a chunk added to it fits
 #: the core's 64-bit index.
@@ -98,9 +101,13 @@ class Pipeline:
         si = _to_si(overrides)
         self._inner = core_pipeline(preset, si)
         self._preset = preset
-        self._units_checked = False
+        # the first samples, held until the unit check has an interval to judge (None once done)
+        self._unit_head: tuple[FloatArray, FloatArray] | None = (np.empty(0), np.empty(0))
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
         self._rests: list[Rest] = []
+        self._last_fix: GivenFix | None = None  # the last fix given, which may still wait
+        self._speed_said = False  # a chunk's samples outside its speed's times, said once
+        self._ahead_said = False  # fixes far ahead of the samples, said once
         self._watch = self._new_watch()
         if fusion is not None:
             self._inner.start_fusion(_stage_settings(self.params, fusion))
@@ -152,8 +159,9 @@ class Pipeline:
                 ``t``; outside its span, and without it, rests are judged by the rate alone.
             speed_t: the times [s] of ``speed``, strictly increasing, in the gyro's clock.
             fixes: absolute headings (:data:`gyrocore.fixes.FixesLike`) merged by time (those past
-                this chunk wait for the next; one before a processed sample is an error); the heading
-                is then the filter's, with ``heading_sigma`` and ``fusion`` (docs/fixes.md).
+                this chunk wait for the next, so give each fix once; one before a processed sample or
+                before a waiting one is an error); the heading is then the filter's, with
+                ``heading_sigma`` and ``fusion`` (docs/fixes.md).
             out: arrays to fill instead of fresh ones, which the result then holds: one per name
                 of ``heading``, ``rate`` and ``drift`` in ``outputs``, in that order (with
                 ``outputs=("heading",)`` the array itself; the fix stage's columns are fresh),
@@ -165,6 +173,8 @@ class Pipeline:
         Raises:
             SampleError: (a ValueError) non-increasing or non-finite timestamps, or NaN/inf readings
                 under ``nonfinite="error"``; its ``index`` and ``what`` name the first bad sample.
+                A chunk that starts at or before :attr:`last_time` (sent again, or after a resume
+                from a pickle that holds it already) says so: give only the samples after it.
             ValueError: mismatched lengths; timestamps whose interval overflows (near +-1e308); an
                 ``index_offset`` that is no int in [0, 2^63); an ``out`` array of the wrong shape or
                 layout, read-only, or sharing memory;
@@ -175,7 +185,8 @@ class Pipeline:
 
         Warns:
             InputWarning: rates or timestamps that look like another unit, or a temperature
-                without a temperature model (checked on the first chunk), readings held or skipped
+                without a temperature model (checked once the stream has two samples, however
+                they were chunked; the temperature on the first chunk), readings held or skipped
                 (``nonfinite="hold"/"skip"``), gaps longer than ``gap_limit``.
         """
         # below 2^63: the core adds it to an index within the chunk, which wrapped past 2^64 (2^64 - 1
@@ -188,30 +199,43 @@ class Pipeline:
         ra = as_float_array("rate", rate)
         temp = None if temperature is None else as_float_array("temperature", temperature)
         self._check_bias_window(ta, ra, temp)
-        if not self._units_checked and len(ta):
-            warn_units(ta, ra)
-            if temp is not None and not any(self.params.get(k) is not None for k in TEMPERATURE_MODEL):
-                warn(
-                    f"temperature is given but no temperature model ({', '.join(TEMPERATURE_MODEL)}) is set: it is "
-                    "not used; set the model (e.g. calibration.rotary_table's) or leave the temperature out"
-                )
-            self._units_checked = True
+        if self._unit_head is not None and len(ta):
+            self._check_units(ta, ra, temp)
         flags = output_flags(outputs)
         inner, fix_block = self._fix_block(fixes)
         rests.refuse_speed_t_alone(speed, speed_t)
         if speed is not None and not self.params["track_rests"]:
             raise ValueError("speed is given but rest tracking is off: pass track_rests=True, or no speed")
         sa = None if speed is None else rests.speed_at(ta, speed, speed_t)
+        if speed_t is not None and sa is not None:
+            self._warn_speed_outside(ta, sa, speed_t)
         inputs = {"t": (t, ta), "rate": (rate, ra), "temperature": (temperature, temp), "speed": (speed, sa)}
         given = out_arrays(out, outputs, len(ta), inputs)
         before = inner.report()
         window = None if self._watch.readings is None else self._window(ta)  # none once it is checked
-        if window is not None and inner.bias()[2]:
+        measuring = window is not None and inner.bias()[2]
+        try:
+            heading, out_rate, drift, found, fused = self._run(
+                inner, ta, ra, temp, index_offset, (flags, fix_output_flags(outputs)), sa, fix_block, given
+            )
+        except _gyrocore.SampleError as e:
+            _name_samples_sent_again(e, ta, inner.last_time(), index_offset)
+            raise
+        except ValueError as e:
+            from .fixes import say_how_to_wait
+
+            say_how_to_wait(e)
+            raise
+        # kept only once the core took the chunk: the readings of a refused one, sent again mended,
+        # were kept twice (a pickle of the refused pipeline differed from the one before)
+        if measuring and window is not None:
             self._watch.add(window, ta, ra)
-        heading, out_rate, drift, found, fused = self._run(
-            inner, ta, ra, temp, index_offset, (flags, fix_output_flags(outputs)), sa, fix_block, given
-        )
         self._inner = inner  # with the fix stage the first fixes started, now that they were good
+        if fix_block is not None:
+            from .fixes import last_given, warn_far_ahead
+
+            self._last_fix = last_given(fix_block, self._last_fix)
+            self._ahead_said = self._ahead_said or warn_far_ahead(fix_block, inner.last_time())
         if window is not None and not inner.bias()[2]:  # the window is over
             self._watch.close(window, self.bias)
         self._warn_repairs(before, inner.report(), ta, ra, temp)
@@ -229,6 +253,42 @@ class Pipeline:
         counts = {"applied": applied, "rejected": rejected, "before_start": before_start, "waiting": waiting}
         return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found), heading_sigma=sigma,
                              fusion=FusionResult(ta, heading, sigma, bias, scale, counts))
+
+    def _check_units(self, t: FloatArray, rate: FloatArray, temperature: FloatArray | None) -> None:
+        """Warns of rates or timestamps that look like another unit, once the stream has an
+        interval to judge: a robot's first chunk of one sample has none, and its timestamps in ms
+        were never judged (the later chunks were not looked at), where one call warned."""
+        assert self._unit_head is not None
+        held_t, held_rate = self._unit_head
+        if not len(held_t) and temperature is not None and not any(
+                self.params.get(k) is not None for k in TEMPERATURE_MODEL):
+            warn(
+                f"temperature is given but no temperature model ({', '.join(TEMPERATURE_MODEL)}) is set: it is "
+                "not used; set the model (e.g. calibration.rotary_table's) or leave the temperature out"
+            )
+        head_t, head_rate = np.concatenate((held_t, t)), np.concatenate((held_rate, rate))
+        if len(head_t) < UNIT_SAMPLES:
+            self._unit_head = (head_t, head_rate)
+            return
+        warn_units(head_t, head_rate)
+        self._unit_head = None
+
+    def _warn_speed_outside(self, t: FloatArray, speed: FloatArray, speed_t: ArrayLike) -> None:
+        """Warns, once, of a stream's chunk (not its first: one call's log may well outlast its
+        odometry) whose samples lie outside the times of the speed given with it: their speed is
+        unknown, so the tracker judged them by the rate alone, and a robot that gave each chunk
+        the odometry received so far found no rest where one call over its log found one."""
+        unknown = int(np.count_nonzero(np.isnan(speed)))
+        if self._speed_said or not unknown or self._inner.last_time() is None:
+            return
+        st = np.asarray(speed_t, dtype=np.float64)
+        span = f"{float(st[0])!r} to {float(st[-1])!r} s" if len(st) else "none"
+        warn(f"{unknown} of this chunk's {len(t)} gyro samples lie outside the times of the speed given with it "
+             f"({span}): their speed is unknown and the rest tracker judges them by the rate alone; where the speed "
+             "goes on, a stream then finds other rests than one call over the same samples: hold the gyro back "
+             "until the speed covers it, and give the speed from its last sample before the chunk's first on "
+             "(docs/python.md)")
+        self._speed_said = True
 
     def _new_watch(self) -> WindowWatch:
         """A watch of the rest window, done already with a fixed bias (nothing to watch per chunk)."""
@@ -252,9 +312,13 @@ class Pipeline:
         leaves the pipeline without one."""
         if fixes is None:
             return self._inner, None
-        from .fixes import as_fixes
+        from .fixes import as_fixes, refuse_behind_waiting
 
         block = as_fixes(fixes)
+        last = self._inner.last_time()
+        # the last fix given waits unless a sample at or after its time was processed
+        waits = self._last_fix is not None and (last is None or self._last_fix[0] > last)
+        refuse_behind_waiting(block, self._last_fix if waits else None)
         if self._inner.fused():
             return self._inner, block
         if self._inner.last_time() is not None:
@@ -284,6 +348,13 @@ class Pipeline:
                                                               flags[1])
         origin = self._first_time if self._first_time is not None else float(t[0]) if len(t) else 0.0
         return heading, out_rate, drift, [rests.from_core(r, origin) for r in found], fused
+
+    @property
+    def last_time(self) -> float | None:
+        """The time [s] of the last sample processed (None before the first): the next chunk
+        starts after it. A pipeline resumed from a pickle holds every sample up to it, so a
+        stream that restarts gives only the samples after it."""
+        return self._inner.last_time()
 
     @property
     def rests(self) -> list[Rest]:
@@ -326,6 +397,7 @@ class Pipeline:
         self._inner.reset()
         self._first_time = None
         self._rests = []
+        self._last_fix = None
         self._watch = self._new_watch()
 
     def _warn_repairs(
@@ -411,19 +483,40 @@ class Pipeline:
             "rests": self._rests,
             "unmeasured": self._unmeasured,
             "watched": self._watch.readings,
+            "last_fix": self._last_fix,
+            "unit_head": None if self._unit_head is None else [a.tolist() for a in self._unit_head],
         }
 
     def __setstate__(self, state: dict[str, Any]) -> None:
         self._preset = state["preset"]
         self._inner = _gyrocore.Pipeline.from_state_json(state["state"])
-        self._units_checked = self._inner.last_time() is not None
+        head = state.get("unit_head", None if self._inner.last_time() is not None else ([], []))
+        self._unit_head = None if head is None else (np.asarray(head[0], float), np.asarray(head[1], float))
         self._first_time = state.get("first_time")
         self._rests = list(state.get("rests", []))
         self._unmeasured = state.get("unmeasured")
         self._watch = WindowWatch.restored(state.get("watched", []))
+        self._last_fix = state.get("last_fix")
+        self._speed_said = False
+        self._ahead_said = False
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"
+
+
+def _name_samples_sent_again(error: _gyrocore.SampleError, t: FloatArray, last: float | None,
+                             index_offset: int) -> None:
+    """Adds to the core's error about a chunk whose first sample comes at or before the last one
+    processed what a stream does about it: the core's words ask to sort a log, but a stream that
+    sends a chunk again, or resumes from a pickle and sends what the pickle holds already, has no
+    log to sort; it gives the samples after :attr:`Pipeline.last_time`."""
+    if error.what != "t" or error.index != index_offset or last is None or not len(t) or not t[0] <= last:
+        return
+    newer = int(np.count_nonzero(t > last))
+    error.log_message = str(error)  # type: ignore[attr-defined]  # a file's reader sorts the log instead
+    error.args = (f"{error}; the chunk starts at or before t = {last!r}, the last sample this pipeline processed "
+                  f"(Pipeline.last_time; a pipeline resumed from a pickle holds every sample up to it): give only "
+                  f"the samples after it ({newer} of this chunk's {len(t)}). Nothing of this chunk was processed",)
 
 
 def _first_unusable(t: FloatArray, rate: FloatArray, temperature: FloatArray | None) -> str:

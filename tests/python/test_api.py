@@ -266,3 +266,39 @@ def test_every_rate_parameter_takes_a_deg_per_s_spelling() -> None:
     for name in rates:
         given = gyrocore.pipeline.preset_params("tracked", **{f"{name}_dps": 0.25})
         assert given[name] == pytest.approx(math.radians(0.25)), name
+
+
+def test_a_resumed_stream_says_where_it_stopped_and_refuses_samples_sent_again() -> None:
+    t, rate = _log()
+    whole = gyrocore.Pipeline("combined", bias=0.01).process(t, rate)
+    stream = gyrocore.Pipeline("combined", bias=0.01)
+    assert stream.last_time is None
+    first = stream.process(t[:1000], rate[:1000])
+    resumed = pickle.loads(pickle.dumps(stream))
+    assert resumed.last_time == t[999]
+    # A robot that restarts and sends its last chunk again: the words say what to give, not to sort a log.
+    with pytest.raises(gyrocore.SampleError, match=r"the last sample this pipeline processed \(Pipeline.last_time.*"
+                       r"give only the samples after it \(1000 of this chunk's 1010\)") as caught:
+        resumed.process(t[990:2000], rate[990:2000], index_offset=990)
+    assert (caught.value.index, caught.value.what) == (990, "t")
+    rest = resumed.process(t[t > resumed.last_time], rate[t > resumed.last_time])
+    assert np.concatenate([first.heading, rest.heading]).tobytes() == whole.heading.tobytes()
+    # A timestamp going back inside a chunk is a log's problem, told as before.
+    with pytest.raises(gyrocore.SampleError) as inside:
+        gyrocore.Pipeline("raw").process([0.0, 1.0, 0.5], [0.0, 0.0, 0.0])
+    assert "last_time" not in str(inside.value)
+
+
+def test_a_stream_of_one_sample_chunks_has_its_units_judged() -> None:
+    """A robot's first chunk of one sample has no interval: timestamps in ms were never judged
+    (only the first chunk was), where one call over the same samples warns."""
+    t = np.arange(200) * 20.0  # ms
+    rate = np.full(len(t), 0.01)
+    stream = gyrocore.Pipeline("raw", gap_limit=100.0)  # the 20 "s" intervals are no gap to say
+    stream.process(t[:1], rate[:1])
+    stream = pickle.loads(pickle.dumps(stream))  # a restart in between keeps the sample held
+    with pytest.warns(gyrocore.InputWarning, match="timestamps look like ms"):
+        stream.process(t[1:2], rate[1:2])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", gyrocore.InputWarning)
+        gyrocore.Pipeline("raw").process(np.arange(5) * 0.02, rate[:5])  # seconds: nothing said

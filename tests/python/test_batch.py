@@ -444,3 +444,30 @@ def test_causal_mode_warns_of_an_unmeasured_bias_only_for_files_it_processes(tmp
     # the failed file was not processed: no bias of its output was taken as 0
     assert not any("removes a static bias" in w for w in failed.warnings), failed.warnings
     assert sum("removes a static bias" in str(w.message) for w in caught) == 1, [str(w.message) for w in caught]
+
+
+def test_a_time_repeated_across_a_files_chunks_is_the_files_duplicate(tmp_path: Path) -> None:
+    """A repeat on a chunk's edge reads as a stream sending a chunk again to the pipeline; from a
+    file it is the file's duplicate, told as one."""
+    rows = [f"{k * 0.1:.1f},0.01" for k in range(10)]
+    rows[6] = rows[5]  # the first sample of the third 3-row chunk repeats the last of the second
+    path = tmp_path / "a.csv"
+    path.write_text("t,gyro_z\n" + "\n".join(rows) + "\n")
+    with pytest.raises(ValueError) as info:
+        process_file(path, tmp_path / "o.csv", preset="raw", chunk_rows=3)
+    assert str(info.value) == f"timestamps must strictly increase: t[6] = 0.5 follows 0.5 (sort the log and " \
+        f"drop duplicate timestamps) ({path}, line 8)"
+
+
+@pytest.mark.parametrize("chunk_rows", [100, 300, 10_000])
+def test_a_failed_files_rows_in_are_the_samples_before_its_bad_one(tmp_path: Path, chunk_rows: int) -> None:
+    """A file that fails at a bad sample reports the rows read up to it, whatever the chunks: it
+    counted the whole chunks before the failing one (0 in one chunk, 900 in chunks of 300)."""
+    path = tmp_path / "mid.csv"
+    rows = [f"{k * 0.01:.2f},0.01" for k in range(2000)]
+    rows[1000] = "10.00,nan"
+    path.write_text("t,gyro_z\n" + "\n".join(rows) + "\n")
+    summary = process_many([path], out_dir=tmp_path / "out", preset="raw", chunk_rows=chunk_rows, jobs=1)
+    (report,) = summary.files
+    assert not report.ok and "rate[1000] is NaN" in str(report.error)
+    assert (report.rows_in, report.rows_out) == (1000, 0)

@@ -314,3 +314,108 @@ def test_a_bad_fixes_csv_stops_only_what_uses_it(tmp_path: Path) -> None:
     assert read_log(folder, use_fixes=False).fixes is None
     with pytest.raises(ValueError, match="line 3"):
         read_log(folder)
+
+
+def test_fixes_given_again_while_they_wait_are_refused_at_once() -> None:
+    """A stream keeps the fixes it is given: one that hands the waiting fixes over again had them
+    twice (a lone one applied twice, a list refused only blocks later, at the end of the waiting)."""
+    t, heading, rate = drive(60.0)
+    fixes = fixes_of(t, heading)
+    stream = gyrocore.Pipeline("hdr", bias=BIAS, fusion={})
+    first = stream.process(t[:100], rate[:100], fixes=fixes)  # all of them: the later ones wait
+    state = pickle.dumps(stream)
+    again = part(fixes, fixes.t >= t[200])
+    with pytest.raises(ValueError, match=r"fix 0: t = .* comes before t = .*, a fix given with an earlier block that "
+                       r"still waits .* give each fix once"):
+        stream.process(t[100:200], rate[100:200], fixes=again)
+    assert pickle.dumps(stream) == state
+    rest = pickle.loads(state).process(t[100:], rate[100:])
+    whole = gyrocore.Pipeline("hdr", bias=BIAS).process(t, rate, fixes=fixes)
+    assert np.concatenate([first.heading, rest.heading]).tobytes() == whole.heading.tobytes()
+    lone = Fixes.of([t[150]], [0.2], 0.02)
+    for stage in (gyrocore.Pipeline("hdr", bias=BIAS, fusion={}), gyrocore.fixes.Fusion()):
+        stage.process(t[:100], rate[:100], fixes=lone)
+        with pytest.raises(ValueError, match=r"fix 0: t = 3.0 is the fix given with an earlier block"):
+            stage.process(t[100:200], rate[100:200], fixes=lone)
+        stage = pickle.loads(pickle.dumps(stage))
+        with pytest.raises(ValueError, match="is the fix given"):  # a resumed stream knows it too
+            stage.process(t[100:200], rate[100:200], fixes=lone)
+        done = stage.process(t[100:200], rate[100:200], fixes=Fixes.of([t[180]], [0.2], 0.02))
+        counts = done.fusion.counts if isinstance(done, gyrocore.HeadingResult) else done.counts
+        assert counts["applied"] + counts["rejected"] == 2 and counts["waiting"] == 0
+
+
+
+def test_fixes_that_arrive_late_are_used_by_a_gyro_held_back_that_long() -> None:
+    """docs/fixes.md's recipe: the gyro held back by the receiver's latency gives one call's
+    headings; without it a late fix is refused with what to do."""
+    t, heading, rate = drive(60.0)
+    fixes = fixes_of(t, heading, rate_hz=5.0)
+    whole = gyrocore.Pipeline("hdr", bias=BIAS).process(t, rate, fixes=fixes)
+    latency, rng = 0.3, np.random.default_rng(0)
+    arrive = fixes.t + rng.uniform(0.05, latency, len(fixes))
+    stream = gyrocore.Pipeline("hdr", bias=BIAS, fusion={})
+    parts, came, held, given, k = [], 0, 0, 0, 0  # samples come, held from, fixes given, received
+    while came < len(t):
+        came = min(came + int(rng.integers(1, 9)), len(t))  # a chunk of the gyro comes
+        while k < len(fixes) and arrive[k] <= t[came - 1]:
+            k += 1  # the fixes received by then
+        end = came if came == len(t) else int(np.searchsorted(t, t[came - 1] - latency, side="right"))
+        new = (np.arange(len(fixes)) >= given) & (np.arange(len(fixes)) < (len(fixes) if came == len(t) else k))
+        parts.append(stream.process(t[held:end], rate[held:end], fixes=part(fixes, new)))
+        held, given = end, int(np.count_nonzero(new)) + given
+    assert np.concatenate([p.heading for p in parts]).tobytes() == whole.heading.tobytes()
+    for stage in (gyrocore.Pipeline("hdr", bias=BIAS, fusion={}), gyrocore.fixes.Fusion()):
+        stage.process(t[:100], rate[:100])
+        with pytest.raises(ValueError, match=r"comes before the last gyro sample processed .* held back that long: "
+                           r"process the samples up to the newest sample's time less the latency"):
+            stage.process(t[100:200], rate[100:200], fixes=Fixes.of([t[90]], [0.0], 0.02))
+
+
+def test_a_fix_on_the_last_sample_processed_changes_only_that_rows_past() -> None:
+    """A fix at exactly the time of the last sample processed, given with the next block, is
+    applied: the stream goes on as one call would, but the row it belongs to was returned already
+    (docs/fixes.md says so)."""
+    t, heading, rate = drive(30.0)
+    fixes = Fixes.of(t[10::50], heading[10::50], 0.02)
+    whole = gyrocore.Pipeline("hdr", bias=BIAS).process(t, rate, fixes=fixes)
+    stream = gyrocore.Pipeline("hdr", bias=BIAS, fusion={})
+    edge = 161  # fixes.t[3] is t[160], the first block's last sample
+    first = stream.process(t[:edge], rate[:edge], fixes=part(fixes, fixes.t < t[edge - 1]))
+    rest = stream.process(t[edge:], rate[edge:], fixes=part(fixes, fixes.t >= t[edge - 1]))
+    assert first.heading[:-1].tobytes() == whole.heading[:edge - 1].tobytes()
+    assert first.heading[-1] != whole.heading[edge - 1]  # returned before the fix came
+    assert rest.heading.tobytes() == whole.heading[edge:].tobytes()
+    assert rest.fusion is not None and whole.fusion is not None and rest.fusion.counts == whole.fusion.counts
+
+
+def test_a_streams_fix_counts_are_its_totals_since_the_first_block() -> None:
+    t, heading, rate = drive(30.0)
+    fixes = fixes_of(t, heading)
+    stream = gyrocore.Pipeline("hdr", bias=BIAS, fusion={})
+    first = stream.process(t[:700], rate[:700], fixes=part(fixes, fixes.t < t[700]))
+    second = pickle.loads(pickle.dumps(stream)).process(t[700:], rate[700:], fixes=part(fixes, fixes.t >= t[700]))
+    assert first.fusion is not None and second.fusion is not None
+    assert first.fusion.counts["applied"] == int(np.count_nonzero(fixes.t < t[700]))
+    assert second.fusion.counts["applied"] + second.fusion.counts["rejected"] == len(fixes)
+
+
+def test_a_streams_fixes_on_another_clock_are_warned_about_once() -> None:
+    """Fixes in UTC seconds given to a stream whose gyro counts from boot waited for ever, never
+    applied, without a word (a stream does not check the span, as it may be given fixes ahead)."""
+    t, heading, rate = drive(30.0)
+    fixes = fixes_of(t, heading)
+    utc = Fixes(fixes.t + 1.7e9, fixes.heading, fixes.sigma)
+    for stage in (gyrocore.Pipeline("hdr", bias=BIAS, fusion={}), gyrocore.fixes.Fusion()):
+        with pytest.warns(gyrocore.InputWarning,
+                          match=r"start at t = 1700000000\.\d+ s, 1\.7e\+09 s after the last gyro sample .* clock"):
+            stage.process(t[:500], rate[:500], fixes=part(utc, utc.t < 1.7e9 + t[500]))
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", gyrocore.InputWarning)  # once
+            stage.process(t[500:], rate[500:], fixes=part(utc, utc.t >= 1.7e9 + t[500]))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", gyrocore.InputWarning)  # a log's fixes all given ahead: no word
+        gyrocore.Pipeline("hdr", bias=BIAS, fusion={}).process(t[:10], rate[:10], fixes=fixes)
+    with pytest.warns(gyrocore.InputWarning) as said:  # a whole log's own check says it, alone
+        gyrocore.process(t, rate, "raw", mode="causal", fixes=utc)
+    assert [str(w.message)[:12] for w in said] == ["none of the "]

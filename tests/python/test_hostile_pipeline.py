@@ -4,7 +4,9 @@ index."""
 
 from __future__ import annotations
 
+import pickle
 import re
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -133,3 +135,22 @@ def test_read_log_refuses_use_fixes_given_as_text(tmp_path: Path) -> None:
     folder = datasets.write_sample(tmp_path / "drive")
     with pytest.raises(TypeError, match=r"^use_fixes must be True or False, got 0$"):
         gyrocore.read_log(folder, use_fixes=0)  # type: ignore[arg-type]
+
+
+def test_a_refused_chunk_in_the_rest_window_leaves_the_pipeline_as_it_was() -> None:
+    """The readings of a chunk the core refused were kept for the rest window's turn check: sent
+    again mended, the window was said to hold a turn it never had, and a pickle differed."""
+    t = np.arange(0, 30, 0.01)
+    rate = 0.002 + np.random.default_rng(0).normal(0, 0.001, len(t))
+    corrupt = rate.copy()
+    corrupt[200:400] += 0.5
+    corrupt[450] = np.nan
+    stream = gyrocore.Pipeline("static_bias", bias_duration=10.0)
+    stream.process(t[:200], rate[:200])
+    state = pickle.dumps(stream)
+    with pytest.raises(gyrocore.SampleError, match=r"rate\[250\] is NaN"):
+        stream.process(t[200:500], corrupt[200:500])
+    assert pickle.dumps(stream) == state
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", gyrocore.InputWarning)
+        stream.process(t[200:], rate[200:])

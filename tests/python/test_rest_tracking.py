@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import pickle
+import warnings
 
 import numpy as np
 import pytest
@@ -259,3 +260,33 @@ def test_speed_times_without_a_speed_are_refused(mode: str) -> None:
     causal = {"track_rests": True, "bias": 0.0} if mode == "causal" else {}
     with pytest.raises(ValueError, match="speed_t is given without speed: give the speed"):
         gyrocore.process(t, np.zeros_like(t), "static_bias", mode=mode, speed_t=t, **causal)
+
+
+def test_a_stream_given_its_odometry_as_it_comes_is_told_to_hold_the_gyro_back() -> None:
+    """Odometry at its own times, given with each chunk as it comes, leaves the chunk's last gyro
+    samples past its last speed: judged by the rate alone, they broke the rest, and the stream
+    found none where one call found one, without a word. Held back (docs/python.md), the stream is
+    one call, bit for bit."""
+    d = sim.car_drive(duration=60.0, rate_hz=50.0, seed=4)
+    t, rate = d.t, d.rate_measured
+    st, sp = t[::5] + 0.013, d.speed[::5]  # odometry at 10 Hz on its own clock ticks
+    with pytest.warns(gyrocore.InputWarning, match="removes a static bias"):
+        whole = gyrocore.Pipeline("tracked").process(t, rate, speed=sp, speed_t=st)
+    assert len(whole.tracked_rests) == 1
+    naive, held, parts = gyrocore.Pipeline("tracked"), gyrocore.Pipeline("tracked"), []
+    start, said = 0, []
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        for a in range(0, len(t), 25):
+            b = min(a + 25, len(t))
+            k = int(np.searchsorted(st, t[b - 1], side="right"))  # the odometry received by then
+            naive.process(t[a:b], rate[a:b], speed=sp[:k], speed_t=st[:k])
+            end = len(t) if b == len(t) else int(np.searchsorted(t, st[k - 1], side="right"))
+            j = max(int(np.searchsorted(st, t[start], side="right")) - 1, 0) if start < len(t) else 0
+            parts.append(held.process(t[start:end], rate[start:end], speed=sp[j:k], speed_t=st[j:k]))
+            start = end
+            said.append(sum("lie outside the times of the speed" in str(w.message) for w in caught))
+    assert not naive.rests
+    assert said[1] == 1 and said[-2] == 1  # the naive stream's second chunk says it, once
+    assert np.concatenate([p.heading for p in parts]).tobytes() == whole.heading.tobytes()
+    assert len(held.rests) == 1
