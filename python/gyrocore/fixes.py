@@ -15,7 +15,6 @@ rad/sqrt(s)) and ``bias_walk`` (rate random walk K, rad/s/sqrt(s)); see docs/fix
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass, replace
 from pathlib import Path
 from collections.abc import Callable
@@ -27,9 +26,6 @@ from numpy.typing import ArrayLike
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
 from ._checks import MAX_READING, require_finite, require_increasing, require_radians, warn
-from .io._csvfile import CsvLayout, csv_layout, read_csv_columns
-from .io._paths import check_file
-from .io.units import HEADER_TIME_UNITS, _normal as normal_unit, split_unit
 from .result import fix_output_flags
 
 if TYPE_CHECKING:
@@ -414,102 +410,6 @@ def warn_no_fix(given: str, speeds: FloatArray, min_speed: float) -> None:
     warn(f"no heading fix from {given}: {why}")
 
 
-def read_gnss_csv(path: str | Path, **options: float) -> Fixes:
-    """Fixes from a ``gnss.csv`` like comma_seg40's (t, speed [m/s], bearing [deg, clockwise from
-    north]), through :func:`from_gnss` (its options pass on)."""
-    path = Path(path)
-    layout = csv_layout(path, ",")
-    cols = _read_rows(path, GNSS_COLUMNS)
-    try:
-        return from_gnss(cols["t"], cols["bearing"], cols["speed"], **options)
-    except ValueError as e:
-        raise ValueError(_at_line(path, layout, {"t": "t", "speed": "speed", "bearing_deg": "bearing"}, e)) from None
-
-
-def read_fixes_csv(path: str | Path) -> Fixes:
-    """A log folder's ``fixes.csv``: t [s], heading [rad, CCW from east], sigma [rad] (a column
-    name may state its unit, if it is that one: ``t [s]``, ``heading [rad]``). Every fix is
-    checked as it is read: a bad one is an error naming the file, line and column."""
-    path = Path(path)
-    layout = csv_layout(path, ",")
-    names = _fix_columns(path, layout.header)
-    cols = _read_rows(path, tuple(names.values()))
-    try:
-        return check_all(Fixes(*(cols[names[c]] for c in FIXES_COLUMNS))).warn_if_vague()
-    except ValueError as e:
-        raise ValueError(_at_line(path, layout, names, e)) from None
-
-
-#: The columns of the two fix files :func:`read_fixes_file` reads.
-FIXES_COLUMNS, GNSS_COLUMNS = ("t", "heading", "sigma"), ("t", "speed", "bearing")
-#: The units a ``fixes.csv`` column may state in its name (``t [s]``, ``heading (rad)``), as
-#: :func:`gyrocore.io.units.split_unit` reads them; any other unit is refused, not converted.
-_SECONDS = tuple(u for u, si in HEADER_TIME_UNITS.items() if si == "s")
-_RADIANS = ("rad", "radian", "radians")
-_FIX_UNITS = {"t": ("s", _SECONDS), "heading": ("rad", _RADIANS), "sigma": ("rad", _RADIANS)}
-_FIXES_HEADER = (f"a fixes.csv has the header {','.join(FIXES_COLUMNS)}: t [s] on the gyro's clock, heading [rad, "
-                 "counter-clockwise from east], sigma [rad] (a name may state its unit: t [s], heading [rad])")
-
-
-def _fix_columns(path: Path, header: list[str]) -> dict[str, str]:
-    """The header name of each of :data:`FIXES_COLUMNS` in ``header``: the name itself or with its
-    unit; a column missing, given twice or in another unit is an error saying what is expected."""
-    names = {}
-    for wanted, (unit, spellings) in _FIX_UNITS.items():
-        found = [h for h in header if split_unit(h)[0] == wanted]
-        if len(found) != 1:
-            problem = "no column" if not found else f"{len(found)} columns"
-            raise ValueError(f"{path}: {problem} {wanted}; {_FIXES_HEADER}; its header is {','.join(header)}")
-        given = split_unit(found[0])[1]
-        if given is not None and normal_unit(given) not in spellings:
-            how = " (numpy.radians for degrees)" if unit == "rad" else ""
-            raise ValueError(f"{path}: column {found[0]!r} is in {given}, not {unit}: convert it to {unit}{how} "
-                             f"and name it {wanted} or {wanted} [{unit}]")
-        names[wanted] = found[0]
-    return names
-
-
-def _read_rows(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:
-    """The named columns of a fixes file, which must have a row: a file of no fix is refused, as a
-    gyro file of no sample is, rather than fusing nothing."""
-    cols = read_csv_columns(path, columns)
-    if len(cols[columns[0]]) == 0:
-        raise ValueError(f"{path}: no row after the header line, so no fix; add the fixes (one per line) or "
-                         "remove the file")
-    return cols
-
-
-#: How an error about one row begins: the filter's (and :class:`Fixes`') ``fix N: column = value``,
-#: or :func:`from_gnss`'s ``column[N] is value`` and ``column must strictly increase: column[N] =``.
-_ROW_ERROR = re.compile(r"fix (\d+): (\w+) = |(?:\w+ must strictly increase: )?(\w+)\[(\d+)\] (?:is|=) ")
-
-
-def _at_line(path: Path, layout: CsvLayout, names: dict[str, str], error: ValueError) -> str:
-    """``error``, about row N of the file ``path``, with the line and column of its value in front
-    (row N is ``layout.line(N)``, after the header; blank lines are refused by the reader). ``names``
-    maps the column an error names to the header's name, for the errors whose N is the file's row."""
-    m = _ROW_ERROR.match(str(error))
-    column = None if m is None else names.get(m[2] or m[3])
-    if m is None or column is None:
-        return f"{path}: {error}"
-    return f"{path}: line {layout.line(int(m[1] or m[4]))}, column {layout.header.index(column) + 1} ({column}): {error}"
-
-
-def read_fixes_file(path: str | Path) -> Fixes:
-    """A fixes file, by its header: ``fixes.csv``'s columns (t, heading [rad, CCW from east],
-    sigma [rad], :func:`read_fixes_csv`) or comma_seg40's ``gnss.csv`` (t, speed [m/s], bearing
-    [deg, CW from north], through :func:`read_gnss_csv` with its defaults)."""
-    path = Path(path)
-    check_file(path)  # a folder or a pipe given as the fixes is named as such, not "missing"
-    header = csv_layout(path, ",").header
-    if set(FIXES_COLUMNS) <= {split_unit(h)[0] for h in header}:
-        return read_fixes_csv(path)
-    if set(GNSS_COLUMNS) <= set(header):
-        return read_gnss_csv(path)
-    raise ValueError(f"{path}: a fixes file has the columns {', '.join(FIXES_COLUMNS)} (t [s], headings in rad, CCW "
-                     f"from east) or {', '.join(GNSS_COLUMNS)} (a gnss.csv); its header has {', '.join(sorted(header))}")
-
-
 #: What may be given as fixes: :class:`Fixes`, a fixes file, or ``(t, heading, sigma)`` arrays.
 FixesLike: TypeAlias = Fixes | str | Path | tuple[ArrayLike, ArrayLike, ArrayLike]
 
@@ -535,10 +435,11 @@ def as_fixes(fixes: FixesLike) -> Fixes:
                     f"got {type(fixes).__name__}")
 
 
-# Fixes from a track of positions and from NMEA sentences live in their own modules, which build
-# on Fixes and from_gnss above.
+# Fixes from a track of positions, from NMEA sentences and from fix files live in their own
+# modules, which build on Fixes, from_gnss and check_all above.
 from .fixes_track import from_latlon, from_positions  # noqa: E402
 from .fixes_nmea import KMH, KNOT, read_nmea  # noqa: E402
+from .fixes_files import FIXES_COLUMNS, GNSS_COLUMNS, read_fixes_csv, read_fixes_file, read_gnss_csv  # noqa: E402
 
 __all__ = [
     "FIXES_COLUMNS", "GNSS_COLUMNS", "KMH", "KNOT", "MAX_HEADING", "SETTINGS", "Fixes", "FixesLike", "Fusion", "FusionResult",

@@ -18,7 +18,8 @@ import numpy as np
 
 from ._checks import warn
 from ._extras import require
-from .fixes import _ROW_ERROR, Fixes, from_gnss
+from .fixes import Fixes, from_gnss
+from .fixes_files import _ROW_ERROR
 
 #: Metres per second in a knot and in a km/h (NMEA's speed units).
 KNOT, KMH = 1852.0 / 3600.0, 1.0 / 3.6

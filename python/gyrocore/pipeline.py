@@ -16,8 +16,9 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore, rests
 from ._arrays import FloatArray, as_float_array
-from ._checks import MAX_READING, usable, warn, warn_units
+from ._checks import warn, warn_units
 from ._motion import WindowWatch
+from .pipeline_input import name_samples_sent_again, refuse_window_without_reading, warn_repairs
 from .pipeline_params import (
     BIAS_SOURCES,
     _to_si,
@@ -36,7 +37,6 @@ from .rests import Rest
 from .window import (
     MIN_WINDOW_READINGS,
     RestWindowError,
-    ends_before_first,
     refuse_few_readings,
     refuse_past_end,
     refuse_start_before,
@@ -198,7 +198,7 @@ class Pipeline:
         ta = as_float_array("t", t)
         ra = as_float_array("rate", rate)
         temp = None if temperature is None else as_float_array("temperature", temperature)
-        self._check_bias_window(ta, ra, temp)
+        refuse_window_without_reading(self._inner, ta, ra, temp)
         if self._unit_head is not None and len(ta):
             self._check_units(ta, ra, temp)
         flags = output_flags(outputs)
@@ -219,7 +219,7 @@ class Pipeline:
                 inner, ta, ra, temp, index_offset, (flags, fix_output_flags(outputs)), sa, fix_block, given
             )
         except _gyrocore.SampleError as e:
-            _name_samples_sent_again(e, ta, inner.last_time(), index_offset)
+            name_samples_sent_again(e, ta, inner.last_time(), index_offset)
             raise
         except ValueError as e:
             from .fixes import say_how_to_wait
@@ -238,7 +238,7 @@ class Pipeline:
             self._ahead_said = self._ahead_said or warn_far_ahead(fix_block, inner.last_time())
         if window is not None and not inner.bias()[2]:  # the window is over
             self._watch.close(window, self.bias)
-        self._warn_repairs(before, inner.report(), ta, ra, temp)
+        warn_repairs(inner, before, inner.report(), ta, ra, temp)
         if self._unmeasured is not None and len(ta):
             warn(self._unmeasured)
             self._unmeasured = None
@@ -400,30 +400,6 @@ class Pipeline:
         self._last_fix = None
         self._watch = self._new_watch()
 
-    def _warn_repairs(
-        self,
-        before: dict[str, float],
-        after: dict[str, float],
-        t: FloatArray,
-        rate: FloatArray,
-        temperature: FloatArray | None,
-    ) -> None:
-        """Say what the input policy repaired in this chunk (indices are within the chunk): the
-        readings the core does not take, NaN and infinities as well as finite ones beyond its
-        limit (:data:`~gyrocore._checks.MAX_READING`, a wrong unit or a corrupt sample)."""
-        for key, verb in (("held", "replaced by the last usable reading"), ("skipped", "skipped")):
-            n = int(after[key] - before[key])
-            if n:
-                where = _first_unusable(t, rate, temperature)
-                warn(f"{n} reading(s) not finite or beyond +-{MAX_READING:.0f} {verb} ({where})")
-        gaps = int(after["gaps"] - before["gaps"])
-        if gaps:
-            limit = self._inner.params()["gap_limit"]
-            warn(
-                f"{gaps} gap(s) longer than {limit} s (longest so far {after['longest_gap']:.6g} s); "
-                f"gap_action={self._inner.params()['gap_action']!r}"
-            )
-
     @property
     def rest_statistics(self) -> dict[str, float] | None:
         """What the rest window measured besides the bias, once it is over: ``noise``, the standard
@@ -437,43 +413,6 @@ class Pipeline:
     def report(self) -> dict[str, float]:
         """What the input policy did so far: ``held``, ``skipped``, ``gaps``, ``longest_gap`` [s]."""
         return dict(self._inner.report())
-
-    def _check_bias_window(self, t: FloatArray, rate: FloatArray, temperature: FloatArray | None) -> None:
-        """Refuse, before anything is processed, a chunk that would close the rest window with no
-        reading in it (the bias would silently be 0): the core's rule, that the first reading it
-        takes after the window's end closes it, applied to the chunk's timestamps.
-
-        Only a chunk whose timestamps the core accepts is checked; it rejects the others itself.
-        """
-        p = self._inner.params()
-        _, count, learning = self._inner.bias()
-        if "bias_window" not in p or not learning or count > 0 or len(t) == 0:
-            return
-        last = self._inner.last_time()
-        if not (np.isfinite(t).all() and (np.diff(t) > 0).all() and (last is None or t[0] > last)):
-            return
-        taken = usable(rate)  # the readings the filters see: skipped ones are not
-        if temperature is not None and len(temperature) == len(t):
-            taken &= usable(temperature)
-        if p["nonfinite"] == "hold":  # held once there was a finite reading
-            taken |= np.logical_or.accumulate(taken) | (last is not None)
-        start, end = p["bias_window"]
-        if last is None:  # the log's first chunk
-            refuse_start_before(start, end, float(t[0]))
-        after = np.flatnonzero(taken & (t > end))
-        if len(after) == 0:
-            return
-        k = int(after[0])
-        if (taken[:k] & (t[:k] >= start)).any():
-            return
-        before = t[k - 1] if k > 0 else last
-        if before is None:
-            raise ends_before_first(start, end, float(t[0]))
-        raise RestWindowError(
-            f"the bias window [{start}, {end}] s holds no sample of the log, which jumps from t = {before} "
-            f"to t = {t[k]} s (index {k} of this chunk); give a window where the log has readings at rest. "
-            "Nothing of this chunk was processed"
-        )
 
     def __getstate__(self) -> dict[str, Any]:
         return {
@@ -502,30 +441,6 @@ class Pipeline:
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"
-
-
-def _name_samples_sent_again(error: _gyrocore.SampleError, t: FloatArray, last: float | None,
-                             index_offset: int) -> None:
-    """Adds to the core's error about a chunk whose first sample comes at or before the last one
-    processed what a stream does about it: the core's words ask to sort a log, but a stream that
-    sends a chunk again, or resumes from a pickle and sends what the pickle holds already, has no
-    log to sort; it gives the samples after :attr:`Pipeline.last_time`."""
-    if error.what != "t" or error.index != index_offset or last is None or not len(t) or not t[0] <= last:
-        return
-    newer = int(np.count_nonzero(t > last))
-    error.log_message = str(error)  # type: ignore[attr-defined]  # a file's reader sorts the log instead
-    error.args = (f"{error}; the chunk starts at or before t = {last!r}, the last sample this pipeline processed "
-                  f"(Pipeline.last_time; a pipeline resumed from a pickle holds every sample up to it): give only "
-                  f"the samples after it ({newer} of this chunk's {len(t)}). Nothing of this chunk was processed",)
-
-
-def _first_unusable(t: FloatArray, rate: FloatArray, temperature: FloatArray | None) -> str:
-    """Where the first reading the core does not take is, and what it reads."""
-    readings = [("rate", rate, "rad/s")] + ([] if temperature is None else [("temperature", temperature, "degC")])
-    bad = np.logical_or.reduce([~usable(values) for _, values, _ in readings])
-    i = int(np.argmax(bad))  # the core counted at least one
-    what, values, unit = next(r for r in readings if not usable(r[1][i : i + 1])[0])
-    return f"first at index {i}, t = {t[i]}: {what} {values[i]} {unit}"
 
 
 def _stage_settings(params: dict[str, Any], settings: dict[str, float]) -> dict[str, float]:

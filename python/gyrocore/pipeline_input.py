@@ -1,0 +1,101 @@
+"""What a streaming :class:`~gyrocore.Pipeline` says of a chunk's input around the core: a chunk
+that would close the rest window without a reading in it, what the input policy repaired, and a
+chunk sent again."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _gyrocore
+from ._arrays import FloatArray
+from ._checks import MAX_READING, usable, warn
+from .window import RestWindowError, ends_before_first, refuse_start_before
+
+
+def refuse_window_without_reading(
+    core: _gyrocore.Pipeline, t: FloatArray, rate: FloatArray, temperature: FloatArray | None
+) -> None:
+    """Refuse, before the ``core`` processes anything, a chunk that would close the rest window with no
+    reading in it (the bias would silently be 0): the core's rule, that the first reading it
+    takes after the window's end closes it, applied to the chunk's timestamps.
+
+    Only a chunk whose timestamps the core accepts is checked; it rejects the others itself.
+    """
+    p = core.params()
+    _, count, learning = core.bias()
+    if "bias_window" not in p or not learning or count > 0 or len(t) == 0:
+        return
+    last = core.last_time()
+    if not (np.isfinite(t).all() and (np.diff(t) > 0).all() and (last is None or t[0] > last)):
+        return
+    taken = usable(rate)  # the readings the filters see: skipped ones are not
+    if temperature is not None and len(temperature) == len(t):
+        taken &= usable(temperature)
+    if p["nonfinite"] == "hold":  # held once there was a finite reading
+        taken |= np.logical_or.accumulate(taken) | (last is not None)
+    start, end = p["bias_window"]
+    if last is None:  # the log's first chunk
+        refuse_start_before(start, end, float(t[0]))
+    after = np.flatnonzero(taken & (t > end))
+    if len(after) == 0:
+        return
+    k = int(after[0])
+    if (taken[:k] & (t[:k] >= start)).any():
+        return
+    before = t[k - 1] if k > 0 else last
+    if before is None:
+        raise ends_before_first(start, end, float(t[0]))
+    raise RestWindowError(
+        f"the bias window [{start}, {end}] s holds no sample of the log, which jumps from t = {before} "
+        f"to t = {t[k]} s (index {k} of this chunk); give a window where the log has readings at rest. "
+        "Nothing of this chunk was processed"
+    )
+
+
+def warn_repairs(
+    core: _gyrocore.Pipeline,
+    before: dict[str, float],
+    after: dict[str, float],
+    t: FloatArray,
+    rate: FloatArray,
+    temperature: FloatArray | None,
+) -> None:
+    """Say what the input policy of the ``core`` repaired in this chunk (indices are within the chunk): the
+    readings the core does not take, NaN and infinities as well as finite ones beyond its
+    limit (:data:`~gyrocore._checks.MAX_READING`, a wrong unit or a corrupt sample)."""
+    for key, verb in (("held", "replaced by the last usable reading"), ("skipped", "skipped")):
+        n = int(after[key] - before[key])
+        if n:
+            where = _first_unusable(t, rate, temperature)
+            warn(f"{n} reading(s) not finite or beyond +-{MAX_READING:.0f} {verb} ({where})")
+    gaps = int(after["gaps"] - before["gaps"])
+    if gaps:
+        limit = core.params()["gap_limit"]
+        warn(
+            f"{gaps} gap(s) longer than {limit} s (longest so far {after['longest_gap']:.6g} s); "
+            f"gap_action={core.params()['gap_action']!r}"
+        )
+
+
+def name_samples_sent_again(error: _gyrocore.SampleError, t: FloatArray, last: float | None,
+                             index_offset: int) -> None:
+    """Adds to the core's error about a chunk whose first sample comes at or before the last one
+    processed what a stream does about it: the core's words ask to sort a log, but a stream that
+    sends a chunk again, or resumes from a pickle and sends what the pickle holds already, has no
+    log to sort; it gives the samples after :attr:`Pipeline.last_time`."""
+    if error.what != "t" or error.index != index_offset or last is None or not len(t) or not t[0] <= last:
+        return
+    newer = int(np.count_nonzero(t > last))
+    error.log_message = str(error)  # type: ignore[attr-defined]  # a file's reader sorts the log instead
+    error.args = (f"{error}; the chunk starts at or before t = {last!r}, the last sample this pipeline processed "
+                  f"(Pipeline.last_time; a pipeline resumed from a pickle holds every sample up to it): give only "
+                  f"the samples after it ({newer} of this chunk's {len(t)}). Nothing of this chunk was processed",)
+
+
+def _first_unusable(t: FloatArray, rate: FloatArray, temperature: FloatArray | None) -> str:
+    """Where the first reading the core does not take is, and what it reads."""
+    readings = [("rate", rate, "rad/s")] + ([] if temperature is None else [("temperature", temperature, "degC")])
+    bad = np.logical_or.reduce([~usable(values) for _, values, _ in readings])
+    i = int(np.argmax(bad))  # the core counted at least one
+    what, values, unit = next(r for r in readings if not usable(r[1][i : i + 1])[0])
+    return f"first at index {i}, t = {t[i]}: {what} {values[i]} {unit}"
