@@ -75,6 +75,26 @@ def test_parameter_file_round_trips_into_pipeline_and_evaluate(
     assert rows[0]["overrides"] == tuned.params.overrides
 
 
+def test_process_runs_a_parameter_file_as_evaluate_scores_it(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # the tuned file could be scored (evaluate --params) but not run: process took its five
+    # parameters one --param at a time, copied by hand
+    log = real_log_path("f110_ds3")
+    overrides = {"hdr_increment": 7e-4, "lowpass_tau": 1.5, "hdr_c1": 1.2}
+    path = tmp_path / "tuned.json"
+    tune.ParameterSet("hdr_tuned", "hdr", overrides).write(path)
+    out = tmp_path / "heading.csv"
+    assert main(["process", str(log), "--params", str(path), "-o", str(out)]) == 0
+    by_hand = [f"--param={k}={v}" for k, v in overrides.items()]
+    assert main(["process", str(log), "--preset", "hdr", *by_hand, "-o", str(tmp_path / "by_hand.csv")]) == 0
+    assert out.read_bytes() == (tmp_path / "by_hand.csv").read_bytes()
+    capsys.readouterr()
+    assert main(["process", str(log), "--params", str(path), "--preset", "combined", "-o", str(tmp_path / "x.csv")]) == 2
+    assert "tuned for the preset hdr" in capsys.readouterr().err
+    assert main(["process", str(log), "--params", str(path), "--param", "hdr_c1=1", "-o", str(tmp_path / "x.csv")]) == 2
+    assert "sets hdr_c1, which the command line gives too" in capsys.readouterr().err
+    assert not (tmp_path / "x.csv").exists()
+
+
 HEAD = '{"format": "gyrocore-params", "version": 1, "name": "x", "preset": "hdr", '
 
 

@@ -21,6 +21,7 @@ from ..batch import (
     process_file,
     process_many,
 )
+from ..tune import ParameterSet
 from ._fixes import add_fix_options, process_with_fixes, uses_fixes
 from ._common import (
     COUNT,
@@ -64,7 +65,10 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p.formatter_class = argparse.RawDescriptionHelpFormatter
     p.add_argument("inputs", nargs="+", metavar="IN", help="input files, folders or glob patterns")
     p.add_argument("-o", "--out", required=True, help="output .csv/.parquet file, or a folder for several inputs")
-    p.add_argument("--preset", default="recommended", help="preset name (default recommended)")
+    p.add_argument("--preset", help="preset name (default recommended; with --params, the file's base preset)")
+    p.add_argument("--params", metavar="FILE",
+                   help="parameter file written by gyrocore tune: its base preset and its parameters (the static "
+                   "bias still comes from each log or the bias options)")
 
     add_reading_options(p, "--bias-window or --bias-duration")
 
@@ -141,7 +145,26 @@ def options(args: argparse.Namespace) -> dict[str, Any]:
         "gap_limit": args.gap_limit,
         "gap_action": args.gap_action,
     }
-    return {**reading_options(args), **pipeline_overrides(args, named)}
+    out = {**reading_options(args), **pipeline_overrides(args, named)}
+    if args.params is not None:
+        given = ParameterSet.read(args.params).overrides
+        twice = sorted(set(given) & set(out))
+        if twice:  # as evaluate --params: which of two values was meant is not for the command to guess
+            raise ValueError(f"--params {args.params} sets {', '.join(twice)}, which the command line gives too")
+        out.update(given)
+    return out
+
+
+def _preset(args: argparse.Namespace) -> str:
+    """The preset to run: --preset, else the parameter file's base preset, else recommended. A
+    tuned file's parameters belong to its own preset: another one given with it is refused."""
+    if args.params is None:
+        return args.preset or "recommended"
+    base = ParameterSet.read(args.params).preset
+    if args.preset is not None and args.preset != base:
+        raise ValueError(f"--preset {args.preset}: --params {args.params} was tuned for the preset {base}; "
+                         "leave --preset out")
+    return base
 
 
 def columns(args: argparse.Namespace) -> tuple[str, ...]:
@@ -155,11 +178,12 @@ def run(args: argparse.Namespace) -> int:
     if args.out == "-":  # the Unix spelling of standard output became a folder named "-"
         raise ValueError("--out -: the headings go to a file (the report goes to standard output): give a .csv "
                          "or .parquet file, or a folder for several inputs")
+    args.preset = _preset(args)  # read before any work, as a bad parameter file fails at once
     inputs = expand_inputs(args.inputs)
     out = Path(args.out)
     # the files that options name are inputs too: none may become the output (said before that the
     # output exists; an input that cannot be read fails later with its reason)
-    named = [Path(p) for p in (args.fixes, args.calibration) if p is not None]
+    named = [Path(p) for p in (args.fixes, args.calibration, args.params) if p is not None]
     io.check_not_input(out, [*(p for p in inputs if p.exists()), *named])
     check_outside_inputs(args.inputs, out, inputs)
     kwargs = {**options(args), "columns": columns(args)}
