@@ -397,3 +397,17 @@ def test_the_evaluation_page_says_json_is_one_list(tmp_path: Path) -> None:
     assert "--json   # one JSON list, an object per (log, method)" in page
     out = gyrocore_cli("evaluate", datasets.write_sample(tmp_path / "d"), "--preset", "raw", "--json", code=0).stdout
     assert isinstance(json.loads(out), list)
+
+
+def test_every_json_field_is_named_with_its_unit_in_the_docs(capsys: pytest.CaptureFixture[str]) -> None:
+    # a rest's bias in the JSON is rad/s while the text beside it says deg/s; no field was listed
+    docs = (Path(__file__).parents[2] / "docs" / "evaluation.md").read_text(encoding="utf-8")
+    log = str(real_log_path("f110_ds3"))
+    assert main(["evaluate", log, "--preset", "static_bias", "--param", "lowpass_tau=0.5", "--json"]) == 0
+    row = json.loads(capsys.readouterr().out)[0]
+    assert main(["evaluate", log, "--preset", "raw", "--sim-fixes", "rate=1,outage=10:20", "--json"]) == 0
+    fixed = json.loads(capsys.readouterr().out)[0]
+    keys = {*row, *row["rests"][0], *fixed}
+    assert row["position_n"] > 0 and "overrides" in row
+    assert sorted(k for k in keys if f"`{k}`" not in docs) == []
+    assert "`noise` **[rad/s]**" in docs
