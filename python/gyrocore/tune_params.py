@@ -90,6 +90,10 @@ class ParameterSet:
         """Read a preset file written by :meth:`write` (ValueError naming the file on bad content)."""
         p = Path(path)
         data = read_json(p)
+        if isinstance(data, dict) and "format" not in data and {"overrides", "start_objective"} <= set(data):
+            # tune --json > FILE is the natural guess for a parameter file; say which output is one
+            raise ValueError(f"{p}: the report gyrocore tune --json prints, not a parameter file: the parameter "
+                             "file is what gyrocore tune --out FILE writes")
         if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
             raise ValueError(f"{p}: not a gyrocore parameter file (no \"format\": \"{FORMAT_NAME}\")")
         if data.get("version") != FORMAT_VERSION:

@@ -268,3 +268,16 @@ def test_the_command_line_refuses_a_fixed_bias_before_it_builds_its_drives(capsy
     assert main(["tune", "--sim-table", "II", "--set", "bias=0.001", "--max-evals", "2", "--no-harm"]) == 2
     err = capsys.readouterr().err
     assert "bias: the static bias comes from each drive" in err and "tuning hdr on" not in err, err
+
+
+def test_the_json_report_given_as_a_parameter_file_says_which_file_is_one(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # tune --json > FILE looks like the parameter file; it was refused as "not a gyrocore parameter file"
+    log = str(real_log_path("f110_ds3"))
+    assert main(["tune", log, "--param", "hdr_c1", "--max-evals", "4", "--no-harm", "--json"]) == 0
+    report = tmp_path / "report.json"
+    report.write_text(capsys.readouterr().out)
+    assert main(["evaluate", log, "--params", str(report)]) == 2
+    assert "the report gyrocore tune --json prints, not a parameter file: the parameter file is what gyrocore " \
+        "tune --out FILE writes" in capsys.readouterr().err

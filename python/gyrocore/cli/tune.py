@@ -89,8 +89,10 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         help="differential_evolution (global; the start is part of its first population; default) or nelder-mead "
         "(local, from the start)")
     add("--name", help="name of the parameter set (default <preset>_tuned)")
-    add("-o", "--out", metavar="FILE", help="write the parameter file (JSON) here")
-    add("--json", action="store_true", help="print the result as JSON")
+    add("-o", "--out", metavar="FILE",
+        help="write the parameter file (JSON) here, for evaluate --params and process --params")
+    add("--json", action="store_true",
+        help="print the result as JSON (a report of the fit, not a parameter file: that is --out's)")
     add_overwrite_option(p)
     add_reading_options(p, "--bias-duration")
 
