@@ -309,14 +309,17 @@ def _print_harm(label: str, start: Sequence[tune.CaseScore], tuned: Sequence[tun
 
 def _print_scores(label: str, start: Sequence[tune.CaseScore], tuned: Sequence[tune.CaseScore]) -> None:
     print(f"{label + ' drive':<44} {'raw E_psi':>10} {'start E_psi':>12} {'tuned E_psi':>12} {'tuned NE_psi':>13}")
+    print(f"{'':<44} {'[deg]':>10} {'[deg]':>12} {'[deg]':>12} {'[deg/min]':>13}")  # as evaluate's table
     for a, b in zip(start, tuned):
         print(f"{b.case:<44} {b.raw_e_psi_deg:>10.2f} {a.e_psi_deg:>12.3f} {b.e_psi_deg:>12.3f} "
               f"{b.ne_psi_deg_per_min:>13.4f}")
-    print(f"{'mean NE_psi [deg/min]':<44} {'':>10} {tune.mean_ne_psi(start):>12.4f} {tune.mean_ne_psi(tuned):>12.4f}")
+    # on a line of its own: under the E_psi columns the means read as degrees
+    print(f"mean NE_psi: start {tune.mean_ne_psi(start):.4f}, tuned {tune.mean_ne_psi(tuned):.4f} deg/min")
 
 
 def _print_held_out(loo: Sequence[tune.CaseScore]) -> None:
     """Each drive scored with the parameters fitted without it, beside static-bias removal."""
     print(f"{'held-out drive (leave-one-out)':<44} {'raw E_psi':>10} {'static_bias':>12} {'tuned E_psi':>12}")
+    print(f"{'':<44} {'[deg]':>10} {'[deg]':>12} {'[deg]':>12}")
     for s in loo:
         print(f"{s.case:<44} {s.raw_e_psi_deg:>10.2f} {s.static_bias_e_psi_deg:>12.3f} {s.e_psi_deg:>12.3f}")
