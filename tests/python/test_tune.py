@@ -285,8 +285,8 @@ def test_the_json_report_given_as_a_parameter_file_says_which_file_is_one(
 
 def test_the_tables_name_their_units_and_the_mean_ne_psi_stands_apart(capsys: pytest.CaptureFixture[str]) -> None:
     # the mean NE_psi [deg/min] was printed under the "start E_psi" and "tuned E_psi" columns
-    log = str(real_log_path("f110_ds3"))
-    assert main(["tune", log, "--param", "hdr_c1", "--max-evals", "4", "--no-harm", "--leave-one-out"]) == 0
+    logs = [str(real_log_path("f110_ds3")), str(real_log_path("broad_10"))]
+    assert main(["tune", *logs, "--param", "hdr_c1", "--max-evals", "4", "--no-harm", "--leave-one-out"]) == 0
     out = capsys.readouterr().out.splitlines()
     for header in ("training drive", "held-out drive"):
         k = next(i for i, line in enumerate(out) if line.startswith(header))
