@@ -292,3 +292,18 @@ def test_the_tables_name_their_units_and_the_mean_ne_psi_stands_apart(capsys: py
         k = next(i for i, line in enumerate(out) if line.startswith(header))
         assert out[k + 1].split()[:3] == ["[deg]"] * 3
     assert any(line.startswith("mean NE_psi: start ") and line.endswith(" deg/min") for line in out)
+
+
+def test_the_file_says_how_the_logs_were_run_and_evaluate_run_alike_gives_its_score(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # a causal fit's file said nothing of it: evaluate --params scored it in whole mode, another figure
+    log, path = str(real_log_path("comma_seg40")), tmp_path / "tuned.json"
+    assert main(["tune", log, "--param", "hdr_c1", "--max-evals", "4", "--no-harm", "--causal",
+                 "--bias-duration", "10", "-o", str(path)]) == 0
+    assert f"gyrocore evaluate LOGDIR --params {path} --causal --bias-duration 10;" in capsys.readouterr().out
+    tuning = json.loads(path.read_text())["tuning"]
+    assert (tuning["mode"], tuning["bias_duration_s"]) == ("causal", 10.0)
+    assert main(["evaluate", log, "--params", str(path), "--causal", "--bias-duration", "10", "--json"]) == 0
+    row = json.loads(capsys.readouterr().out)[0]
+    assert row["ne_psi_deg_per_min"] == pytest.approx(tuning["train_score_ne_psi_deg_per_min"], rel=1e-12)

@@ -248,6 +248,9 @@ def run(args: argparse.Namespace) -> int:
         tune.score_cases(harm_test, args.preset, result.params.overrides),
     )
     extra = dict(result.params.tuning)
+    # how the real logs were run: the file's scores are evaluate's only when it runs them alike
+    extra["mode"] = mode
+    extra["bias_duration_s"] = args.bias_duration
     extra["harm_held_out_deg"] = {s.case: s.harm_deg for s in held[1]}
     if loo:
         extra["leave_one_out_ne_psi_deg_per_min"] = tune.mean_ne_psi(loo)
@@ -270,7 +273,11 @@ def run(args: argparse.Namespace) -> int:
         _print_report(result, loo, test, test_start)
         _print_harm("held-out drives", *held, result.harm_limit_deg)
     if args.out:
-        print(f"wrote {args.out}", file=sys.stderr if args.json else sys.stdout)
+        # process's --bias-duration replaces a log's rest window, evaluate's does not: left out there
+        causal = " --causal" * args.causal
+        again = causal + (f" --bias-duration {args.bias_duration:g}" if args.bias_duration else "")
+        print(f"wrote {args.out} (score it: gyrocore evaluate LOGDIR --params {args.out}{again}; run it: gyrocore "
+              f"process IN --params {args.out}{causal} -o OUT)", file=sys.stderr if args.json else sys.stdout)
     return 0
 
 
