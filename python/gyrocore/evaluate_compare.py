@@ -392,6 +392,15 @@ def format_table(rows: Sequence[Score | Failed], *, file: Any = None) -> None:
             p = r.position
             line += " " + (f"{p.mean_error_m:>9.2f} {p.final_error_m:>8.2f}" if p else f"{'-':>9} {'-':>8}")
         print(line, file=out)
+    # the JSON's "gaps" had no place in the table: a log's score over a gap was taken for a whole one
+    gaps: dict[str, int] = {}
+    for r in scores:
+        gaps[r.label] = max(gaps.get(r.label, 0), r.errors.gaps)
+    for label, count in gaps.items():
+        if count:
+            print(f"{label}: {count} gap(s) of the gyro or the reference skipped: reference samples inside a gap of "
+                  "the gyro are not scored, and across a gap of the reference its whole turns come from the "
+                  "estimate", file=out)
 
 
 def format_bias_sources(rows: Sequence[Score | Failed], *, file: Any = None) -> None:

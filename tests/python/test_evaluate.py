@@ -411,3 +411,16 @@ def test_every_json_field_is_named_with_its_unit_in_the_docs(capsys: pytest.Capt
     assert row["position_n"] > 0 and "overrides" in row
     assert sorted(k for k in keys if f"`{k}`" not in docs) == []
     assert "`noise` **[rad/s]**" in docs
+
+
+def test_the_table_says_when_a_log_had_gaps_skipped(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # the JSON's "gaps" had no place in the table: the score of a log with an outage read as a whole one
+    t = np.arange(0.0, 200.0, 0.1)
+    t = t[(t < 100.0) | (t > 130.0)]
+    rate = 0.02 * np.sin(t / 10)
+    heading = wrap(-0.2 * np.cos(t / 10))
+    path = tmp_path / "outage.csv"
+    np.savetxt(path, np.column_stack((t, rate, heading)), delimiter=",", header="t,gyro_z,heading_true", comments="")
+    assert main(["evaluate", str(path), "--preset", "raw"]) == 0
+    out = capsys.readouterr().out
+    assert f"{path}: 1 gap(s) of the gyro or the reference skipped" in out
