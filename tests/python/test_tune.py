@@ -307,3 +307,19 @@ def test_the_file_says_how_the_logs_were_run_and_evaluate_run_alike_gives_its_sc
     assert main(["evaluate", log, "--params", str(path), "--causal", "--bias-duration", "10", "--json"]) == 0
     row = json.loads(capsys.readouterr().out)[0]
     assert row["ne_psi_deg_per_min"] == pytest.approx(tuning["train_score_ne_psi_deg_per_min"], rel=1e-12)
+
+
+def test_two_parameter_files_of_one_name_are_told_apart_by_their_files(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # two tune runs both write "hdr_tuned": their rows and JSON objects had one name
+    a, b = tmp_path / "a.json", tmp_path / "b.json"
+    tune.ParameterSet("hdr_tuned", "hdr", {"hdr_c1": 1.0}).write(a)
+    tune.ParameterSet("hdr_tuned", "hdr", {"hdr_c1": 2.0}).write(b)
+    log = str(real_log_path("f110_ds3"))
+    assert main(["evaluate", log, "--params", str(a), "--params", str(b), "--params", str(a), "--json"]) == 0
+    names = [r["preset"] for r in json.loads(capsys.readouterr().out)]
+    assert names == [f"hdr_tuned ({a})", f"hdr_tuned ({b})", f"hdr_tuned ({a})"]
+    tune.ParameterSet("hdr", "hdr", {"hdr_c1": 1.0}).write(a)
+    assert main(["evaluate", log, "--preset", "hdr", "--params", str(a), "--params", str(a), "--json"]) == 0
+    assert [r["preset"] for r in json.loads(capsys.readouterr().out)] == ["hdr", f"hdr ({a})", f"hdr ({a})"]

@@ -94,7 +94,7 @@ def run(args: argparse.Namespace) -> int:
     extra = pipeline_overrides(args, {"bias_dps": args.bias_dps})
     params = [ParameterSet.read(f).method() for f in args.params or []]
     presets = args.preset if args.preset else ([] if params else preset_names())
-    methods = [_with(m if isinstance(m, Method) else Method.from_preset(m), extra) for m in [*presets, *params]]
+    methods = [_with(m, extra) for m in [*map(Method.from_preset, presets), *_named_apart(params, args.params or [], presets)]]
     if args.plot_dir:
         check_not_input(Path(args.plot_dir), [Path(p) for p in args.logs])
         if os.path.lexists(args.plot_dir) and not Path(args.plot_dir).is_dir():  # found only once plotting
@@ -200,6 +200,20 @@ def _with(method: Method, extra: dict[str, Any]) -> Method:
     if twice:
         raise ValueError(f"{method.name} sets {', '.join(twice)}, which the command line gives too")
     return method if not extra else Method(method.name, method.preset, {**method.overrides, **extra})
+
+
+def _named_apart(params: list[Method], files: list[str], presets: list[str]) -> list[Method]:
+    """The parameter files' methods, each one whose name another method shares with other parameters
+    named after its file too: two runs of gyrocore tune both write "hdr_tuned", and their rows (and
+    JSON objects) could not be told apart. The same file given twice keeps its name."""
+    out = []
+    for method, path in zip(params, files):
+        others = [Method.from_preset(p) for p in presets] + [m for m in params if m is not method]
+        if any(m.name == method.name and (m.preset, dict(m.overrides)) != (method.preset, dict(method.overrides))
+               for m in others):
+            method = Method(f"{method.name} ({path})", method.preset, method.overrides)
+        out.append(method)
+    return out
 
 
 def _finite(row: dict[str, Any]) -> dict[str, Any]:
