@@ -181,7 +181,11 @@ def format_fix_scores(rows: Sequence[FixScore | Failed]) -> None:
     print("E_psi [deg]: with fixes, the absolute heading error (no alignment at the start); raw integration "
           "aligned at the start (HDR eq 15)")
     print(f"{'log':<{width}} {'method':<16} {'E_psi':>7} {'raw':>7} {'outage':>7} {'raw':>7} "
-          f"{'bias dps':>9} {'scale':>8}  fixes")
+          f"{'bias':>9} {'scale':>8}  fixes")
+    # a units row as the table without fixes has: "scale" read as a factor near 1, not an error near 0
+    print(f"{'':<{width}} {'':<16} {'[deg]':>7} {'[deg]':>7} {'[deg]':>7} {'[deg]':>7} "
+          f"{'[deg/s]':>9} {'[1]':>8}  (bias, scale: the residual bias b and scale error s at the end, "
+          "the gyro reading (1 + s) r + b)")
     for r in rows:
         if isinstance(r, Failed):
             print(r)

@@ -1,12 +1,16 @@
 """The fix stage's outputs are computed only where asked for (``outputs=`` of Pipeline.process and
-gyrocore.process): the ones asked for equal those of a run with every output, bit for bit."""
+gyrocore.process): the ones asked for equal those of a run with every output, bit for bit; and the
+table gyrocore evaluate prints with fixes names their units."""
 
 from __future__ import annotations
+
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import gyrocore
+from gyrocore.cli import main
 from gyrocore.result import ALL_OUTPUTS, FIX_OUTPUTS
 
 from .test_fixes import BIAS, drive
@@ -77,3 +81,16 @@ def test_fix_outputs_without_fixes_and_unknown_names() -> None:
         plain.output("heading_sigma")
     with pytest.raises(ValueError, match="give a tuple of names from " + ", ".join(ALL_OUTPUTS)):
         gyrocore.Pipeline("hdr", bias=BIAS).process(t, rate, outputs=("heading", "sigma"))
+
+
+def test_the_evaluate_table_with_fixes_has_a_units_row(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # "bias dps" and a bare "scale" (0.0018) read as a scale factor near 1; the table without fixes
+    # has a units row
+    folder = gyrocore.datasets.write_sample(tmp_path / "drive")
+    assert main(["evaluate", str(folder), "--preset", "raw", "--sim-fixes", "rate=1"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    k = next(i for i, line in enumerate(lines) if line.startswith("log "))
+    assert lines[k].split()[-3:] == ["bias", "scale", "fixes"]
+    assert lines[k + 1].split()[:6] == ["[deg]"] * 4 + ["[deg/s]", "[1]"]
