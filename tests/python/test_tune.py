@@ -323,3 +323,10 @@ def test_two_parameter_files_of_one_name_are_told_apart_by_their_files(
     tune.ParameterSet("hdr", "hdr", {"hdr_c1": 1.0}).write(a)
     assert main(["evaluate", log, "--preset", "hdr", "--params", str(a), "--params", str(a), "--json"]) == 0
     assert [r["preset"] for r in json.loads(capsys.readouterr().out)] == ["hdr", f"hdr ({a})", f"hdr ({a})"]
+
+
+def test_the_help_says_a_file_with_its_truth_trains_too(capsys: pytest.CaptureFixture[str]) -> None:
+    # it said "real log folders", while a file gyrocore simulate wrote trains as evaluate scores it
+    with pytest.raises(SystemExit):
+        main(["tune", "--help"])
+    assert "files with a heading_true column [rad]" in " ".join(capsys.readouterr().out.split())

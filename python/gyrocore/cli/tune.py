@@ -48,7 +48,9 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         run,
     )
     add = p.add_argument
-    add("logs", nargs="*", metavar="LOGDIR", help="real log folders to train on (with a reference)")
+    # a file with its truth trains as in evaluate; "real log folders" kept it unsaid
+    add("logs", nargs="*", metavar="LOGDIR", help="log folders to train on (with a reference), or CSV or Parquet "
+        "files with a heading_true column [rad] (what gyrocore simulate writes)")
     add("--preset", default="hdr", metavar="NAME", help="base preset (default hdr)")
     add(
         "--param",
@@ -63,7 +65,8 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         help="train also on COUNT (default 1) simulated drives of a road mix (gyrocore.motion.ROAD_MIXES)")
     add("--set", action="append", metavar="NAME=VALUE", help="hold a parameter at an SI value (repeatable)")
     add("--test-sim-table", action="append", choices=sorted(_TABLES), help="simulated test drives (other seeds)")
-    add("--test", action="append", default=[], metavar="LOGDIR", help="real log folder to test on (not trained on)")
+    add("--test", action="append", default=[], metavar="LOGDIR",
+        help="log folder (or file with a heading_true column) to test on (not trained on)")
     add("--time-scale", type=POSITIVE, default=1.0, metavar="F", help="scale the simulated drives' durations (default 1)")
     add("--rate-hz", type=POSITIVE, default=10.0, metavar="HZ",
         help="sample rate of the simulated drives [Hz] (default 10)")
