@@ -1,0 +1,50 @@
+"""Logs in the formats other tools write (EuRoC/ASL, pandas' Parquet, NumPy archives): each is read
+right (values, units, axis) with the options docs/reading-logs.md gives, or refused with an error
+that names what to give."""
+
+from __future__ import annotations
+
+import re
+import shlex
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from .conftest import gyrocore_cli
+from .test_cli_reading import read_heading
+
+DOCS = Path(__file__).resolve().parents[2] / "docs" / "reading-logs.md"
+
+#: 2 s at rest, a 90-degree turn over 2 s, 2 s at rest, at 200 Hz.
+RATE_HZ = 200
+T = np.arange(6 * RATE_HZ) / RATE_HZ
+TURNING = (T >= 2) & (T < 4)
+YAW = np.where(TURNING, np.pi / 4 * (1 - np.cos(np.pi * (T - 2))), 0.0)
+
+
+def euroc_six_axis(path: Path) -> Path:
+    """An EuRoC/ASL ``imu0/data.csv``: ns since the epoch, the x axis up (the yaw rate is
+    w_RS_S_x, gravity on a_RS_S_x)."""
+    t_ns = 1403636579758555392 + np.round(T * 1e9).astype(np.int64)
+    header = ("#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
+              "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]")
+    rows = [f"{t},{w!r},0.001,-0.002,9.81,0.02,-0.01" for t, w in zip(t_ns.tolist(), YAW.tolist())]
+    path.write_text("\n".join([header, *rows]) + "\n")
+    return path
+
+
+def test_the_euroc_command_of_the_docs_reads_a_euroc_file(tmp_path: Path) -> None:
+    """The docs' EuRoC line (without --time-col the default t is missing from EuRoC's header)."""
+    text = DOCS.read_text()
+    line = next(ln for ln in text.splitlines() if ln.rstrip().endswith("# EuRoC"))
+    before = text.splitlines()[text.splitlines().index(line) - 1]
+    words = shlex.split((before.rstrip(" \\") + " " + line).split("#")[0])
+    assert words[:2] == ["gyrocore", "process"], words
+    data = euroc_six_axis(tmp_path / "data.csv")
+    out = tmp_path / "heading.csv"
+    args = [data if w == "data.csv" else out if w == "heading.csv" else w for w in words[2:]]
+    args = [re.sub(r"^\+20$", "+1.5", str(a)) for a in args]  # the rest of this short log
+    gyrocore_cli("process", *args, code=0)
+    # up is off x by 2.3e-3 rad (the accelerometer's y and z): the turn reads cos(2.3e-3) of 90 deg
+    assert read_heading(out)[-1, 1] == pytest.approx(np.pi / 2, abs=1e-5)
