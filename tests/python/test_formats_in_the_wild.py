@@ -11,6 +11,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import gyrocore
+
 from .conftest import gyrocore_cli
 from .test_cli_reading import read_heading
 
@@ -48,3 +50,26 @@ def test_the_euroc_command_of_the_docs_reads_a_euroc_file(tmp_path: Path) -> Non
     gyrocore_cli("process", *args, code=0)
     # up is off x by 2.3e-3 rad (the accelerometer's y and z): the turn reads cos(2.3e-3) of 90 deg
     assert read_heading(out)[-1, 1] == pytest.approx(np.pi / 2, abs=1e-5)
+
+
+def pandas_parquet(path: Path) -> Path:
+    """What ``df.to_parquet`` writes of a frame indexed by an unnamed tz-aware DatetimeIndex: the
+    index as a timestamp column ``__index_level_0__``, described in the ``pandas`` metadata."""
+    pa = pytest.importorskip("pyarrow")
+    pq = pytest.importorskip("pyarrow.parquet")
+    ns = 1714557600_000_000_000 + np.round(T * 1e9).astype(np.int64)
+    meta = ('{"index_columns": ["__index_level_0__"], "columns": [{"name": "gyro_z", "field_name": "gyro_z", '
+            '"pandas_type": "float64"}, {"name": null, "field_name": "__index_level_0__", '
+            '"pandas_type": "datetimetz", "metadata": {"timezone": "Europe/Berlin"}}]}')
+    table = pa.table({"gyro_z": YAW, "__index_level_0__": pa.array(ns, pa.timestamp("ns", tz="Europe/Berlin"))})
+    pq.write_table(table.replace_schema_metadata({b"pandas": meta.encode()}), path)
+    return path
+
+
+def test_a_pandas_frames_unnamed_datetime_index_is_named_as_its_time(tmp_path: Path) -> None:
+    path = pandas_parquet(tmp_path / "drive.parquet")
+    with pytest.raises(ValueError, match=r"time_col='__index_level_0__' \(--time-col __index_level_0__\) looks like it"):
+        gyrocore.read_log(path)
+    log = gyrocore.read_log(path, time_col="__index_level_0__")
+    assert log.t[0] == 1714557600.0  # UTC epoch seconds, whatever the zone the index was shown in
+    assert np.degrees(np.sum(log.rate[1:] * np.diff(log.t))) == pytest.approx(90, abs=0.01)

@@ -24,11 +24,18 @@ CHOOSE_COLUMNS = "choose with time_col/rate_col, --time-col/--rate-col"
 
 
 def column_positions(
-    path: Path, header: list[str], columns: tuple[str, ...], choose: str = CHOOSE_COLUMNS, *, where: str = ""
+    path: Path,
+    header: list[str],
+    columns: tuple[str, ...],
+    choose: str = CHOOSE_COLUMNS,
+    *,
+    where: str = "",
+    times: tuple[str, ...] = (),
 ) -> dict[str, int]:
     """Where each of ``columns`` is in ``header`` (column, field or array names of ``path``);
     ``choose`` says what to do about a missing one; ``where`` is the header's place in an error
-    (``"line 1: "`` in a CSV file; a Parquet file or an archive has no lines).
+    (``"line 1: "`` in a CSV file; a Parquet file or an archive has no lines); ``times`` are the
+    columns whose type is a time (a Parquet timestamp), which look like the time whatever their name.
 
     Raises:
         ValueError: a column is missing or appears more than once.
@@ -45,7 +52,7 @@ def column_positions(
             short = (f"; the header line is one field, with {shown} in it: give the file's delimiter "
                      f"(delimiter={found[0]!r}, --delimiter {arg})")
         if choose == CHOOSE_COLUMNS:
-            short += _look_like(header, missing)
+            short += _look_like(header, missing, times)
         if header and all(_is_number(str(h)) for h in header):  # "it has 0, 0.1" left the cause to guess
             names = [*columns[: len(header)], *(f"col{k + 1}" for k in range(len(columns), len(header)))]
             short += (f"; its first line holds numbers, not column names: the file has no header line; add one "
@@ -77,14 +84,17 @@ def _is_number(text: str) -> bool:
     return True
 
 
-def _look_like(header: list[str], missing: list[str]) -> str:
+def _look_like(header: list[str], missing: list[str], times: tuple[str, ...] = ()) -> str:
     """The options that name the one column of ``header`` that looks like each missing default
     column (a time, a yaw rate), as a hint in Python's words and the command line's; empty where
-    none or several do."""
+    none or several do. A column of ``times`` looks like the time by its type: pandas names an
+    unnamed DatetimeIndex ``__index_level_0__``, which no name pattern should take for a time."""
     said, typed = [], []
     bases = {split_unit(str(h))[0] for h in header}  # the names without their units, as the reader matches them
     for column in (c for c in missing if c in _LIKE):
         like = [b for b in bases if _LIKE[column].fullmatch(re.sub(r"[^a-z0-9]", "", b.lower()))]
+        if column == "t":
+            like += [b for b in times if b not in like]
         if len(like) == 1:
             keyword, option = _OPTION[column]
             said.append(f"{keyword}={like[0]!r}")
