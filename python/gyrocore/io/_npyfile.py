@@ -81,7 +81,7 @@ def check_npz(path: Path, options: ReadOptions) -> None:
 
 def _warn_own_time_unit(path: Path, name: str, dtype: np.dtype[Any], given: str | None) -> None:
     """Warn that ``given`` is not used where the time column ``name`` is a timedelta64."""
-    if given is not None and dtype.kind == "m":
+    if given is not None and dtype.kind in "mM":
         warn_own_time_unit(path, name, str(dtype), np.datetime_data(dtype)[0], given)
 
 
@@ -137,10 +137,12 @@ def npy_chunks(
 
 
 def _check_numbers(src: GyroSource, name: str, dtype: np.dtype[Any], *, time: bool = False) -> None:
-    """Real numbers; a time may also be a duration (timedelta64, which carries its unit)."""
-    if dtype.kind not in ("iufm" if time else "iuf"):
-        raise ValueError(f"{src.path}: {name} holds {dtype}, not real numbers{' or durations' if time else ''}")
-    if dtype.kind == "m" and np.datetime_data(dtype)[0] in ("Y", "M", "generic"):
+    """Real numbers; a time may also be a duration (timedelta64, which carries its unit) or a
+    datetime64, read as seconds since the Unix epoch as a Parquet timestamp column is (what
+    ``df.to_records()`` and ``np.save`` of pandas times write)."""
+    if dtype.kind not in ("iufmM" if time else "iuf"):
+        raise ValueError(f"{src.path}: {name} holds {dtype}, not real numbers{' or times' if time else ''}")
+    if dtype.kind in "mM" and np.datetime_data(dtype)[0] in ("Y", "M", "generic"):
         raise ValueError(f"{src.path}: {name} holds {dtype}, which has no fixed length in seconds")
 
 

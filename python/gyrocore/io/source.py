@@ -338,7 +338,10 @@ _READERS = {
 
 def _seconds(raw: np.ndarray, per_second: float) -> FloatArray:
     """Timestamps [s] from counts of a unit; division (not multiplication by 1e-3) rounds once.
-    Durations (timedelta64 in .npy and .npz files) carry their own unit."""
+    Durations (timedelta64 in .npy and .npz files) carry their own unit; datetime64 times are
+    their durations since the Unix epoch (a view: the counts are the same)."""
+    if raw.dtype.kind == "M":
+        raw = raw.view(raw.dtype.str.replace("M8", "m8"))
     if raw.dtype.kind == "m":
         return np.asarray(durations_in_seconds("the time column", raw), dtype=np.float64)
     warn_coarse_times(raw, per_second)
