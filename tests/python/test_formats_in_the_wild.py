@@ -73,3 +73,18 @@ def test_a_pandas_frames_unnamed_datetime_index_is_named_as_its_time(tmp_path: P
     log = gyrocore.read_log(path, time_col="__index_level_0__")
     assert log.t[0] == 1714557600.0  # UTC epoch seconds, whatever the zone the index was shown in
     assert np.degrees(np.sum(log.rate[1:] * np.diff(log.t))) == pytest.approx(90, abs=0.01)
+
+
+def test_an_npz_of_arrays_saved_without_names_says_which_to_give(tmp_path: Path) -> None:
+    """``np.savez(path, t, rate)`` names them arr_0 and arr_1; the error said only that t and
+    gyro_z were missing."""
+    path = tmp_path / "drive.npz"
+    np.savez(path, T, YAW)
+    hint = (r"np\.savez\(file, t, rate\) names its arrays arr_0, arr_1, \.\.\.: give time_col='arr_0', "
+            r"rate_col='arr_1' \(--time-col arr_0 --rate-col arr_1\)")
+    with pytest.raises(ValueError, match=hint):
+        gyrocore.read_log(path)
+    proc = gyrocore_cli("process", path, "--out", tmp_path / "h.csv", "--preset", "raw", code=2)
+    assert re.search(hint, proc.stderr) and len(proc.stderr.strip().splitlines()) == 1
+    log = gyrocore.read_log(path, time_col="arr_0", rate_col="arr_1")
+    assert np.degrees(np.sum(log.rate[1:] * np.diff(log.t))) == pytest.approx(90, abs=0.01)

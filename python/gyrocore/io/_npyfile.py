@@ -18,7 +18,7 @@ from typing import IO, TYPE_CHECKING, Any
 import numpy as np
 
 from .._checks import warn
-from ._columns import column_positions, warn_own_time_unit
+from ._columns import CHOOSE_COLUMNS, column_positions, warn_own_time_unit
 
 if TYPE_CHECKING:
     from .source import GyroSource, ReadOptions
@@ -190,7 +190,7 @@ def npz_chunks(
         # two members of one name (t.npy twice, or t and t.npy) are refused, not one of them taken
         # without a word
         members_named = _member_names(archive)
-        column_positions(src.path, [name for name, _ in members_named], wanted)
+        column_positions(src.path, [name for name, _ in members_named], wanted, _choose_members(members_named))
         names = dict(members_named)
         streams, dtypes, lengths = {}, {}, {}
         for name in wanted:
@@ -212,6 +212,18 @@ def npz_chunks(
             count = min(rows, n - start)
             block = [_member_block(src.path, name, streams[name], dtypes[name], count) for name in wanted]
             yield block[0], block[1:], o.counts_per_second, start + count
+
+
+def _choose_members(members_named: list[tuple[str, str]]) -> str:
+    """What to do about a missing array: the reading options; for the arrays ``np.savez`` names
+    ``arr_0``, ``arr_1``, ... when given without names, which of them to give (the order is the
+    caller's, so both ways are said)."""
+    names = [name for name, _ in members_named]
+    if len(names) < 2 or names != [f"arr_{k}" for k in range(len(names))]:
+        return CHOOSE_COLUMNS
+    return (f"{CHOOSE_COLUMNS}; np.savez(file, t, rate) names its arrays arr_0, arr_1, ...: give "
+            "time_col='arr_0', rate_col='arr_1' (--time-col arr_0 --rate-col arr_1) where they were saved in "
+            "that order, or save them by name, np.savez(file, t=t, gyro_z=rate)")
 
 
 def _member_names(archive: zipfile.ZipFile) -> list[tuple[str, str]]:
