@@ -14,7 +14,7 @@ import pytest
 import gyrocore
 
 from .conftest import gyrocore_cli
-from .test_cli_reading import read_heading
+from .test_cli_reading import read_heading, write_csv
 
 DOCS = Path(__file__).resolve().parents[2] / "docs" / "reading-logs.md"
 
@@ -88,3 +88,20 @@ def test_an_npz_of_arrays_saved_without_names_says_which_to_give(tmp_path: Path)
     assert re.search(hint, proc.stderr) and len(proc.stderr.strip().splitlines()) == 1
     log = gyrocore.read_log(path, time_col="arr_0", rate_col="arr_1")
     assert np.degrees(np.sum(log.rate[1:] * np.diff(log.t))) == pytest.approx(90, abs=0.01)
+
+
+def test_a_three_axis_header_is_told_the_three_axis_options(tmp_path: Path) -> None:
+    """EuRoC's yaw rate is w_RS_S_x (x points up): the hint named w_RS_S_z alone, which reads a
+    turn about x as no turn at all."""
+    path = euroc_six_axis(tmp_path / "data.csv")
+    cols = "w_RS_S_x,w_RS_S_y,w_RS_S_z"
+    with pytest.raises(ValueError, match=re.escape(f"where z does not point up, give the three axes and the axis "
+                                                   f"that does: gyro_cols={cols!r}, up='x' for x up "
+                                                   f"(--gyro-cols {cols!r} --up x), or accel_cols to measure up")):
+        gyrocore.read_log(path)
+    log = gyrocore.read_log(path, time_col="timestamp", gyro_cols=cols, up="x")  # as the hint says
+    assert np.degrees(np.sum(log.rate[1:] * np.diff(log.t))) == pytest.approx(90, abs=0.01)
+    z = gyrocore.read_log(path, time_col="timestamp", rate_col="w_RS_S_z")
+    assert abs(np.degrees(np.sum(z.rate[1:] * np.diff(z.t)))) < 1
+    with pytest.raises(ValueError, match=r"\) looks like it\)$"):  # one axis only: no three-axis hint
+        gyrocore.read_log(write_csv(tmp_path / "one.csv", ["time", "gyro_z_dps"], [T, YAW]))

@@ -89,7 +89,7 @@ def _look_like(header: list[str], missing: list[str], times: tuple[str, ...] = (
     column (a time, a yaw rate), as a hint in Python's words and the command line's; empty where
     none or several do. A column of ``times`` looks like the time by its type: pandas names an
     unnamed DatetimeIndex ``__index_level_0__``, which no name pattern should take for a time."""
-    said, typed = [], []
+    said, typed, axes = [], [], ""
     bases = {split_unit(str(h))[0] for h in header}  # the names without their units, as the reader matches them
     for column in (c for c in missing if c in _LIKE):
         like = [b for b in bases if _LIKE[column].fullmatch(re.sub(r"[^a-z0-9]", "", b.lower()))]
@@ -99,10 +99,25 @@ def _look_like(header: list[str], missing: list[str], times: tuple[str, ...] = (
             keyword, option = _OPTION[column]
             said.append(f"{keyword}={like[0]!r}")
             typed.append(f"{option} {_quoted(like[0])}")
+            if column == "gyro_z":
+                axes = _three_axes(like[0], bases)
     if not said:
         return ""
     one = len(said) == 1
-    return f"; {', '.join(said)} ({' '.join(typed)}) look{'s' if one else ''} like {'it' if one else 'them'}"
+    return f"; {', '.join(said)} ({' '.join(typed)}) look{'s' if one else ''} like {'it' if one else 'them'}{axes}"
+
+
+def _three_axes(z: str, bases: set[str]) -> str:
+    """Where the gyro's z column ``z`` has its x and y beside it, the three-axis options: the z axis
+    is the yaw rate only of a sensor mounted z up (EuRoC's x axis points up, a phone's z only
+    when it lies flat), which the header cannot tell."""
+    cut = z.lower().rfind("z")
+    xyz = [z[:cut] + a + z[cut + 1:] for a in ("x", "y")]
+    if not all(name in bases for name in xyz):
+        return ""
+    cols = ",".join([*xyz, z])
+    return (f"; where z does not point up, give the three axes and the axis that does: gyro_cols={cols!r}, "
+            f"up='x' for x up (--gyro-cols {_quoted(cols)} --up x), or accel_cols to measure up")
 
 
 def _quoted(name: str) -> str:
