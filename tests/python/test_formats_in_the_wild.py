@@ -105,3 +105,19 @@ def test_a_three_axis_header_is_told_the_three_axis_options(tmp_path: Path) -> N
     assert abs(np.degrees(np.sum(z.rate[1:] * np.diff(z.t)))) < 1
     with pytest.raises(ValueError, match=r"\) looks like it\)$"):  # one axis only: no three-axis hint
         gyrocore.read_log(write_csv(tmp_path / "one.csv", ["time", "gyro_z_dps"], [T, YAW]))
+
+
+def test_up_window_takes_bounds_after_the_first_sample_as_the_error_writes_them(tmp_path: Path) -> None:
+    """EuRoC's times are epoch ns: a window (0, 1.5) holds nothing and its error says to write
+    +T; ("+0", "+1.5") then failed inside numpy (`ufunc 'greater_equal' did not contain a loop`)."""
+    path = euroc_six_axis(tmp_path / "data.csv")
+    axes = {"time_col": "timestamp", "gyro_cols": "w_RS_S_x,w_RS_S_y,w_RS_S_z", "accel_cols": "a_RS_S_x,a_RS_S_y,a_RS_S_z"}
+    with pytest.raises(ValueError, match=r"write a bound as \+T for T seconds after the first sample"):
+        gyrocore.read_log(path, up_window=(0, 1.5), **axes)
+    log = gyrocore.read_log(path, up_window=("+0", "+1.5"), **axes)
+    assert np.degrees(np.sum(log.rate[1:] * np.diff(log.t))) == pytest.approx(90, abs=0.01)
+    first = 1403636579.758555392
+    assert np.array_equal(gyrocore.read_log(path, up_window=np.array([first, first + 1.5]), **axes).rate, log.rate)
+    with pytest.raises(TypeError, match=r"^up_window must be two times \[s\], \(t0, t1\), or two bounds as text, "
+                                        r"\('\+0', '\+20'\) for the first 20 s, got \(True, 2\)$"):
+        gyrocore.read_log(path, up_window=(True, 2), **axes)
