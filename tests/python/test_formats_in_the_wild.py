@@ -121,3 +121,24 @@ def test_up_window_takes_bounds_after_the_first_sample_as_the_error_writes_them(
     with pytest.raises(TypeError, match=r"^up_window must be two times \[s\], \(t0, t1\), or two bounds as text, "
                                         r"\('\+0', '\+20'\) for the first 20 s, got \(True, 2\)$"):
         gyrocore.read_log(path, up_window=(True, 2), **axes)
+
+
+def test_a_phone_apps_bare_axis_names_are_named_as_a_gyros(tmp_path: Path) -> None:
+    """Sensor Logger's Gyroscope.csv: time [ns since the epoch], seconds_elapsed, z, y, x [rad/s].
+    The error named the time alone; the axes x, y, z look like no gyro by their names."""
+    header = ["time", "seconds_elapsed", "z", "y", "x"]
+    ns = 1700000000123456789 + np.round(T * 1e9).astype(np.int64)
+    path = tmp_path / "Gyroscope.csv"
+    path.write_text(",".join(header) + "\n" + "".join(
+        f"{n},{s!r},{z!r},0.001,-0.001\n" for n, s, z in zip(ns.tolist(), (T + 0.5).tolist(), YAW.tolist())))
+    with pytest.raises(ValueError, match=re.escape(
+            "; time_col='time' (--time-col time) looks like it; its x, y, z may be a gyro's axes: rate_col='z' "
+            "(--rate-col z) for a sensor z up (a phone lying flat), else gyro_cols='x,y,z' and the axis that points "
+            "up (--gyro-cols x,y,z --up AXIS))")):
+        gyrocore.read_log(path)
+    for options in ({"time_col": "time", "time_unit": "ns", "rate_col": "z"},
+                    {"time_col": "seconds_elapsed", "gyro_cols": "x,y,z", "up": "z"}):
+        log = gyrocore.read_log(path, **options)
+        assert np.degrees(np.sum(log.rate[1:] * np.diff(log.t))) == pytest.approx(90, abs=0.01)
+    with pytest.raises(ValueError, match=r"it has t, x, y \(choose with time_col/rate_col, --time-col/--rate-col\)$"):
+        gyrocore.read_log(write_csv(tmp_path / "track.csv", ["t", "x", "y"], [T, T, T]))  # no z: no gyro hint

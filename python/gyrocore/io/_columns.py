@@ -101,8 +101,13 @@ def _look_like(header: list[str], missing: list[str], times: tuple[str, ...] = (
             typed.append(f"{option} {_quoted(like[0])}")
             if column == "gyro_z":
                 axes = _three_axes(like[0], bases)
+        elif column == "gyro_z" and not like and {"x", "y", "z"} <= bases:
+            # a phone app's gyro file (Sensor Logger's time, seconds_elapsed, z, y, x): bare axis names
+            # say nothing of a gyro, so this is said apart from the names that look like one
+            axes = ("; its x, y, z may be a gyro's axes: rate_col='z' (--rate-col z) for a sensor z up (a phone "
+                    "lying flat), else gyro_cols='x,y,z' and the axis that points up (--gyro-cols x,y,z --up AXIS)")
     if not said:
-        return ""
+        return axes
     one = len(said) == 1
     return f"; {', '.join(said)} ({' '.join(typed)}) look{'s' if one else ''} like {'it' if one else 'them'}{axes}"
 
