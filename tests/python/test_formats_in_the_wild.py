@@ -142,3 +142,17 @@ def test_a_phone_apps_bare_axis_names_are_named_as_a_gyros(tmp_path: Path) -> No
         assert np.degrees(np.sum(log.rate[1:] * np.diff(log.t))) == pytest.approx(90, abs=0.01)
     with pytest.raises(ValueError, match=r"it has t, x, y \(choose with time_col/rate_col, --time-col/--rate-col\)$"):
         gyrocore.read_log(write_csv(tmp_path / "track.csv", ["t", "x", "y"], [T, T, T]))  # no z: no gyro hint
+
+
+def test_an_npz_holding_a_table_says_how_to_save_it(tmp_path: Path) -> None:
+    """``np.savez(path, data=table)``: no column option reads a 2-D member, and the error named
+    only the member."""
+    path = tmp_path / "drive.npz"
+    np.savez(path, data=np.column_stack([T, YAW]))
+    with pytest.raises(ValueError, match=re.escape(
+            "it has data (choose with time_col/rate_col, --time-col/--rate-col); its data is a 2-D array of shape "
+            "(1200, 2), and an .npz archive is read one 1-D array per column: save the table as an .npy file")):
+        gyrocore.read_log(path)
+    np.save(tmp_path / "drive.npy", np.load(path)["data"])  # as the error says
+    log = gyrocore.read_log(tmp_path / "drive.npy")
+    assert np.degrees(np.sum(log.rate[1:] * np.diff(log.t))) == pytest.approx(90, abs=0.01)

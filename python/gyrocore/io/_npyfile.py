@@ -190,7 +190,10 @@ def npz_chunks(
         # two members of one name (t.npy twice, or t and t.npy) are refused, not one of them taken
         # without a word
         members_named = _member_names(archive)
-        column_positions(src.path, [name for name, _ in members_named], wanted, _choose_members(members_named))
+        try:
+            column_positions(src.path, [name for name, _ in members_named], wanted, _choose_members(members_named))
+        except ValueError as e:
+            raise ValueError(f"{e}{_table_members(src.path, archive, members_named)}") from None
         names = dict(members_named)
         streams, dtypes, lengths = {}, {}, {}
         for name in wanted:
@@ -224,6 +227,19 @@ def _choose_members(members_named: list[tuple[str, str]]) -> str:
     return (f"{CHOOSE_COLUMNS}; np.savez(file, t, rate) names its arrays arr_0, arr_1, ...: give "
             "time_col='arr_0', rate_col='arr_1' (--time-col arr_0 --rate-col arr_1) where they were saved in "
             "that order, or save them by name, np.savez(file, t=t, gyro_z=rate)")
+
+
+def _table_members(path: Path, archive: zipfile.ZipFile, members_named: list[tuple[str, str]]) -> str:
+    """For a missing column: the first member that is a table (samples x columns), which no
+    column option reads, and how to save it; empty where there is none."""
+    for name, member in members_named:
+        with _npz_member(path, archive, member) as f:
+            shape = _member_header(path, name, f)[0]
+        if len(shape) == 2:
+            return (f"; its {name} is a 2-D array of shape {shape}, and an .npz archive is read one 1-D array per "
+                    f"column: save the table as an .npy file (np.save; its columns are numbered, the time 0 and "
+                    f"the rate 1 unless --time-col/--rate-col say), or each column by name, np.savez(file, t={name}[:, 0], gyro_z={name}[:, 1])")
+    return ""
 
 
 def _member_names(archive: zipfile.ZipFile) -> list[tuple[str, str]]:
