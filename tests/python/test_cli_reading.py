@@ -93,7 +93,9 @@ def test_a_missing_column_error_says_a_name_may_leave_out_its_unit(tmp_path: Pat
     assert "missing column(s) t, gyro_z; it has #timestamp [ns], w_RS_S_x [rad s^-1]" in message
     assert "a name may leave out its unit, e.g. timestamp" in message
     assert message.endswith("; time_col='timestamp', rate_col='w_RS_S_z' (--time-col timestamp --rate-col w_RS_S_z) "
-                            "look like them)")
+                            "look like them; where z does not point up, give the three axes and the axis that does: "
+                            "gyro_cols='w_RS_S_x,w_RS_S_y,w_RS_S_z', up='x' for x up (--gyro-cols "
+                            "'w_RS_S_x,w_RS_S_y,w_RS_S_z' --up x), or accel_cols to measure up)")
 
 
 @pytest.mark.parametrize("header, python, options, reads", [
@@ -113,7 +115,8 @@ def test_a_missing_default_column_names_the_option_of_the_one_that_looks_like_it
     if python is None:
         assert "look like" not in message and "looks like" not in message
         return
-    assert message.endswith(f"; {python} ({options}) {'look like them' if ',' in python else 'looks like it'})")
+    # a header with the gyro's x and y too goes on with the three-axis options
+    assert f"; {python} ({options}) {'look like them' if ',' in python else 'looks like it'}" in message
     if reads:  # following the hint reads the file, on the command line and in Python
         gyrocore_cli("process", src, *(options or "").split(), "--out", tmp_path / "h.csv", "--preset", "raw", code=0)
         keywords = dict(kv.split("=") for kv in python.split(", "))

@@ -1,5 +1,6 @@
 """timedelta64 timestamps are durations converted with their unit (not read as raw counts, which
-made a heading 1000x too large); datetime64 is refused with what to do, in the API and the readers."""
+made a heading 1000x too large); datetime64 is refused with what to do in the API, and read as
+seconds since the Unix epoch from a file, as a Parquet timestamp column is."""
 
 from __future__ import annotations
 
@@ -38,9 +39,24 @@ def test_timedelta_columns_of_numpy_files_carry_their_unit(tmp_path: Path) -> No
     np.savez(tmp_path / "d.npz", t=record["t"], gyro_z=RATE)
     for name in ("d.npy", "d.npz"):
         assert np.array_equal(gyrocore.read_log(tmp_path / name).t, COUNTS / 1e3)
-    np.save(tmp_path / "e.npy", record.astype([("t", "datetime64[ms]"), ("gyro_z", "f8")]))
-    with pytest.raises(ValueError, match=r"e\.npy: t holds datetime64\[ms\], not real numbers or durations$"):
-        gyrocore.read_log(tmp_path / "e.npy")
+
+
+def test_datetime_columns_of_numpy_files_are_epoch_seconds(tmp_path: Path) -> None:
+    """They were refused (`t holds datetime64[ms], not real numbers or durations`) with nothing
+    to give instead, where a Parquet file's timestamps are read: pandas' times saved with numpy."""
+    epoch_ms = 1_714_557_600_000 + COUNTS
+    record = np.zeros(len(COUNTS), dtype=[("t", "datetime64[ms]"), ("gyro_z", "f8")])
+    record["t"], record["gyro_z"] = epoch_ms, RATE
+    np.save(tmp_path / "e.npy", record)
+    np.savez(tmp_path / "e.npz", t=record["t"].astype("datetime64[ns]"), gyro_z=RATE)
+    for name in ("e.npy", "e.npz"):
+        assert np.allclose(gyrocore.read_log(tmp_path / name).t, epoch_ms / 1e3, rtol=0, atol=1e-6)
+    np.save(tmp_path / "y.npy", record.astype([("t", "datetime64[Y]"), ("gyro_z", "f8")]))
+    with pytest.raises(ValueError, match=r"y\.npy: t holds datetime64\[Y\], which has no fixed length in seconds"):
+        gyrocore.read_log(tmp_path / "y.npy")
+    np.save(tmp_path / "s.npy", record.astype([("t", "f8"), ("gyro_z", "U3")]))
+    with pytest.raises(ValueError, match=r"s\.npy: gyro_z holds <U3, not real numbers$"):
+        gyrocore.read_log(tmp_path / "s.npy")
 
 
 def test_timestamps_beyond_the_cores_limit_are_refused_before_processing() -> None:

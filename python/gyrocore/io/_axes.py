@@ -9,6 +9,7 @@ its readings over the rest window is up. The projection runs per sample in the c
 from __future__ import annotations
 
 import math
+import numbers
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 import numpy as np
@@ -36,6 +37,25 @@ UP_HELP = "x, y, z, -x, -y, -z, a vector X,Y,Z (normalised), or accel (the accel
 
 #: ``up`` as :class:`ReadOptions` keeps it.
 UpValue = str | tuple[float, float, float]
+
+
+def parse_up_window(value: object) -> tuple[float, float] | Window:
+    """``up_window`` as the reader takes it: a :class:`Window`, two numbers [s], or two bounds as
+    the command line writes them (``("+0", "+20")``: after the first sample), which the error of
+    an empty window suggests; numpy compared text with the times and failed deep in the reader.
+
+    Raises:
+        TypeError: not two numbers or two bounds as text.
+    """
+    if isinstance(value, Window):
+        return value
+    pair = list(value) if isinstance(value, (tuple, list, np.ndarray)) else []
+    if len(pair) == 2 and all(isinstance(v, str) for v in pair):
+        return Window.parse(pair, "up_window (--up-window)")
+    if len(pair) == 2 and all(isinstance(v, numbers.Real) and not isinstance(v, (bool, np.bool_)) for v in pair):
+        return float(pair[0]), float(pair[1])
+    raise TypeError(f"up_window must be two times [s], (t0, t1), or two bounds as text, ('+0', '+20') for the "
+                    f"first 20 s, got {value!r}")
 
 
 def parse_up(value: str | Sequence[float]) -> UpValue:

@@ -24,11 +24,18 @@ CHOOSE_COLUMNS = "choose with time_col/rate_col, --time-col/--rate-col"
 
 
 def column_positions(
-    path: Path, header: list[str], columns: tuple[str, ...], choose: str = CHOOSE_COLUMNS, *, where: str = ""
+    path: Path,
+    header: list[str],
+    columns: tuple[str, ...],
+    choose: str = CHOOSE_COLUMNS,
+    *,
+    where: str = "",
+    times: tuple[str, ...] = (),
 ) -> dict[str, int]:
     """Where each of ``columns`` is in ``header`` (column, field or array names of ``path``);
     ``choose`` says what to do about a missing one; ``where`` is the header's place in an error
-    (``"line 1: "`` in a CSV file; a Parquet file or an archive has no lines).
+    (``"line 1: "`` in a CSV file; a Parquet file or an archive has no lines); ``times`` are the
+    columns whose type is a time (a Parquet timestamp), which look like the time whatever their name.
 
     Raises:
         ValueError: a column is missing or appears more than once.
@@ -45,7 +52,7 @@ def column_positions(
             short = (f"; the header line is one field, with {shown} in it: give the file's delimiter "
                      f"(delimiter={found[0]!r}, --delimiter {arg})")
         if choose == CHOOSE_COLUMNS:
-            short += _look_like(header, missing)
+            short += _look_like(header, missing, times)
         if header and all(_is_number(str(h)) for h in header):  # "it has 0, 0.1" left the cause to guess
             names = [*columns[: len(header)], *(f"col{k + 1}" for k in range(len(columns), len(header)))]
             short += (f"; its first line holds numbers, not column names: the file has no header line; add one "
@@ -77,22 +84,45 @@ def _is_number(text: str) -> bool:
     return True
 
 
-def _look_like(header: list[str], missing: list[str]) -> str:
+def _look_like(header: list[str], missing: list[str], times: tuple[str, ...] = ()) -> str:
     """The options that name the one column of ``header`` that looks like each missing default
     column (a time, a yaw rate), as a hint in Python's words and the command line's; empty where
-    none or several do."""
-    said, typed = [], []
+    none or several do. A column of ``times`` looks like the time by its type: pandas names an
+    unnamed DatetimeIndex ``__index_level_0__``, which no name pattern should take for a time."""
+    said, typed, axes = [], [], ""
     bases = {split_unit(str(h))[0] for h in header}  # the names without their units, as the reader matches them
     for column in (c for c in missing if c in _LIKE):
         like = [b for b in bases if _LIKE[column].fullmatch(re.sub(r"[^a-z0-9]", "", b.lower()))]
+        if column == "t":
+            like += [b for b in times if b not in like]
         if len(like) == 1:
             keyword, option = _OPTION[column]
             said.append(f"{keyword}={like[0]!r}")
             typed.append(f"{option} {_quoted(like[0])}")
+            if column == "gyro_z":
+                axes = _three_axes(like[0], bases)
+        elif column == "gyro_z" and not like and {"x", "y", "z"} <= bases:
+            # a phone app's gyro file (Sensor Logger's time, seconds_elapsed, z, y, x): bare axis names
+            # say nothing of a gyro, so this is said apart from the names that look like one
+            axes = ("; its x, y, z may be a gyro's axes: rate_col='z' (--rate-col z) for a sensor z up (a phone "
+                    "lying flat), else gyro_cols='x,y,z' and the axis that points up (--gyro-cols x,y,z --up AXIS)")
     if not said:
-        return ""
+        return axes
     one = len(said) == 1
-    return f"; {', '.join(said)} ({' '.join(typed)}) look{'s' if one else ''} like {'it' if one else 'them'}"
+    return f"; {', '.join(said)} ({' '.join(typed)}) look{'s' if one else ''} like {'it' if one else 'them'}{axes}"
+
+
+def _three_axes(z: str, bases: set[str]) -> str:
+    """Where the gyro's z column ``z`` has its x and y beside it, the three-axis options: the z axis
+    is the yaw rate only of a sensor mounted z up (EuRoC's x axis points up, a phone's z only
+    when it lies flat), which the header cannot tell."""
+    cut = z.lower().rfind("z")
+    xyz = [z[:cut] + a + z[cut + 1:] for a in ("x", "y")]
+    if not all(name in bases for name in xyz):
+        return ""
+    cols = ",".join([*xyz, z])
+    return (f"; where z does not point up, give the three axes and the axis that does: gyro_cols={cols!r}, "
+            f"up='x' for x up (--gyro-cols {_quoted(cols)} --up x), or accel_cols to measure up")
 
 
 def _quoted(name: str) -> str:

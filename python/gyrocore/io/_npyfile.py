@@ -18,7 +18,7 @@ from typing import IO, TYPE_CHECKING, Any
 import numpy as np
 
 from .._checks import warn
-from ._columns import column_positions, warn_own_time_unit
+from ._columns import CHOOSE_COLUMNS, column_positions, warn_own_time_unit
 
 if TYPE_CHECKING:
     from .source import GyroSource, ReadOptions
@@ -81,7 +81,7 @@ def check_npz(path: Path, options: ReadOptions) -> None:
 
 def _warn_own_time_unit(path: Path, name: str, dtype: np.dtype[Any], given: str | None) -> None:
     """Warn that ``given`` is not used where the time column ``name`` is a timedelta64."""
-    if given is not None and dtype.kind == "m":
+    if given is not None and dtype.kind in "mM":
         warn_own_time_unit(path, name, str(dtype), np.datetime_data(dtype)[0], given)
 
 
@@ -137,10 +137,12 @@ def npy_chunks(
 
 
 def _check_numbers(src: GyroSource, name: str, dtype: np.dtype[Any], *, time: bool = False) -> None:
-    """Real numbers; a time may also be a duration (timedelta64, which carries its unit)."""
-    if dtype.kind not in ("iufm" if time else "iuf"):
-        raise ValueError(f"{src.path}: {name} holds {dtype}, not real numbers{' or durations' if time else ''}")
-    if dtype.kind == "m" and np.datetime_data(dtype)[0] in ("Y", "M", "generic"):
+    """Real numbers; a time may also be a duration (timedelta64, which carries its unit) or a
+    datetime64, read as seconds since the Unix epoch as a Parquet timestamp column is (what
+    ``df.to_records()`` and ``np.save`` of pandas times write)."""
+    if dtype.kind not in ("iufmM" if time else "iuf"):
+        raise ValueError(f"{src.path}: {name} holds {dtype}, not real numbers{' or times' if time else ''}")
+    if dtype.kind in "mM" and np.datetime_data(dtype)[0] in ("Y", "M", "generic"):
         raise ValueError(f"{src.path}: {name} holds {dtype}, which has no fixed length in seconds")
 
 
@@ -188,7 +190,10 @@ def npz_chunks(
         # two members of one name (t.npy twice, or t and t.npy) are refused, not one of them taken
         # without a word
         members_named = _member_names(archive)
-        column_positions(src.path, [name for name, _ in members_named], wanted)
+        try:
+            column_positions(src.path, [name for name, _ in members_named], wanted, _choose_members(members_named))
+        except ValueError as e:
+            raise ValueError(f"{e}{_table_members(src.path, archive, members_named)}") from None
         names = dict(members_named)
         streams, dtypes, lengths = {}, {}, {}
         for name in wanted:
@@ -210,6 +215,31 @@ def npz_chunks(
             count = min(rows, n - start)
             block = [_member_block(src.path, name, streams[name], dtypes[name], count) for name in wanted]
             yield block[0], block[1:], o.counts_per_second, start + count
+
+
+def _choose_members(members_named: list[tuple[str, str]]) -> str:
+    """What to do about a missing array: the reading options; for the arrays ``np.savez`` names
+    ``arr_0``, ``arr_1``, ... when given without names, which of them to give (the order is the
+    caller's, so both ways are said)."""
+    names = [name for name, _ in members_named]
+    if len(names) < 2 or names != [f"arr_{k}" for k in range(len(names))]:
+        return CHOOSE_COLUMNS
+    return (f"{CHOOSE_COLUMNS}; np.savez(file, t, rate) names its arrays arr_0, arr_1, ...: give "
+            "time_col='arr_0', rate_col='arr_1' (--time-col arr_0 --rate-col arr_1) where they were saved in "
+            "that order, or save them by name, np.savez(file, t=t, gyro_z=rate)")
+
+
+def _table_members(path: Path, archive: zipfile.ZipFile, members_named: list[tuple[str, str]]) -> str:
+    """For a missing column: the first member that is a table (samples x columns), which no
+    column option reads, and how to save it; empty where there is none."""
+    for name, member in members_named:
+        with _npz_member(path, archive, member) as f:
+            shape = _member_header(path, name, f)[0]
+        if len(shape) == 2:
+            return (f"; its {name} is a 2-D array of shape {shape}, and an .npz archive is read one 1-D array per "
+                    f"column: save the table as an .npy file (np.save; its columns are numbered, the time 0 and "
+                    f"the rate 1 unless --time-col/--rate-col say), or each column by name, np.savez(file, t={name}[:, 0], gyro_z={name}[:, 1])")
+    return ""
 
 
 def _member_names(archive: zipfile.ZipFile) -> list[tuple[str, str]]:

@@ -51,8 +51,10 @@ def parquet_chunks(
     o = src.options
     pf = parquet_file(src.path)
     header = pf.schema_arrow.names
-    column_positions(src.path, header, (o.time, *columns))
     import pyarrow as pa
+
+    times = tuple(f.name for f in pf.schema_arrow if pa.types.is_timestamp(f.type))
+    column_positions(src.path, header, (o.time, *columns), times=times)
 
     first = 0
     batches = pf.iter_batches(batch_size=rows, columns=[o.time, *columns])

@@ -19,7 +19,7 @@ from .._arrays import FloatArray, durations_in_seconds, warn_coarse_times, warn_
 from .._checks import first_infinite, require_choice, warn
 from .._gyrocore import SampleError
 from ..window import Window
-from ._axes import MEASURED, measure_up, parse_up, project, three_names
+from ._axes import MEASURED, measure_up, parse_up, parse_up_window, project, three_names
 from ._columns import concat, import_pyarrow_lazy_modules
 from ._csvfile import CsvLayout, csv_chunks, csv_layout
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta, warn_gyro_alone
@@ -95,6 +95,8 @@ class ReadOptions:
             object.__setattr__(self, "accel_cols", three_names(self.accel_cols, "accel_cols (--accel-cols)"))
         if self.up is not None:
             object.__setattr__(self, "up", parse_up(self.up))
+        if self.up_window is not None:
+            object.__setattr__(self, "up_window", parse_up_window(self.up_window))
         if self.gyro_cols is not None and self.rate_col is not None:
             raise ValueError(
                 f"rate_col {self.rate_col!r} (--rate-col) reads one axis and gyro_cols (--gyro-cols) three: give one"
@@ -338,7 +340,10 @@ _READERS = {
 
 def _seconds(raw: np.ndarray, per_second: float) -> FloatArray:
     """Timestamps [s] from counts of a unit; division (not multiplication by 1e-3) rounds once.
-    Durations (timedelta64 in .npy and .npz files) carry their own unit."""
+    Durations (timedelta64 in .npy and .npz files) carry their own unit; datetime64 times are
+    their durations since the Unix epoch (a view: the counts are the same)."""
+    if raw.dtype.kind == "M":
+        raw = raw.view(raw.dtype.str.replace("M8", "m8"))
     if raw.dtype.kind == "m":
         return np.asarray(durations_in_seconds("the time column", raw), dtype=np.float64)
     warn_coarse_times(raw, per_second)
