@@ -356,3 +356,16 @@ fn hdr_bound_of_nan_keeps_the_bound_in_force() {
         assert!(close(h.drift(), drift), "{bound}: {}", h.drift());
     }
 }
+
+#[test]
+fn hdr_with_a_bound_of_0_corrects_nothing() {
+    // What a rest of exactly constant readings measures: a bias known without error, so HDR has
+    // nothing to remove (the config refused 0, and whole mode stopped on such a log).
+    let mut h = Hdr::new(HdrConfig {
+        max_correction: 0.0,
+        ..hand_hdr()
+    })
+    .unwrap();
+    let t: Vec<f64> = (0..6).map(f64::from).collect();
+    assert_eq!(run(&mut h, &t, &[0.2; 6]), vec![0.2; 6]);
+}

@@ -40,7 +40,8 @@ pub struct HdrConfig {
     /// Time constant `tau` of the low-pass (eq 7) on the step means that HDR decides on \[s\], >= 0.
     /// Table III: 0.75 s.
     pub tau: f64,
-    /// Bound on the correction `|I|` [rad/s], > 0; infinity (the paper's HDR) leaves it free.
+    /// Bound on the correction `|I|` [rad/s], >= 0 (0: no correction); infinity (the paper's HDR)
+    /// leaves it free.
     ///
     /// Not in the paper. After the static bias is removed, `I` estimates what is left of the
     /// bias; a sensor's bias does not wander further than a few times its bias instability in a
@@ -78,12 +79,14 @@ impl HdrConfig {
         check_range("hdr_c1", self.c1, 0.0, f64::MAX, "finite and >= 0")?;
         check_positive("hdr_c2", self.c2)?;
         check_duration("hdr_interval", self.interval)?;
+        // 0 is what a rest of exactly constant readings measures (a bias known without error),
+        // as the bound a measured rest sets turns HDR off there (NoiseScaled)
         check_range(
             "hdr_max_correction",
             self.max_correction,
-            f64::MIN_POSITIVE,
+            0.0,
             f64::INFINITY,
-            "> 0 (infinity: no bound)",
+            ">= 0 (0: no correction; infinity: no bound)",
         )?;
         LowPassConfig { tau: self.tau }.validate()
     }

@@ -121,3 +121,16 @@ def test_a_streamed_plan_keeps_no_copy_of_the_log_times(preset: str) -> None:
     assert plan.times is None and plan.used
     in_memory = wholelog.plan_arrays(preset, {}, t, rate, None, wholelog.Options())
     assert plan.overrides == in_memory.overrides and plan.source == in_memory.source
+
+
+def test_a_rest_of_exactly_constant_readings_gives_a_bound_of_0_and_no_correction() -> None:
+    """A rest whose readings do not change (a quantised gyro, a synthetic log) measures its bias
+    with a standard error of 0: the bound hdr_bound_sigmas times it was 0, which the core refused
+    ("invalid parameter hdr_max_correction = 0", a parameter nobody gave). HDR then corrects
+    nothing, as the causal pipeline's measured bound of 0 does."""
+    t = np.arange(0.0, 120.0, 0.01)
+    rate = np.where(t < 20.0, 0.125, 0.125 + 0.2 * np.sin(0.1 * t))
+    result = gyrocore.process(t, rate, "recommended", bias_window=(0.0, 19.0))
+    assert "+- 0 deg/s" in result.bias_source
+    static = gyrocore.process(t, rate, "static_bias", bias_window=(0.0, 19.0))
+    np.testing.assert_array_equal(result.heading, static.heading)
