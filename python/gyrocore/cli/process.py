@@ -135,8 +135,9 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     add_fix_options(p, evaluate=False)
 
 
-def options(args: argparse.Namespace) -> dict[str, Any]:
-    """Reader options and pipeline overrides from the command line."""
+def options(args: argparse.Namespace, tuned: dict[str, Any]) -> dict[str, Any]:
+    """Reader options and pipeline overrides from the command line, with the parameters ``tuned``
+    of a --params file (:func:`_tuned`)."""
     named = {
         "bias_window": args.bias_window,
         "bias_duration": args.bias_duration,
@@ -146,25 +147,26 @@ def options(args: argparse.Namespace) -> dict[str, Any]:
         "gap_action": args.gap_action,
     }
     out = {**reading_options(args), **pipeline_overrides(args, named)}
-    if args.params is not None:
-        given = ParameterSet.read(args.params).overrides
-        twice = sorted(set(given) & set(out))
-        if twice:  # as evaluate --params: which of two values was meant is not for the command to guess
-            raise ValueError(f"--params {args.params} sets {', '.join(twice)}, which the command line gives too")
-        out.update(given)
-    return out
+    twice = sorted(set(tuned) & set(out))
+    if twice:  # as evaluate --params: which of two values was meant is not for the command to guess
+        raise ValueError(f"--params {args.params} sets {', '.join(twice)}, which the command line gives too")
+    return {**out, **tuned}
 
 
-def _preset(args: argparse.Namespace) -> str:
-    """The preset to run: --preset, else the parameter file's base preset, else recommended. A
-    tuned file's parameters belong to its own preset: another one given with it is refused."""
+def _tuned(args: argparse.Namespace) -> dict[str, Any]:
+    """The parameters of the --params file ({} without one), read once and before any work (a bad
+    file fails at once), and ``args.preset`` set to the preset to run: --preset, else the file's
+    base preset, else recommended. A tuned file's parameters belong to its own preset: another one
+    given with it is refused."""
     if args.params is None:
-        return args.preset or "recommended"
-    base = ParameterSet.read(args.params).preset
-    if args.preset is not None and args.preset != base:
-        raise ValueError(f"--preset {args.preset}: --params {args.params} was tuned for the preset {base}; "
+        args.preset = args.preset or "recommended"
+        return {}
+    params = ParameterSet.read(args.params)
+    if args.preset is not None and args.preset != params.preset:
+        raise ValueError(f"--preset {args.preset}: --params {args.params} was tuned for the preset {params.preset}; "
                          "leave --preset out")
-    return base
+    args.preset = params.preset
+    return dict(params.overrides)
 
 
 def columns(args: argparse.Namespace) -> tuple[str, ...]:
@@ -178,7 +180,7 @@ def run(args: argparse.Namespace) -> int:
     if args.out == "-":  # the Unix spelling of standard output became a folder named "-"
         raise ValueError("--out -: the headings go to a file (the report goes to standard output): give a .csv "
                          "or .parquet file, or a folder for several inputs")
-    args.preset = _preset(args)  # read before any work, as a bad parameter file fails at once
+    tuned = _tuned(args)
     inputs = expand_inputs(args.inputs)
     out = Path(args.out)
     # the files that options name are inputs too: none may become the output (said before that the
@@ -186,7 +188,8 @@ def run(args: argparse.Namespace) -> int:
     named = [Path(p) for p in (args.fixes, args.calibration, args.params) if p is not None]
     io.check_not_input(out, [*(p for p in inputs if p.exists()), *named])
     check_outside_inputs(args.inputs, out, inputs)
-    kwargs = {**options(args), "columns": columns(args)}
+    run_options = options(args, tuned)
+    kwargs = {**run_options, "columns": columns(args)}
     one_file = out.suffix.lower() in (".csv", ".parquet", ".pq")
     if args.skip_existing and one_file:
         raise ValueError(f"--skip-existing is for a batch into an output folder, and --out {out} is one file: "
@@ -205,7 +208,7 @@ def run(args: argparse.Namespace) -> int:
             if uses_fixes(args, inputs):
                 if not one_file:
                     raise ValueError(f"--out {out}: with heading fixes the output is one .csv or .parquet file")
-                return process_with_fixes(args, inputs[0], out, options(args), kwargs["columns"])
+                return process_with_fixes(args, inputs[0], out, run_options, kwargs["columns"])
             if "heading_sigma" in kwargs["columns"]:
                 raise ValueError("--columns heading_sigma: it comes with heading fixes (--fixes FILE, or one log "
                                  "folder with fixes.csv)")
