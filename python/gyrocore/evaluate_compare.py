@@ -251,6 +251,7 @@ def compare(
     methods = [m if isinstance(m, Method) else Method.from_preset(m) for m in presets] + list(params or [])
     if not methods:
         raise ValueError("no method to compare: give at least one preset or parameter set")
+    _refuse_shared_names(methods)
     for method in methods:  # before any log is read, not as an error of the first log
         check_parameters(method.preset, dict(method.overrides))
     if bias_duration is not None:  # "5" failed as a format code, NaN as the first log's error
@@ -279,6 +280,20 @@ def compare(
         if plot_dir is not None:
             plot_log(plot_path(plot_dir, log), log, results)
     return rows
+
+
+def _refuse_shared_names(methods: Sequence[Method]) -> None:
+    """Two different methods of one name are refused: their rows could not be told apart and the
+    plot kept one of them (a method given twice as it is is scored twice, as asked)."""
+    seen: dict[str, Method] = {}
+    for method in methods:
+        other = seen.setdefault(method.name, method)
+        if (other.preset, dict(other.overrides)) != (method.preset, dict(method.overrides)):
+            raise ValueError(
+                f"two methods are named {method.name!r} ({other.preset} {dict(other.overrides)} and "
+                f"{method.preset} {dict(method.overrides)}): their scores could not be told apart; give each "
+                "its own name (Method(name, preset, overrides))"
+            )
 
 
 def named_error(log: Log, error: ValueError) -> ValueError:

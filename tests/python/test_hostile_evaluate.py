@@ -97,10 +97,17 @@ def test_compare_names_a_bad_method_before_reading_a_log_and_takes_one_log_or_pr
         evaluate.compare([missing], ["hdr"], bias_duration="5")  # type: ignore[arg-type]
     with pytest.raises(TypeError, match=r"^use_speed must be True or False, got 'no'"):
         evaluate.compare([missing], ["hdr"], use_speed="no")  # type: ignore[arg-type]
+    # two different methods of one name gave two rows labelled alike, and the plot kept one of them
+    tuned = evaluate.Method("hdr", "hdr", {"hdr_increment": 1e-4})
+    with pytest.raises(ValueError, match=r"^two methods are named 'hdr' \(hdr \{\} and hdr \{'hdr_increment': "
+                       r"0\.0001\}\): .* give each its own name"):
+        evaluate.compare([missing], ["hdr", tuned])
     # one path was read as one-letter logs ("/: not a log folder"), one preset as one-letter presets
     (alone,) = evaluate.compare(str(path), "hdr")  # type: ignore[arg-type]
     (listed,) = evaluate.compare([path], ["hdr"])
     assert alone.errors == listed.errors and alone.method == listed.method
+    twice = evaluate.compare([path], ["hdr", "hdr"])  # the same method twice is scored twice, as asked
+    assert [r.method.name for r in twice] == ["hdr", "hdr"] and twice[0].errors == twice[1].errors
 
 
 def test_a_wrapped_estimate_warns_that_it_is_scored_as_continuous() -> None:
