@@ -13,6 +13,7 @@ import numpy as np
 
 from . import motion, sim, wholelog
 from ._arrays import FloatArray
+from ._checks import require_flag
 from ._rests import measure_rest
 from .evaluate import HeadingErrors, Reference, log_bias
 from .io import Log
@@ -49,13 +50,16 @@ class Case:
                    {"bias_window": drive.stationary}, baseline)
 
     @classmethod
-    def from_log(cls, log: Log, *, bias_duration: float | None = None, mode: str = "whole") -> "Case":
+    def from_log(
+        cls, log: Log, *, bias_duration: float | None = None, mode: str = "whole", use_speed: bool = True
+    ) -> "Case":
         """A real log against its reference. In whole mode (the mode of ``gyrocore evaluate`` and
         :meth:`gyrocore.Log.process`) the bias is the whole log's (:mod:`gyrocore.wholelog`: its
-        rest window or ``bias_duration``, else every rest found, with the odometry's speed),
-        planned once here, so that every evaluation runs the pipeline alone and gives what
-        ``log.process(preset, **overrides)`` gives. In causal mode, as
-        :func:`gyrocore.evaluate.log_bias` says."""
+        rest window or ``bias_duration``, else every rest found, with the odometry's speed unless
+        ``use_speed`` is False), planned once here, so that every evaluation runs the pipeline alone
+        and gives what ``log.process(preset, use_speed=use_speed, **overrides)`` gives. In causal
+        mode, as :func:`gyrocore.evaluate.log_bias` says."""
+        require_flag("use_speed", use_speed)
         t_ref, heading_ref = log.reference()
         reference = Reference(t_ref, heading_ref)
         if mode == "causal":
@@ -65,9 +69,10 @@ class Case:
                     measure_rest([(log.t, log.rate)], log.stationary, "given: bias_window")
             return cls(log.name, log.t, log.rate, reference, bias)
         wholelog.check_mode(mode)
+        speed = log.speed_on_gyro_times() if use_speed else None
         given = log_bias(log, bias_duration=bias_duration)[0] if log.stationary is not None or bias_duration is not None else {}
         with log.naming_stationary():
-            plan = wholelog.plan_log("static_bias", given, log.t, log.rate, log.speed_on_gyro_times(), wholelog.Options())
+            plan = wholelog.plan_log("static_bias", given, log.t, log.rate, speed, wholelog.Options())
         return cls(log.name, log.t, log.rate, reference, {"bias": 0.0}, plan=plan)
 
     @classmethod

@@ -309,6 +309,26 @@ def test_the_file_says_how_the_logs_were_run_and_evaluate_run_alike_gives_its_sc
     assert row["ne_psi_deg_per_min"] == pytest.approx(tuning["train_score_ne_psi_deg_per_min"], rel=1e-12)
 
 
+def test_tune_no_speed_finds_rests_from_the_rate_alone_as_evaluate_no_speed_does(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # tune always used the odometry's speed, so a fit could not be scored as evaluate --no-speed runs
+    name = "kitti_2011_09_30_0027_mems"  # its rests with and without the speed differ
+    log = gyrocore.read_log(real_log_path(name))
+    without = tune.Case.from_log(log, use_speed=False).heading("tuned", {}).heading
+    assert np.array_equal(without, log.process("tuned", use_speed=False).heading)
+    assert not np.array_equal(without, tune.Case.from_log(log).heading("tuned", {}).heading)
+    path = tmp_path / "tuned.json"
+    assert main(["tune", str(real_log_path(name)), "--param", "hdr_c1", "--max-evals", "4", "--no-harm",
+                 "--no-speed", "-o", str(path)]) == 0
+    assert f"gyrocore evaluate LOGDIR --params {path} --no-speed;" in capsys.readouterr().out
+    tuning = json.loads(path.read_text())["tuning"]
+    assert (tuning["mode"], tuning["use_speed"]) == ("whole", False)
+    assert main(["evaluate", str(real_log_path(name)), "--params", str(path), "--no-speed", "--json"]) == 0
+    row = json.loads(capsys.readouterr().out)[0]
+    assert row["ne_psi_deg_per_min"] == pytest.approx(tuning["train_score_ne_psi_deg_per_min"], rel=1e-12)
+
+
 def test_two_parameter_files_of_one_name_are_told_apart_by_their_files(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

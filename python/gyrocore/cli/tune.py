@@ -84,6 +84,9 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         "static-bias removal's (scale-free: for real logs of 0.4-116 deg)")
     add("--causal", action="store_true",
         help="run the logs as a streaming pipeline would (default: whole mode, as gyrocore evaluate)")
+    add("--no-speed", action="store_true",
+        help="whole mode: find the logs' rests from the rate alone, not where the speed is zero (as evaluate "
+        "--no-speed)")
     add("--bias-duration", type=POSITIVE, metavar="S", help="static bias of logs without a rest window: first S seconds")
     add("--leave-one-out", action="store_true", help="also report the leave-one-out score (one fit per drive)")
     add("--max-evals", type=COUNT, default=2000, metavar="N", help="objective evaluations per fit (default 2000)")
@@ -202,7 +205,8 @@ def run(args: argparse.Namespace) -> int:
     mode = "causal" if args.causal else "whole"
 
     def log_cases(paths: Sequence[str]) -> list[tune.Case]:
-        return [tune.Case.from_log(read_log(p, use_fixes=False, **reading), bias_duration=args.bias_duration, mode=mode) for p in paths]
+        return [tune.Case.from_log(read_log(p, use_fixes=False, **reading), bias_duration=args.bias_duration, mode=mode,
+                                   use_speed=not args.no_speed) for p in paths]
 
     args.logs, args.test = once_each(args.logs, "a training log"), once_each(args.test, "a --test log")
     both = set(map(os.path.realpath, args.logs)) & set(map(os.path.realpath, args.test))
@@ -254,6 +258,7 @@ def run(args: argparse.Namespace) -> int:
     # how the real logs were run: the file's scores are evaluate's only when it runs them alike
     extra["mode"] = mode
     extra["bias_duration_s"] = args.bias_duration
+    extra["use_speed"] = not args.no_speed
     extra["harm_held_out_deg"] = {s.case: s.harm_deg for s in held[1]}
     if loo:
         extra["leave_one_out_ne_psi_deg_per_min"] = tune.mean_ne_psi(loo)
@@ -277,7 +282,7 @@ def run(args: argparse.Namespace) -> int:
         _print_harm("held-out drives", *held, result.harm_limit_deg)
     if args.out:
         # process's --bias-duration replaces a log's rest window, evaluate's does not: left out there
-        causal = " --causal" * args.causal
+        causal = " --causal" * args.causal + " --no-speed" * args.no_speed
         again = causal + (f" --bias-duration {args.bias_duration:g}" if args.bias_duration else "")
         print(f"wrote {args.out} (score it: gyrocore evaluate LOGDIR --params {args.out}{again}; run it: gyrocore "
               f"process IN --params {args.out}{causal} -o OUT)", file=sys.stderr if args.json else sys.stdout)
