@@ -206,20 +206,34 @@ def test_a_file_whose_suffix_is_right_gets_no_word_on_its_content(tmp_path: Path
 EPOCH_NS = 1_700_000_000_000_000_000
 
 
-@pytest.mark.parametrize("kind", ["csv", "npy"])
+@pytest.mark.parametrize("kind", ["csv", "npy", "datetime64", "timedelta64"])
 def test_nanoseconds_that_float64_seconds_cannot_tell_apart_say_so(tmp_path: Path, kind: str) -> None:
     """Epoch nanoseconds 100 ns apart are one float64 time (it resolves 238-256 ns there): the
-    error said only "sort the log and drop duplicate timestamps", of a file with neither."""
+    error said only "sort the log and drop duplicate timestamps", of a file with neither. numpy
+    times (datetime64, read as epoch seconds, and timedelta64) carry their unit and said nothing."""
     t = EPOCH_NS + np.arange(100, dtype=np.int64) * 100
-    path = tmp_path / f"fast.{kind}"
+    path = tmp_path / f"fast.{'csv' if kind == 'csv' else 'npy'}"
     if kind == "csv":
         path.write_text("t,gyro_z\n" + "".join(f"{v},0.0\n" for v in t))
     else:
-        np.save(path, np.rec.fromarrays([t, np.zeros(100)], names="t,gyro_z"))
+        times = t if kind == "npy" else t.astype(f"{kind}[ns]")
+        np.save(path, np.rec.fromarrays([times, np.zeros(100)], names="t,gyro_z"))
+    unit = {"time_unit": "ns"} if kind in ("csv", "npy") else {}
     with pytest.warns(gyrocore.InputWarning, match=r"two times read as one, 1700000000\.000000000 s \(counts of 1/1e\+09 s\), "
                       r"where float64 resolves only 2\.\d+e-07 s: .*subtract 1700000000000000000 from each"):
         with pytest.raises(ValueError, match="must strictly increase"):
-            gyrocore.read_log(path, time_unit="ns").process("raw")
+            gyrocore.read_log(path, **unit).process("raw")
+
+
+def test_timedelta64_nanoseconds_given_to_the_api_that_float64_merges_say_so() -> None:
+    t = (EPOCH_NS + np.arange(100, dtype=np.int64) * 100).astype("timedelta64[ns]")
+    with pytest.warns(gyrocore.InputWarning, match=r"two times read as one, 1700000000\.000000000 s \(counts of "
+                      r"1/1e\+09 s\), where float64 resolves only 2\.\d+e-07 s"):
+        with pytest.raises(ValueError, match="must strictly increase"):
+            gyrocore.process(t, np.zeros(100), "raw")
+    with warnings.catch_warnings():  # durations from the first sample are told apart: no word
+        warnings.simplefilter("error")
+        gyrocore.process(t - t[0], np.zeros(100), "raw")
 
 
 def test_a_repeated_time_the_file_holds_is_no_matter_of_resolution(tmp_path: Path) -> None:
