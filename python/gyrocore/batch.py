@@ -6,6 +6,7 @@ one call), and its heading table (t, heading, rate, drift) is written as it goes
 that replaces the output only when every row is through: an error or an interruption leaves no
 half-written output, and the output is never the input. Each file gets a :class:`FileReport` with
 its rows in and out; in a batch one bad file fails alone, with its reason, and the others finish.
+A log folder with heading fixes (``fixes.csv``) is read whole and fused (:meth:`gyrocore.Log.process`).
 
     >>> from gyrocore.batch import process_many
     >>> summary = process_many(["logs/*.csv", "logs/drive_7"], out_dir="headings", jobs=2)  # doctest: +SKIP
@@ -21,7 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from . import io, wholelog
-from ._checks import require_choice
+from ._checks import require_choice, require_flag
 from .pipeline import Pipeline, has_bias_source
 from .pipeline_params import _to_si
 from .batch_inputs import check_outside_inputs, complete_output, expand_inputs, output_paths
@@ -44,9 +45,10 @@ def process_file(
     heading: str = "enu",
     chunk_rows: int = io.DEFAULT_CHUNK_ROWS,
     progress: Progress | None = None,
-    columns: Sequence[str] = io.OUTPUT_COLUMNS,
+    columns: Sequence[str] | None = None,
     mode: str = "whole",
     use_speed: bool = True,
+    use_fixes: bool = True,
     **options: Any,
 ) -> FileReport:
     """Stream one log through the pipeline into a heading table, with flat memory.
@@ -61,13 +63,19 @@ def process_file(
         chunk_rows: samples per chunk (memory; the output does not depend on it).
         progress: called after each chunk (see :data:`Progress`); may raise to stop.
         columns: the output's columns, in this order (some of ``t``, ``heading``, ``rate``,
-            ``drift``); the pipeline computes the rate and the drift only for their columns.
+            ``drift``, and ``heading_sigma`` for a log with heading fixes); the pipeline computes
+            the rate and the drift only for their columns. None (default): the first four, and
+            ``heading_sigma`` for a log with heading fixes.
         mode: ``whole`` (default): the bias from the log's rest window, or from every rest found in
             it (and where a log folder's odometry.csv speed is zero, unless ``use_speed`` is
             False), known from the first sample (:mod:`gyrocore.wholelog`). A given rest window is
             measured by a first pass up to its end (flat memory); finding the rests reads the
             log's times and rates into memory first (16 bytes a sample); the heading is then
             streamed. ``causal``: one streamed pass, what a :class:`gyrocore.Pipeline` gives.
+        use_fixes: a log folder's ``fixes.csv`` (heading fixes, docs/fixes.md) is fused unless
+            False. Such a log is read into memory whole (the smoother of whole mode needs every
+            sample) and processed by :meth:`gyrocore.Log.process`; the report holds the fixes'
+            counts.
         **options: reader options (``time_col``, ``rate_col``, ``time_unit``, ``rate_unit``,
             ``topic``, ``delimiter``) and pipeline parameters (``bias_window=(t0, t1)`` [s] in
             the log's time base, or a :class:`gyrocore.window.Window` whose bounds may count from
@@ -83,8 +91,9 @@ def process_file(
             over the input, invalid options. No output is left then.
     """
     wholelog.check_mode(mode)
+    require_flag("use_fixes", use_fixes)
     return _FileJob(
-        Path(path), Path(out), preset, heading, chunk_rows, options, columns, mode, use_speed
+        Path(path), Path(out), preset, heading, chunk_rows, options, columns, mode, use_speed, use_fixes=use_fixes
     ).run(progress)
 
 
@@ -108,10 +117,11 @@ def process_many(
     heading: str = "enu",
     chunk_rows: int = io.DEFAULT_CHUNK_ROWS,
     progress: bool = False,
-    columns: Sequence[str] = io.OUTPUT_COLUMNS,
+    columns: Sequence[str] | None = None,
     mode: str = "whole",
     use_speed: bool = True,
     skip_existing: bool = False,
+    use_fixes: bool = True,
     **options: Any,
 ) -> BatchReport:
     """Process a fleet of logs in parallel: threads on this machine, or a Dask cluster.
@@ -126,7 +136,8 @@ def process_many(
         jobs: threads (default: every core). The Rust core and pyarrow release the GIL, so files
             run in parallel. Ignored with a Dask client.
         fmt: ``csv`` or ``parquet``.
-        heading, chunk_rows, columns, mode, use_speed, **options: as for :func:`process_file`.
+        heading, chunk_rows, columns, mode, use_speed, use_fixes, **options: as for
+            :func:`process_file` (each log folder's own ``fixes.csv`` is fused).
         progress: show a bar over the files on a terminal.
         skip_existing: a file whose output exists already is not processed, and its report says
             it was skipped (:attr:`BatchReport.skipped`): a batch that was interrupted or failed in
@@ -155,8 +166,10 @@ def process_many(
     if chunk_rows < 1:
         raise ValueError(f"chunk_rows must be >= 1, got {chunk_rows}")
     require_choice("heading convention", heading, io.HEADING_CONVENTIONS)
-    io.check_columns(columns)
+    if columns is not None:
+        io.check_columns(columns)
     wholelog.check_mode(mode)
+    require_flag("use_fixes", use_fixes)
     _, overrides = split_options(options)
     # invalid parameters fail here, before any work (a stand-in bias keeps the check quiet)
     pipeline_overrides = _to_si(overrides)
@@ -170,7 +183,7 @@ def process_many(
     check_out_dir(Path(out_dir))
     make_folder(Path(out_dir))
     jobs_list = [
-        _FileJob(p, o, preset, heading, chunk_rows, options, columns, mode, use_speed, skip_existing)
+        _FileJob(p, o, preset, heading, chunk_rows, options, columns, mode, use_speed, skip_existing, use_fixes)
         for p, o in zip(inputs, outputs)
     ]
     if client is not None:

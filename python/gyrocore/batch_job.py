@@ -21,7 +21,7 @@ from .batch_inputs import complete_output
 from .io._columns import concat
 from .io._logfolder import FIXES_CSV, from_stationary, read_odometry
 from .io._paths import error_text, one_line
-from .pipeline import has_bias_source, uses_static_bias
+from .pipeline import HeadingResult, has_bias_source, uses_static_bias
 from .pipeline_params import _to_si, unmeasured_bias
 from .window import RestWindowError, Window, time_range
 
@@ -56,6 +56,8 @@ class FileReport:
             :attr:`gyrocore.Pipeline.report`, and said in the warnings too.
         output_existed: the file was skipped, not processed: its output existed already
             (``skip_existing``).
+        fixes: for a log fused with heading fixes (a log folder's ``fixes.csv``), the fix stage's
+            counts (:attr:`gyrocore.fixes.FusionResult.counts`); None without fixes.
     """
 
     input: str
@@ -72,6 +74,7 @@ class FileReport:
     gaps: int = 0
     longest_gap: float = 0.0
     output_existed: bool = False
+    fixes: Mapping[str, int] | None = None
 
     @property
     def ok(self) -> bool:
@@ -84,6 +87,7 @@ class FileReport:
             **asdict(self),
             "warnings": list(self.warnings),
             "rests": [r.as_dict() for r in self.rests],
+            "fixes": None if self.fixes is None else dict(self.fixes),
             "ok": self.ok,
         }
 
@@ -100,6 +104,8 @@ class FileReport:
             lines.append(f"       input policy: {'; '.join(policy)}")
         lines.append(f"       bias: {self.bias_source}")
         lines += wholelog.rest_lines(self.bias_source or "", self.rests, " " * 9)
+        if self.fixes is not None:
+            lines.append(f"       fixes: {', '.join(f'{k} {v}' for k, v in self.fixes.items())}")
         return "\n".join(lines)
 
 
@@ -180,17 +186,19 @@ class _FileJob:
         heading: str,
         chunk_rows: int,
         options: dict[str, Any],
-        columns: Sequence[str] = io.OUTPUT_COLUMNS,
+        columns: Sequence[str] | None = None,
         mode: str = "whole",
         use_speed: bool = True,
         skip_existing: bool = False,
+        use_fixes: bool = True,
     ):
         self.path, self.out, self.preset, self.heading, self.chunk_rows = path, out, preset, heading, chunk_rows
-        self.mode, self.use_speed, self.skip_existing = mode, use_speed, skip_existing
+        self.mode, self.use_speed, self.skip_existing, self.use_fixes = mode, use_speed, skip_existing, use_fixes
         self.read_options, self.overrides = split_options(options)
-        self.columns = io.check_columns(columns)
+        #: None: every column of :data:`io.OUTPUT_COLUMNS`, and the heading's sigma for a log with fixes
+        self.columns = None if columns is None else io.check_columns(columns)
         # the core computes the heading always, the rate and drift only for a column of theirs
-        self.outputs = ("heading", *(c for c in ("rate", "drift") if c in self.columns))
+        self.outputs = ("heading", *(c for c in ("rate", "drift") if c in (self.columns or io.OUTPUT_COLUMNS)))
         self.rows_in = 0
         #: what looked wrong so far, for the report even of a file that then fails
         self.notes: list[str] = []
@@ -221,9 +229,11 @@ class _FileJob:
                     f"{source.data_path}: the rest window {_window_text(window)} ends before the first sample; "
                     + time_range(t0)
                 )
-        if source.kind == "log folder" and (source.path / FIXES_CSV).is_file():
-            warn(f"{FIXES_CSV} is not used when logs are streamed: process the log alone with "
-                 "`gyrocore process` or gyrocore.Log.process to fuse its heading fixes")
+        if self.use_fixes and source.kind == "log folder" and (source.path / FIXES_CSV).is_file():
+            return self._fused(source, overrides, start, progress)
+        if "heading_sigma" in (self.columns or ()):
+            raise ValueError(f"{self.path}: the heading_sigma column comes with heading fixes, and this log has none "
+                             f"(a log folder's {FIXES_CSV}{'' if self.use_fixes else ', which use_fixes=False leaves out'})")
         from_meta = False
         if uses_static_bias(self.preset) and not has_bias_source(overrides) and source.stationary is not None:
             overrides["bias_window"], from_meta = source.stationary, True
@@ -234,7 +244,7 @@ class _FileJob:
         # the chunks' warnings (_said_for_the_file): the file's report says all but one below; that
         # one, a causal rest window with a turn in it, comes once, when its chunk closes the window
         said: list[str] = []
-        with io.HeadingWriter(self.out, heading=self.heading, columns=self.columns) as writer:
+        with io.HeadingWriter(self.out, heading=self.heading, columns=self.columns or io.OUTPUT_COLUMNS) as writer:
             for chunk in source.chunks(self.chunk_rows):
                 _signals.check()  # a signal whose KeyboardInterrupt a library swallowed stops here
                 check.update(chunk.t, chunk.rate)
@@ -296,6 +306,25 @@ class _FileJob:
             policy["longest_gap"],
         )
 
+    def _fused(
+        self, source: io.GyroSource, overrides: dict[str, Any], start: float, progress: Progress | None
+    ) -> FileReport:
+        """A log folder with heading fixes (its ``fixes.csv``): read whole, as the smoother of whole
+        mode needs every sample, fused by :meth:`gyrocore.Log.process`, written in one piece."""
+        reading = {f.name: getattr(self.read_options, f.name) for f in fields(io.ReadOptions)}
+        log = io.read_log(self.path, **reading)
+        try:
+            result = log.process(self.preset, mode=self.mode, use_speed=self.use_speed, **overrides)
+        except ValueError as e:
+            raise _in_file(source, e, False) from None
+        self.rows_in = len(log.t)
+        written = write_result(self.out, result, self.heading, self.columns)
+        if progress is not None:
+            progress(len(result), len(result), "rows")
+        assert result.fusion is not None  # the folder has its fixes
+        return FileReport(str(self.path), str(self.out), self.rows_in, written, time.perf_counter() - start,
+                          bias_source=result.bias_source, rests=result.rests, fixes=dict(result.fusion.counts))
+
     def _plan(self, source: io.GyroSource, overrides: dict[str, Any], from_meta: bool) -> wholelog.BiasPlan:
         """Where the bias comes from: in whole mode a first pass over the file (see
         :func:`gyrocore.wholelog.plan_stream`), in causal mode the pipeline's own rest window."""
@@ -343,6 +372,16 @@ class _FileJob:
         reason = error_text(error) if isinstance(error, (ValueError, TypeError, OSError, ImportError)) else repr(error)
         failed = reason or type(error).__name__
         return FileReport(str(self.path), None, self.rows_in, 0, seconds, failed, tuple(dict.fromkeys(self.notes)))
+
+
+def write_result(out: Path, result: HeadingResult, heading: str, columns: Sequence[str] | None) -> int:
+    """Write a result held in memory to ``out`` in one piece (``columns`` None: every column of
+    :data:`io.OUTPUT_COLUMNS`, and the heading's sigma where heading fixes gave one); the rows written."""
+    if columns is None:
+        columns = (*io.OUTPUT_COLUMNS, *(("heading_sigma",) if result.heading_sigma is not None else ()))
+    with io.HeadingWriter(out, heading=heading, columns=columns) as writer:
+        writer.write(result)
+    return writer.rows
 
 
 def _said_for_the_file() -> AbstractContextManager[None]:

@@ -292,12 +292,30 @@ def test_cli_bad_sim_fixes_are_one_line_errors(folder_with_fixes: Path, spec: st
     one_line_error(cli("evaluate", str(folder_with_fixes), "--preset", "hdr", "--sim-fixes", spec), message)
 
 
-def test_a_fleet_run_says_it_does_not_use_fixes_csv(folder_with_fixes: Path, tmp_path: Path) -> None:
+def test_a_fleet_run_fuses_each_folder_fixes_as_a_run_of_that_log_alone(folder_with_fixes: Path, tmp_path: Path) -> None:
+    # each log folder's fixes.csv was left out of a run over several logs (only a warning said so)
     plain = gyrocore.datasets.write_sample(tmp_path / "plain")
-    proc = cli("process", str(folder_with_fixes), str(plain), "--out", str(tmp_path / "out"), "--jobs", "1")
+    alone = tmp_path / "alone.csv"
+    assert cli("process", str(folder_with_fixes), "--out", str(alone), "--preset", "hdr").returncode == 0
+    proc = cli("process", str(folder_with_fixes), str(plain), "--out", str(tmp_path / "out"), "--jobs", "1",
+               "--preset", "hdr", "--json")
     assert proc.returncode == 0, proc.stderr
-    assert "fixes.csv is not used when logs are streamed" in proc.stderr
-    assert proc.stderr.count("fixes.csv is not used") == 1  # only the folder that has one
+    fused, other = json.loads(proc.stdout)["files"]
+    assert fused["fixes"]["applied"] > 0 and other["fixes"] is None
+    table = (tmp_path / "out" / "drive.csv").read_text()
+    assert table == alone.read_text()  # the same bytes: t, heading, rate, drift, heading_sigma
+    assert (tmp_path / "out" / "plain.csv").read_text().splitlines()[0] == "t,heading,rate,drift"
+    text = cli("process", str(folder_with_fixes), str(plain), "--out", str(tmp_path / "again"), "--preset", "hdr")
+    assert f"fixes: applied {fused['fixes']['applied']}, " in text.stdout
+    without = gyrocore.batch.process_many([folder_with_fixes], out_dir=tmp_path / "without", preset="hdr",
+                                          use_fixes=False)
+    assert without.files[0].fixes is None
+    assert (tmp_path / "without" / "drive.csv").read_text().splitlines()[0] == "t,heading,rate,drift"
+    # the sigma's column asked for: the log without fixes fails alone, saying why
+    asked = gyrocore.batch.process_many([folder_with_fixes, plain], out_dir=tmp_path / "asked", preset="hdr",
+                                        columns=("t", "heading_sigma"))
+    assert [r.ok for r in asked.files] == [True, False]
+    assert "the heading_sigma column comes with heading fixes, and this log has none" in str(asked.files[1].error)
 
 
 def test_a_bad_fixes_csv_stops_only_what_uses_it(tmp_path: Path) -> None:

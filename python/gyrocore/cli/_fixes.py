@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from .. import io
+from ..batch_job import write_result
 from .._checks import InputWarning
 from .._fixes_eval import FixScore, SimFixes, format_fix_scores, score_with_fixes
 from ..evaluate import Failed, Method, named_error
@@ -106,20 +107,25 @@ def _fixes_of(log: Log, sim: SimFixes | None, given: Fixes | None,
 
 
 def uses_fixes(args: argparse.Namespace, inputs: Sequence[Path]) -> bool:
-    """Whether ``process`` fuses fixes: ``--fixes``, or one log folder with ``fixes.csv``; with
-    several inputs a folder's ``fixes.csv`` is not used (its report says so)."""
+    """Whether ``process`` fuses fixes for one input here: ``--fixes``, or one log folder with
+    ``fixes.csv``; with several inputs each folder's ``fixes.csv`` is fused by its batch job."""
     if args.no_fixes:
         return False
     if args.fixes is not None:
         if len(inputs) != 1:
             raise ValueError(f"--fixes {args.fixes} is for one input, got {len(inputs)}")
         return True
+    return len(inputs) == 1 and any_fixes_csv(args, inputs)
+
+
+def any_fixes_csv(args: argparse.Namespace, inputs: Sequence[Path]) -> bool:
+    """Whether a log folder among ``inputs`` has a ``fixes.csv`` that is used (no ``--no-fixes``)."""
     # os.path.isfile is False in a folder this user may not enter, which reading it then names
-    return len(inputs) == 1 and os.path.isfile(inputs[0] / FIXES_CSV)
+    return not args.no_fixes and any(os.path.isfile(p / FIXES_CSV) for p in inputs)
 
 
 def process_with_fixes(args: argparse.Namespace, path: Path, out: Path, options: dict[str, Any],
-                       columns: tuple[str, ...]) -> int:
+                       columns: tuple[str, ...] | None) -> int:
     """``gyrocore process`` of one input with fixes: the log read into memory (the smoother of whole
     mode needs every sample), processed by :meth:`gyrocore.Log.process`, written in one piece."""
     names = {f.name for f in fields(io.ReadOptions)}
@@ -135,10 +141,7 @@ def process_with_fixes(args: argparse.Namespace, path: Path, out: Path, options:
                              fixes=fixes, **overrides)
     for message in messages:
         warn(f"{path}: {message}")
-    if args.columns is None:
-        columns = (*columns, "heading_sigma")
-    with io.HeadingWriter(out, heading=args.heading, columns=columns) as writer:
-        writer.write(result)
+    write_result(out, result, args.heading, columns)
     assert result.fusion is not None  # the log has fixes
     report = {"input": str(path), "output": str(out), "rows": len(result), "bias_source": result.bias_source,
               "fixes": dict(result.fusion.counts), "fixes_file": args.fixes or str(path / FIXES_CSV),

@@ -22,7 +22,7 @@ from ..batch import (
     process_many,
 )
 from ..tune import ParameterSet
-from ._fixes import add_fix_options, process_with_fixes, uses_fixes
+from ._fixes import add_fix_options, any_fixes_csv, process_with_fixes, uses_fixes
 from ._common import (
     COUNT,
     FINITE,
@@ -169,10 +169,11 @@ def _tuned(args: argparse.Namespace) -> dict[str, Any]:
     return dict(params.overrides)
 
 
-def columns(args: argparse.Namespace) -> tuple[str, ...]:
-    """The output columns of ``--columns`` (all by default)."""
+def columns(args: argparse.Namespace) -> tuple[str, ...] | None:
+    """The output columns of ``--columns``; None (not given): all, with the heading's sigma for a
+    log with heading fixes."""
     if args.columns is None:
-        return io.OUTPUT_COLUMNS
+        return None
     return io.check_columns([c.strip() for c in args.columns.split(",")], "--columns")
 
 
@@ -209,9 +210,9 @@ def run(args: argparse.Namespace) -> int:
                 if not one_file:
                     raise ValueError(f"--out {out}: with heading fixes the output is one .csv or .parquet file")
                 return process_with_fixes(args, inputs[0], out, run_options, kwargs["columns"])
-            if "heading_sigma" in kwargs["columns"]:
-                raise ValueError("--columns heading_sigma: it comes with heading fixes (--fixes FILE, or one log "
-                                 "folder with fixes.csv)")
+            if "heading_sigma" in (kwargs["columns"] or ()) and not any_fixes_csv(args, inputs):
+                raise ValueError("--columns heading_sigma: it comes with heading fixes (--fixes FILE, or log "
+                                 "folders with fixes.csv)")
             if one_file:
                 return _one(inputs, out, args, kwargs)
             return _many(out, args, kwargs)
@@ -256,7 +257,7 @@ def _refuse_file_like_folder(given: str) -> None:
 def _run_options(args: argparse.Namespace) -> dict[str, Any]:
     """What one file and a batch are run with alike."""
     return {"preset": args.preset, "heading": args.heading, "chunk_rows": args.chunk_rows,
-            "mode": "causal" if args.causal else "whole", "use_speed": not args.no_speed}
+            "mode": "causal" if args.causal else "whole", "use_speed": not args.no_speed, "use_fixes": not args.no_fixes}
 
 
 def _many(out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
