@@ -257,17 +257,7 @@ class _FileJob:
                             outputs=self.outputs,
                         )
                 except SampleError as e:
-                    # a file's chunks repeating a time at their edge is the file's duplicate, which
-                    # sorting the log mends, not a stream's chunk sent again
-                    e.args = (getattr(e, "log_message", str(e)),)
-                    # every sample before the bad one was read and is good: the count up to the
-                    # failure, whatever the chunks (it stopped at the last whole chunk before it)
-                    self.rows_in = int(e.index)
-                    # a timestamp beyond the core's limits is most often an epoch in a smaller unit;
-                    # a bad reading, an empty cell a phone app left, has an option ("drop or fill
-                    # them first" sent users to edit the file)
-                    fix = check.time_fix() if e.what == "t" else NONFINITE_FIX if e.what == "rate" else None
-                    raise ValueError(source.locate(e) + (f"; {fix}" if fix else "")) from None
+                    raise self._at_sample(source, e, check) from None
                 except ValueError as e:
                     raise _in_file(source, e, from_meta) from None
                 writer.write(result)
@@ -306,6 +296,21 @@ class _FileJob:
             policy["longest_gap"],
         )
 
+    def _at_sample(self, source: io.GyroSource, e: SampleError, check: io.UnitCheck) -> ValueError:
+        """The error of a bad sample, at its line of the file, with what to do; ``rows_in`` then
+        counts the samples before it."""
+        # a file's chunks repeating a time at their edge is the file's duplicate, which sorting
+        # the log mends, not a stream's chunk sent again
+        e.args = (getattr(e, "log_message", str(e)),)
+        # every sample before the bad one was read and is good: the count up to the failure,
+        # whatever the chunks (it stopped at the last whole chunk before it)
+        self.rows_in = int(e.index)
+        # a timestamp beyond the core's limits is most often an epoch in a smaller unit; a bad
+        # reading, an empty cell a phone app left, has an option ("drop or fill them first" sent
+        # users to edit the file)
+        fix = check.time_fix() if e.what == "t" else NONFINITE_FIX if e.what == "rate" else None
+        return ValueError(source.locate(e) + (f"; {fix}" if fix else ""))
+
     def _fused(
         self, source: io.GyroSource, overrides: dict[str, Any], start: float, progress: Progress | None
     ) -> FileReport:
@@ -313,11 +318,15 @@ class _FileJob:
         mode needs every sample, fused by :meth:`gyrocore.Log.process`, written in one piece."""
         reading = {f.name: getattr(self.read_options, f.name) for f in fields(io.ReadOptions)}
         log = io.read_log(self.path, **reading)
+        self.rows_in = len(log.t)
         try:
             result = log.process(self.preset, mode=self.mode, use_speed=self.use_speed, **overrides)
+        except SampleError as e:
+            check = io.UnitCheck(source.options)
+            check.update(log.t, log.rate)
+            raise self._at_sample(source, e, check) from None
         except ValueError as e:
             raise _in_file(source, e, False) from None
-        self.rows_in = len(log.t)
         written = write_result(self.out, result, self.heading, self.columns)
         if progress is not None:
             progress(len(result), len(result), "rows")

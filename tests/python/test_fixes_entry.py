@@ -318,6 +318,22 @@ def test_a_fleet_run_fuses_each_folder_fixes_as_a_run_of_that_log_alone(folder_w
     assert "the heading_sigma column comes with heading fixes, and this log has none" in str(asked.files[1].error)
 
 
+def test_a_bad_sample_of_a_fused_log_in_a_batch_is_named_as_a_streamed_one(folder_with_fixes: Path, tmp_path: Path) -> None:
+    folder = tmp_path / "drive"
+    folder.mkdir()
+    for name in ("gyro.csv", "meta.json", "reference.csv", "fixes.csv"):
+        if (folder_with_fixes / name).exists():
+            (folder / name).write_bytes((folder_with_fixes / name).read_bytes())
+    lines = (folder / "gyro.csv").read_text().splitlines()
+    lines[500] = lines[500].split(",")[0] + ",nan"
+    (folder / "gyro.csv").write_text("\n".join(lines) + "\n")
+    reports = [gyrocore.batch.process_many([folder], out_dir=tmp_path / out, preset="hdr", use_fixes=use).files[0]
+               for out, use in (("fused", True), ("streamed", False))]
+    assert reports[0].error == reports[1].error and reports[0].rows_in == reports[1].rows_in == 499
+    assert f"rate[499] is NaN: samples must be finite (drop or fill them first) ({folder}/gyro.csv, line 501); " \
+           "or keep the file as it is: nonfinite='hold'" in str(reports[0].error)
+
+
 def test_a_bad_fixes_csv_stops_only_what_uses_it(tmp_path: Path) -> None:
     # A folder's fixes.csv is read where it is used: evaluate and process refuse a bad one
     # (naming its line), evaluate --no-fixes and calibrate, which do not use it, go on.
