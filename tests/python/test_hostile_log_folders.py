@@ -4,6 +4,7 @@ the log said so."""
 
 from __future__ import annotations
 
+import json
 import re
 import warnings
 from dataclasses import replace
@@ -60,6 +61,20 @@ def test_a_meta_json_with_a_byte_order_mark_is_read(tmp_path: Path) -> None:
     gyrocore.tune.ParameterSet("mine", "hdr", {"hdr_c2": 0.5}).write(params)
     params.write_bytes(b"\xef\xbb\xbf" + params.read_bytes())
     assert gyrocore.tune.ParameterSet.read(params).overrides == {"hdr_c2": 0.5}
+
+
+@pytest.mark.parametrize(("key", "meant"), [("stationery", "stationary"), ("Stationary", "stationary"), ("Name", "name")])
+def test_a_misspelled_meta_json_key_is_named_and_the_users_own_keys_are_not(tmp_path: Path, key: str, meant: str) -> None:
+    # the log was read without its rest window, without a word
+    folder = log_folder_with(tmp_path, "meta.json", json.dumps({key: [1700000001, 1700000010], "notes": "mine"}))
+    with pytest.warns(gyrocore.InputWarning, match=rf"meta\.json: the key '{key}' is not read \(did you mean "
+                      rf"'{meant}'\?\); gyrocore reads 'name' and 'stationary'"):
+        gyrocore.read_log(folder)
+    (folder / "meta.json").write_text(json.dumps({"stationary": [1700000001, 1700000010], "stops": [], "source": "x",
+                                                  "notes": "", "stationary_note": "parked"}))
+    with warnings.catch_warnings():  # a key beside the one it resembles is the user's
+        warnings.simplefilter("error")
+        assert gyrocore.read_log(folder).stationary == (1700000001.0, 1700000010.0)
 
 
 @pytest.mark.parametrize(

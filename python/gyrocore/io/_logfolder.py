@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .._arrays import FloatArray
-from .._checks import warn
+from .._checks import did_you_mean, warn
 from ..window import RestWindowError, in_log_clock
 from ._csvfile import CsvLayout, csv_layout, read_csv_columns
 from ._jsonfile import json_kind, read_json
@@ -64,7 +64,23 @@ def read_meta(folder: Path) -> tuple[dict[str, Any], tuple[float, float] | None]
     name = meta.get("name")
     if name is not None and not (isinstance(name, str) and name.strip()):
         raise ValueError(f"{path}: name must be the log's name as text (or null: the folder's name), got {name!r}")
+    _warn_misspelled(path, meta)
     return meta, _rest_window(path, meta.get("stationary"))
+
+
+#: The keys of meta.json that gyrocore reads; any other is the user's (a log's notes, its source).
+META_KEYS = ("name", "stationary")
+
+
+def _warn_misspelled(path: Path, meta: dict[str, Any]) -> None:
+    """Warn of a key that looks like a misspelled key gyrocore reads (``stationery``,
+    ``Stationary``) where that key is missing: the log was read without its rest window, without
+    a word. Other keys are the user's and are left alone."""
+    for key in meta:
+        hint = did_you_mean(key, [k for k in META_KEYS if k not in meta])
+        if hint:
+            warn(f"{path}: the key {key!r} is not read{hint}; gyrocore reads {' and '.join(map(repr, META_KEYS))} "
+                 "(the rest window [t0, t1] in seconds, and the log's name)")
 
 
 def read_reference(folder: Path) -> dict[str, FloatArray]:
