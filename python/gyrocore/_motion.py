@@ -18,14 +18,15 @@ from ._checks import usable, warn
 MOTION_BLOCK = 0.5
 #: A record whose share of such means that differ from the one before by more than
 #: :data:`MOTION_SIGMAS` standard errors is at least this is warned about as moving. Measured
-#: (:func:`moving_share`): records at rest 0 (broad_10's and broad_11's rests, simulated CRS03 and
-#: XV-3500 gyros of 10 minutes to 4 hours) to 0.021 (the simulated FOG, whose bias instability
-#: shows at half a second); the 18 real drives 0.30 (comma_seg40, often stopped) to 0.75.
+#: (:func:`moving_share`): records at rest 0 (broad_10's and broad_11's rests, simulated CRS03
+#: gyros of 10 minutes to 4 hours), at most 0.002 (simulated XV-3500 gyros) and 0.015 to 0.021
+#: (the simulated FOG, whose bias instability shows at half a second); the 18 real drives 0.30
+#: (comma_seg40, often stopped) to 0.74 (f110_ds1).
 MOTION_SHARE = 0.1
 MOTION_SIGMAS = 5.0
 #: A rest window whose readings spread more than this many times their white noise, and by more
 #: than :data:`REST_EXCESS` beyond it, is warned about. Measured: the real logs' given and found
-#: rests 0.42 to 2.50 times and at most 0.15 deg/s beyond; simulated CRS03 drives' rests at 100,
+#: rests (with the speed and from the rate alone) 0.71 to 2.50 times and at most 0.15 deg/s beyond; simulated CRS03 drives' rests at 100,
 #: 10 and 1 Hz (averaged) at most 1.51 times and 0.22 deg/s beyond (bias instability and drift
 #: also spread a rest's readings, most where averaging has taken the white noise away); the first
 #: 5 s of the real drives 1.7 (a car still stopped) to 44 times and 0.2 to 37 deg/s beyond.

@@ -15,6 +15,8 @@ from gyrocore.cli import main
 
 from .conftest import real_log_path
 
+ROOT = Path(__file__).resolve().parents[2]
+
 # --- Hong & Park section 3.1: s = -10 %, b = 0.1 rad/s ------------------------------------------
 
 S_TRUE, B_TRUE = -0.10, 0.10
@@ -202,6 +204,8 @@ def test_static_bias_failure_cases() -> None:
 
 #: ../shared/data/README.md, "constant scale+bias fitted to the reference" (E_psi, deg, 1 decimal).
 README_FLOOR = {"f110_ds3": 1.5, "broad_10": 1.1, "comma_seg40": 0.1}
+#: docs/calibration.md's "Measured" table: the same fits, E_psi to two decimals.
+CALIBRATION_PAGE = {"f110_ds3": 1.46, "broad_10": 1.13, "comma_seg40": 0.12}
 
 
 @pytest.mark.parametrize("name", sorted(README_FLOOR))
@@ -216,6 +220,8 @@ def test_heading_fit_on_real_logs_reaches_the_data_readme_floor(name: str) -> No
     result = gyrocore.process(log.t, log.rate, "raw", **c.overrides())
     e_psi = gyrocore.heading_errors(result.t, result.heading, log.t_ref, log.heading_ref).e_psi_deg
     assert abs(e_psi - README_FLOOR[name]) <= 0.1, e_psi
+    assert round(e_psi, 2) == CALIBRATION_PAGE[name], e_psi  # the page showed 0.105 for comma_seg40
+    assert f"{name} {CALIBRATION_PAGE[name]:.2f}" in (ROOT / "docs" / "calibration.md").read_text(encoding="utf-8")
 
 
 # --- rotary table (FOG eq 1-6) ----------------------------------------------------------------

@@ -19,7 +19,7 @@ import gyrocore
 from gyrocore import calibration as cal
 from gyrocore import datasets, motion, sim
 
-from .conftest import gyrocore_cli
+from .conftest import gyrocore_cli, real_log_path
 
 
 def straight(seed: int) -> sim.Drive:
@@ -168,6 +168,15 @@ def test_a_scale_error_no_gyro_has_warns_that_a_unit_looks_wrong() -> None:
     truth = np.sin(np.linspace(0.0, 20.0, 500))
     with pytest.warns(gyrocore.InputWarning, match=r"rate_reference: the fitted scale error is \+200 %.*\(rad/s\) look wrong"):
         cal.rate_reference(3.0 * truth, truth)
+
+
+def test_a_reference_in_degrees_that_is_not_refused_is_warned_about() -> None:
+    # docs/calibration.md: f110_ds3's reference in degrees, unwrapped, neither wraps by 360 nor
+    # fits an s_bar near 180/pi; the scale error of -87.8 % says that a unit looks wrong
+    log = gyrocore.read_log(real_log_path("f110_ds3"))
+    t_ref, heading_ref = log.reference()
+    with pytest.warns(gyrocore.InputWarning, match=r"scale error is -87.8 %, beyond \+-50 %.*look wrong"):
+        cal.heading_reference(log.t, log.rate, t_ref, np.degrees(np.unwrap(heading_ref)))
 
 
 def _sample_with_reference_in_degrees(folder: Path) -> Path:

@@ -77,6 +77,26 @@ def test_the_calibration_page_shows_what_its_example_prints() -> None:
     _in_order(_shown("docs/calibration.md", "noise"), str(noise))
 
 
+def test_the_python_page_shows_what_its_examples_print() -> None:
+    # its rest-tracking example showed end=29.5 where the rest ends at 29.49
+    import numpy as np
+
+    import gyrocore
+    from gyrocore import datasets
+
+    r = datasets.sample_drive().process()
+    _in_order(_shown("docs/python.md", "r.bias_source"), str(r.bias_source))
+    t = np.arange(0.0, 120.0, 0.01)
+    rate = 0.01 + np.where((t > 50) & (t < 62), 0.0, 0.3 * np.sin(t / 3))
+    whole = gyrocore.process(t, rate, "static_bias")
+    _in_order(_shown("docs/python.md", "whole.bias_source"), str(whole.bias_source))
+    t = np.arange(0, 60, 0.01)
+    speed = np.where((t > 20) & (t < 30), 0.0, 5.0)
+    rate = 0.003 + np.where(speed > 0, 0.1 * np.sin(t), 0.0)
+    r = gyrocore.process(t, rate, "static_bias", mode="causal", bias=0.0, track_rests=True, speed=speed)
+    _in_order(_shown("docs/python.md", "r.tracked_rests"), repr(r.tracked_rests))
+
+
 def test_the_python_page_says_what_the_result_holds_and_plots_it() -> None:
     # it never said the heading's unit, that it is continuous, nor how to plot it beside a reference
     text = " ".join((ROOT / "docs" / "python.md").read_text(encoding="utf-8").split())

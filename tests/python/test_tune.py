@@ -343,6 +343,10 @@ def test_two_parameter_files_of_one_name_are_told_apart_by_their_files(
     tune.ParameterSet("hdr", "hdr", {"hdr_c1": 1.0}).write(a)
     assert main(["evaluate", log, "--preset", "hdr", "--params", str(a), "--params", str(a), "--json"]) == 0
     assert [r["preset"] for r in json.loads(capsys.readouterr().out)] == ["hdr", f"hdr ({a})", f"hdr ({a})"]
+    copy = tmp_path / "copy.json"  # one name and the same parameters: the same rows, one name (docs/evaluation.md)
+    copy.write_bytes(b.read_bytes())
+    assert main(["evaluate", log, "--params", str(b), "--params", str(copy), "--json"]) == 0
+    assert [r["preset"] for r in json.loads(capsys.readouterr().out)] == ["hdr_tuned", "hdr_tuned"]
 
 
 def test_the_help_says_a_file_with_its_truth_trains_too(capsys: pytest.CaptureFixture[str]) -> None:

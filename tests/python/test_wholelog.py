@@ -335,7 +335,8 @@ def test_whole_mode_does_not_harm_the_kitti_true_rate_drives(name: str, use_spee
     # a deg/s (the car rocking), which whole mode must not take for a bias. From the rate alone
     # (a log without odometry) slow driving passes for rest too: on 0034 three rate rests within
     # 8 s read 0.20, 0.07 and 0.02 deg/s, and a bias walk of 1e-3 rad/s/sqrt(s) let the smoother
-    # follow them (12.3 deg against raw 0.40); at the default 1e-4 they disagree and are refused.
+    # follow them (12.3 deg against raw 0.40); at the default 1e-4 the first is refused and the
+    # other two read 4.6 standard errors, within bias_sigmas (5) of 0 (test below).
     log = gyrocore.read_log(real_log_path(f"kitti_{name}"))
 
     def e_psi(r: gyrocore.HeadingResult) -> float:
@@ -346,6 +347,15 @@ def test_whole_mode_does_not_harm_the_kitti_true_rate_drives(name: str, use_spee
         warnings.simplefilter("ignore", gyrocore.InputWarning)  # three of them never stop: no rest, bias 0
         for preset in ("static_bias", "recommended"):
             assert e_psi(log.process(preset, use_speed=use_speed)) <= raw + 0.5
+
+
+def test_kitti_0034_from_the_rate_alone_keeps_a_bias_of_0_as_docs_whole_log_says() -> None:
+    # the page said its three rate rests "disagree, are refused": one is; the other two are within
+    # bias_sigmas of 0, which is what keeps the bias 0 there
+    log = gyrocore.read_log(real_log_path("kitti_2011_09_30_0034"))
+    r = log.process("static_bias", use_speed=False)
+    assert [x.refused is not None for x in r.rests] == [True, False, False]
+    assert "2 rest(s) read 0.04288 +- 0.0093 deg/s, within 5 standard errors of 0: bias 0; 1 refused" == r.bias_source
 
 
 def test_a_wandering_bias_is_followed_within_its_standard_error() -> None:

@@ -1,0 +1,61 @@
+"""The figures docs/results.md's whole-log table and the README quote are what the real logs give
+(`python examples/whole_log_table.py` prints the table; every log is scored with the default
+choice of whole mode, which each held-out choice equals)."""
+
+from __future__ import annotations
+
+import re
+import warnings
+from pathlib import Path
+
+import pytest
+
+import gyrocore
+
+from .conftest import real_log_path
+
+ROOT = Path(__file__).resolve().parents[2]
+#: The table's columns that a run of the package gives (the "held out" one is docs/recommended.md's
+#: leave-one-out fit, the last one a fit to the reference): (column, preset, mode, use_speed).
+COLUMNS = [
+    ("raw", "raw", "causal", True),
+    ("static_bias causal", "static_bias", "causal", True),
+    ("static_bias whole", "static_bias", "whole", True),
+    ("recommended causal", "recommended", "causal", True),
+    ("recommended whole", "recommended", "whole", True),
+    ("static_bias whole, rate only", "static_bias", "whole", False),
+    ("recommended whole, rate only", "recommended", "whole", False),
+]
+
+
+def _table() -> dict[str, dict[str, str]]:
+    """docs/results.md's whole-log table: log -> column -> cell."""
+    text = (ROOT / "docs" / "results.md").read_text(encoding="utf-8")
+    header = next(line for line in text.splitlines() if line.startswith("| log | raw | static_bias causal"))
+    names = [c.strip() for c in header.strip("|").split("|")]
+    body = text[text.index(header) + len(header) :].split("\n\n")[0]  # up to the blank line that ends it
+    rows = re.findall(r"^\| (\w+) \|(.*)\|$", body, re.M)
+    return {log: dict(zip(names[1:], (c.strip() for c in cells.split("|")))) for log, cells in rows}
+
+
+TABLE = _table()
+
+
+@pytest.mark.parametrize("name", sorted(TABLE))
+def test_the_results_table_holds(name: str) -> None:
+    log = gyrocore.read_log(real_log_path(name))
+    shown = TABLE[name]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrocore.InputWarning)  # logs without a rest say so
+        for column, preset, mode, use_speed in COLUMNS:
+            r = log.process(preset, mode=mode, use_speed=use_speed)
+            e_psi = gyrocore.heading_errors(r.t, r.heading, *log.reference()).e_psi_deg
+            assert f"{e_psi:.2f}" == shown[column], (column, e_psi)
+
+
+def test_the_readme_quotes_the_table() -> None:
+    assert len(TABLE) == 18
+    readme = " ".join((ROOT / "README.md").read_text(encoding="utf-8").split())
+    for name, short in (("f110_ds5", "f110_ds5"), ("kitti_2011_09_30_0034_mems", "kitti_0034_mems")):
+        raw, whole = TABLE[name]["raw"], TABLE[name]["static_bias whole"]
+        assert f"{short}: {raw} to {whole}" in readme
