@@ -41,7 +41,7 @@ pub enum Error {
     /// ([`MAX_TIME`](crate::MAX_TIME) for `t`, [`MAX_READING`](crate::MAX_READING)
     /// for a reading).
     OutOfRange {
-        /// `"t"`, `"rate"` or `"temperature"`.
+        /// `"t"`, `"rate"`, `"temperature"` or `"phase"` (see [`crate::allan::MAX_PHASE`]).
         what: &'static str,
         /// Index of the first bad sample within the block.
         index: usize,
@@ -155,6 +155,11 @@ impl fmt::Display for Error {
                          (nanoseconds read as seconds are this large)",
                     ),
                     "temperature" => ("degC", "give degrees Celsius"),
+                    "phase" => (
+                        "rad",
+                        "its Allan variance overflows; the phase of readings within +-2^20 \
+                         rad/s over 2^40 s stays below it: check the unit",
+                    ),
                     _ => (
                         "rad/s",
                         "no gyro reads that fast: check the unit and the column",

@@ -1,5 +1,6 @@
 //! Serde for a state that must be checked when it is read back: a [`Pipeline`], [`Fusion`],
-//! [`Correction`], [`Downsample`] or stand-alone [`Streaming`] stage edited by hand, damaged, or saved by another version ran with
+//! [`Correction`], [`Downsample`], stand-alone [`Streaming`] stage, [`GyroModel`] or random
+//! generator edited by hand, damaged, or saved by another version ran with
 //! values its `new` refuses (a negative low-pass `tau` in the stored stages gave NaN headings,
 //! a negative gate rejected every fix) or with stages other than its configuration says.
 //!
@@ -9,13 +10,14 @@
 
 use crate::error::check_reading;
 use crate::kernel::Validated;
-use crate::{Correction, Downsample, Error, Fusion, Pipeline, Streaming};
+use crate::sim::Xoshiro256PlusPlus;
+use crate::{Correction, Downsample, Error, Fusion, GyroModel, Pipeline, Streaming};
 
 /// Implements `Serialize` and `Deserialize` for `$ty` (generic over `[$g]`, if given) from its
 /// `remote = "Self"` derive, the deserialised value checked by `$check: fn(&$ty) -> Result<(),
-/// Error>`.
+/// Error>`, or made whole by `$restore: fn($ty) -> Result<$ty, Error>` (`$ty => $restore`).
 macro_rules! checked_serde {
-    ([$($g:tt)*] $ty:ty, $check:expr) => {
+    ([$($g:tt)*] $ty:ty => $restore:expr) => {
         impl<$($g)*> serde::Serialize for $ty {
             fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
                 // the derived (inherent) function, not this trait's
@@ -26,11 +28,19 @@ macro_rules! checked_serde {
         impl<'de, $($g)*> serde::Deserialize<'de> for $ty {
             fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
                 let value = <$ty>::deserialize(deserializer)?;
-                let check: fn(&$ty) -> Result<(), Error> = $check;
-                check(&value).map_err(<D::Error as serde::de::Error>::custom)?;
-                Ok(value)
+                let restore: fn($ty) -> Result<$ty, Error> = $restore;
+                restore(value).map_err(<D::Error as serde::de::Error>::custom)
             }
         }
+    };
+    ([$($g:tt)*] $ty:ty, $check:expr) => {
+        checked_serde!([$($g)*] $ty => |value| {
+            let check: fn(&$ty) -> Result<(), Error> = $check;
+            check(&value).map(|()| value)
+        });
+    };
+    ($ty:ty => $restore:expr) => {
+        checked_serde!([] $ty => $restore);
     };
     ($ty:ty, $check:expr) => {
         checked_serde!([] $ty, $check);
@@ -45,3 +55,5 @@ checked_serde!(Correction, |c| {
 });
 checked_serde!(Downsample, |d| d.config().validate());
 checked_serde!([K: Validated] Streaming<K>, |s| K::check(s.parts().0));
+checked_serde!(GyroModel => GyroModel::restored);
+checked_serde!(Xoshiro256PlusPlus, Xoshiro256PlusPlus::check);

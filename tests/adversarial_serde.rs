@@ -1,0 +1,179 @@
+//! Adversarial states read back (`serde` feature): a valid state written by `serde_json`, one
+//! field changed to an extreme (1e308, -1e308, 0, -1, a subnormal, u64::MAX, i64::MIN, the
+//! limits, "inf", "nan") or an array emptied, shortened or lengthened. The deserialiser refuses it
+//! in the crate's words, or what it reads back runs without a panic or a hang and gives finite
+//! outputs.
+#![cfg(feature = "serde")]
+
+use gyrocore::*;
+use proptest::prelude::*;
+use serde::de::DeserializeOwned;
+use serde::Serialize;
+use serde_json::{json, Value};
+
+/// Every number (and stored float word) of `v` by its JSON pointer, and every array as
+/// `(pointer, None)`.
+fn leaves(v: &Value, at: String, out: &mut Vec<(String, bool)>) {
+    match v {
+        Value::Number(_) | Value::Null => out.push((at, false)),
+        Value::String(s) if ["inf", "-inf", "nan"].contains(&s.as_str()) => out.push((at, false)),
+        Value::Array(a) => {
+            out.push((at.clone(), true));
+            for (i, x) in a.iter().enumerate() {
+                leaves(x, format!("{at}/{i}"), out);
+            }
+        }
+        Value::Object(o) => {
+            for (k, x) in o {
+                leaves(x, format!("{at}/{k}"), out);
+            }
+        }
+        _ => {}
+    }
+}
+
+fn extremes() -> Vec<Value> {
+    vec![
+        json!(1e308),
+        json!(-1e308),
+        json!(0.0),
+        json!(-1),
+        json!(5e-324),
+        json!(u64::MAX),
+        json!(i64::MIN),
+        json!(MAX_TIME),
+        json!(MAX_READING),
+        json!(1e20),
+        json!("inf"),
+        json!("nan"),
+    ]
+}
+
+/// `value` with leaf `pick` (modulo their number) edited by `how`: an extreme, or for an array
+/// emptied, shortened or lengthened.
+fn edited<T: Serialize>(value: &T, pick: usize, how: usize) -> (String, Value) {
+    let mut v = serde_json::to_value(value).unwrap();
+    let mut all = Vec::new();
+    leaves(&v, String::new(), &mut all);
+    let (at, array) = all[pick % all.len()].clone();
+    let slot = v.pointer_mut(&at).unwrap();
+    if array {
+        let a = slot.as_array_mut().unwrap();
+        match how % 3 {
+            0 => a.clear(),
+            1 => drop(a.pop()),
+            _ => a.push(a.first().cloned().unwrap_or(json!(0))),
+        }
+        return (format!("{at}: {}", ["empty", "short", "long"][how % 3]), v);
+    }
+    let x = extremes()[how % extremes().len()].clone();
+    *slot = x.clone();
+    (format!("{at} = {x}"), v)
+}
+
+/// Reads `v` back as a `T` and runs it: no panic, and no hang (the run is given 10 s).
+fn read_and_run<T: DeserializeOwned + Send + 'static>(
+    what: String,
+    v: Value,
+    run: fn(T) -> Result<(), String>,
+) -> Result<(), TestCaseError> {
+    let (tx, rx) = std::sync::mpsc::channel();
+    let name = what.clone();
+    std::thread::spawn(move || {
+        let result = match serde_json::from_value::<T>(v) {
+            Ok(x) => run(x),
+            Err(_) => Ok(()),
+        };
+        let _ = tx.send(result);
+    });
+    match rx.recv_timeout(std::time::Duration::from_secs(10)) {
+        Ok(Ok(())) => Ok(()),
+        Ok(Err(e)) => Err(TestCaseError::fail(format!("{name}: {e}"))),
+        Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
+            Err(TestCaseError::fail(format!("{what}: no answer in 10 s")))
+        }
+        Err(_) => Err(TestCaseError::fail(format!("{what}: panicked"))),
+    }
+}
+
+fn model() -> GyroModel {
+    let mut c = GyroModelConfig::ideal(100.0);
+    (c.bias_instability, c.drift_step, c.rrw, c.arw) = (1e-4, 0.01, 1e-5, 1e-3);
+    (c.drop_probability, c.jitter, c.bandwidth) = (0.5, 1e-3, 20.0);
+    let mut m = GyroModel::new(c, 7).unwrap();
+    for i in 0..50 {
+        m.measure(i as f64 * 0.01, 0.1);
+    }
+    m
+}
+
+fn run_model(mut m: GyroModel) -> Result<(), String> {
+    for t in [0.5, 0.51, 3.0, 1e6, 1e6 + 0.01] {
+        let s = m.measure(t, 0.1);
+        if !s.rate.is_finite() {
+            return Err(format!("{s:?} at {t}"));
+        }
+    }
+    Ok(())
+}
+
+fn run_sampler(s: gyrocore::sim::Sampler) -> Result<(), String> {
+    let _ = s.take(100).count();
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(400))]
+
+    /// A simulated gyro and its sampler read back after an edit.
+    #[test]
+    fn an_edited_simulated_gyro(pick in any::<usize>(), how in any::<usize>()) {
+        let m = model();
+        let (what, v) = edited(&m, pick, how);
+        read_and_run(what, v, run_model)?;
+        let (what, v) = edited(&m.sampler(0.0), pick, how);
+        read_and_run(what, v, run_sampler)?;
+    }
+}
+
+/// A stored model whose count of flicker terms exceeds the most there are (it panicked on a
+/// slice index at the next grid step), or whose drift grid index is u64::MAX (an overflow, a
+/// panic in a debug build): the count is derived again from the configuration, the index
+/// saturates.
+#[test]
+fn an_edited_model_runs_on() {
+    let m = model();
+    let mut v = serde_json::to_value(&m).unwrap();
+    v["terms"]["count"] = json!(17);
+    let mut read: GyroModel = serde_json::from_value(v).unwrap();
+    assert_eq!(read, m, "the derived terms are derived again");
+    run_model(read.clone()).unwrap();
+    let mut v = serde_json::to_value(&m).unwrap();
+    v["slow"]["index"] = json!(u64::MAX);
+    read = serde_json::from_value(v).unwrap();
+    run_model(read).unwrap();
+    let mut v = serde_json::to_value(&m).unwrap();
+    v["config"]["rate_hz"] = json!(-1.0);
+    let e = serde_json::from_value::<GyroModel>(v)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("invalid parameter rate_hz = -1"), "{e}");
+}
+
+/// A stored sampler whose generator is all zero (it then gives 0 for ever, and a sampler that
+/// drops samples never returned from `next`) is refused; one at index u64::MAX (an overflow)
+/// gives its instant.
+#[test]
+fn an_edited_sampler_is_refused_or_runs_on() {
+    let s = model().sampler(0.0);
+    let mut v = serde_json::to_value(&s).unwrap();
+    v["rng"]["rng"]["s"] = json!([0, 0, 0, 0]);
+    let e = serde_json::from_value::<gyrocore::sim::Sampler>(v)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("rng state"), "{e}");
+    let mut v = serde_json::to_value(&s).unwrap();
+    v["index"] = json!(u64::MAX);
+    let mut read: gyrocore::sim::Sampler = serde_json::from_value(v).unwrap();
+    assert!(read.next().is_some());
+}
