@@ -177,3 +177,184 @@ fn an_edited_sampler_is_refused_or_runs_on() {
     let mut read: gyrocore::sim::Sampler = serde_json::from_value(v).unwrap();
     assert!(read.next().is_some());
 }
+
+/// `n` samples from `t0` on: a rest, then turns back and forth.
+fn drive(t0: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
+    let t = (0..n).map(|i| t0 + i as f64 * 0.05).collect();
+    let r = (0..n)
+        .map(|i| match (i / 40) % 3 {
+            0 => 1e-3 * (i as f64).sin(),
+            1 => 0.3,
+            _ => -0.2,
+        })
+        .collect();
+    (t, r)
+}
+
+/// A pipeline of each preset (and a general chain) after some samples, its rest window still
+/// open or over.
+fn pipelines() -> Vec<Pipeline> {
+    let mut general = Preset::Combined.config();
+    (general.correction.c_cw, general.integrator.method) = (1.01, Method::Rectangle);
+    let configs = Preset::ALL.iter().map(|p| p.config()).chain([general]);
+    let mut out = Vec::new();
+    for mut c in configs {
+        c.correction.bias = StaticBias::Leading { duration: 3.0 };
+        c.input.non_finite = NonFinite::Hold;
+        for n in [0, 30, 200] {
+            let mut p = Pipeline::new(c).unwrap();
+            let (t, r) = drive(0.0, n);
+            for (&x, &y) in t.iter().zip(&r) {
+                p.update(x, y);
+            }
+            out.push(p);
+        }
+    }
+    out
+}
+
+fn run_pipeline(p: Pipeline) -> Result<(), String> {
+    let t0 = p.last_time().map_or(0.0, |t| t + 0.05);
+    let (t, mut r) = drive(t0, 200);
+    r[7] = f64::NAN; // held
+    let mut a = p.clone();
+    let mut b = p;
+    let (mut h, mut rate, mut d) = (vec![0.0; 200], vec![0.0; 200], vec![0.0; 200]);
+    let block = a.process_block(&t, &r, None, Outputs::all(&mut h, &mut rate, &mut d));
+    b.update(t[0] - 1.0, 0.0); // skipped
+    let updates: Vec<Output> = t.iter().zip(&r).map(|(&x, &y)| b.update(x, y)).collect();
+    if block.is_ok() {
+        if let Some(i) = h.iter().position(|x| !x.is_finite()) {
+            return Err(format!("heading {} at {}", h[i], t[i]));
+        }
+    }
+    match updates.iter().position(|o| !o.heading.is_finite()) {
+        Some(i) => Err(format!("update {:?} at {}", updates[i], t[i])),
+        None => Ok(()),
+    }
+}
+
+fn fusion() -> Fusion {
+    let (t, r) = drive(0.0, 200);
+    let fixes: Vec<Fix> = (0..4)
+        .map(|i| Fix {
+            t: 2.0 * i as f64 + 0.01,
+            heading: 0.1 * i as f64,
+            sigma: 0.01,
+        })
+        .collect();
+    let mut f = Fusion::new(FusionConfig::default()).unwrap();
+    let mut h = vec![0.0; t.len()];
+    f.process_block(&t, &r, &fixes, FusionOutputs::heading(&mut h))
+        .unwrap();
+    f
+}
+
+/// Runs a filter read back, with fixes, through the smoother's passes: no panic.
+fn run_fusion(f: Fusion) -> Result<(), String> {
+    let t0 = f.last_time().map_or(0.0, |t| t + 0.05);
+    let (t, r) = drive(t0, 200);
+    let fixes: Vec<Fix> = (0..5)
+        .map(|i| Fix {
+            t: t0 + 2.0 * i as f64 + 0.01,
+            heading: 0.1 * i as f64,
+            sigma: 0.01,
+        })
+        .collect();
+    let n = t.len();
+    let mut h = vec![0.0; n];
+    let mut knots = Vec::new();
+    let mut a = f;
+    let out = FusionOutputs::heading(&mut h);
+    if a.process_block_recording(&t, &r, &fixes, out, |k| knots.push(k))
+        .is_ok()
+    {
+        smooth(&mut knots);
+        let mut b = f;
+        let _ = b.process_block_smoothed(&t, &r, &fixes, &knots, FusionOutputs::heading(&mut h));
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// A pipeline read back after an edit runs without a panic, and its headings are finite.
+    #[test]
+    fn an_edited_pipeline(which in any::<usize>(), pick in any::<usize>(), how in any::<usize>()) {
+        let all = pipelines();
+        let (what, v) = edited(&all[which % all.len()], pick, how);
+        read_and_run(what, v, run_pipeline)?;
+    }
+
+    /// A heading-fix filter read back after an edit runs without a panic.
+    #[test]
+    fn an_edited_fusion(pick in any::<usize>(), how in any::<usize>()) {
+        let (what, v) = edited(&fusion(), pick, how);
+        read_and_run(what, v, run_fusion)?;
+    }
+}
+
+/// Every count of a stored pipeline and filter at `u64::MAX` (a state edited by hand, or one
+/// that counted that far): the counts stay there, where each overflowed (a panic in a debug
+/// build).
+#[test]
+fn counts_at_their_largest_saturate() {
+    fn set_counts(v: &mut Value) {
+        match v {
+            Value::Object(o) => {
+                for (k, x) in o.iter_mut() {
+                    let count = [
+                        "count",
+                        "differences",
+                        "samples",
+                        "blocks",
+                        "found",
+                        "held",
+                        "skipped",
+                        "gaps",
+                        "applied",
+                        "rejected",
+                        "before_start",
+                    ];
+                    if count.contains(&k.as_str()) && x.is_u64() {
+                        *x = json!(u64::MAX);
+                    } else {
+                        set_counts(x);
+                    }
+                }
+            }
+            Value::Array(a) => a.iter_mut().for_each(set_counts),
+            _ => {}
+        }
+    }
+    for p in pipelines() {
+        let mut v = serde_json::to_value(&p).unwrap();
+        set_counts(&mut v);
+        let read: Pipeline = serde_json::from_value(v).unwrap();
+        run_pipeline(read.clone()).unwrap();
+        let mut q = read;
+        q.update(-1e9, 0.0);
+        assert_eq!(q.report().skipped, u64::MAX);
+    }
+    let mut v = serde_json::to_value(fusion()).unwrap();
+    set_counts(&mut v);
+    let read: Fusion = serde_json::from_value(v).unwrap();
+    run_fusion(read).unwrap();
+    let mut f = read;
+    let fix = Fix {
+        t: 20.0,
+        heading: 0.0,
+        sigma: 0.01,
+    };
+    let mut h = [0.0; 2];
+    f.process_block(
+        &[20.0, 20.1],
+        &[0.0; 2],
+        &[fix],
+        FusionOutputs::heading(&mut h),
+    )
+    .unwrap();
+    let counts = f.counts();
+    assert_eq!((counts.applied, counts.rejected), (u64::MAX, u64::MAX));
+}

@@ -51,7 +51,7 @@ pub struct Fix {
     pub sigma: f64,
 }
 
-/// How the fixes given so far were used.
+/// How the fixes given so far were used. Each count saturates at `u64::MAX`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FixCounts {
@@ -372,7 +372,7 @@ impl Fusion {
         let mut a = self.anchor.unwrap_or(first);
         if self.anchor.is_none() {
             used = fixes.iter().take_while(|f| f.t < t).count();
-            self.counts.before_start += used as u64;
+            self.counts.before_start = self.counts.before_start.saturating_add(used as u64);
             self.segment = self.segment.starting_at(t);
             let (x, p) = (
                 self.segment.state(t),
@@ -432,10 +432,10 @@ impl Fusion {
         let s = p[0][0] + fix.sigma * fix.sigma;
         let nu = wrap_angle(fix.heading - x[0]);
         if nu * nu > self.config.gate * s {
-            self.counts.rejected += 1;
+            self.counts.rejected = self.counts.rejected.saturating_add(1);
             return None;
         }
-        self.counts.applied += 1;
+        self.counts.applied = self.counts.applied.saturating_add(1);
         let k = [p[0][0] / s, p[1][0] / s, p[2][0] / s];
         let row = p[0];
         for ((x, p), k) in x.iter_mut().zip(p.iter_mut()).zip(k) {
@@ -494,7 +494,7 @@ impl Write for Smoothing<'_, '_> {
         // knot after it, if any.
         let next = usize::try_from(fusion.counts.applied)
             .ok()
-            .and_then(|j| self.knots.get(j + 1));
+            .and_then(|j| self.knots.get(j.checked_add(1)?));
         let (x, p) = match next {
             Some(next) => smoothed(&x, &p, next.a - s.a(), next.t - now, &next.w, &next.e),
             None => (x, p),

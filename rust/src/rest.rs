@@ -42,7 +42,7 @@ impl RestNoise {
     pub(crate) fn push(&mut self, position: f64, dt: f64, rate: f64) {
         if let Some(p) = self.previous {
             self.squared_differences += (rate - p) * (rate - p);
-            self.differences += 1;
+            self.differences = self.differences.saturating_add(1);
         }
         self.previous = Some(rate);
         // Truncation picks the part; the end of the window belongs to the last one.
@@ -151,7 +151,7 @@ impl BiasEstimate {
                 1.0
             };
             self.noise.push(position, dt, rate);
-            self.count += 1;
+            self.count = self.count.saturating_add(1);
             self.value = if self.duration > 0.0 {
                 self.integral / self.duration
             } else {

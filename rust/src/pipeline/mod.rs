@@ -182,7 +182,7 @@ impl Pipeline {
     ) -> Output {
         let first = self.clock.last().is_none();
         let Some((dt, rate, temperature)) = self.admit(t, rate, temperature) else {
-            self.report.skipped += 1;
+            self.report.skipped = self.report.skipped.saturating_add(1);
             return Output {
                 rate: f64::NAN,
                 ..self.last_output
@@ -392,7 +392,7 @@ impl Pipeline {
             } else {
                 match (self.config.input.non_finite, self.last_reading) {
                     (NonFinite::Hold, Some(held)) => {
-                        self.report.held += 1;
+                        self.report.held = self.report.held.saturating_add(1);
                         held
                     }
                     _ => return None,
