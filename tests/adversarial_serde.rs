@@ -358,3 +358,76 @@ fn counts_at_their_largest_saturate() {
     let counts = f.counts();
     assert_eq!((counts.applied, counts.rejected), (u64::MAX, u64::MAX));
 }
+
+/// A stored value that valid input never reaches, where the next samples made it infinite: the
+/// rest window's integral, HDR's `I`, the correction the de-lag applied last, the rest tracker's
+/// filtered bias, a window bound. Each is refused naming it; each edited to a value valid input
+/// reaches (0) reads back and runs.
+#[test]
+fn stored_values_beyond_reach_are_refused() {
+    let cases = [
+        ("/bias/integral", "bias integral"),
+        ("/bias/window/1", "bias_window"),
+        ("/engine/Hdr/state/2/inner/integrator", "hdr integrator"),
+        ("/engine/Hdr/state/2/applied", "applied correction"),
+        ("/engine/General/state/3/inner/integrator", "hdr integrator"),
+        ("/engine/Tracked/state/tracker/bias", "rest tracker bias"),
+        (
+            "/engine/Tracked/state/state/3/applied",
+            "applied correction",
+        ),
+    ];
+    let mut seen = [false; 7];
+    for p in pipelines() {
+        let v = serde_json::to_value(&p).unwrap();
+        for (k, (at, name)) in cases.iter().enumerate() {
+            if v.pointer(at).is_none() {
+                continue;
+            }
+            seen[k] = true;
+            for value in [1e308, -1e308] {
+                let mut e = v.clone();
+                *e.pointer_mut(at).unwrap() = json!(value);
+                let err = serde_json::from_value::<Pipeline>(e)
+                    .unwrap_err()
+                    .to_string();
+                assert!(
+                    err.contains(&format!("invalid parameter {name} = ")),
+                    "{at}: {err}"
+                );
+            }
+            let mut e = v.clone();
+            *e.pointer_mut(at).unwrap() = json!(0.0);
+            run_pipeline(serde_json::from_value(e).unwrap()).unwrap();
+        }
+    }
+    assert_eq!(seen, [true; 7]);
+    // The stand-alone stages: a correction measuring its window, and HDR.
+    let (t, r) = drive(0.0, 100);
+    let mut c = Correction::new(CorrectionConfig {
+        bias: StaticBias::Leading { duration: 100.0 },
+        ..Default::default()
+    })
+    .unwrap();
+    let mut h = Hdr::new(HdrConfig::table_iii()).unwrap();
+    for (&x, &y) in t.iter().zip(&r) {
+        c.update(x, y);
+        h.update(x, y);
+    }
+    let mut v = serde_json::to_value(&c).unwrap();
+    v["bias"]["integral"] = json!(1e308);
+    let err = serde_json::from_value::<Correction>(v)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("invalid parameter bias integral = 1e308"),
+        "{err}"
+    );
+    let mut v = serde_json::to_value(&h).unwrap();
+    v["state"]["integrator"] = json!(-1e308);
+    let err = serde_json::from_value::<Hdr>(v).unwrap_err().to_string();
+    assert!(
+        err.contains("invalid parameter hdr integrator = -1e308"),
+        "{err}"
+    );
+}

@@ -188,6 +188,32 @@ impl BiasEstimate {
         })
     }
 
+    /// Checks an estimate read back (`serde` feature): the bias a reading, the time measured
+    /// within the window's longest, the integral's mean within twice the largest reading (room
+    /// for rounding) and the window's bounds within +-2^41 s. A stored integral of 1e308 gave an
+    /// infinite bias at the next reading, a NaN window never ended.
+    #[cfg(feature = "serde")]
+    pub(crate) fn check(&self) -> Result<(), Error> {
+        use crate::error::{check_range, check_reading};
+        use crate::{MAX_READING, MAX_TIME};
+        check_reading("bias", self.value)?;
+        let longest = 2.0 * MAX_TIME;
+        check_range(
+            "bias duration",
+            self.duration,
+            0.0,
+            longest,
+            "within 0 and 2^41 s",
+        )?;
+        let most = 2.0 * MAX_READING * self.duration;
+        let valid = "its mean over the time measured within +-2^21 rad/s";
+        check_range("bias integral", self.integral, -most, most, valid)?;
+        for bound in self.window.iter().flat_map(|&(start, end)| [start, end]) {
+            check_range("bias_window", bound, -longest, longest, "within +-2^41 s")?;
+        }
+        Ok(())
+    }
+
     /// See [`crate::Correction::rest_statistics`].
     pub(crate) fn rest_statistics(&self) -> Option<RestStatistics> {
         if self.learning || self.window.is_none() {

@@ -8,7 +8,6 @@
 //! [`checked_serde!`] implements the traits on them: serialising as derived, deserialising as
 //! derived and then checked, the check's error (the core's, in its words) the deserialiser's.
 
-use crate::error::check_reading;
 use crate::kernel::Validated;
 use crate::sim::Xoshiro256PlusPlus;
 use crate::{Correction, Downsample, Error, Fusion, GyroModel, Pipeline, Streaming};
@@ -49,11 +48,12 @@ macro_rules! checked_serde {
 
 checked_serde!(Pipeline, Pipeline::check_restored);
 checked_serde!(Fusion, |fusion| fusion.config().validate());
-checked_serde!(Correction, |c| {
-    c.config().validate()?;
-    check_reading("bias", c.bias())
-});
+checked_serde!(Correction, Correction::check_restored);
 checked_serde!(Downsample, |d| d.config().validate());
-checked_serde!([K: Validated] Streaming<K>, |s| K::check(s.parts().0));
+checked_serde!([K: Validated] Streaming<K>, |s| {
+    let (config, state) = s.parts();
+    K::check(config)?;
+    K::check_state(config, state)
+});
 checked_serde!(GyroModel => GyroModel::restored);
 checked_serde!(Xoshiro256PlusPlus, Xoshiro256PlusPlus::check);

@@ -35,7 +35,8 @@ use crate::{error::check_range, MAX_TIME};
 /// input report), and a pipeline read back carries on bit for bit where it was (with
 /// `serde_json`, enable its `float_roundtrip` feature: without it the last digit of a float may
 /// change). Reading one back checks it as [`Pipeline::new`] checks a configuration, and checks
-/// that its stages are the ones the configuration builds: a state edited by hand or damaged is
+/// that its stages are the ones the configuration builds, holding values that valid input
+/// reaches ([`Kernel::check_state`](crate::Kernel::check_state)): a state edited by hand or damaged is
 /// the deserialiser's error (with this crate's words), never a pipeline that runs on values
 /// `new` refuses. To change a parameter, build a new pipeline from the edited configuration.
 #[derive(Debug, Clone, PartialEq)]
@@ -91,6 +92,7 @@ impl Pipeline {
         if let Some(t) = self.clock.last() {
             check_range("last_time", t, -MAX_TIME, MAX_TIME, "within +-2^40 s")?;
         }
+        self.bias.check()?;
         self.engine.check_restored(&self.config)
     }
 
