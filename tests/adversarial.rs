@@ -173,7 +173,7 @@ proptest! {
             let mut a = fresh.clone();
             let updates = common::run(&mut a, t, r);
             let passes_readings = core::any::type_name::<S>().ends_with("Correction");
-            let excused = |v: f64| passes_readings && !(v.abs() < MAX_READING);
+            let excused = |v: f64| passes_readings && (v.is_nan() || v.abs() >= MAX_READING);
             let bad = updates
                 .iter()
                 .zip(r)
@@ -282,9 +282,12 @@ proptest! {
                 let (mut v, mut n) = (vec![0.0; factors.len()], vec![0u64; factors.len()]);
                 if allan::variances(&x, dt, &factors, kind, &mut v, &mut n).is_ok() {
                     prop_assert!(v.iter().all(|v| v.is_finite() && *v >= 0.0), "{:?} {:?}", kind, v);
-                    let (mut w, mut m) = (vec![0.0; factors.len()], vec![0u64; factors.len()]);
-                    allan::variances_parallel(&x, dt, &factors, kind, 3, &mut w, &mut m).unwrap();
-                    prop_assert_eq!(bits_of(&v), bits_of(&w));
+                    #[cfg(feature = "std")]
+                    {
+                        let (mut w, mut m) = (vec![0.0; factors.len()], vec![0u64; factors.len()]);
+                        allan::variances_parallel(&x, dt, &factors, kind, 3, &mut w, &mut m).unwrap();
+                        prop_assert_eq!(bits_of(&v), bits_of(&w));
+                    }
                 }
             }
         }

@@ -423,7 +423,7 @@ fn stored_values_beyond_reach_are_refused() {
         err.contains("invalid parameter bias integral = 1e308"),
         "{err}"
     );
-    let mut v = serde_json::to_value(&h).unwrap();
+    let mut v = serde_json::to_value(h).unwrap();
     v["state"]["integrator"] = json!(-1e308);
     let err = serde_json::from_value::<Hdr>(v).unwrap_err().to_string();
     assert!(
