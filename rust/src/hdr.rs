@@ -295,8 +295,9 @@ impl Kernel for HdrKernel {
         }
     }
 
-    /// `|I|` of eq 11 within the bound in force (`max_correction`), and within about 2^101 rad/s (the largest `|I|`
-    /// valid input reaches) without one: a stored `I` of 1e308 gave infinite headings.
+    /// `|I|` of eq 11 within the bound in force (`max_correction`), and within about 2^101 rad/s
+    /// (the largest `|I|` valid input reaches) without one: a stored `I` of 1e308 gave infinite
+    /// headings.
     #[cfg(feature = "serde")]
     fn check_state(rule: &HdrRule, state: &HdrState) -> Result<(), Error> {
         let bound = rule.bound.min(MAX_INTEGRATOR);
