@@ -36,9 +36,10 @@ use crate::{error::check_range, MAX_TIME};
 /// `serde_json`, enable its `float_roundtrip` feature: without it the last digit of a float may
 /// change). Reading one back checks it as [`Pipeline::new`] checks a configuration, and checks
 /// that its stages are the ones the configuration builds, holding values that valid input
-/// reaches ([`Kernel::check_state`](crate::Kernel::check_state)): a state edited by hand or damaged is
-/// the deserialiser's error (with this crate's words), never a pipeline that runs on values
-/// `new` refuses. To change a parameter, build a new pipeline from the edited configuration.
+/// reaches ([`Kernel::check_state`](crate::Kernel::check_state)): a state edited by hand or
+/// damaged is the deserialiser's error (with this crate's words), never a pipeline that runs on
+/// values `new` refuses. To change a parameter, build a new pipeline from the edited
+/// configuration.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(
     feature = "serde",
