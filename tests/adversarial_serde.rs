@@ -361,7 +361,7 @@ fn counts_at_their_largest_saturate() {
 
 /// A stored value that valid input never reaches, where the next samples made it infinite: the
 /// rest window's integral, HDR's `I`, the correction the de-lag applied last, the rest tracker's
-/// filtered bias, a window bound. Each is refused naming it; each edited to a value valid input
+/// filtered bias, a window bound, the integrator's heading and last rate. Each is refused naming it; each edited to a value valid input
 /// reaches (0) reads back and runs.
 #[test]
 fn stored_values_beyond_reach_are_refused() {
@@ -376,8 +376,10 @@ fn stored_values_beyond_reach_are_refused() {
             "/engine/Tracked/state/state/3/applied",
             "applied correction",
         ),
+        ("/engine/Hdr/state/3/previous", "previous rate"),
+        ("/engine/Plain/state/2/heading", "heading"),
     ];
-    let mut seen = [false; 7];
+    let mut seen = [false; 9];
     for p in pipelines() {
         let v = serde_json::to_value(&p).unwrap();
         for (k, (at, name)) in cases.iter().enumerate() {
@@ -401,7 +403,7 @@ fn stored_values_beyond_reach_are_refused() {
             run_pipeline(serde_json::from_value(e).unwrap()).unwrap();
         }
     }
-    assert_eq!(seen, [true; 7]);
+    assert_eq!(seen, [true; 9]);
     // The stand-alone stages: a correction measuring its window, and HDR.
     let (t, r) = drive(0.0, 100);
     let mut c = Correction::new(CorrectionConfig {
@@ -428,6 +430,17 @@ fn stored_values_beyond_reach_are_refused() {
     let err = serde_json::from_value::<Hdr>(v).unwrap_err().to_string();
     assert!(
         err.contains("invalid parameter hdr integrator = -1e308"),
+        "{err}"
+    );
+    let mut i = Integrator::new(IntegratorConfig::default()).unwrap();
+    i.update(0.0, 1.0);
+    let mut v = serde_json::to_value(i).unwrap();
+    v["state"]["previous"] = json!(1e308);
+    let err = serde_json::from_value::<Integrator>(v)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("invalid parameter previous rate = 1e308"),
         "{err}"
     );
 }
