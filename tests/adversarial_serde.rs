@@ -269,11 +269,47 @@ fn run_fusion(f: Fusion) -> Result<(), String> {
     if a.process_block_recording(&t, &r, &fixes, out, |k| knots.push(k))
         .is_ok()
     {
+        if let Some(i) = h.iter().position(|x| !x.is_finite()) {
+            return Err(format!("heading {} at {}", h[i], t[i]));
+        }
         smooth(&mut knots);
         let mut b = f;
         let _ = b.process_block_smoothed(&t, &r, &fixes, &knots, FusionOutputs::heading(&mut h));
     }
     Ok(())
+}
+
+/// Every field of `value` set to every extreme, and every array edited: refused, or `run`
+/// succeeds.
+fn every_edit<T: Serialize + DeserializeOwned + Send + 'static>(
+    value: &T,
+    run: fn(T) -> Result<(), String>,
+) {
+    let mut all = Vec::new();
+    leaves(
+        &serde_json::to_value(value).unwrap(),
+        String::new(),
+        &mut all,
+    );
+    for pick in 0..all.len() {
+        for how in 0..extremes().len() {
+            let (what, v) = edited(value, pick, how);
+            read_and_run(what, v, run).unwrap();
+        }
+    }
+}
+
+/// A heading-fix filter, fresh and mid-stream, and a pipeline measuring its rest window and
+/// one tracking rests, each field edited to each extreme: refused (a stored rate integral or
+/// rate of 1e308 gave infinite or NaN headings, a variance of -1e308 NaN ones), or finite
+/// headings.
+#[test]
+fn every_edit_is_refused_or_gives_finite_headings() {
+    every_edit(&Fusion::new(FusionConfig::default()).unwrap(), run_fusion);
+    every_edit(&fusion(), run_fusion);
+    let all = pipelines();
+    every_edit(&all[3 * 4 + 1], run_pipeline); // combined, measuring
+    every_edit(&all[3 * 6 + 2], run_pipeline); // tracked, rests found
 }
 
 proptest! {

@@ -34,7 +34,7 @@ use core::f64::consts::PI;
 pub use crate::fixes_config::{FusionConfig, MIN_FIX_SIGMA};
 pub use crate::fixes_error::{FixProblem, FusionError};
 pub use crate::fixes_output::{Estimate, FusionOutputs};
-use crate::fixes_segment::Segment;
+use crate::fixes_segment::{Anchor, Segment};
 use crate::fixes_smooth::{smoothed, Knot, Mat3};
 use crate::{check_block, Error, MAX_READING, MAX_TIME};
 
@@ -63,20 +63,11 @@ pub struct FixCounts {
     pub before_start: u64,
 }
 
-/// The last gyro sample and the point the state is propagated to (a sample or a fix time).
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-struct Anchor {
-    sample_t: f64,
-    sample_rate: f64,
-    t: f64,
-    rate: f64,
-}
-
 /// The streaming filter: a validated config and its state (`Copy`, serialisable). Between fixes
 /// the state moves in closed form from the last fix applied (rust/src/fixes_segment.rs).
 ///
-/// Read back (`serde` feature), its configuration is checked as [`Fusion::new`] checks it.
+/// Read back (`serde` feature), its configuration is checked as [`Fusion::new`] checks it, and
+/// its state: times within +-2^40 s, values finite and in range, the heading's variance >= 0.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(
     feature = "serde",
@@ -114,6 +105,19 @@ impl Fusion {
             last_fix: None,
             counts: FixCounts::default(),
         })
+    }
+
+    /// The checks of a filter read back (`serde` feature): its configuration as `new` checks
+    /// it, and its state ([`Segment::check`], [`Anchor::check`]).
+    #[cfg(feature = "serde")]
+    pub(crate) fn check_restored(&self) -> Result<(), Error> {
+        self.config.validate()?;
+        self.segment.check()?;
+        let last_fix = self.last_fix.map(|t| Anchor::of_sample(t, 0.0));
+        self.anchor
+            .iter()
+            .chain(&last_fix)
+            .try_for_each(Anchor::check)
     }
 
     /// The configuration.
@@ -363,13 +367,7 @@ impl Fusion {
     #[inline(always)]
     fn sample(&mut self, t: f64, rate: f64, fixes: &[Fix], record: &mut impl FnMut(Knot)) -> usize {
         let mut used = 0;
-        let first = Anchor {
-            sample_t: t,
-            sample_rate: rate,
-            t,
-            rate,
-        };
-        let mut a = self.anchor.unwrap_or(first);
+        let mut a = self.anchor.unwrap_or(Anchor::of_sample(t, rate));
         if self.anchor.is_none() {
             used = fixes.iter().take_while(|f| f.t < t).count();
             self.counts.before_start = self.counts.before_start.saturating_add(used as u64);

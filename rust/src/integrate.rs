@@ -55,13 +55,6 @@ pub(crate) fn check_initial_heading(heading: f64) -> Result<(), Error> {
     )
 }
 
-/// The largest heading \[rad\] and rate \[rad/s\] an integrator read back may hold: 2^256, far
-/// beyond what valid input reaches (a rate of about 2^183, where the de-lag of HDR's largest step
-/// of about 2^101 meets the shortest interval, over at most 2^41 s) and far below where the next
-/// sample's sum overflows.
-#[cfg(feature = "serde")]
-const MAX_STORED: f64 = 1.157_920_892_373_162e77;
-
 /// What an integrator remembers: the heading so far and the last rate.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -74,18 +67,12 @@ pub struct Heading {
 
 impl Heading {
     /// Checks a state read back (`serde` feature): the heading and the last rate within
-    /// [`MAX_STORED`] (a stored last rate of 1e308 made the next heading infinite).
+    /// [`MAX_STORED`](crate::error::MAX_STORED) (a stored last rate of 1e308 made the next
+    /// heading infinite).
     #[cfg(feature = "serde")]
     fn check(&self) -> Result<(), Error> {
-        let valid = "within +-2^256, beyond what valid input reaches";
-        check_range("heading", self.heading, -MAX_STORED, MAX_STORED, valid)?;
-        check_range(
-            "previous rate",
-            self.previous,
-            -MAX_STORED,
-            MAX_STORED,
-            valid,
-        )
+        crate::error::check_stored("heading", self.heading)?;
+        crate::error::check_stored("previous rate", self.previous)
     }
 
     /// Adds one sample with interval `dt` \[s\] by the rule `trapezoid` (else the rectangle rule).

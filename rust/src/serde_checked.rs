@@ -47,7 +47,7 @@ macro_rules! checked_serde {
 }
 
 checked_serde!(Pipeline, Pipeline::check_restored);
-checked_serde!(Fusion, |fusion| fusion.config().validate());
+checked_serde!(Fusion, Fusion::check_restored);
 checked_serde!(Correction, Correction::check_restored);
 checked_serde!(Downsample, |d| d.config().validate());
 checked_serde!([K: Validated] Streaming<K>, |s| {
