@@ -122,27 +122,16 @@ fn run_sampler(s: gyrocore::sim::Sampler) -> Result<(), String> {
     Ok(())
 }
 
-proptest! {
-    #![proptest_config(ProptestConfig::with_cases(400))]
-
-    /// A simulated gyro and its sampler read back after an edit.
-    #[test]
-    fn an_edited_simulated_gyro(pick in any::<usize>(), how in any::<usize>()) {
-        let m = model();
-        let (what, v) = edited(&m, pick, how);
-        read_and_run(what, v, run_model)?;
-        let (what, v) = edited(&m.sampler(0.0), pick, how);
-        read_and_run(what, v, run_sampler)?;
-    }
-}
-
 /// A stored model whose count of flicker terms exceeds the most there are (it panicked on a
 /// slice index at the next grid step), or whose drift grid index is u64::MAX (an overflow, a
 /// panic in a debug build): the count is derived again from the configuration, the index
-/// saturates.
+/// saturates. Every field of a model and of its sampler edited to every extreme: refused, or
+/// readings and instants without a panic or a hang.
 #[test]
 fn an_edited_model_runs_on() {
     let m = model();
+    every_edit(&m, run_model);
+    every_edit(&m.sampler(0.0), run_sampler);
     let mut v = serde_json::to_value(&m).unwrap();
     v["terms"]["count"] = json!(17);
     let mut read: GyroModel = serde_json::from_value(v).unwrap();
@@ -299,10 +288,10 @@ fn every_edit<T: Serialize + DeserializeOwned + Send + 'static>(
     }
 }
 
-/// A heading-fix filter, fresh and mid-stream, and a pipeline measuring its rest window and
-/// one tracking rests, each field edited to each extreme: refused (a stored rate integral or
-/// rate of 1e308 gave infinite or NaN headings, a variance of -1e308 NaN ones), or finite
-/// headings.
+/// A heading-fix filter, fresh and mid-stream, a pipeline measuring its rest window, one
+/// tracking rests, and the stand-alone stages that remember, each field edited to each extreme:
+/// refused (a stored rate integral or rate of 1e308 gave infinite or NaN headings, a variance of
+/// -1e308 NaN ones, a de-lag's last input of 1e308 an infinite rate), or finite outputs.
 #[test]
 fn every_edit_is_refused_or_gives_finite_headings() {
     every_edit(&Fusion::new(FusionConfig::default()).unwrap(), run_fusion);
@@ -310,6 +299,35 @@ fn every_edit_is_refused_or_gives_finite_headings() {
     let all = pipelines();
     every_edit(&all[3 * 4 + 1], run_pipeline); // combined, measuring
     every_edit(&all[3 * 6 + 2], run_pipeline); // tracked, rests found
+    let tau = LowPassConfig { tau: 0.75 };
+    every_edit(&warm(DeLag::new(tau).unwrap()), run_stage);
+    every_edit(&warm(LowPass::new(tau).unwrap()), run_stage);
+    every_edit(&warm(Hdr::new(HdrConfig::table_iii()).unwrap()), run_stage);
+    every_edit(
+        &warm(Integrator::new(Default::default()).unwrap()),
+        run_stage,
+    );
+}
+
+/// `stage` after some samples.
+fn warm<S: Stage<Output = f64>>(mut stage: S) -> S {
+    let (t, r) = drive(0.0, 100);
+    for (&x, &y) in t.iter().zip(&r) {
+        stage.update(x, y);
+    }
+    stage
+}
+
+/// Runs a stand-alone stage read back on from its last sample: finite outputs.
+fn run_stage<S: Stage<Output = f64>>(mut stage: S) -> Result<(), String> {
+    let (t, r) = drive(stage.last_time().map_or(0.0, |t| t + 0.05), 100);
+    for (&x, &y) in t.iter().zip(&r) {
+        let out = stage.update(x, y);
+        if !out.is_finite() {
+            return Err(format!("{out} at {x}"));
+        }
+    }
+    Ok(())
 }
 
 proptest! {
@@ -321,13 +339,6 @@ proptest! {
         let all = pipelines();
         let (what, v) = edited(&all[which % all.len()], pick, how);
         read_and_run(what, v, run_pipeline)?;
-    }
-
-    /// A heading-fix filter read back after an edit runs without a panic.
-    #[test]
-    fn an_edited_fusion(pick in any::<usize>(), how in any::<usize>()) {
-        let (what, v) = edited(&fusion(), pick, how);
-        read_and_run(what, v, run_fusion)?;
     }
 }
 
@@ -397,7 +408,7 @@ fn counts_at_their_largest_saturate() {
 
 /// A stored value that valid input never reaches, where the next samples made it infinite: the
 /// rest window's integral, HDR's `I`, the correction the de-lag applied last, the rest tracker's
-/// filtered bias, a window bound, the integrator's heading and last rate. Each is refused naming it; each edited to a value valid input
+/// filtered bias, a window bound, the integrator's heading and last rate, a de-lag's last input. Each is refused naming it; each edited to a value valid input
 /// reaches (0) reads back and runs.
 #[test]
 fn stored_values_beyond_reach_are_refused() {
@@ -477,6 +488,15 @@ fn stored_values_beyond_reach_are_refused() {
         .to_string();
     assert!(
         err.contains("invalid parameter previous rate = 1e308"),
+        "{err}"
+    );
+    let mut d = DeLag::new(LowPassConfig { tau: 0.75 }).unwrap();
+    d.update(0.0, 1.0);
+    let mut v = serde_json::to_value(d).unwrap();
+    v["state"] = json!(-1e308);
+    let err = serde_json::from_value::<DeLag>(v).unwrap_err().to_string();
+    assert!(
+        err.contains("invalid parameter filter state = -1e308"),
         "{err}"
     );
 }
