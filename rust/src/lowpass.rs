@@ -73,7 +73,7 @@ macro_rules! rate_filter_kernel {
                 Signal { rate: $step, ..x }
             }
 
-            /// The rate within [`MAX_STORED`](crate::error::MAX_STORED): a de-lag's stored last
+            /// The rate within +-2^256, beyond what valid input reaches: a de-lag's stored last
             /// input of 1e308 made its next output infinite.
             #[cfg(feature = "serde")]
             fn check_state(_config: &LowPassConfig, state: &f64) -> Result<(), Error> {
