@@ -73,8 +73,8 @@ macro_rules! rate_filter_kernel {
                 Signal { rate: $step, ..x }
             }
 
-            /// The rate within +-2^256, beyond what valid input reaches: a de-lag's stored last
-            /// input of 1e308 made its next output infinite.
+            /// The rate within +-2^256, far beyond what valid input reaches: a de-lag's stored
+            /// last input of 1e308 made its next output infinite.
             #[cfg(feature = "serde")]
             fn check_state(_config: &LowPassConfig, state: &f64) -> Result<(), Error> {
                 crate::error::check_stored("filter state", *state)
