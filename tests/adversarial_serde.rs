@@ -408,8 +408,8 @@ fn counts_at_their_largest_saturate() {
 
 /// A stored value that valid input never reaches, where the next samples made it infinite: the
 /// rest window's integral, HDR's `I`, the correction the de-lag applied last, the rest tracker's
-/// filtered bias, a window bound, the integrator's heading and last rate, a de-lag's last input. Each is refused naming it; each edited to a value valid input
-/// reaches (0) reads back and runs.
+/// filtered bias, a window bound, the integrator's heading and last rate, a de-lag's last input.
+/// Each is refused naming it; each edited to a value valid input reaches (0) reads back and runs.
 #[test]
 fn stored_values_beyond_reach_are_refused() {
     let cases = [
