@@ -127,7 +127,8 @@ pub fn phase_from_rate(rate: &[f64], dt: f64, x: &mut [f64]) -> Result<(), Error
 /// gives the same numbers, bit for bit, from several threads.
 ///
 /// Errors: `tau0` not finite and positive, an output of the wrong length, a non-finite phase
-/// sample, a zero factor, or a factor too long for the record (no term).
+/// sample (or one beyond [`MAX_PHASE`] where a variance would overflow), a zero factor, or a
+/// factor too long for the record (no term).
 pub fn variances(
     x: &[f64],
     tau0: f64,
@@ -146,9 +147,8 @@ pub fn variances(
         |_, blocks| 0..blocks,
         |k, _, sum| variance[k] += sum,
     );
-    check_phase(x, kind, factors, variance)?;
     normalise(x.len(), tau0, factors, kind, variance, terms);
-    Ok(())
+    check_phase(x, kind, factors, variance)
 }
 
 /// [`variances`] with the blocks shared among `threads` threads (`std` only): the same numbers,
@@ -199,9 +199,8 @@ pub fn variances_parallel(
         *v = row.iter().fold(0.0, |total, sum| total + sum);
         sums = rest;
     }
-    check_phase(x, kind, factors, variance)?;
     normalise(x.len(), tau0, factors, kind, variance, terms);
-    Ok(())
+    check_phase(x, kind, factors, variance)
 }
 
 /// One point of [`variances`]: `(variance [(rad/s)^2], number of terms)` at factor `m`.
@@ -245,15 +244,28 @@ fn check_request(
     Ok(())
 }
 
-/// Fails with [`Error::NonFinite`] at the first NaN or infinity of `x`, given the `sums` of
-/// squared differences at `factors`. A non-finite sample makes every sum that reads it
-/// non-finite, so one finite sum whose terms read every sample vouches for all of `x`, and
-/// spares a pass over it (the cost of one more factor).
-fn check_phase(x: &[f64], kind: Variance, factors: &[usize], sums: &[f64]) -> Result<(), Error> {
+/// The largest magnitude of a phase sample \[rad\]: readings within [`MAX_READING`] over
+/// [`MAX_TIME`], 2^60. Within it every variance is finite (a difference of the fourth order is
+/// below 2^64, its square times any number of terms over the shortest `tau` far from overflow).
+pub const MAX_PHASE: f64 = MAX_READING * MAX_TIME;
+
+/// Fails with [`Error::NonFinite`] at the first NaN or infinity of `x`, given the `variances` at
+/// `factors`, or with [`Error::OutOfRange`] at the first sample beyond [`MAX_PHASE`] where a
+/// variance overflowed (a phase of 1e308 gave an infinite variance). A non-finite sample makes
+/// every variance that reads it non-finite, so finite variances, one of whose terms read every
+/// sample, vouch for all of `x`, and spare a pass over it (the cost of one more factor).
+fn check_phase(
+    x: &[f64],
+    kind: Variance,
+    factors: &[usize],
+    variances: &[f64],
+) -> Result<(), Error> {
+    if !variances.iter().all(|v| v.is_finite()) {
+        return check_bounded("phase", x, MAX_PHASE);
+    }
     let vouched = factors
         .iter()
-        .zip(sums)
-        .any(|(&m, sum)| sum.is_finite() && reads_every_sample(kind, x.len(), m));
+        .any(|&m| reads_every_sample(kind, x.len(), m));
     if vouched {
         Ok(())
     } else {

@@ -258,6 +258,14 @@ impl Correction {
         &self.calibration.config
     }
 
+    /// The checks of a stage read back (`serde` feature): its configuration, and its bias
+    /// estimate as a pipeline's.
+    #[cfg(feature = "serde")]
+    pub(crate) fn check_restored(&self) -> Result<(), Error> {
+        self.config().validate()?;
+        self.bias.check()
+    }
+
     /// The static bias in use now [rad/s] (what the gyro reads at rest).
     pub fn bias(&self) -> f64 {
         self.bias.value()

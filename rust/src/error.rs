@@ -41,7 +41,7 @@ pub enum Error {
     /// ([`MAX_TIME`](crate::MAX_TIME) for `t`, [`MAX_READING`](crate::MAX_READING)
     /// for a reading).
     OutOfRange {
-        /// `"t"`, `"rate"` or `"temperature"`.
+        /// `"t"`, `"rate"`, `"temperature"` or `"phase"` (see [`crate::allan::MAX_PHASE`]).
         what: &'static str,
         /// Index of the first bad sample within the block.
         index: usize,
@@ -155,6 +155,11 @@ impl fmt::Display for Error {
                          (nanoseconds read as seconds are this large)",
                     ),
                     "temperature" => ("degC", "give degrees Celsius"),
+                    "phase" => (
+                        "rad",
+                        "its Allan variance overflows; the phase of readings within +-2^20 \
+                         rad/s over 2^40 s stays below it: check the unit",
+                    ),
                     _ => (
                         "rad/s",
                         "no gyro reads that fast: check the unit and the column",
@@ -315,4 +320,18 @@ pub(crate) fn check_finite(name: &'static str, value: f64) -> Result<(), Error> 
             valid: "finite",
         })
     }
+}
+
+/// The largest magnitude of a heading \[rad\], rate \[rad/s\] or other value a state read back
+/// (`serde` feature) may hold where no tighter bound applies: 2^256, far beyond what valid input
+/// reaches (a rate of about 2^183, where the de-lag of HDR's largest step of about 2^101 meets the
+/// shortest interval, over at most 2^41 s) and far below where the next sample's sums overflow.
+#[cfg(feature = "serde")]
+pub(crate) const MAX_STORED: f64 = 1.157_920_892_373_162e77;
+
+/// Fails unless a value read back lies within +-[`MAX_STORED`] (so is finite).
+#[cfg(feature = "serde")]
+pub(crate) fn check_stored(name: &'static str, value: f64) -> Result<(), Error> {
+    let valid = "within +-2^256, beyond what valid input reaches";
+    check_range(name, value, -MAX_STORED, MAX_STORED, valid)
 }

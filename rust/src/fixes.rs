@@ -34,7 +34,7 @@ use core::f64::consts::PI;
 pub use crate::fixes_config::{FusionConfig, MIN_FIX_SIGMA};
 pub use crate::fixes_error::{FixProblem, FusionError};
 pub use crate::fixes_output::{Estimate, FusionOutputs};
-use crate::fixes_segment::Segment;
+use crate::fixes_segment::{Anchor, Segment};
 use crate::fixes_smooth::{smoothed, Knot, Mat3};
 use crate::{check_block, Error, MAX_READING, MAX_TIME};
 
@@ -51,7 +51,7 @@ pub struct Fix {
     pub sigma: f64,
 }
 
-/// How the fixes given so far were used.
+/// How the fixes given so far were used. Each count saturates at `u64::MAX`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FixCounts {
@@ -63,20 +63,11 @@ pub struct FixCounts {
     pub before_start: u64,
 }
 
-/// The last gyro sample and the point the state is propagated to (a sample or a fix time).
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-struct Anchor {
-    sample_t: f64,
-    sample_rate: f64,
-    t: f64,
-    rate: f64,
-}
-
 /// The streaming filter: a validated config and its state (`Copy`, serialisable). Between fixes
 /// the state moves in closed form from the last fix applied (rust/src/fixes_segment.rs).
 ///
-/// Read back (`serde` feature), its configuration is checked as [`Fusion::new`] checks it.
+/// Read back (`serde` feature), its configuration is checked as [`Fusion::new`] checks it, and
+/// its state: times within +-2^40 s, values finite and in range, the heading's variance >= 0.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(
     feature = "serde",
@@ -114,6 +105,19 @@ impl Fusion {
             last_fix: None,
             counts: FixCounts::default(),
         })
+    }
+
+    /// The checks of a filter read back (`serde` feature): its configuration as `new` checks
+    /// it, and its state ([`Segment::check`], [`Anchor::check`]).
+    #[cfg(feature = "serde")]
+    pub(crate) fn check_restored(&self) -> Result<(), Error> {
+        self.config.validate()?;
+        self.segment.check()?;
+        let last_fix = self.last_fix.map(|t| Anchor::of_sample(t, 0.0));
+        self.anchor
+            .iter()
+            .chain(&last_fix)
+            .try_for_each(Anchor::check)
     }
 
     /// The configuration.
@@ -363,16 +367,10 @@ impl Fusion {
     #[inline(always)]
     fn sample(&mut self, t: f64, rate: f64, fixes: &[Fix], record: &mut impl FnMut(Knot)) -> usize {
         let mut used = 0;
-        let first = Anchor {
-            sample_t: t,
-            sample_rate: rate,
-            t,
-            rate,
-        };
-        let mut a = self.anchor.unwrap_or(first);
+        let mut a = self.anchor.unwrap_or(Anchor::of_sample(t, rate));
         if self.anchor.is_none() {
             used = fixes.iter().take_while(|f| f.t < t).count();
-            self.counts.before_start += used as u64;
+            self.counts.before_start = self.counts.before_start.saturating_add(used as u64);
             self.segment = self.segment.starting_at(t);
             let (x, p) = (
                 self.segment.state(t),
@@ -432,10 +430,10 @@ impl Fusion {
         let s = p[0][0] + fix.sigma * fix.sigma;
         let nu = wrap_angle(fix.heading - x[0]);
         if nu * nu > self.config.gate * s {
-            self.counts.rejected += 1;
+            self.counts.rejected = self.counts.rejected.saturating_add(1);
             return None;
         }
-        self.counts.applied += 1;
+        self.counts.applied = self.counts.applied.saturating_add(1);
         let k = [p[0][0] / s, p[1][0] / s, p[2][0] / s];
         let row = p[0];
         for ((x, p), k) in x.iter_mut().zip(p.iter_mut()).zip(k) {
@@ -494,7 +492,7 @@ impl Write for Smoothing<'_, '_> {
         // knot after it, if any.
         let next = usize::try_from(fusion.counts.applied)
             .ok()
-            .and_then(|j| self.knots.get(j + 1));
+            .and_then(|j| self.knots.get(j.checked_add(1)?));
         let (x, p) = match next {
             Some(next) => smoothed(&x, &p, next.a - s.a(), next.t - now, &next.w, &next.e),
             None => (x, p),

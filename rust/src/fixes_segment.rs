@@ -24,6 +24,42 @@ use crate::fixes::FusionConfig;
 use crate::fixes_output::calibration_of;
 use crate::fixes_smooth::Mat3;
 
+/// The last gyro sample and the point the state is propagated to (a sample or a fix time).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct Anchor {
+    pub(crate) sample_t: f64,
+    pub(crate) sample_rate: f64,
+    pub(crate) t: f64,
+    pub(crate) rate: f64,
+}
+
+impl Anchor {
+    /// The anchor at a gyro sample `(t, rate)`.
+    pub(crate) fn of_sample(t: f64, rate: f64) -> Self {
+        Anchor {
+            sample_t: t,
+            sample_rate: rate,
+            t,
+            rate,
+        }
+    }
+
+    /// Checks an anchor read back (`serde` feature): its times within +-2^40 s, its rates
+    /// within [`MAX_STORED`](crate::error::MAX_STORED) (a stored rate of 1e308 gave NaN
+    /// headings).
+    #[cfg(feature = "serde")]
+    pub(crate) fn check(&self) -> Result<(), crate::Error> {
+        use crate::error::{check_range, check_stored};
+        let limit = crate::MAX_TIME;
+        for t in [self.sample_t, self.t] {
+            check_range("filter time", t, -limit, limit, "within +-2^40 s")?;
+        }
+        check_stored("filter rate", self.sample_rate)?;
+        check_stored("filter rate", self.rate)
+    }
+}
+
 /// The filter from its last knot (a fix applied, or the first sample) to the last point it was
 /// moved to.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,6 +95,25 @@ impl Segment {
     /// The same state and covariance, knotted at `t` (the first sample: nothing has moved yet).
     pub(crate) fn starting_at(self, t: f64) -> Self {
         Segment::new(t, self.x, self.p)
+    }
+
+    /// Checks a segment read back (`serde` feature): its time within +-2^40 s, every value
+    /// within [`MAX_STORED`](crate::error::MAX_STORED) and the heading's variance >= 0 (a stored
+    /// rate integral of 1e308 gave infinite headings, a variance of -1e308 NaN ones).
+    #[cfg(feature = "serde")]
+    pub(crate) fn check(&self) -> Result<(), crate::Error> {
+        use crate::error::{check_range, check_stored, MAX_STORED};
+        let limit = crate::MAX_TIME;
+        check_range("segment time", self.t, -limit, limit, "within +-2^40 s")?;
+        for v in self.x.iter().chain(self.p.iter().flatten()) {
+            check_stored("filter state", *v)?;
+        }
+        for v in [self.a, self.i1_2, self.i2_3] {
+            check_stored("rate integral", v)?;
+        }
+        // >= 0 after every fix, rounding included: P00 - (P00 / S) P00 with P00 / S <= 1
+        let valid = ">= 0 and within 2^256";
+        check_range("heading variance", self.p[0][0], 0.0, MAX_STORED, valid)
     }
 
     /// Extends the segment by an interval `dt` \[s\] over which the rate's mean is `m` \[rad/s\].

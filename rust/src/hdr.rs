@@ -294,7 +294,24 @@ impl Kernel for HdrKernel {
             ..Measured::default()
         }
     }
+
+    /// `|I|` of eq 11 within the bound in force (`max_correction`), and within about 2^101 rad/s
+    /// (the largest `|I|` valid input reaches) without one: a stored `I` of 1e308 gave infinite
+    /// headings.
+    #[cfg(feature = "serde")]
+    fn check_state(rule: &HdrRule, state: &HdrState) -> Result<(), Error> {
+        let bound = rule.bound.min(MAX_INTEGRATOR);
+        let valid = "within the bound on |I| in force (and about 2^101 rad/s without one)";
+        check_range("hdr integrator", state.integrator, -bound, bound, valid)
+    }
 }
+
+/// The largest `|I|` \[rad/s\] valid input reaches without a bound on it (about 2^101): one
+/// increment (at most 2^20 rad/s) a sample, samples at least
+/// [`MIN_INTERVAL`](crate::MIN_INTERVAL) apart within +-[`MAX_TIME`](crate::MAX_TIME).
+#[cfg(feature = "serde")]
+pub(crate) const MAX_INTEGRATOR: f64 =
+    crate::MAX_READING * (2.0 * crate::MAX_TIME / crate::MIN_INTERVAL);
 
 impl Validated for HdrKernel {
     type Settings = HdrConfig;

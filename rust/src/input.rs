@@ -69,7 +69,8 @@ impl InputPolicy {
     }
 }
 
-/// Counts of what the input policy did, since the pipeline was created or reset.
+/// Counts of what the input policy did, since the pipeline was created or reset. Each count
+/// saturates at `u64::MAX`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct InputReport {
@@ -97,7 +98,7 @@ impl InputReport {
     #[inline(always)]
     pub(crate) fn gaps_up_to(&mut self, count: u64, longest: f64) {
         if count > 0 {
-            self.gaps += count;
+            self.gaps = self.gaps.saturating_add(count);
             self.longest_gap = self.longest_gap.max(longest);
         }
     }

@@ -66,6 +66,15 @@ pub struct Heading {
 }
 
 impl Heading {
+    /// Checks a state read back (`serde` feature): the heading and the last rate within
+    /// [`MAX_STORED`](crate::error::MAX_STORED) (a stored last rate of 1e308 made the next
+    /// heading infinite).
+    #[cfg(feature = "serde")]
+    fn check(&self) -> Result<(), Error> {
+        crate::error::check_stored("heading", self.heading)?;
+        crate::error::check_stored("previous rate", self.previous)
+    }
+
     /// Adds one sample with interval `dt` \[s\] by the rule `trapezoid` (else the rectangle rule).
     #[inline(always)]
     fn add(&mut self, trapezoid: bool, dt: f64, rate: f64) -> f64 {
@@ -118,6 +127,11 @@ macro_rules! integrator_kernel {
                     heading: state.add($trapezoid, dt, x.rate),
                     ..x
                 }
+            }
+
+            #[cfg(feature = "serde")]
+            fn check_state(_config: &IntegratorConfig, state: &Heading) -> Result<(), Error> {
+                state.check()
             }
         }
 

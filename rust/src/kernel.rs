@@ -172,6 +172,14 @@ pub trait Kernel {
         let _ = config;
         Measured::default()
     }
+
+    /// Checks a state read back (`serde` feature) against its configuration: its values within
+    /// what valid input reaches, so that the outputs stay finite (by default it takes any).
+    #[cfg(feature = "serde")]
+    fn check_state(config: &Self::Config, state: &Self::State) -> Result<(), Error> {
+        let _ = (config, state);
+        Ok(())
+    }
 }
 
 impl Measured {
@@ -229,6 +237,14 @@ impl<K: Kernel> Kernel for Option<K> {
     fn in_force(config: &Self::Config) -> Measured {
         config.as_ref().map_or_else(Measured::default, K::in_force)
     }
+
+    #[cfg(feature = "serde")]
+    fn check_state(config: &Self::Config, state: &Self::State) -> Result<(), Error> {
+        match (config, state) {
+            (Some(c), Some(s)) => K::check_state(c, s),
+            _ => Ok(()),
+        }
+    }
 }
 
 /// Composes kernels in a tuple: the signal passes them in order.
@@ -266,6 +282,12 @@ macro_rules! chain {
 
             fn in_force(config: &Self::Config) -> Measured {
                 Measured::default()$(.or($k::in_force(&config.$i)))+
+            }
+
+            #[cfg(feature = "serde")]
+            fn check_state(config: &Self::Config, state: &Self::State) -> Result<(), Error> {
+                $($k::check_state(&config.$i, &state.$i)?;)+
+                Ok(())
             }
         }
     };

@@ -12,6 +12,8 @@
 use core::marker::PhantomData;
 
 use crate::kernel::{Event, EventKind, Kernel, Measured, Signal};
+#[cfg(feature = "serde")]
+use crate::{error::check_range, hdr::MAX_INTEGRATOR, Error};
 
 /// The low-pass, the stage `H` (HDR, or HDR that may be off) and the de-lag as one kernel: see
 /// the module doc. With `tau` = 0 (no de-lag) it is `H` alone.
@@ -108,5 +110,17 @@ impl<H: Kernel> Kernel for LagFree<H> {
 
     fn in_force(config: &Self::Config) -> Measured {
         H::in_force(&config.inner)
+    }
+
+    /// The correction applied to the last sample is HDR's `I` then: within the largest `|I|`
+    /// (a stored one of 1e308 gave infinite headings at the next step of `I`).
+    #[cfg(feature = "serde")]
+    fn check_state(config: &Self::Config, state: &Self::State) -> Result<(), Error> {
+        let (bound, valid) = (
+            MAX_INTEGRATOR,
+            "within about 2^101 rad/s, HDR's largest |I|",
+        );
+        check_range("applied correction", state.applied, -bound, bound, valid)?;
+        H::check_state(&config.inner, &state.inner)
     }
 }

@@ -72,6 +72,13 @@ macro_rules! rate_filter_kernel {
                 let $rate = x.rate;
                 Signal { rate: $step, ..x }
             }
+
+            /// The rate within +-2^256, far beyond what valid input reaches: a de-lag's stored
+            /// last input of 1e308 made its next output infinite.
+            #[cfg(feature = "serde")]
+            fn check_state(_config: &LowPassConfig, state: &f64) -> Result<(), Error> {
+                crate::error::check_stored("filter state", *state)
+            }
         }
     };
 }

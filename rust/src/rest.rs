@@ -42,7 +42,7 @@ impl RestNoise {
     pub(crate) fn push(&mut self, position: f64, dt: f64, rate: f64) {
         if let Some(p) = self.previous {
             self.squared_differences += (rate - p) * (rate - p);
-            self.differences += 1;
+            self.differences = self.differences.saturating_add(1);
         }
         self.previous = Some(rate);
         // Truncation picks the part; the end of the window belongs to the last one.
@@ -151,7 +151,7 @@ impl BiasEstimate {
                 1.0
             };
             self.noise.push(position, dt, rate);
-            self.count += 1;
+            self.count = self.count.saturating_add(1);
             self.value = if self.duration > 0.0 {
                 self.integral / self.duration
             } else {
@@ -186,6 +186,32 @@ impl BiasEstimate {
             first: self.first.unwrap_or(last),
             last,
         })
+    }
+
+    /// Checks an estimate read back (`serde` feature): the bias a reading, the time measured
+    /// within the window's longest, the integral's mean within twice the largest reading (room
+    /// for rounding) and the window's bounds within +-2^41 s. A stored integral of 1e308 gave an
+    /// infinite bias at the next reading, a NaN window never ended.
+    #[cfg(feature = "serde")]
+    pub(crate) fn check(&self) -> Result<(), Error> {
+        use crate::error::{check_range, check_reading};
+        use crate::{MAX_READING, MAX_TIME};
+        check_reading("bias", self.value)?;
+        let longest = 2.0 * MAX_TIME;
+        check_range(
+            "bias duration",
+            self.duration,
+            0.0,
+            longest,
+            "within 0 and 2^41 s",
+        )?;
+        let most = 2.0 * MAX_READING * self.duration;
+        let valid = "its mean over the time measured within +-2^21 rad/s";
+        check_range("bias integral", self.integral, -most, most, valid)?;
+        for bound in self.window.iter().flat_map(|&(start, end)| [start, end]) {
+            check_range("bias_window", bound, -longest, longest, "within +-2^41 s")?;
+        }
+        Ok(())
     }
 
     /// See [`crate::Correction::rest_statistics`].

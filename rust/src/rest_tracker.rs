@@ -189,11 +189,11 @@ impl Sums {
         self.end = b.end;
         self.integral += b.integral;
         self.duration += b.duration;
-        self.samples += b.samples;
+        self.samples = self.samples.saturating_add(b.samples);
         self.squared_differences += b.squared_differences;
-        self.differences += b.differences;
+        self.differences = self.differences.saturating_add(b.differences);
         let m = b.mean();
-        self.blocks += 1;
+        self.blocks = self.blocks.saturating_add(1);
         self.means += m;
         self.squared_means += m * m;
     }
@@ -392,7 +392,7 @@ impl RestTracker {
             filtered: self.bias,
         };
         self.last = Some(rest);
-        self.found += 1;
+        self.found = self.found.saturating_add(1);
         self.ended = true;
         rest
     }
@@ -429,10 +429,10 @@ impl Filling {
             s.duration += dt;
         }
         s.end = t;
-        s.samples += 1;
+        s.samples = s.samples.saturating_add(1);
         if let Some(p) = self.previous_rate {
             s.squared_differences += (rate - p) * (rate - p);
-            s.differences += 1;
+            s.differences = s.differences.saturating_add(1);
         }
         self.previous_rate = Some(rate);
         self.all_speeds &= !speed.is_nan();

@@ -1,5 +1,6 @@
 //! Serde for a state that must be checked when it is read back: a [`Pipeline`], [`Fusion`],
-//! [`Correction`], [`Downsample`] or stand-alone [`Streaming`] stage edited by hand, damaged, or saved by another version ran with
+//! [`Correction`], [`Downsample`], stand-alone [`Streaming`] stage, [`GyroModel`] or random
+//! generator edited by hand, damaged, or saved by another version ran with
 //! values its `new` refuses (a negative low-pass `tau` in the stored stages gave NaN headings,
 //! a negative gate rejected every fix) or with stages other than its configuration says.
 //!
@@ -7,15 +8,15 @@
 //! [`checked_serde!`] implements the traits on them: serialising as derived, deserialising as
 //! derived and then checked, the check's error (the core's, in its words) the deserialiser's.
 
-use crate::error::check_reading;
 use crate::kernel::Validated;
-use crate::{Correction, Downsample, Error, Fusion, Pipeline, Streaming};
+use crate::sim::Xoshiro256PlusPlus;
+use crate::{Correction, Downsample, Error, Fusion, GyroModel, Pipeline, Streaming};
 
 /// Implements `Serialize` and `Deserialize` for `$ty` (generic over `[$g]`, if given) from its
 /// `remote = "Self"` derive, the deserialised value checked by `$check: fn(&$ty) -> Result<(),
-/// Error>`.
+/// Error>`, or made whole by `$restore: fn($ty) -> Result<$ty, Error>` (`$ty => $restore`).
 macro_rules! checked_serde {
-    ([$($g:tt)*] $ty:ty, $check:expr) => {
+    ([$($g:tt)*] $ty:ty => $restore:expr) => {
         impl<$($g)*> serde::Serialize for $ty {
             fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
                 // the derived (inherent) function, not this trait's
@@ -26,11 +27,19 @@ macro_rules! checked_serde {
         impl<'de, $($g)*> serde::Deserialize<'de> for $ty {
             fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
                 let value = <$ty>::deserialize(deserializer)?;
-                let check: fn(&$ty) -> Result<(), Error> = $check;
-                check(&value).map_err(<D::Error as serde::de::Error>::custom)?;
-                Ok(value)
+                let restore: fn($ty) -> Result<$ty, Error> = $restore;
+                restore(value).map_err(<D::Error as serde::de::Error>::custom)
             }
         }
+    };
+    ([$($g:tt)*] $ty:ty, $check:expr) => {
+        checked_serde!([$($g)*] $ty => |value| {
+            let check: fn(&$ty) -> Result<(), Error> = $check;
+            check(&value).map(|()| value)
+        });
+    };
+    ($ty:ty => $restore:expr) => {
+        checked_serde!([] $ty => $restore);
     };
     ($ty:ty, $check:expr) => {
         checked_serde!([] $ty, $check);
@@ -38,10 +47,13 @@ macro_rules! checked_serde {
 }
 
 checked_serde!(Pipeline, Pipeline::check_restored);
-checked_serde!(Fusion, |fusion| fusion.config().validate());
-checked_serde!(Correction, |c| {
-    c.config().validate()?;
-    check_reading("bias", c.bias())
-});
+checked_serde!(Fusion, Fusion::check_restored);
+checked_serde!(Correction, Correction::check_restored);
 checked_serde!(Downsample, |d| d.config().validate());
-checked_serde!([K: Validated] Streaming<K>, |s| K::check(s.parts().0));
+checked_serde!([K: Validated] Streaming<K>, |s| {
+    let (config, state) = s.parts();
+    K::check(config)?;
+    K::check_state(config, state)
+});
+checked_serde!(GyroModel => GyroModel::restored);
+checked_serde!(Xoshiro256PlusPlus, Xoshiro256PlusPlus::check);

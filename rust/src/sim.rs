@@ -77,8 +77,15 @@ pub struct GyroSample {
 ///
 /// The first sample's time is the model's time origin (for the temperature profile and the drift
 /// grid). Same configuration and seed, same readings.
+///
+/// Read back (`serde` feature), its configuration is checked as [`GyroModel::new`] checks it,
+/// and what it derives from it (the flicker terms, the noise's scale and pole) is derived again.
 #[derive(Debug, Clone, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct GyroModel {
     config: GyroModelConfig,
     seed: u64,
@@ -109,6 +116,21 @@ impl GyroModel {
             noise_state: None,
             slow: SlowBias::start(seed, &terms),
             origin: None,
+        })
+    }
+
+    /// A model read back: its configuration checked, and what [`GyroModel::new`] derives from it
+    /// derived again (a count of flicker terms beyond [`MAX_FLICKER_TERMS`] panicked on a slice
+    /// index; a float written without `serde_json`'s `float_roundtrip` may differ in its last
+    /// digit).
+    #[cfg(feature = "serde")]
+    pub(crate) fn restored(self) -> Result<Self, Error> {
+        let built = GyroModel::new(self.config, self.seed)?;
+        Ok(GyroModel {
+            terms: built.terms,
+            noise_sd: built.noise_sd,
+            noise_pole: built.noise_pole,
+            ..self
         })
     }
 
@@ -151,10 +173,10 @@ impl GyroModel {
         } else {
             0.0
         };
-        let mut reading = clip((1.0 + scale) * rate + bias + white, c.range);
-        if c.resolution > 0.0 {
-            reading = libm::round(reading / c.resolution) * c.resolution;
-        }
+        let reading = quantise(
+            clip((1.0 + scale) * rate + bias + white, c.range),
+            c.resolution,
+        );
         GyroSample {
             rate: reading,
             temperature,
@@ -197,6 +219,19 @@ impl Stage for GyroModel {
         self.noise_state = None;
         self.slow = SlowBias::start(self.seed, &self.terms);
         self.origin = None;
+    }
+}
+
+/// `x` rounded to a multiple of `resolution` (0: none). A resolution so fine that `x` holds more
+/// than 2^1024 of its steps (a subnormal one: `x / resolution` overflowed, and an infinite
+/// reading came out) lies far below the float spacing of `x`, which is then the rounded value.
+#[inline]
+fn quantise(x: f64, resolution: f64) -> f64 {
+    let steps = libm::round(x / resolution);
+    if resolution > 0.0 && steps.is_finite() {
+        steps * resolution
+    } else {
+        x
     }
 }
 
@@ -244,7 +279,8 @@ impl Iterator for Sampler {
     fn next(&mut self) -> Option<f64> {
         loop {
             let k = self.index;
-            self.index += 1;
+            // saturating: a sampler read back may hold any index (u64::MAX overflowed)
+            self.index = k.saturating_add(1);
             let mut t = self.start + k as f64 * self.period;
             if k > 0 && self.jitter > 0.0 {
                 let limit = 0.45 * self.period;

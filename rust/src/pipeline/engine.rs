@@ -204,11 +204,10 @@ impl Engine {
             }
             _ => false,
         };
-        if same {
-            Ok(())
-        } else {
-            Err(Error::StagesMismatch)
+        if !same {
+            return Err(Error::StagesMismatch);
         }
+        with_chain!(self, |chain| chain.check_state())
     }
 
     /// The settled samples of `block` from `cursor.next` on, through the chain's loop; see
@@ -264,6 +263,12 @@ impl<C: Kernel> Chain<C> {
 
     fn measured(&mut self, m: &Measured) {
         C::measured(&mut self.config, &mut self.state, m);
+    }
+
+    /// [`Kernel::check_state`] of the chain read back.
+    #[cfg(feature = "serde")]
+    fn check_state(&self) -> Result<(), Error> {
+        C::check_state(&self.config, &self.state)
     }
 
     /// The loop: every sample from `cursor.next` on through [`Kernel::step`], its output into

@@ -35,9 +35,11 @@ use crate::{error::check_range, MAX_TIME};
 /// input report), and a pipeline read back carries on bit for bit where it was (with
 /// `serde_json`, enable its `float_roundtrip` feature: without it the last digit of a float may
 /// change). Reading one back checks it as [`Pipeline::new`] checks a configuration, and checks
-/// that its stages are the ones the configuration builds: a state edited by hand or damaged is
-/// the deserialiser's error (with this crate's words), never a pipeline that runs on values
-/// `new` refuses. To change a parameter, build a new pipeline from the edited configuration.
+/// that its stages are the ones the configuration builds, holding values that valid input
+/// reaches ([`Kernel::check_state`](crate::Kernel::check_state)): a state edited by hand or
+/// damaged is the deserialiser's error (with this crate's words), never a pipeline that runs on
+/// values `new` refuses. To change a parameter, build a new pipeline from the edited
+/// configuration.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(
     feature = "serde",
@@ -91,6 +93,7 @@ impl Pipeline {
         if let Some(t) = self.clock.last() {
             check_range("last_time", t, -MAX_TIME, MAX_TIME, "within +-2^40 s")?;
         }
+        self.bias.check()?;
         self.engine.check_restored(&self.config)
     }
 
@@ -182,7 +185,7 @@ impl Pipeline {
     ) -> Output {
         let first = self.clock.last().is_none();
         let Some((dt, rate, temperature)) = self.admit(t, rate, temperature) else {
-            self.report.skipped += 1;
+            self.report.skipped = self.report.skipped.saturating_add(1);
             return Output {
                 rate: f64::NAN,
                 ..self.last_output
@@ -392,7 +395,7 @@ impl Pipeline {
             } else {
                 match (self.config.input.non_finite, self.last_reading) {
                     (NonFinite::Hold, Some(held)) => {
-                        self.report.held += 1;
+                        self.report.held = self.report.held.saturating_add(1);
                         held
                     }
                     _ => return None,

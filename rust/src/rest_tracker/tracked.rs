@@ -134,4 +134,13 @@ impl<C: Kernel> Kernel for Tracked<C> {
         state.tracker.prior(m.bias, m.rest);
         C::measured(&mut state.config, &mut state.state, m);
     }
+
+    /// The filtered bias a mean of readings (a stored 1e308 gave infinite headings), and the
+    /// chain's state against the chain's configuration now.
+    #[cfg(feature = "serde")]
+    fn check_state(config: &Self::Config, state: &Self::State) -> Result<(), crate::Error> {
+        let _ = config;
+        crate::error::check_reading("rest tracker bias", state.tracker.bias)?;
+        C::check_state(&state.config, &state.state)
+    }
 }

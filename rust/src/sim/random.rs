@@ -26,8 +26,15 @@ impl SplitMix64 {
 }
 
 /// xoshiro256++ (Blackman & Vigna 2019): fast, 256 bits of state, passes BigCrush.
+///
+/// Read back (`serde` feature), an all-zero state is refused: the generator would stay there and
+/// give 0 for ever (a [`Sampler`](crate::sim::Sampler) that drops samples then never returned).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct Xoshiro256PlusPlus {
     s: [u64; 4],
 }
@@ -36,6 +43,20 @@ impl Xoshiro256PlusPlus {
     /// The generator with the given raw state (which must not be all zero).
     pub fn from_state(s: [u64; 4]) -> Self {
         Xoshiro256PlusPlus { s }
+    }
+
+    /// Fails for the all-zero state, which the generator never leaves.
+    #[cfg(feature = "serde")]
+    pub(crate) fn check(&self) -> Result<(), crate::Error> {
+        if self.s == [0; 4] {
+            return Err(crate::Error::InvalidParameter {
+                name: "rng state",
+                value: 0.0,
+                valid: "not all zero (xoshiro256++ stays at zero): a state edited by hand or \
+                        damaged; build the model again from its seed",
+            });
+        }
+        Ok(())
     }
 
     /// Stream `stream` of `seed`: the state is four SplitMix64 outputs of a seed that mixes both,

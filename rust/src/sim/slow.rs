@@ -93,7 +93,7 @@ impl SlowBias {
         }
         self.before = self.after;
         self.after = self.sum(terms);
-        self.index += 1;
+        self.index = self.index.saturating_add(1);
     }
 
     /// Longest stretch of grid steps taken one by one.
@@ -114,7 +114,7 @@ impl SlowBias {
             self.walk += terms.walk_step * libm::sqrt(m) * self.rng.sample();
         }
         self.after = self.sum(terms);
-        self.index += steps;
+        self.index = self.index.saturating_add(steps);
     }
 
     /// `d` at `elapsed` seconds after the first sample, interpolated between grid points.
@@ -126,11 +126,13 @@ impl SlowBias {
             return 0.0;
         }
         let target = libm::floor(elapsed / step);
-        if target > (self.index + Self::JUMP) as f64 && target < 1e18 {
+        // Saturating: a state read back may hold any index (u64::MAX overflowed, a panic in a
+        // debug build); one reached by stepping stays below 1e18.
+        if target > self.index.saturating_add(Self::JUMP) as f64 && target < 1e18 {
             // A gap of days: land one step short of the target, then step as usual.
             self.jump(terms, target as u64 - 1 - self.index);
         }
-        while elapsed >= (self.index + 1) as f64 * step && elapsed < 1e18 * step {
+        while elapsed >= self.index.saturating_add(1) as f64 * step && elapsed < 1e18 * step {
             self.advance(terms);
         }
         let fraction = (elapsed / step - self.index as f64).clamp(0.0, 1.0);
