@@ -4,6 +4,7 @@ the argument and the problem."""
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Callable
 from pathlib import Path
@@ -12,7 +13,7 @@ import numpy as np
 import pytest
 
 import gyrocore
-from gyrocore import allan
+from gyrocore import allan, fixes
 
 from .conftest import gyrocore_cli
 
@@ -77,3 +78,54 @@ def test_a_file_in_reverse_with_a_rest_window_names_the_time_going_back(tmp_path
     proc = gyrocore_cli("process", path, "--out", tmp_path / "h.csv", "--preset", "static_bias", *option, code=2)
     assert "timestamps must strictly increase: t[1] = 19.98 follows 19.99" in proc.stderr
     assert "reverse.csv, line 3)" in proc.stderr and "longer than the log" not in proc.stderr
+
+
+FIX = (np.array([1.0, 2.0]), np.array([0.0, 0.1]), np.array([0.1, 0.1]))
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "message"),
+    [
+        # a bare "must be real number, not str" from math.isfinite; a bool passed for 1 m
+        (lambda: fixes.from_latlon([0.0, 1.0], [48.0, 48.001], [11.0, 11.0], position_sigma="1"), TypeError,
+         "position_sigma must be a number, got '1'"),
+        (lambda: fixes.from_positions([0.0, 1.0], [0.0, 9.0], [0.0, 0.0], min_speed=True), TypeError,
+         "min_speed must be a number, got True"),
+        (lambda: fixes.from_gnss([0.0, 1.0], [10.0, 10.0], [3.0, 5.0], speed_sigma="0.2"), TypeError,
+         "speed_sigma must be a number, got '0.2'"),
+        (lambda: fixes.from_gnss([0.0, 1.0], [10.0, 10.0], [3.0, 5.0], min_sigma_deg=HUGE), ValueError,
+         "min_sigma_deg must be finite and > 0, got 1000"),
+        # "'str' object is not a mapping"
+        (lambda: gyrocore.process(T, RATE, "hdr", bias=0.0, fixes=FIX, fusion="gate=3"), TypeError,
+         "fusion must be a dict of the fix stage's settings (arw, "),
+        (lambda: gyrocore.Pipeline("hdr", bias=0.0, fusion=[("gate", 3.0)]), TypeError,
+         "fusion must be a dict of the fix stage's settings"),
+        # "'list' object is not an instance of 'ndarray'", once the core had the fixes
+        (lambda: gyrocore.process(T, RATE, "hdr", bias=0.0, fixes=fixes.Fixes(["1"], [0.0], [0.1])), TypeError,
+         "fix t must hold real numbers, got dtype <U1"),
+    ],
+)
+def test_fix_options_and_fixes_of_the_wrong_kind_are_named(
+    call: Callable[[], object], error: type[Exception], message: str
+) -> None:
+    with pytest.raises(error, match="^" + re.escape(message)):
+        call()
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_fixes_built_from_lists_are_taken_as_arrays(mode: str) -> None:
+    """``Fixes([1.0, 2.0], ...)`` was refused by the core (``'list' object is not an instance of
+    'ndarray'``); it is what the arrays give."""
+    lists = fixes.Fixes([1.0, 2.0], [0.0, 0.1], [0.1, 0.1])
+    assert isinstance(lists.t, np.ndarray) and lists.t.dtype == np.float64
+    given = gyrocore.process(T, RATE, "hdr", bias=0.0, mode=mode, fixes=lists)
+    arrays = gyrocore.process(T, RATE, "hdr", bias=0.0, mode=mode, fixes=fixes.Fixes(*FIX))
+    assert np.array_equal(given.heading, arrays.heading)
+
+
+def test_a_fusion_setting_beyond_float64_is_no_overflow() -> None:
+    """``gate=10**400`` was a bare OverflowError; it is the gate of inf (no gate) it stands for."""
+    huge = fixes.fuse(T, RATE, FIX, gate=HUGE)
+    assert np.array_equal(huge.heading, fixes.fuse(T, RATE, FIX, gate=math.inf).heading)
+    with pytest.raises(ValueError, match=r"^invalid parameter arw = inf"):
+        fixes.Fusion(arw=HUGE)
