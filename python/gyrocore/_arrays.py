@@ -138,7 +138,7 @@ def as_window(name: str, window: object) -> tuple[float, float]:
     for anything else (one number, three, text, NaN, a reversed window)."""
     try:
         pair = np.asarray(window, dtype=np.float64)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):  # an int beyond float64 too
         pair = np.empty(0)
     # bools are refused: (False, True) was the window 0 .. 1 s
     if pair.shape != (2,) or np.asarray(window).dtype == np.bool_ or any(isinstance(v, bool) for v in np.ravel(

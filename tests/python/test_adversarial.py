@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import gyrocore
-from gyrocore import allan, fixes
+from gyrocore import allan, calibration, fixes
 
 from .conftest import gyrocore_cli
 
@@ -129,3 +129,21 @@ def test_a_fusion_setting_beyond_float64_is_no_overflow() -> None:
     assert np.array_equal(huge.heading, fixes.fuse(T, RATE, FIX, gate=math.inf).heading)
     with pytest.raises(ValueError, match=r"^invalid parameter arw = inf"):
         fixes.Fusion(arw=HUGE)
+
+
+@pytest.mark.parametrize(
+    ("call", "message"),
+    [
+        # bare IndexErrors of ta[0]
+        (lambda: calibration.heading_reference([], [], [0.0, 1.0, 2.0], [0.0, 0.1, 0.2]),
+         "need at least 2 sample(s) of rate_measured, got 0"),
+        (lambda: calibration.bias_temperature_table([], [], []), "need at least 1 sample(s) of rate, got 0"),
+        # numpy's OverflowError converting the window
+        (lambda: calibration.static_bias(T, RATE, (0, HUGE)), "the rest window must be (start, end) in seconds"),
+    ],
+)
+def test_a_calibration_of_no_samples_or_a_window_beyond_float64_is_named(
+    call: Callable[[], object], message: str
+) -> None:
+    with pytest.raises(ValueError, match="^" + re.escape(message)):
+        call()
