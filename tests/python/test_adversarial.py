@@ -6,11 +6,14 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
 from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import gyrocore
 from gyrocore import allan, calibration, fixes
@@ -147,3 +150,66 @@ def test_a_calibration_of_no_samples_or_a_window_beyond_float64_is_named(
 ) -> None:
     with pytest.raises(ValueError, match="^" + re.escape(message)):
         call()
+
+
+def test_an_unknown_reading_option_is_named_with_the_options() -> None:
+    """It was ``ReadOptions.__init__() got an unexpected keyword argument 'time_colum'``: a class
+    the caller never named, and no hint of the option meant."""
+    with pytest.raises(ValueError, match=r"^unknown reading option 'time_colum' \(did you mean 'time_col'\?\); "
+                                         r"choose one of time_col, rate_col, "):
+        gyrocore.read_log(Path(__file__), time_colum="t")
+
+
+_LAYOUTS = ("float64", "float32", "int32", "big-endian", "strided", "list", "read-only")
+
+
+def _laid_out(values: np.ndarray, layout: str) -> object:
+    """``values`` in another dtype or memory layout, as a caller may hold them."""
+    if layout == "strided":
+        doubled = np.repeat(values, 2)
+        return doubled[::2]
+    if layout == "list":
+        return values.tolist()
+    if layout == "read-only":
+        frozen = values.copy()
+        frozen.flags.writeable = False
+        return frozen
+    return values.astype({"float32": np.float32, "int32": np.int32, "big-endian": ">f8"}.get(layout, np.float64))
+
+
+@settings(max_examples=60, deadline=None, derandomize=True)
+@given(
+    st.lists(st.tuples(st.floats(0.001, 5.0), st.floats(-50.0, 50.0)), min_size=0, max_size=40),
+    st.sampled_from(_LAYOUTS),
+    st.sampled_from(_LAYOUTS),
+    st.sampled_from(["whole", "causal"]),
+    st.floats(-1.0, 1.0),
+)
+def test_any_dtype_or_layout_gives_the_trapezoid_heading(
+    steps: list[tuple[float, float]], t_layout: str, rate_layout: str, mode: str, bias: float
+) -> None:
+    """The heading of ``static_bias`` with a given bias, whatever the arrays' dtype and layout
+    (int, float32, big-endian, strided, a list, read-only), in either mode, is the trapezoid
+    integral of ``rate - bias`` over the times as float64 holds them: finite, and equal to the
+    reference computation."""
+    t = np.cumsum([dt for dt, _ in steps]).round(3) + 1.0  # whole milliseconds: int32 holds them exactly
+    rate = np.array([r for _, r in steps]).round(2)
+    if t_layout == "int32":
+        t = np.round(t)  # whole seconds: the one conversion of times an int keeps
+        t = np.unique(t)
+        rate = rate[: len(t)]
+    if rate_layout == "int32":
+        rate = np.round(rate)
+    if t_layout == "float32":
+        t = t.astype(np.float32).astype(np.float64)
+        t = t[np.concatenate(([True], np.diff(t) > 0))] if len(t) else t
+        rate = rate[: len(t)]
+    if rate_layout == "float32":
+        rate = rate.astype(np.float32).astype(np.float64)
+    expected = np.concatenate(([0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1] - 2 * bias) * np.diff(t))))[: len(t)]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrocore.InputWarning)  # rates beyond 20 rad/s look like deg/s
+        result = gyrocore.process(_laid_out(t, t_layout), _laid_out(rate, rate_layout), "static_bias", mode=mode,
+                                  bias=bias)
+    assert result.heading.dtype == np.float64 and np.isfinite(result.heading).all()
+    np.testing.assert_allclose(result.heading, expected, rtol=1e-9, atol=1e-9)

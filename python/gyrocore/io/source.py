@@ -9,7 +9,7 @@ reader of its format and converts them to s and rad/s (what ``gyrocore process``
 from __future__ import annotations
 
 from collections.abc import Generator, Iterator
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
@@ -376,6 +376,8 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
         ValueError: an unknown kind of file or folder, or not a regular file (a named pipe).
     """
     if options is None:
+        for name in kwargs:  # "ReadOptions.__init__() got an unexpected keyword argument", with no hint
+            require_choice("reading option", name, [f.name for f in fields(ReadOptions)])
         options = ReadOptions(**kwargs)
     elif kwargs:
         raise TypeError("give either options or keywords, not both")
