@@ -213,3 +213,15 @@ def test_any_dtype_or_layout_gives_the_trapezoid_heading(
                                   bias=bias)
     assert result.heading.dtype == np.float64 and np.isfinite(result.heading).all()
     np.testing.assert_allclose(result.heading, expected, rtol=1e-9, atol=1e-9)
+
+
+@pytest.mark.parametrize(("fmt", "out"), [("parquet", "h.csv"), ("csv", "h.parquet")])
+def test_a_format_that_the_output_files_suffix_contradicts_is_refused(tmp_path: Path, fmt: str, out: str) -> None:
+    """``--format parquet --out h.csv`` wrote CSV without a word (--format names the format of an
+    output folder's files)."""
+    path = tmp_path / "a.csv"
+    path.write_text("t,gyro_z\n" + "".join(f"{i / 100!r},0.01\n" for i in range(300)))
+    proc = gyrocore_cli("process", path, "--out", tmp_path / out, "--preset", "raw", "--format", fmt, code=2)
+    assert f"error: --format {fmt}: --out {tmp_path / out} is one file, whose suffix says its format" in proc.stderr
+    assert not (tmp_path / out).exists()
+    gyrocore_cli("process", path, "--out", tmp_path / "o.pq", "--preset", "raw", "--format", "parquet", code=0)
