@@ -225,3 +225,32 @@ def test_a_format_that_the_output_files_suffix_contradicts_is_refused(tmp_path: 
     assert f"error: --format {fmt}: --out {tmp_path / out} is one file, whose suffix says its format" in proc.stderr
     assert not (tmp_path / out).exists()
     gyrocore_cli("process", path, "--out", tmp_path / "o.pq", "--preset", "raw", "--format", "parquet", code=0)
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (("demo", "--duration", "30", "--drives", "1", "--plot", "{victim}"),
+         "--plot {victim}: gyrocore writes a PNG image there, so its name must end in .png"),
+        (("allan", "{log}", "--plot", "{victim}"),
+         "--plot {victim}: gyrocore writes a PNG image there, so its name must end in .png"),
+        (("allan", "{log}", "--kalibr", "{victim}"),
+         "--kalibr {victim}: gyrocore writes Kalibr's YAML there, so its name must end in .yaml or .yml"),
+        (("tune", "--sim-drive", "city:1", "--no-harm", "--max-evals", "2", "--out", "{victim}"),
+         "--out {victim}: gyrocore writes a JSON parameter file there, so its name must end in .json"),
+    ],
+    ids=["demo-plot", "allan-plot", "allan-kalibr", "tune-out"],
+)
+def test_an_output_named_like_another_kind_of_file_is_refused(
+    tmp_path: Path, args: tuple[str, ...], message: str
+) -> None:
+    """``--plot drive.csv --overwrite`` replaced the user's log with a PNG image (``tune --out``
+    with a parameter file in JSON), after the work; every plot was a PNG whatever its name."""
+    log = tmp_path / "log.csv"
+    log.write_text("t,gyro_z\n" + "".join(f"{i / 100!r},0.01\n" for i in range(3000)))
+    victim = tmp_path / "drive.csv"
+    victim.write_text("t,gyro_z\n0,0.1\n")
+    filled = [a.format(log=log, victim=victim) for a in args]
+    proc = gyrocore_cli(*filled, "--overwrite", code=2)
+    assert proc.stderr == f"gyrocore: error: {message.format(victim=victim)}\n"
+    assert victim.read_text() == "t,gyro_z\n0,0.1\n"
