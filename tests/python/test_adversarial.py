@@ -254,3 +254,30 @@ def test_an_output_named_like_another_kind_of_file_is_refused(
     proc = gyrocore_cli(*filled, "--overwrite", code=2)
     assert proc.stderr == f"gyrocore: error: {message.format(victim=victim)}\n"
     assert victim.read_text() == "t,gyro_z\n0,0.1\n"
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "error", "message"),
+    [
+        ({"t_start": "1"}, TypeError, "t_start must be a number [s], got '1'"),  # numpy's UFuncTypeError
+        ({"t_start": True}, TypeError, "t_start must be a number [s], got True"),  # the lap from t = 1 s
+        ({"t_end": HUGE}, ValueError, "t_end must be finite [s], got 1000"),  # a bare OverflowError
+    ],
+)
+def test_a_laps_bounds_that_are_no_times_are_named(kwargs: dict[str, object], error: type[Exception],
+                                                  message: str) -> None:
+    from gyrocore import evaluate
+
+    with pytest.raises(error, match="^" + re.escape(message)):
+        evaluate.return_orientation_error(T, 0.01 * T, **kwargs)
+
+
+def test_a_wrapped_heading_given_for_a_return_orientation_error_warns() -> None:
+    """A heading wrapped to +-pi counted each wrap as a turn: 0.69 rad off, without a word."""
+    from gyrocore import evaluate
+
+    continuous = 0.5 * T  # 15 rad over the lap
+    with pytest.warns(gyrocore.InputWarning, match=r"more than three quarters of a turn between two samples: it looks "
+                                                    r"wrapped"):
+        evaluate.return_orientation_error(T, np.angle(np.exp(1j * continuous)), rotation=15.0)
+    assert evaluate.return_orientation_error(T, continuous, rotation=15.0) == pytest.approx(-0.005, abs=1e-9)
