@@ -281,3 +281,13 @@ def test_a_wrapped_heading_given_for_a_return_orientation_error_warns() -> None:
                                                     r"wrapped"):
         evaluate.return_orientation_error(T, np.angle(np.exp(1j * continuous)), rotation=15.0)
     assert evaluate.return_orientation_error(T, continuous, rotation=15.0) == pytest.approx(-0.005, abs=1e-9)
+
+
+def test_a_kalibr_rate_random_walk_of_any_real_type_is_taken_and_a_huge_one_named() -> None:
+    """``kalibr_yaml(rrw=np.float32(1e-5))`` was refused as no number, ``rrw=10**400`` a bare
+    OverflowError."""
+    rate = np.random.default_rng(3).normal(0.0, 0.01, 20_000)
+    params = allan.noise_parameters(allan.deviation(rate, 0.01))
+    assert "gyroscope_random_walk: 1.000000e-05" in params.kalibr_yaml(rrw=np.float32(1e-5))
+    with pytest.raises(ValueError, match=r"^rrw \(--rrw\) = 1000.*: give the rate random walk K"):
+        params.kalibr_yaml(rrw=HUGE)
