@@ -16,7 +16,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import gyrocore
-from gyrocore import allan, calibration, fixes
+from gyrocore import allan, batch, calibration, fixes
 
 from .conftest import gyrocore_cli
 
@@ -291,3 +291,33 @@ def test_a_kalibr_rate_random_walk_of_any_real_type_is_taken_and_a_huge_one_name
     assert "gyroscope_random_walk: 1.000000e-05" in params.kalibr_yaml(rrw=np.float32(1e-5))
     with pytest.raises(ValueError, match=r"^rrw \(--rrw\) = 1000.*: give the rate random walk K"):
         params.kalibr_yaml(rrw=HUGE)
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "message"),
+    [
+        # a bare "'float' object cannot be interpreted as an integer"; True was a chunk of one row
+        (lambda p, o: batch.process_file(p, o / "h.csv", preset="raw", chunk_rows=1.5), ValueError,
+         "chunk_rows must be a whole number >= 1, got 1.5"),
+        (lambda p, o: batch.process_file(p, o / "h.csv", preset="raw", chunk_rows=True), ValueError,
+         "chunk_rows must be a whole number >= 1, got True"),
+        # a switch given as text was read as True: "no" skipped the outputs that exist, used the speed
+        (lambda p, o: batch.process_file(p, o / "h.csv", preset="raw", use_speed="no"), TypeError,
+         "use_speed must be True or False, got 'no'"),
+        (lambda p, o: batch.process_many([p], preset="raw", out_dir=o / "out", skip_existing="no"), TypeError,
+         "skip_existing must be True or False, got 'no'"),
+        (lambda p, o: batch.process_many([p], preset="raw", out_dir=o / "out", jobs=1.5), ValueError,
+         "jobs must be a whole number >= 1, got 1.5"),
+        # its letters were read as the columns: "unknown column ',', 'h', 'e', 'a', ..."
+        (lambda p, o: batch.process_file(p, o / "h.csv", preset="raw", columns="t,heading"), TypeError,
+         "columns 't,heading': give a sequence of column names, e.g. ('t', 'heading'), not one string"),
+    ],
+)
+def test_a_batch_option_of_the_wrong_kind_is_named_before_any_work(
+    tmp_path: Path, call: Callable[[Path, Path], object], error: type[Exception], message: str
+) -> None:
+    path = tmp_path / "a.csv"
+    path.write_text("t,gyro_z\n" + "".join(f"{i / 100!r},0.01\n" for i in range(300)))
+    with pytest.raises(error, match="^" + re.escape(message)):
+        call(path, tmp_path)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv"]
