@@ -305,7 +305,7 @@ def _factors(taus: TauSpec | ArrayLike, n: int, dt: float, variance: str) -> NDA
     """Averaging factors m (tau = m dt) for a tau specification, over ``n`` phase samples."""
     longest = _longest(variance, n)
     if longest < 1:
-        raise ValueError(f"too few samples for this deviation: {n - 1} intervals")
+        raise ValueError(f"too few samples for this deviation: {max(n - 1, 0)} intervals")
     if isinstance(taus, str):
         top = max(1, (n - 1) // 4)  # named sets: at least 3 non-overlapping Allan terms
         top = min(top, longest)

@@ -321,3 +321,12 @@ def test_a_batch_option_of_the_wrong_kind_is_named_before_any_work(
     with pytest.raises(error, match="^" + re.escape(message)):
         call(path, tmp_path)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv"]
+
+
+def test_a_reading_switch_given_as_text_and_a_deviation_of_no_sample_are_named() -> None:
+    """``read_log(path, static="no")`` was read as True (and hid the warning of rates that look
+    like another unit); ``phase_deviation([])`` said "-1 intervals"."""
+    with pytest.raises(TypeError, match=r"^static must be True or False, got 'no'"):
+        gyrocore.read_log(Path(__file__), static="no")
+    with pytest.raises(ValueError, match=r"^too few samples for this deviation: 0 intervals"):
+        allan.phase_deviation([], 0.01)
