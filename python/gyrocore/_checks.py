@@ -12,6 +12,7 @@ import threading
 import types
 import warnings
 from collections.abc import Iterable, Iterator
+from typing import Any, cast
 
 import numpy as np
 
@@ -205,7 +206,7 @@ def real_number(value: object) -> float | None:
     try:
         return float(value)
     except OverflowError:  # an int (or Fraction) beyond float64, 10**400: out of every range, as inf is
-        return math.inf if value > 0 else -math.inf
+        return math.inf if cast(Any, value) > 0 else -math.inf
 
 
 def shown(value: object, limit: int = 40) -> str:

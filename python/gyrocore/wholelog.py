@@ -346,7 +346,7 @@ def _window_beyond_time(si: dict[str, Any], t_start: float) -> bool:
     """Whether the given rest window (``bias_window``, or ``bias_duration`` from ``t_start``)
     reaches beyond the core's +-2^40 s, which the core refuses as a parameter: for times in
     nanoseconds read as seconds, the bad time (and its unit) is the error to give first."""
-    given = si.get("bias_window")
+    given: Any = si.get("bias_window")
     if given is None and si.get("bias_duration") is None or isinstance(given, Window):
         return False  # none, or one counted from the first sample
     try:
