@@ -330,3 +330,12 @@ def test_a_reading_switch_given_as_text_and_a_deviation_of_no_sample_are_named()
         gyrocore.read_log(Path(__file__), static="no")
     with pytest.raises(ValueError, match=r"^too few samples for this deviation: 0 intervals"):
         allan.phase_deviation([], 0.01)
+
+
+def test_every_averaging_time_of_a_long_record_is_refused_before_the_work() -> None:
+    """``taus="all"`` sums n^2/4 terms: a day at 100 Hz (8.6e6 samples) asked for 1.9e13, hours of
+    work with nothing shown; refused at once, with what to give instead."""
+    with pytest.raises(ValueError, match=r"^taus='all' \(--taus all\) over 300000 intervals asks for 75000 averaging "
+                                         r"times, 2\.3e\+10 terms to sum .*use taus='log'"):
+        allan.deviation(np.zeros(300_000), 0.01, taus="all")  # without the check: 7 s, then no error
+    assert len(allan.deviation(np.zeros(4000), 0.01, taus="all").taus) == 1000  # a short record: every one
