@@ -321,9 +321,10 @@ def _factors(taus: TauSpec | ArrayLike, n: int, dt: float, variance: str) -> NDA
             m = np.round(np.logspace(0.0, math.log10(top), int(10 * math.log10(top)) + 2))
         elif taus == "all":
             if n * top > MAX_ALL_TERMS:
-                raise ValueError(f"taus='all' (--taus all) over {n - 1} intervals asks for {top} averaging times, {n * top:.2g} "
-                                 f"terms to sum (more than {MAX_ALL_TERMS:.0e}: minutes to hours of work); use taus='log' "
-                                 "(about 10 per decade), or give the averaging times [s], or analyse a shorter record")
+                raise ValueError(f"taus='all' (--taus all) over {n - 1} intervals asks for {top} averaging times, "
+                                 f"{n * top:.2g} terms to sum (more than {MAX_ALL_TERMS:.0e}: minutes to hours of work); "
+                                 "use taus='log' (about 10 per decade), or give the averaging times [s], or analyse a "
+                                 "shorter record")
             m = np.arange(1, top + 1)
         else:
             raise ValueError(f"unknown taus {taus!r}: use 'octave', 'decade', 'log', 'all' or an array [s]")

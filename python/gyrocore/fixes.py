@@ -59,7 +59,8 @@ class Fixes:
     sigma: FloatArray
 
     def __post_init__(self) -> None:
-        for name in ("t", "heading", "sigma"):  # lists, or text, reached the core: "'list' object is not an instance of 'ndarray'"
+        # lists (or text) reached the core: "'list' object is not an instance of 'ndarray'"
+        for name in ("t", "heading", "sigma"):
             object.__setattr__(self, name, as_float_array(f"fix {name}", getattr(self, name)))
         if not (len(self.t) == len(self.heading) == len(self.sigma)):
             raise ValueError(f"fix t, heading and sigma must have one length, got {len(self.t)}, "
