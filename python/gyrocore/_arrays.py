@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import sys
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -60,7 +61,12 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
         if odd is not None:
             raise TypeError(f"{name} must hold real numbers, got dtype object: {name}[{odd}] is {a[odd]!r} (give "
                             "numbers, NaN where a value is missing)")
-        a = a.astype(np.float64)  # every one a number (Decimal is none; Fraction, a huge int are)
+        try:
+            a = a.astype(np.float64)  # every one a number (Decimal is none; Fraction, a huge int are)
+        except OverflowError:  # an int beyond float64 (10**400): a bare "int too large to convert to float"
+            big = next(i for i, v in enumerate(a) if abs(v) > sys.float_info.max)  # exact for an int
+            raise ValueError(f"{name}[{big}] is an int beyond the range of float64 (about 1.8e308): give numbers a "
+                             "float64 holds") from None
     if a.dtype == np.bool_ or not (
         np.issubdtype(a.dtype, np.floating) or np.issubdtype(a.dtype, np.integer)
     ):
@@ -134,7 +140,7 @@ def as_window(name: str, window: object) -> tuple[float, float]:
     for anything else (one number, three, text, NaN, a reversed window)."""
     try:
         pair = np.asarray(window, dtype=np.float64)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):  # an int beyond float64 too
         pair = np.empty(0)
     # bools are refused: (False, True) was the window 0 .. 1 s
     if pair.shape != (2,) or np.asarray(window).dtype == np.bool_ or any(isinstance(v, bool) for v in np.ravel(

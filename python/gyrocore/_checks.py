@@ -12,6 +12,7 @@ import threading
 import types
 import warnings
 from collections.abc import Iterable, Iterator
+from typing import Any, cast
 
 import numpy as np
 
@@ -202,7 +203,20 @@ def real_number(value: object) -> float | None:
         return float(value)
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
         return None
-    return float(value)
+    try:
+        return float(value)
+    except OverflowError:  # an int (or Fraction) beyond float64, 10**400: out of every range, as inf is
+        return math.inf if cast(Any, value) > 0 else -math.inf
+
+
+def shown(value: object, limit: int = 40) -> str:
+    """``repr(value)`` for an error message, cut to about ``limit`` characters: an int of 400
+    digits filled the message, and one beyond Python's 4300 digits could not be shown at all."""
+    try:
+        text = repr(value)
+    except ValueError:  # int's limit of digits
+        return f"an int of {value.bit_length()} bits" if isinstance(value, int) else type(value).__name__
+    return text if len(text) <= limit else f"{text[:limit // 2]}...{text[-8:]} ({len(text)} characters)"
 
 
 def check_number(
@@ -218,7 +232,7 @@ def check_number(
     if not (math.isfinite(x) and above and (high is None or x <= high)):
         least = "" if low is None else f" and {'>' if strict else '>='} {low:g}"
         most = "" if high is None else f" and at most {high:g}"
-        raise ValueError(f"{name} must be finite{least}{most}{unit}, got {value}")
+        raise ValueError(f"{name} must be finite{least}{most}{unit}, got {shown(value)}")
     return x
 
 

@@ -199,6 +199,10 @@ def deviation_from_timestamps(
 
 #: The grid of :func:`deviation_from_timestamps` holds at most this many points per sample.
 MAX_OVERSAMPLING = 10
+#: ``taus="all"`` is refused above this many terms (samples times averaging times, n^2/4): a day
+#: at 100 Hz asked for 1.9e13, hours of work with nothing shown (a modified deviation over 160,000
+#: samples took 19 s here); 1e10 is seconds to half a minute.
+MAX_ALL_TERMS = 1e10
 #: An interval longer than this many median intervals is a gap in an Allan record.
 GAP_FACTOR = 10.0
 
@@ -305,7 +309,7 @@ def _factors(taus: TauSpec | ArrayLike, n: int, dt: float, variance: str) -> NDA
     """Averaging factors m (tau = m dt) for a tau specification, over ``n`` phase samples."""
     longest = _longest(variance, n)
     if longest < 1:
-        raise ValueError(f"too few samples for this deviation: {n - 1} intervals")
+        raise ValueError(f"too few samples for this deviation: {max(n - 1, 0)} intervals")
     if isinstance(taus, str):
         top = max(1, (n - 1) // 4)  # named sets: at least 3 non-overlapping Allan terms
         top = min(top, longest)
@@ -316,6 +320,11 @@ def _factors(taus: TauSpec | ArrayLike, n: int, dt: float, variance: str) -> NDA
         elif taus == "log":
             m = np.round(np.logspace(0.0, math.log10(top), int(10 * math.log10(top)) + 2))
         elif taus == "all":
+            if n * top > MAX_ALL_TERMS:
+                raise ValueError(f"taus='all' (--taus all) over {n - 1} intervals asks for {top} averaging times, "
+                                 f"{n * top:.2g} terms to sum (more than {MAX_ALL_TERMS:.0e}: minutes to hours of work); "
+                                 "use taus='log' (about 10 per decade), or give the averaging times [s], or analyse a "
+                                 "shorter record")
             m = np.arange(1, top + 1)
         else:
             raise ValueError(f"unknown taus {taus!r}: use 'octave', 'decade', 'log', 'all' or an array [s]")

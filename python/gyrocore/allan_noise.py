@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ._arrays import FloatArray
-from ._checks import MAX_READING, MAX_SECONDS, check_number
+from ._checks import MAX_READING, MAX_SECONDS, check_number, real_number, shown
 
 if TYPE_CHECKING:  # pragma: no cover
     # only a type here: importing the curve module at run time would import the pipeline, which
@@ -102,11 +102,11 @@ class NoiseParameters:
             # a line break wrote a YAML key of its own, and an empty topic a file Kalibr cannot use
             raise ValueError(f"rostopic must be a ROS topic name (e.g. /imu0): text without spaces or line breaks, "
                              f"got {rostopic!r}")
-        if rrw is not None and not (isinstance(rrw, (int, float)) and not isinstance(rrw, bool) and math.isfinite(rrw)
-                                    and rrw > 0):  # True was a rate random walk of 1
-            raise ValueError(f"rrw (--rrw) = {rrw!r}: give the rate random walk K, a finite number > 0 "
+        given = None if rrw is None else real_number(rrw)  # a numpy float32 was refused, 10**400 an OverflowError
+        if rrw is not None and not (given is not None and math.isfinite(given) and given > 0):  # True was K = 1
+            raise ValueError(f"rrw (--rrw) = {shown(rrw)}: give the rate random walk K, a finite number > 0 "
                              "[rad/s^2/sqrt(Hz)]")
-        k = rrw if rrw is not None else (None if self.rrw is None else self.rrw.value)
+        k = given if given is not None else (None if self.rrw is None else self.rrw.value)
         if k is None:
             raise ValueError(
                 "the rate random walk was not found (the record is too short to show the +1/2 slope); "

@@ -22,7 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from . import io, wholelog
-from ._checks import require_choice, require_flag
+from ._checks import check_count, require_choice, require_flag
 from .pipeline import Pipeline, has_bias_source
 from .pipeline_params import _to_si
 from .batch_inputs import check_outside_inputs, complete_output, expand_inputs, output_paths
@@ -90,11 +90,20 @@ def process_file(
         ValueError: a malformed file or bad samples (naming the file and line or row), an output
             over the input, invalid options. No output is left then.
     """
-    wholelog.check_mode(mode)
-    require_flag("use_fixes", use_fixes)
+    _check_run(mode, chunk_rows, ("use_speed", use_speed), ("use_fixes", use_fixes))
     return _FileJob(
         Path(path), Path(out), preset, heading, chunk_rows, options, columns, mode, use_speed, use_fixes=use_fixes
     ).run(progress)
+
+
+def _check_run(mode: str, chunk_rows: object, *flags: tuple[str, object]) -> None:
+    """The run's mode, rows per chunk and switches, checked before any work: ``chunk_rows=1.5``
+    was a bare "'float' object cannot be interpreted as an integer" (True a chunk of one row), and a
+    switch given as text was read as True (``use_speed="no"``, ``skip_existing="no"``)."""
+    wholelog.check_mode(mode)
+    check_count("chunk_rows", chunk_rows)
+    for name, value in flags:
+        require_flag(name, value)
 
 
 def check_out_dir(out_dir: Path) -> None:
@@ -161,15 +170,13 @@ def process_many(
         raise ValueError("no input files")
     if fmt not in ("csv", "parquet"):
         raise ValueError(f"fmt must be 'csv' or 'parquet', got {fmt!r}")
-    if jobs is not None and jobs < 1:
-        raise ValueError(f"jobs must be >= 1, got {jobs}")
-    if chunk_rows < 1:
-        raise ValueError(f"chunk_rows must be >= 1, got {chunk_rows}")
+    if jobs is not None:  # 1.5 threads were taken
+        check_count("jobs", jobs)
     require_choice("heading convention", heading, io.HEADING_CONVENTIONS)
     if columns is not None:
         io.check_columns(columns)
-    wholelog.check_mode(mode)
-    require_flag("use_fixes", use_fixes)
+    _check_run(mode, chunk_rows, ("use_speed", use_speed), ("skip_existing", skip_existing), ("progress", progress),
+               ("use_fixes", use_fixes))
     _, overrides = split_options(options)
     # invalid parameters fail here, before any work (a stand-in bias keeps the check quiet)
     pipeline_overrides = _to_si(overrides)

@@ -244,8 +244,10 @@ def return_orientation_error(
         raise ValueError(f"a return orientation error needs at least two samples, got {len(te)}")
     if rotation is not None:  # NaN gave NaN, text a bare TypeError of the subtraction
         rotation = check_number("rotation", rotation, low=None, unit=" [rad]")
-    t0 = te[0] if t_start is None else t_start
-    t1 = te[-1] if t_end is None else t_end
+    warn_if_wrapped(te, psi)  # a wrap between the lap's ends counted as a turn
+    # text was numpy's bare UFuncTypeError, 10**400 an OverflowError, True the time 1 s
+    t0 = te[0] if t_start is None else check_number("t_start", t_start, low=None, unit=" [s]")
+    t1 = te[-1] if t_end is None else check_number("t_end", t_end, low=None, unit=" [s]")
     if not te[0] <= t0 < t1 <= te[-1]:
         raise ValueError(f"the lap [{t0}, {t1}] s must lie inside the record [{te[0]}, {te[-1]}] s")
     measured = float(np.interp(t1, te, psi) - np.interp(t0, te, psi))

@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from pathlib import Path
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 import numpy as np
@@ -25,7 +25,9 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
-from ._checks import MAX_READING, require_finite, require_increasing, require_radians, warn
+from ._checks import (
+    MAX_READING, check_number, real_number, require_finite, require_increasing, require_radians, warn,
+)
 from .result import fix_output_flags
 
 if TYPE_CHECKING:
@@ -57,6 +59,9 @@ class Fixes:
     sigma: FloatArray
 
     def __post_init__(self) -> None:
+        # lists (or text) reached the core: "'list' object is not an instance of 'ndarray'"
+        for name in ("t", "heading", "sigma"):
+            object.__setattr__(self, name, as_float_array(f"fix {name}", getattr(self, name)))
         if not (len(self.t) == len(self.heading) == len(self.sigma)):
             raise ValueError(f"fix t, heading and sigma must have one length, got {len(self.t)}, "
                              f"{len(self.heading)} and {len(self.sigma)}")
@@ -172,10 +177,11 @@ def _settings(settings: dict[str, float]) -> dict[str, float]:
     unknown = sorted(set(settings) - set(SETTINGS))
     if unknown:
         raise TypeError(f"unknown fusion setting(s) {', '.join(unknown)}; choose from {', '.join(SETTINGS)}")
-    for name, value in settings.items():
-        if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
-            raise TypeError(f"fusion setting {name} = {value!r}: must be a number (SI units, docs/fixes.md)")
-    return {k: float(v) for k, v in settings.items()}
+    numbers = {name: real_number(value) for name, value in settings.items()}  # an int beyond float64: inf
+    for name, x in numbers.items():
+        if x is None:
+            raise TypeError(f"fusion setting {name} = {settings[name]!r}: must be a number (SI units, docs/fixes.md)")
+    return {k: float(v) for k, v in numbers.items() if v is not None}
 
 
 #: The core's words for a fix given after a sample past its time was processed.
@@ -304,6 +310,9 @@ class Fusion:
 def stage_settings(params: dict[str, Any], settings: dict[str, float] | None) -> dict[str, float]:
     """The fix stage's settings in a pipeline with the parameters ``params``: it starts from the
     pipeline's initial heading unless ``settings`` say otherwise (an unknown name is a TypeError)."""
+    if settings is not None and not isinstance(settings, Mapping):  # "'str' object is not a mapping"
+        raise TypeError(f"fusion must be a dict of the fix stage's settings ({', '.join(SETTINGS)}), got "
+                        f"{type(settings).__name__} {settings!r}")
     return _settings({"initial_heading": float(params["initial_heading"]), **(settings or {})})
 
 
@@ -370,9 +379,8 @@ def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_spe
     v = as_float_array("speed", speed)
     if not (len(tt) == len(bearing) == len(v)):
         raise ValueError(f"t, bearing_deg and speed must have one length, got {len(tt)}, {len(bearing)}, {len(v)}")
-    for name, value in (("min_speed", min_speed), ("speed_sigma", speed_sigma), ("min_sigma_deg", min_sigma_deg)):
-        if not (math.isfinite(value) and value > 0):
-            raise ValueError(f"{name} must be finite and > 0, got {value}")
+    min_speed, speed_sigma, min_sigma_deg = (check_number(name, value) for name, value in (
+        ("min_speed", min_speed), ("speed_sigma", speed_sigma), ("min_sigma_deg", min_sigma_deg)))
     # checked here, by the sample's own index: the filter would name a bad time by its place
     # among the fixes kept, after the slow and course-less samples were dropped
     require_finite("t", tt)

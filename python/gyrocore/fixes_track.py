@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
-from ._checks import require_finite, require_increasing, warn
+from ._checks import check_number, require_finite, require_increasing, warn
 from .fixes import Fixes, warn_no_fix
 
 #: Mean Earth radius [m] (IUGG), for :func:`from_latlon`'s local plane.
@@ -44,10 +44,8 @@ def from_positions(t: ArrayLike, x: ArrayLike, y: ArrayLike, *, position_sigma: 
     tt, xx, yy = (as_float_array(name, a) for name, a in (("t", t), ("x", x), ("y", y)))
     if not (len(tt) == len(xx) == len(yy)):
         raise ValueError(f"t, x and y must have one length, got {len(tt)}, {len(xx)} and {len(yy)}")
-    for name, value in (("position_sigma", position_sigma), ("min_speed", min_speed),
-                        ("min_sigma_deg", min_sigma_deg)):
-        if not (math.isfinite(value) and value > 0):
-            raise ValueError(f"{name} must be finite and > 0, got {value}")
+    position_sigma, min_speed, min_sigma_deg = (check_number(name, value) for name, value in (
+        ("position_sigma", position_sigma), ("min_speed", min_speed), ("min_sigma_deg", min_sigma_deg)))
     require_finite("t", tt, context="positions")
     require_increasing("t", tt, context="positions")
     dt, dx, dy = np.diff(tt), np.diff(xx), np.diff(yy)

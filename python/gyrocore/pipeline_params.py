@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from . import _gyrocore
+from ._checks import shown
 
 #: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling (every one: the docs
 #: promise it, and ``hdr_max_correction_dps`` was an unknown parameter).
@@ -113,6 +114,8 @@ def _radians(key: str, value: Any) -> float | None:
         return math.radians(value)
     except TypeError:
         raise TypeError(f"invalid parameter {key} = {value!r}: must be a number of degrees") from None
+    except OverflowError:  # an int beyond float64
+        raise ValueError(f"invalid parameter {key} = {shown(value)}: beyond the range of float64") from None
 
 
 def preset_params(preset: str = "hdr", **overrides: Any) -> dict[str, Any]:
@@ -121,7 +124,7 @@ def preset_params(preset: str = "hdr", **overrides: Any) -> dict[str, Any]:
     si = _to_si(overrides)
     try:
         return dict(_gyrocore.preset_params(preset, si))
-    except (TypeError, ValueError) as e:
+    except (TypeError, ValueError, OverflowError) as e:
         raise _named_error(preset, si, e) from None
 
 
@@ -131,14 +134,16 @@ def core_pipeline(preset: str, si: dict[str, Any]) -> _gyrocore.Pipeline:
     _check_preset(preset)
     try:
         return _gyrocore.Pipeline(preset, si)
-    except (TypeError, ValueError) as e:
+    except (TypeError, ValueError, OverflowError) as e:
         raise _named_error(preset, si, e) from None
 
 
-def _named_error(preset: str, si: dict[str, Any], error: TypeError | ValueError) -> TypeError | ValueError:
+def _named_error(preset: str, si: dict[str, Any], error: Exception) -> Exception:
     """The core's error with the parameter it is about and what that parameter takes, where its
     message names no parameter (a conversion: "must be real number, not str", "expected tuple of
-    length 2, but got tuple of length 3"; the core converts them all at once)."""
+    length 2, but got tuple of length 3"; the core converts them all at once). An int beyond
+    float64 (``bias_duration=10**400``: "int too large to convert to float") is a ValueError."""
+    kind = ValueError if isinstance(error, OverflowError) else type(error)
     if any(key in str(error) for key in si):  # the core's own words name it already
         return error
     for key, value in si.items():
@@ -146,5 +151,5 @@ def _named_error(preset: str, si: dict[str, Any], error: TypeError | ValueError)
             _gyrocore.preset_params(preset, {key: value})
         except type(error) as e:
             what = parameters().get(key, "")
-            return type(error)(f"invalid parameter {key} = {value!r}: {e}; {key} is {what}")
+            return kind(f"invalid parameter {key} = {shown(value)}: {e}; {key} is {what}")
     return error

@@ -55,6 +55,10 @@ class ParameterSet:
                 f"parameter set {self.name!r}: {', '.join(bias)} cannot be part of a parameter set; "
                 "the static bias comes from each log (its rest window, or a bias duration)"
             )
+        unset = [k for k, v in self.overrides.items() if v is None]
+        if unset:  # the pipeline reads None as not given: the preset's value ran under the set's name
+            raise ValueError(f"parameter set {self.name!r}: {', '.join(unset)} is null; give a value, or leave it out "
+                             "for the preset's")
         validate(self.preset, self.overrides)
 
     def pipeline(self, **bias: Any) -> Pipeline:

@@ -70,7 +70,7 @@ from .wholelog_options import (
     refuse_whole_options,
     untracked,
 )
-from .window import Window
+from .window import RestWindowError, Window
 
 if TYPE_CHECKING:
     from .fixes import Fixes, FixesLike
@@ -346,14 +346,14 @@ def _window_beyond_time(si: dict[str, Any], t_start: float) -> bool:
     """Whether the given rest window (``bias_window``, or ``bias_duration`` from ``t_start``)
     reaches beyond the core's +-2^40 s, which the core refuses as a parameter: for times in
     nanoseconds read as seconds, the bad time (and its unit) is the error to give first."""
-    given = si.get("bias_window")
-    if si.get("bias_duration") is not None:
-        given = (t_start, t_start + float(si["bias_duration"]))
-    if given is None or isinstance(given, Window):  # none, or one counted from the first sample
-        return False
+    given: Any = si.get("bias_window")
+    if given is None and si.get("bias_duration") is None or isinstance(given, Window):
+        return False  # none, or one counted from the first sample
     try:
+        if si.get("bias_duration") is not None:
+            given = (t_start, t_start + float(si["bias_duration"]))
         return max(abs(float(given[0])), abs(float(given[1]))) > MAX_SECONDS
-    except (TypeError, ValueError, IndexError):  # no window: check_parameters names what it is
+    except (TypeError, ValueError, LookupError, OverflowError):  # no window: check_parameters names what it is
         return False
 
 
@@ -379,7 +379,25 @@ def plan_stream(
         t_start = next((float(t[0]) for t, _ in chunks() if len(t)), 0.0)
     if _window_beyond_time(si, t_start) and not all(times_ok(t) for t, _ in itertools.islice(chunks(), 1)):
         return _no_plan(si)
-    return plan(preset, si, t_start, lambda window, how: measure_rest(chunks(), window, how), list, None, options)
+    try:
+        return plan(preset, si, t_start, lambda window, how: measure_rest(chunks(), window, how), list, None, options)
+    except RestWindowError:
+        if _times_ok_across(chunks()):
+            raise
+        # Times out of order: the window was judged on them ("the log runs from 19.99 to 0 s" of a
+        # log in reverse); the second pass names the bad sample, with the file and line.
+        return _no_plan(si)
+
+
+def _times_ok_across(chunks: Iterable[tuple[FloatArray, FloatArray]]) -> bool:
+    """Whether the times of ``chunks`` are usable (:func:`times_ok`) and go on increasing from one
+    chunk to the next."""
+    last = -math.inf
+    for t, _ in chunks:
+        if len(t) and (not times_ok(t) or t[0] <= last):
+            return False
+        last = float(t[-1]) if len(t) else last
+    return True
 
 
 def process_log(
@@ -421,7 +439,10 @@ def process_log(
     refuse_tracking(si)
     options = Options.pop(si)
     ta, ra = as_float_array("t", t), as_float_array("rate", rate)
-    if len(ta) and _window_beyond_time(si, float(ta[0])) and not times_ok(ta):
+    if _bias_source(si) in ("bias_window", "bias_duration") and not times_ok(ta):
+        # A whole log's bad time comes first (as a window beyond +-2^40 s, epoch ns read as s, is no
+        # window to measure): the core met the rest window before a bad time after it (a log in
+        # reverse: "the bias window [0, 1] s holds no sample of the samples from t = 29.99 to 29.99 s").
         require_times(ta)
     check_parameters(preset, si)
     sp = None if speed is None else as_float_array("speed", speed) if speed_t is None else speed_on(ta, speed_t, speed)

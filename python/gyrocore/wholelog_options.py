@@ -11,7 +11,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from ._checks import MAX_READING, real_number, require_choice
+from ._checks import MAX_READING, real_number, require_choice, shown
 from ._rests import MIN_REST
 
 #: The ways to process a whole log: ``whole`` (bias from every rest, known from the first sample)
@@ -90,7 +90,7 @@ class Options:
             high = MAX_READING if name.endswith("_walk") else math.inf  # a rate's limit: 1e300 overflowed the smoother
             if (x := real_number(value)) is None or not (math.isfinite(x) and 0 <= x <= high):
                 most = f" and at most 2^20 = {MAX_READING:.0f}" if high < math.inf else ""
-                raise ValueError(f"invalid parameter {name} = {value!r}: must be a finite number >= 0{most}")
+                raise ValueError(f"invalid parameter {name} = {shown(value)}: must be a finite number >= 0{most}")
             given[name] = x
         for name in WHOLE_OPTIONS:
             si.pop(name, None)

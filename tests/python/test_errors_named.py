@@ -89,6 +89,19 @@ def test_allan_and_calibration_inputs_are_named(call: Callable[[], object], mess
         call()
 
 
+@pytest.mark.parametrize("field", ["bias", "method"])
+def test_a_calibration_file_without_its_bias_or_method_is_named(tmp_path: Path, field: str) -> None:
+    """Without its bias it was a calibration of bias 0, applied without a word; without its method
+    Python's "Calibration.__init__() missing 1 required positional argument: 'method'"."""
+    path = tmp_path / "cal.json"
+    Calibration(method="static_bias", bias=0.01, window=(0.0, 1.0), samples=3).save(path)
+    data = json.loads(path.read_text())
+    del data["calibration"][field]
+    path.write_text(json.dumps(data))
+    with pytest.raises(ValueError, match=f"^{path}: not a valid calibration: missing calibration field\\(s\\): {field}$"):
+        Calibration.load(path)
+
+
 @pytest.mark.parametrize(
     ("change", "message"),
     [
@@ -102,6 +115,11 @@ def test_allan_and_calibration_inputs_are_named(call: Callable[[], object], mess
         ({"method": "static-bias"}, "unknown calibration method 'static-bias' \\(did you mean 'static_bias'\\?\\); "
                                     "choose one of static_bias, rate_reference, heading_reference, rotary_table"),
         ({"bias": float("nan")}, "bias must be finite, got nan"),
+        # null lost the bias without a word (bias 0), or was Python's "'>' not supported between
+        # instances of 'NoneType' and 'int'"
+        ({"bias": None}, "bias must be a number, got null"),
+        ({"c_cw": None}, "c_cw must be a number, got null"),
+        ({"scale_error": None}, "scale_error must be a number, got null"),
         ({"scale_error": -1}, r"scale_error must be > -1 \(s_bar = 1/\(1 \+ s\) > 0\), got -1"),
         ({"c_cw": 0}, "c_cw must be > 0, got 0"),
         ({"samples": -5}, "samples must be >= 0, got -5"),

@@ -107,6 +107,8 @@ HEAD = '{"format": "gyrocore-params", "version": 1, "name": "x", "preset": "hdr"
         ('{"format": "gyrocore-params", "version": 1, "name": "x", "preset": "hdr"}', "missing key"),
         (HEAD + '"overrides": {"bias_window": [0, 10]}}', "bias_window cannot be part"),
         (HEAD + '"overrides": {"hdr_increment": -1}}', "hdr_increment = -1"),
+        # null was read as not given: the preset's value ran under the set's name, without a word
+        (HEAD + '"overrides": {"hdr_c1": null}}', "parameter set 'x': hdr_c1 is null; give a value, or leave it out"),
         ('{"format": "gyrocore-params", "version": 1, "name": "x", "preset": "nope", "overrides": {}}', "nope"),
         ('{"format": "gyrocore-params", "version": 1, "name": 5, "preset": "hdr", "overrides": {}}',
          '"name" must be a string, got 5'),

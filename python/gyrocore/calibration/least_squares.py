@@ -208,7 +208,7 @@ def heading_reference(
             reference in degrees (a step of over 180 between two samples, or a fit that finds it
             changing about 180/pi times as much as the gyro's angle).
     """
-    ta, ra = check_series(t, rate_measured, rate_name="rate_measured")
+    ta, ra = check_series(t, rate_measured, rate_name="rate_measured", minimum=2)
     tr, hr = check_series(t_ref, heading_ref, t_name="t_ref", rate_name="heading_ref", readings=False)
     require_radians("heading_ref", tr, hr)
     lo, hi = ta[0], ta[-1]

@@ -252,8 +252,16 @@ class Calibration:
         unknown = sorted(set(values) - known)
         if unknown:
             raise ValueError(f"unknown calibration field(s): {', '.join(unknown)}")
+        # a file without its bias was one of bias 0 (without a method, Python's "__init__() missing 1
+        # required positional argument"); every calibration saved holds both
+        missing = [name for name in ("method", "bias") if name not in values]
+        if missing:
+            raise ValueError(f"missing calibration field(s): {', '.join(missing)}")
         for f in fields(cls):  # JSON types: a number must not be text ("bias": "abc")
             value = values.get(f.name)
+            if value is None and f.name in values and "None" not in str(f.type) and f.name != "notes":
+                # "bias": null lost the bias without a word, "c_cw": null was Python's "'>' not supported"
+                raise ValueError(f"{f.name} must be {_KINDS.get(str(f.type), 'a number')}, got null")
             if value is None or f.name in ("window", "bias_table", "notes"):
                 continue
             expected = {"str": str, "int": int}.get(str(f.type), (int, float))

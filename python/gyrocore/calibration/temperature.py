@@ -31,7 +31,7 @@ def bias_temperature_table(
             limit), naming the sample.
         ValueError: bad samples otherwise, or fewer than two bins with ``min_samples`` readings.
     """
-    ta, ra = check_series(t, rate)
+    ta, ra = check_series(t, rate, minimum=1)
     temp = check_temperature(temperature, len(ta))
     check_number("bin_width", bin_width, unit=" [degC]")
     check_count("min_samples", min_samples)  # 0 kept bins of no reading

@@ -238,6 +238,15 @@ def add_overwrite_option(parser: argparse.ArgumentParser | argparse._ArgumentGro
                         help="replace output files that exist already (default: refuse them, before any work)")
 
 
+def require_suffix(path: str | Path, option: str, what: str, suffixes: tuple[str, ...]) -> None:
+    """Refuse, before any work, an output file ``path`` (of ``option``) whose suffix is none of
+    ``suffixes``: the command writes ``what`` whatever the name (``--plot drive.csv`` was a PNG
+    image named like a log, and with ``--overwrite`` it replaced the log)."""
+    if Path(path).suffix.lower() not in suffixes:
+        raise ValueError(f"{option} {path}: gyrocore writes {what} there, so its name must end in "
+                         f"{' or '.join(suffixes)}")
+
+
 def refuse_existing(outputs: Iterable[Path], overwrite: bool, *, folders_exist: bool = True) -> None:
     """Refuse, before any work, outputs whose folder is missing (unless the command makes it: not
     ``folders_exist``), and outputs that exist already unless ``--overwrite`` was given:

@@ -22,6 +22,7 @@ from ._common import (
     add_reading_options,
     reading_options,
     refuse_existing,
+    require_suffix,
     warn_about,
     write_atomically,
 )
@@ -67,6 +68,10 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--plot {args.plot} and --kalibr {args.kalibr} are one file; give each its own")
     for out in outputs:
         io.check_not_input(out, [src])
+    if args.plot is not None:
+        require_suffix(args.plot, "--plot", "a PNG image", (".png",))
+    if args.kalibr is not None:
+        require_suffix(args.kalibr, "--kalibr", "Kalibr's YAML", (".yaml", ".yml"))
     refuse_existing(outputs, args.overwrite)
     plt = None if args.plot is None else pyplot("--plot")  # before the work
     # A record for the Allan deviation is taken at rest: small rates are no sign of a unit mistake.

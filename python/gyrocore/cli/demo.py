@@ -18,7 +18,9 @@ import numpy as np
 from .. import evaluate, motion, sim, tune
 from .._extras import MissingExtra, pyplot
 from ..pipeline import HeadingResult, preset_names, recommended_preset
-from ._common import COUNT, POSITIVE, SEED, add_command, add_overwrite_option, refuse_existing, write_atomically
+from ._common import (
+    COUNT, POSITIVE, SEED, add_command, add_overwrite_option, refuse_existing, require_suffix, write_atomically,
+)
 from .simulate import check_car_drive, checked_sensor
 
 
@@ -50,6 +52,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
 
 def run(args: argparse.Namespace) -> int:
     if args.plot and Path(args.plot) != Path(PLOT):
+        require_suffix(args.plot, "--plot", "a PNG image", (".png",))
         refuse_existing([Path(args.plot)], args.overwrite)
     check_car_drive(checked_sensor(args.sensor, args.rate_hz), args.duration, f"--duration {args.duration:g}")
     drives = [

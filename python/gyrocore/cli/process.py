@@ -107,7 +107,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         "wrapped to a turn), the yaw starting at initial_heading (--param; default 0: east)",
     )
     out.add_argument(
-        "--format", choices=("csv", "parquet"), default="csv", help="file format in an output folder (default csv)"
+        "--format", choices=("csv", "parquet"), help="file format in an output folder (default csv)"
     )
     out.add_argument(
         "--columns",
@@ -195,6 +195,11 @@ def run(args: argparse.Namespace) -> int:
     if args.skip_existing and one_file:
         raise ValueError(f"--skip-existing is for a batch into an output folder, and --out {out} is one file: "
                          "leave the option out (an output that exists is refused unless --overwrite is given)")
+    if one_file and args.format not in (None, io.output_format(out)):  # it was left unused without a word
+        raise ValueError(f"--format {args.format}: --out {out} is one file, whose suffix says its format "
+                         f"({io.output_format(out)}); --format is the format of an output folder's files: leave it "
+                         "out, or give the file the suffix of the format meant")
+    args.format = args.format or "csv"
     if not one_file:
         _refuse_file_like_folder(args.out)
         check_out_dir(out)

@@ -26,6 +26,7 @@ from ._common import (
     print_json,
     reading_options,
     refuse_existing,
+    require_suffix,
 )
 
 _TABLES = {"II": motion.TABLE_II_DRIVES, "IV": motion.TABLE_IV_DRIVES}
@@ -193,6 +194,7 @@ def run(args: argparse.Namespace) -> int:
                          f"{args.preset}_tuned)")
     if args.out is not None:  # before the fit, which takes minutes
         check_not_input(Path(args.out), [Path(p) for p in args.logs + args.test])
+        require_suffix(args.out, "--out", "a JSON parameter file", (".json",))
         refuse_existing([Path(args.out)], args.overwrite)
     require("scipy.optimize", "tuning")  # before the drives are built
     names, bounds = _parse_params(args.param or [])

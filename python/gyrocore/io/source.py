@@ -9,14 +9,14 @@ reader of its format and converts them to s and rad/s (what ``gyrocore process``
 from __future__ import annotations
 
 from collections.abc import Generator, Iterator
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from .._arrays import FloatArray, durations_in_seconds, warn_coarse_times, warn_merged_counts
-from .._checks import first_infinite, require_choice, warn
+from .._checks import first_infinite, require_choice, require_flag, warn
 from .._gyrocore import SampleError
 from ..window import Window
 from ._axes import MEASURED, measure_up, parse_up, parse_up_window, project, three_names
@@ -88,6 +88,7 @@ class ReadOptions:
                     f"{name} must be text: a column name, or a plain .npy array's column number as text "
                     f"({name}='{value}'), got {value!r}"
                 )
+        require_flag("static", self.static)  # "no" was read as True, and hid a unit warning
         # normalised forms (the dataclass is frozen): column triples as tuples, up parsed
         if self.gyro_cols is not None:
             object.__setattr__(self, "gyro_cols", three_names(self.gyro_cols, "gyro_cols (--gyro-cols)"))
@@ -376,6 +377,8 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
         ValueError: an unknown kind of file or folder, or not a regular file (a named pipe).
     """
     if options is None:
+        for name in kwargs:  # "ReadOptions.__init__() got an unexpected keyword argument", with no hint
+            require_choice("reading option", name, [f.name for f in fields(ReadOptions)])
         options = ReadOptions(**kwargs)
     elif kwargs:
         raise TypeError("give either options or keywords, not both")

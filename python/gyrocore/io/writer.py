@@ -58,8 +58,10 @@ def check_columns(columns: Sequence[str], what: str = "columns") -> tuple[str, .
     :data:`FIX_COLUMNS`), each once; else a
     ``ValueError`` that names ``what`` was given (a parameter, an option) and the valid columns."""
     valid = OUTPUT_COLUMNS + FIX_COLUMNS
+    if isinstance(columns, str):  # its letters were the columns: "unknown column ',', 'h', 'e', ..."
+        raise TypeError(f"{what} {columns!r}: give a sequence of column names, e.g. ('t', 'heading'), not one string")
     unknown = [c for c in columns if c not in valid]
-    if isinstance(columns, str) or not columns or unknown or len(set(columns)) != len(columns):
+    if not columns or unknown or len(set(columns)) != len(columns):
         problem = f"unknown column {', '.join(map(repr, unknown))}" if unknown else "each column once"
         raise ValueError(f"{what} {','.join(columns)}: {problem}; choose from {', '.join(valid)}")
     return tuple(columns)
