@@ -162,6 +162,18 @@ class HeadingResult:
             raise ValueError(f"the {name!r} output was not computed: ask for it in outputs=")
         return value
 
+    def columns(self) -> dict[str, FloatArray]:
+        """The per-sample arrays by name, each one value per sample: ``t`` [s], ``heading`` [rad],
+        then of ``rate``, ``drift`` [rad/s], ``heading_sigma`` [rad], ``fusion_bias`` [rad/s] and
+        ``fusion_scale`` [1] those that were computed (as :data:`ALL_OUTPUTS` names them). The
+        arrays themselves, not copies: ``pandas.DataFrame(result.columns())`` is a table, and
+        ``numpy.savez(path, **result.columns())`` saves them by name."""
+        fusion = self.fusion
+        values = {"t": self.t, "heading": self.heading, "rate": self.rate, "drift": self.drift,
+                  "heading_sigma": self.heading_sigma, "fusion_bias": None if fusion is None else fusion.bias,
+                  "fusion_scale": None if fusion is None else fusion.scale}
+        return {name: a for name, a in values.items() if a is not None}
+
     @property
     def heading_deg(self) -> FloatArray:
         """Heading in degrees."""

@@ -1,0 +1,28 @@
+"""What a user working in a notebook meets: results that become tables, inputs as pandas holds
+them, and what ``dir``, ``repr`` and ``help`` show."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import gyrocore
+from gyrocore.fixes import Fixes
+
+
+def _drive(n: int = 3000) -> tuple[np.ndarray, np.ndarray]:
+    t = 10.0 + np.arange(n) * 0.01
+    return t, 0.002 + (t > 20.0) * 0.2 * np.sin(t / 3.0)
+
+
+def test_a_result_gives_its_computed_columns_by_name_for_a_table() -> None:
+    t, rate = _drive()
+    r = gyrocore.process(t, rate, "hdr", bias=0.002)
+    columns = r.columns()
+    assert list(columns) == ["t", "heading", "rate", "drift"]
+    assert columns["heading"] is r.heading and columns["t"] is r.t  # no copies
+    assert list(gyrocore.process(t, rate, "hdr", bias=0.002, outputs=("heading",)).columns()) == ["t", "heading"]
+    fixes = Fixes(t=np.array([15.0, 25.0]), heading=np.array([0.1, 0.2]), sigma=np.array([0.05, 0.05]))
+    fused = gyrocore.process(t, rate, "hdr", bias=0.002, fixes=fixes).columns()
+    assert list(fused) == ["t", "heading", "rate", "drift", "heading_sigma", "fusion_bias", "fusion_scale"]
+    assert all(len(a) == len(t) for a in fused.values())
