@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import datetime
 import math
 import numbers
 
@@ -51,12 +52,13 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
     except ValueError as e:  # a ragged list: numpy's message names neither the argument nor a fix
         raise ValueError(f"{name} must be one flat sequence of numbers ({e})") from None
     a = durations_in_seconds(name, array)
+    dates = "times: give seconds, e.g. ({0} - {0}[0]) / numpy.timedelta64(1, 's')".format(name)
     if a.dtype.kind == "M":
-        raise TypeError(
-            f"{name} holds {a.dtype} times: give seconds, e.g. ({name} - {name}[0]) / numpy.timedelta64(1, 's')"
-        )
+        raise TypeError(f"{name} holds {a.dtype} {dates}")
     if a.dtype == np.object_ and a.ndim == 1:  # None, pandas.NA or text among numbers: say which and where
         odd = next((i for i, v in enumerate(a) if isinstance(v, (bool, str, bytes)) or not isinstance(v, numbers.Real)), None)
+        if odd is not None and isinstance(a[odd], datetime.datetime):  # pandas' times with a time zone
+            raise TypeError(f"{name} holds dates and {dates} ({name}[{odd}] is {a[odd]!r})")
         if odd is not None:
             raise TypeError(f"{name} must hold real numbers, got dtype object: {name}[{odd}] is {a[odd]!r} (give "
                             "numbers, NaN where a value is missing)")

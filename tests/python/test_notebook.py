@@ -3,6 +3,8 @@ them, and what ``dir``, ``repr`` and ``help`` show."""
 
 from __future__ import annotations
 
+import datetime
+
 import numpy as np
 import pytest
 
@@ -26,3 +28,16 @@ def test_a_result_gives_its_computed_columns_by_name_for_a_table() -> None:
     fused = gyrocore.process(t, rate, "hdr", bias=0.002, fixes=fixes).columns()
     assert list(fused) == ["t", "heading", "rate", "drift", "heading_sigma", "fusion_bias", "fusion_scale"]
     assert all(len(a) == len(t) for a in fused.values())
+
+
+@pytest.mark.parametrize("zone", [None, datetime.timezone.utc])
+def test_dates_with_or_without_a_time_zone_are_refused_as_dates_with_what_to_give(zone: datetime.tzinfo | None) -> None:
+    # pandas' times with a time zone (and Python's datetimes) reach numpy as objects: the error
+    # said "give numbers, NaN where a value is missing", as for text or None
+    start = datetime.datetime(2024, 5, 1, 12, 0, tzinfo=zone)
+    t = [start + datetime.timedelta(seconds=0.01 * i) for i in range(100)]
+    with pytest.raises(TypeError, match=r"t holds dates and times: give seconds, e\.g\. \(t - t\[0\]\) / "
+                                        r"numpy\.timedelta64\(1, 's'\) \(t\[0\] is datetime\.datetime\(2024, 5, 1"):
+        gyrocore.process(t, np.zeros(100), "raw")
+    with pytest.raises(TypeError, match="t_ref holds dates and times"):
+        gyrocore.heading_errors(np.arange(100.0), np.zeros(100), t, np.zeros(100))
