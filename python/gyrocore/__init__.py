@@ -36,15 +36,15 @@ from .pipeline import (
 
 if TYPE_CHECKING:
     from . import (
-        allan, batch, calibration, datasets, deadband, deadreckon, evaluate, fixes, io, motion, paper, sim, tune,
-        wholelog,
+        allan, batch, calibration, datasets, deadband, deadreckon, evaluate, fixes, io, motion, paper, rests, sim,
+        tune, wholelog,
     )
     from .evaluate import HeadingErrors, heading_errors
     from .fixes import fuse
     from .io import Log, read_log
 
 _SUBMODULES = ("allan", "batch", "calibration", "datasets", "deadband", "deadreckon", "evaluate", "fixes", "io",
-               "motion", "paper", "sim", "tune", "wholelog")
+               "motion", "paper", "rests", "sim", "tune", "wholelog")
 #: Names of the package taken from a submodule, loaded with it.
 _FROM = {"HeadingErrors": "evaluate", "heading_errors": "evaluate", "Log": "io", "read_log": "io", "fuse": "fixes"}
 
@@ -59,7 +59,10 @@ def __getattr__(name: str) -> Any:
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+    """The public names (:data:`__all__`, submodules not loaded yet among them) and the underscored
+    ones, which tab completion hides: not the names this module imports for itself (``Any``,
+    ``importlib``) or the submodules loaded as parts of others (``pipeline_input``)."""
+    return sorted(set(__all__) | {name for name in globals() if name.startswith("_")})
 
 
 __all__ = [
@@ -74,6 +77,7 @@ __all__ = [
     "allan",
     "batch",
     "calibration",
+    "datasets",
     "deadband",
     "deadreckon",
     "downsample",
@@ -91,6 +95,7 @@ __all__ = [
     "process",
     "read_log",
     "recommended_preset",
+    "rests",
     "sim",
     "tune",
     "wholelog",

@@ -41,3 +41,13 @@ def test_dates_with_or_without_a_time_zone_are_refused_as_dates_with_what_to_giv
         gyrocore.process(t, np.zeros(100), "raw")
     with pytest.raises(TypeError, match="t_ref holds dates and times"):
         gyrocore.heading_errors(np.arange(100.0), np.zeros(100), t, np.zeros(100))
+
+
+def test_tab_completion_of_the_package_offers_its_public_names_and_every_documented_module() -> None:
+    import gyrocore.pipeline_input  # noqa: F401  (a part of the pipeline, loaded with it: no public module)
+
+    public = {name for name in dir(gyrocore) if not name.startswith("_")}
+    assert public == {name for name in gyrocore.__all__ if not name.startswith("_")}
+    assert not public & {"Any", "TYPE_CHECKING", "annotations", "importlib", "pipeline_input"}
+    assert {"datasets", "rests", "sim", "evaluate"} <= public  # the modules docs/python.md names
+    assert all(getattr(gyrocore, name) is not None for name in public)
