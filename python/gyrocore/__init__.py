@@ -10,6 +10,24 @@ counter-clockwise positive; the bias is what the gyro reads at rest.
     >>> len(result) == len(drive.t)
     True
 
+Where to start (each has its own ``help``; the guide with examples is docs/python.md):
+
+- :func:`process` (arrays in, a :class:`HeadingResult` out: ``heading`` [rad], ``rate`` and
+  ``drift`` [rad/s], ``bias_source``, ``rests``; ``columns()`` for a table), :class:`Pipeline`
+  (streaming), :func:`integrate`, :func:`parameters` (every parameter with its unit) and
+  :func:`preset_names`.
+- :func:`read_log` (a file or log folder as a :class:`Log`, with ``Log.process`` and
+  ``Log.reference``) and :mod:`gyrocore.datasets` (a sample log, nothing to download).
+- :func:`heading_errors` (E_psi against a reference, :class:`HeadingErrors` [deg]) and
+  :mod:`gyrocore.evaluate` (presets compared on logs, ``compare``).
+- :mod:`gyrocore.calibration` (static bias, scale), :mod:`gyrocore.allan` (Allan deviation,
+  noise parameters), :mod:`gyrocore.fixes` (absolute heading fixes, :func:`fuse`),
+  :mod:`gyrocore.rests` (the rests found), :mod:`gyrocore.wholelog` (whole-log mode).
+- :mod:`gyrocore.io` (readers, writers), :mod:`gyrocore.batch` (many files),
+  :mod:`gyrocore.tune` (fitting a preset), :mod:`gyrocore.sim`, :mod:`gyrocore.motion` and
+  :mod:`gyrocore.paper` (simulated drives, the papers' experiments), :mod:`gyrocore.deadband`,
+  :mod:`gyrocore.deadreckon`.
+
 ``import gyrocore`` loads only the pipeline (numpy and the extension); the modules below and the
 names taken from them load when first used, so that a script that only integrates an array
 starts fast and needs numpy only (the optional dependencies: :mod:`gyrocore._extras`).

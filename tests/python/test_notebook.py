@@ -4,6 +4,7 @@ them, and what ``dir``, ``repr`` and ``help`` show."""
 from __future__ import annotations
 
 import datetime
+import inspect
 
 import numpy as np
 import pytest
@@ -51,3 +52,11 @@ def test_tab_completion_of_the_package_offers_its_public_names_and_every_documen
     assert not public & {"Any", "TYPE_CHECKING", "annotations", "importlib", "pipeline_input"}
     assert {"datasets", "rests", "sim", "evaluate"} <= public  # the modules docs/python.md names
     assert all(getattr(gyrocore, name) is not None for name in public)
+
+
+def test_help_of_the_package_names_every_public_module_and_where_the_guide_is() -> None:
+    doc = gyrocore.__doc__ or ""
+    modules = [name for name in gyrocore.__all__ if inspect.ismodule(getattr(gyrocore, name))]
+    assert len(modules) >= 10
+    assert [m for m in modules if f":mod:`gyrocore.{m}`" not in doc] == []
+    assert "docs/python.md" in doc and ":func:`process`" in doc
