@@ -60,3 +60,16 @@ def test_help_of_the_package_names_every_public_module_and_where_the_guide_is() 
     assert len(modules) >= 10
     assert [m for m in modules if f":mod:`gyrocore.{m}`" not in doc] == []
     assert "docs/python.md" in doc and ":func:`process`" in doc
+
+
+def test_a_batch_report_shows_as_one_line_however_many_files() -> None:
+    from gyrocore.batch import BatchReport, FileReport
+
+    rest = gyrocore.rests.Rest(start=0.0, end=20.0, bias=0.002, bias_std_error=1e-5, noise=0.003, samples=2000,
+                               found_by="given")
+    files = [FileReport(f"log{i}", f"out/log{i}.csv", 6000, 6000, 0.1, bias_source="rest", rests=(rest,))
+             for i in range(200)] + [FileReport("bad", None, 10, 0, 0.01, error="bad: t[3] is NaN")]
+    report = BatchReport(tuple(files), 21.0)
+    assert repr(report) == ("BatchReport(200 of 201 files processed, 1 failed; 1200010 rows in, 1200000 out, 21.00 s; "
+                            "print() it for each file, .files for their reports)")
+    assert str(report).count("\n") == 200 * 3 + 1 and str(report).endswith("1200000 out, 21.00 s")  # as before
