@@ -73,3 +73,17 @@ def test_a_batch_report_shows_as_one_line_however_many_files() -> None:
     assert repr(report) == ("BatchReport(200 of 201 files processed, 1 failed; 1200010 rows in, 1200000 out, 21.00 s; "
                             "print() it for each file, .files for their reports)")
     assert str(report).count("\n") == 200 * 3 + 1 and str(report).endswith("1200000 out, 21.00 s")  # as before
+
+
+def test_a_score_shows_as_one_line_of_its_figures() -> None:
+    from gyrocore.evaluate import HeadingErrors, Method, Score
+
+    errors = HeadingErrors(e_psi_deg=3.6721, ne_psi_deg_per_min=1.7352, mean_error_deg=3.6721, std_error_deg=1.99,
+                           final_error_deg=5.2395, max_error_deg=12.16, duration_min=2.116, n=2735)
+    rest = gyrocore.rests.Rest(start=0.0, end=20.0, bias=0.002, bias_std_error=1e-5, noise=0.003, samples=2000,
+                               found_by="given")
+    score = Score("f110_ds3", Method.from_preset("recommended"), errors, 5.552, "rest [0, 20] s (given): ...",
+                  return_error_deg=5.2396, rests=(rest,) * 5, path="logs/f110_ds3")
+    assert repr(score) == ("Score('f110_ds3', 'recommended': E_psi 3.672 deg, NE_psi 1.735 deg/min, improvement "
+                           "5.55, return error 5.240 deg)")
+    assert score.as_dict()["e_psi_deg"] == 3.6721 and len(score.as_dict()["rests"]) == 5  # every field, as before
