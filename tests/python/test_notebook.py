@@ -87,3 +87,24 @@ def test_a_score_shows_as_one_line_of_its_figures() -> None:
     assert repr(score) == ("Score('f110_ds3', 'recommended': E_psi 3.672 deg, NE_psi 1.735 deg/min, improvement "
                            "5.55, return error 5.240 deg)")
     assert score.as_dict()["e_psi_deg"] == 3.6721 and len(score.as_dict()["rests"]) == 5  # every field, as before
+
+
+def test_a_log_built_from_sequences_holds_float64_arrays() -> None:
+    t, rate = _drive(2000)
+    log = gyrocore.Log("mine", list(t), rate.astype(np.float32), t_ref=t[::10].tolist(), heading_ref=np.zeros(200))
+    assert all(type(a) is np.ndarray and a.dtype == np.float64 for a in (log.t, log.rate, log.t_ref, log.heading_ref))
+    assert log.x_ref is None and log.speed is None
+    assert log.duration == pytest.approx(19.99)
+    with pytest.raises(TypeError, match="t_ref holds dates and times"):
+        gyrocore.Log("mine", t, rate, t_ref=[datetime.datetime(2024, 5, 1)] * 3, heading_ref=np.zeros(3))
+
+
+def test_a_log_built_from_a_pandas_table_cut_by_label_reads_by_position() -> None:
+    pd = pytest.importorskip("pandas")
+    t, rate = _drive(2000)
+    df = pd.DataFrame({"t": t, "gyro_z": rate})
+    moving = df.iloc[200:]  # index from 200 on: t[0] and t[-1] were label look-ups, a KeyError
+    log = gyrocore.Log("mine", moving.t, moving.gyro_z.astype("Float64"), t_ref=moving.t, heading_ref=moving.t * 0.0)
+    assert repr(log).startswith("Log('mine': 1800 samples, 17.99 s from t = 12.000 s")
+    assert np.array_equal(log.process("hdr", bias=0.002).heading,
+                          gyrocore.process(t[200:], rate[200:], "hdr", bias=0.002).heading)

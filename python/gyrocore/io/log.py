@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._arrays import FloatArray
+from .._arrays import FloatArray, as_float_array
 from .._checks import require_flag, warn
 from ..pipeline import (
     HeadingResult,
@@ -33,6 +33,10 @@ from .units import UnitCheck
 
 if TYPE_CHECKING:
     from ..fixes import Fixes, FixesLike
+
+
+#: The per-sample series of a :class:`Log`, by field name.
+_SERIES = ("t", "rate", "t_ref", "heading_ref", "x_ref", "y_ref", "t_odometry", "speed")
 
 
 @dataclass(frozen=True, repr=False)
@@ -59,6 +63,14 @@ class Log:
     path: str | None = None
     """Where :func:`read_log` read the log, as given (two log folders may share meta.json's name),
     or None for a log built in memory."""
+
+    def __post_init__(self) -> None:
+        """Each series as a float64 numpy array (no copy of one already): a pandas Series indexes by
+        label, so ``t[0]`` and ``t[-1]`` of one cut from a table (``df.loc[df.t > 10, "t"]``) failed."""
+        for name in _SERIES:
+            value = getattr(self, name)
+            if value is not None:
+                object.__setattr__(self, name, as_float_array(name, value))
 
     def __repr__(self) -> str:
         """A summary (the arrays run to millions of samples)."""
