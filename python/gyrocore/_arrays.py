@@ -5,6 +5,7 @@ from __future__ import annotations
 import datetime
 import math
 import numbers
+from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -72,6 +73,17 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
     if name == "t":
         warn_coarse_times(a)
     return np.ascontiguousarray(a, dtype=np.float64)
+
+
+def float_fields(record: object, names: Sequence[str], prefix: str = "") -> None:
+    """Set each field ``names`` of the frozen dataclass ``record`` that is not None to
+    :func:`as_float_array` of it (named ``prefix`` + its name in an error): a record built from
+    pandas columns or lists then holds numpy arrays, and reads them by position (a Series' ``t[0]``
+    is a look-up by label)."""
+    for name in names:
+        value = getattr(record, name)
+        if value is not None:
+            object.__setattr__(record, name, as_float_array(prefix + name, value))
 
 
 def refuse_masked(name: str, values: object) -> None:

@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _gyrocore
-from ._arrays import FloatArray, as_float_array
+from ._arrays import FloatArray, as_float_array, float_fields
 from ._checks import MAX_READING, require_finite, require_increasing, require_radians, warn
 from .result import fix_output_flags
 
@@ -57,6 +57,7 @@ class Fixes:
     sigma: FloatArray
 
     def __post_init__(self) -> None:
+        float_fields(self, ("t", "heading", "sigma"), "fix ")  # pandas columns and lists too, as Fixes.of
         if not (len(self.t) == len(self.heading) == len(self.sigma)):
             raise ValueError(f"fix t, heading and sigma must have one length, got {len(self.t)}, "
                              f"{len(self.heading)} and {len(self.sigma)}")

@@ -108,3 +108,13 @@ def test_a_log_built_from_a_pandas_table_cut_by_label_reads_by_position() -> Non
     assert repr(log).startswith("Log('mine': 1800 samples, 17.99 s from t = 12.000 s")
     assert np.array_equal(log.process("hdr", bias=0.002).heading,
                           gyrocore.process(t[200:], rate[200:], "hdr", bias=0.002).heading)
+
+
+def test_fixes_built_from_sequences_hold_float64_arrays_as_fixes_of_gives() -> None:
+    t, rate = _drive()
+    fixes = Fixes([15.0, 25.0, 35.0], [0.1, 0.2, 0.3], np.array([5, 5, 5], dtype=np.int64) / 100)
+    assert all(type(a) is np.ndarray and a.dtype == np.float64 for a in (fixes.t, fixes.heading, fixes.sigma))
+    given = Fixes.of(np.array([15.0, 25.0, 35.0]), np.array([0.1, 0.2, 0.3]), 0.05)
+    assert np.array_equal(gyrocore.fuse(t, rate, fixes).heading, gyrocore.fuse(t, rate, given).heading)
+    with pytest.raises(TypeError, match="fix sigma must hold real numbers"):
+        Fixes([15.0], [0.1], ["0.05"])

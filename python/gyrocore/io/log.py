@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._arrays import FloatArray, as_float_array
+from .._arrays import FloatArray, float_fields
 from .._checks import require_flag, warn
 from ..pipeline import (
     HeadingResult,
@@ -67,10 +67,7 @@ class Log:
     def __post_init__(self) -> None:
         """Each series as a float64 numpy array (no copy of one already): a pandas Series indexes by
         label, so ``t[0]`` and ``t[-1]`` of one cut from a table (``df.loc[df.t > 10, "t"]``) failed."""
-        for name in _SERIES:
-            value = getattr(self, name)
-            if value is not None:
-                object.__setattr__(self, name, as_float_array(name, value))
+        float_fields(self, _SERIES)
 
     def __repr__(self) -> str:
         """A summary (the arrays run to millions of samples)."""
