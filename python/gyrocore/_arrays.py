@@ -53,7 +53,7 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
     except ValueError as e:  # a ragged list: numpy's message names neither the argument nor a fix
         raise ValueError(f"{name} must be one flat sequence of numbers ({e})") from None
     a = durations_in_seconds(name, array)
-    dates = "times: give seconds, e.g. ({0} - {0}[0]) / numpy.timedelta64(1, 's')".format(name)
+    dates = "times: give seconds, e.g. ({0} - {0}.min()) / numpy.timedelta64(1, 's')".format(name)
     if a.dtype.kind == "M":
         raise TypeError(f"{name} holds {a.dtype} {dates}")
     if a.dtype == np.object_ and a.ndim == 1:  # None, pandas.NA or text among numbers: say which and where
