@@ -132,3 +132,14 @@ def test_the_seconds_that_the_error_about_dates_advises_can_be_computed_from_a_p
     r = gyrocore.process(seconds, df.gyro_z, "hdr", bias=0.002)
     expected = gyrocore.process(t[500:] - t[500], rate[500:], "hdr", bias=0.002).heading  # to the nanosecond
     np.testing.assert_allclose(r.heading, expected, rtol=0, atol=1e-6)
+
+
+def test_noise_parameters_show_as_one_line_of_their_values() -> None:
+    from gyrocore.allan import NoiseParameter, NoiseParameters
+
+    arw = NoiseParameter(1.3115544864194923e-4, "rad/s/sqrt(Hz)", 0.4508792200397109, "deg/sqrt(h)",
+                         (0.0035000000000025, 0.22400000000016007), "line of slope -1/2 read at tau = 1 s")
+    noise = NoiseParameters(arw, None, None, 0.0035000000000025, ("no stretch of slope +1/2", "no minimum"))
+    assert repr(noise) == ("NoiseParameters(N 0.0001312 rad/s/sqrt(Hz), B not found, K not found; 2 note(s): print() it "
+                           "for where each was read and the notes)")
+    assert str(noise).startswith("angle random walk N: 0.0001312 rad/s/sqrt(Hz) (0.4509 deg/sqrt(h)), tau 0.0035 ..")
