@@ -38,7 +38,7 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING, Any
 
-from ._checks import InputWarning
+from ._checks import InputWarning, public_dir
 from ._gyrocore import SampleError, __version__
 from .integration import downsample, integrate
 from .pipeline import (
@@ -76,11 +76,9 @@ def __getattr__(name: str) -> Any:
     raise AttributeError(f"module 'gyrocore' has no attribute {name!r}")
 
 
-def __dir__() -> list[str]:
-    """The public names (:data:`__all__`, submodules not loaded yet among them) and the underscored
-    ones, which tab completion hides: not the names this module imports for itself (``Any``,
-    ``importlib``) or the submodules loaded as parts of others (``pipeline_input``)."""
-    return sorted(set(__all__) | {name for name in globals() if name.startswith("_")})
+#: dir() and tab completion: the public names (submodules not loaded yet among them), not the
+#: names imported here (``Any``, ``importlib``) nor the modules loaded as parts of others.
+__dir__ = public_dir(__name__)
 
 
 __all__ = [

@@ -11,7 +11,7 @@ import sys
 import threading
 import types
 import warnings
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 
 import numpy as np
 
@@ -316,3 +316,13 @@ def did_you_mean(value: object, choices: Iterable[str]) -> str:
             return ""  # nothing close, or two as close (hdr_c: hdr_c1 or hdr_c2?)
         best = lowered[ranked[0][1]]
     return f" (did you mean {best!r}?)" if best != value else ""
+
+
+def public_dir(module: str) -> Callable[[], list[str]]:
+    """The ``__dir__`` of the module named ``module`` (PEP 562), which ``dir()`` and tab completion
+    list: its ``__all__`` and its underscored names (which completion hides), not the names it
+    imports for itself (``np``, ``Any``) nor the modules loaded as parts of it."""
+    def names() -> list[str]:
+        namespace = vars(sys.modules[module])
+        return sorted(set(namespace["__all__"]) | {name for name in namespace if name.startswith("_")})
+    return names

@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array, float_fields
-from ._checks import MAX_READING, require_finite, require_increasing, require_radians, warn
+from ._checks import MAX_READING, public_dir, require_finite, require_increasing, require_radians, warn
 from .result import fix_output_flags
 
 if TYPE_CHECKING:
@@ -442,9 +442,11 @@ from .fixes_track import from_latlon, from_positions  # noqa: E402
 from .fixes_nmea import KMH, KNOT, read_nmea  # noqa: E402
 from .fixes_files import FIXES_COLUMNS, GNSS_COLUMNS, read_fixes_csv, read_fixes_file, read_gnss_csv  # noqa: E402
 
+# The pipeline's own helpers of the fix stage (stage_settings, smoothed_stage, the warnings and
+# refusals of a stream's fixes) are imported by name where they are used, and are not listed.
 __all__ = [
     "FIXES_COLUMNS", "GNSS_COLUMNS", "KMH", "KNOT", "MAX_HEADING", "SETTINGS", "Fixes", "FixesLike", "Fusion", "FusionResult",
     "MIN_SHARE_INSIDE", "as_fixes", "check_all", "from_gnss", "from_latlon", "from_positions", "fuse", "read_fixes_csv", "read_fixes_file",
-    "read_gnss_csv", "read_nmea", "refuse_behind_waiting", "say_how_to_wait", "warn_far_ahead", "smoothed_stage",
-    "stage_settings", "warn_outside",
+    "read_gnss_csv", "read_nmea",
 ]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__

@@ -22,7 +22,7 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
-from ._checks import did_you_mean, require_choice
+from ._checks import did_you_mean, public_dir, require_choice
 from ._extras import require
 from .pipeline import BIAS_SOURCES, parameters, preset_params
 from .pipeline_params import _to_si
@@ -47,6 +47,7 @@ __all__ = [
     "ParameterSet", "TuningResult", "default_parameters", "harm_cases", "harm_excess", "check_leave_one_out", "leave_one_out",
     "mean_log_ratio", "mean_ne_psi", "perfect_gyro", "score_cases", "search_box", "simulated_cases", "tune", "unbiased_gyro", "validate",
 ]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 #: Objective cost [deg/min] per degree that a harm drive's E_psi exceeds the limit.
 HARM_WEIGHT = 10.0

@@ -4,6 +4,7 @@ them, and what ``dir``, ``repr`` and ``help`` show."""
 from __future__ import annotations
 
 import datetime
+import importlib
 import inspect
 
 import numpy as np
@@ -143,3 +144,20 @@ def test_noise_parameters_show_as_one_line_of_their_values() -> None:
     assert repr(noise) == ("NoiseParameters(N 0.0001312 rad/s/sqrt(Hz), B not found, K not found; 2 note(s): print() it "
                            "for where each was read and the notes)")
     assert str(noise).startswith("angle random walk N: 0.0001312 rad/s/sqrt(Hz) (0.4509 deg/sqrt(h)), tau 0.0035 ..")
+
+
+@pytest.mark.parametrize("name", ["fixes", "allan", "evaluate", "calibration", "io", "batch", "tune", "wholelog", "motion",
+                                  "paper", "pipeline"])
+def test_tab_completion_of_a_public_module_offers_its_public_names(name: str) -> None:
+    module = importlib.import_module(f"gyrocore.{name}")
+    public = {n for n in dir(module) if not n.startswith("_")}
+    assert public == set(module.__all__)
+    assert not public & {"np", "math", "Any", "annotations", "dataclass", "TYPE_CHECKING", "public_dir"}
+
+
+def test_tab_completion_of_the_fixes_module_leaves_out_the_pipelines_helpers() -> None:
+    from gyrocore import fixes
+
+    assert {"fuse", "Fixes", "read_gnss_csv", "from_positions"} <= set(dir(fixes))
+    assert not set(dir(fixes)) & {"say_how_to_wait", "refuse_behind_waiting", "warn_outside", "stage_settings",
+                                  "smoothed_stage", "warn_far_ahead"}
