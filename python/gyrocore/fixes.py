@@ -124,6 +124,13 @@ class FusionResult:
     def __repr__(self) -> str:
         return f"FusionResult({len(self.t)} samples, fixes {self.counts})"
 
+    def columns(self) -> dict[str, FloatArray]:
+        """The per-sample arrays by name, those computed (``t`` [s], ``heading``, ``heading_sigma``
+        [rad], ``bias`` [rad/s], ``scale`` [1]), not copies: ``pandas.DataFrame(fused.columns())``."""
+        values = {"t": self.t, "heading": self.heading, "heading_sigma": self.heading_sigma, "bias": self.bias,
+                  "scale": self.scale}
+        return {name: a for name, a in values.items() if a is not None}
+
 
 def fuse(t: ArrayLike, rate: ArrayLike, fixes: FixesLike, *, mode: Literal["causal", "smoothed"] = "causal",
          **settings: float) -> FusionResult:

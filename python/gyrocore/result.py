@@ -168,10 +168,9 @@ class HeadingResult:
         ``fusion_scale`` [1] those that were computed (as :data:`ALL_OUTPUTS` names them). The
         arrays themselves, not copies: ``pandas.DataFrame(result.columns())`` is a table, and
         ``numpy.savez(path, **result.columns())`` saves them by name."""
-        fusion = self.fusion
+        fused = {} if self.fusion is None else self.fusion.columns()
         values = {"t": self.t, "heading": self.heading, "rate": self.rate, "drift": self.drift,
-                  "heading_sigma": self.heading_sigma, "fusion_bias": None if fusion is None else fusion.bias,
-                  "fusion_scale": None if fusion is None else fusion.scale}
+                  "heading_sigma": self.heading_sigma, "fusion_bias": fused.get("bias"), "fusion_scale": fused.get("scale")}
         return {name: a for name, a in values.items() if a is not None}
 
     @property

@@ -161,3 +161,14 @@ def test_tab_completion_of_the_fixes_module_leaves_out_the_pipelines_helpers() -
     assert {"fuse", "Fixes", "read_gnss_csv", "from_positions"} <= set(dir(fixes))
     assert not set(dir(fixes)) & {"say_how_to_wait", "refuse_behind_waiting", "warn_outside", "stage_settings",
                                   "smoothed_stage", "warn_far_ahead"}
+
+
+def test_a_fusion_result_gives_its_computed_columns_by_name() -> None:
+    t, rate = _drive()
+    fixes = Fixes(np.array([15.0, 25.0]), np.array([0.1, 0.2]), np.array([0.05, 0.05]))
+    fused = gyrocore.fuse(t, rate, fixes, mode="smoothed")
+    columns = fused.columns()
+    assert list(columns) == ["t", "heading", "heading_sigma", "bias", "scale"] and columns["bias"] is fused.bias
+    streamed = gyrocore.Pipeline("hdr", bias=0.002).process(t, rate, fixes=fixes, outputs=("heading", "fusion_bias"))
+    assert streamed.fusion is not None and list(streamed.fusion.columns()) == ["t", "heading", "bias"]
+    assert list(streamed.columns()) == ["t", "heading", "fusion_bias"]
