@@ -83,7 +83,7 @@ def default_parameters(preset: str) -> tuple[str, ...]:
 # The fit
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class TuningResult:
     """What :func:`tune` found, with the scores before and after."""
 
@@ -102,6 +102,16 @@ class TuningResult:
     evaluations: int
     optimiser: str
     seed: int
+
+    def __repr__(self) -> str:
+        """One line (the scores of every drive, four times over, ran to pages): what was fitted, the
+        training drives' mean NE_psi before and after, and the harm; :meth:`as_dict` has the rest."""
+        tuned = ", ".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v!r}"
+                          for k, v in self.params.overrides.items())
+        harm = "within" if self.harm_ok else "beyond"
+        return (f"TuningResult({self.params.name!r} of {self.params.preset!r}: {tuned}; mean NE_psi "
+                f"{mean_ne_psi(self.train_start):.4f} -> {self.train_score:.4f} deg/min on {len(self.train)} drive(s), "
+                f"harm {harm} {self.harm_limit_deg:g} deg on {len(self.harm)}; {self.evaluations} evaluations)")
 
     @property
     def train_score(self) -> float:

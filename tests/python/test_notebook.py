@@ -172,3 +172,17 @@ def test_a_fusion_result_gives_its_computed_columns_by_name() -> None:
     streamed = gyrocore.Pipeline("hdr", bias=0.002).process(t, rate, fixes=fixes, outputs=("heading", "fusion_bias"))
     assert streamed.fusion is not None and list(streamed.fusion.columns()) == ["t", "heading", "bias"]
     assert list(streamed.columns()) == ["t", "heading", "fusion_bias"]
+
+
+def test_a_tuning_result_shows_as_one_line_of_what_was_fitted_and_its_scores() -> None:
+    from gyrocore.tune import CaseScore, ParameterSet, TuningResult
+
+    def scores(ne_psi: float) -> tuple[CaseScore, ...]:
+        return tuple(CaseScore(f"drive {i}", 2.0, ne_psi, 20.0, 2.5, 3.0) for i in range(18))
+
+    params = ParameterSet("hdr_tuned", "hdr", {"hdr_increment": 1.2345678e-4, "hdr_turn_threshold": 0.0637})
+    result = TuningResult(params, {"hdr_increment": 7.4e-4}, {"hdr_increment": (1e-5, 1e-2)}, scores(1.5), scores(0.75),
+                          scores(0.1), scores(0.1), 0.5, 1.6, 0.8, 2000, "differential_evolution", 0)
+    assert repr(result) == ("TuningResult('hdr_tuned' of 'hdr': hdr_increment=0.0001235, hdr_turn_threshold=0.0637; "
+                            "mean NE_psi 1.5000 -> 0.7500 deg/min on 18 drive(s), harm within 0.5 deg on 18; "
+                            "2000 evaluations)")
