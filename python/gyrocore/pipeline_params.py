@@ -63,9 +63,11 @@ def parameters() -> dict[str, str]:
 
 def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
     """Convert ``*_dps`` / ``*_deg`` spellings to the SI parameter names, and a list or array (a
-    window) to the tuple the core takes."""
+    window; a pandas Series too, by position) to the tuple the core takes."""
     si: dict[str, Any] = {}
     for key, value in overrides.items():
+        if not isinstance(value, (np.ndarray, list, tuple)) and hasattr(value, "__array__") and np.ndim(value) > 0:
+            value = np.asarray(value)  # a pandas Series: its [1] is a look-up by label (a KeyError: 1)
         if isinstance(value, np.ndarray) and value.ndim == 0:  # a number from numpy (tuple() of it failed)
             value = value.item()
         if isinstance(value, (list, np.ndarray)):

@@ -186,3 +186,36 @@ def test_a_tuning_result_shows_as_one_line_of_what_was_fitted_and_its_scores() -
     assert repr(result) == ("TuningResult('hdr_tuned' of 'hdr': hdr_increment=0.0001235, hdr_turn_threshold=0.0637; "
                             "mean NE_psi 1.5000 -> 0.7500 deg/min on 18 drive(s), harm within 0.5 deg on 18; "
                             "2000 evaluations)")
+
+
+class _Labelled:
+    """A column indexed by label, as a pandas Series cut from a table: ``[i]`` looks up the label
+    ``i``, numpy reads it by position."""
+
+    def __init__(self, values: list[float], labels: list[int]) -> None:
+        self.values, self.labels = values, labels
+
+    def __array__(self, dtype: object = None, copy: object = None) -> np.ndarray:
+        return np.asarray(self.values, dtype=dtype)  # type: ignore[call-overload]
+
+    def __len__(self) -> int:
+        return len(self.values)
+
+    def __getitem__(self, label: int) -> float:
+        return self.values[self.labels.index(label)]  # a KeyError-like ValueError for a label not there
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_a_rest_window_given_as_a_column_indexed_by_label_is_read_by_position(mode: str) -> None:
+    t, rate = _drive()
+    window = _Labelled([10.0, 19.0], [0, 900])  # as df.t.iloc[[0, 900]]: its [1] was a failed look-up
+    r = gyrocore.process(t, rate, "hdr", bias_window=window, mode=mode)
+    assert np.array_equal(r.heading, gyrocore.process(t, rate, "hdr", bias_window=(10.0, 19.0), mode=mode).heading)
+    assert gyrocore.Pipeline("hdr", bias_window=window).params["bias_window"] == (10.0, 19.0)
+
+
+def test_a_rest_window_given_as_a_pandas_series_is_read_by_position() -> None:
+    pd = pytest.importorskip("pandas")
+    t, rate = _drive()
+    window = pd.Series(t).iloc[[0, 900]]
+    assert gyrocore.process(t, rate, "hdr", bias_window=window).bias_source.startswith("rest [10.000, 19.000] s (given)")
