@@ -197,10 +197,12 @@ def require_times(t: FloatArray) -> None:
 def real_number(value: object) -> float | None:
     """``value`` as a float if it is one real number (an int, a float, a numpy scalar of either, or a
     0-d array of one), else None: not a bool, whose True would pass for 1 (``bias=True`` was a bias
-    of 1 rad/s), nor text, which ``float()`` would parse ("0.01" passed for a number), nor None."""
+    of 1 rad/s), nor text, which ``float()`` would parse ("0.01" passed for a number), nor None, nor
+    a numpy duration or date (an integer type to numpy, for which ``float()`` raised a bare
+    TypeError naming neither the argument nor its unit)."""
     if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iuf":
         return float(value)
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+    if isinstance(value, (bool, np.bool_, np.timedelta64, np.datetime64)) or not isinstance(value, numbers.Real):
         return None
     return float(value)
 

@@ -219,3 +219,15 @@ def test_a_rest_window_given_as_a_pandas_series_is_read_by_position() -> None:
     t, rate = _drive()
     window = pd.Series(t).iloc[[0, 900]]
     assert gyrocore.process(t, rate, "hdr", bias_window=window).bias_source.startswith("rest [10.000, 19.000] s (given)")
+
+
+def test_numpy_durations_given_as_numbers_are_refused_by_name_with_what_to_give() -> None:
+    t, rate = _drive()
+    # float() of them was a bare "float() argument must be a string or a real number, not 'datetime.timedelta'"
+    with pytest.raises(TypeError, match=r"^dt must be a number \[s\], got np\.timedelta64\(10,'ms'\)"):
+        gyrocore.allan.deviation(rate, np.timedelta64(10, "ms"))
+    with pytest.raises(TypeError, match=r"^invalid parameter bias_duration = np\.timedelta64\(20,'s'\): give seconds"):
+        gyrocore.process(t, rate, "hdr", bias_duration=np.timedelta64(20, "s"))
+    window = np.array([10, 19], dtype="timedelta64[ns]")  # tolist() gave nanoseconds as ints: a window in ns
+    with pytest.raises(TypeError, match=r"^invalid parameter bias_window = array\(\[10, 19\], dtype='timedelta64"):
+        gyrocore.Pipeline("hdr", bias_window=window)
