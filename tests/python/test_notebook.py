@@ -231,3 +231,12 @@ def test_numpy_durations_given_as_numbers_are_refused_by_name_with_what_to_give(
     window = np.array([10, 19], dtype="timedelta64[ns]")  # tolist() gave nanoseconds as ints: a window in ns
     with pytest.raises(TypeError, match=r"^invalid parameter bias_window = array\(\[10, 19\], dtype='timedelta64"):
         gyrocore.Pipeline("hdr", bias_window=window)
+
+
+def test_read_log_given_samples_in_memory_says_where_they_go() -> None:
+    t, rate = _drive()
+    for table in (np.column_stack([t, rate]), {"t": t, "gyro_z": rate}):
+        with pytest.raises(TypeError, match=r"^read_log reads a file or log folder by its path, got (ndarray|dict): "
+                                            r"samples in memory go to gyrocore\.process\(t, rate\), or with their "
+                                            r"reference to gyrocore\.Log\(name, t, rate"):
+            gyrocore.read_log(table)  # type: ignore[arg-type]

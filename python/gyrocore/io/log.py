@@ -6,6 +6,7 @@ look wrong, and joined; a log folder adds its reference, odometry and rest windo
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -225,6 +226,10 @@ def read_log(path: str | Path, *, use_fixes: bool = True, **options: Any) -> Log
         >>> log = gyrocore.read_log("drive.csv", time_col="time", time_unit="ms", rate_unit="deg/s")  # doctest: +SKIP
     """
     require_flag("use_fixes", use_fixes)
+    if not isinstance(path, (str, os.PathLike)):  # a table in memory: "expected str, bytes or os.PathLike object"
+        raise TypeError(f"read_log reads a file or log folder by its path, got {type(path).__name__}: samples in "
+                        "memory go to gyrocore.process(t, rate), or with their reference to gyrocore.Log(name, t, "
+                        "rate, t_ref=..., heading_ref=...)")
     src = open_source(path, **options)
     check = UnitCheck(src.options)
     ts, rates = [], []
