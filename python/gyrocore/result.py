@@ -121,7 +121,8 @@ class HeadingResult:
     """Per-sample output of the pipeline (all arrays float64, one entry per input sample).
 
     ``rate`` and ``drift`` are None when not asked for (``outputs=`` of :func:`process` and
-    :meth:`Pipeline.process`): they were never computed or stored.
+    :meth:`Pipeline.process`): they were never computed or stored. :meth:`columns` gives those
+    computed by name, for a table (``pandas.DataFrame(result.columns())``) or a file.
 
     Attributes:
         t: timestamps [s], as given.
