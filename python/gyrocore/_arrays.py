@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import dataclasses
 import datetime
 import math
 import numbers
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -84,6 +86,14 @@ def float_fields(record: object, names: Sequence[str], prefix: str = "") -> None
         value = getattr(record, name)
         if value is not None:
             object.__setattr__(record, name, as_float_array(prefix + name, value))
+
+
+def array_fields(record: Any) -> dict[str, FloatArray]:
+    """The fields of the dataclass ``record`` that hold a numpy array, by name in field order
+    (those that are None or hold anything else left out): the arrays themselves, not copies. The
+    ``columns()`` of a result, for a table: ``pandas.DataFrame(result.columns())``."""
+    values = {f.name: getattr(record, f.name) for f in dataclasses.fields(record)}
+    return {name: a for name, a in values.items() if isinstance(a, np.ndarray)}
 
 
 def refuse_masked(name: str, values: object) -> None:

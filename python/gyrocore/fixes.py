@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _gyrocore
-from ._arrays import FloatArray, as_float_array, float_fields
+from ._arrays import FloatArray, array_fields, as_float_array, float_fields
 from ._checks import MAX_READING, public_dir, require_finite, require_increasing, require_radians, warn
 from .result import fix_output_flags
 
@@ -127,9 +127,7 @@ class FusionResult:
     def columns(self) -> dict[str, FloatArray]:
         """The per-sample arrays by name, those computed (``t`` [s], ``heading``, ``heading_sigma``
         [rad], ``bias`` [rad/s], ``scale`` [1]), not copies: ``pandas.DataFrame(fused.columns())``."""
-        values = {"t": self.t, "heading": self.heading, "heading_sigma": self.heading_sigma, "bias": self.bias,
-                  "scale": self.scale}
-        return {name: a for name, a in values.items() if a is not None}
+        return array_fields(self)
 
 
 def fuse(t: ArrayLike, rate: ArrayLike, fixes: FixesLike, *, mode: Literal["causal", "smoothed"] = "causal",

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Union
 
 import numpy as np
 
-from ._arrays import FloatArray
+from ._arrays import FloatArray, array_fields
 from ._checks import require_choice
 from .rests import Rest
 
@@ -170,9 +170,7 @@ class HeadingResult:
         arrays themselves, not copies: ``pandas.DataFrame(result.columns())`` is a table, and
         ``numpy.savez(path, **result.columns())`` saves them by name."""
         fused = {} if self.fusion is None else self.fusion.columns()
-        values = {"t": self.t, "heading": self.heading, "rate": self.rate, "drift": self.drift,
-                  "heading_sigma": self.heading_sigma, "fusion_bias": fused.get("bias"), "fusion_scale": fused.get("scale")}
-        return {name: a for name, a in values.items() if a is not None}
+        return {**array_fields(self), **{f"fusion_{k}": fused[k] for k in ("bias", "scale") if k in fused}}
 
     @property
     def heading_deg(self) -> FloatArray:
