@@ -83,9 +83,9 @@ class Fixes:
         tt = as_float_array("fix t", t)
         # one number for all is checked like an array (an int becomes float, a bool is refused)
         s = as_float_array("fix sigma", np.full(len(tt), sigma) if np.ndim(sigma) == 0 else sigma)
-        return cls(tt, as_float_array("fix heading", heading), s).warn_if_vague()
+        return cls(tt, as_float_array("fix heading", heading), s)._warn_if_vague()
 
-    def warn_if_vague(self) -> Fixes:
+    def _warn_if_vague(self) -> Fixes:
         """These fixes, after a warning if their median sigma is :data:`VAGUE_SIGMA` or more: given
         sigmas of a few units are more likely degrees than fixes that vague (the ones
         :func:`from_positions` computes from short steps may be, and are not checked)."""

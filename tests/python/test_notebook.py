@@ -240,3 +240,11 @@ def test_read_log_given_samples_in_memory_says_where_they_go() -> None:
                                             r"samples in memory go to gyrocore\.process\(t, rate\), or with their "
                                             r"reference to gyrocore\.Log\(name, t, rate"):
             gyrocore.read_log(table)  # type: ignore[arg-type]
+
+
+def test_tab_completion_of_a_log_and_of_fixes_offers_no_helper_of_the_package() -> None:
+    t, rate = _drive()
+    log = gyrocore.Log("mine", t, rate)
+    fixes = Fixes.of(np.array([15.0]), np.array([0.1]), 0.05)
+    assert "naming_stationary" not in dir(log) and {"process", "reference", "duration"} <= set(dir(log))
+    assert "warn_if_vague" not in dir(fixes) and "of" in dir(fixes)

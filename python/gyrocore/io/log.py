@@ -158,14 +158,14 @@ class Log:
         given = fixes if fixes is not None else self.fixes if use_fixes else None
         if self.stationary is None or not uses_static_bias(preset) or has_bias_source(overrides):
             return process(self.t, self.rate, preset, mode=mode, fixes=given, fusion=fusion, **speed, **overrides)
-        with self.naming_stationary():
+        with self._naming_stationary():
             return process(
                 self.t, self.rate, preset, mode=mode, bias_window=self.stationary, fixes=given, fusion=fusion,
                 **speed, **overrides,
             )
 
     @contextmanager
-    def naming_stationary(self) -> Iterator[None]:
+    def _naming_stationary(self) -> Iterator[None]:
         """Re-raise a :class:`RestWindowError` about the log's own rest window (:attr:`stationary`)
         naming where that window came from, its meta.json or the log: the pipeline's error names
         the window alone, and a window in another time base was blamed on the log."""
