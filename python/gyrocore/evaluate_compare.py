@@ -357,11 +357,13 @@ def _pyplot() -> Any:
     return pyplot("plotting the evaluation")
 
 
-def plot_log(path: Path, log: Log, results: Mapping[str, HeadingResult]) -> None:
-    """Write a PNG: heading of each method and the reference (top), error against time (bottom).
+def plot_log(path: str | Path, log: Log, results: Mapping[str, HeadingResult]) -> None:
+    """Write a PNG to ``path``: heading of each method and the reference (top), error against time
+    (bottom). In a notebook, ``IPython.display.Image(path)`` shows it.
 
     Headings are aligned with the reference at the first compared time, in degrees.
     """
+    path = Path(path)  # a str was "'str' object has no attribute 'parent'", after the plot was drawn
     plt = _pyplot()
     from .cli._common import write_atomically
 

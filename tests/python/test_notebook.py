@@ -6,6 +6,7 @@ from __future__ import annotations
 import datetime
 import importlib
 import inspect
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -248,3 +249,12 @@ def test_tab_completion_of_a_log_and_of_fixes_offers_no_helper_of_the_package() 
     fixes = Fixes.of(np.array([15.0]), np.array([0.1]), 0.05)
     assert "naming_stationary" not in dir(log) and {"process", "reference", "duration"} <= set(dir(log))
     assert "warn_if_vague" not in dir(fixes) and "of" in dir(fixes)
+
+
+def test_the_plot_of_a_log_is_written_to_a_path_given_as_text(tmp_path: Path) -> None:
+    pytest.importorskip("matplotlib")
+    t, rate = _drive()
+    log = gyrocore.Log("mine", t, rate, t_ref=t[::10], heading_ref=gyrocore.integrate(t, rate - 0.002)[::10])
+    results = {p: log.process(p, bias=0.002) for p in ("raw", "hdr")}
+    gyrocore.evaluate.plot_log(str(tmp_path / "plots" / "mine.png"), log, results)
+    assert (tmp_path / "plots" / "mine.png").read_bytes()[:4] == b"\x89PNG"
