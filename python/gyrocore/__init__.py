@@ -10,6 +10,24 @@ counter-clockwise positive; the bias is what the gyro reads at rest.
     >>> len(result) == len(drive.t)
     True
 
+Where to start (each has its own ``help``; the guide with examples is docs/python.md):
+
+- :func:`process` (arrays in, a :class:`HeadingResult` out: ``heading`` [rad], ``rate`` and
+  ``drift`` [rad/s], ``bias_source``, ``rests``; ``columns()`` for a table), :class:`Pipeline`
+  (streaming), :func:`integrate`, :func:`parameters` (every parameter with its unit) and
+  :func:`preset_names`.
+- :func:`read_log` (a file or log folder as a :class:`Log`, with ``Log.process`` and
+  ``Log.reference``) and :mod:`gyrocore.datasets` (a sample log, nothing to download).
+- :func:`heading_errors` (E_psi against a reference, :class:`HeadingErrors` [deg]) and
+  :mod:`gyrocore.evaluate` (presets compared on logs, ``compare``).
+- :mod:`gyrocore.calibration` (static bias, scale), :mod:`gyrocore.allan` (Allan deviation,
+  noise parameters), :mod:`gyrocore.fixes` (absolute heading fixes, :func:`fuse`),
+  :mod:`gyrocore.rests` (the rests found), :mod:`gyrocore.wholelog` (whole-log mode).
+- :mod:`gyrocore.io` (readers, writers), :mod:`gyrocore.batch` (many files),
+  :mod:`gyrocore.tune` (fitting a preset), :mod:`gyrocore.sim`, :mod:`gyrocore.motion` and
+  :mod:`gyrocore.paper` (simulated drives, the papers' experiments), :mod:`gyrocore.deadband`,
+  :mod:`gyrocore.deadreckon`.
+
 ``import gyrocore`` loads only the pipeline (numpy and the extension); the modules below and the
 names taken from them load when first used, so that a script that only integrates an array
 starts fast and needs numpy only (the optional dependencies: :mod:`gyrocore._extras`).
@@ -20,7 +38,7 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING, Any
 
-from ._checks import InputWarning
+from ._checks import InputWarning, public_dir
 from ._gyrocore import SampleError, __version__
 from .integration import downsample, integrate
 from .pipeline import (
@@ -36,15 +54,15 @@ from .pipeline import (
 
 if TYPE_CHECKING:
     from . import (
-        allan, batch, calibration, datasets, deadband, deadreckon, evaluate, fixes, io, motion, paper, sim, tune,
-        wholelog,
+        allan, batch, calibration, datasets, deadband, deadreckon, evaluate, fixes, io, motion, paper, rests, sim,
+        tune, wholelog,
     )
     from .evaluate import HeadingErrors, heading_errors
     from .fixes import fuse
     from .io import Log, read_log
 
 _SUBMODULES = ("allan", "batch", "calibration", "datasets", "deadband", "deadreckon", "evaluate", "fixes", "io",
-               "motion", "paper", "sim", "tune", "wholelog")
+               "motion", "paper", "rests", "sim", "tune", "wholelog")
 #: Names of the package taken from a submodule, loaded with it.
 _FROM = {"HeadingErrors": "evaluate", "heading_errors": "evaluate", "Log": "io", "read_log": "io", "fuse": "fixes"}
 
@@ -58,8 +76,9 @@ def __getattr__(name: str) -> Any:
     raise AttributeError(f"module 'gyrocore' has no attribute {name!r}")
 
 
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+#: dir() and tab completion: the public names (submodules not loaded yet among them), not the
+#: names imported here (``Any``, ``importlib``) nor the modules loaded as parts of others.
+__dir__ = public_dir(__name__)
 
 
 __all__ = [
@@ -74,6 +93,7 @@ __all__ = [
     "allan",
     "batch",
     "calibration",
+    "datasets",
     "deadband",
     "deadreckon",
     "downsample",
@@ -91,6 +111,7 @@ __all__ = [
     "process",
     "read_log",
     "recommended_preset",
+    "rests",
     "sim",
     "tune",
     "wholelog",

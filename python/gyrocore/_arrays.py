@@ -2,9 +2,13 @@
 
 from __future__ import annotations
 
+import dataclasses
+import datetime
 import math
 import numbers
 import sys
+from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -52,12 +56,13 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
     except ValueError as e:  # a ragged list: numpy's message names neither the argument nor a fix
         raise ValueError(f"{name} must be one flat sequence of numbers ({e})") from None
     a = durations_in_seconds(name, array)
+    dates = "times: give seconds, e.g. ({0} - {0}.min()) / numpy.timedelta64(1, 's')".format(name)
     if a.dtype.kind == "M":
-        raise TypeError(
-            f"{name} holds {a.dtype} times: give seconds, e.g. ({name} - {name}[0]) / numpy.timedelta64(1, 's')"
-        )
+        raise TypeError(f"{name} holds {a.dtype} {dates}")
     if a.dtype == np.object_ and a.ndim == 1:  # None, pandas.NA or text among numbers: say which and where
         odd = next((i for i, v in enumerate(a) if isinstance(v, (bool, str, bytes)) or not isinstance(v, numbers.Real)), None)
+        if odd is not None and isinstance(a[odd], datetime.datetime):  # pandas' times with a time zone
+            raise TypeError(f"{name} holds dates and {dates} ({name}[{odd}] is {a[odd]!r})")
         if odd is not None:
             raise TypeError(f"{name} must hold real numbers, got dtype object: {name}[{odd}] is {a[odd]!r} (give "
                             "numbers, NaN where a value is missing)")
@@ -76,6 +81,25 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
     if name == "t":
         warn_coarse_times(a)
     return np.ascontiguousarray(a, dtype=np.float64)
+
+
+def float_fields(record: object, names: Sequence[str], prefix: str = "") -> None:
+    """Set each field ``names`` of the frozen dataclass ``record`` that is not None to
+    :func:`as_float_array` of it (named ``prefix`` + its name in an error): a record built from
+    pandas columns or lists then holds numpy arrays, and reads them by position (a Series' ``t[0]``
+    is a look-up by label)."""
+    for name in names:
+        value = getattr(record, name)
+        if value is not None:
+            object.__setattr__(record, name, as_float_array(prefix + name, value))
+
+
+def array_fields(record: Any) -> dict[str, FloatArray]:
+    """The fields of the dataclass ``record`` that hold a numpy array, by name in field order
+    (those that are None or hold anything else left out): the arrays themselves, not copies. The
+    ``columns()`` of a result, for a table: ``pandas.DataFrame(result.columns())``."""
+    values = {f.name: getattr(record, f.name) for f in dataclasses.fields(record)}
+    return {name: a for name, a in values.items() if isinstance(a, np.ndarray)}
 
 
 def refuse_masked(name: str, values: object) -> None:

@@ -11,7 +11,7 @@ import sys
 import threading
 import types
 import warnings
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from typing import Any, cast
 
 import numpy as np
@@ -198,10 +198,12 @@ def require_times(t: FloatArray) -> None:
 def real_number(value: object) -> float | None:
     """``value`` as a float if it is one real number (an int, a float, a numpy scalar of either, or a
     0-d array of one), else None: not a bool, whose True would pass for 1 (``bias=True`` was a bias
-    of 1 rad/s), nor text, which ``float()`` would parse ("0.01" passed for a number), nor None."""
+    of 1 rad/s), nor text, which ``float()`` would parse ("0.01" passed for a number), nor None, nor
+    a numpy duration or date (an integer type to numpy, for which ``float()`` raised a bare
+    TypeError naming neither the argument nor its unit)."""
     if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iuf":
         return float(value)
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+    if isinstance(value, (bool, np.bool_, np.timedelta64, np.datetime64)) or not isinstance(value, numbers.Real):
         return None
     try:
         return float(value)
@@ -330,3 +332,13 @@ def did_you_mean(value: object, choices: Iterable[str]) -> str:
             return ""  # nothing close, or two as close (hdr_c: hdr_c1 or hdr_c2?)
         best = lowered[ranked[0][1]]
     return f" (did you mean {best!r}?)" if best != value else ""
+
+
+def public_dir(module: str) -> Callable[[], list[str]]:
+    """The ``__dir__`` of the module named ``module`` (PEP 562), which ``dir()`` and tab completion
+    list: its ``__all__`` and its underscored names (which completion hides), not the names it
+    imports for itself (``np``, ``Any``) nor the modules loaded as parts of it."""
+    def names() -> list[str]:
+        namespace = vars(sys.modules[module])
+        return sorted(set(namespace["__all__"]) | {name for name in namespace if name.startswith("_")})
+    return names

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ._checks import public_dir
 from ._extras import require
 from .allan_curve import (
     GAP_FACTOR,
@@ -56,6 +57,7 @@ __all__ = [
     "NoiseParameters", "NoiseSettings", "TauSpec", "confidence_interval", "deviation", "deviation_from_timestamps",
     "equivalent_dof", "noise_parameters", "phase_deviation", "plot", "settings_from_noise",
 ]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 
 

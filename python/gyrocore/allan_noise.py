@@ -53,7 +53,7 @@ class NoiseParameter:
     method: str
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class NoiseParameters:
     """Angle random walk ``N``, bias instability ``B`` and rate random walk ``K`` (IEEE 952),
     each None where the curve does not show its slope; ``notes`` says why, and warns where a
@@ -77,6 +77,13 @@ class NoiseParameters:
                     f"tau {p.tau_range[0]:.4g} .. {p.tau_range[1]:.4g} s, {p.method}"
                 )
         return "\n".join(lines + [f"note: {n}" for n in self.notes])
+
+    def __repr__(self) -> str:
+        """One line of the three values; ``print()`` adds where each was read, and the notes."""
+        values = [f"{label} {'not found' if p is None else f'{p.value:.4g} {p.unit}'}" for label, p in
+                  (("N", self.arw), ("B", self.bias_instability), ("K", self.rrw))]
+        notes = f"; {len(self.notes)} note(s)" if self.notes else ""
+        return f"NoiseParameters({', '.join(values)}{notes}: print() it for where each was read and the notes)"
 
     def as_dict(self) -> dict[str, Any]:
         """Plain values (for JSON)."""

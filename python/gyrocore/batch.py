@@ -22,7 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from . import io, wholelog
-from ._checks import check_count, require_choice, require_flag
+from ._checks import check_count, public_dir, require_choice, require_flag
 from .pipeline import Pipeline, has_bias_source
 from .pipeline_params import _to_si
 from .batch_inputs import check_outside_inputs, complete_output, expand_inputs, output_paths
@@ -35,6 +35,7 @@ __all__ = [
     "BatchReport", "FileReport", "Progress", "check_outside_inputs", "complete_output", "expand_inputs", "output_paths",
     "process_file", "process_many", "split_options",
 ]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 
 def process_file(

@@ -115,7 +115,7 @@ def failed_line(input: str, error: str) -> str:
     return one_line(f"FAILED {error}" if input in error else f"FAILED {input}: {error}")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class BatchReport:
     """The reports of a batch, in the order of the inputs."""
 
@@ -160,13 +160,16 @@ class BatchReport:
         }
 
     def __str__(self) -> str:
-        lines = [str(r) for r in self.files]
+        return "\n".join([*(str(r) for r in self.files), self._summary()])
+
+    def __repr__(self) -> str:
+        """One line however many files (a notebook shows it): ``print`` the report for each file's."""
+        return f"BatchReport({self._summary()}; print() it for each file, .files for their reports)"
+
+    def _summary(self) -> str:
         skipped = f", {len(self.skipped)} skipped (their outputs exist already)" if self.skipped else ""
-        lines.append(
-            f"{len(self.succeeded)} of {len(self.files)} files processed{skipped}, {len(self.failed)} failed; "
-            f"{self.rows_in} rows in, {self.rows_out} out, {self.seconds:.2f} s"
-        )
-        return "\n".join(lines)
+        return (f"{len(self.succeeded)} of {len(self.files)} files processed{skipped}, {len(self.failed)} failed; "
+                f"{self.rows_in} rows in, {self.rows_out} out, {self.seconds:.2f} s")
 
 
 def split_options(options: dict[str, Any]) -> tuple[io.ReadOptions, dict[str, Any]]:

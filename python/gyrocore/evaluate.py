@@ -11,6 +11,7 @@ Units: radians inside, degrees in the fields named ``*_deg``; times in seconds.
 from __future__ import annotations
 
 # in the order of their definitions: the API page lists the names in the order they are imported
+from ._checks import public_dir
 from .evaluate_metrics import (
     GAP_FACTOR,
     HeadingErrors,
@@ -42,3 +43,4 @@ __all__ = [
     "find_gaps", "format_bias_sources", "format_table", "heading_errors", "improvement", "is_closed_path",
     "log_bias", "named_error", "plot_log", "plot_path", "return_orientation_error", "score", "unwrap",
 ]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__

@@ -79,7 +79,7 @@ def log_bias(log: Log, *, bias_duration: float | None = None) -> tuple[dict[str,
     return {"bias": 0.0}, "none (no rest window; 0)"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Score:
     """One method scored on one log."""
 
@@ -97,6 +97,16 @@ class Score:
     """The rests whose bias the method used in whole mode."""
     path: str | None = None
     """Where the log was read, as given (:attr:`gyrocore.Log.path`); None for a log built in memory."""
+
+    def __repr__(self) -> str:
+        """One line (a list of scores shows as one line each): the log, the method and its figures;
+        :meth:`as_dict` has every field."""
+        e = self.errors
+        extra = "" if self.return_error_deg is None else f", return error {self.return_error_deg:.3f} deg"
+        if self.position is not None:
+            extra += f", final position error {self.position.final_error_percent:.3g} %"
+        return (f"Score({self.log!r}, {self.method.name!r}: E_psi {e.e_psi_deg:.3f} deg, NE_psi "
+                f"{e.ne_psi_deg_per_min:.3f} deg/min, improvement {self.improvement:.3g}{extra})")
 
     @property
     def label(self) -> str:
@@ -347,11 +357,13 @@ def _pyplot() -> Any:
     return pyplot("plotting the evaluation")
 
 
-def plot_log(path: Path, log: Log, results: Mapping[str, HeadingResult]) -> None:
-    """Write a PNG: heading of each method and the reference (top), error against time (bottom).
+def plot_log(path: str | Path, log: Log, results: Mapping[str, HeadingResult]) -> None:
+    """Write a PNG to ``path``: heading of each method and the reference (top), error against time
+    (bottom). In a notebook, ``IPython.display.Image(path)`` shows it.
 
     Headings are aligned with the reference at the first compared time, in degrees.
     """
+    path = Path(path)  # a str was "'str' object has no attribute 'parent'", after the plot was drawn
     plt = _pyplot()
     from .cli._common import write_atomically
 

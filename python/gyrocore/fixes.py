@@ -24,9 +24,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _gyrocore
-from ._arrays import FloatArray, as_float_array
+from ._arrays import FloatArray, array_fields, as_float_array, float_fields
 from ._checks import (
-    MAX_READING, check_number, real_number, require_finite, require_increasing, require_radians, warn,
+    MAX_READING, check_number, public_dir, real_number, require_finite, require_increasing, require_radians, warn,
 )
 from .result import fix_output_flags
 
@@ -59,9 +59,7 @@ class Fixes:
     sigma: FloatArray
 
     def __post_init__(self) -> None:
-        # lists (or text) reached the core: "'list' object is not an instance of 'ndarray'"
-        for name in ("t", "heading", "sigma"):
-            object.__setattr__(self, name, as_float_array(f"fix {name}", getattr(self, name)))
+        float_fields(self, ("t", "heading", "sigma"), "fix ")  # lists, text and pandas columns, as Fixes.of
         if not (len(self.t) == len(self.heading) == len(self.sigma)):
             raise ValueError(f"fix t, heading and sigma must have one length, got {len(self.t)}, "
                              f"{len(self.heading)} and {len(self.sigma)}")
@@ -87,9 +85,9 @@ class Fixes:
         tt = as_float_array("fix t", t)
         # one number for all is checked like an array (an int becomes float, a bool is refused)
         s = as_float_array("fix sigma", np.full(len(tt), sigma) if np.ndim(sigma) == 0 else sigma)
-        return cls(tt, as_float_array("fix heading", heading), s).warn_if_vague()
+        return cls(tt, as_float_array("fix heading", heading), s)._warn_if_vague()
 
-    def warn_if_vague(self) -> Fixes:
+    def _warn_if_vague(self) -> Fixes:
         """These fixes, after a warning if their median sigma is :data:`VAGUE_SIGMA` or more: given
         sigmas of a few units are more likely degrees than fixes that vague (the ones
         :func:`from_positions` computes from short steps may be, and are not checked)."""
@@ -127,6 +125,11 @@ class FusionResult:
 
     def __repr__(self) -> str:
         return f"FusionResult({len(self.t)} samples, fixes {self.counts})"
+
+    def columns(self) -> dict[str, FloatArray]:
+        """The per-sample arrays by name, those computed (``t`` [s], ``heading``, ``heading_sigma``
+        [rad], ``bias`` [rad/s], ``scale`` [1]), not copies: ``pandas.DataFrame(fused.columns())``."""
+        return array_fields(self)
 
 
 def fuse(t: ArrayLike, rate: ArrayLike, fixes: FixesLike, *, mode: Literal["causal", "smoothed"] = "causal",
@@ -449,9 +452,11 @@ from .fixes_track import from_latlon, from_positions  # noqa: E402
 from .fixes_nmea import KMH, KNOT, read_nmea  # noqa: E402
 from .fixes_files import FIXES_COLUMNS, GNSS_COLUMNS, read_fixes_csv, read_fixes_file, read_gnss_csv  # noqa: E402
 
+# The pipeline's own helpers of the fix stage (stage_settings, smoothed_stage, the warnings and
+# refusals of a stream's fixes) are imported by name where they are used, and are not listed.
 __all__ = [
     "FIXES_COLUMNS", "GNSS_COLUMNS", "KMH", "KNOT", "MAX_HEADING", "SETTINGS", "Fixes", "FixesLike", "Fusion", "FusionResult",
     "MIN_SHARE_INSIDE", "as_fixes", "check_all", "from_gnss", "from_latlon", "from_positions", "fuse", "read_fixes_csv", "read_fixes_file",
-    "read_gnss_csv", "read_nmea", "refuse_behind_waiting", "say_how_to_wait", "warn_far_ahead", "smoothed_stage",
-    "stage_settings", "warn_outside",
+    "read_gnss_csv", "read_nmea",
 ]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__

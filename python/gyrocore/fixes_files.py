@@ -36,7 +36,7 @@ def read_fixes_csv(path: str | Path) -> Fixes:
     names = _fix_columns(path, layout.header)
     cols = _read_rows(path, tuple(names.values()))
     try:
-        return check_all(Fixes(*(cols[names[c]] for c in FIXES_COLUMNS))).warn_if_vague()
+        return check_all(Fixes(*(cols[names[c]] for c in FIXES_COLUMNS)))._warn_if_vague()
     except ValueError as e:
         raise ValueError(_at_line(path, layout, names, e)) from None
 

@@ -30,6 +30,7 @@ public name is here.
 
 from __future__ import annotations
 
+from ._checks import public_dir
 from .motion_lab import robot_run, rotary_table, square_path
 from .motion_model import GRID, MAX_DURATION, Motion, Segment, Truth
 from .motion_roads import (
@@ -47,3 +48,4 @@ __all__ = [
     "GRID", "MAX_DURATION", "ROADS", "ROAD_MIXES", "TABLE_II_DRIVES", "TABLE_IV_DRIVES", "DriveSpec", "Motion", "Road",
     "Segment", "Truth", "car", "hdr_figure3", "robot_run", "rotary_table", "square_path",
 ]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__

@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore, rests
 from ._arrays import FloatArray, as_float_array
-from ._checks import warn, warn_units
+from ._checks import public_dir, warn, warn_units
 from ._motion import WindowWatch
 from .pipeline_input import name_samples_sent_again, refuse_window_without_reading, warn_repairs
 from .pipeline_params import (
@@ -52,6 +52,7 @@ __all__ = [
     "process", "recommended_preset", "refuse_few_readings", "refuse_start_before", "rest_window_text", "unmeasured_bias",
     "uses_static_bias",
 ]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 #: The fix stage's columns of a block from the core: heading sigma, bias, scale, and the fix
 #: counts (applied, rejected, before the first sample, waiting for a later block).

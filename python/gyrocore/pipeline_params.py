@@ -64,9 +64,16 @@ def parameters() -> dict[str, str]:
 
 def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
     """Convert ``*_dps`` / ``*_deg`` spellings to the SI parameter names, and a list or array (a
-    window) to the tuple the core takes."""
+    window; a pandas Series too, by position) to the tuple the core takes."""
     si: dict[str, Any] = {}
     for key, value in overrides.items():
+        if not isinstance(value, (np.ndarray, list, tuple)) and hasattr(value, "__array__") and np.ndim(value) > 0:
+            value = np.asarray(value)  # a pandas Series: its [1] is a look-up by label (a KeyError: 1)
+        times = isinstance(value, np.ndarray) and value.dtype.kind in "mM"
+        if times or isinstance(value, (np.timedelta64, np.datetime64)):
+            # int types to numpy: float() of one was a bare TypeError, and tolist() of nanoseconds ints
+            raise TypeError(f"invalid parameter {key} = {value!r}: give seconds (a numpy duration d as "
+                            "d / numpy.timedelta64(1, 's'))")
         if isinstance(value, np.ndarray) and value.ndim == 0:  # a number from numpy (tuple() of it failed)
             value = value.item()
         if isinstance(value, (list, np.ndarray)):

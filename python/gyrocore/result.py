@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Union
 
 import numpy as np
 
-from ._arrays import FloatArray
+from ._arrays import FloatArray, array_fields
 from ._checks import require_choice
 from .rests import Rest
 
@@ -121,7 +121,8 @@ class HeadingResult:
     """Per-sample output of the pipeline (all arrays float64, one entry per input sample).
 
     ``rate`` and ``drift`` are None when not asked for (``outputs=`` of :func:`process` and
-    :meth:`Pipeline.process`): they were never computed or stored.
+    :meth:`Pipeline.process`): they were never computed or stored. :meth:`columns` gives those
+    computed by name, for a table (``pandas.DataFrame(result.columns())``) or a file.
 
     Attributes:
         t: timestamps [s], as given.
@@ -161,6 +162,15 @@ class HeadingResult:
         if value is None:
             raise ValueError(f"the {name!r} output was not computed: ask for it in outputs=")
         return value
+
+    def columns(self) -> dict[str, FloatArray]:
+        """The per-sample arrays by name, each one value per sample: ``t`` [s], ``heading`` [rad],
+        then of ``rate``, ``drift`` [rad/s], ``heading_sigma`` [rad], ``fusion_bias`` [rad/s] and
+        ``fusion_scale`` [1] those that were computed (as :data:`ALL_OUTPUTS` names them). The
+        arrays themselves, not copies: ``pandas.DataFrame(result.columns())`` is a table, and
+        ``numpy.savez(path, **result.columns())`` saves them by name."""
+        fused = {} if self.fusion is None else self.fusion.columns()
+        return {**array_fields(self), **{f"fusion_{k}": fused[k] for k in ("bias", "scale") if k in fused}}
 
     @property
     def heading_deg(self) -> FloatArray:

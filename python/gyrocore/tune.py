@@ -22,7 +22,7 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
-from ._checks import did_you_mean, require_choice
+from ._checks import did_you_mean, public_dir, require_choice
 from ._extras import require
 from .pipeline import BIAS_SOURCES, parameters, preset_params
 from .pipeline_params import _to_si
@@ -47,6 +47,7 @@ __all__ = [
     "ParameterSet", "TuningResult", "default_parameters", "harm_cases", "harm_excess", "check_leave_one_out", "leave_one_out",
     "mean_log_ratio", "mean_ne_psi", "perfect_gyro", "score_cases", "search_box", "simulated_cases", "tune", "unbiased_gyro", "validate",
 ]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 #: Objective cost [deg/min] per degree that a harm drive's E_psi exceeds the limit.
 HARM_WEIGHT = 10.0
@@ -82,7 +83,7 @@ def default_parameters(preset: str) -> tuple[str, ...]:
 # The fit
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class TuningResult:
     """What :func:`tune` found, with the scores before and after."""
 
@@ -101,6 +102,16 @@ class TuningResult:
     evaluations: int
     optimiser: str
     seed: int
+
+    def __repr__(self) -> str:
+        """One line (the scores of every drive, four times over, ran to pages): what was fitted, the
+        training drives' mean NE_psi before and after, and the harm; :meth:`as_dict` has the rest."""
+        tuned = ", ".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v!r}"
+                          for k, v in self.params.overrides.items())
+        harm = "within" if self.harm_ok else "beyond"
+        return (f"TuningResult({self.params.name!r} of {self.params.preset!r}: {tuned}; mean NE_psi "
+                f"{mean_ne_psi(self.train_start):.4f} -> {self.train_score:.4f} deg/min on {len(self.train)} drive(s), "
+                f"harm {harm} {self.harm_limit_deg:g} deg on {len(self.harm)}; {self.evaluations} evaluations)")
 
     @property
     def train_score(self) -> float:

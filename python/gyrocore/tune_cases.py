@@ -65,13 +65,13 @@ class Case:
         if mode == "causal":
             bias, _ = log_bias(log, bias_duration=bias_duration)
             if log.stationary is not None:  # refused here, before the fit, as whole mode and evaluate refuse it
-                with log.naming_stationary():
+                with log._naming_stationary():
                     measure_rest([(log.t, log.rate)], log.stationary, "given: bias_window")
             return cls(log.name, log.t, log.rate, reference, bias)
         wholelog.check_mode(mode)
         speed = log.speed_on_gyro_times() if use_speed else None
         given = log_bias(log, bias_duration=bias_duration)[0] if log.stationary is not None or bias_duration is not None else {}
-        with log.naming_stationary():
+        with log._naming_stationary():
             plan = wholelog.plan_log("static_bias", given, log.t, log.rate, speed, wholelog.Options())
         return cls(log.name, log.t, log.rate, reference, {"bias": 0.0}, plan=plan)
 

@@ -41,7 +41,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
-from ._checks import MAX_SECONDS, first_infinite, require_times, warn
+from ._checks import MAX_SECONDS, first_infinite, public_dir, require_times, warn
 from ._gyrocore import SampleError
 from ._rests import MIN_REST, SPEED_THRESHOLD, accept, find_rests, measure_rest
 from ._smoother import SmoothedBias, smooth
@@ -80,6 +80,7 @@ __all__ = [
     "check_mode", "plan_arrays", "plan_log", "plan_stream", "process_log", "refuse_tracking", "refuse_whole_options", "rest_lines", "untracked",
     "without_bias",
 ]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 #: ``chunks()``: the ``(t, rate)`` pieces of a log from its start, anew at each call.
 Chunks = Callable[[], Iterable[tuple[FloatArray, FloatArray]]]

@@ -28,7 +28,7 @@ def test_timedelta_timestamps_are_seconds_in_their_unit(unit: str, per_second: f
 
 
 def test_datetime_timestamps_are_refused_with_the_conversion() -> None:
-    with pytest.raises(TypeError, match=r"^t holds datetime64\[ms\] times: give seconds, e\.g\. \(t - t\[0\]\) / "):
+    with pytest.raises(TypeError, match=r"^t holds datetime64\[ms\] times: give seconds, e\.g\. \(t - t\.min\(\)\) / "):
         gyrocore.process(COUNTS.astype("datetime64[ms]"), RATE, "raw")
 
 

@@ -19,6 +19,7 @@ The modules: :mod:`.result` (the record and its JSON), :mod:`.rest` (rests and t
 table); every public name is here.
 """
 
+from .._checks import public_dir
 from .least_squares import MAX_CONDITION, MAX_SCALE_STDERR, heading_reference, rate_reference
 from .rest import detect_rest, rest_windows, static_bias
 from .result import FORMAT, VERSION, BiasTable, Calibration
@@ -30,3 +31,4 @@ __all__ = [
     "bias_temperature_table", "detect_rest", "heading_reference", "rate_reference", "rest_windows",
     "rotary_table", "static_bias",
 ]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__

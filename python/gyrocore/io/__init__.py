@@ -54,6 +54,7 @@ Modules (import the names from ``gyrocore.io``, which has them all):
 
 from __future__ import annotations
 
+from .._checks import public_dir
 from ._axes import GRAVITY, UP_HELP
 from ._csvfile import CSV_BLOCK_BYTES, read_csv_columns
 from ._logfolder import read_reference_file
@@ -106,3 +107,4 @@ __all__ = [
     "read_log",
     "read_reference_file",
 ]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__

@@ -6,6 +6,7 @@ look wrong, and joined; a log folder adds its reference, odometry and rest windo
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -14,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._arrays import FloatArray
+from .._arrays import FloatArray, float_fields
 from .._checks import require_flag, warn
 from ..pipeline import (
     HeadingResult,
@@ -33,6 +34,10 @@ from .units import UnitCheck
 
 if TYPE_CHECKING:
     from ..fixes import Fixes, FixesLike
+
+
+#: The per-sample series of a :class:`Log`, by field name.
+_SERIES = ("t", "rate", "t_ref", "heading_ref", "x_ref", "y_ref", "t_odometry", "speed")
 
 
 @dataclass(frozen=True, repr=False)
@@ -59,6 +64,11 @@ class Log:
     path: str | None = None
     """Where :func:`read_log` read the log, as given (two log folders may share meta.json's name),
     or None for a log built in memory."""
+
+    def __post_init__(self) -> None:
+        """Each series as a float64 numpy array (no copy of one already): a pandas Series indexes by
+        label, so ``t[0]`` and ``t[-1]`` of one cut from a table (``df.loc[df.t > 10, "t"]``) failed."""
+        float_fields(self, _SERIES)
 
     def __repr__(self) -> str:
         """A summary (the arrays run to millions of samples)."""
@@ -148,14 +158,14 @@ class Log:
         given = fixes if fixes is not None else self.fixes if use_fixes else None
         if self.stationary is None or not uses_static_bias(preset) or has_bias_source(overrides):
             return process(self.t, self.rate, preset, mode=mode, fixes=given, fusion=fusion, **speed, **overrides)
-        with self.naming_stationary():
+        with self._naming_stationary():
             return process(
                 self.t, self.rate, preset, mode=mode, bias_window=self.stationary, fixes=given, fusion=fusion,
                 **speed, **overrides,
             )
 
     @contextmanager
-    def naming_stationary(self) -> Iterator[None]:
+    def _naming_stationary(self) -> Iterator[None]:
         """Re-raise a :class:`RestWindowError` about the log's own rest window (:attr:`stationary`)
         naming where that window came from, its meta.json or the log: the pipeline's error names
         the window alone, and a window in another time base was blamed on the log."""
@@ -216,6 +226,10 @@ def read_log(path: str | Path, *, use_fixes: bool = True, **options: Any) -> Log
         >>> log = gyrocore.read_log("drive.csv", time_col="time", time_unit="ms", rate_unit="deg/s")  # doctest: +SKIP
     """
     require_flag("use_fixes", use_fixes)
+    if not isinstance(path, (str, os.PathLike)):  # a table in memory: "expected str, bytes or os.PathLike object"
+        raise TypeError(f"read_log reads a file or log folder by its path, got {type(path).__name__}: samples in "
+                        "memory go to gyrocore.process(t, rate), or with their reference to gyrocore.Log(name, t, "
+                        "rate, t_ref=..., heading_ref=...)")
     src = open_source(path, **options)
     check = UnitCheck(src.options)
     ts, rates = [], []

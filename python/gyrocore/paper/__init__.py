@@ -31,7 +31,7 @@ import inspect
 from pathlib import Path
 from typing import Callable
 
-from .._checks import require_choice
+from .._checks import public_dir, require_choice
 from ..io.atomic import make_folder
 from ._report import Row, _Report, format_table
 from .fog import FogRotaryTable, FogSquarePath, fog_rotary_table, fog_square_path
@@ -70,6 +70,7 @@ __all__ = [
     "hong_table_1_sensitivity",
     "reproduce",
 ]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 
 #: Every reproduction: name -> (function, figure file name).
