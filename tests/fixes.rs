@@ -475,3 +475,48 @@ fn an_initial_bias_sigma_beyond_the_bias_range_is_refused() {
         .unwrap();
     assert!(cols.iter().flatten().all(|x| x.is_finite()));
 }
+
+#[test]
+fn fixes_far_tighter_than_the_gyro_leave_finite_sigmas() {
+    // No noise on the gyro, 1e-12 rad fixes, no gate: the heading variance's terms cancel below
+    // what float64 resolves, and every sigma after the second fix was NaN. Fixes that agree with
+    // the gyro pin the heading to what the numbers resolve (once two fixes give the bias); fixes
+    // that contradict each other by 1 rad give wild estimates, but finite sigmas.
+    let t: Vec<f64> = (0..2000).map(|i| i as f64 * 0.01).collect();
+    let rate = vec![0.1; t.len()];
+    let settings = FusionConfig {
+        arw: 0.0,
+        bias_walk: 0.0,
+        scale_walk: 0.0,
+        gate: f64::INFINITY,
+        ..FusionConfig::default()
+    };
+    for jump in [0.0, 0.5] {
+        let fixes: Vec<Fix> = (1..19)
+            .map(|s| Fix {
+                t: s as f64,
+                heading: 0.1 * s as f64 + if s % 2 == 0 { jump } else { -jump },
+                sigma: 1e-12,
+            })
+            .collect();
+        let (r, used) = run(&mut Fusion::new(settings).unwrap(), &t, &rate, &fixes).unwrap();
+        assert_eq!(used, fixes.len());
+        let bad: Vec<(usize, f64)> = r
+            .sigma
+            .iter()
+            .copied()
+            .enumerate()
+            .filter(|(_, s)| !(s.is_finite() && *s >= 0.0))
+            .collect();
+        assert!(
+            bad.is_empty(),
+            "jump {jump}: {:?}",
+            &bad[..bad.len().min(5)]
+        );
+        assert!(r.heading.iter().all(|h| h.is_finite()));
+        if jump == 0.0 {
+            let most = r.sigma[200..].iter().fold(0.0f64, |m, s| m.max(*s));
+            assert!(most < 1e-6, "{most}");
+        }
+    }
+}

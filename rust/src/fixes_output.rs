@@ -138,7 +138,7 @@ impl<'a> FusionOutputs<'a> {
     ) {
         self.heading[k] = segment.heading(t);
         if let Some(s) = &mut self.heading_sigma {
-            s[k] = libm::sqrt(segment.heading_variance(t, config));
+            s[k] = segment.heading_sigma(t, config);
         }
         if !CALIBRATION {
             return;
