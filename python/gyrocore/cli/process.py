@@ -181,6 +181,9 @@ def run(args: argparse.Namespace) -> int:
     if args.out == "-":  # the Unix spelling of standard output became a folder named "-"
         raise ValueError("--out -: the headings go to a file (the report goes to standard output): give a .csv "
                          "or .parquet file, or a folder for several inputs")
+    if not args.out.strip():  # "" wrote into the current folder, " " made a folder of that name
+        raise ValueError(f"--out {args.out!r}: no name (an empty shell variable?); give a .csv or .parquet file, or a "
+                         "folder for several inputs")
     tuned = _tuned(args)
     inputs = expand_inputs(args.inputs)
     out = Path(args.out)
