@@ -164,32 +164,15 @@ impl Segment {
         quadratic + c * (config.arw * config.arw + qb * THIRD * c * c) + qs * j
     }
 
-    /// The heading's standard deviation at `t`: the root of [`Segment::heading_variance`], or
-    /// where that came out below 0, of what its rounding can take away (the true variance lies
-    /// below what float64 resolves at the size of its terms: a heading pinned by fixes far
-    /// tighter than the gyro's noise, whose terms cancel). Not a NaN, nor a 0 that would claim
-    /// certainty. The covariance the filter carries on with keeps the variance as computed.
+    /// The heading's standard deviation at `t`: the root of [`Segment::heading_variance`]'s
+    /// magnitude. A variance below 0 is one whose terms cancelled below what float64 resolves at
+    /// their size (a heading pinned by fixes far tighter than the gyro's noise): the size of
+    /// that rounding, not a NaN, nor a 0 that would claim certainty; and no branch in the
+    /// per-sample loop (docs/fixes.md, "Speed"). The covariance the filter carries on with keeps
+    /// the variance as computed.
     #[inline(always)]
     pub(crate) fn heading_sigma(&self, t: f64, config: &FusionConfig) -> f64 {
-        let variance = self.heading_variance(t, config);
-        libm::sqrt(if variance >= 0.0 {
-            variance
-        } else {
-            self.rounding_floor(t - self.t)
-        })
-    }
-
-    /// What rounding can take from the heading variance's quadratic form at `c` seconds after
-    /// the knot: the size of its terms, times the epsilon of each of its additions.
-    #[cold]
-    fn rounding_floor(&self, c: f64) -> f64 {
-        let p = &self.p;
-        let (a, c) = (self.a.abs(), c.abs());
-        let size = p[0][0].abs()
-            + a * (2.0 * p[0][1].abs() + a * p[1][1].abs() + 2.0 * c * p[1][2].abs())
-            + c * (2.0 * p[0][2].abs() + c * p[2][2].abs());
-        // a sum of nine terms: each addition rounds by at most one epsilon of the running size
-        16.0 * f64::EPSILON * size
+        libm::sqrt(self.heading_variance(t, config).abs())
     }
 
     /// The covariance at `t`, the time of the last point.
