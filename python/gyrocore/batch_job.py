@@ -333,9 +333,12 @@ class _FileJob:
         written = write_result(self.out, result, self.heading, self.columns)
         if progress is not None:
             progress(len(result), len(result), "rows")
-        assert result.fusion is not None  # the folder has its fixes
-        return FileReport(str(self.path), str(self.out), self.rows_in, written, time.perf_counter() - start,
-                          bias_source=result.bias_source, rests=result.rests, fixes=dict(result.fusion.counts))
+        assert result.fusion is not None and result.report is not None  # the folder has its fixes
+        policy = result.report  # what it repaired, the pipeline said already (the log was one block)
+        return FileReport(str(self.path), str(self.out), self.rows_in, written, time.perf_counter() - start, None,
+                          tuple(dict.fromkeys(self.notes)), result.bias_source, result.rests, int(policy["held"]),
+                          int(policy["skipped"]), int(policy["gaps"]), policy["longest_gap"],
+                          fixes=dict(result.fusion.counts))
 
     def _plan(self, source: io.GyroSource, overrides: dict[str, Any], from_meta: bool) -> wholelog.BiasPlan:
         """Where the bias comes from: in whole mode a first pass over the file (see

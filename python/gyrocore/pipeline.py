@@ -246,14 +246,15 @@ class Pipeline:
         if self._first_time is None and len(ta):
             self._first_time = float(ta[0])
         self._rests.extend(found)
+        report = dict(inner.report())
         if fused is None:
-            return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found))
+            return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found), report=report)
         from .fixes import FusionResult
 
         sigma, bias, scale, (applied, rejected, before_start, waiting) = fused
         counts = {"applied": applied, "rejected": rejected, "before_start": before_start, "waiting": waiting}
         return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found), heading_sigma=sigma,
-                             fusion=FusionResult(ta, heading, sigma, bias, scale, counts))
+                             fusion=FusionResult(ta, heading, sigma, bias, scale, counts), report=report)
 
     def _check_units(self, t: FloatArray, rate: FloatArray, temperature: FloatArray | None) -> None:
         """Warns of rates or timestamps that look like another unit, once the stream has an

@@ -139,6 +139,9 @@ class HeadingResult:
             ``outputs=`` left it out), else None.
         fusion: with heading fixes, the fix stage's :class:`gyrocore.fixes.FusionResult` (bias and
             scale error of the corrected rate, fix counts), else None.
+        report: what the input policy did, as :attr:`gyrocore.Pipeline.report` gives it (``held``,
+            ``skipped``, ``gaps``, ``longest_gap`` [s]; a stream's totals since its first block);
+            None where no pipeline made the result.
     """
 
     t: FloatArray
@@ -150,6 +153,7 @@ class HeadingResult:
     tracked_rests: tuple[Rest, ...] = ()
     heading_sigma: FloatArray | None = None
     fusion: FusionResult | None = None
+    report: Mapping[str, float] | None = None
 
     def output(self, name: str) -> FloatArray:
         """The output ``name`` (one of :data:`OUTPUTS`, or ``heading_sigma``); a ``ValueError`` if it

@@ -332,6 +332,16 @@ def test_a_bad_sample_of_a_fused_log_in_a_batch_is_named_as_a_streamed_one(folde
     assert reports[0].error == reports[1].error and reports[0].rows_in == reports[1].rows_in == 499
     assert f"rate[499] is NaN: samples must be finite (drop or fill them first) ({folder}/gyro.csv, line 501); " \
            "or keep the file as it is: nonfinite='hold'" in str(reports[0].error)
+    # held: the report counts it and carries the warnings, as a streamed file's report does
+    with pytest.warns(gyrocore.InputWarning, match=r"1 reading\(s\) not finite"):
+        fused, streamed = [gyrocore.batch.process_many([folder], out_dir=tmp_path / f"held_{use}", preset="hdr",
+                                                       use_fixes=use, nonfinite="hold").files[0] for use in (True, False)]
+    assert (fused.held, fused.skipped, fused.gaps) == (streamed.held, streamed.skipped, streamed.gaps) == (1, 0, 0)
+    assert any("1 reading(s) not finite" in w and "replaced by the last usable" in w for w in fused.warnings)
+    assert fused.fixes is not None and fused.fixes["applied"] > 0
+    with pytest.warns(gyrocore.InputWarning, match=r"1 reading\(s\) not finite"):
+        result = read_log(folder).process("hdr", nonfinite="hold")
+    assert result.report == {"held": 1, "skipped": 0, "gaps": 0, "longest_gap": 0.0}
 
 
 def test_a_bad_fixes_csv_stops_only_what_uses_it(tmp_path: Path) -> None:
