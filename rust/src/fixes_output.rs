@@ -25,17 +25,20 @@ impl Estimate {
     pub(crate) fn of(x: &[f64; 3], p: &Mat3) -> Self {
         Estimate {
             heading: x[0],
-            heading_sigma: heading_sigma_of(p),
+            heading_sigma: sigma_of(p[0][0]),
             bias: bias_of(x),
             scale: scale_of(x),
         }
     }
 }
 
-/// The heading's standard deviation of covariance `p`.
+/// The standard deviation of a heading variance: the root of its magnitude, as a variance that
+/// rounds below 0 (its terms cancelling below what float64 resolves, where fixes are far tighter
+/// than the gyro's noise) is within that rounding of 0, not a NaN sigma, nor a 0 that would claim
+/// certainty; and no branch in a per-sample loop.
 #[inline(always)]
-fn heading_sigma_of(p: &Mat3) -> f64 {
-    libm::sqrt(p[0][0])
+pub(crate) fn sigma_of(variance: f64) -> f64 {
+    libm::sqrt(variance.abs())
 }
 
 /// Hong eq 1's bias and scale error of state `x`: they change only at a fix (the propagation

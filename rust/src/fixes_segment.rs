@@ -21,7 +21,7 @@
 //! formed only where it is used: at a fix, and for a sample whose heading sigma is asked for.
 
 use crate::fixes::FusionConfig;
-use crate::fixes_output::calibration_of;
+use crate::fixes_output::{calibration_of, sigma_of};
 use crate::fixes_smooth::Mat3;
 
 /// The last gyro sample and the point the state is propagated to (a sample or a fix time).
@@ -98,11 +98,12 @@ impl Segment {
     }
 
     /// Checks a segment read back (`serde` feature): its time within +-2^40 s, every value
-    /// within [`MAX_STORED`](crate::error::MAX_STORED) and the heading's variance >= 0 (a stored
-    /// rate integral of 1e308 gave infinite headings, a variance of -1e308 NaN ones).
+    /// within [`MAX_STORED`](crate::error::MAX_STORED) (a stored rate integral of 1e308 gave
+    /// infinite headings). The heading's variance may be a rounding below 0: valid input leaves
+    /// one where fixes are far tighter than the gyro's noise, and its sigma is its magnitude's root.
     #[cfg(feature = "serde")]
     pub(crate) fn check(&self) -> Result<(), crate::Error> {
-        use crate::error::{check_range, check_stored, MAX_STORED};
+        use crate::error::{check_range, check_stored};
         let limit = crate::MAX_TIME;
         check_range("segment time", self.t, -limit, limit, "within +-2^40 s")?;
         for v in self.x.iter().chain(self.p.iter().flatten()) {
@@ -111,9 +112,7 @@ impl Segment {
         for v in [self.a, self.i1_2, self.i2_3] {
             check_stored("rate integral", v)?;
         }
-        // >= 0 after every fix, rounding included: P00 - (P00 / S) P00 with P00 / S <= 1
-        let valid = ">= 0 and within 2^256";
-        check_range("heading variance", self.p[0][0], 0.0, MAX_STORED, valid)
+        Ok(())
     }
 
     /// Extends the segment by an interval `dt` \[s\] over which the rate's mean is `m` \[rad/s\].
@@ -164,15 +163,12 @@ impl Segment {
         quadratic + c * (config.arw * config.arw + qb * THIRD * c * c) + qs * j
     }
 
-    /// The heading's standard deviation at `t`: the root of [`Segment::heading_variance`]'s
-    /// magnitude. A variance below 0 is one whose terms cancelled below what float64 resolves at
-    /// their size (a heading pinned by fixes far tighter than the gyro's noise): the size of
-    /// that rounding, not a NaN, nor a 0 that would claim certainty; and no branch in the
-    /// per-sample loop (docs/fixes.md, "Speed"). The covariance the filter carries on with keeps
-    /// the variance as computed.
+    /// The heading's standard deviation at `t` ([`sigma_of`] its variance; docs/fixes.md,
+    /// "Speed", on why no branch). The covariance the filter carries on with keeps the variance
+    /// as computed.
     #[inline(always)]
     pub(crate) fn heading_sigma(&self, t: f64, config: &FusionConfig) -> f64 {
-        libm::sqrt(self.heading_variance(t, config).abs())
+        sigma_of(self.heading_variance(t, config))
     }
 
     /// The covariance at `t`, the time of the last point.

@@ -1,0 +1,99 @@
+//! The heading-fix filter where fixes are far tighter than the gyro's noise: its variances
+//! round below 0, and its sigmas and read-back states must stay usable.
+
+use gyrocore::fixes_smooth::Knot;
+use gyrocore::{smooth, Fix, Fusion, FusionConfig, FusionOutputs};
+
+#[test]
+fn fixes_far_tighter_than_the_gyro_leave_finite_sigmas() {
+    // No noise on the gyro, 1e-12 rad fixes, no gate: the heading variance's terms cancel below
+    // what float64 resolves, and every sigma after the second fix was NaN, causal and smoothed.
+    // Fixes that agree with the gyro pin the heading to what the numbers resolve (once two fixes
+    // give the bias); fixes that contradict each other by 1 rad give wild estimates, but finite
+    // sigmas. A state left so (a variance rounded below 0) is read back.
+    let t: Vec<f64> = (0..2000).map(|i| i as f64 * 0.01).collect();
+    let rate = vec![0.1; t.len()];
+    let settings = FusionConfig {
+        arw: 0.0,
+        bias_walk: 0.0,
+        scale_walk: 0.0,
+        gate: f64::INFINITY,
+        ..FusionConfig::default()
+    };
+    // a third set: 40 fixes at uneven times, 1e-10 rad, scattered by up to 0.3 rad
+    let scattered: Vec<Fix> = (0..40)
+        .map(|k| {
+            let t = 0.05 + 0.49 * k as f64 + 0.1 * (k as f64 * 2.3).sin();
+            Fix {
+                t,
+                heading: 0.1 * t + 0.3 * (k as f64 * 12.9898).sin(),
+                sigma: 1e-10,
+            }
+        })
+        .collect();
+    for jump in [0.0, 0.5, f64::NAN] {
+        let fixes: Vec<Fix> = if jump.is_nan() {
+            scattered.clone()
+        } else {
+            (1..19)
+                .map(|s| Fix {
+                    t: s as f64,
+                    heading: 0.1 * s as f64 + if s % 2 == 0 { jump } else { -jump },
+                    sigma: 1e-12,
+                })
+                .collect()
+        };
+        let mut fusion = Fusion::new(settings).unwrap();
+        let n = t.len();
+        let (mut h, mut s, mut b, mut sc) =
+            (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let mut knots: Vec<Knot> = Vec::new();
+        let out = FusionOutputs::all(&mut h, &mut s, &mut b, &mut sc);
+        assert_eq!(
+            fusion.process_block_recording(&t, &rate, &fixes, out, |k| knots.push(k)),
+            Ok(fixes.len())
+        );
+        smooth(&mut knots);
+        let (mut sh, mut ss, mut sb, mut ssc) =
+            (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let out = FusionOutputs::all(&mut sh, &mut ss, &mut sb, &mut ssc);
+        let smoothed = Fusion::new(settings)
+            .unwrap()
+            .process_block_smoothed(&t, &rate, &fixes, &knots, out);
+        assert_eq!(smoothed, Ok(fixes.len()));
+        for (what, sigma) in [("causal", &s), ("smoothed", &ss)] {
+            let bad: Vec<(usize, f64)> = sigma
+                .iter()
+                .copied()
+                .enumerate()
+                .filter(|(_, s)| !(s.is_finite() && *s >= 0.0))
+                .collect();
+            assert!(
+                bad.is_empty(),
+                "jump {jump}, {what}: {:?}",
+                &bad[..bad.len().min(5)]
+            );
+            if jump == 0.0 {
+                let most = sigma[200..].iter().fold(0.0f64, |m, s| m.max(*s));
+                assert!(most < 1e-6, "{what}: {most}");
+            }
+        }
+        assert!(h.iter().chain(&sh).all(|h| h.is_finite()));
+        #[cfg(feature = "serde")]
+        for cut in (0..n).step_by(37) {
+            let mut part = Fusion::new(settings).unwrap();
+            let (mut ph, mut ps, mut pb, mut psc) = (
+                vec![0.0; cut],
+                vec![0.0; cut],
+                vec![0.0; cut],
+                vec![0.0; cut],
+            );
+            let out = FusionOutputs::all(&mut ph, &mut ps, &mut pb, &mut psc);
+            part.process_block(&t[..cut], &rate[..cut], &fixes, out)
+                .unwrap();
+            let json = serde_json::to_string(&part).unwrap();
+            let back: Result<Fusion, _> = serde_json::from_str(&json);
+            assert!(back.is_ok(), "jump {jump}, cut {cut}: {back:?}");
+        }
+    }
+}
