@@ -19,7 +19,7 @@ import os
 import time
 from collections.abc import Iterable, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from . import io, wholelog
 from ._checks import check_count, public_dir, require_choice, require_flag
@@ -30,6 +30,9 @@ from .batch_job import BatchReport, FileReport, Progress, _FileJob, split_option
 from .batch_run import _run_on_dask, _run_on_threads
 from .io._paths import unfollowable
 from .io.atomic import make_folder
+
+if TYPE_CHECKING:
+    from .fixes import FixesLike
 
 __all__ = [
     "BatchReport", "FileReport", "Progress", "check_outside_inputs", "complete_output", "expand_inputs", "output_paths",
@@ -50,6 +53,7 @@ def process_file(
     mode: str = "whole",
     use_speed: bool = True,
     use_fixes: bool = True,
+    fixes: FixesLike | None = None,
     **options: Any,
 ) -> FileReport:
     """Stream one log through the pipeline into a heading table, with flat memory.
@@ -77,6 +81,9 @@ def process_file(
             False. Such a log is read into memory whole (the smoother of whole mode needs every
             sample) and processed by :meth:`gyrocore.Log.process`; the report holds the fixes'
             counts.
+        fixes: heading fixes for this input instead of a folder's own (:data:`gyrocore.fixes.FixesLike`:
+            a :class:`gyrocore.fixes.Fixes`, a fixes or gnss file); the input is then read whole
+            and fused as a folder with ``fixes.csv`` is.
         **options: reader options (``time_col``, ``rate_col``, ``time_unit``, ``rate_unit``,
             ``topic``, ``delimiter``) and pipeline parameters (``bias_window=(t0, t1)`` [s] in
             the log's time base, or a :class:`gyrocore.window.Window` whose bounds may count from
@@ -93,7 +100,8 @@ def process_file(
     """
     _check_run(mode, chunk_rows, ("use_speed", use_speed), ("use_fixes", use_fixes))
     return _FileJob(
-        Path(path), Path(out), preset, heading, chunk_rows, options, columns, mode, use_speed, use_fixes=use_fixes
+        Path(path), Path(out), preset, heading, chunk_rows, options, columns, mode, use_speed, use_fixes=use_fixes,
+        fixes=fixes,
     ).run(progress)
 
 

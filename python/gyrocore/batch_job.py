@@ -10,7 +10,7 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import AbstractContextManager, contextmanager
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from . import _signals, io, rests, wholelog
 from ._arrays import FloatArray
@@ -24,6 +24,9 @@ from .io._paths import error_text, one_line
 from .pipeline import HeadingResult, has_bias_source, uses_static_bias
 from .pipeline_params import _to_si, unmeasured_bias
 from .window import RestWindowError, Window, time_range
+
+if TYPE_CHECKING:
+    from .fixes import FixesLike
 
 #: ``progress(done, total, unit)``: called after each chunk with the progress through the input.
 Progress = Callable[[int, "int | None", str], None]
@@ -56,8 +59,9 @@ class FileReport:
             :attr:`gyrocore.Pipeline.report`, and said in the warnings too.
         output_existed: the file was skipped, not processed: its output existed already
             (``skip_existing``).
-        fixes: for a log fused with heading fixes (a log folder's ``fixes.csv``), the fix stage's
-            counts (:attr:`gyrocore.fixes.FusionResult.counts`); None without fixes.
+        fixes: for a log fused with heading fixes (a log folder's ``fixes.csv``, or those given),
+            the fix stage's counts (:attr:`gyrocore.fixes.FusionResult.counts`); None without.
+        fixes_file: where those fixes came from (a file, or ``given`` for fixes in memory).
     """
 
     input: str
@@ -75,6 +79,7 @@ class FileReport:
     longest_gap: float = 0.0
     output_existed: bool = False
     fixes: Mapping[str, int] | None = None
+    fixes_file: str | None = None
 
     @property
     def ok(self) -> bool:
@@ -105,7 +110,7 @@ class FileReport:
         lines.append(f"       bias: {self.bias_source}")
         lines += wholelog.rest_lines(self.bias_source or "", self.rests, " " * 9)
         if self.fixes is not None:
-            lines.append(f"       fixes: {', '.join(f'{k} {v}' for k, v in self.fixes.items())}")
+            lines.append(f"       fixes from {self.fixes_file}: {', '.join(f'{k} {v}' for k, v in self.fixes.items())}")
         return "\n".join(lines)
 
 
@@ -194,9 +199,11 @@ class _FileJob:
         use_speed: bool = True,
         skip_existing: bool = False,
         use_fixes: bool = True,
+        fixes: FixesLike | None = None,
     ):
         self.path, self.out, self.preset, self.heading, self.chunk_rows = path, out, preset, heading, chunk_rows
         self.mode, self.use_speed, self.skip_existing, self.use_fixes = mode, use_speed, skip_existing, use_fixes
+        self.fixes = fixes
         self.read_options, self.overrides = split_options(options)
         #: None: every column of :data:`io.OUTPUT_COLUMNS`, and the heading's sigma for a log with fixes
         self.columns = None if columns is None else io.check_columns(columns)
@@ -232,7 +239,8 @@ class _FileJob:
                     f"{source.data_path}: the rest window {_window_text(window)} ends before the first sample; "
                     + time_range(t0)
                 )
-        if self.use_fixes and source.kind == "log folder" and (source.path / FIXES_CSV).is_file():
+        own = self.use_fixes and source.kind == "log folder" and (source.path / FIXES_CSV).is_file()
+        if own or self.fixes is not None:
             return self._fused(source, overrides, start, progress)
         if "heading_sigma" in (self.columns or ()):
             raise ValueError(f"{self.path}: the heading_sigma column comes with heading fixes, and this log has none "
@@ -317,20 +325,21 @@ class _FileJob:
     def _fused(
         self, source: io.GyroSource, overrides: dict[str, Any], start: float, progress: Progress | None
     ) -> FileReport:
-        """A log folder with heading fixes (its ``fixes.csv``): read whole, as the smoother of whole
-        mode needs every sample, fused by :meth:`gyrocore.Log.process`, written in one piece."""
+        """A log with heading fixes (given, or its folder's ``fixes.csv``): read whole, as the
+        smoother of whole mode needs every sample, fused by :meth:`gyrocore.Log.process`, written
+        in one piece."""
         reading = {f.name: getattr(self.read_options, f.name) for f in fields(io.ReadOptions)}
-        log = io.read_log(self.path, **reading)
+        log = io.read_log(self.path, use_fixes=self.fixes is None, **reading)
         self.rows_in = len(log.t)
         try:
-            result = log.process(self.preset, mode=self.mode, use_speed=self.use_speed, **overrides)
+            result = log.process(self.preset, mode=self.mode, use_speed=self.use_speed, fixes=self.fixes, **overrides)
         except SampleError as e:
             check = io.UnitCheck(source.options)
             check.update(log.t, log.rate)
             raise self._at_sample(source, e, check) from None
         except ValueError as e:
             raise _in_file(source, e, False) from None
-        written = write_result(self.out, result, self.heading, self.columns)
+        written = _write_result(self.out, result, self.heading, self.columns)
         if progress is not None:
             progress(len(result), len(result), "rows")
         assert result.fusion is not None and result.report is not None  # the folder has its fixes
@@ -338,7 +347,13 @@ class _FileJob:
         return FileReport(str(self.path), str(self.out), self.rows_in, written, time.perf_counter() - start, None,
                           tuple(dict.fromkeys(self.notes)), result.bias_source, result.rests, int(policy["held"]),
                           int(policy["skipped"]), int(policy["gaps"]), policy["longest_gap"],
-                          fixes=dict(result.fusion.counts))
+                          fixes=dict(result.fusion.counts), fixes_file=self._fixes_file(source))
+
+    def _fixes_file(self, source: io.GyroSource) -> str:
+        """Where the fixes fused came from: their file, ``given`` (in memory), or the folder's."""
+        if self.fixes is None:
+            return str(source.path / FIXES_CSV)
+        return str(self.fixes) if isinstance(self.fixes, (str, os.PathLike)) else "given"
 
     def _plan(self, source: io.GyroSource, overrides: dict[str, Any], from_meta: bool) -> wholelog.BiasPlan:
         """Where the bias comes from: in whole mode a first pass over the file (see
@@ -389,7 +404,7 @@ class _FileJob:
         return FileReport(str(self.path), None, self.rows_in, 0, seconds, failed, tuple(dict.fromkeys(self.notes)))
 
 
-def write_result(out: Path, result: HeadingResult, heading: str, columns: Sequence[str] | None) -> int:
+def _write_result(out: Path, result: HeadingResult, heading: str, columns: Sequence[str] | None) -> int:
     """Write a result held in memory to ``out`` in one piece (``columns`` None: every column of
     :data:`io.OUTPUT_COLUMNS`, and the heading's sigma where heading fixes gave one); the rows written."""
     if columns is None:

@@ -306,7 +306,10 @@ def test_a_fleet_run_fuses_each_folder_fixes_as_a_run_of_that_log_alone(folder_w
     assert table == alone.read_text()  # the same bytes: t, heading, rate, drift, heading_sigma
     assert (tmp_path / "out" / "plain.csv").read_text().splitlines()[0] == "t,heading,rate,drift"
     text = cli("process", str(folder_with_fixes), str(plain), "--out", str(tmp_path / "again"), "--preset", "hdr")
-    assert f"fixes: applied {fused['fixes']['applied']}, " in text.stdout
+    assert f"fixes from {folder_with_fixes / 'fixes.csv'}: applied {fused['fixes']['applied']}, " in text.stdout
+    # one log folder into an output folder is fused too (it was refused: "the output is one file")
+    assert cli("process", str(folder_with_fixes), "--out", str(tmp_path / "one"), "--preset", "hdr").returncode == 0
+    assert (tmp_path / "one" / "drive.csv").read_text() == alone.read_text()
     without = gyrocore.batch.process_many([folder_with_fixes], out_dir=tmp_path / "without", preset="hdr",
                                           use_fixes=False)
     assert without.files[0].fixes is None

@@ -8,20 +8,15 @@ import os
 import warnings
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
-from dataclasses import fields
 from pathlib import Path
-from typing import Any
 
-from .. import io
-from ..batch_job import write_result
 from .._checks import InputWarning
 from .._fixes_eval import FixScore, SimFixes, format_fix_scores, score_with_fixes
 from ..evaluate import Failed, Method, named_error
 from ..evaluate_compare import naming_log
 from ..fixes import Fixes, read_fixes_file
-from ..io import Log, read_log
+from ..io import Log
 from ..io._logfolder import FIXES_CSV
-from ..window import Window
 from ._common import each_log, exit_code, print_failures, print_json, warn
 
 FIXES_HELP = (
@@ -106,50 +101,7 @@ def _fixes_of(log: Log, sim: SimFixes | None, given: Fixes | None,
     return log.fixes, f"{Path(log.path or log.name) / FIXES_CSV} (as given)", None
 
 
-def uses_fixes(args: argparse.Namespace, inputs: Sequence[Path]) -> bool:
-    """Whether ``process`` fuses fixes for one input here: ``--fixes``, or one log folder with
-    ``fixes.csv``; with several inputs each folder's ``fixes.csv`` is fused by its batch job."""
-    if args.no_fixes:
-        return False
-    if args.fixes is not None:
-        if len(inputs) != 1:
-            raise ValueError(f"--fixes {args.fixes} is for one input, got {len(inputs)}")
-        return True
-    return len(inputs) == 1 and any_fixes_csv(args, inputs)
-
-
 def any_fixes_csv(args: argparse.Namespace, inputs: Sequence[Path]) -> bool:
     """Whether a log folder among ``inputs`` has a ``fixes.csv`` that is used (no ``--no-fixes``)."""
     # os.path.isfile is False in a folder this user may not enter, which reading it then names
     return not args.no_fixes and any(os.path.isfile(p / FIXES_CSV) for p in inputs)
-
-
-def process_with_fixes(args: argparse.Namespace, path: Path, out: Path, options: dict[str, Any],
-                       columns: tuple[str, ...] | None) -> int:
-    """``gyrocore process`` of one input with fixes: the log read into memory (the smoother of whole
-    mode needs every sample), processed by :meth:`gyrocore.Log.process`, written in one piece."""
-    names = {f.name for f in fields(io.ReadOptions)}
-    overrides = {k: v for k, v in options.items() if k not in names}
-    with input_warnings() as messages:
-        log = read_log(path, **{k: v for k, v in options.items() if k in names})
-        io.check_not_input(out, [path])
-        window = overrides.get("bias_window")
-        if isinstance(window, Window):  # a window after the first sample: the log says where that is
-            overrides["bias_window"] = window.resolve(float(log.t[0]))
-        fixes = None if args.fixes is None else read_fixes_file(args.fixes)
-        result = log.process(args.preset, mode="causal" if args.causal else "whole", use_speed=not args.no_speed,
-                             fixes=fixes, **overrides)
-    for message in messages:
-        warn(f"{path}: {message}")
-    write_result(out, result, args.heading, columns)
-    assert result.fusion is not None  # the log has fixes
-    report = {"input": str(path), "output": str(out), "rows": len(result), "bias_source": result.bias_source,
-              "fixes": dict(result.fusion.counts), "fixes_file": args.fixes or str(path / FIXES_CSV),
-              "warnings": messages}
-    if args.json:
-        print_json(report)
-    else:
-        counts = ", ".join(f"{k} {v}" for k, v in result.fusion.counts.items())
-        print(f"{path} -> {out}: {len(result)} rows; bias: {result.bias_source}; fixes from "
-              f"{report['fixes_file']}: {counts}")
-    return 0

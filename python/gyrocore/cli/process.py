@@ -6,7 +6,6 @@ import argparse
 import os
 import re
 import warnings
-from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
@@ -22,7 +21,7 @@ from ..batch import (
     process_many,
 )
 from ..tune import ParameterSet
-from ._fixes import add_fix_options, any_fixes_csv, process_with_fixes, uses_fixes
+from ._fixes import add_fix_options, any_fixes_csv
 from ._common import (
     COUNT,
     FINITE,
@@ -214,11 +213,13 @@ def run(args: argparse.Namespace) -> int:
         with warnings.catch_warnings():
             # every file's report carries these; print them once, with the file's name
             warnings.simplefilter("ignore", InputWarning)
-            if uses_fixes(args, inputs):
+            if args.fixes is not None:  # a log folder's own fixes.csv is fused by its job, also in a batch
+                if len(inputs) != 1:
+                    raise ValueError(f"--fixes {args.fixes} is for one input, got {len(inputs)}")
                 if not one_file:
-                    raise ValueError(f"--out {out}: with heading fixes the output is one .csv or .parquet file")
-                return process_with_fixes(args, inputs[0], out, run_options, kwargs["columns"])
-            if "heading_sigma" in (kwargs["columns"] or ()) and not any_fixes_csv(args, inputs):
+                    raise ValueError(f"--out {out}: with --fixes the output is one .csv or .parquet file")
+                kwargs["fixes"] = args.fixes
+            elif "heading_sigma" in (kwargs["columns"] or ()) and not any_fixes_csv(args, inputs):
                 raise ValueError("--columns heading_sigma: it comes with heading fixes (--fixes FILE, or log "
                                  "folders with fixes.csv)")
             if one_file:
