@@ -26,7 +26,8 @@ Where to start (each has its own ``help``; the guide with examples is docs/pytho
 - :mod:`gyrocore.io` (readers, writers), :mod:`gyrocore.batch` (many files),
   :mod:`gyrocore.tune` (fitting a preset), :mod:`gyrocore.sim`, :mod:`gyrocore.motion` and
   :mod:`gyrocore.paper` (simulated drives, the papers' experiments), :mod:`gyrocore.deadband`,
-  :mod:`gyrocore.deadreckon`.
+  :mod:`gyrocore.deadreckon`; :mod:`gyrocore.pipeline`, :mod:`gyrocore.integration` and
+  :mod:`gyrocore.window` (rest windows), where the names above are defined (docs/api.md).
 
 ``import gyrocore`` loads only the pipeline (numpy and the extension); the modules below and the
 names taken from them load when first used, so that a script that only integrates an array
@@ -102,10 +103,12 @@ __all__ = [
     "fuse",
     "heading_errors",
     "integrate",
+    "integration",
     "io",
     "motion",
     "paper",
     "parameters",
+    "pipeline",
     "preset_names",
     "preset_params",
     "process",
@@ -115,4 +118,5 @@ __all__ = [
     "sim",
     "tune",
     "wholelog",
+    "window",
 ]

@@ -38,7 +38,8 @@ def durations_in_seconds(name: str, a: np.ndarray) -> np.ndarray:
         raise TypeError(f"{name} holds {a.dtype}, which has no fixed length in seconds")
     seconds[np.isnat(a)] = np.nan
     # the counts' own resolution: nanoseconds since the epoch closer than float64 tells apart merge
-    warn_merged_counts(a.view(np.int64), seconds, _PER_SECOND[unit] / step if unit in _PER_SECOND else 1.0)
+    per_second = _PER_SECOND[unit] / step if unit in _PER_SECOND else 1.0 / (_SECONDS[unit] * step)
+    warn_merged_counts(a.view(np.int64), seconds, per_second)
     return seconds
 
 

@@ -215,7 +215,8 @@ def shown(value: object, limit: int = 40) -> str:
     """``repr(value)`` for an error message, cut to about ``limit`` characters: an int of 400
     digits filled the message, and one beyond Python's 4300 digits could not be shown at all."""
     try:
-        text = repr(value)
+        # a number as it reads (numpy 2 writes np.float64(-1.0)), anything else as Python shows it
+        text = str(value) if isinstance(value, (numbers.Real, np.generic)) and not isinstance(value, bool) else repr(value)
     except ValueError:  # int's limit of digits
         return f"an int of {value.bit_length()} bits" if isinstance(value, int) else type(value).__name__
     return text if len(text) <= limit else f"{text[:limit // 2]}...{text[-8:]} ({len(text)} characters)"

@@ -348,7 +348,7 @@ def _window_beyond_time(si: dict[str, Any], t_start: float) -> bool:
     reaches beyond the core's +-2^40 s, which the core refuses as a parameter: for times in
     nanoseconds read as seconds, the bad time (and its unit) is the error to give first."""
     given: Any = si.get("bias_window")
-    if given is None and si.get("bias_duration") is None or isinstance(given, Window):
+    if (given is None and si.get("bias_duration") is None) or isinstance(given, Window):
         return False  # none, or one counted from the first sample
     try:
         if si.get("bias_duration") is not None:

@@ -98,6 +98,9 @@ FIX = (np.array([1.0, 2.0]), np.array([0.0, 0.1]), np.array([0.1, 0.1]))
          "speed_sigma must be a number, got '0.2'"),
         (lambda: fixes.from_gnss([0.0, 1.0], [10.0, 10.0], [3.0, 5.0], min_sigma_deg=HUGE), ValueError,
          "min_sigma_deg must be finite and > 0, got 1000"),
+        # a numpy number reads as a number, not as numpy 2 writes it ("got np.float64(-1.0)")
+        (lambda: fixes.from_gnss([0.0, 1.0], [10.0, 10.0], [3.0, 5.0], min_speed=np.float64(-1)), ValueError,
+         "min_speed must be finite and > 0, got -1.0"),
         # "'str' object is not a mapping"
         (lambda: gyrocore.process(T, RATE, "hdr", bias=0.0, fixes=FIX, fusion="gate=3"), TypeError,
          "fusion must be a dict of the fix stage's settings (arw, "),

@@ -71,7 +71,8 @@ def test_a_misspelled_meta_json_key_is_named_and_the_users_own_keys_are_not(tmp_
                       rf"'{meant}'\?\); gyrocore reads 'name' and 'stationary'"):
         gyrocore.read_log(folder)
     (folder / "meta.json").write_text(json.dumps({"stationary": [1700000001, 1700000010], "stops": [], "source": "x",
-                                                  "notes": "", "stationary_note": "parked"}))
+                                                  "notes": "", "stationary_note": "parked", "station": "KOUR",
+                                                  "s": 100, "n": 5}))
     with warnings.catch_warnings():  # a key beside the one it resembles is the user's
         warnings.simplefilter("error")
         assert gyrocore.read_log(folder).stationary == (1700000001.0, 1700000010.0)

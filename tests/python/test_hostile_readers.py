@@ -234,6 +234,11 @@ def test_timedelta64_nanoseconds_given_to_the_api_that_float64_merges_say_so() -
     with warnings.catch_warnings():  # durations from the first sample are told apart: no word
         warnings.simplefilter("error")
         gyrocore.process(t - t[0], np.zeros(100), "raw")
+    # a longer unit's counts are 60 s apart: said as counts of 1/0.0166667 s (it said 1/1 s)
+    minutes = (2**54 + np.arange(4)).astype("timedelta64[m]")
+    with pytest.warns(gyrocore.InputWarning, match=r"counts of 1/0\.0166667 s\), where float64 resolves only 240 s"):
+        with pytest.raises(ValueError, match="is beyond"):
+            gyrocore.process(minutes, np.zeros(4), "raw")
 
 
 def test_a_repeated_time_the_file_holds_is_no_matter_of_resolution(tmp_path: Path) -> None:

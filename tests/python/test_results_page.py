@@ -50,7 +50,8 @@ def test_the_results_table_holds(name: str) -> None:
         for column, preset, mode, use_speed in COLUMNS:
             r = log.process(preset, mode=mode, use_speed=use_speed)
             e_psi = gyrocore.heading_errors(r.t, r.heading, *log.reference()).e_psi_deg
-            assert f"{e_psi:.2f}" == shown[column], (column, e_psi)
+            # the page's two decimals, with room for a last bit that another CPU's numpy may round apart
+            assert abs(e_psi - float(shown[column])) <= 0.005 + 1e-9, (column, e_psi, shown[column])
 
 
 def test_the_readme_quotes_the_table() -> None:

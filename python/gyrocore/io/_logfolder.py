@@ -7,6 +7,7 @@ describes the log).
 
 from __future__ import annotations
 
+import difflib
 import math
 import os
 from pathlib import Path
@@ -16,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .._arrays import FloatArray
-from .._checks import did_you_mean, warn
+from .._checks import warn
 from ..window import RestWindowError, in_log_clock
 from ._csvfile import CsvLayout, csv_layout, read_csv_columns
 from ._jsonfile import json_kind, read_json
@@ -74,13 +75,14 @@ META_KEYS = ("name", "stationary")
 
 def _warn_misspelled(path: Path, meta: dict[str, Any]) -> None:
     """Warn of a key that looks like a misspelled key gyrocore reads (``stationery``,
-    ``Stationary``) where that key is missing: the log was read without its rest window, without
-    a word. Other keys are the user's and are left alone."""
+    ``Stationary``: another case, or a letter or two apart) where that key is missing: the log was
+    read without its rest window, without a word. Other keys are the user's and are left alone,
+    also one that a key of gyrocore's starts with (a GNSS base ``station``)."""
     for key in meta:
-        hint = did_you_mean(key, [k for k in META_KEYS if k not in meta])
-        if hint:
-            warn(f"{path}: the key {key!r} is not read{hint}; gyrocore reads {' and '.join(map(repr, META_KEYS))} "
-                 "(the rest window [t0, t1] in seconds, and the log's name)")
+        for meant in (k for k in META_KEYS if k not in meta and abs(len(k) - len(key)) <= 2):
+            if difflib.SequenceMatcher(None, key.lower(), meant).ratio() >= 0.8:
+                warn(f"{path}: the key {key!r} is not read (did you mean {meant!r}?); gyrocore reads "
+                     f"{' and '.join(map(repr, META_KEYS))} (the rest window [t0, t1] in seconds, and the log's name)")
 
 
 def read_reference(folder: Path) -> dict[str, FloatArray]:
