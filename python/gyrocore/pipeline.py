@@ -239,14 +239,14 @@ class Pipeline:
             self._ahead_said = self._ahead_said or warn_far_ahead(fix_block, inner.last_time())
         if window is not None and not inner.bias()[2]:  # the window is over
             self._watch.close(window, self.bias)
-        warn_repairs(inner, before, inner.report(), ta, ra, temp)
+        report = dict(inner.report())
+        warn_repairs(inner, before, report, ta, ra, temp)
         if self._unmeasured is not None and len(ta):
             warn(self._unmeasured)
             self._unmeasured = None
         if self._first_time is None and len(ta):
             self._first_time = float(ta[0])
         self._rests.extend(found)
-        report = dict(inner.report())
         if fused is None:
             return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found), report=report)
         from .fixes import FusionResult

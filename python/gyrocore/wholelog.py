@@ -488,7 +488,12 @@ def _checked(fixes: FixesLike) -> Fixes:
 
 
 def times_ok(t: FloatArray) -> bool:
-    """Finite, strictly increasing times within the core's +-2^40 s (otherwise the pipeline
-    refuses them, naming the sample; a rest found among epoch nanoseconds read as seconds was a
-    rest window the core refused by its own limit, without the unit's hint)."""
-    return bool(np.isfinite(t).all() and (np.diff(t) > 0).all() and np.abs(t).max(initial=0.0) <= MAX_SECONDS)
+    """Whether the core takes the times ``t``: finite, strictly increasing, within +-2^40 s
+    (:func:`~gyrocore._checks.require_times`, the core's own rule; otherwise the pipeline refuses
+    them, naming the sample; a rest found among epoch nanoseconds read as seconds was a rest
+    window the core refused by its own limit, without the unit's hint)."""
+    try:
+        require_times(t)
+    except SampleError:
+        return False
+    return True
