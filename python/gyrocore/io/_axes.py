@@ -9,12 +9,12 @@ its readings over the rest window is up. The projection runs per sample in the c
 from __future__ import annotations
 
 import math
-import numbers
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 import numpy as np
 
 from .._arrays import FloatArray
+from .._checks import real_number
 from .._gyrocore import project_up
 from ..window import Window, time_range
 
@@ -52,8 +52,9 @@ def parse_up_window(value: object) -> tuple[float, float] | Window:
     pair = list(value) if isinstance(value, (tuple, list, np.ndarray)) else []
     if len(pair) == 2 and all(isinstance(v, str) for v in pair):
         return Window.parse(pair, "up_window (--up-window)")
-    if len(pair) == 2 and all(isinstance(v, numbers.Real) and not isinstance(v, (bool, np.bool_)) for v in pair):
-        return float(pair[0]), float(pair[1])
+    t0, t1 = (real_number(v) for v in pair) if len(pair) == 2 else (None, None)
+    if t0 is not None and t1 is not None:
+        return t0, t1
     raise TypeError(f"up_window must be two times [s], (t0, t1), or two bounds as text, ('+0', '+20') for the "
                     f"first 20 s, got {value!r}")
 

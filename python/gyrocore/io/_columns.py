@@ -53,7 +53,7 @@ def column_positions(
                      f"(delimiter={found[0]!r}, --delimiter {arg})")
         if choose == CHOOSE_COLUMNS:
             short += _look_like(header, missing, times)
-        if header and all(_is_number(str(h)) for h in header):  # "it has 0, 0.1" left the cause to guess
+        if header and all(is_number(str(h).strip(" \t")) for h in header):  # "it has 0, 0.1" left the cause to guess
             names = [*columns[: len(header)], *(f"col{k + 1}" for k in range(len(columns), len(header)))]
             short += (f"; its first line holds numbers, not column names: the file has no header line; add one "
                       f"as its first line, e.g. {','.join(names)}")
@@ -76,7 +76,12 @@ _LIKE = {
 _OPTION = {"t": ("time_col", "--time-col"), "gyro_z": ("rate_col", "--rate-col")}
 
 
-def _is_number(text: str) -> bool:
+def is_number(text: str) -> bool:
+    """Whether pyarrow reads ``text`` (trimmed of spaces and tabs) as a float. Python's float() also
+    takes ``1_000``, digits beyond ASCII (``\u0663``) and other white space around (a no-break
+    space), which pyarrow refuses: taken for numbers, the search passed the bad value by."""
+    if "_" in text or not text.isascii() or text.strip() != text:
+        return False
     try:
         float(text)
     except ValueError:

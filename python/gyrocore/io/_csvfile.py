@@ -21,7 +21,9 @@ import numpy as np
 
 from .._arrays import FloatArray
 from .._extras import require
-from ._columns import CHOOSE_COLUMNS, column_positions, concat, first_null, import_pyarrow_lazy_modules
+from ._columns import (
+    CHOOSE_COLUMNS, column_positions, concat, first_null, import_pyarrow_lazy_modules, is_number,
+)
 from .units import is_unit
 
 if TYPE_CHECKING:
@@ -109,7 +111,7 @@ def _first_line(path: Path, f: BinaryIO) -> bytes:
 def _is_sample(line: bytes, delimiter: str) -> bool:
     """Whether ``line`` is a sample: every value that is not empty is a number (a header has names)."""
     values = [v.strip(" \t") for v in line.decode("utf-8", errors="replace").rstrip("\r\n").split(delimiter)]
-    return any(values) and all(_is_number(v) for v in values if v)
+    return any(values) and all(is_number(v) for v in values if v)
 
 
 def _decode(path: Path, number: int, offset: int, line: bytes) -> str:
@@ -238,7 +240,7 @@ def _why_not_a_number(value: str) -> str:
     that are not UTF-8 (read as U+FFFD)."""
     if "\ufffd" in value:
         return " (bytes that are not UTF-8: save the file as UTF-8, e.g. iconv -f latin1 -t utf-8 old.csv > new.csv)"
-    if "," in value and _is_number(value.replace(",", ".", 1)):
+    if "," in value and is_number(value.replace(",", ".", 1)):
         return " (a decimal comma: write numbers with a decimal point)"
     return ""
 
@@ -284,7 +286,7 @@ def _csv_error(
                 where = f"{path}: line {line}, column {pos + 1} ({name})"
                 if fields[pos] and not value:
                     return f"{where}: blank value {fields[pos]!r} (leave it empty for a missing value)"
-                if value and not _is_number(value):
+                if value and not is_number(value):
                     if is_unit(value):
                         return f"{where}: {value!r} is not a number{_units_row_hint(line, header, fields, positions)}"
                     return f"{where}: {value!r} is not a number{_why_not_a_number(value)}"
@@ -308,19 +310,6 @@ def _long_fields() -> Iterator[None]:
 
 def _count(n: int, noun: str) -> str:
     return f"{n} {noun}{'' if n == 1 else 's'}"
-
-
-def _is_number(text: str) -> bool:
-    """Whether pyarrow reads ``text`` (trimmed of spaces and tabs) as a float. Python's float() also
-    takes ``1_000``, digits beyond ASCII (``\u0663``) and other white space around (a no-break
-    space), which pyarrow refuses: taken for numbers, the search passed the bad value by."""
-    if "_" in text or not text.isascii() or text.strip() != text:
-        return False
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
 
 
 def _skip_lines(f: Any, count: int) -> None:
