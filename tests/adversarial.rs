@@ -278,7 +278,7 @@ proptest! {
         let mut x = vec![0.0; rate.len() + 1];
         if allan::phase_from_rate(&rate, dt, &mut x).is_ok() {
             prop_assert!(x.iter().all(|v| v.is_finite()), "{:?}", x);
-            for kind in [Variance::Allan, Variance::OverlappingAllan, Variance::ModifiedAllan, Variance::Hadamard, Variance::OverlappingHadamard] {
+            for kind in Variance::ALL {
                 let (mut v, mut n) = (vec![0.0; factors.len()], vec![0u64; factors.len()]);
                 if allan::variances(&x, dt, &factors, kind, &mut v, &mut n).is_ok() {
                     prop_assert!(v.iter().all(|v| v.is_finite() && *v >= 0.0), "{:?} {:?}", kind, v);
@@ -450,13 +450,7 @@ fn a_phase_whose_variance_overflows_is_named() {
     let x: Vec<f64> = (0..64)
         .map(|i| if i % 2 == 0 { top } else { -top })
         .collect();
-    for kind in [
-        Variance::Allan,
-        Variance::OverlappingAllan,
-        Variance::ModifiedAllan,
-        Variance::Hadamard,
-        Variance::OverlappingHadamard,
-    ] {
+    for kind in Variance::ALL {
         let (v, _) = allan::variance(&x, MIN_INTERVAL, 1, kind).unwrap();
         assert!(v.is_finite() && v > 0.0, "{kind:?}: {v}");
     }

@@ -100,16 +100,6 @@ fn hadamard_deviations_match_stable32() {
     );
 }
 
-/// Deterministic standard normal samples (xorshift64* and Box-Muller), so no dependency is needed.
-/// Every kind of variance.
-const KINDS: [Variance; 5] = [
-    Variance::Allan,
-    Variance::OverlappingAllan,
-    Variance::ModifiedAllan,
-    Variance::Hadamard,
-    Variance::OverlappingHadamard,
-];
-
 /// Phase of white rate noise: the running sum of `normals`.
 fn random_walk(n: usize, seed: u64) -> Vec<f64> {
     normals(n, seed)
@@ -121,6 +111,7 @@ fn random_walk(n: usize, seed: u64) -> Vec<f64> {
         .collect()
 }
 
+/// Deterministic standard normal samples (xorshift64* and Box-Muller), so no dependency is needed.
 fn normals(n: usize, mut seed: u64) -> Vec<f64> {
     let mut uniform = move || {
         seed ^= seed >> 12;
@@ -253,13 +244,7 @@ fn bad_input_is_an_error_naming_what_and_where() {
         })
     );
     // A factor far beyond the record (its spans overflowed usize): too short, not a panic.
-    for kind in [
-        Variance::Allan,
-        Variance::OverlappingAllan,
-        Variance::ModifiedAllan,
-        Variance::Hadamard,
-        Variance::OverlappingHadamard,
-    ] {
+    for kind in Variance::ALL {
         for m in [usize::MAX / 3 + 1, usize::MAX / 2 + 1, usize::MAX] {
             assert!(
                 matches!(
@@ -335,7 +320,7 @@ fn a_non_finite_phase_sample_is_found_wherever_it_is() {
     // Whether or not the factors' terms read every sample (m = 7 non-overlapping reads every
     // seventh), the error names the first bad sample.
     let x: Vec<f64> = (0..1000).map(|i| (i as f64 * 0.37).sin()).collect();
-    for kind in KINDS {
+    for kind in Variance::ALL {
         for factors in [&[1usize, 2, 7][..], &[7], &[300]] {
             for (index, bad) in [
                 (0, f64::NAN),
@@ -362,7 +347,7 @@ fn parallel_variances_equal_the_sequential_ones_bit_for_bit() {
     // and, for the modified variance, blocks longer than the default.
     let x: Vec<f64> = random_walk(300_001, 5);
     let factors = [1usize, 2, 3, 8, 100, 1024, 20_000, 33_333, 70_000];
-    for kind in KINDS {
+    for kind in Variance::ALL {
         let (mut expected, mut expected_terms) = (vec![0.0; 9], vec![0u64; 9]);
         variances(&x, 0.5, &factors, kind, &mut expected, &mut expected_terms).unwrap();
         for threads in [1, 2, 3, 4] {

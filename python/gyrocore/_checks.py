@@ -212,8 +212,9 @@ def real_number(value: object) -> float | None:
 
 
 def shown(value: object, limit: int = 40) -> str:
-    """``repr(value)`` for an error message, cut to about ``limit`` characters: an int of 400
-    digits filled the message, and one beyond Python's 4300 digits could not be shown at all."""
+    """``value`` for an error message (a number as it reads, anything else as its ``repr``), cut
+    to about ``limit`` characters: an int of 400 digits filled the message, and one beyond
+    Python's 4300 digits could not be shown at all."""
     try:
         # a number as it reads (numpy 2 writes np.float64(-1.0)), anything else as Python shows it
         text = str(value) if isinstance(value, (numbers.Real, np.generic)) and not isinstance(value, bool) else repr(value)

@@ -50,6 +50,15 @@ pub enum Variance {
 }
 
 impl Variance {
+    /// Every variance of the family, in the order of the module table.
+    pub const ALL: [Variance; 5] = [
+        Variance::Allan,
+        Variance::OverlappingAllan,
+        Variance::ModifiedAllan,
+        Variance::Hadamard,
+        Variance::OverlappingHadamard,
+    ];
+
     /// Order of the phase difference: 2 for the Allan variances, 3 for the Hadamard ones.
     pub fn order(self) -> usize {
         match self {
