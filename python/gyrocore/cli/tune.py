@@ -284,10 +284,10 @@ def run(args: argparse.Namespace) -> int:
         _print_harm("held-out drives", *held, result.harm_limit_deg)
     if args.out:
         # process's --bias-duration replaces a log's rest window, evaluate's does not: left out there
-        causal = " --causal" * args.causal + " --no-speed" * args.no_speed
-        again = causal + (f" --bias-duration {args.bias_duration:g}" if args.bias_duration else "")
+        run_as = " --causal" * args.causal + " --no-speed" * args.no_speed
+        again = run_as + (f" --bias-duration {args.bias_duration:g}" if args.bias_duration else "")
         print(f"wrote {args.out} (score it: gyrocore evaluate LOGDIR --params {args.out}{again}; run it: gyrocore "
-              f"process IN --params {args.out}{causal} -o OUT)", file=sys.stderr if args.json else sys.stdout)
+              f"process IN --params {args.out}{run_as} -o OUT)", file=sys.stderr if args.json else sys.stdout)
     return 0
 
 
