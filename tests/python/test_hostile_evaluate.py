@@ -4,6 +4,7 @@ asked for; each refused naming the argument, never a NaN score or an answer to a
 
 from __future__ import annotations
 
+import json
 import re
 import warnings
 from collections.abc import Callable
@@ -14,7 +15,7 @@ import pytest
 import gyrocore
 from gyrocore import deadreckon, evaluate
 
-from .conftest import real_log_path
+from .conftest import gyrocore_cli, real_log_path
 
 T = np.arange(0.0, 60.0, 0.01)
 HEADING = 0.01 * T
@@ -135,3 +136,11 @@ def test_dead_reckoning_refuses_a_heading_in_degrees_and_warns_of_a_wrapped_one(
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert deadreckon.dead_reckon(t, speed, t, np.unwrap(wrapped)).distance == pytest.approx(9.9, rel=1e-3)
+
+
+def test_the_command_scores_a_log_given_twice_once() -> None:
+    # a log named twice (or through a trailing slash) was scored and printed twice
+    log = str(real_log_path("f110_ds1"))
+    proc = gyrocore_cli("evaluate", log, f"{log}/", log, "--preset", "static_bias", "--json", code=0)
+    assert [r["path"] for r in json.loads(proc.stdout)] == [log]
+    assert f"{log}, {log}/: given more than once as a log to score; each is used once" in proc.stderr

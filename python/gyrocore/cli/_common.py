@@ -328,16 +328,16 @@ def warn(message: str) -> None:
     print(f"gyrocore: warning: {one_line(message)}", file=sys.stderr)
 
 
-def once_each(paths: Sequence[str], what: str) -> list[str]:
+def once_each(paths: Sequence[str], what: str, why: str) -> list[str]:
     """``paths`` with each file or folder once (also when named two ways, through a link or ``..``),
-    warning of the others: a log given twice to ``tune`` weighed twice in its mean over the drives."""
+    warning of the others with ``why`` that matters (a log given twice to ``tune`` weighed twice in
+    its mean over the drives; ``evaluate`` scored it twice)."""
     seen: dict[str, str] = {}
     for p in paths:
         seen.setdefault(os.path.realpath(p), p)
     twice = [p for p in paths if p not in seen.values() or paths.count(p) > 1]
     if twice:
-        warn(f"{', '.join(dict.fromkeys(twice))}: given more than once as {what}; each is used once (a log given "
-             "twice weighed twice in the mean over the drives)")
+        warn(f"{', '.join(dict.fromkeys(twice))}: given more than once as {what}; each is used once ({why})")
     return list(seen.values())
 
 

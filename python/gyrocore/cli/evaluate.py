@@ -23,6 +23,7 @@ from ._common import (
     add_command,
     each_log,
     exit_code,
+    once_each,
     print_failures,
     add_overwrite_option,
     add_override_options,
@@ -100,6 +101,7 @@ def run(args: argparse.Namespace) -> int:
         if os.path.lexists(args.plot_dir) and not Path(args.plot_dir).is_dir():  # found only once plotting
             raise NotADirectoryError(f"--plot-dir {args.plot_dir}: not a folder; give a folder for the plots "
                                      "(one that does not exist is made)")
+    args.logs = once_each(args.logs, "a log to score", "its rows would be printed twice")
     alone = len(args.logs) == 1
     logs = each_log(args.logs, lambda path: [_read(path, args)], alone=alone)
     read = [log for log in logs if isinstance(log, Log)]

@@ -210,7 +210,8 @@ def run(args: argparse.Namespace) -> int:
         return [tune.Case.from_log(read_log(p, use_fixes=False, **reading), bias_duration=args.bias_duration, mode=mode,
                                    use_speed=not args.no_speed) for p in paths]
 
-    args.logs, args.test = once_each(args.logs, "a training log"), once_each(args.test, "a --test log")
+    twice = "a log given twice weighed twice in the mean over the drives"
+    args.logs, args.test = once_each(args.logs, "a training log", twice), once_each(args.test, "a --test log", twice)
     both = set(map(os.path.realpath, args.logs)) & set(map(os.path.realpath, args.test))
     if both:  # its test score would be no held-out score
         raise ValueError(f"{', '.join(p for p in args.test if os.path.realpath(p) in both)}: both a training log and a "
