@@ -9,7 +9,7 @@ _F = NDArray[np.float64]
 
 __all__ = [
     "Pipeline", "SampleError", "preset_params", "preset_names", "parameter_names", "preset_uses_static_bias",
-    "_panic_for_test", "check_samples", "integrate", "downsample", "static_bias_test", "project_up", "allan_variances", "gyro_measure",
+    "_panic_for_test", "check_samples", "integrate", "downsample", "static_bias_test", "filter_rests", "project_up", "allan_variances", "gyro_measure",
     "gyro_sample_times", "gyro_check_span", "gyro_allan_deviation", "gyro_parameter_names", "format_csv_rows", "fuse", "Fusion",
     "__version__",
 ]
@@ -66,6 +66,9 @@ def downsample(t: _F, rate: _F, interval: float) -> tuple[_F, _F]: ...
 def static_bias_test(
     t: _F, rate: _F, start: float, end: float
 ) -> tuple[float, int, float | None, float | None]: ...
+def filter_rests(
+    times: _F, values: _F, variances: _F, q: float, floor: float, backward: bool
+) -> tuple[_F, _F, _F]: ...
 def project_up(x: _F, y: _F, z: _F, up: tuple[float, float, float]) -> _F: ...
 def _panic_for_test() -> None: ...
 def fuse(

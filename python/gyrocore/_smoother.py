@@ -15,12 +15,12 @@ Units: s, rad/s.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from . import _gyrocore
 from ._arrays import FloatArray
 
 #: A rest's variance never counts as below this [rad^2/s^2] (a noiseless or quantized gyro reads
@@ -112,22 +112,13 @@ def smooth(times: ArrayLike, values: ArrayLike, std_errors: ArrayLike, walk: flo
     return SmoothedBias(ts, mean, variance, cross, float(walk))
 
 
-def _forward(ts: FloatArray, z: FloatArray, r: FloatArray, q: float) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """The Kalman filter over the rests in the order given (times increasing, or decreasing for
-    the backward pass): the filtered mean and variance at each rest, and the variance predicted
-    there from the rests before it (infinite at the first: the diffuse prior, the first rest alone)."""
-    # Python floats: the recurrence runs once per rest in every round of refusals, and indexing
-    # numpy arrays element by element costs several times the arithmetic.
-    tl, zl, rl = ts.tolist(), z.tolist(), r.tolist()
-    mean, variance, predicted = [zl[0]] * len(tl), [rl[0]] * len(tl), [math.inf] * len(tl)
-    for k in range(1, len(tl)):
-        p = variance[k - 1] + q * abs(tl[k] - tl[k - 1])
-        gain = p / (p + rl[k])
-        predicted[k] = p
-        mean[k] = mean[k - 1] + gain * (zl[k] - mean[k - 1])
-        # not below a rest's floor: a noiseless rest would leave 0, and 0/0 in the backward pass
-        variance[k] = max((1 - gain) * p, MIN_VARIANCE)
-    return np.array(mean), np.array(variance), np.array(predicted)
+def _forward(ts: FloatArray, z: FloatArray, r: FloatArray, q: float, backward: bool = False) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The Kalman filter over the rests (times increasing), from the first to the last, or the last
+    to the first where ``backward``: the filtered mean and variance at each rest, and the variance
+    predicted there from the rests filtered before it (infinite at the first: the diffuse prior, the
+    first rest alone). The core's loop (``gyrocore::bias_walk``, the rest tracker's update): it runs
+    once per rest in every round of refusals."""
+    return _gyrocore.filter_rests(ts, z, r, q, MIN_VARIANCE, backward)
 
 
 def leave_one_out(times: FloatArray, values: FloatArray, std_errors: FloatArray, walk: float) -> FloatArray:
@@ -146,7 +137,7 @@ def leave_one_out(times: FloatArray, values: FloatArray, std_errors: FloatArray,
     # the prediction at each rest from one side: the filtered mean of the rest before it
     filtered, _, ahead_var = _forward(ts, z, r, q)
     ahead = np.concatenate(([0.0], filtered[:-1]))
-    filtered, _, behind_var = (a[::-1] for a in _forward(ts[::-1], z[::-1], r[::-1], q))
+    filtered, _, behind_var = _forward(ts, z, r, q, backward=True)
     behind = np.concatenate((filtered[1:], [0.0]))
     with np.errstate(divide="ignore", invalid="ignore"):
         info = 1.0 / ahead_var + 1.0 / behind_var  # 0 from a side with no rest (infinite variance)

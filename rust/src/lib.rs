@@ -64,6 +64,7 @@
 
 pub mod allan;
 pub mod axis;
+pub mod bias_walk;
 mod block;
 pub mod correction;
 mod error;

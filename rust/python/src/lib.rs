@@ -368,6 +368,41 @@ fn static_bias_test(
     ))
 }
 
+/// The Kalman filter of a random-walk bias over rests (`gyrocore::bias_walk::filter_rests`):
+/// (filtered mean, filtered variance, predicted variance) at each rest, from the first rest to
+/// the last, or from the last to the first where `backward`.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+fn filter_rests<'py>(
+    py: Python<'py>,
+    times: PyReadonlyArray1<'py, f64>,
+    values: PyReadonlyArray1<'py, f64>,
+    variances: PyReadonlyArray1<'py, f64>,
+    q: f64,
+    floor: f64,
+    backward: bool,
+) -> PyResult<(Array<'py>, Array<'py>, Array<'py>)> {
+    let (times, values) = (slice("times", &times)?, slice("values", &values)?);
+    let variances = slice("variances", &variances)?;
+    let n = times.len();
+    let (mean, variance, predicted) = (zeros(py, n), zeros(py, n), zeros(py, n));
+    fill([&mean, &variance, &predicted], |[m, v, p]| {
+        py.detach(|| {
+            gyrocore::bias_walk::filter_rests(
+                times,
+                values,
+                variances,
+                q,
+                floor,
+                backward,
+                (m, v, p),
+            )
+        })
+    })?
+    .map_err(value_error)?;
+    Ok((mean, variance, predicted))
+}
+
 /// Block means over `interval` seconds (HDR's second eq 14); returns (t_end, mean rate).
 #[pyfunction]
 fn downsample<'py>(
@@ -414,6 +449,7 @@ fn _gyrocore(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
     m.add_function(wrap_pyfunction!(downsample, m)?)?;
     m.add_function(wrap_pyfunction!(static_bias_test, m)?)?;
+    m.add_function(wrap_pyfunction!(filter_rests, m)?)?;
     m.add_function(wrap_pyfunction!(project_up, m)?)?;
     allan::register(m)?;
     fixes::register(m)?;

@@ -1,0 +1,146 @@
+//! A bias that walks at random, measured at rests: the one-state Kalman filter that the rest
+//! tracker ([`crate::rest_tracker`]) runs as it streams, and the same filter run over a whole
+//! log's rests at once ([`filter_rests`]), the forward and backward passes of whole mode's
+//! smoother (Python `gyrocore._smoother`: the Rauch-Tung-Striebel smoother over the rests, and the
+//! leave-one-out test that refuses rests the others contradict).
+//!
+//! Not in the papers, which measure the bias once (HDR eq 2). The model: the bias is a random walk,
+//! `Var[b(t + dt) - b(t)] = q |dt|`; a rest is a measurement of it with variance `r`. Between two
+//! rests the variance grows (`P += q |dt|`); a rest updates it with the gain `g = P / (P + r)`:
+//! `b += g (z - b)`, `P = (1 - g) P`.
+
+use crate::error::{check_positive, check_range};
+use crate::{check_block, Error};
+
+/// The bias's estimate after a rest: its mean \[rad/s\] and variance \[rad^2/s^2\].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BiasEstimate {
+    /// The bias \[rad/s\].
+    pub mean: f64,
+    /// Its variance \[rad^2/s^2\].
+    pub variance: f64,
+}
+
+impl BiasEstimate {
+    /// The estimate after a rest that reads `z` with variance `r`, from this one predicted to
+    /// the rest's time (the Kalman update of the module doc).
+    #[inline]
+    pub fn update(self, z: f64, r: f64) -> BiasEstimate {
+        let gain = self.variance / (self.variance + r);
+        BiasEstimate {
+            mean: self.mean + gain * (z - self.mean),
+            variance: (1.0 - gain) * self.variance,
+        }
+    }
+}
+
+/// The filter over rests at `times` (increasing), reading `values` \[rad/s\] with variances
+/// `variances` \[rad^2/s^2\], the bias walking with intensity `q` \[rad^2/s^3\]; from the first
+/// rest to the last, or from the last to the first where `backward`. Writes, at each rest's index,
+/// its filtered `mean` and `variance` (never below `floor`: a rest read without noise would leave
+/// 0, and a smoother's backward pass divides by it) and the variance `predicted` there from the
+/// rests filtered before it (infinite at the first: a diffuse prior, so the first rest alone
+/// gives the bias).
+///
+/// # Errors
+/// As [`check_block`](crate::check_block) for `times` and `values` (named `t` and `rate`): unequal
+/// lengths, a value that is not finite or beyond [`MAX_READING`](crate::MAX_READING), times not
+/// strictly increasing; an output of another length; a variance not finite and > 0; `q`
+/// negative or not finite; `floor` not finite and > 0.
+#[allow(clippy::too_many_arguments)]
+pub fn filter_rests(
+    times: &[f64],
+    values: &[f64],
+    variances: &[f64],
+    q: f64,
+    floor: f64,
+    backward: bool,
+    out: (&mut [f64], &mut [f64], &mut [f64]),
+) -> Result<(), Error> {
+    let (mean, variance, predicted) = out;
+    check_block(times, values, None, None, true)?;
+    for (what, len) in [
+        ("variances", variances.len()),
+        ("mean", mean.len()),
+        ("variance", variance.len()),
+        ("predicted", predicted.len()),
+    ] {
+        if len != times.len() {
+            return Err(Error::LengthMismatch {
+                what,
+                len,
+                expected: times.len(),
+            });
+        }
+    }
+    for &r in variances {
+        check_positive("variances", r)?;
+    }
+    check_positive("floor", floor)?;
+    check_range("q", q, 0.0, f64::MAX, "finite and >= 0")?;
+    let n = times.len();
+    let order = |i: usize| if backward { n - 1 - i } else { i };
+    let mut before = None;
+    for k in (0..n).map(order) {
+        let (at, p) = match before {
+            None => (
+                BiasEstimate {
+                    mean: values[k],
+                    variance: variances[k],
+                },
+                f64::INFINITY,
+            ),
+            Some((j, last)) => {
+                let last: BiasEstimate = last;
+                let p = last.variance + q * libm::fabs(times[k] - times[j]);
+                let at = BiasEstimate {
+                    variance: p,
+                    ..last
+                }
+                .update(values[k], variances[k]);
+                (
+                    BiasEstimate {
+                        variance: at.variance.max(floor),
+                        ..at
+                    },
+                    p,
+                )
+            }
+        };
+        (mean[k], variance[k], predicted[k]) = (at.mean, at.variance, p);
+        before = Some((k, at));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_rest_gives_its_value_and_two_equal_rests_halve_the_variance() {
+        let (mut m, mut v, mut p) = ([0.0; 2], [0.0; 2], [0.0; 2]);
+        filter_rests(
+            &[0.0, 1.0],
+            &[2.0, 4.0],
+            &[1.0, 1.0],
+            0.0,
+            1e-30,
+            false,
+            (&mut m, &mut v, &mut p),
+        )
+        .unwrap();
+        assert_eq!((m, v, p), ([2.0, 3.0], [1.0, 0.5], [f64::INFINITY, 1.0]));
+        filter_rests(
+            &[0.0, 1.0],
+            &[2.0, 4.0],
+            &[1.0, 1.0],
+            0.0,
+            1e-30,
+            true,
+            (&mut m, &mut v, &mut p),
+        )
+        .unwrap();
+        assert_eq!((m, v, p), ([3.0, 4.0], [0.5, 1.0], [1.0, f64::INFINITY]));
+    }
+}
