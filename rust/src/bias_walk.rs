@@ -112,35 +112,3 @@ pub fn filter_rests(
     }
     Ok(())
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn one_rest_gives_its_value_and_two_equal_rests_halve_the_variance() {
-        let (mut m, mut v, mut p) = ([0.0; 2], [0.0; 2], [0.0; 2]);
-        filter_rests(
-            &[0.0, 1.0],
-            &[2.0, 4.0],
-            &[1.0, 1.0],
-            0.0,
-            1e-30,
-            false,
-            (&mut m, &mut v, &mut p),
-        )
-        .unwrap();
-        assert_eq!((m, v, p), ([2.0, 3.0], [1.0, 0.5], [f64::INFINITY, 1.0]));
-        filter_rests(
-            &[0.0, 1.0],
-            &[2.0, 4.0],
-            &[1.0, 1.0],
-            0.0,
-            1e-30,
-            true,
-            (&mut m, &mut v, &mut p),
-        )
-        .unwrap();
-        assert_eq!((m, v, p), ([3.0, 4.0], [0.5, 1.0], [1.0, f64::INFINITY]));
-    }
-}
