@@ -43,7 +43,7 @@ impl BiasEstimate {
 /// gives the bias).
 ///
 /// # Errors
-/// As [`check_block`](crate::check_block) for `times` and `values` (named `t` and `rate`): unequal
+/// As [`check_block`] for `times` and `values` (named `t` and `rate`): unequal
 /// lengths, a value that is not finite or beyond [`MAX_READING`](crate::MAX_READING), times not
 /// strictly increasing; an output of another length; a variance not finite and > 0; `q`
 /// negative or not finite; `floor` not finite and > 0.
