@@ -112,7 +112,9 @@ def smooth(times: ArrayLike, values: ArrayLike, std_errors: ArrayLike, walk: flo
     return SmoothedBias(ts, mean, variance, cross, float(walk))
 
 
-def _forward(ts: FloatArray, z: FloatArray, r: FloatArray, q: float, backward: bool = False) -> tuple[FloatArray, FloatArray, FloatArray]:
+def _forward(
+    ts: FloatArray, z: FloatArray, r: FloatArray, q: float, backward: bool = False
+) -> tuple[FloatArray, FloatArray, FloatArray]:
     """The Kalman filter over the rests (times increasing), from the first to the last, or the last
     to the first where ``backward``: the filtered mean and variance at each rest, and the variance
     predicted there from the rests filtered before it (infinite at the first: the diffuse prior, the
