@@ -6,7 +6,7 @@ by leave-one-log-out: each log is scored with the choice that is best on the oth
 mean log E_psi of static_bias, each log counted twice: with its speed, and from the rate alone as
 a log without odometry is processed), never with one fitted to it. Prints the table of
 docs/results.md (Markdown) with the choice each log was scored with and without its "held out"
-column (that one is docs/recommended.md's leave-one-out fit), the choice on all logs (the default
+column (that one is docs/recommended.md's leave-one-out fit), the choice on all logs (beside the default
 a new log gets), and the rests each log used. The last column is no method a user can run: one constant scale and bias fitted to
 the log's own reference (Hong eq 4-7), the floor of any constant calibration on that log.
 
@@ -23,6 +23,7 @@ import numpy as np
 
 import gyrocore
 from gyrocore import calibration, evaluate
+from gyrocore.wholelog_options import Options
 
 PRESETS = ("static_bias", "recommended")
 #: The grid whole mode's choices (bias_walk [rad/s/sqrt(s)], min_rest [s], bias_sigmas) are made
@@ -92,9 +93,11 @@ def main(data: Path) -> None:
     print(f"\nrecommended does not beat static_bias (whole, leave-one-log-out) on {len(worse)} logs: {', '.join(worse) or 'none'}")
     print(f"whole mode (with speed or from the rate alone) more than 0.5 deg above raw on {len(harmed)} logs: {', '.join(harmed) or 'none'}")
     walk, min_rest, sigmas = best(grids)
+    defaults = Options()
     print(
-        f"\nchoice on all {len(logs)} logs (the defaults): bias_walk {walk:g} rad/s/sqrt(s), min_rest {min_rest:g} s, "
-        f"bias_sigmas {sigmas:g}"
+        f"\nchoice on all {len(logs)} logs: bias_walk {walk:g} rad/s/sqrt(s), min_rest {min_rest:g} s, bias_sigmas "
+        f"{sigmas:g}; the defaults: {defaults.bias_walk:g}, {defaults.min_rest:g} s, {defaults.bias_sigmas:g} "
+        "(docs/whole_log.md says why the walk differs)"
     )
     print("\nwhole-log bias of static_bias at the defaults:")
     print("\n".join(text for _, _, text in scored))

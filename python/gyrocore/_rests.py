@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 from dataclasses import replace
+from typing import NamedTuple
 
 import numpy as np
 
@@ -46,6 +47,16 @@ NOISE_RATIO = 2.0
 #: Among three or more rests, one whose mean is this many standard deviations from what the
 #: others give (leave-one-out) is refused, the worst first, one at a time.
 OUTLIER_SIGMAS = 4.0
+#: A rest found from the rate alone is used only where it holds this many readings. Blocks of
+#: :func:`gyrocore.calibration.rest_windows` hold 4 readings at 10 Hz, and about a fifth of such
+#: blocks of a gyro's noise are as quiet as its test asks (a standard deviation below about 0.6 of
+#: the noise's), turning or not: a run of 8 comes by chance about once in 2 x 10^5 blocks (22 hours
+#: at 10 Hz), a run of 3 once in 100 (40 s).
+MIN_RATE_READINGS = 32
+#: ... or where its noise is at most this fraction of the rest of the log's: a real gyro on a
+#: moving vehicle shakes (f110's rests read 1-4 % of its motion's noise), a gyro whose noise is
+#: the same moving or not (a simulation) is quiet by chance as often resting as turning.
+QUIET_RATIO = 0.1
 
 
 def _runs(t: FloatArray, flag: np.ndarray) -> list[tuple[float, float]]:
@@ -55,11 +66,20 @@ def _runs(t: FloatArray, flag: np.ndarray) -> list[tuple[float, float]]:
     return [(float(t[a]), float(t[b])) for a, b in zip(starts, ends)]
 
 
-def find_rests(
-    t: FloatArray, rate: FloatArray, speed: FloatArray | None = None, min_rest: float = MIN_REST
-) -> list[tuple[float, float, str]]:
-    """Every candidate rest of the log as ``(start, end, found_by)``, in time order; ``t`` is
-    finite and strictly increasing (the plan's caller checked it: :func:`gyrocore.wholelog.times_ok`).
+class Found(NamedTuple):
+    """What :func:`find_rests` found."""
+
+    windows: list[tuple[float, float, str]]
+    """Every candidate rest as ``(start, end, found_by)``, in time order."""
+    motion_noise: float = math.nan
+    """The rate's noise outside the rests found from the rate [rad/s] (the median standard
+    deviation of its blocks), against which :func:`accept` judges them; NaN where none was looked
+    for, or the log is nearly all rest."""
+
+
+def find_rests(t: FloatArray, rate: FloatArray, speed: FloatArray | None = None, min_rest: float = MIN_REST) -> Found:
+    """Every candidate rest of the log; ``t`` is finite and strictly increasing (the plan's caller
+    checked it: :func:`gyrocore.wholelog.times_ok`).
 
     Where the speed (one per sample, NaN where unknown) is known, a rest is where it stays below
     :data:`SPEED_THRESHOLD` for ``min_rest`` [s] (``speed``), less :data:`EDGE` at each end (at
@@ -68,7 +88,7 @@ def find_rests(
     the spot). Where it is not, a rest is where the rate alone shows one
     (:func:`gyrocore.calibration.rest_windows`, ``rate``).
     """
-    from .calibration.rest import rest_windows_of_checked  # calibration builds on the pipeline module too
+    from .calibration.rest import rests_and_motion  # calibration builds on the pipeline module too
 
     taken = usable(rate)  # the readings the pipeline takes (a NaN or 1e300 would spoil a block's variance)
     found: list[tuple[float, float, str]] = []
@@ -86,15 +106,16 @@ def find_rests(
             readings = rate[inside][taken[inside]]
             if b - a >= min_rest and len(readings) and abs(float(np.mean(readings))) <= MAX_REST_RATE:
                 found.append((a + trim, b - trim, "speed"))
+    motion = math.nan
     if np.count_nonzero(taken) >= 8 and not known.all():
         try:
             # the times were checked once for the whole log, and these are its usable readings
             every = taken.all()  # then no copy of the log
-            windows = rest_windows_of_checked(t if every else t[taken], rate if every else rate[taken], min_rest)
+            windows, motion = rests_and_motion(t if every else t[taken], rate if every else rate[taken], min_rest)
         except ValueError:  # too sparse to judge a rest from the rate: none is found (the plan warns)
             windows = []
         found += [(a, b, "rate") for a, b in windows if not known[within(a, b)].any()]
-    return sorted(found)
+    return Found(sorted(found), motion)
 
 
 def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[float, float], found_by: str) -> Rest:
@@ -150,8 +171,9 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
     return Rest(start, end, bias, max(error, batch_error or 0.0), white_noise, samples, found_by.split(":")[0])
 
 
-def accept(rests: list[Rest], walk: float) -> list[Rest]:
-    """``rests`` (found ones) with those that are not rests marked ``refused`` (see the module doc)."""
+def accept(rests: list[Rest], walk: float, motion_noise: float = math.nan) -> list[Rest]:
+    """``rests`` (found ones) with those that are not rests marked ``refused`` (see the module doc);
+    ``motion_noise`` is :attr:`Found.motion_noise`."""
     noise = float(np.median([r.noise for r in rests])) if rests else 0.0
     out = [
         r
@@ -159,17 +181,48 @@ def accept(rests: list[Rest], walk: float) -> list[Rest]:
         else _refuse(r, f"noise {math.degrees(r.noise):.2g} deg/s, over {NOISE_RATIO:g} x the rests' median")
         for r in rests
     ]
+    out = [_refuse(r, _unproven(r, motion_noise)) if _by_rate(r) and not _proven(r, motion_noise) else r for r in out]
     middle, bias, error = (np.array([getattr(r, name) for r in out]) for name in ("middle", "bias", "bias_std_error"))
     used = np.array([r.refused is None for r in out], dtype=bool)
-    while np.count_nonzero(used) >= 3:
+    disagreeing: Rest | None = None
+    while np.count_nonzero(used) >= 2:
         z = leave_one_out(middle[used], bias[used], error[used], walk)
         worst = int(np.argmax(np.abs(z)))
         if abs(z[worst]) <= OUTLIER_SIGMAS:
             break
+        if np.count_nonzero(used) == 2:  # each lies as far from the other: which is wrong is not known
+            rated = [i for i in np.flatnonzero(used) if _by_rate(out[i])]
+            if rated:  # a rest the rate found is no stronger than a steady turn
+                disagreeing = out[rated[0]]
+            break
         i = int(np.flatnonzero(used)[worst])
         used[i] = False
         out[i] = _refuse(out[i], f"{abs(z[worst]):.1f} sigma from what the other rests give")
+        if _by_rate(out[i]):
+            disagreeing = disagreeing or out[i]
+    if disagreeing is not None:
+        why = (f"the rests found from the rate disagree ({disagreeing} among them): steady turning passes "
+               "for rest there, so none of them is used")
+        out = [_refuse(r, why) if _by_rate(r) and r.refused is None else r for r in out]
     return out
+
+
+def _by_rate(rest: Rest) -> bool:
+    return rest.found_by == "rate"
+
+
+def _proven(rest: Rest, motion_noise: float) -> bool:
+    """Whether a rest found from the rate is no chance run of quiet readings: it is far quieter
+    than the rest of the log (:data:`QUIET_RATIO`; NaN where the log is nearly all rest), or it
+    holds :data:`MIN_RATE_READINGS`."""
+    return rest.samples >= MIN_RATE_READINGS or not rest.noise > QUIET_RATIO * motion_noise
+
+
+def _unproven(rest: Rest, motion_noise: float) -> str:
+    return (f"{rest.samples} readings, its noise {math.degrees(rest.noise):.2g} deg/s against "
+            f"{math.degrees(motion_noise):.2g} deg/s in the rest of the log: too few and not quiet enough for the rate "
+            f"alone to tell a rest from a chance run of quiet readings (at least {MIN_RATE_READINGS} readings, or "
+            f"{1 / QUIET_RATIO:g} x quieter)")
 
 
 def _refuse(rest: Rest, why: str) -> Rest:

@@ -43,7 +43,7 @@ from numpy.typing import ArrayLike
 from ._arrays import FloatArray, as_float_array
 from ._checks import MAX_SECONDS, first_infinite, public_dir, require_times, warn
 from ._gyrocore import SampleError
-from ._rests import MIN_REST, SPEED_THRESHOLD, accept, find_rests, measure_rest
+from ._rests import MIN_REST, SPEED_THRESHOLD, Found, accept, find_rests, measure_rest
 from ._smoother import SmoothedBias, smooth
 from .pipeline import (
     ALL_OUTPUTS,
@@ -246,7 +246,7 @@ def plan(
     si: dict[str, Any],
     t_start: float,
     measure: Callable[[tuple[float, float], str], Rest],
-    find: Callable[[], list[tuple[float, float, str]]],
+    find: Callable[[], Found],
     times: FloatArray | None,
     options: Options,
 ) -> BiasPlan:
@@ -257,7 +257,7 @@ def plan(
         si: the user's overrides in SI names.
         t_start: the log's first time [s] (``bias_duration`` counts from it).
         measure: ``measure(window, found_by) -> Rest``.
-        find: ``find() -> [(start, end, found_by)]``, called only when no bias source is given.
+        find: ``find() -> Found``, called only when no bias source is given.
         times: the log's times where known (found rests): the HDR bound is the smoothed bias's
             standard error over them (its walk ``options.hdr_bound_walk``; :attr:`BiasPlan.bias_error`).
         options: the bias's walk, the significance test (``bias_sigmas``: found rests whose mean
@@ -277,15 +277,17 @@ def plan(
         source = f"{label}rest {rest}, applied from the first sample"
         given = BiasPlan(source, (rest,), overrides, smoothed, given_error=rest.bias_std_error)
         return given.with_scaled(preset, rest_of)
-    rests = accept([measure((a, b), how) for a, b, how in find()], walk)
+    candidates = find()
+    rests = accept([measure((a, b), how) for a, b, how in candidates.windows], walk, candidates.motion_noise)
     used = tuple(r for r in rests if r.refused is None)
-    if not used:  # none found (accept keeps at least half of them)
+    if not used:  # none found, or every one refused
+        none = f"{len(rests)} rest(s) found, none used" if rests else "no rest found in the log"
         warning = (
-            f"preset {preset!r} removes a static bias, but no bias, bias_window or bias_duration was given, "
-            f"the log gives no rest window and no rest was found in it: the bias is taken as 0, as in causal "
-            f"mode {BIAS_OPTIONS_HINT}"
+            f"preset {preset!r} removes a static bias, but no bias, bias_window or bias_duration was given, the "
+            f"log gives no rest window and {f'{none} ({rests[0].refused})' if rests else 'no rest was found in it'}: "
+            f"the bias is taken as 0, as in causal mode {BIAS_OPTIONS_HINT}"
         )
-        return BiasPlan("none: no rest found in the log; bias 0", tuple(rests), overrides, None, warning)
+        return BiasPlan(f"none: {none}; bias 0", tuple(rests), overrides, None, warning)
     smoothed, bound = _smooth(used, walk), _smooth(used, options.hdr_bound_walk)
     refused = f"; {len(rests) - len(used)} refused" if len(rests) > len(used) else ""
     # the inverse-variance mean of the rests (the smoother without a walk): is there a bias at all?
@@ -320,7 +322,7 @@ def plan_arrays(
         t,
         options,
     )
-    if found.warning is None:
+    if found.warning is None or found.rests:  # the hint is for a log where nothing looked like a rest
         return found
     from .calibration.rest import steady_stretch_hint  # calibration builds on the pipeline module too
 
@@ -381,7 +383,8 @@ def plan_stream(
     if _window_beyond_time(si, t_start) and not all(times_ok(t) for t, _ in itertools.islice(chunks(), 1)):
         return _no_plan(si)
     try:
-        return plan(preset, si, t_start, lambda window, how: measure_rest(chunks(), window, how), list, None, options)
+        return plan(preset, si, t_start, lambda window, how: measure_rest(chunks(), window, how), lambda: Found([]),
+                    None, options)
     except RestWindowError:
         if _times_ok_across(chunks()):
             raise

@@ -15,7 +15,7 @@ import gyrocore
 from gyrocore import wholelog
 from gyrocore.batch import process_file
 
-from .test_wholelog import drive, window
+from .test_wholelog import drive, stop_speed, window
 
 COLUMNS = ("heading", "rate", "drift")
 
@@ -23,8 +23,9 @@ COLUMNS = ("heading", "rate", "drift")
 LOGS = {
     "a given rest window": ([(0.0, 12.0), (50.0, 60.0)], None, "window", "whole", True),
     "the one rest found": ([(40.0, 52.0)], None, {}, "whole", True),
-    "two rests, the bias drifting between them": (
-        [(10.0, 25.0), (120.0, 135.0)], lambda t: 0.004 + 0.0002 * (t - t[0]), {}, "whole", False,
+    # its stops shown by the file's speed: two rests the rate alone found, this far apart, disagree
+    "two stops, the bias drifting between them": (
+        [(10.0, 25.0), (120.0, 135.0)], lambda t: 0.004 + 0.0002 * (t - t[0]), "speed", "whole", False,
     ),
     "causal, its own rest window": ([(0.0, 12.0)], None, "window", "causal", True),
 }
@@ -38,9 +39,11 @@ def test_batch_gives_what_subtracting_the_planned_bias_from_every_chunk_gave(
     t, rate, _ = drive(150.0, rests, **({} if bias is None else {"bias": bias}))
     overrides = {"bias_window": window(t, 0.0, 12.0)} if options == "window" else {}
     src = tmp_path / "in.csv"
-    pa_csv.write_csv(pa.table({"t": t, "gyro_z": rate}), src)
+    columns = {"t": t, "gyro_z": rate} | ({"speed": stop_speed(t, rests)} if options == "speed" else {})
+    pa_csv.write_csv(pa.table(columns), src)
     read = pa_csv.read_csv(src)
     t_read, r_read = read["t"].to_numpy(), read["gyro_z"].to_numpy()  # what the reader gives
+    s_read = read["speed"].to_numpy() if options == "speed" else None
 
     seen: list[tuple[float, np.ndarray]] = []  # per chunk: the pipeline's bias, the readings it got
     process = gyrocore.Pipeline.process
@@ -57,7 +60,7 @@ def test_batch_gives_what_subtracting_the_planned_bias_from_every_chunk_gave(
 
     # The output as the batch gave it before: the plan's overrides (causal: the user's), and the
     # planned bias (causal: 0) subtracted from every chunk's readings.
-    plan = wholelog.plan_stream("recommended", overrides, lambda: [(t_read, r_read)], lambda: (t_read, r_read, None))
+    plan = wholelog.plan_stream("recommended", overrides, lambda: [(t_read, r_read)], lambda: (t_read, r_read, s_read))
     planned = plan.bias(t_read) if mode == "whole" else 0.0
     assert isinstance(planned, float) == constant
     pipeline = gyrocore.Pipeline("recommended", **(plan.overrides if mode == "whole" else overrides))

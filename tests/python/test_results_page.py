@@ -1,6 +1,7 @@
 """The figures docs/results.md's whole-log table and the README quote are what the real logs give
-(`python examples/whole_log_table.py` prints the table; every log is scored with the default
-choice of whole mode, which each held-out choice equals)."""
+(`python examples/whole_log_table.py` prints the table; every log is scored with the choice of
+whole mode made without it, which is the default but for kitti_0027_mems: the only log with two
+rests used, so that with it held out no log tells the walks apart, and the tie goes to a walk of 0)."""
 
 from __future__ import annotations
 
@@ -39,6 +40,8 @@ def _table() -> dict[str, dict[str, str]]:
 
 
 TABLE = _table()
+#: Whole mode's choice with the log held out, where it is not the default (docs/whole_log.md).
+HELD_OUT = {"kitti_2011_09_30_0027_mems": {"bias_walk": 0.0}}
 
 
 @pytest.mark.parametrize("name", sorted(TABLE))
@@ -48,7 +51,7 @@ def test_the_results_table_holds(name: str) -> None:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", gyrocore.InputWarning)  # logs without a rest say so
         for column, preset, mode, use_speed in COLUMNS:
-            r = log.process(preset, mode=mode, use_speed=use_speed)
+            r = log.process(preset, mode=mode, use_speed=use_speed, **(HELD_OUT.get(name, {}) if mode == "whole" else {}))
             e_psi = gyrocore.heading_errors(r.t, r.heading, *log.reference()).e_psi_deg
             # the page's two decimals, with room for a last bit that another CPU's numpy may round apart
             assert abs(e_psi - float(shown[column])) <= 0.005 + 1e-9, (column, e_psi, shown[column])

@@ -19,6 +19,8 @@ from .result import Calibration
 
 #: Defaults of :func:`rest_windows`: ``block`` [s], ``noise_factor``, ``max_rate`` [rad/s], ``consistency``.
 BLOCK, NOISE_FACTOR, MAX_RATE, CONSISTENCY = 0.25, 3.0, 0.05, 4.5
+#: :func:`rests_and_motion` gives the motion's noise from at least this many blocks outside the rests.
+MIN_MOTION_BLOCKS = 8
 
 
 def rest_windows(
@@ -56,7 +58,18 @@ def rest_windows_of_checked(
     max_rate: float = MAX_RATE, consistency: float = CONSISTENCY,
 ) -> list[tuple[float, float]]:
     """:func:`rest_windows` of samples already checked (equal lengths, finite values, strictly
-    increasing times), for a caller that checks them once: whole mode, once per log."""
+    increasing times), for a caller that checks them once."""
+    return rests_and_motion(ta, ra, min_duration, block, noise_factor, max_rate, consistency)[0]
+
+
+def rests_and_motion(
+    ta: FloatArray, ra: FloatArray, min_duration: float, block: float = BLOCK, noise_factor: float = NOISE_FACTOR,
+    max_rate: float = MAX_RATE, consistency: float = CONSISTENCY,
+) -> tuple[list[tuple[float, float]], float]:
+    """:func:`rest_windows_of_checked`, and the noise of the rest of the log: the median standard
+    deviation of the blocks outside every window (NaN where fewer than :data:`MIN_MOTION_BLOCKS`
+    lie outside: a log all at rest). Whole mode asks whether a rest is quieter than the motion
+    around it (:mod:`gyrocore._rests`)."""
     for name, value in (("min_duration", min_duration), ("block", block), ("noise_factor", noise_factor),
                         ("max_rate", max_rate), ("consistency", consistency)):
         check_number(name, value)
@@ -97,12 +110,18 @@ def rest_windows_of_checked(
     ends = np.flatnonzero(quiet & ~np.concatenate((joined, [False]))) + 1
     runs = [run for first, end in zip(firsts.tolist(), ends.tolist())
             for run in _level_runs(first, end, mean, count, total, spread, consistency)]
-    if not runs:
-        return []
-    first_block, last_block = np.array(runs).T
-    t0 = ta[np.searchsorted(k, first_block, side="left")]
-    t1 = ta[np.searchsorted(k, last_block, side="right") - 1]
-    return [(float(a), float(b)) for a, b in zip(t0, t1) if b - a >= min_duration]
+    outside = filled.copy()
+    windows: list[tuple[float, float]] = []
+    if runs:
+        first_block, last_block = np.array(runs).T
+        t0 = ta[np.searchsorted(k, first_block, side="left")]
+        t1 = ta[np.searchsorted(k, last_block, side="right") - 1]
+        for a, b, f, e in zip(t0.tolist(), t1.tolist(), first_block.tolist(), last_block.tolist()):
+            if b - a >= min_duration:
+                windows.append((a, b))
+                outside[f : e + 1] = False
+    motion = float(np.median(sd[outside])) if np.count_nonzero(outside) >= MIN_MOTION_BLOCKS else math.nan
+    return windows, motion
 
 
 def _block_width(block: float, interval: float) -> float:

@@ -188,6 +188,6 @@ def _first_stop(log: io.Log, min_duration: float) -> tuple[float, float] | None:
     speed = log.speed_on_gyro_times()
     if speed is None or not (math.isfinite(min_duration) and min_duration > 0) or not times_ok(log.t):
         return None
-    found = find_rests(log.t, log.rate, speed, min_duration)
+    found = find_rests(log.t, log.rate, speed, min_duration).windows
     stops = [(a, b) for a, b, how in found if how == "speed" and b - a >= min_duration]
     return stops[0] if stops else None

@@ -1,0 +1,80 @@
+"""Rests whole mode finds from the rate alone (no speed, no window): a steady turn reads as steady
+as a rest, so such rests are used only when they agree with one another and are no chance run
+of quiet readings (``gyrocore._rests.accept``)."""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+import gyrocore
+from gyrocore import tune
+from gyrocore._rests import MIN_RATE_READINGS, QUIET_RATIO, accept
+from gyrocore.rests import Rest
+
+from .conftest import real_log_path
+
+WALK = 1e-4
+
+
+def rest(start: float, bias: float, found_by: str = "rate", samples: int = 1000, noise: float = 1e-3) -> Rest:
+    return Rest(start, start + 10.0, bias, 1e-5, noise, samples, found_by)
+
+
+@pytest.mark.parametrize(("mix", "seed", "noisy"), [("highway", 2002, False), ("highway", 2003, False),
+                                                     ("highway", 2002, True), ("suburbs", 2004, True)])
+def test_a_bias_free_gyro_on_gentle_curves_is_integrated_as_raw_integration(mix: str, seed: int, noisy: bool) -> None:
+    # 20 minutes at 10 Hz without a rest window or a speed: steady curves passed for rests reading
+    # 0.9-1.4 deg/s (a perfect gyro: 674 and 703 deg of error against raw integration's 0) or 1 s
+    # runs of chance-quiet readings on a curve (a noisy one: 190 and 100 deg against 1.75 and 0.61)
+    (case,) = tune.harm_cases(mixes=[mix], per_mix=1, first_seed=seed, noisy=noisy)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrocore.InputWarning)  # no rest used: the bias is taken as 0
+        whole = gyrocore.process(case.t, case.rate, "static_bias")
+    assert whole.bias_source.startswith("none: ") and all(r.refused is not None for r in whole.rests)
+    np.testing.assert_array_equal(whole.heading, gyrocore.process(case.t, case.rate, "raw").heading)
+
+
+def test_rests_from_the_rate_that_disagree_are_none_of_them_used() -> None:
+    # two rests 100 s apart reading 0 and 0.02 rad/s: 0.02 is 20 sigma of a walk of 1e-4 over 100 s
+    apart = accept([rest(0.0, 0.0), rest(100.0, 0.02)], WALK)
+    assert all(r.refused is not None and "the rests found from the rate disagree" in r.refused for r in apart)
+    # three that agree and one that does not: the one is refused as an outlier, and then the rest
+    # with it, as the rate has shown it takes motion for rest
+    four = accept([rest(0.0, 0.0), rest(100.0, 1e-4), rest(200.0, -1e-4), rest(300.0, 0.03)], WALK)
+    assert "sigma from what the other rests give" in str(four[3].refused)
+    assert all("the rests found from the rate disagree" in str(r.refused) for r in four[:3])
+    together = accept([rest(0.0, 0.0), rest(100.0, 1e-4), rest(200.0, -1e-4)], WALK)
+    assert all(r.refused is None for r in together)
+
+
+def test_a_stop_the_speed_shows_is_kept_against_a_rest_of_the_rate() -> None:
+    speed, rate = accept([rest(0.0, 0.0, "speed"), rest(100.0, 0.02)], WALK)
+    assert speed.refused is None and rate.refused is not None and "disagree" in rate.refused
+    both = accept([rest(0.0, 0.0, "speed"), rest(100.0, 0.02, "speed")], WALK)  # stops, whatever they read
+    assert all(r.refused is None for r in both)
+
+
+def test_a_short_rest_from_the_rate_must_be_far_quieter_than_the_motion() -> None:
+    motion = 0.01
+    short = MIN_RATE_READINGS - 1
+    loud, quiet, long = accept([rest(0.0, 0.0, samples=short, noise=0.2 * motion),
+                                rest(100.0, 0.0, samples=short, noise=0.5 * QUIET_RATIO * motion),
+                                rest(200.0, 0.0, samples=MIN_RATE_READINGS, noise=0.2 * motion)], WALK, motion)
+    assert loud.refused is not None and "too few and not quiet enough" in loud.refused
+    assert quiet.refused is None and long.refused is None
+    # a log all at rest has no motion to compare with (NaN): its rests are kept
+    assert accept([rest(0.0, 0.0, samples=short)], WALK)[0].refused is None
+
+
+def test_a_real_gyro_rests_far_quieter_than_it_drives() -> None:
+    # f110_ds5 from the rate alone: its one stop holds 30 readings at its 25 Hz, and reads 1 % of
+    # the motor-shaken drive's noise, so it is kept (26.94 deg raw, 3.13 with it)
+    log = gyrocore.read_log(real_log_path("f110_ds5"))
+    r = log.process("static_bias", use_speed=False)
+    (used,) = r.rests
+    assert used.refused is None and used.samples < MIN_RATE_READINGS
+    e_psi = gyrocore.heading_errors(r.t, r.heading, *log.reference()).e_psi_deg
+    assert e_psi == pytest.approx(3.13, abs=0.005)
