@@ -1,0 +1,26 @@
+"""A user's own files, not the bundled logs: a phone's or a logger's export, a still recording, a
+drive with its reference in a file of its own. Each test is a case where gyrocore said too little,
+or something wrong, about such a file."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import gyrocore
+
+
+def test_a_header_read_as_one_field_names_the_delimiter_and_no_column(tmp_path: Path) -> None:
+    # a semicolon-separated export: the whole header line was offered as the time column,
+    # time_col='timestamp [ms];gyro_z [deg/s]' (--time-col 'timestamp [ms];gyro_z [deg/s]') looks like it
+    src = tmp_path / "phone.csv"
+    src.write_text("timestamp [ms];gyro_z [deg/s]\n0;0.5\n10;0.6\n20;0.7\n")
+    with pytest.raises(ValueError) as e:
+        gyrocore.read_log(src)
+    message = str(e.value)
+    assert "give the file's delimiter (delimiter=';', --delimiter ';')" in message, message
+    assert "looks like" not in message and "time_col=" not in message, message
+    log = gyrocore.read_log(src, delimiter=";", time_col="timestamp")
+    assert np.allclose(log.t, [0.0, 0.01, 0.02]) and np.allclose(log.rate, np.radians([0.5, 0.6, 0.7]))
