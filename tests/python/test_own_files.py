@@ -24,3 +24,17 @@ def test_a_header_read_as_one_field_names_the_delimiter_and_no_column(tmp_path: 
     assert "looks like" not in message and "time_col=" not in message, message
     log = gyrocore.read_log(src, delimiter=";", time_col="timestamp")
     assert np.allclose(log.t, [0.0, 0.01, 0.02]) and np.allclose(log.rate, np.radians([0.5, 0.6, 0.7]))
+
+
+@pytest.mark.parametrize("time", ["2024-05-03T14:00:00.010Z", "2024-05-03 14:00:00.010", "2024-05-03"])
+def test_dates_as_csv_times_are_named_with_what_to_do(tmp_path: Path, time: str) -> None:
+    # it said only "'2024-05-03T14:00:00.010Z' is not a number", as for any text
+    src = tmp_path / "dated.csv"
+    src.write_text(f"t,gyro_z\n{time},0.1\n")
+    with pytest.raises(ValueError) as e:
+        gyrocore.read_log(src)
+    assert f"line 2, column 1 (t): {time!r} is not a number (a date and time:" in str(e.value), e.value
+    assert "convert the file to Parquet with this column as a timestamp" in str(e.value)
+    src.write_text("t,gyro_z\n0.0,abc\n")  # other text is not taken for a date
+    with pytest.raises(ValueError, match=r"'abc' is not a number$"):
+        gyrocore.read_log(src)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import csv
 import io as _io
+import re
 import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -42,6 +43,8 @@ _GZIP = b"\x1f\x8b"
 #: Windows PowerShell's ``>`` write text.
 _UTF16_BOMS = (b"\xff\xfe", b"\xfe\xff")
 _UTF8_BOM = b"\xef\xbb\xbf"
+#: A date, maybe with a time, as loggers write them (``2024-05-03T14:00:00.010Z``, ``2024-05-03 14:00``).
+_DATE = re.compile(r"\d{4}-\d{2}-\d{2}(?:[T ]\d{2}:\d{2})?")
 #: Rows read from a CSV file and not yet handed out: first row, columns, bytes read, rows.
 _HeldRows: TypeAlias = "tuple[int, dict[str, pa.Array], int, int]"
 
@@ -242,6 +245,10 @@ def _why_not_a_number(value: str) -> str:
         return " (bytes that are not UTF-8: save the file as UTF-8, e.g. iconv -f latin1 -t utf-8 old.csv > new.csv)"
     if "," in value and is_number(value.replace(",", ".", 1)):
         return " (a decimal comma: write numbers with a decimal point)"
+    if _DATE.match(value):
+        return (" (a date and time: a CSV file's times are numbers, in s, ms, us or ns; write them as numbers, "
+                "or convert the file to Parquet with this column as a timestamp, read as seconds since the Unix "
+                "epoch: docs/reading-logs.md, \"Dates and times\")")
     return ""
 
 
