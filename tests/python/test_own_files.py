@@ -4,12 +4,16 @@ or something wrong, about such a file."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 import gyrocore
+from gyrocore import sim
+
+from .conftest import gyrocore_cli
 
 
 def test_a_header_read_as_one_field_names_the_delimiter_and_no_column(tmp_path: Path) -> None:
@@ -38,3 +42,29 @@ def test_dates_as_csv_times_are_named_with_what_to_do(tmp_path: Path, time: str)
     src.write_text("t,gyro_z\n0.0,abc\n")  # other text is not taken for a date
     with pytest.raises(ValueError, match=r"'abc' is not a number$"):
         gyrocore.read_log(src)
+
+
+def _still_recording(path: Path, header: str) -> float:
+    """Ten minutes of a simulated XV3500 at rest, written in deg/s under ``header``; its bias [deg/s]."""
+    spec = sim.sensor("xv3500", rate_hz=50.0)
+    t = sim.sample_times(spec, 0.0, 600.0, seed=4)
+    reading = sim.measure(spec, t, np.zeros_like(t), seed=4)
+    np.savetxt(path, np.column_stack([t, np.degrees(reading.rate)]), delimiter=",", header=header, comments="")
+    return float(np.degrees(np.mean(reading.bias)))
+
+
+def test_a_still_recording_whose_header_states_deg_per_s_is_not_told_it_looks_like_rad_per_s(tmp_path: Path) -> None:
+    # calibrate warned "rates look like rad/s ...; use --rate-unit rad/s", which then stopped with
+    # "column 'gyro_z_dps' states the unit 'dps' but --rate-unit rad/s was given"
+    still = tmp_path / "still.csv"
+    bias = _still_recording(still, "t,gyro_z_dps")
+    proc = gyrocore_cli("calibrate", still, "--json", code=0)
+    assert "look like rad/s" not in proc.stderr, proc.stderr
+    assert "states the unit" in gyrocore_cli("calibrate", still, "--rate-unit", "rad/s", code=2).stderr
+    measured = json.loads(proc.stdout)["static_bias"]["bias"]
+    assert abs(np.degrees(measured) - bias) < 0.05  # read in deg/s, as the header says
+    # a unit given as an option is still checked: rad/s readings given as deg/s
+    unstated = tmp_path / "unstated.csv"
+    unstated.write_text(still.read_text().replace("gyro_z_dps", "gyro_z"))
+    with pytest.warns(gyrocore.InputWarning, match="look like rad/s"):
+        gyrocore.read_log(unstated, rate_unit="deg/s")

@@ -97,7 +97,9 @@ class UnitCheck:
         problems = list(self._first or [])
         max_dps = math.degrees(self._max_rate)
         small = self._first is not None and max_dps < SMALL_RATE_DPS and not self._options.static
-        if self._options.rate_unit == "deg/s" and small:
+        # a unit the file's header states is its own word, not a guess: a still recording in deg/s
+        # reads small rates, and the option the warning named contradicted the header (an error)
+        if self._options.rate_unit == "deg/s" and small and not _header_states_deg(self._options):
             problems.append(
                 f"rates look like rad/s, not deg/s: |rate| never exceeds {max_dps:.3g} deg/s, which only a "
                 f"sensor that never turned reads; if the log is in rad/s, use rate_unit='rad/s' (--rate-unit rad/s)"
@@ -156,6 +158,12 @@ class UnitCheck:
                 f"use time_unit='{fits[0]}' (--time-unit {fits[0]})"
             )
         return problems
+
+
+def _header_states_deg(options: ReadOptions) -> bool:
+    """Whether the rate column's name (or a gyro column's) states deg/s (``gyro_z_dps``, ``wz [deg/s]``)."""
+    columns = options.gyro_cols if options.gyro_cols is not None else (options.rate,)
+    return any(rate_unit_named(split_unit(c)[1] or "") == "deg/s" for c in columns)
 
 
 def _normal(unit: str) -> str:
