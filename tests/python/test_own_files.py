@@ -68,3 +68,28 @@ def test_a_still_recording_whose_header_states_deg_per_s_is_not_told_it_looks_li
     unstated.write_text(still.read_text().replace("gyro_z_dps", "gyro_z"))
     with pytest.warns(gyrocore.InputWarning, match="look like rad/s"):
         gyrocore.read_log(unstated, rate_unit="deg/s")
+
+
+def test_evaluate_scores_a_file_against_a_reference_file_of_its_own(tmp_path: Path) -> None:
+    # evaluate took a reference only from a log folder or a heading_true column, while calibrate
+    # took --reference FILE: a drive and its reference in two files could not be scored
+    drive = sim.car_drive(duration=120.0, rate_hz=50.0, seed=3, sensor_name="xv3500")
+    t0 = 1234.5  # seconds since boot, in ms in the file
+    gyro, ref = tmp_path / "drive.csv", tmp_path / "truth.csv"
+    np.savetxt(gyro, np.column_stack([(t0 + drive.t) * 1e3, np.degrees(drive.rate_measured)]), delimiter=",",
+               header="timestamp_ms,gyro_z_dps", comments="")
+    np.savetxt(ref, np.column_stack([t0 + drive.t[::5], drive.heading_true[::5]]), delimiter=",",
+               header="t,heading", comments="")
+    missing = gyrocore_cli("evaluate", gyro, "--time-col", "timestamp", code=2).stderr
+    assert "no reference heading to score against" in missing and "--reference FILE" in missing, missing
+    proc = gyrocore_cli("evaluate", gyro, "--time-col", "timestamp", "--reference", ref, "--preset", "static_bias",
+                        "--bias-duration", "20", "--json", code=0)
+    (row,) = json.loads(proc.stdout)
+    # what the Python API gives for the same samples and reference
+    result = gyrocore.process(drive.t, drive.rate_measured, "static_bias", bias_duration=20.0)
+    expected = gyrocore.heading_errors(result.t, result.heading, drive.t[::5], drive.heading_true[::5])
+    assert row["e_psi_deg"] == pytest.approx(expected.e_psi_deg, rel=1e-3, abs=1e-3)
+    assert row["n"] == len(drive.t[::5])
+    # one reference file is one log's
+    two = gyrocore_cli("evaluate", gyro, gyro, "--time-col", "timestamp", "--reference", ref, code=2).stderr
+    assert "--reference" in two and "2 logs were given" in two, two
