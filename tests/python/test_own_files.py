@@ -93,3 +93,25 @@ def test_evaluate_scores_a_file_against_a_reference_file_of_its_own(tmp_path: Pa
     # one reference file is one log's
     two = gyrocore_cli("evaluate", gyro, gyro, "--time-col", "timestamp", "--reference", ref, code=2).stderr
     assert "--reference" in two and "2 logs were given" in two, two
+
+
+def test_a_report_lists_a_dozen_rests_and_counts_the_others(tmp_path: Path) -> None:
+    # a 10-minute phone drive's report listed 120 rests, a line each, and a day's log thousands
+    t = np.arange(0.0, 400.0, 0.01)
+    moving = (t // 5) % 2 == 1  # 5 s stops between 5 s turns: 40 rests
+    rate = 0.01 + np.where(moving, 0.3, 0.0) + np.random.default_rng(0).normal(0.0, 0.002, len(t))
+    src = tmp_path / "stops.csv"
+    np.savetxt(src, np.column_stack([t, rate]), delimiter=",", header="t,gyro_z", comments="")
+    from gyrocore.batch import process_file
+    from gyrocore.wholelog import LISTED_RESTS
+
+    report = process_file(src, tmp_path / "h.csv", preset="static_bias")
+    assert len(report.rests) > LISTED_RESTS + 10
+    lines = str(report).splitlines()
+    listed = [line for line in lines if line.strip().startswith("rest [")]
+    assert len(listed) == LISTED_RESTS - 1 and listed == [f"{' ' * 9}rest {r}" for r in report.rests[: len(listed)]]
+    others = report.rests[len(listed):]
+    used = sum(r.accepted for r in others)
+    assert lines[-1] == (f"{' ' * 9}... and {len(others)} more rests ({used} of them used): the JSON report "
+                         "(--json; .rests in Python) lists every one")
+    assert len(report.as_dict()["rests"]) == len(report.rests)
