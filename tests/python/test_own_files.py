@@ -5,6 +5,7 @@ or something wrong, about such a file."""
 from __future__ import annotations
 
 import json
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -12,6 +13,8 @@ import pytest
 
 import gyrocore
 from gyrocore import sim
+from gyrocore.batch import process_file
+from gyrocore.wholelog import LISTED_RESTS
 
 from .conftest import gyrocore_cli
 
@@ -102,9 +105,6 @@ def test_a_report_lists_a_dozen_rests_and_counts_the_others(tmp_path: Path) -> N
     rate = 0.01 + np.where(moving, 0.3, 0.0) + np.random.default_rng(0).normal(0.0, 0.002, len(t))
     src = tmp_path / "stops.csv"
     np.savetxt(src, np.column_stack([t, rate]), delimiter=",", header="t,gyro_z", comments="")
-    from gyrocore.batch import process_file
-    from gyrocore.wholelog import LISTED_RESTS
-
     report = process_file(src, tmp_path / "h.csv", preset="static_bias")
     assert len(report.rests) > LISTED_RESTS + 10
     lines = str(report).splitlines()
@@ -115,3 +115,40 @@ def test_a_report_lists_a_dozen_rests_and_counts_the_others(tmp_path: Path) -> N
     assert lines[-1] == (f"{' ' * 9}... and {len(others)} more rests ({used} of them used): the JSON report "
                          "(--json; .rests in Python) lists every one")
     assert len(report.as_dict()["rests"]) == len(report.rests)
+
+
+@pytest.mark.parametrize("hz", [1000, 500])
+def test_whole_ms_timestamps_of_a_fast_gyro_read_as_seconds_warn(tmp_path: Path, hz: int) -> None:
+    # a 1 kHz gyro's ms since boot read as s is a 1 Hz gyro, within the intervals judged sound: its
+    # two minutes became 33 hours and its heading 1267 deg where the drive turned 25, without a word
+    drive = sim.car_drive(duration=60.0, rate_hz=float(hz), seed=2, sensor_name="xv3500")
+    ms = np.round(drive.t * 1e3) + 5000.0
+    src = tmp_path / "fast.csv"
+    np.savetxt(src, np.column_stack([ms, drive.rate_measured]), fmt=["%d", "%.6f"], delimiter=",",
+               header="timestamp,gyro_z", comments="")
+    step = 1000 // hz
+    with pytest.warns(gyrocore.InputWarning, match=rf"timestamps look like ms, not s: whole numbers {step} apart, a "
+                      rf"{1 / step:g} Hz gyro in s or a {hz} Hz one in ms; use time_unit='ms' \(--time-unit ms\)"):
+        gyrocore.read_log(src, time_col="timestamp")
+    read = gyrocore.read_log(src, time_col="timestamp", time_unit="ms")  # as the warning says: no warning
+    assert read.t[-1] - read.t[0] == pytest.approx(drive.t[-1] - drive.t[0], abs=1e-3)
+    proc = gyrocore_cli("process", src, "--time-col", "timestamp", "--out", tmp_path / "h.csv", code=0)
+    assert "--time-unit ms" in proc.stderr, proc.stderr
+
+
+@pytest.mark.parametrize(("header", "options", "t0"), [
+    ("t [s],gyro_z", {}, 0.0),           # the header states seconds
+    ("t,gyro_z", {"time_unit": "s"}, 0.0),  # so does the option
+    ("t,gyro_z", {}, 1.7e9),             # Unix epoch seconds at 1 Hz
+])
+def test_whole_seconds_stated_or_on_the_epoch_do_not_warn(
+    tmp_path: Path, header: str, options: dict[str, str], t0: float
+) -> None:
+    src = tmp_path / "slow.csv"
+    t = t0 + np.arange(600.0)
+    np.savetxt(src, np.column_stack([t, 0.2 * np.sin(t / 30.0)]), fmt=["%d", "%.6f"], delimiter=",",
+               header=header, comments="")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", gyrocore.InputWarning)
+        log = gyrocore.read_log(src, **options)
+    assert np.array_equal(log.t, t)

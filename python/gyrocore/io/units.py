@@ -45,6 +45,8 @@ SMALL_RATE_DPS = 3.0
 SHORT_INTERVAL = 1e-4
 #: Timestamps beyond this [s] (the year 5138) are an epoch in ms, us or ns.
 EPOCH_LIMIT = 1e11
+#: Unix epoch seconds of the years 2001 to 2096: whole-number times there are seconds, not ms.
+EPOCH_SECONDS = (1e9, 4e9)
 #: How the problem that names another time unit begins.
 _TIME_PROBLEM = "timestamps look like"
 #: Intervals and large rates are judged on this many first samples, whatever the chunks are.
@@ -141,6 +143,7 @@ class UnitCheck:
         unit = o.time_unit or "s"
         t0 = abs(float(t[0]))
         interval = typical_interval(t) if len(t) > 1 else 0.0  # one gap does not make it look like ms
+        rest = ""
         if t0 > EPOCH_LIMIT:
             # an epoch read in too small a unit: which unit puts it between 1973 and 2286?
             counts = t0 * TIME_UNITS[unit]
@@ -150,14 +153,26 @@ class UnitCheck:
             counts = interval * TIME_UNITS[unit]
             fits = [u for u, k in TIME_UNITS.items() if SHORT_INTERVAL <= counts / k <= INTERVAL_LIMIT]
             why = f"the median interval is {interval:.3g} s, a {1 / interval:.3g} Hz gyro"
+        elif self._whole_ms(t, interval):
+            fits = ["ms"]
+            why = f"whole numbers {interval:g} apart, a {1 / interval:g} Hz gyro in s or a {1000 / interval:g} Hz one in ms"
+            rest = "; for a gyro that does run so slowly, give time_unit='s' (--time-unit s) or a header t [s]"
         else:
             fits = []
         if fits:
             problems.append(
                 f"{_TIME_PROBLEM} {' or '.join(fits)}, not {unit}: {why}; "
-                f"use time_unit='{fits[0]}' (--time-unit {fits[0]})"
+                f"use time_unit='{fits[0]}' (--time-unit {fits[0]}){rest}"
             )
         return problems
+
+    def _whole_ms(self, t: FloatArray, interval: float) -> bool:
+        """Whether the times ``t`` [s] look like ms read as s: whole numbers 1 or 2 apart (a 1 kHz
+        or 500 Hz gyro in ms reads as a 1 Hz or 0.5 Hz one in s, within the intervals judged
+        sound), read in s for want of a unit, and not Unix epoch seconds (2001 to 2096)."""
+        if not self._options.assumed_time_unit or interval not in (1.0, 2.0):
+            return False
+        return not EPOCH_SECONDS[0] <= abs(float(t[0])) <= EPOCH_SECONDS[1] and bool(np.all(t == np.round(t)))
 
 
 def _header_states_deg(options: ReadOptions) -> bool:
@@ -255,17 +270,29 @@ def header_options(path: Path, header: list[str] | None, options: ReadOptions) -
         return replace(options, time_unit=options.time_unit or "s", rate_unit=options.rate_unit or "rad/s")
     time = _header_column(path, header, options.time, "--time-col")
     time_unit = _stated_unit(path, time, options.time_unit, "--time-unit", "s")
+    written = split_unit(time)[1]
+    assumed = options.time_unit is None and (written is None or _normal(written) not in HEADER_TIME_UNITS)
     if options.gyro_cols is None:
         rate = _header_column(path, header, options.rate, "--rate-col")
         rate_unit = _stated_unit(path, rate, options.rate_unit, "--rate-unit", "rad/s")
-        return replace(options, time_col=time, rate_col=rate, time_unit=time_unit, rate_unit=rate_unit)
+        return _assumed(replace(options, time_col=time, rate_col=rate, time_unit=time_unit, rate_unit=rate_unit),
+                        assumed)
     gyro = _header_columns(path, header, options.gyro_cols, "--gyro-cols")
     units = [_stated_unit(path, c, options.rate_unit, "--rate-unit", "rad/s") for c in gyro]
     if len(set(units)) > 1:
         read = ", ".join(f"{c!r} as {u}" for c, u in zip(gyro, units))
         raise ValueError(f"{path}: the gyro columns read in different units ({read}): give each its unit in the header")
     accel = None if options.accel_cols is None else _header_columns(path, header, options.accel_cols, "--accel-cols")
-    return replace(options, time_col=time, gyro_cols=gyro, accel_cols=accel, time_unit=time_unit, rate_unit=units[0])
+    return _assumed(
+        replace(options, time_col=time, gyro_cols=gyro, accel_cols=accel, time_unit=time_unit, rate_unit=units[0]),
+        assumed,
+    )
+
+
+def _assumed(options: ReadOptions, assumed: bool) -> ReadOptions:
+    """``options`` marked as read in seconds only for want of a unit (``assumed_time_unit``)."""
+    object.__setattr__(options, "assumed_time_unit", assumed)  # not an init field: set as the reader's note
+    return options
 
 
 def _header_columns(path: Path, header: list[str], wanted: tuple[str, str, str], option: str) -> tuple[str, str, str]:
