@@ -5,6 +5,7 @@ or something wrong, about such a file."""
 from __future__ import annotations
 
 import json
+import re
 import warnings
 from pathlib import Path
 
@@ -152,3 +153,20 @@ def test_whole_seconds_stated_or_on_the_epoch_do_not_warn(
         warnings.simplefilter("error", gyrocore.InputWarning)
         log = gyrocore.read_log(src, **options)
     assert np.array_equal(log.t, t)
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_a_rest_window_that_reads_a_bias_no_gyro_has_names_deg_per_s(mode: str) -> None:
+    # a drive in deg/s read as rad/s, its first 20 s given as the rest: "bias 81.11632 deg/s",
+    # and a heading 57 times too large, without a word (its turns stay under the 20 rad/s check)
+    drive = sim.car_drive(duration=120.0, rate_hz=50.0, seed=1)
+    assert np.percentile(np.abs(np.degrees(drive.rate_measured)), 99) < 20.0
+    read_as_rad = np.degrees(drive.rate_measured)
+    with pytest.warns(gyrocore.InputWarning, match=r"the rest window \[0\.0, 20\.0\] s reads a bias of [\d.]+ rad/s "
+                      r"\([\d.]+ deg/s\), beyond any gyro's at rest .*give rate_unit='deg/s', --rate-unit deg/s") as said:
+        gyrocore.process(drive.t, read_as_rad, "static_bias", bias_window=(0.0, 20.0), mode=mode)
+    shown = re.search(r"reads a bias of ([\d.]+) rad/s", str(said[0].message))
+    assert shown is not None and float(shown[1]) == pytest.approx(np.mean(read_as_rad[drive.t <= 20.0]), rel=1e-2)
+    with warnings.catch_warnings():  # the same drive in rad/s: its bias, 1.4 deg/s, is a gyro's
+        warnings.simplefilter("error", gyrocore.InputWarning)
+        gyrocore.process(drive.t, drive.rate_measured, "static_bias", bias_window=(0.0, 20.0), mode=mode)
