@@ -170,3 +170,20 @@ def test_a_rest_window_that_reads_a_bias_no_gyro_has_names_deg_per_s(mode: str) 
     with warnings.catch_warnings():  # the same drive in rad/s: its bias, 1.4 deg/s, is a gyro's
         warnings.simplefilter("error", gyrocore.InputWarning)
         gyrocore.process(drive.t, drive.rate_measured, "static_bias", bias_window=(0.0, 20.0), mode=mode)
+
+
+def test_a_decimal_comma_in_a_semicolon_file_is_told_how_to_mend_it(tmp_path: Path) -> None:
+    # "a decimal comma: write numbers with a decimal point", with no word of how
+    src = tmp_path / "euro.csv"
+    src.write_text("t [ms];gyro_z [deg/s]\n1000;0,25\n1010;0,5\n1020;0,75\n")
+    with pytest.raises(ValueError, match=r"line 2, column 2 \(gyro_z \[deg/s\]\): '0,25' is not a number \(a decimal "
+                       r"comma: write numbers with a decimal point, e.g. tr ',' '\.' < old\.csv > new\.csv\)$"):
+        gyrocore.read_log(src, delimiter=";")
+    mended = tmp_path / "mended.csv"
+    mended.write_text(src.read_text().translate(str.maketrans(",", ".")))  # what the command does
+    assert np.allclose(np.degrees(gyrocore.read_log(mended, delimiter=";").rate), [0.25, 0.5, 0.75])
+    # in a comma-separated file the recipe would split the fields: not offered
+    src.write_text('t,gyro_z\n0,"0,25"\n')
+    with pytest.raises(ValueError, match=r"'0,25' is not a number \(a decimal comma: write numbers with a decimal "
+                       r"point\)$"):
+        gyrocore.read_log(src)
