@@ -79,9 +79,6 @@ class ReadOptions:
     accel_cols: tuple[str, str, str] | None = None
     up: str | tuple[float, float, float] | None = None
     up_window: tuple[float, float] | Window | None = None
-    #: Set by the reader: the time unit is ``s`` only because neither an option nor the header
-    #: gave one (so whole numbers 1 apart may be ms; :class:`gyrocore.io.UnitCheck`).
-    assumed_time_unit: bool = field(default=False, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         for name in ("time_col", "rate_col"):
@@ -381,7 +378,7 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
     """
     if options is None:
         for name in kwargs:  # "ReadOptions.__init__() got an unexpected keyword argument", with no hint
-            require_choice("reading option", name, [f.name for f in fields(ReadOptions) if f.init])
+            require_choice("reading option", name, [f.name for f in fields(ReadOptions)])
         options = ReadOptions(**kwargs)
     elif kwargs:
         raise TypeError("give either options or keywords, not both")

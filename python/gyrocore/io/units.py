@@ -170,7 +170,7 @@ class UnitCheck:
         """Whether the times ``t`` [s] look like ms read as s: whole numbers 1 or 2 apart (a 1 kHz
         or 500 Hz gyro in ms reads as a 1 Hz or 0.5 Hz one in s, within the intervals judged
         sound), read in s for want of a unit, and not Unix epoch seconds (2001 to 2096)."""
-        if not self._options.assumed_time_unit or interval not in (1.0, 2.0):
+        if not getattr(self._options, _ASSUMED_TIME_UNIT, False) or interval not in (1.0, 2.0):
             return False
         return not EPOCH_SECONDS[0] <= abs(float(t[0])) <= EPOCH_SECONDS[1] and bool(np.all(t == np.round(t)))
 
@@ -289,9 +289,14 @@ def header_options(path: Path, header: list[str] | None, options: ReadOptions) -
     )
 
 
+#: The reader's note on :class:`ReadOptions` (an attribute, not a field: no option a user gives):
+#: the time unit is ``s`` only because neither an option nor the header gave one.
+_ASSUMED_TIME_UNIT = "_assumed_time_unit"
+
+
 def _assumed(options: ReadOptions, assumed: bool) -> ReadOptions:
-    """``options`` marked as read in seconds only for want of a unit (``assumed_time_unit``)."""
-    object.__setattr__(options, "assumed_time_unit", assumed)  # not an init field: set as the reader's note
+    """``options`` noted as read in seconds only for want of a unit (a ``replace`` leaves it out)."""
+    object.__setattr__(options, _ASSUMED_TIME_UNIT, assumed)  # frozen: set as __post_init__ sets its forms
     return options
 
 
