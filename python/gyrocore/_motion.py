@@ -91,16 +91,27 @@ def spread(rate: FloatArray) -> tuple[float, float] | None:
 TURNING = "the rest window"
 
 
+#: A bias beyond this [rad/s, 28.6 deg/s] is no gyro's at rest (MEMS zero-rate offsets reach
+#: about 20 deg/s, the real logs' 1.4): a rest window that reads more holds rates in deg/s read
+#: as rad/s (a car's stop at 1.4 deg/s read 81 deg/s), or the gyro turned steadily in it.
+REST_LEVEL = 0.5
+
+
 def warn_if_turning(window: tuple[float, float], rate: FloatArray, bias: float) -> None:
     """Warn when the readings of the rest ``window`` spread far beyond their noise: the gyro
     turned in it, and the ``bias`` measured there [rad/s] is off by the turn (f110_ds1's first
-    5 s, given as its rest, read 40.7 deg/s)."""
+    5 s, given as its rest, read 40.7 deg/s); else when ``bias`` is beyond :data:`REST_LEVEL`."""
     measured = spread(rate)
     if measured is not None and measured[0] > REST_SPREAD and measured[1] > REST_EXCESS:
         warn(f"{TURNING} [{window[0]}, {window[1]}] s does not look like a rest: its readings spread "
              f"{measured[0]:.3g} times their sample-to-sample noise, {math.degrees(measured[1]):.3g} deg/s beyond it (at "
              f"rest: about once, and at most {math.degrees(REST_EXCESS):g} deg/s beyond), so the gyro turned in it and its "
              f"bias, {math.degrees(bias):.5g} deg/s, holds the turn: give a window in which the gyro stands still")
+    elif abs(bias) > REST_LEVEL:
+        warn(f"{TURNING} [{window[0]}, {window[1]}] s reads a bias of {bias:.4g} rad/s ({math.degrees(bias):.4g} deg/s), "
+             f"beyond any gyro's at rest (more than {REST_LEVEL:g} rad/s): rates in deg/s read as rad/s (then give "
+             "rate_unit='deg/s', --rate-unit deg/s), or the gyro turned in it (then give a window in which it stands "
+             "still)")
 
 
 #: The readings of a streamed rest window :class:`WindowWatch` keeps at most (8 MB): a window of

@@ -199,12 +199,25 @@ class BiasPlan:
         return replace(result, bias_source=self.source, rests=self.rests)
 
 
+#: A report lists at most this many rests under its bias line (a long drive's rate showed 120, a
+#: day's log thousands, each a line of the report); the JSON report holds every one.
+LISTED_RESTS = 12
+
+
 def rest_lines(source: str, rests: tuple[Rest, ...], indent: str) -> list[str]:
     """The lines listing ``rests`` under a report's ``source`` line (none when that line names the
-    one rest used, as ``first 10 s: rest ...`` does too)."""
+    one rest used, as ``first 10 s: rest ...`` does too): the first :data:`LISTED_RESTS` and a
+    line counting the others."""
     if len(rests) == 1 and f"rest {rests[0]}" in source:
         return []
-    return [f"{indent}rest {r}" for r in rests]
+    shown = rests if len(rests) <= LISTED_RESTS else rests[: LISTED_RESTS - 1]
+    lines = [f"{indent}rest {r}" for r in shown]
+    others = rests[len(shown):]
+    if others:
+        used = sum(r.accepted for r in others)
+        lines.append(f"{indent}... and {len(others)} more rests ({used} of them used): the JSON report (--json; "
+                     ".rests in Python) lists every one")
+    return lines
 
 
 def without_bias(si: dict[str, Any]) -> dict[str, Any]:

@@ -393,9 +393,8 @@ def test_a_decimal_comma_is_named_as_such(tmp_path: Path) -> None:
     src.write_text("t;gyro_z\n0,000;0,010\n0,005;0,010\n")
     proc = run_cli("process", src, "--out", tmp_path / "o.csv", "--delimiter", ";")
     assert proc.returncode == 2
-    assert "line 2, column 1 (t): '0,000' is not a number (a decimal comma: write numbers with a decimal point)" in (
-        proc.stderr
-    ), proc.stderr
+    assert ("line 2, column 1 (t): '0,000' is not a number (a decimal comma: write numbers with a decimal point, "
+            "e.g. tr ',' '.' < old.csv > new.csv)") in proc.stderr, proc.stderr
     src.write_text("t;gyro_z\n0;1,2,3\n")  # not a decimal comma
     proc = run_cli("process", src, "--out", tmp_path / "o.csv", "--delimiter", ";")
     assert "'1,2,3' is not a number\n" in proc.stderr, proc.stderr

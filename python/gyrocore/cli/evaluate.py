@@ -20,6 +20,7 @@ from ._fixes import add_fix_options, evaluate_with_fixes, fixes_wanted, input_wa
 from ._common import (
     FINITE,
     POSITIVE,
+    REFERENCE_HELP,
     add_command,
     each_log,
     exit_code,
@@ -34,6 +35,7 @@ from ._common import (
     reading_options,
     refuse_existing,
     warn,
+    with_reference,
 )
 
 
@@ -49,6 +51,8 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p.add_argument("logs", nargs="+", metavar="LOGDIR",
                    help="log folders (gyro.csv, reference.csv, meta.json), or CSV or Parquet files with a heading_true "
                    "column [rad] (what gyrocore simulate writes); the reading options apply to the gyro's file")
+    p.add_argument("--reference", type=Path, metavar="FILE",
+                   help=f"reference heading of a single log given (in place of its own): {REFERENCE_HELP}")
     p.add_argument(
         "--preset",
         action="append",
@@ -103,6 +107,9 @@ def run(args: argparse.Namespace) -> int:
                                      "(one that does not exist is made)")
     args.logs = once_each(args.logs, "a log to score", "its rows would be printed twice")
     alone = len(args.logs) == 1
+    if args.reference is not None and not alone:  # one file cannot be every log's reference
+        raise ValueError(f"--reference {args.reference} is the reference heading of one log, and {len(args.logs)} "
+                         "logs were given: score them in separate runs")
     logs = each_log(args.logs, lambda path: [_read(path, args)], alone=alone)
     read = [log for log in logs if isinstance(log, Log)]
     if fixes_wanted(args, read):
@@ -136,14 +143,17 @@ def run(args: argparse.Namespace) -> int:
 def _read(path: str, args: argparse.Namespace) -> Log:
     """The log at ``path``, which must have a reference heading."""
     log = read_log(path, use_fixes=not args.no_fixes, **reading_options(args))
+    if args.reference is not None:
+        log = with_reference(log, args.reference)
     if not any(p.partition("=")[0].strip() == "nonfinite" for p in args.param):
         # the pipeline's own refusal named neither the line nor the option (it names the log)
         check_samples(Path(path), log, args, "or keep the file as it is: --param nonfinite=hold uses the last "
                       "usable reading there, --param nonfinite=skip leaves the sample out")
     if log.heading_ref is None:
         raise ValueError(
-            f"{path}: no reference heading to score against (a log folder's reference.csv, or a CSV or "
-            "Parquet file's heading_true column [rad], as gyrocore simulate writes it)"
+            f"{path}: no reference heading to score against (a log folder's reference.csv, a CSV or "
+            "Parquet file's heading_true column [rad], as gyrocore simulate writes it, or --reference FILE: "
+            f"{REFERENCE_HELP})"
         )
     units = _units_apart(log)
     if units is not None:

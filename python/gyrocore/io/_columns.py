@@ -51,7 +51,7 @@ def column_positions(
             arg = "tab" if found[0] == "\t" else repr(found[0])
             short = (f"; the header line is one field, with {shown} in it: give the file's delimiter "
                      f"(delimiter={found[0]!r}, --delimiter {arg})")
-        if choose == CHOOSE_COLUMNS:
+        if choose == CHOOSE_COLUMNS and not found:  # the one field is the whole header line, no column
             short += _look_like(header, missing, times)
         if header and all(is_number(str(h).strip(" \t")) for h in header):  # "it has 0, 0.1" left the cause to guess
             names = [*columns[: len(header)], *(f"col{k + 1}" for k in range(len(columns), len(header)))]

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import csv
 import io as _io
+import re
 import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -42,6 +43,8 @@ _GZIP = b"\x1f\x8b"
 #: Windows PowerShell's ``>`` write text.
 _UTF16_BOMS = (b"\xff\xfe", b"\xfe\xff")
 _UTF8_BOM = b"\xef\xbb\xbf"
+#: A date, maybe with a time, as loggers write them (``2024-05-03T14:00:00.010Z``, ``2024-05-03 14:00``).
+_DATE = re.compile(r"\d{4}-\d{2}-\d{2}(?:[T ]\d{2}:\d{2})?")
 #: Rows read from a CSV file and not yet handed out: first row, columns, bytes read, rows.
 _HeldRows: TypeAlias = "tuple[int, dict[str, pa.Array], int, int]"
 
@@ -235,13 +238,20 @@ def _line_offset(path: Path, lines: int) -> int:
         return f.tell()
 
 
-def _why_not_a_number(value: str) -> str:
-    """A hint for a value that is no number, where its form says why: a decimal comma, or bytes
-    that are not UTF-8 (read as U+FFFD)."""
+def _why_not_a_number(value: str, delimiter: str) -> str:
+    """A hint for a value that is no number, where its form says why: a decimal comma (with the
+    command that mends a file whose fields a comma does not separate), a date, or bytes that are
+    not UTF-8 (read as U+FFFD)."""
     if "\ufffd" in value:
         return " (bytes that are not UTF-8: save the file as UTF-8, e.g. iconv -f latin1 -t utf-8 old.csv > new.csv)"
     if "," in value and is_number(value.replace(",", ".", 1)):
-        return " (a decimal comma: write numbers with a decimal point)"
+        # a European export: fields separated by ';' (or tabs), numbers with a comma
+        mend = "" if delimiter == "," else ", e.g. tr ',' '.' < old.csv > new.csv"
+        return f" (a decimal comma: write numbers with a decimal point{mend})"
+    if _DATE.match(value):
+        return (" (a date and time: a CSV file's times are numbers, in s, ms, us or ns; write them as numbers, "
+                "or convert the file to Parquet with this column as a timestamp, read as seconds since the Unix "
+                "epoch: docs/reading-logs.md, \"Dates and times\")")
     return ""
 
 
@@ -289,7 +299,7 @@ def _csv_error(
                 if value and not is_number(value):
                     if is_unit(value):
                         return f"{where}: {value!r} is not a number{_units_row_hint(line, header, fields, positions)}"
-                    return f"{where}: {value!r} is not a number{_why_not_a_number(value)}"
+                    return f"{where}: {value!r} is not a number{_why_not_a_number(value, delimiter)}"
                 if not fields[pos] and name in required:
                     return f"{where}: empty {required[name]}"
     return f"{path}: after line {first_line}: {error}"

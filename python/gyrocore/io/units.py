@@ -45,6 +45,8 @@ SMALL_RATE_DPS = 3.0
 SHORT_INTERVAL = 1e-4
 #: Timestamps beyond this [s] (the year 5138) are an epoch in ms, us or ns.
 EPOCH_LIMIT = 1e11
+#: Unix epoch seconds of the years 2001 to 2096: whole-number times there are seconds, not ms.
+EPOCH_SECONDS = (1e9, 4e9)
 #: How the problem that names another time unit begins.
 _TIME_PROBLEM = "timestamps look like"
 #: Intervals and large rates are judged on this many first samples, whatever the chunks are.
@@ -97,7 +99,9 @@ class UnitCheck:
         problems = list(self._first or [])
         max_dps = math.degrees(self._max_rate)
         small = self._first is not None and max_dps < SMALL_RATE_DPS and not self._options.static
-        if self._options.rate_unit == "deg/s" and small:
+        # a unit the file's header states is its own word, not a guess: a still recording in deg/s
+        # reads small rates, and the option the warning named contradicted the header (an error)
+        if self._options.rate_unit == "deg/s" and small and not _header_states_deg(self._options):
             problems.append(
                 f"rates look like rad/s, not deg/s: |rate| never exceeds {max_dps:.3g} deg/s, which only a "
                 f"sensor that never turned reads; if the log is in rad/s, use rate_unit='rad/s' (--rate-unit rad/s)"
@@ -139,6 +143,7 @@ class UnitCheck:
         unit = o.time_unit or "s"
         t0 = abs(float(t[0]))
         interval = typical_interval(t) if len(t) > 1 else 0.0  # one gap does not make it look like ms
+        rest = ""
         if t0 > EPOCH_LIMIT:
             # an epoch read in too small a unit: which unit puts it between 1973 and 2286?
             counts = t0 * TIME_UNITS[unit]
@@ -148,14 +153,32 @@ class UnitCheck:
             counts = interval * TIME_UNITS[unit]
             fits = [u for u, k in TIME_UNITS.items() if SHORT_INTERVAL <= counts / k <= INTERVAL_LIMIT]
             why = f"the median interval is {interval:.3g} s, a {1 / interval:.3g} Hz gyro"
+        elif self._whole_ms(t, interval):
+            fits = ["ms"]
+            why = f"whole numbers {interval:g} apart, a {1 / interval:g} Hz gyro in s or a {1000 / interval:g} Hz one in ms"
+            rest = "; for a gyro that does run so slowly, give time_unit='s' (--time-unit s) or a header t [s]"
         else:
             fits = []
         if fits:
             problems.append(
                 f"{_TIME_PROBLEM} {' or '.join(fits)}, not {unit}: {why}; "
-                f"use time_unit='{fits[0]}' (--time-unit {fits[0]})"
+                f"use time_unit='{fits[0]}' (--time-unit {fits[0]}){rest}"
             )
         return problems
+
+    def _whole_ms(self, t: FloatArray, interval: float) -> bool:
+        """Whether the times ``t`` [s] look like ms read as s: whole numbers 1 or 2 apart (a 1 kHz
+        or 500 Hz gyro in ms reads as a 1 Hz or 0.5 Hz one in s, within the intervals judged
+        sound), read in s for want of a unit, and not Unix epoch seconds (2001 to 2096)."""
+        if not getattr(self._options, _ASSUMED_TIME_UNIT, False) or interval not in (1.0, 2.0):
+            return False
+        return not EPOCH_SECONDS[0] <= abs(float(t[0])) <= EPOCH_SECONDS[1] and bool(np.all(t == np.round(t)))
+
+
+def _header_states_deg(options: ReadOptions) -> bool:
+    """Whether the rate column's name (or a gyro column's) states deg/s (``gyro_z_dps``, ``wz [deg/s]``)."""
+    columns = options.gyro_cols if options.gyro_cols is not None else (options.rate,)
+    return any(rate_unit_named(split_unit(c)[1] or "") == "deg/s" for c in columns)
 
 
 def _normal(unit: str) -> str:
@@ -247,17 +270,34 @@ def header_options(path: Path, header: list[str] | None, options: ReadOptions) -
         return replace(options, time_unit=options.time_unit or "s", rate_unit=options.rate_unit or "rad/s")
     time = _header_column(path, header, options.time, "--time-col")
     time_unit = _stated_unit(path, time, options.time_unit, "--time-unit", "s")
+    written = split_unit(time)[1]
+    assumed = options.time_unit is None and (written is None or _normal(written) not in HEADER_TIME_UNITS)
     if options.gyro_cols is None:
         rate = _header_column(path, header, options.rate, "--rate-col")
         rate_unit = _stated_unit(path, rate, options.rate_unit, "--rate-unit", "rad/s")
-        return replace(options, time_col=time, rate_col=rate, time_unit=time_unit, rate_unit=rate_unit)
+        return _assumed(replace(options, time_col=time, rate_col=rate, time_unit=time_unit, rate_unit=rate_unit),
+                        assumed)
     gyro = _header_columns(path, header, options.gyro_cols, "--gyro-cols")
     units = [_stated_unit(path, c, options.rate_unit, "--rate-unit", "rad/s") for c in gyro]
     if len(set(units)) > 1:
         read = ", ".join(f"{c!r} as {u}" for c, u in zip(gyro, units))
         raise ValueError(f"{path}: the gyro columns read in different units ({read}): give each its unit in the header")
     accel = None if options.accel_cols is None else _header_columns(path, header, options.accel_cols, "--accel-cols")
-    return replace(options, time_col=time, gyro_cols=gyro, accel_cols=accel, time_unit=time_unit, rate_unit=units[0])
+    return _assumed(
+        replace(options, time_col=time, gyro_cols=gyro, accel_cols=accel, time_unit=time_unit, rate_unit=units[0]),
+        assumed,
+    )
+
+
+#: The reader's note on :class:`ReadOptions` (an attribute, not a field: no option a user gives):
+#: the time unit is ``s`` only because neither an option nor the header gave one.
+_ASSUMED_TIME_UNIT = "_assumed_time_unit"
+
+
+def _assumed(options: ReadOptions, assumed: bool) -> ReadOptions:
+    """``options`` noted as read in seconds only for want of a unit (a ``replace`` leaves it out)."""
+    object.__setattr__(options, _ASSUMED_TIME_UNIT, assumed)  # frozen: set as __post_init__ sets its forms
+    return options
 
 
 def _header_columns(path: Path, header: list[str], wanted: tuple[str, str, str], option: str) -> tuple[str, str, str]:
