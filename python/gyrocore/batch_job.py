@@ -108,7 +108,7 @@ class FileReport:
         if policy:  # also among the warnings, on stderr: the report is the file's record, kept with its output
             lines.append(f"       input policy: {'; '.join(policy)}")
         lines.append(f"       bias: {self.bias_source}")
-        lines += wholelog.rest_lines(self.bias_source or "", self.rests, " " * 9)
+        lines += rests.rest_lines(self.bias_source or "", self.rests, " " * 9)
         if self.fixes is not None:
             lines.append(f"       fixes from {self.fixes_file}: {', '.join(f'{k} {v}' for k, v in self.fixes.items())}")
         return "\n".join(lines)

@@ -25,7 +25,8 @@ from .io import Log, read_log
 from .io._logfolder import REFERENCE_CSV
 from .io.atomic import make_folder
 from .pipeline import HeadingResult, has_bias_source, process, recommended_preset, uses_static_bias
-from .wholelog import Rest, check_mode, check_parameters, rest_lines
+from .rests import rest_lines
+from .wholelog import Rest, check_mode, check_parameters
 
 
 @dataclass(frozen=True)

@@ -169,3 +169,24 @@ def _warn_overlap(t: FloatArray, ts: FloatArray, where: str) -> None:
         f"with {inside} speed sample(s) inside it: the speed is unknown elsewhere, and rests there are found "
         "from the rate alone; give the speed's times in the gyro's clock, in seconds"
     )
+
+
+#: A report lists at most this many rests under its bias line (a long drive's rate showed 120, a
+#: day's log thousands, each a line of the report); the JSON report holds every one.
+LISTED_RESTS = 12
+
+
+def rest_lines(source: str, rests: tuple[Rest, ...], indent: str) -> list[str]:
+    """The lines listing ``rests`` under a report's ``source`` line (none when that line names the
+    one rest used, as ``first 10 s: rest ...`` does too): the first :data:`LISTED_RESTS` and a
+    line counting the others."""
+    if len(rests) == 1 and f"rest {rests[0]}" in source:
+        return []
+    shown = rests if len(rests) <= LISTED_RESTS else rests[: LISTED_RESTS - 1]
+    lines = [f"{indent}rest {r}" for r in shown]
+    others = rests[len(shown):]
+    if others:
+        used = sum(r.accepted for r in others)
+        lines.append(f"{indent}... and {len(others)} more rests ({used} of them used): the JSON report (--json; "
+                     ".rests in Python) lists every one")
+    return lines

@@ -77,7 +77,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "BIAS_OPTIONS_HINT", "BIAS_SIGMAS", "BIAS_WALK", "HDR_BOUND_WALK", "MIN_REST", "MODES", "SPEED_THRESHOLD", "WHOLE_OPTIONS", "BiasPlan", "Options", "Rest",
-    "check_mode", "plan_arrays", "plan_log", "plan_stream", "process_log", "refuse_tracking", "refuse_whole_options", "rest_lines", "untracked",
+    "check_mode", "plan_arrays", "plan_log", "plan_stream", "process_log", "refuse_tracking", "refuse_whole_options", "untracked",
     "without_bias",
 ]
 __dir__ = public_dir(__name__)  # dir() and tab completion: __all__
@@ -197,27 +197,6 @@ class BiasPlan:
     def result(self, result: HeadingResult) -> HeadingResult:
         """``result`` saying where its bias came from."""
         return replace(result, bias_source=self.source, rests=self.rests)
-
-
-#: A report lists at most this many rests under its bias line (a long drive's rate showed 120, a
-#: day's log thousands, each a line of the report); the JSON report holds every one.
-LISTED_RESTS = 12
-
-
-def rest_lines(source: str, rests: tuple[Rest, ...], indent: str) -> list[str]:
-    """The lines listing ``rests`` under a report's ``source`` line (none when that line names the
-    one rest used, as ``first 10 s: rest ...`` does too): the first :data:`LISTED_RESTS` and a
-    line counting the others."""
-    if len(rests) == 1 and f"rest {rests[0]}" in source:
-        return []
-    shown = rests if len(rests) <= LISTED_RESTS else rests[: LISTED_RESTS - 1]
-    lines = [f"{indent}rest {r}" for r in shown]
-    others = rests[len(shown):]
-    if others:
-        used = sum(r.accepted for r in others)
-        lines.append(f"{indent}... and {len(others)} more rests ({used} of them used): the JSON report (--json; "
-                     ".rests in Python) lists every one")
-    return lines
 
 
 def without_bias(si: dict[str, Any]) -> dict[str, Any]:
