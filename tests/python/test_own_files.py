@@ -15,7 +15,7 @@ import pytest
 import gyrocore
 from gyrocore import sim
 from gyrocore.batch import process_file
-from gyrocore.wholelog import LISTED_RESTS
+from gyrocore.rests import LISTED_RESTS
 
 from .conftest import gyrocore_cli
 
@@ -95,7 +95,9 @@ def test_evaluate_scores_a_file_against_a_reference_file_of_its_own(tmp_path: Pa
     assert row["e_psi_deg"] == pytest.approx(expected.e_psi_deg, rel=1e-3, abs=1e-3)
     assert row["n"] == len(drive.t[::5])
     # one reference file is one log's
-    two = gyrocore_cli("evaluate", gyro, gyro, "--time-col", "timestamp", "--reference", ref, code=2).stderr
+    other = tmp_path / "drive2.csv"  # another log (one given twice is scored once)
+    other.write_bytes(gyro.read_bytes())
+    two = gyrocore_cli("evaluate", gyro, other, "--time-col", "timestamp", "--reference", ref, code=2).stderr
     assert "--reference" in two and "2 logs were given" in two, two
 
 
