@@ -9,7 +9,11 @@ the batch-means standard error, which stays honest when slow motion or low-frequ
 moves the mean. A found rest is used only when it lasts :data:`MIN_REST` seconds, its noise is
 at most :data:`NOISE_RATIO` times the median of the rests' noise (a stop with the engine
 shaking or the vehicle creeping is not a rest) and, among three or more, its mean agrees with
-what the others give within :data:`OUTLIER_SIGMAS` (leave-one-out, through the smoother).
+what the others give within :data:`OUTLIER_SIGMAS` (leave-one-out, through the smoother). A rest
+the rate alone found is no stronger evidence than a steady turn, which reads as steady: it is used
+only where it holds :data:`MIN_RATE_READINGS` or is :data:`QUIET_RATIO` times as quiet as the rest
+of the log, and only where the rate's rests agree (one of them refused as an outlier, or two that
+disagree, and none of them is used).
 
 Units: s, rad/s, m/s.
 """
