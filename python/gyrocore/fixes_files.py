@@ -9,6 +9,7 @@ import re
 from pathlib import Path
 
 from ._arrays import FloatArray
+from ._checks import keyword_options, require_options
 from .fixes import Fixes, check_all, from_gnss
 from .io._csvfile import CsvLayout, csv_layout, read_csv_columns
 from .io._paths import check_file
@@ -18,6 +19,7 @@ from .io.units import HEADER_TIME_UNITS, _normal as normal_unit, split_unit
 def read_gnss_csv(path: str | Path, **options: float) -> Fixes:
     """Fixes from a ``gnss.csv`` like comma_seg40's (t, speed [m/s], bearing [deg, clockwise from
     north]), through :func:`from_gnss` (its options pass on)."""
+    require_options("read_gnss_csv (from_gnss's)", options, keyword_options(from_gnss))  # before the file is read
     path = Path(path)
     layout = csv_layout(path, ",")
     cols = _read_rows(path, GNSS_COLUMNS)

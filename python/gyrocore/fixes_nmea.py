@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import warn
+from ._checks import keyword_options, require_options, warn
 from ._extras import require
 from .fixes import Fixes, from_gnss
 from .fixes_files import _ROW_ERROR
@@ -39,6 +39,7 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
     counts (void RMC, RMC without a course). The times are UTC: shift them onto the gyro's clock before fusing. ``options`` go to
     :func:`gyrocore.fixes.from_gnss`.
     """
+    require_options("read_nmea (from_gnss's)", options, keyword_options(from_gnss))  # before the file is read
     pynmea2 = require("pynmea2", "reading NMEA sentences")
     path = Path(path)
     epochs: dict[float, tuple[float, float, int]] = {}  # time -> course [deg], speed [m/s], line

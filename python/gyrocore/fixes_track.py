@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
-from ._checks import check_number, require_finite, require_increasing, warn
+from ._checks import check_number, keyword_options, require_finite, require_increasing, require_options, warn
 from .fixes import Fixes, warn_no_fix
 
 #: Mean Earth radius [m] (IUGG), for :func:`from_latlon`'s local plane.
@@ -76,6 +76,7 @@ def from_latlon(t: ArrayLike, lat_deg: ArrayLike, lon_deg: ArrayLike, **options:
     No fix from a track whose every latitude lies within +-pi/2 and longitude within +-pi warns
     that they look like radians (read as degrees, a drive in radians moves 57 times too little
     for a course)."""
+    require_options("from_latlon (from_positions's)", options, keyword_options(from_positions))
     lat, lon = as_float_array("lat_deg", lat_deg), as_float_array("lon_deg", lon_deg)
     if len(lat) != len(lon):
         raise ValueError(f"lat_deg and lon_deg must have one length, got {len(lat)} and {len(lon)}")
