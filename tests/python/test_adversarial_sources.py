@@ -10,7 +10,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import gyrocore
 from gyrocore import fixes
+
+from .conftest import gyrocore_cli
 
 T = np.arange(10.0)
 
@@ -41,3 +44,61 @@ def test_an_unknown_option_passed_on_is_named_with_the_function_called(
     (tmp_path / "gnss.nmea").write_text("$GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230394,003.1,W*6A\n")
     with pytest.raises(TypeError, match="^" + re.escape(message)):
         call(tmp_path)  # type: ignore[operator]
+
+
+def _bag_with(path: Path, ros1: bool, topics: dict[str, str], messages: int = 3) -> None:
+    """A bag whose ``topics`` (name -> message type) hold ``messages`` messages each, an Imu topic
+    none: its connection alone, as a recorder leaves a topic it subscribed to that never spoke."""
+    typesys = pytest.importorskip("rosbags.typesys")
+    store = typesys.get_typestore(typesys.Stores.ROS1_NOETIC if ros1 else typesys.Stores.ROS2_HUMBLE)
+    text = store.types["std_msgs/msg/String"]
+    if ros1:
+        from rosbags.rosbag1 import Writer
+    else:
+        from rosbags.rosbag2 import Writer  # type: ignore[assignment]
+    with (Writer(path) if ros1 else Writer(path, version=9)) as writer:  # type: ignore[call-arg]
+        for topic, msgtype in topics.items():
+            connection = writer.add_connection(topic, msgtype, typestore=store)
+            if msgtype == "std_msgs/msg/String":
+                for k in range(messages):
+                    data = text(data="x")
+                    raw = store.serialize_ros1(data, msgtype) if ros1 else store.serialize_cdr(data, msgtype)
+                    writer.write(connection, 10**18 + k, raw)
+
+
+@pytest.mark.parametrize("ros1", [True, False], ids=["ros1", "ros2"])
+@pytest.mark.parametrize(
+    ("topics", "topic", "message"),
+    [
+        ({}, None, "no sensor_msgs/msg/Imu topic, and gyrocore reads a bag's gyro from one; the bag has no topic at all"),
+        ({"/imu": "std_msgs/msg/String"}, None,
+         "no sensor_msgs/msg/Imu topic, and gyrocore reads a bag's gyro from one; the bag has /imu (std_msgs/msg/String)"),
+        ({"/imu": "std_msgs/msg/String", "/imu/data": "sensor_msgs/msg/Imu"}, "/imu",
+         "/imu carries std_msgs/msg/String, not sensor_msgs/msg/Imu (sensor_msgs/msg/Imu topics: /imu/data)"),
+        ({"/imu/data": "sensor_msgs/msg/Imu"}, None,
+         "the sensor_msgs/msg/Imu topic /imu/data holds no message, so no samples"),
+    ],
+    ids=["empty-bag", "no-imu-topic", "topic-of-another-type", "imu-topic-without-messages"],
+)
+def test_a_bag_without_imu_messages_says_what_it_has(
+    tmp_path: Path, ros1: bool, topics: dict[str, str], topic: str | None, message: str
+) -> None:
+    """An empty bag, or one whose only topic is another type's, said ``give the topic (--topic);
+    sensor_msgs/msg/Imu topics: none``, which no topic mends; ``--topic /imu`` of a String topic
+    said ``no sensor_msgs/msg/Imu messages on /imu``; an Imu topic that never spoke said ``no
+    samples``, naming no topic."""
+    path = tmp_path / ("drive.bag" if ros1 else "drive")
+    _bag_with(path, ros1, topics)
+    with pytest.raises(ValueError, match="^" + re.escape(f"{path}: {message}") + "$"):
+        gyrocore.read_log(path, topic=topic)
+
+
+def test_a_topic_without_its_slash_is_suggested(tmp_path: Path) -> None:
+    """``--topic imu`` of a bag whose topic is ``/imu`` named the topics but suggested none."""
+    from .test_io import STAMPS, Z, write_bag
+
+    path = tmp_path / "drive.bag"
+    write_bag(path, STAMPS, Z, ros1=True, topics=("/imu", "/imu2"))
+    proc = gyrocore_cli("process", path, "--topic", "imu", "--out", tmp_path / "h.csv", code=2)
+    assert "no sensor_msgs/msg/Imu messages on imu (did you mean '/imu'?)" in proc.stderr
+    assert not (tmp_path / "h.csv").exists()
