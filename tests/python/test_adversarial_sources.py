@@ -102,3 +102,35 @@ def test_a_topic_without_its_slash_is_suggested(tmp_path: Path) -> None:
     proc = gyrocore_cli("process", path, "--topic", "imu", "--out", tmp_path / "h.csv", code=2)
     assert "no sensor_msgs/msg/Imu messages on imu (did you mean '/imu'?)" in proc.stderr
     assert not (tmp_path / "h.csv").exists()
+
+
+def _log_folder(folder: Path, meta: str) -> Path:
+    """A small log folder: 60 s at 100 Hz, at rest for its first 10 s, and ``meta`` as its meta.json."""
+    folder.mkdir()
+    t = np.arange(0.0, 60.0, 0.01)
+    rate = 0.002 + np.where((t > 30) & (t < 40), 0.3, 0.0)
+    (folder / "gyro.csv").write_text("t,gyro_z\n" + "".join(f"{a:.2f},{b:.6f}\n" for a, b in zip(t, rate)))
+    (folder / "meta.json").write_text(meta)
+    return folder
+
+
+@pytest.mark.parametrize("key", ["rate_unit", "time-unit", "Rate_Col"])
+def test_a_reading_option_in_meta_json_is_said_to_be_unread(tmp_path: Path, key: str) -> None:
+    """``"rate_unit": "deg/s"`` in meta.json, beside a gyro in deg/s, was left unread without a
+    word: the rates were read as rad/s (57 times too large), as any key gyrocore does not read."""
+    folder = _log_folder(tmp_path / "drive", f'{{"stationary": [0, 10], "{key}": "deg/s"}}')
+    option = key.replace("-", "_").lower()
+    with pytest.warns(gyrocore.InputWarning, match=re.escape(
+            f"meta.json: the key {key!r} is not read: a log folder's meta.json gives its rest window ('stationary') "
+            f"and name; {option} is a reading option: give it to the command (--{option.replace('_', '-')}) or to "
+            f"read_log ({option}=)")):
+        gyrocore.read_log(folder)
+
+
+def test_a_key_of_the_users_own_in_meta_json_says_nothing(tmp_path: Path) -> None:
+    import warnings
+
+    folder = _log_folder(tmp_path / "drive", '{"stationary": [0, 10], "operator": "bob", "units": "SI"}')
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        gyrocore.read_log(folder)

@@ -71,6 +71,10 @@ def read_meta(folder: Path) -> tuple[dict[str, Any], tuple[float, float] | None]
 
 #: The keys of meta.json that gyrocore reads; any other is the user's (a log's notes, its source).
 META_KEYS = ("name", "stationary")
+#: The reading options (:class:`gyrocore.io.ReadOptions`) a meta.json might be expected to set, and
+#: does not: a ``"rate_unit": "deg/s"`` there left a gyro in deg/s read as rad/s without a word.
+_READING_OPTIONS = ("time_col", "rate_col", "time_unit", "rate_unit", "topic", "delimiter", "gyro_cols", "accel_cols",
+                    "up", "up_window")
 
 
 def _warn_misspelled(path: Path, meta: dict[str, Any]) -> None:
@@ -79,6 +83,13 @@ def _warn_misspelled(path: Path, meta: dict[str, Any]) -> None:
     read without its rest window, without a word. Other keys are the user's and are left alone,
     also one that a key of gyrocore's starts with (a GNSS base ``station``)."""
     for key in meta:
+        option = key.replace("-", "_").lower()
+        if option in _READING_OPTIONS:
+            unit = (f", or state it in {GYRO_CSV}'s header (t [s], gyro_z [deg/s])" if option.endswith("_unit") else "")
+            warn(f"{path}: the key {key!r} is not read: a log folder's {META_JSON} gives its rest window "
+                 f"('stationary') and name; {option} is a reading option: give it to the command "
+                 f"(--{option.replace('_', '-')}) or to read_log ({option}=){unit}")
+            continue
         for meant in (k for k in META_KEYS if k not in meta and abs(len(k) - len(key)) <= 2):
             if difflib.SequenceMatcher(None, key.lower(), meant).ratio() >= 0.8:
                 warn(f"{path}: the key {key!r} is not read (did you mean {meant!r}?); gyrocore reads "
