@@ -134,3 +134,28 @@ def test_a_key_of_the_users_own_in_meta_json_says_nothing(tmp_path: Path) -> Non
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         gyrocore.read_log(folder)
+
+
+@pytest.mark.parametrize("spec", ["", "=", "=1:2", " =1:2"])
+def test_tune_param_without_a_name_says_so(tmp_path: Path, spec: str) -> None:
+    """``gyrocore tune --param ''`` said ``unknown parameter(s) ; the pipeline's are ...``, an
+    empty name shown as nothing."""
+    proc = gyrocore_cli("tune", "--sim-table", "II", f"--param={spec}", code=2, timeout=60)
+    assert proc.stderr == f"gyrocore: error: --param {spec!r}: give a parameter's name, NAME or NAME=LOW:HIGH (SI bounds)\n"
+
+
+def test_fixing_a_parameter_the_preset_fits_by_default_says_how_to_fix_it() -> None:
+    """``gyrocore tune --set lowpass_tau=0.1`` (``tune(fixed={"lowpass_tau": 0.1})``) said
+    ``lowpass_tau cannot be both fitted and fixed``, though nobody asked to fit it: HDR's fit takes
+    it unless told otherwise, and nothing said so."""
+    from gyrocore import tune
+
+    with pytest.raises(ValueError, match=re.escape(
+            "lowpass_tau cannot be both fitted and fixed: hdr's fit takes hdr_increment, lowpass_tau, "
+            "hdr_turn_threshold, hdr_c1, hdr_c2 unless told; name the parameters to fit without it (--param NAME, "
+            "names=)")):
+        tune.search_box("hdr", fixed={"lowpass_tau": 0.1})
+    # named to be fitted and fixed, the error is the short one
+    with pytest.raises(ValueError, match=r"^lowpass_tau cannot be both fitted and fixed$"):
+        tune.search_box("hdr", names=["lowpass_tau"], fixed={"lowpass_tau": 0.1})
+    assert set(tune.search_box("hdr", names=["hdr_c1"], fixed={"lowpass_tau": 0.1})) == {"hdr_c1"}

@@ -119,6 +119,8 @@ def _parse_params(specs: Sequence[str]) -> tuple[list[str], dict[str, tuple[floa
     bounds: dict[str, tuple[float, float]] = {}
     for spec in specs:
         name, _, rng = spec.partition("=")
+        if not name.strip():  # it was "unknown parameter(s) ; the pipeline's are ..."
+            raise ValueError(f"--param {spec!r}: give a parameter's name, NAME or NAME=LOW:HIGH (SI bounds)")
         names.append(name)
         if rng:
             bounds[name] = _bounds(spec, rng)
