@@ -338,7 +338,7 @@ class _FileJob:
             check.update(log.t, log.rate)
             raise self._at_sample(source, e, check) from None
         except ValueError as e:
-            raise _in_file(source, e, False) from None
+            raise _in_file(source, e, False, self._fixes_file(source)) from None
         written = _write_result(self.out, result, self.heading, self.columns)
         if progress is not None:
             progress(len(result), len(result), "rows")
@@ -447,14 +447,15 @@ def _first_time(source: io.GyroSource) -> float:
     return float(first.t[0])
 
 
-def _in_file(source: io.GyroSource, error: ValueError, window_from_meta: bool) -> ValueError:
-    """The pipeline's error about a file, naming it (unless a reader did), or meta.json where
-    the rest window is its."""
+def _in_file(source: io.GyroSource, error: ValueError, window_from_meta: bool, fixes: str | None = None) -> ValueError:
+    """The pipeline's error about a file, naming it (unless a reader did, or the error is about the
+    fixes file ``fixes``, which it names), or meta.json where the rest window is its."""
     if window_from_meta and isinstance(error, RestWindowError):
         return ValueError(from_stationary(source.path, error))
     text = str(error)
     # named already: by the data file, or by another file of its log folder (odometry.csv)
     named = str(source.data_path) in text or (source.path.is_dir() and text.startswith(f"{source.path}{os.sep}"))
+    named = named or (fixes is not None and text.startswith(f"{Path(fixes)}: "))
     return ValueError(text if named else f"{source.data_path}: {text}")
 
 

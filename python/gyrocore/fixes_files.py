@@ -105,6 +105,10 @@ def read_fixes_file(path: str | Path) -> Fixes:
     path = Path(path)
     check_file(path)  # a folder or a pipe given as the fixes is named as such, not "missing"
     header = csv_layout(path, ",").header
+    if header and header[0].startswith(("$", "!")) and len(header[0]) in (6, 7):  # $GPRMC, !AIVDM: a talker and type
+        raise ValueError(f"{path}: NMEA 0183 sentences ({header[0]},...), not a CSV file of fixes; their times are UTC: "
+                         "read them with gyrocore.fixes.read_nmea, shift the times onto the gyro's clock, and write "
+                         f"them as a fixes.csv ({','.join(FIXES_COLUMNS)}) or give them to process (fixes=)")
     if set(FIXES_COLUMNS) <= {split_unit(h)[0] for h in header}:
         return read_fixes_csv(path)
     if set(GNSS_COLUMNS) <= set(header):

@@ -159,3 +159,35 @@ def test_fixing_a_parameter_the_preset_fits_by_default_says_how_to_fix_it() -> N
     with pytest.raises(ValueError, match=r"^lowpass_tau cannot be both fitted and fixed$"):
         tune.search_box("hdr", names=["lowpass_tau"], fixed={"lowpass_tau": 0.1})
     assert set(tune.search_box("hdr", names=["hdr_c1"], fixed={"lowpass_tau": 0.1})) == {"hdr_c1"}
+
+
+NMEA = "$GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230394,003.1,W*6A\n"
+
+
+@pytest.mark.parametrize("command", ["process", "evaluate"])
+def test_nmea_sentences_given_as_fixes_are_named_as_such(tmp_path: Path, command: str) -> None:
+    """``--fixes gnss.nmea`` was read as a CSV file: ``a fixes file has the columns ...; its header
+    has $GPRMC, 003.1, 01131.000, ...`` (and ``process`` put the log's gyro.csv before the fixes
+    file, as if the error were the log's)."""
+    folder = _log_folder(tmp_path / "drive", '{"stationary": [0, 10]}')
+    (folder / "reference.csv").write_text("t,heading\n0,0\n30,0\n59,0\n")
+    nmea = tmp_path / "gnss.nmea"
+    nmea.write_text(NMEA)
+    out = tmp_path / "h.csv"
+    extra = ("--out", out) if command == "process" else ()
+    proc = gyrocore_cli(command, folder, "--fixes", nmea, *extra, code=2)
+    assert proc.stderr == (
+        f"gyrocore: error: {nmea}: NMEA 0183 sentences ($GPRMC,...), not a CSV file of fixes; their times are UTC: "
+        "read them with gyrocore.fixes.read_nmea, shift the times onto the gyro's clock, and write them as a fixes.csv "
+        "(t,heading,sigma) or give them to process (fixes=)\n")
+    assert not out.exists()
+
+
+def test_an_error_of_a_fixes_file_given_to_process_names_that_file_alone(tmp_path: Path) -> None:
+    """``gyrocore process drive --fixes bad.csv`` said ``drive/gyro.csv: bad.csv: line 2, ...``: the
+    log's file before the fixes file, as if the error were the log's."""
+    folder = _log_folder(tmp_path / "drive", '{"stationary": [0, 10]}')
+    bad = tmp_path / "bad.csv"
+    bad.write_text("t,heading,sigma\n50,nan,0.05\n")
+    proc = gyrocore_cli("process", folder, "--fixes", bad, "--out", tmp_path / "h.csv", code=2)
+    assert proc.stderr.startswith(f"gyrocore: error: {bad}: line 2, column 2 (heading): fix 0: heading = NaN"), proc.stderr
