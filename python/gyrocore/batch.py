@@ -181,6 +181,9 @@ def process_many(
         raise ValueError(f"fmt must be 'csv' or 'parquet', got {fmt!r}")
     if jobs is not None:  # 1.5 threads were taken
         check_count("jobs", jobs)
+        if client is not None:  # the cluster's workers ran the files, and jobs was left unused without a word
+            raise ValueError(f"jobs={jobs} is the number of threads here, and client= runs the files on the Dask "
+                             "cluster's workers (as many as it has): give one of them (--jobs or --scheduler)")
     require_choice("heading convention", heading, io.HEADING_CONVENTIONS)
     if columns is not None:
         io.check_columns(columns)

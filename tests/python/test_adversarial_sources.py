@@ -191,3 +191,44 @@ def test_an_error_of_a_fixes_file_given_to_process_names_that_file_alone(tmp_pat
     bad.write_text("t,heading,sigma\n50,nan,0.05\n")
     proc = gyrocore_cli("process", folder, "--fixes", bad, "--out", tmp_path / "h.csv", code=2)
     assert proc.stderr.startswith(f"gyrocore: error: {bad}: line 2, column 2 (heading): fix 0: heading = NaN"), proc.stderr
+
+
+def _small_log(path: Path) -> Path:
+    t = np.arange(0.0, 30.0, 0.01)
+    path.write_text("t,gyro_z\n" + "".join(f"{a:.2f},0.001\n" for a in t))
+    return path
+
+
+@pytest.mark.parametrize(
+    ("options", "said"),
+    [(("--scheduler", "tcp://10.0.0.5:8786"), "--scheduler tcp://10.0.0.5:8786: --out {out} is one file, processed "
+      "here from one input; it runs the files of a batch into an output folder (--out DIR): leave it out"),
+     (("--jobs", "3"), "--jobs 3: --out {out} is one file, processed here from one input; it runs the files of a "
+      "batch into an output folder (--out DIR): leave it out")],
+    ids=["scheduler", "jobs"],
+)
+def test_batch_options_given_for_one_output_file_are_refused(tmp_path: Path, options: tuple[str, ...], said: str) -> None:
+    """``gyrocore process drive.csv --out h.csv --scheduler ADDRESS`` (or ``--jobs 3``) processed the
+    file here, on one thread, without a word: the scheduler was never asked, not even whether it
+    answers."""
+    out = tmp_path / "h.csv"
+    proc = gyrocore_cli("process", _small_log(tmp_path / "drive.csv"), "--out", out, *options, code=2, timeout=20)
+    assert proc.stderr == f"gyrocore: error: {said.format(out=out)}\n"
+    assert not out.exists()
+
+
+def test_jobs_beside_a_dask_cluster_is_refused(tmp_path: Path) -> None:
+    """``process_many(..., client=..., jobs=2)`` and ``--scheduler ADDRESS --jobs 2`` ran on the
+    cluster's workers, the number of jobs left unused without a word."""
+    from gyrocore import batch
+
+    log = _small_log(tmp_path / "drive.csv")
+    with pytest.raises(ValueError, match=r"^jobs=2 is the number of threads here, and client= runs the files on the "
+                                         r"Dask cluster's workers \(as many as it has\): give one of them"):
+        batch.process_many([log], out_dir=tmp_path / "out", client="tcp://10.0.0.5:8786", jobs=2)
+    proc = gyrocore_cli("process", log, "--out", tmp_path / "out", "--scheduler", "tcp://10.0.0.5:8786", "--jobs", "2",
+                        code=2, timeout=20)
+    assert proc.stderr == ("gyrocore: error: --jobs 2 --scheduler tcp://10.0.0.5:8786: --jobs is the number of files "
+                           "processed at once here, and --scheduler runs them on the Dask cluster's workers (as many "
+                           "as it has): give one of them\n")
+    assert not (tmp_path / "out").exists()
