@@ -232,3 +232,30 @@ def test_jobs_beside_a_dask_cluster_is_refused(tmp_path: Path) -> None:
                            "processed at once here, and --scheduler runs them on the Dask cluster's workers (as many "
                            "as it has): give one of them\n")
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize(
+    ("overrides", "message"),
+    [({"hdr": 0.0}, "invalid parameter hdr = 0.0: a switch takes True or False (on the command line true or false), "
+                    "not float; hdr is run Heuristic Drift Reduction [bool]"),
+     ({"integration": 3}, "invalid parameter integration = 3: takes a name, not int; integration is 'trapezoid' or "
+                          "'rectangle'")],
+    ids=["switch", "name"],
+)
+def test_a_switch_or_a_name_given_a_number_says_what_it_takes(overrides: dict[str, object], message: str) -> None:
+    """``Pipeline("hdr", hdr=0.0)`` (``--param hdr=0``, ``tune --set hdr=0``) said ``'float' object
+    is not an instance of 'bool'``, the binding's words on Python's types."""
+    with pytest.raises(TypeError, match="^" + re.escape(message) + "$"):
+        gyrocore.Pipeline("hdr", **overrides)  # type: ignore[arg-type]
+
+
+def test_tune_set_takes_a_switch_as_true_or_false(tmp_path: Path) -> None:
+    """``gyrocore tune --set delag=false`` was refused (``the value must be a finite number (SI)``),
+    though ``--param delag=false`` takes it and the core's error asked for true or false; a switch
+    given something else says that it is one."""
+    from gyrocore.cli.tune import _parse_fixed
+
+    assert _parse_fixed(["delag=false", "hdr_c1=2"]) == {"delag": False, "hdr_c1": 2.0}
+    with pytest.raises(ValueError, match=re.escape("--set delag=yes: the value must be a finite number (SI) (delag is a "
+                                                   "switch: true or false)")):
+        _parse_fixed(["delag=yes"])
