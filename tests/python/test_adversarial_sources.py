@@ -259,3 +259,20 @@ def test_tune_set_takes_a_switch_as_true_or_false(tmp_path: Path) -> None:
     with pytest.raises(ValueError, match=re.escape("--set delag=yes: the value must be a finite number (SI) (delag is a "
                                                    "switch: true or false)")):
         _parse_fixed(["delag=yes"])
+
+
+def test_a_simulated_outage_past_the_log_is_reported_as_far_as_the_log_goes(tmp_path: Path) -> None:
+    """``gyrocore evaluate --sim-fixes outage=0:1e300`` scored the log alike, and reported the
+    outage as ``[0.000, 1000000000000000052504760255204420248704468581108159154915854115511802457988908195786...``
+    (300 digits), its JSON as 1e300."""
+    import json
+    import math
+
+    drive = tmp_path / "drive.csv"
+    gyrocore_cli("simulate", "--duration", "60", "--out", drive, code=0)
+    last = float(drive.read_text().splitlines()[-1].split(",")[0])
+    proc = gyrocore_cli("evaluate", drive, "--preset", "hdr", "--sim-fixes", "rate=1,outage=30:1e300", code=0)
+    assert f"outage of {drive}: [{30:.3f}, {last:.3f}) s\n" in proc.stdout, proc.stdout
+    report = json.loads(gyrocore_cli("evaluate", drive, "--preset", "hdr", "--sim-fixes", "outage=30:1e300", "--json",
+                                     code=0).stdout)
+    assert report[0]["outage"] == [30.0, math.nextafter(last, math.inf)]
