@@ -276,3 +276,17 @@ def test_a_simulated_outage_past_the_log_is_reported_as_far_as_the_log_goes(tmp_
     report = json.loads(gyrocore_cli("evaluate", drive, "--preset", "hdr", "--sim-fixes", "outage=30:1e300", "--json",
                                      code=0).stdout)
     assert report[0]["outage"] == [30.0, math.nextafter(last, math.inf)]
+
+
+@pytest.mark.parametrize(("bad", "shown"), [(np.inf, "inf"), (-np.inf, "-inf"), (1e300, "1e+300")])
+@pytest.mark.parametrize("axis", ["x", "y"])
+def test_a_position_that_is_infinite_or_huge_is_named(bad: float, shown: str, axis: str) -> None:
+    """``from_positions`` left an infinite position out as if unknown (NaN), and 1e300 gave two fixes
+    as confident as any (heading 0, then pi): a corrupt value, as an infinite GNSS bearing is."""
+    x, y = 5.0 * T, np.zeros(10)
+    (x if axis == "x" else y)[3] = bad
+    with pytest.raises(ValueError, match=re.escape(f"positions: {axis}[3] is {shown}: beyond +-2^40 m; a position is "
+                                                   "in metres (NaN where it is unknown): drop or repair the sample")):
+        fixes.from_positions(T, x, y)
+    x[3] = y[3] = np.nan  # unknown there: the steps to and from it give no fix
+    assert len(fixes.from_positions(T, x, y)) == 7
