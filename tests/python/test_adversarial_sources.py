@@ -290,3 +290,17 @@ def test_a_position_that_is_infinite_or_huge_is_named(bad: float, shown: str, ax
         fixes.from_positions(T, x, y)
     x[3] = y[3] = np.nan  # unknown there: the steps to and from it give no fix
     assert len(fixes.from_positions(T, x, y)) == 7
+
+
+def test_a_log_with_its_own_reference_given_as_a_reference_says_so(tmp_path: Path) -> None:
+    """``gyrocore calibrate drive.csv --reference drive.csv`` (a file gyrocore simulate wrote) said
+    ``drive.csv: missing column(s) heading; it has t, gyro_z, ..., heading_true, ... (drive.csv has
+    the columns t, heading, x, y)``: a claim about the file that was not so, and no word that its
+    heading_true is read with the log."""
+    drive = tmp_path / "drive.csv"
+    drive.write_text("t,gyro_z,heading_true\n0,0.01,0\n0.1,0.01,0.001\n0.2,0.01,0.002\n")
+    with pytest.raises(ValueError, match="^" + re.escape(
+            f"{drive}: no column heading, and its heading_true makes it a log with its own reference (what gyrocore "
+            "simulate writes): give it as the log, whose heading_true is read with it; a reference file has the "
+            "columns t, heading [rad] and, where known, x, y [m]") + "$"):
+        gyrocore.io.read_reference_file(drive)

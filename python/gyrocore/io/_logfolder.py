@@ -144,6 +144,11 @@ def read_reference_file(path: Path) -> dict[str, FloatArray]:
     """
     check_file(path)
     layout = csv_layout(path, ",")
+    # a log file with its own reference given as one: it said "drive.csv has the columns t, heading, x, y"
+    if "heading" not in layout.header and "heading_true" in layout.header:
+        raise ValueError(f"{path}: no column heading, and its heading_true makes it a log with its own reference (what "
+                         "gyrocore simulate writes): give it as the log, whose heading_true is read with it; a "
+                         "reference file has the columns t, heading [rad] and, where known, x, y [m]")
     track = ("x", "y") if has_track(str(path), layout.header) else ()
     ref = read_csv_columns(path, ("t", "heading", *track), optional=track)
     _require_samples(path, layout, ref, ("t", "heading"), "a reference")
