@@ -304,3 +304,30 @@ def test_a_log_with_its_own_reference_given_as_a_reference_says_so(tmp_path: Pat
             "simulate writes): give it as the log, whose heading_true is read with it; a reference file has the "
             "columns t, heading [rad] and, where known, x, y [m]") + "$"):
         gyrocore.io.read_reference_file(drive)
+
+
+@pytest.mark.parametrize(
+    ("content", "message"),
+    [(NMEA.encode("utf-16"), "text in UTF-16 (or UTF-32), not UTF-8: save it as UTF-8"),
+     (b"\x1f\x8b\x08\x00" + bytes(200), "not a text NMEA file (binary data on line 1; decompress a .gz file first)"),
+     (bytes(range(256)) * 8, "not a text NMEA file (binary data on line 1; decompress a .gz file first)")],
+    ids=["utf-16", "gzip", "binary"],
+)
+def test_an_nmea_file_that_is_not_text_is_named_as_such(tmp_path: Path, content: bytes, message: str) -> None:
+    """``read_nmea`` of a UTF-16, gzip or binary file said ``line 1: not an NMEA sentence (('could
+    not parse data', '\\x00\\x01\\x02...'))``, echoing up to 4096 of its bytes."""
+    path = tmp_path / "gnss.nmea"
+    path.write_bytes(content)
+    with pytest.raises(ValueError, match="^" + re.escape(f"{path}: {message}") + "$"):
+        fixes.read_nmea(path)
+
+
+def test_a_line_of_binary_data_among_nmea_sentences_is_shown_short(tmp_path: Path) -> None:
+    """A receiver's binary messages among its sentences (u-blox UBX) filled the error with up to
+    4096 bytes of the line, inside pynmea2's tuple of words."""
+    path = tmp_path / "gnss.nmea"
+    path.write_bytes(NMEA.encode() + bytes(range(14, 32)) * 200 + b"\n")
+    with pytest.raises(ValueError, match=r"line 2: not an NMEA sentence \(could not parse data: '.*\.\.\..*\(\d+ "
+                                         r"characters\)\); remove or repair the line$") as error:
+        fixes.read_nmea(path)
+    assert len(str(error.value)) < 300
