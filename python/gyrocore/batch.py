@@ -76,7 +76,10 @@ def process_file(
             False), known from the first sample (:mod:`gyrocore.wholelog`). A given rest window is
             measured by a first pass up to its end (flat memory); finding the rests reads the
             log's times and rates into memory first (16 bytes a sample); the heading is then
-            streamed. ``causal``: one streamed pass, what a :class:`gyrocore.Pipeline` gives.
+            streamed. ``causal``: one streamed pass, what a :class:`gyrocore.Pipeline` gives; a
+            preset that tracks rests (``tracked``) with the log's speed (a log folder's
+            odometry.csv, a file's speed column) reads the log whole, as
+            :meth:`gyrocore.Log.process` does, the tracker taking the speed at its own times.
         use_fixes: a log folder's ``fixes.csv`` (heading fixes, docs/fixes.md) is fused unless
             False. Such a log is read into memory whole (the smoother of whole mode needs every
             sample) and processed by :meth:`gyrocore.Log.process`; the report holds the fixes'

@@ -331,3 +331,38 @@ def test_a_line_of_binary_data_among_nmea_sentences_is_shown_short(tmp_path: Pat
                                          r"characters\)\); remove or repair the line$") as error:
         fixes.read_nmea(path)
     assert len(str(error.value)) < 300
+
+
+@pytest.mark.parametrize("kind", ["file", "log folder"])
+def test_a_causal_batch_tracks_rests_with_the_logs_speed(tmp_path: Path, kind: str) -> None:
+    """``gyrocore process drive.csv --causal --preset tracked`` (``process_file``, ``process_many``)
+    streamed the gyro alone: the rest tracker found its rests from the rate, where
+    ``Log.process("tracked", mode="causal")`` and ``evaluate --causal`` take them where the speed
+    (a file's speed column, a log folder's odometry.csv) is zero: another heading, without a
+    word."""
+    import warnings
+
+    from gyrocore import batch, motion, sim
+
+    drive = sim.simulate(motion.car(300.0, seed=4), sim.sensor("crs03"), seed=4)
+    if kind == "file":
+        path = tmp_path / "drive.csv"
+        rows = zip(drive.t.tolist(), drive.rate_measured.tolist(), drive.speed.tolist())
+        path.write_text("t,gyro_z,speed\n" + "".join(f"{a!r},{b!r},{c!r}\n" for a, b, c in rows))
+    else:
+        path = tmp_path / "drive"
+        path.mkdir()
+        t, rate, speed = drive.t.tolist(), drive.rate_measured.tolist(), drive.speed.tolist()
+        (path / "gyro.csv").write_text("t,gyro_z\n" + "".join(f"{a!r},{b!r}\n" for a, b in zip(t, rate)))
+        (path / "odometry.csv").write_text("t,speed\n" + "".join(f"{a!r},{c!r}\n" for a, c in zip(t, speed)))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrocore.InputWarning)
+        log = gyrocore.read_log(path)
+        expected = log.process("tracked", mode="causal").heading
+        blind = log.process("tracked", mode="causal", use_speed=False).heading
+        assert not np.allclose(expected, blind)  # the speed matters on this drive
+        batch.process_file(path, tmp_path / "h.csv", preset="tracked", mode="causal")
+        batch.process_file(path, tmp_path / "blind.csv", preset="tracked", mode="causal", use_speed=False)
+    written = np.loadtxt(tmp_path / "h.csv", delimiter=",", skiprows=1, usecols=1)
+    assert np.allclose(written, expected, rtol=0, atol=1e-12)
+    assert np.allclose(np.loadtxt(tmp_path / "blind.csv", delimiter=",", skiprows=1, usecols=1), blind, rtol=0, atol=1e-12)
