@@ -333,6 +333,18 @@ def keyword_options(function: Callable[..., Any]) -> tuple[str, ...]:
     return tuple(p.name for p in inspect.signature(function).parameters.values() if p.kind is p.KEYWORD_ONLY)
 
 
+def version_error(what: str, found: object, reads: int) -> str:
+    """Why a saved file's ``"version"`` (``found``) is not read: a later one was written by a newer
+    gyrocore, whose user upgrades; a missing or malformed one is named as such. ``what`` is the
+    file's kind (``parameter file``), this gyrocore's version of it ``reads``."""
+    if isinstance(found, int) and not isinstance(found, bool) and found > reads:
+        return (f"{what} version {found}, written by a newer gyrocore; this one reads version {reads}: upgrade "
+                "gyrocore to read it, or write the file again with this one")
+    if found is None:
+        return f"{what} without a \"version\" (this gyrocore writes and reads version {reads})"
+    return f"{what} version {found!r}; this gyrocore reads version {reads}"
+
+
 def did_you_mean(value: object, choices: Iterable[str]) -> str:
     """`` (did you mean 'x'?)`` for the one of ``choices`` that ``value`` is a likely typo, another
     case or the start of (``recomended``, ``HDR``, ``lowpas_tau``, ``sigma`` for ``sigma_deg``), to

@@ -366,3 +366,33 @@ def test_a_causal_batch_tracks_rests_with_the_logs_speed(tmp_path: Path, kind: s
     written = np.loadtxt(tmp_path / "h.csv", delimiter=",", skiprows=1, usecols=1)
     assert np.allclose(written, expected, rtol=0, atol=1e-12)
     assert np.allclose(np.loadtxt(tmp_path / "blind.csv", delimiter=",", skiprows=1, usecols=1), blind, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("version", "said"),
+    [(2, "version 2, written by a newer gyrocore; this one reads version 1: upgrade gyrocore to read it, or write the "
+         "file again with this one"),
+     (None, 'without a "version" (this gyrocore writes and reads version 1)'),
+     (True, "version True; this gyrocore reads version 1")],
+    ids=["newer", "missing", "bool"],
+)
+def test_a_saved_file_of_another_version_says_what_to_do(tmp_path: Path, version: object, said: str) -> None:
+    """A parameter file written by a newer gyrocore said ``parameter file version 2; this gyrocore
+    reads 1`` (a calibration ``calibration format version 2 is not supported (this is 1)``), and one
+    without a version ``version None``; ``"version": true`` was read as version 1 (True == 1)."""
+    import json
+
+    from gyrocore.calibration import Calibration
+    from gyrocore.tune import ParameterSet
+
+    params = tmp_path / "p.json"
+    ParameterSet("hdr_tuned", "hdr", {"hdr_c1": 2.0}).write(params)
+    data = json.loads(params.read_text())
+    data.pop("version") if version is None else data.update(version=version)
+    params.write_text(json.dumps(data))
+    with pytest.raises(ValueError, match="^" + re.escape(f"{params}: parameter file {said}") + "$"):
+        ParameterSet.read(params)
+    saved = Calibration("static_bias", bias=0.01).to_dict()
+    saved.pop("version") if version is None else saved.update(version=version)
+    with pytest.raises(ValueError, match="^" + re.escape(f"calibration file {said}") + "$"):
+        Calibration.from_dict(saved)
