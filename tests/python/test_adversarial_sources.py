@@ -396,3 +396,18 @@ def test_a_saved_file_of_another_version_says_what_to_do(tmp_path: Path, version
     saved.pop("version") if version is None else saved.update(version=version)
     with pytest.raises(ValueError, match="^" + re.escape(f"calibration file {said}") + "$"):
         Calibration.from_dict(saved)
+
+
+@pytest.mark.parametrize("header", ["t [s],speed [m/s],bearing [deg]", "t,speed (m/s),bearing (°)"])
+def test_a_gnss_csv_may_state_its_units(tmp_path: Path, header: str) -> None:
+    """A gnss.csv whose header states its units was refused: ``missing column(s) t, speed, bearing;
+    it has t [s], speed [m/s], bearing [deg] (... a name may leave out its unit, e.g. t)``, where
+    a fixes.csv takes ``t [s]``; another unit is refused, not converted."""
+    path = tmp_path / "gnss.csv"
+    path.write_text(f"{header}\n0,5,10\n1,5,20\n")
+    for read in (fixes.read_gnss_csv, fixes.read_fixes_file):
+        assert np.allclose(read(path).heading, np.radians([80.0, 70.0]))
+    path.write_text("t,speed [km/h],bearing\n0,5,10\n")
+    with pytest.raises(ValueError, match=re.escape("column 'speed [km/h]' is in km/h, not m/s: convert it to m/s and "
+                                                   "name it speed or speed [m/s]")):
+        fixes.read_fixes_file(path)
