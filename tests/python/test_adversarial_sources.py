@@ -411,3 +411,21 @@ def test_a_gnss_csv_may_state_its_units(tmp_path: Path, header: str) -> None:
     with pytest.raises(ValueError, match=re.escape("column 'speed [km/h]' is in km/h, not m/s: convert it to m/s and "
                                                    "name it speed or speed [m/s]")):
         fixes.read_fixes_file(path)
+
+
+def test_a_time_column_or_unit_given_for_a_bag_is_said_to_be_unused(tmp_path: Path) -> None:
+    """``gyrocore process drive.bag --time-unit ms`` (``time_col=``) was ignored without a word: a
+    bag's messages are read at their header.stamp, as a delimiter given for one is said to be."""
+    from .test_io import STAMPS, Z, write_bag
+
+    path = tmp_path / "drive.bag"
+    write_bag(path, STAMPS, Z, ros1=True)
+    with pytest.warns(gyrocore.InputWarning) as said:
+        log = gyrocore.read_log(path, time_unit="ms", time_col="t")
+    assert [str(w.message) for w in said] == [
+        f"{path}: time_col 't' (--time-col) is not used: a ROS bag's messages are read at their header.stamp "
+        "(seconds and nanoseconds)",
+        f"{path}: time_unit 'ms' (--time-unit) is not used: a ROS bag's messages are read at their header.stamp "
+        "(seconds and nanoseconds)",
+    ]
+    assert np.array_equal(log.t, gyrocore.read_log(path).t)
