@@ -27,7 +27,7 @@ from .pipeline import Pipeline, has_bias_source
 from .pipeline_params import _to_si
 from .batch_inputs import check_outside_inputs, complete_output, expand_inputs, output_paths
 from .batch_job import BatchReport, FileReport, Progress, _FileJob, split_options
-from .batch_run import _run_on_dask, _run_on_threads
+from .batch_run import _run_on_dask, _run_on_threads, check_client, connected
 from .io._paths import unfollowable
 from .io.atomic import make_folder
 
@@ -182,6 +182,8 @@ def process_many(
         raise ValueError("no input files")
     if fmt not in ("csv", "parquet"):
         raise ValueError(f"fmt must be 'csv' or 'parquet', got {fmt!r}")
+    if client is not None:
+        check_client(client)
     if jobs is not None:  # 1.5 threads were taken
         check_count("jobs", jobs)
         if client is not None:  # the cluster's workers ran the files, and jobs was left unused without a word
@@ -203,13 +205,20 @@ def process_many(
     Pipeline(preset, **(pipeline_overrides if has_bias_source(overrides) else {**pipeline_overrides, "bias": 0.0}))
     outputs = output_paths(inputs, Path(out_dir), fmt)
     check_out_dir(Path(out_dir))
-    make_folder(Path(out_dir))
-    jobs_list = [
-        _FileJob(p, o, preset, heading, chunk_rows, options, columns, mode, use_speed, skip_existing, use_fixes)
-        for p, o in zip(inputs, outputs)
-    ]
-    if client is not None:
-        reports = _run_on_dask(client, jobs_list, progress)
-    else:
-        reports = _run_on_threads(jobs_list, jobs or os.cpu_count() or 1, progress)
+    # a scheduler's address is connected to before the output folder is made: one that no
+    # scheduler answers at, or that Dask cannot read, left an empty output folder behind
+    client, own = connected(client) if client is not None else (None, False)
+    try:
+        make_folder(Path(out_dir))
+        jobs_list = [
+            _FileJob(p, o, preset, heading, chunk_rows, options, columns, mode, use_speed, skip_existing, use_fixes)
+            for p, o in zip(inputs, outputs)
+        ]
+        if client is not None:
+            reports = _run_on_dask(client, jobs_list, progress)
+        else:
+            reports = _run_on_threads(jobs_list, jobs or os.cpu_count() or 1, progress)
+    finally:
+        if own:
+            client.close()
     return BatchReport(tuple(reports), time.perf_counter() - start)

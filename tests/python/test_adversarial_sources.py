@@ -429,3 +429,31 @@ def test_a_time_column_or_unit_given_for_a_bag_is_said_to_be_unused(tmp_path: Pa
         "(seconds and nanoseconds)",
     ]
     assert np.array_equal(log.t, gyrocore.read_log(path).t)
+
+
+def test_a_dask_client_that_cannot_run_the_batch_leaves_no_output_folder(tmp_path: Path) -> None:
+    """``process_many(..., client=...)`` with a closed client failed with Dask's bare
+    ``ClosedClientError: Client is closed. Can't send update-graph message``, with ``client=5``
+    with ``Scheduler address must be a string or a Cluster instance``, and with an address Dask
+    cannot read (``--scheduler nonsense``) after the output folder was made: an empty folder was
+    left behind each time."""
+    distributed = pytest.importorskip("dask.distributed")
+    from gyrocore import batch
+
+    log = _small_log(tmp_path / "drive.csv")
+    out = tmp_path / "out"
+    with pytest.raises(TypeError, match=r"^client must be a dask.distributed.Client, a Dask cluster or a scheduler's "
+                                        r"address \(tcp://host:8786\), got int 5$"):
+        batch.process_many([log], out_dir=out, client=5)
+    with pytest.raises(ValueError, match=r"^scheduler address 'nonsense': "):
+        batch.process_many([log], out_dir=out, client="nonsense")
+    with distributed.LocalCluster(n_workers=1, processes=False, dashboard_address=None) as cluster:
+        client = distributed.Client(cluster)
+        client.close()
+        with pytest.raises(ValueError, match=r"^client= is a Dask client that was closed"):
+            batch.process_many([log], out_dir=out, client=client)
+        assert not out.exists()
+        with distributed.Client(cluster) as client:  # an open one runs the batch, and stays open
+            assert batch.process_many([log], out_dir=out, client=client).failed == ()
+            assert client.status == "running"
+    assert (out / "drive.csv").is_file()
