@@ -333,7 +333,7 @@ class _FileJob:
             return False
         if source.kind == "log folder":
             return has_file(source.path / ODOMETRY_CSV)
-        return bool(source.optional_columns((SPEED_COLUMN,), self.chunk_rows))
+        return SPEED_COLUMN in source.column_names()
 
     def _fused(
         self, source: io.GyroSource, overrides: dict[str, Any], start: float, progress: Progress | None

@@ -265,16 +265,20 @@ class GyroSource:
         speed = self.optional_columns((SPEED_COLUMN,), rows).get(SPEED_COLUMN)
         return None if speed is None else finite_speed(self, speed)
 
+    def column_names(self) -> list[str]:
+        """The columns of a CSV or Parquet file, read from its header or schema; none for another
+        input (another format, or a log folder: its tables are files of their own)."""
+        if self.kind == "csv":
+            return list(self.csv_table().header)
+        if self.kind == "parquet":
+            return list(parquet_file(self.data_path).schema_arrow.names)
+        return []
+
     def optional_columns(self, names: tuple[str, ...], rows: int = DEFAULT_CHUNK_ROWS) -> dict[str, FloatArray]:
         """Those of the columns ``names`` that a CSV or Parquet file has, one value per sample (an
         empty value NaN), read in one pass; none for another input (another format, or a log
         folder: its tables are files of their own)."""
-        if self.kind == "csv":
-            header = self.csv_table().header
-        elif self.kind == "parquet":
-            header = parquet_file(self.data_path).schema_arrow.names
-        else:
-            return {}
+        header = self.column_names()
         present = tuple(n for n in names if n in header)
         if not present:
             return {}
