@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 import difflib
+import inspect
 import math
 import numbers
 import os
@@ -313,6 +314,35 @@ def require_choice(what: str, value: object, choices: Iterable[str]) -> None:
         raise TypeError(f"{what} must be a name, one of {', '.join(names)}; got {type(value).__name__} {value!r}")
     if value not in names:
         raise ValueError(f"unknown {what} {value!r}{did_you_mean(value, names)}; choose one of {', '.join(names)}")
+
+
+def require_options(what: str, options: Iterable[str], names: Iterable[str]) -> None:
+    """Refuse a keyword ``options`` passes on that is none of ``names``, the options of ``what``
+    (the function that takes them): a TypeError naming it, a likely meant one, and the choices.
+    Passed on, a typo was Python's "from_gnss() got an unexpected keyword argument 'min_sped'",
+    naming a function the caller never called."""
+    known = tuple(names)
+    unknown = [k for k in options if k not in known]
+    if unknown:
+        said = ", ".join(f"{k!r}{did_you_mean(k, known)}" for k in unknown)
+        raise TypeError(f"unknown option(s) {said} of {what}; choose from {', '.join(known)}")
+
+
+def keyword_options(function: Callable[..., Any]) -> tuple[str, ...]:
+    """The names of ``function``'s keyword-only parameters, the options a caller may pass on."""
+    return tuple(p.name for p in inspect.signature(function).parameters.values() if p.kind is p.KEYWORD_ONLY)
+
+
+def version_error(what: str, found: object, reads: int) -> str:
+    """Why a saved file's ``"version"`` (``found``) is not read: a later one was written by a newer
+    gyrocore, whose user upgrades; a missing or malformed one is named as such. ``what`` is the
+    file's kind (``parameter file``), this gyrocore's version of it ``reads``."""
+    if isinstance(found, int) and not isinstance(found, bool) and found > reads:
+        return (f"{what} version {found}, written by a newer gyrocore; this one reads version {reads}: upgrade "
+                "gyrocore to read it, or write the file again with this one")
+    if found is None:
+        return f"{what} without a \"version\" (this gyrocore writes and reads version {reads})"
+    return f"{what} version {found!r}; this gyrocore reads version {reads}"
 
 
 def did_you_mean(value: object, choices: Iterable[str]) -> str:

@@ -56,7 +56,17 @@ class SimFixes:
         return cls(**values)
 
     def window(self, log: Log) -> tuple[float, float] | None:
-        """The outage on the log's clock, or None; a ``ValueError`` if it starts after the log."""
+        """The outage on the log's clock, as far as the log goes (an outage past its end ends just
+        after its last sample), or None; a ``ValueError`` if it starts after the log."""
+        window = self._given_window(log)
+        if window is None:
+            return None
+        # an outage of 1e300 s was scored alike, and shown in a report line of 300 digits
+        last = float(log.t[-1])
+        return window if window[1] <= last else (window[0], math.nextafter(last, math.inf))
+
+    def _given_window(self, log: Log) -> tuple[float, float] | None:
+        """The outage on the log's clock as given, or None; a ``ValueError`` if it starts after the log."""
         if self.outage is None:
             return None
         start = float(log.t[0]) + self.outage[0]
@@ -67,7 +77,7 @@ class SimFixes:
 
     def fixes(self, log: Log) -> Fixes:
         """The simulated fixes of ``log`` (from its reference heading)."""
-        window = self.window(log)
+        window = self._given_window(log)
         outages = () if window is None else (window,)
         return gnss_fixes(*log.reference(), seed=self.seed, rate_hz=self.rate, sigma_deg=self.sigma_deg,
                           outages=outages)

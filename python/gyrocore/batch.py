@@ -27,7 +27,7 @@ from .pipeline import Pipeline, has_bias_source
 from .pipeline_params import _to_si
 from .batch_inputs import check_outside_inputs, complete_output, expand_inputs, output_paths
 from .batch_job import BatchReport, FileReport, Progress, _FileJob, split_options
-from .batch_run import _run_on_dask, _run_on_threads
+from .batch_run import _run_on_dask, _run_on_threads, check_client, connected
 from .io._paths import unfollowable
 from .io.atomic import make_folder
 
@@ -76,7 +76,10 @@ def process_file(
             False), known from the first sample (:mod:`gyrocore.wholelog`). A given rest window is
             measured by a first pass up to its end (flat memory); finding the rests reads the
             log's times and rates into memory first (16 bytes a sample); the heading is then
-            streamed. ``causal``: one streamed pass, what a :class:`gyrocore.Pipeline` gives.
+            streamed. ``causal``: one streamed pass, what a :class:`gyrocore.Pipeline` gives; a
+            preset that tracks rests (``tracked``) with the log's speed (a log folder's
+            odometry.csv, a file's speed column) reads the log whole, as
+            :meth:`gyrocore.Log.process` does, the tracker taking the speed at its own times.
         use_fixes: a log folder's ``fixes.csv`` (heading fixes, docs/fixes.md) is fused unless
             False. Such a log is read into memory whole (the smoother of whole mode needs every
             sample) and processed by :meth:`gyrocore.Log.process`; the report holds the fixes'
@@ -179,8 +182,13 @@ def process_many(
         raise ValueError("no input files")
     if fmt not in ("csv", "parquet"):
         raise ValueError(f"fmt must be 'csv' or 'parquet', got {fmt!r}")
+    if client is not None:
+        check_client(client)
     if jobs is not None:  # 1.5 threads were taken
         check_count("jobs", jobs)
+        if client is not None:  # the cluster's workers ran the files, and jobs was left unused without a word
+            raise ValueError(f"jobs={jobs} is the number of threads here, and client= runs the files on the Dask "
+                             "cluster's workers (as many as it has): give one of them (--jobs or --scheduler)")
     require_choice("heading convention", heading, io.HEADING_CONVENTIONS)
     if columns is not None:
         io.check_columns(columns)
@@ -197,13 +205,20 @@ def process_many(
     Pipeline(preset, **(pipeline_overrides if has_bias_source(overrides) else {**pipeline_overrides, "bias": 0.0}))
     outputs = output_paths(inputs, Path(out_dir), fmt)
     check_out_dir(Path(out_dir))
-    make_folder(Path(out_dir))
-    jobs_list = [
-        _FileJob(p, o, preset, heading, chunk_rows, options, columns, mode, use_speed, skip_existing, use_fixes)
-        for p, o in zip(inputs, outputs)
-    ]
-    if client is not None:
-        reports = _run_on_dask(client, jobs_list, progress)
-    else:
-        reports = _run_on_threads(jobs_list, jobs or os.cpu_count() or 1, progress)
+    # a scheduler's address is connected to before the output folder is made: one that no
+    # scheduler answers at, or that Dask cannot read, left an empty output folder behind
+    client, own = connected(client) if client is not None else (None, False)
+    try:
+        make_folder(Path(out_dir))
+        jobs_list = [
+            _FileJob(p, o, preset, heading, chunk_rows, options, columns, mode, use_speed, skip_existing, use_fixes)
+            for p, o in zip(inputs, outputs)
+        ]
+        if client is not None:
+            reports = _run_on_dask(client, jobs_list, progress)
+        else:
+            reports = _run_on_threads(jobs_list, jobs or os.cpu_count() or 1, progress)
+    finally:
+        if own:
+            client.close()
     return BatchReport(tuple(reports), time.perf_counter() - start)

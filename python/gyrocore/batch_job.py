@@ -19,8 +19,10 @@ from ._motion import TURNING
 from ._gyrocore import SampleError
 from .batch_inputs import complete_output
 from .io._columns import concat
-from .io._logfolder import FIXES_CSV, from_stationary, read_odometry
-from .io._paths import error_text, one_line
+from .io._logfolder import FIXES_CSV, ODOMETRY_CSV, from_stationary, read_odometry
+from .io._paths import error_text, has_file, one_line
+from .io.log import _tracks_rests as tracks_rests
+from .io.source import SPEED_COLUMN
 from .pipeline import HeadingResult, has_bias_source, uses_static_bias
 from .pipeline_params import _to_si, unmeasured_bias
 from .window import RestWindowError, Window, time_range
@@ -240,7 +242,7 @@ class _FileJob:
                     + time_range(t0)
                 )
         own = self.use_fixes and source.kind == "log folder" and (source.path / FIXES_CSV).is_file()
-        if own or self.fixes is not None:
+        if own or self.fixes is not None or self._tracks_with_speed(source, overrides):
             return self._fused(source, overrides, start, progress)
         if "heading_sigma" in (self.columns or ()):
             raise ValueError(f"{self.path}: the heading_sigma column comes with heading fixes, and this log has none "
@@ -322,14 +324,26 @@ class _FileJob:
         fix = check.time_fix() if e.what == "t" else NONFINITE_FIX if e.what == "rate" else None
         return ValueError(source.locate(e) + (f"; {fix}" if fix else ""))
 
+    def _tracks_with_speed(self, source: io.GyroSource, overrides: dict[str, Any]) -> bool:
+        """Whether a causal run tracks rests (``tracked``, ``track_rests=True``) with the speed of
+        the log (a log folder's odometry.csv, a file's speed column): the tracker takes the speed
+        at its own times, as :meth:`gyrocore.Log.process` gives it, which a stream of the gyro's
+        chunks does not carry (it ran on the rate alone, another heading without a word)."""
+        if self.mode != "causal" or not self.use_speed or not tracks_rests(self.preset, overrides):
+            return False
+        if source.kind == "log folder":
+            return has_file(source.path / ODOMETRY_CSV)
+        return SPEED_COLUMN in source.column_names()
+
     def _fused(
         self, source: io.GyroSource, overrides: dict[str, Any], start: float, progress: Progress | None
     ) -> FileReport:
-        """A log with heading fixes (given, or its folder's ``fixes.csv``): read whole, as the
-        smoother of whole mode needs every sample, fused by :meth:`gyrocore.Log.process`, written
-        in one piece."""
+        """A log with heading fixes (given, or its folder's ``fixes.csv``), or whose rests are
+        tracked with its speed in causal mode: read whole, as the smoother of whole mode needs
+        every sample and the tracker the speed at its own times, processed by
+        :meth:`gyrocore.Log.process`, written in one piece."""
         reading = {f.name: getattr(self.read_options, f.name) for f in fields(io.ReadOptions)}
-        log = io.read_log(self.path, use_fixes=self.fixes is None, **reading)
+        log = io.read_log(self.path, use_fixes=self.fixes is None and self.use_fixes, **reading)
         self.rows_in = len(log.t)
         try:
             result = log.process(self.preset, mode=self.mode, use_speed=self.use_speed, fixes=self.fixes, **overrides)
@@ -338,16 +352,18 @@ class _FileJob:
             check.update(log.t, log.rate)
             raise self._at_sample(source, e, check) from None
         except ValueError as e:
-            raise _in_file(source, e, False) from None
+            raise _in_file(source, e, False, self._fixes_file(source)) from None
         written = _write_result(self.out, result, self.heading, self.columns)
         if progress is not None:
             progress(len(result), len(result), "rows")
-        assert result.fusion is not None and result.report is not None  # the folder has its fixes
+        assert result.report is not None
         policy = result.report  # what it repaired, the pipeline said already (the log was one block)
+        fused = result.fusion is not None
         return FileReport(str(self.path), str(self.out), self.rows_in, written, time.perf_counter() - start, None,
                           tuple(dict.fromkeys(self.notes)), result.bias_source, result.rests, int(policy["held"]),
                           int(policy["skipped"]), int(policy["gaps"]), policy["longest_gap"],
-                          fixes=dict(result.fusion.counts), fixes_file=self._fixes_file(source))
+                          fixes=dict(result.fusion.counts) if result.fusion is not None else None,
+                          fixes_file=self._fixes_file(source) if fused else None)
 
     def _fixes_file(self, source: io.GyroSource) -> str:
         """Where the fixes fused came from: their file, ``given`` (in memory), or the folder's."""
@@ -447,14 +463,15 @@ def _first_time(source: io.GyroSource) -> float:
     return float(first.t[0])
 
 
-def _in_file(source: io.GyroSource, error: ValueError, window_from_meta: bool) -> ValueError:
-    """The pipeline's error about a file, naming it (unless a reader did), or meta.json where
-    the rest window is its."""
+def _in_file(source: io.GyroSource, error: ValueError, window_from_meta: bool, fixes: str | None = None) -> ValueError:
+    """The pipeline's error about a file, naming it (unless a reader did, or the error is about the
+    fixes file ``fixes``, which it names), or meta.json where the rest window is its."""
     if window_from_meta and isinstance(error, RestWindowError):
         return ValueError(from_stationary(source.path, error))
     text = str(error)
     # named already: by the data file, or by another file of its log folder (odometry.csv)
     named = str(source.data_path) in text or (source.path.is_dir() and text.startswith(f"{source.path}{os.sep}"))
+    named = named or (fixes is not None and text.startswith(f"{Path(fixes)}: "))
     return ValueError(text if named else f"{source.data_path}: {text}")
 
 

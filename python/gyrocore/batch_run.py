@@ -147,6 +147,31 @@ def _run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[File
     return [reports[i] for i in range(len(jobs))]
 
 
+def check_client(client: Any) -> None:
+    """Refuse, before any output is made, a ``client`` that is no Dask client, cluster or address
+    (Dask's bare "Scheduler address must be a string or a Cluster instance"), or a client that was
+    closed (Dask's ``ClosedClientError: Client is closed. Can't send update-graph message``, after
+    the output folder was made)."""
+    distributed = require("dask.distributed", "running on a Dask cluster")
+    if isinstance(client, distributed.Client):
+        if client.status in ("closing", "closed"):
+            raise ValueError("client= is a Dask client that was closed (client.close(), or the end of its with "
+                             "block): give an open one, or the scheduler's address (tcp://host:8786)")
+        return
+    if not isinstance(client, str) and not hasattr(client, "scheduler_address"):  # a cluster has one
+        raise TypeError("client must be a dask.distributed.Client, a Dask cluster or a scheduler's address "
+                        f"(tcp://host:8786), got {type(client).__name__} {client!r}")
+
+
+def connected(client: Any) -> tuple[Any, bool]:
+    """``client`` as a Dask client, and whether it was made here (from an address or a cluster,
+    to be closed by the caller once the batch is done)."""
+    distributed = require("dask.distributed", "running on a Dask cluster")
+    if isinstance(client, distributed.Client):
+        return client, False
+    return _connect(distributed.Client, client), True
+
+
 def _connect(Client: Any, address: Any) -> Any:
     """A client of the scheduler at ``address``; an address Dask cannot read, or a scheduler it
     cannot reach, is an error that says which and what to check (Dask's own words named neither

@@ -26,7 +26,8 @@ from numpy.typing import ArrayLike
 from . import _gyrocore
 from ._arrays import FloatArray, array_fields, as_float_array, float_fields
 from ._checks import (
-    MAX_READING, check_number, public_dir, real_number, require_finite, require_increasing, require_radians, warn,
+    MAX_READING, check_number, did_you_mean, public_dir, real_number, require_finite, require_increasing,
+    require_radians, warn,
 )
 from .result import fix_output_flags
 
@@ -179,7 +180,8 @@ def warn_outside(t: FloatArray, fixes: Fixes) -> None:
 def _settings(settings: dict[str, float]) -> dict[str, float]:
     unknown = sorted(set(settings) - set(SETTINGS))
     if unknown:
-        raise TypeError(f"unknown fusion setting(s) {', '.join(unknown)}; choose from {', '.join(SETTINGS)}")
+        said = ", ".join(f"{n}{did_you_mean(n, SETTINGS)}" for n in unknown)
+        raise TypeError(f"unknown fusion setting(s) {said}; choose from {', '.join(SETTINGS)}")
     numbers = {name: real_number(value) for name, value in settings.items()}  # an int beyond float64: inf
     for name, x in numbers.items():
         if x is None:

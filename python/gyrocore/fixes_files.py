@@ -9,6 +9,7 @@ import re
 from pathlib import Path
 
 from ._arrays import FloatArray
+from ._checks import keyword_options, require_options
 from .fixes import Fixes, check_all, from_gnss
 from .io._csvfile import CsvLayout, csv_layout, read_csv_columns
 from .io._paths import check_file
@@ -18,13 +19,17 @@ from .io.units import HEADER_TIME_UNITS, _normal as normal_unit, split_unit
 def read_gnss_csv(path: str | Path, **options: float) -> Fixes:
     """Fixes from a ``gnss.csv`` like comma_seg40's (t, speed [m/s], bearing [deg, clockwise from
     north]), through :func:`from_gnss` (its options pass on)."""
+    require_options("read_gnss_csv (from_gnss's)", options, keyword_options(from_gnss))  # before the file is read
     path = Path(path)
     layout = csv_layout(path, ",")
-    cols = _read_rows(path, GNSS_COLUMNS)
+    # a name may state its unit, as in a fixes.csv (t [s], speed [m/s], bearing [deg] was refused)
+    names = _fix_columns(path, layout.header, _GNSS_UNITS, _GNSS_HEADER)
+    cols = _read_rows(path, tuple(names.values()))
     try:
-        return from_gnss(cols["t"], cols["bearing"], cols["speed"], **options)
+        return from_gnss(cols[names["t"]], cols[names["bearing"]], cols[names["speed"]], **options)
     except ValueError as e:
-        raise ValueError(_at_line(path, layout, {"t": "t", "speed": "speed", "bearing_deg": "bearing"}, e)) from None
+        where = {"t": names["t"], "speed": names["speed"], "bearing_deg": names["bearing"]}
+        raise ValueError(_at_line(path, layout, where, e)) from None
 
 
 def read_fixes_csv(path: str | Path) -> Fixes:
@@ -33,7 +38,7 @@ def read_fixes_csv(path: str | Path) -> Fixes:
     checked as it is read: a bad one is an error naming the file, line and column."""
     path = Path(path)
     layout = csv_layout(path, ",")
-    names = _fix_columns(path, layout.header)
+    names = _fix_columns(path, layout.header, _FIX_UNITS, _FIXES_HEADER)
     cols = _read_rows(path, tuple(names.values()))
     try:
         return check_all(Fixes(*(cols[names[c]] for c in FIXES_COLUMNS)))._warn_if_vague()
@@ -50,17 +55,23 @@ _RADIANS = ("rad", "radian", "radians")
 _FIX_UNITS = {"t": ("s", _SECONDS), "heading": ("rad", _RADIANS), "sigma": ("rad", _RADIANS)}
 _FIXES_HEADER = (f"a fixes.csv has the header {','.join(FIXES_COLUMNS)}: t [s] on the gyro's clock, heading [rad, "
                  "counter-clockwise from east], sigma [rad] (a name may state its unit: t [s], heading [rad])")
+#: The units a ``gnss.csv`` column may state in its name, as :data:`_FIX_UNITS`.
+_GNSS_UNITS = {"t": ("s", _SECONDS), "speed": ("m/s", ("m/s",)), "bearing": ("deg", ("deg", "degree", "degrees", "°"))}
+_GNSS_HEADER = (f"a gnss.csv has the header {','.join(GNSS_COLUMNS)}: t [s], speed [m/s] over ground, bearing [deg, "
+                "clockwise from north] (a name may state its unit: speed [m/s], bearing [deg])")
 
 
-def _fix_columns(path: Path, header: list[str]) -> dict[str, str]:
-    """The header name of each of :data:`FIXES_COLUMNS` in ``header``: the name itself or with its
-    unit; a column missing, given twice or in another unit is an error saying what is expected."""
+def _fix_columns(path: Path, header: list[str], units: dict[str, tuple[str, tuple[str, ...]]],
+                 expected: str) -> dict[str, str]:
+    """The header name of each column of ``units`` (a fixes.csv's or a gnss.csv's) in ``header``:
+    the name itself or with its unit; a column missing, given twice or in another unit is an error
+    saying what is ``expected``."""
     names = {}
-    for wanted, (unit, spellings) in _FIX_UNITS.items():
+    for wanted, (unit, spellings) in units.items():
         found = [h for h in header if split_unit(h)[0] == wanted]
         if len(found) != 1:
             problem = "no column" if not found else f"{len(found)} columns"
-            raise ValueError(f"{path}: {problem} {wanted}; {_FIXES_HEADER}; its header is {','.join(header)}")
+            raise ValueError(f"{path}: {problem} {wanted}; {expected}; its header is {','.join(header)}")
         given = split_unit(found[0])[1]
         if given is not None and normal_unit(given) not in spellings:
             how = " (numpy.radians for degrees)" if unit == "rad" else ""
@@ -103,9 +114,13 @@ def read_fixes_file(path: str | Path) -> Fixes:
     path = Path(path)
     check_file(path)  # a folder or a pipe given as the fixes is named as such, not "missing"
     header = csv_layout(path, ",").header
+    if header and header[0].startswith(("$", "!")) and len(header[0]) in (6, 7):  # $GPRMC, !AIVDM: a talker and type
+        raise ValueError(f"{path}: NMEA 0183 sentences ({header[0]},...), not a CSV file of fixes; their times are UTC: "
+                         "read them with gyrocore.fixes.read_nmea, shift the times onto the gyro's clock, and write "
+                         f"them as a fixes.csv ({','.join(FIXES_COLUMNS)}) or give them to process (fixes=)")
     if set(FIXES_COLUMNS) <= {split_unit(h)[0] for h in header}:
         return read_fixes_csv(path)
-    if set(GNSS_COLUMNS) <= set(header):
+    if set(GNSS_COLUMNS) <= {split_unit(h)[0] for h in header}:
         return read_gnss_csv(path)
     raise ValueError(f"{path}: a fixes file has the columns {', '.join(FIXES_COLUMNS)} (t [s], headings in rad, CCW "
                      f"from east) or {', '.join(GNSS_COLUMNS)} (a gnss.csv); its header has {', '.join(sorted(header))}")

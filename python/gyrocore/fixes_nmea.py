@@ -16,10 +16,11 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import warn
+from ._checks import keyword_options, require_options, shown, warn
 from ._extras import require
 from .fixes import Fixes, from_gnss
 from .fixes_files import _ROW_ERROR
+from .io._csvfile import refuse_not_text
 
 #: Metres per second in a knot and in a km/h (NMEA's speed units).
 KNOT, KMH = 1852.0 / 3600.0, 1.0 / 3.6
@@ -39,6 +40,7 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
     counts (void RMC, RMC without a course). The times are UTC: shift them onto the gyro's clock before fusing. ``options`` go to
     :func:`gyrocore.fixes.from_gnss`.
     """
+    require_options("read_nmea (from_gnss's)", options, keyword_options(from_gnss))  # before the file is read
     pynmea2 = require("pynmea2", "reading NMEA sentences")
     path = Path(path)
     epochs: dict[float, tuple[float, float, int]] = {}  # time -> course [deg], speed [m/s], line
@@ -51,7 +53,12 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
         except pynmea2.SentenceTypeError:
             continue  # a sentence whose checksum holds but whose type pynmea2 does not know has no course for it
         except pynmea2.ParseError as e:
-            raise ValueError(f"{path}: line {number}: not an NMEA sentence ({e}); remove or repair the line") from None
+            # pynmea2 adds the line to its words: a line of binary data (a receiver's UBX messages
+            # among its sentences) filled the error with up to 4096 bytes of it
+            reason = e.args[0] if e.args else str(e)  # pynmea2's (message, data)
+            reason = reason[0] if isinstance(reason, tuple) and reason else reason
+            raise ValueError(f"{path}: line {number}: not an NMEA sentence ({reason}: {shown(text, 100)}); remove or "
+                             "repair the line") from None
         try:
             last = _read(pynmea2, msg, last, number, epochs, tally)
         except (ValueError, TypeError) as e:
@@ -77,6 +84,8 @@ def _sentences(path: Path) -> Iterator[tuple[int, str]]:
     """(line number, text) of each line of ``path`` that is not blank; a line longer than
     :data:`MAX_LINE` is an error, raised before more of it is read. A byte-order mark is not
     part of the first line, and bytes that are not UTF-8 become U+FFFD (no sentence has them)."""
+    with path.open("rb") as raw:  # a UTF-16, gzip or binary file: its bytes were echoed in the error
+        refuse_not_text(path, raw.readline(MAX_LINE + 1), "NMEA file")
     with path.open(encoding="utf-8-sig", errors="replace") as f:
         number = 0
         while line := f.readline(MAX_LINE + 1):

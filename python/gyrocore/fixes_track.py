@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
-from ._checks import check_number, require_finite, require_increasing, warn
+from ._checks import check_number, keyword_options, require_finite, require_increasing, require_options, warn
 from .fixes import Fixes, warn_no_fix
 
 #: Mean Earth radius [m] (IUGG), for :func:`from_latlon`'s local plane.
@@ -32,6 +32,10 @@ EARTH_RADIUS = 6_371_008.8
 #: fixes are, turns by the step's longitude difference times the sine of the latitude as it goes.
 MAX_LATITUDE = 89.9
 _POLAR_KM = EARTH_RADIUS * math.radians(90.0 - MAX_LATITUDE) / 1000.0
+#: The largest position [m] :func:`from_positions` takes (7 times the Sun's distance): beyond it a
+#: position is corrupt (an infinite one was left out as if unknown, and 1e300 gave a fix as
+#: confident as any, its chord hardly affected by the position's error).
+MAX_POSITION = 2.0**40
 
 
 def from_positions(t: ArrayLike, x: ArrayLike, y: ArrayLike, *, position_sigma: float = 1.0,
@@ -39,7 +43,8 @@ def from_positions(t: ArrayLike, x: ArrayLike, y: ArrayLike, *, position_sigma: 
     """Fixes from positions ``x`` (east) and ``y`` (north) [m] at strictly increasing times ``t``
     [s]: the direction of each step, at its middle time, with ``sigma = hypot(min_sigma,
     sqrt(2) * position_sigma / distance)`` [rad]. Steps slower than ``min_speed`` [m/s] and steps
-    with a non-finite position are left out; positions that give no fix at all warn why (an
+    with a position unknown (NaN) are left out, and a position that is infinite or beyond
+    +-:data:`MAX_POSITION` is an error naming it; positions that give no fix at all warn why (an
     :class:`~gyrocore.InputWarning` with the step speeds seen)."""
     tt, xx, yy = (as_float_array(name, a) for name, a in (("t", t), ("x", x), ("y", y)))
     if not (len(tt) == len(xx) == len(yy)):
@@ -48,6 +53,13 @@ def from_positions(t: ArrayLike, x: ArrayLike, y: ArrayLike, *, position_sigma: 
         ("position_sigma", position_sigma), ("min_speed", min_speed), ("min_sigma_deg", min_sigma_deg)))
     require_finite("t", tt, context="positions")
     require_increasing("t", tt, context="positions")
+    for name, values in (("x", xx), ("y", yy)):
+        with np.errstate(invalid="ignore"):
+            far = np.flatnonzero(np.abs(values) > MAX_POSITION)  # NaN: a position unknown there
+        if len(far):  # an infinite one was left out as if unknown, 1e300 gave a confident fix
+            i = int(far[0])
+            raise ValueError(f"positions: {name}[{i}] is {values[i]}: beyond +-2^40 m; a position is in metres (NaN "
+                             "where it is unknown): drop or repair the sample")
     dt, dx, dy = np.diff(tt), np.diff(xx), np.diff(yy)
     distance = np.hypot(dx, dy)
     with np.errstate(invalid="ignore"):
@@ -76,6 +88,7 @@ def from_latlon(t: ArrayLike, lat_deg: ArrayLike, lon_deg: ArrayLike, **options:
     No fix from a track whose every latitude lies within +-pi/2 and longitude within +-pi warns
     that they look like radians (read as degrees, a drive in radians moves 57 times too little
     for a course)."""
+    require_options("from_latlon (from_positions's)", options, keyword_options(from_positions))
     lat, lon = as_float_array("lat_deg", lat_deg), as_float_array("lon_deg", lon_deg)
     if len(lat) != len(lon):
         raise ValueError(f"lat_deg and lon_deg must have one length, got {len(lat)} and {len(lon)}")

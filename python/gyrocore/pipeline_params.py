@@ -145,6 +145,18 @@ def core_pipeline(preset: str, si: dict[str, Any]) -> _gyrocore.Pipeline:
         raise _named_error(preset, si, e) from None
 
 
+def _what_it_takes(error: Exception, value: Any, what: str) -> str:
+    """The core's words on a value of the wrong kind, or, for a switch or a name given something
+    else, what it takes: the binding's "'int' object is not an instance of 'bool'" (``hdr=0``,
+    ``--param hdr=0``, ``tune --set hdr=0``) spoke of Python's types, not of the parameter."""
+    said = str(error)
+    if said.endswith("is not an instance of 'bool'") and what.endswith("[bool]"):
+        return f"a switch takes True or False (on the command line true or false), not {type(value).__name__}"
+    if said.endswith("is not an instance of 'str'"):
+        return f"takes a name, not {type(value).__name__}"
+    return said
+
+
 def _named_error(preset: str, si: dict[str, Any], error: Exception) -> Exception:
     """The core's error with the parameter it is about and what that parameter takes, where its
     message names no parameter (a conversion: "must be real number, not str", "expected tuple of
@@ -158,5 +170,5 @@ def _named_error(preset: str, si: dict[str, Any], error: Exception) -> Exception
             _gyrocore.preset_params(preset, {key: value})
         except type(error) as e:
             what = parameters().get(key, "")
-            return kind(f"invalid parameter {key} = {shown(value)}: {e}; {key} is {what}")
+            return kind(f"invalid parameter {key} = {shown(value)}: {_what_it_takes(e, value, what)}; {key} is {what}")
     return error

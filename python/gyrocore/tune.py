@@ -161,6 +161,7 @@ def search_box(
     command line checks them before it builds its drives): a ValueError for a name that is no
     parameter, a static bias (each drive's own), a parameter without bounds or with bounds that are
     not ``0 < low < high``, one that takes no number, or one both fitted and fixed."""
+    by_default = not names  # the preset's own: a fixed one among them was never asked to be fitted
     names = tuple(names or default_parameters(preset))
     fixed = dict(fixed or {})
     known, given = parameters(), (*names, *_to_si(fixed))  # a fixed one may be spelled *_dps or *_deg
@@ -192,7 +193,9 @@ def search_box(
         validate(preset, {n: high})
     overlap = [n for n in names if n in _to_si(fixed)]  # hdr_increment_dps fixes hdr_increment
     if overlap:
-        raise ValueError(f"{', '.join(overlap)} cannot be both fitted and fixed")
+        why = (f": {preset}'s fit takes {', '.join(names)} unless told; name the parameters to fit without it "
+               "(--param NAME, names=)" if by_default else "")
+        raise ValueError(f"{', '.join(overlap)} cannot be both fitted and fixed{why}")
     validate(preset, fixed)
     return box
 

@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
 
+from ._checks import version_error
 from .evaluate import Method
 from .io._jsonfile import read_json
 from .pipeline import BIAS_SOURCES, Pipeline, parameters
@@ -100,10 +101,9 @@ class ParameterSet:
                              "file is what gyrocore tune --out FILE writes")
         if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
             raise ValueError(f"{p}: not a gyrocore parameter file (no \"format\": \"{FORMAT_NAME}\")")
-        if data.get("version") != FORMAT_VERSION:
-            raise ValueError(
-                f"{p}: parameter file version {data.get('version')!r}; this gyrocore reads {FORMAT_VERSION}"
-            )
+        version = data.get("version")
+        if version != FORMAT_VERSION or isinstance(version, bool):  # true == 1 in Python
+            raise ValueError(f"{p}: {version_error('parameter file', version, FORMAT_VERSION)}")
         missing = [k for k in ("name", "preset", "overrides") if k not in data]
         if missing:
             raise ValueError(f"{p}: missing key(s) {', '.join(missing)}")

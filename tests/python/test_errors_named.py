@@ -37,7 +37,8 @@ def test_a_window_may_be_a_list_or_an_array() -> None:
     ("overrides", "message"),
     [
         ({"hdr_c2": "abc"}, "invalid parameter hdr_c2 = 'abc': must be real number, not str; hdr_c2 is repetition"),
-        ({"hdr": 1}, "invalid parameter hdr = 1: 'int' object is not an instance of 'bool'; hdr is run Heuristic"),
+        ({"hdr": 1}, "invalid parameter hdr = 1: a switch takes True or False (on the command line true or false), "
+                     "not int; hdr is run Heuristic"),
         ({"bias_window": (0, "a")}, "invalid parameter bias_window = (0, 'a'): must be real number, not str"),
     ],
 )

@@ -49,7 +49,7 @@ def test_a_tuning_that_cannot_run_is_refused_before_the_fit(tmp_path: Path, args
 def test_a_fixed_parameter_in_degrees_is_checked_and_saved_by_its_si_name(tmp_path: Path) -> None:
     # --set refused hdr_increment_dps, which fixed= takes; fixed= took it beside a fitted hdr_increment,
     # and every evaluation failed: "hdr_increment is given twice (as hdr_increment and in degrees)"
-    with pytest.raises(ValueError, match="^hdr_increment cannot be both fitted and fixed$"):
+    with pytest.raises(ValueError, match="^hdr_increment cannot be both fitted and fixed: hdr's fit takes hdr_increment, "):
         tune.search_box("hdr", fixed={"hdr_increment_dps": 0.01})
     proc = run_cli("tune", "--sim-drive", "city:1", "--set", "hdr_incremnt=1", "--no-harm")
     assert proc.returncode == 2 and "unknown parameter(s) hdr_incremnt (did you mean 'hdr_increment'?)" in proc.stderr

@@ -201,6 +201,14 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--format {args.format}: --out {out} is one file, whose suffix says its format "
                          f"({io.output_format(out)}); --format is the format of an output folder's files: leave it "
                          "out, or give the file the suffix of the format meant")
+    unused = [f"{o} {v}" for o, v in (("--jobs", args.jobs), ("--scheduler", args.scheduler)) if v is not None]
+    if not one_file and len(unused) == 2:  # the cluster's workers ran the files, --jobs left unused without a word
+        raise ValueError(f"{' '.join(unused)}: --jobs is the number of files processed at once here, and "
+                         "--scheduler runs them on the Dask cluster's workers (as many as it has): give one of them")
+    if one_file and unused and len(inputs) == 1:  # the one file was processed here, on one thread, without a word
+        raise ValueError(f"{' '.join(unused)}: --out {out} is one file, processed here from one input; "
+                         f"{'they run' if len(unused) > 1 else 'it runs'} the files of a batch into an output folder "
+                         f"(--out DIR): leave {'them' if len(unused) > 1 else 'it'} out")
     args.format = args.format or "csv"
     if not one_file:
         _refuse_file_like_folder(args.out)

@@ -23,6 +23,7 @@ from ._common import (
     add_overwrite_option,
     add_reading_options,
     once_each,
+    parse_value,
     print_json,
     reading_options,
     refuse_existing,
@@ -64,7 +65,8 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         help="train on simulated drives like HDR Table II or IV")
     add("--sim-drive", action="append", metavar="MIX:MINUTES[:COUNT]",
         help="train also on COUNT (default 1) simulated drives of a road mix (gyrocore.motion.ROAD_MIXES)")
-    add("--set", action="append", metavar="NAME=VALUE", help="hold a parameter at an SI value (repeatable)")
+    add("--set", action="append", metavar="NAME=VALUE",
+        help="hold a parameter at an SI value, a switch at true or false (repeatable)")
     add("--test-sim-table", action="append", choices=sorted(_TABLES), help="simulated test drives (other seeds)")
     add("--test", action="append", default=[], metavar="LOGDIR",
         help="log folder (or file with a heading_true column) to test on (not trained on)")
@@ -119,6 +121,8 @@ def _parse_params(specs: Sequence[str]) -> tuple[list[str], dict[str, tuple[floa
     bounds: dict[str, tuple[float, float]] = {}
     for spec in specs:
         name, _, rng = spec.partition("=")
+        if not name.strip():  # it was "unknown parameter(s) ; the pipeline's are ..."
+            raise ValueError(f"--param {spec!r}: give a parameter's name, NAME or NAME=LOW:HIGH (SI bounds)")
         names.append(name)
         if rng:
             bounds[name] = _bounds(spec, rng)
@@ -156,17 +160,22 @@ def _parse_fixed(specs: Sequence[str]) -> dict[str, float]:
     """The values of ``--set NAME=VALUE``; the names are :func:`gyrocore.tune.search_box`'s to
     check, which suggests one for a typo and takes the ``*_dps`` / ``*_deg`` spellings."""
     _refuse_twice("--set", specs)
-    fixed = {}
+    fixed: dict[str, Any] = {}
+    switches = [n for n, what in parameters().items() if what.endswith("[bool]")]
     for spec in specs:
         name, sep, value = spec.partition("=")
         if not sep or not name:
             raise ValueError(f"--set {spec}: must read NAME=VALUE with a parameter name")
+        if name in switches and value.lower() in ("true", "false"):  # as --param takes a switch
+            fixed[name] = parse_value(value)
+            continue
         try:
             fixed[name] = float(value)
         except ValueError:
             fixed[name] = math.nan
         if not math.isfinite(fixed[name]):
-            raise ValueError(f"--set {spec}: the value must be a finite number (SI)")
+            switch = f" ({name} is a switch: true or false)" if name in switches else ""
+            raise ValueError(f"--set {spec}: the value must be a finite number (SI){switch}")
     return fixed
 
 

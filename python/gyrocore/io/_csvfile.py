@@ -92,16 +92,22 @@ def csv_layout(path: Path, delimiter: str) -> CsvLayout:
     return CsvLayout(header, number)
 
 
+def refuse_not_text(path: Path, line: bytes, what: str) -> None:
+    """Refuse a file whose first ``line`` shows it is no UTF-8 text: UTF-16 (or UTF-32) text, or
+    binary data (a gzip file, control bytes), named as ``what`` (``CSV file``) it is not; the
+    binary bytes are never shown."""
+    if line.startswith(_UTF16_BOMS):
+        raise ValueError(f"{path}: text in UTF-16 (or UTF-32), not UTF-8: save it as UTF-8")
+    if line.startswith(_GZIP) or any(b < 32 and b not in b"\t\r\n" for b in line[:4096]):
+        raise ValueError(f"{path}: not a text {what} (binary data on line 1; decompress a .gz file first)")
+
+
 def _first_line(path: Path, f: BinaryIO) -> bytes:
     """The first line of the file ``f``, refused if it shows the file is no UTF-8 text CSV."""
     line = f.readline(MAX_LINE_BYTES + 1)  # bounded: a file of gigabytes without a line end
     if not line.removeprefix(_UTF8_BOM).strip():  # an empty file that an editor saved with its BOM too
         raise ValueError(f"{path}: line 1: no header line (expected column names)")
-    if line.startswith(_UTF16_BOMS):
-        raise ValueError(f"{path}: text in UTF-16 (or UTF-32), not UTF-8: save it as UTF-8")
-    if line.startswith(_GZIP) or any(b < 32 and b not in b"\t\r\n" for b in line[:4096]):
-        # naming the columns would print the binary bytes
-        raise ValueError(f"{path}: not a text CSV file (binary data on line 1; decompress a .gz file first)")
+    refuse_not_text(path, line, "CSV file")
     if not line.endswith(b"\n") and b"\r" in line.rstrip(b"\r"):
         # classic Mac OS line ends: the reader splits lines at \n only, so the whole file is "line 1"
         raise ValueError(f"{path}: lines end in a bare carriage return (classic Mac OS line ends), not a line "

@@ -71,6 +71,10 @@ def read_meta(folder: Path) -> tuple[dict[str, Any], tuple[float, float] | None]
 
 #: The keys of meta.json that gyrocore reads; any other is the user's (a log's notes, its source).
 META_KEYS = ("name", "stationary")
+#: The reading options (:class:`gyrocore.io.ReadOptions`) a meta.json might be expected to set, and
+#: does not: a ``"rate_unit": "deg/s"`` there left a gyro in deg/s read as rad/s without a word.
+_READING_OPTIONS = ("time_col", "rate_col", "time_unit", "rate_unit", "topic", "delimiter", "gyro_cols", "accel_cols",
+                    "up", "up_window")
 
 
 def _warn_misspelled(path: Path, meta: dict[str, Any]) -> None:
@@ -79,6 +83,13 @@ def _warn_misspelled(path: Path, meta: dict[str, Any]) -> None:
     read without its rest window, without a word. Other keys are the user's and are left alone,
     also one that a key of gyrocore's starts with (a GNSS base ``station``)."""
     for key in meta:
+        option = key.replace("-", "_").lower()
+        if option in _READING_OPTIONS:
+            unit = (f", or state it in {GYRO_CSV}'s header (t [s], gyro_z [deg/s])" if option.endswith("_unit") else "")
+            warn(f"{path}: the key {key!r} is not read: a log folder's {META_JSON} gives its rest window "
+                 f"('stationary') and name; {option} is a reading option: give it to the command "
+                 f"(--{option.replace('_', '-')}) or to read_log ({option}=){unit}")
+            continue
         for meant in (k for k in META_KEYS if k not in meta and abs(len(k) - len(key)) <= 2):
             if difflib.SequenceMatcher(None, key.lower(), meant).ratio() >= 0.8:
                 warn(f"{path}: the key {key!r} is not read (did you mean {meant!r}?); gyrocore reads "
@@ -133,6 +144,11 @@ def read_reference_file(path: Path) -> dict[str, FloatArray]:
     """
     check_file(path)
     layout = csv_layout(path, ",")
+    # a log file with its own reference given as one: it said "drive.csv has the columns t, heading, x, y"
+    if "heading" not in layout.header and "heading_true" in layout.header:
+        raise ValueError(f"{path}: no column heading, and its heading_true makes it a log with its own reference (what "
+                         "gyrocore simulate writes): give it as the log, whose heading_true is read with it; a "
+                         "reference file has the columns t, heading [rad] and, where known, x, y [m]")
     track = ("x", "y") if has_track(str(path), layout.header) else ()
     ref = read_csv_columns(path, ("t", "heading", *track), optional=track)
     _require_samples(path, layout, ref, ("t", "heading"), "a reference")

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._checks import did_you_mean
 from .._extras import require
 
 if TYPE_CHECKING:
@@ -79,21 +80,37 @@ def _joined_message(error: BaseException) -> str:
 
 
 def imu_topic(path: Path, topic: str | None) -> tuple[str, int]:
-    """The Imu topic to read (``topic``, or the only one) and its number of messages."""
+    """The Imu topic to read (``topic``, or the only one) and its number of messages.
+
+    Raises:
+        ValueError: a bag without an Imu topic (naming the topics it has, with their types), a
+            ``topic`` that is not one (another type's, or a likely meant one), several Imu topics
+            and no ``topic``, or an Imu topic that holds no message.
+    """
     reader = _bag_reader(path)
     try:
         counts: dict[str, int] = {}
+        others: dict[str, str] = {}  # the other topics and their types, to say what the bag has
         for c in reader.connections:
             if c.msgtype == _IMU:
                 counts[c.topic] = counts.get(c.topic, 0) + c.msgcount
+            else:
+                others.setdefault(c.topic, c.msgtype)
     finally:
         reader.close()
     found = ", ".join(sorted(counts)) or "none"
+    if not counts:  # "give the topic (--topic)" would not help: no topic is one
+        has = ", ".join(f"{t} ({m})" for t, m in sorted(others.items())) or "no topic at all"
+        raise ValueError(f"{path}: no {_IMU} topic, and gyrocore reads a bag's gyro from one; the bag has {has}")
     if topic is None and len(counts) != 1:
         raise ValueError(f"{path}: give the topic (--topic); {_IMU} topics: {found}")
     topic = topic or next(iter(counts))
     if topic not in counts:
-        raise ValueError(f"{path}: no {_IMU} messages on {topic} ({_IMU} topics: {found})")
+        if topic in others:
+            raise ValueError(f"{path}: {topic} carries {others[topic]}, not {_IMU} ({_IMU} topics: {found})")
+        raise ValueError(f"{path}: no {_IMU} messages on {topic}{did_you_mean(topic, counts)} ({_IMU} topics: {found})")
+    if not counts[topic]:
+        raise ValueError(f"{path}: the {_IMU} topic {topic} holds no message, so no samples")
     return topic, counts[topic]
 
 

@@ -265,16 +265,20 @@ class GyroSource:
         speed = self.optional_columns((SPEED_COLUMN,), rows).get(SPEED_COLUMN)
         return None if speed is None else finite_speed(self, speed)
 
+    def column_names(self) -> list[str]:
+        """The columns of a CSV or Parquet file, read from its header or schema; none for another
+        input (another format, or a log folder: its tables are files of their own)."""
+        if self.kind == "csv":
+            return list(self.csv_table().header)
+        if self.kind == "parquet":
+            return list(parquet_file(self.data_path).schema_arrow.names)
+        return []
+
     def optional_columns(self, names: tuple[str, ...], rows: int = DEFAULT_CHUNK_ROWS) -> dict[str, FloatArray]:
         """Those of the columns ``names`` that a CSV or Parquet file has, one value per sample (an
         empty value NaN), read in one pass; none for another input (another format, or a log
         folder: its tables are files of their own)."""
-        if self.kind == "csv":
-            header = self.csv_table().header
-        elif self.kind == "parquet":
-            header = parquet_file(self.data_path).schema_arrow.names
-        else:
-            return {}
+        header = self.column_names()
         present = tuple(n for n in names if n in header)
         if not present:
             return {}
@@ -382,7 +386,7 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
         options = ReadOptions(**kwargs)
     elif kwargs:
         raise TypeError("give either options or keywords, not both")
-    return _note_delimiter(_check_topic(_check_axes(_recognise(Path(path), options))))
+    return _note_bag_times(_note_delimiter(_check_topic(_check_axes(_recognise(Path(path), options)))), options)
 
 
 def _recognise(p: Path, options: ReadOptions) -> GyroSource:
@@ -486,6 +490,20 @@ def _note_delimiter(source: GyroSource) -> GyroSource:
             f"{source.path}: delimiter {source.options.delimiter!r} (--delimiter) separates a CSV file's fields, "
             f"and this is a {_KIND_NAMES.get(source.kind, source.kind)}: it is read without one"
         )
+    return source
+
+
+def _note_bag_times(source: GyroSource, given: ReadOptions) -> GyroSource:
+    """A time column or unit ``given`` for a ROS bag was ignored without a word (its messages are
+    read at their ``header.stamp``, in ns): a warning says so (not an error, as for a delimiter: a
+    batch of CSV files and bags takes one ``--time-unit`` for its CSV files). Seconds, what the
+    stamps are read as (and what a bag's own options say once it is open), say nothing."""
+    if source.kind != "bag":
+        return source
+    for name, value in (("time_col", given.time_col), ("time_unit", given.time_unit)):
+        if value is not None and value != "s":
+            warn(f"{source.path}: {name} {value!r} (--{name.replace('_', '-')}) is not used: a ROS bag's messages "
+                 "are read at their header.stamp (seconds and nanoseconds)")
     return source
 
 
