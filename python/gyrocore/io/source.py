@@ -24,6 +24,7 @@ from ._columns import concat, import_pyarrow_lazy_modules
 from ._csvfile import CsvLayout, csv_chunks, csv_layout
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta, warn_gyro_alone
 from ._npyfile import check_npz, npy_chunks, npy_shape, npz_chunks
+from ._options_given import checked_options
 from ._parquetfile import parquet_chunks, parquet_file, warn_given_time_unit
 from ._paths import check_file, check_readable, content_hint, missing
 from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder, storage_file_hint
@@ -386,7 +387,7 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
         options = ReadOptions(**kwargs)
     elif kwargs:
         raise TypeError("give either options or keywords, not both")
-    return _note_bag_times(_note_delimiter(_check_topic(_check_axes(_recognise(Path(path), options)))), options)
+    return checked_options(_recognise(Path(path), options), options)
 
 
 def _recognise(p: Path, options: ReadOptions) -> GyroSource:
@@ -449,62 +450,6 @@ def _open_bag(path: Path, options: ReadOptions) -> GyroSource:
     options = bag_columns(path, options)
     topic, count = imu_topic(path, options.topic)
     return GyroSource(path, "bag", path, replace(options, topic=topic), progress_total=count)
-
-
-def _check_axes(source: GyroSource) -> GyroSource:
-    """A three-axis file names its gyro columns, and its accelerometer's where up is measured
-    (a bag has them by name)."""
-    o = source.options
-    if o.three_axis and o.gyro_cols is None:
-        raise ValueError(
-            f"{source.data_path}: three-axis input (up, accel_cols) needs the gyro's three columns: "
-            "gyro_cols (--gyro-cols GX,GY,GZ)"
-        )
-    if o.three_axis and o.measures_up and o.accel_cols is None:
-        raise ValueError(
-            f"{source.data_path}: up is measured from the accelerometer: give its three columns, accel_cols "
-            "(--accel-cols AX,AY,AZ), or give up (--up x|y|z|-x|-y|-z|X,Y,Z)"
-        )
-    return source
-
-
-_KIND_NAMES = {"csv": "CSV file", "parquet": "Parquet file", "npy": ".npy file", "npz": ".npz file"}
-
-
-def _check_topic(source: GyroSource) -> GyroSource:
-    """A topic is a bag's: given for another input, it would be ignored without a word."""
-    if source.options.topic is not None and source.kind != "bag":
-        raise ValueError(
-            f"{source.path}: topic {source.options.topic!r} (--topic) picks a ROS bag's Imu topic, and this "
-            f"is a {_KIND_NAMES.get(source.kind, source.kind)}: leave it out for this input"
-        )
-    return source
-
-
-def _note_delimiter(source: GyroSource) -> GyroSource:
-    """A delimiter given for an input that is no CSV file was ignored without a word: a warning
-    says so (not an error: a batch of CSV and Parquet files takes one ``--delimiter`` for its CSV
-    files)."""
-    if source.options.delimiter is not None and source.kind not in ("csv", "log folder"):
-        warn(
-            f"{source.path}: delimiter {source.options.delimiter!r} (--delimiter) separates a CSV file's fields, "
-            f"and this is a {_KIND_NAMES.get(source.kind, source.kind)}: it is read without one"
-        )
-    return source
-
-
-def _note_bag_times(source: GyroSource, given: ReadOptions) -> GyroSource:
-    """A time column or unit ``given`` for a ROS bag was ignored without a word (its messages are
-    read at their ``header.stamp``, in ns): a warning says so (not an error, as for a delimiter: a
-    batch of CSV files and bags takes one ``--time-unit`` for its CSV files). Seconds, what the
-    stamps are read as (and what a bag's own options say once it is open), say nothing."""
-    if source.kind != "bag":
-        return source
-    for name, value in (("time_col", given.time_col), ("time_unit", given.time_unit)):
-        if value is not None and value != "s":
-            warn(f"{source.path}: {name} {value!r} (--{name.replace('_', '-')}) is not used: a ROS bag's messages "
-                 "are read at their header.stamp (seconds and nanoseconds)")
-    return source
 
 
 def is_input(path: Path) -> bool:
