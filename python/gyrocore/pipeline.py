@@ -18,7 +18,7 @@ from . import _gyrocore, rests
 from ._arrays import FloatArray, as_float_array
 from ._checks import public_dir, warn, warn_units
 from ._motion import WindowWatch
-from .pipeline_input import name_samples_sent_again, refuse_window_without_reading, warn_repairs
+from .pipeline_input import refuse_window_without_reading, say_what_to_do, warn_repairs
 from .pipeline_params import (
     BIAS_SOURCES,
     _to_si,
@@ -220,7 +220,7 @@ class Pipeline:
                 inner, ta, ra, temp, index_offset, (flags, fix_output_flags(outputs)), sa, fix_block, given
             )
         except _gyrocore.SampleError as e:
-            name_samples_sent_again(e, ta, inner.last_time(), index_offset)
+            say_what_to_do(e, ta, inner.last_time(), index_offset, self.params["nonfinite"])
             raise
         except ValueError as e:
             from .fixes import say_how_to_wait

@@ -77,8 +77,22 @@ def warn_repairs(
         )
 
 
+def say_what_to_do(error: _gyrocore.SampleError, t: FloatArray, last: float | None, index_offset: int,
+                   nonfinite: str) -> None:
+    """Adds to the core's error about a bad sample what the caller can do about it: for a reading
+    the pipeline does not take, the policy that takes it (the core's words, "drop or fill them
+    first", sent a user with a file to edit it); for a chunk that starts at or before the last
+    sample processed, :func:`name_samples_sent_again`. A file's reader gives its own words, with
+    the file's line (``log_message``: the core's)."""
+    if error.what in ("rate", "temperature") and nonfinite == "error":
+        error.log_message = str(error)  # type: ignore[attr-defined]
+        error.args = (f"{error}; or keep them: nonfinite='hold' uses the last usable reading there, 'skip' leaves "
+                      "the sample out",)
+    name_samples_sent_again(error, t, last, index_offset)
+
+
 def name_samples_sent_again(error: _gyrocore.SampleError, t: FloatArray, last: float | None,
-                             index_offset: int) -> None:
+                            index_offset: int) -> None:
     """Adds to the core's error about a chunk whose first sample comes at or before the last one
     processed what a stream does about it: the core's words ask to sort a log, but a stream that
     sends a chunk again, or resumes from a pickle and sends what the pickle holds already, has no

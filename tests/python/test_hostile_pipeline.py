@@ -154,3 +154,19 @@ def test_a_refused_chunk_in_the_rest_window_leaves_the_pipeline_as_it_was() -> N
     with warnings.catch_warnings():
         warnings.simplefilter("error", gyrocore.InputWarning)
         stream.process(t[200:], rate[200:])
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_a_bad_reading_names_the_policy_that_keeps_it(mode: str) -> None:
+    # the core's words alone, "drop or fill them first", sent a notebook user to edit the data
+    t = np.arange(0.0, 30.0, 0.01)
+    rate = np.full_like(t, 0.01)
+    rate[1000] = np.nan
+    with pytest.raises(gyrocore.SampleError, match=r"^rate\[1000\] is NaN: .*\(drop or fill them first\); or keep them: "
+                       r"nonfinite='hold' uses the last usable reading there, 'skip' leaves the sample out$"):
+        gyrocore.process(t, rate, "static_bias", bias_duration=5.0, mode=mode)
+    held = gyrocore.process(t, rate, "static_bias", bias_duration=5.0, mode=mode, nonfinite="hold")
+    assert np.isfinite(held.heading).all()
+    with pytest.raises(gyrocore.SampleError, match=r"^timestamps must strictly increase: t\[3\] = 2 follows 2 "
+                       r"\(sort the log and drop duplicate timestamps\)$"):  # a time has no such policy
+        gyrocore.process(np.array([0.0, 1.0, 2.0, 2.0]), np.zeros(4), "raw", mode=mode)
