@@ -11,9 +11,9 @@ at most :data:`NOISE_RATIO` times the median of the rests' noise (a stop with th
 shaking or the vehicle creeping is not a rest) and, among three or more, its mean agrees with
 what the others give within :data:`OUTLIER_SIGMAS` (leave-one-out, through the smoother). A rest
 the rate alone found is no stronger evidence than a steady turn, which reads as steady: it is used
-only where it holds :data:`MIN_RATE_READINGS` or is :data:`QUIET_RATIO` times as quiet as the rest
-of the log, and only where the rate's rests agree (one of them refused as an outlier, or two that
-disagree, and none of them is used).
+only where it spans :data:`MIN_RATE_BLOCKS` of the finder's blocks or is far quieter than the rest
+of the log (:data:`QUIET_RATIO`), and only where the rate's rests agree (one of them refused as an
+outlier, or two that disagree, and none of them is used).
 
 Units: s, rad/s, m/s.
 """
@@ -51,16 +51,18 @@ NOISE_RATIO = 2.0
 #: Among three or more rests, one whose mean is this many standard deviations from what the
 #: others give (leave-one-out) is refused, the worst first, one at a time.
 OUTLIER_SIGMAS = 4.0
-#: A rest found from the rate alone is used only where it holds this many readings. Blocks of
-#: :func:`gyrocore.calibration.rest_windows` hold 4 readings at 10 Hz, and about a fifth of such
-#: blocks of a gyro's noise are as quiet as its test asks (a standard deviation below about 0.6 of
-#: the noise's), turning or not: a run of 8 comes by chance about once in 2 x 10^5 blocks (22 hours
-#: at 10 Hz), a run of 3 once in 100 (40 s).
-MIN_RATE_READINGS = 32
+#: A rest found from the rate alone is used only where it spans this many blocks of
+#: :func:`gyrocore.calibration.rest_windows` (0.25 s, at least 4 readings each: 2 s at 16 Hz or
+#: more, 3.2 s at 10 Hz). About a fifth of the 4-reading blocks of a gyro's noise at 10 Hz are as
+#: quiet as its test asks (a standard deviation below about 0.6 of the noise's), turning or not: a
+#: run of 8 comes by chance about once in 2 x 10^5 blocks (22 hours at 10 Hz), a run of 3 once in
+#: 100 (40 s).
+MIN_RATE_BLOCKS = 8
 #: ... or where its noise is at most this fraction of the rest of the log's: a real gyro on a
-#: moving vehicle shakes (f110's rests read 1-4 % of its motion's noise), a gyro whose noise is
-#: the same moving or not (a simulation) is quiet by chance as often resting as turning.
-QUIET_RATIO = 0.1
+#: moving vehicle shakes (f110's rests read 1 % of its motion's noise, broad's hand-held IMU's 1 %),
+#: a gyro whose noise is the same moving or not (a simulation) is quiet by chance as often resting
+#: as turning (23-76 %), and the OXTS rate of KITTI, filtered, reads 7-18 % in slow driving too.
+QUIET_RATIO = 0.05
 
 
 def _runs(t: FloatArray, flag: np.ndarray) -> list[tuple[float, float]]:
@@ -179,36 +181,48 @@ def accept(rests: list[Rest], walk: float, motion_noise: float = math.nan) -> li
     """``rests`` (found ones) with those that are not rests marked ``refused`` (see the module doc);
     ``motion_noise`` is :attr:`Found.motion_noise`."""
     noise = float(np.median([r.noise for r in rests])) if rests else 0.0
-    out = [
-        r
-        if r.noise <= NOISE_RATIO * noise
-        else _refuse(r, f"noise {math.degrees(r.noise):.2g} deg/s, over {NOISE_RATIO:g} x the rests' median")
+    judged = [
+        _refuse(r, f"noise {math.degrees(r.noise):.2g} deg/s, over {NOISE_RATIO:g} x the rests' median")
+        if r.noise > NOISE_RATIO * noise
+        else _refuse(r, _unproven(r, motion_noise)) if _by_rate(r) and not _proven(r, motion_noise)
+        else r
         for r in rests
     ]
-    out = [_refuse(r, _unproven(r, motion_noise)) if _by_rate(r) and not _proven(r, motion_noise) else r for r in out]
+    out, disagreeing = _refuse_outliers(judged, walk)
+    if disagreeing is None:
+        return out
+    # The rate has taken motion for rest somewhere: none of its rests is used, and the stops the
+    # speed shows are judged again among themselves (one refused against the rate's rests was not
+    # refused on their word alone).
+    why = (f"the rests found from the rate disagree (the one of {disagreeing.start:.3f} .. {disagreeing.end:.3f} s, "
+           f"reading {math.degrees(disagreeing.bias):.5f} deg/s, among them): steady turning passes for rest "
+           "there, so none of them is used")
+    rated = [r if _by_rate(r) else before for r, before in zip(out, judged)]  # a stop's verdict is taken again
+    return _refuse_outliers([_refuse(r, why) if _by_rate(r) and r.refused is None else r for r in rated], walk)[0]
+
+
+def _refuse_outliers(rests: list[Rest], walk: float) -> tuple[list[Rest], Rest | None]:
+    """``rests`` with those refused whose mean lies beyond :data:`OUTLIER_SIGMAS` of what the others
+    give, the worst first, one at a time (among three or more); and the first rest found from the
+    rate that disagrees with the others (one refused so, or one of two that disagree), where the
+    refusing stops (its verdict covers the rate's rests, and the rounds after it cannot change it)."""
+    out = list(rests)
     middle, bias, error = (np.array([getattr(r, name) for r in out]) for name in ("middle", "bias", "bias_std_error"))
     used = np.array([r.refused is None for r in out], dtype=bool)
-    disagreeing: Rest | None = None
     while np.count_nonzero(used) >= 2:
         z = leave_one_out(middle[used], bias[used], error[used], walk)
         worst = int(np.argmax(np.abs(z)))
         if abs(z[worst]) <= OUTLIER_SIGMAS:
             break
         if np.count_nonzero(used) == 2:  # each lies as far from the other: which is wrong is not known
-            rated = [i for i in np.flatnonzero(used) if _by_rate(out[i])]
-            if rated:  # a rest the rate found is no stronger than a steady turn
-                disagreeing = out[rated[0]]
-            break
+            rated = [out[i] for i in np.flatnonzero(used) if _by_rate(out[i])]
+            return out, (rated[0] if rated else None)  # a rest the rate found is no stronger than a steady turn
         i = int(np.flatnonzero(used)[worst])
         used[i] = False
         out[i] = _refuse(out[i], f"{abs(z[worst]):.1f} sigma from what the other rests give")
         if _by_rate(out[i]):
-            disagreeing = disagreeing or out[i]
-    if disagreeing is not None:
-        why = (f"the rests found from the rate disagree ({disagreeing} among them): steady turning passes "
-               "for rest there, so none of them is used")
-        out = [_refuse(r, why) if _by_rate(r) and r.refused is None else r for r in out]
-    return out
+            return out, rests[i]
+    return out, None
 
 
 def _by_rate(rest: Rest) -> bool:
@@ -216,17 +230,25 @@ def _by_rate(rest: Rest) -> bool:
 
 
 def _proven(rest: Rest, motion_noise: float) -> bool:
-    """Whether a rest found from the rate is no chance run of quiet readings: it is far quieter
-    than the rest of the log (:data:`QUIET_RATIO`; NaN where the log is nearly all rest), or it
-    holds :data:`MIN_RATE_READINGS`."""
-    return rest.samples >= MIN_RATE_READINGS or not rest.noise > QUIET_RATIO * motion_noise
+    """Whether a rest found from the rate is no chance run of quiet readings: it spans
+    :data:`MIN_RATE_BLOCKS` of the finder's blocks, or it is far quieter than the rest of the log
+    (:data:`QUIET_RATIO`; NaN where the log is nearly all rest)."""
+    return _blocks(rest) >= MIN_RATE_BLOCKS or not rest.noise > QUIET_RATIO * motion_noise
+
+
+def _blocks(rest: Rest) -> float:
+    """How many of :func:`gyrocore.calibration.rest_windows`' blocks ``rest`` spans (0.25 s, and
+    at least 4 sample intervals each)."""
+    from .calibration.rest import BLOCK  # calibration builds on the pipeline module too
+
+    return min((rest.end - rest.start) / BLOCK, (rest.samples - 1) / 4)
 
 
 def _unproven(rest: Rest, motion_noise: float) -> str:
-    return (f"{rest.samples} readings, its noise {math.degrees(rest.noise):.2g} deg/s against "
-            f"{math.degrees(motion_noise):.2g} deg/s in the rest of the log: too few and not quiet enough for the rate "
-            f"alone to tell a rest from a chance run of quiet readings (at least {MIN_RATE_READINGS} readings, or "
-            f"{1 / QUIET_RATIO:g} x quieter)")
+    return (f"{rest.end - rest.start:.3g} s and {rest.samples} readings ({_blocks(rest):.3g} blocks of 0.25 s or 4 "
+            f"readings), its noise {math.degrees(rest.noise):.2g} deg/s against {math.degrees(motion_noise):.2g} deg/s "
+            "in the rest of the log: too short and not quiet enough for the rate alone to tell a rest from a chance "
+            f"run of quiet readings (at least {MIN_RATE_BLOCKS} blocks, or {1 / QUIET_RATIO:g} x quieter)")
 
 
 def _refuse(rest: Rest, why: str) -> Rest:

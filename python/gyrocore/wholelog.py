@@ -56,7 +56,7 @@ from .pipeline import (
 )
 from .pipeline_params import _to_si
 from .result import OutArrays, filled, out_arrays
-from .rests import Rest, refuse_speed_t_alone, speed_on
+from .rests import Rest, refuse_speed_t_alone, rest_lines, speed_on
 from .wholelog_options import (
     BIAS_OPTIONS_HINT,
     BIAS_SIGMAS,
@@ -77,7 +77,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "BIAS_OPTIONS_HINT", "BIAS_SIGMAS", "BIAS_WALK", "HDR_BOUND_WALK", "MIN_REST", "MODES", "SPEED_THRESHOLD", "WHOLE_OPTIONS", "BiasPlan", "Options", "Rest",
-    "check_mode", "plan_arrays", "plan_log", "plan_stream", "process_log", "refuse_tracking", "refuse_whole_options", "untracked",
+    "check_mode", "plan_arrays", "plan_log", "plan_stream", "process_log", "refuse_tracking", "refuse_whole_options", "rest_lines", "untracked",
     "without_bias",
 ]
 __dir__ = public_dir(__name__)  # dir() and tab completion: __all__

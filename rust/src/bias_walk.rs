@@ -7,7 +7,7 @@
 //! Not in the papers, which measure the bias once (HDR eq 2). The model: the bias is a random walk,
 //! `Var[b(t + dt) - b(t)] = q |dt|`; a rest is a measurement of it with variance `r`. Between two
 //! rests the variance grows (`P += q |dt|`); a rest updates it with the gain `g = P / (P + r)`:
-//! `b += g (z - b)`, `P = (1 - g) P`.
+//! `b += g (z - b)`, `P = P r / (P + r)`.
 
 use crate::error::{check_positive, check_range};
 use crate::{check_block, Error};
@@ -26,10 +26,11 @@ impl BiasEstimate {
     /// the rest's time (the Kalman update of the module doc).
     #[inline]
     pub fn update(self, z: f64, r: f64) -> BiasEstimate {
-        let gain = self.variance / (self.variance + r);
+        let total = self.variance + r;
         BiasEstimate {
-            mean: self.mean + gain * (z - self.mean),
-            variance: (1.0 - gain) * self.variance,
+            mean: self.mean + self.variance / total * (z - self.mean),
+            // not (1 - gain) P: that loses the measurement's variance where P dwarfs it
+            variance: self.variance * r / total,
         }
     }
 }
@@ -47,7 +48,6 @@ impl BiasEstimate {
 /// lengths, a value that is not finite or beyond [`MAX_READING`](crate::MAX_READING), times not
 /// strictly increasing; an output of another length; a variance not finite and > 0; `q`
 /// negative or not finite; `floor` not finite and > 0.
-#[allow(clippy::too_many_arguments)]
 pub fn filter_rests(
     times: &[f64],
     values: &[f64],
@@ -80,7 +80,7 @@ pub fn filter_rests(
     check_range("q", q, 0.0, f64::MAX, "finite and >= 0")?;
     let n = times.len();
     let order = |i: usize| if backward { n - 1 - i } else { i };
-    let mut before = None;
+    let mut before: Option<(usize, BiasEstimate)> = None;
     for k in (0..n).map(order) {
         let (at, p) = match before {
             None => (
@@ -91,7 +91,6 @@ pub fn filter_rests(
                 f64::INFINITY,
             ),
             Some((j, last)) => {
-                let last: BiasEstimate = last;
                 let p = last.variance + q * libm::fabs(times[k] - times[j]);
                 let at = BiasEstimate {
                     variance: p,

@@ -17,7 +17,7 @@
 //! `noise / sqrt(n)`). The filter's state is the bias, a random walk of intensity
 //! [`RestTrackerConfig::bias_walk`] (`K^2` from the rate random walk, plus the bias instability's
 //! share, see `gyrocore.rests.bias_walk`): predict `P += q dt`, gate the innovation at
-//! [`RestTrackerConfig::gate_sigmas`], update `b += P/(P+R) (z - b)`, `P = (1 - P/(P+R)) P` (the
+//! [`RestTrackerConfig::gate_sigmas`], update `b += P/(P+R) (z - b)`, `P = P R/(P+R)` (the
 //! update of [`crate::bias_walk`], the filter whole mode runs over a whole log's rests). A rest
 //! that stopped short or crept gives a mean with a large standard error, or one the gate refuses,
 //! and so moves the bias little.

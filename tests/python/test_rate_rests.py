@@ -11,7 +11,7 @@ import pytest
 
 import gyrocore
 from gyrocore import tune
-from gyrocore._rests import MIN_RATE_READINGS, QUIET_RATIO, accept
+from gyrocore._rests import MIN_RATE_BLOCKS, QUIET_RATIO, accept
 from gyrocore.rests import Rest
 
 from .conftest import real_log_path
@@ -19,8 +19,9 @@ from .conftest import real_log_path
 WALK = 1e-4
 
 
-def rest(start: float, bias: float, found_by: str = "rate", samples: int = 1000, noise: float = 1e-3) -> Rest:
-    return Rest(start, start + 10.0, bias, 1e-5, noise, samples, found_by)
+def rest(start: float, bias: float, found_by: str = "rate", seconds: float = 10.0, noise: float = 1e-3) -> Rest:
+    """A rest at 100 Hz: ``seconds`` long, as many readings as that."""
+    return Rest(start, start + seconds, bias, 1e-5, noise, int(100 * seconds) + 1, found_by)
 
 
 @pytest.mark.parametrize(("mix", "seed", "noisy"), [("highway", 2002, False), ("highway", 2003, False),
@@ -59,22 +60,45 @@ def test_a_stop_the_speed_shows_is_kept_against_a_rest_of_the_rate() -> None:
 
 def test_a_short_rest_from_the_rate_must_be_far_quieter_than_the_motion() -> None:
     motion = 0.01
-    short = MIN_RATE_READINGS - 1
-    loud, quiet, long = accept([rest(0.0, 0.0, samples=short, noise=0.2 * motion),
-                                rest(100.0, 0.0, samples=short, noise=0.5 * QUIET_RATIO * motion),
-                                rest(200.0, 0.0, samples=MIN_RATE_READINGS, noise=0.2 * motion)], WALK, motion)
-    assert loud.refused is not None and "too few and not quiet enough" in loud.refused
+    short = 0.25 * MIN_RATE_BLOCKS - 0.1  # seconds: blocks of 0.25 s at 100 Hz
+    loud, quiet, long = accept([rest(0.0, 0.0, seconds=short, noise=0.2 * motion),
+                                rest(100.0, 0.0, seconds=short, noise=0.5 * QUIET_RATIO * motion),
+                                rest(200.0, 0.0, seconds=0.25 * MIN_RATE_BLOCKS, noise=0.2 * motion)], WALK, motion)
+    assert loud.refused is not None and "too short and not quiet enough" in loud.refused
     assert quiet.refused is None and long.refused is None
+    # at 10 Hz a block holds 4 readings: 2 s hold 5 blocks
+    (slow,) = accept([Rest(0.0, 2.0, 0.0, 1e-5, 0.2 * motion, 21, "rate")], WALK, motion)
+    assert slow.refused is not None and "21 readings (5 blocks" in slow.refused
     # a log all at rest has no motion to compare with (NaN): its rests are kept
-    assert accept([rest(0.0, 0.0, samples=short)], WALK)[0].refused is None
+    assert accept([rest(0.0, 0.0, seconds=short)], WALK)[0].refused is None
 
 
 def test_a_real_gyro_rests_far_quieter_than_it_drives() -> None:
-    # f110_ds5 from the rate alone: its one stop holds 30 readings at its 25 Hz, and reads 1 % of
+    # f110_ds5 from the rate alone: its one stop lasts 1.2 s (under 8 blocks), and reads 1 % of
     # the motor-shaken drive's noise, so it is kept (26.94 deg raw, 3.13 with it)
     log = gyrocore.read_log(real_log_path("f110_ds5"))
     r = log.process("static_bias", use_speed=False)
     (used,) = r.rests
-    assert used.refused is None and used.samples < MIN_RATE_READINGS
+    assert used.refused is None and used.end - used.start < 0.25 * MIN_RATE_BLOCKS
     e_psi = gyrocore.heading_errors(r.t, r.heading, *log.reference()).e_psi_deg
     assert e_psi == pytest.approx(3.13, abs=0.005)
+
+
+def test_two_rests_from_the_rate_whose_bias_walks_faster_than_the_walk_allows_are_refused() -> None:
+    # Two 15 s rests 110 s apart reading 0.0075 and 0.0295 rad/s (a bias drifting 2e-4 rad/s per
+    # second): 21 standard deviations of the default walk (1e-4 rad/s/sqrt(s)) apart. From the rate
+    # alone they may be a rest and a steady curve, so neither is used and the warning says so; a
+    # caller who knows the gyro drifts so gives its walk, and then both are smoothed.
+    from .test_wholelog import drive, stop_speed
+
+    stops = [(10.0, 25.0), (120.0, 135.0)]
+    t, rate, _ = drive(150.0, stops, bias=lambda t: 0.004 + 0.0002 * (t - t[0]))
+    with pytest.warns(gyrocore.InputWarning, match=r"2 rest\(s\) found, none used \(the rests found from the rate "
+                      r"disagree .*\): the bias is taken as 0"):
+        refused = gyrocore.process(t, rate, "static_bias")
+    assert refused.bias_source == "none: 2 rest(s) found, none used; bias 0"
+    drifting = gyrocore.process(t, rate, "static_bias", bias_walk=3e-3)
+    assert [r.refused for r in drifting.rests] == [None, None]
+    assert "2 rests, bias smoothed between them" in drifting.bias_source
+    stopped = gyrocore.process(t, rate, "static_bias", speed=stop_speed(t, stops))  # stops the speed shows
+    assert [r.refused for r in stopped.rests] == [None, None]

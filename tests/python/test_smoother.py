@@ -45,19 +45,19 @@ def test_leave_one_out_needs_two_rests() -> None:
 
 
 def _textbook_filter(times: np.ndarray, values: np.ndarray, variances: np.ndarray, q: float) -> tuple[list[float], ...]:
-    """The scalar Kalman filter of a random walk, a float at a time, as the smoother used to run it."""
+    """The scalar Kalman filter of a random walk, a float at a time (the variance as P r / (P + r))."""
     mean, variance, predicted = [float(values[0])], [float(variances[0])], [np.inf]
     for k in range(1, len(times)):
         p = variance[-1] + q * abs(float(times[k]) - float(times[k - 1]))
         gain = p / (p + float(variances[k]))
         predicted.append(p)
         mean.append(mean[-1] + gain * (float(values[k]) - mean[-1]))
-        variance.append(max((1 - gain) * p, MIN_VARIANCE))
+        variance.append(max(p * float(variances[k]) / (p + float(variances[k])), MIN_VARIANCE))
     return mean, variance, predicted
 
 
 def test_the_cores_filter_is_the_textbook_filter_bit_for_bit_both_ways() -> None:
-    # whole mode's refusals and biases did not move when the filter moved into the core
+    # the filter over the rests that the core runs for whole mode is this one, to the last bit
     from gyrocore import _gyrocore
 
     rng = np.random.default_rng(3)

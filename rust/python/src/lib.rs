@@ -372,7 +372,6 @@ fn static_bias_test(
 /// (filtered mean, filtered variance, predicted variance) at each rest, from the first rest to
 /// the last, or from the last to the first where `backward`.
 #[pyfunction]
-#[allow(clippy::too_many_arguments)]
 fn filter_rests<'py>(
     py: Python<'py>,
     times: PyReadonlyArray1<'py, f64>,
