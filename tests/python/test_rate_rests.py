@@ -102,3 +102,14 @@ def test_two_rests_from_the_rate_whose_bias_walks_faster_than_the_walk_allows_ar
     assert "2 rests, bias smoothed between them" in drifting.bias_source
     stopped = gyrocore.process(t, rate, "static_bias", speed=stop_speed(t, stops))  # stops the speed shows
     assert [r.refused for r in stopped.rests] == [None, None]
+
+
+def test_a_stop_refused_against_the_rates_rests_is_judged_again_without_them() -> None:
+    # A stop reading 0.01 rad/s, five rate rests reading 0 and one reading 0.006: the stop lay 10
+    # sigma from the rate's rests and was refused, then the rate's rests were found to disagree and
+    # dropped too, and nothing was used; the stop alone gives the bias
+    rests = [rest(0.0, 0.01, "speed")] + [rest(100.0 * k, 0.0) for k in range(1, 6)] + [rest(600.0, 0.006)]
+    stop, *rated = accept(rests, WALK)
+    assert stop.refused is None
+    assert all(r.refused is not None for r in rated)
+    assert "disagree" in str(rated[0].refused) and "sigma from what the other rests give" in str(rated[-1].refused)
