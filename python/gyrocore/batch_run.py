@@ -112,38 +112,32 @@ def _run_on_threads(jobs: list[_FileJob], workers: int, progress: bool) -> list[
 
 
 def _run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileReport]:
+    """The jobs on the cluster of ``client``, a Dask client (:func:`connected` makes one of an
+    address or a cluster; its caller closes it)."""
     distributed = require("dask.distributed", "running on a Dask cluster")
-    Client, dask_completed = distributed.Client, distributed.as_completed
-    own = not isinstance(client, Client)
-    if own:
-        client = _connect(Client, client)
     reports: dict[int, FileReport] = {}
-    try:
-        # The workers' files check it at every chunk, as the threads' files check theirs: a task
-        # already running on a worker is not stopped by cancelling its future.
-        stop = distributed.Event(f"gyrocore-stop-{uuid.uuid4().hex}", client=client)
-        futures = [
-            client.submit(_run_job, job, stop, key=f"gyrocore-{i}-{job.path.name}", pure=False)
-            for i, job in enumerate(jobs)
-        ]
-        index = {f.key: i for i, f in enumerate(futures)}
-        with _bar(len(jobs), progress) as bar:
-            try:
-                for future in dask_completed(futures):
-                    i = index[future.key]
-                    try:
-                        reports[i] = future.result()
-                    except Exception as e:  # noqa: BLE001 - a lost worker fails its file only
-                        reports[i] = jobs[i].failure(e, 0.0)
-                    bar.update(1)
-            except BaseException as e:
-                _stop_on_cluster(distributed, stop, futures)
-                _finished_meanwhile(enumerate(futures), reports)
-                _interrupted(e, reports)
-                raise
-    finally:
-        if own:
-            client.close()
+    # The workers' files check it at every chunk, as the threads' files check theirs: a task
+    # already running on a worker is not stopped by cancelling its future.
+    stop = distributed.Event(f"gyrocore-stop-{uuid.uuid4().hex}", client=client)
+    futures = [
+        client.submit(_run_job, job, stop, key=f"gyrocore-{i}-{job.path.name}", pure=False)
+        for i, job in enumerate(jobs)
+    ]
+    index = {f.key: i for i, f in enumerate(futures)}
+    with _bar(len(jobs), progress) as bar:
+        try:
+            for future in distributed.as_completed(futures):
+                i = index[future.key]
+                try:
+                    reports[i] = future.result()
+                except Exception as e:  # noqa: BLE001 - a lost worker fails its file only
+                    reports[i] = jobs[i].failure(e, 0.0)
+                bar.update(1)
+        except BaseException as e:
+            _stop_on_cluster(distributed, stop, futures)
+            _finished_meanwhile(enumerate(futures), reports)
+            _interrupted(e, reports)
+            raise
     return [reports[i] for i in range(len(jobs))]
 
 
