@@ -435,7 +435,7 @@ def process_log(
     refuse_tracking(si)
     options = Options.pop(si)
     ta, ra = as_float_array("t", t), as_float_array("rate", rate)
-    if _bias_source(si) in ("bias_window", "bias_duration") and not times_ok(ta):
+    if _bias_source(si) in ("bias_window", "bias_duration"):
         # A whole log's bad time comes first (as a window beyond +-2^40 s, epoch ns read as s, is no
         # window to measure): the core met the rest window before a bad time after it (a log in
         # reverse: "the bias window [0, 1] s holds no sample of the samples from t = 29.99 to 29.99 s").
