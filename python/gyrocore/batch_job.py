@@ -358,12 +358,12 @@ class _FileJob:
             progress(len(result), len(result), "rows")
         assert result.report is not None
         policy = result.report  # what it repaired, the pipeline said already (the log was one block)
-        fused = result.fusion is not None
+        fusion = result.fusion
         return FileReport(str(self.path), str(self.out), self.rows_in, written, time.perf_counter() - start, None,
                           tuple(dict.fromkeys(self.notes)), result.bias_source, result.rests, int(policy["held"]),
                           int(policy["skipped"]), int(policy["gaps"]), policy["longest_gap"],
-                          fixes=dict(result.fusion.counts) if result.fusion is not None else None,
-                          fixes_file=self._fixes_file(source) if fused else None)
+                          fixes=None if fusion is None else dict(fusion.counts),
+                          fixes_file=None if fusion is None else self._fixes_file(source))
 
     def _fixes_file(self, source: io.GyroSource) -> str:
         """Where the fixes fused came from: their file, ``given`` (in memory), or the folder's."""
