@@ -91,12 +91,28 @@ def test_the_input_is_never_the_output(tmp_path: Path, overwrite: tuple[str, ...
     assert src.read_bytes() == before
 
 
-def test_the_demo_replaces_its_own_plot(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_the_demo_replaces_its_own_plot_and_no_other_file_of_its_name(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
     pytest.importorskip("matplotlib")
     monkeypatch.chdir(tmp_path)
-    Path("gyrocore_demo.png").write_text("the previous run's plot")
-    assert main(["demo", "--duration", "60", "--drives", "1"]) == 0
-    assert Path("gyrocore_demo.png").read_bytes().startswith(b"\x89PNG")
+    demo = ["demo", "--duration", "60", "--drives", "1"]
+    plot = Path("gyrocore_demo.png")
+    assert main([*demo, "--seed", "1"]) == 0
+    first = plot.read_bytes()
+    assert main([*demo, "--seed", "2"]) == 0  # the previous run's plot is replaced
+    assert plot.read_bytes().startswith(b"\x89PNG") and plot.read_bytes() != first
+    capsys.readouterr()
+    # a file of that name the demo did not write (the user's own picture, notes) is kept
+    for theirs in (b"my notes", first.replace(b"gyrocore demo", b"another tool!")):
+        plot.write_bytes(theirs)
+        assert main(demo) == 2
+        assert capsys.readouterr().err.strip() == (
+            "gyrocore: error: gyrocore_demo.png already exists and is not a plot gyrocore demo wrote; pass "
+            "--overwrite to replace it, or --plot FILE to write elsewhere (nothing was written)")
+        assert plot.read_bytes() == theirs
+    assert main([*demo, "--overwrite"]) == 0
+    assert plot.read_bytes().startswith(b"\x89PNG") and plot.read_bytes() != theirs
 
 
 def test_skip_existing_resumes_an_interrupted_batch(

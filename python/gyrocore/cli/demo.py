@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 from pathlib import Path
 from typing import Any
@@ -26,6 +27,31 @@ from .simulate import check_car_drive, checked_sensor
 
 #: The demo's own plot: each run replaces the previous run's (a file named with --plot is the user's).
 PLOT = "gyrocore_demo.png"
+#: What the demo's plot says of itself (a PNG ``tEXt`` chunk), so that a run replaces only a plot it
+#: wrote: a file of that name from anywhere else is the user's, refused unless --overwrite.
+_SOFTWARE = "gyrocore demo"
+
+
+def _written_by_demo(path: Path) -> bool:
+    """Whether ``path`` is missing or a PNG the demo wrote (its ``Software`` text chunk, read
+    chunk by chunk up to the image data)."""
+    if not os.path.lexists(path):
+        return True
+    try:
+        with open(path, "rb") as f:
+            if f.read(8) != b"\x89PNG\r\n\x1a\n":
+                return False
+            while header := f.read(8):
+                size, kind = int.from_bytes(header[:4], "big"), header[4:]
+                if kind == b"IDAT" or len(header) < 8:
+                    return False
+                data = f.read(size)
+                f.seek(4, os.SEEK_CUR)  # the chunk's CRC
+                if kind == b"tEXt" and data == b"Software\0" + _SOFTWARE.encode():
+                    return True
+    except OSError:  # a folder, a file that cannot be read: not the demo's to replace
+        return False
+    return False
 
 
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
@@ -45,7 +71,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p.add_argument("--mix", choices=sorted(motion.ROAD_MIXES), default="mixed",
                    help="road mix of the drive (default mixed, the HDR paper's Mixed Drive)")
     p.add_argument("--plot", default=PLOT, help=f"PNG to write ('' for none; default {PLOT}, which each run "
-                   "replaces; another file that exists is refused unless --overwrite)")
+                   "replaces if the demo wrote it; any other file that exists is refused unless --overwrite)")
     add_overwrite_option(p)
     p.add_argument("--json", action="store_true", help="print the table as JSON")
 
@@ -54,6 +80,9 @@ def run(args: argparse.Namespace) -> int:
     if args.plot and Path(args.plot) != Path(PLOT):
         require_suffix(args.plot, "--plot", "a PNG image", (".png",))
         refuse_existing([Path(args.plot)], args.overwrite)
+    elif args.plot and not args.overwrite and not _written_by_demo(Path(PLOT)):
+        raise FileExistsError(f"{PLOT} already exists and is not a plot gyrocore demo wrote; pass --overwrite to "
+                              "replace it, or --plot FILE to write elsewhere (nothing was written)")
     check_car_drive(checked_sensor(args.sensor, args.rate_hz), args.duration, f"--duration {args.duration:g}")
     drives = [
         sim.car_drive(duration=args.duration, rate_hz=args.rate_hz, seed=args.seed + k, mix=args.mix,
@@ -141,6 +170,6 @@ def _plot_demo(path: Path, drive: sim.Drive, results: dict[str, HeadingResult], 
     ax1.legend(fontsize=8)
     ax1.set_title(title)
     fig.tight_layout()
-    write_atomically(path, lambda tmp: fig.savefig(tmp, format="png", dpi=100))
+    write_atomically(path, lambda tmp: fig.savefig(tmp, format="png", dpi=100, metadata={"Software": _SOFTWARE}))
     plt.close(fig)
     print(f"wrote {path}")
