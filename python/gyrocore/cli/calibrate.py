@@ -28,7 +28,6 @@ from ._common import (
     reading_options,
     refuse_existing,
     with_reference,
-    write_atomically,
 )
 
 
@@ -129,7 +128,7 @@ def run(args: argparse.Namespace) -> int:
             + ("" if "heading_reference" not in results else f"; {results['heading_reference']['error']}")
         )
     if args.save is not None:
-        write_atomically(args.save, lambda tmp: chosen.save(tmp))
+        chosen.save(args.save)  # whole or not at all
         results["saved"] = {"file": str(args.save), "method": chosen.method}
     if args.json:
         print(json.dumps(results, indent=2))
