@@ -84,11 +84,12 @@ class ParameterSet:
         }
 
     def write(self, path: str | Path) -> None:
-        """Write the preset file (JSON) atomically."""
-        from .cli._common import write_atomically
+        """Write the preset file (JSON), whole or not at all."""
+        from .io.atomic import atomic_path
 
         text = json.dumps(self.to_json(), indent=2) + "\n"
-        write_atomically(Path(path), lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
+        with atomic_path(Path(path)) as tmp:
+            tmp.write_text(text, encoding="utf-8")
 
     @classmethod
     def read(cls, path: str | Path) -> "ParameterSet":
