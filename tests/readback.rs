@@ -1,0 +1,175 @@
+//! States read back (`serde` feature) by an embedding user: what valid input leaves reads back,
+//! and a state no valid input leaves (a covariance that is not one, a heading or a reading beyond
+//! what the limits of a sample allow, a clock beyond `MAX_TIME`) is refused naming its field.
+#![cfg(feature = "serde")]
+
+use gyrocore::*;
+use serde_json::{json, Value};
+
+/// A filter after a few fixes, its covariance correlated.
+fn fusion() -> Fusion {
+    let t: Vec<f64> = (0..500).map(|i| i as f64 * 0.01).collect();
+    let rate = vec![0.2; t.len()];
+    let fixes: Vec<Fix> = (0..5)
+        .map(|s| Fix {
+            t: s as f64 + 0.5,
+            heading: 0.2 * (s as f64 + 0.5),
+            sigma: 0.05,
+        })
+        .collect();
+    let mut f = Fusion::new(FusionConfig::default()).unwrap();
+    let mut h = vec![0.0; t.len()];
+    f.process_block(&t, &rate, &fixes, FusionOutputs::heading(&mut h))
+        .unwrap();
+    f
+}
+
+/// The error reading `v` back as a `T`, which must be refused.
+fn refused<T: serde::de::DeserializeOwned + core::fmt::Debug>(v: Value) -> String {
+    serde_json::from_value::<T>(v).unwrap_err().to_string()
+}
+
+/// A covariance that is not one, read back: a negative scale or bias variance, a covariance
+/// beyond the root of the product of its variances, three that together exceed them, or a scale
+/// `s_bar` of 0. Each gave NaN or imaginary sigmas, or a NaN bias; each is refused naming it.
+#[test]
+fn a_covariance_that_is_not_one_is_refused() {
+    let v = serde_json::to_value(fusion()).unwrap();
+    let p: [[f64; 3]; 3] = serde_json::from_value(v["segment"]["p"].clone()).unwrap();
+    let root = |i: usize, j: usize| (p[i][i] * p[j][j]).sqrt();
+    let edits: [(&[(usize, usize, f64)], &str); 6] = [
+        (
+            &[(1, 1, -1e-6)],
+            "invalid parameter scale variance = -0.000001: must be >= 0",
+        ),
+        (
+            &[(2, 2, -1.0)],
+            "invalid parameter bias variance = -1: must be >= 0",
+        ),
+        (
+            &[(0, 0, -1e-3)],
+            "invalid parameter heading variance = -0.001",
+        ),
+        (
+            &[(1, 2, 1.5 * root(1, 2)), (2, 1, 1.5 * root(1, 2))],
+            "invalid parameter scale-bias covariance",
+        ),
+        (
+            &[(1, 0, -p[0][1])],
+            "invalid parameter heading-scale covariance",
+        ),
+        (
+            // each pair within its bound, the three together not: correlations 0.9, 0.9, -0.9
+            &[
+                (0, 1, 0.9 * root(0, 1)),
+                (1, 0, 0.9 * root(0, 1)),
+                (0, 2, 0.9 * root(0, 2)),
+                (2, 0, 0.9 * root(0, 2)),
+                (1, 2, -0.9 * root(1, 2)),
+                (2, 1, -0.9 * root(1, 2)),
+            ],
+            "invalid parameter filter covariance",
+        ),
+    ];
+    for (edit, message) in edits {
+        let mut e = v.clone();
+        for &(i, j, value) in edit {
+            e["segment"]["p"][i][j] = json!(value);
+        }
+        let err = refused::<Fusion>(e);
+        assert!(err.contains(message), "{edit:?}: {err}");
+    }
+    let mut e = v.clone();
+    e["segment"]["x"][1] = json!(0.0);
+    let err = refused::<Fusion>(e);
+    assert!(err.contains("invalid parameter filter scale = 0"), "{err}");
+    // A heading variance a rounding below 0 reads back (its sigma is its magnitude's root).
+    let mut e = v.clone();
+    e["segment"]["p"][0][0] = json!(-1e-30);
+    for (i, j) in [(0, 1), (1, 0), (0, 2), (2, 0)] {
+        e["segment"]["p"][i][j] = json!(0.0);
+    }
+    let read: Fusion = serde_json::from_value(e).unwrap();
+    assert!(read.estimate().heading_sigma.is_finite());
+}
+
+/// `(p11, p22, worst correlation)` of a filter's stored covariance.
+fn variances_and_correlation(f: &Fusion) -> (f64, f64, f64) {
+    let v = serde_json::to_value(f).unwrap();
+    let p: [[f64; 3]; 3] = serde_json::from_value(v["segment"]["p"].clone()).unwrap();
+    let mut worst = 0.0f64;
+    for (i, j) in [(0, 1), (0, 2), (1, 2)] {
+        let bound = (p[i][i].max(0.0) * p[j][j].max(0.0)).sqrt();
+        worst = worst.max(if p[i][j] == 0.0 {
+            0.0
+        } else {
+            p[i][j].abs() / bound
+        });
+    }
+    (p[1][1], p[2][2], worst)
+}
+
+/// Fixes far tighter than the gyro's noise, without process noise: the update cancelled below
+/// what float64 resolves and left a negative scale or bias variance and correlations beyond 1
+/// (a bias variance of -8e-13 beside 3e-11 rad fixes). The filter keeps its covariance one, so
+/// every state it leaves reads back, and its sigmas stay finite.
+#[test]
+fn fixes_far_tighter_than_the_gyro_leave_a_covariance() {
+    let cases = [
+        // arw, bias_walk, initial heading, bias and scale sigmas, fix sigma, dt, rate
+        (
+            1.41e-8, 2.97e-7, 0.104, 25.8, 8.6e-7, 2.86e-11, 0.0147, 234.6,
+        ),
+        (0.0, 0.0, 17.35, 9.7e-5, 1.25e-8, 3.68e-11, 5.69, 2.7e-3),
+        (0.0, 0.0, 0.0376, 906.5, 1.49e-4, 3.93e-10, 7.57, 3.4e-3),
+    ];
+    for (arw, bias_walk, heading_sigma, bias_sigma, scale_sigma, sigma, dt, rate) in cases {
+        let config = FusionConfig {
+            arw,
+            bias_walk,
+            scale_walk: 0.0,
+            initial_heading_sigma: heading_sigma,
+            initial_bias_sigma: bias_sigma,
+            initial_scale_sigma: scale_sigma,
+            gate: f64::INFINITY,
+            ..FusionConfig::default()
+        };
+        let n = 400;
+        let t: Vec<f64> = (0..n).map(|i| i as f64 * dt).collect();
+        let r: Vec<f64> = (0..n)
+            .map(|i| rate * ((i as f64 * 0.05).sin() + 0.3))
+            .collect();
+        let fixes: Vec<Fix> = (0..n)
+            .step_by(3)
+            .map(|i| Fix {
+                t: t[i] + 0.25 * dt,
+                heading: (0.1 * i as f64) % 1e6,
+                sigma,
+            })
+            .collect();
+        let mut f = Fusion::new(config).unwrap();
+        let (mut used, mut k) = (0, 0);
+        while k < n {
+            let m = 37.min(n - k);
+            let (mut h, mut s) = (vec![0.0; m], vec![0.0; m]);
+            let out = FusionOutputs {
+                heading: &mut h,
+                heading_sigma: Some(&mut s),
+                bias: None,
+                scale: None,
+            };
+            used += f
+                .process_block(&t[k..k + m], &r[k..k + m], &fixes[used..], out)
+                .unwrap();
+            k += m;
+            assert!(s.iter().all(|s| s.is_finite()), "{s:?}");
+            let (p11, p22, correlation) = variances_and_correlation(&f);
+            assert!(
+                p11 >= 0.0 && p22 >= 0.0 && correlation <= 1.0 + 1e-12,
+                "sigma {sigma}, at {k}: scale {p11:e}, bias {p22:e}, correlation {correlation}"
+            );
+            let json = serde_json::to_string(&f).unwrap();
+            serde_json::from_str::<Fusion>(&json).unwrap();
+        }
+    }
+}
