@@ -173,3 +173,111 @@ fn fixes_far_tighter_than_the_gyro_leave_a_covariance() {
         }
     }
 }
+
+/// A pipeline of the combined preset that holds the last reading over a NaN, after a few samples.
+fn holding() -> Pipeline {
+    let mut c = Preset::Combined.config();
+    c.input.non_finite = NonFinite::Hold;
+    let mut p = Pipeline::new(c).unwrap();
+    for i in 0..50 {
+        p.update(i as f64 * 0.01, 0.01);
+    }
+    p
+}
+
+/// A heading beyond 2^225 rad, which no valid input reaches (an initial heading within 2^20 rad,
+/// a rate below 2^183 rad/s over 2^41 s), read back as a pipeline's, an integrator's or the
+/// heading-fix filter's: each was read back (up to 2^256), and no increment counted on it.
+/// Refused naming it; a heading of 2^224 reads back.
+#[test]
+fn a_heading_beyond_what_valid_input_reaches_is_refused() {
+    let beyond = 2f64.powi(225) * (1.0 + f64::EPSILON);
+    let within = 2f64.powi(224);
+    let pipeline = serde_json::to_value(holding()).unwrap();
+    let mut i = Integrator::new(IntegratorConfig::default()).unwrap();
+    i.update(0.0, 1.0);
+    let integrator = serde_json::to_value(i).unwrap();
+    let fusion = serde_json::to_value(fusion()).unwrap();
+    let cases: [(&Value, &str, &str); 4] = [
+        (&pipeline, "/engine/Hdr/state/3/heading", "heading"),
+        (&pipeline, "/last_output/heading", "last heading"),
+        (&integrator, "/state/heading", "heading"),
+        (&fusion, "/segment/x/0", "filter heading"),
+    ];
+    for (v, at, name) in cases {
+        for value in [beyond, -beyond, 1e70] {
+            let mut e = v.clone();
+            *e.pointer_mut(at).unwrap() = json!(value);
+            let err = if at.starts_with("/segment") {
+                refused::<Fusion>(e)
+            } else if at == "/state/heading" {
+                refused::<Integrator>(e)
+            } else {
+                refused::<Pipeline>(e)
+            };
+            let expected = format!("invalid parameter {name} = ");
+            assert!(
+                err.contains(&expected) && err.contains("within +-2^225 rad"),
+                "{at} = {value:e}: {err}"
+            );
+        }
+        let mut e = v.clone();
+        *e.pointer_mut(at).unwrap() = json!(within);
+        let ok = if at.starts_with("/segment") {
+            serde_json::from_value::<Fusion>(e).is_ok()
+        } else if at == "/state/heading" {
+            serde_json::from_value::<Integrator>(e).is_ok()
+        } else {
+            serde_json::from_value::<Pipeline>(e).is_ok()
+        };
+        assert!(ok, "{at} = 2^224");
+    }
+}
+
+/// The reading a pipeline holds over a NaN (`NonFinite::Hold`), read back beyond the limit of a
+/// reading: it was held into infinite headings. The output a skipped sample repeats, read back
+/// beyond reach: it was repeated as it was. Both refused naming them.
+#[test]
+fn a_held_reading_or_repeated_output_beyond_reach_is_refused() {
+    let v = serde_json::to_value(holding()).unwrap();
+    for (at, value, message) in [
+        (
+            "/last_reading/0",
+            1e308,
+            "invalid parameter last rate = 1e308",
+        ),
+        (
+            "/last_reading/0",
+            -MAX_READING,
+            "invalid parameter last rate = -1048576",
+        ),
+        (
+            "/last_reading/1",
+            5e6,
+            "invalid parameter last temperature = 5000000",
+        ),
+        (
+            "/last_output/rate",
+            1e308,
+            "invalid parameter last output rate = 1e308",
+        ),
+        (
+            "/last_output/drift",
+            -1e308,
+            "invalid parameter last drift = -1e308",
+        ),
+    ] {
+        let mut e = v.clone();
+        *e.pointer_mut(at).unwrap() = json!(value);
+        let err = refused::<Pipeline>(e);
+        assert!(err.contains(message), "{at}: {err}");
+    }
+    // the largest reading the policy takes is held, and the headings stay finite
+    let mut e = v.clone();
+    e["last_reading"][0] = json!(MAX_READING * (1.0 - f64::EPSILON));
+    let mut p: Pipeline = serde_json::from_value(e).unwrap();
+    for k in 0..5 {
+        let out = p.update(1.0 + k as f64 * 0.01, f64::NAN);
+        assert!(out.heading.is_finite(), "{out:?}");
+    }
+}

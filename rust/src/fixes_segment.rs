@@ -99,7 +99,7 @@ impl Segment {
 
     /// Checks a segment read back (`serde` feature): its time within +-2^40 s, every value
     /// within [`MAX_STORED`](crate::error::MAX_STORED) (a stored rate integral of 1e308 gave
-    /// infinite headings), a scale `s_bar` of which Hong eq 1's bias and scale are finite (one of
+    /// infinite headings), the heading within [`MAX_HEADING`](crate::error::MAX_HEADING), a scale `s_bar` of which Hong eq 1's bias and scale are finite (one of
     /// 0 gave a NaN bias), and a covariance that is one ([`fixes_covariance::check`]: a negative
     /// bias variance gave NaN or imaginary sigmas).
     ///
@@ -112,6 +112,7 @@ impl Segment {
         for v in self.x.iter().chain(self.p.iter().flatten()) {
             check_stored("filter state", *v)?;
         }
+        crate::error::check_heading("filter heading", self.x[0])?;
         for v in [self.a, self.i1_2, self.i2_3] {
             check_stored("rate integral", v)?;
         }
