@@ -281,3 +281,48 @@ fn a_held_reading_or_repeated_output_beyond_reach_is_refused() {
         assert!(out.heading.is_finite(), "{out:?}");
     }
 }
+
+/// A stand-alone stage read back with a clock beyond 2^40 s (-1e308 made the next block's first
+/// interval 1e308: an infinite heading; 1e308 refused every later block) or a last output of
+/// 1e308 (repeated for a skipped sample): refused naming it.
+#[test]
+fn a_stand_alone_stage_with_a_clock_or_output_beyond_reach_is_refused() {
+    let mut i = Integrator::new(IntegratorConfig::default()).unwrap();
+    i.update(0.0, 1.0);
+    let mut d = DeLag::new(LowPassConfig { tau: 0.75 }).unwrap();
+    d.update(0.0, 1.0);
+    let integrator = serde_json::to_value(i).unwrap();
+    let delag = serde_json::to_value(d).unwrap();
+    for (at, value, message) in [
+        (
+            "/clock/last",
+            -1e308,
+            "invalid parameter last_time = -1e308",
+        ),
+        ("/clock/last", 1e308, "invalid parameter last_time = 1e308"),
+        (
+            "/clock/last",
+            2.0 * MAX_TIME,
+            "invalid parameter last_time = 2199023255552",
+        ),
+        ("/last", 1e308, "invalid parameter last output = 1e308"),
+    ] {
+        for v in [&integrator, &delag] {
+            let mut e = v.clone();
+            *e.pointer_mut(at).unwrap() = json!(value);
+            let err = if v == &integrator {
+                refused::<Integrator>(e)
+            } else {
+                refused::<DeLag>(e)
+            };
+            assert!(err.contains(message), "{at}: {err}");
+        }
+    }
+    // a clock edited to a time valid input reaches carries on, with finite outputs
+    let mut e = integrator.clone();
+    e["clock"]["last"] = json!(-1e9);
+    let mut i: Integrator = serde_json::from_value(e).unwrap();
+    let mut out = [0.0; 2];
+    i.process_block(&[0.0, 0.1], &[2.0, 2.0], &mut out).unwrap();
+    assert!(out.iter().all(|h| h.is_finite()), "{out:?}");
+}
