@@ -326,3 +326,47 @@ fn a_stand_alone_stage_with_a_clock_or_output_beyond_reach_is_refused() {
     i.process_block(&[0.0, 0.1], &[2.0, 2.0], &mut out).unwrap();
     assert!(out.iter().all(|h| h.is_finite()), "{out:?}");
 }
+
+/// A `Downsample` read back with an open block no valid input leaves: an integral of 1e308 over
+/// a time of 1e-300 (its next mean was infinite), a time taken of -1e308 (the step never closed
+/// again), a clock beyond 2^40 s. Only its configuration was checked; each is refused naming it.
+#[test]
+fn a_downsample_with_a_block_beyond_reach_is_refused() {
+    let mut d = Downsample::new(DownsampleConfig { interval: 1.0 }).unwrap();
+    for i in 0..150 {
+        d.update(i as f64 * 0.01, 0.3);
+    }
+    let v = serde_json::to_value(&d).unwrap();
+    let edits: [(&[(&str, f64)], &str); 4] = [
+        (
+            &[("/block/sum", 1e308), ("/block/duration", 1e-300)],
+            "invalid parameter block integral = 1e308",
+        ),
+        (
+            &[("/block/duration", -1e308)],
+            "invalid parameter block duration = -1e308",
+        ),
+        (
+            &[("/block/elapsed", -1e308)],
+            "invalid parameter block elapsed = -1e308",
+        ),
+        (
+            &[("/clock/last", -1e308)],
+            "invalid parameter last_time = -1e308",
+        ),
+    ];
+    for (edit, message) in edits {
+        let mut e = v.clone();
+        for &(at, value) in edit {
+            *e.pointer_mut(at).unwrap() = json!(value);
+        }
+        let err = refused::<Downsample>(e);
+        assert!(err.contains(message), "{edit:?}: {err}");
+    }
+    // read back as it was, it carries on with finite means
+    let mut back: Downsample = serde_json::from_value(v).unwrap();
+    let closed: Vec<_> = (150..400)
+        .filter_map(|i| back.update(i as f64 * 0.01, 0.3))
+        .collect();
+    assert!(!closed.is_empty() && closed.iter().all(|(_, m)| (m - 0.3).abs() < 1e-12));
+}

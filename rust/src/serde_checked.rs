@@ -50,7 +50,7 @@ macro_rules! checked_serde {
 checked_serde!(Pipeline, Pipeline::check_restored);
 checked_serde!(Fusion, Fusion::check_restored);
 checked_serde!(Correction, Correction::check_restored);
-checked_serde!(Downsample, |d| d.config().validate());
+checked_serde!(Downsample, Downsample::check_restored);
 checked_serde!([K: Validated] Streaming<K>, |s| {
     let (config, state) = s.parts();
     K::check(config)?;
