@@ -370,3 +370,34 @@ fn a_downsample_with_a_block_beyond_reach_is_refused() {
         .collect();
     assert!(!closed.is_empty() && closed.iter().all(|(_, m)| (m - 0.3).abs() < 1e-12));
 }
+
+/// A stand-alone `Correction` read back with a bias in force of 1e308 (its corrected rates were
+/// infinite) or a clock beyond 2^40 s: only its configuration and its estimate were checked.
+#[test]
+fn a_correction_with_a_bias_or_clock_beyond_reach_is_refused() {
+    let mut c = Correction::new(CorrectionConfig {
+        bias: StaticBias::Leading { duration: 100.0 },
+        scale: 2.0,
+        ..Default::default()
+    })
+    .unwrap();
+    for i in 0..50 {
+        c.update(i as f64 * 0.01, 0.01);
+    }
+    let v = serde_json::to_value(&c).unwrap();
+    for (at, value, message) in [
+        ("/calibration/bias", 1e308, "invalid parameter bias = 1e308"),
+        (
+            "/clock/last",
+            -1e308,
+            "invalid parameter last_time = -1e308",
+        ),
+    ] {
+        let mut e = v.clone();
+        *e.pointer_mut(at).unwrap() = json!(value);
+        let err = refused::<Correction>(e);
+        assert!(err.contains(message), "{at}: {err}");
+    }
+    let mut back: Correction = serde_json::from_value(v).unwrap();
+    assert!(back.update(1.0, -5.0).is_finite());
+}
