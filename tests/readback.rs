@@ -401,3 +401,71 @@ fn a_correction_with_a_bias_or_clock_beyond_reach_is_refused() {
     let mut back: Correction = serde_json::from_value(v).unwrap();
     assert!(back.update(1.0, -5.0).is_finite());
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
+
+    /// Any filter's noise, from none to much, fixes from the tightest (1e-12 rad) to loose ones
+    /// that agree with the gyro or scatter, any sample interval and rate: after every block the
+    /// stored covariance is one (variances >= 0, correlations within 1), the state reads back,
+    /// and every sigma is finite.
+    #[test]
+    fn every_state_a_filter_leaves_reads_back(
+        noise in proptest::array::uniform3(-10.0f64..0.0),
+        none in proptest::array::uniform3(proptest::bool::ANY),
+        initial in proptest::array::uniform3(-8.0f64..2.0),
+        sigma in -12.0f64..0.0,
+        dt in -4.0f64..1.0,
+        rate in -3.0f64..5.0,
+        every in 1usize..20,
+        scatter in 0.0f64..1.0,
+        cut in 1usize..80,
+    ) {
+        let walk = |i: usize| if none[i] { 0.0 } else { 10f64.powf(noise[i]) };
+        let config = FusionConfig {
+            arw: walk(0),
+            bias_walk: walk(1),
+            scale_walk: walk(2),
+            initial_heading_sigma: 10f64.powf(initial[0]),
+            initial_bias_sigma: 10f64.powf(initial[1]).min(1e3),
+            initial_scale_sigma: 10f64.powf(initial[2]).min(0.5),
+            gate: f64::INFINITY,
+            ..FusionConfig::default()
+        };
+        let (dt, rate, sigma) = (10f64.powf(dt), 10f64.powf(rate), 10f64.powf(sigma));
+        let n = 300;
+        let t: Vec<f64> = (0..n).map(|i| i as f64 * dt).collect();
+        let r: Vec<f64> = (0..n).map(|i| rate * ((i as f64 * 0.05).sin() + 0.3)).collect();
+        let fixes: Vec<Fix> = (0..n)
+            .step_by(every)
+            .map(|i| Fix {
+                t: t[i] + 0.3 * dt,
+                heading: (0.1 * i as f64 + scatter * (i as f64 * 12.9898).sin()) % 1e6,
+                sigma,
+            })
+            .collect();
+        let mut f = Fusion::new(config).unwrap();
+        let (mut used, mut k) = (0, 0);
+        while k < n {
+            let m = cut.min(n - k);
+            let (mut h, mut s) = (vec![0.0; m], vec![0.0; m]);
+            let out = FusionOutputs {
+                heading: &mut h,
+                heading_sigma: Some(&mut s),
+                bias: None,
+                scale: None,
+            };
+            used += f.process_block(&t[k..k + m], &r[k..k + m], &fixes[used..], out).unwrap();
+            k += m;
+            proptest::prop_assert!(s.iter().chain(&h).all(|x| x.is_finite()));
+            let (p11, p22, correlation) = variances_and_correlation(&f);
+            proptest::prop_assert!(
+                p11 >= 0.0 && p22 >= 0.0 && correlation <= 1.0 + 1e-12,
+                "at {}: scale {:e}, bias {:e}, correlation {}", k, p11, p22, correlation
+            );
+            let json = serde_json::to_string(&f).unwrap();
+            let back = serde_json::from_str::<Fusion>(&json);
+            proptest::prop_assert!(back.is_ok(), "at {}: {:?}", k, back);
+        }
+    }
+}
