@@ -29,6 +29,9 @@ fn refused<T: serde::de::DeserializeOwned + core::fmt::Debug>(v: Value) -> Strin
     serde_json::from_value::<T>(v).unwrap_err().to_string()
 }
 
+/// Entry `(i, j)` of a covariance set to a value.
+type Edit = (usize, usize, f64);
+
 /// A covariance that is not one, read back: a negative scale or bias variance, a covariance
 /// beyond the root of the product of its variances, three that together exceed them, or a scale
 /// `s_bar` of 0. Each gave NaN or imaginary sigmas, or a NaN bias; each is refused naming it.
@@ -37,7 +40,7 @@ fn a_covariance_that_is_not_one_is_refused() {
     let v = serde_json::to_value(fusion()).unwrap();
     let p: [[f64; 3]; 3] = serde_json::from_value(v["segment"]["p"].clone()).unwrap();
     let root = |i: usize, j: usize| (p[i][i] * p[j][j]).sqrt();
-    let edits: [(&[(usize, usize, f64)], &str); 6] = [
+    let edits: [(&[Edit], &str); 6] = [
         (
             &[(1, 1, -1e-6)],
             "invalid parameter scale variance = -0.000001: must be >= 0",

@@ -101,7 +101,7 @@ impl Pipeline {
             let valid = "within +-2^20 (a usable reading, which the input policy holds)";
             let limit = crate::MAX_READING;
             for (name, v) in [("last rate", Some(rate)), ("last temperature", temperature)] {
-                if let Some(v) = v.filter(|v| !(v.abs() < limit)) {
+                if let Some(v) = v.filter(|v| v.is_nan() || v.abs() >= limit) {
                     return Err(Error::InvalidParameter {
                         name,
                         value: v,
