@@ -49,7 +49,7 @@ impl BiasEstimate {
 ///
 /// # Errors
 /// As [`check_block`] for `times` and `values` (named `t` and `rate`): unequal
-/// lengths, a value that is not finite or beyond [`MAX_READING`](crate::MAX_READING), times not
+/// lengths, a value that is not finite or beyond [`MAX_READING`], times not
 /// strictly increasing; an output of another length; a variance or `floor` not > 0 or beyond
 /// 2^40 (the square of a reading's limit); `q` negative or beyond 2^40.
 pub fn filter_rests(

@@ -336,7 +336,7 @@ pub(crate) const MAX_STORED: f64 = 1.157_920_892_373_162e77;
 /// stand-alone integrator and the filter's own blocks take readings within 2^20), over
 /// timestamps at most 2^41 s apart: below 2^20 + 2^224. A heading beyond it is a state edited or
 /// damaged, on which no increment counts any more (at 2^256 rad, the float's spacing is 2^204).
-/// A stand-alone integrator fed by `step`, which keeps no clock, would need 2^163 calls of the
+/// A stand-alone integrator fed by `step`, which keeps no clock, would need 2^164 calls of the
 /// longest interval at the largest reading to pass it.
 #[cfg(feature = "serde")]
 pub(crate) const MAX_HEADING: f64 = MAX_STORED / 2_147_483_648.0;

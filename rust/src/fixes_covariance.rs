@@ -6,9 +6,9 @@
 //! or bias variance below 0 and correlations beyond 1 (a bias variance of -8e-13 beside fixes of
 //! 3e-11 rad). A covariance so rounded made later heading variances negative, and a fix whose
 //! innovation variance rounded to 0 divided by it. [`semi_definite`] keeps the update's result
-//! where it is positive semi-definite, and otherwise rebuilds it from its `L D L^T` factors with
-//! the pivots that rounded below 0 set to 0 (that variance is known to the float's resolution);
-//! [`check`] refuses a covariance read back (`serde` feature) that is not, within rounding.
+//! where its `L D L^T` factors show it positive semi-definite, and otherwise keeps its variances
+//! and brings its covariances within them; [`check`] refuses a covariance read back (`serde`
+//! feature) that is not one, within rounding.
 
 use crate::fixes_smooth::Mat3;
 
@@ -37,12 +37,13 @@ fn factors(p: &Mat3) -> ([f64; 3], [f64; 3], bool) {
     ([d0, d1, d2], [l10, l20, l21], fits)
 }
 
-/// `p` (the covariance a fix's update left) made symmetric from its upper triangle, which every
-/// later step reads, and positive semi-definite: as it is where it already is; else its
-/// variances are kept (one below 0 is a rounding of 0: known to the float's resolution of it)
-/// and each covariance is brought within what they allow, in the order the factors take them
-/// (rebuilt from pivots raised to 0, a scale variance of 1e-17 became 1.6e9, where the
-/// covariance of a heading known to 1e-12 rad was the rounding, not the variance).
+/// `p` (the covariance a fix's update left) made symmetric from its upper triangle (the update
+/// computes the two triangles in other orders, which differ in their last bits) and positive
+/// semi-definite: as it is where it already is; else its variances are kept (one below 0 is a
+/// rounding of 0: known to the float's resolution of it) and each covariance is brought within
+/// what they allow, in the order the factors take them. The variances are what the update
+/// resolves; where a heading is known to 1e-12 rad, its covariances are the rounding (raising
+/// the pivots to 0 instead would make that rounding a variance: 1e-17 would become 1.6e9).
 pub(crate) fn semi_definite(mut p: Mat3) -> Mat3 {
     (p[1][0], p[2][0], p[2][1]) = (p[0][1], p[0][2], p[1][2]);
     if factors(&p).2 {
