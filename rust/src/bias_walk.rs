@@ -9,8 +9,12 @@
 //! rests the variance grows (`P += q |dt|`); a rest updates it with the gain `g = P / (P + r)`:
 //! `b += g (z - b)`, `P = P r / (P + r)`.
 
-use crate::error::{check_positive, check_range};
-use crate::{check_block, Error};
+use crate::error::check_range;
+use crate::{check_block, Error, MAX_READING};
+
+/// The largest variance of a rest's reading, of the floor and of the walk's intensity `q` that
+/// [`filter_rests`] takes: the square of a reading's limit ([`MAX_READING`]), 2^40.
+const MAX_VARIANCE: f64 = MAX_READING * MAX_READING;
 
 /// The bias's estimate after a rest: its mean \[rad/s\] and variance \[rad^2/s^2\].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -45,9 +49,9 @@ impl BiasEstimate {
 ///
 /// # Errors
 /// As [`check_block`] for `times` and `values` (named `t` and `rate`): unequal
-/// lengths, a value that is not finite or beyond [`MAX_READING`](crate::MAX_READING), times not
-/// strictly increasing; an output of another length; a variance not finite and > 0; `q`
-/// negative or not finite; `floor` not finite and > 0.
+/// lengths, a value that is not finite or beyond [`MAX_READING`], times not
+/// strictly increasing; an output of another length; a variance or `floor` not > 0 or beyond
+/// 2^40 (the square of a reading's limit); `q` negative or beyond 2^40.
 pub fn filter_rests(
     times: &[f64],
     values: &[f64],
@@ -73,11 +77,17 @@ pub fn filter_rests(
             });
         }
     }
+    // Each within the square of a reading's limit, and `q` so over the longest span of time:
+    // a variance of 1e308 (or a floor of it) overflowed the update's `P r`, and a `q` of 1e300
+    // the prediction `P + q |dt|` (NaN means and infinite variances). Within them, `P` stays
+    // below 2^82 and `P r` below 2^122.
+    let valid = "finite, > 0 and at most 2^40 rad^2/s^2 (the square of a reading's limit)";
     for &r in variances {
-        check_positive("variances", r)?;
+        check_range("variances", r, f64::MIN_POSITIVE, MAX_VARIANCE, valid)?;
     }
-    check_positive("floor", floor)?;
-    check_range("q", q, 0.0, f64::MAX, "finite and >= 0")?;
+    check_range("floor", floor, f64::MIN_POSITIVE, MAX_VARIANCE, valid)?;
+    let valid = "finite, >= 0 and at most 2^40 rad^2/s^3";
+    check_range("q", q, 0.0, MAX_VARIANCE, valid)?;
     let n = times.len();
     let order = |i: usize| if backward { n - 1 - i } else { i };
     let mut before: Option<(usize, BiasEstimate)> = None;

@@ -22,6 +22,31 @@ pub(crate) struct BlockMean {
 }
 
 impl BlockMean {
+    /// Checks a block read back (`serde` feature) for a step of `interval` \[s\] over readings
+    /// within [`MAX_READING`](crate::MAX_READING): the time taken in it >= 0 and at most the step
+    /// and the longest interval, the time elapsed at least the carry a step leaves (-interval / 2),
+    /// and the integral its mean within the readings' limit (a stored integral of 1e308 over a
+    /// time of 1e-300 gave an infinite mean; a time of -1e308 never closed the step).
+    #[cfg(feature = "serde")]
+    pub(crate) fn check(&self, interval: f64) -> Result<(), Error> {
+        use crate::error::check_range;
+        let longest = interval + 2.0 * crate::MAX_TIME;
+        let valid = "within 0 and the step's length plus the longest interval, 2^41 s";
+        check_range("block duration", self.duration, 0.0, longest, valid)?;
+        let valid = "within minus half the step's length and its length plus 2^41 s";
+        check_range(
+            "block elapsed",
+            self.elapsed,
+            -0.5 * interval,
+            longest,
+            valid,
+        )?;
+        let most = 2.0 * crate::MAX_READING * self.duration;
+        let valid = "its mean over the block's duration within +-2^21 rad/s (a reading's limit, \
+                     and room for rounding)";
+        check_range("block integral", self.sum, -most, most, valid)
+    }
+
     /// Adds a sample with interval `dt`; when this sample closes a block, returns the block's
     /// mean and duration [s].
     ///
@@ -103,6 +128,18 @@ impl Downsample {
         self.block
             .push(self.config.interval, dt, rate)
             .map(|(mean, _)| (t, mean))
+    }
+
+    /// The checks of a stage read back (`serde` feature): its configuration as `new` checks it,
+    /// its clock within +-2^40 s and its open block ([`BlockMean::check`]).
+    #[cfg(feature = "serde")]
+    pub(crate) fn check_restored(&self) -> Result<(), Error> {
+        self.config.validate()?;
+        if let Some(t) = self.clock.last() {
+            let limit = crate::MAX_TIME;
+            crate::error::check_range("last_time", t, -limit, limit, "within +-2^40 s")?;
+        }
+        self.block.check(self.config.interval)
     }
 
     /// The configuration.

@@ -258,12 +258,18 @@ impl Correction {
         &self.calibration.config
     }
 
-    /// The checks of a stage read back (`serde` feature): its configuration, and its bias
-    /// estimate as a pipeline's.
+    /// The checks of a stage read back (`serde` feature): its configuration, its bias estimate
+    /// as a pipeline's, the bias in force (a reading, as a pipeline's: one of 1e308 gave
+    /// infinite corrected rates) and its clock within +-2^40 s.
     #[cfg(feature = "serde")]
     pub(crate) fn check_restored(&self) -> Result<(), Error> {
         self.config().validate()?;
-        self.bias.check()
+        self.bias.check()?;
+        check_reading("bias", self.calibration.bias)?;
+        match self.clock.last() {
+            Some(t) => check_range("last_time", t, -MAX_TIME, MAX_TIME, "within +-2^40 s"),
+            None => Ok(()),
+        }
     }
 
     /// The static bias in use now [rad/s] (what the gyro reads at rest).

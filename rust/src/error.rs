@@ -329,6 +329,26 @@ pub(crate) fn check_finite(name: &'static str, value: f64) -> Result<(), Error> 
 #[cfg(feature = "serde")]
 pub(crate) const MAX_STORED: f64 = 1.157_920_892_373_162e77;
 
+/// The largest magnitude of a heading \[rad\] a state read back may hold (a pipeline's, an
+/// integrator's, the heading-fix filter's): 2^225. A heading is its initial value (within 2^20
+/// rad) and the integral of the rate its integrator is fed, which valid input keeps below 2^183
+/// rad/s (see [`MAX_STORED`]: the de-lag of HDR's largest step at the shortest interval; a
+/// stand-alone integrator and the filter's own blocks take readings within 2^20), over
+/// timestamps at most 2^41 s apart: below 2^20 + 2^224. A heading beyond it is a state edited or
+/// damaged, on which no increment counts any more (at 2^256 rad, the float's spacing is 2^204).
+/// A stand-alone integrator fed by `step`, which keeps no clock, would need 2^164 calls of the
+/// longest interval at the largest reading to pass it.
+#[cfg(feature = "serde")]
+pub(crate) const MAX_HEADING: f64 = MAX_STORED / 2_147_483_648.0;
+
+/// Fails unless a heading read back lies within +-[`MAX_HEADING`] (so is finite).
+#[cfg(feature = "serde")]
+pub(crate) fn check_heading(name: &'static str, value: f64) -> Result<(), Error> {
+    let valid = "within +-2^225 rad (5.4e67), beyond the headings valid input reaches: its \
+                 initial heading within 2^20 rad, and a rate below 2^183 rad/s over 2^41 s";
+    check_range(name, value, -MAX_HEADING, MAX_HEADING, valid)
+}
+
 /// Fails unless a value read back lies within +-[`MAX_STORED`] (so is finite).
 #[cfg(feature = "serde")]
 pub(crate) fn check_stored(name: &'static str, value: f64) -> Result<(), Error> {

@@ -67,7 +67,7 @@ pub struct FixCounts {
 /// the state moves in closed form from the last fix applied (rust/src/fixes_segment.rs).
 ///
 /// Read back (`serde` feature), its configuration is checked as [`Fusion::new`] checks it, and
-/// its state: times within +-2^40 s, values finite and in range, the heading's variance >= 0.
+/// its state: times within +-2^40 s, values finite and in range, a covariance that is one.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(
     feature = "serde",
@@ -442,7 +442,7 @@ impl Fusion {
                 *pij -= k * r;
             }
         }
-        Some((x, p))
+        Some((x, crate::fixes_covariance::semi_definite(p)))
     }
 }
 

@@ -99,8 +99,11 @@ impl Segment {
 
     /// Checks a segment read back (`serde` feature): its time within +-2^40 s, every value
     /// within [`MAX_STORED`](crate::error::MAX_STORED) (a stored rate integral of 1e308 gave
-    /// infinite headings). The heading's variance may be a rounding below 0: valid input leaves
-    /// one where fixes are far tighter than the gyro's noise, and its sigma is its magnitude's root.
+    /// infinite headings), the heading within [`MAX_HEADING`](crate::error::MAX_HEADING), a scale `s_bar` of which Hong eq 1's bias and scale are finite (one of
+    /// 0 gave a NaN bias), and a covariance that is one ([`fixes_covariance::check`]: a negative
+    /// bias variance gave NaN or imaginary sigmas).
+    ///
+    /// [`fixes_covariance::check`]: crate::fixes_covariance
     #[cfg(feature = "serde")]
     pub(crate) fn check(&self) -> Result<(), crate::Error> {
         use crate::error::{check_range, check_stored};
@@ -109,10 +112,20 @@ impl Segment {
         for v in self.x.iter().chain(self.p.iter().flatten()) {
             check_stored("filter state", *v)?;
         }
+        crate::error::check_heading("filter heading", self.x[0])?;
         for v in [self.a, self.i1_2, self.i2_3] {
             check_stored("rate integral", v)?;
         }
-        Ok(())
+        let (bias, scale) = self.calibration();
+        if !(bias.is_finite() && scale.is_finite()) {
+            return Err(crate::Error::InvalidParameter {
+                name: "filter scale",
+                value: self.x[1],
+                valid: "s_bar = 1/(1+s) of Hong eq 3, of which eq 1's bias -b_bar/s_bar and \
+                        scale 1/s_bar - 1 are finite (not 0)",
+            });
+        }
+        crate::fixes_covariance::check(&self.p)
     }
 
     /// Extends the segment by an interval `dt` \[s\] over which the rate's mean is `m` \[rad/s\].

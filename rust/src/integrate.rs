@@ -66,12 +66,13 @@ pub struct Heading {
 }
 
 impl Heading {
-    /// Checks a state read back (`serde` feature): the heading and the last rate within
-    /// [`MAX_STORED`](crate::error::MAX_STORED) (a stored last rate of 1e308 made the next
-    /// heading infinite).
+    /// Checks a state read back (`serde` feature): the heading within
+    /// [`MAX_HEADING`](crate::error::MAX_HEADING) (one of 2^255 took no increment any more) and
+    /// the last rate within [`MAX_STORED`](crate::error::MAX_STORED) (a stored last rate of
+    /// 1e308 made the next heading infinite).
     #[cfg(feature = "serde")]
     fn check(&self) -> Result<(), Error> {
-        crate::error::check_stored("heading", self.heading)?;
+        crate::error::check_heading("heading", self.heading)?;
         crate::error::check_stored("previous rate", self.previous)
     }
 

@@ -351,7 +351,8 @@ pub(crate) use settings_are_config;
 /// `(t, rate)` samples through the [`Stage`] trait. The pipeline does not use this wrapper: it
 /// keeps one clock for the whole chain.
 ///
-/// Read back with the `serde` feature, its configuration is checked ([`Validated::check`]).
+/// Read back with the `serde` feature, its configuration is checked ([`Validated::check`]), its
+/// state ([`Kernel::check_state`]), its clock within +-[`MAX_TIME`] and its last output.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(
     feature = "serde",
@@ -361,11 +362,11 @@ pub(crate) use settings_are_config;
 pub struct Streaming<K: Kernel> {
     config: K::Config,
     state: K::State,
-    clock: Clock,
+    pub(crate) clock: Clock,
     /// True once the stage has had its first sample.
     started: bool,
     /// The last output, repeated for a sample whose timestamp does not move forward.
-    last: f64,
+    pub(crate) last: f64,
 }
 
 impl<K: Validated> Streaming<K> {

@@ -70,6 +70,7 @@ pub mod correction;
 mod error;
 pub mod fixes;
 mod fixes_config;
+mod fixes_covariance;
 mod fixes_error;
 mod fixes_output;
 mod fixes_segment;

@@ -51,6 +51,52 @@ impl RestNoise {
         self.batch_duration[part] += dt;
     }
 
+    /// Checks the sums read back (`serde` feature) against what readings within
+    /// [`MAX_READING`](crate::MAX_READING) leave: the last reading one of them, the squared
+    /// differences within `(2^21)^2` each, every part's time within 0 and 2^41 s and its
+    /// integral's mean within +-2^21 rad/s (room for rounding). A part's time of 1e-300 under
+    /// its integral gave an infinite standard error of the bias, and the rest tracker's headings
+    /// NaN; squared differences of -1 a NaN noise.
+    #[cfg(feature = "serde")]
+    fn check(&self) -> Result<(), Error> {
+        use crate::error::check_range;
+        use crate::{MAX_READING, MAX_TIME};
+        if let Some(p) = self
+            .previous
+            .filter(|p| p.is_nan() || p.abs() >= MAX_READING)
+        {
+            let valid = "within +-2^20 (a usable reading)";
+            return Err(Error::InvalidParameter {
+                name: "rest window last reading",
+                value: p,
+                valid,
+            });
+        }
+        let most = 2.0 * (2.0 * MAX_READING) * (2.0 * MAX_READING) * self.differences as f64;
+        let valid = ">= 0 and at most (2^21)^2 per difference, the largest two readings make";
+        check_range(
+            "rest window squared differences",
+            self.squared_differences,
+            0.0,
+            most,
+            valid,
+        )?;
+        for (&integral, &duration) in self.batch_integral.iter().zip(&self.batch_duration) {
+            let valid = "within 0 and 2^41 s";
+            check_range(
+                "rest window part duration",
+                duration,
+                0.0,
+                2.0 * MAX_TIME,
+                valid,
+            )?;
+            let most = 2.0 * MAX_READING * duration;
+            let valid = "its mean over the part's duration within +-2^21 rad/s";
+            check_range("rest window part integral", integral, -most, most, valid)?;
+        }
+        Ok(())
+    }
+
     /// The statistics, or `None` while fewer than two parts or two readings have been seen.
     pub(crate) fn statistics(&self) -> Option<RestStatistics> {
         if self.differences == 0 {
@@ -190,8 +236,9 @@ impl BiasEstimate {
 
     /// Checks an estimate read back (`serde` feature): the bias a reading, the time measured
     /// within the window's longest, the integral's mean within twice the largest reading (room
-    /// for rounding) and the window's bounds within +-2^41 s. A stored integral of 1e308 gave an
-    /// infinite bias at the next reading, a NaN window never ended.
+    /// for rounding), the window's bounds within +-2^41 s, and its noise's sums
+    /// ([`RestNoise::check`]). A stored integral of 1e308 gave an infinite bias at the next
+    /// reading, a NaN window never ended.
     #[cfg(feature = "serde")]
     pub(crate) fn check(&self) -> Result<(), Error> {
         use crate::error::{check_range, check_reading};
@@ -211,7 +258,7 @@ impl BiasEstimate {
         for bound in self.window.iter().flat_map(|&(start, end)| [start, end]) {
             check_range("bias_window", bound, -longest, longest, "within +-2^41 s")?;
         }
-        Ok(())
+        self.noise.check()
     }
 
     /// See [`crate::Correction::rest_statistics`].

@@ -8,9 +8,10 @@
 //! [`checked_serde!`] implements the traits on them: serialising as derived, deserialising as
 //! derived and then checked, the check's error (the core's, in its words) the deserialiser's.
 
+use crate::error::{check_range, check_stored};
 use crate::kernel::Validated;
 use crate::sim::Xoshiro256PlusPlus;
-use crate::{Correction, Downsample, Error, Fusion, GyroModel, Pipeline, Streaming};
+use crate::{Correction, Downsample, Error, Fusion, GyroModel, Pipeline, Streaming, MAX_TIME};
 
 /// Implements `Serialize` and `Deserialize` for `$ty` (generic over `[$g]`, if given) from its
 /// `remote = "Self"` derive, the deserialised value checked by `$check: fn(&$ty) -> Result<(),
@@ -49,11 +50,17 @@ macro_rules! checked_serde {
 checked_serde!(Pipeline, Pipeline::check_restored);
 checked_serde!(Fusion, Fusion::check_restored);
 checked_serde!(Correction, Correction::check_restored);
-checked_serde!(Downsample, |d| d.config().validate());
+checked_serde!(Downsample, Downsample::check_restored);
 checked_serde!([K: Validated] Streaming<K>, |s| {
     let (config, state) = s.parts();
     K::check(config)?;
-    K::check_state(config, state)
+    K::check_state(config, state)?;
+    // A stored time of -1e308 made the next block's first interval 1e308 (an infinite
+    // heading), one of 1e308 refused every later block; the last output is repeated as it is.
+    if let Some(t) = s.clock.last() {
+        check_range("last_time", t, -MAX_TIME, MAX_TIME, "within +-2^40 s")?;
+    }
+    check_stored("last output", s.last)
 });
 checked_serde!(GyroModel => GyroModel::restored);
 checked_serde!(Xoshiro256PlusPlus, Xoshiro256PlusPlus::check);

@@ -86,7 +86,8 @@ impl Pipeline {
     }
 
     /// The checks of a pipeline read back (see the type's doc): its configuration, its clock,
-    /// and its stages against the ones the configuration builds.
+    /// the reading it holds and the output it repeats, and its stages against the ones the
+    /// configuration builds.
     #[cfg(feature = "serde")]
     pub(crate) fn check_restored(&self) -> Result<(), Error> {
         self.config.validate()?;
@@ -94,6 +95,24 @@ impl Pipeline {
             check_range("last_time", t, -MAX_TIME, MAX_TIME, "within +-2^40 s")?;
         }
         self.bias.check()?;
+        // The reading the policy holds is one it took: a stored one of 1e308 was held into
+        // infinite headings. The output a skipped sample repeats is one the chain gave.
+        if let Some((rate, temperature)) = self.last_reading {
+            let valid = "within +-2^20 (a usable reading, which the input policy holds)";
+            let limit = crate::MAX_READING;
+            for (name, v) in [("last rate", Some(rate)), ("last temperature", temperature)] {
+                if let Some(v) = v.filter(|v| v.is_nan() || v.abs() >= limit) {
+                    return Err(Error::InvalidParameter {
+                        name,
+                        value: v,
+                        valid,
+                    });
+                }
+            }
+        }
+        crate::error::check_heading("last heading", self.last_output.heading)?;
+        crate::error::check_stored("last output rate", self.last_output.rate)?;
+        crate::error::check_stored("last drift", self.last_output.drift)?;
         self.engine.check_restored(&self.config)
     }
 
