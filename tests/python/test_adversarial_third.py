@@ -1,0 +1,65 @@
+"""Inputs found by a third adversarial pass over the Python API and the command line: errors that
+named no file line where the command line does, warnings a log folder went without, and options a
+user was not told of."""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import gyrocore
+
+from .conftest import gyrocore_cli
+
+
+def _write_log(path: Path, t: np.ndarray, rate: np.ndarray) -> Path:
+    """A CSV log ``t,gyro_z``, a NaN written as an empty field (as a logger leaves it)."""
+    rows = (f"{a!r},{'' if np.isnan(b) else repr(b)}\n" for a, b in zip(t.tolist(), rate.tolist()))
+    path.write_text("t,gyro_z\n" + "".join(rows))
+    return path
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+@pytest.mark.parametrize(
+    ("bad", "said"),
+    [("nan", r"^rate\[498\] is NaN: samples must be finite \(drop or fill them first\) \(.*bad\.csv, line 500\); or "
+      r"keep the file as it is: nonfinite='hold' \(--nonfinite hold\) uses the last usable reading there, 'skip' "
+      r"leaves the sample out$"),
+     ("back", r"^timestamps must strictly increase: t\[600\] = 5 follows 5\.99 \(sort the log and drop duplicate "
+      r"timestamps\) \(.*bad\.csv, line 602\)$")],
+    ids=["nan", "time-back"],
+)
+def test_log_process_names_the_file_and_line_of_a_bad_sample(tmp_path: Path, mode: str, bad: str, said: str) -> None:
+    """``read_log(FILE).process()`` of a file with a NaN reading or a time going back raised the
+    core's error with an index alone (``rate[498] is NaN ...``), where ``gyrocore process FILE``
+    names the file and its line: the same words now, from the same code."""
+    t, rate = np.arange(1000) * 0.01, np.full(1000, 0.001)
+    if bad == "nan":
+        rate[498] = np.nan
+    else:
+        t[600] = 5.0
+    log = gyrocore.read_log(_write_log(tmp_path / "bad.csv", t, rate))
+    with pytest.raises(gyrocore.SampleError, match=said) as raised:
+        log.process(mode=mode)
+    assert raised.value.index == (498 if bad == "nan" else 600)
+    proc = gyrocore_cli("process", tmp_path / "bad.csv", "--out", tmp_path / "h.csv", code=2, timeout=60)
+    assert proc.stderr == f"gyrocore: error: {raised.value}\n"
+    # a log built from it with other samples names no line (they are not the file's)
+    with pytest.raises(gyrocore.SampleError, match=r"\)$" if bad == "back" else r"leaves the sample out$") as again:
+        dataclasses.replace(log, t=log.t[100:], rate=log.rate[100:]).process(mode=mode)
+    assert "bad.csv" not in str(again.value)
+
+
+def test_a_log_folders_bad_sample_is_named_at_its_gyro_csv_line(tmp_path: Path) -> None:
+    """A log folder's ``gyro.csv`` is the file named, also with heading fixes (the fused run)."""
+    rate = np.full(1000, 0.001)
+    rate[10] = np.inf
+    folder = tmp_path / "drive"
+    folder.mkdir()
+    _write_log(folder / "gyro.csv", np.arange(1000) * 0.01, rate)
+    log = gyrocore.read_log(folder)
+    with pytest.raises(gyrocore.SampleError, match=r"\(.*drive/gyro\.csv, line 12\); or keep the file as it is"):
+        log.process(fixes=[(1.0, 0.0, 0.01)])
