@@ -5,6 +5,7 @@ user was not told of."""
 from __future__ import annotations
 
 import dataclasses
+import re
 from pathlib import Path
 
 import numpy as np
@@ -63,3 +64,35 @@ def test_a_log_folders_bad_sample_is_named_at_its_gyro_csv_line(tmp_path: Path) 
     log = gyrocore.read_log(folder)
     with pytest.raises(gyrocore.SampleError, match=r"\(.*drive/gyro\.csv, line 12\); or keep the file as it is"):
         log.process(fixes=[(1.0, 0.0, 0.01)])
+
+
+def _turns_after_the_head(folder: Path) -> Path:
+    """A 1 kHz log folder in deg/s (30 and 90 while turning) without reference.csv, whose turns come
+    after its first 65,536 samples (:data:`gyrocore.io.units.HEAD_SAMPLES`, 65 s)."""
+    t = np.arange(80_000) * 0.001
+    rate = np.full(len(t), 0.2)
+    for start, level in ((68.0, 30.0), (71.0, 90.0), (74.0, -45.0)):
+        rate[(t >= start) & (t < start + 2.0)] = level
+    folder.mkdir()
+    _write_log(folder / "gyro.csv", t, rate)
+    return folder
+
+
+def test_a_log_folder_in_deg_s_without_reference_is_told_its_unit(tmp_path: Path) -> None:
+    """A log folder whose gyro.csv holds deg/s and which has no reference.csv was read without a word
+    once its turns came after the first 65,536 samples (the reader judged large rates on those
+    alone; ``gyrocore evaluate`` with a reference compared it with the reference and warned): the
+    rate alone is judged over the whole log now, as :func:`gyrocore.process` judges an array."""
+    folder = _turns_after_the_head(tmp_path / "drive")
+    said = ("rates look like deg/s, not rad/s: 99 % of |rate| are below 90, which is 5.16e+03 deg/s if read as rad/s "
+            "(convert with numpy.radians); or use rate_unit='deg/s' (--rate-unit deg/s)")
+    with pytest.warns(gyrocore.InputWarning, match=f"^{re.escape(f'{folder}/gyro.csv: {said}')}$"):
+        log = gyrocore.read_log(folder)
+    with pytest.warns(gyrocore.InputWarning, match="rates look like deg/s"):
+        gyrocore.process(log.t, log.rate, "raw")  # the check it reuses, on the arrays
+    proc = gyrocore_cli("process", folder, "--out", tmp_path / "h.csv", "--bias-duration", "10", code=0, timeout=60)
+    assert f"gyrocore: warning: {folder}: {said}\n" in proc.stderr
+    # in deg/s it says nothing of the unit
+    proc = gyrocore_cli("process", folder, "--out", tmp_path / "h2.csv", "--bias-duration", "10", "--rate-unit", "deg/s",
+                        code=0, timeout=60)
+    assert "look like" not in proc.stderr
