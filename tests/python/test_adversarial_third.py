@@ -13,7 +13,7 @@ import pytest
 
 import gyrocore
 
-from .conftest import gyrocore_cli
+from .conftest import gyrocore_cli, real_log_path
 
 
 def _write_log(path: Path, t: np.ndarray, rate: np.ndarray) -> Path:
@@ -96,3 +96,50 @@ def test_a_log_folder_in_deg_s_without_reference_is_told_its_unit(tmp_path: Path
     proc = gyrocore_cli("process", folder, "--out", tmp_path / "h2.csv", "--bias-duration", "10", "--rate-unit", "deg/s",
                         code=0, timeout=60)
     assert "look like" not in proc.stderr
+
+
+def _gnss_note(folder: Path, apart: str = "") -> str:
+    return (f"gyrocore: note: {folder}: the log folder has a gnss.csv, which is not used: --fixes {folder}/gnss.csv "
+            f"fuses its course over ground with the gyro as heading fixes{apart}; --no-fixes runs without them and "
+            "says nothing of it\n")
+
+
+def test_a_log_folders_gnss_csv_is_named_with_the_option_that_fuses_it(tmp_path: Path) -> None:
+    """``gyrocore evaluate DIR`` and ``gyrocore process DIR`` of a log folder with a gnss.csv and no
+    fixes.csv (comma_seg40) ignored its GNSS without a word, though ``--fixes DIR/gnss.csv`` takes
+    its E_psi from 116 to 0.9 deg: a note names the option, once per such log, and the scores are
+    those of ``--no-fixes``."""
+    comma = real_log_path("comma_seg40")
+    proc = gyrocore_cli("evaluate", comma, "--preset", "raw", "--json", code=0, timeout=120)
+    assert proc.stderr.count("gyrocore: note:") == 1 and _gnss_note(comma) in proc.stderr
+    quiet = gyrocore_cli("evaluate", comma, "--preset", "raw", "--json", "--no-fixes", code=0, timeout=120)
+    assert "note" not in quiet.stderr and quiet.stdout == proc.stdout  # nothing computed otherwise
+    out = tmp_path / "h.csv"
+    proc = gyrocore_cli("process", comma, "--out", out, code=0, timeout=120)
+    assert proc.stderr.count("gyrocore: note:") == 1 and _gnss_note(comma) in proc.stderr
+    proc = gyrocore_cli("process", comma, "--out", tmp_path / "fused.csv", "--fixes", comma / "gnss.csv", code=0,
+                        timeout=120)
+    assert "note" not in proc.stderr
+    # several logs: the option takes one per run, which the note says
+    f110 = real_log_path("f110_ds1")
+    proc = gyrocore_cli("evaluate", comma, f110, "--preset", "raw", code=0, timeout=120)
+    assert proc.stderr.count("gyrocore: note:") == 1
+    assert _gnss_note(comma, f" (in a run of {comma} alone)") in proc.stderr
+    proc = gyrocore_cli("process", comma, f110, "--out", tmp_path / "outs", code=0, timeout=120)
+    assert _gnss_note(comma, f" (in a run of {comma} alone, into one .csv or .parquet file)") in proc.stderr
+    assert proc.stderr.count("gyrocore: note:") == 1
+
+
+def test_a_log_folder_with_fixes_csv_beside_its_gnss_csv_gets_no_note(tmp_path: Path) -> None:
+    """The folder's fixes.csv is fused by default: its gnss.csv goes unused with reason."""
+    folder = tmp_path / "drive"
+    folder.mkdir()
+    t = np.arange(3000) * 0.01
+    _write_log(folder / "gyro.csv", t, np.full(len(t), 0.001))
+    (folder / "fixes.csv").write_text("t,heading,sigma\n5.0,0.0,0.01\n")
+    (folder / "gnss.csv").write_text("t,speed,bearing\n5.0,10.0,90.0\n")
+    proc = gyrocore_cli("process", folder, "--out", tmp_path / "h.csv", "--bias-duration", "1", code=0, timeout=60)
+    assert "note" not in proc.stderr
+    (folder / "fixes.csv").unlink()
+    proc = gyrocore_cli("process", folder, "--out", tmp_path / "h2.csv", "--bias-duration", "1", code=0, timeout=60)
+    assert _gnss_note(folder) in proc.stderr

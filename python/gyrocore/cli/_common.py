@@ -327,6 +327,12 @@ def warn(message: str) -> None:
     print(f"gyrocore: warning: {one_line(message)}", file=sys.stderr)
 
 
+def note(message: str) -> None:
+    """One line on stderr: ``gyrocore: note: ...``, of something the run did not use that the user
+    may want (not a problem with the input, as a warning is)."""
+    print(f"gyrocore: note: {one_line(message)}", file=sys.stderr)
+
+
 def once_each(paths: Sequence[str], what: str, why: str) -> list[str]:
     """``paths`` with each file or folder once (also when named two ways, through a link or ``..``),
     warning of the others with ``why`` that matters (a log given twice to ``tune`` weighed twice in
