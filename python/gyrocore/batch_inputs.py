@@ -25,8 +25,10 @@ def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
     matches nothing.
     """
     found: list[Path] = []
+    given: list[Path] = []  # the paths named themselves (not a folder's or a pattern's)
     for item in items:
         named, matches = _matches(item)
+        given += matches if named else []
         for m in matches:
             if not named and _in_log_folder(m):  # a pattern's reference.csv: part of its log
                 m = m.parent
@@ -45,7 +47,10 @@ def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
     # back reaches the same files under ever longer names).
     unique: dict[Path, Path] = {}
     for p in found:
-        unique.setdefault(_identity(p), p)
+        kept = unique.setdefault(_identity(p), p)
+        if kept is not p and any(p is g for g in given):  # a file named twice (or as itself and through a link) lost one name without a word
+            same = "given more than once" if p == kept else f"the same {'folder' if p.is_dir() else 'file'} as {kept}"
+            warn(f"{p}: {same}; it is processed once, as {kept}")
     return list(unique.values())
 
 

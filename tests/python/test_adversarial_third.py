@@ -143,3 +143,22 @@ def test_a_log_folder_with_fixes_csv_beside_its_gnss_csv_gets_no_note(tmp_path: 
     (folder / "fixes.csv").unlink()
     proc = gyrocore_cli("process", folder, "--out", tmp_path / "h2.csv", "--bias-duration", "1", code=0, timeout=60)
     assert _gnss_note(folder) in proc.stderr
+
+
+def test_a_file_named_twice_in_a_batch_is_said(tmp_path: Path) -> None:
+    """``gyrocore process a.csv link.csv --out DIR`` (``link.csv`` a link to ``a.csv``; or ``a.csv``
+    twice) wrote ``DIR/a.csv`` alone, without a word of ``link.csv`` the user named: each name given
+    that is dropped as the same file is now said, as ``evaluate`` says it of a log given twice."""
+    from gyrocore import batch
+
+    log = _write_log(tmp_path / "a.csv", np.arange(3000) * 0.01, np.full(3000, 0.001))
+    (tmp_path / "link.csv").symlink_to(log.name)
+    with pytest.warns(gyrocore.InputWarning, match=f"^{re.escape(str(tmp_path / 'link.csv'))}: the same file as "
+                                                    f"{re.escape(str(log))}; it is processed once, as "):
+        assert batch.expand_inputs([log, tmp_path / "link.csv"]) == [log]
+    proc = gyrocore_cli("process", log, log, "--out", tmp_path / "outs", code=0, timeout=60)
+    assert f"gyrocore: warning: {log}: given more than once; it is processed once, as {log}\n" in proc.stderr
+    assert [p.name for p in (tmp_path / "outs").iterdir()] == ["a.csv"]
+    # a pattern that reaches a file named too says nothing: the user gave the file once by name
+    proc = gyrocore_cli("process", log, tmp_path / "a*.csv", "--out", tmp_path / "outs2", code=0, timeout=60)
+    assert "warning" not in proc.stderr
