@@ -162,3 +162,11 @@ def test_a_file_named_twice_in_a_batch_is_said(tmp_path: Path) -> None:
     # a pattern that reaches a file named too says nothing: the user gave the file once by name
     proc = gyrocore_cli("process", log, tmp_path / "a*.csv", "--out", tmp_path / "outs2", code=0, timeout=60)
     assert "warning" not in proc.stderr
+
+
+def test_tune_names_its_sensor_option_for_an_unknown_sensor() -> None:
+    """``gyrocore tune --sensor XV3500`` (``tune`` takes the name as text) blamed the rate:
+    ``--rate-hz 10: unknown sensor 'XV3500' ...``, an option the user never gave."""
+    proc = gyrocore_cli("tune", "--sensor", "XV3500", "--sim-drive", "city:0.5", "--max-evals", "2", code=2, timeout=60)
+    assert proc.stderr == ("gyrocore: error: --sensor XV3500: unknown sensor 'XV3500' (did you mean 'xv3500'?); choose "
+                           "one of xv3500, crs03, fog\n")
