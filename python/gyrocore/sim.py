@@ -33,6 +33,7 @@ from numpy.typing import ArrayLike
 from . import _gyrocore, motion
 from ._arrays import FloatArray, as_float_array
 from ._checks import check_number, check_seed, real_number, require_choice, require_series
+from ._sim_fields import check_spec
 from .window import MIN_WINDOW_READINGS
 
 if TYPE_CHECKING:
@@ -142,7 +143,7 @@ class GyroSpec:
                 ok, what = real_number(value) is not None, "a number"
             if not ok:
                 raise TypeError(f"sensor field {f.name} must be {what}, got {value!r}")
-        _gyrocore.gyro_check_span(self.si(), 0.0, 1.0)  # the core's checks of the model, one second of it
+        check_spec(self)  # the core's checks of the model, one second of it, naming the field
 
     def replace(self, **changes: Any) -> GyroSpec:
         """A copy with some fields changed (``spec.replace(rate_hz=10.0)``), checked as any spec is.

@@ -170,3 +170,25 @@ def test_tune_names_its_sensor_option_for_an_unknown_sensor() -> None:
     proc = gyrocore_cli("tune", "--sensor", "XV3500", "--sim-drive", "city:0.5", "--max-evals", "2", code=2, timeout=60)
     assert proc.stderr == ("gyrocore: error: --sensor XV3500: unknown sensor 'XV3500' (did you mean 'xv3500'?); choose "
                            "one of xv3500, crs03, fog\n")
+
+
+@pytest.mark.parametrize(
+    ("field", "value", "said"),
+    [("bias_dps", 1e9, "sensor field bias_dps = 1000000000.0: gyro model: invalid parameter bias = 17453292.519943297: "
+      "must be within +-2^20; the model takes it in SI units (rad, s, degC)"),
+     ("temperature_c", (1e9, 25.0), "sensor field temperature_c[0] = 1000000000.0: gyro model: invalid parameter "
+      "temperature.start = 1000000000: must be within +-2^20; the model takes it in SI units (rad, s, degC)"),
+     ("jitter_s", 1.0, "sensor field jitter_s = 1.0: gyro model: invalid parameter jitter = 1: must be in "
+      "[0, 0.25 / rate_hz] s; the model takes it in SI units (rad, s, degC)")],
+    ids=["bias_dps", "temperature_c", "jitter_s"],
+)
+def test_a_simulated_gyros_field_out_of_range_is_named(field: str, value: object, said: str) -> None:
+    """``sim.sensor("crs03", bias_dps=1e9)`` (``car_drive(..., bias_dps=...)``) was refused in the
+    core's words alone, ``invalid parameter bias = 17453292.519943297``: another name, in rad/s of a
+    field given in deg/s."""
+    from gyrocore import sim
+
+    with pytest.raises(ValueError, match=f"^{re.escape(said)}$"):
+        sim.sensor("crs03", **{field: value})
+    with pytest.raises(ValueError, match=f"^{re.escape(said)}$"):
+        sim.car_drive(60.0, **{field: value})
