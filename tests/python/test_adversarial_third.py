@@ -192,3 +192,28 @@ def test_a_simulated_gyros_field_out_of_range_is_named(field: str, value: object
         sim.sensor("crs03", **{field: value})
     with pytest.raises(ValueError, match=f"^{re.escape(said)}$"):
         sim.car_drive(60.0, **{field: value})
+
+
+def test_a_calibration_save_that_fails_keeps_the_previous_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """``Calibration.save`` wrote over the file in place (the command line's ``--save`` went through
+    a temporary file, the Python API did not): a save that failed once the file was opened (a
+    full disk) left it truncated, the previous calibration lost."""
+    from gyrocore import calibration
+
+    t = np.arange(300) * 0.01
+    cal = calibration.static_bias(t, np.full(300, 0.01), (0.0, 2.5))
+    path = tmp_path / "cal.json"
+    cal.save(path)
+    before = path.read_bytes()
+
+    def full_disk(self: Path, text: str, encoding: str | None = None) -> int:
+        with open(self, "w", encoding=encoding):  # opened, so truncated, then no room
+            raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(Path, "write_text", full_disk)
+    with pytest.raises(OSError):
+        calibration.Calibration(method="static_bias", bias=0.02).save(path)
+    monkeypatch.undo()
+    assert path.read_bytes() == before
+    assert [p.name for p in tmp_path.iterdir()] == ["cal.json"]  # no temporary file left
+    assert calibration.Calibration.load(path).bias == cal.bias

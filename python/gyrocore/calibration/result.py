@@ -16,6 +16,7 @@ from numpy.typing import ArrayLike
 from .._arrays import FloatArray, as_float_array, as_window, refuse_masked
 from .._checks import require_choice, require_finite, require_readings, version_error
 from ..io._jsonfile import read_json
+from ..io.atomic import atomic_path
 
 #: Saved calibrations carry this format name and version.
 FORMAT = "gyrocore-calibration"
@@ -279,8 +280,12 @@ class Calibration:
         return cls(**values)
 
     def save(self, path: str | Path) -> None:
-        """Write the calibration as JSON (see :meth:`to_dict`)."""
-        Path(path).write_text(json.dumps(self.to_dict(), indent=2) + "\n", encoding="utf-8")
+        """Write the calibration as JSON (see :meth:`to_dict`), through a temporary file renamed over
+        ``path`` once written: a save that fails or is interrupted (a full disk, Ctrl-C) left a
+        truncated file where the previous calibration was."""
+        text = json.dumps(self.to_dict(), indent=2) + "\n"
+        with atomic_path(Path(path)) as tmp:
+            tmp.write_text(text, encoding="utf-8")
 
     @classmethod
     def load(cls, path: str | Path) -> Calibration:
