@@ -78,6 +78,7 @@ class UnitCheck:
         self._subset: list[FloatArray] = []
         self._stride = 1
         self._seen = 0
+        self._kept = 0
 
     def update(self, t: FloatArray, rate: FloatArray) -> None:
         """Account for one chunk (t [s], rate [rad/s])."""
@@ -103,11 +104,13 @@ class UnitCheck:
     def _keep_subset(self, rate: FloatArray) -> None:
         """Keep the rates of the stream's samples ``0, s, 2 s, ...`` (``s``: the stride), at most
         about 2 :data:`~gyrocore._checks._SUBSET` of them, whatever the chunks."""
-        self._subset.append(np.array(rate[(-self._seen) % self._stride :: self._stride]))
+        kept = np.array(rate[(-self._seen) % self._stride :: self._stride])
+        self._subset.append(kept)
         self._seen += len(rate)
-        if sum(map(len, self._subset)) > 2 * _SUBSET:
-            self._subset = [np.concatenate(self._subset)[::2]]
-            self._stride *= 2
+        self._kept += len(kept)  # counted, not summed over the list: a long log's list is long
+        while self._kept > 2 * _SUBSET:
+            whole = np.concatenate(self._subset)[::2]
+            self._subset, self._kept, self._stride = [whole], len(whole), self._stride * 2
 
     def problems(self) -> list[str]:
         """What looks like another unit, with the option that would fix it."""
