@@ -5,7 +5,10 @@ user was not told of."""
 from __future__ import annotations
 
 import dataclasses
+import os
 import re
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -217,3 +220,24 @@ def test_a_calibration_save_that_fails_keeps_the_previous_file(tmp_path: Path, m
     assert path.read_bytes() == before
     assert [p.name for p in tmp_path.iterdir()] == ["cal.json"]  # no temporary file left
     assert calibration.Calibration.load(path).bias == cal.bias
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="named pipes")
+@pytest.mark.parametrize("reader", ["read_nmea", "read_gnss_csv", "read_fixes_csv"])
+def test_a_fixes_reader_refuses_a_named_pipe(tmp_path: Path, reader: str) -> None:
+    """``gyrocore.fixes.read_nmea``, ``read_gnss_csv`` and ``read_fixes_csv`` of a named pipe (a
+    receiver's live output) waited for ever, where ``read_fixes_file`` and the command line refuse
+    one at once. Run in a process of its own, which a hang cannot stop the tests with."""
+    pipe = tmp_path / "gnss.csv"
+    os.mkfifo(pipe)
+    code = f"from gyrocore import fixes\ntry:\n    fixes.{reader}({str(pipe)!r})\nexcept ValueError as e:\n    print(e)"
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert proc.stdout == f"{pipe}: a named pipe, socket or device, not a file\n", proc.stderr
+
+
+def test_read_reference_file_takes_a_path_as_text() -> None:
+    """``gyrocore.io.read_reference_file("reference.csv")`` (exported, and documented with a path)
+    failed with ``AttributeError: 'str' object has no attribute 'is_file'``."""
+    path = real_log_path("f110_ds3") / "reference.csv"
+    ref = gyrocore.io.read_reference_file(str(path))
+    assert np.array_equal(ref["heading"], gyrocore.io.read_reference_file(path)["heading"])

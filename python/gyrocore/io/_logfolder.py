@@ -134,7 +134,7 @@ def has_track(where: str, columns: Iterable[str], names: tuple[str, str] = ("x",
     return len(present) == 2
 
 
-def read_reference_file(path: Path) -> dict[str, FloatArray]:
+def read_reference_file(path: str | Path) -> dict[str, FloatArray]:
     """A reference heading given apart from its log: a CSV file like ``reference.csv``, with
     columns t [s] and heading [rad], and x and y [m] where it has both.
 
@@ -142,6 +142,7 @@ def read_reference_file(path: Path) -> dict[str, FloatArray]:
     empty or not finite leaves the positions out, with a warning naming its line: the heading is
     still scored, while dead reckoning and the closed-path check need every position.
     """
+    path = Path(path)  # gyrocore.io exports it: a path given as text was "'str' object has no attribute 'is_file'"
     check_file(path)
     layout = csv_layout(path, ",")
     # a log file with its own reference given as one: it said "drive.csv has the columns t, heading, x, y"
