@@ -241,3 +241,23 @@ def test_read_reference_file_takes_a_path_as_text() -> None:
     path = real_log_path("f110_ds3") / "reference.csv"
     ref = gyrocore.io.read_reference_file(str(path))
     assert np.array_equal(ref["heading"], gyrocore.io.read_reference_file(path)["heading"])
+
+
+def test_the_exported_path_helpers_take_paths_as_text(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """``gyrocore.io.is_input``, ``output_format``, ``check_not_input``, ``atomic_path``,
+    ``StagedFile`` and ``gyrocore.batch.complete_output``, ``output_paths`` (each in its module's
+    ``__all__``) raised ``AttributeError: 'str' object has no attribute ...`` for a path as text."""
+    from gyrocore import batch, io
+
+    monkeypatch.chdir(tmp_path)
+    _write_log(tmp_path / "a.csv", np.arange(10) * 0.01, np.zeros(10))
+    assert io.is_input("a.csv") and batch.complete_output("a.csv")
+    assert io.output_format("h.parquet") == "parquet"
+    assert batch.output_paths(["a.csv"], "out", "csv") == [Path("out/a.csv")]
+    with pytest.raises(ValueError, match="^refusing to write a.csv over or inside the input a.csv"):
+        io.check_not_input("a.csv", ["a.csv"])
+    with io.atomic_path("x.txt") as tmp:
+        tmp.write_text("x")
+    assert (tmp_path / "x.txt").read_text() == "x"
+    io.StagedFile("y.txt").discard()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "x.txt"]

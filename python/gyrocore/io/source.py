@@ -462,8 +462,9 @@ def _open_bag(path: Path, options: ReadOptions) -> GyroSource:
     return GyroSource(path, "bag", path, replace(options, topic=topic), progress_total=count)
 
 
-def is_input(path: Path) -> bool:
+def is_input(path: str | Path) -> bool:
     """Whether ``path`` is something :func:`open_source` reads (by suffix or folder layout)."""
+    path = Path(path)  # exported: a path as text was "'str' object has no attribute 'is_dir'"
     if path.is_dir():
         try:
             check_readable(path)
