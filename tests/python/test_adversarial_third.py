@@ -261,3 +261,15 @@ def test_the_exported_path_helpers_take_paths_as_text(tmp_path: Path, monkeypatc
     assert (tmp_path / "x.txt").read_text() == "x"
     io.StagedFile("y.txt").discard()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "x.txt"]
+
+
+@pytest.mark.parametrize(("name", "what"), [("reference.csv", "reference heading"), ("gnss.csv", "GNSS receiver log")])
+def test_a_log_folders_other_file_given_as_a_log_names_the_folder(tmp_path: Path, name: str, what: str) -> None:
+    """``gyrocore process comma_seg40/gnss.csv`` (or its reference.csv) said only ``missing column(s)
+    gyro_z; it has t, lat, lon, ...``, as of a broken log; a log folder's gyro.csv given alone is told
+    of its folder, and so is now each of its files that holds no gyro."""
+    comma = real_log_path("comma_seg40")
+    proc = gyrocore_cli("process", comma / name, "--out", tmp_path / "h.csv", code=2, timeout=60)
+    assert proc.stderr.startswith(f"gyrocore: warning: {comma / name}: the {what} of the log folder {comma}, not its "
+                                  f"gyro (gyro.csv); give the folder ({comma}) to read the log\n"
+                                  f"gyrocore: error: {comma / name}: missing column(s) gyro_z; ")

@@ -55,6 +55,15 @@ def warn_gyro_alone(path: Path) -> None:
     if path.name == GYRO_CSV and beside:
         warn(f"{path}: the gyro of the log folder {path.parent}, read as a file alone, without the "
              f"{', '.join(beside)} beside it; give the folder ({path.parent}) to read the log with them")
+    elif path.name in _NOT_GYRO and (path.parent / GYRO_CSV).is_file():
+        # read as a log it failed on a missing gyro_z column, as if the file were a broken log
+        warn(f"{path}: the {_NOT_GYRO[path.name]} of the log folder {path.parent}, not its gyro ({GYRO_CSV}); "
+             f"give the folder ({path.parent}) to read the log")
+
+
+#: A log folder's files that hold no gyro samples, and what each holds.
+_NOT_GYRO = {REFERENCE_CSV: "reference heading", ODOMETRY_CSV: "odometry", FIXES_CSV: "heading fixes",
+             "gnss.csv": "GNSS receiver log"}
 
 
 def read_meta(folder: Path) -> tuple[dict[str, Any], tuple[float, float] | None]:
