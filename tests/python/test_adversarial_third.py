@@ -273,3 +273,15 @@ def test_a_log_folders_other_file_given_as_a_log_names_the_folder(tmp_path: Path
     assert proc.stderr.startswith(f"gyrocore: warning: {comma / name}: the {what} of the log folder {comma}, not its "
                                   f"gyro (gyro.csv); give the folder ({comma}) to read the log\n"
                                   f"gyrocore: error: {comma / name}: missing column(s) gyro_z; ")
+
+
+def test_calibrate_names_its_options_in_the_static_bias_error() -> None:
+    """``gyrocore calibrate LOG --window +0 +1`` said the window is ``shorter than min_duration = 1 s``
+    (and without a rest, ``a shorter min_duration / larger max_rate``): the library's keyword names,
+    where the command takes ``--min-duration`` and ``--max-rate-dps``."""
+    f110 = real_log_path("f110_ds3")
+    proc = gyrocore_cli("calibrate", f110, "--window", "+0", "+1", code=0, timeout=60)
+    assert "covers 0.945 s of readings, shorter than --min-duration 1 s: the bias would be mostly noise" in proc.stdout
+    proc = gyrocore_cli("calibrate", f110, "--min-duration", "1e9", code=0, timeout=60)
+    assert "(give the rest window, or a shorter --min-duration / larger --max-rate-dps if" in proc.stdout
+    assert "min_duration" not in proc.stdout
