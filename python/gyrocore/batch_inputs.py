@@ -25,8 +25,10 @@ def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
     matches nothing.
     """
     found: list[Path] = []
+    given: list[Path] = []  # the paths named themselves (not a folder's or a pattern's)
     for item in items:
         named, matches = _matches(item)
+        given += matches if named else []
         for m in matches:
             if not named and _in_log_folder(m):  # a pattern's reference.csv: part of its log
                 m = m.parent
@@ -45,7 +47,10 @@ def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
     # back reaches the same files under ever longer names).
     unique: dict[Path, Path] = {}
     for p in found:
-        unique.setdefault(_identity(p), p)
+        kept = unique.setdefault(_identity(p), p)
+        if kept is not p and any(p is g for g in given):  # a file named twice (or as itself and through a link) lost one name without a word
+            same = "given more than once" if p == kept else f"the same {'folder' if p.is_dir() else 'file'} as {kept}"
+            warn(f"{p}: {same}; it is processed once, as {kept}")
     return list(unique.values())
 
 
@@ -114,20 +119,21 @@ def _named_as_input(path: Path) -> bool:
     return io.is_input(path) or lacks_gyro(path) or (not path.is_dir() and path.suffix.lower() in io.FILE_SUFFIXES)
 
 
-def complete_output(path: Path) -> bool:
+def complete_output(path: str | Path) -> bool:
     """Whether a run finished the output ``path``: it is a regular file. Outputs are written under a
     hidden temporary name, synced and renamed over ``path`` only once every row is through
     (:mod:`gyrocore.io.atomic`), so an output that exists is complete; an interrupted or failed run
     leaves none (a hard kill may leave the hidden temporary file, never ``path``)."""
-    return path.is_file()
+    return Path(path).is_file()
 
 
-def output_paths(inputs: Sequence[Path], out_dir: Path, fmt: str) -> list[Path]:
+def output_paths(inputs: Sequence[str | Path], out_dir: str | Path, fmt: str) -> list[Path]:
     """``out_dir/<input name without suffix>.<fmt>`` for each input; refuses two inputs that would
     share an output."""
-    outs = [out_dir / f"{p.name if p.is_dir() else p.stem}.{fmt}" for p in inputs]
+    given, folder = [Path(p) for p in inputs], Path(out_dir)  # exported: paths as text failed
+    outs = [folder / f"{p.name if p.is_dir() else p.stem}.{fmt}" for p in given]
     seen: dict[Path, Path] = {}
-    for p, o in zip(inputs, outs):
+    for p, o in zip(given, outs):
         if o in seen:
             raise ValueError(f"{seen[o]} and {p} would both be written to {o}; process them separately")
         seen[o] = p

@@ -34,9 +34,6 @@ if TYPE_CHECKING:
 Progress = Callable[[int, "int | None", str], None]
 
 _READ_OPTIONS = {f.name for f in fields(io.ReadOptions)}
-#: What a file's reading that is not finite (or beyond the core's limit) can be given instead of an edit.
-NONFINITE_FIX = ("or keep the file as it is: nonfinite='hold' (--nonfinite hold) uses the last usable reading "
-                 "there, 'skip' leaves the sample out")
 
 
 @dataclass(frozen=True)
@@ -312,17 +309,14 @@ class _FileJob:
     def _at_sample(self, source: io.GyroSource, e: SampleError, check: io.UnitCheck) -> ValueError:
         """The error of a bad sample, at its line of the file, with what to do; ``rows_in`` then
         counts the samples before it."""
-        # a file's chunks repeating a time at their edge is the file's duplicate, which sorting
-        # the log mends, not a stream's chunk sent again
-        e.args = (getattr(e, "log_message", str(e)),)
         # every sample before the bad one was read and is good: the count up to the failure,
         # whatever the chunks (it stopped at the last whole chunk before it)
         self.rows_in = int(e.index)
         # a timestamp beyond the core's limits is most often an epoch in a smaller unit; a bad
         # reading, an empty cell a phone app left, has an option ("drop or fill them first" sent
-        # users to edit the file)
-        fix = check.time_fix() if e.what == "t" else NONFINITE_FIX if e.what == "rate" else None
-        return ValueError(source.locate(e) + (f"; {fix}" if fix else ""))
+        # users to edit the file); a file's chunks repeating a time at their edge is the file's
+        # duplicate, which sorting the log mends, not a stream's chunk sent again (the core's words)
+        return ValueError(source.locate(e, check.time_fix()))
 
     def _tracks_with_speed(self, source: io.GyroSource, overrides: dict[str, Any]) -> bool:
         """Whether a causal run tracks rests (``tracked``, ``track_rests=True``) with the speed of

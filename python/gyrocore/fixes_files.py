@@ -21,6 +21,7 @@ def read_gnss_csv(path: str | Path, **options: float) -> Fixes:
     north]), through :func:`from_gnss` (its options pass on)."""
     require_options("read_gnss_csv (from_gnss's)", options, keyword_options(from_gnss))  # before the file is read
     path = Path(path)
+    check_file(path)  # a named pipe was waited on for ever, a folder was "missing"
     layout = csv_layout(path, ",")
     # a name may state its unit, as in a fixes.csv (t [s], speed [m/s], bearing [deg] was refused)
     names = _fix_columns(path, layout.header, _GNSS_UNITS, _GNSS_HEADER)
@@ -37,6 +38,7 @@ def read_fixes_csv(path: str | Path) -> Fixes:
     name may state its unit, if it is that one: ``t [s]``, ``heading [rad]``). Every fix is
     checked as it is read: a bad one is an error naming the file, line and column."""
     path = Path(path)
+    check_file(path)  # a named pipe was waited on for ever, a folder was "missing"
     layout = csv_layout(path, ",")
     names = _fix_columns(path, layout.header, _FIX_UNITS, _FIXES_HEADER)
     cols = _read_rows(path, tuple(names.values()))

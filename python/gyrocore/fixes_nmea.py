@@ -21,6 +21,7 @@ from ._extras import require
 from .fixes import Fixes, from_gnss
 from .fixes_files import _ROW_ERROR
 from .io._csvfile import refuse_not_text
+from .io._paths import check_file
 
 #: Metres per second in a knot and in a km/h (NMEA's speed units).
 KNOT, KMH = 1852.0 / 3600.0, 1.0 / 3.6
@@ -43,6 +44,7 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
     require_options("read_nmea (from_gnss's)", options, keyword_options(from_gnss))  # before the file is read
     pynmea2 = require("pynmea2", "reading NMEA sentences")
     path = Path(path)
+    check_file(path)  # a named pipe (a receiver's live output) was waited on for ever
     epochs: dict[float, tuple[float, float, int]] = {}  # time -> course [deg], speed [m/s], line
     tally: Counter[str] = Counter()
     last: float | None = None

@@ -33,6 +33,7 @@ from numpy.typing import ArrayLike
 from . import _gyrocore, motion
 from ._arrays import FloatArray, as_float_array
 from ._checks import check_number, check_seed, real_number, require_choice, require_series
+from ._sim_fields import check_spec
 from .window import MIN_WINDOW_READINGS
 
 if TYPE_CHECKING:
@@ -121,15 +122,14 @@ class GyroSpec:
         }
 
     def __post_init__(self) -> None:
-        """Check each field's kind here, and its range in the core, so that a spec built directly
-        is checked as one from :meth:`replace` is, before any of its properties is read
-        (``GyroSpec(rate_hz=True)`` was a gyro at 1 Hz; ``noise_rms_dps`` of a rate of 0 raised
-        ZeroDivisionError, of -1 Hz gave 0.05 deg/s and of a negative ARW a negative rms).
+        """Check each field's kind here, and its range in the core, so that a spec built directly is
+        checked as one from :meth:`replace` is, before any of its properties is read
+        (``GyroSpec(rate_hz=True)`` was a gyro at 1 Hz; ``noise_rms_dps`` of a rate of 0 failed).
 
         Raises:
             TypeError: a value of the wrong kind for its field: text or a bool for a number (``True``
                 was 1 deg/s), anything but two numbers for a pair.
-            ValueError: a number out of its range (``gyro model: invalid parameter rate_hz = -1: ...``).
+            ValueError: a number out of its range, named by its field (:func:`~gyrocore._sim_fields.check_spec`).
         """
         for f in fields(self):
             value, kind = getattr(self, f.name), str(f.type)  # the annotation's text (postponed annotations)
@@ -142,7 +142,7 @@ class GyroSpec:
                 ok, what = real_number(value) is not None, "a number"
             if not ok:
                 raise TypeError(f"sensor field {f.name} must be {what}, got {value!r}")
-        _gyrocore.gyro_check_span(self.si(), 0.0, 1.0)  # the core's checks of the model, one second of it
+        check_spec(self)  # the core's checks of the model, one second of it, naming the field
 
     def replace(self, **changes: Any) -> GyroSpec:
         """A copy with some fields changed (``spec.replace(rate_hz=10.0)``), checked as any spec is.

@@ -76,7 +76,8 @@ RATE = 0.002 + np.random.default_rng(0).normal(0.0, 0.001, len(T))
         (lambda: sim.GyroSpec(rate_hz=0).noise_rms_dps, ValueError,
          "gyro model: invalid parameter rate_hz = 0: must be in [1e-6, 1e9] Hz"),
         (lambda: sim.sensor("crs03", rate_hz=-1).noise_rms_dps, ValueError, "gyro model: invalid parameter rate_hz = -1"),
-        (lambda: sim.sensor("crs03", arw_deg_per_sqrt_h=-1), ValueError, "gyro model: invalid parameter arw = -0.00029"),
+        (lambda: sim.sensor("crs03", arw_deg_per_sqrt_h=-1), ValueError,
+         "sensor field arw_deg_per_sqrt_h = -1: gyro model: invalid parameter arw = -0.00029"),
         (lambda: sim.simulate(None, "crs03", seed=0), TypeError,  # type: ignore[arg-type]
          "trajectory must be a gyrocore.motion.Motion (e.g. gyrocore.motion.car(600)), got NoneType"),
         (lambda: motion.rotary_table(runs=2, rate_dps=0), ValueError, "rate_dps must be finite and > 0, got 0"),

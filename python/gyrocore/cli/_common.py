@@ -169,8 +169,7 @@ def check_samples(path: Path, log: io.Log, args: argparse.Namespace, reading_fix
         _gyrocore.check_samples(log.t, log.rate)
     except SampleError as e:
         source = io.open_source(path, **reading_options(args))
-        fix = f"; {reading_fix}" if reading_fix and e.what == "rate" else ""
-        raise ValueError(f"{e} ({source.data_path}, {source.where(e.index)}){fix}") from None
+        raise ValueError(source.locate(e, None, reading_fix or None)) from None
 
 
 def add_override_options(group: argparse._ArgumentGroup) -> None:
@@ -326,6 +325,12 @@ def print_json(data: Any) -> None:
 def warn(message: str) -> None:
     """One line on stderr: ``gyrocore: warning: ...``."""
     print(f"gyrocore: warning: {one_line(message)}", file=sys.stderr)
+
+
+def note(message: str) -> None:
+    """One line on stderr: ``gyrocore: note: ...``, of something the run did not use that the user
+    may want (not a problem with the input, as a warning is)."""
+    print(f"gyrocore: note: {one_line(message)}", file=sys.stderr)
 
 
 def once_each(paths: Sequence[str], what: str, why: str) -> list[str]:

@@ -110,7 +110,7 @@ def run(args: argparse.Namespace) -> int:
         results["static_bias"] = static.to_dict()["calibration"]
         results["rest_found_by"] = found_by
     except ValueError as e:
-        results["static_bias"] = {"error": str(e)}
+        results["static_bias"] = {"error": _in_option_words(str(e))}
     fit: calibration.Calibration | None = None
     if log.t_ref is not None and log.heading_ref is not None:
         fit_window = None if span is None else span.resolve(float(log.t[0]))
@@ -159,6 +159,19 @@ def run(args: argparse.Namespace) -> int:
         print(f"  to use it: {use}save it with --save FILE and give gyrocore process ... --calibration FILE "
               f"(the {chosen.method} calibration: {'scale and bias' if fit is not None else 'its bias'})")
     return 0
+
+
+#: The static bias's settings as the library's errors name them, and as this command takes them.
+_OPTION_WORDS = (("min_duration = ", "--min-duration "), ("a shorter min_duration / larger max_rate",
+                                                         "a shorter --min-duration / larger --max-rate-dps"))
+
+
+def _in_option_words(message: str) -> str:
+    """``message`` naming this command's options where the library's names the keyword arguments
+    (``shorter than min_duration = 1 s`` left a command-line user to find ``--min-duration``)."""
+    for library, option in _OPTION_WORDS:
+        message = message.replace(library, option)
+    return message
 
 
 def _until_moving(log: io.Log, window: tuple[float, float] | None, min_duration: float) -> tuple[float, float] | None:

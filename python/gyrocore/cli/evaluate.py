@@ -16,7 +16,7 @@ from ..evaluate_compare import naming_log
 from ..io import Log, check_not_input, read_log
 from ..pipeline import preset_names
 from ..tune import ParameterSet
-from ._fixes import add_fix_options, evaluate_with_fixes, fixes_wanted, input_warnings
+from ._fixes import add_fix_options, evaluate_with_fixes, fixes_wanted, input_warnings, note_unused_gnss
 from ._common import (
     FINITE,
     POSITIVE,
@@ -112,6 +112,8 @@ def run(args: argparse.Namespace) -> int:
                          "logs were given: score them in separate runs")
     logs = each_log(args.logs, lambda path: [_read(path, args)], alone=alone)
     read = [log for log in logs if isinstance(log, Log)]
+    note_unused_gnss(args, [log.path for log in read if log.path is not None and os.path.isdir(log.path)],
+                     "" if alone else "in a run of FOLDER alone")
     if fixes_wanted(args, read):
         return evaluate_with_fixes(args, logs, methods)
     if args.plot_dir:

@@ -21,7 +21,7 @@ from ..batch import (
     process_many,
 )
 from ..tune import ParameterSet
-from ._fixes import add_fix_options, any_fixes_csv
+from ._fixes import add_fix_options, any_fixes_csv, note_unused_gnss
 from ._common import (
     COUNT,
     FINITE,
@@ -230,6 +230,8 @@ def run(args: argparse.Namespace) -> int:
             elif "heading_sigma" in (kwargs["columns"] or ()) and not any_fixes_csv(args, inputs):
                 raise ValueError("--columns heading_sigma: it comes with heading fixes (--fixes FILE, or log "
                                  "folders with fixes.csv)")
+            note_unused_gnss(args, [p for p in inputs if p.is_dir()],
+                             "" if one_file else "in a run of FOLDER alone, into one .csv or .parquet file")
             if one_file:
                 return _one(inputs, out, args, kwargs)
             return _many(out, args, kwargs)

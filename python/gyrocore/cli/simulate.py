@@ -50,7 +50,12 @@ def _options_of_the_profile(args: argparse.Namespace) -> None:
 
 
 def checked_sensor(name: str, rate_hz: float) -> sim.GyroSpec:
-    """The simulated gyro ``name`` at ``--rate-hz``; a rate it refuses is named by the option."""
+    """The simulated gyro ``name`` at ``--rate-hz``; a name or rate it refuses is named by its option
+    (``tune`` takes ``--sensor`` as text: an unknown name was blamed on ``--rate-hz``)."""
+    try:
+        sim.sensor(name)
+    except ValueError as e:
+        raise ValueError(f"--sensor {name}: {e}") from None
     try:
         spec = sim.sensor(name, rate_hz=rate_hz)
         sim.check_span(spec, 0.0, 1.0)  # the core checks the model, its rate among it

@@ -55,6 +55,15 @@ def warn_gyro_alone(path: Path) -> None:
     if path.name == GYRO_CSV and beside:
         warn(f"{path}: the gyro of the log folder {path.parent}, read as a file alone, without the "
              f"{', '.join(beside)} beside it; give the folder ({path.parent}) to read the log with them")
+    elif path.name in _NOT_GYRO and (path.parent / GYRO_CSV).is_file():
+        # read as a log it failed on a missing gyro_z column, as if the file were a broken log
+        warn(f"{path}: the {_NOT_GYRO[path.name]} of the log folder {path.parent}, not its gyro ({GYRO_CSV}); "
+             f"give the folder ({path.parent}) to read the log")
+
+
+#: A log folder's files that hold no gyro samples, and what each holds.
+_NOT_GYRO = {REFERENCE_CSV: "reference heading", ODOMETRY_CSV: "odometry", FIXES_CSV: "heading fixes",
+             "gnss.csv": "GNSS receiver log"}
 
 
 def read_meta(folder: Path) -> tuple[dict[str, Any], tuple[float, float] | None]:
@@ -134,7 +143,7 @@ def has_track(where: str, columns: Iterable[str], names: tuple[str, str] = ("x",
     return len(present) == 2
 
 
-def read_reference_file(path: Path) -> dict[str, FloatArray]:
+def read_reference_file(path: str | Path) -> dict[str, FloatArray]:
     """A reference heading given apart from its log: a CSV file like ``reference.csv``, with
     columns t [s] and heading [rad], and x and y [m] where it has both.
 
@@ -142,6 +151,7 @@ def read_reference_file(path: Path) -> dict[str, FloatArray]:
     empty or not finite leaves the positions out, with a warning naming its line: the heading is
     still scored, while dead reckoning and the closed-path check need every position.
     """
+    path = Path(path)  # gyrocore.io exports it: a path given as text was "'str' object has no attribute 'is_file'"
     check_file(path)
     layout = csv_layout(path, ",")
     # a log file with its own reference given as one: it said "drive.csv has the columns t, heading, x, y"

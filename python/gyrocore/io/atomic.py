@@ -86,7 +86,8 @@ class StagedFile:
     file (``.NAME.*.tmp``) behind, but never a partial ``path``.
     """
 
-    def __init__(self, path: Path) -> None:
+    def __init__(self, path: str | Path) -> None:
+        path = Path(path)  # exported: a path as text failed on a missing parent
         self.path = path
         for _ in range(3):
             tmp = path.parent / f".{path.name}.{secrets.token_hex(6)}.tmp"
@@ -140,7 +141,7 @@ def discard_all() -> None:
 
 
 @contextmanager
-def atomic_path(path: Path) -> Iterator[Path]:
+def atomic_path(path: str | Path) -> Iterator[Path]:
     """A temporary path next to ``path``, renamed to ``path`` when the block ends without error and
     removed otherwise (also on KeyboardInterrupt)."""
     staged = StagedFile(path)
@@ -148,6 +149,6 @@ def atomic_path(path: Path) -> Iterator[Path]:
         yield staged.tmp
         staged.commit()
     except OSError as e:
-        raise named_if_no_room(path, e) from None
+        raise named_if_no_room(staged.path, e) from None
     finally:
         staged.discard()

@@ -17,6 +17,7 @@ import numpy as np
 
 from .._arrays import FloatArray, float_fields
 from .._checks import require_flag, warn
+from .._gyrocore import SampleError
 from ..pipeline import (
     HeadingResult,
     has_bias_source,
@@ -64,6 +65,9 @@ class Log:
     path: str | None = None
     """Where :func:`read_log` read the log, as given (two log folders may share meta.json's name),
     or None for a log built in memory."""
+    _source: GyroSource | None = field(default=None, init=False, repr=False, compare=False)
+    # the file read, whose lines an error about a sample names; not an argument, so that
+    # ``dataclasses.replace`` with other samples leaves it out rather than naming wrong lines
 
     def __post_init__(self) -> None:
         """Each series as a float64 numpy array (no copy of one already): a pandas Series indexes by
@@ -156,13 +160,30 @@ class Log:
             # the odometry at its own times: the tracker interpolates it, and knows no speed outside it
             speed.update(speed=self.speed, speed_t=self.t_odometry)
         given = fixes if fixes is not None else self.fixes if use_fixes else None
-        if self.stationary is None or not uses_static_bias(preset) or has_bias_source(overrides):
-            return process(self.t, self.rate, preset, mode=mode, fixes=given, fusion=fusion, **speed, **overrides)
-        with self._naming_stationary():
-            return process(
-                self.t, self.rate, preset, mode=mode, bias_window=self.stationary, fixes=given, fusion=fusion,
-                **speed, **overrides,
-            )
+        with self._naming_sample():
+            if self.stationary is None or not uses_static_bias(preset) or has_bias_source(overrides):
+                return process(self.t, self.rate, preset, mode=mode, fixes=given, fusion=fusion, **speed, **overrides)
+            with self._naming_stationary():
+                return process(
+                    self.t, self.rate, preset, mode=mode, bias_window=self.stationary, fixes=given, fusion=fusion,
+                    **speed, **overrides,
+                )
+
+    @contextmanager
+    def _naming_sample(self) -> Iterator[None]:
+        """Re-raise the :class:`~gyrocore.SampleError` of a bad sample (a NaN reading, a time going
+        back) of a log read from a file naming the file and its line, in the words of ``gyrocore
+        process FILE`` (:meth:`GyroSource.locate`): the index alone left a user to count lines."""
+        try:
+            yield
+        except SampleError as e:
+            if self._source is None:
+                raise
+            check = UnitCheck(self._source.options)
+            check.update(self.t, self.rate)
+            e.log_message = getattr(e, "log_message", str(e))  # type: ignore[attr-defined]  # named again alike
+            e.args = (self._source.locate(e, check.time_fix()),)
+            raise
 
     @contextmanager
     def _naming_stationary(self) -> Iterator[None]:
@@ -253,7 +274,7 @@ def read_log(path: str | Path, *, use_fixes: bool = True, **options: Any) -> Log
         fixes = read_fixes(src.path) if use_fixes else None
     else:
         ref, odo = _file_tables(src, t)
-    return Log(
+    log = Log(
         name=src.name,
         t=t,
         rate=concat(rates),
@@ -268,3 +289,5 @@ def read_log(path: str | Path, *, use_fixes: bool = True, **options: Any) -> Log
         fixes=fixes,
         path=str(path),
     )
+    object.__setattr__(log, "_source", src)
+    return log

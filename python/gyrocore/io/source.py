@@ -38,6 +38,9 @@ DEFAULT_CHUNK_ROWS = 1 << 16
 SPEED_COLUMN = "speed"
 #: Suffixes of the files :func:`open_source` reads.
 FILE_SUFFIXES = (".csv", ".tsv", ".parquet", ".pq", ".npy", ".npz", ".bag")
+#: What a file's reading that is not finite (or beyond the core's limit) can be given instead of an edit.
+NONFINITE_FIX = ("or keep the file as it is: nonfinite='hold' (--nonfinite hold) uses the last usable reading "
+                 "there, 'skip' leaves the sample out")
 
 
 @dataclass(frozen=True)
@@ -231,9 +234,16 @@ class GyroSource:
             return f"message {row} on {self.options.topic}"
         return f"row {row}"
 
-    def locate(self, error: SampleError) -> str:
-        """The pipeline's error about sample ``error.index`` of this file, with where it is."""
-        return f"{error} ({self.data_path}, {self.where(error.index)})"
+    def locate(self, error: SampleError, time_fix: str | None = None, reading_fix: str | None = NONFINITE_FIX) -> str:
+        """The pipeline's error about sample ``error.index`` of this file in the file's words: the
+        core's message (its ``log_message``, where the API added how to keep samples in memory),
+        the file and the line (row, message) of the sample, then what to do: ``time_fix`` for a
+        time (:meth:`UnitCheck.time_fix`, the unit the timestamps look like), ``reading_fix`` for
+        a reading (the option that keeps the file as it is). Every command and
+        :meth:`gyrocore.Log.process` name a bad sample of a file so."""
+        message = getattr(error, "log_message", str(error))
+        fix = time_fix if error.what == "t" else reading_fix if error.what == "rate" else None
+        return f"{message} ({self.data_path}, {self.where(error.index)})" + (f"; {fix}" if fix else "")
 
     def chunks(self, rows: int = DEFAULT_CHUNK_ROWS) -> Iterator[Chunk]:
         """The samples, at most ``rows`` at a time, converted to SI units (three-axis input: the
@@ -452,8 +462,9 @@ def _open_bag(path: Path, options: ReadOptions) -> GyroSource:
     return GyroSource(path, "bag", path, replace(options, topic=topic), progress_total=count)
 
 
-def is_input(path: Path) -> bool:
+def is_input(path: str | Path) -> bool:
     """Whether ``path`` is something :func:`open_source` reads (by suffix or folder layout)."""
+    path = Path(path)  # exported: a path as text was "'str' object has no attribute 'is_dir'"
     if path.is_dir():
         try:
             check_readable(path)

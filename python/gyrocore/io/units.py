@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .._arrays import FloatArray
-from .._checks import INTERVAL_LIMIT, typical_interval, unit_problems
+from .._checks import _SUBSET, INTERVAL_LIMIT, typical_interval, unit_problems
 
 if TYPE_CHECKING:
     from .source import ReadOptions
@@ -49,7 +49,7 @@ EPOCH_LIMIT = 1e11
 EPOCH_SECONDS = (1e9, 4e9)
 #: How the problem that names another time unit begins.
 _TIME_PROBLEM = "timestamps look like"
-#: Intervals and large rates are judged on this many first samples, whatever the chunks are.
+#: Intervals are judged on this many first samples, whatever the chunks are.
 HEAD_SAMPLES = 1 << 16
 
 
@@ -57,25 +57,34 @@ class UnitCheck:
     """Checks that a stream of samples looks like the units it was read in.
 
     Feed it every chunk (in SI units, after conversion); :meth:`problems` then lists what looks like
-    another unit. Intervals and large rates are judged on the first :data:`HEAD_SAMPLES` samples
-    (however they were chunked); small rates on the largest ``|rate|`` of the whole stream,
-    since a log may begin with a long rest.
+    another unit. Intervals are judged on the first :data:`HEAD_SAMPLES` samples (however they
+    were chunked); rates on the whole stream, since a log may begin with a long rest: large ones
+    as :func:`gyrocore.process` judges an array, on a regular subset of the stream's rates, small
+    ones on the largest ``|rate|``.
     """
 
     def __init__(self, options: ReadOptions) -> None:
         self._options = options
         self._first: list[str] | None = None
-        self._head: list[tuple[FloatArray, FloatArray]] = []  # the first samples, until judged
+        self._head: list[FloatArray] = []  # the first samples' times, until judged
         self._head_samples = 0
         self._max_rate = 0.0
         self._last_time: float | None = None
         self._intervals = 0
         self._gaps = 0  # intervals longer than INTERVAL_LIMIT
+        # every ``_stride``-th rate of the stream (a regular subset of bounded size, the stride
+        # doubled as it fills): a 500 Hz log in deg/s whose turns began after its first 131 s
+        # (HEAD_SAMPLES) was never told of its unit
+        self._subset: list[FloatArray] = []
+        self._stride = 1
+        self._seen = 0
+        self._kept = 0
 
     def update(self, t: FloatArray, rate: FloatArray) -> None:
         """Account for one chunk (t [s], rate [rad/s])."""
         largest = np.max(np.abs(rate), initial=0.0, where=np.isfinite(rate))
         self._max_rate = max(self._max_rate, float(largest))
+        self._keep_subset(rate)
         if len(t):
             edges = t if self._last_time is None else np.concatenate(([self._last_time], t))
             self._intervals += len(edges) - 1
@@ -87,16 +96,32 @@ class UnitCheck:
                 self._gaps += int(np.count_nonzero(np.isfinite(d) & (d > INTERVAL_LIMIT)))
             self._last_time = float(t[-1])
         if self._first is None:
-            self._head.append((t[:HEAD_SAMPLES], rate[:HEAD_SAMPLES]))
+            self._head.append(t[:HEAD_SAMPLES])
             self._head_samples += len(t)
             if self._head_samples >= HEAD_SAMPLES:
                 self._judge_head()
+
+    def _keep_subset(self, rate: FloatArray) -> None:
+        """Keep the rates of the stream's samples ``0, s, 2 s, ...`` (``s``: the stride), at most
+        about 2 :data:`~gyrocore._checks._SUBSET` of them, whatever the chunks."""
+        kept = np.array(rate[(-self._seen) % self._stride :: self._stride])
+        self._subset.append(kept)
+        self._seen += len(rate)
+        self._kept += len(kept)  # counted, not summed over the list: a long log's list is long
+        while self._kept > 2 * _SUBSET:
+            whole = np.concatenate(self._subset)[::2]
+            self._subset, self._kept, self._stride = [whole], len(whole), self._stride * 2
 
     def problems(self) -> list[str]:
         """What looks like another unit, with the option that would fix it."""
         if self._first is None:
             self._judge_head()
-        problems = list(self._first or [])
+        problems = []
+        if self._options.rate_unit == "rad/s" and self._subset:
+            # the check of gyrocore.process (it judges rates only when given one timestamp)
+            rates = np.concatenate(self._subset)
+            problems += [f"{p}; or use rate_unit='deg/s' (--rate-unit deg/s)" for p in unit_problems(rates[:1], rates)]
+        problems += self._first or []
         max_dps = math.degrees(self._max_rate)
         small = self._first is not None and max_dps < SMALL_RATE_DPS and not self._options.static
         # a unit the file's header states is its own word, not a guess: a still recording in deg/s
@@ -130,16 +155,12 @@ class UnitCheck:
         they hold an interval."""
         if self._head_samples < 2:
             return
-        t = np.concatenate([h[0] for h in self._head])[:HEAD_SAMPLES]
-        rate = np.concatenate([h[1] for h in self._head])[:HEAD_SAMPLES]
-        self._first, self._head = self._first_chunk_problems(t, rate), []
+        t = np.concatenate(self._head)[:HEAD_SAMPLES]
+        self._first, self._head = self._first_chunk_problems(t), []
 
-    def _first_chunk_problems(self, t: FloatArray, rate: FloatArray) -> list[str]:
+    def _first_chunk_problems(self, t: FloatArray) -> list[str]:
         o = self._options
         problems = []
-        if o.rate_unit == "rad/s":
-            # unit_problems judges rates only when given one timestamp
-            problems += [f"{p}; or use rate_unit='deg/s' (--rate-unit deg/s)" for p in unit_problems(t[:1], rate)]
         unit = o.time_unit or "s"
         t0 = abs(float(t[0]))
         interval = typical_interval(t) if len(t) > 1 else 0.0  # one gap does not make it look like ms

@@ -67,9 +67,9 @@ def check_columns(columns: Sequence[str], what: str = "columns") -> tuple[str, .
     return tuple(columns)
 
 
-def output_format(path: Path) -> str:
+def output_format(path: str | Path) -> str:
     """``csv`` or ``parquet`` from an output file's suffix."""
-    suffix = path.suffix.lower()
+    suffix = Path(path).suffix.lower()
     if suffix == ".csv":
         return "csv"
     if suffix in (".parquet", ".pq"):
@@ -82,14 +82,15 @@ def check_output(out: Path, source: GyroSource) -> None:
     check_not_input(out, (source.path, source.data_path))
 
 
-def check_not_input(out: Path, inputs: Iterable[Path]) -> None:
+def check_not_input(out: str | Path, inputs: Iterable[str | Path]) -> None:
     """Refuse an output that is one of ``inputs`` (also through a link) or lies inside one that is
     a folder: nothing a user gave is overwritten, and no output becomes part of a log."""
+    out = Path(out)  # exported: paths as text failed on a missing is_dir
     # realpath, not Path.resolve: a symbolic link loop (given as the output or as a file an option
     # names) makes resolve raise RuntimeError; realpath leaves the loop's name, which reading or
     # writing it then names as an error
     target = Path(os.path.realpath(out))
-    for p in inputs:
+    for p in map(Path, inputs):
         real = Path(os.path.realpath(p))
         inside = p.is_dir() and real in target.parents
         if target == real or inside or (out.exists() and p.exists() and os.path.samefile(out, p)):

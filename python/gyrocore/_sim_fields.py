@@ -1,0 +1,57 @@
+"""The simulated gyro's fields (:class:`gyrocore.sim.GyroSpec`, in the datasheet's units) and the
+core model's parameters they become (SI), so that the core's error about a parameter names the
+field the caller gave."""
+
+from __future__ import annotations
+
+import re
+from typing import TYPE_CHECKING
+
+from . import _gyrocore
+
+if TYPE_CHECKING:
+    from .sim import GyroSpec
+
+#: The core's parameter -> (the field, its part of a pair or None); a parameter of the field's own
+#: name and unit is left as it is.
+_FIELDS: dict[str, tuple[str, int | None]] = {
+    "jitter": ("jitter_s", None),
+    "scale_temperature": ("scale_per_c", None),
+    "bias": ("bias_dps", None),
+    "bias_temperature": ("bias_dps_per_c", None),
+    "arw": ("arw_deg_per_sqrt_h", None),
+    "bandwidth": ("bandwidth_hz", None),
+    "bias_instability": ("bias_instability_deg_per_h", None),
+    "flicker_min": ("flicker_band_s", 0),
+    "flicker_max": ("flicker_band_s", 1),
+    "rrw": ("rrw_deg_per_h_per_sqrt_h", None),
+    "drift_step": ("drift_step_s", None),
+    "temperature.start": ("temperature_c", 0),
+    "temperature.end": ("temperature_c", 1),
+    "temperature.time_constant": ("temperature_time_constant_s", None),
+    "reference_temperature": ("reference_temperature_c", None),
+    "resolution": ("resolution_dps", None),
+    "range": ("range_dps", None),
+}
+_PARAMETER = re.compile(r"invalid parameter (?P<name>[\w.]+) = ")
+
+
+def check_spec(spec: GyroSpec) -> None:
+    """The core's checks of the model ``spec`` makes, over one second of it; its error names the
+    field given where the core's parameter has another name or unit (``bias_dps=1e9`` was
+    ``invalid parameter bias = 17453292.519943297: must be within +-2^20``, rad/s of a field
+    given in deg/s, and no word of ``bias_dps``).
+
+    Raises:
+        ValueError: a field out of its range.
+    """
+    try:
+        _gyrocore.gyro_check_span(spec.si(), 0.0, 1.0)
+    except ValueError as e:
+        m = _PARAMETER.search(str(e))
+        if m is None or m["name"] not in _FIELDS:
+            raise
+        name, part = _FIELDS[m["name"]]
+        value = getattr(spec, name)
+        given = f"{name} = {value!r}" if part is None else f"{name}[{part}] = {value[part]!r}"
+        raise ValueError(f"sensor field {given}: {e}; the model takes it in SI units (rad, s, degC)") from None
