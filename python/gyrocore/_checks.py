@@ -147,6 +147,13 @@ def collected(notes: list[str]) -> Iterator[None]:
         _collector.notes = previous
 
 
+
+def keep_readings(what: str, hold: str, skip: str) -> str:
+    """What to do about a reading the pipeline does not take, besides editing the data: the input
+    policy, spelled ``hold`` and ``skip`` where the caller gives it (a keyword, a command-line
+    option); ``what`` is what is kept ("them", "the file as it is")."""
+    return f"or keep {what}: {hold} uses the last usable reading there, {skip} leaves the sample out"
+
 def warn(message: str) -> None:
     """Emit an :class:`InputWarning` attributed to the first caller outside this package (or
     collect it, inside :func:`collected` on this thread)."""

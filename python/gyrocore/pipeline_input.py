@@ -8,7 +8,7 @@ import numpy as np
 
 from . import _gyrocore
 from ._arrays import FloatArray
-from ._checks import MAX_READING, usable, warn
+from ._checks import MAX_READING, keep_readings, usable, warn
 from .window import RestWindowError, ends_before_first, refuse_start_before
 
 
@@ -86,8 +86,7 @@ def say_what_to_do(error: _gyrocore.SampleError, t: FloatArray, last: float | No
     the file's line (``log_message``: the core's)."""
     if error.what in ("rate", "temperature") and nonfinite == "error":
         error.log_message = str(error)  # type: ignore[attr-defined]
-        error.args = (f"{error}; or keep them: nonfinite='hold' uses the last usable reading there, 'skip' leaves "
-                      "the sample out",)
+        error.args = (f"{error}; " + keep_readings("them", "nonfinite='hold'", "'skip'"),)
     name_samples_sent_again(error, t, last, index_offset)
 
 

@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import keep_readings
 from ..evaluate import Method, Score, compare, format_bias_sources, format_table, plot_path
 from ..evaluate_compare import naming_log
 from ..io import Log, check_not_input, read_log
@@ -149,8 +150,8 @@ def _read(path: str, args: argparse.Namespace) -> Log:
         log = with_reference(log, args.reference)
     if not any(p.partition("=")[0].strip() == "nonfinite" for p in args.param):
         # the pipeline's own refusal named neither the line nor the option (it names the log)
-        check_samples(Path(path), log, args, "or keep the file as it is: --param nonfinite=hold uses the last "
-                      "usable reading there, --param nonfinite=skip leaves the sample out")
+        check_samples(Path(path), log, args,
+                      keep_readings("the file as it is", "--param nonfinite=hold", "--param nonfinite=skip"))
     if log.heading_ref is None:
         raise ValueError(
             f"{path}: no reference heading to score against (a log folder's reference.csv, a CSV or "

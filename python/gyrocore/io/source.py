@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from .._arrays import FloatArray, durations_in_seconds, warn_coarse_times, warn_merged_counts
-from .._checks import first_infinite, require_choice, require_flag, warn
+from .._checks import first_infinite, keep_readings, require_choice, require_flag, warn
 from .._gyrocore import SampleError
 from ..window import Window
 from ._axes import MEASURED, measure_up, parse_up, parse_up_window, project, three_names
@@ -39,8 +39,7 @@ SPEED_COLUMN = "speed"
 #: Suffixes of the files :func:`open_source` reads.
 FILE_SUFFIXES = (".csv", ".tsv", ".parquet", ".pq", ".npy", ".npz", ".bag")
 #: What a file's reading that is not finite (or beyond the core's limit) can be given instead of an edit.
-NONFINITE_FIX = ("or keep the file as it is: nonfinite='hold' (--nonfinite hold) uses the last usable reading "
-                 "there, 'skip' leaves the sample out")
+NONFINITE_FIX = keep_readings("the file as it is", "nonfinite='hold' (--nonfinite hold)", "'skip'")
 
 
 @dataclass(frozen=True)
