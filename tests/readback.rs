@@ -29,6 +29,35 @@ fn refused<T: serde::de::DeserializeOwned + core::fmt::Debug>(v: Value) -> Strin
     serde_json::from_value::<T>(v).unwrap_err().to_string()
 }
 
+/// Reads a state back as one type, its error as text.
+type Reader = fn(Value) -> Result<(), String>;
+
+/// Reads `v` back as a `T` ([`Reader`]).
+fn read<T: serde::de::DeserializeOwned>(v: Value) -> Result<(), String> {
+    serde_json::from_value::<T>(v)
+        .map(|_| ())
+        .map_err(|e| e.to_string())
+}
+
+/// `v` with each `(pointer, value)` of `edits` set: a state edited by hand.
+fn edited(v: &Value, edits: &[(&str, f64)]) -> Value {
+    let mut e = v.clone();
+    for &(at, value) in edits {
+        *e.pointer_mut(at).unwrap() = json!(value);
+    }
+    e
+}
+
+/// Reading `v` with `edits` back as a `T` is refused, the error holding `message`.
+fn refuses<T: serde::de::DeserializeOwned + core::fmt::Debug>(
+    v: &Value,
+    edits: &[(&str, f64)],
+    message: &str,
+) {
+    let err = refused::<T>(edited(v, edits));
+    assert!(err.contains(message), "{edits:?}: {err}");
+}
+
 /// Entry `(i, j)` of a covariance set to a value.
 type Edit = (usize, usize, f64);
 
@@ -151,30 +180,48 @@ fn fixes_far_tighter_than_the_gyro_leave_a_covariance() {
             })
             .collect();
         let mut f = Fusion::new(config).unwrap();
-        let (mut used, mut k) = (0, 0);
-        while k < n {
-            let m = 37.min(n - k);
-            let (mut h, mut s) = (vec![0.0; m], vec![0.0; m]);
-            let out = FusionOutputs {
-                heading: &mut h,
-                heading_sigma: Some(&mut s),
-                bias: None,
-                scale: None,
-            };
-            used += f
-                .process_block(&t[k..k + m], &r[k..k + m], &fixes[used..], out)
-                .unwrap();
-            k += m;
+        in_blocks(&mut f, (&t, &r), &fixes, 37, |f, k, _, s| {
             assert!(s.iter().all(|s| s.is_finite()), "{s:?}");
-            let (p11, p22, correlation) = variances_and_correlation(&f);
+            let (p11, p22, correlation) = variances_and_correlation(f);
             assert!(
                 p11 >= 0.0 && p22 >= 0.0 && correlation <= 1.0 + 1e-12,
                 "sigma {sigma}, at {k}: scale {p11:e}, bias {p22:e}, correlation {correlation}"
             );
-            let json = serde_json::to_string(&f).unwrap();
+            let json = serde_json::to_string(f).unwrap();
             serde_json::from_str::<Fusion>(&json).unwrap();
-        }
+            Ok::<(), ()>(())
+        })
+        .unwrap();
     }
+}
+
+/// The filter `f` over the samples `(t, rate)` with `fixes`, in blocks of `cut` samples (each
+/// given the fixes not used yet); after each block, `check(f, samples so far, its headings, their
+/// sigmas)`.
+fn in_blocks<E>(
+    f: &mut Fusion,
+    (t, rate): (&[f64], &[f64]),
+    fixes: &[Fix],
+    cut: usize,
+    mut check: impl FnMut(&Fusion, usize, &[f64], &[f64]) -> Result<(), E>,
+) -> Result<(), E> {
+    let (mut used, mut k) = (0, 0);
+    while k < t.len() {
+        let m = cut.min(t.len() - k);
+        let (mut h, mut s) = (vec![0.0; m], vec![0.0; m]);
+        let out = FusionOutputs {
+            heading: &mut h,
+            heading_sigma: Some(&mut s),
+            bias: None,
+            scale: None,
+        };
+        used += f
+            .process_block(&t[k..k + m], &rate[k..k + m], &fixes[used..], out)
+            .unwrap();
+        k += m;
+        check(f, k, &h, &s)?;
+    }
+    Ok(())
 }
 
 /// A pipeline of the combined preset that holds the last reading over a NaN, after a few samples.
@@ -201,39 +248,32 @@ fn a_heading_beyond_what_valid_input_reaches_is_refused() {
     i.update(0.0, 1.0);
     let integrator = serde_json::to_value(i).unwrap();
     let fusion = serde_json::to_value(fusion()).unwrap();
-    let cases: [(&Value, &str, &str); 4] = [
-        (&pipeline, "/engine/Hdr/state/3/heading", "heading"),
-        (&pipeline, "/last_output/heading", "last heading"),
-        (&integrator, "/state/heading", "heading"),
-        (&fusion, "/segment/x/0", "filter heading"),
+    let cases: [(&Value, &str, &str, Reader); 4] = [
+        (
+            &pipeline,
+            "/engine/Hdr/state/3/heading",
+            "heading",
+            read::<Pipeline>,
+        ),
+        (
+            &pipeline,
+            "/last_output/heading",
+            "last heading",
+            read::<Pipeline>,
+        ),
+        (&integrator, "/state/heading", "heading", read::<Integrator>),
+        (&fusion, "/segment/x/0", "filter heading", read::<Fusion>),
     ];
-    for (v, at, name) in cases {
+    for (v, at, name, read) in cases {
         for value in [beyond, -beyond, 1e70] {
-            let mut e = v.clone();
-            *e.pointer_mut(at).unwrap() = json!(value);
-            let err = if at.starts_with("/segment") {
-                refused::<Fusion>(e)
-            } else if at == "/state/heading" {
-                refused::<Integrator>(e)
-            } else {
-                refused::<Pipeline>(e)
-            };
+            let err = read(edited(v, &[(at, value)])).unwrap_err();
             let expected = format!("invalid parameter {name} = ");
             assert!(
                 err.contains(&expected) && err.contains("within +-2^225 rad"),
                 "{at} = {value:e}: {err}"
             );
         }
-        let mut e = v.clone();
-        *e.pointer_mut(at).unwrap() = json!(within);
-        let ok = if at.starts_with("/segment") {
-            serde_json::from_value::<Fusion>(e).is_ok()
-        } else if at == "/state/heading" {
-            serde_json::from_value::<Integrator>(e).is_ok()
-        } else {
-            serde_json::from_value::<Pipeline>(e).is_ok()
-        };
-        assert!(ok, "{at} = 2^224");
+        assert!(read(edited(v, &[(at, within)])).is_ok(), "{at} = 2^224");
     }
 }
 
@@ -270,10 +310,7 @@ fn a_held_reading_or_repeated_output_beyond_reach_is_refused() {
             "invalid parameter last drift = -1e308",
         ),
     ] {
-        let mut e = v.clone();
-        *e.pointer_mut(at).unwrap() = json!(value);
-        let err = refused::<Pipeline>(e);
-        assert!(err.contains(message), "{at}: {err}");
+        refuses::<Pipeline>(&v, &[(at, value)], message);
     }
     // the largest reading the policy takes is held, and the headings stay finite
     let mut e = v.clone();
@@ -310,16 +347,8 @@ fn a_stand_alone_stage_with_a_clock_or_output_beyond_reach_is_refused() {
         ),
         ("/last", 1e308, "invalid parameter last output = 1e308"),
     ] {
-        for v in [&integrator, &delag] {
-            let mut e = v.clone();
-            *e.pointer_mut(at).unwrap() = json!(value);
-            let err = if v == &integrator {
-                refused::<Integrator>(e)
-            } else {
-                refused::<DeLag>(e)
-            };
-            assert!(err.contains(message), "{at}: {err}");
-        }
+        refuses::<Integrator>(&integrator, &[(at, value)], message);
+        refuses::<DeLag>(&delag, &[(at, value)], message);
     }
     // a clock edited to a time valid input reaches carries on, with finite outputs
     let mut e = integrator.clone();
@@ -359,12 +388,7 @@ fn a_downsample_with_a_block_beyond_reach_is_refused() {
         ),
     ];
     for (edit, message) in edits {
-        let mut e = v.clone();
-        for &(at, value) in edit {
-            *e.pointer_mut(at).unwrap() = json!(value);
-        }
-        let err = refused::<Downsample>(e);
-        assert!(err.contains(message), "{edit:?}: {err}");
+        refuses::<Downsample>(&v, edit, message);
     }
     // read back as it was, it carries on with finite means
     let mut back: Downsample = serde_json::from_value(v).unwrap();
@@ -396,10 +420,7 @@ fn a_correction_with_a_bias_or_clock_beyond_reach_is_refused() {
             "invalid parameter last_time = -1e308",
         ),
     ] {
-        let mut e = v.clone();
-        *e.pointer_mut(at).unwrap() = json!(value);
-        let err = refused::<Correction>(e);
-        assert!(err.contains(message), "{at}: {err}");
+        refuses::<Correction>(&v, &[(at, value)], message);
     }
     let mut back: Correction = serde_json::from_value(v).unwrap();
     assert!(back.update(1.0, -5.0).is_finite());
@@ -448,27 +469,17 @@ proptest::proptest! {
             })
             .collect();
         let mut f = Fusion::new(config).unwrap();
-        let (mut used, mut k) = (0, 0);
-        while k < n {
-            let m = cut.min(n - k);
-            let (mut h, mut s) = (vec![0.0; m], vec![0.0; m]);
-            let out = FusionOutputs {
-                heading: &mut h,
-                heading_sigma: Some(&mut s),
-                bias: None,
-                scale: None,
-            };
-            used += f.process_block(&t[k..k + m], &r[k..k + m], &fixes[used..], out).unwrap();
-            k += m;
-            proptest::prop_assert!(s.iter().chain(&h).all(|x| x.is_finite()));
-            let (p11, p22, correlation) = variances_and_correlation(&f);
+        in_blocks(&mut f, (&t, &r), &fixes, cut, |f, k, h, s| {
+            proptest::prop_assert!(s.iter().chain(h).all(|x| x.is_finite()));
+            let (p11, p22, correlation) = variances_and_correlation(f);
             proptest::prop_assert!(
                 p11 >= 0.0 && p22 >= 0.0 && correlation <= 1.0 + 1e-12,
                 "at {}: scale {:e}, bias {:e}, correlation {}", k, p11, p22, correlation
             );
-            let json = serde_json::to_string(&f).unwrap();
+            let json = serde_json::to_string(f).unwrap();
             let back = serde_json::from_str::<Fusion>(&json);
             proptest::prop_assert!(back.is_ok(), "at {}: {:?}", k, back);
-        }
+            Ok(())
+        })?;
     }
 }
