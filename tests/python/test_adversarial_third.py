@@ -285,3 +285,15 @@ def test_calibrate_names_its_options_in_the_static_bias_error() -> None:
     proc = gyrocore_cli("calibrate", f110, "--min-duration", "1e9", code=0, timeout=60)
     assert "(give the rest window, or a shorter --min-duration / larger --max-rate-dps if" in proc.stdout
     assert "min_duration" not in proc.stdout
+
+
+def test_calibrate_takes_the_block_its_hint_names(tmp_path: Path) -> None:
+    """At 10 Hz a 0.25 s block holds 4 readings: a log wholly at rest showed no rest, and the
+    error said ``give block=2.4``, a setting ``gyrocore calibrate`` had no option for."""
+    rng = np.random.default_rng(2)
+    still = tmp_path / "still.csv"
+    still.write_text("t,gyro_z\n" + "".join(f"{0.1 * i:.1f},{0.01 + rng.normal(0, 0.002):.6f}\n" for i in range(100)))
+    proc = gyrocore_cli("calibrate", still, "--min-duration", "3", code=2, timeout=60)
+    assert proc.stderr.rstrip().endswith("give --block 2.4 (25 readings) to find it"), proc.stderr
+    proc = gyrocore_cli("calibrate", still, "--min-duration", "3", "--block", "2.4", code=0, timeout=60)
+    assert "rest window used: 0.0000 .. 9.9000 s after the first sample (found from the rate)" in proc.stdout

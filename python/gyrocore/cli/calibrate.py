@@ -48,6 +48,9 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p.add_argument("--min-duration", type=POSITIVE, default=1.0, help="shortest rest [s] (default 1)")
     p.add_argument("--max-rate-dps", type=POSITIVE, default=None,
                    help="largest reading at rest [deg/s] (default 2.9); raise it for a gyro with a large bias")
+    p.add_argument("--block", type=POSITIVE, default=None,
+                   help="length [s] of the blocks a rest is found in (default 0.25); a slow gyro needs longer "
+                        "ones (25 readings or more)")
     p.add_argument("--fit-window", nargs=2, metavar=("T0", "T1"),
                    help=f"span for the reference fit (default: the whole log): {WINDOW_HELP}")
     p.add_argument("--json", action="store_true", help="print the results as JSON")
@@ -87,6 +90,8 @@ def run(args: argparse.Namespace) -> int:
     options: dict[str, Any] = {}
     if args.max_rate_dps is not None:
         options["max_rate"] = math.radians(args.max_rate_dps)
+    if args.block is not None:
+        options["block"] = args.block
     for given in (rest, span):  # an empty window is a usage error, with the log's range
         if given is not None:  # a rest window cut to the log: the bias was not measured where asked
             given.samples(log.t, minimum=2, within=given is rest)
@@ -163,7 +168,8 @@ def run(args: argparse.Namespace) -> int:
 
 #: The static bias's settings as the library's errors name them, and as this command takes them.
 _OPTION_WORDS = (("min_duration = ", "--min-duration "), ("a shorter min_duration / larger max_rate",
-                                                         "a shorter --min-duration / larger --max-rate-dps"))
+                                                         "a shorter --min-duration / larger --max-rate-dps"),
+                 ("give block=", "give --block "))
 
 
 def _in_option_words(message: str) -> str:
