@@ -41,10 +41,7 @@ impl BlockMean {
             longest,
             valid,
         )?;
-        let most = 2.0 * crate::MAX_READING * self.duration;
-        let valid = "its mean over the block's duration within +-2^21 rad/s (a reading's limit, \
-                     and room for rounding)";
-        check_range("block integral", self.sum, -most, most, valid)
+        crate::error::check_integral("block integral", self.sum, self.duration)
     }
 
     /// Adds a sample with interval `dt`; when this sample closes a block, returns the block's
@@ -135,10 +132,7 @@ impl Downsample {
     #[cfg(feature = "serde")]
     pub(crate) fn check_restored(&self) -> Result<(), Error> {
         self.config.validate()?;
-        if let Some(t) = self.clock.last() {
-            let limit = crate::MAX_TIME;
-            crate::error::check_range("last_time", t, -limit, limit, "within +-2^40 s")?;
-        }
+        self.clock.check_restored()?;
         self.block.check(self.config.interval)
     }
 

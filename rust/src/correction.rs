@@ -266,10 +266,7 @@ impl Correction {
         self.config().validate()?;
         self.bias.check()?;
         check_reading("bias", self.calibration.bias)?;
-        match self.clock.last() {
-            Some(t) => check_range("last_time", t, -MAX_TIME, MAX_TIME, "within +-2^40 s"),
-            None => Ok(()),
-        }
+        self.clock.check_restored()
     }
 
     /// The static bias in use now [rad/s] (what the gyro reads at rest).

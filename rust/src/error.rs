@@ -278,6 +278,34 @@ pub(crate) fn check_positive(name: &'static str, value: f64) -> Result<(), Error
     }
 }
 
+/// Checks a reading read back that the input policy took (a state's last reading, which it
+/// holds over a NaN): finite and below [`MAX_READING`] in magnitude, as
+/// [`usable_reading`](crate::validate::usable_reading) takes one.
+#[cfg(feature = "serde")]
+pub(crate) fn check_usable(name: &'static str, value: f64) -> Result<(), Error> {
+    if crate::validate::usable_reading(value, None) {
+        Ok(())
+    } else {
+        let valid = "within +-2^20, exclusive (a usable reading: one the input policy takes)";
+        Err(Error::InvalidParameter { name, value, valid })
+    }
+}
+
+/// Checks an integral of readings over `duration` \[s\] read back (a block's, a rest window's):
+/// its mean within +-2^21 rad/s, a reading's limit with room for rounding. One of 1e308 over a
+/// duration of 1e-300 gave an infinite mean.
+#[cfg(feature = "serde")]
+pub(crate) fn check_integral(
+    name: &'static str,
+    integral: f64,
+    duration: f64,
+) -> Result<(), Error> {
+    let most = 2.0 * MAX_READING * duration;
+    let valid = "its mean over its duration within +-2^21 rad/s (a reading's limit, and room \
+                 for rounding)";
+    check_range(name, integral, -most, most, valid)
+}
+
 /// Checks a bias, offset or other value in the units of a reading: at most
 /// [`MAX_READING`] in magnitude.
 pub(crate) fn check_reading(name: &'static str, value: f64) -> Result<(), Error> {

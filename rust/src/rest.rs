@@ -59,18 +59,10 @@ impl RestNoise {
     /// NaN; squared differences of -1 a NaN noise.
     #[cfg(feature = "serde")]
     fn check(&self) -> Result<(), Error> {
-        use crate::error::check_range;
+        use crate::error::{check_integral, check_range, check_usable};
         use crate::{MAX_READING, MAX_TIME};
-        if let Some(p) = self
-            .previous
-            .filter(|p| p.is_nan() || p.abs() >= MAX_READING)
-        {
-            let valid = "within +-2^20 (a usable reading)";
-            return Err(Error::InvalidParameter {
-                name: "rest window last reading",
-                value: p,
-                valid,
-            });
+        if let Some(p) = self.previous {
+            check_usable("rest window last reading", p)?;
         }
         let most = 2.0 * (2.0 * MAX_READING) * (2.0 * MAX_READING) * self.differences as f64;
         let valid = ">= 0 and at most (2^21)^2 per difference, the largest two readings make";
@@ -90,9 +82,7 @@ impl RestNoise {
                 2.0 * MAX_TIME,
                 valid,
             )?;
-            let most = 2.0 * MAX_READING * duration;
-            let valid = "its mean over the part's duration within +-2^21 rad/s";
-            check_range("rest window part integral", integral, -most, most, valid)?;
+            check_integral("rest window part integral", integral, duration)?;
         }
         Ok(())
     }
@@ -241,8 +231,8 @@ impl BiasEstimate {
     /// reading, a NaN window never ended.
     #[cfg(feature = "serde")]
     pub(crate) fn check(&self) -> Result<(), Error> {
-        use crate::error::{check_range, check_reading};
-        use crate::{MAX_READING, MAX_TIME};
+        use crate::error::{check_integral, check_range, check_reading};
+        use crate::MAX_TIME;
         check_reading("bias", self.value)?;
         let longest = 2.0 * MAX_TIME;
         check_range(
@@ -252,9 +242,7 @@ impl BiasEstimate {
             longest,
             "within 0 and 2^41 s",
         )?;
-        let most = 2.0 * MAX_READING * self.duration;
-        let valid = "its mean over the time measured within +-2^21 rad/s";
-        check_range("bias integral", self.integral, -most, most, valid)?;
+        check_integral("bias integral", self.integral, self.duration)?;
         for bound in self.window.iter().flat_map(|&(start, end)| [start, end]) {
             check_range("bias_window", bound, -longest, longest, "within +-2^41 s")?;
         }

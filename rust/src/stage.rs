@@ -132,4 +132,17 @@ impl Clock {
     pub fn last(&self) -> Option<f64> {
         self.last
     }
+
+    /// Checks a clock read back (`serde` feature): its last time within +-2^40 s, as every time
+    /// it takes. One of -1e308 made the next block's first interval 1e308 (an infinite heading),
+    /// one of 1e308 refused every later block.
+    #[cfg(feature = "serde")]
+    pub(crate) fn check_restored(&self) -> Result<(), Error> {
+        match self.last {
+            Some(t) => {
+                crate::error::check_range("last_time", t, -MAX_TIME, MAX_TIME, "within +-2^40 s")
+            }
+            None => Ok(()),
+        }
+    }
 }

@@ -26,8 +26,6 @@ use crate::rest_tracker::{check_speed, Rest, RestTracker};
 use crate::stage::Clock;
 use crate::validate::{check_block, check_lengths, interval_key, usable_reading, Checks};
 use crate::Error;
-#[cfg(feature = "serde")]
-use crate::{error::check_range, MAX_TIME};
 
 /// The composed pipeline; see the module doc for the order of the stages.
 ///
@@ -91,23 +89,14 @@ impl Pipeline {
     #[cfg(feature = "serde")]
     pub(crate) fn check_restored(&self) -> Result<(), Error> {
         self.config.validate()?;
-        if let Some(t) = self.clock.last() {
-            check_range("last_time", t, -MAX_TIME, MAX_TIME, "within +-2^40 s")?;
-        }
+        self.clock.check_restored()?;
         self.bias.check()?;
         // The reading the policy holds is one it took: a stored one of 1e308 was held into
         // infinite headings. The output a skipped sample repeats is one the chain gave.
         if let Some((rate, temperature)) = self.last_reading {
-            let valid = "within +-2^20 (a usable reading, which the input policy holds)";
-            let limit = crate::MAX_READING;
-            for (name, v) in [("last rate", Some(rate)), ("last temperature", temperature)] {
-                if let Some(v) = v.filter(|v| v.is_nan() || v.abs() >= limit) {
-                    return Err(Error::InvalidParameter {
-                        name,
-                        value: v,
-                        valid,
-                    });
-                }
+            crate::error::check_usable("last rate", rate)?;
+            if let Some(temperature) = temperature {
+                crate::error::check_usable("last temperature", temperature)?;
             }
         }
         crate::error::check_heading("last heading", self.last_output.heading)?;
