@@ -115,14 +115,62 @@ fn a_covariance_that_is_not_one_is_refused() {
     e["segment"]["x"][1] = json!(0.0);
     let err = refused::<Fusion>(e);
     assert!(err.contains("invalid parameter filter scale = 0"), "{err}");
-    // A heading variance a rounding below 0 reads back (its sigma is its magnitude's root).
+    // the filter leaves every variance >= 0: a heading variance a rounding below 0 is refused too
     let mut e = v.clone();
     e["segment"]["p"][0][0] = json!(-1e-30);
     for (i, j) in [(0, 1), (1, 0), (0, 2), (2, 0)] {
         e["segment"]["p"][i][j] = json!(0.0);
     }
-    let read: Fusion = serde_json::from_value(e).unwrap();
-    assert!(read.estimate().heading_sigma.is_finite());
+    let err = refused::<Fusion>(e);
+    assert!(
+        err.contains("invalid parameter heading variance = -1e-30"),
+        "{err}"
+    );
+}
+
+/// Initial sigmas far below the fixes' (1e-80 rad/s on the bias: valid settings) leave variances
+/// whose product lies below the smallest normal double: the bound on their covariance, the root
+/// of that product, came out 0 and refused the filter's own state read back (`heading-bias
+/// covariance = 1.8e-159`), and the filter's rebuild of a covariance set such ones to 0.
+#[test]
+fn a_filter_with_tiny_variances_reads_back() {
+    for (bias_sigma, scale_sigma) in [
+        (1e-80, 0.01),
+        (0.01, 1e-80),
+        (1e-150, 1e-100),
+        (1e-160, 0.01),
+    ] {
+        let config = FusionConfig {
+            arw: 0.0,
+            bias_walk: 0.0,
+            scale_walk: 0.0,
+            initial_heading_sigma: 0.1,
+            initial_bias_sigma: bias_sigma,
+            initial_scale_sigma: scale_sigma,
+            gate: f64::INFINITY,
+            ..FusionConfig::default()
+        };
+        let t: Vec<f64> = (0..100).map(|i| i as f64).collect();
+        let r: Vec<f64> = (0..100)
+            .map(|i| 0.5 * ((i as f64 * 0.05).sin() + 0.3))
+            .collect();
+        let fixes: Vec<Fix> = (0..100)
+            .step_by(3)
+            .map(|i| Fix {
+                t: t[i] + 0.25,
+                heading: 0.1 * i as f64,
+                sigma: 1e-12,
+            })
+            .collect();
+        let mut f = Fusion::new(config).unwrap();
+        in_blocks(&mut f, (&t, &r), &fixes, 25, |f, k, _, _| {
+            let json = serde_json::to_string(f).unwrap();
+            serde_json::from_str::<Fusion>(&json)
+                .map(|_| ())
+                .map_err(|e| format!("{bias_sigma:e} {scale_sigma:e} at {k}: {e}"))
+        })
+        .unwrap();
+    }
 }
 
 /// `(p11, p22, worst correlation)` of a filter's stored covariance.
@@ -131,7 +179,8 @@ fn variances_and_correlation(f: &Fusion) -> (f64, f64, f64) {
     let p: [[f64; 3]; 3] = serde_json::from_value(v["segment"]["p"].clone()).unwrap();
     let mut worst = 0.0f64;
     for (i, j) in [(0, 1), (0, 2), (1, 2)] {
-        let bound = (p[i][i].max(0.0) * p[j][j].max(0.0)).sqrt();
+        // the product of the deviations: that of the variances underflows below 1e-308
+        let bound = p[i][i].max(0.0).sqrt() * p[j][j].max(0.0).sqrt();
         worst = worst.max(if p[i][j] == 0.0 {
             0.0
         } else {
@@ -437,7 +486,9 @@ proptest::proptest! {
     fn every_state_a_filter_leaves_reads_back(
         noise in proptest::array::uniform3(-10.0f64..0.0),
         none in proptest::array::uniform3(proptest::bool::ANY),
-        initial in proptest::array::uniform3(-8.0f64..2.0),
+        heading_initial in -8.0f64..2.0,
+        // down to 1e-160: variances whose products lie below the smallest normal double
+        initial in proptest::array::uniform2(-160.0f64..2.0),
         sigma in -12.0f64..0.0,
         dt in -4.0f64..1.0,
         rate in -3.0f64..5.0,
@@ -450,9 +501,9 @@ proptest::proptest! {
             arw: walk(0),
             bias_walk: walk(1),
             scale_walk: walk(2),
-            initial_heading_sigma: 10f64.powf(initial[0]),
-            initial_bias_sigma: 10f64.powf(initial[1]).min(1e3),
-            initial_scale_sigma: 10f64.powf(initial[2]).min(0.5),
+            initial_heading_sigma: 10f64.powf(heading_initial),
+            initial_bias_sigma: 10f64.powf(initial[0]).min(1e3),
+            initial_scale_sigma: 10f64.powf(initial[1]).min(0.5),
             gate: f64::INFINITY,
             ..FusionConfig::default()
         };

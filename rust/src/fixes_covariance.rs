@@ -8,15 +8,17 @@
 //! innovation variance rounded to 0 divided by it. [`semi_definite`] keeps the update's result
 //! where its `L D L^T` factors show it positive semi-definite, and otherwise keeps its variances
 //! and brings its covariances within them; [`check`] refuses a covariance read back (`serde`
-//! feature) that is not one, within rounding.
+//! feature) that is not one, within rounding. A covariance's bound is the product of the two
+//! standard deviations, not the root of the variances' product: variances of 1e-160 and 1e-158
+//! (valid initial sigmas) have a product below the smallest normal double.
 
 use crate::fixes_smooth::Mat3;
 
-/// The `L D L^T` factors of the symmetric matrix of `p`'s upper triangle: the pivots `d` (each a
-/// variance given the ones before it) and `[l10, l20, l21]`, set to 0 below a pivot that is not
-/// positive; and whether they make `p` positive semi-definite (every pivot >= 0, and a pivot of 0
-/// with no covariance left below it).
-fn factors(p: &Mat3) -> ([f64; 3], [f64; 3], bool) {
+/// The pivots `d` of the `L D L^T` factors of the symmetric matrix of `p`'s upper triangle (each
+/// a variance given the ones before it; a factor below a pivot that is not positive taken as 0),
+/// and whether they make `p` positive semi-definite (every pivot >= 0, and a pivot of 0 with no
+/// covariance left below it).
+fn pivots(p: &Mat3) -> ([f64; 3], bool) {
     let d0 = p[0][0];
     let (mut l10, mut l20) = (p[0][1] / d0, p[0][2] / d0);
     let mut fits = d0 >= 0.0;
@@ -34,7 +36,12 @@ fn factors(p: &Mat3) -> ([f64; 3], [f64; 3], bool) {
     }
     let d2 = p[2][2] - l20 * p[0][2] - l21 * c12;
     fits &= d2 >= 0.0;
-    ([d0, d1, d2], [l10, l20, l21], fits)
+    ([d0, d1, d2], fits)
+}
+
+/// The largest covariance two variances `a`, `b` >= 0 allow: the product of their roots.
+fn most(a: f64, b: f64) -> f64 {
+    libm::sqrt(a) * libm::sqrt(b)
 }
 
 /// `p` (the covariance a fix's update left) made symmetric from its upper triangle (the update
@@ -46,7 +53,7 @@ fn factors(p: &Mat3) -> ([f64; 3], [f64; 3], bool) {
 /// the pivots to 0 instead would make that rounding a variance: 1e-17 would become 1.6e9).
 pub(crate) fn semi_definite(mut p: Mat3) -> Mat3 {
     (p[1][0], p[2][0], p[2][1]) = (p[0][1], p[0][2], p[1][2]);
-    if factors(&p).2 {
+    if pivots(&p).1 {
         return p;
     }
     let v: [f64; 3] = core::array::from_fn(|i| {
@@ -57,10 +64,7 @@ pub(crate) fn semi_definite(mut p: Mat3) -> Mat3 {
             f64::EPSILON * -v
         }
     });
-    let within = |c: f64, a: f64, b: f64| {
-        let most = libm::sqrt(a * b);
-        c.clamp(-most, most)
-    };
+    let within = |c: f64, a: f64, b: f64| c.clamp(-most(a, b), most(a, b));
     let (p01, p02) = (within(p[0][1], v[0], v[1]), within(p[0][2], v[0], v[2]));
     // the scale's and the bias's variances and covariance given the heading
     let (l10, l20) = if v[0] > 0.0 {
@@ -80,28 +84,14 @@ pub(crate) fn semi_definite(mut p: Mat3) -> Mat3 {
 #[cfg(feature = "serde")]
 const ROUNDING: f64 = 1.0 / (1u64 << 36) as f64;
 
-/// How far below 0 the heading's variance may lie read back: the square of the tightest fix's
-/// sigma ([`MIN_FIX_SIGMA`](crate::fixes::MIN_FIX_SIGMA)). The filter keeps its covariance positive
-/// semi-definite, but its heading variance rounded below 0 before, where fixes are far tighter
-/// than the gyro's noise, and such a variance is within the tightest fix's of 0.
-#[cfg(feature = "serde")]
-const HEADING_ROUNDING: f64 = crate::fixes::MIN_FIX_SIGMA * crate::fixes::MIN_FIX_SIGMA;
-
-/// Checks a covariance read back (`serde` feature): symmetric within rounding, its scale and
-/// bias variances >= 0, its heading variance >= 0 but for a rounding ([`HEADING_ROUNDING`]), and
-/// positive semi-definite within [`ROUNDING`] (no covariance beyond the root of the product of
-/// its two variances): a negative bias variance read back gave NaN or imaginary sigmas.
+/// Checks a covariance read back (`serde` feature): symmetric within rounding, no variance
+/// below 0 (as [`semi_definite`] leaves them), and positive semi-definite within [`ROUNDING`] (no
+/// covariance beyond the product of its two standard deviations): a negative bias variance read
+/// back gave NaN or imaginary sigmas.
 #[cfg(feature = "serde")]
 pub(crate) fn check(p: &Mat3) -> Result<(), crate::Error> {
     use crate::error::check_range;
-    let valid = ">= 0 (a rounding of at most 1e-24 rad^2 below it is 0)";
-    check_range(
-        "heading variance",
-        p[0][0],
-        -HEADING_ROUNDING,
-        f64::MAX,
-        valid,
-    )?;
+    check_range("heading variance", p[0][0], 0.0, f64::MAX, ">= 0")?;
     check_range("scale variance", p[1][1], 0.0, f64::MAX, ">= 0")?;
     check_range("bias variance", p[2][2], 0.0, f64::MAX, ">= 0")?;
     let names = [
@@ -110,11 +100,11 @@ pub(crate) fn check(p: &Mat3) -> Result<(), crate::Error> {
     ];
     let mut inflated = *p;
     for i in 0..3 {
-        inflated[i][i] = p[i][i].max(0.0) * (1.0 + ROUNDING);
+        inflated[i][i] = p[i][i] * (1.0 + ROUNDING);
     }
     for (i, j) in [(0, 1), (0, 2), (1, 2)] {
         let (c, mirror) = (p[i][j], p[j][i]);
-        let bound = libm::sqrt(inflated[i][i] * inflated[j][j]);
+        let bound = most(inflated[i][i], inflated[j][j]);
         let valid = "within the root of the product of its two variances, and equal to its \
                      mirror image (a covariance is symmetric and positive semi-definite)";
         let name = names[i][j];
@@ -129,7 +119,7 @@ pub(crate) fn check(p: &Mat3) -> Result<(), crate::Error> {
             });
         }
     }
-    let (d, _, fits) = factors(&inflated);
+    let (d, fits) = pivots(&inflated);
     if !fits {
         return Err(crate::Error::InvalidParameter {
             name: "filter covariance",

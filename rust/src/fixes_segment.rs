@@ -99,11 +99,10 @@ impl Segment {
 
     /// Checks a segment read back (`serde` feature): its time within +-2^40 s, every value
     /// within [`MAX_STORED`](crate::error::MAX_STORED) (a stored rate integral of 1e308 gave
-    /// infinite headings), the heading within [`MAX_HEADING`](crate::error::MAX_HEADING), a scale `s_bar` of which Hong eq 1's bias and scale are finite (one of
-    /// 0 gave a NaN bias), and a covariance that is one ([`fixes_covariance::check`]: a negative
-    /// bias variance gave NaN or imaginary sigmas).
-    ///
-    /// [`fixes_covariance::check`]: crate::fixes_covariance
+    /// infinite headings), the heading within [`MAX_HEADING`](crate::error::MAX_HEADING), a
+    /// scale `s_bar` of which Hong eq 1's bias and scale are finite (one of 0 gave a NaN bias),
+    /// and a covariance that is one ([`check`](crate::fixes_covariance::check): a negative bias
+    /// variance gave NaN or imaginary sigmas).
     #[cfg(feature = "serde")]
     pub(crate) fn check(&self) -> Result<(), crate::Error> {
         use crate::error::{check_range, check_stored};
