@@ -1,6 +1,6 @@
-"""Inputs found by a third adversarial pass over the Python API and the command line: errors that
-named no file line where the command line does, warnings a log folder went without, and options a
-user was not told of."""
+"""Bad input named where it is, in the Python API as on the command line: a bad sample by its file
+and line, a log folder's files by their folder, a file given twice, an option by the name the
+command takes (not the library's keyword), a path given as text; and outputs written whole."""
 
 from __future__ import annotations
 
