@@ -222,6 +222,76 @@ def test_a_calibration_save_that_fails_keeps_the_previous_file(tmp_path: Path, m
     assert calibration.Calibration.load(path).bias == cal.bias
 
 
+@pytest.mark.skipif(os.name == "nt", reason="symbolic links and POSIX permission bits")
+def test_a_calibration_saved_through_a_link_replaces_the_file_it_leads_to(tmp_path: Path) -> None:
+    """``Calibration.save("current.json")``, a link to ``real.json``, renamed its new file over the
+    link: the link became a regular file and ``real.json`` kept the old calibration; the new file
+    had the umask's permissions where the old one was 0600."""
+    from gyrocore import calibration
+
+    real = tmp_path / "cals" / "real.json"
+    real.parent.mkdir()
+    calibration.Calibration(method="static_bias", bias=0.01).save(real)
+    real.chmod(0o600)
+    link = tmp_path / "current.json"
+    link.symlink_to(Path("cals") / "real.json")
+    calibration.Calibration(method="static_bias", bias=0.02).save(link)
+    assert link.is_symlink() and os.readlink(link) == str(Path("cals") / "real.json")
+    assert calibration.Calibration.load(real).bias == 0.02
+    assert real.stat().st_mode & 0o777 == 0o600
+    assert sorted(p.name for p in tmp_path.rglob("*")) == ["cals", "current.json", "real.json"]  # no temporary file
+
+
+@pytest.mark.skipif(os.name == "nt", reason="symbolic links and POSIX permission bits")
+def test_an_atomic_output_keeps_the_replaced_files_mode_and_a_new_one_the_umasks(tmp_path: Path) -> None:
+    """Every output written whole (``atomic_path``, ``StagedFile``: ``--out``, ``--save``,
+    ``ParameterSet.write``) keeps the permission bits of the file it replaces, even one it may not
+    write itself (0400); a new file gets the umask's, and a dangling link's target is created."""
+    from gyrocore import io
+
+    old = tmp_path / "old.txt"
+    old.write_text("old")
+    old.chmod(0o400)
+    with io.atomic_path(old) as tmp:
+        tmp.write_text("new")
+    assert old.read_text() == "new" and old.stat().st_mode & 0o777 == 0o400
+    umask = os.umask(0o022)
+    os.umask(umask)
+    with io.atomic_path(tmp_path / "fresh.txt") as tmp:
+        tmp.write_text("x")
+    assert (tmp_path / "fresh.txt").stat().st_mode & 0o777 == 0o666 & ~umask
+    dangling = tmp_path / "dangling.txt"
+    dangling.symlink_to("later.txt")
+    with io.atomic_path(dangling) as tmp:
+        tmp.write_text("y")
+    assert dangling.is_symlink() and (tmp_path / "later.txt").read_text() == "y"
+    (tmp_path / "nowhere.txt").symlink_to(Path("gone") / "x.txt")
+    with pytest.raises(FileNotFoundError, match=f"^{re.escape(str(tmp_path / 'nowhere.txt'))}: a symbolic link to "
+                                                f"'gone/x.txt', whose folder {re.escape(str(tmp_path / 'gone'))} "
+                                                "does not exist; create it or write elsewhere$"):
+        io.StagedFile(tmp_path / "nowhere.txt")
+
+
+def test_the_command_line_refuses_an_output_link_as_before(tmp_path: Path) -> None:
+    """An output that is a link (dangling too) is refused as existing without ``--overwrite``, and
+    one that leads to an input is refused even with it: written through the link, it would replace
+    the input."""
+    log = _write_log(tmp_path / "a.csv", np.arange(300) * 0.01, np.full(300, 0.001))
+    (tmp_path / "to-input.json").symlink_to(log.name)
+    (tmp_path / "dangling.json").symlink_to("gone.json")
+    proc = gyrocore_cli("calibrate", log, "--window", "+0", "+2", "--save", tmp_path / "dangling.json", code=2)
+    assert proc.stderr == (f"gyrocore: error: {tmp_path / 'dangling.json'} already exists; pass --overwrite to "
+                           "replace it, or write elsewhere (nothing was written)\n")
+    proc = gyrocore_cli("calibrate", log, "--window", "+0", "+2", "--save", tmp_path / "to-input.json", "--overwrite",
+                        code=2)
+    assert proc.stderr == (f"gyrocore: error: refusing to write {tmp_path / 'to-input.json'} over or inside the input "
+                           f"{log}; write it elsewhere\n")
+    before = log.read_bytes()
+    gyrocore_cli("calibrate", log, "--window", "+0", "+2", "--save", tmp_path / "dangling.json", "--overwrite", code=0)
+    assert (tmp_path / "dangling.json").is_symlink() and "bias" in (tmp_path / "gone.json").read_text()
+    assert log.read_bytes() == before
+
+
 @pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="named pipes")
 @pytest.mark.parametrize("reader", ["read_nmea", "read_gnss_csv", "read_fixes_csv"])
 def test_a_fixes_reader_refuses_a_named_pipe(tmp_path: Path, reader: str) -> None:
