@@ -167,6 +167,33 @@ def test_a_file_named_twice_in_a_batch_is_said(tmp_path: Path) -> None:
     assert "warning" not in proc.stderr
 
 
+@pytest.mark.parametrize("order", ["folder first", "file first"])
+def test_a_file_named_and_reached_through_its_folder_is_said_in_either_order(tmp_path: Path, order: str) -> None:
+    """``expand_inputs(["logs", "logs/a.csv"])`` warned that ``logs/a.csv`` was given more than once
+    (it was named once, and reached once through its folder); ``["logs/a.csv", "logs"]`` said
+    nothing. Each order now says how the other came; a link in a folder to a file named is the same
+    file, in either order too."""
+    from gyrocore import batch
+
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    a = _write_log(logs / "a.csv", np.arange(10) * 0.01, np.zeros(10))
+    _write_log(logs / "b.csv", np.arange(10) * 0.01, np.zeros(10))
+    items = [logs, a] if order == "folder first" else [a, logs]
+    said = f"{a}: named, and also reached through the folder {logs}; it is processed once"
+    with pytest.warns(gyrocore.InputWarning, match=f"^{re.escape(said)}$") as caught:
+        assert batch.expand_inputs(items) == [a, logs / "b.csv"]
+    assert len(caught) == 1
+    links = tmp_path / "links"
+    links.mkdir()
+    (links / "link.csv").symlink_to(Path("..") / "logs" / "a.csv")
+    items = [links, a] if order == "folder first" else [a, links]
+    first, second = (links / "link.csv", a) if order == "folder first" else (a, links / "link.csv")
+    said = f"{second}: the same file as {first}; it is processed once, as {first}"
+    with pytest.warns(gyrocore.InputWarning, match=f"^{re.escape(said)}$"):
+        assert batch.expand_inputs(items) == [first]
+
+
 def test_tune_names_its_sensor_option_for_an_unknown_sensor() -> None:
     """``gyrocore tune --sensor XV3500`` (``tune`` takes the name as text) blamed the rate:
     ``--rate-hz 10: unknown sensor 'XV3500' ...``, an option the user never gave."""
