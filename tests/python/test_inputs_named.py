@@ -380,8 +380,28 @@ def test_calibrate_names_its_options_in_the_static_bias_error() -> None:
     proc = gyrocore_cli("calibrate", f110, "--window", "+0", "+1", code=0, timeout=60)
     assert "covers 0.945 s of readings, shorter than --min-duration 1 s: the bias would be mostly noise" in proc.stdout
     proc = gyrocore_cli("calibrate", f110, "--min-duration", "1e9", code=0, timeout=60)
-    assert "(give the rest window, or a shorter --min-duration / larger --max-rate-dps if" in proc.stdout
+    assert ("within 2.86479 deg/s of zero (give --window T0 T1, or a shorter --min-duration / larger --max-rate-dps "
+            "if") in proc.stdout
     assert "min_duration" not in proc.stdout
+
+
+def test_calibrate_says_its_rest_threshold_in_deg_s_and_the_window_by_its_option(tmp_path: Path) -> None:
+    """``gyrocore calibrate LOG --max-rate-dps 1`` where no rest was found said ``within 0.0174533
+    rad/s of zero (give the rest window, ...)``: the threshold in another unit than the one given,
+    and the rest window by no option's name; the steadiest stretch was ``beyond 0.0174533 rad/s``."""
+    rng = np.random.default_rng(3)
+    t = np.arange(2000) * 0.01
+    steady = _write_log(tmp_path / "steady.csv", t, 0.03 + rng.normal(0, 0.001, len(t)))
+    proc = gyrocore_cli("calibrate", steady, "--max-rate-dps", "1", code=2, timeout=60)
+    assert proc.stderr.startswith(
+        f"gyrocore: error: {steady}: nothing to calibrate from: no rest found: no stretch of at least 1 s where the "
+        "rate is as steady as the log's quietest blocks and within 1 deg/s of zero (give --window T0 T1, or a "
+        "shorter --min-duration / larger --max-rate-dps if this gyro's bias is large); the steadiest stretch, ")
+    assert proc.stderr.endswith("as steady as a rest but beyond 1 deg/s: a steady turn, or a rest or straight drive "
+                                "with a bias that large (give --window T0 T1)\n")
+    assert "rad/s of zero" not in proc.stderr and "rest window" not in proc.stderr
+    proc = gyrocore_cli("calibrate", steady, "--max-rate-dps", "2.5", code=0, timeout=60)
+    assert "bias = 0.03" in proc.stdout
 
 
 def test_calibrate_takes_the_block_its_hint_names(tmp_path: Path) -> None:
