@@ -22,7 +22,11 @@ def read_gnss_csv(path: str | Path, **options: float) -> Fixes:
     require_options("read_gnss_csv (from_gnss's)", options, keyword_options(from_gnss))  # before the file is read
     path = Path(path)
     check_file(path)  # a named pipe was waited on for ever, a folder was "missing"
-    layout = csv_layout(path, ",")
+    return _gnss_csv(path, csv_layout(path, ","), **options)
+
+
+def _gnss_csv(path: Path, layout: CsvLayout, **options: float) -> Fixes:
+    """:func:`read_gnss_csv` of a file checked (:func:`check_file`) whose ``layout`` is read."""
     # a name may state its unit, as in a fixes.csv (t [s], speed [m/s], bearing [deg] was refused)
     names = _fix_columns(path, layout.header, _GNSS_UNITS, _GNSS_HEADER)
     cols = _read_rows(path, tuple(names.values()))
@@ -39,7 +43,11 @@ def read_fixes_csv(path: str | Path) -> Fixes:
     checked as it is read: a bad one is an error naming the file, line and column."""
     path = Path(path)
     check_file(path)  # a named pipe was waited on for ever, a folder was "missing"
-    layout = csv_layout(path, ",")
+    return _fixes_csv(path, csv_layout(path, ","))
+
+
+def _fixes_csv(path: Path, layout: CsvLayout) -> Fixes:
+    """:func:`read_fixes_csv` of a file checked (:func:`check_file`) whose ``layout`` is read."""
     names = _fix_columns(path, layout.header, _FIX_UNITS, _FIXES_HEADER)
     cols = _read_rows(path, tuple(names.values()))
     try:
@@ -115,14 +123,15 @@ def read_fixes_file(path: str | Path) -> Fixes:
     [deg, CW from north], through :func:`read_gnss_csv` with its defaults)."""
     path = Path(path)
     check_file(path)  # a folder or a pipe given as the fixes is named as such, not "missing"
-    header = csv_layout(path, ",").header
+    layout = csv_layout(path, ",")
+    header = layout.header
     if header and header[0].startswith(("$", "!")) and len(header[0]) in (6, 7):  # $GPRMC, !AIVDM: a talker and type
         raise ValueError(f"{path}: NMEA 0183 sentences ({header[0]},...), not a CSV file of fixes; their times are UTC: "
                          "read them with gyrocore.fixes.read_nmea, shift the times onto the gyro's clock, and write "
                          f"them as a fixes.csv ({','.join(FIXES_COLUMNS)}) or give them to process (fixes=)")
     if set(FIXES_COLUMNS) <= {split_unit(h)[0] for h in header}:
-        return read_fixes_csv(path)
+        return _fixes_csv(path, layout)  # checked once, its header read once
     if set(GNSS_COLUMNS) <= {split_unit(h)[0] for h in header}:
-        return read_gnss_csv(path)
+        return _gnss_csv(path, layout)
     raise ValueError(f"{path}: a fixes file has the columns {', '.join(FIXES_COLUMNS)} (t [s], headings in rad, CCW "
                      f"from east) or {', '.join(GNSS_COLUMNS)} (a gnss.csv); its header has {', '.join(sorted(header))}")

@@ -332,6 +332,29 @@ def test_a_fixes_reader_refuses_a_named_pipe(tmp_path: Path, reader: str) -> Non
     assert proc.stdout == f"{pipe}: a named pipe, socket or device, not a file\n", proc.stderr
 
 
+@pytest.mark.parametrize(("reader", "kind"), [("read_fixes_file", "fixes.csv"), ("read_fixes_file", "gnss.csv"),
+                                              ("read_fixes_csv", "fixes.csv"), ("read_gnss_csv", "gnss.csv")])
+def test_a_fixes_file_is_checked_once_by_each_reader(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                     reader: str, kind: str) -> None:
+    """``read_fixes_file`` checked its path (``check_file``) and then called ``read_fixes_csv`` or
+    ``read_gnss_csv``, which checked it again: each reader now checks a file once, itself."""
+    from gyrocore import fixes, fixes_files
+
+    path = tmp_path / kind
+    path.write_text("t,heading,sigma\n0,0.1,0.01\n1,0.2,0.01\n" if kind == "fixes.csv"
+                    else "t,speed,bearing\n0,5,10\n1,5,11\n2,5,12\n")
+    checked: list[Path] = []
+    check_file = fixes_files.check_file
+
+    def counted(p: Path) -> None:
+        checked.append(p)
+        check_file(p)
+
+    monkeypatch.setattr(fixes_files, "check_file", counted)
+    assert len(getattr(fixes, reader)(path).t) >= 2
+    assert checked == [path]
+
+
 def test_read_reference_file_takes_a_path_as_text() -> None:
     """``gyrocore.io.read_reference_file("reference.csv")`` (exported, and documented with a path)
     failed with ``AttributeError: 'str' object has no attribute 'is_file'``."""
