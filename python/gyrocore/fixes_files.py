@@ -13,7 +13,7 @@ from ._checks import keyword_options, require_options
 from .fixes import Fixes, check_all, from_gnss
 from .io._csvfile import CsvLayout, csv_layout, read_csv_columns
 from .io._paths import check_file
-from .io.units import HEADER_TIME_UNITS, _normal as normal_unit, split_unit
+from .io.units import HEADER_TIME_UNITS, normal_unit, split_unit
 
 
 def read_gnss_csv(path: str | Path, **options: float) -> Fixes:
@@ -103,14 +103,14 @@ def _read_rows(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:
 
 #: How an error about one row begins: the filter's (and :class:`Fixes`') ``fix N: column = value``,
 #: or :func:`from_gnss`'s ``column[N] is value`` and ``column must strictly increase: column[N] =``.
-_ROW_ERROR = re.compile(r"fix (\d+): (\w+) = |(?:\w+ must strictly increase: )?(\w+)\[(\d+)\] (?:is|=) ")
+ROW_ERROR = re.compile(r"fix (\d+): (\w+) = |(?:\w+ must strictly increase: )?(\w+)\[(\d+)\] (?:is|=) ")
 
 
 def _at_line(path: Path, layout: CsvLayout, names: dict[str, str], error: ValueError) -> str:
     """``error``, about row N of the file ``path``, with the line and column of its value in front
     (row N is ``layout.line(N)``, after the header; blank lines are refused by the reader). ``names``
     maps the column an error names to the header's name, for the errors whose N is the file's row."""
-    m = _ROW_ERROR.match(str(error))
+    m = ROW_ERROR.match(str(error))
     column = None if m is None else names.get(m[2] or m[3])
     if m is None or column is None:
         return f"{path}: {error}"

@@ -107,6 +107,28 @@ def _gnss_note(folder: Path, apart: str = "") -> str:
             "says nothing of it\n")
 
 
+def test_a_log_read_in_deg_s_keeps_no_subset_of_its_rates(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The rates' subset a reader keeps to tell a log in deg/s read as rad/s was kept of a log read
+    in deg/s too, where nothing is judged on it; it is kept of a log read in rad/s alone."""
+    from gyrocore.io import units
+
+    kept: list[int] = []
+    keep = units.UnitCheck._keep_subset
+
+    def counted(self: units.UnitCheck, rate: np.ndarray) -> None:
+        kept.append(len(rate))
+        keep(self, rate)
+
+    monkeypatch.setattr(units.UnitCheck, "_keep_subset", counted)
+    t = np.arange(3000) * 0.01
+    log = _write_log(tmp_path / "turns.csv", t, 30 * np.sin(t))
+    assert len(gyrocore.read_log(log, rate_unit="deg/s").process("raw").heading) == 3000
+    assert kept == []
+    with pytest.warns(gyrocore.InputWarning, match="rates look like deg/s, not rad/s"):
+        gyrocore.read_log(log)
+    assert sum(kept) == 3000
+
+
 def test_a_log_folders_gnss_csv_is_named_with_the_option_that_fuses_it(tmp_path: Path) -> None:
     """``gyrocore evaluate DIR`` and ``gyrocore process DIR`` of a log folder with a gnss.csv and no
     fixes.csv (comma_seg40) ignored its GNSS without a word, though ``--fixes DIR/gnss.csv`` takes
