@@ -35,7 +35,7 @@ MAX_SECONDS = 2.0**40
 #: Enough samples for a percentile; longer arrays are checked on a regular subset. The unit
 #: mistakes differ by a factor of 57 (deg/s read as rad/s), far more than the percentile of
 #: 10,000 values can be off; 100,000 took 2.5 ms of a 10^7-sample call (0.1 ms now).
-_SUBSET = 10_000
+SUBSET_SIZE = 10_000
 
 
 class InputWarning(UserWarning):
@@ -51,7 +51,7 @@ def typical_interval(t: FloatArray) -> float:
     """The median interval of ``t`` [s] (NaN with fewer than two finite times), on a regular subset
     of a long log (the median of its steps over as many samples): one gap or clock jump, which
     made the mean interval look like ms, moves it by nothing."""
-    step = max(1, len(t) // _SUBSET)
+    step = max(1, len(t) // SUBSET_SIZE)
     with np.errstate(invalid="ignore", over="ignore"):  # times near +-1e308 or NaN: the core names them
         intervals = np.diff(t[::step]) / step
         intervals = intervals[np.isfinite(intervals)]
@@ -61,7 +61,7 @@ def typical_interval(t: FloatArray) -> float:
 def unit_problems(t: FloatArray, rate: FloatArray) -> list[str]:
     """Messages for rates or timestamps that look like another unit (empty if none)."""
     problems = []
-    finite = rate[:: max(1, len(rate) // _SUBSET)]
+    finite = rate[:: max(1, len(rate) // SUBSET_SIZE)]
     magnitude = np.abs(finite[np.isfinite(finite)])
     # The 99th percentile can exceed the limit only if about 1 % of the values do (at least
     # 0.01 n - 0.01 of n); counting them costs a tenth of the percentile, computed only then.
@@ -147,12 +147,12 @@ def collected(notes: list[str]) -> Iterator[None]:
         _collector.notes = previous
 
 
-
 def keep_readings(what: str, hold: str, skip: str) -> str:
     """What to do about a reading the pipeline does not take, besides editing the data: the input
     policy, spelled ``hold`` and ``skip`` where the caller gives it (a keyword, a command-line
     option); ``what`` is what is kept ("them", "the file as it is")."""
     return f"or keep {what}: {hold} uses the last usable reading there, {skip} leaves the sample out"
+
 
 def warn(message: str) -> None:
     """Emit an :class:`InputWarning` attributed to the first caller outside this package (or

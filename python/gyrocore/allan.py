@@ -60,7 +60,6 @@ __all__ = [
 __dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 
-
 def plot(
     result: AllanResult,
     *,

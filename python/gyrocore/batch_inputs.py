@@ -24,11 +24,10 @@ def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
     its other files being read as logs. Raises ValueError for an item that
     matches nothing.
     """
-    found: list[Path] = []
-    given: list[Path] = []  # the paths named themselves (not a folder's or a pattern's)
+    # each input with how it came: named (None), in a folder (the folder), or by a pattern (its text)
+    found: list[tuple[Path, Path | str | None]] = []
     for item in items:
         named, matches = _matches(item)
-        given += matches if named else []
         for m in matches:
             if not named and _in_log_folder(m):  # a pattern's reference.csv: part of its log
                 m = m.parent
@@ -40,18 +39,35 @@ def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
                     raise ValueError(f"{m}: no logs in this folder ({', '.join(io.FILE_SUFFIXES)}, log or bag folders)"
                                      + _dataset_hint(m))
                 _warn_unsearched(m, [c for c in entries if c.is_dir() and not _named_as_input(c)])
-                found += inside
+                found += [(c, m) for c in inside]
             elif named or _named_as_input(m):
-                found.append(m)
+                found.append((m, None if named else str(item)))
     # One input per file or folder however it was reached (a pattern through a link that loops
     # back reaches the same files under ever longer names).
-    unique: dict[Path, Path] = {}
-    for p in found:
-        kept = unique.setdefault(_identity(p), p)
-        if kept is not p and any(p is g for g in given):  # a file named twice (or as itself and through a link) lost one name without a word
-            same = "given more than once" if p == kept else f"the same {'folder' if p.is_dir() else 'file'} as {kept}"
-            warn(f"{p}: {same}; it is processed once, as {kept}")
-    return list(unique.values())
+    unique: dict[Path, tuple[Path, Path | str | None]] = {}
+    for entry in found:
+        kept = unique.setdefault(_identity(entry[0]), entry)
+        if kept is not entry and (said := _collision(entry, kept)):
+            warn(said)
+    return [p for p, _ in unique.values()]
+
+
+def _collision(dropped: tuple[Path, Path | str | None], kept: tuple[Path, Path | str | None]) -> str | None:
+    """What to say of an input ``dropped`` as the one ``kept`` (each with how it came: named, the
+    folder it is in, a pattern), in either order: a path named that another entry reaches lost one
+    name without a word. Nothing where neither was named, nor for a pattern that reaches a file
+    named too (the user gave it once by name)."""
+    (p, p_via), (k, k_via) = dropped, kept
+    if p_via is not None and k_via is not None:
+        return None
+    if p != k:  # as itself and through a link
+        return f"{p}: the same {'folder' if p.is_dir() else 'file'} as {k}; it is processed once, as {k}"
+    if p_via is None and k_via is None:
+        return f"{p}: given more than once; it is processed once, as {k}"
+    folder = k_via if p_via is None else p_via
+    if isinstance(folder, Path):
+        return f"{p}: named, and also reached through the folder {folder}; it is processed once"
+    return None
 
 
 def _dataset_hint(folder: Path) -> str:

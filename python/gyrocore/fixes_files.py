@@ -13,7 +13,7 @@ from ._checks import keyword_options, require_options
 from .fixes import Fixes, check_all, from_gnss
 from .io._csvfile import CsvLayout, csv_layout, read_csv_columns
 from .io._paths import check_file
-from .io.units import HEADER_TIME_UNITS, _normal as normal_unit, split_unit
+from .io.units import HEADER_TIME_UNITS, normal_unit, split_unit
 
 
 def read_gnss_csv(path: str | Path, **options: float) -> Fixes:
@@ -22,7 +22,11 @@ def read_gnss_csv(path: str | Path, **options: float) -> Fixes:
     require_options("read_gnss_csv (from_gnss's)", options, keyword_options(from_gnss))  # before the file is read
     path = Path(path)
     check_file(path)  # a named pipe was waited on for ever, a folder was "missing"
-    layout = csv_layout(path, ",")
+    return _gnss_csv(path, csv_layout(path, ","), **options)
+
+
+def _gnss_csv(path: Path, layout: CsvLayout, **options: float) -> Fixes:
+    """:func:`read_gnss_csv` of a file checked (:func:`check_file`) whose ``layout`` is read."""
     # a name may state its unit, as in a fixes.csv (t [s], speed [m/s], bearing [deg] was refused)
     names = _fix_columns(path, layout.header, _GNSS_UNITS, _GNSS_HEADER)
     cols = _read_rows(path, tuple(names.values()))
@@ -39,7 +43,11 @@ def read_fixes_csv(path: str | Path) -> Fixes:
     checked as it is read: a bad one is an error naming the file, line and column."""
     path = Path(path)
     check_file(path)  # a named pipe was waited on for ever, a folder was "missing"
-    layout = csv_layout(path, ",")
+    return _fixes_csv(path, csv_layout(path, ","))
+
+
+def _fixes_csv(path: Path, layout: CsvLayout) -> Fixes:
+    """:func:`read_fixes_csv` of a file checked (:func:`check_file`) whose ``layout`` is read."""
     names = _fix_columns(path, layout.header, _FIX_UNITS, _FIXES_HEADER)
     cols = _read_rows(path, tuple(names.values()))
     try:
@@ -95,14 +103,14 @@ def _read_rows(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:
 
 #: How an error about one row begins: the filter's (and :class:`Fixes`') ``fix N: column = value``,
 #: or :func:`from_gnss`'s ``column[N] is value`` and ``column must strictly increase: column[N] =``.
-_ROW_ERROR = re.compile(r"fix (\d+): (\w+) = |(?:\w+ must strictly increase: )?(\w+)\[(\d+)\] (?:is|=) ")
+ROW_ERROR = re.compile(r"fix (\d+): (\w+) = |(?:\w+ must strictly increase: )?(\w+)\[(\d+)\] (?:is|=) ")
 
 
 def _at_line(path: Path, layout: CsvLayout, names: dict[str, str], error: ValueError) -> str:
     """``error``, about row N of the file ``path``, with the line and column of its value in front
     (row N is ``layout.line(N)``, after the header; blank lines are refused by the reader). ``names``
     maps the column an error names to the header's name, for the errors whose N is the file's row."""
-    m = _ROW_ERROR.match(str(error))
+    m = ROW_ERROR.match(str(error))
     column = None if m is None else names.get(m[2] or m[3])
     if m is None or column is None:
         return f"{path}: {error}"
@@ -115,14 +123,15 @@ def read_fixes_file(path: str | Path) -> Fixes:
     [deg, CW from north], through :func:`read_gnss_csv` with its defaults)."""
     path = Path(path)
     check_file(path)  # a folder or a pipe given as the fixes is named as such, not "missing"
-    header = csv_layout(path, ",").header
+    layout = csv_layout(path, ",")
+    header = layout.header
     if header and header[0].startswith(("$", "!")) and len(header[0]) in (6, 7):  # $GPRMC, !AIVDM: a talker and type
         raise ValueError(f"{path}: NMEA 0183 sentences ({header[0]},...), not a CSV file of fixes; their times are UTC: "
                          "read them with gyrocore.fixes.read_nmea, shift the times onto the gyro's clock, and write "
                          f"them as a fixes.csv ({','.join(FIXES_COLUMNS)}) or give them to process (fixes=)")
     if set(FIXES_COLUMNS) <= {split_unit(h)[0] for h in header}:
-        return read_fixes_csv(path)
+        return _fixes_csv(path, layout)  # checked once, its header read once
     if set(GNSS_COLUMNS) <= {split_unit(h)[0] for h in header}:
-        return read_gnss_csv(path)
+        return _gnss_csv(path, layout)
     raise ValueError(f"{path}: a fixes file has the columns {', '.join(FIXES_COLUMNS)} (t [s], headings in rad, CCW "
                      f"from east) or {', '.join(GNSS_COLUMNS)} (a gnss.csv); its header has {', '.join(sorted(header))}")

@@ -19,7 +19,7 @@ import numpy as np
 from ._checks import keyword_options, require_options, shown, warn
 from ._extras import require
 from .fixes import Fixes, from_gnss
-from .fixes_files import _ROW_ERROR
+from .fixes_files import ROW_ERROR
 from .io._csvfile import refuse_not_text
 from .io._paths import check_file
 
@@ -76,7 +76,7 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
         return from_gnss(np.array(times, dtype=float), course, speed, **options)
     except ValueError as e:
         # from_gnss names a sample by its index in time order: the file names its line
-        m = _ROW_ERROR.match(str(e))
+        m = ROW_ERROR.match(str(e))
         if m is None or m[4] is None:
             raise
         raise ValueError(f"{path}: line {int(lines[int(m[4])])}: {e}") from None

@@ -69,6 +69,7 @@ UNIT_SAMPLES = 2
 #: the core's 64-bit index.
 MAX_INDEX = 2**63
 
+
 class Pipeline:
     """Streaming heading pipeline (correction -> threshold -> low-pass -> HDR -> de-lag -> integrate).
 

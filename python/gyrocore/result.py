@@ -110,6 +110,8 @@ def filled(result: HeadingResult, arrays: Filled | None) -> HeadingResult:
     heading, rate, drift = arrays
     return replace(result, heading=result.heading if heading is None else heading,
                    rate=result.rate if rate is None else rate, drift=result.drift if drift is None else drift)
+
+
 def fix_output_flags(outputs: tuple[str, ...] | list[str]) -> tuple[bool, bool, bool]:
     """Whether ``outputs`` (checked by :func:`output_flags`) asks for each of :data:`FIX_OUTPUTS`."""
     heading_sigma, bias, scale = (name in outputs for name in FIX_OUTPUTS)

@@ -19,12 +19,10 @@ FORMAT_VERSION = 1
 FORMAT_NAME = "gyrocore-params"
 
 
-
 def validate(preset: str, overrides: Mapping[str, Any]) -> None:
     """Raise ValueError unless the core accepts ``overrides`` on ``preset`` (it checks every value
     when a pipeline is built)."""
     Pipeline(preset, **overrides, bias=0.0)
-
 
 
 @dataclass(frozen=True)

@@ -299,7 +299,7 @@ def test_cli_evaluate_prints_the_bias_source_and_rests_of_each_method() -> None:
 def test_cli_evaluate_says_once_that_a_log_has_no_rest() -> None:
     proc = run_cli("evaluate", str(real_log_path("comma_seg40")), "--preset", "static_bias", "--preset", "hdr")
     assert proc.returncode == 0, proc.stderr
-    # besides the note that its gnss.csv is not used (tests/python/test_adversarial_third.py)
+    # besides the note that its gnss.csv is not used (tests/python/test_inputs_named.py)
     lines = [line for line in proc.stderr.splitlines() if not line.startswith("gyrocore: note:")]
     warned = f"gyrocore: warning: {real_log_path('comma_seg40')}: preset '"  # named by the path given
     assert len(lines) == 2 and all(line.startswith(warned) for line in lines)

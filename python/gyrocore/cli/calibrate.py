@@ -7,6 +7,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import re
 from pathlib import Path
 from typing import Any
 
@@ -15,6 +16,7 @@ import numpy as np
 from .. import calibration, io
 from .._checks import UnitError
 from .._rests import SPEED_THRESHOLD, find_rests
+from ..calibration.rest import MAX_RATE
 from ..wholelog import times_ok
 from ..window import Window
 from ._common import (
@@ -115,7 +117,7 @@ def run(args: argparse.Namespace) -> int:
         results["static_bias"] = static.to_dict()["calibration"]
         results["rest_found_by"] = found_by
     except ValueError as e:
-        results["static_bias"] = {"error": _in_option_words(str(e))}
+        results["static_bias"] = {"error": _in_option_words(str(e), args.max_rate_dps)}
     fit: calibration.Calibration | None = None
     if log.t_ref is not None and log.heading_ref is not None:
         fit_window = None if span is None else span.resolve(float(log.t[0]))
@@ -166,17 +168,27 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-#: The static bias's settings as the library's errors name them, and as this command takes them.
-_OPTION_WORDS = (("min_duration = ", "--min-duration "), ("a shorter min_duration / larger max_rate",
-                                                         "a shorter --min-duration / larger --max-rate-dps"),
-                 ("give block=", "give --block "))
+#: The static bias's settings as the library's errors name them (regular expressions), and as this
+#: command takes them; ``{max_rate_dps}`` is the largest reading at rest in deg/s, as given (the
+#: library says it in rad/s, and of the rest window it has no option for).
+_OPTION_WORDS = (
+    (r"min_duration = ", "--min-duration "),
+    (r"a shorter min_duration / larger max_rate", "a shorter --min-duration / larger --max-rate-dps"),
+    (r"give block=", "give --block "),
+    (r"within \S+ rad/s of zero \(give the rest window", "within {max_rate_dps:g} deg/s of zero (give --window T0 T1"),
+    (r"beyond \S+ rad/s: ", "beyond {max_rate_dps:g} deg/s: "),
+    (r"\(give a rest window or the bias\)", "(give --window T0 T1)"),
+)
 
 
-def _in_option_words(message: str) -> str:
+def _in_option_words(message: str, max_rate_dps: float | None) -> str:
     """``message`` naming this command's options where the library's names the keyword arguments
-    (``shorter than min_duration = 1 s`` left a command-line user to find ``--min-duration``)."""
+    (``shorter than min_duration = 1 s`` left a command-line user to find ``--min-duration``), and
+    the largest rate at rest in deg/s (``max_rate_dps``, None: the default) as the user gave it."""
+    dps = math.degrees(MAX_RATE) if max_rate_dps is None else max_rate_dps
     for library, option in _OPTION_WORDS:
-        message = message.replace(library, option)
+        words = option.format(max_rate_dps=dps)
+        message = re.sub(library, lambda _: words, message)
     return message
 
 

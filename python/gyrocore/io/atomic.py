@@ -9,6 +9,7 @@ from __future__ import annotations
 import errno
 import os
 import secrets
+import stat
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -32,9 +33,11 @@ def output_folder_missing(path: Path) -> str:
     return f"{path}: the folder {parent} does not exist; create it or write elsewhere"
 
 
-def cannot_write_in(path: Path, why: str | None) -> str:
-    """Why the output ``path`` cannot be written in its folder (named, not the hidden temporary file's)."""
-    return f"{path}: cannot write in {path.parent} ({why}); write the output elsewhere"
+def cannot_write_in(path: Path, why: str | None, folder: Path | None = None) -> str:
+    """Why the output ``path`` cannot be written in its folder, or in ``folder`` where a link leads
+    (named, not the hidden temporary file's)."""
+    where = path.parent if folder is None or folder == path.parent else folder
+    return f"{path}: cannot write in {where} ({why}); write the output elsewhere"
 
 
 def make_folder(path: Path) -> None:
@@ -84,13 +87,21 @@ class StagedFile:
     :meth:`discard` (call it in a ``finally``) removes it unless committed, so an error or an
     interruption never leaves ``path`` half written. A hard kill can leave the hidden temporary
     file (``.NAME.*.tmp``) behind, but never a partial ``path``.
+
+    Where ``path`` is a symbolic link, the file it leads to (:attr:`target`, its final target) is
+    staged beside and replaced, and the link is kept: renamed over, the link became a regular file
+    and the file it led to kept the old contents. The new file takes the permission bits of the
+    file it replaces (a calibration kept at 0600 stays 0600); a new name gets the umask's.
     """
 
     def __init__(self, path: str | Path) -> None:
         path = Path(path)  # exported: a path as text failed on a missing parent
         self.path = path
+        #: The file that is replaced: ``path``, or the final target of ``path`` where it is a link
+        #: (also one that leads nowhere yet, whose target is then created).
+        self.target = Path(os.path.realpath(path)) if path.is_symlink() else path
         for _ in range(3):
-            tmp = path.parent / f".{path.name}.{secrets.token_hex(6)}.tmp"
+            tmp = self.target.parent / f".{self.target.name}.{secrets.token_hex(6)}.tmp"
             _live.add(tmp)
             try:
                 # created exclusively with the umask's permissions (mkstemp's 0600 would hide the
@@ -101,18 +112,22 @@ class StagedFile:
                 continue
             except (FileNotFoundError, NotADirectoryError):  # named after the output, not the hidden file
                 _live.discard(tmp)
-                raise FileNotFoundError(output_folder_missing(path)) from None
+                if self.target == path:
+                    raise FileNotFoundError(output_folder_missing(path)) from None
+                raise FileNotFoundError(f"{path}: a symbolic link to {os.readlink(path)!r}, whose folder "
+                                        f"{self.target.parent} does not exist; create it or write elsewhere") from None
             except OSError as e:
                 _live.discard(tmp)
                 if not isinstance(e, PermissionError) and e.errno != errno.EROFS:
                     raise
-                raise PermissionError(cannot_write_in(path, e.strerror)) from None
+                raise PermissionError(cannot_write_in(path, e.strerror, self.target.parent)) from None
             self.tmp = tmp
             return
-        raise FileExistsError(f"{path.parent}: cannot create a temporary file for {path.name}")
+        raise FileExistsError(f"{self.target.parent}: cannot create a temporary file for {self.target.name}")
 
     def commit(self) -> None:
-        """Make the temporary file ``path``: on disk first, then renamed (atomic on one filesystem).
+        """Make the temporary file ``path`` (its :attr:`target`): on disk first, given the permission
+        bits of the file it replaces, then renamed (atomic on one filesystem).
 
         Raises KeyboardInterrupt instead if a signal came during the run, even one whose exception a
         library swallowed (see :mod:`gyrocore._signals`): an interrupted run keeps the old file.
@@ -122,8 +137,14 @@ class StagedFile:
             os.fsync(fd)
         finally:
             os.close(fd)
+        try:
+            mode = stat.S_IMODE(os.stat(self.target).st_mode)
+        except OSError:  # nothing there yet: the umask's permissions stay
+            mode = None
+        if mode is not None:  # after the sync, which opens the file for writing (a 0400 file's mode)
+            os.chmod(self.tmp, mode)
         _signals.check()
-        os.replace(self.tmp, self.path)
+        os.replace(self.tmp, self.target)
         _live.discard(self.tmp)
 
     def discard(self) -> None:
@@ -142,8 +163,9 @@ def discard_all() -> None:
 
 @contextmanager
 def atomic_path(path: str | Path) -> Iterator[Path]:
-    """A temporary path next to ``path``, renamed to ``path`` when the block ends without error and
-    removed otherwise (also on KeyboardInterrupt)."""
+    """A temporary path next to ``path`` (next to the file it leads to, for a link), renamed to it
+    when the block ends without error and removed otherwise (also on KeyboardInterrupt); see
+    :class:`StagedFile`."""
     staged = StagedFile(path)
     try:
         yield staged.tmp

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .._arrays import FloatArray
-from .._checks import _SUBSET, INTERVAL_LIMIT, typical_interval, unit_problems
+from .._checks import INTERVAL_LIMIT, SUBSET_SIZE, typical_interval, unit_problems
 
 if TYPE_CHECKING:
     from .source import ReadOptions
@@ -25,7 +25,7 @@ if TYPE_CHECKING:
 TIME_UNITS = {"s": 1.0, "ms": 1e3, "us": 1e6, "ns": 1e9}
 #: Rate units of a file.
 RATE_UNITS = ("rad/s", "deg/s")
-#: How a header may write each unit, normalised by :func:`_normal` (lower case; no spaces, ``*``,
+#: How a header may write each unit, normalised by :func:`normal_unit` (lower case; no spaces, ``*``,
 #: ``.`` or ``^``), e.g. ``#timestamp [ns]``, ``w_RS_S_x [rad s^-1]``, ``gyro_z_dps``, ``t_ms``.
 HEADER_TIME_UNITS = {
     **dict.fromkeys(("s", "sec", "secs", "second", "seconds"), "s"),
@@ -59,8 +59,8 @@ class UnitCheck:
     Feed it every chunk (in SI units, after conversion); :meth:`problems` then lists what looks like
     another unit. Intervals are judged on the first :data:`HEAD_SAMPLES` samples (however they
     were chunked); rates on the whole stream, since a log may begin with a long rest: large ones
-    as :func:`gyrocore.process` judges an array, on a regular subset of the stream's rates, small
-    ones on the largest ``|rate|``.
+    as :func:`gyrocore.process` judges an array, on a regular subset of the stream's rates (kept
+    only where they are read in rad/s), small ones on the largest ``|rate|``.
     """
 
     def __init__(self, options: ReadOptions) -> None:
@@ -74,7 +74,9 @@ class UnitCheck:
         self._gaps = 0  # intervals longer than INTERVAL_LIMIT
         # every ``_stride``-th rate of the stream (a regular subset of bounded size, the stride
         # doubled as it fills): a 500 Hz log in deg/s whose turns began after its first 131 s
-        # (HEAD_SAMPLES) was never told of its unit
+        # (HEAD_SAMPLES) was never told of its unit. Kept only for a log read in rad/s, the one
+        # unit they can show to be another's (a log in deg/s is never told it is in deg/s).
+        self._judges_rates = options.rate_unit == "rad/s"
         self._subset: list[FloatArray] = []
         self._stride = 1
         self._seen = 0
@@ -84,7 +86,8 @@ class UnitCheck:
         """Account for one chunk (t [s], rate [rad/s])."""
         largest = np.max(np.abs(rate), initial=0.0, where=np.isfinite(rate))
         self._max_rate = max(self._max_rate, float(largest))
-        self._keep_subset(rate)
+        if self._judges_rates:
+            self._keep_subset(rate)
         if len(t):
             edges = t if self._last_time is None else np.concatenate(([self._last_time], t))
             self._intervals += len(edges) - 1
@@ -103,12 +106,12 @@ class UnitCheck:
 
     def _keep_subset(self, rate: FloatArray) -> None:
         """Keep the rates of the stream's samples ``0, s, 2 s, ...`` (``s``: the stride), at most
-        about 2 :data:`~gyrocore._checks._SUBSET` of them, whatever the chunks."""
+        about 2 :data:`~gyrocore._checks.SUBSET_SIZE` of them, whatever the chunks."""
         kept = np.array(rate[(-self._seen) % self._stride :: self._stride])
         self._subset.append(kept)
         self._seen += len(rate)
         self._kept += len(kept)  # counted, not summed over the list: a long log's list is long
-        while self._kept > 2 * _SUBSET:
+        while self._kept > 2 * SUBSET_SIZE:
             whole = np.concatenate(self._subset)[::2]
             self._subset, self._kept, self._stride = [whole], len(whole), self._stride * 2
 
@@ -117,7 +120,7 @@ class UnitCheck:
         if self._first is None:
             self._judge_head()
         problems = []
-        if self._options.rate_unit == "rad/s" and self._subset:
+        if self._judges_rates and self._subset:
             # the check of gyrocore.process (it judges rates only when given one timestamp)
             rates = np.concatenate(self._subset)
             problems += [f"{p}; or use rate_unit='deg/s' (--rate-unit deg/s)" for p in unit_problems(rates[:1], rates)]
@@ -202,7 +205,7 @@ def _header_states_deg(options: ReadOptions) -> bool:
     return any(rate_unit_named(split_unit(c)[1] or "") == "deg/s" for c in columns)
 
 
-def _normal(unit: str) -> str:
+def normal_unit(unit: str) -> str:
     return re.sub(r"[\s*.^]", "", unit.lower())
 
 
@@ -210,20 +213,20 @@ def time_unit_named(text: str) -> str:
     """``text`` as one of :data:`TIME_UNITS` where it is a spelling a header may state (``sec``,
     ``msec``, ``nanoseconds``), else as given (and then refused where it is checked): the option
     took only ``s`` where a header read ``t_sec``."""
-    return HEADER_TIME_UNITS.get(_normal(text), text) if isinstance(text, str) else text
+    return HEADER_TIME_UNITS.get(normal_unit(text), text) if isinstance(text, str) else text
 
 
 def rate_unit_named(text: str) -> str:
     """``text`` as one of :data:`RATE_UNITS` where it is a spelling a header may state (``dps``,
     ``deg/sec``, ``°/s``), else as given, as :func:`time_unit_named`."""
-    return HEADER_RATE_UNITS.get(_normal(text), text) if isinstance(text, str) else text
+    return HEADER_RATE_UNITS.get(normal_unit(text), text) if isinstance(text, str) else text
 
 
 def is_unit(text: str) -> bool:
     """Whether ``text`` is a time or rate unit as a header writes it, alone (``s``, ``[deg/s]``,
     ``(ms)``): what a row of units under a header holds."""
     m = _BRACKETED.match(text.strip())
-    unit = _normal(text if m is None or m["base"] else (m["square"] if m["square"] is not None else m["round"]))
+    unit = normal_unit(text if m is None or m["base"] else (m["square"] if m["square"] is not None else m["round"]))
     return unit in HEADER_TIME_UNITS or unit in HEADER_RATE_UNITS
 
 
@@ -238,7 +241,7 @@ def split_unit(column: str) -> tuple[str, str | None]:
     if m and m["base"]:
         return m["base"], (m["square"] if m["square"] is not None else m["round"]).strip()
     base, sep, suffix = name.rpartition("_")
-    if sep and base and (_normal(suffix) in HEADER_TIME_UNITS or _normal(suffix) in HEADER_RATE_UNITS):
+    if sep and base and (normal_unit(suffix) in HEADER_TIME_UNITS or normal_unit(suffix) in HEADER_RATE_UNITS):
         return base, suffix
     return name, None
 
@@ -263,7 +266,7 @@ def _stated_unit(path: Path, column: str, given: str | None, option: str, defaul
     written = split_unit(column)[1]
     if written is None:
         return given or default
-    stated = table.get(_normal(written))
+    stated = table.get(normal_unit(written))
     # a known unit of the other kind in a ``_suffix`` is part of the name (``t_dps`` is no time unit)
     if stated is None and written == column.rpartition("_")[2]:
         return given or default
@@ -292,7 +295,7 @@ def header_options(path: Path, header: list[str] | None, options: ReadOptions) -
     time = _header_column(path, header, options.time, "--time-col")
     time_unit = _stated_unit(path, time, options.time_unit, "--time-unit", "s")
     written = split_unit(time)[1]
-    assumed = options.time_unit is None and (written is None or _normal(written) not in HEADER_TIME_UNITS)
+    assumed = options.time_unit is None and (written is None or normal_unit(written) not in HEADER_TIME_UNITS)
     if options.gyro_cols is None:
         rate = _header_column(path, header, options.rate, "--rate-col")
         rate_unit = _stated_unit(path, rate, options.rate_unit, "--rate-unit", "rad/s")

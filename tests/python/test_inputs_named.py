@@ -1,6 +1,6 @@
-"""Inputs found by a third adversarial pass over the Python API and the command line: errors that
-named no file line where the command line does, warnings a log folder went without, and options a
-user was not told of."""
+"""Bad input named where it is, in the Python API as on the command line: a bad sample by its file
+and line, a log folder's files by their folder, a file given twice, an option by the name the
+command takes (not the library's keyword), a path given as text; and outputs written whole."""
 
 from __future__ import annotations
 
@@ -107,6 +107,28 @@ def _gnss_note(folder: Path, apart: str = "") -> str:
             "says nothing of it\n")
 
 
+def test_a_log_read_in_deg_s_keeps_no_subset_of_its_rates(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The rates' subset a reader keeps to tell a log in deg/s read as rad/s was kept of a log read
+    in deg/s too, where nothing is judged on it; it is kept of a log read in rad/s alone."""
+    from gyrocore.io import units
+
+    kept: list[int] = []
+    keep = units.UnitCheck._keep_subset
+
+    def counted(self: units.UnitCheck, rate: np.ndarray) -> None:
+        kept.append(len(rate))
+        keep(self, rate)
+
+    monkeypatch.setattr(units.UnitCheck, "_keep_subset", counted)
+    t = np.arange(3000) * 0.01
+    log = _write_log(tmp_path / "turns.csv", t, 30 * np.sin(t))
+    assert len(gyrocore.read_log(log, rate_unit="deg/s").process("raw").heading) == 3000
+    assert kept == []
+    with pytest.warns(gyrocore.InputWarning, match="rates look like deg/s, not rad/s"):
+        gyrocore.read_log(log)
+    assert sum(kept) == 3000
+
+
 def test_a_log_folders_gnss_csv_is_named_with_the_option_that_fuses_it(tmp_path: Path) -> None:
     """``gyrocore evaluate DIR`` and ``gyrocore process DIR`` of a log folder with a gnss.csv and no
     fixes.csv (comma_seg40) ignored its GNSS without a word, though ``--fixes DIR/gnss.csv`` takes
@@ -167,6 +189,33 @@ def test_a_file_named_twice_in_a_batch_is_said(tmp_path: Path) -> None:
     assert "warning" not in proc.stderr
 
 
+@pytest.mark.parametrize("order", ["folder first", "file first"])
+def test_a_file_named_and_reached_through_its_folder_is_said_in_either_order(tmp_path: Path, order: str) -> None:
+    """``expand_inputs(["logs", "logs/a.csv"])`` warned that ``logs/a.csv`` was given more than once
+    (it was named once, and reached once through its folder); ``["logs/a.csv", "logs"]`` said
+    nothing. Each order now says how the other came; a link in a folder to a file named is the same
+    file, in either order too."""
+    from gyrocore import batch
+
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    a = _write_log(logs / "a.csv", np.arange(10) * 0.01, np.zeros(10))
+    _write_log(logs / "b.csv", np.arange(10) * 0.01, np.zeros(10))
+    items = [logs, a] if order == "folder first" else [a, logs]
+    said = f"{a}: named, and also reached through the folder {logs}; it is processed once"
+    with pytest.warns(gyrocore.InputWarning, match=f"^{re.escape(said)}$") as caught:
+        assert batch.expand_inputs(items) == [a, logs / "b.csv"]
+    assert len(caught) == 1
+    links = tmp_path / "links"
+    links.mkdir()
+    (links / "link.csv").symlink_to(Path("..") / "logs" / "a.csv")
+    items = [links, a] if order == "folder first" else [a, links]
+    first, second = (links / "link.csv", a) if order == "folder first" else (a, links / "link.csv")
+    said = f"{second}: the same file as {first}; it is processed once, as {first}"
+    with pytest.warns(gyrocore.InputWarning, match=f"^{re.escape(said)}$"):
+        assert batch.expand_inputs(items) == [first]
+
+
 def test_tune_names_its_sensor_option_for_an_unknown_sensor() -> None:
     """``gyrocore tune --sensor XV3500`` (``tune`` takes the name as text) blamed the rate:
     ``--rate-hz 10: unknown sensor 'XV3500' ...``, an option the user never gave."""
@@ -222,6 +271,76 @@ def test_a_calibration_save_that_fails_keeps_the_previous_file(tmp_path: Path, m
     assert calibration.Calibration.load(path).bias == cal.bias
 
 
+@pytest.mark.skipif(os.name == "nt", reason="symbolic links and POSIX permission bits")
+def test_a_calibration_saved_through_a_link_replaces_the_file_it_leads_to(tmp_path: Path) -> None:
+    """``Calibration.save("current.json")``, a link to ``real.json``, renamed its new file over the
+    link: the link became a regular file and ``real.json`` kept the old calibration; the new file
+    had the umask's permissions where the old one was 0600."""
+    from gyrocore import calibration
+
+    real = tmp_path / "cals" / "real.json"
+    real.parent.mkdir()
+    calibration.Calibration(method="static_bias", bias=0.01).save(real)
+    real.chmod(0o600)
+    link = tmp_path / "current.json"
+    link.symlink_to(Path("cals") / "real.json")
+    calibration.Calibration(method="static_bias", bias=0.02).save(link)
+    assert link.is_symlink() and os.readlink(link) == str(Path("cals") / "real.json")
+    assert calibration.Calibration.load(real).bias == 0.02
+    assert real.stat().st_mode & 0o777 == 0o600
+    assert sorted(p.name for p in tmp_path.rglob("*")) == ["cals", "current.json", "real.json"]  # no temporary file
+
+
+@pytest.mark.skipif(os.name == "nt", reason="symbolic links and POSIX permission bits")
+def test_an_atomic_output_keeps_the_replaced_files_mode_and_a_new_one_the_umasks(tmp_path: Path) -> None:
+    """Every output written whole (``atomic_path``, ``StagedFile``: ``--out``, ``--save``,
+    ``ParameterSet.write``) keeps the permission bits of the file it replaces, even one it may not
+    write itself (0400); a new file gets the umask's, and a dangling link's target is created."""
+    from gyrocore import io
+
+    old = tmp_path / "old.txt"
+    old.write_text("old")
+    old.chmod(0o400)
+    with io.atomic_path(old) as tmp:
+        tmp.write_text("new")
+    assert old.read_text() == "new" and old.stat().st_mode & 0o777 == 0o400
+    umask = os.umask(0o022)
+    os.umask(umask)
+    with io.atomic_path(tmp_path / "fresh.txt") as tmp:
+        tmp.write_text("x")
+    assert (tmp_path / "fresh.txt").stat().st_mode & 0o777 == 0o666 & ~umask
+    dangling = tmp_path / "dangling.txt"
+    dangling.symlink_to("later.txt")
+    with io.atomic_path(dangling) as tmp:
+        tmp.write_text("y")
+    assert dangling.is_symlink() and (tmp_path / "later.txt").read_text() == "y"
+    (tmp_path / "nowhere.txt").symlink_to(Path("gone") / "x.txt")
+    with pytest.raises(FileNotFoundError, match=f"^{re.escape(str(tmp_path / 'nowhere.txt'))}: a symbolic link to "
+                                                f"'gone/x.txt', whose folder {re.escape(str(tmp_path / 'gone'))} "
+                                                "does not exist; create it or write elsewhere$"):
+        io.StagedFile(tmp_path / "nowhere.txt")
+
+
+def test_the_command_line_refuses_an_output_link_as_before(tmp_path: Path) -> None:
+    """An output that is a link (dangling too) is refused as existing without ``--overwrite``, and
+    one that leads to an input is refused even with it: written through the link, it would replace
+    the input."""
+    log = _write_log(tmp_path / "a.csv", np.arange(300) * 0.01, np.full(300, 0.001))
+    (tmp_path / "to-input.json").symlink_to(log.name)
+    (tmp_path / "dangling.json").symlink_to("gone.json")
+    proc = gyrocore_cli("calibrate", log, "--window", "+0", "+2", "--save", tmp_path / "dangling.json", code=2)
+    assert proc.stderr == (f"gyrocore: error: {tmp_path / 'dangling.json'} already exists; pass --overwrite to "
+                           "replace it, or write elsewhere (nothing was written)\n")
+    proc = gyrocore_cli("calibrate", log, "--window", "+0", "+2", "--save", tmp_path / "to-input.json", "--overwrite",
+                        code=2)
+    assert proc.stderr == (f"gyrocore: error: refusing to write {tmp_path / 'to-input.json'} over or inside the input "
+                           f"{log}; write it elsewhere\n")
+    before = log.read_bytes()
+    gyrocore_cli("calibrate", log, "--window", "+0", "+2", "--save", tmp_path / "dangling.json", "--overwrite", code=0)
+    assert (tmp_path / "dangling.json").is_symlink() and "bias" in (tmp_path / "gone.json").read_text()
+    assert log.read_bytes() == before
+
+
 @pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="named pipes")
 @pytest.mark.parametrize("reader", ["read_nmea", "read_gnss_csv", "read_fixes_csv"])
 def test_a_fixes_reader_refuses_a_named_pipe(tmp_path: Path, reader: str) -> None:
@@ -233,6 +352,29 @@ def test_a_fixes_reader_refuses_a_named_pipe(tmp_path: Path, reader: str) -> Non
     code = f"from gyrocore import fixes\ntry:\n    fixes.{reader}({str(pipe)!r})\nexcept ValueError as e:\n    print(e)"
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert proc.stdout == f"{pipe}: a named pipe, socket or device, not a file\n", proc.stderr
+
+
+@pytest.mark.parametrize(("reader", "kind"), [("read_fixes_file", "fixes.csv"), ("read_fixes_file", "gnss.csv"),
+                                              ("read_fixes_csv", "fixes.csv"), ("read_gnss_csv", "gnss.csv")])
+def test_a_fixes_file_is_checked_once_by_each_reader(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                     reader: str, kind: str) -> None:
+    """``read_fixes_file`` checked its path (``check_file``) and then called ``read_fixes_csv`` or
+    ``read_gnss_csv``, which checked it again: each reader now checks a file once, itself."""
+    from gyrocore import fixes, fixes_files
+
+    path = tmp_path / kind
+    path.write_text("t,heading,sigma\n0,0.1,0.01\n1,0.2,0.01\n" if kind == "fixes.csv"
+                    else "t,speed,bearing\n0,5,10\n1,5,11\n2,5,12\n")
+    checked: list[Path] = []
+    check_file = fixes_files.check_file
+
+    def counted(p: Path) -> None:
+        checked.append(p)
+        check_file(p)
+
+    monkeypatch.setattr(fixes_files, "check_file", counted)
+    assert len(getattr(fixes, reader)(path).t) >= 2
+    assert checked == [path]
 
 
 def test_read_reference_file_takes_a_path_as_text() -> None:
@@ -283,8 +425,28 @@ def test_calibrate_names_its_options_in_the_static_bias_error() -> None:
     proc = gyrocore_cli("calibrate", f110, "--window", "+0", "+1", code=0, timeout=60)
     assert "covers 0.945 s of readings, shorter than --min-duration 1 s: the bias would be mostly noise" in proc.stdout
     proc = gyrocore_cli("calibrate", f110, "--min-duration", "1e9", code=0, timeout=60)
-    assert "(give the rest window, or a shorter --min-duration / larger --max-rate-dps if" in proc.stdout
+    assert ("within 2.86479 deg/s of zero (give --window T0 T1, or a shorter --min-duration / larger --max-rate-dps "
+            "if") in proc.stdout
     assert "min_duration" not in proc.stdout
+
+
+def test_calibrate_says_its_rest_threshold_in_deg_s_and_the_window_by_its_option(tmp_path: Path) -> None:
+    """``gyrocore calibrate LOG --max-rate-dps 1`` where no rest was found said ``within 0.0174533
+    rad/s of zero (give the rest window, ...)``: the threshold in another unit than the one given,
+    and the rest window by no option's name; the steadiest stretch was ``beyond 0.0174533 rad/s``."""
+    rng = np.random.default_rng(3)
+    t = np.arange(2000) * 0.01
+    steady = _write_log(tmp_path / "steady.csv", t, 0.03 + rng.normal(0, 0.001, len(t)))
+    proc = gyrocore_cli("calibrate", steady, "--max-rate-dps", "1", code=2, timeout=60)
+    assert proc.stderr.startswith(
+        f"gyrocore: error: {steady}: nothing to calibrate from: no rest found: no stretch of at least 1 s where the "
+        "rate is as steady as the log's quietest blocks and within 1 deg/s of zero (give --window T0 T1, or a "
+        "shorter --min-duration / larger --max-rate-dps if this gyro's bias is large); the steadiest stretch, ")
+    assert proc.stderr.endswith("as steady as a rest but beyond 1 deg/s: a steady turn, or a rest or straight drive "
+                                "with a bias that large (give --window T0 T1)\n")
+    assert "rad/s of zero" not in proc.stderr and "rest window" not in proc.stderr
+    proc = gyrocore_cli("calibrate", steady, "--max-rate-dps", "2.5", code=0, timeout=60)
+    assert "bias = 0.03" in proc.stdout
 
 
 def test_calibrate_takes_the_block_its_hint_names(tmp_path: Path) -> None:
