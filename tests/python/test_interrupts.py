@@ -64,10 +64,9 @@ def test_a_signal_at_any_moment_of_a_run_exits_130_and_keeps_the_previous_output
             time.sleep(0.002)
         return proc
 
-    # how long a run lasts from then on, on this machine
-    proc, start = started(), time.monotonic()
+    # a run without a signal completes
+    proc = started()
     proc.communicate(timeout=60)
-    lasts = time.monotonic() - start
     assert proc.returncode == 0
     kept = []
     # from the moment the command owns its signals: reading the header, the first chunk (pyarrow's
@@ -87,9 +86,10 @@ def test_a_signal_at_any_moment_of_a_run_exits_130_and_keeps_the_previous_output
         else:  # the signal came after the rename: the output is the complete new one
             assert len(read_table(out)) == 600_000
             assert proc.returncode in (0, 130, -signum), stderr
-    # a signal in the first half of the run always interrupts it, whatever the machine's speed
-    early = [d for d in delays if d < lasts / 2]
-    assert early and kept[: len(early)] == early, (lasts, kept)
+    # Signals sent as the command starts (before its first chunk is read: a run of 600,000
+    # samples lasts far longer than 0.02 s on any machine) always interrupt it. Later ones may
+    # come after the rename, more or less often with the machine's load: each was checked above.
+    assert kept[:2] == [0.0, 0.02], kept
 
 
 _TRAP = """
