@@ -16,11 +16,8 @@ from ..evaluate import Failed, Method, named_error
 from ..evaluate_compare import naming_log
 from ..fixes import Fixes, read_fixes_file
 from ..io import Log
-from ..io._logfolder import FIXES_CSV
+from ..io._logfolder import FIXES_CSV, GNSS_CSV
 from ._common import each_log, exit_code, note, print_failures, print_json, warn
-
-#: A log folder's own GNSS receiver log (comma_seg40's): fused only where ``--fixes`` names it.
-GNSS_CSV = "gnss.csv"
 
 FIXES_HELP = (
     "absolute headings fused with the gyro (docs/fixes.md): a CSV with columns t [s], heading [rad, CCW from "

@@ -30,6 +30,8 @@ if TYPE_CHECKING:
 GYRO_CSV = "gyro.csv"
 #: A log folder's heading fixes, used by the processing entry points when present.
 FIXES_CSV = "fixes.csv"
+#: A log folder's own GNSS receiver log (comma_seg40's): fused only where ``--fixes`` names it.
+GNSS_CSV = "gnss.csv"
 #: The other files of a log folder, each optional.
 META_JSON, REFERENCE_CSV, ODOMETRY_CSV = "meta.json", "reference.csv", "odometry.csv"
 
@@ -63,7 +65,7 @@ def warn_gyro_alone(path: Path) -> None:
 
 #: A log folder's files that hold no gyro samples, and what each holds.
 _NOT_GYRO = {REFERENCE_CSV: "reference heading", ODOMETRY_CSV: "odometry", FIXES_CSV: "heading fixes",
-             "gnss.csv": "GNSS receiver log"}
+             GNSS_CSV: "GNSS receiver log"}
 
 
 def read_meta(folder: Path) -> tuple[dict[str, Any], tuple[float, float] | None]:
