@@ -362,11 +362,11 @@ pub(crate) use settings_are_config;
 pub struct Streaming<K: Kernel> {
     config: K::Config,
     state: K::State,
-    pub(crate) clock: Clock,
+    clock: Clock,
     /// True once the stage has had its first sample.
     started: bool,
     /// The last output, repeated for a sample whose timestamp does not move forward.
-    pub(crate) last: f64,
+    last: f64,
 }
 
 impl<K: Validated> Streaming<K> {
@@ -380,6 +380,16 @@ impl<K: Validated> Streaming<K> {
             started: false,
             last: 0.0,
         })
+    }
+
+    /// The checks of a stage read back (`serde` feature): its configuration as `new` checks it,
+    /// its state, its clock, and its last output (repeated as it is for a skipped sample).
+    #[cfg(feature = "serde")]
+    pub(crate) fn check_restored(&self) -> Result<(), Error> {
+        K::check(&self.config)?;
+        K::check_state(&self.config, &self.state)?;
+        self.clock.check_restored()?;
+        crate::error::check_stored("last output", self.last)
     }
 
     /// The configuration and the state.

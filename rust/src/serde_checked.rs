@@ -8,7 +8,6 @@
 //! [`checked_serde!`] implements the traits on them: serialising as derived, deserialising as
 //! derived and then checked, the check's error (the core's, in its words) the deserialiser's.
 
-use crate::error::check_stored;
 use crate::kernel::Validated;
 use crate::sim::Xoshiro256PlusPlus;
 use crate::{Correction, Downsample, Error, Fusion, GyroModel, Pipeline, Streaming};
@@ -51,13 +50,6 @@ checked_serde!(Pipeline, Pipeline::check_restored);
 checked_serde!(Fusion, Fusion::check_restored);
 checked_serde!(Correction, Correction::check_restored);
 checked_serde!(Downsample, Downsample::check_restored);
-checked_serde!([K: Validated] Streaming<K>, |s| {
-    let (config, state) = s.parts();
-    K::check(config)?;
-    K::check_state(config, state)?;
-    // the last output is repeated as it is for a skipped sample
-    s.clock.check_restored()?;
-    check_stored("last output", s.last)
-});
+checked_serde!([K: Validated] Streaming<K>, Streaming::check_restored);
 checked_serde!(GyroModel => GyroModel::restored);
 checked_serde!(Xoshiro256PlusPlus, Xoshiro256PlusPlus::check);
