@@ -435,7 +435,8 @@ def process_log(
     refuse_tracking(si)
     options = Options.pop(si)
     ta, ra = as_float_array("t", t), as_float_array("rate", rate)
-    if _bias_source(si) in ("bias_window", "bias_duration"):
+    windowed = _bias_source(si) in ("bias_window", "bias_duration")
+    if windowed:
         # A whole log's bad time comes first (as a window beyond +-2^40 s, epoch ns read as s, is no
         # window to measure): the core met the rest window before a bad time after it (a log in
         # reverse: "the bias window [0, 1] s holds no sample of the samples from t = 29.99 to 29.99 s").
@@ -449,7 +450,8 @@ def process_log(
     inputs = {"t": (t, ta), "rate": (rate, ra), "temperature": (temperature,), "speed": (speed, sp)}
     arrays = out_arrays(out, outputs, len(ta), inputs)  # checked before any work
     given = fixes is None and (not uses_static_bias(preset) or _bias_source(si) == "bias")
-    if given or len(ta) != len(ra) or len(ta) == 0 or not times_ok(ta):
+    # times a window's check passed are not checked again (a pass over the log)
+    if given or len(ta) != len(ra) or len(ta) == 0 or not (windowed or times_ok(ta)):
         # A given bias (or none to remove) and no fixes need no plan: the log goes to the pipeline
         # as it is, with no pass over it here (what plan() would give). Bad times: the pipeline is
         # the one place that names the bad sample (and gives an empty log back).
