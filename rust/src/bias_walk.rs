@@ -10,6 +10,7 @@
 //! `b += g (z - b)`, `P = P r / (P + r)`.
 
 use crate::error::check_range;
+use crate::stage::check_outputs;
 use crate::{check_block, Error, MAX_READING};
 
 /// The largest variance of a rest's reading, of the floor and of the walk's intensity `q` that
@@ -63,20 +64,13 @@ pub fn filter_rests(
 ) -> Result<(), Error> {
     let (mean, variance, predicted) = out;
     check_block(times, values, None, None, true)?;
-    for (what, len) in [
-        ("variances", variances.len()),
-        ("mean", mean.len()),
-        ("variance", variance.len()),
-        ("predicted", predicted.len()),
-    ] {
-        if len != times.len() {
-            return Err(Error::LengthMismatch {
-                what,
-                len,
-                expected: times.len(),
-            });
-        }
-    }
+    let slices = [
+        ("variances", Some(variances)),
+        ("mean", Some(&*mean)),
+        ("variance", Some(&*variance)),
+        ("predicted", Some(&*predicted)),
+    ];
+    check_outputs(slices, times.len())?;
     // Each within the square of a reading's limit, and `q` so over the longest span of time:
     // a variance of 1e308 (or a floor of it) overflowed the update's `P r`, and a `q` of 1e300
     // the prediction `P + q |dt|` (NaN means and infinite variances). Within them, `P` stays
