@@ -340,10 +340,16 @@ def keyword_options(function: Callable[..., Any]) -> tuple[str, ...]:
     return tuple(p.name for p in inspect.signature(function).parameters.values() if p.kind is p.KEYWORD_ONLY)
 
 
-def version_error(what: str, found: object, reads: int) -> str:
-    """Why a saved file's ``"version"`` (``found``) is not read: a later one was written by a newer
+def require_version(what: str, found: object, reads: int, where: str = "") -> None:
+    """Refuse a saved file whose ``"version"`` (``found``) is not the one this gyrocore ``reads``
+    (``true`` is not 1, though Python finds them equal): a later one was written by a newer
     gyrocore, whose user upgrades; a missing or malformed one is named as such. ``what`` is the
-    file's kind (``parameter file``), this gyrocore's version of it ``reads``."""
+    file's kind (``parameter file``); ``where`` goes before the message (the file's name)."""
+    if found != reads or isinstance(found, bool):
+        raise ValueError(where + _version_error(what, found, reads))
+
+
+def _version_error(what: str, found: object, reads: int) -> str:
     if isinstance(found, int) and not isinstance(found, bool) and found > reads:
         return (f"{what} version {found}, written by a newer gyrocore; this one reads version {reads}: upgrade "
                 "gyrocore to read it, or write the file again with this one")

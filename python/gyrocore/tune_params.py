@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
 
-from ._checks import version_error
+from ._checks import require_version
 from .evaluate import Method
 from .io._jsonfile import read_json
 from .pipeline import BIAS_SOURCES, Pipeline, parameters
@@ -100,9 +100,7 @@ class ParameterSet:
                              "file is what gyrocore tune --out FILE writes")
         if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
             raise ValueError(f"{p}: not a gyrocore parameter file (no \"format\": \"{FORMAT_NAME}\")")
-        version = data.get("version")
-        if version != FORMAT_VERSION or isinstance(version, bool):  # true == 1 in Python
-            raise ValueError(f"{p}: {version_error('parameter file', version, FORMAT_VERSION)}")
+        require_version("parameter file", data.get("version"), FORMAT_VERSION, f"{p}: ")
         missing = [k for k in ("name", "preset", "overrides") if k not in data]
         if missing:
             raise ValueError(f"{p}: missing key(s) {', '.join(missing)}")

@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._arrays import FloatArray, as_float_array, as_window, refuse_masked
-from .._checks import require_choice, require_finite, require_readings, version_error
+from .._checks import require_choice, require_finite, require_readings, require_version
 from ..io._jsonfile import read_json
 from ..io.atomic import atomic_path
 
@@ -244,9 +244,7 @@ class Calibration:
         if not isinstance(data, dict) or data.get("format") != FORMAT:
             found = data.get("format") if isinstance(data, dict) else None
             raise ValueError(f"not a gyrocore calibration (format {found!r})")
-        version = data.get("version")
-        if version != VERSION or isinstance(version, bool):  # true == 1 in Python
-            raise ValueError(version_error("calibration file", version, VERSION))
+        require_version("calibration file", data.get("version"), VERSION)
         if not isinstance(data.get("calibration"), dict):
             raise ValueError("no calibration object")
         values = dict(data["calibration"])
