@@ -261,6 +261,54 @@ fn invalid_configuration_names_the_field() {
         }),
         "scale_error"
     );
+    // Each term within its range, the gain they make together not: a reading of the wrong sign.
+    for flipped in [
+        GyroModelConfig {
+            scale_error: -0.9,
+            scale_asymmetry: 0.3,
+            ..ok
+        },
+        GyroModelConfig {
+            scale_error: -0.5,
+            scale_temperature: 0.01,
+            temperature: TemperatureProfile {
+                start: -40.0,
+                end: 25.0,
+                time_constant: 600.0,
+            },
+            reference_temperature: 25.0,
+            ..ok
+        },
+        GyroModelConfig {
+            scale_error: -0.5,
+            scale_temperature: -0.01,
+            temperature: TemperatureProfile::constant(80.0),
+            ..ok
+        },
+    ] {
+        assert_eq!(bad(flipped), "gain");
+    }
+    // The same terms where the gain stays above 0 are a model.
+    for kept in [
+        GyroModelConfig {
+            scale_error: -0.8,
+            scale_asymmetry: 0.3,
+            ..ok
+        },
+        GyroModelConfig {
+            scale_error: -0.5,
+            scale_temperature: 0.01,
+            temperature: TemperatureProfile {
+                start: 0.0,
+                end: 25.0,
+                time_constant: 600.0,
+            },
+            reference_temperature: 25.0,
+            ..ok
+        },
+    ] {
+        assert!(kept.validate().is_ok());
+    }
     assert_eq!(bad(GyroModelConfig { arw: -1.0, ..ok }), "arw");
     assert_eq!(
         bad(GyroModelConfig {

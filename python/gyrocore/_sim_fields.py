@@ -33,7 +33,7 @@ _FIELDS: dict[str, tuple[str, int | None]] = {
     "resolution": ("resolution_dps", None),
     "range": ("range_dps", None),
 }
-_PARAMETER = re.compile(r"invalid parameter (?P<name>[\w.]+) = ")
+_PARAMETER = re.compile(r"invalid parameter (?P<name>[\w.]+) = (?P<value>\S+?):")
 
 
 def check_spec(spec: GyroSpec) -> None:
@@ -49,6 +49,15 @@ def check_spec(spec: GyroSpec) -> None:
         _gyrocore.gyro_check_span(spec.si(), 0.0, 1.0)
     except ValueError as e:
         m = _PARAMETER.search(str(e))
+        if m is not None and m["name"] == "gain":  # a sum of five fields, none out of its own range
+            fields = ("scale_error", "scale_asymmetry", "scale_per_c", "temperature_c", "reference_temperature_c")
+            given = ", ".join(f"{name} = {getattr(spec, name)!r}" for name in fields)
+            raise ValueError(
+                f"sensor fields {given}: the gain 1 + s they make is {float(m['value']):.6g} at its lowest; it must be > 0 "
+                "at every temperature and for both turn directions (1 + scale_error + scale_per_c (T - "
+                "reference_temperature_c) +- scale_asymmetry / 2): at 0 or below the gyro reads no turn, or every "
+                "turn backwards"
+            ) from None
         if m is None or m["name"] not in _FIELDS:
             raise
         name, part = _FIELDS[m["name"]]

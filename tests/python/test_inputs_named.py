@@ -246,6 +246,19 @@ def test_a_simulated_gyros_field_out_of_range_is_named(field: str, value: object
         sim.car_drive(60.0, **{field: value})
 
 
+def test_a_simulated_gyro_whose_gain_turns_negative_is_refused_by_its_fields() -> None:
+    """Each scale term within its own range, together a gain ``1 + s`` below 0 (a gyro reading
+    every turn backwards) was simulated; the refusal names the Python fields, not the core's."""
+    from gyrocore import sim
+
+    said = ("sensor fields scale_error = -0.5, scale_asymmetry = 0.0, scale_per_c = 0.01, temperature_c = (-40.0, "
+            "25.0), reference_temperature_c = 25.0: the gain 1 + s they make is -0.15 at its lowest; it must be > 0")
+    fields = {"scale_error": -0.5, "scale_per_c": 0.01, "temperature_c": (-40.0, 25.0)}
+    with pytest.raises(ValueError, match=f"^{re.escape(said)}"):
+        sim.car_drive(60.0, **fields)
+    assert sim.sensor("crs03", **{**fields, "temperature_c": (0.0, 25.0)}).scale_per_c == 0.01  # gain 0.25: kept
+
+
 def test_a_calibration_save_that_fails_keeps_the_previous_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """``Calibration.save`` wrote over the file in place (the command line's ``--save`` went through
     a temporary file, the Python API did not): a save that failed once the file was opened (a

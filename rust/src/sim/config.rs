@@ -187,12 +187,32 @@ impl GyroModelConfig {
         }
         check_positive("temperature.time_constant", t.time_constant)?;
         check_range(
+            "gain",
+            self.lowest_gain(),
+            f64::MIN_POSITIVE,
+            f64::INFINITY,
+            "> 0 at every temperature of the profile and for both turn directions: 1 + \
+             scale_error + scale_temperature (T - reference_temperature) +- scale_asymmetry / 2 \
+             (a gain of 0 or less reads no turn, or every turn backwards)",
+        )?;
+        check_range(
             "range",
             self.range,
             f64::MIN_POSITIVE,
             f64::INFINITY,
             "> 0 (infinity: no clipping)",
         )
+    }
+
+    /// The lowest gain `1 + s` of the model's scale error `s` (the module doc of
+    /// [`crate::sim`]): `s` is affine in the temperature, which moves monotonically from the
+    /// profile's start to its end, so its extremes are there, each with the asymmetry's half of
+    /// either sign.
+    fn lowest_gain(&self) -> f64 {
+        let t = self.temperature;
+        let at_ends = [t.start, t.end]
+            .map(|celsius| self.scale_temperature * (celsius - self.reference_temperature));
+        1.0 + self.scale_error + at_ends[0].min(at_ends[1]) - 0.5 * self.scale_asymmetry.abs()
     }
 
     /// Number of Gauss-Markov terms of the flicker approximation (0 without bias instability).
