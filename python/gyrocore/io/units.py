@@ -259,17 +259,18 @@ def _header_column(path: Path, header: list[str], wanted: str, option: str) -> s
     return matches[0] if matches else wanted
 
 
-def _stated_unit(path: Path, column: str, given: str | None, option: str, default: str) -> str:
-    """The unit of ``column``: the one given, else the one its name states, else ``default``."""
+def _stated_unit(path: Path, column: str, given: str | None, option: str, default: str) -> tuple[str, bool]:
+    """The unit of ``column``: the one given, else the one its name states, else ``default``; and
+    whether it is ``default`` for want of the other two."""
     kind = "time" if option == "--time-unit" else "rate"
     table, choices = (HEADER_TIME_UNITS, TIME_UNITS) if kind == "time" else (HEADER_RATE_UNITS, RATE_UNITS)
     written = split_unit(column)[1]
     if written is None:
-        return given or default
+        return given or default, given is None
     stated = table.get(normal_unit(written))
     # a known unit of the other kind in a ``_suffix`` is part of the name (``t_dps`` is no time unit)
     if stated is None and written == column.rpartition("_")[2]:
-        return given or default
+        return given or default, given is None
     where = f"{path}: column {column!r} states the unit {written!r}"
     if stated is None and given is None:
         raise ValueError(
@@ -278,7 +279,9 @@ def _stated_unit(path: Path, column: str, given: str | None, option: str, defaul
         )
     if stated is not None and given is not None and given != stated:
         raise ValueError(f"{where} but {option} {given} was given: leave out {option} (or correct the header)")
-    return given or stated or default
+    unit = given or stated
+    assert unit is not None  # one was given, or the name states one (else the first error above)
+    return unit, False
 
 
 def header_options(path: Path, header: list[str] | None, options: ReadOptions) -> ReadOptions:
@@ -293,16 +296,14 @@ def header_options(path: Path, header: list[str] | None, options: ReadOptions) -
     if header is None:
         return replace(options, time_unit=options.time_unit or "s", rate_unit=options.rate_unit or "rad/s")
     time = _header_column(path, header, options.time, "--time-col")
-    time_unit = _stated_unit(path, time, options.time_unit, "--time-unit", "s")
-    written = split_unit(time)[1]
-    assumed = options.time_unit is None and (written is None or normal_unit(written) not in HEADER_TIME_UNITS)
+    time_unit, assumed = _stated_unit(path, time, options.time_unit, "--time-unit", "s")
     if options.gyro_cols is None:
         rate = _header_column(path, header, options.rate, "--rate-col")
-        rate_unit = _stated_unit(path, rate, options.rate_unit, "--rate-unit", "rad/s")
+        rate_unit = _stated_unit(path, rate, options.rate_unit, "--rate-unit", "rad/s")[0]
         return _assumed(replace(options, time_col=time, rate_col=rate, time_unit=time_unit, rate_unit=rate_unit),
                         assumed)
     gyro = _header_columns(path, header, options.gyro_cols, "--gyro-cols")
-    units = [_stated_unit(path, c, options.rate_unit, "--rate-unit", "rad/s") for c in gyro]
+    units = [_stated_unit(path, c, options.rate_unit, "--rate-unit", "rad/s")[0] for c in gyro]
     if len(set(units)) > 1:
         read = ", ".join(f"{c!r} as {u}" for c, u in zip(gyro, units))
         raise ValueError(f"{path}: the gyro columns read in different units ({read}): give each its unit in the header")
