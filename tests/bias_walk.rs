@@ -153,3 +153,15 @@ fn bad_rests_are_refused_by_name() {
     let (mut a, mut b) = ([0.0; 0], [0.0; 0]);
     assert!(filter_rests(&e, &e, &e, 0.0, 1e-24, false, (&mut none, &mut a, &mut b)).is_ok());
 }
+
+#[test]
+fn no_rest_leaves_a_variance_below_the_floor_not_even_the_first() {
+    // Rests read far more precisely than the floor: each filtered variance is the floor, the
+    // first's too (it was its own reading's, 1e-30, below the floor the doc promises).
+    let (t, z, r) = ([1.0, 2.0, 3.0], [0.01, 0.02, 0.03], [1e-30; 3]);
+    for backward in [false, true] {
+        let (mut m, mut v, mut p) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+        filter_rests(&t, &z, &r, 0.0, 1e-24, backward, (&mut m, &mut v, &mut p)).unwrap();
+        assert_eq!(v, [1e-24; 3], "backward {backward}");
+    }
+}

@@ -86,29 +86,32 @@ pub fn filter_rests(
     let order = |i: usize| if backward { n - 1 - i } else { i };
     let mut before: Option<(usize, BiasEstimate)> = None;
     for k in (0..n).map(order) {
+        let (z, r) = (values[k], variances[k]);
+        // the first rest alone gives the bias (a diffuse prior: `update` of an infinite
+        // variance would be inf / inf)
         let (at, p) = match before {
             None => (
                 BiasEstimate {
-                    mean: values[k],
-                    variance: variances[k],
+                    mean: z,
+                    variance: r,
                 },
                 f64::INFINITY,
             ),
             Some((j, last)) => {
                 let p = last.variance + q * libm::fabs(times[k] - times[j]);
-                let at = BiasEstimate {
-                    variance: p,
-                    ..last
-                }
-                .update(values[k], variances[k]);
                 (
                     BiasEstimate {
-                        variance: at.variance.max(floor),
-                        ..at
-                    },
+                        variance: p,
+                        ..last
+                    }
+                    .update(z, r),
                     p,
                 )
             }
+        };
+        let at = BiasEstimate {
+            variance: at.variance.max(floor),
+            ..at
         };
         (mean[k], variance[k], predicted[k]) = (at.mean, at.variance, p);
         before = Some((k, at));
