@@ -90,7 +90,7 @@ class _NoBar:
         return None
 
 
-def _run_on_threads(jobs: list[_FileJob], workers: int, progress: bool) -> list[FileReport]:
+def run_on_threads(jobs: list[_FileJob], workers: int, progress: bool) -> list[FileReport]:
     stop = threading.Event()
     reports: dict[int, FileReport] = {}
     with _bar(len(jobs), progress) as bar:
@@ -111,7 +111,7 @@ def _run_on_threads(jobs: list[_FileJob], workers: int, progress: bool) -> list[
     return [reports[i] for i in range(len(jobs))]
 
 
-def _run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileReport]:
+def run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileReport]:
     """The jobs on the cluster of ``client``, a Dask client (:func:`connected` makes one of an
     address or a cluster; its caller closes it)."""
     distributed = require("dask.distributed", "running on a Dask cluster")

@@ -156,7 +156,7 @@ class Log:
         speed: dict[str, Any] = {}
         if use_speed and mode == "whole":
             speed["speed"] = self.speed_on_gyro_times()
-        elif use_speed and self.speed is not None and _tracks_rests(preset, overrides):
+        elif use_speed and self.speed is not None and tracks_rests(preset, overrides):
             # the odometry at its own times: the tracker interpolates it, and knows no speed outside it
             speed.update(speed=self.speed, speed_t=self.t_odometry)
         given = fixes if fixes is not None else self.fixes if use_fixes else None
@@ -197,7 +197,7 @@ class Log:
             raise RestWindowError(where if self.path is None else from_stationary(self.path, e)) from None
 
 
-def _tracks_rests(preset: str, overrides: dict[str, Any]) -> bool:
+def tracks_rests(preset: str, overrides: dict[str, Any]) -> bool:
     """Whether ``preset`` with ``overrides`` runs the core's rest tracker (whole mode's options,
     which causal mode refuses with its own message, left out)."""
     return bool(preset_params(preset, **{k: v for k, v in overrides.items() if k not in WHOLE_OPTIONS})["track_rests"])

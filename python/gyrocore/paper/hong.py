@@ -18,7 +18,7 @@ from .._arrays import FloatArray
 from ..integration import downsample
 from ..pipeline import preset_params, process
 from ._report import Row, _Report, format_table
-from .hong_sensor import HONG_B, HONG_S, AllanReproduction, HongCalibration, _reference, hong_allan, hong_calibration
+from .hong_sensor import HONG_B, HONG_S, AllanReproduction, HongCalibration, reference_track, hong_allan, hong_calibration
 
 __all__ = [
     "HONG_B", "HONG_S", "AllanReproduction", "HongCalibration", "HongTable1", "HongTable1Sensitivity", "hong_allan",
@@ -152,7 +152,7 @@ def hong_table_1(
     route = motion.robot_run(turn_deg=turn_deg)
     rest = route.segments_of("rest")[0]
     window = route.segments_of("calibration")[0]
-    t_ref, heading_ref, _ = _reference(route, 20.0, 0.0, route.duration)
+    t_ref, heading_ref, _ = reference_track(route, 20.0, 0.0, route.duration)
     static: dict[str, Any] = {"bias_window": (rest.start, rest.end)}
     errors: dict[str, list[evaluate.HeadingErrors]] = {m: [] for m in HongTable1.PAPER}
     calibrations, headings = [], {}

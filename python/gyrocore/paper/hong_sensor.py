@@ -178,7 +178,7 @@ class HongCalibration(_Report):
         return fig
 
 
-def _reference(route: motion.Motion, rate_hz: float, start: float, end: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+def reference_track(route: motion.Motion, rate_hz: float, start: float, end: float) -> tuple[FloatArray, FloatArray, FloatArray]:
     """A motion-capture reference at ``rate_hz`` over [start, end]: times [s], heading [rad], rate [rad/s]."""
     t_ref = np.arange(start, end + 1e-9, 1.0 / rate_hz)
     truth = route.sample(t_ref)
@@ -195,7 +195,7 @@ def hong_calibration(*, seed: int = 0) -> HongCalibration:
     window = route.segments_of("calibration")[0]
     exact = sim.GyroSpec(name="s = -10 %, b = 0.1 rad/s", rate_hz=100.0, scale_error=HONG_S, bias_dps=math.degrees(HONG_B))
     noisy = sim.sensor("xv3500", scale_error=HONG_S, bias_dps=math.degrees(HONG_B))
-    t_ref, heading_ref, rate_ref = _reference(route, 20.0, window.start, window.end)
+    t_ref, heading_ref, rate_ref = reference_track(route, 20.0, window.start, window.end)
     fits: dict[str, tuple[calibration.Calibration, calibration.Calibration]] = {}
     readings: dict[str, tuple[FloatArray, FloatArray]] = {}
     for label, spec in (("exact", exact), ("noisy", noisy)):
