@@ -6,6 +6,7 @@ look wrong, and joined; a log folder adds its reference, odometry and rest windo
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -71,8 +72,41 @@ class Log:
 
     def __post_init__(self) -> None:
         """Each series as a float64 numpy array (no copy of one already): a pandas Series indexes by
-        label, so ``t[0]`` and ``t[-1]`` of one cut from a table (``df.loc[df.t > 10, "t"]``) failed."""
+        label, so ``t[0]`` and ``t[-1]`` of one cut from a table (``df.loc[df.t > 10, "t"]``) failed.
+        A ``speed`` without ``t_odometry`` is one per gyro sample (as :func:`gyrocore.process` takes
+        it); series that belong together are checked to match, and ``stationary`` to be a window."""
         float_fields(self, _SERIES)
+        if self.speed is not None and self.t_odometry is None and len(self.speed) == len(self.t):
+            object.__setattr__(self, "t_odometry", self.t)  # it was dropped without a word
+        for times, values in (("t", ("rate",)), ("t_ref", ("heading_ref", "x_ref", "y_ref")), ("t_odometry", ("speed",))):
+            self._check_series(times, values)
+        if self.stationary is not None:
+            self._check_stationary()
+
+    def _check_series(self, times: str, names: tuple[str, ...]) -> None:
+        """Each series of ``names`` as long as its times ``times``, and none without them."""
+        n = None if getattr(self, times) is None else len(getattr(self, times))
+        for name in names:
+            values = getattr(self, name)
+            if values is None or (n is not None and len(values) == n):
+                continue
+            if n is None:
+                hint = " (or one per gyro sample, as long as t)" if name == "speed" else ""
+                raise ValueError(f"log {self.name}: {name} given without {times}: give its times as {times}{hint}")
+            raise ValueError(f"log {self.name}: {name} has {len(values)} samples but {times} has {n}: give one per time")
+        if n is not None and times != "t" and all(getattr(self, name) is None for name in names):
+            raise ValueError(f"log {self.name}: {times} given without {' or '.join(names)}")
+
+    def _check_stationary(self) -> None:
+        """``stationary`` is two finite times, the first before the second."""
+        window = self.stationary
+        try:
+            a, b = (float(v) for v in window)  # type: ignore[union-attr]
+        except (TypeError, ValueError):
+            a = b = math.nan
+        if not (math.isfinite(a) and math.isfinite(b) and a < b):
+            raise ValueError(f"log {self.name}: stationary = {window!r}: give the rest window as (start, end) [s] "
+                             "in the log's time base, start before end")
 
     def __repr__(self) -> str:
         """A summary (the arrays run to millions of samples)."""
