@@ -27,7 +27,7 @@ from . import _gyrocore
 from ._arrays import FloatArray, array_fields, as_float_array, float_fields
 from ._checks import (
     MAX_READING, check_number, did_you_mean, public_dir, real_number, require_finite, require_increasing,
-    require_radians, warn,
+    require_radians, warn, warn_units,
 )
 from .result import fix_output_flags
 
@@ -150,11 +150,16 @@ def fuse(t: ArrayLike, rate: ArrayLike, fixes: FixesLike, *, mode: Literal["caus
     if mode not in ("causal", "smoothed"):
         raise ValueError(f"mode must be 'causal' or 'smoothed', got {mode!r}")
     tt, r = as_float_array("t", t), as_float_array("rate", rate)
-    fx = as_fixes(fixes)
-    h, s, b, sc, counts = _gyrocore.fuse(tt, r, fx.t, fx.heading, fx.sigma, _settings(settings),
-                                          mode == "smoothed")
-    warn_outside(tt, fx)
-    return FusionResult(tt, h, s, b, sc, dict(counts))
+    warn_units(tt, r)  # as gyrocore.process warns: ms times or deg/s rates gave fixes rejected one after another
+    return _fused(tt, r, as_fixes(fixes), settings, mode == "smoothed")
+
+
+def _fused(t: FloatArray, rate: FloatArray, fixes: Fixes, settings: dict[str, float], smoothed: bool) -> FusionResult:
+    """:func:`fuse` of arrays already read (a pipeline's corrected rate, whose readings it judged)."""
+    h, s, b, sc, counts = _gyrocore.fuse(t, rate, fixes.t, fixes.heading, fixes.sigma, _settings(settings), smoothed)
+    warn_outside(t, fixes)
+    warn_rejected(counts)
+    return FusionResult(t, h, s, b, sc, dict(counts))
 
 
 #: A whole log's run warns when fewer than this share of its fixes fall within the gyro's time
@@ -175,6 +180,27 @@ def warn_outside(t: FloatArray, fixes: Fixes) -> None:
     warn(f"{'none' if inside == 0 else f'only {inside}'} of the {len(fixes)} heading fixes fall within the gyro's "
          f"time span (gyro {t[0]:.3f} to {t[-1]:.3f} s, fixes {fixes.t[0]:.3f} to {fixes.t[-1]:.3f} s), and a fix "
          "outside it is not used: give the fixes' times on the gyro's clock, in seconds")
+
+
+#: A whole log's run warns when the outlier gate rejects more than this share of the fixes it
+#: reached, and at least :data:`MIN_REJECTED`: a good receiver's fixes pass it (the gate rejects
+#: 0.1 % of them), while headings in degrees, times or rates in another unit, or a compass bearing
+#: given as a heading are rejected one after another, and the heading is then the gyro's alone.
+MAX_SHARE_REJECTED = 0.5
+MIN_REJECTED = 5
+
+
+def warn_rejected(counts: Mapping[str, int]) -> None:
+    """Warns (:class:`~gyrocore.InputWarning`) when the outlier gate rejected most of the fixes a
+    whole log's run reached (:data:`MAX_SHARE_REJECTED`), saying what usually causes it."""
+    rejected, reached = counts["rejected"], counts["applied"] + counts["rejected"]
+    if rejected < MIN_REJECTED or rejected <= MAX_SHARE_REJECTED * reached:
+        return
+    warn(f"the outlier gate rejected {rejected} of the {reached} heading fixes it reached: they disagree with the "
+         "heading the gyro carries between them, so the heading is mostly the gyro's alone. Check the units: fix "
+         "headings in rad, counter-clockwise from east (not degrees, not a compass bearing: from_gnss converts "
+         "one), fix and gyro times in seconds on one clock, the rate in rad/s; a gyro whose bias is far beyond "
+         "initial_bias_sigma needs a larger one")
 
 
 def _settings(settings: dict[str, float]) -> dict[str, float]:
@@ -354,7 +380,7 @@ def smoothed_stage(result: HeadingResult, fixes: FixesLike, settings: dict[str, 
     if result.rate is None:
         raise ValueError("the fix stage needs the pipeline's rate output")
     given = as_fixes(fixes)
-    fused = _on_kept(lambda tt, rr: fuse(tt, rr, given, mode="smoothed", **settings), result.t, result.rate,
+    fused = _on_kept(lambda tt, rr: _fused(tt, rr, given, settings, True), result.t, result.rate,
                      _prior(Fusion(**settings)))
     sigma, bias, scale = (column if wanted else None for column, wanted in
                           zip((fused.heading_sigma, fused.bias, fused.scale), fix_output_flags(outputs)))

@@ -427,10 +427,11 @@ def process_log(
             t, rate, temperature=temperature, outputs=outputs, speed=speed, speed_t=speed_t, fixes=checked, out=out
         )
         pipeline.finish()
-        if checked is not None:
-            from .fixes import warn_outside  # as fuse warns for a whole log (the smoothed fix stage's)
+        if checked is not None and result.fusion is not None:
+            from .fixes import warn_outside, warn_rejected  # as fuse warns for a whole log (the smoothed fix stage's)
 
             warn_outside(result.t, checked)
+            warn_rejected(result.fusion.counts)
         return replace(result, bias_source=causal_source(preset, si))
     refuse_tracking(si)
     options = Options.pop(si)

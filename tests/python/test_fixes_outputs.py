@@ -4,6 +4,7 @@ table gyrocore evaluate prints with fixes names their units."""
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -13,6 +14,7 @@ import gyrocore
 from gyrocore.cli import main
 from gyrocore.result import ALL_OUTPUTS, FIX_OUTPUTS
 
+from .conftest import real_log_path
 from .test_fixes import BIAS, drive
 from .test_fixes_entry import fixes_of
 
@@ -94,3 +96,32 @@ def test_the_evaluate_table_with_fixes_has_a_units_row(
     k = next(i for i, line in enumerate(lines) if line.startswith("log "))
     assert lines[k].split()[-3:] == ["bias", "scale", "fixes"]
     assert lines[k + 1].split()[:6] == ["[deg]"] * 4 + ["[deg/s]", "[1]"]
+
+
+def test_fixes_the_gate_rejects_one_after_another_are_warned_about() -> None:
+    """comma_seg40 with its own u-blox course: fix headings in degrees (a straight drive never wraps,
+    so the degrees check did not see them), times in ms, or rates in deg/s had 97 % of the fixes
+    rejected and the heading 90-129 deg off, without a word; right, none is rejected and no word."""
+    comma = real_log_path("comma_seg40")
+    log = gyrocore.read_log(comma)
+    fixes = gyrocore.fixes.read_gnss_csv(comma / "gnss.csv")
+    degrees = (fixes.t, np.degrees(fixes.heading), fixes.sigma)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        right = gyrocore.fuse(log.t, log.rate, fixes)
+    assert right.counts["rejected"] == 0
+    said = r"the outlier gate rejected (\d+) of the 579 heading fixes it reached: .* Check the units"
+    cases = {
+        "fuse, degrees": lambda: gyrocore.fuse(log.t, log.rate, degrees),
+        "fuse, deg/s": lambda: gyrocore.fuse(log.t, np.degrees(log.rate), fixes),
+        "whole, degrees": lambda: gyrocore.process(log.t, log.rate, "raw", fixes=degrees),
+        "causal, degrees": lambda: gyrocore.process(log.t, log.rate, "raw", mode="causal", fixes=degrees),
+    }
+    for name, run in cases.items():
+        with pytest.warns(gyrocore.InputWarning, match=said) as caught:
+            run()
+        assert any("rejected 5" in str(w.message) for w in caught), name  # 55x or 56x of 579
+    with pytest.warns(gyrocore.InputWarning) as caught:
+        gyrocore.fuse(log.t * 1000.0, log.rate, (fixes.t * 1000.0, fixes.heading, fixes.sigma))
+    said_all = " ".join(str(w.message) for w in caught)
+    assert "timestamps look like ms, us or ns" in said_all and "the outlier gate rejected" in said_all
