@@ -5,6 +5,7 @@ samples (found whole, not cut into pieces)."""
 from __future__ import annotations
 
 import json
+import math
 import re
 import subprocess
 import sys
@@ -272,3 +273,28 @@ def test_a_fit_window_outside_the_log_is_named() -> None:
     heading = np.cumsum(0.3 * np.sin(t / 5)) * 0.01
     with pytest.raises(ValueError, match=r"^the window \[200.0, 300.0\] s lies outside the gyro's log \(0.0 \.\. 119.99"):
         cal.heading_reference(t, 0.3 * np.sin(t / 5), t[::10], heading[::10], window=(200.0, 300.0))
+
+
+def test_a_fit_window_at_rest_gets_the_bias_alone_not_a_scale_error_no_gyro_has() -> None:
+    """``gyrocore calibrate f110_ds3 --fit-window +0 +0.5`` (inside its rest) fitted a scale error of
+    -99.2 % "+- 0.25 %" (the first-order error shrinks with the gain), which ``--save`` kept and
+    ``process --calibration`` applied: a final heading of 421 rad for 3.37."""
+    log = gyrocore.read_log(real_log_path("f110_ds3"))
+    t_ref, heading_ref = log.reference()
+    start = float(log.t[0])
+    with pytest.warns(gyrocore.InputWarning, match=r"too little to determine the scale \(the gyro turns by .* rad "
+                                                   r"besides its steady drift, under 0.1 rad\)"):
+        fit = cal.heading_reference(log.t, log.rate, t_ref, heading_ref, window=(start, start + 0.5))
+    assert fit.scale_error == 0.0 and fit.scale_error_stderr is None
+    assert fit.bias_stderr is not None  # the rest's bias, within the fit's error (its static bias: -0.3709 deg/s)
+    assert abs(math.degrees(fit.bias) + 0.3709) < 3 * math.degrees(fit.bias_stderr)
+
+
+def test_a_saved_calibration_with_a_scale_error_no_gyro_has_warns_where_it_is_read(tmp_path: Path) -> None:
+    path = tmp_path / "cal.json"
+    cal.Calibration("heading_reference", bias=0.01, scale_error=-0.992).save(path)
+    with pytest.warns(gyrocore.InputWarning, match=r"cal.json: the scale error -99.2 % is beyond \+-50 % for any gyro: "
+                                                   r"applied, it scales every turn by 125"):
+        cal.Calibration.load(path)
+    with pytest.raises(ValueError, match=r"scale_error must be at most 2\^20, got 1e\+300"):
+        cal.Calibration("heading_reference", scale_error=1e300)

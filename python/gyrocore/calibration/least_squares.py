@@ -13,7 +13,7 @@ from .._checks import UnitError, require_radians, usable, warn
 from ..evaluate import unwrap
 from ..integration import integrate
 from .inputs import check_series
-from .result import Calibration
+from .result import MAX_SCALE_ERROR, Calibration
 
 
 def _solve(g: NDArray[np.float64], z: FloatArray) -> tuple[FloatArray, FloatArray, float, float]:
@@ -38,8 +38,6 @@ def _solve(g: NDArray[np.float64], z: FloatArray) -> tuple[FloatArray, FloatArra
 MAX_CONDITION = 1e6
 
 
-#: A fitted scale error beyond this [1] is a wrong unit, not a gyro (the real logs reach 28 %).
-MAX_SCALE_ERROR = 0.5
 #: A fitted ``s_bar`` within this factor of 180/pi: the reference is in degrees, the gyro in radians.
 DEGREE_FACTOR = 2.0
 
@@ -89,12 +87,26 @@ def _calibration_from_q(
     )
 
 
-#: :func:`heading_reference` fits the bias alone when the least-squares standard error of the scale
-#: error exceeds this [1]. On the real logs that turn (f110, KITTI, broad: 1-21 rad) it is at most
+#: :func:`heading_reference` fits the bias alone when the least-squares relative standard error of
+#: the gain ``1 / s_bar`` (the scale error's, for a gain near 1) exceeds this [1]. On the real logs that turn (f110, KITTI, broad: 1-21 rad) it is at most
 #: 0.33 %; on comma_seg40, whose reference turns by 0.02 rad, 4.9 % (for a fitted scale error of
 #: 56 %), and more on straight simulated drives (docs/rest_tracking.md): a typical gyro's scale
 #: error is a percent or two, so a fit less certain than that cannot tell it.
 MAX_SCALE_STDERR = 0.01
+
+
+#: ... or when the gyro's angle, less its straight line in time (what a bias alone gives), spans
+#: less than this [rad]: a window at rest, whose angle is its noise, fitted s_bar = 125 (a gain of
+#: 0.008) with a first-order standard error of 0.25 %, which shrinks with the gain. Over the whole
+#: log the real gyros turn so by 1.0 (broad_10) to 6.3 rad (kitti_0018_mems), comma_seg40's by 0.02.
+MIN_SCALE_TURN = 0.1
+
+
+def _turn(angle: FloatArray, time: FloatArray) -> float:
+    """The span [rad] of ``angle`` less its least-squares line in ``time``: the gyro's turning, not
+    its bias's drift."""
+    line = np.polynomial.polynomial.polyfit(time, angle, 1)
+    return float(np.ptp(angle - np.polynomial.polynomial.polyval(time, line)))
 
 
 def _bias_only(g: NDArray[np.float64], z: FloatArray, window: tuple[float, float], n: int, note: str) -> Calibration:
@@ -241,12 +253,15 @@ def heading_reference(
     # the motion, a reference of the other sign, still gets its error from _calibration_from_q).
     s_bar, stderr = float(q[0]), math.sqrt(max(float(cov[0, 0]), 0.0))
     stderr = stderr / s_bar**2 if s_bar != 0 else math.inf
-    if stderr <= MAX_SCALE_STDERR:
+    turn = _turn(g[:, 0], g[:, 1])
+    if stderr <= MAX_SCALE_STDERR and turn >= MIN_SCALE_TURN:
         return _calibration_from_q("heading_reference", q, cov, rms, cond, span, len(inside))
+    why = (f"its standard error would be {100 * stderr:.3g} %, over {100 * MAX_SCALE_STDERR:g} %"
+           if stderr > MAX_SCALE_STDERR else
+           f"the gyro turns by {turn:.3g} rad besides its steady drift, under {MIN_SCALE_TURN:g} rad")
     note = (
-        f"the reference turns by {np.ptp(z):.3g} rad, too little to determine the scale (its standard "
-        f"error would be {100 * stderr:.3g} %, over {100 * MAX_SCALE_STDERR:g} %): the bias alone was "
-        "fitted (scale error 0); calibrate over a drive with turns for the scale"
+        f"the reference turns by {np.ptp(z):.3g} rad, too little to determine the scale ({why}): the bias alone "
+        "was fitted (scale error 0); calibrate over a drive with turns for the scale"
     )
     warn(f"heading_reference: {note}")
     return _bias_only(g[1:], z[1:], span, len(inside), note)

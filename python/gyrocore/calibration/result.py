@@ -14,9 +14,13 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._arrays import FloatArray, as_float_array, as_window, refuse_masked
-from .._checks import require_choice, require_finite, require_readings, require_version
+from .._checks import MAX_READING, require_choice, require_finite, require_readings, require_version, warn
 from ..io._jsonfile import read_json
 from ..io.atomic import atomic_path
+
+#: A scale error beyond this [1] is a wrong unit or a fit without turns, not a gyro (the real logs
+#: reach 28 %).
+MAX_SCALE_ERROR = 0.5
 
 #: Saved calibrations carry this format name and version.
 FORMAT = "gyrocore-calibration"
@@ -153,6 +157,8 @@ class Calibration:
                 raise ValueError(f"{name} must be finite, got {value!r}")
         if not self.scale_error > -1.0:  # every fit refuses s_bar <= 0 (a gyro read against the motion)
             raise ValueError(f"scale_error must be > -1 (s_bar = 1/(1 + s) > 0), got {self.scale_error!r}")
+        if self.scale_error > MAX_READING:  # 1e300 made every turn 0 (s_bar = 1e-300)
+            raise ValueError(f"scale_error must be at most 2^20, got {self.scale_error!r}")
         for name in ("c_cw", "c_ccw"):  # a factor of 0 wipes out every turn of its direction
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)!r}")
@@ -286,13 +292,20 @@ class Calibration:
 
     @classmethod
     def load(cls, path: str | Path) -> Calibration:
-        """Read a calibration saved by :meth:`save`."""
+        """Read a calibration saved by :meth:`save`; one whose scale error is beyond
+        :data:`MAX_SCALE_ERROR` warns (no gyro has one: the fit that made it saw no turn, or a
+        wrong unit, and applied it scales every turn by its gain)."""
         p = Path(path)
         data = read_json(p)
         try:
-            return cls.from_dict(data)
+            calibration = cls.from_dict(data)
         except (KeyError, TypeError, ValueError) as e:  # missing keys, wrong shapes and types
             raise ValueError(f"{p}: not a valid calibration: {e}") from None
+        if abs(calibration.scale_error) > MAX_SCALE_ERROR:
+            warn(f"{p}: the scale error {100 * calibration.scale_error:+.4g} % is beyond +-{100 * MAX_SCALE_ERROR:g} % "
+                 f"for any gyro: applied, it scales every turn by {calibration.s_bar:.4g}; calibrate again over a "
+                 "drive with turns, in the right units")
+        return calibration
 
 
 def _table_of(table: Any) -> BiasTable:
