@@ -104,3 +104,13 @@ def test_a_highway_drive_in_rad_per_s_with_a_large_bias_is_not_said_to_be_in_deg
         log.process("static_bias", use_speed=False)
     text = " ".join(str(w.message) for w in caught)
     assert "or a rest or straight drive with a bias that large" in text and "deg/s read as rad/s" not in text
+
+
+def test_the_same_highway_drive_written_in_deg_per_s_names_the_unit() -> None:
+    """comma_seg40 in deg/s, read as rad/s, drove a minute of straight highway as 37 turns: its bias,
+    3.9 deg/s, lay beyond the 2.9 deg/s the clause allowed, and the unit went unsaid."""
+    log = gyrocore.read_log(real_log_path("comma_seg40"))
+    with pytest.warns(gyrocore.InputWarning) as caught:
+        gyrocore.process(log.t, np.degrees(log.rate), "static_bias")
+    text = " ".join(str(w.message) for w in caught)
+    assert "reads -3.884 rad/s (-222.5 deg/s)" in text and "or a rate in deg/s read as rad/s" in text
