@@ -92,9 +92,9 @@ def test_no_rest_found_says_what_the_steadiest_stretch_reads_and_names_the_unit(
 
 def test_a_steady_level_far_beyond_any_deg_per_s_rest_does_not_name_the_unit() -> None:
     with pytest.warns(gyrocore.InputWarning) as caught:
-        gyrocore.process(T, np.full_like(T, 5.0) + np.random.default_rng(4).normal(0, 0.002, len(T)), "static_bias")
-    text = " ".join(str(w.message) for w in caught)
-    assert "reads 5 rad/s" in text and "deg/s read as rad/s" not in text
+        gyrocore.process(T, np.full_like(T, 12.0) + np.random.default_rng(4).normal(0, 0.002, len(T)), "static_bias")
+    text = " ".join(str(w.message) for w in caught)  # 12 deg/s would be a bias beyond the 11.5 a gyro has
+    assert "reads 12 rad/s" in text and "deg/s read as rad/s" not in text
 
 
 def test_a_highway_drive_in_rad_per_s_with_a_large_bias_is_not_said_to_be_in_deg_per_s() -> None:
