@@ -194,6 +194,29 @@ fn rests_are_found_from_the_rate_alone_once_the_noise_at_rest_is_known() {
 }
 
 #[test]
+fn a_gyro_that_reads_one_value_at_rest_has_one_rest_wherever_its_clock_starts() {
+    // Quantised: one count (1.2e-3 rad/s) is far above the noise, so the stop reads one value and
+    // its blocks' means differ only by rounding; at t0 = 1000 s the stop was split in two.
+    let (t, rate, speed) = drive(60.0, &[(20.0, 30.0)], 0.0031, 0.0031, 0.0, 1e-5);
+    let rate: Vec<f64> = rate.iter().map(|r| (r / 1.2e-3).round() * 1.2e-3).collect();
+    for t0 in [0.0, 10.0, 100.0, 1000.0, 1.7e9] {
+        let shifted: Vec<f64> = t.iter().map(|t| t + t0).collect();
+        let rests = rests_of(
+            &mut Pipeline::new(tracked(StaticBias::Fixed(0.0))).unwrap(),
+            &shifted,
+            &rate,
+            Some(&speed),
+        );
+        assert_eq!(rests.len(), 1, "t0 = {t0}: {rests:?}");
+        let (start, end) = (rests[0].start, rests[0].end); // from the first sample
+        assert!(
+            (start - 21.0).abs() < 1e-6 && (end - 29.49).abs() < 1e-6,
+            "t0 = {t0}: {rests:?}"
+        );
+    }
+}
+
+#[test]
 fn a_short_stop_is_not_a_rest() {
     // 2.5 s stopped: after dropping its first and last 1 s block, less than 3 s is left.
     let (t, r, s) = drive(60.0, &[(20.0, 22.5)], 0.01, 0.01, 0.0, 0.005);

@@ -210,6 +210,11 @@ impl Sums {
     }
 }
 
+/// The relative rounding of a block's mean (`integral / duration`, sums of products over the
+/// block's intervals) below which two means read the same: far above a block's few hundred
+/// roundings of 2^-53 each, far below any change a gyro's noise or a motion shows.
+const MEAN_ROUNDING: f64 = 1e-9;
+
 /// The block being filled.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -322,7 +327,12 @@ impl RestTracker {
         // while its speed reads zero changes its mean faster than its noise explains.
         let own = b.sums.noise();
         let error = own * libm::sqrt(1.0 / b.sums.samples as f64 + 1.0 / n.max(1) as f64);
-        let constant = libm::fabs(b.sums.mean() - previous) <= c.change_sigmas * error;
+        // A gyro that reads one value at rest (its noise below one count) has no noise to judge
+        // by: its block means then differ only by the rounding of `integral / duration`, which
+        // moves with the clock's origin (a rest split in two at t0 = 1000 s, whole at 100 s).
+        let mean = b.sums.mean();
+        let rounding = MEAN_ROUNDING * libm::fabs(mean).max(libm::fabs(previous));
+        let constant = libm::fabs(mean - previous) <= c.change_sigmas * error + rounding;
         constant
             && if b.all_speeds {
                 !b.moving
