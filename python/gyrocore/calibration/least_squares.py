@@ -87,8 +87,8 @@ def _calibration_from_q(
     )
 
 
-#: :func:`heading_reference` fits the bias alone when the least-squares relative standard error of
-#: the gain ``1 / s_bar`` (the scale error's, for a gain near 1) exceeds this [1]. On the real logs that turn (f110, KITTI, broad: 1-21 rad) it is at most
+#: :func:`heading_reference` fits the bias alone when the least-squares standard error of the scale
+#: error exceeds this [1]. On the real logs that turn (f110, KITTI, broad: 1-21 rad) it is at most
 #: 0.33 %; on comma_seg40, whose reference turns by 0.02 rad, 4.9 % (for a fitted scale error of
 #: 56 %), and more on straight simulated drives (docs/rest_tracking.md): a typical gyro's scale
 #: error is a percent or two, so a fit less certain than that cannot tell it.
