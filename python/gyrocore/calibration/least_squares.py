@@ -209,7 +209,8 @@ def heading_reference(
     The residuals of a heading fit are correlated (they are integrals), so ``bias_stderr`` and
     ``scale_error_stderr`` are optimistic; the residual RMS is in rad. A reference that turns too
     little to determine the scale (the scale's standard error over :data:`MAX_SCALE_STDERR`, which
-    a barely turning drive reaches however little noise it has) gets the bias alone: scale error
+    a barely turning drive reaches however little noise it has, or a gyro that turns by less than
+    :data:`MIN_SCALE_TURN` besides its bias's drift) gets the bias alone: scale error
     0, no ``scale_error_stderr``, a note saying why, and an :class:`~gyrocore.InputWarning`.
 
     A scale error beyond :data:`MAX_SCALE_ERROR` (50 %) warns that a unit looks wrong.
