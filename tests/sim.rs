@@ -262,23 +262,25 @@ fn invalid_configuration_names_the_field() {
         "scale_error"
     );
     // Each term within its range, the gain they make together not: a reading of the wrong sign.
+    // A scale error of -0.5 at 25 degC, 0.01 per degree, warming from `start` to 25 degC.
+    let warming_from = |start: f64| GyroModelConfig {
+        scale_error: -0.5,
+        scale_temperature: 0.01,
+        temperature: TemperatureProfile {
+            start,
+            end: 25.0,
+            time_constant: 600.0,
+        },
+        reference_temperature: 25.0,
+        ..ok
+    };
     for flipped in [
         GyroModelConfig {
             scale_error: -0.9,
             scale_asymmetry: 0.3,
             ..ok
         },
-        GyroModelConfig {
-            scale_error: -0.5,
-            scale_temperature: 0.01,
-            temperature: TemperatureProfile {
-                start: -40.0,
-                end: 25.0,
-                time_constant: 600.0,
-            },
-            reference_temperature: 25.0,
-            ..ok
-        },
+        warming_from(-40.0),
         GyroModelConfig {
             scale_error: -0.5,
             scale_temperature: -0.01,
@@ -295,17 +297,7 @@ fn invalid_configuration_names_the_field() {
             scale_asymmetry: 0.3,
             ..ok
         },
-        GyroModelConfig {
-            scale_error: -0.5,
-            scale_temperature: 0.01,
-            temperature: TemperatureProfile {
-                start: 0.0,
-                end: 25.0,
-                time_constant: 600.0,
-            },
-            reference_temperature: 25.0,
-            ..ok
-        },
+        warming_from(0.0),
     ] {
         assert!(kept.validate().is_ok());
     }
