@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, Any
 from . import io, wholelog
 from ._checks import check_count, public_dir, require_choice, require_flag
 from .pipeline import Pipeline, has_bias_source
-from .pipeline_params import to_si
+from .pipeline_params import _to_si
 from .batch_inputs import check_outside_inputs, complete_output, expand_inputs, output_paths
 from .batch_job import BatchReport, FileReport, Progress, _FileJob, split_options
 from .batch_run import run_on_dask, run_on_threads, check_client, connected
@@ -196,7 +196,7 @@ def process_many(
                ("use_fixes", use_fixes))
     _, overrides = split_options(options)
     # invalid parameters fail here, before any work (a stand-in bias keeps the check quiet)
-    pipeline_overrides = to_si(overrides)
+    pipeline_overrides = _to_si(overrides)
     if mode == "whole":
         wholelog.refuse_tracking(pipeline_overrides)
         wholelog.Options.pop(pipeline_overrides)

@@ -24,7 +24,7 @@ from .io._paths import error_text, has_file, one_line
 from .io.log import tracks_rests
 from .io.source import SPEED_COLUMN
 from .pipeline import HeadingResult, has_bias_source, uses_static_bias
-from .pipeline_params import to_si, unmeasured_bias
+from .pipeline_params import _to_si, unmeasured_bias
 from .window import RestWindowError, Window, time_range
 
 if TYPE_CHECKING:
@@ -369,13 +369,13 @@ class _FileJob:
         """Where the bias comes from: in whole mode a first pass over the file (see
         :func:`gyrocore.wholelog.plan_stream`), in causal mode the pipeline's own rest window."""
         if self.mode == "causal":
-            wholelog.refuse_whole_options(to_si(overrides))
-            causal = wholelog.causal_source(self.preset, to_si(overrides))
-            warning = unmeasured_bias(self.preset, to_si(overrides))
+            wholelog.refuse_whole_options(_to_si(overrides))
+            causal = wholelog.causal_source(self.preset, _to_si(overrides))
+            warning = unmeasured_bias(self.preset, _to_si(overrides))
             if warning is not None:  # the log gave no rest window either (its meta.json's is taken)
                 warning += f" {wholelog.BIAS_OPTIONS_HINT}"
             return wholelog.BiasPlan(causal, overrides=overrides, warning=warning)
-        wholelog.refuse_tracking(to_si(overrides))
+        wholelog.refuse_tracking(_to_si(overrides))
 
         def chunks() -> Iterator[tuple[FloatArray, FloatArray]]:
             for chunk in source.chunks(self.chunk_rows):
@@ -390,7 +390,7 @@ class _FileJob:
             return wholelog.plan_stream(self.preset, overrides, chunks, read_all)
         except SampleError:
             # A rest's measurement saw a slice of the log: the streamed pass names the row.
-            return wholelog.BiasPlan("none: the log has invalid samples", overrides=wholelog.without_bias(to_si(overrides)))
+            return wholelog.BiasPlan("none: the log has invalid samples", overrides=wholelog.without_bias(_to_si(overrides)))
         except ValueError as e:
             raise _in_file(source, e, from_meta) from None
 

@@ -21,7 +21,7 @@ from ._motion import WindowWatch
 from .pipeline_input import refuse_window_without_reading, say_what_to_do, warn_repairs
 from .pipeline_params import (
     BIAS_SOURCES,
-    to_si,
+    _to_si,
     core_pipeline,
     has_bias_source,
     parameters,
@@ -100,7 +100,7 @@ class Pipeline:
     def __init__(
         self, preset: str = "recommended", *, fusion: dict[str, float] | None = None, **overrides: Any
     ) -> None:
-        si = to_si(overrides)
+        si = _to_si(overrides)
         self._inner = core_pipeline(preset, si)
         self._preset = preset
         # the first samples, held until the unit check has an interval to judge (None once done)

@@ -43,7 +43,7 @@ def uses_static_bias(preset: str) -> bool:
 
 def has_bias_source(overrides: dict[str, Any]) -> bool:
     """Whether ``overrides`` (SI or degree spelling) set the static bias or its rest window."""
-    return any(to_si(overrides).get(k) is not None for k in BIAS_SOURCES)
+    return any(_to_si(overrides).get(k) is not None for k in BIAS_SOURCES)
 
 
 def unmeasured_bias(preset: str, si: dict[str, Any]) -> str | None:
@@ -62,7 +62,7 @@ def parameters() -> dict[str, str]:
     return dict(_gyrocore.parameter_names())
 
 
-def to_si(overrides: dict[str, Any]) -> dict[str, Any]:
+def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
     """Convert ``*_dps`` / ``*_deg`` spellings to the SI parameter names, and a list or array (a
     window; a pandas Series too, by position) to the tuple the core takes."""
     si: dict[str, Any] = {}
@@ -128,7 +128,7 @@ def _radians(key: str, value: Any) -> float | None:
 def preset_params(preset: str = "hdr", **overrides: Any) -> dict[str, Any]:
     """The flat SI parameters of ``preset`` with ``overrides`` applied (validated by the core)."""
     _check_preset(preset)
-    si = to_si(overrides)
+    si = _to_si(overrides)
     try:
         return dict(_gyrocore.preset_params(preset, si))
     except (TypeError, ValueError, OverflowError) as e:

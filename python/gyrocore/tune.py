@@ -25,7 +25,7 @@ import numpy as np
 from ._checks import did_you_mean, public_dir, require_choice
 from ._extras import require
 from .pipeline import BIAS_SOURCES, parameters, preset_params
-from .pipeline_params import to_si
+from .pipeline_params import _to_si
 from .tune_cases import (
     HARM_MIXES,
     OBJECTIVES,
@@ -164,7 +164,7 @@ def search_box(
     by_default = not names  # the preset's own: a fixed one among them was never asked to be fitted
     names = tuple(names or default_parameters(preset))
     fixed = dict(fixed or {})
-    known, given = parameters(), (*names, *to_si(fixed))  # a fixed one may be spelled *_dps or *_deg
+    known, given = parameters(), (*names, *_to_si(fixed))  # a fixed one may be spelled *_dps or *_deg
     unknown = [n for n in given if n not in known]
     if unknown:
         said = ", ".join(f"{n}{did_you_mean(n, known)}" for n in unknown)
@@ -191,7 +191,7 @@ def search_box(
             raise ValueError(f"bounds of {n} must satisfy 0 < low < high, got ({low}, {high})")
         validate(preset, {n: low})
         validate(preset, {n: high})
-    overlap = [n for n in names if n in to_si(fixed)]  # hdr_increment_dps fixes hdr_increment
+    overlap = [n for n in names if n in _to_si(fixed)]  # hdr_increment_dps fixes hdr_increment
     if overlap:
         why = (f": {preset}'s fit takes {', '.join(names)} unless told; name the parameters to fit without it "
                "(--param NAME, names=)" if by_default else "")
@@ -252,7 +252,7 @@ def tune(
         raise ValueError(f"max_evaluations must be >= 1, got {max_evaluations}")
     box = search_box(preset, names, bounds, fixed)
     name = ParameterSet(name or f"{preset}_tuned", preset, {}).name  # a name the file cannot hold fails before the fit
-    names, fixed = tuple(box), to_si(dict(fixed or {}))  # a parameter file holds SI names, with their units
+    names, fixed = tuple(box), _to_si(dict(fixed or {}))  # a parameter file holds SI names, with their units
     base = preset_params(preset, **fixed)
     # A parameter the preset leaves unset (None) starts in the middle of its bounds.
     given = {n: (start or {}).get(n, base.get(n)) for n in names}
@@ -268,7 +268,7 @@ def tune(
     def objective_of(overrides: Mapping[str, float]) -> float:
         # The preset's parameters with the fixed ones were built and checked once, above; an
         # evaluation lays its fitted values over them (each pipeline checks its own as it is built).
-        params = {**base, **to_si({n: overrides[n] for n in names})}
+        params = {**base, **_to_si({n: overrides[n] for n in names})}
         scores = score_cases(cases, preset, overrides, params)
         value = mean_ne_psi(scores) if objective == "ne_psi" else mean_log_ratio(scores)
         if harm:

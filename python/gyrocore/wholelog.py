@@ -54,7 +54,7 @@ from .pipeline import (
     preset_params,
     uses_static_bias,
 )
-from .pipeline_params import to_si
+from .pipeline_params import _to_si
 from .result import OutArrays, filled, out_arrays
 from .rests import Rest, refuse_speed_t_alone, rest_lines, speed_on
 from .wholelog_options import (
@@ -91,7 +91,7 @@ def check_parameters(preset: str, overrides: dict[str, Any]) -> None:
     options and a window still counted from the first sample aside), before whole mode reads the
     rest window itself: a window of three bounds was read in part, and a zero ``bias_duration`` was
     blamed on the HDR bound derived from it."""
-    core_pipeline(preset, to_si({k: v for k, v in overrides.items() if k not in WHOLE_OPTIONS and not isinstance(v, Window)}))
+    core_pipeline(preset, _to_si({k: v for k, v in overrides.items() if k not in WHOLE_OPTIONS and not isinstance(v, Window)}))
 
 
 @dataclass(frozen=True)
@@ -362,7 +362,7 @@ def plan_stream(
     measured by a first pass that reads only up to the window's end (flat memory); finding the
     rests needs the whole log's times and rates (16 bytes a sample) from ``read_all() -> (t, rate,
     speed or None)``. The heading itself is then a second, streamed pass."""
-    si = to_si(overrides)
+    si = _to_si(overrides)
     options = Options.pop(si)
     if uses_static_bias(preset) and _bias_source(si) is None:
         found = plan_log(preset, si, *read_all(), options)  # the second pass names a bad sample
@@ -417,7 +417,7 @@ def process_log(
     rest of the log."""
     check_mode(mode)
     refuse_speed_t_alone(speed, speed_t)
-    si = to_si(overrides)
+    si = _to_si(overrides)
     if mode == "causal":
         refuse_whole_options(si)
         checked = None if fixes is None else _checked(fixes)
