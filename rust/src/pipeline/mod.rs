@@ -150,13 +150,16 @@ impl Pipeline {
             .rest_statistics()
             .filter(|_| !self.scaling_pending);
         // The scaled values are computed again from the window's sums, which a state written
-        // without exact floats carries rounded: they must agree within that rounding.
+        // without exact floats carries rounded: they must agree within that rounding, relative
+        // to the readings' size too (the parts' means cancel in the bias's standard error).
+        let size = libm::fabs(self.bias.value());
         let learned = |name: &'static str, value: Option<f64>, k: Option<f64>, of: f64| {
             let (Some(value), Some(k)) = (value, k) else {
                 return Ok(None);
             };
             let expected = k * of;
-            if libm::fabs(value - expected) <= crate::rest::ROUNDING * libm::fabs(expected) {
+            let most = crate::rest::ROUNDING * (libm::fabs(expected) + k * size);
+            if libm::fabs(value - expected) <= most {
                 Ok(Some(value))
             } else {
                 let valid = "the noise-scaled value the rest window's statistics give";
