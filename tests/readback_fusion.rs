@@ -283,3 +283,62 @@ proptest::proptest! {
         })?;
     }
 }
+
+/// Times that contradict each other: a knot after the time the filter stands at (the heading
+/// sigma grew as if the time were ahead), a last fix or sample after it, a filter standing
+/// 1005 s behind its last fix (the next block integrated it all as rate: a heading of 101.5 rad
+/// where 1.0 was right). Each is refused naming it.
+#[test]
+fn a_filter_whose_times_are_out_of_order_is_refused() {
+    let v = serde_json::to_value(fusion()).unwrap();
+    for (at, value, name) in [
+        ("/segment/t", 1000.0, "segment time"),
+        ("/anchor/t", -1000.0, "last fix time"),
+        ("/anchor/sample_t", 1000.0, "filter sample time"),
+        ("/last_fix", 1000.0, "last fix time"),
+    ] {
+        let mut e = v.clone();
+        *e.pointer_mut(at).unwrap() = json!(value);
+        let err = refused::<Fusion>(e);
+        assert!(err.contains(&format!("invalid parameter {name}")), "{err}");
+    }
+    let f: Fusion = serde_json::from_value(v).unwrap();
+    assert!(f.last_time().is_some());
+}
+
+/// A fused pipeline whose filter stands elsewhere than its pipeline: behind, the next block
+/// gave a heading of 101.5 rad where 1.0 was right; ahead, it refused the next valid fix.
+#[test]
+fn a_fused_pipeline_whose_filter_and_pipeline_disagree_on_time_is_refused() {
+    let mut f = FusedPipeline::new(Preset::Raw.config(), FusionConfig::default()).unwrap();
+    let fixes: Vec<Fix> = (0..5)
+        .map(|s| Fix {
+            t: s as f64 + 0.005,
+            heading: 0.1 * s as f64,
+            sigma: 0.01,
+        })
+        .collect();
+    let t: Vec<f64> = (0..500).map(|i| i as f64 * 0.01).collect();
+    let n = t.len();
+    let (mut h, mut r) = (vec![0.0; n], vec![0.0; n]);
+    let out = FusedOutputs {
+        heading: &mut h,
+        heading_sigma: None,
+        bias: None,
+        scale: None,
+        rate: &mut r,
+        drift: None,
+    };
+    f.process_block(Samples::new(&t, &vec![0.1; n]), &fixes, out)
+        .unwrap();
+    let v = serde_json::to_value(&f).unwrap();
+    for time in [1000.0, 4.98] {
+        let mut e = v.clone();
+        e["fusion"]["anchor"]["t"] = json!(time);
+        e["fusion"]["anchor"]["sample_t"] = json!(time);
+        let err = refused::<FusedPipeline>(e);
+        assert!(err.contains("invalid parameter filter time"), "{err}");
+    }
+    let back: FusedPipeline = serde_json::from_value(v).unwrap();
+    assert_eq!(back.fusion().last_time(), back.pipeline().last_time());
+}

@@ -264,8 +264,18 @@ impl Correction {
     #[cfg(feature = "serde")]
     pub(crate) fn check_restored(&self) -> Result<(), Error> {
         self.config().validate()?;
-        self.bias.check()?;
+        self.bias
+            .check(self.calibration.config.bias, self.clock.last())?;
         check_reading("bias", self.calibration.bias)?;
+        // The bias corrected with is the estimate's: a copy of it that differed ran unseen.
+        if self.calibration.bias != self.bias.value() {
+            let valid = "the bias measured or configured (the static bias test's)";
+            return Err(Error::InvalidParameter {
+                name: "calibration bias",
+                value: self.calibration.bias,
+                valid,
+            });
+        }
         self.clock.check_restored()
     }
 

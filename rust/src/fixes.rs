@@ -117,7 +117,29 @@ impl Fusion {
         self.anchor
             .iter()
             .chain(&last_fix)
-            .try_for_each(Anchor::check)
+            .try_for_each(Anchor::check)?;
+        // The times in order: the knot, the last fix and the last sample no later than the time
+        // the filter stands at (one behind it integrated the time between as rate at once).
+        let Some(anchor) = self.anchor else {
+            let valid = "none before the first sample (a fix before it is not applied)";
+            let value = self.last_fix.unwrap_or(0.0);
+            return match self.last_fix {
+                Some(_) => Err(Error::InvalidParameter {
+                    name: "last fix time",
+                    value,
+                    valid,
+                }),
+                None => Ok(()),
+            };
+        };
+        let valid = "at or before the time the filter stands at";
+        let now = anchor.t;
+        if let Some(t) = self.last_fix {
+            crate::error::check_range("last fix time", t, f64::NEG_INFINITY, now, valid)?;
+        }
+        let name = "filter sample time";
+        crate::error::check_range(name, anchor.sample_t, f64::NEG_INFINITY, now, valid)?;
+        self.segment.check_before(now)
     }
 
     /// The configuration.

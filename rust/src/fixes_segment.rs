@@ -116,6 +116,8 @@ impl Segment {
             check_stored("rate integral", v)?;
         }
         let (bias, scale) = self.calibration();
+        // Not required > 0: fixes far tighter than the gyro and contradicting each other drive
+        // the filter itself there (tests/fixes_precision.rs), and its state must read back.
         if !(bias.is_finite() && scale.is_finite()) {
             return Err(crate::Error::InvalidParameter {
                 name: "filter scale",
@@ -125,6 +127,15 @@ impl Segment {
             });
         }
         crate::fixes_covariance::check(&self.p)
+    }
+
+    /// Fails unless the knot's time is at or before `now`, the time the filter stands at: the
+    /// segment runs forward from its knot (one after it integrated the time between as rate).
+    #[cfg(feature = "serde")]
+    pub(crate) fn check_before(&self, now: f64) -> Result<(), crate::Error> {
+        let valid = "at or before the time the filter stands at (the knot is a fix or sample \
+                     already passed)";
+        crate::error::check_range("segment time", self.t, f64::NEG_INFINITY, now, valid)
     }
 
     /// Extends the segment by an interval `dt` \[s\] over which the rate's mean is `m` \[rad/s\].

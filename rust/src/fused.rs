@@ -88,7 +88,11 @@ pub struct FusedOutputs<'a> {
 /// A [`Pipeline`] and a [`Fusion`] on its corrected rate; its state is `Clone` and serialisable
 /// (a copy, restored, carries on bit-identically).
 #[derive(Debug, Clone, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct FusedPipeline {
     pipeline: Pipeline,
     fusion: Fusion,
@@ -101,6 +105,23 @@ impl FusedPipeline {
         Ok(FusedPipeline {
             fusion: Fusion::new(fusion)?,
             pipeline: Pipeline::new(pipeline)?,
+        })
+    }
+
+    /// Checks a state read back (`serde` feature; the pipeline and the filter have each been
+    /// checked as they were read): the filter stands at the pipeline's last time, the last
+    /// sample both took. One behind took the next block's first interval as rate over the whole
+    /// time between, one ahead refused the next valid fix.
+    #[cfg(feature = "serde")]
+    pub(crate) fn check_restored(&self) -> Result<(), Error> {
+        let (pipeline, fusion) = (self.pipeline.last_time(), self.fusion.last_time());
+        if pipeline == fusion {
+            return Ok(());
+        }
+        Err(Error::InvalidParameter {
+            name: "filter time",
+            value: fusion.unwrap_or(f64::NAN),
+            valid: "the pipeline's last time (the filter takes every sample the pipeline takes)",
         })
     }
 

@@ -102,4 +102,17 @@ impl InputReport {
             self.longest_gap = self.longest_gap.max(longest);
         }
     }
+
+    /// Checks a report read back (`serde` feature): the longest gap an interval, within 0 and
+    /// 2^41 s, and 0 without gaps.
+    #[cfg(feature = "serde")]
+    pub(crate) fn check_restored(&self) -> Result<(), crate::Error> {
+        let most = if self.gaps == 0 {
+            0.0
+        } else {
+            2.0 * crate::MAX_TIME
+        };
+        let valid = "within 0 and 2^41 s (an interval), and 0 without gaps";
+        crate::error::check_range("longest_gap", self.longest_gap, 0.0, most, valid)
+    }
 }

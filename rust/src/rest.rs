@@ -10,6 +10,11 @@ use crate::Error;
 /// Number of equal parts of the rest window whose means give the bias's standard error.
 const BATCHES: usize = 8;
 
+/// The relative difference a value read back may have from the one its sums give: a state
+/// written without exact floats (`serde_json` without `float_roundtrip`) stays far within it.
+#[cfg(feature = "serde")]
+pub(crate) const ROUNDING: f64 = 1.0 / (1u64 << 36) as f64;
+
 /// Noise statistics of a measured rest window.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -224,14 +229,20 @@ impl BiasEstimate {
         })
     }
 
-    /// Checks an estimate read back (`serde` feature): the bias a reading, the time measured
-    /// within the window's longest, the integral's mean within twice the largest reading (room
-    /// for rounding), the window's bounds within +-2^41 s, and its noise's sums
-    /// ([`RestNoise::check`]). A stored integral of 1e308 gave an infinite bias at the next
-    /// reading, a NaN window never ended.
+    /// Checks an estimate read back (`serde` feature) for `source` (the configuration's) and
+    /// `last`, the last time its clock took: the bias a reading, the time measured within the
+    /// window's longest, the integral's mean over it a reading too (the bias learned from it is
+    /// that mean), the window's bounds within +-2^41 s, and its noise's sums
+    /// ([`RestNoise::check`]). Then the estimate against its source: a fixed bias is the
+    /// configured one and learns nothing; a window is the configured one, or for a leading
+    /// window of the configured duration from the first sample; the measurement is over only
+    /// once a time past the window's end was taken, and going on only until then; no time or
+    /// integral is measured before a second reading. A stored integral of 1e308 gave an infinite
+    /// bias at the next reading, a NaN window never ended, a window not the configured one
+    /// refused the next block, and one marked over before it ran left the bias at 0 unreported.
     #[cfg(feature = "serde")]
-    pub(crate) fn check(&self) -> Result<(), Error> {
-        use crate::error::{check_integral, check_range, check_reading};
+    pub(crate) fn check(&self, source: StaticBias, last: Option<f64>) -> Result<(), Error> {
+        use crate::error::{check_mean, check_range, check_reading};
         use crate::MAX_TIME;
         check_reading("bias", self.value)?;
         let longest = 2.0 * MAX_TIME;
@@ -242,11 +253,102 @@ impl BiasEstimate {
             longest,
             "within 0 and 2^41 s",
         )?;
-        check_integral("bias integral", self.integral, self.duration)?;
+        // The mean is the bias learned from it, which the next read-back checks as a reading.
+        check_mean("bias integral", self.integral, self.duration)?;
         for bound in self.window.iter().flat_map(|&(start, end)| [start, end]) {
             check_range("bias_window", bound, -longest, longest, "within +-2^41 s")?;
         }
-        self.noise.check()
+        self.noise.check()?;
+        self.check_source(source, last)
+    }
+
+    /// The part of [`BiasEstimate::check`] that compares the estimate with its source and clock.
+    #[cfg(feature = "serde")]
+    fn check_source(&self, source: StaticBias, last: Option<f64>) -> Result<(), Error> {
+        let refuse = |name: &'static str, value: f64, valid: &'static str| {
+            Err(Error::InvalidParameter { name, value, valid })
+        };
+        let as_f64 = |b: bool| if b { 1.0 } else { 0.0 };
+        let window = match source {
+            StaticBias::Fixed(b) => {
+                if self.value != b {
+                    return refuse("bias", self.value, "the configured fixed bias");
+                }
+                if self.learning || self.count > 0 || self.duration > 0.0 || self.window.is_some() {
+                    let valid = "false for a fixed bias, which measures no window";
+                    return refuse("bias learning", as_f64(self.learning), valid);
+                }
+                return Ok(());
+            }
+            StaticBias::Window { start, end } => {
+                if self.window != Some((start, end)) {
+                    let valid = "the configured window";
+                    let value = self.window.map_or(f64::NAN, |w| w.0);
+                    return refuse("bias_window", value, valid);
+                }
+                (start, end)
+            }
+            StaticBias::Leading { duration } => match (self.window, self.first) {
+                (None, None) if last.is_none() => {
+                    if !self.learning {
+                        let valid = "true until a time past the window's end was taken";
+                        return refuse("bias learning", 0.0, valid);
+                    }
+                    return self.check_empty();
+                }
+                (Some((start, end)), Some(first)) => {
+                    // The end is the first time plus the duration, rounded (and maybe read
+                    // back without exact floats).
+                    let off = libm::fabs(end - (start + duration));
+                    let ulps = 4.0 * f64::EPSILON * (libm::fabs(start) + duration);
+                    if start != first || off > ulps {
+                        let valid = "the configured duration from the first sample";
+                        return refuse("bias_window", end, valid);
+                    }
+                    (start, end)
+                }
+                _ => {
+                    let valid = "set at the first sample";
+                    return refuse("bias_window", f64::NAN, valid);
+                }
+            },
+        };
+        // `learn` ends the measurement at the first time past the window's end, and only there.
+        let passed = last.is_some_and(|t| t > window.1);
+        if self.learning == passed {
+            let valid = "true until a time past the window's end was taken, false from then on";
+            return refuse("bias learning", as_f64(self.learning), valid);
+        }
+        if self.count == 0 {
+            return self.check_empty();
+        }
+        if self.count == 1 && (self.duration != 0.0 || self.integral != 0.0) {
+            let valid = "0 until the window's second reading (the first has no interval in it)";
+            return refuse("bias duration", self.duration, valid);
+        }
+        if self.duration > 0.0 {
+            // The bias is the integral's mean, within the rounding of floats read back inexactly.
+            let mean = self.integral / self.duration;
+            if libm::fabs(self.value - mean) > ROUNDING * libm::fabs(mean) {
+                let valid = "the bias integral's mean over the bias duration";
+                return refuse("bias", self.value, valid);
+            }
+        }
+        Ok(())
+    }
+
+    /// An estimate that took no reading in its window: nothing measured, a bias of 0.
+    #[cfg(feature = "serde")]
+    fn check_empty(&self) -> Result<(), Error> {
+        if self.duration != 0.0 || self.integral != 0.0 || self.value != 0.0 {
+            let valid = "0 before the window's first reading";
+            return Err(Error::InvalidParameter {
+                name: "bias",
+                value: self.value,
+                valid,
+            });
+        }
+        Ok(())
     }
 
     /// See [`crate::Correction::rest_statistics`].

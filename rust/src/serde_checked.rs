@@ -1,6 +1,6 @@
 //! Serde for a state that must be checked when it is read back: a [`Pipeline`], [`Fusion`],
-//! [`Correction`], [`Downsample`], stand-alone [`Streaming`] stage, [`GyroModel`] or random
-//! generator edited by hand, damaged, or saved by another version ran with
+//! [`FusedPipeline`], [`Correction`], [`Downsample`], stand-alone [`Streaming`] stage,
+//! [`GyroModel`] or random generator edited by hand, damaged, or saved by another version ran with
 //! values its `new` refuses (a negative low-pass `tau` in the stored stages gave NaN headings,
 //! a negative gate rejected every fix) or with stages other than its configuration says.
 //!
@@ -10,7 +10,7 @@
 
 use crate::kernel::Validated;
 use crate::sim::Xoshiro256PlusPlus;
-use crate::{Correction, Downsample, Error, Fusion, GyroModel, Pipeline, Streaming};
+use crate::{Correction, Downsample, Error, FusedPipeline, Fusion, GyroModel, Pipeline, Streaming};
 
 /// Implements `Serialize` and `Deserialize` for `$ty` (generic over `[$g]`, if given) from its
 /// `remote = "Self"` derive, the deserialised value checked by `$check: fn(&$ty) -> Result<(),
@@ -48,6 +48,7 @@ macro_rules! checked_serde {
 
 checked_serde!(Pipeline, Pipeline::check_restored);
 checked_serde!(Fusion, Fusion::check_restored);
+checked_serde!(FusedPipeline, FusedPipeline::check_restored);
 checked_serde!(Correction, Correction::check_restored);
 checked_serde!(Downsample, Downsample::check_restored);
 checked_serde!([K: Validated] Streaming<K>, Streaming::check_restored);

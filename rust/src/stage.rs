@@ -133,16 +133,18 @@ impl Clock {
         self.last
     }
 
-    /// Checks a clock read back (`serde` feature): its last time within +-2^40 s, as every time
-    /// it takes. One of -1e308 made the next block's first interval 1e308 (an infinite heading),
-    /// one of 1e308 refused every later block.
+    /// Checks a clock read back (`serde` feature): its last time strictly within +-2^40 s, as
+    /// [`Clock::interval`] takes every time. One of -1e308 made the next block's first interval
+    /// 1e308 (an infinite heading), one of 1e308 or of 2^40 itself refused every later block.
     #[cfg(feature = "serde")]
     pub(crate) fn check_restored(&self) -> Result<(), Error> {
         match self.last {
-            Some(t) => {
-                crate::error::check_range("last_time", t, -MAX_TIME, MAX_TIME, "within +-2^40 s")
-            }
-            None => Ok(()),
+            Some(t) if libm::fabs(t) >= MAX_TIME || t.is_nan() => Err(Error::InvalidParameter {
+                name: "last_time",
+                value: t,
+                valid: "within +-2^40 s, exclusive (as every time taken)",
+            }),
+            _ => Ok(()),
         }
     }
 }

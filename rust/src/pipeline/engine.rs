@@ -168,7 +168,7 @@ impl Engine {
 
     /// What the stages have been handed so far (under the tracker, what it set in its chain).
     #[cfg(feature = "serde")]
-    fn in_force(&self) -> Measured {
+    pub(crate) fn in_force(&self) -> Measured {
         match self {
             Engine::Plain(chain) => PlainChain::in_force(&chain.config),
             Engine::Hdr(chain) => HdrChain::in_force(&chain.config),
@@ -177,11 +177,23 @@ impl Engine {
         }
     }
 
-    /// Checks an engine read back against `config` (valid): the values measured so far within
-    /// their ranges, and the stages `config` builds, handed those values, equal to the stored
-    /// ones (an edited copy of a setting runs as stored, whatever `config` says).
+    /// True for the chain under the rest tracker.
     #[cfg(feature = "serde")]
-    pub(crate) fn check_restored(&self, config: &PipelineConfig) -> Result<(), Error> {
+    pub(crate) fn is_tracked(&self) -> bool {
+        matches!(self, Engine::Tracked(_))
+    }
+
+    /// Checks an engine read back against `config` (valid) and `handed`, what the pipeline's own
+    /// state says its stages were handed (`None` where a stage keeps what `config` gives it):
+    /// the values in force within their ranges, and the stages `config` builds, handed those
+    /// values, equal to the stored ones (an edited copy of a setting runs as stored, whatever
+    /// `config` says).
+    #[cfg(feature = "serde")]
+    pub(crate) fn check_restored(
+        &self,
+        config: &PipelineConfig,
+        handed: &Measured,
+    ) -> Result<(), Error> {
         let measured = self.in_force();
         if let Some(bias) = measured.bias {
             check_reading("bias", bias)?;
@@ -194,7 +206,7 @@ impl Engine {
             check_range("hdr_max_correction", bound, 0.0, f64::INFINITY, valid)?;
         }
         let mut built = Engine::new(config);
-        built.measured(&measured);
+        built.measured(handed);
         let same = match (&built, self) {
             (Engine::Plain(a), Engine::Plain(b)) => a.config == b.config,
             (Engine::Hdr(a), Engine::Hdr(b)) => a.config == b.config,
