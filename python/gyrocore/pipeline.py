@@ -40,6 +40,7 @@ from .window import (
     refuse_few_readings,
     refuse_past_end,
     refuse_start_before,
+    refuse_window_objects,
     rest_window_text,
 )
 
@@ -100,6 +101,7 @@ class Pipeline:
     def __init__(
         self, preset: str = "recommended", *, fusion: dict[str, float] | None = None, **overrides: Any
     ) -> None:
+        refuse_window_objects(overrides)
         si = to_si(overrides)
         self._inner = core_pipeline(preset, si)
         self._preset = preset
