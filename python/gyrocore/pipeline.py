@@ -202,7 +202,7 @@ class Pipeline:
         ta = as_float_array("t", t)
         ra = as_float_array("rate", rate)
         temp = None if temperature is None else as_float_array("temperature", temperature)
-        refuse_window_without_reading(self._inner, ta, ra, temp)
+        refuse_window_without_reading(self._inner, ta, ra, temp, self._first_time)
         if self._unit_head is not None and len(ta):
             self._check_units(ta, ra, temp)
         flags = output_flags(outputs)

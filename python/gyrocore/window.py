@@ -228,6 +228,16 @@ def refuse_past_end(start: float, end: float, first: float, last: float, *, dura
                           "window inside the log, in its own time base", (first, last))
 
 
+def no_usable_reading(start: float, end: float, first: float, last: float | None = None) -> RestWindowError:
+    """The error of a rest window ``[start, end]`` whose samples are all readings the pipeline does
+    not take (NaN, beyond its limit: skipped), in a log from ``first`` (to ``last`` where known):
+    whole mode's and a stream's words alike (a stream called it a jump in the log)."""
+    return RestWindowError(
+        f"the bias window [{start}, {end}] s holds no usable reading (finite, within +-2^20 rad/s) of the log "
+        f"({time_range(first, last)})", None if last is None else (first, last)
+    )
+
+
 def rest_window_text(params: dict[str, Any]) -> str:
     """The rest window of ``params`` as the user gave it."""
     if params.get("bias_window"):

@@ -237,3 +237,21 @@ def test_a_window_object_is_refused_by_name_with_the_tuple_to_give(mode: str) ->
         gyrocore.process(t, rate(t), "static_bias", mode=mode, bias_window=window)
     with pytest.raises(TypeError, match=said):
         Pipeline("static_bias", bias_window=window)
+
+
+@pytest.mark.parametrize("chunks", [1, 2])
+def test_a_window_whose_readings_were_all_skipped_is_said_so_in_causal_mode_as_in_whole(chunks: int) -> None:
+    # causal mode said "holds no sample of the log, which jumps from t = 61.99 to t = 62.0 s"
+    t = np.arange(0.0, 120.0, 0.01)
+    r = 0.01 + np.where((t > 50) & (t < 62), 0.0, 0.3 * np.sin(t / 3))
+    r[5000:6200] = np.nan  # every reading of the window
+    said = "the bias window [50.5, 61.5] s holds no usable reading (finite, within +-2^20 rad/s) of the log (the log "
+    options = {"nonfinite": "skip", "bias_window": (50.5, 61.5)}
+    with pytest.raises(RestWindowError, match=re.escape(said)):
+        gyrocore.process(t, r, "static_bias", mode="whole", **options)  # type: ignore[arg-type]
+    stream = Pipeline("static_bias", **options)  # type: ignore[arg-type]
+    if chunks == 2:  # the window's samples came in the chunk before
+        stream.process(t[:6100], r[:6100])
+    with pytest.raises(RestWindowError, match=re.escape(said)) as causal:
+        stream.process(t[6100:] if chunks == 2 else t, r[6100:] if chunks == 2 else r)
+    assert "jumps" not in str(causal.value) and str(causal.value).endswith("; nothing of this chunk was processed")
