@@ -93,8 +93,8 @@ class Window:
                 + time_range(float(t[0]), float(t[-1]), plus_t=True)
             )
         if within and (start < t[0] or end > t[-1]):
-            raise ValueError(f"{self.option} {self} reaches outside the log ({time_range(float(t[0]), float(t[-1]), plus_t=True)}); "
-                             "give a window inside it")
+            span = time_range(float(t[0]), float(t[-1]), plus_t=True)
+            raise ValueError(f"{self.option} {self} reaches outside the log ({span}); give a window inside it")
         return inside
 
     def __str__(self) -> str:
