@@ -257,11 +257,12 @@ def check_count(name: str, value: object) -> int:
     return int(value)
 
 
-def check_seed(seed: object) -> int:
-    """``seed`` as an int in [0, 2^64) (numpy's PCG64 and the core's generators take no other); a
-    ValueError otherwise (numpy's own for -1 was "expected non-negative integer")."""
-    if not isinstance(seed, (int, np.integer)) or isinstance(seed, bool) or not 0 <= seed < 2**64:
-        raise ValueError(f"seed must be an integer in [0, 2**64), got {seed!r}")
+def check_seed(seed: object, bits: int = 64) -> int:
+    """``seed`` as an int in [0, 2^bits) (numpy's PCG64 and the core's generators take no other;
+    scipy's optimisers, numpy's legacy generator, take 32 bits); a ValueError otherwise (numpy's
+    own for -1 was "expected non-negative integer")."""
+    if not isinstance(seed, (int, np.integer)) or isinstance(seed, bool) or not 0 <= seed < 2**bits:
+        raise ValueError(f"seed must be an integer in [0, 2**{bits}), got {seed!r}")
     return int(seed)
 
 

@@ -34,7 +34,7 @@ from ._motion import warn_if_turning
 from ._smoother import leave_one_out
 from .rests import Rest
 from .window import (
-    RestWindowError, refuse_few_readings, refuse_past_end, refuse_window_outside, rest_window_text, time_range,
+    RestWindowError, no_usable_reading, refuse_few_readings, refuse_past_end, refuse_window_outside, rest_window_text,
 )
 
 #: Below this speed [m/s] the vehicle stands still (wheel and CAN speeds read a few cm/s of noise).
@@ -161,10 +161,7 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
     ts, rs = ts[taken], rs[taken]
     samples = int(np.count_nonzero((ts >= start) & (ts <= end)))
     if samples == 0:
-        raise RestWindowError(
-            f"the bias window [{start}, {end}] s holds no usable reading (finite, within +-2^20 rad/s) of the log "
-            f"({time_range(first, last)})", (first, last)
-        )
+        raise no_usable_reading(start, end, first, last)
     bias, _, noise, batch_error = _gyrocore.static_bias_test(ts, rs, start, end)  # first: it names a bad sample
     if found_by.startswith("given"):
         given = {"bias_duration": end - start} if found_by == "given: bias_duration" else {"bias_window": (start, end)}

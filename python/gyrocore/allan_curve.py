@@ -168,6 +168,9 @@ def deviation_from_timestamps(
     Raises ValueError for an interval longer than :data:`GAP_FACTOR` median intervals: across a
     gap the grid would hold a straight line nobody measured (and the default ``dt``, the mean
     interval, would grow with the gap), so each continuous part must be analysed on its own.
+
+    Warns an :class:`~gyrocore.InputWarning` of rates that look like deg/s or times like ms, as
+    :func:`gyrocore.process` does (:func:`noise_parameters` would read N, B and K in other units).
     """
     ta = as_float_array("t", t)
     ra = as_float_array("rate", rate)
@@ -175,6 +178,7 @@ def deviation_from_timestamps(
         raise ValueError(f"need at least 3 samples for an Allan deviation, got {len(ta)}")
     # The core validates lengths, NaN, the readings' range and increasing t, naming the values as
     # given; its intervals are the same as from ta - ta[0] (a difference of two close floats is exact).
+    # integrate warns, as process does, of times in ms (taus 1000 times too long) or rates in deg/s.
     angle = integrate(ta, ra, method="rectangle")
     _refuse_gaps(ta)
     span = ta[-1] - ta[0]

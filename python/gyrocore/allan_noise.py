@@ -153,7 +153,15 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
       not the floor. If the minimum is the last tau (the floor is not reached) or the first (an
       internal filter), ``B`` is only an upper bound (see notes).
     - Rate random walk ``K``: as N, for slope +1/2, read at tau = 3 s: ``K = sigma(3 s)``.
+
+    Raises a TypeError for a ``result`` that is no :class:`~gyrocore.allan.AllanResult` (a list
+    failed as "'list' object has no attribute 'kind'").
     """
+    from .allan_curve import AllanResult  # here: at import time it would import the pipeline (above)
+
+    if not isinstance(result, AllanResult):
+        raise TypeError("give the AllanResult of gyrocore.allan.deviation (or deviation_from_timestamps), not "
+                        f"{type(result).__name__}")
     if result.kind != "allan":
         raise ValueError(f"noise parameters are read from the Allan deviation, not the {result.kind} deviation")
     if len(result.taus) < 3:

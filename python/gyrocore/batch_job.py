@@ -25,7 +25,7 @@ from .io.log import tracks_rests
 from .io.source import SPEED_COLUMN
 from .pipeline import HeadingResult, has_bias_source, uses_static_bias
 from .pipeline_params import _to_si, unmeasured_bias
-from .window import RestWindowError, Window, time_range
+from .window import RestWindowError, Window, as_command_line_says, time_range
 
 if TYPE_CHECKING:
     from .fixes import FixesLike
@@ -236,7 +236,7 @@ class _FileJob:
             if overrides["bias_window"][1] < t0:
                 raise ValueError(
                     f"{source.data_path}: the rest window {_window_text(window)} ends before the first sample; "
-                    + time_range(t0)
+                    + time_range(t0, plus_t=True)
                 )
         own = self.use_fixes and source.kind == "log folder" and (source.path / FIXES_CSV).is_file()
         if own or self.fixes is not None or self._tracks_with_speed(source, overrides):
@@ -462,7 +462,7 @@ def _in_file(source: io.GyroSource, error: ValueError, window_from_meta: bool, f
     fixes file ``fixes``, which it names), or meta.json where the rest window is its."""
     if window_from_meta and isinstance(error, RestWindowError):
         return ValueError(from_stationary(source.path, error))
-    text = str(error)
+    text = as_command_line_says(str(error))  # a batch's windows take +T
     # named already: by the data file, or by another file of its log folder (odometry.csv)
     named = str(source.data_path) in text or (source.path.is_dir() and text.startswith(f"{source.path}{os.sep}"))
     named = named or (fixes is not None and text.startswith(f"{Path(fixes)}: "))

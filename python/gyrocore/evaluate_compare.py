@@ -38,6 +38,14 @@ class Method:
     preset: str
     overrides: Mapping[str, Any] = field(default_factory=dict)
 
+    def __post_init__(self) -> None:
+        # Checked when built, in Pipeline's words: a preset 'xx' was taken, and overrides given as a
+        # list failed inside a comparison ("dictionary update sequence element #0").
+        if not isinstance(self.overrides, Mapping):
+            raise TypeError(f"method {self.name!r}: overrides must be a mapping of parameter names to values (as "
+                            f"Pipeline(preset, **overrides) takes them), not {type(self.overrides).__name__}")
+        check_parameters(self.preset, dict(self.overrides))
+
     @classmethod
     def from_preset(cls, preset: str) -> "Method":
         """The preset as it is; ``recommended`` keeps its name and runs what it stands for."""

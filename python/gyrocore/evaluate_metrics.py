@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array, too_few_inside
 from ._checks import (
-    check_number, require_finite, require_flag, require_increasing, require_radians, require_series,
+    check_number, collected, require_finite, require_flag, require_increasing, require_radians, require_series, warn,
     warn_if_wrapped,
 )
 
@@ -118,6 +118,8 @@ class Reference:
         for s in range(int(segment[-1]) + 1):
             mask = segment == s
             unwrapped[mask] = np.unwrap(psi[mask])
+        self.given = psi
+        """Reference heading [rad] as given (wrapped or not)."""
         self.t = t
         """Reference times [s]."""
         self.heading = unwrapped
@@ -163,11 +165,11 @@ class Reference:
             return tr, np.angle(np.exp(1j * (est - ref))), gap_after
         return tr, (est - est[0]) - (ref - ref[0]), gap_after
 
-    def errors(self, t: ArrayLike, heading: ArrayLike, *, absolute: bool = False) -> HeadingErrors:
-        """Score an estimated heading (continuous, rad) against this reference (HDR eq 15-16;
-        ``absolute``: see :meth:`compared`)."""
+    def _scored(self, t: ArrayLike, heading: ArrayLike, absolute: bool) -> tuple[FloatArray, FloatArray, np.ndarray,
+                                                                             FloatArray | None]:
+        """The compared times, the error [rad], which intervals cross a gap, and each sample's
+        weight in E_psi (None: equal)."""
         tr, err_rad, gap_after = self.compared(t, heading, absolute=absolute)
-        abs_err = np.degrees(np.abs(err_rad))
         weights = None
         if self.time_weighted:
             # Each sample weighs half of each scored interval next to it (trapezoid rule).
@@ -175,6 +177,18 @@ class Reference:
             weights = np.concatenate((dt, [0.0])) / 2 + np.concatenate(([0.0], dt)) / 2
             if weights.sum() == 0:
                 weights = None
+        return tr, err_rad, gap_after, weights
+
+    def e_psi(self, t: ArrayLike, heading: ArrayLike, *, absolute: bool = False) -> float:
+        """E_psi [deg] of an estimated heading against this reference (HDR eq 15), alone."""
+        _, err_rad, _, weights = self._scored(t, heading, absolute)
+        return float(np.average(np.degrees(np.abs(err_rad)), weights=weights))
+
+    def errors(self, t: ArrayLike, heading: ArrayLike, *, absolute: bool = False) -> HeadingErrors:
+        """Score an estimated heading (continuous, rad) against this reference (HDR eq 15-16;
+        ``absolute``: see :meth:`compared`)."""
+        tr, err_rad, gap_after, weights = self._scored(t, heading, absolute)
+        abs_err = np.degrees(np.abs(err_rad))
         e_psi = float(np.average(abs_err, weights=weights))
         std = float(np.sqrt(np.average((abs_err - e_psi) ** 2, weights=weights)))
         duration_min = float(tr[-1] - tr[0]) / 60.0
@@ -213,7 +227,54 @@ def heading_errors(
     for name, flag in (("time_weighted", time_weighted), ("absolute", absolute)):
         require_flag(name, flag)
     reference = Reference(t_ref, heading_ref, gap_factor=gap_factor, time_weighted=time_weighted)
-    return reference.errors(t, heading, absolute=absolute)
+    errors = reference.errors(t, heading, absolute=absolute)
+    warn_if_degrees(reference, t, heading, errors.e_psi_deg, absolute=absolute)
+    return errors
+
+
+#: Converting a side from degrees must make E_psi at least this many times smaller to say so: on the
+#: 18 real logs (raw, static_bias, hdr, recommended, combined; whole and causal) a correct reference
+#: converted made it at most 1.0 times smaller, one in degrees at least 16 times; an estimate 61 and
+#: 57 times (comma_seg40, whose drift is no turn: see :func:`warn_if_degrees`).
+DEGREES_GAIN = 10.0
+#: A side in degrees turns about 57 times as far as the other: said only where it turns at least
+#: this many times as far. On the real logs a reference in degrees turned at least 24 times as far
+#: as the estimate (13 against broad_11's raw one, which drifts 19 deg where the drive turns 4.5:
+#: not said), an estimate in degrees 39 times; comma_seg40's estimate in radians, drifting 116 deg
+#: on a straight road, 11 times as far as its reference in degrees: the reference is to blame.
+DEGREES_TURNING = 20.0
+
+
+def warn_if_degrees(reference: Reference, t: ArrayLike, heading: ArrayLike, e_psi: float, *, absolute: bool) -> None:
+    """Warn where the reference (else the estimate) looks like degrees, which :func:`require_radians`
+    sees only where it wraps (a drive in [0, 360) that never crossed 0 scored 517 deg). Said where
+    E_psi with that side converted from degrees is :data:`DEGREES_GAIN` times smaller than as given
+    (``e_psi``) and smaller than the other side's own turning (its mean distance from its first
+    heading, what a heading that stays put would score: else both barely turn, and comma_seg40's
+    estimate, drifting on a straight road, scored 61 times smaller divided by 57), and where that
+    side as given turns :data:`DEGREES_TURNING` times as far as the other."""
+    te, est = as_float_array("t", t), as_float_array("heading", heading)
+    start = max(te[0], reference.t[0])
+    in_radians = Reference(reference.t, np.radians(reference.given), gap_factor=reference.gap_factor,
+                           time_weighted=reference.time_weighted)
+    ref_turning = _turning(reference.t, reference.given, start)  # as given: unwrapping mangles degrees
+    est_turning = _turning(te, est, start)
+    # each side converted and scored against the other as given, with both sides' turning
+    for side, ref, estimate, turning, other in (("reference", in_radians, est, ref_turning, est_turning),
+                                                ("estimate", reference, np.radians(est), est_turning, ref_turning)):
+        with collected([]):  # the comparison as given said what it had to (a wrapped estimate)
+            converted = ref.e_psi(te, estimate, absolute=absolute)
+        if DEGREES_GAIN * converted <= e_psi and converted < other and turning >= DEGREES_TURNING * other:
+            warn(f"the {side} heading looks like degrees: E_psi {e_psi:.4g} deg as given, {converted:.4g} deg with "
+                 f"the {side} in degrees; convert with numpy.radians")
+            return
+
+
+def _turning(t: FloatArray, heading: FloatArray, start: float) -> float:
+    """How far ``heading`` [rad] at the times ``t`` turns from where it is at ``start`` (the first
+    compared time): its mean distance from there [deg] from then on."""
+    after = heading[t >= start]
+    return float(np.degrees(np.mean(np.abs(after - np.interp(start, t, heading))))) if len(after) else 0.0
 
 
 def improvement(raw: HeadingErrors, method: HeadingErrors) -> float:

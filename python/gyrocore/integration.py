@@ -7,7 +7,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
-from ._checks import check_number
+from ._checks import check_number, warn_units
 
 
 def integrate(
@@ -15,18 +15,29 @@ def integrate(
 ) -> FloatArray:
     """Continuous heading [rad] from rate [rad/s]: ``trapezoid`` or ``rectangle`` (HDR eq 3).
 
+    Warns:
+        InputWarning: rates that look like deg/s or times like ms, as :func:`gyrocore.process` warns
+            (a log in ms integrated to a heading 1000 times too large without a word).
+
     Raises:
         SampleError: (a ValueError) a time or reading the core refuses, naming the first.
         ValueError: lengths apart, an unknown ``method``, an ``initial_heading`` that is not finite.
         TypeError: non-numeric arrays, a ``method`` that is no name, an ``initial_heading`` that is
             no number (the core's "must be real number, not str" named neither; True was 1 rad).
     """
+    ta, ra = as_float_array("t", t), as_float_array("rate", rate)
+    heading = angle_of(ta, ra, method, initial_heading)
+    warn_units(ta, ra)  # after the core's checks: a time it refuses is the error to give first
+    return heading
+
+
+def angle_of(t: FloatArray, rate: FloatArray, method: str = "trapezoid", initial_heading: float = 0.0) -> FloatArray:
+    """:func:`integrate` without its unit warning, for the package's own callers that warned of the
+    whole log already (a calibration integrating a part of it would warn a second time)."""
     if not isinstance(method, str):
         raise TypeError(f"method must be 'trapezoid' or 'rectangle', got {method!r}")
     heading: FloatArray = _gyrocore.integrate(
-        as_float_array("t", t), as_float_array("rate", rate), method,
-        check_number("initial_heading", initial_heading, low=None, unit=" [rad]"),
-    )
+        t, rate, method, check_number("initial_heading", initial_heading, low=None, unit=" [rad]"))
     return heading
 
 
@@ -35,11 +46,15 @@ def downsample(t: ArrayLike, rate: ArrayLike, interval: float = 1.0) -> tuple[Fl
 
     Returns the end time of each complete block and its time-weighted mean rate.
 
+    Warns:
+        InputWarning: rates that look like deg/s or times like ms, as :func:`integrate` warns.
+
     Raises:
         TypeError: an ``interval`` that is no number (text was the core's unnamed "must be real
             number", True an interval of 1 s).
         ValueError: an ``interval`` that is not finite and > 0, samples the core refuses.
     """
-    tb, rb = _gyrocore.downsample(as_float_array("t", t), as_float_array("rate", rate),
-                                  check_number("interval", interval, unit=" [s]"))
+    ta, ra = as_float_array("t", t), as_float_array("rate", rate)
+    tb, rb = _gyrocore.downsample(ta, ra, check_number("interval", interval, unit=" [s]"))
+    warn_units(ta, ra)
     return tb, rb

@@ -40,6 +40,7 @@ from .window import (
     refuse_few_readings,
     refuse_past_end,
     refuse_start_before,
+    refuse_window_objects,
     rest_window_text,
 )
 
@@ -100,6 +101,7 @@ class Pipeline:
     def __init__(
         self, preset: str = "recommended", *, fusion: dict[str, float] | None = None, **overrides: Any
     ) -> None:
+        refuse_window_objects(overrides)
         si = _to_si(overrides)
         self._inner = core_pipeline(preset, si)
         self._preset = preset
@@ -200,7 +202,7 @@ class Pipeline:
         ta = as_float_array("t", t)
         ra = as_float_array("rate", rate)
         temp = None if temperature is None else as_float_array("temperature", temperature)
-        refuse_window_without_reading(self._inner, ta, ra, temp)
+        refuse_window_without_reading(self._inner, ta, ra, temp, self._first_time)
         if self._unit_head is not None and len(ta):
             self._check_units(ta, ra, temp)
         flags = output_flags(outputs)

@@ -9,17 +9,18 @@ import numpy as np
 from . import _gyrocore
 from ._arrays import FloatArray
 from ._checks import MAX_READING, keep_readings, usable, warn
-from .window import RestWindowError, ends_before_first, refuse_start_before
+from .window import RestWindowError, ends_before_first, no_usable_reading, refuse_start_before
 
 
 def refuse_window_without_reading(
-    core: _gyrocore.Pipeline, t: FloatArray, rate: FloatArray, temperature: FloatArray | None
+    core: _gyrocore.Pipeline, t: FloatArray, rate: FloatArray, temperature: FloatArray | None, first: float | None = None
 ) -> None:
     """Refuse, before the ``core`` processes anything, a chunk that would close the rest window with no
     reading in it (the bias would silently be 0): the core's rule, that the first reading it
     takes after the window's end closes it, applied to the chunk's timestamps.
 
     Only a chunk whose timestamps the core accepts is checked; it rejects the others itself.
+    ``first``: the log's first time, if an earlier chunk gave it.
     """
     p = core.params()
     _, count, learning = core.bias()
@@ -45,6 +46,11 @@ def refuse_window_without_reading(
     before = t[k - 1] if k > 0 else last
     if before is None:
         raise ends_before_first(start, end, float(t[0]))
+    # samples in the window (here, or an earlier chunk's at or after its start), none of them taken
+    # (skipped): the log does not jump, as the error below would say
+    if ((t[:k] >= start) & (t[:k] <= end)).any() or (last is not None and last >= start):
+        error = no_usable_reading(start, end, float(t[0]) if first is None else first)
+        raise RestWindowError(f"{error}; nothing of this chunk was processed", error.span)
     raise RestWindowError(
         f"the bias window [{start}, {end}] s holds no sample of the log, which jumps from t = {before} "
         f"to t = {t[k]} s (index {k} of this chunk); give a window where the log has readings at rest. "

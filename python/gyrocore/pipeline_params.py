@@ -76,14 +76,15 @@ def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
                             "d / numpy.timedelta64(1, 's'))")
         if isinstance(value, np.ndarray) and value.ndim == 0:  # a number from numpy (tuple() of it failed)
             value = value.item()
-        if isinstance(value, (list, np.ndarray)):
-            value = tuple(value.tolist() if isinstance(value, np.ndarray) else value)
         if key.endswith("_dps") and key[:-4] in _RATE_PARAMETERS:
             name = key[:-4]
         elif key == "initial_heading_deg":
             name = "initial_heading"
         else:
             name = key
+        if isinstance(value, (list, np.ndarray)):
+            _refuse_sequence(key, name, value)
+            value = tuple(value.tolist() if isinstance(value, np.ndarray) else value)
         _refuse_bool(key, name, value)
         if name != key:  # given in degrees
             value = _radians(key, value)
@@ -91,6 +92,21 @@ def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
             raise ValueError(f"{name} is given twice (as {name} and in degrees)")
         si[name] = value
     return si
+
+
+#: The parameters that take a pair, (start, end), which a list or array is turned into.
+_PAIRS = ("bias_window",)
+
+
+def _refuse_sequence(key: str, name: str, value: list[Any] | np.ndarray) -> None:
+    """A TypeError for a list or array given as ``key`` to the parameter ``name`` that takes one
+    value: turned into the tuple a window is, ``bias=np.array([0.1])`` was refused as the tuple
+    ``(0.1,)`` the caller never gave."""
+    what = parameters().get(name)
+    if what is not None and name not in _PAIRS:
+        given = f"an array of shape {value.shape}" if isinstance(value, np.ndarray) else f"a list of {len(value)}"
+        listed = value.tolist() if isinstance(value, np.ndarray) else value
+        raise TypeError(f"invalid parameter {key} = {shown(listed)}: {key} takes one value, got {given}; {key} is {what}")
 
 
 def _refuse_bool(key: str, name: str, value: Any) -> None:

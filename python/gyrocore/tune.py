@@ -22,7 +22,7 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
-from ._checks import did_you_mean, public_dir, require_choice
+from ._checks import check_count, check_number, check_seed, did_you_mean, public_dir, require_choice
 from ._extras import require
 from .pipeline import BIAS_SOURCES, parameters, preset_params
 from .pipeline_params import _to_si
@@ -200,6 +200,36 @@ def search_box(
     return box
 
 
+def require_cases(what: str, cases: object) -> None:
+    """A TypeError for one :class:`Case` where a list of them is asked for (it failed as "'Case'
+    object is not iterable")."""
+    if isinstance(cases, Case):
+        raise TypeError(f"{what}: give a list of cases, not one Case ([case])")
+
+
+def start_point(
+    box: Mapping[str, tuple[float, float]], start: Mapping[str, float] | None, base: Mapping[str, Any]
+) -> dict[str, float]:
+    """The values :func:`tune` starts from: ``start``'s, else the preset's (``base``), else the
+    middle of the bounds (a parameter the preset leaves unset). A ``start`` name that is not fitted
+    (a typo was ignored, and the fit started from the preset's value) and a value outside its
+    bounds (clipped into them without a word) are refused."""
+    start = dict(start or {})
+    unknown = [n for n in start if n not in box]
+    if unknown:
+        said = ", ".join(f"{n}{did_you_mean(n, box)}" for n in unknown)
+        raise ValueError(f"unknown start value(s) {said}; the parameters fitted are {', '.join(box)}")
+    values = {}
+    for n, (low, high) in box.items():
+        if n in start:
+            values[n] = check_number(f"start[{n!r}]", start[n], low=low, strict=False, high=high,
+                                     unit=" (its search bounds)")
+        else:
+            v = base.get(n)
+            values[n] = float(np.clip(math.sqrt(low * high) if v is None else v, low, high))
+    return values
+
+
 class _BudgetSpent(Exception):
     """Raised by an evaluation beyond ``max_evaluations``: it ends the optimiser, whose own limits
     count generations (a population of 8 per parameter, evaluated whole, and at least one generation
@@ -244,20 +274,21 @@ def tune(
     """
     optimize = require("scipy.optimize", "tuning")
 
+    require_cases("cases", cases)
     if not cases:
         raise ValueError("no training drive given")
+    require_cases("harm", harm)
     require_choice("objective", objective, OBJECTIVES)
     require_choice("optimiser", optimiser, OPTIMISERS)
-    if max_evaluations < 1:
-        raise ValueError(f"max_evaluations must be >= 1, got {max_evaluations}")
+    # a str, 5.5 or True failed deep in the fit or passed; scipy's generator takes a 32-bit seed
+    max_evaluations = check_count("max_evaluations", max_evaluations)
+    seed = check_seed(seed, bits=32)
+    harm_limit_deg = check_number("harm_limit_deg", harm_limit_deg, strict=False, unit=" [deg]")
     box = search_box(preset, names, bounds, fixed)
     name = ParameterSet(name or f"{preset}_tuned", preset, {}).name  # a name the file cannot hold fails before the fit
     names, fixed = tuple(box), _to_si(dict(fixed or {}))  # a parameter file holds SI names, with their units
     base = preset_params(preset, **fixed)
-    # A parameter the preset leaves unset (None) starts in the middle of its bounds.
-    given = {n: (start or {}).get(n, base.get(n)) for n in names}
-    start_values = {n: float(np.clip(math.sqrt(box[n][0] * box[n][1]) if v is None else v, *box[n]))
-                    for n, v in given.items()}
+    start_values = start_point(box, start, base)
 
     lo = np.log([box[n][0] for n in names])
     hi = np.log([box[n][1] for n in names])

@@ -70,7 +70,7 @@ from .wholelog_options import (
     refuse_whole_options,
     untracked,
 )
-from .window import RestWindowError, Window
+from .window import RestWindowError, Window, refuse_window_objects
 
 if TYPE_CHECKING:
     from .fixes import Fixes, FixesLike
@@ -417,6 +417,7 @@ def process_log(
     rest of the log."""
     check_mode(mode)
     refuse_speed_t_alone(speed, speed_t)
+    refuse_window_objects(overrides)
     si = _to_si(overrides)
     if mode == "causal":
         refuse_whole_options(si)

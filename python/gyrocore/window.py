@@ -90,11 +90,11 @@ class Window:
         if len(inside) < minimum:
             raise ValueError(
                 f"{self.option} {self} holds {len(inside)} sample(s), fewer than {minimum}; "
-                + time_range(float(t[0]), float(t[-1]))
+                + time_range(float(t[0]), float(t[-1]), plus_t=True)
             )
         if within and (start < t[0] or end > t[-1]):
-            raise ValueError(f"{self.option} {self} reaches outside the log ({time_range(float(t[0]), float(t[-1]))}); "
-                             "give a window inside it")
+            span = time_range(float(t[0]), float(t[-1]), plus_t=True)
+            raise ValueError(f"{self.option} {self} reaches outside the log ({span}); give a window inside it")
         return inside
 
     def __str__(self) -> str:
@@ -104,16 +104,26 @@ class Window:
         return f"{bound(self.start, self.relative[0])} .. {bound(self.end, self.relative[1])} s"
 
 
-def time_range(first: float, last: float | None = None, *, after_first: bool = True) -> str:
+#: How a window after the first sample is written, by who asks: the command line and batch take a
+#: bound written ``+T`` (a :class:`Window`), the Python API's ``bias_window`` two numbers in the
+#: log's own time base (it refuses "+T", which its errors told Python callers to write).
+PLUS_T = "write a bound as +T for T seconds after the first sample"
+T0_PLUS = "a window after the first sample is (t[0] + start, t[0] + end)"
+
+
+def time_range(first: float, last: float | None = None, *, after_first: bool = True, plus_t: bool = False) -> str:
     """The span of a log (first and last timestamp [s], or only the first where the last is not
     known yet), for an error about a window: in both time bases where the window could be written
-    after the first sample (``after_first``: an option that takes ``+T``), else in the log's own
-    clock alone (meta.json's ``stationary`` takes plain seconds: ``+T`` there is no number)."""
+    after the first sample (``after_first``), else in the log's own clock alone (meta.json's
+    ``stationary`` takes plain seconds: ``+T`` there is no number). The hint says how to write a
+    window after the first sample in the Python API, or with ``plus_t`` for a :class:`Window`
+    (:func:`as_command_line_says` turns the one into the other where a message reaches the command
+    line or a batch)."""
     if not after_first:
         clock = "in its own clock, the one a window in plain seconds is written in"
         return f"the log starts at {first:.10g} s {clock}" if last is None else (
             f"the log runs from {first:.10g} to {last:.10g} s {clock}")
-    hint = "write a bound as +T for T seconds after the first sample"
+    hint = PLUS_T if plus_t else T0_PLUS
     if last is None:
         return f"the log starts at {first:.10g} s ({hint})"
     return (
@@ -127,6 +137,24 @@ def in_log_clock(message: str, span: tuple[float, float] | None) -> str:
     :func:`time_range`, for a window that takes plain seconds of the log's clock only: the span
     then hints at that clock, not at ``+T``. Unchanged where ``span`` is None (none shown)."""
     return message if span is None else message.replace(time_range(*span), time_range(*span, after_first=False))
+
+
+def as_command_line_says(message: str) -> str:
+    """``message``, an error the Python API words, as the command line and a batch say it: their
+    windows take a bound ``+T`` (:class:`Window`), and the error is built once, where it arises."""
+    return message.replace(T0_PLUS, PLUS_T)
+
+
+def refuse_window_objects(overrides: dict[str, Any]) -> None:
+    """A TypeError for a :class:`Window` among the pipeline's ``overrides``: the command line's and
+    a batch's window, which the Python API's take as two numbers (it failed as "'Window' object is
+    not subscriptable"); the tuple to give instead is spelled out."""
+    for key, value in overrides.items():
+        if isinstance(value, Window):
+            bounds = ", ".join(f"t[0] + {v:g}" if after else f"{v:.10g}"
+                               for v, after in zip((value.start, value.end), value.relative))
+            raise TypeError(f"invalid parameter {key} = Window({value}): a gyrocore.window.Window is the command "
+                            f"line's and a batch's; here give the tuple ({bounds}), t[0] the log's first time [s]")
 
 
 class RestWindowError(ValueError):
@@ -198,6 +226,16 @@ def refuse_past_end(start: float, end: float, first: float, last: float, *, dura
                               "the start, or a bias_window", (first, last))
     raise RestWindowError(f"the bias window [{start}, {end}] s reaches past the end of the log ({span}); give a rest "
                           "window inside the log, in its own time base", (first, last))
+
+
+def no_usable_reading(start: float, end: float, first: float, last: float | None = None) -> RestWindowError:
+    """The error of a rest window ``[start, end]`` whose samples are all readings the pipeline does
+    not take (NaN, beyond its limit: skipped), in a log from ``first`` (to ``last`` where known):
+    whole mode's and a stream's words alike (a stream called it a jump in the log)."""
+    return RestWindowError(
+        f"the bias window [{start}, {end}] s holds no usable reading (finite, within +-2^20 rad/s) of the log "
+        f"({time_range(first, last)})", None if last is None else (first, last)
+    )
 
 
 def rest_window_text(params: dict[str, Any]) -> str:

@@ -213,6 +213,14 @@ def test_a_falling_curve_reports_bias_instability_as_an_upper_bound() -> None:
         p.kalibr_yaml()
 
 
+@pytest.mark.parametrize("given", [[1, 2], np.arange(5.0), None])
+def test_noise_parameters_of_anything_but_an_allan_result_names_what_to_give(given: object) -> None:
+    # a list failed as "'list' object has no attribute 'kind'"
+    with pytest.raises(TypeError, match=r"^give the AllanResult of gyrocore.allan.deviation \(or "
+                                        rf"deviation_from_timestamps\), not {type(given).__name__}$"):
+        allan.noise_parameters(given)  # type: ignore[arg-type]
+
+
 def test_a_filter_plateau_at_the_shortest_taus_is_not_bias_instability() -> None:
     # A 10 s rest of a sensor with an internal filter (ADIS16448-like at 200 Hz): the curve is flat
     # from 0.005 to 0.02 s, then falls as white noise. That plateau is the filter, not the floor.

@@ -302,3 +302,23 @@ def test_a_stream_of_one_sample_chunks_has_its_units_judged() -> None:
     with warnings.catch_warnings():
         warnings.simplefilter("error", gyrocore.InputWarning)
         gyrocore.Pipeline("raw").process(np.arange(5) * 0.02, rate[:5])  # seconds: nothing said
+
+
+@pytest.mark.parametrize("call", ["integrate", "downsample", "allan"])
+@pytest.mark.parametrize("wrong", ["ms", "deg/s"])
+def test_every_function_of_a_whole_log_warns_of_its_units_as_process_does(call: str, wrong: str) -> None:
+    """integrate, downsample and the Allan deviation of timestamps took times in ms or rates in
+    deg/s without a word (a heading 1000 times too large, taus 1000 times too long)."""
+    t = np.arange(0.0, 200.0, 0.01)
+    rate = np.random.default_rng(3).normal(0.0, 0.01, len(t)) + 0.5 * np.sin(t)
+    t, rate = (t * 1000.0, rate) if wrong == "ms" else (t, np.degrees(rate) * 10)
+    said = "timestamps look like ms" if wrong == "ms" else "rates look like deg/s"
+    from gyrocore import allan
+    run = {"integrate": lambda: gyrocore.integrate(t, rate), "downsample": lambda: gyrocore.downsample(t, rate, 1.0),
+           "allan": lambda: allan.deviation_from_timestamps(t, rate)}[call]
+    with pytest.warns(gyrocore.InputWarning, match=said) as caught:
+        run()
+    units = [w for w in caught if said in str(w.message)]
+    assert len(units) == 1 and units[0].filename == __file__  # once, at the caller's line
+    with pytest.warns(gyrocore.InputWarning, match=said):
+        gyrocore.process(t, rate, "raw", gap_limit=1e6)

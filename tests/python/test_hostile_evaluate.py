@@ -144,3 +144,35 @@ def test_the_command_scores_a_log_given_twice_once() -> None:
     proc = gyrocore_cli("evaluate", log, f"{log}/", log, "--preset", "static_bias", "--json", code=0)
     assert [r["path"] for r in json.loads(proc.stdout)] == [log]
     assert f"{log}, {log}/: given more than once as a log to score; each is used once" in proc.stderr
+
+
+
+@pytest.mark.parametrize(
+    ("preset", "overrides", "error", "message"),
+    [
+        # taken: Method(name='xx', preset='xx', overrides={}), refused only inside a comparison
+        ("xx", {}, ValueError, "unknown preset 'xx'; choose one of raw, "),
+        (None, {}, TypeError, "preset must be the name of a preset (raw, "),
+        ("hdr", {"hdr_incremnt": 1e-4}, ValueError, "unknown parameter 'hdr_incremnt' (did you mean 'hdr_increment'?)"),
+        ("hdr", {"hdr_increment": -1.0}, ValueError, "invalid parameter hdr_increment = -1: must be finite, >= 0"),
+    ],
+)
+def test_a_method_is_checked_when_it_is_built_in_pipelines_words(
+    preset: object, overrides: dict[str, float], error: type, message: str
+) -> None:
+    with pytest.raises(error) as raised:
+        evaluate.Method("m", preset, overrides)  # type: ignore[arg-type]
+    with pytest.raises(error) as pipeline:
+        gyrocore.Pipeline(preset, **overrides)  # type: ignore[arg-type]
+    assert str(raised.value).startswith(message) and str(raised.value) == str(pipeline.value)
+    if isinstance(preset, str) and not overrides:
+        with pytest.raises(error, match=f"^{re.escape(message)}"):
+            evaluate.Method.from_preset(preset)
+
+
+def test_a_methods_overrides_that_are_no_mapping_are_refused_when_it_is_built() -> None:
+    # "cannot convert dictionary update sequence element #0 to a sequence", from inside compare
+    with pytest.raises(TypeError, match=re.escape(
+            "method 'm': overrides must be a mapping of parameter names to values (as Pipeline(preset, **overrides) "
+            "takes them), not list")):
+        evaluate.Method("m", "hdr", [("hdr", True)])  # type: ignore[arg-type]

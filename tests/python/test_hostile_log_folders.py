@@ -146,15 +146,17 @@ def test_a_rest_window_past_the_end_is_told_the_clock_it_is_written_in(tmp_path:
             run()
         assert str(error.value).startswith(source) and in_clock in str(error.value), str(error.value)
         assert "+T" not in str(error.value)
-    # the same window given as bias_window=, which takes +T, is told how to write one
+    # the same window given as bias_window= is told how to write one after the first sample: in
+    # Python as two numbers (it refuses "+T", which it was told to write), on the command line as +T
     plus_t = "+0 .. +29."  # the synthetic drive's times jitter
     with pytest.raises(gyrocore.RestWindowError, match=re.escape(f"({span} ({plus_t}")) as error:
         log.process("static_bias", mode=mode, bias_window=PAST_THE_END)
-    assert "; write a bound as +T for T seconds after the first sample)" in str(error.value)
-    # and so by the command line
+    assert "; a window after the first sample is (t[0] + start, t[0] + end))" in str(error.value)
+    assert "+T" not in str(error.value)
     causal = ("--causal",) if mode == "causal" else ()
     given = ("--bias-window", *map(str, PAST_THE_END))
-    for args, told in ((causal, in_clock), ((*causal, *given), f"({span} ({plus_t}")):
+    plus_hint = "; write a bound as +T for T seconds after the first sample)"
+    for args, told in ((causal, in_clock), ((*causal, *given), f"({span} ({plus_t}"), ((*causal, *given), plus_hint)):
         proc = run_cli("process", folder, "--out", tmp_path / "h.csv", *args)
         assert proc.returncode == 2 and told in proc.stderr, proc.stderr
 

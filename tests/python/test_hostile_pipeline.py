@@ -35,6 +35,23 @@ def test_a_bool_for_a_parameter_that_is_no_switch_is_refused(key: str, value: ob
         gyrocore.preset_params("hdr", **{key: value})
 
 
+@pytest.mark.parametrize(
+    ("key", "value", "given"),
+    [("bias", np.array([0.1]), "[0.1]: bias takes one value, got an array of shape (1,)"),
+     ("bias", [0.1], "[0.1]: bias takes one value, got a list of 1"),
+     ("threshold_dps", np.zeros((1, 2)), "[[0.0, 0.0]]: threshold_dps takes one value, got an array of shape (1, 2)")],
+)
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_an_array_for_a_parameter_of_one_value_is_named_as_given(key: str, value: object, given: str, mode: str) -> None:
+    """A list or array is turned into the tuple a window is: bias=np.array([0.1]) was refused as the
+    tuple (0.1,) the caller never gave."""
+    with pytest.raises(TypeError, match=rf"^invalid parameter {key} = {re.escape(given)}; {key} is "):
+        gyrocore.process(T, RATE, "hdr", mode=mode, **{key: value})
+    with pytest.raises(TypeError, match=rf"^invalid parameter {key} = {re.escape(given)}; "):
+        gyrocore.Pipeline("hdr", **{key: value})
+    assert gyrocore.Pipeline("hdr", bias_window=np.array([0.0, 20.0])).params["bias_window"] == (0.0, 20.0)
+
+
 @pytest.mark.parametrize("mode", ["whole", "causal"])
 def test_an_initial_heading_beyond_2_pow_20_rad_is_refused(mode: str) -> None:
     """At 1e300 rad every sample's increment was lost: the heading stayed 1e300 without a word."""

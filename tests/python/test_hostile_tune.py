@@ -93,3 +93,40 @@ def test_a_log_given_twice_is_fitted_on_once() -> None:
     assert proc.returncode == 0, proc.stderr
     assert f"{log}/: given more than once as a training log; each is used once" in proc.stderr
     assert "on 1 drive(s)" in proc.stderr
+
+
+@pytest.mark.parametrize(
+    ("options", "error", "message"),
+    [
+        # a misspelt start was ignored: the fit started from the preset's value
+        ({"start": {"hdr_incremnt": 1e-4}}, ValueError,
+         "unknown start value(s) hdr_incremnt (did you mean 'hdr_increment'?); the parameters fitted are hdr_increment"),
+        ({"start": {"hdr_c1": 1.0}}, ValueError, "unknown start value(s) hdr_c1; the parameters fitted are hdr_increment"),
+        # clipped into the bounds without a word
+        ({"start": {"hdr_increment": 1.0}}, ValueError,
+         "start['hdr_increment'] must be finite and >= 1e-05 and at most 0.01 (its search bounds), got 1.0"),
+        ({"start": {"hdr_increment": "1e-4"}}, TypeError, "start['hdr_increment'] must be a number"),
+        # '5' failed as "'<' not supported between instances of 'str' and 'int'"; 5.5 and True passed
+        ({"max_evaluations": "5"}, ValueError, "max_evaluations must be a whole number >= 1, got '5'"),
+        ({"max_evaluations": 5.5}, ValueError, "max_evaluations must be a whole number >= 1, got 5.5"),
+        ({"max_evaluations": True}, ValueError, "max_evaluations must be a whole number >= 1, got True"),
+        # numpy's "Seed must be between 0 and 2**32 - 1", from inside the optimiser
+        ({"seed": -1}, ValueError, "seed must be an integer in [0, 2**32), got -1"),
+        ({"seed": 2**32}, ValueError, "seed must be an integer in [0, 2**32)"),
+        ({"harm_limit_deg": -1.0}, ValueError, "harm_limit_deg must be finite and >= 0 [deg], got -1.0"),
+    ],
+)
+def test_tunes_arguments_are_refused_by_name_before_the_fit(options: dict[str, object], error: type, message: str) -> None:
+    case = tune.Case.from_drive("d", gyrocore.sim.car_drive(duration=30.0, seed=2))
+    with pytest.raises(error) as raised:
+        tune.tune([case], preset="hdr", names=["hdr_increment"], bounds={"hdr_increment": (1e-5, 1e-2)},
+                  **{"max_evaluations": 2, **options})  # type: ignore[arg-type]
+    assert message in str(raised.value)
+
+
+@pytest.mark.parametrize("where", ["cases", "harm"])
+def test_a_single_case_is_refused_with_the_list_to_give(where: str) -> None:
+    case = tune.Case.from_drive("d", gyrocore.sim.car_drive(duration=30.0, seed=2))
+    given = {"cases": case, "harm": ()} if where == "cases" else {"cases": [case], "harm": case}
+    with pytest.raises(TypeError, match=rf"^{where}: give a list of cases, not one Case \(\[case\]\)$"):
+        tune.tune(given.pop("cases"), max_evaluations=2, **given)  # type: ignore[arg-type]

@@ -198,3 +198,60 @@ def test_a_window_before_an_epoch_log_spells_it_out_in_the_logs_time_base(mode: 
             "give the window in the log's own time base (as times after its first sample: (1700000040.0, "
             "1700000060.0), t[0] + start and t[0] + end)")):
         gyrocore.process(t, np.zeros_like(t), "static_bias", bias_window=(40.0, 60.0), mode=mode)
+
+
+PYTHON_HINT = "a window after the first sample is (t[0] + start, t[0] + end)"
+PLUS_T_HINT = "write a bound as +T for T seconds after the first sample"
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+@pytest.mark.parametrize("given", [{"bias_window": (1050.0, 1070.0)}, {"bias_duration": 100.0}])
+def test_the_python_api_hints_at_the_window_it_takes_and_a_batch_at_plus_t(
+    tmp_path: Path, mode: str, given: dict[str, object]
+) -> None:
+    # the Python API told its callers to "write a bound as +T", which it refuses
+    t = np.arange(1000.0, 1060.0, 0.01)
+    with pytest.raises(RestWindowError) as python:
+        gyrocore.process(t, np.full_like(t, 0.01), "static_bias", mode=mode, **given)
+    assert PYTHON_HINT in str(python.value) and "+T" not in str(python.value)
+    stream = Pipeline("static_bias", **given)  # type: ignore[arg-type]
+    stream.process(t, np.full_like(t, 0.01))
+    with pytest.raises(RestWindowError, match=re.escape(PYTHON_HINT)):
+        stream.finish()
+    # a batch, whose windows take +T (gyrocore.window.Window), says so
+    src = synthetic_csv(tmp_path / "in.csv", 6000)
+    late = {"bias_window": (1.7e9 + 50, 1.7e9 + 70)} if "bias_window" in given else given
+    with pytest.raises(ValueError, match=re.escape(PLUS_T_HINT)) as batch:
+        gyrocore.batch.process_file(src, tmp_path / "out.csv", preset="static_bias", mode=mode, **late)  # type: ignore[arg-type]
+    assert PYTHON_HINT not in str(batch.value)
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_a_window_object_is_refused_by_name_with_the_tuple_to_give(mode: str) -> None:
+    # "'Window' object is not subscriptable"
+    window = gyrocore.window.Window.parse(["+0", "+20"], "--bias-window")
+    said = (r"^invalid parameter bias_window = Window\(\+0 \.\. \+20 s\): a gyrocore.window.Window is the command "
+            r"line's and a batch's; here give the tuple \(t\[0\] \+ 0, t\[0\] \+ 20\), t\[0\] the log's first time \[s\]$")
+    t = span(0, 60)
+    with pytest.raises(TypeError, match=said):
+        gyrocore.process(t, rate(t), "static_bias", mode=mode, bias_window=window)
+    with pytest.raises(TypeError, match=said):
+        Pipeline("static_bias", bias_window=window)
+
+
+@pytest.mark.parametrize("chunks", [1, 2])
+def test_a_window_whose_readings_were_all_skipped_is_said_so_in_causal_mode_as_in_whole(chunks: int) -> None:
+    # causal mode said "holds no sample of the log, which jumps from t = 61.99 to t = 62.0 s"
+    t = np.arange(0.0, 120.0, 0.01)
+    r = 0.01 + np.where((t > 50) & (t < 62), 0.0, 0.3 * np.sin(t / 3))
+    r[5000:6200] = np.nan  # every reading of the window
+    said = "the bias window [50.5, 61.5] s holds no usable reading (finite, within +-2^20 rad/s) of the log (the log "
+    options = {"nonfinite": "skip", "bias_window": (50.5, 61.5)}
+    with pytest.raises(RestWindowError, match=re.escape(said)):
+        gyrocore.process(t, r, "static_bias", mode="whole", **options)  # type: ignore[arg-type]
+    stream = Pipeline("static_bias", **options)  # type: ignore[arg-type]
+    if chunks == 2:  # the window's samples came in the chunk before
+        stream.process(t[:6100], r[:6100])
+    with pytest.raises(RestWindowError, match=re.escape(said)) as causal:
+        stream.process(t[6100:] if chunks == 2 else t, r[6100:] if chunks == 2 else r)
+    assert "jumps" not in str(causal.value) and str(causal.value).endswith("; nothing of this chunk was processed")

@@ -279,3 +279,12 @@ def test_a_motion_without_rest_has_no_rest_window(profile: object) -> None:
     trajectory = profile(rest=0)  # type: ignore[operator]
     assert trajectory.rest is None
     assert len(sim.simulate(trajectory, "crs03", seed=0)) > 2
+
+
+@pytest.mark.parametrize(("keyword", "meant"), [("durration", "duration"), ("bias_dsp", "bias_dps"), ("sensor", "sensor_name")])
+def test_car_drives_misspelt_keyword_is_named_with_the_closest_of_its_own_and_the_sensors(keyword: str, meant: str) -> None:
+    # "unknown sensor field(s) durration; the fields are name, rate_hz, ...": duration was not suggested
+    with pytest.raises(TypeError, match=rf"^unknown keyword\(s\) '{keyword}' \(did you mean '{meant}'\?\): neither a "
+                                        r"keyword of car_drive \(duration, rate_hz, seed, rest, mix, sensor_name\) nor "
+                                        r"a sensor field \(name, rate_hz, "):
+        sim.car_drive(**{keyword: 30})

@@ -11,7 +11,7 @@ from numpy.typing import ArrayLike, NDArray
 from .._arrays import FloatArray, as_float_array, as_window
 from .._checks import UnitError, require_radians, usable, warn
 from ..evaluate import unwrap
-from ..integration import integrate
+from ..integration import angle_of
 from .inputs import check_series
 from .result import MAX_SCALE_ERROR, Calibration
 
@@ -238,7 +238,7 @@ def heading_reference(
             "need at least 3 (are both in the same time base?)"
         )
     origin = ta[0]
-    angle = integrate(ta - origin, ra)
+    angle = angle_of(ta - origin, ra)  # its input warned of its units
     times = tr[inside] - origin
     psi = unwrap(hr)[inside]
     g1 = np.interp(times, ta - origin, angle)

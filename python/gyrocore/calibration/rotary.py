@@ -9,7 +9,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._checks import check_number
-from ..integration import integrate
+from ..integration import angle_of
 from .inputs import check_series, check_temperature
 from .rest import rest_windows, static_bias
 from .result import Calibration
@@ -120,7 +120,7 @@ def rotary_table(
         test = [w for w in tests if w[1] <= p1][-1]
         bias = static_bias(ta, ra, test, min_duration=min_rest).bias
         tm, rm = ta[moving], ra[moving] - bias
-        angle = float(integrate(tm - tm[0], rm)[-1])
+        angle = float(angle_of(tm - tm[0], rm)[-1])  # the input warned of its units
         if abs(angle) < 0.05 * turn_angle:
             continue  # a step of the bias or a nudge between pauses, not a turn
         if abs(abs(angle) - turn_angle) > tolerance * turn_angle:

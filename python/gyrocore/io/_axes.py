@@ -137,7 +137,7 @@ def measure_up(
     shown = str(window) if isinstance(window, Window) else f"{window[0]:.10g} .. {window[1]:.10g} s"
     where = f"{path}: the rest window {shown}, over which up is measured,"
     if count == 0:
-        span = "the log has no samples" if bounds is None else time_range(first, last)
+        span = "the log has no samples" if bounds is None else time_range(first, last, plus_t=True)  # up_window takes +T
         raise ValueError(f"{where} holds no accelerometer reading ({span}); give another window, or --up / up=")
     mean = total / count
     magnitude = float(np.linalg.norm(mean))

@@ -7,6 +7,8 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from ..window import as_command_line_says
+
 
 def missing(path: Path) -> str:
     """Why ``path``, which does not exist, cannot be read: no such file, or a broken link."""
@@ -85,7 +87,7 @@ def error_text(error: BaseException) -> str:
     if isinstance(error, PermissionError) and error.filename is not None and "[Errno" in str(error):
         return (f"{error.filename}: permission denied: this user may not open it; change its permissions "
                 "(chmod) or use another path")
-    return str(error)
+    return as_command_line_says(str(error))  # the command line's windows take +T
 
 
 def one_line(text: str) -> str:
