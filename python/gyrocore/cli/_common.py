@@ -177,7 +177,7 @@ def add_override_options(group: argparse._ArgumentGroup) -> None:
     group.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
                        help="any pipeline parameter, in SI units (gyrocore presets lists them, with their units); "
                        "repeatable")
-    group.add_argument("--calibration", type=Path, metavar="FILE",
+    group.add_argument("--calibration", type=named_path, metavar="FILE",
                        help="a calibration written by gyrocore calibrate --save: its scale, and its bias "
                        "unless another bias option is given")
 
@@ -300,6 +300,29 @@ def finite(text: str) -> float:
         raise argparse.ArgumentTypeError(f"must be a finite number, got {text!r}")
     return value
 
+
+def named(hint: str = "") -> Callable[[str], str]:
+    """An argparse ``type`` for every option or argument that names a file or folder: a name that
+    is empty or only spaces (an unset shell variable) is refused, where it was taken as the
+    current folder (``process ""`` processed every log in it, ``--plot-dir ""`` wrote there) or
+    made a folder named " "; ``hint`` says what to give instead."""
+
+    def parse(text: str) -> str:
+        if not text.strip():
+            raise argparse.ArgumentTypeError(f"{text!r}: no name (an empty shell variable?)"
+                                             + (f"; give {hint}" if hint else ""))
+        return text
+
+    return parse
+
+
+def named_path(text: str) -> Path:
+    """:func:`named` for an option read as a :class:`~pathlib.Path`."""
+    return Path(named()(text))
+
+
+#: The argparse type of a file or folder name (see :func:`named`).
+NAME = named()
 
 #: argparse types of numeric options: checked as the command line is read, before any work.
 POSITIVE = _bounded(0.0, above=True)

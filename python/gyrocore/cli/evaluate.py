@@ -19,6 +19,8 @@ from ..pipeline import preset_names
 from ..tune import ParameterSet
 from ._fixes import add_fix_options, evaluate_with_fixes, fixes_wanted, input_warnings, note_unused_gnss
 from ._common import (
+    NAME,
+    named_path,
     FINITE,
     POSITIVE,
     REFERENCE_HELP,
@@ -49,10 +51,10 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         "gyrocore evaluate ../shared/data/real/* --preset static_bias --preset recommended --bias-duration 10",
         run,
     )
-    p.add_argument("logs", nargs="+", metavar="LOGDIR",
+    p.add_argument("logs", nargs="+", type=NAME, metavar="LOGDIR",
                    help="log folders (gyro.csv, reference.csv, meta.json), or CSV or Parquet files with a heading_true "
                    "column [rad] (what gyrocore simulate writes); the reading options apply to the gyro's file")
-    p.add_argument("--reference", type=Path, metavar="FILE",
+    p.add_argument("--reference", type=named_path, metavar="FILE",
                    help=f"reference heading of a single log given (in place of its own): {REFERENCE_HELP}")
     p.add_argument(
         "--preset",
@@ -62,7 +64,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         "(default: every preset, unless --params is given)",
     )
     p.add_argument(
-        "--params", action="append", metavar="FILE", help="parameter file written by gyrocore tune (repeatable)"
+        "--params", action="append", type=NAME, metavar="FILE", help="parameter file written by gyrocore tune (repeatable)"
     )
     bias = p.add_mutually_exclusive_group()
     bias.add_argument(
@@ -90,7 +92,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     )
     add_fix_options(p, evaluate=True)
     p.add_argument("--json", action="store_true", help="print one JSON list, an object per (log, method)")
-    p.add_argument("--plot-dir", metavar="DIR", help="write <log>.png (heading and error vs time) there")
+    p.add_argument("--plot-dir", type=NAME, metavar="DIR", help="write <log>.png (heading and error vs time) there")
     add_overwrite_option(p)
 
 
