@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 from . import _signals, io, rests, wholelog
 from ._arrays import FloatArray
-from ._checks import collected, warn
+from ._checks import collected, no_usable_reading, warn
 from ._motion import TURNING
 from ._gyrocore import SampleError
 from .batch_inputs import complete_output
@@ -276,6 +276,9 @@ class _FileJob:
                     progress(chunk.done, source.progress_total, source.progress_unit)
             if self.rows_in == 0:
                 raise ValueError(f"{source.data_path}: no samples")
+            unusable = pipeline.report["held"] + pipeline.report["skipped"]
+            if unusable == self.rows_in:  # held or skipped, all of them: a heading of 0 made of no data
+                raise ValueError(f"{source.data_path}: {no_usable_reading(self.rows_in)}")
             if check.error() is not None:
                 raise ValueError(f"{source.data_path}: {check.error()}")
             try:
@@ -476,9 +479,12 @@ def _repairs(report: Mapping[str, float]) -> list[str]:
     if report["held"]:
         notes.append(f"{int(report['held'])} reading(s) not finite or beyond +-2^20 replaced by the last usable one")
     if report["skipped"]:
+        # under nonfinite='hold' (some were held) the core skips those before the first usable
+        # reading: there is none to hold yet
+        before = ", before the first usable one: none to hold yet" if report["held"] else ""
         notes.append(
             f"{int(report['skipped'])} sample(s) skipped "
-            "(readings not finite or beyond +-2^20; their rows have a NaN rate)"
+            f"(readings not finite or beyond +-2^20{before}; their rows have a NaN rate)"
         )
     if report["gaps"]:
         notes.append(f"{int(report['gaps'])} gap(s), the longest {report['longest_gap']:.6g} s")

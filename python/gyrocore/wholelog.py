@@ -41,7 +41,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
-from ._checks import MAX_SECONDS, first_infinite, public_dir, require_times, warn
+from ._checks import MAX_SECONDS, first_infinite, public_dir, refuse_no_usable_reading, require_times, warn
 from ._gyrocore import SampleError
 from ._rests import MIN_REST, SPEED_THRESHOLD, Found, accept, find_rests, measure_rest
 from ._smoother import SmoothedBias, smooth
@@ -418,6 +418,8 @@ def process_log(
     check_mode(mode)
     refuse_speed_t_alone(speed, speed_t)
     si = to_si(overrides)
+    # a whole log is known to end here, as a stream is not: one of no usable reading has no heading
+    refuse_no_usable_reading(as_float_array("rate", rate), si.get("nonfinite"))
     if mode == "causal":
         refuse_whole_options(si)
         checked = None if fixes is None else _checked(fixes)
