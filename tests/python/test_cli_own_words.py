@@ -7,6 +7,9 @@ from pathlib import Path
 
 import pytest
 
+import gyrocore
+
+from .conftest import real_log_path
 from .test_batch import synthetic_csv
 from .test_errors_named import run_cli
 
@@ -38,3 +41,19 @@ def test_an_empty_name_is_refused_for_every_path(tmp_path: Path, args: tuple[str
     blank = next(a for a in args if not a.strip())
     assert proc.stderr.splitlines()[-1].endswith(f"error: argument {option}: {blank!r}: {_BLANK}")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["log.csv"]
+
+
+def test_an_out_of_range_reading_is_named_as_the_file_has_it(tmp_path: Path) -> None:
+    # whole mode subtracts a bias that varies over the log before the pipeline meets the reading:
+    # it was named "rate[500] = 10000000.006588526", a value the file does not hold
+    lines = (real_log_path("f110_ds3") / "gyro.csv").read_text().splitlines()
+    lines[501] = f"{lines[501].split(',')[0]},1e7"
+    src = tmp_path / "big.csv"
+    src.write_text("\n".join(lines) + "\n")
+    proc = run_cli("process", src, "--out", tmp_path / "h.csv")
+    assert proc.returncode == 2
+    assert proc.stderr.startswith(f"gyrocore: error: rate[500] = 10000000 rad/s is beyond +-1048576 rad/s: no gyro "
+                                  f"reads that fast: check the unit and the column ({src}, line 502)")
+    log = gyrocore.read_log(src)
+    with pytest.raises(gyrocore.SampleError, match=r"^rate\[500\] = 10000000 rad/s is beyond"):
+        gyrocore.process(log.t, log.rate)
