@@ -57,3 +57,16 @@ def test_an_out_of_range_reading_is_named_as_the_file_has_it(tmp_path: Path) -> 
     log = gyrocore.read_log(src)
     with pytest.raises(gyrocore.SampleError, match=r"^rate\[500\] = 10000000 rad/s is beyond"):
         gyrocore.process(log.t, log.rate)
+
+
+@pytest.mark.parametrize("command", ["process", "evaluate"])
+def test_a_bias_beyond_a_reading_is_named_as_given(tmp_path: Path, command: str) -> None:
+    # it was "invalid parameter bias = 1.7453292519943295e306: must be finite and at most 2^20": a
+    # name and a unit (rad/s) the user never gave
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    out = ("--out", tmp_path / "h.csv") if command == "process" else ("--preset", "raw")
+    proc = run_cli(command, log, *out, "--bias-dps=-1e308")
+    assert proc.returncode == 2
+    assert proc.stderr.splitlines()[-1] == (f"gyrocore {command}: error: argument --bias-dps: must be at most "
+                                            "6.007898e+07 deg/s in magnitude (2^20 rad/s, the limit of a reading), "
+                                            "got '-1e308'")

@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any, TypeVar
 
 from .. import _gyrocore, io
+from .._checks import MAX_READING
 from .._extras import MissingExtra, tqdm_class
 from .._gyrocore import SampleError
 from ..calibration import Calibration
@@ -324,6 +325,18 @@ def named_path(text: str) -> Path:
 #: The argparse type of a file or folder name (see :func:`named`).
 NAME = named()
 
+def bias_dps(text: str) -> float:
+    """An argparse ``type``: a bias [deg/s] (``--bias-dps``) the core takes, finite and within
+    its limit of a reading, said in deg/s (the core's own error named the parameter ``bias`` and
+    its value and limit in rad/s, none of which the user gave)."""
+    value = finite(text)
+    limit = math.degrees(MAX_READING)
+    if abs(value) > limit:
+        raise argparse.ArgumentTypeError(f"must be at most {limit:.7g} deg/s in magnitude (2^20 rad/s, the limit of "
+                                         f"a reading), got {text!r}")
+    return value
+
+
 #: argparse types of numeric options: checked as the command line is read, before any work.
 POSITIVE = _bounded(0.0, above=True)
 NON_NEGATIVE = _bounded(0.0, above=False)
@@ -332,6 +345,7 @@ SEED = _bounded(0, above=False, integer=True)
 #: A time span that may be infinite (``--gap-limit inf``: no gap detection).
 POSITIVE_OR_INF = _bounded(0.0, above=True, infinite=True)
 FINITE = finite
+BIAS_DPS = bias_dps
 
 
 def write_atomically(path: str | Path, write: Callable[[str], object]) -> None:

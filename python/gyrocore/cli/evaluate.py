@@ -19,9 +19,9 @@ from ..pipeline import preset_names
 from ..tune import ParameterSet
 from ._fixes import add_fix_options, evaluate_with_fixes, fixes_wanted, input_warnings, note_unused_gnss
 from ._common import (
+    BIAS_DPS,
     NAME,
     named_path,
-    FINITE,
     POSITIVE,
     REFERENCE_HELP,
     add_command,
@@ -74,7 +74,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         help="for logs with no rest window: measure the static bias over the first S seconds while driving "
         "(only sound when the drive starts straight; the same S for every log)",
     )
-    bias.add_argument("--bias-dps", type=FINITE, metavar="B",
+    bias.add_argument("--bias-dps", type=BIAS_DPS, metavar="B",
                       help="known bias [deg/s] (what the gyro reads at rest), for every method and log")
     add_override_options(p.add_argument_group("pipeline parameters for every method"))
     add_reading_options(p, "--bias-duration")

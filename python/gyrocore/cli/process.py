@@ -23,10 +23,10 @@ from ..batch import (
 from ..tune import ParameterSet
 from ._fixes import add_fix_options, any_fixes_csv, note_unused_gnss
 from ._common import (
+    BIAS_DPS,
     NAME,
     named,
     COUNT,
-    FINITE,
     POSITIVE,
     POSITIVE_OR_INF,
     WINDOW_HELP,
@@ -91,7 +91,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     group = bias.add_mutually_exclusive_group()
     group.add_argument("--bias-window", nargs=2, metavar=("T0", "T1"), help=f"rest window: {WINDOW_HELP}")
     group.add_argument("--bias-duration", type=POSITIVE, metavar="S", help="rest during the first S seconds")
-    group.add_argument("--bias-dps", type=FINITE, metavar="B", help="known bias [deg/s] (what the gyro reads at rest)")
+    group.add_argument("--bias-dps", type=BIAS_DPS, metavar="B", help="known bias [deg/s] (what the gyro reads at rest)")
 
     pipe = p.add_argument_group("pipeline")
     pipe.add_argument("--nonfinite", choices=("error", "hold", "skip"), help="NaN/inf readings (default error)")
