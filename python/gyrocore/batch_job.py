@@ -143,13 +143,14 @@ class BatchReport:
 
     @property
     def rows_in(self) -> int:
-        """Samples read, over all files."""
-        return sum(r.rows_in for r in self.files)
+        """Samples read, over the files processed: a failed file's rows before its error (each
+        file's own report has them) made "rows in" more than "out" for no row lost."""
+        return sum(r.rows_in for r in self.succeeded)
 
     @property
     def rows_out(self) -> int:
-        """Rows written, over all files."""
-        return sum(r.rows_out for r in self.files)
+        """Rows written, over the files processed."""
+        return sum(r.rows_out for r in self.succeeded)
 
     def as_dict(self) -> dict[str, Any]:
         """Plain data for JSON."""
