@@ -3,6 +3,7 @@ as one, a message states only what is so of the file, and a value is named as th
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
@@ -70,3 +71,13 @@ def test_a_bias_beyond_a_reading_is_named_as_given(tmp_path: Path, command: str)
     assert proc.stderr.splitlines()[-1] == (f"gyrocore {command}: error: argument --bias-dps: must be at most "
                                             "6.007898e+07 deg/s in magnitude (2^20 rad/s, the limit of a reading), "
                                             "got '-1e308'")
+
+
+def test_the_modified_deviation_refuses_a_non_overlapping_estimate(tmp_path: Path) -> None:
+    # it ran overlapping without a word, although --help says modified is always overlapping
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    proc = run_cli("allan", log, "--kind", "modified", "--non-overlapping")
+    assert (proc.returncode, proc.stdout) == (2, "")
+    assert proc.stderr == ("gyrocore: error: --non-overlapping: the modified Allan deviation is always overlapping; "
+                           "leave the option out, or give --kind allan or hadamard for a non-overlapping estimate\n")
+
