@@ -81,3 +81,11 @@ def test_the_modified_deviation_refuses_a_non_overlapping_estimate(tmp_path: Pat
     assert proc.stderr == ("gyrocore: error: --non-overlapping: the modified Allan deviation is always overlapping; "
                            "leave the option out, or give --kind allan or hadamard for a non-overlapping estimate\n")
 
+
+def test_a_method_given_twice_is_scored_once_with_a_warning() -> None:
+    # as a log given twice: its rows were printed twice
+    proc = run_cli("evaluate", real_log_path("f110_ds3"), "--preset", "raw", "--preset", "raw", "--json")
+    assert proc.returncode == 0, proc.stderr
+    assert [row["preset"] for row in json.loads(proc.stdout)] == ["raw"]
+    assert ("gyrocore: warning: raw: given more than once as a method (--preset); each is used once (its rows would "
+            "be printed twice)") in proc.stderr.splitlines()

@@ -370,13 +370,15 @@ def note(message: str) -> None:
     print(f"gyrocore: note: {one_line(message)}", file=sys.stderr)
 
 
-def once_each(paths: Sequence[str], what: str, why: str) -> list[str]:
+def once_each(paths: Sequence[str], what: str, why: str,
+              same: Callable[[str], str] = os.path.realpath) -> list[str]:
     """``paths`` with each file or folder once (also when named two ways, through a link or ``..``),
     warning of the others with ``why`` that matters (a log given twice to ``tune`` weighed twice in
-    its mean over the drives; ``evaluate`` scored it twice)."""
+    its mean over the drives; ``evaluate`` scored it twice). ``same`` gives what two of them share
+    when they are one (:func:`str` for names that are no paths: a method given twice)."""
     seen: dict[str, str] = {}
     for p in paths:
-        seen.setdefault(os.path.realpath(p), p)
+        seen.setdefault(same(p), p)
     twice = [p for p in paths if p not in seen.values() or paths.count(p) > 1]
     if twice:
         warn(f"{', '.join(dict.fromkeys(twice))}: given more than once as {what}; each is used once ({why})")

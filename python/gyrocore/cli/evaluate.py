@@ -100,9 +100,12 @@ def run(args: argparse.Namespace) -> int:
     if args.bias_duration is not None and not (math.isfinite(args.bias_duration) and args.bias_duration > 0):
         raise ValueError(f"--bias-duration must be a positive number of seconds, got {args.bias_duration}")
     extra = pipeline_overrides(args, {"bias_dps": args.bias_dps})
-    params = [ParameterSet.read(f).method() for f in args.params or []]
+    # as a log given twice: a method given twice printed its rows twice
+    args.preset = once_each(args.preset or [], "a method (--preset)", "its rows would be printed twice", str)
+    args.params = once_each(args.params or [], "a parameter file (--params)", "its rows would be printed twice")
+    params = [ParameterSet.read(f).method() for f in args.params]
     presets = args.preset if args.preset else ([] if params else preset_names())
-    methods = [_with(m, extra) for m in [*map(Method.from_preset, presets), *_named_apart(params, args.params or [], presets)]]
+    methods = [_with(m, extra) for m in [*map(Method.from_preset, presets), *_named_apart(params, args.params, presets)]]
     if args.plot_dir:
         check_not_input(Path(args.plot_dir), [Path(p) for p in args.logs])
         if os.path.lexists(args.plot_dir) and not Path(args.plot_dir).is_dir():  # found only once plotting
@@ -222,7 +225,8 @@ def _with(method: Method, extra: dict[str, Any]) -> Method:
 def _named_apart(params: list[Method], files: list[str], presets: list[str]) -> list[Method]:
     """The parameter files' methods, each one whose name another method shares with other parameters
     named after its file too: two runs of gyrocore tune both write "hdr_tuned", and their rows (and
-    JSON objects) could not be told apart. The same file given twice keeps its name."""
+    JSON objects) could not be told apart. Two files of the same parameters keep the name (one file
+    given twice is used once)."""
     out = []
     for method, path in zip(params, files):
         others = [Method.from_preset(p) for p in presets] + [m for m in params if m is not method]
