@@ -419,7 +419,8 @@ def test_the_ok_line_says_what_the_input_policy_did(tmp_path: Path) -> None:
     rate[[700, 2000]] = np.nan
     pa_csv.write_csv(pa.table({"t": t, "gyro_z": rate}), src := tmp_path / "jump.csv")
     summary = process_many([src], out_dir=tmp_path / "out", nonfinite="hold")
-    said = "2 reading(s) not finite or beyond +-2^20 replaced by the last usable one; 1 gap(s), the longest 10.01 s"
+    said = ("2 reading(s) not finite or beyond +-2^20 replaced by the last usable one; 1 gap(s), the longest 10.01 s, "
+            "across which the heading changes by 0.0000 rad (0.00 deg)")  # the bias, 0.001 rad/s, removed
     ok_line, policy = str(summary).splitlines()[:2]
     assert ok_line.startswith(f"ok     {src}: 3000 rows in, 3000 out") and policy == f"       input policy: {said}"
     report = summary.files[0].as_dict()

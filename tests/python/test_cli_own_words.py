@@ -4,6 +4,7 @@ as one, a message states only what is so of the file, and a value is named as th
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 import pytest
@@ -89,3 +90,22 @@ def test_a_method_given_twice_is_scored_once_with_a_warning() -> None:
     assert [row["preset"] for row in json.loads(proc.stdout)] == ["raw"]
     assert ("gyrocore: warning: raw: given more than once as a method (--preset); each is used once (its rows would "
             "be printed twice)") in proc.stderr.splitlines()
+
+
+@pytest.mark.parametrize("chunk_rows", ["1000", "65536"])
+def test_a_gap_says_the_heading_change_made_up_across_it(tmp_path: Path, chunk_rows: str) -> None:
+    # a gap is integrated across, as documented: "1 gap(s), the longest 1000 s" alone hid a turn
+    # made up from the readings at its ends (52 rad across a parked car's 1000 s)
+    lines = synthetic_csv(tmp_path / "log.csv", 3000).read_text().splitlines()
+    shifted = [f"{float(x.split(',')[0]) + 1000:.6f},{x.split(',')[1]}" for x in lines[1001:]]
+    src = tmp_path / "gap.csv"
+    src.write_text("\n".join([*lines[:1001], *shifted]) + "\n")
+    out = tmp_path / "h.csv"
+    proc = run_cli("process", src, "--out", out, "--chunk-rows", chunk_rows)
+    assert proc.returncode == 0, proc.stderr
+    rows = [line.split(",") for line in out.read_text().splitlines()[1000:1002]]
+    turn = abs(float(rows[1][1]) - float(rows[0][1]))
+    assert turn > 1.0  # made up: the gap's ends read 0.3 rad/s or so
+    said = (f"gyrocore: warning: {src}: 1 gap(s), the longest {float(rows[1][0]) - float(rows[0][0]):.6g} s, across "
+            f"which the heading changes by {turn:.4f} rad ({math.degrees(turn):.2f} deg)")
+    assert said in proc.stderr.splitlines()
