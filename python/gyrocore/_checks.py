@@ -191,7 +191,7 @@ def no_usable_reading(count: int) -> str:
     ``nonfinite="hold"`` or ``"skip"`` it gave a heading of 0 throughout, made of no data."""
     return (f"no usable reading: all {count} readings are NaN or beyond +-2^20 rad/s, so there is no "
             "heading to give (nonfinite='hold' or 'skip' carries a log over some bad readings, not over all): "
-            "check the rate column and its unit")
+            "check the rates and their unit")
 
 
 def refuse_no_usable_reading(values: FloatArray, nonfinite: str | None) -> None:

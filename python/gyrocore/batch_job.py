@@ -299,7 +299,8 @@ class _FileJob:
         # the plan's warning is about the bias of the output (taken as 0 in causal mode without a
         # rest window): said once the output is written, not for a file that fails on the way
         turned = [m for m in said if m.startswith(TURNING)]  # a causal rest window with a turn in it, once
-        for message in [*([plan.warning] if plan.warning else []), *check.problems(), *_repairs({**policy, "gap_turn": gap_turn}), *turned]:
+        repairs = _repairs({**policy, "gap_turn": gap_turn})
+        for message in [*([plan.warning] if plan.warning else []), *check.problems(), *repairs, *turned]:
             warn(message)
         return FileReport(
             str(self.path),

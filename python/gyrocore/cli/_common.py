@@ -325,6 +325,7 @@ def named_path(text: str) -> Path:
 #: The argparse type of a file or folder name (see :func:`named`).
 NAME = named()
 
+
 def bias_dps(text: str) -> float:
     """An argparse ``type``: a bias [deg/s] (``--bias-dps``) the core takes, finite and within
     its limit of a reading, said in deg/s (the core's own error named the parameter ``bias`` and

@@ -16,12 +16,12 @@ from .._extras import pyplot
 from ..window import Window
 from ._common import (
     NAME,
-    named_path,
     POSITIVE,
     WINDOW_HELP,
     add_command,
     add_overwrite_option,
     add_reading_options,
+    named_path,
     reading_options,
     refuse_existing,
     require_suffix,

@@ -21,7 +21,6 @@ from ..wholelog import times_ok
 from ..window import Window
 from ._common import (
     NAME,
-    named_path,
     REFERENCE_HELP,
     POSITIVE,
     WINDOW_HELP,
@@ -29,6 +28,7 @@ from ._common import (
     check_samples,
     add_overwrite_option,
     add_reading_options,
+    named_path,
     reading_options,
     refuse_existing,
     with_reference,

@@ -21,12 +21,12 @@ from ._fixes import add_fix_options, evaluate_with_fixes, fixes_wanted, input_wa
 from ._common import (
     BIAS_DPS,
     NAME,
-    named_path,
     POSITIVE,
     REFERENCE_HELP,
     add_command,
     each_log,
     exit_code,
+    named_path,
     once_each,
     print_failures,
     add_overwrite_option,

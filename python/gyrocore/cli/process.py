@@ -24,9 +24,8 @@ from ..tune import ParameterSet
 from ._fixes import add_fix_options, any_fixes_csv, note_unused_gnss
 from ._common import (
     BIAS_DPS,
-    NAME,
-    named,
     COUNT,
+    NAME,
     POSITIVE,
     POSITIVE_OR_INF,
     WINDOW_HELP,
@@ -34,6 +33,7 @@ from ._common import (
     add_overwrite_option,
     add_override_options,
     add_reading_options,
+    named,
     pipeline_overrides,
     print_json,
     progress_bar,

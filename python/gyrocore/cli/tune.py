@@ -15,8 +15,8 @@ from ..io import check_not_input, read_log
 from ..pipeline import parameters
 from .simulate import check_car_drive, checked_sensor
 from ._common import (
-    NAME,
     COUNT,
+    NAME,
     NON_NEGATIVE,
     POSITIVE,
     SEED,
