@@ -379,11 +379,11 @@ def _bytes_per_line(path: Path) -> int:
     return max(1, len(head) // max(1, head.count(b"\n")))
 
 
-def read_csv_columns(path: Path, columns: tuple[str, ...], *, what: str,
-                     optional: tuple[str, ...] = ()) -> dict[str, FloatArray]:
+def read_csv_columns(path: Path, columns: tuple[str, ...], *, optional: tuple[str, ...] = (),
+                     what: str = "the file") -> dict[str, FloatArray]:
     """Read the named columns of a CSV file with a header line (all of it, as float64); an empty
     value of an ``optional`` column is NaN (the caller decides what a missing value means).
-    ``what`` names the kind of file (``a reference``), for the error of a missing column.
+    ``what`` names the kind of file (``a reference``) in the error of a missing column.
 
     Raises ValueError naming the file, line and column of a malformed value, or of an empty value
     of another column. Row ``k`` is line ``csv_layout(path, ",").line(k)``.
