@@ -186,6 +186,22 @@ def usable(values: FloatArray) -> np.ndarray:
     return np.asarray(np.abs(values) < MAX_READING)  # NaN compares False
 
 
+def no_usable_reading(count: int) -> str:
+    """The error of a log none of whose ``count`` readings the core takes: under
+    ``nonfinite="hold"`` or ``"skip"`` it gave a heading of 0 throughout, made of no data."""
+    return (f"no usable reading: all {count} readings are NaN or beyond +-2^20 rad/s, so there is no "
+            "heading to give (nonfinite='hold' or 'skip' carries a log over some bad readings, not over all): "
+            "check the rates and their unit")
+
+
+def refuse_no_usable_reading(values: FloatArray, nonfinite: str | None) -> None:
+    """Refuse a whole log of rate ``values`` none of which is usable, under an input policy
+    ``nonfinite`` that would hold or skip them all (``"error"``, the default, names the first
+    one by its sample, which says more)."""
+    if nonfinite in ("hold", "skip") and len(values) and not usable(values).any():
+        raise ValueError(no_usable_reading(len(values)))
+
+
 def require_readings(what: str, values: FloatArray) -> None:
     """The core's :class:`~gyrocore.SampleError` for the first of ``values`` (``what``: ``rate`` or
     ``temperature``) that is not finite or beyond :data:`MAX_READING`, naming its index; nothing if

@@ -14,7 +14,8 @@ from typing import TYPE_CHECKING, Any
 
 from . import _signals, io, rests, wholelog
 from ._arrays import FloatArray
-from ._checks import collected, warn
+from ._checks import collected, no_usable_reading, warn
+from ._gap_turn import LongestGap, gap_turn_text
 from ._motion import TURNING
 from ._gyrocore import SampleError
 from .batch_inputs import complete_output
@@ -56,6 +57,8 @@ class FileReport:
         gaps, longest_gap: intervals longer than ``gap_limit``, bridged or reset (``gap_action``),
             and the longest [s]; 0 if the file failed. These four are named as the keys of
             :attr:`gyrocore.Pipeline.report`, and said in the warnings too.
+        gap_turn: the change of the heading written across the longest gap [rad], which the
+            pipeline made up from the readings at its ends (None without a gap).
         output_existed: the file was skipped, not processed: its output existed already
             (``skip_existing``).
         fixes: for a log fused with heading fixes (a log folder's ``fixes.csv``, or those given),
@@ -76,6 +79,7 @@ class FileReport:
     skipped: int = 0
     gaps: int = 0
     longest_gap: float = 0.0
+    gap_turn: float | None = None
     output_existed: bool = False
     fixes: Mapping[str, int] | None = None
     fixes_file: str | None = None
@@ -143,13 +147,14 @@ class BatchReport:
 
     @property
     def rows_in(self) -> int:
-        """Samples read, over all files."""
-        return sum(r.rows_in for r in self.files)
+        """Samples read, over the files processed: a failed file's rows before its error (each
+        file's own report has them) made "rows in" more than "out" for no row lost."""
+        return sum(r.rows_in for r in self.succeeded)
 
     @property
     def rows_out(self) -> int:
-        """Rows written, over all files."""
-        return sum(r.rows_out for r in self.files)
+        """Rows written, over the files processed."""
+        return sum(r.rows_out for r in self.succeeded)
 
     def as_dict(self) -> dict[str, Any]:
         """Plain data for JSON."""
@@ -254,6 +259,7 @@ class _FileJob:
         # the chunks' warnings (_said_for_the_file): the file's report says all but one below; that
         # one, a causal rest window with a turn in it, comes once, when its chunk closes the window
         said: list[str] = []
+        gap = LongestGap()
         with io.HeadingWriter(self.out, heading=self.heading, columns=self.columns or io.OUTPUT_COLUMNS) as writer:
             for chunk in source.chunks(self.chunk_rows):
                 _signals.check()  # a signal whose KeyboardInterrupt a library swallowed stops here
@@ -271,11 +277,15 @@ class _FileJob:
                 except ValueError as e:
                     raise _in_file(source, e, from_meta) from None
                 writer.write(result)
+                gap.update(result.t, result.heading)
                 self.rows_in += len(chunk)
                 if progress is not None:
                     progress(chunk.done, source.progress_total, source.progress_unit)
             if self.rows_in == 0:
                 raise ValueError(f"{source.data_path}: no samples")
+            unusable = pipeline.report["held"] + pipeline.report["skipped"]
+            if unusable == self.rows_in:  # held or skipped, all of them: a heading of 0 made of no data
+                raise ValueError(f"{source.data_path}: {no_usable_reading(self.rows_in)}")
             if check.error() is not None:
                 raise ValueError(f"{source.data_path}: {check.error()}")
             try:
@@ -285,10 +295,12 @@ class _FileJob:
             if writer.rows != self.rows_in:  # the pipeline returns one row per sample; prove it
                 raise RuntimeError(f"{self.path}: {self.rows_in} rows read but {writer.rows} written")
         policy = pipeline.report
+        gap_turn = gap.turn_across(policy["longest_gap"])
         # the plan's warning is about the bias of the output (taken as 0 in causal mode without a
         # rest window): said once the output is written, not for a file that fails on the way
         turned = [m for m in said if m.startswith(TURNING)]  # a causal rest window with a turn in it, once
-        for message in [*([plan.warning] if plan.warning else []), *check.problems(), *_repairs(policy), *turned]:
+        repairs = _repairs({**policy, "gap_turn": gap_turn})
+        for message in [*([plan.warning] if plan.warning else []), *check.problems(), *repairs, *turned]:
             warn(message)
         return FileReport(
             str(self.path),
@@ -304,6 +316,7 @@ class _FileJob:
             int(policy["skipped"]),
             int(policy["gaps"]),
             policy["longest_gap"],
+            gap_turn=gap_turn,
         )
 
     def _at_sample(self, source: io.GyroSource, e: SampleError, check: io.UnitCheck) -> ValueError:
@@ -353,9 +366,12 @@ class _FileJob:
         assert result.report is not None
         policy = result.report  # what it repaired, the pipeline said already (the log was one block)
         fusion = result.fusion
+        gap = LongestGap()
+        gap.update(result.t, result.heading)
         return FileReport(str(self.path), str(self.out), self.rows_in, written, time.perf_counter() - start, None,
                           tuple(dict.fromkeys(self.notes)), result.bias_source, result.rests, int(policy["held"]),
                           int(policy["skipped"]), int(policy["gaps"]), policy["longest_gap"],
+                          gap_turn=gap.turn_across(policy["longest_gap"]),
                           fixes=None if fusion is None else dict(fusion.counts),
                           fixes_file=None if fusion is None else self._fixes_file(source))
 
@@ -469,17 +485,21 @@ def _in_file(source: io.GyroSource, error: ValueError, window_from_meta: bool, f
     return ValueError(text if named else f"{source.data_path}: {text}")
 
 
-def _repairs(report: Mapping[str, float]) -> list[str]:
+def _repairs(report: Mapping[str, Any]) -> list[str]:
     """What the pipeline's input policy repaired (NaN readings held or skipped, gaps), from its
     :attr:`~gyrocore.Pipeline.report` or a file's report: the warnings and the ok line say the same."""
     notes = []
     if report["held"]:
         notes.append(f"{int(report['held'])} reading(s) not finite or beyond +-2^20 replaced by the last usable one")
     if report["skipped"]:
+        # under nonfinite='hold' (some were held) the core skips those before the first usable
+        # reading: there is none to hold yet
+        before = ", before the first usable one: none to hold yet" if report["held"] else ""
         notes.append(
             f"{int(report['skipped'])} sample(s) skipped "
-            "(readings not finite or beyond +-2^20; their rows have a NaN rate)"
+            f"(readings not finite or beyond +-2^20{before}; their rows have a NaN rate)"
         )
     if report["gaps"]:
-        notes.append(f"{int(report['gaps'])} gap(s), the longest {report['longest_gap']:.6g} s")
+        notes.append(f"{int(report['gaps'])} gap(s), the longest {report['longest_gap']:.6g} s"
+                     + gap_turn_text(report.get("gap_turn")))
     return notes

@@ -94,7 +94,7 @@ def _fix_columns(path: Path, header: list[str], units: dict[str, tuple[str, tupl
 def _read_rows(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:
     """The named columns of a fixes file, which must have a row: a file of no fix is refused, as a
     gyro file of no sample is, rather than fusing nothing."""
-    cols = read_csv_columns(path, columns)
+    cols = read_csv_columns(path, columns, what="a fixes file")
     if len(cols[columns[0]]) == 0:
         raise ValueError(f"{path}: no row after the header line, so no fix; add the fixes (one per line) or "
                          "remove the file")

@@ -41,7 +41,15 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
-from ._checks import MAX_SECONDS, first_infinite, public_dir, require_times, warn
+from ._checks import (
+    MAX_SECONDS,
+    first_infinite,
+    public_dir,
+    refuse_no_usable_reading,
+    require_times,
+    usable,
+    warn,
+)
 from ._gyrocore import SampleError
 from ._rests import MIN_REST, SPEED_THRESHOLD, Found, accept, find_rests, measure_rest
 from ._smoother import SmoothedBias, smooth
@@ -157,7 +165,12 @@ class BiasPlan:
         if self.smoothed is None or self._constant() is not None:
             return rate
         bias = self.smoothed.mean_at(t)
-        return np.subtract(rate, bias, out=bias)  # no second array as long as the log
+        corrected = np.subtract(rate, bias, out=bias)  # no second array as long as the log
+        # a reading the core refuses (or holds, or skips) goes to it as the log has it: its error
+        # names the value in the file ("rate[500] = 10000000"), not that value less a bias
+        unusable = ~usable(rate)
+        corrected[unusable] = rate[unusable]
+        return corrected
 
     def _constant(self) -> float | None:
         """The bias when it is one number over the whole log (exactly one rest's mean, as
@@ -419,6 +432,8 @@ def process_log(
     refuse_speed_t_alone(speed, speed_t)
     refuse_window_objects(overrides)
     si = _to_si(overrides)
+    # a whole log is known to end here, as a stream is not: one of no usable reading has no heading
+    refuse_no_usable_reading(as_float_array("rate", rate), si.get("nonfinite"))
     if mode == "causal":
         refuse_whole_options(si)
         checked = None if fixes is None else _checked(fixes)

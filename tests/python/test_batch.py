@@ -419,7 +419,8 @@ def test_the_ok_line_says_what_the_input_policy_did(tmp_path: Path) -> None:
     rate[[700, 2000]] = np.nan
     pa_csv.write_csv(pa.table({"t": t, "gyro_z": rate}), src := tmp_path / "jump.csv")
     summary = process_many([src], out_dir=tmp_path / "out", nonfinite="hold")
-    said = "2 reading(s) not finite or beyond +-2^20 replaced by the last usable one; 1 gap(s), the longest 10.01 s"
+    said = ("2 reading(s) not finite or beyond +-2^20 replaced by the last usable one; 1 gap(s), the longest 10.01 s, "
+            "across which the heading changes by 0.0000 rad (0.00 deg)")  # the bias, 0.001 rad/s, removed
     ok_line, policy = str(summary).splitlines()[:2]
     assert ok_line.startswith(f"ok     {src}: 3000 rows in, 3000 out") and policy == f"       input policy: {said}"
     report = summary.files[0].as_dict()
@@ -471,3 +472,14 @@ def test_a_failed_files_rows_in_are_the_samples_before_its_bad_one(tmp_path: Pat
     (report,) = summary.files
     assert not report.ok and "rate[1000] is NaN" in str(report.error)
     assert (report.rows_in, report.rows_out) == (1000, 0)
+
+
+def test_batch_totals_count_the_files_processed(tmp_path: Path) -> None:
+    # "1 of 2 files processed, 1 failed; 2836 rows in, 2736 out": the failed file's rows before its NaN
+    good = synthetic_csv(tmp_path / "good.csv", 3000)
+    bad = tmp_path / "bad.csv"
+    lines = good.read_text().splitlines()
+    bad.write_text("\n".join([*lines[:101], f"{lines[101].split(',')[0]},nan", *lines[102:]]) + "\n")
+    summary = process_many([good, bad], out_dir=tmp_path / "out", preset="raw", jobs=1)
+    assert summary.files[1].rows_in == 100 and (summary.rows_in, summary.rows_out) == (3000, 3000)
+    assert str(summary).splitlines()[-1].startswith("1 of 2 files processed, 1 failed; 3000 rows in, 3000 out, ")

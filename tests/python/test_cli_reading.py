@@ -416,3 +416,15 @@ def test_a_log_folders_gyro_csv_given_alone_names_the_folder(tmp_path: Path) -> 
     (alone / "gyro.csv").write_bytes((folder / "gyro.csv").read_bytes())  # nothing beside it: no word
     assert "the gyro of the log folder" not in gyrocore_cli("process", alone / "gyro.csv", "--out",
                                                             tmp_path / "a.csv", code=0).stderr
+
+
+@pytest.mark.parametrize(("unit", "scale"), [("ms", 1e3), ("us", 1e6), ("ns", 1e9)])
+def test_epoch_times_in_a_smaller_unit_get_one_diagnosis(tmp_path: Path, unit: str, scale: float) -> None:
+    # the core's "(nanoseconds read as seconds are this large)" and "timestamps look like ms" were
+    # both said of the same times: the unit the times fit is the one named
+    src = tmp_path / f"{unit}.csv"
+    t = 1.65e9 + np.arange(300) * 0.01
+    src.write_text("t,gyro_z\n" + "".join(f"{round(x * scale)},0.01\n" for x in t))
+    error = one_error(gyrocore_cli("process", src, "--out", tmp_path / "h.csv", code=2))
+    assert "nanoseconds" not in error
+    assert f"({src}, line 2); timestamps look like {unit}, not s: " in error and f"--time-unit {unit}" in error

@@ -274,7 +274,14 @@ def test_a_missing_column_of_a_log_folder_file_says_which_it_needs(tmp_path: Pat
     proc = run_cli("process", folder, "--out", tmp_path / "h.csv")
     assert proc.returncode == 2
     # no reading option (--time-col, --rate-col) names the columns of odometry.csv
-    assert proc.stderr.endswith("odometry.csv: missing column(s) speed; it has t, v (odometry.csv has the columns t, speed)\n")
+    assert proc.stderr.endswith("odometry.csv: missing column(s) speed; it has t, v (an odometry file needs the columns "
+                                "t, speed)\n")
+    # a file given as a reference says what a reference needs, not that it has columns it lacks
+    # ("it has t, speed (odometry.csv has the columns t, heading)")
+    proc = run_cli("calibrate", folder / "gyro.csv", "--reference", folder / "odometry.csv")
+    assert proc.returncode == 2
+    assert proc.stderr.endswith("odometry.csv: missing column(s) heading; it has t, v (a reference needs the columns "
+                                "t, heading)\n")
 
 
 @pytest.mark.parametrize("rrw", ["-1", "nan", "0"])
@@ -434,9 +441,9 @@ def test_out_dash_is_refused_not_made_a_folder(tmp_path: Path, monkeypatch: pyte
     # a name of spaces (an empty shell variable with a space) made a folder " "; "" wrote into "."
     for blank in (" ", ""):
         proc = run_cli("process", log, "--out", blank)
-        assert proc.returncode == 2 and proc.stderr == (
-            f"gyrocore: error: --out {blank!r}: no name (an empty shell variable?); give a .csv or .parquet file, "
-            "or a folder for several inputs\n")
+        assert proc.returncode == 2 and proc.stderr.endswith(
+            f"gyrocore process: error: argument -o/--out: {blank!r}: no name (an empty shell variable?); give a .csv "
+            "or .parquet file, or a folder for several inputs\n")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["log.csv"]
 
 

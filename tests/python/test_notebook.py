@@ -72,7 +72,8 @@ def test_a_batch_report_shows_as_one_line_however_many_files() -> None:
     files = [FileReport(f"log{i}", f"out/log{i}.csv", 6000, 6000, 0.1, bias_source="rest", rests=(rest,))
              for i in range(200)] + [FileReport("bad", None, 10, 0, 0.01, error="bad: t[3] is NaN")]
     report = BatchReport(tuple(files), 21.0)
-    assert repr(report) == ("BatchReport(200 of 201 files processed, 1 failed; 1200010 rows in, 1200000 out, 21.00 s; "
+    # the totals are the files processed: the failed file's 10 rows are its own report's
+    assert repr(report) == ("BatchReport(200 of 201 files processed, 1 failed; 1200000 rows in, 1200000 out, 21.00 s; "
                             "print() it for each file, .files for their reports)")
     assert str(report).count("\n") == 200 * 3 + 1 and str(report).endswith("1200000 out, 21.00 s")  # as before
 

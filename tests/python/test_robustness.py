@@ -236,7 +236,8 @@ def test_a_file_with_one_gap_is_read_in_seconds(tmp_path: Path) -> None:
     t = np.r_[np.arange(0.0, 30.0, 0.01), 1e5 + np.arange(0.0, 30.0, 0.01)]
     np.savetxt(src, np.c_[t, np.zeros_like(t)], delimiter=",", header="t,gyro_z", comments="", fmt="%.10g")
     proc = gyrocore_cli("process", src, "--out", tmp_path / "h.csv", "--causal", "--bias-dps", "0", code=0)
-    assert proc.stderr == f"gyrocore: warning: {src}: 1 gap(s), the longest 99970 s\n"
+    assert proc.stderr == (f"gyrocore: warning: {src}: 1 gap(s), the longest 99970 s, across which the heading "
+                           "changes by 0.0000 rad (0.00 deg)\n")
 
 
 @pytest.mark.parametrize("bad", ["t_repeat", "t_nan", "rate_nan", "rate_huge", "temperature_inf", "lengths", "none"])

@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any, TypeVar
 
 from .. import _gyrocore, io
+from .._checks import MAX_READING
 from .._extras import MissingExtra, tqdm_class
 from .._gyrocore import SampleError
 from ..calibration import Calibration
@@ -177,7 +178,7 @@ def add_override_options(group: argparse._ArgumentGroup) -> None:
     group.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
                        help="any pipeline parameter, in SI units (gyrocore presets lists them, with their units); "
                        "repeatable")
-    group.add_argument("--calibration", type=Path, metavar="FILE",
+    group.add_argument("--calibration", type=named_path, metavar="FILE",
                        help="a calibration written by gyrocore calibrate --save: its scale, and its bias "
                        "unless another bias option is given")
 
@@ -301,6 +302,42 @@ def finite(text: str) -> float:
     return value
 
 
+def named(hint: str = "") -> Callable[[str], str]:
+    """An argparse ``type`` for every option or argument that names a file or folder: a name that
+    is empty or only spaces (an unset shell variable) is refused, where it was taken as the
+    current folder (``process ""`` processed every log in it, ``--plot-dir ""`` wrote there) or
+    made a folder named " "; ``hint`` says what to give instead."""
+
+    def parse(text: str) -> str:
+        if not text.strip():
+            raise argparse.ArgumentTypeError(f"{text!r}: no name (an empty shell variable?)"
+                                             + (f"; give {hint}" if hint else ""))
+        return text
+
+    return parse
+
+
+def named_path(text: str) -> Path:
+    """:func:`named` for an option read as a :class:`~pathlib.Path`."""
+    return Path(named()(text))
+
+
+#: The argparse type of a file or folder name (see :func:`named`).
+NAME = named()
+
+
+def bias_dps(text: str) -> float:
+    """An argparse ``type``: a bias [deg/s] (``--bias-dps``) the core takes, finite and within
+    its limit of a reading, said in deg/s (the core's own error named the parameter ``bias`` and
+    its value and limit in rad/s, none of which the user gave)."""
+    value = finite(text)
+    limit = math.degrees(MAX_READING)
+    if abs(value) > limit:
+        raise argparse.ArgumentTypeError(f"must be at most {limit:.7g} deg/s in magnitude (2^20 rad/s, the limit of "
+                                         f"a reading), got {text!r}")
+    return value
+
+
 #: argparse types of numeric options: checked as the command line is read, before any work.
 POSITIVE = _bounded(0.0, above=True)
 NON_NEGATIVE = _bounded(0.0, above=False)
@@ -309,6 +346,7 @@ SEED = _bounded(0, above=False, integer=True)
 #: A time span that may be infinite (``--gap-limit inf``: no gap detection).
 POSITIVE_OR_INF = _bounded(0.0, above=True, infinite=True)
 FINITE = finite
+BIAS_DPS = bias_dps
 
 
 def write_atomically(path: str | Path, write: Callable[[str], object]) -> None:
@@ -333,13 +371,15 @@ def note(message: str) -> None:
     print(f"gyrocore: note: {one_line(message)}", file=sys.stderr)
 
 
-def once_each(paths: Sequence[str], what: str, why: str) -> list[str]:
+def once_each(paths: Sequence[str], what: str, why: str,
+              same: Callable[[str], str] = os.path.realpath) -> list[str]:
     """``paths`` with each file or folder once (also when named two ways, through a link or ``..``),
     warning of the others with ``why`` that matters (a log given twice to ``tune`` weighed twice in
-    its mean over the drives; ``evaluate`` scored it twice)."""
+    its mean over the drives; ``evaluate`` scored it twice). ``same`` gives what two of them share
+    when they are one (:func:`str` for names that are no paths: a method given twice)."""
     seen: dict[str, str] = {}
     for p in paths:
-        seen.setdefault(os.path.realpath(p), p)
+        seen.setdefault(same(p), p)
     twice = [p for p in paths if p not in seen.values() or paths.count(p) > 1]
     if twice:
         warn(f"{', '.join(dict.fromkeys(twice))}: given more than once as {what}; each is used once ({why})")

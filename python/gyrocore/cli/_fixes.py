@@ -17,7 +17,7 @@ from ..evaluate_compare import naming_log
 from ..fixes import Fixes, read_fixes_file
 from ..io import Log
 from ..io._logfolder import FIXES_CSV, GNSS_CSV
-from ._common import each_log, exit_code, note, print_failures, print_json, warn
+from ._common import NAME, each_log, exit_code, note, print_failures, print_json, warn
 
 FIXES_HELP = (
     "absolute headings fused with the gyro (docs/fixes.md): a CSV with columns t [s], heading [rad, CCW from "
@@ -28,7 +28,7 @@ FIXES_HELP = (
 def add_fix_options(parser: argparse.ArgumentParser, *, evaluate: bool) -> None:
     """``--fixes``, ``--no-fixes`` and, for ``evaluate``, ``--sim-fixes``."""
     group = parser.add_argument_group("heading fixes").add_mutually_exclusive_group()
-    group.add_argument("--fixes", metavar="FILE", help=FIXES_HELP)
+    group.add_argument("--fixes", type=NAME, metavar="FILE", help=FIXES_HELP)
     if evaluate:
         group.add_argument(
             "--sim-fixes",

@@ -15,11 +15,13 @@ from .._gyrocore import SampleError
 from .._extras import pyplot
 from ..window import Window
 from ._common import (
+    NAME,
     POSITIVE,
     WINDOW_HELP,
     add_command,
     add_overwrite_option,
     add_reading_options,
+    named_path,
     reading_options,
     refuse_existing,
     require_suffix,
@@ -36,7 +38,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         "gyrocore allan ../shared/data/real/broad_10 --json",
         run,
     )
-    p.add_argument("input", help="log folder (gyro.csv) or a file with time and rate columns")
+    p.add_argument("input", type=NAME, help="log folder (gyro.csv) or a file with time and rate columns")
     p.add_argument("--json", action="store_true", help="print the curve and parameters as JSON")
     p.add_argument("--taus", choices=("octave", "decade", "log", "all"), default="octave",
                    help="averaging times (default octave: 1, 2, 4, ... samples)")
@@ -46,8 +48,8 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
                    "linear rate drift) (default allan)")
     p.add_argument("--window", nargs=2, metavar=("T0", "T1"),
                    help=f"analyse only this span, e.g. the rest: {WINDOW_HELP}")
-    p.add_argument("--plot", type=Path, metavar="FILE", help="write a log-log plot (PNG) to this file")
-    p.add_argument("--kalibr", type=Path, metavar="FILE", help="write a Kalibr-style IMU noise YAML to this file")
+    p.add_argument("--plot", type=named_path, metavar="FILE", help="write a log-log plot (PNG) to this file")
+    p.add_argument("--kalibr", type=named_path, metavar="FILE", help="write a Kalibr-style IMU noise YAML to this file")
     p.add_argument("--rrw", type=POSITIVE, default=None,
                    help="rate random walk K [rad/s^2/sqrt(Hz)] for --kalibr when the record is too short to show it")
     add_overwrite_option(p)
@@ -59,6 +61,9 @@ def run(args: argparse.Namespace) -> int:
     window = None if args.window is None else Window.parse(args.window, "--window")
     if args.rrw is not None and args.kalibr is None:
         raise ValueError("--rrw is the rate random walk written by --kalibr: give --kalibr FILE too, or leave --rrw out")
+    if args.kind == "modified" and args.non_overlapping:  # it ran overlapping without a word
+        raise ValueError("--non-overlapping: the modified Allan deviation is always overlapping; leave the option out, "
+                         "or give --kind allan or hadamard for a non-overlapping estimate")
     if args.kalibr is not None and args.kind != "allan":  # before the work, not once its report is printed
         raise ValueError(f"--kalibr needs --kind allan (the noise parameters are read off the Allan deviation), "
                          f"not --kind {args.kind}")

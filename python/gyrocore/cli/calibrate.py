@@ -20,6 +20,7 @@ from ..calibration.rest import MAX_RATE
 from ..wholelog import times_ok
 from ..window import Window
 from ._common import (
+    NAME,
     REFERENCE_HELP,
     POSITIVE,
     WINDOW_HELP,
@@ -27,6 +28,7 @@ from ._common import (
     check_samples,
     add_overwrite_option,
     add_reading_options,
+    named_path,
     reading_options,
     refuse_existing,
     with_reference,
@@ -41,9 +43,9 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         "gyrocore calibrate ../shared/data/real/f110_ds3 --save f110_calibration.json",
         run,
     )
-    p.add_argument("input", help="log folder (gyro.csv; reference.csv and meta.json where present), or any "
+    p.add_argument("input", type=NAME, help="log folder (gyro.csv; reference.csv and meta.json where present), or any "
                    "file the reading options describe")
-    p.add_argument("--reference", type=Path, metavar="FILE",
+    p.add_argument("--reference", type=named_path, metavar="FILE",
                    help=f"reference heading of a file input: {REFERENCE_HELP}")
     p.add_argument("--window", nargs=2, metavar=("T0", "T1"),
                    help=f"rest window instead of finding one: {WINDOW_HELP}")
@@ -56,7 +58,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p.add_argument("--fit-window", nargs=2, metavar=("T0", "T1"),
                    help=f"span for the reference fit (default: the whole log): {WINDOW_HELP}")
     p.add_argument("--json", action="store_true", help="print the results as JSON")
-    p.add_argument("--save", type=Path,
+    p.add_argument("--save", type=named_path,
                    help="write the calibration (JSON): the reference fit where the log has a reference, "
                         "else the static bias")
     add_overwrite_option(p)

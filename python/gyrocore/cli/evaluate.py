@@ -19,12 +19,14 @@ from ..pipeline import preset_names
 from ..tune import ParameterSet
 from ._fixes import add_fix_options, evaluate_with_fixes, fixes_wanted, input_warnings, note_unused_gnss
 from ._common import (
-    FINITE,
+    BIAS_DPS,
+    NAME,
     POSITIVE,
     REFERENCE_HELP,
     add_command,
     each_log,
     exit_code,
+    named_path,
     once_each,
     print_failures,
     add_overwrite_option,
@@ -49,10 +51,10 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         "gyrocore evaluate ../shared/data/real/* --preset static_bias --preset recommended --bias-duration 10",
         run,
     )
-    p.add_argument("logs", nargs="+", metavar="LOGDIR",
+    p.add_argument("logs", nargs="+", type=NAME, metavar="LOGDIR",
                    help="log folders (gyro.csv, reference.csv, meta.json), or CSV or Parquet files with a heading_true "
                    "column [rad] (what gyrocore simulate writes); the reading options apply to the gyro's file")
-    p.add_argument("--reference", type=Path, metavar="FILE",
+    p.add_argument("--reference", type=named_path, metavar="FILE",
                    help=f"reference heading of a single log given (in place of its own): {REFERENCE_HELP}")
     p.add_argument(
         "--preset",
@@ -62,7 +64,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         "(default: every preset, unless --params is given)",
     )
     p.add_argument(
-        "--params", action="append", metavar="FILE", help="parameter file written by gyrocore tune (repeatable)"
+        "--params", action="append", type=NAME, metavar="FILE", help="parameter file written by gyrocore tune (repeatable)"
     )
     bias = p.add_mutually_exclusive_group()
     bias.add_argument(
@@ -72,7 +74,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         help="for logs with no rest window: measure the static bias over the first S seconds while driving "
         "(only sound when the drive starts straight; the same S for every log)",
     )
-    bias.add_argument("--bias-dps", type=FINITE, metavar="B",
+    bias.add_argument("--bias-dps", type=BIAS_DPS, metavar="B",
                       help="known bias [deg/s] (what the gyro reads at rest), for every method and log")
     add_override_options(p.add_argument_group("pipeline parameters for every method"))
     add_reading_options(p, "--bias-duration")
@@ -90,7 +92,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     )
     add_fix_options(p, evaluate=True)
     p.add_argument("--json", action="store_true", help="print one JSON list, an object per (log, method)")
-    p.add_argument("--plot-dir", metavar="DIR", help="write <log>.png (heading and error vs time) there")
+    p.add_argument("--plot-dir", type=NAME, metavar="DIR", help="write <log>.png (heading and error vs time) there")
     add_overwrite_option(p)
 
 
@@ -98,9 +100,12 @@ def run(args: argparse.Namespace) -> int:
     if args.bias_duration is not None and not (math.isfinite(args.bias_duration) and args.bias_duration > 0):
         raise ValueError(f"--bias-duration must be a positive number of seconds, got {args.bias_duration}")
     extra = pipeline_overrides(args, {"bias_dps": args.bias_dps})
-    params = [ParameterSet.read(f).method() for f in args.params or []]
+    # as a log given twice: a method given twice printed its rows twice
+    args.preset = once_each(args.preset or [], "a method (--preset)", "its rows would be printed twice", str)
+    args.params = once_each(args.params or [], "a parameter file (--params)", "its rows would be printed twice")
+    params = [ParameterSet.read(f).method() for f in args.params]
     presets = args.preset if args.preset else ([] if params else preset_names())
-    methods = [_with(m, extra) for m in [*map(Method.from_preset, presets), *_named_apart(params, args.params or [], presets)]]
+    methods = [_with(m, extra) for m in [*map(Method.from_preset, presets), *_named_apart(params, args.params, presets)]]
     if args.plot_dir:
         check_not_input(Path(args.plot_dir), [Path(p) for p in args.logs])
         if os.path.lexists(args.plot_dir) and not Path(args.plot_dir).is_dir():  # found only once plotting
@@ -220,7 +225,8 @@ def _with(method: Method, extra: dict[str, Any]) -> Method:
 def _named_apart(params: list[Method], files: list[str], presets: list[str]) -> list[Method]:
     """The parameter files' methods, each one whose name another method shares with other parameters
     named after its file too: two runs of gyrocore tune both write "hdr_tuned", and their rows (and
-    JSON objects) could not be told apart. The same file given twice keeps its name."""
+    JSON objects) could not be told apart. Two files of the same parameters keep the name (one file
+    given twice is used once)."""
     out = []
     for method, path in zip(params, files):
         others = [Method.from_preset(p) for p in presets] + [m for m in params if m is not method]

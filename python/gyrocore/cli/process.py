@@ -23,8 +23,9 @@ from ..batch import (
 from ..tune import ParameterSet
 from ._fixes import add_fix_options, any_fixes_csv, note_unused_gnss
 from ._common import (
+    BIAS_DPS,
     COUNT,
-    FINITE,
+    NAME,
     POSITIVE,
     POSITIVE_OR_INF,
     WINDOW_HELP,
@@ -32,6 +33,7 @@ from ._common import (
     add_overwrite_option,
     add_override_options,
     add_reading_options,
+    named,
     pipeline_overrides,
     print_json,
     progress_bar,
@@ -62,10 +64,10 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     )
     p.epilog = f"{p.epilog}\n{_EPILOG}"
     p.formatter_class = argparse.RawDescriptionHelpFormatter
-    p.add_argument("inputs", nargs="+", metavar="IN", help="input files, folders or glob patterns")
-    p.add_argument("-o", "--out", required=True, help="output .csv/.parquet file, or a folder for several inputs")
+    p.add_argument("inputs", nargs="+", type=NAME, metavar="IN", help="input files, folders or glob patterns")
+    p.add_argument("-o", "--out", required=True, type=named("a .csv or .parquet file, or a folder for several inputs"), help="output .csv/.parquet file, or a folder for several inputs")
     p.add_argument("--preset", help="preset name (default recommended; with --params, the file's base preset)")
-    p.add_argument("--params", metavar="FILE",
+    p.add_argument("--params", type=NAME, metavar="FILE",
                    help="parameter file written by gyrocore tune: its base preset and its parameters (the static "
                    "bias still comes from each log or the bias options)")
 
@@ -89,7 +91,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     group = bias.add_mutually_exclusive_group()
     group.add_argument("--bias-window", nargs=2, metavar=("T0", "T1"), help=f"rest window: {WINDOW_HELP}")
     group.add_argument("--bias-duration", type=POSITIVE, metavar="S", help="rest during the first S seconds")
-    group.add_argument("--bias-dps", type=FINITE, metavar="B", help="known bias [deg/s] (what the gyro reads at rest)")
+    group.add_argument("--bias-dps", type=BIAS_DPS, metavar="B", help="known bias [deg/s] (what the gyro reads at rest)")
 
     pipe = p.add_argument_group("pipeline")
     pipe.add_argument("--nonfinite", choices=("error", "hold", "skip"), help="NaN/inf readings (default error)")
@@ -180,9 +182,6 @@ def run(args: argparse.Namespace) -> int:
     if args.out == "-":  # the Unix spelling of standard output became a folder named "-"
         raise ValueError("--out -: the headings go to a file (the report goes to standard output): give a .csv "
                          "or .parquet file, or a folder for several inputs")
-    if not args.out.strip():  # "" wrote into the current folder, " " made a folder of that name
-        raise ValueError(f"--out {args.out!r}: no name (an empty shell variable?); give a .csv or .parquet file, or a "
-                         "folder for several inputs")
     tuned = _tuned(args)
     inputs = expand_inputs(args.inputs)
     out = Path(args.out)

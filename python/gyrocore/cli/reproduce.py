@@ -7,7 +7,7 @@ from pathlib import Path
 
 from .. import paper
 from .._checks import require_choice
-from ._common import add_command, add_overwrite_option, refuse_existing
+from ._common import add_command, add_overwrite_option, named_path, refuse_existing
 
 
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
@@ -21,7 +21,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p.add_argument("names", nargs="*", metavar="NAME",
                    help=f"experiments (default: all, about 15 s; docs/simulation.md gives each one's time): "
                         f"{', '.join(paper.REPRODUCTIONS)}")
-    p.add_argument("-o", "--out", type=Path, default=Path("."),
+    p.add_argument("-o", "--out", type=named_path, default=Path("."),
                    help="folder for the figures (PNG; created if missing; default: the current folder)")
     p.add_argument("--no-figures", action="store_true", help="print the tables only")
     add_overwrite_option(p)

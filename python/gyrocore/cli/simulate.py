@@ -11,7 +11,7 @@ from typing import Callable
 import numpy as np
 
 from .. import motion, sim
-from ._common import COUNT, POSITIVE, SEED, add_command, add_overwrite_option, refuse_existing, write_atomically
+from ._common import NAME, COUNT, POSITIVE, SEED, add_command, add_overwrite_option, refuse_existing, write_atomically
 
 #: Column order of the CSV: what a log has (t, gyro_z, temperature), then the truth.
 COLUMNS = ("t", "gyro_z", "temperature", "rate_true", "heading_true", "x", "y", "speed", "drift")
@@ -84,7 +84,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         run,
     )
     columns = ", ".join(f"{c} [{u}]" for c, u in zip(COLUMNS, UNITS))
-    p.add_argument("-o", "--out", required=True,
+    p.add_argument("-o", "--out", required=True, type=NAME,
                    help=f"output CSV; columns {columns} (drift: the slow part of the gyro's bias, beyond its static bias)")
     p.add_argument(
         "--profile",

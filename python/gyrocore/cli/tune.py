@@ -16,6 +16,7 @@ from ..pipeline import parameters
 from .simulate import check_car_drive, checked_sensor
 from ._common import (
     COUNT,
+    NAME,
     NON_NEGATIVE,
     POSITIVE,
     SEED,
@@ -51,7 +52,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     )
     add = p.add_argument
     # a file with its truth trains as in evaluate; "real log folders" kept it unsaid
-    add("logs", nargs="*", metavar="LOGDIR", help="log folders to train on (with a reference), or CSV or Parquet "
+    add("logs", nargs="*", type=NAME, metavar="LOGDIR", help="log folders to train on (with a reference), or CSV or Parquet "
         "files with a heading_true column [rad] (what gyrocore simulate writes)")
     add("--preset", default="hdr", metavar="NAME", help="base preset (default hdr)")
     add(
@@ -68,7 +69,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     add("--set", action="append", metavar="NAME=VALUE",
         help="hold a parameter at an SI value, a switch at true or false (repeatable)")
     add("--test-sim-table", action="append", choices=sorted(_TABLES), help="simulated test drives (other seeds)")
-    add("--test", action="append", default=[], metavar="LOGDIR",
+    add("--test", action="append", default=[], type=NAME, metavar="LOGDIR",
         help="log folder (or file with a heading_true column) to test on (not trained on)")
     add("--time-scale", type=POSITIVE, default=1.0, metavar="F", help="scale the simulated drives' durations (default 1)")
     add("--rate-hz", type=POSITIVE, default=10.0, metavar="HZ",
@@ -98,7 +99,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         help="differential_evolution (global; the start is part of its first population; default) or nelder-mead "
         "(local, from the start)")
     add("--name", help="name of the parameter set (default <preset>_tuned)")
-    add("-o", "--out", metavar="FILE",
+    add("-o", "--out", type=NAME, metavar="FILE",
         help="write the parameter file (JSON) here, for evaluate --params and process --params")
     add("--json", action="store_true",
         help="print the result as JSON (a report of the fit, not a parameter file: that is --out's)")

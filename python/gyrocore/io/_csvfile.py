@@ -379,9 +379,11 @@ def _bytes_per_line(path: Path) -> int:
     return max(1, len(head) // max(1, head.count(b"\n")))
 
 
-def read_csv_columns(path: Path, columns: tuple[str, ...], *, optional: tuple[str, ...] = ()) -> dict[str, FloatArray]:
+def read_csv_columns(path: Path, columns: tuple[str, ...], *, optional: tuple[str, ...] = (),
+                     what: str = "the file") -> dict[str, FloatArray]:
     """Read the named columns of a CSV file with a header line (all of it, as float64); an empty
     value of an ``optional`` column is NaN (the caller decides what a missing value means).
+    ``what`` names the kind of file (``a reference``) in the error of a missing column.
 
     Raises ValueError naming the file, line and column of a malformed value, or of an empty value
     of another column. Row ``k`` is line ``csv_layout(path, ",").line(k)``.
@@ -390,7 +392,9 @@ def read_csv_columns(path: Path, columns: tuple[str, ...], *, optional: tuple[st
     import_pyarrow_lazy_modules()
     parts: dict[str, list[np.ndarray]] = {c: [] for c in columns}
     layout = csv_layout(path, ",")
-    choose = f"{path.name} has the columns {', '.join(columns)}"  # not gyro data: no reading option names them
+    # not gyro data: no reading option names them. What such a file needs, not what this one has
+    # ("it has t, x (ref.csv has the columns t, heading)" said both of the same file)
+    choose = f"{what} needs the columns {', '.join(columns)}"
     required = dict.fromkeys((c for c in columns if c not in optional), "value")
     for first, cols, _ in _read_csv(path, layout, columns, required=required, choose=choose):
         for c in columns:

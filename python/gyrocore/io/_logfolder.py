@@ -119,7 +119,7 @@ def read_odometry(folder: Path) -> dict[str, FloatArray]:
     path = folder / ODOMETRY_CSV
     if not has_file(path):
         return {}
-    odometry = read_csv_columns(path, ("t", "speed"))
+    odometry = read_csv_columns(path, ("t", "speed"), what="an odometry file")
     _require_samples(path, csv_layout(path, ","), odometry, ("t", "speed"), "the odometry")
     return odometry
 
@@ -162,7 +162,7 @@ def read_reference_file(path: str | Path) -> dict[str, FloatArray]:
                          "gyrocore simulate writes): give it as the log, whose heading_true is read with it; a "
                          "reference file has the columns t, heading [rad] and, where known, x, y [m]")
     track = ("x", "y") if has_track(str(path), layout.header) else ()
-    ref = read_csv_columns(path, ("t", "heading", *track), optional=track)
+    ref = read_csv_columns(path, ("t", "heading", *track), what="a reference", optional=track)
     _require_samples(path, layout, ref, ("t", "heading"), "a reference")
     for name in track:
         where = _not_finite(path, layout, ref, name, "empty or nan")  # an empty position is read as NaN

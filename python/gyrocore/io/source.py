@@ -41,6 +41,9 @@ FILE_SUFFIXES = (".csv", ".tsv", ".parquet", ".pq", ".npy", ".npz", ".bag")
 #: What a file's reading that is not finite (or beyond the core's limit) can be given instead of an edit.
 NONFINITE_FIX = keep_readings("the file as it is", "nonfinite='hold' (--nonfinite hold)", "'skip'")
 
+#: What the core says of any time beyond +-2^40 s, whatever its unit.
+_CORE_UNIT_GUESS = " (nanoseconds read as seconds are this large)"
+
 
 @dataclass(frozen=True)
 class ReadOptions:
@@ -242,6 +245,10 @@ class GyroSource:
         :meth:`gyrocore.Log.process` name a bad sample of a file so."""
         message = getattr(error, "log_message", str(error))
         fix = time_fix if error.what == "t" else reading_fix if error.what == "rate" else None
+        if error.what == "t" and fix:
+            # the unit the times look like replaces the core's guess of one (ms times were said
+            # to be nanoseconds and ms in one line)
+            message = message.replace(_CORE_UNIT_GUESS, "")
         return f"{message} ({self.data_path}, {self.where(error.index)})" + (f"; {fix}" if fix else "")
 
     def chunks(self, rows: int = DEFAULT_CHUNK_ROWS) -> Iterator[Chunk]:

@@ -1,0 +1,111 @@
+"""What the command line says of its own arguments and of what it did: an empty name is refused
+as one, a message states only what is so of the file, and a value is named as the user wrote it."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pytest
+
+import gyrocore
+
+from .conftest import real_log_path
+from .test_batch import synthetic_csv
+from .test_errors_named import run_cli
+
+_BLANK = "no name (an empty shell variable?)"
+
+
+@pytest.mark.parametrize("args, option", [
+    (("process", "", "-o", "OUT/"), "IN"),
+    (("process", "LOG", "-o", "h.csv", "--calibration", ""), "--calibration"),
+    (("process", "LOG", "-o", "h.csv", "--fixes", ""), "--fixes"),
+    (("process", "LOG", "-o", "h.csv", "--params", " "), "--params"),
+    (("allan", ""), "input"),
+    (("allan", "LOG", "--plot", ""), "--plot"),
+    (("calibrate", "LOG", "--save", ""), "--save"),
+    (("calibrate", "LOG", "--reference", ""), "--reference"),
+    (("evaluate", "", "--preset", "raw"), "LOGDIR"),
+    (("evaluate", "LOG", "--preset", "raw", "--plot-dir", ""), "--plot-dir"),
+    (("simulate", "-o", ""), "-o/--out"),
+    (("tune", "LOG", "-o", ""), "-o/--out"),
+    (("reproduce", "-o", ""), "-o/--out"),
+])
+def test_an_empty_name_is_refused_for_every_path(tmp_path: Path, args: tuple[str, ...], option: str,
+                                                 monkeypatch: pytest.MonkeyPatch) -> None:
+    # "" (an unset shell variable) was the current folder: every log in it processed, a plot written there
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    monkeypatch.chdir(tmp_path)
+    proc = run_cli(*(str(log) if a == "LOG" else a for a in args))
+    assert proc.returncode == 2
+    blank = next(a for a in args if not a.strip())
+    assert proc.stderr.splitlines()[-1].endswith(f"error: argument {option}: {blank!r}: {_BLANK}")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["log.csv"]
+
+
+def test_an_out_of_range_reading_is_named_as_the_file_has_it(tmp_path: Path) -> None:
+    # whole mode subtracts a bias that varies over the log before the pipeline meets the reading:
+    # it was named "rate[500] = 10000000.006588526", a value the file does not hold
+    lines = (real_log_path("f110_ds3") / "gyro.csv").read_text().splitlines()
+    lines[501] = f"{lines[501].split(',')[0]},1e7"
+    src = tmp_path / "big.csv"
+    src.write_text("\n".join(lines) + "\n")
+    proc = run_cli("process", src, "--out", tmp_path / "h.csv")
+    assert proc.returncode == 2
+    assert proc.stderr.startswith(f"gyrocore: error: rate[500] = 10000000 rad/s is beyond +-1048576 rad/s: no gyro "
+                                  f"reads that fast: check the unit and the column ({src}, line 502)")
+    log = gyrocore.read_log(src)
+    with pytest.raises(gyrocore.SampleError, match=r"^rate\[500\] = 10000000 rad/s is beyond"):
+        gyrocore.process(log.t, log.rate)
+
+
+@pytest.mark.parametrize("command", ["process", "evaluate"])
+def test_a_bias_beyond_a_reading_is_named_as_given(tmp_path: Path, command: str) -> None:
+    # it was "invalid parameter bias = 1.7453292519943295e306: must be finite and at most 2^20": a
+    # name and a unit (rad/s) the user never gave
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    out = ("--out", tmp_path / "h.csv") if command == "process" else ("--preset", "raw")
+    proc = run_cli(command, log, *out, "--bias-dps=-1e308")
+    assert proc.returncode == 2
+    assert proc.stderr.splitlines()[-1] == (f"gyrocore {command}: error: argument --bias-dps: must be at most "
+                                            "6.007898e+07 deg/s in magnitude (2^20 rad/s, the limit of a reading), "
+                                            "got '-1e308'")
+
+
+def test_the_modified_deviation_refuses_a_non_overlapping_estimate(tmp_path: Path) -> None:
+    # it ran overlapping without a word, although --help says modified is always overlapping
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    proc = run_cli("allan", log, "--kind", "modified", "--non-overlapping")
+    assert (proc.returncode, proc.stdout) == (2, "")
+    assert proc.stderr == ("gyrocore: error: --non-overlapping: the modified Allan deviation is always overlapping; "
+                           "leave the option out, or give --kind allan or hadamard for a non-overlapping estimate\n")
+
+
+def test_a_method_given_twice_is_scored_once_with_a_warning() -> None:
+    # as a log given twice: its rows were printed twice
+    proc = run_cli("evaluate", real_log_path("f110_ds3"), "--preset", "raw", "--preset", "raw", "--json")
+    assert proc.returncode == 0, proc.stderr
+    assert [row["preset"] for row in json.loads(proc.stdout)] == ["raw"]
+    assert ("gyrocore: warning: raw: given more than once as a method (--preset); each is used once (its rows would "
+            "be printed twice)") in proc.stderr.splitlines()
+
+
+@pytest.mark.parametrize("chunk_rows", ["1000", "65536"])
+def test_a_gap_says_the_heading_change_made_up_across_it(tmp_path: Path, chunk_rows: str) -> None:
+    # a gap is integrated across, as documented: "1 gap(s), the longest 1000 s" alone hid a turn
+    # made up from the readings at its ends (52 rad across a parked car's 1000 s)
+    lines = synthetic_csv(tmp_path / "log.csv", 3000).read_text().splitlines()
+    shifted = [f"{float(x.split(',')[0]) + 1000:.6f},{x.split(',')[1]}" for x in lines[1001:]]
+    src = tmp_path / "gap.csv"
+    src.write_text("\n".join([*lines[:1001], *shifted]) + "\n")
+    out = tmp_path / "h.csv"
+    proc = run_cli("process", src, "--out", out, "--chunk-rows", chunk_rows)
+    assert proc.returncode == 0, proc.stderr
+    rows = [line.split(",") for line in out.read_text().splitlines()[1000:1002]]
+    turn = abs(float(rows[1][1]) - float(rows[0][1]))
+    assert turn > 1.0  # made up: the gap's ends read 0.3 rad/s or so
+    said = (f"gyrocore: warning: {src}: 1 gap(s), the longest {float(rows[1][0]) - float(rows[0][0]):.6g} s, across "
+            f"which the heading changes by {turn:.4f} rad ({math.degrees(turn):.2f} deg)")
+    assert said in proc.stderr.splitlines()
