@@ -38,6 +38,11 @@ use crate::fixes_segment::{Anchor, Segment};
 use crate::fixes_smooth::{smoothed, Knot, Mat3};
 use crate::{check_block, Error, MAX_READING, MAX_TIME};
 
+// The checks of a filter read back: a child module, which sees the filter's fields.
+#[cfg(feature = "serde")]
+#[path = "fixes_readback.rs"]
+mod readback;
+
 /// One absolute heading.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -105,41 +110,6 @@ impl Fusion {
             last_fix: None,
             counts: FixCounts::default(),
         })
-    }
-
-    /// The checks of a filter read back (`serde` feature): its configuration as `new` checks
-    /// it, and its state ([`Segment::check`], [`Anchor::check`]).
-    #[cfg(feature = "serde")]
-    pub(crate) fn check_restored(&self) -> Result<(), Error> {
-        self.config.validate()?;
-        self.segment.check()?;
-        let last_fix = self.last_fix.map(|t| Anchor::of_sample(t, 0.0));
-        self.anchor
-            .iter()
-            .chain(&last_fix)
-            .try_for_each(Anchor::check)?;
-        // The times in order: the knot, the last fix and the last sample no later than the time
-        // the filter stands at (one behind it integrated the time between as rate at once).
-        let Some(anchor) = self.anchor else {
-            let valid = "none before the first sample (a fix before it is not applied)";
-            let value = self.last_fix.unwrap_or(0.0);
-            return match self.last_fix {
-                Some(_) => Err(Error::InvalidParameter {
-                    name: "last fix time",
-                    value,
-                    valid,
-                }),
-                None => Ok(()),
-            };
-        };
-        let valid = "at or before the time the filter stands at";
-        let now = anchor.t;
-        if let Some(t) = self.last_fix {
-            crate::error::check_range("last fix time", t, f64::NEG_INFINITY, now, valid)?;
-        }
-        let name = "filter sample time";
-        crate::error::check_range(name, anchor.sample_t, f64::NEG_INFINITY, now, valid)?;
-        self.segment.check_before(now)
     }
 
     /// The configuration.

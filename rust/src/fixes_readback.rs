@@ -1,0 +1,40 @@
+//! The checks of a [`Fusion`] read back (`serde` feature): its configuration as `new` checks it,
+//! its state (`Segment::check`, `Anchor::check`), and its times in order.
+
+use super::Fusion;
+use crate::fixes_segment::Anchor;
+use crate::Error;
+
+impl Fusion {
+    /// The checks of a filter read back (`serde` feature): its configuration as `new` checks
+    /// it, and its state (`Segment::check`, `Anchor::check`).
+    pub(crate) fn check_restored(&self) -> Result<(), Error> {
+        self.config.validate()?;
+        self.segment.check()?;
+        let last_fix = self.last_fix.map(|t| Anchor::of_sample(t, 0.0));
+        self.anchor
+            .iter()
+            .chain(&last_fix)
+            .try_for_each(Anchor::check)?;
+        // The times in order: the knot, the last fix and the last sample no later than the time
+        // the filter stands at (one behind it integrated the time between as rate at once).
+        let Some(anchor) = self.anchor else {
+            return match self.last_fix {
+                Some(value) => Err(Error::InvalidParameter {
+                    name: "last fix time",
+                    value,
+                    valid: "none before the first sample (a fix before it is not applied)",
+                }),
+                None => Ok(()),
+            };
+        };
+        let valid = "at or before the time the filter stands at";
+        let now = anchor.t;
+        if let Some(t) = self.last_fix {
+            crate::error::check_range("last fix time", t, f64::NEG_INFINITY, now, valid)?;
+        }
+        let name = "filter sample time";
+        crate::error::check_range(name, anchor.sample_t, f64::NEG_INFINITY, now, valid)?;
+        self.segment.check_before(now)
+    }
+}
