@@ -4,10 +4,13 @@ field the caller gave."""
 
 from __future__ import annotations
 
+import inspect
 import re
-from typing import TYPE_CHECKING
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any
 
 from . import _gyrocore
+from ._checks import did_you_mean
 
 if TYPE_CHECKING:
     from .sim import GyroSpec
@@ -64,3 +67,15 @@ def check_spec(spec: GyroSpec) -> None:
         value = getattr(spec, name)
         given = f"{name} = {value!r}" if part is None else f"{name}[{part}] = {value[part]!r}"
         raise ValueError(f"sensor field {given}: {e}; the model takes it in SI units (rad, s, degC)") from None
+
+
+def refuse_unknown_keywords(function: Callable[..., Any], changes: dict[str, Any], sensor_fields: Sequence[str]) -> None:
+    """A TypeError for a keyword of ``changes`` (the ``**changes`` of ``function``, which go to the
+    sensor) that is neither one of ``function``'s own nor one of ``sensor_fields``: a misspelt
+    ``duration`` was called an unknown sensor field, and ``duration`` was not suggested."""
+    own = [p.name for p in inspect.signature(function).parameters.values() if p.kind is not p.VAR_KEYWORD]
+    unknown = [k for k in changes if k not in sensor_fields]
+    if unknown:
+        said = ", ".join(f"{k!r}{did_you_mean(k, (*own, *sensor_fields))}" for k in unknown)
+        raise TypeError(f"unknown keyword(s) {said}: neither a keyword of {function.__name__} ({', '.join(own)}) nor a "
+                        f"sensor field ({', '.join(sensor_fields)})")

@@ -23,7 +23,6 @@ drive can be sampled at any rate; only the white noise depends on the sample int
 
 from __future__ import annotations
 
-import inspect
 import math
 from dataclasses import asdict, dataclass, field, fields, replace
 from typing import TYPE_CHECKING, Any
@@ -33,8 +32,8 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore, motion
 from ._arrays import FloatArray, as_float_array
-from ._checks import check_number, check_seed, did_you_mean, real_number, require_choice, require_series
-from ._sim_fields import check_spec
+from ._checks import check_number, check_seed, real_number, require_choice, require_series
+from ._sim_fields import check_spec, refuse_unknown_keywords
 from .window import MIN_WINDOW_READINGS
 
 if TYPE_CHECKING:
@@ -446,25 +445,12 @@ def car_drive(
     # a negative rest "must be shorter than the drive", and seed=-1 numpy's "expected non-negative integer"
     duration, rate_hz = check_number("duration", duration, unit=" [s]"), check_number("rate_hz", rate_hz, unit=" [Hz]")
     rest, seed = check_number("rest", rest, strict=False, unit=" [s]"), check_seed(seed)
-    _refuse_unknown_keywords(car_drive, changes)
+    refuse_unknown_keywords(car_drive, changes, [f.name for f in fields(GyroSpec)])
     spec = sensor(sensor_name, rate_hz=rate_hz, **changes)
     # a drive of 1e12 s was built manoeuvre by manoeuvre before the simulator refused it
     check_span(spec, 0.0, duration)
     route = motion.car(duration, mix=mix, seed=seed, rest=rest)
     return simulate(route, spec, seed=seed)
-
-
-def _refuse_unknown_keywords(function: Any, changes: dict[str, Any]) -> None:
-    """A TypeError for a keyword of ``changes`` (the ``**changes`` of ``function``, which go to the
-    sensor) that is neither one of ``function``'s own nor a sensor field: a misspelt ``duration``
-    was called an unknown sensor field, and ``duration`` was not suggested."""
-    own = [p.name for p in inspect.signature(function).parameters.values() if p.kind is not p.VAR_KEYWORD]
-    sensor_fields = [f.name for f in fields(GyroSpec)]
-    unknown = [k for k in changes if k not in sensor_fields]
-    if unknown:
-        said = ", ".join(f"{k!r}{did_you_mean(k, (*own, *sensor_fields))}" for k in unknown)
-        raise TypeError(f"unknown keyword(s) {said}: neither a keyword of {function.__name__} ({', '.join(own)}) nor a "
-                        f"sensor field ({', '.join(sensor_fields)})")
 
 
 #: The most fixes :func:`gnss_fixes` makes: more than a 100 Hz receiver gives in a day (8.6e6);
