@@ -107,8 +107,8 @@ def deviation(
             at a quarter of the record (at least three non-overlapping terms, as Stable32);
             explicit taus may go up to the longest with one term.
         overlapping: overlapping estimator (more terms, tighter interval, same quantity).
-        kind: ``"allan"``, ``"modified"`` (always overlapping) or ``"hadamard"`` (blind to a
-            linear rate drift).
+        kind: ``"allan"``, ``"modified"`` (always overlapping: ``overlapping=False`` is refused) or
+            ``"hadamard"`` (blind to a linear rate drift).
         confidence: two-sided confidence of ``adev_low``/``adev_high``.
         noise_alpha: rate-noise type assumed for the interval: 0 white (angle random walk),
             -1 flicker (bias instability), -2 random walk (rate random walk).
@@ -245,7 +245,9 @@ def _curve(
     require_flag("overlapping", overlapping)  # "no" was a KeyError, 0 and 1 worked by chance
     if noise_alpha not in _TABLES:
         raise ValueError(f"noise_alpha must be 0 (white), -1 (flicker) or -2 (random walk), got {noise_alpha}")
-    overlapping = overlapping or kind == "modified"
+    if kind == "modified" and not overlapping:  # it ran overlapping without a word
+        raise ValueError("overlapping=False: the modified Allan deviation is always overlapping; leave it out, or "
+                         "give kind='allan' or 'hadamard' for a non-overlapping estimate")
     variance = _VARIANCE[(kind, overlapping)]
     n_phase = len(data) + 1 if is_rate else len(data)
     if is_rate:

@@ -346,3 +346,10 @@ def test_unsorted_timestamps_are_shown_as_given() -> None:
     t = 100.0 + np.arange(0.0, 50.0, 0.01)[::-1]
     with pytest.raises(gyrocore.SampleError, match=r"t\[1\] = 149.98\d* follows 149.99 "):
         allan.deviation_from_timestamps(t, np.zeros(len(t)))
+
+
+def test_a_non_overlapping_modified_deviation_is_refused_not_computed_overlapping() -> None:
+    rate = np.random.default_rng(0).normal(0.0, 1e-3, 4000)
+    with pytest.raises(ValueError, match=r"^overlapping=False: the modified Allan deviation is always overlapping"):
+        allan.deviation(rate, 0.01, kind="modified", overlapping=False)
+    assert allan.deviation(rate, 0.01, kind="modified").overlapping
