@@ -174,6 +174,7 @@ def deviation_from_timestamps(
     """
     ta = as_float_array("t", t)
     ra = as_float_array("rate", rate)
+    _refuse_non_overlapping_modified(kind, overlapping)  # before the log is integrated
     if len(ta) < 3:
         raise ValueError(f"need at least 3 samples for an Allan deviation, got {len(ta)}")
     # The core validates lengths, NaN, the readings' range and increasing t, naming the values as
@@ -245,9 +246,7 @@ def _curve(
     require_flag("overlapping", overlapping)  # "no" was a KeyError, 0 and 1 worked by chance
     if noise_alpha not in _TABLES:
         raise ValueError(f"noise_alpha must be 0 (white), -1 (flicker) or -2 (random walk), got {noise_alpha}")
-    if kind == "modified" and not overlapping:  # it ran overlapping without a word
-        raise ValueError("overlapping=False: the modified Allan deviation is always overlapping; leave it out, or "
-                         "give kind='allan' or 'hadamard' for a non-overlapping estimate")
+    _refuse_non_overlapping_modified(kind, overlapping)
     variance = _VARIANCE[(kind, overlapping)]
     n_phase = len(data) + 1 if is_rate else len(data)
     if is_rate:
@@ -290,6 +289,14 @@ def _curve(
         noise_alpha=int(noise_alpha),
         samples=len(data),
     )
+
+
+def _refuse_non_overlapping_modified(kind: str, overlapping: bool) -> None:
+    """The modified Allan deviation has no non-overlapping estimator: asked for one, refuse rather
+    than compute the overlapping one."""
+    if kind == "modified" and overlapping is False:
+        raise ValueError("overlapping=False: the modified Allan deviation is always overlapping; leave it out, or "
+                         "give kind='allan' or 'hadamard' for a non-overlapping estimate")
 
 
 #: (kind, overlapping) -> the core's variance name.

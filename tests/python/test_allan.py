@@ -13,7 +13,7 @@ import pytest
 import gyrocore
 from gyrocore import allan
 
-from .conftest import DATA
+from .conftest import DATA, gyrocore_cli
 
 PHASE_DAT = DATA / "allan" / "phase_dat"
 
@@ -353,3 +353,14 @@ def test_a_non_overlapping_modified_deviation_is_refused_not_computed_overlappin
     with pytest.raises(ValueError, match=r"^overlapping=False: the modified Allan deviation is always overlapping"):
         allan.deviation(rate, 0.01, kind="modified", overlapping=False)
     assert allan.deviation(rate, 0.01, kind="modified").overlapping
+
+
+def test_the_command_line_says_a_unit_problem_of_its_record_once(tmp_path: Path) -> None:
+    """The reader said it, and the Allan deviation, which now warns of units for a Python caller,
+    said it again."""
+    rng = np.random.default_rng(1)
+    t = np.arange(4000) * 0.01
+    path = tmp_path / "dps.csv"
+    path.write_text("t,gyro_z\n" + "".join(f"{a},{b}\n" for a, b in zip(t, 30.0 + rng.normal(0, 0.5, len(t)))))
+    proc = gyrocore_cli("allan", path, code=0)
+    assert proc.stderr.count("look like deg/s") == 1, proc.stderr

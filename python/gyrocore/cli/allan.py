@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import allan, io
-from .._checks import collected
+from .._checks import collected, unit_problems
 from .._gyrocore import SampleError
 from .._extras import pyplot
 from ..window import Window
@@ -97,7 +97,9 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"{e} ({source.data_path}, {source.where(int(inside[e.index]))})") from None
     except ValueError as e:  # a gap, too few samples: which log
         raise ValueError(f"{src}: {e}") from None
-    warn_about(src, raised)
+    # the reader judged the units already, with the file's options: its warnings said them
+    said = set(unit_problems(t, rate))
+    warn_about(src, [note for note in raised if note not in said])
     try:
         params = allan.noise_parameters(result) if args.kind == "allan" else None
     except ValueError as e:  # too short a record (or --window) for the curve's slopes
