@@ -255,16 +255,20 @@ def warn_if_degrees(reference: Reference, t: ArrayLike, heading: ArrayLike, e_ps
     side as given turns :data:`DEGREES_TURNING` times as far as the other."""
     te, est = as_float_array("t", t), as_float_array("heading", heading)
     start = max(te[0], reference.t[0])
-    in_radians = Reference(reference.t, np.radians(reference.given), gap_factor=reference.gap_factor,
-                           time_weighted=reference.time_weighted)
     ref_turning = _turning(reference.t, reference.given, start)  # as given: unwrapping mangles degrees
     est_turning = _turning(te, est, start)
-    # each side converted and scored against the other as given, with both sides' turning
-    for side, ref, estimate, turning, other in (("reference", in_radians, est, ref_turning, est_turning),
-                                                ("estimate", reference, np.radians(est), est_turning, ref_turning)):
+    # each side converted and scored against the other as given, with both sides' turning; the
+    # turning first, which rules out nearly every call before a second scoring is paid for
+    for side, turning, other in (("reference", ref_turning, est_turning), ("estimate", est_turning, ref_turning)):
+        if not turning >= DEGREES_TURNING * other:
+            continue
         with collected([]):  # the comparison as given said what it had to (a wrapped estimate)
-            converted = ref.e_psi(te, estimate, absolute=absolute)
-        if DEGREES_GAIN * converted <= e_psi and converted < other and turning >= DEGREES_TURNING * other:
+            if side == "reference":
+                converted = Reference(reference.t, np.radians(reference.given), gap_factor=reference.gap_factor,
+                                      time_weighted=reference.time_weighted).e_psi(te, est, absolute=absolute)
+            else:
+                converted = reference.e_psi(te, np.radians(est), absolute=absolute)
+        if DEGREES_GAIN * converted <= e_psi and converted < other:
             warn(f"the {side} heading looks like degrees: E_psi {e_psi:.4g} deg as given, {converted:.4g} deg with "
                  f"the {side} in degrees; convert with numpy.radians")
             return
