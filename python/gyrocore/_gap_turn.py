@@ -21,13 +21,15 @@ class LongestGap:
         self.turn = math.nan
         self._last: tuple[float, float] | None = None  # (t, heading) of the last sample of the block before
 
-    def update(self, t: FloatArray, heading: FloatArray) -> None:
-        """Take the next block's times and the headings computed for them."""
+    def update(self, t: FloatArray, heading: FloatArray, gapped: bool = True) -> None:
+        """Take the next block's times and the headings computed for them; ``gapped``: whether the
+        pipeline met a gap in it (without one, its longest interval cannot be the longest gap,
+        and the block is not searched)."""
         if len(t) == 0:
             return
-        if self._last is not None:  # the interval from the block before to this one
+        if gapped and self._last is not None:  # the interval from the block before to this one
             self._take(float(t[0]) - self._last[0], float(heading[0]) - self._last[1])
-        if len(t) > 1:
+        if gapped and len(t) > 1:
             dt = np.diff(t)
             k = int(np.argmax(dt))
             self._take(float(dt[k]), float(heading[k + 1] - heading[k]))

@@ -259,7 +259,7 @@ class _FileJob:
         # the chunks' warnings (_said_for_the_file): the file's report says all but one below; that
         # one, a causal rest window with a turn in it, comes once, when its chunk closes the window
         said: list[str] = []
-        gap = LongestGap()
+        gap, gaps = LongestGap(), 0
         with io.HeadingWriter(self.out, heading=self.heading, columns=self.columns or io.OUTPUT_COLUMNS) as writer:
             for chunk in source.chunks(self.chunk_rows):
                 _signals.check()  # a signal whose KeyboardInterrupt a library swallowed stops here
@@ -277,7 +277,8 @@ class _FileJob:
                 except ValueError as e:
                     raise _in_file(source, e, from_meta) from None
                 writer.write(result)
-                gap.update(result.t, result.heading)
+                gaps, gaps_before = int(pipeline.report["gaps"]), gaps
+                gap.update(result.t, result.heading, gapped=gaps > gaps_before)
                 self.rows_in += len(chunk)
                 if progress is not None:
                     progress(chunk.done, source.progress_total, source.progress_unit)
@@ -367,7 +368,7 @@ class _FileJob:
         policy = result.report  # what it repaired, the pipeline said already (the log was one block)
         fusion = result.fusion
         gap = LongestGap()
-        gap.update(result.t, result.heading)
+        gap.update(result.t, result.heading, gapped=policy["gaps"] > 0)
         return FileReport(str(self.path), str(self.out), self.rows_in, written, time.perf_counter() - start, None,
                           tuple(dict.fromkeys(self.notes)), result.bias_source, result.rests, int(policy["held"]),
                           int(policy["skipped"]), int(policy["gaps"]), policy["longest_gap"],
