@@ -283,7 +283,8 @@ def test_a_fit_window_at_rest_gets_the_bias_alone_not_a_scale_error_no_gyro_has(
     t_ref, heading_ref = log.reference()
     start = float(log.t[0])
     with pytest.warns(gyrocore.InputWarning, match=r"too little to determine the scale \(the gyro turns by .* rad "
-                                                   r"besides its steady drift, under 0.1 rad\)"):
+                                                   r"besides its steady drift, under 0.1 rad, and the reference by "
+                                                   r"0.0101 rad\)"):
         fit = cal.heading_reference(log.t, log.rate, t_ref, heading_ref, window=(start, start + 0.5))
     assert fit.scale_error == 0.0 and fit.scale_error_stderr is None
     assert fit.bias_stderr is not None  # the rest's bias, within the fit's error (its static bias: -0.3709 deg/s)

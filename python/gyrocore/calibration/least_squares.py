@@ -257,12 +257,15 @@ def heading_reference(
     turn = _turn(g[:, 0], g[:, 1])
     if stderr <= MAX_SCALE_STDERR and turn >= MIN_SCALE_TURN:
         return _calibration_from_q("heading_reference", q, cov, rms, cond, span, len(inside))
-    why = (f"its standard error would be {100 * stderr:.3g} %, over {100 * MAX_SCALE_STDERR:g} %"
-           if stderr > MAX_SCALE_STDERR else
-           f"the gyro turns by {turn:.3g} rad besides its steady drift, under {MIN_SCALE_TURN:g} rad")
+    # which of the two turns too little is said: a gyro that does not follow a turning reference
+    # (another axis, another column) is no reference that barely turns
+    why = (f"the gyro turns by {turn:.3g} rad besides its steady drift, under {MIN_SCALE_TURN:g} rad, and the reference "
+           f"by {np.ptp(z):.3g} rad" if turn < MIN_SCALE_TURN else
+           f"the reference turns by {np.ptp(z):.3g} rad and the gyro by {turn:.3g} besides its steady drift; the "
+           f"scale's standard error would be {100 * stderr:.3g} %, over {100 * MAX_SCALE_STDERR:g} %")
     note = (
-        f"the reference turns by {np.ptp(z):.3g} rad, too little to determine the scale ({why}): the bias alone "
-        "was fitted (scale error 0); calibrate over a drive with turns for the scale"
+        f"too little to determine the scale ({why}): the bias alone was fitted (scale error 0); calibrate over a "
+        "drive with turns for the scale, with the gyro's axis and sign matching the reference's"
     )
     warn(f"heading_reference: {note}")
     return _bias_only(g[1:], z[1:], span, len(inside), note)
