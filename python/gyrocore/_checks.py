@@ -186,7 +186,7 @@ def usable(values: FloatArray) -> np.ndarray:
     return np.asarray(np.abs(values) < MAX_READING)  # NaN compares False
 
 
-def no_usable_reading(count: int) -> str:
+def no_usable_log(count: int) -> str:
     """The error of a log none of whose ``count`` readings the core takes: under
     ``nonfinite="hold"`` or ``"skip"`` it gave a heading of 0 throughout, made of no data."""
     return (f"no usable reading: all {count} readings are NaN or beyond +-2^20 rad/s, so there is no "
@@ -199,7 +199,7 @@ def refuse_no_usable_reading(values: FloatArray, nonfinite: str | None) -> None:
     ``nonfinite`` that would hold or skip them all (``"error"``, the default, names the first
     one by its sample, which says more)."""
     if nonfinite in ("hold", "skip") and len(values) and not usable(values).any():
-        raise ValueError(no_usable_reading(len(values)))
+        raise ValueError(no_usable_log(len(values)))
 
 
 def require_readings(what: str, values: FloatArray) -> None:

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 from . import _signals, io, rests, wholelog
 from ._arrays import FloatArray
-from ._checks import collected, no_usable_reading, warn
+from ._checks import collected, no_usable_log, warn
 from ._gap_turn import LongestGap, gap_turn_text
 from ._motion import TURNING
 from ._gyrocore import SampleError
@@ -286,7 +286,7 @@ class _FileJob:
                 raise ValueError(f"{source.data_path}: no samples")
             unusable = pipeline.report["held"] + pipeline.report["skipped"]
             if unusable == self.rows_in:  # held or skipped, all of them: a heading of 0 made of no data
-                raise ValueError(f"{source.data_path}: {no_usable_reading(self.rows_in)}")
+                raise ValueError(f"{source.data_path}: {no_usable_log(self.rows_in)}")
             if check.error() is not None:
                 raise ValueError(f"{source.data_path}: {check.error()}")
             try:

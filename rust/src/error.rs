@@ -291,6 +291,12 @@ pub(crate) fn check_usable(name: &'static str, value: f64) -> Result<(), Error> 
     }
 }
 
+/// The relative difference a value read back may have from the one the rest of its state gives
+/// (a bias from its window's sums, a covariance's variances against their rebuilt bound): a state
+/// written without exact floats (`serde_json` without `float_roundtrip`) stays far within it.
+#[cfg(feature = "serde")]
+pub(crate) const ROUNDING: f64 = 1.0 / (1u64 << 36) as f64;
+
 /// Checks an integral of readings over `duration` \[s\] read back (a block's, a rest window's):
 /// its mean within +-2^21 rad/s, a reading's limit with room for rounding. One of 1e308 over a
 /// duration of 1e-300 gave an infinite mean.
@@ -300,27 +306,39 @@ pub(crate) fn check_integral(
     integral: f64,
     duration: f64,
 ) -> Result<(), Error> {
-    let most = 2.0 * MAX_READING * duration;
     let valid = "its mean over its duration within +-2^21 rad/s (a reading's limit, and room \
                  for rounding)";
-    check_range(name, integral, -most, most, valid)
+    check_mean_within(name, integral, duration, 2.0 * MAX_READING, valid)
 }
 
 /// Checks an integral of readings over `duration` \[s\] read back whose mean becomes a bias (the
-/// static bias test's, a rest's): that mean a reading, within +-2^20 rad/s, as the bias it gives
-/// must be on the next read-back; 0 over no time. One of 2^20 rad over 0.79 s was accepted, its
+/// static bias test's, a rest's): that mean a reading, within +-2^20 rad/s with no room, as the
+/// bias it gives must be on the next read-back. One of 2^20 rad over 0.79 s was accepted, its
 /// bias of 1.3e6 rad/s ran, and the state it left no longer read back.
 #[cfg(feature = "serde")]
 pub(crate) fn check_mean(name: &'static str, integral: f64, duration: f64) -> Result<(), Error> {
+    let valid = "its mean over its duration a reading: within +-2^20 rad/s (0 over no time)";
+    check_mean_within(name, integral, duration, MAX_READING, valid)
+}
+
+/// `integral / duration` within `limit` in magnitude (the mean itself, as it is used), and an
+/// integral of 0 over no time.
+#[cfg(feature = "serde")]
+fn check_mean_within(
+    name: &'static str,
+    integral: f64,
+    duration: f64,
+    limit: f64,
+    valid: &'static str,
+) -> Result<(), Error> {
     let within = if duration > 0.0 {
-        libm::fabs(integral / duration) <= MAX_READING
+        libm::fabs(integral / duration) <= limit
     } else {
         integral == 0.0
     };
     if within {
         Ok(())
     } else {
-        let valid = "its mean over its duration a reading: within +-2^20 rad/s (0 over no time)";
         Err(Error::InvalidParameter {
             name,
             value: integral,

@@ -78,14 +78,8 @@ pub(crate) fn semi_definite(mut p: Mat3) -> Mat3 {
     [[v[0], p01, p02], [p01, v[1], p12], [p02, p12, v[2]]]
 }
 
-/// The relative rounding a covariance read back may carry on its variances: a state written
-/// without exact floats (`serde_json` without `float_roundtrip`) and the rounding of a rebuilt
-/// covariance stay far within it.
-#[cfg(feature = "serde")]
-const ROUNDING: f64 = 1.0 / (1u64 << 36) as f64;
-
 /// Checks a covariance read back (`serde` feature): symmetric within rounding, no variance
-/// below 0 (as [`semi_definite`] leaves them), and positive semi-definite within [`ROUNDING`] (no
+/// below 0 (as [`semi_definite`] leaves them), and positive semi-definite within [`ROUNDING`](crate::error::ROUNDING) (no
 /// covariance beyond the product of its two standard deviations): a negative bias variance read
 /// back gave NaN or imaginary sigmas.
 #[cfg(feature = "serde")]
@@ -100,7 +94,7 @@ pub(crate) fn check(p: &Mat3) -> Result<(), crate::Error> {
     ];
     let mut inflated = *p;
     for i in 0..3 {
-        inflated[i][i] = p[i][i] * (1.0 + ROUNDING);
+        inflated[i][i] = p[i][i] * (1.0 + crate::error::ROUNDING);
     }
     for (i, j) in [(0, 1), (0, 2), (1, 2)] {
         let (c, mirror) = (p[i][j], p[j][i]);
@@ -111,7 +105,7 @@ pub(crate) fn check(p: &Mat3) -> Result<(), crate::Error> {
         check_range(name, c, -bound, bound, valid)?;
         check_range(name, mirror, -bound, bound, valid)?;
         let off = libm::fabs(c - mirror);
-        if off > ROUNDING * bound {
+        if off > crate::error::ROUNDING * bound {
             return Err(crate::Error::InvalidParameter {
                 name,
                 value: mirror,

@@ -10,11 +10,6 @@ use crate::Error;
 /// Number of equal parts of the rest window whose means give the bias's standard error.
 const BATCHES: usize = 8;
 
-/// The relative difference a value read back may have from the one its sums give: a state
-/// written without exact floats (`serde_json` without `float_roundtrip`) stays far within it.
-#[cfg(feature = "serde")]
-pub(crate) const ROUNDING: f64 = 1.0 / (1u64 << 36) as f64;
-
 /// Noise statistics of a measured rest window.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -329,7 +324,7 @@ impl BiasEstimate {
         if self.duration > 0.0 {
             // The bias is the integral's mean, within the rounding of floats read back inexactly.
             let mean = self.integral / self.duration;
-            if libm::fabs(self.value - mean) > ROUNDING * libm::fabs(mean) {
+            if libm::fabs(self.value - mean) > crate::error::ROUNDING * libm::fabs(mean) {
                 let valid = "the bias integral's mean over the bias duration";
                 return refuse("bias", self.value, valid);
             }

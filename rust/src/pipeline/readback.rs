@@ -76,7 +76,7 @@ impl Pipeline {
                 return Ok(None);
             };
             let expected = k * of;
-            let most = crate::rest::ROUNDING * (libm::fabs(expected) + k * size);
+            let most = crate::error::ROUNDING * (libm::fabs(expected) + k * size);
             if libm::fabs(value - expected) <= most {
                 Ok(Some(value))
             } else {
