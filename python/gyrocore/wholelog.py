@@ -41,42 +41,17 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array
-from ._checks import (
-    MAX_SECONDS,
-    first_infinite,
-    public_dir,
-    refuse_no_usable_reading,
-    require_times,
-    usable,
-    warn,
-)
+from ._checks import MAX_SECONDS, first_infinite, public_dir, refuse_no_usable_reading, require_times, usable, warn
 from ._gyrocore import SampleError
 from ._rests import MIN_REST, SPEED_THRESHOLD, Found, accept, find_rests, measure_rest
 from ._smoother import SmoothedBias, smooth
-from .pipeline import (
-    ALL_OUTPUTS,
-    BIAS_SOURCES,
-    HeadingResult,
-    Pipeline,
-    core_pipeline,
-    preset_params,
-    uses_static_bias,
-)
+from .pipeline import ALL_OUTPUTS, BIAS_SOURCES, HeadingResult, Pipeline, core_pipeline, preset_params, uses_static_bias
 from .pipeline_params import _to_si
 from .result import OutArrays, filled, out_arrays
 from .rests import Rest, refuse_speed_t_alone, rest_lines, speed_on
 from .wholelog_options import (
-    BIAS_OPTIONS_HINT,
-    BIAS_SIGMAS,
-    BIAS_WALK,
-    HDR_BOUND_WALK,
-    MODES,
-    WHOLE_OPTIONS,
-    Options,
-    check_mode,
-    refuse_tracking,
-    refuse_whole_options,
-    untracked,
+    BIAS_OPTIONS_HINT, BIAS_SIGMAS, BIAS_WALK, HDR_BOUND_WALK, MODES, WHOLE_OPTIONS, Options, check_mode, refuse_tracking,
+    refuse_whole_options, untracked,
 )
 from .window import RestWindowError, Window, refuse_window_objects
 
