@@ -90,6 +90,11 @@ def test_a_method_given_twice_is_scored_once_with_a_warning() -> None:
     assert [row["preset"] for row in json.loads(proc.stdout)] == ["raw"]
     assert ("gyrocore: warning: raw: given more than once as a method (--preset); each is used once (its rows would "
             "be printed twice)") in proc.stderr.splitlines()
+    # recommended and the preset it stands for are one method too
+    proc = run_cli("evaluate", real_log_path("f110_ds3"), "--preset", "recommended", "--preset",
+                   gyrocore.recommended_preset(), "--json")
+    assert proc.returncode == 0, proc.stderr
+    assert [row["preset"] for row in json.loads(proc.stdout)] == ["recommended"]
 
 
 @pytest.mark.parametrize("chunk_rows", ["1000", "65536"])

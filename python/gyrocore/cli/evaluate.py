@@ -15,7 +15,7 @@ from .._checks import keep_readings
 from ..evaluate import Method, Score, compare, format_bias_sources, format_table, plot_path
 from ..evaluate_compare import naming_log
 from ..io import Log, check_not_input, read_log
-from ..pipeline import preset_names
+from ..pipeline import preset_names, recommended_preset
 from ..tune import ParameterSet
 from ._fixes import add_fix_options, evaluate_with_fixes, fixes_wanted, input_warnings, note_unused_gnss
 from ._common import (
@@ -101,7 +101,9 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--bias-duration must be a positive number of seconds, got {args.bias_duration}")
     extra = pipeline_overrides(args, {"bias_dps": args.bias_dps})
     # as a log given twice: a method given twice printed its rows twice
-    args.preset = once_each(args.preset or [], "a method (--preset)", "its rows would be printed twice", str)
+    # recommended and the preset it stands for are one method
+    args.preset = once_each(args.preset or [], "a method (--preset)", "its rows would be printed twice",
+                            lambda name: recommended_preset() if name == "recommended" else name)
     args.params = once_each(args.params or [], "a parameter file (--params)", "its rows would be printed twice")
     params = [ParameterSet.read(f).method() for f in args.params]
     presets = args.preset if args.preset else ([] if params else preset_names())
