@@ -280,7 +280,7 @@ def tune(
     require_cases("harm", harm)
     require_choice("objective", objective, OBJECTIVES)
     require_choice("optimiser", optimiser, OPTIMISERS)
-    # a str, 5.5 or True failed deep in the fit or passed; scipy's generator takes a 32-bit seed
+    # checked before the fit, in the package's words; scipy's generator takes a 32-bit seed
     max_evaluations = check_count("max_evaluations", max_evaluations)
     seed = check_seed(seed, bits=32)
     harm_limit_deg = check_number("harm_limit_deg", harm_limit_deg, strict=False, unit=" [deg]")

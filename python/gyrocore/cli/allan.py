@@ -61,7 +61,7 @@ def run(args: argparse.Namespace) -> int:
     window = None if args.window is None else Window.parse(args.window, "--window")
     if args.rrw is not None and args.kalibr is None:
         raise ValueError("--rrw is the rate random walk written by --kalibr: give --kalibr FILE too, or leave --rrw out")
-    if args.kind == "modified" and args.non_overlapping:  # it ran overlapping without a word
+    if args.kind == "modified" and args.non_overlapping:  # the option has no meaning there: refused, not ignored
         raise ValueError("--non-overlapping: the modified Allan deviation is always overlapping; leave the option out, "
                          "or give --kind allan or hadamard for a non-overlapping estimate")
     if args.kalibr is not None and args.kind != "allan":  # before the work, not once its report is printed

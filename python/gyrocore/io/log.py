@@ -78,7 +78,7 @@ class Log:
         it); series that belong together are checked to match, and ``stationary`` to be a window."""
         float_fields(self, _SERIES)
         if self.speed is not None and self.t_odometry is None and len(self.speed) == len(self.t):
-            object.__setattr__(self, "t_odometry", self.t)  # it was dropped without a word
+            object.__setattr__(self, "t_odometry", self.t)  # its own times: the gyro's (frozen: set as float_fields sets)
         for times, values in (("t", ("rate",)), ("t_ref", ("heading_ref", "x_ref", "y_ref")), ("t_odometry", ("speed",))):
             self._check_series(times, values)
         if self.stationary is not None:
