@@ -5,6 +5,8 @@
 //! outputs.
 #![cfg(feature = "serde")]
 
+mod states;
+
 use gyrocore::*;
 use proptest::prelude::*;
 use serde::de::DeserializeOwned;
@@ -223,22 +225,6 @@ fn run_pipeline(p: Pipeline) -> Result<(), String> {
     }
 }
 
-fn fusion() -> Fusion {
-    let (t, r) = drive(0.0, 200);
-    let fixes: Vec<Fix> = (0..4)
-        .map(|i| Fix {
-            t: 2.0 * i as f64 + 0.01,
-            heading: 0.1 * i as f64,
-            sigma: 0.01,
-        })
-        .collect();
-    let mut f = Fusion::new(FusionConfig::default()).unwrap();
-    let mut h = vec![0.0; t.len()];
-    f.process_block(&t, &r, &fixes, FusionOutputs::heading(&mut h))
-        .unwrap();
-    f
-}
-
 /// Runs a filter read back, with fixes, through the smoother's passes: no panic.
 fn run_fusion(f: Fusion) -> Result<(), String> {
     let t0 = f.last_time().map_or(0.0, |t| t + 0.05);
@@ -295,7 +281,7 @@ fn every_edit<T: Serialize + DeserializeOwned + Send + 'static>(
 #[test]
 fn every_edit_is_refused_or_gives_finite_headings() {
     every_edit(&Fusion::new(FusionConfig::default()).unwrap(), run_fusion);
-    every_edit(&fusion(), run_fusion);
+    every_edit(&states::fusion(), run_fusion);
     let all = pipelines();
     every_edit(&all[3 * 4 + 1], run_pipeline); // combined, measuring
     every_edit(&all[3 * 6 + 2], run_pipeline); // tracked, rests found
@@ -384,7 +370,7 @@ fn counts_at_their_largest_saturate() {
         q.update(-1e9, 0.0);
         assert_eq!(q.report().skipped, u64::MAX);
     }
-    let mut v = serde_json::to_value(fusion()).unwrap();
+    let mut v = serde_json::to_value(states::fusion()).unwrap();
     set_counts(&mut v);
     let read: Fusion = serde_json::from_value(v).unwrap();
     run_fusion(read).unwrap();
