@@ -30,6 +30,16 @@ fn drive(p: &mut Pipeline, t0: f64, secs: f64) -> f64 {
     h[n - 1]
 }
 
+/// A pipeline of `config` after `n` samples at 100 Hz from t = 0, each reading `rate`.
+fn steady(config: PipelineConfig, n: usize, rate: f64) -> Pipeline {
+    let mut p = Pipeline::new(config).unwrap();
+    let t: Vec<f64> = (0..n).map(|i| i as f64 * 0.01).collect();
+    let mut h = vec![0.0; n];
+    p.process_block(&t, &vec![rate; n], None, Outputs::heading(&mut h))
+        .unwrap();
+    p
+}
+
 /// A rest-tracking pipeline 20 s into a drive, several rests found.
 fn tracking() -> Pipeline {
     let mut config = Preset::Tracked.config();
@@ -80,12 +90,7 @@ fn a_rest_tracker_with_a_negative_variance_or_sums_out_of_order_is_refused() {
 fn chain_settings_that_contradict_the_configuration_are_refused() {
     let mut c = Preset::Hdr.config();
     c.correction.bias = StaticBias::Fixed(0.001);
-    let mut p = Pipeline::new(c).unwrap();
-    let t: Vec<f64> = (0..100).map(|i| i as f64 * 0.01).collect();
-    let mut h = vec![0.0; 100];
-    p.process_block(&t, &[0.2; 100], None, Outputs::heading(&mut h))
-        .unwrap();
-    let v = serde_json::to_value(&p).unwrap();
+    let v = serde_json::to_value(steady(c, 100, 0.2)).unwrap();
     for (at, value) in [
         ("/engine/Hdr/config/1/threshold", 1000.0),
         ("/engine/Hdr/config/0/bias", 1000.0),
@@ -137,12 +142,7 @@ fn a_rest_window_integral_whose_mean_is_no_reading_is_refused() {
         start: 0.5,
         end: 1.5,
     };
-    let mut p = Pipeline::new(config).unwrap();
-    let t: Vec<f64> = (0..130).map(|i| i as f64 * 0.01).collect();
-    let mut h = vec![0.0; 130];
-    p.process_block(&t, &[0.001; 130], None, Outputs::heading(&mut h))
-        .unwrap();
-    let v = serde_json::to_value(&p).unwrap();
+    let v = serde_json::to_value(steady(config, 130, 0.001)).unwrap();
     let err = refused::<Pipeline>(edited(&v, &[("/bias/integral", 1048576.0)]));
     assert!(err.contains("invalid parameter bias integral"), "{err}");
     // One within reach but not the bias's own is refused as well.
