@@ -194,12 +194,17 @@ def no_usable_log(count: int) -> str:
             "check the rates and their unit")
 
 
+class NoUsableReading(ValueError):
+    """A whole log none of whose readings the core takes (:func:`refuse_no_usable_reading`): a
+    ValueError a caller that knows the log's file can name it in."""
+
+
 def refuse_no_usable_reading(values: FloatArray, nonfinite: str | None) -> None:
     """Refuse a whole log of rate ``values`` none of which is usable, under an input policy
     ``nonfinite`` that would hold or skip them all (``"error"``, the default, names the first
     one by its sample, which says more)."""
     if nonfinite in ("hold", "skip") and len(values) and not usable(values).any():
-        raise ValueError(no_usable_log(len(values)))
+        raise NoUsableReading(no_usable_log(len(values)))
 
 
 def require_readings(what: str, values: FloatArray) -> None:

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .._arrays import FloatArray, float_fields
-from .._checks import refuse_no_usable_reading, require_flag, warn
+from .._checks import NoUsableReading, require_flag, warn
 from .._gyrocore import SampleError
 from ..pipeline import (
     HeadingResult,
@@ -26,7 +26,6 @@ from ..pipeline import (
     process,
     uses_static_bias,
 )
-from ..pipeline_params import _to_si
 from ..rests import speed_on
 from ..wholelog import WHOLE_OPTIONS
 from ..window import RestWindowError, in_log_clock
@@ -195,11 +194,6 @@ class Log:
             # the odometry at its own times: the tracker interpolates it, and knows no speed outside it
             speed.update(speed=self.speed, speed_t=self.t_odometry)
         given = fixes if fixes is not None else self.fixes if use_fixes else None
-        try:  # said here to name the log's file (process() knows the numbers alone)
-            refuse_no_usable_reading(self.rate, _to_si(overrides).get("nonfinite"))
-        except ValueError as e:
-            where = f"log {self.name}" if self._source is None else str(self._source.data_path)
-            raise ValueError(f"{where}: {e}") from None
         with self._naming_sample():
             if self.stationary is None or not uses_static_bias(preset) or has_bias_source(overrides):
                 return process(self.t, self.rate, preset, mode=mode, fixes=given, fusion=fusion, **speed, **overrides)
@@ -213,9 +207,13 @@ class Log:
     def _naming_sample(self) -> Iterator[None]:
         """Re-raise the :class:`~gyrocore.SampleError` of a bad sample (a NaN reading, a time going
         back) of a log read from a file naming the file and its line, in the words of ``gyrocore
-        process FILE`` (:meth:`GyroSource.locate`): the index alone left a user to count lines."""
+        process FILE`` (:meth:`GyroSource.locate`): the index alone left a user to count lines.
+        A log with no usable reading at all is named by its file (or its name)."""
         try:
             yield
+        except NoUsableReading as e:
+            where = f"log {self.name}" if self._source is None else str(self._source.data_path)
+            raise ValueError(f"{where}: {e}") from None
         except SampleError as e:
             if self._source is None:
                 raise
