@@ -28,6 +28,8 @@ use crate::kernel::Event;
 use crate::rest::RestStatistics;
 use crate::Error;
 
+#[cfg(feature = "serde")]
+mod readback;
 mod tracked;
 pub use tracked::{Tracked, TrackedConfig, TrackedState, TrackerSettings};
 
