@@ -200,14 +200,14 @@ def search_box(
     return box
 
 
-def require_cases(what: str, cases: object) -> None:
+def _require_cases(what: str, cases: object) -> None:
     """A TypeError for one :class:`Case` where a list of them is asked for (it failed as "'Case'
     object is not iterable")."""
     if isinstance(cases, Case):
         raise TypeError(f"{what}: give a list of cases, not one Case ([case])")
 
 
-def start_point(
+def _start_point(
     box: Mapping[str, tuple[float, float]], start: Mapping[str, float] | None, base: Mapping[str, Any]
 ) -> dict[str, float]:
     """The values :func:`tune` starts from: ``start``'s, else the preset's (``base``), else the
@@ -274,10 +274,10 @@ def tune(
     """
     optimize = require("scipy.optimize", "tuning")
 
-    require_cases("cases", cases)
+    _require_cases("cases", cases)
     if not cases:
         raise ValueError("no training drive given")
-    require_cases("harm", harm)
+    _require_cases("harm", harm)
     require_choice("objective", objective, OBJECTIVES)
     require_choice("optimiser", optimiser, OPTIMISERS)
     # checked before the fit, in the package's words; scipy's generator takes a 32-bit seed
@@ -288,7 +288,7 @@ def tune(
     name = ParameterSet(name or f"{preset}_tuned", preset, {}).name  # a name the file cannot hold fails before the fit
     names, fixed = tuple(box), _to_si(dict(fixed or {}))  # a parameter file holds SI names, with their units
     base = preset_params(preset, **fixed)
-    start_values = start_point(box, start, base)
+    start_values = _start_point(box, start, base)
 
     lo = np.log([box[n][0] for n in names])
     hi = np.log([box[n][1] for n in names])
