@@ -18,7 +18,7 @@ from . import _gyrocore, rests
 from ._arrays import FloatArray, as_float_array
 from ._checks import public_dir, warn, warn_units
 from ._motion import WindowWatch
-from .pipeline_input import refuse_window_without_reading, say_what_to_do, warn_repairs
+from .pipeline_input import refuse_window_without_reading, say_what_to_do, warn_repairs, warn_speed_outside
 from .pipeline_params import (
     BIAS_SOURCES,
     _to_si,
@@ -105,6 +105,16 @@ class Pipeline:
         si = _to_si(overrides)
         self._inner = core_pipeline(preset, si)
         self._preset = preset
+        if fusion is not None:
+            self._inner.start_fusion(_stage_settings(self.params, fusion))
+        # Said once the first samples are processed, not here: a run whose first chunk is refused
+        # (a NaN reading, times out of order) warned of a bias it never used before its error.
+        self._bias_warning = unmeasured_bias(preset, si)
+        self._start_stream()
+
+    def _start_stream(self) -> None:
+        """What this wrapper keeps of a stream, as before its first sample (the core's own state
+        apart): a new pipeline and :meth:`reset` start from here, and warn again as a new one does."""
         # the first samples, held until the unit check has an interval to judge (None once done)
         self._unit_head: tuple[FloatArray, FloatArray] | None = (np.empty(0), np.empty(0))
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
@@ -113,11 +123,7 @@ class Pipeline:
         self._speed_said = False  # a chunk's samples outside its speed's times, said once
         self._ahead_said = False  # fixes far ahead of the samples, said once
         self._watch = self._new_watch()
-        if fusion is not None:
-            self._inner.start_fusion(_stage_settings(self.params, fusion))
-        # Said once the first samples are processed, not here: a run whose first chunk is refused
-        # (a NaN reading, times out of order) warned of a bias it never used before its error.
-        self._unmeasured = unmeasured_bias(preset, si)
+        self._unmeasured = self._bias_warning  # None once said
 
     @property
     def preset(self) -> str:
@@ -211,8 +217,9 @@ class Pipeline:
         if speed is not None and not self.params["track_rests"]:
             raise ValueError("speed is given but rest tracking is off: pass track_rests=True, or no speed")
         sa = None if speed is None else rests.speed_at(ta, speed, speed_t)
-        if speed_t is not None and sa is not None:
-            self._warn_speed_outside(ta, sa, speed_t)
+        if speed_t is not None and sa is not None and not self._speed_said and inner.last_time() is not None:
+            # not of a first chunk: one call's log may well outlast its odometry
+            self._speed_said = warn_speed_outside(ta, sa, speed_t)
         inputs = {"t": (t, ta), "rate": (rate, ra), "temperature": (temperature, temp), "speed": (speed, sa)}
         given = out_arrays(out, outputs, len(ta), inputs)
         before = inner.report()
@@ -277,23 +284,6 @@ class Pipeline:
             return
         warn_units(head_t, head_rate)
         self._unit_head = None
-
-    def _warn_speed_outside(self, t: FloatArray, speed: FloatArray, speed_t: ArrayLike) -> None:
-        """Warns, once, of a stream's chunk (not its first: one call's log may well outlast its
-        odometry) whose samples lie outside the times of the speed given with it: their speed is
-        unknown, so the tracker judged them by the rate alone, and a robot that gave each chunk
-        the odometry received so far found no rest where one call over its log found one."""
-        unknown = int(np.count_nonzero(np.isnan(speed)))
-        if self._speed_said or not unknown or self._inner.last_time() is None:
-            return
-        st = np.asarray(speed_t, dtype=np.float64)
-        span = f"{float(st[0])!r} to {float(st[-1])!r} s" if len(st) else "none"
-        warn(f"{unknown} of this chunk's {len(t)} gyro samples lie outside the times of the speed given with it "
-             f"({span}): their speed is unknown and the rest tracker judges them by the rate alone; where the speed "
-             "goes on, a stream then finds other rests than one call over the same samples: hold the gyro back "
-             "until the speed covers it, and give the speed from its last sample before the chunk's first on "
-             "(docs/python.md)")
-        self._speed_said = True
 
     def _new_watch(self) -> WindowWatch:
         """A watch of the rest window, done already with a fixed bias (nothing to watch per chunk)."""
@@ -398,12 +388,10 @@ class Pipeline:
         refuse_few_readings(rest_window_text(p), count)
 
     def reset(self) -> None:
-        """Return to the state before the first sample (same parameters)."""
+        """Return to the state before the first sample (same parameters): what follows is
+        checked and warned about as a new pipeline's first samples are."""
         self._inner.reset()
-        self._first_time = None
-        self._rests = []
-        self._last_fix = None
-        self._watch = self._new_watch()
+        self._start_stream()
 
     @property
     def rest_statistics(self) -> dict[str, float] | None:
@@ -426,6 +414,7 @@ class Pipeline:
             "first_time": self._first_time,
             "rests": self._rests,
             "unmeasured": self._unmeasured,
+            "bias_warning": self._bias_warning,
             "watched": self._watch.readings,
             "last_fix": self._last_fix,
             "unit_head": None if self._unit_head is None else [a.tolist() for a in self._unit_head],
@@ -439,6 +428,7 @@ class Pipeline:
         self._first_time = state.get("first_time")
         self._rests = list(state.get("rests", []))
         self._unmeasured = state.get("unmeasured")
+        self._bias_warning = state.get("bias_warning", self._unmeasured)
         self._watch = WindowWatch.restored(state.get("watched", []))
         self._last_fix = state.get("last_fix")
         self._speed_said = False

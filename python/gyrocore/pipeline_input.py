@@ -5,6 +5,7 @@ chunk sent again."""
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from . import _gyrocore
 from ._arrays import FloatArray
@@ -118,3 +119,21 @@ def _first_unusable(t: FloatArray, rate: FloatArray, temperature: FloatArray | N
     i = int(np.argmax(bad))  # the core counted at least one
     what, values, unit = next(r for r in readings if not usable(r[1][i : i + 1])[0])
     return f"first at index {i}, t = {t[i]}: {what} {values[i]} {unit}"
+
+
+def warn_speed_outside(t: FloatArray, speed: FloatArray, speed_t: ArrayLike) -> bool:
+    """Warns of a stream's chunk whose samples lie outside the times of the speed given with it
+    (``speed`` is NaN there); true if it did. Their speed is unknown, so the tracker judged them by
+    the rate alone, and a robot that gave each chunk the odometry received so far found no rest
+    where one call over its log found one."""
+    unknown = int(np.count_nonzero(np.isnan(speed)))
+    if not unknown:
+        return False
+    st = np.asarray(speed_t, dtype=np.float64)
+    span = f"{float(st[0])!r} to {float(st[-1])!r} s" if len(st) else "none"
+    warn(f"{unknown} of this chunk's {len(t)} gyro samples lie outside the times of the speed given with it "
+         f"({span}): their speed is unknown and the rest tracker judges them by the rate alone; where the speed "
+         "goes on, a stream then finds other rests than one call over the same samples: hold the gyro back "
+         "until the speed covers it, and give the speed from its last sample before the chunk's first on "
+         "(docs/python.md)")
+    return True
