@@ -198,6 +198,19 @@ def test_static_bias_failure_cases() -> None:
     bad[7] = np.inf
     with pytest.raises(ValueError, match=r"rate\[7\] is inf"):
         cal.static_bias(t, bad)
+    # the options of the search for a rest, with a window that skips the search (they went unused)
+    with pytest.raises(TypeError, match="max_rate: options of the search for a rest"):
+        cal.static_bias(t, rest, (1.0, 5.0), max_rate=0.5)
+
+
+def test_cli_calibrate_refuses_search_options_with_a_window(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    t = np.arange(0.0, 10.0, 0.01)
+    np.savetxt(tmp_path / "gyro.csv", np.column_stack([t, np.full(len(t), 0.01)]), delimiter=",",
+               header="t,gyro_z", comments="")
+    args = ["calibrate", str(tmp_path), "--window", "0", "5", "--max-rate-dps", "9", "--block", "1"]
+    assert main(args) == 2
+    assert "--max-rate-dps and --block: how a rest is found, and --window gives the rest" in capsys.readouterr().err
+    assert main(args[:-4]) == 0  # the window alone
 
 
 # --- real logs: fitted scale and bias --------------------------------------------------------

@@ -285,6 +285,7 @@ def static_bias(
 
     Raises:
         ValueError: bad samples, a window shorter than ``min_duration``, or no rest found.
+        TypeError: ``detect_options`` with a ``window`` (they would not be used).
         RestWindowError: a given window that does not lie inside the log, or holds fewer than
             :data:`~gyrocore.window.MIN_WINDOW_READINGS` readings (the pipeline's refusals).
     """
@@ -292,6 +293,9 @@ def static_bias(
     min_duration = check_number("min_duration", min_duration, strict=False)  # NaN passed every window
     if window is None:
         window = detect_rest(ta, ra, min_duration=min_duration, **detect_options)
+    elif detect_options:  # they choose how a rest is found, and a given window is not searched for
+        raise TypeError(f"{', '.join(sorted(detect_options))}: options of the search for a rest (detect_rest), "
+                        "which a given window skips; leave them out, or the window")
     start, end = as_window("the rest window", window)
     if len(ta):  # the pipeline's refusals: a window cut to the log (or one of 2 readings, "+- 0") came without a word
         refuse_window_outside(start, end, float(ta[0]), float(ta[-1]))

@@ -96,6 +96,10 @@ def run(args: argparse.Namespace) -> int:
         options["max_rate"] = math.radians(args.max_rate_dps)
     if args.block is not None:
         options["block"] = args.block
+    if rest is not None and options:  # they choose how a rest is found, and --window gives it
+        flags = " and ".join(flag for flag, key in (("--max-rate-dps", "max_rate"), ("--block", "block"))
+                             if key in options)
+        raise ValueError(f"{flags}: how a rest is found, and --window gives the rest: leave out one or the other")
     for given in (rest, span):  # an empty window is a usage error, with the log's range
         if given is not None:  # a rest window cut to the log: the bias was not measured where asked
             given.samples(log.t, minimum=2, within=given is rest)
@@ -115,7 +119,8 @@ def run(args: argparse.Namespace) -> int:
             cut = still is not None and from_rate is not None and still[1] < from_rate[1] and still[0] <= stop[0]
             # detected once: the rate's rest is then the window static_bias would detect itself
             window, found_by = (stop, "speed") if still is None or stop[0] < still[0] else (still, "rate")
-        static = calibration.static_bias(log.t, log.rate, window, min_duration=args.min_duration, **options)
+        found = {} if window is not None else options  # a window found by the speed is not searched for
+        static = calibration.static_bias(log.t, log.rate, window, min_duration=args.min_duration, **found)
         results["static_bias"] = static.to_dict()["calibration"]
         results["rest_found_by"] = found_by
     except ValueError as e:
