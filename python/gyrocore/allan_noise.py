@@ -254,7 +254,7 @@ def _slope_line(
     return float(np.exp(c + slope * math.log(at))), (float(taus[a]), float(taus[b]))
 
 
-# --- settings from noise (issue: parameters from the Allan analysis) --------------------------
+# --- settings from noise: parameters from the Allan analysis ------------------------------------
 
 
 @dataclass(frozen=True)

@@ -80,6 +80,8 @@ def process_file(
             preset that tracks rests (``tracked``) with the log's speed (a log folder's
             odometry.csv, a file's speed column) reads the log whole, as
             :meth:`gyrocore.Log.process` does, the tracker taking the speed at its own times.
+        use_speed: a log folder's odometry.csv speed (or a file's speed column) finds the rests of
+            whole mode and feeds a rest-tracking preset, unless False (the rate alone).
         use_fixes: a log folder's ``fixes.csv`` (heading fixes, docs/fixes.md) is fused unless
             False. Such a log is read into memory whole (the smoother of whole mode needs every
             sample) and processed by :meth:`gyrocore.Log.process`; the report holds the fixes'

@@ -422,7 +422,7 @@ class _FileJob:
         odometry = read_odometry(source.path)
         if not odometry:
             return None
-        where = str(source.path / "odometry.csv")
+        where = str(source.path / ODOMETRY_CSV)
         return rests.speed_on(t, odometry["t"], odometry["speed"], where=where)
 
     def failure(self, error: BaseException, seconds: float) -> FileReport:

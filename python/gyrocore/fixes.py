@@ -353,7 +353,8 @@ _COLUMNS = ("heading", "heading_sigma", "bias", "scale")
 
 
 def _prior(fusion: Fusion) -> Estimate:
-    """The estimate before any sample: the filter's initial heading, bias and their sigmas."""
+    """The estimate before any sample: the filter's initial heading, its sigma, its initial bias and
+    a scale error of 0 (the :data:`Estimate` columns)."""
     s = fusion.settings()
     return s["initial_heading"], s["initial_heading_sigma"], s["initial_bias"], 0.0
 

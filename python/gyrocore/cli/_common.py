@@ -345,7 +345,6 @@ COUNT = _bounded(1, above=False, integer=True)
 SEED = _bounded(0, above=False, integer=True)
 #: A time span that may be infinite (``--gap-limit inf``: no gap detection).
 POSITIVE_OR_INF = _bounded(0.0, above=True, infinite=True)
-FINITE = finite
 BIAS_DPS = bias_dps
 
 
