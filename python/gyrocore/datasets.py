@@ -28,7 +28,7 @@ import numpy as np
 
 from . import __version__, sim
 from ._arrays import FloatArray
-from .io.atomic import atomic_path, make_folder
+from .io.atomic import make_folder, write_text_atomically
 from .io.log import Log
 
 #: What :func:`sample_drive` simulates: ``gyrocore.sim.car_drive(**SAMPLE)``. Downtown streets, the
@@ -88,8 +88,7 @@ def write_sample(folder: str | Path = "sample_drive") -> Path:
     written: list[Path] = []
     try:
         for name, text in zip(FILES, texts):
-            with atomic_path(path / name) as tmp:
-                tmp.write_text(text, encoding="utf-8")
+            write_text_atomically(path / name, text)
             written.append(path / name)
     except BaseException:
         for done in written:

@@ -374,7 +374,7 @@ def plot_log(path: str | Path, log: Log, results: Mapping[str, HeadingResult]) -
     """
     path = Path(path)  # a str was "'str' object has no attribute 'parent'", after the plot was drawn
     plt = _pyplot()
-    from .cli._common import write_atomically
+    from .io.atomic import write_atomically
 
     reference = Reference(*log.reference())
     t0 = float(log.t[0])

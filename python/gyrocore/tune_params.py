@@ -83,11 +83,9 @@ class ParameterSet:
 
     def write(self, path: str | Path) -> None:
         """Write the preset file (JSON), whole or not at all."""
-        from .io.atomic import atomic_path
+        from .io.atomic import write_text_atomically
 
-        text = json.dumps(self.to_json(), indent=2) + "\n"
-        with atomic_path(Path(path)) as tmp:
-            tmp.write_text(text, encoding="utf-8")
+        write_text_atomically(path, json.dumps(self.to_json(), indent=2) + "\n")
 
     @classmethod
     def read(cls, path: str | Path) -> "ParameterSet":

@@ -3,11 +3,9 @@ command that reads a log accepts through the real command line."""
 
 from __future__ import annotations
 
-import contextlib
 import json
 import subprocess
 import sys
-from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -60,16 +58,14 @@ def test_nothing_in_the_folder_is_overwritten(tmp_path: Path) -> None:
 
 
 def test_an_interrupted_write_leaves_no_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    real = datasets.atomic_path
+    real = datasets.write_text_atomically
 
-    @contextlib.contextmanager
-    def interrupted_at_the_third(path: Path) -> Iterator[Path]:
+    def interrupted_at_the_third(path: Path, text: str) -> None:
         if path.name == datasets.FILES[2]:
             raise KeyboardInterrupt
-        with real(path) as tmp:
-            yield tmp
+        real(path, text)
 
-    monkeypatch.setattr(datasets, "atomic_path", interrupted_at_the_third)
+    monkeypatch.setattr(datasets, "write_text_atomically", interrupted_at_the_third)
     with pytest.raises(KeyboardInterrupt):
         datasets.write_sample(tmp_path)
     assert list(tmp_path.iterdir()) == []

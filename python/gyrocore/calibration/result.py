@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike
 from .._arrays import FloatArray, as_float_array, as_window, refuse_masked
 from .._checks import MAX_READING, require_choice, require_finite, require_readings, require_version, warn
 from ..io._jsonfile import read_json
-from ..io.atomic import atomic_path
+from ..io.atomic import write_text_atomically
 
 #: A scale error beyond this [1] is a wrong unit or a fit without turns, not a gyro (the real logs
 #: reach 28 %).
@@ -286,9 +286,7 @@ class Calibration:
     def save(self, path: str | Path) -> None:
         """Write the calibration as JSON (see :meth:`to_dict`), whole or not at all: a save that
         fails or is interrupted leaves the file that was there."""
-        text = json.dumps(self.to_dict(), indent=2) + "\n"
-        with atomic_path(Path(path)) as tmp:
-            tmp.write_text(text, encoding="utf-8")
+        write_text_atomically(path, json.dumps(self.to_dict(), indent=2) + "\n")
 
     @classmethod
     def load(cls, path: str | Path) -> Calibration:

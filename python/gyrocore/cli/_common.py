@@ -19,7 +19,6 @@ from .._extras import MissingExtra, tqdm_class
 from .._gyrocore import SampleError
 from ..calibration import Calibration
 from ..evaluate import Failed
-from ..io import atomic_path
 from ..io.atomic import check_output_folder
 from ..io.units import rate_unit_named, time_unit_named
 from ..io._paths import error_text, one_line
@@ -346,12 +345,6 @@ SEED = _bounded(0, above=False, integer=True)
 #: A time span that may be infinite (``--gap-limit inf``: no gap detection).
 POSITIVE_OR_INF = _bounded(0.0, above=True, infinite=True)
 BIAS_DPS = bias_dps
-
-
-def write_atomically(path: str | Path, write: Callable[[str], object]) -> None:
-    """Write through a temporary file in the same folder, then rename: no half-written output."""
-    with atomic_path(Path(path)) as tmp:
-        write(str(tmp))
 
 
 def print_json(data: Any) -> None:

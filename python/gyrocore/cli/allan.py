@@ -13,6 +13,7 @@ from .. import allan, io
 from .._checks import collected, unit_problems
 from .._gyrocore import SampleError
 from .._extras import pyplot
+from ..io.atomic import write_atomically, write_text_atomically
 from ..window import Window
 from ._common import (
     NAME,
@@ -26,7 +27,6 @@ from ._common import (
     refuse_existing,
     require_suffix,
     warn_about,
-    write_atomically,
 )
 
 
@@ -124,5 +124,5 @@ def run(args: argparse.Namespace) -> int:
     if args.kalibr is not None:
         assert params is not None  # --kind allan, checked before the work
         text = params.kalibr_yaml(rrw=args.rrw)
-        write_atomically(args.kalibr, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
+        write_text_atomically(args.kalibr, text)
     return 0

@@ -18,9 +18,10 @@ import numpy as np
 
 from .. import evaluate, motion, sim, tune
 from .._extras import MissingExtra, pyplot
+from ..io.atomic import write_atomically
 from ..pipeline import HeadingResult, preset_names, recommended_preset
 from ._common import (
-    COUNT, POSITIVE, SEED, add_command, add_overwrite_option, refuse_existing, require_suffix, write_atomically,
+    COUNT, POSITIVE, SEED, add_command, add_overwrite_option, refuse_existing, require_suffix,
 )
 from .simulate import check_car_drive, checked_sensor
 

@@ -11,7 +11,8 @@ from typing import Callable
 import numpy as np
 
 from .. import motion, sim
-from ._common import NAME, COUNT, POSITIVE, SEED, add_command, add_overwrite_option, refuse_existing, write_atomically
+from ..io.atomic import write_atomically
+from ._common import NAME, COUNT, POSITIVE, SEED, add_command, add_overwrite_option, refuse_existing
 
 #: Column order of the CSV: what a log has (t, gyro_z, temperature), then the truth.
 COLUMNS = ("t", "gyro_z", "temperature", "rate_true", "heading_true", "x", "y", "speed", "drift")

@@ -10,7 +10,7 @@ import errno
 import os
 import secrets
 import stat
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -174,3 +174,16 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
         raise named_if_no_room(staged.path, e) from None
     finally:
         staged.discard()
+
+
+def write_atomically(path: str | Path, write: Callable[[str], object]) -> None:
+    """``write(name)`` writes the file under a temporary name beside ``path``, renamed to ``path``
+    at the end: no half-written output (a plot's ``savefig``, say)."""
+    with atomic_path(path) as tmp:
+        write(str(tmp))
+
+
+def write_text_atomically(path: str | Path, text: str) -> None:
+    """``text`` as ``path``'s UTF-8 content, whole or not at all."""
+    with atomic_path(path) as tmp:
+        tmp.write_text(text, encoding="utf-8")

@@ -45,7 +45,7 @@ def _pyplot() -> Any:
 
 
 def _save(fig: Any, path: str | Path) -> Path:
-    from ..cli._common import write_atomically
+    from ..io.atomic import write_atomically
 
     out = Path(path)
     write_atomically(out, lambda tmp: fig.savefig(tmp, format="png", dpi=100))
