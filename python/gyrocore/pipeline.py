@@ -42,6 +42,7 @@ from .window import (
     refuse_start_before,
     refuse_window_objects,
     rest_window_text,
+    window_span,
 )
 
 if TYPE_CHECKING:
@@ -293,13 +294,8 @@ class Pipeline:
     def _window(self, t: FloatArray) -> tuple[float, float] | None:
         """The rest window on the log's clock, once known (a ``bias_duration`` from the log's first
         sample, in ``t`` if it is the first chunk); None with a fixed bias."""
-        p = self._inner.params()
         first = self._first_time if self._first_time is not None else float(t[0]) if len(t) else None
-        if p.get("bias_window"):
-            return float(p["bias_window"][0]), float(p["bias_window"][1])
-        if p.get("bias_duration") and first is not None:
-            return first, first + float(p["bias_duration"])
-        return None
+        return window_span(self._inner.params(), first)
 
     def _fix_block(self, fixes: FixesLike | None) -> tuple[_gyrocore.Pipeline, Fixes | None]:
         """The core to run this block on and its fixes: fixes given to a pipeline without the fix

@@ -53,7 +53,7 @@ from .wholelog_options import (
     BIAS_OPTIONS_HINT, BIAS_SIGMAS, BIAS_WALK, HDR_BOUND_WALK, MODES, WHOLE_OPTIONS, Options, check_mode, refuse_tracking,
     refuse_whole_options, untracked,
 )
-from .window import RestWindowError, Window, refuse_window_objects
+from .window import RestWindowError, Window, refuse_window_objects, window_span
 
 if TYPE_CHECKING:
     from .fixes import Fixes, FixesLike
@@ -250,8 +250,9 @@ def plan(
     if not uses_static_bias(preset) or key == "bias":
         return BiasPlan(causal_source(preset, si), overrides=untracked(si))
     if key is not None:  # the user's window: the bias of the whole log, constant
-        window = (t_start, t_start + float(si["bias_duration"])) if key == "bias_duration" else si["bias_window"]
-        rest = measure((float(window[0]), float(window[1])), f"given: {key}")
+        window = window_span(si, t_start)
+        assert window is not None  # the key says which is given
+        rest = measure(window, f"given: {key}")
         label = f"first {si['bias_duration']:g} s: " if key == "bias_duration" else ""
         smoothed = _smooth((rest,), 0.0)
         source = f"{label}rest {rest}, applied from the first sample"

@@ -244,3 +244,15 @@ def rest_window_text(params: dict[str, Any]) -> str:
         start, end = params["bias_window"]
         return f"the bias window [{start}, {end}] s"
     return f"bias_duration = {params['bias_duration']} s"
+
+
+def window_span(params: dict[str, Any], first: float | None) -> tuple[float, float] | None:
+    """The rest window of ``params`` on the log's clock: ``bias_window``, or ``bias_duration``
+    seconds from the log's first time ``first``; None without one, or for a duration while the
+    first time is not known."""
+    if params.get("bias_window"):
+        start, end = params["bias_window"]
+        return float(start), float(end)
+    if params.get("bias_duration") and first is not None:
+        return first, first + float(params["bias_duration"])
+    return None
