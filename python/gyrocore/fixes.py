@@ -30,6 +30,7 @@ from ._checks import (
     require_radians, warn, warn_units,
 )
 from .result import fix_output_flags
+from .fixes_stream import StreamFixes, say_how_to_wait
 
 if TYPE_CHECKING:
     from .pipeline import HeadingResult
@@ -215,78 +216,6 @@ def _settings(settings: dict[str, float]) -> dict[str, float]:
     return {k: float(v) for k, v in numbers.items() if v is not None}
 
 
-#: The core's words for a fix given after a sample past its time was processed.
-_LATE = "comes before the last gyro sample processed"
-
-
-def say_how_to_wait(error: ValueError) -> None:
-    """Adds to the core's error about a late fix what a live stream does about one: a receiver
-    delivers its fix after the gyro samples of its time came (its latency), and the core's words
-    (pass it with the block that reaches its time) did not say that this means holding the gyro's
-    samples back."""
-    if _LATE in str(error):
-        error.args = (f"{error}. A fix that arrives after the samples of its time (a receiver's latency) is used "
-                      "only if the gyro is held back that long: process the samples up to the newest sample's "
-                      "time less the latency, with every fix received, and keep the others for the next block "
-                      "(docs/fixes.md, \"Fixes that arrive late\"); or leave such a fix out. Nothing of this "
-                      "block was processed",)
-
-
-#: A stream's fixes that start this far [s] past its last gyro sample are warned about: live
-#: fixes come after the samples of their time, and a log's fixes given ahead wait for less than a
-#: day of samples; a day's wait is another clock.
-FAR_AHEAD = 86_400.0
-
-
-def warn_far_ahead(fixes: Fixes, last_sample: float | None) -> bool:
-    """Warns when a stream's new ``fixes`` start more than :data:`FAR_AHEAD` after its last gyro
-    sample ``last_sample`` [s], and says whether it did. Such fixes wait for samples that never
-    come (UTC seconds against a gyro's seconds since boot), without a word: a stream does not warn
-    of fixes outside its span, as a whole log does, since it may be given them ahead."""
-    if last_sample is None or not len(fixes):
-        return False
-    first = float(fixes.t[0])
-    if not first - last_sample > FAR_AHEAD:
-        return False
-    warn(f"the heading fixes given start at t = {first:.3f} s, {first - last_sample:.6g} s after the last gyro sample "
-         f"(t = {last_sample:.3f} s): a stream keeps each fix until the samples reach it, and these wait for more than "
-         "a day, so they look like another clock (UTC or GNSS seconds against a gyro's seconds since boot) and would "
-         "never be applied: give the fixes' times on the gyro's clock, in seconds")
-    return True
-
-
-#: The last fix a stream was given: time [s], heading [rad], sigma [rad].
-GivenFix = tuple[float, float, float]
-
-
-def refuse_behind_waiting(fixes: Fixes, waiting: GivenFix | None) -> None:
-    """Refuses a stream's new ``fixes`` whose first comes before ``waiting``, the last fix given
-    with an earlier block and still waiting for its samples (None if none waits), or is that fix
-    again. A stream keeps every fix it is given until the samples reach it, so a caller who gives
-    the waiting fixes again has them twice: the filter found the step back only once the samples
-    reached the end of the waiting ones, blocks later, and the waiting fix given again alone was
-    applied twice. (Two different fixes at one time stay allowed, as in one call.)"""
-    if waiting is None or not len(fixes):
-        return
-    first = (float(fixes.t[0]), float(fixes.heading[0]), float(fixes.sigma[0]))
-    if first[0] < waiting[0]:
-        how = f"comes before t = {waiting[0]!r}, a fix"
-    elif first == waiting:
-        how = "is the fix"
-    else:
-        return
-    raise ValueError(f"fix 0: t = {first[0]!r} {how} given with an earlier block that still waits for its samples: a "
-                     "stream keeps each fix it is given until the samples reach it, so give each fix once (only "
-                     "those after the ones given before), in time order. Nothing of this block was processed")
-
-
-def last_given(fixes: Fixes, before: GivenFix | None) -> GivenFix | None:
-    """The last fix a stream was given, after a block that brought ``fixes``."""
-    if not len(fixes):
-        return before
-    return float(fixes.t[-1]), float(fixes.heading[-1]), float(fixes.sigma[-1])
-
-
 class Fusion:
     """The filter for a stream: ``process(t, rate, fixes)`` per block, the fixes of a block given
     with it or earlier (fixes past the block's last sample wait for the next block; give each fix
@@ -294,8 +223,7 @@ class Fusion:
 
     def __init__(self, **settings: float) -> None:
         self._inner = _gyrocore.Fusion(_settings(settings))
-        self._last_fix: GivenFix | None = None  # the last fix given, for refuse_behind_waiting
-        self._ahead_said = False  # fixes far ahead of the samples, said once
+        self._fixes = StreamFixes()
 
     def process(self, t: ArrayLike, rate: ArrayLike, fixes: FixesLike | None = None) -> FusionResult:
         """Processes one block (``fixes``: :data:`FixesLike`, as every entry point takes them);
@@ -303,14 +231,13 @@ class Fusion:
         block that still waits is an error (the fixes were given again)."""
         f = Fixes.empty() if fixes is None else as_fixes(fixes)
         tt, r = as_float_array("t", t), as_float_array("rate", rate)
-        refuse_behind_waiting(f, self._last_fix if self._inner.counts()[3] else None)
+        self._fixes.check(f, waits=self._inner.counts()[3] > 0)
         try:
             h, s, b, sc = self._inner.process(tt, r, f.t, f.heading, f.sigma)
         except ValueError as e:
             say_how_to_wait(e)
             raise
-        self._last_fix = last_given(f, self._last_fix)
-        self._ahead_said = self._ahead_said or warn_far_ahead(f, float(tt[-1]) if len(tt) else None)
+        self._fixes.taken(f, float(tt[-1]) if len(tt) else None)
         return FusionResult(tt, h, s, b, sc, self.counts())
 
     def check(self, fixes: FixesLike) -> None:
@@ -330,12 +257,11 @@ class Fusion:
         return dict(self._inner.settings())
 
     def __getstate__(self) -> dict[str, Any]:
-        return {"state": self._inner.state_json(), "last_fix": self._last_fix}
+        return {"state": self._inner.state_json(), "last_fix": self._fixes.last}
 
     def __setstate__(self, state: dict[str, Any]) -> None:
         self._inner = _gyrocore.Fusion.from_state_json(state["state"])
-        self._last_fix = state.get("last_fix")
-        self._ahead_said = False
+        self._fixes = StreamFixes(state.get("last_fix"))
 
 
 def stage_settings(params: dict[str, Any], settings: dict[str, float] | None) -> dict[str, float]:

@@ -18,6 +18,7 @@ from . import _gyrocore, rests
 from ._arrays import FloatArray, as_float_array
 from ._checks import public_dir, warn, warn_units
 from ._motion import WindowWatch
+from .fixes_stream import StreamFixes, say_how_to_wait
 from .pipeline_input import refuse_window_without_reading, say_what_to_do, warn_repairs, warn_speed_outside
 from .pipeline_params import (
     BIAS_SOURCES,
@@ -46,7 +47,7 @@ from .window import (
 )
 
 if TYPE_CHECKING:
-    from .fixes import Fixes, FixesLike, GivenFix
+    from .fixes import Fixes, FixesLike
 
 __all__ = [
     "ALL_OUTPUTS", "BIAS_SOURCES", "MIN_WINDOW_READINGS", "OUTPUTS", "TEMPERATURE_MODEL", "HeadingResult", "Pipeline",
@@ -120,9 +121,8 @@ class Pipeline:
         self._unit_head: tuple[FloatArray, FloatArray] | None = (np.empty(0), np.empty(0))
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
         self._rests: list[Rest] = []
-        self._last_fix: GivenFix | None = None  # the last fix given, which may still wait
+        self._fixes = StreamFixes()
         self._speed_said = False  # a chunk's samples outside its speed's times, said once
-        self._ahead_said = False  # fixes far ahead of the samples, said once
         self._watch = self._new_watch()
         self._unmeasured = self._bias_warning  # None once said
 
@@ -234,8 +234,6 @@ class Pipeline:
             say_what_to_do(e, ta, inner.last_time(), index_offset, self.params["nonfinite"])
             raise
         except ValueError as e:
-            from .fixes import say_how_to_wait
-
             say_how_to_wait(e)
             raise
         # kept only once the core took the chunk: the readings of a refused one, sent again mended,
@@ -244,10 +242,7 @@ class Pipeline:
             self._watch.add(window, ta, ra)
         self._inner = inner  # with the fix stage the first fixes started, now that they were good
         if fix_block is not None:
-            from .fixes import last_given, warn_far_ahead
-
-            self._last_fix = last_given(fix_block, self._last_fix)
-            self._ahead_said = self._ahead_said or warn_far_ahead(fix_block, inner.last_time())
+            self._fixes.taken(fix_block, inner.last_time())
         if window is not None and not inner.bias()[2]:  # the window is over
             self._watch.close(window, self.bias)
         report = dict(inner.report())
@@ -303,13 +298,12 @@ class Pipeline:
         leaves the pipeline without one."""
         if fixes is None:
             return self._inner, None
-        from .fixes import as_fixes, refuse_behind_waiting
+        from .fixes import as_fixes
 
         block = as_fixes(fixes)
-        last = self._inner.last_time()
+        last, given = self._inner.last_time(), self._fixes.last
         # the last fix given waits unless a sample at or after its time was processed
-        waits = self._last_fix is not None and (last is None or self._last_fix[0] > last)
-        refuse_behind_waiting(block, self._last_fix if waits else None)
+        self._fixes.check(block, waits=given is not None and (last is None or given[0] > last))
         if self._inner.fused():
             return self._inner, block
         if self._inner.last_time() is not None:
@@ -412,7 +406,7 @@ class Pipeline:
             "unmeasured": self._unmeasured,
             "bias_warning": self._bias_warning,
             "watched": self._watch.readings,
-            "last_fix": self._last_fix,
+            "last_fix": self._fixes.last,
             "unit_head": None if self._unit_head is None else [a.tolist() for a in self._unit_head],
         }
 
@@ -426,9 +420,8 @@ class Pipeline:
         self._unmeasured = state.get("unmeasured")
         self._bias_warning = state.get("bias_warning", self._unmeasured)
         self._watch = WindowWatch.restored(state.get("watched", []))
-        self._last_fix = state.get("last_fix")
+        self._fixes = StreamFixes(state.get("last_fix"))
         self._speed_said = False
-        self._ahead_said = False
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"

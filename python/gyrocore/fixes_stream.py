@@ -1,0 +1,106 @@
+"""What a stream of gyro blocks keeps of the heading fixes it was given between blocks: the last
+fix (which may still wait for its samples, so a block that gives it again is refused), and what it
+says of fixes that arrive late or far ahead. :class:`gyrocore.Pipeline` and
+:class:`gyrocore.fixes.Fusion` share it."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from ._checks import warn
+
+if TYPE_CHECKING:
+    from .fixes import Fixes
+
+
+#: The core's words for a fix given after a sample past its time was processed.
+_LATE = "comes before the last gyro sample processed"
+
+
+def say_how_to_wait(error: ValueError) -> None:
+    """Adds to the core's error about a late fix what a live stream does about one: a receiver
+    delivers its fix after the gyro samples of its time came (its latency), and the core's words
+    (pass it with the block that reaches its time) did not say that this means holding the gyro's
+    samples back."""
+    if _LATE in str(error):
+        error.args = (f"{error}. A fix that arrives after the samples of its time (a receiver's latency) is used "
+                      "only if the gyro is held back that long: process the samples up to the newest sample's "
+                      "time less the latency, with every fix received, and keep the others for the next block "
+                      "(docs/fixes.md, \"Fixes that arrive late\"); or leave such a fix out. Nothing of this "
+                      "block was processed",)
+
+
+#: A stream's fixes that start this far [s] past its last gyro sample are warned about: live
+#: fixes come after the samples of their time, and a log's fixes given ahead wait for less than a
+#: day of samples; a day's wait is another clock.
+FAR_AHEAD = 86_400.0
+
+
+def warn_far_ahead(fixes: Fixes, last_sample: float | None) -> bool:
+    """Warns when a stream's new ``fixes`` start more than :data:`FAR_AHEAD` after its last gyro
+    sample ``last_sample`` [s], and says whether it did. Such fixes wait for samples that never
+    come (UTC seconds against a gyro's seconds since boot), without a word: a stream does not warn
+    of fixes outside its span, as a whole log does, since it may be given them ahead."""
+    if last_sample is None or not len(fixes):
+        return False
+    first = float(fixes.t[0])
+    if not first - last_sample > FAR_AHEAD:
+        return False
+    warn(f"the heading fixes given start at t = {first:.3f} s, {first - last_sample:.6g} s after the last gyro sample "
+         f"(t = {last_sample:.3f} s): a stream keeps each fix until the samples reach it, and these wait for more than "
+         "a day, so they look like another clock (UTC or GNSS seconds against a gyro's seconds since boot) and would "
+         "never be applied: give the fixes' times on the gyro's clock, in seconds")
+    return True
+
+
+#: The last fix a stream was given: time [s], heading [rad], sigma [rad].
+GivenFix = tuple[float, float, float]
+
+
+def refuse_behind_waiting(fixes: Fixes, waiting: GivenFix | None) -> None:
+    """Refuses a stream's new ``fixes`` whose first comes before ``waiting``, the last fix given
+    with an earlier block and still waiting for its samples (None if none waits), or is that fix
+    again. A stream keeps every fix it is given until the samples reach it, so a caller who gives
+    the waiting fixes again has them twice: the filter found the step back only once the samples
+    reached the end of the waiting ones, blocks later, and the waiting fix given again alone was
+    applied twice. (Two different fixes at one time stay allowed, as in one call.)"""
+    if waiting is None or not len(fixes):
+        return
+    first = (float(fixes.t[0]), float(fixes.heading[0]), float(fixes.sigma[0]))
+    if first[0] < waiting[0]:
+        how = f"comes before t = {waiting[0]!r}, a fix"
+    elif first == waiting:
+        how = "is the fix"
+    else:
+        return
+    raise ValueError(f"fix 0: t = {first[0]!r} {how} given with an earlier block that still waits for its samples: a "
+                     "stream keeps each fix it is given until the samples reach it, so give each fix once (only "
+                     "those after the ones given before), in time order. Nothing of this block was processed")
+
+
+def last_given(fixes: Fixes, before: GivenFix | None) -> GivenFix | None:
+    """The last fix a stream was given, after a block that brought ``fixes``."""
+    if not len(fixes):
+        return before
+    return float(fixes.t[-1]), float(fixes.heading[-1]), float(fixes.sigma[-1])
+
+
+class StreamFixes:
+    """What a stream keeps of the fixes it was given: the last one, which may still wait for its
+    samples (a block whose fixes start behind it is refused), and whether fixes far ahead of the
+    samples were said."""
+
+    def __init__(self, last: GivenFix | None = None) -> None:
+        self.last = last
+        self.ahead_said = False
+
+    def check(self, block: Fixes, waits: bool) -> None:
+        """Refuses ``block`` if its first fix comes before the last one given, or is it again,
+        while that one still ``waits`` for its samples (:func:`refuse_behind_waiting`)."""
+        refuse_behind_waiting(block, self.last if waits else None)
+
+    def taken(self, block: Fixes, last_sample: float | None) -> None:
+        """After the core took ``block``: its last fix is kept, and fixes far ahead of the last
+        sample are warned about once."""
+        self.last = last_given(block, self.last)
+        self.ahead_said = self.ahead_said or warn_far_ahead(block, last_sample)
