@@ -26,7 +26,7 @@ from .evaluate_compare import warn_partial_reference
 from .fixes import Fixes
 from .io import Log
 from .pipeline import process
-from .sim import SIGMA_DEG, gnss_fixes
+from .sim_gnss import SIGMA_DEG, gnss_fixes
 
 
 @dataclass(frozen=True)

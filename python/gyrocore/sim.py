@@ -453,49 +453,5 @@ def car_drive(
     return simulate(route, spec, seed=seed)
 
 
-#: The most fixes :func:`gnss_fixes` makes: more than a 100 Hz receiver gives in a day (8.6e6);
-#: a rate of 1e9 Hz over a minute asked for 6e10 and did not end.
-MAX_FIXES = 1e7
-#: The range of the simulated fixes' noise [deg]: from the core's smallest fix sigma (1e-12 rad),
-#: which it refuses below, to half a turn, beyond which a heading's error wraps and the noise is
-#: no longer what the sigma says.
-SIGMA_DEG = (math.degrees(1e-12), 180.0)
-
-
-def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: float = 1.0,
-               sigma_deg: float = 1.0, outages: tuple[tuple[float, float], ...] = ()) -> Fixes:
-    """SIMULATED heading fixes of a GNSS receiver following a reference track (not measured).
-
-    A fix every ``1 / rate_hz`` seconds from the reference's first time, its heading the reference
-    (unwrapped and linearly interpolated, rad, counter-clockwise from east) plus white Gaussian
-    noise of ``sigma_deg``, which is also the fix's sigma; none inside any outage ``(start, end)``
-    [s, on the reference's clock]. Same arguments, same fixes (numpy's PCG64 seeded with ``seed``).
-    The reference is finite, its times strictly increasing: a ValueError names its first sample
-    that is not.
-    """
-    from .fixes import Fixes
-
-    t, heading = as_float_array("t_ref", t_ref), as_float_array("heading_ref", heading_ref)
-    # checked before unwrapping: one NaN heading made every later fix NaN, times out of order
-    # made no fix, and lengths apart failed inside numpy.interp
-    require_series("t_ref", t, "heading_ref", heading, context="the reference")
-    psi = np.unwrap(heading)
-    if len(t) < 2:
-        raise ValueError("the reference needs at least two samples")
-    rate_hz = check_number("rate_hz", rate_hz)
-    if not SIGMA_DEG[0] <= sigma_deg <= SIGMA_DEG[1]:
-        raise ValueError(f"sigma_deg must be in [{SIGMA_DEG[0]:.3g}, {SIGMA_DEG[1]:g}] deg, got {sigma_deg}")
-    count = (t[-1] - t[0]) * rate_hz
-    if count > MAX_FIXES:
-        raise ValueError(f"{count:.3e} fixes requested ({t[-1] - t[0]:g} s at {rate_hz:g} Hz): more than "
-                         f"{MAX_FIXES:.0e}; is the rate in Hz?")
-    tf = t[0] + np.arange(int(count) + 1) / rate_hz
-    keep = np.ones(len(tf), dtype=bool)
-    for start, end in outages:
-        if not end > start:
-            raise ValueError(f"an outage must end after it starts, got ({start}, {end})")
-        keep &= (tf < start) | (tf >= end)
-    rng = np.random.Generator(np.random.PCG64(check_seed(seed)))
-    sigma = math.radians(sigma_deg)
-    noisy = np.interp(tf, t, psi) + sigma * rng.standard_normal(len(tf))
-    return Fixes.of(tf[keep], np.angle(np.exp(1j * noisy[keep])), sigma)
+# the simulated receiver lives in its own module; gyrocore.sim is where users find it
+from .sim_gnss import MAX_FIXES as MAX_FIXES, SIGMA_DEG as SIGMA_DEG, gnss_fixes as gnss_fixes  # noqa: E402
