@@ -44,9 +44,9 @@ MAX_HEADING = MAX_READING
 #: fix anyone would give.
 VAGUE_SIGMA = 0.5
 
-#: The filter's settings and their units (defaults: the core's ``FusionConfig::default``).
-SETTINGS = ("arw", "bias_walk", "scale_walk", "initial_heading", "initial_heading_sigma", "initial_bias",
-            "initial_bias_sigma", "initial_scale_sigma", "gate")
+#: The filter's settings (defaults: the core's ``FusionConfig::default``); what each is, with its
+#: unit: ``dict(_gyrocore.fusion_setting_names())``.
+SETTINGS = tuple(name for name, _ in _gyrocore.fusion_setting_names())
 
 
 @dataclass(frozen=True, repr=False, eq=False)

@@ -10,50 +10,57 @@ use pyo3::types::PyDict;
 
 use crate::arrays::{fill, slice, zeros, Array};
 use crate::pending::Pending;
+use crate::settings::{names, set_all, values, Field};
 use crate::value_error;
 
-/// The settings keys, with their units.
-const FIELDS: &[&str] = &[
-    "arw [rad/sqrt(s)]",
-    "bias_walk [rad/s/sqrt(s)]",
-    "scale_walk [1/sqrt(s)]",
-    "initial_heading [rad]",
-    "initial_heading_sigma [rad]",
-    "initial_bias [rad/s]",
-    "initial_bias_sigma [rad/s]",
-    "initial_scale_sigma [1]",
-    "gate [1]",
+/// The settings keys, with their units and fields (the core's `FusionConfig`).
+const FIELDS: &[Field<FusionConfig>] = &[
+    ("arw", "angle random walk N [rad/sqrt(s)]", |c| &mut c.arw),
+    (
+        "bias_walk",
+        "rate random walk K of the bias [rad/s/sqrt(s)]",
+        |c| &mut c.bias_walk,
+    ),
+    (
+        "scale_walk",
+        "random walk of the scale error [1/sqrt(s)]",
+        |c| &mut c.scale_walk,
+    ),
+    (
+        "initial_heading",
+        "heading before the first fix [rad]",
+        |c| &mut c.initial_heading,
+    ),
+    (
+        "initial_heading_sigma",
+        "its standard deviation [rad]",
+        |c| &mut c.initial_heading_sigma,
+    ),
+    ("initial_bias", "bias before any fix [rad/s]", |c| {
+        &mut c.initial_bias
+    }),
+    (
+        "initial_bias_sigma",
+        "its standard deviation [rad/s]",
+        |c| &mut c.initial_bias_sigma,
+    ),
+    (
+        "initial_scale_sigma",
+        "standard deviation of the scale error before any fix [1]",
+        |c| &mut c.initial_scale_sigma,
+    ),
+    (
+        "gate",
+        "outlier gate on the innovation squared over its variance [1]",
+        |c| &mut c.gate,
+    ),
 ];
 
 /// The core configuration from the settings dict (defaults for the keys it lacks).
 pub(crate) fn config_from(settings: Option<&Bound<'_, PyDict>>) -> PyResult<FusionConfig> {
     let mut c = FusionConfig::default();
-    let Some(settings) = settings else {
-        return Ok(c);
-    };
-    for (key, value) in settings.iter() {
-        let key: String = key.extract()?;
-        let value: f64 = value.extract().map_err(|_| {
-            PyValueError::new_err(format!("fusion setting '{key}' must be a number"))
-        })?;
-        let field = match key.as_str() {
-            "arw" => &mut c.arw,
-            "bias_walk" => &mut c.bias_walk,
-            "scale_walk" => &mut c.scale_walk,
-            "initial_heading" => &mut c.initial_heading,
-            "initial_heading_sigma" => &mut c.initial_heading_sigma,
-            "initial_bias" => &mut c.initial_bias,
-            "initial_bias_sigma" => &mut c.initial_bias_sigma,
-            "initial_scale_sigma" => &mut c.initial_scale_sigma,
-            "gate" => &mut c.gate,
-            _ => {
-                return Err(PyValueError::new_err(format!(
-                    "unknown fusion setting '{key}'; choose from {}",
-                    FIELDS.join(", ")
-                )))
-            }
-        };
-        *field = value;
+    if let Some(settings) = settings {
+        set_all(&mut c, settings, FIELDS, "fusion setting")?;
     }
     c.validate().map_err(value_error)?;
     Ok(c)
@@ -255,19 +262,8 @@ impl PyFusion {
 
     /// The settings as a dict.
     fn settings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let c = self.inner.config();
         let d = PyDict::new(py);
-        for (k, v) in [
-            ("arw", c.arw),
-            ("bias_walk", c.bias_walk),
-            ("scale_walk", c.scale_walk),
-            ("initial_heading", c.initial_heading),
-            ("initial_heading_sigma", c.initial_heading_sigma),
-            ("initial_bias", c.initial_bias),
-            ("initial_bias_sigma", c.initial_bias_sigma),
-            ("initial_scale_sigma", c.initial_scale_sigma),
-            ("gate", c.gate),
-        ] {
+        for (k, v) in values(self.inner.config(), FIELDS) {
             d.set_item(k, v)?;
         }
         Ok(d)
@@ -291,8 +287,15 @@ impl PyFusion {
     }
 }
 
+/// The filter's settings keys with what each is and its unit.
+#[pyfunction]
+fn fusion_setting_names() -> Vec<(&'static str, &'static str)> {
+    names(FIELDS)
+}
+
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyFusion>()?;
     m.add_function(wrap_pyfunction!(fuse, m)?)?;
+    m.add_function(wrap_pyfunction!(fusion_setting_names, m)?)?;
     Ok(())
 }

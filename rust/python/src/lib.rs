@@ -8,6 +8,7 @@ mod fused;
 mod params;
 mod pending;
 mod prefault;
+mod settings;
 mod sim;
 mod table;
 

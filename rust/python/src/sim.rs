@@ -8,45 +8,85 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::arrays::{fill, slice, zeros, Array};
+use crate::settings::{names, set_all, Field};
 
-/// The accepted configuration keys, with their units.
-const FIELDS: &[(&str, &str)] = &[
-    ("rate_hz", "output data rate [Hz]"),
-    ("jitter", "standard deviation of the sampling instants [s]"),
-    ("drop_probability", "probability that a sample is lost [1]"),
-    ("scale_error", "scale error s of Hong eq 1 [1]"),
-    ("scale_asymmetry", "ccw minus cw scale error [1]"),
-    ("scale_temperature", "scale error per degree [1/degC]"),
+/// The accepted configuration keys, with their units and fields.
+const FIELDS: &[Field<GyroModelConfig>] = &[
+    ("rate_hz", "output data rate [Hz]", |c| &mut c.rate_hz),
+    (
+        "jitter",
+        "standard deviation of the sampling instants [s]",
+        |c| &mut c.jitter,
+    ),
+    (
+        "drop_probability",
+        "probability that a sample is lost [1]",
+        |c| &mut c.drop_probability,
+    ),
+    ("scale_error", "scale error s of Hong eq 1 [1]", |c| {
+        &mut c.scale_error
+    }),
+    ("scale_asymmetry", "ccw minus cw scale error [1]", |c| {
+        &mut c.scale_asymmetry
+    }),
+    (
+        "scale_temperature",
+        "scale error per degree [1/degC]",
+        |c| &mut c.scale_temperature,
+    ),
     (
         "bias",
         "bias b of Hong eq 1 at the reference temperature [rad/s]",
+        |c| &mut c.bias,
     ),
-    ("bias_temperature", "bias per degree [rad/s/degC]"),
-    ("arw", "angle random walk N [rad/sqrt(s)]"),
+    ("bias_temperature", "bias per degree [rad/s/degC]", |c| {
+        &mut c.bias_temperature
+    }),
+    ("arw", "angle random walk N [rad/sqrt(s)]", |c| &mut c.arw),
     (
         "bandwidth",
         "corner of the low-pass on the white noise [Hz]",
+        |c| &mut c.bandwidth,
     ),
-    ("bias_instability", "bias instability B [rad/s]"),
-    ("flicker_min", "shortest flicker correlation time [s]"),
-    ("flicker_max", "longest flicker correlation time [s]"),
-    ("rrw", "rate random walk K [rad/s/sqrt(s)]"),
-    ("drift_step", "grid of the slow bias [s]"),
+    ("bias_instability", "bias instability B [rad/s]", |c| {
+        &mut c.bias_instability
+    }),
+    (
+        "flicker_min",
+        "shortest flicker correlation time [s]",
+        |c| &mut c.flicker_min,
+    ),
+    ("flicker_max", "longest flicker correlation time [s]", |c| {
+        &mut c.flicker_max
+    }),
+    ("rrw", "rate random walk K [rad/s/sqrt(s)]", |c| &mut c.rrw),
+    ("drift_step", "grid of the slow bias [s]", |c| {
+        &mut c.drift_step
+    }),
     (
         "temperature_start",
         "temperature at the first sample [degC]",
+        |c| &mut c.temperature.start,
     ),
-    ("temperature_end", "temperature reached in the end [degC]"),
+    (
+        "temperature_end",
+        "temperature reached in the end [degC]",
+        |c| &mut c.temperature.end,
+    ),
     (
         "temperature_time_constant",
         "time constant of the temperature [s]",
+        |c| &mut c.temperature.time_constant,
     ),
     (
         "reference_temperature",
         "temperature of scale_error and bias [degC]",
+        |c| &mut c.reference_temperature,
     ),
-    ("resolution", "one least significant bit [rad/s]"),
-    ("range", "measurement range [rad/s]"),
+    ("resolution", "one least significant bit [rad/s]", |c| {
+        &mut c.resolution
+    }),
+    ("range", "measurement range [rad/s]", |c| &mut c.range),
 ];
 
 /// Most samples one call may produce (8 GB of float64): a guard against a duration in ms.
@@ -63,41 +103,7 @@ fn config_from(dict: &Bound<'_, PyDict>) -> PyResult<GyroModelConfig> {
         }
     };
     let mut c = GyroModelConfig::ideal(rate_hz);
-    for (key, value) in dict.iter() {
-        let name: String = key.extract()?;
-        let v: f64 = value.extract()?;
-        let field = match name.as_str() {
-            "rate_hz" => &mut c.rate_hz,
-            "jitter" => &mut c.jitter,
-            "drop_probability" => &mut c.drop_probability,
-            "scale_error" => &mut c.scale_error,
-            "scale_asymmetry" => &mut c.scale_asymmetry,
-            "scale_temperature" => &mut c.scale_temperature,
-            "bias" => &mut c.bias,
-            "bias_temperature" => &mut c.bias_temperature,
-            "arw" => &mut c.arw,
-            "bandwidth" => &mut c.bandwidth,
-            "bias_instability" => &mut c.bias_instability,
-            "flicker_min" => &mut c.flicker_min,
-            "flicker_max" => &mut c.flicker_max,
-            "rrw" => &mut c.rrw,
-            "drift_step" => &mut c.drift_step,
-            "temperature_start" => &mut c.temperature.start,
-            "temperature_end" => &mut c.temperature.end,
-            "temperature_time_constant" => &mut c.temperature.time_constant,
-            "reference_temperature" => &mut c.reference_temperature,
-            "resolution" => &mut c.resolution,
-            "range" => &mut c.range,
-            _ => {
-                let valid: Vec<&str> = FIELDS.iter().map(|(n, _)| *n).collect();
-                return Err(PyValueError::new_err(format!(
-                    "unknown gyro parameter '{name}'; valid names: {}",
-                    valid.join(", ")
-                )));
-            }
-        };
-        *field = v;
-    }
+    set_all(&mut c, dict, FIELDS, "gyro parameter")?;
     c.validate()
         .map_err(|e| PyValueError::new_err(format!("gyro model: {e}")))?;
     Ok(c)
@@ -202,7 +208,7 @@ fn gyro_allan_deviation<'py>(
 /// The gyro configuration keys with their units.
 #[pyfunction]
 fn gyro_parameter_names() -> Vec<(&'static str, &'static str)> {
-    FIELDS.to_vec()
+    names(FIELDS)
 }
 
 /// Adds the simulation functions to the extension module.
