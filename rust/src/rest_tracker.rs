@@ -380,7 +380,12 @@ impl RestTracker {
                 let p = p + c.bias_walk * (at - self.updated).max(0.0);
                 let s = p + r;
                 let innovation = z - self.bias;
-                let accepted = libm::fabs(innovation) <= c.gate_sigmas * libm::sqrt(s);
+                // No bias walk and a gyro that reads one value at rest leave `s = 0`: `inf * 0`
+                // is NaN, which refused every rest with no gate; and a mean that differs from the
+                // bias by its rounding alone reads the same, as in the change test.
+                let rounding = MEAN_ROUNDING * libm::fabs(z).max(libm::fabs(self.bias));
+                let accepted = c.gate_sigmas == f64::INFINITY
+                    || libm::fabs(innovation) <= c.gate_sigmas * libm::sqrt(s) + rounding;
                 if accepted && s > 0.0 {
                     let at = BiasEstimate {
                         mean: self.bias,
