@@ -86,3 +86,32 @@ fn stops_of_one_reading_pass_the_gate_without_a_bias_walk() {
         assert!(rests.iter().all(|x| x.accepted), "gate {gate_sigmas}: {rests:?}");
     }
 }
+
+/// The change test with `change_sigmas = inf` ("no test") on a gyro that reads one value at
+/// rest: a block's own noise is 0, and `inf * 0` (NaN) made every block moving, so no rest was
+/// ever found. The stops are found, as with a finite number of sigmas.
+#[test]
+fn no_change_test_finds_the_stops_of_one_reading() {
+    let n = 5000;
+    let t: Vec<f64> = (0..n).map(|i| 1000.0 + i as f64 * 0.01).collect();
+    let moving = |i: usize| (i / 500) % 2 == 1;
+    let rate: Vec<f64> = (0..n)
+        .map(|i| if moving(i) { 0.3 } else { 0.0125 })
+        .collect();
+    let speed: Vec<f64> = (0..n).map(|i| if moving(i) { 5.0 } else { 0.0 }).collect();
+    for change_sigmas in [f64::INFINITY, 4.0] {
+        let mut c = Preset::Tracked.config();
+        c.correction.bias = StaticBias::Fixed(0.0);
+        c.rest_tracker = Some(RestTrackerConfig {
+            change_sigmas,
+            ..RestTrackerConfig::default()
+        });
+        let mut p = Pipeline::new(c).unwrap();
+        let (mut h, mut r, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let mut rests = Vec::new();
+        let out = Outputs::all(&mut h, &mut r, &mut d);
+        p.process_block_reporting(&t, &rate, None, Some(&speed), out, &mut |x| rests.push(x))
+            .unwrap();
+        assert_eq!(rests.len(), 5, "change_sigmas {change_sigmas}: {rests:?}");
+    }
+}
