@@ -87,10 +87,16 @@ pub struct Fusion {
     counts: FixCounts,
 }
 
-/// Wraps an angle to (-pi, pi].
+/// Wraps an angle to (-pi, pi]: the IEEE remainder of `a` by `2 pi`, exact (`a - 2 pi ceil(..)`
+/// rounded to just above pi near an odd multiple of pi, and gave 0 beyond 2^53), -pi taken as pi.
 #[inline]
 pub fn wrap_angle(a: f64) -> f64 {
-    a - 2.0 * PI * libm::ceil((a - PI) / (2.0 * PI))
+    let r = libm::remainder(a, 2.0 * PI);
+    if r == -PI {
+        PI
+    } else {
+        r
+    }
 }
 
 impl Fusion {
