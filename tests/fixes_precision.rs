@@ -97,3 +97,44 @@ fn fixes_far_tighter_than_the_gyro_leave_finite_sigmas() {
         }
     }
 }
+
+/// With no gate (`gate = inf`), no fix is refused: where fixes of 1e-12 rad are far tighter than
+/// a gyro without noise, the heading variance predicted at a fix rounds below minus the fix's
+/// own variance, and 4 of 18 fixes were refused as outliers (an innovation variance below 0
+/// times an infinite gate).
+#[test]
+fn no_gate_refuses_no_fix_where_the_heading_variance_rounds_below_0() {
+    let t: Vec<f64> = (0..2000).map(|i| i as f64 * 0.01).collect();
+    let rate = vec![0.1; t.len()];
+    let settings = FusionConfig {
+        arw: 0.0,
+        bias_walk: 0.0,
+        scale_walk: 0.0,
+        gate: f64::INFINITY,
+        ..FusionConfig::default()
+    };
+    for jump in [0.0, 0.5] {
+        let fixes: Vec<Fix> = (1..19)
+            .map(|s| Fix {
+                t: s as f64,
+                heading: 0.1 * s as f64 + if s % 2 == 0 { jump } else { -jump },
+                sigma: 1e-12,
+            })
+            .collect();
+        let mut fusion = Fusion::new(settings).unwrap();
+        let n = t.len();
+        let (mut h, mut s, mut b, mut sc) =
+            (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let out = FusionOutputs::all(&mut h, &mut s, &mut b, &mut sc);
+        fusion.process_block(&t, &rate, &fixes, out).unwrap();
+        let counts = fusion.counts();
+        assert_eq!((counts.applied, counts.rejected), (18, 0), "jump {jump}");
+        assert!(
+            [&h, &s, &b, &sc].iter().all(|c| c.iter().all(|v| v.is_finite())),
+            "jump {jump}"
+        );
+        if jump == 0.0 {
+            assert!((h[n - 1] - 0.1 * t[n - 1]).abs() < 1e-6, "{}", h[n - 1]);
+        }
+    }
+}

@@ -425,6 +425,10 @@ impl Fusion {
     /// pair, or None if the gate rejects the fix.
     #[inline(always)]
     fn correct(&mut self, fix: &Fix, mut x: [f64; 3], mut p: Mat3) -> Option<([f64; 3], Mat3)> {
+        // A heading variance rounded below 0 made `s` <= 0 (no gate refused the fix; 0 divided)
+        if p[0][0] < 0.0 {
+            p = crate::fixes_covariance::semi_definite(p);
+        }
         let s = p[0][0] + fix.sigma * fix.sigma;
         let nu = wrap_angle(fix.heading - x[0]);
         if nu * nu > self.config.gate * s {
