@@ -83,7 +83,10 @@ fn stops_of_one_reading_pass_the_gate_without_a_bias_walk() {
         p.process_block_reporting(&t, &rate, None, Some(&speed), out, &mut |x| rests.push(x))
             .unwrap();
         assert_eq!(rests.len(), 5, "{rests:?}");
-        assert!(rests.iter().all(|x| x.accepted), "gate {gate_sigmas}: {rests:?}");
+        assert!(
+            rests.iter().all(|x| x.accepted),
+            "gate {gate_sigmas}: {rests:?}"
+        );
     }
 }
 

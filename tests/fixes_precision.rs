@@ -1,6 +1,7 @@
 //! The heading-fix filter where fixes are far tighter than the gyro's noise: its variances
 //! round below 0, and its sigmas and read-back states must stay usable.
 
+use gyrocore::fixes::wrap_angle;
 use gyrocore::fixes_smooth::Knot;
 use gyrocore::{smooth, Fix, Fusion, FusionConfig, FusionOutputs};
 
@@ -130,11 +131,43 @@ fn no_gate_refuses_no_fix_where_the_heading_variance_rounds_below_0() {
         let counts = fusion.counts();
         assert_eq!((counts.applied, counts.rejected), (18, 0), "jump {jump}");
         assert!(
-            [&h, &s, &b, &sc].iter().all(|c| c.iter().all(|v| v.is_finite())),
+            [&h, &s, &b, &sc]
+                .iter()
+                .all(|c| c.iter().all(|v| v.is_finite())),
             "jump {jump}"
         );
         if jump == 0.0 {
             assert!((h[n - 1] - 0.1 * t[n - 1]).abs() < 1e-6, "{}", h[n - 1]);
         }
     }
+}
+
+/// `wrap_angle` keeps its range (-pi, pi] for every finite angle: near an odd multiple of pi the
+/// rounding of `a - 2 pi ceil(...)` gave 3.1415926535897967 for 23 pi and 3.1415926535901235
+/// for -3829.6 rad (above pi), and beyond 2^53 it gave 0 whatever the angle.
+#[test]
+fn wrap_angle_stays_within_minus_pi_and_pi() {
+    use std::f64::consts::PI;
+    let near = |x: f64| {
+        [
+            x,
+            f64::from_bits(x.to_bits() + 1),
+            f64::from_bits(x.to_bits() - 1),
+        ]
+    };
+    for k in (1..2000).step_by(2) {
+        for x in near(k as f64 * PI)
+            .into_iter()
+            .chain(near(-(k as f64) * PI))
+        {
+            let w = wrap_angle(x);
+            assert!(w > -PI && w <= PI, "{x:e} -> {w:e}");
+        }
+    }
+    for x in [-3829.6014447259577, 1e10, 1e20, -1e300, f64::MAX] {
+        let w = wrap_angle(x);
+        assert!(w > -PI && w <= PI, "{x:e} -> {w:e}");
+    }
+    assert_eq!(wrap_angle(-PI), PI);
+    assert_eq!(wrap_angle(0.5), 0.5);
 }
