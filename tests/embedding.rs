@@ -118,3 +118,23 @@ fn no_change_test_finds_the_stops_of_one_reading() {
         assert_eq!(rests.len(), 5, "change_sigmas {change_sigmas}: {rests:?}");
     }
 }
+
+/// `Up::new` of a finite direction whose length is beyond the largest float (components of
+/// 1.5e308: it was refused as "three finite components, not all zero") is that direction.
+#[test]
+fn an_up_direction_longer_than_the_largest_float_is_normalised() {
+    let up = Up::new([1.5e308, 0.0, 1.5e308]).unwrap();
+    let half = std::f64::consts::FRAC_1_SQRT_2;
+    for (u, e) in up.unit().iter().zip([half, 0.0, half]) {
+        assert!((u - e).abs() < 1e-15, "{:?}", up.unit());
+    }
+    let third = Up::new([f64::MAX; 3]).unwrap().unit();
+    assert!(
+        third
+            .iter()
+            .all(|u| (u - 3f64.sqrt().recip()).abs() < 1e-15),
+        "{third:?}"
+    );
+    assert!(Up::new([f64::INFINITY, 0.0, 1.0]).is_err());
+    assert!(Up::new([f64::NAN, f64::INFINITY, 1.0]).is_err());
+}
