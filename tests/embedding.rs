@@ -53,3 +53,88 @@ fn filter_rests_at_its_limits_gives_finite_estimates() {
         }
     }
 }
+
+/// A gyro that reads one value at rest (its noise below one count), tracked with no bias walk:
+/// after two rests the filter's variance is 0, and so is the next rest's. `gate_sigmas = inf`
+/// ("no gate") then refused the third stop (`inf * 0` is NaN), and any finite gate did too, for
+/// a mean that differs from the bias by its rounding alone (0.01249999999999999 against
+/// 0.012500000000000008). Every stop of the one reading is accepted.
+#[test]
+fn stops_of_one_reading_pass_the_gate_without_a_bias_walk() {
+    let n = 5000;
+    let t: Vec<f64> = (0..n).map(|i| i as f64 * 0.01).collect();
+    let moving = |i: usize| (i / 500) % 2 == 1;
+    let rate: Vec<f64> = (0..n)
+        .map(|i| if moving(i) { 0.3 } else { 0.0125 })
+        .collect();
+    let speed: Vec<f64> = (0..n).map(|i| if moving(i) { 5.0 } else { 0.0 }).collect();
+    for gate_sigmas in [f64::INFINITY, 3.0] {
+        let mut c = Preset::Tracked.config();
+        c.correction.bias = StaticBias::Fixed(0.0);
+        c.rest_tracker = Some(RestTrackerConfig {
+            gate_sigmas,
+            bias_walk: 0.0,
+            ..RestTrackerConfig::default()
+        });
+        let mut p = Pipeline::new(c).unwrap();
+        let (mut h, mut r, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let mut rests = Vec::new();
+        let out = Outputs::all(&mut h, &mut r, &mut d);
+        p.process_block_reporting(&t, &rate, None, Some(&speed), out, &mut |x| rests.push(x))
+            .unwrap();
+        assert_eq!(rests.len(), 5, "{rests:?}");
+        assert!(
+            rests.iter().all(|x| x.accepted),
+            "gate {gate_sigmas}: {rests:?}"
+        );
+    }
+}
+
+/// The change test with `change_sigmas = inf` ("no test") on a gyro that reads one value at
+/// rest: a block's own noise is 0, and `inf * 0` (NaN) made every block moving, so no rest was
+/// ever found. The stops are found, as with a finite number of sigmas.
+#[test]
+fn no_change_test_finds_the_stops_of_one_reading() {
+    let n = 5000;
+    let t: Vec<f64> = (0..n).map(|i| 1000.0 + i as f64 * 0.01).collect();
+    let moving = |i: usize| (i / 500) % 2 == 1;
+    let rate: Vec<f64> = (0..n)
+        .map(|i| if moving(i) { 0.3 } else { 0.0125 })
+        .collect();
+    let speed: Vec<f64> = (0..n).map(|i| if moving(i) { 5.0 } else { 0.0 }).collect();
+    for change_sigmas in [f64::INFINITY, 4.0] {
+        let mut c = Preset::Tracked.config();
+        c.correction.bias = StaticBias::Fixed(0.0);
+        c.rest_tracker = Some(RestTrackerConfig {
+            change_sigmas,
+            ..RestTrackerConfig::default()
+        });
+        let mut p = Pipeline::new(c).unwrap();
+        let (mut h, mut r, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let mut rests = Vec::new();
+        let out = Outputs::all(&mut h, &mut r, &mut d);
+        p.process_block_reporting(&t, &rate, None, Some(&speed), out, &mut |x| rests.push(x))
+            .unwrap();
+        assert_eq!(rests.len(), 5, "change_sigmas {change_sigmas}: {rests:?}");
+    }
+}
+
+/// `Up::new` of a finite direction whose length is beyond the largest float (components of
+/// 1.5e308: it was refused as "three finite components, not all zero") is that direction.
+#[test]
+fn an_up_direction_longer_than_the_largest_float_is_normalised() {
+    let up = Up::new([1.5e308, 0.0, 1.5e308]).unwrap();
+    let half = std::f64::consts::FRAC_1_SQRT_2;
+    for (u, e) in up.unit().iter().zip([half, 0.0, half]) {
+        assert!((u - e).abs() < 1e-15, "{:?}", up.unit());
+    }
+    let third = Up::new([f64::MAX; 3]).unwrap().unit();
+    assert!(
+        third
+            .iter()
+            .all(|u| (u - 3f64.sqrt().recip()).abs() < 1e-15),
+        "{third:?}"
+    );
+    assert!(Up::new([f64::INFINITY, 0.0, 1.0]).is_err());
+    assert!(Up::new([f64::NAN, f64::INFINITY, 1.0]).is_err());
+}

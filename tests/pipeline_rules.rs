@@ -255,3 +255,21 @@ fn a_pipeline_read_back_is_checked_against_its_configuration() {
     let with_table = json.replace("\"bound\":", "\"attenuation\":[1.0,0.5],\"bound\":");
     assert_eq!(read(with_table).unwrap(), p);
 }
+
+#[test]
+fn an_invalid_hdr_tau_is_named_as_hdr_tau() {
+    // It was named `lowpass_tau`, which held a valid 0.75 s (or was not configured at all).
+    for bad in [-1.0, 1e300, f64::NAN] {
+        let mut c = Preset::Hdr.config();
+        c.hdr.as_mut().unwrap().tau = bad;
+        assert_eq!(invalid_name(c), "hdr.tau");
+        let alone = HdrConfig {
+            tau: bad,
+            ..HdrConfig::table_iii()
+        };
+        match Hdr::new(alone) {
+            Err(Error::InvalidParameter { name, .. }) => assert_eq!(name, "hdr.tau"),
+            other => panic!("expected an invalid parameter, got {other:?}"),
+        }
+    }
+}

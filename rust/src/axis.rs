@@ -20,9 +20,16 @@ impl Up {
     /// [`Error::InvalidParameter`] (`up`) when a component is not finite or the vector has no
     /// length to normalise (its norm is zero, or so small that it underflows).
     pub fn new(direction: [f64; 3]) -> Result<Self, Error> {
-        let [x, y, z] = direction;
         // hypot: no overflow or underflow of the squares for very long or short vectors
-        let norm = libm::hypot(libm::hypot(x, y), z);
+        let norm_of = |[x, y, z]: [f64; 3]| libm::hypot(libm::hypot(x, y), z);
+        // A norm beyond the largest float is that of the vector halved (exactly, at that size),
+        // which points the same way: finite components of 1.5e308 were refused as not finite.
+        let [x, y, z] = if norm_of(direction).is_infinite() {
+            direction.map(|c| 0.5 * c)
+        } else {
+            direction
+        };
+        let norm = norm_of([x, y, z]);
         if !(norm.is_finite() && norm >= f64::MIN_POSITIVE) {
             let value = if norm.is_finite() { norm } else { f64::NAN };
             return Err(Error::InvalidParameter {

@@ -87,10 +87,16 @@ pub struct Fusion {
     counts: FixCounts,
 }
 
-/// Wraps an angle to (-pi, pi].
+/// Wraps an angle to (-pi, pi]: the IEEE remainder of `a` by `2 pi`, exact (`a - 2 pi ceil(..)`
+/// rounded to just above pi near an odd multiple of pi, and gave 0 beyond 2^53), -pi taken as pi.
 #[inline]
 pub fn wrap_angle(a: f64) -> f64 {
-    a - 2.0 * PI * libm::ceil((a - PI) / (2.0 * PI))
+    let r = libm::remainder(a, 2.0 * PI);
+    if r == -PI {
+        PI
+    } else {
+        r
+    }
 }
 
 impl Fusion {
@@ -419,6 +425,10 @@ impl Fusion {
     /// pair, or None if the gate rejects the fix.
     #[inline(always)]
     fn correct(&mut self, fix: &Fix, mut x: [f64; 3], mut p: Mat3) -> Option<([f64; 3], Mat3)> {
+        // A heading variance rounded below 0 made `s` <= 0 (no gate refused the fix; 0 divided)
+        if p[0][0] < 0.0 {
+            p = crate::fixes_covariance::semi_definite(p);
+        }
         let s = p[0][0] + fix.sigma * fix.sigma;
         let nu = wrap_angle(fix.heading - x[0]);
         if nu * nu > self.config.gate * s {

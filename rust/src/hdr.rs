@@ -16,7 +16,7 @@
 use crate::block::BlockMean;
 use crate::error::{check_duration, check_magnitude, check_positive, check_range};
 use crate::kernel::{Kernel, Measured, Signal, Streaming, Validated};
-use crate::lowpass::{LowPassConfig, LowPassKernel};
+use crate::lowpass::{check_tau, LowPassKernel};
 use crate::Error;
 
 /// Number of precomputed attenuation values `R(1..=N)` (eq 10); larger counts use `pow`.
@@ -88,7 +88,8 @@ impl HdrConfig {
             f64::INFINITY,
             ">= 0 (0: no correction; infinity: no bound)",
         )?;
-        LowPassConfig { tau: self.tau }.validate()
+        // named as the rule between the two names it (lowpass_tau may hold a valid one)
+        check_tau("hdr.tau", self.tau)
     }
 
     /// Repetition attenuator `R = (1 + c_1) / (1 + c_1 r^c_2)` (HDR eq 10).

@@ -20,14 +20,15 @@ pub struct LowPassConfig {
 impl LowPassConfig {
     /// Checks `tau`.
     pub fn validate(&self) -> Result<(), Error> {
-        check_range(
-            "lowpass_tau",
-            self.tau,
-            0.0,
-            MAX_TIME,
-            ">= 0 and at most 2^40 s (about 35,000 years)",
-        )
+        check_tau("lowpass_tau", self.tau)
     }
+}
+
+/// Checks a time constant of HDR eq 7 named `name` (the low-pass's, or HDR's on its step means):
+/// >= 0 and at most 2^40 s.
+pub(crate) fn check_tau(name: &'static str, tau: f64) -> Result<(), Error> {
+    let valid = ">= 0 and at most 2^40 s (about 35,000 years)";
+    check_range(name, tau, 0.0, MAX_TIME, valid)
 }
 
 /// Low-pass filter, HDR eq 7: `w'_i = (w_i T_i + tau w'_{i-1}) / (T_i + tau)`. The first sample

@@ -334,7 +334,9 @@ impl RestTracker {
         // moves with the clock's origin (a rest split in two at t0 = 1000 s, whole at 100 s).
         let mean = b.sums.mean();
         let rounding = MEAN_ROUNDING * libm::fabs(mean).max(libm::fabs(previous));
-        let constant = libm::fabs(mean - previous) <= c.change_sigmas * error + rounding;
+        // inf is no test (inf * 0 is NaN where the block reads one value: every block moved)
+        let constant = c.change_sigmas == f64::INFINITY
+            || libm::fabs(mean - previous) <= c.change_sigmas * error + rounding;
         constant
             && if b.all_speeds {
                 !b.moving
@@ -380,7 +382,12 @@ impl RestTracker {
                 let p = p + c.bias_walk * (at - self.updated).max(0.0);
                 let s = p + r;
                 let innovation = z - self.bias;
-                let accepted = libm::fabs(innovation) <= c.gate_sigmas * libm::sqrt(s);
+                // No bias walk and a gyro that reads one value at rest leave `s = 0`: `inf * 0`
+                // is NaN, which refused every rest with no gate; and a mean that differs from the
+                // bias by its rounding alone reads the same, as in the change test.
+                let rounding = MEAN_ROUNDING * libm::fabs(z).max(libm::fabs(self.bias));
+                let accepted = c.gate_sigmas == f64::INFINITY
+                    || libm::fabs(innovation) <= c.gate_sigmas * libm::sqrt(s) + rounding;
                 if accepted && s > 0.0 {
                     let at = BiasEstimate {
                         mean: self.bias,
