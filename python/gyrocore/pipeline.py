@@ -105,6 +105,15 @@ class Pipeline:
         si = _to_si(overrides)
         self._inner = core_pipeline(preset, si)
         self._preset = preset
+        if fusion is not None:
+            self._inner.start_fusion(_stage_settings(self.params, fusion))
+        # Said once the first samples are processed, not here: a run whose first chunk is refused
+        # (a NaN reading, times out of order) warned of a bias it never used before its error.
+        self._unmeasured_at_start = unmeasured_bias(preset, si)
+        self._start_log()
+
+    def _start_log(self) -> None:
+        """The log's state besides the core's, as before its first sample (warnings said once per log too)."""
         # the first samples, held until the unit check has an interval to judge (None once done)
         self._unit_head: tuple[FloatArray, FloatArray] | None = (np.empty(0), np.empty(0))
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
@@ -113,11 +122,7 @@ class Pipeline:
         self._speed_said = False  # a chunk's samples outside its speed's times, said once
         self._ahead_said = False  # fixes far ahead of the samples, said once
         self._watch = self._new_watch()
-        if fusion is not None:
-            self._inner.start_fusion(_stage_settings(self.params, fusion))
-        # Said once the first samples are processed, not here: a run whose first chunk is refused
-        # (a NaN reading, times out of order) warned of a bias it never used before its error.
-        self._unmeasured = unmeasured_bias(preset, si)
+        self._unmeasured = self._unmeasured_at_start
 
     @property
     def preset(self) -> str:
@@ -398,12 +403,10 @@ class Pipeline:
         refuse_few_readings(rest_window_text(p), count)
 
     def reset(self) -> None:
-        """Return to the state before the first sample (same parameters)."""
+        """Return to the state before the first sample (same parameters), its warnings too: a
+        new log's timestamps in ms or unmeasured bias are said as a new pipeline says them."""
         self._inner.reset()
-        self._first_time = None
-        self._rests = []
-        self._last_fix = None
-        self._watch = self._new_watch()
+        self._start_log()
 
     @property
     def rest_statistics(self) -> dict[str, float] | None:
@@ -426,6 +429,7 @@ class Pipeline:
             "first_time": self._first_time,
             "rests": self._rests,
             "unmeasured": self._unmeasured,
+            "unmeasured_at_start": self._unmeasured_at_start,
             "watched": self._watch.readings,
             "last_fix": self._last_fix,
             "unit_head": None if self._unit_head is None else [a.tolist() for a in self._unit_head],
@@ -439,6 +443,7 @@ class Pipeline:
         self._first_time = state.get("first_time")
         self._rests = list(state.get("rests", []))
         self._unmeasured = state.get("unmeasured")
+        self._unmeasured_at_start = state.get("unmeasured_at_start", self._unmeasured)
         self._watch = WindowWatch.restored(state.get("watched", []))
         self._last_fix = state.get("last_fix")
         self._speed_said = False
