@@ -22,7 +22,7 @@ from .io import Log
 from .pipeline import HeadingResult
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, eq=False)
 class Track:
     """A dead-reckoned track: position ``(x, y)`` [m] and heading [rad] at the odometry times ``t`` [s]."""
 

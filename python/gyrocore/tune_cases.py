@@ -25,7 +25,7 @@ from .pipeline import HeadingResult, Pipeline, uses_static_bias
 MAX_GRID_PER_SAMPLE = 10
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, eq=False)
 class Case:
     """One drive to tune or test on: gyro samples, a reference heading and the static-bias source.
 

@@ -35,3 +35,23 @@ def test_a_reset_pipeline_warns_of_a_new_log_as_a_new_pipeline_does(pickled: boo
     fresh = _said(lambda: gyrocore.Pipeline("static_bias").process(T * 1000, RATE))
     assert any("timestamps look like ms" in w for w in fresh) and any("removes a static bias" in w for w in fresh)
     assert _said(lambda: p.process(T * 1000, RATE)) == fresh
+
+
+def test_results_holding_arrays_compare_and_hash_by_identity() -> None:
+    """``==`` of two results holding arrays (a ``HeadingResult``, ``Log``, ``AllanResult``, ...)
+    raised numpy's ``truth value of an array ... is ambiguous``, and ``hash`` of one ``unhashable
+    type``: they compare by identity, as ``Fixes`` and ``sim.Drive`` do."""
+    log = gyrocore.Log("x", T, RATE)
+    results = [
+        (gyrocore.process(T, RATE, "raw"), gyrocore.process(T, RATE, "raw")),
+        (log, gyrocore.Log("x", T.copy(), RATE)),
+        (gyrocore.allan.deviation(RATE, 0.01), gyrocore.allan.deviation(RATE, 0.01)),
+        (_track(), _track()),
+    ]
+    for a, b in results:
+        assert a == a and a != b and len({a, b}) == 2, type(a).__name__
+
+
+def _track() -> object:
+    """A dead-reckoned track at 1 m/s along the heading of ``RATE``."""
+    return gyrocore.deadreckon.dead_reckon(T, np.ones_like(T), T, np.cumsum(RATE) * 0.01)
