@@ -17,9 +17,12 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array, too_few_inside
-from ._checks import check_number, require_finite, require_radians, require_series, warn_if_wrapped
+from ._checks import check_number, public_dir, require_finite, require_radians, require_series, warn_if_wrapped
 from .io import Log
 from .pipeline import HeadingResult
+
+__all__ = ["PositionErrors", "Track", "dead_reckon", "dead_reckon_log", "position_errors", "return_position_error"]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 
 @dataclass(frozen=True, repr=False, eq=False)

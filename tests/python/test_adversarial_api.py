@@ -1,8 +1,9 @@
-"""The public Python API once more under odd but valid use: a pipeline reset for a new log, and
-results compared with ``==``."""
+"""The public Python API once more under odd but valid use: a pipeline reset for a new log,
+results compared with ``==``, a public module's names listed by ``dir()``."""
 
 from __future__ import annotations
 
+import importlib
 import pickle
 import warnings
 
@@ -55,3 +56,18 @@ def test_results_holding_arrays_compare_and_hash_by_identity() -> None:
 def _track() -> object:
     """A dead-reckoned track at 1 m/s along the heading of ``RATE``."""
     return gyrocore.deadreckon.dead_reckon(T, np.ones_like(T), T, np.cumsum(RATE) * 0.01)
+
+
+#: The public modules (docs/api.md, ``gyrocore.__all__``).
+PUBLIC_MODULES = ("allan", "batch", "calibration", "datasets", "deadband", "deadreckon", "evaluate", "fixes",
+                  "integration", "io", "motion", "paper", "pipeline", "rests", "sim", "tune", "wholelog", "window")
+
+
+@pytest.mark.parametrize("name", PUBLIC_MODULES)
+def test_a_public_module_lists_its_all_not_what_it_imports(name: str) -> None:
+    """docs/python.md: each public module's tab completion offers its ``__all__``, not the names it
+    imports (``np``, ``Any``); gyrocore.sim, rests, deadband, deadreckon, integration, window and
+    datasets had no ``__all__`` and offered ``np``, ``Any``, ``asdict``, ``TYPE_CHECKING``."""
+    module = importlib.import_module(f"gyrocore.{name}")
+    public = [n for n in dir(module) if not n.startswith("_")]
+    assert public == sorted(module.__all__) and all(hasattr(module, n) for n in public)
