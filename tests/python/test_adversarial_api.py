@@ -1,5 +1,6 @@
 """The public Python API once more under odd but valid use: a pipeline reset for a new log,
-results compared with ``==``, a public module's names listed by ``dir()``."""
+results compared with ``==``, a public module's names listed by ``dir()``, odd numbers for the
+Allan helpers."""
 
 from __future__ import annotations
 
@@ -71,3 +72,11 @@ def test_a_public_module_lists_its_all_not_what_it_imports(name: str) -> None:
     module = importlib.import_module(f"gyrocore.{name}")
     public = [n for n in dir(module) if not n.startswith("_")]
     assert public == sorted(module.__all__) and all(hasattr(module, n) for n in public)
+
+
+@pytest.mark.parametrize(("m", "n"), [(0, 100), (-1, 100), (2.5, 100), (True, 100), (1, 0), (1, 100.0)])
+def test_an_edf_of_no_whole_averaging_factor_or_sample_count_is_refused(m: object, n: object) -> None:
+    """``allan.equivalent_dof`` with m = 0 raised a bare ZeroDivisionError; m = -1 gave 102 and
+    m = 2.5 a number, as if such an average existed."""
+    with pytest.raises(ValueError, match=r"^[mn] must be a whole number >= 1, got "):
+        gyrocore.allan.equivalent_dof(0, 2, m, n, overlapping=True, modified=False)  # type: ignore[arg-type]
