@@ -282,8 +282,11 @@ def _turning(t: FloatArray, heading: FloatArray, start: float) -> float:
 
 
 def improvement(raw: HeadingErrors, method: HeadingErrors) -> float:
-    """Relative improvement over plain integration: E_psi without / E_psi with (HDR Table II)."""
-    return raw.e_psi_deg / method.e_psi_deg if method.e_psi_deg > 0 else math.inf
+    """Relative improvement over plain integration: E_psi without / E_psi with (HDR Table II); 1
+    where neither has an error (0 / 0 was infinite), infinite where the method alone has none."""
+    if method.e_psi_deg > 0:
+        return raw.e_psi_deg / method.e_psi_deg
+    return math.inf if raw.e_psi_deg > 0 else 1.0
 
 
 def return_orientation_error(

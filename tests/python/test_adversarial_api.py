@@ -1,6 +1,6 @@
 """The public Python API once more under odd but valid use: a pipeline reset for a new log,
 results compared with ``==``, a public module's names listed by ``dir()``, odd numbers for the
-Allan helpers."""
+Allan helpers, an improvement over a perfect integration."""
 
 from __future__ import annotations
 
@@ -80,3 +80,14 @@ def test_an_edf_of_no_whole_averaging_factor_or_sample_count_is_refused(m: objec
     m = 2.5 a number, as if such an average existed."""
     with pytest.raises(ValueError, match=r"^[mn] must be a whole number >= 1, got "):
         gyrocore.allan.equivalent_dof(0, 2, m, n, overlapping=True, modified=False)  # type: ignore[arg-type]
+
+
+def test_a_method_no_better_than_a_perfect_integration_improves_by_one() -> None:
+    """``evaluate.improvement`` of two errors of 0 (a gyro that reads the truth, or a log at rest)
+    was infinite, as if the method had removed an error; ``compare`` printed ``improvement inf``."""
+    perfect = gyrocore.heading_errors(T, RATE, T, RATE)
+    off = gyrocore.heading_errors(T, RATE + 0.01, T, RATE)
+    assert gyrocore.evaluate.improvement(perfect, perfect) == 1.0
+    assert gyrocore.evaluate.improvement(off, perfect) == np.inf and gyrocore.evaluate.improvement(perfect, off) == 0.0
+    still = gyrocore.Log("still", T, np.zeros_like(T), t_ref=T, heading_ref=np.zeros_like(T))
+    assert [s.improvement for s in gyrocore.evaluate.compare([still], ["raw", "hdr"], bias_duration=10.0)] == [1.0, 1.0]
