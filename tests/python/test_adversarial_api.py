@@ -1,6 +1,6 @@
 """The public Python API once more under odd but valid use: a pipeline reset for a new log,
 results compared with ``==``, a public module's names listed by ``dir()``, odd numbers for the
-Allan helpers, an improvement over a perfect integration."""
+Allan helpers, an improvement over a perfect integration, a compass result with heading fixes."""
 
 from __future__ import annotations
 
@@ -91,3 +91,18 @@ def test_a_method_no_better_than_a_perfect_integration_improves_by_one() -> None
     assert gyrocore.evaluate.improvement(off, perfect) == np.inf and gyrocore.evaluate.improvement(perfect, off) == 0.0
     still = gyrocore.Log("still", T, np.zeros_like(T), t_ref=T, heading_ref=np.zeros_like(T))
     assert [s.improvement for s in gyrocore.evaluate.compare([still], ["raw", "hdr"], bias_duration=10.0)] == [1.0, 1.0]
+
+
+def test_a_compass_result_gives_its_fix_stage_clockwise_too() -> None:
+    """``io.convert_heading(result, "compass")`` turned the heading, rate and drift clockwise but
+    left the fix stage's heading (the ENU yaw) and bias (counter-clockwise) as they were:
+    ``columns()`` then held a clockwise ``rate`` beside a counter-clockwise ``fusion_bias``."""
+    drive = gyrocore.sim.car_drive(120.0, seed=2)
+    every = np.arange(0, len(drive.t), 100)
+    fixes = gyrocore.fixes.Fixes.of(drive.t[every], drive.heading_true[every], 0.02)
+    enu = gyrocore.process(drive.t, drive.rate_measured, "hdr", fixes=fixes, mode="causal", bias_duration=10.0)
+    compass = gyrocore.io.convert_heading(enu, "compass")
+    assert compass.fusion is not None and enu.fusion is not None and enu.fusion.bias is not None
+    assert np.array_equal(compass.fusion.heading, compass.heading)
+    assert np.array_equal(compass.columns()["fusion_bias"], -enu.fusion.bias)
+    assert np.array_equal(compass.columns()["fusion_scale"], enu.columns()["fusion_scale"])
