@@ -22,7 +22,7 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
-from ._checks import check_count, check_number, check_seed, did_you_mean, public_dir, require_choice
+from ._checks import check_count, check_number, check_seed, did_you_mean, public_dir, real_number, require_choice
 from ._extras import require
 from .pipeline import BIAS_SOURCES, parameters, preset_params
 from .pipeline_params import _to_si
@@ -180,7 +180,7 @@ def search_box(
             raise ValueError(f"{n} cannot be fitted, it takes no number ({e})") from None
         except ValueError:  # a number out of its range here: the bounds are checked below
             pass
-    all_bounds = {**BOUNDS, **(bounds or {})}
+    all_bounds = {**BOUNDS, **_given_bounds(bounds, names)}
     unbounded = [n for n in names if n not in all_bounds]
     if unbounded:
         raise ValueError(f"no search bounds for {', '.join(unbounded)}; give them, e.g. "
@@ -198,6 +198,24 @@ def search_box(
         raise ValueError(f"{', '.join(overlap)} cannot be both fitted and fixed{why}")
     validate(preset, fixed)
     return box
+
+
+def _given_bounds(bounds: Mapping[str, Any] | None, names: tuple[str, ...]) -> dict[str, tuple[float, float]]:
+    """``bounds``, each of a parameter fitted (a typo was ignored, and the fit searched the default
+    range) and two numbers (``5`` or ``("a", "b")`` failed in Python's unpacking or comparison)."""
+    given = dict(bounds or {})
+    stray = [n for n in given if n not in names]
+    if stray:
+        said = ", ".join(f"{n}{did_you_mean(n, names)}" for n in stray)
+        raise ValueError(f"bounds given for {said}, which is not fitted; the parameters fitted are {', '.join(names)} "
+                         "(names=)")
+    checked = {}
+    for n, pair in given.items():
+        values = [real_number(v) for v in pair] if isinstance(pair, (tuple, list, np.ndarray)) else []
+        if len(values) != 2 or values[0] is None or values[1] is None:
+            raise TypeError(f"bounds of {n} must be two numbers (low, high), got {pair!r}")
+        checked[n] = (values[0], values[1])
+    return checked
 
 
 def _require_cases(what: str, cases: object) -> None:

@@ -1,6 +1,7 @@
 """The public Python API once more under odd but valid use: a pipeline reset for a new log,
 results compared with ``==``, a public module's names listed by ``dir()``, odd numbers for the
-Allan helpers, an improvement over a perfect integration, a compass result with heading fixes."""
+Allan helpers, an improvement over a perfect integration, a compass result with heading fixes,
+the arguments of a fit."""
 
 from __future__ import annotations
 
@@ -106,3 +107,20 @@ def test_a_compass_result_gives_its_fix_stage_clockwise_too() -> None:
     assert np.array_equal(compass.fusion.heading, compass.heading)
     assert np.array_equal(compass.columns()["fusion_bias"], -enu.fusion.bias)
     assert np.array_equal(compass.columns()["fusion_scale"], enu.columns()["fusion_scale"])
+
+
+@pytest.mark.parametrize(
+    ("bounds", "error", "words"),
+    [({"hdr_incremnt": (1e-5, 1e-3)}, ValueError, r"bounds given for hdr_incremnt \(did you mean 'hdr_increment'\?\), "
+                                                  r"which is not fitted; the parameters fitted are hdr_increment, "),
+     ({"threshold": (1e-5, 1e-3)}, ValueError, "bounds given for threshold, which is not fitted"),
+     ({"hdr_increment": 5}, TypeError, r"bounds of hdr_increment must be two numbers \(low, high\), got 5"),
+     ({"hdr_increment": ("a", "b")}, TypeError, r"bounds of hdr_increment must be two numbers \(low, high\)")],
+)
+def test_tune_refuses_bounds_it_would_not_use_or_cannot_read(bounds: dict, error: type, words: str) -> None:
+    """``tune.search_box`` (and ``tune``, before any drive is scored) ignored bounds of a parameter
+    not fitted (a typo: the fit searched the default range without a word), and failed on bounds
+    that are no pair in Python's words (``cannot unpack non-iterable int object``)."""
+    with pytest.raises(error, match=f"^{words}"):
+        gyrocore.tune.search_box("hdr", bounds=bounds)
+    assert gyrocore.tune.search_box("hdr", bounds={"hdr_increment": [1e-5, 1e-3]})["hdr_increment"] == (1e-5, 1e-3)
