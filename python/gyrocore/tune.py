@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any, Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
@@ -161,6 +161,11 @@ def search_box(
     command line checks them before it builds its drives): a ValueError for a name that is no
     parameter, a static bias (each drive's own), a parameter without bounds or with bounds that are
     not ``0 < low < high``, one that takes no number, or one both fitted and fixed."""
+    if names is not None and (isinstance(names, str) or not isinstance(names, Iterable)):  # its letters were names
+        kind = type(names).__name__
+        raise TypeError(f"names={names!r}: give a sequence of parameter names, e.g. ('hdr_c1',), not {kind}")
+    _require_mapping("bounds", bounds)
+    _require_mapping("fixed", fixed)
     by_default = not names  # the preset's own: a fixed one among them was never asked to be fitted
     names = tuple(names or default_parameters(preset))
     fixed = dict(fixed or {})
@@ -200,6 +205,13 @@ def search_box(
     return box
 
 
+def _require_mapping(what: str, value: object) -> None:
+    """A TypeError unless ``value`` is None or a dict (a list failed in ``dict()``'s words,
+    "dictionary update sequence element #0 has length 6; 2 is required")."""
+    if value is not None and not isinstance(value, Mapping):
+        raise TypeError(f"{what} must be a dict of parameter names and values, got {value!r}")
+
+
 def _given_bounds(bounds: Mapping[str, Any] | None, names: tuple[str, ...]) -> dict[str, tuple[float, float]]:
     """``bounds``, each of a parameter fitted (a typo was ignored, and the fit searched the default
     range) and two numbers (``5`` or ``("a", "b")`` failed in Python's unpacking or comparison)."""
@@ -232,6 +244,7 @@ def _start_point(
     middle of the bounds (a parameter the preset leaves unset). A ``start`` name that is not fitted
     (a typo was ignored, and the fit started from the preset's value) and a value outside its
     bounds (clipped into them without a word) are refused."""
+    _require_mapping("start", start)
     start = dict(start or {})
     unknown = [n for n in start if n not in box]
     if unknown:

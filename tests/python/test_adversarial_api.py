@@ -124,3 +124,19 @@ def test_tune_refuses_bounds_it_would_not_use_or_cannot_read(bounds: dict, error
     with pytest.raises(error, match=f"^{words}"):
         gyrocore.tune.search_box("hdr", bounds=bounds)
     assert gyrocore.tune.search_box("hdr", bounds={"hdr_increment": [1e-5, 1e-3]})["hdr_increment"] == (1e-5, 1e-3)
+
+
+@pytest.mark.parametrize(
+    ("options", "words"),
+    [({"names": "hdr_c1"}, r"names='hdr_c1': give a sequence of parameter names, e.g. \('hdr_c1',\), not str"),
+     ({"names": 5}, "names=5: give a sequence of parameter names"),
+     ({"fixed": ["hdr_c1"]}, r"fixed must be a dict of parameter names and values, got \['hdr_c1'\]"),
+     ({"bounds": "hdr_c1=1:2"}, "bounds must be a dict of parameter names and values"),
+     ({"start": [("hdr_c1", 1.0)]}, "start must be a dict of parameter names and values")],
+)
+def test_tune_names_its_arguments_of_the_wrong_kind(options: dict, words: str) -> None:
+    """``tune(names="hdr_c1")`` took the name's letters as names (``unknown parameter(s) h, d, r,
+    _, c, 1``); ``fixed``, ``bounds`` or ``start`` as a list failed in ``dict()``'s words."""
+    case = gyrocore.tune.Case("still", T, RATE, gyrocore.evaluate.Reference(T, np.zeros_like(T)), {"bias": 0.002})
+    with pytest.raises(TypeError, match=f"^{words}"):
+        gyrocore.tune.tune([case], **options)
