@@ -13,7 +13,7 @@ import numpy as np
 
 from . import motion, sim, wholelog
 from ._arrays import FloatArray
-from ._checks import require_flag
+from ._checks import check_number, require_flag
 from ._rests import measure_rest
 from .evaluate import HeadingErrors, Reference, log_bias
 from .io import Log
@@ -278,5 +278,7 @@ OBJECTIVES = ("ne_psi", "log_ratio")
 
 
 def harm_excess(scores: Sequence[CaseScore], limit_deg: float) -> float:
-    """Sum over harm drives of how far the harm exceeds ``limit_deg`` [deg]."""
+    """Sum over harm drives of how far the harm exceeds ``limit_deg`` [deg], a number >= 0 as
+    :func:`gyrocore.tune.tune` takes it (a NaN limit gave 0: no harm, whatever the drives)."""
+    limit_deg = check_number("limit_deg", limit_deg, strict=False, unit=" [deg]")
     return float(sum(max(0.0, s.harm_deg - limit_deg) for s in scores))

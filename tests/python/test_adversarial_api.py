@@ -140,3 +140,12 @@ def test_tune_names_its_arguments_of_the_wrong_kind(options: dict, words: str) -
     case = gyrocore.tune.Case("still", T, RATE, gyrocore.evaluate.Reference(T, np.zeros_like(T)), {"bias": 0.002})
     with pytest.raises(TypeError, match=f"^{words}"):
         gyrocore.tune.tune([case], **options)
+
+
+@pytest.mark.parametrize("limit", [np.nan, -1.0, "0.5"])
+def test_a_harm_limit_that_is_no_number_at_least_0_is_refused(limit: object) -> None:
+    """``tune.harm_excess(scores, nan)`` was 0 (no harm, whatever the drives' scores)."""
+    score = gyrocore.tune.CaseScore("drive", 5.0, 1.0, 2.0, 2.0, 2.0)
+    assert gyrocore.tune.harm_excess([score], 0.5) == pytest.approx(2.5)
+    with pytest.raises((ValueError, TypeError), match="^limit_deg must be "):
+        gyrocore.tune.harm_excess([score], limit)  # type: ignore[arg-type]
