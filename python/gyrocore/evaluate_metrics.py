@@ -105,6 +105,7 @@ class Reference:
         gap_factor: float = GAP_FACTOR,
         time_weighted: bool = False,
     ) -> None:
+        require_flag("time_weighted", time_weighted)  # "no" scored time-weighted
         t = as_float_array("t_ref", t_ref)
         psi = as_float_array("heading_ref", heading_ref)
         require_series("t", t, "heading", psi, context="reference")
@@ -139,6 +140,7 @@ class Reference:
         (-pi, pi], for a heading made absolute by fixes); ``gap_after[k]`` says whether the
         interval after sample ``k`` crosses a gap (of either side) and so is not scored.
         """
+        require_flag("absolute", absolute)  # "no" compared the wrapped difference
         te = as_float_array("t", t)
         est_all = as_float_array("heading", heading)
         require_series("t", te, "heading", est_all, context="estimate")
@@ -224,8 +226,6 @@ def heading_errors(
     (eq 16). Gaps are skipped as :class:`Reference` describes; both sides may have irregular rates.
     ``absolute``: no alignment, the wrapped difference (a heading made absolute by fixes).
     """
-    for name, flag in (("time_weighted", time_weighted), ("absolute", absolute)):
-        require_flag(name, flag)
     reference = Reference(t_ref, heading_ref, gap_factor=gap_factor, time_weighted=time_weighted)
     errors = reference.errors(t, heading, absolute=absolute)
     warn_if_degrees(reference, t, heading, errors.e_psi_deg, absolute=absolute)

@@ -149,3 +149,17 @@ def test_a_harm_limit_that_is_no_number_at_least_0_is_refused(limit: object) -> 
     assert gyrocore.tune.harm_excess([score], 0.5) == pytest.approx(2.5)
     with pytest.raises((ValueError, TypeError), match="^limit_deg must be "):
         gyrocore.tune.harm_excess([score], limit)  # type: ignore[arg-type]
+
+
+def test_a_reference_refuses_a_switch_given_as_text() -> None:
+    """``evaluate.Reference(..., time_weighted="no")`` scored time-weighted, and
+    ``Reference.errors(..., absolute="no")`` compared the wrapped difference, as
+    ``heading_errors`` (which checked its switches itself) refused."""
+    reference = gyrocore.evaluate.Reference(T, np.sin(T / 10))
+    with pytest.raises(TypeError, match="^time_weighted must be True or False, got 'no'$"):
+        gyrocore.evaluate.Reference(T, np.sin(T / 10), time_weighted="no")  # type: ignore[arg-type]
+    for score in (reference.errors, reference.e_psi, reference.compared):
+        with pytest.raises(TypeError, match="^absolute must be True or False, got 'no'$"):
+            score(T, np.sin(T / 10), absolute="no")  # type: ignore[operator]
+    with pytest.raises(TypeError, match="^absolute must be True or False, got 1$"):
+        gyrocore.heading_errors(T, RATE, T, RATE, absolute=1)  # type: ignore[arg-type]
