@@ -13,7 +13,7 @@ import numpy as np
 
 from . import motion, sim, wholelog
 from ._arrays import FloatArray
-from ._checks import check_number, require_flag
+from ._checks import check_count, check_number, require_flag
 from ._rests import measure_rest
 from .evaluate import HeadingErrors, Reference, log_bias
 from .io import Log
@@ -212,7 +212,14 @@ def harm_cases(
 ) -> list[Case]:
     """Do-no-harm drives on ``per_mix`` drives of each road mix of ``mixes`` (default: long gentle
     curves), seeds from ``first_seed``: a perfect gyro against plain integration, or, ``noisy``, an
-    unbiased gyro with noise (:func:`unbiased_gyro`) against static bias removal."""
+    unbiased gyro with noise (:func:`unbiased_gyro`) against static bias removal. Each option of
+    the wrong kind is refused by name (``noisy="no"`` was True, ``per_mix=-1`` no drive, ``mixes=
+    "highway"`` its letters)."""
+    require_flag("noisy", noisy)
+    per_mix = check_count("per_mix", per_mix)
+    minutes = check_number("minutes", minutes)
+    if isinstance(mixes, str):
+        raise TypeError(f"mixes={mixes!r}: give a sequence of road mixes, e.g. ({mixes!r},), not one string")
     gyro, baseline = (unbiased_gyro(rate_hz), "static_bias") if noisy else (perfect_gyro(rate_hz), "raw")
     return simulated_cases(
         [motion.DriveSpec(f"{gyro.name}, {mix}", minutes, mix, "do no harm") for mix in mixes for _ in range(per_mix)],

@@ -163,3 +163,19 @@ def test_a_reference_refuses_a_switch_given_as_text() -> None:
             score(T, np.sin(T / 10), absolute="no")  # type: ignore[operator]
     with pytest.raises(TypeError, match="^absolute must be True or False, got 1$"):
         gyrocore.heading_errors(T, RATE, T, RATE, absolute=1)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize(
+    ("options", "error", "words"),
+    [({"noisy": "no"}, TypeError, "noisy must be True or False, got 'no'"),
+     ({"per_mix": -1}, ValueError, "per_mix must be a whole number >= 1, got -1"),
+     ({"per_mix": 2.5}, ValueError, "per_mix must be a whole number >= 1, got 2.5"),
+     ({"mixes": "highway"}, TypeError, r"mixes='highway': give a sequence of road mixes, e.g. \('highway',\)"),
+     ({"minutes": "1"}, TypeError, "minutes must be a number, got '1'")],
+)
+def test_harm_drives_refuse_options_of_the_wrong_kind(options: dict, error: type, words: str) -> None:
+    """``tune.harm_cases(noisy="no")`` built the noisy gyro's drives, ``per_mix=-1`` none at all
+    without a word; ``mixes="highway"`` failed on the mix ``'h'``, ``per_mix=2.5`` and
+    ``minutes="1"`` in Python's words."""
+    with pytest.raises(error, match=f"^{words}"):
+        gyrocore.tune.harm_cases(**options)
