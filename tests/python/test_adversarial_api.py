@@ -179,3 +179,21 @@ def test_harm_drives_refuse_options_of_the_wrong_kind(options: dict, error: type
     ``minutes="1"`` in Python's words."""
     with pytest.raises(error, match=f"^{words}"):
         gyrocore.tune.harm_cases(**options)
+
+
+@pytest.mark.parametrize(
+    ("call", "words"),
+    [(lambda: gyrocore.calibration.detect_rest(T, RATE, max_rte=0.1), r"detect_rest: unknown rest option\(s\) 'max_rte' "
+                                                                        r"\(did you mean 'max_rate'\?\); it takes block, "),
+     (lambda: gyrocore.calibration.static_bias(T, RATE, (0.0, 20.0), blok=0.5), r"static_bias: unknown rest option\(s\) "
+                                                                                 r"'blok' \(did you mean 'block'\?\)"),
+     (lambda: gyrocore.calibration.rotary_table(T, RATE, min_duration=1.0), r"rotary_table \(its pauses' min_duration "
+                                                                            r"is min_pause\): unknown rest option")],
+)
+def test_a_rest_option_misspelt_is_named_with_the_function_called(call: object, words: str) -> None:
+    """A rest option passed on to ``rest_windows`` and misspelt failed as
+    ``rest_windows_of_checked() got an unexpected keyword argument 'max_rte'`` (a function the
+    caller never called), was ignored beside a given window, or in ``rotary_table`` said
+    ``got multiple values for keyword argument 'min_duration'``."""
+    with pytest.raises(TypeError, match=f"^{words}"):
+        call()  # type: ignore[operator]
