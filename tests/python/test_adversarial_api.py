@@ -197,3 +197,20 @@ def test_a_rest_option_misspelt_is_named_with_the_function_called(call: object, 
     ``got multiple values for keyword argument 'min_duration'``."""
     with pytest.raises(TypeError, match=f"^{words}"):
         call()  # type: ignore[operator]
+
+
+@pytest.mark.parametrize(
+    ("options", "words"),
+    [({"outages": (5.0, 10.0)}, r"an outage must be \(start, end\) in seconds, got 5.0"),
+     ({"outages": (("a", "b"),)}, r"an outage must be \(start, end\) in seconds, got \('a', 'b'\)"),
+     ({"outages": ((1.0, 2.0, 3.0),)}, r"an outage must be \(start, end\) in seconds"),
+     ({"sigma_deg": "1"}, r"sigma_deg must be in \[5.73e-11, 180\] deg, got '1'"),
+     ({"sigma_deg": True}, r"sigma_deg must be in \[5.73e-11, 180\] deg, got True")],
+)
+def test_simulated_fixes_name_an_outage_or_noise_of_the_wrong_kind(options: dict, words: str) -> None:
+    """``sim.gnss_fixes(..., outages=(5, 10))`` (one outage given alone) failed as ``cannot unpack
+    non-iterable int object``, text as numpy's ``UFuncTypeError``; ``sigma_deg="1"`` as ``'<=' not
+    supported``, and ``sigma_deg=True`` was a noise of 1 deg."""
+    with pytest.raises(ValueError, match=f"^{words}"):
+        gyrocore.sim.gnss_fixes(T, np.zeros_like(T), seed=0, **options)
+    assert len(gyrocore.sim.gnss_fixes(T, np.zeros_like(T), seed=0, outages=[[2.0, 5.0]])) == len(T[::100]) - 3
