@@ -1,11 +1,12 @@
 """The public Python API once more under odd but valid use: a pipeline reset for a new log,
 results compared with ``==``, a public module's names listed by ``dir()``, odd numbers for the
 Allan helpers, an improvement over a perfect integration, a compass result with heading fixes,
-the arguments of a fit."""
+the arguments of a fit, a score as JSON."""
 
 from __future__ import annotations
 
 import importlib
+import json
 import pickle
 import warnings
 
@@ -183,12 +184,12 @@ def test_harm_drives_refuse_options_of_the_wrong_kind(options: dict, error: type
 
 @pytest.mark.parametrize(
     ("call", "words"),
-    [(lambda: gyrocore.calibration.detect_rest(T, RATE, max_rte=0.1), r"detect_rest: unknown rest option\(s\) 'max_rte' "
-                                                                        r"\(did you mean 'max_rate'\?\); it takes block, "),
-     (lambda: gyrocore.calibration.static_bias(T, RATE, (0.0, 20.0), blok=0.5), r"static_bias: unknown rest option\(s\) "
-                                                                                 r"'blok' \(did you mean 'block'\?\)"),
-     (lambda: gyrocore.calibration.rotary_table(T, RATE, min_duration=1.0), r"rotary_table \(its pauses' min_duration "
-                                                                            r"is min_pause\): unknown rest option")],
+    [(lambda: gyrocore.calibration.detect_rest(T, RATE, max_rte=0.1),
+      r"detect_rest: unknown rest option\(s\) 'max_rte' \(did you mean 'max_rate'\?\); it takes block, "),
+     (lambda: gyrocore.calibration.static_bias(T, RATE, (0.0, 20.0), blok=0.5),
+      r"static_bias: unknown rest option\(s\) 'blok' \(did you mean 'block'\?\)"),
+     (lambda: gyrocore.calibration.rotary_table(T, RATE, min_duration=1.0),
+      r"rotary_table \(its pauses' min_duration is min_pause\): unknown rest option")],
 )
 def test_a_rest_option_misspelt_is_named_with_the_function_called(call: object, words: str) -> None:
     """A rest option passed on to ``rest_windows`` and misspelt failed as
@@ -214,3 +215,15 @@ def test_simulated_fixes_name_an_outage_or_noise_of_the_wrong_kind(options: dict
     with pytest.raises(ValueError, match=f"^{words}"):
         gyrocore.sim.gnss_fixes(T, np.zeros_like(T), seed=0, **options)
     assert len(gyrocore.sim.gnss_fixes(T, np.zeros_like(T), seed=0, outages=[[2.0, 5.0]])) == len(T[::100]) - 3
+
+
+def test_a_score_as_a_dict_is_json_even_where_a_method_has_no_error() -> None:
+    """``Score.as_dict()`` (a "JSON-ready dict") held ``improvement = inf`` where the method had
+    no error at all: ``json.dumps`` wrote ``Infinity``, which strict parsers refuse (the command
+    line mended it in its own copy)."""
+    still = gyrocore.Log("still", T, np.full_like(T, 0.25), t_ref=T, heading_ref=np.zeros_like(T),
+                         stationary=(0.0, 10.0))
+    rows = gyrocore.evaluate.compare([still], ["raw", "static_bias"])
+    assert rows[1].improvement == np.inf
+    text = json.dumps([r.as_dict() for r in rows], allow_nan=False)
+    assert [r["improvement"] for r in json.loads(text)] == [1.0, None]
