@@ -93,7 +93,7 @@ def dead_reckon(
     warn_if_wrapped(th, psi)
     inside = (ts >= th[0]) & (ts <= th[-1])
     if inside.sum() < 2:
-        raise ValueError("fewer than two odometry samples lie inside the heading's time span")
+        raise ValueError(too_few_inside("the odometry", ts, "the heading", th))  # both spans: a clock apart shows
     ts, v = ts[inside], v[inside]
     psi_s = np.interp(ts, th, psi) + heading_offset
     dt = np.diff(ts)

@@ -227,3 +227,13 @@ def test_a_score_as_a_dict_is_json_even_where_a_method_has_no_error() -> None:
     assert rows[1].improvement == np.inf
     text = json.dumps([r.as_dict() for r in rows], allow_nan=False)
     assert [r["improvement"] for r in json.loads(text)] == [1.0, None]
+
+
+def test_dead_reckoning_on_another_clock_names_both_spans() -> None:
+    """``deadreckon.dead_reckon`` with odometry on another clock (epoch seconds beside a heading
+    from boot) said only ``fewer than two odometry samples lie inside the heading's time span``,
+    with neither span, where the reference's check names both."""
+    with pytest.raises(ValueError, match=r"^the odometry has fewer than two samples inside the heading's time span: "
+                                         r"the odometry runs from t = 1700000000.000 to 1700000059.990 s, the heading "
+                                         r"from t = 0.000 to 59.990 s; give both on the same clock$"):
+        gyrocore.deadreckon.dead_reckon(T + 1.7e9, np.ones_like(T), T, RATE)
