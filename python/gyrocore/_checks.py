@@ -269,6 +269,12 @@ def check_number(
     return x
 
 
+def json_ready(row: dict[str, Any]) -> dict[str, Any]:
+    """``row`` with each float that is not finite as None: JSON has no inf or NaN (``json.dumps``
+    writes ``Infinity``, which strict parsers refuse)."""
+    return {k: None if isinstance(v, float) and not math.isfinite(v) else v for k, v in row.items()}
+
+
 def check_count(name: str, value: object) -> int:
     """``value`` as an int >= 1 (a count: runs, readings per bin); a ValueError naming ``name``
     otherwise (a bool, 2.5 or 0 were taken, or failed as "'float' object cannot be interpreted as

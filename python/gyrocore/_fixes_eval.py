@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import did_you_mean
+from ._checks import did_you_mean, json_ready
 from .evaluate import Failed, Method, Reference
 from .evaluate_compare import warn_partial_reference
 from .fixes import Fixes
@@ -148,7 +148,7 @@ class FixScore:
         without a reference sample is null)."""
         row = {"path": self.path, "name": self.log}
         row.update((k, getattr(self, k)) for k in self.__dataclass_fields__ if k not in ("path", "log"))
-        return {k: None if isinstance(v, float) and not math.isfinite(v) else v for k, v in row.items()}
+        return json_ready(row)
 
 
 def _mean_in(tr: np.ndarray, err: np.ndarray, window: tuple[float, float] | None) -> float | None:

@@ -28,7 +28,7 @@ from ._arrays import FloatArray
 MIN_VARIANCE = 1e-24
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class SmoothedBias:
     """The smoothed bias at the rests' middles, and from there at any time.
 

@@ -21,7 +21,7 @@ Kind = Literal["allan", "modified", "hadamard"]
 TauSpec = Literal["octave", "decade", "log", "all"]
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, eq=False)
 class AllanResult:
     """An Allan-family deviation curve.
 

@@ -12,7 +12,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ._arrays import FloatArray, as_float_array
-from ._checks import check_number
+from ._checks import check_count, check_number
 from ._extras import require
 
 #: Two-sided confidence of one standard deviation, erf(1/sqrt(2)) (Stable32's 0.683).
@@ -79,7 +79,9 @@ def _basic_sum(j: int, m_terms: float, s: float, f: float, alpha: int, d: int) -
 def equivalent_dof(alpha: int, d: int, m: int, n: int, *, overlapping: bool, modified: bool) -> float:
     """Equivalent degrees of freedom of a variance estimate (Greenhall & Riley 2003, their
     section 4 algorithm): ``alpha`` the rate-noise exponent (0, -1, -2), ``d`` the difference
-    order (2 Allan, 3 Hadamard), ``m`` the averaging factor, ``n`` phase samples."""
+    order (2 Allan, 3 Hadamard), ``m`` the averaging factor, ``n`` phase samples (whole numbers
+    >= 1: m = 0 divided by zero, m = -1 or 2.5 gave a number)."""
+    m, n = check_count("m", m), check_count("n", n)
     if alpha not in _TABLES or d not in (2, 3) or (modified and d != 2):
         raise ValueError(f"no EDF for alpha = {alpha}, d = {d}, modified = {modified}")
     f = 1.0 if modified else float(m)  # filter factor

@@ -28,8 +28,12 @@ import numpy as np
 
 from . import __version__, sim
 from ._arrays import FloatArray
+from ._checks import public_dir
 from .io.atomic import make_folder, write_text_atomically
 from .io.log import Log
+
+__all__ = ["FILES", "REFERENCE_EVERY", "SAMPLE", "main", "sample_drive", "write_sample"]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 #: What :func:`sample_drive` simulates: ``gyrocore.sim.car_drive(**SAMPLE)``. Downtown streets, the
 #: first seed: a drive with many corners (it turns through 11 rad), so that the scale fit and the

@@ -28,8 +28,11 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array, refuse_masked
-from ._checks import check_number, require_finite
+from ._checks import check_number, public_dir, require_finite
 from ._extras import require
+
+__all__ = ["bias_leak", "expected_output"]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 
 def _cdf(x: FloatArray | float, what: str) -> FloatArray:

@@ -17,12 +17,15 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array, too_few_inside
-from ._checks import check_number, require_finite, require_radians, require_series, warn_if_wrapped
+from ._checks import check_number, public_dir, require_finite, require_radians, require_series, warn_if_wrapped
 from .io import Log
 from .pipeline import HeadingResult
 
+__all__ = ["PositionErrors", "Track", "dead_reckon", "dead_reckon_log", "position_errors", "return_position_error"]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
-@dataclass(frozen=True, repr=False)
+
+@dataclass(frozen=True, repr=False, eq=False)
 class Track:
     """A dead-reckoned track: position ``(x, y)`` [m] and heading [rad] at the odometry times ``t`` [s]."""
 
@@ -90,7 +93,7 @@ def dead_reckon(
     warn_if_wrapped(th, psi)
     inside = (ts >= th[0]) & (ts <= th[-1])
     if inside.sum() < 2:
-        raise ValueError("fewer than two odometry samples lie inside the heading's time span")
+        raise ValueError(too_few_inside("the odometry", ts, "the heading", th))  # both spans: a clock apart shows
     ts, v = ts[inside], v[inside]
     psi_s = np.interp(ts, th, psi) + heading_offset
     dt = np.diff(ts)

@@ -17,7 +17,7 @@ from numpy.typing import ArrayLike
 
 from . import deadreckon
 from ._arrays import as_float_array, covered_share, span_text
-from ._checks import check_number, require_finite, require_flag, warn
+from ._checks import check_number, json_ready, require_finite, require_flag, warn
 from ._extras import pyplot
 from .batch_job import failed_line
 from .evaluate_metrics import HeadingErrors, Reference, heading_errors, improvement
@@ -126,7 +126,8 @@ class Score:
         """Flat JSON-ready dict: ``path`` and ``name`` (the log's), ``preset`` (the method's name),
         ``base_preset``, the heading metrics, ``improvement``, ``bias_source``, ``rests``,
         ``return_error_deg`` and, where the log has odometry, ``position_*_m`` and
-        ``position_final_error_percent``."""
+        ``position_final_error_percent``; a value that is not finite is None (JSON has no inf: a
+        method with no error at all improves infinitely)."""
         row: dict[str, Any] = {"path": self.path, "name": self.log, "preset": self.method.name,
                                "base_preset": self.method.preset}
         row.update(self.errors.as_dict())
@@ -138,7 +139,7 @@ class Score:
             row.update({f"position_{k}": v for k, v in self.position.as_dict().items()})
         if self.method.overrides:
             row["overrides"] = dict(self.method.overrides)
-        return row
+        return json_ready(row)
 
 
 #: A reference path that ends within this fraction of its length from its start is closed.

@@ -105,6 +105,7 @@ class Reference:
         gap_factor: float = GAP_FACTOR,
         time_weighted: bool = False,
     ) -> None:
+        require_flag("time_weighted", time_weighted)  # "no" scored time-weighted
         t = as_float_array("t_ref", t_ref)
         psi = as_float_array("heading_ref", heading_ref)
         require_series("t", t, "heading", psi, context="reference")
@@ -139,6 +140,7 @@ class Reference:
         (-pi, pi], for a heading made absolute by fixes); ``gap_after[k]`` says whether the
         interval after sample ``k`` crosses a gap (of either side) and so is not scored.
         """
+        require_flag("absolute", absolute)  # "no" compared the wrapped difference
         te = as_float_array("t", t)
         est_all = as_float_array("heading", heading)
         require_series("t", te, "heading", est_all, context="estimate")
@@ -224,8 +226,6 @@ def heading_errors(
     (eq 16). Gaps are skipped as :class:`Reference` describes; both sides may have irregular rates.
     ``absolute``: no alignment, the wrapped difference (a heading made absolute by fixes).
     """
-    for name, flag in (("time_weighted", time_weighted), ("absolute", absolute)):
-        require_flag(name, flag)
     reference = Reference(t_ref, heading_ref, gap_factor=gap_factor, time_weighted=time_weighted)
     errors = reference.errors(t, heading, absolute=absolute)
     warn_if_degrees(reference, t, heading, errors.e_psi_deg, absolute=absolute)
@@ -282,8 +282,11 @@ def _turning(t: FloatArray, heading: FloatArray, start: float) -> float:
 
 
 def improvement(raw: HeadingErrors, method: HeadingErrors) -> float:
-    """Relative improvement over plain integration: E_psi without / E_psi with (HDR Table II)."""
-    return raw.e_psi_deg / method.e_psi_deg if method.e_psi_deg > 0 else math.inf
+    """Relative improvement over plain integration: E_psi without / E_psi with (HDR Table II); 1
+    where neither has an error (0 / 0 was infinite), infinite where the method alone has none."""
+    if method.e_psi_deg > 0:
+        return raw.e_psi_deg / method.e_psi_deg
+    return math.inf if raw.e_psi_deg > 0 else 1.0
 
 
 def return_orientation_error(

@@ -7,7 +7,10 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
-from ._checks import check_number, warn_units
+from ._checks import check_number, public_dir, warn_units
+
+__all__ = ["angle_of", "downsample", "integrate"]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 
 def integrate(

@@ -18,7 +18,13 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import FloatArray, as_float_array, covered_share
-from ._checks import MAX_READING, check_number, require_finite, require_series, warn
+from ._checks import MAX_READING, check_number, public_dir, require_finite, require_series, warn
+
+__all__ = [
+    "GATE_REFUSED", "LISTED_RESTS", "MIN_OVERLAP", "Rest", "bias_walk", "from_core", "refuse_speed_t_alone",
+    "rest_lines", "speed_at", "speed_on",
+]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 
 @dataclass(frozen=True)

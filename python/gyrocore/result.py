@@ -118,7 +118,7 @@ def fix_output_flags(outputs: tuple[str, ...] | list[str]) -> tuple[bool, bool, 
     return heading_sigma, bias, scale
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, eq=False)
 class HeadingResult:
     """Per-sample output of the pipeline (all arrays float64, one entry per input sample).
 

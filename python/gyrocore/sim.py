@@ -31,13 +31,19 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _gyrocore, motion
-from ._arrays import FloatArray, as_float_array
-from ._checks import check_number, check_seed, real_number, require_choice, require_series
+from ._arrays import FloatArray, as_float_array, as_window
+from ._checks import check_number, check_seed, public_dir, real_number, require_choice, require_series
 from ._sim_fields import check_spec, refuse_unknown_keywords
 from .window import MIN_WINDOW_READINGS
 
 if TYPE_CHECKING:
     from .fixes import Fixes
+
+__all__ = [
+    "CAR_REST", "MAX_FIXES", "SENSORS", "SIGMA_DEG", "Drive", "GyroSpec", "Reading", "car_drive", "check_span",
+    "gnss_fixes", "measure", "refuse_too_few_samples", "sample_times", "sensor", "simulate",
+]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 _DEG = math.pi / 180.0
 _HOUR = 3600.0
@@ -454,4 +460,4 @@ def car_drive(
 
 
 # the simulated receiver lives in its own module; gyrocore.sim is where users find it
-from .sim_gnss import MAX_FIXES as MAX_FIXES, SIGMA_DEG as SIGMA_DEG, gnss_fixes as gnss_fixes  # noqa: E402
+from .sim_gnss import MAX_FIXES, SIGMA_DEG, gnss_fixes  # noqa: E402

@@ -9,8 +9,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._arrays import as_float_array
-from ._checks import check_number, check_seed, require_series
+from ._arrays import as_float_array, as_window
+from ._checks import check_number, check_seed, real_number, require_series
 
 if TYPE_CHECKING:
     from .fixes import Fixes
@@ -46,19 +46,19 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     if len(t) < 2:
         raise ValueError("the reference needs at least two samples")
     rate_hz = check_number("rate_hz", rate_hz)
-    if not SIGMA_DEG[0] <= sigma_deg <= SIGMA_DEG[1]:
-        raise ValueError(f"sigma_deg must be in [{SIGMA_DEG[0]:.3g}, {SIGMA_DEG[1]:g}] deg, got {sigma_deg}")
+    given = real_number(sigma_deg)  # text failed in Python's words, True was 1 deg
+    if given is None or not SIGMA_DEG[0] <= given <= SIGMA_DEG[1]:
+        raise ValueError(f"sigma_deg must be in [{SIGMA_DEG[0]:.3g}, {SIGMA_DEG[1]:g}] deg, got {sigma_deg!r}")
     count = (t[-1] - t[0]) * rate_hz
     if count > MAX_FIXES:
         raise ValueError(f"{count:.3e} fixes requested ({t[-1] - t[0]:g} s at {rate_hz:g} Hz): more than "
                          f"{MAX_FIXES:.0e}; is the rate in Hz?")
     tf = t[0] + np.arange(int(count) + 1) / rate_hz
     keep = np.ones(len(tf), dtype=bool)
-    for start, end in outages:
-        if not end > start:
-            raise ValueError(f"an outage must end after it starts, got ({start}, {end})")
+    for outage in outages:
+        start, end = as_window("an outage", outage)  # one (start, end) given alone failed as "cannot unpack"
         keep &= (tf < start) | (tf >= end)
     rng = np.random.Generator(np.random.PCG64(check_seed(seed)))
-    sigma = math.radians(sigma_deg)
+    sigma = math.radians(given)
     noisy = np.interp(tf, t, psi) + sigma * rng.standard_normal(len(tf))
     return Fixes.of(tf[keep], np.angle(np.exp(1j * noisy[keep])), sigma)

@@ -18,11 +18,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any, Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
-from ._checks import check_count, check_number, check_seed, did_you_mean, public_dir, require_choice
+from ._checks import check_count, check_number, check_seed, did_you_mean, public_dir, real_number, require_choice
 from ._extras import require
 from .pipeline import BIAS_SOURCES, parameters, preset_params
 from .pipeline_params import _to_si
@@ -161,6 +161,11 @@ def search_box(
     command line checks them before it builds its drives): a ValueError for a name that is no
     parameter, a static bias (each drive's own), a parameter without bounds or with bounds that are
     not ``0 < low < high``, one that takes no number, or one both fitted and fixed."""
+    if names is not None and (isinstance(names, str) or not isinstance(names, Iterable)):  # its letters were names
+        kind = type(names).__name__
+        raise TypeError(f"names={names!r}: give a sequence of parameter names, e.g. ('hdr_c1',), not {kind}")
+    _require_mapping("bounds", bounds)
+    _require_mapping("fixed", fixed)
     by_default = not names  # the preset's own: a fixed one among them was never asked to be fitted
     names = tuple(names or default_parameters(preset))
     fixed = dict(fixed or {})
@@ -180,7 +185,7 @@ def search_box(
             raise ValueError(f"{n} cannot be fitted, it takes no number ({e})") from None
         except ValueError:  # a number out of its range here: the bounds are checked below
             pass
-    all_bounds = {**BOUNDS, **(bounds or {})}
+    all_bounds = {**BOUNDS, **_given_bounds(bounds, names)}
     unbounded = [n for n in names if n not in all_bounds]
     if unbounded:
         raise ValueError(f"no search bounds for {', '.join(unbounded)}; give them, e.g. "
@@ -200,6 +205,31 @@ def search_box(
     return box
 
 
+def _require_mapping(what: str, value: object) -> None:
+    """A TypeError unless ``value`` is None or a dict (a list failed in ``dict()``'s words,
+    "dictionary update sequence element #0 has length 6; 2 is required")."""
+    if value is not None and not isinstance(value, Mapping):
+        raise TypeError(f"{what} must be a dict of parameter names and values, got {value!r}")
+
+
+def _given_bounds(bounds: Mapping[str, Any] | None, names: tuple[str, ...]) -> dict[str, tuple[float, float]]:
+    """``bounds``, each of a parameter fitted (a typo was ignored, and the fit searched the default
+    range) and two numbers (``5`` or ``("a", "b")`` failed in Python's unpacking or comparison)."""
+    given = dict(bounds or {})
+    stray = [n for n in given if n not in names]
+    if stray:
+        said = ", ".join(f"{n}{did_you_mean(n, names)}" for n in stray)
+        raise ValueError(f"bounds given for {said}, which is not fitted; the parameters fitted are {', '.join(names)} "
+                         "(names=)")
+    checked = {}
+    for n, pair in given.items():
+        values = [real_number(v) for v in pair] if isinstance(pair, (tuple, list, np.ndarray)) else []
+        if len(values) != 2 or values[0] is None or values[1] is None:
+            raise TypeError(f"bounds of {n} must be two numbers (low, high), got {pair!r}")
+        checked[n] = (values[0], values[1])
+    return checked
+
+
 def _require_cases(what: str, cases: object) -> None:
     """A TypeError for one :class:`Case` where a list of them is asked for (it failed as "'Case'
     object is not iterable")."""
@@ -214,6 +244,7 @@ def _start_point(
     middle of the bounds (a parameter the preset leaves unset). A ``start`` name that is not fitted
     (a typo was ignored, and the fit started from the preset's value) and a value outside its
     bounds (clipped into them without a word) are refused."""
+    _require_mapping("start", start)
     start = dict(start or {})
     unknown = [n for n in start if n not in box]
     if unknown:

@@ -13,7 +13,7 @@ import numpy as np
 
 from . import motion, sim, wholelog
 from ._arrays import FloatArray
-from ._checks import require_flag
+from ._checks import check_count, check_number, require_flag
 from ._rests import measure_rest
 from .evaluate import HeadingErrors, Reference, log_bias
 from .io import Log
@@ -25,7 +25,7 @@ from .pipeline import HeadingResult, Pipeline, uses_static_bias
 MAX_GRID_PER_SAMPLE = 10
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, eq=False)
 class Case:
     """One drive to tune or test on: gyro samples, a reference heading and the static-bias source.
 
@@ -212,7 +212,14 @@ def harm_cases(
 ) -> list[Case]:
     """Do-no-harm drives on ``per_mix`` drives of each road mix of ``mixes`` (default: long gentle
     curves), seeds from ``first_seed``: a perfect gyro against plain integration, or, ``noisy``, an
-    unbiased gyro with noise (:func:`unbiased_gyro`) against static bias removal."""
+    unbiased gyro with noise (:func:`unbiased_gyro`) against static bias removal. Each option of
+    the wrong kind is refused by name (``noisy="no"`` was True, ``per_mix=-1`` no drive, ``mixes=
+    "highway"`` its letters)."""
+    require_flag("noisy", noisy)
+    per_mix = check_count("per_mix", per_mix)
+    minutes = check_number("minutes", minutes)
+    if isinstance(mixes, str):
+        raise TypeError(f"mixes={mixes!r}: give a sequence of road mixes, e.g. ({mixes!r},), not one string")
     gyro, baseline = (unbiased_gyro(rate_hz), "static_bias") if noisy else (perfect_gyro(rate_hz), "raw")
     return simulated_cases(
         [motion.DriveSpec(f"{gyro.name}, {mix}", minutes, mix, "do no harm") for mix in mixes for _ in range(per_mix)],
@@ -278,5 +285,7 @@ OBJECTIVES = ("ne_psi", "log_ratio")
 
 
 def harm_excess(scores: Sequence[CaseScore], limit_deg: float) -> float:
-    """Sum over harm drives of how far the harm exceeds ``limit_deg`` [deg]."""
+    """Sum over harm drives of how far the harm exceeds ``limit_deg`` [deg], a number >= 0 as
+    :func:`gyrocore.tune.tune` takes it (a NaN limit gave 0: no harm, whatever the drives)."""
+    limit_deg = check_number("limit_deg", limit_deg, strict=False, unit=" [deg]")
     return float(sum(max(0.0, s.harm_deg - limit_deg) for s in scores))

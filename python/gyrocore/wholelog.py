@@ -77,7 +77,7 @@ def check_parameters(preset: str, overrides: dict[str, Any]) -> None:
     core_pipeline(preset, _to_si({k: v for k, v in overrides.items() if k not in WHOLE_OPTIONS and not isinstance(v, Window)}))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class BiasPlan:
     """Where whole mode takes the bias from, before the first sample is processed.
 

@@ -23,6 +23,14 @@ from typing import Any
 import numpy as np
 
 from ._arrays import FloatArray
+from ._checks import public_dir
+
+__all__ = [
+    "MIN_WINDOW_READINGS", "PLUS_T", "T0_PLUS", "RestWindowError", "Window", "as_command_line_says",
+    "ends_before_first", "in_log_clock", "no_usable_reading", "refuse_few_readings", "refuse_past_end",
+    "refuse_start_before", "refuse_window_objects", "refuse_window_outside", "rest_window_text", "time_range",
+]
+__dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 
 @dataclass(frozen=True)

@@ -67,25 +67,6 @@ def test_pickle_mid_stream_continues_bit_identically_and_reset_restarts() -> Non
     assert np.array_equal(a.process(t, rate).heading, fresh.heading)
 
 
-def test_reset_checks_and_warns_as_a_new_pipeline_does() -> None:
-    # Timestamps in ms and no bias given: a new pipeline says both; after reset() the next run
-    # must be judged as a new one, not pass silently because the first run was said.
-    t = np.arange(0.0, 20_000.0, 10.0)  # ms
-    rate = np.full(len(t), 0.01)
-
-    def said(p: gyrocore.Pipeline) -> str:
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
-            p.process(t, rate)
-        return " | ".join(str(w.message) for w in caught)
-
-    p = gyrocore.Pipeline("static_bias")
-    first = said(p)
-    assert "timestamps look like ms" in first and "the bias is taken as 0" in first
-    p.reset()
-    assert said(p) == first
-
-
 def test_noise_scaled_settings_round_trip_and_report_the_rest_window() -> None:
     t = np.arange(0.0, 60.0, 0.01)
     rate = 0.01 + np.random.default_rng(3).normal(0.0, 0.002, len(t))

@@ -113,7 +113,7 @@ def test_bad_input_names_what_and_where() -> None:
         deadreckon.dead_reckon(t, np.ones(4), np.arange(4.0), np.zeros(4))
     with pytest.raises(ValueError, match=r"speed\[1\] is nan: samples must be finite"):
         deadreckon.dead_reckon(np.arange(3.0), [1.0, math.nan, 1.0], np.arange(3.0), np.zeros(3))
-    with pytest.raises(ValueError, match="fewer than two odometry samples"):
+    with pytest.raises(ValueError, match="the odometry has fewer than two samples inside the heading.s time span"):
         deadreckon.dead_reckon(np.arange(3.0) + 10, np.ones(3), np.arange(3.0), np.zeros(3))
 
 

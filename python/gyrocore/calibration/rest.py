@@ -10,7 +10,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _gyrocore
 from .._arrays import FloatArray, as_window, span_text
-from .._checks import MAX_READING, check_number, usable
+from .._checks import MAX_READING, check_number, did_you_mean, usable
 from .._motion import warn_if_turning
 from ..window import refuse_few_readings, refuse_window_outside
 from .inputs import check_series
@@ -21,6 +21,20 @@ from .result import Calibration
 BLOCK, NOISE_FACTOR, MAX_RATE, CONSISTENCY = 0.25, 3.0, 0.05, 4.5
 #: :func:`rests_and_motion` gives the motion's noise from at least this many blocks outside the rests.
 MIN_MOTION_BLOCKS = 8
+#: The options of :func:`rest_windows` that :func:`detect_rest`, :func:`static_bias` and
+#: :func:`~gyrocore.calibration.rotary_table` pass on to it.
+REST_OPTIONS = ("block", "noise_factor", "max_rate", "consistency")
+
+
+def refuse_unknown_rest_options(where: str, options: dict[str, Any], also: tuple[str, ...] = ()) -> None:
+    """A TypeError naming each of ``options`` that is neither an option of :func:`rest_windows` nor
+    of ``also``: a typo failed as ``rest_windows_of_checked() got an unexpected keyword argument``,
+    a function the caller never called, or was ignored beside a given window."""
+    known = (*REST_OPTIONS, *also)
+    unknown = [k for k in options if k not in known]
+    if unknown:
+        said = ", ".join(f"{k!r}{did_you_mean(k, known)}" for k in unknown)
+        raise TypeError(f"{where}: unknown rest option(s) {said}; it takes {', '.join(known)}")
 
 
 def rest_windows(
@@ -185,6 +199,7 @@ def detect_rest(
     """
     if which not in ("first", "longest"):
         raise ValueError(f"which must be 'first' or 'longest', got {which!r}")
+    refuse_unknown_rest_options("detect_rest", options)
     ta, ra = check_series(t, rate)
     windows = rest_windows_of_checked(ta, ra, min_duration, **options)
     if not windows:
@@ -289,6 +304,7 @@ def static_bias(
         RestWindowError: a given window that does not lie inside the log, or holds fewer than
             :data:`~gyrocore.window.MIN_WINDOW_READINGS` readings (the pipeline's refusals).
     """
+    refuse_unknown_rest_options("static_bias", detect_options, also=("which",))  # detect_rest's too
     ta, ra = check_series(t, rate)
     min_duration = check_number("min_duration", min_duration, strict=False)  # NaN passed every window
     if window is None:

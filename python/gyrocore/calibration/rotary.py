@@ -11,7 +11,7 @@ from numpy.typing import ArrayLike
 from .._checks import check_number
 from ..integration import angle_of
 from .inputs import check_series, check_temperature
-from .rest import rest_windows, static_bias
+from .rest import refuse_unknown_rest_options, rest_windows, static_bias
 from .result import Calibration
 
 
@@ -101,6 +101,7 @@ def rotary_table(
     for name, value in (("turn_angle", turn_angle), ("tolerance", tolerance), ("min_rest", min_rest),
                         ("min_pause", min_pause)):
         check_number(name, value)
+    refuse_unknown_rest_options("rotary_table (its pauses' min_duration is min_pause)", rest_options)
     ta, ra = check_series(t, rate)
     temp = None if temperature is None else check_temperature(temperature, len(ta))
     pauses = rest_windows(ta, ra, min_duration=min_pause, **rest_options)

@@ -42,7 +42,7 @@ if TYPE_CHECKING:
 _SERIES = ("t", "rate", "t_ref", "heading_ref", "x_ref", "y_ref", "t_odometry", "speed")
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, eq=False)
 class Log:
     """One recorded drive: gyro samples, and the reference and odometry where the log has them.
 

@@ -164,7 +164,7 @@ class ReadOptions:
         return self.three_axis and not isinstance(self.up, tuple)
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, eq=False)
 class Chunk:
     """Consecutive samples of one input, in SI units.
 

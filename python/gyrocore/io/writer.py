@@ -42,7 +42,8 @@ def convert_heading(result: HeadingResult, convention: str = "enu") -> HeadingRe
 
     ``enu``: as computed, ENU yaw [rad], counter-clockwise from east (ROS REP-103), with rate and
     drift counter-clockwise positive. ``compass``: heading = pi/2 - yaw, clockwise from north, with
-    rate and drift clockwise positive, so that heading is still the integral of rate. Both stay
+    rate and drift clockwise positive, so that heading is still the integral of rate (and so the
+    fix stage's heading and bias, ``fusion``, which ``columns()`` gives beside them). Both stay
     continuous (unwrapped); the yaw starts at the pipeline's ``initial_heading`` (default 0, east,
     which is 90 deg as a compass heading).
     """
@@ -50,7 +51,11 @@ def convert_heading(result: HeadingResult, convention: str = "enu") -> HeadingRe
     if convention == "enu":
         return result
     rate, drift = (None if a is None else -a for a in (result.rate, result.drift))  # compass: clockwise from north
-    return replace(result, heading=math.pi / 2 - result.heading, rate=rate, drift=drift)
+    fusion = result.fusion
+    if fusion is not None:  # its bias was counter-clockwise beside a clockwise rate, its heading the ENU yaw
+        bias = None if fusion.bias is None else -fusion.bias
+        fusion = replace(fusion, heading=math.pi / 2 - fusion.heading, bias=bias)
+    return replace(result, heading=math.pi / 2 - result.heading, rate=rate, drift=drift, fusion=fusion)
 
 
 def check_columns(columns: Sequence[str], what: str = "columns") -> tuple[str, ...]:
