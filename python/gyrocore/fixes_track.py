@@ -64,7 +64,9 @@ def from_positions(t: ArrayLike, x: ArrayLike, y: ArrayLike, *, position_sigma: 
     distance = np.hypot(dx, dy)
     with np.errstate(invalid="ignore"):
         keep = np.isfinite(distance) & (distance >= min_speed * dt)
-    if len(tt) and not keep.any():
+    if len(tt) == 1:  # a course is the step between two positions
+        warn("1 position gives no heading fix: a fix is the course of the step between two positions")
+    elif len(tt) and not keep.any():
         known = np.isfinite(distance)
         warn_no_fix(f"{len(tt)} positions", distance[known] / dt[known], min_speed)
     middle = 0.5 * (tt[:-1] + tt[1:])

@@ -251,6 +251,13 @@ def test_a_position_that_is_infinite_or_huge_is_named(bad: float, shown: str, ax
     assert len(fixes.from_positions(T, x, y)) == 7
 
 
+def test_one_position_is_said_to_give_no_step() -> None:
+    """One position was said to give no fix because "every bearing or position is NaN", which it
+    is not: a course needs a step between two positions."""
+    with pytest.warns(gyrocore.InputWarning, match="^1 position gives no heading fix: a fix is the course of the step"):
+        assert len(fixes.from_positions([0.0], [1.0], [2.0])) == 0
+
+
 def test_a_log_with_its_own_reference_given_as_a_reference_says_so(tmp_path: Path) -> None:
     """``gyrocore calibrate drive.csv --reference drive.csv`` (a file gyrocore simulate wrote) said
     ``drive.csv: missing column(s) heading; it has t, gyro_z, ..., heading_true, ... (drive.csv has
