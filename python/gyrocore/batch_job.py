@@ -223,7 +223,7 @@ class _FileJob:
             return FileReport(str(self.path), str(self.out), 0, 0, 0.0, output_existed=True)
         # every warning the file raises, from opening it to its last chunk, is a note of its
         # report, also of a file that then fails (what came before an error often says why)
-        with _noted(self.notes):
+        with _noted(self.notes, self.path):
             return self._stream(progress)
 
     def _stream(self, progress: Progress | None) -> FileReport:
@@ -450,16 +450,18 @@ def _said_for_the_file() -> AbstractContextManager[None]:
 
 
 @contextmanager
-def _noted(notes: list[str]) -> Iterator[None]:
+def _noted(notes: list[str], path: Path) -> Iterator[None]:
     """Run the block keeping each :class:`InputWarning` it raises as a note of the file's report
     (the command line prints the notes, with the file's name), and raise every warning again for a
-    caller of the API, each once."""
+    caller of the API, each once, naming the file as the command line does: the files of a batch
+    say the same words (no rest found), which without the name told no file from another, and
+    Python's default filter then showed only the first of them."""
     try:
         with collected(notes):  # per thread: the files of a batch run side by side
             yield
     finally:  # also when the block fails: what came before an error often says why
         for message in dict.fromkeys(notes):
-            warn(message)
+            warn(message if message.startswith(f"{path}: ") else f"{path}: {message}")
 
 
 def _window_text(window: Window | tuple[float, float]) -> str:
