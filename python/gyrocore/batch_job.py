@@ -453,9 +453,7 @@ def _said_for_the_file() -> AbstractContextManager[None]:
 def _noted(notes: list[str], path: Path) -> Iterator[None]:
     """Run the block keeping each :class:`InputWarning` it raises as a note of the file's report
     (the command line prints the notes, with the file's name), and raise every warning again for a
-    caller of the API, each once, naming the file as the command line does: the files of a batch
-    say the same words (no rest found), which without the name told no file from another, and
-    Python's default filter then showed only the first of them."""
+    caller of the API, each once, naming the file (a batch's files often say the same words)."""
     try:
         with collected(notes):  # per thread: the files of a batch run side by side
             yield
