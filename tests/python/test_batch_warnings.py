@@ -1,6 +1,6 @@
 """The warnings ``process_file`` and ``process_many`` raise again for a caller of the API name the
-file each came from, as the command line prints them: the files of a batch often say the same
-words, which without the name told no file from another."""
+file each came from, as the command line prints them (the files of a batch often say the same
+words, which without the name told no file from another), from the caller's line."""
 
 from __future__ import annotations
 
@@ -36,6 +36,8 @@ def test_each_files_warning_names_the_file_in_a_batch(tmp_path: Path, jobs: int)
     assert len(summary.succeeded) == 2
     said = no_rest_warnings(caught)
     assert sorted(m.split(": ", 1)[0] for m in said) == [str(a), str(b)], said
+    # from the line that called, not from the worker thread's (concurrent/futures/thread.py)
+    assert {w.filename for w in caught if issubclass(w.category, gyrocore.InputWarning)} == {__file__}
     # the report keeps the words alone: the command line adds the name as it prints them
     assert all(not w.startswith(str(a)) for w in summary.files[0].warnings), summary.files[0].warnings
 
