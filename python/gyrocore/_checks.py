@@ -174,6 +174,13 @@ def _inside(path: str) -> bool:
     return path.startswith(_PACKAGE_DIR) or path == _CONTEXTLIB
 
 
+def warn_of_file(path: str, messages: Iterable[str]) -> None:
+    """Raise a file's warnings again for a caller of the API, each once, naming the file (the
+    files of a batch often say the same words)."""
+    for message in dict.fromkeys(messages):
+        warn(message if message.startswith(f"{path}: ") else f"{path}: {message}")
+
+
 def warn_units(t: FloatArray, rate: FloatArray) -> None:
     """Emit an :class:`InputWarning` for each unit problem."""
     for message in unit_problems(t, rate):

@@ -22,12 +22,12 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from . import io, wholelog
-from ._checks import check_count, public_dir, require_choice, require_flag
+from ._checks import check_count, public_dir, require_choice, require_flag, warn_of_file
 from .pipeline import Pipeline, has_bias_source
 from .pipeline_params import _to_si
 from .batch_inputs import check_outside_inputs, complete_output, expand_inputs, output_paths
 from .batch_job import BatchReport, FileReport, Progress, _FileJob, split_options
-from .batch_run import run_on_dask, run_on_threads, check_client, connected
+from .batch_run import BatchInterrupted, run_on_dask, run_on_threads, check_client, connected
 from .io._paths import unfollowable
 from .io.atomic import make_folder
 
@@ -216,11 +216,19 @@ def process_many(
             _FileJob(p, o, preset, heading, chunk_rows, options, columns, mode, use_speed, skip_existing, use_fixes)
             for p, o in zip(inputs, outputs)
         ]
+        for job in jobs_list:  # raised below, from the caller's line, not a worker thread's
+            job.raise_again = False
         if client is not None:
             reports = run_on_dask(client, jobs_list, progress)
         else:
             reports = run_on_threads(jobs_list, jobs or os.cpu_count() or 1, progress)
+    except BatchInterrupted as e:  # the files finished before it say what they warned of too
+        for report in e.finished:
+            warn_of_file(report.input, report.warnings)
+        raise
     finally:
         if own:
             client.close()
+    for report in reports:
+        warn_of_file(report.input, report.warnings)
     return BatchReport(tuple(reports), time.perf_counter() - start)

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 from . import _signals, io, rests, wholelog
 from ._arrays import FloatArray
-from ._checks import collected, no_usable_log, warn
+from ._checks import collected, no_usable_log, warn, warn_of_file
 from ._gap_turn import LongestGap, gap_turn_text
 from ._motion import TURNING
 from ._gyrocore import SampleError
@@ -207,7 +207,7 @@ class _FileJob:
     ):
         self.path, self.out, self.preset, self.heading, self.chunk_rows = path, out, preset, heading, chunk_rows
         self.mode, self.use_speed, self.skip_existing, self.use_fixes = mode, use_speed, skip_existing, use_fixes
-        self.fixes = fixes
+        self.fixes, self.raise_again = fixes, True  # False: a batch raises them in the caller's thread
         self.read_options, self.overrides = split_options(options)
         #: None: every column of :data:`io.OUTPUT_COLUMNS`, and the heading's sigma for a log with fixes
         self.columns = None if columns is None else io.check_columns(columns)
@@ -223,7 +223,7 @@ class _FileJob:
             return FileReport(str(self.path), str(self.out), 0, 0, 0.0, output_existed=True)
         # every warning the file raises, from opening it to its last chunk, is a note of its
         # report, also of a file that then fails (what came before an error often says why)
-        with _noted(self.notes):
+        with _noted(self.notes, self.path if self.raise_again else None):
             return self._stream(progress)
 
     def _stream(self, progress: Progress | None) -> FileReport:
@@ -450,16 +450,15 @@ def _said_for_the_file() -> AbstractContextManager[None]:
 
 
 @contextmanager
-def _noted(notes: list[str]) -> Iterator[None]:
+def _noted(notes: list[str], path: Path | None) -> Iterator[None]:
     """Run the block keeping each :class:`InputWarning` it raises as a note of the file's report
-    (the command line prints the notes, with the file's name), and raise every warning again for a
-    caller of the API, each once."""
+    (the command line prints the notes, with the file's name), and (``path`` given) raise them again."""
     try:
         with collected(notes):  # per thread: the files of a batch run side by side
             yield
     finally:  # also when the block fails: what came before an error often says why
-        for message in dict.fromkeys(notes):
-            warn(message)
+        if path is not None:
+            warn_of_file(str(path), notes)
 
 
 def _window_text(window: Window | tuple[float, float]) -> str:

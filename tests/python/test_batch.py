@@ -401,8 +401,9 @@ def test_a_files_report_holds_every_warning_it_raised(tmp_path: Path) -> None:
     float32 = "the times are float32, which at their size resolve only 0.0078125 s"
     assert any(w.startswith(float32) for w in report.warnings), report.warnings
     assert any(w.startswith("1 gap(s), the longest 10.0") for w in report.warnings), report.warnings  # float32 rounds
-    # a caller of the API gets those same warnings, and no others, each from the line that called
-    assert sorted(str(w.message) for w in caught) == sorted(report.warnings)
+    # a caller of the API gets those same warnings, naming the file, and no others, each from the
+    # line that called
+    assert sorted(str(w.message) for w in caught) == sorted(f"{good}: {w}" for w in report.warnings)
     assert {w.filename for w in caught} == {__file__}
     # in a batch on parallel threads, each file's own, also of the file that failed
     summary = process_many([good, bad], out_dir=tmp_path / "out", jobs=2, **options)

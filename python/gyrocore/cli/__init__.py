@@ -19,7 +19,7 @@ from . import allan, calibrate, demo, evaluate, presets, process, reproduce, sim
 from ..batch_run import BatchInterrupted
 from ..io._paths import error_text, one_line
 from ..io.atomic import discard_all
-from ._common import USER_ERRORS, show_warning
+from ._common import SAMPLE_LOG_NOTE, USER_ERRORS, show_warning
 
 COMMANDS = (demo, process, presets, allan, calibrate, evaluate, tune, simulate, reproduce)
 
@@ -56,7 +56,8 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="gyrocore", description="Drift-free heading from a yaw-rate gyro.")
+    parser = _Parser(prog="gyrocore", description="Drift-free heading from a yaw-rate gyro.",
+                     epilog=f"The examples read {SAMPLE_LOG_NOTE}.")
     # what a bug report asks for first; it was "the following arguments are required: command"
     parser.add_argument("--version", action="version", version=f"gyrocore {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)

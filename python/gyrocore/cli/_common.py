@@ -65,6 +65,11 @@ def exit_code(rows: Sequence[object]) -> int:
     return 1 if any(isinstance(r, Failed) for r in rows) else 0
 
 
+#: The log folder the examples of the commands' help read, and where it comes from.
+SAMPLE_LOG = "sample_drive"
+SAMPLE_LOG_NOTE = f"{SAMPLE_LOG}: the sample log folder that python -m gyrocore.datasets {SAMPLE_LOG} writes"
+
+
 def add_command(
     sub: argparse._SubParsersAction[argparse.ArgumentParser],
     name: str,
@@ -74,8 +79,10 @@ def add_command(
 ) -> argparse.ArgumentParser:
     """Add a subcommand whose ``--help`` ends with an example; ``func(args)`` returns the exit code."""
     # the example also shows in the list of subcommands of ``gyrocore --help``
+    # an example that reads a log reads the sample log, which every install can write
+    where = f"\n({SAMPLE_LOG_NOTE})" if SAMPLE_LOG in example else ""
     parser = sub.add_parser(
-        name, help=f"{help_text} (example: {example})", description=help_text, epilog=f"example: {example}"
+        name, help=f"{help_text} (example: {example})", description=help_text, epilog=f"example: {example}{where}"
     )
     parser.set_defaults(func=func)
     return parser

@@ -35,7 +35,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         sub,
         "allan",
         "Allan deviation of a gyro log (best recorded at rest) with ARW, bias instability and RRW",
-        "gyrocore allan ../shared/data/real/broad_10 --json",
+        "gyrocore allan sample_drive --window +0 +60 --json",
         run,
     )
     p.add_argument("input", type=NAME, help="log folder (gyro.csv) or a file with time and rate columns")

@@ -40,7 +40,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         sub,
         "calibrate",
         "calibrate a gyro from a log: static bias at rest, scale and bias against a reference heading",
-        "gyrocore calibrate ../shared/data/real/f110_ds3 --save f110_calibration.json",
+        "gyrocore calibrate sample_drive --save calibration.json",
         run,
     )
     p.add_argument("input", type=NAME, help="log folder (gyro.csv; reference.csv and meta.json where present), or any "

@@ -48,7 +48,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
         "evaluate",
         "score presets and tuned parameter sets on log folders (or files gyrocore simulate wrote) against "
         "their reference heading",
-        "gyrocore evaluate ../shared/data/real/* --preset static_bias --preset recommended --bias-duration 10",
+        "gyrocore evaluate sample_drive --preset static_bias --preset recommended",
         run,
     )
     p.add_argument("logs", nargs="+", type=NAME, metavar="LOGDIR",

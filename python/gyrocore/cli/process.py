@@ -59,7 +59,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         sub,
         "process",
         "compute the heading of logs (CSV, Parquet, NumPy, ROS bags, log folders) into CSV or Parquet",
-        "gyrocore process ../shared/data/real/f110_ds3 --out heading.csv --preset recommended",
+        "gyrocore process sample_drive --out heading.csv --preset recommended",
         run,
     )
     p.epilog = f"{p.epilog}\n{_EPILOG}"
