@@ -35,8 +35,13 @@ pub use crate::fixes_config::{FusionConfig, MIN_FIX_SIGMA};
 pub use crate::fixes_error::{FixProblem, FusionError};
 pub use crate::fixes_output::{Estimate, FusionOutputs};
 use crate::fixes_segment::{Anchor, Segment};
-use crate::fixes_smooth::{smoothed, Knot, Mat3};
+use crate::fixes_smooth::{Knot, Mat3};
 use crate::{check_block, Error, MAX_READING, MAX_TIME};
+
+// Where the block loop writes: a child module, which sees the filter's fields.
+#[path = "fixes_write.rs"]
+mod write;
+use write::{Columns, Smoothing, Write};
 
 // The checks of a filter read back: a child module, which sees the filter's fields.
 #[cfg(feature = "serde")]
@@ -458,47 +463,4 @@ pub fn reachable(fixes: &[Fix], last: Option<f64>) -> &[Fix] {
     // `<=` is false for a NaN time: the scan stops there and the NaN fix is checked
     let before = fixes.iter().take_while(|f| f.t <= until).count();
     &fixes[..fixes.len().min(before + 1)]
-}
-
-/// Where [`Fusion::run`] writes each sample's estimate.
-pub(crate) trait Write {
-    /// Sample `k`'s estimate: the filter `fusion` standing at `now`, whose segment's calibration
-    /// is `calibration`.
-    fn write(&mut self, k: usize, fusion: &Fusion, now: f64, calibration: (f64, f64));
-}
-
-/// The filtered estimate into the columns, the bias and scale only if `CALIBRATION`.
-struct Columns<'a, const CALIBRATION: bool>(FusionOutputs<'a>);
-
-impl<const CALIBRATION: bool> Write for Columns<'_, CALIBRATION> {
-    #[inline(always)]
-    fn write(&mut self, k: usize, fusion: &Fusion, now: f64, calibration: (f64, f64)) {
-        let (segment, config) = (&fusion.segment, &fusion.config);
-        self.0
-            .set::<CALIBRATION>(k, segment, now, config, calibration);
-    }
-}
-
-/// The smoothed estimate into the columns, from the filtered one and the next knot's correction.
-struct Smoothing<'a, 'k> {
-    out: FusionOutputs<'a>,
-    knots: &'k [Knot],
-}
-
-impl Write for Smoothing<'_, '_> {
-    #[inline(always)]
-    fn write(&mut self, k: usize, fusion: &Fusion, now: f64, _calibration: (f64, f64)) {
-        let s = &fusion.segment;
-        let (x, p) = (s.state(now), s.covariance(now, &fusion.config));
-        // The segment's knot is the first sample's or the last fix applied: the next is the
-        // knot after it, if any.
-        let next = usize::try_from(fusion.counts.applied)
-            .ok()
-            .and_then(|j| self.knots.get(j.checked_add(1)?));
-        let (x, p) = match next {
-            Some(next) => smoothed(&x, &p, next.a - s.a(), next.t - now, &next.w, &next.e),
-            None => (x, p),
-        };
-        self.out.set_estimate(k, &Estimate::of(&x, &p));
-    }
 }
