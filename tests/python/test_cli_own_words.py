@@ -114,3 +114,18 @@ def test_a_gap_says_the_heading_change_made_up_across_it(tmp_path: Path, chunk_r
     said = (f"gyrocore: warning: {src}: 1 gap(s), the longest {float(rows[1][0]) - float(rows[0][0]):.6g} s, across "
             f"which the heading changes by {turn:.4f} rad ({math.degrees(turn):.2f} deg)")
     assert said in proc.stderr.splitlines()
+
+
+@pytest.mark.parametrize("window", [("0", "5"), ("+0", "+5")])
+@pytest.mark.parametrize("mode", [(), ("--causal",)])
+def test_a_bias_window_beside_another_bias_source_is_refused(tmp_path: Path, window: tuple[str, str],
+                                                             mode: tuple[str, ...]) -> None:
+    # --bias-window dropped --param bias_duration=3 without a word, where the window as a --param
+    # beside --bias-duration, and gyrocore.process with both, are refused
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    out = tmp_path / "h.csv"
+    proc = run_cli("process", log, "--out", out, "--bias-window", *window, "--param", "bias_duration=3", *mode)
+    assert proc.returncode == 2
+    assert proc.stderr == ("gyrocore: error: give at most one of bias, bias_window, bias_duration (got bias_window, "
+                           "bias_duration)\n")
+    assert not out.exists()
