@@ -129,3 +129,18 @@ def test_a_bias_window_beside_another_bias_source_is_refused(tmp_path: Path, win
     assert proc.stderr == ("gyrocore: error: give at most one of bias, bias_window, bias_duration (got bias_window, "
                            "bias_duration)\n")
     assert not out.exists()
+
+
+@pytest.mark.parametrize(("option", "value"), [("--time-col", ""), ("--rate-col", " ")])
+@pytest.mark.parametrize("command", ["process", "evaluate", "allan"])
+def test_a_blank_column_name_is_refused(tmp_path: Path, option: str, value: str, command: str) -> None:
+    # it read the default column without a word, where a blank --gyro-cols is refused
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    extra = {"process": ("--out", tmp_path / "h.csv"), "evaluate": ("--preset", "raw"), "allan": ()}[command]
+    proc = run_cli(command, log, *extra, option, value)
+    assert proc.returncode == 2
+    name = option.removeprefix("--").replace("-", "_")
+    assert proc.stderr.splitlines()[-1] == (f"gyrocore: error: {name} ({option}) {value!r}: no column name; give one, "
+                                            "or leave the option out for the default column")
+    with pytest.raises(ValueError, match=f"^{name} "):
+        gyrocore.read_log(log, **{name: value})
