@@ -8,6 +8,7 @@ import json
 import re
 import warnings
 from collections.abc import Callable
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -176,3 +177,19 @@ def test_a_methods_overrides_that_are_no_mapping_are_refused_when_it_is_built() 
             "method 'm': overrides must be a mapping of parameter names to values (as Pipeline(preset, **overrides) "
             "takes them), not list")):
         evaluate.Method("m", "hdr", [("hdr", True)])  # type: ignore[arg-type]
+
+
+def test_evaluate_causal_takes_no_speed_as_process_does(tmp_path: Path) -> None:
+    # evaluate --causal --no-speed ran the rest tracker with the speed of a log without a rest window
+    # (E_psi 25.7 deg here), where process --causal --no-speed and Log.process(use_speed=False) do not
+    drive = tmp_path / "drive.csv"
+    gyrocore_cli("simulate", "--duration", "600", "--mix", "city", "--out", drive, code=0)
+    log = gyrocore.read_log(drive)
+    for use_speed in (True, False):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", gyrocore.InputWarning)
+            result = log.process("tracked", mode="causal", use_speed=use_speed)
+        expected = gyrocore.heading_errors(result.t, result.heading, *log.reference()).e_psi_deg
+        proc = gyrocore_cli("evaluate", drive, "--preset", "tracked", "--causal", *["--no-speed"] * (not use_speed),
+                            "--json", code=0)
+        assert json.loads(proc.stdout)[0]["e_psi_deg"] == pytest.approx(expected, rel=1e-12)

@@ -87,8 +87,8 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p.add_argument(
         "--no-speed",
         action="store_true",
-        help="whole mode: find rests from the rate alone, not where the speed is zero (a log folder's "
-        "odometry.csv, a file's speed column [m/s])",
+        help="find rests from the rate alone (whole mode's, and with --causal a rest tracker's), not where the "
+        "speed is zero (a log folder's odometry.csv, a file's speed column [m/s])",
     )
     add_fix_options(p, evaluate=True)
     p.add_argument("--json", action="store_true", help="print one JSON list, an object per (log, method)")
