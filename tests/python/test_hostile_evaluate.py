@@ -193,3 +193,14 @@ def test_evaluate_causal_takes_no_speed_as_process_does(tmp_path: Path) -> None:
         proc = gyrocore_cli("evaluate", drive, "--preset", "tracked", "--causal", *["--no-speed"] * (not use_speed),
                             "--json", code=0)
         assert json.loads(proc.stdout)[0]["e_psi_deg"] == pytest.approx(expected, rel=1e-12)
+
+
+def test_evaluate_bias_duration_replaces_a_calibrations_bias(tmp_path: Path) -> None:
+    # --help: a calibration's bias is used "unless another bias option is given"; evaluate kept it
+    # beside --bias-duration ("given by the method"), where process takes the duration
+    drive, saved = tmp_path / "drive.csv", tmp_path / "cal.json"
+    gyrocore_cli("simulate", "--duration", "60", "--out", drive, code=0)
+    gyrocore_cli("calibrate", drive, "--save", saved, code=0)
+    proc = gyrocore_cli("evaluate", drive, "--preset", "static_bias", "--calibration", saved, "--bias-duration", "5",
+                        "--json", code=0)
+    assert json.loads(proc.stdout)[0]["bias_source"].startswith("first 5 s: rest [0.000, 5.000] s (given)")

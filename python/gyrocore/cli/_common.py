@@ -210,8 +210,10 @@ def pipeline_overrides(args: argparse.Namespace, named: dict[str, Any]) -> dict[
         out["bias_window"] = Window.parse(out["bias_window"], "--bias-window")
     sources = dict.fromkeys(out, "its own option")
     if args.calibration is not None:
-        # a bias given on the command line (or a rest window) replaces the calibration's bias
-        found = Calibration.load(args.calibration).overrides(include_bias=False if has_bias_source(out) else None)
+        # a bias given on the command line (or a rest window) replaces the calibration's bias; evaluate
+        # passes its --bias-duration on apart from ``named`` (the calibration's bias was kept beside it)
+        given = has_bias_source(out) or getattr(args, "bias_duration", None) is not None
+        found = Calibration.load(args.calibration).overrides(include_bias=False if given else None)
         try:  # checked here, where the file is known: the pipeline's error would name the value alone
             checked: dict[str, Any] = {"bias": 0.0, **found}
             Pipeline(recommended_preset(), **checked)  # the core checks each value as it is built
