@@ -220,3 +220,18 @@ def test_a_reference_heading_in_degrees_is_refused_by_its_unit(tmp_path: Path) -
     assert proc.returncode == 2
     assert proc.stderr == (f"gyrocore: error: {folder / 'reference.csv'}: column 'heading [deg]' is in deg, not rad: "
                            "convert it to rad (numpy.radians for degrees) and name it heading or heading [rad]\n")
+
+
+@pytest.mark.parametrize(("name", "text"), [("reference.csv", "t;heading\n1700000000.5;0.1\n"),
+                                            ("odometry.csv", "t;speed\n1700000000.5;0\n")])
+def test_a_reference_or_odometry_of_another_delimiter_is_not_sent_to_the_gyros_option(
+    tmp_path: Path, name: str, text: str
+) -> None:
+    # it said "give the file's delimiter (--delimiter ';')", an option of the gyro's file alone:
+    # given, the gyro.csv beside it failed, and this file was still read comma-separated
+    folder = log_folder_with(tmp_path, name, text)
+    proc = run_cli("evaluate", folder, "--preset", "raw")
+    assert proc.returncode == 2
+    assert proc.stderr.endswith("the header line is one field, with ';' in it: such a file is read comma-separated: "
+                                "separate its fields with ',' (not ';'))\n")
+    assert "--delimiter" not in proc.stderr

@@ -49,8 +49,10 @@ def column_positions(
         if found:
             shown = "a tab" if found[0] == "\t" else repr(found[0])
             arg = "tab" if found[0] == "\t" else repr(found[0])
-            short = (f"; the header line is one field, with {shown} in it: give the file's delimiter "
-                     f"(delimiter={found[0]!r}, --delimiter {arg})")
+            # the reading options (--delimiter) are the gyro's: another file given them was told to use one
+            given = (f"give the file's delimiter (delimiter={found[0]!r}, --delimiter {arg})" if choose == CHOOSE_COLUMNS
+                     else f"such a file is read comma-separated: separate its fields with ',' (not {shown})")
+            short = f"; the header line is one field, with {shown} in it: {given}"
         if choose == CHOOSE_COLUMNS and not found:  # the one field is the whole header line, no column
             short += _look_like(header, missing, times)
         if header and all(is_number(str(h).strip(" \t")) for h in header):  # "it has 0, 0.1" left the cause to guess
