@@ -204,3 +204,13 @@ def test_evaluate_bias_duration_replaces_a_calibrations_bias(tmp_path: Path) -> 
     proc = gyrocore_cli("evaluate", drive, "--preset", "static_bias", "--calibration", saved, "--bias-duration", "5",
                         "--json", code=0)
     assert json.loads(proc.stdout)[0]["bias_source"].startswith("first 5 s: rest [0.000, 5.000] s (given)")
+
+
+@pytest.mark.parametrize("param", ["bias_duration=3", "bias_window=0,5", "bias_dps=1"])
+def test_evaluate_refuses_bias_duration_beside_a_bias_param(tmp_path: Path, param: str) -> None:
+    # the method's own bias was used and --bias-duration dropped without a word, where process refuses both
+    drive = tmp_path / "drive.csv"
+    gyrocore_cli("simulate", "--duration", "60", "--out", drive, code=0)
+    proc = gyrocore_cli("evaluate", drive, "--preset", "static_bias", "--bias-duration", "5", "--param", param, code=2)
+    assert proc.stderr == (f"gyrocore: error: --bias-duration and --param {param.split('=')[0]} both give the static "
+                           "bias: give one of them\n")
