@@ -144,3 +144,15 @@ def test_a_blank_column_name_is_refused(tmp_path: Path, option: str, value: str,
                                             "or leave the option out for the default column")
     with pytest.raises(ValueError, match=f"^{name} "):
         gyrocore.read_log(log, **{name: value})
+
+
+def test_presets_json_is_json_that_strict_readers_take() -> None:
+    # hdr_max_correction = inf (no bound) was written Infinity, which JSON has not (JSON.parse refused it)
+    proc = run_cli("presets", "--json")
+    assert proc.returncode == 0, proc.stderr
+
+    def refuse(constant: str) -> None:
+        raise AssertionError(f"{constant} is no JSON")
+
+    presets = json.loads(proc.stdout, parse_constant=refuse)["presets"]
+    assert presets["hdr"]["hdr_max_correction"] is None

@@ -358,8 +358,20 @@ def write_atomically(path: str | Path, write: Callable[[str], object]) -> None:
 
 
 def print_json(data: Any) -> None:
-    """Machine output on stdout."""
-    print(json.dumps(data, indent=2))
+    """Machine output on stdout: JSON has no inf or nan, written as null (``presets --json`` wrote
+    ``Infinity``, which JSON.parse and other strict readers refuse)."""
+    print(json.dumps(_finite(data), indent=2, allow_nan=False))
+
+
+def _finite(data: Any) -> Any:
+    """``data`` with each float that is not finite, at any depth, as None."""
+    if isinstance(data, float):
+        return data if math.isfinite(data) else None
+    if isinstance(data, dict):
+        return {k: _finite(v) for k, v in data.items()}
+    if isinstance(data, (list, tuple)):
+        return [_finite(v) for v in data]
+    return data
 
 
 def warn(message: str) -> None:

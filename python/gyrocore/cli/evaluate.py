@@ -141,7 +141,7 @@ def run(args: argparse.Namespace) -> int:
 
     rows = each_log(logs, score, alone=alone)
     if args.json:
-        print_json([_finite(r.as_dict()) for r in rows])
+        print_json([r.as_dict() for r in rows])
     else:
         format_table(rows)
         format_bias_sources(rows)
@@ -240,8 +240,3 @@ def _named_apart(params: list[Method], files: list[str], presets: list[str]) -> 
             method = Method(f"{method.name} ({path})", method.preset, method.overrides)
         out.append(method)
     return out
-
-
-def _finite(row: dict[str, Any]) -> dict[str, Any]:
-    """JSON has no inf/nan: write them as null."""
-    return {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in row.items()}
