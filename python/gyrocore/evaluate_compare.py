@@ -70,7 +70,7 @@ class Method:
             elif mode == "causal":
                 # said here rather than warned by the pipeline: a bias of 0 is the causal baseline
                 bias, source = log_bias(log)
-                return log.process(self.preset, mode=mode, **overrides, **bias), f"{source} (causal)"
+                return log.process(self.preset, mode=mode, use_speed=use_speed, **overrides, **bias), f"{source} (causal)"
         result = log.process(self.preset, mode=mode, use_speed=use_speed, **overrides)
         return result, result.bias_source
 
@@ -253,7 +253,8 @@ def compare(
             needs matplotlib).
         mode: ``whole`` (the bias from every rest, known from the first sample) or ``causal``
             (see :func:`gyrocore.process`).
-        use_speed: in whole mode, also find rests where the odometry's speed is zero.
+        use_speed: also find rests where the odometry's speed is zero (whole mode's, and in causal
+            mode a rest tracker's, as :meth:`Log.process` does).
 
     One log (a path or a :class:`Log`) or one preset may be given alone, as a list of one.
 

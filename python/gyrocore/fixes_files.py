@@ -11,9 +11,10 @@ from pathlib import Path
 from ._arrays import FloatArray
 from ._checks import keyword_options, require_options
 from .fixes import Fixes, check_all, from_gnss
+from .io._columns import RADIANS, SECONDS, in_si_units
 from .io._csvfile import CsvLayout, csv_layout, read_csv_columns
 from .io._paths import check_file
-from .io.units import HEADER_TIME_UNITS, normal_unit, split_unit
+from .io.units import split_unit
 
 
 def read_gnss_csv(path: str | Path, **options: float) -> Fixes:
@@ -60,13 +61,11 @@ def _fixes_csv(path: Path, layout: CsvLayout) -> Fixes:
 FIXES_COLUMNS, GNSS_COLUMNS = ("t", "heading", "sigma"), ("t", "speed", "bearing")
 #: The units a ``fixes.csv`` column may state in its name (``t [s]``, ``heading (rad)``), as
 #: :func:`gyrocore.io.units.split_unit` reads them; any other unit is refused, not converted.
-_SECONDS = tuple(u for u, si in HEADER_TIME_UNITS.items() if si == "s")
-_RADIANS = ("rad", "radian", "radians")
-_FIX_UNITS = {"t": ("s", _SECONDS), "heading": ("rad", _RADIANS), "sigma": ("rad", _RADIANS)}
+_FIX_UNITS = {"t": ("s", SECONDS), "heading": ("rad", RADIANS), "sigma": ("rad", RADIANS)}
 _FIXES_HEADER = (f"a fixes.csv has the header {','.join(FIXES_COLUMNS)}: t [s] on the gyro's clock, heading [rad, "
                  "counter-clockwise from east], sigma [rad] (a name may state its unit: t [s], heading [rad])")
 #: The units a ``gnss.csv`` column may state in its name, as :data:`_FIX_UNITS`.
-_GNSS_UNITS = {"t": ("s", _SECONDS), "speed": ("m/s", ("m/s",)), "bearing": ("deg", ("deg", "degree", "degrees", "°"))}
+_GNSS_UNITS = {"t": ("s", SECONDS), "speed": ("m/s", ("m/s",)), "bearing": ("deg", ("deg", "degree", "degrees", "°"))}
 _GNSS_HEADER = (f"a gnss.csv has the header {','.join(GNSS_COLUMNS)}: t [s], speed [m/s] over ground, bearing [deg, "
                 "clockwise from north] (a name may state its unit: speed [m/s], bearing [deg])")
 
@@ -76,17 +75,13 @@ def _fix_columns(path: Path, header: list[str], units: dict[str, tuple[str, tupl
     """The header name of each column of ``units`` (a fixes.csv's or a gnss.csv's) in ``header``:
     the name itself or with its unit; a column missing, given twice or in another unit is an error
     saying what is ``expected``."""
+    bare = in_si_units(path, header, units)
     names = {}
-    for wanted, (unit, spellings) in units.items():
-        found = [h for h in header if split_unit(h)[0] == wanted]
+    for wanted in units:
+        found = [h for h, b in zip(header, bare) if b == wanted]
         if len(found) != 1:
             problem = "no column" if not found else f"{len(found)} columns"
             raise ValueError(f"{path}: {problem} {wanted}; {expected}; its header is {','.join(header)}")
-        given = split_unit(found[0])[1]
-        if given is not None and normal_unit(given) not in spellings:
-            how = " (numpy.radians for degrees)" if unit == "rad" else ""
-            raise ValueError(f"{path}: column {found[0]!r} is in {given}, not {unit}: convert it to {unit}{how} "
-                             f"and name it {wanted} or {wanted} [{unit}]")
         names[wanted] = found[0]
     return names
 

@@ -73,8 +73,11 @@ def check_parameters(preset: str, overrides: dict[str, Any]) -> None:
     """Refuse, naming it, a parameter of ``overrides`` that the core refuses (whole mode's own
     options and a window still counted from the first sample aside), before whole mode reads the
     rest window itself: a window of three bounds was read in part, and a zero ``bias_duration`` was
-    blamed on the HDR bound derived from it."""
-    core_pipeline(preset, _to_si({k: v for k, v in overrides.items() if k not in WHOLE_OPTIONS and not isinstance(v, Window)}))
+    blamed on the HDR bound derived from it. A :class:`Window` is checked once resolved against the
+    log: here (0, 1) s stands in for it, so that a second bias source beside it is still refused
+    (``--bias-window 0 5 --param bias_duration=3`` dropped the duration without a word)."""
+    core_pipeline(preset, _to_si({k: (0.0, 1.0) if isinstance(v, Window) else v for k, v in overrides.items()
+                                  if k not in WHOLE_OPTIONS}))
 
 
 @dataclass(frozen=True, eq=False)

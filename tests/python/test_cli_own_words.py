@@ -114,3 +114,45 @@ def test_a_gap_says_the_heading_change_made_up_across_it(tmp_path: Path, chunk_r
     said = (f"gyrocore: warning: {src}: 1 gap(s), the longest {float(rows[1][0]) - float(rows[0][0]):.6g} s, across "
             f"which the heading changes by {turn:.4f} rad ({math.degrees(turn):.2f} deg)")
     assert said in proc.stderr.splitlines()
+
+
+@pytest.mark.parametrize("window", [("0", "5"), ("+0", "+5")])
+@pytest.mark.parametrize("mode", [(), ("--causal",)])
+def test_a_bias_window_beside_another_bias_source_is_refused(tmp_path: Path, window: tuple[str, str],
+                                                             mode: tuple[str, ...]) -> None:
+    # --bias-window dropped --param bias_duration=3 without a word, where the window as a --param
+    # beside --bias-duration, and gyrocore.process with both, are refused
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    out = tmp_path / "h.csv"
+    proc = run_cli("process", log, "--out", out, "--bias-window", *window, "--param", "bias_duration=3", *mode)
+    assert proc.returncode == 2
+    assert proc.stderr == ("gyrocore: error: give at most one of bias, bias_window, bias_duration (got bias_window, "
+                           "bias_duration)\n")
+    assert not out.exists()
+
+
+@pytest.mark.parametrize(("option", "value"), [("--time-col", ""), ("--rate-col", " ")])
+@pytest.mark.parametrize("command", ["process", "evaluate", "allan"])
+def test_a_blank_column_name_is_refused(tmp_path: Path, option: str, value: str, command: str) -> None:
+    # it read the default column without a word, where a blank --gyro-cols is refused
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    extra = {"process": ("--out", tmp_path / "h.csv"), "evaluate": ("--preset", "raw"), "allan": ()}[command]
+    proc = run_cli(command, log, *extra, option, value)
+    assert proc.returncode == 2
+    name = option.removeprefix("--").replace("-", "_")
+    assert proc.stderr.splitlines()[-1] == (f"gyrocore: error: {name} ({option}) {value!r}: no column name; give one, "
+                                            "or leave the option out for the default column")
+    with pytest.raises(ValueError, match=f"^{name} "):
+        gyrocore.read_log(log, **{name: value})
+
+
+def test_presets_json_is_json_that_strict_readers_take() -> None:
+    # hdr_max_correction = inf (no bound) was written Infinity, which JSON has not (JSON.parse refused it)
+    proc = run_cli("presets", "--json")
+    assert proc.returncode == 0, proc.stderr
+
+    def refuse(constant: str) -> None:
+        raise AssertionError(f"{constant} is no JSON")
+
+    presets = json.loads(proc.stdout, parse_constant=refuse)["presets"]
+    assert presets["hdr"]["hdr_max_correction"] is None

@@ -8,6 +8,7 @@ import json
 import re
 import warnings
 from collections.abc import Callable
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -176,3 +177,40 @@ def test_a_methods_overrides_that_are_no_mapping_are_refused_when_it_is_built() 
             "method 'm': overrides must be a mapping of parameter names to values (as Pipeline(preset, **overrides) "
             "takes them), not list")):
         evaluate.Method("m", "hdr", [("hdr", True)])  # type: ignore[arg-type]
+
+
+def test_evaluate_causal_takes_no_speed_as_process_does(tmp_path: Path) -> None:
+    # evaluate --causal --no-speed ran the rest tracker with the speed of a log without a rest window
+    # (E_psi 25.7 deg here), where process --causal --no-speed and Log.process(use_speed=False) do not
+    drive = tmp_path / "drive.csv"
+    gyrocore_cli("simulate", "--duration", "600", "--mix", "city", "--out", drive, code=0)
+    log = gyrocore.read_log(drive)
+    for use_speed in (True, False):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", gyrocore.InputWarning)
+            result = log.process("tracked", mode="causal", use_speed=use_speed)
+        expected = gyrocore.heading_errors(result.t, result.heading, *log.reference()).e_psi_deg
+        proc = gyrocore_cli("evaluate", drive, "--preset", "tracked", "--causal", *["--no-speed"] * (not use_speed),
+                            "--json", code=0)
+        assert json.loads(proc.stdout)[0]["e_psi_deg"] == pytest.approx(expected, rel=1e-12)
+
+
+def test_evaluate_bias_duration_replaces_a_calibrations_bias(tmp_path: Path) -> None:
+    # --help: a calibration's bias is used "unless another bias option is given"; evaluate kept it
+    # beside --bias-duration ("given by the method"), where process takes the duration
+    drive, saved = tmp_path / "drive.csv", tmp_path / "cal.json"
+    gyrocore_cli("simulate", "--duration", "60", "--out", drive, code=0)
+    gyrocore_cli("calibrate", drive, "--save", saved, code=0)
+    proc = gyrocore_cli("evaluate", drive, "--preset", "static_bias", "--calibration", saved, "--bias-duration", "5",
+                        "--json", code=0)
+    assert json.loads(proc.stdout)[0]["bias_source"].startswith("first 5 s: rest [0.000, 5.000] s (given)")
+
+
+@pytest.mark.parametrize("param", ["bias_duration=3", "bias_window=0,5", "bias_dps=1"])
+def test_evaluate_refuses_bias_duration_beside_a_bias_param(tmp_path: Path, param: str) -> None:
+    # the method's own bias was used and --bias-duration dropped without a word, where process refuses both
+    drive = tmp_path / "drive.csv"
+    gyrocore_cli("simulate", "--duration", "60", "--out", drive, code=0)
+    proc = gyrocore_cli("evaluate", drive, "--preset", "static_bias", "--bias-duration", "5", "--param", param, code=2)
+    assert proc.stderr == (f"gyrocore: error: --bias-duration and --param {param.split('=')[0]} both give the static "
+                           "bias: give one of them\n")

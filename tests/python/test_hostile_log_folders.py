@@ -189,3 +189,49 @@ def test_positions_apart_in_time_name_both_spans() -> None:
         "t = 1700000000.000 to 1700000010.000 s, the track from t = 0.000 to 10.000 s; give both on the same clock"
     )):
         deadreckon.position_errors(track, [1.7e9, 1.7e9 + 10], [0.0, 1.0], [0.0, 0.0])
+
+
+@pytest.mark.parametrize(
+    ("name", "bare", "stated"),
+    [("reference.csv", "t,heading,x,y", "t [s],heading [rad],x [m],y (m)"), ("odometry.csv", "t,speed", "t_s,speed [m/s]")],
+)
+def test_a_reference_or_odometry_may_state_its_units_as_the_gyro_csv_does(
+    tmp_path: Path, name: str, bare: str, stated: str
+) -> None:
+    """``t [s],heading [rad]`` was ``missing column(s) t, heading; ... (a name may leave out its unit,
+    e.g. t)``, where the gyro.csv beside it, a fixes.csv and a gnss.csv take a unit in a name."""
+    rows = ["1700000000.5,0.1,0,0", "1700000010.5,0.2,1,0", "1700000020.5,0.3,2,0"] if name == "reference.csv" else ODOMETRY
+    scores = []
+    for k, header in enumerate((bare, stated)):
+        (tmp_path / str(k)).mkdir()
+        folder = log_folder_with(tmp_path / str(k), name, header + "\n" + "\n".join(rows) + "\n")
+        if name == "odometry.csv":
+            (folder / "reference.csv").write_text("t,heading\n1700000000.5,0.1\n1700000020.5,0.3\n")
+        proc = run_cli("evaluate", folder, "--preset", "static_bias", "--json")
+        assert proc.returncode == 0, proc.stderr
+        scores.append(json.loads(proc.stdout)[0]["e_psi_deg"])
+    assert scores[0] == scores[1]
+
+
+def test_a_reference_heading_in_degrees_is_refused_by_its_unit(tmp_path: Path) -> None:
+    # it was a missing column heading, with the hint to name it heading: its degrees then read as radians
+    folder = log_folder_with(tmp_path, "reference.csv", "t,heading [deg]\n1700000000.5,10\n1700000020.5,20\n")
+    proc = run_cli("evaluate", folder, "--preset", "raw")
+    assert proc.returncode == 2
+    assert proc.stderr == (f"gyrocore: error: {folder / 'reference.csv'}: column 'heading [deg]' is in deg, not rad: "
+                           "convert it to rad (numpy.radians for degrees) and name it heading or heading [rad]\n")
+
+
+@pytest.mark.parametrize(("name", "text"), [("reference.csv", "t;heading\n1700000000.5;0.1\n"),
+                                            ("odometry.csv", "t;speed\n1700000000.5;0\n")])
+def test_a_reference_or_odometry_of_another_delimiter_is_not_sent_to_the_gyros_option(
+    tmp_path: Path, name: str, text: str
+) -> None:
+    # it said "give the file's delimiter (--delimiter ';')", an option of the gyro's file alone:
+    # given, the gyro.csv beside it failed, and this file was still read comma-separated
+    folder = log_folder_with(tmp_path, name, text)
+    proc = run_cli("evaluate", folder, "--preset", "raw")
+    assert proc.returncode == 2
+    assert proc.stderr.endswith("the header line is one field, with ';' in it: such a file is read comma-separated: "
+                                "separate its fields with ',' (not ';'))\n")
+    assert "--delimiter" not in proc.stderr

@@ -216,8 +216,10 @@ def pipeline_overrides(args: argparse.Namespace, named: dict[str, Any]) -> dict[
         out["bias_window"] = Window.parse(out["bias_window"], "--bias-window")
     sources = dict.fromkeys(out, "its own option")
     if args.calibration is not None:
-        # a bias given on the command line (or a rest window) replaces the calibration's bias
-        found = Calibration.load(args.calibration).overrides(include_bias=False if has_bias_source(out) else None)
+        # a bias given on the command line (or a rest window) replaces the calibration's bias; evaluate
+        # passes its --bias-duration on apart from ``named`` (the calibration's bias was kept beside it)
+        given = has_bias_source(out) or getattr(args, "bias_duration", None) is not None
+        found = Calibration.load(args.calibration).overrides(include_bias=False if given else None)
         try:  # checked here, where the file is known: the pipeline's error would name the value alone
             checked: dict[str, Any] = {"bias": 0.0, **found}
             Pipeline(recommended_preset(), **checked)  # the core checks each value as it is built
@@ -355,8 +357,20 @@ BIAS_DPS = bias_dps
 
 
 def print_json(data: Any) -> None:
-    """Machine output on stdout."""
-    print(json.dumps(data, indent=2))
+    """Machine output on stdout: JSON has no inf or nan, written as null (``presets --json`` wrote
+    ``Infinity``, which JSON.parse and other strict readers refuse)."""
+    print(json.dumps(_finite(data), indent=2, allow_nan=False))
+
+
+def _finite(data: Any) -> Any:
+    """``data`` with each float that is not finite, at any depth, as None."""
+    if isinstance(data, float):
+        return data if math.isfinite(data) else None
+    if isinstance(data, dict):
+        return {k: _finite(v) for k, v in data.items()}
+    if isinstance(data, (list, tuple)):
+        return [_finite(v) for v in data]
+    return data
 
 
 def warn(message: str) -> None:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 import os
 from pathlib import Path
 
@@ -23,6 +22,7 @@ from ._common import (
     add_overwrite_option,
     add_reading_options,
     named_path,
+    print_json,
     reading_options,
     refuse_existing,
     require_suffix,
@@ -106,7 +106,7 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"{src}: {e}" + (" (give a longer --window)" if window is not None else "")) from None
     if args.json:
         out = {"input": str(src), "allan": result.as_dict(), "noise": None if params is None else params.as_dict()}
-        print(json.dumps(out, indent=2))
+        print_json(out)
     else:
         print(f"{log.name}: {result}")
         print(f"{'tau [s]':>12} {'dev [rad/s]':>12} {'low':>11} {'high':>11} {'terms':>9}")

@@ -5,7 +5,6 @@ with a reference file."""
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import re
 from pathlib import Path
@@ -29,6 +28,7 @@ from ._common import (
     add_overwrite_option,
     add_reading_options,
     named_path,
+    print_json,
     reading_options,
     refuse_existing,
     with_reference,
@@ -145,7 +145,7 @@ def run(args: argparse.Namespace) -> int:
         chosen.save(args.save)  # whole or not at all
         results["saved"] = {"file": str(args.save), "method": chosen.method}
     if args.json:
-        print(json.dumps(results, indent=2))
+        print_json(results)
         return 0
     print(f"{log.name}:")
     t0 = float(log.t[0])

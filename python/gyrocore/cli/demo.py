@@ -8,7 +8,6 @@ beats static-bias removal; the plot shows the first.
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import sys
 from pathlib import Path
@@ -21,7 +20,7 @@ from .._extras import MissingExtra, pyplot
 from ..io.atomic import write_atomically
 from ..pipeline import HeadingResult, preset_names, recommended_preset
 from ._common import (
-    COUNT, POSITIVE, SEED, add_command, add_overwrite_option, refuse_existing, require_suffix,
+    COUNT, POSITIVE, SEED, add_command, add_overwrite_option, print_json, refuse_existing, require_suffix,
 )
 from .simulate import check_car_drive, checked_sensor
 
@@ -112,7 +111,7 @@ def run(args: argparse.Namespace) -> int:
             "e_psi_deg_per_drive": e_psi,
         })
     if args.json:
-        print(json.dumps(rows, indent=2))
+        print_json(rows)
     else:
         d = drives[0]
         print(

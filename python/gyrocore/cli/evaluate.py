@@ -15,7 +15,7 @@ from .._checks import keep_readings
 from ..evaluate import Method, Score, compare, format_bias_sources, format_table, plot_path
 from ..evaluate_compare import naming_log
 from ..io import Log, check_not_input, read_log
-from ..pipeline import preset_names, recommended_preset
+from ..pipeline import has_bias_source, preset_names, recommended_preset
 from ..tune import ParameterSet
 from ._fixes import add_fix_options, evaluate_with_fixes, fixes_wanted, input_warnings, note_unused_gnss
 from ._common import (
@@ -87,8 +87,8 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p.add_argument(
         "--no-speed",
         action="store_true",
-        help="whole mode: find rests from the rate alone, not where the speed is zero (a log folder's "
-        "odometry.csv, a file's speed column [m/s])",
+        help="find rests from the rate alone (whole mode's, and with --causal a rest tracker's), not where the "
+        "speed is zero (a log folder's odometry.csv, a file's speed column [m/s])",
     )
     add_fix_options(p, evaluate=True)
     p.add_argument("--json", action="store_true", help="print one JSON list, an object per (log, method)")
@@ -100,6 +100,9 @@ def run(args: argparse.Namespace) -> int:
     if args.bias_duration is not None and not (math.isfinite(args.bias_duration) and args.bias_duration > 0):
         raise ValueError(f"--bias-duration must be a positive number of seconds, got {args.bias_duration}")
     extra = pipeline_overrides(args, {"bias_dps": args.bias_dps})
+    if args.bias_duration is not None and has_bias_source(extra):  # the method's own bias dropped it without a word
+        given = next(k for k in extra if has_bias_source({k: extra[k]}))
+        raise ValueError(f"--bias-duration and --param {given} both give the static bias: give one of them")
     # as a log given twice: a method given twice printed its rows twice
     # recommended and the preset it stands for are one method
     args.preset = once_each(args.preset or [], "a method (--preset)", "its rows would be printed twice",

@@ -3,11 +3,10 @@
 from __future__ import annotations
 
 import argparse
-import json
 
 from ..pipeline import parameters, preset_names, preset_params, recommended_preset
 from ..pipeline_params import _RATE_PARAMETERS
-from ._common import add_command
+from ._common import add_command, print_json
 
 
 def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None:
@@ -22,7 +21,7 @@ def run(args: argparse.Namespace) -> int:
     # the values alone (threshold=0.0052...) said neither what a name means nor its unit
     meanings = parameters()
     if args.json:
-        print(json.dumps({"recommended": recommended_preset(), "presets": params, "parameters": meanings}, indent=2))
+        print_json({"recommended": recommended_preset(), "presets": params, "parameters": meanings})
         return 0
     for name, p in params.items():
         mark = " (recommended)" if name == recommended_preset() else ""

@@ -13,7 +13,7 @@ import numpy as np
 from .. import _signals
 from .._arrays import FloatArray
 from .._checks import warn
-from .units import split_unit
+from .units import HEADER_TIME_UNITS, normal_unit, split_unit
 
 if TYPE_CHECKING:
     import pyarrow as pa
@@ -49,8 +49,10 @@ def column_positions(
         if found:
             shown = "a tab" if found[0] == "\t" else repr(found[0])
             arg = "tab" if found[0] == "\t" else repr(found[0])
-            short = (f"; the header line is one field, with {shown} in it: give the file's delimiter "
-                     f"(delimiter={found[0]!r}, --delimiter {arg})")
+            # the reading options (--delimiter) are the gyro's: another file given them was told to use one
+            given = (f"give the file's delimiter (delimiter={found[0]!r}, --delimiter {arg})" if choose == CHOOSE_COLUMNS
+                     else f"such a file is read comma-separated: separate its fields with ',' (not {shown})")
+            short = f"; the header line is one field, with {shown} in it: {given}"
         if choose == CHOOSE_COLUMNS and not found:  # the one field is the whole header line, no column
             short += _look_like(header, missing, times)
         if header and all(is_number(str(h).strip(" \t")) for h in header):  # "it has 0, 0.1" left the cause to guess
@@ -65,6 +67,33 @@ def column_positions(
     if twice:
         raise ValueError(f"{path}: {where}column(s) {', '.join(twice)} appear more than once")
     return {c: header.index(c) for c in columns}
+
+
+#: How a header may state the SI units of the columns of a file of other data than the gyro's
+#: (a reference, odometry, heading fixes), for :func:`in_si_units`.
+SECONDS = tuple(u for u, si in HEADER_TIME_UNITS.items() if si == "s")
+RADIANS = ("rad", "radian", "radians")
+METRES = ("m", "metre", "metres", "meter", "meters")
+
+
+def in_si_units(path: Path, header: list[str], units: dict[str, tuple[str, tuple[str, ...]]]) -> list[str]:
+    """``header`` with each name that states the unit of a column of ``units`` (``{"t": ("s",
+    SECONDS)}``: the unit and its spellings) named without it: ``t [s]`` is ``t``. A name that
+    states another unit is an error: it is not converted (``heading [deg]`` was a missing column
+    ``heading``, the hint to leave the unit out of the name, and the degrees then read as radians).
+    """
+    bare = []
+    for name in header:
+        base, given = split_unit(name)
+        if base in units and given is not None:
+            unit, spellings = units[base]
+            if normal_unit(given) not in spellings:
+                how = " (numpy.radians for degrees)" if unit == "rad" else ""
+                raise ValueError(f"{path}: column {name!r} is in {given}, not {unit}: convert it to {unit}{how} "
+                                 f"and name it {base} or {base} [{unit}]")
+            name = base
+        bare.append(name)
+    return bare
 
 
 #: Header names (lower case, letters and digits only) that say "time" and "yaw rate" in the words

@@ -380,10 +380,11 @@ def _bytes_per_line(path: Path) -> int:
 
 
 def read_csv_columns(path: Path, columns: tuple[str, ...], *, optional: tuple[str, ...] = (),
-                     what: str = "the file") -> dict[str, FloatArray]:
+                     what: str = "the file", layout: CsvLayout | None = None) -> dict[str, FloatArray]:
     """Read the named columns of a CSV file with a header line (all of it, as float64); an empty
     value of an ``optional`` column is NaN (the caller decides what a missing value means).
-    ``what`` names the kind of file (``a reference``) in the error of a missing column.
+    ``what`` names the kind of file (``a reference``) in the error of a missing column; ``layout``
+    is the file's as the caller read it (:func:`csv_layout`, its names perhaps without their units).
 
     Raises ValueError naming the file, line and column of a malformed value, or of an empty value
     of another column. Row ``k`` is line ``csv_layout(path, ",").line(k)``.
@@ -391,7 +392,7 @@ def read_csv_columns(path: Path, columns: tuple[str, ...], *, optional: tuple[st
     path = Path(path)
     import_pyarrow_lazy_modules()
     parts: dict[str, list[np.ndarray]] = {c: [] for c in columns}
-    layout = csv_layout(path, ",")
+    layout = layout or csv_layout(path, ",")
     # not gyro data: no reading option names them. What such a file needs, not what this one has
     # ("it has t, x (ref.csv has the columns t, heading)" said both of the same file)
     choose = f"{what} needs the columns {', '.join(columns)}"

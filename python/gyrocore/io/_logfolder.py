@@ -19,6 +19,7 @@ import numpy as np
 from .._arrays import FloatArray
 from .._checks import warn
 from ..window import RestWindowError, in_log_clock
+from ._columns import METRES, RADIANS, SECONDS, in_si_units
 from ._csvfile import CsvLayout, csv_layout, read_csv_columns
 from ._jsonfile import json_kind, read_json
 from ._paths import check_file, has_file
@@ -119,8 +120,9 @@ def read_odometry(folder: Path) -> dict[str, FloatArray]:
     path = folder / ODOMETRY_CSV
     if not has_file(path):
         return {}
-    odometry = read_csv_columns(path, ("t", "speed"), what="an odometry file")
-    _require_samples(path, csv_layout(path, ","), odometry, ("t", "speed"), "the odometry")
+    layout = si_layout(path, _ODOMETRY_UNITS)
+    odometry = read_csv_columns(path, ("t", "speed"), what="an odometry file", layout=layout)
+    _require_samples(path, layout, odometry, ("t", "speed"), "the odometry")
     return odometry
 
 
@@ -155,14 +157,14 @@ def read_reference_file(path: str | Path) -> dict[str, FloatArray]:
     """
     path = Path(path)  # gyrocore.io exports it: a path given as text was "'str' object has no attribute 'is_file'"
     check_file(path)
-    layout = csv_layout(path, ",")
+    layout = si_layout(path, _REFERENCE_UNITS)
     # a log file with its own reference given as one: it said "drive.csv has the columns t, heading, x, y"
     if "heading" not in layout.header and "heading_true" in layout.header:
         raise ValueError(f"{path}: no column heading, and its heading_true makes it a log with its own reference (what "
                          "gyrocore simulate writes): give it as the log, whose heading_true is read with it; a "
                          "reference file has the columns t, heading [rad] and, where known, x, y [m]")
     track = ("x", "y") if has_track(str(path), layout.header) else ()
-    ref = read_csv_columns(path, ("t", "heading", *track), what="a reference", optional=track)
+    ref = read_csv_columns(path, ("t", "heading", *track), what="a reference", optional=track, layout=layout)
     _require_samples(path, layout, ref, ("t", "heading"), "a reference")
     for name in track:
         where = _not_finite(path, layout, ref, name, "empty or nan")  # an empty position is read as NaN
@@ -170,6 +172,19 @@ def read_reference_file(path: str | Path) -> dict[str, FloatArray]:
             warn(f"{where}; the reference's positions are left out (its heading is still used)")
             return {"t": ref["t"], "heading": ref["heading"]}
     return ref
+
+
+#: The units a reference's and an odometry file's columns may state in their names (``t [s]``,
+#: ``heading [rad]``, ``speed [m/s]``), as a fixes.csv's: any other is refused, not converted.
+_REFERENCE_UNITS = {"t": ("s", SECONDS), "heading": ("rad", RADIANS), "x": ("m", METRES), "y": ("m", METRES)}
+_ODOMETRY_UNITS = {"t": ("s", SECONDS), "speed": ("m/s", ("m/s", "ms-1"))}
+
+
+def si_layout(path: Path, units: dict[str, tuple[str, tuple[str, ...]]]) -> CsvLayout:
+    """The layout of the CSV file ``path`` with its names of ``units`` read without their
+    (SI) units (:func:`in_si_units`): a gyro.csv's ``t [s]`` was read, its reference's refused."""
+    layout = csv_layout(path, ",")
+    return CsvLayout(in_si_units(path, layout.header, units), layout.header_lines)
 
 
 def _require_samples(path: Path, layout: CsvLayout, table: dict[str, FloatArray], names: tuple[str, ...], what: str) -> None:

@@ -94,6 +94,9 @@ class ReadOptions:
                     f"{name} must be text: a column name, or a plain .npy array's column number as text "
                     f"({name}='{value}'), got {value!r}"
                 )
+            if value is not None and not value.strip():  # an empty shell variable read the default column
+                raise ValueError(f"{name} (--{name.replace('_', '-')}) {value!r}: no column name; give one, or leave "
+                                 "the option out for the default column")
         require_flag("static", self.static)  # "no" was read as True, and hid a unit warning
         # normalised forms (the dataclass is frozen): column triples as tuples, up parsed
         if self.gyro_cols is not None:
