@@ -144,7 +144,10 @@ impl GyroModel {
         self.seed
     }
 
-    /// The sampling instants of this model's seed, from `start` \[s\] (see [`Sampler`]).
+    /// The sampling instants of this model's seed, from `start` \[s\] (see [`Sampler`]). They
+    /// increase strictly while a tenth of the period (what jitter leaves between two) exceeds
+    /// float64's step at the time reached (`0.1 / rate_hz > f64::EPSILON * t`: up to about
+    /// 2.6e5 Hz at t = 1.7e9 s); beyond, rounding makes instants repeat.
     pub fn sampler(&self, start: f64) -> Sampler {
         Sampler::new(&self.config, self.seed, start)
     }

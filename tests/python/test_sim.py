@@ -138,6 +138,16 @@ def test_bad_seeds_and_times_are_refused() -> None:
     with pytest.raises(ValueError, match="is the duration in seconds"):
         sim.sample_times(spec, 0.0, 1e9, seed=0)
 
+def test_a_rate_too_high_for_the_clock_is_refused() -> None:
+    # at 1e7 Hz on a Unix-epoch clock the instants rounded to repeats, which the pipeline refused
+    fast = sim.sensor("xv3500", rate_hz=1e7)
+    with pytest.raises(ValueError, match=r"timestamps would repeat; start the clock nearer 0 or lower rate_hz"):
+        sim.sample_times(fast, 1.7e9, 1.7e9 + 1e-3, seed=0)
+    t = sim.sample_times(fast, 0.0, 1e-3, seed=0)  # near 0 the clock resolves them
+    assert len(t) == 10_000 and np.all(np.diff(t) > 0)
+    jittered = sim.sample_times(sim.sensor("xv3500", rate_hz=2e5, jitter_s=1e-6), 1.7e9, 1.7e9 + 0.05, seed=0)
+    assert np.all(np.diff(jittered) > 0)  # below the limit (2.6e5 Hz there): every instant its own
+
 
 def test_motion_heading_is_exact_and_laps_close() -> None:
     table = motion.rotary_table(runs=2)

@@ -156,6 +156,19 @@ fn sample_count(c: &GyroModelConfig, start: f64, end: f64) -> PyResult<f64> {
             c.rate_hz
         )));
     }
+    // Jitter leaves consecutive instants a tenth of a period apart at least; where that is below
+    // float64's step at the span's largest time, rounding made them repeat (1e7 Hz at 1.7e9 s).
+    let resolution = f64::EPSILON * start.abs().max(end.abs());
+    if 0.1 / c.rate_hz <= resolution {
+        return Err(PyValueError::new_err(format!(
+            "{} Hz at times up to {} s: samples {:.3e} s apart are within what float64 resolves \
+             there ({resolution:.1e} s), so timestamps would repeat; start the clock nearer 0 or \
+             lower rate_hz",
+            c.rate_hz,
+            start.abs().max(end.abs()),
+            1.0 / c.rate_hz
+        )));
+    }
     Ok(expected)
 }
 
