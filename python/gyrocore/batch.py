@@ -26,7 +26,8 @@ from ._checks import check_count, public_dir, require_choice, require_flag, warn
 from .pipeline import Pipeline, has_bias_source
 from .pipeline_params import _to_si
 from .batch_inputs import check_outside_inputs, complete_output, expand_inputs, output_paths
-from .batch_job import BatchReport, FileReport, Progress, _FileJob, split_options
+from .batch_job import Progress, _FileJob, split_options
+from .batch_report import BatchReport, FileReport
 from .batch_run import BatchInterrupted, run_on_dask, run_on_threads, check_client, connected
 from .io._paths import unfollowable
 from .io.atomic import make_folder

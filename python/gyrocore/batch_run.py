@@ -12,7 +12,8 @@ from collections.abc import Iterable
 from typing import Any
 
 from ._extras import require, tqdm_class
-from .batch_job import FileReport, _FileJob
+from .batch_job import _FileJob
+from .batch_report import FileReport
 
 
 def _run_job(job: _FileJob, stop: threading.Event | Any = None) -> FileReport:

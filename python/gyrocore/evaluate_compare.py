@@ -19,7 +19,7 @@ from . import deadreckon
 from ._arrays import as_float_array, covered_share, span_text
 from ._checks import check_number, json_ready, require_finite, require_flag, warn
 from ._extras import pyplot
-from .batch_job import failed_line
+from .batch_report import failed_line
 from .evaluate_metrics import HeadingErrors, Reference, heading_errors, improvement
 from .io import Log, read_log
 from .io._logfolder import REFERENCE_CSV

@@ -25,19 +25,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, field, fields, replace
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _gyrocore, motion
-from ._arrays import FloatArray, as_float_array, as_window
-from ._checks import check_number, check_seed, public_dir, real_number, require_choice, require_series
+from ._arrays import FloatArray, as_float_array
+from ._checks import check_number, check_seed, public_dir, real_number, require_choice
 from ._sim_fields import check_spec, refuse_unknown_keywords
 from .window import MIN_WINDOW_READINGS
-
-if TYPE_CHECKING:
-    from .fixes import Fixes
 
 __all__ = [
     "CAR_REST", "MAX_FIXES", "SENSORS", "SIGMA_DEG", "Drive", "GyroSpec", "Reading", "car_drive", "check_span",

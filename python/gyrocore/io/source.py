@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from .._arrays import FloatArray, durations_in_seconds, warn_coarse_times, warn_merged_counts
-from .._checks import first_infinite, keep_readings, require_choice, require_flag, warn
+from .._checks import first_infinite, keep_readings, require_choice, require_flag
 from .._gyrocore import SampleError
 from ..window import Window
 from ._axes import MEASURED, measure_up, parse_up, parse_up_window, project, three_names
