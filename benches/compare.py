@@ -196,16 +196,16 @@ def main() -> int:
     targets: list[tuple[str, float, str, bool | None]] = [("gyrocore heading only / numpy.cumsum", ratio(ours, floor), "at most 1.5", ratio(ours, floor) <= 1.5)]
     # The target is Numba compiling the equations as printed; the closed form (what
     # gyrocore computes) is shown beside it, for reference, with no target.
-    for mine, numba, target in [
+    for mine, peer, target in [
         ("gyrocore, heading only", "Numba, heading only (same algorithm)", True),
         ("gyrocore, heading only, out= a reused array", "Numba, heading only, into a reused array", True),
         ("gyrocore, heading only", "Numba, heading only, eq 7+13 closed form", False),
         ("gyrocore, heading only, out= a reused array", "Numba, heading only, closed form, reused array", False),
     ]:
-        if numba in timed:
-            x = ratio(timed[numba], timed[mine])
+        if peer in timed:
+            x = ratio(timed[peer], timed[mine])
             goal = "above 1 (gyrocore faster)" if target else "none (for reference: no sample checked)"
-            targets.append((f"{numba} / {mine}", x, goal, x > 1.0 if target else None))
+            targets.append((f"{peer} / {mine}", x, goal, x > 1.0 if target else None))
     for r in rows:
         r["ns_per_sample"] = statistics.median(per_sample(r))
         r["x_cumsum"] = ratio(per_sample(r), floor)
