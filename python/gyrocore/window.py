@@ -16,6 +16,7 @@ reads it with :meth:`Window.parse`, and an empty window is reported with the log
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -149,7 +150,9 @@ def in_log_clock(message: str, span: tuple[float, float] | None) -> str:
 
 def as_command_line_says(message: str) -> str:
     """``message``, an error the Python API words, as the command line and a batch say it: their
-    windows take a bound ``+T`` (:class:`Window`), and the error is built once, where it arises."""
+    windows take a bound ``+T`` (:class:`Window`), and a switch the API takes as ``hdr=True`` is
+    ``--param hdr=true`` there; the error is built once, where it arises."""
+    message = re.sub(r"\bpass (\w+)=True\b", r"give --param \1=true", message)
     return message.replace(T0_PLUS, PLUS_T)
 
 

@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 import gyrocore
+from gyrocore.cli import main
 
 from .conftest import real_log_path
 from .test_batch import synthetic_csv
@@ -156,3 +157,14 @@ def test_presets_json_is_json_that_strict_readers_take() -> None:
 
     presets = json.loads(proc.stdout, parse_constant=refuse)["presets"]
     assert presets["hdr"]["hdr_max_correction"] is None
+
+
+@pytest.mark.parametrize("param, switch", [("hdr_increment_dps=0.05", "hdr"), ("rest_block=0.5", "track_rests")])
+def test_a_switch_left_off_is_named_as_the_command_line_sets_it(tmp_path: Path, param: str, switch: str,
+                                                               capsys: pytest.CaptureFixture[str]) -> None:
+    # the core's words are the Python API's ("pass hdr=True"), which no option of the command takes
+    log = synthetic_csv(tmp_path / "log.csv", 3000)
+    assert main(["process", str(log), "-o", str(tmp_path / "h.csv"), "--preset", "raw",
+                 "--param", param]) == 2
+    err = capsys.readouterr().err
+    assert f"give --param {switch}=true to enable it" in err and "=True" not in err
