@@ -28,10 +28,10 @@ INTERVAL_LIMIT = 2.0
 #: The core's limit of a reading (``gyrocore::MAX_READING``): a rate [rad/s] or temperature
 #: [degC] must lie strictly within +-2^20; the core refuses any other (or, under
 #: ``nonfinite="hold"/"skip"``, holds or skips it like a NaN).
-MAX_READING = 2.0**20
+MAX_READING: float = _gyrocore.MAX_READING
 #: The core's limit of a timestamp and a duration [s] (``gyrocore::MAX_TIME``): +-2^40 s, 35,000
 #: years (``bias_duration``, ``lowpass_tau``, a rest window's ends).
-MAX_SECONDS = 2.0**40
+MAX_SECONDS: float = _gyrocore.MAX_TIME
 #: Enough samples for a percentile; longer arrays are checked on a regular subset. The unit
 #: mistakes differ by a factor of 57 (deg/s read as rad/s), far more than the percentile of
 #: 10,000 values can be off; 100,000 took 2.5 ms of a 10^7-sample call (0.1 ms now).

@@ -11,7 +11,7 @@ __all__ = [
     "Pipeline", "SampleError", "preset_params", "preset_names", "parameter_names", "preset_uses_static_bias",
     "_panic_for_test", "check_samples", "integrate", "downsample", "static_bias_test", "filter_rests", "project_up", "allan_variances", "gyro_measure",
     "gyro_sample_times", "gyro_check_span", "gyro_allan_deviation", "gyro_parameter_names", "fusion_setting_names", "format_csv_rows", "fuse", "Fusion",
-    "__version__",
+    "__version__", "MAX_READING", "MAX_TIME", "MIN_INTERVAL", "BIAS_SOURCES",
 ]
 
 __version__: str
@@ -101,6 +101,11 @@ def gyro_check_span(config: dict[str, float], start: float, end: float) -> None:
 def gyro_allan_deviation(config: dict[str, float], taus: _F) -> _F: ...
 def gyro_parameter_names() -> list[tuple[str, str]]: ...
 def fusion_setting_names() -> list[tuple[str, str]]: ...
+
+MAX_READING: float
+MAX_TIME: float
+MIN_INTERVAL: float
+BIAS_SOURCES: list[str]
 
 # Heading tables as CSV text (rust/python/src/table.rs): UTF-8 bytes as a uint8 array.
 def format_csv_rows(columns: list[_F]) -> NDArray[np.uint8]: ...

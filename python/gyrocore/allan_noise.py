@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from . import _gyrocore
 from ._arrays import FloatArray
 from ._checks import MAX_READING, MAX_SECONDS, check_number, real_number, shown
 
@@ -25,7 +26,7 @@ _HOUR = 3600.0
 #: IEEE 952: the Allan deviation's flat floor is sqrt(2 ln 2 / pi) = 0.664 times the bias instability.
 FLICKER_FLOOR = math.sqrt(2.0 * math.log(2.0) / math.pi)
 #: The shortest interval the core takes [s] (``gyrocore::MIN_INTERVAL``), for ``dt`` and ``hdr_interval``.
-MIN_INTERVAL = 1e-12
+MIN_INTERVAL: float = _gyrocore.MIN_INTERVAL
 #: The smallest noise :func:`settings_from_noise` takes (N [rad/sqrt(s)], B [rad/s]): 500 times
 #: below the best gyros' (a bias instability of 1e-4 deg/h is 5e-10 rad/s); far smaller values are
 #: a unit gone wrong, and below 1e-154 N^2 underflowed to settings of 0.

@@ -32,7 +32,7 @@ def recommended_preset() -> str:
 
 
 #: Parameters that each give the static bias (or where to measure it); at most one may be set.
-BIAS_SOURCES = ("bias", "bias_window", "bias_duration")
+BIAS_SOURCES: tuple[str, ...] = tuple(_gyrocore.BIAS_SOURCES)
 
 
 def uses_static_bias(preset: str) -> bool:

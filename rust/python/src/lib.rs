@@ -456,5 +456,10 @@ fn _gyrocore(m: &Bound<'_, PyModule>) -> PyResult<()> {
     sim::register(m)?;
     table::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    // The core's limits and names, which the Python package checks against before calling it.
+    m.add("MAX_READING", gyrocore::MAX_READING)?;
+    m.add("MAX_TIME", gyrocore::MAX_TIME)?;
+    m.add("MIN_INTERVAL", gyrocore::MIN_INTERVAL)?;
+    m.add("BIAS_SOURCES", params::BIAS_SOURCES)?;
     Ok(())
 }

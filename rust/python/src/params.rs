@@ -232,7 +232,7 @@ pub fn apply(config: &mut PipelineConfig, overrides: &Bound<'_, PyDict>) -> PyRe
 }
 
 /// The names that each give the static bias.
-const BIAS_SOURCES: [&str; 3] = ["bias", "bias_window", "bias_duration"];
+pub(crate) const BIAS_SOURCES: [&str; 3] = ["bias", "bias_window", "bias_duration"];
 
 /// The temperature model of `c`, created (as the identity) when first set.
 fn temperature_model(c: &mut gyrocore::CorrectionConfig) -> &mut TemperatureScale {
