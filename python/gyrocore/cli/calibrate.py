@@ -49,16 +49,16 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
                    help=f"reference heading of a file input: {REFERENCE_HELP}")
     p.add_argument("--window", nargs=2, metavar=("T0", "T1"),
                    help=f"rest window instead of finding one: {WINDOW_HELP}")
-    p.add_argument("--min-duration", type=POSITIVE, default=1.0, help="shortest rest [s] (default 1)")
-    p.add_argument("--max-rate-dps", type=POSITIVE, default=None,
+    p.add_argument("--min-duration", type=POSITIVE, default=1.0, metavar="S", help="shortest rest [s] (default 1)")
+    p.add_argument("--max-rate-dps", type=POSITIVE, default=None, metavar="DPS",
                    help="largest reading at rest [deg/s] (default 2.9); raise it for a gyro with a large bias")
-    p.add_argument("--block", type=POSITIVE, default=None,
+    p.add_argument("--block", type=POSITIVE, default=None, metavar="S",
                    help="length [s] of the blocks a rest is found in (default 0.25); a slow gyro needs longer "
                         "ones (25 readings or more)")
     p.add_argument("--fit-window", nargs=2, metavar=("T0", "T1"),
                    help=f"span for the reference fit (default: the whole log): {WINDOW_HELP}")
     p.add_argument("--json", action="store_true", help="print the results as JSON")
-    p.add_argument("--save", type=named_path,
+    p.add_argument("--save", type=named_path, metavar="FILE",
                    help="write the calibration (JSON): the reference fit where the log has a reference, "
                         "else the static bias")
     add_overwrite_option(p)
