@@ -28,7 +28,7 @@ import numpy as np
 
 from . import __version__, sim
 from ._arrays import FloatArray
-from ._checks import public_dir
+from ._checks import public_dir, require_flag
 from .io.atomic import make_folder, write_text_atomically
 from .io.log import Log
 
@@ -69,23 +69,27 @@ def sample_drive() -> Log:
     )
 
 
-def write_sample(folder: str | Path = "sample_drive") -> Path:
+def write_sample(folder: str | Path = "sample_drive", *, overwrite: bool = False) -> Path:
     """Write the sample log as a log folder (created if missing) and return its path.
 
     Numbers are written in full (shortest round-trip form), so the folder reads back as
     :func:`sample_drive` exactly. The files appear whole or not at all: an error or an interrupt
-    removes those this call wrote.
+    removes those this call wrote where there was none before. ``overwrite`` replaces the
+    sample's files already in ``folder`` (each whole or not at all); nothing else there is touched.
 
     Raises:
-        FileExistsError: one of :data:`FILES` is already in ``folder``; nothing is written.
+        FileExistsError: one of :data:`FILES` is already in ``folder`` (unless ``overwrite``);
+            nothing is written.
         NotADirectoryError: ``folder`` is a file.
     """
     path = Path(folder)
     if path.exists() and not path.is_dir():
         raise NotADirectoryError(f"{path}: not a folder; give a new or existing folder for the sample log")
+    require_flag("overwrite", overwrite)
     taken = [name for name in FILES if (path / name).exists()]
-    if taken:
-        raise FileExistsError(f"{path}: already holds {', '.join(taken)}; give another folder (nothing was written)")
+    if taken and not overwrite:
+        raise FileExistsError(f"{path}: already holds {', '.join(taken)}; give another folder, or replace them "
+                              "(--overwrite; overwrite=True in Python) (nothing was written)")
     gyro, reference, odometry, meta = _sample()
     make_folder(path)
     texts = [_csv(columns) for columns in (gyro, reference, odometry)] + [json.dumps(meta, indent=2) + "\n"]
@@ -96,7 +100,8 @@ def write_sample(folder: str | Path = "sample_drive") -> Path:
             written.append(path / name)
     except BaseException:
         for done in written:
-            done.unlink(missing_ok=True)
+            if done.name not in taken:  # a file replaced keeps its new content: the old one is gone
+                done.unlink(missing_ok=True)
         raise
     return path
 
@@ -138,9 +143,10 @@ def main(argv: Sequence[str] | None = None) -> int:
                                      description="Write the simulated sample log as a log folder.")
     parser.add_argument("folder", nargs="?", default="sample_drive",
                         help="folder to write (created if missing; default sample_drive)")
+    parser.add_argument("--overwrite", action="store_true", help="replace the sample's files already in the folder")
     args = parser.parse_args(argv)
     try:
-        folder = write_sample(args.folder)
+        folder = write_sample(args.folder, overwrite=args.overwrite)
     except OSError as e:
         print(f"gyrocore.datasets: error: {e}", file=sys.stderr)
         return 2

@@ -79,6 +79,13 @@ def test_python_m_gyrocore_datasets_writes_the_folder_once(tmp_path: Path) -> No
     again = subprocess.run(run, cwd=tmp_path, capture_output=True, text=True, timeout=120)
     assert again.returncode == 2 and "Traceback" not in again.stderr
     assert again.stderr.startswith("gyrocore.datasets: error: s: already holds gyro.csv")
+    assert "replace them (--overwrite" in again.stderr
+    (tmp_path / "s" / "gyro.csv").write_text("t,gyro_z\n")  # a sample spoiled by hand
+    (tmp_path / "s" / "notes.txt").write_text("mine")
+    replaced = subprocess.run([*run, "--overwrite"], cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert replaced.returncode == 0, replaced.stderr
+    assert (tmp_path / "s" / "gyro.csv").read_text().count("\n") > 1000  # whole again
+    assert (tmp_path / "s" / "notes.txt").read_text() == "mine"  # nothing else touched
 
 
 @pytest.fixture(scope="module")
