@@ -54,34 +54,42 @@ fn filter_rests_at_its_limits_gives_finite_estimates() {
     }
 }
 
-/// A gyro that reads one value at rest (its noise below one count), tracked with no bias walk:
-/// after two rests the filter's variance is 0, and so is the next rest's. `gate_sigmas = inf`
-/// ("no gate") then refused the third stop (`inf * 0` is NaN), and any finite gate did too, for
-/// a mean that differs from the bias by its rounding alone (0.01249999999999999 against
-/// 0.012500000000000008). Every stop of the one reading is accepted.
-#[test]
-fn stops_of_one_reading_pass_the_gate_without_a_bias_walk() {
+/// The rests the tracker reports on 5000 samples at 100 Hz from `t0` \[s\]: stops of 5 s of a
+/// gyro that reads one value at rest (its noise below one count; 0.0125 rad/s), between turns at
+/// 0.3 rad/s, with the speed, under `tracker`.
+fn stops_of_one_reading(t0: f64, tracker: RestTrackerConfig) -> Vec<Rest> {
     let n = 5000;
-    let t: Vec<f64> = (0..n).map(|i| i as f64 * 0.01).collect();
+    let t: Vec<f64> = (0..n).map(|i| t0 + i as f64 * 0.01).collect();
     let moving = |i: usize| (i / 500) % 2 == 1;
     let rate: Vec<f64> = (0..n)
         .map(|i| if moving(i) { 0.3 } else { 0.0125 })
         .collect();
     let speed: Vec<f64> = (0..n).map(|i| if moving(i) { 5.0 } else { 0.0 }).collect();
+    let mut c = Preset::Tracked.config();
+    c.correction.bias = StaticBias::Fixed(0.0);
+    c.rest_tracker = Some(tracker);
+    let mut p = Pipeline::new(c).unwrap();
+    let (mut h, mut r, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let mut rests = Vec::new();
+    let out = Outputs::all(&mut h, &mut r, &mut d);
+    p.process_block_reporting(&t, &rate, None, Some(&speed), out, &mut |x| rests.push(x))
+        .unwrap();
+    rests
+}
+
+/// With no bias walk, after two rests of one reading the filter's variance is 0, and so is the
+/// next rest's. `gate_sigmas = inf` ("no gate") then refused the third stop (`inf * 0` is NaN),
+/// and any finite gate did too, for a mean that differs from the bias by its rounding alone
+/// (0.01249999999999999 against 0.012500000000000008). Every stop of the one reading is accepted.
+#[test]
+fn stops_of_one_reading_pass_the_gate_without_a_bias_walk() {
     for gate_sigmas in [f64::INFINITY, 3.0] {
-        let mut c = Preset::Tracked.config();
-        c.correction.bias = StaticBias::Fixed(0.0);
-        c.rest_tracker = Some(RestTrackerConfig {
+        let tracker = RestTrackerConfig {
             gate_sigmas,
             bias_walk: 0.0,
             ..RestTrackerConfig::default()
-        });
-        let mut p = Pipeline::new(c).unwrap();
-        let (mut h, mut r, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        let mut rests = Vec::new();
-        let out = Outputs::all(&mut h, &mut r, &mut d);
-        p.process_block_reporting(&t, &rate, None, Some(&speed), out, &mut |x| rests.push(x))
-            .unwrap();
+        };
+        let rests = stops_of_one_reading(0.0, tracker);
         assert_eq!(rests.len(), 5, "{rests:?}");
         assert!(
             rests.iter().all(|x| x.accepted),
@@ -95,26 +103,12 @@ fn stops_of_one_reading_pass_the_gate_without_a_bias_walk() {
 /// ever found. The stops are found, as with a finite number of sigmas.
 #[test]
 fn no_change_test_finds_the_stops_of_one_reading() {
-    let n = 5000;
-    let t: Vec<f64> = (0..n).map(|i| 1000.0 + i as f64 * 0.01).collect();
-    let moving = |i: usize| (i / 500) % 2 == 1;
-    let rate: Vec<f64> = (0..n)
-        .map(|i| if moving(i) { 0.3 } else { 0.0125 })
-        .collect();
-    let speed: Vec<f64> = (0..n).map(|i| if moving(i) { 5.0 } else { 0.0 }).collect();
     for change_sigmas in [f64::INFINITY, 4.0] {
-        let mut c = Preset::Tracked.config();
-        c.correction.bias = StaticBias::Fixed(0.0);
-        c.rest_tracker = Some(RestTrackerConfig {
+        let tracker = RestTrackerConfig {
             change_sigmas,
             ..RestTrackerConfig::default()
-        });
-        let mut p = Pipeline::new(c).unwrap();
-        let (mut h, mut r, mut d) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        let mut rests = Vec::new();
-        let out = Outputs::all(&mut h, &mut r, &mut d);
-        p.process_block_reporting(&t, &rate, None, Some(&speed), out, &mut |x| rests.push(x))
-            .unwrap();
+        };
+        let rests = stops_of_one_reading(1000.0, tracker);
         assert_eq!(rests.len(), 5, "change_sigmas {change_sigmas}: {rests:?}");
     }
 }
