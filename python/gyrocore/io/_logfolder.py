@@ -231,9 +231,9 @@ def _rest_window(path: Path, window: Any) -> tuple[float, float] | None:
         isinstance(window, list)
         and len(window) == 2
         and all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(_as_float(v)) for v in window)
-        and window[0] <= window[1]
+        and window[0] < window[1]  # an empty window [5, 5] passed here, then failed unnamed (Log's own check)
     ):
-        raise ValueError(f"{path}: stationary must be [t0, t1] in seconds (finite, t0 <= t1) or null, got {window!r}")
+        raise ValueError(f"{path}: stationary must be [t0, t1] in seconds (finite, t0 < t1) or null, got {window!r}")
     return float(window[0]), float(window[1])
 
 
