@@ -74,6 +74,7 @@ def column_positions(
 SECONDS = tuple(u for u, si in HEADER_TIME_UNITS.items() if si == "s")
 RADIANS = ("rad", "radian", "radians")
 METRES = ("m", "metre", "metres", "meter", "meters")
+METRES_PER_SECOND = ("m/s", "ms-1")
 
 
 def in_si_units(path: Path, header: list[str], units: dict[str, tuple[str, tuple[str, ...]]]) -> list[str]:

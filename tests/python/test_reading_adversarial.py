@@ -1,0 +1,71 @@
+"""Reading logs, adversarially: what a file or log folder says, read as it says it, by the Python
+API and the command line alike."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import gyrocore
+
+from .conftest import gyrocore_cli
+
+
+def _drive(n: int = 3000) -> dict[str, np.ndarray]:
+    """A 30 s drive: 10 s at rest (speed 0), then a turn at 5 m/s, with its true heading."""
+    t = np.arange(n) * 0.01
+    rate = np.where(t > 10, 0.2, 0.001)
+    return {"t": t, "gyro_z": rate, "speed": np.where(t > 10, 5.0, 0.0), "heading_true": np.cumsum(rate) * 0.01,
+            "x": t, "y": 0 * t}
+
+
+def _write_csv(path: Path, header: list[str], columns: dict[str, np.ndarray]) -> Path:
+    rows = zip(*columns.values())
+    path.write_text(",".join(header) + "\n" + "".join(",".join(f"{v:.6f}" for v in row) + "\n" for row in rows))
+    return path
+
+
+@pytest.mark.parametrize("kind", ["csv", "parquet"])
+def test_a_speed_and_reference_with_their_units_in_the_header_are_read(tmp_path: Path, kind: str) -> None:
+    drive = _drive()
+    units = ["t [s]", "gyro_z [rad/s]", "speed [m/s]", "heading_true [rad]", "x [m]", "y [m]"]
+    if kind == "csv":
+        plain = _write_csv(tmp_path / "plain.csv", list(drive), drive)
+        stated = _write_csv(tmp_path / "stated.csv", units, drive)
+    else:
+        pa, pq = pytest.importorskip("pyarrow"), pytest.importorskip("pyarrow.parquet")
+        plain, stated = tmp_path / "plain.parquet", tmp_path / "stated.parquet"
+        pq.write_table(pa.table(drive), plain)
+        pq.write_table(pa.table(dict(zip(units, drive.values()))), stated)
+    a, b = gyrocore.read_log(plain), gyrocore.read_log(stated)
+    for name in ("speed", "t_odometry", "heading_ref", "x_ref", "y_ref"):
+        assert getattr(b, name) is not None, name  # left out without a word
+        np.testing.assert_array_equal(getattr(b, name), getattr(a, name))
+    # the command line takes its stops as rests, as with the plain names
+    for log in (plain, stated):
+        proc = gyrocore_cli("process", log, "--out", tmp_path / f"{log.stem}-heading.csv", code=0)
+        assert "(speed)" in proc.stdout
+    assert "E_psi" in gyrocore_cli("evaluate", stated, code=0).stdout
+
+
+def test_a_speed_in_another_unit_is_refused(tmp_path: Path) -> None:
+    drive = _drive()
+    path = _write_csv(tmp_path / "kmh.csv", ["t", "gyro_z", "speed [km/h]"],
+                      {k: drive[k] for k in ("t", "gyro_z", "speed")})
+    message = f"{path}: column 'speed [km/h]' is in km/h, not m/s: convert it to m/s and name it speed or speed [m/s]"
+    with pytest.raises(ValueError) as raised:
+        gyrocore.read_log(path)
+    assert str(raised.value) == message
+    proc = gyrocore_cli("process", path, "--out", tmp_path / "h.csv", code=2)
+    assert proc.stderr.strip() == f"gyrocore: error: {message}"
+
+
+def test_gyro_columns_named_x_y_are_no_track(tmp_path: Path) -> None:
+    """A three-axis gyro's columns named x, y, z with their unit are no reference positions."""
+    drive = _drive()
+    columns = {"t": drive["t"], "x": 0 * drive["t"], "y": 0 * drive["t"], "z": drive["gyro_z"]}
+    path = _write_csv(tmp_path / "xyz.csv", ["t", "x [rad/s]", "y [rad/s]", "z [rad/s]"], columns)
+    log = gyrocore.read_log(path, rate_col="z")
+    assert log.t_ref is None and log.speed is None
