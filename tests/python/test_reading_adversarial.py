@@ -69,3 +69,28 @@ def test_gyro_columns_named_x_y_are_no_track(tmp_path: Path) -> None:
     path = _write_csv(tmp_path / "xyz.csv", ["t", "x [rad/s]", "y [rad/s]", "z [rad/s]"], columns)
     log = gyrocore.read_log(path, rate_col="z")
     assert log.t_ref is None and log.speed is None
+
+
+NOTES = "# exported by a phone app\n# device: test\n\n"
+
+
+def test_blank_lines_after_comment_lines_before_the_header_are_skipped(tmp_path: Path) -> None:
+    """A logger's notes, a blank line, then the header: the notes were read as the header
+    (``missing column(s) t, gyro_z; it has # device: test``)."""
+    path = tmp_path / "notes.csv"
+    path.write_text(NOTES + "t,gyro_z\n0,0.1\n0.01,0.2\n0.02,abc\n")
+    message = f"{path}: line 7, column 2 (gyro_z): 'abc' is not a number"  # the file's own line
+    with pytest.raises(ValueError) as raised:
+        gyrocore.read_log(path)
+    assert str(raised.value) == message
+    proc = gyrocore_cli("process", path, "--out", tmp_path / "h.csv", code=2)
+    assert proc.stderr.strip() == f"gyrocore: error: {message}"
+    path.write_text(NOTES + "\r\n# more\n\nt,gyro_z\n0,0.1\n0.01,0.2\n")
+    np.testing.assert_array_equal(gyrocore.read_log(path).rate, [0.1, 0.2])
+    # a log folder's other files are read alike
+    folder = tmp_path / "drive"
+    folder.mkdir()
+    drive = _drive()
+    _write_csv(folder / "gyro.csv", ["t", "gyro_z"], {k: drive[k] for k in ("t", "gyro_z")})
+    (folder / "reference.csv").write_text(NOTES + "t,heading\n0,0\n10,0.5\n20,1.5\n")
+    np.testing.assert_array_equal(gyrocore.read_log(folder).heading_ref, [0, 0.5, 1.5])

@@ -67,7 +67,8 @@ def csv_layout(path: Path, delimiter: str) -> CsvLayout:
 
     A leading line that starts with ``#`` is a comment, unless the line after it is already a
     sample: then it is the header, as EuRoC writes it (``#timestamp [ns],w_RS_S_x ...``), and
-    :func:`~gyrocore.io.units.split_unit` reads its names without the ``#``.
+    :func:`~gyrocore.io.units.split_unit` reads its names without the ``#``. Blank lines after a
+    comment are skipped with it (a logger's notes, a blank line, then the header).
 
     Raises:
         ValueError: no header, binary data, UTF-16, classic Mac OS line ends, a line longer than
@@ -77,10 +78,13 @@ def csv_layout(path: Path, delimiter: str) -> CsvLayout:
         line = _first_line(path, f)
         number, offset = 1, 0
         while line.removeprefix(_UTF8_BOM).startswith(b"#"):
-            following = f.readline(MAX_LINE_BYTES + 1)
+            following, skipped = f.readline(MAX_LINE_BYTES + 1), [line]
+            while following and not following.strip():  # blank lines between the comments and the header
+                skipped.append(following)
+                following = f.readline(MAX_LINE_BYTES + 1)
             if not following.strip() or _is_sample(following, delimiter):
                 break
-            number, offset, line = number + 1, offset + len(line), following
+            number, offset, line = number + len(skipped), offset + sum(map(len, skipped)), following
             if len(line) > MAX_LINE_BYTES:
                 raise ValueError(f"{path}: line {number} is longer than {MAX_LINE_BYTES} bytes, the longest read")
     text = _decode(path, number, offset, line).rstrip("\r\n")
