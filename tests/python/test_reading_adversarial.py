@@ -94,3 +94,23 @@ def test_blank_lines_after_comment_lines_before_the_header_are_skipped(tmp_path:
     _write_csv(folder / "gyro.csv", ["t", "gyro_z"], {k: drive[k] for k in ("t", "gyro_z")})
     (folder / "reference.csv").write_text(NOTES + "t,heading\n0,0\n10,0.5\n20,1.5\n")
     np.testing.assert_array_equal(gyrocore.read_log(folder).heading_ref, [0, 0.5, 1.5])
+
+
+def test_an_empty_gnss_bearing_is_no_course_as_nan_is(tmp_path: Path) -> None:
+    """A receiver at rest logs no course: an empty bearing was an error (``line 3, column 5
+    (bearing): empty value``) where ``nan`` is dropped, as :func:`gyrocore.fixes.from_gnss` drops it."""
+    from gyrocore.fixes import read_fixes_file, read_gnss_csv
+
+    rows = "0,48.1,11.5,5,90\n1,48.1,11.5,0,{}\n2,48.1,11.5,5,90\n"
+    empty, nan = tmp_path / "empty" / "gnss.csv", tmp_path / "nan" / "gnss.csv"
+    for path, missing in ((empty, ""), (nan, "nan")):
+        path.parent.mkdir()
+        path.write_text("t,lat,lon,speed,bearing\n" + rows.format(missing))
+    for read in (read_gnss_csv, read_fixes_file):
+        a, b = read(empty), read(nan)
+        np.testing.assert_array_equal(a.t, [0.0, 2.0])
+        np.testing.assert_array_equal(a.heading, b.heading)
+    drive = _drive(300)
+    log = _write_csv(tmp_path / "drive.csv", ["t", "gyro_z"], {k: drive[k] for k in ("t", "gyro_z")})
+    proc = gyrocore_cli("process", log, "--out", tmp_path / "h.csv", "--preset", "raw", "--fixes", empty, code=0)
+    assert "fixes from" in proc.stdout
