@@ -114,3 +114,27 @@ def test_an_empty_gnss_bearing_is_no_course_as_nan_is(tmp_path: Path) -> None:
     log = _write_csv(tmp_path / "drive.csv", ["t", "gyro_z"], {k: drive[k] for k in ("t", "gyro_z")})
     proc = gyrocore_cli("process", log, "--out", tmp_path / "h.csv", "--preset", "raw", "--fixes", empty, code=0)
     assert "fixes from" in proc.stdout
+
+
+@pytest.mark.parametrize("suffix", [".npy", ".npz"])
+def test_npy_and_npz_names_that_state_units_are_honoured(tmp_path: Path, suffix: str) -> None:
+    """A field or array named ``gyro_z_dps`` was read as rad/s (57 times too large, and under the
+    20 rad/s check: not a word), ``t_ms`` as seconds, and the default ``t`` did not find ``t_ms``."""
+    t, rate_dps = np.arange(3000) * 10.0, np.where(np.arange(3000) > 1000, 10.0, 0.0)
+    names = {"t_ms": t, "gyro_z_dps": rate_dps}
+    path = tmp_path / f"drive{suffix}"
+    if suffix == ".npy":
+        table = np.zeros(len(t), dtype=[(name, "f8") for name in names])
+        for name, values in names.items():
+            table[name] = values
+        np.save(path, table)
+    else:
+        np.savez(path, **names)
+    for options in ({}, {"time_col": "t_ms", "rate_col": "gyro_z_dps"}, {"time_col": "t", "rate_col": "gyro_z"}):
+        log = gyrocore.read_log(path, **options)
+        np.testing.assert_allclose(log.t, t / 1e3)
+        np.testing.assert_allclose(log.rate, np.radians(rate_dps))
+    out = tmp_path / "h.csv"
+    gyrocore_cli("process", path, "--out", out, "--preset", "raw", code=0)
+    heading = np.loadtxt(out, delimiter=",", skiprows=1, usecols=1)
+    assert heading[-1] == pytest.approx(np.radians(10.0) * 19.99, rel=1e-3)

@@ -23,7 +23,7 @@ from ._axes import MEASURED, measure_up, parse_up, parse_up_window, project, thr
 from ._columns import METRES, METRES_PER_SECOND, RADIANS, concat, import_pyarrow_lazy_modules, in_si_units
 from ._csvfile import CsvLayout, csv_chunks, csv_layout
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta, warn_gyro_alone
-from ._npyfile import check_npz, npy_chunks, npy_shape, npz_chunks
+from ._npyfile import check_npz, npy_chunks, npy_fields, npy_shape, npz_chunks, npz_names
 from ._options_given import checked_options
 from ._parquetfile import parquet_chunks, parquet_file, warn_given_time_unit
 from ._paths import check_file, check_readable, content_hint, missing
@@ -463,11 +463,13 @@ def _open_file(p: Path, options: ReadOptions) -> GyroSource:
         options = header_options(p, pf.schema_arrow.names, options)
         return GyroSource(p, "parquet", p, options, progress_total=pf.metadata.num_rows)
     if suffix == ".npy":
+        options = header_options(p, npy_fields(p), options)  # field names state units as a header's do
         shape = npy_shape(p, options)
-        return GyroSource(p, "npy", p, header_options(p, None, options), progress_total=shape[0] if shape else 0)
+        return GyroSource(p, "npy", p, options, progress_total=shape[0] if shape else 0)
     if suffix == ".npz":
+        options = header_options(p, npz_names(p), options)
         check_npz(p, options)
-        return GyroSource(p, "npz", p, header_options(p, None, options))
+        return GyroSource(p, "npz", p, options)
     if suffix == ".bag":
         return _open_bag(p, header_options(p, None, options))
     raise ValueError(
