@@ -138,3 +138,22 @@ def test_npy_and_npz_names_that_state_units_are_honoured(tmp_path: Path, suffix:
     gyrocore_cli("process", path, "--out", out, "--preset", "raw", code=0)
     heading = np.loadtxt(out, delimiter=",", skiprows=1, usecols=1)
     assert heading[-1] == pytest.approx(np.radians(10.0) * 19.99, rel=1e-3)
+
+
+def test_a_parquet_reference_or_fixes_file_is_named_as_parquet(tmp_path: Path) -> None:
+    """A reference or fixes file must be CSV text; one in Parquet was told to decompress a .gz file."""
+    pa, pq = pytest.importorskip("pyarrow"), pytest.importorskip("pyarrow.parquet")
+    from gyrocore.fixes import read_fixes_file
+
+    drive = _drive()
+    log = _write_csv(tmp_path / "drive.csv", ["t", "gyro_z", "heading_true"],
+                     {k: drive[k] for k in ("t", "gyro_z", "heading_true")})
+    ref = tmp_path / "ref.parquet"
+    pq.write_table(pa.table({"t": drive["t"], "heading": drive["heading_true"]}), ref)
+    message = f"{ref}: not a text CSV file (it is a Parquet file)"
+    for read in (gyrocore.io.read_reference_file, read_fixes_file):
+        with pytest.raises(ValueError) as raised:
+            read(ref)
+        assert str(raised.value) == message
+    proc = gyrocore_cli("evaluate", log, "--reference", ref, code=2)
+    assert proc.stderr.strip() == f"gyrocore: error: {message}"

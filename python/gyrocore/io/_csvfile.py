@@ -25,6 +25,7 @@ from .._extras import require
 from ._columns import (
     CHOOSE_COLUMNS, column_positions, concat, first_null, import_pyarrow_lazy_modules, is_number,
 )
+from ._paths import content_kind
 from .units import is_unit
 
 if TYPE_CHECKING:
@@ -103,7 +104,10 @@ def refuse_not_text(path: Path, line: bytes, what: str) -> None:
     if line.startswith(_UTF16_BOMS):
         raise ValueError(f"{path}: text in UTF-16 (or UTF-32), not UTF-8: save it as UTF-8")
     if line.startswith(_GZIP) or any(b < 32 and b not in b"\t\r\n" for b in line[:4096]):
-        raise ValueError(f"{path}: not a text {what} (binary data on line 1; decompress a .gz file first)")
+        # a Parquet or NumPy file given as a reference or fixes file was told to decompress it
+        kind = content_kind(line)
+        why = f"it is {kind}" if kind else "binary data on line 1; decompress a .gz file first"
+        raise ValueError(f"{path}: not a text {what} ({why})")
 
 
 def _first_line(path: Path, f: BinaryIO) -> bytes:
