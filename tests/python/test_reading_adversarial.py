@@ -157,3 +157,20 @@ def test_a_parquet_reference_or_fixes_file_is_named_as_parquet(tmp_path: Path) -
         assert str(raised.value) == message
     proc = gyrocore_cli("evaluate", log, "--reference", ref, code=2)
     assert proc.stderr.strip() == f"gyrocore: error: {message}"
+
+
+def test_a_spreadsheet_line_naming_the_delimiter_is_read(tmp_path: Path) -> None:
+    """Excel's first line ``sep=;`` was read as the header, and the delimiter it named then left
+    ``missing column(s) t, gyro_z; it has sep=, ``: a dead end."""
+    path = tmp_path / "excel.csv"
+    path.write_bytes(b"\xef\xbb\xbfsep=;\r\nt;gyro_z\r\n0;0.1\r\n0.01;0.2\r\n0.02;abc\r\n")
+    message = f"{path}: line 1: 'sep=;' names the file's delimiter, ';', and it is read with ',': give delimiter=';' (--delimiter ';')"
+    with pytest.raises(ValueError) as raised:
+        gyrocore.read_log(path)
+    assert str(raised.value) == message
+    assert gyrocore_cli("process", path, "--out", tmp_path / "h.csv", code=2).stderr.strip() == f"gyrocore: error: {message}"
+    with pytest.raises(ValueError, match=r"line 5, column 2 \(gyro_z\): 'abc' is not a number"):  # the file's lines
+        gyrocore.read_log(path, delimiter=";")
+    path.write_text("sep=;\nt;gyro_z\n0;0.1\n0.01;0.2\n")
+    np.testing.assert_array_equal(gyrocore.read_log(path, delimiter=";").rate, [0.1, 0.2])
+    gyrocore_cli("process", path, "--out", tmp_path / "h.csv", "--delimiter", ";", code=0)

@@ -45,6 +45,8 @@ _GZIP = b"\x1f\x8b"
 _UTF16_BOMS = (b"\xff\xfe", b"\xfe\xff")
 _UTF8_BOM = b"\xef\xbb\xbf"
 #: A date, maybe with a time, as loggers write them (``2024-05-03T14:00:00.010Z``, ``2024-05-03 14:00``).
+#: The first line of a CSV file that names its delimiter, as Excel writes it (``sep=;``).
+_SEP = re.compile(rb'"?sep=(.)"?')
 _DATE = re.compile(r"\d{4}-\d{2}-\d{2}(?:[T ]\d{2}:\d{2})?")
 #: Rows read from a CSV file and not yet handed out: first row, columns, bytes read, rows.
 _HeldRows: TypeAlias = "tuple[int, dict[str, pa.Array], int, int]"
@@ -69,7 +71,8 @@ def csv_layout(path: Path, delimiter: str) -> CsvLayout:
     A leading line that starts with ``#`` is a comment, unless the line after it is already a
     sample: then it is the header, as EuRoC writes it (``#timestamp [ns],w_RS_S_x ...``), and
     :func:`~gyrocore.io.units.split_unit` reads its names without the ``#``. Blank lines after a
-    comment are skipped with it (a logger's notes, a blank line, then the header).
+    comment are skipped with it (a logger's notes, a blank line, then the header), and so is a
+    first line ``sep=;`` that names the ``delimiter`` (Excel's; another delimiter is an error).
 
     Raises:
         ValueError: no header, binary data, UTF-16, classic Mac OS line ends, a line longer than
@@ -78,6 +81,12 @@ def csv_layout(path: Path, delimiter: str) -> CsvLayout:
     with open(path, "rb") as f:
         line = _first_line(path, f)
         number, offset = 1, 0
+        named = _SEP.fullmatch(line.removeprefix(_UTF8_BOM).rstrip(b"\r\n"))
+        if named:  # a spreadsheet's line naming the delimiter: "sep=;" was read as the header
+            _check_named_delimiter(path, named[1].decode("utf-8", errors="replace"), delimiter)
+            number, offset, line = 2, len(line), f.readline(MAX_LINE_BYTES + 1)
+            if not line.strip():
+                raise ValueError(f"{path}: line 2: no header line (expected column names)")
         while line.removeprefix(_UTF8_BOM).startswith(b"#"):
             following, skipped = f.readline(MAX_LINE_BYTES + 1), [line]
             while following and not following.strip():  # blank lines between the comments and the header
@@ -95,6 +104,14 @@ def csv_layout(path: Path, delimiter: str) -> CsvLayout:
     except csv.Error as e:  # e.g. a bare carriage return inside the header
         raise ValueError(f"{path}: line {number}: malformed header: {e}") from None
     return CsvLayout(header, number)
+
+
+def _check_named_delimiter(path: Path, named: str, delimiter: str) -> None:
+    """Refuse a file whose ``sep=`` line (Excel's) names another delimiter than the one read with."""
+    if named != delimiter:
+        arg = "tab" if named == "\t" else repr(named)
+        raise ValueError(f"{path}: line 1: {'sep=' + named!r} names the file's delimiter, {named!r}, and it is read with "
+                         f"{delimiter!r}: give delimiter={named!r} (--delimiter {arg})")
 
 
 def refuse_not_text(path: Path, line: bytes, what: str) -> None:
