@@ -174,3 +174,18 @@ def test_a_spreadsheet_line_naming_the_delimiter_is_read(tmp_path: Path) -> None
     path.write_text("sep=;\nt;gyro_z\n0;0.1\n0.01;0.2\n")
     np.testing.assert_array_equal(gyrocore.read_log(path, delimiter=";").rate, [0.1, 0.2])
     gyrocore_cli("process", path, "--out", tmp_path / "h.csv", "--delimiter", ";", code=0)
+
+
+def test_columns_aligned_with_runs_of_spaces_are_named_as_such(tmp_path: Path) -> None:
+    """The hint for a one-field header was --delimiter ' ', which splits aligned columns into
+    empty ones: ``line 2: 4 fields, but the header has 7``, a dead end."""
+    path = tmp_path / "aligned.csv"
+    path.write_text("t      gyro_z\n0.00   0.1\n0.01   0.2\n")
+    convert = "convert the file, e.g. awk -v OFS=, '{$1=$1; print}' old.csv > new.csv"
+    for options, args in (({}, ()), ({"delimiter": " "}, ("--delimiter", " "))):
+        with pytest.raises(ValueError) as raised:
+            gyrocore.read_log(path, **options)
+        assert str(raised.value).endswith(f"{convert})")
+        assert "aligned with runs of spaces" in str(raised.value)
+        proc = gyrocore_cli("process", path, "--out", tmp_path / "h.csv", *args, code=2)
+        assert proc.stderr.strip() == f"gyrocore: error: {raised.value}"

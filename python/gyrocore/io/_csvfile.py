@@ -23,7 +23,7 @@ import numpy as np
 from .._arrays import FloatArray
 from .._extras import require
 from ._columns import (
-    CHOOSE_COLUMNS, column_positions, concat, first_null, import_pyarrow_lazy_modules, is_number,
+    ALIGNED, CHOOSE_COLUMNS, column_positions, concat, first_null, import_pyarrow_lazy_modules, is_number,
 )
 from ._paths import content_kind
 from .units import is_unit
@@ -321,7 +321,8 @@ def _csv_error(
                     return f"{path}: line {line}, column {positions[name] + 1} ({name}): blank line"
                 continue
             if len(fields) != len(header):
-                return f"{path}: line {line}: {_count(len(fields), 'field')}, but the header has {len(header)}"
+                aligned = f" ({ALIGNED})" if delimiter == " " and "" in (*header, *fields) else ""
+                return f"{path}: line {line}: {_count(len(fields), 'field')}, but the header has {len(header)}{aligned}"
             for name, pos in positions.items():
                 value = fields[pos].strip(" \t")  # what pyarrow trims
                 where = f"{path}: line {line}, column {pos + 1} ({name})"
