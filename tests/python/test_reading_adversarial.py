@@ -189,3 +189,19 @@ def test_columns_aligned_with_runs_of_spaces_are_named_as_such(tmp_path: Path) -
         assert "aligned with runs of spaces" in str(raised.value)
         proc = gyrocore_cli("process", path, "--out", tmp_path / "h.csv", *args, code=2)
         assert proc.stderr.strip() == f"gyrocore: error: {raised.value}"
+
+
+def test_a_last_line_cut_off_is_named_as_such(tmp_path: Path) -> None:
+    """A logger stopped mid-line (power lost): the line count alone left the cause to guess."""
+    cut = "(the file's last line, cut off: a log whose writing stopped mid-line; delete the line)"
+    path = tmp_path / "cut.csv"
+    path.write_text("t,gyro_z\n0,0.1\n0.01,0.2\n0.0")
+    message = f"{path}: line 4: 1 field, but the header has 2 {cut}"
+    with pytest.raises(ValueError) as raised:
+        gyrocore.read_log(path)
+    assert str(raised.value) == message
+    assert gyrocore_cli("process", path, "--out", tmp_path / "h.csv", code=2).stderr.strip() == f"gyrocore: error: {message}"
+    path.write_text("t,gyro_z\n0,0.1\n0.0\n0.02,0.2\n")  # a short line among others is no cut
+    with pytest.raises(ValueError) as raised:
+        gyrocore.read_log(path)
+    assert str(raised.value) == f"{path}: line 3: 1 field, but the header has 2"

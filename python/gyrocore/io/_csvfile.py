@@ -45,6 +45,8 @@ _GZIP = b"\x1f\x8b"
 _UTF16_BOMS = (b"\xff\xfe", b"\xfe\xff")
 _UTF8_BOM = b"\xef\xbb\xbf"
 #: A date, maybe with a time, as loggers write them (``2024-05-03T14:00:00.010Z``, ``2024-05-03 14:00``).
+#: What a last line with too few fields most likely is.
+_CUT_OFF = " (the file's last line, cut off: a log whose writing stopped mid-line; delete the line)"
 #: The first line of a CSV file that names its delimiter, as Excel writes it (``sep=;``).
 _SEP = re.compile(rb'"?sep=(.)"?')
 _DATE = re.compile(r"\d{4}-\d{2}-\d{2}(?:[T ]\d{2}:\d{2})?")
@@ -321,8 +323,10 @@ def _csv_error(
                     return f"{path}: line {line}, column {positions[name] + 1} ({name}): blank line"
                 continue
             if len(fields) != len(header):
-                aligned = f" ({ALIGNED})" if delimiter == " " and "" in (*header, *fields) else ""
-                return f"{path}: line {line}: {_count(len(fields), 'field')}, but the header has {len(header)}{aligned}"
+                # too few fields on the last line (any() stops at the next line with a value): cut off
+                hint = (f" ({ALIGNED})" if delimiter == " " and "" in (*header, *fields)
+                        else _CUT_OFF if len(fields) < len(header) and not any(map(any, reader)) else "")
+                return f"{path}: line {line}: {_count(len(fields), 'field')}, but the header has {len(header)}{hint}"
             for name, pos in positions.items():
                 value = fields[pos].strip(" \t")  # what pyarrow trims
                 where = f"{path}: line {line}, column {pos + 1} ({name})"
