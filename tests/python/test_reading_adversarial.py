@@ -205,3 +205,16 @@ def test_a_last_line_cut_off_is_named_as_such(tmp_path: Path) -> None:
     with pytest.raises(ValueError) as raised:
         gyrocore.read_log(path)
     assert str(raised.value) == f"{path}: line 3: 1 field, but the header has 2"
+
+
+def test_a_reference_of_a_header_alone_is_not_blamed_on_its_clock(tmp_path: Path) -> None:
+    """``gyrocore calibrate`` of a log folder whose reference.csv holds a header and no sample asked
+    whether gyro and reference are in the same time base."""
+    folder = tmp_path / "drive"
+    folder.mkdir()
+    drive = _drive()
+    _write_csv(folder / "gyro.csv", ["t", "gyro_z"], {k: drive[k] for k in ("t", "gyro_z")})
+    (folder / "reference.csv").write_text("t,heading\n")
+    proc = gyrocore_cli("calibrate", folder, code=0)
+    assert "need at least 3 (the reference has 0 in all)" in proc.stdout, proc.stdout
+    assert "time base" not in proc.stdout
