@@ -218,3 +218,18 @@ def test_a_reference_of_a_header_alone_is_not_blamed_on_its_clock(tmp_path: Path
     proc = gyrocore_cli("calibrate", folder, code=0)
     assert "need at least 3 (the reference has 0 in all)" in proc.stdout, proc.stdout
     assert "time base" not in proc.stdout
+
+
+@pytest.mark.parametrize("options", [{}, {"rate_col": "gyro_z_deg_s"}, {"rate_col": "gyro_z"}])
+def test_a_unit_of_two_words_after_an_underscore_is_read(tmp_path: Path, options: dict[str, str]) -> None:
+    """``gyro_z_deg_s`` was split at its last underscore, as ``gyro_z_deg`` in ``s``: by its whole
+    name it was read as rad/s (10 deg/s as 10 rad/s, under the 20 rad/s check: not a word), and
+    the error of the default column said its name without the unit was ``gyro_z_deg``."""
+    drive = _drive()
+    dps = np.where(drive["t"] > 10, 10.0, 0.0)
+    path = _write_csv(tmp_path / "suffix.csv", ["t", "gyro_z_deg_s"], {"t": drive["t"], "gyro_z_deg_s": dps})
+    np.testing.assert_allclose(gyrocore.read_log(path, **options).rate, np.radians(dps), atol=1e-9)
+    args = [f"--{k.replace('_', '-')}={v}" for k, v in options.items()]
+    gyrocore_cli("process", path, "--out", tmp_path / "h.csv", "--preset", "raw", *args, code=0)
+    heading = np.loadtxt(tmp_path / "h.csv", delimiter=",", skiprows=1, usecols=1)
+    assert heading[-1] == pytest.approx(np.radians(10.0) * 19.99, rel=1e-3)
