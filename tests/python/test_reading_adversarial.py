@@ -233,3 +233,18 @@ def test_a_unit_of_two_words_after_an_underscore_is_read(tmp_path: Path, options
     gyrocore_cli("process", path, "--out", tmp_path / "h.csv", "--preset", "raw", *args, code=0)
     heading = np.loadtxt(tmp_path / "h.csv", delimiter=",", skiprows=1, usecols=1)
     assert heading[-1] == pytest.approx(np.radians(10.0) * 19.99, rel=1e-3)
+
+
+def test_a_header_name_of_two_lines_is_named(tmp_path: Path) -> None:
+    """A spreadsheet cell of two lines in the header (``"gyro_z<line break>(rad/s)"``): the rest of
+    the name was read as the first sample, ``line 2: 1 field, but the header has 2``."""
+    path = tmp_path / "cell.csv"
+    path.write_text('t,"gyro_z\n(rad/s)"\n0,0.1\n0.01,0.2\n')
+    message = (f"{path}: line 1: a quoted column name goes on past the line's end (a line break in a name, as a "
+               "spreadsheet cell of two lines writes it): write the header on one line")
+    with pytest.raises(ValueError) as raised:
+        gyrocore.read_log(path)
+    assert str(raised.value) == message
+    assert gyrocore_cli("process", path, "--out", tmp_path / "h.csv", code=2).stderr.strip() == f"gyrocore: error: {message}"
+    path.write_text('t,gyro_z,"note ""5"""\n0,0.1,x\n0.01,0.2,y\n')  # quotes that close on the line are read
+    np.testing.assert_array_equal(gyrocore.read_log(path).rate, [0.1, 0.2])

@@ -103,9 +103,22 @@ def csv_layout(path: Path, delimiter: str) -> CsvLayout:
     try:
         with _long_fields():
             header = [name.strip() for name in next(csv.reader([text], delimiter=delimiter))]
+            ends_quoted = _quote_ends_on_line(text, delimiter)
     except csv.Error as e:  # e.g. a bare carriage return inside the header
         raise ValueError(f"{path}: line {number}: malformed header: {e}") from None
+    if not ends_quoted:  # the rest of the name was read as the first sample: "line 2: 1 field"
+        raise ValueError(f"{path}: line {number}: a quoted column name goes on past the line's end (a line break in "
+                         "a name, as a spreadsheet cell of two lines writes it): write the header on one line")
     return CsvLayout(header, number)
+
+
+def _quote_ends_on_line(text: str, delimiter: str) -> bool:
+    """Whether every quoted field of the line ``text`` ends on it (csv's strict reader says so)."""
+    try:
+        next(csv.reader([text], delimiter=delimiter, strict=True))
+    except csv.Error as e:
+        return "unexpected end of data" not in str(e)
+    return True
 
 
 def _check_named_delimiter(path: Path, named: str, delimiter: str) -> None:
