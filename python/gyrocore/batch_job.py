@@ -197,7 +197,7 @@ class _FileJob:
             return False
         if source.kind == "log folder":
             return has_file(source.path / ODOMETRY_CSV)
-        return SPEED_COLUMN in source.column_names()
+        return bool(source.extra_columns((SPEED_COLUMN,)))
 
     def _fused(
         self, source: io.GyroSource, overrides: dict[str, Any], start: float, progress: Progress | None

@@ -30,7 +30,8 @@ def _gnss_csv(path: Path, layout: CsvLayout, **options: float) -> Fixes:
     """:func:`read_gnss_csv` of a file checked (:func:`check_file`) whose ``layout`` is read."""
     # a name may state its unit, as in a fixes.csv (t [s], speed [m/s], bearing [deg] was refused)
     names = _fix_columns(path, layout.header, _GNSS_UNITS, _GNSS_HEADER)
-    cols = _read_rows(path, tuple(names.values()))
+    # an empty bearing is none, as nan is (a receiver at rest logs no course): from_gnss drops it
+    cols = _read_rows(path, tuple(names.values()), optional=(names["bearing"],))
     try:
         return from_gnss(cols[names["t"]], cols[names["bearing"]], cols[names["speed"]], **options)
     except ValueError as e:
@@ -86,10 +87,11 @@ def _fix_columns(path: Path, header: list[str], units: dict[str, tuple[str, tupl
     return names
 
 
-def _read_rows(path: Path, columns: tuple[str, ...]) -> dict[str, FloatArray]:
+def _read_rows(path: Path, columns: tuple[str, ...], optional: tuple[str, ...] = ()) -> dict[str, FloatArray]:
     """The named columns of a fixes file, which must have a row: a file of no fix is refused, as a
-    gyro file of no sample is, rather than fusing nothing."""
-    cols = read_csv_columns(path, columns, what="a fixes file")
+    gyro file of no sample is, rather than fusing nothing. An empty value of an ``optional``
+    column is NaN."""
+    cols = read_csv_columns(path, columns, what="a fixes file", optional=optional)
     if len(cols[columns[0]]) == 0:
         raise ValueError(f"{path}: no row after the header line, so no fix; add the fixes (one per line) or "
                          "remove the file")

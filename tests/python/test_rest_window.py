@@ -127,7 +127,7 @@ def test_the_command_line_refuses_a_window_after_the_log(tmp_path: Path) -> None
     assert proc.returncode == 2 and "bias_duration = 60.0 s is longer than the log" in proc.stderr
 
 
-STATIONARY = "stationary must be [t0, t1] in seconds (finite, t0 <= t1) or null"
+STATIONARY = "stationary must be [t0, t1] in seconds (finite, t0 < t1) or null"
 
 
 @pytest.fixture
@@ -154,6 +154,7 @@ def test_a_meta_json_window_after_the_log_names_meta_json(log_folder: Path, tmp_
     [
         (b'{"stationary": [NaN, 5]}', f"{STATIONARY}, got [nan, 5]"),
         (b'{"stationary": [5, 1]}', f"{STATIONARY}, got [5, 1]"),
+        (b'{"stationary": [5, 5]}', f"{STATIONARY}, got [5, 5]"),
         (b'{"name": "caf\xe9"}', "not UTF-8 text (at byte offset 13: invalid continuation byte); save it as UTF-8"),
     ],
 )
@@ -162,6 +163,9 @@ def test_a_bad_meta_json_is_named(log_folder: Path, tmp_path: Path, content: byt
     proc = gyrocore_cli("process", log_folder, "--out", tmp_path / "h.csv")
     assert proc.returncode == 2
     assert proc.stderr.strip() == f"gyrocore: error: {log_folder / 'meta.json'}: {message}"
+    with pytest.raises(ValueError) as raised:  # the Python API says the same
+        gyrocore.read_log(log_folder)
+    assert str(raised.value) == f"{log_folder / 'meta.json'}: {message}"
 
 
 @pytest.mark.parametrize("mode", ["whole", "causal"])

@@ -233,9 +233,10 @@ def heading_reference(
         lo, hi = max(lo, start), min(hi, end)
     inside = np.flatnonzero((tr >= lo) & (tr <= hi))
     if len(inside) < 3:
+        # a reference.csv of a header alone was asked about its time base
+        why = "are both in the same time base?" if len(tr) >= 3 else f"the reference has {len(tr)} in all"
         raise ValueError(
-            f"only {len(inside)} reference sample(s) fall inside the gyro's span {lo} .. {hi} s; "
-            "need at least 3 (are both in the same time base?)"
+            f"only {len(inside)} reference sample(s) fall inside the gyro's span {lo} .. {hi} s; need at least 3 ({why})"
         )
     origin = ta[0]
     angle = angle_of(ta - origin, ra)  # its input warned of its units

@@ -21,6 +21,9 @@ if TYPE_CHECKING:
 
 #: What to do about a missing column of gyro data: the reading options name another.
 CHOOSE_COLUMNS = "choose with time_col/rate_col, --time-col/--rate-col"
+#: What to do with columns aligned by runs of spaces, which no one delimiter separates.
+ALIGNED = ("its columns aligned with runs of spaces, which no delimiter separates (--delimiter ' ' reads empty "
+           "columns between them): convert the file, e.g. awk -v OFS=, '{$1=$1; print}' old.csv > new.csv")
 
 
 def column_positions(
@@ -53,6 +56,8 @@ def column_positions(
             given = (f"give the file's delimiter (delimiter={found[0]!r}, --delimiter {arg})" if choose == CHOOSE_COLUMNS
                      else f"such a file is read comma-separated: separate its fields with ',' (not {shown})")
             short = f"; the header line is one field, with {shown} in it: {given}"
+            if found[0] == " " and "  " in str(header[0]).strip():  # --delimiter ' ' would split it into empty names
+                short = f"; the header line is one field, {ALIGNED}"
         if choose == CHOOSE_COLUMNS and not found:  # the one field is the whole header line, no column
             short += _look_like(header, missing, times)
         if header and all(is_number(str(h).strip(" \t")) for h in header):  # "it has 0, 0.1" left the cause to guess
@@ -74,6 +79,7 @@ def column_positions(
 SECONDS = tuple(u for u, si in HEADER_TIME_UNITS.items() if si == "s")
 RADIANS = ("rad", "radian", "radians")
 METRES = ("m", "metre", "metres", "meter", "meters")
+METRES_PER_SECOND = ("m/s", "ms-1")
 
 
 def in_si_units(path: Path, header: list[str], units: dict[str, tuple[str, tuple[str, ...]]]) -> list[str]:

@@ -23,8 +23,9 @@ import numpy as np
 from .._arrays import FloatArray
 from .._extras import require
 from ._columns import (
-    CHOOSE_COLUMNS, column_positions, concat, first_null, import_pyarrow_lazy_modules, is_number,
+    ALIGNED, CHOOSE_COLUMNS, column_positions, concat, first_null, import_pyarrow_lazy_modules, is_number,
 )
+from ._paths import content_kind
 from .units import is_unit
 
 if TYPE_CHECKING:
@@ -44,6 +45,10 @@ _GZIP = b"\x1f\x8b"
 _UTF16_BOMS = (b"\xff\xfe", b"\xfe\xff")
 _UTF8_BOM = b"\xef\xbb\xbf"
 #: A date, maybe with a time, as loggers write them (``2024-05-03T14:00:00.010Z``, ``2024-05-03 14:00``).
+#: What a last line with too few fields most likely is.
+_CUT_OFF = " (the file's last line, cut off: a log whose writing stopped mid-line; delete the line)"
+#: The first line of a CSV file that names its delimiter, as Excel writes it (``sep=;``).
+_SEP = re.compile(rb'"?sep=(.)"?')
 _DATE = re.compile(r"\d{4}-\d{2}-\d{2}(?:[T ]\d{2}:\d{2})?")
 #: Rows read from a CSV file and not yet handed out: first row, columns, bytes read, rows.
 _HeldRows: TypeAlias = "tuple[int, dict[str, pa.Array], int, int]"
@@ -67,7 +72,9 @@ def csv_layout(path: Path, delimiter: str) -> CsvLayout:
 
     A leading line that starts with ``#`` is a comment, unless the line after it is already a
     sample: then it is the header, as EuRoC writes it (``#timestamp [ns],w_RS_S_x ...``), and
-    :func:`~gyrocore.io.units.split_unit` reads its names without the ``#``.
+    :func:`~gyrocore.io.units.split_unit` reads its names without the ``#``. Blank lines after a
+    comment are skipped with it (a logger's notes, a blank line, then the header), and so is a
+    first line ``sep=;`` that names the ``delimiter`` (Excel's; another delimiter is an error).
 
     Raises:
         ValueError: no header, binary data, UTF-16, classic Mac OS line ends, a line longer than
@@ -76,20 +83,50 @@ def csv_layout(path: Path, delimiter: str) -> CsvLayout:
     with open(path, "rb") as f:
         line = _first_line(path, f)
         number, offset = 1, 0
+        named = _SEP.fullmatch(line.removeprefix(_UTF8_BOM).rstrip(b"\r\n"))
+        if named:  # a spreadsheet's line naming the delimiter: "sep=;" was read as the header
+            _check_named_delimiter(path, named[1].decode("utf-8", errors="replace"), delimiter)
+            number, offset, line = 2, len(line), f.readline(MAX_LINE_BYTES + 1)
+            if not line.strip():
+                raise ValueError(f"{path}: line 2: no header line (expected column names)")
         while line.removeprefix(_UTF8_BOM).startswith(b"#"):
-            following = f.readline(MAX_LINE_BYTES + 1)
+            following, skipped = f.readline(MAX_LINE_BYTES + 1), [line]
+            while following and not following.strip():  # blank lines between the comments and the header
+                skipped.append(following)
+                following = f.readline(MAX_LINE_BYTES + 1)
             if not following.strip() or _is_sample(following, delimiter):
                 break
-            number, offset, line = number + 1, offset + len(line), following
+            number, offset, line = number + len(skipped), offset + sum(map(len, skipped)), following
             if len(line) > MAX_LINE_BYTES:
                 raise ValueError(f"{path}: line {number} is longer than {MAX_LINE_BYTES} bytes, the longest read")
     text = _decode(path, number, offset, line).rstrip("\r\n")
     try:
         with _long_fields():
             header = [name.strip() for name in next(csv.reader([text], delimiter=delimiter))]
+            ends_quoted = _quote_ends_on_line(text, delimiter)
     except csv.Error as e:  # e.g. a bare carriage return inside the header
         raise ValueError(f"{path}: line {number}: malformed header: {e}") from None
+    if not ends_quoted:  # the rest of the name was read as the first sample: "line 2: 1 field"
+        raise ValueError(f"{path}: line {number}: a quoted column name goes on past the line's end (a line break in "
+                         "a name, as a spreadsheet cell of two lines writes it): write the header on one line")
     return CsvLayout(header, number)
+
+
+def _quote_ends_on_line(text: str, delimiter: str) -> bool:
+    """Whether every quoted field of the line ``text`` ends on it (csv's strict reader says so)."""
+    try:
+        next(csv.reader([text], delimiter=delimiter, strict=True))
+    except csv.Error as e:
+        return "unexpected end of data" not in str(e)
+    return True
+
+
+def _check_named_delimiter(path: Path, named: str, delimiter: str) -> None:
+    """Refuse a file whose ``sep=`` line (Excel's) names another delimiter than the one read with."""
+    if named != delimiter:
+        arg = "tab" if named == "\t" else repr(named)
+        raise ValueError(f"{path}: line 1: {'sep=' + named!r} names the file's delimiter, {named!r}, and it is read with "
+                         f"{delimiter!r}: give delimiter={named!r} (--delimiter {arg})")
 
 
 def refuse_not_text(path: Path, line: bytes, what: str) -> None:
@@ -99,7 +136,10 @@ def refuse_not_text(path: Path, line: bytes, what: str) -> None:
     if line.startswith(_UTF16_BOMS):
         raise ValueError(f"{path}: text in UTF-16 (or UTF-32), not UTF-8: save it as UTF-8")
     if line.startswith(_GZIP) or any(b < 32 and b not in b"\t\r\n" for b in line[:4096]):
-        raise ValueError(f"{path}: not a text {what} (binary data on line 1; decompress a .gz file first)")
+        # a Parquet or NumPy file given as a reference or fixes file was told to decompress it
+        kind = content_kind(line)
+        why = f"it is {kind}" if kind else "binary data on line 1; decompress a .gz file first"
+        raise ValueError(f"{path}: not a text {what} ({why})")
 
 
 def _first_line(path: Path, f: BinaryIO) -> bytes:
@@ -296,7 +336,10 @@ def _csv_error(
                     return f"{path}: line {line}, column {positions[name] + 1} ({name}): blank line"
                 continue
             if len(fields) != len(header):
-                return f"{path}: line {line}: {_count(len(fields), 'field')}, but the header has {len(header)}"
+                # too few fields on the last line (any() stops at the next line with a value): cut off
+                hint = (f" ({ALIGNED})" if delimiter == " " and "" in (*header, *fields)
+                        else _CUT_OFF if len(fields) < len(header) and not any(map(any, reader)) else "")
+                return f"{path}: line {line}: {_count(len(fields), 'field')}, but the header has {len(header)}{hint}"
             for name, pos in positions.items():
                 value = fields[pos].strip(" \t")  # what pyarrow trims
                 where = f"{path}: line {line}, column {pos + 1} ({name})"

@@ -19,7 +19,7 @@ import numpy as np
 from .._arrays import FloatArray
 from .._checks import warn
 from ..window import RestWindowError, in_log_clock
-from ._columns import METRES, RADIANS, SECONDS, in_si_units
+from ._columns import METRES, METRES_PER_SECOND, RADIANS, SECONDS, in_si_units
 from ._csvfile import CsvLayout, csv_layout, read_csv_columns
 from ._jsonfile import json_kind, read_json
 from ._paths import check_file, has_file
@@ -177,7 +177,7 @@ def read_reference_file(path: str | Path) -> dict[str, FloatArray]:
 #: The units a reference's and an odometry file's columns may state in their names (``t [s]``,
 #: ``heading [rad]``, ``speed [m/s]``), as a fixes.csv's: any other is refused, not converted.
 _REFERENCE_UNITS = {"t": ("s", SECONDS), "heading": ("rad", RADIANS), "x": ("m", METRES), "y": ("m", METRES)}
-_ODOMETRY_UNITS = {"t": ("s", SECONDS), "speed": ("m/s", ("m/s", "ms-1"))}
+_ODOMETRY_UNITS = {"t": ("s", SECONDS), "speed": ("m/s", METRES_PER_SECOND)}
 
 
 def si_layout(path: Path, units: dict[str, tuple[str, tuple[str, ...]]]) -> CsvLayout:
@@ -231,9 +231,9 @@ def _rest_window(path: Path, window: Any) -> tuple[float, float] | None:
         isinstance(window, list)
         and len(window) == 2
         and all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(_as_float(v)) for v in window)
-        and window[0] <= window[1]
+        and window[0] < window[1]  # an empty window [5, 5] passed here, then failed unnamed (Log's own check)
     ):
-        raise ValueError(f"{path}: stationary must be [t0, t1] in seconds (finite, t0 <= t1) or null, got {window!r}")
+        raise ValueError(f"{path}: stationary must be [t0, t1] in seconds (finite, t0 < t1) or null, got {window!r}")
     return float(window[0]), float(window[1])
 
 

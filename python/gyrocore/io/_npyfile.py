@@ -68,6 +68,20 @@ def npy_shape(path: Path, options: ReadOptions) -> tuple[int, ...]:
     return shape
 
 
+def npy_fields(path: Path) -> list[str] | None:
+    """The field names of a structured .npy file, which may state their units (``t_ms``,
+    ``gyro_z [deg/s]``) as a CSV header's names do; None for a plain array (numbered columns)."""
+    with open(path, "rb") as f:
+        names = _sized_header(path, f)[2].names
+    return None if names is None else list(names)
+
+
+def npz_names(path: Path) -> list[str]:
+    """The array names of the .npz archive ``path``, which may state their units as :func:`npy_fields`."""
+    with _npz_archive(path) as archive:
+        return [name for name, _ in _member_names(archive)]
+
+
 def check_npz(path: Path, options: ReadOptions) -> None:
     """Open the .npz archive ``path`` (a file that is none is refused as it is opened) and warn
     where a time unit is given and its time array is a duration, which carries its own."""

@@ -128,6 +128,12 @@ def content_hint(path: Path) -> str:
     return ""
 
 
+def content_kind(head: bytes) -> str | None:
+    """What kind of file gyrocore reads the bytes ``head`` (a file's first) begin (``a Parquet
+    file``), or None."""
+    return next((what for magic, _, what in _MAGIC if head.startswith(magic)), None)
+
+
 def _is_text(head: bytes) -> bool:
     """Whether ``head``, a file's first bytes, is UTF-8 text (a character cut at its end aside)."""
     try:

@@ -250,7 +250,9 @@ def _file_tables(src: GyroSource, t: FloatArray) -> tuple[dict[str, FloatArray],
     """A file's reference and odometry at its own samples' times, from its columns (one pass):
     the heading of :data:`TRUTH_COLUMNS` (with the positions where it has both) and the speed of
     :data:`~gyrocore.io.source.SPEED_COLUMN`, each empty without its column."""
-    columns = src.optional_columns((*TRUTH_COLUMNS.values(), SPEED_COLUMN))
+    # positions only beside a heading: a three-axis gyro's columns may be named x, y [rad/s]
+    track = (TRUTH_COLUMNS["x"], TRUTH_COLUMNS["y"]) if src.extra_columns((TRUTH_COLUMNS["heading"],)) else ()
+    columns = src.optional_columns((TRUTH_COLUMNS["heading"], *track, SPEED_COLUMN))
     ref: dict[str, FloatArray] = {}
     if TRUTH_COLUMNS["heading"] in columns:
         heading = columns[TRUTH_COLUMNS["heading"]]

@@ -20,10 +20,10 @@ from .._checks import first_infinite, keep_readings, require_choice, require_fla
 from .._gyrocore import SampleError
 from ..window import Window
 from ._axes import MEASURED, measure_up, parse_up, parse_up_window, project, three_names
-from ._columns import concat, import_pyarrow_lazy_modules
+from ._columns import METRES, METRES_PER_SECOND, RADIANS, concat, import_pyarrow_lazy_modules, in_si_units
 from ._csvfile import CsvLayout, csv_chunks, csv_layout
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta, warn_gyro_alone
-from ._npyfile import check_npz, npy_chunks, npy_shape, npz_chunks
+from ._npyfile import check_npz, npy_chunks, npy_fields, npy_shape, npz_chunks, npz_names
 from ._options_given import checked_options
 from ._parquetfile import parquet_chunks, parquet_file, warn_given_time_unit
 from ._paths import check_file, check_readable, content_hint, missing
@@ -36,6 +36,10 @@ DEFAULT_CHUNK_ROWS = 1 << 16
 #: The column of a CSV or Parquet file that holds the vehicle's speed [m/s] per sample (what
 #: ``gyrocore simulate`` writes): whole mode takes its stops as rests, as a log folder's odometry.
 SPEED_COLUMN = "speed"
+#: The SI unit (and its spellings) of each per-sample column of a file besides the gyro's: its
+#: speed, and the reference that ``gyrocore simulate`` writes beside it (:data:`gyrocore.io.log.TRUTH_COLUMNS`).
+EXTRA_UNITS = {SPEED_COLUMN: ("m/s", METRES_PER_SECOND), "heading_true": ("rad", RADIANS), "x": ("m", METRES),
+               "y": ("m", METRES)}
 #: Suffixes of the files :func:`open_source` reads.
 FILE_SUFFIXES = (".csv", ".tsv", ".parquet", ".pq", ".npy", ".npz", ".bag")
 #: What a file's reading that is not finite (or beyond the core's limit) can be given instead of an edit.
@@ -294,16 +298,24 @@ class GyroSource:
             return list(parquet_file(self.data_path).schema_arrow.names)
         return []
 
-    def optional_columns(self, names: tuple[str, ...], rows: int = DEFAULT_CHUNK_ROWS) -> dict[str, FloatArray]:
-        """Those of the columns ``names`` that a CSV or Parquet file has, one value per sample (an
-        empty value NaN), read in one pass; none for another input (another format, or a log
-        folder: its tables are files of their own)."""
+    def extra_columns(self, names: tuple[str, ...]) -> dict[str, str]:
+        """The header's name of each of the columns ``names`` (of :data:`EXTRA_UNITS`) that a CSV or
+        Parquet file has: the name itself, or with its SI unit (``speed [m/s]``, as a gyro column
+        may state its unit; such a column was left out without a word). A name that states another
+        unit (``speed [km/h]``) is an error, as in a log folder's odometry.csv."""
         header = self.column_names()
-        present = tuple(n for n in names if n in header)
+        bare = in_si_units(self.data_path, header, {n: EXTRA_UNITS[n] for n in names})
+        return {n: header[bare.index(n)] for n in names if n in bare}
+
+    def optional_columns(self, names: tuple[str, ...], rows: int = DEFAULT_CHUNK_ROWS) -> dict[str, FloatArray]:
+        """Those of the columns ``names`` that a CSV or Parquet file has (:meth:`extra_columns`),
+        one value per sample (an empty value NaN), read in one pass; none for another input
+        (another format, or a log folder: its tables are files of their own)."""
+        present = self.extra_columns(names)
         if not present:
             return {}
         parts: list[list[np.ndarray]] = [[] for _ in present]
-        for _, values, _ in self._read(rows, present):
+        for _, values, _ in self._read(rows, tuple(present.values())):
             for part, v in zip(parts, values):
                 part.append(np.asarray(v, dtype=np.float64))
         return {n: concat(part) for n, part in zip(present, parts)}
@@ -451,11 +463,13 @@ def _open_file(p: Path, options: ReadOptions) -> GyroSource:
         options = header_options(p, pf.schema_arrow.names, options)
         return GyroSource(p, "parquet", p, options, progress_total=pf.metadata.num_rows)
     if suffix == ".npy":
+        options = header_options(p, npy_fields(p), options)  # field names state units as a header's do
         shape = npy_shape(p, options)
-        return GyroSource(p, "npy", p, header_options(p, None, options), progress_total=shape[0] if shape else 0)
+        return GyroSource(p, "npy", p, options, progress_total=shape[0] if shape else 0)
     if suffix == ".npz":
+        options = header_options(p, npz_names(p), options)
         check_npz(p, options)
-        return GyroSource(p, "npz", p, header_options(p, None, options))
+        return GyroSource(p, "npz", p, options)
     if suffix == ".bag":
         return _open_bag(p, header_options(p, None, options))
     raise ValueError(

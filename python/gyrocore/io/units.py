@@ -234,15 +234,18 @@ def split_unit(column: str) -> tuple[str, str | None]:
     """A column name without the unit it states, and that unit as written (None if it states none).
 
     ``#timestamp [ns]`` -> ``("timestamp", "ns")``; ``gyro_z_dps`` -> ``("gyro_z", "dps")``;
-    ``t`` -> ``("t", None)``. A ``_suffix`` counts as a unit only if it is one (``gyro_z`` has none).
+    ``gyro_z_deg_s`` -> ``("gyro_z", "deg_s")``; ``t`` -> ``("t", None)``. A ``_suffix`` counts as a
+    unit only if it is one (``gyro_z`` has none).
     """
     name = column.strip().lstrip("#").strip()
     m = _BRACKETED.match(name)
     if m and m["base"]:
         return m["base"], (m["square"] if m["square"] is not None else m["round"]).strip()
-    base, sep, suffix = name.rpartition("_")
-    if sep and base and (normal_unit(suffix) in HEADER_TIME_UNITS or normal_unit(suffix) in HEADER_RATE_UNITS):
-        return base, suffix
+    for words in (2, 1):  # a unit of two words first: gyro_z_deg_s is in deg_s, not in s
+        base, *suffix = name.rsplit("_", words)
+        unit = normal_unit("_".join(suffix))
+        if len(suffix) == words and base and (unit in HEADER_TIME_UNITS or unit in HEADER_RATE_UNITS):
+            return base, "_".join(suffix)
     return name, None
 
 
