@@ -34,7 +34,8 @@ from ._motion import warn_if_turning
 from ._smoother import leave_one_out
 from .rests import Rest
 from .window import (
-    RestWindowError, no_usable_reading, refuse_few_readings, refuse_past_end, refuse_window_outside, rest_window_text,
+    MIN_WINDOW_READINGS, RestWindowError, no_usable_reading, refuse_few_readings, refuse_past_end, refuse_window_outside,
+    rest_window_text,
 )
 
 #: Below this speed [m/s] the vehicle stands still (wheel and CAN speeds read a few cm/s of noise).
@@ -176,10 +177,16 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
 
 def accept(rests: list[Rest], walk: float, motion_noise: float = math.nan) -> list[Rest]:
     """``rests`` (found ones) with those that are not rests marked ``refused`` (see the module doc);
-    ``motion_noise`` is :attr:`Found.motion_noise`."""
-    noise = float(np.median([r.noise for r in rests])) if rests else 0.0
+    ``motion_noise`` is :attr:`Found.motion_noise`. A rest of fewer than
+    :data:`~gyrocore.window.MIN_WINDOW_READINGS` readings (a short stop of a slow log) is refused
+    first: its spread is unknown, and one reading read "+- 0" and outweighed every other rest."""
+    rests = [_refuse(r, f"{r.samples} reading(s): a rest's bias needs at least {MIN_WINDOW_READINGS}")
+             if r.samples < MIN_WINDOW_READINGS else r for r in rests]
+    measured = [r.noise for r in rests if r.refused is None]
+    noise = float(np.median(measured)) if measured else 0.0
     judged = [
-        _refuse(r, f"noise {math.degrees(r.noise):.2g} deg/s, over {NOISE_RATIO:g} x the rests' median")
+        r if r.refused is not None
+        else _refuse(r, f"noise {math.degrees(r.noise):.2g} deg/s, over {NOISE_RATIO:g} x the rests' median")
         if r.noise > NOISE_RATIO * noise
         else _refuse(r, _unproven(r, motion_noise)) if _by_rate(r) and not _proven(r, motion_noise)
         else r
