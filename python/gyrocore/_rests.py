@@ -167,12 +167,24 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
     if found_by.startswith("given"):
         given = {"bias_duration": end - start} if found_by == "given: bias_duration" else {"bias_window": (start, end)}
         refuse_few_readings(rest_window_text(given), samples)
-    inside = rs[(ts >= start) & (ts <= end)]
+    within = (ts >= start) & (ts <= end)
+    inside = rs[within]
     if found_by.startswith("given"):  # a found rest is still by its finder's rules
         warn_if_turning(window, inside, bias)
     white_noise = noise if noise is not None else float(np.std(inside))
-    error = white_noise / math.sqrt(samples)
+    error = white_noise * _weighted_share(ts[within])
     return Rest(start, end, bias, max(error, batch_error or 0.0), white_noise, samples, found_by.split(":")[0])
+
+
+def _weighted_share(t: FloatArray) -> float:
+    """The white-noise standard error of the core's time-weighted mean over readings at ``t``, per
+    unit of one reading's noise: ``sqrt(sum w^2) / sum w``, each reading weighted by the time since
+    the one before (the first by none). ``1 / sqrt(n)`` counted every reading alike: a rest with a
+    gap (readings skipped, a logger's pause) took the one reading after it for the whole gap and
+    still read the error of all of them."""
+    w = np.diff(t)
+    total = float(np.sum(w))
+    return math.sqrt(float(np.sum(w * w))) / total if total > 0 else 1.0
 
 
 def accept(rests: list[Rest], walk: float, motion_noise: float = math.nan) -> list[Rest]:

@@ -4,10 +4,11 @@ it takes from them stay what the log shows."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 import gyrocore
 
-from .test_wholelog import drive, stop_speed
+from .test_wholelog import NOISE, drive, stop_speed
 
 
 def test_a_stop_of_one_reading_is_refused_not_taken_as_exact() -> None:
@@ -22,3 +23,17 @@ def test_a_stop_of_one_reading_is_refused_not_taken_as_exact() -> None:
     assert [r.samples for r in result.rests if r.accepted] == [39]
     long_only = gyrocore.process(t, rate, "static_bias", speed=stop_speed(t, [(20.0, 40.0)]))
     np.testing.assert_array_equal(result.heading, long_only.heading)
+
+
+def test_a_rest_with_a_gap_reads_the_error_of_its_time_weighted_mean() -> None:
+    # the readings of most of a stop skipped (NaN): the core's time-weighted mean takes the one
+    # reading after the gap for 17 of the rest's 19 s, and its error is nearly one reading's noise
+    # (it read the error of all 160 readings left, 0.1 of it)
+    t, rate, _ = drive(60.0, [(20.0, 40.0)], bias=0.01)
+    rate[(t > t[0] + 20.6) & (t < t[0] + 38.0)] = np.nan
+    with pytest.warns(gyrocore.InputWarning):  # the readings skipped, and the gap they leave
+        result = gyrocore.process(t, rate, "static_bias", speed=stop_speed(t, [(20.0, 40.0)]), nonfinite="skip")
+    (rest,) = result.rests
+    inside = t[(t >= rest.start) & (t <= rest.end) & np.isfinite(rate)]
+    weights = np.diff(inside)
+    assert rest.bias_std_error >= rest.noise * np.sqrt(np.sum(weights**2)) / np.sum(weights) > 0.8 * NOISE
