@@ -37,3 +37,15 @@ def test_a_rest_with_a_gap_reads_the_error_of_its_time_weighted_mean() -> None:
     inside = t[(t >= rest.start) & (t <= rest.end) & np.isfinite(rate)]
     weights = np.diff(inside)
     assert rest.bias_std_error >= rest.noise * np.sqrt(np.sum(weights**2)) / np.sum(weights) > 0.8 * NOISE
+
+
+def test_a_stop_of_a_large_mean_rate_is_listed_refused_not_left_unsaid() -> None:
+    # a gyro whose bias exceeds 0.05 rad/s (2.9 deg/s; comma_seg40's reads 0.068): its stop reads
+    # as a turn on the spot and is not used, but the speed shows it, and the report said "no rest
+    # was found in the log"
+    t, rate, _ = drive(60.0, [(20.0, 40.0)], bias=0.08)
+    with pytest.warns(gyrocore.InputWarning, match="1 rest.s. found, none used .its mean rate 4.5"):
+        result = gyrocore.process(t, rate, "static_bias", speed=stop_speed(t, [(20.0, 40.0)]))
+    (rest,) = result.rests
+    assert rest.found_by == "speed" and "turn on the spot" in (rest.refused or "")
+    assert abs(rest.bias - 0.08) < 0.001 and result.bias_source.startswith("none: 1 rest(s) found, none used")
