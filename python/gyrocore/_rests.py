@@ -34,7 +34,8 @@ from ._motion import warn_if_turning
 from ._smoother import leave_one_out
 from .rests import Rest
 from .window import (
-    RestWindowError, no_usable_reading, refuse_few_readings, refuse_past_end, refuse_window_outside, rest_window_text,
+    MIN_WINDOW_READINGS, RestWindowError, no_usable_reading, refuse_few_readings, refuse_past_end, refuse_window_outside,
+    rest_window_text,
 )
 
 #: Below this speed [m/s] the vehicle stands still (wheel and CAN speeds read a few cm/s of noise).
@@ -90,8 +91,8 @@ def find_rests(t: FloatArray, rate: FloatArray, speed: FloatArray | None = None,
     Where the speed (one per sample, NaN where unknown) is known, a rest is where it stays below
     :data:`SPEED_THRESHOLD` for ``min_rest`` [s] (``speed``), less :data:`EDGE` at each end (at
     most a quarter of the stop: braking and pulling off rock the vehicle, and a speed sampled
-    slower than the gyro lags) and unless its mean rate exceeds :data:`MAX_REST_RATE` (a turn on
-    the spot). Where it is not, a rest is where the rate alone shows one
+    slower than the gyro lags); one whose mean rate exceeds :data:`MAX_REST_RATE` (a turn on the
+    spot) is found and then refused by :func:`accept`, so that the report lists it. Where it is not, a rest is where the rate alone shows one
     (:func:`gyrocore.calibration.rest_windows`, ``rate``).
     """
     from .calibration.rest import rests_and_motion  # calibration builds on the pipeline module too
@@ -109,8 +110,7 @@ def find_rests(t: FloatArray, rate: FloatArray, speed: FloatArray | None = None,
         for a, b in _runs(t, known & (np.abs(np.where(known, speed, 0.0)) <= SPEED_THRESHOLD)):
             trim = min(EDGE, (b - a) / 4)
             inside = within(a + trim, b - trim)
-            readings = rate[inside][taken[inside]]
-            if b - a >= min_rest and len(readings) and abs(float(np.mean(readings))) <= MAX_REST_RATE:
+            if b - a >= min_rest and taken[inside].any():  # one of a mean rate too large is refused by accept
                 found.append((a + trim, b - trim, "speed"))
     motion = math.nan
     if np.count_nonzero(taken) >= 8 and not known.all():
@@ -166,20 +166,41 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
     if found_by.startswith("given"):
         given = {"bias_duration": end - start} if found_by == "given: bias_duration" else {"bias_window": (start, end)}
         refuse_few_readings(rest_window_text(given), samples)
-    inside = rs[(ts >= start) & (ts <= end)]
+    within = (ts >= start) & (ts <= end)
+    inside = rs[within]
     if found_by.startswith("given"):  # a found rest is still by its finder's rules
         warn_if_turning(window, inside, bias)
     white_noise = noise if noise is not None else float(np.std(inside))
-    error = white_noise / math.sqrt(samples)
+    error = white_noise * _weighted_share(ts[within])
     return Rest(start, end, bias, max(error, batch_error or 0.0), white_noise, samples, found_by.split(":")[0])
+
+
+def _weighted_share(t: FloatArray) -> float:
+    """The white-noise standard error of the core's time-weighted mean over readings at ``t``, per
+    unit of one reading's noise: ``sqrt(sum w^2) / sum w``, each reading weighted by the time since
+    the one before (the first by none). ``1 / sqrt(n)`` counted every reading alike: a rest with a
+    gap (readings skipped, a logger's pause) took the one reading after it for the whole gap and
+    still read the error of all of them."""
+    w = np.diff(t)
+    total = float(np.sum(w))
+    return math.sqrt(float(np.sum(w * w))) / total if total > 0 else 1.0
 
 
 def accept(rests: list[Rest], walk: float, motion_noise: float = math.nan) -> list[Rest]:
     """``rests`` (found ones) with those that are not rests marked ``refused`` (see the module doc);
-    ``motion_noise`` is :attr:`Found.motion_noise`."""
-    noise = float(np.median([r.noise for r in rests])) if rests else 0.0
+    ``motion_noise`` is :attr:`Found.motion_noise`. A rest of fewer than
+    :data:`~gyrocore.window.MIN_WINDOW_READINGS` readings (a short stop of a slow log) is refused
+    first: its spread is unknown, and one reading read "+- 0" and outweighed every other rest. So is
+    a stop whose mean rate exceeds :data:`MAX_REST_RATE`: a turn on the spot, or a bias that large,
+    which the log's stops cannot tell apart (it was left out unlisted: "no rest was found")."""
+    rests = [_refuse(r, f"{r.samples} reading(s): a rest's bias needs at least {MIN_WINDOW_READINGS}")
+             if r.samples < MIN_WINDOW_READINGS else _refuse(r, _turning(r)) if abs(r.bias) > MAX_REST_RATE else r
+             for r in rests]
+    measured = [r.noise for r in rests if r.refused is None]
+    noise = float(np.median(measured)) if measured else 0.0
     judged = [
-        _refuse(r, f"noise {math.degrees(r.noise):.2g} deg/s, over {NOISE_RATIO:g} x the rests' median")
+        r if r.refused is not None
+        else _refuse(r, f"noise {math.degrees(r.noise):.2g} deg/s, over {NOISE_RATIO:g} x the rests' median")
         if r.noise > NOISE_RATIO * noise
         else _refuse(r, _unproven(r, motion_noise)) if _by_rate(r) and not _proven(r, motion_noise)
         else r
@@ -246,6 +267,11 @@ def _unproven(rest: Rest, motion_noise: float) -> str:
             f"readings), its noise {math.degrees(rest.noise):.2g} deg/s against {math.degrees(motion_noise):.2g} deg/s "
             "in the rest of the log: too short and not quiet enough for the rate alone to tell a rest from a chance "
             f"run of quiet readings (at least {MIN_RATE_BLOCKS} blocks, or {1 / QUIET_RATIO:g} x quieter)")
+
+
+def _turning(rest: Rest) -> str:
+    return (f"its mean rate {math.degrees(rest.bias):.3g} deg/s exceeds {math.degrees(MAX_REST_RATE):.3g} deg/s: a turn "
+            "on the spot, or a bias that large (then give it: bias_window over this stop, or bias)")
 
 
 def _refuse(rest: Rest, why: str) -> Rest:

@@ -40,7 +40,8 @@ class Rest:
         bias: mean reading over it [rad/s]: the bias it measured, time-weighted as the pipeline's
             rest window.
         bias_std_error: standard error of ``bias`` [rad/s]: the batch-means error, at least the
-            white-noise error ``noise / sqrt(samples)``.
+            white-noise error of the time-weighted mean (``noise / sqrt(samples)`` for evenly
+            spaced readings).
         noise: standard deviation of one reading [rad/s].
         samples: readings inside it.
         found_by: ``given`` (bias_window, bias_duration, meta.json), ``speed`` (a speed below the
