@@ -51,6 +51,12 @@ class Method:
         """The preset as it is; ``recommended`` keeps its name and runs what it stands for."""
         return cls(preset, recommended_preset() if preset == "recommended" else preset)
 
+    @property
+    def _runs_as(self) -> str:
+        """The name the pipeline is given: ``recommended`` as the user named it, so that its words
+        name what was asked for (they named the preset it stands for), else the preset."""
+        return "recommended" if self.name == "recommended" and self.preset == recommended_preset() else self.preset
+
     def run(
         self, log: Log, *, bias_duration: float | None = None, mode: str = "whole", use_speed: bool = True
     ) -> tuple[HeadingResult, str]:
@@ -62,7 +68,7 @@ class Method:
         """
         overrides = dict(self.overrides)
         if uses_static_bias(self.preset) and has_bias_source(overrides):
-            return log.process(self.preset, mode=mode, use_speed=use_speed, **overrides), "given by the method"
+            return log.process(self._runs_as, mode=mode, use_speed=use_speed, **overrides), "given by the method"
         # the log's own rest window is Log.process's to apply: its error then names meta.json
         if uses_static_bias(self.preset) and log.stationary is None:
             if bias_duration is not None:
@@ -70,8 +76,8 @@ class Method:
             elif mode == "causal":
                 # said here rather than warned by the pipeline: a bias of 0 is the causal baseline
                 bias, source = log_bias(log)
-                return log.process(self.preset, mode=mode, use_speed=use_speed, **overrides, **bias), f"{source} (causal)"
-        result = log.process(self.preset, mode=mode, use_speed=use_speed, **overrides)
+                return log.process(self._runs_as, mode=mode, use_speed=use_speed, **overrides, **bias), f"{source} (causal)"
+        result = log.process(self._runs_as, mode=mode, use_speed=use_speed, **overrides)
         return result, result.bias_source
 
 
