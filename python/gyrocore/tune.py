@@ -45,7 +45,8 @@ from .tune_params import FORMAT_NAME, FORMAT_VERSION, ParameterSet, validate
 __all__ = [
     "BOUNDS", "FORMAT_NAME", "FORMAT_VERSION", "HARM_MIXES", "HARM_WEIGHT", "OBJECTIVES", "OPTIMISERS", "Case", "CaseScore",
     "ParameterSet", "TuningResult", "default_parameters", "harm_cases", "harm_excess", "check_leave_one_out", "leave_one_out",
-    "mean_log_ratio", "mean_ne_psi", "perfect_gyro", "score_cases", "search_box", "simulated_cases", "tune", "unbiased_gyro", "validate",
+    "mean_log_ratio", "mean_ne_psi", "perfect_gyro", "score_cases", "search_box", "simulated_cases", "start_point", "tune",
+    "unbiased_gyro", "validate",
 ]
 __dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
@@ -237,6 +238,21 @@ def _require_cases(what: str, cases: object) -> None:
         raise TypeError(f"{what}: give a list of cases, not one Case ([case])")
 
 
+def start_point(
+    preset: str, box: Mapping[str, tuple[float, float]], fixed: Mapping[str, Any] | None = None,
+    start: Mapping[str, float] | None = None,
+) -> tuple[dict[str, Any], dict[str, float]]:
+    """The preset's parameters with ``fixed`` laid over them, and the values the fit of ``box``
+    (:func:`search_box`) starts from (see :func:`_start_point`), checked as one pipeline before
+    any drive is run: a switch that the fitted parameters need and ``fixed`` turns off (``hdr``
+    False with HDR's parameters fitted) failed at the first evaluation."""
+    fixed = _to_si(dict(fixed or {}))
+    base = preset_params(preset, **fixed)
+    values = _start_point(box, start, base)
+    preset_params(preset, **fixed, **values)
+    return base, values
+
+
 def _start_point(
     box: Mapping[str, tuple[float, float]], start: Mapping[str, float] | None, base: Mapping[str, Any]
 ) -> dict[str, float]:
@@ -318,8 +334,7 @@ def tune(
     box = search_box(preset, names, bounds, fixed)
     name = ParameterSet(name or f"{preset}_tuned", preset, {}).name  # a name the file cannot hold fails before the fit
     names, fixed = tuple(box), _to_si(dict(fixed or {}))  # a parameter file holds SI names, with their units
-    base = preset_params(preset, **fixed)
-    start_values = _start_point(box, start, base)
+    base, start_values = start_point(preset, box, fixed, start)
 
     lo = np.log([box[n][0] for n in names])
     hi = np.log([box[n][1] for n in names])

@@ -32,6 +32,9 @@ from .test_errors_named import run_cli
         (("--sim-drive", "city:1", "--param", "hdr_c1=1:2", "--param", "hdr_c1=0.1:0.2"),
          "--param hdr_c1 is given twice; give it once"),
         (("--sim-drive", "city:1", "--set", "hdr_c2=1", "--set", "hdr_c2=2"), "--set hdr_c2 is given twice; give it once"),
+        # it failed at the first evaluation, after "tuning", in the Python API's words (pass hdr=True)
+        (("--sim-drive", "city:1", "--set", "hdr=false"),
+         "hdr_increment is set but HDR is off; give --set hdr=true to enable it"),
         # it failed only after the whole fit
         (("--sim-drive", "city:1", "--leave-one-out"),
          "leave-one-out needs at least two training drives, got 1: it fits once without each drive"),

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import re
 import sys
 from pathlib import Path
 from typing import Any, Sequence
@@ -209,7 +210,11 @@ def run(args: argparse.Namespace) -> int:
     require("scipy.optimize", "tuning")  # before the drives are built
     names, bounds = _parse_params(args.param or [])
     fixed = _parse_fixed(args.set or [])
-    tune.search_box(args.preset, names or None, bounds, fixed)  # before the drives are built
+    box = tune.search_box(args.preset, names or None, bounds, fixed)  # before the drives are built
+    try:
+        tune.start_point(args.preset, box, fixed)
+    except ValueError as e:  # the core's words are the Python API's: tune fixes a parameter with --set
+        raise ValueError(re.sub(r"\bpass (\w+)=True\b", r"give --set \1=true", str(e))) from None
     _check_simulated(args)
     progress = (lambda msg: print(msg, file=sys.stderr)) if not args.json else None
     sim_options = {"rate_hz": args.rate_hz, "sensor_name": args.sensor, "time_scale": args.time_scale}
