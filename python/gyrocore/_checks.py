@@ -277,9 +277,21 @@ def check_number(
 
 
 def json_ready(row: dict[str, Any]) -> dict[str, Any]:
-    """``row`` with each float that is not finite as None: JSON has no inf or NaN (``json.dumps``
-    writes ``Infinity``, which strict parsers refuse)."""
-    return {k: None if isinstance(v, float) and not math.isfinite(v) else v for k, v in row.items()}
+    """``row`` as :func:`json_value` makes any value JSON-ready (a result's ``as_dict``)."""
+    return {k: json_value(v) for k, v in row.items()}
+
+
+def json_value(data: Any) -> Any:
+    """``data`` with each float that is not finite, at any depth of its dicts, lists and tuples, as
+    None: JSON has no inf or NaN (``json.dumps`` writes ``Infinity``, which strict parsers refuse)."""
+    if isinstance(data, float):
+        return data if math.isfinite(data) else None
+    if isinstance(data, dict):
+        return json_ready(data)
+    if isinstance(data, (list, tuple)):
+        items = [json_value(v) for v in data]
+        return tuple(items) if type(data) is tuple else items
+    return data
 
 
 def check_count(name: str, value: object) -> int:

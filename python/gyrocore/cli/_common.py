@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any, TypeVar
 
 from .. import _gyrocore, io
-from .._checks import MAX_READING
+from .._checks import MAX_READING, json_value
 from .._extras import MissingExtra, tqdm_class
 from .._gyrocore import SampleError
 from ..calibration import Calibration
@@ -359,18 +359,7 @@ BIAS_DPS = bias_dps
 def print_json(data: Any) -> None:
     """Machine output on stdout: JSON has no inf or nan, written as null (``presets --json`` wrote
     ``Infinity``, which JSON.parse and other strict readers refuse)."""
-    print(json.dumps(_finite(data), indent=2, allow_nan=False))
-
-
-def _finite(data: Any) -> Any:
-    """``data`` with each float that is not finite, at any depth, as None."""
-    if isinstance(data, float):
-        return data if math.isfinite(data) else None
-    if isinstance(data, dict):
-        return {k: _finite(v) for k, v in data.items()}
-    if isinstance(data, (list, tuple)):
-        return [_finite(v) for v in data]
-    return data
+    print(json.dumps(json_value(data), indent=2, allow_nan=False))
 
 
 def warn(message: str) -> None:
