@@ -51,9 +51,9 @@ def column_positions(
         found = [d for d in ",;\t| " if len(header) == 1 and d in str(header[0]).strip()]
         if found:
             shown = "a tab" if found[0] == "\t" else repr(found[0])
-            arg = "tab" if found[0] == "\t" else repr(found[0])
             # the reading options (--delimiter) are the gyro's: another file given them was told to use one
-            given = (f"give the file's delimiter (delimiter={found[0]!r}, --delimiter {arg})" if choose == CHOOSE_COLUMNS
+            given = (f"give the file's delimiter (delimiter={found[0]!r}, {delimiter_option(found[0])})"
+                     if choose == CHOOSE_COLUMNS
                      else f"such a file is read comma-separated: separate its fields with ',' (not {shown})")
             short = f"; the header line is one field, with {shown} in it: {given}"
             if found[0] == " " and "  " in str(header[0]).strip():  # --delimiter ' ' would split it into empty names
@@ -72,6 +72,11 @@ def column_positions(
     if twice:
         raise ValueError(f"{path}: {where}column(s) {', '.join(twice)} appear more than once")
     return {c: header.index(c) for c in columns}
+
+
+def delimiter_option(delimiter: str) -> str:
+    """The command line's option that reads a file separated by ``delimiter`` (``--delimiter tab``)."""
+    return f"--delimiter {'tab' if delimiter == chr(9) else repr(delimiter)}"
 
 
 #: How a header may state the SI units of the columns of a file of other data than the gyro's

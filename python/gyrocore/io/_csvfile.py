@@ -23,7 +23,8 @@ import numpy as np
 from .._arrays import FloatArray
 from .._extras import require
 from ._columns import (
-    ALIGNED, CHOOSE_COLUMNS, column_positions, concat, first_null, import_pyarrow_lazy_modules, is_number,
+    ALIGNED, CHOOSE_COLUMNS, column_positions, concat, delimiter_option, first_null, import_pyarrow_lazy_modules,
+    is_number,
 )
 from ._paths import content_kind
 from .units import is_unit
@@ -124,9 +125,8 @@ def _quote_ends_on_line(text: str, delimiter: str) -> bool:
 def _check_named_delimiter(path: Path, named: str, delimiter: str) -> None:
     """Refuse a file whose ``sep=`` line (Excel's) names another delimiter than the one read with."""
     if named != delimiter:
-        arg = "tab" if named == "\t" else repr(named)
         raise ValueError(f"{path}: line 1: {'sep=' + named!r} names the file's delimiter, {named!r}, and it is read with "
-                         f"{delimiter!r}: give delimiter={named!r} (--delimiter {arg})")
+                         f"{delimiter!r}: give delimiter={named!r} ({delimiter_option(named)})")
 
 
 def refuse_not_text(path: Path, line: bytes, what: str) -> None:

@@ -116,9 +116,10 @@ def content_hint(path: Path) -> str:
     except OSError:
         return ""
     suffix = path.suffix.lower()
-    for magic, suffixes, what in _MAGIC:
-        if head.startswith(magic):
-            return "" if suffix in suffixes else f"; its content is that of {what}: name it {path.stem}{suffixes[0]}"
+    known = _magic(head)
+    if known is not None:
+        suffixes, what = known
+        return "" if suffix in suffixes else f"; its content is that of {what}: name it {path.stem}{suffixes[0]}"
     if suffix in (".csv", ".tsv"):  # the CSV reader names compressed data and other encodings itself
         return ""
     if head.startswith(b"\x1f\x8b"):
@@ -131,7 +132,13 @@ def content_hint(path: Path) -> str:
 def content_kind(head: bytes) -> str | None:
     """What kind of file gyrocore reads the bytes ``head`` (a file's first) begin (``a Parquet
     file``), or None."""
-    return next((what for magic, _, what in _MAGIC if head.startswith(magic)), None)
+    known = _magic(head)
+    return None if known is None else known[1]
+
+
+def _magic(head: bytes) -> tuple[tuple[str, ...], str] | None:
+    """The suffixes and the name of the kind of file whose first bytes ``head`` are, by :data:`_MAGIC`."""
+    return next(((suffixes, what) for magic, suffixes, what in _MAGIC if head.startswith(magic)), None)
 
 
 def _is_text(head: bytes) -> bool:
