@@ -217,6 +217,14 @@ impl Sums {
 /// roundings of 2^-53 each, far below any change a gyro's noise or a motion shows.
 const MEAN_ROUNDING: f64 = 1e-9;
 
+/// Whether two means `a` and `b` agree: within `sigmas` standard errors `error`, or within the
+/// rounding of a mean ([`MEAN_ROUNDING`]), all a gyro that reads one value at rest (its noise below
+/// one count) leaves to judge by. `sigmas = inf` is no test (`inf * 0` is NaN where `error` is 0).
+fn means_agree(a: f64, b: f64, sigmas: f64, error: f64) -> bool {
+    let rounding = MEAN_ROUNDING * libm::fabs(a).max(libm::fabs(b));
+    sigmas == f64::INFINITY || libm::fabs(a - b) <= sigmas * error + rounding
+}
+
 /// The block being filled.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -332,11 +340,7 @@ impl RestTracker {
         // A gyro that reads one value at rest (its noise below one count) has no noise to judge
         // by: its block means then differ only by the rounding of `integral / duration`, which
         // moves with the clock's origin (a rest split in two at t0 = 1000 s, whole at 100 s).
-        let mean = b.sums.mean();
-        let rounding = MEAN_ROUNDING * libm::fabs(mean).max(libm::fabs(previous));
-        // inf is no test (inf * 0 is NaN where the block reads one value: every block moved)
-        let constant = c.change_sigmas == f64::INFINITY
-            || libm::fabs(mean - previous) <= c.change_sigmas * error + rounding;
+        let constant = means_agree(b.sums.mean(), previous, c.change_sigmas, error);
         constant
             && if b.all_speeds {
                 !b.moving
@@ -381,13 +385,10 @@ impl RestTracker {
             Some(p) => {
                 let p = p + c.bias_walk * (at - self.updated).max(0.0);
                 let s = p + r;
-                let innovation = z - self.bias;
-                // No bias walk and a gyro that reads one value at rest leave `s = 0`: `inf * 0`
-                // is NaN, which refused every rest with no gate; and a mean that differs from the
-                // bias by its rounding alone reads the same, as in the change test.
-                let rounding = MEAN_ROUNDING * libm::fabs(z).max(libm::fabs(self.bias));
-                let accepted = c.gate_sigmas == f64::INFINITY
-                    || libm::fabs(innovation) <= c.gate_sigmas * libm::sqrt(s) + rounding;
+                // No bias walk and a gyro that reads one value at rest leave `s = 0`: with no
+                // gate every rest was refused, and with one a mean that differs from the bias by
+                // its rounding alone; the gate is the change test's rule.
+                let accepted = means_agree(z, self.bias, c.gate_sigmas, libm::sqrt(s));
                 if accepted && s > 0.0 {
                     let at = BiasEstimate {
                         mean: self.bias,
