@@ -171,8 +171,25 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
     if found_by.startswith("given"):  # a found rest is still by its finder's rules
         warn_if_turning(window, inside, bias)
     white_noise = noise if noise is not None else float(np.std(inside))
-    error = white_noise * _weighted_share(ts[within])
+    error = _correlated(float(np.std(inside)), white_noise, len(inside)) * _weighted_share(ts[within])
     return Rest(start, end, bias, max(error, batch_error or 0.0), white_noise, samples, found_by.split(":")[0])
+
+
+def _correlated(spread: float, noise: float, n: int) -> float:
+    """One reading's noise as the standard error of a mean of ``n`` readings counts it where
+    neighbouring readings are correlated (a filtered rate; slow motion taken for a rest), from
+    ``spread`` (their standard deviation) and ``noise`` (from successive differences, which see
+    ``1 - rho`` of the variance of readings with lag-1 correlation ``rho``: von Neumann's ratio).
+    ``rho`` is corrected for its bias in ``n`` readings (``+ (1 + 3 rho) / n``, Kendall's), and
+    the variance of the mean of first-order autoregressive readings is ``spread^2 / n`` times
+    ``1 + 2 sum_j (1 - j/n) rho^j``, at most ``spread^2``. White noise (``rho <= 0``) gives
+    ``noise``."""
+    if not noise < spread:
+        return noise
+    measured = 1.0 - (noise / spread) ** 2
+    rho = min(measured + (1.0 + 3.0 * measured) / n, 1.0)
+    lags = np.arange(1, n)
+    return spread * math.sqrt(1.0 + 2.0 * float(np.sum((1.0 - lags / n) * rho**lags)))
 
 
 def _weighted_share(t: FloatArray) -> float:
