@@ -195,8 +195,9 @@ class Pipeline:
                 array that is not float64.
 
         Warns:
-            InputWarning: rates or timestamps that look like another unit, or a temperature
-                without a temperature model (checked once the stream has two samples, however
+            InputWarning: rates or timestamps that look like another unit, a temperature
+                without a temperature model, or a rest tracker whose blocks hold fewer than two
+                readings at the stream's rate (checked once the stream has two samples, however
                 they were chunked; the temperature on the first chunk), readings held or skipped
                 (``nonfinite="hold"/"skip"``), gaps longer than ``gap_limit``.
         """
@@ -263,9 +264,10 @@ class Pipeline:
                              fusion=FusionResult(ta, heading, sigma, bias, scale, counts), report=report)
 
     def _check_units(self, t: FloatArray, rate: FloatArray, temperature: FloatArray | None) -> None:
-        """Warns of rates or timestamps that look like another unit, once the stream has an
-        interval to judge: a robot's first chunk of one sample has none, and its timestamps in ms
-        were never judged (the later chunks were not looked at), where one call warned."""
+        """Warns of rates or timestamps that look like another unit, and of a rest tracker whose
+        blocks are too short for the stream's rate, once the stream has an interval to judge: a
+        robot's first chunk of one sample has none, and its timestamps in ms were never judged
+        (the later chunks were not looked at), where one call warned."""
         assert self._unit_head is not None
         held_t, held_rate = self._unit_head
         if not len(held_t) and temperature is not None and not any(
@@ -279,6 +281,9 @@ class Pipeline:
             self._unit_head = (head_t, head_rate)
             return
         warn_units(head_t, head_rate)
+        slow = rests.too_slow_for_tracker(head_t, self.params)
+        if slow is not None:
+            warn(slow)
         self._unit_head = None
 
     def _new_watch(self) -> WindowWatch:

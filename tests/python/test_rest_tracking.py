@@ -290,3 +290,19 @@ def test_a_stream_given_its_odometry_as_it_comes_is_told_to_hold_the_gyro_back()
     assert said[1] == 1 and said[-2] == 1  # the naive stream's second chunk says it, once
     assert np.concatenate([p.heading for p in parts]).tobytes() == whole.heading.tobytes()
     assert len(held.rests) == 1
+
+
+def test_a_stream_too_slow_for_the_trackers_blocks_is_told_so() -> None:
+    # the drive at 3.3 Hz: a block of 0.5 s holds one reading, no block is still, and the
+    # tracker found no rest without a word; blocks of two sample intervals find rests in both stops
+    t, reading, speed, _ = drive()
+    t, reading, speed = t[::30], reading[::30], speed[::30]
+    with pytest.warns(gyrocore.InputWarning, match=r"blocks of rest_block = 0.5 s hold fewer than two readings at "
+                      r"this stream's rate \(3.33 Hz\).*rest_block of at least two sample intervals \(0.6 s\)"):
+        result = gyrocore.process(t, reading, mode="causal", speed=speed, **tracked())
+    assert result.tracked_rests == ()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", gyrocore.InputWarning)
+        fitting = gyrocore.process(t, reading, mode="causal", speed=speed, **tracked(rest_block=0.6, rest_min_duration=1.2))
+    stop_of = [[i for i, (a, b) in enumerate(STOPS) if a <= r.start < r.end <= b] for r in fitting.tracked_rests]
+    assert {i for inside in stop_of for i in inside} == {0, 1} and all(stop_of)  # each stop, nothing outside
