@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 import warnings
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
@@ -82,12 +83,41 @@ def evaluate_with_fixes(args: argparse.Namespace, logs: Sequence[Log | Failed], 
 @contextmanager
 def input_warnings() -> Iterator[list[str]]:
     """The messages of the warnings raised inside (every :class:`~gyrocore.InputWarning`, though
-    each method run on a log repeats it), each once, for the caller to print with the log's name."""
+    each method run on a log repeats it), each once, for the caller to print with the log's name;
+    the same message of several presets once, naming them all (:func:`merged_by_preset`)."""
     messages: list[str] = []
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", InputWarning)
         yield messages
-    messages += dict.fromkeys(str(w.message) for w in caught)
+    messages += merged_by_preset(list(dict.fromkeys(str(w.message) for w in caught)))
+
+
+#: A message one preset gives of itself (``preset 'hdr' removes a static bias, but ...``).
+_OF_PRESET = re.compile(r"preset '([^']+)' removes (.*)", re.DOTALL)
+
+
+def merged_by_preset(messages: list[str]) -> list[str]:
+    """``messages`` with those that differ only in the preset they name said once, naming every
+    preset: `gyrocore evaluate` runs six presets that remove a static bias, and a log without a
+    rest printed the same two lines of warning six times."""
+    presets: dict[str, list[str]] = {}
+    for m in messages:
+        if (match := _OF_PRESET.fullmatch(m)) is not None:
+            presets.setdefault(match.group(2), []).append(match.group(1))
+
+    def said(m: str) -> str | None:
+        match = _OF_PRESET.fullmatch(m)
+        if match is None:
+            return m
+        names = presets.pop(match.group(2), None)
+        if names is None:  # said with the first of them
+            return None
+        if len(names) == 1:
+            return m
+        listed = ", ".join(f"'{n}'" for n in names[:-1]) + f" and '{names[-1]}'"
+        return f"presets {listed} remove {match.group(2)}"
+
+    return [m for m in map(said, messages) if m is not None]
 
 
 def _fixes_of(log: Log, sim: SimFixes | None, given: Fixes | None,
