@@ -248,3 +248,20 @@ def test_a_header_name_of_two_lines_is_named(tmp_path: Path) -> None:
     assert gyrocore_cli("process", path, "--out", tmp_path / "h.csv", code=2).stderr.strip() == f"gyrocore: error: {message}"
     path.write_text('t,gyro_z,"note ""5"""\n0,0.1,x\n0.01,0.2,y\n')  # quotes that close on the line are read
     np.testing.assert_array_equal(gyrocore.read_log(path).rate, [0.1, 0.2])
+
+
+@pytest.mark.parametrize("spelling", ["NA", "null", "#N/A", "None"])
+def test_another_tools_spelling_of_a_missing_value_says_how_to_write_one(tmp_path: Path, spelling: str) -> None:
+    # pandas', R's and spreadsheets' spellings of a missing value were "'NA' is not a number" and
+    # no more: a missing reading is an empty field or NaN here, which the input policy then takes
+    src = tmp_path / "log.csv"
+    src.write_text(f"t,gyro_z\n0,0.1\n0.01,{spelling}\n0.02,0.1\n")
+    with pytest.raises(ValueError, match=rf"line 3, column 2 \(gyro_z\): '{spelling}' is not a number \(a spelling of "
+                       r"a missing reading: leave the field empty or write NaN.*nonfinite='hold' or 'skip'"):
+        gyrocore.read_log(src)
+    src.write_text(f"t,gyro_z\n0,0.1\n{spelling},0.1\n0.02,0.1\n")
+    with pytest.raises(ValueError, match=r"column 1 \(t\): .* \(a spelling of a missing value, and a timestamp cannot "
+                       r"be missing: drop the row\)"):
+        gyrocore.read_log(src)
+    src.write_text("t,gyro_z\n0,0.1\n0.01,\n0.02,0.1\n")  # the empty field, as the message says
+    assert np.isnan(gyrocore.read_log(src).rate[1])

@@ -51,6 +51,9 @@ _CUT_OFF = " (the file's last line, cut off: a log whose writing stopped mid-lin
 #: The first line of a CSV file that names its delimiter, as Excel writes it (``sep=;``).
 _SEP = re.compile(rb'"?sep=(.)"?')
 _DATE = re.compile(r"\d{4}-\d{2}-\d{2}(?:[T ]\d{2}:\d{2})?")
+#: How other tools write a missing value (pandas' and R's defaults, spreadsheets'): not numbers
+#: here, where a missing reading is an empty field or NaN.
+_MISSING = frozenset({"NA", "N/A", "n/a", "#N/A", "#NA", "NULL", "null", "None", "<NA>", "-", "?"})
 #: Rows read from a CSV file and not yet handed out: first row, columns, bytes read, rows.
 _HeldRows: TypeAlias = "tuple[int, dict[str, pa.Array], int, int]"
 
@@ -284,16 +287,22 @@ def _line_offset(path: Path, lines: int) -> int:
         return f.tell()
 
 
-def _why_not_a_number(value: str, delimiter: str) -> str:
+def _why_not_a_number(value: str, delimiter: str, required: str | None) -> str:
     """A hint for a value that is no number, where its form says why: a decimal comma (with the
-    command that mends a file whose fields a comma does not separate), a date, or bytes that are
-    not UTF-8 (read as U+FFFD)."""
+    command that mends a file whose fields a comma does not separate), another tool's spelling of
+    a missing value (``required``: what the column holds, if it may not be missing), a date, or
+    bytes that are not UTF-8 (read as U+FFFD)."""
     if "\ufffd" in value:
         return " (bytes that are not UTF-8: save the file as UTF-8, e.g. iconv -f latin1 -t utf-8 old.csv > new.csv)"
     if "," in value and is_number(value.replace(",", ".", 1)):
         # a European export: fields separated by ';' (or tabs), numbers with a comma
         mend = "" if delimiter == "," else ", e.g. tr ',' '.' < old.csv > new.csv"
         return f" (a decimal comma: write numbers with a decimal point{mend})"
+    if value in _MISSING and required is not None:
+        return f" (a spelling of a missing value, and a {required} cannot be missing: drop the row)"
+    if value in _MISSING:
+        return (" (a spelling of a missing reading: leave the field empty or write NaN, which are read as missing; "
+                "then nonfinite='hold' or 'skip' (--nonfinite hold, --nonfinite skip) carries the log over it)")
     if _DATE.match(value):
         return (" (a date and time: a CSV file's times are numbers, in s, ms, us or ns; write them as numbers, "
                 "or convert the file to Parquet with this column as a timestamp, read as seconds since the Unix "
@@ -348,7 +357,7 @@ def _csv_error(
                 if value and not is_number(value):
                     if is_unit(value):
                         return f"{where}: {value!r} is not a number{_units_row_hint(line, header, fields, positions)}"
-                    return f"{where}: {value!r} is not a number{_why_not_a_number(value, delimiter)}"
+                    return f"{where}: {value!r} is not a number{_why_not_a_number(value, delimiter, required.get(name))}"
                 if not fields[pos] and name in required:
                     return f"{where}: empty {required[name]}"
     return f"{path}: after line {first_line}: {error}"
