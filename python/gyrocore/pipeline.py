@@ -19,7 +19,9 @@ from ._arrays import FloatArray, as_float_array
 from ._checks import public_dir, warn, warn_units
 from ._motion import WindowWatch
 from .fixes_stream import StreamFixes, say_how_to_wait
-from .pipeline_input import refuse_window_without_reading, say_what_to_do, warn_repairs, warn_speed_outside
+from .pipeline_input import (
+    refuse_window_without_reading, say_what_to_do, warn_repairs, warn_slow_tracker, warn_speed_outside,
+)
 from .pipeline_params import (
     BIAS_SOURCES,
     _to_si,
@@ -281,9 +283,7 @@ class Pipeline:
             self._unit_head = (head_t, head_rate)
             return
         warn_units(head_t, head_rate)
-        slow = rests.too_slow_for_tracker(head_t, self.params)
-        if slow is not None:
-            warn(slow)
+        warn_slow_tracker(head_t, self.params)
         self._unit_head = None
 
     def _new_watch(self) -> WindowWatch:

@@ -1,8 +1,10 @@
 """What a streaming :class:`~gyrocore.Pipeline` says of a chunk's input around the core: a chunk
-that would close the rest window without a reading in it, what the input policy repaired, and a
-chunk sent again."""
+that would close the rest window without a reading in it, what the input policy repaired, a
+chunk sent again, and a stream too slow for the rest tracker's blocks."""
 
 from __future__ import annotations
+
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -137,3 +139,19 @@ def warn_speed_outside(t: FloatArray, speed: FloatArray, speed_t: ArrayLike) -> 
          "until the speed covers it, and give the speed from its last sample before the chunk's first on "
          "(docs/python.md)")
     return True
+
+
+def warn_slow_tracker(t: FloatArray, params: dict[str, Any]) -> None:
+    """Warns where the rest tracker of ``params`` can find no rest in a stream sampled as ``t`` is
+    (its first samples, strictly increasing): each detection block of ``rest_block`` seconds
+    measures its noise from the differences of its readings, so it needs two, and a block with
+    one is never still (a 3.5 Hz stream with blocks of 0.5 s found no rest in a drive where 4 Hz
+    found nine)."""
+    if not params.get("track_rests") or len(t) < 2:
+        return
+    interval, block = float(np.median(np.diff(t))), float(params["rest_block"])
+    if 2.0 * interval > block:
+        warn(f"the rest tracker's blocks of rest_block = {block:g} s hold fewer than two readings at this stream's "
+             f"rate ({1.0 / interval:.3g} Hz), and a block needs two to measure its noise: it finds no rest; give "
+             f"rest_block of at least two sample intervals ({2.0 * interval:.3g} s) and rest_min_duration of at least "
+             "twice that")

@@ -22,7 +22,7 @@ from ._checks import MAX_READING, check_number, public_dir, require_finite, requ
 
 __all__ = [
     "GATE_REFUSED", "LISTED_RESTS", "MIN_OVERLAP", "Rest", "bias_walk", "from_core", "refuse_speed_t_alone",
-    "rest_lines", "speed_at", "speed_on", "too_slow_for_tracker",
+    "rest_lines", "speed_at", "speed_on",
 ]
 __dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
@@ -198,20 +198,3 @@ def rest_lines(source: str, rests: tuple[Rest, ...], indent: str) -> list[str]:
         lines.append(f"{indent}... and {len(others)} more rests ({used} of them used): the JSON report (--json; "
                      ".rests in Python) lists every one")
     return lines
-
-
-def too_slow_for_tracker(t: FloatArray, params: dict[str, Any]) -> str | None:
-    """Why the rest tracker of ``params`` can find no rest in a stream sampled as ``t`` is (its
-    first samples, strictly increasing), or None: each detection block of ``rest_block`` seconds
-    measures its noise from the differences of its readings, so it needs two, and a block with
-    one is never still (a 3.5 Hz stream with blocks of 0.5 s found no rest in a drive where 4 Hz
-    found nine)."""
-    if not params.get("track_rests") or len(t) < 2:
-        return None
-    interval, block = float(np.median(np.diff(t))), float(params["rest_block"])
-    if 2.0 * interval <= block:
-        return None
-    return (f"the rest tracker's blocks of rest_block = {block:g} s hold fewer than two readings at this stream's "
-            f"rate ({1.0 / interval:.3g} Hz), and a block needs two to measure its noise: it finds no rest; give "
-            f"rest_block of at least two sample intervals ({2.0 * interval:.3g} s) and rest_min_duration of at least "
-            "twice that")
