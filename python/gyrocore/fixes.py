@@ -158,9 +158,17 @@ def fuse(t: ArrayLike, rate: ArrayLike, fixes: FixesLike, *, mode: Literal["caus
 def _fused(t: FloatArray, rate: FloatArray, fixes: Fixes, settings: dict[str, float], smoothed: bool) -> FusionResult:
     """:func:`fuse` of arrays already read (a pipeline's corrected rate, whose readings it judged)."""
     h, s, b, sc, counts = _gyrocore.fuse(t, rate, fixes.t, fixes.heading, fixes.sigma, _settings(settings), smoothed)
-    warn_outside(t, fixes)
-    warn_rejected(counts)
+    warn_whole_log(t, rate, fixes, counts)
     return FusionResult(t, h, s, b, sc, dict(counts))
+
+
+def warn_whole_log(t: FloatArray, rate: FloatArray, fixes: Fixes, counts: Mapping[str, int]) -> None:
+    """A whole log's warnings about its ``fixes``, fused with the gyro's ``t`` and ``rate`` into
+    ``counts``: fixes outside the gyro's span, fixes that disagree with the gyro between them
+    (:func:`gyrocore.fixes_check.warn_disagreement`), and most of them rejected by the gate."""
+    warn_outside(t, fixes)
+    warn_disagreement(t, rate, fixes)
+    warn_rejected(counts)
 
 
 #: A whole log's run warns when fewer than this share of its fixes fall within the gyro's time
@@ -200,8 +208,9 @@ def warn_rejected(counts: Mapping[str, int]) -> None:
     warn(f"the outlier gate rejected {rejected} of the {reached} heading fixes it reached: they disagree with the "
          "heading the gyro carries between them, so the heading is mostly the gyro's alone. Check the units: fix "
          "headings in rad, counter-clockwise from east (not degrees, not a compass bearing: from_gnss converts "
-         "one), fix and gyro times in seconds on one clock, the rate in rad/s; a gyro whose bias is far beyond "
-         "initial_bias_sigma needs a larger one")
+         "one), fix and gyro times in seconds on one clock (a receiver's latency subtracted), the rate in rad/s; "
+         "each fix's sigma its real error (a sigma stated too small, or a fix given twice, rejects the fixes "
+         "after it); a gyro whose bias is far beyond initial_bias_sigma needs a larger one")
 
 
 def _settings(settings: dict[str, float]) -> dict[str, float]:
@@ -406,6 +415,7 @@ def as_fixes(fixes: FixesLike) -> Fixes:
 from .fixes_track import from_latlon, from_positions  # noqa: E402
 from .fixes_nmea import KMH, KNOT, read_nmea  # noqa: E402
 from .fixes_files import FIXES_COLUMNS, GNSS_COLUMNS, read_fixes_csv, read_fixes_file, read_gnss_csv  # noqa: E402
+from .fixes_check import warn_disagreement  # noqa: E402
 
 # The pipeline's own helpers of the fix stage (stage_settings, smoothed_stage, the warnings and
 # refusals of a stream's fixes) are imported by name where they are used, and are not listed.

@@ -423,10 +423,9 @@ def process_log(
         )
         pipeline.finish()
         if checked is not None and result.fusion is not None:
-            from .fixes import warn_outside, warn_rejected  # as fuse warns for a whole log (the smoothed fix stage's)
+            from .fixes import warn_whole_log  # as fuse warns for a whole log (the smoothed fix stage's)
 
-            warn_outside(result.t, checked)
-            warn_rejected(result.fusion.counts)
+            warn_whole_log(result.t, as_float_array("rate", rate), checked, result.fusion.counts)
         return replace(result, bias_source=causal_source(preset, si))
     refuse_tracking(si)
     options = Options.pop(si)

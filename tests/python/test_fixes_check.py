@@ -1,0 +1,77 @@
+"""Heading fixes checked against the gyro of a whole log (gyrocore.fixes_check): fixes that turn
+against it, lag or lead it, or scatter beyond their stated sigma are warned about, in every
+whole-log entry point; honest fixes at any rate are not."""
+
+from __future__ import annotations
+
+import math
+import re
+import warnings
+
+import numpy as np
+import pytest
+
+import gyrocore
+from gyrocore.fixes import Fixes, fuse
+from gyrocore.fixes_check import agreement
+
+from .test_fixes import drive
+
+
+def messages(run: object) -> list[str]:
+    """The warnings ``run()`` gives."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        run()  # type: ignore[operator]
+    return [str(w.message) for w in caught]
+
+
+def honest(rate_hz: float = 1.0) -> tuple[np.ndarray, np.ndarray, Fixes]:
+    """A simulated drive's gyro (t, rate) and its simulated 1 deg fixes."""
+    t, heading, rate = drive()
+    return t, rate, gyrocore.sim.gnss_fixes(t, heading, seed=4, rate_hz=rate_hz)
+
+
+@pytest.mark.parametrize("rate_hz", [0.1, 1.0, 10.0])
+def test_honest_fixes_at_any_rate_agree_with_the_gyro_and_say_nothing(rate_hz: float) -> None:
+    t, rate, fixes = honest(rate_hz)
+    fit = agreement(t, rate, fixes)
+    assert fit is not None
+    assert abs(fit.lag) < 0.05 and abs(fit.scale + 0.02) < 0.01 and 0.5 < fit.scatter < 2.0
+    for mode in ("causal", "smoothed"):
+        assert messages(lambda: fuse(t, rate, fixes, mode=mode)) == []
+
+
+def test_a_bearing_clockwise_from_north_is_said_to_turn_against_the_gyro() -> None:
+    t, rate, fixes = honest()
+    bearing = Fixes.of(fixes.t, np.angle(np.exp(1j * (math.pi / 2 - fixes.heading))), fixes.sigma)
+    said = messages(lambda: fuse(t, rate, bearing, mode="smoothed"))
+    assert any("turn the other way from the gyro" in m and "clockwise from north" in m for m in said)
+
+
+@pytest.mark.parametrize("offset, word", [(0.4, "later"), (-0.4, "earlier")])
+def test_fixes_stamped_late_or_early_are_said_with_their_offset(offset: float, word: str) -> None:
+    t, rate, fixes = honest()
+    shifted = Fixes.of(fixes.t + offset, fixes.heading, fixes.sigma)
+    said = [m for m in messages(lambda: fuse(t, rate, shifted)) if "stamped about" in m]
+    assert len(said) == 1 and word in said[0]
+    found = re.search(r"stamped about ([0-9.]+) s", said[0])
+    assert found is not None and abs(float(found.group(1)) - abs(offset)) < 0.1
+
+
+def test_a_sigma_stated_ten_times_too_small_is_said_in_every_whole_log_entry_point() -> None:
+    t, rate, fixes = honest()
+    tight = Fixes.of(fixes.t, fixes.heading, fixes.sigma / 10)
+    runs = [lambda: fuse(t, rate, tight, mode="smoothed"),
+            lambda: gyrocore.process(t, rate, preset="raw", fixes=tight),
+            lambda: gyrocore.process(t, rate, preset="raw", fixes=tight, mode="causal")]
+    for run in runs:
+        said = [m for m in messages(run) if "times as much as their stated sigma allows" in m]
+        assert len(said) == 1 and "state each fix's sigma as its real error" in said[0], said
+
+
+def test_too_few_fixes_or_no_motion_give_no_fit() -> None:
+    t, rate, fixes = honest()
+    assert agreement(t, rate, Fixes(fixes.t[:5], fixes.heading[:5], fixes.sigma[:5])) is None
+    still = np.zeros(len(t))
+    assert agreement(t, still, Fixes.of(fixes.t, np.zeros(len(fixes)), fixes.sigma)) is None
