@@ -1,6 +1,6 @@
-"""Heading fixes checked against the gyro of a whole log (gyrocore.fixes_check): fixes that turn
+"""Heading fixes checked: against the gyro of a whole log (gyrocore.fixes_check), fixes that turn
 against it, lag or lead it, or scatter beyond their stated sigma are warned about, in every
-whole-log entry point; honest fixes at any rate are not."""
+whole-log entry point, and honest fixes at any rate are not; a fix given twice is dropped."""
 
 from __future__ import annotations
 
@@ -75,3 +75,15 @@ def test_too_few_fixes_or_no_motion_give_no_fit() -> None:
     assert agreement(t, rate, Fixes(fixes.t[:5], fixes.heading[:5], fixes.sigma[:5])) is None
     still = np.zeros(len(t))
     assert agreement(t, still, Fixes.of(fixes.t, np.zeros(len(fixes)), fixes.sigma)) is None
+
+
+def test_a_fix_given_twice_is_dropped_with_a_word_and_two_fixes_at_one_time_are_kept() -> None:
+    t, rate, fixes = honest()
+    twice = (np.repeat(fixes.t, 2), np.repeat(fixes.heading, 2), np.repeat(fixes.sigma, 2))
+    for run in (lambda: fuse(t, rate, twice, mode="smoothed"), lambda: gyrocore.fixes.Fusion().process(t, rate, twice)):
+        with pytest.warns(gyrocore.InputWarning, match=rf"{len(fixes)} heading fix\(es\) repeat the fix before") as caught:
+            counts = run().counts
+        assert counts["applied"] + counts["rejected"] == len(fixes)
+        assert all(w.filename == __file__ for w in caught)  # said where the caller gave them
+    two = (np.repeat(fixes.t, 2), np.repeat(fixes.heading, 2) + np.tile([0.0, 0.01], len(fixes)), 0.02)
+    assert messages(lambda: fuse(t, rate, two)) == []
