@@ -59,9 +59,10 @@ def test_fixes_stamped_late_or_early_are_said_with_their_offset(offset: float, w
     assert found is not None and abs(float(found.group(1)) - abs(offset)) < 0.1
 
 
-def test_a_sigma_stated_ten_times_too_small_is_said_in_every_whole_log_entry_point() -> None:
+@pytest.mark.parametrize("factor", [2.5, 10.0])
+def test_a_sigma_stated_too_small_is_said_in_every_whole_log_entry_point(factor: float) -> None:
     t, rate, fixes = honest()
-    tight = Fixes.of(fixes.t, fixes.heading, fixes.sigma / 10)
+    tight = Fixes.of(fixes.t, fixes.heading, fixes.sigma / factor)
     runs = [lambda: fuse(t, rate, tight, mode="smoothed"),
             lambda: gyrocore.process(t, rate, preset="raw", fixes=tight),
             lambda: gyrocore.process(t, rate, preset="raw", fixes=tight, mode="causal")]
