@@ -199,18 +199,19 @@ MAX_SHARE_REJECTED = 0.5
 MIN_REJECTED = 5
 
 
-def warn_rejected(counts: Mapping[str, int]) -> None:
+def warn_rejected(counts: Mapping[str, int]) -> bool:
     """Warns (:class:`~gyrocore.InputWarning`) when the outlier gate rejected most of the fixes a
-    whole log's run reached (:data:`MAX_SHARE_REJECTED`), saying what usually causes it."""
+    run reached (:data:`MAX_SHARE_REJECTED`), saying what usually causes it; says whether it did."""
     rejected, reached = counts["rejected"], counts["applied"] + counts["rejected"]
     if rejected < MIN_REJECTED or rejected <= MAX_SHARE_REJECTED * reached:
-        return
+        return False
     warn(f"the outlier gate rejected {rejected} of the {reached} heading fixes it reached: they disagree with the "
          "heading the gyro carries between them, so the heading is mostly the gyro's alone. Check the units: fix "
          "headings in rad, counter-clockwise from east (not degrees, not a compass bearing: from_gnss converts "
          "one), fix and gyro times in seconds on one clock (a receiver's latency subtracted), the rate in rad/s; "
          "each fix's sigma its real error (a sigma stated too small, or a fix given twice, rejects the fixes "
          "after it); a gyro whose bias is far beyond initial_bias_sigma needs a larger one")
+    return True
 
 
 def _settings(settings: dict[str, float]) -> dict[str, float]:
@@ -247,7 +248,9 @@ class Fusion:
             say_how_to_wait(e)
             raise
         self._fixes.taken(f, float(tt[-1]) if len(tt) else None)
-        return FusionResult(tt, h, s, b, sc, self.counts())
+        counts = self.counts()
+        self._fixes.judge(counts)
+        return FusionResult(tt, h, s, b, sc, counts)
 
     def check(self, fixes: FixesLike) -> None:
         """Raises the error of the first bad fix among the waiting ones and ``fixes``, every one,

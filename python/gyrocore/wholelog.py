@@ -417,7 +417,8 @@ def process_log(
         refuse_whole_options(si)
         checked = None if fixes is None else _checked(fixes)
         pipeline = Pipeline(preset, fusion=fusion if checked is not None else None, **overrides)
-        pipeline._fixes.ahead_said = True  # a whole log's span check below says it, of every fix
+        # a whole log's checks below say these, of every fix
+        pipeline._fixes.ahead_said = pipeline._fixes.rejected_said = True
         result = pipeline.process(
             t, rate, temperature=temperature, outputs=outputs, speed=speed, speed_t=speed_t, fixes=checked, out=out
         )

@@ -88,3 +88,20 @@ def test_a_fix_given_twice_is_dropped_with_a_word_and_two_fixes_at_one_time_are_
         assert all(w.filename == __file__ for w in caught)  # said where the caller gave them
     two = (np.repeat(fixes.t, 2), np.repeat(fixes.heading, 2) + np.tile([0.0, 0.01], len(fixes)), 0.02)
     assert messages(lambda: fuse(t, rate, two)) == []
+
+
+def test_a_stream_whose_gate_rejects_most_fixes_says_so_once() -> None:
+    """Fixes stamped at their arrival, 0.4 s late: a stream (which fits nothing against the gyro)
+    had the gate reject 249 of 300 and said nothing."""
+    t, rate, fixes = honest()
+    late = Fixes.of(fixes.t + 0.4, fixes.heading, fixes.sigma)
+    cuts = range(0, len(t), 1000)
+    for stream in (gyrocore.fixes.Fusion(), gyrocore.Pipeline("raw", fusion={})):
+        def blocks() -> None:
+            for a in cuts:
+                b = min(a + 1000, len(t))
+                mine = (late.t > (t[a - 1] if a else -np.inf)) & (late.t <= t[b - 1])
+                stream.process(t[a:b], rate[a:b], fixes=Fixes(late.t[mine], late.heading[mine], late.sigma[mine]))
+
+        said = [m for m in messages(blocks) if "the outlier gate rejected" in m]
+        assert len(said) == 1 and "a receiver's latency" in said[0]
