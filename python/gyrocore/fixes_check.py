@@ -6,7 +6,7 @@ noise plus what the gyro's bias and scale error add, and the filter estimates th
 squares fit of that difference over every pair of consecutive fixes (:func:`agreement`) to the
 interval (the bias), the gyro's turn (the scale error) and the change of the rate (a lag between
 the two clocks: a fix stamped ``lag`` seconds after the heading it gives differs by ``-lag`` times
-the rate) shows three mistakes the filter cannot: fixes that turn against the gyro (a bearing
+the rate) shows three mistakes the filter cannot see: fixes that turn against the gyro (a bearing
 clockwise from north: the turn's coefficient near -2), fixes late or early on the gyro's clock
 (a receiver's latency, another clock's offset), and fixes that scatter far beyond their stated
 sigma. Each made the fused heading wrong by 2 to 100 deg on the KITTI drives, mostly with no
@@ -60,7 +60,8 @@ class Agreement:
     """[s] how much later the fixes are stamped than the heading they give, on the gyro's clock."""
     lag_se: float
     scatter: float
-    """The pairs' differences over what the fixes' stated sigmas make them (1 for honest sigmas)."""
+    """The robust scatter of the pairs' differences, each over what the fixes' stated sigmas make it
+    (1 for honest sigmas)."""
 
 
 def agreement(t: FloatArray, rate: FloatArray, fixes: Fixes) -> Agreement | None:
