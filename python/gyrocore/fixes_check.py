@@ -6,8 +6,8 @@ noise plus what the gyro's bias and scale error add, and the filter estimates th
 squares fit of that difference over every pair of consecutive fixes (:func:`agreement`) to the
 interval (the bias), the gyro's turn (the scale error) and the change of the rate (a lag between
 the two clocks: a fix stamped ``lag`` seconds after the heading it gives differs by ``-lag`` times
-the rate) shows three mistakes the filter cannot see: fixes that turn against the gyro (a bearing
-clockwise from north: the turn's coefficient near -2), fixes late or early on the gyro's clock
+the rate) shows three mistakes the filter cannot see: fixes that turn other than the gyro (a bearing
+clockwise from north: the turn's coefficient near -2; radians read as degrees: -0.98), fixes late or early on the gyro's clock
 (a receiver's latency, another clock's offset), and fixes that scatter far beyond their stated
 sigma. Each made the fused heading wrong by 2 to 100 deg on the KITTI drives, mostly with no
 warning, or with the outlier gate's, which named units (docs/fixes.md, "Fixes checked against
@@ -32,9 +32,12 @@ if TYPE_CHECKING:
 MIN_PAIRS = 10
 #: A coefficient is trusted this many standard errors from the value it is tested against.
 SIGMAS = 3.0
-#: The fixes' heading change over the gyro's, less 1, below this (halfway between a true scale
-#: error, a few per cent, and the -2 of a mirrored heading) means they turn the other way.
-MIRRORED = -1.0
+#: The fixes' heading change over the gyro's, less 1, beyond this (a gyro's scale error is a few
+#: per cent) means the fixes are no heading in rad counter-clockwise from east: -2 for a mirrored
+#: heading (a bearing clockwise from north), -0.98 for radians read as degrees.
+MAX_SCALE = 0.5
+#: Radians read as degrees turn this many times less (180 / pi).
+DEGREES_PER_RAD = 180.0 / math.pi
 #: A lag [s] beyond this is warned about. The KITTI drives' fixes from their own reference lead
 #: the gyro by 0.00-0.10 s (the published rate lags the reference); fixes 0.1 s late cost up to
 #: 0.3 deg, 0.3 s late 1.6-19.7 deg, and those were found 0.20-0.27 s late.
@@ -108,18 +111,15 @@ def _fit(a: FloatArray, y: FloatArray) -> Agreement | None:
 
 
 def warn_disagreement(t: FloatArray, rate: FloatArray, fixes: Fixes) -> None:
-    """Warns (:class:`~gyrocore.InputWarning`) when a whole log's fixes turn against its gyro, lag
-    or lead it by more than :data:`MAX_LAG`, or scatter beyond :data:`MAX_SCATTER` times their
+    """Warns (:class:`~gyrocore.InputWarning`) when a whole log's fixes turn other than its gyro
+    (against it, or in another unit), lag or lead it by more than :data:`MAX_LAG`, or scatter beyond :data:`MAX_SCATTER` times their
     stated sigma (:func:`agreement`)."""
     fit = agreement(t, rate, fixes)
     if fit is None:
         return
     said = f"(a fit over {fit.pairs} pairs of consecutive fixes against the gyro's turn between them)"
-    if fit.scale < MIRRORED - SIGMAS * fit.scale_se:
-        warn(f"the heading fixes turn the other way from the gyro: they change by {1.0 + fit.scale:.3g} times the "
-             f"gyro's turn {said}. A bearing clockwise from north (a compass or GNSS course) given as a heading "
-             "counter-clockwise from east does that: convert it (from_gnss, or pi/2 - radians(bearing)); or the "
-             "gyro counts clockwise (negate its rate)")
+    if abs(fit.scale) > MAX_SCALE + SIGMAS * fit.scale_se:
+        warn(f"the heading fixes change by {1.0 + fit.scale:.3g} times the gyro's turn {said}: {_turn_cause(fit.scale)}")
         return
     if abs(fit.lag) > MAX_LAG and abs(fit.lag) > SIGMAS * fit.lag_se:
         late = "later" if fit.lag > 0 else "earlier"
@@ -135,3 +135,16 @@ def warn_disagreement(t: FloatArray, rate: FloatArray, fixes: Fixes) -> None:
              f"If their headings are right, state each fix's sigma as its real error (about {fit.scatter:.2g} times "
              "larger); headings in degrees or a bearing clockwise from north do this too: they are in rad, "
              "counter-clockwise from east")
+
+
+def _turn_cause(scale: float) -> str:
+    """What makes fixes turn ``1 + scale`` times as far as the gyro, where a scale error is small."""
+    ratio = 1.0 + scale
+    if ratio < 0.0:
+        return ("they turn the other way. A bearing clockwise from north (a compass or GNSS course) given as a "
+                "heading counter-clockwise from east does that: convert it (from_gnss, or pi/2 - radians(bearing)); "
+                "or the gyro counts clockwise (negate its rate)")
+    if abs(ratio * DEGREES_PER_RAD - 1.0) < MAX_SCALE:
+        return ("57 times less: an angle in radians read as degrees (from_gnss and read_gnss_csv take the bearing in "
+                "degrees, clockwise from north)")
+    return "check the units: fix headings in rad, counter-clockwise from east, the rate in rad/s"

@@ -46,7 +46,16 @@ def test_a_bearing_clockwise_from_north_is_said_to_turn_against_the_gyro() -> No
     t, rate, fixes = honest()
     bearing = Fixes.of(fixes.t, np.angle(np.exp(1j * (math.pi / 2 - fixes.heading))), fixes.sigma)
     said = messages(lambda: fuse(t, rate, bearing, mode="smoothed"))
-    assert any("turn the other way from the gyro" in m and "clockwise from north" in m for m in said)
+    assert any("they turn the other way" in m and "clockwise from north" in m for m in said)
+
+
+def test_a_gnss_bearing_in_radians_is_said_to_turn_57_times_less() -> None:
+    t, heading, rate = drive()
+    tf = t[::50]
+    bearing_rad = np.mod(math.pi / 2 - np.interp(tf, t, heading), 2 * math.pi)
+    fixes = gyrocore.fixes.from_gnss(tf, bearing_rad, np.full(len(tf), 10.0))
+    said = messages(lambda: fuse(t, rate, fixes))
+    assert any("57 times less: an angle in radians read as degrees" in m for m in said), said
 
 
 @pytest.mark.parametrize("offset, word", [(0.4, "later"), (-0.4, "earlier")])
