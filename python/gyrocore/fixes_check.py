@@ -146,5 +146,5 @@ def _turn_cause(scale: float) -> str:
                 "or the gyro counts clockwise (negate its rate)")
     if abs(ratio * DEGREES_PER_RAD - 1.0) < MAX_SCALE:
         return ("57 times less: an angle in radians read as degrees (from_gnss and read_gnss_csv take the bearing in "
-                "degrees, clockwise from north)")
+                "degrees, clockwise from north), or a rate in deg/s (it is in rad/s)")
     return "check the units: fix headings in rad, counter-clockwise from east, the rate in rad/s"
