@@ -158,9 +158,17 @@ def fuse(t: ArrayLike, rate: ArrayLike, fixes: FixesLike, *, mode: Literal["caus
 def _fused(t: FloatArray, rate: FloatArray, fixes: Fixes, settings: dict[str, float], smoothed: bool) -> FusionResult:
     """:func:`fuse` of arrays already read (a pipeline's corrected rate, whose readings it judged)."""
     h, s, b, sc, counts = _gyrocore.fuse(t, rate, fixes.t, fixes.heading, fixes.sigma, _settings(settings), smoothed)
-    warn_outside(t, fixes)
-    warn_rejected(counts)
+    warn_whole_log(t, rate, fixes, counts)
     return FusionResult(t, h, s, b, sc, dict(counts))
+
+
+def warn_whole_log(t: FloatArray, rate: FloatArray, fixes: Fixes, counts: Mapping[str, int]) -> None:
+    """A whole log's warnings about its ``fixes``, fused with the gyro's ``t`` and ``rate`` into
+    ``counts``: fixes outside the gyro's span, fixes that disagree with the gyro between them
+    (:func:`gyrocore.fixes_check.warn_disagreement`), and most of them rejected by the gate."""
+    warn_outside(t, fixes)
+    warn_disagreement(t, rate, fixes)
+    warn_rejected(counts)
 
 
 #: A whole log's run warns when fewer than this share of its fixes fall within the gyro's time
@@ -191,17 +199,19 @@ MAX_SHARE_REJECTED = 0.5
 MIN_REJECTED = 5
 
 
-def warn_rejected(counts: Mapping[str, int]) -> None:
+def warn_rejected(counts: Mapping[str, int]) -> bool:
     """Warns (:class:`~gyrocore.InputWarning`) when the outlier gate rejected most of the fixes a
-    whole log's run reached (:data:`MAX_SHARE_REJECTED`), saying what usually causes it."""
+    run reached (:data:`MAX_SHARE_REJECTED`), saying what usually causes it; says whether it did."""
     rejected, reached = counts["rejected"], counts["applied"] + counts["rejected"]
     if rejected < MIN_REJECTED or rejected <= MAX_SHARE_REJECTED * reached:
-        return
+        return False
     warn(f"the outlier gate rejected {rejected} of the {reached} heading fixes it reached: they disagree with the "
          "heading the gyro carries between them, so the heading is mostly the gyro's alone. Check the units: fix "
          "headings in rad, counter-clockwise from east (not degrees, not a compass bearing: from_gnss converts "
-         "one), fix and gyro times in seconds on one clock, the rate in rad/s; a gyro whose bias is far beyond "
-         "initial_bias_sigma needs a larger one")
+         "one), fix and gyro times in seconds on one clock (a receiver's latency subtracted), the rate in rad/s; "
+         "each fix's sigma its real error (a sigma stated too small, or a fix given twice, rejects the fixes "
+         "after it); a gyro whose bias is far beyond initial_bias_sigma needs a larger one")
+    return True
 
 
 def _settings(settings: dict[str, float]) -> dict[str, float]:
@@ -238,7 +248,9 @@ class Fusion:
             say_how_to_wait(e)
             raise
         self._fixes.taken(f, float(tt[-1]) if len(tt) else None)
-        return FusionResult(tt, h, s, b, sc, self.counts())
+        counts = self.counts()
+        self._fixes.judge(counts)
+        return FusionResult(tt, h, s, b, sc, counts)
 
     def check(self, fixes: FixesLike) -> None:
         """Raises the error of the first bad fix among the waiting ones and ``fixes``, every one,
@@ -390,7 +402,32 @@ def check_all(fixes: FixesLike) -> Fixes:
 
 
 def as_fixes(fixes: FixesLike) -> Fixes:
-    """``fixes`` as :class:`Fixes` (a path is read by :func:`read_fixes_file`)."""
+    """``fixes`` as :class:`Fixes` (a path is read by :func:`read_fixes_file`), without a fix that
+    repeats the one before it (:func:`without_repeats`)."""
+    return without_repeats(_given(fixes))
+
+
+def without_repeats(fixes: Fixes) -> Fixes:
+    """``fixes`` without each fix that repeats the one before it exactly (time, heading and sigma),
+    after a warning: it is one measurement written twice, and counted twice it weighs as a fix of
+    sigma / sqrt(2), tighter than it is (kitti_2011_09_30_0020_mems with every fix twice: the gate
+    rejected 168 of 230, the heading 17.6 deg off). Two fixes at one time that differ (two
+    receivers) are both kept."""
+    same = (np.diff(fixes.t) == 0) & (np.diff(fixes.heading) == 0) & (np.diff(fixes.sigma) == 0)
+    repeat = 1 + np.flatnonzero(same)
+    if not len(repeat):
+        return fixes
+    first = int(repeat[0])
+    warn(f"{len(repeat)} heading fix(es) repeat the fix before them exactly (the first: fix {first} at t = "
+         f"{float(fixes.t[first])!r} s) and are dropped: one measurement given twice would count as two, tighter "
+         "than its sigma says")
+    keep = np.ones(len(fixes), dtype=bool)
+    keep[repeat] = False
+    return Fixes(fixes.t[keep], fixes.heading[keep], fixes.sigma[keep])
+
+
+def _given(fixes: FixesLike) -> Fixes:
+    """``fixes`` as :class:`Fixes`, as given."""
     if isinstance(fixes, Fixes):
         return fixes
     if isinstance(fixes, (str, Path)):
@@ -406,6 +443,7 @@ def as_fixes(fixes: FixesLike) -> Fixes:
 from .fixes_track import from_latlon, from_positions  # noqa: E402
 from .fixes_nmea import KMH, KNOT, read_nmea  # noqa: E402
 from .fixes_files import FIXES_COLUMNS, GNSS_COLUMNS, read_fixes_csv, read_fixes_file, read_gnss_csv  # noqa: E402
+from .fixes_check import warn_disagreement  # noqa: E402
 
 # The pipeline's own helpers of the fix stage (stage_settings, smoothed_stage, the warnings and
 # refusals of a stream's fixes) are imported by name where they are used, and are not listed.

@@ -5,6 +5,7 @@ says of fixes that arrive late or far ahead. :class:`gyrocore.Pipeline` and
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
 from ._checks import warn
@@ -93,6 +94,7 @@ class StreamFixes:
     def __init__(self, last: GivenFix | None = None) -> None:
         self.last = last
         self.ahead_said = False
+        self.rejected_said = False
 
     def check(self, block: Fixes, waits: bool) -> None:
         """Refuses ``block`` if its first fix comes before the last one given, or is it again,
@@ -104,3 +106,12 @@ class StreamFixes:
         sample are warned about once."""
         self.last = last_given(block, self.last)
         self.ahead_said = self.ahead_said or warn_far_ahead(block, last_sample)
+
+    def judge(self, counts: Mapping[str, int]) -> None:
+        """Warns once when the stream's gate has rejected most of the fixes it reached
+        (:func:`gyrocore.fixes.warn_rejected`, a whole log's rule on the stream's totals): fixes
+        stamped 0.3 s late on their arrival had the heading 16 deg off, and a stream said nothing."""
+        from .fixes import warn_rejected
+
+        if not self.rejected_said:
+            self.rejected_said = warn_rejected(counts)

@@ -262,6 +262,7 @@ class Pipeline:
 
         sigma, bias, scale, (applied, rejected, before_start, waiting) = fused
         counts = {"applied": applied, "rejected": rejected, "before_start": before_start, "waiting": waiting}
+        self._fixes.judge(counts)
         return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found), heading_sigma=sigma,
                              fusion=FusionResult(ta, heading, sigma, bias, scale, counts), report=report)
 

@@ -417,16 +417,16 @@ def process_log(
         refuse_whole_options(si)
         checked = None if fixes is None else _checked(fixes)
         pipeline = Pipeline(preset, fusion=fusion if checked is not None else None, **overrides)
-        pipeline._fixes.ahead_said = True  # a whole log's span check below says it, of every fix
+        # a whole log's checks below say these, of every fix
+        pipeline._fixes.ahead_said = pipeline._fixes.rejected_said = True
         result = pipeline.process(
             t, rate, temperature=temperature, outputs=outputs, speed=speed, speed_t=speed_t, fixes=checked, out=out
         )
         pipeline.finish()
         if checked is not None and result.fusion is not None:
-            from .fixes import warn_outside, warn_rejected  # as fuse warns for a whole log (the smoothed fix stage's)
+            from .fixes import warn_whole_log  # as fuse warns for a whole log (the smoothed fix stage's)
 
-            warn_outside(result.t, checked)
-            warn_rejected(result.fusion.counts)
+            warn_whole_log(result.t, as_float_array("rate", rate), checked, result.fusion.counts)
         return replace(result, bias_source=causal_source(preset, si))
     refuse_tracking(si)
     options = Options.pop(si)
