@@ -130,6 +130,34 @@ def find_rests(t: FloatArray, rate: FloatArray, speed: FloatArray | None = None,
     return Found(sorted(found), motion)
 
 
+def unseen_stop_hint(t: FloatArray, rate: FloatArray, speed: FloatArray, min_rest: float = MIN_REST) -> str:
+    """Where a speed is given and no rest was found: the longest stretch the rate alone takes for a
+    rest (:func:`gyrocore.calibration.rest_windows`) where the speed shows motion, as a clause to
+    append to the "no rest" message ("" if there is none). Where the speed is known the rate's rests
+    are not looked for, so the rate finder's own hint (a steady level beyond its largest bias) does
+    not hold: a speed noisy at rest (a receiver's) or sampled slower than the stop shows no stop."""
+    from .calibration.rest import rest_windows_of_checked  # calibration builds on the pipeline module too
+
+    taken = usable(rate)
+    if np.count_nonzero(taken) < 8:
+        return ""
+    try:
+        windows = rest_windows_of_checked(t[taken], rate[taken], min_rest)
+    except ValueError:  # too sparse to judge a rest from the rate
+        return ""
+    if not windows:
+        return ""
+    a, b = max(windows, key=lambda w: w[1] - w[0])
+    inside = slice(int(np.searchsorted(t, a)), int(np.searchsorted(t, b, side="right")))
+    level = float(np.mean(rate[inside][taken[inside]]))
+    known = speed[inside][np.isfinite(speed[inside])]
+    return (f"; the speed shows no stop (below {SPEED_THRESHOLD:g} m/s for {min_rest:g} s), but the rate is as steady as "
+            f"a rest {a - t[0]:.6g} .. {b - t[0]:.6g} s after the first sample, reading {math.degrees(level):.4g} deg/s, "
+            f"where the speed reads {np.min(known):.3g} .. {np.max(known):.3g} m/s: a stop the speed does not show (a "
+            "speed noisy at rest, or sampled slower than the stop) or a steady drive; give a rest window there "
+            "(bias_window, --bias-window), or find the rests from the rate alone (use_speed=False, --no-speed)")
+
+
 def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[float, float], found_by: str) -> Rest:
     """The rest ``window`` measured over ``chunks`` of ``(t, rate)`` (read only up to the first
     sample after the window: flat memory for a streamed file); readings the pipeline does not take
