@@ -12,8 +12,9 @@ shaking or the vehicle creeping is not a rest) and, among three or more, its mea
 what the others give within :data:`OUTLIER_SIGMAS` (leave-one-out, through the smoother). A rest
 the rate alone found is no stronger evidence than a steady turn, which reads as steady: it is used
 only where it spans :data:`MIN_RATE_BLOCKS` of the finder's blocks or is far quieter than the rest
-of the log (:data:`QUIET_RATIO`), and only where the rate's rests agree (one of them refused as an
-outlier, or two that disagree, and none of them is used).
+of the log (:data:`QUIET_RATIO`, at the upper confidence bound of its noise), and only where the
+rate's rests agree (one of them refused as an outlier, or two that disagree, and none of them is
+used).
 
 Units: s, rad/s, m/s.
 """
@@ -64,6 +65,11 @@ MIN_RATE_BLOCKS = 8
 #: a gyro whose noise is the same moving or not (a simulation) is quiet by chance as often resting
 #: as turning (23-76 %), and the OXTS rate of KITTI, filtered, reads 7-18 % in slow driving too.
 QUIET_RATIO = 0.05
+#: The quiet test holds for the upper bound of a rest's noise at this one-sided confidence,
+#: as a standard normal quantile (95 %): the noise of a few readings is known only within a
+#: chi-square factor (4 readings: up to 4.2 times what they read), and a steady curve of a smooth
+#: rate averaged to 2 Hz read a twenty-eighth of the drive's noise over 4 readings.
+QUIET_CONFIDENCE_Z = 1.645
 
 
 def _runs(t: FloatArray, flag: np.ndarray) -> list[tuple[float, float]]:
@@ -122,6 +128,34 @@ def find_rests(t: FloatArray, rate: FloatArray, speed: FloatArray | None = None,
             windows = []
         found += [(a, b, "rate") for a, b in windows if not known[within(a, b)].any()]
     return Found(sorted(found), motion)
+
+
+def unseen_stop_hint(t: FloatArray, rate: FloatArray, speed: FloatArray, min_rest: float = MIN_REST) -> str:
+    """Where a speed is given and no rest was found: the longest stretch the rate alone takes for a
+    rest (:func:`gyrocore.calibration.rest_windows`) where the speed shows motion, as a clause to
+    append to the "no rest" message ("" if there is none). Where the speed is known the rate's rests
+    are not looked for, so the rate finder's own hint (a steady level beyond its largest bias) does
+    not hold: a speed noisy at rest (a receiver's) or sampled slower than the stop shows no stop."""
+    from .calibration.rest import rest_windows_of_checked  # calibration builds on the pipeline module too
+
+    taken = usable(rate)
+    if np.count_nonzero(taken) < 8:
+        return ""
+    try:
+        windows = rest_windows_of_checked(t[taken], rate[taken], min_rest)
+    except ValueError:  # too sparse to judge a rest from the rate
+        return ""
+    if not windows:
+        return ""
+    a, b = max(windows, key=lambda w: w[1] - w[0])
+    inside = slice(int(np.searchsorted(t, a)), int(np.searchsorted(t, b, side="right")))
+    level = float(np.mean(rate[inside][taken[inside]]))
+    known = speed[inside][np.isfinite(speed[inside])]
+    return (f"; the speed shows no stop (below {SPEED_THRESHOLD:g} m/s for {min_rest:g} s), but the rate is as steady as "
+            f"a rest {a - t[0]:.6g} .. {b - t[0]:.6g} s after the first sample, reading {math.degrees(level):.4g} deg/s, "
+            f"where the speed reads {np.min(known):.3g} .. {np.max(known):.3g} m/s: a stop the speed does not show (a "
+            "speed noisy at rest, or sampled slower than the stop) or a steady drive; give a rest window there "
+            "(bias_window, --bias-window), or find the rests from the rate alone (use_speed=False, --no-speed)")
 
 
 def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[float, float], found_by: str) -> Rest:
@@ -267,8 +301,22 @@ def _by_rate(rest: Rest) -> bool:
 def _proven(rest: Rest, motion_noise: float) -> bool:
     """Whether a rest found from the rate is no chance run of quiet readings: it spans
     :data:`MIN_RATE_BLOCKS` of the finder's blocks, or it is far quieter than the rest of the log
-    (:data:`QUIET_RATIO`; NaN where the log is nearly all rest)."""
-    return _blocks(rest) >= MIN_RATE_BLOCKS or not rest.noise > QUIET_RATIO * motion_noise
+    (:data:`QUIET_RATIO`, by the upper bound of its noise, :func:`_noise_bound`; NaN where the log
+    is nearly all rest)."""
+    return _blocks(rest) >= MIN_RATE_BLOCKS or not _noise_bound(rest) > QUIET_RATIO * motion_noise
+
+
+def _noise_bound(rest: Rest) -> float:
+    """The upper one-sided confidence bound (:data:`QUIET_CONFIDENCE_Z`) of ``rest``'s noise, which
+    its readings' successive differences estimate (von Neumann's mean square successive difference,
+    as the core's static bias test does): over ``m = n - 1`` differences of white noise its variance
+    is ``(3m - 1) / m^2`` times the noise's fourth power, about ``nu = 2 m^2 / (3m - 1)`` degrees of
+    freedom of a chi-square, whose lower quantile is Wilson and Hilferty's cube
+    ``nu (1 - 2/(9 nu) - z sqrt(2/(9 nu)))^3`` (``n >= 3``: fewer readings are refused first)."""
+    m = rest.samples - 1
+    nu = 2.0 * m * m / (3.0 * m - 1.0)
+    c = 2.0 / (9.0 * nu)
+    return rest.noise / math.pow(1.0 - c - QUIET_CONFIDENCE_Z * math.sqrt(c), 1.5)
 
 
 def _blocks(rest: Rest) -> float:
@@ -281,7 +329,8 @@ def _blocks(rest: Rest) -> float:
 
 def _unproven(rest: Rest, motion_noise: float) -> str:
     return (f"{rest.end - rest.start:.3g} s and {rest.samples} readings ({_blocks(rest):.3g} blocks of 0.25 s or 4 "
-            f"readings), its noise {math.degrees(rest.noise):.2g} deg/s against {math.degrees(motion_noise):.2g} deg/s "
+            f"readings), its noise {math.degrees(rest.noise):.2g} deg/s (at most {math.degrees(_noise_bound(rest)):.2g} at "
+            f"95 % confidence) against {math.degrees(motion_noise):.2g} deg/s "
             "in the rest of the log: too short and not quiet enough for the rate alone to tell a rest from a chance "
             f"run of quiet readings (at least {MIN_RATE_BLOCKS} blocks, or {1 / QUIET_RATIO:g} x quieter)")
 

@@ -43,7 +43,7 @@ from numpy.typing import ArrayLike
 from ._arrays import FloatArray, as_float_array
 from ._checks import MAX_SECONDS, first_infinite, public_dir, refuse_no_usable_reading, require_times, usable, warn
 from ._gyrocore import SampleError
-from ._rests import MIN_REST, SPEED_THRESHOLD, Found, accept, find_rests, measure_rest
+from ._rests import MIN_REST, SPEED_THRESHOLD, Found, accept, find_rests, measure_rest, unseen_stop_hint
 from ._smoother import SmoothedBias, smooth
 from .pipeline import ALL_OUTPUTS, BIAS_SOURCES, HeadingResult, Pipeline, core_pipeline, preset_params, uses_static_bias
 from .pipeline_params import _to_si
@@ -310,7 +310,11 @@ def plan_arrays(
         return found
     from .calibration.rest import steady_stretch_hint  # calibration builds on the pipeline module too
 
-    return replace(found, warning=found.warning + steady_stretch_hint(t, rate, options.min_rest))
+    # where the speed is known the rate's rests were not looked for: a steady stretch there may be a
+    # stop the speed does not show; beyond it, one the rate finder refused for its level
+    hint = (speed is not None and unseen_stop_hint(t, rate, speed, options.min_rest)) or steady_stretch_hint(
+        t, rate, options.min_rest)
+    return replace(found, warning=found.warning + hint)
 
 
 def plan_log(

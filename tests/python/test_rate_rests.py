@@ -113,3 +113,29 @@ def test_a_stop_refused_against_the_rates_rests_is_judged_again_without_them() -
     assert stop.refused is None
     assert all(r.refused is not None for r in rated)
     assert "disagree" in str(rated[0].refused) and "sigma from what the other rests give" in str(rated[-1].refused)
+
+
+def test_a_few_quiet_readings_cannot_show_a_rest_twenty_times_quieter_than_the_motion() -> None:
+    # 4 readings whose noise reads 0.036 of the motion's: over 3 successive differences the noise is
+    # known only within a factor of 4.2 (95 %), so they do not show a rest 20 x quieter; 200 do
+    motion = 0.01
+    few, many = accept([Rest(0.0, 1.5, 0.0, 1e-5, 0.036 * motion, 4, "rate"),
+                        Rest(100.0, 101.5, 0.0, 1e-5, 0.036 * motion, 200, "rate")], WALK, motion)
+    assert few.refused is not None and "its noise 0.021 deg/s (at most 0.087 at 95 % confidence)" in few.refused
+    assert many.refused is None
+
+
+def test_a_steady_curve_of_a_bias_free_rate_averaged_to_2_hz_is_no_rest() -> None:
+    # kitti_2011_10_03_0042 (OXTS rate, no bias, no stop) averaged over blocks of 5 readings, from
+    # the rate alone: 4 readings of a steady curve read a twenty-eighth of the drive's noise and
+    # were used as a rest, 0.58 deg/s removed from the whole drive (E_psi 35.72 deg, raw 0.82)
+    log = gyrocore.read_log(real_log_path("kitti_2011_10_03_0042"))
+    n = len(log.t) // 5 * 5
+    t, rate = (x[:n].reshape(-1, 5).mean(axis=1) for x in (log.t, log.rate))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrocore.InputWarning)  # no rest used: the bias is taken as 0
+        whole = gyrocore.process(t, rate, "static_bias")
+    raw = gyrocore.process(t, rate, "raw")
+    assert all(r.refused is not None for r in whole.rests)
+    errors = [gyrocore.heading_errors(r.t, r.heading, *log.reference()).e_psi_deg for r in (whole, raw)]
+    assert errors[0] == pytest.approx(errors[1], abs=1e-9)

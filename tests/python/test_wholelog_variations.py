@@ -100,3 +100,20 @@ def test_a_smooth_rate_taken_slower_keeps_slow_driving_from_passing_for_a_rest(s
         warnings.simplefilter("ignore", gyrocore.InputWarning)  # the rests refused are reported
         assert e_psi("static_bias", "whole") <= raw + 0.5
         assert e_psi("recommended", "whole") <= raw + 0.5
+
+
+def test_a_stop_a_noisy_speed_does_not_show_is_named_as_such() -> None:
+    # f110_ds1's speed with 0.05 m/s of noise (a receiver's speed at rest): no run of 1 s stays under
+    # 0.05 m/s, so no stop is found, and the warning said the steadiest stretch (its 1.5 s stop,
+    # reading -0.4 deg/s) was "beyond 0.05 rad/s" and asked whether the rate was in deg/s
+    log = gyrocore.read_log(real_log_path("f110_ds1"))
+    noisy = np.asarray(log.speed) + np.random.default_rng(0).normal(0.0, 0.05, len(np.asarray(log.speed)))
+    with pytest.warns(gyrocore.InputWarning) as caught:
+        result = gyrocore.process(log.t, log.rate, "static_bias", speed=noisy, speed_t=log.t_odometry)
+    (said,) = [str(w.message) for w in caught if "no rest was found" in str(w.message)]
+    assert "beyond 0.05 rad/s" not in said and "rad/s read as" not in said
+    assert ("the speed shows no stop (below 0.05 m/s for 1 s), but the rate is as steady as a rest 41.7647 .. 43.2407 s "
+            "after the first sample, reading -0.3993 deg/s, where the speed reads -0.0721 .. 0.102 m/s") in said
+    assert "use_speed=False, --no-speed" in said and result.rests == ()
+    rate_only = log.process("static_bias", use_speed=False)  # what the hint offers: its stop from the rate
+    assert gyrocore.heading_errors(rate_only.t, rate_only.heading, *log.reference()).e_psi_deg == pytest.approx(3.75, abs=0.005)
