@@ -205,7 +205,11 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
     if found_by.startswith("given"):  # a found rest is still by its finder's rules
         warn_if_turning(window, inside, bias)
     white_noise = noise if noise is not None else float(np.std(inside))
-    error = _correlated(float(np.std(inside)), white_noise, len(inside)) * _weighted_share(ts[within])
+    # From the rate alone, readings that correlate are slow motion as likely as a filtered gyro at
+    # rest: their mean counts them so. A stop the speed shows, or a given window, is a rest, where
+    # correlation is the sensor's filter and batch means see it in all but the shortest.
+    one = _correlated(float(np.std(inside)), white_noise, len(inside)) if found_by == "rate" else white_noise
+    error = one * _weighted_share(ts[within])
     return Rest(start, end, bias, max(error, batch_error or 0.0), white_noise, samples, found_by.split(":")[0])
 
 

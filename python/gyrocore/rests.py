@@ -41,8 +41,8 @@ class Rest:
             rest window.
         bias_std_error: standard error of ``bias`` [rad/s]: the batch-means error, at least the
             white-noise error of the time-weighted mean (``noise / sqrt(samples)`` for evenly
-            spaced readings), in whole mode counting the readings' correlation where neighbours
-            correlate (docs/whole_log.md, "Measurement").
+            spaced readings); for a rest whole mode found from the rate alone, counting the
+            readings' correlation where neighbours correlate (docs/whole_log.md, "Measurement").
         noise: standard deviation of one reading [rad/s].
         samples: readings inside it.
         found_by: ``given`` (bias_window, bias_duration, meta.json), ``speed`` (a speed below the
