@@ -1,0 +1,152 @@
+"""The tables of the docs that a command prints are what the command prints now: each is run as
+the page says and compared with the page, to the places the page shows (test_results_page.py
+does the same for docs/results.md's whole-log table)."""
+
+from __future__ import annotations
+
+import json
+import re
+import subprocess
+import sys
+import warnings
+from pathlib import Path
+
+import pytest
+
+import gyrocore
+from gyrocore.cli import main
+
+from .conftest import DATA
+
+ROOT = Path(__file__).resolve().parents[2]
+REAL = DATA / "real"
+NUMBER = re.compile(r"-?\d+(?:\.\d+)?")
+
+
+@pytest.fixture(autouse=True)
+def _real_logs() -> None:
+    if not REAL.is_dir():
+        pytest.skip(f"shared data not found at {REAL}")
+
+
+def table(page: str, header_start: str) -> list[list[str]]:
+    """The rows of the Markdown table of ``docs/page`` whose header starts with ``header_start``,
+    each a list of its cells."""
+    lines = (ROOT / "docs" / page).read_text(encoding="utf-8").splitlines()
+    at = next(i for i, line in enumerate(lines) if line.startswith(header_start))
+    rows = []
+    for line in lines[at + 2 :]:
+        if not line.startswith("|"):
+            break
+        rows.append([c.strip() for c in line.strip().strip("|").split("|")])
+    return rows
+
+
+def script_rows(script: str) -> list[list[str]]:
+    """The Markdown table rows ``python examples/SCRIPT REAL`` prints, without their headers (a
+    row, a list of its cells)."""
+    done = subprocess.run([sys.executable, str(ROOT / "examples" / script), str(REAL)], capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode == 0, done.stderr[-3000:]
+    lines = done.stdout.splitlines()
+    return [[c.strip() for c in line.strip().strip("|").split("|")] for line, after in zip(lines, [*lines[1:], ""])
+            if line.startswith("| ") and not after.startswith("|---")]  # its rows, not their headers
+
+
+def shown_as(printed: float, shown: str, printed_places: int = 9) -> bool:
+    """Whether ``shown`` is ``printed`` (itself printed to ``printed_places``) rounded to the places it shows."""
+    places = len(shown.split(".")[1]) if "." in shown else 0
+    return abs(printed - float(shown)) <= 0.5 * 10.0**-places + 0.5 * 10.0**-printed_places + 1e-9
+
+
+def test_the_accuracy_bar_table_is_what_its_script_prints() -> None:
+    # docs/results.md: `python examples/accuracy_bar.py`
+    done = subprocess.run([sys.executable, str(ROOT / "examples" / "accuracy_bar.py"), str(REAL)],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr[-3000:]
+    printed = {line.split()[0]: [float(v) for v in line.split()[1:]] for line in done.stdout.splitlines()[1:] if line}
+    rows = table("results.md", "| preset | f110_ds3 | broad_10 | comma_seg40 | perfect gyro")
+    names = {"static_bias": "static_bias", "hong_park": "hong_park", "combined": "combined",
+             "tuned": "recommended", "tracked": "tracked"}
+    assert len(rows) == len(names)
+    for row in rows:
+        preset = names[row[0].split("`")[1]]
+        values = printed[preset]
+        cells = [c.replace("*", "") for c in row[1:]]
+        for value, cell in zip(values[:5], cells[:5]):
+            assert shown_as(value, cell, 3), (preset, cell, value)
+        if cells[5].startswith("0 (the baseline)"):
+            assert values[5] == values[6] == 0.0, (preset, values)
+        else:
+            mean, worst = NUMBER.findall(cells[5])
+            assert shown_as(values[5], mean, 3) and shown_as(values[6], worst, 3), (preset, cells[5], values[5:])
+
+
+def test_the_causal_table_of_the_results_page_is_what_evaluate_prints(capsys: pytest.CaptureFixture[str]) -> None:
+    # docs/results.md's first table: gyrocore evaluate f110_ds3 broad_10 comma_seg40 --bias-duration 10 --causal
+    logs = ["f110_ds3", "broad_10", "comma_seg40"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrocore.InputWarning)
+        assert main(["evaluate", *(str(REAL / n) for n in logs), "--bias-duration", "10", "--causal", "--json"]) == 0
+    scores = {(Path(r["path"]).name, r["preset"]): r["e_psi_deg"] for r in json.loads(capsys.readouterr().out)}
+    header = "| log | raw | static_bias | hong_park | hdr | combined | tuned (= recommended) | tracked |"
+    presets = ["raw", "static_bias", "hong_park", "hdr", "combined", "tuned", "tracked"]
+    rows = table("results.md", header)
+    assert [row[0].split()[0] for row in rows] == logs
+    for row in rows:
+        for preset, cell in zip(presets, row[1:], strict=True):
+            assert shown_as(scores[(row[0].split()[0], preset)], cell), (row[0], preset, cell)
+
+
+def test_the_slower_logs_table_is_what_its_script_prints() -> None:
+    # docs/whole_log.md "Slower logs": `python examples/slow_logs.py`; the "after" columns
+    printed = {(r[0], int(r[1])): r for r in script_rows("slow_logs.py")}
+    rows = table("whole_log.md", "| log, every k-th reading (rate) |")
+    assert rows
+    for row in rows:
+        log, k = re.fullmatch(r"(\w+), k = (\d) \(.*\)", row[0]).groups()  # type: ignore[union-attr]
+        run = printed[(log, int(k))]
+        assert [row[1], row[3], row[5]] == [run[3], run[4], run[6]], (row, run)
+
+
+def test_the_ablation_tables_are_what_their_script_prints() -> None:
+    # docs/whole_log.md "Ablations" and "A given window and the log's other rests":
+    # `python examples/whole_log_ablations.py`
+    printed = {r[0]: r for r in script_rows("whole_log_ablations.py")}
+    ablations = table("whole_log.md", "| setting | mean log E_psi (18 logs) |")
+    rerun = [row for row in ablations if "before rests from the rate" not in row[0] and not row[0].startswith("the same")]
+    assert len(rerun) == 8
+    for row in rerun:
+        assert row == printed[row[0]], (row, printed[row[0]])
+    windows = table("whole_log.md", "| log | rests used | static_bias, window |")
+    assert [row[0] for row in windows] == ["broad_10", "broad_11", "f110_ds3"]
+    for row in windows:
+        run = printed[row[0]]
+        assert NUMBER.findall(row[1]) == NUMBER.findall(run[1]), (row, run)
+        assert row[2:] == run[2:6], (row, run)
+
+
+def test_the_fixes_results_table_is_what_its_script_prints() -> None:
+    # docs/fixes.md "Results": `python examples/fixes_acceptance.py`, its first table (the
+    # page leaves out the settings column, and the "(-)" of a true bias or scale not known)
+    run = script_rows("fixes_acceptance.py")
+    printed = {r[0]: [c.replace(" (-)", "") for c in r[:9]] for r in run if len(r) == 10}
+    rows = table("fixes.md", "| log | raw | raw from 1st fix | fixes throughout")
+    assert len(rows) == len(printed) == 12
+    for row in rows:
+        assert row == printed[row[0]], (row, printed[row[0]])
+    # the summary at the top of the page: each group's range of those figures
+    grade = {r[0]: r[6].split(" / ") for r in run if len(r) == 7}
+    summary = {row[0]: row[1:] for row in table("fixes.md", "| logs | raw integration | fixes throughout")}
+
+    def span(values: list[str], places: int = 2) -> str:
+        numbers = sorted(float(v) for v in values)
+        return f"{numbers[0]:.{places}f}-{numbers[-1]:.{places}f}"
+
+    for label, group in (("6 KITTI MEMS twins", [r for n, r in printed.items() if n.endswith("_mems")]),
+                         ("6 KITTI true-rate drives", [r for n, r in printed.items() if not n.endswith("_mems")])):
+        causal, smoothed = zip(*(r[3].split(" / ") for r in group))
+        assert summary[label] == [span([r[1] for r in group], 1), f"{span(list(causal))} / {span(list(smoothed))}",
+                                  f"{span([r[5] for r in group])} / {span([r[6] for r in group])}"], label
+    label = "the same, with the OXTS's data-sheet grade as priors (causal)"
+    assert summary[label][1:] == [span([g[0] for g in grade.values()]), span([g[1] for g in grade.values()])]
