@@ -174,3 +174,21 @@ def test_the_held_out_counts_are_those_of_the_held_out_table() -> None:
     assert f"by 0.5 % or more on {len(better)} of the 18 logs" in results
     assert f"by {100 * better[0]:.1f} % to {100 * better[-1]:.0f} %" in results
     assert f"log ratio to static-bias removal is {mean_log:.3f} held out" in results
+
+
+@pytest.mark.parametrize("causal", [False, True])
+def test_the_simulated_fixes_table_is_what_evaluate_prints(causal: bool, capsys: pytest.CaptureFixture[str]) -> None:
+    # docs/fixes.md "Fixes in the normal entry points": gyrocore evaluate kitti_2011_09_30_00{18,20,27,33,34}
+    # kitti_2011_10_03_0042 --preset raw --sim-fixes rate=1,sigma_deg=1,outage=30:50,seed=1 [--causal]
+    rows = table("fixes.md", "| log | smoothed | causal | raw |")
+    assert len(rows) == 6
+    args = ["evaluate", *(str(REAL / row[0]) for row in rows), "--preset", "raw",
+            "--sim-fixes", "rate=1,sigma_deg=1,outage=30:50,seed=1", "--json", *(["--causal"] if causal else [])]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrocore.InputWarning)
+        assert main(args) == 0
+    scores = {Path(r["path"]).name: r for r in json.loads(capsys.readouterr().out)}
+    for row in rows:
+        r = scores[row[0]]
+        assert row[2 if causal else 1] == f"{r['e_psi_deg']:.2f} / {r['outage_e_psi_deg']:.2f}", row
+        assert row[3] == f"{r['raw_e_psi_deg']:.2f} / {r['raw_outage_e_psi_deg']:.2f}", row
