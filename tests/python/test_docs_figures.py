@@ -192,3 +192,24 @@ def test_the_simulated_fixes_table_is_what_evaluate_prints(causal: bool, capsys:
         r = scores[row[0]]
         assert row[2 if causal else 1] == f"{r['e_psi_deg']:.2f} / {r['outage_e_psi_deg']:.2f}", row
         assert row[3] == f"{r['raw_e_psi_deg']:.2f} / {r['raw_outage_e_psi_deg']:.2f}", row
+
+
+def test_the_gyros_without_bias_table_is_what_its_expression_gives() -> None:
+    # docs/whole_log.md "Gyros without bias, from the rate alone": the "after" column, from the
+    # expression the page gives under the table
+    from gyrocore import tune
+
+    rows = table("whole_log.md", "| drives (seeds), whole mode, no window, no speed |")
+    assert len(rows) == 3
+    for row in rows:
+        count, hz, minutes, first, last, preset = re.fullmatch(  # type: ignore[union-attr]
+            r"(\d+) at (\d+) Hz, (\d+) min \((\d+)-(\d+)(?:, perfect and noisy)?\), `(\w+)`", row[0]).groups()
+        per_mix = (int(last) - int(first) + 1) // 3  # the three road mixes of tune.harm_cases
+        cases = [case for noisy in (False, True) for case in tune.harm_cases(
+            per_mix=per_mix, first_seed=int(first), noisy=noisy, rate_hz=float(hz), minutes=float(minutes))]
+        assert len(cases) == int(count), row
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", gyrocore.InputWarning)  # no rest used: it says so
+            worst = max(case.reference.errors(case.t, gyrocore.process(case.t, case.rate, preset).heading).e_psi_deg
+                        - case.raw.e_psi_deg for case in cases)
+        assert f"{worst:.2f}" == row[2], (row, worst)
