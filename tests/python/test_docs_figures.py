@@ -1,6 +1,7 @@
-"""The tables of the docs that a command prints are what the command prints now: each is run as
-the page says and compared with the page, to the places the page shows (test_results_page.py
-does the same for docs/results.md's whole-log table)."""
+"""The tables and figures of the docs that a command or script prints are what it prints now:
+each is run as the page says and compared with the page, to the places the page shows
+(test_results_page.py does the same for docs/results.md's whole-log table), and figures counted
+from a table that takes too long to rerun here are counted from it."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ import sys
 import warnings
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import gyrocore
@@ -236,3 +238,32 @@ def test_the_held_out_column_and_the_readme_quote_the_held_out_table() -> None:
                         ("kitti_2011_09_30_0034", "kitti_0034")):
         static, tuned = held[name]
         assert f"{short}: {static:.2f} to {tuned:.2f}" in readme, name
+
+
+def test_the_calibration_pages_spreads_and_moving_shares_are_the_real_logs() -> None:
+    # docs/calibration.md: the share of moving half-seconds of the 18 real drives, how far their
+    # rests' readings spread beyond their white noise, and their first 5 s
+    from gyrocore import _motion
+
+    text = " ".join((ROOT / "docs" / "calibration.md").read_text(encoding="utf-8").split())
+    logs = [gyrocore.read_log(p) for p in sorted(REAL.iterdir()) if (p / "gyro.csv").is_file()]
+    assert len(logs) == 18
+    shares = sorted((_motion.moving_share(log.rate, float(np.median(np.diff(log.t)))) or 0.0, log.name) for log in logs)
+    low, high = re.search(r"([\d.]+) \(comma_seg40, often stopped\) to ([\d.]+) \(f110_ds1\) on the 18 real drives",
+                          text).groups()  # type: ignore[union-attr]
+    assert (shares[0][1], shares[-1][1]) == ("comma_seg40", "f110_ds1")
+    assert shown_as(shares[0][0], low) and shown_as(shares[-1][0], high), shares
+    at_rest, first = [], []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrocore.InputWarning)
+        for log in logs:
+            for use_speed in (True, False):
+                for rest in log.process("static_bias", use_speed=use_speed).rests:
+                    at_rest.append(_motion.spread(log.rate[(log.t >= rest.start) & (log.t <= rest.end)]))
+            if not log.name.startswith("broad"):  # the hand-held logs rest at their start
+                first.append(_motion.spread(log.rate[log.t <= log.t[0] + 5.0]))
+    ratio, beyond = [s[0] for s in at_rest if s], [math.degrees(s[1]) for s in at_rest if s]
+    assert (f"{min(ratio):.2f} to {max(ratio):.2f} times, at most {max(beyond):.2f} deg/s beyond") in text
+    ratio, beyond = [s[0] for s in first if s], [math.degrees(s[1]) for s in first if s]
+    assert (f"first 5 s spread {min(ratio):.1f} (a car still stopped) to {max(ratio):.0f} times and "
+            f"{min(beyond):.1f} to {max(beyond):.0f} deg/s beyond") in text
