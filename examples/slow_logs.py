@@ -3,7 +3,7 @@ neither speed nor rest window (what a slower logger without odometry gives), E_p
 integration and of ``static_bias`` and ``recommended`` in whole mode, and the rests each used.
 Prints the figures of docs/whole_log.md "Slower logs".
 
-    python examples/slow_logs.py [DATA_DIR]     # default ../shared/data/real; about 40 s
+    python examples/slow_logs.py [DATA_DIR]     # default ../shared/data/real; a few seconds
 """
 
 import sys
