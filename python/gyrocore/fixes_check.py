@@ -7,9 +7,9 @@ squares fit of that difference over every pair of consecutive fixes (:func:`agre
 interval (the bias), the gyro's turn (the scale error) and the change of the rate (a lag between
 the two clocks: a fix stamped ``lag`` seconds after the heading it gives differs by ``-lag`` times
 the rate) shows three mistakes the filter cannot see: fixes that turn other than the gyro (a bearing
-clockwise from north: the turn's coefficient near -2; radians read as degrees: -0.98), fixes late or early on the gyro's clock
-(a receiver's latency, another clock's offset), and fixes that scatter far beyond their stated
-sigma. Each made the fused heading wrong by 2 to 100 deg on the KITTI drives, mostly with no
+clockwise from north: the turn's coefficient near -2; radians read as degrees: -0.98), fixes late
+or early on the gyro's clock (a receiver's latency, another clock's offset), and fixes that scatter
+far beyond their stated sigma. Each made the fused heading wrong by 2 to 100 deg on the KITTI drives, mostly with no
 warning, or with the outlier gate's, which named units (docs/fixes.md, "Fixes checked against
 the gyro").
 """
@@ -112,8 +112,8 @@ def _fit(a: FloatArray, y: FloatArray) -> Agreement | None:
 
 def warn_disagreement(t: FloatArray, rate: FloatArray, fixes: Fixes) -> None:
     """Warns (:class:`~gyrocore.InputWarning`) when a whole log's fixes turn other than its gyro
-    (against it, or in another unit), lag or lead it by more than :data:`MAX_LAG`, or scatter beyond :data:`MAX_SCATTER` times their
-    stated sigma (:func:`agreement`)."""
+    (against it, or in another unit), lag or lead it by more than :data:`MAX_LAG`, or scatter
+    beyond :data:`MAX_SCATTER` times their stated sigma (:func:`agreement`)."""
     fit = agreement(t, rate, fixes)
     if fit is None:
         return
