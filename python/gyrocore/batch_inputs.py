@@ -145,12 +145,31 @@ def complete_output(path: str | Path) -> bool:
 
 def output_paths(inputs: Sequence[str | Path], out_dir: str | Path, fmt: str) -> list[Path]:
     """``out_dir/<input name without suffix>.<fmt>`` for each input; refuses two inputs that would
-    share an output."""
+    share an output, also through a symbolic link at an output's name (its target is written), and
+    an output whose link leads to an input or into an input folder: with ``--overwrite`` the file
+    it leads to was replaced, an input by another input's heading, or one output by another's."""
     given, folder = [Path(p) for p in inputs], Path(out_dir)  # exported: paths as text failed
     outs = [folder / f"{p.name if p.is_dir() else p.stem}.{fmt}" for p in given]
-    seen: dict[Path, Path] = {}
+    # realpath, not Path.resolve, which raises RuntimeError on a link loop (see io.check_not_input)
+    real_inputs = {Path(os.path.realpath(p)): p for p in given}
+    seen: dict[Path, tuple[Path, Path]] = {}
     for p, o in zip(given, outs):
-        if o in seen:
-            raise ValueError(f"{seen[o]} and {p} would both be written to {o}; process them separately")
-        seen[o] = p
+        target = Path(os.path.realpath(o))
+        if target in seen:
+            first, first_out = seen[target]
+            links = _through_links(first_out, o)
+            raise ValueError(f"{first} and {p} would both be written to {target if links else o}{links}; "
+                             f"{'remove the link, or ' if links else ''}process them separately")
+        seen[target] = p, o
+        hit = next((real_inputs[a] for a in (target, *target.parents) if a in real_inputs), None)
+        if hit is not None:
+            links = _through_links(o)
+            raise ValueError(f"refusing to write {o} over or inside the input {hit}{links}; "
+                             f"{'remove the link, or ' if links else ''}write the outputs elsewhere")
     return outs
+
+
+def _through_links(*outputs: Path) -> str:
+    """How the outputs named are led elsewhere: the symbolic links among them, and where each leads."""
+    links = [f"{o} is a symbolic link to {os.readlink(o)!r}" for o in dict.fromkeys(outputs) if o.is_symlink()]
+    return f" ({'; '.join(links)})" if links else ""
