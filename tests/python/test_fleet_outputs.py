@@ -1,7 +1,12 @@
-"""A fleet's outputs in a messy output folder: no input and no other output is written over."""
+"""A fleet's outputs in a messy output folder: no input and no other output is written over, and a
+scheduler that is no Dask scheduler is named, not waited on."""
 
 from __future__ import annotations
 
+import socket
+import threading
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
@@ -45,3 +50,48 @@ def test_an_output_name_linked_to_another_output_is_refused_before_any_work(tmp_
         process_many([a.parent], out_dir=out, preset="raw")
     assert (out / "b.csv").read_text() == "kept\n"
 
+
+@contextmanager
+def _not_a_scheduler(answer: bytes) -> Iterator[str]:
+    """The address of a server of another kind: it takes connections and answers each with
+    ``answer`` (nothing: it waits, as a web server does for a request it can read)."""
+    server = socket.create_server(("127.0.0.1", 0))
+    held: list[socket.socket] = []
+
+    def serve() -> None:
+        while True:
+            try:
+                conn, _ = server.accept()
+            except OSError:  # closed
+                return
+            held.append(conn)
+            conn.sendall(answer)
+
+    threading.Thread(target=serve, daemon=True).start()
+    try:
+        yield f"tcp://127.0.0.1:{server.getsockname()[1]}"
+    finally:
+        server.close()
+        for conn in held:
+            conn.close()
+
+
+@pytest.mark.parametrize("answer, said", [
+    (b"", "no greeting in 2 s"),
+    (b"HTTP/1.1 400 Bad Request\r\n\r\n", "an answer Dask cannot read: MemoryError"),
+])
+def test_a_scheduler_address_where_another_server_answers_is_named_not_waited_on(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, answer: bytes, said: str) -> None:
+    # Dask's Client waits for the greeting without a limit: a server that does not answer held
+    # the command for ever, and one whose answer reads as a huge length failed with a traceback
+    # (numpy's "Unable to allocate 3.07 EiB")
+    pytest.importorskip("dask.distributed")
+    monkeypatch.setenv("DASK_DISTRIBUTED__COMM__TIMEOUTS__CONNECT", "1s")
+    log = synthetic_csv(tmp_path / "a.csv", 300)
+    with _not_a_scheduler(answer) as address:
+        proc = gyrocore_cli("process", log, "--scheduler", address, "--out", tmp_path / "out", code=2, timeout=40)
+    assert proc.stderr.splitlines()[-1] == (
+        f"gyrocore: error: something answered at {address!r}, but not as a Dask scheduler ({said}); check that "
+        f"{address!r} is the scheduler's address as `dask scheduler` prints it (tcp://host:8786; the dashboard's "
+        "http://host:8787 is another); without a scheduler the files run on this machine's cores")
+    assert not (tmp_path / "out").exists()
