@@ -95,3 +95,19 @@ def test_a_scheduler_address_where_another_server_answers_is_named_not_waited_on
         f"{address!r} is the scheduler's address as `dask scheduler` prints it (tcp://host:8786; the dashboard's "
         "http://host:8787 is another); without a scheduler the files run on this machine's cores")
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("fmt, columns", [("csv", None), ("parquet", None), ("csv", ("t", "heading"))])
+def test_an_earlier_runs_output_given_as_input_is_named_as_one(tmp_path: Path, fmt: str,
+                                                               columns: tuple[str, ...] | None) -> None:
+    # a pattern or folder that reached an earlier run's outputs failed each with "missing column(s)
+    # gyro_z; ... (choose with time_col/rate_col, --time-col/--rate-col)", which led to processing
+    # the output again, its corrected rate taken for the gyro's
+    log = synthetic_csv(tmp_path / "a.csv", 300)
+    process_many([log], out_dir=tmp_path / "first", fmt=fmt, preset="raw", columns=columns)
+    report = process_many([tmp_path / "first"], out_dir=tmp_path / "second", preset="raw")
+    header = ", ".join(columns or ("t", "heading", "rate", "drift"))
+    assert report.files[0].error == (
+        f"{tmp_path / 'first' / f'a.{fmt}'}: missing column(s) gyro_z; it has {header}: a heading table as gyrocore "
+        "writes it, not a gyro's log; give the log it was made from (inputs that reach an earlier run's output "
+        "folder: leave that folder out)")
