@@ -3,6 +3,7 @@ that would land among the inputs; :mod:`gyrocore.batch` re-exports the public na
 
 from __future__ import annotations
 
+import fnmatch
 import glob
 import os
 from collections.abc import Iterable, Sequence
@@ -115,6 +116,41 @@ def check_outside_inputs(items: Iterable[str | Path], out: Path, inputs: Sequenc
                 f"refusing to write into {out}: it holds the input {p}, and the outputs would be read as "
                 "logs by a later run over it; give an output folder outside the inputs"
             )
+
+
+def check_unreached(items: Iterable[str | Path], outputs: Iterable[Path]) -> None:
+    """Refuse an output (a file, or an output folder and the files it receives) that a glob pattern
+    among ``items`` reaches once it exists: the run went through, and the same command again
+    (``--skip-existing`` to go on after an interruption, ``--overwrite``) read the outputs as logs,
+    or was refused as writing into its inputs."""
+    patterns = [str(item) for item in items if not os.path.lexists(item)]
+    for out in outputs:
+        for pattern in patterns:
+            if _reaches(pattern, out):
+                raise ValueError(f"refusing to write {out}: the pattern {pattern!r} reaches it, and the same run "
+                                 "again (--skip-existing to go on after an interruption, --overwrite) would read the "
+                                 "outputs as logs; write them where the pattern does not reach")
+
+
+def _reaches(pattern: str, path: Path) -> bool:
+    """Whether ``glob.glob(pattern, recursive=True)`` gives ``path`` once it exists (by name: a link
+    that leads there is not followed)."""
+    return _glob_match(Path(os.path.abspath(pattern)).parts, Path(os.path.abspath(path)).parts)
+
+
+def _glob_match(pattern: tuple[str, ...], parts: tuple[str, ...]) -> bool:
+    """Whether the names ``parts`` match the glob pattern's names ``pattern`` as glob matches them: a
+    ``**`` is any number of names, and a wildcard takes a hidden name (``.x``) only where the
+    pattern's name starts with a dot too."""
+    if not pattern:
+        return not parts
+    head, rest = pattern[0], pattern[1:]
+    if head == "**":
+        deeper = bool(parts) and not parts[0].startswith(".") and _glob_match(pattern, parts[1:])
+        return deeper or _glob_match(rest, parts)
+    if not parts or (parts[0].startswith(".") and not head.startswith(".")):
+        return False
+    return fnmatch.fnmatchcase(parts[0], head) and _glob_match(rest, parts[1:])
 
 
 def _matches(item: str | Path) -> tuple[bool, list[Path]]:

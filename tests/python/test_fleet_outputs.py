@@ -111,3 +111,35 @@ def test_an_earlier_runs_output_given_as_input_is_named_as_one(tmp_path: Path, f
         f"{tmp_path / 'first' / f'a.{fmt}'}: missing column(s) gyro_z; it has {header}: a heading table as gyrocore "
         "writes it, not a gyro's log; give the log it was made from (inputs that reach an earlier run's output "
         "folder: leave that folder out)")
+
+
+@pytest.mark.parametrize("pattern, out, reached", [
+    ("logs/*", "logs/out", "logs/out"),
+    ("logs/**/*.csv", "logs/out", "logs/out/a.csv"),
+    ("logs/*.csv", "logs/h.csv", "logs/h.csv"),
+])
+def test_an_output_a_pattern_reaches_is_refused_before_the_first_run(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                                     pattern: str, out: str, reached: str) -> None:
+    # the first run went through, and the same command again, --skip-existing to go on after an
+    # interruption, was refused (`refusing to write logs/out over or inside the input logs/out`)
+    # or read the outputs as logs
+    monkeypatch.chdir(tmp_path)
+    Path("logs").mkdir()
+    synthetic_csv(Path("logs/a.csv"), 300)
+    proc = gyrocore_cli("process", pattern, "--out", out, "--preset", "raw", code=2)
+    assert proc.stderr == (f"gyrocore: error: refusing to write {reached}: the pattern {pattern!r} reaches it, and the "
+                           "same run again (--skip-existing to go on after an interruption, --overwrite) would read "
+                           "the outputs as logs; write them where the pattern does not reach\n")
+    assert sorted(p.name for p in Path("logs").iterdir()) == ["a.csv"]
+    if out == "logs/out":
+        with pytest.raises(ValueError, match=f"^refusing to write {reached}: the pattern"):
+            process_many([pattern], out_dir=out, preset="raw")
+
+
+def test_an_output_folder_a_pattern_does_not_reach_is_taken(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)
+    Path("logs").mkdir()
+    synthetic_csv(Path("logs/a.csv"), 300)
+    for again in ((), ("--skip-existing",)):
+        gyrocore_cli("process", "logs/*.csv", "--out", "logs/h", "--preset", "raw", *again, code=0)
+    assert sorted(p.name for p in Path("logs/h").iterdir()) == ["a.csv"]
