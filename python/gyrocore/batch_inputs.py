@@ -179,15 +179,17 @@ def complete_output(path: str | Path) -> bool:
     return Path(path).is_file()
 
 
-def output_paths(inputs: Sequence[str | Path], out_dir: str | Path, fmt: str) -> list[Path]:
+def output_paths(inputs: Sequence[str | Path], out_dir: str | Path, fmt: str,
+                 named: Sequence[str | Path] = ()) -> list[Path]:
     """``out_dir/<input name without suffix>.<fmt>`` for each input; refuses two inputs that would
     share an output, also through a symbolic link at an output's name (its target is written), and
-    an output whose link leads to an input or into an input folder: with ``--overwrite`` the file
-    it leads to was replaced, an input by another input's heading, or one output by another's."""
+    an output whose link leads to an input, into an input folder or to a file ``named`` by an
+    option (``--params``, ``--calibration``): with ``--overwrite`` the file it leads to was
+    replaced, an input by another input's heading, or one output by another's."""
     given, folder = [Path(p) for p in inputs], Path(out_dir)  # exported: paths as text failed
     outs = [folder / f"{p.name if p.is_dir() else p.stem}.{fmt}" for p in given]
     # realpath, not Path.resolve, which raises RuntimeError on a link loop (see io.check_not_input)
-    real_inputs = {Path(os.path.realpath(p)): p for p in given}
+    real_inputs = {Path(os.path.realpath(p)): p for p in [*given, *map(Path, named)]}
     seen: dict[Path, tuple[Path, Path]] = {}
     for p, o in zip(given, outs):
         target = Path(os.path.realpath(o))

@@ -143,3 +143,19 @@ def test_an_output_folder_a_pattern_does_not_reach_is_taken(tmp_path: Path, monk
     for again in ((), ("--skip-existing",)):
         gyrocore_cli("process", "logs/*.csv", "--out", "logs/h", "--preset", "raw", *again, code=0)
     assert sorted(p.name for p in Path("logs/h").iterdir()) == ["a.csv"]
+
+
+def test_an_output_name_linked_to_a_file_an_option_names_is_refused(tmp_path: Path) -> None:
+    # out/a.csv -> ../p.json: the parameter file --params read was replaced by a heading table
+    from gyrocore.tune_params import ParameterSet
+
+    a, _, out = _two_logs(tmp_path)
+    params = tmp_path / "p.json"
+    ParameterSet("mine", "raw", {}).write(params)
+    (out / "a.csv").symlink_to(Path("..") / "p.json")
+    before = params.read_bytes()
+    proc = gyrocore_cli("process", a.parent, "--out", out, "--params", params, "--overwrite", code=2)
+    assert proc.stderr.splitlines()[-1] == (
+        f"gyrocore: error: refusing to write {out / 'a.csv'} over or inside the input {params} ({out / 'a.csv'} is a "
+        "symbolic link to '../p.json'); remove the link, or write the outputs elsewhere")
+    assert params.read_bytes() == before
