@@ -3,7 +3,9 @@ scheduler that is no Dask scheduler is named, not waited on."""
 
 from __future__ import annotations
 
+import os
 import socket
+import stat
 import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -159,3 +161,30 @@ def test_an_output_name_linked_to_a_file_an_option_names_is_refused(tmp_path: Pa
         f"gyrocore: error: refusing to write {out / 'a.csv'} over or inside the input {params} ({out / 'a.csv'} is a "
         "symbolic link to '../p.json'); remove the link, or write the outputs elsewhere")
     assert params.read_bytes() == before
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="named pipes")
+@pytest.mark.parametrize("linked", [False, True])
+def test_overwrite_never_replaces_a_named_pipe_or_device(tmp_path: Path, linked: bool) -> None:
+    # the staged file was renamed over it: a link to /dev/null, written by root, replaced the
+    # device node with a heading table (a named pipe stands in for the device here)
+    a, _, out = _two_logs(tmp_path)
+    pipe = tmp_path / "pipe"
+    os.mkfifo(pipe)
+    given = tmp_path / "h.csv"
+    if linked:
+        given.symlink_to(pipe)
+    else:
+        given = pipe.rename(given)
+    fifo = pipe if linked else given
+
+    def said(name: Path, leads: bool) -> str:
+        where = f" (where its symbolic link leads, {fifo})" if leads else ""
+        return f"{name}: a named pipe, socket or device{where}, not a file; an output replaces files only: write it elsewhere"
+
+    proc = gyrocore_cli("process", a, "--out", given, "--overwrite", "--preset", "raw", code=2)
+    assert proc.stderr.splitlines()[-1] == f"gyrocore: error: {said(given, linked)}"
+    (out / "a.csv").symlink_to(fifo)
+    report = process_many([a], out_dir=out, preset="raw")  # replaces outputs: the file fails alone
+    assert report.files[0].error == said(out / "a.csv", True)
+    assert stat.S_ISFIFO(os.stat(fifo).st_mode)
