@@ -22,12 +22,12 @@ def _run_job(job: _FileJob, stop: threading.Event | Any = None) -> FileReport:
     thread's or a Dask cluster's event) ends it at its next chunk once set."""
     start = time.perf_counter()
 
-    def check_stop(done: int, total: int | None, unit: str) -> None:
+    def check_stop() -> None:
         if stop is not None and stop.is_set():
             raise _Stopped("stopped before the end")
 
     try:
-        return job.run(check_stop)
+        return job.run(stop=check_stop)
     except Exception as e:  # noqa: BLE001 - every failure is reported and the batch goes on
         return job.failure(e, time.perf_counter() - start)
 
