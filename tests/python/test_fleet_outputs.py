@@ -214,3 +214,25 @@ def test_an_interrupted_batch_stops_a_file_in_its_first_pass(tmp_path: Path, mon
     report = batch_run._run_job(job, stop)
     assert "stopped before the end" in (report.error or "") and len(read) == 3
     assert not (tmp_path / "h.csv").exists() and leftovers(tmp_path) == []
+
+
+@pytest.mark.parametrize("fmt", ["csv", "parquet"])
+def test_a_file_name_that_is_not_utf8_is_read_and_written(tmp_path: Path, fmt: str) -> None:
+    # a logger's FAT card written in Latin-1: pyarrow encoded the name itself and failed, "'utf-8'
+    # codec can't encode character '\udce9' in position 5: surrogates not allowed"
+    import pyarrow.csv as pa_csv
+    import pyarrow.parquet as pq
+
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    written = synthetic_csv(logs / "a.csv", 300)
+    pq.write_table(pa_csv.read_csv(written), logs / "a.parquet")
+    try:
+        for name in ("caf\xe9.csv", "th\xe9.parquet"):
+            (logs / ("a" + Path(name).suffix)).rename(logs / os.fsdecode(name.encode("latin-1")))
+    except (OSError, UnicodeError):
+        pytest.skip("this filesystem takes UTF-8 names only")
+    report = process_many([logs], out_dir=tmp_path / "out", fmt=fmt, preset="raw")
+    assert [(Path(r.input).name, r.error, r.rows_out) for r in report.files] == [
+        (os.fsdecode(b"caf\xe9.csv"), None, 300), (os.fsdecode(b"th\xe9.parquet"), None, 300)]
+    assert sorted(os.listdir(os.fsencode(tmp_path / "out"))) == [b"caf\xe9." + fmt.encode(), b"th\xe9." + fmt.encode()]
