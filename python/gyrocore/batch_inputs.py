@@ -161,8 +161,18 @@ def _matches(item: str | Path) -> tuple[bool, list[Path]]:
         return True, [p]
     matches = [Path(m) for m in sorted(glob.glob(str(item), recursive=True))]
     if not matches:
-        raise ValueError(f"{item}: no such file or folder, and no file matches it")
+        raise ValueError(f"{item}: no such file or folder, and no file matches it{_brackets_hint(str(item))}")
     return False, matches
+
+
+def _brackets_hint(pattern: str) -> str:
+    """How to match the brackets of a name (``run[1]/*.csv``, where ``[1]`` is a pattern's set of
+    characters, which matched ``run1`` alone), where the pattern with them escaped matches."""
+    literal = pattern.replace("[", "[[]")  # as glob.escape writes a bracket
+    if literal == pattern or not glob.glob(literal, recursive=True):
+        return ""
+    return (f"; in a pattern, brackets are a set of characters ([1] matches 1): give {literal!r} to match "
+            "the brackets in a name")
 
 
 def _named_as_input(path: Path) -> bool:

@@ -4,6 +4,7 @@ scheduler that is no Dask scheduler is named, not waited on."""
 from __future__ import annotations
 
 import os
+import re
 import socket
 import stat
 import threading
@@ -236,3 +237,17 @@ def test_a_file_name_that_is_not_utf8_is_read_and_written(tmp_path: Path, fmt: s
     assert [(Path(r.input).name, r.error, r.rows_out) for r in report.files] == [
         (os.fsdecode(b"caf\xe9.csv"), None, 300), (os.fsdecode(b"th\xe9.parquet"), None, 300)]
     assert sorted(os.listdir(os.fsencode(tmp_path / "out"))) == [b"caf\xe9." + fmt.encode(), b"th\xe9." + fmt.encode()]
+
+
+def test_a_pattern_through_a_folder_named_with_brackets_says_how_to_match_them(tmp_path: Path) -> None:
+    # "run[1]/*.csv: no such file or folder, and no file matches it", beside the folder run[1]:
+    # the brackets are a set of characters, which matched run1 alone
+    folder = tmp_path / "run[1]"
+    folder.mkdir()
+    synthetic_csv(folder / "a.csv", 300)
+    pattern, literal = f"{folder}/*.csv", f"{tmp_path}/run[[]1]/*.csv"
+    with pytest.raises(ValueError, match=re.escape(
+            f"{pattern}: no such file or folder, and no file matches it; in a pattern, brackets are a set of "
+            f"characters ([1] matches 1): give {literal!r} to match the brackets in a name")):
+        process_many([pattern], out_dir=tmp_path / "out", preset="raw")
+    assert process_many([literal], out_dir=tmp_path / "out", preset="raw").files[0].rows_out == 300
