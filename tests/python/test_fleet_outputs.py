@@ -111,9 +111,10 @@ def test_an_earlier_runs_output_given_as_input_is_named_as_one(tmp_path: Path, f
     report = process_many([tmp_path / "first"], out_dir=tmp_path / "second", preset="raw")
     header = ", ".join(columns or ("t", "heading", "rate", "drift"))
     assert report.files[0].error == (
-        f"{tmp_path / 'first' / f'a.{fmt}'}: missing column(s) gyro_z; it has {header}: a heading table as gyrocore "
-        "writes it, not a gyro's log; give the log it was made from (inputs that reach an earlier run's output "
-        "folder: leave that folder out)")
+        f"{tmp_path / 'first' / f'a.{fmt}'}: missing column(s) gyro_z; it has {header}, the columns of a heading "
+        "table gyrocore writes: give the log it was made from (inputs that reach an earlier run's output folder: "
+        "leave that folder out), or for a gyro's log of these columns choose with time_col/rate_col, "
+        "--time-col/--rate-col")
 
 
 @pytest.mark.parametrize("pattern, out, reached", [

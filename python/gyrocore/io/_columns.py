@@ -45,9 +45,10 @@ def column_positions(
     """
     missing = [c for c in columns if c not in header]
     if missing and choose == CHOOSE_COLUMNS and _heading_table(header):
-        raise ValueError(f"{path}: missing column(s) {', '.join(missing)}; it has {', '.join(map(str, header))}: "
-                         "a heading table as gyrocore writes it, not a gyro's log; give the log it was made from "
-                         "(inputs that reach an earlier run's output folder: leave that folder out)")
+        raise ValueError(f"{path}: missing column(s) {', '.join(missing)}; it has {', '.join(map(str, header))}, "
+                         "the columns of a heading table gyrocore writes: give the log it was made from (inputs that "
+                         "reach an earlier run's output folder: leave that folder out), or for a gyro's log of these "
+                         f"columns {CHOOSE_COLUMNS}")
     if missing:
         with_unit = [split_unit(str(h)) for h in header if split_unit(str(h))[1] is not None]
         short = f"; a name may leave out its unit, e.g. {with_unit[0][0]}" if with_unit else ""
