@@ -25,7 +25,7 @@ from . import io, wholelog
 from ._checks import check_count, public_dir, require_choice, require_flag, warn_of_file
 from .pipeline import Pipeline, has_bias_source
 from .pipeline_params import _to_si
-from .batch_inputs import check_outside_inputs, complete_output, expand_inputs, output_paths
+from .batch_inputs import check_outside_inputs, check_unreached, complete_output, expand_inputs, output_paths
 from .batch_job import Progress, _FileJob, split_options
 from .batch_report import BatchReport, FileReport
 from .batch_run import BatchInterrupted, run_on_dask, run_on_threads, check_client, connected
@@ -36,8 +36,8 @@ if TYPE_CHECKING:
     from .fixes import FixesLike
 
 __all__ = [
-    "BatchReport", "FileReport", "Progress", "check_outside_inputs", "complete_output", "expand_inputs", "output_paths",
-    "process_file", "process_many", "split_options",
+    "BatchReport", "FileReport", "Progress", "check_outside_inputs", "check_unreached", "complete_output", "expand_inputs",
+    "output_paths", "process_file", "process_many", "split_options",
 ]
 __dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
@@ -207,6 +207,7 @@ def process_many(
         wholelog.refuse_whole_options(pipeline_overrides)
     Pipeline(preset, **(pipeline_overrides if has_bias_source(overrides) else {**pipeline_overrides, "bias": 0.0}))
     outputs = output_paths(inputs, Path(out_dir), fmt)
+    check_unreached(items, [Path(out_dir), *outputs])
     check_out_dir(Path(out_dir))
     # a scheduler's address is connected to before the output folder is made: one that no
     # scheduler answers at, or that Dask cannot read, left an empty output folder behind

@@ -3,6 +3,7 @@ that would land among the inputs; :mod:`gyrocore.batch` re-exports the public na
 
 from __future__ import annotations
 
+import fnmatch
 import glob
 import os
 from collections.abc import Iterable, Sequence
@@ -117,6 +118,41 @@ def check_outside_inputs(items: Iterable[str | Path], out: Path, inputs: Sequenc
             )
 
 
+def check_unreached(items: Iterable[str | Path], outputs: Iterable[Path]) -> None:
+    """Refuse an output (a file, or an output folder and the files it receives) that a glob pattern
+    among ``items`` reaches once it exists: the run went through, and the same command again
+    (``--skip-existing`` to go on after an interruption, ``--overwrite``) read the outputs as logs,
+    or was refused as writing into its inputs."""
+    patterns = [str(item) for item in items if not os.path.lexists(item)]
+    for out in outputs:
+        for pattern in patterns:
+            if _reaches(pattern, out):
+                raise ValueError(f"refusing to write {out}: the pattern {pattern!r} reaches it, and the same run "
+                                 "again (--skip-existing to go on after an interruption, --overwrite) would read the "
+                                 "outputs as logs; write them where the pattern does not reach")
+
+
+def _reaches(pattern: str, path: Path) -> bool:
+    """Whether ``glob.glob(pattern, recursive=True)`` gives ``path`` once it exists (by name: a link
+    that leads there is not followed)."""
+    return _glob_match(Path(os.path.abspath(pattern)).parts, Path(os.path.abspath(path)).parts)
+
+
+def _glob_match(pattern: tuple[str, ...], parts: tuple[str, ...]) -> bool:
+    """Whether the names ``parts`` match the glob pattern's names ``pattern`` as glob matches them: a
+    ``**`` is any number of names, and a wildcard takes a hidden name (``.x``) only where the
+    pattern's name starts with a dot too."""
+    if not pattern:
+        return not parts
+    head, rest = pattern[0], pattern[1:]
+    if head == "**":
+        deeper = bool(parts) and not parts[0].startswith(".") and _glob_match(pattern, parts[1:])
+        return deeper or _glob_match(rest, parts)
+    if not parts or (parts[0].startswith(".") and not head.startswith(".")):
+        return False
+    return fnmatch.fnmatchcase(parts[0], head) and _glob_match(rest, parts[1:])
+
+
 def _matches(item: str | Path) -> tuple[bool, list[Path]]:
     """Whether ``item`` names a path itself, and the paths it stands for (itself, or a pattern's
     matches); raises ValueError if it matches nothing."""
@@ -125,8 +161,18 @@ def _matches(item: str | Path) -> tuple[bool, list[Path]]:
         return True, [p]
     matches = [Path(m) for m in sorted(glob.glob(str(item), recursive=True))]
     if not matches:
-        raise ValueError(f"{item}: no such file or folder, and no file matches it")
+        raise ValueError(f"{item}: no such file or folder, and no file matches it{_brackets_hint(str(item))}")
     return False, matches
+
+
+def _brackets_hint(pattern: str) -> str:
+    """How to match the brackets of a name (``run[1]/*.csv``, where ``[1]`` is a pattern's set of
+    characters, which matched ``run1`` alone), where the pattern with them escaped matches."""
+    literal = pattern.replace("[", "[[]")  # as glob.escape writes a bracket
+    if literal == pattern or not glob.glob(literal, recursive=True):
+        return ""
+    return (f"; in a pattern, brackets are a set of characters ([1] matches 1): give {literal!r} to match "
+            "the brackets in a name")
 
 
 def _named_as_input(path: Path) -> bool:
@@ -143,14 +189,35 @@ def complete_output(path: str | Path) -> bool:
     return Path(path).is_file()
 
 
-def output_paths(inputs: Sequence[str | Path], out_dir: str | Path, fmt: str) -> list[Path]:
+def output_paths(inputs: Sequence[str | Path], out_dir: str | Path, fmt: str,
+                 named: Sequence[str | Path] = ()) -> list[Path]:
     """``out_dir/<input name without suffix>.<fmt>`` for each input; refuses two inputs that would
-    share an output."""
+    share an output, also through a symbolic link at an output's name (its target is written), and
+    an output whose link leads to an input, into an input folder or to a file ``named`` by an
+    option (``--params``, ``--calibration``): with ``--overwrite`` the file it leads to was
+    replaced, an input by another input's heading, or one output by another's."""
     given, folder = [Path(p) for p in inputs], Path(out_dir)  # exported: paths as text failed
     outs = [folder / f"{p.name if p.is_dir() else p.stem}.{fmt}" for p in given]
-    seen: dict[Path, Path] = {}
+    # realpath, not Path.resolve, which raises RuntimeError on a link loop (see io.check_not_input)
+    real_inputs = {Path(os.path.realpath(p)): p for p in [*given, *map(Path, named)]}
+    seen: dict[Path, tuple[Path, Path]] = {}
     for p, o in zip(given, outs):
-        if o in seen:
-            raise ValueError(f"{seen[o]} and {p} would both be written to {o}; process them separately")
-        seen[o] = p
+        target = Path(os.path.realpath(o))
+        if target in seen:
+            first, first_out = seen[target]
+            links = _through_links(first_out, o)
+            raise ValueError(f"{first} and {p} would both be written to {target if links else o}{links}; "
+                             f"{'remove the link, or ' if links else ''}process them separately")
+        seen[target] = p, o
+        hit = next((real_inputs[a] for a in (target, *target.parents) if a in real_inputs), None)
+        if hit is not None:
+            links = _through_links(o)
+            raise ValueError(f"refusing to write {o} over or inside the input {hit}{links}; "
+                             f"{'remove the link, or ' if links else ''}write the outputs elsewhere")
     return outs
+
+
+def _through_links(*outputs: Path) -> str:
+    """How the outputs named are led elsewhere: the symbolic links among them, and where each leads."""
+    links = [f"{o} is a symbolic link to {os.readlink(o)!r}" for o in dict.fromkeys(outputs) if o.is_symlink()]
+    return f" ({'; '.join(links)})" if links else ""

@@ -3,6 +3,7 @@ interruption stops every running file at its next chunk (removing its temporary 
 
 from __future__ import annotations
 
+import asyncio
 import sys
 import threading
 import time
@@ -21,12 +22,12 @@ def _run_job(job: _FileJob, stop: threading.Event | Any = None) -> FileReport:
     thread's or a Dask cluster's event) ends it at its next chunk once set."""
     start = time.perf_counter()
 
-    def check_stop(done: int, total: int | None, unit: str) -> None:
+    def check_stop() -> None:
         if stop is not None and stop.is_set():
             raise _Stopped("stopped before the end")
 
     try:
-        return job.run(check_stop)
+        return job.run(stop=check_stop)
     except Exception as e:  # noqa: BLE001 - every failure is reported and the batch goes on
         return job.failure(e, time.perf_counter() - start)
 
@@ -173,13 +174,66 @@ def _connect(Client: Any, address: Any) -> Any:
     the option nor the address's form, and the dashboard's http:// address is a common mistake)."""
     form = "the scheduler's address as `dask scheduler` prints it (tcp://host:8786; the dashboard's http://host:8787 is another)"
     try:
+        if isinstance(address, str):
+            _handshake(address)
         return Client(address)
+    except _NoScheduler as e:
+        raise ConnectionError(f"something answered at {address!r}, but not as a Dask scheduler ({e}); check that "
+                              f"{address!r} is {form}; without a scheduler the files run on this machine's "
+                              "cores") from None
     except ValueError as e:
         raise ValueError(f"scheduler address {address!r}: {e}; give {form}") from e
     except OSError as e:
         raise ConnectionError(f"no Dask scheduler answered at {address!r}: {e}; check that it runs and that this machine "
                               f"reaches it, and that {address!r} is {form}; without a scheduler the files run on "
                               "this machine's cores") from e
+
+
+class _NoScheduler(Exception):
+    """What answered at a scheduler's address did not greet as a Dask scheduler does."""
+
+
+def _handshake(address: str) -> None:
+    """Greet the scheduler at ``address`` as a client does, within Dask's connect timeout
+    (``distributed.comm.timeouts.connect``). ``Client`` waits for the greeting's answer without a
+    limit: a server of another kind at the address (a web server) held the command for ever, and
+    one whose answer reads as a huge length made it fail with numpy's ``Unable to allocate 3.07
+    EiB``. Raises OSError where nothing answers, ValueError for an address Dask cannot read, and
+    :class:`_NoScheduler` for an answer that is no scheduler's."""
+    import dask
+    from distributed.comm.core import connect
+
+    seconds = dask.utils.parse_timedelta(dask.config.get("distributed.comm.timeouts.connect"), default="seconds")
+
+    async def greet() -> None:
+        comm = await connect(address, timeout=seconds)
+        await comm.close()
+
+    async def within_time() -> None:
+        try:  # connect's own timeout ends the wait for a connection; this one, the greeting's after it
+            await asyncio.wait_for(greet(), 2 * seconds)
+        except asyncio.TimeoutError:  # an OSError too, since Python 3.11
+            raise _NoScheduler(f"no greeting in {2 * seconds:g} s") from None
+        except (OSError, ValueError):  # nothing answered, or an address Dask cannot read: said as before
+            raise
+        except Exception as e:  # noqa: BLE001 - any answer Dask cannot read is no scheduler's
+            raise _NoScheduler(f"an answer Dask cannot read: {type(e).__name__}") from None
+
+    failed: list[BaseException] = []
+
+    def run() -> None:
+        try:
+            asyncio.run(within_time())
+        except BaseException as e:  # noqa: BLE001 - raised again in the caller's thread
+            failed.append(e)
+
+    # a loop of its own, in a thread of its own: the caller's thread may run one already (a
+    # notebook); a daemon, so that Ctrl-C while it waits ends the command at once
+    thread = threading.Thread(target=run, name="gyrocore-dask-greeting", daemon=True)
+    thread.start()
+    thread.join()
+    if failed:
+        raise failed[0]
 
 
 #: How long an interrupted batch waits for the cluster's running files to stop [s].

@@ -19,7 +19,7 @@ from .._extras import MissingExtra, tqdm_class
 from .._gyrocore import SampleError
 from ..calibration import Calibration
 from ..evaluate import Failed
-from ..io.atomic import check_output_folder
+from ..io.atomic import check_output_folder, check_replaceable
 from ..io.units import rate_unit_named, time_unit_named
 from ..io._paths import error_text, one_line
 from ..pipeline import Pipeline, has_bias_source, recommended_preset
@@ -260,10 +260,12 @@ def refuse_existing(outputs: Iterable[Path], overwrite: bool, *, folders_exist: 
     ``folders_exist``), and outputs that exist already unless ``--overwrite`` was given:
     nothing a user has is replaced without being asked (a dangling link counts, its target too).
     A folder where an output file goes is refused even with ``--overwrite``: the output could not
-    be renamed over it, and that failed only once the work was done."""
+    be renamed over it, and that failed only once the work was done; so is a named pipe, socket
+    or device (:func:`~gyrocore.io.atomic.check_replaceable`)."""
     outputs = list(outputs)
     for p in outputs:
         check_output_folder(p, made=not folders_exist)
+        check_replaceable(p)
     folder = next((p for p in outputs if p.is_dir()), None)
     if folder is not None:
         raise IsADirectoryError(f"{folder}: a folder, where an output file goes; move it or write elsewhere "

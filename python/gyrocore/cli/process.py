@@ -14,6 +14,7 @@ from .._checks import InputWarning, collected
 from ..batch import (
     check_out_dir,
     check_outside_inputs,
+    check_unreached,
     complete_output,
     expand_inputs,
     output_paths,
@@ -212,7 +213,8 @@ def run(args: argparse.Namespace) -> int:
     if not one_file:
         _refuse_file_like_folder(args.out)
         check_out_dir(out)
-    outputs = [out] if one_file else output_paths(inputs, out, args.format)
+    outputs = [out] if one_file else output_paths(inputs, out, args.format, named)
+    check_unreached(args.inputs, [out, *outputs])
     # a complete output that --skip-existing keeps is not refused; anything else there is
     refuse_existing([p for p in outputs if not (args.skip_existing and complete_output(p))], args.overwrite,
                     folders_exist=one_file)  # an output folder is made

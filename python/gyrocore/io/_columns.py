@@ -44,6 +44,11 @@ def column_positions(
         ValueError: a column is missing or appears more than once.
     """
     missing = [c for c in columns if c not in header]
+    if missing and choose == CHOOSE_COLUMNS and _heading_table(header):
+        raise ValueError(f"{path}: missing column(s) {', '.join(missing)}; it has {', '.join(map(str, header))}, "
+                         "the columns of a heading table gyrocore writes: give the log it was made from (inputs that "
+                         "reach an earlier run's output folder: leave that folder out), or for a gyro's log of these "
+                         f"columns {CHOOSE_COLUMNS}")
     if missing:
         with_unit = [split_unit(str(h)) for h in header if split_unit(str(h))[1] is not None]
         short = f"; a name may leave out its unit, e.g. {with_unit[0][0]}" if with_unit else ""
@@ -72,6 +77,16 @@ def column_positions(
     if twice:
         raise ValueError(f"{path}: {where}column(s) {', '.join(twice)} appear more than once")
     return {c: header.index(c) for c in columns}
+
+
+def _heading_table(header: list[str]) -> bool:
+    """Whether ``header`` names the columns of a heading table gyrocore writes (a heading, and
+    nothing but the writer's columns): the hint to choose a rate column led to processing an
+    output again, its corrected rate taken for the gyro's."""
+    from .writer import FIX_COLUMNS, OUTPUT_COLUMNS  # the writer imports this module
+
+    names = {split_unit(str(h))[0] for h in header}
+    return "heading" in names and names <= {*OUTPUT_COLUMNS, *FIX_COLUMNS}
 
 
 def delimiter_option(delimiter: str) -> str:

@@ -26,7 +26,7 @@ from ._columns import (
     ALIGNED, CHOOSE_COLUMNS, column_positions, concat, delimiter_option, first_null, import_pyarrow_lazy_modules,
     is_number,
 )
-from ._paths import content_kind
+from ._paths import arrow_path, content_kind
 from .units import is_unit
 
 if TYPE_CHECKING:
@@ -231,7 +231,7 @@ def _read_csv(
             use_threads=False,  # parallel files scale better than parallel blocks (and it was not faster)
         )
         # pyarrow reads the file itself, on its own thread and without the GIL
-        with pa.OSFile(str(path)) as f:
+        with pa.OSFile(arrow_path(path)) as f:
             f.seek(_line_offset(path, layout.header_lines + read))  # past the header (which may be longer than a block)
             try:
                 for batch in pa_csv.open_csv(f, read_options=options, parse_options=parse, convert_options=convert):

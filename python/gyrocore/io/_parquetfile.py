@@ -14,6 +14,7 @@ import numpy as np
 
 from .._extras import require
 from ._columns import column_positions, first_null, warn_own_time_unit
+from ._paths import arrow_path
 from .units import TIME_UNITS
 
 if TYPE_CHECKING:
@@ -28,7 +29,7 @@ def parquet_file(path: Path) -> Any:
     pq = require("pyarrow.parquet", f"{path}: reading Parquet files")
 
     try:
-        return pq.ParquetFile(path)
+        return pq.ParquetFile(pa.OSFile(arrow_path(path)))
     except (pa.ArrowInvalid, OSError) as e:
         raise ValueError(f"{path}: not a readable Parquet file ({e})") from None
 

@@ -80,6 +80,14 @@ def check_readable(path: Path) -> None:
         raise PermissionError(denied(path)) from None
 
 
+def arrow_path(path: str | Path) -> bytes:
+    """``path`` as pyarrow opens it: the bytes of its name on disk. pyarrow encodes a name given as
+    text to UTF-8 itself, which fails for a name that is not UTF-8 (a logger's FAT card written in
+    Latin-1, ``caf\\xe9.csv``: ``'utf-8' codec can't encode character '\\udce9' ...: surrogates not
+    allowed``)."""
+    return os.fsencode(path)
+
+
 def error_text(error: BaseException) -> str:
     """The one line that says what went wrong: a PermissionError of Python's (``[Errno 13]``) as
     the path and what to change, worded for any access (it may come from a read or a write, where

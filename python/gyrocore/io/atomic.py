@@ -70,6 +70,17 @@ def check_output_folder(path: Path, *, made: bool = False) -> None:
         raise NotADirectoryError(f"{path}: {ancestor} is not a folder; write the output elsewhere")
 
 
+def check_replaceable(path: Path) -> None:
+    """Refuse an output ``path`` that is, or is a symbolic link to, a named pipe, socket or device:
+    the staged file renamed over it replaced it with a regular file (a link to /dev/null, written
+    by root, replaced the device node)."""
+    target = Path(os.path.realpath(path)) if path.is_symlink() else path
+    if target.exists() and not target.is_file() and not target.is_dir():
+        where = "" if target == path else f" (where its symbolic link leads, {target})"
+        raise ValueError(f"{path}: a named pipe, socket or device{where}, not a file; an output replaces files "
+                         "only: write it elsewhere")
+
+
 def named_if_no_room(path: Path, error: BaseException) -> BaseException:
     """``error``, or for a write that found no room for ``path`` (an OSError that names no file:
     ``[Errno 28] No space left on device``) one that says which output and what to do."""
@@ -100,6 +111,7 @@ class StagedFile:
         #: The file that is replaced: ``path``, or the final target of ``path`` where it is a link
         #: (also one that leads nowhere yet, whose target is then created).
         self.target = Path(os.path.realpath(path)) if path.is_symlink() else path
+        check_replaceable(path)
         for _ in range(3):
             tmp = self.target.parent / f".{self.target.name}.{secrets.token_hex(6)}.tmp"
             _live.add(tmp)

@@ -20,6 +20,7 @@ from .._checks import require_choice
 from .._extras import require
 from ..pipeline import HeadingResult
 from ._columns import import_pyarrow_lazy_modules
+from ._paths import arrow_path
 from .atomic import StagedFile, named_if_no_room
 
 if TYPE_CHECKING:
@@ -125,7 +126,7 @@ class HeadingWriter:
         self.heading = heading
         self.rows = 0
         self._staged: StagedFile | None = None
-        self._sink: Any = None  # CSV: the open file
+        self._sink: Any = None  # the open file (Parquet: pyarrow's, which its writer does not close)
         self._writer: Any = None  # Parquet: the pyarrow writer, its schema and rows not yet written
         self._schema: Any = None
         self._pending: list[Any] = []
@@ -147,8 +148,11 @@ class HeadingWriter:
                     {"gyrocore": json.dumps({"heading": self.heading, "units": units})}
                 )
                 # dictionary encoding only costs memory and time on float signals that never repeat
-                self._writer = pq.ParquetWriter(str(tmp), self._schema, use_dictionary=False)
+                self._sink = pa.OSFile(arrow_path(tmp), "wb")
+                self._writer = pq.ParquetWriter(self._sink, self._schema, use_dictionary=False)
         except BaseException:
+            if self._sink is not None:
+                self._sink.close()
             self._staged.discard()
             raise
         return self
@@ -179,11 +183,12 @@ class HeadingWriter:
     def __exit__(self, kind: type[BaseException] | None, error: BaseException | None, tb: TracebackType | None) -> None:
         assert self._staged is not None, "HeadingWriter is used as a context manager"
         try:
-            if self.format == "parquet":
-                if error is None:
-                    self._flush()
-                self._writer.close()
-            else:
+            try:
+                if self.format == "parquet":
+                    if error is None:
+                        self._flush()
+                    self._writer.close()
+            finally:
                 self._sink.close()
             if error is None:
                 self._staged.commit()
