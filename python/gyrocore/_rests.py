@@ -136,20 +136,13 @@ def unseen_stop_hint(t: FloatArray, rate: FloatArray, speed: FloatArray, min_res
     append to the "no rest" message ("" if there is none). Where the speed is known the rate's rests
     are not looked for, so the rate finder's own hint (a steady level beyond its largest bias) does
     not hold: a speed noisy at rest (a receiver's) or sampled slower than the stop shows no stop."""
-    from .calibration.rest import rest_windows_of_checked  # calibration builds on the pipeline module too
+    from .calibration.rest import longest_steady  # calibration builds on the pipeline module too
 
-    taken = usable(rate)
-    if np.count_nonzero(taken) < 8:
+    longest = longest_steady(t, rate, min_rest)
+    if longest is None:
         return ""
-    try:
-        windows = rest_windows_of_checked(t[taken], rate[taken], min_rest)
-    except ValueError:  # too sparse to judge a rest from the rate
-        return ""
-    if not windows:
-        return ""
-    a, b = max(windows, key=lambda w: w[1] - w[0])
+    a, b, level = longest
     inside = slice(int(np.searchsorted(t, a)), int(np.searchsorted(t, b, side="right")))
-    level = float(np.mean(rate[inside][taken[inside]]))
     known = speed[inside][np.isfinite(speed[inside])]
     return (f"; the speed shows no stop (below {SPEED_THRESHOLD:g} m/s for {min_rest:g} s), but the rate is as steady as "
             f"a rest {a - t[0]:.6g} .. {b - t[0]:.6g} s after the first sample, reading {math.degrees(level):.4g} deg/s, "

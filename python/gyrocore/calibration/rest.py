@@ -223,25 +223,40 @@ DEG_PER_S_TURNS = 2.0
 DEG_PER_S_BIAS = 0.2
 
 
+def longest_steady(
+    ta: FloatArray, ra: FloatArray, min_duration: float, max_rate: float = MAX_RATE
+) -> tuple[float, float, float] | None:
+    """The longest stretch the rate alone shows as a rest (:func:`rest_windows_of_checked`, levels
+    up to ``max_rate``) as ``(start, end, mean reading)``, or None where there is none or the log is
+    too sparse to judge. ``ta`` are checked times (finite, increasing); readings the core refuses
+    are left out."""
+    taken = usable(ra)
+    if np.count_nonzero(taken) < 8:
+        return None
+    t, rate = (ta, ra) if taken.all() else (ta[taken], ra[taken])
+    try:
+        windows = rest_windows_of_checked(t, rate, min_duration, max_rate=max_rate)
+    except ValueError:  # too sparse to judge: the caller's message says so, or nothing more
+        return None
+    if not windows:
+        return None
+    a, b = max(windows, key=lambda w: w[1] - w[0])
+    return a, b, float(np.mean(rate[np.searchsorted(t, a) : np.searchsorted(t, b, side="right")]))
+
+
 def steady_stretch_hint(ta: FloatArray, ra: FloatArray, min_duration: float, max_rate: float = MAX_RATE) -> str:
     """Where no rest was found: the longest stretch as steady as a rest whose level lies beyond
     ``max_rate`` [rad/s], and what it may be, as a clause to append to the "no rest" message ("" if
     there is none). A log in deg/s read as rad/s rests at 57 times its bias, beyond ``max_rate``, and
     its turns stay under the unit check's 20 rad/s: "no rest found" alone left the unit unsuspected.
     ``ta`` are checked times (finite, increasing); readings the core refuses are left out."""
+    longest = longest_steady(ta, ra, min_duration, max_rate=MAX_READING)  # any level
+    if longest is None:
+        return ""
+    a, b, level = longest
     taken = usable(ra)
-    if np.count_nonzero(taken) < 8:
-        return ""
-    t, rate = (ta, ra) if taken.all() else (ta[taken], ra[taken])
-    try:
-        windows = rest_windows_of_checked(t, rate, min_duration, max_rate=MAX_READING)  # any level
-    except ValueError:  # too sparse to judge: the caller's message says so, or nothing more
-        return ""
-    if not windows:
-        return ""
-    a, b = max(windows, key=lambda w: w[1] - w[0])
-    level = float(np.mean(rate[np.searchsorted(t, a) : np.searchsorted(t, b, side="right")]))
-    text = (f"; the steadiest stretch, {a - t[0]:.6g} .. {b - t[0]:.6g} s after the first sample, reads "
+    rate, first = ra[taken], float(ta[taken][0])  # the first sample the core takes
+    text = (f"; the steadiest stretch, {a - first:.6g} .. {b - first:.6g} s after the first sample, reads "
             f"{level:.4g} rad/s ({math.degrees(level):.4g} deg/s), as steady as a rest but beyond {max_rate:g} rad/s: "
             "a steady turn, or a rest or straight drive with a bias that large (give a rest window or the bias)")
     # deg/s read as rad/s: a level a deg/s rest reads, and turns a vehicle makes only in deg/s (a
