@@ -342,3 +342,37 @@ fn a_fused_pipeline_whose_filter_and_pipeline_disagree_on_time_is_refused() {
     let back: FusedPipeline = serde_json::from_value(v).unwrap();
     assert_eq!(back.fusion().last_time(), back.pipeline().last_time());
 }
+
+/// A run of rejected fixes read back: its first fix after the time the filter stands at, or a
+/// run of no fix or of more fixes than were rejected, is refused naming it. A filter stored
+/// before re-admission existed (no `readmit_after`, `readmitted` or `rejected_run`) reads back
+/// as it ran: the gate alone.
+#[test]
+fn a_run_of_rejections_read_back_is_checked_and_an_older_state_reads_without_one() {
+    let v = serde_json::to_value(fusion()).unwrap();
+    let now = v["anchor"]["t"].as_f64().unwrap();
+    assert_eq!(v["counts"]["rejected"], json!(0));
+    for (run, name) in [
+        (json!([now + 1.0, 1]), "first rejected fix time"),
+        (json!([now, 0]), "rejected run"),
+        (json!([now, 1]), "rejected run"),
+    ] {
+        let mut e = v.clone();
+        e["rejected_run"] = run;
+        let err = refused::<Fusion>(e);
+        assert!(err.contains(&format!("invalid parameter {name}")), "{err}");
+    }
+    let mut older = v.clone();
+    older.as_object_mut().unwrap().remove("rejected_run");
+    older["counts"]
+        .as_object_mut()
+        .unwrap()
+        .remove("readmitted");
+    older["config"]
+        .as_object_mut()
+        .unwrap()
+        .remove("readmit_after");
+    let f: Fusion = serde_json::from_value(older).unwrap();
+    assert_eq!(f.config().readmit_after, f64::INFINITY);
+    assert_eq!(f.counts().readmitted, 0);
+}

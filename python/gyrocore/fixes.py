@@ -119,7 +119,9 @@ class FusionResult:
     bias: FloatArray | None
     scale: FloatArray | None
     counts: dict[str, int]
-    """Fixes ``applied``, ``rejected`` by the outlier gate, ``before_start`` (before the first gyro
+    """Fixes ``applied``, ``rejected`` by the outlier gate, ``readmitted`` (of those applied, the ones
+    applied after the gate had rejected every fix for ``readmit_after`` seconds: the filter had
+    been surer of itself than the fixes allowed), ``before_start`` (before the first gyro
     sample: skipped) and, from :func:`fuse` and whole mode's smoother, ``after_end`` (after the
     last: unused) or, from a stream and causal mode (a :class:`~gyrocore.Pipeline`), ``waiting``
     (past the last sample processed, for a later block). A stream's counts are its totals since
@@ -165,10 +167,12 @@ def _fused(t: FloatArray, rate: FloatArray, fixes: Fixes, settings: dict[str, fl
 def warn_whole_log(t: FloatArray, rate: FloatArray, fixes: Fixes, counts: Mapping[str, int]) -> None:
     """A whole log's warnings about its ``fixes``, fused with the gyro's ``t`` and ``rate`` into
     ``counts``: fixes outside the gyro's span, fixes that disagree with the gyro between them
-    (:func:`gyrocore.fixes_check.warn_disagreement`), and most of them rejected by the gate."""
+    (:func:`gyrocore.fixes_check.warn_disagreement`), most of them rejected by the gate, and any
+    re-admitted after a run of rejections."""
     warn_outside(t, fixes)
     warn_disagreement(t, rate, fixes)
     warn_rejected(counts)
+    warn_readmitted(counts)
 
 
 #: A whole log's run warns when fewer than this share of its fixes fall within the gyro's time
@@ -206,12 +210,32 @@ def warn_rejected(counts: Mapping[str, int]) -> bool:
     if rejected < MIN_REJECTED or rejected <= MAX_SHARE_REJECTED * reached:
         return False
     warn(f"the outlier gate rejected {rejected} of the {reached} heading fixes it reached: they disagree with the "
-         "heading the gyro carries between them, so the heading is mostly the gyro's alone. Check the units: fix "
-         "headings in rad, counter-clockwise from east (not degrees, not a compass bearing: from_gnss converts "
-         "one), fix and gyro times in seconds on one clock (a receiver's latency subtracted), the rate in rad/s; "
-         "each fix's sigma its real error (a sigma stated too small, or a fix given twice, rejects the fixes "
-         "after it); a gyro whose bias is far beyond initial_bias_sigma needs a larger one")
+         f"heading the gyro carries between them, so the heading is mostly the gyro's alone. {_CAUSES}")
     return True
+
+
+def warn_readmitted(counts: Mapping[str, int]) -> bool:
+    """Warns (:class:`~gyrocore.InputWarning`) when the filter re-admitted fixes after a run of
+    rejections (``readmit_after``): the heading was taken back to the fixes, but what made the
+    filter surer than they allow is still there. Says whether it warned."""
+    readmitted = counts.get("readmitted", 0)
+    if not readmitted:
+        return False
+    warn(f"{readmitted} time(s) the gate rejected every heading fix for readmit_after seconds and the filter took "
+         f"them in again, its heading having drifted away from them. {_CAUSES}")
+    return True
+
+
+#: What usually makes the gate reject good fixes one after another.
+_CAUSES = ("Check the units: fix headings in rad, counter-clockwise from east (not degrees, not a compass bearing: "
+           "from_gnss converts one), fix and gyro times in seconds on one clock (a receiver's latency subtracted), the "
+           "rate in rad/s; each fix's sigma its real error (a sigma stated too small, or a fix given twice, rejects the "
+           "fixes after it); a gyro whose bias is far beyond initial_bias_sigma needs a larger one")
+
+
+def counts_dict(counts: tuple[int, int, int, int, int]) -> dict[str, int]:
+    """A stream's fix counts, ``(applied, rejected, readmitted, before_start, waiting)``, by name."""
+    return dict(zip(("applied", "rejected", "readmitted", "before_start", "waiting"), counts))
 
 
 def _settings(settings: dict[str, float]) -> dict[str, float]:
@@ -241,7 +265,7 @@ class Fusion:
         block that still waits is an error (the fixes were given again)."""
         f = Fixes.empty() if fixes is None else as_fixes(fixes)
         tt, r = as_float_array("t", t), as_float_array("rate", rate)
-        self._fixes.check(f, waits=self._inner.counts()[3] > 0)
+        self._fixes.check(f, waits=counts_dict(self._inner.counts())["waiting"] > 0)
         try:
             h, s, b, sc = self._inner.process(tt, r, f.t, f.heading, f.sigma)
         except ValueError as e:
@@ -260,9 +284,8 @@ class Fusion:
         self._inner.check(f.t, f.heading, f.sigma)
 
     def counts(self) -> dict[str, int]:
-        """Fixes applied, rejected, before_start, and waiting for a later block."""
-        applied, rejected, before, waiting = self._inner.counts()
-        return {"applied": applied, "rejected": rejected, "before_start": before, "waiting": waiting}
+        """Fixes applied, rejected, readmitted, before_start, and waiting for a later block."""
+        return counts_dict(self._inner.counts())
 
     def settings(self) -> dict[str, float]:
         """The filter's settings."""

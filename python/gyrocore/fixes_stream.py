@@ -94,7 +94,7 @@ class StreamFixes:
     def __init__(self, last: GivenFix | None = None) -> None:
         self.last = last
         self.ahead_said = False
-        self.rejected_said = False
+        self.rejected_said = self.readmitted_said = False
 
     def check(self, block: Fixes, waits: bool) -> None:
         """Refuses ``block`` if its first fix comes before the last one given, or is it again,
@@ -110,8 +110,9 @@ class StreamFixes:
     def judge(self, counts: Mapping[str, int]) -> None:
         """Warns once when the stream's gate has rejected most of the fixes it reached
         (:func:`gyrocore.fixes.warn_rejected`, a whole log's rule on the stream's totals): fixes
-        stamped 0.3 s late on their arrival had the heading 16 deg off, and a stream said nothing."""
-        from .fixes import warn_rejected
+        stamped 0.3 s late on their arrival had the heading 16 deg off, and a stream said nothing;
+        and once when it first re-admits fixes (:func:`gyrocore.fixes.warn_readmitted`)."""
+        from .fixes import warn_readmitted, warn_rejected
 
-        if not self.rejected_said:
-            self.rejected_said = warn_rejected(counts)
+        self.rejected_said = self.rejected_said or warn_rejected(counts)
+        self.readmitted_said = self.readmitted_said or warn_readmitted(counts)

@@ -61,7 +61,7 @@ __dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 #: The fix stage's columns of a block from the core: heading sigma, bias, scale, and the fix
 #: counts (applied, rejected, before the first sample, waiting for a later block).
-_Fused = tuple[FloatArray | None, FloatArray | None, FloatArray | None, tuple[int, int, int, int]]
+_Fused = tuple[FloatArray | None, FloatArray | None, FloatArray | None, tuple[int, int, int, int, int]]
 
 #: Parameters of FOG eq 5's temperature model: without one, a temperature given is not used.
 TEMPERATURE_MODEL = ("temp_slope", "temp_offset")
@@ -258,10 +258,10 @@ class Pipeline:
         self._rests.extend(found)
         if fused is None:
             return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found), report=report)
-        from .fixes import FusionResult
+        from .fixes import FusionResult, counts_dict
 
-        sigma, bias, scale, (applied, rejected, before_start, waiting) = fused
-        counts = {"applied": applied, "rejected": rejected, "before_start": before_start, "waiting": waiting}
+        sigma, bias, scale, stream_counts = fused
+        counts = counts_dict(stream_counts)
         self._fixes.judge(counts)
         return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found), heading_sigma=sigma,
                              fusion=FusionResult(ta, heading, sigma, bias, scale, counts), report=report)

@@ -422,7 +422,7 @@ def process_log(
         checked = None if fixes is None else _checked(fixes)
         pipeline = Pipeline(preset, fusion=fusion if checked is not None else None, **overrides)
         # a whole log's checks below say these, of every fix
-        pipeline._fixes.ahead_said = pipeline._fixes.rejected_said = True
+        pipeline._fixes.ahead_said = pipeline._fixes.rejected_said = pipeline._fixes.readmitted_said = True
         result = pipeline.process(
             t, rate, temperature=temperature, outputs=outputs, speed=speed, speed_t=speed_t, fixes=checked, out=out
         )

@@ -21,9 +21,13 @@
 //! Process noise comes from the gyro's Allan parameters: the angle random walk `N` drives the
 //! heading, the rate random walk `K` the bias, and an optional scale random walk the scale.
 //! Innovations are wrapped to (-pi, pi]; a fix whose normalised innovation squared exceeds the
-//! gate (chi-square, one degree of freedom) is rejected and counted. Fixes before the first gyro
-//! sample are counted and skipped (nothing to attach them to); a NaN, a `sigma <= 0`, or a fix
-//! earlier than the one before it or than a sample already processed is an error naming the fix.
+//! gate (chi-square, one degree of freedom) is rejected and counted. A filter surer of itself
+//! than its fixes allow rejects every fix after one it refused (the gate's lock-out): after
+//! [`readmit_after`](FusionConfig::readmit_after) seconds of nothing but rejections, the next
+//! fix within [`READMIT_REACH`] gate radii is applied with the covariance raised. Fixes before
+//! the first gyro sample are counted and skipped (nothing to attach them to); a NaN, a
+//! `sigma <= 0`, or a fix earlier than the one before it or than a sample already processed is
+//! an error naming the fix.
 //!
 //! [`smooth`](crate::fixes_smooth::smooth) runs the Rauch-Tung-Striebel backward pass over the
 //! knots [`Fusion::process_block_recording`] stores, and [`Fusion::process_block_smoothed`]
@@ -31,17 +35,21 @@
 
 use core::f64::consts::PI;
 
-pub use crate::fixes_config::{FusionConfig, MIN_FIX_SIGMA};
+pub use crate::fixes_config::{FusionConfig, MIN_FIX_SIGMA, READMIT_MIN_REJECTED, READMIT_REACH};
 pub use crate::fixes_error::{FixProblem, FusionError};
 pub use crate::fixes_output::{Estimate, FusionOutputs};
 use crate::fixes_segment::{Anchor, Segment};
-use crate::fixes_smooth::{Knot, Mat3};
+use crate::fixes_smooth::Knot;
 use crate::{check_block, Error, MAX_READING, MAX_TIME};
 
 // Where the block loop writes: a child module, which sees the filter's fields.
 #[path = "fixes_write.rs"]
 mod write;
 use write::{Columns, Smoothing, Write};
+
+// A fix's update and the gate's lock-out: a child module, which sees the filter's fields.
+#[path = "fixes_update.rs"]
+mod update;
 
 // The checks of a filter read back: a child module, which sees the filter's fields.
 #[cfg(feature = "serde")]
@@ -71,6 +79,10 @@ pub struct FixCounts {
     pub rejected: u64,
     /// Skipped because they came before the first gyro sample.
     pub before_start: u64,
+    /// Of those applied, the ones applied after a run of rejections that lasted `readmit_after`
+    /// ([`FusionConfig::readmit_after`]): each one a filter surer than the fixes allowed.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub readmitted: u64,
 }
 
 /// The streaming filter: a validated config and its state (`Copy`, serialisable). Between fixes
@@ -90,6 +102,10 @@ pub struct Fusion {
     anchor: Option<Anchor>,
     last_fix: Option<f64>,
     counts: FixCounts,
+    /// The fixes the gate has rejected since the last one applied: the first one's time and how
+    /// many (None: the last fix was applied, or none was rejected yet).
+    #[cfg_attr(feature = "serde", serde(default))]
+    rejected_run: Option<(f64, u64)>,
 }
 
 /// Wraps an angle to (-pi, pi]: the IEEE remainder of `a` by `2 pi`, exact (`a - 2 pi ceil(..)`
@@ -120,6 +136,7 @@ impl Fusion {
             anchor: None,
             last_fix: None,
             counts: FixCounts::default(),
+            rejected_run: None,
         })
     }
 
@@ -390,11 +407,12 @@ impl Fusion {
                 a.sample_rate + (rate - a.sample_rate) * frac
             };
             self.advance(&mut a, f.t, at_fix);
-            let (x, p) = (
+            let (x, mut p) = (
                 self.segment.state(f.t),
                 self.segment.covariance(f.t, &self.config),
             );
-            if let Some((x_fixed, p_fixed)) = self.correct(f, x, p) {
+            // `p` is the prediction the update used: raised where the fix was re-admitted
+            if let Some((x_fixed, p_fixed)) = self.correct(f, x, &mut p) {
                 record(Knot::new(f.t, self.segment.a(), (x, p), x_fixed, p_fixed));
                 self.segment = Segment::new(f.t, x_fixed, p_fixed);
             }
@@ -424,32 +442,6 @@ impl Fusion {
         if dt > 0.0 {
             self.segment.extend(dt, m);
         }
-    }
-
-    /// The Kalman update of state `x` with covariance `p` by a fix (H = [1, 0, 0]): the updated
-    /// pair, or None if the gate rejects the fix.
-    #[inline(always)]
-    fn correct(&mut self, fix: &Fix, mut x: [f64; 3], mut p: Mat3) -> Option<([f64; 3], Mat3)> {
-        // A heading variance rounded below 0 made `s` <= 0 (no gate refused the fix; 0 divided)
-        if p[0][0] < 0.0 {
-            p = crate::fixes_covariance::semi_definite(p);
-        }
-        let s = p[0][0] + fix.sigma * fix.sigma;
-        let nu = wrap_angle(fix.heading - x[0]);
-        if nu * nu > self.config.gate * s {
-            self.counts.rejected = self.counts.rejected.saturating_add(1);
-            return None;
-        }
-        self.counts.applied = self.counts.applied.saturating_add(1);
-        let k = [p[0][0] / s, p[1][0] / s, p[2][0] / s];
-        let row = p[0];
-        for ((x, p), k) in x.iter_mut().zip(p.iter_mut()).zip(k) {
-            *x += k * nu;
-            for (pij, r) in p.iter_mut().zip(row) {
-                *pij -= k * r;
-            }
-        }
-        Some((x, crate::fixes_covariance::semi_definite(p)))
     }
 }
 

@@ -32,6 +32,32 @@ pub struct FusionConfig {
     /// (> 0; 10.83 rejects 0.1 % of good fixes; infinity turns the gate off).
     #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
     pub gate: f64,
+    /// Re-admission \[s\]: when the gate has rejected every fix for this long (at least
+    /// [`READMIT_MIN_REJECTED`] of them in a row), the filter takes its own certainty to be what
+    /// is wrong: the next fix within [`READMIT_REACH`] gate radii is applied with the heading's
+    /// variance raised to let it pass and the bias's and scale's raised back to their initial
+    /// ones (>= 0; infinity: never, the gate alone).
+    #[cfg_attr(
+        feature = "serde",
+        serde(with = "crate::serde_float", default = "never")
+    )]
+    pub readmit_after: f64,
+}
+
+/// The fewest fixes in a row the gate rejects before the filter re-admits them (`readmit_after`):
+/// two would let one stray fix on each side of an outage reset the heading.
+pub const READMIT_MIN_REJECTED: u64 = 3;
+
+/// How far beyond the gate a fix may lie and still be re-admitted, in multiples of the gate's
+/// radius: a filter locked out by its own certainty sees the fixes a few gate radii off (its
+/// heading's sigma grows with the bias it no longer corrects, as its error does), while a
+/// receiver's lasting wrong course (a reflection, reversing) lies tens of radii off.
+pub const READMIT_REACH: f64 = 4.0;
+
+/// A configuration stored before re-admission existed reads back without it.
+#[cfg(feature = "serde")]
+fn never() -> f64 {
+    f64::INFINITY
 }
 
 /// The largest initial bias and initial bias sigma \[rad/s\]: far beyond any gyro's.
@@ -56,6 +82,7 @@ impl Default for FusionConfig {
             initial_bias_sigma: 0.02,
             initial_scale_sigma: 0.05,
             gate: 10.83,
+            readmit_after: 10.0,
         }
     }
 }
@@ -108,6 +135,13 @@ impl FusionConfig {
             f64::MIN_POSITIVE,
             f64::INFINITY,
             "> 0 (inf: no gate)",
+        )?;
+        check_range(
+            "readmit_after",
+            self.readmit_after,
+            0.0,
+            f64::INFINITY,
+            ">= 0 s (inf: never)",
         )
     }
 }

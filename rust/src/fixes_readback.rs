@@ -19,9 +19,12 @@ impl Fusion {
         // The times in order: the knot, the last fix and the last sample no later than the time
         // the filter stands at (one behind it integrated the time between as rate at once).
         let Some(anchor) = self.anchor else {
-            return match self.last_fix {
-                Some(value) => Err(Error::InvalidParameter {
-                    name: "last fix time",
+            let rejected = self
+                .rejected_run
+                .map(|(t, _)| ("first rejected fix time", t));
+            return match self.last_fix.map(|t| ("last fix time", t)).or(rejected) {
+                Some((name, value)) => Err(Error::InvalidParameter {
+                    name,
                     value,
                     valid: "none before the first sample (a fix before it is not applied)",
                 }),
@@ -35,6 +38,13 @@ impl Fusion {
         }
         let name = "filter sample time";
         crate::error::check_range(name, anchor.sample_t, f64::NEG_INFINITY, now, valid)?;
+        if let Some((since, n)) = self.rejected_run {
+            let name = "first rejected fix time";
+            crate::error::check_range(name, since, f64::NEG_INFINITY, now, valid)?;
+            let rejected = "at least 1 and at most the fixes rejected";
+            let allowed = self.counts.rejected as f64;
+            crate::error::check_range("rejected run", n as f64, 1.0, allowed, rejected)?;
+        }
         self.segment.check_before(now)
     }
 }

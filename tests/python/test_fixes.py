@@ -31,7 +31,7 @@ def test_a_simulated_drive_converges_to_its_bias_and_scale() -> None:
     t, heading, rate = drive()
     fixes = gyrocore.sim.gnss_fixes(t, heading, seed=1)
     r = gyrocore.fuse(t, rate, fixes, arw=1e-4, bias_walk=1e-5, gate=math.inf)
-    assert r.counts == {"applied": len(fixes), "rejected": 0, "before_start": 0, "after_end": 0}
+    assert r.counts == {"applied": len(fixes), "rejected": 0, "readmitted": 0, "before_start": 0, "after_end": 0}
     assert abs(r.bias[-1] - BIAS) < 3e-4
     assert abs(r.scale[-1] - SCALE) < 3e-3
     late = t > 60
@@ -96,7 +96,7 @@ def test_fixes_before_and_after_the_gyro_are_counted() -> None:
     early = Fixes.of(np.concatenate(([-3.0, -1.0], fixes.t, [25.0])), np.concatenate(([0, 0], fixes.heading, [0])),
                      0.02)
     r = fuse(t, rate, early)
-    assert r.counts == {"applied": len(fixes), "rejected": 0, "before_start": 2, "after_end": 1}
+    assert r.counts == {"applied": len(fixes), "rejected": 0, "readmitted": 0, "before_start": 2, "after_end": 1}
 
 
 def test_bad_settings_are_named() -> None:
@@ -273,7 +273,7 @@ def test_a_stream_names_a_fix_older_than_its_samples() -> None:
     late = Fixes.of([t[100]], [0.0], 0.01)
     with pytest.raises(ValueError, match=r"fix 0: t = 2 comes before the last gyro sample processed"):
         stream.process(t[500:], rate[500:], late)
-    assert stream.counts() == {"applied": 0, "rejected": 0, "before_start": 0, "waiting": 0}
+    assert stream.counts() == {"applied": 0, "rejected": 0, "readmitted": 0, "before_start": 0, "waiting": 0}
 
 
 @pytest.mark.parametrize("drive_name", ["kitti_2011_09_30_0018", "kitti_2011_09_30_0020", "kitti_2011_09_30_0027",

@@ -124,4 +124,6 @@ def test_fixes_the_gate_rejects_one_after_another_are_warned_about() -> None:
     with pytest.warns(gyrocore.InputWarning) as caught:
         gyrocore.fuse(log.t * 1000.0, log.rate, (fixes.t * 1000.0, fixes.heading, fixes.sigma))
     said_all = " ".join(str(w.message) for w in caught)
-    assert "timestamps look like ms, us or ns" in said_all and "the outlier gate rejected" in said_all
+    assert "timestamps look like ms, us or ns" in said_all
+    # the gate's own word: 274 of 579 rejected, so it re-admitted them after its lock-outs
+    assert "the gate rejected every heading fix for readmit_after seconds" in said_all

@@ -54,6 +54,11 @@ const FIELDS: &[Field<FusionConfig>] = &[
         "outlier gate on the innovation squared over its variance [1]",
         |c| &mut c.gate,
     ),
+    (
+        "readmit_after",
+        "fixes re-admitted after the gate has rejected them this long [s]",
+        |c| &mut c.readmit_after,
+    ),
 ];
 
 /// The core configuration from the settings dict (defaults for the keys it lacks).
@@ -108,6 +113,7 @@ fn counts_dict<'py>(
     d.set_item("applied", c.applied)?;
     d.set_item("rejected", c.rejected)?;
     d.set_item("before_start", c.before_start)?;
+    d.set_item("readmitted", c.readmitted)?;
     d.set_item("after_end", after_end)?;
     Ok(d)
 }
@@ -254,10 +260,11 @@ impl PyFusion {
         checked.map_err(|e| renumbered(py, before, fusion_error(e)))
     }
 
-    /// (applied, rejected, before_start, waiting) fix counts.
-    fn counts(&self) -> (u64, u64, u64, usize) {
+    /// (applied, rejected, readmitted, before_start, waiting) fix counts.
+    fn counts(&self) -> (u64, u64, u64, u64, usize) {
         let c = self.inner.counts();
-        (c.applied, c.rejected, c.before_start, self.pending.len())
+        let waiting = self.pending.len();
+        (c.applied, c.rejected, c.readmitted, c.before_start, waiting)
     }
 
     /// The settings as a dict.

@@ -42,12 +42,13 @@ pub(crate) struct Block<'a> {
 }
 
 /// The fix stage's columns of a block: heading sigma, bias, scale (each None unless asked for),
-/// and the fix counts (applied, rejected, before the first sample, waiting for a later block).
+/// and the fix counts (applied, rejected, re-admitted, before the first sample, waiting for a later
+/// block).
 pub(crate) type FusedColumns<'py> = (
     Option<Array<'py>>,
     Option<Array<'py>>,
     Option<Array<'py>>,
-    (u64, u64, u64, usize),
+    (u64, u64, u64, u64, usize),
 );
 
 /// Which outputs a block computes: the pipeline's (rate, drift) and the fix stage's (heading
@@ -225,7 +226,13 @@ impl Core {
         };
         pending.consume(used);
         let c = inner.counts();
-        let counts = (c.applied, c.rejected, c.before_start, pending.len());
+        let counts = (
+            c.applied,
+            c.rejected,
+            c.readmitted,
+            c.before_start,
+            pending.len(),
+        );
         let out_rate = outputs.0.then_some(rate_column);
         Ok((heading, out_rate, drift, Some((sigma, bias, scale, counts))))
     }

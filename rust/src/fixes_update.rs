@@ -1,0 +1,76 @@
+//! A fix's Kalman update, its gate, and the re-admission that ends the gate's lock-out
+//! ([`FusionConfig::readmit_after`](crate::FusionConfig::readmit_after)).
+
+use super::{wrap_angle, Fix, Fusion, READMIT_MIN_REJECTED, READMIT_REACH};
+use crate::fixes_smooth::Mat3;
+
+impl Fusion {
+    /// The Kalman update of state `x` with covariance `p` by a fix (H = [1, 0, 0]): the updated
+    /// pair, or None if the gate rejects the fix. Where the fix is re-admitted (the module's
+    /// text), `p` is left raised as the update used it.
+    #[inline(always)]
+    pub(super) fn correct(
+        &mut self,
+        fix: &Fix,
+        mut x: [f64; 3],
+        p: &mut Mat3,
+    ) -> Option<([f64; 3], Mat3)> {
+        // A heading variance rounded below 0 made `s` <= 0 (no gate refused the fix; 0 divided)
+        if p[0][0] < 0.0 {
+            *p = crate::fixes_covariance::semi_definite(*p);
+        }
+        let r = fix.sigma * fix.sigma;
+        let nu = wrap_angle(fix.heading - x[0]);
+        let bound = self.config.gate * (p[0][0] + r);
+        if nu * nu > bound {
+            if !self.readmits(fix.t, nu * nu <= READMIT_REACH * READMIT_REACH * bound) {
+                self.counts.rejected = self.counts.rejected.saturating_add(1);
+                let (since, n) = self.rejected_run.unwrap_or((fix.t, 0));
+                self.rejected_run = Some((since, n.saturating_add(1)));
+                return None;
+            }
+            self.reopen(p, nu);
+            self.counts.readmitted = self.counts.readmitted.saturating_add(1);
+        }
+        self.rejected_run = None;
+        self.counts.applied = self.counts.applied.saturating_add(1);
+        let s = p[0][0] + r;
+        let k = [p[0][0] / s, p[1][0] / s, p[2][0] / s];
+        let row = p[0];
+        let mut p = *p;
+        for ((x, p), k) in x.iter_mut().zip(p.iter_mut()).zip(k) {
+            *x += k * nu;
+            for (pij, r) in p.iter_mut().zip(row) {
+                *pij -= k * r;
+            }
+        }
+        Some((x, crate::fixes_covariance::semi_definite(p)))
+    }
+
+    /// Whether a fix at `t` that fails the gate ends the gate's lock-out: the fixes have failed
+    /// it for `readmit_after` seconds, at least [`READMIT_MIN_REJECTED`] in a row with this one,
+    /// and this one is `within_reach` ([`READMIT_REACH`]).
+    #[inline(always)]
+    fn readmits(&self, t: f64, within_reach: bool) -> bool {
+        within_reach
+            && self.rejected_run.is_some_and(|(since, n)| {
+                n.saturating_add(1) >= READMIT_MIN_REJECTED
+                    && t - since >= self.config.readmit_after
+            })
+    }
+
+    /// The covariance of a filter the fixes have shown to be too sure of itself, before the fix
+    /// that re-admits them: the heading's variance raised by the innovation's square over the
+    /// gate (the fix then passes it, and is taken almost whole), the scale's and bias's raised
+    /// back to their initial ones (their error is what turned the heading away). A diagonal
+    /// added: the covariance stays one, and the smoother sees it as noise entering at the fix.
+    #[cold]
+    fn reopen(&self, p: &mut Mat3, nu: f64) {
+        let c = &self.config;
+        p[0][0] += nu * nu / c.gate;
+        let scale = c.initial_scale_sigma * c.initial_scale_sigma;
+        let bias = c.initial_bias_sigma * c.initial_bias_sigma;
+        p[1][1] = p[1][1].max(scale);
+        p[2][2] = p[2][2].max(bias);
+    }
+}

@@ -1,0 +1,169 @@
+//! The gate's lock-out and the re-admission that ends it (`FusionConfig::readmit_after`,
+//! rust/src/fixes.rs): a filter surer of itself than the fixes allow rejects every fix after it;
+//! after `readmit_after` seconds of rejections the next fix within `READMIT_REACH` gate radii is
+//! taken in again, while a lasting wrong course far beyond the gate stays rejected.
+
+mod fix_drive;
+
+use fix_drive::{config, drive, fixes, run, Run, BIAS};
+use gyrocore::fixes::wrap_angle;
+use gyrocore::{Fix, FixCounts, Fusion, FusionConfig, FusionOutputs};
+
+/// The largest heading error \[deg\] at or after `from` \[s\].
+fn worst_after(t: &[f64], heading: &[f64], psi: &[f64], from: f64) -> f64 {
+    let errors = (0..t.len()).filter(|&k| t[k] >= from);
+    let worst = errors.map(|k| wrap_angle(heading[k] - psi[k]).abs());
+    worst.fold(0.0, f64::max).to_degrees()
+}
+
+/// A filter over the whole drive in one call: its estimates and its counts.
+fn whole(config: FusionConfig, t: &[f64], rate: &[f64], fixes: &[Fix]) -> (Run, FixCounts) {
+    let mut f = Fusion::new(config).unwrap();
+    let (r, used) = run(&mut f, t, rate, fixes).unwrap();
+    assert_eq!(used, fixes.len());
+    (r, f.counts())
+}
+
+/// Sure of a bias of 0 (its sigma 5e-4 rad/s) where the gyro reads 0.01 rad/s (0.57 deg/s) at
+/// rest, with honest 1 deg fixes a second: the heading runs away from the fixes between two of
+/// them faster than the filter allows.
+fn sure_of_a_wrong_bias() -> FusionConfig {
+    FusionConfig {
+        initial_bias_sigma: 5e-4,
+        ..config()
+    }
+}
+
+#[test]
+fn a_filter_sure_of_a_wrong_bias_takes_the_fixes_in_again() {
+    let (t, psi, rate) = drive(300.0);
+    let fx = fixes(&t, &psi, 100, (0.0, 0.0));
+    let never = FusionConfig {
+        readmit_after: f64::INFINITY,
+        ..sure_of_a_wrong_bias()
+    };
+    let (locked, counts) = whole(never, &t, &rate, &fx);
+    assert!(counts.rejected > 200, "{counts:?}");
+    assert_eq!(counts.readmitted, 0);
+    let off = worst_after(&t, &locked.heading, &psi, 240.0);
+    assert!(off > 30.0, "locked out: {off} deg");
+
+    let (r, counts) = whole(sure_of_a_wrong_bias(), &t, &rate, &fx);
+    assert!(counts.readmitted >= 1, "{counts:?}");
+    assert!(counts.rejected < 50, "{counts:?}");
+    let off = worst_after(&t, &r.heading, &psi, 240.0);
+    assert!(off < 1.0, "re-admitted: {off} deg");
+    let last = t.len() - 1;
+    assert!((r.bias[last] - BIAS).abs() < 1e-3, "bias {}", r.bias[last]);
+}
+
+/// Honest fixes a second, then from 100 s on every fix `offset` \[deg\] off the true heading.
+fn offset_from_100_s(t: &[f64], psi: &[f64], offset: f64) -> Vec<Fix> {
+    let mut fx = fixes(t, psi, 100, (0.0, 0.0));
+    for f in fx.iter_mut().filter(|f| f.t >= 100.0) {
+        f.heading = wrap_angle(f.heading + offset.to_radians());
+    }
+    fx
+}
+
+/// The fixes' counts up to `until` \[s\] of a run over the drive's samples before it.
+fn counts_until(config: FusionConfig, until: f64, offset: f64) -> FixCounts {
+    let (t, psi, rate) = drive(200.0);
+    let n = t.iter().take_while(|&&t| t < until).count();
+    let fx = offset_from_100_s(&t, &psi, offset);
+    let mut f = Fusion::new(config).unwrap();
+    let mut h = vec![0.0; n];
+    let out = FusionOutputs::heading(&mut h);
+    f.process_block(&t[..n], &rate[..n], &fx, out).unwrap();
+    f.counts()
+}
+
+#[test]
+fn the_fix_that_ends_a_run_of_readmit_after_seconds_and_three_rejections_is_taken_in() {
+    // 8 deg off: beyond the gate (about 3.4 deg here), within its reach (about 14 deg).
+    let at_once = FusionConfig {
+        readmit_after: 0.0,
+        ..config()
+    };
+    let readmitted_by = |config, until| counts_until(config, until, 8.0).readmitted;
+    // the fixes of 100 s and 101 s rejected, the third re-admitted
+    assert_eq!(readmitted_by(at_once, 101.5), 0);
+    assert_eq!(readmitted_by(at_once, 102.5), 1);
+    let after_three_seconds = FusionConfig {
+        readmit_after: 3.0,
+        ..config()
+    };
+    // 100, 101, 102 s rejected; 103 s is 3 s after the first
+    assert_eq!(readmitted_by(after_three_seconds, 102.5), 0);
+    assert_eq!(readmitted_by(after_three_seconds, 103.5), 1);
+}
+
+#[test]
+fn a_lasting_wrong_course_beyond_reach_stays_rejected_and_one_within_it_is_taken_after_readmit_after(
+) {
+    let (t, psi, rate) = drive(200.0);
+    // A course half a turn off for 30 s (a vehicle reversing): never re-admitted.
+    let mut fx = fixes(&t, &psi, 100, (0.0, 0.0));
+    for f in fx.iter_mut().filter(|f| (100.0..130.0).contains(&f.t)) {
+        f.heading = wrap_angle(f.heading + core::f64::consts::PI);
+    }
+    let (r, counts) = whole(config(), &t, &rate, &fx);
+    assert_eq!(counts.readmitted, 0, "{counts:?}");
+    assert!(counts.rejected >= 30, "{counts:?}");
+    let off = worst_after(&t, &r.heading, &psi, 90.0);
+    assert!(off < 1.0, "{off} deg");
+    // 8 deg off from 100 s on, lasting: taken after readmit_after (10 s by default) ...
+    let fx = offset_from_100_s(&t, &psi, 8.0);
+    let (r, counts) = whole(config(), &t, &rate, &fx);
+    assert_eq!(counts.readmitted, 1, "{counts:?}");
+    let errors_at = |at: f64| {
+        let k = t.iter().position(|&t| t >= at).unwrap();
+        wrap_angle(r.heading[k] - psi[k]).to_degrees()
+    };
+    assert!(errors_at(105.0).abs() < 3.0, "{}", errors_at(105.0));
+    assert!((errors_at(150.0) - 8.0).abs() < 1.0, "{}", errors_at(150.0));
+    // ... and never by the gate alone
+    let never = FusionConfig {
+        readmit_after: f64::INFINITY,
+        ..config()
+    };
+    let (_, counts) = whole(never, &t, &rate, &fx);
+    assert_eq!(counts.readmitted, 0, "{counts:?}");
+    assert!(counts.rejected >= 90, "{counts:?}");
+}
+
+#[test]
+fn a_run_of_rejections_cut_into_blocks_or_stored_mid_way_carries_on_bit_for_bit() {
+    let (t, psi, rate) = drive(300.0);
+    let fx = fixes(&t, &psi, 100, (0.0, 0.0));
+    let (one, counts) = whole(sure_of_a_wrong_bias(), &t, &rate, &fx);
+    assert!(counts.readmitted >= 1);
+    let mut f = Fusion::new(sure_of_a_wrong_bias()).unwrap();
+    let mut heading = vec![0.0; t.len()];
+    let mut pending: &[Fix] = &fx;
+    let mut cuts: Vec<usize> = (0..t.len()).step_by(613).collect();
+    cuts.extend([1, 1500, 1501, t.len()]);
+    cuts.sort_unstable();
+    #[cfg(feature = "serde")]
+    let mut stored_mid_run = 0;
+    for w in cuts.windows(2) {
+        // stored and read back at every cut, some of them while the gate rejects every fix
+        #[cfg(feature = "serde")]
+        {
+            let json = serde_json::to_string(&f).unwrap();
+            stored_mid_run += usize::from(json.contains("\"rejected_run\":["));
+            f = serde_json::from_str(&json).unwrap();
+        }
+        let (a, b) = (w[0], w[1]);
+        let out = FusionOutputs::heading(&mut heading[a..b]);
+        let used = f
+            .process_block(&t[a..b], &rate[a..b], pending, out)
+            .unwrap();
+        pending = &pending[used..];
+    }
+    #[cfg(feature = "serde")]
+    assert!(stored_mid_run >= 2, "{stored_mid_run}");
+    assert_eq!(f.counts(), counts);
+    let bits = |h: &[f64]| h.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&heading), bits(&one.heading));
+}
