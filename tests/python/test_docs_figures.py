@@ -130,6 +130,13 @@ def test_the_ablation_tables_are_what_their_script_prints() -> None:
         assert row[2:] == run[2:6], (row, run)
 
 
+def test_the_lock_out_table_is_what_its_script_prints() -> None:
+    # docs/fixes.md "The gate's lock-out, and re-admission": `python examples/fixes_lockout.py`
+    rows = table("fixes.md", "| fixes | gate alone: causal / smoothed")
+    assert len(rows) == 16
+    assert rows == script_rows("fixes_lockout.py")
+
+
 def test_the_fixes_results_table_is_what_its_script_prints() -> None:
     # docs/fixes.md "Results": `python examples/fixes_acceptance.py`, its first table (the
     # page leaves out the settings column, and the "(-)" of a true bias or scale not known)
