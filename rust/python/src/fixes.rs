@@ -112,8 +112,8 @@ fn counts_dict<'py>(
     let d = PyDict::new(py);
     d.set_item("applied", c.applied)?;
     d.set_item("rejected", c.rejected)?;
-    d.set_item("before_start", c.before_start)?;
     d.set_item("readmitted", c.readmitted)?;
+    d.set_item("before_start", c.before_start)?;
     d.set_item("after_end", after_end)?;
     Ok(d)
 }
