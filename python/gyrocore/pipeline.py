@@ -60,7 +60,7 @@ __all__ = [
 __dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 #: The fix stage's columns of a block from the core: heading sigma, bias, scale, and the fix
-#: counts (applied, rejected, before the first sample, waiting for a later block).
+#: counts (applied, rejected, re-admitted, before the first sample, waiting for a later block).
 _Fused = tuple[FloatArray | None, FloatArray | None, FloatArray | None, tuple[int, int, int, int, int]]
 
 #: Parameters of FOG eq 5's temperature model: without one, a temperature given is not used.
