@@ -9,7 +9,7 @@ import os
 from collections.abc import Iterable, Sequence
 from pathlib import Path
 
-from . import io
+from . import batch_names, io
 from ._checks import warn
 from .io._logfolder import lacks_gyro
 from .io._paths import check_readable
@@ -214,7 +214,23 @@ def output_paths(inputs: Sequence[str | Path], out_dir: str | Path, fmt: str,
             links = _through_links(o)
             raise ValueError(f"refusing to write {o} over or inside the input {hit}{links}; "
                              f"{'remove the link, or ' if links else ''}write the outputs elsewhere")
+    _check_one_file_each(given, outs, folder)
     return outs
+
+
+def _check_one_file_each(inputs: Sequence[Path], outs: Sequence[Path], folder: Path) -> None:
+    """Refuse two outputs whose names the output folder holds as one file (``Drive.csv`` and
+    ``drive.csv`` where it ignores case): the second replaced the first without a word. The folder
+    is asked (a file created and removed) only where some names could be one file there."""
+    if batch_names.first_clash(outs, batch_names.Folding(case=True, normalization=True)) is None:
+        return
+    how = batch_names.folding(folder)
+    clash = batch_names.first_clash(outs, how)
+    if clash is not None:
+        i, j = clash
+        raise ValueError(f"{inputs[i]} and {inputs[j]} would both be written to {outs[i]}: {folder} "
+                         f"{batch_names.why_one(outs[i].name, outs[j].name, how)}, and holds {outs[i].name} and "
+                         f"{outs[j].name} as one file; rename one of the inputs, or process them separately")
 
 
 def _through_links(*outputs: Path) -> str:
