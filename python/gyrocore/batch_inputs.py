@@ -12,6 +12,7 @@ from pathlib import Path
 from . import batch_names, io
 from ._checks import warn
 from .io._logfolder import lacks_gyro
+from .io import atomic
 from .io._paths import check_readable
 
 
@@ -221,7 +222,15 @@ def output_paths(inputs: Sequence[str | Path], out_dir: str | Path, fmt: str,
 def _check_one_file_each(inputs: Sequence[Path], outs: Sequence[Path], folder: Path) -> None:
     """Refuse two outputs whose names the output folder holds as one file (``Drive.csv`` and
     ``drive.csv`` where it ignores case): the second replaced the first without a word. The folder
-    is asked (a file created and removed) only where some names could be one file there."""
+    is asked (a file created and removed) only where some names could be one file there. Refuse
+    too an output's name longer than the folder takes (an input's name of 252-255 bytes given
+    another suffix, ``.parquet``): it failed after the work with ``File name too long``."""
+    limit = atomic.name_max(folder)
+    for p, o in zip(inputs, outs):
+        if (size := len(os.fsencode(o.name))) > limit:
+            raise ValueError(f"{p}: its output's name, {o.name}, is {size} bytes long, and {folder} takes names of "
+                             f"{limit} at most; give the input a shorter name, or its output one of its own "
+                             "(gyrocore process INPUT --out FILE)")
     if batch_names.first_clash(outs, batch_names.Folding(case=True, normalization=True)) is None:
         return
     how = batch_names.folding(folder)

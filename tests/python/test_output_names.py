@@ -141,3 +141,42 @@ def test_the_keys_fold_what_the_folder_folds() -> None:
     assert batch_names.key("Stra\u00dfe.csv", both) == batch_names.key("STRASSE.csv", both)
     assert batch_names.key(f"{NFC}.csv", Folding(case=False, normalization=False)) != batch_names.key(
         f"{NFD}.csv", Folding(case=False, normalization=False))
+
+
+def test_an_input_of_a_long_name_gets_its_output(tmp_path: Path) -> None:
+    # a name of 238-255 bytes is a valid output name, but the hidden file it is written under
+    # (.NAME.<12 hex>.tmp) was not: FAILED ...: [Errno 36] File name too long: 'out/.aaa...tmp'
+    logs, out = tmp_path / "logs", tmp_path / "out"
+    logs.mkdir()
+    name = "\u00e9" + "a" * 244 + ".csv"  # 250 bytes, a two-byte character first
+    synthetic_csv(logs / name, 300)
+    summary = process_many([logs], out_dir=out, preset="raw")
+    assert not summary.failed, summary
+    assert [p.name for p in out.iterdir()] == [name]
+    assert len((out / name).read_text().splitlines()) == 301
+
+
+def test_the_hidden_name_fits_and_keeps_whole_characters() -> None:
+    from gyrocore.io.atomic import temporary_name
+
+    for name in ("h.csv", "a" * 255, "\u00e9" * 127, "x" + "\u00e9" * 126):
+        hidden = temporary_name(name)
+        assert len(hidden.encode()) <= 255 and hidden.startswith(f".{name[:20]}") and hidden.endswith(".tmp")
+        hidden.encode()  # no character cut in half (it would not encode)
+    assert temporary_name("h.csv").startswith(".h.csv.")
+
+
+def test_an_output_name_longer_than_the_folder_takes_is_refused_before_any_work(tmp_path: Path) -> None:
+    # a 253-byte .pq log into parquet outputs: out/NAME.parquet is 258 bytes, and the file failed
+    # after its work with [Errno 36] File name too long
+    import pyarrow.parquet as pq
+    import pyarrow.csv as pa_csv
+
+    logs, out = tmp_path / "logs", tmp_path / "out"
+    logs.mkdir()
+    long = logs / ("b" * 250 + ".pq")
+    pq.write_table(pa_csv.read_csv(synthetic_csv(tmp_path / "x.csv", 300)), long)
+    with pytest.raises(ValueError, match=rf"^{long}: its output's name, b+\.parquet, is 258 bytes long, and {out} "
+                                         r"takes names of 255 at most; give the input a shorter name"):
+        process_many([logs, tmp_path / "x.csv"], out_dir=out, fmt="parquet", preset="raw")
+    assert not out.exists()
