@@ -14,6 +14,7 @@ from ._checks import warn
 from .io._logfolder import lacks_gyro
 from .io import atomic
 from .io._paths import check_readable
+from .io.writer import file_id
 
 
 def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
@@ -110,9 +111,10 @@ def check_outside_inputs(items: Iterable[str | Path], out: Path, inputs: Sequenc
     or by a pattern), or an output folder that holds one of ``inputs``: a later run over that
     folder would read the outputs as logs (and a CSV output could be its own input)."""
     io.check_not_input(out, [m for item in items for m in _matches(item)[1] if m.is_dir()])
+    out_id = file_id(out)  # the same folder under another name too (another case, a bind mount)
     for p in inputs:
         # realpath, not Path.resolve, which raises RuntimeError on a link loop (see io.check_not_input)
-        if os.path.realpath(p.parent) == os.path.realpath(out):
+        if os.path.realpath(p.parent) == os.path.realpath(out) or (out_id is not None and file_id(p.parent) == out_id):
             raise ValueError(
                 f"refusing to write into {out}: it holds the input {p}, and the outputs would be read as "
                 "logs by a later run over it; give an output folder outside the inputs"

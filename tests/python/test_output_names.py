@@ -6,6 +6,9 @@ checked against what this machine's temporary folder does."""
 
 from __future__ import annotations
 
+import shutil
+import subprocess
+import sys
 import unicodedata
 from pathlib import Path
 
@@ -180,3 +183,47 @@ def test_an_output_name_longer_than_the_folder_takes_is_refused_before_any_work(
                                          r"takes names of 255 at most; give the input a shorter name"):
         process_many([logs, tmp_path / "x.csv"], out_dir=out, fmt="parquet", preset="raw")
     assert not out.exists()
+
+
+def _cli_where_one_folder_has_two_names(folder: Path, other: Path, *args: str | Path) -> subprocess.CompletedProcess[str]:
+    """``gyrocore ARGS`` where ``other`` is ``folder`` under another name, which ``os.path.realpath``
+    does not unify, as ``Logs`` is ``logs`` on a filesystem that ignores case: a bind mount, in a
+    mount namespace of the test's own (Linux, no root needed where user namespaces are allowed)."""
+    if shutil.which("unshare") is None:
+        pytest.skip("no unshare here")
+    other.mkdir()
+    mount = 'mount --bind "$1" "$2" || exit 99; shift 2; exec "$@"'
+    proc = subprocess.run(["unshare", "-Urm", "sh", "-c", mount, "sh", str(folder), str(other),
+                           sys.executable, "-m", "gyrocore.cli", *map(str, args)], capture_output=True, text=True)
+    if proc.returncode == 99 or "unshare:" in proc.stderr:
+        pytest.skip(f"no bind mount in a namespace of its own here: {proc.stderr.strip()}")
+    assert "Traceback" not in proc.stderr
+    return proc
+
+
+def test_an_output_inside_a_log_folder_under_another_name_is_refused(tmp_path: Path) -> None:
+    # on macOS, --out DRIVE/reference.csv for the log folder drive: realpath keeps the case given,
+    # the output was not seen inside the input, and with --overwrite the log's reference was
+    # replaced by its heading table (t,heading,rate,drift), reported ok
+    drive = tmp_path / "drive"
+    drive.mkdir()
+    synthetic_csv(drive / "gyro.csv", 300)
+    (drive / "reference.csv").write_text("t,heading\n1700000000,0\n1700000001,0.1\n")
+    before = (drive / "reference.csv").read_bytes()
+    proc = _cli_where_one_folder_has_two_names(drive, tmp_path / "DRIVE", "process", drive, "--out",
+                                               tmp_path / "DRIVE" / "reference.csv", "--overwrite", "--preset", "raw")
+    assert proc.returncode == 2, proc.stdout
+    assert proc.stderr == (f"gyrocore: error: refusing to write {tmp_path / 'DRIVE' / 'reference.csv'} over or inside "
+                           f"the input {drive}; write it elsewhere\n")
+    assert (drive / "reference.csv").read_bytes() == before
+
+
+def test_an_output_folder_that_is_an_input_folder_under_another_name_is_refused(tmp_path: Path) -> None:
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    a = synthetic_csv(logs / "a.csv", 300)
+    proc = _cli_where_one_folder_has_two_names(logs, tmp_path / "LOGS", "process", a, "--out", tmp_path / "LOGS",
+                                               "--overwrite", "--preset", "raw")
+    assert proc.returncode == 2, proc.stdout
+    assert proc.stderr.startswith(f"gyrocore: error: refusing to write into {tmp_path / 'LOGS'}: it holds the input {a}")
+    assert [p.name for p in logs.iterdir()] == ["a.csv"]
