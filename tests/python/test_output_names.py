@@ -227,3 +227,16 @@ def test_an_output_folder_that_is_an_input_folder_under_another_name_is_refused(
     assert proc.returncode == 2, proc.stdout
     assert proc.stderr.startswith(f"gyrocore: error: refusing to write into {tmp_path / 'LOGS'}: it holds the input {a}")
     assert [p.name for p in logs.iterdir()] == ["a.csv"]
+
+
+def test_a_name_with_a_line_break_is_reported_on_one_line(tmp_path: Path) -> None:
+    # "ok     logs/a" and "b.csv: 300 rows in, 300 out -> out/a" were two lines of the report
+    logs, out = tmp_path / "logs", tmp_path / "out"
+    logs.mkdir()
+    synthetic_csv(logs / "a\nb.csv", 300)
+    summary = process_many([logs], out_dir=out, preset="raw")
+    assert [p.name for p in out.iterdir()] == ["a\nb.csv"]
+    first = str(summary).splitlines()[0]
+    assert first.startswith(f"ok     {logs}/a\\nb.csv: 300 rows in, 300 out -> {out}/a\\nb.csv (")
+    summary = process_many([logs], out_dir=out, preset="raw", skip_existing=True)
+    assert str(summary).splitlines()[0] == f"skipped {logs}/a\\nb.csv: {out}/a\\nb.csv exists already"
