@@ -128,9 +128,11 @@ class StagedFile:
     file it replaces (a calibration kept at 0600 stays 0600); a new name gets the umask's.
     """
 
-    def __init__(self, path: str | Path) -> None:
+    def __init__(self, path: str | Path, *, replace: bool = True) -> None:
         path = Path(path)  # exported: a path as text failed on a missing parent
         self.path = path
+        #: False: :meth:`commit` never replaces a file that appeared at ``path`` meanwhile (see there)
+        self.replace = replace
         #: The file that is replaced: ``path``, or the final target of ``path`` where it is a link
         #: (also one that leads nowhere yet, whose target is then created).
         self.target = Path(os.path.realpath(path)) if path.is_symlink() else path
@@ -179,8 +181,32 @@ class StagedFile:
         if mode is not None:  # after the sync, which opens the file for writing (a 0400 file's mode)
             os.chmod(self.tmp, mode)
         _signals.check()
-        os.replace(self.tmp, self.target)
+        if self.replace:
+            os.replace(self.tmp, self.target)
+        else:
+            self._place_new()
         _live.discard(self.tmp)
+
+    def _place_new(self) -> None:
+        """Give the temporary file its name only if nothing has it yet (a hard link made, which fails
+        where the name is taken, then the temporary name removed): a run told not to replace an
+        output checked that there was none before its work, and another run writing the same output
+        meanwhile had its output replaced without a word, both reported ok."""
+        taken = FileExistsError(f"{self.path}: written meanwhile by something else (another run writing the same "
+                                "output?); it is kept, and this run's output is not written: pass --overwrite to "
+                                "replace it, or write elsewhere")
+        try:
+            os.link(self.tmp, self.target)
+        except FileExistsError:
+            raise taken from None
+        except OSError as e:  # no hard links here (FAT, some network shares): checked, then renamed
+            if e.errno not in (errno.EPERM, errno.ENOTSUP, errno.EOPNOTSUPP, errno.EXDEV, errno.EMLINK):
+                raise
+            if os.path.lexists(self.target):
+                raise taken from None
+            os.replace(self.tmp, self.target)
+            return
+        self.tmp.unlink()
 
     def discard(self) -> None:
         """Remove the temporary file if it is still there."""

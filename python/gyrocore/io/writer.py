@@ -138,10 +138,14 @@ class HeadingWriter:
         heading: ``enu`` (default) or ``compass`` (see :func:`convert_heading`).
         columns: the columns to write, in this order (see :func:`check_columns`); the results
             written need only hold those (``outputs=`` of :meth:`gyrocore.Pipeline.process`).
+        replace: False: a file that appears at ``path`` while the table is written is kept, and
+            the table is not written (FileExistsError at the end).
     """
 
-    def __init__(self, path: str | Path, *, heading: str = "enu", columns: Sequence[str] = OUTPUT_COLUMNS) -> None:
+    def __init__(self, path: str | Path, *, heading: str = "enu", columns: Sequence[str] = OUTPUT_COLUMNS,
+                 replace: bool = True) -> None:
         self.path = Path(path)
+        self.replace = replace  # False: a file that appears at path meanwhile is kept (StagedFile)
         self.columns = check_columns(columns)
         self.format = output_format(self.path)
         require_choice("heading convention", heading, HEADING_CONVENTIONS)
@@ -158,7 +162,7 @@ class HeadingWriter:
             pa = require("pyarrow", f"{self.path}: writing Parquet files")
             pq = require("pyarrow.parquet", f"{self.path}: writing Parquet files")
             import_pyarrow_lazy_modules()
-        self._staged = StagedFile(self.path)
+        self._staged = StagedFile(self.path, replace=self.replace)
         tmp = self._staged.tmp
         try:
             if self.format == "csv":
