@@ -13,6 +13,7 @@ import pytest
 
 from gyrocore import batch_job
 from gyrocore.batch import process_file, process_many
+from gyrocore.cli import main
 from gyrocore.io import atomic
 
 from .test_batch import leftovers, synthetic_csv
@@ -59,6 +60,30 @@ def test_a_batch_fails_the_file_whose_output_was_written_meanwhile(tmp_path: Pat
     assert [r.ok for r in summary.files] == [False, True]
     assert (summary.files[0].error or "").startswith(f"{out / 'a.csv'}: written meanwhile by something else")
     assert (out / "a.csv").read_text() == KEPT and leftovers(out) == []
+
+
+def test_the_command_line_keeps_an_output_written_meanwhile_unless_overwrite(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    log = synthetic_csv(logs / "a.csv", 300)
+    plan = batch_job._FileJob._plan
+
+    def plan_then_other_run(job: batch_job._FileJob, *args: object) -> object:
+        job.out.write_text(KEPT)
+        return plan(job, *args)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(batch_job._FileJob, "_plan", plan_then_other_run)
+    one, folder = tmp_path / "h.csv", tmp_path / "out"
+    assert main(["process", str(log), "--out", str(one), "--preset", "raw"]) == 2
+    assert capsys.readouterr().err.startswith(f"gyrocore: error: {one}: written meanwhile by something else")
+    assert main(["process", str(logs), "--out", str(folder), "--preset", "raw"]) == 1
+    assert f"FAILED {log}: {folder / 'a.csv'}: written meanwhile" in capsys.readouterr().out
+    assert one.read_text() == KEPT and (folder / "a.csv").read_text() == KEPT
+    for out in (one, folder):
+        assert main(["process", str(log if out == one else logs), "--out", str(out), "--preset", "raw",
+                     "--overwrite"]) == 0
+    assert len(one.read_text().splitlines()) == len((folder / "a.csv").read_text().splitlines()) == 301
 
 
 def test_without_hard_links_the_name_is_checked_then_renamed(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
