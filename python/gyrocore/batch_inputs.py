@@ -233,15 +233,9 @@ def _check_one_file_each(inputs: Sequence[Path], outs: Sequence[Path], folder: P
             raise ValueError(f"{p}: its output's name, {o.name}, is {size} bytes long, and {folder} takes names of "
                              f"{limit} at most; give the input a shorter name, or its output one of its own "
                              "(gyrocore process INPUT --out FILE)")
-    if batch_names.first_clash(outs, batch_names.Folding(case=True, normalization=True)) is None:
-        return
-    how = batch_names.folding(folder)
-    clash = batch_names.first_clash(outs, how)
-    if clash is not None:
-        i, j = clash
-        raise ValueError(f"{inputs[i]} and {inputs[j]} would both be written to {outs[i]}: {folder} "
-                         f"{batch_names.why_one(outs[i].name, outs[j].name, how)}, and holds {outs[i].name} and "
-                         f"{outs[j].name} as one file; rename one of the inputs, or process them separately")
+    said = batch_names.clash(inputs, outs, folder)
+    if said is not None:
+        raise ValueError(f"{said}; rename one of the inputs, or process them separately")
 
 
 def _through_links(*outputs: Path) -> str:

@@ -84,3 +84,18 @@ def why_one(a: str, b: str, how: Folding) -> str:
     if how.normalization and unicodedata.normalize("NFD", a) == unicodedata.normalize("NFD", b):
         return "composes accented letters alike (Unicode NFC and NFD)"
     return "ignores case"
+
+
+def clash(sources: Sequence[object], outs: Sequence[Path], folder: Path, verb: str = "written") -> str | None:
+    """What to say of the first two ``outs`` (the files of ``sources`` in ``folder``) whose names
+    the folder holds as one file (``a and b would both be written to ...``), or None. The folder
+    is asked (:func:`folding`, a file created and removed) only where some names could be one."""
+    if first_clash(outs, Folding(case=True, normalization=True)) is None:
+        return None
+    how = folding(folder)
+    found = first_clash(outs, how)
+    if found is None:
+        return None
+    i, j = found
+    return (f"{sources[i]} and {sources[j]} would both be {verb} to {outs[i]}: {folder} "
+            f"{why_one(outs[i].name, outs[j].name, how)}, and holds {outs[i].name} and {outs[j].name} as one file")

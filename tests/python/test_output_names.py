@@ -240,3 +240,21 @@ def test_a_name_with_a_line_break_is_reported_on_one_line(tmp_path: Path) -> Non
     assert first.startswith(f"ok     {logs}/a\\nb.csv: 300 rows in, 300 out -> {out}/a\\nb.csv (")
     summary = process_many([logs], out_dir=out, preset="raw", skip_existing=True)
     assert str(summary).splitlines()[0] == f"skipped {logs}/a\\nb.csv: {out}/a\\nb.csv exists already"
+
+
+def test_evaluate_refuses_plots_one_in_case_where_the_folder_ignores_case(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    # evaluate --plot-dir of Drive.csv and drive.csv: drive.png replaced Drive.png on macOS
+    (tmp_path / "one").mkdir()
+    (tmp_path / "two").mkdir()
+    rows = "t,gyro_z,heading_true\n" + "".join(f"{k / 100},0.01,{k / 10000}\n" for k in range(500))
+    a, b = tmp_path / "one" / "Drive.csv", tmp_path / "two" / "drive.csv"
+    a.write_text(rows)
+    b.write_text(rows)
+    plots = tmp_path / "plots"
+    _ignores_case(monkeypatch)
+    assert main(["evaluate", str(a), str(b), "--preset", "raw", "--plot-dir", str(plots)]) == 2
+    assert capsys.readouterr().err == (f"gyrocore: error: --plot-dir: {a} and {b} would both be plotted to "
+                                       f"{plots / 'Drive.png'}: {plots} ignores case, and holds Drive.png and "
+                                       "drive.png as one file; plot them in separate runs\n")
+    assert not plots.exists()
