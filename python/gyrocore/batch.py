@@ -55,6 +55,7 @@ def process_file(
     use_speed: bool = True,
     use_fixes: bool = True,
     fixes: FixesLike | None = None,
+    overwrite: bool = True,
     **options: Any,
 ) -> FileReport:
     """Stream one log through the pipeline into a heading table, with flat memory.
@@ -90,6 +91,9 @@ def process_file(
         fixes: heading fixes for this input instead of a folder's own (:data:`gyrocore.fixes.FixesLike`:
             a :class:`gyrocore.fixes.Fixes`, a fixes or gnss file); the input is then read whole
             and fused as a folder with ``fixes.csv`` is.
+        overwrite: replace a file at ``out`` (default). False: a file that appears there while
+            the log is processed (another run's output) is kept, and FileExistsError is raised;
+            one there before is the caller's to refuse (``gyrocore process`` does, before any work).
         **options: reader options (``time_col``, ``rate_col``, ``time_unit``, ``rate_unit``,
             ``topic``, ``delimiter``) and pipeline parameters (``bias_window=(t0, t1)`` [s] in
             the log's time base, or a :class:`gyrocore.window.Window` whose bounds may count from
@@ -104,11 +108,13 @@ def process_file(
         ValueError: a malformed file or bad samples (naming the file and line or row), an output
             over the input, invalid options. No output is left then.
     """
-    _check_run(mode, chunk_rows, ("use_speed", use_speed), ("use_fixes", use_fixes))
-    return _FileJob(
+    _check_run(mode, chunk_rows, ("use_speed", use_speed), ("use_fixes", use_fixes), ("overwrite", overwrite))
+    job = _FileJob(
         Path(path), Path(out), preset, heading, chunk_rows, options, columns, mode, use_speed, use_fixes=use_fixes,
         fixes=fixes,
-    ).run(progress)
+    )
+    job.overwrite = overwrite
+    return job.run(progress)
 
 
 def _check_run(mode: str, chunk_rows: object, *flags: tuple[str, object]) -> None:
@@ -146,6 +152,7 @@ def process_many(
     use_speed: bool = True,
     skip_existing: bool = False,
     use_fixes: bool = True,
+    overwrite: bool = True,
     **options: Any,
 ) -> BatchReport:
     """Process a fleet of logs in parallel: threads on this machine, or a Dask cluster.
@@ -168,6 +175,8 @@ def process_many(
             part goes on where it stopped. An output that exists is complete (see
             :func:`complete_output`); neither its input nor its options are compared. Without it
             an existing output is replaced.
+        overwrite: replace an output that exists (default). False: one that appears while its
+            input is processed (another run's) is kept, and that file fails with the reason.
 
     Returns:
         Reports of all files, in input order: the ones that failed with their reason, the ones
@@ -196,7 +205,7 @@ def process_many(
     if columns is not None:
         io.check_columns(columns)
     _check_run(mode, chunk_rows, ("use_speed", use_speed), ("skip_existing", skip_existing), ("progress", progress),
-               ("use_fixes", use_fixes))
+               ("use_fixes", use_fixes), ("overwrite", overwrite))
     _, overrides = split_options(options)
     # invalid parameters fail here, before any work (a stand-in bias keeps the check quiet)
     pipeline_overrides = _to_si(overrides)
@@ -219,7 +228,7 @@ def process_many(
             for p, o in zip(inputs, outputs)
         ]
         for job in jobs_list:  # raised below, from the caller's line, not a worker thread's
-            job.raise_again = False
+            job.raise_again, job.overwrite = False, overwrite
         if client is not None:
             reports = run_on_dask(client, jobs_list, progress)
         else:

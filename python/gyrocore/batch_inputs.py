@@ -9,10 +9,12 @@ import os
 from collections.abc import Iterable, Sequence
 from pathlib import Path
 
-from . import io
+from . import batch_names, io
 from ._checks import warn
 from .io._logfolder import lacks_gyro
+from .io import atomic
 from .io._paths import check_readable
+from .io.writer import file_id
 
 
 def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
@@ -109,9 +111,10 @@ def check_outside_inputs(items: Iterable[str | Path], out: Path, inputs: Sequenc
     or by a pattern), or an output folder that holds one of ``inputs``: a later run over that
     folder would read the outputs as logs (and a CSV output could be its own input)."""
     io.check_not_input(out, [m for item in items for m in _matches(item)[1] if m.is_dir()])
+    out_id = file_id(out)  # the same folder under another name too (another case, a bind mount)
     for p in inputs:
         # realpath, not Path.resolve, which raises RuntimeError on a link loop (see io.check_not_input)
-        if os.path.realpath(p.parent) == os.path.realpath(out):
+        if os.path.realpath(p.parent) == os.path.realpath(out) or (out_id is not None and file_id(p.parent) == out_id):
             raise ValueError(
                 f"refusing to write into {out}: it holds the input {p}, and the outputs would be read as "
                 "logs by a later run over it; give an output folder outside the inputs"
@@ -214,7 +217,25 @@ def output_paths(inputs: Sequence[str | Path], out_dir: str | Path, fmt: str,
             links = _through_links(o)
             raise ValueError(f"refusing to write {o} over or inside the input {hit}{links}; "
                              f"{'remove the link, or ' if links else ''}write the outputs elsewhere")
+    _check_one_file_each(given, outs, folder)
     return outs
+
+
+def _check_one_file_each(inputs: Sequence[Path], outs: Sequence[Path], folder: Path) -> None:
+    """Refuse two outputs whose names the output folder holds as one file (``Drive.csv`` and
+    ``drive.csv`` where it ignores case): the second replaced the first without a word. The folder
+    is asked (a file created and removed) only where some names could be one file there. Refuse
+    too an output's name longer than the folder takes (an input's name of 252-255 bytes given
+    another suffix, ``.parquet``): it failed after the work with ``File name too long``."""
+    limit = atomic.name_max(folder)
+    for p, o in zip(inputs, outs):
+        if (size := len(os.fsencode(o.name))) > limit:
+            raise ValueError(f"{p}: its output's name, {o.name}, is {size} bytes long, and {folder} takes names of "
+                             f"{limit} at most; give the input a shorter name, or its output one of its own "
+                             "(gyrocore process INPUT --out FILE)")
+    said = batch_names.clash(inputs, outs, folder)
+    if said is not None:
+        raise ValueError(f"{said}; rename one of the inputs, or process them separately")
 
 
 def _through_links(*outputs: Path) -> str:

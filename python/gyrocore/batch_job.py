@@ -64,6 +64,9 @@ class _FileJob:
         self.path, self.out, self.preset, self.heading, self.chunk_rows = path, out, preset, heading, chunk_rows
         self.mode, self.use_speed, self.skip_existing, self.use_fixes = mode, use_speed, skip_existing, use_fixes
         self.fixes, self.raise_again = fixes, True  # False: a batch raises them in the caller's thread
+        #: False: an output that appears while the file is processed (another run's) is kept, and
+        #: this file fails (see :class:`gyrocore.io.atomic.StagedFile`)
+        self.overwrite = True
         self.read_options, self.overrides = split_options(options)
         #: None: every column of :data:`io.OUTPUT_COLUMNS`, and the heading's sigma for a log with fixes
         self.columns = None if columns is None else io.check_columns(columns)
@@ -121,7 +124,8 @@ class _FileJob:
         # one, a causal rest window with a turn in it, comes once, when its chunk closes the window
         said: list[str] = []
         gap, gaps = LongestGap(), 0
-        with io.HeadingWriter(self.out, heading=self.heading, columns=self.columns or io.OUTPUT_COLUMNS) as writer:
+        with io.HeadingWriter(self.out, heading=self.heading, columns=self.columns or io.OUTPUT_COLUMNS,
+                              replace=self.overwrite) as writer:
             for chunk in self._chunks(source):
                 check.update(chunk.t, chunk.rate)
                 try:
@@ -232,7 +236,7 @@ class _FileJob:
             raise self._at_sample(source, e, check) from None
         except ValueError as e:
             raise _in_file(source, e, False, self._fixes_file(source)) from None
-        written = _write_result(self.out, result, self.heading, self.columns)
+        written = _write_result(self.out, result, self.heading, self.columns, self.overwrite)
         if progress is not None:
             progress(len(result), len(result), "rows")
         assert result.report is not None
@@ -302,12 +306,13 @@ class _FileJob:
         return FileReport(str(self.path), None, self.rows_in, 0, seconds, failed, tuple(dict.fromkeys(self.notes)))
 
 
-def _write_result(out: Path, result: HeadingResult, heading: str, columns: Sequence[str] | None) -> int:
+def _write_result(out: Path, result: HeadingResult, heading: str, columns: Sequence[str] | None,
+                  overwrite: bool = True) -> int:
     """Write a result held in memory to ``out`` in one piece (``columns`` None: every column of
     :data:`io.OUTPUT_COLUMNS`, and the heading's sigma where heading fixes gave one); the rows written."""
     if columns is None:
         columns = (*io.OUTPUT_COLUMNS, *(("heading_sigma",) if result.heading_sigma is not None else ()))
-    with io.HeadingWriter(out, heading=heading, columns=columns) as writer:
+    with io.HeadingWriter(out, heading=heading, columns=columns, replace=overwrite) as writer:
         writer.write(result)
     return writer.rows
 

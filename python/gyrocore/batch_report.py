@@ -75,13 +75,15 @@ class FileReport:
         }
 
     def __str__(self) -> str:
+        # one line per file, as a FAILED line is: a line break in a name (a\nb.csv) split it, and
+        # the name's second half read as a line of its own
         if self.output_existed:
-            return f"skipped {self.input}: {self.output} exists already"
+            return one_line(f"skipped {self.input}: {self.output} exists already")
         if not self.ok:
             return failed_line(self.input, self.error or "")
-        lines = [
+        lines = [one_line(
             f"ok     {self.input}: {self.rows_in} rows in, {self.rows_out} out -> {self.output} ({self.seconds:.2f} s)"
-        ]
+        )]
         policy = input_repairs(vars(self))
         if policy:  # also among the warnings, on stderr: the report is the file's record, kept with its output
             lines.append(f"       input policy: {'; '.join(policy)}")

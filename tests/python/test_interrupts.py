@@ -262,8 +262,8 @@ def test_an_interrupt_right_after_a_temporary_file_is_made_leaves_nothing(
     out.write_text(PREVIOUS)
     made = StagedFile.__init__
 
-    def interrupted(self: StagedFile, path: Path) -> None:
-        made(self, path)
+    def interrupted(self: StagedFile, path: Path, **how: bool) -> None:
+        made(self, path, **how)
         raise KeyboardInterrupt  # the file exists, and nobody holds it yet
 
     monkeypatch.setattr(StagedFile, "__init__", interrupted)

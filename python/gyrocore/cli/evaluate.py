@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import batch_names
 from .._checks import keep_readings
 from ..evaluate import Method, Score, compare, format_bias_sources, format_table, plot_path
 from ..evaluate_compare import naming_log
@@ -216,6 +217,10 @@ def _plot_paths(plot_dir: str, logs: list[Log]) -> list[Path]:
             raise ValueError(f"--plot-dir: {paths[path].path} and {log.path} would both be plotted to {path} "
                              f"(both logs are named {log.name}); plot them in separate runs")
         paths[path] = log
+    # Drive.png and drive.png where the folder ignores case (macOS, Windows): one replaced the other
+    said = batch_names.clash([log.path or log.name for log in paths.values()], list(paths), Path(plot_dir), "plotted")
+    if said is not None:
+        raise ValueError(f"--plot-dir: {said}; plot them in separate runs")
     return list(paths)
 
 

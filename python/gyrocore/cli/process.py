@@ -248,7 +248,8 @@ def _one(inputs: list[Path], out: Path, args: argparse.Namespace, kwargs: dict[s
         # a file that fails has no report to carry its warnings: they are collected here (as
         # warnings they are ignored, see run)
         with progress_bar(inputs[0].name) as bar, collected(raised):
-            report = process_file(inputs[0], out, progress=bar, **_run_options(args), **kwargs)
+            report = process_file(inputs[0], out, progress=bar, overwrite=args.overwrite, **_run_options(args),
+                                  **kwargs)
     except Exception:
         # what looked wrong before the error often says why (float32 times that cannot increase);
         # the error follows, in one line
@@ -289,6 +290,9 @@ def _many(out: Path, args: argparse.Namespace, kwargs: dict[str, Any]) -> int:
         fmt=args.format,
         progress=True,
         skip_existing=args.skip_existing,
+        # an output another run writes meanwhile is kept unless --overwrite (checked before the
+        # work, it appeared since)
+        overwrite=args.overwrite,
         **_run_options(args),
         **kwargs,
     )

@@ -92,12 +92,35 @@ def named_if_no_room(path: Path, error: BaseException) -> BaseException:
     return named
 
 
+def name_max(folder: Path) -> int:
+    """The longest file name, in bytes, that ``folder`` (or, where it does not exist yet, the
+    nearest folder above it) takes: 255 on the usual filesystems, where it cannot be asked."""
+    while not folder.is_dir() and folder != folder.parent:
+        folder = folder.parent
+    try:
+        return os.pathconf(folder, "PC_NAME_MAX")
+    except (OSError, ValueError, AttributeError):  # no pathconf (Windows), or the folder cannot say
+        return 255
+
+
+def temporary_name(name: str, limit: int = 255) -> str:
+    """The hidden name ``.NAME.<random>.tmp`` under which the file ``name`` is written, its ``NAME``
+    cut short where the whole would be longer than ``limit`` bytes: an output of a long name (an
+    input's name of 238-255 bytes kept) failed with ``File name too long`` naming the hidden file."""
+    token = f".{secrets.token_hex(6)}.tmp"
+    room = limit - 1 - len(token)
+    while len(os.fsencode(name)) > room:  # cut whole characters, never a multi-byte one in half
+        name = name[:-1]
+    return f".{name}{token}"
+
+
 class StagedFile:
     """A temporary file next to ``path`` that becomes ``path`` on :meth:`commit`.
 
     :meth:`discard` (call it in a ``finally``) removes it unless committed, so an error or an
     interruption never leaves ``path`` half written. A hard kill can leave the hidden temporary
-    file (``.NAME.*.tmp``) behind, but never a partial ``path``.
+    file (``.NAME.*.tmp``, ``NAME`` cut short where the whole would be too long) behind, but never
+    a partial ``path``.
 
     Where ``path`` is a symbolic link, the file it leads to (:attr:`target`, its final target) is
     staged beside and replaced, and the link is kept: renamed over, the link became a regular file
@@ -105,15 +128,17 @@ class StagedFile:
     file it replaces (a calibration kept at 0600 stays 0600); a new name gets the umask's.
     """
 
-    def __init__(self, path: str | Path) -> None:
+    def __init__(self, path: str | Path, *, replace: bool = True) -> None:
         path = Path(path)  # exported: a path as text failed on a missing parent
         self.path = path
+        #: False: :meth:`commit` never replaces a file that appeared at ``path`` meanwhile (see there)
+        self.replace = replace
         #: The file that is replaced: ``path``, or the final target of ``path`` where it is a link
         #: (also one that leads nowhere yet, whose target is then created).
         self.target = Path(os.path.realpath(path)) if path.is_symlink() else path
         check_replaceable(path)
         for _ in range(3):
-            tmp = self.target.parent / f".{self.target.name}.{secrets.token_hex(6)}.tmp"
+            tmp = self.target.parent / temporary_name(self.target.name, name_max(self.target.parent))
             _live.add(tmp)
             try:
                 # created exclusively with the umask's permissions (mkstemp's 0600 would hide the
@@ -156,8 +181,32 @@ class StagedFile:
         if mode is not None:  # after the sync, which opens the file for writing (a 0400 file's mode)
             os.chmod(self.tmp, mode)
         _signals.check()
-        os.replace(self.tmp, self.target)
+        if self.replace:
+            os.replace(self.tmp, self.target)
+        else:
+            self._place_new()
         _live.discard(self.tmp)
+
+    def _place_new(self) -> None:
+        """Give the temporary file its name only if nothing has it yet (a hard link made, which fails
+        where the name is taken, then the temporary name removed): a run told not to replace an
+        output checked that there was none before its work, and another run writing the same output
+        meanwhile had its output replaced without a word, both reported ok."""
+        taken = FileExistsError(f"{self.path}: written meanwhile by something else (another run writing the same "
+                                "output?); it is kept, and this run's output is not written: pass --overwrite to "
+                                "replace it, or write elsewhere")
+        try:
+            os.link(self.tmp, self.target)
+        except FileExistsError:
+            raise taken from None
+        except OSError as e:  # no hard links here (FAT, some network shares): checked, then renamed
+            if e.errno not in (errno.EPERM, errno.ENOTSUP, errno.EOPNOTSUPP, errno.EXDEV, errno.EMLINK):
+                raise
+            if os.path.lexists(self.target):
+                raise taken from None
+            os.replace(self.tmp, self.target)
+            return
+        self.tmp.unlink()
 
     def discard(self) -> None:
         """Remove the temporary file if it is still there."""

@@ -96,11 +96,33 @@ def check_not_input(out: str | Path, inputs: Iterable[str | Path]) -> None:
     # names) makes resolve raise RuntimeError; realpath leaves the loop's name, which reading or
     # writing it then names as an error
     target = Path(os.path.realpath(out))
+    above = _folders_above(out)
     for p in map(Path, inputs):
         real = Path(os.path.realpath(p))
-        inside = p.is_dir() and real in target.parents
+        # by name, and as the same folder under another name, which realpath does not see: one in
+        # another case where the filesystem ignores case (macOS, Windows), a bind mount
+        inside = p.is_dir() and (real in target.parents or file_id(p) in above)
         if target == real or inside or (out.exists() and p.exists() and os.path.samefile(out, p)):
             raise ValueError(f"refusing to write {out} over or inside the input {p}; write it elsewhere")
+
+
+def file_id(path: str | Path) -> tuple[int, int] | None:
+    """What makes ``path`` the file or folder it is (its device and inode, as ``os.path.samefile``
+    compares them), whatever its name; None where nothing is there."""
+    try:
+        st = os.stat(path)
+    except (OSError, ValueError):
+        return None
+    return st.st_dev, st.st_ino
+
+
+def _folders_above(out: Path) -> set[tuple[int, int] | None]:
+    """The identities (:func:`file_id`) of the folders that hold ``out``, as far as they exist."""
+    found: set[tuple[int, int] | None] = set()
+    for folder in out.absolute().parents:
+        if (got := file_id(folder)) is not None:
+            found.add(got)
+    return found
 
 
 class HeadingWriter:
@@ -116,10 +138,14 @@ class HeadingWriter:
         heading: ``enu`` (default) or ``compass`` (see :func:`convert_heading`).
         columns: the columns to write, in this order (see :func:`check_columns`); the results
             written need only hold those (``outputs=`` of :meth:`gyrocore.Pipeline.process`).
+        replace: False: a file that appears at ``path`` while the table is written is kept, and
+            the table is not written (FileExistsError at the end).
     """
 
-    def __init__(self, path: str | Path, *, heading: str = "enu", columns: Sequence[str] = OUTPUT_COLUMNS) -> None:
+    def __init__(self, path: str | Path, *, heading: str = "enu", columns: Sequence[str] = OUTPUT_COLUMNS,
+                 replace: bool = True) -> None:
         self.path = Path(path)
+        self.replace = replace  # False: a file that appears at path meanwhile is kept (StagedFile)
         self.columns = check_columns(columns)
         self.format = output_format(self.path)
         require_choice("heading convention", heading, HEADING_CONVENTIONS)
@@ -136,7 +162,7 @@ class HeadingWriter:
             pa = require("pyarrow", f"{self.path}: writing Parquet files")
             pq = require("pyarrow.parquet", f"{self.path}: writing Parquet files")
             import_pyarrow_lazy_modules()
-        self._staged = StagedFile(self.path)
+        self._staged = StagedFile(self.path, replace=self.replace)
         tmp = self._staged.tmp
         try:
             if self.format == "csv":

@@ -1,0 +1,111 @@
+"""Two runs writing one output at once: a run told not to replace an output (``gyrocore process``
+without --overwrite, ``overwrite=False``) checks before its work that there is none, and another
+run's output that appeared meanwhile was replaced at the end without a word, both reported ok.
+The other run is played here by a file written while the log is processed."""
+
+from __future__ import annotations
+
+import errno
+import os
+from pathlib import Path
+
+import pytest
+
+from gyrocore import batch_job
+from gyrocore.batch import process_file, process_many
+from gyrocore.cli import main
+from gyrocore.io import atomic
+
+from .test_batch import leftovers, synthetic_csv
+
+KEPT = "t,heading\n0,1\n"  # the other run's output
+
+
+def _written_meanwhile(out: Path) -> batch_job.Progress:
+    """A progress callback that writes ``out`` as another run would, after the first chunk."""
+    def progress(rows: int, total: int | None, name: str) -> None:
+        if not out.exists():
+            out.write_text(KEPT)
+    return progress
+
+
+def test_an_output_written_meanwhile_is_kept_unless_overwrite(tmp_path: Path) -> None:
+    log, out = synthetic_csv(tmp_path / "a.csv", 3000), tmp_path / "h.csv"
+    with pytest.raises(FileExistsError, match=rf"^{out}: written meanwhile by something else \(another run writing "
+                                              r"the same output\?\); it is kept, and this run's output is not "
+                                              "written: pass --overwrite to replace it, or write elsewhere$"):
+        process_file(log, out, preset="raw", chunk_rows=1000, progress=_written_meanwhile(out), overwrite=False)
+    assert out.read_text() == KEPT
+    assert leftovers(tmp_path) == []
+    # replacing is what overwrite (the default) asks for
+    report = process_file(log, out, preset="raw", chunk_rows=1000, progress=_written_meanwhile(out))
+    assert report.rows_out == 3000 and len(out.read_text().splitlines()) == 3001
+
+
+def test_a_batch_fails_the_file_whose_output_was_written_meanwhile(tmp_path: Path,
+                                                                   monkeypatch: pytest.MonkeyPatch) -> None:
+    logs, out = tmp_path / "logs", tmp_path / "out"
+    logs.mkdir()
+    synthetic_csv(logs / "a.csv", 300)
+    synthetic_csv(logs / "b.csv", 300, seed=1)
+    plan = batch_job._FileJob._plan
+
+    def plan_then_other_run(job: batch_job._FileJob, *args: object) -> object:
+        if job.out.name == "a.csv":
+            job.out.write_text(KEPT)
+        return plan(job, *args)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(batch_job._FileJob, "_plan", plan_then_other_run)
+    summary = process_many([logs], out_dir=out, preset="raw", overwrite=False, jobs=1)
+    assert [r.ok for r in summary.files] == [False, True]
+    assert (summary.files[0].error or "").startswith(f"{out / 'a.csv'}: written meanwhile by something else")
+    assert (out / "a.csv").read_text() == KEPT and leftovers(out) == []
+
+
+def test_the_command_line_keeps_an_output_written_meanwhile_unless_overwrite(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    log = synthetic_csv(logs / "a.csv", 300)
+    plan = batch_job._FileJob._plan
+
+    def plan_then_other_run(job: batch_job._FileJob, *args: object) -> object:
+        job.out.write_text(KEPT)
+        return plan(job, *args)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(batch_job._FileJob, "_plan", plan_then_other_run)
+    one, folder = tmp_path / "h.csv", tmp_path / "out"
+    assert main(["process", str(log), "--out", str(one), "--preset", "raw"]) == 2
+    assert capsys.readouterr().err.startswith(f"gyrocore: error: {one}: written meanwhile by something else")
+    assert main(["process", str(logs), "--out", str(folder), "--preset", "raw"]) == 1
+    assert f"FAILED {log}: {folder / 'a.csv'}: written meanwhile" in capsys.readouterr().out
+    assert one.read_text() == KEPT and (folder / "a.csv").read_text() == KEPT
+    for out in (one, folder):
+        assert main(["process", str(log if out == one else logs), "--out", str(out), "--preset", "raw",
+                     "--overwrite"]) == 0
+    assert len(one.read_text().splitlines()) == len((folder / "a.csv").read_text().splitlines()) == 301
+
+
+def test_without_hard_links_the_name_is_checked_then_renamed(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # a FAT card or a network share that refuses hard links: the same refusal, and a free name is
+    # still written
+    def no_links(src: object, dst: object) -> None:
+        raise OSError(errno.EPERM, "Operation not permitted")
+
+    monkeypatch.setattr(atomic.os, "link", no_links)
+    for taken in (True, False):
+        path = tmp_path / f"{taken}.csv"
+        staged = atomic.StagedFile(path, replace=False)
+        try:
+            staged.tmp.write_text("new")
+            if taken:
+                path.write_text(KEPT)
+                with pytest.raises(FileExistsError, match="written meanwhile"):
+                    staged.commit()
+            else:
+                staged.commit()
+        finally:
+            staged.discard()
+        assert path.read_text() == (KEPT if taken else "new")
+    assert leftovers(tmp_path) == []
+    assert sorted(os.listdir(tmp_path)) == ["False.csv", "True.csv"]
