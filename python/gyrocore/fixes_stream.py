@@ -5,8 +5,8 @@ says of fixes that arrive late or far ahead. :class:`gyrocore.Pipeline` and
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from typing import TYPE_CHECKING
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any
 
 from ._checks import warn
 
@@ -89,12 +89,23 @@ def last_given(fixes: Fixes, before: GivenFix | None) -> GivenFix | None:
 class StreamFixes:
     """What a stream keeps of the fixes it was given: the last one, which may still wait for its
     samples (a block whose fixes start behind it is refused), and whether fixes far ahead of the
-    samples were said."""
+    samples, most of them rejected, or any re-admitted were said (a pickle keeps both:
+    :meth:`kept`)."""
 
-    def __init__(self, last: GivenFix | None = None) -> None:
+    def __init__(self, last: GivenFix | None = None, said: Sequence[bool] = ()) -> None:
         self.last = last
-        self.ahead_said = False
-        self.rejected_said = self.readmitted_said = False
+        # a pickle made before the flags were kept has none: said again once, as before
+        self.ahead_said, self.rejected_said, self.readmitted_said = (list(said) + [False] * 3)[:3]
+
+    def kept(self) -> dict[str, Any]:
+        """What a stream's pickle keeps (``last_fix``, ``fixes_said``), for :meth:`restored`: a
+        stream restored after each block without the flags repeated its warnings on every block."""
+        return {"last_fix": self.last, "fixes_said": [self.ahead_said, self.rejected_said, self.readmitted_said]}
+
+    @classmethod
+    def restored(cls, state: Mapping[str, Any]) -> StreamFixes:
+        """The fixes' part of a stream read back from :meth:`kept` (or an older pickle's)."""
+        return cls(state.get("last_fix"), [bool(s) for s in state.get("fixes_said", ())])
 
     def check(self, block: Fixes, waits: bool) -> None:
         """Refuses ``block`` if its first fix comes before the last one given, or is it again,

@@ -60,7 +60,7 @@ __all__ = [
 __dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 #: The fix stage's columns of a block from the core: heading sigma, bias, scale, and the fix
-#: counts (applied, rejected, before the first sample, waiting for a later block).
+#: counts (applied, rejected, readmitted, before the first sample, waiting for a later block).
 _Fused = tuple[FloatArray | None, FloatArray | None, FloatArray | None, tuple[int, int, int, int, int]]
 
 #: Parameters of FOG eq 5's temperature model: without one, a temperature given is not used.
@@ -412,7 +412,7 @@ class Pipeline:
             "unmeasured": self._unmeasured,
             "bias_warning": self._bias_warning,
             "watched": self._watch.readings,
-            "last_fix": self._fixes.last,
+            **self._fixes.kept(),
             "unit_head": None if self._unit_head is None else [a.tolist() for a in self._unit_head],
         }
 
@@ -426,7 +426,7 @@ class Pipeline:
         self._unmeasured = state.get("unmeasured")
         self._bias_warning = state.get("bias_warning", self._unmeasured)
         self._watch = WindowWatch.restored(state.get("watched", []))
-        self._fixes = StreamFixes(state.get("last_fix"))
+        self._fixes = StreamFixes.restored(state)
         self._speed_said = False
 
     def __repr__(self) -> str:
