@@ -89,7 +89,38 @@ def input_warnings() -> Iterator[list[str]]:
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", InputWarning)
         yield messages
-    messages += merged_by_preset(list(dict.fromkeys(str(w.message) for w in caught)))
+    messages += merged_by_preset(merged_by_count(list(dict.fromkeys(str(w.message) for w in caught))))
+
+
+#: The fix stage's warnings about its gate, split where the figure of each method's run stands:
+#: each method's corrected rate runs a filter of its own, whose counts differ.
+_GATE_COUNTS = (
+    re.compile(r"()(\d+)( time\(s\) the gate rejected every heading fix .*)", re.DOTALL),
+    re.compile(r"(the outlier gate rejected )(\d+)( of the \d+ heading fixes it reached.*)", re.DOTALL),
+)
+
+
+def merged_by_count(messages: list[str]) -> list[str]:
+    """``messages`` with the gate's warnings that differ only in a method's count said once, with
+    the range of the counts: `gyrocore evaluate` said "N time(s) ... took them in again" once for
+    each different N of its methods (4 times on a log), each with the same list of causes."""
+    counts: dict[tuple[str, str], list[int]] = {}
+    for m in messages:
+        for pattern in _GATE_COUNTS:
+            if (match := pattern.fullmatch(m)) is not None:
+                counts.setdefault((match.group(1), match.group(3)), []).append(int(match.group(2)))
+
+    def said(m: str) -> str | None:
+        match = next(filter(None, (p.fullmatch(m) for p in _GATE_COUNTS)), None)
+        if match is None:
+            return m
+        found = counts.pop((match.group(1), match.group(3)), None)
+        if found is None:  # said with the first of them
+            return None
+        low, high = min(found), max(found)
+        return f"{match.group(1)}{low if low == high else f'{low} to {high}'}{match.group(3)}"
+
+    return [m for m in map(said, messages) if m is not None]
 
 
 #: A message one preset gives of itself (``preset 'hdr' removes a static bias, but ...``).
