@@ -80,11 +80,12 @@ def test_a_stream_pickled_before_its_warnings_were_kept_still_reads_back(
         assert sum("took them in again" in str(w.message) for w in caught) == 1
 
 
-def test_evaluate_says_each_gate_warning_once_per_log_whatever_each_method_counted(tmp_path: Path) -> None:
+def test_evaluate_says_each_fix_warning_once_per_log_whatever_each_method_found(tmp_path: Path) -> None:
     # Each method's corrected rate runs its own filter, and its counts differ: before, `gyrocore
     # evaluate` said "N time(s) ... took them in again" once per different N (kitti_2011_09_30_0033,
-    # fixes' sigmas stated 10 times too small: 4 times, for 3, 6, 7 and 9) and "the outlier gate
-    # rejected N of the 166" 5 times, each with the same long list of causes.
+    # fixes' sigmas stated 10 times too small: 4 times, for 3, 6, 7 and 9), "the outlier gate
+    # rejected N of the 166" 5 times, each with the same long list of causes, and the fit's "the
+    # heading fixes disagree with the gyro's turn" 4 times.
     log = gyrocore.read_log(real_log_path("kitti_2011_09_30_0033"))
     honest = gyrocore.sim.gnss_fixes(*log.reference(), seed=1)
     path = tmp_path / "fixes.csv"
@@ -102,3 +103,5 @@ def test_evaluate_says_each_gate_warning_once_per_log_whatever_each_method_count
     assert len(said) == 1 and f"{readmitted[0]} to {readmitted[-1]} time(s)" in said[0], lines
     said = [m for m in lines if "the outlier gate rejected" in m]
     assert len(said) == 1 and f"rejected {rejected[0]} to {rejected[-1]} of the" in said[0], lines
+    said = [m for m in lines if "disagree with the gyro's turn" in m]
+    assert len(said) == 1 and " to " in said[0].split("times as much")[0], lines

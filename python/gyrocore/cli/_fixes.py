@@ -92,33 +92,32 @@ def input_warnings() -> Iterator[list[str]]:
     messages += merged_by_preset(merged_by_count(list(dict.fromkeys(str(w.message) for w in caught))))
 
 
-#: The fix stage's warnings about its gate, split where the figure of each method's run stands:
-#: each method's corrected rate runs a filter of its own, whose counts differ.
-_GATE_COUNTS = (
-    re.compile(r"()(\d+)( time\(s\) the gate rejected every heading fix .*)", re.DOTALL),
-    re.compile(r"(the outlier gate rejected )(\d+)( of the \d+ heading fixes it reached.*)", re.DOTALL),
-)
+#: A figure in a warning's text (a count, a ratio, ``1e-05``).
+_FIGURE = re.compile(r"\d+(?:\.\d+)?(?:e[+-]?\d+)?")
 
 
 def merged_by_count(messages: list[str]) -> list[str]:
-    """``messages`` with the gate's warnings that differ only in a method's count said once, with
-    the range of the counts: `gyrocore evaluate` said "N time(s) ... took them in again" once for
-    each different N of its methods (4 times on a log), each with the same list of causes."""
-    counts: dict[tuple[str, str], list[int]] = {}
+    """``messages`` with those that differ only in their figures said once, each figure that
+    differs as the range of them: each method's corrected rate runs a fix stage of its own, and
+    `gyrocore evaluate` said "N time(s) ... took them in again" once for each different N of its
+    methods (4 times on a log), and the gate's and the fit's warnings as often, each with the
+    same list of causes."""
+    figures: dict[str, list[list[str]]] = {}
     for m in messages:
-        for pattern in _GATE_COUNTS:
-            if (match := pattern.fullmatch(m)) is not None:
-                counts.setdefault((match.group(1), match.group(3)), []).append(int(match.group(2)))
+        figures.setdefault(_FIGURE.sub("#", m), []).append(_FIGURE.findall(m))
+
+    def ranged(column: tuple[str, ...]) -> str:
+        low, high = min(column, key=float), max(column, key=float)
+        return low if float(low) == float(high) else f"{low} to {high}"
 
     def said(m: str) -> str | None:
-        match = next(filter(None, (p.fullmatch(m) for p in _GATE_COUNTS)), None)
-        if match is None:
-            return m
-        found = counts.pop((match.group(1), match.group(3)), None)
+        found = figures.pop(_FIGURE.sub("#", m), None)
         if found is None:  # said with the first of them
             return None
-        low, high = min(found), max(found)
-        return f"{match.group(1)}{low if low == high else f'{low} to {high}'}{match.group(3)}"
+        if len(found) == 1:
+            return m
+        ranges = [ranged(column) for column in zip(*found)]
+        return "".join(text + figure for text, figure in zip(_FIGURE.split(m), ranges + [""]))
 
     return [m for m in map(said, messages) if m is not None]
 
