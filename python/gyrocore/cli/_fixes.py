@@ -84,7 +84,8 @@ def evaluate_with_fixes(args: argparse.Namespace, logs: Sequence[Log | Failed], 
 def input_warnings() -> Iterator[list[str]]:
     """The messages of the warnings raised inside (every :class:`~gyrocore.InputWarning`, though
     each method run on a log repeats it), each once, for the caller to print with the log's name;
-    the same message of several presets once, naming them all (:func:`merged_by_preset`)."""
+    the same message of several presets once, naming them all (:func:`merged_by_preset`), and
+    one whose figures differ among the methods once, with their ranges (:func:`merged_by_count`)."""
     messages: list[str] = []
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", InputWarning)
