@@ -105,3 +105,24 @@ def test_evaluate_says_each_fix_warning_once_per_log_whatever_each_method_found(
     assert len(said) == 1 and f"rejected {rejected[0]} to {rejected[-1]} of the" in said[0], lines
     said = [m for m in lines if "disagree with the gyro's turn" in m]
     assert len(said) == 1 and " to " in said[0].split("times as much")[0], lines
+
+
+@pytest.mark.filterwarnings("ignore")  # its locked-out stream warns, as it should
+def test_a_re_admitted_fix_moves_the_heading_more_than_half_way_to_it_and_not_all() -> None:
+    # docs/fixes.md: the heading takes c/(1+c) or more of a re-admitted fix's innovation (its
+    # square c > 1 times the gate's bound), not all of it. A filter sure of a bias of 0 on a gyro
+    # reading 0.02 rad/s at rest, true heading 0, one 1 deg fix a second, each on a sample.
+    f = gyrocore.fixes.Fusion(initial_bias_sigma=1e-5, bias_walk=1e-9, arw=1e-5, initial_heading_sigma=1e-3,
+                              readmit_after=5.0)
+    dt, bias, taken = 0.01, 0.02, []
+    t = np.arange(0.0, 60.0, dt)
+    for k in range(1, 60):
+        block = t[(t > k - 1) & (t <= k + dt / 2)] if k > 1 else t[t <= k + dt / 2]
+        before = f.counts()["readmitted"]
+        r = f.process(block, np.full(len(block), bias), Fixes([float(k)], [0.0], [math.radians(1)]))
+        if f.counts()["readmitted"] > before:
+            # the last sample is the fix's: its heading without the fix, from the sample before
+            without = r.heading[-2] + bias * dt
+            taken.append(1.0 - r.heading[-1] / without)
+    assert len(taken) >= 2, taken
+    assert all(0.5 < w < 1.0 for w in taken), taken
