@@ -265,7 +265,7 @@ class Fusion:
         block that still waits is an error (the fixes were given again)."""
         f = Fixes.empty() if fixes is None else as_fixes(fixes)
         tt, r = as_float_array("t", t), as_float_array("rate", rate)
-        self._fixes.check(f, waits=counts_dict(self._inner.counts())["waiting"] > 0)
+        f = self._fixes.check(f, waits=counts_dict(self._inner.counts())["waiting"] > 0)
         try:
             h, s, b, sc = self._inner.process(tt, r, f.t, f.heading, f.sigma)
         except ValueError as e:

@@ -309,7 +309,7 @@ class Pipeline:
         block = as_fixes(fixes)
         last, given = self._inner.last_time(), self._fixes.last
         # the last fix given waits unless a sample at or after its time was processed
-        self._fixes.check(block, waits=given is not None and (last is None or given[0] > last))
+        block = self._fixes.check(block, waits=given is not None and (last is None or given[0] > last))
         if self._inner.fused():
             return self._inner, block
         if self._inner.last_time() is not None:

@@ -126,3 +126,35 @@ def test_a_re_admitted_fix_moves_the_heading_more_than_half_way_to_it_and_not_al
             taken.append(1.0 - r.heading[-1] / without)
     assert len(taken) >= 2, taken
     assert all(0.5 < w < 1.0 for w in taken), taken
+
+
+@pytest.mark.parametrize("kind", ["fusion", "pipeline"])
+def test_a_fix_repeated_in_the_next_block_is_dropped_as_one_call_drops_it(
+        drive: tuple[np.ndarray, np.ndarray, Fixes], kind: str) -> None:
+    # Each fix written twice (a log's rows written again), the copy arriving with the next block:
+    # one call drops the copy (without_repeats), a stream applied it again, each fix counted twice
+    # (598 fixes gated where one call gates 299; 61 re-admitted with readmit_after=0, 25 in one
+    # call, the heading 1.5 rad apart).
+    t, rate, fixes = drive
+    settings = {**SURE, "readmit_after": 0.0}
+    twice = Fixes(np.repeat(fixes.t, 2), np.repeat(fixes.heading, 2), np.repeat(fixes.sigma, 2))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        whole = fuse(t, rate, twice, **settings)
+    assert whole.counts["applied"] + whole.counts["rejected"] == len(fixes)
+    stream = gyrocore.fixes.Fusion(**settings) if kind == "fusion" else gyrocore.Pipeline("raw", fusion=settings)
+    ends = np.searchsorted(t, fixes.t) + 1  # each block ends on a fix's sample
+    heading, copy = [], np.zeros(0, dtype=int)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        for a, b in zip(np.r_[0, ends], np.r_[ends, len(t)]):
+            mine = np.flatnonzero((fixes.t > (t[a - 1] if a else -np.inf)) & (fixes.t <= t[b - 1]))
+            give = np.r_[copy, mine]  # the copy of the last block's fix first, then this block's own
+            r = stream.process(t[a:b], rate[a:b], fixes=Fixes(fixes.t[give], fixes.heading[give], fixes.sigma[give]))
+            heading.append(r.heading)
+            copy = mine
+    counts = r.fusion.counts if isinstance(r, gyrocore.HeadingResult) else r.counts
+    assert counts["applied"] + counts["rejected"] == len(fixes)
+    assert counts["readmitted"] == whole.counts["readmitted"]
+    np.testing.assert_array_equal(np.concatenate(heading), whole.heading)
+    assert sum("repeat" in str(w.message) for w in caught) == 1
