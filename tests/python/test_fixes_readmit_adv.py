@@ -9,6 +9,7 @@ import pickle
 import subprocess
 import sys
 import warnings
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -33,7 +34,7 @@ def drive() -> tuple[np.ndarray, np.ndarray, Fixes]:
     return t, true_rate + 0.03, Fixes(ft, np.interp(ft, t, psi), np.full(len(ft), math.radians(0.3)))
 
 
-def _blocks(t: np.ndarray, fixes: Fixes, size: int):  # type: ignore[no-untyped-def]
+def _blocks(t: np.ndarray, fixes: Fixes, size: int) -> Iterator[tuple[int, int, Fixes]]:
     """Each block's samples and the fixes up to its last sample."""
     for a in range(0, len(t), size):
         b = min(a + size, len(t))
