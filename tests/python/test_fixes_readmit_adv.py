@@ -159,3 +159,10 @@ def test_a_fix_repeated_in_the_next_block_is_dropped_as_one_call_drops_it(
     assert counts["readmitted"] == whole.counts["readmitted"]
     np.testing.assert_array_equal(np.concatenate(heading), whole.heading)
     assert sum("repeat" in str(w.message) for w in caught) == 1
+
+
+def test_figures_merged_keep_their_signs() -> None:
+    from gyrocore.cli._fixes import merged_by_count
+
+    said = merged_by_count(["bias -0.0018 deg/s, 3 time(s)", "bias -0.005 deg/s, 3 time(s)", "other"])
+    assert said == ["bias -0.005 to -0.0018 deg/s, 3 time(s)", "other"]

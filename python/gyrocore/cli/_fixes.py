@@ -93,8 +93,9 @@ def input_warnings() -> Iterator[list[str]]:
     messages += merged_by_preset(merged_by_count(list(dict.fromkeys(str(w.message) for w in caught))))
 
 
-#: A figure in a warning's text (a count, a ratio, ``1e-05``).
-_FIGURE = re.compile(r"\d+(?:\.\d+)?(?:e[+-]?\d+)?")
+#: A figure in a warning's text (a count, a ratio, ``1e-05``), with its sign: two negative ones,
+#: their minus left in the text, gave a range of -0.0018 to 0.005 for -0.0018 and -0.005.
+_FIGURE = re.compile(r"-?\d+(?:\.\d+)?(?:e[+-]?\d+)?")
 
 
 def merged_by_count(messages: list[str]) -> list[str]:
