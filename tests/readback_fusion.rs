@@ -351,11 +351,12 @@ fn a_fused_pipeline_whose_filter_and_pipeline_disagree_on_time_is_refused() {
 fn a_run_of_rejections_read_back_is_checked_and_an_older_state_reads_without_one() {
     let v = serde_json::to_value(fusion()).unwrap();
     let now = v["anchor"]["t"].as_f64().unwrap();
+    let last_fix = v["last_fix"].as_f64().unwrap();
     assert_eq!(v["counts"]["rejected"], json!(0));
     for (run, name) in [
         (json!([now + 1.0, 1]), "first rejected fix time"),
-        (json!([now, 0]), "rejected run"),
-        (json!([now, 1]), "rejected run"),
+        (json!([last_fix, 0]), "rejected run"),
+        (json!([last_fix, 1]), "rejected run"),
     ] {
         let mut e = v.clone();
         e["rejected_run"] = run;

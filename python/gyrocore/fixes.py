@@ -265,7 +265,7 @@ class Fusion:
         block that still waits is an error (the fixes were given again)."""
         f = Fixes.empty() if fixes is None else as_fixes(fixes)
         tt, r = as_float_array("t", t), as_float_array("rate", rate)
-        self._fixes.check(f, waits=counts_dict(self._inner.counts())["waiting"] > 0)
+        f = self._fixes.check(f, waits=counts_dict(self._inner.counts())["waiting"] > 0)
         try:
             h, s, b, sc = self._inner.process(tt, r, f.t, f.heading, f.sigma)
         except ValueError as e:
@@ -292,11 +292,11 @@ class Fusion:
         return dict(self._inner.settings())
 
     def __getstate__(self) -> dict[str, Any]:
-        return {"state": self._inner.state_json(), "last_fix": self._fixes.last}
+        return {"state": self._inner.state_json(), **self._fixes.kept()}
 
     def __setstate__(self, state: dict[str, Any]) -> None:
         self._inner = _gyrocore.Fusion.from_state_json(state["state"])
-        self._fixes = StreamFixes(state.get("last_fix"))
+        self._fixes = StreamFixes.restored(state)
 
 
 def stage_settings(params: dict[str, Any], settings: dict[str, float] | None) -> dict[str, float]:

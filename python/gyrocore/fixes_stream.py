@@ -5,8 +5,8 @@ says of fixes that arrive late or far ahead. :class:`gyrocore.Pipeline` and
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from typing import TYPE_CHECKING
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any
 
 from ._checks import warn
 
@@ -89,17 +89,43 @@ def last_given(fixes: Fixes, before: GivenFix | None) -> GivenFix | None:
 class StreamFixes:
     """What a stream keeps of the fixes it was given: the last one, which may still wait for its
     samples (a block whose fixes start behind it is refused), and whether fixes far ahead of the
-    samples were said."""
+    samples, most of them rejected, or any re-admitted were said (a pickle keeps both:
+    :meth:`kept`)."""
 
-    def __init__(self, last: GivenFix | None = None) -> None:
+    def __init__(self, last: GivenFix | None = None, said: Sequence[bool] = ()) -> None:
         self.last = last
-        self.ahead_said = False
-        self.rejected_said = self.readmitted_said = False
+        # a pickle made before the flags were kept has none: said again once, as before
+        self.ahead_said, self.rejected_said, self.readmitted_said, self.repeat_said = (list(said) + [False] * 4)[:4]
 
-    def check(self, block: Fixes, waits: bool) -> None:
+    def kept(self) -> dict[str, Any]:
+        """What a stream's pickle keeps (``last_fix``, ``fixes_said``), for :meth:`restored`: a
+        stream restored after each block without the flags repeated its warnings on every block."""
+        said = [self.ahead_said, self.rejected_said, self.readmitted_said, self.repeat_said]
+        return {"last_fix": self.last, "fixes_said": said}
+
+    @classmethod
+    def restored(cls, state: Mapping[str, Any]) -> StreamFixes:
+        """The fixes' part of a stream read back from :meth:`kept` (or an older pickle's)."""
+        return cls(state.get("last_fix"), [bool(s) for s in state.get("fixes_said", ())])
+
+    def check(self, block: Fixes, waits: bool) -> Fixes:
         """Refuses ``block`` if its first fix comes before the last one given, or is it again,
-        while that one still ``waits`` for its samples (:func:`refuse_behind_waiting`)."""
+        while that one still ``waits`` for its samples (:func:`refuse_behind_waiting`). Returns
+        it without a first fix that repeats the last one given, already processed, exactly: one
+        call drops such a repeat (:func:`gyrocore.fixes.without_repeats`), and a stream given each
+        fix twice, the copy with the next block, applied it again (each fix gated twice, a run of
+        rejections twice as long in fixes, re-admitted sooner). Said once a stream."""
         refuse_behind_waiting(block, self.last if waits else None)
+        if not len(block) or (float(block.t[0]), float(block.heading[0]), float(block.sigma[0])) != self.last:
+            return block
+        if not self.repeat_said:
+            warn(f"heading fix 0 at t = {float(block.t[0])!r} s repeats exactly the last fix given with the block "
+                 "before, and is dropped (as any fix that repeats the one before it): one measurement given twice "
+                 "would count as two, tighter than its sigma says")
+            self.repeat_said = True
+        from .fixes import Fixes
+
+        return Fixes(block.t[1:], block.heading[1:], block.sigma[1:])
 
     def taken(self, block: Fixes, last_sample: float | None) -> None:
         """After the core took ``block``: its last fix is kept, and fixes far ahead of the last

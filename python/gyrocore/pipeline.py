@@ -309,7 +309,7 @@ class Pipeline:
         block = as_fixes(fixes)
         last, given = self._inner.last_time(), self._fixes.last
         # the last fix given waits unless a sample at or after its time was processed
-        self._fixes.check(block, waits=given is not None and (last is None or given[0] > last))
+        block = self._fixes.check(block, waits=given is not None and (last is None or given[0] > last))
         if self._inner.fused():
             return self._inner, block
         if self._inner.last_time() is not None:
@@ -412,7 +412,7 @@ class Pipeline:
             "unmeasured": self._unmeasured,
             "bias_warning": self._bias_warning,
             "watched": self._watch.readings,
-            "last_fix": self._fixes.last,
+            **self._fixes.kept(),
             "unit_head": None if self._unit_head is None else [a.tolist() for a in self._unit_head],
         }
 
@@ -426,7 +426,7 @@ class Pipeline:
         self._unmeasured = state.get("unmeasured")
         self._bias_warning = state.get("bias_warning", self._unmeasured)
         self._watch = WindowWatch.restored(state.get("watched", []))
-        self._fixes = StreamFixes(state.get("last_fix"))
+        self._fixes = StreamFixes.restored(state)
         self._speed_said = False
 
     def __repr__(self) -> str:

@@ -32,11 +32,12 @@ pub struct FusionConfig {
     /// (> 0; 10.83 rejects 0.1 % of good fixes; infinity turns the gate off).
     #[cfg_attr(feature = "serde", serde(with = "crate::serde_float"))]
     pub gate: f64,
-    /// Re-admission \[s\]: when the gate has rejected every fix for this long (at least
-    /// [`READMIT_MIN_REJECTED`] of them in a row), the filter takes its own certainty to be what
-    /// is wrong: the next fix within [`READMIT_REACH`] gate radii is applied with the heading's
-    /// variance raised to let it pass and the bias's and scale's raised back to their initial
-    /// ones (>= 0; infinity: never, the gate alone).
+    /// Re-admission \[s\]: when the gate has rejected every fix for this long (from the first it
+    /// rejected), the filter takes its own certainty to be what is wrong: the next fix within
+    /// [`READMIT_REACH`] gate radii that is at least the [`READMIT_MIN_REJECTED`]th in a row to
+    /// fail the gate (two rejected before it) is applied with the heading's variance raised to
+    /// let it pass and the bias's and scale's raised back to their initial ones (>= 0; infinity:
+    /// never, the gate alone).
     #[cfg_attr(
         feature = "serde",
         serde(with = "crate::serde_float", default = "never")
@@ -44,8 +45,9 @@ pub struct FusionConfig {
     pub readmit_after: f64,
 }
 
-/// The fewest fixes in a row the gate rejects before the filter re-admits them (`readmit_after`):
-/// two would let one stray fix on each side of an outage reset the heading.
+/// The fewest fixes in a row that fail the gate, counting the last of them, the one the filter
+/// re-admits (`readmit_after`; two rejected before it): two would let one stray fix on each side
+/// of an outage reset the heading.
 pub const READMIT_MIN_REJECTED: u64 = 3;
 
 /// How far beyond the gate a fix may lie and still be re-admitted, in multiples of the gate's

@@ -39,8 +39,18 @@ impl Fusion {
         let name = "filter sample time";
         crate::error::check_range(name, anchor.sample_t, f64::NEG_INFINITY, now, valid)?;
         if let Some((since, n)) = self.rejected_run {
+            // The run's first fix is one the filter processed: none after the last fix, none
+            // where no fix was, and none before any time (one at -1e300 s had lasted any
+            // readmit_after, and the next fix beyond the gate was re-admitted at once).
             let name = "first rejected fix time";
-            crate::error::check_range(name, since, f64::NEG_INFINITY, now, valid)?;
+            let last = self.last_fix.ok_or(Error::InvalidParameter {
+                name,
+                value: since,
+                valid: "none where no fix was processed",
+            })?;
+            let limit = crate::MAX_TIME;
+            let within = "within -2^40 s and the last fix's time";
+            crate::error::check_range(name, since, -limit, last, within)?;
             let rejected = "at least 1 and at most the fixes rejected";
             let allowed = self.counts.rejected as f64;
             crate::error::check_range("rejected run", n as f64, 1.0, allowed, rejected)?;

@@ -61,9 +61,11 @@ impl Fusion {
 
     /// The covariance of a filter the fixes have shown to be too sure of itself, before the fix
     /// that re-admits them: the heading's variance raised by the innovation's square over the
-    /// gate (the fix then passes it, and is taken almost whole), the scale's and bias's raised
-    /// back to their initial ones (their error is what turned the heading away). A diagonal
-    /// added: the covariance stays one, and the smoother sees it as noise entering at the fix.
+    /// gate (the fix then passes it, and the heading takes at least c/(1+c) of the innovation
+    /// where its square is c times the gate's bound: over half, 16/17 at [`READMIT_REACH`]), the
+    /// scale's and bias's raised back to their initial ones (their error is what turned the
+    /// heading away). A diagonal added: the covariance stays one, and the smoother sees it as
+    /// noise entering at the fix.
     #[cold]
     fn reopen(&self, p: &mut Mat3, nu: f64) {
         let c = &self.config;

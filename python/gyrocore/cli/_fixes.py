@@ -84,12 +84,44 @@ def evaluate_with_fixes(args: argparse.Namespace, logs: Sequence[Log | Failed], 
 def input_warnings() -> Iterator[list[str]]:
     """The messages of the warnings raised inside (every :class:`~gyrocore.InputWarning`, though
     each method run on a log repeats it), each once, for the caller to print with the log's name;
-    the same message of several presets once, naming them all (:func:`merged_by_preset`)."""
+    the same message of several presets once, naming them all (:func:`merged_by_preset`), and
+    one whose figures differ among the methods once, with their ranges (:func:`merged_by_count`)."""
     messages: list[str] = []
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", InputWarning)
         yield messages
-    messages += merged_by_preset(list(dict.fromkeys(str(w.message) for w in caught)))
+    messages += merged_by_preset(merged_by_count(list(dict.fromkeys(str(w.message) for w in caught))))
+
+
+#: A figure in a warning's text (a count, a ratio, ``1e-05``), with its sign: two negative ones,
+#: their minus left in the text, gave a range of -0.0018 to 0.005 for -0.0018 and -0.005.
+_FIGURE = re.compile(r"-?\d+(?:\.\d+)?(?:e[+-]?\d+)?")
+
+
+def merged_by_count(messages: list[str]) -> list[str]:
+    """``messages`` with those that differ only in their figures said once, each figure that
+    differs as the range of them: each method's corrected rate runs a fix stage of its own, and
+    `gyrocore evaluate` said "N time(s) ... took them in again" once for each different N of its
+    methods (4 times on a log), and the gate's and the fit's warnings as often, each with the
+    same list of causes."""
+    figures: dict[str, list[list[str]]] = {}
+    for m in messages:
+        figures.setdefault(_FIGURE.sub("#", m), []).append(_FIGURE.findall(m))
+
+    def ranged(column: tuple[str, ...]) -> str:
+        low, high = min(column, key=float), max(column, key=float)
+        return low if float(low) == float(high) else f"{low} to {high}"
+
+    def said(m: str) -> str | None:
+        found = figures.pop(_FIGURE.sub("#", m), None)
+        if found is None:  # said with the first of them
+            return None
+        if len(found) == 1:
+            return m
+        ranges = [ranged(column) for column in zip(*found)]
+        return "".join(text + figure for text, figure in zip(_FIGURE.split(m), ranges + [""]))
+
+    return [m for m in map(said, messages) if m is not None]
 
 
 #: A message one preset gives of itself (``preset 'hdr' removes a static bias, but ...``).

@@ -1,0 +1,43 @@
+//! A run of rejected fixes (`rejected_run`, the gate's lock-out) read back from an edited state
+//! (`serde` feature): its first fix is one the filter processed, so no later than the last fix and
+//! within the times a filter keeps (+-2^40 s).
+#![cfg(feature = "serde")]
+
+use gyrocore::*;
+use serde_json::{json, Value};
+
+mod states;
+use states::{fusion, refused};
+
+/// The stored filter of `states::fusion` (last fix at 4.5 s, standing at 4.99 s) with three fixes
+/// rejected and `rejected_run` set to `run`.
+fn with_run(run: Value) -> Value {
+    let mut v = serde_json::to_value(fusion()).unwrap();
+    assert_eq!(v["last_fix"], json!(4.5));
+    v["counts"]["rejected"] = json!(3);
+    v["rejected_run"] = run;
+    v
+}
+
+#[test]
+fn a_run_that_began_before_any_time_or_after_the_last_fix_is_refused() {
+    // Before, each was read back: a run begun at -1e300 s had lasted any readmit_after, and the
+    // filter re-admitted the next fix beyond the gate at once; one begun at 4.7 s (no fix was
+    // processed after 4.5 s) or with no fix processed at all described no run there could be.
+    let ok: Fusion = serde_json::from_value(with_run(json!([4.5, 3]))).unwrap();
+    assert_eq!(ok.counts().rejected, 3);
+    for run in [json!([-1e300, 3]), json!([-1.2e12, 1]), json!([4.7, 1])] {
+        let err = refused::<Fusion>(with_run(run.clone()));
+        assert!(
+            err.contains("invalid parameter first rejected fix time"),
+            "{run}: {err}"
+        );
+    }
+    let mut no_fix = with_run(json!([4.5, 1]));
+    no_fix["last_fix"] = Value::Null;
+    let err = refused::<Fusion>(no_fix);
+    assert!(
+        err.contains("invalid parameter first rejected fix time"),
+        "{err}"
+    );
+}
