@@ -69,6 +69,8 @@ def _velocities(log: gyrocore.Log, f: Fixes, rng: np.random.Generator) -> Fixes:
 
 ROWS: tuple[tuple[str, Spoil], ...] = (
     ("honest", lambda log, f, rng: f),
+    ("honest, 0.3 deg", lambda log, f, rng: gyrocore.sim.gnss_fixes(*log.reference(), seed=1, sigma_deg=0.3)),
+    ("honest, 0.1 deg", lambda log, f, rng: gyrocore.sim.gnss_fixes(*log.reference(), seed=1, sigma_deg=0.1)),
     ("sigma stated 2 times too small", _sigma(1 / 2)),
     ("sigma stated 3 times too small", _sigma(1 / 3)),
     ("sigma stated 10 times too small", _sigma(1 / 10)),

@@ -230,7 +230,9 @@ def warn_readmitted(counts: Mapping[str, int]) -> bool:
 _CAUSES = ("Check the units: fix headings in rad, counter-clockwise from east (not degrees, not a compass bearing: "
            "from_gnss converts one), fix and gyro times in seconds on one clock (a receiver's latency subtracted), the "
            "rate in rad/s; each fix's sigma its real error (a sigma stated too small, or a fix given twice, rejects the "
-           "fixes after it); a gyro whose bias is far beyond initial_bias_sigma needs a larger one")
+           "fixes after it); a gyro whose bias is far beyond initial_bias_sigma needs a larger one, and one whose "
+           "heading drifts between fixes more than arw and bias_walk allow (fixes far tighter than the gyro: a KITTI "
+           "drive's 10 Hz rate with 0.1 deg fixes) larger ones (gyrocore.allan measures N and K)")
 
 
 def counts_dict(counts: tuple[int, int, int, int, int]) -> dict[str, int]:

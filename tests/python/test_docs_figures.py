@@ -133,7 +133,7 @@ def test_the_ablation_tables_are_what_their_script_prints() -> None:
 def test_the_lock_out_table_is_what_its_script_prints() -> None:
     # docs/fixes.md "The gate's lock-out, and re-admission": `python examples/fixes_lockout.py`
     rows = table("fixes.md", "| fixes | gate alone: causal / smoothed")
-    assert len(rows) == 16
+    assert len(rows) == 18
     assert rows == script_rows("fixes_lockout.py")
 
 
