@@ -109,3 +109,34 @@ def test_without_hard_links_the_name_is_checked_then_renamed(tmp_path: Path, mon
         assert path.read_text() == (KEPT if taken else "new")
     assert leftovers(tmp_path) == []
     assert sorted(os.listdir(tmp_path)) == ["False.csv", "True.csv"]
+
+
+@pytest.mark.parametrize("replace", [True, False])
+def test_an_output_s_name_is_put_on_disk_after_its_rename(replace: bool, tmp_path: Path,
+                                                           monkeypatch: pytest.MonkeyPatch) -> None:
+    """The data was synced before the rename, but not the folder that holds the new name: after a
+    power cut a finished output could be gone, or the file it replaced back."""
+    done: list[tuple[str, str]] = []
+    sync, rename, link = os.fsync, os.replace, os.link
+
+    def fsync(fd: int) -> None:
+        done.append(("sync", os.readlink(f"/proc/self/fd/{fd}")))
+        sync(fd)
+
+    def renamed(a: str | os.PathLike[str], b: str | os.PathLike[str]) -> None:
+        done.append(("name", str(b)))
+        rename(a, b)
+
+    def linked(a: str | os.PathLike[str], b: str | os.PathLike[str]) -> None:
+        done.append(("name", str(b)))
+        link(a, b)
+
+    monkeypatch.setattr(os, "fsync", fsync)
+    monkeypatch.setattr(os, "replace", renamed)
+    monkeypatch.setattr(os, "link", linked)
+    staged = atomic.StagedFile(tmp_path / "h.csv", replace=replace)
+    staged.tmp.write_text("t,heading\n")
+    staged.commit()
+    named = done.index(("name", str(tmp_path / "h.csv")))
+    assert ("sync", str(tmp_path)) in done[named + 1:], done
+    assert (tmp_path / "h.csv").read_text() == "t,heading\n"

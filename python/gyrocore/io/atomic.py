@@ -114,6 +114,22 @@ def temporary_name(name: str, limit: int = 255) -> str:
     return f".{name}{token}"
 
 
+def sync_folder(folder: Path) -> None:
+    """Put a rename in ``folder`` on disk: the file's data was, but its new name lives in the
+    folder, which a power cut could roll back (a finished output gone, or the old one back).
+    Where a folder cannot be opened to sync (Windows, some network filesystems), nothing."""
+    try:
+        fd = os.open(folder, os.O_RDONLY)
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:  # a folder that cannot be synced (EINVAL on some filesystems): its rename stands
+        pass
+    finally:
+        os.close(fd)
+
+
 class StagedFile:
     """A temporary file next to ``path`` that becomes ``path`` on :meth:`commit`.
 
@@ -164,7 +180,8 @@ class StagedFile:
 
     def commit(self) -> None:
         """Make the temporary file ``path`` (its :attr:`target`): on disk first, given the permission
-        bits of the file it replaces, then renamed (atomic on one filesystem).
+        bits of the file it replaces, then renamed (atomic on one filesystem), and the rename put on
+        disk (:func:`sync_folder`).
 
         Raises KeyboardInterrupt instead if a signal came during the run, even one whose exception a
         library swallowed (see :mod:`gyrocore._signals`): an interrupted run keeps the old file.
@@ -186,6 +203,7 @@ class StagedFile:
         else:
             self._place_new()
         _live.discard(self.tmp)
+        sync_folder(self.target.parent)
 
     def _place_new(self) -> None:
         """Give the temporary file its name only if nothing has it yet (a hard link made, which fails
