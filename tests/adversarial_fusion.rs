@@ -4,7 +4,7 @@
 //! blocks of one sample included) and a copy read back at the cut give the bits of one call.
 
 use gyrocore::{Fix, FusedOutputs, FusedPipeline, Fusion, FusionConfig, FusionOutputs, Preset};
-use gyrocore::{Samples, MAX_TIME};
+use gyrocore::{GapAction, InputPolicy, NonFinite, Samples, MAX_TIME};
 use proptest::prelude::*;
 
 /// Increasing times from `t0` with steps from 1e-9 s to 1e5 s, and rates up to 30 rad/s.
@@ -168,11 +168,24 @@ proptest! {
         config in config(),
         cuts in proptest::collection::vec(any::<usize>(), 0..6),
         speed in proptest::collection::vec(prop_oneof![Just(0.0), 0.0..20.0f64, Just(f64::NAN)], 40),
+        nan in proptest::collection::vec(any::<usize>(), 0..8),
+        (skip, reset, gap) in (any::<bool>(), any::<bool>(), prop_oneof![Just(1e-6), Just(0.05), Just(f64::INFINITY)]),
     ) {
         let fx = fixes(&t, &picks);
         let n = t.len();
+        // readings the pipeline holds or skips, and gaps it bridges or restarts at
+        let mut r = r;
+        for k in nan {
+            r[k % n] = f64::NAN;
+        }
+        let mut pipeline = Preset::Tracked.config();
+        pipeline.input = InputPolicy {
+            non_finite: if skip { NonFinite::Skip } else { NonFinite::Hold },
+            gap_limit: gap,
+            gap_action: if reset { GapAction::Reset } else { GapAction::Bridge },
+        };
         let run = |cuts: &[usize]| {
-            let mut p = FusedPipeline::new(Preset::Tracked.config(), config).unwrap();
+            let mut p = FusedPipeline::new(pipeline, config).unwrap();
             let mut cols: [Vec<f64>; 6] = core::array::from_fn(|_| vec![0.0; n]);
             let mut ends: Vec<usize> = cuts.iter().map(|&c| c % (n + 1)).collect();
             ends.sort_unstable();
