@@ -81,6 +81,18 @@ fn config() -> impl Strategy<Value = FusionConfig> {
 
 type Cols = [Vec<f64>; 4];
 
+/// A copy of `x` as a run resumed from a store gets it: read back from JSON with the `serde`
+/// feature, a clone without.
+#[cfg(feature = "serde")]
+fn resumed<T: serde::Serialize + serde::de::DeserializeOwned>(x: &T) -> T {
+    serde_json::from_str(&serde_json::to_string(x).unwrap()).unwrap()
+}
+
+#[cfg(not(feature = "serde"))]
+fn resumed<T: Clone>(x: &T) -> T {
+    x.clone()
+}
+
 /// The filter over `t[from..to]` with the fixes still to come; returns how many it used.
 fn fusion_block(
     f: &mut Fusion,
@@ -126,8 +138,7 @@ fn run_fusion(
     ends.push(n);
     for to in ends {
         used += fusion_block(&mut f, t, r, &fx[used..], &mut cols, from, to);
-        let json = serde_json::to_string(&f).unwrap();
-        f = serde_json::from_str(&json).unwrap();
+        f = resumed(&f);
         from = to;
     }
     // the fixes past the last sample wait, unused
@@ -203,7 +214,7 @@ proptest! {
                 };
                 let samples = Samples { speed: Some(&speed[from..to]), ..Samples::new(&t[from..to], &r[from..to]) };
                 used += p.process_block(samples, &fx[used..], out).unwrap();
-                p = serde_json::from_str(&serde_json::to_string(&p).unwrap()).unwrap();
+                p = resumed(&p);
                 from = to;
             }
             let finite = cols_finite(&cols);
@@ -248,7 +259,7 @@ fn smoothed(
         used += f
             .process_block_smoothed(&t[from..to], &r[from..to], &fx[used..], knots, out)
             .unwrap();
-        f = serde_json::from_str(&serde_json::to_string(&f).unwrap()).unwrap();
+        f = resumed(&f);
         from = to;
     }
     cols
