@@ -44,6 +44,12 @@ impl Fusion {
                 *pij -= k * r;
             }
         }
+        // The heading's variance of eq 6's `P - K H P` as `P_00 r / s`: the same value without
+        // the cancellation of `P_00 - P_00^2 / s` where the fix is far surer than the filter (a
+        // heading of sigma 2^20 rad fixed to 1e-3 rad read back a sigma of 0, and of 1e5 rad one
+        // of 1.38e-3). Its covariances stay as they were: the smoother's gains need them to
+        // match the scale's and bias's block, computed the same way.
+        p[0][0] = row[0] * (r / s);
         Some((x, crate::fixes_covariance::semi_definite(p)))
     }
 
