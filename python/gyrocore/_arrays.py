@@ -43,8 +43,11 @@ def durations_in_seconds(name: str, a: np.ndarray) -> np.ndarray:
     return seconds
 
 
-def as_float_array(name: str, values: ArrayLike) -> FloatArray:
-    """Return ``values`` as a 1-D contiguous float64 array, copying only when needed.
+def as_float_array(name: str, values: ArrayLike, *, copy: bool = False) -> FloatArray:
+    """Return ``values`` as a 1-D contiguous float64 array, copying only when needed, or always
+    with ``copy`` (for an array a result or record keeps: the caller's own array, or the data an
+    ``__array__`` hands over, kept as it is, changed with the caller's, ``r.t[:] -= r.t[0]`` moving
+    the caller's times too).
 
     ``timedelta64`` values are durations and become seconds, whatever their unit (NaT becomes NaN);
     ``datetime64`` is refused, since which epoch a time counts from is the caller's choice.
@@ -81,10 +84,11 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
         raise ValueError(f"{name} must be one-dimensional, got shape {a.shape}")
     if name == "t":
         warn_coarse_times(a)
-    return np.ascontiguousarray(a, dtype=np.float64)
+    out = np.ascontiguousarray(a, dtype=np.float64)
+    return out.copy() if copy and out is array else out  # not already a converted copy
 
 
-def float_fields(record: object, names: Sequence[str], prefix: str = "") -> None:
+def float_fields(record: object, names: Sequence[str], prefix: str = "", *, copy: bool = False) -> None:
     """Set each field ``names`` of the frozen dataclass ``record`` that is not None to
     :func:`as_float_array` of it (named ``prefix`` + its name in an error): a record built from
     pandas columns or lists then holds numpy arrays, and reads them by position (a Series' ``t[0]``
@@ -92,7 +96,7 @@ def float_fields(record: object, names: Sequence[str], prefix: str = "") -> None
     for name in names:
         value = getattr(record, name)
         if value is not None:
-            object.__setattr__(record, name, as_float_array(prefix + name, value))
+            object.__setattr__(record, name, as_float_array(prefix + name, value, copy=copy))
 
 
 def array_fields(record: Any) -> dict[str, FloatArray]:
