@@ -73,3 +73,28 @@ def test_fixes_keep_their_own_arrays(drive: tuple[np.ndarray, np.ndarray]) -> No
         assert f.heading[0] == 0.0
         heading[0] = 0.0
         assert not any(np.shares_memory(a, b) for a in (f.t, f.heading, f.sigma) for b in (ft, heading, sigma))
+
+
+@pytest.mark.parametrize("given", [
+    {"bias": np.ma.masked},
+    {"bias": np.ma.array([0.01, 0.02], mask=[True, True]).mean()},  # the mean of a rest all masked
+    {"bias": 0.0, "hdr_increment_dps": np.ma.masked},
+    {"bias_window": np.ma.array([0.0, 10.0], mask=[False, True])},
+])
+def test_a_masked_parameter_is_refused(drive: tuple[np.ndarray, np.ndarray], given: dict[str, object]) -> None:
+    t, rate = drive
+    key = next(k for k, v in given.items() if np.ma.is_masked(v))
+    with pytest.raises(TypeError, match=f"invalid parameter {key} = .*a masked value holds no number"):
+        gyrocore.process(t, rate, "hdr", **given)  # type: ignore[arg-type]
+
+
+def test_a_masked_option_is_refused(drive: tuple[np.ndarray, np.ndarray]) -> None:
+    t, rate = drive
+    with pytest.raises(TypeError, match=r"interval must be a number \[s\], got masked"):
+        gyrocore.downsample(t, rate, np.ma.masked)  # type: ignore[arg-type]
+
+
+def test_a_masked_value_that_is_given_is_taken(drive: tuple[np.ndarray, np.ndarray]) -> None:
+    t, rate = drive
+    r = gyrocore.process(t, rate, "hdr", bias=np.ma.array([0.01, 0.5], mask=[False, True])[0])
+    assert "0.57296 deg/s" in r.bias_source
