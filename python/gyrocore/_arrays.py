@@ -7,7 +7,7 @@ import datetime
 import math
 import numbers
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from typing import Any
 
 import numpy as np
@@ -76,12 +76,18 @@ def as_float_array(name: str, values: ArrayLike, *, copy: bool = False) -> Float
             big = next(i for i, v in enumerate(a) if abs(v) > sys.float_info.max)  # exact for an int
             raise ValueError(f"{name}[{big}] is an int beyond the range of float64 (about 1.8e308): give numbers a "
                              "float64 holds") from None
+    if a.dtype == np.object_ and a.ndim == 0:  # numpy holds what is no sequence whole: a generator, a set
+        raise TypeError(f"{name} must be a sequence of numbers (a list or array), got {type(a.item()).__name__}"
+                        + (f": give numpy.fromiter({name}, float)" if isinstance(a.item(), Iterator) else ""))
     if a.dtype == np.bool_ or not (
         np.issubdtype(a.dtype, np.floating) or np.issubdtype(a.dtype, np.integer)
     ):
-        raise TypeError(f"{name} must hold real numbers, got dtype {a.dtype}")
+        text = f" (text: give numbers, e.g. numpy.asarray({name}, dtype=float))" if a.dtype.kind in "US" else ""
+        raise TypeError(f"{name} must hold real numbers, got dtype {a.dtype}{text}")
     if a.ndim != 1:
-        raise ValueError(f"{name} must be one-dimensional, got shape {a.shape}")
+        # a column (N, 1) or row (1, N), numpy.matrix's one shape: which axis is time is plain only then
+        flat = f": give one column, e.g. numpy.ravel({name})" if a.ndim == 2 and 1 in a.shape else ""
+        raise ValueError(f"{name} must be one-dimensional, got shape {a.shape}{flat}")
     if name == "t":
         warn_coarse_times(a)
     out = np.ascontiguousarray(a, dtype=np.float64)

@@ -98,3 +98,34 @@ def test_a_masked_value_that_is_given_is_taken(drive: tuple[np.ndarray, np.ndarr
     t, rate = drive
     r = gyrocore.process(t, rate, "hdr", bias=np.ma.array([0.01, 0.5], mask=[False, True])[0])
     assert "0.57296 deg/s" in r.bias_source
+
+
+@pytest.mark.parametrize("given, message", [
+    ((x for x in range(3)), r"^t must be a sequence of numbers \(a list or array\), got generator: give numpy.fromiter\(t, float\)$"),
+    (None, r"^t must be a sequence of numbers \(a list or array\), got NoneType$"),
+])
+def test_what_is_no_sequence_is_named(given: object, message: str) -> None:
+    with pytest.raises(TypeError, match=message):
+        gyrocore.integrate(given, [0.0, 0.1, 0.2])  # type: ignore[arg-type]
+
+
+def test_numbers_as_text_say_how_to_convert(drive: tuple[np.ndarray, np.ndarray]) -> None:
+    t, rate = drive
+    text = [str(x) for x in rate]  # a column read with the csv module
+    with pytest.raises(TypeError, match=r"rate must hold real numbers, got dtype <U\d+ \(text: give numbers, e\.g\. "
+                       r"numpy\.asarray\(rate, dtype=float\)\)"):
+        gyrocore.process(t, text, "hdr", bias=0.0)
+    r = gyrocore.process(t, np.asarray(text, dtype=float), "hdr", bias=0.0)  # the conversion the message gives
+    np.testing.assert_array_equal(r.heading, gyrocore.process(t, rate, "hdr", bias=0.0).heading)
+
+
+@pytest.mark.filterwarnings("ignore::PendingDeprecationWarning")  # numpy's of numpy.matrix
+@pytest.mark.parametrize("shape", ["column", "row", "matrix"])
+def test_a_column_or_row_says_how_to_flatten(drive: tuple[np.ndarray, np.ndarray], shape: str) -> None:
+    t, rate = drive
+    given = {"column": t[:, None], "row": t[None, :], "matrix": np.matrix(t)}[shape]
+    with pytest.raises(ValueError, match=r"^t must be one-dimensional, got shape \(\d+, \d+\): give one column, "
+                       r"e\.g\. numpy\.ravel\(t\)$"):
+        gyrocore.process(given, rate, "hdr", bias=0.0)
+    with pytest.raises(ValueError, match=r"^t must be one-dimensional, got shape \(2, 3\)$"):  # no axis is plainly time
+        gyrocore.process(np.zeros((2, 3)), rate, "hdr", bias=0.0)
