@@ -43,6 +43,14 @@ def durations_in_seconds(name: str, a: np.ndarray) -> np.ndarray:
     return seconds
 
 
+def seconds_of(a: np.ndarray) -> np.ndarray:
+    """An object array of ``datetime.timedelta`` in seconds, as float64 (a ``timedelta64[us]`` of
+    Python's resolution wrapped past +-292,000 years without a word: 999999999 days read as
+    -5.8e12 s)."""
+    second = datetime.timedelta(seconds=1)
+    return np.fromiter((v / second for v in a.flat), np.float64, count=a.size).reshape(a.shape)
+
+
 def as_float_array(name: str, values: ArrayLike, *, copy: bool = False) -> FloatArray:
     """Return ``values`` as a 1-D contiguous float64 array, copying only when needed, or always
     with ``copy`` (for an array a result or record keeps: the caller's own array, or the data an
@@ -59,6 +67,8 @@ def as_float_array(name: str, values: ArrayLike, *, copy: bool = False) -> Float
         array = np.asarray(values)
     except ValueError as e:  # a ragged list: numpy's message names neither the argument nor a fix
         raise ValueError(f"{name} must be one flat sequence of numbers ({e})") from None
+    if array.dtype == np.object_ and array.size and all(isinstance(v, datetime.timedelta) for v in array.flat):
+        array = seconds_of(array)  # Python's durations ([d - start for d in times]), as numpy's are
     a = durations_in_seconds(name, array)
     dates = "times: give seconds, e.g. ({0} - {0}.min()) / numpy.timedelta64(1, 's')".format(name)
     if a.dtype.kind == "M":
@@ -67,9 +77,10 @@ def as_float_array(name: str, values: ArrayLike, *, copy: bool = False) -> Float
         odd = next((i for i, v in enumerate(a) if isinstance(v, (bool, str, bytes)) or not isinstance(v, numbers.Real)), None)
         if odd is not None and isinstance(a[odd], datetime.datetime):  # pandas' times with a time zone
             raise TypeError(f"{name} holds dates and {dates} ({name}[{odd}] is {a[odd]!r})")
-        if odd is not None:
+        if odd is not None:  # a Decimal is a number to its caller, but numpy reads it only when told to
+            fix = f"numpy.asarray({name}, dtype=float)" if isinstance(a[odd], numbers.Number) else "numbers"
             raise TypeError(f"{name} must hold real numbers, got dtype object: {name}[{odd}] is {a[odd]!r} (give "
-                            "numbers, NaN where a value is missing)")
+                            f"{fix}, NaN where a value is missing)")
         try:
             a = a.astype(np.float64)  # every one a number (Decimal is none; Fraction, a huge int are)
         except OverflowError:  # an int beyond float64 (10**400): a bare "int too large to convert to float"

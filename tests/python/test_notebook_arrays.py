@@ -3,13 +3,15 @@ are refused with a message saying what to give."""
 
 from __future__ import annotations
 
+import datetime
+import decimal
 import warnings
 
 import numpy as np
 import pytest
 
 import gyrocore
-from gyrocore import fixes
+from gyrocore import SampleError, fixes
 
 
 @pytest.fixture(scope="module")
@@ -129,3 +131,20 @@ def test_a_column_or_row_says_how_to_flatten(drive: tuple[np.ndarray, np.ndarray
         gyrocore.process(given, rate, "hdr", bias=0.0)
     with pytest.raises(ValueError, match=r"^t must be one-dimensional, got shape \(2, 3\)$"):  # no axis is plainly time
         gyrocore.process(np.zeros((2, 3)), rate, "hdr", bias=0.0)
+
+
+def test_python_durations_are_seconds(drive: tuple[np.ndarray, np.ndarray]) -> None:
+    t, rate = drive
+    start = datetime.datetime(2024, 5, 1, 12, 0, 0)
+    stamps = [start + datetime.timedelta(seconds=float(x)) for x in t]
+    durations = [s - start for s in stamps]  # a notebook's times from the first sample
+    np.testing.assert_array_equal(gyrocore.integrate(durations, rate), gyrocore.integrate(np.round(t, 6), rate))
+    with pytest.raises(SampleError, match=r"t\[0\] = 86399999913600 s is beyond"):  # no wrap past int64 microseconds
+        gyrocore.integrate([datetime.timedelta(days=999_999_999)] * 2, [0.0, 0.0])
+
+
+def test_decimals_say_how_to_convert() -> None:
+    given = [decimal.Decimal("0.01")] * 3
+    with pytest.raises(TypeError, match=r"rate\[0\] is Decimal\('0.01'\) \(give numpy\.asarray\(rate, dtype=float\), "):
+        gyrocore.integrate([0.0, 0.1, 0.2], given)
+    np.testing.assert_allclose(gyrocore.integrate([0.0, 0.1, 0.2], np.asarray(given, dtype=float)), [0.0, 0.001, 0.002])
