@@ -78,7 +78,8 @@ def as_float_array(name: str, values: ArrayLike, *, copy: bool = False) -> Float
         if odd is not None and isinstance(a[odd], datetime.datetime):  # pandas' times with a time zone
             raise TypeError(f"{name} holds dates and {dates} ({name}[{odd}] is {a[odd]!r})")
         if odd is not None:  # a Decimal is a number to its caller, but numpy reads it only when told to
-            fix = f"numpy.asarray({name}, dtype=float)" if isinstance(a[odd], numbers.Number) else "numbers"
+            decimal = isinstance(a[odd], numbers.Number) and not isinstance(a[odd], numbers.Complex)  # not complex
+            fix = f"numpy.asarray({name}, dtype=float)" if decimal else "numbers"
             raise TypeError(f"{name} must hold real numbers, got dtype object: {name}[{odd}] is {a[odd]!r} (give "
                             f"{fix}, NaN where a value is missing)")
         try:

@@ -148,3 +148,8 @@ def test_decimals_say_how_to_convert() -> None:
     with pytest.raises(TypeError, match=r"rate\[0\] is Decimal\('0.01'\) \(give numpy\.asarray\(rate, dtype=float\), "):
         gyrocore.integrate([0.0, 0.1, 0.2], given)
     np.testing.assert_allclose(gyrocore.integrate([0.0, 0.1, 0.2], np.asarray(given, dtype=float)), [0.0, 0.001, 0.002])
+
+
+def test_complex_numbers_are_not_said_to_convert() -> None:
+    with pytest.raises(TypeError, match=r"rate\[0\] is 1j \(give numbers, NaN where a value is missing\)"):
+        gyrocore.integrate([0.0, 0.1, 0.2], np.array([1j, 0.1, 0.2], dtype=object))
