@@ -153,3 +153,16 @@ def test_decimals_say_how_to_convert() -> None:
 def test_complex_numbers_are_not_said_to_convert() -> None:
     with pytest.raises(TypeError, match=r"rate\[0\] is 1j \(give numbers, NaN where a value is missing\)"):
         gyrocore.integrate([0.0, 0.1, 0.2], np.array([1j, 0.1, 0.2], dtype=object))
+
+
+def test_a_bias_table_from_arrays() -> None:
+    from gyrocore.calibration import BiasTable
+
+    given = [np.array([10.0, 30.0]), np.array([0.01, 0.02]), np.array([1e-4, 1e-4]), np.array([10, 10])]
+    table = BiasTable(*given)  # type: ignore[arg-type]
+    assert table == BiasTable((10.0, 30.0), (0.01, 0.02), (1e-4, 1e-4), (10, 10))
+    assert table(20.0) == pytest.approx(0.015)
+    given[1][0] = 1.0  # the caller's array, changed later, is not the table's
+    assert table(10.0) == 0.01
+    with pytest.raises(ValueError, match=r"bias table temperatures\[1\] = 10 degC does not come after 30 degC"):
+        BiasTable(np.array([30.0, 10.0]), *given[1:])  # type: ignore[arg-type]
