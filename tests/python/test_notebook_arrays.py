@@ -166,3 +166,15 @@ def test_a_bias_table_from_arrays() -> None:
     assert table(10.0) == 0.01
     with pytest.raises(ValueError, match=r"bias table temperatures\[1\] = 10 degC does not come after 30 degC"):
         BiasTable(np.array([30.0, 10.0]), *given[1:])  # type: ignore[arg-type]
+
+
+def test_a_reference_keeps_its_own_arrays(drive: tuple[np.ndarray, np.ndarray]) -> None:
+    from gyrocore.evaluate import Reference
+
+    t, rate = drive
+    t_ref, heading_ref = t.copy(), np.cumsum(rate) / 50.0
+    reference = Reference(t_ref, heading_ref)
+    before = reference.e_psi(t, 1.01 * heading_ref)
+    t_ref[10], heading_ref[:] = t_ref[5], 0.0  # out of order, and another heading: checked when it was built
+    assert reference.e_psi(t, 1.01 * np.cumsum(rate) / 50.0) == before
+    assert not any(np.shares_memory(a, b) for a in (reference.t, reference.given) for b in (t_ref, heading_ref))
