@@ -178,3 +178,14 @@ def test_a_reference_keeps_its_own_arrays(drive: tuple[np.ndarray, np.ndarray]) 
     t_ref[10], heading_ref[:] = t_ref[5], 0.0  # out of order, and another heading: checked when it was built
     assert reference.e_psi(t, 1.01 * np.cumsum(rate) / 50.0) == before
     assert not any(np.shares_memory(a, b) for a in (reference.t, reference.given) for b in (t_ref, heading_ref))
+
+
+def test_a_stream_from_one_buffer_keeps_each_chunks_times(drive: tuple[np.ndarray, np.ndarray]) -> None:
+    t, rate = drive
+    p = gyrocore.Pipeline("hdr", bias=0.0)
+    buffer_t, buffer_rate = np.empty(500), np.empty(500)  # a reader's buffer, filled again for each chunk
+    chunks = []
+    for start in range(0, len(t), 500):
+        buffer_t[:], buffer_rate[:] = t[start:start + 500], rate[start:start + 500]
+        chunks.append(p.process(buffer_t, buffer_rate))
+    np.testing.assert_array_equal(np.concatenate([c.t for c in chunks]), t)
