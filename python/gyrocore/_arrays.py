@@ -7,7 +7,7 @@ import datetime
 import math
 import numbers
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from typing import Any
 
 import numpy as np
@@ -43,8 +43,19 @@ def durations_in_seconds(name: str, a: np.ndarray) -> np.ndarray:
     return seconds
 
 
-def as_float_array(name: str, values: ArrayLike) -> FloatArray:
-    """Return ``values`` as a 1-D contiguous float64 array, copying only when needed.
+def seconds_of(a: np.ndarray) -> np.ndarray:
+    """An object array of ``datetime.timedelta`` in seconds, as float64 (a ``timedelta64[us]`` of
+    Python's resolution wrapped past +-292,000 years without a word: 999999999 days read as
+    -5.8e12 s)."""
+    second = datetime.timedelta(seconds=1)
+    return np.fromiter((v / second for v in a.flat), np.float64, count=a.size).reshape(a.shape)
+
+
+def as_float_array(name: str, values: ArrayLike, *, copy: bool = False) -> FloatArray:
+    """Return ``values`` as a 1-D contiguous float64 array, copying only when needed, or always
+    with ``copy`` (for an array a result or record keeps: the caller's own array, or the data an
+    ``__array__`` hands over, kept as it is, changed with the caller's, ``r.t[:] -= r.t[0]`` moving
+    the caller's times too).
 
     ``timedelta64`` values are durations and become seconds, whatever their unit (NaT becomes NaN);
     ``datetime64`` is refused, since which epoch a time counts from is the caller's choice.
@@ -56,6 +67,8 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
         array = np.asarray(values)
     except ValueError as e:  # a ragged list: numpy's message names neither the argument nor a fix
         raise ValueError(f"{name} must be one flat sequence of numbers ({e})") from None
+    if array.dtype == np.object_ and array.size and all(isinstance(v, datetime.timedelta) for v in array.flat):
+        array = seconds_of(array)  # Python's durations ([d - start for d in times]), as numpy's are
     a = durations_in_seconds(name, array)
     dates = "times: give seconds, e.g. ({0} - {0}.min()) / numpy.timedelta64(1, 's')".format(name)
     if a.dtype.kind == "M":
@@ -64,27 +77,36 @@ def as_float_array(name: str, values: ArrayLike) -> FloatArray:
         odd = next((i for i, v in enumerate(a) if isinstance(v, (bool, str, bytes)) or not isinstance(v, numbers.Real)), None)
         if odd is not None and isinstance(a[odd], datetime.datetime):  # pandas' times with a time zone
             raise TypeError(f"{name} holds dates and {dates} ({name}[{odd}] is {a[odd]!r})")
-        if odd is not None:
+        if odd is not None:  # a Decimal is a number to its caller, but numpy reads it only when told to
+            decimal = isinstance(a[odd], numbers.Number) and not isinstance(a[odd], numbers.Complex)  # not complex
+            fix = f"numpy.asarray({name}, dtype=float)" if decimal else "numbers"
             raise TypeError(f"{name} must hold real numbers, got dtype object: {name}[{odd}] is {a[odd]!r} (give "
-                            "numbers, NaN where a value is missing)")
+                            f"{fix}, NaN where a value is missing)")
         try:
             a = a.astype(np.float64)  # every one a number (Decimal is none; Fraction, a huge int are)
         except OverflowError:  # an int beyond float64 (10**400): a bare "int too large to convert to float"
             big = next(i for i, v in enumerate(a) if abs(v) > sys.float_info.max)  # exact for an int
             raise ValueError(f"{name}[{big}] is an int beyond the range of float64 (about 1.8e308): give numbers a "
                              "float64 holds") from None
+    if a.dtype == np.object_ and a.ndim == 0:  # numpy holds what is no sequence whole: a generator, a set
+        raise TypeError(f"{name} must be a sequence of numbers (a list or array), got {type(a.item()).__name__}"
+                        + (f": give numpy.fromiter({name}, float)" if isinstance(a.item(), Iterator) else ""))
     if a.dtype == np.bool_ or not (
         np.issubdtype(a.dtype, np.floating) or np.issubdtype(a.dtype, np.integer)
     ):
-        raise TypeError(f"{name} must hold real numbers, got dtype {a.dtype}")
+        text = f" (text: give numbers, e.g. numpy.asarray({name}, dtype=float))" if a.dtype.kind in "US" else ""
+        raise TypeError(f"{name} must hold real numbers, got dtype {a.dtype}{text}")
     if a.ndim != 1:
-        raise ValueError(f"{name} must be one-dimensional, got shape {a.shape}")
+        # a column (N, 1) or row (1, N), numpy.matrix's one shape: which axis is time is plain only then
+        flat = f": give one column, e.g. numpy.ravel({name})" if a.ndim == 2 and 1 in a.shape else ""
+        raise ValueError(f"{name} must be one-dimensional, got shape {a.shape}{flat}")
     if name == "t":
         warn_coarse_times(a)
-    return np.ascontiguousarray(a, dtype=np.float64)
+    out = np.ascontiguousarray(a, dtype=np.float64)
+    return out.copy() if copy and out is array else out  # not already a converted copy
 
 
-def float_fields(record: object, names: Sequence[str], prefix: str = "") -> None:
+def float_fields(record: object, names: Sequence[str], prefix: str = "", *, copy: bool = False) -> None:
     """Set each field ``names`` of the frozen dataclass ``record`` that is not None to
     :func:`as_float_array` of it (named ``prefix`` + its name in an error): a record built from
     pandas columns or lists then holds numpy arrays, and reads them by position (a Series' ``t[0]``
@@ -92,7 +114,7 @@ def float_fields(record: object, names: Sequence[str], prefix: str = "") -> None
     for name in names:
         value = getattr(record, name)
         if value is not None:
-            object.__setattr__(record, name, as_float_array(prefix + name, value))
+            object.__setattr__(record, name, as_float_array(prefix + name, value, copy=copy))
 
 
 def array_fields(record: Any) -> dict[str, FloatArray]:

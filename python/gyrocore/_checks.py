@@ -236,7 +236,10 @@ def real_number(value: object) -> float | None:
     0-d array of one), else None: not a bool, whose True would pass for 1 (``bias=True`` was a bias
     of 1 rad/s), nor text, which ``float()`` would parse ("0.01" passed for a number), nor None, nor
     a numpy duration or date (an integer type to numpy, for which ``float()`` raised a bare
-    TypeError naming neither the argument nor its unit)."""
+    TypeError naming neither the argument nor its unit), nor a masked value (``numpy.ma.masked``,
+    numpy.ma's mean of samples all masked), which reads as 0.0 or NaN."""
+    if np.ma.is_masked(value):
+        return None
     if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iuf":
         return float(value)
     if isinstance(value, (bool, np.bool_, np.timedelta64, np.datetime64)) or not isinstance(value, numbers.Real):

@@ -106,8 +106,10 @@ class Reference:
         time_weighted: bool = False,
     ) -> None:
         require_flag("time_weighted", time_weighted)  # "no" scored time-weighted
-        t = as_float_array("t_ref", t_ref)
-        psi = as_float_array("heading_ref", heading_ref)
+        # its own copies: the caller's arrays changed later (times out of order) were scored unchecked,
+        # against the gaps and stretches found in them as they were
+        t = as_float_array("t_ref", t_ref, copy=True)
+        psi = as_float_array("heading_ref", heading_ref, copy=True)
         require_series("t", t, "heading", psi, context="reference")
         require_radians("the reference heading", t, psi)
         if len(t) < 2:

@@ -61,7 +61,9 @@ class Fixes:
     sigma: FloatArray
 
     def __post_init__(self) -> None:
-        float_fields(self, ("t", "heading", "sigma"), "fix ")  # lists, text and pandas columns, as Fixes.of
+        # lists, text and pandas columns, as Fixes.of; copied: the caller's array changed later (a heading
+        # beyond MAX_HEADING, times out of order) would pass into the filter unchecked
+        float_fields(self, ("t", "heading", "sigma"), "fix ", copy=True)
         if not (len(self.t) == len(self.heading) == len(self.sigma)):
             raise ValueError(f"fix t, heading and sigma must have one length, got {len(self.t)}, "
                              f"{len(self.heading)} and {len(self.sigma)}")
@@ -152,7 +154,7 @@ def fuse(t: ArrayLike, rate: ArrayLike, fixes: FixesLike, *, mode: Literal["caus
     """
     if mode not in ("causal", "smoothed"):
         raise ValueError(f"mode must be 'causal' or 'smoothed', got {mode!r}")
-    tt, r = as_float_array("t", t), as_float_array("rate", rate)
+    tt, r = as_float_array("t", t, copy=True), as_float_array("rate", rate)  # the result's t: its own
     warn_units(tt, r)  # as gyrocore.process warns: ms times or deg/s rates gave fixes rejected one after another
     return _fused(tt, r, as_fixes(fixes), settings, mode == "smoothed")
 
@@ -266,7 +268,7 @@ class Fusion:
         returns the estimate after each of its samples. A fix before one given with an earlier
         block that still waits is an error (the fixes were given again)."""
         f = Fixes.empty() if fixes is None else as_fixes(fixes)
-        tt, r = as_float_array("t", t), as_float_array("rate", rate)
+        tt, r = as_float_array("t", t, copy=True), as_float_array("rate", rate)  # the result's t: its own
         f = self._fixes.check(f, waits=counts_dict(self._inner.counts())["waiting"] > 0)
         try:
             h, s, b, sc = self._inner.process(tt, r, f.t, f.heading, f.sigma)

@@ -209,7 +209,7 @@ class Pipeline:
                 or not 0 <= index_offset < MAX_INDEX):
             raise ValueError(f"index_offset = {index_offset!r}: give the index of the chunk's first sample in the "
                              "whole log, an int >= 0 and below 2^63")
-        ta = as_float_array("t", t)
+        ta = as_float_array("t", t, copy=True)  # the result's t: its own, not the caller's array
         ra = as_float_array("rate", rate)
         temp = None if temperature is None else as_float_array("temperature", temperature)
         refuse_window_without_reading(self._inner, ta, ra, temp, self._first_time)

@@ -74,6 +74,9 @@ def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
             # int types to numpy: float() of one was a bare TypeError, and tolist() of nanoseconds ints
             raise TypeError(f"invalid parameter {key} = {value!r}: give seconds (a numpy duration d as "
                             "d / numpy.timedelta64(1, 's'))")
+        if np.ma.is_masked(value):  # its item() is 0.0: bias=numpy.ma.mean(rest) of a rest all masked was no bias
+            raise TypeError(f"invalid parameter {key} = {str(value)[:60]}: a masked value holds no number (numpy.ma's "
+                            "statistic of samples all masked is masked): give numbers, measured on valid samples")
         if isinstance(value, np.ndarray) and value.ndim == 0:  # a number from numpy (tuple() of it failed)
             value = value.item()
         if key.endswith("_dps") and key[:-4] in _RATE_PARAMETERS:

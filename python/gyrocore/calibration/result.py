@@ -70,7 +70,14 @@ class BiasTable:
         """Refuse a table ``np.interp`` would read wrongly without a word: temperatures out of order
         (a loaded table of 30, 10, 20 degC gave the bias of 30 degC at 20 degC), values that are
         not finite numbers, lists of two lengths (numpy's "fp and xp are not of the same length")
-        or no entry ("array of sample points is empty")."""
+        or no entry ("array of sample points is empty"). Arrays and lists become tuples: a table built
+        from numpy arrays failed on ``not self.temperatures`` with numpy's bare "truth value of an
+        array ... is ambiguous")."""
+        for f in fields(self):
+            value = getattr(self, f.name)
+            refuse_masked(f"bias table {f.name}", value)
+            if isinstance(value, (np.ndarray, list)):
+                object.__setattr__(self, f.name, tuple(np.asarray(value).tolist()))
         columns = {f.name: getattr(self, f.name) for f in fields(self)}
         if len({len(v) for v in columns.values()}) != 1 or not self.temperatures:
             sizes = ", ".join(f"{len(v)} {k}" for k, v in columns.items())
