@@ -4,8 +4,10 @@
 //! (and the fused pipeline with fixes) runs without a panic or a hang and with finite outputs.
 #![cfg(feature = "serde")]
 
+mod fused_drive;
 mod serde_edit;
 
+use fused_drive::first_nonfinite;
 use gyrocore::*;
 use serde_edit::every_edit;
 
@@ -57,7 +59,6 @@ fn run_fused(config: FusionConfig) -> Result<(), String> {
         return Ok(());
     };
     let (t, r) = drive();
-    let n = t.len();
     let fixes: Vec<Fix> = (0..10)
         .map(|i| Fix {
             t: 2.0 * i as f64,
@@ -65,24 +66,10 @@ fn run_fused(config: FusionConfig) -> Result<(), String> {
             sigma: 0.01,
         })
         .collect();
-    let mut cols: [Vec<f64>; 6] = core::array::from_fn(|_| vec![0.0; n]);
-    let [h, s, b, c, rate, d] = &mut cols;
-    let out = FusedOutputs {
-        heading: h,
-        heading_sigma: Some(s),
-        bias: Some(b),
-        scale: Some(c),
-        rate,
-        drift: Some(d),
-    };
-    p.process_block(Samples::new(&t, &r), &fixes, out)
-        .map_err(|e| e.to_string())?;
-    for (c, col) in cols[..4].iter().enumerate() {
-        if let Some(i) = col.iter().position(|x| !x.is_finite()) {
-            return Err(format!("column {c}: {} at {}", col[i], t[i]));
-        }
+    match first_nonfinite(&mut p, &t, &r, &fixes) {
+        Err(e) => Err(e.to_string()),
+        Ok(bad) => bad.map_or(Ok(()), Err),
     }
-    Ok(())
 }
 
 #[test]

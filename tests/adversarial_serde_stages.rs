@@ -5,8 +5,10 @@
 //! and with finite outputs.
 #![cfg(feature = "serde")]
 
+mod fused_drive;
 mod serde_edit;
 
+use fused_drive::first_nonfinite;
 use gyrocore::*;
 use serde_edit::every_edit;
 
@@ -79,27 +81,10 @@ fn run_threshold(mut s: Threshold) -> Result<(), String> {
 fn run_fused(mut p: FusedPipeline) -> Result<(), String> {
     let t0 = p.pipeline().last_time().map_or(0.0, |t| t + 0.05);
     let (t, r) = drive(t0, 200);
-    let n = t.len();
-    let mut cols: [Vec<f64>; 6] = core::array::from_fn(|_| vec![0.0; n]);
-    let [h, s, b, c, rate, d] = &mut cols;
-    let out = FusedOutputs {
-        heading: h,
-        heading_sigma: Some(s),
-        bias: Some(b),
-        scale: Some(c),
-        rate,
-        drift: Some(d),
-    };
-    if p.process_block(Samples::new(&t, &r), &fixes(t0), out)
-        .is_ok()
-    {
-        for (c, col) in cols[..4].iter().enumerate() {
-            if let Some(i) = col.iter().position(|x| !x.is_finite()) {
-                return Err(format!("column {c}: {} at {}", col[i], t[i]));
-            }
-        }
+    match first_nonfinite(&mut p, &t, &r, &fixes(t0)) {
+        Ok(Some(bad)) => Err(bad),
+        _ => Ok(()),
     }
-    Ok(())
 }
 
 /// The knots of a short forward run with `knot` edited in, smoothed and used by the second pass:

@@ -90,6 +90,24 @@ pub fn block(
     fused.process_block(Samples::new(t, rate), fixes, out)
 }
 
+/// Runs `fused` over one block (`t`, `rate`, `fixes`): the first heading, heading sigma, bias or
+/// scale that is not finite, named with its column and time (None: all finite), or the block's
+/// error.
+pub fn first_nonfinite(
+    fused: &mut FusedPipeline,
+    t: &[f64],
+    rate: &[f64],
+    fixes: &[Fix],
+) -> Result<Option<String>, FusionError> {
+    let mut cols = columns(t.len());
+    block(fused, t, rate, fixes, &mut cols, 0)?;
+    let names = ["heading", "heading sigma", "bias", "scale"];
+    Ok(names.iter().zip(&cols).find_map(|(name, col)| {
+        let i = col.iter().position(|x| !x.is_finite())?;
+        Some(format!("{name}: {} at {}", col[i], t[i]))
+    }))
+}
+
 /// The whole drive cut at `cuts` (sample indices), each block with the fixes up to its end and
 /// the ones left over from before.
 pub fn chunked(t: &[f64], rate: &[f64], all: &[Fix], cuts: &[usize]) -> (Columns, FusedPipeline) {
