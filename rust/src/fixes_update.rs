@@ -38,10 +38,10 @@ impl Fusion {
         let k = [p[0][0] / s, p[1][0] / s, p[2][0] / s];
         let row = p[0];
         let mut p = *p;
-        for ((x, p), k) in x.iter_mut().zip(p.iter_mut()).zip(k) {
+        for ((x, p_i), k) in x.iter_mut().zip(p.iter_mut()).zip(k) {
             *x += k * nu;
-            for (pij, r) in p.iter_mut().zip(row) {
-                *pij -= k * r;
+            for (pij, p0j) in p_i.iter_mut().zip(row) {
+                *pij -= k * p0j;
             }
         }
         // The heading's variance of eq 6's `P - K H P` as `P_00 r / s`: the same value without
