@@ -7,9 +7,10 @@ import argparse
 import os
 import re
 import warnings
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
+from typing import TypeVar
 
 from .._checks import InputWarning
 from .._fixes_eval import FixScore, SimFixes, format_fix_scores, score_with_fixes
@@ -104,24 +105,15 @@ def merged_by_count(messages: list[str]) -> list[str]:
     `gyrocore evaluate` said "N time(s) ... took them in again" once for each different N of its
     methods (4 times on a log), and the gate's and the fit's warnings as often, each with the
     same list of causes."""
-    figures: dict[str, list[list[str]]] = {}
-    for m in messages:
-        figures.setdefault(_FIGURE.sub("#", m), []).append(_FIGURE.findall(m))
-
     def ranged(column: tuple[str, ...]) -> str:
         low, high = min(column, key=float), max(column, key=float)
         return low if float(low) == float(high) else f"{low} to {high}"
 
-    def said(m: str) -> str | None:
-        found = figures.pop(_FIGURE.sub("#", m), None)
-        if found is None:  # said with the first of them
-            return None
-        if len(found) == 1:
-            return m
+    def join(m: str, _kind: str, found: list[list[str]]) -> str:
         ranges = [ranged(column) for column in zip(*found)]
         return "".join(text + figure for text, figure in zip(_FIGURE.split(m), ranges + [""]))
 
-    return [m for m in map(said, messages) if m is not None]
+    return _merged(messages, lambda m: (_FIGURE.sub("#", m), _FIGURE.findall(m)), join)
 
 
 #: A message one preset gives of itself (``preset 'hdr' removes a static bias, but ...``).
@@ -132,24 +124,37 @@ def merged_by_preset(messages: list[str]) -> list[str]:
     """``messages`` with those that differ only in the preset they name said once, naming every
     preset: `gyrocore evaluate` runs six presets that remove a static bias, and a log without a
     rest printed the same two lines of warning six times."""
-    presets: dict[str, list[str]] = {}
-    for m in messages:
-        if (match := _OF_PRESET.fullmatch(m)) is not None:
-            presets.setdefault(match.group(2), []).append(match.group(1))
-
-    def said(m: str) -> str | None:
+    def split(m: str) -> tuple[str, str] | None:
         match = _OF_PRESET.fullmatch(m)
-        if match is None:
-            return m
-        names = presets.pop(match.group(2), None)
-        if names is None:  # said with the first of them
-            return None
-        if len(names) == 1:
-            return m
-        listed = ", ".join(f"'{n}'" for n in names[:-1]) + f" and '{names[-1]}'"
-        return f"presets {listed} remove {match.group(2)}"
+        return None if match is None else (match.group(2), match.group(1))
 
-    return [m for m in map(said, messages) if m is not None]
+    def join(m: str, removes: str, names: list[str]) -> str:
+        listed = ", ".join(f"'{n}'" for n in names[:-1]) + f" and '{names[-1]}'"
+        return f"presets {listed} remove {removes}"
+
+    return _merged(messages, split, join)
+
+
+_Part = TypeVar("_Part")
+
+
+def _merged(messages: list[str], split: Callable[[str], tuple[str, _Part] | None],
+            join: Callable[[str, str, list[_Part]], str]) -> list[str]:
+    """``messages`` with those of one kind said once, where the first of them was: ``split(m)``
+    gives a message's kind and its own part (None: a message of no kind, kept as it is), and
+    ``join(first, kind, parts)`` says every message of a kind in one, given each one's part."""
+    parts = [split(m) for m in messages]
+    kinds: dict[str, list[_Part]] = {}
+    for part in parts:
+        if part is not None:
+            kinds.setdefault(part[0], []).append(part[1])
+    said = []
+    for m, part in zip(messages, parts):
+        if part is None:
+            said.append(m)
+        elif (group := kinds.pop(part[0], None)) is not None:  # the later ones: said with the first
+            said.append(m if len(group) == 1 else join(m, part[0], group))
+    return said
 
 
 def _fixes_of(log: Log, sim: SimFixes | None, given: Fixes | None,
