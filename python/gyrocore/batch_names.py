@@ -40,9 +40,7 @@ def folding(folder: Path) -> Folding:
     be made) compares names: a file of a mixed-case name with a composed ``é`` is created there,
     looked up by its name in the other case and decomposed, and removed. Where no file can be
     created there, :data:`USUAL`."""
-    where = folder
-    while not where.is_dir() and where != where.parent:
-        where = where.parent
+    where = atomic.nearest_folder(folder)
     name = f".gyrocore-Case-\u00e9-{secrets.token_hex(6)}.tmp"  # unique: another's file is never touched
     probe = where / name
     atomic._live.add(probe)  # removed by an interrupt's clean-up too

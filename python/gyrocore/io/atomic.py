@@ -92,13 +92,19 @@ def named_if_no_room(path: Path, error: BaseException) -> BaseException:
     return named
 
 
+def nearest_folder(folder: Path) -> Path:
+    """``folder``, or where it does not exist yet (a folder a run will make), the nearest folder
+    above it: the one whose filesystem it will be on."""
+    while not folder.is_dir() and folder != folder.parent:
+        folder = folder.parent
+    return folder
+
+
 def name_max(folder: Path) -> int:
     """The longest file name, in bytes, that ``folder`` (or, where it does not exist yet, the
     nearest folder above it) takes: 255 on the usual filesystems, where it cannot be asked."""
-    while not folder.is_dir() and folder != folder.parent:
-        folder = folder.parent
     try:
-        return os.pathconf(folder, "PC_NAME_MAX")
+        return os.pathconf(nearest_folder(folder), "PC_NAME_MAX")
     except (OSError, ValueError, AttributeError):  # no pathconf (Windows), or the folder cannot say
         return 255
 
