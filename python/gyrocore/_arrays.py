@@ -103,7 +103,10 @@ def as_float_array(name: str, values: ArrayLike, *, copy: bool = False) -> Float
     if name == "t":
         warn_coarse_times(a)
     out = np.ascontiguousarray(a, dtype=np.float64)
-    return out.copy() if copy and out is array else out  # not already a converted copy
+    # not already a converted copy: numpy builds a new array of a list or tuple, but hands over an
+    # ndarray, or the data an __array__ gives, as it is
+    fresh = out is not array or isinstance(values, (list, tuple))
+    return out.copy() if copy and not fresh else out
 
 
 def float_fields(record: object, names: Sequence[str], prefix: str = "", *, copy: bool = False) -> None:
