@@ -30,7 +30,7 @@ from ._checks import (
     require_radians, warn, warn_units,
 )
 from .result import fix_output_flags
-from .fixes_stream import StreamFixes, say_how_to_wait
+from .fixes_stream import TWICE, StreamFixes, say_how_to_wait
 
 if TYPE_CHECKING:
     from .pipeline import HeadingResult
@@ -446,8 +446,7 @@ def without_repeats(fixes: Fixes) -> Fixes:
         return fixes
     first = int(repeat[0])
     warn(f"{len(repeat)} heading fix(es) repeat the fix before them exactly (the first: fix {first} at t = "
-         f"{float(fixes.t[first])!r} s) and are dropped: one measurement given twice would count as two, tighter "
-         "than its sigma says")
+         f"{float(fixes.t[first])!r} s) and are dropped: {TWICE}")
     keep = np.ones(len(fixes), dtype=bool)
     keep[repeat] = False
     return Fixes(fixes.t[keep], fixes.heading[keep], fixes.sigma[keep])

@@ -86,6 +86,10 @@ def last_given(fixes: Fixes, before: GivenFix | None) -> GivenFix | None:
     return float(fixes.t[-1]), float(fixes.heading[-1]), float(fixes.sigma[-1])
 
 
+#: Why a fix that repeats the one before it exactly is dropped, in a whole log's words and a stream's.
+TWICE = "one measurement given twice would count as two, tighter than its sigma says"
+
+
 class StreamFixes:
     """What a stream keeps of the fixes it was given: the last one, which may still wait for its
     samples (a block whose fixes start behind it is refused), and whether fixes far ahead of the
@@ -120,8 +124,7 @@ class StreamFixes:
             return block
         if not self.repeat_said:
             warn(f"heading fix 0 at t = {float(block.t[0])!r} s repeats exactly the last fix given with the block "
-                 "before, and is dropped (as any fix that repeats the one before it): one measurement given twice "
-                 "would count as two, tighter than its sigma says")
+                 f"before, and is dropped (as any fix that repeats the one before it): {TWICE}")
             self.repeat_said = True
         from .fixes import Fixes
 
