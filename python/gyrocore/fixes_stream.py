@@ -112,6 +112,11 @@ class StreamFixes:
         """The fixes' part of a stream read back from :meth:`kept` (or an older pickle's)."""
         return cls(state.get("last_fix"), [bool(s) for s in state.get("fixes_said", ())])
 
+    def said_by_whole_log(self) -> None:
+        """Leaves to a whole log's own checks, made of every fix, what a stream says of its totals:
+        fixes far ahead, most rejected, any re-admitted."""
+        self.ahead_said = self.rejected_said = self.readmitted_said = True
+
     def check(self, block: Fixes, waits: bool) -> Fixes:
         """Refuses ``block`` if its first fix comes before the last one given, or is it again,
         while that one still ``waits`` for its samples (:func:`refuse_behind_waiting`). Returns

@@ -421,8 +421,7 @@ def process_log(
         refuse_whole_options(si)
         checked = None if fixes is None else _checked(fixes)
         pipeline = Pipeline(preset, fusion=fusion if checked is not None else None, **overrides)
-        # a whole log's checks below say these, of every fix
-        pipeline._fixes.ahead_said = pipeline._fixes.rejected_said = pipeline._fixes.readmitted_said = True
+        pipeline._fixes.said_by_whole_log()  # the checks below say these, of every fix
         result = pipeline.process(
             t, rate, temperature=temperature, outputs=outputs, speed=speed, speed_t=speed_t, fixes=checked, out=out
         )
