@@ -245,6 +245,7 @@ def compare(
     plot_dir: str | Path | None = None,
     mode: str = "whole",
     use_speed: bool = True,
+    overwrite: bool = True,
 ) -> list[Score]:
     """Score every method on every log: one :class:`Score` per (log, method), logs in order.
 
@@ -257,6 +258,8 @@ def compare(
             used for every such log: never tune it per log.
         plot_dir: write ``<log>.png`` there (heading vs reference and error vs time of each method;
             needs matplotlib).
+        overwrite: replace a plot there; False keeps one (also one another run wrote meanwhile):
+            FileExistsError.
         mode: ``whole`` (the bias from every rest, known from the first sample) or ``causal``
             (see :func:`gyrocore.process`).
         use_speed: also find rests where the odometry's speed is zero (whole mode's, and in causal
@@ -305,7 +308,7 @@ def compare(
         except ValueError as e:
             raise named_error(log, e) from None
         if plot_dir is not None:
-            plot_log(plot_path(plot_dir, log), log, results)
+            plot_log(plot_path(plot_dir, log), log, results, overwrite=overwrite)
     return rows
 
 
@@ -374,9 +377,10 @@ def _pyplot() -> Any:
     return pyplot("plotting the evaluation")
 
 
-def plot_log(path: str | Path, log: Log, results: Mapping[str, HeadingResult]) -> None:
+def plot_log(path: str | Path, log: Log, results: Mapping[str, HeadingResult], *, overwrite: bool = True) -> None:
     """Write a PNG to ``path``: heading of each method and the reference (top), error against time
-    (bottom). In a notebook, ``IPython.display.Image(path)`` shows it.
+    (bottom). In a notebook, ``IPython.display.Image(path)`` shows it. ``overwrite=False`` keeps a
+    file at ``path`` (FileExistsError).
 
     Headings are aligned with the reference at the first compared time, in degrees.
     """
@@ -404,7 +408,7 @@ def plot_log(path: str | Path, log: Log, results: Mapping[str, HeadingResult]) -
     ax1.legend(fontsize=8, ncol=2)
     fig.tight_layout()
     make_folder(path.parent)
-    write_atomically(path, lambda tmp: fig.savefig(tmp, format="png", dpi=100))
+    write_atomically(path, lambda tmp: fig.savefig(tmp, format="png", dpi=100), replace=overwrite)
     plt.close(fig)
 
 

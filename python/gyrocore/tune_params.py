@@ -81,11 +81,12 @@ class ParameterSet:
             "tuning": dict(self.tuning),
         }
 
-    def write(self, path: str | Path) -> None:
-        """Write the preset file (JSON), whole or not at all."""
+    def write(self, path: str | Path, *, overwrite: bool = True) -> None:
+        """Write the preset file (JSON), whole or not at all; ``overwrite=False`` never replaces a
+        file (one at ``path``, also one written meanwhile by another run, is kept: FileExistsError)."""
         from .io.atomic import write_text_atomically
 
-        write_text_atomically(path, json.dumps(self.to_json(), indent=2) + "\n")
+        write_text_atomically(path, json.dumps(self.to_json(), indent=2) + "\n", replace=overwrite)
 
     @classmethod
     def read(cls, path: str | Path) -> "ParameterSet":

@@ -140,3 +140,49 @@ def test_an_output_s_name_is_put_on_disk_after_its_rename(replace: bool, tmp_pat
     named = done.index(("name", str(tmp_path / "h.csv")))
     assert ("sync", str(tmp_path)) in done[named + 1:], done
     assert (tmp_path / "h.csv").read_text() == "t,heading\n"
+
+
+#: Every other command that writes a file named on its command line, with arguments that run in
+#: seconds ({log}: a log folder with a reference, {tmp}: a scratch folder), and the file it writes.
+OTHER_WRITERS = {
+    "simulate": (("simulate", "--out", "{tmp}/out.csv", "--duration", "30"), "out.csv"),
+    "calibrate": (("calibrate", "{log}", "--save", "{tmp}/out.json"), "out.json"),
+    "tune": (("tune", "--sim-drive", "city:1", "--no-harm", "--max-evals", "2", "--out", "{tmp}/out.json"),
+             "out.json"),
+    "allan plot": (("allan", "{log}", "--plot", "{tmp}/out.png"), "out.png"),
+    "allan kalibr": (("allan", "{log}", "--kalibr", "{tmp}/out.yaml"), "out.yaml"),
+    "evaluate": (("evaluate", "{log}", "--preset", "raw", "--plot-dir", "{tmp}/plots"), "plots/sample_drive.png"),
+    "reproduce": (("reproduce", "hong-allan", "--out", "{tmp}/figures"), "figures/hong_allan.png"),
+    "demo": (("demo", "--duration", "60", "--drives", "1", "--plot", "{tmp}/out.png"), "out.png"),
+}
+
+
+@pytest.fixture(scope="module")
+def sample_log(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    from gyrocore import datasets
+
+    return datasets.write_sample(tmp_path_factory.mktemp("logs") / "drive")
+
+
+@pytest.mark.parametrize("name", OTHER_WRITERS)
+def test_every_command_keeps_an_output_written_meanwhile_unless_overwrite(
+        name: str, sample_log: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+        capsys: pytest.CaptureFixture[str]) -> None:
+    # simulate, calibrate, tune, allan, evaluate, reproduce and demo checked that their output was
+    # not there before their work, then replaced one another run wrote meanwhile, both reported ok
+    pattern, target = OTHER_WRITERS[name]
+    args, out = [a.format(log=sample_log, tmp=tmp_path) for a in pattern], tmp_path / target
+    staged = atomic.StagedFile.__init__
+
+    def staged_then_other_run(self: atomic.StagedFile, path: str | Path, **options: bool) -> None:
+        staged(self, path, **options)
+        if Path(path) == out:
+            out.write_text(KEPT)
+
+    monkeypatch.setattr(atomic.StagedFile, "__init__", staged_then_other_run)
+    assert main(args) == 2
+    assert f"gyrocore: error: {out}: written meanwhile by something else" in capsys.readouterr().err
+    assert out.read_text() == KEPT and leftovers(out.parent) == []
+    out.unlink()
+    assert main([*args, "--overwrite"]) == 0
+    assert out.read_bytes() != KEPT.encode()

@@ -290,10 +290,11 @@ class Calibration:
         values["notes"] = tuple(notes)
         return cls(**values)
 
-    def save(self, path: str | Path) -> None:
+    def save(self, path: str | Path, *, overwrite: bool = True) -> None:
         """Write the calibration as JSON (see :meth:`to_dict`), whole or not at all: a save that
-        fails or is interrupted leaves the file that was there."""
-        write_text_atomically(path, json.dumps(self.to_dict(), indent=2) + "\n")
+        fails or is interrupted leaves the file that was there. ``overwrite=False`` never replaces
+        a file: one at ``path`` (also one written meanwhile by another run) is kept, FileExistsError."""
+        write_text_atomically(path, json.dumps(self.to_dict(), indent=2) + "\n", replace=overwrite)
 
     @classmethod
     def load(cls, path: str | Path) -> Calibration:

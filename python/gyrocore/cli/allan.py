@@ -119,10 +119,10 @@ def run(args: argparse.Namespace) -> int:
         allan.plot(result, parameters=params, ax=ax)
         ax.set_title(f"{log.name}: {result.kind} deviation")
         fig.tight_layout()  # room for the axis labels: the default margins clip the y label
-        write_atomically(args.plot, lambda tmp: fig.savefig(tmp, format="png", dpi=120))
+        write_atomically(args.plot, lambda tmp: fig.savefig(tmp, format="png", dpi=120), replace=args.overwrite)
         plt.close(fig)
     if args.kalibr is not None:
         assert params is not None  # --kind allan, checked before the work
         text = params.kalibr_yaml(rrw=args.rrw)
-        write_text_atomically(args.kalibr, text)
+        write_text_atomically(args.kalibr, text, replace=args.overwrite)
     return 0

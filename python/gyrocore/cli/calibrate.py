@@ -142,7 +142,7 @@ def run(args: argparse.Namespace) -> int:
             + ("" if "heading_reference" not in results else f"; {results['heading_reference']['error']}")
         )
     if args.save is not None:
-        chosen.save(args.save)  # whole or not at all
+        chosen.save(args.save, overwrite=args.overwrite)  # whole or not at all; refused before if it existed
         results["saved"] = {"file": str(args.save), "method": chosen.method}
     if args.json:
         print_json(results)

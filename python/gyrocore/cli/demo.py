@@ -132,7 +132,7 @@ def run(args: argparse.Namespace) -> int:
     if args.plot:
         title = (f"simulated car drive: {args.duration:.0f} s of '{args.mix}' roads (seed {args.seed}); "
                  f"gyro {drives[0].sensor.name} at {args.rate_hz:g} Hz")
-        _plot_demo(Path(args.plot), drives[0], first, title)
+        _plot_demo(Path(args.plot), drives[0], first, title, overwrite=args.overwrite)
     return 0
 
 
@@ -149,7 +149,8 @@ def _why_recommended(rows: list[dict[str, Any]]) -> str:
     )
 
 
-def _plot_demo(path: Path, drive: sim.Drive, results: dict[str, HeadingResult], title: str) -> None:
+def _plot_demo(path: Path, drive: sim.Drive, results: dict[str, HeadingResult], title: str, *,
+               overwrite: bool) -> None:
     try:
         plt = pyplot("the demo's plot")
     except MissingExtra as e:
@@ -170,6 +171,10 @@ def _plot_demo(path: Path, drive: sim.Drive, results: dict[str, HeadingResult], 
     ax1.legend(fontsize=8)
     ax1.set_title(title)
     fig.tight_layout()
-    write_atomically(path, lambda tmp: fig.savefig(tmp, format="png", dpi=100, metadata={"Software": _SOFTWARE}))
+    # the demo's own earlier plot is replaced; any other file, also one another run wrote
+    # meanwhile, only with --overwrite
+    own = path == Path(PLOT) and os.path.lexists(path) and _written_by_demo(path)
+    write_atomically(path, lambda tmp: fig.savefig(tmp, format="png", dpi=100, metadata={"Software": _SOFTWARE}),
+                     replace=overwrite or own)
     plt.close(fig)
     print(f"wrote {path}")

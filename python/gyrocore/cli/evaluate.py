@@ -135,7 +135,7 @@ def run(args: argparse.Namespace) -> int:
         with input_warnings() as messages:
             rows = compare([log], methods, bias_duration=args.bias_duration,
                            plot_dir=args.plot_dir, mode="causal" if args.causal else "whole",
-                           use_speed=not args.no_speed)
+                           use_speed=not args.no_speed, overwrite=args.overwrite)
         for message in messages:
             warn(naming_log(log, message))
         return rows

@@ -37,5 +37,5 @@ def run(args: argparse.Namespace) -> int:
     for i, name in enumerate(names):
         if i:
             print()
-        paper.reproduce(name, out_dir=None if args.no_figures else args.out)
+        paper.reproduce(name, out_dir=None if args.no_figures else args.out, overwrite=args.overwrite)
     return 0

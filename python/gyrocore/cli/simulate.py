@@ -132,6 +132,7 @@ def run(args: argparse.Namespace) -> int:
     write_atomically(
         out,
         lambda tmp: np.savetxt(tmp, table, delimiter=",", header=",".join(COLUMNS), comments="", fmt="%.10g"),
+        replace=args.overwrite,  # refused above if it existed; one written meanwhile is kept
     )
     rest = "none" if drive.stationary is None else f"{drive.stationary[0]:g} .. {drive.stationary[1]:g} s"
     print(

@@ -286,7 +286,7 @@ def run(args: argparse.Namespace) -> int:
         extra["test_score_ne_psi_deg_per_min"] = tune.mean_ne_psi(test)
     params = tune.ParameterSet(result.params.name, result.params.preset, result.params.overrides, extra)
     if args.out:
-        params.write(args.out)
+        params.write(args.out, overwrite=args.overwrite)  # refused before the fit if it existed
     if args.json:
         out = result.as_dict()
         out["leave_one_out"] = [s.as_dict() for s in loo]

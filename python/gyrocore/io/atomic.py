@@ -247,11 +247,12 @@ def discard_all() -> None:
 
 
 @contextmanager
-def atomic_path(path: str | Path) -> Iterator[Path]:
+def atomic_path(path: str | Path, *, replace: bool = True) -> Iterator[Path]:
     """A temporary path next to ``path`` (next to the file it leads to, for a link), renamed to it
     when the block ends without error and removed otherwise (also on KeyboardInterrupt); see
-    :class:`StagedFile`."""
-    staged = StagedFile(path)
+    :class:`StagedFile` (and its ``replace``: False keeps a file that appeared at ``path`` while the
+    block ran, for a command that checked there was none before its work)."""
+    staged = StagedFile(path, replace=replace)
     try:
         yield staged.tmp
         staged.commit()
@@ -261,14 +262,16 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
         staged.discard()
 
 
-def write_atomically(path: str | Path, write: Callable[[str], object]) -> None:
+def write_atomically(path: str | Path, write: Callable[[str], object], *, replace: bool = True) -> None:
     """``write(name)`` writes the file under a temporary name beside ``path``, renamed to ``path``
-    at the end: no half-written output (a plot's ``savefig``, say)."""
-    with atomic_path(path) as tmp:
+    at the end: no half-written output (a plot's ``savefig``, say); ``replace`` as
+    :func:`atomic_path`'s."""
+    with atomic_path(path, replace=replace) as tmp:
         write(str(tmp))
 
 
-def write_text_atomically(path: str | Path, text: str) -> None:
-    """``text`` as ``path``'s UTF-8 content, whole or not at all."""
-    with atomic_path(path) as tmp:
+def write_text_atomically(path: str | Path, text: str, *, replace: bool = True) -> None:
+    """``text`` as ``path``'s UTF-8 content, whole or not at all; ``replace`` as
+    :func:`atomic_path`'s."""
+    with atomic_path(path, replace=replace) as tmp:
         tmp.write_text(text, encoding="utf-8")

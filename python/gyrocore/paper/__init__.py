@@ -86,10 +86,10 @@ REPRODUCTIONS: dict[str, tuple[Callable[[], _Report], str]] = {
 }
 
 
-def reproduce(name: str, *, out_dir: str | Path | None = ".") -> _Report:
+def reproduce(name: str, *, out_dir: str | Path | None = ".", overwrite: bool = True) -> _Report:
     """Run the reproduction ``name`` (see :data:`REPRODUCTIONS`) with its defaults, print its
     table and the seed it ran with, and write its figure into ``out_dir`` (created if missing;
-    None: no figure)."""
+    None: no figure; ``overwrite=False`` keeps a figure there: FileExistsError)."""
     require_choice("reproduction", name, REPRODUCTIONS)
     run, figure = REPRODUCTIONS[name]
     result = run()
@@ -99,7 +99,7 @@ def reproduce(name: str, *, out_dir: str | Path | None = ".") -> _Report:
           f"gyrocore.paper.{run.__name__}(seed=N) reruns it from another")
     if out_dir is not None:
         make_folder(Path(out_dir))
-        path = result.plot(Path(out_dir) / figure)
+        path = result.plot(Path(out_dir) / figure, overwrite=overwrite)
         if path is not None:
             print(f"wrote {path}")
     return result

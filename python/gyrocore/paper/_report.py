@@ -44,11 +44,11 @@ def _pyplot() -> Any:
         return None
 
 
-def _save(fig: Any, path: str | Path) -> Path:
+def _save(fig: Any, path: str | Path, overwrite: bool) -> Path:
     from ..io.atomic import write_atomically
 
     out = Path(path)
-    write_atomically(out, lambda tmp: fig.savefig(tmp, format="png", dpi=100))
+    write_atomically(out, lambda tmp: fig.savefig(tmp, format="png", dpi=100), replace=overwrite)
     fig.clear()
     return out
 
@@ -68,13 +68,14 @@ class _Report:
         """The comparison as text."""
         return format_table(self.title, self.rows(), self.notes())
 
-    def plot(self, path: str | Path) -> Path | None:
-        """Write the figure as PNG (None if matplotlib is missing)."""
+    def plot(self, path: str | Path, *, overwrite: bool = True) -> Path | None:
+        """Write the figure as PNG (None if matplotlib is missing); ``overwrite=False`` keeps a
+        file at ``path`` (FileExistsError)."""
         plt = _pyplot()
         if plt is None:
             return None
         fig = self._figure(plt)
-        out = _save(fig, path)
+        out = _save(fig, path, overwrite)
         plt.close(fig)
         return out
 
