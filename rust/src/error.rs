@@ -79,7 +79,8 @@ pub enum Error {
         end: f64,
         /// The first timestamp seen \[s\].
         first: f64,
-        /// The last timestamp seen \[s\] (for a stream, the first one past the window).
+        /// The last timestamp seen \[s\]: for a stream's block, the first one past the window; from
+        /// [`Pipeline::rest_window_missed`](crate::Pipeline::rest_window_missed), the last one taken.
         last: f64,
     },
     /// A statistic needs a longer record than it was given (an averaging time too long for it).
