@@ -112,7 +112,8 @@ def _value(option: str, key: str, text: str) -> Any:
     if not (math.isfinite(value) and value > 0):
         raise ValueError(f"{where}: must be a number > 0")
     if key == "sigma_deg" and not SIGMA_DEG[0] <= value <= SIGMA_DEG[1]:
-        raise ValueError(f"{where}: the fixes' noise must be in [{SIGMA_DEG[0]:.3g}, {SIGMA_DEG[1]:g}] deg")
+        raise ValueError(f"{where}: the fixes' noise must be in [{SIGMA_DEG[0]:.3g}, {SIGMA_DEG[1]:g}] deg (beyond, it "
+                         "wraps at +-180 deg and is no longer the sigma)")
     return value
 
 

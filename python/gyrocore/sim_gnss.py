@@ -20,9 +20,10 @@ if TYPE_CHECKING:
 #: a rate of 1e9 Hz over a minute asked for 6e10 and did not end.
 MAX_FIXES = 1e7
 #: The range of the simulated fixes' noise [deg]: from the core's smallest fix sigma (1e-12 rad),
-#: which it refuses below, to half a turn, beyond which a heading's error wraps and the noise is
-#: no longer what the sigma says.
-SIGMA_DEG = (math.degrees(1e-12), 180.0)
+#: which it refuses below, to 60 deg. A heading's error wraps at +-180 deg, which leaves the
+#: noise's standard deviation below the sigma the fixes state: 0.5 % below at 60 deg, 7 % at 90
+#: (83.7 deg), 43 % at 180 (103.5 deg, where half a turn was allowed).
+SIGMA_DEG = (math.degrees(1e-12), 60.0)
 
 
 def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: float = 1.0,
@@ -31,7 +32,7 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
 
     A fix every ``1 / rate_hz`` seconds from the reference's first time, its heading the reference
     (unwrapped and linearly interpolated, rad, counter-clockwise from east) plus white Gaussian
-    noise of ``sigma_deg``, which is also the fix's sigma; none inside any outage ``(start, end)``
+    noise of ``sigma_deg`` (at most 60 deg: :data:`SIGMA_DEG`), which is also the fix's sigma; none inside any outage ``(start, end)``
     [s, on the reference's clock]. Same arguments, same fixes (numpy's PCG64 seeded with ``seed``).
     The reference is finite, its times strictly increasing: a ValueError names its first sample
     that is not.
@@ -48,7 +49,8 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     rate_hz = check_number("rate_hz", rate_hz)
     given = real_number(sigma_deg)  # text failed in Python's words, True was 1 deg
     if given is None or not SIGMA_DEG[0] <= given <= SIGMA_DEG[1]:
-        raise ValueError(f"sigma_deg must be in [{SIGMA_DEG[0]:.3g}, {SIGMA_DEG[1]:g}] deg, got {sigma_deg!r}")
+        raise ValueError(f"sigma_deg must be in [{SIGMA_DEG[0]:.3g}, {SIGMA_DEG[1]:g}] deg (beyond, the noise wraps at "
+                         f"+-180 deg and is no longer the sigma), got {sigma_deg!r}")
     count = (t[-1] - t[0]) * rate_hz
     if count > MAX_FIXES:
         raise ValueError(f"{count:.3e} fixes requested ({t[-1] - t[0]:g} s at {rate_hz:g} Hz): more than "

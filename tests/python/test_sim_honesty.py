@@ -3,10 +3,14 @@ GNSS fixes have the noise, the rate and the outage they are given."""
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 
-from gyrocore import motion, sim
+from gyrocore import InputWarning, motion, sim
+from gyrocore._fixes_eval import SimFixes
+from gyrocore.fixes import Fixes
 
 
 @pytest.mark.parametrize("mix", ["city", "downtown"])
@@ -22,3 +26,33 @@ def test_a_stopped_car_does_not_turn(mix: str) -> None:
         assert np.all(truth.speed == 0.0)
         assert np.abs(truth.rate).max() == 0.0, stop
         assert np.ptp(truth.heading) == 0.0, stop
+
+
+def _fix_errors_deg(fixes: Fixes, t: np.ndarray, heading: np.ndarray) -> np.ndarray:
+    """Each fix's heading minus the reference's there, wrapped to (-180, 180] deg."""
+    return np.degrees(np.angle(np.exp(1j * (fixes.heading - np.interp(fixes.t, t, heading)))))
+
+
+@pytest.mark.parametrize("sigma_deg", [1.0, 10.0, sim.SIGMA_DEG[1]])
+def test_the_fixes_noise_is_the_sigma_they_state(sigma_deg: float) -> None:
+    # a heading's error wraps at +-180 deg: asked for 180 deg the fixes' error had 104 deg of
+    # standard deviation (90: 83), each fix stating 180 (90); up to the limit it is the sigma
+    t = np.arange(0.0, 20000.0, 0.5)
+    heading = 0.002 * t  # turning: wrapped many times over
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", InputWarning)  # sigmas that vague are said to be: not what this checks
+        fixes = sim.gnss_fixes(t, heading, seed=4, sigma_deg=sigma_deg)
+    assert np.degrees(fixes.sigma) == pytest.approx(sigma_deg, rel=1e-12)
+    errors = _fix_errors_deg(fixes, t, heading)
+    # 20,000 fixes: the sample standard deviation is within 0.5 % (1 standard error) of the truth
+    assert errors.std() == pytest.approx(sigma_deg, rel=0.02)
+    assert abs(errors.mean()) < 4 * sigma_deg / np.sqrt(len(errors))
+
+
+@pytest.mark.parametrize("sigma_deg", [90.0, 180.0])
+def test_a_sigma_whose_noise_would_wrap_is_refused(sigma_deg: float) -> None:
+    t = np.arange(0.0, 100.0, 1.0)
+    with pytest.raises(ValueError, match=r"sigma_deg must be in \[5.73e-11, 60\] deg .*wraps"):
+        sim.gnss_fixes(t, np.zeros_like(t), seed=0, sigma_deg=sigma_deg)
+    with pytest.raises(ValueError, match=r"--sim-fixes: sigma_deg=90: the fixes' noise must be in \[5.73e-11, 60\] deg"):
+        SimFixes.parse("sigma_deg=90")
