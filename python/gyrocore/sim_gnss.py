@@ -63,4 +63,6 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     rng = np.random.Generator(np.random.PCG64(check_seed(seed)))
     sigma = math.radians(given)
     noisy = np.interp(tf, t, psi) + sigma * rng.standard_normal(len(tf))
-    return Fixes.of(tf[keep], np.angle(np.exp(1j * noisy[keep])), sigma)
+    # not Fixes.of, whose warning on vague sigmas takes them for degrees written as radians: this
+    # sigma was given in degrees, by name, and converted here
+    return Fixes(tf[keep], np.angle(np.exp(1j * noisy[keep])), np.full(int(keep.sum()), sigma))

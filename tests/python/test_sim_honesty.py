@@ -39,9 +39,7 @@ def test_the_fixes_noise_is_the_sigma_they_state(sigma_deg: float) -> None:
     # standard deviation (90: 83), each fix stating 180 (90); up to the limit it is the sigma
     t = np.arange(0.0, 20000.0, 0.5)
     heading = 0.002 * t  # turning: wrapped many times over
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", InputWarning)  # sigmas that vague are said to be: not what this checks
-        fixes = sim.gnss_fixes(t, heading, seed=4, sigma_deg=sigma_deg)
+    fixes = sim.gnss_fixes(t, heading, seed=4, sigma_deg=sigma_deg)
     assert np.degrees(fixes.sigma) == pytest.approx(sigma_deg, rel=1e-12)
     errors = _fix_errors_deg(fixes, t, heading)
     # 20,000 fixes: the sample standard deviation is within 0.5 % (1 standard error) of the truth
@@ -56,3 +54,13 @@ def test_a_sigma_whose_noise_would_wrap_is_refused(sigma_deg: float) -> None:
         sim.gnss_fixes(t, np.zeros_like(t), seed=0, sigma_deg=sigma_deg)
     with pytest.raises(ValueError, match=r"--sim-fixes: sigma_deg=90: the fixes' noise must be in \[5.73e-11, 60\] deg"):
         SimFixes.parse("sigma_deg=90")
+
+
+def test_vague_simulated_fixes_are_not_said_to_be_in_degrees() -> None:
+    # sigma_deg=45 is in degrees by its name, and converted: "sigmas are in rad (if they were
+    # written in degrees, convert them with numpy.radians)" sent the caller to convert it again
+    t = np.arange(0.0, 100.0, 1.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", InputWarning)
+        fixes = sim.gnss_fixes(t, np.zeros_like(t), seed=0, sigma_deg=45.0)
+    assert np.degrees(fixes.sigma) == pytest.approx(45.0)
