@@ -55,7 +55,9 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     if count > MAX_FIXES:
         raise ValueError(f"{count:.3e} fixes requested ({t[-1] - t[0]:g} s at {rate_hz:g} Hz): more than "
                          f"{MAX_FIXES:.0e}; is the rate in Hz?")
-    tf = t[0] + np.arange(int(count) + 1) / rate_hz
+    # a span of whole periods lost its last fix to rounding (2.1 s at 10 Hz gave 20.999999999999996):
+    # a fix within 1e-12 of them is counted, and put on the reference's last time, not past it
+    tf = np.minimum(t[0] + np.arange(int(count * (1.0 + 1e-12)) + 1) / rate_hz, t[-1])
     keep = np.ones(len(tf), dtype=bool)
     for outage in outages:
         start, end = as_window("an outage", outage)  # one (start, end) given alone failed as "cannot unpack"

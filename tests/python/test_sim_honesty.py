@@ -64,3 +64,15 @@ def test_vague_simulated_fixes_are_not_said_to_be_in_degrees() -> None:
         warnings.simplefilter("error", InputWarning)
         fixes = sim.gnss_fixes(t, np.zeros_like(t), seed=0, sigma_deg=45.0)
     assert np.degrees(fixes.sigma) == pytest.approx(45.0)
+
+
+@pytest.mark.parametrize(("samples", "step", "rate_hz"), [(4, 0.7, 10.0), (8, 1.0 / 3.0, 3.0), (8, 0.7, 10.0)])
+def test_a_fix_falls_on_the_reference_end_when_the_span_is_whole_periods(samples: int, step: float, rate_hz: float) -> None:
+    # 2.1 s at 10 Hz: (t[-1] - t[0]) * rate was 20.999999999999996, and the fix at 2.1 s was lost
+    # (21 fixes, not 22; 1723 of 47,968 spans and rates tried)
+    t = np.arange(samples) * step
+    fixes = sim.gnss_fixes(t, np.zeros(samples), seed=0, rate_hz=rate_hz)
+    periods = round((samples - 1) * step * rate_hz)
+    assert len(fixes) == periods + 1
+    assert fixes.t[-1] == pytest.approx(t[-1], abs=1e-12) and fixes.t[-1] <= t[-1]
+    assert np.diff(fixes.t) == pytest.approx(1.0 / rate_hz, abs=1e-12)
