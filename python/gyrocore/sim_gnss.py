@@ -11,6 +11,7 @@ from numpy.typing import ArrayLike
 
 from ._arrays import as_float_array, as_window
 from ._checks import check_number, check_seed, real_number, require_series
+from .evaluate_metrics import find_gaps
 
 if TYPE_CHECKING:
     from .fixes import Fixes
@@ -32,8 +33,10 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
 
     A fix every ``1 / rate_hz`` seconds from the reference's first time, its heading the reference
     (unwrapped and linearly interpolated, rad, counter-clockwise from east) plus white Gaussian
-    noise of ``sigma_deg`` (at most 60 deg: :data:`SIGMA_DEG`), which is also the fix's sigma; none inside any outage ``(start, end)``
-    [s, on the reference's clock]. Same arguments, same fixes (numpy's PCG64 seeded with ``seed``).
+    noise of ``sigma_deg`` (at most 60 deg: :data:`SIGMA_DEG`), which is also the fix's sigma;
+    none inside any outage ``(start, end)`` [s, on the reference's clock], nor inside a gap of the
+    reference (an interval over 10 times its median, :func:`gyrocore.evaluate.find_gaps`), which
+    tells nothing of the turns made in it. Same arguments, same fixes (numpy's PCG64 seeded with ``seed``).
     The reference is finite, its times strictly increasing: a ValueError names its first sample
     that is not.
     """
@@ -58,7 +61,10 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     # a span of whole periods lost its last fix to rounding (2.1 s at 10 Hz gave 20.999999999999996):
     # a fix within 1e-12 of them is counted, and put on the reference's last time, not past it
     tf = np.minimum(t[0] + np.arange(int(count * (1.0 + 1e-12)) + 1) / rate_hz, t[-1])
-    keep = np.ones(len(tf), dtype=bool)
+    # none inside a gap of the reference (as its scoring finds them): interpolated across one, the
+    # fixes missed every turn in it (40 s over a 270 deg turn: errors to 180 deg, each stating sigma)
+    k = np.minimum(np.searchsorted(t, tf, side="right") - 1, len(t) - 2)
+    keep = ~(find_gaps(t)[k] & (tf > t[k]) & (tf < t[k + 1]))
     for outage in outages:
         start, end = as_window("an outage", outage)  # one (start, end) given alone failed as "cannot unpack"
         keep &= (tf < start) | (tf >= end)

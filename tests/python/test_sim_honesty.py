@@ -76,3 +76,19 @@ def test_a_fix_falls_on_the_reference_end_when_the_span_is_whole_periods(samples
     assert len(fixes) == periods + 1
     assert fixes.t[-1] == pytest.approx(t[-1], abs=1e-12) and fixes.t[-1] <= t[-1]
     assert np.diff(fixes.t) == pytest.approx(1.0 / rate_hz, abs=1e-12)
+
+
+def test_no_fix_is_made_inside_a_gap_of_the_reference() -> None:
+    # a receiver following the reference knows nothing where the reference says nothing: 39 fixes
+    # were interpolated across a 40 s gap in which the car turned 270 deg, with errors up to
+    # 180 deg, each stating 1 deg (the fix stage then warned to check the units)
+    t = np.arange(0.0, 200.0, 0.1)
+    heading = np.clip((t - 100.0) / 30.0, 0.0, 1.0) * np.radians(270.0)
+    gap = (t > 95.0) & (t < 135.0)
+    t_ref, heading_ref = t[~gap], np.angle(np.exp(1j * heading[~gap]))
+    fixes = sim.gnss_fixes(t_ref, heading_ref, seed=0, rate_hz=1.0, sigma_deg=1.0)
+    last_before, first_after = t_ref[t_ref <= 95.0][-1], t_ref[t_ref >= 135.0][0]
+    assert not np.any((fixes.t > last_before) & (fixes.t < first_after))
+    assert len(fixes) == 200 - 39  # a fix each second, those of 96 .. 134 s left out (95 and 135 are reference times)
+    errors = _fix_errors_deg(fixes, t, heading)
+    assert np.abs(errors).max() < 5.0  # 1 deg noise: every fix within 5 sigma of the truth
