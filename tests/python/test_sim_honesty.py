@@ -8,7 +8,7 @@ import warnings
 import numpy as np
 import pytest
 
-from gyrocore import InputWarning, motion, sim
+from gyrocore import InputWarning, allan, motion, sim
 from gyrocore._fixes_eval import SimFixes
 from gyrocore.fixes import Fixes
 
@@ -92,3 +92,13 @@ def test_no_fix_is_made_inside_a_gap_of_the_reference() -> None:
     assert len(fixes) == 200 - 39  # a fix each second, those of 96 .. 134 s left out (95 and 135 are reference times)
     errors = _fix_errors_deg(fixes, t, heading)
     assert np.abs(errors).max() < 5.0  # 1 deg noise: every fix within 5 sigma of the truth
+
+
+def test_the_closed_form_allan_deviation_is_that_of_the_simulated_gyro_below_its_noise_bandwidth() -> None:
+    # the XV3500's noise passes a 20 Hz low-pass at 100 Hz: the closed form said N / sqrt(tau) there,
+    # 1.6 times the simulated gyro's Allan deviation at tau = 0.01 s (1.3 at 0.02 s, 1.14 at 0.04 s)
+    spec = sim.sensor("xv3500", bias_dps_per_c=0.0)
+    t = np.arange(0.0, 1800.0, 0.01)
+    curve = allan.deviation(sim.measure(spec, t, np.zeros_like(t), seed=2).rate, 0.01, taus=[0.01, 0.02, 0.04, 0.08])
+    # 180,000 samples: the Allan deviation at these taus is within 1 % (2 standard errors)
+    assert curve.adev / spec.allan_deviation(curve.taus) == pytest.approx(1.0, abs=0.02)
