@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import as_float_array, as_window
-from ._checks import check_number, check_seed, real_number, require_series
+from ._checks import check_number, check_seed, real_number, require_radians, require_series
 from .evaluate_metrics import find_gaps
 
 if TYPE_CHECKING:
@@ -38,7 +38,7 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     reference (an interval over 10 times its median, :func:`gyrocore.evaluate.find_gaps`), which
     tells nothing of the turns made in it. Same arguments, same fixes (numpy's PCG64 seeded with ``seed``).
     The reference is finite, its times strictly increasing: a ValueError names its first sample
-    that is not.
+    that is not; a heading in degrees (a wrap by 360) is a ``UnitError``, as the scoring's.
     """
     from .fixes import Fixes
 
@@ -46,6 +46,8 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     # checked before unwrapping: one NaN heading made every later fix NaN, times out of order
     # made no fix, and lengths apart failed inside numpy.interp
     require_series("t_ref", t, "heading_ref", heading, context="the reference")
+    # as the scoring's Reference: one in degrees made fixes 55 deg off, each stating its sigma
+    require_radians("the reference heading", t, heading)
     psi = np.unwrap(heading)
     if len(t) < 2:
         raise ValueError("the reference needs at least two samples")
