@@ -4,6 +4,7 @@ that have a reference but no receiver (:func:`gnss_fixes`, also ``gyrocore.sim.g
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -28,16 +29,16 @@ SIGMA_DEG = (math.degrees(1e-12), 60.0)
 
 
 def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: float = 1.0,
-               sigma_deg: float = 1.0, outages: tuple[tuple[float, float], ...] = ()) -> Fixes:
+               sigma_deg: float = 1.0, outages: Sequence[tuple[float, float]] | None = ()) -> Fixes:
     """SIMULATED heading fixes of a GNSS receiver following a reference track (not measured).
 
     A fix every ``1 / rate_hz`` seconds from the reference's first time, its heading the reference
     (unwrapped and linearly interpolated, rad, counter-clockwise from east) plus white Gaussian
     noise of ``sigma_deg`` (at most 60 deg: :data:`SIGMA_DEG`), which is also the fix's sigma;
-    none inside any outage ``(start, end)`` [s, on the reference's clock], nor inside a gap of the
-    reference (an interval over 10 times its median, :func:`gyrocore.evaluate.find_gaps`), which
-    tells nothing of the turns made in it. Same arguments, same fixes (numpy's PCG64 seeded with ``seed``).
-    The reference is finite, its times strictly increasing: a ValueError names its first sample
+    none inside any of the ``outages`` ``(start, end)`` [s, on the reference's clock; None or () for
+    none], nor inside a gap of the reference (an interval over 10 times its median,
+    :func:`gyrocore.evaluate.find_gaps`), which tells nothing of the turns made in it. Same
+    arguments, same fixes (numpy's PCG64 seeded with ``seed``). The reference is finite, its times strictly increasing: a ValueError names its first sample
     that is not; a heading in degrees (a wrap by 360) is a ``UnitError``, as the scoring's.
     """
     from .fixes import Fixes
@@ -67,8 +68,7 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     # fixes missed every turn in it (40 s over a 270 deg turn: errors to 180 deg, each stating sigma)
     k = np.minimum(np.searchsorted(t, tf, side="right") - 1, len(t) - 2)
     keep = ~(find_gaps(t)[k] & (tf > t[k]) & (tf < t[k + 1]))
-    for outage in outages:
-        start, end = as_window("an outage", outage)  # one (start, end) given alone failed as "cannot unpack"
+    for start, end in _windows(outages):
         keep &= (tf < start) | (tf >= end)
     rng = np.random.Generator(np.random.PCG64(check_seed(seed)))
     sigma = math.radians(given)
@@ -76,3 +76,16 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     # not Fixes.of, whose warning on vague sigmas takes them for degrees written as radians: this
     # sigma was given in degrees, by name, and converted here
     return Fixes(tf[keep], np.angle(np.exp(1j * noisy[keep])), np.full(int(keep.sum()), sigma))
+
+
+def _windows(outages: Sequence[tuple[float, float]] | None) -> list[tuple[float, float]]:
+    """The outages as checked ``(start, end)`` pairs; None is none. A number failed in Python's
+    words (``'int' object is not iterable``), one ``(start, end)`` given alone as "cannot unpack"."""
+    if outages is None:
+        return []
+    try:
+        given = list(outages)
+    except TypeError:
+        raise TypeError(f"outages must be (start, end) pairs in seconds, e.g. ((100, 160),), or () for none; "
+                        f"got {outages!r}") from None
+    return [as_window("an outage", outage) for outage in given]

@@ -114,3 +114,18 @@ def test_a_reference_in_degrees_is_refused_as_the_scoring_refuses_it() -> None:
         sim.gnss_fixes(t, degrees, seed=0)
     with pytest.raises(UnitError, match="the reference heading looks like degrees, not radians"):
         evaluate.Reference(t, degrees)
+
+
+@pytest.mark.parametrize("outages", [5, 2.5])
+def test_outages_that_are_no_sequence_are_named(outages: object) -> None:
+    # "TypeError: 'int' object is not iterable", in Python's words
+    t = np.arange(0.0, 100.0, 0.1)
+    with pytest.raises(TypeError, match=rf"outages must be \(start, end\) pairs in seconds, e.g. \(\(100, 160\),\), or \(\) "
+                                        rf"for none; got {outages!r}"):
+        sim.gnss_fixes(t, np.zeros_like(t), seed=0, outages=outages)  # type: ignore[arg-type]
+
+
+def test_no_outages_may_be_given_as_none() -> None:
+    t = np.arange(0.0, 100.0, 0.1)
+    fixes = sim.gnss_fixes(t, np.zeros_like(t), seed=0, outages=None)
+    assert np.array_equal(fixes.t, sim.gnss_fixes(t, np.zeros_like(t), seed=0).t)
