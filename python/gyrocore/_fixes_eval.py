@@ -26,7 +26,7 @@ from .evaluate_compare import warn_partial_reference
 from .fixes import Fixes
 from .io import Log
 from .pipeline import process
-from .sim_gnss import SIGMA_DEG, gnss_fixes
+from .sim_gnss import SIGMA_DEG, edge_rounding, gnss_fixes, inside_outage
 
 
 @dataclass(frozen=True)
@@ -62,8 +62,13 @@ class SimFixes:
         if window is None:
             return None
         # an outage of 1e300 s was scored alike, and shown in a report line of 300 digits
+        start, end = window
         last = float(log.t[-1])
-        return window if window[1] <= last else (window[0], math.nextafter(last, math.inf))
+        if end - edge_rounding(end) <= last:
+            return window
+        # beyond the rounding inside_outage allows at the end (up to twice the last sample's), so
+        # that the last sample is in it
+        return start, last + 3.0 * edge_rounding(last)
 
     def _given_window(self, log: Log) -> tuple[float, float] | None:
         """The outage on the log's clock as given, or None; a ``ValueError`` if it starts after the log."""
@@ -156,7 +161,7 @@ def _mean_in(tr: np.ndarray, err: np.ndarray, window: tuple[float, float] | None
     """Mean absolute error [deg] at the compared times inside ``window`` (NaN if none)."""
     if window is None:
         return None
-    inside = (tr >= window[0]) & (tr < window[1])
+    inside = inside_outage(tr, window)  # as the fixes were left out: at the edges too
     return float(np.degrees(np.abs(err[inside])).mean()) if inside.any() else math.nan
 
 

@@ -8,9 +8,9 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
-from ._arrays import as_float_array, as_window
+from ._arrays import FloatArray, as_float_array, as_window
 from ._checks import check_number, check_seed, real_number, require_radians, require_series
 from .evaluate_metrics import find_gaps
 
@@ -68,8 +68,8 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     # fixes missed every turn in it (40 s over a 270 deg turn: errors to 180 deg, each stating sigma)
     k = np.minimum(np.searchsorted(t, tf, side="right") - 1, len(t) - 2)
     keep = ~(find_gaps(t)[k] & (tf > t[k]) & (tf < t[k + 1]))
-    for start, end in _windows(outages):
-        keep &= (tf < start) | (tf >= end)
+    for window in _windows(outages):
+        keep &= ~inside_outage(tf, window)
     rng = np.random.Generator(np.random.PCG64(check_seed(seed)))
     sigma = math.radians(given)
     noisy = np.interp(tf, t, psi) + sigma * rng.standard_normal(len(tf))
@@ -89,3 +89,19 @@ def _windows(outages: Sequence[tuple[float, float]] | None) -> list[tuple[float,
         raise TypeError(f"outages must be (start, end) pairs in seconds, e.g. ((100, 160),), or () for none; "
                         f"got {outages!r}") from None
     return [as_window("an outage", outage) for outage in given]
+
+
+def inside_outage(times: FloatArray, window: tuple[float, float]) -> NDArray[np.bool_]:
+    """Which ``times`` [s] lie in the outage ``window`` ``[start, end)``, a time within rounding of
+    an edge (8 ulps of the clock) taken as on it: the fix or reference sample due at the start is
+    in the outage and the one due at the end is not, however the edges were summed. ``(42879.24 +
+    50.3) + 49.9`` is an ulp above ``42879.24 + 100.2``: the fix and the reference sample due at
+    that end fell inside the outage, which left out a fix too many and scored a sample past it."""
+    start, end = window
+    return (times >= start - edge_rounding(start)) & (times < end - edge_rounding(end))
+
+
+def edge_rounding(edge: float) -> float:
+    """How near an outage's ``edge`` [s] a time is taken as on it [s]: 8 ulps of the clock there
+    (1.2e-10 s on a clock of 1e5 s, 1.9e-6 s on one of 1.7e9 s)."""
+    return 8.0 * float(np.spacing(abs(edge)))

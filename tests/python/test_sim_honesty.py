@@ -10,8 +10,9 @@ import pytest
 
 from gyrocore import InputWarning, allan, evaluate, motion, sim
 from gyrocore._checks import UnitError
-from gyrocore._fixes_eval import SimFixes
+from gyrocore._fixes_eval import SimFixes, _mean_in
 from gyrocore.fixes import Fixes
+from gyrocore.io import Log
 
 
 @pytest.mark.parametrize("mix", ["city", "downtown"])
@@ -129,3 +130,29 @@ def test_no_outages_may_be_given_as_none() -> None:
     t = np.arange(0.0, 100.0, 0.1)
     fixes = sim.gnss_fixes(t, np.zeros_like(t), seed=0, outages=None)
     assert np.array_equal(fixes.t, sim.gnss_fixes(t, np.zeros_like(t), seed=0).t)
+
+
+def test_the_outage_holds_the_fixes_and_reference_samples_it_states_at_both_edges() -> None:
+    # on a clock of 42879.24 s, outage=50.3:49.9 ends at (42879.24 + 50.3) + 49.9, an ulp above
+    # 42879.24 + 100.2, where the fix and the reference sample due at its end are: the outage left
+    # out 500 fixes at 10 Hz (not 499) and scored 500 reference samples, one past its end
+    n = 3000
+    t = 42879.24 + np.arange(n) / 10.0
+    log = Log(t=t, rate=np.zeros(n), t_ref=t, heading_ref=np.zeros(n), name="clock")
+    spec = SimFixes.parse("rate=10,outage=50.3:49.9")
+    removed = len(SimFixes.parse("rate=10").fixes(log)) - len(spec.fixes(log))
+    assert removed == 499
+    window = spec.window(log)
+    assert window is not None
+    error = np.zeros(n)
+    error[503 + 499] = 1.0  # the sample due at the end, the first after the outage
+    error[503] = 0.499  # the first in it: due at the start
+    assert _mean_in(t, np.radians(error), window) == pytest.approx(0.001)
+    # an outage past the log's end holds its last sample, and no fix after the one before it
+    past = SimFixes.parse("rate=10,outage=250:1e300")
+    window = past.window(log)
+    assert window is not None and t[-1] < window[1] < t[-1] + 1e-6
+    last = np.zeros(n)
+    last[-1] = 2.5
+    assert _mean_in(t, np.radians(last), window) == pytest.approx(2.5 / (n - 2500))
+    assert past.fixes(log).t[-1] == pytest.approx(t[2499])
