@@ -216,5 +216,9 @@ def format_fix_scores(rows: Sequence[FixScore | Failed]) -> None:
     for r in scores:
         if not r.absolute:
             print(f"no fix applied on {r.label} with {r.method}: its E_psi is aligned at the start, as without fixes")
-    for name, (start, end) in {r.label: r.outage for r in scores if r.outage is not None}.items():
-        print(f"outage of {name}: [{start:.3f}, {end:.3f}) s")
+    outages = {r.label: (r.outage, r.outage_e_psi_deg) for r in scores if r.outage is not None}
+    for name, ((start, end), e_psi) in outages.items():
+        # "nan" in its column was all an outage between two reference samples said
+        empty = "" if e_psi is None or not math.isnan(e_psi) else (
+            " holds no reference sample: its E_psi is nan (null in the JSON)")
+        print(f"outage of {name}: [{start:.3f}, {end:.3f}) s{empty}")

@@ -38,8 +38,9 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     none inside any of the ``outages`` ``(start, end)`` [s, on the reference's clock; None or () for
     none], nor inside a gap of the reference (an interval over 10 times its median,
     :func:`gyrocore.evaluate.find_gaps`), which tells nothing of the turns made in it. Same
-    arguments, same fixes (numpy's PCG64 seeded with ``seed``). The reference is finite, its times strictly increasing: a ValueError names its first sample
-    that is not; a heading in degrees (a wrap by 360) is a ``UnitError``, as the scoring's.
+    arguments, same fixes (numpy's PCG64 seeded with ``seed``). The reference is finite, its times
+    strictly increasing: a ValueError names its first sample that is not; a heading in degrees (a
+    wrap by 360) is a ``UnitError``, as the scoring's.
     """
     from .fixes import Fixes
 

@@ -4,6 +4,7 @@ GNSS fixes have the noise, the rate and the outage they are given."""
 from __future__ import annotations
 
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -11,6 +12,7 @@ import pytest
 from gyrocore import InputWarning, allan, evaluate, motion, sim
 from gyrocore._checks import UnitError
 from gyrocore._fixes_eval import SimFixes, _mean_in
+from gyrocore.cli import main
 from gyrocore.fixes import Fixes
 from gyrocore.io import Log
 
@@ -54,7 +56,7 @@ def test_a_sigma_whose_noise_would_wrap_is_refused(sigma_deg: float) -> None:
     t = np.arange(0.0, 100.0, 1.0)
     with pytest.raises(ValueError, match=r"sigma_deg must be in \[5.73e-11, 60\] deg .*wraps"):
         sim.gnss_fixes(t, np.zeros_like(t), seed=0, sigma_deg=sigma_deg)
-    with pytest.raises(ValueError, match=r"--sim-fixes: sigma_deg=90: the fixes' noise must be in \[5.73e-11, 60\] deg"):
+    with pytest.raises(ValueError, match=r"--sim-fixes: sigma_deg=90: the fixes' noise must be in \[5.73e-11, 60\]"):
         SimFixes.parse("sigma_deg=90")
 
 
@@ -69,7 +71,8 @@ def test_vague_simulated_fixes_are_not_said_to_be_in_degrees() -> None:
 
 
 @pytest.mark.parametrize(("samples", "step", "rate_hz"), [(4, 0.7, 10.0), (8, 1.0 / 3.0, 3.0), (8, 0.7, 10.0)])
-def test_a_fix_falls_on_the_reference_end_when_the_span_is_whole_periods(samples: int, step: float, rate_hz: float) -> None:
+def test_a_fix_falls_on_the_reference_end_when_the_span_is_whole_periods(samples: int, step: float,
+                                                                          rate_hz: float) -> None:
     # 2.1 s at 10 Hz: (t[-1] - t[0]) * rate was 20.999999999999996, and the fix at 2.1 s was lost
     # (21 fixes, not 22; 1723 of 47,968 spans and rates tried)
     t = np.arange(samples) * step
@@ -121,8 +124,8 @@ def test_a_reference_in_degrees_is_refused_as_the_scoring_refuses_it() -> None:
 def test_outages_that_are_no_sequence_are_named(outages: object) -> None:
     # "TypeError: 'int' object is not iterable", in Python's words
     t = np.arange(0.0, 100.0, 0.1)
-    with pytest.raises(TypeError, match=rf"outages must be \(start, end\) pairs in seconds, e.g. \(\(100, 160\),\), or \(\) "
-                                        rf"for none; got {outages!r}"):
+    said = rf"outages must be \(start, end\) pairs in seconds, e.g. \(\(100, 160\),\), or \(\) for none; got {outages!r}"
+    with pytest.raises(TypeError, match=said):
         sim.gnss_fixes(t, np.zeros_like(t), seed=0, outages=outages)  # type: ignore[arg-type]
 
 
@@ -156,3 +159,17 @@ def test_the_outage_holds_the_fixes_and_reference_samples_it_states_at_both_edge
     last[-1] = 2.5
     assert _mean_in(t, np.radians(last), window) == pytest.approx(2.5 / (n - 2500))
     assert past.fixes(log).t[-1] == pytest.approx(t[2499])
+
+
+def test_an_outage_without_a_reference_sample_says_why_it_has_no_e_psi(tmp_path: Path,
+                                                                       capsys: pytest.CaptureFixture[str]) -> None:
+    # an outage between two reference samples (10 Hz) printed "nan" in its column, and nothing more
+    drive = tmp_path / "drive.csv"
+    assert main(["simulate", "--duration", "60", "--rate-hz", "10", "--out", str(drive)]) == 0
+    capsys.readouterr()
+    assert main(["evaluate", str(drive), "--preset", "raw", "--sim-fixes", "outage=30.01:0.05"]) == 0
+    out = capsys.readouterr().out
+    row = next(line for line in out.splitlines() if line.startswith(str(drive)))
+    assert row.split()[4:6] == ["nan", "nan"]
+    assert (f"outage of {drive}: [30.010, 30.060) s holds no reference sample: its E_psi is nan (null in the JSON)"
+            in out), out
