@@ -63,7 +63,8 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
         raise ValueError(f"{count:.3e} fixes requested ({t[-1] - t[0]:g} s at {rate_hz:g} Hz): more than "
                          f"{MAX_FIXES:.0e}; is the rate in Hz?")
     # a span of whole periods lost its last fix to rounding (2.1 s at 10 Hz gave 20.999999999999996):
-    # a fix within 1e-12 of them is counted, and put on the reference's last time, not past it
+    # a count within 1e-12 (relative) of a whole number is that number, its last fix put on the
+    # reference's last time rather than an ulp past it
     tf = np.minimum(t[0] + np.arange(int(count * (1.0 + 1e-12)) + 1) / rate_hz, t[-1])
     # none inside a gap of the reference (as its scoring finds them): interpolated across one, the
     # fixes missed every turn in it (40 s over a 270 deg turn: errors to 180 deg, each stating sigma)
