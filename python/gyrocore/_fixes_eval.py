@@ -26,7 +26,7 @@ from .evaluate_compare import warn_partial_reference
 from .fixes import Fixes
 from .io import Log
 from .pipeline import process
-from .sim_gnss import SIGMA_DEG, gnss_fixes
+from .sim_gnss import SIGMA_DEG, edge_rounding, gnss_fixes, inside_outage
 
 
 @dataclass(frozen=True)
@@ -62,8 +62,13 @@ class SimFixes:
         if window is None:
             return None
         # an outage of 1e300 s was scored alike, and shown in a report line of 300 digits
+        start, end = window
         last = float(log.t[-1])
-        return window if window[1] <= last else (window[0], math.nextafter(last, math.inf))
+        if end - edge_rounding(end) <= last:
+            return window
+        # beyond the rounding inside_outage allows at the end (up to twice the last sample's), so
+        # that the last sample is in it
+        return start, last + 3.0 * edge_rounding(last)
 
     def _given_window(self, log: Log) -> tuple[float, float] | None:
         """The outage on the log's clock as given, or None; a ``ValueError`` if it starts after the log."""
@@ -112,7 +117,8 @@ def _value(option: str, key: str, text: str) -> Any:
     if not (math.isfinite(value) and value > 0):
         raise ValueError(f"{where}: must be a number > 0")
     if key == "sigma_deg" and not SIGMA_DEG[0] <= value <= SIGMA_DEG[1]:
-        raise ValueError(f"{where}: the fixes' noise must be in [{SIGMA_DEG[0]:.3g}, {SIGMA_DEG[1]:g}] deg")
+        raise ValueError(f"{where}: the fixes' noise must be in [{SIGMA_DEG[0]:.3g}, {SIGMA_DEG[1]:g}] deg (beyond, it "
+                         "wraps at +-180 deg and is no longer the sigma)")
     return value
 
 
@@ -155,7 +161,7 @@ def _mean_in(tr: np.ndarray, err: np.ndarray, window: tuple[float, float] | None
     """Mean absolute error [deg] at the compared times inside ``window`` (NaN if none)."""
     if window is None:
         return None
-    inside = (tr >= window[0]) & (tr < window[1])
+    inside = inside_outage(tr, window)  # as the fixes were left out: at the edges too
     return float(np.degrees(np.abs(err[inside])).mean()) if inside.any() else math.nan
 
 
@@ -210,5 +216,9 @@ def format_fix_scores(rows: Sequence[FixScore | Failed]) -> None:
     for r in scores:
         if not r.absolute:
             print(f"no fix applied on {r.label} with {r.method}: its E_psi is aligned at the start, as without fixes")
-    for name, (start, end) in {r.label: r.outage for r in scores if r.outage is not None}.items():
-        print(f"outage of {name}: [{start:.3f}, {end:.3f}) s")
+    outages = {r.label: (r.outage, r.outage_e_psi_deg) for r in scores if r.outage is not None}
+    for name, ((start, end), e_psi) in outages.items():
+        # "nan" in its column was all an outage between two reference samples said
+        empty = "" if e_psi is None or not math.isnan(e_psi) else (
+            " holds no reference sample: its E_psi is nan (null in the JSON)")
+        print(f"outage of {name}: [{start:.3f}, {end:.3f}) s{empty}")

@@ -162,8 +162,10 @@ def _manoeuvre(tr: _Track, road: Road, rng: np.random.Generator, end: float, swe
         if tr.speed[-1] > 0.0:
             tr.drive(tr.speed[-1] / 2.0 + 0.1, 0.0, accel=2.0, kind="brake")
             tr.rest(float(rng.uniform(*road.stop_s)), kind="stop")
+        # the swerve from the drive-off on: from the braking, it turned the car while it stood
+        moving = tr.now
         tr.drive(min(speed / 2.0 + 5.0, max(left, 1.0)), speed, kind="straight")
-        tr.swerve(start, tr.now, swerve, 0.1, float(rng.uniform(0, 2 * math.pi)))
+        tr.swerve(moving, tr.now, swerve, 0.1, float(rng.uniform(0, 2 * math.pi)))
     elif kind in ("straight", "sway"):
         length = min(float(rng.uniform(*road.straight_s)), max(left, 1.0))
         tr.drive(length, speed, kind=kind)

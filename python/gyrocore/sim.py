@@ -170,7 +170,8 @@ class GyroSpec:
 
     def allan_deviation(self, taus: ArrayLike) -> FloatArray:
         """Closed-form Allan deviation [rad/s] of the noise terms at averaging times ``taus`` [s]
-        (IEEE 952 Annex C: ARW, the flicker terms, RRW; without quantisation and temperature)."""
+        (IEEE 952 Annex C: ARW through the ``bandwidth_hz`` low-pass, the flicker terms, RRW; without
+        quantisation and temperature)."""
         adev: FloatArray = _gyrocore.gyro_allan_deviation(self.si(), as_float_array("taus", taus))
         return adev
 

@@ -205,8 +205,8 @@ def test_a_rest_option_misspelt_is_named_with_the_function_called(call: object, 
     [({"outages": (5.0, 10.0)}, r"an outage must be \(start, end\) in seconds, got 5.0"),
      ({"outages": (("a", "b"),)}, r"an outage must be \(start, end\) in seconds, got \('a', 'b'\)"),
      ({"outages": ((1.0, 2.0, 3.0),)}, r"an outage must be \(start, end\) in seconds"),
-     ({"sigma_deg": "1"}, r"sigma_deg must be in \[5.73e-11, 180\] deg, got '1'"),
-     ({"sigma_deg": True}, r"sigma_deg must be in \[5.73e-11, 180\] deg, got True")],
+     ({"sigma_deg": "1"}, r"sigma_deg must be in \[5.73e-11, 60\] deg \(beyond, the noise wraps at \+-180 deg and is no longer the sigma\), got '1'"),
+     ({"sigma_deg": True}, r"sigma_deg must be in \[5.73e-11, 60\] deg \(beyond, the noise wraps at \+-180 deg and is no longer the sigma\), got True")],
 )
 def test_simulated_fixes_name_an_outage_or_noise_of_the_wrong_kind(options: dict, words: str) -> None:
     """``sim.gnss_fixes(..., outages=(5, 10))`` (one outage given alone) failed as ``cannot unpack

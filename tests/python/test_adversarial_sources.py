@@ -225,7 +225,6 @@ def test_a_simulated_outage_past_the_log_is_reported_as_far_as_the_log_goes(tmp_
     outage as ``[0.000, 1000000000000000052504760255204420248704468581108159154915854115511802457988908195786...``
     (300 digits), its JSON as 1e300."""
     import json
-    import math
 
     drive = tmp_path / "drive.csv"
     gyrocore_cli("simulate", "--duration", "60", "--out", drive, code=0)
@@ -234,7 +233,8 @@ def test_a_simulated_outage_past_the_log_is_reported_as_far_as_the_log_goes(tmp_
     assert f"outage of {drive}: [{30:.3f}, {last:.3f}) s\n" in proc.stdout, proc.stdout
     report = json.loads(gyrocore_cli("evaluate", drive, "--preset", "hdr", "--sim-fixes", "outage=30:1e300", "--json",
                                      code=0).stdout)
-    assert report[0]["outage"] == [30.0, math.nextafter(last, math.inf)]
+    start, end = report[0]["outage"]
+    assert start == 30.0 and last < end < last + 1e-9  # just after the last sample, which it holds
 
 
 @pytest.mark.parametrize(("bad", "shown"), [(np.inf, "inf"), (-np.inf, "-inf"), (1e300, "1e+300")])

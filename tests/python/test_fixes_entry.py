@@ -281,7 +281,7 @@ def test_cli_evaluate_scores_a_simulated_outage_apart(folder_with_fixes: Path) -
         ("seed=²", "--sim-fixes: seed=²: the seed is a whole number"),
         ("seed=18446744073709551616", "seed=18446744073709551616: the seed is a whole number >= 0 and below 2^64"),
         # the filter refused the fixes it was given ("fix 0: sigma = 17453292.5 is outside ..."), not the option
-        ("sigma_deg=1e9", "--sim-fixes: sigma_deg=1e9: the fixes' noise must be in [5.73e-11, 180] deg"),
+        ("sigma_deg=1e9", "--sim-fixes: sigma_deg=1e9: the fixes' noise must be in [5.73e-11, 60] deg"),
         ("sigma_deg=1e-20", "sigma_deg=1e-20: the fixes' noise must be in"),
         ("speed=1", "'speed=1' is not key=value with a key of rate"),
         ("sigma=1", "'sigma=1' is not key=value with a key of rate, sigma_deg, outage, seed (did you mean 'sigma_deg'?)"),

@@ -248,7 +248,7 @@ def test_demo_takes_a_sensor_and_a_road_mix(tmp_path: Path, capsys: pytest.Captu
 def test_simulated_fixes_refuse_a_noise_the_filter_cannot_use(sigma_deg: float) -> None:
     # below 1e-12 rad the filter refused the fixes made; beyond half a turn the noise wraps
     t = np.arange(100.0)
-    with pytest.raises(ValueError, match=r"sigma_deg must be in \[5.73e-11, 180\] deg"):
+    with pytest.raises(ValueError, match=r"sigma_deg must be in \[5.73e-11, 60\] deg"):
         sim.gnss_fixes(t, 0.01 * t, seed=0, sigma_deg=sigma_deg)
 
 
