@@ -4,7 +4,7 @@ rate at irregular timestamps; :mod:`gyrocore.allan` re-exports the public names.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Literal
 
 import numpy as np
@@ -123,7 +123,7 @@ def deviation(
     result = _curve(data, dt, is_rate=True, taus=taus, overlapping=overlapping, kind=kind,
                     confidence=confidence, noise_alpha=noise_alpha)
     warn_if_moving(data, dt)
-    return result
+    return _zero_if_constant(result, data)
 
 
 def phase_deviation(
@@ -199,7 +199,7 @@ def deviation_from_timestamps(
     result = phase_deviation(phase, step, taus=taus, overlapping=overlapping, kind=kind,
                              confidence=confidence, noise_alpha=noise_alpha)
     warn_if_moving(ra, span / (len(ta) - 1))
-    return result
+    return _zero_if_constant(result, ra[1:])  # the first reading stands for no interval
 
 
 #: The grid of :func:`deviation_from_timestamps` holds at most this many points per sample.
@@ -210,6 +210,16 @@ MAX_OVERSAMPLING = 10
 MAX_ALL_TERMS = 1e10
 #: An interval longer than this many median intervals is a gap in an Allan record.
 GAP_FACTOR = 10.0
+
+
+def _zero_if_constant(result: AllanResult, rate: FloatArray) -> AllanResult:
+    """``result`` of readings that are all one value with its deviation exactly 0, as it is: the
+    angle they integrate to is a straight line, whose float rounding (7.9e-31 rad/s from a rate of
+    0.01, 2.4e-15 through the timestamps' grid) was read as noise, N, B and K of a stuck sensor."""
+    if np.ptp(rate) != 0:
+        return result
+    zero = np.zeros_like(result.adev)
+    return replace(result, adev=zero, adev_low=zero, adev_high=zero)
 
 
 def _refuse_gaps(t: FloatArray) -> None:

@@ -156,7 +156,8 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
     - Rate random walk ``K``: as N, for slope +1/2, read at tau = 3 s: ``K = sigma(3 s)``.
 
     Raises a TypeError for a ``result`` that is no :class:`~gyrocore.allan.AllanResult` (a list
-    failed as "'list' object has no attribute 'kind'").
+    failed as "'list' object has no attribute 'kind'"), and a ValueError for a curve that is 0 at
+    every tau (constant readings: there is no noise to read).
     """
     from .allan_curve import AllanResult  # here: at import time it would import the pipeline (above)
 
@@ -168,6 +169,9 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
     if len(result.taus) < 3:
         raise ValueError(f"the curve has {len(result.taus)} taus; need at least 3 to read slopes")
     taus, dev, w = result.taus, result.adev, result.edf
+    if not np.any(dev > 0):  # the slopes of log 0 are no noise's
+        raise ValueError("the Allan deviation is 0 at every tau: the readings are constant (a sensor stuck, saturated "
+                         "or quantised coarser than its noise), so there is no noise to read N, B and K from")
     notes: list[str] = []
     check_number("slope_tolerance", slope_tolerance)  # NaN or -1 found no slope without a word
     arw = _slope_line(taus, dev, w, -0.5, 1.0, slope_tolerance)

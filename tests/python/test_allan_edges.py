@@ -1,0 +1,51 @@
+"""gyrocore.allan at the edges of its inputs: records with no noise, long lists of averaging
+times, and curves whose shape is not one of the three noise slopes."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from gyrocore import allan
+
+from .conftest import gyrocore_cli
+
+
+def constant_csv(path: Path, n: int = 3000, value: float = 0.0123) -> Path:
+    path.write_text("t,gyro_z\n" + "".join(f"{0.01 * i:.2f},{value}\n" for i in range(n)))
+    return path
+
+
+@pytest.mark.parametrize("value", [0.0123, 0.01, -0.7, 1e-5])
+def test_a_constant_record_has_a_deviation_of_zero_and_no_noise_to_read(value: float) -> None:
+    """A gyro that reads one value (stuck, saturated, or quantised coarser than its noise) has an
+    Allan deviation of exactly 0. Its float rounding (7.9e-31 rad/s from a rate of 0.01, 2.4e-15
+    from the timestamps' route) was read as N, B and K."""
+    rate = np.full(3000, value)
+    t = np.arange(3000) * 0.01
+    for result in (allan.deviation(rate, 0.01), allan.deviation_from_timestamps(t, rate),
+                   allan.deviation(rate, 0.01, kind="hadamard"), allan.deviation(rate, 0.01, kind="modified")):
+        assert np.all(result.adev == 0.0), result.adev
+        assert np.all(result.adev_low == 0.0) and np.all(result.adev_high == 0.0)
+    with pytest.raises(ValueError, match=r"^the Allan deviation is 0 at every tau: the readings are constant"):
+        allan.noise_parameters(allan.deviation_from_timestamps(t, rate))
+
+
+def test_the_first_reading_of_a_log_stands_for_no_interval() -> None:
+    """The timestamps' route leaves the first reading out (it has no interval): a log constant
+    after it is constant."""
+    rate = np.full(3000, 0.0123)
+    rate[0] = 5.0
+    result = allan.deviation_from_timestamps(np.arange(3000) * 0.01, rate)
+    assert np.all(result.adev == 0.0)
+
+
+def test_the_command_line_says_a_constant_record_has_no_noise(tmp_path: Path) -> None:
+    path = constant_csv(tmp_path / "stuck.csv")
+    for window in ((), ("--window", "+0", "+20")):  # no advice of a longer window: it is no matter of length
+        proc = gyrocore_cli("allan", path, *window, code=2)
+        assert proc.stderr.startswith(f"gyrocore: error: {path}: the Allan deviation is 0 at every tau: the readings "
+                                      "are constant"), proc.stderr
+        assert "longer --window" not in proc.stderr
