@@ -117,7 +117,8 @@ def deviation(
         SampleError: a rate that is NaN, infinite or beyond +-2^20 (the pipeline's limit), naming
             the index.
         ValueError: too few samples, a tau that is not a whole
-            multiple of dt or too long for the record, an unknown option.
+            multiple of dt or too long for the record, averaging times that would sum more than
+            :data:`MAX_ALL_TERMS` terms (samples times taus), an unknown option.
     """
     data = as_float_array("rate", rate)
     result = _curve(data, dt, is_rate=True, taus=taus, overlapping=overlapping, kind=kind,
@@ -204,9 +205,9 @@ def deviation_from_timestamps(
 
 #: The grid of :func:`deviation_from_timestamps` holds at most this many points per sample.
 MAX_OVERSAMPLING = 10
-#: ``taus="all"`` is refused above this many terms (samples times averaging times, n^2/4): a day
-#: at 100 Hz asked for 1.9e13, hours of work with nothing shown (a modified deviation over 160,000
-#: samples took 19 s here); 1e10 is seconds to half a minute.
+#: Averaging times are refused above this many terms (samples times averaging times; ``taus="all"``
+#: asks for n^2/4): a day at 100 Hz asked for 1.9e13, hours of work with nothing shown (a modified
+#: deviation over 160,000 samples took 19 s here); 1e10 is seconds to half a minute.
 MAX_ALL_TERMS = 1e10
 #: An interval longer than this many median intervals is a gap in an Allan record.
 GAP_FACTOR = 10.0
@@ -343,11 +344,9 @@ def _factors(taus: TauSpec | ArrayLike, n: int, dt: float, variance: str) -> NDA
         elif taus == "log":
             m = np.round(np.logspace(0.0, math.log10(top), int(10 * math.log10(top)) + 2))
         elif taus == "all":
-            if n * top > MAX_ALL_TERMS:
-                raise ValueError(f"taus='all' (--taus all) over {n - 1} intervals asks for {top} averaging times, "
-                                 f"{n * top:.2g} terms to sum (more than {MAX_ALL_TERMS:.0e}: minutes to hours of work); "
-                                 "use taus='log' (about 10 per decade), or give the averaging times [s], or analyse a "
-                                 "shorter record")
+            _refuse_too_many_terms(top, n, "taus='all' (--taus all) over {intervals} intervals asks for {count} averaging "
+                                   "times, {terms} terms to sum ({limit}); use taus='log' (about 10 per decade), or give "
+                                   "the averaging times [s], or analyse a shorter record")
             m = np.arange(1, top + 1)
         else:
             raise ValueError(f"unknown taus {taus!r}: use 'octave', 'decade', 'log', 'all' or an array [s]")
@@ -368,4 +367,17 @@ def _factors(taus: TauSpec | ArrayLike, n: int, dt: float, variance: str) -> NDA
     if len(too_long):
         i = too_long[0]
         raise ValueError(f"taus[{i}] = {requested[i]} s is too long: the record allows at most {longest * dt} s")
-    return np.unique(m.astype(np.int64))
+    m = np.unique(m.astype(np.int64))
+    # each averaging time costs a pass over the record, whether named or listed
+    _refuse_too_many_terms(len(m), n, "taus: {count} averaging times over {intervals} intervals ask for {terms} terms "
+                           "to sum ({limit}); give fewer (taus='log' gives about 10 per decade), or analyse a shorter "
+                           "record")
+    return m
+
+
+def _refuse_too_many_terms(count: int, n: int, message: str) -> None:
+    """Refuse ``count`` averaging times over ``n`` phase samples beyond :data:`MAX_ALL_TERMS` terms,
+    before the work, with ``message`` filled in (``{count}``, ``{intervals}``, ``{terms}``, ``{limit}``)."""
+    if n * count > MAX_ALL_TERMS:
+        raise ValueError(message.format(count=count, intervals=n - 1, terms=f"{n * count:.2g}",
+                                        limit=f"more than {MAX_ALL_TERMS:.0e}: minutes to hours of work"))
