@@ -31,6 +31,10 @@ MIN_INTERVAL: float = _gyrocore.MIN_INTERVAL
 #: below the best gyros' (a bias instability of 1e-4 deg/h is 5e-10 rad/s); far smaller values are
 #: a unit gone wrong, and below 1e-154 N^2 underflowed to settings of 0.
 MIN_NOISE = 1e-12
+#: :func:`noise_parameters` takes a slope tolerance below this: half the step between the slopes
+#: -1/2, 0 and +1/2, so that no point counts for two noise types (at 5, white noise of N = 1e-3
+#: read as a flat floor and a +1/2 line over its whole curve: B = 0.0107 rad/s, K = 0.071).
+MAX_SLOPE_TOLERANCE = 0.25
 
 
 @dataclass(frozen=True)
@@ -157,7 +161,8 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
 
     Raises a TypeError for a ``result`` that is no :class:`~gyrocore.allan.AllanResult` (a list
     failed as "'list' object has no attribute 'kind'"), and a ValueError for a curve that is 0 at
-    every tau (constant readings: there is no noise to read).
+    every tau (constant readings: there is no noise to read) or a ``slope_tolerance`` outside
+    (0, :data:`MAX_SLOPE_TOLERANCE`).
     """
     from .allan_curve import AllanResult  # here: at import time it would import the pipeline (above)
 
@@ -173,7 +178,10 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
         raise ValueError("the Allan deviation is 0 at every tau: the readings are constant (a sensor stuck, saturated "
                          "or quantised coarser than its noise), so there is no noise to read N, B and K from")
     notes: list[str] = []
-    check_number("slope_tolerance", slope_tolerance)  # NaN or -1 found no slope without a word
+    slope_tolerance = check_number("slope_tolerance", slope_tolerance)  # NaN or -1 found no slope without a word
+    if not slope_tolerance < MAX_SLOPE_TOLERANCE:
+        raise ValueError(f"slope_tolerance must be below {MAX_SLOPE_TOLERANCE:g} (half the step between the slopes "
+                         f"-1/2, 0 and +1/2: a point would count for two noise types), got {slope_tolerance:g}")
     arw = _slope_line(taus, dev, w, -0.5, 1.0, slope_tolerance)
     rrw = _slope_line(taus, dev, w, 0.5, 3.0, slope_tolerance)
     arw_p = rrw_p = None

@@ -59,3 +59,14 @@ def test_a_long_list_of_averaging_times_is_refused_as_every_one_is() -> None:
                                          r"to sum \(more than 1e\+10: minutes to hours of work\); give fewer"):
         allan.deviation(rate, 0.01, taus=np.arange(1, 60_001) * 0.01)
     assert len(allan.deviation(rate[:4000], 0.01, taus=np.arange(1, 1001) * 0.01).taus) == 1000  # a short record
+
+
+@pytest.mark.parametrize("tolerance", [0.25, 0.5, 5.0])
+def test_a_slope_tolerance_that_lets_a_point_count_for_two_noise_types_is_refused(tolerance: float) -> None:
+    """The slopes -1/2, 0 and +1/2 lie 1/2 apart: from a tolerance of 1/4 a point of slope -1/4
+    counted for both N and B. At 5, white noise of N = 1e-3 read as a flat floor over the whole
+    curve, B = 0.0107 rad/s, 80 times its lowest point."""
+    result = allan.deviation(np.random.default_rng(0).normal(0.0, 0.01, 10_000), 0.01)
+    with pytest.raises(ValueError, match=r"^slope_tolerance must be below 0\.25 \(half the step between the slopes"):
+        allan.noise_parameters(result, slope_tolerance=tolerance)
+    assert allan.noise_parameters(result, slope_tolerance=0.24).arw is not None
