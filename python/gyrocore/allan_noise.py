@@ -158,6 +158,9 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
       not the floor. If the minimum is the last tau (the floor is not reached) or the first (an
       internal filter), ``B`` is only an upper bound (see notes).
     - Rate random walk ``K``: as N, for slope +1/2, read at tau = 3 s: ``K = sigma(3 s)``.
+    - A rate ramp (slope +1, ``sigma = R tau / sqrt(2)``: the rate drifts steadily) is named in
+      ``notes`` with its ``R`` [rad/s^2]; B and K read within two octaves before it are marked as
+      upper bounds, since the curve's bend into it passes through the slopes 0 and +1/2.
 
     Raises a TypeError for a ``result`` that is no :class:`~gyrocore.allan.AllanResult` (a list
     failed as "'list' object has no attribute 'kind'"), and a ValueError for a curve that is 0 at
@@ -191,12 +194,27 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
         value, span = arw
         arw_p = NoiseParameter(value, "rad/s/sqrt(Hz)", value * _RAD_TO_DEG * _SQRT_HOUR, "deg/sqrt(h)", span,
                                "line of slope -1/2 read at tau = 1 s")
+    # IEEE 952's rate ramp R (slope +1, sigma = R tau / sqrt(2)): a rate that drifts steadily. The
+    # curve bends into it through the slopes 0 and +1/2, so a floor or a +1/2 line within two
+    # octaves of its start is the ramp's as much as any noise's, and only bounds B or K from above.
+    ramp = _slope_line(taus, dev, w, 1.0, 1.0, slope_tolerance)
+    beside = math.inf  # the shortest tau [s] a stretch may end at to lie beside the ramp
+    if ramp is not None:
+        level, (start, end) = ramp
+        beside = start / 4.0
+        notes.append(
+            f"the curve rises with slope +1 over tau {start:.4g} .. {end:.4g} s: a rate ramp, R = "
+            f"{math.sqrt(2.0) * level:.3g} rad/s^2 (the rate drifts steadily, e.g. while the gyro warms up); the bias "
+            "instability and rate random walk read beside it are upper bounds: remove the drift, or analyse a "
+            "stretch without it"
+        )
     if rrw is None:
         notes.append("no stretch of slope +1/2: rate random walk not identified (record too short?)")
     else:
         value, span = rrw
+        method = "line of slope +1/2 read at tau = 3 s" + (_BESIDE_RAMP if span[1] >= beside else "")
         rrw_p = NoiseParameter(value, "rad/s^2/sqrt(Hz)", value * _RAD_TO_DEG * _HOUR * _SQRT_HOUR,
-                               "deg/h/sqrt(h)", span, "line of slope +1/2 read at tau = 3 s")
+                               "deg/h/sqrt(h)", span, method)
     # The flat bottom: of the flat stretches, the lowest; its level is the edf-weighted mean,
     # since the single lowest point of a noisy floor is biased low (few terms at long tau). A
     # stretch the curve later falls below half of (confidence interval included) is no bottom: a
@@ -224,9 +242,15 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
     elif hi == len(dev) - 1 and not flat:
         method += " (upper bound: the curve still falls at the longest tau)"
         notes.append("the Allan deviation has no minimum within the record: bias instability is an upper bound")
+    elif taus[hi] >= beside:
+        method += _BESIDE_RAMP
     b = floor / FLICKER_FLOOR
     bias_p = NoiseParameter(b, "rad/s", b * _RAD_TO_DEG * _HOUR, "deg/h", (float(taus[lo]), float(taus[hi])), method)
     return NoiseParameters(arw_p, bias_p, rrw_p, result.dt, tuple(notes))
+
+
+#: What a bias instability or rate random walk read beside a rate ramp is (see :func:`noise_parameters`).
+_BESIDE_RAMP = " (upper bound: beside a rate ramp)"
 
 
 def _slope_runs(taus: FloatArray, dev: FloatArray, slope: float, tolerance: float) -> list[tuple[int, int]]:

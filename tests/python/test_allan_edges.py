@@ -70,3 +70,31 @@ def test_a_slope_tolerance_that_lets_a_point_count_for_two_noise_types_is_refuse
     with pytest.raises(ValueError, match=r"^slope_tolerance must be below 0\.25 \(half the step between the slopes"):
         allan.noise_parameters(result, slope_tolerance=tolerance)
     assert allan.noise_parameters(result, slope_tolerance=0.24).arw is not None
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+@pytest.mark.parametrize("taus", ["octave", "log"])
+def test_a_rate_ramp_is_named_and_what_is_read_beside_it_is_an_upper_bound(seed: int, taus: str) -> None:
+    """White noise (N = 1e-3) and a rate drifting by R = 1e-5 rad/s^2 (IEEE 952's rate ramp, slope
+    +1): the bend between them was read as K = 9.3e-5 rad/s^2/sqrt(Hz) and a floor B, as measured,
+    where the record has neither, and the ramp went without a word."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(400_000) * 0.01
+    p = allan.noise_parameters(allan.deviation(rng.normal(0.0, 0.01, len(t)) + 1e-5 * t, 0.01, taus=taus))
+    ramp = [note for note in p.notes if "rate ramp" in note]
+    assert len(ramp) == 1, p.notes
+    r = float(ramp[0].split("R = ")[1].split(" ")[0])
+    assert r == pytest.approx(1e-5, rel=0.2)
+    assert p.arw is not None and p.arw.value == pytest.approx(1e-3, rel=0.03)
+    assert p.bias_instability is not None and "upper bound" in p.bias_instability.method
+    assert p.rrw is None or "upper bound" in p.rrw.method
+
+
+def test_rate_random_walk_alone_is_no_ramp() -> None:
+    rng = np.random.default_rng(0)
+    rate = rng.normal(0.0, 0.01, 400_000) + np.cumsum(rng.normal(0.0, 2e-5, 400_000))  # K = 2e-4
+    for taus in ("octave", "log"):
+        p = allan.noise_parameters(allan.deviation(rate, 0.01, taus=taus))
+        assert not [note for note in p.notes if "ramp" in note], p.notes
+        assert p.rrw is not None and "upper bound" not in p.rrw.method
+        assert p.rrw.value == pytest.approx(2e-4, rel=0.2)
