@@ -155,8 +155,9 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
       minimum is the lowest stretch of slope 0 (within ``slope_tolerance``), its level the
       weighted mean there; without such a stretch, the lowest point. A flat stretch the curve
       later falls clearly below (the hump of a sensor's internal filter at the shortest taus) is
-      not the floor. If the minimum is the last tau (the floor is not reached) or the first (an
-      internal filter), ``B`` is only an upper bound (see notes).
+      not the floor, nor is one that ends on the -1/2 line of N within its confidence interval
+      (white noise's scatter). If the minimum is the last tau (the floor is not reached), the
+      first (an internal filter) or lies on that line, ``B`` is only an upper bound (see notes).
     - Rate random walk ``K``: as N, for slope +1/2, read at tau = 3 s: ``K = sigma(3 s)``.
     - A rate ramp (slope +1, ``sigma = R tau / sqrt(2)``: the rate drifts steadily) is named in
       ``notes`` with its ``R`` [rad/s^2]; B and K read within two octaves before it are marked as
@@ -219,12 +220,18 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
     # since the single lowest point of a noisy floor is biased low (few terms at long tau). A
     # stretch the curve later falls below half of (confidence interval included) is no bottom: a
     # sensor's internal filter flattens the shortest taus before the white noise's -1/2 fall,
-    # while a floor's own points stay well within a factor 2 of its level.
+    # while a floor's own points stay well within a factor 2 of its level. Nor is a stretch that
+    # ends, past the start of the white noise's -1/2 line, on that line (within its interval):
+    # the scatter of the last few points of white noise, read as a floor in 10 of 60 records of it.
+    def on_white_line(i: int) -> bool:
+        return arw is not None and taus[i] >= arw[1][0] and bool(result.adev_low[i] <= arw[0] / math.sqrt(taus[i]))
+
     flat = [
         (float(np.average(dev[a : b + 1], weights=w[a : b + 1])), (a, b))
         for a, b in _slope_runs(taus, dev, 0.0, slope_tolerance)
     ]
-    flat = [(level, run) for level, run in flat if not np.any(result.adev_high[run[1] + 1 :] < level / 2)]
+    flat = [(level, run) for level, run in flat
+            if not np.any(result.adev_high[run[1] + 1 :] < level / 2) and not on_white_line(run[1])]
     if flat:
         floor, (lo, hi) = min(flat)
         method = "flat minimum (slope 0, weighted mean) / 0.664"
@@ -242,6 +249,10 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
     elif hi == len(dev) - 1 and not flat:
         method += " (upper bound: the curve still falls at the longest tau)"
         notes.append("the Allan deviation has no minimum within the record: bias instability is an upper bound")
+    elif on_white_line(hi) and not flat:
+        method += " (upper bound: the minimum lies on the -1/2 line)"
+        notes.append(f"the Allan deviation's minimum at tau = {taus[hi]:.4g} s lies on the angle random walk's -1/2 "
+                     "line within its interval: the floor is not reached, bias instability is an upper bound")
     elif taus[hi] >= beside:
         method += _BESIDE_RAMP
     b = floor / FLICKER_FLOOR
