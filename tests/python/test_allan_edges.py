@@ -122,3 +122,16 @@ def test_a_floor_beside_white_noise_is_still_read() -> None:
         assert p.bias_instability is not None and "upper bound" not in p.bias_instability.method
         assert p.bias_instability.value == pytest.approx(b_true, rel=0.25)
         assert p.arw is not None and p.arw.value == pytest.approx(n_true, rel=0.05)
+
+
+def test_a_curve_of_zeros_is_not_drawn_on_log_axes(tmp_path: Path) -> None:
+    """The Hadamard deviation of a constant record, now exactly 0, was drawn as an empty figure
+    (matplotlib: "Data has no positive values, and therefore cannot be log-scaled")."""
+    pytest.importorskip("matplotlib")
+    with pytest.raises(ValueError, match=r"^the deviation is 0 at every tau \(constant readings\): a log-log plot has "
+                                         r"nothing to draw"):
+        allan.plot(allan.deviation(np.full(3000, 0.0123), 0.01, kind="hadamard"))
+    path = constant_csv(tmp_path / "stuck.csv")
+    proc = gyrocore_cli("allan", path, "--kind", "hadamard", "--plot", tmp_path / "h.png", code=2)
+    assert "nothing to draw" in proc.stderr and "log-scaled" not in proc.stderr
+    assert not (tmp_path / "h.png").exists()
