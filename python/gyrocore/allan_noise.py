@@ -198,7 +198,9 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
     # IEEE 952's rate ramp R (slope +1, sigma = R tau / sqrt(2)): a rate that drifts steadily. The
     # curve bends into it through the slopes 0 and +1/2, so a floor or a +1/2 line within two
     # octaves of its start is the ramp's as much as any noise's, and only bounds B or K from above.
-    ramp = _slope_line(taus, dev, w, 1.0, 1.0, slope_tolerance)
+    # A ramp rises to the longest tau: a rise of slope +1 the curve later falls from is a
+    # sinusoid's (IEEE 952's sinusoidal term, a period of 400 s was taken for a ramp) or motion's.
+    ramp = _slope_line(taus, dev, w, 1.0, 1.0, slope_tolerance, to_the_end=True)
     beside = math.inf  # the shortest tau [s] a stretch may end at to lie beside the ramp
     if ramp is not None:
         level, (start, end) = ramp
@@ -289,11 +291,15 @@ def _slope_runs(taus: FloatArray, dev: FloatArray, slope: float, tolerance: floa
 
 
 def _slope_line(
-    taus: FloatArray, dev: FloatArray, weight: FloatArray, slope: float, at: float, tolerance: float
+    taus: FloatArray, dev: FloatArray, weight: FloatArray, slope: float, at: float, tolerance: float,
+    *, to_the_end: bool = False,
 ) -> tuple[float, tuple[float, float]] | None:
     """Fit ``log dev = c + slope log tau`` (weights: degrees of freedom) on the stretch of that
-    slope spanning the most octaves; returns (dev at tau = ``at``, tau range) or None."""
+    slope spanning the most octaves (with ``to_the_end``, only one that reaches the longest tau);
+    returns (dev at tau = ``at``, tau range) or None."""
     runs = _slope_runs(taus, dev, slope, tolerance)
+    if to_the_end:
+        runs = [run for run in runs if run[1] == len(taus) - 1]
     if not runs:
         return None
     a, b = max(runs, key=lambda r: taus[r[1]] / taus[r[0]])

@@ -135,3 +135,12 @@ def test_a_curve_of_zeros_is_not_drawn_on_log_axes(tmp_path: Path) -> None:
     proc = gyrocore_cli("allan", path, "--kind", "hadamard", "--plot", tmp_path / "h.png", code=2)
     assert "nothing to draw" in proc.stderr and "log-scaled" not in proc.stderr
     assert not (tmp_path / "h.png").exists()
+
+
+def test_a_sinusoid_rising_with_slope_one_and_falling_again_is_no_ramp() -> None:
+    """IEEE 952's sinusoidal term rises with slope +1 below its period and falls after it: white
+    noise and a 400 s sinusoid were noted as a rate ramp, R = 4.5e-5 rad/s^2."""
+    rng = np.random.default_rng(0)
+    t = np.arange(400_000) * 0.01
+    p = allan.noise_parameters(allan.deviation(rng.normal(0.0, 0.01, len(t)) + 0.004 * np.sin(2 * np.pi * t / 400), 0.01))
+    assert not [note for note in p.notes if "ramp" in note], p.notes
