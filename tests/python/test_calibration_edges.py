@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -21,3 +23,14 @@ def test_temperature_bins_too_narrow_are_said_to_be_so_not_a_span_too_short() ->
     with pytest.raises(ValueError, match=r"^fewer than 2 temperature bins of 1 degC hold 10 readings: the temperature "
                                          r"spans only 0 degC"):
         calibration.bias_temperature_table(t, rate, np.full(len(t), 25.0))
+
+
+def test_a_rate_reference_fit_has_no_window_in_seconds(tmp_path: Path) -> None:
+    """``rate_reference`` takes no times: its window was the sample indices, printed and saved as
+    seconds ("window 0 .. 99 s" for 100 readings, whatever their rate)."""
+    reference = np.sin(np.arange(100) * 0.1)
+    fit = calibration.rate_reference(1.02 * reference + 0.01, reference)
+    assert fit.window is None and fit.samples == 100
+    assert " s," not in repr(fit) and "window" not in repr(fit)
+    fit.save(tmp_path / "c.json")
+    assert calibration.Calibration.load(tmp_path / "c.json").window is None
