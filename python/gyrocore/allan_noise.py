@@ -13,6 +13,7 @@ import numpy as np
 from . import _gyrocore
 from ._arrays import FloatArray
 from ._checks import MAX_READING, MAX_SECONDS, check_number, real_number, shown
+from .window import MIN_WINDOW_READINGS
 
 if TYPE_CHECKING:  # pragma: no cover
     # only a type here: importing the curve module at run time would import the pipeline, which
@@ -362,7 +363,9 @@ def settings_from_noise(
        rest of T seconds leaves a bias error of about sqrt(N^2/T + (0.664 B)^2). The knee where
        both terms are equal, ``T_bias = (N / 0.664 B)^2``, is where averaging stops paying: a
        shorter rest leaves mostly white-noise error, a longer one gains at most a factor sqrt(2).
-       The bias error after T_bias is then ``e_b = sqrt(2) * 0.664 B``.
+       The bias error after T_bias is then ``e_b = sqrt(2) * 0.664 B``. T_bias is at least
+       ``3 dt``, the readings the pipeline's static bias needs (with one interval to spare), and
+       ``e_b = sqrt(N^2 / T_bias + (0.664 B)^2)`` then.
     2. **Threshold** (Hong eq 12): readings below r_thres are zeroed, so it is set against the
        per-sample white noise ``sigma_w = N / sqrt(dt)``: ``r_thres = k sigma_w``. The default
        k = 0.72 is Hong & Park's own choice expressed this way: their XV3500 (N = 2.5 deg/sqrt(h))
@@ -393,6 +396,10 @@ def settings_from_noise(
             f"arw = {arw:g} and bias_instability = {bias_instability:g} give T_bias = (N / 0.664 B)^2 = {t_bias:.3g} s, "
             f"beyond the pipeline's 2^40 s: are both in rad/s units (N in rad/sqrt(s), B in rad/s)?"
         )
+    # At least the readings the pipeline's static bias needs, with one interval to spare for times
+    # that round: where the bias instability outweighs the white noise the knee lies below one
+    # sample (N = 1e-6, B = 1e-3: 2.3 us), a rest the pipeline refused as holding 1 reading.
+    t_bias = max(t_bias, MIN_WINDOW_READINGS * dt)
     bias_error = math.sqrt(arw**2 / t_bias + floor**2)
     return NoiseSettings(
         threshold=threshold_factor * arw / math.sqrt(dt),

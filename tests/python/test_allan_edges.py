@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import gyrocore
 from gyrocore import allan
 
 from .conftest import gyrocore_cli
@@ -144,3 +145,18 @@ def test_a_sinusoid_rising_with_slope_one_and_falling_again_is_no_ramp() -> None
     t = np.arange(400_000) * 0.01
     p = allan.noise_parameters(allan.deviation(rng.normal(0.0, 0.01, len(t)) + 0.004 * np.sin(2 * np.pi * t / 400), 0.01))
     assert not [note for note in p.notes if "ramp" in note], p.notes
+
+
+@pytest.mark.parametrize(("arw", "bias_instability"), [(2.9e-5, 4.8e-4), (1e-6, 1e-3)])
+def test_settings_from_noise_give_a_bias_duration_the_pipeline_takes(arw: float, bias_instability: float) -> None:
+    """A gyro whose bias instability outweighs its white noise (N = 0.1 deg/sqrt(h), B = 100 deg/h)
+    has its knee (N / 0.664 B)^2 below one sample at 100 Hz (0.008 s; 2.3 us for N = 1e-6,
+    B = 1e-3): the settings' bias_duration was refused by the pipeline they were made for."""
+    settings = allan.settings_from_noise(arw=arw, bias_instability=bias_instability, dt=0.01)
+    assert settings.bias_duration == pytest.approx(0.03)  # the pipeline's 3 readings, one interval to spare
+    floor = allan.FLICKER_FLOOR * bias_instability
+    assert settings.bias_error == pytest.approx(np.hypot(arw / np.sqrt(0.03), floor))
+    t = np.arange(3000) * 0.01
+    rate = np.random.default_rng(0).normal(0.001, 1e-4, len(t))
+    result = gyrocore.process(t, rate, "combined", **settings.overrides())
+    assert np.all(np.isfinite(result.heading))
