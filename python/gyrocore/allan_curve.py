@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
-from ._checks import MAX_READING, check_number, require_flag, require_readings
+from ._checks import MAX_READING, check_number, require_flag, require_readings, warn
 from ._motion import warn_if_moving
 from .allan_edf import _TABLES, ONE_SIGMA, confidence_interval, equivalent_dof
 from .integration import integrate
@@ -171,7 +171,9 @@ def deviation_from_timestamps(
     interval, would grow with the gap), so each continuous part must be analysed on its own.
 
     Warns an :class:`~gyrocore.InputWarning` of rates that look like deg/s or times like ms, as
-    :func:`gyrocore.process` does (:func:`noise_parameters` would read N, B and K in other units).
+    :func:`gyrocore.process` does (:func:`noise_parameters` would read N, B and K in other units),
+    and of a ``dt`` finer than the median interval: the grid then interpolates between readings,
+    and the deviation at taus up to a few intervals reads low.
     """
     ta = as_float_array("t", t)
     ra = as_float_array("rate", rate)
@@ -182,7 +184,7 @@ def deviation_from_timestamps(
     # given; its intervals are the same as from ta - ta[0] (a difference of two close floats is exact).
     # integrate warns, as process does, of times in ms (taus 1000 times too long) or rates in deg/s.
     angle = integrate(ta, ra, method="rectangle")
-    _refuse_gaps(ta)
+    median = _refuse_gaps(ta)
     span = ta[-1] - ta[0]
     # The mean interval keeps a regular log's grid on its samples (a median of float-rounded
     # epoch intervals would drift off them over a long log).
@@ -195,6 +197,13 @@ def deviation_from_timestamps(
             f"dt = {step:g} s would resample the {len(ta)} samples onto {span / step:.3g} points; give dt of at "
             f"least {span / (MAX_OVERSAMPLING * len(ta)):.3g} s (the mean interval is {span / (len(ta) - 1):.3g} s)"
         )
+    if dt is not None and step < 0.99 * median:
+        # Linear interpolation of the angle holds the rate over each interval: a finer grid's averages
+        # within one interval are equal, and the deviation up to a few intervals reads low (white
+        # noise at 100 Hz on a 2.5 ms grid: 27 % at 0.01 s, N 8 %; a grid 5 % finer: 31 % at its tau).
+        warn(f"dt = {step:g} s is finer than the log's median interval ({median:.6g} s): the grid interpolates "
+             "between readings, and the deviation at taus up to a few intervals reads lower than the sensor's "
+             f"(white noise: 27 % at one interval on a grid 4 times finer); give dt of at least {median:.6g} s")
     grid = np.arange(int(span / step + 1e-9) + 1) * step
     phase = np.interp(grid, ta - ta[0], angle)
     result = phase_deviation(phase, step, taus=taus, overlapping=overlapping, kind=kind,
@@ -223,8 +232,9 @@ def _zero_if_constant(result: AllanResult, rate: FloatArray) -> AllanResult:
     return replace(result, adev=zero, adev_low=zero, adev_high=zero)
 
 
-def _refuse_gaps(t: FloatArray) -> None:
-    """Name the longest gap of a record, if it has one (see :func:`deviation_from_timestamps`)."""
+def _refuse_gaps(t: FloatArray) -> float:
+    """Name the longest gap of a record, if it has one (see :func:`deviation_from_timestamps`);
+    returns the median interval [s]."""
     intervals = np.diff(t)
     median = float(np.median(intervals))
     i = int(np.argmax(intervals))
@@ -235,6 +245,7 @@ def _refuse_gaps(t: FloatArray) -> None:
             "a continuous record: analyse each part on its own (gyrocore allan --window T0 T1, or slices of "
             "t and rate)"
         )
+    return median
 
 
 def _curve(

@@ -3,6 +3,7 @@ times, and curves whose shape is not one of the three noise slopes."""
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -160,3 +161,22 @@ def test_settings_from_noise_give_a_bias_duration_the_pipeline_takes(arw: float,
     rate = np.random.default_rng(0).normal(0.001, 1e-4, len(t))
     result = gyrocore.process(t, rate, "combined", **settings.overrides())
     assert np.all(np.isfinite(result.heading))
+
+
+def test_a_grid_finer_than_the_log_is_warned_about() -> None:
+    """``deviation_from_timestamps(dt=...)`` finer than the log's interval interpolates between
+    readings: for white noise at 100 Hz on a grid of 2.5 ms the deviation at 0.01 s read 27 %
+    low (0.00729 for 0.0100) and N 8 % low, without a word."""
+    rng = np.random.default_rng(0)
+    t = np.arange(100_000) * 0.01
+    rate = rng.normal(0.0, 0.01, len(t))
+    with pytest.warns(gyrocore.InputWarning, match=r"^dt = 0\.0025 s is finer than the log's median interval "
+                                                   r"\(0\.01 s\): the grid interpolates between readings"):
+        fine = allan.deviation_from_timestamps(t, rate, dt=0.0025)
+    assert fine.adev[fine.taus == 0.01][0] < 0.8 * 0.01  # what the warning is about
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for dt in (None, 0.01, 0.02):
+            allan.deviation_from_timestamps(t, rate, dt=dt)
+        jittered = t + rng.uniform(-0.002, 0.002, len(t))  # the mean interval as its grid: no warning
+        allan.deviation_from_timestamps(jittered, rate)
