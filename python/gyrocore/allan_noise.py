@@ -326,14 +326,19 @@ class NoiseSettings:
     """HDR turn threshold Theta_w (HDR eq 8) [rad/s]."""
     bias_error: float
     """Expected standard error of the static bias after T_bias [rad/s]."""
+    hdr_interval: float = 1.0
+    """HDR step length [s] that ``hdr_turn_threshold`` was set for."""
 
     def overrides(self) -> dict[str, float]:
-        """Parameters for ``gyrocore.Pipeline(preset, **overrides)``."""
+        """Parameters for ``gyrocore.Pipeline(preset, **overrides)``: with the HDR step the turn
+        threshold was set for (a step of 0.5 s was given a threshold for it while the pipeline
+        kept its 1 s steps)."""
         return {
             "threshold": self.threshold,
             "bias_duration": self.bias_duration,
             "hdr_increment": self.hdr_increment,
             "hdr_turn_threshold": self.hdr_turn_threshold,
+            "hdr_interval": self.hdr_interval,
         }
 
 
@@ -407,4 +412,5 @@ def settings_from_noise(
         hdr_increment=bias_error,
         hdr_turn_threshold=turn_sigmas * math.sqrt(arw**2 / hdr_interval + bias_error**2),
         bias_error=bias_error,
+        hdr_interval=hdr_interval,
     )

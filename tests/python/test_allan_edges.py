@@ -180,3 +180,13 @@ def test_a_grid_finer_than_the_log_is_warned_about() -> None:
             allan.deviation_from_timestamps(t, rate, dt=dt)
         jittered = t + rng.uniform(-0.002, 0.002, len(t))  # the mean interval as its grid: no warning
         allan.deviation_from_timestamps(jittered, rate)
+
+
+def test_settings_for_an_hdr_step_run_the_pipeline_with_that_step() -> None:
+    """``settings_from_noise(hdr_interval=0.5)`` set the turn threshold for 0.5 s steps, but its
+    overrides left the pipeline's HDR at 1 s steps: a threshold for another step length."""
+    settings = allan.settings_from_noise(arw=1e-4, bias_instability=5e-5, dt=0.01, hdr_interval=0.5)
+    assert settings.hdr_interval == 0.5
+    assert gyrocore.Pipeline("combined", **settings.overrides()).params["hdr_interval"] == 0.5
+    default = allan.settings_from_noise(arw=1e-4, bias_instability=5e-5, dt=0.01)
+    assert gyrocore.Pipeline("combined", **default.overrides()).params["hdr_interval"] == 1.0
