@@ -170,7 +170,7 @@ def test_a_grid_finer_than_the_log_is_warned_about() -> None:
     rng = np.random.default_rng(0)
     t = np.arange(100_000) * 0.01
     rate = rng.normal(0.0, 0.01, len(t))
-    with pytest.warns(gyrocore.InputWarning, match=r"^dt = 0\.0025 s is finer than the log's median interval "
+    with pytest.warns(gyrocore.InputWarning, match=r"^dt = 0\.0025 s is finer than the log's interval "
                                                    r"\(0\.01 s\): the grid interpolates between readings"):
         fine = allan.deviation_from_timestamps(t, rate, dt=0.0025)
     assert fine.adev[fine.taus == 0.01][0] < 0.8 * 0.01  # what the warning is about
@@ -180,6 +180,9 @@ def test_a_grid_finer_than_the_log_is_warned_about() -> None:
             allan.deviation_from_timestamps(t, rate, dt=dt)
         jittered = t + rng.uniform(-0.002, 0.002, len(t))  # the mean interval as its grid: no warning
         allan.deviation_from_timestamps(jittered, rate)
+        # times rounded to 1 ms at 285.7 Hz step by 3 and 4 ms (median 4): the true interval is no finer
+        rounded = np.round(1.7e9 + np.arange(20_001) / 285.7, 3)
+        allan.deviation_from_timestamps(rounded, rate[: len(rounded)], dt=1 / 285.7)
 
 
 def test_settings_for_an_hdr_step_run_the_pipeline_with_that_step() -> None:
