@@ -70,7 +70,10 @@ def plot(
 ) -> Axes:
     """Log-log plot of the deviation with its confidence interval; with ``parameters``, the
     slope -1/2 (N), floor (0.664 B) and slope +1/2 (K) lines over the ranges they came from.
-    Needs matplotlib (``pip install gyrocore[plot]``); returns the axes."""
+    Needs matplotlib (``pip install gyrocore[plot]``); returns the axes. Raises ValueError for a
+    curve that is 0 at every tau (constant readings), which log axes cannot show."""
+    if not np.any(result.adev > 0):  # matplotlib drew empty axes, warning only that it could not log-scale
+        raise ValueError("the deviation is 0 at every tau (constant readings): a log-log plot has nothing to draw")
     plt = require("matplotlib.pyplot", "plotting an Allan deviation")
     if ax is None:
         _, ax = plt.subplots(figsize=(6.4, 4.8))

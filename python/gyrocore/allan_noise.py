@@ -13,6 +13,7 @@ import numpy as np
 from . import _gyrocore
 from ._arrays import FloatArray
 from ._checks import MAX_READING, MAX_SECONDS, check_number, real_number, shown
+from .window import MIN_WINDOW_READINGS
 
 if TYPE_CHECKING:  # pragma: no cover
     # only a type here: importing the curve module at run time would import the pipeline, which
@@ -31,6 +32,10 @@ MIN_INTERVAL: float = _gyrocore.MIN_INTERVAL
 #: below the best gyros' (a bias instability of 1e-4 deg/h is 5e-10 rad/s); far smaller values are
 #: a unit gone wrong, and below 1e-154 N^2 underflowed to settings of 0.
 MIN_NOISE = 1e-12
+#: :func:`noise_parameters` takes a slope tolerance below this: half the step between the slopes
+#: -1/2, 0 and +1/2, so that no point counts for two noise types (at 5, white noise of N = 1e-3
+#: read as a flat floor and a +1/2 line over its whole curve: B = 0.0107 rad/s, K = 0.071).
+MAX_SLOPE_TOLERANCE = 0.25
 
 
 @dataclass(frozen=True)
@@ -144,19 +149,26 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
     """Read N, B and K off an Allan deviation curve of a rate in rad/s (IEEE 952 Annex C).
 
     - Angle random walk ``N``: the longest stretch where the curve falls with slope -1/2 (each
-      point's slope taken to the point about an octave further, within ``slope_tolerance``); a
-      line of slope -1/2 is fitted there (weighted by each point's degrees of freedom) and read
+      point's slope taken to the point about an octave further, within ``slope_tolerance``, or
+      within three standard errors (and 0.02) where the curve is known more closely than that);
+      a line of slope -1/2 is fitted there (weighted by each point's degrees of freedom) and read
       at tau = 1 s: ``N = sigma(1 s)``.
     - Bias instability ``B``: the flat minimum divided by sqrt(2 ln 2 / pi) = 0.664. The flat
       minimum is the lowest stretch of slope 0 (within ``slope_tolerance``), its level the
       weighted mean there; without such a stretch, the lowest point. A flat stretch the curve
       later falls clearly below (the hump of a sensor's internal filter at the shortest taus) is
-      not the floor. If the minimum is the last tau (the floor is not reached) or the first (an
-      internal filter), ``B`` is only an upper bound (see notes).
+      not the floor, nor is one that ends on the -1/2 line of N within its confidence interval
+      (white noise's scatter). If the minimum is the last tau (the floor is not reached), the
+      first (an internal filter) or lies on that line, ``B`` is only an upper bound (see notes).
     - Rate random walk ``K``: as N, for slope +1/2, read at tau = 3 s: ``K = sigma(3 s)``.
+    - A rate ramp (slope +1, ``sigma = R tau / sqrt(2)``: the rate drifts steadily) is named in
+      ``notes`` with its ``R`` [rad/s^2]; B and K read within two octaves before it are marked as
+      upper bounds, since the curve's bend into it passes through the slopes 0 and +1/2.
 
     Raises a TypeError for a ``result`` that is no :class:`~gyrocore.allan.AllanResult` (a list
-    failed as "'list' object has no attribute 'kind'").
+    failed as "'list' object has no attribute 'kind'"), and a ValueError for a curve that is 0 at
+    every tau (constant readings: there is no noise to read) or a ``slope_tolerance`` outside
+    (0, :data:`MAX_SLOPE_TOLERANCE`).
     """
     from .allan_curve import AllanResult  # here: at import time it would import the pipeline (above)
 
@@ -168,8 +180,14 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
     if len(result.taus) < 3:
         raise ValueError(f"the curve has {len(result.taus)} taus; need at least 3 to read slopes")
     taus, dev, w = result.taus, result.adev, result.edf
+    if not np.any(dev > 0):  # the slopes of log 0 are no noise's
+        raise ValueError("the Allan deviation is 0 at every tau: the readings are constant (a sensor stuck, saturated "
+                         "or quantised coarser than its noise), so there is no noise to read N, B and K from")
     notes: list[str] = []
-    check_number("slope_tolerance", slope_tolerance)  # NaN or -1 found no slope without a word
+    slope_tolerance = check_number("slope_tolerance", slope_tolerance)  # NaN or -1 found no slope without a word
+    if not slope_tolerance < MAX_SLOPE_TOLERANCE:
+        raise ValueError(f"slope_tolerance must be below {MAX_SLOPE_TOLERANCE:g} (half the step between the slopes "
+                         f"-1/2, 0 and +1/2: a point would count for two noise types), got {slope_tolerance:g}")
     arw = _slope_line(taus, dev, w, -0.5, 1.0, slope_tolerance)
     rrw = _slope_line(taus, dev, w, 0.5, 3.0, slope_tolerance)
     arw_p = rrw_p = None
@@ -179,22 +197,45 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
         value, span = arw
         arw_p = NoiseParameter(value, "rad/s/sqrt(Hz)", value * _RAD_TO_DEG * _SQRT_HOUR, "deg/sqrt(h)", span,
                                "line of slope -1/2 read at tau = 1 s")
+    # IEEE 952's rate ramp R (slope +1, sigma = R tau / sqrt(2)): a rate that drifts steadily. The
+    # curve bends into it through the slopes 0 and +1/2, so a floor or a +1/2 line within two
+    # octaves of its start is the ramp's as much as any noise's, and only bounds B or K from above.
+    # A ramp rises to the longest tau: a rise of slope +1 the curve later falls from is a
+    # sinusoid's (IEEE 952's sinusoidal term, a period of 400 s was taken for a ramp) or motion's.
+    ramp = _slope_line(taus, dev, w, 1.0, 1.0, slope_tolerance, to_the_end=True)
+    beside = math.inf  # the shortest tau [s] a stretch may end at to lie beside the ramp
+    if ramp is not None:
+        level, (start, end) = ramp
+        beside = start / 4.0
+        notes.append(
+            f"the curve rises with slope +1 over tau {start:.4g} .. {end:.4g} s: a rate ramp, R = "
+            f"{math.sqrt(2.0) * level:.3g} rad/s^2 (the rate drifts steadily, e.g. while the gyro warms up); the bias "
+            "instability and rate random walk read beside it are upper bounds: remove the drift, or analyse a "
+            "stretch without it"
+        )
     if rrw is None:
         notes.append("no stretch of slope +1/2: rate random walk not identified (record too short?)")
     else:
         value, span = rrw
+        method = "line of slope +1/2 read at tau = 3 s" + (_BESIDE_RAMP if span[1] >= beside else "")
         rrw_p = NoiseParameter(value, "rad/s^2/sqrt(Hz)", value * _RAD_TO_DEG * _HOUR * _SQRT_HOUR,
-                               "deg/h/sqrt(h)", span, "line of slope +1/2 read at tau = 3 s")
+                               "deg/h/sqrt(h)", span, method)
     # The flat bottom: of the flat stretches, the lowest; its level is the edf-weighted mean,
     # since the single lowest point of a noisy floor is biased low (few terms at long tau). A
     # stretch the curve later falls below half of (confidence interval included) is no bottom: a
     # sensor's internal filter flattens the shortest taus before the white noise's -1/2 fall,
-    # while a floor's own points stay well within a factor 2 of its level.
+    # while a floor's own points stay well within a factor 2 of its level. Nor is a stretch that
+    # ends, past the start of the white noise's -1/2 line, on that line (within its interval):
+    # the scatter of the last few points of white noise, read as a floor in 10 of 60 records of it.
+    def on_white_line(i: int) -> bool:
+        return arw is not None and taus[i] >= arw[1][0] and bool(result.adev_low[i] <= arw[0] / math.sqrt(taus[i]))
+
     flat = [
         (float(np.average(dev[a : b + 1], weights=w[a : b + 1])), (a, b))
-        for a, b in _slope_runs(taus, dev, 0.0, slope_tolerance)
+        for a, b in _slope_runs(taus, dev, w, 0.0, slope_tolerance)
     ]
-    flat = [(level, run) for level, run in flat if not np.any(result.adev_high[run[1] + 1 :] < level / 2)]
+    flat = [(level, run) for level, run in flat
+            if not np.any(result.adev_high[run[1] + 1 :] < level / 2) and not on_white_line(run[1])]
     if flat:
         floor, (lo, hi) = min(flat)
         method = "flat minimum (slope 0, weighted mean) / 0.664"
@@ -212,21 +253,43 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
     elif hi == len(dev) - 1 and not flat:
         method += " (upper bound: the curve still falls at the longest tau)"
         notes.append("the Allan deviation has no minimum within the record: bias instability is an upper bound")
+    elif on_white_line(hi) and not flat:
+        method += " (upper bound: the minimum lies on the -1/2 line)"
+        notes.append(f"the Allan deviation's minimum at tau = {taus[hi]:.4g} s lies on the angle random walk's -1/2 "
+                     "line within its interval: the floor is not reached, bias instability is an upper bound")
+    elif taus[hi] >= beside:
+        method += _BESIDE_RAMP
     b = floor / FLICKER_FLOOR
     bias_p = NoiseParameter(b, "rad/s", b * _RAD_TO_DEG * _HOUR, "deg/h", (float(taus[lo]), float(taus[hi])), method)
     return NoiseParameters(arw_p, bias_p, rrw_p, result.dt, tuple(notes))
 
 
-def _slope_runs(taus: FloatArray, dev: FloatArray, slope: float, tolerance: float) -> list[tuple[int, int]]:
+#: The least tolerance of a slope where the curve is known closely (see :func:`_slope_runs`).
+SLOPE_SLACK = 0.02
+#: What a bias instability or rate random walk read beside a rate ramp is (see :func:`noise_parameters`).
+_BESIDE_RAMP = " (upper bound: beside a rate ramp)"
+
+
+def _slope_runs(
+    taus: FloatArray, dev: FloatArray, edf: FloatArray, slope: float, tolerance: float
+) -> list[tuple[int, int]]:
     """Index ranges ``(first, last)`` of the stretches where the curve has ``slope`` within
     ``tolerance``: each point's slope is taken to the first point an octave further (robust on
-    dense tau sets), and a run of matching points spans up to the last one's octave partner."""
+    dense tau sets), and a run of matching points spans up to the last one's octave partner.
+
+    Where the curve is known closely (many degrees of freedom ``edf``: the shortest taus) the
+    tolerance narrows to what its scatter allows: three standard errors of the slope (the log of
+    a deviation scatters by 1/sqrt(2 edf)) and :data:`SLOPE_SLACK`. A sensor's bandwidth bends
+    the shortest taus (slope -0.4 for the simulated XV3500's 20 Hz at 100 Hz), well known there
+    and within 0.15 of -1/2: taken into N's line, they weighed most and read N 8 % low."""
     lt, ld = np.log(taus), np.log(dev)
     ahead = np.searchsorted(lt, lt + math.log(2.0) - 1e-9)
     ok = ahead < len(lt)
     local = np.full(len(lt), np.nan)
     local[ok] = (ld[ahead[ok]] - ld[ok]) / (lt[ahead[ok]] - lt[ok])
-    match = np.abs(local - slope) <= tolerance
+    spread = np.full(len(lt), np.inf)
+    spread[ok] = np.sqrt(0.5 / edf[ok] + 0.5 / edf[ahead[ok]]) / (lt[ahead[ok]] - lt[ok])
+    match = np.abs(local - slope) <= np.minimum(tolerance, SLOPE_SLACK + 3.0 * spread)
     runs = []
     i = 0
     while i < len(match):
@@ -242,11 +305,15 @@ def _slope_runs(taus: FloatArray, dev: FloatArray, slope: float, tolerance: floa
 
 
 def _slope_line(
-    taus: FloatArray, dev: FloatArray, weight: FloatArray, slope: float, at: float, tolerance: float
+    taus: FloatArray, dev: FloatArray, weight: FloatArray, slope: float, at: float, tolerance: float,
+    *, to_the_end: bool = False,
 ) -> tuple[float, tuple[float, float]] | None:
     """Fit ``log dev = c + slope log tau`` (weights: degrees of freedom) on the stretch of that
-    slope spanning the most octaves; returns (dev at tau = ``at``, tau range) or None."""
-    runs = _slope_runs(taus, dev, slope, tolerance)
+    slope spanning the most octaves (with ``to_the_end``, only one that reaches the longest tau);
+    returns (dev at tau = ``at``, tau range) or None."""
+    runs = _slope_runs(taus, dev, weight, slope, tolerance)
+    if to_the_end:
+        runs = [run for run in runs if run[1] == len(taus) - 1]
     if not runs:
         return None
     a, b = max(runs, key=lambda r: taus[r[1]] / taus[r[0]])
@@ -272,14 +339,19 @@ class NoiseSettings:
     """HDR turn threshold Theta_w (HDR eq 8) [rad/s]."""
     bias_error: float
     """Expected standard error of the static bias after T_bias [rad/s]."""
+    hdr_interval: float = 1.0
+    """HDR step length [s] that ``hdr_turn_threshold`` was set for."""
 
     def overrides(self) -> dict[str, float]:
-        """Parameters for ``gyrocore.Pipeline(preset, **overrides)``."""
+        """Parameters for ``gyrocore.Pipeline(preset, **overrides)``: with the HDR step the turn
+        threshold was set for (a step of 0.5 s was given a threshold for it while the pipeline
+        kept its 1 s steps)."""
         return {
             "threshold": self.threshold,
             "bias_duration": self.bias_duration,
             "hdr_increment": self.hdr_increment,
             "hdr_turn_threshold": self.hdr_turn_threshold,
+            "hdr_interval": self.hdr_interval,
         }
 
 
@@ -309,7 +381,9 @@ def settings_from_noise(
        rest of T seconds leaves a bias error of about sqrt(N^2/T + (0.664 B)^2). The knee where
        both terms are equal, ``T_bias = (N / 0.664 B)^2``, is where averaging stops paying: a
        shorter rest leaves mostly white-noise error, a longer one gains at most a factor sqrt(2).
-       The bias error after T_bias is then ``e_b = sqrt(2) * 0.664 B``.
+       The bias error after T_bias is then ``e_b = sqrt(2) * 0.664 B``. T_bias is at least
+       ``3 dt``, the readings the pipeline's static bias needs (with one interval to spare), and
+       ``e_b = sqrt(N^2 / T_bias + (0.664 B)^2)`` then.
     2. **Threshold** (Hong eq 12): readings below r_thres are zeroed, so it is set against the
        per-sample white noise ``sigma_w = N / sqrt(dt)``: ``r_thres = k sigma_w``. The default
        k = 0.72 is Hong & Park's own choice expressed this way: their XV3500 (N = 2.5 deg/sqrt(h))
@@ -340,6 +414,10 @@ def settings_from_noise(
             f"arw = {arw:g} and bias_instability = {bias_instability:g} give T_bias = (N / 0.664 B)^2 = {t_bias:.3g} s, "
             f"beyond the pipeline's 2^40 s: are both in rad/s units (N in rad/sqrt(s), B in rad/s)?"
         )
+    # At least the readings the pipeline's static bias needs, with one interval to spare for times
+    # that round: where the bias instability outweighs the white noise the knee lies below one
+    # sample (N = 1e-6, B = 1e-3: 2.3 us), a rest the pipeline refused as holding 1 reading.
+    t_bias = max(t_bias, MIN_WINDOW_READINGS * dt)
     bias_error = math.sqrt(arw**2 / t_bias + floor**2)
     return NoiseSettings(
         threshold=threshold_factor * arw / math.sqrt(dt),
@@ -347,4 +425,5 @@ def settings_from_noise(
         hdr_increment=bias_error,
         hdr_turn_threshold=turn_sigmas * math.sqrt(arw**2 / hdr_interval + bias_error**2),
         bias_error=bias_error,
+        hdr_interval=hdr_interval,
     )

@@ -59,7 +59,7 @@ def _check_units(method: str, s_bar: float, scale_error: float) -> None:
 
 
 def _calibration_from_q(
-    method: str, q: FloatArray, cov: FloatArray, rms: float, cond: float, window: tuple[float, float], n: int
+    method: str, q: FloatArray, cov: FloatArray, rms: float, cond: float, window: tuple[float, float] | None, n: int
 ) -> Calibration:
     """s and b from ``q = (s_bar, b_bar)`` (Hong eq 3 inverted), with first-order standard errors."""
     s_bar, b_bar = float(q[0]), float(q[1])
@@ -179,7 +179,8 @@ def rate_reference(rate_measured: ArrayLike, rate_reference: ArrayLike) -> Calib
         raise ValueError(
             f"the rate must change during calibration: the gyro's readings are constant (condition number {cond:.3g})"
         )
-    return _calibration_from_q("rate_reference", q, cov, rms, cond, (0.0, float(len(r) - 1)), len(r))
+    # no window: the readings come without times (their indices were printed and saved as seconds)
+    return _calibration_from_q("rate_reference", q, cov, rms, cond, None, len(r))
 
 
 def heading_reference(

@@ -130,7 +130,8 @@ class Calibration:
         residual_rms: RMS of the fit's residuals (rad/s; rad for ``heading_reference``); for the
             static bias the standard deviation of the readings.
         condition_number: of the column-scaled least-squares problem (None without one).
-        window: the time span used [s]: the rest window of a static bias test, the fitted span.
+        window: the time span used [s]: the rest window of a static bias test, the fitted span
+            (None for ``rate_reference``, whose readings come without times).
         samples: readings used.
         c_cw, c_ccw: direction correction factors (FOG eq 2).
         temp_slope, temp_offset: temperature-linear scale factor (FOG eq 5-6, per 360 deg).

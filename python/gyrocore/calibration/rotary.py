@@ -8,10 +8,11 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .._arrays import FloatArray
 from .._checks import check_number
 from ..integration import angle_of
 from .inputs import check_series, check_temperature
-from .rest import refuse_unknown_rest_options, rest_windows, static_bias
+from .rest import MAX_RATE, refuse_unknown_rest_options, rest_windows, static_bias
 from .result import Calibration
 
 
@@ -63,6 +64,34 @@ class RotaryTable:
     temperature_fit: tuple[float, float, float] | None
 
 
+#: A stretch turning less than this fraction of the turn angle is no turn (a bias step, a nudge).
+NUDGE = 0.05
+
+
+def _refuse_slow_turns(
+    ta: FloatArray, ra: FloatArray, pauses: list[tuple[float, float]], first: tuple[float, float], turn_angle: float,
+    max_rate: float,
+) -> None:
+    """Refuse a rest that turns: a table turn slower than ``max_rate`` is as steady as a rest and
+    within it of zero, so :func:`rest_windows` finds it as one. Taken for a pause it was dropped,
+    and for a static bias test it made the bias its rate (2 deg/s turns: a bias of -1.98 deg/s).
+    A rest reads the bias of the first one; one whose level differs so much that it turns by a
+    turn's ``NUDGE`` is a turn."""
+    def level(window: tuple[float, float]) -> float:
+        return float(np.mean(ra[np.searchsorted(ta, window[0]) : np.searchsorted(ta, window[1], side="right")]))
+
+    bias = level(first)
+    for a, b in pauses:
+        offset = level((a, b)) - bias
+        if abs(offset) * (b - a) >= NUDGE * turn_angle:
+            raise ValueError(
+                f"the stretch from {a:.6g} to {b:.6g} s, found as a rest, turns {math.degrees(offset * (b - a)):.4g} "
+                f"deg at {math.degrees(offset):.3g} deg/s from the first rest's level: a turn slower than max_rate = "
+                f"{max_rate:g} rad/s ({math.degrees(max_rate):.3g} deg/s) reads as steady as a rest; give a smaller "
+                f"max_rate (max_rate={abs(offset) / 2:.2g})"
+            )
+
+
 def rotary_table(
     t: ArrayLike,
     rate: ArrayLike,
@@ -94,7 +123,8 @@ def rotary_table(
 
     Raises:
         ValueError: bad samples, no rest before the first turn, a motion that is not a turn of
-            ``turn_angle``, or no turn at all.
+            ``turn_angle``, a rest that turns (a turn slower than ``max_rate``, found as a rest),
+            or no turn at all.
     """
     # checked here: a turn_angle or tolerance of 0 or NaN gave "no turn found", a NaN min_rest "no rest of
     # at least nan s", and min_pause was named min_duration (rest_windows' name for it)
@@ -110,6 +140,7 @@ def rotary_table(
         raise ValueError(
             f"no rest of at least {min_rest:g} s found: the static bias before the turns cannot be measured"
         )
+    _refuse_slow_turns(ta, ra, pauses, tests[0], turn_angle, rest_options.get("max_rate", MAX_RATE))
     turns: list[Turn] = []
     for k, (_, p1) in enumerate(pauses):
         if p1 < tests[0][1]:
@@ -122,7 +153,7 @@ def rotary_table(
         bias = static_bias(ta, ra, test, min_duration=min_rest).bias
         tm, rm = ta[moving], ra[moving] - bias
         angle = float(angle_of(tm - tm[0], rm)[-1])  # the input warned of its units
-        if abs(angle) < 0.05 * turn_angle:
+        if abs(angle) < NUDGE * turn_angle:
             continue  # a step of the bias or a nudge between pauses, not a turn
         if abs(abs(angle) - turn_angle) > tolerance * turn_angle:
             raise ValueError(

@@ -49,6 +49,11 @@ def bias_temperature_table(
     counts = np.bincount(k, minlength=nb)
     wsum = np.bincount(k, w, nb)
     keep = (counts >= min_samples) & (wsum > 0)
+    if counts.max() < min_samples:  # the span may be wide: each reading fell in a bin of a few
+        raise ValueError(
+            f"no temperature bin of {bin_width:g} degC holds {min_samples} readings (the fullest holds "
+            f"{counts.max()}): give a wider bin_width or a smaller min_samples"
+        )
     if keep.sum() < 2:
         raise ValueError(
             f"fewer than 2 temperature bins of {bin_width:g} degC hold {min_samples} readings: the temperature "

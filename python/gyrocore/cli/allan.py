@@ -103,7 +103,8 @@ def run(args: argparse.Namespace) -> int:
     try:
         params = allan.noise_parameters(result) if args.kind == "allan" else None
     except ValueError as e:  # too short a record (or --window) for the curve's slopes
-        raise ValueError(f"{src}: {e}" + (" (give a longer --window)" if window is not None else "")) from None
+        short = window is not None and len(result.taus) < 3  # not for a record with no noise
+        raise ValueError(f"{src}: {e}" + (" (give a longer --window)" if short else "")) from None
     if args.json:
         out = {"input": str(src), "allan": result.as_dict(), "noise": None if params is None else params.as_dict()}
         print_json(out)
