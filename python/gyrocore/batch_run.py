@@ -120,9 +120,13 @@ def run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileR
     reports: dict[int, FileReport] = {}
     # The workers' files check it at every chunk, as the threads' files check theirs: a task
     # already running on a worker is not stopped by cancelling its future.
-    stop = distributed.Event(f"gyrocore-stop-{uuid.uuid4().hex}", client=client)
+    batch = uuid.uuid4().hex
+    stop = distributed.Event(f"gyrocore-stop-{batch}", client=client)
+    # A key of the batch's own: the cluster takes a key it holds already for that task, and
+    # another batch's first file of the same name (gyrocore-0-d0.csv) was taken for this one's,
+    # never processed, its report the other's.
     futures = [
-        client.submit(_run_job, job, stop, key=f"gyrocore-{i}-{job.path.name}", pure=False)
+        client.submit(_run_job, job, stop, key=f"gyrocore-{batch}-{i}-{job.path.name}", pure=False)
         for i, job in enumerate(jobs)
     ]
     index = {f.key: i for i, f in enumerate(futures)}

@@ -1,0 +1,90 @@
+"""A fleet on a Dask cluster, as its operator meets it: batches that share the cluster, workers
+whose working folder is not the client's, workers that die, a scheduler that goes away. Each
+batch is compared with the same batch run here on threads (``jobs=2``): the outputs are
+bit-identical and the reports equal."""
+
+from __future__ import annotations
+
+import os
+import threading
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from gyrocore import batch_run
+from gyrocore.batch import BatchReport, process_many
+
+from .test_batch import synthetic_csv
+
+distributed = pytest.importorskip("dask.distributed")
+
+_run_job = batch_run._run_job
+
+
+@pytest.fixture(scope="module")
+def threads() -> Iterator[Any]:
+    """A client of a cluster of threads in this process (one worker of two threads)."""
+    with (
+        distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None) as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        yield client
+
+
+@pytest.fixture(scope="module")
+def processes() -> Iterator[Any]:
+    """A client of a cluster of two worker processes of one thread each (the machine's two cores)."""
+    with (
+        distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        yield client
+
+
+def comparable(report: BatchReport) -> dict[str, Any]:
+    """A batch's report without its times, which differ from run to run."""
+    plain = report.as_dict()
+    del plain["seconds"]
+    for f in plain["files"]:
+        del f["seconds"]
+    return plain
+
+
+_both = threading.Barrier(2)
+
+
+def _beside_the_other(job: Any, stop: Any = None) -> Any:
+    """A file's job that runs only while another batch's runs too (a thread of the same worker)."""
+    _both.wait(timeout=10)
+    return _run_job(job, stop)
+
+
+def test_two_batches_on_one_cluster_each_process_their_own_files(tmp_path: Path, threads: Any,
+                                                                 monkeypatch: pytest.MonkeyPatch) -> None:
+    # Two operators' batches on one cluster, each with a first input named d0.csv: a task's key
+    # was its index and the input's name, so the second batch's file was taken for the first's,
+    # never processed, and its report was the first batch's (input A/d0.csv, output outA/d0.csv)
+    # with an empty output folder.
+    a, b = tmp_path / "A", tmp_path / "B"
+    a.mkdir()
+    b.mkdir()
+    inputs = [synthetic_csv(a / "d0.csv", 3000, seed=1), synthetic_csv(b / "d0.csv", 2000, seed=2)]
+    monkeypatch.setattr(batch_run, "_run_job", _beside_the_other)
+    _both.reset()
+    reports: dict[str, BatchReport] = {}
+
+    def run(name: str, log: Path) -> None:
+        reports[name] = process_many([log], out_dir=tmp_path / f"out{name}", client=threads, preset="raw", bias=0.0)
+
+    runs = [threading.Thread(target=run, args=(n, log)) for n, log in zip("AB", inputs)]
+    for r in runs:
+        r.start()
+    for r in runs:
+        r.join(timeout=60)
+    for name, log, rows in zip("AB", inputs, (3000, 2000)):
+        (report,) = reports[name].files
+        assert report.ok, report.error
+        assert (report.input, report.output, report.rows_out) == (str(log), str(tmp_path / f"out{name}" / "d0.csv"), rows)
+        assert os.listdir(tmp_path / f"out{name}") == ["d0.csv"]
