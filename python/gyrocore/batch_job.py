@@ -3,6 +3,8 @@ what it did (:class:`~gyrocore.batch_report.FileReport`)."""
 
 from __future__ import annotations
 
+import copy
+import dataclasses
 import os
 import time
 from collections.abc import Callable, Iterator, Sequence
@@ -299,6 +301,28 @@ class _FileJob:
             return None
         where = str(source.path / ODOMETRY_CSV)
         return rests.speed_on(t, odometry["t"], odometry["speed"], where=where)
+
+    def for_a_worker(self) -> _FileJob:
+        """This job with its input and output as absolute paths, for a Dask worker: its working
+        folder is not this process's (another machine, a process started elsewhere), and a
+        relative path named another file there, or none (``logs/d0.csv: no such file or folder``)."""
+        job = copy.copy(self)
+        job.path, job.out = Path(os.path.abspath(self.path)), Path(os.path.abspath(self.out))
+        return job
+
+    def as_given(self, report: FileReport, sent: _FileJob) -> FileReport:
+        """The report of ``sent`` (this job :meth:`for_a_worker`) naming the input and the output
+        as this job does, as a run here names them."""
+
+        def named(text: str) -> str:
+            return text.replace(str(sent.path), str(self.path)).replace(str(sent.out), str(self.out))
+
+        return dataclasses.replace(
+            report, input=str(self.path), output=None if report.output is None else str(self.out),
+            error=None if report.error is None else named(report.error), warnings=tuple(map(named, report.warnings)),
+            bias_source=None if report.bias_source is None else named(report.bias_source),
+            fixes_file=None if report.fixes_file is None else named(report.fixes_file),
+        )
 
     def failure(self, error: BaseException, seconds: float) -> FileReport:
         reason = error_text(error) if isinstance(error, (ValueError, TypeError, OSError, ImportError)) else repr(error)

@@ -9,7 +9,7 @@ import threading
 import time
 import uuid
 from concurrent.futures import ThreadPoolExecutor, as_completed
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from typing import Any
 
 from ._extras import require, tqdm_class
@@ -48,14 +48,16 @@ class BatchInterrupted(KeyboardInterrupt):
         return f"{len(done)} file(s) finished before it, complete: {shown}"
 
 
-def _finished_meanwhile(futures: Iterable[tuple[int, Any]], reports: dict[int, FileReport]) -> None:
-    """Adds the reports of the files that finished while the batch stopped: past their last chunk
-    when the signal came, they complete, and their outputs are whole."""
+def _finished_meanwhile(futures: Iterable[tuple[int, Any]], reports: dict[int, FileReport],
+                        named: Callable[[int, FileReport], FileReport] = lambda i, report: report) -> None:
+    """Adds the reports of the files that finished while the batch stopped (``named`` names their
+    files as given): past their last chunk when the signal came, they complete, and their outputs
+    are whole."""
     for i, future in futures:
         if i in reports or not future.done() or future.cancelled():
             continue
         try:
-            reports[i] = future.result()
+            reports[i] = named(i, future.result())
         # a file the signal stopped (its chunk check raised the KeyboardInterrupt, see _signals),
         # or a lost worker: no report, and no output; the batch's own interrupt is raised after
         except (Exception, KeyboardInterrupt):  # noqa: BLE001
@@ -125,9 +127,14 @@ def run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileR
     # A key of the batch's own: the cluster takes a key it holds already for that task, and
     # another batch's first file of the same name (gyrocore-0-d0.csv) was taken for this one's,
     # never processed, its report the other's.
+    sent = [job.for_a_worker() for job in jobs]
+
+    def named(i: int, report: FileReport) -> FileReport:
+        return jobs[i].as_given(report, sent[i])
+
     futures = [
         client.submit(_run_job, job, stop, key=f"gyrocore-{batch}-{i}-{job.path.name}", pure=False)
-        for i, job in enumerate(jobs)
+        for i, job in enumerate(sent)
     ]
     index = {f.key: i for i, f in enumerate(futures)}
     with _bar(len(jobs), progress) as bar:
@@ -135,13 +142,13 @@ def run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileR
             for future in distributed.as_completed(futures):
                 i = index[future.key]
                 try:
-                    reports[i] = future.result()
+                    reports[i] = named(i, future.result())
                 except Exception as e:  # noqa: BLE001 - a lost worker fails its file only
                     reports[i] = jobs[i].failure(e, 0.0)
                 bar.update(1)
         except BaseException as e:
             _stop_on_cluster(distributed, stop, futures)
-            _finished_meanwhile(enumerate(futures), reports)
+            _finished_meanwhile(enumerate(futures), reports, named)
             _interrupted(e, reports)
             raise
     return [reports[i] for i in range(len(jobs))]

@@ -37,7 +37,7 @@ def threads() -> Iterator[Any]:
 def processes() -> Iterator[Any]:
     """A client of a cluster of two worker processes of one thread each (the machine's two cores)."""
     with (
-        distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster,
+        distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster,
         distributed.Client(cluster) as client,
     ):
         yield client
@@ -88,3 +88,35 @@ def test_two_batches_on_one_cluster_each_process_their_own_files(tmp_path: Path,
         assert report.ok, report.error
         assert (report.input, report.output, report.rows_out) == (str(log), str(tmp_path / f"out{name}" / "d0.csv"), rows)
         assert os.listdir(tmp_path / f"out{name}") == ["d0.csv"]
+
+
+def _fleet(folder: Path) -> Path:
+    """Three good logs and one malformed CSV in ``folder``."""
+    folder.mkdir()
+    for k in range(3):
+        synthetic_csv(folder / f"d{k}.csv", 3000 + 500 * k, seed=k)
+    (folder / "bad.csv").write_text("t,gyro_z\n0,0\n0.01,zero\n")
+    return folder
+
+
+def test_relative_paths_are_the_clients_on_workers_that_run_elsewhere(tmp_path: Path, processes: Any,
+                                                                      monkeypatch: pytest.MonkeyPatch) -> None:
+    # The workers' working folder is not the client's (another machine, a process started
+    # elsewhere): `gyrocore process logs --out out --scheduler ...` failed every file with
+    # "logs/d0.csv: no such file or folder" although it was there, and an absolute input with a
+    # relative output folder was written into the workers' folder, not the one reported.
+    _fleet(tmp_path / "logs")
+    monkeypatch.chdir(tmp_path)
+    assert all(cwd != str(tmp_path) for cwd in processes.run(os.getcwd).values())
+    here = process_many(["logs"], out_dir="out", jobs=2, preset="raw", bias=0.0)
+    os.rename("out", "here")
+    there = process_many(["logs"], out_dir="out", client=processes, preset="raw", bias=0.0)
+    assert [(r.ok, r.input, r.output) for r in there.files] == [
+        (False, "logs/bad.csv", None), *((True, f"logs/d{k}.csv", f"out/d{k}.csv") for k in range(3))
+    ]
+    assert comparable(there) == comparable(here)
+    assert sorted(os.listdir("out")) == sorted(os.listdir("here")) == ["d0.csv", "d1.csv", "d2.csv"]
+    for name in os.listdir("out"):
+        assert Path("out", name).read_bytes() == Path("here", name).read_bytes()
+    absolute = process_many([tmp_path / "logs" / "d0.csv"], out_dir="again", client=processes, preset="raw", bias=0.0)
+    assert absolute.files[0].output == "again/d0.csv" and os.listdir("again") == ["d0.csv"]
