@@ -13,6 +13,7 @@ from collections.abc import Callable, Iterable
 from typing import Any
 
 from ._extras import require, tqdm_class
+from ._gyrocore import __version__
 from .batch_job import _FileJob
 from .batch_report import FileReport
 
@@ -168,6 +169,26 @@ def check_client(client: Any) -> None:
     if not isinstance(client, str) and not hasattr(client, "scheduler_address"):  # a cluster has one
         raise TypeError("client must be a dask.distributed.Client, a Dask cluster or a scheduler's address "
                         f"(tcp://host:8786), got {type(client).__name__} {client!r}")
+
+
+def _version() -> str:
+    """The version of gyrocore (of its compiled core) where this runs: a worker, asked by :func:`check_workers`."""
+    return __version__
+
+
+def check_workers(client: Any) -> None:
+    """Refuse, before any output is made, a cluster whose workers cannot import gyrocore (not
+    installed there, or its compiled core missing: each worker that took a file died reading its
+    task, and the batch waited for ever) or run another version of it than this one (whose
+    headings may differ from a run here). Workers that join later are not asked."""
+    answers = client.run(_version, on_error="return")
+    wrong = [f"{worker}: " + (f"gyrocore {answer}" if isinstance(answer, str) else f"cannot import gyrocore ({answer})")
+             for worker, answer in sorted(answers.items()) if answer != __version__]
+    if wrong:
+        more = f" (and {len(wrong) - 2} more)" if len(wrong) > 2 else ""
+        raise ValueError(f"the Dask cluster's workers must run gyrocore {__version__}, as this machine does: "
+                         f"{'; '.join(wrong[:2])}{more}; install it on every worker "
+                         f"(pip install 'gyrocore[dask]=={__version__}')")
 
 
 def connected(client: Any) -> tuple[Any, bool]:

@@ -13,6 +13,7 @@ from typing import Any
 
 import pytest
 
+import gyrocore
 from gyrocore import batch_run
 from gyrocore.batch import BatchReport, process_many
 
@@ -120,3 +121,56 @@ def test_relative_paths_are_the_clients_on_workers_that_run_elsewhere(tmp_path: 
         assert Path("out", name).read_bytes() == Path("here", name).read_bytes()
     absolute = process_many([tmp_path / "logs" / "d0.csv"], out_dir="again", client=processes, preset="raw", bias=0.0)
     assert absolute.files[0].output == "again/d0.csv" and os.listdir("again") == ["d0.csv"]
+
+
+def _without_gyrocore() -> None:
+    """Make this process (a worker) one where gyrocore is not installed."""
+    import sys
+
+    class Missing:
+        def find_spec(self, name: str, path: object = None, target: object = None) -> None:
+            if name.partition(".")[0] == "gyrocore":
+                raise ModuleNotFoundError(f"No module named {name!r}", name=name)
+
+    for name in [m for m in sys.modules if m.partition(".")[0] == "gyrocore"]:
+        del sys.modules[name]
+    sys.meta_path.insert(0, Missing())
+
+
+def test_workers_without_gyrocore_are_named_before_any_work(tmp_path: Path) -> None:
+    # Each worker that took a file died reading its task (Dask's "Failed to deserialize ...
+    # ModuleNotFoundError: No module named 'gyrocore'" in its log), and the batch waited for ever.
+    log = synthetic_csv(tmp_path / "d0.csv", 300)
+    with (
+        distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        client.run(_without_gyrocore)
+        done: list[BaseException] = []
+
+        def run() -> None:
+            try:
+                process_many([log], out_dir=tmp_path / "out", client=client, preset="raw", bias=0.0)
+            except BaseException as e:  # noqa: BLE001 - the test's thread says it below
+                done.append(e)
+
+        thread = threading.Thread(target=run, daemon=True)
+        thread.start()
+        thread.join(timeout=30)
+        assert done, "the batch waited for workers that cannot run it"
+    assert isinstance(done[0], ValueError)
+    assert str(done[0]).startswith(f"the Dask cluster's workers must run gyrocore {batch_run.__version__}, as this "
+                                   f"machine does: tcp://")
+    assert "cannot import gyrocore" in str(done[0]) and "No module named 'gyrocore'" in str(done[0])
+    assert not (tmp_path / "out").exists()
+
+
+def test_workers_of_another_gyrocore_are_named_before_any_work(tmp_path: Path, processes: Any,
+                                                               monkeypatch: pytest.MonkeyPatch) -> None:
+    # another version computes other headings than the same batch here, without a word
+    log = synthetic_csv(tmp_path / "d0.csv", 300)
+    monkeypatch.setattr(batch_run, "__version__", "0.0.1")  # this machine's, as the workers' is the real one
+    with pytest.raises(ValueError, match=r"^the Dask cluster's workers must run gyrocore 0\.0\.1, as this machine "
+                                         rf"does: tcp://[^ ]+: gyrocore {gyrocore.__version__}; tcp://[^ ]+: "):
+        process_many([log], out_dir=tmp_path / "out", client=processes, preset="raw", bias=0.0)
+    assert not (tmp_path / "out").exists()
