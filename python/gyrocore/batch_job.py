@@ -324,8 +324,12 @@ class _FileJob:
             fixes_file=None if report.fixes_file is None else named(report.fixes_file),
         )
 
-    def failure(self, error: BaseException, seconds: float) -> FileReport:
-        reason = error_text(error) if isinstance(error, (ValueError, TypeError, OSError, ImportError)) else repr(error)
+    def failure(self, error: BaseException | str, seconds: float) -> FileReport:
+        """The report of this file failed with ``error`` (or for the reason said, of the file)."""
+        if isinstance(error, str):
+            reason = f"{self.path}: {error}"
+        else:
+            reason = error_text(error) if isinstance(error, (ValueError, TypeError, OSError, ImportError)) else repr(error)
         failed = reason or type(error).__name__
         return FileReport(str(self.path), None, self.rows_in, 0, seconds, failed, tuple(dict.fromkeys(self.notes)))
 

@@ -145,7 +145,7 @@ def run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileR
                 try:
                     reports[i] = named(i, future.result())
                 except Exception as e:  # noqa: BLE001 - a lost worker fails its file only
-                    reports[i] = jobs[i].failure(e, 0.0)
+                    reports[i] = jobs[i].failure(_lost(distributed, e), 0.0)
                 bar.update(1)
         except BaseException as e:
             _stop_on_cluster(distributed, stop, futures)
@@ -153,6 +153,19 @@ def run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileR
             _interrupted(e, reports)
             raise
     return [reports[i] for i in range(len(jobs))]
+
+
+def _lost(distributed: Any, error: Exception) -> Exception | str:
+    """Why the cluster gave no report of a file, for its failure: Dask's own words were the repr
+    of its exception (``KilledWorker('gyrocore-...-oom.csv', <WorkerState 'tcp://...', name: 0,
+    status: closed, ...>, 3)``, ``FutureCancelledError()``)."""
+    if isinstance(error, distributed.KilledWorker):
+        return (f"every Dask worker that ran it died ({error.allowed_failures + 1} of them): out of memory, or "
+                "killed; the workers' logs say which; its output is not written")
+    if isinstance(error, distributed.client.FutureCancelledError):
+        return (f"the Dask cluster dropped it before it finished (Dask's reason: {error.reason}; the scheduler "
+                "gone?); run it again (--skip-existing goes on with the inputs without an output)")
+    return error
 
 
 def check_client(client: Any) -> None:

@@ -5,7 +5,11 @@ bit-identical and the reports equal."""
 
 from __future__ import annotations
 
+import contextlib
 import os
+import socket
+import subprocess
+import sys
 import threading
 from collections.abc import Iterator
 from pathlib import Path
@@ -45,11 +49,13 @@ def processes() -> Iterator[Any]:
 
 
 def comparable(report: BatchReport) -> dict[str, Any]:
-    """A batch's report without its times, which differ from run to run."""
+    """A batch's report without its times, which differ from run to run, and with its outputs'
+    names alone (the batches compared write into folders of their own)."""
     plain = report.as_dict()
     del plain["seconds"]
     for f in plain["files"]:
         del f["seconds"]
+        f["output"] = f["output"] and Path(f["output"]).name
     return plain
 
 
@@ -174,3 +180,83 @@ def test_workers_of_another_gyrocore_are_named_before_any_work(tmp_path: Path, p
                                          rf"does: tcp://[^ ]+: gyrocore {gyrocore.__version__}; tcp://[^ ]+: "):
         process_many([log], out_dir=tmp_path / "out", client=processes, preset="raw", bias=0.0)
     assert not (tmp_path / "out").exists()
+
+
+class _DiesOnOom(distributed.WorkerPlugin):
+    """Each worker process dies (as the kernel's out-of-memory killer ends it) once it has
+    written a chunk of the input ``oom.csv``; the other files run as ever."""
+
+    name = "gyrocore-test-dies-on-oom"
+
+    def setup(self, worker: Any) -> None:
+        from gyrocore.io import writer
+
+        write = writer.HeadingWriter.write
+
+        def write_then_die(self: Any, result: Any) -> None:
+            write(self, result)
+            if self.path.name == "oom.csv":
+                os._exit(137)
+
+        writer.HeadingWriter.write = write_then_die  # type: ignore[method-assign]
+
+
+def test_a_file_that_kills_every_worker_fails_alone_and_says_so(tmp_path: Path, processes: Any) -> None:
+    # It failed with Dask's repr, `KilledWorker('gyrocore-3-oom.csv', <WorkerState 'tcp://...',
+    # name: 0, status: closed, memory: 0, processing: 0>, 3)`
+    logs = _fleet(tmp_path / "logs")
+    synthetic_csv(logs / "oom.csv", 3000, seed=7)
+    here = process_many([logs], out_dir=tmp_path / "here", jobs=2, preset="raw", bias=0.0, chunk_rows=1000)
+    processes.register_plugin(_DiesOnOom())
+    try:
+        there = process_many([logs], out_dir=tmp_path / "out", client=processes, preset="raw", bias=0.0,
+                             chunk_rows=1000)
+    finally:
+        processes.unregister_worker_plugin(_DiesOnOom.name)
+    oom = there.files[-1]
+    assert oom.input == str(logs / "oom.csv") and not oom.ok and here.files[-1].ok
+    assert oom.error == (f"{logs / 'oom.csv'}: every Dask worker that ran it died (4 of them): out of memory, or "
+                         "killed; the workers' logs say which; its output is not written")
+    assert comparable(there)["files"][:-1] == comparable(here)["files"][:-1]
+    assert [r.ok for r in there.files] == [False, True, True, True, False]
+    assert sorted(p.name for p in (tmp_path / "out").iterdir() if not p.name.startswith(".")) == [
+        "d0.csv", "d1.csv", "d2.csv"]
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+def test_a_scheduler_that_goes_away_mid_batch_fails_the_files_it_had_and_says_so(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # They failed with `FutureCancelledError()`, the repr of Dask's exception.
+    short, long = synthetic_csv(tmp_path / "short.csv", 1000), synthetic_csv(tmp_path / "long.csv", 1_000_000)
+    address = f"tcp://127.0.0.1:{_free_port()}"
+    scheduler = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port",
+                                  address.rpartition(":")[2], "--dashboard-address", ":0"],
+                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    worker = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker", address, "--nthreads", "2", "--no-nanny",
+                               "--dashboard-address", ":0"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        client = distributed.Client(address, timeout=30)
+        client.wait_for_workers(1, timeout=30)
+
+        def scheduler_gone(self: object, n: int = 1) -> None:  # once the short file is done
+            scheduler.kill()
+            scheduler.wait()
+
+        monkeypatch.setattr(batch_run._NoBar, "update", scheduler_gone)
+        report = process_many([short, long], out_dir=tmp_path / "out", client=client, preset="raw", bias=0.0,
+                              chunk_rows=1000)
+        with contextlib.suppress(Exception):  # the client's goodbye to a scheduler that is gone
+            client.close(timeout=2)
+    finally:
+        for process in (scheduler, worker):
+            process.kill()
+            process.wait()
+    assert report.files[0].ok and not report.files[1].ok
+    assert report.files[1].error == (
+        f"{long}: the Dask cluster dropped it before it finished (Dask's reason: scheduler-connection-lost; the "
+        "scheduler gone?); run it again (--skip-existing goes on with the inputs without an output)")
