@@ -21,6 +21,7 @@ from ._motion import TURNING
 from ._gyrocore import SampleError
 from .batch_inputs import complete_output
 from .batch_report import FileReport, input_repairs
+from .io import atomic
 from .io._columns import concat
 from .io._logfolder import FIXES_CSV, ODOMETRY_CSV, from_stationary, read_odometry
 from .io._paths import error_text, has_file
@@ -79,6 +80,8 @@ class _FileJob:
         self.notes: list[str] = []
         #: called before each chunk of every pass over the input; raises to stop the file (a batch's stop)
         self.stop: Callable[[], None] | None = None
+        #: the mark of the output's temporary file (:func:`gyrocore.io.atomic.tagged`); empty: none
+        self.tag = ""
 
     def run(self, progress: Progress | None = None, stop: Callable[[], None] | None = None) -> FileReport:
         """The file processed (``progress`` after each chunk written), or stopped where ``stop``
@@ -89,7 +92,7 @@ class _FileJob:
             return FileReport(str(self.path), str(self.out), 0, 0, 0.0, output_existed=True)
         # every warning the file raises, from opening it to its last chunk, is a note of its
         # report, also of a file that then fails (what came before an error often says why)
-        with _noted(self.notes, self.path if self.raise_again else None):
+        with _noted(self.notes, self.path if self.raise_again else None), atomic.tagged(self.tag):
             return self._stream(progress)
 
     def _stream(self, progress: Progress | None) -> FileReport:
@@ -302,13 +305,20 @@ class _FileJob:
         where = str(source.path / ODOMETRY_CSV)
         return rests.speed_on(t, odometry["t"], odometry["speed"], where=where)
 
-    def for_a_worker(self) -> _FileJob:
+    def for_a_worker(self, tag: str) -> _FileJob:
         """This job with its input and output as absolute paths, for a Dask worker: its working
         folder is not this process's (another machine, a process started elsewhere), and a
-        relative path named another file there, or none (``logs/d0.csv: no such file or folder``)."""
+        relative path named another file there, or none (``logs/d0.csv: no such file or folder``).
+        Its temporary output is marked ``tag``, that the batch removes what a worker that dies
+        leaves of it (:meth:`discard_leftovers`)."""
         job = copy.copy(self)
-        job.path, job.out = Path(os.path.abspath(self.path)), Path(os.path.abspath(self.out))
+        job.path, job.out, job.tag = Path(os.path.abspath(self.path)), Path(os.path.abspath(self.out)), tag
         return job
+
+    def discard_leftovers(self) -> None:
+        """Remove the temporary outputs of this job's tag that a process which died left (a Dask
+        worker killed mid-file: one for each attempt, the output's size each)."""
+        atomic.discard_tagged(Path(os.path.realpath(self.out)).parent, self.tag)
 
     def as_given(self, report: FileReport, sent: _FileJob) -> FileReport:
         """The report of ``sent`` (this job :meth:`for_a_worker`) naming the input and the output

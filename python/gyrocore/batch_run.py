@@ -128,7 +128,7 @@ def run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileR
     # A key of the batch's own: the cluster takes a key it holds already for that task, and
     # another batch's first file of the same name (gyrocore-0-d0.csv) was taken for this one's,
     # never processed, its report the other's.
-    sent = [job.for_a_worker() for job in jobs]
+    sent = [job.for_a_worker(batch) for job in jobs]
 
     def named(i: int, report: FileReport) -> FileReport:
         return jobs[i].as_given(report, sent[i])
@@ -152,6 +152,9 @@ def run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileR
             _finished_meanwhile(enumerate(futures), reports, named)
             _interrupted(e, reports)
             raise
+        finally:  # what the workers that died while writing an output left of it
+            for job in sent:
+                job.discard_leftovers()
     return [reports[i] for i in range(len(jobs))]
 
 
