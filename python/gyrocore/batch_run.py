@@ -146,6 +146,10 @@ def run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileR
                     reports[i] = named(i, future.result())
                 except Exception as e:  # noqa: BLE001 - a lost worker fails its file only
                     reports[i] = jobs[i].failure(_lost(distributed, e), 0.0)
+                # The cluster forgets the report once read: a worker that died holding it made
+                # the cluster process the file again (each file 3 times over when one killed
+                # every worker), writing its output anew.
+                future.release()
                 bar.update(1)
         except BaseException as e:
             _stop_on_cluster(distributed, stop, futures)

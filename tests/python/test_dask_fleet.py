@@ -209,8 +209,10 @@ def test_a_file_that_kills_every_worker_fails_alone_and_says_so(tmp_path: Path, 
     here = process_many([logs], out_dir=tmp_path / "here", jobs=2, preset="raw", bias=0.0, chunk_rows=1000)
     processes.register_plugin(_DiesOnOom())
     try:
+        # as the command line runs it (no --overwrite): a file the cluster ran again, its worker
+        # dead before its report was read, was reported "written meanwhile by something else"
         there = process_many([logs], out_dir=tmp_path / "out", client=processes, preset="raw", bias=0.0,
-                             chunk_rows=1000)
+                             chunk_rows=1000, overwrite=False)
     finally:
         processes.unregister_worker_plugin(_DiesOnOom.name)
     oom = there.files[-1]

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import contextvars
 import errno
+import filecmp
 import os
 import secrets
 import stat
@@ -247,15 +248,27 @@ class StagedFile:
         try:
             os.link(self.tmp, self.target)
         except FileExistsError:
-            raise taken from None
+            if not self._written_alike():
+                raise taken from None
         except OSError as e:  # no hard links here (FAT, some network shares): checked, then renamed
             if e.errno not in (errno.EPERM, errno.ENOTSUP, errno.EOPNOTSUPP, errno.EXDEV, errno.EMLINK):
                 raise
-            if os.path.lexists(self.target):
+            if not os.path.lexists(self.target):
+                os.replace(self.tmp, self.target)
+                return
+            if not self._written_alike():
                 raise taken from None
-            os.replace(self.tmp, self.target)
-            return
         self.tmp.unlink()
+
+    def _written_alike(self) -> bool:
+        """Whether the file that appeared at the target holds this run's bytes: nothing of the
+        other's is lost, and this run's output is there. A Dask cluster runs a file again when the
+        worker that held its report died before the report was read, and the second run found the
+        first's output: a file written whole was reported failed, "written meanwhile"."""
+        try:
+            return os.path.isfile(self.target) and filecmp.cmp(self.tmp, self.target, shallow=False)
+        except OSError:
+            return False
 
     def discard(self) -> None:
         """Remove the temporary file if it is still there."""
