@@ -6,6 +6,7 @@ from __future__ import annotations
 import copy
 import dataclasses
 import os
+import socket
 import time
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import AbstractContextManager, contextmanager
@@ -82,11 +83,14 @@ class _FileJob:
         self.stop: Callable[[], None] | None = None
         #: the mark of the output's temporary file (:func:`gyrocore.io.atomic.tagged`); empty: none
         self.tag = ""
+        #: on a Dask worker, the host of the client, which found the input (:meth:`for_a_worker`)
+        self.client_host: str | None = None
 
     def run(self, progress: Progress | None = None, stop: Callable[[], None] | None = None) -> FileReport:
         """The file processed (``progress`` after each chunk written), or stopped where ``stop``
         raises, which is called before each chunk read, also by the first pass that plans the bias."""
         self.stop = stop
+        self._check_seen_here()
         # checked where the file is written (a Dask worker): its input is not even opened
         if self.skip_existing and complete_output(self.out):
             return FileReport(str(self.path), str(self.out), 0, 0, 0.0, output_existed=True)
@@ -313,7 +317,21 @@ class _FileJob:
         leaves of it (:meth:`discard_leftovers`)."""
         job = copy.copy(self)
         job.path, job.out, job.tag = Path(os.path.abspath(self.path)), Path(os.path.abspath(self.out)), tag
+        job.client_host = socket.gethostname() if os.path.lexists(self.path) else None
         return job
+
+    def _check_seen_here(self) -> None:
+        """On a Dask worker, refuse an input or output folder that the client found and this
+        machine does not: they said ``no such file or folder`` and ``the folder ... does not
+        exist; create it``, of files the user sees there."""
+        if self.client_host is None:
+            return
+        for path, what in ((self.path, "input"), (self.out.parent, "output folder")):
+            if not os.path.lexists(path):
+                raise FileNotFoundError(
+                    f"{path}: no such {what} on the Dask worker at {socket.gethostname()}, though the client at "
+                    f"{self.client_host} found it: the workers must see the inputs and the output folder at the "
+                    "paths the client gives (a shared filesystem, mounted at the same place)")
 
     def discard_leftovers(self) -> None:
         """Remove the temporary outputs of this job's tag that a process which died left (a Dask

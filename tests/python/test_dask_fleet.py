@@ -18,7 +18,7 @@ from typing import Any
 import pytest
 
 import gyrocore
-from gyrocore import batch_run
+from gyrocore import batch_job, batch_run
 from gyrocore.batch import BatchReport, process_many
 
 from .test_batch import synthetic_csv
@@ -262,3 +262,35 @@ def test_a_scheduler_that_goes_away_mid_batch_fails_the_files_it_had_and_says_so
     assert report.files[1].error == (
         f"{long}: the Dask cluster dropped it before it finished (Dask's reason: scheduler-connection-lost; the "
         "scheduler gone?); run it again (--skip-existing goes on with the inputs without an output)")
+
+
+def test_an_input_the_workers_do_not_see_is_said_to_be_missing_there(tmp_path: Path, processes: Any,
+                                                                     monkeypatch: pytest.MonkeyPatch) -> None:
+    # Workers without the client's filesystem (/tmp or a home folder of the client's machine):
+    # `FAILED .../d0.csv: no such file or folder`, of a file the user sees on the client. The
+    # other machine is played by the input removed once the client has found it.
+    logs = _fleet(tmp_path / "logs")
+    for_a_worker = batch_job._FileJob.for_a_worker
+
+    def not_on_the_workers(job: batch_job._FileJob, tag: str) -> batch_job._FileJob:
+        sent = for_a_worker(job, tag)
+        if job.path.name == "d1.csv":
+            job.path.unlink()
+        if job.out.parent.name == "elsewhere":
+            job.out.parent.rmdir()
+        return sent
+
+    monkeypatch.setattr(batch_job._FileJob, "for_a_worker", not_on_the_workers)
+    report = process_many([logs], out_dir=tmp_path / "out", client=processes, preset="raw", bias=0.0)
+    assert [r.ok for r in report.files] == [False, True, False, True]
+    host = socket.gethostname()
+    assert report.files[2].error == (
+        f"{logs / 'd1.csv'}: no such input on the Dask worker at {host}, though the client at {host} found it: the "
+        "workers must see the inputs and the output folder at the paths the client gives (a shared filesystem, "
+        "mounted at the same place)")
+    (alone,) = process_many([logs / "d0.csv"], out_dir=tmp_path / "elsewhere", client=processes, preset="raw",
+                            bias=0.0).files
+    assert alone.error == (
+        f"{tmp_path / 'elsewhere'}: no such output folder on the Dask worker at {host}, though the client at {host} "
+        "found it: the workers must see the inputs and the output folder at the paths the client gives (a shared "
+        "filesystem, mounted at the same place)")
