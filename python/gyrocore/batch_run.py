@@ -8,6 +8,7 @@ import sys
 import threading
 import time
 import uuid
+import warnings
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from collections.abc import Callable, Iterable
 from typing import Any
@@ -202,6 +203,11 @@ def check_workers(client: Any) -> None:
     task, and the batch waited for ever) or run another version of it than this one (whose
     headings may differ from a run here). Workers that join later are not asked."""
     answers = client.run(_version, on_error="return")
+    if not answers:  # the batch waited without a word, for ever where no worker comes
+        address = client.scheduler.address
+        warnings.warn(f"the Dask cluster at {address} has no workers: the files wait until some join "
+                      f"(dask worker {address}; an adaptive cluster starts them for the files)", RuntimeWarning,
+                      stacklevel=3)
     wrong = [f"{worker}: " + (f"gyrocore {answer}" if isinstance(answer, str) else f"cannot import gyrocore ({answer})")
              for worker, answer in sorted(answers.items()) if answer != __version__]
     if wrong:

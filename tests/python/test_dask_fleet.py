@@ -11,6 +11,7 @@ import socket
 import subprocess
 import sys
 import threading
+import warnings
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -294,3 +295,26 @@ def test_an_input_the_workers_do_not_see_is_said_to_be_missing_there(tmp_path: P
         f"{tmp_path / 'elsewhere'}: no such output folder on the Dask worker at {host}, though the client at {host} "
         "found it: the workers must see the inputs and the output folder at the paths the client gives (a shared "
         "filesystem, mounted at the same place)")
+
+
+def test_a_cluster_without_workers_is_said_to_wait_for_them(tmp_path: Path) -> None:
+    # `gyrocore process ... --scheduler ADDRESS` waited for ever without a word
+    log = synthetic_csv(tmp_path / "d0.csv", 300)
+    with (
+        distributed.LocalCluster(n_workers=0, threads_per_worker=1, processes=False, dashboard_address=None) as cluster,
+        distributed.Client(cluster) as client,
+        warnings.catch_warnings(record=True) as said,
+    ):
+        warnings.simplefilter("always")
+        reports: list[BatchReport] = []
+        thread = threading.Thread(target=lambda: reports.append(
+            process_many([log], out_dir=tmp_path / "out", client=client, preset="raw", bias=0.0)))
+        thread.start()
+        thread.join(timeout=5)
+        assert thread.is_alive() and not reports  # no worker, no work
+        assert [str(w.message) for w in said if w.category is RuntimeWarning] == [
+            f"the Dask cluster at {cluster.scheduler_address} has no workers: the files wait until some join (dask "
+            f"worker {cluster.scheduler_address}; an adaptive cluster starts them for the files)"]
+        cluster.scale(1)
+        thread.join(timeout=30)
+    assert reports and reports[0].files[0].ok
