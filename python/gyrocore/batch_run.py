@@ -202,9 +202,13 @@ def check_workers(client: Any) -> None:
     installed there, or its compiled core missing: each worker that took a file died reading its
     task, and the batch waited for ever) or run another version of it than this one (whose
     headings may differ from a run here). Workers that join later are not asked."""
-    answers = client.run(_version, on_error="return")
+    address = client.scheduler.address
+    try:
+        answers = client.run(_version, on_error="return")
+    except OSError as e:  # a client whose scheduler went away: Dask's bare "ConnectionPool closing."
+        raise ConnectionError(f"the Dask scheduler at {address} no longer answers this client ({e}); check that it "
+                              "runs, and connect to it again") from None
     if not answers:  # the batch waited without a word, for ever where no worker comes
-        address = client.scheduler.address
         warnings.warn(f"the Dask cluster at {address} has no workers: the files wait until some join "
                       f"(dask worker {address}; an adaptive cluster starts them for the files)", RuntimeWarning,
                       stacklevel=3)

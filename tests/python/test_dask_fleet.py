@@ -232,10 +232,10 @@ def _free_port() -> int:
         return int(s.getsockname()[1])
 
 
-def test_a_scheduler_that_goes_away_mid_batch_fails_the_files_it_had_and_says_so(
-        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    # They failed with `FutureCancelledError()`, the repr of Dask's exception.
-    short, long = synthetic_csv(tmp_path / "short.csv", 1000), synthetic_csv(tmp_path / "long.csv", 1_000_000)
+@contextlib.contextmanager
+def _scheduler_and_worker() -> Iterator[tuple[str, subprocess.Popen[bytes]]]:
+    """A scheduler and a worker of two threads, each a process of its own (as `dask scheduler`
+    and `dask worker` start them): the scheduler's address, and its process, to end."""
     address = f"tcp://127.0.0.1:{_free_port()}"
     scheduler = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port",
                                   address.rpartition(":")[2], "--dashboard-address", ":0"],
@@ -243,6 +243,34 @@ def test_a_scheduler_that_goes_away_mid_batch_fails_the_files_it_had_and_says_so
     worker = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker", address, "--nthreads", "2", "--no-nanny",
                                "--dashboard-address", ":0"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
+        yield address, scheduler
+    finally:
+        for process in (scheduler, worker):
+            process.kill()
+            process.wait()
+
+
+def test_a_client_whose_scheduler_went_away_is_named(tmp_path: Path) -> None:
+    # Dask's bare "ConnectionPool closing.", once the client had tried to connect again
+    log = synthetic_csv(tmp_path / "d0.csv", 300)
+    with _scheduler_and_worker() as (address, scheduler):
+        client = distributed.Client(address, timeout=3)  # it tries to connect again for 3 s
+        client.wait_for_workers(1, timeout=30)
+        scheduler.kill()
+        scheduler.wait()
+        with pytest.raises(ConnectionError, match=rf"^the Dask scheduler at {address} no longer answers this client "
+                                                  r"\(.*\); check that it runs, and connect to it again$"):
+            process_many([log], out_dir=tmp_path / "out", client=client, preset="raw", bias=0.0)
+        with contextlib.suppress(Exception):
+            client.close(timeout=2)
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_scheduler_that_goes_away_mid_batch_fails_the_files_it_had_and_says_so(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # They failed with `FutureCancelledError()`, the repr of Dask's exception.
+    short, long = synthetic_csv(tmp_path / "short.csv", 1000), synthetic_csv(tmp_path / "long.csv", 1_000_000)
+    with _scheduler_and_worker() as (address, scheduler):
         client = distributed.Client(address, timeout=30)
         client.wait_for_workers(1, timeout=30)
 
@@ -255,10 +283,6 @@ def test_a_scheduler_that_goes_away_mid_batch_fails_the_files_it_had_and_says_so
                               chunk_rows=1000)
         with contextlib.suppress(Exception):  # the client's goodbye to a scheduler that is gone
             client.close(timeout=2)
-    finally:
-        for process in (scheduler, worker):
-            process.kill()
-            process.wait()
     assert report.files[0].ok and not report.files[1].ok
     assert report.files[1].error == (
         f"{long}: the Dask cluster dropped it before it finished (Dask's reason: scheduler-connection-lost; the "
