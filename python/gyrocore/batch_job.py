@@ -316,7 +316,9 @@ class _FileJob:
         Its temporary output is marked ``tag``, that the batch removes what a worker that dies
         leaves of it (:meth:`discard_leftovers`)."""
         job = copy.copy(self)
-        job.path, job.out, job.tag = Path(os.path.abspath(self.path)), Path(os.path.abspath(self.out)), tag
+        # joined to the working folder, not tidied by their text (os.path.abspath): the system takes
+        # link/../d0.csv through the link, and the tidied ./d0.csv was another file
+        job.path, job.out, job.tag = Path.cwd() / self.path, Path.cwd() / self.out, tag
         job.client_host = socket.gethostname() if os.path.lexists(self.path) else None
         return job
 

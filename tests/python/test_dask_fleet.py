@@ -325,7 +325,8 @@ def test_a_cluster_without_workers_is_said_to_wait_for_them(tmp_path: Path) -> N
     # `gyrocore process ... --scheduler ADDRESS` waited for ever without a word
     log = synthetic_csv(tmp_path / "d0.csv", 300)
     with (
-        distributed.LocalCluster(n_workers=0, threads_per_worker=1, processes=False, dashboard_address=None) as cluster,
+        distributed.LocalCluster(n_workers=0, threads_per_worker=1, processes=False, dashboard_address=None,
+                                 worker_dashboard_address=None) as cluster,
         distributed.Client(cluster) as client,
         warnings.catch_warnings(record=True) as said,
     ):
@@ -342,3 +343,19 @@ def test_a_cluster_without_workers_is_said_to_wait_for_them(tmp_path: Path) -> N
         cluster.scale(1)
         thread.join(timeout=30)
     assert reports and reports[0].files[0].ok
+
+
+def test_a_relative_path_through_a_link_and_up_is_the_one_the_client_reads(tmp_path: Path, processes: Any,
+                                                                            monkeypatch: pytest.MonkeyPatch) -> None:
+    # `link/../d0.csv`, link leading to elsewhere/deep: the system reads elsewhere/d0.csv, as a
+    # run here does; tidied by its text, it named ./d0.csv, another file (or none)
+    elsewhere = tmp_path / "elsewhere"
+    (elsewhere / "deep").mkdir(parents=True)
+    synthetic_csv(elsewhere / "d0.csv", 3000, seed=1)
+    synthetic_csv(tmp_path / "d0.csv", 2000, seed=2)  # what the tidied name reads
+    (tmp_path / "link").symlink_to(elsewhere / "deep")
+    monkeypatch.chdir(tmp_path)
+    here = process_many(["link/../d0.csv"], out_dir="here", jobs=2, preset="raw", bias=0.0)
+    there = process_many(["link/../d0.csv"], out_dir="out", client=processes, preset="raw", bias=0.0)
+    assert there.files[0].rows_out == here.files[0].rows_out == 3000
+    assert Path("out", "d0.csv").read_bytes() == Path("here", "d0.csv").read_bytes()
