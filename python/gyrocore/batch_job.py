@@ -314,7 +314,7 @@ class _FileJob:
         folder is not this process's (another machine, a process started elsewhere), and a
         relative path named another file there, or none (``logs/d0.csv: no such file or folder``).
         Its temporary output is marked ``tag``, that the batch removes what a worker that dies
-        leaves of it (:meth:`discard_leftovers`)."""
+        leaves of it (:func:`gyrocore.io.atomic.discard_tagged`)."""
         job = copy.copy(self)
         # joined to the working folder, not tidied by their text (os.path.abspath): the system takes
         # link/../d0.csv through the link, and the tidied ./d0.csv was another file
@@ -335,10 +335,10 @@ class _FileJob:
                     f"{self.client_host} found it: the workers must see the inputs and the output folder at the "
                     "paths the client gives (a shared filesystem, mounted at the same place)")
 
-    def discard_leftovers(self) -> None:
-        """Remove the temporary outputs of this job's tag that a process which died left (a Dask
-        worker killed mid-file: one for each attempt, the output's size each)."""
-        atomic.discard_tagged(Path(os.path.realpath(self.out)).parent, self.tag)
+    def staging_folder(self) -> Path:
+        """Where the output's temporary file is written: the folder of the file it replaces (see
+        :class:`gyrocore.io.atomic.StagedFile`)."""
+        return Path(os.path.realpath(self.out)).parent
 
     def as_given(self, report: FileReport, sent: _FileJob) -> FileReport:
         """The report of ``sent`` (this job :meth:`for_a_worker`) naming the input and the output

@@ -17,6 +17,7 @@ from ._extras import require, tqdm_class
 from ._gyrocore import __version__
 from .batch_job import _FileJob
 from .batch_report import FileReport
+from .io import atomic
 
 
 def _run_job(job: _FileJob, stop: threading.Event | Any = None) -> FileReport:
@@ -157,9 +158,9 @@ def run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileR
             _finished_meanwhile(enumerate(futures), reports, named)
             _interrupted(e, reports)
             raise
-        finally:  # what the workers that died while writing an output left of it
-            for job in sent:
-                job.discard_leftovers()
+        finally:  # what the workers that died while writing an output left of it, a folder at a time
+            for folder in dict.fromkeys(job.staging_folder() for job in sent):
+                atomic.discard_tagged(folder, batch)
     return [reports[i] for i in range(len(jobs))]
 
 

@@ -325,8 +325,7 @@ def test_a_cluster_without_workers_is_said_to_wait_for_them(tmp_path: Path) -> N
     # `gyrocore process ... --scheduler ADDRESS` waited for ever without a word
     log = synthetic_csv(tmp_path / "d0.csv", 300)
     with (
-        distributed.LocalCluster(n_workers=0, threads_per_worker=1, processes=False, dashboard_address=None,
-                                 worker_dashboard_address=None) as cluster,
+        distributed.LocalCluster(n_workers=0, threads_per_worker=1, processes=False, dashboard_address=":0") as cluster,
         distributed.Client(cluster) as client,
         warnings.catch_warnings(record=True) as said,
     ):
