@@ -4,6 +4,7 @@ interruption stops every running file at its next chunk (removing its temporary 
 from __future__ import annotations
 
 import asyncio
+import os
 import sys
 import threading
 import time
@@ -136,7 +137,7 @@ def run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileR
         return jobs[i].as_given(report, sent[i])
 
     futures = [
-        client.submit(_run_job, job, stop, key=f"gyrocore-{batch}-{i}-{job.path.name}", pure=False)
+        client.submit(_run_job, job, stop, key=f"gyrocore-{batch}-{i}-{_readable(job.path.name)}", pure=False)
         for i, job in enumerate(sent)
     ]
     index = {f.key: i for i, f in enumerate(futures)}
@@ -162,6 +163,13 @@ def run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileR
             for folder in dict.fromkeys(job.staging_folder() for job in sent):
                 atomic.discard_tagged(folder, batch)
     return [reports[i] for i in range(len(jobs))]
+
+
+def _readable(name: str) -> str:
+    """A file's name as valid UTF-8, for the key of its task (shown by Dask's dashboard): a name of
+    bytes that are not (``caf\xe9.csv`` of a Latin-1 system) broke the client's connection to
+    the scheduler, which sends keys as UTF-8, and every file of the batch failed."""
+    return os.fsencode(name).decode("utf-8", "replace")
 
 
 def _lost(distributed: Any, error: Exception) -> Exception | str:

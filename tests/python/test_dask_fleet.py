@@ -358,3 +358,18 @@ def test_a_relative_path_through_a_link_and_up_is_the_one_the_client_reads(tmp_p
     there = process_many(["link/../d0.csv"], out_dir="out", client=processes, preset="raw", bias=0.0)
     assert there.files[0].rows_out == here.files[0].rows_out == 3000
     assert Path("out", "d0.csv").read_bytes() == Path("here", "d0.csv").read_bytes()
+
+
+def test_a_name_that_is_not_utf8_is_processed_as_on_threads(tmp_path: Path, processes: Any) -> None:
+    # `café.csv` named by a Latin-1 system (the byte 0xe9): the task's key, sent to the scheduler
+    # as UTF-8, broke the client's connection, and every file of the batch failed (0 of 2).
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    synthetic_csv(logs / "a.csv", 1000)
+    synthetic_csv(logs / "b.csv", 1200, seed=1).rename(logs / os.fsdecode(b"caf\xe9.csv"))
+    here = process_many([logs], out_dir=tmp_path / "here", jobs=2, preset="raw", bias=0.0)
+    there = process_many([logs], out_dir=tmp_path / "out", client=processes, preset="raw", bias=0.0)
+    assert [r.ok for r in there.files] == [True, True]
+    assert comparable(there) == comparable(here)
+    for name in os.listdir(tmp_path / "here"):
+        assert (tmp_path / "out" / name).read_bytes() == (tmp_path / "here" / name).read_bytes()
