@@ -128,14 +128,14 @@ def run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileR
     # already running on a worker is not stopped by cancelling its future.
     batch = uuid.uuid4().hex
     stop = distributed.Event(f"gyrocore-stop-{batch}", client=client)
-    # A key of the batch's own: the cluster takes a key it holds already for that task, and
-    # another batch's first file of the same name (gyrocore-0-d0.csv) was taken for this one's,
-    # never processed, its report the other's.
     sent = [job.for_a_worker(batch) for job in jobs]
 
     def named(i: int, report: FileReport) -> FileReport:
         return jobs[i].as_given(report, sent[i])
 
+    # A key of the batch's own: the cluster takes a key it holds already for that task, and
+    # another batch's first file of the same name (gyrocore-0-d0.csv) was taken for this one's,
+    # never processed, its report the other's.
     futures = [
         client.submit(_run_job, job, stop, key=f"gyrocore-{batch}-{i}-{_readable(job.path.name)}", pure=False)
         for i, job in enumerate(sent)
@@ -167,7 +167,7 @@ def run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileR
 
 def _readable(name: str) -> str:
     """A file's name as valid UTF-8, for the key of its task (shown by Dask's dashboard): a name of
-    bytes that are not (``caf\xe9.csv`` of a Latin-1 system) broke the client's connection to
+    bytes that are not (``caf\\xe9.csv`` of a Latin-1 system) broke the client's connection to
     the scheduler, which sends keys as UTF-8, and every file of the batch failed."""
     return os.fsencode(name).decode("utf-8", "replace")
 
