@@ -155,7 +155,7 @@ def run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileR
                 future.release()
                 bar.update(1)
         except BaseException as e:
-            _stop_on_cluster(distributed, stop, futures)
+            _stop_on_cluster(distributed, client, stop, futures)
             _finished_meanwhile(enumerate(futures), reports, named)
             _interrupted(e, reports)
             raise
@@ -311,13 +311,19 @@ def _handshake(address: str) -> None:
 STOP_TIMEOUT = 30.0
 
 
-def _stop_on_cluster(distributed: Any, stop: Any, futures: list[Any]) -> None:
-    """Stops the files still waiting and those running (each at its next chunk, removing its
-    temporary output), and waits for the running ones; says so if one does not stop in time
-    (a lost connection to the scheduler, a worker stuck in one chunk)."""
+def _stop_on_cluster(distributed: Any, client: Any, stop: Any, futures: list[Any]) -> None:
+    """Stops the files still waiting (cancelled) and those running (each at its next chunk,
+    removing its temporary output), and waits for the running ones; says so if one does not stop
+    in time (a lost connection to the scheduler, a worker stuck in one chunk)."""
     pending = [f for f in futures if not f.done()]
     try:
-        stop.set()
+        stop.set()  # first: a file that a worker starts from here on stops at its first chunk
+        # The files no worker has started are cancelled, not waited for: waiting for a worker (none
+        # yet, or each busy with another batch), they held an interrupt for the whole timeout, and
+        # were said not to have stopped, their output "may still be written".
+        started = {key for keys in client.processing().values() for key in keys}
+        client.cancel([f for f in pending if f.key not in started])
+        pending = [f for f in pending if f.key in started]
         distributed.wait(pending, timeout=STOP_TIMEOUT)
     except Exception:  # noqa: BLE001 - the scheduler gone or the wait timed out: say so below
         pass

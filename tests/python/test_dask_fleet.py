@@ -11,6 +11,7 @@ import socket
 import subprocess
 import sys
 import threading
+import time
 import warnings
 from collections.abc import Iterator
 from pathlib import Path
@@ -373,3 +374,31 @@ def test_a_name_that_is_not_utf8_is_processed_as_on_threads(tmp_path: Path, proc
     assert comparable(there) == comparable(here)
     for name in os.listdir(tmp_path / "here"):
         assert (tmp_path / "out" / name).read_bytes() == (tmp_path / "here" / name).read_bytes()
+
+
+def test_an_interrupt_cancels_the_files_no_worker_has_started_at_once(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                                                       monkeypatch: pytest.MonkeyPatch) -> None:
+    # Ctrl-C while the files waited for a worker (none yet, or all busy with another batch): the
+    # command waited 30 s for them to stop, then said "3 file(s) on the Dask cluster did not stop
+    # within 30 s: their output may still be written", of files no worker had started.
+    logs = _fleet(tmp_path / "logs")
+
+    def interrupted(futures: Any) -> Iterator[Any]:  # Ctrl-C while the batch waits for its first file
+        time.sleep(0.5)
+        raise KeyboardInterrupt
+        yield
+
+    with (
+        distributed.LocalCluster(n_workers=0, threads_per_worker=1, processes=False, dashboard_address=":0") as cluster,
+        distributed.Client(cluster) as client,
+        warnings.catch_warnings(),
+    ):
+        warnings.simplefilter("ignore", RuntimeWarning)  # no workers yet
+        monkeypatch.setattr(distributed, "as_completed", interrupted)
+        start = time.perf_counter()
+        with pytest.raises(batch_run.BatchInterrupted) as stopped:
+            process_many([logs], out_dir=tmp_path / "out", client=client, preset="raw", bias=0.0)
+        waited = time.perf_counter() - start
+    assert waited < batch_run.STOP_TIMEOUT / 3 and stopped.value.finished == []
+    assert "did not stop" not in capsys.readouterr().err
+    assert os.listdir(tmp_path / "out") == []
