@@ -319,6 +319,7 @@ class _FileJob:
         # joined to the working folder, not tidied by their text (os.path.abspath): the system takes
         # link/../d0.csv through the link, and the tidied ./d0.csv was another file
         job.path, job.out, job.tag = Path.cwd() / self.path, Path.cwd() / self.out, tag
+        job.notes = []  # its own, not this job's: a cluster of threads may run it without a copy
         job.client_host = socket.gethostname() if os.path.lexists(self.path) else None
         return job
 
