@@ -359,8 +359,10 @@ class _FileJob:
         """The report of this file failed with ``error`` (or for the reason said, of the file)."""
         if isinstance(error, str):
             reason = f"{self.path}: {error}"
+        elif isinstance(error, (ValueError, TypeError, OSError, ImportError)):
+            reason = error_text(error)
         else:
-            reason = error_text(error) if isinstance(error, (ValueError, TypeError, OSError, ImportError)) else repr(error)
+            reason = repr(error)
         failed = reason or type(error).__name__
         return FileReport(str(self.path), None, self.rows_in, 0, seconds, failed, tuple(dict.fromkeys(self.notes)))
 

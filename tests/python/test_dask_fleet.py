@@ -95,7 +95,8 @@ def test_two_batches_on_one_cluster_each_process_their_own_files(tmp_path: Path,
     for name, log, rows in zip("AB", inputs, (3000, 2000)):
         (report,) = reports[name].files
         assert report.ok, report.error
-        assert (report.input, report.output, report.rows_out) == (str(log), str(tmp_path / f"out{name}" / "d0.csv"), rows)
+        out = tmp_path / f"out{name}" / "d0.csv"
+        assert (report.input, report.output, report.rows_out) == (str(log), str(out), rows)
         assert os.listdir(tmp_path / f"out{name}") == ["d0.csv"]
 
 
@@ -238,11 +239,11 @@ def _scheduler_and_worker() -> Iterator[tuple[str, subprocess.Popen[bytes]]]:
     """A scheduler and a worker of two threads, each a process of its own (as `dask scheduler`
     and `dask worker` start them): the scheduler's address, and its process, to end."""
     address = f"tcp://127.0.0.1:{_free_port()}"
-    scheduler = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port",
-                                  address.rpartition(":")[2], "--dashboard-address", ":0"],
-                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    worker = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker", address, "--nthreads", "2", "--no-nanny",
-                               "--dashboard-address", ":0"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    quiet = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
+    scheduler = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1",
+                                  "--port", address.rpartition(":")[2], "--dashboard-address", ":0"], **quiet)
+    worker = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker", address, "--nthreads", "2",
+                               "--no-nanny", "--dashboard-address", ":0"], **quiet)
     try:
         yield address, scheduler
     finally:
@@ -376,8 +377,8 @@ def test_a_name_that_is_not_utf8_is_processed_as_on_threads(tmp_path: Path, proc
         assert (tmp_path / "out" / name).read_bytes() == (tmp_path / "here" / name).read_bytes()
 
 
-def test_an_interrupt_cancels_the_files_no_worker_has_started_at_once(tmp_path: Path, capsys: pytest.CaptureFixture[str],
-                                                                       monkeypatch: pytest.MonkeyPatch) -> None:
+def test_an_interrupt_cancels_the_files_no_worker_has_started_at_once(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> None:
     # Ctrl-C while the files waited for a worker (none yet, or all busy with another batch): the
     # command waited 30 s for them to stop, then said "3 file(s) on the Dask cluster did not stop
     # within 30 s: their output may still be written", of files no worker had started.
