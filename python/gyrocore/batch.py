@@ -28,7 +28,7 @@ from .pipeline_params import _to_si
 from .batch_inputs import check_outside_inputs, check_unreached, complete_output, expand_inputs, output_paths
 from .batch_job import Progress, _FileJob, split_options
 from .batch_report import BatchReport, FileReport
-from .batch_run import BatchInterrupted, run_on_dask, run_on_threads, check_client, connected
+from .batch_run import BatchInterrupted, check_client, check_workers, connected, run_on_dask, run_on_threads
 from .io._paths import unfollowable
 from .io.atomic import make_folder
 
@@ -222,6 +222,8 @@ def process_many(
     # scheduler answers at, or that Dask cannot read, left an empty output folder behind
     client, own = connected(client) if client is not None else (None, False)
     try:
+        if client is not None:
+            check_workers(client)
         make_folder(Path(out_dir))
         jobs_list = [
             _FileJob(p, o, preset, heading, chunk_rows, options, columns, mode, use_speed, skip_existing, use_fixes)

@@ -3,7 +3,10 @@ what it did (:class:`~gyrocore.batch_report.FileReport`)."""
 
 from __future__ import annotations
 
+import copy
+import dataclasses
 import os
+import socket
 import time
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import AbstractContextManager, contextmanager
@@ -19,6 +22,7 @@ from ._motion import TURNING
 from ._gyrocore import SampleError
 from .batch_inputs import complete_output
 from .batch_report import FileReport, input_repairs
+from .io import atomic
 from .io._columns import concat
 from .io._logfolder import FIXES_CSV, ODOMETRY_CSV, from_stationary, read_odometry
 from .io._paths import error_text, has_file
@@ -77,17 +81,22 @@ class _FileJob:
         self.notes: list[str] = []
         #: called before each chunk of every pass over the input; raises to stop the file (a batch's stop)
         self.stop: Callable[[], None] | None = None
+        #: the mark of the output's temporary file (:func:`gyrocore.io.atomic.tagged`); empty: none
+        self.tag = ""
+        #: on a Dask worker, the host of the client, which found the input (:meth:`for_a_worker`)
+        self.client_host: str | None = None
 
     def run(self, progress: Progress | None = None, stop: Callable[[], None] | None = None) -> FileReport:
         """The file processed (``progress`` after each chunk written), or stopped where ``stop``
         raises, which is called before each chunk read, also by the first pass that plans the bias."""
         self.stop = stop
+        self._check_seen_here()
         # checked where the file is written (a Dask worker): its input is not even opened
         if self.skip_existing and complete_output(self.out):
             return FileReport(str(self.path), str(self.out), 0, 0, 0.0, output_existed=True)
         # every warning the file raises, from opening it to its last chunk, is a note of its
         # report, also of a file that then fails (what came before an error often says why)
-        with _noted(self.notes, self.path if self.raise_again else None):
+        with _noted(self.notes, self.path if self.raise_again else None), atomic.tagged(self.tag):
             return self._stream(progress)
 
     def _stream(self, progress: Progress | None) -> FileReport:
@@ -300,8 +309,60 @@ class _FileJob:
         where = str(source.path / ODOMETRY_CSV)
         return rests.speed_on(t, odometry["t"], odometry["speed"], where=where)
 
-    def failure(self, error: BaseException, seconds: float) -> FileReport:
-        reason = error_text(error) if isinstance(error, (ValueError, TypeError, OSError, ImportError)) else repr(error)
+    def for_a_worker(self, tag: str) -> _FileJob:
+        """This job with its input and output as absolute paths, for a Dask worker: its working
+        folder is not this process's (another machine, a process started elsewhere), and a
+        relative path named another file there, or none (``logs/d0.csv: no such file or folder``).
+        Its temporary output is marked ``tag``, that the batch removes what a worker that dies
+        leaves of it (:func:`gyrocore.io.atomic.discard_tagged`)."""
+        job = copy.copy(self)
+        # joined to the working folder, not tidied by their text (os.path.abspath): the system takes
+        # link/../d0.csv through the link, and the tidied ./d0.csv was another file
+        job.path, job.out, job.tag = Path.cwd() / self.path, Path.cwd() / self.out, tag
+        job.notes = []  # its own, not this job's: a cluster of threads may run it without a copy
+        job.client_host = socket.gethostname() if os.path.lexists(self.path) else None
+        return job
+
+    def _check_seen_here(self) -> None:
+        """On a Dask worker, refuse an input or output folder that the client found and this
+        machine does not: they said ``no such file or folder`` and ``the folder ... does not
+        exist; create it``, of files the user sees there."""
+        if self.client_host is None:
+            return
+        for path, what in ((self.path, "input"), (self.out.parent, "output folder")):
+            if not os.path.lexists(path):
+                raise FileNotFoundError(
+                    f"{path}: no such {what} on the Dask worker at {socket.gethostname()}, though the client at "
+                    f"{self.client_host} found it: the workers must see the inputs and the output folder at the "
+                    "paths the client gives (a shared filesystem, mounted at the same place)")
+
+    def staging_folder(self) -> Path:
+        """Where the output's temporary file is written: the folder of the file it replaces (see
+        :class:`gyrocore.io.atomic.StagedFile`)."""
+        return Path(os.path.realpath(self.out)).parent
+
+    def as_given(self, report: FileReport, sent: _FileJob) -> FileReport:
+        """The report of ``sent`` (this job :meth:`for_a_worker`) naming the input and the output
+        as this job does, as a run here names them."""
+
+        def named(text: str) -> str:
+            return text.replace(str(sent.path), str(self.path)).replace(str(sent.out), str(self.out))
+
+        return dataclasses.replace(
+            report, input=str(self.path), output=None if report.output is None else str(self.out),
+            error=None if report.error is None else named(report.error), warnings=tuple(map(named, report.warnings)),
+            bias_source=None if report.bias_source is None else named(report.bias_source),
+            fixes_file=None if report.fixes_file is None else named(report.fixes_file),
+        )
+
+    def failure(self, error: BaseException | str, seconds: float) -> FileReport:
+        """The report of this file failed with ``error`` (or for the reason said, of the file)."""
+        if isinstance(error, str):
+            reason = f"{self.path}: {error}"
+        elif isinstance(error, (ValueError, TypeError, OSError, ImportError)):
+            reason = error_text(error)
+        else:
+            reason = repr(error)
         failed = reason or type(error).__name__
         return FileReport(str(self.path), None, self.rows_in, 0, seconds, failed, tuple(dict.fromkeys(self.notes)))
 

@@ -4,17 +4,21 @@ interruption stops every running file at its next chunk (removing its temporary 
 from __future__ import annotations
 
 import asyncio
+import os
 import sys
 import threading
 import time
 import uuid
+import warnings
 from concurrent.futures import ThreadPoolExecutor, as_completed
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from typing import Any
 
 from ._extras import require, tqdm_class
+from ._gyrocore import __version__
 from .batch_job import _FileJob
 from .batch_report import FileReport
+from .io import atomic
 
 
 def _run_job(job: _FileJob, stop: threading.Event | Any = None) -> FileReport:
@@ -48,14 +52,16 @@ class BatchInterrupted(KeyboardInterrupt):
         return f"{len(done)} file(s) finished before it, complete: {shown}"
 
 
-def _finished_meanwhile(futures: Iterable[tuple[int, Any]], reports: dict[int, FileReport]) -> None:
-    """Adds the reports of the files that finished while the batch stopped: past their last chunk
-    when the signal came, they complete, and their outputs are whole."""
+def _finished_meanwhile(futures: Iterable[tuple[int, Any]], reports: dict[int, FileReport],
+                        named: Callable[[int, FileReport], FileReport] = lambda i, report: report) -> None:
+    """Adds the reports of the files that finished while the batch stopped (``named`` names their
+    files as given): past their last chunk when the signal came, they complete, and their outputs
+    are whole."""
     for i, future in futures:
         if i in reports or not future.done() or future.cancelled():
             continue
         try:
-            reports[i] = future.result()
+            reports[i] = named(i, future.result())
         # a file the signal stopped (its chunk check raised the KeyboardInterrupt, see _signals),
         # or a lost worker: no report, and no output; the batch's own interrupt is raised after
         except (Exception, KeyboardInterrupt):  # noqa: BLE001
@@ -120,10 +126,19 @@ def run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileR
     reports: dict[int, FileReport] = {}
     # The workers' files check it at every chunk, as the threads' files check theirs: a task
     # already running on a worker is not stopped by cancelling its future.
-    stop = distributed.Event(f"gyrocore-stop-{uuid.uuid4().hex}", client=client)
+    batch = uuid.uuid4().hex
+    stop = distributed.Event(f"gyrocore-stop-{batch}", client=client)
+    sent = [job.for_a_worker(batch) for job in jobs]
+
+    def named(i: int, report: FileReport) -> FileReport:
+        return jobs[i].as_given(report, sent[i])
+
+    # A key of the batch's own: the cluster takes a key it holds already for that task, and
+    # another batch's first file of the same name (gyrocore-0-d0.csv) was taken for this one's,
+    # never processed, its report the other's.
     futures = [
-        client.submit(_run_job, job, stop, key=f"gyrocore-{i}-{job.path.name}", pure=False)
-        for i, job in enumerate(jobs)
+        client.submit(_run_job, job, stop, key=f"gyrocore-{batch}-{i}-{_readable(job.path.name)}", pure=False)
+        for i, job in enumerate(sent)
     ]
     index = {f.key: i for i, f in enumerate(futures)}
     with _bar(len(jobs), progress) as bar:
@@ -131,16 +146,43 @@ def run_on_dask(client: Any, jobs: list[_FileJob], progress: bool) -> list[FileR
             for future in distributed.as_completed(futures):
                 i = index[future.key]
                 try:
-                    reports[i] = future.result()
+                    reports[i] = named(i, future.result())
                 except Exception as e:  # noqa: BLE001 - a lost worker fails its file only
-                    reports[i] = jobs[i].failure(e, 0.0)
+                    reports[i] = jobs[i].failure(_lost(distributed, e), 0.0)
+                # The cluster forgets the report once read: a worker that died holding it made
+                # the cluster process the file again (each file 3 times over when one killed
+                # every worker), writing its output anew.
+                future.release()
                 bar.update(1)
         except BaseException as e:
-            _stop_on_cluster(distributed, stop, futures)
-            _finished_meanwhile(enumerate(futures), reports)
+            _stop_on_cluster(distributed, client, stop, futures)
+            _finished_meanwhile(enumerate(futures), reports, named)
             _interrupted(e, reports)
             raise
+        finally:  # what the workers that died while writing an output left of it, a folder at a time
+            for folder in dict.fromkeys(job.staging_folder() for job in sent):
+                atomic.discard_tagged(folder, batch)
     return [reports[i] for i in range(len(jobs))]
+
+
+def _readable(name: str) -> str:
+    """A file's name as valid UTF-8, for the key of its task (shown by Dask's dashboard): a name of
+    bytes that are not (``caf\\xe9.csv`` of a Latin-1 system) broke the client's connection to
+    the scheduler, which sends keys as UTF-8, and every file of the batch failed."""
+    return os.fsencode(name).decode("utf-8", "replace")
+
+
+def _lost(distributed: Any, error: Exception) -> Exception | str:
+    """Why the cluster gave no report of a file, for its failure: Dask's own words were the repr
+    of its exception (``KilledWorker('gyrocore-...-oom.csv', <WorkerState 'tcp://...', name: 0,
+    status: closed, ...>, 3)``, ``FutureCancelledError()``)."""
+    if isinstance(error, distributed.KilledWorker):
+        return (f"every Dask worker that ran it died ({error.allowed_failures + 1} of them): out of memory, or "
+                "killed; the workers' logs say which; its output is not written")
+    if isinstance(error, distributed.client.FutureCancelledError):
+        return (f"the Dask cluster dropped it before it finished (Dask's reason: {error.reason}; the scheduler "
+                "gone?); run it again (--skip-existing goes on with the inputs without an output)")
+    return error
 
 
 def check_client(client: Any) -> None:
@@ -157,6 +199,35 @@ def check_client(client: Any) -> None:
     if not isinstance(client, str) and not hasattr(client, "scheduler_address"):  # a cluster has one
         raise TypeError("client must be a dask.distributed.Client, a Dask cluster or a scheduler's address "
                         f"(tcp://host:8786), got {type(client).__name__} {client!r}")
+
+
+def _version() -> str:
+    """The version of gyrocore (of its compiled core) where this runs: a worker, asked by :func:`check_workers`."""
+    return __version__
+
+
+def check_workers(client: Any) -> None:
+    """Refuse, before any output is made, a cluster whose workers cannot import gyrocore (not
+    installed there, or its compiled core missing: each worker that took a file died reading its
+    task, and the batch waited for ever) or run another version of it than this one (whose
+    headings may differ from a run here). Workers that join later are not asked."""
+    address = client.scheduler.address
+    try:
+        answers = client.run(_version, on_error="return")
+    except OSError as e:  # a client whose scheduler went away: Dask's bare "ConnectionPool closing."
+        raise ConnectionError(f"the Dask scheduler at {address} no longer answers this client ({e}); check that it "
+                              "runs, and connect to it again") from None
+    if not answers:  # the batch waited without a word, for ever where no worker comes
+        warnings.warn(f"the Dask cluster at {address} has no workers: the files wait until some join "
+                      f"(dask worker {address}; an adaptive cluster starts them for the files)", RuntimeWarning,
+                      stacklevel=3)
+    wrong = [f"{worker}: " + (f"gyrocore {answer}" if isinstance(answer, str) else f"cannot import gyrocore ({answer})")
+             for worker, answer in sorted(answers.items()) if answer != __version__]
+    if wrong:
+        more = f" (and {len(wrong) - 2} more)" if len(wrong) > 2 else ""
+        raise ValueError(f"the Dask cluster's workers must run gyrocore {__version__}, as this machine does: "
+                         f"{'; '.join(wrong[:2])}{more}; install it on every worker "
+                         f"(pip install 'gyrocore[dask]=={__version__}')")
 
 
 def connected(client: Any) -> tuple[Any, bool]:
@@ -240,13 +311,19 @@ def _handshake(address: str) -> None:
 STOP_TIMEOUT = 30.0
 
 
-def _stop_on_cluster(distributed: Any, stop: Any, futures: list[Any]) -> None:
-    """Stops the files still waiting and those running (each at its next chunk, removing its
-    temporary output), and waits for the running ones; says so if one does not stop in time
-    (a lost connection to the scheduler, a worker stuck in one chunk)."""
+def _stop_on_cluster(distributed: Any, client: Any, stop: Any, futures: list[Any]) -> None:
+    """Stops the files still waiting (cancelled) and those running (each at its next chunk,
+    removing its temporary output), and waits for the running ones; says so if one does not stop
+    in time (a lost connection to the scheduler, a worker stuck in one chunk)."""
     pending = [f for f in futures if not f.done()]
     try:
-        stop.set()
+        stop.set()  # first: a file that a worker starts from here on stops at its first chunk
+        # The files no worker has started are cancelled, not waited for: waiting for a worker (none
+        # yet, or each busy with another batch), they held an interrupt for the whole timeout, and
+        # were said not to have stopped, their output "may still be written".
+        started = {key for keys in client.processing().values() for key in keys}
+        client.cancel([f for f in pending if f.key not in started])
+        pending = [f for f in pending if f.key in started]
         distributed.wait(pending, timeout=STOP_TIMEOUT)
     except Exception:  # noqa: BLE001 - the scheduler gone or the wait timed out: say so below
         pass

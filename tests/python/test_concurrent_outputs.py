@@ -186,3 +186,38 @@ def test_every_command_keeps_an_output_written_meanwhile_unless_overwrite(
     out.unlink()
     assert main([*args, "--overwrite"]) == 0
     assert out.read_bytes() != KEPT.encode()
+
+
+def test_an_output_written_meanwhile_with_this_runs_bytes_is_this_runs(tmp_path: Path,
+                                                                      monkeypatch: pytest.MonkeyPatch) -> None:
+    # A Dask cluster runs a file again when the worker holding its report dies before the report
+    # is read: the second run found the first's output, the same bytes, and the file that was
+    # written whole was reported failed, "written meanwhile by something else".
+    log, first, out = synthetic_csv(tmp_path / "a.csv", 3000), tmp_path / "first.csv", tmp_path / "h.csv"
+    process_file(log, first, preset="raw", chunk_rows=1000)
+
+    def first_run_done(rows: int, total: int | None, name: str) -> None:
+        if not out.exists():
+            out.write_bytes(first.read_bytes())
+
+    report = process_file(log, out, preset="raw", chunk_rows=1000, progress=first_run_done, overwrite=False)
+    assert report.ok and report.rows_out == 3000 and out.read_bytes() == first.read_bytes()
+    assert leftovers(tmp_path) == []
+    # also where the folder takes no hard links; a file that differs by one byte is still kept
+    def no_links(src: object, dst: object) -> None:
+        raise OSError(errno.EPERM, "Operation not permitted")
+
+    monkeypatch.setattr(atomic.os, "link", no_links)
+    for other in (first.read_bytes(), first.read_bytes()[:-2] + b"9\n"):
+        out.unlink()
+
+        def other_run(rows: int, total: int | None, name: str, other: bytes = other) -> None:
+            if not out.exists():
+                out.write_bytes(other)
+
+        if other == first.read_bytes():
+            assert process_file(log, out, preset="raw", chunk_rows=1000, progress=other_run, overwrite=False).ok
+        else:
+            with pytest.raises(FileExistsError, match="written meanwhile"):
+                process_file(log, out, preset="raw", chunk_rows=1000, progress=other_run, overwrite=False)
+        assert out.read_bytes() == other and leftovers(tmp_path) == []

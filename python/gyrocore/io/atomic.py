@@ -6,7 +6,9 @@ even when the writer fails or is interrupted (:class:`StagedFile`, :func:`atomic
 
 from __future__ import annotations
 
+import contextvars
 import errno
+import filecmp
 import os
 import secrets
 import stat
@@ -109,11 +111,35 @@ def name_max(folder: Path) -> int:
         return 255
 
 
+#: The mark of the temporary files written in this context (:func:`tagged`), empty for none.
+_tag: contextvars.ContextVar[str] = contextvars.ContextVar("gyrocore_temporary_tag", default="")
+
+
+@contextmanager
+def tagged(tag: str) -> Iterator[None]:
+    """Name the temporary files written in the block ``.NAME.<tag>-<random>.tmp``: what a process
+    that dies leaves of them (a Dask worker killed mid-file, whose ``finally`` never runs) is then
+    found by its tag (:func:`discard_tagged`), and never another run's file."""
+    token = _tag.set(tag)
+    try:
+        yield
+    finally:
+        _tag.reset(token)
+
+
+def discard_tagged(folder: Path, tag: str) -> None:
+    """Remove the temporary files of ``tag`` (see :func:`tagged`) left in ``folder``."""
+    for tmp in folder.glob(f".*.{tag}-*.tmp"):
+        tmp.unlink(missing_ok=True)
+
+
 def temporary_name(name: str, limit: int = 255) -> str:
-    """The hidden name ``.NAME.<random>.tmp`` under which the file ``name`` is written, its ``NAME``
-    cut short where the whole would be longer than ``limit`` bytes: an output of a long name (an
-    input's name of 238-255 bytes kept) failed with ``File name too long`` naming the hidden file."""
-    token = f".{secrets.token_hex(6)}.tmp"
+    """The hidden name ``.NAME.<random>.tmp`` (``.NAME.<tag>-<random>.tmp`` in a block of
+    :func:`tagged`) under which the file ``name`` is written, its ``NAME`` cut short where the
+    whole would be longer than ``limit`` bytes: an output of a long name (an input's name of
+    238-255 bytes kept) failed with ``File name too long`` naming the hidden file."""
+    tag = _tag.get()
+    token = f".{tag + '-' if tag else ''}{secrets.token_hex(6)}.tmp"
     room = limit - 1 - len(token)
     while len(os.fsencode(name)) > room:  # cut whole characters, never a multi-byte one in half
         name = name[:-1]
@@ -222,15 +248,27 @@ class StagedFile:
         try:
             os.link(self.tmp, self.target)
         except FileExistsError:
-            raise taken from None
+            if not self._written_alike():
+                raise taken from None
         except OSError as e:  # no hard links here (FAT, some network shares): checked, then renamed
             if e.errno not in (errno.EPERM, errno.ENOTSUP, errno.EOPNOTSUPP, errno.EXDEV, errno.EMLINK):
                 raise
-            if os.path.lexists(self.target):
+            if not os.path.lexists(self.target):
+                os.replace(self.tmp, self.target)
+                return
+            if not self._written_alike():
                 raise taken from None
-            os.replace(self.tmp, self.target)
-            return
         self.tmp.unlink()
+
+    def _written_alike(self) -> bool:
+        """Whether the file that appeared at the target holds this run's bytes: nothing of the
+        other's is lost, and this run's output is there. A Dask cluster runs a file again when the
+        worker that held its report died before the report was read, and the second run found the
+        first's output: a file written whole was reported failed, "written meanwhile"."""
+        try:
+            return os.path.isfile(self.target) and filecmp.cmp(self.tmp, self.target, shallow=False)
+        except OSError:
+            return False
 
     def discard(self) -> None:
         """Remove the temporary file if it is still there."""
