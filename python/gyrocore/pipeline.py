@@ -227,7 +227,7 @@ class Pipeline:
         inputs = {"t": (t, ta), "rate": (rate, ra), "temperature": (temperature, temp), "speed": (speed, sa)}
         given = out_arrays(out, outputs, len(ta), inputs)
         before = inner.report()
-        window = None if self._watch.readings is None else self._window(ta)  # none once it is checked
+        window = None if self._watch.checked else self._window(ta)  # none once it is checked
         measuring = window is not None and inner.bias()[2]
         try:
             heading, out_rate, drift, found, fused = self._run(
