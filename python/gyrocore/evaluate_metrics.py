@@ -115,12 +115,13 @@ class Reference:
         if len(t) < 2:
             raise ValueError(f"reference: {len(t)} sample(s); a heading error needs at least two reference samples")
         gaps = find_gaps(t, gap_factor=gap_factor)
-        # Segment k starts after the k-th gap; unwrap within segments only.
+        # Segment k starts after the k-th gap; unwrap within segments only, each a slice (a mask of
+        # each over the whole reference took 21.8 s to score 4*10^6 samples with a gap a second).
         segment = np.concatenate(([0], np.cumsum(gaps)))
         unwrapped = psi.copy()
-        for s in range(int(segment[-1]) + 1):
-            mask = segment == s
-            unwrapped[mask] = np.unwrap(psi[mask])
+        bounds = [0, *(np.flatnonzero(gaps) + 1).tolist(), len(psi)]
+        for a, b in zip(bounds[:-1], bounds[1:]):
+            unwrapped[a:b] = np.unwrap(psi[a:b])
         self.given = psi
         """Reference heading [rad] as given (wrapped or not)."""
         self.t = t
@@ -162,9 +163,13 @@ class Reference:
         est = np.interp(tr, te, est_all)
         # Consecutive compared samples not adjacent in the reference skipped an estimate gap.
         gap_after = (np.diff(idx) > 1) | (np.diff(seg) != 0)
-        for j in np.flatnonzero(np.diff(seg) != 0):
-            turns = round(((est[j + 1] - est[j]) - (ref[j + 1] - ref[j])) / (2 * math.pi))
-            ref[j + 1 :] += 2 * math.pi * turns
+        # Each crossing's whole turns, added to everything after it at once: added crossing by
+        # crossing, they took a pass over the rest of the reference each.
+        j = np.flatnonzero(np.diff(seg) != 0)
+        if len(j):
+            shift = np.zeros(len(ref))
+            shift[j + 1] = 2 * math.pi * np.round(((est[j + 1] - est[j]) - (ref[j + 1] - ref[j])) / (2 * math.pi))
+            ref += np.cumsum(shift)
         if absolute:
             return tr, np.angle(np.exp(1j * (est - ref))), gap_after
         return tr, (est - est[0]) - (ref - ref[0]), gap_after
