@@ -78,6 +78,22 @@ def find_gaps(t: ArrayLike, *, gap_factor: float = GAP_FACTOR) -> np.ndarray:
     return np.asarray(dt > gap_factor * float(np.median(dt)))
 
 
+def _unwrapped_between(heading: FloatArray, gaps: np.ndarray) -> FloatArray:
+    """``numpy.unwrap`` of each stretch of ``heading`` between ``gaps`` (:func:`find_gaps`), in one
+    pass over all of them: a mask of each stretch over the whole reference took 21.8 s to score
+    4*10^6 samples with a gap a second, and a call per stretch 0.64 s for 20,000 stretches."""
+    step = np.diff(heading)
+    # numpy.unwrap's correction of each step, none across a gap
+    wrapped = np.mod(step + math.pi, 2 * math.pi) - math.pi
+    wrapped[(wrapped == -math.pi) & (step > 0)] = math.pi
+    correction = np.where((np.abs(step) < math.pi) | gaps, 0.0, wrapped - step)
+    total = np.concatenate(([0.0], np.cumsum(correction)))
+    # each sample less what the corrections came to at the start of its stretch
+    index = np.arange(len(heading))
+    start = np.maximum.accumulate(np.where(np.concatenate(([True], gaps)), index, 0))
+    return heading + (total - total[start])
+
+
 class Reference:
     """A reference heading prepared once and scored against many estimates (tuning does thousands).
 
@@ -115,13 +131,9 @@ class Reference:
         if len(t) < 2:
             raise ValueError(f"reference: {len(t)} sample(s); a heading error needs at least two reference samples")
         gaps = find_gaps(t, gap_factor=gap_factor)
-        # Segment k starts after the k-th gap; unwrap within segments only, each a slice (a mask of
-        # each over the whole reference took 21.8 s to score 4*10^6 samples with a gap a second).
+        # Segment k starts after the k-th gap; unwrap within segments only.
         segment = np.concatenate(([0], np.cumsum(gaps)))
-        unwrapped = psi.copy()
-        bounds = [0, *(np.flatnonzero(gaps) + 1).tolist(), len(psi)]
-        for a, b in zip(bounds[:-1], bounds[1:]):
-            unwrapped[a:b] = np.unwrap(psi[a:b])
+        unwrapped = _unwrapped_between(psi, gaps)
         self.given = psi
         """Reference heading [rad] as given (wrapped or not)."""
         self.t = t
