@@ -186,3 +186,43 @@ def test_a_gapped_reference_unwraps_each_stretch_as_numpy_unwrap_does_even_at_ha
     assert len(starts) > 50
     for a, b in zip(np.r_[0, starts], np.r_[starts, len(t)]):
         assert np.allclose(reference.heading[a:b], np.unwrap(wrapped[a:b]), rtol=0.0, atol=1e-9)
+
+
+def test_a_long_log_into_the_callers_array_copies_only_its_times() -> None:
+    # The first chunk's unit check copied its times and readings whole (two more arrays as long as
+    # the log, 2.1 s of a 5*10^7-sample call whose pipeline took 1.1 s) to judge a subset of them.
+    n = 2_000_000
+    t = np.arange(n) * 1e-3
+    rate = 0.003 + np.random.default_rng(6).normal(0.0, 0.002, n)
+    heading = np.empty(n)
+    for call in (lambda: gyrocore.process(t, rate, "combined", bias=0.003, mode="causal", outputs=("heading",),
+                                          out=heading),
+                 lambda: gyrocore.Pipeline("combined", bias=0.003).process(t, rate, outputs=("heading",), out=heading)):
+        tracemalloc.start()
+        try:
+            result = call()
+            peak = tracemalloc.get_traced_memory()[1]
+        finally:
+            tracemalloc.stop()
+        assert result.heading is heading
+        # the result's own times (8 bytes a sample) and what a chunk's checks take of a subset
+        assert peak < 1.5 * 8 * n, peak / (8 * n)
+
+
+def test_a_stream_that_fills_one_buffer_anew_for_each_sample_is_judged_on_the_samples_it_gave() -> None:
+    def said(chunks: list[tuple[float, float]]) -> list[str]:
+        p = gyrocore.Pipeline("raw")
+        t_buffer, rate_buffer = np.empty(1), np.empty(1)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", gyrocore.InputWarning)
+            for t, rate in chunks:
+                t_buffer[0], rate_buffer[0] = t, rate
+                p.process(t_buffer, rate_buffer)
+        return [str(w.message) for w in caught]
+
+    one_call = gyrocore.Pipeline("raw")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", gyrocore.InputWarning)
+        one_call.process([0.0, 0.01], [30.0, 0.001])
+    assert [str(w.message) for w in caught] == said([(0.0, 30.0), (0.01, 0.001)])
+    assert any("deg/s" in m for m in said([(0.0, 30.0), (0.01, 0.001)]))
