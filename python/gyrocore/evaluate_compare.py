@@ -300,7 +300,8 @@ def compare(
             results = {}
             for method in methods:
                 result, source = method.run(log, bias_duration=bias_duration, mode=mode, use_speed=use_speed)
-                results[method.name] = result
+                if plot_dir is not None:  # for the plot alone: every method's result kept held 28 arrays as
+                    results[method.name] = result  # long as the log for gyrocore evaluate's 7 presets
                 rows.append(score(log, method, result, raw, source))
         except ValueError as e:
             raise named_error(log, e) from None
