@@ -10,7 +10,7 @@ import os
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any, Mapping, Protocol, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -354,7 +354,17 @@ class Failed:
         return failed_line(self.path, self.error)
 
 
-def plot_path(plot_dir: str | Path, log: Log) -> Path:
+class Named(Protocol):
+    """What names a log's plot: its name, and where it was read (None: built in memory)."""
+
+    @property
+    def name(self) -> str: ...
+
+    @property
+    def path(self) -> str | None: ...
+
+
+def plot_path(plot_dir: str | Path, log: Named) -> Path:
     """Where :func:`compare` draws the plot of ``log``: ``<plot_dir>/<log name>.png``.
 
     Raises:

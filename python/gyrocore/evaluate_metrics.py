@@ -91,7 +91,8 @@ def _unwrapped_between(heading: FloatArray, gaps: np.ndarray) -> FloatArray:
     # each sample less what the corrections came to at the start of its stretch
     index = np.arange(len(heading))
     start = np.maximum.accumulate(np.where(np.concatenate(([True], gaps)), index, 0))
-    return heading + (total - total[start])
+    unwrapped: FloatArray = heading + (total - total[start])
+    return unwrapped
 
 
 class Reference:

@@ -252,3 +252,33 @@ def test_comparing_many_methods_on_a_long_log_keeps_one_methods_heading_at_a_tim
     one = _compare_peak(log, ["hdr"])
     six = _compare_peak(log, ["hdr", "raw", "static_bias", "hong_park", "combined", "tuned"])
     assert six - one < 4 * 8 * n, (six - one) / (8 * n)
+
+
+def _evaluate_peak(files: list[Path], capsys: pytest.CaptureFixture[str]) -> int:
+    from gyrocore.cli import main
+
+    tracemalloc.start()
+    try:
+        assert main(["evaluate", *map(str, files), "--preset", "static_bias"]) == 0
+        return tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+        assert f"{files[-1]}" in capsys.readouterr().out
+
+
+def test_gyrocore_evaluate_of_a_fleet_holds_one_log_at_a_time(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # Every log was read before the first was scored: a fleet's logs all in memory at once.
+    pa = pytest.importorskip("pyarrow")
+    pq = pytest.importorskip("pyarrow.parquet")
+    n = 100_000
+    t = np.arange(n) * 0.01
+    truth = 0.2 * np.sin(t / 7.0)
+    files = []
+    for k in range(8):
+        rate = truth + 0.003 + np.random.default_rng(k).normal(0.0, 0.002, n)
+        files.append(tmp_path / f"drive{k}.parquet")
+        pq.write_table(pa.table({"t": t, "gyro_z": rate, "heading_true": np.cumsum(truth) * 0.01}), files[-1])
+    two, eight = _evaluate_peak(files[:2], capsys), _evaluate_peak(files, capsys)
+    # a log read is 3 arrays as long as it (times, readings, reference heading): 6 more logs held
+    # 18 of them
+    assert eight < two + 6 * 8 * n, (eight - two) / (8 * n)
