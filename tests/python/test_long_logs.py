@@ -357,3 +357,20 @@ def test_a_parquet_file_read_a_sample_a_chunk_costs_about_what_a_csv_file_does(t
     assert np.array_equal(np.concatenate([c.t for c in small]), whole.t)
     assert np.array_equal(np.concatenate([c.rate for c in small]), whole.rate)
     assert [c.first_row for c in small[:3]] == [0, 7, 14]
+
+
+def test_a_files_unit_check_holds_a_bounded_subset_however_small_the_chunks() -> None:
+    # A chunk of one row between the samples of the subset's stride was kept as an empty array:
+    # the list grew with the stream (360,000 arrays and 45 MB after 10^6 one-row chunks).
+    from gyrocore._checks import SUBSET_SIZE
+    from gyrocore.io.units import UnitCheck
+
+    check = UnitCheck(gyrocore.io.ReadOptions(rate_unit="rad/s"))
+    n = 200_000
+    t, rate = np.arange(n) * 0.001, np.random.default_rng(10).normal(0.0, 0.001, n)
+    longest = 0
+    for i in range(n):
+        check.update(t[i:i + 1], rate[i:i + 1])
+        longest = max(longest, len(check._subset))
+    assert longest <= 2 * SUBSET_SIZE + 1, longest
+    assert check.problems() == []
