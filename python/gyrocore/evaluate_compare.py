@@ -10,7 +10,7 @@ import os
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any, Mapping, Protocol, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -19,6 +19,7 @@ from . import deadreckon
 from ._arrays import as_float_array, covered_share, span_text
 from ._checks import check_number, json_ready, require_finite, require_flag, warn
 from ._extras import pyplot
+from .evaluate_envelope import envelope
 from .batch_report import failed_line
 from .evaluate_metrics import HeadingErrors, Reference, heading_errors, improvement
 from .io import Log, read_log
@@ -303,7 +304,8 @@ def compare(
             results = {}
             for method in methods:
                 result, source = method.run(log, bias_duration=bias_duration, mode=mode, use_speed=use_speed)
-                results[method.name] = result
+                if plot_dir is not None:  # for the plot alone, its times and heading: every method's result
+                    results[method.name] = HeadingResult(result.t, result.heading, None, None)  # held 4 arrays
                 rows.append(score(log, method, result, raw, source))
         except ValueError as e:
             raise named_error(log, e) from None
@@ -356,7 +358,17 @@ class Failed:
         return failed_line(self.path, self.error)
 
 
-def plot_path(plot_dir: str | Path, log: Log) -> Path:
+class Named(Protocol):
+    """What names a log's plot: its name, and where it was read (None: built in memory)."""
+
+    @property
+    def name(self) -> str: ...
+
+    @property
+    def path(self) -> str | None: ...
+
+
+def plot_path(plot_dir: str | Path, log: Named) -> Path:
     """Where :func:`compare` draws the plot of ``log``: ``<plot_dir>/<log name>.png``.
 
     Raises:
@@ -397,9 +409,12 @@ def plot_log(path: str | Path, log: Log, results: Mapping[str, HeadingResult], *
         if k == 0:
             # The aligned reference is the aligned estimate minus its error.
             ref = np.interp(tr, r.t, r.heading) - start - err
-            ax1.plot(tr - t0, np.degrees(ref), "k", lw=2.2, label="reference")
-        ax1.plot(r.t - t0, np.degrees(r.heading - start), lw=1, label=name)
-        ax2.plot(tr - t0, np.degrees(err), lw=1, label=name)
+            at = envelope(ref)
+            ax1.plot(tr[at] - t0, np.degrees(ref[at]), "k", lw=2.2, label="reference")
+        at = envelope(r.heading)  # the points drawn taken first: a long log's lines copied it whole, twice
+        ax1.plot(r.t[at] - t0, np.degrees(r.heading[at] - start), lw=1, label=name)
+        at = envelope(err)
+        ax2.plot(tr[at] - t0, np.degrees(err[at]), lw=1, label=name)
     ax1.set_title(f"{log.name}: heading against the reference")
     ax1.set_ylabel("heading change [deg]")
     ax2.set_ylabel("error [deg]")

@@ -227,7 +227,7 @@ class Pipeline:
         inputs = {"t": (t, ta), "rate": (rate, ra), "temperature": (temperature, temp), "speed": (speed, sa)}
         given = out_arrays(out, outputs, len(ta), inputs)
         before = inner.report()
-        window = None if self._watch.readings is None else self._window(ta)  # none once it is checked
+        window = None if self._watch.checked else self._window(ta)  # none once it is checked
         measuring = window is not None and inner.bias()[2]
         try:
             heading, out_rate, drift, found, fused = self._run(
@@ -279,9 +279,12 @@ class Pipeline:
                 f"temperature is given but no temperature model ({', '.join(TEMPERATURE_MODEL)}) is set: it is "
                 "not used; set the model (e.g. calibration.rotary_table's) or leave the temperature out"
             )
-        head_t, head_rate = np.concatenate((held_t, t)), np.concatenate((held_rate, rate))
-        if len(head_t) < UNIT_SAMPLES:
-            self._unit_head = (head_t, head_rate)
+        # a first chunk is judged as it is: copied whole behind nothing held, a long log's times and
+        # readings took two more arrays as long as the log (2.1 s of a call of 5*10^7 samples)
+        head_t, head_rate = (t, rate) if not len(held_t) else (np.concatenate((held_t, t)),
+                                                                np.concatenate((held_rate, rate)))
+        if len(head_t) < UNIT_SAMPLES:  # held as copies: a caller may fill its arrays anew for the next chunk
+            self._unit_head = (np.array(head_t), np.array(head_rate))
             return
         warn_units(head_t, head_rate)
         warn_slow_tracker(head_t, self.params)

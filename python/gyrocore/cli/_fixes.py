@@ -19,6 +19,7 @@ from ..evaluate_compare import naming_log
 from ..fixes import Fixes, read_fixes_file
 from ..io import Log
 from ..io._logfolder import FIXES_CSV, GNSS_CSV
+from ..io._paths import has_file
 from ._common import NAME, each_log, exit_code, note, print_failures, print_json, warn
 
 FIXES_HELP = (
@@ -42,16 +43,18 @@ def add_fix_options(parser: argparse.ArgumentParser, *, evaluate: bool) -> None:
     group.add_argument("--no-fixes", action="store_true", help=f"ignore a log folder's {FIXES_CSV}")
 
 
-def fixes_wanted(args: argparse.Namespace, logs: Sequence[Log]) -> bool:
-    """Whether ``evaluate`` scores with fixes: given, simulated, or a log's own ``fixes.csv``."""
+def fixes_wanted(args: argparse.Namespace, folders: Sequence[str | Path]) -> bool:
+    """Whether ``evaluate`` scores with fixes: given, simulated, or the ``fixes.csv`` of one of the
+    log ``folders``."""
     if args.no_fixes:
         return False
-    return args.fixes is not None or args.sim_fixes is not None or any(log.fixes is not None for log in logs)
+    return args.fixes is not None or args.sim_fixes is not None or any(has_file(Path(f) / FIXES_CSV) for f in folders)
 
 
-def evaluate_with_fixes(args: argparse.Namespace, logs: Sequence[Log | Failed], methods: Sequence[Method]) -> int:
+def evaluate_with_fixes(args: argparse.Namespace, logs: Sequence[str | Failed], methods: Sequence[Method],
+                        read: Callable[[str], Log]) -> int:
     """``gyrocore evaluate`` with fixes: the table of :func:`gyrocore._fixes_eval.format_fix_scores`;
-    ``logs`` as read, or failed already."""
+    ``logs`` the paths of the logs, each ``read`` as its turn comes, or failed already."""
     if args.fixes is not None and len(logs) != 1:
         raise ValueError(f"--fixes {args.fixes} is for one log, got {len(logs)}; give each log folder its {FIXES_CSV}")
     if args.plot_dir:
@@ -61,7 +64,8 @@ def evaluate_with_fixes(args: argparse.Namespace, logs: Sequence[Log | Failed], 
     run = {"bias_duration": args.bias_duration, "mode": "causal" if args.causal else "whole",
            "use_speed": not args.no_speed}
 
-    def score(log: Log) -> list[FixScore]:
+    def score(path: str) -> list[FixScore]:
+        log = read(path)  # one log in memory at a time
         try:
             fixes, label, window = _fixes_of(log, sim, given, args.fixes)
             with input_warnings() as messages:

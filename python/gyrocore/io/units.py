@@ -108,7 +108,8 @@ class UnitCheck:
         """Keep the rates of the stream's samples ``0, s, 2 s, ...`` (``s``: the stride), at most
         about 2 :data:`~gyrocore._checks.SUBSET_SIZE` of them, whatever the chunks."""
         kept = np.array(rate[(-self._seen) % self._stride :: self._stride])
-        self._subset.append(kept)
+        if len(kept):  # a chunk between two samples of the stride adds none (kept empty, they grew with the log)
+            self._subset.append(kept)
         self._seen += len(rate)
         self._kept += len(kept)  # counted, not summed over the list: a long log's list is long
         while self._kept > 2 * SUBSET_SIZE:
