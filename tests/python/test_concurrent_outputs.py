@@ -150,7 +150,7 @@ OTHER_WRITERS = {
     "tune": (("tune", "--sim-drive", "city:1", "--no-harm", "--max-evals", "2", "--out", "{tmp}/out.json"),
              "out.json"),
     "allan plot": (("allan", "{log}", "--plot", "{tmp}/out.png"), "out.png"),
-    "allan kalibr": (("allan", "{log}", "--kalibr", "{tmp}/out.yaml"), "out.yaml"),
+    "allan kalibr": (("allan", "{log}", "--kalibr", "{tmp}/out.yaml", "--rrw", "1e-5"), "out.yaml"),
     "evaluate": (("evaluate", "{log}", "--preset", "raw", "--plot-dir", "{tmp}/plots"), "plots/sample_drive.png"),
     "reproduce": (("reproduce", "hong-allan", "--out", "{tmp}/figures"), "figures/hong_allan.png"),
     "demo": (("demo", "--duration", "60", "--drives", "1", "--plot", "{tmp}/out.png"), "out.png"),
