@@ -111,7 +111,7 @@ impl GyroModel {
             seed,
             terms,
             noise_sd: config.arw * libm::sqrt(config.rate_hz),
-            noise_pole: libm::exp(-core::f64::consts::TAU * config.bandwidth / config.rate_hz),
+            noise_pole: libm::exp(-config.noise_pole_decay()),
             noise: Gaussian::new(seed, STREAM_NOISE),
             noise_state: None,
             slow: SlowBias::start(seed, &terms),

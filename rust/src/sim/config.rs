@@ -273,6 +273,13 @@ impl GyroModelConfig {
         avar
     }
 
+    /// `c` of the white noise's low-pass pole `a = e^-c` per sample: `c = 2 pi bandwidth / rate_hz`
+    /// (infinite without a low-pass: `a = 0`), one value for the model's filter and its closed-form
+    /// Allan variance.
+    pub(crate) fn noise_pole_decay(&self) -> f64 {
+        core::f64::consts::TAU * self.bandwidth / self.rate_hz
+    }
+
     /// Allan variance of the white noise at `tau` \[s\] [(rad/s)^2]: `N^2 / tau` without a low-pass;
     /// through the sensor's (`y_k = a y_(k-1) + (1 - a) x_k`, `a = exp(-2 pi bandwidth / rate_hz)`),
     /// over `m = tau rate_hz` samples,
@@ -282,7 +289,7 @@ impl GyroModelConfig {
     /// it holds far above `1 / bandwidth`.
     pub fn white_allan_variance(&self, tau: f64) -> f64 {
         let white = self.arw * self.arw / tau;
-        let c = core::f64::consts::TAU * self.bandwidth / self.rate_hz; // a = e^-c; infinite bandwidth: a = 0
+        let c = self.noise_pole_decay();
         let m = tau * self.rate_hz;
         let a = libm::exp(-c);
         let am = libm::exp(-m * c);
