@@ -72,7 +72,7 @@ def plot(
     slope -1/2 (N), floor (0.664 B) and slope +1/2 (K) lines over the ranges they came from.
     Needs matplotlib (``pip install gyrocore[plot]``); returns the axes. Raises ValueError for a
     curve that is 0 at every tau (constant readings), which log axes cannot show."""
-    if not np.any(result.adev > 0):  # matplotlib drew empty axes, warning only that it could not log-scale
+    if result.flat_zero:  # matplotlib drew empty axes, warning only that it could not log-scale
         raise ValueError("the deviation is 0 at every tau (constant readings): a log-log plot has nothing to draw")
     plt = require("matplotlib.pyplot", "plotting an Allan deviation")
     if ax is None:

@@ -57,6 +57,12 @@ class AllanResult:
     def __len__(self) -> int:
         return len(self.taus)
 
+    @property
+    def flat_zero(self) -> bool:
+        """Whether the deviation is 0 at every tau (constant readings): no noise to read, nothing
+        for log axes to show."""
+        return not np.any(self.adev > 0)
+
     def __repr__(self) -> str:
         name = f"{'overlapping ' if self.overlapping and self.kind != 'modified' else ''}{self.kind}"
         if len(self.taus) == 0:

@@ -180,7 +180,7 @@ def noise_parameters(result: AllanResult, *, slope_tolerance: float = 0.15) -> N
     if len(result.taus) < 3:
         raise ValueError(f"the curve has {len(result.taus)} taus; need at least 3 to read slopes")
     taus, dev, w = result.taus, result.adev, result.edf
-    if not np.any(dev > 0):  # the slopes of log 0 are no noise's
+    if result.flat_zero:  # the slopes of log 0 are no noise's
         raise ValueError("the Allan deviation is 0 at every tau: the readings are constant (a sensor stuck, saturated "
                          "or quantised coarser than its noise), so there is no noise to read N, B and K from")
     notes: list[str] = []
