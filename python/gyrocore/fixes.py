@@ -232,9 +232,11 @@ def warn_readmitted(counts: Mapping[str, int]) -> bool:
 _CAUSES = ("Check the units: fix headings in rad, counter-clockwise from east (not degrees, not a compass bearing: "
            "from_gnss converts one), fix and gyro times in seconds on one clock (a receiver's latency subtracted), the "
            "rate in rad/s; each fix's sigma its real error (a sigma stated too small, or a fix given twice, rejects the "
-           "fixes after it); a gyro whose bias is far beyond initial_bias_sigma needs a larger one, and one whose "
-           "heading drifts between fixes more than arw and bias_walk allow (fixes far tighter than the gyro: a KITTI "
-           "drive's 10 Hz rate with 0.1 deg fixes) larger ones (gyrocore.allan measures N and K)")
+           "fixes after it); a gyro whose bias is far beyond initial_bias_sigma needs a larger one; and where the "
+           "heading drifts between fixes more than arw allows, a larger arw: it must cover every error of the rate "
+           "between fixes, the gyro's noise (gyrocore.allan's N) and the rate's lag or interpolated stretches too, "
+           "which fixes far tighter than the gyro reveal (a KITTI drive's 10 Hz rate with 0.1 deg fixes: arw near "
+           "1e-2 rad/sqrt(s), its gyro's N below 1e-4)")
 
 
 def counts_dict(counts: tuple[int, int, int, int, int]) -> dict[str, int]:

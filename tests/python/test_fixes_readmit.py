@@ -75,3 +75,18 @@ def test_readmit_after_is_a_setting_checked_by_name() -> None:
     assert gyrocore.fixes.Fusion().settings()["readmit_after"] == 10.0
     with pytest.raises(ValueError, match="readmit_after = -1"):
         gyrocore.fixes.Fusion(readmit_after=-1.0)
+
+
+def test_honest_tight_fixes_are_helped_by_the_arw_the_warning_advises() -> None:
+    # Fixes of 0.1 deg reveal the 10 Hz rate's own errors (its lag, its interpolated stretches),
+    # not the gyro's noise: the warning's advice is an arw that covers them, and it works.
+    log = gyrocore.read_log(real_log_path("kitti_2011_09_30_0020"))
+    tight = gyrocore.sim.gnss_fixes(*log.reference(), seed=1, sigma_deg=0.1)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        default = fuse(log.t, log.rate, tight, mode="causal")
+    said = [str(w.message) for w in caught if SAID in str(w.message)]
+    assert len(said) == 1 and "arw near 1e-2 rad/sqrt(s)" in said[0]
+    advised = fuse(log.t, log.rate, tight, mode="causal", arw=1e-2)
+    assert advised.counts["readmitted"] == 0
+    assert _e_psi(log, default.heading) > 1.0 and _e_psi(log, advised.heading) < 0.3
