@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
-from ._checks import MAX_READING, check_number, require_flag, require_readings, warn
+from ._checks import MAX_READING, check_number, require_flag, require_increasing, require_readings, warn
 from ._motion import warn_if_moving
 from .allan_edf import _TABLES, ONE_SIGMA, confidence_interval, equivalent_dof
 from .integration import integrate
@@ -109,7 +109,9 @@ def deviation(
         dt: sample interval [s].
         taus: ``"octave"`` (tau = 1, 2, 4, ... dt), ``"decade"`` (1, 2, 4, 10, 20, 40, ... dt),
             ``"log"`` (about 10 per decade), ``"all"`` (every multiple of dt; for short records),
-            or an array of averaging times [s], each a whole multiple of dt. The named sets stop
+            or an array of averaging times [s], each a whole multiple of dt, in increasing order
+            (the result holds them in the order given; one out of order or given twice is refused,
+            naming it: ``taus must strictly increase: taus[2] = 0.5 follows 1.0``). The named sets stop
             at a quarter of the record (at least three non-overlapping terms, as Stable32);
             explicit taus may go up to the longest with one term.
         overlapping: overlapping estimator (more terms, tighter interval, same quantity).
@@ -123,7 +125,7 @@ def deviation(
         SampleError: a rate that is NaN, infinite or beyond +-2^20 (the pipeline's limit), naming
             the index.
         ValueError: too few samples, a tau that is not a whole
-            multiple of dt or too long for the record, averaging times that would sum more than
+            multiple of dt or too long for the record, taus out of order or given twice, averaging times that would sum more than
             :data:`MAX_ALL_TERMS` terms (samples times taus), an unknown option.
     """
     data = as_float_array("rate", rate)
@@ -378,6 +380,9 @@ def _factors(taus: TauSpec | ArrayLike, n: int, dt: float, variance: str) -> NDA
     bad = np.flatnonzero(~(np.isfinite(requested) & (requested > 0)))
     if len(bad):
         raise ValueError(f"taus[{bad[0]}] = {requested[bad[0]]}: averaging times must be finite and > 0 [s]")
+    # The result's points are the taus given, one for one (as numpy and scipy take a grid): taus out
+    # of order or twice were sorted and merged without a word, so that the i-th point was not taus[i].
+    require_increasing("taus", requested)
     m = np.round(requested / dt)
     off = np.flatnonzero((np.abs(m * dt - requested) > 1e-6 * requested) | (m < 1))
     if len(off):
@@ -387,7 +392,8 @@ def _factors(taus: TauSpec | ArrayLike, n: int, dt: float, variance: str) -> NDA
     if len(too_long):
         i = too_long[0]
         raise ValueError(f"taus[{i}] = {requested[i]} s is too long: the record allows at most {longest * dt} s")
-    m = np.unique(m.astype(np.int64))
+    require_increasing("taus", m * dt, context="as whole multiples of dt")  # two taus nearer than 1e-6
+    m = m.astype(np.int64)
     # each averaging time costs a pass over the record, whether named or listed
     _refuse_too_many_terms(len(m), n, "taus: {count} averaging times over {intervals} intervals ask for {terms} terms "
                            "to sum ({limit}); give fewer (taus='log' gives about 10 per decade), or analyse a shorter "
