@@ -125,7 +125,8 @@ def deviation(
         SampleError: a rate that is NaN, infinite or beyond +-2^20 (the pipeline's limit), naming
             the index.
         ValueError: too few samples, a tau that is not a whole
-            multiple of dt or too long for the record, taus out of order or given twice, averaging times that would sum more than
+            multiple of dt or too long for the record, taus out of order or given twice,
+            averaging times that would sum more than
             :data:`MAX_ALL_TERMS` terms (samples times taus), an unknown option.
     """
     data = as_float_array("rate", rate)
@@ -380,8 +381,9 @@ def _factors(taus: TauSpec | ArrayLike, n: int, dt: float, variance: str) -> NDA
     bad = np.flatnonzero(~(np.isfinite(requested) & (requested > 0)))
     if len(bad):
         raise ValueError(f"taus[{bad[0]}] = {requested[bad[0]]}: averaging times must be finite and > 0 [s]")
-    # The result's points are the taus given, one for one (as numpy and scipy take a grid): taus out
-    # of order or twice were sorted and merged without a word, so that the i-th point was not taus[i].
+    # The result's points are the taus given, one for one, and a grid that does not increase is
+    # refused (numpy.histogram's bins, scipy's splines): taus out of order or twice were sorted and
+    # merged without a word, so that the i-th point was not taus[i].
     require_increasing("taus", requested)
     m = np.round(requested / dt)
     off = np.flatnonzero((np.abs(m * dt - requested) > 1e-6 * requested) | (m < 1))
