@@ -129,7 +129,7 @@ def deviation(
             averaging times that would sum more than
             :data:`MAX_ALL_TERMS` terms (samples times taus), an unknown option.
     """
-    data = as_float_array("rate", rate)
+    data = as_float_array("rate", rate, masked=_MASKED)
     result = _curve(data, dt, is_rate=True, taus=taus, overlapping=overlapping, kind=kind,
                     confidence=confidence, noise_alpha=noise_alpha)
     warn_if_moving(data, dt)
@@ -149,7 +149,7 @@ def phase_deviation(
     """Allan deviation from phase data: an angle [rad] sampled every ``dt`` seconds (a rate
     integrated by the sensor, or Stable32's phase files). The deviation is in rad/s (phase unit
     per second). Options as :func:`deviation`; ``samples`` counts phase samples."""
-    data = as_float_array("phase", phase)
+    data = as_float_array("phase", phase, masked=_MASKED)
     return _curve(data, dt, is_rate=False, taus=taus, overlapping=overlapping, kind=kind,
                   confidence=confidence, noise_alpha=noise_alpha)
 
@@ -184,8 +184,8 @@ def deviation_from_timestamps(
     and of a ``dt`` finer than the log's interval: the grid then interpolates between readings,
     and the deviation at taus up to a few intervals reads low.
     """
-    ta = as_float_array("t", t)
-    ra = as_float_array("rate", rate)
+    ta = as_float_array("t", t, masked=_MASKED)
+    ra = as_float_array("rate", rate, masked=_MASKED)
     _refuse_non_overlapping_modified(kind, overlapping)  # before the log is integrated
     if len(ta) < 3:
         raise ValueError(f"need at least 3 samples for an Allan deviation, got {len(ta)}")
@@ -232,6 +232,10 @@ MAX_OVERSAMPLING = 10
 MAX_ALL_TERMS = 1e10
 #: An interval longer than this many median intervals is a gap in an Allan record.
 GAP_FACTOR = 10.0
+#: What to do with masked readings: an Allan deviation takes no missing one (it has no ``nonfinite=``).
+_MASKED = ("an Allan deviation takes no missing reading: give the others with their times to "
+           "allan.deviation_from_timestamps (it integrates over the intervals between them; a gap beyond "
+           f"{GAP_FACTOR:g} median intervals is refused), or analyse each unmasked stretch on its own")
 
 
 def _zero_if_constant(result: AllanResult, rate: FloatArray) -> AllanResult:

@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _gyrocore, rests
-from ._arrays import FloatArray, as_float_array
+from ._arrays import MASKED_AS_NONFINITE, FloatArray, as_float_array
 from ._checks import public_dir, warn, warn_units
 from ._motion import WindowWatch
 from .fixes_stream import StreamFixes, say_how_to_wait
@@ -210,7 +210,7 @@ class Pipeline:
             raise ValueError(f"index_offset = {index_offset!r}: give the index of the chunk's first sample in the "
                              "whole log, an int >= 0 and below 2^63")
         ta = as_float_array("t", t, copy=True)  # the result's t: its own, not the caller's array
-        ra = as_float_array("rate", rate)
+        ra = as_float_array("rate", rate, masked=MASKED_AS_NONFINITE)
         temp = None if temperature is None else as_float_array("temperature", temperature)
         refuse_window_without_reading(self._inner, ta, ra, temp, self._first_time)
         if self._unit_head is not None and len(ta):
