@@ -277,8 +277,8 @@ def _refuse_outliers(rests: list[Rest], walk: float) -> tuple[list[Rest], Rest |
     if len(used) < 2:
         return out, None
     # each refusal filters again only the rests near it (LeaveOneOut), not all of them
-    test = LeaveOneOut(*(np.array([getattr(out[i], name) for i in used]) for name in ("middle", "bias", "bias_std_error")),
-                       walk)
+    middle, bias, error = (np.array([getattr(out[i], name) for i in used]) for name in ("middle", "bias", "bias_std_error"))
+    test = LeaveOneOut(middle, bias, error, walk)
     while True:
         worst = int(np.argmax(np.abs(test.scores)))
         z = float(test.scores[worst])

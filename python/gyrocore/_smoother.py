@@ -131,7 +131,7 @@ def leave_one_out(times: FloatArray, values: FloatArray, std_errors: FloatArray,
     the rests before ``k`` with the filter backward over those after it, each predicted to
     ``t_k`` (the two-filter form of the smoother): two passes for all ``k``, not a smoother per
     rest, so that refusing outliers among many rests stays linear per round."""
-    return LeaveOneOut(times, values, std_errors, walk).scores.copy()
+    return np.array(LeaveOneOut(times, values, std_errors, walk).scores, dtype=np.float64)
 
 
 class LeaveOneOut:
@@ -215,7 +215,7 @@ class LeaveOneOut:
             if 0 <= before < n:  # the neighbour's state as a first rest (see the class doc)
                 joined = (self.times[before], state[0, before], state[1, before])
                 rests = np.column_stack((rests, joined) if backward else (joined, rests))
-            new = np.array(_forward(*rests, self.q, backward))
+            new = np.array(_forward(rests[0], rests[1], rests[2], self.q, backward))
             if 0 <= before < n:
                 new = new[:, :-1] if backward else new[:, 1:]
             same = np.flatnonzero((new[0] == state[0, part]) & (new[1] == state[1, part]))

@@ -398,7 +398,7 @@ def _factors(taus: TauSpec | ArrayLike, n: int, dt: float, variance: str) -> NDA
     if len(too_long):
         i = too_long[0]
         raise ValueError(f"taus[{i}] = {requested[i]} s is too long: the record allows at most {longest * dt} s")
-    require_increasing("taus", m * dt, context="as whole multiples of dt")  # two taus nearer than 1e-6
+    require_increasing("taus", np.asarray(m * dt, dtype=np.float64), context="as whole multiples of dt")  # two taus nearer than 1e-6
     m = m.astype(np.int64)
     # each averaging time costs a pass over the record, whether named or listed
     _refuse_too_many_terms(len(m), n, "taus: {count} averaging times over {intervals} intervals ask for {terms} terms "
