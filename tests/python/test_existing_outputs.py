@@ -103,3 +103,29 @@ def test_an_output_written_during_the_call_is_still_written_meanwhile(tmp_path: 
     with pytest.raises(FileExistsError, match=rf"^{re.escape(str(out))}: written meanwhile by something else"):
         paper.reproduce("hong-allan", out_dir=tmp_path, overwrite=False)
     assert out.read_text() == KEPT and sorted(p.name for p in tmp_path.iterdir()) == ["hong_allan.png"]
+
+
+def test_a_heading_file_there_before_process_file_or_process_many_is_refused_before_the_work(tmp_path: Path) -> None:
+    from gyrocore.batch import process_file, process_many
+
+    from .test_batch import synthetic_csv
+
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    log, other = synthetic_csv(logs / "a.csv", 300), synthetic_csv(logs / "b.csv", 300, seed=1)
+    out, folder = tmp_path / "h.csv", tmp_path / "out"
+    folder.mkdir()
+    for kept in (out, folder / "a.csv"):
+        kept.write_text(KEPT)
+    with pytest.raises(FileExistsError, match=_refusal(out, "overwrite=True")):
+        process_file(log, out, preset="raw", overwrite=False)
+    with pytest.raises(FileExistsError, match=_refusal(folder / "a.csv", "overwrite=True")):
+        process_many([logs], out_dir=folder, preset="raw", overwrite=False, jobs=1)
+    assert out.read_text() == KEPT and sorted(p.name for p in folder.iterdir()) == ["a.csv"]  # b.csv not written
+    # a complete output skipped is no refusal; the input as its own output is refused as that
+    (folder / "a.csv").write_text("t,heading\n0,0\n")
+    assert [r.output_existed for r in process_many([logs], out_dir=folder, preset="raw", overwrite=False,
+                                            skip_existing=True, jobs=1).files] == [True, False]
+    with pytest.raises(ValueError, match="input"):
+        process_file(other, other, preset="raw", overwrite=False)
+    assert process_file(log, out, preset="raw", overwrite=True).rows_out == 300

@@ -101,17 +101,22 @@ def outputs_checked() -> Iterator[None]:
         _checked.reset(token)
 
 
-@contextmanager
-def kept_outputs(paths: Iterable[str | Path], replace: bool, option: str) -> Iterator[None]:
-    """A block that writes ``paths``: where it may not replace them (not ``replace``), one that is
-    there already is refused before the block (:func:`already_there`, naming ``option``), unless
-    an outer block checked; in the block, one that appears is another run's, written meanwhile.
-    Without the check a file saved twice was refused only when the second was written, said to be
-    "written meanwhile by something else"."""
+def refuse_present(paths: Iterable[str | Path], replace: bool, option: str) -> None:
+    """Where outputs may not be replaced (not ``replace``), refuse before the work those that are
+    there already (:func:`already_there`, naming ``option``), unless the block was checked
+    (:func:`outputs_checked`). Without it a file saved twice was refused only when the second was
+    written, said to be "written meanwhile by something else"."""
     if not replace and not _checked.get():
         taken = [p for p in paths if os.path.lexists(p)]
         if taken:
             raise already_there(taken, option)
+
+
+@contextmanager
+def kept_outputs(paths: Iterable[str | Path], replace: bool, option: str) -> Iterator[None]:
+    """A block that writes ``paths``, their refusal checked before it (:func:`refuse_present`); in
+    the block, one that appears is another run's, written meanwhile."""
+    refuse_present(paths, replace, option)
     with outputs_checked():
         yield
 
