@@ -142,8 +142,9 @@ class LeaveOneOut:
     A rest left out changes the forward filter only after it and the backward filter only before
     it, and each only until its state (mean and variance) is again what it was, bit for bit: from
     there on every later step is the same. Each refusal so filters the rests near it (about 1200
-    of 13,334 at a walk 40 times below the rests' errors), not all of them: a pass over all of
-    them per refusal took most of whole mode's time where thousands are refused. A filter
+    of 13,334 each way over a long drive, docs/performance.md; fewer the farther the bias walks
+    between rests), not all of them: a pass over all of them per refusal took most of whole
+    mode's time where thousands are refused. A filter
     restarted inside the rests starts from the state of the rest before it, given as a first rest
     of that mean and variance at its time: the diffuse prior takes it as it is, and the steps after
     it are the full pass's own.
