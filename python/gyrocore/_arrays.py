@@ -51,7 +51,14 @@ def seconds_of(a: np.ndarray) -> np.ndarray:
     return np.fromiter((v / second for v in a.flat), np.float64, count=a.size).reshape(a.shape)
 
 
-def as_float_array(name: str, values: ArrayLike, *, copy: bool = False) -> FloatArray:
+#: What to do with masked values, for a function that takes NaN for a missing reading (``nonfinite=``).
+MASKED_AS_NONFINITE = "give {name}.filled(numpy.nan) (with nonfinite='hold' or 'skip') or leave those samples out"
+#: ... for any other: it has no missing value, so the caller leaves the samples out or fills them.
+MASKED_LEFT_OUT = ("leave those samples out ({name}.compressed(), and the others' times), or fill them with values "
+                   "of your own ({name}.filled(value))")
+
+
+def as_float_array(name: str, values: ArrayLike, *, copy: bool = False, masked: str = MASKED_LEFT_OUT) -> FloatArray:
     """Return ``values`` as a 1-D contiguous float64 array, copying only when needed, or always
     with ``copy`` (for an array a result or record keeps: the caller's own array, or the data an
     ``__array__`` hands over, kept as it is, changed with the caller's, ``r.t[:] -= r.t[0]`` moving
@@ -60,9 +67,10 @@ def as_float_array(name: str, values: ArrayLike, *, copy: bool = False) -> Float
     ``timedelta64`` values are durations and become seconds, whatever their unit (NaT becomes NaN);
     ``datetime64`` is refused, since which epoch a time counts from is the caller's choice.
 
-    Raises TypeError for non-numeric data and ValueError for a wrong shape or masked values.
+    Raises TypeError for non-numeric data and ValueError for a wrong shape or masked values (see
+    :func:`refuse_masked`, ``masked`` its hint).
     """
-    refuse_masked(name, values)
+    refuse_masked(name, values, masked)
     try:
         array = np.asarray(values)
     except ValueError as e:  # a ragged list: numpy's message names neither the argument nor a fix
@@ -128,19 +136,20 @@ def array_fields(record: Any) -> dict[str, FloatArray]:
     return {name: a for name, a in values.items() if isinstance(a, np.ndarray)}
 
 
-def refuse_masked(name: str, values: object) -> None:
+def refuse_masked(name: str, values: object, hint: str = MASKED_LEFT_OUT) -> None:
     """A ValueError for a numpy masked array with masked values, naming how many and where the
     first is: numpy.asarray drops the mask, so the hidden values would be processed as valid.
-    (Treating them as missing would hide a choice the caller should make: ``filled(numpy.nan)``
-    with ``nonfinite="hold"`` or ``"skip"`` says it.)"""
+    (Treating them as missing would hide a choice the caller should make.) ``hint`` says what the
+    function offers instead (``{name}`` is the argument's): :data:`MASKED_AS_NONFINITE` only where
+    it takes ``nonfinite=``, which the hint named for every function (the Allan deviation has none)."""
     if not np.ma.isMaskedArray(values):
         return
     masked = np.flatnonzero(np.ma.getmaskarray(values))
     if len(masked):
         first = masked[0] if np.ndim(values) <= 1 else tuple(int(i) for i in np.unravel_index(masked[0], np.shape(values)))
         raise ValueError(
-            f"{name} is a masked array with {len(masked)} masked value(s), the first at index {first}: give "
-            f"{name}.filled(numpy.nan) (with nonfinite='hold' or 'skip') or leave those samples out"
+            f"{name} is a masked array with {len(masked)} masked value(s), the first at index {first}: "
+            + hint.format(name=name)
         )
 
 

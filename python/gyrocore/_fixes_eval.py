@@ -13,6 +13,7 @@ as the whole drive's.
 
 from __future__ import annotations
 
+import hashlib
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
@@ -33,7 +34,8 @@ from .sim_gnss import SIGMA_DEG, edge_rounding, gnss_fixes, inside_outage
 class SimFixes:
     """``--sim-fixes rate=1,sigma_deg=1,outage=START:LENGTH,seed=N``: SIMULATED fixes from the log's
     reference (:func:`gyrocore.sim.gnss_fixes`), at ``rate`` [Hz] with white noise ``sigma_deg``
-    [deg], none during ``LENGTH`` seconds from ``START`` seconds after the log's first sample."""
+    [deg], none during ``LENGTH`` seconds from ``START`` seconds after the log's first sample.
+    Each log's noise has its own seed, from ``seed`` and the log's name (:meth:`seed_of`)."""
 
     rate: float = 1.0
     sigma_deg: float = 1.0
@@ -80,17 +82,26 @@ class SimFixes:
                              f"after the log's end ({log.duration:.6g} s); give a smaller START")
         return start, start + self.outage[1]
 
+    def seed_of(self, log: Log) -> int:
+        """The seed of ``log``'s fixes: the first 8 bytes (big-endian) of the SHA-256 digest of
+        ``"SEED/NAME"`` (the run's seed, the log's name in UTF-8). The run's seed alone gave every
+        log the same noise sequence (logs of one rate the very same errors at each fix); from the
+        name, a log's fixes are its own, whatever logs run beside it and in whatever order."""
+        digest = hashlib.sha256(f"{self.seed}/{log.name}".encode("utf-8", "surrogateescape")).digest()
+        return int.from_bytes(digest[:8], "big")
+
     def fixes(self, log: Log) -> Fixes:
         """The simulated fixes of ``log`` (from its reference heading)."""
         window = self._given_window(log)
         outages = () if window is None else (window,)
-        return gnss_fixes(*log.reference(), seed=self.seed, rate_hz=self.rate, sigma_deg=self.sigma_deg,
+        return gnss_fixes(*log.reference(), seed=self.seed_of(log), rate_hz=self.rate, sigma_deg=self.sigma_deg,
                           outages=outages)
 
-    def __str__(self) -> str:
+    def describe(self, log: Log) -> str:
+        """The fixes of ``log`` as the report names them, with the seed they were drawn with."""
         outage = "" if self.outage is None else f", outage of {self.outage[1]:g} s from {self.outage[0]:g} s after the start"
         return (f"SIMULATED fixes from the log's own reference: {self.rate:g} Hz, {self.sigma_deg:g} deg white noise"
-                f"{outage}, seed {self.seed}")
+                f"{outage}, seed {self.seed_of(log)} (of the run's seed {self.seed} and the log's name {log.name})")
 
 
 def _value(option: str, key: str, text: str) -> Any:

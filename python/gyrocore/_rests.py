@@ -32,7 +32,7 @@ from . import _gyrocore
 from ._arrays import FloatArray
 from ._checks import usable
 from ._motion import warn_if_turning
-from ._smoother import leave_one_out
+from ._smoother import LeaveOneOut
 from .rests import Rest
 from .window import (
     MIN_WINDOW_READINGS, RestWindowError, no_usable_reading, refuse_few_readings, refuse_past_end, refuse_window_outside,
@@ -273,21 +273,25 @@ def _refuse_outliers(rests: list[Rest], walk: float) -> tuple[list[Rest], Rest |
     rate that disagrees with the others (one refused so, or one of two that disagree), where the
     refusing stops (its verdict covers the rate's rests, and the rounds after it cannot change it)."""
     out = list(rests)
-    middle, bias, error = (np.array([getattr(r, name) for r in out]) for name in ("middle", "bias", "bias_std_error"))
-    used = np.array([r.refused is None for r in out], dtype=bool)
-    while np.count_nonzero(used) >= 2:
-        z = leave_one_out(middle[used], bias[used], error[used], walk)
-        worst = int(np.argmax(np.abs(z)))
-        if abs(z[worst]) <= OUTLIER_SIGMAS:
+    used = [i for i, r in enumerate(out) if r.refused is None]
+    if len(used) < 2:
+        return out, None
+    # each refusal filters again only the rests near it (LeaveOneOut), not all of them
+    middle, bias, error = (np.array([getattr(out[i], name) for i in used]) for name in ("middle", "bias", "bias_std_error"))
+    test = LeaveOneOut(middle, bias, error, walk)
+    while True:
+        worst = int(np.argmax(np.abs(test.scores)))
+        z = float(test.scores[worst])
+        if abs(z) <= OUTLIER_SIGMAS:
             break
-        if np.count_nonzero(used) == 2:  # each lies as far from the other: which is wrong is not known
-            rated = [out[i] for i in np.flatnonzero(used) if _by_rate(out[i])]
+        if len(used) == 2:  # each lies as far from the other: which is wrong is not known
+            rated = [out[i] for i in used if _by_rate(out[i])]
             return out, (rated[0] if rated else None)  # a rest the rate found is no stronger than a steady turn
-        i = int(np.flatnonzero(used)[worst])
-        used[i] = False
-        out[i] = _refuse(out[i], f"{abs(z[worst]):.1f} sigma from what the other rests give")
+        i = used.pop(worst)
+        out[i] = _refuse(out[i], f"{abs(z):.1f} sigma from what the other rests give")
         if _by_rate(out[i]):
             return out, rests[i]
+        test.remove(worst)
     return out, None
 
 

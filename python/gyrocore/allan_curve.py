@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
-from ._checks import MAX_READING, check_number, require_flag, require_readings, warn
+from ._checks import MAX_READING, check_number, require_flag, require_increasing, require_readings, warn
 from ._motion import warn_if_moving
 from .allan_edf import _TABLES, ONE_SIGMA, confidence_interval, equivalent_dof
 from .integration import integrate
@@ -109,7 +109,9 @@ def deviation(
         dt: sample interval [s].
         taus: ``"octave"`` (tau = 1, 2, 4, ... dt), ``"decade"`` (1, 2, 4, 10, 20, 40, ... dt),
             ``"log"`` (about 10 per decade), ``"all"`` (every multiple of dt; for short records),
-            or an array of averaging times [s], each a whole multiple of dt. The named sets stop
+            or an array of averaging times [s], each a whole multiple of dt, in increasing order
+            (the result holds them in the order given; one out of order or given twice is refused,
+            naming it: ``taus must strictly increase: taus[2] = 0.5 follows 1.0``). The named sets stop
             at a quarter of the record (at least three non-overlapping terms, as Stable32);
             explicit taus may go up to the longest with one term.
         overlapping: overlapping estimator (more terms, tighter interval, same quantity).
@@ -123,10 +125,11 @@ def deviation(
         SampleError: a rate that is NaN, infinite or beyond +-2^20 (the pipeline's limit), naming
             the index.
         ValueError: too few samples, a tau that is not a whole
-            multiple of dt or too long for the record, averaging times that would sum more than
+            multiple of dt or too long for the record, taus out of order or given twice,
+            averaging times that would sum more than
             :data:`MAX_ALL_TERMS` terms (samples times taus), an unknown option.
     """
-    data = as_float_array("rate", rate)
+    data = as_float_array("rate", rate, masked=_MASKED)
     result = _curve(data, dt, is_rate=True, taus=taus, overlapping=overlapping, kind=kind,
                     confidence=confidence, noise_alpha=noise_alpha)
     warn_if_moving(data, dt)
@@ -146,7 +149,7 @@ def phase_deviation(
     """Allan deviation from phase data: an angle [rad] sampled every ``dt`` seconds (a rate
     integrated by the sensor, or Stable32's phase files). The deviation is in rad/s (phase unit
     per second). Options as :func:`deviation`; ``samples`` counts phase samples."""
-    data = as_float_array("phase", phase)
+    data = as_float_array("phase", phase, masked=_MASKED)
     return _curve(data, dt, is_rate=False, taus=taus, overlapping=overlapping, kind=kind,
                   confidence=confidence, noise_alpha=noise_alpha)
 
@@ -181,8 +184,8 @@ def deviation_from_timestamps(
     and of a ``dt`` finer than the log's interval: the grid then interpolates between readings,
     and the deviation at taus up to a few intervals reads low.
     """
-    ta = as_float_array("t", t)
-    ra = as_float_array("rate", rate)
+    ta = as_float_array("t", t, masked=_MASKED)
+    ra = as_float_array("rate", rate, masked=_MASKED)
     _refuse_non_overlapping_modified(kind, overlapping)  # before the log is integrated
     if len(ta) < 3:
         raise ValueError(f"need at least 3 samples for an Allan deviation, got {len(ta)}")
@@ -229,6 +232,10 @@ MAX_OVERSAMPLING = 10
 MAX_ALL_TERMS = 1e10
 #: An interval longer than this many median intervals is a gap in an Allan record.
 GAP_FACTOR = 10.0
+#: What to do with masked readings: an Allan deviation takes no missing one (it has no ``nonfinite=``).
+_MASKED = ("an Allan deviation takes no missing reading: give the others with their times to "
+           "allan.deviation_from_timestamps (it integrates over the intervals between them; a gap beyond "
+           f"{GAP_FACTOR:g} median intervals is refused), or analyse each unmasked stretch on its own")
 
 
 def _zero_if_constant(result: AllanResult, rate: FloatArray) -> AllanResult:
@@ -378,6 +385,10 @@ def _factors(taus: TauSpec | ArrayLike, n: int, dt: float, variance: str) -> NDA
     bad = np.flatnonzero(~(np.isfinite(requested) & (requested > 0)))
     if len(bad):
         raise ValueError(f"taus[{bad[0]}] = {requested[bad[0]]}: averaging times must be finite and > 0 [s]")
+    # The result's points are the taus given, one for one, and a grid that does not increase is
+    # refused (numpy.histogram's bins, scipy's splines): taus out of order or twice were sorted and
+    # merged without a word, so that the i-th point was not taus[i].
+    require_increasing("taus", requested)
     m = np.round(requested / dt)
     off = np.flatnonzero((np.abs(m * dt - requested) > 1e-6 * requested) | (m < 1))
     if len(off):
@@ -387,7 +398,8 @@ def _factors(taus: TauSpec | ArrayLike, n: int, dt: float, variance: str) -> NDA
     if len(too_long):
         i = too_long[0]
         raise ValueError(f"taus[{i}] = {requested[i]} s is too long: the record allows at most {longest * dt} s")
-    m = np.unique(m.astype(np.int64))
+    require_increasing("taus", np.asarray(m * dt, dtype=np.float64), context="as whole multiples of dt")  # two taus nearer than 1e-6
+    m = m.astype(np.int64)
     # each averaging time costs a pass over the record, whether named or listed
     _refuse_too_many_terms(len(m), n, "taus: {count} averaging times over {intervals} intervals ask for {terms} terms "
                            "to sum ({limit}); give fewer (taus='log' gives about 10 per decade), or analyse a shorter "

@@ -30,7 +30,7 @@ from .batch_job import Progress, _FileJob, split_options
 from .batch_report import BatchReport, FileReport
 from .batch_run import BatchInterrupted, check_client, check_workers, connected, run_on_dask, run_on_threads
 from .io._paths import unfollowable
-from .io.atomic import make_folder
+from .io.atomic import make_folder, refuse_present
 
 if TYPE_CHECKING:
     from .fixes import FixesLike
@@ -91,9 +91,9 @@ def process_file(
         fixes: heading fixes for this input instead of a folder's own (:data:`gyrocore.fixes.FixesLike`:
             a :class:`gyrocore.fixes.Fixes`, a fixes or gnss file); the input is then read whole
             and fused as a folder with ``fixes.csv`` is.
-        overwrite: replace a file at ``out`` (default). False: a file that appears there while
-            the log is processed (another run's output) is kept, and FileExistsError is raised;
-            one there before is the caller's to refuse (``gyrocore process`` does, before any work).
+        overwrite: replace a file at ``out`` (default). False: one there before is refused before
+            any work, and one that appears there while the log is processed (another run's
+            output) is kept; FileExistsError either way.
         **options: reader options (``time_col``, ``rate_col``, ``time_unit``, ``rate_unit``,
             ``topic``, ``delimiter``) and pipeline parameters (``bias_window=(t0, t1)`` [s] in
             the log's time base, or a :class:`gyrocore.window.Window` whose bounds may count from
@@ -114,6 +114,8 @@ def process_file(
         fixes=fixes,
     )
     job.overwrite = overwrite
+    io.check_not_input(out, [path])  # the output that is the input is refused as such, not as existing
+    refuse_present([out], overwrite, "overwrite=True")
     return job.run(progress)
 
 
@@ -175,8 +177,10 @@ def process_many(
             part goes on where it stopped. An output that exists is complete (see
             :func:`complete_output`); neither its input nor its options are compared. Without it
             an existing output is replaced.
-        overwrite: replace an output that exists (default). False: one that appears while its
-            input is processed (another run's) is kept, and that file fails with the reason.
+        overwrite: replace an output that exists (default). False: outputs there before are
+            refused before any work (FileExistsError; with ``skip_existing`` a complete one is
+            skipped), and one that appears while its input is processed (another run's) is kept,
+            and that file fails with the reason.
 
     Returns:
         Reports of all files, in input order: the ones that failed with their reason, the ones
@@ -218,6 +222,7 @@ def process_many(
     outputs = output_paths(inputs, Path(out_dir), fmt)
     check_unreached(items, [Path(out_dir), *outputs])
     check_out_dir(Path(out_dir))
+    refuse_present([o for o in outputs if not (skip_existing and complete_output(o))], overwrite, "overwrite=True")
     # a scheduler's address is connected to before the output folder is made: one that no
     # scheduler answers at, or that Dask cannot read, left an empty output folder behind
     client, own = connected(client) if client is not None else (None, False)

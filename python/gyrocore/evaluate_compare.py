@@ -24,7 +24,7 @@ from .batch_report import failed_line
 from .evaluate_metrics import HeadingErrors, Reference, heading_errors, improvement
 from .io import Log, read_log
 from .io._logfolder import REFERENCE_CSV
-from .io.atomic import make_folder
+from .io.atomic import kept_outputs, make_folder
 from .pipeline import HeadingResult, has_bias_source, process, recommended_preset, uses_static_bias
 from .rests import rest_lines
 from .wholelog import Rest, check_mode, check_parameters
@@ -259,8 +259,8 @@ def compare(
             used for every such log: never tune it per log.
         plot_dir: write ``<log>.png`` there (heading vs reference and error vs time of each method;
             needs matplotlib).
-        overwrite: replace a plot there; False keeps one (also one another run wrote meanwhile):
-            FileExistsError.
+        overwrite: replace a plot there; False refuses one there before its log is scored, and
+            keeps one another run wrote meanwhile: FileExistsError.
         mode: ``whole`` (the bias from every rest, known from the first sample) or ``causal``
             (see :func:`gyrocore.process`).
         use_speed: also find rests where the odometry's speed is zero (whole mode's, and in causal
@@ -294,23 +294,33 @@ def compare(
     rows: list[Score] = []
     for item in logs:
         log = item if isinstance(item, Log) else read_log(item)
-        try:
-            reference = log.reference()  # before any work
-            warn_partial_reference(log)
-            # under the methods' input policy: --param nonfinite=hold took a NaN for every method
-            # and the baseline refused it, so the log could not be scored at all
-            raw_result = process(log.t, log.rate, "raw", **policy)
-            raw = heading_errors(raw_result.t, raw_result.heading, *reference)
-            results = {}
-            for method in methods:
-                result, source = method.run(log, bias_duration=bias_duration, mode=mode, use_speed=use_speed)
-                if plot_dir is not None:  # for the plot alone, its times and heading: every method's result
-                    results[method.name] = HeadingResult(result.t, result.heading, None, None)  # held 4 arrays
-                rows.append(score(log, method, result, raw, source))
-        except ValueError as e:
-            raise named_error(log, e) from None
-        if plot_dir is not None:
-            plot_log(plot_path(plot_dir, log), log, results, overwrite=overwrite)
+        plot = None if plot_dir is None else plot_path(plot_dir, log)
+        with kept_outputs([] if plot is None else [plot], overwrite, "overwrite=True"):  # before its work
+            rows += _scored(log, methods, policy, bias_duration, mode, use_speed, plot, overwrite)
+    return rows
+
+
+def _scored(log: Log, methods: Sequence[Method], policy: Mapping[str, Any], bias_duration: float | None,
+            mode: str, use_speed: bool, plot: Path | None, overwrite: bool) -> list[Score]:
+    """:func:`compare`'s rows of one log, and its plot at ``plot``."""
+    rows: list[Score] = []
+    try:
+        reference = log.reference()  # before any work
+        warn_partial_reference(log)
+        # under the methods' input policy: --param nonfinite=hold took a NaN for every method
+        # and the baseline refused it, so the log could not be scored at all
+        raw_result = process(log.t, log.rate, "raw", **policy)
+        raw = heading_errors(raw_result.t, raw_result.heading, *reference)
+        results = {}
+        for method in methods:
+            result, source = method.run(log, bias_duration=bias_duration, mode=mode, use_speed=use_speed)
+            if plot is not None:  # for the plot alone, its times and heading: every method's result
+                results[method.name] = HeadingResult(result.t, result.heading, None, None)  # held 4 arrays
+            rows.append(score(log, method, result, raw, source))
+    except ValueError as e:
+        raise named_error(log, e) from None
+    if plot is not None:
+        plot_log(plot, log, results, overwrite=overwrite)
     return rows
 
 
@@ -391,12 +401,18 @@ def _pyplot() -> Any:
 
 def plot_log(path: str | Path, log: Log, results: Mapping[str, HeadingResult], *, overwrite: bool = True) -> None:
     """Write a PNG to ``path``: heading of each method and the reference (top), error against time
-    (bottom). In a notebook, ``IPython.display.Image(path)`` shows it. ``overwrite=False`` keeps a
-    file at ``path`` (FileExistsError).
+    (bottom). In a notebook, ``IPython.display.Image(path)`` shows it. ``overwrite=False`` refuses
+    a file at ``path`` before the plot is drawn, and keeps one written meanwhile (FileExistsError).
 
     Headings are aligned with the reference at the first compared time, in degrees.
     """
     path = Path(path)  # a str was "'str' object has no attribute 'parent'", after the plot was drawn
+    with kept_outputs([path], overwrite, "overwrite=True"):
+        _draw_log(path, log, results, overwrite)
+
+
+def _draw_log(path: Path, log: Log, results: Mapping[str, HeadingResult], overwrite: bool) -> None:
+    """:func:`plot_log`'s figure, drawn and written."""
     plt = _pyplot()
     from .io.atomic import write_atomically
 

@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _gyrocore, rests
-from ._arrays import FloatArray, as_float_array
+from ._arrays import MASKED_AS_NONFINITE, FloatArray, as_float_array
 from ._checks import public_dir, warn, warn_units
 from ._motion import WindowWatch
 from .fixes_stream import StreamFixes, say_how_to_wait
@@ -125,6 +125,7 @@ class Pipeline:
         self._rests: list[Rest] = []
         self._fixes = StreamFixes()
         self._speed_said = False  # a chunk's samples outside its speed's times, said once
+        self._repairs_said: set[str] = set()  # the input policies whose repairs were said (once each)
         self._watch = self._new_watch()
         self._unmeasured = self._bias_warning  # None once said
 
@@ -210,7 +211,7 @@ class Pipeline:
             raise ValueError(f"index_offset = {index_offset!r}: give the index of the chunk's first sample in the "
                              "whole log, an int >= 0 and below 2^63")
         ta = as_float_array("t", t, copy=True)  # the result's t: its own, not the caller's array
-        ra = as_float_array("rate", rate)
+        ra = as_float_array("rate", rate, masked=MASKED_AS_NONFINITE)
         temp = None if temperature is None else as_float_array("temperature", temperature)
         refuse_window_without_reading(self._inner, ta, ra, temp, self._first_time)
         if self._unit_head is not None and len(ta):
@@ -249,7 +250,7 @@ class Pipeline:
         if window is not None and not inner.bias()[2]:  # the window is over
             self._watch.close(window, self.bias)
         report = dict(inner.report())
-        warn_repairs(inner, before, report, ta, ra, temp)
+        warn_repairs(inner, before, report, ta, ra, temp, self._repairs_said)
         if self._unmeasured is not None and len(ta):
             warn(self._unmeasured)
             self._unmeasured = None
@@ -415,6 +416,7 @@ class Pipeline:
             "unmeasured": self._unmeasured,
             "bias_warning": self._bias_warning,
             "watched": self._watch.readings,
+            "repairs_said": sorted(self._repairs_said),
             **self._fixes.kept(),
             "unit_head": None if self._unit_head is None else [a.tolist() for a in self._unit_head],
         }
@@ -431,6 +433,7 @@ class Pipeline:
         self._watch = WindowWatch.restored(state.get("watched", []))
         self._fixes = StreamFixes.restored(state)
         self._speed_said = False
+        self._repairs_said = set(state.get("repairs_said", []))
 
     def __repr__(self) -> str:
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"

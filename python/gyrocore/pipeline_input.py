@@ -68,15 +68,20 @@ def warn_repairs(
     t: FloatArray,
     rate: FloatArray,
     temperature: FloatArray | None,
+    said: set[str],
 ) -> None:
     """Say what the input policy of the ``core`` repaired in this chunk (indices are within the chunk): the
     readings the core does not take, NaN and infinities as well as finite ones beyond its
-    limit (:data:`~gyrocore._checks.MAX_READING`, a wrong unit or a corrupt sample)."""
+    limit (:data:`~gyrocore._checks.MAX_READING`, a wrong unit or a corrupt sample). Each policy's
+    repairs are said once per stream (``said`` holds the ones said): a warning per chunk flooded
+    the log of a stream of many chunks; the report counts them all."""
     for key, verb in (("held", "replaced by the last usable reading"), ("skipped", "skipped")):
         n = int(after[key] - before[key])
-        if n:
+        if n and key not in said:
+            said.add(key)
             where = _first_unusable(t, rate, temperature)
-            warn(f"{n} reading(s) not finite or beyond +-{MAX_READING:.0f} {verb} ({where})")
+            warn(f"{n} reading(s) not finite or beyond +-{MAX_READING:.0f} {verb} ({where}); said once per "
+                 f"pipeline: its report['{key}'] counts those of later chunks too")
     gaps = int(after["gaps"] - before["gaps"])
     if gaps:
         limit = core.params()["gap_limit"]

@@ -83,10 +83,11 @@ class ParameterSet:
 
     def write(self, path: str | Path, *, overwrite: bool = True) -> None:
         """Write the preset file (JSON), whole or not at all; ``overwrite=False`` never replaces a
-        file (one at ``path``, also one written meanwhile by another run, is kept: FileExistsError)."""
-        from .io.atomic import write_text_atomically
+        file (one at ``path`` is refused, one written meanwhile by another run is kept: FileExistsError)."""
+        from .io.atomic import kept_outputs, write_text_atomically
 
-        write_text_atomically(path, json.dumps(self.to_json(), indent=2) + "\n", replace=overwrite)
+        with kept_outputs([path], overwrite, "overwrite=True"):
+            write_text_atomically(path, json.dumps(self.to_json(), indent=2) + "\n", replace=overwrite)
 
     @classmethod
     def read(cls, path: str | Path) -> "ParameterSet":

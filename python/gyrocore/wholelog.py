@@ -40,7 +40,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._arrays import FloatArray, as_float_array
+from ._arrays import MASKED_AS_NONFINITE, FloatArray, as_float_array
 from ._checks import MAX_SECONDS, first_infinite, public_dir, refuse_no_usable_reading, require_times, usable, warn
 from ._gyrocore import SampleError
 from ._rests import MIN_REST, SPEED_THRESHOLD, Found, accept, find_rests, measure_rest, unseen_stop_hint
@@ -416,7 +416,7 @@ def process_log(
     refuse_window_objects(overrides)
     si = _to_si(overrides)
     # a whole log is known to end here, as a stream is not: one of no usable reading has no heading
-    refuse_no_usable_reading(as_float_array("rate", rate), si.get("nonfinite"))
+    refuse_no_usable_reading(as_float_array("rate", rate, masked=MASKED_AS_NONFINITE), si.get("nonfinite"))
     if mode == "causal":
         refuse_whole_options(si)
         checked = None if fixes is None else _checked(fixes)

@@ -206,3 +206,23 @@ def test_a_sensors_bandwidth_does_not_pull_the_angle_random_walk_down(taus: str)
         rate = sim.measure(spec, t, np.zeros(len(t)), seed=seed).rate
         p = allan.noise_parameters(allan.deviation(rate, 1.0 / spec.rate_hz, taus=taus))
         assert p.arw is not None and p.arw.value_deg == pytest.approx(spec.arw_deg_per_sqrt_h, rel=0.04)
+
+
+@pytest.mark.parametrize("function", ["deviation", "phase_deviation", "deviation_from_timestamps"])
+def test_taus_out_of_order_or_twice_are_refused_naming_the_first(function: str) -> None:
+    # taus given in their own order were sorted (and one given twice merged) without a word: the
+    # i-th point of the result was not taus[i]
+    rate = np.random.default_rng(0).normal(size=2000)
+    call = {
+        "deviation": lambda taus: allan.deviation(rate, 0.01, taus=taus),
+        "phase_deviation": lambda taus: allan.phase_deviation(np.cumsum(rate) * 0.01, 0.01, taus=taus),
+        "deviation_from_timestamps": lambda taus: allan.deviation_from_timestamps(np.arange(2000) * 0.01, rate,
+                                                                                  taus=taus),
+    }[function]
+    with pytest.raises(ValueError, match=r"^taus must strictly increase: taus\[2\] = 0\.02 follows 0\.04 "):
+        call([0.01, 0.04, 0.02])
+    with pytest.raises(ValueError, match=r"^taus must strictly increase: taus\[2\] = 0\.04 follows 0\.04 "):
+        call([0.01, 0.04, 0.04])
+    with pytest.raises(ValueError, match=r"^as whole multiples of dt: taus must strictly increase: taus\[1\]"):
+        call([0.04, 0.04 * (1 + 1e-7)])  # one averaging time, 4 dt
+    assert call([0.01, 0.02, 0.04]).taus == pytest.approx([0.01, 0.02, 0.04])

@@ -195,3 +195,31 @@ def test_masked_values_are_refused_where_any_shape_is_taken() -> None:
     assert np.array_equal(table(unmasked), table(unmasked.data))  # nothing masked: the values
     assert np.array_equal(deadband.expected_output(rate.data, 0.01, 0.02),
                           deadband.expected_output(np.ma.masked_array(rate.data), 0.01, 0.02))
+
+
+def test_the_masked_values_hint_names_what_the_function_offers() -> None:
+    # the hint named nonfinite='hold' or 'skip' for every function, also the Allan deviation and
+    # integrate, which have no such parameter
+    t = np.arange(0.0, 60.0, 0.01)
+    rate = np.ma.masked_array(np.full_like(t, 0.002), mask=t >= 30.0)
+    phase = np.ma.masked_array(np.cumsum(rate.data) * 0.01, mask=rate.mask)
+    head = r"^{} is a masked array with 3000 masked value\(s\), the first at index 3000: "
+    allan_hint = (r"an Allan deviation takes no missing reading: give the others with their times to "
+                  r"allan\.deviation_from_timestamps \(it integrates over the intervals between them; a gap beyond "
+                  r"10 median intervals is refused\), or analyse each unmasked stretch on its own$")
+    for call, name in ((lambda: allan.deviation(rate, 0.01), "rate"),
+                       (lambda: allan.phase_deviation(phase, 0.01), "phase"),
+                       (lambda: allan.deviation_from_timestamps(t, rate), "rate"),
+                       (lambda: allan.deviation_from_timestamps(np.ma.masked_array(t, mask=rate.mask), rate.data), "t")):
+        with pytest.raises(ValueError, match=head.format(name) + allan_hint):
+            call()
+    with pytest.raises(ValueError, match=head.format("rate") + r"leave those samples out \(rate\.compressed\(\), "
+                       r"and the others' times\), or fill them with values of your own \(rate\.filled\(value\)\)$"):
+        gyrocore.integrate(t, rate)
+    nonfinite = head.format("rate") + r"give rate\.filled\(numpy\.nan\) \(with nonfinite='hold' or 'skip'\)"
+    for mode in ("whole", "causal"):  # these take nonfinite=
+        with pytest.raises(ValueError, match=nonfinite):
+            gyrocore.process(t, rate, "hdr", mode=mode)
+        with pytest.warns(gyrocore.InputWarning, match="replaced by the last usable reading"):
+            held = gyrocore.process(t, rate.filled(np.nan), "hdr", mode=mode, nonfinite="hold", bias=0.0)
+        assert held.heading.shape == t.shape

@@ -281,3 +281,31 @@ def test_a_pickled_pipeline_edited_out_of_range_is_refused_with_its_reason(fixes
     edited = {**state, "state": state["state"].replace('"tau":0.75', '"tau":-1.0', 1)}
     with pytest.raises(ValueError, match=r"^not a gyrocore pipeline state: invalid parameter lowpass_tau = -1: must be >= 0"):
         gyrocore.Pipeline.__new__(gyrocore.Pipeline).__setstate__(edited)
+
+
+@pytest.mark.parametrize("nonfinite", ["hold", "skip"])
+def test_a_stream_says_its_repairs_once_and_counts_them_all(nonfinite: str) -> None:
+    # nonfinite="hold" warned once per chunk: 100 chunks with a NaN each, 100 warnings
+    t = np.arange(0.0, 100.0, 0.01)
+    r = np.full_like(t, 0.1)
+    r[5::100] = np.nan  # one in each chunk of 100
+    p = gyrocore.Pipeline("raw", nonfinite=nonfinite)
+    key = "held" if nonfinite == "hold" else "skipped"
+
+    def repairs(pipeline: gyrocore.Pipeline, first: int, last: int) -> list[str]:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            for start in range(first, last, 100):
+                pipeline.process(t[start:start + 100], r[start:start + 100])
+        return [str(w.message) for w in caught if "not finite" in str(w.message)]
+
+    said = repairs(p, 0, 5000)
+    assert said == [f"1 reading(s) not finite or beyond +-1048576 "
+                    f"{'replaced by the last usable reading' if nonfinite == 'hold' else 'skipped'} "
+                    f"(first at index 5, t = 0.05: rate nan rad/s); said once per pipeline: its report['{key}'] "
+                    "counts those of later chunks too"]
+    resumed = pickle.loads(pickle.dumps(p))  # the same stream, elsewhere: said already
+    assert repairs(resumed, 5000, 10_000) == [] and resumed.report[key] == 100
+    assert repairs(p, 5000, 10_000) == [] and p.report[key] == 100
+    p.reset()  # a new stream: said again
+    assert len(repairs(p, 0, 1000)) == 1

@@ -3,6 +3,8 @@ GNSS fixes have the noise, the rate and the outage they are given."""
 
 from __future__ import annotations
 
+import hashlib
+import json
 import warnings
 from pathlib import Path
 
@@ -14,7 +16,7 @@ from gyrocore._checks import UnitError
 from gyrocore._fixes_eval import SimFixes, _mean_in
 from gyrocore.cli import main
 from gyrocore.fixes import Fixes
-from gyrocore.io import Log
+from gyrocore.io import Log, read_log
 
 
 @pytest.mark.parametrize("mix", ["city", "downtown"])
@@ -173,3 +175,29 @@ def test_an_outage_without_a_reference_sample_says_why_it_has_no_e_psi(tmp_path:
     assert row.split()[4:6] == ["nan", "nan"]
     assert (f"outage of {drive}: [30.010, 30.060) s holds no reference sample: its E_psi is nan (null in the JSON)"
             in out), out
+
+
+def test_each_log_s_simulated_fixes_have_their_own_seed_whatever_the_order(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # one seed for every log of a run: two drives of one reference got the very same fix errors,
+    # and a log's fixes were the same whichever logs ran beside it
+    drives = [tmp_path / "a.csv", tmp_path / "b.csv"]
+    for drive in drives:  # the same drive, twice, under two names
+        assert main(["simulate", "--duration", "120", "--rate-hz", "10", "--out", str(drive)]) == 0
+    capsys.readouterr()
+    spec = SimFixes.parse("seed=3")
+    a, b = (read_log(drive) for drive in drives)
+    fa, fb = spec.fixes(a), spec.fixes(b)
+    assert np.array_equal(fa.t, fb.t) and not np.array_equal(fa.heading, fb.heading)
+    assert spec.seed_of(a) == int.from_bytes(hashlib.sha256(b"3/a").digest()[:8], "big")  # as docs/fixes.md says
+
+    def rows(order: list[Path]) -> dict[str, dict[str, object]]:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", InputWarning)
+            assert main(["evaluate", *map(str, order), "--preset", "raw", "--sim-fixes", "seed=3", "--json"]) == 0
+        return {row["name"]: row for row in json.loads(capsys.readouterr().out)}
+
+    forward, backward = rows(drives), rows(drives[::-1])
+    assert forward == backward
+    assert forward["a"]["e_psi_deg"] != forward["b"]["e_psi_deg"]
+    assert f"seed {spec.seed_of(b)} (of the run's seed 3 and the log's name b)" in str(forward["b"]["fixes"])

@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike
 from .._arrays import FloatArray, as_float_array, as_window, refuse_masked
 from .._checks import MAX_READING, require_choice, require_finite, require_readings, require_version, warn
 from ..io._jsonfile import read_json
-from ..io.atomic import write_text_atomically
+from ..io.atomic import kept_outputs, write_text_atomically
 
 #: A scale error beyond this [1] is a wrong unit or a fit without turns, not a gyro (the real logs
 #: reach 28 %).
@@ -294,8 +294,10 @@ class Calibration:
     def save(self, path: str | Path, *, overwrite: bool = True) -> None:
         """Write the calibration as JSON (see :meth:`to_dict`), whole or not at all: a save that
         fails or is interrupted leaves the file that was there. ``overwrite=False`` never replaces
-        a file: one at ``path`` (also one written meanwhile by another run) is kept, FileExistsError."""
-        write_text_atomically(path, json.dumps(self.to_dict(), indent=2) + "\n", replace=overwrite)
+        a file: one at ``path`` is refused (FileExistsError, it exists), and one another run wrote
+        meanwhile is kept (FileExistsError, written meanwhile)."""
+        with kept_outputs([path], overwrite, "overwrite=True"):
+            write_text_atomically(path, json.dumps(self.to_dict(), indent=2) + "\n", replace=overwrite)
 
     @classmethod
     def load(cls, path: str | Path) -> Calibration:

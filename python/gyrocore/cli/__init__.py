@@ -18,7 +18,7 @@ from .._gyrocore import __version__
 from . import allan, calibrate, demo, evaluate, presets, process, reproduce, simulate, tune
 from ..batch_run import BatchInterrupted
 from ..io._paths import error_text, one_line
-from ..io.atomic import discard_all
+from ..io.atomic import discard_all, outputs_checked
 from ._common import SAMPLE_LOG_NOTE, USER_ERRORS, show_warning
 
 COMMANDS = (demo, process, presets, allan, calibrate, evaluate, tune, simulate, reproduce)
@@ -89,7 +89,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     with _signals.handled():
         try:
             args = build_parser().parse_args(attach_signed_values(sys.argv[1:] if argv is None else argv))
-            with warnings.catch_warnings():
+            # every command refuses its outputs that exist before its work (refuse_existing):
+            # one found when it is written was written meanwhile, and is refused as such
+            with warnings.catch_warnings(), outputs_checked():
                 warnings.showwarning = show_warning
                 return int(args.func(args))
         except BrokenPipeError:

@@ -19,7 +19,7 @@ from .._extras import MissingExtra, tqdm_class
 from .._gyrocore import SampleError
 from ..calibration import Calibration
 from ..evaluate import Failed
-from ..io.atomic import check_output_folder, check_replaceable
+from ..io.atomic import already_there, check_output_folder, check_replaceable
 from ..io.units import rate_unit_named, time_unit_named
 from ..io._paths import error_text, one_line
 from ..pipeline import Pipeline, has_bias_source, recommended_preset
@@ -272,13 +272,9 @@ def refuse_existing(outputs: Iterable[Path], overwrite: bool, *, folders_exist: 
                                 "(--overwrite replaces files, never a folder; nothing was written)")
     if overwrite:
         return
-    taken = [str(p) for p in outputs if os.path.lexists(p)]
-    if not taken:
-        return
-    shown = ", ".join(taken[:3]) + (f" and {len(taken) - 3} more" if len(taken) > 3 else "")
-    verb, them = ("exists", "it") if len(taken) == 1 else ("exist", "them")
-    raise FileExistsError(f"{shown} already {verb}; pass --overwrite to replace {them}, or write elsewhere "
-                          "(nothing was written)")
+    taken = [p for p in outputs if os.path.lexists(p)]
+    if taken:
+        raise already_there(taken, "--overwrite")
 
 
 def _bounded(low: float, *, above: bool, integer: bool = False, infinite: bool = False) -> Callable[[str], float]:

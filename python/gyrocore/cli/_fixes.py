@@ -37,8 +37,9 @@ def add_fix_options(parser: argparse.ArgumentParser, *, evaluate: bool) -> None:
             "--sim-fixes",
             metavar="SPEC",
             help="SIMULATED fixes from each log's reference: rate=HZ,sigma_deg=DEG[,outage=START:LENGTH][,seed=N] "
-            "(START seconds after the first sample; defaults rate=1, sigma_deg=1, seed=0); E_psi inside the "
-            "outage is reported apart",
+            "(START seconds after the first sample; defaults rate=1, sigma_deg=1, seed=0; each log's noise has "
+            "its own seed, from N and the log's name, which the report gives); E_psi inside the outage is "
+            "reported apart",
         )
     group.add_argument("--no-fixes", action="store_true", help=f"ignore a log folder's {FIXES_CSV}")
 
@@ -165,7 +166,7 @@ def _fixes_of(log: Log, sim: SimFixes | None, given: Fixes | None,
               path: str | None) -> tuple[Fixes, str, tuple[float, float] | None]:
     """The fixes ``log`` is scored with, how to name them, and the simulated outage."""
     if sim is not None:
-        return sim.fixes(log), str(sim), sim.window(log)
+        return sim.fixes(log), sim.describe(log), sim.window(log)
     if given is not None:
         return given, f"{path} (as given)", None
     assert log.fixes is not None  # fixes_wanted

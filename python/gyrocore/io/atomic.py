@@ -12,7 +12,7 @@ import filecmp
 import os
 import secrets
 import stat
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -70,6 +70,55 @@ def check_output_folder(path: Path, *, made: bool = False) -> None:
         ancestor = ancestor.parent
     if os.path.lexists(ancestor) and not ancestor.is_dir():
         raise NotADirectoryError(f"{path}: {ancestor} is not a folder; write the output elsewhere")
+
+
+def already_there(taken: Sequence[str | Path], option: str) -> FileExistsError:
+    """The refusal of outputs that were there before a run told not to replace them began its work
+    (``gyrocore``'s outputs without ``--overwrite``, the API's ``overwrite=False``): they exist,
+    and ``option`` replaces them. One that appears during the work is another run's, written
+    meanwhile (:meth:`StagedFile.commit` says so)."""
+    names = [str(p) for p in taken]
+    shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+    verb, them = ("exists", "it") if len(names) == 1 else ("exist", "them")
+    return FileExistsError(f"{shown} already {verb}; pass {option} to replace {them}, or write elsewhere "
+                           "(nothing was written)")
+
+
+#: True while outputs are known to have been refused before the work where they were there (by
+#: the command line, or by an outer call of :func:`kept_outputs`): one found at an output later was
+#: written meanwhile, and is refused as such when the output is committed.
+_checked: contextvars.ContextVar[bool] = contextvars.ContextVar("gyrocore_outputs_checked", default=False)
+
+
+@contextmanager
+def outputs_checked() -> Iterator[None]:
+    """A block whose outputs were refused before it where they existed (the command line checks
+    its own before any work, naming ``--overwrite``): :func:`kept_outputs` checks nothing in it."""
+    token = _checked.set(True)
+    try:
+        yield
+    finally:
+        _checked.reset(token)
+
+
+def refuse_present(paths: Iterable[str | Path], replace: bool, option: str) -> None:
+    """Where outputs may not be replaced (not ``replace``), refuse before the work those that are
+    there already (:func:`already_there`, naming ``option``), unless the block was checked
+    (:func:`outputs_checked`). Without it a file saved twice was refused only when the second was
+    written, said to be "written meanwhile by something else"."""
+    if not replace and not _checked.get():
+        taken = [p for p in paths if os.path.lexists(p)]
+        if taken:
+            raise already_there(taken, option)
+
+
+@contextmanager
+def kept_outputs(paths: Iterable[str | Path], replace: bool, option: str) -> Iterator[None]:
+    """A block that writes ``paths``, their refusal checked before it (:func:`refuse_present`); in
+    the block, one that appears is another run's, written meanwhile."""
+    refuse_present(paths, replace, option)
+    with outputs_checked():
+        yield
 
 
 def check_replaceable(path: Path) -> None:
@@ -289,15 +338,16 @@ def atomic_path(path: str | Path, *, replace: bool = True) -> Iterator[Path]:
     """A temporary path next to ``path`` (next to the file it leads to, for a link), renamed to it
     when the block ends without error and removed otherwise (also on KeyboardInterrupt); see
     :class:`StagedFile` (and its ``replace``: False keeps a file that appeared at ``path`` while the
-    block ran, for a command that checked there was none before its work)."""
-    staged = StagedFile(path, replace=replace)
-    try:
-        yield staged.tmp
-        staged.commit()
-    except OSError as e:
-        raise named_if_no_room(staged.path, e) from None
-    finally:
-        staged.discard()
+    block ran; one there before it is refused at once, :func:`kept_outputs`)."""
+    with kept_outputs([path], replace, "replace=True"):
+        staged = StagedFile(path, replace=replace)
+        try:
+            yield staged.tmp
+            staged.commit()
+        except OSError as e:
+            raise named_if_no_room(staged.path, e) from None
+        finally:
+            staged.discard()
 
 
 def write_atomically(path: str | Path, write: Callable[[str], object], *, replace: bool = True) -> None:

@@ -32,7 +32,7 @@ from pathlib import Path
 from typing import Callable
 
 from .._checks import public_dir, require_choice
-from ..io.atomic import make_folder
+from ..io.atomic import kept_outputs, make_folder
 from ._report import Row, _Report, format_table
 from .fog import FogRotaryTable, FogSquarePath, fog_rotary_table, fog_square_path
 from .hdr import DriveResult, HdrFigures, HdrTables, hdr_figures, hdr_tables
@@ -89,9 +89,16 @@ REPRODUCTIONS: dict[str, tuple[Callable[[], _Report], str]] = {
 def reproduce(name: str, *, out_dir: str | Path | None = ".", overwrite: bool = True) -> _Report:
     """Run the reproduction ``name`` (see :data:`REPRODUCTIONS`) with its defaults, print its
     table and the seed it ran with, and write its figure into ``out_dir`` (created if missing;
-    None: no figure; ``overwrite=False`` keeps a figure there: FileExistsError)."""
+    None: no figure; ``overwrite=False`` refuses a figure there before the run, and keeps one
+    written meanwhile: FileExistsError)."""
     require_choice("reproduction", name, REPRODUCTIONS)
     run, figure = REPRODUCTIONS[name]
+    with kept_outputs([] if out_dir is None else [Path(out_dir) / figure], overwrite, "overwrite=True"):
+        return _reproduced(run, figure, out_dir, overwrite)
+
+
+def _reproduced(run: Callable[[], _Report], figure: str, out_dir: str | Path | None, overwrite: bool) -> _Report:
+    """:func:`reproduce`'s run of ``run``: its table printed, its figure written into ``out_dir``."""
     result = run()
     print(result.table())
     seed = inspect.signature(run).parameters["seed"].default

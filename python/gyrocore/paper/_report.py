@@ -69,13 +69,16 @@ class _Report:
         return format_table(self.title, self.rows(), self.notes())
 
     def plot(self, path: str | Path, *, overwrite: bool = True) -> Path | None:
-        """Write the figure as PNG (None if matplotlib is missing); ``overwrite=False`` keeps a
-        file at ``path`` (FileExistsError)."""
+        """Write the figure as PNG (None if matplotlib is missing); ``overwrite=False`` refuses a
+        file at ``path`` before the figure is drawn, and keeps one written meanwhile (FileExistsError)."""
+        from ..io.atomic import kept_outputs
+
         plt = _pyplot()
         if plt is None:
             return None
-        fig = self._figure(plt)
-        out = _save(fig, path, overwrite)
+        with kept_outputs([path], overwrite, "overwrite=True"):
+            fig = self._figure(plt)
+            out = _save(fig, path, overwrite)
         plt.close(fig)
         return out
 
