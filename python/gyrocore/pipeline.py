@@ -125,7 +125,7 @@ class Pipeline:
         self._rests: list[Rest] = []
         self._fixes = StreamFixes()
         self._speed_said = False  # a chunk's samples outside its speed's times, said once
-        self._repairs_said: set[str] = set()  # the input policies whose repairs were said (once each)
+        self._repairs_said: set[str] = set()  # the input policies whose repairs, and the gaps, were said (once each)
         self._watch = self._new_watch()
         self._unmeasured = self._bias_warning  # None once said
 

@@ -72,9 +72,10 @@ def warn_repairs(
 ) -> None:
     """Say what the input policy of the ``core`` repaired in this chunk (indices are within the chunk): the
     readings the core does not take, NaN and infinities as well as finite ones beyond its
-    limit (:data:`~gyrocore._checks.MAX_READING`, a wrong unit or a corrupt sample). Each policy's
-    repairs are said once per stream (``said`` holds the ones said): a warning per chunk flooded
-    the log of a stream of many chunks; the report counts them all."""
+    limit (:data:`~gyrocore._checks.MAX_READING`, a wrong unit or a corrupt sample), and the gaps
+    beyond ``gap_limit``. Each policy's repairs, and the gaps, are said once per stream (``said``
+    holds the ones said): a warning per chunk flooded the log of a stream of many chunks; the
+    report counts them all."""
     for key, verb in (("held", "replaced by the last usable reading"), ("skipped", "skipped")):
         n = int(after[key] - before[key])
         if n and key not in said:
@@ -83,11 +84,13 @@ def warn_repairs(
             warn(f"{n} reading(s) not finite or beyond +-{MAX_READING:.0f} {verb} ({where}); said once per "
                  f"pipeline: its report['{key}'] counts those of later chunks too")
     gaps = int(after["gaps"] - before["gaps"])
-    if gaps:
-        limit = core.params()["gap_limit"]
+    if gaps and "gaps" not in said:
+        said.add("gaps")
+        params = core.params()
         warn(
-            f"{gaps} gap(s) longer than {limit} s (longest so far {after['longest_gap']:.6g} s); "
-            f"gap_action={core.params()['gap_action']!r}"
+            f"{gaps} gap(s) longer than {params['gap_limit']} s (longest so far {after['longest_gap']:.6g} s); "
+            f"gap_action={params['gap_action']!r}; said once per pipeline: its report['gaps'] and "
+            "report['longest_gap'] count those of later chunks too"
         )
 
 

@@ -309,3 +309,24 @@ def test_a_stream_says_its_repairs_once_and_counts_them_all(nonfinite: str) -> N
     assert repairs(p, 5000, 10_000) == [] and p.report[key] == 100
     p.reset()  # a new stream: said again
     assert len(repairs(p, 0, 1000)) == 1
+
+
+def test_a_stream_says_its_gaps_once_and_counts_them_all() -> None:
+    # a gap in each of 50 chunks warned 50 times
+    t = np.concatenate([np.arange(0.0, 1.0, 0.01) + 10.0 * k for k in range(100)])
+    r = np.full_like(t, 0.1)
+    p = gyrocore.Pipeline("raw", bias=0.0, gap_limit=2.0)
+
+    def gaps(first: int, last: int) -> list[str]:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            for start in range(first, last, 200):
+                p.process(t[start:start + 200], r[start:start + 200])
+        return [str(w.message) for w in caught if "gap(s) longer" in str(w.message)]
+
+    said = gaps(0, 5000)
+    assert said == ["1 gap(s) longer than 2.0 s (longest so far 9.01 s); gap_action='bridge'; said once per "
+                    "pipeline: its report['gaps'] and report['longest_gap'] count those of later chunks too"]
+    assert gaps(5000, 10_000) == [] and p.report["gaps"] == 99
+    p.reset()
+    assert len(gaps(0, 1000)) == 1
