@@ -85,6 +85,9 @@ def as_float_array(name: str, values: ArrayLike, *, copy: bool = False, masked: 
         odd = next((i for i, v in enumerate(a) if isinstance(v, (bool, str, bytes)) or not isinstance(v, numbers.Real)), None)
         if odd is not None and isinstance(a[odd], datetime.datetime):  # pandas' times with a time zone
             raise TypeError(f"{name} holds dates and {dates} ({name}[{odd}] is {a[odd]!r})")
+        if odd is not None and isinstance(a[odd], (list, tuple, np.ndarray)):  # numpy < 1.24 keeps a ragged list
+            raise ValueError(f"{name} must be one flat sequence of numbers (setting an array element with a "
+                             f"sequence: {name}[{odd}] is {a[odd]!r})")
         if odd is not None:  # a Decimal is a number to its caller, but numpy reads it only when told to
             decimal = isinstance(a[odd], numbers.Number) and not isinstance(a[odd], numbers.Complex)  # not complex
             fix = f"numpy.asarray({name}, dtype=float)" if decimal else "numbers"

@@ -10,7 +10,7 @@ import threading
 import time
 import uuid
 import warnings
-from concurrent.futures import ThreadPoolExecutor, as_completed
+from concurrent.futures import CancelledError, ThreadPoolExecutor, as_completed
 from collections.abc import Callable, Iterable
 from typing import Any
 
@@ -179,8 +179,11 @@ def _lost(distributed: Any, error: Exception) -> Exception | str:
     if isinstance(error, distributed.KilledWorker):
         return (f"every Dask worker that ran it died ({error.allowed_failures + 1} of them): out of memory, or "
                 "killed; the workers' logs say which; its output is not written")
-    if isinstance(error, distributed.client.FutureCancelledError):
-        return (f"the Dask cluster dropped it before it finished (Dask's reason: {error.reason}; the scheduler "
+    # Newer distributed raise its FutureCancelledError, a CancelledError with Dask's reason;
+    # distributed 2023 has no such class (looking it up failed the batch) and gives no reason.
+    if isinstance(error, CancelledError):
+        reason = getattr(error, "reason", "none given")
+        return (f"the Dask cluster dropped it before it finished (Dask's reason: {reason}; the scheduler "
                 "gone?); run it again (--skip-existing goes on with the inputs without an output)")
     return error
 
@@ -264,6 +267,14 @@ class _NoScheduler(Exception):
     """What answered at a scheduler's address did not greet as a Dask scheduler does."""
 
 
+def _no_greeting(error: BaseException | None, waited: float) -> _NoScheduler:
+    """What answered at a scheduler's address, as said of it: ``error`` is what reading its answer
+    raised, None or a time-out where nothing came within ``waited`` seconds."""
+    if error is None or isinstance(error, asyncio.TimeoutError):
+        return _NoScheduler(f"no greeting in {waited:g} s")
+    return _NoScheduler(f"an answer Dask cannot read: {type(error).__name__}")
+
+
 def _handshake(address: str) -> None:
     """Greet the scheduler at ``address`` as a client does, within Dask's connect timeout
     (``distributed.comm.timeouts.connect``). ``Client`` waits for the greeting's answer without a
@@ -284,11 +295,17 @@ def _handshake(address: str) -> None:
         try:  # connect's own timeout ends the wait for a connection; this one, the greeting's after it
             await asyncio.wait_for(greet(), 2 * seconds)
         except asyncio.TimeoutError:  # an OSError too, since Python 3.11
-            raise _NoScheduler(f"no greeting in {2 * seconds:g} s") from None
-        except (OSError, ValueError):  # nothing answered, or an address Dask cannot read: said as before
+            raise _no_greeting(None, 2 * seconds) from None
+        except OSError as e:
+            # distributed before 2023.4 greets inside connect, within its timeout, and says a
+            # greeting that failed is an OSError, caused by what the answer raised
+            if str(e).startswith("Timed out during handshake"):
+                raise _no_greeting(e.__cause__, seconds) from None
+            raise  # nothing answered: said as before
+        except ValueError:  # an address Dask cannot read: said as before
             raise
         except Exception as e:  # noqa: BLE001 - any answer Dask cannot read is no scheduler's
-            raise _NoScheduler(f"an answer Dask cannot read: {type(e).__name__}") from None
+            raise _no_greeting(e, 2 * seconds) from None
 
     failed: list[BaseException] = []
 

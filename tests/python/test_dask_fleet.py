@@ -6,6 +6,7 @@ bit-identical and the reports equal."""
 from __future__ import annotations
 
 import contextlib
+import importlib
 import os
 import socket
 import subprocess
@@ -43,11 +44,15 @@ def threads() -> Iterator[Any]:
 @pytest.fixture(scope="module")
 def processes() -> Iterator[Any]:
     """A client of a cluster of two worker processes of one thread each (the machine's two cores)."""
-    with (
-        distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster,
-        distributed.Client(cluster) as client,
-    ):
-        yield client
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0")
+    try:
+        with distributed.Client(cluster) as client:
+            yield client
+    finally:
+        # distributed 2023.1's close waited for ever, one run in five, on a worker process that a
+        # test had killed: a bounded wait, whatever is left of them ends with the test run
+        with contextlib.suppress(distributed.TimeoutError):
+            cluster.close(timeout=30)
 
 
 def comparable(report: BatchReport) -> dict[str, Any]:
@@ -210,7 +215,9 @@ def test_a_file_that_kills_every_worker_fails_alone_and_says_so(tmp_path: Path, 
     logs = _fleet(tmp_path / "logs")
     synthetic_csv(logs / "oom.csv", 3000, seed=7)
     here = process_many([logs], out_dir=tmp_path / "here", jobs=2, preset="raw", bias=0.0, chunk_rows=1000)
-    processes.register_plugin(_DiesOnOom())
+    # register_plugin in newer distributed, which no longer have 2023's register_worker_plugin
+    register = getattr(processes, "register_plugin", None) or processes.register_worker_plugin
+    register(_DiesOnOom())
     try:
         # as the command line runs it (no --overwrite): a file the cluster ran again, its worker
         # dead before its report was read, was reported "written meanwhile by something else"
@@ -286,8 +293,12 @@ def test_a_scheduler_that_goes_away_mid_batch_fails_the_files_it_had_and_says_so
         with contextlib.suppress(Exception):  # the client's goodbye to a scheduler that is gone
             client.close(timeout=2)
     assert report.files[0].ok and not report.files[1].ok
+    # distributed 2023 cancels the future without a reason (and without the class that has one,
+    # whose lookup failed the whole batch with an AttributeError)
+    newer = hasattr(importlib.import_module("distributed.client"), "FutureCancelledError")
+    reason = "scheduler-connection-lost" if newer else "none given"
     assert report.files[1].error == (
-        f"{long}: the Dask cluster dropped it before it finished (Dask's reason: scheduler-connection-lost; the "
+        f"{long}: the Dask cluster dropped it before it finished (Dask's reason: {reason}; the "
         "scheduler gone?); run it again (--skip-existing goes on with the inputs without an output)")
 
 
