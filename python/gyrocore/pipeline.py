@@ -17,6 +17,7 @@ from numpy.typing import ArrayLike
 from . import _gyrocore, rests
 from ._arrays import FloatArray, as_float_array
 from ._checks import public_dir, warn, warn_units
+from ._inuse import Turn, one_at_a_time
 from ._motion import WindowWatch
 from .fixes_stream import StreamFixes, say_how_to_wait
 from .pipeline_input import (
@@ -105,6 +106,7 @@ class Pipeline:
     def __init__(
         self, preset: str = "recommended", *, fusion: dict[str, float] | None = None, **overrides: Any
     ) -> None:
+        self._turn = Turn()
         refuse_window_objects(overrides)
         si = _to_si(overrides)
         self._inner = core_pipeline(preset, si)
@@ -134,15 +136,18 @@ class Pipeline:
         return self._preset
 
     @property
+    @one_at_a_time
     def params(self) -> dict[str, Any]:
         """The full flat SI parameter set in use."""
         return dict(self._inner.params())
 
     @property
+    @one_at_a_time
     def bias(self) -> float:
         """The static bias in use now [rad/s] (what the gyro reads at rest)."""
         return float(self._inner.bias()[0])
 
+    @one_at_a_time
     def process(
         self,
         t: ArrayLike,
@@ -344,6 +349,7 @@ class Pipeline:
         return heading, out_rate, drift, [rests.from_core(r, origin) for r in found], fused
 
     @property
+    @one_at_a_time
     def last_time(self) -> float | None:
         """The time [s] of the last sample processed (None before the first): the next chunk
         starts after it. A pipeline resumed from a pickle holds every sample up to it, so a
@@ -351,17 +357,20 @@ class Pipeline:
         return self._inner.last_time()
 
     @property
+    @one_at_a_time
     def rests(self) -> list[Rest]:
         """With ``track_rests=True``, every rest found so far, in order (see :class:`gyrocore.rests.Rest`)."""
         return list(self._rests)
 
     @property
+    @one_at_a_time
     def tracked_bias(self) -> tuple[float, float | None] | None:
         """With ``track_rests=True``, the filtered bias [rad/s] and its standard error now [rad/s]
         (None before the first rest or rest window); None without rest tracking."""
         tracker = self._inner.rest_tracker()
         return None if tracker is None else (tracker[0], tracker[1])
 
+    @one_at_a_time
     def finish(self) -> None:
         """Call after the last chunk of a log: raises :class:`RestWindowError` if the rest window
         reaches past the log's end (a ``bias_window`` after the log, or a ``bias_duration`` longer
@@ -386,6 +395,7 @@ class Pipeline:
         # readings are all there is, as whole mode counts them (one at t = 0 of (0, 0) passed).
         refuse_few_readings(rest_window_text(p), count)
 
+    @one_at_a_time
     def reset(self) -> None:
         """Return to the state before the first sample (same parameters): what follows is
         checked and warned about as a new pipeline's first samples are."""
@@ -393,6 +403,7 @@ class Pipeline:
         self._start_stream()
 
     @property
+    @one_at_a_time
     def rest_statistics(self) -> dict[str, float] | None:
         """What the rest window measured besides the bias, once it is over: ``noise``, the standard
         deviation of one reading [rad/s], and ``bias_std_error``, the standard error of the static
@@ -402,10 +413,12 @@ class Pipeline:
         return None if stats is None else {"noise": stats[0], "bias_std_error": stats[1]}
 
     @property
+    @one_at_a_time
     def report(self) -> dict[str, float]:
         """What the input policy did so far: ``held``, ``skipped``, ``gaps``, ``longest_gap`` [s]."""
         return dict(self._inner.report())
 
+    @one_at_a_time
     def __getstate__(self) -> dict[str, Any]:
         return {
             "preset": self._preset,
@@ -420,6 +433,7 @@ class Pipeline:
         }
 
     def __setstate__(self, state: dict[str, Any]) -> None:
+        self._turn = Turn()  # a copy's own: it is another stream
         self._preset = state["preset"]
         self._inner = _gyrocore.Pipeline.from_state_json(state["state"])
         head = state.get("unit_head", None if self._inner.last_time() is not None else ([], []))
@@ -432,7 +446,14 @@ class Pipeline:
         self._fixes = StreamFixes.restored(state)
         self._speed_said = False
 
+    @property
+    def _in_use_name(self) -> str:
+        """What this pipeline is, in the words of a call refused while another thread's runs."""
+        return f"this gyrocore.Pipeline (preset {self._preset!r})"
+
     def __repr__(self) -> str:
+        if self._turn.busy():  # its parameters are out of reach while the other call runs
+            return f"Pipeline(preset={self._preset!r}, in use by another thread)"
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"
 
 
