@@ -46,13 +46,13 @@ pub(crate) struct Block<'a> {
 
 /// Samples per piece of a long block, between looks for a Ctrl-C: a few milliseconds of work,
 /// and a call of the core per piece costs nothing next to it.
-const PIECE: usize = 1 << 16;
+pub(crate) const PIECE: usize = 1 << 16;
 
 impl<'a> Block<'a> {
     /// Runs `f` on the block piece by piece, in order, each with its range of samples, until
     /// `stop` is requested or a piece fails (the core then puts back that piece; the caller the
     /// pieces before). A block whose arrays differ in length goes whole: the core names that.
-    fn pieces<E>(
+    pub(crate) fn pieces<E>(
         &self,
         stop: &Stop,
         mut f: impl FnMut(Block<'_>, Range<usize>) -> Result<(), E>,
@@ -82,13 +82,16 @@ impl<'a> Block<'a> {
 }
 
 /// The samples `range` of an output, if it is asked for.
-fn part<'a>(out: &'a mut Option<&mut [f64]>, range: &Range<usize>) -> Option<&'a mut [f64]> {
+pub(crate) fn part<'a>(
+    out: &'a mut Option<&mut [f64]>,
+    range: &Range<usize>,
+) -> Option<&'a mut [f64]> {
     out.as_deref_mut().map(|o| &mut o[range.clone()])
 }
 
 /// The error of a piece that starts at sample `start`, `used` fixes after the block's first, as
 /// the whole block's.
-fn of_block(e: FusionError, start: usize, used: usize) -> FusionError {
+pub(crate) fn of_block(e: FusionError, start: usize, used: usize) -> FusionError {
     match e {
         FusionError::Gyro(e) => FusionError::Gyro(e.with_index_offset(start)),
         FusionError::Fix {
