@@ -16,12 +16,12 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore, rests
 from ._arrays import FloatArray, as_float_array
-from ._checks import public_dir, warn, warn_units
+from ._checks import public_dir, warn
 from ._inuse import Turn, one_at_a_time
 from ._motion import WindowWatch
 from .fixes_stream import StreamFixes, say_how_to_wait
 from .pipeline_input import (
-    refuse_window_without_reading, say_what_to_do, warn_repairs, warn_slow_tracker, warn_speed_outside,
+    TEMPERATURE_MODEL, check_units, refuse_window_without_reading, say_what_to_do, warn_repairs, warn_speed_outside,
 )
 from .pipeline_params import (
     BIAS_SOURCES,
@@ -63,13 +63,6 @@ __dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 #: The fix stage's columns of a block from the core: heading sigma, bias, scale, and the fix
 #: counts (applied, rejected, re-admitted, before the first sample, waiting for a later block).
 _Fused = tuple[FloatArray | None, FloatArray | None, FloatArray | None, tuple[int, int, int, int, int]]
-
-#: Parameters of FOG eq 5's temperature model: without one, a temperature given is not used.
-TEMPERATURE_MODEL = ("temp_slope", "temp_offset")
-
-
-#: Samples a stream's unit check waits for (one interval): a first chunk of one sample has none.
-UNIT_SAMPLES = 2
 
 #: :meth:`Pipeline.process`'s ``index_offset`` is below this: any index of a chunk added to it fits
 #: the core's 64-bit index.
@@ -218,31 +211,38 @@ class Pipeline:
         ra = as_float_array("rate", rate)
         temp = None if temperature is None else as_float_array("temperature", temperature)
         refuse_window_without_reading(self._inner, ta, ra, temp, self._first_time)
-        if self._unit_head is not None and len(ta):
-            self._check_units(ta, ra, temp)
-        flags = output_flags(outputs)
-        inner, fix_block = self._fix_block(fixes)
-        rests.refuse_speed_t_alone(speed, speed_t)
-        if speed is not None and not self.params["track_rests"]:
-            raise ValueError("speed is given but rest tracking is off: pass track_rests=True, or no speed")
-        sa = None if speed is None else rests.speed_at(ta, speed, speed_t)
-        if speed_t is not None and sa is not None and not self._speed_said and inner.last_time() is not None:
-            # not of a first chunk: one call's log may well outlast its odometry
-            self._speed_said = warn_speed_outside(ta, sa, speed_t)
-        inputs = {"t": (t, ta), "rate": (rate, ra), "temperature": (temperature, temp), "speed": (speed, sa)}
-        given = out_arrays(out, outputs, len(ta), inputs)
-        before = inner.report()
-        window = None if self._watch.checked else self._window(ta)  # none once it is checked
-        measuring = window is not None and inner.bias()[2]
+        # put back unless the core takes the chunk: a refused or interrupted (Ctrl-C) first chunk left the
+        # unit check done, and the pipeline's pickle differed from the one before it
+        head = self._unit_head
         try:
-            heading, out_rate, drift, found, fused = self._run(
-                inner, ta, ra, temp, index_offset, (flags, fix_output_flags(outputs)), sa, fix_block, given
-            )
-        except _gyrocore.SampleError as e:
-            say_what_to_do(e, ta, inner.last_time(), index_offset, self.params["nonfinite"])
-            raise
-        except ValueError as e:
-            say_how_to_wait(e)
+            if self._unit_head is not None and len(ta):
+                self._unit_head = check_units(self._unit_head, ta, ra, temp, self.params)
+            flags = output_flags(outputs)
+            inner, fix_block = self._fix_block(fixes)
+            rests.refuse_speed_t_alone(speed, speed_t)
+            if speed is not None and not self.params["track_rests"]:
+                raise ValueError("speed is given but rest tracking is off: pass track_rests=True, or no speed")
+            sa = None if speed is None else rests.speed_at(ta, speed, speed_t)
+            if speed_t is not None and sa is not None and not self._speed_said and inner.last_time() is not None:
+                # not of a first chunk: one call's log may well outlast its odometry
+                self._speed_said = warn_speed_outside(ta, sa, speed_t)
+            inputs = {"t": (t, ta), "rate": (rate, ra), "temperature": (temperature, temp), "speed": (speed, sa)}
+            given = out_arrays(out, outputs, len(ta), inputs)
+            before = inner.report()
+            window = None if self._watch.checked else self._window(ta)  # none once it is checked
+            measuring = window is not None and inner.bias()[2]
+            try:
+                heading, out_rate, drift, found, fused = self._run(
+                    inner, ta, ra, temp, index_offset, (flags, fix_output_flags(outputs)), sa, fix_block, given
+                )
+            except _gyrocore.SampleError as e:
+                say_what_to_do(e, ta, inner.last_time(), index_offset, self.params["nonfinite"])
+                raise
+            except ValueError as e:
+                say_how_to_wait(e)
+                raise
+        except BaseException:
+            self._unit_head = head
             raise
         # kept only once the core took the chunk: the readings of a refused one, sent again mended,
         # were kept twice (a pickle of the refused pipeline differed from the one before)
@@ -270,30 +270,6 @@ class Pipeline:
         self._fixes.judge(counts)
         return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found), heading_sigma=sigma,
                              fusion=FusionResult(ta, heading, sigma, bias, scale, counts), report=report)
-
-    def _check_units(self, t: FloatArray, rate: FloatArray, temperature: FloatArray | None) -> None:
-        """Warns of rates or timestamps that look like another unit, and of a rest tracker whose
-        blocks are too short for the stream's rate, once the stream has an interval to judge: a
-        robot's first chunk of one sample has none, and its timestamps in ms were never judged
-        (the later chunks were not looked at), where one call warned."""
-        assert self._unit_head is not None
-        held_t, held_rate = self._unit_head
-        if not len(held_t) and temperature is not None and not any(
-                self.params.get(k) is not None for k in TEMPERATURE_MODEL):
-            warn(
-                f"temperature is given but no temperature model ({', '.join(TEMPERATURE_MODEL)}) is set: it is "
-                "not used; set the model (e.g. calibration.rotary_table's) or leave the temperature out"
-            )
-        # a first chunk is judged as it is: copied whole behind nothing held, a long log's times and
-        # readings took two more arrays as long as the log (2.1 s of a call of 5*10^7 samples)
-        head_t, head_rate = (t, rate) if not len(held_t) else (np.concatenate((held_t, t)),
-                                                                np.concatenate((held_rate, rate)))
-        if len(head_t) < UNIT_SAMPLES:  # held as copies: a caller may fill its arrays anew for the next chunk
-            self._unit_head = (np.array(head_t), np.array(head_rate))
-            return
-        warn_units(head_t, head_rate)
-        warn_slow_tracker(head_t, self.params)
-        self._unit_head = None
 
     def _new_watch(self) -> WindowWatch:
         """A watch of the rest window, done already with a fixed bias (nothing to watch per chunk)."""

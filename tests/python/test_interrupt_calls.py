@@ -132,3 +132,34 @@ def test_a_long_fused_block_is_the_stream_of_its_pieces_and_a_late_bad_fix_chang
     with pytest.raises(ValueError, match=r"^fix 250: sigma = -1 must be > 0"):
         p.process(t, rate, fixes=bad)
     assert pickle.dumps(p) == before
+
+
+def test_a_first_chunk_refused_or_interrupted_leaves_the_pipeline_as_before(monkeypatch: pytest.MonkeyPatch) -> None:
+    # the unit check of the first chunk was done before the core refused it, or a Ctrl-C stopped it:
+    # the pickle differed from the one before, and the chunk sent again was not judged
+    import pickle
+
+    import numpy as np
+
+    import gyrocore
+
+    t = np.arange(100) * 0.01
+    rate = np.full(100, 0.001)
+    bad = rate.copy()
+    bad[50] = np.nan
+    p = gyrocore.Pipeline("hdr", bias=0.0)
+    before = pickle.dumps(p)
+    with pytest.raises(gyrocore.SampleError, match=r"rate\[50\] is NaN"):
+        p.process(t, bad)
+    assert pickle.dumps(p) == before
+
+    def interrupted(*args: object) -> None:
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(gyrocore.Pipeline, "_run", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        p.process(t * 1000, rate)  # in ms: judged, and warned of, once the chunk is taken
+    assert pickle.dumps(p) == before
+    monkeypatch.undo()
+    with pytest.warns(gyrocore.InputWarning, match="timestamps look like ms"):
+        p.process(t * 1000, rate)
