@@ -371,3 +371,41 @@ fn parallel_variances_equal_the_sequential_ones_bit_for_bit() {
         ));
     }
 }
+
+#[cfg(feature = "std")]
+#[test]
+fn stoppable_variances_stop_at_once_when_told_and_are_the_parallel_ones_otherwise() {
+    use gyrocore::allan::variances_stoppable;
+    use std::sync::atomic::AtomicBool;
+    let x: Vec<f64> = random_walk(300_001, 6);
+    let factors = [1usize, 3, 100, 20_000, 70_000];
+    for kind in Variance::ALL {
+        let (mut expected, mut expected_terms) = (vec![0.0; 5], vec![0u64; 5]);
+        variances_parallel(
+            &x,
+            0.5,
+            &factors,
+            kind,
+            2,
+            &mut expected,
+            &mut expected_terms,
+        )
+        .unwrap();
+        let (mut v, mut terms) = (vec![0.0; 5], vec![0u64; 5]);
+        let go = AtomicBool::new(false);
+        for threads in [1, 2] {
+            variances_stoppable(&x, 0.5, &factors, kind, threads, &go, &mut v, &mut terms).unwrap();
+            assert_eq!(terms, expected_terms, "{kind:?}");
+            let bits = |v: &[f64]| v.iter().map(|a| a.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&v), bits(&expected), "{kind:?}");
+        }
+        // Told to stop before the first block: no block is summed, whatever the threads.
+        let stop = AtomicBool::new(true);
+        for threads in [1, 2] {
+            let r =
+                variances_stoppable(&x, 0.5, &factors, kind, threads, &stop, &mut v, &mut terms);
+            assert!(r.is_ok(), "{kind:?}: {r:?}");
+            assert!(v.iter().all(|&s| s == 0.0), "{kind:?}: {v:?}");
+        }
+    }
+}

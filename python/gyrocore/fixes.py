@@ -29,6 +29,7 @@ from ._checks import (
     MAX_READING, check_number, did_you_mean, public_dir, real_number, require_finite, require_increasing,
     require_radians, warn, warn_units,
 )
+from ._inuse import Turn, one_at_a_time
 from .result import fix_output_flags
 from .fixes_stream import TWICE, StreamFixes, say_how_to_wait
 
@@ -262,9 +263,11 @@ class Fusion:
     once). Chunked runs and pickled copies are bit-identical to one call."""
 
     def __init__(self, **settings: float) -> None:
+        self._turn = Turn()
         self._inner = _gyrocore.Fusion(_settings(settings))
         self._fixes = StreamFixes()
 
+    @one_at_a_time
     def process(self, t: ArrayLike, rate: ArrayLike, fixes: FixesLike | None = None) -> FusionResult:
         """Processes one block (``fixes``: :data:`FixesLike`, as every entry point takes them);
         returns the estimate after each of its samples. A fix before one given with an earlier
@@ -282,6 +285,7 @@ class Fusion:
         self._fixes.judge(counts)
         return FusionResult(tt, h, s, b, sc, counts)
 
+    @one_at_a_time
     def check(self, fixes: FixesLike) -> None:
         """Raises the error of the first bad fix among the waiting ones and ``fixes``, every one,
         processing nothing (:meth:`process` checks those its block reaches, and the first past it:
@@ -289,20 +293,27 @@ class Fusion:
         f = as_fixes(fixes)
         self._inner.check(f.t, f.heading, f.sigma)
 
+    @one_at_a_time
     def counts(self) -> dict[str, int]:
         """Fixes applied, rejected, readmitted, before_start, and waiting for a later block."""
         return counts_dict(self._inner.counts())
 
+    @one_at_a_time
     def settings(self) -> dict[str, float]:
         """The filter's settings."""
         return dict(self._inner.settings())
 
+    @one_at_a_time
     def __getstate__(self) -> dict[str, Any]:
         return {"state": self._inner.state_json(), **self._fixes.kept()}
 
     def __setstate__(self, state: dict[str, Any]) -> None:
+        self._turn = Turn()  # a copy's own: it is another stream
         self._inner = _gyrocore.Fusion.from_state_json(state["state"])
         self._fixes = StreamFixes.restored(state)
+
+    #: What a filter is, in the words of a call refused while another thread's runs.
+    _in_use_name = "this gyrocore.fixes.Fusion"
 
 
 def stage_settings(params: dict[str, Any], settings: dict[str, float] | None) -> dict[str, float]:

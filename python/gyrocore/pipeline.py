@@ -16,11 +16,12 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore, rests
 from ._arrays import MASKED_AS_NONFINITE, FloatArray, as_float_array
-from ._checks import public_dir, warn, warn_units
+from ._checks import public_dir, warn
+from ._inuse import Turn, one_at_a_time
 from ._motion import WindowWatch
 from .fixes_stream import StreamFixes, say_how_to_wait
 from .pipeline_input import (
-    refuse_window_without_reading, say_what_to_do, warn_repairs, warn_slow_tracker, warn_speed_outside,
+    TEMPERATURE_MODEL, check_units, refuse_window_without_reading, say_what_to_do, warn_repairs, warn_speed_outside,
 )
 from .pipeline_params import (
     BIAS_SOURCES,
@@ -63,13 +64,6 @@ __dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 #: counts (applied, rejected, re-admitted, before the first sample, waiting for a later block).
 _Fused = tuple[FloatArray | None, FloatArray | None, FloatArray | None, tuple[int, int, int, int, int]]
 
-#: Parameters of FOG eq 5's temperature model: without one, a temperature given is not used.
-TEMPERATURE_MODEL = ("temp_slope", "temp_offset")
-
-
-#: Samples a stream's unit check waits for (one interval): a first chunk of one sample has none.
-UNIT_SAMPLES = 2
-
 #: :meth:`Pipeline.process`'s ``index_offset`` is below this: any index of a chunk added to it fits
 #: the core's 64-bit index.
 MAX_INDEX = 2**63
@@ -105,6 +99,7 @@ class Pipeline:
     def __init__(
         self, preset: str = "recommended", *, fusion: dict[str, float] | None = None, **overrides: Any
     ) -> None:
+        self._turn = Turn()
         refuse_window_objects(overrides)
         si = _to_si(overrides)
         self._inner = core_pipeline(preset, si)
@@ -135,15 +130,18 @@ class Pipeline:
         return self._preset
 
     @property
+    @one_at_a_time
     def params(self) -> dict[str, Any]:
         """The full flat SI parameter set in use."""
         return dict(self._inner.params())
 
     @property
+    @one_at_a_time
     def bias(self) -> float:
         """The static bias in use now [rad/s] (what the gyro reads at rest)."""
         return float(self._inner.bias()[0])
 
+    @one_at_a_time
     def process(
         self,
         t: ArrayLike,
@@ -214,31 +212,38 @@ class Pipeline:
         ra = as_float_array("rate", rate, masked=MASKED_AS_NONFINITE)
         temp = None if temperature is None else as_float_array("temperature", temperature)
         refuse_window_without_reading(self._inner, ta, ra, temp, self._first_time)
-        if self._unit_head is not None and len(ta):
-            self._check_units(ta, ra, temp)
-        flags = output_flags(outputs)
-        inner, fix_block = self._fix_block(fixes)
-        rests.refuse_speed_t_alone(speed, speed_t)
-        if speed is not None and not self.params["track_rests"]:
-            raise ValueError("speed is given but rest tracking is off: pass track_rests=True, or no speed")
-        sa = None if speed is None else rests.speed_at(ta, speed, speed_t)
-        if speed_t is not None and sa is not None and not self._speed_said and inner.last_time() is not None:
-            # not of a first chunk: one call's log may well outlast its odometry
-            self._speed_said = warn_speed_outside(ta, sa, speed_t)
-        inputs = {"t": (t, ta), "rate": (rate, ra), "temperature": (temperature, temp), "speed": (speed, sa)}
-        given = out_arrays(out, outputs, len(ta), inputs)
-        before = inner.report()
-        window = None if self._watch.checked else self._window(ta)  # none once it is checked
-        measuring = window is not None and inner.bias()[2]
+        # put back unless the core takes the chunk: a refused or interrupted (Ctrl-C) first chunk left the
+        # unit check done, and the pipeline's pickle differed from the one before it
+        head = self._unit_head
         try:
-            heading, out_rate, drift, found, fused = self._run(
-                inner, ta, ra, temp, index_offset, (flags, fix_output_flags(outputs)), sa, fix_block, given
-            )
-        except _gyrocore.SampleError as e:
-            say_what_to_do(e, ta, inner.last_time(), index_offset, self.params["nonfinite"])
-            raise
-        except ValueError as e:
-            say_how_to_wait(e)
+            if self._unit_head is not None and len(ta):
+                self._unit_head = check_units(self._unit_head, ta, ra, temp, self.params)
+            flags = output_flags(outputs)
+            inner, fix_block = self._fix_block(fixes)
+            rests.refuse_speed_t_alone(speed, speed_t)
+            if speed is not None and not self.params["track_rests"]:
+                raise ValueError("speed is given but rest tracking is off: pass track_rests=True, or no speed")
+            sa = None if speed is None else rests.speed_at(ta, speed, speed_t)
+            if speed_t is not None and sa is not None and not self._speed_said and inner.last_time() is not None:
+                # not of a first chunk: one call's log may well outlast its odometry
+                self._speed_said = warn_speed_outside(ta, sa, speed_t)
+            inputs = {"t": (t, ta), "rate": (rate, ra), "temperature": (temperature, temp), "speed": (speed, sa)}
+            given = out_arrays(out, outputs, len(ta), inputs)
+            before = inner.report()
+            window = None if self._watch.checked else self._window(ta)  # none once it is checked
+            measuring = window is not None and inner.bias()[2]
+            try:
+                heading, out_rate, drift, found, fused = self._run(
+                    inner, ta, ra, temp, index_offset, (flags, fix_output_flags(outputs)), sa, fix_block, given
+                )
+            except _gyrocore.SampleError as e:
+                say_what_to_do(e, ta, inner.last_time(), index_offset, self.params["nonfinite"])
+                raise
+            except ValueError as e:
+                say_how_to_wait(e)
+                raise
+        except BaseException:
+            self._unit_head = head
             raise
         # kept only once the core took the chunk: the readings of a refused one, sent again mended,
         # were kept twice (a pickle of the refused pipeline differed from the one before)
@@ -266,30 +271,6 @@ class Pipeline:
         self._fixes.judge(counts)
         return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found), heading_sigma=sigma,
                              fusion=FusionResult(ta, heading, sigma, bias, scale, counts), report=report)
-
-    def _check_units(self, t: FloatArray, rate: FloatArray, temperature: FloatArray | None) -> None:
-        """Warns of rates or timestamps that look like another unit, and of a rest tracker whose
-        blocks are too short for the stream's rate, once the stream has an interval to judge: a
-        robot's first chunk of one sample has none, and its timestamps in ms were never judged
-        (the later chunks were not looked at), where one call warned."""
-        assert self._unit_head is not None
-        held_t, held_rate = self._unit_head
-        if not len(held_t) and temperature is not None and not any(
-                self.params.get(k) is not None for k in TEMPERATURE_MODEL):
-            warn(
-                f"temperature is given but no temperature model ({', '.join(TEMPERATURE_MODEL)}) is set: it is "
-                "not used; set the model (e.g. calibration.rotary_table's) or leave the temperature out"
-            )
-        # a first chunk is judged as it is: copied whole behind nothing held, a long log's times and
-        # readings took two more arrays as long as the log (2.1 s of a call of 5*10^7 samples)
-        head_t, head_rate = (t, rate) if not len(held_t) else (np.concatenate((held_t, t)),
-                                                                np.concatenate((held_rate, rate)))
-        if len(head_t) < UNIT_SAMPLES:  # held as copies: a caller may fill its arrays anew for the next chunk
-            self._unit_head = (np.array(head_t), np.array(head_rate))
-            return
-        warn_units(head_t, head_rate)
-        warn_slow_tracker(head_t, self.params)
-        self._unit_head = None
 
     def _new_watch(self) -> WindowWatch:
         """A watch of the rest window, done already with a fixed bias (nothing to watch per chunk)."""
@@ -345,6 +326,7 @@ class Pipeline:
         return heading, out_rate, drift, [rests.from_core(r, origin) for r in found], fused
 
     @property
+    @one_at_a_time
     def last_time(self) -> float | None:
         """The time [s] of the last sample processed (None before the first): the next chunk
         starts after it. A pipeline resumed from a pickle holds every sample up to it, so a
@@ -352,17 +334,20 @@ class Pipeline:
         return self._inner.last_time()
 
     @property
+    @one_at_a_time
     def rests(self) -> list[Rest]:
         """With ``track_rests=True``, every rest found so far, in order (see :class:`gyrocore.rests.Rest`)."""
         return list(self._rests)
 
     @property
+    @one_at_a_time
     def tracked_bias(self) -> tuple[float, float | None] | None:
         """With ``track_rests=True``, the filtered bias [rad/s] and its standard error now [rad/s]
         (None before the first rest or rest window); None without rest tracking."""
         tracker = self._inner.rest_tracker()
         return None if tracker is None else (tracker[0], tracker[1])
 
+    @one_at_a_time
     def finish(self) -> None:
         """Call after the last chunk of a log: raises :class:`RestWindowError` if the rest window
         reaches past the log's end (a ``bias_window`` after the log, or a ``bias_duration`` longer
@@ -387,6 +372,7 @@ class Pipeline:
         # readings are all there is, as whole mode counts them (one at t = 0 of (0, 0) passed).
         refuse_few_readings(rest_window_text(p), count)
 
+    @one_at_a_time
     def reset(self) -> None:
         """Return to the state before the first sample (same parameters): what follows is
         checked and warned about as a new pipeline's first samples are."""
@@ -394,6 +380,7 @@ class Pipeline:
         self._start_stream()
 
     @property
+    @one_at_a_time
     def rest_statistics(self) -> dict[str, float] | None:
         """What the rest window measured besides the bias, once it is over: ``noise``, the standard
         deviation of one reading [rad/s], and ``bias_std_error``, the standard error of the static
@@ -403,10 +390,12 @@ class Pipeline:
         return None if stats is None else {"noise": stats[0], "bias_std_error": stats[1]}
 
     @property
+    @one_at_a_time
     def report(self) -> dict[str, float]:
         """What the input policy did so far: ``held``, ``skipped``, ``gaps``, ``longest_gap`` [s]."""
         return dict(self._inner.report())
 
+    @one_at_a_time
     def __getstate__(self) -> dict[str, Any]:
         return {
             "preset": self._preset,
@@ -422,6 +411,7 @@ class Pipeline:
         }
 
     def __setstate__(self, state: dict[str, Any]) -> None:
+        self._turn = Turn()  # a copy's own: it is another stream
         self._preset = state["preset"]
         self._inner = _gyrocore.Pipeline.from_state_json(state["state"])
         head = state.get("unit_head", None if self._inner.last_time() is not None else ([], []))
@@ -435,7 +425,14 @@ class Pipeline:
         self._speed_said = False
         self._repairs_said = set(state.get("repairs_said", []))
 
+    @property
+    def _in_use_name(self) -> str:
+        """What this pipeline is, in the words of a call refused while another thread's runs."""
+        return f"this gyrocore.Pipeline (preset {self._preset!r})"
+
     def __repr__(self) -> str:
+        if self._turn.busy():  # its parameters are out of reach while the other call runs
+            return f"Pipeline(preset={self._preset!r}, in use by another thread)"
         return f"Pipeline(preset={self._preset!r}, params={self.params!r})"
 
 

@@ -11,7 +11,7 @@ from numpy.typing import ArrayLike
 
 from . import _gyrocore
 from ._arrays import FloatArray
-from ._checks import MAX_READING, keep_readings, usable, warn
+from ._checks import MAX_READING, keep_readings, usable, warn, warn_units
 from .window import RestWindowError, ends_before_first, no_usable_reading, refuse_start_before
 
 
@@ -147,6 +147,37 @@ def warn_speed_outside(t: FloatArray, speed: FloatArray, speed_t: ArrayLike) -> 
          "until the speed covers it, and give the speed from its last sample before the chunk's first on "
          "(docs/python.md)")
     return True
+
+
+#: Parameters of FOG eq 5's temperature model: without one, a temperature given is not used.
+TEMPERATURE_MODEL = ("temp_slope", "temp_offset")
+
+#: Samples a stream's unit check waits for (one interval): a first chunk of one sample has none.
+UNIT_SAMPLES = 2
+
+
+def check_units(held: tuple[FloatArray, FloatArray], t: FloatArray, rate: FloatArray,
+                temperature: FloatArray | None, params: dict[str, Any]) -> tuple[FloatArray, FloatArray] | None:
+    """Warns of rates or timestamps that look like another unit, and of a rest tracker whose
+    blocks are too short for the stream's rate, once the stream has an interval to judge: a
+    robot's first chunk of one sample has none, and its timestamps in ms were never judged
+    (the later chunks were not looked at), where one call warned. ``held`` are the samples of the
+    stream kept so far for it; returns those to keep, or None once the stream is judged."""
+    held_t, held_rate = held
+    if not len(held_t) and temperature is not None and not any(params.get(k) is not None for k in TEMPERATURE_MODEL):
+        warn(
+            f"temperature is given but no temperature model ({', '.join(TEMPERATURE_MODEL)}) is set: it is "
+            "not used; set the model (e.g. calibration.rotary_table's) or leave the temperature out"
+        )
+    # a first chunk is judged as it is: copied whole behind nothing held, a long log's times and
+    # readings took two more arrays as long as the log (2.1 s of a call of 5*10^7 samples)
+    head_t, head_rate = (t, rate) if not len(held_t) else (np.concatenate((held_t, t)),
+                                                            np.concatenate((held_rate, rate)))
+    if len(head_t) < UNIT_SAMPLES:  # held as copies: a caller may fill its arrays anew for the next chunk
+        return (np.array(head_t), np.array(head_rate))
+    warn_units(head_t, head_rate)
+    warn_slow_tracker(head_t, params)
+    return None
 
 
 def warn_slow_tracker(t: FloatArray, params: dict[str, Any]) -> None:

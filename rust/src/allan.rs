@@ -146,16 +146,29 @@ pub fn variances(
     variance: &mut [f64],
     terms: &mut [u64],
 ) -> Result<(), Error> {
+    summed(x, tau0, factors, kind, || true, variance, terms)
+}
+
+/// [`variances`] on this thread as long as `go_on()` (see [`visit_blocks`]).
+fn summed(
+    x: &[f64],
+    tau0: f64,
+    factors: &[usize],
+    kind: Variance,
+    go_on: impl Fn() -> bool,
+    variance: &mut [f64],
+    terms: &mut [u64],
+) -> Result<(), Error> {
     check_request(x, tau0, factors, kind, variance, terms)?;
     variance.fill(0.0);
     // Each factor's blocks come in block order, so this is the block sums added in block order.
-    visit_blocks(
-        x,
-        kind,
-        factors,
-        |_, blocks| 0..blocks,
-        |k, _, sum| variance[k] += sum,
-    );
+    let all = |_, blocks| 0..blocks;
+    visit_blocks(x, kind, factors, all, &go_on, |k, _, sum| {
+        variance[k] += sum
+    });
+    if !go_on() {
+        return Ok(()); // stopped: the sums are partial, and nothing reads them
+    }
     normalise(x.len(), tau0, factors, kind, variance, terms);
     check_phase(x, kind, factors, variance)
 }
@@ -177,6 +190,30 @@ pub fn variances_parallel(
     variance: &mut [f64],
     terms: &mut [u64],
 ) -> Result<(), Error> {
+    let never = std::sync::atomic::AtomicBool::new(false);
+    variances_stoppable(x, tau0, factors, kind, threads, &never, variance, terms)
+}
+
+/// [`variances_parallel`] that gives up once `stop` is set (by another thread: a Ctrl-C of a
+/// long record), each thread at its next block of 8192 terms; `variance` and `terms` are then
+/// unspecified, and the caller that set `stop` knows not to read them. A long record at a
+/// modified variance takes tens of seconds; looking at `stop` costs a load per block.
+///
+/// Errors: as [`variances`].
+#[cfg(feature = "std")]
+#[allow(clippy::too_many_arguments)]
+pub fn variances_stoppable(
+    x: &[f64],
+    tau0: f64,
+    factors: &[usize],
+    kind: Variance,
+    threads: usize,
+    stop: &std::sync::atomic::AtomicBool,
+    variance: &mut [f64],
+    terms: &mut [u64],
+) -> Result<(), Error> {
+    use std::sync::atomic::Ordering;
+    let go_on = || !stop.load(Ordering::Relaxed);
     check_request(x, tau0, factors, kind, variance, terms)?;
     let counts: Vec<usize> = factors
         .iter()
@@ -185,7 +222,7 @@ pub fn variances_parallel(
     let total = counts.iter().sum();
     let threads = threads.min(total / MIN_BLOCKS_PER_THREAD);
     if threads <= 1 {
-        return variances(x, tau0, factors, kind, variance, terms);
+        return summed(x, tau0, factors, kind, go_on, variance, terms);
     }
     let mut table = vec![0.0; total];
     std::thread::scope(|scope| {
@@ -196,12 +233,15 @@ pub fn variances_parallel(
             let counts = &counts;
             scope.spawn(move || {
                 let mine = |_: usize, blocks: usize| share(blocks, t, threads);
-                visit_blocks(x, kind, factors, mine, |k, b, sum| {
+                visit_blocks(x, kind, factors, mine, go_on, |k, b, sum| {
                     rows[k][b - share(counts[k], t, threads).start] = sum;
                 });
             });
         }
     });
+    if !go_on() {
+        return Ok(()); // stopped: the sums are partial, and nothing reads them
+    }
     let mut sums = table.as_slice();
     for (v, &count) in variance.iter_mut().zip(&counts) {
         let (row, rest) = sums.split_at(count);
@@ -390,7 +430,8 @@ impl Blocks {
 }
 
 /// Calls `visit(k, b, sum)` with the sum of every block `b` in `share(k, number of blocks)` of
-/// factor `factors[k]`, each factor's blocks in increasing order. The short factors go block
+/// factor `factors[k]`, each factor's blocks in increasing order, as long as `go_on()` (asked
+/// before each block). The short factors go block
 /// by block, all of them at each block, while its window of `x` is in cache; then the others
 /// one after the other (each reads its three or four streams of `x` from memory anyway).
 fn visit_blocks(
@@ -398,6 +439,7 @@ fn visit_blocks(
     kind: Variance,
     factors: &[usize],
     share: impl Fn(usize, usize) -> Range<usize>,
+    go_on: impl Fn() -> bool,
     mut visit: impl FnMut(usize, usize, f64),
 ) {
     let blocks = |k: usize| Blocks::new(kind, x.len(), factors[k]);
@@ -406,12 +448,18 @@ fn visit_blocks(
     let first = short.clone().map(|k| mine(k).start).min().unwrap_or(0);
     let end = short.clone().map(|k| mine(k).end).max().unwrap_or(0);
     for b in first..end {
+        if !go_on() {
+            return;
+        }
         for k in short.clone().filter(|&k| mine(k).contains(&b)) {
             visit(k, b, blocks(k).sum(x, b));
         }
     }
     for k in (0..factors.len()).filter(|&k| !blocks(k).is_short()) {
         for b in mine(k) {
+            if !go_on() {
+                return;
+            }
             visit(k, b, blocks(k).sum(x, b));
         }
     }

@@ -9,6 +9,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::arrays::{fill, slice, zeros, Array};
+use crate::fused::{of_block, part, Block, PIECE};
+use crate::interrupt::{detach_watched, Stop};
 use crate::pending::Pending;
 use crate::settings::{names, set_all, values, Field};
 use crate::value_error;
@@ -122,7 +124,8 @@ type Columns<'py> = (Array<'py>, Array<'py>, Array<'py>, Array<'py>);
 
 /// Runs the filter over one block into four new arrays: its estimates, or with `knots` the
 /// smoothed ones (a forward pass recording the knots, the backward pass over them, and a second
-/// forward pass of a fresh filter writing the smoothed estimates).
+/// forward pass of a fresh filter writing the smoothed estimates). A Ctrl-C stops a long block
+/// (see [`interrupt`](crate::interrupt)) between pieces of a forward pass.
 fn run<'py>(
     py: Python<'py>,
     fusion: &mut Fusion,
@@ -134,21 +137,63 @@ fn run<'py>(
     let n = t.len();
     let cols = (zeros(py, n), zeros(py, n), zeros(py, n), zeros(py, n));
     let used = fill([&cols.0, &cols.1, &cols.2, &cols.3], |[h, s, b, sc]| {
-        py.detach(|| {
+        detach_watched(py, n, |stop| {
+            let samples = (t, rate, fixes);
             let Some(knots) = knots else {
-                return fusion.process_block(t, rate, fixes, FusionOutputs::all(h, s, b, sc));
+                return forward(samples, stop, [h, s, b, sc], |t, r, f, o| {
+                    fusion.process_block(t, r, f, o)
+                });
             };
             let mut again = Fusion::new(*fusion.config())?;
             // The smoother overwrites every column: the forward pass writes one.
-            let out = FusionOutputs::heading(h);
-            fusion.process_block_recording(t, rate, fixes, out, |k| knots.push(k))?;
+            forward(samples, stop, [&mut *h], |t, r, f, o| {
+                fusion.process_block_recording(t, r, f, o, |k| knots.push(k))
+            })?;
+            if stop.requested() {
+                return Ok(0);
+            }
             // Singular knots cannot happen with validated settings (all variances > 0).
             smooth(knots);
-            again.process_block_smoothed(t, rate, fixes, knots, FusionOutputs::all(h, s, b, sc))
+            // The knots are found by the count of fixes applied, whatever the pieces.
+            forward(samples, stop, [h, s, b, sc], |t, r, f, o| {
+                again.process_block_smoothed(t, r, f, knots, o)
+            })
         })
-    })?
+    })??
     .map_err(fusion_error)?;
     Ok((cols, used))
+}
+
+/// `step` (a filter's block call) over (t, rate, fixes) piece by piece until `stop`, into the
+/// columns `out` (heading, then heading sigma, bias and scale where given): the number of fixes
+/// used, and errors as one call's.
+fn forward<const N: usize>(
+    (t, rate, fixes): (&[f64], &[f64], &[Fix]),
+    stop: &Stop,
+    out: [&mut [f64]; N],
+    mut step: impl FnMut(&[f64], &[f64], &[Fix], FusionOutputs<'_>) -> Result<usize, FusionError>,
+) -> Result<usize, FusionError> {
+    let mut out = out.map(Some);
+    let mut used = 0;
+    let block = Block {
+        t,
+        rate,
+        temperature: None,
+        speed: None,
+    };
+    block.pieces(stop, |piece, range| {
+        let mut columns = out.iter_mut().map(|o| part(o, &range));
+        let estimates = FusionOutputs {
+            heading: columns.next().flatten().unwrap_or_default(),
+            heading_sigma: columns.next().flatten(),
+            bias: columns.next().flatten(),
+            scale: columns.next().flatten(),
+        };
+        used += step(piece.t, piece.rate, &fixes[used..], estimates)
+            .map_err(|e| of_block(e, range.start, used))?;
+        Ok::<(), FusionError>(())
+    })?;
+    Ok(used)
 }
 
 /// Whole-log fusion: (heading, heading_sigma, bias, scale, counts), causal or smoothed.
@@ -226,6 +271,8 @@ impl PyFusion {
         fix_sigma: PyReadonlyArray1<'py, f64>,
     ) -> PyResult<Columns<'py>> {
         let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
+        // The core puts back the one piece it refuses; this the pieces before (and a Ctrl-C's).
+        let before = (t.len() > PIECE).then_some(self.inner);
         let mark = self
             .pending
             .append(fixes_from(&fix_t, &fix_heading, &fix_sigma)?);
@@ -235,9 +282,12 @@ impl PyFusion {
                 Ok(cols)
             }
             Err(e) => {
-                let before = self.pending.before(mark);
+                if let Some(before) = before {
+                    self.inner = before;
+                }
+                let waiting = self.pending.before(mark);
                 self.pending.undo(mark);
-                Err(renumbered(py, before, e))
+                Err(renumbered(py, waiting, e))
             }
         }
     }

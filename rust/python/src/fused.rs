@@ -2,15 +2,17 @@
 //! core's `FusedPipeline`) and the fixes given ahead of the samples that reach them.
 
 use gyrocore::{
-    Fix, FusedOutputs, FusedPipeline, Outputs, Pipeline, PipelineConfig, Rest, Samples,
+    Fix, FusedOutputs, FusedPipeline, FusionError, Outputs, Pipeline, PipelineConfig, Rest, Samples,
 };
 use numpy::PyReadonlyArray1;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use std::ops::Range;
 
 use crate::arrays::{fill_some, output, zeros, Array};
 use crate::fixes::{config_from, fixes_from, fusion_error, renumbered};
+use crate::interrupt::{detach_watched, Stop};
 use crate::pending::Pending;
 use crate::value_error;
 
@@ -34,11 +36,76 @@ pub(crate) enum Core {
 }
 
 /// A block's samples as the binding received them.
+#[derive(Clone, Copy)]
 pub(crate) struct Block<'a> {
     pub(crate) t: &'a [f64],
     pub(crate) rate: &'a [f64],
     pub(crate) temperature: Option<&'a [f64]>,
     pub(crate) speed: Option<&'a [f64]>,
+}
+
+/// Samples per piece of a long block, between looks for a Ctrl-C: a few milliseconds of work,
+/// and a call of the core per piece costs nothing next to it.
+pub(crate) const PIECE: usize = 1 << 16;
+
+impl<'a> Block<'a> {
+    /// Runs `f` on the block piece by piece, in order, each with its range of samples, until
+    /// `stop` is requested or a piece fails (the core then puts back that piece; the caller the
+    /// pieces before). A block whose arrays differ in length goes whole: the core names that.
+    pub(crate) fn pieces<E>(
+        &self,
+        stop: &Stop,
+        mut f: impl FnMut(Block<'_>, Range<usize>) -> Result<(), E>,
+    ) -> Result<(), E> {
+        let n = self.t.len();
+        let others = [Some(self.rate), self.temperature, self.speed];
+        if others.iter().flatten().any(|a| a.len() != n) {
+            return f(*self, 0..n);
+        }
+        let mut start = 0;
+        loop {
+            let end = n.min(start + PIECE);
+            let part = |a: &'a [f64]| &a[start..end];
+            let piece = Block {
+                t: part(self.t),
+                rate: part(self.rate),
+                temperature: self.temperature.map(part),
+                speed: self.speed.map(part),
+            };
+            f(piece, start..end)?;
+            start = end;
+            if start == n || stop.requested() {
+                return Ok(());
+            }
+        }
+    }
+}
+
+/// The samples `range` of an output, if it is asked for.
+pub(crate) fn part<'a>(
+    out: &'a mut Option<&mut [f64]>,
+    range: &Range<usize>,
+) -> Option<&'a mut [f64]> {
+    out.as_deref_mut().map(|o| &mut o[range.clone()])
+}
+
+/// The error of a piece that starts at sample `start`, `used` fixes after the block's first, as
+/// the whole block's.
+pub(crate) fn of_block(e: FusionError, start: usize, used: usize) -> FusionError {
+    match e {
+        FusionError::Gyro(e) => FusionError::Gyro(e.with_index_offset(start)),
+        FusionError::Fix {
+            index,
+            what,
+            value,
+            problem,
+        } => FusionError::Fix {
+            index: index + used,
+            what,
+            value,
+            problem,
+        },
+    }
 }
 
 /// The fix stage's columns of a block: heading sigma, bias, scale (each None unless asked for),
@@ -108,8 +175,29 @@ impl Core {
 
     /// Runs a block; `fixes` (t, heading, sigma) only with the fix stage; `wanted` says which
     /// outputs are asked for and which arrays of the caller's are filled. Errors count sample
-    /// indices from `index_offset`.
+    /// indices from `index_offset`. A long block goes piece by piece and stops at a Ctrl-C (see
+    /// [`interrupt`](crate::interrupt)); after any error, the interrupt's too, the state is as
+    /// before the block.
     pub(crate) fn process<'py>(
+        &mut self,
+        py: Python<'py>,
+        block: &Block<'_>,
+        fixes: Option<[PyReadonlyArray1<'py, f64>; 3]>,
+        wanted: Wanted<'py>,
+        index_offset: usize,
+        on_rest: &mut (dyn FnMut(Rest) + Send),
+    ) -> PyResult<Processed<'py>> {
+        // The core puts back the one piece it refuses; this puts back the pieces before it.
+        let before = (block.t.len() > PIECE).then(|| self.clone());
+        let result = self.process_pieces(py, block, fixes, wanted, index_offset, on_rest);
+        if let (Err(_), Some(before)) = (&result, before) {
+            *self = before;
+        }
+        result
+    }
+
+    /// [`Core::process`] but for putting back the state after an error.
+    fn process_pieces<'py>(
         &mut self,
         py: Python<'py>,
         block: &Block<'_>,
@@ -124,12 +212,6 @@ impl Core {
         let heading = output(py, OUT[0], given_heading, n, true)?.unwrap_or_else(|| zeros(py, n));
         let out_rate = output(py, OUT[1], given_rate, n, outputs.0)?;
         let drift = output(py, OUT[2], given_drift, n, outputs.1)?;
-        let Block {
-            t,
-            rate,
-            temperature,
-            speed,
-        } = *block;
         let (inner, pending) = match self {
             Core::Plain(pipeline) => {
                 if fixes.is_some() {
@@ -143,24 +225,28 @@ impl Core {
                         named(1, out_rate.as_ref()),
                         named(2, drift.as_ref()),
                     ],
-                    |[h, r, d]| {
-                        py.detach(|| {
-                            let out = Outputs {
-                                heading: h,
-                                rate: r,
-                                drift: d,
-                            };
-                            pipeline.process_block_reporting(
-                                t,
-                                rate,
-                                temperature,
-                                speed,
-                                out,
-                                on_rest,
-                            )
+                    |[mut h, mut r, mut d]| {
+                        detach_watched(py, n, |stop| {
+                            block.pieces(stop, |piece, range| {
+                                let out = Outputs {
+                                    heading: part(&mut h, &range),
+                                    rate: part(&mut r, &range),
+                                    drift: part(&mut d, &range),
+                                };
+                                pipeline
+                                    .process_block_reporting(
+                                        piece.t,
+                                        piece.rate,
+                                        piece.temperature,
+                                        piece.speed,
+                                        out,
+                                        on_rest,
+                                    )
+                                    .map_err(|e| e.with_index_offset(range.start))
+                            })
                         })
                     },
-                )?
+                )??
                 .map_err(|e| value_error(e.with_index_offset(index_offset)))?;
                 return Ok((heading, out_rate, drift, None));
             }
@@ -186,26 +272,35 @@ impl Core {
                 scale.as_ref().map(|a| ("scale", a)),
                 named(2, drift.as_ref()),
             ],
-            |[h, r, s, bi, sc, dr]| {
-                py.detach(|| {
-                    let out = FusedOutputs {
-                        heading: h.unwrap_or_default(),
-                        heading_sigma: s,
-                        bias: bi,
-                        scale: sc,
-                        rate: r.unwrap_or_default(),
-                        drift: dr,
-                    };
-                    let samples = Samples {
-                        t,
-                        rate,
-                        temperature,
-                        speed,
-                    };
-                    inner.process_block_reporting(samples, waiting, out, on_rest)
+            |[mut h, mut r, mut s, mut bi, mut sc, mut dr]| {
+                detach_watched(py, n, |stop| {
+                    let mut used = 0;
+                    block
+                        .pieces(stop, |piece, range| {
+                            let out = FusedOutputs {
+                                heading: part(&mut h, &range).unwrap_or_default(),
+                                heading_sigma: part(&mut s, &range),
+                                bias: part(&mut bi, &range),
+                                scale: part(&mut sc, &range),
+                                rate: part(&mut r, &range).unwrap_or_default(),
+                                drift: part(&mut dr, &range),
+                            };
+                            let samples = Samples {
+                                t: piece.t,
+                                rate: piece.rate,
+                                temperature: piece.temperature,
+                                speed: piece.speed,
+                            };
+                            used += inner
+                                .process_block_reporting(samples, &waiting[used..], out, on_rest)
+                                .map_err(|e| of_block(e, range.start, used))?;
+                            Ok(())
+                        })
+                        .map(|()| used)
                 })
             },
-        );
+        )
+        .and_then(|watched| watched);
         // A failed block changes nothing: its new fixes go again.
         let used = match result {
             Ok(Ok(used)) => used,

@@ -5,6 +5,7 @@ mod allan;
 mod arrays;
 mod fixes;
 mod fused;
+mod interrupt;
 mod params;
 mod pending;
 mod prefault;
