@@ -41,6 +41,7 @@ from typing import TYPE_CHECKING, Any
 
 from ._checks import InputWarning, public_dir
 from ._gyrocore import SampleError, __version__
+from ._inuse import InUseError
 from .integration import downsample, integrate
 from .pipeline import (
     HeadingResult,
@@ -85,6 +86,7 @@ __dir__ = public_dir(__name__)
 __all__ = [
     "HeadingErrors",
     "HeadingResult",
+    "InUseError",
     "InputWarning",
     "Log",
     "Pipeline",

@@ -17,7 +17,7 @@ import pytest
 
 import gyrocore
 from gyrocore import fixes
-from gyrocore._inuse import InUseError
+from gyrocore import InUseError
 
 IN_USE = r"is in use by another thread \(its {call} runs there\): a stream takes one call at a time"
 
