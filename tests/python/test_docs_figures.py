@@ -292,3 +292,18 @@ def test_the_simulated_drive_figures_of_the_whole_log_page_are_what_evaluate_pri
     text = " ".join((ROOT / "docs" / "whole_log.md").read_text(encoding="utf-8").split())
     assert (f"`gyrocore simulate`'s default drive: {largest[True]:.2f} deg with the speed; with `--no-speed` "
             f"35.9 deg before rests from the rate alone had to be rests, {largest[False]:.1f} deg since") in text
+
+
+def test_the_sample_logs_rest_figures_are_what_the_calibration_gives() -> None:
+    # docs/rest_tracking.md "The sample log's rest" gave 0.02437 rad/s for the reference fit's bias,
+    # which is 0.0243647
+    from gyrocore import calibration, datasets
+
+    sample = datasets.sample_drive()
+    found = calibration.static_bias(sample.t, sample.rate)
+    early = calibration.static_bias(sample.t, sample.rate, (0.0, 8.5))
+    fit = calibration.heading_reference(sample.t, sample.rate, *sample.reference())
+    text = " ".join((ROOT / "docs" / "rest_tracking.md").read_text(encoding="utf-8").split())
+    assert (f"The sample's rest is found as 0-{found.window[1]:.1f} s (its first 5.5 s of straight road read the "
+            f"same to a gyro), and the bias from it, {found.bias:.5f} rad/s, against {early.bias:.5f} from 0-8.5 s "
+            f"and {fit.bias:.5f} from the reference fit") in text
