@@ -237,3 +237,15 @@ def test_dead_reckoning_on_another_clock_names_both_spans() -> None:
                                          r"the odometry runs from t = 1700000000.000 to 1700000059.990 s, the heading "
                                          r"from t = 0.000 to 59.990 s; give both on the same clock$"):
         gyrocore.deadreckon.dead_reckon(T + 1.7e9, np.ones_like(T), T, RATE)
+
+
+def test_the_api_page_documents_every_public_module() -> None:
+    """docs/api.md, "the reference of the gyrocore package", left out gyrocore.fixes, rests and
+    wholelog, whose Fusion, Rest and bias_walk the guide pages send a reader to."""
+    from pathlib import Path
+
+    page = (Path(__file__).resolve().parents[2] / "docs" / "api.md").read_text(encoding="utf-8")
+    documented = {line[len("::: gyrocore."):].strip() for line in page.splitlines() if line.startswith("::: gyrocore.")}
+    modules = {n for n in gyrocore.__all__ if isinstance(getattr(gyrocore, n), type(gyrocore))}
+    assert modules == set(PUBLIC_MODULES)
+    assert set(PUBLIC_MODULES) <= documented, sorted(set(PUBLIC_MODULES) - documented)

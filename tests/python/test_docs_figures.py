@@ -274,3 +274,36 @@ def test_the_calibration_pages_spreads_and_moving_shares_are_the_real_logs() -> 
     ratio, beyond = [s[0] for s in first if s], [math.degrees(s[1]) for s in first if s]
     assert (f"first 5 s spread {min(ratio):.1f} (a car still stopped) to {max(ratio):.0f} times and "
             f"{min(beyond):.1f} to {max(beyond):.0f} deg/s beyond") in text
+
+
+def test_the_simulated_drive_figures_of_the_whole_log_page_are_what_evaluate_prints(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # docs/whole_log.md quoted 4.74 deg as the largest error with the speed, where evaluate printed 4.31
+    drive = tmp_path / "drive.csv"
+    assert main(["simulate", "--out", str(drive)]) == 0
+    largest = {}
+    for speed in (True, False):
+        capsys.readouterr()
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", gyrocore.InputWarning)
+            assert main(["evaluate", str(drive), "--preset", "recommended", "--json",
+                         *([] if speed else ["--no-speed"])]) == 0
+        largest[speed] = json.loads(capsys.readouterr().out)[0]["max_error_deg"]
+    text = " ".join((ROOT / "docs" / "whole_log.md").read_text(encoding="utf-8").split())
+    assert (f"`gyrocore simulate`'s default drive: {largest[True]:.2f} deg with the speed; with `--no-speed` "
+            f"35.9 deg before rests from the rate alone had to be rests, {largest[False]:.1f} deg since") in text
+
+
+def test_the_sample_logs_rest_figures_are_what_the_calibration_gives() -> None:
+    # docs/rest_tracking.md "The sample log's rest" gave 0.02437 rad/s for the reference fit's bias,
+    # which is 0.0243647
+    from gyrocore import calibration, datasets
+
+    sample = datasets.sample_drive()
+    found = calibration.static_bias(sample.t, sample.rate)
+    early = calibration.static_bias(sample.t, sample.rate, (0.0, 8.5))
+    fit = calibration.heading_reference(sample.t, sample.rate, *sample.reference())
+    text = " ".join((ROOT / "docs" / "rest_tracking.md").read_text(encoding="utf-8").split())
+    assert (f"The sample's rest is found as 0-{found.window[1]:.1f} s (its first 5.5 s of straight road read the "
+            f"same to a gyro), and the bias from it, {found.bias:.5f} rad/s, against {early.bias:.5f} from 0-8.5 s "
+            f"and {fit.bias:.5f} from the reference fit") in text

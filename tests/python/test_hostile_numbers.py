@@ -223,3 +223,25 @@ def test_the_masked_values_hint_names_what_the_function_offers() -> None:
         with pytest.warns(gyrocore.InputWarning, match="replaced by the last usable reading"):
             held = gyrocore.process(t, rate.filled(np.nan), "hdr", mode=mode, nonfinite="hold", bias=0.0)
         assert held.heading.shape == t.shape
+
+
+def test_readings_beyond_the_limit_are_no_sign_of_degrees() -> None:
+    """Glitches of 1e7 rad/s in 2 % of the samples, held by the input policy, made the unit check
+    say the rates were deg/s and advise numpy.radians, which would have made the log 57 times too
+    small; a reading of 1e308 added numpy's overflow warning before the core's error."""
+    rate = RATE.copy()
+    rate[::50] = 1e7
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        result = gyrocore.process(T, rate, "raw", nonfinite="hold")
+    assert result.report["held"] + result.report["skipped"] == len(rate[::50])
+    messages = [str(w.message) for w in said]
+    assert not [m for m in messages if "deg/s" in m], messages
+    assert any("replaced by the last usable reading" in m for m in messages), messages
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        with pytest.raises(ValueError, match=r"^rate\[1\] = 1e\+?308 rad/s is beyond \+-1048576 rad/s"):
+            gyrocore.process(np.array([0.0, 1.0]), np.array([0.0, 1e308]), "raw")
+    assert not said, [str(w.message) for w in said]
+    with pytest.warns(gyrocore.InputWarning, match=r"^rates look like deg/s, not rad/s"):
+        gyrocore.process(T, np.degrees(0.5 * np.sin(T)), "raw")  # deg/s within the limit still say so

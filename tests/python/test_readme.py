@@ -114,3 +114,26 @@ def test_a_guide_page_that_reads_the_real_logs_says_what_to_use_without_them(pag
     assert "../shared/data/real" in text
     assert "the project's test data, not part of the package" in before
     assert "python -m gyrocore.datasets sample_drive" in before
+
+
+def test_the_python_page_shows_what_its_table_example_scores() -> None:
+    # it showed raw 214.115 and recommended 4.373 deg where the example printed 214.116 and 4.337,
+    # and said 213.688 for the log without a rest window, which scores 213.689
+    import warnings
+
+    import gyrocore
+    from gyrocore import datasets
+
+    sample = datasets.sample_drive()
+    rows = gyrocore.evaluate.compare([gyrocore.Log("drive 3", sample.t, sample.rate, t_ref=sample.t_ref,
+                                                   heading_ref=sample.heading_ref, stationary=(0.0, 60.0))],
+                                     ["raw", "recommended"])
+    _in_order(_shown("docs/python.md", "rows"), repr(rows))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrocore.InputWarning)
+        raw, recommended = gyrocore.evaluate.compare(
+            [gyrocore.Log("drive 3", sample.t, sample.rate, t_ref=sample.t_ref, heading_ref=sample.heading_ref)],
+            ["raw", "recommended"])
+    text = " ".join((ROOT / "docs" / "python.md").read_text(encoding="utf-8").split())
+    assert (f"`recommended` scores {recommended.errors.e_psi_deg:.3f} deg, about raw integration's "
+            f"{raw.errors.e_psi_deg:.3f}") in text
