@@ -23,10 +23,9 @@ import numpy as np
 
 from ._checks import did_you_mean, json_ready
 from .evaluate import Failed, Method, Reference
-from .evaluate_compare import warn_partial_reference
+from .evaluate_compare import raw_baseline, warn_partial_reference
 from .fixes import Fixes
 from .io import Log
-from .pipeline import process
 from .sim_gnss import SIGMA_DEG, edge_rounding, gnss_fixes, inside_outage
 
 
@@ -181,7 +180,8 @@ def score_with_fixes(log: Log, methods: Sequence[Method], fixes: Fixes, label: s
     """Every method on ``log`` with ``fixes`` (``run``: :meth:`Method.run`'s keywords)."""
     reference = Reference(*log.reference())
     warn_partial_reference(log)
-    tr_raw, err_raw, _ = reference.compared(log.t, process(log.t, log.rate, "raw").heading)
+    raw_result = raw_baseline(log, methods)  # refused a NaN reading that --param nonfinite=hold let through
+    tr_raw, err_raw, _ = reference.compared(raw_result.t, raw_result.heading)
     raw = float(np.degrees(np.abs(err_raw)).mean())
     with_fixes = replace(log, fixes=fixes)
     rows = []

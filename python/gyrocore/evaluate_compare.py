@@ -237,6 +237,13 @@ def _odometry_overlaps(log: Log, result: HeadingResult) -> bool:
 INPUT_POLICY = ("nonfinite", "gap_limit", "gap_action")
 
 
+def raw_baseline(log: Log, methods: Sequence[Method]) -> HeadingResult:
+    """Plain integration of ``log``, the baseline of :func:`improvement`, under the methods' input
+    policy (:data:`INPUT_POLICY`): with ``nonfinite=hold`` every method took a NaN reading that
+    the baseline refused, so the log could not be scored at all."""
+    return process(log.t, log.rate, "raw", **{k: v for k, v in methods[0].overrides.items() if k in INPUT_POLICY})
+
+
 def compare(
     logs: Sequence[Log | str | Path],
     presets: Sequence[str | Method],
@@ -290,26 +297,23 @@ def compare(
     require_flag("use_speed", use_speed)  # "no" was True
     if plot_dir is not None:
         _pyplot()  # fail before the work if plots cannot be drawn
-    policy = {k: v for k, v in methods[0].overrides.items() if k in INPUT_POLICY}
     rows: list[Score] = []
     for item in logs:
         log = item if isinstance(item, Log) else read_log(item)
         plot = None if plot_dir is None else plot_path(plot_dir, log)
         with kept_outputs([] if plot is None else [plot], overwrite, "overwrite=True"):  # before its work
-            rows += _scored(log, methods, policy, bias_duration, mode, use_speed, plot, overwrite)
+            rows += _scored(log, methods, bias_duration, mode, use_speed, plot, overwrite)
     return rows
 
 
-def _scored(log: Log, methods: Sequence[Method], policy: Mapping[str, Any], bias_duration: float | None,
+def _scored(log: Log, methods: Sequence[Method], bias_duration: float | None,
             mode: str, use_speed: bool, plot: Path | None, overwrite: bool) -> list[Score]:
     """:func:`compare`'s rows of one log, and its plot at ``plot``."""
     rows: list[Score] = []
     try:
         reference = log.reference()  # before any work
         warn_partial_reference(log)
-        # under the methods' input policy: --param nonfinite=hold took a NaN for every method
-        # and the baseline refused it, so the log could not be scored at all
-        raw_result = process(log.t, log.rate, "raw", **policy)
+        raw_result = raw_baseline(log, methods)
         raw = heading_errors(raw_result.t, raw_result.heading, *reference)
         results = {}
         for method in methods:
