@@ -17,6 +17,7 @@ from .._checks import did_you_mean
 from .._gyrocore import __version__
 from . import allan, calibrate, demo, evaluate, presets, process, reproduce, simulate, tune
 from ..batch_run import BatchInterrupted
+from ..tune import TuningInterrupted
 from ..io._paths import error_text, one_line
 from ..io.atomic import discard_all, outputs_checked
 from ._common import SAMPLE_LOG_NOTE, USER_ERRORS, show_warning
@@ -138,6 +139,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             if isinstance(e, BatchInterrupted) and str(e):  # their outputs are complete: no need to redo them
                 finished = (f"; {e}; to go on, run it again with --skip-existing: it processes only the inputs "
                             "without an output")
+            elif isinstance(e, TuningInterrupted):  # minutes of fitting: its best, to hold with --set
+                finished = f"; {e}"
             print(f"gyrocore: interrupted; no partial output was left{finished}", file=sys.stderr)
             return 130
 
