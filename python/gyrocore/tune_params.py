@@ -51,6 +51,8 @@ class ParameterSet:
                 raise ValueError(f"\"{key}\" must be a string, got {reprlib.repr(value)}")
             if not value.strip():
                 raise ValueError(f"\"{key}\" must not be empty")
+            if not value.isprintable():  # a line break split the row of evaluate's table that it names
+                raise ValueError(f"\"{key}\" must be one line of text without control characters, got {value!r}")
         bias = [k for k in self.overrides if k in BIAS_SOURCES or k[:-4] in BIAS_SOURCES]
         if bias:
             raise ValueError(

@@ -119,6 +119,9 @@ HEAD = '{"format": "gyrocore-params", "version": 1, "name": "x", "preset": "hdr"
         ('{"format": "gyrocore-params", "version": 1, "name": "", "preset": "hdr", "overrides": {}}',
          '"name" must not be empty'),
         (HEAD + '"overrides": {}, "tuning": 3}', '"tuning" must be an object'),
+        # its line break split evaluate's table and its bias-source lines in two
+        ('{"format": "gyrocore-params", "version": 1, "name": "a\\nb", "preset": "hdr", "overrides": {}}',
+         '"name" must be one line of text without control characters, got \'a\\nb\''),
         # beside the overrides, these were ignored without a word
         (HEAD + '"overrides": {}, "bias_duration": 10}', "unknown key(s) 'bias_duration'; a parameter file holds"),
         (HEAD + '"overrides": {}, "tunning": {}}', "unknown key(s) 'tunning' (did you mean 'tuning'?)"),
