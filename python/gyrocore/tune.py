@@ -44,7 +44,8 @@ from .tune_params import FORMAT_NAME, FORMAT_VERSION, ParameterSet, validate
 
 __all__ = [
     "BOUNDS", "FORMAT_NAME", "FORMAT_VERSION", "HARM_MIXES", "HARM_WEIGHT", "OBJECTIVES", "OPTIMISERS", "Case", "CaseScore",
-    "ParameterSet", "TuningInterrupted", "TuningResult", "default_parameters", "harm_cases", "harm_excess", "check_leave_one_out", "leave_one_out",
+    "ParameterSet", "TuningInterrupted", "TuningResult", "default_parameters", "harm_cases", "harm_excess",
+    "check_leave_one_out", "leave_one_out",
     "mean_log_ratio", "mean_ne_psi", "perfect_gyro", "score_cases", "search_box", "simulated_cases", "start_point", "tune",
     "unbiased_gyro", "validate",
 ]
