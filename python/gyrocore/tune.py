@@ -44,7 +44,8 @@ from .tune_params import FORMAT_NAME, FORMAT_VERSION, ParameterSet, validate
 
 __all__ = [
     "BOUNDS", "FORMAT_NAME", "FORMAT_VERSION", "HARM_MIXES", "HARM_WEIGHT", "OBJECTIVES", "OPTIMISERS", "Case", "CaseScore",
-    "ParameterSet", "TuningResult", "default_parameters", "harm_cases", "harm_excess", "check_leave_one_out", "leave_one_out",
+    "ParameterSet", "TuningInterrupted", "TuningResult", "default_parameters", "harm_cases", "harm_excess",
+    "check_leave_one_out", "leave_one_out",
     "mean_log_ratio", "mean_ne_psi", "perfect_gyro", "score_cases", "search_box", "simulated_cases", "start_point", "tune",
     "unbiased_gyro", "validate",
 ]
@@ -277,6 +278,19 @@ def _start_point(
     return values
 
 
+class TuningInterrupted(KeyboardInterrupt):
+    """Ctrl-C during a fit (:func:`tune`, :func:`leave_one_out`). Its text says how far the fit had
+    come and the best parameters it had found (SI), which the interrupt lost without a word after
+    minutes of fitting; ``best`` holds them (empty where there are none to keep: a fold of the
+    leave-one-out), ``what`` the text before them."""
+
+    def __init__(self, what: str, best: Mapping[str, float]) -> None:
+        values = ", ".join(f"{k}={v!r}" for k, v in best.items())
+        super().__init__(f"{what}: {values}" if values else what)
+        self.what = what
+        self.best = dict(best)
+
+
 class _BudgetSpent(Exception):
     """Raised by an evaluation beyond ``max_evaluations``: it ends the optimiser, whose own limits
     count generations (a population of 8 per parameter, evaluated whole, and at least one generation
@@ -360,9 +374,9 @@ def tune(
         nonlocal evaluations, best
         if evaluations == max_evaluations:
             raise _BudgetSpent
-        evaluations += 1
         overrides = overrides_of(x)
         value = objective_of(overrides)
+        evaluations += 1  # one that ended: an interrupt in it counts it not
         if value < best[0]:
             best = (value, overrides)
         return value
@@ -385,6 +399,11 @@ def tune(
             )
     except _BudgetSpent:  # the best so far is the result
         pass
+    except KeyboardInterrupt:
+        raise TuningInterrupted(
+            f"the fit had run {evaluations} of {max_evaluations} evaluations; the best found (objective "
+            f"{best[0]:.6g}, the start's {start_objective:.6g})", {n: best[1][n] for n in names}
+        ) from None
     objective_value, tuned = best
     train = score_cases(cases, preset, tuned)
     tuned_harm = score_cases(harm, preset, tuned)
@@ -446,6 +465,10 @@ def leave_one_out(
     for i, case in enumerate(cases):
         if progress is not None:
             progress(f"leave-one-out {i + 1}/{len(cases)}: without {case.name}")
-        result = tune([c for j, c in enumerate(cases) if j != i], **options)
+        try:
+            result = tune([c for j, c in enumerate(cases) if j != i], **options)
+        except KeyboardInterrupt:  # how far it came; a fold's best is no held-out score
+            raise TuningInterrupted(f"leave-one-out had scored {i} of {len(cases)} drive(s), and was fitting without "
+                                    f"{case.name}", {}) from None
         held_out.extend(score_cases([case], preset, result.params.overrides))
     return tuple(held_out)

@@ -4,12 +4,13 @@
 from __future__ import annotations
 
 import json
+import re
 import reprlib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
 
-from ._checks import require_version
+from ._checks import did_you_mean, require_version
 from .evaluate import Method
 from .io._jsonfile import read_json
 from .pipeline import BIAS_SOURCES, Pipeline, parameters
@@ -17,6 +18,8 @@ from .pipeline import BIAS_SOURCES, Pipeline, parameters
 #: Version of the preset-file format written by :meth:`ParameterSet.write`.
 FORMAT_VERSION = 1
 FORMAT_NAME = "gyrocore-params"
+#: The keys of a parameter file (:meth:`ParameterSet.to_json`'s); "tuning" holds anything informative.
+_FILE_KEYS = ("format", "version", "name", "preset", "overrides", "units", "tuning")
 
 
 def validate(preset: str, overrides: Mapping[str, Any]) -> None:
@@ -48,6 +51,8 @@ class ParameterSet:
                 raise ValueError(f"\"{key}\" must be a string, got {reprlib.repr(value)}")
             if not value.strip():
                 raise ValueError(f"\"{key}\" must not be empty")
+            if not value.isprintable():  # a line break split the row of evaluate's table that it names
+                raise ValueError(f"\"{key}\" must be one line of text without control characters, got {value!r}")
         bias = [k for k in self.overrides if k in BIAS_SOURCES or k[:-4] in BIAS_SOURCES]
         if bias:
             raise ValueError(
@@ -106,9 +111,44 @@ class ParameterSet:
             raise ValueError(f"{p}: missing key(s) {', '.join(missing)}")
         if not isinstance(data["overrides"], dict):
             raise ValueError(f"{p}: \"overrides\" must be an object of parameter names to SI values")
+        _check_keys_and_units(p, data)
         if not isinstance(data.get("tuning", {}), dict):
             raise ValueError(f"{p}: \"tuning\" must be an object (how the set was found), got {reprlib.repr(data['tuning'])}")
         try:
             return cls(data["name"], data["preset"], data["overrides"], data.get("tuning", {}))
         except (ValueError, TypeError) as e:
             raise ValueError(f"{p}: {e}") from None
+
+
+def _check_keys_and_units(path: Path, data: Mapping[str, Any]) -> None:
+    """Refuse a key the file format does not have (``"bias_duration": 10`` or ``"mode": "causal"``
+    beside the overrides were ignored without a word) and a ``units`` entry that names another
+    unit than the SI one the value is read in (``"hdr_turn_threshold": "deg/s"`` beside 0.5 ran a
+    turn switch of 0.5 rad/s, 29 deg/s)."""
+    unknown = [k for k in data if k not in _FILE_KEYS]
+    if unknown:
+        said = ", ".join(f"{k!r}{did_you_mean(k, _FILE_KEYS)}" for k in unknown)
+        raise ValueError(f"{path}: unknown key(s) {said}; a parameter file holds {', '.join(_FILE_KEYS)} (anything "
+                         "informative goes in \"tuning\"); the static bias and the mode are the command's options")
+    units = data.get("units", {})
+    if not isinstance(units, dict):
+        raise ValueError(f"{path}: \"units\" must be an object of parameter names to their SI units, got "
+                         f"{reprlib.repr(units)}")
+    described = parameters()
+    overrides = data["overrides"]
+    for name, text in units.items():
+        want = _unit_of(described.get(name, ""))
+        if name in overrides and want is not None and _unit_of(text, bare=True) != want:
+            raise ValueError(f"{path}: units give {name} in {text!r}, but a parameter file holds SI values: {name} is "
+                             f"read in [{want}] ({described[name]}); give its value and its unit in [{want}]")
+
+
+def _unit_of(text: object, bare: bool = False) -> str | None:
+    """The unit in brackets of a parameter's description (``Theta_w [rad/s]``: ``rad/s``); None
+    without one. ``bare``: a text without brackets (``deg/s``, as a user writes one) is the unit."""
+    if not isinstance(text, str):
+        return repr(text)
+    found = re.search(r"\[([^\]]*)\]", text)
+    if found:
+        return found.group(1).strip()
+    return text.strip() if bare else None

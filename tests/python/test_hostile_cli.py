@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from .conftest import DATA
+from .conftest import DATA, real_log_path
 from .test_batch import synthetic_csv
 from .test_errors_named import run_cli
 from .test_hostile_inputs import log_folder_with
@@ -368,3 +368,42 @@ def test_evaluate_warns_of_a_gentle_real_drive_in_deg_s(tmp_path: Path) -> None:
     proc = run_cli("evaluate", log, "--preset", "raw", code=0)
     assert f"gyrocore: warning: {log}: the gyro turns " in proc.stderr, proc.stderr
     assert "57.3" not in run_cli("evaluate", source, "--preset", "raw", code=0).stderr
+
+
+@pytest.mark.parametrize(
+    ("command", "twice", "message"),
+    [
+        # process ran b.json alone, tune fitted combined, both without a word
+        ("process", ("--params", "a.json", "--params", "b.json"), "argument --params: given twice (a.json, then b.json)"),
+        ("process", ("-o", "x.csv", "--out", "y.csv"), "argument -o/--out: given twice (x.csv, then y.csv)"),
+        ("tune", ("--preset", "hdr", "--preset", "combined"), "argument --preset: given twice (hdr, then combined)"),
+        # one value given twice is refused too: argparse's default may be that very value
+        ("tune", ("--max-evals", "5", "--max-evals", "5"), "argument --max-evals: given twice (5, then 5)"),
+        ("process", ("--bias-window", "0", "1", "--bias-window", "+0", "+2"),
+         "argument --bias-window: given twice (0 1, then +0 +2)"),
+    ],
+)
+def test_an_option_of_one_value_given_twice_is_refused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], command: str, twice: tuple[str, ...], message: str
+) -> None:
+    from gyrocore.cli import main
+
+    out = ("-o", str(tmp_path / "h.csv")) if command == "process" and "-o" not in twice else ()
+    with pytest.raises(SystemExit) as info:
+        main([command, str(tmp_path / "drive.csv"), *out, *twice])
+    assert info.value.code == 2
+    err = capsys.readouterr().err
+    assert f"{message}; give it once" in err, err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_options_meant_to_be_repeated_are_still_taken(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from gyrocore.cli import main
+
+    log = synthetic_csv(tmp_path / "drive.csv", 3000)
+    assert main(["process", str(log), "-o", str(tmp_path / "h.csv"), "--param", "gap_limit=3",
+                 "--param", "nonfinite=hold", "--bias-duration", "5"]) == 0
+    assert (tmp_path / "h.csv").exists()
+    assert main(["evaluate", str(real_log_path("f110_ds1")), "--preset", "static_bias", "--preset", "hdr"]) == 0
+    out = capsys.readouterr().out
+    assert "static_bias" in out and " hdr " in out

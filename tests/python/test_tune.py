@@ -119,6 +119,18 @@ HEAD = '{"format": "gyrocore-params", "version": 1, "name": "x", "preset": "hdr"
         ('{"format": "gyrocore-params", "version": 1, "name": "", "preset": "hdr", "overrides": {}}',
          '"name" must not be empty'),
         (HEAD + '"overrides": {}, "tuning": 3}', '"tuning" must be an object'),
+        # its line break split evaluate's table and its bias-source lines in two
+        ('{"format": "gyrocore-params", "version": 1, "name": "a\\nb", "preset": "hdr", "overrides": {}}',
+         '"name" must be one line of text without control characters, got \'a\\nb\''),
+        # beside the overrides, these were ignored without a word
+        (HEAD + '"overrides": {}, "bias_duration": 10}', "unknown key(s) 'bias_duration'; a parameter file holds"),
+        (HEAD + '"overrides": {}, "tunning": {}}', "unknown key(s) 'tunning' (did you mean 'tuning'?)"),
+        # a unit the user wrote was not read: 0.5 ran as 0.5 rad/s, a turn switch of 29 deg/s
+        (HEAD + '"overrides": {"hdr_turn_threshold": 0.5}, "units": {"hdr_turn_threshold": "deg/s"}}',
+         "units give hdr_turn_threshold in 'deg/s', but a parameter file holds SI values: hdr_turn_threshold is read "
+         "in [rad/s]"),
+        (HEAD + '"overrides": {"hdr_c1": 0.5}, "units": {"hdr_c1": "Theta_w [deg]"}}', "hdr_c1 is read in [1]"),
+        (HEAD + '"overrides": {}, "units": [1]}', '"units" must be an object'),
     ],
 )
 def test_bad_parameter_files_name_the_file_and_the_problem(tmp_path: Path, content: str, message: str) -> None:
@@ -127,6 +139,15 @@ def test_bad_parameter_files_name_the_file_and_the_problem(tmp_path: Path, conte
     with pytest.raises(ValueError, match="bad.json") as info:
         tune.ParameterSet.read(path)
     assert message in str(info.value)
+
+
+@pytest.mark.parametrize("unit", ["[rad/s]", "rad/s", " Theta_w [rad/s] ", ""])
+def test_a_parameter_file_whose_units_are_its_si_units_is_read(tmp_path: Path, unit: str) -> None:
+    path = tmp_path / "p.json"
+    units = {"hdr_turn_threshold": unit} if unit else {"hdr_turn_threshold_dps": ""}  # as write() gives a *_dps one
+    name = "hdr_turn_threshold" if unit else "hdr_turn_threshold_dps"
+    path.write_text(HEAD + json.dumps({"overrides": {name: 0.01}, "units": units})[1:])
+    assert tune.ParameterSet.read(path).overrides == {name: 0.01}
 
 
 def test_harm_of_a_perfect_gyro() -> None:

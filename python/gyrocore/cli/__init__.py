@@ -17,6 +17,7 @@ from .._checks import did_you_mean
 from .._gyrocore import __version__
 from . import allan, calibrate, demo, evaluate, presets, process, reproduce, simulate, tune
 from ..batch_run import BatchInterrupted
+from ..tune import TuningInterrupted
 from ..io._paths import error_text, one_line
 from ..io.atomic import discard_all, outputs_checked
 from ._common import SAMPLE_LOG_NOTE, USER_ERRORS, show_warning
@@ -24,11 +25,41 @@ from ._common import SAMPLE_LOG_NOTE, USER_ERRORS, show_warning
 COMMANDS = (demo, process, presets, allan, calibrate, evaluate, tune, simulate, reproduce)
 
 
+class _StoreOnce(argparse._StoreAction):
+    """argparse's store of an option's value, which refuses the option given twice: argparse kept
+    the last without a word (``process --params a.json --params b.json`` ran b.json alone, ``tune
+    --preset hdr --preset combined`` fitted combined); options meant to be repeated append."""
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace, values: Any,
+                 option_string: str | None = None) -> None:
+        stored = parser._stored if isinstance(parser, _Parser) else set()
+        if self.dest in stored:
+            earlier = getattr(namespace, self.dest)
+            raise argparse.ArgumentError(self, f"given twice ({_shown(earlier)}, then {_shown(values)}); give it once")
+        stored.add(self.dest)
+        setattr(namespace, self.dest, values)
+
+
+def _shown(value: Any) -> str:
+    return " ".join(map(str, value)) if isinstance(value, list) else str(value)
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse's parser, whose "invalid choice" (a command, ``--heading``, ``--format``, ...) and
     "unrecognized arguments" say which choice or option a typo is likely of, as the package's own
     errors do; an unknown option is refused by its command's parser, with that command's usage
-    (the top parser's named neither)."""
+    (the top parser's named neither); an option that takes one value refuses a second
+    (:class:`_StoreOnce`)."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        for name in (None, "store"):  # an option without an action stores its value
+            self.register("action", name, _StoreOnce)
+        self._stored: set[str] = set()  # the options stored in this parse (_StoreOnce)
+
+    def parse_known_args(self, args: Sequence[str] | None = None, namespace: Any = None) -> Any:  # type: ignore[override]
+        self._stored = set()
+        return super().parse_known_args(args, namespace)
 
     def parse_args(self, args: Sequence[str] | None = None, namespace: Any = None) -> Any:  # type: ignore[override]
         namespace, extras = self.parse_known_args(args, namespace)
@@ -108,6 +139,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             if isinstance(e, BatchInterrupted) and str(e):  # their outputs are complete: no need to redo them
                 finished = (f"; {e}; to go on, run it again with --skip-existing: it processes only the inputs "
                             "without an output")
+            elif isinstance(e, TuningInterrupted):  # minutes of fitting: its best, to hold with --set
+                finished = f"; {e}"
             print(f"gyrocore: interrupted; no partial output was left{finished}", file=sys.stderr)
             return 130
 

@@ -265,7 +265,14 @@ def run(args: argparse.Namespace) -> int:
         progress(f"tuning {args.preset} on {len(cases)} drive(s), {len(harm)} do-no-harm drive(s), "
                  f"up to {args.max_evals} evaluations")
     result = tune.tune(cases, name=args.name, **options)
-    loo = tune.leave_one_out(cases, progress=progress, **options) if args.leave_one_out else ()
+    try:
+        loo = tune.leave_one_out(cases, progress=progress, **options) if args.leave_one_out else ()
+    except tune.TuningInterrupted as e:  # the fit on all drives had ended: what the file would have held
+        raise tune.TuningInterrupted(
+            f"the fit on all {len(cases)} drive(s) had ended ({result.evaluations} evaluations, objective "
+            f"{result.objective:.6g}); the {e.what}; the fit on all drives found",
+            {n: result.params.overrides[n] for n in result.bounds},
+        ) from None
     test = tune.score_cases(tests, args.preset, result.params.overrides)
     test_start = tune.score_cases(tests, args.preset, result.start)
     held = (
