@@ -291,8 +291,7 @@ def warn_if_degrees(reference: Reference, t: ArrayLike, heading: ArrayLike, e_ps
             continue  # it turns as the other does, in radians: it drifts away (a gyro's bias over hours)
         with collected([]):  # the comparison as given said what it had to (a wrapped estimate)
             if side == "reference":
-                converted = Reference(reference.t, np.radians(reference.given), gap_factor=reference.gap_factor,
-                                      time_weighted=reference.time_weighted).e_psi(te, est, absolute=absolute)
+                converted = _rescored(reference, reference.t, np.radians(reference.given), te, est, absolute)
             else:
                 converted = reference.e_psi(te, np.radians(est), absolute=absolute)
         if DEGREES_GAIN * converted <= e_psi and converted < other:
@@ -342,13 +341,21 @@ def warn_if_clockwise(reference: Reference, t: ArrayLike, heading: ArrayLike, e_
     te, est = as_float_array("t", t), as_float_array("heading", heading)
     if not _scale(reference.t, reference.heading, te, est, max(te[0], reference.t[0])) <= CLOCKWISE_SCALE:
         return
-    with collected([]):  # the comparison as given said what it had to
-        negated = Reference(reference.t, -reference.given, gap_factor=reference.gap_factor,
-                            time_weighted=reference.time_weighted).e_psi(te, est, absolute=absolute)
+    negated = _rescored(reference, reference.t, -reference.given, te, est, absolute)
     warn(f"the reference heading turns clockwise where the estimate turns counter-clockwise: E_psi {e_psi:.4g} "
          f"deg as given, {negated:.4g} deg with the reference negated. Headings are counter-clockwise: a "
          f"compass bearing (clockwise from north) is heading = pi/2 - radians(bearing); a gyro mounted upside "
          f"down needs its rate negated")
+
+
+def _rescored(reference: Reference, t_ref: FloatArray, heading_ref: FloatArray, t: FloatArray, heading: FloatArray,
+              absolute: bool) -> float:
+    """E_psi against ``reference`` with its times or headings mended as a check supposes (the
+    reference's own gap rule and weights), in silence: the comparison as given said what it had
+    to."""
+    with collected([]):
+        return Reference(t_ref, heading_ref, gap_factor=reference.gap_factor,
+                         time_weighted=reference.time_weighted).e_psi(t, heading, absolute=absolute)
 
 
 #: A reference whose turns follow the estimate's this much later or earlier [s] (and at least 3 of
@@ -387,9 +394,7 @@ def warn_if_offset(reference: Reference, t: ArrayLike, heading: ArrayLike, e_psi
     lag = (best - k) * step
     if abs(lag) < max(OFFSET_LAG, 3 * step) or corr[best] < OFFSET_MATCH or corr[best] <= corr[k]:
         return
-    with collected([]):  # the comparison as given said what it had to
-        shifted = Reference(reference.t - lag, reference.given, gap_factor=reference.gap_factor,
-                            time_weighted=reference.time_weighted).e_psi(te, est, absolute=absolute)
+    shifted = _rescored(reference, reference.t - lag, reference.given, te, est, absolute)
     warn(f"the reference's turns follow the estimate's {lag:.3g} s {'later' if lag > 0 else 'earlier'} (their "
          f"rates match {corr[best]:.2f} there, {corr[k]:.2f} at the same times): its clock looks offset from the "
          f"gyro's; E_psi {e_psi:.4g} deg as given, {shifted:.4g} deg with the reference's times less {lag:.3g} s. "
