@@ -9,7 +9,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::arrays::{fill, slice, zeros, Array};
-use crate::fused::{of_block, part, Block, PIECE};
+use crate::fused::{part, Block, PIECE};
 use crate::interrupt::{detach_watched, Stop};
 use crate::pending::Pending;
 use crate::settings::{names, set_all, values, Field};
@@ -174,14 +174,13 @@ fn forward<const N: usize>(
     mut step: impl FnMut(&[f64], &[f64], &[Fix], FusionOutputs<'_>) -> Result<usize, FusionError>,
 ) -> Result<usize, FusionError> {
     let mut out = out.map(Some);
-    let mut used = 0;
     let block = Block {
         t,
         rate,
         temperature: None,
         speed: None,
     };
-    block.pieces(stop, |piece, range| {
+    block.pieces_with_fixes(stop, fixes, |piece, range, fixes| {
         let mut columns = out.iter_mut().map(|o| part(o, &range));
         let estimates = FusionOutputs {
             heading: columns.next().flatten().unwrap_or_default(),
@@ -189,11 +188,8 @@ fn forward<const N: usize>(
             bias: columns.next().flatten(),
             scale: columns.next().flatten(),
         };
-        used += step(piece.t, piece.rate, &fixes[used..], estimates)
-            .map_err(|e| of_block(e, range.start, used))?;
-        Ok::<(), FusionError>(())
-    })?;
-    Ok(used)
+        step(piece.t, piece.rate, fixes, estimates)
+    })
 }
 
 /// Whole-log fusion: (heading, heading_sigma, bias, scale, counts), causal or smoothed.

@@ -79,6 +79,24 @@ impl<'a> Block<'a> {
             }
         }
     }
+
+    /// [`Block::pieces`] for a filter that takes fixes: `f` gets each piece with the fixes no piece
+    /// before it used and returns how many it used. Returns how many all used; a piece's error as
+    /// the whole block's (its sample and fix indices counted from the block's first).
+    pub(crate) fn pieces_with_fixes(
+        &self,
+        stop: &Stop,
+        fixes: &[Fix],
+        mut f: impl FnMut(Block<'_>, Range<usize>, &[Fix]) -> Result<usize, FusionError>,
+    ) -> Result<usize, FusionError> {
+        let mut used = 0;
+        self.pieces(stop, |piece, range| {
+            let start = range.start;
+            used += f(piece, range, &fixes[used..]).map_err(|e| of_block(e, start, used))?;
+            Ok::<(), FusionError>(())
+        })?;
+        Ok(used)
+    }
 }
 
 /// The samples `range` of an output, if it is asked for.
@@ -91,7 +109,7 @@ pub(crate) fn part<'a>(
 
 /// The error of a piece that starts at sample `start`, `used` fixes after the block's first, as
 /// the whole block's.
-pub(crate) fn of_block(e: FusionError, start: usize, used: usize) -> FusionError {
+fn of_block(e: FusionError, start: usize, used: usize) -> FusionError {
     match e {
         FusionError::Gyro(e) => FusionError::Gyro(e.with_index_offset(start)),
         FusionError::Fix {
@@ -274,29 +292,23 @@ impl Core {
             ],
             |[mut h, mut r, mut s, mut bi, mut sc, mut dr]| {
                 detach_watched(py, n, |stop| {
-                    let mut used = 0;
-                    block
-                        .pieces(stop, |piece, range| {
-                            let out = FusedOutputs {
-                                heading: part(&mut h, &range).unwrap_or_default(),
-                                heading_sigma: part(&mut s, &range),
-                                bias: part(&mut bi, &range),
-                                scale: part(&mut sc, &range),
-                                rate: part(&mut r, &range).unwrap_or_default(),
-                                drift: part(&mut dr, &range),
-                            };
-                            let samples = Samples {
-                                t: piece.t,
-                                rate: piece.rate,
-                                temperature: piece.temperature,
-                                speed: piece.speed,
-                            };
-                            used += inner
-                                .process_block_reporting(samples, &waiting[used..], out, on_rest)
-                                .map_err(|e| of_block(e, range.start, used))?;
-                            Ok(())
-                        })
-                        .map(|()| used)
+                    block.pieces_with_fixes(stop, waiting, |piece, range, fixes| {
+                        let out = FusedOutputs {
+                            heading: part(&mut h, &range).unwrap_or_default(),
+                            heading_sigma: part(&mut s, &range),
+                            bias: part(&mut bi, &range),
+                            scale: part(&mut sc, &range),
+                            rate: part(&mut r, &range).unwrap_or_default(),
+                            drift: part(&mut dr, &range),
+                        };
+                        let samples = Samples {
+                            t: piece.t,
+                            rate: piece.rate,
+                            temperature: piece.temperature,
+                            speed: piece.speed,
+                        };
+                        inner.process_block_reporting(samples, fixes, out, on_rest)
+                    })
                 })
             },
         )
