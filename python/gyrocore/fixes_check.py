@@ -72,13 +72,15 @@ def agreement(t: FloatArray, rate: FloatArray, fixes: Fixes) -> Agreement | None
     readings that are not finite left out), or None with under :data:`MIN_PAIRS` pairs of fixes
     within the gyro's span, or too little motion to fit."""
     kept = np.isfinite(rate)
-    t, rate = t[kept], rate[kept]
+    if not kept.all():
+        t, rate = t[kept], rate[kept]
     if len(t) < 2:
         return None
     inside = (fixes.t >= t[0]) & (fixes.t <= t[-1])
+    if np.count_nonzero(inside) <= MIN_PAIRS:
+        return None
     ft, heading, sigma = fixes.t[inside], fixes.heading[inside], fixes.sigma[inside]
-    turned = np.concatenate(([0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(t))))
-    gyro, omega = np.diff(np.interp(ft, t, turned)), np.diff(np.interp(ft, t, rate))
+    gyro, omega = np.diff(np.interp(ft, t, _turned(t, rate))), np.diff(np.interp(ft, t, rate))
     dt = np.diff(ft)
     pair = dt > 0  # two fixes at one time span no turn
     if np.count_nonzero(pair) < MIN_PAIRS:
@@ -88,6 +90,21 @@ def agreement(t: FloatArray, rate: FloatArray, fixes: Fixes) -> Agreement | None
     a = np.column_stack((dt, gyro, -omega))[pair]
     weight = 1.0 / np.sqrt(sigma[:-1] ** 2 + sigma[1:] ** 2)[pair]
     return _fit(a * weight[:, None], y * weight)
+
+
+def _turned(t: FloatArray, rate: FloatArray) -> FloatArray:
+    """The gyro's turn [rad] from the first sample to each, by the trapezoid rule: the values of
+    ``0.5 * (rate[1:] + rate[:-1]) * np.diff(t)`` summed, built in one array (a log's fixes are
+    checked on every call, and the temporaries of the plain expression took twice the time of the
+    fused run itself)."""
+    turned = np.empty(len(t))
+    turned[0] = 0.0
+    step = turned[1:]
+    np.add(rate[1:], rate[:-1], out=step)
+    step *= 0.5
+    step *= np.subtract(t[1:], t[:-1])
+    np.cumsum(step, out=step)
+    return turned
 
 
 def _fit(a: FloatArray, y: FloatArray) -> Agreement | None:
