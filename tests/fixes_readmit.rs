@@ -167,3 +167,30 @@ fn a_run_of_rejections_cut_into_blocks_or_stored_mid_way_carries_on_bit_for_bit(
     let bits = |h: &[f64]| h.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
     assert_eq!(bits(&heading), bits(&one.heading));
 }
+
+#[test]
+fn two_stray_fixes_before_an_outage_and_one_after_it_do_not_reset_the_heading() {
+    // Honest fixes a second, none from 100 s to 160 s (a tunnel); the last two before it and the
+    // first after it 8 deg off (beyond the gate, within its reach). Counted across the outage,
+    // the three were a run of readmit_after seconds and the third reset the heading to itself.
+    let (t, psi, rate) = drive(200.0);
+    let mut fx = fixes(&t, &psi, 100, (100.0, 160.0));
+    let (_, honest) = whole(config(), &t, &rate, &fx);
+    let after = fx.iter().position(|f| f.t >= 160.0).unwrap();
+    for f in &mut fx[after - 2..=after] {
+        f.heading = wrap_angle(f.heading + 8f64.to_radians());
+    }
+    let (r, counts) = whole(config(), &t, &rate, &fx);
+    assert_eq!(counts.readmitted, 0, "{counts:?}");
+    assert_eq!(
+        counts.rejected,
+        honest.rejected + 3,
+        "{counts:?} {honest:?}"
+    );
+    let off = worst_after(&t, &r.heading, &psi, 90.0);
+    assert!(off < 1.5, "{off} deg");
+    // A lock-out of the same fixes with no outage between them is still ended.
+    let fx = offset_from_100_s(&t, &psi, 8.0);
+    let (_, counts) = whole(config(), &t, &rate, &fx);
+    assert_eq!(counts.readmitted, 1, "{counts:?}");
+}

@@ -41,3 +41,24 @@ fn a_run_that_began_before_any_time_or_after_the_last_fix_is_refused() {
         "{err}"
     );
 }
+
+#[test]
+fn the_fixes_interval_reads_back_and_a_state_without_it_is_one_that_saw_none() {
+    // Stored before the interval was kept (the outage rule of `READMIT_GAP`): read back as a
+    // filter that has seen no two fixes, so no gap ends a run until it has.
+    let mut old = with_run(json!([4.5, 3]));
+    assert!(old.get("fix_interval").is_some());
+    old.as_object_mut().unwrap().remove("fix_interval");
+    let f: Fusion = serde_json::from_value(old).unwrap();
+    let again = serde_json::to_value(f).unwrap();
+    assert_eq!(again["fix_interval"], json!("inf"));
+    for bad in [json!(0.0), json!(-1.0), json!("nan"), json!("-inf")] {
+        let mut v = with_run(json!([4.5, 3]));
+        v["fix_interval"] = bad.clone();
+        let err = refused::<Fusion>(v);
+        assert!(
+            err.contains("invalid parameter fix interval"),
+            "{bad}: {err}"
+        );
+    }
+}

@@ -1,7 +1,7 @@
 //! A fix's Kalman update, its gate, and the re-admission that ends the gate's lock-out
 //! ([`FusionConfig::readmit_after`](crate::FusionConfig::readmit_after)).
 
-use super::{wrap_angle, Fix, Fusion, READMIT_MIN_REJECTED, READMIT_REACH};
+use super::{wrap_angle, Fix, Fusion, READMIT_GAP, READMIT_MIN_REJECTED, READMIT_REACH};
 use crate::fixes_smooth::Mat3;
 
 impl Fusion {
@@ -23,9 +23,10 @@ impl Fusion {
         let nu = wrap_angle(fix.heading - x[0]);
         let bound = self.config.gate * (p[0][0] + r);
         if nu * nu > bound {
-            if !self.readmits(fix.t, nu * nu <= READMIT_REACH * READMIT_REACH * bound) {
+            let run = self.run_continued(fix.t);
+            if !self.readmits(run, fix.t, nu * nu <= READMIT_REACH * READMIT_REACH * bound) {
                 self.counts.rejected = self.counts.rejected.saturating_add(1);
-                let (since, n) = self.rejected_run.unwrap_or((fix.t, 0));
+                let (since, n) = run.unwrap_or((fix.t, 0));
                 self.rejected_run = Some((since, n.saturating_add(1)));
                 return None;
             }
@@ -53,13 +54,28 @@ impl Fusion {
         Some((x, crate::fixes_covariance::semi_definite(p)))
     }
 
-    /// Whether a fix at `t` that fails the gate ends the gate's lock-out: the fixes have failed
-    /// it for `readmit_after` seconds, at least [`READMIT_MIN_REJECTED`] in a row with this one,
-    /// and this one is `within_reach` ([`READMIT_REACH`]).
+    /// The run of rejections (its first fix's time, how many) that a fix at `t` failing the gate
+    /// continues: none after a gap in the fixes longer than [`READMIT_GAP`] times their interval
+    /// and half of `readmit_after`. The rejections before an outage were made by a filter that
+    /// has grown less sure since, and the outage itself held none: counted across it, two stray
+    /// fixes before a tunnel and one after it re-admitted the third and reset the heading to it.
     #[inline(always)]
-    fn readmits(&self, t: f64, within_reach: bool) -> bool {
+    fn run_continued(&self, t: f64) -> Option<(f64, u64)> {
+        let c = &self.config;
+        let span = (READMIT_MIN_REJECTED - 1) as f64;
+        let longest = (READMIT_GAP * self.fix_interval).max(c.readmit_after / span);
+        let after_last = self.last_fix.is_some_and(|last| t - last <= longest);
+        self.rejected_run.filter(|_| after_last)
+    }
+
+    /// Whether a fix at `t` that fails the gate, continuing the rejections `run`, ends the gate's
+    /// lock-out: the fixes have failed it for `readmit_after` seconds, at least
+    /// [`READMIT_MIN_REJECTED`] in a row with this one, and this one is `within_reach`
+    /// ([`READMIT_REACH`]).
+    #[inline(always)]
+    fn readmits(&self, run: Option<(f64, u64)>, t: f64, within_reach: bool) -> bool {
         within_reach
-            && self.rejected_run.is_some_and(|(since, n)| {
+            && run.is_some_and(|(since, n)| {
                 n.saturating_add(1) >= READMIT_MIN_REJECTED
                     && t - since >= self.config.readmit_after
             })

@@ -90,3 +90,28 @@ def test_honest_tight_fixes_are_helped_by_the_arw_the_warning_advises() -> None:
     advised = fuse(log.t, log.rate, tight, mode="causal", arw=1e-2)
     assert advised.counts["readmitted"] == 0
     assert _e_psi(log, default.heading) > 1.0 and _e_psi(log, advised.heading) < 0.3
+
+
+@pytest.mark.parametrize("mode", ["causal", "smoothed"])
+def test_stray_fixes_on_both_sides_of_an_outage_do_not_reset_the_heading(mode: str) -> None:
+    # A 30 s tunnel 40 s into the drive; the two fixes before it and the first after it 10 deg
+    # off (a receiver losing and regaining the sky). Before, the three were counted as a run of
+    # readmit_after seconds: the third was taken in, the heading reset 10 deg off, and the honest
+    # fixes after it rejected until a second re-admission (causal E_psi 2.08 deg, 0.69 now; 0.66
+    # without the strays).
+    log = gyrocore.read_log(real_log_path("kitti_2011_09_30_0027_mems"))
+    t_ref, heading_ref = log.reference()
+    start = log.t[0] + 40.0
+    fixes = gyrocore.sim.gnss_fixes(t_ref, heading_ref, seed=1, outages=[(start, start + 30.0)])
+    heading = fixes.heading.copy()
+    first_after = int(np.searchsorted(fixes.t, start + 30.0))
+    heading[first_after - 2:first_after + 1] += math.radians(10.0)
+    strays = Fixes(fixes.t, heading, fixes.sigma)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        r = fuse(log.t, log.rate, strays, mode=mode)
+        honest = fuse(log.t, log.rate, fixes, mode=mode)
+    assert not [w for w in caught if SAID in str(w.message)]
+    assert r.counts["readmitted"] == 0
+    assert r.counts["rejected"] == honest.counts["rejected"] + 3
+    assert _e_psi(log, r.heading) < _e_psi(log, honest.heading) + 0.2
