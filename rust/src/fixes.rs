@@ -24,7 +24,8 @@
 //! gate (chi-square, one degree of freedom) is rejected and counted. A filter surer of itself
 //! than its fixes allow rejects every fix after one it refused (the gate's lock-out): after
 //! [`readmit_after`](FusionConfig::readmit_after) seconds of nothing but rejections, the next
-//! fix within [`READMIT_REACH`] gate radii is applied with the covariance raised. Fixes before
+//! fix within [`READMIT_REACH`] gate radii (or beyond, where the run's innovations drift away
+//! steadily: rust/src/fixes_drift.rs) is applied with the covariance raised. Fixes before
 //! the first gyro sample are counted and skipped (nothing to attach them to); a NaN, a
 //! `sigma <= 0`, or a fix earlier than the one before it or than a sample already processed is
 //! an error naming the fix.
@@ -108,6 +109,10 @@ pub struct Fusion {
     /// many (None: the last fix was applied, or none was rejected yet).
     #[cfg_attr(feature = "serde", serde(default))]
     rejected_run: Option<(f64, u64)>,
+    /// The line through that run's innovations (None: no run, or a run read back from a filter
+    /// stored before it was kept, which is then judged by its reach alone).
+    #[cfg_attr(feature = "serde", serde(default))]
+    drift: Option<crate::fixes_drift::Drift>,
     /// The shortest time between two consecutive fixes processed, > 0 (infinity: none yet): the
     /// fixes' pace, against which a gap in them is an outage ([`READMIT_GAP`]).
     #[cfg_attr(
@@ -146,6 +151,7 @@ impl Fusion {
             last_fix: None,
             counts: FixCounts::default(),
             rejected_run: None,
+            drift: None,
             fix_interval: f64::INFINITY,
         })
     }

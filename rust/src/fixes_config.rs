@@ -39,6 +39,8 @@ pub struct FusionConfig {
     /// let it pass and the bias's and scale's raised back to their initial ones (>= 0; infinity:
     /// never, the gate alone). A gap in the fixes longer than [`READMIT_GAP`] times their
     /// interval and half of this (an outage) ends a run of rejections: the next one starts anew.
+    /// A fix beyond the reach is re-admitted too where the run's innovations drift steadily away
+    /// from within it (a filter far too sure of a wrong bias; rust/src/fixes_drift.rs).
     #[cfg_attr(
         feature = "serde",
         serde(with = "crate::serde_float", default = "never")
@@ -71,7 +73,7 @@ pub(crate) fn never() -> f64 {
 }
 
 /// The largest initial bias and initial bias sigma \[rad/s\]: far beyond any gyro's.
-const MAX_INITIAL_BIAS: f64 = 1e3;
+pub(crate) const MAX_INITIAL_BIAS: f64 = 1e3;
 
 /// The smallest standard deviation of a fix \[rad\] (about 2e-10 deg): its square stays a normal
 /// number, so an innovation's variance is never 0.
