@@ -74,7 +74,9 @@ fn a_runs_drift_reads_back_and_a_state_without_it_is_judged_by_the_reach_alone()
     let mut missing = with_run(json!([4.5, 3]));
     missing.as_object_mut().unwrap().remove("drift");
     serde_json::from_value::<Fusion>(missing).unwrap();
-    let drift = json!({"sum_t": 1.0, "sum_tt": 1.0, "sum_y": 0.1, "sum_ty": 0.1, "sum_yy": 0.01, "last": 0.1});
+    let drift = json!({
+        "sum_t": 1.0, "sum_tt": 1.0, "sum_y": 0.1, "sum_ty": 0.1, "sum_yy": 0.01, "last": 0.1
+    });
     let mut ok = with_run(json!([4.5, 3]));
     ok["drift"] = drift.clone();
     serde_json::from_value::<Fusion>(ok).unwrap();

@@ -3,7 +3,6 @@
 
 use super::{wrap_angle, Fix, Fusion, READMIT_GAP, READMIT_MIN_REJECTED, READMIT_REACH};
 use crate::fixes_drift::Drift;
-
 use crate::fixes_smooth::Mat3;
 
 impl Fusion {
@@ -98,10 +97,11 @@ impl Fusion {
 
     /// The slope's square \[(rad/s)^2\] of the innovations of the rejections `run` with this fix
     /// at `t` (`drift`; a fix's variance `r`) where the heading has run away from the fixes over
-    /// the run by more than the gate allows the filter's heading variance `p_heading`, from
-    /// within [`READMIT_REACH`] of the gate's `bound` at the run's start: the fixes agree with
-    /// each other and with the gyro's turns, the filter does not, and it is surer than that. None for a run of a steady offset (a lasting wrong course: the filter's heading
-    /// follows the gyro as the fixes do) or of scattered fixes.
+    /// the run by more than the gate allows the filter's heading variance `p_heading`, the line
+    /// through them starting within [`READMIT_REACH`] radii of this fix's gate (`bound`): the
+    /// fixes agree with each other and with the gyro's turns, the filter does not, and it is
+    /// surer than that. None for a run of a steady offset (a lasting wrong course: the filter's
+    /// heading follows the gyro as the fixes do) or of scattered fixes.
     fn drifting(
         &self,
         run: Option<(f64, u64)>,
