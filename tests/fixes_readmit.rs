@@ -167,3 +167,77 @@ fn a_run_of_rejections_cut_into_blocks_or_stored_mid_way_carries_on_bit_for_bit(
     let bits = |h: &[f64]| h.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
     assert_eq!(bits(&heading), bits(&one.heading));
 }
+
+#[test]
+fn two_stray_fixes_before_an_outage_and_one_after_it_do_not_reset_the_heading() {
+    // Honest fixes a second, none from 100 s to 160 s (a tunnel); the last two before it and the
+    // first after it 8 deg off (beyond the gate, within its reach). Counted across the outage,
+    // the three were a run of readmit_after seconds and the third reset the heading to itself.
+    let (t, psi, rate) = drive(200.0);
+    let mut fx = fixes(&t, &psi, 100, (100.0, 160.0));
+    let (_, honest) = whole(config(), &t, &rate, &fx);
+    let after = fx.iter().position(|f| f.t >= 160.0).unwrap();
+    for f in &mut fx[after - 2..=after] {
+        f.heading = wrap_angle(f.heading + 8f64.to_radians());
+    }
+    let (r, counts) = whole(config(), &t, &rate, &fx);
+    assert_eq!(counts.readmitted, 0, "{counts:?}");
+    assert_eq!(
+        counts.rejected,
+        honest.rejected + 3,
+        "{counts:?} {honest:?}"
+    );
+    let off = worst_after(&t, &r.heading, &psi, 90.0);
+    assert!(off < 1.5, "{off} deg");
+    // A lock-out of the same fixes with no outage between them is still ended.
+    let fx = offset_from_100_s(&t, &psi, 8.0);
+    let (_, counts) = whole(config(), &t, &rate, &fx);
+    assert_eq!(counts.readmitted, 1, "{counts:?}");
+}
+
+/// The drive's gyro reading `extra` rad/s more, to a filter sure (its bias sigma 1e-4 rad/s)
+/// that the bias is 0: the heading runs away from the fixes at about 3 deg/s, past the reach of
+/// re-admission (about 14 deg here) before `readmit_after`.
+fn far_too_sure(extra: f64, readmit_after: f64) -> (f64, FixCounts, f64) {
+    let (t, psi, rate) = drive(300.0);
+    let rate: Vec<f64> = rate.iter().map(|r| r + extra).collect();
+    let fx = fixes(&t, &psi, 100, (0.0, 0.0));
+    let sure = FusionConfig {
+        initial_bias_sigma: 1e-4,
+        readmit_after,
+        ..config()
+    };
+    let (r, counts) = whole(sure, &t, &rate, &fx);
+    let last = t.len() - 1;
+    (
+        worst_after(&t, &r.heading, &psi, 240.0),
+        counts,
+        r.bias[last],
+    )
+}
+
+#[test]
+fn a_filter_far_too_sure_of_a_wrong_bias_is_taken_back_where_the_fixes_drift_away_steadily() {
+    let (off, counts, _) = far_too_sure(0.04, f64::INFINITY);
+    assert!(off > 30.0, "the gate alone: {off} deg, {counts:?}");
+    // Before, the fixes lay beyond the reach when readmit_after had passed: locked out as with
+    // the gate alone, every fix from the first rejected on.
+    let (off, counts, bias) = far_too_sure(0.04, 10.0);
+    assert!(counts.readmitted >= 1, "{counts:?}");
+    assert!(counts.rejected < 60, "{counts:?}");
+    assert!(off < 2.0, "{off} deg, {counts:?}");
+    assert!((bias - (BIAS + 0.04)).abs() < 2e-3, "bias {bias}");
+}
+
+#[test]
+fn a_lasting_wrong_course_far_beyond_reach_stays_rejected_however_long() {
+    // 45 deg off from 100 s on: a steady offset, not a drift (its innovations' slope is the
+    // filter's own small bias error): never taken in.
+    let (t, psi, rate) = drive(300.0);
+    let fx = offset_from_100_s(&t, &psi, 45.0);
+    let (r, counts) = whole(config(), &t, &rate, &fx);
+    assert_eq!(counts.readmitted, 0, "{counts:?}");
+    assert!(counts.rejected >= 190, "{counts:?}");
+    let off = worst_after(&t, &r.heading, &psi, 100.0);
+    assert!(off < 3.0, "{off} deg");
+}

@@ -41,3 +41,53 @@ fn a_run_that_began_before_any_time_or_after_the_last_fix_is_refused() {
         "{err}"
     );
 }
+
+#[test]
+fn the_fixes_interval_reads_back_and_a_state_without_it_is_one_that_saw_none() {
+    // Stored before the interval was kept (the outage rule of `READMIT_GAP`): read back as a
+    // filter that has seen no two fixes, so no gap ends a run until it has.
+    let mut old = with_run(json!([4.5, 3]));
+    assert!(old.get("fix_interval").is_some());
+    old.as_object_mut().unwrap().remove("fix_interval");
+    let f: Fusion = serde_json::from_value(old).unwrap();
+    let again = serde_json::to_value(f).unwrap();
+    assert_eq!(again["fix_interval"], json!("inf"));
+    for bad in [json!(0.0), json!(-1.0), json!("nan"), json!("-inf")] {
+        let mut v = with_run(json!([4.5, 3]));
+        v["fix_interval"] = bad.clone();
+        let err = refused::<Fusion>(v);
+        assert!(
+            err.contains("invalid parameter fix interval"),
+            "{bad}: {err}"
+        );
+    }
+}
+
+#[test]
+fn a_runs_drift_reads_back_and_a_state_without_it_is_judged_by_the_reach_alone() {
+    // A run stored before its drift was kept reads back (the run is judged by its reach alone);
+    // one with a sum of squares below 0 (an edit: no run gives one) is refused.
+    let mut old = with_run(json!([4.5, 3]));
+    old["drift"] = Value::Null;
+    let f: Fusion = serde_json::from_value(old).unwrap();
+    assert_eq!(f.counts().rejected, 3);
+    let mut missing = with_run(json!([4.5, 3]));
+    missing.as_object_mut().unwrap().remove("drift");
+    serde_json::from_value::<Fusion>(missing).unwrap();
+    let drift = json!({
+        "sum_t": 1.0, "sum_tt": 1.0, "sum_y": 0.1, "sum_ty": 0.1, "sum_yy": 0.01, "last": 0.1
+    });
+    let mut ok = with_run(json!([4.5, 3]));
+    ok["drift"] = drift.clone();
+    serde_json::from_value::<Fusion>(ok).unwrap();
+    for square in ["sum_tt", "sum_yy"] {
+        let mut bad = with_run(json!([4.5, 3]));
+        bad["drift"] = drift.clone();
+        bad["drift"][square] = json!(-1.0);
+        let err = refused::<Fusion>(bad);
+        assert!(
+            err.contains("invalid parameter rejected run drift"),
+            "{err}"
+        );
+    }
+}

@@ -24,7 +24,8 @@
 //! gate (chi-square, one degree of freedom) is rejected and counted. A filter surer of itself
 //! than its fixes allow rejects every fix after one it refused (the gate's lock-out): after
 //! [`readmit_after`](FusionConfig::readmit_after) seconds of nothing but rejections, the next
-//! fix within [`READMIT_REACH`] gate radii is applied with the covariance raised. Fixes before
+//! fix within [`READMIT_REACH`] gate radii (or beyond, where the run's innovations drift away
+//! steadily: rust/src/fixes_drift.rs) is applied with the covariance raised. Fixes before
 //! the first gyro sample are counted and skipped (nothing to attach them to); a NaN, a
 //! `sigma <= 0`, or a fix earlier than the one before it or than a sample already processed is
 //! an error naming the fix.
@@ -35,7 +36,9 @@
 
 use core::f64::consts::PI;
 
-pub use crate::fixes_config::{FusionConfig, MIN_FIX_SIGMA, READMIT_MIN_REJECTED, READMIT_REACH};
+pub use crate::fixes_config::{
+    FusionConfig, MIN_FIX_SIGMA, READMIT_GAP, READMIT_MIN_REJECTED, READMIT_REACH,
+};
 pub use crate::fixes_error::{FixProblem, FusionError};
 pub use crate::fixes_output::{Estimate, FusionOutputs};
 use crate::fixes_segment::{Anchor, Segment};
@@ -106,6 +109,17 @@ pub struct Fusion {
     /// many (None: the last fix was applied, or none was rejected yet).
     #[cfg_attr(feature = "serde", serde(default))]
     rejected_run: Option<(f64, u64)>,
+    /// The line through that run's innovations (None: no run, or a run read back from a filter
+    /// stored before it was kept, which is then judged by its reach alone).
+    #[cfg_attr(feature = "serde", serde(default))]
+    drift: Option<crate::fixes_drift::Drift>,
+    /// The shortest time between two consecutive fixes processed, > 0 (infinity: none yet): the
+    /// fixes' pace, against which a gap in them is an outage ([`READMIT_GAP`]).
+    #[cfg_attr(
+        feature = "serde",
+        serde(with = "crate::serde_float", default = "crate::fixes_config::never")
+    )]
+    fix_interval: f64,
 }
 
 /// Wraps an angle to (-pi, pi]: the IEEE remainder of `a` by `2 pi`, exact (`a - 2 pi ceil(..)`
@@ -137,6 +151,8 @@ impl Fusion {
             last_fix: None,
             counts: FixCounts::default(),
             rejected_run: None,
+            drift: None,
+            fix_interval: f64::INFINITY,
         })
     }
 
@@ -415,6 +431,9 @@ impl Fusion {
             if let Some((x_fixed, p_fixed)) = self.correct(f, x, &mut p) {
                 record(Knot::new(f.t, self.segment.a(), (x, p), x_fixed, p_fixed));
                 self.segment = Segment::new(f.t, x_fixed, p_fixed);
+            }
+            if let Some(gap) = self.last_fix.map(|last| f.t - last).filter(|&g| g > 0.0) {
+                self.fix_interval = self.fix_interval.min(gap);
             }
             self.last_fix = Some(f.t);
             used += 1;

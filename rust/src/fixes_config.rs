@@ -37,7 +37,10 @@ pub struct FusionConfig {
     /// [`READMIT_REACH`] gate radii that is at least the [`READMIT_MIN_REJECTED`]th in a row to
     /// fail the gate (two rejected before it) is applied with the heading's variance raised to
     /// let it pass and the bias's and scale's raised back to their initial ones (>= 0; infinity:
-    /// never, the gate alone).
+    /// never, the gate alone). A gap in the fixes longer than [`READMIT_GAP`] times their
+    /// interval and half of this (an outage) ends a run of rejections: the next one starts anew.
+    /// A fix beyond the reach is re-admitted too where the run's innovations drift steadily away
+    /// from within it (a filter far too sure of a wrong bias; rust/src/fixes_drift.rs).
     #[cfg_attr(
         feature = "serde",
         serde(with = "crate::serde_float", default = "never")
@@ -50,20 +53,27 @@ pub struct FusionConfig {
 /// of an outage reset the heading.
 pub const READMIT_MIN_REJECTED: u64 = 3;
 
+/// The longest gap between two fixes a run of rejections spans, in multiples of the shortest
+/// interval between two fixes so far (and at least half of `readmit_after`, the gap that lets
+/// [`READMIT_MIN_REJECTED`] fixes span it): a longer one is an outage, which holds no rejection,
+/// so two stray fixes before a tunnel and one after it are not a lock-out.
+pub const READMIT_GAP: f64 = 3.0;
+
 /// How far beyond the gate a fix may lie and still be re-admitted, in multiples of the gate's
 /// radius: a filter locked out by its own certainty sees the fixes a few gate radii off (its
 /// heading's sigma grows with the bias it no longer corrects, as its error does), while a
 /// receiver's lasting wrong course (a reflection, reversing) lies tens of radii off.
 pub const READMIT_REACH: f64 = 4.0;
 
-/// A configuration stored before re-admission existed reads back without it.
+/// A configuration stored before re-admission existed reads back without it; a filter stored
+/// before the fixes' interval was kept reads back as one that has seen none.
 #[cfg(feature = "serde")]
-fn never() -> f64 {
+pub(crate) fn never() -> f64 {
     f64::INFINITY
 }
 
 /// The largest initial bias and initial bias sigma \[rad/s\]: far beyond any gyro's.
-const MAX_INITIAL_BIAS: f64 = 1e3;
+pub(crate) const MAX_INITIAL_BIAS: f64 = 1e3;
 
 /// The smallest standard deviation of a fix \[rad\] (about 2e-10 deg): its square stays a normal
 /// number, so an innovation's variance is never 0.

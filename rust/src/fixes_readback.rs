@@ -11,6 +11,10 @@ impl Fusion {
     pub(crate) fn check_restored(&self) -> Result<(), Error> {
         self.config.validate()?;
         self.segment.check()?;
+        let interval = "> 0 s (inf: fewer than two fixes processed)";
+        let (least, most) = (f64::MIN_POSITIVE, f64::INFINITY);
+        crate::error::check_range("fix interval", self.fix_interval, least, most, interval)?;
+        self.drift.as_ref().map_or(Ok(()), |d| d.check())?;
         let last_fix = self.last_fix.map(|t| Anchor::of_sample(t, 0.0));
         self.anchor
             .iter()

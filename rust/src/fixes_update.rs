@@ -1,7 +1,8 @@
 //! A fix's Kalman update, its gate, and the re-admission that ends the gate's lock-out
 //! ([`FusionConfig::readmit_after`](crate::FusionConfig::readmit_after)).
 
-use super::{wrap_angle, Fix, Fusion, READMIT_MIN_REJECTED, READMIT_REACH};
+use super::{wrap_angle, Fix, Fusion, READMIT_GAP, READMIT_MIN_REJECTED, READMIT_REACH};
+use crate::fixes_drift::Drift;
 use crate::fixes_smooth::Mat3;
 
 impl Fusion {
@@ -23,16 +24,30 @@ impl Fusion {
         let nu = wrap_angle(fix.heading - x[0]);
         let bound = self.config.gate * (p[0][0] + r);
         if nu * nu > bound {
-            if !self.readmits(fix.t, nu * nu <= READMIT_REACH * READMIT_REACH * bound) {
+            let run = self.run_continued(fix.t);
+            let drift = match (run, self.drift) {
+                (None, _) => Some(Drift::first(nu)),
+                (Some((since, _)), Some(d)) => Some(d.with(fix.t - since, nu)),
+                (Some(_), None) => None,
+            };
+            // Beyond reach, a run whose innovations drift: its slope's square, the bias's error
+            let drifting = if nu * nu <= READMIT_REACH * READMIT_REACH * bound {
+                Some(0.0)
+            } else {
+                self.drifting(run, drift, (fix.t, r), (p[0][0], bound))
+            };
+            if !self.readmits(run, fix.t, drifting.is_some()) {
                 self.counts.rejected = self.counts.rejected.saturating_add(1);
-                let (since, n) = self.rejected_run.unwrap_or((fix.t, 0));
+                let (since, n) = run.unwrap_or((fix.t, 0));
                 self.rejected_run = Some((since, n.saturating_add(1)));
+                self.drift = drift;
                 return None;
             }
-            self.reopen(p, nu);
+            self.reopen(p, nu, drifting.unwrap_or(0.0));
             self.counts.readmitted = self.counts.readmitted.saturating_add(1);
         }
         self.rejected_run = None;
+        self.drift = None;
         self.counts.applied = self.counts.applied.saturating_add(1);
         let s = p[0][0] + r;
         let k = [p[0][0] / s, p[1][0] / s, p[2][0] / s];
@@ -53,16 +68,67 @@ impl Fusion {
         Some((x, crate::fixes_covariance::semi_definite(p)))
     }
 
-    /// Whether a fix at `t` that fails the gate ends the gate's lock-out: the fixes have failed
-    /// it for `readmit_after` seconds, at least [`READMIT_MIN_REJECTED`] in a row with this one,
-    /// and this one is `within_reach` ([`READMIT_REACH`]).
+    /// The run of rejections (its first fix's time, how many) that a fix at `t` failing the gate
+    /// continues: none after a gap in the fixes longer than [`READMIT_GAP`] times their interval
+    /// and half of `readmit_after`. The rejections before an outage were made by a filter that
+    /// has grown less sure since, and the outage itself held none: counted across it, two stray
+    /// fixes before a tunnel and one after it re-admitted the third and reset the heading to it.
     #[inline(always)]
-    fn readmits(&self, t: f64, within_reach: bool) -> bool {
-        within_reach
-            && self.rejected_run.is_some_and(|(since, n)| {
+    fn run_continued(&self, t: f64) -> Option<(f64, u64)> {
+        let c = &self.config;
+        let span = (READMIT_MIN_REJECTED - 1) as f64;
+        let longest = (READMIT_GAP * self.fix_interval).max(c.readmit_after / span);
+        let after_last = self.last_fix.is_some_and(|last| t - last <= longest);
+        self.rejected_run.filter(|_| after_last)
+    }
+
+    /// Whether a fix at `t` that fails the gate, continuing the rejections `run`, ends the gate's
+    /// lock-out: the fixes have failed it for `readmit_after` seconds, at least
+    /// [`READMIT_MIN_REJECTED`] in a row with this one, and this one is `admissible` (within
+    /// [`READMIT_REACH`], or beyond it at the end of a run that drifts).
+    #[inline(always)]
+    fn readmits(&self, run: Option<(f64, u64)>, t: f64, admissible: bool) -> bool {
+        admissible
+            && run.is_some_and(|(since, n)| {
                 n.saturating_add(1) >= READMIT_MIN_REJECTED
                     && t - since >= self.config.readmit_after
             })
+    }
+
+    /// The slope's square \[(rad/s)^2\] of the innovations of the rejections `run` with this fix
+    /// at `t` (`drift`; a fix's variance `r`) where the heading has run away from the fixes over
+    /// the run by more than the gate allows the filter's heading variance `p_heading`, the line
+    /// through them starting within [`READMIT_REACH`] radii of this fix's gate (`bound`): the
+    /// fixes agree with each other and with the gyro's turns, the filter does not, and it is
+    /// surer than that. None for a run of a steady offset (a lasting wrong course: the filter's
+    /// heading follows the gyro as the fixes do) or of scattered fixes.
+    fn drifting(
+        &self,
+        run: Option<(f64, u64)>,
+        drift: Option<Drift>,
+        (t, r): (f64, f64),
+        (p_heading, bound): (f64, f64),
+    ) -> Option<f64> {
+        let (since, n) = run?;
+        let (start, slope, residual, spread) = drift?.line(n.saturating_add(1))?;
+        // The line starts within reach: the fixes left the filter's heading by drifting away
+        // from it, not at a step (a lasting wrong course beyond reach is off from its first fix
+        // on, and a filter too sure of itself, on the KITTI drives' rate, drifts a few degrees
+        // from it too).
+        // (false for a NaN line: no drift)
+        let starts_within = start * start <= READMIT_REACH * READMIT_REACH * bound;
+        if !starts_within {
+            return None;
+        }
+        // three points leave one degree of freedom, which may fit by chance: at least `r`
+        let variance = residual.max(r) / spread;
+        // Within the range of `initial_bias_sigma`: fixes nanoseconds apart gave slopes whose
+        // square, as the bias's variance, was infinite and the covariance NaN.
+        let most = crate::fixes_config::MAX_INITIAL_BIAS;
+        let squared = (slope * slope).min(most * most);
+        let span = t - since;
+        (squared * span * span > self.config.gate * (variance * span * span + p_heading))
+            .then_some(squared)
     }
 
     /// The covariance of a filter the fixes have shown to be too sure of itself, before the fix
@@ -71,14 +137,18 @@ impl Fusion {
     /// where its square is c times the gate's bound: over half, 16/17 at [`READMIT_REACH`]), the
     /// scale's and bias's raised back to their initial ones (their error is what turned the
     /// heading away). A diagonal added: the covariance stays one, and the smoother sees it as
-    /// noise entering at the fix.
+    /// noise entering at the fix. Where the run's innovations drifted (`drift_squared`, the
+    /// square of their slope), the bias's variance is raised to that at least: an initial one
+    /// far below the gyro's error would lock the filter out again.
     #[cold]
-    fn reopen(&self, p: &mut Mat3, nu: f64) {
+    fn reopen(&self, p: &mut Mat3, nu: f64, drift_squared: f64) {
         let c = &self.config;
-        p[0][0] += nu * nu / c.gate;
+        // At most the variance of an unknown heading (sigma 2^20 rad, `initial_heading_sigma`'s
+        // limit): a drifting run beyond reach with a gate near 0 raised it to infinity.
+        p[0][0] += (nu * nu / c.gate).min(crate::MAX_READING * crate::MAX_READING);
         let scale = c.initial_scale_sigma * c.initial_scale_sigma;
         let bias = c.initial_bias_sigma * c.initial_bias_sigma;
         p[1][1] = p[1][1].max(scale);
-        p[2][2] = p[2][2].max(bias);
+        p[2][2] = p[2][2].max(bias).max(drift_squared);
     }
 }

@@ -71,6 +71,7 @@ mod error;
 pub mod fixes;
 mod fixes_config;
 mod fixes_covariance;
+mod fixes_drift;
 mod fixes_error;
 mod fixes_output;
 mod fixes_segment;

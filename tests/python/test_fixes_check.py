@@ -115,3 +115,31 @@ def test_a_stream_whose_gate_rejects_most_fixes_says_so_once() -> None:
 
         said = [m for m in messages(blocks) if "the gate rejected every heading fix" in m or "outlier gate" in m]
         assert len(said) == 1 and "a receiver's latency" in said[0]
+
+
+def test_fixes_a_tenth_of_a_second_late_are_a_documented_blind_spot_of_small_cost() -> None:
+    # docs/fixes.md, "Fixes checked against the gyro": a KITTI gyro lags its reference by about
+    # 0.06 s, so an offset below the lag's bound (MAX_LAG) is not told from the data's own; what
+    # it costs is small (0.1 s late: 0.48 to 0.63 deg causal, median of the 12 logs), and 0.3 s
+    # is seen.
+    from gyrocore.evaluate_metrics import Reference
+    from gyrocore.fixes_check import MAX_LAG
+
+    from .conftest import real_log_path
+    log = gyrocore.read_log(real_log_path("kitti_2011_09_30_0033_mems"))
+    reference = Reference(*log.reference())
+    honest = gyrocore.sim.gnss_fixes(*log.reference(), seed=1)
+
+    def late(seconds: float) -> tuple[list[str], float]:
+        fixes = Fixes(honest.t + seconds, honest.heading, honest.sigma)
+        said = messages(lambda: fuse(log.t, log.rate, fixes))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            error = reference.e_psi(log.t, fuse(log.t, log.rate, fixes).heading, absolute=True)
+        return [m for m in said if "are stamped about" in m], error
+
+    stamped = agreement(log.t, log.rate, Fixes(honest.t + 0.1, honest.heading, honest.sigma))
+    assert stamped is not None and abs(stamped.lag) < MAX_LAG
+    on_time, late_by_a_tenth, late_by_three = late(0.0), late(0.1), late(0.3)
+    assert not on_time[0] and not late_by_a_tenth[0] and late_by_three[0]
+    assert late_by_a_tenth[1] - on_time[1] < 0.5 < late_by_three[1] - on_time[1]
