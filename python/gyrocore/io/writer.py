@@ -24,7 +24,7 @@ from .._extras import require
 from ..pipeline import HeadingResult
 from ._columns import import_pyarrow_lazy_modules
 from ._paths import arrow_path
-from .atomic import StagedFile, named_if_no_room
+from .atomic import StagedFile, named_if_no_room, refuse_present
 
 if TYPE_CHECKING:
     from .source import GyroSource
@@ -143,8 +143,10 @@ class HeadingWriter:
         heading: ``enu`` (default) or ``compass`` (see :func:`convert_heading`).
         columns: the columns to write, in this order (see :func:`check_columns`); the results
             written need only hold those (``outputs=`` of :meth:`gyrocore.Pipeline.process`).
-        replace: False: a file that appears at ``path`` while the table is written is kept, and
-            the table is not written (FileExistsError at the end).
+        replace: False: a file at ``path`` when the writer is made is refused at once
+            (FileExistsError naming ``replace=True``, :func:`gyrocore.io.atomic.refuse_present`);
+            one that appears there while the table is written is another run's, kept, and the
+            table is not written (FileExistsError at the end, "written meanwhile").
     """
 
     def __init__(self, path: str | Path, *, heading: str = "enu", columns: Sequence[str] = OUTPUT_COLUMNS,
@@ -154,6 +156,9 @@ class HeadingWriter:
         self.columns = check_columns(columns)
         self.format = output_format(self.path)
         require_choice("heading convention", heading, HEADING_CONVENTIONS)
+        # before the caller's work: a file there already was refused only at the end, as if
+        # another run had written it meanwhile
+        refuse_present([self.path], replace, "replace=True")
         self.heading = heading
         self.rows = 0
         self._staged: StagedFile | None = None
