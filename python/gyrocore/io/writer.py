@@ -20,6 +20,7 @@ import numpy as np
 from .. import _gyrocore
 from .._arrays import FloatArray
 from .._checks import require_choice
+from .._inuse import Turn, one_at_a_time
 from .._extras import require
 from ..pipeline import HeadingResult
 from ._columns import import_pyarrow_lazy_modules
@@ -159,6 +160,9 @@ class HeadingWriter:
         # before the caller's work: a file there already was refused only at the end, as if
         # another run had written it meanwhile
         refuse_present([self.path], replace, "replace=True")
+        # two threads' writes mixed their rows in the file (and lost some of a Parquet row group's)
+        self._turn = Turn("a table takes one write at a time, its rows in order; hold a lock around its calls, "
+                          "or give each thread its own writer and file")
         self.heading = heading
         self.rows = 0
         self._staged: StagedFile | None = None
@@ -169,6 +173,7 @@ class HeadingWriter:
         self._group: list[FloatArray] | None = None
         self._filled = 0
 
+    @one_at_a_time
     def __enter__(self) -> HeadingWriter:
         if self.format == "parquet":  # before the staged file: nothing to remove if pyarrow is missing
             pa = require("pyarrow", f"{self.path}: writing Parquet files")
@@ -195,6 +200,7 @@ class HeadingWriter:
             raise
         return self
 
+    @one_at_a_time
     def write(self, result: HeadingResult) -> None:
         """Append the rows of one chunk."""
         r = convert_heading(result, self.heading)
@@ -244,6 +250,7 @@ class HeadingWriter:
             self._write_group([c[: self._filled] for c in self._group])
             self._filled = 0
 
+    @one_at_a_time
     def __exit__(self, kind: type[BaseException] | None, error: BaseException | None, tb: TracebackType | None) -> None:
         assert self._staged is not None, "HeadingWriter is used as a context manager"
         try:
@@ -262,3 +269,8 @@ class HeadingWriter:
             self._staged.discard()
         if error is not None and (named := named_if_no_room(self.path, error)) is not error:
             raise named from None
+
+    @property
+    def _in_use_name(self) -> str:
+        """What this writer is, in the words of a call refused while another thread's runs."""
+        return f"this gyrocore.io.HeadingWriter of {self.path}"
