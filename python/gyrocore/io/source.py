@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from .._arrays import FloatArray
-from .._checks import first_infinite, keep_readings, require_choice, require_flag
+from .._checks import check_count, first_infinite, keep_readings, require_choice, require_flag
 from .._gyrocore import SampleError
 from .._inuse import OneReader
 from ..window import Window
@@ -272,14 +272,13 @@ class GyroSource:
                 column, an empty timestamp, or an ``up`` that cannot be measured.
             ImportError: a bag without the ``rosbags`` package.
         """
+        rows = check_count("rows per chunk", rows)  # at the call: 1.5 failed at the first chunk, True read 1
         return OneReader(self._chunks(rows), f"this reading of {self.data_path}", "GyroSource.chunks()",
                          "a reading gives its chunks in order to the thread that began it; give each thread its "
                          "own (source.chunks() reads the file again from its start)")
 
     def _chunks(self, rows: int) -> Iterator[Chunk]:
         """:meth:`chunks`, read on one thread."""
-        if rows < 1:
-            raise ValueError(f"rows per chunk must be >= 1, got {rows}")
         import_pyarrow_lazy_modules()
         o = self.options
         up = self.up()
