@@ -120,15 +120,28 @@ def as_float_array(name: str, values: ArrayLike, *, copy: bool = False, masked: 
     return out.copy() if copy and not fresh else out
 
 
-def float_fields(record: object, names: Sequence[str], prefix: str = "", *, copy: bool = False) -> None:
+def float_fields(record: object, names: Sequence[str], prefix: str = "", *, copy: bool = False,
+                 frozen: bool = False) -> None:
     """Set each field ``names`` of the frozen dataclass ``record`` that is not None to
     :func:`as_float_array` of it (named ``prefix`` + its name in an error): a record built from
     pandas columns or lists then holds numpy arrays, and reads them by position (a Series' ``t[0]``
-    is a look-up by label)."""
+    is a look-up by label). ``frozen``: to :func:`frozen_array` of it."""
     for name in names:
         value = getattr(record, name)
         if value is not None:
-            object.__setattr__(record, name, as_float_array(prefix + name, value, copy=copy))
+            a = frozen_array(prefix + name, value) if frozen else as_float_array(prefix + name, value, copy=copy)
+            object.__setattr__(record, name, a)
+
+
+def frozen_array(name: str, values: ArrayLike) -> FloatArray:
+    """``values`` as a read-only float64 array (:func:`as_float_array`) that the caller's writes do
+    not reach: a read-only ndarray as it is (a memory map opened read-only, a pandas column under
+    copy-on-write, another record's frozen array: its holder keeps it unchanged, numpy's meaning of
+    the flag), anything else copied (once: a conversion's new array is not copied again)."""
+    given_read_only = isinstance(values, np.ndarray) and not values.flags.writeable
+    a = as_float_array(name, values, copy=not given_read_only)
+    a.flags.writeable = False  # a write through it fails: "assignment destination is read-only"
+    return a
 
 
 def array_fields(record: Any) -> dict[str, FloatArray]:

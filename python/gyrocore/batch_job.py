@@ -96,7 +96,10 @@ class _FileJob:
             return FileReport(str(self.path), str(self.out), 0, 0, 0.0, output_existed=True)
         # every warning the file raises, from opening it to its last chunk, is a note of its
         # report, also of a file that then fails (what came before an error often says why)
-        with _noted(self.notes, self.path if self.raise_again else None), atomic.tagged(self.tag):
+        # the output was refused before the job where it was there (process_file, process_many, the
+        # command line): one found there now was written meanwhile, by another run
+        with (_noted(self.notes, self.path if self.raise_again else None), atomic.tagged(self.tag),
+              atomic.outputs_checked()):
             return self._stream(progress)
 
     def _stream(self, progress: Progress | None) -> FileReport:

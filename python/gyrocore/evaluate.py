@@ -32,11 +32,10 @@ from .evaluate_compare import (
     compare,
     named_error,
     Failed,
-    plot_path,
-    plot_log,
     format_table,
     format_bias_sources,
 )
+from .evaluate_plot import plot_log, plot_path
 
 __all__ = [
     "CLOSED_FRACTION", "GAP_FACTOR", "Failed", "HeadingErrors", "Method", "Reference", "Score", "compare",

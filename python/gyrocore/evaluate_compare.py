@@ -1,5 +1,5 @@
-"""Methods (a preset with overrides) run on logs and scored against each log's reference, the
-tables of the scores and plots of heading and error against time; :mod:`gyrocore.evaluate`
+"""Methods (a preset with overrides) run on logs and scored against each log's reference, and
+the tables of the scores (the plots: :mod:`gyrocore.evaluate_plot`); :mod:`gyrocore.evaluate`
 re-exports the public names.
 """
 
@@ -10,7 +10,7 @@ import os
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Mapping, Protocol, Sequence
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -18,13 +18,12 @@ from numpy.typing import ArrayLike
 from . import deadreckon
 from ._arrays import as_float_array, covered_share, span_text
 from ._checks import check_number, json_ready, require_finite, require_flag, warn
-from ._extras import pyplot
-from .evaluate_envelope import envelope
 from .batch_report import failed_line
-from .evaluate_metrics import HeadingErrors, Reference, heading_errors, improvement
+from .evaluate_metrics import HeadingErrors, heading_errors, improvement
+from .evaluate_plot import evaluation_pyplot, plot_log, plot_path
 from .io import Log, read_log
 from .io._logfolder import REFERENCE_CSV
-from .io.atomic import kept_outputs, make_folder
+from .io.atomic import kept_outputs
 from .pipeline import HeadingResult, has_bias_source, process, recommended_preset, uses_static_bias
 from .rests import rest_lines
 from .wholelog import Rest, check_mode, check_parameters
@@ -296,7 +295,7 @@ def compare(
         check_number("bias_duration", bias_duration, unit=" [s]")
     require_flag("use_speed", use_speed)  # "no" was True
     if plot_dir is not None:
-        _pyplot()  # fail before the work if plots cannot be drawn
+        evaluation_pyplot()  # fail before the work if plots cannot be drawn
     rows: list[Score] = []
     for item in logs:
         log = item if isinstance(item, Log) else read_log(item)
@@ -370,81 +369,6 @@ class Failed:
 
     def __str__(self) -> str:
         return failed_line(self.path, self.error)
-
-
-class Named(Protocol):
-    """What names a log's plot: its name, and where it was read (None: built in memory)."""
-
-    @property
-    def name(self) -> str: ...
-
-    @property
-    def path(self) -> str | None: ...
-
-
-def plot_path(plot_dir: str | Path, log: Named) -> Path:
-    """Where :func:`compare` draws the plot of ``log``: ``<plot_dir>/<log name>.png``.
-
-    Raises:
-        ValueError: a name that is a path: its plot would land outside ``plot_dir`` (a
-            meta.json's name ``/home/me/x`` wrote ``/home/me/x.png``).
-    """
-    name = log.name
-    if os.path.basename(name) != name or "\0" in name:  # NUL: no file name either
-        label = log.path if log.path is not None else f"log {log.name}"
-        raise ValueError(
-            f"{label}: the log's name {name!r} is no file name for its plot ({plot_dir}/<name>.png): "
-            "give the log a name without a folder (meta.json's name)"
-        )
-    return Path(plot_dir) / f"{name}.png"
-
-
-def _pyplot() -> Any:
-    return pyplot("plotting the evaluation")
-
-
-def plot_log(path: str | Path, log: Log, results: Mapping[str, HeadingResult], *, overwrite: bool = True) -> None:
-    """Write a PNG to ``path``: heading of each method and the reference (top), error against time
-    (bottom). In a notebook, ``IPython.display.Image(path)`` shows it. ``overwrite=False`` refuses
-    a file at ``path`` before the plot is drawn, and keeps one written meanwhile (FileExistsError).
-
-    Headings are aligned with the reference at the first compared time, in degrees.
-    """
-    path = Path(path)  # a str was "'str' object has no attribute 'parent'", after the plot was drawn
-    with kept_outputs([path], overwrite, "overwrite=True"):
-        _draw_log(path, log, results, overwrite)
-
-
-def _draw_log(path: Path, log: Log, results: Mapping[str, HeadingResult], overwrite: bool) -> None:
-    """:func:`plot_log`'s figure, drawn and written."""
-    plt = _pyplot()
-    from .io.atomic import write_atomically
-
-    reference = Reference(*log.reference())
-    t0 = float(log.t[0])
-    fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(10, 6.5))
-    for k, (name, r) in enumerate(results.items()):
-        tr, err, _ = reference.compared(r.t, r.heading)
-        start = np.interp(tr[0], r.t, r.heading)
-        if k == 0:
-            # The aligned reference is the aligned estimate minus its error.
-            ref = np.interp(tr, r.t, r.heading) - start - err
-            at = envelope(ref)
-            ax1.plot(tr[at] - t0, np.degrees(ref[at]), "k", lw=2.2, label="reference")
-        at = envelope(r.heading)  # the points drawn taken first: a long log's lines copied it whole, twice
-        ax1.plot(r.t[at] - t0, np.degrees(r.heading[at] - start), lw=1, label=name)
-        at = envelope(err)
-        ax2.plot(tr[at] - t0, np.degrees(err[at]), lw=1, label=name)
-    ax1.set_title(f"{log.name}: heading against the reference")
-    ax1.set_ylabel("heading change [deg]")
-    ax2.set_ylabel("error [deg]")
-    ax2.set_xlabel(f"t - t0 [s] (t0 = {t0:.3f} s)")
-    ax2.axhline(0.0, color="k", lw=0.5)
-    ax1.legend(fontsize=8, ncol=2)
-    fig.tight_layout()
-    make_folder(path.parent)
-    write_atomically(path, lambda tmp: fig.savefig(tmp, format="png", dpi=100), replace=overwrite)
-    plt.close(fig)
 
 
 def format_table(rows: Sequence[Score | Failed], *, file: Any = None) -> None:

@@ -6,7 +6,7 @@ import numpy as np
 
 from ._arrays import FloatArray
 
-#: A line of :func:`gyrocore.evaluate_compare.plot_log` is drawn through at most twice this many
+#: A line of :func:`gyrocore.evaluate_plot.plot_log` is drawn through at most twice this many
 #: points (the plot is 1000 pixels wide): every sample of a long log's 7 methods, drawn twice, took
 #: 21.5 s and 2.9 GB resident for 4*10^6 samples, where scoring them took 5.5 s and 838 MB.
 PLOT_BINS = 4000

@@ -360,3 +360,15 @@ def test_a_time_column_or_unit_given_for_a_bag_is_said_to_be_unused(tmp_path: Pa
         "(seconds and nanoseconds)",
     ]
     assert np.array_equal(log.t, gyrocore.read_log(path).t)
+
+
+@pytest.mark.parametrize("rows", [0, -1, 1.5, "10", True, None])
+def test_rows_per_chunk_that_are_no_count_are_refused_at_the_call(tmp_path: Path, rows: object) -> None:
+    # 1.5 failed at the first chunk with "'float' object cannot be interpreted as an integer", "10"
+    # and None with "'<' not supported between instances", and True read chunks of one row
+    path = tmp_path / "a.csv"
+    np.savetxt(path, np.column_stack([T, T * 0.01]), delimiter=",", header="t,gyro_z", comments="")
+    source = gyrocore.io.open_source(path)
+    with pytest.raises(ValueError, match=rf"^rows per chunk must be a whole number >= 1, got {re.escape(repr(rows))}$"):
+        source.chunks(rows)  # type: ignore[arg-type]
+    assert [len(c) for c in source.chunks(np.int64(4))] == [4, 4, 2]

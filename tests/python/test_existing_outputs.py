@@ -129,3 +129,34 @@ def test_a_heading_file_there_before_process_file_or_process_many_is_refused_bef
     with pytest.raises(ValueError, match="input"):
         process_file(other, other, preset="raw", overwrite=False)
     assert process_file(log, out, preset="raw", overwrite=True).rows_out == 300
+
+
+def test_a_heading_writer_s_output_there_before_it_is_made_is_refused_at_once(tmp_path: Path) -> None:
+    # it was refused only at the block's end, as "written meanwhile by something else", after the
+    # rows were written, naming --overwrite, which the writer does not have
+    from gyrocore.io import HeadingWriter
+
+    out = tmp_path / "h.csv"
+    out.write_text(KEPT)
+    with pytest.raises(FileExistsError, match=_refusal(out, "replace=True")):
+        HeadingWriter(out, replace=False)
+    assert out.read_text() == KEPT and sorted(p.name for p in tmp_path.iterdir()) == ["h.csv"]
+    with HeadingWriter(out, replace=True) as writer:  # what the refusal says to do
+        writer.write(datasets.sample_drive().process("raw"))
+    assert out.read_text() != KEPT
+
+
+def test_a_heading_writer_keeps_a_file_written_meanwhile(tmp_path: Path) -> None:
+    from gyrocore.io import HeadingWriter
+
+    result = datasets.sample_drive().process("raw")
+    out = tmp_path / "h.csv"
+    with pytest.raises(FileExistsError, match=rf"^{re.escape(str(out))}: written meanwhile by something else"):
+        with HeadingWriter(out, replace=False) as writer:
+            out.write_text(KEPT)
+            writer.write(result)
+    assert out.read_text() == KEPT and sorted(p.name for p in tmp_path.iterdir()) == ["h.csv"]
+    out.unlink()
+    with HeadingWriter(out, replace=False) as writer:
+        writer.write(result)
+    assert writer.rows == len(result.t) and len(out.read_text().splitlines()) == len(result.t) + 1

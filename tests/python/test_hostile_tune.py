@@ -77,6 +77,21 @@ def test_a_name_the_parameter_file_cannot_hold_is_refused_before_the_fit(tmp_pat
         tune.ParameterSet(5, "hdr", {})  # type: ignore[arg-type]
 
 
+def test_a_name_with_a_line_break_is_refused_before_any_drive_is_built(
+        monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    # refused only by tune.tune, after the training, test and do-no-harm drives were built
+    from gyrocore.cli import main
+
+    def built(*args: object, **kwargs: object) -> list[tune.Case]:
+        raise AssertionError("a drive was built")
+
+    monkeypatch.setattr(tune, "simulated_cases", built)
+    monkeypatch.setattr(tune, "harm_cases", built)
+    assert main(["tune", "--sim-table", "II", "--name", "a\nb"]) == 2
+    assert capsys.readouterr().err == ('gyrocore: error: --name: "name" must be one line of text without control '
+                                       "characters, got 'a\\nb'\n")
+
+
 def test_a_log_both_trained_on_and_tested_on_is_refused_before_the_fit() -> None:
     from .conftest import real_log_path
 

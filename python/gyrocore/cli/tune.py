@@ -200,9 +200,14 @@ def _check_simulated(args: argparse.Namespace) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    if args.name is not None and not args.name.strip():  # the set's own check names no option
-        raise ValueError(f"--name {args.name!r}: give the parameter set a name that is not blank (or leave --name out: "
-                         f"{args.preset}_tuned)")
+    if args.name is not None:  # the set's own check names no option, and came after the drives were built
+        if not args.name.strip():
+            raise ValueError(f"--name {args.name!r}: give the parameter set a name that is not blank (or leave --name "
+                             f"out: {args.preset}_tuned)")
+        try:
+            tune.ParameterSet(args.name, args.preset, {})  # a line break split evaluate's rows of the set
+        except ValueError as e:
+            raise ValueError(f"--name: {e}") from None
     if args.out is not None:  # before the fit, which takes minutes
         check_not_input(Path(args.out), [Path(p) for p in args.logs + args.test])
         require_suffix(args.out, "--out", "a JSON parameter file", (".json",))

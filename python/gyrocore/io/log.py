@@ -71,11 +71,15 @@ class Log:
     # ``dataclasses.replace`` with other samples leaves it out rather than naming wrong lines
 
     def __post_init__(self) -> None:
-        """Each series as a float64 numpy array (no copy of one already): a pandas Series indexes by
-        label, so ``t[0]`` and ``t[-1]`` of one cut from a table (``df.loc[df.t > 10, "t"]``) failed.
+        """Each series as a read-only float64 numpy array of the log's own: a pandas Series indexes
+        by label, so ``t[0]`` and ``t[-1]`` of one cut from a table (``df.loc[df.t > 10, "t"]``)
+        failed. The caller's arrays were kept as they were, so that a change of one after the log
+        was made (or through ``log.rate``) changed the log's heading without a word: a writable
+        array is copied (10^7 samples of t and rate: 40-50 ms, 160 MB), a read-only one taken as it
+        is (:func:`~gyrocore._arrays.frozen_array`), and a write through ``log.t`` fails.
         A ``speed`` without ``t_odometry`` is one per gyro sample (as :func:`gyrocore.process` takes
         it); series that belong together are checked to match, and ``stationary`` to be a window."""
-        float_fields(self, _SERIES)
+        float_fields(self, _SERIES, frozen=True)
         if self.speed is not None and self.t_odometry is None and len(self.speed) == len(self.t):
             object.__setattr__(self, "t_odometry", self.t)  # its own times: the gyro's (frozen: set as float_fields sets)
         for times, values in (("t", ("rate",)), ("t_ref", ("heading_ref", "x_ref", "y_ref")), ("t_odometry", ("speed",))):
@@ -314,10 +318,13 @@ def read_log(path: str | Path, *, use_fixes: bool = True, **options: Any) -> Log
         fixes = read_fixes(src.path) if use_fixes else None
     else:
         ref, odo = _file_tables(src, t)
+    rate = concat(rates)
+    for series in (t, rate, *ref.values(), *odo.values()):  # read here, no one else's: the log takes them uncopied
+        series.flags.writeable = False
     log = Log(
         name=src.name,
         t=t,
-        rate=concat(rates),
+        rate=rate,
         t_ref=ref.get("t"),
         heading_ref=ref.get("heading"),
         x_ref=ref.get("x"),

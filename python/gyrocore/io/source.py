@@ -15,9 +15,10 @@ from typing import Any
 
 import numpy as np
 
-from .._arrays import FloatArray, durations_in_seconds, warn_coarse_times, warn_merged_counts
-from .._checks import first_infinite, keep_readings, require_choice, require_flag
+from .._arrays import FloatArray
+from .._checks import check_count, first_infinite, keep_readings, require_choice, require_flag
 from .._gyrocore import SampleError
+from .._inuse import OneReader
 from ..window import Window
 from ._axes import MEASURED, measure_up, parse_up, parse_up_window, project, three_names
 from ._columns import METRES, METRES_PER_SECOND, RADIANS, concat, import_pyarrow_lazy_modules, in_si_units
@@ -28,7 +29,7 @@ from ._options_given import checked_options
 from ._parquetfile import parquet_chunks, parquet_file, warn_given_time_unit
 from ._paths import check_file, check_readable, content_hint, missing
 from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder, storage_file_hint
-from .units import RATE_UNITS, TIME_UNITS, header_options, rate_unit_named, time_unit_named
+from .units import RATE_UNITS, TIME_UNITS, header_options, rate_unit_named, seconds_from_counts, time_unit_named
 
 #: Samples per chunk, at most (a CSV chunk also ends with a block of :data:`CSV_BLOCK_BYTES`).
 DEFAULT_CHUNK_ROWS = 1 << 16
@@ -262,13 +263,22 @@ class GyroSource:
         """The samples, at most ``rows`` at a time, converted to SI units (three-axis input: the
         rate along :meth:`up`, projected chunk after chunk).
 
+        Each call is a reading of its own, from the file's start; a reading belongs to the thread
+        that takes its first chunk: another thread's ``next()`` on it is refused
+        (:class:`gyrocore.InUseError`), and the first thread's reading goes on whole.
+
         Raises:
             ValueError: a malformed file (naming the file and the line, row or message), a missing
                 column, an empty timestamp, or an ``up`` that cannot be measured.
             ImportError: a bag without the ``rosbags`` package.
         """
-        if rows < 1:
-            raise ValueError(f"rows per chunk must be >= 1, got {rows}")
+        rows = check_count("rows per chunk", rows)  # at the call: 1.5 failed at the first chunk, True read 1
+        return OneReader(self._chunks(rows), f"this reading of {self.data_path}", "GyroSource.chunks()",
+                         "a reading gives its chunks in order to the thread that began it; give each thread its "
+                         "own (source.chunks() reads the file again from its start)")
+
+    def _chunks(self, rows: int) -> Iterator[Chunk]:
+        """:meth:`chunks`, read on one thread."""
         import_pyarrow_lazy_modules()
         o = self.options
         up = self.up()
@@ -350,7 +360,7 @@ class GyroSource:
     def _read(self, rows: int, columns: tuple[str, ...]) -> Generator[tuple[FloatArray, list[np.ndarray], int]]:
         """(t [s], the ``columns`` as read, progress) of the format's reader, block after block."""
         for t_raw, values, per_second, done in _READERS[self.kind](self, rows, columns):
-            yield _seconds(t_raw, per_second), values, done
+            yield seconds_from_counts(t_raw, per_second), values, done
 
 
 def finite_speed(source: GyroSource, speed: FloatArray) -> FloatArray:
@@ -373,23 +383,6 @@ _READERS = {
     "npz": npz_chunks,
     "bag": bag_chunks,
 }
-
-
-def _seconds(raw: np.ndarray, per_second: float) -> FloatArray:
-    """Timestamps [s] from counts of a unit; division (not multiplication by 1e-3) rounds once.
-    Durations (timedelta64 in .npy and .npz files) carry their own unit; datetime64 times are
-    their durations since the Unix epoch (a view: the counts are the same)."""
-    if raw.dtype.kind == "M":
-        raw = raw.view(raw.dtype.str.replace("M8", "m8"))
-    if raw.dtype.kind == "m":
-        return np.asarray(durations_in_seconds("the time column", raw), dtype=np.float64)
-    warn_coarse_times(raw, per_second)
-    t = np.asarray(raw, dtype=np.float64)
-    if per_second == 1.0:
-        return t
-    t = t / per_second
-    warn_merged_counts(raw, t, per_second)
-    return t
 
 
 def csv_delimiter(path: Path, options: ReadOptions) -> str:

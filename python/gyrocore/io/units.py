@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .._arrays import FloatArray
+from .._arrays import FloatArray, durations_in_seconds, warn_coarse_times, warn_merged_counts
 from .._checks import INTERVAL_LIMIT, SUBSET_SIZE, typical_interval, unit_problems
 
 if TYPE_CHECKING:
@@ -333,3 +333,20 @@ def _header_columns(path: Path, header: list[str], wanted: tuple[str, str, str],
     """The header names of the three columns ``wanted`` (see :func:`_header_column`)."""
     x, y, z = (_header_column(path, header, c, option) for c in wanted)
     return (x, y, z)
+
+
+def seconds_from_counts(raw: np.ndarray, per_second: float) -> FloatArray:
+    """Timestamps [s] from counts of a unit; division (not multiplication by 1e-3) rounds once.
+    Durations (timedelta64 in .npy and .npz files) carry their own unit; datetime64 times are
+    their durations since the Unix epoch (a view: the counts are the same)."""
+    if raw.dtype.kind == "M":
+        raw = raw.view(raw.dtype.str.replace("M8", "m8"))
+    if raw.dtype.kind == "m":
+        return np.asarray(durations_in_seconds("the time column", raw), dtype=np.float64)
+    warn_coarse_times(raw, per_second)
+    t = np.asarray(raw, dtype=np.float64)
+    if per_second == 1.0:
+        return t
+    t = t / per_second
+    warn_merged_counts(raw, t, per_second)
+    return t

@@ -18,13 +18,14 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .. import _gyrocore
-from .._arrays import FloatArray
+from .._arrays import FloatArray, as_float_array
 from .._checks import require_choice
+from .._inuse import Turn, one_at_a_time
 from .._extras import require
 from ..pipeline import HeadingResult
 from ._columns import import_pyarrow_lazy_modules
 from ._paths import arrow_path
-from .atomic import StagedFile, named_if_no_room
+from .atomic import StagedFile, named_if_no_room, refuse_present
 
 if TYPE_CHECKING:
     from .source import GyroSource
@@ -130,21 +131,33 @@ def _folders_above(out: Path) -> set[tuple[int, int] | None]:
     return found
 
 
+def _float_column(name: str, values: Any) -> FloatArray:
+    """A result's column ``name`` as a 1-D float64 array: a pipeline's as it is (checked at 8 us a
+    column, one-row writes took 3 times as long), anything else through :func:`as_float_array`,
+    named so that ``t`` is not checked again for coarse times, which the pipeline said."""
+    if isinstance(values, np.ndarray) and values.dtype == np.float64 and values.ndim == 1:
+        return values
+    return as_float_array(f"the result's {name}", values)
+
+
 class HeadingWriter:
     """Writes a heading table (columns t, heading, rate, drift, or those asked for) chunk after chunk.
 
     Use as a context manager: the table goes to a temporary file next to ``path``, which replaces
     ``path`` only when the block ends without error; on an error or an interruption it is removed.
     CSV floats are written in their shortest form that reads back bit-identically (``NaN`` for the
-    rate of a skipped sample).
+    rate of a skipped sample). A writer writes one table: a write outside its block, or a second
+    block, is a ValueError (as a closed file's); leaving the block twice does nothing more.
 
     Args:
         path: ``.csv`` or ``.parquet`` output.
         heading: ``enu`` (default) or ``compass`` (see :func:`convert_heading`).
         columns: the columns to write, in this order (see :func:`check_columns`); the results
             written need only hold those (``outputs=`` of :meth:`gyrocore.Pipeline.process`).
-        replace: False: a file that appears at ``path`` while the table is written is kept, and
-            the table is not written (FileExistsError at the end).
+        replace: False: a file at ``path`` when the writer is made is refused at once
+            (FileExistsError naming ``replace=True``, :func:`gyrocore.io.atomic.refuse_present`);
+            one that appears there while the table is written is another run's, kept, and the
+            table is not written (FileExistsError at the end, "written meanwhile").
     """
 
     def __init__(self, path: str | Path, *, heading: str = "enu", columns: Sequence[str] = OUTPUT_COLUMNS,
@@ -154,6 +167,12 @@ class HeadingWriter:
         self.columns = check_columns(columns)
         self.format = output_format(self.path)
         require_choice("heading convention", heading, HEADING_CONVENTIONS)
+        # before the caller's work: a file there already was refused only at the end, as if
+        # another run had written it meanwhile
+        refuse_present([self.path], replace, "replace=True")
+        # two threads' writes mixed their rows in the file (and lost some of a Parquet row group's)
+        self._turn = Turn("a table takes one write at a time, its rows in order; hold a lock around its calls, "
+                          "or give each thread its own writer and file")
         self.heading = heading
         self.rows = 0
         self._staged: StagedFile | None = None
@@ -163,8 +182,13 @@ class HeadingWriter:
         #: Parquet: the rows of the row group being filled, one array per column (None: none yet)
         self._group: list[FloatArray] | None = None
         self._filled = 0
+        self._closed = False  # the block has ended: the table is written, or given up
 
+    @one_at_a_time
     def __enter__(self) -> HeadingWriter:
+        if self._staged is not None:  # a second staged file orphaned the first, and rows counted on
+            raise ValueError(f"{self.path}: this HeadingWriter's block was entered already (a writer writes one "
+                             "table): make another HeadingWriter for another table")
         if self.format == "parquet":  # before the staged file: nothing to remove if pyarrow is missing
             pa = require("pyarrow", f"{self.path}: writing Parquet files")
             pq = require("pyarrow.parquet", f"{self.path}: writing Parquet files")
@@ -187,24 +211,56 @@ class HeadingWriter:
             if self._sink is not None:
                 self._sink.close()
             self._staged.discard()
+            self._staged = None  # nothing was begun: the block may be entered again
             raise
         return self
 
+    @one_at_a_time
     def write(self, result: HeadingResult) -> None:
-        """Append the rows of one chunk."""
-        r = convert_heading(result, self.heading)
-        columns = [r.t if c == "t" else r.output(c) for c in self.columns]
+        """Append the rows of one chunk: each column one value per sample of ``result.t``, as float64
+        (another real dtype converted); a result whose columns differ in length is refused before
+        any of its rows is written."""
+        self._require_open()
+        columns, rows = self._columns(result)
         if self.format == "csv":
             # formatted in Rust without the GIL (pyarrow's float-to-text cast was the slow part), a
             # block at a time: a result written whole (a log read in one piece) was copied and
             # formatted whole, its text as long as the file (1.1 GB resident for 4*10^6 samples);
             # + 0.0 turns -0.0 (the compass rate of a gyro at rest) into 0.0, a sign that is not there
-            for at in range(0, len(r.t), CSV_BLOCK_ROWS):
+            for at in range(0, rows, CSV_BLOCK_ROWS):
                 block = [c[at:at + CSV_BLOCK_ROWS] + 0.0 for c in columns]
                 self._sink.write(_gyrocore.format_csv_rows(block))
         else:
             self._write_parquet(columns)
-        self.rows += len(r.t)
+        self.rows += rows
+
+    def _require_open(self) -> None:
+        """Refuse a write outside the block: before it a CSV table failed with "'NoneType' object
+        has no attribute 'write'" and a Parquet one took the rows silently; after it a Parquet
+        table counted rows that went nowhere."""
+        if self._staged is None:
+            raise ValueError(f"{self.path}: HeadingWriter.write() before its table was opened: write in its block, "
+                             "with HeadingWriter(path) as writer: writer.write(result)")
+        if self._closed:
+            raise ValueError(f"{self.path}: HeadingWriter.write() after its table was closed ({self.rows} rows): a "
+                             "writer writes one table; make another HeadingWriter for more rows")
+
+    def _columns(self, result: HeadingResult) -> tuple[list[FloatArray], int]:
+        """The columns of ``result`` to write, each a float64 array one value per sample, and the
+        rows: float32 columns failed in CSV (``type mismatch``) where Parquet took them, and a
+        column of another length was an error naming no column, or none at all."""
+        if not isinstance(result, HeadingResult):
+            raise TypeError(f"{self.path}: HeadingWriter.write() takes a HeadingResult (of gyrocore.process or "
+                            f"Pipeline.process), got {type(result).__name__}")
+        r = convert_heading(result, self.heading)
+        t = _float_column("t", r.t)
+        rows = len(t)
+        columns = [t if c == "t" else _float_column(c, r.output(c)) for c in self.columns]
+        for name, column in zip(self.columns, columns):
+            if len(column) != rows:
+                raise ValueError(f"{self.path}: the result's {name} has {len(column)} values, its t {rows}: a table "
+                                 "takes one value of each column per sample (nothing of this result was written)")
+        return columns, rows
 
     def _write_parquet(self, columns: list[FloatArray]) -> None:
         """Append a chunk's columns to row groups of :data:`PARQUET_ROW_GROUP` rows. A chunk's rows
@@ -239,8 +295,13 @@ class HeadingWriter:
             self._write_group([c[: self._filled] for c in self._group])
             self._filled = 0
 
+    @one_at_a_time
     def __exit__(self, kind: type[BaseException] | None, error: BaseException | None, tb: TracebackType | None) -> None:
-        assert self._staged is not None, "HeadingWriter is used as a context manager"
+        if self._staged is None:
+            raise ValueError(f"{self.path}: HeadingWriter's block left before it was entered")
+        if self._closed:  # left twice: as a file closed twice, nothing more
+            return
+        self._closed = True
         try:
             try:
                 if self.format == "parquet":
@@ -257,3 +318,8 @@ class HeadingWriter:
             self._staged.discard()
         if error is not None and (named := named_if_no_room(self.path, error)) is not error:
             raise named from None
+
+    @property
+    def _in_use_name(self) -> str:
+        """What this writer is, in the words of a call refused while another thread's runs."""
+        return f"this gyrocore.io.HeadingWriter of {self.path}"
