@@ -1,0 +1,39 @@
+"""pandas columns and tables given to gyrocore as a user holds them: each gives the heading of the
+same data as plain float64 arrays, or an error that says what and where."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import gyrocore
+
+pd = pytest.importorskip("pandas")
+
+
+def _table(n: int = 3000) -> pd.DataFrame:
+    t = 10.0 + np.arange(n) * 0.01
+    return pd.DataFrame({"t": t, "gyro_z": 0.002 + (t > 20.0) * 0.2 * np.sin(t / 3.0)})
+
+
+@pytest.mark.parametrize("dtype", ["Float64", "Int64", "object"])
+def test_a_gap_in_a_nullable_column_is_a_missing_reading_as_nan_is(dtype: str) -> None:
+    df = _table()
+    rate = (df.gyro_z * 10).round() if dtype == "Int64" else df.gyro_z  # Int64: whole counts of 0.1 rad/s
+    gappy = rate.astype("Float64" if dtype == "object" else dtype)
+    gappy.iloc[500] = pd.NA
+    # pandas before 2.2 hands numpy such a column as objects with pandas.NA in the gap (later
+    # releases give NaN): that was "rate must hold real numbers, got dtype object: rate[500] is <NA>",
+    # and nonfinite= could not hold or skip it
+    given = gappy.to_numpy(dtype=object) if dtype == "object" else gappy
+    plain = rate.to_numpy(dtype=np.float64).copy()
+    plain[500] = np.nan
+    with pytest.raises(gyrocore.SampleError, match=r"^rate\[500\] is NaN: samples must be finite"):
+        gyrocore.process(df.t, given, "hdr", bias=0.002)
+    for policy in ("hold", "skip"):
+        with pytest.warns(gyrocore.InputWarning):
+            got = gyrocore.process(df.t, given, "hdr", bias=0.002, nonfinite=policy)
+        with pytest.warns(gyrocore.InputWarning):
+            expected = gyrocore.process(df.t.to_numpy(), plain, "hdr", bias=0.002, nonfinite=policy)
+        assert np.array_equal(got.heading, expected.heading) and np.array_equal(got.t, expected.t)
+    assert gappy.iloc[500] is pd.NA  # the caller's column is left as it was
