@@ -214,9 +214,16 @@ def warn_merged_counts(raw: np.ndarray, t: FloatArray, per_second: float) -> Non
              f"{first_text} from each)")
 
 
+def one_line(value: object) -> str:
+    """``value`` for a message, on one line: an array-like as numpy reads it (a pandas Series
+    shows its labels over several lines)."""
+    return repr(np.asarray(value)) if hasattr(value, "__array__") else repr(value)
+
+
 def as_window(name: str, window: object) -> tuple[float, float]:
-    """``(start, end)`` [s] as two finite floats with ``start < end``; ValueError naming ``name``
-    for anything else (one number, three, text, NaN, a reversed window)."""
+    """``(start, end)`` [s] as two finite floats with ``start < end`` (a pandas Series read by
+    position, as numpy reads it); ValueError naming ``name`` for anything else (one number, three,
+    text, NaN, a reversed window, durations or dates)."""
     try:
         pair = np.asarray(window, dtype=np.float64)
     except (TypeError, ValueError, OverflowError):  # an int beyond float64 too
@@ -224,7 +231,10 @@ def as_window(name: str, window: object) -> tuple[float, float]:
     # bools are refused: (False, True) was the window 0 .. 1 s
     if pair.shape != (2,) or np.asarray(window).dtype == np.bool_ or any(isinstance(v, bool) for v in np.ravel(
             np.asarray(window, dtype=object))):
-        raise ValueError(f"{name} must be (start, end) in seconds, got {window!r}")
+        raise ValueError(f"{name} must be (start, end) in seconds, got {one_line(window)}")
+    if np.asarray(window).dtype.kind in "mM":  # their counts, read as seconds, were a window in ns or us
+        raise ValueError(f"{name} must be (start, end) in seconds, got {one_line(window)}: give seconds (a numpy "
+                         "duration d as d / numpy.timedelta64(1, 's'))")
     start, end = float(pair[0]), float(pair[1])
     if not (math.isfinite(start) and math.isfinite(end) and end > start):
         raise ValueError(f"{name} ({start}, {end}) must be finite with end > start")

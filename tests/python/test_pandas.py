@@ -37,3 +37,24 @@ def test_a_gap_in_a_nullable_column_is_a_missing_reading_as_nan_is(dtype: str) -
             expected = gyrocore.process(df.t.to_numpy(), plain, "hdr", bias=0.002, nonfinite=policy)
         assert np.array_equal(got.heading, expected.heading) and np.array_equal(got.t, expected.t)
     assert gappy.iloc[500] is pd.NA  # the caller's column is left as it was
+
+
+def test_a_logs_rest_window_given_as_a_pandas_series_is_read_by_position_and_kept_as_numbers() -> None:
+    df = _table()
+    window = df.t.iloc[[0, 900]]  # labels 0 and 900: its [1] is a look-up by label
+    log = gyrocore.Log("mine", df.t, df.gyro_z, stationary=window)
+    # the Series was kept as given: repr(log) raised a bare KeyError (its [1] a label), and
+    # log.stationary[1] did so for the caller too
+    assert log.stationary == (10.0, 19.0) and all(type(v) is float for v in log.stationary)
+    assert repr(log).endswith("rest +0 .. +9 s)")
+    expected = gyrocore.Log("mine", df.t.to_numpy(), df.gyro_z.to_numpy(), stationary=(10.0, 19.0))
+    assert np.array_equal(log.process("hdr").heading, expected.process("hdr").heading)
+
+
+def test_a_rest_window_of_durations_is_refused_not_read_as_seconds() -> None:
+    df = _table()
+    durations = pd.to_timedelta(df.t.iloc[[0, 900]], unit="s")  # counts in ns or us: read as seconds, a window 1e6 or more off
+    with pytest.raises(ValueError, match=r"^log mine: stationary = array\(\[10000.*\): give the rest window as \(start, end\) \[s\]"):
+        gyrocore.Log("mine", df.t, df.gyro_z, stationary=durations)
+    with pytest.raises(ValueError, match=r"^the rest window must be \(start, end\) in seconds, got array\(.*\): give seconds \(a numpy duration"):
+        gyrocore.calibration.static_bias(df.t, df.gyro_z, window=durations)
