@@ -3,6 +3,8 @@ same data as plain float64 arrays, or an error that says what and where."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -58,3 +60,28 @@ def test_a_rest_window_of_durations_is_refused_not_read_as_seconds() -> None:
         gyrocore.Log("mine", df.t, df.gyro_z, stationary=durations)
     with pytest.raises(ValueError, match=r"^the rest window must be \(start, end\) in seconds, got array\(.*\): give seconds \(a numpy duration"):
         gyrocore.calibration.static_bias(df.t, df.gyro_z, window=durations)
+
+
+def test_a_csv_file_of_pandas_durations_or_with_its_unnamed_index_says_what_to_write(tmp_path: Path) -> None:
+    pytest.importorskip("pyarrow")
+    df = _table()
+    durations = tmp_path / "durations.csv"
+    df.assign(t=pd.to_timedelta(df.t, unit="s")).to_csv(durations, index=False)  # 0 days 00:00:10 ...
+    # "line 2, column 1 (t): '0 days 00:00:10' is not a number", with nothing to do about it
+    with pytest.raises(ValueError, match=r"line 2, column 1 \(t\): '0 days 00:00:10(\.0+)?' is not a number \(a duration as "
+                                         r"pandas writes one: write seconds, the column's \.dt\.total_seconds\(\), or "
+                                         r"write the table to Parquet"):
+        gyrocore.read_log(durations)
+    parquet = tmp_path / "durations.parquet"
+    df.assign(t=pd.to_timedelta(df.t, unit="s")).to_parquet(parquet)  # as the error advises
+    np.testing.assert_allclose(gyrocore.read_log(parquet).t, df.t, rtol=0, atol=1e-9)
+    unnamed = tmp_path / "unnamed.csv"
+    df.set_index("t").rename_axis(None).to_csv(unnamed)  # header ",gyro_z": the times' column has no name
+    # "missing column(s) t; it has , gyro_z", and time_col='' is no name: no way to read it was said
+    with pytest.raises(ValueError, match=r"missing column\(s\) t; it has '', gyro_z \(.*; a column without a name \(as "
+                                         r"pandas' df\.to_csv\(\) writes an unnamed index\) cannot be chosen: name it, "
+                                         r"e\.g\. df\.to_csv\(path, index_label='t'\)\)$"):
+        gyrocore.read_log(unnamed)
+    named = tmp_path / "named.csv"
+    df.set_index("t").rename_axis(None).to_csv(named, index_label="t")  # as the error advises
+    assert np.array_equal(gyrocore.read_log(named).t, df.t.to_numpy())
