@@ -85,3 +85,45 @@ def test_a_csv_file_of_pandas_durations_or_with_its_unnamed_index_says_what_to_w
     named = tmp_path / "named.csv"
     df.set_index("t").rename_axis(None).to_csv(named, index_label="t")  # as the error advises
     assert np.array_equal(gyrocore.read_log(named).t, df.t.to_numpy())
+
+
+def _as_held(df: pd.DataFrame, how: str) -> tuple[object, object]:
+    """``(t, rate)`` of ``df`` as a user may hold them in pandas."""
+    if how == "cut by label, labels shuffled":
+        cut = df.iloc[100:]
+        return cut.set_axis(np.random.default_rng(0).permutation(len(cut))).pipe(lambda d: (d.t, d.gyro_z))
+    if how == "duplicated labels":
+        return df.set_axis(np.arange(len(df)) // 2).pipe(lambda d: (d.t, d.gyro_z))
+    if how == "index of times":
+        s = df.set_index("t").gyro_z
+        return s.index, s
+    if how == "seconds from a DatetimeIndex with a zone":
+        times = pd.DatetimeIndex(pd.to_datetime(np.round(df.t * 1e9).astype(np.int64), unit="ns", utc=True))
+        times = times.tz_convert("Europe/Berlin")
+        return (times - times.min()) / np.timedelta64(1, "s") + df.t.iloc[0], df.gyro_z
+    if how == "TimedeltaIndex":
+        return pd.to_timedelta(np.round(df.t * 1e9).astype(np.int64), unit="ns"), df.gyro_z
+    if how == "read-only arrays":
+        t, rate = df.t.to_numpy().copy(), df.gyro_z.to_numpy().copy()
+        t.flags.writeable = rate.flags.writeable = False
+        return t, rate
+    return df.t.astype(how), df.gyro_z.astype(how)  # a dtype
+
+
+@pytest.mark.parametrize("how", ["cut by label, labels shuffled", "duplicated labels", "index of times",
+                                 "seconds from a DatetimeIndex with a zone", "TimedeltaIndex", "read-only arrays",
+                                 "Float64", "double[pyarrow]", "category", "object"])
+def test_pandas_columns_give_the_heading_of_the_same_data_as_float64_arrays(how: str) -> None:
+    if how == "double[pyarrow]":
+        pytest.importorskip("pyarrow")
+    df = _table()
+    t, rate = _as_held(df, how)
+    before = df.copy(deep=True)
+    first = 100 if how.startswith("cut") else 0
+    expected = gyrocore.process(df.t.to_numpy()[first:], df.gyro_z.to_numpy()[first:], "hdr", bias=0.002)
+    got = gyrocore.process(t, rate, "hdr", bias=0.002)
+    # times through nanoseconds are equal to float64 rounding of the times, not bit for bit
+    exact = how not in ("seconds from a DatetimeIndex with a zone", "TimedeltaIndex")
+    np.testing.assert_allclose(got.t, expected.t, rtol=0, atol=0 if exact else 1e-9)
+    np.testing.assert_allclose(got.heading, expected.heading, rtol=0, atol=0 if exact else 1e-9)
+    pd.testing.assert_frame_equal(df, before)  # nothing the caller gave was changed
