@@ -72,9 +72,9 @@ def column_positions(
             names = [*columns[: len(header)], *(f"col{k + 1}" for k in range(len(columns), len(header)))]
             short += (f"; its first line holds numbers, not column names: the file has no header line; add one "
                       f"as its first line, e.g. {','.join(names)}")
-        names = ", ".join(str(h) or "''" for h in header)  # an unnamed column shown, not an empty place
+        listed = ", ".join(str(h) or "''" for h in header)  # an unnamed column shown, not an empty place
         raise ValueError(
-            f"{path}: missing column(s) {', '.join(missing)}; it has {names or 'none'} "
+            f"{path}: missing column(s) {', '.join(missing)}; it has {listed or 'none'} "
             f"({choose}{short})"
         )
     twice = [c for c in columns if header.count(c) > 1]
