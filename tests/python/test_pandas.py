@@ -127,3 +127,16 @@ def test_pandas_columns_give_the_heading_of_the_same_data_as_float64_arrays(how:
     np.testing.assert_allclose(got.t, expected.t, rtol=0, atol=0 if exact else 1e-9)
     np.testing.assert_allclose(got.heading, expected.heading, rtol=0, atol=0 if exact else 1e-9)
     pd.testing.assert_frame_equal(df, before)  # nothing the caller gave was changed
+
+
+@pytest.mark.parametrize("write", ["to_json", "to_feather"])
+def test_a_table_pandas_wrote_in_a_format_not_read_says_what_to_write(tmp_path: Path, write: str) -> None:
+    pytest.importorskip("pyarrow")
+    path = tmp_path / "drive.dat"
+    getattr(_table(), write)(path)
+    # JSON was "its content is text (a CSV file?): name it drive.csv", which then failed as CSV
+    what = "JSON" if write == "to_json" else r"an Arrow IPC \(Feather\) file"
+    with pytest.raises(ValueError, match=rf"drive\.dat: unknown kind of file \(.*\); (its content is|it is) {what}, "
+                                         r"which is not read: write the samples as Parquet or CSV \(pandas: "
+                                         r"df\.to_parquet\(path\), df\.to_csv\(path, index=False\)\)$"):
+        gyrocore.read_log(path)
