@@ -58,6 +58,22 @@ MASKED_LEFT_OUT = ("leave those samples out ({name}.compressed(), and the others
                    "of your own ({name}.filled(value))")
 
 
+def _pandas_na_as_nan(a: np.ndarray) -> np.ndarray:
+    """The object array ``a`` with pandas' missing value ``pandas.NA`` as NaN (a copy, where it
+    holds one): pandas before 2.2 hands numpy a nullable (``Float64``, ``Int64``) or pyarrow-backed
+    column with a gap as objects, ``pandas.NA`` in the gap, where later releases give NaN; a gap is
+    a missing reading either way, for ``nonfinite=`` to hold or skip, not a value that is no number."""
+    pandas = sys.modules.get("pandas")  # not imported: no pandas.NA can be among the values
+    if pandas is None:
+        return a
+    missing = np.fromiter((v is pandas.NA for v in a), bool, count=a.size)
+    if not missing.any():
+        return a
+    a = a.copy()  # the caller's objects stay as they are
+    a[missing] = np.nan
+    return a
+
+
 def as_float_array(name: str, values: ArrayLike, *, copy: bool = False, masked: str = MASKED_LEFT_OUT) -> FloatArray:
     """Return ``values`` as a 1-D contiguous float64 array, copying only when needed, or always
     with ``copy`` (for an array a result or record keeps: the caller's own array, or the data an
@@ -81,7 +97,8 @@ def as_float_array(name: str, values: ArrayLike, *, copy: bool = False, masked: 
     dates = "times: give seconds, e.g. ({0} - {0}.min()) / numpy.timedelta64(1, 's')".format(name)
     if a.dtype.kind == "M":
         raise TypeError(f"{name} holds {a.dtype} {dates}")
-    if a.dtype == np.object_ and a.ndim == 1:  # None, pandas.NA or text among numbers: say which and where
+    if a.dtype == np.object_ and a.ndim == 1:  # None or text among numbers: say which and where
+        a = _pandas_na_as_nan(a)
         odd = next((i for i, v in enumerate(a) if isinstance(v, (bool, str, bytes)) or not isinstance(v, numbers.Real)), None)
         if odd is not None and isinstance(a[odd], datetime.datetime):  # pandas' times with a time zone
             raise TypeError(f"{name} holds dates and {dates} ({name}[{odd}] is {a[odd]!r})")
@@ -210,9 +227,16 @@ def warn_merged_counts(raw: np.ndarray, t: FloatArray, per_second: float) -> Non
              f"{first_text} from each)")
 
 
+def one_line(value: object) -> str:
+    """``value`` for a message, on one line: an array-like as numpy reads it (a pandas Series
+    shows its labels over several lines)."""
+    return repr(np.asarray(value)) if hasattr(value, "__array__") else repr(value)
+
+
 def as_window(name: str, window: object) -> tuple[float, float]:
-    """``(start, end)`` [s] as two finite floats with ``start < end``; ValueError naming ``name``
-    for anything else (one number, three, text, NaN, a reversed window)."""
+    """``(start, end)`` [s] as two finite floats with ``start < end`` (a pandas Series read by
+    position, as numpy reads it); ValueError naming ``name`` for anything else (one number, three,
+    text, NaN, a reversed window, durations or dates)."""
     try:
         pair = np.asarray(window, dtype=np.float64)
     except (TypeError, ValueError, OverflowError):  # an int beyond float64 too
@@ -220,7 +244,10 @@ def as_window(name: str, window: object) -> tuple[float, float]:
     # bools are refused: (False, True) was the window 0 .. 1 s
     if pair.shape != (2,) or np.asarray(window).dtype == np.bool_ or any(isinstance(v, bool) for v in np.ravel(
             np.asarray(window, dtype=object))):
-        raise ValueError(f"{name} must be (start, end) in seconds, got {window!r}")
+        raise ValueError(f"{name} must be (start, end) in seconds, got {one_line(window)}")
+    if np.asarray(window).dtype.kind in "mM":  # their counts, read as seconds, were a window in ns or us
+        raise ValueError(f"{name} must be (start, end) in seconds, got {one_line(window)}: give seconds (a numpy "
+                         "duration d as d / numpy.timedelta64(1, 's'))")
     start, end = float(pair[0]), float(pair[1])
     if not (math.isfinite(start) and math.isfinite(end) and end > start):
         raise ValueError(f"{name} ({start}, {end}) must be finite with end > start")

@@ -65,12 +65,16 @@ def column_positions(
                 short = f"; the header line is one field, {ALIGNED}"
         if choose == CHOOSE_COLUMNS and not found:  # the one field is the whole header line, no column
             short += _look_like(header, missing, times)
+        if any(not str(h).strip() for h in header):  # "it has , gyro_z": a column no option can name
+            short += ("; a column without a name (as pandas' df.to_csv() writes an unnamed index) cannot be chosen: "
+                      "name it, e.g. df.to_csv(path, index_label='t')")
         if header and all(is_number(str(h).strip(" \t")) for h in header):  # "it has 0, 0.1" left the cause to guess
             names = [*columns[: len(header)], *(f"col{k + 1}" for k in range(len(columns), len(header)))]
             short += (f"; its first line holds numbers, not column names: the file has no header line; add one "
                       f"as its first line, e.g. {','.join(names)}")
+        listed = ", ".join(str(h) or "''" for h in header)  # an unnamed column shown, not an empty place
         raise ValueError(
-            f"{path}: missing column(s) {', '.join(missing)}; it has {', '.join(map(str, header)) or 'none'} "
+            f"{path}: missing column(s) {', '.join(missing)}; it has {listed or 'none'} "
             f"({choose}{short})"
         )
     twice = [c for c in columns if header.count(c) > 1]

@@ -51,6 +51,8 @@ _CUT_OFF = " (the file's last line, cut off: a log whose writing stopped mid-lin
 #: The first line of a CSV file that names its delimiter, as Excel writes it (``sep=;``).
 _SEP = re.compile(rb'"?sep=(.)"?')
 _DATE = re.compile(r"\d{4}-\d{2}-\d{2}(?:[T ]\d{2}:\d{2})?")
+#: A duration as pandas writes a timedelta column (``0 days 00:00:00.010000``, ``-1 days +23:59:59``).
+_DURATION = re.compile(r"-?\d+ days? [+-]?\d{2}:\d{2}:\d{2}")
 #: How other tools write a missing value (pandas' and R's defaults, spreadsheets'): not numbers
 #: here, where a missing reading is an empty field or NaN.
 _MISSING = frozenset({"NA", "N/A", "n/a", "#N/A", "#NA", "NULL", "null", "None", "<NA>", "-", "?"})
@@ -290,8 +292,8 @@ def _line_offset(path: Path, lines: int) -> int:
 def _why_not_a_number(value: str, delimiter: str, required: str | None) -> str:
     """A hint for a value that is no number, where its form says why: a decimal comma (with the
     command that mends a file whose fields a comma does not separate), another tool's spelling of
-    a missing value (``required``: what the column holds, if it may not be missing), a date, or
-    bytes that are not UTF-8 (read as U+FFFD)."""
+    a missing value (``required``: what the column holds, if it may not be missing), a date, a
+    duration, or bytes that are not UTF-8 (read as U+FFFD)."""
     if "\ufffd" in value:
         return " (bytes that are not UTF-8: save the file as UTF-8, e.g. iconv -f latin1 -t utf-8 old.csv > new.csv)"
     if "," in value and is_number(value.replace(",", ".", 1)):
@@ -307,6 +309,9 @@ def _why_not_a_number(value: str, delimiter: str, required: str | None) -> str:
         return (" (a date and time: a CSV file's times are numbers, in s, ms, us or ns; write them as numbers, "
                 "or convert the file to Parquet with this column as a timestamp, read as seconds since the Unix "
                 "epoch: docs/reading-logs.md, \"Dates and times\")")
+    if _DURATION.match(value):
+        return (" (a duration as pandas writes one: write seconds, the column's .dt.total_seconds(), or write "
+                "the table to Parquet, whose durations are read as seconds)")
     return ""
 
 

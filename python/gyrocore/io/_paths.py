@@ -114,6 +114,10 @@ _MAGIC = (
 )
 
 
+#: What to write instead of a table in a format that is not read.
+_AS_READ = "write the samples as Parquet or CSV (pandas: df.to_parquet(path), df.to_csv(path, index=False))"
+
+
 def content_hint(path: Path) -> str:
     """What the content of the file ``path`` is where its suffix says another kind (a Parquet
     file named .npy, CSV text named .parquet), with the name that reads it; else empty. The
@@ -132,6 +136,11 @@ def content_hint(path: Path) -> str:
         return ""
     if head.startswith(b"\x1f\x8b"):
         return "; it is compressed with gzip: decompress it first"
+    # tables pandas writes in formats not read (df.to_feather, df.to_json): "name it a.csv" misled for JSON
+    if head.startswith(b"ARROW1"):
+        return f"; it is an Arrow IPC (Feather) file, which is not read: {_AS_READ}"
+    if head.lstrip()[:1] in (b"{", b"["):
+        return f"; its content is JSON, which is not read: {_AS_READ}"
     if head and b"\0" not in head and _is_text(head):
         return f"; its content is text (a CSV file?): name it {path.stem}.csv"
     return ""

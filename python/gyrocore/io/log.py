@@ -6,7 +6,6 @@ look wrong, and joined; a log folder adds its reference, odometry and rest windo
 
 from __future__ import annotations
 
-import math
 import os
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -16,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._arrays import FloatArray, float_fields
+from .._arrays import FloatArray, as_window, float_fields, one_line
 from .._checks import NoUsableReading, require_flag, warn
 from .._gyrocore import SampleError
 from ..pipeline import (
@@ -102,15 +101,15 @@ class Log:
             raise ValueError(f"log {self.name}: {times} given without {' or '.join(names)}")
 
     def _check_stationary(self) -> None:
-        """``stationary`` is two finite times, the first before the second."""
-        window = self.stationary
+        """``stationary`` is two finite times, the first before the second, kept as two floats: a
+        pandas Series (``df.t.iloc[[i, j]]``) is read by position (kept as given, its ``[1]`` was a
+        look-up by label, a KeyError in ``repr``)."""
         try:
-            a, b = (float(v) for v in window)  # type: ignore[union-attr]
-        except (TypeError, ValueError):
-            a = b = math.nan
-        if not (math.isfinite(a) and math.isfinite(b) and a < b):
-            raise ValueError(f"log {self.name}: stationary = {window!r}: give the rest window as (start, end) [s] "
-                             "in the log's time base, start before end")
+            window = as_window("stationary", self.stationary)
+        except ValueError:
+            raise ValueError(f"log {self.name}: stationary = {one_line(self.stationary)}: give the rest window as "
+                             "(start, end) [s] in the log's time base, start before end") from None
+        object.__setattr__(self, "stationary", window)  # frozen: set as float_fields sets
 
     def __repr__(self) -> str:
         """A summary (the arrays run to millions of samples)."""
