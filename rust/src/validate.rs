@@ -98,7 +98,7 @@ pub(crate) fn all_finite(values: &[f64]) -> bool {
 /// True if every value is finite and below `limit` in magnitude. Branch-free integer
 /// arithmetic, so it vectorises.
 #[inline]
-fn all_below(values: &[f64], limit: f64) -> bool {
+pub(crate) fn all_below(values: &[f64], limit: f64) -> bool {
     let worst = values.iter().fold(0u64, |m, &v| m.max(magnitude_key(v)));
     worst < magnitude_key(limit)
 }
