@@ -40,6 +40,7 @@ _SCRIPT = textwrap.dedent("""
         "measure": lambda: sim.measure(sim.sensor("xv3500"), t, rate, seed=1),
         "sample_times": lambda: sim.sample_times(sim.GyroSpec(jitter_s=1e-4), 0.0, n / 100, seed=1),
         "csv": lambda: _gyrocore.format_csv_rows([t, rate]),
+        "static_bias": lambda: _gyrocore.static_bias_test(t, rate, 0.0, t[-1]),
         # one long averaging time: the modified variance's blocks are then the whole record
         "allan_long": lambda: gyrocore.allan.deviation(rate, 0.01, kind="modified", taus=[2**18 * 0.01]),
     }
@@ -52,7 +53,7 @@ _SCRIPT = textwrap.dedent("""
         started = time.perf_counter()
         call()
         durations.append(time.perf_counter() - started)
-    direct = call.__code__ if sys.argv[1] in ("project_up", "csv") else None
+    direct = call.__code__ if sys.argv[1] in ("project_up", "csv", "static_bias") else None
     main, sent = threading.main_thread().ident, []
     core = re.compile(r"_gyrocore\.\w+\(|inner\.process\(")
 
@@ -103,7 +104,8 @@ def test_ctrl_c_stops_a_long_call_of_the_core_within_a_poll(call: str, n: int) -
 @pytest.mark.parametrize(("call", "n"), [("integrate", 100_000_000), ("downsample", 50_000_000),
                                          ("check", 100_000_000), ("project_up", 100_000_000),
                                          ("measure", 10_000_000), ("sample_times", 30_000_000),
-                                         ("csv", 10_000_000), ("allan_long", 20_000_000)])
+                                         ("csv", 10_000_000), ("static_bias", 100_000_000),
+                                         ("allan_long", 20_000_000)])
 def test_ctrl_c_stops_every_long_call_of_the_core_with_most_of_it_left(call: str, n: int) -> None:
     run = subprocess.run([sys.executable, "-c", _SCRIPT, call, str(n), "timed"], capture_output=True, text=True,
                          timeout=600)

@@ -16,8 +16,9 @@ mod table;
 
 use arrays::{fill, slice, zeros, Array};
 use gyrocore::{Error, Pipeline, PipelineConfig, Preset, Rest};
+use interrupt::detach_watched;
 use numpy::PyReadonlyArray1;
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -297,9 +298,12 @@ fn static_bias_test(
     end: f64,
 ) -> PyResult<(f64, u64, Option<f64>, Option<f64>)> {
     let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
-    let test = py
-        .detach(|| gyrocore::static_bias_test(t, rate, start, end))
-        .map_err(value_error)?;
+    let test = detach_watched(py, t.len(), |stop| {
+        gyrocore::static_bias_test_stoppable(t, rate, start, end, &stop.0)
+    })?
+    .map_err(value_error)?
+    // stopped only by a Ctrl-C, whose exception detach_watched returned
+    .ok_or_else(|| PyRuntimeError::new_err("the static bias test was stopped"))?;
     let stats = test.statistics;
     Ok((
         test.bias,
