@@ -199,3 +199,22 @@ def test_a_first_chunk_refused_or_interrupted_leaves_the_pipeline_as_before(monk
     monkeypatch.undo()
     with pytest.warns(gyrocore.InputWarning, match="timestamps look like ms"):
         p.process(t * 1000, rate)
+
+
+def test_a_long_block_is_checked_piece_by_piece_as_a_pipeline_checks_it() -> None:
+    # the checks named a bad reading anywhere in the block before a bad time earlier in it, where a
+    # pipeline, which checks a long block piece by piece, named the time
+    import numpy as np
+
+    import gyrocore
+    from gyrocore import _gyrocore
+
+    t = np.arange(_LONG) * 0.01
+    rate = np.full(_LONG, 0.001)
+    t[1000] = t[999]
+    rate[250_000] = np.nan
+    with pytest.raises(gyrocore.SampleError, match=r"t\[1000\] = ") as checked:
+        _gyrocore.check_samples(t, rate)
+    with pytest.raises(gyrocore.SampleError) as processed:
+        gyrocore.Pipeline("raw").process(t, rate)
+    assert (checked.value.index, checked.value.what) == (processed.value.index, processed.value.what) == (1000, "t")
