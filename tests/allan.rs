@@ -409,3 +409,30 @@ fn stoppable_variances_stop_at_once_when_told_and_are_the_parallel_ones_otherwis
         }
     }
 }
+
+#[cfg(feature = "std")]
+#[test]
+fn a_stoppable_phase_and_bias_test_stop_when_told_and_are_the_plain_ones_otherwise() {
+    use gyrocore::allan::phase_from_rate_stoppable;
+    use gyrocore::{static_bias_test, static_bias_test_stoppable};
+    use std::sync::atomic::AtomicBool;
+    let rate: Vec<f64> = random_walk(200_003, 9);
+    let t: Vec<f64> = (0..rate.len()).map(|i| i as f64 * 0.01).collect();
+    let (go, stop) = (AtomicBool::new(false), AtomicBool::new(true));
+    let (mut expected, mut x) = (vec![0.0; rate.len() + 1], vec![0.0; rate.len() + 1]);
+    phase_from_rate(&rate, 0.01, &mut expected).unwrap();
+    phase_from_rate_stoppable(&rate, 0.01, &mut x, &go).unwrap();
+    let bits = |v: &[f64]| v.iter().map(|a| a.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&x), bits(&expected));
+    // told to stop before the first piece: nothing of the phase is written
+    let mut untouched = vec![7.0; rate.len() + 1];
+    phase_from_rate_stoppable(&rate, 0.01, &mut untouched, &stop).unwrap();
+    assert!(untouched.iter().all(|&v| v == 7.0));
+    let whole = static_bias_test(&t, &rate, 10.0, 1500.0).unwrap();
+    let same = static_bias_test_stoppable(&t, &rate, 10.0, 1500.0, &go).unwrap();
+    assert_eq!(same, Some(whole));
+    assert_eq!(
+        static_bias_test_stoppable(&t, &rate, 10.0, 1500.0, &stop),
+        Ok(None)
+    );
+}

@@ -30,9 +30,13 @@ use crate::{Error, MAX_READING, MAX_TIME, MIN_INTERVAL};
 use core::ops::Range;
 
 mod differences;
+mod phase;
 use differences::{
     modified_block, rows, rows_sum, second, second_of, square, sum_of, third, third_of,
 };
+pub use phase::phase_from_rate;
+#[cfg(feature = "std")]
+pub use phase::phase_from_rate_stoppable;
 
 /// Which variance of the Allan family to estimate (see the module table).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -91,43 +95,6 @@ impl Variance {
             Variance::ModifiedAllan => n.saturating_add(1).saturating_sub(m.saturating_mul(3)),
         }
     }
-}
-
-/// Integrates a regularly sampled rate into phase for the kernels: `x_0 = 0`,
-/// `x_{i+1} = x_i + (r_i - r_mean) dt` \[rad\], so `x` holds `rate.len() + 1` samples.
-///
-/// The mean rate is taken out first: every estimator here differences the phase at least twice,
-/// which cancels a linear phase trend exactly, and a phase that stays near zero keeps its
-/// significant digits over 10^8 samples. The sum is compensated (Neumaier), so the rounding
-/// error of `x` does not grow with the length of the log.
-///
-/// Errors: `dt` not finite and positive, `x` of the wrong length, a non-finite rate (by index).
-pub fn phase_from_rate(rate: &[f64], dt: f64, x: &mut [f64]) -> Result<(), Error> {
-    check_interval("dt", dt)?;
-    check_len("phase", x.len(), rate.len() + 1)?;
-    // Readings within +-2^20 (as the pipeline's), so that the phase stays finite: 1e308 and
-    // -1e308 summed to a finite mean and a NaN phase.
-    check_bounded("rate", rate, MAX_READING)?;
-    let total = sum_of(rate.len(), |i| rate[i]);
-    let mean = if rate.is_empty() {
-        0.0
-    } else {
-        total / rate.len() as f64
-    };
-    let (mut sum, mut compensation) = (0.0_f64, 0.0_f64);
-    x[0] = 0.0;
-    for (xi, &r) in x[1..].iter_mut().zip(rate) {
-        let step = (r - mean) * dt;
-        let next = sum + step;
-        compensation += if libm::fabs(sum) >= libm::fabs(step) {
-            (sum - next) + step
-        } else {
-            (step - next) + sum
-        };
-        sum = next;
-        *xi = sum + compensation;
-    }
-    Ok(())
 }
 
 /// The variance at each averaging factor `factors[k]` (`tau = factors[k] * tau0`) of the phase
@@ -415,8 +382,9 @@ impl Blocks {
         self.kind.overlapping() && self.kind.order() * self.m <= SHORT_SPAN
     }
 
-    /// The sum of the squared differences of block `b`.
-    fn sum(self, x: &[f64], b: usize) -> f64 {
+    /// The sum of the squared differences of block `b`, as long as `go_on()` (a long block of
+    /// the modified variance asks it within; NaN once stopped: nothing reads the sums then).
+    fn sum(self, x: &[f64], b: usize, go_on: impl Fn() -> bool) -> f64 {
         let (m, start) = (self.m, b * self.len);
         let len = self.len.min(self.terms - start);
         match self.kind {
@@ -424,7 +392,7 @@ impl Blocks {
             Variance::OverlappingHadamard => rows_sum(rows(x, start, m, len), third_of),
             Variance::Allan => sum_of(len, |j| square(second(x, (start + j) * m, m))),
             Variance::Hadamard => sum_of(len, |j| square(third(x, (start + j) * m, m))),
-            Variance::ModifiedAllan => modified_block(x, m, start, len),
+            Variance::ModifiedAllan => modified_block(x, m, start, len, go_on).unwrap_or(f64::NAN),
         }
     }
 }
@@ -452,7 +420,7 @@ fn visit_blocks(
             return;
         }
         for k in short.clone().filter(|&k| mine(k).contains(&b)) {
-            visit(k, b, blocks(k).sum(x, b));
+            visit(k, b, blocks(k).sum(x, b, &go_on));
         }
     }
     for k in (0..factors.len()).filter(|&k| !blocks(k).is_short()) {
@@ -460,7 +428,7 @@ fn visit_blocks(
             if !go_on() {
                 return;
             }
-            visit(k, b, blocks(k).sum(x, b));
+            visit(k, b, blocks(k).sum(x, b, &go_on));
         }
     }
 }

@@ -111,6 +111,8 @@ pub use integrate::{Integrator, IntegratorConfig, Method};
 pub use kernel::{Kernel, Signal, Streaming};
 pub use lowpass::{DeLag, LowPass, LowPassConfig};
 pub use pipeline::{NoiseScaled, Output, Outputs, Pipeline, PipelineConfig, Preset};
+#[cfg(feature = "std")]
+pub use rest::static_bias_test_stoppable;
 pub use rest::{static_bias_test, RestStatistics, StaticBiasTest};
 pub use rest_tracker::{Rest, RestTracker, RestTrackerConfig};
 pub use sim::{GyroModel, GyroModelConfig, GyroSample, TemperatureProfile};

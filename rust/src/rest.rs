@@ -4,7 +4,7 @@
 //! exact bias gets neither, because there is nothing for them to remove.
 
 use crate::correction::StaticBias;
-use crate::validate::check_block;
+use crate::validate::check_block_while;
 use crate::Error;
 
 /// Number of equal parts of the rest window whose means give the bias's standard error.
@@ -369,25 +369,60 @@ pub struct StaticBiasTest {
 /// The static bias test over the readings `rate` at `t` inside `[start, end]`: exactly what a
 /// pipeline with this rest window ends with (the same estimator, sample by sample).
 ///
-/// Fails for a bad block (see [`check_block`]), an invalid window, or one that holds no reading.
+/// Fails for a bad block (see [`check_block`](crate::check_block)), an invalid window, or one
+/// that holds no reading.
 pub fn static_bias_test(
     t: &[f64],
     rate: &[f64],
     start: f64,
     end: f64,
 ) -> Result<StaticBiasTest, Error> {
+    match bias_test_while(t, rate, (start, end), || true)? {
+        Some(test) => Ok(test),
+        None => unreachable!("a test that always goes on ends"),
+    }
+}
+
+/// [`static_bias_test`] that gives up (`Ok(None)`) once `stop` is set (by another thread: a
+/// Ctrl-C of a long log), looking at it every 2^16 samples; the same result otherwise.
+///
+/// Errors: as [`static_bias_test`].
+#[cfg(feature = "std")]
+pub fn static_bias_test_stoppable(
+    t: &[f64],
+    rate: &[f64],
+    start: f64,
+    end: f64,
+    stop: &std::sync::atomic::AtomicBool,
+) -> Result<Option<StaticBiasTest>, Error> {
+    use std::sync::atomic::Ordering;
+    bias_test_while(t, rate, (start, end), || !stop.load(Ordering::Relaxed))
+}
+
+/// [`static_bias_test`] as long as `go_on()`: `None` once it says no.
+fn bias_test_while(
+    t: &[f64],
+    rate: &[f64],
+    (start, end): (f64, f64),
+    go_on: impl Fn() -> bool,
+) -> Result<Option<StaticBiasTest>, Error> {
     let window = StaticBias::Window { start, end };
     crate::CorrectionConfig {
         bias: window,
         ..crate::CorrectionConfig::default()
     }
     .validate()?;
-    check_block(t, rate, None, None, true)?;
+    if !check_block_while(t, rate, &go_on)? {
+        return Ok(None);
+    }
     let mut estimate = BiasEstimate::new(window);
     let mut previous = None;
-    for (&ti, &ri) in t.iter().zip(rate) {
+    for (i, (&ti, &ri)) in t.iter().zip(rate).enumerate() {
         if ti > end {
             break;
+        }
+        if i % (1 << 16) == 0 && !go_on() {
+            return Ok(None);
         }
         let dt = previous.map_or(0.0, |p| ti - p);
         estimate.learn(window, ti, dt, ri);
@@ -396,9 +431,9 @@ pub fn static_bias_test(
     if let Some(e) = estimate.missed(t.last().copied().unwrap_or(end)) {
         return Err(e);
     }
-    Ok(StaticBiasTest {
+    Ok(Some(StaticBiasTest {
         bias: estimate.value(),
         count: estimate.count(),
         statistics: estimate.noise.statistics(),
-    })
+    }))
 }

@@ -95,10 +95,36 @@ pub(crate) fn all_finite(values: &[f64]) -> bool {
     all_below(values, f64::INFINITY)
 }
 
+/// [`check_block`] of a block of readings that must be finite, with no block before it, as long
+/// as `go_on()`, asked every 2^16 samples: `Ok(false)` once stopped. Its one-pass checks go piece
+/// by piece (a second for 10^8 samples); once a piece fails them the whole block is checked, so
+/// that the error is the one [`check_block`] names.
+pub(crate) fn check_block_while(
+    t: &[f64],
+    rate: &[f64],
+    go_on: impl Fn() -> bool,
+) -> Result<bool, Error> {
+    const PIECE: usize = 1 << 16;
+    let pieces_fine = rate.len() == t.len()
+        && (0..t.len()).step_by(PIECE).all(|start| {
+            let piece = start..t.len().min(start + PIECE);
+            let previous = start.checked_sub(1).map(|i| t[i]);
+            !go_on()
+                || all_below(&rate[piece.clone()], MAX_READING) && times_ok(&t[piece], previous)
+        });
+    if !go_on() {
+        return Ok(false);
+    }
+    if pieces_fine {
+        return Ok(true);
+    }
+    check_block(t, rate, None, None, true).map(|()| true)
+}
+
 /// True if every value is finite and below `limit` in magnitude. Branch-free integer
 /// arithmetic, so it vectorises.
 #[inline]
-fn all_below(values: &[f64], limit: f64) -> bool {
+pub(crate) fn all_below(values: &[f64], limit: f64) -> bool {
     let worst = values.iter().fold(0u64, |m, &v| m.max(magnitude_key(v)));
     worst < magnitude_key(limit)
 }

@@ -17,7 +17,7 @@ import pytest
 _SCRIPT = textwrap.dedent("""
     import json, linecache, os, pickle, re, signal, sys, threading, time, warnings
     import numpy as np, gyrocore
-    from gyrocore import fixes
+    from gyrocore import _checks, _gyrocore, fixes, sim
 
     warnings.simplefilter("ignore")
     n = int(sys.argv[2])
@@ -33,11 +33,27 @@ _SCRIPT = textwrap.dedent("""
         "fusion": lambda: stream.process(t[1000:], rate[1000:], fixed),
         "allan": lambda: gyrocore.allan.deviation(rate, 0.01, kind="modified", taus="log"),
         "smoothed": lambda: fixes.fuse(t, rate, fixed, mode="smoothed"),
+        "integrate": lambda: gyrocore.integrate(t, rate),
+        "downsample": lambda: gyrocore.downsample(t, rate, 1.0),
+        "check": lambda: _checks.require_times(t),
+        "project_up": lambda: _gyrocore.project_up(rate, rate, rate, [0.0, 0.0, 1.0]),
+        "measure": lambda: sim.measure(sim.sensor("xv3500"), t, rate, seed=1),
+        "sample_times": lambda: sim.sample_times(sim.GyroSpec(jitter_s=1e-4), 0.0, n / 100, seed=1),
+        "csv": lambda: _gyrocore.format_csv_rows([t, rate]),
+        "static_bias": lambda: _gyrocore.static_bias_test(t, rate, 0.0, t[-1]),
+        # one long averaging time: the modified variance's blocks are then the whole record
+        "allan_long": lambda: gyrocore.allan.deviation(rate, 0.01, kind="modified", taus=[2**18 * 0.01]),
     }
     call = calls[sys.argv[1]]
     if stream is not None:
         whole = call()
         stream = pickle.loads(before)
+    durations = []  # the whole call, timed where asked: the better of two
+    for _ in range(2 if len(sys.argv) > 3 else 0):
+        started = time.perf_counter()
+        call()
+        durations.append(time.perf_counter() - started)
+    direct = call.__code__ if sys.argv[1] in ("project_up", "csv", "static_bias") else None
     main, sent = threading.main_thread().ident, []
     core = re.compile(r"_gyrocore\.\w+\(|inner\.process\(")
 
@@ -45,8 +61,9 @@ _SCRIPT = textwrap.dedent("""
         # once the main thread's innermost frame is the line that calls the core
         while True:
             frame = sys._current_frames()[main]
+            # the package's call of the core, or this script's own (a call of _gyrocore itself)
             if "gyrocore" in frame.f_code.co_filename and core.search(
-                    linecache.getline(frame.f_code.co_filename, frame.f_lineno)):
+                    linecache.getline(frame.f_code.co_filename, frame.f_lineno)) or frame.f_code is direct:
                 break
             time.sleep(0.0005)
         time.sleep(0.05)  # well inside
@@ -62,7 +79,7 @@ _SCRIPT = textwrap.dedent("""
         same = None
         if stream is not None:
             same = pickle.dumps(stream) == before and np.array_equal(call().heading, whole.heading)
-        print(json.dumps({"latency": latency, "same": same}))
+        print(json.dumps({"latency": latency, "same": same, "whole": min(durations, default=None)}))
 """)
 
 
@@ -79,6 +96,25 @@ def test_ctrl_c_stops_a_long_call_of_the_core_within_a_poll(call: str, n: int) -
     assert got["latency"] < 0.25, got
     if call in ("pipeline", "fusion"):
         assert got["same"], got  # as before the call, pickle for pickle; then the same heading
+
+
+# Calls of the core that ran to their end after a Ctrl-C (check held the GIL, so the signal was not
+# even handled until it returned; allan_long summed a block as long as the record between looks), each
+# long enough for a second or so here
+@pytest.mark.parametrize(("call", "n"), [("integrate", 100_000_000), ("downsample", 50_000_000),
+                                         ("check", 100_000_000), ("project_up", 100_000_000),
+                                         ("measure", 10_000_000), ("sample_times", 30_000_000),
+                                         ("csv", 10_000_000), ("static_bias", 100_000_000),
+                                         ("allan_long", 20_000_000)])
+def test_ctrl_c_stops_every_long_call_of_the_core_with_most_of_it_left(call: str, n: int) -> None:
+    run = subprocess.run([sys.executable, "-c", _SCRIPT, call, str(n), "timed"], capture_output=True, text=True,
+                         timeout=600)
+    assert run.returncode == 0, run.stderr
+    got = json.loads(run.stdout)
+    assert got["latency"] is not None, got  # the call was interrupted
+    # within a poll (20 ms) and a piece, and well before the call would have ended: on a fast
+    # machine the whole call lasts a few tenths of a second, and the signal comes 0.05 s in
+    assert got["latency"] < min(0.25, got["whole"] / 4), got
 
 
 # A long block goes through the core piece by piece (65536 samples), so that a Ctrl-C is looked for
@@ -163,3 +199,22 @@ def test_a_first_chunk_refused_or_interrupted_leaves_the_pipeline_as_before(monk
     monkeypatch.undo()
     with pytest.warns(gyrocore.InputWarning, match="timestamps look like ms"):
         p.process(t * 1000, rate)
+
+
+def test_a_long_block_is_checked_piece_by_piece_as_a_pipeline_checks_it() -> None:
+    # the checks named a bad reading anywhere in the block before a bad time earlier in it, where a
+    # pipeline, which checks a long block piece by piece, named the time
+    import numpy as np
+
+    import gyrocore
+    from gyrocore import _gyrocore
+
+    t = np.arange(_LONG) * 0.01
+    rate = np.full(_LONG, 0.001)
+    t[1000] = t[999]
+    rate[250_000] = np.nan
+    with pytest.raises(gyrocore.SampleError, match=r"t\[1000\] = ") as checked:
+        _gyrocore.check_samples(t, rate)
+    with pytest.raises(gyrocore.SampleError) as processed:
+        gyrocore.Pipeline("raw").process(t, rate)
+    assert (checked.value.index, checked.value.what) == (processed.value.index, processed.value.what) == (1000, "t")

@@ -1,6 +1,6 @@
 //! Bindings of the core's Allan-family variances (`gyrocore.allan` documents the Python API).
 
-use gyrocore::allan::{phase_from_rate, variances_stoppable};
+use gyrocore::allan::{phase_from_rate_stoppable, variances_stoppable};
 use gyrocore::{Error, Variance};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
@@ -52,14 +52,14 @@ fn allan_variances<'py>(
     let phase = phase.as_mut().map(|p| p.as_slice_mut()).transpose()?;
     // A Ctrl-C stops the sums (a modified deviation of 10^8 samples ran 28 s more after one).
     detach_watched(py, data.len(), |stop| -> Result<(), Error> {
+        let stop = &stop.0;
         let x = match phase {
             Some(x) => {
-                phase_from_rate(data, tau0, x)?;
+                phase_from_rate_stoppable(data, tau0, x, stop)?;
                 &*x
             }
             None => data,
         };
-        let stop = &stop.0;
         variances_stoppable(x, tau0, &factors, kind, threads, stop, &mut var, &mut terms)
     })?
     .map_err(|e| PyValueError::new_err(e.to_string()))?;

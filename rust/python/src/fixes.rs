@@ -9,8 +9,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::arrays::{fill, slice, zeros, Array};
-use crate::fused::{part, Block, PIECE};
-use crate::interrupt::{detach_watched, Stop};
+use crate::fused::{part, Block};
+use crate::interrupt::{detach_watched, Stop, PIECE};
 use crate::pending::Pending;
 use crate::settings::{names, set_all, values, Field};
 use crate::value_error;

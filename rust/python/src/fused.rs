@@ -12,7 +12,7 @@ use std::ops::Range;
 
 use crate::arrays::{fill_some, output, zeros, Array};
 use crate::fixes::{config_from, fixes_from, fusion_error, renumbered};
-use crate::interrupt::{detach_watched, Stop};
+use crate::interrupt::{detach_watched, pieces, Stop, PIECE};
 use crate::pending::Pending;
 use crate::value_error;
 
@@ -44,10 +44,6 @@ pub(crate) struct Block<'a> {
     pub(crate) speed: Option<&'a [f64]>,
 }
 
-/// Samples per piece of a long block, between looks for a Ctrl-C: a few milliseconds of work,
-/// and a call of the core per piece costs nothing next to it.
-pub(crate) const PIECE: usize = 1 << 16;
-
 impl<'a> Block<'a> {
     /// Runs `f` on the block piece by piece, in order, each with its range of samples, until
     /// `stop` is requested or a piece fails (the core then puts back that piece; the caller the
@@ -62,22 +58,25 @@ impl<'a> Block<'a> {
         if others.iter().flatten().any(|a| a.len() != n) {
             return f(*self, 0..n);
         }
-        let mut start = 0;
-        loop {
-            let end = n.min(start + PIECE);
-            let part = |a: &'a [f64]| &a[start..end];
+        pieces(n, stop, |range| {
+            let part = |a: &'a [f64]| &a[range.clone()];
             let piece = Block {
                 t: part(self.t),
                 rate: part(self.rate),
                 temperature: self.temperature.map(part),
                 speed: self.speed.map(part),
             };
-            f(piece, start..end)?;
-            start = end;
-            if start == n || stop.requested() {
-                return Ok(());
-            }
-        }
+            f(piece, range)
+        })
+    }
+
+    /// [`Block::pieces`] without the GIL, watched for a Ctrl-C (see [`detach_watched`]).
+    pub(crate) fn watched_pieces<E: Send>(
+        &self,
+        py: Python<'_>,
+        f: impl FnMut(Block<'_>, Range<usize>) -> Result<(), E> + Send,
+    ) -> PyResult<Result<(), E>> {
+        detach_watched(py, self.t.len(), |stop| self.pieces(stop, f))
     }
 
     /// [`Block::pieces`] for a filter that takes fixes: `f` gets each piece with the fixes no piece

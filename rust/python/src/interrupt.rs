@@ -10,6 +10,7 @@
 
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
+use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{channel, RecvTimeoutError};
 use std::sync::Mutex;
@@ -23,6 +24,10 @@ pub(crate) const WATCHED: usize = 1 << 20;
 /// at most besides the piece of work in hand.
 const POLL: Duration = Duration::from_millis(20);
 
+/// Samples per piece of a long call, between looks for a Ctrl-C: a few milliseconds of work, and
+/// a call of the core per piece costs nothing next to it.
+pub(crate) const PIECE: usize = 1 << 16;
+
 /// Set once a signal handler raised: the work stops at its next look (the core's stoppable
 /// functions look at the flag itself).
 #[derive(Default)]
@@ -33,6 +38,33 @@ impl Stop {
     pub(crate) fn requested(&self) -> bool {
         self.0.load(Ordering::Relaxed)
     }
+}
+
+/// Runs `f` on `0..n` piece by piece ([`PIECE`] samples at most), in order, until `stop` is
+/// requested or a piece fails (an empty `n` is one empty piece, so that the core still checks it).
+pub(crate) fn pieces<E>(
+    n: usize,
+    stop: &Stop,
+    mut f: impl FnMut(Range<usize>) -> Result<(), E>,
+) -> Result<(), E> {
+    let mut start = 0;
+    loop {
+        let end = n.min(start + PIECE);
+        f(start..end)?;
+        start = end;
+        if start == n || stop.requested() {
+            return Ok(());
+        }
+    }
+}
+
+/// [`detach_watched`] of work done in [`pieces`] of `0..n`: `f` runs on each piece.
+pub(crate) fn watched_pieces<E: Send>(
+    py: Python<'_>,
+    n: usize,
+    f: impl FnMut(Range<usize>) -> Result<(), E> + Send,
+) -> PyResult<Result<(), E>> {
+    detach_watched(py, n, |stop| pieces(n, stop, f))
 }
 
 /// Runs `work` without the GIL. Over [`WATCHED`] `samples` or more it runs on a helper thread

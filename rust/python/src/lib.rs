@@ -3,6 +3,7 @@
 
 mod allan;
 mod arrays;
+mod blocks;
 mod fixes;
 mod fused;
 mod interrupt;
@@ -14,12 +15,10 @@ mod sim;
 mod table;
 
 use arrays::{fill, slice, zeros, Array};
-use gyrocore::{
-    check_block, Downsample, DownsampleConfig, Error, Integrator, IntegratorConfig, Pipeline,
-    PipelineConfig, Preset, Rest, Stage, Up,
-};
-use numpy::{PyArray1, PyReadonlyArray1};
-use pyo3::exceptions::PyValueError;
+use gyrocore::{Error, Pipeline, PipelineConfig, Preset, Rest};
+use interrupt::detach_watched;
+use numpy::PyReadonlyArray1;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -287,65 +286,6 @@ fn parameter_names() -> Vec<(&'static str, &'static str)> {
     params::NAMES.to_vec()
 }
 
-/// The core's checks of a block of samples ([`check_block`]: lengths; finite, strictly
-/// increasing times; finite readings and temperatures within the limit of a reading), processing
-/// nothing: the error names the first bad sample, as a pipeline's would.
-#[pyfunction]
-#[pyo3(signature = (t, rate, temperature=None))]
-fn check_samples<'py>(
-    t: PyReadonlyArray1<'py, f64>,
-    rate: PyReadonlyArray1<'py, f64>,
-    temperature: Option<PyReadonlyArray1<'py, f64>>,
-) -> PyResult<()> {
-    let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
-    let temperature = match &temperature {
-        Some(x) => Some(slice("temperature", x)?),
-        None => None,
-    };
-    check_block(t, rate, temperature, None, true).map_err(value_error)
-}
-
-/// Integrates rate into a continuous heading.
-#[pyfunction]
-#[pyo3(signature = (t, rate, method="trapezoid", initial_heading=0.0))]
-fn integrate<'py>(
-    py: Python<'py>,
-    t: PyReadonlyArray1<'py, f64>,
-    rate: PyReadonlyArray1<'py, f64>,
-    method: &str,
-    initial_heading: f64,
-) -> PyResult<Array<'py>> {
-    let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
-    let config = IntegratorConfig {
-        method: params::parse_method(method)?,
-        initial_heading,
-    };
-    let mut integrator = Integrator::new(config).map_err(value_error)?;
-    let heading = zeros(py, t.len());
-    // the stage checks its block as it goes, refusing it by the first bad sample's index
-    fill([&heading], |[h]| {
-        py.detach(|| integrator.process_block(t, rate, h))
-    })?
-    .map_err(value_error)?;
-    Ok(heading)
-}
-
-/// The yaw rate of a three-axis gyro: `(x, y, z) . up` per sample, `up` normalised.
-#[pyfunction]
-fn project_up<'py>(
-    py: Python<'py>,
-    x: PyReadonlyArray1<'py, f64>,
-    y: PyReadonlyArray1<'py, f64>,
-    z: PyReadonlyArray1<'py, f64>,
-    up: [f64; 3],
-) -> PyResult<Array<'py>> {
-    let (x, y, z) = (slice("x", &x)?, slice("y", &y)?, slice("z", &z)?);
-    let up = Up::new(up).map_err(value_error)?;
-    let rate = zeros(py, x.len());
-    fill([&rate], |[r]| py.detach(|| up.project_block(x, y, z, r)))?.map_err(value_error)?;
-    Ok(rate)
-}
-
 /// The static bias test over `[start, end]`: (bias [rad/s], readings, noise [rad/s] or None,
 /// bias standard error [rad/s] or None), by the estimator the pipeline's rest window uses.
 #[pyfunction]
@@ -358,9 +298,12 @@ fn static_bias_test(
     end: f64,
 ) -> PyResult<(f64, u64, Option<f64>, Option<f64>)> {
     let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
-    let test = py
-        .detach(|| gyrocore::static_bias_test(t, rate, start, end))
-        .map_err(value_error)?;
+    let test = detach_watched(py, t.len(), |stop| {
+        gyrocore::static_bias_test_stoppable(t, rate, start, end, &stop.0)
+    })?
+    .map_err(value_error)?
+    // stopped only by a Ctrl-C, whose exception detach_watched returned
+    .ok_or_else(|| PyRuntimeError::new_err("the static bias test was stopped"))?;
     let stats = test.statistics;
     Ok((
         test.bias,
@@ -404,28 +347,6 @@ fn filter_rests<'py>(
     Ok((mean, variance, predicted))
 }
 
-/// Block means over `interval` seconds (HDR's second eq 14); returns (t_end, mean rate).
-#[pyfunction]
-fn downsample<'py>(
-    py: Python<'py>,
-    t: PyReadonlyArray1<'py, f64>,
-    rate: PyReadonlyArray1<'py, f64>,
-    interval: f64,
-) -> PyResult<(Array<'py>, Array<'py>)> {
-    let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
-    let mut stage = Downsample::new(DownsampleConfig { interval }).map_err(value_error)?;
-    let (mut out_t, mut out_rate) = (vec![0.0; t.len()], vec![0.0; t.len()]);
-    let n = py
-        .detach(|| stage.process_block(t, rate, &mut out_t, &mut out_rate))
-        .map_err(value_error)?;
-    out_t.truncate(n);
-    out_rate.truncate(n);
-    Ok((
-        PyArray1::from_vec(py, out_t),
-        PyArray1::from_vec(py, out_rate),
-    ))
-}
-
 /// Panics inside Rust, with the GIL released as in real work: proves that a panic reaches Python
 /// as an exception (pyo3's PanicException) instead of aborting the interpreter.
 #[pyfunction]
@@ -446,13 +367,10 @@ fn _gyrocore(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(parameter_names, m)?)?;
     m.add_function(wrap_pyfunction!(preset_uses_static_bias, m)?)?;
     m.add_function(wrap_pyfunction!(_panic_for_test, m)?)?;
-    m.add_function(wrap_pyfunction!(check_samples, m)?)?;
-    m.add_function(wrap_pyfunction!(integrate, m)?)?;
-    m.add_function(wrap_pyfunction!(downsample, m)?)?;
     m.add_function(wrap_pyfunction!(static_bias_test, m)?)?;
     m.add_function(wrap_pyfunction!(filter_rests, m)?)?;
-    m.add_function(wrap_pyfunction!(project_up, m)?)?;
     allan::register(m)?;
+    blocks::register(m)?;
     fixes::register(m)?;
     sim::register(m)?;
     table::register(m)?;

@@ -8,6 +8,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::arrays::{fill, slice, zeros, Array};
+use crate::fused::Block;
+use crate::interrupt::{detach_watched, PIECE};
 use crate::settings::{names, set_all, Field};
 
 /// The accepted configuration keys, with their units and fields.
@@ -121,19 +123,27 @@ fn gyro_measure<'py>(
 ) -> PyResult<(Array<'py>, Array<'py>, Array<'py>, Array<'py>)> {
     let mut model = GyroModel::new(config_from(config)?, seed)
         .map_err(|e| PyValueError::new_err(e.to_string()))?;
-    let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
-    let n = t.len();
+    let block = Block {
+        t: slice("t", &t)?,
+        rate: slice("rate", &rate)?,
+        temperature: None,
+        speed: None,
+    };
+    let n = block.t.len();
     let out = [zeros(py, n), zeros(py, n), zeros(py, n), zeros(py, n)];
     fill([&out[0], &out[1], &out[2], &out[3]], |[r, temp, b, s]| {
-        py.detach(|| {
-            check_block(t, rate, None, None, true)?;
-            for (i, (&ti, &ri)) in t.iter().zip(rate).enumerate() {
+        // each piece checked after the last time of the one before, as a pipeline checks a block
+        block.watched_pieces(py, |piece, range| {
+            let previous = range.start.checked_sub(1).map(|i| block.t[i]);
+            check_block(piece.t, piece.rate, None, previous, true)
+                .map_err(|e| e.with_index_offset(range.start))?;
+            for (i, (&ti, &ri)) in range.zip(piece.t.iter().zip(piece.rate)) {
                 let m = model.update(ti, ri);
                 (r[i], temp[i], b[i], s[i]) = (m.rate, m.temperature, m.bias, m.scale);
             }
             Ok(())
         })
-    })?
+    })??
     .map_err(|e: gyrocore::Error| PyValueError::new_err(e.to_string()))?;
     let [r, temp, b, s] = out;
     Ok((r, temp, b, s))
@@ -191,11 +201,16 @@ fn gyro_sample_times<'py>(
     let c = config_from(config)?;
     let expected = sample_count(&c, start, end)?;
     let model = GyroModel::new(c, seed).map_err(|e| PyValueError::new_err(e.to_string()))?;
-    let times = py.detach(|| {
-        let mut times = Vec::with_capacity(expected as usize + 1);
-        times.extend(model.sampler(start).take_while(|&t| t < end));
-        times
-    });
+    let mut times = Vec::with_capacity(expected as usize + 1);
+    let mut sampler = model.sampler(start);
+    // PIECE instants at a time, until one reaches `end`.
+    detach_watched(py, expected as usize, |stop| loop {
+        let before = times.len();
+        times.extend(sampler.by_ref().take(PIECE).take_while(|&t| t < end));
+        if times.len() < before + PIECE || stop.requested() {
+            return;
+        }
+    })?;
     Ok(PyArray1::from_vec(py, times))
 }
 

@@ -5,6 +5,8 @@ use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
+use crate::interrupt::{detach_watched, pieces, Stop};
+
 /// Appends `x` in the shortest form that reads back to the same `f64` (Żmij, the formatter of
 /// serde_json; exponent notation for very small and very large magnitudes); NaN and infinities as
 /// `NaN`, `inf`, `-inf`.
@@ -12,20 +14,24 @@ fn push_float(out: &mut String, buffer: &mut zmij::Buffer, x: f64) {
     out.push_str(buffer.format(x));
 }
 
-/// Rows of CSV text (`a,b,c\n`), one per index of the equally long `columns`.
-fn csv_rows(columns: &[&[f64]]) -> String {
+/// Rows of CSV text (`a,b,c\n`), one per index of the equally long `columns`, until `stop` (the
+/// text is then thrown away).
+fn csv_rows(columns: &[&[f64]], stop: &Stop) -> String {
     let n = columns.first().map_or(0, |c| c.len());
     let mut out = String::with_capacity(n * columns.len() * 20);
     let mut buffer = zmij::Buffer::new();
-    for i in 0..n {
-        for (k, column) in columns.iter().enumerate() {
-            if k > 0 {
-                out.push(',');
+    let _ = pieces(n, stop, |range| {
+        for i in range {
+            for (k, column) in columns.iter().enumerate() {
+                if k > 0 {
+                    out.push(',');
+                }
+                push_float(&mut out, &mut buffer, column[i]);
             }
-            push_float(&mut out, &mut buffer, column[i]);
+            out.push('\n');
         }
-        out.push('\n');
-    }
+        Ok::<(), ()>(())
+    });
     out
 }
 
@@ -58,7 +64,8 @@ fn format_csv_rows<'py>(
             )));
         }
     }
-    let text = py.detach(|| csv_rows(&slices));
+    let rows = slices.first().map_or(0, |c| c.len());
+    let text = detach_watched(py, rows, |stop| csv_rows(&slices, stop))?;
     Ok(PyArray1::from_vec(py, text.into_bytes()))
 }
 
@@ -85,7 +92,7 @@ mod tests {
             1e16,
             9.999e-6,
         ];
-        let text = csv_rows(&[&values]);
+        let text = csv_rows(&[&values], &Stop::default());
         let back: Vec<f64> = text.lines().map(|l| l.parse().unwrap()).collect();
         for (a, b) in values.iter().zip(&back) {
             assert_eq!(a.to_bits(), b.to_bits(), "{a} -> {b}");
@@ -99,7 +106,10 @@ mod tests {
     #[test]
     fn non_finite_values_are_spelled_for_csv_readers() {
         assert_eq!(
-            csv_rows(&[&[f64::NAN, 1.0], &[f64::INFINITY, -f64::INFINITY]]),
+            csv_rows(
+                &[&[f64::NAN, 1.0], &[f64::INFINITY, -f64::INFINITY]],
+                &Stop::default()
+            ),
             "NaN,inf\n1.0,-inf\n"
         );
     }
