@@ -14,7 +14,7 @@ import pytest
 # Runs CALL (a stream's twice: the first gives the whole result), with SIGINT sent to itself once its
 # main thread is in the call of the core; prints how long after the signal KeyboardInterrupt came and
 # whether the stream (a pipeline, a fix filter) is then as before the call.
-_SCRIPT = textwrap.dedent("""
+_SCRIPT = textwrap.dedent(r"""
     import json, linecache, os, pickle, re, signal, sys, threading, time, warnings
     import numpy as np, gyrocore
     from gyrocore import _checks, _gyrocore, fixes, sim
