@@ -113,13 +113,19 @@ pub struct Fusion {
     /// stored before it was kept, which is then judged by its reach alone).
     #[cfg_attr(feature = "serde", serde(default))]
     drift: Option<crate::fixes_drift::Drift>,
-    /// The shortest time between two consecutive fixes processed, > 0 (infinity: none yet): the
-    /// fixes' pace, against which a gap in them is an outage ([`READMIT_GAP`]).
+    /// The fixes' pace, against which a gap in them is an outage ([`READMIT_GAP`]), > 0
+    /// (infinity: fewer than two fixes processed): the mean of the last time between two fixes
+    /// and the pace before it, so that it follows a source whose pace falls (the shortest time,
+    /// kept before, stayed at a burst's 0.1 s and made every later gap of 10 s an outage).
     #[cfg_attr(
         feature = "serde",
         serde(with = "crate::serde_float", default = "crate::fixes_config::never")
     )]
     fix_interval: f64,
+    /// The time of the outages within the run of rejections ([`READMIT_GAP`]; 0 without a run),
+    /// left out of its length.
+    #[cfg_attr(feature = "serde", serde(default))]
+    run_outages: f64,
 }
 
 /// Wraps an angle to (-pi, pi]: the IEEE remainder of `a` by `2 pi`, exact (`a - 2 pi ceil(..)`
@@ -153,6 +159,7 @@ impl Fusion {
             rejected_run: None,
             drift: None,
             fix_interval: f64::INFINITY,
+            run_outages: 0.0,
         })
     }
 
@@ -433,7 +440,11 @@ impl Fusion {
                 self.segment = Segment::new(f.t, x_fixed, p_fixed);
             }
             if let Some(gap) = self.last_fix.map(|last| f.t - last).filter(|&g| g > 0.0) {
-                self.fix_interval = self.fix_interval.min(gap);
+                self.fix_interval = if self.fix_interval.is_finite() {
+                    0.5 * (self.fix_interval + gap)
+                } else {
+                    gap
+                };
             }
             self.last_fix = Some(f.t);
             used += 1;
