@@ -203,6 +203,27 @@ fn two_stray_fixes_before_an_outage_and_one_after_it_do_not_reset_the_heading() 
     assert_eq!(counts.readmitted, 1, "{counts:?}");
 }
 
+#[test]
+fn stray_fixes_between_two_tunnels_and_one_after_them_do_not_reset_the_heading() {
+    // Honest fixes a second, none from 100 s to 130 s nor from 133 s to 163 s; the three between
+    // the tunnels and the first after the second 8 deg off. Each outage counts in the run as the
+    // longest gap (5 s): 2 + 5 s of rejections, under readmit_after. (A pace that followed the
+    // last intervals, grown by the first tunnel, counted most of the second one: re-admitted.)
+    let (t, psi, rate) = drive(200.0);
+    let mut fx = fixes(&t, &psi, 100, (100.0, 130.0));
+    fx.retain(|f| !(133.0..163.0).contains(&f.t));
+    let (_, honest) = whole(config(), &t, &rate, &fx);
+    let between = fx.iter().position(|f| f.t >= 130.0).unwrap();
+    for f in &mut fx[between..between + 4] {
+        f.heading = wrap_angle(f.heading + 8f64.to_radians());
+    }
+    let (r, counts) = whole(config(), &t, &rate, &fx);
+    assert_eq!(counts.readmitted, 0, "{counts:?}");
+    assert_eq!(counts.rejected, honest.rejected + 4, "{counts:?} {honest:?}");
+    let off = worst_after(&t, &r.heading, &psi, 90.0);
+    assert!(off < 2.0, "{off} deg");
+}
+
 /// The drive's gyro reading `extra` rad/s more, to a filter sure (its bias sigma 1e-4 rad/s)
 /// that the bias is 0: the heading runs away from the fixes at about 3 deg/s, past the reach of
 /// re-admission (about 14 deg here) before `readmit_after`.

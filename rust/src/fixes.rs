@@ -113,10 +113,8 @@ pub struct Fusion {
     /// stored before it was kept, which is then judged by its reach alone).
     #[cfg_attr(feature = "serde", serde(default))]
     drift: Option<crate::fixes_drift::Drift>,
-    /// The fixes' pace, against which a gap in them is an outage ([`READMIT_GAP`]), > 0
-    /// (infinity: fewer than two fixes processed): the mean of the last time between two fixes
-    /// and the pace before it, so that it follows a source whose pace falls (the shortest time,
-    /// kept before, stayed at a burst's 0.1 s and made every later gap of 10 s an outage).
+    /// The shortest time between two consecutive fixes processed, > 0 (infinity: none yet): the
+    /// fixes' pace, against which a gap in them is an outage ([`READMIT_GAP`]).
     #[cfg_attr(
         feature = "serde",
         serde(with = "crate::serde_float", default = "crate::fixes_config::never")
@@ -440,11 +438,7 @@ impl Fusion {
                 self.segment = Segment::new(f.t, x_fixed, p_fixed);
             }
             if let Some(gap) = self.last_fix.map(|last| f.t - last).filter(|&g| g > 0.0) {
-                self.fix_interval = if self.fix_interval.is_finite() {
-                    0.5 * (self.fix_interval + gap)
-                } else {
-                    gap
-                };
+                self.fix_interval = self.fix_interval.min(gap);
             }
             self.last_fix = Some(f.t);
             used += 1;

@@ -73,13 +73,14 @@ impl Fusion {
     }
 
     /// The time of an outage before a fix at `t` left out of a run of rejections' length: what
-    /// the gap since the last fix lasted beyond [`READMIT_GAP`] times the fixes' pace and half of
-    /// `readmit_after` (the longest gap a run counts whole; 0 within it). An outage holds no
-    /// rejection: counted whole, two stray fixes before a tunnel and one after it re-admitted the
-    /// third and reset the heading to it. Counted up to that longest gap, rather than ending the
-    /// run, so that fixes in bursts (10 Hz for 3 s in every 10) or at a pace that falls (10 Hz,
-    /// then 0.1 Hz) still end a lock-out: ended at each gap, such a run never lasted
-    /// `readmit_after`.
+    /// the gap since the last fix lasted beyond [`READMIT_GAP`] times the fixes' shortest
+    /// interval and half of `readmit_after` (the longest gap a run counts whole; 0 within it). An
+    /// outage holds no rejection: counted whole, two stray fixes before a tunnel and one after it
+    /// re-admitted the third and reset the heading to it. Counted up to that longest gap, rather
+    /// than ending the run, so that fixes in bursts (10 Hz for 3 s in every 10) or at a pace that
+    /// falls (10 Hz, then 0.1 Hz) still end a lock-out: ended at each gap, such a run never
+    /// lasted `readmit_after`. (A pace that follows the last intervals instead, grown by one
+    /// outage, let a second one soon after count whole: stray fixes between two tunnels.)
     #[inline(always)]
     fn outage_before(&self, t: f64) -> f64 {
         let c = &self.config;
