@@ -219,7 +219,11 @@ fn stray_fixes_between_two_tunnels_and_one_after_them_do_not_reset_the_heading()
     }
     let (r, counts) = whole(config(), &t, &rate, &fx);
     assert_eq!(counts.readmitted, 0, "{counts:?}");
-    assert_eq!(counts.rejected, honest.rejected + 4, "{counts:?} {honest:?}");
+    assert_eq!(
+        counts.rejected,
+        honest.rejected + 4,
+        "{counts:?} {honest:?}"
+    );
     let off = worst_after(&t, &r.heading, &psi, 90.0);
     assert!(off < 2.0, "{off} deg");
 }
