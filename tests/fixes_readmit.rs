@@ -134,13 +134,21 @@ fn a_lasting_wrong_course_beyond_reach_stays_rejected_and_one_within_it_is_taken
 
 #[test]
 fn a_run_of_rejections_cut_into_blocks_or_stored_mid_way_carries_on_bit_for_bit() {
-    let (t, psi, rate) = drive(300.0);
-    let fx = fixes(&t, &psi, 100, (0.0, 0.0));
-    let (one, counts) = whole(sure_of_a_wrong_bias(), &t, &rate, &fx);
+    let (t, psi, _) = drive(300.0);
+    cut_and_stored_as_one_call(&fixes(&t, &psi, 100, (0.0, 0.0)));
+    // in bursts, the outages left out of the runs' length carried on as well
+    cut_and_stored_as_one_call(&at_10_hz_where(|t| (t % 10.0) < 1.0));
+}
+
+/// The filter sure of a wrong bias over `fx` in blocks, stored and read back at every cut, some
+/// of them mid-run: bit-identical to one call.
+fn cut_and_stored_as_one_call(fx: &[Fix]) {
+    let (t, _, rate) = drive(300.0);
+    let (one, counts) = whole(sure_of_a_wrong_bias(), &t, &rate, fx);
     assert!(counts.readmitted >= 1);
     let mut f = Fusion::new(sure_of_a_wrong_bias()).unwrap();
     let mut heading = vec![0.0; t.len()];
-    let mut pending: &[Fix] = &fx;
+    let mut pending: &[Fix] = fx;
     let mut cuts: Vec<usize> = (0..t.len()).step_by(613).collect();
     cuts.extend([1, 1500, 1501, t.len()]);
     cuts.sort_unstable();
@@ -195,6 +203,31 @@ fn two_stray_fixes_before_an_outage_and_one_after_it_do_not_reset_the_heading() 
     assert_eq!(counts.readmitted, 1, "{counts:?}");
 }
 
+#[test]
+fn stray_fixes_between_two_tunnels_and_one_after_them_do_not_reset_the_heading() {
+    // Honest fixes a second, none from 100 s to 130 s nor from 133 s to 163 s; the three between
+    // the tunnels and the first after the second 8 deg off. Each outage counts in the run as the
+    // longest gap (5 s): 2 + 5 s of rejections, under readmit_after. (A pace that followed the
+    // last intervals, grown by the first tunnel, counted most of the second one: re-admitted.)
+    let (t, psi, rate) = drive(200.0);
+    let mut fx = fixes(&t, &psi, 100, (100.0, 130.0));
+    fx.retain(|f| !(133.0..163.0).contains(&f.t));
+    let (_, honest) = whole(config(), &t, &rate, &fx);
+    let between = fx.iter().position(|f| f.t >= 130.0).unwrap();
+    for f in &mut fx[between..between + 4] {
+        f.heading = wrap_angle(f.heading + 8f64.to_radians());
+    }
+    let (r, counts) = whole(config(), &t, &rate, &fx);
+    assert_eq!(counts.readmitted, 0, "{counts:?}");
+    assert_eq!(
+        counts.rejected,
+        honest.rejected + 4,
+        "{counts:?} {honest:?}"
+    );
+    let off = worst_after(&t, &r.heading, &psi, 90.0);
+    assert!(off < 2.0, "{off} deg");
+}
+
 /// The drive's gyro reading `extra` rad/s more, to a filter sure (its bias sigma 1e-4 rad/s)
 /// that the bias is 0: the heading runs away from the fixes at about 3 deg/s, past the reach of
 /// re-admission (about 14 deg here) before `readmit_after`.
@@ -240,4 +273,59 @@ fn a_lasting_wrong_course_far_beyond_reach_stays_rejected_however_long() {
     assert!(counts.rejected >= 190, "{counts:?}");
     let off = worst_after(&t, &r.heading, &psi, 100.0);
     assert!(off < 3.0, "{off} deg");
+}
+
+/// Sure of a wrong bias (`sure_of_a_wrong_bias`), with honest fixes `fx` at an uneven pace:
+/// the worst heading error \[deg\] from 240 s on, and the counts.
+fn locked_out_at_an_uneven_pace(fx: &[Fix]) -> (f64, FixCounts) {
+    let (t, psi, rate) = drive(300.0);
+    let (r, counts) = whole(sure_of_a_wrong_bias(), &t, &rate, fx);
+    (worst_after(&t, &r.heading, &psi, 240.0), counts)
+}
+
+/// Honest fixes at 10 Hz where `keep` holds for their time.
+fn at_10_hz_where(keep: impl Fn(f64) -> bool) -> Vec<Fix> {
+    let (t, psi, _) = drive(300.0);
+    let mut fx = fixes(&t, &psi, 10, (0.0, 0.0));
+    fx.retain(|f| keep(f.t));
+    fx
+}
+
+#[test]
+fn a_lock_out_ends_where_the_fixes_pace_falls_after_a_burst() {
+    // 10 Hz for the first 10 s, then one fix every 10 s. Before, the pace was the shortest
+    // interval (0.1 s), every later gap of 10 s an outage that ended the run of rejections: the
+    // run never lasted readmit_after, nothing was re-admitted, and the heading ended 142 deg off.
+    let fx = at_10_hz_where(|t| t < 10.0 || (t % 10.0) < 0.05);
+    let (off, counts) = locked_out_at_an_uneven_pace(&fx);
+    assert!(counts.readmitted >= 1, "{counts:?}");
+    assert!(off < 2.0, "{off} deg, {counts:?}");
+}
+
+#[test]
+fn a_lock_out_ends_where_the_fixes_come_in_bursts() {
+    // 10 Hz for 1 s in every 10 s: each gap of 9 s is counted up to the longest gap a run spans
+    // (5 s), so the rejections of a few bursts last readmit_after (before, each gap ended the
+    // run: nothing re-admitted, 119 deg off).
+    let fx = at_10_hz_where(|t| (t % 10.0) < 1.0);
+    let (off, counts) = locked_out_at_an_uneven_pace(&fx);
+    assert!(counts.readmitted >= 1, "{counts:?}");
+    assert!(off < 2.0, "{off} deg, {counts:?}");
+}
+
+#[test]
+fn a_lock_out_ends_after_a_first_interval_of_a_nanosecond() {
+    // Fixes every 10 s, the first given twice 1 ns apart (two receivers): before, the pace stayed
+    // at 1 ns for good, every gap of 10 s was an outage, and the lock-out was never ended.
+    let mut fx = at_10_hz_where(|t| (t % 10.0) < 0.05);
+    fx.insert(
+        1,
+        Fix {
+            t: fx[0].t + 1e-9,
+            ..fx[0]
+        },
+    );
+    let (off, counts) = locked_out_at_an_uneven_pace(&fx);
+    assert!(counts.readmitted >= 1, "{counts:?}");
+    assert!(off < 2.0, "{off} deg, {counts:?}");
 }

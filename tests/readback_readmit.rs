@@ -91,3 +91,31 @@ fn a_runs_drift_reads_back_and_a_state_without_it_is_judged_by_the_reach_alone()
         );
     }
 }
+
+#[test]
+fn a_runs_outages_read_back_within_its_span_and_a_state_without_them_has_none() {
+    // The outages left out of a run's length (`READMIT_GAP`): a state stored before they were
+    // kept has none; more than the run's span (an edit) made it last readmit_after at once or
+    // never, and is refused, as is any without a run.
+    let mut old = with_run(json!([4.0, 3]));
+    assert_eq!(old["run_outages"], json!(0.0));
+    old.as_object_mut().unwrap().remove("run_outages");
+    serde_json::from_value::<Fusion>(old).unwrap();
+    let mut ok = with_run(json!([4.0, 3]));
+    ok["run_outages"] = json!(0.5);
+    serde_json::from_value::<Fusion>(ok).unwrap();
+    let mut without = with_run(Value::Null);
+    without["counts"]["rejected"] = json!(0);
+    for (mut v, bad) in [
+        (with_run(json!([4.0, 3])), json!(0.6)),
+        (with_run(json!([4.0, 3])), json!(-1.0)),
+        (without, json!(1.0)),
+    ] {
+        v["run_outages"] = bad.clone();
+        let err = refused::<Fusion>(v);
+        assert!(
+            err.contains("invalid parameter run outages"),
+            "{bad}: {err}"
+        );
+    }
+}

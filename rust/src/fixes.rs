@@ -120,6 +120,10 @@ pub struct Fusion {
         serde(with = "crate::serde_float", default = "crate::fixes_config::never")
     )]
     fix_interval: f64,
+    /// The time of the outages within the run of rejections ([`READMIT_GAP`]; 0 without a run),
+    /// left out of its length.
+    #[cfg_attr(feature = "serde", serde(default))]
+    run_outages: f64,
 }
 
 /// Wraps an angle to (-pi, pi]: the IEEE remainder of `a` by `2 pi`, exact (`a - 2 pi ceil(..)`
@@ -153,6 +157,7 @@ impl Fusion {
             rejected_run: None,
             drift: None,
             fix_interval: f64::INFINITY,
+            run_outages: 0.0,
         })
     }
 

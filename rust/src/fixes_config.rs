@@ -38,7 +38,7 @@ pub struct FusionConfig {
     /// fail the gate (two rejected before it) is applied with the heading's variance raised to
     /// let it pass and the bias's and scale's raised back to their initial ones (>= 0; infinity:
     /// never, the gate alone). A gap in the fixes longer than [`READMIT_GAP`] times their
-    /// interval and half of this (an outage) ends a run of rejections: the next one starts anew.
+    /// interval and half of this (an outage) counts in a run of rejections' length as no more.
     /// A fix beyond the reach is re-admitted too where the run's innovations drift steadily away
     /// from within it (a filter far too sure of a wrong bias; rust/src/fixes_drift.rs).
     #[cfg_attr(
@@ -53,10 +53,11 @@ pub struct FusionConfig {
 /// of an outage reset the heading.
 pub const READMIT_MIN_REJECTED: u64 = 3;
 
-/// The longest gap between two fixes a run of rejections spans, in multiples of the shortest
-/// interval between two fixes so far (and at least half of `readmit_after`, the gap that lets
-/// [`READMIT_MIN_REJECTED`] fixes span it): a longer one is an outage, which holds no rejection,
-/// so two stray fixes before a tunnel and one after it are not a lock-out.
+/// The longest gap between two fixes counted whole in a run of rejections, in multiples of the
+/// shortest interval between two fixes so far (and at least half of `readmit_after`, the gap
+/// that lets [`READMIT_MIN_REJECTED`] fixes span it): a longer one is an outage, which holds no
+/// rejection and counts in the run's length as this longest gap, so two stray fixes before a
+/// tunnel and one after it are not a lock-out.
 pub const READMIT_GAP: f64 = 3.0;
 
 /// How far beyond the gate a fix may lie and still be re-admitted, in multiples of the gate's

@@ -58,6 +58,12 @@ impl Fusion {
             let rejected = "at least 1 and at most the fixes rejected";
             let allowed = self.counts.rejected as f64;
             crate::error::check_range("rejected run", n as f64, 1.0, allowed, rejected)?;
+            // within the run's span: more had made it last readmit_after at once, or never
+            let span = "within 0 and the run's span (its first fix to the last)";
+            crate::error::check_range("run outages", self.run_outages, 0.0, last - since, span)?;
+        } else {
+            let none = "0 without a run of rejections";
+            crate::error::check_range("run outages", self.run_outages, 0.0, 0.0, none)?;
         }
         self.segment.check_before(now)
     }

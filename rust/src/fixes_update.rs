@@ -24,7 +24,8 @@ impl Fusion {
         let nu = wrap_angle(fix.heading - x[0]);
         let bound = self.config.gate * (p[0][0] + r);
         if nu * nu > bound {
-            let run = self.run_continued(fix.t);
+            let run = self.rejected_run;
+            let outages = self.run_outages + self.outage_before(fix.t);
             let drift = match (run, self.drift) {
                 (None, _) => Some(Drift::first(nu)),
                 (Some((since, _)), Some(d)) => Some(d.with(fix.t - since, nu)),
@@ -36,10 +37,12 @@ impl Fusion {
             } else {
                 self.drifting(run, drift, (fix.t, r), (p[0][0], bound))
             };
-            if !self.readmits(run, fix.t, drifting.is_some()) {
+            if !self.readmits(run, fix.t - outages, drifting.is_some()) {
                 self.counts.rejected = self.counts.rejected.saturating_add(1);
                 let (since, n) = run.unwrap_or((fix.t, 0));
                 self.rejected_run = Some((since, n.saturating_add(1)));
+                // a run's first fix follows no outage of its own
+                self.run_outages = if run.is_some() { outages } else { 0.0 };
                 self.drift = drift;
                 return None;
             }
@@ -47,6 +50,7 @@ impl Fusion {
             self.counts.readmitted = self.counts.readmitted.saturating_add(1);
         }
         self.rejected_run = None;
+        self.run_outages = 0.0;
         self.drift = None;
         self.counts.applied = self.counts.applied.saturating_add(1);
         let s = p[0][0] + r;
@@ -68,24 +72,28 @@ impl Fusion {
         Some((x, crate::fixes_covariance::semi_definite(p)))
     }
 
-    /// The run of rejections (its first fix's time, how many) that a fix at `t` failing the gate
-    /// continues: none after a gap in the fixes longer than [`READMIT_GAP`] times their interval
-    /// and half of `readmit_after`. The rejections before an outage were made by a filter that
-    /// has grown less sure since, and the outage itself held none: counted across it, two stray
-    /// fixes before a tunnel and one after it re-admitted the third and reset the heading to it.
+    /// The time of an outage before a fix at `t` left out of a run of rejections' length: what
+    /// the gap since the last fix lasted beyond [`READMIT_GAP`] times the fixes' shortest
+    /// interval and half of `readmit_after` (the longest gap a run counts whole; 0 within it). An
+    /// outage holds no rejection: counted whole, two stray fixes before a tunnel and one after it
+    /// re-admitted the third and reset the heading to it. Counted up to that longest gap, rather
+    /// than ending the run, so that fixes in bursts (10 Hz for 3 s in every 10) or at a pace that
+    /// falls (10 Hz, then 0.1 Hz) still end a lock-out: ended at each gap, such a run never
+    /// lasted `readmit_after`. (A pace that follows the last intervals instead, grown by one
+    /// outage, let a second one soon after count whole: stray fixes between two tunnels.)
     #[inline(always)]
-    fn run_continued(&self, t: f64) -> Option<(f64, u64)> {
+    fn outage_before(&self, t: f64) -> f64 {
         let c = &self.config;
         let span = (READMIT_MIN_REJECTED - 1) as f64;
         let longest = (READMIT_GAP * self.fix_interval).max(c.readmit_after / span);
-        let after_last = self.last_fix.is_some_and(|last| t - last <= longest);
-        self.rejected_run.filter(|_| after_last)
+        let gap = self.last_fix.map_or(0.0, |last| t - last);
+        (gap - longest).max(0.0)
     }
 
-    /// Whether a fix at `t` that fails the gate, continuing the rejections `run`, ends the gate's
-    /// lock-out: the fixes have failed it for `readmit_after` seconds, at least
-    /// [`READMIT_MIN_REJECTED`] in a row with this one, and this one is `admissible` (within
-    /// [`READMIT_REACH`], or beyond it at the end of a run that drifts).
+    /// Whether a fix at `t` (less the run's outages) that fails the gate, continuing the
+    /// rejections `run`, ends the gate's lock-out: the fixes have failed it for `readmit_after`
+    /// seconds, at least [`READMIT_MIN_REJECTED`] in a row with this one, and this one is
+    /// `admissible` (within [`READMIT_REACH`], or beyond it at the end of a run that drifts).
     #[inline(always)]
     fn readmits(&self, run: Option<(f64, u64)>, t: f64, admissible: bool) -> bool {
         admissible

@@ -132,3 +132,24 @@ def test_a_filter_far_too_sure_of_a_wrong_bias_is_taken_back_by_the_fixes_drift(
     assert _e_psi(log, r.heading) < 4.0
     true_bias = 0.05 + math.radians(0.520)  # the twin's meta.json, docs/fixes.md "Results"
     assert abs(r.bias[-1] - true_bias) < 2e-3
+
+
+@pytest.mark.parametrize("mode", ["causal", "smoothed"])
+def test_a_lock_out_ends_where_the_fixes_pace_falls_from_10_hz_to_a_fix_every_10_s(mode: str) -> None:
+    # 10 Hz for the first 10 s, then a fix every 10 s, their sigma stated 10 times too small.
+    # Before, the fixes' pace was their shortest interval (0.1 s): each later gap of 10 s was an
+    # outage that ended the run of rejections, which never lasted readmit_after; nothing was
+    # re-admitted and the heading ended 96 deg off (E_psi 96.05 causal, 96.04 smoothed). Now
+    # 4.61 / 3.49 (12.40 / 11.07 before an outage was judged at all).
+    log = gyrocore.read_log(real_log_path("kitti_2011_09_30_0020"))
+    fast = gyrocore.sim.gnss_fixes(*log.reference(), seed=1, rate_hz=10.0)
+    slow = gyrocore.sim.gnss_fixes(*log.reference(), seed=2, rate_hz=0.1)
+    first, later = fast.t < fast.t[0] + 10.0, slow.t >= fast.t[0] + 10.0
+    fixes = Fixes(np.r_[fast.t[first], slow.t[later]], np.r_[fast.heading[first], slow.heading[later]],
+                  np.r_[fast.sigma[first], slow.sigma[later]] / 10)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        r = fuse(log.t, log.rate, fixes, mode=mode)
+    assert r.counts["readmitted"] >= 1
+    assert sum(SAID in str(w.message) for w in caught) == 1
+    assert _e_psi(log, r.heading) < 6.0
