@@ -25,15 +25,7 @@ fn check_samples<'py>(
     rate: PyReadonlyArray1<'py, f64>,
     temperature: Option<PyReadonlyArray1<'py, f64>>,
 ) -> PyResult<()> {
-    let block = Block {
-        t: slice("t", &t)?,
-        rate: slice("rate", &rate)?,
-        temperature: temperature
-            .as_ref()
-            .map(|a| slice("temperature", a))
-            .transpose()?,
-        speed: None,
-    };
+    let block = Block::of(&t, &rate, temperature.as_ref(), None)?;
     // Piece by piece, each after the last time of the one before, as a pipeline checks a block.
     block
         .watched_pieces(py, |piece, range| {
@@ -61,12 +53,7 @@ fn integrate<'py>(
     };
     let mut integrator = Integrator::new(config).map_err(value_error)?;
     let heading = zeros(py, t.len());
-    let block = Block {
-        t,
-        rate,
-        temperature: None,
-        speed: None,
-    };
+    let block = Block::new(t, rate);
     // the stage checks each piece as it goes, refusing the block by the first bad sample's index
     fill([&heading], |[h]| {
         block.watched_pieces(py, |piece, range| {
@@ -121,12 +108,7 @@ fn downsample<'py>(
     let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
     let mut stage = Downsample::new(DownsampleConfig { interval }).map_err(value_error)?;
     let (mut out_t, mut out_rate) = (vec![0.0; t.len()], vec![0.0; t.len()]);
-    let block = Block {
-        t,
-        rate,
-        temperature: None,
-        speed: None,
-    };
+    let block = Block::new(t, rate);
     // A piece closes at most one interval per sample: its means fit from the count so far.
     let mut n = 0;
     block

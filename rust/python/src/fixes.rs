@@ -174,12 +174,7 @@ fn forward<const N: usize>(
     mut step: impl FnMut(&[f64], &[f64], &[Fix], FusionOutputs<'_>) -> Result<usize, FusionError>,
 ) -> Result<usize, FusionError> {
     let mut out = out.map(Some);
-    let block = Block {
-        t,
-        rate,
-        temperature: None,
-        speed: None,
-    };
+    let block = Block::new(t, rate);
     block.pieces_with_fixes(stop, fixes, |piece, range, fixes| {
         let mut columns = out.iter_mut().map(|o| part(o, &range));
         let estimates = FusionOutputs {

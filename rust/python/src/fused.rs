@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::ops::Range;
 
-use crate::arrays::{fill_some, output, zeros, Array};
+use crate::arrays::{fill_some, output, slice, zeros, Array};
 use crate::fixes::{config_from, fixes_from, fusion_error, renumbered};
 use crate::interrupt::{detach_watched, pieces, Stop, PIECE};
 use crate::pending::Pending;
@@ -45,6 +45,31 @@ pub(crate) struct Block<'a> {
 }
 
 impl<'a> Block<'a> {
+    /// Times and rates alone.
+    pub(crate) fn new(t: &'a [f64], rate: &'a [f64]) -> Self {
+        Block {
+            t,
+            rate,
+            temperature: None,
+            speed: None,
+        }
+    }
+
+    /// The block of a call's arrays, each contiguous float64 (else an error naming it).
+    pub(crate) fn of(
+        t: &'a PyReadonlyArray1<'_, f64>,
+        rate: &'a PyReadonlyArray1<'_, f64>,
+        temperature: Option<&'a PyReadonlyArray1<'_, f64>>,
+        speed: Option<&'a PyReadonlyArray1<'_, f64>>,
+    ) -> PyResult<Self> {
+        Ok(Block {
+            t: slice("t", t)?,
+            rate: slice("rate", rate)?,
+            temperature: temperature.map(|a| slice("temperature", a)).transpose()?,
+            speed: speed.map(|a| slice("speed", a)).transpose()?,
+        })
+    }
+
     /// Runs `f` on the block piece by piece, in order, each with its range of samples, until
     /// `stop` is requested or a piece fails (the core then puts back that piece; the caller the
     /// pieces before). A block whose arrays differ in length goes whole: the core names that.

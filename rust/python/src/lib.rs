@@ -137,15 +137,7 @@ impl PyPipeline {
         Vec<RestView>,
         Option<fused::FusedColumns<'py>>,
     )> {
-        let block = fused::Block {
-            t: slice("t", &t)?,
-            rate: slice("rate", &rate)?,
-            temperature: temperature
-                .as_ref()
-                .map(|a| slice("temperature", a))
-                .transpose()?,
-            speed: speed.as_ref().map(|a| slice("speed", a)).transpose()?,
-        };
+        let block = fused::Block::of(&t, &rate, temperature.as_ref(), speed.as_ref())?;
         let mut rests = Vec::new();
         let mut on_rest = |r: Rest| {
             rests.push((

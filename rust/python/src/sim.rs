@@ -123,12 +123,7 @@ fn gyro_measure<'py>(
 ) -> PyResult<(Array<'py>, Array<'py>, Array<'py>, Array<'py>)> {
     let mut model = GyroModel::new(config_from(config)?, seed)
         .map_err(|e| PyValueError::new_err(e.to_string()))?;
-    let block = Block {
-        t: slice("t", &t)?,
-        rate: slice("rate", &rate)?,
-        temperature: None,
-        speed: None,
-    };
+    let block = Block::of(&t, &rate, None, None)?;
     let n = block.t.len();
     let out = [zeros(py, n), zeros(py, n), zeros(py, n), zeros(py, n)];
     fill([&out[0], &out[1], &out[2], &out[3]], |[r, temp, b, s]| {
