@@ -27,9 +27,14 @@ _SIGNALS = (signal.SIGINT, signal.SIGTERM)
 _received = threading.Event()
 
 
+def received() -> bool:
+    """True once a signal came while :func:`handled` was active."""
+    return _received.is_set()
+
+
 def check() -> None:
     """Raise KeyboardInterrupt if a signal came while :func:`handled` was active."""
-    if _received.is_set():
+    if received():
         raise KeyboardInterrupt
 
 

@@ -13,7 +13,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, TypeVar
 
-from .. import _gyrocore, io
+from .. import _gyrocore, _signals, io
 from .._checks import MAX_READING, json_value
 from .._extras import MissingExtra, tqdm_class
 from .._gyrocore import SampleError
@@ -397,8 +397,12 @@ def show_warning(
     message: Warning | str, category: type[Warning], filename: str, lineno: int, file: Any = None, line: Any = None
 ) -> None:
     """``warnings.showwarning`` for the command line: the message alone, as :func:`warn` prints it
-    (not Python's ``file:line: Category`` form, which points into the package)."""
-    warn(str(message))
+    (not Python's ``file:line: Category`` form, which points into the package). None once a
+    signal came: the run then only says that it was interrupted, and a warning after the signal
+    is one of its consequences (pandas 1.5's import cut short by it warned "Cython module failed
+    to patch module with custom type")."""
+    if not _signals.received():
+        warn(str(message))
 
 
 @contextmanager
