@@ -3,9 +3,7 @@
 //! pieces, watched for a Ctrl-C (see [`interrupt`](crate::interrupt)); its outputs are new arrays,
 //! thrown away when it stops.
 
-use gyrocore::{
-    check_block, Downsample, DownsampleConfig, Integrator, IntegratorConfig, Stage, Up,
-};
+use gyrocore::{Downsample, DownsampleConfig, Integrator, IntegratorConfig, Stage, Up};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 
@@ -14,7 +12,7 @@ use crate::fused::Block;
 use crate::interrupt::watched_pieces;
 use crate::{params, value_error};
 
-/// The core's checks of a block of samples ([`check_block`]: lengths; finite, strictly
+/// The core's checks of a block of samples ([`gyrocore::check_block`]: lengths; finite, strictly
 /// increasing times; finite readings and temperatures within the limit of a reading), processing
 /// nothing: the error names the first bad sample, as a pipeline's would.
 #[pyfunction]
@@ -26,13 +24,8 @@ fn check_samples<'py>(
     temperature: Option<PyReadonlyArray1<'py, f64>>,
 ) -> PyResult<()> {
     let block = Block::of(&t, &rate, temperature.as_ref(), None)?;
-    // Piece by piece, each after the last time of the one before, as a pipeline checks a block.
     block
-        .watched_pieces(py, |piece, range| {
-            let previous = range.start.checked_sub(1).map(|i| block.t[i]);
-            check_block(piece.t, piece.rate, piece.temperature, previous, true)
-                .map_err(|e| e.with_index_offset(range.start))
-        })?
+        .watched_pieces(py, |piece, range| block.check_piece(piece, &range))?
         .map_err(value_error)
 }
 
@@ -57,10 +50,7 @@ fn integrate<'py>(
     // the stage checks each piece as it goes, refusing the block by the first bad sample's index
     fill([&heading], |[h]| {
         block.watched_pieces(py, |piece, range| {
-            let out = &mut h[range.clone()];
-            integrator
-                .process_block(piece.t, piece.rate, out)
-                .map_err(|e| e.with_index_offset(range.start))
+            integrator.process_block(piece.t, piece.rate, &mut h[range])
         })
     })??
     .map_err(value_error)?;
@@ -90,7 +80,6 @@ fn project_up<'py>(
                 (x, y, z)
             };
             up.project_block(x, y, z, &mut r[range.clone()])
-                .map_err(|e| e.with_index_offset(range.start))
         })
     })??
     .map_err(value_error)?;
@@ -112,12 +101,10 @@ fn downsample<'py>(
     // A piece closes at most one interval per sample: its means fit from the count so far.
     let mut n = 0;
     block
-        .watched_pieces(py, |piece, range| {
+        .watched_pieces(py, |piece, _| {
             let len = piece.t.len();
             let (out_t, out_rate) = (&mut out_t[n..n + len], &mut out_rate[n..n + len]);
-            n += stage
-                .process_block(piece.t, piece.rate, out_t, out_rate)
-                .map_err(|e| e.with_index_offset(range.start))?;
+            n += stage.process_block(piece.t, piece.rate, out_t, out_rate)?;
             Ok(())
         })?
         .map_err(value_error)?;

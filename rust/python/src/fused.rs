@@ -2,7 +2,8 @@
 //! core's `FusedPipeline`) and the fixes given ahead of the samples that reach them.
 
 use gyrocore::{
-    Fix, FusedOutputs, FusedPipeline, FusionError, Outputs, Pipeline, PipelineConfig, Rest, Samples,
+    check_block, Error, Fix, FusedOutputs, FusedPipeline, FusionError, Outputs, Pipeline,
+    PipelineConfig, Rest, Samples,
 };
 use numpy::PyReadonlyArray1;
 use pyo3::exceptions::PyValueError;
@@ -95,13 +96,26 @@ impl<'a> Block<'a> {
         })
     }
 
-    /// [`Block::pieces`] without the GIL, watched for a Ctrl-C (see [`detach_watched`]).
-    pub(crate) fn watched_pieces<E: Send>(
+    /// [`Block::pieces`] without the GIL, watched for a Ctrl-C (see [`detach_watched`]); a
+    /// piece's error names its sample counted from the block's first.
+    pub(crate) fn watched_pieces(
         &self,
         py: Python<'_>,
-        f: impl FnMut(Block<'_>, Range<usize>) -> Result<(), E> + Send,
-    ) -> PyResult<Result<(), E>> {
-        detach_watched(py, self.t.len(), |stop| self.pieces(stop, f))
+        mut f: impl FnMut(Block<'_>, Range<usize>) -> Result<(), Error> + Send,
+    ) -> PyResult<Result<(), Error>> {
+        detach_watched(py, self.t.len(), |stop| {
+            self.pieces(stop, |piece, range| {
+                let start = range.start;
+                f(piece, range).map_err(|e| e.with_index_offset(start))
+            })
+        })
+    }
+
+    /// The core's checks of `piece`, the samples `range` of this block ([`check_block`]), after
+    /// the last time of the piece before it, as a pipeline checks a block.
+    pub(crate) fn check_piece(&self, piece: Block<'_>, range: &Range<usize>) -> Result<(), Error> {
+        let previous = range.start.checked_sub(1).map(|i| self.t[i]);
+        check_block(piece.t, piece.rate, piece.temperature, previous, true)
     }
 
     /// [`Block::pieces`] for a filter that takes fixes: `f` gets each piece with the fixes no piece
@@ -268,24 +282,20 @@ impl Core {
                         named(2, drift.as_ref()),
                     ],
                     |[mut h, mut r, mut d]| {
-                        detach_watched(py, n, |stop| {
-                            block.pieces(stop, |piece, range| {
-                                let out = Outputs {
-                                    heading: part(&mut h, &range),
-                                    rate: part(&mut r, &range),
-                                    drift: part(&mut d, &range),
-                                };
-                                pipeline
-                                    .process_block_reporting(
-                                        piece.t,
-                                        piece.rate,
-                                        piece.temperature,
-                                        piece.speed,
-                                        out,
-                                        on_rest,
-                                    )
-                                    .map_err(|e| e.with_index_offset(range.start))
-                            })
+                        block.watched_pieces(py, |piece, range| {
+                            let out = Outputs {
+                                heading: part(&mut h, &range),
+                                rate: part(&mut r, &range),
+                                drift: part(&mut d, &range),
+                            };
+                            pipeline.process_block_reporting(
+                                piece.t,
+                                piece.rate,
+                                piece.temperature,
+                                piece.speed,
+                                out,
+                                on_rest,
+                            )
                         })
                     },
                 )??

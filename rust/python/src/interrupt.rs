@@ -8,6 +8,7 @@
 //! The work looks at the flag between pieces of a few milliseconds, so the loops over samples are
 //! not touched.
 
+use gyrocore::Error;
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use std::ops::Range;
@@ -58,13 +59,19 @@ pub(crate) fn pieces<E>(
     }
 }
 
-/// [`detach_watched`] of work done in [`pieces`] of `0..n`: `f` runs on each piece.
-pub(crate) fn watched_pieces<E: Send>(
+/// [`detach_watched`] of work done in [`pieces`] of `0..n`: `f` runs on each piece, and a piece's
+/// error names its sample counted from the first of `0..n`.
+pub(crate) fn watched_pieces(
     py: Python<'_>,
     n: usize,
-    f: impl FnMut(Range<usize>) -> Result<(), E> + Send,
-) -> PyResult<Result<(), E>> {
-    detach_watched(py, n, |stop| pieces(n, stop, f))
+    mut f: impl FnMut(Range<usize>) -> Result<(), Error> + Send,
+) -> PyResult<Result<(), Error>> {
+    detach_watched(py, n, |stop| {
+        pieces(n, stop, |range| {
+            let start = range.start;
+            f(range).map_err(|e| e.with_index_offset(start))
+        })
+    })
 }
 
 /// Runs `work` without the GIL. Over [`WATCHED`] `samples` or more it runs on a helper thread

@@ -1,7 +1,7 @@
 //! Bindings of the simulated gyro (`gyrocore.sim` documents the Python API). The configuration
 //! arrives as a flat dict of SI values; `gyrocore.sim.GyroSpec` builds it from datasheet units.
 
-use gyrocore::{check_block, GyroModel, GyroModelConfig, Stage};
+use gyrocore::{GyroModel, GyroModelConfig, Stage};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -129,9 +129,7 @@ fn gyro_measure<'py>(
     fill([&out[0], &out[1], &out[2], &out[3]], |[r, temp, b, s]| {
         // each piece checked after the last time of the one before, as a pipeline checks a block
         block.watched_pieces(py, |piece, range| {
-            let previous = range.start.checked_sub(1).map(|i| block.t[i]);
-            check_block(piece.t, piece.rate, None, previous, true)
-                .map_err(|e| e.with_index_offset(range.start))?;
+            block.check_piece(piece, &range)?;
             for (i, (&ti, &ri)) in range.zip(piece.t.iter().zip(piece.rate)) {
                 let m = model.update(ti, ri);
                 (r[i], temp[i], b[i], s[i]) = (m.rate, m.temperature, m.bias, m.scale);
