@@ -20,6 +20,9 @@ _SCRIPT = textwrap.dedent(r"""
     from gyrocore import _checks, _gyrocore, fixes, sim
 
     warnings.simplefilter("ignore")
+    # Python's own Ctrl-C, also where the runner was started in the background (a shell without
+    # job control starts it with SIGINT ignored, which the child inherits: no signal came)
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     n = int(sys.argv[2])
     t = np.arange(n) * 0.01
     rate = 0.001 + 0.001 * np.random.default_rng(0).standard_normal(n)
