@@ -71,6 +71,8 @@ class _FileJob:
         #: False: an output that appears while the file is processed (another run's) is kept, and
         #: this file fails (see :class:`gyrocore.io.atomic.StagedFile`)
         self.overwrite = True
+        #: what replaces such an output, as the user knows it (the command line's ``--overwrite``)
+        self.replace_option = atomic.replacing_option("overwrite=True")
         self.read_options, self.overrides = split_options(options)
         #: None: every column of :data:`io.OUTPUT_COLUMNS`, and the heading's sigma for a log with fixes
         self.columns = None if columns is None else io.check_columns(columns)
@@ -99,7 +101,7 @@ class _FileJob:
         # the output was refused before the job where it was there (process_file, process_many, the
         # command line): one found there now was written meanwhile, by another run
         with (_noted(self.notes, self.path if self.raise_again else None), atomic.tagged(self.tag),
-              atomic.outputs_checked()):
+              atomic.outputs_checked(self.replace_option)):
             return self._stream(progress)
 
     def _stream(self, progress: Progress | None) -> FileReport:

@@ -9,12 +9,14 @@ import errno
 import os
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from gyrocore import batch_job
 from gyrocore.batch import process_file, process_many
 from gyrocore.cli import main
-from gyrocore.io import atomic
+from gyrocore import HeadingResult
+from gyrocore.io import HeadingWriter, atomic
 
 from .test_batch import leftovers, synthetic_csv
 
@@ -33,13 +35,23 @@ def test_an_output_written_meanwhile_is_kept_unless_overwrite(tmp_path: Path) ->
     log, out = synthetic_csv(tmp_path / "a.csv", 3000), tmp_path / "h.csv"
     with pytest.raises(FileExistsError, match=rf"^{out}: written meanwhile by something else \(another run writing "
                                               r"the same output\?\); it is kept, and this run's output is not "
-                                              "written: pass --overwrite to replace it, or write elsewhere$"):
+                                              "written: run it again with overwrite=True to replace it, or write elsewhere$"):
         process_file(log, out, preset="raw", chunk_rows=1000, progress=_written_meanwhile(out), overwrite=False)
     assert out.read_text() == KEPT
     assert leftovers(tmp_path) == []
     # replacing is what overwrite (the default) asks for
     report = process_file(log, out, preset="raw", chunk_rows=1000, progress=_written_meanwhile(out))
     assert report.rows_out == 3000 and len(out.read_text().splitlines()) == 3001
+
+
+def test_a_heading_writer_names_its_own_option(tmp_path: Path) -> None:
+    # the writer's option is replace=True; it advised the command line's --overwrite
+    out = tmp_path / "h.csv"
+    with pytest.raises(FileExistsError, match=r"it is kept, and this run's output is not written: run it again with replace=True "):
+        with HeadingWriter(out, replace=False) as writer:
+            writer.write(HeadingResult(np.arange(3.0), np.zeros(3), np.zeros(3), np.zeros(3)))
+            out.write_text(KEPT)
+    assert out.read_text() == KEPT and leftovers(tmp_path) == []
 
 
 def test_a_batch_fails_the_file_whose_output_was_written_meanwhile(tmp_path: Path,
@@ -59,6 +71,8 @@ def test_a_batch_fails_the_file_whose_output_was_written_meanwhile(tmp_path: Pat
     summary = process_many([logs], out_dir=out, preset="raw", overwrite=False, jobs=1)
     assert [r.ok for r in summary.files] == [False, True]
     assert (summary.files[0].error or "").startswith(f"{out / 'a.csv'}: written meanwhile by something else")
+    # the advice is the function's own option, also from the worker's thread: --overwrite was named
+    assert "run it again with overwrite=True to replace it" in (summary.files[0].error or "")
     assert (out / "a.csv").read_text() == KEPT and leftovers(out) == []
 
 
@@ -76,9 +90,12 @@ def test_the_command_line_keeps_an_output_written_meanwhile_unless_overwrite(
     monkeypatch.setattr(batch_job._FileJob, "_plan", plan_then_other_run)
     one, folder = tmp_path / "h.csv", tmp_path / "out"
     assert main(["process", str(log), "--out", str(one), "--preset", "raw"]) == 2
-    assert capsys.readouterr().err.startswith(f"gyrocore: error: {one}: written meanwhile by something else")
+    err = capsys.readouterr().err
+    assert err.startswith(f"gyrocore: error: {one}: written meanwhile by something else")
+    assert "run it again with --overwrite to replace it" in err  # the command's option, not the function's it calls
     assert main(["process", str(logs), "--out", str(folder), "--preset", "raw"]) == 1
-    assert f"FAILED {log}: {folder / 'a.csv'}: written meanwhile" in capsys.readouterr().out
+    out_text = capsys.readouterr().out
+    assert f"FAILED {log}: {folder / 'a.csv'}: written meanwhile" in out_text and "again with --overwrite to" in out_text
     assert one.read_text() == KEPT and (folder / "a.csv").read_text() == KEPT
     for out in (one, folder):
         assert main(["process", str(log if out == one else logs), "--out", str(out), "--preset", "raw",

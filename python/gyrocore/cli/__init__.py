@@ -122,7 +122,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             args = build_parser().parse_args(attach_signed_values(sys.argv[1:] if argv is None else argv))
             # every command refuses its outputs that exist before its work (refuse_existing):
             # one found when it is written was written meanwhile, and is refused as such
-            with warnings.catch_warnings(), outputs_checked():
+            with warnings.catch_warnings(), outputs_checked("--overwrite"):
                 warnings.showwarning = show_warning
                 return int(args.func(args))
         except BrokenPipeError:

@@ -12,6 +12,7 @@ import filecmp
 import os
 import secrets
 import stat
+import weakref
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
@@ -84,21 +85,30 @@ def already_there(taken: Sequence[str | Path], option: str) -> FileExistsError:
                            "(nothing was written)")
 
 
-#: True while outputs are known to have been refused before the work where they were there (by
-#: the command line, or by an outer call of :func:`kept_outputs`): one found at an output later was
-#: written meanwhile, and is refused as such when the output is committed.
-_checked: contextvars.ContextVar[bool] = contextvars.ContextVar("gyrocore_outputs_checked", default=False)
+#: While outputs are known to have been refused before the work where they were there (by the
+#: command line, or by an outer call of :func:`kept_outputs`), the option that would have replaced
+#: them (``--overwrite``, ``overwrite=True``): one found at an output later was written meanwhile,
+#: and is refused as such, naming that option, when the output is committed. None elsewhere.
+_checked: contextvars.ContextVar[str | None] = contextvars.ContextVar("gyrocore_outputs_checked", default=None)
 
 
 @contextmanager
-def outputs_checked() -> Iterator[None]:
+def outputs_checked(option: str) -> Iterator[None]:
     """A block whose outputs were refused before it where they existed (the command line checks
-    its own before any work, naming ``--overwrite``): :func:`kept_outputs` checks nothing in it."""
-    token = _checked.set(True)
+    its own before any work), ``option`` the one that replaces them (``--overwrite``):
+    :func:`kept_outputs` checks nothing in it, and an output refused in it names that option."""
+    token = _checked.set(option)
     try:
         yield
     finally:
         _checked.reset(token)
+
+
+def replacing_option(option: str) -> str:
+    """The option that replaces an output, as the user who started the work knows it: that of the
+    outer block's check (the command line's ``--overwrite``), else ``option`` (the function's own).
+    A file written meanwhile under the Python API was refused naming ``--overwrite``."""
+    return _checked.get() or option
 
 
 def refuse_present(paths: Iterable[str | Path], replace: bool, option: str) -> None:
@@ -106,7 +116,7 @@ def refuse_present(paths: Iterable[str | Path], replace: bool, option: str) -> N
     there already (:func:`already_there`, naming ``option``), unless the block was checked
     (:func:`outputs_checked`). Without it a file saved twice was refused only when the second was
     written, said to be "written meanwhile by something else"."""
-    if not replace and not _checked.get():
+    if not replace and _checked.get() is None:
         taken = [p for p in paths if os.path.lexists(p)]
         if taken:
             raise already_there(taken, option)
@@ -117,7 +127,7 @@ def kept_outputs(paths: Iterable[str | Path], replace: bool, option: str) -> Ite
     """A block that writes ``paths``, their refusal checked before it (:func:`refuse_present`); in
     the block, one that appears is another run's, written meanwhile."""
     refuse_present(paths, replace, option)
-    with outputs_checked():
+    with outputs_checked(replacing_option(option)):
         yield
 
 
@@ -215,7 +225,8 @@ class StagedFile:
     """A temporary file next to ``path`` that becomes ``path`` on :meth:`commit`.
 
     :meth:`discard` (call it in a ``finally``) removes it unless committed, so an error or an
-    interruption never leaves ``path`` half written. A hard kill can leave the hidden temporary
+    interruption never leaves ``path`` half written; one neither committed nor discarded goes with
+    the object, or at the interpreter's exit. A hard kill can leave the hidden temporary
     file (``.NAME.*.tmp``, ``NAME`` cut short where the whole would be too long) behind, but never
     a partial ``path``.
 
@@ -225,11 +236,13 @@ class StagedFile:
     file it replaces (a calibration kept at 0600 stays 0600); a new name gets the umask's.
     """
 
-    def __init__(self, path: str | Path, *, replace: bool = True) -> None:
+    def __init__(self, path: str | Path, *, replace: bool = True, option: str = "replace=True") -> None:
         path = Path(path)  # exported: a path as text failed on a missing parent
         self.path = path
         #: False: :meth:`commit` never replaces a file that appeared at ``path`` meanwhile (see there)
         self.replace = replace
+        #: what replaces such a file, named where one is refused (:func:`replacing_option`)
+        self.option = replacing_option(option)
         #: The file that is replaced: ``path``, or the final target of ``path`` where it is a link
         #: (also one that leads nowhere yet, whose target is then created).
         self.target = Path(os.path.realpath(path)) if path.is_symlink() else path
@@ -256,6 +269,9 @@ class StagedFile:
                     raise
                 raise PermissionError(cannot_write_in(path, e.strerror, self.target.parent)) from None
             self.tmp = tmp
+            # a writer entered by hand and never left (a notebook's cell, a script that ends first)
+            # kept its temporary file for good: it goes when the object does, or at the exit
+            self._abandoned = weakref.finalize(self, _forget, tmp)
             return
         raise FileExistsError(f"{self.target.parent}: cannot create a temporary file for {self.target.name}")
 
@@ -283,6 +299,7 @@ class StagedFile:
             os.replace(self.tmp, self.target)
         else:
             self._place_new()
+        self._abandoned.detach()
         _live.discard(self.tmp)
         sync_folder(self.target.parent)
 
@@ -292,8 +309,8 @@ class StagedFile:
         output checked that there was none before its work, and another run writing the same output
         meanwhile had its output replaced without a word, both reported ok."""
         taken = FileExistsError(f"{self.path}: written meanwhile by something else (another run writing the same "
-                                "output?); it is kept, and this run's output is not written: pass --overwrite to "
-                                "replace it, or write elsewhere")
+                                f"output?); it is kept, and this run's output is not written: run it again with "
+                                f"{self.option} to replace it, or write elsewhere")
         try:
             os.link(self.tmp, self.target)
         except FileExistsError:
@@ -321,8 +338,13 @@ class StagedFile:
 
     def discard(self) -> None:
         """Remove the temporary file if it is still there."""
-        self.tmp.unlink(missing_ok=True)
-        _live.discard(self.tmp)
+        self._abandoned()  # once: a later call, or the object's end, does nothing
+
+
+def _forget(tmp: Path) -> None:
+    """Remove the uncommitted temporary file ``tmp`` (:meth:`StagedFile.discard`)."""
+    tmp.unlink(missing_ok=True)
+    _live.discard(tmp)
 
 
 def discard_all() -> None:
