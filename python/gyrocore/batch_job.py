@@ -19,7 +19,7 @@ from ._arrays import FloatArray
 from ._checks import collected, no_usable_log, warn, warn_of_file
 from ._gap_turn import LongestGap
 from ._motion import TURNING
-from ._gyrocore import SampleError
+from ._gyrocore import SampleError, __version__
 from .batch_inputs import complete_output
 from .batch_report import FileReport, input_repairs
 from .io import atomic
@@ -87,6 +87,9 @@ class _FileJob:
         self.tag = ""
         #: on a Dask worker, the host of the client, which found the input (:meth:`for_a_worker`)
         self.client_host: str | None = None
+        #: on a Dask worker, the gyrocore of the client (:meth:`for_a_worker`): the cluster's workers
+        #: are asked theirs before the batch, a worker that joins later only here
+        self.client_version: str | None = None
 
     def run(self, progress: Progress | None = None, stop: Callable[[], None] | None = None) -> FileReport:
         """The file processed (``progress`` after each chunk written), or stopped where ``stop``
@@ -326,12 +329,19 @@ class _FileJob:
         job.path, job.out, job.tag = Path.cwd() / self.path, Path.cwd() / self.out, tag
         job.notes = []  # its own, not this job's: a cluster of threads may run it without a copy
         job.client_host = socket.gethostname() if os.path.lexists(self.path) else None
+        job.client_version = __version__
         return job
 
     def _check_seen_here(self) -> None:
-        """On a Dask worker, refuse an input or output folder that the client found and this
-        machine does not: they said ``no such file or folder`` and ``the folder ... does not
-        exist; create it``, of files the user sees there."""
+        """On a Dask worker, refuse to run another gyrocore than the client's (a worker that joined
+        after the batch began, which :func:`gyrocore.batch_run.check_workers` did not ask: its
+        headings may differ from a run on the client, without a word), and an input or output
+        folder that the client found and this machine does not: they said ``no such file or
+        folder`` and ``the folder ... does not exist; create it``, of files the user sees there."""
+        if self.client_version is not None and self.client_version != __version__:
+            raise ValueError(f"the Dask worker at {socket.gethostname()} runs gyrocore {__version__}, the client "
+                             f"{self.client_version} (a worker that joined after the batch began?): install "
+                             f"gyrocore[dask]=={self.client_version} on every worker")
         if self.client_host is None:
             return
         for path, what in ((self.path, "input"), (self.out.parent, "output folder")):

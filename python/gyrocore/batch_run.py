@@ -213,7 +213,8 @@ def check_workers(client: Any) -> None:
     """Refuse, before any output is made, a cluster whose workers cannot import gyrocore (not
     installed there, or its compiled core missing: each worker that took a file died reading its
     task, and the batch waited for ever) or run another version of it than this one (whose
-    headings may differ from a run here). Workers that join later are not asked."""
+    headings may differ from a run here). A worker that joins later refuses each file it is given
+    if its version differs (``_FileJob._check_seen_here``)."""
     address = client.scheduler.address
     try:
         answers = client.run(_version, on_error="return")

@@ -190,6 +190,29 @@ def test_workers_of_another_gyrocore_are_named_before_any_work(tmp_path: Path, p
     assert not (tmp_path / "out").exists()
 
 
+def test_a_worker_of_another_gyrocore_that_joins_later_fails_each_file_it_takes(
+        tmp_path: Path, processes: Any, monkeypatch: pytest.MonkeyPatch) -> None:
+    # the workers are asked their version before the batch; one that joined after it ran the files
+    # it took with its own, whose headings may differ. The late worker is played by a client whose
+    # version differs from the workers' only once the check is past.
+    logs = _fleet(tmp_path / "logs")
+    for_a_worker = batch_job._FileJob.for_a_worker
+
+    def from_another_client(job: batch_job._FileJob, tag: str) -> batch_job._FileJob:
+        sent = for_a_worker(job, tag)
+        if job.path.name == "d1.csv":
+            sent.client_version = "0.0.1"
+        return sent
+
+    monkeypatch.setattr(batch_job._FileJob, "for_a_worker", from_another_client)
+    report = process_many([logs], out_dir=tmp_path / "out", client=processes, preset="raw", bias=0.0)
+    assert [r.ok for r in report.files] == [False, True, False, True]  # bad.csv, and d1.csv
+    assert report.files[2].error == (
+        f"the Dask worker at {socket.gethostname()} runs gyrocore {gyrocore.__version__}, the client 0.0.1 (a worker "
+        "that joined after the batch began?): install gyrocore[dask]==0.0.1 on every worker")
+    assert not (tmp_path / "out" / "d1.csv").exists()
+
+
 class _DiesOnOom(distributed.WorkerPlugin):
     """Each worker process dies (as the kernel's out-of-memory killer ends it) once it has
     written a chunk of the input ``oom.csv``; the other files run as ever."""
