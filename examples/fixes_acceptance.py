@@ -1,4 +1,4 @@
-"""Issue 18's acceptance figures for heading fixes (docs/fixes.md shows and discusses them).
+"""Issue 18's acceptance figures for heading fixes (docs/fixes_results.md shows and discusses them).
 
 The KITTI drives and their simulated-MEMS twins get SIMULATED 1 Hz fixes of 1 deg noise from
 their own reference (gyrocore.sim.gnss_fixes, seeded): throughout, and with a 120 s outage in the
@@ -11,7 +11,7 @@ wrapped, at the reference's times; no alignment at the start: fixes make the hea
 raw integration is scored as usual (HDR eq 15, aligned at the start), which is the same number as
 its absolute error when it starts from the reference's true heading (the "raw" column). "raw from
 1st fix" starts it from the first simulated fix instead: the same information the filter has at
-the start. The last section looks at the causal outages of the true-rate drives (docs/fixes.md).
+the start. The last section looks at the causal outages of the true-rate drives (docs/fixes_results.md).
 
     python examples/fixes_acceptance.py [DATA_DIR]
 """

@@ -3,7 +3,7 @@ with what goes wrong with real ones (sigmas stated too small, clocks apart, a be
 heading) and lasting wrong courses (bursts of one offset, reversing), fused with ``fuse`` with the
 gate alone (``readmit_after=inf``) and with the default re-admission. E_psi [deg], absolute,
 median and largest over the 12 logs, causal / smoothed; and the fixes re-admitted in all.
-Prints the table of docs/fixes.md "The gate's lock-out, and re-admission".
+Prints the table of docs/fixes_model.md "The gate's lock-out, and re-admission".
 
     python examples/fixes_lockout.py [DATA_DIR]     # default ../shared/data/real; a few seconds
 

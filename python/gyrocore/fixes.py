@@ -9,7 +9,7 @@ GNSS receiver's course over ground (:func:`from_gnss`, :func:`read_gnss_csv`), a
 recursive form of Hong eq 4-7's least squares) over a whole log, causal or smoothed
 (Rauch-Tung-Striebel); :class:`Fusion` is the same filter for a stream, bit-identical however the
 stream is cut, and picklable. The noise settings are the gyro's Allan parameters: ``arw`` (N,
-rad/sqrt(s)) and ``bias_walk`` (rate random walk K, rad/s/sqrt(s)); see docs/fixes.md.
+rad/sqrt(s)) and ``bias_walk`` (rate random walk K, rad/s/sqrt(s)); see docs/fixes_model.md.
 """
 
 from __future__ import annotations
@@ -55,7 +55,7 @@ class Fixes:
     """Absolute headings: times [s], headings [rad, CCW from east], standard deviations [rad].
 
     A heading beyond +-:data:`MAX_HEADING` is an error when the fixes are built; NaN, ``sigma <= 0``
-    and the time order are checked by the filter, for the fixes it reaches (docs/fixes.md)."""
+    and the time order are checked by the filter, for the fixes it reaches (docs/fixes_model.md)."""
 
     t: FloatArray
     heading: FloatArray
@@ -253,7 +253,7 @@ def _settings(settings: dict[str, float]) -> dict[str, float]:
     numbers = {name: real_number(value) for name, value in settings.items()}  # an int beyond float64: inf
     for name, x in numbers.items():
         if x is None:
-            raise TypeError(f"fusion setting {name} = {settings[name]!r}: must be a number (SI units, docs/fixes.md)")
+            raise TypeError(f"fusion setting {name} = {settings[name]!r}: must be a number (SI units, docs/fixes_model.md)")
     return {k: float(v) for k, v in numbers.items() if v is not None}
 
 

@@ -10,7 +10,7 @@ the rate) shows three mistakes the filter cannot see: fixes that turn other than
 clockwise from north: the turn's coefficient near -2; radians read as degrees: -0.98), fixes late
 or early on the gyro's clock (a receiver's latency, another clock's offset), and fixes that scatter
 far beyond their stated sigma. Each made the fused heading wrong by 2 to 100 deg on the KITTI drives, mostly with no
-warning, or with the outlier gate's, which named units (docs/fixes.md, "Fixes checked against
+warning, or with the outlier gate's, which named units (docs/fixes_model.md, "Fixes checked against
 the gyro").
 """
 

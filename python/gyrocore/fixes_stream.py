@@ -27,7 +27,7 @@ def say_how_to_wait(error: ValueError) -> None:
         error.args = (f"{error}. A fix that arrives after the samples of its time (a receiver's latency) is used "
                       "only if the gyro is held back that long: process the samples up to the newest sample's "
                       "time less the latency, with every fix received, and keep the others for the next block "
-                      "(docs/fixes.md, \"Fixes that arrive late\"); or leave such a fix out. Nothing of this "
+                      "(docs/fixes_results.md, \"Fixes that arrive late\"); or leave such a fix out. Nothing of this "
                       "block was processed",)
 
 

@@ -81,7 +81,7 @@ class Pipeline:
             command line).
         fusion: settings of the heading-fix stage (:data:`gyrocore.fixes.SETTINGS`, ``{}``: defaults),
             run last on the corrected rate from the first sample; without it, fixes start the stage
-            only in the first block (docs/fixes.md).
+            only in the first block (docs/fixes_results.md).
         **overrides: parameters to change (see :func:`parameters`), e.g. ``bias_window=(t0, t1)``,
             ``bias=0.01`` [rad/s], ``threshold_dps=0.3``, ``hdr_increment=...``.
 
@@ -173,7 +173,7 @@ class Pipeline:
             fixes: absolute headings (:data:`gyrocore.fixes.FixesLike`) merged by time (those past
                 this chunk wait for the next, so give each fix once; one before a processed sample or
                 before a waiting one is an error); the heading is then the filter's, with
-                ``heading_sigma`` and ``fusion`` (docs/fixes.md).
+                ``heading_sigma`` and ``fusion`` (docs/fixes_results.md).
             out: arrays to fill instead of fresh ones, which the result then holds: one per name
                 of ``heading``, ``rate`` and ``drift`` in ``outputs``, in that order (with
                 ``outputs=("heading",)`` the array itself; the fix stage's columns are fresh),

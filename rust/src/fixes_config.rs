@@ -82,7 +82,7 @@ pub const MIN_FIX_SIGMA: f64 = 1e-12;
 
 impl Default for FusionConfig {
     /// A consumer MEMS gyro on a car: the noise settings every fold chose leave-one-log-out
-    /// over the twelve KITTI logs (docs/fixes.md; the twins' true `N` is 5.2e-4, `K` 8.7e-5),
+    /// over the twelve KITTI logs (docs/fixes_results.md; the twins' true `N` is 5.2e-4, `K` 8.7e-5),
     /// unknown initial heading, bias within about 1 deg/s, scale within 5 %.
     fn default() -> Self {
         FusionConfig {

@@ -186,8 +186,8 @@ impl Segment {
         quadratic + c * (config.arw * config.arw + qb * THIRD * c * c) + qs * j
     }
 
-    /// The heading's standard deviation at `t` ([`sigma_of`] its variance; docs/fixes.md,
-    /// "Speed", on why no branch). The covariance the filter carries on with keeps the variance
+    /// The heading's standard deviation at `t` ([`sigma_of`] its variance; docs/fixes_rust.md,
+    /// "A heading variance that rounds below 0", on why no branch). The covariance the filter carries on with keeps the variance
     /// as computed.
     #[inline(always)]
     pub(crate) fn heading_sigma(&self, t: f64, config: &FusionConfig) -> f64 {

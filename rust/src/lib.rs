@@ -120,7 +120,8 @@ pub use stage::{Clock, Stage};
 pub use threshold::{Threshold, ThresholdConfig};
 pub use validate::{check_block, MAX_READING, MAX_TIME, MIN_INTERVAL};
 
-// The Rust examples of the README and of the docs' engine page compile and run with the doctests.
+// The Rust examples of the README and of the docs' pages that hold them (engine.md, fixes_rust.md)
+// compile and run with the doctests, one struct per page.
 #[cfg(doctest)]
 #[doc = include_str!("../../README.md")]
 struct ReadmeExamples;
@@ -130,5 +131,5 @@ struct ReadmeExamples;
 struct EngineDocExamples;
 
 #[cfg(doctest)]
-#[doc = include_str!("../../docs/fixes.md")]
-struct FixesDocExamples;
+#[doc = include_str!("../../docs/fixes_rust.md")]
+struct FixesRustDocExamples;

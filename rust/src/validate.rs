@@ -160,7 +160,7 @@ pub(crate) fn interval_key(dt: f64) -> u64 {
 /// sample and no early exit, instead of a separate pass over the block (which would wait for the
 /// memory the loop's work hides). Integer operations that SSE2 has no instruction for (a
 /// maximum, a rotation), so that they stay in the integer registers and leave the vector
-/// registers to the chain's state (`docs/performance.md`).
+/// registers to the chain's state (`docs/performance_lab.md`).
 #[derive(Debug, Default, Clone, Copy)]
 pub(crate) struct Checks {
     /// The largest [`interval_key`] seen.

@@ -131,22 +131,22 @@ def test_the_ablation_tables_are_what_their_script_prints() -> None:
 
 
 def test_the_lock_out_table_is_what_its_script_prints() -> None:
-    # docs/fixes.md "The gate's lock-out, and re-admission": `python examples/fixes_lockout.py`
-    rows = table("fixes.md", "| fixes | gate alone: causal / smoothed")
+    # docs/fixes_model.md "The gate's lock-out, and re-admission": `python examples/fixes_lockout.py`
+    rows = table("fixes_model.md", "| fixes | gate alone: causal / smoothed")
     assert len(rows) == 18
     assert rows == script_rows("fixes_lockout.py")
 
 
 def test_the_fixes_results_table_is_what_its_script_prints() -> None:
-    # docs/fixes.md "Results": `python examples/fixes_acceptance.py`, its first table (the
+    # docs/fixes_results.md "Results": `python examples/fixes_acceptance.py`, its first table (the
     # page leaves out the settings column, and the "(-)" of a true bias or scale not known)
     run = script_rows("fixes_acceptance.py")
     printed = {r[0]: [c.replace(" (-)", "") for c in r[:9]] for r in run if len(r) == 10}
-    rows = table("fixes.md", "| log | raw | raw from 1st fix | fixes throughout")
+    rows = table("fixes_results.md", "| log | raw | raw from 1st fix | fixes throughout")
     assert len(rows) == len(printed) == 12
     for row in rows:
         assert row == printed[row[0]], (row, printed[row[0]])
-    # the summary at the top of the page: each group's range of those figures
+    # the summary on docs/fixes.md, the user's page: each group's range of those figures
     grade = {r[0]: r[6].split(" / ") for r in run if len(r) == 7}
     summary = {row[0]: row[1:] for row in table("fixes.md", "| logs | raw integration | fixes throughout")}
 
@@ -188,9 +188,9 @@ def test_the_held_out_counts_are_those_of_the_held_out_table() -> None:
 
 @pytest.mark.parametrize("causal", [False, True])
 def test_the_simulated_fixes_table_is_what_evaluate_prints(causal: bool, capsys: pytest.CaptureFixture[str]) -> None:
-    # docs/fixes.md "Fixes in the normal entry points": gyrocore evaluate kitti_2011_09_30_00{18,20,27,33,34}
+    # docs/fixes_results.md "Fixes in the normal entry points": gyrocore evaluate kitti_2011_09_30_00{18,20,27,33,34}
     # kitti_2011_10_03_0042 --preset raw --sim-fixes rate=1,sigma_deg=1,outage=30:50,seed=1 [--causal]
-    rows = table("fixes.md", "| log | smoothed | causal | raw |")
+    rows = table("fixes_results.md", "| log | smoothed | causal | raw |")
     assert len(rows) == 6
     args = ["evaluate", *(str(REAL / row[0]) for row in rows), "--preset", "raw",
             "--sim-fixes", "rate=1,sigma_deg=1,outage=30:50,seed=1", "--json", *(["--causal"] if causal else [])]

@@ -280,7 +280,7 @@ def test_a_stream_names_a_fix_older_than_its_samples() -> None:
                                         "kitti_2011_09_30_0033", "kitti_2011_09_30_0034", "kitti_2011_10_03_0042"])
 def test_mems_twins_with_simulated_fixes_meet_issue_18(drive_name: str) -> None:
     """Issue 18's target on each MEMS twin: E_psi below 1.5 deg with 1 Hz, 1 deg fixes throughout,
-    and the bias and scale of its meta.json found (settings as chosen in docs/fixes.md)."""
+    and the bias and scale of its meta.json found (settings as chosen in docs/fixes_results.md)."""
     log = gyrocore.read_log(DATA / f"{drive_name}_mems")
     assert log.t_ref is not None and log.heading_ref is not None
     fixes = gyrocore.sim.gnss_fixes(log.t_ref, log.heading_ref, seed=18)
@@ -297,7 +297,7 @@ def test_mems_twins_with_simulated_fixes_meet_issue_18(drive_name: str) -> None:
                                         "kitti_2011_09_30_0033", "kitti_2011_09_30_0034", "kitti_2011_10_03_0042"])
 def test_true_rate_drives_bridge_an_outage_causally_with_their_gyros_grade(drive_name: str) -> None:
     """Issue 18's outage target on the true-rate drives: causal E_psi inside an outage in the middle
-    (120 s, or half the drive) below 5 deg, given the OXTS's data-sheet grade as priors (docs/fixes.md;
+    (120 s, or half the drive) below 5 deg, given the OXTS's data-sheet grade as priors (docs/fixes_results.md;
     with a MEMS gyro's priors kitti_2011_09_30_0020's outage is 8 deg: its scale is unobservable before)."""
     log = gyrocore.read_log(DATA / drive_name)
     assert log.t_ref is not None and log.heading_ref is not None

@@ -118,7 +118,7 @@ def test_a_stream_whose_gate_rejects_most_fixes_says_so_once() -> None:
 
 
 def test_fixes_a_tenth_of_a_second_late_are_a_documented_blind_spot_of_small_cost() -> None:
-    # docs/fixes.md, "Fixes checked against the gyro": a KITTI gyro lags its reference by about
+    # docs/fixes_model.md, "Fixes checked against the gyro": a KITTI gyro lags its reference by about
     # 0.06 s, so an offset below the lag's bound (MAX_LAG) is not told from the data's own; what
     # it costs is small (0.1 s late: 0.48 to 0.63 deg causal, median of the 12 logs), and 0.3 s
     # is seen.

@@ -394,7 +394,7 @@ def test_fixes_given_again_while_they_wait_are_refused_at_once() -> None:
 
 
 def test_fixes_that_arrive_late_are_used_by_a_gyro_held_back_that_long() -> None:
-    """docs/fixes.md's recipe: the gyro held back by the receiver's latency gives one call's
+    """docs/fixes_results.md's recipe: the gyro held back by the receiver's latency gives one call's
     headings; without it a late fix is refused with what to do."""
     t, heading, rate = drive(60.0)
     fixes = fixes_of(t, heading, rate_hz=5.0)
@@ -422,7 +422,7 @@ def test_fixes_that_arrive_late_are_used_by_a_gyro_held_back_that_long() -> None
 def test_a_fix_on_the_last_sample_processed_changes_only_that_rows_past() -> None:
     """A fix at exactly the time of the last sample processed, given with the next block, is
     applied: the stream goes on as one call would, but the row it belongs to was returned already
-    (docs/fixes.md says so)."""
+    (docs/fixes_results.md says so)."""
     t, heading, rate = drive(30.0)
     fixes = Fixes.of(t[10::50], heading[10::50], 0.02)
     whole = gyrocore.Pipeline("hdr", bias=BIAS).process(t, rate, fixes=fixes)

@@ -1,4 +1,4 @@
-"""The gate's lock-out ended by re-admission (``readmit_after``, docs/fixes.md "The gate's
+"""The gate's lock-out ended by re-admission (``readmit_after``, docs/fixes_model.md "The gate's
 lock-out, and re-admission"), on a real drive with simulated fixes whose sigma is stated three
 times too small: with the gate alone the filter rejected 111 of 115 and ended 54 deg off."""
 
@@ -130,7 +130,7 @@ def test_a_filter_far_too_sure_of_a_wrong_bias_is_taken_back_by_the_fixes_drift(
         r = fuse(log.t, log.rate + 0.05, fixes, mode=mode, initial_bias_sigma=1e-4)
     assert r.counts["readmitted"] >= 1 and r.counts["rejected"] < 40
     assert _e_psi(log, r.heading) < 4.0
-    true_bias = 0.05 + math.radians(0.520)  # the twin's meta.json, docs/fixes.md "Results"
+    true_bias = 0.05 + math.radians(0.520)  # the twin's meta.json, docs/fixes_results.md "Results"
     assert abs(r.bias[-1] - true_bias) < 2e-3
 
 

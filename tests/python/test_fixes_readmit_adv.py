@@ -113,7 +113,7 @@ def test_evaluate_says_each_fix_warning_once_per_log_whatever_each_method_found(
 
 @pytest.mark.filterwarnings("ignore")  # its locked-out stream warns, as it should
 def test_a_re_admitted_fix_moves_the_heading_more_than_half_way_to_it_and_not_all() -> None:
-    # docs/fixes.md: the heading takes c/(1+c) or more of a re-admitted fix's innovation (its
+    # docs/fixes_model.md: the heading takes c/(1+c) or more of a re-admitted fix's innovation (its
     # square c > 1 times the gate's bound), not all of it. A filter sure of a bias of 0 on a gyro
     # reading 0.02 rad/s at rest, true heading 0, one 1 deg fix a second, each on a sample.
     f = gyrocore.fixes.Fusion(initial_bias_sigma=1e-5, bias_walk=1e-9, arw=1e-5, initial_heading_sigma=1e-3,

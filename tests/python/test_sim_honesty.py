@@ -189,7 +189,7 @@ def test_each_log_s_simulated_fixes_have_their_own_seed_whatever_the_order(
     a, b = (read_log(drive) for drive in drives)
     fa, fb = spec.fixes(a), spec.fixes(b)
     assert np.array_equal(fa.t, fb.t) and not np.array_equal(fa.heading, fb.heading)
-    assert spec.seed_of(a) == int.from_bytes(hashlib.sha256(b"3/a").digest()[:8], "big")  # as docs/fixes.md says
+    assert spec.seed_of(a) == int.from_bytes(hashlib.sha256(b"3/a").digest()[:8], "big")  # as docs/fixes_results.md says
 
     def rows(order: list[Path]) -> dict[str, dict[str, object]]:
         with warnings.catch_warnings():
