@@ -7,6 +7,7 @@ import datetime
 import math
 import numbers
 import sys
+import threading
 from collections.abc import Iterator, Sequence
 from typing import Any
 
@@ -78,7 +79,7 @@ def as_float_array(name: str, values: ArrayLike, *, copy: bool = False, masked: 
     """Return ``values`` as a 1-D contiguous float64 array, copying only when needed, or always
     with ``copy`` (for an array a result or record keeps: the caller's own array, or the data an
     ``__array__`` hands over, kept as it is, changed with the caller's, ``r.t[:] -= r.t[0]`` moving
-    the caller's times too).
+    the caller's times too; :class:`OwnCopy` makes that copy while the core runs).
 
     ``timedelta64`` values are durations and become seconds, whatever their unit (NaT becomes NaN);
     ``datetime64`` is refused, since which epoch a time counts from is the caller's choice.
@@ -86,6 +87,61 @@ def as_float_array(name: str, values: ArrayLike, *, copy: bool = False, masked: 
     Raises TypeError for non-numeric data and ValueError for a wrong shape or masked values (see
     :func:`refuse_masked`, ``masked`` its hint).
     """
+    out, fresh = _converted(name, values, masked)
+    return out.copy() if copy and not fresh else out
+
+
+def as_float_array_owned(name: str, values: ArrayLike) -> tuple[FloatArray, OwnCopy]:
+    """:func:`as_float_array` of ``values``, and a copy of it to keep (:class:`OwnCopy`, begun by
+    its :meth:`~OwnCopy.start` before the work it may run beside)."""
+    out, fresh = _converted(name, values, MASKED_LEFT_OUT)
+    return out, OwnCopy(out, fresh)
+
+
+#: Arrays at least this long are copied on another thread (a thread's start costs tens of us).
+COPIED_BESIDE = 1 << 18
+
+
+class OwnCopy:
+    """A copy of the float64 array ``a`` for a result to keep, made on another thread while the
+    core runs (numpy's copy and the core's loop both release the GIL): the copy of 10^7 times,
+    its fresh pages faulted in, was a quarter of a heading-only call on this thread. ``fresh``:
+    ``a`` is a conversion's new array already, kept as it is. :meth:`get` waits for the copy."""
+
+    def __init__(self, a: FloatArray, fresh: bool) -> None:
+        self._given = None if fresh else a
+        self._own = a
+        self._thread: threading.Thread | None = None
+
+    def start(self) -> None:
+        """Begin the copy: on another thread for a long array, at once for a short one."""
+        if self._given is None:
+            return
+        self._own, given = np.empty_like(self._given), self._given
+        self._given = None
+        if len(given) < COPIED_BESIDE:
+            np.copyto(self._own, given)
+            return
+        self._thread = threading.Thread(target=np.copyto, args=(self._own, given), name="gyrocore-copy", daemon=True)
+        self._thread.start()
+
+    def get(self) -> FloatArray:
+        """The copy, complete (begun here if it was not)."""
+        self.start()
+        self.wait()
+        return self._own
+
+    def wait(self) -> None:
+        """Wait for a copy begun on another thread (where the work failed too: no thread outlives
+        the call)."""
+        if self._thread is not None:
+            self._thread.join()
+            self._thread = None
+
+
+def _converted(name: str, values: ArrayLike, masked: str) -> tuple[FloatArray, bool]:
+    """:func:`as_float_array` of ``values`` without a copy, and whether it is a new array (a
+    conversion's) rather than the caller's own."""
     refuse_masked(name, values, masked)
     try:
         array = np.asarray(values)
@@ -133,8 +189,7 @@ def as_float_array(name: str, values: ArrayLike, *, copy: bool = False, masked: 
     out = np.ascontiguousarray(a, dtype=np.float64)
     # not already a converted copy: numpy builds a new array of a list or tuple, but hands over an
     # ndarray, or the data an __array__ gives, as it is
-    fresh = out is not array or isinstance(values, (list, tuple))
-    return out.copy() if copy and not fresh else out
+    return out, out is not array or isinstance(values, (list, tuple))
 
 
 def float_fields(record: object, names: Sequence[str], prefix: str = "", *, copy: bool = False,

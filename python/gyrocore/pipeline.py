@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _gyrocore, rests
-from ._arrays import MASKED_AS_NONFINITE, FloatArray, as_float_array
+from ._arrays import MASKED_AS_NONFINITE, FloatArray, as_float_array, as_float_array_owned
 from ._checks import public_dir, warn
 from ._inuse import Turn, one_at_a_time
 from ._motion import WindowWatch
@@ -179,8 +179,9 @@ class Pipeline:
                 ``outputs=("heading",)`` the array itself; the fix stage's columns are fresh),
                 each float64, C-contiguous, writeable, as long as ``t`` and apart from the inputs
                 and from each other. A caller that processes many logs or chunks of one length
-                reuses them and so pays for no new memory. After an error their contents are
-                unspecified.
+                reuses them and so pays for no new memory: the result's ``t`` is then the caller's
+                times, read-only, not a copy (without ``out`` it is the result's own). After an
+                error their contents are unspecified.
 
         Raises:
             SampleError: (a ValueError) non-increasing or non-finite timestamps, or NaN/inf readings
@@ -208,7 +209,13 @@ class Pipeline:
                 or not 0 <= index_offset < MAX_INDEX):
             raise ValueError(f"index_offset = {index_offset!r}: give the index of the chunk's first sample in the "
                              "whole log, an int >= 0 and below 2^63")
-        ta = as_float_array("t", t, copy=True)  # the result's t: its own, not the caller's array
+        # the result's t: its own copy (a chunk's times outlive a buffer the caller refills, and a
+        # write to them reached the caller's), made while the core runs; with out=, which
+        # allocates nothing per call, the caller's times read-only (a write through them fails)
+        ta, own_t = as_float_array_owned("t", t) if out is None else (as_float_array("t", t), None)
+        if own_t is None:
+            ta = ta.view()
+            ta.flags.writeable = False
         ra = as_float_array("rate", rate, masked=MASKED_AS_NONFINITE)
         temp = None if temperature is None else as_float_array("temperature", temperature)
         refuse_window_without_reading(self._inner, ta, ra, temp, self._first_time)
@@ -232,6 +239,8 @@ class Pipeline:
             before = inner.report()
             window = None if self._watch.checked else self._window(ta)  # none once it is checked
             measuring = window is not None and inner.bias()[2]
+            if own_t is not None:
+                own_t.start()
             try:
                 heading, out_rate, drift, found, fused = self._run(
                     inner, ta, ra, temp, index_offset, (flags, fix_output_flags(outputs)), sa, fix_block, given
@@ -244,6 +253,8 @@ class Pipeline:
                 raise
         except BaseException:
             self._unit_head = head
+            if own_t is not None:
+                own_t.wait()
             raise
         # kept only once the core took the chunk: the readings of a refused one, sent again mended,
         # were kept twice (a pickle of the refused pipeline differed from the one before)
@@ -262,6 +273,7 @@ class Pipeline:
         if self._first_time is None and len(ta):
             self._first_time = float(ta[0])
         self._rests.extend(found)
+        ta = ta if own_t is None else own_t.get()
         if fused is None:
             return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found), report=report)
         from .fixes import FusionResult, counts_dict

@@ -5,13 +5,14 @@ from __future__ import annotations
 
 import datetime
 import decimal
+import threading
 import warnings
 
 import numpy as np
 import pytest
 
 import gyrocore
-from gyrocore import SampleError, fixes
+from gyrocore import SampleError, _arrays, fixes
 
 
 @pytest.fixture(scope="module")
@@ -189,3 +190,23 @@ def test_a_stream_from_one_buffer_keeps_each_chunks_times(drive: tuple[np.ndarra
         buffer_t[:], buffer_rate[:] = t[start:start + 500], rate[start:start + 500]
         chunks.append(p.process(buffer_t, buffer_rate))
     np.testing.assert_array_equal(np.concatenate([c.t for c in chunks]), t)
+
+
+@pytest.mark.parametrize("entry", ["process", "Pipeline.process"])
+def test_long_times_are_copied_beside_the_core_whole_and_apart(entry: str) -> None:
+    # long times are copied on another thread while the core runs: the copy is whole, the
+    # result's own, and no thread outlives the call, also one the core refused
+    n = _arrays.COPIED_BESIDE + 12345
+    t = 1000.0 + np.arange(n) * 0.01
+    rate = np.full(n, 0.01)
+    run = (lambda r: gyrocore.process(t, r, "raw")) if entry == "process" else (
+        lambda r: gyrocore.Pipeline("raw").process(t, r))
+    result = run(rate)
+    np.testing.assert_array_equal(result.t.view(np.uint64), t.view(np.uint64))
+    assert not np.shares_memory(result.t, t) and result.t.flags.writeable
+    assert not [th for th in threading.enumerate() if th.name == "gyrocore-copy"]
+    bad = rate.copy()
+    bad[-1] = np.nan
+    with pytest.raises(SampleError, match=rf"rate\[{n - 1}\] is NaN"):
+        run(bad)
+    assert not [th for th in threading.enumerate() if th.name == "gyrocore-copy"]
