@@ -254,7 +254,7 @@ class Pipeline:
         except BaseException:
             self._unit_head = head
             if own_t is not None:
-                own_t.wait()
+                own_t.cancel()
             raise
         # kept only once the core took the chunk: the readings of a refused one, sent again mended,
         # were kept twice (a pickle of the refused pipeline differed from the one before)
