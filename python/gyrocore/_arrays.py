@@ -91,11 +91,12 @@ def as_float_array(name: str, values: ArrayLike, *, copy: bool = False, masked: 
     return out.copy() if copy and not fresh else out
 
 
-def as_float_array_owned(name: str, values: ArrayLike) -> tuple[FloatArray, OwnCopy]:
-    """:func:`as_float_array` of ``values``, and a copy of it to keep (:class:`OwnCopy`, begun by
-    its :meth:`~OwnCopy.start` before the work it may run beside)."""
+def as_float_array_owned(name: str, values: ArrayLike, *, copy: bool = True) -> tuple[FloatArray, OwnCopy]:
+    """:func:`as_float_array` of ``values``, and what a result keeps of it (:class:`OwnCopy`: a
+    copy begun by its :meth:`~OwnCopy.start` before the work it may run beside, or without
+    ``copy`` the array itself, read-only)."""
     out, fresh = _converted(name, values, MASKED_LEFT_OUT)
-    return out, OwnCopy(out, fresh)
+    return out, OwnCopy(out, fresh, copy=copy)
 
 
 #: What to give instead of dates (``datetime64``, Python's with a time zone), for the array named.
@@ -111,12 +112,15 @@ class OwnCopy:
     """A copy of the float64 array ``a`` for a result to keep, made on another thread while the
     core runs (numpy's copy and the core's loop both release the GIL): the copy of 10^7 times,
     its fresh pages faulted in, was a quarter of a heading-only call on this thread. ``fresh``:
-    ``a`` is a conversion's new array already, kept as it is. :meth:`get` waits for the copy,
-    :meth:`cancel` gives it up."""
+    ``a`` is a conversion's new array already, kept as it is. Without ``copy`` (a call that fills
+    the caller's own arrays and allocates nothing) ``a`` itself is kept, read-only: a write
+    through it fails. :meth:`get` waits for the copy, :meth:`cancel` gives it up."""
 
-    def __init__(self, a: FloatArray, fresh: bool) -> None:
-        self._given = None if fresh else a
-        self._own = a
+    def __init__(self, a: FloatArray, fresh: bool, *, copy: bool = True) -> None:
+        self._given = a if copy and not fresh else None
+        self._own = a if copy else a.view()
+        if not copy:
+            self._own.flags.writeable = False
         self._thread: threading.Thread | None = None
         self._stop: threading.Event | None = None  # with the thread: an Event costs a stream's call 5 us
 

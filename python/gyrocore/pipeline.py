@@ -212,10 +212,7 @@ class Pipeline:
         # the result's t: its own copy (a chunk's times outlive a buffer the caller refills, and a
         # write to them reached the caller's), made while the core runs; with out=, which
         # allocates nothing per call, the caller's times read-only (a write through them fails)
-        ta, own_t = as_float_array_owned("t", t) if out is None else (as_float_array("t", t), None)
-        if own_t is None:
-            ta = ta.view()
-            ta.flags.writeable = False
+        ta, kept_t = as_float_array_owned("t", t, copy=out is None)
         ra = as_float_array("rate", rate, masked=MASKED_AS_NONFINITE)
         temp = None if temperature is None else as_float_array("temperature", temperature)
         refuse_window_without_reading(self._inner, ta, ra, temp, self._first_time)
@@ -239,8 +236,7 @@ class Pipeline:
             before = inner.report()
             window = None if self._watch.checked else self._window(ta)  # none once it is checked
             measuring = window is not None and inner.bias()[2]
-            if own_t is not None:
-                own_t.start()
+            kept_t.start()
             try:
                 heading, out_rate, drift, found, fused = self._run(
                     inner, ta, ra, temp, index_offset, (flags, fix_output_flags(outputs)), sa, fix_block, given
@@ -253,8 +249,7 @@ class Pipeline:
                 raise
         except BaseException:
             self._unit_head = head
-            if own_t is not None:
-                own_t.cancel()
+            kept_t.cancel()
             raise
         # kept only once the core took the chunk: the readings of a refused one, sent again mended,
         # were kept twice (a pickle of the refused pipeline differed from the one before)
@@ -273,7 +268,7 @@ class Pipeline:
         if self._first_time is None and len(ta):
             self._first_time = float(ta[0])
         self._rests.extend(found)
-        ta = ta if own_t is None else own_t.get()
+        ta = kept_t.get()
         if fused is None:
             return HeadingResult(ta, heading, out_rate, drift, tracked_rests=tuple(found), report=report)
         from .fixes import FusionResult, counts_dict
