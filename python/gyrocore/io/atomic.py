@@ -236,13 +236,14 @@ class StagedFile:
     file it replaces (a calibration kept at 0600 stays 0600); a new name gets the umask's.
     """
 
-    def __init__(self, path: str | Path, *, replace: bool = True, option: str = "replace=True") -> None:
+    def __init__(self, path: str | Path, *, replace: bool = True) -> None:
         path = Path(path)  # exported: a path as text failed on a missing parent
         self.path = path
         #: False: :meth:`commit` never replaces a file that appeared at ``path`` meanwhile (see there)
         self.replace = replace
-        #: what replaces such a file, named where one is refused (:func:`replacing_option`)
-        self.option = replacing_option(option)
+        #: what replaces such a file, named where one is refused (:func:`replacing_option`; a
+        #: writer's own option, ``replace``, outside a checked block)
+        self.option = replacing_option("replace=True")
         #: The file that is replaced: ``path``, or the final target of ``path`` where it is a link
         #: (also one that leads nowhere yet, whose target is then created).
         self.target = Path(os.path.realpath(path)) if path.is_symlink() else path
