@@ -8,6 +8,7 @@ mod fix_drive;
 use fix_drive::{config, drive, fixes, run, Run, BIAS};
 use gyrocore::fixes::wrap_angle;
 use gyrocore::{Fix, FixCounts, Fusion, FusionConfig, FusionOutputs};
+use std::ops::Range;
 
 /// The largest heading error \[deg\] at or after `from` \[s\].
 fn worst_after(t: &[f64], heading: &[f64], psi: &[f64], from: f64) -> f64 {
@@ -182,20 +183,9 @@ fn two_stray_fixes_before_an_outage_and_one_after_it_do_not_reset_the_heading() 
     // first after it 8 deg off (beyond the gate, within its reach). Counted across the outage,
     // the three were a run of readmit_after seconds and the third reset the heading to itself.
     let (t, psi, rate) = drive(200.0);
-    let mut fx = fixes(&t, &psi, 100, (100.0, 160.0));
-    let (_, honest) = whole(config(), &t, &rate, &fx);
+    let fx = fixes(&t, &psi, 100, (100.0, 160.0));
     let after = fx.iter().position(|f| f.t >= 160.0).unwrap();
-    for f in &mut fx[after - 2..=after] {
-        f.heading = wrap_angle(f.heading + 8f64.to_radians());
-    }
-    let (r, counts) = whole(config(), &t, &rate, &fx);
-    assert_eq!(counts.readmitted, 0, "{counts:?}");
-    assert_eq!(
-        counts.rejected,
-        honest.rejected + 3,
-        "{counts:?} {honest:?}"
-    );
-    let off = worst_after(&t, &r.heading, &psi, 90.0);
+    let off = strays_rejected(&t, &psi, &rate, fx, after - 2..after + 1);
     assert!(off < 1.5, "{off} deg");
     // A lock-out of the same fixes with no outage between them is still ended.
     let fx = offset_from_100_s(&t, &psi, 8.0);
@@ -212,20 +202,34 @@ fn stray_fixes_between_two_tunnels_and_one_after_them_do_not_reset_the_heading()
     let (t, psi, rate) = drive(200.0);
     let mut fx = fixes(&t, &psi, 100, (100.0, 130.0));
     fx.retain(|f| !(133.0..163.0).contains(&f.t));
-    let (_, honest) = whole(config(), &t, &rate, &fx);
     let between = fx.iter().position(|f| f.t >= 130.0).unwrap();
-    for f in &mut fx[between..between + 4] {
+    let off = strays_rejected(&t, &psi, &rate, fx, between..between + 4);
+    assert!(off < 2.0, "{off} deg");
+}
+
+/// The fixes `fx` with those of `strays` 8 deg off (beyond the gate, within its reach), fused
+/// whole: none re-admitted, each stray rejected beyond what the honest fixes had rejected; the
+/// heading's worst error from 90 s on [deg].
+fn strays_rejected(
+    t: &[f64],
+    psi: &[f64],
+    rate: &[f64],
+    mut fx: Vec<Fix>,
+    strays: Range<usize>,
+) -> f64 {
+    let (_, honest) = whole(config(), t, rate, &fx);
+    let count = strays.len() as u64;
+    for f in &mut fx[strays] {
         f.heading = wrap_angle(f.heading + 8f64.to_radians());
     }
-    let (r, counts) = whole(config(), &t, &rate, &fx);
+    let (r, counts) = whole(config(), t, rate, &fx);
     assert_eq!(counts.readmitted, 0, "{counts:?}");
     assert_eq!(
         counts.rejected,
-        honest.rejected + 4,
+        honest.rejected + count,
         "{counts:?} {honest:?}"
     );
-    let off = worst_after(&t, &r.heading, &psi, 90.0);
-    assert!(off < 2.0, "{off} deg");
+    worst_after(t, &r.heading, psi, 90.0)
 }
 
 /// The drive's gyro reading `extra` rad/s more, to a filter sure (its bias sigma 1e-4 rad/s)
