@@ -2,13 +2,18 @@
 speed of a receiver's RMC sentences, or of the VTG sentence after one, through
 :func:`gyrocore.fixes.from_gnss`.
 
-A file is read line by line, and a line that cannot be used is an error naming the file and the
-line: one that is no sentence (a bad checksum, binary data, a line longer than any sentence), and
-one whose date, time, course or speed is not a value (pynmea2 hands such a field back as its text).
+A file is read line by line, in the order written, and a line that cannot be used is an error
+naming the file and the line: one that is no sentence (a bad checksum, binary data, a line longer
+than any sentence), an RMC or VTG without its checksum (a sentence cut short reads as one of
+other values), one whose date, time, course or speed is not a value (pynmea2 hands such a field
+back as its text), and an RMC whose time steps back. The last line, cut off without a line end (a
+log stopped mid-write), is skipped after a warning instead.
 """
 
 from __future__ import annotations
 
+import datetime
+import re
 from collections import Counter
 from collections.abc import Iterator
 from pathlib import Path
@@ -31,61 +36,207 @@ KNOT, KMH = 1852.0 / 3600.0, 1.0 / 3.6
 #: breaks, refused before it is read whole into memory.
 MAX_LINE = 4096
 
+#: Mode indicators (NMEA 2.3 on, the last field of RMC and VTG) of a course that is no measurement,
+#: which receivers write with status A: N (data not valid), E (estimated: the receiver's dead
+#: reckoning, its last course carried through an outage) and M (manual input).
+NO_FIX_MODES = ("N", "E", "M")
+
+#: Seconds in a day, and the fall of an RMC's time of day under one date that is midnight UTC
+#: passed (the receiver advanced the date field a sentence or more late): more than half a day.
+DAY = 86_400.0
+_HALF_DAY = DAY / 2
+
+#: An RMC time in the leap second 23:59:60 UTC, which pynmea2 hands back as its text.
+_LEAP_SECOND = re.compile(r"235960(\.\d*)?")
+
 
 def read_nmea(path: str | Path, **options: float) -> Fixes:
     """Fixes from NMEA 0183 sentences: course over ground and speed of valid RMC sentences, at
-    their UTC date and time as Unix seconds; a VTG sentence supplies the course of the RMC/GGA
-    epoch just before it where that RMC had none. Other sentences are skipped (those pynmea2 does
-    not know too); a line that is no sentence, or whose fields are not values, is an error naming
-    the file and line, as is a file of no sentence; sentences that give no fix warn with their
-    counts (void RMC, RMC without a course). The times are UTC: shift them onto the gyro's clock before fusing. ``options`` go to
-    :func:`gyrocore.fixes.from_gnss`.
+    their UTC date and time as Unix seconds; a VTG sentence supplies the course (and speed, in
+    km/h or else knots) of the valid RMC epoch just before it where that RMC had none. Other
+    sentences are skipped (those pynmea2 does not know too), as are RMC and VTG whose mode
+    indicator is N, E or M (:data:`NO_FIX_MODES`).
+
+    Sentences are taken in the order written: an RMC time of day that wraps past midnight while
+    its date field has not yet advanced is of the next day, a time that steps back otherwise is an
+    error naming its line, and of RMC sentences repeating one time the first is kept (a warning
+    counts those that differ from it); one in the leap second 23:59:60 is skipped with a warning.
+    A line that is no sentence, an RMC or VTG without a checksum, or one whose fields are not
+    values is an error naming the file and line, as is a file of no sentence; a last line cut off
+    without a line end is skipped with a warning; sentences that give no fix warn with their
+    counts (void RMC, RMC without a course). The times are UTC: shift them onto the gyro's clock
+    before fusing. ``options`` go to :func:`gyrocore.fixes.from_gnss`.
     """
     require_options("read_nmea (from_gnss's)", options, keyword_options(from_gnss))  # before the file is read
     pynmea2 = require("pynmea2", "reading NMEA sentences")
     path = Path(path)
     check_file(path)  # a named pipe (a receiver's live output) was waited on for ever
-    epochs: dict[float, tuple[float, float, int]] = {}  # time -> course [deg], speed [m/s], line
-    tally: Counter[str] = Counter()
-    last: float | None = None
-    for number, text in _sentences(path):
-        tally["sentences"] += 1
+    epochs = _Epochs(pynmea2, path)
+    for number, text, ended in _sentences(path):
+        epochs.take(number, text, ended)
+    return epochs.fixes(options)
+
+
+class _Epochs:
+    """The course and speed of each epoch of one file's sentences, taken in the order written."""
+
+    def __init__(self, pynmea2: Any, path: Path) -> None:
+        self.pynmea2, self.path = pynmea2, path
+        self.epochs: dict[float, tuple[float, float, int]] = {}  # time -> course [deg], speed [m/s], line
+        self.tally: Counter[str] = Counter()
+        self.last: float | None = None  # the epoch of the valid RMC just before: a VTG's
+        # the last dated RMC: its date field, time of day [s], time [s] and line; and the days
+        # added to the times of its date field (one, after midnight with the date not yet advanced)
+        self.clock: tuple[datetime.date, float, float, int] | None = None
+        self.lag = 0.0
+        self.repeat: int | None = None  # the line of the first RMC repeating a time with other values
+
+    def take(self, number: int, text: str, ended: bool) -> None:
+        """Takes the sentence ``text`` of line ``number``, which ``ended`` with a line end; a
+        ValueError names the line."""
+        self.tally["sentences"] += 1
         try:
-            msg = pynmea2.parse(text)
-        except pynmea2.SentenceTypeError:
-            continue  # a sentence whose checksum holds but whose type pynmea2 does not know has no course for it
-        except pynmea2.ParseError as e:
+            msg = self.pynmea2.parse(text)
+        except self.pynmea2.SentenceTypeError:
+            return  # a sentence whose checksum holds but whose type pynmea2 does not know has no course for it
+        except self.pynmea2.ParseError as e:
             # pynmea2 adds the line to its words: a line of binary data (a receiver's UBX messages
             # among its sentences) filled the error with up to 4096 bytes of it
             reason = e.args[0] if e.args else str(e)  # pynmea2's (message, data)
             reason = reason[0] if isinstance(reason, tuple) and reason else reason
-            raise ValueError(f"{path}: line {number}: not an NMEA sentence ({reason}: {shown(text, 100)}); remove or "
-                             "repair the line") from None
+            return self._unusable(number, text, ended, f"not an NMEA sentence ({reason}: {shown(text, 100)})")
+        if not isinstance(msg, (self.pynmea2.RMC, self.pynmea2.VTG)):
+            return None
+        if "*" not in text:  # pynmea2 takes a sentence without one: "084.4,230394" cut to "084.4,2303" dated 2003
+            return self._unusable(number, text, ended, f"an {msg.sentence_type} sentence without its checksum (*hh; "
+                                  f"{shown(text, 100)}): cut short, its values cannot be trusted")
         try:
-            last = _read(pynmea2, msg, last, number, epochs, tally)
+            self._rmc(msg, number) if isinstance(msg, self.pynmea2.RMC) else self._vtg(msg, number)
         except (ValueError, TypeError) as e:
-            raise ValueError(f"{path}: line {number}: an {msg.sentence_type} sentence whose fields cannot be read "
-                             f"({e}); remove or repair the line") from None
-    if not tally["sentences"]:
-        raise ValueError(f"{path}: no NMEA sentence, so no fix; give a file of RMC (and VTG) sentences")
-    if not epochs:
-        _warn_no_epoch(path, tally)
-    times = sorted(epochs)
-    course, speed, lines = (np.array([epochs[k][i] for k in times], dtype=float) for i in range(3))
-    try:
-        return from_gnss(np.array(times, dtype=float), course, speed, **options)
-    except ValueError as e:
-        # from_gnss names a sample by its index in time order: the file names its line
-        m = ROW_ERROR.match(str(e))
-        if m is None or m[4] is None:
-            raise
-        raise ValueError(f"{path}: line {int(lines[int(m[4])])}: {e}") from None
+            if str(e).startswith(str(self.path)):  # a time that steps back: its error names the line already
+                raise
+            raise ValueError(f"{self.path}: line {number}: an {msg.sentence_type} sentence whose fields cannot be "
+                             f"read ({e}); remove or repair the line") from None
+
+    def _unusable(self, number: int, text: str, ended: bool, problem: str) -> None:
+        """The error of line ``number``, which is no sentence gyrocore can use (``problem``); or, the
+        last line cut off without a line end (a log stopped while it was written), a warning."""
+        if ended:
+            raise ValueError(f"{self.path}: line {number}: {problem}; remove or repair the line")
+        warn(f"{self.path}: line {number}, the last, is cut off without a line end and is skipped: {problem}")
+
+    def _rmc(self, msg: Any, number: int) -> None:
+        self.tally["RMC"] += 1
+        self.last = None  # a VTG after a void RMC is of that epoch, which has no fix
+        if msg.status != "A":
+            self.tally["void"] += 1
+        elif msg.mode_indicator in NO_FIX_MODES:
+            self.tally["mode"] += 1
+        elif isinstance(msg.timestamp, str) and _LEAP_SECOND.fullmatch(msg.timestamp):
+            self.tally["leap"] += 1  # Unix seconds have no 23:59:60: it would be read as the next 00:00:00
+        elif not (msg.datestamp and msg.timestamp):
+            self.tally["undated"] += 1
+        else:
+            self.last = t = self._time(msg, number)
+            if msg.true_course is None or msg.spd_over_grnd is None:
+                self.tally["courseless"] += 1
+            else:
+                self._add(t, float(msg.true_course), float(msg.spd_over_grnd) * KNOT, number)
+
+    def _vtg(self, msg: Any, number: int) -> None:
+        if self.last is None or self.last in self.epochs or msg.faa_mode in NO_FIX_MODES:
+            return
+        if msg.true_track is None:
+            self.tally["magnetic" if msg.mag_track is not None else "trackless"] += 1
+            return
+        if msg.spd_over_grnd_kmph is not None:
+            self.epochs[self.last] = (float(msg.true_track), float(msg.spd_over_grnd_kmph) * KMH, number)
+        elif msg.spd_over_grnd_kts is not None:  # the km/h field left empty
+            self.epochs[self.last] = (float(msg.true_track), float(msg.spd_over_grnd_kts) * KNOT, number)
+
+    def _time(self, msg: Any, number: int) -> float:
+        """The time [s] of the dated RMC ``msg``, on the clock of the RMC before it: a time of day
+        that falls by more than half a day under one date is after midnight; any other fall is an
+        error naming the line."""
+        t = float(msg.datetime.timestamp())  # first: a field that is not a date or a time raises a TypeError
+        date, clock = msg.datestamp, msg.timestamp
+        of_day = 3600.0 * clock.hour + 60.0 * clock.minute + clock.second + clock.microsecond / 1e6
+        if self.clock is None or date != self.clock[0]:
+            self.lag = 0.0
+        elif self.clock[1] - of_day > _HALF_DAY:
+            self.lag += DAY  # midnight passed, the date field not yet advanced
+        t += self.lag
+        if self.clock is not None and t < self.clock[2]:
+            before, line = self.clock[2], self.clock[3]
+            raise ValueError(f"{self.path}: line {number}: the time steps back, from {_utc(before)} (line {line}) to "
+                             f"{_utc(t)} UTC; sentences are read in the order written: remove the lines of the "
+                             "earlier time, or read two logs one at a time")
+        self.clock = (date, of_day, t, number)
+        return t
+
+    def _add(self, t: float, course: float, speed: float, number: int) -> None:
+        """The epoch at ``t``, unless an RMC gave that time already (its first is kept)."""
+        had = self.epochs.get(t)
+        if had is None:
+            self.epochs[t] = (course, speed, number)
+        elif had[:2] != (course, speed):
+            self.tally["repeats"] += 1
+            self.repeat = number if self.repeat is None else self.repeat
+
+    def fixes(self, options: dict[str, float]) -> Fixes:
+        """The fixes of the epochs taken, through :func:`from_gnss` with ``options``."""
+        if not self.tally["sentences"]:
+            raise ValueError(f"{self.path}: no NMEA sentence, so no fix; give a file of RMC (and VTG) sentences")
+        self._warn_skipped()
+        if not self.epochs:
+            self._warn_no_epoch()
+        times = list(self.epochs)  # in time order: a step back was refused
+        course, speed, lines = (np.array([self.epochs[k][i] for k in times], dtype=float) for i in range(3))
+        try:
+            return from_gnss(np.array(times, dtype=float), course, speed, **options)
+        except ValueError as e:
+            # from_gnss names a sample by its index in time order: the file names its line
+            m = ROW_ERROR.match(str(e))
+            if m is None or m[4] is None:
+                raise
+            raise ValueError(f"{self.path}: line {int(lines[int(m[4])])}: {e}") from None
+
+    def _warn_skipped(self) -> None:
+        """Warns of RMC sentences skipped that were fixes of their own: those repeating a time with
+        other values, and those in a leap second."""
+        if self.tally["repeats"]:
+            warn(f"{self.path}: {self.tally['repeats']} RMC sentence(s) repeat the time of an earlier one with another "
+                 f"course or speed (the first: line {self.repeat}), and the first of each time is kept: a receiver "
+                 "faster than its time's resolution (5 Hz in whole seconds) or repeating a time writes them")
+        if self.tally["leap"]:
+            warn(f"{self.path}: {self.tally['leap']} RMC sentence(s) in the leap second 23:59:60 UTC are skipped: Unix "
+                 "seconds have no such second, and the fixes after it are a second behind a clock that ran through it")
+
+    def _warn_no_epoch(self) -> None:
+        """Warns that the sentences gave no course, with the counts that say why."""
+        tally = self.tally
+        if not tally["RMC"]:
+            why = "none is RMC"
+        else:
+            counts = {"void (status V)": tally["void"], "of mode N, E or M (no measurement)": tally["mode"],
+                      "without a date or time": tally["undated"], "without a course": tally["courseless"]}
+            why = f"{tally['RMC']} are RMC: " + ", ".join(f"{n} {what}" for what, n in counts.items() if n)
+            if tally["magnetic"]:
+                why += f"; {tally['magnetic']} VTG give a magnetic course only (a true one is needed)"
+        warn(f"no heading fix from {self.path}: of its {tally['sentences']} sentences, {why}; fixes come from valid RMC "
+             "sentences with a course (or the VTG after one)")
 
 
-def _sentences(path: Path) -> Iterator[tuple[int, str]]:
-    """(line number, text) of each line of ``path`` that is not blank; a line longer than
-    :data:`MAX_LINE` is an error, raised before more of it is read. A byte-order mark is not
-    part of the first line, and bytes that are not UTF-8 become U+FFFD (no sentence has them)."""
+def _utc(t: float) -> str:
+    """Unix seconds ``t`` as an ISO UTC date and time."""
+    return datetime.datetime.fromtimestamp(t, datetime.timezone.utc).isoformat(sep=" ")[:-6]
+
+
+def _sentences(path: Path) -> Iterator[tuple[int, str, bool]]:
+    """(line number, text, ended with a line end) of each line of ``path`` that is not blank; a
+    line longer than :data:`MAX_LINE` is an error, raised before more of it is read. A byte-order
+    mark is not part of the first line, and bytes that are not UTF-8 become U+FFFD (no sentence
+    has them)."""
     with path.open("rb") as raw:  # a UTF-16, gzip or binary file: its bytes were echoed in the error
         refuse_not_text(path, raw.readline(MAX_LINE + 1), "NMEA file")
     with path.open(encoding="utf-8-sig", errors="replace") as f:
@@ -96,38 +247,4 @@ def _sentences(path: Path) -> Iterator[tuple[int, str]]:
                 raise ValueError(f"{path}: line {number}: longer than {MAX_LINE} characters, so not an NMEA sentence "
                                  "(at most 82): is it an NMEA log?")
             if line.strip():
-                yield number, line.strip()
-
-
-def _read(pynmea2: Any, msg: Any, last: float | None, number: int, epochs: dict[float, tuple[float, float, int]],
-          tally: Counter[str]) -> float | None:
-    """Takes the course of ``msg`` into ``epochs`` (at line ``number``); returns the time of the
-    epoch a VTG after it belongs to. A field that is not a value raises ValueError or TypeError."""
-    if isinstance(msg, pynmea2.RMC):
-        tally["RMC"] += 1
-        if msg.status != "A":
-            tally["void"] += 1
-        elif not (msg.datestamp and msg.timestamp):
-            tally["undated"] += 1
-        else:
-            last = msg.datetime.timestamp()
-            if msg.true_course is not None and msg.spd_over_grnd is not None:
-                epochs[last] = (float(msg.true_course), float(msg.spd_over_grnd) * KNOT, number)
-            else:
-                tally["courseless"] += 1
-    elif isinstance(msg, pynmea2.VTG) and last is not None and last not in epochs:
-        if msg.true_track is not None and msg.spd_over_grnd_kmph is not None:
-            epochs[last] = (float(msg.true_track), float(msg.spd_over_grnd_kmph) * KMH, number)
-    return last
-
-
-def _warn_no_epoch(path: Path, tally: Counter[str]) -> None:
-    """Warns that the sentences of ``path`` gave no course, with the counts that say why."""
-    if not tally["RMC"]:
-        why = "none is RMC"
-    else:
-        counts = {"void (status V)": tally["void"], "without a date or time": tally["undated"],
-                  "without a course": tally["courseless"]}
-        why = f"{tally['RMC']} are RMC: " + ", ".join(f"{n} {what}" for what, n in counts.items() if n)
-    warn(f"no heading fix from {path}: of its {tally['sentences']} sentences, {why}; fixes come from valid RMC "
-         "sentences with a course (or the VTG after one)")
+                yield number, line.strip(), line.endswith("\n")

@@ -14,10 +14,11 @@ pynmea2 = pytest.importorskip("pynmea2")
 
 
 def rmc(time: str = "123519", *, status: str = "A", speed: str = "010.0", course: str = "084.4",
-        date: str = "230394") -> str:
-    """An RMC sentence with a valid checksum over whatever its fields hold."""
+        date: str = "230394", mode: tuple[str, ...] = ()) -> str:
+    """An RMC sentence with a valid checksum over whatever its fields hold (``mode``: its mode
+    indicator, NMEA 2.3 on)."""
     return str(pynmea2.RMC("GP", "RMC", (time, status, "4807.038", "N", "01131.000", "E", speed, course, date,
-                                         "003.1", "W")))
+                                         "003.1", "W", *mode)))
 
 
 def nmea(tmp_path: Path, *lines: str) -> Path:
@@ -37,10 +38,10 @@ def test_a_field_that_is_not_a_value_names_its_line(tmp_path: Path, field: dict[
 
 @pytest.mark.parametrize("speed", ["-5.0", "nan"])
 def test_a_speed_that_is_no_speed_names_its_line(tmp_path: Path, speed: str) -> None:
-    # the error named speed[0], the first epoch in time order, not the line
-    path = nmea(tmp_path, "$GPGSV,3,1,11,03,03,111,00,04,15,270,00,06,01,010,00,13,06,292,00*74", rmc("123519"),
-                rmc("123518", speed=speed))
-    with pytest.raises(ValueError, match=r"drive.nmea: line 3: speed\[0\] is "):
+    # the error named speed[1], the epoch's place among the epochs, not the line
+    path = nmea(tmp_path, "$GPGSV,3,1,11,03,03,111,00,04,15,270,00,06,01,010,00,13,06,292,00*74", rmc("123518"),
+                rmc("123519", speed=speed))
+    with pytest.raises(ValueError, match=r"drive.nmea: line 3: speed\[1\] is "):
         read_nmea(path)
 
 

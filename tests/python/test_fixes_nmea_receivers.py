@@ -1,0 +1,140 @@
+"""NMEA logs as receivers write them: midnight UTC with the date field late, times that step back
+or repeat, the leap second, mode indicators of no measurement, VTG's own fields, sentences cut
+short and the course convention of the fixes read (gyrocore.fixes.read_nmea)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from gyrocore import InputWarning
+from gyrocore.fixes import read_nmea
+
+from .test_fixes_nmea import nmea, rmc
+
+pynmea2 = pytest.importorskip("pynmea2")
+
+#: 1994-03-23 00:00:00 UTC, the day of rmc()'s date 230394.
+DAY0 = 764380800.0
+
+
+def vtg(course: str = "054.7", *, magnetic: str = "034.4", knots: str = "005.5", kmh: str = "010.2",
+        mode: tuple[str, ...] = ()) -> str:
+    """A VTG sentence with a valid checksum (``mode``: its mode indicator, NMEA 2.3 on)."""
+    return str(pynmea2.VTG("GP", "VTG", (course, "T", magnetic, "M", knots, "N", kmh, "K", *mode)))
+
+
+@pytest.mark.parametrize("dates", [("230394", "230394", "240394", "240394"), ("230394", "230394", "230394", "240394"),
+                                   ("230394", "230394", "230394", "230394")],
+                         ids=["date-advances", "date-one-late", "date-never-advances"])
+def test_a_log_across_midnight_utc_runs_on_into_the_next_day(tmp_path: Path, dates: tuple[str, ...]) -> None:
+    # a date field advanced a sentence late put 00:00:00 a day back, and the sort moved it first:
+    # a fix 86398 s before the others, outside any gyro's span, the rest out of step
+    times = ("235958", "235959", "000000", "000001")
+    path = nmea(tmp_path, *(rmc(time, date=date) for time, date in zip(times, dates)))
+    np.testing.assert_array_equal(read_nmea(path).t, DAY0 + 86398.0 + np.arange(4))
+    # a VTG after midnight gives the course of the epoch just before it, on the next day
+    path = nmea(tmp_path, rmc("235959", course=""), vtg("000.0"), rmc("000000", course="", date=dates[2]),
+                vtg("090.0"))
+    fixes = read_nmea(path)
+    np.testing.assert_array_equal(fixes.t, [DAY0 + 86399.0, DAY0 + 86400.0])
+    np.testing.assert_allclose(fixes.heading, [math.pi / 2, 0.0], atol=1e-12)
+
+
+def test_a_time_that_steps_back_names_its_line(tmp_path: Path) -> None:
+    # it was sorted into place without a word: two logs run together, or a corrupt time, became
+    # one drive
+    path = nmea(tmp_path, rmc("120005"), rmc("120006"), rmc("120001"))
+    with pytest.raises(ValueError, match=r"drive.nmea: line 3: the time steps back, from 1994-03-23 12:00:06 \(line "
+                                         r"2\) to 1994-03-23 12:00:01 UTC"):
+        read_nmea(path)
+
+
+def test_mode_indicators_of_no_measurement_give_no_fix(tmp_path: Path) -> None:
+    # status A with mode N (data not valid), E (the receiver's dead reckoning through an outage)
+    # or M (manual input) gave a fix as confident as a measured one
+    path = nmea(tmp_path, *(rmc(f"12000{i}", mode=(mode,)) for i, mode in enumerate("ADNEM")), rmc("120005"))
+    np.testing.assert_array_equal(read_nmea(path).t, DAY0 + 43200.0 + np.array([0.0, 1.0, 5.0]))
+    path = nmea(tmp_path, rmc("120000", course=""), vtg(mode=("N",)), rmc("120001", course=""), vtg(mode=("A",)))
+    np.testing.assert_array_equal(read_nmea(path).t, [DAY0 + 43201.0])
+    with pytest.warns(InputWarning, match=r"of its 2 sentences, 2 are RMC: 1 void \(status V\), 1 of mode N, E or M"):
+        assert len(read_nmea(nmea(tmp_path, rmc(status="V"), rmc(mode=("N",))))) == 0
+
+
+def test_a_vtg_after_a_void_rmc_gives_no_earlier_epoch_its_course(tmp_path: Path) -> None:
+    # the VTG of a void epoch gave its course to the valid epoch before, one second earlier
+    path = nmea(tmp_path, rmc("120000", course=""), vtg(""), rmc("120001", status="V"), vtg("180.0"))
+    with pytest.warns(InputWarning, match="no heading fix"):
+        assert len(read_nmea(path)) == 0
+
+
+def test_a_vtg_speed_in_knots_alone_is_read(tmp_path: Path) -> None:
+    # a VTG whose km/h field was empty gave no fix, its speed in knots unread
+    fixes = read_nmea(nmea(tmp_path, rmc("120000", course=""), vtg("090.0", knots="010.0", kmh="")))
+    np.testing.assert_allclose(fixes.heading, [0.0], atol=1e-12)
+    np.testing.assert_allclose(fixes.sigma, [math.hypot(math.radians(0.5), 0.2 / (10.0 * 1852.0 / 3600.0))])
+
+
+def test_a_vtg_with_a_magnetic_course_alone_is_counted(tmp_path: Path) -> None:
+    with pytest.warns(InputWarning, match=r"1 without a course; 1 VTG give a magnetic course only"):
+        assert len(read_nmea(nmea(tmp_path, rmc("120000", course=""), vtg("", magnetic="034.4")))) == 0
+
+
+def test_a_sentence_without_its_checksum_names_its_line(tmp_path: Path) -> None:
+    # pynmea2 takes a sentence without one: an RMC cut in its date ("230394" to "2303") was dated
+    # 2 March 2003, a fix nine years on; one cut in its course took the digits left
+    whole = rmc("120001")
+    for cut in (whole[:whole.index("230394") + 4], whole.split("*")[0]):
+        path = nmea(tmp_path, rmc("120000"), cut, rmc("120002"))
+        with pytest.raises(ValueError, match=r"drive.nmea: line 2: an RMC sentence without its checksum \(\*hh; "):
+            read_nmea(path)
+    with pytest.raises(ValueError, match=r"line 2: an VTG sentence without its checksum"):
+        read_nmea(nmea(tmp_path, rmc("120000", course=""), vtg().split("*")[0]))
+
+
+def test_a_last_line_cut_off_without_a_line_end_is_skipped(tmp_path: Path) -> None:
+    # a log stopped while it was written: its last line is what there is of a sentence
+    for cut in (rmc("120002")[:30], rmc("120002")[:-1]):
+        path = tmp_path / "drive.nmea"
+        path.write_text(f"{rmc('120000')}\n{rmc('120001')}\n{cut}")
+        with pytest.warns(InputWarning, match=r"drive.nmea: line 3, the last, is cut off without a line end"):
+            assert len(read_nmea(path)) == 2
+        path.write_text(f"{rmc('120000')}\n{cut}\n{rmc('120001')}")  # within the file: an error
+        with pytest.raises(ValueError, match=r"drive.nmea: line 2: "):
+            read_nmea(path)
+
+
+def test_a_time_repeated_with_other_values_keeps_its_first(tmp_path: Path) -> None:
+    # the last sentence of a time was kept without a word: a 5 Hz receiver writing whole seconds
+    # has its first at the time, the others up to 0.8 s after it
+    path = nmea(tmp_path, rmc("120000", course="000.0"), rmc("120000", course="090.0"), rmc("120001"),
+                rmc("120001"))
+    with pytest.warns(InputWarning, match=r"drive.nmea: 1 RMC sentence\(s\) repeat the time of an earlier one with "
+                                          r"another course or speed \(the first: line 2\)"):
+        fixes = read_nmea(path)
+    np.testing.assert_array_equal(fixes.t, DAY0 + 43200.0 + np.arange(2))
+    assert fixes.heading[0] == pytest.approx(math.pi / 2)
+
+
+def test_the_leap_second_is_skipped_with_a_warning(tmp_path: Path) -> None:
+    # 23:59:60 was an error that refused the whole log ("combine() argument 2 must be datetime.time")
+    path = nmea(tmp_path, rmc("235959", date="311216"), rmc("235960", date="311216"), rmc("000000", date="010117"))
+    with pytest.warns(InputWarning, match=r"1 RMC sentence\(s\) in the leap second 23:59:60 UTC are skipped"):
+        assert list(read_nmea(path).t) == [1483228799.0, 1483228800.0]
+
+
+def test_talkers_rates_and_directions_read_as_written(tmp_path: Path) -> None:
+    # GPS, multi-constellation, GLONASS, Galileo and BeiDou talkers at 10 Hz, driving north, east,
+    # south and west: headings counter-clockwise from east
+    talkers, bearings = ("GP", "GN", "GL", "GA", "BD", "GB"), ("000.0", "090.0", "180.0", "270.0")
+    lines = [str(pynmea2.RMC(talkers[i % 6], "RMC", (f"1200{i // 10:02d}.{i % 10}0", "A", "4807.038", "N", "01131.000",
+                                                     "E", "010.0", bearings[i % 4], "230394", "", "")))
+             for i in range(24)]
+    fixes = read_nmea(nmea(tmp_path, *lines))
+    np.testing.assert_allclose(fixes.t - fixes.t[0], 0.1 * np.arange(24), atol=1e-6)
+    expected = np.tile([math.pi / 2, 0.0, -math.pi / 2, math.pi], 6)
+    np.testing.assert_allclose(np.angle(np.exp(1j * (fixes.heading - expected))), 0.0, atol=1e-12)
+
