@@ -31,7 +31,7 @@ from ._checks import (
 )
 from ._inuse import Turn, one_at_a_time
 from .result import fix_output_flags
-from .fixes_stream import TWICE, StreamFixes, say_how_to_wait
+from .fixes_stream import ON_GYRO_CLOCK, TWICE, StreamFixes, say_how_to_wait
 
 if TYPE_CHECKING:
     from .pipeline import HeadingResult
@@ -195,7 +195,7 @@ def warn_outside(t: FloatArray, fixes: Fixes) -> None:
         return
     warn(f"{'none' if inside == 0 else f'only {inside}'} of the {len(fixes)} heading fixes fall within the gyro's "
          f"time span (gyro {t[0]:.3f} to {t[-1]:.3f} s, fixes {fixes.t[0]:.3f} to {fixes.t[-1]:.3f} s), and a fix "
-         "outside it is not used: give the fixes' times on the gyro's clock, in seconds")
+         f"outside it is not used: {ON_GYRO_CLOCK}")
 
 
 #: A whole log's run warns when the outlier gate rejects more than this share of the fixes it

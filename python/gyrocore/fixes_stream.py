@@ -31,6 +31,14 @@ def say_how_to_wait(error: ValueError) -> None:
                       "block was processed",)
 
 
+#: How fixes on another clock are put on the gyro's, in the warnings of fixes outside a log or far
+#: ahead of a stream: receivers and read_nmea give UTC (Unix) seconds, a gyro mostly counts from
+#: its start or its boot.
+ON_GYRO_CLOCK = ("give the fixes' times on the gyro's clock, in seconds: from fixes in UTC (Unix) seconds, as read_nmea "
+                 "gives them, subtract the UTC time at which the gyro's clock read 0 (Fixes(f.t - t0, f.heading, "
+                 "f.sigma))")
+
+
 #: A stream's fixes that start this far [s] past its last gyro sample are warned about: live
 #: fixes come after the samples of their time, and a log's fixes given ahead wait for less than a
 #: day of samples; a day's wait is another clock.
@@ -50,7 +58,7 @@ def warn_far_ahead(fixes: Fixes, last_sample: float | None) -> bool:
     warn(f"the heading fixes given start at t = {first:.3f} s, {first - last_sample:.6g} s after the last gyro sample "
          f"(t = {last_sample:.3f} s): a stream keeps each fix until the samples reach it, and these wait for more than "
          "a day, so they look like another clock (UTC or GNSS seconds against a gyro's seconds since boot) and would "
-         "never be applied: give the fixes' times on the gyro's clock, in seconds")
+         f"never be applied: {ON_GYRO_CLOCK}")
     return True
 
 

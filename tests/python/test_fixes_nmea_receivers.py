@@ -1,6 +1,6 @@
 """NMEA logs as receivers write them: midnight UTC with the date field late, times that step back
 or repeat, the leap second, mode indicators of no measurement, VTG's own fields, sentences cut
-short and the course convention of the fixes read (gyrocore.fixes.read_nmea)."""
+short, and the course convention and clock of the fixes read (gyrocore.fixes.read_nmea)."""
 
 from __future__ import annotations
 
@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import gyrocore
 from gyrocore import InputWarning
 from gyrocore.fixes import read_nmea
 
@@ -138,3 +139,13 @@ def test_talkers_rates_and_directions_read_as_written(tmp_path: Path) -> None:
     expected = np.tile([math.pi / 2, 0.0, -math.pi / 2, math.pi], 6)
     np.testing.assert_allclose(np.angle(np.exp(1j * (fixes.heading - expected))), 0.0, atol=1e-12)
 
+
+def test_fixes_in_utc_seconds_say_how_to_put_them_on_the_gyros_clock() -> None:
+    # the warning said to give the fixes on the gyro's clock, not how
+    t = np.arange(0.0, 30.0, 0.01)
+    utc = gyrocore.fixes.from_gnss(1.7e9 + np.arange(30.0), np.zeros(30), np.full(30, 10.0))
+    said = r"from fixes in UTC \(Unix\) seconds, as read_nmea gives them, subtract the UTC time at which the gyro's clock"
+    with pytest.warns(InputWarning, match=r"none of the 30 heading fixes fall within .*" + said):
+        gyrocore.fixes.fuse(t, np.zeros_like(t), utc)
+    with pytest.warns(InputWarning, match=r"after the last gyro sample .*" + said):
+        gyrocore.fixes.Fusion().process(t, np.zeros_like(t), utc)
