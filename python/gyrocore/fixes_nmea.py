@@ -7,7 +7,8 @@ naming the file and the line: one that is no sentence (a bad checksum, binary da
 than any sentence), an RMC or VTG without its checksum (a sentence cut short reads as one of
 other values), one whose date, time, course or speed is not a value (pynmea2 hands such a field
 back as its text), and an RMC whose time steps back. The last line, cut off without a line end (a
-log stopped mid-write), is skipped after a warning instead.
+log stopped mid-write), is skipped after a warning instead, as is binary data (a receiver's binary
+messages, u-blox UBX, among its sentences in a serial log): a sentence after it on its line is read.
 """
 
 from __future__ import annotations
@@ -46,6 +47,13 @@ NO_FIX_MODES = ("N", "E", "M")
 DAY = 86_400.0
 _HALF_DAY = DAY / 2
 
+#: Text up to the last character that no NMEA sentence has (they are printable ASCII): binary data
+#: read as text, a receiver's binary messages among its sentences.
+_BINARY = re.compile(r".*[^\t\x20-\x7e]", re.DOTALL)
+#: A sentence with its checksum, near the start of a file: a serial log may begin with binary data
+#: before it, and is no binary file.
+_SENTENCE = re.compile(rb"[$!][A-Z][A-Z0-9]{4,5},[\x20-\x7e]*\*[0-9A-Fa-f]{2}")
+
 #: An RMC time in the leap second 23:59:60 UTC, which pynmea2 hands back as its text.
 _LEAP_SECOND = re.compile(r"235960(\.\d*)?")
 
@@ -63,7 +71,8 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
     counts those that differ from it); one in the leap second 23:59:60 is skipped with a warning.
     A line that is no sentence, an RMC or VTG without a checksum, or one whose fields are not
     values is an error naming the file and line, as is a file of no sentence; a last line cut off
-    without a line end is skipped with a warning; sentences that give no fix warn with their
+    without a line end is skipped with a warning, as is binary data among the sentences (a serial
+    log's), a sentence after it on its line read where it holds its checksum; sentences that give no fix warn with their
     counts (void RMC, RMC without a course). The times are UTC: shift them onto the gyro's clock
     before fusing. ``options`` go to :func:`gyrocore.fixes.from_gnss`.
     """
@@ -90,10 +99,24 @@ class _Epochs:
         self.clock: tuple[datetime.date, float, float, int] | None = None
         self.lag = 0.0
         self.repeat: int | None = None  # the line of the first RMC repeating a time with other values
+        self.binary: int | None = None  # the first line of binary data: a serial log from there on
+        self.skipped = 0  # the last line of it skipped
 
     def take(self, number: int, text: str, ended: bool) -> None:
         """Takes the sentence ``text`` of line ``number``, which ``ended`` with a line end; a
-        ValueError names the line."""
+        ValueError names the line. From the first line of binary data on, the file is a serial log:
+        a line is read from its last ``$`` after any binary data, and one of no sentence is skipped
+        (a binary message's bytes between two line ends may all be printable)."""
+        binary = _BINARY.match(text)
+        if binary is not None and self.binary is None:
+            self.binary = number
+        if self.binary is not None:
+            start = text.rfind("$", 0 if binary is None else binary.end())  # a binary message may hold a $
+            if start != 0:
+                self._skip(number)
+            if start < 0:
+                return
+            text = text[start:]
         self.tally["sentences"] += 1
         try:
             msg = self.pynmea2.parse(text)
@@ -104,11 +127,11 @@ class _Epochs:
             # among its sentences) filled the error with up to 4096 bytes of it
             reason = e.args[0] if e.args else str(e)  # pynmea2's (message, data)
             reason = reason[0] if isinstance(reason, tuple) and reason else reason
-            return self._unusable(number, text, ended, f"not an NMEA sentence ({reason}: {shown(text, 100)})")
+            return self._unusable(number, ended, f"not an NMEA sentence ({reason}: {shown(text, 100)})")
         if not isinstance(msg, (self.pynmea2.RMC, self.pynmea2.VTG)):
             return None
         if "*" not in text:  # pynmea2 takes a sentence without one: "084.4,230394" cut to "084.4,2303" dated 2003
-            return self._unusable(number, text, ended, f"an {msg.sentence_type} sentence without its checksum (*hh; "
+            return self._unusable(number, ended, f"an {msg.sentence_type} sentence without its checksum (*hh; "
                                   f"{shown(text, 100)}): cut short, its values cannot be trusted")
         try:
             self._rmc(msg, number) if isinstance(msg, self.pynmea2.RMC) else self._vtg(msg, number)
@@ -118,12 +141,21 @@ class _Epochs:
             raise ValueError(f"{self.path}: line {number}: an {msg.sentence_type} sentence whose fields cannot be "
                              f"read ({e}); remove or repair the line") from None
 
-    def _unusable(self, number: int, text: str, ended: bool, problem: str) -> None:
-        """The error of line ``number``, which is no sentence gyrocore can use (``problem``); or, the
-        last line cut off without a line end (a log stopped while it was written), a warning."""
+    def _unusable(self, number: int, ended: bool, problem: str) -> None:
+        """The error of line ``number``, which is no sentence gyrocore can use (``problem``); in a
+        serial log, the line skipped; the last line cut off without a line end (a log stopped while
+        it was written), a warning."""
+        if self.binary is not None:
+            return self._skip(number)
         if ended:
             raise ValueError(f"{self.path}: line {number}: {problem}; remove or repair the line")
         warn(f"{self.path}: line {number}, the last, is cut off without a line end and is skipped: {problem}")
+
+    def _skip(self, number: int) -> None:
+        """Counts line ``number`` of a serial log as skipped, once."""
+        if self.skipped != number:
+            self.tally["binary"] += 1
+            self.skipped = number
 
     def _rmc(self, msg: Any, number: int) -> None:
         self.tally["RMC"] += 1
@@ -147,7 +179,7 @@ class _Epochs:
         if self.last is None or self.last in self.epochs or msg.faa_mode in NO_FIX_MODES:
             return
         if msg.true_track is None:
-            self.tally["magnetic" if msg.mag_track is not None else "trackless"] += 1
+            self.tally["magnetic"] += msg.mag_track is not None  # said when the file gives no fix
             return
         if msg.spd_over_grnd_kmph is not None:
             self.epochs[self.last] = (float(msg.true_track), float(msg.spd_over_grnd_kmph) * KMH, number)
@@ -202,8 +234,12 @@ class _Epochs:
             raise ValueError(f"{self.path}: line {int(lines[int(m[4])])}: {e}") from None
 
     def _warn_skipped(self) -> None:
-        """Warns of RMC sentences skipped that were fixes of their own: those repeating a time with
-        other values, and those in a leap second."""
+        """Warns of lines skipped: a serial log's binary data, and RMC sentences that were fixes of their own (those
+        repeating a time with other values, and those in a leap second)."""
+        if self.tally["binary"]:
+            warn(f"{self.path}: binary data from line {self.binary} on, a receiver's binary messages (u-blox UBX) "
+                 f"among its sentences: {self.tally['binary']} line(s) of it, or of no sentence after it, are skipped, "
+                 "and a sentence after it on its line is read")
         if self.tally["repeats"]:
             warn(f"{self.path}: {self.tally['repeats']} RMC sentence(s) repeat the time of an earlier one with another "
                  f"course or speed (the first: line {self.repeat}), and the first of each time is kept: a receiver "
@@ -238,7 +274,11 @@ def _sentences(path: Path) -> Iterator[tuple[int, str, bool]]:
     mark is not part of the first line, and bytes that are not UTF-8 become U+FFFD (no sentence
     has them)."""
     with path.open("rb") as raw:  # a UTF-16, gzip or binary file: its bytes were echoed in the error
-        refuse_not_text(path, raw.readline(MAX_LINE + 1), "NMEA file")
+        first = raw.readline(MAX_LINE + 1)
+        # a serial log may begin with a receiver's binary messages: a sentence in its first 64 KiB
+        # shows it is one, and its binary data is skipped
+        if not _SENTENCE.search(first + raw.read(65536)):
+            refuse_not_text(path, first, "NMEA file")
     with path.open(encoding="utf-8-sig", errors="replace") as f:
         number = 0
         while line := f.readline(MAX_LINE + 1):

@@ -288,11 +288,12 @@ def test_an_nmea_file_that_is_not_text_is_named_as_such(tmp_path: Path, content:
         fixes.read_nmea(path)
 
 
-def test_a_line_of_binary_data_among_nmea_sentences_is_shown_short(tmp_path: Path) -> None:
-    """A receiver's binary messages among its sentences (u-blox UBX) filled the error with up to
-    4096 bytes of the line, inside pynmea2's tuple of words."""
+def test_a_long_line_of_no_sentence_among_nmea_sentences_is_shown_short(tmp_path: Path) -> None:
+    """A line of no sentence filled the error with up to 4096 characters of it, inside pynmea2's
+    tuple of words (binary data among sentences, a serial log's, is skipped:
+    tests/python/test_fixes_nmea_receivers.py)."""
     path = tmp_path / "gnss.nmea"
-    path.write_bytes(NMEA.encode() + bytes(range(14, 32)) * 200 + b"\n")
+    path.write_bytes(NMEA.encode() + bytes(range(33, 51)) * 200 + b"\n")
     with pytest.raises(ValueError, match=r"line 2: not an NMEA sentence \(could not parse data: '.*\.\.\..*\(\d+ "
                                          r"characters\)\); remove or repair the line$") as error:
         fixes.read_nmea(path)

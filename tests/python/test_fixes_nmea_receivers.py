@@ -149,3 +149,24 @@ def test_fixes_in_utc_seconds_say_how_to_put_them_on_the_gyros_clock() -> None:
         gyrocore.fixes.fuse(t, np.zeros_like(t), utc)
     with pytest.warns(InputWarning, match=r"after the last gyro sample .*" + said):
         gyrocore.fixes.Fusion().process(t, np.zeros_like(t), utc)
+
+
+def test_a_serial_log_with_binary_messages_among_its_sentences_is_read(tmp_path: Path) -> None:
+    # a u-blox serial log (UBX messages between the sentences, their bytes split into lines by the
+    # line ends among them, a sentence after one on its line) was refused at its first binary line
+    rng = np.random.default_rng(7)
+    ubx = [b"\xb5b\x01\x07" + rng.integers(0, 256, int(n)).astype(np.uint8).tobytes()
+           for n in rng.integers(20, 400, 100)]
+    body = b"".join(message + f"{rmc(f'1200{i:02d}', course='')}\r\n{vtg()}\r\n".encode()
+                    for i, message in enumerate(ubx[:50])) + b"".join(ubx[50:])
+    path = tmp_path / "drive.ubx"
+    path.write_bytes(body)
+    with pytest.warns(InputWarning, match=r"drive.ubx: binary data from line 1 on, a receiver's binary messages "
+                                          r"\(u-blox UBX\) among its sentences: \d+ line\(s\) of it"):
+        fixes = read_nmea(path)
+    np.testing.assert_array_equal(fixes.t, DAY0 + 43200.0 + np.arange(50))
+    np.testing.assert_allclose(fixes.heading, np.radians(90.0 - 54.7))
+    # a text log's line of no sentence, before any binary data, is still an error
+    path.write_bytes(f"{rmc('120000')}\nQe])\n".encode() + body)
+    with pytest.raises(ValueError, match=r"drive.ubx: line 2: not an NMEA sentence"):
+        read_nmea(path)
