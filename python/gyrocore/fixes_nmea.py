@@ -3,12 +3,13 @@ speed of a receiver's RMC sentences, or of the VTG sentence after one, through
 :func:`gyrocore.fixes.from_gnss`.
 
 A file is read line by line, in the order written, and a line that cannot be used is an error
-naming the file and the line: one that is no sentence (a bad checksum, binary data, a line longer
-than any sentence), an RMC or VTG without its checksum (a sentence cut short reads as one of
-other values), one whose date, time, course or speed is not a value (pynmea2 hands such a field
-back as its text), and an RMC whose time steps back. The last line, cut off without a line end (a
-log stopped mid-write), is skipped after a warning instead, as is binary data (a receiver's binary
-messages, u-blox UBX, among its sentences in a serial log): a sentence after it on its line is read.
+naming the file and the line: one that is no sentence (a bad checksum, a line longer than any
+sentence), an RMC or VTG without its checksum (a sentence cut short reads as one of other values),
+one whose date, time, course or speed is not a value (pynmea2 hands such a field back as its
+text), and an RMC whose time steps back. The last line, cut off without a line end (a log stopped
+mid-write), is skipped after a warning instead. A serial log, with a receiver's binary messages
+(u-blox UBX) among its sentences, is read from its first binary data on as such: a sentence after
+binary data on its line is read, and a line of no sentence skipped, with a warning counting them.
 """
 
 from __future__ import annotations
@@ -71,10 +72,11 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
     counts those that differ from it); one in the leap second 23:59:60 is skipped with a warning.
     A line that is no sentence, an RMC or VTG without a checksum, or one whose fields are not
     values is an error naming the file and line, as is a file of no sentence; a last line cut off
-    without a line end is skipped with a warning, as is binary data among the sentences (a serial
-    log's), a sentence after it on its line read where it holds its checksum; sentences that give no fix warn with their
-    counts (void RMC, RMC without a course). The times are UTC: shift them onto the gyro's clock
-    before fusing. ``options`` go to :func:`gyrocore.fixes.from_gnss`.
+    without a line end is skipped with a warning, and so, from the first binary data on (a serial
+    log's binary messages among its sentences), is a line of no sentence, a sentence after binary
+    data on its line read. Sentences that give no fix warn with their counts (void RMC, RMC without
+    a course). The times are UTC: shift them onto the gyro's clock before fusing. ``options`` go to
+    :func:`gyrocore.fixes.from_gnss`.
     """
     require_options("read_nmea (from_gnss's)", options, keyword_options(from_gnss))  # before the file is read
     pynmea2 = require("pynmea2", "reading NMEA sentences")
@@ -123,13 +125,13 @@ class _Epochs:
         except self.pynmea2.SentenceTypeError:
             return  # a sentence whose checksum holds but whose type pynmea2 does not know has no course for it
         except self.pynmea2.ParseError as e:
-            # pynmea2 adds the line to its words: a line of binary data (a receiver's UBX messages
-            # among its sentences) filled the error with up to 4096 bytes of it
+            # pynmea2 adds the line to its words: a long line of no sentence filled the error with
+            # up to 4096 characters of it
             reason = e.args[0] if e.args else str(e)  # pynmea2's (message, data)
             reason = reason[0] if isinstance(reason, tuple) and reason else reason
             return self._unusable(number, ended, f"not an NMEA sentence ({reason}: {shown(text, 100)})")
         if not isinstance(msg, (self.pynmea2.RMC, self.pynmea2.VTG)):
-            return None
+            return
         if "*" not in text:  # pynmea2 takes a sentence without one: "084.4,230394" cut to "084.4,2303" dated 2003
             return self._unusable(number, ended, f"an {msg.sentence_type} sentence without its checksum (*hh; "
                                   f"{shown(text, 100)}): cut short, its values cannot be trusted")
