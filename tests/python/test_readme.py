@@ -163,3 +163,16 @@ def test_the_python_page_shows_what_its_first_and_whole_mode_examples_print() ->
     assert re.findall(r"\d+\.\d+", pieces[0])[:2] == [f"{whole.heading[5000]:.3f}", f"{causal.heading[5000]:.3f}"]
     true = float(np.sum(np.diff(t[:5001]) * (0.3 * np.sin(t[:5000] / 3) + 0.3 * np.sin(t[1:5001] / 3)) / 2))
     assert abs(whole.heading[5000] - true) < 1e-9 and abs(causal.heading[5000] - whole.heading[5000] - 0.5) < 0.01
+
+
+def test_the_site_s_front_page_makes_the_readme_s_promises() -> None:
+    # docs/index.md kept "pays for one output array" after the result began to hold its own copy
+    # of the times, which the README had been corrected to say
+    def bullets(page: str) -> list[str]:
+        text = (ROOT / page).read_text(encoding="utf-8")
+        found = re.findall(r"^- \*\*\w+\*\*:.*?(?=\n(?:- |\n))", text, re.M | re.S)
+        return [" ".join(b.split()).replace("](docs/", "](") for b in found[:3]]
+
+    readme, index = bullets("README.md"), bullets("docs/index.md")
+    assert len(readme) == 3 and [b[:12] for b in readme] == ["- **Python**", "- **Rust**: ", "- **Speed**:"]
+    assert [re.sub(r"\[[^]]*\]\(", "(", b) for b in readme] == [re.sub(r"\[[^]]*\]\(", "(", b) for b in index]
