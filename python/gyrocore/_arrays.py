@@ -229,9 +229,10 @@ def float_fields(record: object, names: Sequence[str], prefix: str = "", *, copy
 
 def frozen_array(name: str, values: ArrayLike) -> FloatArray:
     """``values`` as a read-only float64 array (:func:`as_float_array`) that the caller's writes do
-    not reach: a read-only ndarray as it is (a memory map opened read-only, a pandas column under
-    copy-on-write, another record's frozen array: its holder keeps it unchanged, numpy's meaning of
-    the flag), anything else copied (once: a conversion's new array is not copied again)."""
+    not reach: a read-only ndarray as it is (a memory map opened read-only, another record's frozen
+    array: its holder keeps it unchanged, numpy's meaning of the flag), anything else copied (once:
+    a conversion's new array is not copied again). A pandas column is copied too: the read-only
+    view pandas' copy-on-write hands numpy still changes with ``df.loc[i, "t"] = x``."""
     given_read_only = isinstance(values, np.ndarray) and not values.flags.writeable
     a = as_float_array(name, values, copy=not given_read_only)
     a.flags.writeable = False  # a write through it fails: "assignment destination is read-only"

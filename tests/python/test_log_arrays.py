@@ -53,6 +53,20 @@ def test_a_read_only_array_is_taken_as_it_is_and_a_converted_one_is_the_log_s_ow
     assert not lists.rate.flags.writeable and np.array_equal(lists.rate, rate)
 
 
+def test_a_pandas_column_is_copied_even_where_pandas_hands_over_a_read_only_view() -> None:
+    # docs/python.md said a column under pandas' copy-on-write is taken as it is; but the read-only
+    # view pandas hands numpy still changes with a write through its DataFrame
+    pd = pytest.importorskip("pandas")
+    t, rate = _drive()
+    df = pd.DataFrame({"t": t, "rate": rate})
+    log = gyrocore.Log("x", df["t"], df["rate"], stationary=(0.0, 5.0))
+    first = log.process("static_bias").heading
+    df.loc[0, "rate"] = 1.0  # into the buffer a read-only numpy view of df["rate"] shares
+    df["t"] *= 2.0
+    assert np.array_equal(log.process("static_bias").heading, first)
+    assert log.rate[0] == rate[0] and np.array_equal(log.t, t)
+
+
 def test_a_log_read_from_a_file_holds_read_only_series(tmp_path: Path) -> None:
     t, rate = _drive()
     path = tmp_path / "drive.csv"

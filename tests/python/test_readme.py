@@ -137,3 +137,42 @@ def test_the_python_page_shows_what_its_table_example_scores() -> None:
     text = " ".join((ROOT / "docs" / "python.md").read_text(encoding="utf-8").split())
     assert (f"`recommended` scores {recommended.errors.e_psi_deg:.3f} deg, about raw integration's "
             f"{raw.errors.e_psi_deg:.3f}") in text
+
+
+def test_the_python_page_shows_what_its_first_and_whole_mode_examples_print() -> None:
+    # what a result and a score print, and the two headings at 50 s, were shown but never checked
+    import numpy as np
+
+    import gyrocore
+
+    from .conftest import real_log_path
+
+    log = gyrocore.read_log(real_log_path("f110_ds3"))
+    result = log.process("recommended")
+    _in_order(_shown("docs/python.md", "result"), repr(result))
+    text = " ".join((ROOT / "docs" / "python.md").read_text(encoding="utf-8").split())
+    shown = re.search(r"\(`(HeadingResult\(.*?), \.\.\.\)`\)", text)
+    assert shown and repr(result).startswith(shown[1]), (shown, repr(result))
+    score = re.search(r"\(`(Score\('f110_ds3'.*?), \.\.\.\)`\)", text)
+    assert score and repr(gyrocore.evaluate.compare([log], ["recommended"])[0]).startswith(score[1])
+    t = np.arange(0.0, 120.0, 0.01)
+    rate = 0.01 + np.where((t > 50) & (t < 62), 0.0, 0.3 * np.sin(t / 3))
+    whole = gyrocore.process(t, rate, "static_bias")
+    causal = gyrocore.process(t, rate, "static_bias", bias_window=(50.0, 62.0), mode="causal")
+    pieces = _shown("docs/python.md", "whole.heading[5000], causal.heading[5000]")
+    assert re.findall(r"\d+\.\d+", pieces[0])[:2] == [f"{whole.heading[5000]:.3f}", f"{causal.heading[5000]:.3f}"]
+    true = float(np.sum(np.diff(t[:5001]) * (0.3 * np.sin(t[:5000] / 3) + 0.3 * np.sin(t[1:5001] / 3)) / 2))
+    assert abs(whole.heading[5000] - true) < 1e-9 and abs(causal.heading[5000] - whole.heading[5000] - 0.5) < 0.01
+
+
+def test_the_site_s_front_page_makes_the_readme_s_promises() -> None:
+    # docs/index.md kept "pays for one output array" after the result began to hold its own copy
+    # of the times, which the README had been corrected to say
+    def bullets(page: str) -> list[str]:
+        text = (ROOT / page).read_text(encoding="utf-8")
+        found = re.findall(r"^- \*\*\w+\*\*:.*?(?=\n(?:- |\n))", text, re.M | re.S)
+        return [" ".join(b.split()).replace("](docs/", "](") for b in found[:3]]
+
+    readme, index = bullets("README.md"), bullets("docs/index.md")
+    assert len(readme) == 3 and [b[:12] for b in readme] == ["- **Python**", "- **Rust**: ", "- **Speed**:"]
+    assert [re.sub(r"\[[^]]*\]\(", "(", b) for b in readme] == [re.sub(r"\[[^]]*\]\(", "(", b) for b in index]
