@@ -349,6 +349,9 @@ def _csv_error(
                 for name in required:
                     return f"{path}: line {line}, column {positions[name] + 1} ({name}): blank line"
                 continue
+            if len(fields) != len(header) and not "".join(fields).strip(" \t"):
+                # spaces or a tab alone (an editor's last line): no line cut off, as the hint below would say
+                return f"{path}: line {line}: spaces or tabs alone, no values (delete the line, or leave it empty)"
             if len(fields) != len(header):
                 # too few fields on the last line (any() stops at the next line with a value): cut off
                 hint = (f" ({ALIGNED})" if delimiter == " " and "" in (*header, *fields)

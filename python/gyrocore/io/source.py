@@ -27,7 +27,7 @@ from ._logfolder import GYRO_CSV, is_log_folder, read_meta, warn_gyro_alone
 from ._npyfile import check_npz, npy_chunks, npy_fields, npy_shape, npz_chunks, npz_names
 from ._options_given import checked_options
 from ._parquetfile import parquet_chunks, parquet_file, warn_given_time_unit
-from ._paths import check_file, check_readable, content_hint, missing
+from ._paths import check_file, check_readable, compressed_logs, content_hint, missing
 from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder, storage_file_hint
 from .units import RATE_UNITS, TIME_UNITS, header_options, rate_unit_named, seconds_from_counts, time_unit_named
 
@@ -429,7 +429,9 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
             return GyroSource(p, "log folder", data, options, stationary, data.stat().st_size, "B", meta, layout)
         if is_bag_folder(p):
             return _open_bag(p, header_options(p, None, options))
-        raise ValueError(f"{p}: not a log folder (no gyro.csv) nor a ROS 2 bag (no metadata.yaml)")
+        packed = compressed_logs(p, FILE_SUFFIXES)
+        raise ValueError(f"{p}: not a log folder (no gyro.csv) nor a ROS 2 bag (no metadata.yaml)"
+                         + (f"; it holds {packed}" if packed else ""))
     if not p.is_file():  # reading a named pipe or a device would wait for ever, or never end
         raise ValueError(f"{p}: not a regular file (a named pipe, socket or device); give a file or folder")
     check_readable(p)
