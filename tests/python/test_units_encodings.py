@@ -144,3 +144,36 @@ def test_compressed_logs_in_a_folder_are_named_not_passed_over(tmp_path: Path) -
     with pytest.raises(ValueError, match=r"not a log folder \(no gyro.csv\) nor a ROS 2 bag \(no metadata.yaml\); it "
                                          r"holds 1 compressed log\(s\) that are not read \(gyro.csv.gz\): decompress"):
         gyrocore.read_log(folder)
+
+
+def test_a_one_axis_gyro_column_named_rate_with_its_unit_is_offered(tmp_path: Path) -> None:
+    path = tmp_path / "phone.csv"
+    path.write_text("t(s),rate(deg/s)\n" + "".join(f"{i / 100!r},{5.0 + i % 3}\n" for i in range(300)))
+    with pytest.raises(ValueError, match=r"it has t\(s\), rate\(deg/s\) \(.*; rate_col='rate' \(--rate-col rate\) "
+                                         r"looks like it\)$"):
+        gyrocore.read_log(path)
+    log = gyrocore.read_log(path, rate_col="rate")  # as offered: its unit from the header
+    assert np.allclose(log.rate, np.radians(5.0 + np.arange(300) % 3))
+
+
+@pytest.mark.parametrize("kind", ["datetime64[ns]", "timedelta64[ms]"])
+def test_numpy_times_with_their_own_unit_read_without_a_time_unit_say_nothing_of_one(tmp_path: Path,
+                                                                                    kind: str) -> None:
+    # the reader assumes s for a field that states no unit: it warned that time_unit 's' was not used
+    times = (np.arange(300) * 10).astype("timedelta64[ms]") + (np.datetime64("2024-01-01", "ms") if kind[1] == "a"
+                                                               else np.timedelta64(0, "ms"))
+    record = np.zeros(300, dtype=[("t", kind), ("gyro_z", "f8")])
+    record["t"] = times
+    np.save(tmp_path / "d.npy", record)
+    np.savez(tmp_path / "d.npz", t=record["t"], gyro_z=record["gyro_z"])
+    for name in ("d.npy", "d.npz"):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            log = gyrocore.read_log(tmp_path / name)
+        assert np.allclose(np.diff(log.t), 0.01, rtol=0, atol=5e-7)  # float64 resolves 2.4e-7 s near 1.7e9 s
+        with pytest.warns(gyrocore.InputWarning, match=r"with its own unit \((ns|ms)\): time_unit 'us' \(--time-unit\) "
+                                                       r"is not used"):
+            gyrocore.read_log(tmp_path / name, time_unit="us")  # one given is still said to be unused
+        proc = gyrocore_cli("process", tmp_path / name, "--preset", "raw", "--out", tmp_path / f"{name}.csv",
+                            "--overwrite", code=0)
+        assert "time_unit" not in proc.stderr

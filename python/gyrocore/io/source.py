@@ -457,13 +457,16 @@ def _open_file(p: Path, options: ReadOptions) -> GyroSource:
         warn_given_time_unit(p, pf, options.time, options.time_unit)
         options = header_options(p, pf.schema_arrow.names, options)
         return GyroSource(p, "parquet", p, options, progress_total=pf.metadata.num_rows)
+    # the time unit the caller gave, if any: the header's reading assumes s, which a duration field
+    # does not use, and warned of that assumption as if it were given
+    given = options.time_unit
     if suffix == ".npy":
         options = header_options(p, npy_fields(p), options)  # field names state units as a header's do
-        shape = npy_shape(p, options)
+        shape = npy_shape(p, replace(options, time_unit=given))
         return GyroSource(p, "npy", p, options, progress_total=shape[0] if shape else 0)
     if suffix == ".npz":
         options = header_options(p, npz_names(p), options)
-        check_npz(p, options)
+        check_npz(p, replace(options, time_unit=given))
         return GyroSource(p, "npz", p, options)
     if suffix == ".bag":
         return _open_bag(p, header_options(p, None, options))
