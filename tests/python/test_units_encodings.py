@@ -177,3 +177,21 @@ def test_numpy_times_with_their_own_unit_read_without_a_time_unit_say_nothing_of
         proc = gyrocore_cli("process", tmp_path / name, "--preset", "raw", "--out", tmp_path / f"{name}.csv",
                             "--overwrite", code=0)
         assert "time_unit" not in proc.stderr
+
+
+@pytest.mark.parametrize(("stray", "said"), [
+    ("# logger restarted\n", "1 field, but the header has 2 (a line of text among the samples, a logger's note: "
+                             "delete the line)"),
+    ("t,gyro_z\n", "the header line again (logs joined one after another?): delete the line, or read each log alone"),
+])
+def test_a_stray_text_row_among_the_samples_says_what_it_is(tmp_path: Path, stray: str, said: str) -> None:
+    # it said only "1 field, but the header has 2", or "'t' is not a number"
+    rows = [f"{i / 100!r},0.1\n" for i in range(200)]
+    path = tmp_path / "x.csv"
+    path.write_text("t,gyro_z\n" + "".join(rows[:100]) + stray + "".join(rows[100:]))
+    with pytest.raises(ValueError) as info:
+        gyrocore.read_log(path)
+    assert str(info.value) == f"{path}: line 102: {said}"
+    path.write_text("t,gyro_z\n" + "".join(rows) + "0.0")  # a last line cut off mid-write is still said so
+    with pytest.raises(ValueError, match=r"line 202: 1 field, but the header has 2 \(the file's last line, cut off"):
+        gyrocore.read_log(path)
