@@ -51,6 +51,11 @@ def test_a_counter_of_ms_given_as_counts_and_a_16_bit_one_are_named() -> None:
     with pytest.raises(gyrocore.SampleError, match=r"\(a 16-bit counter of ms that wrapped round: 65.52 is just short "
                                                    r"of 2\^16 ms = 65.536 s, "):
         gyrocore.process(ms16, RATE, "raw")
+    signed = (np.arange(N, dtype=np.int64) * 10 + 2**31 - 30_000 + 2**31) % 2**32 - 2**31  # an int32 counter
+    with pytest.raises(gyrocore.SampleError, match=r"\(a signed 32-bit counter that wrapped round: 2147483638 is just "
+                                                   r"short of 2\^31 = 2147483648, where it goes on at -2\^31; unwrap "
+                                                   r"the times first: add 4294967296 "):
+        gyrocore.process(signed.astype(np.int32), RATE, "raw")
 
 
 @pytest.mark.parametrize("call", [gyrocore.integrate, gyrocore.downsample, allan.deviation_from_timestamps])
