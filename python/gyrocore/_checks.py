@@ -19,6 +19,7 @@ import numpy as np
 
 from . import _gyrocore
 from ._arrays import FloatArray
+from ._time_steps import name_time_step, why_times_step_back
 
 #: Above this the rates are implausible in rad/s (about 1150 deg/s) and likely deg/s.
 RATE_LIMIT = 20.0
@@ -231,8 +232,13 @@ def require_readings(what: str, values: FloatArray) -> None:
 def require_times(t: FloatArray) -> None:
     """The core's :class:`~gyrocore.SampleError` for the first of the times ``t`` that is not
     finite, does not increase or lies beyond +-2^40 s, naming its index; nothing if all are
-    usable. The core's own check of a block (the readings all valid), one rule and its words."""
-    _gyrocore.check_samples(t, np.zeros(len(t)), None)
+    usable. The core's own check of a block (the readings all valid), one rule and its words,
+    where a time steps back or repeats with what explains it (:func:`name_time_step`)."""
+    try:
+        _gyrocore.check_samples(t, np.zeros(len(t)), None)
+    except _gyrocore.SampleError as e:
+        name_time_step(e, t, None, 0)
+        raise
 
 
 def real_number(value: object) -> float | None:
@@ -347,13 +353,14 @@ def first_infinite(values: FloatArray) -> int | None:
 
 
 def require_increasing(name: str, t: FloatArray, *, context: str = "") -> None:
-    """A ValueError naming the first time of ``t`` that is not after the one before it."""
+    """A ValueError naming the first time of ``t`` that is not after the one before it, and what to
+    do: sort them, or what explains the step (:func:`~gyrocore._time_steps.why_times_step_back`)."""
     back = np.flatnonzero(np.diff(t) <= 0)
     if len(back):
         i = int(back[0]) + 1
         raise ValueError(
             f"{_prefix(context)}{name} must strictly increase: {name}[{i}] = {t[i]} follows {t[i - 1]} "
-            "(sort them and drop duplicate times)"
+            + (why_times_step_back(t, i, float(t[i - 1])) or "(sort them and drop duplicate times)")
         )
 
 

@@ -13,7 +13,7 @@ from . import batch_names, io
 from ._checks import warn
 from .io._logfolder import lacks_gyro
 from .io import atomic
-from .io._paths import check_readable
+from .io._paths import check_readable, compressed_logs
 from .io.writer import file_id
 
 
@@ -38,9 +38,12 @@ def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
                 check_readable(m)
                 entries = sorted(m.iterdir())
                 inside = [c for c in entries if _named_as_input(c)]
+                packed = compressed_logs(m, io.FILE_SUFFIXES)
                 if not inside and named:
                     raise ValueError(f"{m}: no logs in this folder ({', '.join(io.FILE_SUFFIXES)}, log or bag folders)"
-                                     + _dataset_hint(m))
+                                     + (f"; it holds {packed}" if packed else _dataset_hint(m)))
+                if packed:
+                    warn(f"{m}: {packed}")
                 _warn_unsearched(m, [c for c in entries if c.is_dir() and not _named_as_input(c)])
                 found += [(c, m) for c in inside]
             elif named or _named_as_input(m):

@@ -12,6 +12,7 @@ from numpy.typing import ArrayLike
 from . import _gyrocore
 from ._arrays import FloatArray
 from ._checks import MAX_READING, keep_readings, usable, warn, warn_units
+from ._time_steps import name_time_step
 from .window import RestWindowError, ends_before_first, no_usable_reading, refuse_start_before
 
 
@@ -98,13 +99,15 @@ def say_what_to_do(error: _gyrocore.SampleError, t: FloatArray, last: float | No
                    nonfinite: str) -> None:
     """Adds to the core's error about a bad sample what the caller can do about it: for a reading
     the pipeline does not take, the policy that takes it (the core's words, "drop or fill them
-    first", sent a user with a file to edit it); for a chunk that starts at or before the last
-    sample processed, :func:`name_samples_sent_again`. A file's reader gives its own words, with
-    the file's line (``log_message``: the core's)."""
+    first", sent a user with a file to edit it); for a time that a counter's wrap sent back or
+    float32 rounding repeated, :func:`name_time_step`; for a chunk that starts at or before the
+    last sample processed, :func:`name_samples_sent_again`. A file's reader gives its own words,
+    with the file's line (``log_message``: the core's)."""
     if error.what in ("rate", "temperature") and nonfinite == "error":
         error.log_message = str(error)  # type: ignore[attr-defined]
         error.args = (f"{error}; " + keep_readings("them", "nonfinite='hold'", "'skip'"),)
-    name_samples_sent_again(error, t, last, index_offset)
+    if not name_time_step(error, t, last, index_offset):
+        name_samples_sent_again(error, t, last, index_offset)
 
 
 def name_samples_sent_again(error: _gyrocore.SampleError, t: FloatArray, last: float | None,

@@ -127,10 +127,12 @@ def in_si_units(path: Path, header: list[str], units: dict[str, tuple[str, tuple
 
 
 #: Header names (lower case, letters and digits only) that say "time" and "yaw rate" in the words
-#: loggers use: an IMU's ``timestamp``, ``time_ns``, ``gz``, ``wz``, EuRoC's ``w_RS_S_z``, ``yaw_rate``.
+#: loggers use: an IMU's ``timestamp``, ``time_ns``, ``gz``, ``wz``, EuRoC's ``w_RS_S_z``, ``yaw_rate``,
+#: a one-axis gyro's ``rate`` or ``gyro`` (``rate(deg/s)``: its unit is left out before the match).
 _LIKE = {
     "t": re.compile(r".*(time|stamp).*|t|ts|sec|secs|seconds"),
-    "gyro_z": re.compile(r"(gyr|gyro|gyroscope|g|w|omega|angular|angvel|angularvelocity|rot)[a-z0-9]*z|.*yawrate.*"),
+    "gyro_z": re.compile(r"(gyr|gyro|gyroscope|g|w|omega|angular|angvel|angularvelocity|rot)[a-z0-9]*z|.*yawrate.*"
+                         r"|rate|turnrate|angularrate|gyro|gyroscope"),
 }
 _OPTION = {"t": ("time_col", "--time-col"), "gyro_z": ("rate_col", "--rate-col")}
 

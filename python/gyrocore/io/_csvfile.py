@@ -48,6 +48,8 @@ _UTF8_BOM = b"\xef\xbb\xbf"
 #: A date, maybe with a time, as loggers write them (``2024-05-03T14:00:00.010Z``, ``2024-05-03 14:00``).
 #: What a last line with too few fields most likely is.
 _CUT_OFF = " (the file's last line, cut off: a log whose writing stopped mid-line; delete the line)"
+#: A line of words among the samples (``# logger restarted``): a note, not a sample cut short.
+_TEXT = " (a line of text among the samples, a logger's note: delete the line)"
 #: The first line of a CSV file that names its delimiter, as Excel writes it (``sep=;``).
 _SEP = re.compile(rb'"?sep=(.)"?')
 _DATE = re.compile(r"\d{4}-\d{2}-\d{2}(?:[T ]\d{2}:\d{2})?")
@@ -349,11 +351,18 @@ def _csv_error(
                 for name in required:
                     return f"{path}: line {line}, column {positions[name] + 1} ({name}): blank line"
                 continue
+            if len(fields) != len(header) and not "".join(fields).strip(" \t"):
+                # spaces or a tab alone (an editor's last line): no line cut off, as the hint below would say
+                return f"{path}: line {line}: spaces or tabs alone, no values (delete the line, or leave it empty)"
             if len(fields) != len(header):
                 # too few fields on the last line (any() stops at the next line with a value): cut off
                 hint = (f" ({ALIGNED})" if delimiter == " " and "" in (*header, *fields)
+                        else _TEXT if len(fields) < len(header) and re.search("[A-Za-z]{2}", "".join(fields))
                         else _CUT_OFF if len(fields) < len(header) and not any(map(any, reader)) else "")
                 return f"{path}: line {line}: {_count(len(fields), 'field')}, but the header has {len(header)}{hint}"
+            if [f.strip(" \t") for f in fields] == [h.strip(" \t") for h in header]:
+                return (f"{path}: line {line}: the header line again (logs joined one after another?): delete the "
+                        "line, or read each log alone")
             for name, pos in positions.items():
                 value = fields[pos].strip(" \t")  # what pyarrow trims
                 where = f"{path}: line {line}, column {pos + 1} ({name})"

@@ -165,3 +165,24 @@ def _is_text(head: bytes) -> bool:
     except UnicodeDecodeError as e:
         return e.start >= len(head) - 3 and e.reason == "unexpected end of data"
     return True
+
+
+#: Suffixes of compressed files: a log compressed (``a.csv.gz``) is named, not passed over.
+COMPRESSED = (".gz", ".bz2", ".xz", ".zst", ".zip")
+
+
+def compressed_logs(folder: Path, suffixes: tuple[str, ...]) -> str:
+    """What ``folder`` holds of logs compressed (``a.csv.gz``, ``gyro.csv.gz``: a suffix of
+    ``suffixes`` then one of :data:`COMPRESSED`), which no reader reads, with what to do; else
+    empty. A folder of such logs was said to hold none, and beside other logs they were left out
+    of a batch without a word."""
+    try:
+        found = sorted(c.name for c in folder.iterdir()
+                       if c.suffix.lower() in COMPRESSED and Path(c.stem).suffix.lower() in suffixes)
+    except OSError:
+        return ""
+    if not found:
+        return ""
+    names = ", ".join(found[:3]) + (" ..." if len(found) > 3 else "")
+    return f"{len(found)} compressed log(s) that are not read ({names}): decompress them first"
+

@@ -27,7 +27,7 @@ from ._logfolder import GYRO_CSV, is_log_folder, read_meta, warn_gyro_alone
 from ._npyfile import check_npz, npy_chunks, npy_fields, npy_shape, npz_chunks, npz_names
 from ._options_given import checked_options
 from ._parquetfile import parquet_chunks, parquet_file, warn_given_time_unit
-from ._paths import check_file, check_readable, content_hint, missing
+from ._paths import check_file, check_readable, compressed_logs, content_hint, missing
 from ._rosbag import bag_chunks, bag_columns, imu_topic, is_bag_folder, storage_file_hint
 from .units import RATE_UNITS, TIME_UNITS, header_options, rate_unit_named, seconds_from_counts, time_unit_named
 
@@ -429,7 +429,9 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
             return GyroSource(p, "log folder", data, options, stationary, data.stat().st_size, "B", meta, layout)
         if is_bag_folder(p):
             return _open_bag(p, header_options(p, None, options))
-        raise ValueError(f"{p}: not a log folder (no gyro.csv) nor a ROS 2 bag (no metadata.yaml)")
+        packed = compressed_logs(p, FILE_SUFFIXES)
+        raise ValueError(f"{p}: not a log folder (no gyro.csv) nor a ROS 2 bag (no metadata.yaml)"
+                         + (f"; it holds {packed}" if packed else ""))
     if not p.is_file():  # reading a named pipe or a device would wait for ever, or never end
         raise ValueError(f"{p}: not a regular file (a named pipe, socket or device); give a file or folder")
     check_readable(p)
@@ -455,13 +457,16 @@ def _open_file(p: Path, options: ReadOptions) -> GyroSource:
         warn_given_time_unit(p, pf, options.time, options.time_unit)
         options = header_options(p, pf.schema_arrow.names, options)
         return GyroSource(p, "parquet", p, options, progress_total=pf.metadata.num_rows)
+    # the time unit the caller gave, if any: the header's reading assumes s, which a duration field
+    # does not use, and warned of that assumption as if it were given
+    given = options.time_unit
     if suffix == ".npy":
         options = header_options(p, npy_fields(p), options)  # field names state units as a header's do
-        shape = npy_shape(p, options)
+        shape = npy_shape(p, replace(options, time_unit=given))
         return GyroSource(p, "npy", p, options, progress_total=shape[0] if shape else 0)
     if suffix == ".npz":
         options = header_options(p, npz_names(p), options)
-        check_npz(p, options)
+        check_npz(p, replace(options, time_unit=given))
         return GyroSource(p, "npz", p, options)
     if suffix == ".bag":
         return _open_bag(p, header_options(p, None, options))

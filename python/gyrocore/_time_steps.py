@@ -1,0 +1,94 @@
+"""Why times that must increase step back or repeat, where the data shows a cause that sorting
+them (the core's advice) would not mend: a counter that wrapped round, or times rounded to float32
+or float16 before they reached gyrocore (a file written from float32 holds float64 numbers, so
+the reader's float32 warning never sees it)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _gyrocore
+from ._arrays import FloatArray
+
+#: Counters whose wrap sends times back: (bits, seconds per count, the count's unit); the times
+#: may be the counts themselves (read as seconds) or the counts converted to seconds.
+_COUNTERS = tuple((bits, per_count, unit) for bits in (32, 16)
+                  for per_count, unit in ((1.0, ""), (1e-3, "ms"), (1e-6, "us"), (1e-9, "ns")))
+
+
+def counter_wrap(previous: float, value: float) -> str | None:
+    """What a time ``value`` that follows ``previous`` but lies before it is, where a counter that
+    wrapped round explains it: a 32-bit count of microseconds starts again at 0 after 71.6
+    minutes (a microcontroller's ``micros()``), of milliseconds after 49.7 days, a 16-bit one
+    after 65.5 s. Such a time lies a whole period back, less the sample's interval (at most a
+    thousandth of the period). Sorting the log, as the core's words advise, would put the samples
+    after the wrap first."""
+    for bits, per_count, unit in _COUNTERS:
+        period = 2.0**bits * per_count
+        step = value + period - previous
+        if 0.0 < step <= period * 1e-3 and max(abs(previous), abs(value)) <= period:
+            # a signed counter (an int32) goes on from just short of 2^31 at -2^31
+            top, signed = (bits - 1, "signed ") if value < 0 else (bits, "")
+            scale = period / 2.0**bits * 2.0**top
+            counts = f"2^{top} {unit}".rstrip() + (f" = {scale:.10g} s" if unit else f" = {scale:.0f}")
+            again = f"goes on at -{counts.split(' = ')[0]}" if signed else "starts again at 0"
+            return (f"(a {signed}{bits}-bit counter{' of ' + unit if unit else ''} that wrapped round: "
+                    f"{previous:.15g} is just short of {counts}, where it {again}; unwrap the times first: add "
+                    f"{period:.10g} to each time from here on, e.g. t = numpy.unwrap(t, period={period:.10g}))")
+    return None
+
+
+def rounded_to_float(t: FloatArray) -> str | None:
+    """What repeated times ``t`` are where float16 or float32 rounding explains them: a quarter or
+    more of the intervals 0, the others mostly a step or two of the type's spacing, each time a
+    value of that type, and the type coarser than a millisecond there (float32: 128 s near epoch
+    seconds). Whole epoch seconds are float32 values only every 128 s, so a log of genuine times
+    fails the test; a duplicate sample repeats one interval, not a quarter, and the times of a
+    short log (0, 1, 2, 2) that are float16 values lie far more than its spacing apart."""
+    finite = t[np.isfinite(t)]
+    steps = np.diff(finite)
+    zero = int(np.count_nonzero(steps == 0))
+    if len(finite) < 3 or 4 * zero < len(steps):
+        return None
+    size = float(np.max(np.abs(finite)))
+    forward = steps[steps > 0]
+    for kind in (np.float16, np.float32):
+        if size > float(np.finfo(kind).max):
+            continue
+        spacing = float(np.spacing(kind(size)))
+        # rounding that merges samples leaves the others a step or two of its spacing apart
+        close = not len(forward) or float(np.median(forward)) <= 2 * spacing
+        if spacing > 1e-3 and close and np.array_equal(finite.astype(kind), finite):
+            return (f"(the times repeat: {zero} of these {len(finite) - 1} intervals are 0, and every time is a "
+                    f"{np.dtype(kind).name} value, which near {size:.4g} resolves only {spacing:g} s: they were rounded "
+                    f"to {np.dtype(kind).name} before they were written or given; keep them as float64 from their "
+                    "source, or as seconds from the first sample)")
+    return None
+
+
+def why_times_step_back(t: FloatArray, i: int, previous: float) -> str | None:
+    """What explains that the time ``t[i]`` comes at or before ``previous`` (``t[i - 1]``, or the
+    last time of an earlier chunk), in parentheses, or None where nothing does."""
+    value = float(t[i])
+    return counter_wrap(previous, value) or (rounded_to_float(t) if value == previous else None)
+
+
+#: The core's advice for a time going back, which would mend neither a counter's wrap nor float32 rounding.
+_SORT_ADVICE = "(sort the log and drop duplicate timestamps)"
+
+
+def name_time_step(error: _gyrocore.SampleError, t: FloatArray, last: float | None, index_offset: int) -> bool:
+    """Replaces the core's advice to sort the log in its error about a time going back or repeating
+    with what explains the step (:func:`why_times_step_back`: a counter's
+    wrap, times rounded to float32), which sorting would not mend (a file's reader names it too:
+    ``log_message``); true if it did."""
+    i = error.index - index_offset
+    if error.what != "t" or not 0 <= i < len(t) or _SORT_ADVICE not in str(error):
+        return False
+    previous = t[i - 1] if i > 0 else last
+    hint = None if previous is None else why_times_step_back(t, i, float(previous))
+    if hint is None:
+        return False
+    error.args = (str(error).replace(_SORT_ADVICE, hint),)
+    error.log_message = str(error)  # type: ignore[attr-defined]
+    return True
