@@ -29,7 +29,7 @@ from .io._paths import error_text, has_file
 from .io.log import tracks_rests
 from .io.source import SPEED_COLUMN
 from .pipeline import HeadingResult, has_bias_source, uses_static_bias
-from .pipeline_params import _to_si, unmeasured_bias
+from .pipeline_params import _to_si, implausible_bias, unmeasured_bias
 from .window import RestWindowError, Window, as_command_line_says, time_range
 
 if TYPE_CHECKING:
@@ -114,6 +114,8 @@ class _FileJob:
         io.check_output(self.out, source)
         overrides = dict(self.overrides)
         wholelog.check_parameters(self.preset, overrides)
+        if (implausible := implausible_bias(_to_si(overrides))) is not None:  # a note of the file's report
+            warn(implausible)
         window = overrides.get("bias_window")
         if window is not None:
             t0 = _first_time(source)

@@ -28,6 +28,7 @@ from .pipeline_params import (
     _to_si,
     core_pipeline,
     has_bias_source,
+    implausible_bias,
     parameters,
     preset_names,
     preset_params,
@@ -103,6 +104,8 @@ class Pipeline:
         refuse_window_objects(overrides)
         si = _to_si(overrides)
         self._inner = core_pipeline(preset, si)
+        if (implausible := implausible_bias(si)) is not None:
+            warn(implausible)
         self._preset = preset
         if fusion is not None:
             self._inner.start_fusion(_stage_settings(self.params, fusion))

@@ -12,6 +12,7 @@ import numpy as np
 
 from . import _gyrocore
 from ._checks import shown
+from ._motion import REST_LEVEL
 
 #: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling (every one: the docs
 #: promise it, and ``hdr_max_correction_dps`` was an unknown parameter).
@@ -55,6 +56,18 @@ def unmeasured_bias(preset: str, si: dict[str, Any]) -> str | None:
     until = " until the rest tracker measures one at a stop" if preset_params(preset, **si)["track_rests"] else ""
     return (f"preset {preset!r} removes a static bias, but no bias, bias_window or bias_duration was given: "
             f"the bias is taken as 0{until}")
+
+
+def implausible_bias(si: dict[str, Any]) -> str | None:
+    """What a pipeline given the SI parameters ``si`` should say of a static ``bias`` beyond any
+    gyro's at rest (:data:`~gyrocore._motion.REST_LEVEL`): a bias in deg/s given as rad/s, which
+    turned the heading 57 times too far each second without a word. None for a plausible one."""
+    bias = si.get("bias")
+    if not isinstance(bias, (int, float)) or abs(bias) <= REST_LEVEL:
+        return None
+    return (f"bias = {bias:.6g} rad/s ({math.degrees(bias):.4g} deg/s) is beyond any gyro's at rest (more than "
+            f"{REST_LEVEL:g} rad/s): a bias in deg/s given as rad/s? Give it in deg/s as bias_dps={bias:.6g} "
+            f"(--param bias_dps={bias:.6g}), or in rad/s")
 
 
 def parameters() -> dict[str, str]:

@@ -200,3 +200,32 @@ def test_a_stray_text_row_among_the_samples_says_what_it_is(tmp_path: Path, stra
     path.write_text("t,gyro_z\n" + "".join(rows) + "0.0")  # a last line cut off mid-write is still said so
     with pytest.raises(ValueError, match=r"line 202: 1 field, but the header has 2 \(the file's last line, cut off"):
         gyrocore.read_log(path)
+
+
+DEG_BIAS = 1.416  # a bias in deg/s, given as rad/s (the heading turned 57 times too far each second)
+IMPLAUSIBLE = re.compile(r"bias = 1\.416 rad/s \(81\.13 deg/s\) is beyond any gyro's at rest \(more than 0\.5 rad/s\): a "
+                         r"bias in deg/s given as rad/s\? Give it in deg/s as bias_dps=1\.416")
+
+
+@pytest.mark.filterwarnings("default::gyrocore.InputWarning")
+@pytest.mark.parametrize("call", [
+    lambda t, r: gyrocore.process(t, r, "recommended", bias=DEG_BIAS),
+    lambda t, r: gyrocore.process(t, r, "recommended", mode="causal", bias=DEG_BIAS),
+    lambda t, r: gyrocore.Pipeline("hdr", bias=DEG_BIAS).process(t, r),
+], ids=["whole", "causal", "stream"])
+def test_a_bias_in_deg_per_s_given_as_rad_per_s_is_warned(call: Callable[[np.ndarray, np.ndarray], object]) -> None:
+    t = np.arange(N) / 100.0
+    with pytest.warns(gyrocore.InputWarning, match=IMPLAUSIBLE):
+        call(t, np.radians(np.full(N, DEG_BIAS)))
+    with warnings.catch_warnings():  # the same bias in deg/s, or a plausible one in rad/s: nothing to say
+        warnings.simplefilter("error", gyrocore.InputWarning)
+        gyrocore.process(t, np.radians(np.full(N, DEG_BIAS)), "recommended", bias_dps=DEG_BIAS)
+        gyrocore.Pipeline("hdr", bias=-0.5).process(t, np.full(N, -0.5))
+
+
+def test_a_bias_in_deg_per_s_given_as_rad_per_s_is_warned_of_the_file(tmp_path: Path) -> None:
+    drive = tmp_path / "drive.csv"
+    drive.write_text("t,gyro_z,heading_true\n" + "".join(f"{i / 100},{np.radians(DEG_BIAS)},0\n" for i in range(N)))
+    for command in (("process", drive, "--out", tmp_path / "h.csv"), ("evaluate", drive)):
+        proc = gyrocore_cli(*command, "--param", f"bias={DEG_BIAS}", code=0)
+        assert re.search(r"gyrocore: warning: \S*drive\.csv: " + IMPLAUSIBLE.pattern, proc.stderr), proc.stderr
