@@ -229,3 +229,13 @@ def test_a_bias_in_deg_per_s_given_as_rad_per_s_is_warned_of_the_file(tmp_path: 
     for command in (("process", drive, "--out", tmp_path / "h.csv"), ("evaluate", drive)):
         proc = gyrocore_cli(*command, "--param", f"bias={DEG_BIAS}", code=0)
         assert re.search(r"gyrocore: warning: \S*drive\.csv: " + IMPLAUSIBLE.pattern, proc.stderr), proc.stderr
+
+
+def test_static_bias_of_times_in_ms_warns_of_them_once() -> None:
+    t = np.arange(0.0, 60_000.0, 10.0)  # 60 s in ms
+    rate = np.random.default_rng(0).normal(0.01, 0.001, t.size)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        calibration.static_bias(t, rate)  # the rest searched for: detect_rest checked the series again
+    said = [str(w.message) for w in caught if issubclass(w.category, gyrocore.InputWarning)]
+    assert len(said) == 1 and said[0].startswith("timestamps look like ms, us or ns, not seconds"), said

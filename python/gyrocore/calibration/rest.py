@@ -197,10 +197,16 @@ def detect_rest(
     ``options`` go to :func:`rest_windows` (``block``, ``noise_factor``, ``max_rate``,
     ``consistency``). Raises ValueError "no rest found" with what the quietest stretch looked like.
     """
+    refuse_unknown_rest_options("detect_rest", options)
+    return _detect_rest_of_checked(*check_series(t, rate), min_duration, which, options)
+
+
+def _detect_rest_of_checked(
+    ta: FloatArray, ra: FloatArray, min_duration: float, which: object, options: dict[str, Any]
+) -> tuple[float, float]:
+    """:func:`detect_rest` of the series :func:`check_series` gave (and warned of, once)."""
     if which not in ("first", "longest"):
         raise ValueError(f"which must be 'first' or 'longest', got {which!r}")
-    refuse_unknown_rest_options("detect_rest", options)
-    ta, ra = check_series(t, rate)
     windows = rest_windows_of_checked(ta, ra, min_duration, **options)
     if not windows:
         max_rate = options.get("max_rate", MAX_RATE)
@@ -323,7 +329,8 @@ def static_bias(
     ta, ra = check_series(t, rate)
     min_duration = check_number("min_duration", min_duration, strict=False)  # NaN passed every window
     if window is None:
-        window = detect_rest(ta, ra, min_duration=min_duration, **detect_options)
+        which = detect_options.pop("which", "first")  # the series checked once: their units warned of once
+        window = _detect_rest_of_checked(ta, ra, min_duration, which, detect_options)
     elif detect_options:  # they choose how a rest is found, and a given window is not searched for
         raise TypeError(f"{', '.join(sorted(detect_options))}: options of the search for a rest (detect_rest), "
                         "which a given window skips; leave them out, or the window")
