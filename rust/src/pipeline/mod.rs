@@ -38,7 +38,7 @@ use crate::Error;
 /// that its stages are the ones the configuration builds, with the values the rest of the state
 /// gives them (the configured bias, dead band and HDR bound wherever nothing measured changes
 /// them, the static bias test's bias, the noise-scaled values its rest window gives), holding
-/// values that valid input reaches ([`Kernel::check_state`](crate::Kernel::check_state)), and
+/// values that valid input reaches (`Kernel::check_state`, a method of that feature alone), and
 /// that its parts agree with each other (the rest window with the configured one and the clock,
 /// the rest tracker's times and sums): a state edited by hand or
 /// damaged is the deserialiser's error (with this crate's words), never a pipeline that runs on
