@@ -154,9 +154,12 @@ impl Pipeline {
     /// [`MAX_READING`](crate::MAX_READING) unless the policy holds the last one (a missing
     /// temperature where the model needs one counts as non-finite): a skipped sample leaves every
     /// stage untouched and gets the last heading and drift with a NaN rate (counted in
-    /// [`Pipeline::report`]). Use [`Pipeline::process_block`] to have bad input rejected instead;
-    /// a rest window the samples pass without a reading inside leaves the bias at 0 here, which
-    /// [`Pipeline::rest_window_missed`] tells.
+    /// [`Pipeline::report`]). A clock that jumps back (a time sync) has every sample skipped
+    /// until it passes the last time taken, the heading frozen meanwhile: feed a monotonic clock
+    /// (a jump forward is a gap, [`InputPolicy::gap_limit`](crate::InputPolicy::gap_limit)), or
+    /// watch `report().skipped`. Use [`Pipeline::process_block`] to have bad input rejected
+    /// instead; a rest window the samples pass without a reading inside leaves the bias at 0
+    /// here, which [`Pipeline::rest_window_missed`] tells.
     pub fn update_with_temperature(
         &mut self,
         t: f64,
