@@ -15,7 +15,14 @@ fn through_postcard<T: Serialize + DeserializeOwned>(value: &T) -> T {
 fn drive() -> (Vec<f64>, Vec<f64>) {
     let t: Vec<f64> = (0..2000).map(|i| i as f64 * 0.01).collect();
     let rate = (0..2000)
-        .map(|i| 0.002 + if i > 600 && (i / 100) % 2 == 1 { 0.3 } else { 0.0 })
+        .map(|i| {
+            0.002
+                + if i > 600 && (i / 100) % 2 == 1 {
+                    0.3
+                } else {
+                    0.0
+                }
+        })
         .collect();
     (t, rate)
 }
