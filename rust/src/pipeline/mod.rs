@@ -170,7 +170,8 @@ impl Pipeline {
     }
 
     /// [`Pipeline::update_with_temperature`] with the vehicle's speed [m/s] for the rest tracker
-    /// (NaN: none for this sample, the tracker judges it by the rate alone).
+    /// (NaN: none for this sample, the tracker judges it by the rate alone). An infinite speed,
+    /// which [`Pipeline::process_block_with_speed`] refuses, is taken as none.
     pub fn update_with_speed(
         &mut self,
         t: f64,
@@ -178,6 +179,8 @@ impl Pipeline {
         temperature: Option<f64>,
         speed: f64,
     ) -> Output {
+        // A speed sensor's garbage: taken as moving, it cut a rest in two without a word.
+        let speed = if speed.is_infinite() { f64::NAN } else { speed };
         let first = self.clock.last().is_none();
         let Some((dt, rate, temperature)) = self.admit(t, rate, temperature) else {
             self.report.skipped = self.report.skipped.saturating_add(1);
