@@ -132,3 +132,35 @@ fn an_up_direction_longer_than_the_largest_float_is_normalised() {
     assert!(Up::new([f64::INFINITY, 0.0, 1.0]).is_err());
     assert!(Up::new([f64::NAN, f64::INFINITY, 1.0]).is_err());
 }
+
+/// The rests found by `update_with_speed` over 50 s at 100 Hz (stops of 10 s between turns, a
+/// bias of 0.01 rad/s) with `bad` as the speed of one sample in the middle of the second stop
+/// (the noise at rest known from the first: a sample without speed is judged by its rate).
+fn rests_with_one_speed(bad: f64) -> (u64, Option<Rest>) {
+    let mut c = Preset::Tracked.config();
+    c.correction.bias = StaticBias::Fixed(0.0);
+    let mut p = Pipeline::new(c).unwrap();
+    for i in 0..5000 {
+        let moving = (i / 1000) % 2 == 1;
+        let rate = if moving { 0.31 } else { 0.01 };
+        let speed = match (i, moving) {
+            (2500, _) => bad,
+            (_, true) => 5.0,
+            _ => 0.0,
+        };
+        p.update_with_speed(i as f64 * 0.01, rate, None, speed);
+    }
+    let tracker = p.rest_tracker().unwrap();
+    (tracker.rests_found(), tracker.last_rest())
+}
+
+/// An infinite speed given to `update_with_speed` (which `process_block_with_speed` refuses) is
+/// no speed, as NaN: it was taken as moving and cut the stop into two rests.
+#[test]
+fn an_infinite_speed_in_update_is_no_speed() {
+    let none = rests_with_one_speed(f64::NAN);
+    assert_eq!(none.0, 2, "{none:?}");
+    for bad in [f64::INFINITY, f64::NEG_INFINITY] {
+        assert_eq!(rests_with_one_speed(bad), none, "speed {bad}");
+    }
+}

@@ -53,9 +53,10 @@
 //! - **Heading fixes** (GNSS course, landmarks): [`FusedPipeline`], or [`Fusion`] on a rate of
 //!   your own; a bad fix is a [`FusionError`] naming it.
 //! - **Stop and resume** (`serde` feature): every state serialises and reads back bit for bit
-//!   (with `serde_json`, enable its `float_roundtrip` feature); a [`Pipeline`] or [`Fusion`] read
-//!   back is checked as `new` checks a configuration, and its state against what valid input
-//!   reaches.
+//!   (with `serde_json`, enable its `float_roundtrip` feature; a binary format without
+//!   `deserialize_any`, such as postcard on a small target, works as it is); a [`Pipeline`] or
+//!   [`Fusion`] read back is checked as `new` checks a configuration, and its state against what
+//!   valid input reaches.
 //! - **One stage alone** ([`Integrator`], [`LowPass`], [`Hdr`], ...: the [`Stage`] trait) or a
 //!   stage of your own ([`Kernel`], `tests/custom_stage.rs`).
 #![cfg_attr(not(feature = "std"), no_std)]

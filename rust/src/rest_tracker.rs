@@ -238,6 +238,27 @@ struct Filling {
 }
 
 /// The rest tracker's state: detection and the bias filter.
+///
+/// It has no constructor of its own: a [`Pipeline`](crate::Pipeline) runs it and feeds it
+/// ([`PipelineConfig::rest_tracker`](crate::PipelineConfig::rest_tracker)). For the tracker
+/// alone, give one to [`Preset::Raw`](crate::Preset::Raw)'s configuration and read it through
+/// [`Pipeline::rest_tracker`](crate::Pipeline::rest_tracker) (its `Default` is a tracker that
+/// has seen nothing, which nothing feeds).
+///
+/// ```
+/// use gyrocore::{Pipeline, Preset, RestTrackerConfig};
+/// let mut config = Preset::Raw.config();
+/// config.rest_tracker = Some(RestTrackerConfig::default());
+/// let mut p = Pipeline::new(config).unwrap();
+/// for i in 0..1000 {
+///     // stopped (speed 0) for 5 s, then moving at 5 m/s, a bias of 0.01 rad/s
+///     let speed = if i < 500 { 0.0 } else { 5.0 };
+///     p.update_with_speed(i as f64 * 0.01, 0.01, None, speed);
+/// }
+/// let tracker = p.rest_tracker().unwrap();
+/// assert_eq!(tracker.rests_found(), 1);
+/// assert!((tracker.bias() - 0.01).abs() < 1e-12);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RestTracker {

@@ -1,6 +1,9 @@
 //! Serde for `f64` fields that may be infinite (a switch turned off, no bound, no gap limit):
-//! JSON has no infinity, so those are written as the strings `"inf"` and `"-inf"` (and NaN as
-//! `"nan"`); finite values stay numbers. Use with `#[serde(with = "crate::serde_float")]`.
+//! JSON has no infinity, so in a human-readable format those are written as the strings `"inf"`
+//! and `"-inf"` (and NaN as `"nan"`); finite values stay numbers. A binary format (postcard,
+//! bincode: what a small target stores its state in) writes every float as one, and reads it
+//! back as one: such formats cannot say what comes next (`deserialize_any`), and refused every
+//! state. Use with `#[serde(with = "crate::serde_float")]`.
 
 use core::fmt;
 use serde::de::{self, Visitor};
@@ -9,6 +12,7 @@ use serde::{Deserializer, Serializer};
 /// Writes `value` as a number, or as `"inf"`, `"-inf"` or `"nan"`.
 pub(crate) fn serialize<S: Serializer>(value: &f64, serializer: S) -> Result<S::Ok, S::Error> {
     match *value {
+        v if !serializer.is_human_readable() => serializer.serialize_f64(v),
         v if v.is_finite() => serializer.serialize_f64(v),
         v if v > 0.0 => serializer.serialize_str("inf"),
         v if v < 0.0 => serializer.serialize_str("-inf"),
@@ -18,7 +22,11 @@ pub(crate) fn serialize<S: Serializer>(value: &f64, serializer: S) -> Result<S::
 
 /// Reads what [`serialize`] writes.
 pub(crate) fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<f64, D::Error> {
-    deserializer.deserialize_any(FloatVisitor)
+    if deserializer.is_human_readable() {
+        deserializer.deserialize_any(FloatVisitor)
+    } else {
+        deserializer.deserialize_f64(FloatVisitor)
+    }
 }
 
 struct FloatVisitor;

@@ -13,7 +13,8 @@ use crate::Error;
 /// keeps one clock for the whole chain.
 ///
 /// Read back with the `serde` feature, its configuration is checked ([`Validated::check`]), its
-/// state ([`Kernel::check_state`]), its clock within +-[`MAX_TIME`] and its last output.
+/// state (`Kernel::check_state`, a method of that feature alone), its clock within
+/// +-[`MAX_TIME`] and its last output.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(
     feature = "serde",

@@ -38,7 +38,7 @@ use crate::Error;
 /// that its stages are the ones the configuration builds, with the values the rest of the state
 /// gives them (the configured bias, dead band and HDR bound wherever nothing measured changes
 /// them, the static bias test's bias, the noise-scaled values its rest window gives), holding
-/// values that valid input reaches ([`Kernel::check_state`](crate::Kernel::check_state)), and
+/// values that valid input reaches (`Kernel::check_state`, a method of that feature alone), and
 /// that its parts agree with each other (the rest window with the configured one and the clock,
 /// the rest tracker's times and sums): a state edited by hand or
 /// damaged is the deserialiser's error (with this crate's words), never a pipeline that runs on
@@ -154,9 +154,12 @@ impl Pipeline {
     /// [`MAX_READING`](crate::MAX_READING) unless the policy holds the last one (a missing
     /// temperature where the model needs one counts as non-finite): a skipped sample leaves every
     /// stage untouched and gets the last heading and drift with a NaN rate (counted in
-    /// [`Pipeline::report`]). Use [`Pipeline::process_block`] to have bad input rejected instead;
-    /// a rest window the samples pass without a reading inside leaves the bias at 0 here, which
-    /// [`Pipeline::rest_window_missed`] tells.
+    /// [`Pipeline::report`]). A clock that jumps back (a time sync) has every sample skipped
+    /// until it passes the last time taken, the heading frozen meanwhile: feed a monotonic clock
+    /// (a jump forward is a gap, [`InputPolicy::gap_limit`](crate::InputPolicy::gap_limit)), or
+    /// watch `report().skipped`. Use [`Pipeline::process_block`] to have bad input rejected
+    /// instead; a rest window the samples pass without a reading inside leaves the bias at 0
+    /// here, which [`Pipeline::rest_window_missed`] tells.
     pub fn update_with_temperature(
         &mut self,
         t: f64,
@@ -167,7 +170,8 @@ impl Pipeline {
     }
 
     /// [`Pipeline::update_with_temperature`] with the vehicle's speed [m/s] for the rest tracker
-    /// (NaN: none for this sample, the tracker judges it by the rate alone).
+    /// (NaN: none for this sample, the tracker judges it by the rate alone). An infinite speed,
+    /// which [`Pipeline::process_block_with_speed`] refuses, is taken as none.
     pub fn update_with_speed(
         &mut self,
         t: f64,
@@ -175,6 +179,8 @@ impl Pipeline {
         temperature: Option<f64>,
         speed: f64,
     ) -> Output {
+        // A speed sensor's garbage: taken as moving, it cut a rest in two without a word.
+        let speed = if speed.is_infinite() { f64::NAN } else { speed };
         let first = self.clock.last().is_none();
         let Some((dt, rate, temperature)) = self.admit(t, rate, temperature) else {
             self.report.skipped = self.report.skipped.saturating_add(1);
