@@ -55,9 +55,9 @@ if TYPE_CHECKING:
 
 __all__ = [
     "ALL_OUTPUTS", "BIAS_SOURCES", "MIN_WINDOW_READINGS", "OUTPUTS", "TEMPERATURE_MODEL", "HeadingResult", "Pipeline",
-    "RestWindowError", "core_pipeline", "has_bias_source", "output_flags", "parameters", "preset_names", "preset_params",
-    "process", "recommended_preset", "refuse_few_readings", "refuse_start_before", "rest_window_text", "unmeasured_bias",
-    "uses_static_bias",
+    "RestWindowError", "core_pipeline", "has_bias_source", "implausible_bias", "output_flags", "parameters",
+    "preset_names", "preset_params", "process", "recommended_preset", "refuse_few_readings", "refuse_start_before",
+    "rest_window_text", "unmeasured_bias", "uses_static_bias",
 ]
 __dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 

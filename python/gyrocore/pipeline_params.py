@@ -12,7 +12,7 @@ import numpy as np
 
 from . import _gyrocore
 from ._checks import shown
-from ._motion import REST_LEVEL
+from . import _motion
 
 #: Parameters that are rates [rad/s] and so also accept a ``_dps`` spelling (every one: the docs
 #: promise it, and ``hdr_max_correction_dps`` was an unknown parameter).
@@ -60,13 +60,13 @@ def unmeasured_bias(preset: str, si: dict[str, Any]) -> str | None:
 
 def implausible_bias(si: dict[str, Any]) -> str | None:
     """What a pipeline given the SI parameters ``si`` should say of a static ``bias`` beyond any
-    gyro's at rest (:data:`~gyrocore._motion.REST_LEVEL`): a bias in deg/s given as rad/s, which
+    gyro's at rest (:data:`gyrocore._motion.REST_LEVEL`): a bias in deg/s given as rad/s, which
     turned the heading 57 times too far each second without a word. None for a plausible one."""
     bias = si.get("bias")
-    if not isinstance(bias, (int, float)) or abs(bias) <= REST_LEVEL:
+    if not isinstance(bias, (int, float)) or abs(bias) <= _motion.REST_LEVEL:
         return None
     return (f"bias = {bias:.6g} rad/s ({math.degrees(bias):.4g} deg/s) is beyond any gyro's at rest (more than "
-            f"{REST_LEVEL:g} rad/s): a bias in deg/s given as rad/s? Give it in deg/s as bias_dps={bias:.6g} "
+            f"{_motion.REST_LEVEL:g} rad/s): a bias in deg/s given as rad/s? Give it in deg/s as bias_dps={bias:.6g} "
             f"(--param bias_dps={bias:.6g}), or in rad/s")
 
 
