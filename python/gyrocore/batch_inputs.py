@@ -52,8 +52,15 @@ def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
     # back reaches the same files under ever longer names).
     unique: dict[Path, tuple[Path, Path | str | None]] = {}
     for entry in found:
-        kept = unique.setdefault(_identity(entry[0]), entry)
-        if kept is not entry and (said := _collision(entry, kept)):
+        key = _identity(entry[0])
+        kept = unique.setdefault(key, entry)
+        if kept is entry:
+            continue
+        if isinstance(kept[1], str) and entry[1] == kept[1] and len(entry[0].parts) < len(kept[0].parts):
+            # the pattern's matches come sorted, so "sub/loop/.../sub/x.csv" came before "sub/x.csv":
+            # the file is named without the loop, in the place the first name took
+            unique[key] = entry
+        elif said := _collision(entry, kept):
             warn(said)
     return [p for p, _ in unique.values()]
 

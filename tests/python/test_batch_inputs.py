@@ -153,6 +153,20 @@ def test_a_recursive_pattern_takes_each_log_folder_once_and_ends_at_a_loop(tmp_p
     assert [p.relative_to(fleet).as_posix() for p in found] == ["a", "b", "sub/drive.csv"]
 
 
+def test_a_file_a_pattern_reaches_through_a_loop_is_named_without_it(tmp_path: Path) -> None:
+    # its name sorted after the loop's ("x.csv" > "loop"), so the report named it
+    # fleet/sub/loop/sub/loop/... forty levels deep, the first name the sorted matches gave
+    from gyrocore.batch import expand_inputs
+
+    fleet = tmp_path / "fleet"
+    (fleet / "sub").mkdir(parents=True)
+    synthetic_csv(fleet / "sub" / "x.csv", 100)
+    synthetic_csv(fleet / "sub" / "a.csv", 100)
+    (fleet / "sub" / "loop").symlink_to(fleet, target_is_directory=True)
+    found = expand_inputs([f"{fleet}/**/*.csv"])
+    assert [p.relative_to(fleet).as_posix() for p in found] == ["sub/a.csv", "sub/x.csv"]
+
+
 def test_a_folder_of_logs_names_the_subfolders_it_does_not_search(tmp_path: Path) -> None:
     from gyrocore import InputWarning
     from gyrocore.batch import expand_inputs
