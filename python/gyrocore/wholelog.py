@@ -206,9 +206,10 @@ def _bias_source(si: dict[str, Any]) -> str | None:
 
 def causal_source(preset: str, si: dict[str, Any]) -> str:
     """One line saying where the causal pipeline takes the bias from."""
-    if not uses_static_bias(preset):
-        return "none (the preset removes no static bias)"
     key = _bias_source(si)
+    # a preset that wants no static bias (raw) still removes one it is given: say which
+    if not uses_static_bias(preset) and key is None:
+        return "none (the preset removes no static bias)"
     if key == "bias":
         return f"given: {math.degrees(si['bias']):.5f} deg/s"
     if key == "bias_window":

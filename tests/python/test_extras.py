@@ -130,3 +130,21 @@ def test_functions_name_the_extra_they_miss() -> None:
         "the dead band's bias leak needs scipy: pip install 'gyrocore[fit]'",
         "the Allan deviation needs scipy: pip install 'gyrocore[fit]'",
     ]
+
+
+def test_the_guide_pages_name_the_extras_their_commands_need(tmp_path: Path) -> None:
+    # docs/calibration.md, evaluation.md and simulation.md ran `gyrocore allan`, `--plot`,
+    # `--plot-dir`, `tune` and `reproduce` without saying they need scipy or matplotlib
+    stderr = cli_without(("scipy", "matplotlib"), "reproduce", "hong-calibration", "--out", tmp_path, code=0)
+    assert "(no plot: drawing the figures needs matplotlib: pip install 'gyrocore[plot]')" in stderr, stderr
+    stderr = cli_without(("scipy",), "reproduce", "hong-allan", "--no-figures", code=2)
+    assert "the Allan deviation needs scipy: pip install 'gyrocore[fit]'" in stderr, stderr
+    docs = Path(__file__).resolve().parents[2] / "docs"
+    text = {page: " ".join((docs / f"{page}.md").read_text(encoding="utf-8").split())
+            for page in ("calibration", "evaluation", "simulation")}
+    assert ("The Allan deviation (`gyrocore allan`, `allan.deviation`) needs scipy, `pip install 'gyrocore[fit]'`, "
+            "and `--plot` (`allan.plot`) matplotlib, `gyrocore[plot]`") in text["calibration"]
+    assert "`--plot-dir` draws with matplotlib (`pip install 'gyrocore[plot]'`" in text["evaluation"]
+    assert "scipy's differential evolution (`pip install 'gyrocore[fit]'`)" in text["evaluation"]
+    assert ("`hong-allan` and `hong-table-1-sensitivity` need scipy (`pip install 'gyrocore[fit]'`), and the figures "
+            "matplotlib (`gyrocore[plot]`)") in text["simulation"]
