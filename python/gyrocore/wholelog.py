@@ -41,7 +41,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._arrays import MASKED_AS_NONFINITE, FloatArray, as_float_array
-from ._checks import MAX_SECONDS, first_infinite, public_dir, refuse_no_usable_reading, require_times, usable, warn
+from ._checks import MAX_SECONDS, collected, first_infinite, public_dir, refuse_no_usable_reading, require_times, usable, warn
 from ._gyrocore import SampleError
 from ._rests import MIN_REST, SPEED_THRESHOLD, Found, accept, find_rests, measure_rest, unseen_stop_hint
 from ._smoother import SmoothedBias, smooth
@@ -135,7 +135,10 @@ class BiasPlan:
         subtracts it as the first operation on each reading, as ``rate - bias`` would (and
         ``x - 0.0`` is ``x``), with no pass over the rate and no copy of it."""
         constant = self._constant()
-        return Pipeline(preset, **(self.overrides if constant is None else {**self.overrides, "bias": constant}))
+        if constant is None:
+            return Pipeline(preset, **self.overrides)
+        with collected([]):  # a bias no gyro has at rest was said of the window that measured it
+            return Pipeline(preset, **{**self.overrides, "bias": constant})
 
     def corrected(self, t: FloatArray, rate: FloatArray) -> FloatArray:
         """The readings at the times ``t`` as :meth:`pipeline` takes them: ``rate`` less the bias

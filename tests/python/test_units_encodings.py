@@ -239,3 +239,13 @@ def test_static_bias_of_times_in_ms_warns_of_them_once() -> None:
         calibration.static_bias(t, rate)  # the rest searched for: detect_rest checked the series again
     said = [str(w.message) for w in caught if issubclass(w.category, gyrocore.InputWarning)]
     assert len(said) == 1 and said[0].startswith("timestamps look like ms, us or ns, not seconds"), said
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_a_rest_window_that_reads_a_bias_no_gyro_has_is_said_once_of_the_window(mode: str) -> None:
+    t = np.arange(N) / 100.0
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        gyrocore.process(t, np.radians(np.full(N, DEG_BIAS)) * 57.3, "recommended", mode=mode, bias_window=(0, 10))
+    said = [str(w.message) for w in caught if issubclass(w.category, gyrocore.InputWarning)]
+    assert [s for s in said if "beyond any gyro's at rest" in s] == [next(s for s in said if "rest window" in s)], said
