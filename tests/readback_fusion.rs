@@ -3,6 +3,8 @@
 //! refused naming it.
 #![cfg(feature = "serde")]
 
+mod common;
+
 use gyrocore::*;
 use serde_json::json;
 
@@ -321,14 +323,7 @@ fn a_fused_pipeline_whose_filter_and_pipeline_disagree_on_time_is_refused() {
     let t: Vec<f64> = (0..500).map(|i| i as f64 * 0.01).collect();
     let n = t.len();
     let (mut h, mut r) = (vec![0.0; n], vec![0.0; n]);
-    let out = FusedOutputs {
-        heading: &mut h,
-        heading_sigma: None,
-        bias: None,
-        scale: None,
-        rate: &mut r,
-        drift: None,
-    };
+    let out = common::heading_and_rate(&mut h, &mut r);
     f.process_block(Samples::new(&t, &vec![0.1; n]), &fixes, out)
         .unwrap();
     let v = serde_json::to_value(&f).unwrap();

@@ -2,6 +2,8 @@
 //! writes to flash) read back whole and carry on bit for bit, infinite settings included.
 #![cfg(feature = "serde")]
 
+mod common;
+
 use gyrocore::*;
 use serde::{de::DeserializeOwned, Serialize};
 
@@ -69,14 +71,7 @@ fn a_fused_pipeline_and_a_stage_stored_with_postcard_carry_on() {
     let run = |f: &mut FusedPipeline, range: core::ops::Range<usize>, fixes: &[Fix]| {
         let n = range.len();
         let (mut h, mut r) = (vec![0.0; n], vec![0.0; n]);
-        let out = FusedOutputs {
-            heading: &mut h,
-            heading_sigma: None,
-            bias: None,
-            scale: None,
-            rate: &mut r,
-            drift: None,
-        };
+        let out = common::heading_and_rate(&mut h, &mut r);
         let used = f
             .process_block(Samples::new(&t[range.clone()], &rate[range]), fixes, out)
             .unwrap();

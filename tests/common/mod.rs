@@ -1,7 +1,7 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)] // each test binary uses its own subset of the helpers
 
-use gyrocore::{Error, GyroModel, GyroSample, Output, Outputs, Pipeline, Stage};
+use gyrocore::{Error, FusedOutputs, GyroModel, GyroSample, Output, Outputs, Pipeline, Stage};
 
 /// Feeds `(t, rate)` through a stand-alone stage sample by sample, returning its outputs.
 pub fn run<S: Stage<Output = f64>>(stage: &mut S, t: &[f64], rate: &[f64]) -> Vec<f64> {
@@ -52,4 +52,16 @@ pub fn deg(x: f64) -> f64 {
 pub fn at_rest(model: &mut GyroModel, n: usize) -> Vec<GyroSample> {
     let dt = 1.0 / model.config().rate_hz;
     (0..n).map(|i| model.measure(i as f64 * dt, 0.0)).collect()
+}
+
+/// A fused pipeline's outputs of the heading and the rate alone, written into `heading` and `rate`.
+pub fn heading_and_rate<'a>(heading: &'a mut [f64], rate: &'a mut [f64]) -> FusedOutputs<'a> {
+    FusedOutputs {
+        heading,
+        heading_sigma: None,
+        bias: None,
+        scale: None,
+        rate,
+        drift: None,
+    }
 }
