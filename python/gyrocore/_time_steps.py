@@ -29,9 +29,9 @@ def counter_wrap(previous: float, value: float) -> str | None:
         if 0.0 < step <= period * 1e-3 and max(abs(previous), abs(value)) <= period:
             # a signed counter (an int32) goes on from just short of 2^31 at -2^31
             top, signed = (bits - 1, "signed ") if value < 0 else (bits, "")
-            scale = period / 2.0**bits * 2.0**top
-            counts = f"2^{top} {unit}".rstrip() + (f" = {scale:.10g} s" if unit else f" = {scale:.0f}")
-            again = f"goes on at -{counts.split(' = ')[0]}" if signed else "starts again at 0"
+            power, scale = f"2^{top} {unit}".rstrip(), per_count * 2.0**top
+            counts = power + (f" = {scale:.10g} s" if unit else f" = {scale:.0f}")
+            again = f"goes on at -{power}" if signed else "starts again at 0"
             return (f"(a {signed}{bits}-bit counter{' of ' + unit if unit else ''} that wrapped round: "
                     f"{previous:.15g} is just short of {counts}, where it {again}; unwrap the times first: add "
                     f"{period:.10g} to each time from here on, e.g. t = numpy.unwrap(t, period={period:.10g}))")

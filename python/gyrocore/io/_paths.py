@@ -185,4 +185,3 @@ def compressed_logs(folder: Path, suffixes: tuple[str, ...]) -> str:
         return ""
     names = ", ".join(found[:3]) + (" ..." if len(found) > 3 else "")
     return f"{len(found)} compressed log(s) that are not read ({names}): decompress them first"
-
