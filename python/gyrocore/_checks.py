@@ -19,7 +19,7 @@ import numpy as np
 
 from . import _gyrocore
 from ._arrays import FloatArray
-from ._time_steps import name_time_step, why_times_step_back
+from ._time_steps import time_steps_named, why_times_step_back
 
 #: Above this the rates are implausible in rad/s (about 1150 deg/s) and likely deg/s.
 RATE_LIMIT = 20.0
@@ -233,12 +233,9 @@ def require_times(t: FloatArray) -> None:
     """The core's :class:`~gyrocore.SampleError` for the first of the times ``t`` that is not
     finite, does not increase or lies beyond +-2^40 s, naming its index; nothing if all are
     usable. The core's own check of a block (the readings all valid), one rule and its words,
-    where a time steps back or repeats with what explains it (:func:`name_time_step`)."""
-    try:
+    where a time steps back or repeats with what explains it (:func:`time_steps_named`)."""
+    with time_steps_named(t):
         _gyrocore.check_samples(t, np.zeros(len(t)), None)
-    except _gyrocore.SampleError as e:
-        name_time_step(e, t, None, 0)
-        raise
 
 
 def real_number(value: object) -> float | None:

@@ -5,6 +5,9 @@ the reader's float32 warning never sees it)."""
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
+
 import numpy as np
 
 from . import _gyrocore
@@ -92,3 +95,14 @@ def name_time_step(error: _gyrocore.SampleError, t: FloatArray, last: float | No
     error.args = (str(error).replace(_SORT_ADVICE, hint),)
     error.log_message = str(error)  # type: ignore[attr-defined]
     return True
+
+
+@contextmanager
+def time_steps_named(t: FloatArray) -> Iterator[None]:
+    """Runs a core call on the times ``t`` (a whole series: no earlier chunk), naming in its
+    :class:`~gyrocore.SampleError` what explains a time that steps back (:func:`name_time_step`)."""
+    try:
+        yield
+    except _gyrocore.SampleError as e:
+        name_time_step(e, t, None, 0)
+        raise

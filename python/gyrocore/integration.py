@@ -8,7 +8,7 @@ from numpy.typing import ArrayLike
 from . import _gyrocore
 from ._arrays import FloatArray, as_float_array
 from ._checks import check_number, public_dir, warn_units
-from ._time_steps import name_time_step
+from ._time_steps import time_steps_named
 
 __all__ = ["angle_of", "downsample", "integrate"]
 __dir__ = public_dir(__name__)  # dir() and tab completion: __all__
@@ -41,11 +41,8 @@ def angle_of(t: FloatArray, rate: FloatArray, method: str = "trapezoid", initial
     if not isinstance(method, str):
         raise TypeError(f"method must be 'trapezoid' or 'rectangle', got {method!r}")
     start = check_number("initial_heading", initial_heading, low=None, unit=" [rad]")
-    try:
+    with time_steps_named(t):  # a counter's wrap, float32 times: not mended by sorting
         heading: FloatArray = _gyrocore.integrate(t, rate, method, start)
-    except _gyrocore.SampleError as e:
-        name_time_step(e, t, None, 0)  # a counter's wrap, float32 times: not mended by sorting
-        raise
     return heading
 
 
@@ -64,10 +61,7 @@ def downsample(t: ArrayLike, rate: ArrayLike, interval: float = 1.0) -> tuple[Fl
     """
     ta, ra = as_float_array("t", t), as_float_array("rate", rate)
     step = check_number("interval", interval, unit=" [s]")
-    try:
+    with time_steps_named(ta):
         tb, rb = _gyrocore.downsample(ta, ra, step)
-    except _gyrocore.SampleError as e:
-        name_time_step(e, ta, None, 0)
-        raise
     warn_units(ta, ra)
     return tb, rb

@@ -17,7 +17,7 @@ from .. import _gyrocore, _signals, io
 from .._checks import MAX_READING, json_value
 from .._extras import MissingExtra, tqdm_class
 from .._gyrocore import SampleError
-from .._time_steps import name_time_step
+from .._time_steps import time_steps_named
 from ..calibration import Calibration
 from ..evaluate import Failed
 from ..io.atomic import already_there, check_output_folder, check_replaceable
@@ -174,9 +174,9 @@ def check_samples(path: Path, log: io.Log, args: argparse.Namespace, reading_fix
     analyses (calibration) name only its index. ``reading_fix`` follows the error of a bad reading:
     the option of the command that takes one."""
     try:
-        _gyrocore.check_samples(log.t, log.rate)
+        with time_steps_named(log.t):  # a counter's wrap, float32 times: not mended by sorting
+            _gyrocore.check_samples(log.t, log.rate)
     except SampleError as e:
-        name_time_step(e, log.t, None, 0)  # a counter's wrap, float32 times: not mended by sorting
         source = io.open_source(path, **reading_options(args))
         raise ValueError(source.locate(e, None, reading_fix or None)) from None
 
