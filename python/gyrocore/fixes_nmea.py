@@ -1,5 +1,6 @@
 """Heading fixes from NMEA 0183 sentences (pynmea2, the ``nmea`` extra): the course over ground and
-speed of a receiver's RMC sentences, or of the VTG sentence after one, through
+speed of a receiver's RMC sentences, or of the VTG sentence after one (its values read by their
+unit letters; a magnetic course made true by the RMC's magnetic variation), through
 :func:`gyrocore.fixes.from_gnss`.
 
 A file is read line by line, in the order written, and a line that cannot be used is an error
@@ -15,6 +16,7 @@ binary data on its line is read, and a line of no sentence skipped, with a warni
 from __future__ import annotations
 
 import datetime
+import math
 import re
 from collections import Counter
 from collections.abc import Iterator
@@ -48,6 +50,9 @@ NO_FIX_MODES = ("N", "E", "M")
 DAY = 86_400.0
 _HALF_DAY = DAY / 2
 
+#: The unit letters of a VTG's values: true and magnetic course, speed in knots and in km/h.
+_VTG_UNITS = ("T", "M", "N", "K")
+
 #: Text up to the last character that no NMEA sentence has (they are printable ASCII): binary data
 #: read as text, a receiver's binary messages among its sentences.
 _BINARY = re.compile(r".*[^\t\x20-\x7e]", re.DOTALL)
@@ -65,6 +70,11 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
     km/h or else knots) of the valid RMC epoch just before it where that RMC had none. Other
     sentences are skipped (those pynmea2 does not know too), as are RMC and VTG whose mode
     indicator is N, E or M (:data:`NO_FIX_MODES`).
+
+    A VTG's values are read by their unit letters (T, M, N, K; NMEA 0183's VTG before version 2,
+    without them, by place); one with a magnetic course alone is made true by the magnetic
+    variation of its RMC (true = magnetic + variation east, - west), and where that RMC gives none
+    it is skipped with a warning.
 
     Sentences are taken in the order written: an RMC time of day that wraps past midnight while
     its date field has not yet advanced is of the next day, a time that steps back otherwise is an
@@ -100,6 +110,9 @@ class _Epochs:
         # added to the times of its date field (one, after midnight with the date not yet advanced)
         self.clock: tuple[datetime.date, float, float, int] | None = None
         self.lag = 0.0
+        # the magnetic variation of the valid RMC just before (its fields 10 and 11) and its line: a
+        # VTG's magnetic course is made true by it
+        self.variation: tuple[str, str, int] = ("", "", 0)
         self.repeat: int | None = None  # the line of the first RMC repeating a time with other values
         self.binary: int | None = None  # the first line of binary data: a serial log from there on
         self.skipped = 0  # the last line of it skipped
@@ -172,21 +185,47 @@ class _Epochs:
             self.tally["undated"] += 1
         else:
             self.last = t = self._time(msg, number)
+            self.variation = (msg.mag_variation or "", msg.mag_var_dir or "", number)
             if msg.true_course is None or msg.spd_over_grnd is None:
                 self.tally["courseless"] += 1
             else:
                 self._add(t, float(msg.true_course), float(msg.spd_over_grnd) * KNOT, number)
 
     def _vtg(self, msg: Any, number: int) -> None:
-        if self.last is None or self.last in self.epochs or msg.faa_mode in NO_FIX_MODES:
+        true, magnetic, knots, kmh, mode = _vtg_fields(msg.data)
+        if self.last is None or self.last in self.epochs or mode in NO_FIX_MODES:
             return
-        if msg.true_track is None:
-            self.tally["magnetic"] += msg.mag_track is not None  # said when the file gives no fix
+        if true:
+            course = float(true)
+        elif not magnetic:
             return
-        if msg.spd_over_grnd_kmph is not None:
-            self.epochs[self.last] = (float(msg.true_track), float(msg.spd_over_grnd_kmph) * KMH, number)
-        elif msg.spd_over_grnd_kts is not None:  # the km/h field left empty
-            self.epochs[self.last] = (float(msg.true_track), float(msg.spd_over_grnd_kts) * KNOT, number)
+        elif (variation := self._variation()) is None:
+            self.tally["magnetic"] += 1  # warned of, with what to do
+            return
+        else:
+            course = (float(magnetic) + variation) % 360.0
+        # the speed in km/h, or else in knots (the km/h field left empty)
+        speed = next((float(value) * unit for value, unit in ((kmh, KMH), (knots, KNOT)) if value), None)
+        if speed is not None:
+            self.epochs[self.last] = (course, speed, number)
+
+    def _variation(self) -> float | None:
+        """The magnetic variation [deg] of the epoch's RMC, east positive (true = magnetic +
+        variation east, - west: NMEA 0183's easterly variation subtracts from the true course),
+        or None where its fields leave it unknown; a value that is no angle is an error naming
+        the RMC's line."""
+        value, side, line = self.variation
+        if not (value and side):
+            return None
+        try:
+            degrees = float(value)
+        except ValueError:
+            degrees = math.nan
+        if not (0.0 <= degrees <= 180.0 and side in ("E", "W")):
+            raise ValueError(f"{self.path}: line {line}: the RMC's magnetic variation ({value!r}, {side!r}) is no "
+                             "angle of 0 to 180 degrees E or W, and the VTG after it gives a magnetic course only, "
+                             "which it makes true; remove or repair the line")
+        return degrees if side == "E" else -degrees
 
     def _time(self, msg: Any, number: int) -> float:
         """The time [s] of the dated RMC ``msg``, on the clock of the RMC before it: a time of day
@@ -246,6 +285,8 @@ class _Epochs:
             warn(f"{self.path}: {self.tally['repeats']} RMC sentence(s) repeat the time of an earlier one with another "
                  f"course or speed (the first: line {self.repeat}), and the first of each time is kept: a receiver "
                  "faster than its time's resolution (5 Hz in whole seconds) or repeating a time writes them")
+        if self.tally["magnetic"] and self.epochs:  # else said with the other reasons for no fix
+            warn(f"{self.path}: {self.tally['magnetic']} VTG sentence(s) give a magnetic course only, {_MAGNETIC}")
         if self.tally["leap"]:
             warn(f"{self.path}: {self.tally['leap']} RMC sentence(s) in the leap second 23:59:60 UTC are skipped: Unix "
                  "seconds have no such second, and the fixes after it are a second behind a clock that ran through it")
@@ -260,9 +301,30 @@ class _Epochs:
                       "without a date or time": tally["undated"], "without a course": tally["courseless"]}
             why = f"{tally['RMC']} are RMC: " + ", ".join(f"{n} {what}" for what, n in counts.items() if n)
             if tally["magnetic"]:
-                why += f"; {tally['magnetic']} VTG give a magnetic course only (a true one is needed)"
+                why += f"; {tally['magnetic']} VTG give a magnetic course only, {_MAGNETIC}"
         warn(f"no heading fix from {self.path}: of its {tally['sentences']} sentences, {why}; fixes come from valid RMC "
              "sentences with a course (or the VTG after one)")
+
+
+#: What is done with a VTG's magnetic course where its RMC gives no variation, and what to do.
+_MAGNETIC = ("and the RMC of their epoch no magnetic variation (fields 10 and 11) to make it true: their epochs are "
+             "skipped; set the receiver to write the true course in VTG, or the magnetic variation in RMC")
+
+
+def _vtg_fields(data: list[str]) -> tuple[str, str, str, str, str]:
+    """A VTG's true course, magnetic course, speed in knots and in km/h, and mode indicator, as
+    written ("" where empty), each value by the unit letter after it (T, M, N, K): receivers that
+    leave out the magnetic pair (``054.7,T,005.5,N,010.2,K``) shift the others along, where
+    pynmea2 reads by place and took the knots for a magnetic course and the km/h for knots. A VTG
+    of four values and no letter is NMEA 0183's before version 2, read by place."""
+    if len(data) == 4 and not set(data) & set(_VTG_UNITS):
+        true, magnetic, knots, kmh = data
+        return true, magnetic, knots, kmh, ""
+    values = dict.fromkeys(_VTG_UNITS, "")
+    for value, unit in zip(data[0::2], data[1::2]):
+        if unit in values:
+            values[unit] = value
+    return values["T"], values["M"], values["N"], values["K"], data[-1] if len(data) % 2 else ""
 
 
 def _utc(t: float) -> str:

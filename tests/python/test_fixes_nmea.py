@@ -14,11 +14,11 @@ pynmea2 = pytest.importorskip("pynmea2")
 
 
 def rmc(time: str = "123519", *, status: str = "A", speed: str = "010.0", course: str = "084.4",
-        date: str = "230394", mode: tuple[str, ...] = ()) -> str:
-    """An RMC sentence with a valid checksum over whatever its fields hold (``mode``: its mode
-    indicator, NMEA 2.3 on)."""
+        date: str = "230394", variation: tuple[str, str] = ("003.1", "W"), mode: tuple[str, ...] = ()) -> str:
+    """An RMC sentence with a valid checksum over whatever its fields hold (``variation``: its
+    magnetic variation, degrees and E or W; ``mode``: its mode indicator, NMEA 2.3 on)."""
     return str(pynmea2.RMC("GP", "RMC", (time, status, "4807.038", "N", "01131.000", "E", speed, course, date,
-                                         "003.1", "W", *mode)))
+                                         *variation, *mode)))
 
 
 def nmea(tmp_path: Path, *lines: str) -> Path:

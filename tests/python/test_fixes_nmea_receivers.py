@@ -67,7 +67,7 @@ def test_mode_indicators_of_no_measurement_give_no_fix(tmp_path: Path) -> None:
 
 def test_a_vtg_after_a_void_rmc_gives_no_earlier_epoch_its_course(tmp_path: Path) -> None:
     # the VTG of a void epoch gave its course to the valid epoch before, one second earlier
-    path = nmea(tmp_path, rmc("120000", course=""), vtg(""), rmc("120001", status="V"), vtg("180.0"))
+    path = nmea(tmp_path, rmc("120000", course=""), vtg("", magnetic=""), rmc("120001", status="V"), vtg("180.0"))
     with pytest.warns(InputWarning, match="no heading fix"):
         assert len(read_nmea(path)) == 0
 
@@ -79,9 +79,47 @@ def test_a_vtg_speed_in_knots_alone_is_read(tmp_path: Path) -> None:
     np.testing.assert_allclose(fixes.sigma, [math.hypot(math.radians(0.5), 0.2 / (10.0 * 1852.0 / 3600.0))])
 
 
-def test_a_vtg_with_a_magnetic_course_alone_is_counted(tmp_path: Path) -> None:
-    with pytest.warns(InputWarning, match=r"1 without a course; 1 VTG give a magnetic course only"):
-        assert len(read_nmea(nmea(tmp_path, rmc("120000", course=""), vtg("", magnetic="034.4")))) == 0
+@pytest.mark.parametrize(("variation", "magnetic", "true"), [(("003.1", "E"), "034.4", 37.5),
+                                                             (("003.1", "W"), "034.4", 31.3),
+                                                             (("005.0", "E"), "358.0", 3.0),
+                                                             (("005.0", "W"), "002.0", 357.0)],
+                         ids=["east", "west", "east-past-north", "west-past-north"])
+def test_a_vtg_magnetic_course_is_made_true_by_the_rmc_variation(tmp_path: Path, variation: tuple[str, str],
+                                                                 magnetic: str, true: float) -> None:
+    # a VTG with its true course empty gave no fix, where its RMC gave the variation (NMEA 0183:
+    # an easterly variation subtracts from the true course, so true = magnetic + east, - west)
+    fixes = read_nmea(nmea(tmp_path, rmc("120000", course="", variation=variation), vtg("", magnetic=magnetic)))
+    assert len(fixes) == 1
+    np.testing.assert_allclose(np.angle(np.exp(1j * (fixes.heading - math.radians(90.0 - true)))), 0.0, atol=1e-9)
+
+
+def test_a_vtg_magnetic_course_without_a_variation_is_skipped_saying_what_to_do(tmp_path: Path) -> None:
+    unknown = {"variation": ("", "")}
+    said = r"1 VTG give a magnetic course only, and the RMC of their epoch no magnetic variation .*: their epochs"
+    with pytest.warns(InputWarning, match=r"1 without a course; " + said + r" are skipped; set the receiver to write "
+                                          r"the true course in VTG, or the magnetic variation in RMC"):
+        assert len(read_nmea(nmea(tmp_path, rmc("120000", course="", **unknown), vtg("", magnetic="034.4")))) == 0
+    # among fixes it was skipped without a word
+    path = nmea(tmp_path, rmc("120000"), rmc("120001", course="", **unknown), vtg("", magnetic="034.4"))
+    with pytest.warns(InputWarning, match=r"drive.nmea: 1 VTG sentence\(s\) give a magnetic course only, and the RMC"):
+        assert len(read_nmea(path)) == 1
+    # a variation that is no angle is the RMC's line
+    path = nmea(tmp_path, rmc("120000"), rmc("120001", course="", variation=("x", "E")), vtg("", magnetic="034.4"))
+    with pytest.raises(ValueError, match=r"drive.nmea: line 2: the RMC's magnetic variation \('x', 'E'\) is no angle"):
+        read_nmea(path)
+
+
+@pytest.mark.parametrize("fields", [("054.7", "T", "005.5", "N", "010.2", "K"),
+                                    ("054.7", "T", "005.5", "N", "010.2", "K", "A"),
+                                    ("054.7", "034.4", "005.5", "010.2")],
+                         ids=["magnetic-pair-left-out", "magnetic-pair-left-out-with-mode", "before-nmea-2"])
+def test_a_vtg_is_read_by_its_unit_letters(tmp_path: Path, fields: tuple[str, ...]) -> None:
+    # without the magnetic pair the knots were read as a magnetic course and the km/h as knots (a
+    # speed 1.85 times too high, a sigma too small); the letterless VTG of NMEA 0183 before
+    # version 2 gave no fix, without a word
+    fixes = read_nmea(nmea(tmp_path, rmc("120000", course=""), str(pynmea2.VTG("GP", "VTG", fields))))
+    np.testing.assert_allclose(fixes.heading, [math.radians(90.0 - 54.7)], atol=1e-12)
+    np.testing.assert_allclose(fixes.sigma, [math.hypot(math.radians(0.5), 0.2 / (10.2 / 3.6))], rtol=1e-12)
 
 
 def test_a_sentence_without_its_checksum_names_its_line(tmp_path: Path) -> None:
