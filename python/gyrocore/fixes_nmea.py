@@ -49,6 +49,11 @@ NO_FIX_MODES = ("N", "E", "M")
 #: passed (the receiver advanced the date field a sentence or more late): more than half a day.
 DAY = 86_400.0
 _HALF_DAY = DAY / 2
+#: The last seconds before midnight UTC in which an RMC dated a day after the epoch before it is
+#: of that epoch's day: a receiver that takes its date from GPS time (18 s ahead of UTC since
+#: 2017) advances the date field early. Further from midnight the next day's date is a gap in
+#: the log, taken as written.
+EARLY_DATE = 60.0
 
 #: The unit letters of a VTG's values: true and magnetic course, speed in knots and in km/h.
 _VTG_UNITS = ("T", "M", "N", "K")
@@ -77,7 +82,9 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
     it is skipped with a warning.
 
     Sentences are taken in the order written: an RMC time of day that wraps past midnight while
-    its date field has not yet advanced is of the next day, a time that steps back otherwise is an
+    its date field has not yet advanced is of the next day, one in the last :data:`EARLY_DATE`
+    seconds before midnight dated a day after the RMC before it (the date advanced early) is of
+    that RMC's day (a warning counts the sentences so moved), a time that steps back otherwise is an
     error naming its line, and of RMC sentences repeating one time the first is kept (a warning
     counts those that differ from it); one in the leap second 23:59:60 is skipped with a warning.
     A line that is no sentence, an RMC or VTG without a checksum, or one whose fields are not
@@ -107,9 +114,11 @@ class _Epochs:
         self.tally: Counter[str] = Counter()
         self.last: float | None = None  # the epoch of the valid RMC just before: a VTG's
         # the last dated RMC: its date field, time of day [s], time [s] and line; and the days
-        # added to the times of its date field (one, after midnight with the date not yet advanced)
+        # added to the times of its date field (one after midnight with the date not yet advanced,
+        # minus one before it with the date advanced early: see _days_off)
         self.clock: tuple[datetime.date, float, float, int] | None = None
         self.lag = 0.0
+        self.moved: int | None = None  # the line of the first RMC put on another day than its date field's
         # the magnetic variation of the valid RMC just before (its fields 10 and 11) and its line: a
         # VTG's magnetic course is made true by it
         self.variation: tuple[str, str, int] = ("", "", 0)
@@ -228,16 +237,17 @@ class _Epochs:
         return degrees if side == "E" else -degrees
 
     def _time(self, msg: Any, number: int) -> float:
-        """The time [s] of the dated RMC ``msg``, on the clock of the RMC before it: a time of day
-        that falls by more than half a day under one date is after midnight; any other fall is an
-        error naming the line."""
+        """The time [s] of the dated RMC ``msg``, on the clock of the RMC before it: its date
+        field is taken where it agrees with its time of day, and put right where it is a day off
+        it (see :func:`_days_off`); a time that falls otherwise is an error naming the line."""
         t = float(msg.datetime.timestamp())  # first: a field that is not a date or a time raises a TypeError
         date, clock = msg.datestamp, msg.timestamp
         of_day = 3600.0 * clock.hour + 60.0 * clock.minute + clock.second + clock.microsecond / 1e6
-        if self.clock is None or date != self.clock[0]:
-            self.lag = 0.0
-        elif self.clock[1] - of_day > _HALF_DAY:
-            self.lag += DAY  # midnight passed, the date field not yet advanced
+        off = None if self.clock is None else _days_off(self.clock[0], self.clock[1], date, of_day)
+        self.lag = 0.0 if off is None else self.lag + off * DAY
+        if self.lag:
+            self.tally["moved"] += 1
+            self.moved = number if self.moved is None else self.moved
         t += self.lag
         if self.clock is not None and t < self.clock[2]:
             before, line = self.clock[2], self.clock[3]
@@ -285,6 +295,10 @@ class _Epochs:
             warn(f"{self.path}: {self.tally['repeats']} RMC sentence(s) repeat the time of an earlier one with another "
                  f"course or speed (the first: line {self.repeat}), and the first of each time is kept: a receiver "
                  "faster than its time's resolution (5 Hz in whole seconds) or repeating a time writes them")
+        if self.tally["moved"]:
+            warn(f"{self.path}: {self.tally['moved']} RMC sentence(s) have a date field off the day their time of day "
+                 f"runs on to (the first: line {self.moved}), the receiver advancing it early, in the last "
+                 f"{EARLY_DATE:.0f} s before midnight UTC, or late, after it: they are put on that day")
         if self.tally["magnetic"] and self.epochs:  # else said with the other reasons for no fix
             warn(f"{self.path}: {self.tally['magnetic']} VTG sentence(s) give a magnetic course only, {_MAGNETIC}")
         if self.tally["leap"]:
@@ -325,6 +339,23 @@ def _vtg_fields(data: list[str]) -> tuple[str, str, str, str, str]:
         if unit in values:
             values[unit] = value
     return values["T"], values["M"], values["N"], values["K"], data[-1] if len(data) % 2 else ""
+
+
+def _days_off(date_before: datetime.date, of_day_before: float, date: datetime.date, of_day: float) -> int | None:
+    """The days by which the date field ``date`` of an RMC at ``of_day`` [s] is off the day its
+    time of day runs on to from the RMC before it (``date_before``, ``of_day_before``), the time
+    of day being what a receiver gets right: the day advances where the time of day falls by
+    more than half a day (midnight passed). 1 where the date field has not advanced with it
+    (late); -1 where it has advanced and the time of day has not, within :data:`EARLY_DATE` of
+    midnight (early); 0 where the two agree, and None where the date field steps otherwise (a
+    gap in the log, taken as written)."""
+    passed = int(of_day_before - of_day > _HALF_DAY)
+    step = (date - date_before).days
+    if step == passed:
+        return 0
+    if (step, passed) == (0, 1) or ((step, passed) == (1, 0) and of_day >= DAY - EARLY_DATE):
+        return passed - step
+    return None
 
 
 def _utc(t: float) -> str:

@@ -5,6 +5,7 @@ short, and the course convention and clock of the fixes read (gyrocore.fixes.rea
 from __future__ import annotations
 
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -36,7 +37,11 @@ def test_a_log_across_midnight_utc_runs_on_into_the_next_day(tmp_path: Path, dat
     # a fix 86398 s before the others, outside any gyro's span, the rest out of step
     times = ("235958", "235959", "000000", "000001")
     path = nmea(tmp_path, *(rmc(time, date=date) for time, date in zip(times, dates)))
-    np.testing.assert_array_equal(read_nmea(path).t, DAY0 + 86398.0 + np.arange(4))
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        np.testing.assert_array_equal(read_nmea(path).t, DAY0 + 86398.0 + np.arange(4))
+    late = sum(date == "230394" for date in dates[2:])  # the sentences after midnight dated the day before
+    assert [str(w.message).split(": ", 1)[1][:2] for w in said] == ([f"{late} "] if late else [])
     # a VTG after midnight gives the course of the epoch just before it, on the next day
     path = nmea(tmp_path, rmc("235959", course=""), vtg("000.0"), rmc("000000", course="", date=dates[2]),
                 vtg("090.0"))
@@ -120,6 +125,33 @@ def test_a_vtg_is_read_by_its_unit_letters(tmp_path: Path, fields: tuple[str, ..
     fixes = read_nmea(nmea(tmp_path, rmc("120000", course=""), str(pynmea2.VTG("GP", "VTG", fields))))
     np.testing.assert_allclose(fixes.heading, [math.radians(90.0 - 54.7)], atol=1e-12)
     np.testing.assert_allclose(fixes.sigma, [math.hypot(math.radians(0.5), 0.2 / (10.2 / 3.6))], rtol=1e-12)
+
+
+def test_a_date_advanced_early_before_midnight_is_put_on_its_day(tmp_path: Path) -> None:
+    # a receiver that takes its date from GPS time stamps the next day's date on the last seconds
+    # before midnight UTC: 00:00:00 stepped a day back from 23:59:59, "the time steps back"
+    times, dates = ("235958", "235959", "000000", "000001"), ("230394", "240394", "240394", "240394")
+    path = nmea(tmp_path, *(rmc(time, date=date) for time, date in zip(times, dates)))
+    with pytest.warns(InputWarning, match=r"drive.nmea: 1 RMC sentence\(s\) have a date field off the day their "
+                                          r"time of day runs on to \(the first: line 2\), the receiver advancing it "
+                                          r"early"):
+        np.testing.assert_array_equal(read_nmea(path).t, DAY0 + 86398.0 + np.arange(4))
+    # 18 s early (GPS time's lead on UTC), at 1 Hz
+    times = [f"2359{s:02d}" for s in range(40, 60)] + ["000000", "000001"]
+    path = nmea(tmp_path, *(rmc(time, date="240394" if i >= 2 else "230394") for i, time in enumerate(times)))
+    with pytest.warns(InputWarning, match=r"18 RMC sentence\(s\) have a date field off the day"):
+        np.testing.assert_array_equal(read_nmea(path).t, DAY0 + 86380.0 + np.arange(22))
+    # a genuine step back is still one
+    path = nmea(tmp_path, rmc("235959", date="230394"), rmc("235958", date="240394"))
+    with pytest.raises(ValueError, match=r"line 2: the time steps back, from 1994-03-23 23:59:59 \(line 1\) to "
+                                         r"1994-03-23 23:59:58 UTC"):
+        read_nmea(path)
+    # further from midnight the next day's date is a gap in the log, taken as written
+    for time in ("120001", "235800"):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            fixes = read_nmea(nmea(tmp_path, rmc("120000", date="230394"), rmc(time, date="240394")))
+        assert fixes.t[1] == DAY0 + 86400.0 + int(time[:2]) * 3600 + int(time[2:4]) * 60 + int(time[4:])
 
 
 def test_a_sentence_without_its_checksum_names_its_line(tmp_path: Path) -> None:
