@@ -153,6 +153,8 @@ class _Epochs:
             reason = reason[0] if isinstance(reason, tuple) and reason else reason
             return self._unusable(number, ended, f"not an NMEA sentence ({reason}: {shown(text, 100)})")
         if not isinstance(msg, (self.pynmea2.RMC, self.pynmea2.VTG)):
+            # a position without a course: counted, to say what to do with a log of them alone
+            self.tally["positions"] += isinstance(msg, (self.pynmea2.GGA, self.pynmea2.GNS, self.pynmea2.GLL))
             return
         if "*" not in text:  # pynmea2 takes a sentence without one: "084.4,230394" cut to "084.4,2303" dated 2003
             return self._unusable(number, ended, f"an {msg.sentence_type} sentence without its checksum (*hh; "
@@ -310,6 +312,10 @@ class _Epochs:
         tally = self.tally
         if not tally["RMC"]:
             why = "none is RMC"
+            if tally["positions"]:
+                why += (f"; {tally['positions']} are GGA, GNS or GLL, positions without a course: set the receiver to "
+                        "write RMC (and VTG), or take the course of each step between positions with "
+                        "gyrocore.fixes.from_latlon")
         else:
             counts = {"void (status V)": tally["void"], "of mode N, E or M (no measurement)": tally["mode"],
                       "without a date or time": tally["undated"], "without a course": tally["courseless"]}

@@ -59,6 +59,26 @@ def test_sentences_of_no_fix_warn_with_their_counts(tmp_path: Path) -> None:
         assert len(read_nmea(path)) == 0
 
 
+def test_a_log_of_positions_alone_says_what_to_do(tmp_path: Path) -> None:
+    # a GGA or GNS log said "none is RMC" and no more
+    gga = "$GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,*47"
+    gns = str(pynmea2.GNS("GN", "GNS", ("123520", "4807.038", "N", "01131.000", "E", "AN", "08", "0.9", "545.4",
+                                       "46.9", "", "")))
+    with pytest.warns(InputWarning, match=r"of its 2 sentences, none is RMC; 2 are GGA, GNS or GLL, positions without "
+                                          r"a course: set the receiver to write RMC \(and VTG\), or take the course "
+                                          r"of each step between positions with gyrocore.fixes.from_latlon"):
+        assert len(read_nmea(nmea(tmp_path, gga, gns))) == 0
+
+
+def test_a_checksum_in_lower_case_hex_and_crlf_line_ends_are_read(tmp_path: Path) -> None:
+    # receivers and loggers write either case, and serial logs end lines with CR LF
+    lines = [rmc(f"1235{s:02d}") for s in range(20)]
+    assert any(c in "ABCDEF" for line in lines for c in line[-2:])
+    path = tmp_path / "drive.nmea"
+    path.write_bytes("".join(f"{line[:-2]}{line[-2:].lower()}\r\n" for line in lines).encode())
+    assert len(read_nmea(path)) == 20
+
+
 def test_a_sentence_of_a_type_pynmea2_does_not_know_is_skipped(tmp_path: Path) -> None:
     # "Other sentences are skipped", but one of a type pynmea2 lacks was "not an NMEA sentence"
     unknown = "$GPXYZ,1,2,3*50"
