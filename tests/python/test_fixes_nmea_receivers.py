@@ -45,7 +45,10 @@ def test_a_log_across_midnight_utc_runs_on_into_the_next_day(tmp_path: Path, dat
     # a VTG after midnight gives the course of the epoch just before it, on the next day
     path = nmea(tmp_path, rmc("235959", course=""), vtg("000.0"), rmc("000000", course="", date=dates[2]),
                 vtg("090.0"))
-    fixes = read_nmea(path)
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        fixes = read_nmea(path)
+    assert len(said) == (dates[2] == "230394")  # the one sentence after midnight, dated the day before
     np.testing.assert_array_equal(fixes.t, [DAY0 + 86399.0, DAY0 + 86400.0])
     np.testing.assert_allclose(fixes.heading, [math.pi / 2, 0.0], atol=1e-12)
 
