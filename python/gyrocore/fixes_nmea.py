@@ -335,13 +335,15 @@ def _vtg_fields(data: list[str]) -> tuple[str, str, str, str, str]:
     """A VTG's true course, magnetic course, speed in knots and in km/h, and mode indicator, as
     written ("" where empty), each value by the unit letter after it (T, M, N, K): receivers that
     leave out the magnetic pair (``054.7,T,005.5,N,010.2,K``) shift the others along, where
-    pynmea2 reads by place and took the knots for a magnetic course and the km/h for knots. A VTG
-    of four values and no letter is NMEA 0183's before version 2, read by place."""
+    pynmea2 reads by place and took the knots for a magnetic course and the km/h for knots. A
+    letter left empty is that of its place in the standard layout, and a VTG of four values and
+    no letter is NMEA 0183's before version 2, read by place."""
     if len(data) == 4 and not set(data) & set(_VTG_UNITS):
         true, magnetic, knots, kmh = data
         return true, magnetic, knots, kmh, ""
     values = dict.fromkeys(_VTG_UNITS, "")
-    for value, unit in zip(data[0::2], data[1::2]):
+    for place, (value, unit) in enumerate(zip(data[0::2], data[1::2])):
+        unit = unit or (_VTG_UNITS[place] if place < len(_VTG_UNITS) else "")
         if unit in values:
             values[unit] = value
     return values["T"], values["M"], values["N"], values["K"], data[-1] if len(data) % 2 else ""

@@ -119,8 +119,10 @@ def test_a_vtg_magnetic_course_without_a_variation_is_skipped_saying_what_to_do(
 
 @pytest.mark.parametrize("fields", [("054.7", "T", "005.5", "N", "010.2", "K"),
                                     ("054.7", "T", "005.5", "N", "010.2", "K", "A"),
-                                    ("054.7", "034.4", "005.5", "010.2")],
-                         ids=["magnetic-pair-left-out", "magnetic-pair-left-out-with-mode", "before-nmea-2"])
+                                    ("054.7", "034.4", "005.5", "010.2"),
+                                    ("054.7", "", "034.4", "", "005.5", "", "010.2", "", "A")],
+                         ids=["magnetic-pair-left-out", "magnetic-pair-left-out-with-mode", "before-nmea-2",
+                              "letters-left-empty"])
 def test_a_vtg_is_read_by_its_unit_letters(tmp_path: Path, fields: tuple[str, ...]) -> None:
     # without the magnetic pair the knots were read as a magnetic course and the km/h as knots (a
     # speed 1.85 times too high, a sigma too small); the letterless VTG of NMEA 0183 before
