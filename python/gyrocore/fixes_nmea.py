@@ -7,7 +7,8 @@ A file is read line by line, in the order written, and a line that cannot be use
 naming the file and the line: one that is no sentence (a bad checksum, a line longer than any
 sentence), an RMC or VTG without its checksum (a sentence cut short reads as one of other values),
 one whose date, time, course or speed is not a value (pynmea2 hands such a field back as its
-text), and an RMC whose time steps back. The last line, cut off without a line end (a log stopped
+text), an RMC whose time steps back, and one whose magnetic variation, needed to make a VTG's
+magnetic course true, is no angle. The last line, cut off without a line end (a log stopped
 mid-write), is skipped after a warning instead. A serial log, with a receiver's binary messages
 (u-blox UBX) among its sentences, is read from its first binary data on as such: a sentence after
 binary data on its line is read, and a line of no sentence skipped, with a warning counting them.
@@ -82,17 +83,17 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
     it is skipped with a warning.
 
     Sentences are taken in the order written: an RMC time of day that wraps past midnight while
-    its date field has not yet advanced is of the next day, one in the last :data:`EARLY_DATE`
-    seconds before midnight dated a day after the RMC before it (the date advanced early) is of
-    that RMC's day (a warning counts the sentences so moved), a time that steps back otherwise is an
-    error naming its line, and of RMC sentences repeating one time the first is kept (a warning
+    its date field has not yet advanced is of the next day, and one in the last
+    :data:`EARLY_DATE` seconds before midnight dated a day after the RMC before it (the date
+    advanced early) is of that RMC's day, a warning counting the sentences so moved either way; a
+    time that steps back otherwise is an error naming its line, and of RMC sentences repeating one time the first is kept (a warning
     counts those that differ from it); one in the leap second 23:59:60 is skipped with a warning.
     A line that is no sentence, an RMC or VTG without a checksum, or one whose fields are not
     values is an error naming the file and line, as is a file of no sentence; a last line cut off
     without a line end is skipped with a warning, and so, from the first binary data on (a serial
     log's binary messages among its sentences), is a line of no sentence, a sentence after binary
     data on its line read. Sentences that give no fix warn with their counts (void RMC, RMC without
-    a course). The times are UTC: shift them onto the gyro's clock before fusing. ``options`` go to
+    a course; a log of GGA, GNS or GLL positions alone says what to do). The times are UTC: shift them onto the gyro's clock before fusing. ``options`` go to
     :func:`gyrocore.fixes.from_gnss`.
     """
     require_options("read_nmea (from_gnss's)", options, keyword_options(from_gnss))  # before the file is read
