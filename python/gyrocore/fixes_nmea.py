@@ -43,8 +43,9 @@ MAX_LINE = 4096
 
 #: Mode indicators (NMEA 2.3 on, the last field of RMC and VTG) of a course that is no measurement,
 #: which receivers write with status A: N (data not valid), E (estimated: the receiver's dead
-#: reckoning, its last course carried through an outage) and M (manual input).
-NO_FIX_MODES = ("N", "E", "M")
+#: reckoning, its last course carried through an outage), M (manual input) and S (simulator: the
+#: receiver's own simulated fixes, of no vehicle's motion).
+NO_FIX_MODES = ("N", "E", "M", "S")
 
 #: Seconds in a day, and the fall of an RMC's time of day under one date that is midnight UTC
 #: passed (the receiver advanced the date field a sentence or more late): more than half a day.
@@ -75,7 +76,7 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
     their UTC date and time as Unix seconds; a VTG sentence supplies the course (and speed, in
     km/h or else knots) of the valid RMC epoch just before it where that RMC had none. Other
     sentences are skipped (those pynmea2 does not know too), as are RMC and VTG whose mode
-    indicator is N, E or M (:data:`NO_FIX_MODES`).
+    indicator is N, E, M or S (:data:`NO_FIX_MODES`).
 
     A VTG's values are read by their unit letters (T, M, N, K; NMEA 0183's VTG before version 2,
     without them, by place); one with a magnetic course alone is made true by the magnetic
@@ -318,7 +319,7 @@ class _Epochs:
                         "write RMC (and VTG), or take the course of each step between positions with "
                         "gyrocore.fixes.from_latlon")
         else:
-            counts = {"void (status V)": tally["void"], "of mode N, E or M (no measurement)": tally["mode"],
+            counts = {"void (status V)": tally["void"], "of mode N, E, M or S (no measurement)": tally["mode"],
                       "without a date or time": tally["undated"], "without a course": tally["courseless"]}
             why = f"{tally['RMC']} are RMC: " + ", ".join(f"{n} {what}" for what, n in counts.items() if n)
             if tally["magnetic"]:

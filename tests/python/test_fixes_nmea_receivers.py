@@ -69,8 +69,17 @@ def test_mode_indicators_of_no_measurement_give_no_fix(tmp_path: Path) -> None:
     np.testing.assert_array_equal(read_nmea(path).t, DAY0 + 43200.0 + np.array([0.0, 1.0, 5.0]))
     path = nmea(tmp_path, rmc("120000", course=""), vtg(mode=("N",)), rmc("120001", course=""), vtg(mode=("A",)))
     np.testing.assert_array_equal(read_nmea(path).t, [DAY0 + 43201.0])
-    with pytest.warns(InputWarning, match=r"of its 2 sentences, 2 are RMC: 1 void \(status V\), 1 of mode N, E or M"):
+    with pytest.warns(InputWarning, match=r"of its 2 sentences, 2 are RMC: 1 void \(status V\), 1 of mode N, E, M or S"):
         assert len(read_nmea(nmea(tmp_path, rmc(status="V"), rmc(mode=("N",))))) == 0
+
+
+def test_a_receivers_simulator_mode_gives_no_fix(tmp_path: Path) -> None:
+    # status A with mode S (the receiver's own simulator, NMEA 2.3 on) gave fixes of no vehicle's
+    # motion, as sure as measured ones
+    path = nmea(tmp_path, rmc("120000", mode=("S",)), rmc("120001", course=""), vtg(mode=("S",)), rmc("120002"))
+    np.testing.assert_array_equal(read_nmea(path).t, [DAY0 + 43202.0])
+    with pytest.warns(InputWarning, match=r"of its 1 sentences, 1 are RMC: 1 of mode N, E, M or S \(no measurement\)"):
+        assert len(read_nmea(nmea(tmp_path, rmc(mode=("S",))))) == 0
 
 
 def test_a_vtg_after_a_void_rmc_gives_no_earlier_epoch_its_course(tmp_path: Path) -> None:
