@@ -203,6 +203,7 @@ def test_a_folder_is_listed_once(tmp_path: Path, monkeypatch: pytest.MonkeyPatch
     listings was seen by one and not the other."""
     import gzip
     import warnings
+    from collections.abc import Iterator
 
     from gyrocore.batch import expand_inputs
 
@@ -213,7 +214,7 @@ def test_a_folder_is_listed_once(tmp_path: Path, monkeypatch: pytest.MonkeyPatch
     listed: list[Path] = []
     iterdir = Path.iterdir
 
-    def counted(self: Path):  # type: ignore[no-untyped-def]
+    def counted(self: Path) -> Iterator[Path]:
         listed.append(self)
         return iterdir(self)
 

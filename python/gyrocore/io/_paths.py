@@ -179,7 +179,8 @@ def compressed_logs(entries: Iterable[Path], suffixes: tuple[str, ...]) -> str:
     of a batch without a word. ``entries``: the folder's listing, which its caller has made already
     (a folder listed twice cost twice on a network file system, and a file arriving between the
     two listings was seen by one and not the other)."""
-    found = sorted(c.name for c in entries if c.suffix.lower() in COMPRESSED and Path(c.stem).suffix.lower() in suffixes)
+    found = sorted(c.name for c in entries
+                   if c.suffix.lower() in COMPRESSED and Path(c.stem).suffix.lower() in suffixes)
     if not found:
         return ""
     names = ", ".join(found[:3]) + (" ..." if len(found) > 3 else "")
