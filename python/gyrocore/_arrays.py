@@ -8,7 +8,7 @@ import math
 import numbers
 import sys
 import threading
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -75,7 +75,8 @@ def _pandas_na_as_nan(a: np.ndarray) -> np.ndarray:
     return a
 
 
-def as_float_array(name: str, values: ArrayLike, *, copy: bool = False, masked: str = MASKED_LEFT_OUT) -> FloatArray:
+def as_float_array(name: str, values: ArrayLike, *, copy: bool = False, masked: str = MASKED_LEFT_OUT,
+                   unit: str | None = None) -> FloatArray:
     """Return ``values`` as a 1-D contiguous float64 array, copying only when needed, or always
     with ``copy`` (for an array a result or record keeps: the caller's own array, or the data an
     ``__array__`` hands over, kept as it is, changed with the caller's, ``r.t[:] -= r.t[0]`` moving
@@ -83,11 +84,13 @@ def as_float_array(name: str, values: ArrayLike, *, copy: bool = False, masked: 
 
     ``timedelta64`` values are durations and become seconds, whatever their unit (NaT becomes NaN);
     ``datetime64`` is refused, since which epoch a time counts from is the caller's choice.
+    ``unit``: the values are a quantity in that unit (a rate in ``"rad/s"``), never a time, and
+    durations and dates are refused (:func:`refuse_times`).
 
     Raises TypeError for non-numeric data and ValueError for a wrong shape or masked values (see
     :func:`refuse_masked`, ``masked`` its hint).
     """
-    out, fresh = _converted(name, values, masked)
+    out, fresh = _converted(name, values, masked, unit)
     return out.copy() if copy and not fresh else out
 
 
@@ -95,7 +98,7 @@ def as_float_array_owned(name: str, values: ArrayLike, *, copy: bool = True) -> 
     """:func:`as_float_array` of ``values``, and what a result keeps of it (:class:`OwnCopy`: a
     copy begun by its :meth:`~OwnCopy.start` before the work it may run beside, or without
     ``copy`` the array itself, read-only)."""
-    out, fresh = _converted(name, values, MASKED_LEFT_OUT)
+    out, fresh = _converted(name, values, MASKED_LEFT_OUT, None)
     return out, OwnCopy(out, fresh, copy=copy)
 
 
@@ -162,7 +165,7 @@ class OwnCopy:
             self._thread = None
 
 
-def _converted(name: str, values: ArrayLike, masked: str) -> tuple[FloatArray, bool]:
+def _converted(name: str, values: ArrayLike, masked: str, unit: str | None) -> tuple[FloatArray, bool]:
     """:func:`as_float_array` of ``values`` without a copy, and whether it is a new array (a
     conversion's) rather than the caller's own."""
     refuse_masked(name, values, masked)
@@ -170,6 +173,8 @@ def _converted(name: str, values: ArrayLike, masked: str) -> tuple[FloatArray, b
         array = np.asarray(values)
     except ValueError as e:  # a ragged list: numpy's message names neither the argument nor a fix
         raise ValueError(f"{name} must be one flat sequence of numbers ({e})") from None
+    if unit is not None:
+        refuse_times(name, array, unit)
     if array.dtype == np.object_ and array.size and all(isinstance(v, datetime.timedelta) for v in array.flat):
         array = seconds_of(array)  # Python's durations ([d - start for d in times]), as numpy's are
     a = durations_in_seconds(name, array)
@@ -215,26 +220,45 @@ def _converted(name: str, values: ArrayLike, masked: str) -> tuple[FloatArray, b
 
 
 def float_fields(record: object, names: Sequence[str], prefix: str = "", *, copy: bool = False,
-                 frozen: bool = False) -> None:
+                 frozen: bool = False, units: Mapping[str, str] | None = None) -> None:
     """Set each field ``names`` of the frozen dataclass ``record`` that is not None to
     :func:`as_float_array` of it (named ``prefix`` + its name in an error): a record built from
     pandas columns or lists then holds numpy arrays, and reads them by position (a Series' ``t[0]``
-    is a look-up by label). ``frozen``: to :func:`frozen_array` of it."""
+    is a look-up by label). ``frozen``: to :func:`frozen_array` of it. ``units``: the unit of each
+    field that is a quantity, not a time (durations and dates refused in it)."""
     for name in names:
         value = getattr(record, name)
         if value is not None:
-            a = frozen_array(prefix + name, value) if frozen else as_float_array(prefix + name, value, copy=copy)
+            unit = None if units is None else units.get(name)
+            a = (frozen_array(prefix + name, value, unit=unit) if frozen
+                 else as_float_array(prefix + name, value, copy=copy, unit=unit))
             object.__setattr__(record, name, a)
 
 
-def frozen_array(name: str, values: ArrayLike) -> FloatArray:
+def refuse_times(name: str, values: np.ndarray, unit: str) -> None:
+    """A TypeError for durations or dates (numpy's ``timedelta64``/``datetime64``, a pandas
+    timedelta column, Python's ``timedelta``/``datetime``) given as ``name``, a quantity in ``unit``
+    (a rate in rad/s, a heading in rad, a speed in m/s): read as a time, a duration became seconds
+    and was processed as so many rad/s without a word. ``values`` as numpy reads them. Every array
+    of a quantity passes here (:func:`as_float_array`'s ``unit``), and a file's column too."""
+    kind = values.dtype.kind
+    if kind == "O" and values.size:  # Python's (or pandas') objects: the first one tells
+        first = values.flat[0]
+        kind = "m" if isinstance(first, (datetime.timedelta, np.timedelta64)) else (
+            "M" if isinstance(first, (datetime.datetime, datetime.date, np.datetime64)) else kind)
+    if kind in "mM":
+        what = "durations" if kind == "m" else "dates"
+        raise TypeError(f"{name} holds {what} ({values.dtype}), not values in {unit}: give {name} as floats in {unit}")
+
+
+def frozen_array(name: str, values: ArrayLike, *, unit: str | None = None) -> FloatArray:
     """``values`` as a read-only float64 array (:func:`as_float_array`) that the caller's writes do
     not reach: a read-only ndarray as it is (a memory map opened read-only, another record's frozen
     array: its holder keeps it unchanged, numpy's meaning of the flag), anything else copied (once:
     a conversion's new array is not copied again). A pandas column is copied too: the read-only
     view pandas' copy-on-write hands numpy still changes with ``df.loc[i, "t"] = x``."""
     given_read_only = isinstance(values, np.ndarray) and not values.flags.writeable
-    a = as_float_array(name, values, copy=not given_read_only)
+    a = as_float_array(name, values, copy=not given_read_only, unit=unit)
     a.flags.writeable = False  # a write through it fails: "assignment destination is read-only"
     return a
 

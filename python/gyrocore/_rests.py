@@ -33,6 +33,7 @@ from ._arrays import FloatArray
 from ._checks import usable
 from ._motion import warn_if_turning
 from ._smoother import LeaveOneOut
+from ._time_steps import time_steps_named
 from .rests import Rest
 from .window import (
     MIN_WINDOW_READINGS, RestWindowError, no_usable_reading, refuse_few_readings, refuse_past_end, refuse_window_outside,
@@ -189,7 +190,10 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
     samples = int(np.count_nonzero((ts >= start) & (ts <= end)))
     if samples == 0:
         raise no_usable_reading(start, end, first, last)
-    bias, _, noise, batch_error = _gyrocore.static_bias_test(ts, rs, start, end)  # first: it names a bad sample
+    # first: it names a bad sample; times of the window rounded to float32 are named as the whole
+    # log's are (a tuning case's rest window was the one pass over them that said "sort the log")
+    with time_steps_named(ts):
+        bias, _, noise, batch_error = _gyrocore.static_bias_test(ts, rs, start, end)
     if found_by.startswith("given"):
         given = {"bias_duration": end - start} if found_by == "given: bias_duration" else {"bias_window": (start, end)}
         refuse_few_readings(rest_window_text(given), samples)

@@ -129,7 +129,7 @@ def deviation(
             averaging times that would sum more than
             :data:`MAX_ALL_TERMS` terms (samples times taus), an unknown option.
     """
-    data = as_float_array("rate", rate, masked=_MASKED)
+    data = as_float_array("rate", rate, masked=_MASKED, unit="rad/s")
     result = _curve(data, dt, is_rate=True, taus=taus, overlapping=overlapping, kind=kind,
                     confidence=confidence, noise_alpha=noise_alpha)
     warn_if_moving(data, dt)
@@ -149,7 +149,7 @@ def phase_deviation(
     """Allan deviation from phase data: an angle [rad] sampled every ``dt`` seconds (a rate
     integrated by the sensor, or Stable32's phase files). The deviation is in rad/s (phase unit
     per second). Options as :func:`deviation`; ``samples`` counts phase samples."""
-    data = as_float_array("phase", phase, masked=_MASKED)
+    data = as_float_array("phase", phase, masked=_MASKED, unit="rad")
     return _curve(data, dt, is_rate=False, taus=taus, overlapping=overlapping, kind=kind,
                   confidence=confidence, noise_alpha=noise_alpha)
 
@@ -185,7 +185,7 @@ def deviation_from_timestamps(
     and the deviation at taus up to a few intervals reads low.
     """
     ta = as_float_array("t", t, masked=_MASKED)
-    ra = as_float_array("rate", rate, masked=_MASKED)
+    ra = as_float_array("rate", rate, masked=_MASKED, unit="rad/s")
     _refuse_non_overlapping_modified(kind, overlapping)  # before the log is integrated
     if len(ta) < 3:
         raise ValueError(f"need at least 3 samples for an Allan deviation, got {len(ta)}")

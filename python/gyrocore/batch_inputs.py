@@ -38,7 +38,7 @@ def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
                 check_readable(m)
                 entries = sorted(m.iterdir())
                 inside = [c for c in entries if _named_as_input(c)]
-                packed = compressed_logs(m, io.FILE_SUFFIXES)
+                packed = compressed_logs(entries, io.FILE_SUFFIXES)  # the one listing
                 if not inside and named:
                     raise ValueError(f"{m}: no logs in this folder ({', '.join(io.FILE_SUFFIXES)}, log or bag folders)"
                                      + (f"; it holds {packed}" if packed else _dataset_hint(m)))

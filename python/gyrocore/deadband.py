@@ -63,7 +63,7 @@ def expected_output(rate: ArrayLike, noise_rms: float, threshold: float) -> Floa
     _check(noise_rms, threshold)
     refuse_masked("rate", rate)  # the masked values were used as data
     # the package's checks of an array, in any shape: text was numpy's "could not convert string to float"
-    b = as_float_array("rate", np.ravel(rate)).reshape(np.shape(rate))
+    b = as_float_array("rate", np.ravel(rate), unit="rad/s").reshape(np.shape(rate))
     require_finite("rate", b)  # NaN came back as the expected output, without a word
     # a rate or threshold many noise levels wide overflows a, c or their squares to infinity, where
     # the distribution (0 or 1) and the density (0) are their exact limits: no warning is due

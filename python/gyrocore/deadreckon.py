@@ -81,9 +81,9 @@ def dead_reckon(
     x0, y0 = _point("position", position)
     heading_offset = check_number("heading_offset", heading_offset, low=None, unit=" [rad]")
     ts = as_float_array("t_speed", t_speed)
-    v = as_float_array("speed", speed)
+    v = as_float_array("speed", speed, unit="m/s")
     th = as_float_array("t_heading", t_heading)
-    psi = as_float_array("heading", heading)
+    psi = as_float_array("heading", heading, unit="rad")
     require_series("t_speed", ts, "speed", v)
     require_series("t_heading", th, "heading", psi)
     if len(th) < 2:

@@ -372,14 +372,19 @@ class Failed:
 
 
 def format_table(rows: Sequence[Score | Failed], *, file: Any = None) -> None:
-    """Print ``rows`` as a table (E_psi, NE_psi, final and maximum error, improvement vs raw), a
-    log that failed as its ``FAILED`` line where it comes."""
+    """Print ``rows`` as a table (E_psi, NE_psi, final and maximum error, improvement over plain
+    integration, ``vs plain``), a log that failed as its ``FAILED`` line where it comes.
+
+    The improvement's baseline is plain integration of the readings as they are, no bias removed
+    (:func:`raw_baseline`), for every row: the column was headed ``vs raw``, and a ``raw`` row
+    given a bias (``--bias-dps``), which then is not plain integration, read 0.8x "vs raw". A line
+    under the table says so where a ``raw`` row removes a bias."""
     out = file or sys.stdout
     scores = [r for r in rows if isinstance(r, Score)]
     has_position = any(r.position is not None for r in scores)
     width = max([14, *(len(r.label) for r in scores)])
     header = (
-        f"{'log':<{width}} {'method':<16} {'E_psi':>8} {'NE_psi':>9} {'final':>8} {'max':>8} {'vs raw':>8}"
+        f"{'log':<{width}} {'method':<16} {'E_psi':>8} {'NE_psi':>9} {'final':>8} {'max':>8} {'vs plain':>8}"
         f" {'return':>8}" + (f" {'pos mean':>9} {'pos end':>8}" if has_position else "")
     )
     print(header, file=out)
@@ -399,6 +404,10 @@ def format_table(rows: Sequence[Score | Failed], *, file: Any = None) -> None:
             p = r.position
             line += " " + (f"{p.mean_error_m:>9.2f} {p.final_error_m:>8.2f}" if p else f"{'-':>9} {'-':>8}")
         print(line, file=out)
+    biased = [r.method.name for r in scores if r.method.preset == "raw" and has_bias_source(dict(r.method.overrides))]
+    if biased:
+        print(f"{', '.join(dict.fromkeys(biased))}: removes the bias given, so it is not plain integration, the "
+              "baseline of 'vs plain' (the readings integrated as they are, no bias removed)", file=out)
     # the JSON's "gaps" had no place in the table: a log's score over a gap was taken for a whole one
     gaps: dict[str, int] = {}
     for r in scores:

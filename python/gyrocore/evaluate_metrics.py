@@ -55,7 +55,7 @@ class HeadingErrors:
 
 def unwrap(heading: ArrayLike) -> np.ndarray:
     """Continuous heading [rad] from one wrapped to (-pi, pi]."""
-    return np.unwrap(as_float_array("heading", heading))
+    return np.unwrap(as_float_array("heading", heading, unit="rad"))
 
 
 def find_gaps(t: ArrayLike, *, gap_factor: float = GAP_FACTOR) -> np.ndarray:
@@ -126,7 +126,7 @@ class Reference:
         # its own copies: the caller's arrays changed later (times out of order) were scored unchecked,
         # against the gaps and stretches found in them as they were
         t = as_float_array("t_ref", t_ref, copy=True)
-        psi = as_float_array("heading_ref", heading_ref, copy=True)
+        psi = as_float_array("heading_ref", heading_ref, copy=True, unit="rad")
         require_series("t", t, "heading", psi, context="reference")
         require_radians("the reference heading", t, psi)
         if len(t) < 2:
@@ -158,7 +158,7 @@ class Reference:
         """
         require_flag("absolute", absolute)  # "no" compared the wrapped difference
         te = as_float_array("t", t)
-        est_all = as_float_array("heading", heading)
+        est_all = as_float_array("heading", heading, unit="rad")
         require_series("t", te, "heading", est_all, context="estimate")
         if len(te) < 2:
             raise ValueError("need at least two heading samples to compare")
@@ -276,7 +276,7 @@ def warn_if_degrees(reference: Reference, t: ArrayLike, heading: ArrayLike, e_ps
     heading, what a heading that stays put would score: else both barely turn, and comma_seg40's
     estimate, drifting on a straight road, scored 61 times smaller divided by 57), and where that
     side as given turns :data:`DEGREES_TURNING` times as far as the other."""
-    te, est = as_float_array("t", t), as_float_array("heading", heading)
+    te, est = as_float_array("t", t), as_float_array("heading", heading, unit="rad")
     start = max(te[0], reference.t[0])
     ref_turning = _turning(reference.t, reference.given, start)  # as given: unwrapping mangles degrees
     est_turning = _turning(te, est, start)
@@ -338,7 +338,7 @@ def warn_if_clockwise(reference: Reference, t: ArrayLike, heading: ArrayLike, e_
     reference turns against the estimate (:data:`CLOCKWISE_SCALE`), whatever E_psi: where a drift
     outweighs the turns, a clockwise reference may even score better (raw integration of a simulated
     50-minute highway drive: 15.98 deg against a clockwise reference, 16.51 against the right one)."""
-    te, est = as_float_array("t", t), as_float_array("heading", heading)
+    te, est = as_float_array("t", t), as_float_array("heading", heading, unit="rad")
     if not _scale(reference.t, reference.heading, te, est, max(te[0], reference.t[0])) <= CLOCKWISE_SCALE:
         return
     negated = _rescored(reference, reference.t, -reference.given, te, est, absolute)
@@ -377,7 +377,7 @@ def warn_if_offset(reference: Reference, t: ArrayLike, heading: ArrayLike, e_psi
     earlier: a reference on a clock offset from the gyro's (GPS time against UTC, a logger's
     latency) was scored as it was given, each turn counted at the wrong time. The lag is where the
     cross-correlation of the two rates (their changes on a common grid, by FFT) peaks."""
-    te, est = as_float_array("t", t), as_float_array("heading", heading)
+    te, est = as_float_array("t", t), as_float_array("heading", heading, unit="rad")
     lo, hi = max(te[0], reference.t[0]), min(te[-1], reference.t[-1])
     step = max(float(np.median(np.diff(te))), float(np.median(np.diff(reference.t))), (hi - lo) / 2**17)
     grid = np.arange(lo, hi, step)
@@ -450,7 +450,7 @@ def return_orientation_error(
     estimate turned further counter-clockwise than the vehicle.
     """
     te = as_float_array("t", t)
-    psi = as_float_array("heading", heading)
+    psi = as_float_array("heading", heading, unit="rad")
     require_series("t", te, "heading", psi)
     if len(te) < 2:  # no sample was a bare IndexError
         raise ValueError(f"a return orientation error needs at least two samples, got {len(te)}")

@@ -64,7 +64,7 @@ class Fixes:
     def __post_init__(self) -> None:
         # lists, text and pandas columns, as Fixes.of; copied: the caller's array changed later (a heading
         # beyond MAX_HEADING, times out of order) would pass into the filter unchecked
-        float_fields(self, ("t", "heading", "sigma"), "fix ", copy=True)
+        float_fields(self, ("t", "heading", "sigma"), "fix ", copy=True, units={"heading": "rad", "sigma": "rad"})
         if not (len(self.t) == len(self.heading) == len(self.sigma)):
             raise ValueError(f"fix t, heading and sigma must have one length, got {len(self.t)}, "
                              f"{len(self.heading)} and {len(self.sigma)}")
@@ -89,8 +89,8 @@ class Fixes:
         """Fixes from arrays (``sigma`` may be one number for all)."""
         tt = as_float_array("fix t", t)
         # one number for all is checked like an array (an int becomes float, a bool is refused)
-        s = as_float_array("fix sigma", np.full(len(tt), sigma) if np.ndim(sigma) == 0 else sigma)
-        return cls(tt, as_float_array("fix heading", heading), s)._warn_if_vague()
+        s = as_float_array("fix sigma", np.full(len(tt), sigma) if np.ndim(sigma) == 0 else sigma, unit="rad")
+        return cls(tt, as_float_array("fix heading", heading, unit="rad"), s)._warn_if_vague()
 
     def _warn_if_vague(self) -> Fixes:
         """These fixes, after a warning if their median sigma is :data:`VAGUE_SIGMA` or more: given
@@ -155,7 +155,7 @@ def fuse(t: ArrayLike, rate: ArrayLike, fixes: FixesLike, *, mode: Literal["caus
     """
     if mode not in ("causal", "smoothed"):
         raise ValueError(f"mode must be 'causal' or 'smoothed', got {mode!r}")
-    tt, r = as_float_array("t", t, copy=True), as_float_array("rate", rate)  # the result's t: its own
+    tt, r = as_float_array("t", t, copy=True), as_float_array("rate", rate, unit="rad/s")  # the result's t: its own
     warn_units(tt, r)  # as gyrocore.process warns: ms times or deg/s rates gave fixes rejected one after another
     return _fused(tt, r, as_fixes(fixes), settings, mode == "smoothed")
 
@@ -273,7 +273,7 @@ class Fusion:
         returns the estimate after each of its samples. A fix before one given with an earlier
         block that still waits is an error (the fixes were given again)."""
         f = Fixes.empty() if fixes is None else as_fixes(fixes)
-        tt, r = as_float_array("t", t, copy=True), as_float_array("rate", rate)  # the result's t: its own
+        tt, r = as_float_array("t", t, copy=True), as_float_array("rate", rate, unit="rad/s")  # the result's t: its own
         f = self._fixes.check(f, waits=counts_dict(self._inner.counts())["waiting"] > 0)
         try:
             h, s, b, sc = self._inner.process(tt, r, f.t, f.heading, f.sigma)
@@ -385,8 +385,8 @@ def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_spe
     seen).
     """
     tt = as_float_array("t", t)
-    bearing = as_float_array("bearing_deg", bearing_deg)
-    v = as_float_array("speed", speed)
+    bearing = as_float_array("bearing_deg", bearing_deg, unit="deg")
+    v = as_float_array("speed", speed, unit="m/s")
     if not (len(tt) == len(bearing) == len(v)):
         raise ValueError(f"t, bearing_deg and speed must have one length, got {len(tt)}, {len(bearing)}, {len(v)}")
     min_speed, speed_sigma, min_sigma_deg = (check_number(name, value) for name, value in (

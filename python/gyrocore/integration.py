@@ -29,7 +29,7 @@ def integrate(
         TypeError: non-numeric arrays, a ``method`` that is no name, an ``initial_heading`` that is
             no number (the core's "must be real number, not str" named neither; True was 1 rad).
     """
-    ta, ra = as_float_array("t", t), as_float_array("rate", rate)
+    ta, ra = as_float_array("t", t), as_float_array("rate", rate, unit="rad/s")
     heading = angle_of(ta, ra, method, initial_heading)
     warn_units(ta, ra)  # after the core's checks: a time it refuses is the error to give first
     return heading
@@ -59,7 +59,7 @@ def downsample(t: ArrayLike, rate: ArrayLike, interval: float = 1.0) -> tuple[Fl
             number", True an interval of 1 s).
         ValueError: an ``interval`` that is not finite and > 0, samples the core refuses.
     """
-    ta, ra = as_float_array("t", t), as_float_array("rate", rate)
+    ta, ra = as_float_array("t", t), as_float_array("rate", rate, unit="rad/s")
     step = check_number("interval", interval, unit=" [s]")
     with time_steps_named(ta):
         tb, rb = _gyrocore.downsample(ta, ra, step)

@@ -216,8 +216,8 @@ class Pipeline:
         # write to them reached the caller's), made while the core runs; with out=, which
         # allocates nothing per call, the caller's times read-only (a write through them fails)
         ta, kept_t = as_float_array_owned("t", t, copy=out is None)
-        ra = as_float_array("rate", rate, masked=MASKED_AS_NONFINITE)
-        temp = None if temperature is None else as_float_array("temperature", temperature)
+        ra = as_float_array("rate", rate, masked=MASKED_AS_NONFINITE, unit="rad/s")
+        temp = None if temperature is None else as_float_array("temperature", temperature, unit="degC")
         refuse_window_without_reading(self._inner, ta, ra, temp, self._first_time)
         # put back unless the core takes the chunk: a refused or interrupted (Ctrl-C) first chunk left the
         # unit check done, and the pipeline's pickle differed from the one before it

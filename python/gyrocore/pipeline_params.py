@@ -6,6 +6,7 @@ the presets' names, the parameters' SI names and their degree spellings (``thres
 from __future__ import annotations
 
 import math
+import re
 from typing import Any
 
 import numpy as np
@@ -85,8 +86,7 @@ def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
         times = isinstance(value, np.ndarray) and value.dtype.kind in "mM"
         if times or isinstance(value, (np.timedelta64, np.datetime64)):
             # int types to numpy: float() of one was a bare TypeError, and tolist() of nanoseconds ints
-            raise TypeError(f"invalid parameter {key} = {value!r}: give seconds (a numpy duration d as "
-                            "d / numpy.timedelta64(1, 's'))")
+            raise TypeError(f"invalid parameter {key} = {value!r}: {_instead_of_times(key)}")
         if np.ma.is_masked(value):  # its item() is 0.0: bias=numpy.ma.mean(rest) of a rest all masked was no bias
             raise TypeError(f"invalid parameter {key} = {str(value)[:60]}: a masked value holds no number (numpy.ma's "
                             "statistic of samples all masked is masked): give numbers, measured on valid samples")
@@ -108,6 +108,22 @@ def _to_si(overrides: dict[str, Any]) -> dict[str, Any]:
             raise ValueError(f"{name} is given twice (as {name} and in degrees)")
         si[name] = value
     return si
+
+
+def _instead_of_times(key: str) -> str:
+    """What to give as the parameter ``key`` instead of a duration or date: seconds for one of
+    seconds, and for any other a float in its unit (a bias given as a duration was told to be
+    given in seconds, which a rate never is)."""
+    if key.endswith("_dps"):
+        unit = "deg/s"
+    elif key.endswith("_deg"):
+        unit = "deg"
+    else:  # the last bracket of its description: "static bias eps0 [rad/s] (...)"
+        units = re.findall(r"\[([^\]]*)\]", parameters().get(key, "[s]"))
+        unit = units[-1] if units else "its unit"
+    if unit == "s":
+        return "give seconds (a numpy duration d as d / numpy.timedelta64(1, 's'))"
+    return f"a duration or date is no value in {unit}: give {key} as a float in {unit}"
 
 
 #: The parameters that take a pair, (start, end), which a list or array is turned into.

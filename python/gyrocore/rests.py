@@ -118,7 +118,7 @@ def speed_at(t: FloatArray, speed: ArrayLike, speed_t: ArrayLike | None = None) 
     """The speed [m/s] at each gyro time ``t``: ``speed`` itself (one per sample), or, with its own
     strictly increasing times ``speed_t``, interpolated linearly; NaN (no speed: the tracker judges
     those samples by the rate) outside ``speed_t``'s span. Errors name the offending index."""
-    s = as_float_array("speed", speed)
+    s = as_float_array("speed", speed, unit="m/s")
     require_finite("speed", s)
     if speed_t is None:
         if len(s) != len(t):
@@ -147,7 +147,7 @@ def speed_on(t: FloatArray, t_speed: ArrayLike, speed: ArrayLike, *, where: str 
         ValueError: lengths differ, a time or speed is not finite, or the times do not strictly
             increase (naming ``where`` and the index).
     """
-    ts, vs = as_float_array(f"{where} times", t_speed), as_float_array(where, speed)
+    ts, vs = as_float_array(f"{where} times", t_speed), as_float_array(where, speed, unit="m/s")
     require_series("t", ts, "speed", vs, context=where)
     _warn_overlap(t, ts, where)
     if len(ts) == 0:

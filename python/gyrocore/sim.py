@@ -296,7 +296,7 @@ class Reading:
 def measure(spec: GyroSpec, t: ArrayLike, rate_true: ArrayLike, *, seed: int) -> Reading:
     """Readings of the gyro ``spec`` for the true rate [rad/s] at times ``t`` [s] (strictly
     increasing; the first is the model's time origin)."""
-    ta, ra = as_float_array("t", t), as_float_array("rate_true", rate_true)
+    ta, ra = as_float_array("t", t), as_float_array("rate_true", rate_true, unit="rad/s")
     rate, temperature, bias, scale = _gyrocore.gyro_measure(spec.si(), check_seed(seed), ta, ra)
     return Reading(rate, temperature, bias, scale)
 

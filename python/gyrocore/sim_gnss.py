@@ -44,7 +44,7 @@ def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: 
     """
     from .fixes import Fixes
 
-    t, heading = as_float_array("t_ref", t_ref), as_float_array("heading_ref", heading_ref)
+    t, heading = as_float_array("t_ref", t_ref), as_float_array("heading_ref", heading_ref, unit="rad")
     # checked before unwrapping: one NaN heading made every later fix NaN, times out of order
     # made no fix, and lengths apart failed inside numpy.interp
     require_series("t_ref", t, "heading_ref", heading, context="the reference")

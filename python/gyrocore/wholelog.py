@@ -420,7 +420,7 @@ def process_log(
     refuse_window_objects(overrides)
     si = _to_si(overrides)
     # a whole log is known to end here, as a stream is not: one of no usable reading has no heading
-    refuse_no_usable_reading(as_float_array("rate", rate, masked=MASKED_AS_NONFINITE), si.get("nonfinite"))
+    refuse_no_usable_reading(as_float_array("rate", rate, masked=MASKED_AS_NONFINITE, unit="rad/s"), si.get("nonfinite"))
     if mode == "causal":
         refuse_whole_options(si)
         checked = None if fixes is None else _checked(fixes)
@@ -433,11 +433,11 @@ def process_log(
         if checked is not None and result.fusion is not None:
             from .fixes import warn_whole_log  # as fuse warns for a whole log (the smoothed fix stage's)
 
-            warn_whole_log(result.t, as_float_array("rate", rate), checked, result.fusion.counts)
+            warn_whole_log(result.t, as_float_array("rate", rate, unit="rad/s"), checked, result.fusion.counts)
         return replace(result, bias_source=causal_source(preset, si))
     refuse_tracking(si)
     options = Options.pop(si)
-    ta, ra = as_float_array("t", t), as_float_array("rate", rate)
+    ta, ra = as_float_array("t", t), as_float_array("rate", rate, unit="rad/s")
     windowed = _bias_source(si) in ("bias_window", "bias_duration")
     if windowed:
         # A whole log's bad time comes first (as a window beyond +-2^40 s, epoch ns read as s, is no
@@ -445,7 +445,7 @@ def process_log(
         # reverse: "the bias window [0, 1] s holds no sample of the samples from t = 29.99 to 29.99 s").
         require_times(ta)
     check_parameters(preset, si)
-    sp = None if speed is None else as_float_array("speed", speed) if speed_t is None else speed_on(ta, speed_t, speed)
+    sp = None if speed is None else as_float_array("speed", speed, unit="m/s") if speed_t is None else speed_on(ta, speed_t, speed)
     if sp is not None and len(sp) != len(ta):
         raise ValueError(f"speed has {len(sp)} samples but t has {len(ta)}: give one speed per gyro sample")
     if sp is not None and (i := first_infinite(sp)) is not None:  # as the causal mode's tracker refuses it

@@ -195,3 +195,34 @@ def test_a_partitioned_parquet_dataset_is_told_how_to_give_it(tmp_path: Path) ->
     empty.mkdir()
     assert gyrocore_cli("process", empty, "--out", tmp_path / "h.csv", code=2).stderr.rstrip().endswith(
         "log or bag folders)")
+
+
+def test_a_folder_is_listed_once(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A folder of logs was listed twice, once for its logs and again for its compressed ones: a
+    large folder on a network file system paid twice, and a file arriving between the two
+    listings was seen by one and not the other."""
+    import gzip
+    import warnings
+    from collections.abc import Iterator
+
+    from gyrocore.batch import expand_inputs
+
+    for name in ("b.csv", "a.csv"):
+        synthetic_csv(tmp_path / name, 100)
+    (tmp_path / "c.csv.gz").write_bytes(gzip.compress((tmp_path / "a.csv").read_bytes()))
+    (tmp_path / "day1").mkdir()
+    listed: list[Path] = []
+    iterdir = Path.iterdir
+
+    def counted(self: Path) -> Iterator[Path]:
+        listed.append(self)
+        return iterdir(self)
+
+    monkeypatch.setattr(Path, "iterdir", counted)
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        assert expand_inputs([tmp_path]) == [tmp_path / "a.csv", tmp_path / "b.csv"]
+    assert listed.count(tmp_path) == 1
+    packed, unsearched = sorted(str(w.message) for w in said)  # what the two listings said, said of one
+    assert packed == f"{tmp_path}: 1 compressed log(s) that are not read (c.csv.gz): decompress them first"
+    assert unsearched.startswith(f"{tmp_path}: 1 subfolder(s) not searched (day1)")

@@ -35,3 +35,28 @@ def test_the_baseline_with_fixes_takes_a_nan_reading_as_the_methods_do(tmp_path:
     plain = json.loads(gyrocore_cli("evaluate", log, "--preset", "raw", "--param", f"nonfinite={policy}", "--json",
                                     code=0).stdout)[0]
     assert plain["e_psi_deg"] == pytest.approx(row["raw_e_psi_deg"], rel=1e-12)
+
+
+def test_the_improvement_column_names_its_baseline_plain_integration(tmp_path: Path) -> None:
+    """The column was headed "vs raw", and the raw row given a bias (--bias-dps) read 0.8x "vs raw":
+    its baseline is plain integration, no bias removed, which that row no longer is. The header
+    names the baseline, a line under the table says why the raw row is not 1.0x, and the factor is
+    the one against plain integration."""
+    from gyrocore import datasets
+
+    log = datasets.write_sample(tmp_path / "drive")
+    table = gyrocore_cli("evaluate", log, "--preset", "raw", "--bias-dps", "0.5", code=0).stdout
+    header, _, row, note = table.splitlines()[:4]
+    assert header.split()[6] == "vs" and header.split()[7] == "plain" and "vs raw" not in table
+    assert note == ("raw: removes the bias given, so it is not plain integration, the baseline of 'vs plain' "
+                    "(the readings integrated as they are, no bias removed)")
+    read = gyrocore.read_log(log)
+    plain = gyrocore.process(read.t, read.rate, "raw")
+    given = gyrocore.process(read.t, read.rate, "raw", bias_dps=0.5)
+    expected = gyrocore.evaluate.improvement(gyrocore.heading_errors(plain.t, plain.heading, *read.reference()),
+                                             gyrocore.heading_errors(given.t, given.heading, *read.reference()))
+    assert expected != pytest.approx(1.0, abs=0.05)  # the bias given changes the row
+    assert row.split()[6] == f"{expected:.1f}x"
+    # without a bias the raw row is plain integration, 1.0x, and nothing is said under the table
+    plain_table = gyrocore_cli("evaluate", log, "--preset", "raw", code=0).stdout.splitlines()
+    assert plain_table[2].split()[6] == "1.0x" and plain_table[3].startswith("bias source:")

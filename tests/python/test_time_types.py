@@ -138,3 +138,15 @@ def test_float32_epoch_times_say_why_they_do_not_increase(tmp_path: Path) -> Non
     with warnings.catch_warnings():
         warnings.simplefilter("error", gyrocore.InputWarning)
         gyrocore.process((np.arange(200) * 0.01).astype(np.float32), np.zeros(200), "raw", mode="causal")
+
+
+def test_float32_times_in_a_rest_window_read_alone_say_why() -> None:
+    """A tuning case in causal mode measures its log's rest window by itself, a pass that reads
+    that window alone: its error about the window's times said "sort the log" where the whole
+    log's said they were rounded to float32."""
+    t_ref = 1.7e9 + np.arange(0.0, 600.0, 0.1)
+    log = gyrocore.io.Log("f32", t_ref.astype(np.float32), np.zeros(len(t_ref)), t_ref=t_ref,
+                          heading_ref=np.zeros(len(t_ref)), stationary=(1.7e9, 1.7e9 + 200.0))
+    with pytest.raises(gyrocore.SampleError, match=r"must strictly increase: .*\(the times repeat: .* every time is a "
+                                                   r"float32 value, .*: they were rounded to float32 before"):
+        gyrocore.tune.Case.from_log(log, mode="causal")

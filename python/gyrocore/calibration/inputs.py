@@ -18,7 +18,7 @@ def check_series(
     too (a :class:`~gyrocore.SampleError`): 1e300 overflowed the fits' squares into nonsense; and
     an :class:`~gyrocore.InputWarning` where they look like deg/s or the times like ms, as the
     pipeline says (a static bias of 641 "rad/s" came without a word)."""
-    ta, ra = as_float_array(t_name, t), as_float_array(rate_name, rate)
+    ta, ra = as_float_array(t_name, t), as_float_array(rate_name, rate, unit="rad/s" if readings else "rad")
     require_series(t_name, ta, rate_name, ra)
     if len(ta) < minimum:
         raise ValueError(f"need at least {minimum} sample(s) of {rate_name}, got {len(ta)}")
@@ -31,7 +31,7 @@ def check_series(
 def check_temperature(temperature: ArrayLike, n: int) -> FloatArray:
     """The temperature record [degC], checked: as long as the timestamps, every value finite and
     within the pipeline's +-2^20 degC (a :class:`~gyrocore.SampleError` naming the first that is not)."""
-    temp = as_float_array("temperature", temperature)
+    temp = as_float_array("temperature", temperature, unit="degC")
     if len(temp) != n:
         raise ValueError(f"temperature has {len(temp)} samples but t has {n}")
     require_readings("temperature", temp)

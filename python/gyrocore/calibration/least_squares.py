@@ -159,8 +159,8 @@ def rate_reference(rate_measured: ArrayLike, rate_reference: ArrayLike) -> Calib
         ValueError: unequal lengths, NaN or a rate beyond +-2^20 rad/s, fewer than 3 samples, or a
             reference rate that does not change ("the rate must change during calibration").
     """
-    rm = as_float_array("rate_measured", rate_measured)
-    r = as_float_array("rate_reference", rate_reference)
+    rm = as_float_array("rate_measured", rate_measured, unit="rad/s")
+    r = as_float_array("rate_reference", rate_reference, unit="rad/s")
     if len(rm) != len(r):
         raise ValueError(f"rate_measured has {len(rm)} samples but rate_reference has {len(r)}")
     if len(rm) < 3:

@@ -108,8 +108,8 @@ class BiasTable:
         Both are readings as the pipeline takes them: a value that is not finite or beyond
         +-2^20 is a :class:`~gyrocore.SampleError` (a ValueError) naming its index (a NaN
         temperature gave a NaN rate); arrays of two lengths are a ValueError."""
-        r = as_float_array("rate", rate)
-        temp = as_float_array("temperature", temperature)
+        r = as_float_array("rate", rate, unit="rad/s")
+        temp = as_float_array("temperature", temperature, unit="degC")
         if len(r) != len(temp):
             raise ValueError(f"rate has {len(r)} samples but temperature has {len(temp)}")
         require_readings("rate", r)

@@ -5,6 +5,7 @@ the error."""
 from __future__ import annotations
 
 import os
+from collections.abc import Iterable
 from pathlib import Path
 
 from ..window import as_command_line_says
@@ -171,16 +172,15 @@ def _is_text(head: bytes) -> bool:
 COMPRESSED = (".gz", ".bz2", ".xz", ".zst", ".zip")
 
 
-def compressed_logs(folder: Path, suffixes: tuple[str, ...]) -> str:
-    """What ``folder`` holds of logs compressed (``a.csv.gz``, ``gyro.csv.gz``: a suffix of
+def compressed_logs(entries: Iterable[Path], suffixes: tuple[str, ...]) -> str:
+    """What a folder holds of logs compressed (``a.csv.gz``, ``gyro.csv.gz``: a suffix of
     ``suffixes`` then one of :data:`COMPRESSED`), which no reader reads, with what to do; else
     empty. A folder of such logs was said to hold none, and beside other logs they were left out
-    of a batch without a word."""
-    try:
-        found = sorted(c.name for c in folder.iterdir()
-                       if c.suffix.lower() in COMPRESSED and Path(c.stem).suffix.lower() in suffixes)
-    except OSError:
-        return ""
+    of a batch without a word. ``entries``: the folder's listing, which its caller has made already
+    (a folder listed twice cost twice on a network file system, and a file arriving between the
+    two listings was seen by one and not the other)."""
+    found = sorted(c.name for c in entries
+                   if c.suffix.lower() in COMPRESSED and Path(c.stem).suffix.lower() in suffixes)
     if not found:
         return ""
     names = ", ".join(found[:3]) + (" ..." if len(found) > 3 else "")

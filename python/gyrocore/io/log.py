@@ -39,6 +39,8 @@ if TYPE_CHECKING:
 
 #: The per-sample series of a :class:`Log`, by field name.
 _SERIES = ("t", "rate", "t_ref", "heading_ref", "x_ref", "y_ref", "t_odometry", "speed")
+#: The unit of each series that is a quantity, not a time (durations and dates refused in it).
+_UNITS = {"rate": "rad/s", "heading_ref": "rad", "x_ref": "m", "y_ref": "m", "speed": "m/s"}
 
 
 @dataclass(frozen=True, repr=False, eq=False)
@@ -78,7 +80,7 @@ class Log:
         is (:func:`~gyrocore._arrays.frozen_array`), and a write through ``log.t`` fails.
         A ``speed`` without ``t_odometry`` is one per gyro sample (as :func:`gyrocore.process` takes
         it); series that belong together are checked to match, and ``stationary`` to be a window."""
-        float_fields(self, _SERIES, frozen=True)
+        float_fields(self, _SERIES, frozen=True, units=_UNITS)
         if self.speed is not None and self.t_odometry is None and len(self.speed) == len(self.t):
             object.__setattr__(self, "t_odometry", self.t)  # its own times: the gyro's (frozen: set as float_fields sets)
         for times, values in (("t", ("rate",)), ("t_ref", ("heading_ref", "x_ref", "y_ref")), ("t_odometry", ("speed",))):

@@ -429,7 +429,11 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
             return GyroSource(p, "log folder", data, options, stationary, data.stat().st_size, "B", meta, layout)
         if is_bag_folder(p):
             return _open_bag(p, header_options(p, None, options))
-        packed = compressed_logs(p, FILE_SUFFIXES)
+        try:
+            entries = list(p.iterdir())
+        except OSError:  # the hint is a kindness: an unlisted folder gives the error without it
+            entries = []
+        packed = compressed_logs(entries, FILE_SUFFIXES)
         raise ValueError(f"{p}: not a log folder (no gyro.csv) nor a ROS 2 bag (no metadata.yaml)"
                          + (f"; it holds {packed}" if packed else ""))
     if not p.is_file():  # reading a named pipe or a device would wait for ever, or never end
