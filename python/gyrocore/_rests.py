@@ -167,6 +167,8 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
     first = last = math.nan
     kept_t: list[FloatArray] = []
     kept_r: list[FloatArray] = []
+    kept_at: list[FloatArray] = []  # the kept samples' indices in the log, for an error to name
+    before = 0
     for t, rate in chunks:
         if len(t) == 0:
             continue
@@ -177,6 +179,8 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
         i1 = int(np.searchsorted(t, end, side="right")) + 1
         kept_t.append(t[i0:i1])
         kept_r.append(rate[i0:i1])
+        kept_at.append(np.arange(before + i0, before + min(i1, len(t))))
+        before += len(t)
         if last > end:
             break
     if math.isnan(first):
@@ -184,15 +188,15 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
     if found_by == "given: bias_duration":  # its start is the log's: its own words
         refuse_past_end(start, end, first, last, duration=end - start)
     refuse_window_outside(start, end, first, last)  # a found rest lies inside the log
-    ts, rs = np.concatenate(kept_t), np.concatenate(kept_r)
+    ts, rs, at = np.concatenate(kept_t), np.concatenate(kept_r), np.concatenate(kept_at)
     taken = usable(rs)
-    ts, rs = ts[taken], rs[taken]
+    ts, rs, at = ts[taken], rs[taken], at[taken]
     samples = int(np.count_nonzero((ts >= start) & (ts <= end)))
     if samples == 0:
         raise no_usable_reading(start, end, first, last)
     # first: it names a bad sample; times of the window rounded to float32 are named as the whole
     # log's are (a tuning case's rest window was the one pass over them that said "sort the log")
-    with time_steps_named(ts):
+    with time_steps_named(ts, at):
         bias, _, noise, batch_error = _gyrocore.static_bias_test(ts, rs, start, end)
     if found_by.startswith("given"):
         given = {"bias_duration": end - start} if found_by == "given: bias_duration" else {"bias_window": (start, end)}

@@ -98,11 +98,20 @@ def name_time_step(error: _gyrocore.SampleError, t: FloatArray, last: float | No
 
 
 @contextmanager
-def time_steps_named(t: FloatArray) -> Iterator[None]:
+def time_steps_named(t: FloatArray, positions: FloatArray | None = None) -> Iterator[None]:
     """Runs a core call on the times ``t`` (a whole series: no earlier chunk), naming in its
-    :class:`~gyrocore.SampleError` what explains a time that steps back (:func:`name_time_step`)."""
+    :class:`~gyrocore.SampleError` what explains a time that steps back (:func:`name_time_step`).
+    ``positions``: each sample's index in the whole log where ``t`` holds only some of its samples
+    (a rest window's), so that the error names the log's sample, not the window's."""
     try:
         yield
     except _gyrocore.SampleError as e:
         name_time_step(e, t, None, 0)
+        if positions is not None and 0 <= e.index < len(positions):
+            at = int(positions[e.index])
+            said = f"{e.what}[{e.index}]"
+            e.args = (str(e).replace(said, f"{e.what}[{at}]", 1),)
+            if hasattr(e, "log_message"):
+                e.log_message = e.log_message.replace(said, f"{e.what}[{at}]", 1)
+            e.index = at
         raise

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import gyrocore
+from gyrocore import _rests
 
 COUNTS = np.arange(0, 5000, 7)  # irregular enough to see any scale error
 RATE = 0.3 * np.sin(COUNTS / 900.0)
@@ -150,3 +151,18 @@ def test_float32_times_in_a_rest_window_read_alone_say_why() -> None:
     with pytest.raises(gyrocore.SampleError, match=r"must strictly increase: .*\(the times repeat: .* every time is a "
                                                    r"float32 value, .*: they were rounded to float32 before"):
         gyrocore.tune.Case.from_log(log, mode="causal")
+
+
+def test_a_rest_window_read_alone_names_the_logs_sample() -> None:
+    """The pass that measures a rest window alone reads only the window's samples, from chunks of a
+    stream: its error about a time stepping back named the sample by its place in the window
+    (t[1006] for the log's t[5005])."""
+    t = np.arange(0.0, 100.0, 0.01)
+    t[5005] = t[5003]
+    rate = np.zeros(len(t))
+    rate[4500] = np.nan  # a reading the window leaves out moves no later index
+    for size in (len(t), 777):
+        chunks = [(t[i:i + size], rate[i:i + size]) for i in range(0, len(t), size)]
+        with pytest.raises(gyrocore.SampleError, match=r"t\[5005\] = 50\.03 follows 50\.04") as caught:
+            _rests.measure_rest(chunks, (40.0, 60.0), "given: bias_window")
+        assert caught.value.index == 5005
