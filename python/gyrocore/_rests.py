@@ -27,6 +27,7 @@ from dataclasses import replace
 from typing import NamedTuple
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _gyrocore
 from ._arrays import FloatArray
@@ -167,7 +168,7 @@ def measure_rest(chunks: Iterable[tuple[FloatArray, FloatArray]], window: tuple[
     first = last = math.nan
     kept_t: list[FloatArray] = []
     kept_r: list[FloatArray] = []
-    kept_at: list[FloatArray] = []  # the kept samples' indices in the log, for an error to name
+    kept_at: list[npt.NDArray[np.intp]] = []  # the kept samples' indices in the log, for an error to name
     before = 0
     for t, rate in chunks:
         if len(t) == 0:

@@ -9,6 +9,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _gyrocore
 from ._arrays import FloatArray
@@ -98,7 +99,7 @@ def name_time_step(error: _gyrocore.SampleError, t: FloatArray, last: float | No
 
 
 @contextmanager
-def time_steps_named(t: FloatArray, positions: FloatArray | None = None) -> Iterator[None]:
+def time_steps_named(t: FloatArray, positions: npt.NDArray[np.intp] | None = None) -> Iterator[None]:
     """Runs a core call on the times ``t`` (a whole series: no earlier chunk), naming in its
     :class:`~gyrocore.SampleError` what explains a time that steps back (:func:`name_time_step`).
     ``positions``: each sample's index in the whole log where ``t`` holds only some of its samples
