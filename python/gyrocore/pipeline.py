@@ -469,7 +469,8 @@ def process(
     out: OutArrays | None = None,
     **overrides: Any,
 ) -> HeadingResult:
-    """Heading of a whole log with ``preset`` (default ``recommended``, as everywhere: ``gyrocore
+    """Heading of a whole log, ``t`` [s] and ``rate`` [rad/s, counter-clockwise positive; deg/s:
+    ``numpy.radians(rate)``], with ``preset`` (default ``recommended``, as everywhere: ``gyrocore
     presets`` lists them); ``outputs`` chooses which of ``heading``, ``rate`` and ``drift`` (and
     with fixes ``heading_sigma``, ``fusion_bias``, ``fusion_scale``) are computed, and ``out`` gives
     arrays to fill with the first three (see :meth:`Pipeline.process`).
