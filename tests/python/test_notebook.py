@@ -268,3 +268,15 @@ def test_help_of_process_says_the_units_of_its_arrays() -> None:
     # help(gyrocore.process), where a user with a gyro in deg/s looks first, named no unit
     doc = " ".join((gyrocore.process.__doc__ or "").split())
     assert "``t`` [s] and ``rate`` [rad/s, counter-clockwise positive; deg/s: ``numpy.radians(rate)``]" in doc
+
+
+def test_a_pipeline_under_way_shows_where_its_stream_stands() -> None:
+    # its repr was the same before and after a chunk: the time the next chunk must start after went unseen
+    t = np.arange(0.0, 30.0, 0.01)
+    p = gyrocore.Pipeline("hdr", bias=0.0)
+    fresh = repr(p)
+    assert fresh.startswith("Pipeline(preset='hdr', params={") and "last_time" not in fresh
+    p.process(t, np.zeros_like(t))
+    assert repr(p) == fresh[:-1] + f", last_time={float(t[-1])!r})"
+    p.reset()
+    assert repr(p) == fresh
