@@ -444,7 +444,8 @@ class Pipeline:
         if self._turn.busy():  # its parameters are out of reach while the other call runs
             return f"Pipeline(preset={self._preset!r}, in use by another thread)"
         last = self.last_time  # a stream under way refuses a chunk that starts at or before it: shown
-        return f"Pipeline(preset={self._preset!r}, params={self.params!r}{'' if last is None else f', last_time={last!r}'})"
+        state = "" if last is None else f", last_time={last!r}"
+        return f"Pipeline(preset={self._preset!r}, params={self.params!r}{state})"
 
 
 def _stage_settings(params: dict[str, Any], settings: dict[str, float]) -> dict[str, float]:
