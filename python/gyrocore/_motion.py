@@ -90,6 +90,11 @@ def spread(rate: FloatArray) -> tuple[float, float] | None:
 #: How the warning of :func:`warn_if_turning` begins, for a caller that passes it on alone.
 TURNING = "the rest window"
 
+#: What to do with rates in deg/s read as rad/s, wherever they came from: ``rate_unit`` is an
+#: option of the readers only, and ``gyrocore.process`` given arrays refused it as an unknown
+#: parameter when a warning told its caller to give it.
+DEG_PER_S_FIX = "convert arrays with numpy.radians, or read the file with rate_unit='deg/s', --rate-unit deg/s"
+
 
 #: A bias beyond this [rad/s, 28.6 deg/s] is no gyro's at rest (MEMS zero-rate offsets reach
 #: about 20 deg/s, the real logs' 1.4): a rest window that reads more holds rates in deg/s read
@@ -109,9 +114,8 @@ def warn_if_turning(window: tuple[float, float], rate: FloatArray, bias: float) 
              f"bias, {math.degrees(bias):.5g} deg/s, holds the turn: give a window in which the gyro stands still")
     elif abs(bias) > REST_LEVEL:
         warn(f"{TURNING} [{window[0]}, {window[1]}] s reads a bias of {bias:.4g} rad/s ({math.degrees(bias):.4g} deg/s), "
-             f"beyond any gyro's at rest (more than {REST_LEVEL:g} rad/s): rates in deg/s read as rad/s (then give "
-             "rate_unit='deg/s', --rate-unit deg/s), or the gyro turned in it (then give a window in which it stands "
-             "still)")
+             f"beyond any gyro's at rest (more than {REST_LEVEL:g} rad/s): rates in deg/s read as rad/s (then "
+             f"{DEG_PER_S_FIX}), or the gyro turned in it (then give a window in which it stands still)")
 
 
 #: The readings of a streamed rest window :class:`WindowWatch` keeps at most (8 MB): a window of

@@ -28,7 +28,7 @@ import numpy as np
 
 from . import __version__, sim
 from ._arrays import FloatArray
-from ._checks import public_dir, require_flag
+from ._checks import did_you_mean, public_dir, require_flag
 from .io.atomic import make_folder, write_text_atomically
 from .io.log import Log
 
@@ -144,7 +144,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("folder", nargs="?", default="sample_drive",
                         help="folder to write (created if missing; default sample_drive)")
     parser.add_argument("--overwrite", action="store_true", help="replace the sample's files already in the folder")
-    args = parser.parse_args(argv)
+    args, extras = parser.parse_known_args(argv)
+    if extras:  # with the option a typo is likely of, as the gyrocore command says it (`--overwite`)
+        options = [o for action in parser._actions for o in action.option_strings]
+        parser.error(f"unrecognized arguments: {' '.join(extras)}"
+                     + "".join(did_you_mean(e.split("=")[0], options) for e in extras if e.startswith("-")))
     try:
         folder = write_sample(args.folder, overwrite=args.overwrite)
     except OSError as e:

@@ -136,7 +136,8 @@ def warn_disagreement(t: FloatArray, rate: FloatArray, fixes: Fixes) -> None:
         return
     said = f"(a fit over {fit.pairs} pairs of consecutive fixes against the gyro's turn between them)"
     if abs(fit.scale) > MAX_SCALE + SIGMAS * fit.scale_se:
-        warn(f"the heading fixes change by {1.0 + fit.scale:.3g} times the gyro's turn {said}: {_turn_cause(fit.scale)}")
+        cause = _written_as(t, rate, fixes) or _turn_cause(fit.scale)
+        warn(f"the heading fixes change by {1.0 + fit.scale:.3g} times the gyro's turn {said}: {cause}")
         return
     if abs(fit.lag) > MAX_LAG and abs(fit.lag) > SIGMAS * fit.lag_se:
         late = "later" if fit.lag > 0 else "earlier"
@@ -146,12 +147,39 @@ def warn_disagreement(t: FloatArray, rate: FloatArray, fixes: Fixes) -> None:
              f"{'-' if fit.lag > 0 else '+'} {abs(fit.lag):.2g}{': a receiver latency' if fit.lag > 0 else ''})")
     if fit.scatter > MAX_SCATTER:
         sigma = math.degrees(float(np.median(fixes.sigma)))
+        written = _written_as(t, rate, fixes)
+        if written is not None:  # the unit, not the sigma: "state each fix's sigma" would mislead
+            warn(f"the heading fixes disagree with the gyro's turn between them {fit.scatter:.3g} times as much as "
+                 f"their stated sigma allows {said}: {written}")
+            return
         warn(f"the heading fixes disagree with the gyro's turn between them {fit.scatter:.3g} times as much as their "
              f"stated sigma allows (about {fit.scatter * sigma:.2g} deg a fix, where the median sigma is {sigma:.3g} "
              f"deg) {said}: the filter trusts them too much, its gate rejects good fixes, and the heading goes wrong. "
              f"If their headings are right, state each fix's sigma as its real error (about {fit.scatter:.2g} times "
              "larger); headings in degrees or a bearing clockwise from north do this too: they are in rad, "
              "counter-clockwise from east")
+
+
+#: What fix headings may have been written as, how to convert them, and the conversion.
+_WRITTEN_AS = (
+    ("degrees", "numpy.radians", np.radians),
+    ("bearings in degrees clockwise from north", "from_gnss, or pi/2 - radians(bearing)",
+     lambda h: np.pi / 2 - np.radians(h)),
+)
+
+
+def _written_as(t: FloatArray, rate: FloatArray, fixes: Fixes) -> str | None:
+    """What the fixes' headings are, where read so they turn as the gyro does; None if no reading
+    does. A continuous heading in degrees steps by tens of rad between fixes, and wrapped those
+    fit no turn at all: the sample drive's fitted -2.71, and was said to be a bearing the other way."""
+    from .fixes import Fixes  # fixes imports this module
+
+    for what, how, convert in _WRITTEN_AS:
+        fit = agreement(t, rate, Fixes(fixes.t, convert(fixes.heading), fixes.sigma))
+        if fit is not None and abs(fit.scale) <= MAX_SCALE + SIGMAS * fit.scale_se:
+            return (f"read as {what} they turn as the gyro does: convert them ({how}); headings are in rad, "
+                    "counter-clockwise from east")
+    return None
 
 
 def _turn_cause(scale: float) -> str:

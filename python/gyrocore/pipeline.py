@@ -443,7 +443,9 @@ class Pipeline:
     def __repr__(self) -> str:
         if self._turn.busy():  # its parameters are out of reach while the other call runs
             return f"Pipeline(preset={self._preset!r}, in use by another thread)"
-        return f"Pipeline(preset={self._preset!r}, params={self.params!r})"
+        last = self.last_time  # a stream under way refuses a chunk that starts at or before it: shown
+        state = "" if last is None else f", last_time={last!r}"
+        return f"Pipeline(preset={self._preset!r}, params={self.params!r}{state})"
 
 
 def _stage_settings(params: dict[str, Any], settings: dict[str, float]) -> dict[str, float]:
@@ -469,7 +471,8 @@ def process(
     out: OutArrays | None = None,
     **overrides: Any,
 ) -> HeadingResult:
-    """Heading of a whole log with ``preset`` (default ``recommended``, as everywhere: ``gyrocore
+    """Heading of a whole log, ``t`` [s] and ``rate`` [rad/s, counter-clockwise positive; deg/s:
+    ``numpy.radians(rate)``], with ``preset`` (default ``recommended``, as everywhere: ``gyrocore
     presets`` lists them); ``outputs`` chooses which of ``heading``, ``rate`` and ``drift`` (and
     with fixes ``heading_sigma``, ``fusion_bias``, ``fusion_scale``) are computed, and ``out`` gives
     arrays to fill with the first three (see :meth:`Pipeline.process`).

@@ -212,3 +212,18 @@ def test_a_file_in_the_way_of_a_folder_a_command_makes_is_refused_before_any_wor
     assert (proc.stdout, proc.stderr) == ("", f"gyrocore: error: {output}: {blocker} is not a folder; write the "
                                               "output elsewhere\n")
     assert blocker.read_text() == MINE
+
+
+def test_allan_refused_for_a_missing_rrw_writes_no_plot_and_runs_again_with_it(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # the plot was written before --kalibr found no rate random walk (exit 2), and the run again
+    # with --rrw was refused: "adev.png already exists"
+    log = datasets.write_sample(tmp_path / "sample")
+    plot, kalibr = tmp_path / "adev.png", tmp_path / "imu.yaml"
+    args = ["allan", str(log), "--window", "+0", "+60", "--plot", str(plot), "--kalibr", str(kalibr)]
+    assert main(args) == 2
+    out, err = capsys.readouterr()
+    assert "the rate random walk was not found" in err and out == ""
+    assert not plot.exists() and not kalibr.exists()
+    assert main([*args, "--rrw", "1e-5"]) == 0
+    assert plot.exists() and "1e-05" in kalibr.read_text()

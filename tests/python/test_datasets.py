@@ -151,3 +151,14 @@ def test_the_docs_sample_commands_run(tmp_path: Path) -> None:
         done = subprocess.run([sys.executable, "-m", *argv], cwd=tmp_path, capture_output=True, text=True, timeout=300)
         ok(done)
     assert (tmp_path / "heading.csv").is_file()
+
+
+def test_a_mistyped_option_is_named_with_the_one_meant(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # `python -m gyrocore.datasets s --overwite` said "unrecognized arguments: --overwite", where the
+    # gyrocore command says which option a typo is likely of
+    with pytest.raises(SystemExit) as stopped:
+        datasets.main([str(tmp_path / "s"), "--overwite"])
+    assert stopped.value.code == 2
+    assert capsys.readouterr().err.splitlines()[-1] == (
+        "python -m gyrocore.datasets: error: unrecognized arguments: --overwite (did you mean '--overwrite'?)")
+    assert list(tmp_path.iterdir()) == []

@@ -3,6 +3,7 @@ papers' numbers, and the method comparison on the real logs of ../shared/data/re
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import shutil
@@ -442,3 +443,18 @@ def test_the_recommended_method_is_named_so_in_what_the_pipeline_says() -> None:
         warnings.simplefilter("ignore")
         base, _ = evaluate.Method.from_preset(gyrocore.recommended_preset()).run(log)
     assert np.array_equal(named.heading, base.heading)
+
+
+def test_a_log_without_reference_is_told_how_to_give_it_one_from_a_file(tmp_path: Path) -> None:
+    # it named only where a log's own reference would be (reference.csv, heading_true), not how to add one apart
+    drive = gyrocore.sim.car_drive(duration=60.0, seed=2)
+    src, truth = tmp_path / "bare.npz", tmp_path / "truth.csv"
+    np.savez(src, t=drive.t, gyro_z=drive.rate_measured)
+    np.savetxt(truth, np.column_stack([drive.t, drive.heading_true]), delimiter=",", header="t,heading", comments="")
+    log = gyrocore.read_log(src)
+    with pytest.raises(ValueError, match=r"one apart: dataclasses\.replace\(log, t_ref=\.\.\., heading_ref=\.\.\.\), e\.g\. "
+                       r"the t and heading of gyrocore\.io\.read_reference_file\)$"):
+        log.reference()
+    ref = gyrocore.io.read_reference_file(truth)  # as told: it scores
+    scored = evaluate.compare([dataclasses.replace(log, t_ref=ref["t"], heading_ref=ref["heading"])], ["raw"])
+    assert scored[0].errors.e_psi_deg > 0

@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 import re
 import warnings
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -56,6 +57,32 @@ def test_a_gnss_bearing_in_radians_is_said_to_turn_57_times_less() -> None:
     fixes = gyrocore.fixes.from_gnss(tf, bearing_rad, np.full(len(tf), 10.0))
     said = messages(lambda: fuse(t, rate, fixes))
     assert any("57 times less: an angle in radians read as degrees" in m for m in said), said
+
+
+@pytest.mark.parametrize("written, convert", [
+    ("degrees", np.degrees),
+    ("bearings in degrees clockwise from north", lambda h: 90.0 - np.degrees(h)),
+])
+def test_continuous_headings_in_degrees_are_said_to_be_degrees(written: str, convert: Callable[..., np.ndarray]) -> None:
+    # a continuous heading in degrees (no wrap at 180 to give it away) steps by tens of rad between
+    # fixes: the fit found -2.71 on the sample drive and said they turned the other way, a bearing
+    t, rate, fixes = honest()
+    heading = np.unwrap(fixes.heading)
+    assert np.ptp(np.degrees(heading)) > 360.0  # turns through more than a circle: continuous
+    given = Fixes.of(fixes.t, convert(heading), fixes.sigma)
+    said = [m for m in messages(lambda: fuse(t, rate, given, mode="smoothed")) if "pairs of consecutive fixes" in m]
+    assert len(said) == 1 and f": read as {written} they turn as the gyro does: convert them (" in said[0], said
+
+
+def test_the_sample_drive_s_heading_in_degrees_is_not_said_to_be_a_bearing() -> None:
+    # its reference every second, in degrees: the fit's turn came out at -2.71, "they turn the other way"
+    log = gyrocore.datasets.sample_drive()
+    t_ref, heading = log.reference()
+    given = Fixes.of(t_ref[::10], np.degrees(heading[::10]), 0.02)
+    said = [m for m in messages(lambda: log.process(fixes=given)) if "pairs of consecutive fixes" in m]
+    assert len(said) == 1 and "times the gyro's turn" in said[0] and "the other way" not in said[0], said
+    assert said[0].endswith(": read as degrees they turn as the gyro does: convert them (numpy.radians); headings "
+                            "are in rad, counter-clockwise from east")
 
 
 @pytest.mark.parametrize("offset, word", [(0.4, "later"), (-0.4, "earlier")])

@@ -65,3 +65,13 @@ def test_an_unknown_option_is_refused_by_its_command_with_the_option_it_is_a_typ
     assert proc.stderr.startswith("usage: gyrocore process")
     assert gyrocore_cli("process", "x.csv", "-o", "h.csv", "--xyz", code=2).stderr.splitlines()[-1] == (
         "gyrocore process: error: unrecognized arguments: --xyz")
+
+
+def test_no_command_names_the_commands_and_a_mistyped_option_before_one() -> None:
+    # both said only "the following arguments are required: command"
+    commands = "demo, process, presets, allan, calibrate, evaluate, tune, simulate, reproduce"
+    assert gyrocore_cli(code=2).stderr.splitlines()[-1] == (
+        f"gyrocore: error: give a command: {commands} (gyrocore --help says what each does, gyrocore COMMAND "
+        "--help its options)")
+    assert gyrocore_cli("--verison", code=2).stderr.splitlines()[-1].startswith(
+        "gyrocore: error: unrecognized arguments: --verison (did you mean '--version'?); give a command: demo, ")

@@ -262,3 +262,21 @@ def test_the_plot_of_a_log_is_written_to_a_path_given_as_text(tmp_path: Path) ->
     results = {p: log.process(p, bias=0.002) for p in ("raw", "hdr")}
     gyrocore.evaluate.plot_log(str(tmp_path / "plots" / "mine.png"), log, results)
     assert (tmp_path / "plots" / "mine.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_help_of_process_says_the_units_of_its_arrays() -> None:
+    # help(gyrocore.process), where a user with a gyro in deg/s looks first, named no unit
+    doc = " ".join((gyrocore.process.__doc__ or "").split())
+    assert "``t`` [s] and ``rate`` [rad/s, counter-clockwise positive; deg/s: ``numpy.radians(rate)``]" in doc
+
+
+def test_a_pipeline_under_way_shows_where_its_stream_stands() -> None:
+    # its repr was the same before and after a chunk: the time the next chunk must start after went unseen
+    t = np.arange(0.0, 30.0, 0.01)
+    p = gyrocore.Pipeline("hdr", bias=0.0)
+    fresh = repr(p)
+    assert fresh.startswith("Pipeline(preset='hdr', params={") and "last_time" not in fresh
+    p.process(t, np.zeros_like(t))
+    assert repr(p) == fresh[:-1] + f", last_time={float(t[-1])!r})"
+    p.reset()
+    assert repr(p) == fresh

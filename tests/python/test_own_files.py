@@ -165,7 +165,8 @@ def test_a_rest_window_that_reads_a_bias_no_gyro_has_names_deg_per_s(mode: str) 
     assert np.percentile(np.abs(np.degrees(drive.rate_measured)), 99) < 20.0
     read_as_rad = np.degrees(drive.rate_measured)
     with pytest.warns(gyrocore.InputWarning, match=r"the rest window \[0\.0, 20\.0\] s reads a bias of [\d.]+ rad/s "
-                      r"\([\d.]+ deg/s\), beyond any gyro's at rest .*give rate_unit='deg/s', --rate-unit deg/s") as said:
+                      r"\([\d.]+ deg/s\), beyond any gyro's at rest .*then convert arrays with numpy.radians, or read the file "
+                      r"with rate_unit='deg/s', --rate-unit deg/s") as said:
         gyrocore.process(drive.t, read_as_rad, "static_bias", bias_window=(0.0, 20.0), mode=mode)
     shown = re.search(r"reads a bias of ([\d.]+) rad/s", str(said[0].message))
     assert shown is not None and float(shown[1]) == pytest.approx(np.mean(read_as_rad[drive.t <= 20.0]), rel=1e-2)

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import gyrocore
+from gyrocore import datasets
 
 from .conftest import real_log_path
 
@@ -114,3 +115,16 @@ def test_the_same_highway_drive_written_in_deg_per_s_names_the_unit() -> None:
         gyrocore.process(log.t, np.degrees(log.rate), "static_bias")
     text = " ".join(str(w.message) for w in caught)
     assert "reads -3.884 rad/s (-222.5 deg/s)" in text and "or a rate in deg/s read as rad/s" in text
+
+
+def test_arrays_in_deg_per_s_are_told_a_remedy_that_process_takes() -> None:
+    """The warning told a caller of gyrocore.process with arrays to "give rate_unit='deg/s'", which
+    process refuses as an unknown parameter: rate_unit is the readers' option."""
+    log = datasets.sample_drive()  # its rest is 60 s of 1.4 deg/s, read as 80 "rad/s"
+    with pytest.warns(gyrocore.InputWarning) as caught:
+        gyrocore.process(log.t, np.degrees(log.rate), "static_bias")
+    text = " ".join(str(w.message) for w in caught)
+    assert "or a rate in deg/s read as rad/s (convert arrays with numpy.radians, or read the file with " \
+           "rate_unit='deg/s', --rate-unit deg/s)" in text
+    with pytest.raises(ValueError, match="unknown parameter 'rate_unit'"):
+        gyrocore.process(log.t, np.degrees(log.rate), "static_bias", rate_unit="deg/s")

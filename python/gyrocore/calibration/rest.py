@@ -11,7 +11,7 @@ from numpy.typing import ArrayLike, NDArray
 from .. import _gyrocore
 from .._arrays import FloatArray, as_window, span_text
 from .._checks import MAX_READING, check_number, did_you_mean, usable
-from .._motion import warn_if_turning
+from .._motion import DEG_PER_S_FIX, warn_if_turning
 from ..window import refuse_few_readings, refuse_window_outside
 from .inputs import check_series
 from .result import Calibration
@@ -268,7 +268,7 @@ def steady_stretch_hint(ta: FloatArray, ra: FloatArray, min_duration: float, max
     # deg/s read as rad/s: a level a deg/s rest reads, and turns a vehicle makes only in deg/s (a
     # highway drive in rad/s with a large bias, comma_seg40, is steady beyond max_rate too)
     if abs(math.radians(level)) <= DEG_PER_S_BIAS and float(np.percentile(np.abs(rate), 99)) > DEG_PER_S_TURNS:
-        text += ", or a rate in deg/s read as rad/s (give rate_unit='deg/s', --rate-unit deg/s)"
+        text += f", or a rate in deg/s read as rad/s ({DEG_PER_S_FIX})"
     return text
 
 

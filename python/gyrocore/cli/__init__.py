@@ -10,7 +10,7 @@ import argparse
 import os
 import sys
 import warnings
-from typing import Any, Sequence
+from typing import Any, NoReturn, Sequence
 
 from .. import _signals
 from .._checks import did_you_mean
@@ -56,10 +56,30 @@ class _Parser(argparse.ArgumentParser):
         for name in (None, "store"):  # an option without an action stores its value
             self.register("action", name, _StoreOnce)
         self._stored: set[str] = set()  # the options stored in this parse (_StoreOnce)
+        self._args: list[str] = []
 
     def parse_known_args(self, args: Sequence[str] | None = None, namespace: Any = None) -> Any:  # type: ignore[override]
         self._stored = set()
+        self._args = list(sys.argv[1:] if args is None else args)  # for error(): what was typed
         return super().parse_known_args(args, namespace)
+
+    def error(self, message: str) -> NoReturn:
+        commands = self._commands()
+        if commands and message == "the following arguments are required: command":
+            # argparse asks for a command before it looks at the options: `gyrocore --verison`
+            # said only that a command was required, and `gyrocore` alone not which there are
+            options = [o for action in self._actions for o in action.option_strings]
+            typed = [a for a in self._args if a.startswith("-")]
+            hints = "".join(did_you_mean(a.split("=")[0], options) for a in typed)
+            told = f"unrecognized arguments: {' '.join(typed)}{hints}; " if typed else ""
+            message = (f"{told}give a command: {', '.join(commands)} (gyrocore --help says what each does, "
+                       "gyrocore COMMAND --help its options)")
+        super().error(message)
+
+    def _commands(self) -> list[str]:
+        """The names of this parser's commands (none for a command's own parser)."""
+        return [name for action in self._actions if isinstance(action, argparse._SubParsersAction)
+                for name in action.choices]
 
     def parse_args(self, args: Sequence[str] | None = None, namespace: Any = None) -> Any:  # type: ignore[override]
         namespace, extras = self.parse_known_args(args, namespace)

@@ -105,6 +105,10 @@ def run(args: argparse.Namespace) -> int:
     except ValueError as e:  # too short a record (or --window) for the curve's slopes
         short = window is not None and len(result.taus) < 3  # not for a record with no noise
         raise ValueError(f"{src}: {e}" + (" (give a longer --window)" if short else "")) from None
+    kalibr = None  # made before anything is printed or written: a record too short to show the rate
+    if args.kalibr is not None:  # random walk failed once the plot was written, and a run again with --rrw was refused for it
+        assert params is not None  # --kind allan, checked before the work
+        kalibr = params.kalibr_yaml(rrw=args.rrw)
     if args.json:
         out = {"input": str(src), "allan": result.as_dict(), "noise": None if params is None else params.as_dict()}
         print_json(out)
@@ -122,8 +126,6 @@ def run(args: argparse.Namespace) -> int:
         fig.tight_layout()  # room for the axis labels: the default margins clip the y label
         write_atomically(args.plot, lambda tmp: fig.savefig(tmp, format="png", dpi=120), replace=args.overwrite)
         plt.close(fig)
-    if args.kalibr is not None:
-        assert params is not None  # --kind allan, checked before the work
-        text = params.kalibr_yaml(rrw=args.rrw)
-        write_text_atomically(args.kalibr, text, replace=args.overwrite)
+    if kalibr is not None:
+        write_text_atomically(args.kalibr, kalibr, replace=args.overwrite)
     return 0

@@ -141,7 +141,10 @@ class Log:
             ValueError: the log has none (a log folder without reference.csv, or a bare file).
         """
         if self.t_ref is None or self.heading_ref is None:
-            raise ValueError(f"log {self.name}: no reference heading (a log folder's reference.csv, a file's heading_true column)")
+            # a caller with the reference in a file of its own was told only where a log's own would be
+            raise ValueError(f"log {self.name}: no reference heading (a log folder's reference.csv, a file's heading_true "
+                             "column; one apart: dataclasses.replace(log, t_ref=..., heading_ref=...), e.g. the t and "
+                             "heading of gyrocore.io.read_reference_file)")
         return self.t_ref, self.heading_ref
 
     @property
