@@ -6,6 +6,7 @@ import dataclasses
 import datetime
 import math
 import numbers
+import os
 import sys
 import threading
 from collections.abc import Iterator, Mapping, Sequence
@@ -165,10 +166,21 @@ class OwnCopy:
             self._thread = None
 
 
+def refuse_a_path(name: str, values: object) -> None:
+    """A file's name or path given for an array (``gyrocore.process("drive.csv", ...)``, as the
+    command line takes files) is told to be read first: numpy made it a text of one element, and
+    the error of its dtype said nothing of files."""
+    if isinstance(values, os.PathLike) or isinstance(values, str) and (os.sep in values or os.path.splitext(values)[1][1:2].isalpha()):
+        raise TypeError(f"{name} = {values!r}: a file's name, not a sequence of numbers; a log file is read with "
+                        "gyrocore.read_log(path), then processed with its .process(preset) (on the command line: "
+                        "gyrocore process FILE)")
+
+
 def _converted(name: str, values: ArrayLike, masked: str, unit: str | None) -> tuple[FloatArray, bool]:
     """:func:`as_float_array` of ``values`` without a copy, and whether it is a new array (a
     conversion's) rather than the caller's own."""
     refuse_masked(name, values, masked)
+    refuse_a_path(name, values)
     try:
         array = np.asarray(values)
     except ValueError as e:  # a ragged list: numpy's message names neither the argument nor a fix

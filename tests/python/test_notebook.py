@@ -280,3 +280,16 @@ def test_a_pipeline_under_way_shows_where_its_stream_stands() -> None:
     assert repr(p) == fresh[:-1] + f", last_time={float(t[-1])!r})"
     p.reset()
     assert repr(p) == fresh
+
+
+@pytest.mark.parametrize("given", ["drive.csv", "logs/drive1", "gyro.npz"])
+def test_a_file_given_to_process_is_told_to_be_read_first(given: str) -> None:
+    """As the command line takes a file, a first try in Python gives one: it was told the preset's
+    name after it is no number (``rate must hold real numbers, got dtype <U3``), of files nothing."""
+    said = rf"t = '{given}': a file's name, not a sequence of numbers; a log file is read with gyrocore\.read_log"
+    with pytest.raises(TypeError, match=said):
+        gyrocore.process(given, "hdr")
+    with pytest.raises(TypeError, match=said.replace(f"'{given}'", rf"PosixPath\('{given}'\)")):
+        gyrocore.Pipeline("raw").process(Path(given), [0.0])
+    with pytest.raises(TypeError, match=r"t must hold real numbers, got dtype <U3"):  # a number as text is none
+        gyrocore.process("1.5", [0.0])
