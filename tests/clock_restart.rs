@@ -8,8 +8,9 @@ mod common;
 use common::{bits, try_block};
 use gyrocore::*;
 
-/// `n` samples at 128 Hz from `t0` (whole seconds: every time and interval exact), a turn whose rate passes through the bias (0.01 rad/s) at
-/// the first and the last sample: there the corrected rate is 0.
+/// `n` samples at 128 Hz from `t0` (whole seconds: every time and interval exact), a turn whose
+/// rate passes through the bias (0.01 rad/s) at the first and the last sample: there the
+/// corrected rate is 0.
 fn drive(t0: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
     let t = (0..n).map(|i| t0 + i as f64 / 128.0).collect();
     let mut r: Vec<f64> = (0..n)
@@ -98,6 +99,7 @@ fn a_restart_keeps_the_heading_the_bias_and_every_estimate() {
     let speed: Vec<f64> = (0..n).map(|i| if i < 4000 { 0.0 } else { 5.0 }).collect();
     let before = common::try_block_with_speed(&mut p, &t, &r, Some(&speed)).unwrap();
     let last = before[n - 1];
+    assert_ne!(last.drift, 0.0, "HDR corrects the turn's bias");
     let tracker = *p.rest_tracker().unwrap();
     assert!(tracker.rests_found() > 0);
     p.restart_clock().unwrap();

@@ -71,9 +71,9 @@ pub enum Error {
     },
     /// A stream's timestamp steps back at `index` (before the last one taken): a clock that
     /// jumped back (a time sync, a sensor's counter restarted, two logs run together) or samples
-    /// out of order. Streams ([`Pipeline`](crate::Pipeline), [`FusedPipeline`](crate::FusedPipeline),
-    /// [`Fusion`](crate::Fusion)) go on after a jump with `restart_clock()`; a duplicate is
-    /// [`Error::NotIncreasing`].
+    /// out of order. Streams ([`Pipeline`](crate::Pipeline),
+    /// [`FusedPipeline`](crate::FusedPipeline), [`Fusion`](crate::Fusion)) go on after a jump
+    /// with `restart_clock()`; a duplicate is [`Error::NotIncreasing`].
     ClockStepsBack {
         /// Index within the block of the first offending timestamp.
         index: usize,

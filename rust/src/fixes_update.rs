@@ -168,7 +168,8 @@ impl Fusion {
     /// the last fix's time and any run of rejections (the gate's lock-out starts afresh), so the
     /// next fixes are on the new clock; those still to be given on the old one must be dropped
     /// (they would be applied at the wrong time). Fixes before the next sample are counted as
-    /// [`FixCounts::before_start`](crate::FixCounts::before_start). Before the first sample it does nothing.
+    /// [`FixCounts::before_start`](crate::FixCounts::before_start). Before the first sample it
+    /// does nothing.
     pub fn restart_clock(&mut self) {
         if self.anchor.is_none() {
             return;
