@@ -115,3 +115,11 @@ def test_rests_after_a_restart_carry_the_new_clocks_times() -> None:
     found = p.process(shifted, rate[1000:], speed=speed[1000:]).tracked_rests
     assert found
     assert 40.0 <= found[0].start < found[0].end <= 65.0
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_a_whole_log_whose_time_steps_back_is_not_sent_to_restart_a_stream(mode: str) -> None:
+    t, rate = drive(0.0, 400)
+    t[200:] -= 100.0  # one series given at once: sorted or mended, there is no stream to go on with
+    with pytest.raises(gyrocore.SampleError, match=r"\(sort the log and drop duplicate timestamps\)$"):
+        gyrocore.process(t, rate, "static_bias", mode=mode, bias=BIAS)
