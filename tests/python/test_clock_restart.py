@@ -123,3 +123,18 @@ def test_a_whole_log_whose_time_steps_back_is_not_sent_to_restart_a_stream(mode:
     t[200:] -= 100.0  # one series given at once: sorted or mended, there is no stream to go on with
     with pytest.raises(gyrocore.SampleError, match=r"\(sort the log and drop duplicate timestamps\)$"):
         gyrocore.process(t, rate, "static_bias", mode=mode, bias=BIAS)
+
+
+def test_a_fusion_stream_restarts_its_clock_and_drops_the_waiting_fixes() -> None:
+    f = gyrocore.fixes.Fusion()
+    assert f.restart_clock() == 0  # before the first sample: nothing to restart
+    ta, ra = drive(100.0, 400)
+    first = f.process(ta, ra - BIAS, Fixes(np.array([101.0, 120.0]), np.zeros(2), np.full(2, 0.05)))
+    with pytest.raises(ValueError, match=r"call restart_clock\(\)"):
+        f.process(ta - 90.0, ra - BIAS)
+    with pytest.warns(gyrocore.InputWarning, match=r"dropped 1 heading fix\(es\)"):
+        assert f.restart_clock() == 1
+    after = pickle.loads(pickle.dumps(f)).process(ta - 90.0, ra - BIAS, Fixes(np.array([11.0]), np.zeros(1),
+                                                                               np.full(1, 0.05)))
+    assert after.heading[0] == first.heading[-1] and after.heading_sigma[0] == first.heading_sigma[-1]
+    assert after.counts["waiting"] == 0 and after.counts["applied"] + after.counts["rejected"] == 2
