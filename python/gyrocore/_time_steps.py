@@ -5,6 +5,7 @@ the reader's float32 warning never sees it)."""
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterator
 from contextlib import contextmanager
 
@@ -115,4 +116,35 @@ def time_steps_named(t: FloatArray, positions: npt.NDArray[np.intp] | None = Non
             if hasattr(e, "log_message"):
                 e.log_message = e.log_message.replace(said, f"{e.what}[{at}]", 1)
             e.index = at
+        raise
+
+
+#: The core's way on for a stream whose clock jumped back (``restart_clock``), in its error about a
+#: time going back: a whole log, or a file, is one series to sort or mend, with no stream to restart.
+_RESTART_ADVICE = re.compile(r"; where the clock jumped back \(.*?\), call restart_clock\(\) .*? across the jump")
+
+
+def without_restart_advice(message: str) -> str:
+    """``message`` without the core's advice to restart a stream's clock (:data:`_RESTART_ADVICE`)."""
+    return _RESTART_ADVICE.sub("", message, count=1)
+
+
+def as_log_error(error: _gyrocore.SampleError) -> None:
+    """Drops the advice to restart a stream's clock from ``error`` where it names a whole log's time
+    going back, and from its ``log_message``, the words a file's reader names a file's line with."""
+    if _RESTART_ADVICE.search(str(error)):
+        error.args = (without_restart_advice(str(error)),)
+    message = getattr(error, "log_message", None)
+    if message is not None:
+        error.log_message = without_restart_advice(message)  # type: ignore[attr-defined]
+
+
+@contextmanager
+def whole_log_steps() -> Iterator[None]:
+    """Runs a whole log's processing (also as a decorator), naming a time that goes back as a log's
+    (:func:`as_log_error`), not a stream's."""
+    try:
+        yield
+    except _gyrocore.SampleError as e:
+        as_log_error(e)
         raise

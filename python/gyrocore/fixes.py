@@ -294,6 +294,16 @@ class Fusion:
         self._inner.check(f.t, f.heading, f.sigma)
 
     @one_at_a_time
+    def restart_clock(self) -> int:
+        """Go on after the gyro's clock jumped back, which :meth:`process` refuses naming this (see
+        :meth:`gyrocore.Pipeline.restart_clock`): the estimate and its covariance are kept, no time passing
+        across the jump. Returns how many waiting fixes it dropped (on the old clock; with a warning)."""
+        dropped = self._inner.restart_clock()
+        if dropped is not None:  # None before the first sample: nothing to restart
+            self._fixes.restarted(dropped)
+        return dropped or 0
+
+    @one_at_a_time
     def counts(self) -> dict[str, int]:
         """Fixes applied, rejected, readmitted, before_start, and waiting for a later block."""
         return counts_dict(self._inner.counts())

@@ -143,6 +143,14 @@ class StreamFixes:
 
         return Fixes(block.t[1:], block.heading[1:], block.sigma[1:])
 
+    def restarted(self, dropped: int) -> None:
+        """After a restart of the gyro's clock, which dropped ``dropped`` fixes that waited for
+        samples: the fixes given before were on the old clock, and none waits now."""
+        self.last = None
+        if dropped:
+            warn(f"restart_clock() dropped {dropped} heading fix(es) that waited for later samples: they are on the "
+                 "clock that jumped back; give only fixes on the new clock")
+
     def taken(self, block: Fixes, last_sample: float | None) -> None:
         """After the core took ``block``: its last fix is kept, and fixes far ahead of the last
         sample are warned about once."""

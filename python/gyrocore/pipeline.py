@@ -43,8 +43,8 @@ from .window import (
     MIN_WINDOW_READINGS,
     RestWindowError,
     refuse_few_readings,
-    refuse_past_end,
     refuse_start_before,
+    refuse_unfinished,
     refuse_window_objects,
     rest_window_text,
     window_span,
@@ -120,6 +120,9 @@ class Pipeline:
         # the first samples, held until the unit check has an interval to judge (None once done)
         self._unit_head: tuple[FloatArray, FloatArray] | None = (np.empty(0), np.empty(0))
         self._first_time: float | None = None  # of the log, for the range :meth:`finish` names
+        # where the core's rest times (the intervals taken) start on the clock, and those up to a restart
+        self._origin: float | None = None
+        self._elapsed = 0.0
         self._rests: list[Rest] = []
         self._fixes = StreamFixes()
         self._speed_said = False  # a chunk's samples outside its speed's times, said once
@@ -190,7 +193,8 @@ class Pipeline:
             SampleError: (a ValueError) non-increasing or non-finite timestamps, or NaN/inf readings
                 under ``nonfinite="error"``; its ``index`` and ``what`` name the first bad sample.
                 A chunk that starts at or before :attr:`last_time` (sent again, or after a resume
-                from a pickle that holds it already) says so: give only the samples after it.
+                from a pickle that holds it already) says so: give only the samples after it; after
+                a clock that jumped back, :meth:`restart_clock`.
             ValueError: mismatched lengths; timestamps whose interval overflows (near +-1e308); an
                 ``index_offset`` that is no int in [0, 2^63); an ``out`` array of the wrong shape or
                 layout, read-only, or sharing memory;
@@ -270,6 +274,8 @@ class Pipeline:
             self._unmeasured = None
         if self._first_time is None and len(ta):
             self._first_time = float(ta[0])
+        if self._origin is None and len(ta):
+            self._origin = float(ta[0]) - self._elapsed
         self._rests.extend(found)
         ta = kept_t.get()
         if fused is None:
@@ -332,7 +338,7 @@ class Pipeline:
         given = None if fixes is None else (fixes.t, fixes.heading, fixes.sigma)
         heading, out_rate, drift, found, fused = inner.process(t, rate, temp, index_offset, flags[0], speed, given, out,
                                                               flags[1])
-        origin = self._first_time if self._first_time is not None else float(t[0]) if len(t) else 0.0
+        origin = self._origin if self._origin is not None else (float(t[0]) if len(t) else 0.0) - self._elapsed
         return heading, out_rate, drift, [rests.from_core(r, origin) for r in found], fused
 
     @property
@@ -364,23 +370,8 @@ class Pipeline:
         than the log), so that the bias was measured over less than asked, or not at all (0), or
         if it held fewer than :data:`MIN_WINDOW_READINGS` readings. Changes nothing.
         """
-        p = self._inner.params()
-        last = self._inner.last_time()
         _, count, learning = self._inner.bias()
-        if last is None or self._first_time is None or not (p.get("bias_window") or p.get("bias_duration")):
-            return  # no sample, or a fixed bias
-        if not learning:  # the window is over
-            refuse_few_readings(rest_window_text(p), count)
-            return
-        if p.get("bias_window"):
-            start, end = p["bias_window"]
-            refuse_past_end(start, end, self._first_time, last)
-        else:
-            end = self._first_time + p["bias_duration"]
-            refuse_past_end(self._first_time, end, self._first_time, last, duration=p["bias_duration"])
-        # A log that ends at the window's end leaves it open (no reading came after it): its
-        # readings are all there is, as whole mode counts them (one at t = 0 of (0, 0) passed).
-        refuse_few_readings(rest_window_text(p), count)
+        refuse_unfinished(self._inner.params(), self._first_time, self._inner.last_time(), count, learning)
 
     @one_at_a_time
     def reset(self) -> None:
@@ -388,6 +379,24 @@ class Pipeline:
         checked and warned about as a new pipeline's first samples are."""
         self._inner.reset()
         self._start_stream()
+
+    @one_at_a_time
+    def restart_clock(self) -> int:
+        """Go on after the clock jumped back (a time sync, a sensor's counter restarted, two logs
+        stitched), which :meth:`process` refuses naming this method: the next chunk may start at any
+        time, its first sample taken as the sample after a gap (``gap_action``) with no interval, so
+        nothing is integrated across the jump. The heading, the bias, the tracked bias, the fix
+        stage's estimate and every stage's state are kept, unlike :meth:`reset`; later rests carry
+        the new clock's times. Returns how many fixes that waited for later samples it dropped (on
+        the old clock; with a warning). Raises ValueError, changing nothing, while the rest window
+        is measured (it lies on the old clock). Survives a pickle."""
+        last = self._inner.last_time()
+        dropped = self._inner.restart_clock()
+        if last is not None:
+            self._fixes.restarted(dropped)  # the fixes given were on the old clock
+            if self._origin is not None:  # not again before the new clock's first sample
+                self._elapsed, self._origin = last - self._origin, None
+        return dropped
 
     @property
     @one_at_a_time
@@ -411,6 +420,8 @@ class Pipeline:
             "preset": self._preset,
             "state": self._inner.state_json(),
             "first_time": self._first_time,
+            "origin": self._origin,
+            "elapsed": self._elapsed,
             "rests": self._rests,
             "unmeasured": self._unmeasured,
             "bias_warning": self._bias_warning,
@@ -427,6 +438,8 @@ class Pipeline:
         head = state.get("unit_head", None if self._inner.last_time() is not None else ([], []))
         self._unit_head = None if head is None else (np.asarray(head[0], float), np.asarray(head[1], float))
         self._first_time = state.get("first_time")
+        self._origin = state.get("origin", self._first_time)  # a pickle made before restarts existed
+        self._elapsed = state.get("elapsed", 0.0)
         self._rests = list(state.get("rests", []))
         self._unmeasured = state.get("unmeasured")
         self._bias_warning = state.get("bias_warning", self._unmeasured)

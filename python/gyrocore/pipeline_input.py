@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike
 from . import _gyrocore
 from ._arrays import FloatArray
 from ._checks import MAX_READING, keep_readings, usable, warn, warn_units
-from ._time_steps import name_time_step
+from ._time_steps import name_time_step, without_restart_advice
 from .window import RestWindowError, ends_before_first, no_usable_reading, refuse_start_before
 
 
@@ -108,6 +108,8 @@ def say_what_to_do(error: _gyrocore.SampleError, t: FloatArray, last: float | No
         error.args = (f"{error}; " + keep_readings("them", "nonfinite='hold'", "'skip'"),)
     if not name_time_step(error, t, last, index_offset):
         name_samples_sent_again(error, t, last, index_offset)
+    # a file's reader names a log's line: sorted or mended, not a stream's clock to restart
+    error.log_message = without_restart_advice(getattr(error, "log_message", str(error)))  # type: ignore[attr-defined]
 
 
 def name_samples_sent_again(error: _gyrocore.SampleError, t: FloatArray, last: float | None,

@@ -45,6 +45,7 @@ from ._checks import MAX_SECONDS, collected, first_infinite, public_dir, refuse_
 from ._gyrocore import SampleError
 from ._rests import MIN_REST, SPEED_THRESHOLD, Found, accept, find_rests, measure_rest, unseen_stop_hint
 from ._smoother import SmoothedBias, smooth
+from ._time_steps import whole_log_steps
 from .pipeline import ALL_OUTPUTS, BIAS_SOURCES, HeadingResult, Pipeline, core_pipeline, preset_params, uses_static_bias
 from .pipeline_params import _to_si
 from .result import OutArrays, filled, out_arrays
@@ -396,6 +397,7 @@ def _times_ok_across(chunks: Iterable[tuple[FloatArray, FloatArray]]) -> bool:
     return True
 
 
+@whole_log_steps()  # one series given at once: no stream's clock to restart
 def process_log(
     t: ArrayLike,
     rate: ArrayLike,

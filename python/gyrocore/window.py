@@ -29,7 +29,7 @@ from ._checks import public_dir
 __all__ = [
     "MIN_WINDOW_READINGS", "PLUS_T", "T0_PLUS", "RestWindowError", "Window", "as_command_line_says",
     "ends_before_first", "in_log_clock", "no_usable_reading", "refuse_few_readings", "refuse_past_end",
-    "refuse_start_before", "refuse_window_objects", "refuse_window_outside", "rest_window_text", "time_range",
+    "refuse_start_before", "refuse_unfinished", "refuse_window_objects", "refuse_window_outside", "rest_window_text", "time_range",
 ]
 __dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
@@ -267,3 +267,24 @@ def window_span(params: dict[str, Any], first: float | None) -> tuple[float, flo
     if params.get("bias_duration") and first is not None:
         return first, first + float(params["bias_duration"])
     return None
+
+
+def refuse_unfinished(params: dict[str, Any], first: float | None, last: float | None, count: int,
+                      learning: bool) -> None:
+    """What :meth:`gyrocore.Pipeline.finish` refuses of a stream whose samples ran from ``first`` to
+    ``last`` [s] (None: none), with ``count`` readings in its rest window, still ``learning`` or not:
+    a window past the log's end, or one with too few readings."""
+    if last is None or first is None or not (params.get("bias_window") or params.get("bias_duration")):
+        return  # no sample, or a fixed bias
+    if not learning:  # the window is over
+        refuse_few_readings(rest_window_text(params), count)
+        return
+    if params.get("bias_window"):
+        start, end = params["bias_window"]
+        refuse_past_end(start, end, first, last)
+    else:
+        end = first + params["bias_duration"]
+        refuse_past_end(first, end, first, last, duration=params["bias_duration"])
+    # A log that ends at the window's end leaves it open (no reading came after it): its
+    # readings are all there is, as whole mode counts them (one at t = 0 of (0, 0) passed).
+    refuse_few_readings(rest_window_text(params), count)

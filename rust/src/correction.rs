@@ -265,7 +265,7 @@ impl Correction {
     pub(crate) fn check_restored(&self) -> Result<(), Error> {
         self.config().validate()?;
         self.bias
-            .check(self.calibration.config.bias, self.clock.last())?;
+            .check(self.calibration.config.bias, self.clock.last(), false)?;
         check_reading("bias", self.calibration.bias)?;
         // The bias corrected with is the estimate's: a copy of it that differed ran unseen.
         if self.calibration.bias != self.bias.value() {

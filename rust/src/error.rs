@@ -69,6 +69,27 @@ pub enum Error {
         /// The offending timestamp.
         value: f64,
     },
+    /// A stream's timestamp steps back at `index` (before the last one taken): a clock that
+    /// jumped back (a time sync, a sensor's counter restarted, two logs run together) or samples
+    /// out of order. Streams ([`Pipeline`](crate::Pipeline),
+    /// [`FusedPipeline`](crate::FusedPipeline), [`Fusion`](crate::Fusion)) go on after a jump
+    /// with `restart_clock()`; a duplicate is [`Error::NotIncreasing`].
+    ClockStepsBack {
+        /// Index within the block of the first offending timestamp.
+        index: usize,
+        /// The timestamp before it (from this block or the previous one).
+        previous: f64,
+        /// The offending timestamp.
+        value: f64,
+    },
+    /// `restart_clock()` while the rest window is measured: the window lies on the clock that
+    /// jumped, and its bias would mix two clocks.
+    ClockRestartInWindow {
+        /// Window start \[s\].
+        start: f64,
+        /// Window end \[s\].
+        end: f64,
+    },
     /// The configuration asks for a temperature signal and none was given.
     MissingTemperature,
     /// No sample lies in the rest window, so there is no static bias to measure.
@@ -102,7 +123,8 @@ impl Error {
             Error::NonFinite { index, .. }
             | Error::OutOfRange { index, .. }
             | Error::TooClose { index, .. }
-            | Error::NotIncreasing { index, .. } => Some(index),
+            | Error::NotIncreasing { index, .. }
+            | Error::ClockStepsBack { index, .. } => Some(index),
             _ => None,
         }
     }
@@ -116,10 +138,28 @@ impl Error {
             Error::NonFinite { index, .. }
             | Error::OutOfRange { index, .. }
             | Error::TooClose { index, .. }
-            | Error::NotIncreasing { index, .. } => *index = index.saturating_add(offset),
+            | Error::NotIncreasing { index, .. }
+            | Error::ClockStepsBack { index, .. } => *index = index.saturating_add(offset),
             _ => {}
         }
         self
+    }
+
+    /// The error as a stream reports it: a timestamp that steps back (not a duplicate) becomes
+    /// [`Error::ClockStepsBack`], whose words name the way on after a clock's jump.
+    pub(crate) fn of_stream(self) -> Self {
+        match self {
+            Error::NotIncreasing {
+                index,
+                previous,
+                value,
+            } if value < previous => Error::ClockStepsBack {
+                index,
+                previous,
+                value,
+            },
+            e => e,
+        }
     }
 }
 
@@ -192,6 +232,24 @@ impl fmt::Display for Error {
                 f,
                 "timestamps must strictly increase: t[{index}] = {value} follows {previous} \
                  (sort the log and drop duplicate timestamps)"
+            ),
+            Error::ClockStepsBack {
+                index,
+                previous,
+                value,
+            } => write!(
+                f,
+                "timestamps must strictly increase: t[{index}] = {value} follows {previous} \
+                 (sort the log and drop duplicate timestamps); where the clock jumped back (a \
+                 time sync, a sensor restarted, two logs run together), call restart_clock() \
+                 and give the samples from t[{index}] on: the heading, bias and estimates are \
+                 kept, and nothing is integrated across the jump"
+            ),
+            Error::ClockRestartInWindow { start, end } => write!(
+                f,
+                "restart_clock() while the rest window [{start}, {end}] s is measured: the \
+                 window lies on the clock that jumped back, and its bias would mix two clocks; \
+                 restart the clock once the window is over, or reset() the stream"
             ),
             Error::MissingTemperature => write!(
                 f,

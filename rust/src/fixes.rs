@@ -50,7 +50,8 @@ use crate::{check_block, Error, MAX_READING, MAX_TIME};
 mod write;
 use write::{Columns, Smoothing, Write};
 
-// A fix's update and the gate's lock-out: a child module, which sees the filter's fields.
+// A fix's update, the gate's lock-out and a restart of the clock: a child module, which sees
+// the filter's fields.
 #[path = "fixes_update.rs"]
 mod update;
 
@@ -124,6 +125,10 @@ pub struct Fusion {
     /// left out of its length.
     #[cfg_attr(feature = "serde", serde(default))]
     run_outages: f64,
+    /// True from [`Fusion::restart_clock`] to the next sample taken, which starts the new time
+    /// base.
+    #[cfg_attr(feature = "serde", serde(default))]
+    restarted: bool,
 }
 
 /// Wraps an angle to (-pi, pi]: the IEEE remainder of `a` by `2 pi`, exact (`a - 2 pi ceil(..)`
@@ -158,6 +163,7 @@ impl Fusion {
             drift: None,
             fix_interval: f64::INFINITY,
             run_outages: 0.0,
+            restarted: false,
         })
     }
 
@@ -281,7 +287,7 @@ impl Fusion {
         out: &FusionOutputs<'_>,
     ) -> Result<(), FusionError> {
         out.check(t.len())?;
-        check_block(t, rate, None, self.anchor.map(|a| a.sample_t), true)?;
+        check_block(t, rate, None, self.previous_sample(), true).map_err(Error::of_stream)?;
         self.check_fixes(reachable(fixes, t.last().copied()))
     }
 
@@ -329,7 +335,8 @@ impl Fusion {
             // in it, which takes the segment's calibration once.
             let next_fix = fixes.get(used).map_or(f64::INFINITY, |f| f.t);
             let calibration = fusion.segment.calibration();
-            if let Some(mut a) = fusion.anchor {
+            // After a restart of the clock the next sample takes the slow path.
+            if let Some(mut a) = fusion.anchor.filter(|_| !fusion.restarted) {
                 while k < n && t[k] < next_fix {
                     if rate[k].is_finite() {
                         fusion.take_sample(&mut a, t[k], rate[k]);
@@ -394,7 +401,7 @@ impl Fusion {
             if let Some(p) = previous.filter(|&p| f.t < p) {
                 return Err(bad("t", f.t, FixProblem::OutOfOrder { previous: p }));
             }
-            if let Some(a) = self.anchor.filter(|a| f.t < a.t) {
+            if let Some(a) = self.anchor.filter(|a| f.t < a.t && !self.restarted) {
                 return Err(bad("t", f.t, FixProblem::Late { processed: a.t }));
             }
             previous = Some(f.t);
@@ -408,6 +415,21 @@ impl Fusion {
     #[inline(always)]
     fn sample(&mut self, t: f64, rate: f64, fixes: &[Fix], record: &mut impl FnMut(Knot)) -> usize {
         let mut used = 0;
+        if self.restarted {
+            // The first sample on the new clock: the segment so far ends at a knot, from which
+            // the new one starts at `t` with the estimate and covariance of the jump.
+            self.restarted = false;
+            let now = self.now();
+            let (x, p) = (
+                self.segment.state(now),
+                self.segment.covariance(now, &self.config),
+            );
+            record(Knot::new(t, self.segment.a(), (x, p), x, p));
+            self.segment = Segment::new(t, x, p);
+            self.anchor = Some(Anchor::of_sample(t, rate));
+            used = fixes.iter().take_while(|f| f.t < t).count();
+            self.counts.before_start = self.counts.before_start.saturating_add(used as u64);
+        }
         let mut a = self.anchor.unwrap_or(Anchor::of_sample(t, rate));
         if self.anchor.is_none() {
             used = fixes.iter().take_while(|f| f.t < t).count();

@@ -11,6 +11,14 @@ impl Fusion {
     pub(crate) fn check_restored(&self) -> Result<(), Error> {
         self.config.validate()?;
         self.segment.check()?;
+        // A restart of the clock waits for a sample after one, and forgets the fixes' times.
+        if self.restarted && (self.anchor.is_none() || self.last_fix.is_some()) {
+            return Err(Error::InvalidParameter {
+                name: "restarted",
+                value: 1.0,
+                valid: "false before the first sample, and with a last fix's time",
+            });
+        }
         let interval = "> 0 s (inf: fewer than two fixes processed)";
         let (least, most) = (f64::MIN_POSITIVE, f64::INFINITY);
         crate::error::check_range("fix interval", self.fix_interval, least, most, interval)?;

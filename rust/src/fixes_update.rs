@@ -1,5 +1,6 @@
-//! A fix's Kalman update, its gate, and the re-admission that ends the gate's lock-out
-//! ([`FusionConfig::readmit_after`](crate::FusionConfig::readmit_after)).
+//! A fix's Kalman update, its gate, the re-admission that ends the gate's lock-out
+//! ([`FusionConfig::readmit_after`](crate::FusionConfig::readmit_after)), and a restart of the
+//! clock, which forgets the fixes' times.
 
 use super::{wrap_angle, Fix, Fusion, READMIT_GAP, READMIT_MIN_REJECTED, READMIT_REACH};
 use crate::fixes_drift::Drift;
@@ -158,5 +159,34 @@ impl Fusion {
         let bias = c.initial_bias_sigma * c.initial_bias_sigma;
         p[1][1] = p[1][1].max(scale);
         p[2][2] = p[2][2].max(bias).max(drift_squared);
+    }
+
+    /// Takes the next sample on a new time base, whatever its time (a clock that jumped back; see
+    /// [`Pipeline::restart_clock`](crate::Pipeline::restart_clock)). The estimate (heading,
+    /// bias, scale) and its covariance are kept and move nothing across the jump: no time passes
+    /// there for the filter. Fixes belong to the clock they were stamped on: the filter forgets
+    /// the last fix's time and any run of rejections (the gate's lock-out starts afresh), so the
+    /// next fixes are on the new clock; those still to be given on the old one must be dropped
+    /// (they would be applied at the wrong time). Fixes before the next sample are counted as
+    /// [`FixCounts::before_start`](crate::FixCounts::before_start). Before the first sample it
+    /// does nothing.
+    pub fn restart_clock(&mut self) {
+        if self.anchor.is_none() {
+            return;
+        }
+        self.restarted = true;
+        (self.last_fix, self.rejected_run, self.drift) = (None, None, None);
+        self.run_outages = 0.0;
+    }
+
+    /// True from [`Fusion::restart_clock`] to the next sample taken.
+    pub(crate) fn restart_pending(&self) -> bool {
+        self.restarted
+    }
+
+    /// The time the next sample must follow (None: any time, as before the first sample or
+    /// after [`Fusion::restart_clock`]).
+    pub(super) fn previous_sample(&self) -> Option<f64> {
+        self.anchor.filter(|_| !self.restarted).map(|a| a.sample_t)
     }
 }

@@ -114,6 +114,13 @@ impl FusedPipeline {
     /// time between, one ahead refused the next valid fix.
     #[cfg(feature = "serde")]
     pub(crate) fn check_restored(&self) -> Result<(), Error> {
+        if self.pipeline.clock_restart_pending() != self.fusion.restart_pending() {
+            return Err(Error::InvalidParameter {
+                name: "filter restarted",
+                value: f64::from(u8::from(self.fusion.restart_pending())),
+                valid: "the pipeline's (both restart their clock at once)",
+            });
+        }
         let (pipeline, fusion) = (self.pipeline.last_time(), self.fusion.last_time());
         if pipeline == fusion {
             return Ok(());
@@ -144,6 +151,17 @@ impl FusedPipeline {
     pub fn reset(&mut self) {
         self.pipeline.reset();
         self.fusion.reset();
+    }
+
+    /// Restarts the clock of both (see [`Pipeline::restart_clock`] and [`Fusion::restart_clock`]):
+    /// the next sample may come at any time, and starts a new time base; the heading, bias,
+    /// scale and every estimate are kept, nothing is integrated across the jump. The fixes not
+    /// used yet (the caller's `&fixes[used..]`) are on the old clock: drop them, and give only
+    /// fixes on the new one. Refused while the pipeline measures its rest window, nothing changed.
+    pub fn restart_clock(&mut self) -> Result<(), Error> {
+        self.pipeline.restart_clock()?;
+        self.fusion.restart_clock();
+        Ok(())
     }
 
     /// Processes a block of samples with the fixes up to its last sample (sorted by time; any

@@ -213,6 +213,11 @@ impl BiasEstimate {
         self.learning
     }
 
+    /// The rest window \[s\], once known.
+    pub(crate) fn window(&self) -> Option<(f64, f64)> {
+        self.window
+    }
+
     /// The error for a window the samples up to `last` \[s\] passed without a reading inside.
     pub(crate) fn missed(&self, last: f64) -> Option<Error> {
         let (start, end) = self.window.filter(|_| self.count == 0)?;
@@ -225,7 +230,8 @@ impl BiasEstimate {
     }
 
     /// Checks an estimate read back (`serde` feature) for `source` (the configuration's) and
-    /// `last`, the last time its clock took: the bias a reading, the time measured within the
+    /// `last`, the last time its clock took, and `restarted`, true once that clock was
+    /// restarted (after the window: its times then say nothing of it): the bias a reading, the time measured within the
     /// window's longest, the integral's mean over it a reading too (the bias learned from it is
     /// that mean), the window's bounds within +-2^41 s, and its noise's sums
     /// ([`RestNoise::check`]). Then the estimate against its source: a fixed bias is the
@@ -236,7 +242,12 @@ impl BiasEstimate {
     /// bias at the next reading, a NaN window never ended, a window not the configured one
     /// refused the next block, and one marked over before it ran left the bias at 0 unreported.
     #[cfg(feature = "serde")]
-    pub(crate) fn check(&self, source: StaticBias, last: Option<f64>) -> Result<(), Error> {
+    pub(crate) fn check(
+        &self,
+        source: StaticBias,
+        last: Option<f64>,
+        restarted: bool,
+    ) -> Result<(), Error> {
         use crate::error::{check_mean, check_range, check_reading};
         use crate::MAX_TIME;
         check_reading("bias", self.value)?;
@@ -254,12 +265,17 @@ impl BiasEstimate {
             check_range("bias_window", bound, -longest, longest, "within +-2^41 s")?;
         }
         self.noise.check()?;
-        self.check_source(source, last)
+        self.check_source(source, last, restarted)
     }
 
     /// The part of [`BiasEstimate::check`] that compares the estimate with its source and clock.
     #[cfg(feature = "serde")]
-    fn check_source(&self, source: StaticBias, last: Option<f64>) -> Result<(), Error> {
+    fn check_source(
+        &self,
+        source: StaticBias,
+        last: Option<f64>,
+        restarted: bool,
+    ) -> Result<(), Error> {
         let refuse = |name: &'static str, value: f64, valid: &'static str| {
             Err(Error::InvalidParameter { name, value, valid })
         };
@@ -309,7 +325,7 @@ impl BiasEstimate {
             },
         };
         // `learn` ends the measurement at the first time past the window's end, and only there.
-        let passed = last.is_some_and(|t| t > window.1);
+        let passed = restarted || last.is_some_and(|t| t > window.1);
         if self.learning == passed {
             let valid = "true until a time past the window's end was taken, false from then on";
             return refuse("bias learning", as_f64(self.learning), valid);

@@ -301,6 +301,17 @@ impl PyFusion {
         checked.map_err(|e| renumbered(py, before, fusion_error(e)))
     }
 
+    /// Restarts the clock (the core's `Fusion::restart_clock`) and drops the waiting fixes, which
+    /// are on the old clock; returns how many, or None before the first sample (nothing to
+    /// restart: the fixes wait on).
+    fn restart_clock(&mut self) -> Option<usize> {
+        self.inner.last_time()?;
+        self.inner.restart_clock();
+        let dropped = self.pending.len();
+        self.pending.clear();
+        Some(dropped)
+    }
+
     /// (applied, rejected, readmitted, before_start, waiting) fix counts.
     fn counts(&self) -> (u64, u64, u64, u64, usize) {
         let c = self.inner.counts();

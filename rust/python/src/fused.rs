@@ -212,6 +212,23 @@ impl Core {
         }
     }
 
+    /// Restarts the clock (the core's `Pipeline::restart_clock`, `FusedPipeline::restart_clock`):
+    /// the fixes waiting for later samples are on the old clock and are dropped; returns how
+    /// many. Refused in the rest window, nothing changed.
+    pub(crate) fn restart_clock(&mut self) -> Result<usize, Error> {
+        match self {
+            Core::Plain(p) => p.restart_clock().map(|()| 0),
+            // before the first sample there is no old clock: the fixes wait on
+            Core::Fused { inner, .. } if inner.pipeline().last_time().is_none() => Ok(0),
+            Core::Fused { inner, pending } => {
+                inner.restart_clock()?;
+                let dropped = pending.len();
+                pending.clear();
+                Ok(dropped)
+            }
+        }
+    }
+
     /// Adds the fix stage with `settings` to a pipeline that has no sample yet.
     pub(crate) fn start_fusion(&mut self, settings: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
         let config: PipelineConfig = *self.pipeline().config();

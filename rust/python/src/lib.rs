@@ -180,6 +180,13 @@ impl PyPipeline {
         self.inner.reset();
     }
 
+    /// Takes the next sample on a new time base (a clock that jumped back), keeping every
+    /// estimate; returns how many fixes waiting for later samples it dropped (see
+    /// `gyrocore.Pipeline.restart_clock`).
+    fn restart_clock(&mut self) -> PyResult<usize> {
+        self.inner.restart_clock().map_err(value_error)
+    }
+
     /// The configuration as a flat parameter dict.
     fn params<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         params::to_dict(py, self.inner.pipeline().config())

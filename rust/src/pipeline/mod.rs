@@ -7,8 +7,10 @@
 //! - this module: the public [`Pipeline`], which takes samples one at a time ([`Pipeline::update`])
 //!   or a block at a time ([`Pipeline::process_block`]), and the slow path that the loop leaves
 //!   to it: the first sample, the rest window, gaps the policy restarts at, and readings it holds
-//!   or skips.
+//!   or skips;
+//! - `clock`: a restart of the clock after it jumped back ([`Pipeline::restart_clock`]).
 
+mod clock;
 pub mod config;
 mod engine;
 mod output;
@@ -63,6 +65,13 @@ pub struct Pipeline {
     report: InputReport,
     /// True until the [`NoiseScaled`] values are set from the rest window.
     scaling_pending: bool,
+    /// True from [`Pipeline::restart_clock`] to the next sample taken, which starts the new
+    /// time base.
+    #[cfg_attr(feature = "serde", serde(default))]
+    clock_restarted: bool,
+    /// How many times [`Pipeline::restart_clock`] restarted the clock.
+    #[cfg_attr(feature = "serde", serde(default))]
+    clock_restarts: u64,
 }
 
 impl Pipeline {
@@ -81,6 +90,8 @@ impl Pipeline {
             },
             report: InputReport::default(),
             scaling_pending: config.noise_scaled.any() || config.rest_tracker.is_some(),
+            clock_restarted: false,
+            clock_restarts: 0,
         })
     }
 
@@ -157,9 +168,10 @@ impl Pipeline {
     /// [`Pipeline::report`]). A clock that jumps back (a time sync) has every sample skipped
     /// until it passes the last time taken, the heading frozen meanwhile: feed a monotonic clock
     /// (a jump forward is a gap, [`InputPolicy::gap_limit`](crate::InputPolicy::gap_limit)), or
-    /// watch `report().skipped`. Use [`Pipeline::process_block`] to have bad input rejected
-    /// instead; a rest window the samples pass without a reading inside leaves the bias at 0
-    /// here, which [`Pipeline::rest_window_missed`] tells.
+    /// watch `report().skipped` and go on with [`Pipeline::restart_clock`]. Use
+    /// [`Pipeline::process_block`] to have bad input rejected instead; a rest window the samples
+    /// pass without a reading inside leaves the bias at 0 here, which
+    /// [`Pipeline::rest_window_missed`] tells.
     pub fn update_with_temperature(
         &mut self,
         t: f64,
@@ -258,7 +270,7 @@ impl Pipeline {
         if result.is_err() {
             *self = before;
         }
-        result
+        result.map_err(Error::of_stream)
     }
 
     /// [`Pipeline::process_block`] after its checks of lengths.
@@ -293,7 +305,7 @@ impl Pipeline {
     /// True once the first sample is in and the rest window is over and applied: from then on
     /// the chain's loop takes the samples.
     fn settled(&self) -> bool {
-        self.clock.last().is_some() && !self.bias.learning() && !self.scaling_pending
+        self.previous_time().is_some() && !self.bias.learning() && !self.scaling_pending
     }
 
     /// The chain's loop from sample `from` of a settled pipeline, to the end of the block or to
@@ -364,7 +376,7 @@ impl Pipeline {
             &[t],
             &[rate],
             temperatures,
-            self.clock.last(),
+            self.previous_time(),
             must_be_finite,
         )
         .map_err(|e| e.with_index_offset(i))?;
@@ -384,7 +396,13 @@ impl Pipeline {
         rate: f64,
         temperature: Option<f64>,
     ) -> Option<(f64, f64, Option<f64>)> {
-        let dt = self.clock.interval(t)?;
+        // After a restart of the clock any time within range is taken, with no interval.
+        let clock = if self.clock_restarted {
+            Clock::default()
+        } else {
+            self.clock
+        };
+        let dt = clock.interval(t)?;
         let needs_temperature = self.config.correction.temperature.is_some();
         let reading =
             if usable_reading(rate, temperature) && (temperature.is_some() || !needs_temperature) {
@@ -417,6 +435,14 @@ impl Pipeline {
         let policy = self.config.input;
         let kind = if first {
             EventKind::First
+        } else if self.clock_restarted {
+            // As after a gap, with no interval (`dt` is 0): a first sample for the stages the
+            // policy keeps, and for the others a restart.
+            self.clock_restarted = false;
+            match policy.gap_action {
+                GapAction::Reset => EventKind::AfterGap,
+                GapAction::Bridge => EventKind::First,
+            }
         } else if dt > policy.gap_limit {
             self.report.gap(dt);
             match policy.gap_action {

@@ -13,8 +13,17 @@ impl Pipeline {
     pub(crate) fn check_restored(&self) -> Result<(), Error> {
         self.config.validate()?;
         self.clock.check_restored()?;
+        let restarted = self.clock_restarts > 0;
         self.bias
-            .check(self.config.correction.bias, self.clock.last())?;
+            .check(self.config.correction.bias, self.clock.last(), restarted)?;
+        // A restart is pending only after one, and only with a sample before it.
+        if self.clock_restarted && (!restarted || self.clock.last().is_none()) {
+            return Err(Error::InvalidParameter {
+                name: "clock_restarted",
+                value: 1.0,
+                valid: "false before the first sample and without a restart counted",
+            });
+        }
         // The reading the policy holds is one it took: a stored one of 1e308 was held into
         // infinite headings. The output a skipped sample repeats is one the chain gave.
         if let Some((rate, temperature)) = self.last_reading {

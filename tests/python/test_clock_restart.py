@@ -1,0 +1,140 @@
+"""A clock that jumps back: refused in words that name ``Pipeline.restart_clock``, after which the
+stream goes on on the new clock with everything it had learned, integrating nothing across the jump."""
+
+from __future__ import annotations
+
+import pickle
+import warnings
+
+import numpy as np
+import pytest
+
+import gyrocore
+from gyrocore.fixes import Fixes
+
+BIAS = 0.01
+
+
+def drive(t0: float, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """``n`` samples at 128 Hz from ``t0`` (whole seconds: every time and interval exact), a turn whose
+    rate is the bias, so its corrected rate 0, at the first and the last sample."""
+    t = t0 + np.arange(n) / 128.0
+    rate = BIAS + 0.2 * np.sin(np.pi * np.arange(n) / (n - 1))
+    rate[[0, -1]] = BIAS
+    return t, rate
+
+
+def test_a_step_back_names_the_way_on_and_restart_clock_takes_the_samples() -> None:
+    p = gyrocore.Pipeline("hdr", bias=BIAS)
+    ta, ra = drive(100.0, 400)
+    before = p.process(ta, ra)
+    tb, rb = drive(3.0, 400)
+    with pytest.raises(gyrocore.SampleError, match=r"call restart_clock\(\) and give the samples from t\[0\] on") as e:
+        p.process(tb, rb)
+    assert e.value.index == 0 and e.value.what == "t"
+    assert p.last_time == ta[-1], "a refused chunk changes nothing"
+    assert p.restart_clock() == 0
+    after = p.process(tb, rb)
+    assert after.heading[0] == before.heading[-1], "nothing integrated across the jump"
+    assert after.drift is not None and before.drift is not None and after.drift[0] == before.drift[-1]
+    assert p.bias == BIAS and p.last_time == tb[-1]
+    with pytest.raises(gyrocore.SampleError, match="restart_clock"):  # the new clock must increase too
+        p.process(tb[:3], rb[:3])
+
+
+@pytest.mark.parametrize("gap_action", ["bridge", "reset"])
+def test_a_restart_runs_as_a_gap_the_vehicle_stood_still_in(gap_action: str) -> None:
+    ta, ra = drive(100.0, 300)
+    tb, rb = drive(20.0, 300)
+    jumped = gyrocore.Pipeline("static_bias", bias=BIAS, gap_action=gap_action)
+    jumped.process(ta, ra)
+    jumped.restart_clock()
+    gap = gyrocore.Pipeline("static_bias", bias=BIAS, gap_action=gap_action)
+    gap.process(ta, ra)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrocore.InputWarning)  # the gap is said
+        expected = gap.process(tb + 1000.0, rb)
+    got = jumped.process(tb, rb)
+    np.testing.assert_array_equal(got.heading, expected.heading)
+    assert jumped.report["gaps"] == 0 and gap.report["gaps"] == 1
+
+
+def test_a_restart_survives_a_pickle_and_chunks() -> None:
+    ta, ra = drive(100.0, 300)
+    tb, rb = drive(-40.0, 300)
+    ra[:140] = BIAS  # standing still through the rest window
+    p = gyrocore.Pipeline("combined", bias_window=(100.0, 101.0))
+    p.process(ta, ra)
+    p.restart_clock()
+    resumed = pickle.loads(pickle.dumps(p))
+    whole = p.process(tb, rb).heading
+    parts = np.concatenate([resumed.process(tb[i : i + 37], rb[i : i + 37]).heading for i in range(0, 300, 37)])
+    np.testing.assert_array_equal(parts, whole)
+    again = pickle.loads(pickle.dumps(resumed))  # on the new clock, before the old window's end
+    assert again.last_time == tb[-1]
+    again.finish()
+
+
+def test_a_restart_in_the_rest_window_is_refused() -> None:
+    p = gyrocore.Pipeline("static_bias", bias_window=(0.0, 10.0))
+    t, rate = drive(0.0, 200)
+    p.process(t, rate)
+    state = p.__getstate__()["state"]
+    with pytest.raises(ValueError, match=r"restart_clock\(\) while the rest window \[0, 10\] s is measured"):
+        p.restart_clock()
+    assert p.__getstate__()["state"] == state
+
+
+def test_waiting_fixes_are_dropped_with_a_warning_and_new_ones_taken() -> None:
+    p = gyrocore.Pipeline("hdr", bias=BIAS, fusion={})
+    ta, ra = drive(100.0, 400)
+    fixes = Fixes(np.array([100.5, 101.0, 110.0]), np.zeros(3), np.full(3, 0.05))
+    first = p.process(ta, ra, fixes=fixes)
+    assert first.fusion is not None and first.fusion.counts["waiting"] == 1
+    with pytest.warns(gyrocore.InputWarning, match=r"dropped 1 heading fix\(es\) that waited"):
+        assert p.restart_clock() == 1
+    tb, rb = drive(5.0, 400)
+    new = Fixes(np.array([5.5, 6.0]), np.zeros(2), np.full(2, 0.05))  # before the old clock's fixes
+    after = p.process(tb, rb, fixes=new)
+    assert after.fusion is not None
+    assert after.heading[0] == first.heading[-1]
+    assert after.fusion.counts["waiting"] == 0
+    assert after.fusion.counts["applied"] + after.fusion.counts["rejected"] == 4
+
+
+def test_rests_after_a_restart_carry_the_new_clocks_times() -> None:
+    n = 6000
+    t = 1000.0 + np.arange(n) / 100.0
+    rate = np.full(n, 0.004)
+    speed = np.where(np.arange(n) < 3000, 5.0, 0.0)
+    speed[-500:] = 5.0  # a stop from 30 s to 55 s, then on again
+    p = gyrocore.Pipeline("tracked", bias=0.0)
+    p.process(t[:1000], rate[:1000], speed=speed[:1000])
+    p.restart_clock()
+    shifted = t[1000:] - 990.0  # the clock now reads 20 s at 1020 s of the old one
+    found = p.process(shifted, rate[1000:], speed=speed[1000:]).tracked_rests
+    assert found
+    assert 40.0 <= found[0].start < found[0].end <= 65.0
+
+
+@pytest.mark.parametrize("mode", ["whole", "causal"])
+def test_a_whole_log_whose_time_steps_back_is_not_sent_to_restart_a_stream(mode: str) -> None:
+    t, rate = drive(0.0, 400)
+    t[200:] -= 100.0  # one series given at once: sorted or mended, there is no stream to go on with
+    with pytest.raises(gyrocore.SampleError, match=r"\(sort the log and drop duplicate timestamps\)$"):
+        gyrocore.process(t, rate, "static_bias", mode=mode, bias=BIAS)
+
+
+def test_a_fusion_stream_restarts_its_clock_and_drops_the_waiting_fixes() -> None:
+    f = gyrocore.fixes.Fusion()
+    assert f.restart_clock() == 0  # before the first sample: nothing to restart
+    ta, ra = drive(100.0, 400)
+    first = f.process(ta, ra - BIAS, Fixes(np.array([101.0, 120.0]), np.zeros(2), np.full(2, 0.05)))
+    with pytest.raises(ValueError, match=r"call restart_clock\(\)"):
+        f.process(ta - 90.0, ra - BIAS)
+    with pytest.warns(gyrocore.InputWarning, match=r"dropped 1 heading fix\(es\)"):
+        assert f.restart_clock() == 1
+    after = pickle.loads(pickle.dumps(f)).process(ta - 90.0, ra - BIAS, Fixes(np.array([11.0]), np.zeros(1),
+                                                                               np.full(1, 0.05)))
+    assert after.heading[0] == first.heading[-1] and after.heading_sigma[0] == first.heading_sigma[-1]
+    assert after.counts["waiting"] == 0 and after.counts["applied"] + after.counts["rejected"] == 2
