@@ -11,7 +11,8 @@ from typing import TYPE_CHECKING, Any
 from ._checks import warn
 
 if TYPE_CHECKING:
-    from .fixes import Fixes
+    from . import _gyrocore
+    from .fixes import Fixes, FixesLike
 
 
 #: The core's words for a fix given after a sample past its time was processed.
@@ -142,6 +143,26 @@ class StreamFixes:
         from .fixes import Fixes
 
         return Fixes(block.t[1:], block.heading[1:], block.sigma[1:])
+
+    def block_for(self, inner: _gyrocore.Pipeline, fixes: FixesLike | None) -> tuple[_gyrocore.Pipeline, Fixes | None]:
+        """The core a pipeline runs a block on, and the block's fixes (:meth:`check`): fixes given
+        to a pipeline without the fix stage start it (defaults) on a copy, if it has processed no
+        sample yet, so that a bad fix leaves the pipeline without one."""
+        if fixes is None:
+            return inner, None
+        from .fixes import as_fixes, stage_settings
+
+        last = inner.last_time()
+        # the last fix given waits unless a sample at or after its time was processed
+        block = self.check(as_fixes(fixes), waits=self.last is not None and (last is None or self.last[0] > last))
+        if inner.fused():
+            return inner, block
+        if last is not None:
+            raise ValueError("fixes given to a pipeline that has processed samples without a fix stage: create "
+                             "it with Pipeline(..., fusion={}) to give fixes in a later block")
+        started = inner.__copy__()
+        started.start_fusion(stage_settings(dict(inner.params()), {}))
+        return started, block
 
     def restarted(self, dropped: int) -> None:
         """After a restart of the gyro's clock, which dropped ``dropped`` fixes that waited for

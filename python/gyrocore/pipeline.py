@@ -108,7 +108,9 @@ class Pipeline:
             warn(implausible)
         self._preset = preset
         if fusion is not None:
-            self._inner.start_fusion(_stage_settings(self.params, fusion))
+            from .fixes import stage_settings  # it reads files through gyrocore.io, which builds on this module
+
+            self._inner.start_fusion(stage_settings(self.params, fusion))
         # Said once the first samples are processed, not here: a run whose first chunk is refused
         # (a NaN reading, times out of order) warned of a bias it never used before its error.
         self._bias_warning = unmeasured_bias(preset, si)
@@ -230,7 +232,7 @@ class Pipeline:
             if self._unit_head is not None and len(ta):
                 self._unit_head = check_units(self._unit_head, ta, ra, temp, self.params)
             flags = output_flags(outputs)
-            inner, fix_block = self._fix_block(fixes)
+            inner, fix_block = self._fixes.block_for(self._inner, fixes)
             rests.refuse_speed_t_alone(speed, speed_t)
             if speed is not None and not self.params["track_rests"]:
                 raise ValueError("speed is given but rest tracking is off: pass track_rests=True, or no speed")
@@ -298,27 +300,6 @@ class Pipeline:
         sample, in ``t`` if it is the first chunk); None with a fixed bias."""
         first = self._first_time if self._first_time is not None else float(t[0]) if len(t) else None
         return window_span(self._inner.params(), first)
-
-    def _fix_block(self, fixes: FixesLike | None) -> tuple[_gyrocore.Pipeline, Fixes | None]:
-        """The core to run this block on and its fixes: fixes given to a pipeline without the fix
-        stage start it (defaults) on a copy, if it has processed no sample yet, so that a bad fix
-        leaves the pipeline without one."""
-        if fixes is None:
-            return self._inner, None
-        from .fixes import as_fixes
-
-        block = as_fixes(fixes)
-        last, given = self._inner.last_time(), self._fixes.last
-        # the last fix given waits unless a sample at or after its time was processed
-        block = self._fixes.check(block, waits=given is not None and (last is None or given[0] > last))
-        if self._inner.fused():
-            return self._inner, block
-        if self._inner.last_time() is not None:
-            raise ValueError("fixes given to a pipeline that has processed samples without a fix stage: create "
-                             "it with Pipeline(..., fusion={}) to give fixes in a later block")
-        inner = self._inner.__copy__()
-        inner.start_fusion(_stage_settings(self.params, {}))
-        return inner, block
 
     def _run(
         self,
