@@ -20,6 +20,15 @@ fn drive(t0: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
     (t, r)
 }
 
+/// A fix of heading 0 at `t`, of sigma 0.05 rad.
+fn fix_at(t: f64) -> Fix {
+    Fix {
+        t,
+        heading: 0.0,
+        sigma: 0.05,
+    }
+}
+
 fn fixed_bias(preset: Preset) -> PipelineConfig {
     let mut c = preset.config();
     c.correction.bias = StaticBias::Fixed(0.01);
@@ -199,13 +208,7 @@ fn a_restart_within_the_rest_window_is_refused_and_changes_nothing() {
 fn a_fused_pipeline_restarts_both_clocks() {
     let mut f = FusedPipeline::new(fixed_bias(Preset::Hdr), FusionConfig::default()).unwrap();
     let (t, r) = drive(100.0, 500);
-    let fixes: Vec<Fix> = (0..4)
-        .map(|s| Fix {
-            t: 100.0 + s as f64,
-            heading: 0.0,
-            sigma: 0.05,
-        })
-        .collect();
+    let fixes: Vec<Fix> = (0..4).map(|s| fix_at(100.0 + s as f64)).collect();
     let (mut h, mut rate) = (vec![0.0; 500], vec![0.0; 500]);
     let used = f
         .process_block(
@@ -219,18 +222,7 @@ fn a_fused_pipeline_restarts_both_clocks() {
     let reached = f.counts().applied + f.counts().rejected;
     f.restart_clock().unwrap();
     let (tb, rb) = drive(10.0, 200);
-    let new = [
-        Fix {
-            t: 9.5,
-            heading: 0.0,
-            sigma: 0.05,
-        },
-        Fix {
-            t: 10.5,
-            heading: 0.0,
-            sigma: 0.05,
-        },
-    ];
+    let new = [fix_at(9.5), fix_at(10.5)];
     let (mut hb, mut rateb) = (vec![0.0; 200], vec![0.0; 200]);
     let used = f
         .process_block(
