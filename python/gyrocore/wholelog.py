@@ -43,7 +43,8 @@ from numpy.typing import ArrayLike
 from ._arrays import MASKED_AS_NONFINITE, FloatArray, as_float_array, refuse_a_path
 from ._checks import MAX_SECONDS, collected, first_infinite, public_dir, refuse_no_usable_reading, require_times, usable, warn
 from ._gyrocore import SampleError
-from ._rests import MIN_REST, SPEED_THRESHOLD, Found, accept, find_rests, measure_rest, unseen_stop_hint
+from ._rests import (MIN_REST, SPEED_THRESHOLD, Found, accept, few_readings_hint, find_rests, measure_rest,
+                     unseen_stop_hint)
 from ._smoother import SmoothedBias, smooth
 from ._time_steps import whole_log_steps
 from .pipeline import ALL_OUTPUTS, BIAS_SOURCES, HeadingResult, Pipeline, core_pipeline, preset_params, uses_static_bias
@@ -311,15 +312,19 @@ def plan_arrays(
         t,
         options,
     )
-    if found.warning is None or found.rests:  # the hint is for a log where nothing looked like a rest
+    if found.warning is None:
         return found
+    # a slow log's rests, the first one said too short in readings or none found: the rate is why
+    slow = "" if any("too short in readings" in (r.refused or "") for r in found.rests) else few_readings_hint(t, speed)
+    if found.rests:  # the steady stretch's hint is for a log where nothing looked like a rest
+        return replace(found, warning=found.warning + slow)
     from .calibration.rest import steady_stretch_hint  # calibration builds on the pipeline module too
 
     # where the speed is known the rate's rests were not looked for: a steady stretch there may be a
     # stop the speed does not show; beyond it, one the rate finder refused for its level
     hint = (speed is not None and unseen_stop_hint(t, rate, speed, options.min_rest)) or steady_stretch_hint(
         t, rate, options.min_rest)
-    return replace(found, warning=found.warning + hint)
+    return replace(found, warning=found.warning + hint + slow)
 
 
 def plan_log(
