@@ -3,10 +3,14 @@ as a longer chunk's does, where it said "sort the log" (the hint judged the chun
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 import gyrocore
+
+from .conftest import gyrocore_cli
 
 SORT = r"\(sort the log and drop duplicate timestamps\)"
 
@@ -44,3 +48,11 @@ def test_a_float64_duplicate_in_short_chunks_keeps_the_advice_to_sort(size: int)
     ms[51] = ms[50]
     with pytest.raises(gyrocore.SampleError, match=SORT):
         _stream(ms, size)
+
+
+def test_float32_times_read_two_rows_at_a_time_are_named(tmp_path: Path) -> None:
+    t = (1.7e9 + np.arange(200) * 0.01).astype(np.float32).astype(np.float64)
+    path = tmp_path / "f32.csv"
+    path.write_text("t,gyro_z\n" + "".join(f"{x!r},0.0\n" for x in t.tolist()))
+    ran = gyrocore_cli("process", path, "-o", tmp_path / "out.csv", "--causal", "--chunk-rows", "2", code=2)
+    assert "they were rounded to float32 before they were written or given" in ran.stderr, ran.stderr
