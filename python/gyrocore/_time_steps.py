@@ -89,7 +89,6 @@ def why_times_step_back(t: FloatArray, i: int, previous: float, last: float | No
     wrap = counter_wrap(previous, value)
     if wrap is not None or value != previous:
         return wrap
-        return None
     if len(t) < _SHORT_CHUNK:
         # float32 alone: whole numbers below 2048, ms read as s, are float16 values, and two times
         # cannot show that the others lie a step of its spacing apart
