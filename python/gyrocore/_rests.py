@@ -132,6 +132,28 @@ def find_rests(t: FloatArray, rate: FloatArray, speed: FloatArray | None = None,
     return Found(sorted(found), motion)
 
 
+def few_readings_hint(t: FloatArray, speed: FloatArray | None) -> str:
+    """Where the rate alone was searched for rests (no speed, or samples without one) and none was
+    found, the sample rate, where it is what hid them: the finder judges a rest by the spread of
+    its blocks of 0.25 s, and at a slow rate (10 Hz: 4 readings a block) a block's spread scatters
+    so much that a rest's blocks are seldom all quiet, so a rest is too short in readings at this
+    rate however long it lasts. Larger blocks would pass a steady drive for rest: the window is to
+    be given. A clause to append to the "no rest" message ("" where the blocks hold readings enough)."""
+    from .calibration.rest import BLOCK, FEW_BLOCK_READINGS, block_readings  # calibration builds on this module too
+
+    if speed is not None and np.isfinite(speed).all():
+        return ""
+    interval, readings = block_readings(t)
+    if readings >= FEW_BLOCK_READINGS:
+        return ""
+    width = readings * interval
+    return (f"; the rate alone was searched for rests, and at this log's {1.0 / interval:.3g} Hz its blocks of "
+            f"{width:.3g} s (at least {BLOCK:g} s and 4 readings) hold {readings:.0f} readings, too few for their "
+            f"spread to tell a rest from motion (at least {FEW_BLOCK_READINGS:.0f}): at this sample rate a rest is too "
+            "short in readings to be found from the rate alone, even a long one; give its window (bias_window or "
+            "bias_duration) or the vehicle's speed")
+
+
 def unseen_stop_hint(t: FloatArray, rate: FloatArray, speed: FloatArray, min_rest: float = MIN_REST) -> str:
     """Where a speed is given and no rest was found: the longest stretch the rate alone takes for a
     rest (:func:`gyrocore.calibration.rest_windows`) where the speed shows motion, as a clause to
@@ -342,7 +364,23 @@ def _unproven(rest: Rest, motion_noise: float) -> str:
             f"readings), its noise {math.degrees(rest.noise):.2g} deg/s (at most {math.degrees(_noise_bound(rest)):.2g} at "
             f"95 % confidence) against {math.degrees(motion_noise):.2g} deg/s "
             "in the rest of the log: too short and not quiet enough for the rate alone to tell a rest from a chance "
-            f"run of quiet readings (at least {MIN_RATE_BLOCKS} blocks, or {1 / QUIET_RATIO:g} x quieter)")
+            f"run of quiet readings (at least {MIN_RATE_BLOCKS} blocks, or {1 / QUIET_RATIO:g} x quieter)"
+            + _short_in_readings(rest))
+
+
+def _short_in_readings(rest: Rest) -> str:
+    """Where the sample rate is what leaves ``rest`` too short: its span holds
+    :data:`MIN_RATE_BLOCKS` blocks of 0.25 s, but its readings fewer blocks of 4 (a slow log: 10 Hz
+    asks for 3.2 s where 16 Hz or more asks for 2 s). "" where it is not."""
+    from .calibration.rest import BLOCK  # calibration builds on the pipeline module too
+
+    span = rest.end - rest.start
+    if rest.samples < 2 or span / BLOCK < MIN_RATE_BLOCKS or (rest.samples - 1) / 4 >= MIN_RATE_BLOCKS:
+        return ""
+    interval = span / (rest.samples - 1)
+    return (f"; its {span:.3g} s are long enough, but at this log's {1.0 / interval:.3g} Hz they hold too few "
+            f"readings: a rest too short in readings at this sample rate (one of {4 * MIN_RATE_BLOCKS * interval:.3g} s "
+            "or more is used)")
 
 
 def _turning(rest: Rest) -> str:

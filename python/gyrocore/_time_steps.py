@@ -43,21 +43,24 @@ def counter_wrap(previous: float, value: float) -> str | None:
     return None
 
 
-def rounded_to_float(t: FloatArray) -> str | None:
+def rounded_to_float(t: FloatArray, fewest: int = 3, kinds: tuple[type[np.floating], ...] = (np.float16, np.float32)
+                     ) -> str | None:
     """What repeated times ``t`` are where float16 or float32 rounding explains them: a quarter or
     more of the intervals 0, the others mostly a step or two of the type's spacing, each time a
     value of that type, and the type coarser than a millisecond there (float32: 128 s near epoch
     seconds). Whole epoch seconds are float32 values only every 128 s, so a log of genuine times
     fails the test; a duplicate sample repeats one interval, not a quarter, and the times of a
-    short log (0, 1, 2, 2) that are float16 values lie far more than its spacing apart."""
+    short log (0, 1, 2, 2) that are float16 values lie far more than its spacing apart. ``fewest``:
+    the fewest times that are judged (a stream's short chunk, with the time before it, has two);
+    ``kinds``: the types whose rounding is looked for."""
     finite = t[np.isfinite(t)]
     steps = np.diff(finite)
     zero = int(np.count_nonzero(steps == 0))
-    if len(finite) < 3 or 4 * zero < len(steps):
+    if len(finite) < fewest or 4 * zero < len(steps):
         return None
     size = float(np.max(np.abs(finite)))
     forward = steps[steps > 0]
-    for kind in (np.float16, np.float32):
+    for kind in kinds:
         if size > float(np.finfo(kind).max):
             continue
         spacing = float(np.spacing(kind(size)))
@@ -71,11 +74,26 @@ def rounded_to_float(t: FloatArray) -> str | None:
     return None
 
 
-def why_times_step_back(t: FloatArray, i: int, previous: float) -> str | None:
+#: A stream's chunk shorter than this is judged for float32 rounding with the time before it: its
+#: own times are too few to show the repeats (a chunk of 1 or 2 samples, ``--chunk-rows 2``).
+_SHORT_CHUNK = 3
+
+
+def why_times_step_back(t: FloatArray, i: int, previous: float, last: float | None = None) -> str | None:
     """What explains that the time ``t[i]`` comes at or before ``previous`` (``t[i - 1]``, or the
-    last time of an earlier chunk), in parentheses, or None where nothing does."""
+    last time of an earlier chunk), in parentheses, or None where nothing does. ``last``: the time
+    of the sample before ``t[0]`` (a stream's earlier chunk, if any), which a short chunk is judged with:
+    the repeat and the times at hand all float32 values, at a size where float32 resolves more
+    than a millisecond (genuine float64 times that repeat are not all such values)."""
     value = float(t[i])
-    return counter_wrap(previous, value) or (rounded_to_float(t) if value == previous else None)
+    wrap = counter_wrap(previous, value)
+    if wrap is not None or value != previous:
+        return wrap
+    if len(t) < _SHORT_CHUNK:
+        # float32 alone: whole numbers below 2048, ms read as s, are float16 values, and two times
+        # cannot show that the others lie a step of its spacing apart
+        return rounded_to_float(np.concatenate(([] if last is None else [last], t)), 2, (np.float32,))
+    return rounded_to_float(t)
 
 
 #: The core's advice for a time going back, which would mend neither a counter's wrap nor float32 rounding.
@@ -91,7 +109,7 @@ def name_time_step(error: _gyrocore.SampleError, t: FloatArray, last: float | No
     if error.what != "t" or not 0 <= i < len(t) or _SORT_ADVICE not in str(error):
         return False
     previous = t[i - 1] if i > 0 else last
-    hint = None if previous is None else why_times_step_back(t, i, float(previous))
+    hint = None if previous is None else why_times_step_back(t, i, float(previous), last)
     if hint is None:
         return False
     error.args = (str(error).replace(_SORT_ADVICE, hint),)

@@ -180,10 +180,10 @@ class StreamFixes:
 
     def judge(self, counts: Mapping[str, int]) -> None:
         """Warns once when the stream's gate has rejected most of the fixes it reached
-        (:func:`gyrocore.fixes.warn_rejected`, a whole log's rule on the stream's totals): fixes
+        (:func:`gyrocore.fixes_warnings.warn_rejected`, a whole log's rule on the stream's totals): fixes
         stamped 0.3 s late on their arrival had the heading 16 deg off, and a stream said nothing;
-        and once when it first re-admits fixes (:func:`gyrocore.fixes.warn_readmitted`)."""
-        from .fixes import warn_readmitted, warn_rejected
+        and once when it first re-admits fixes (:func:`gyrocore.fixes_warnings.warn_readmitted`)."""
+        from .fixes_warnings import warn_readmitted, warn_rejected  # it builds on this module
 
         self.rejected_said = self.rejected_said or warn_rejected(counts)
         self.readmitted_said = self.readmitted_said or warn_readmitted(counts)

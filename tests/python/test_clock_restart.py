@@ -130,11 +130,26 @@ def test_a_fusion_stream_restarts_its_clock_and_drops_the_waiting_fixes() -> Non
     assert f.restart_clock() == 0  # before the first sample: nothing to restart
     ta, ra = drive(100.0, 400)
     first = f.process(ta, ra - BIAS, Fixes(np.array([101.0, 120.0]), np.zeros(2), np.full(2, 0.05)))
-    with pytest.raises(ValueError, match=r"call restart_clock\(\)"):
+    with pytest.raises(gyrocore.SampleError, match=r"call restart_clock\(\)") as info:
         f.process(ta - 90.0, ra - BIAS)
+    assert (info.value.index, info.value.what) == (0, "t")
     with pytest.warns(gyrocore.InputWarning, match=r"dropped 1 heading fix\(es\)"):
         assert f.restart_clock() == 1
     after = pickle.loads(pickle.dumps(f)).process(ta - 90.0, ra - BIAS, Fixes(np.array([11.0]), np.zeros(1),
                                                                                np.full(1, 0.05)))
     assert after.heading[0] == first.heading[-1] and after.heading_sigma[0] == first.heading_sigma[-1]
     assert after.counts["waiting"] == 0 and after.counts["applied"] + after.counts["rejected"] == 2
+
+
+def test_a_fusion_streams_bad_sample_is_a_sample_error_while_fixes_wait() -> None:
+    """With fixes waiting between blocks, a bad gyro sample's error came back a plain ValueError,
+    without its index and what, where without waiting fixes it is a SampleError."""
+    f = gyrocore.fixes.Fusion()
+    ta, ra = drive(100.0, 400)
+    f.process(ta, ra - BIAS, Fixes(np.array([101.0, 120.0]), np.zeros(2), np.full(2, 0.05)))
+    tb, rb = drive(104.0, 100)
+    rb[7] = np.nan
+    with pytest.raises(gyrocore.SampleError, match=r"rate\[7\] is NaN: .* \(fix numbers count 1 fixes still "
+                                                   r"waiting from earlier calls first\)$") as info:
+        f.process(tb, rb)
+    assert (info.value.index, info.value.what) == (7, "rate")

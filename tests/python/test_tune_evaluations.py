@@ -11,7 +11,7 @@ import pytest
 
 import gyrocore
 import gyrocore.tune as tune_module
-from gyrocore import tune, wholelog
+from gyrocore import tune, wholelog_bias_plan
 
 from .conftest import real_log_path
 
@@ -33,7 +33,7 @@ def test_a_tuning_run_builds_the_presets_parameters_once_not_per_evaluation(monk
 
         return spy
 
-    for module in (wholelog, tune_module):
+    for module in (wholelog_bias_plan, tune_module):  # the plan's scaled dead band and HDR bound, and tune's
         monkeypatch.setattr(module, "preset_params", counting(module))
     runs = []
     for evaluations in (4, 16):

@@ -272,13 +272,23 @@ def steady_stretch_hint(ta: FloatArray, ra: FloatArray, min_duration: float, max
     return text
 
 
-def _few_readings_hint(ta: FloatArray, options: dict[str, float]) -> str:
-    """Where the log's blocks hold fewer than 25 readings, what to give instead: the spread of so
-    few scatters so much that a log wholly at rest at 10 Hz (4 readings a block) showed none."""
+#: A block of fewer readings than this tells a rest by its spread too poorly: it scatters so much
+#: that a log wholly at rest at 10 Hz (4 readings a block) showed none.
+FEW_BLOCK_READINGS = 25.0
+
+
+def block_readings(ta: FloatArray, block: float = BLOCK) -> tuple[float, float]:
+    """The median sample interval of ``ta`` [s] (0 with fewer than two times) and how many readings
+    a block of :func:`rest_windows` holds at it (infinite where the interval is 0)."""
     interval = float(np.median(np.diff(ta))) if len(ta) > 1 else 0.0
+    return interval, (_block_width(block, interval) / interval if interval > 0 else math.inf)
+
+
+def _few_readings_hint(ta: FloatArray, options: dict[str, float]) -> str:
+    """Where the log's blocks hold fewer than :data:`FEW_BLOCK_READINGS` readings, what to give instead."""
     block = options.get("block", BLOCK)
-    readings = _block_width(block, interval) / interval if interval > 0 else math.inf
-    if readings >= 25.0:
+    interval, readings = block_readings(ta, block)
+    if readings >= FEW_BLOCK_READINGS:
         return ""
     return (f"; at this log's {1.0 / interval:.3g} Hz a block of {block:g} s holds {readings:.0f} readings, too few "
             f"to tell a rest by its spread: give block={24.0 * interval:.3g} (25 readings) to find it")

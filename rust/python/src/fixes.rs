@@ -13,7 +13,7 @@ use crate::fused::{part, Block};
 use crate::interrupt::{detach_watched, Stop, PIECE};
 use crate::pending::Pending;
 use crate::settings::{names, set_all, values, Field};
-use crate::value_error;
+use crate::{value_error, SampleError};
 
 /// The settings keys, with their units and fields (the core's `FusionConfig`).
 const FIELDS: &[Field<FusionConfig>] = &[
@@ -228,12 +228,23 @@ struct PyFusion {
     pending: Pending,
 }
 
-/// Names the fix as the caller numbered it: the new ones follow the `pending` ones.
+/// Names the fix as the caller numbered it: the new ones follow the `pending` ones. A bad gyro
+/// sample's `SampleError` keeps its class, `index` and `what` (only its words grow), so a caller
+/// catches it alike whether or not fixes were waiting.
 pub(crate) fn renumbered(py: Python<'_>, pending: usize, e: PyErr) -> PyErr {
     match e.value(py).str() {
-        Ok(m) if pending > 0 => PyValueError::new_err(format!(
-            "{m} (fix numbers count {pending} fixes still waiting from earlier calls first)"
-        )),
+        Ok(m) if pending > 0 => {
+            let words = format!(
+                "{m} (fix numbers count {pending} fixes still waiting from earlier calls first)"
+            );
+            if !e.is_instance_of::<SampleError>(py) {
+                return PyValueError::new_err(words);
+            }
+            match e.value(py).setattr("args", (words,)) {
+                Ok(()) => e,
+                Err(set) => set,
+            }
+        }
         _ => e,
     }
 }

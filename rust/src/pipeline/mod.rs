@@ -8,6 +8,8 @@
 //!   or a block at a time ([`Pipeline::process_block`]), and the slow path that the loop leaves
 //!   to it: the first sample, the rest window, gaps the policy restarts at, and readings it holds
 //!   or skips;
+//! - `slow_path`: one sample off the loop, admitted under the input policy and taken as the first
+//!   sample, one after a gap, or a step;
 //! - `clock`: a restart of the clock after it jumped back ([`Pipeline::restart_clock`]).
 
 mod clock;
@@ -16,6 +18,7 @@ mod engine;
 mod output;
 #[cfg(feature = "serde")]
 mod readback;
+mod slow_path;
 
 pub use config::{NoiseScaled, PipelineConfig, Preset};
 pub use output::{Output, Outputs};
@@ -23,12 +26,11 @@ pub use output::{Output, Outputs};
 use engine::{Block, Cursor, Engine};
 
 use crate::input::{GapAction, InputReport, NonFinite};
-use crate::kernel::{Event, EventKind, Measured, Signal};
 use crate::rest::BiasEstimate;
 use crate::rest::RestStatistics;
 use crate::rest_tracker::{check_speed, Rest, RestTracker};
 use crate::stage::Clock;
-use crate::validate::{check_block, check_lengths, interval_key, usable_reading, Checks};
+use crate::validate::{check_block, check_lengths, interval_key, Checks};
 use crate::Error;
 
 /// The composed pipeline; see the module doc for the order of the stages.
@@ -386,108 +388,6 @@ impl Pipeline {
             Some(e) => Err(e),
             None => Ok(out),
         }
-    }
-
-    /// The interval and the reading to use for a sample under the input policy (the clock then
-    /// moves to `t`), or `None` to skip the sample and leave everything as it was.
-    fn admit(
-        &mut self,
-        t: f64,
-        rate: f64,
-        temperature: Option<f64>,
-    ) -> Option<(f64, f64, Option<f64>)> {
-        // After a restart of the clock any time within range is taken, with no interval.
-        let clock = if self.clock_restarted {
-            Clock::default()
-        } else {
-            self.clock
-        };
-        let dt = clock.interval(t)?;
-        let needs_temperature = self.config.correction.temperature.is_some();
-        let reading =
-            if usable_reading(rate, temperature) && (temperature.is_some() || !needs_temperature) {
-                self.last_reading = Some((rate, temperature));
-                (rate, temperature)
-            } else {
-                match (self.config.input.non_finite, self.last_reading) {
-                    (NonFinite::Hold, Some(held)) => {
-                        self.report.held = self.report.held.saturating_add(1);
-                        held
-                    }
-                    _ => return None,
-                }
-            };
-        self.clock.set(t);
-        Some((dt, reading.0, reading.1))
-    }
-
-    /// The slow path for an admitted sample with interval `dt`: the first sample, a gap, the rest
-    /// window and its end.
-    fn take(
-        &mut self,
-        first: bool,
-        dt: f64,
-        rate: f64,
-        temperature: Option<f64>,
-        speed: f64,
-    ) -> Output {
-        let t = self.clock.last().unwrap_or(f64::NAN);
-        let policy = self.config.input;
-        let kind = if first {
-            EventKind::First
-        } else if self.clock_restarted {
-            // As after a gap, with no interval (`dt` is 0): a first sample for the stages the
-            // policy keeps, and for the others a restart.
-            self.clock_restarted = false;
-            match policy.gap_action {
-                GapAction::Reset => EventKind::AfterGap,
-                GapAction::Bridge => EventKind::First,
-            }
-        } else if dt > policy.gap_limit {
-            self.report.gap(dt);
-            match policy.gap_action {
-                GapAction::Reset => EventKind::AfterGap,
-                GapAction::Bridge => EventKind::Step,
-            }
-        } else {
-            EventKind::Step
-        };
-        if self.bias.learning() {
-            self.bias.learn(self.config.correction.bias, t, dt, rate);
-            self.engine.measured(&Measured {
-                bias: Some(self.bias.value()),
-                ..Measured::default()
-            });
-        }
-        let measuring = self.bias.learning();
-        if self.scaling_pending && !measuring {
-            self.scale_to_rest();
-        }
-        let e = Event {
-            dt,
-            kind,
-            measuring,
-        };
-        let x = Signal {
-            speed,
-            ..Signal::reading(rate, temperature.unwrap_or(f64::NAN))
-        };
-        Output::of(self.engine.event(e, x))
-    }
-
-    /// Sets the [`NoiseScaled`] dead band and HDR bound from the rest window that just ended.
-    fn scale_to_rest(&mut self) {
-        self.scaling_pending = false;
-        let Some(rest) = self.bias.rest_statistics() else {
-            return;
-        };
-        let scaled = self.config.noise_scaled;
-        self.engine.measured(&Measured {
-            bias: None,
-            threshold: scaled.threshold_sigmas.map(|k| k * rest.noise),
-            hdr_bound: scaled.hdr_bound_sigmas.map(|k| k * rest.bias_std_error),
-            rest: Some(rest),
-        });
     }
 }
 
