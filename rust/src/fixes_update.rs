@@ -180,6 +180,7 @@ impl Fusion {
     }
 
     /// True from [`Fusion::restart_clock`] to the next sample taken.
+    #[cfg(feature = "serde")] // read by a read-back state's check alone
     pub(crate) fn restart_pending(&self) -> bool {
         self.restarted
     }

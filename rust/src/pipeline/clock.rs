@@ -41,6 +41,7 @@ impl Pipeline {
     }
 
     /// True from [`Pipeline::restart_clock`] to the next sample taken.
+    #[cfg(feature = "serde")] // read by a read-back state's check alone
     pub(crate) fn clock_restart_pending(&self) -> bool {
         self.clock_restarted
     }
