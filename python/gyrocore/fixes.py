@@ -253,6 +253,12 @@ class Fusion:
     #: What a filter is, in the words of a call refused while another thread's runs.
     _in_use_name = "this gyrocore.fixes.Fusion"
 
+    def __repr__(self) -> str:
+        if self._turn.busy():  # its state is out of reach while the other call runs
+            return "Fusion(in use by another thread)"
+        # a stream under way shows what its fixes did: it printed as a bare object
+        return f"Fusion(settings={self.settings()!r}, counts={self.counts()!r})"
+
 
 def stage_settings(params: dict[str, Any], settings: dict[str, float] | None) -> dict[str, float]:
     """The fix stage's settings in a pipeline with the parameters ``params``: it starts from the

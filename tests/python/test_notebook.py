@@ -282,6 +282,15 @@ def test_a_pipeline_under_way_shows_where_its_stream_stands() -> None:
     assert repr(p) == fresh
 
 
+def test_a_fix_filter_shows_its_settings_and_what_its_fixes_did() -> None:
+    # it printed as a bare object: <gyrocore.fixes.Fusion object at 0x...>
+    f = gyrocore.fixes.Fusion(arw=2e-3)
+    t = np.arange(0.0, 10.0, 0.01)
+    f.process(t, np.zeros_like(t), gyrocore.fixes.Fixes(np.array([5.0]), np.array([0.1]), np.array([0.02])))
+    assert repr(f) == f"Fusion(settings={f.settings()!r}, counts={f.counts()!r})"
+    assert "'arw': 0.002" in repr(f) and "'applied': 1" in repr(f)
+
+
 @pytest.mark.parametrize("given", ["drive.csv", "logs/drive1", "gyro.npz"])
 def test_a_file_given_to_process_is_told_to_be_read_first(given: str) -> None:
     """As the command line takes a file, a first try in Python gives one: it was told the preset's
