@@ -202,6 +202,14 @@ fn a_restart_within_the_rest_window_is_refused_and_changes_nothing() {
     p.restart_clock().unwrap();
 }
 
+/// The fused pipeline over a block with `fixes`: its heading, and how many fixes it used.
+fn fused_block(f: &mut FusedPipeline, t: &[f64], r: &[f64], fixes: &[Fix]) -> (Vec<f64>, usize) {
+    let (mut heading, mut rate) = (vec![0.0; t.len()], vec![0.0; t.len()]);
+    let out = common::heading_and_rate(&mut heading, &mut rate);
+    let used = f.process_block(Samples::new(t, r), fixes, out).unwrap();
+    (heading, used)
+}
+
 /// Fixes on the new clock: accepted even before the last fix on the old one, and the filter's
 /// estimate carried across the jump.
 #[test]
@@ -209,28 +217,13 @@ fn a_fused_pipeline_restarts_both_clocks() {
     let mut f = FusedPipeline::new(fixed_bias(Preset::Hdr), FusionConfig::default()).unwrap();
     let (t, r) = drive(100.0, 500);
     let fixes: Vec<Fix> = (0..4).map(|s| fix_at(100.0 + s as f64)).collect();
-    let (mut h, mut rate) = (vec![0.0; 500], vec![0.0; 500]);
-    let used = f
-        .process_block(
-            Samples::new(&t, &r),
-            &fixes,
-            common::heading_and_rate(&mut h, &mut rate),
-        )
-        .unwrap();
-    assert_eq!(used, 4);
+    assert_eq!(fused_block(&mut f, &t, &r, &fixes).1, 4);
     let estimate = f.fusion().estimate();
     let reached = f.counts().applied + f.counts().rejected;
     f.restart_clock().unwrap();
     let (tb, rb) = drive(10.0, 200);
     let new = [fix_at(9.5), fix_at(10.5)];
-    let (mut hb, mut rateb) = (vec![0.0; 200], vec![0.0; 200]);
-    let used = f
-        .process_block(
-            Samples::new(&tb, &rb),
-            &new,
-            common::heading_and_rate(&mut hb, &mut rateb),
-        )
-        .unwrap();
+    let (hb, used) = fused_block(&mut f, &tb, &rb, &new);
     assert_eq!(used, 2);
     assert_eq!(
         hb[0], estimate.heading,
