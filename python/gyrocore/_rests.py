@@ -351,12 +351,18 @@ def _noise_bound(rest: Rest) -> float:
     return rest.noise / math.pow(1.0 - c - QUIET_CONFIDENCE_Z * math.sqrt(c), 1.5)
 
 
+def _block_counts(rest: Rest) -> tuple[float, float]:
+    """How many of :func:`gyrocore.calibration.rest_windows`' blocks ``rest`` spans by its time
+    (blocks of 0.25 s) and by its readings (blocks of 4 sample intervals)."""
+    from .calibration.rest import BLOCK  # calibration builds on the pipeline module too
+
+    return (rest.end - rest.start) / BLOCK, (rest.samples - 1) / 4
+
+
 def _blocks(rest: Rest) -> float:
     """How many of :func:`gyrocore.calibration.rest_windows`' blocks ``rest`` spans (0.25 s, and
     at least 4 sample intervals each)."""
-    from .calibration.rest import BLOCK  # calibration builds on the pipeline module too
-
-    return min((rest.end - rest.start) / BLOCK, (rest.samples - 1) / 4)
+    return min(_block_counts(rest))
 
 
 def _unproven(rest: Rest, motion_noise: float) -> str:
@@ -372,11 +378,10 @@ def _short_in_readings(rest: Rest) -> str:
     """Where the sample rate is what leaves ``rest`` too short: its span holds
     :data:`MIN_RATE_BLOCKS` blocks of 0.25 s, but its readings fewer blocks of 4 (a slow log: 10 Hz
     asks for 3.2 s where 16 Hz or more asks for 2 s). "" where it is not."""
-    from .calibration.rest import BLOCK  # calibration builds on the pipeline module too
-
-    span = rest.end - rest.start
-    if rest.samples < 2 or span / BLOCK < MIN_RATE_BLOCKS or (rest.samples - 1) / 4 >= MIN_RATE_BLOCKS:
+    by_time, by_readings = _block_counts(rest)
+    if rest.samples < 2 or by_time < MIN_RATE_BLOCKS or by_readings >= MIN_RATE_BLOCKS:
         return ""
+    span = rest.end - rest.start
     interval = span / (rest.samples - 1)
     return (f"; its {span:.3g} s are long enough, but at this log's {1.0 / interval:.3g} Hz they hold too few "
             f"readings: a rest too short in readings at this sample rate (one of {4 * MIN_RATE_BLOCKS * interval:.3g} s "
