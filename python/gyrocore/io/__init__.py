@@ -60,7 +60,8 @@ from ._csvfile import CSV_BLOCK_BYTES, read_csv_columns
 from ._logfolder import read_reference_file
 from .atomic import StagedFile, atomic_path
 from .log import Log, read_log
-from .source import DEFAULT_CHUNK_ROWS, FILE_SUFFIXES, Chunk, GyroSource, ReadOptions, is_input, open_source
+from .read_options import ReadOptions
+from .source import DEFAULT_CHUNK_ROWS, FILE_SUFFIXES, Chunk, GyroSource, is_input, open_source
 from .units import EPOCH_LIMIT, RATE_UNITS, SHORT_INTERVAL, SMALL_RATE_DPS, TIME_UNITS, UnitCheck
 from .writer import (
     HEADING_CONVENTIONS,

@@ -21,7 +21,8 @@ from .._checks import warn
 from ._columns import CHOOSE_COLUMNS, column_positions, warn_own_time_unit
 
 if TYPE_CHECKING:
-    from .source import GyroSource, ReadOptions
+    from .read_options import ReadOptions
+    from .source import GyroSource
 
 
 def npy_header(path: Path | str, f: Any) -> tuple[tuple[int, ...], bool, np.dtype[Any]]:

@@ -8,7 +8,8 @@ from typing import TYPE_CHECKING
 from .._checks import warn
 
 if TYPE_CHECKING:
-    from .source import GyroSource, ReadOptions
+    from .read_options import ReadOptions
+    from .source import GyroSource
 
 
 def checked_options(source: GyroSource, given: ReadOptions) -> GyroSource:

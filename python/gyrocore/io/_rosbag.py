@@ -18,7 +18,8 @@ from .._checks import did_you_mean
 from .._extras import require
 
 if TYPE_CHECKING:
-    from .source import GyroSource, ReadOptions
+    from .read_options import ReadOptions
+    from .source import GyroSource
 
 _IMU = "sensor_msgs/msg/Imu"
 #: The fields of an Imu message read as a column: the gyro's and the accelerometer's axes.

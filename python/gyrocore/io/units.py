@@ -19,7 +19,7 @@ from .._arrays import FloatArray, durations_in_seconds, warn_coarse_times, warn_
 from .._checks import INTERVAL_LIMIT, SUBSET_SIZE, typical_interval, unit_problems
 
 if TYPE_CHECKING:
-    from .source import ReadOptions
+    from .read_options import ReadOptions
 
 #: Time units of a file, as counts per second.
 TIME_UNITS = {"s": 1.0, "ms": 1e3, "us": 1e6, "ns": 1e9}
