@@ -156,3 +156,27 @@ def test_an_npz_holding_a_table_says_how_to_save_it(tmp_path: Path) -> None:
     np.save(tmp_path / "drive.npy", np.load(path)["data"])  # as the error says
     log = gyrocore.read_log(tmp_path / "drive.npy")
     assert np.degrees(np.sum(log.rate[1:] * np.diff(log.t))) == pytest.approx(90, abs=0.01)
+
+
+def test_px4s_array_columns_are_named_and_read_as_a_gyros_axes(tmp_path: Path) -> None:
+    """PX4's ulog2csv writes sensor_combined as timestamp [us since boot], gyro_rad[0] to
+    gyro_rad[2] [rad/s], ..., accelerometer_timestamp_relative. The element index [2] was read as a
+    unit ("states the unit '2'") and the rate column could not be named at all; the hint named no
+    time (two names hold "timestamp") and left out the gyro."""
+    header = ["timestamp", "gyro_rad[0]", "gyro_rad[1]", "gyro_rad[2]", "gyro_integral_dt",
+              "accelerometer_timestamp_relative"]
+    us = 20_000_000 + np.round(T * 1e6).astype(np.int64)
+    path = tmp_path / "log_sensor_combined_0.csv"
+    path.write_text(",".join(header) + "\n" + "".join(
+        f"{u},0.001,-0.002,{z!r},5000,0\n" for u, z in zip(us.tolist(), YAW.tolist())))
+    with pytest.raises(ValueError, match=re.escape(
+            "; time_col='timestamp', rate_col='gyro_rad[2]' (--time-col timestamp --rate-col 'gyro_rad[2]') look "
+            "like them; where z does not point up, give the three axes and the axis that does: "
+            "gyro_cols='gyro_rad[0],gyro_rad[1],gyro_rad[2]', up='x' for x up (--gyro-cols "
+            "'gyro_rad[0],gyro_rad[1],gyro_rad[2]' --up x), or accel_cols to measure up)")):
+        gyrocore.read_log(path)
+    for options in ({"rate_col": "gyro_rad[2]"}, {"gyro_cols": "gyro_rad[0],gyro_rad[1],gyro_rad[2]", "up": "z"}):
+        log = gyrocore.read_log(path, time_col="timestamp", time_unit="us", **options)
+        assert log.t[0] == pytest.approx(20.0)
+        assert np.degrees(np.sum(log.rate[1:] * np.diff(log.t))) == pytest.approx(90, abs=0.01)
+    assert gyrocore.io.units.split_unit("w [deg/s]") == ("w", "deg/s")  # a unit in brackets stays one

@@ -134,6 +134,8 @@ _LIKE = {
     "gyro_z": re.compile(r"(gyr|gyro|gyroscope|g|w|omega|angular|angvel|angularvelocity|rot)[a-z0-9]*z|.*yawrate.*"
                          r"|rate|turnrate|angularrate|gyro|gyroscope"),
 }
+#: Names that are a time and nothing else, preferred where several names look like a time.
+_TIME_WORDS = frozenset(("t", "ts", "time", "times", "timestamp", "stamp", "sec", "secs", "seconds"))
 _OPTION = {"t": ("time_col", "--time-col"), "gyro_z": ("rate_col", "--rate-col")}
 
 
@@ -158,9 +160,12 @@ def _look_like(header: list[str], missing: list[str], times: tuple[str, ...] = (
     said, typed, axes = [], [], ""
     bases = {split_unit(str(h))[0] for h in header}  # the names without their units, as the reader matches them
     for column in (c for c in missing if c in _LIKE):
-        like = [b for b in bases if _LIKE[column].fullmatch(re.sub(r"[^a-z0-9]", "", b.lower()))]
+        like = [b for b in bases if _LIKE[column].fullmatch(re.sub(r"[^a-z0-9]", "", _axis_named(b).lower()))]
         if column == "t":
             like += [b for b in times if b not in like]
+            plain = [b for b in like if re.sub(r"[^a-z0-9]", "", b.lower()) in _TIME_WORDS]
+            if len(plain) == 1:  # PX4's timestamp beside its accelerometer_timestamp_relative
+                like = plain
         if len(like) == 1:
             keyword, option = _OPTION[column]
             said.append(f"{keyword}={like[0]!r}")
@@ -178,12 +183,28 @@ def _look_like(header: list[str], missing: list[str], times: tuple[str, ...] = (
     return f"; {', '.join(said)} ({' '.join(typed)}) look{'s' if one else ''} like {'it' if one else 'them'}{axes}"
 
 
+#: An element of an array logged as columns, ``gyro_rad[0]`` to ``gyro_rad[2]`` (PX4's ulog2csv): its
+#: x, y and z axes.
+_ELEMENT = re.compile(r"(?P<array>.+)\[\s*(?P<index>[012])\s*\]")
+
+
+def _axis_named(name: str) -> str:
+    """``name`` with an array's element 0, 1 or 2 written as its axis (``gyro_rad[2]`` as
+    ``gyro_radz``), so that an array of three axes is matched as its axes' names are."""
+    m = _ELEMENT.fullmatch(name)
+    return name if m is None else m["array"] + "xyz"[int(m["index"])]
+
+
 def _three_axes(z: str, bases: set[str]) -> str:
     """Where the gyro's z column ``z`` has its x and y beside it, the three-axis options: the z axis
     is the yaw rate only of a sensor mounted z up (EuRoC's x axis points up, a phone's z only
     when it lies flat), which the header cannot tell."""
-    cut = z.lower().rfind("z")
-    xyz = [z[:cut] + a + z[cut + 1:] for a in ("x", "y")]
+    element = _ELEMENT.fullmatch(z)
+    if element is not None:
+        xyz = [f"{element['array']}[{i}]" for i in (0, 1)]
+    else:
+        cut = z.lower().rfind("z")
+        xyz = [z[:cut] + a + z[cut + 1:] for a in ("x", "y")]
     if not all(name in bases for name in xyz):
         return ""
     cols = ",".join([*xyz, z])

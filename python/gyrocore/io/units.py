@@ -236,11 +236,12 @@ def split_unit(column: str) -> tuple[str, str | None]:
 
     ``#timestamp [ns]`` -> ``("timestamp", "ns")``; ``gyro_z_dps`` -> ``("gyro_z", "dps")``;
     ``gyro_z_deg_s`` -> ``("gyro_z", "deg_s")``; ``t`` -> ``("t", None)``. A ``_suffix`` counts as a
-    unit only if it is one (``gyro_z`` has none).
+    unit only if it is one (``gyro_z`` has none); a number in square brackets is an array's element,
+    not a unit (PX4's ``gyro_rad[2]`` -> ``("gyro_rad[2]", None)``).
     """
     name = column.strip().lstrip("#").strip()
     m = _BRACKETED.match(name)
-    if m and m["base"]:
+    if m and m["base"] and not (m["square"] or "").strip().isdigit():  # gyro_rad[2] is an array's element
         return m["base"], (m["square"] if m["square"] is not None else m["round"]).strip()
     for words in (2, 1):  # a unit of two words first: gyro_z_deg_s is in deg_s, not in s
         base, *suffix = name.rsplit("_", words)
