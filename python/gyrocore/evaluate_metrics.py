@@ -382,10 +382,12 @@ def warn_if_offset(reference: Reference, t: ArrayLike, heading: ArrayLike, e_psi
     step = max(float(np.median(np.diff(te))), float(np.median(np.diff(reference.t))), (hi - lo) / 2**17)
     grid = np.arange(lo, hi, step)
     ours, theirs = np.diff(np.interp(grid, te, est)), np.diff(np.interp(grid, reference.t, reference.heading))
+    k = min(int(OFFSET_SEARCH / step), len(ours) // 4)
+    if k < 3:  # too short an overlap to look for a lag (and an empty one has no mean)
+        return
     ours, theirs = ours - ours.mean(), theirs - theirs.mean()
     norm = float(np.linalg.norm(ours) * np.linalg.norm(theirs))
-    k = min(int(OFFSET_SEARCH / step), len(ours) // 4)
-    if k < 3 or norm == 0:
+    if norm == 0:
         return
     size = 1 << int(math.ceil(math.log2(2 * len(ours))))
     corr = np.fft.irfft(np.fft.rfft(theirs, size) * np.conj(np.fft.rfft(ours, size)), size)

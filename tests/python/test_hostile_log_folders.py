@@ -181,6 +181,18 @@ def test_a_reference_over_part_of_the_log_warns_naming_both_spans(tmp_path: Path
         gyrocore.evaluate.compare([folder], ["raw"])
 
 
+def test_a_reference_of_two_samples_is_scored_without_numpys_warnings(tmp_path: Path) -> None:
+    # the clock-offset check took the mean of no rate steps: "Mean of empty slice" and "invalid
+    # value encountered in scalar divide" reached the user beside the span's warning
+    folder = log_folder_with(tmp_path, "reference.csv", "t,heading\n1700000001,0\n1700000001.1,0\n")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        gyrocore.evaluate.compare([folder], ["raw"])
+    said = [str(w.message) for w in caught]
+    assert not [w for w in caught if not issubclass(w.category, gyrocore.InputWarning)], said
+    assert len(said) == 1 and "the reference covers 0.1 s of the log's 30 s" in said[0], said
+
+
 def test_positions_apart_in_time_name_both_spans() -> None:
     # "the reference has fewer than two samples inside the track's time span" said neither span
     track = deadreckon.dead_reckon(np.array([0.0, 10.0]), np.array([1.0, 1.0]), np.array([0.0, 10.0]), np.zeros(2))
