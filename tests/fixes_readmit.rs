@@ -113,7 +113,7 @@ fn a_lasting_wrong_course_beyond_reach_stays_rejected_and_one_within_it_is_taken
     assert!(counts.rejected >= 30, "{counts:?}");
     let off = worst_after(&t, &r.heading, &psi, 90.0);
     assert!(off < 1.0, "{off} deg");
-    // 8 deg off from 100 s on, lasting: taken after readmit_after (10 s by default) ...
+    // 8 deg off from 100 s on, lasting: taken after readmit_after (10 s here) ...
     let fx = offset_from_100_s(&t, &psi, 8.0);
     let (r, counts) = whole(config(), &t, &rate, &fx);
     assert_eq!(counts.readmitted, 1, "{counts:?}");

@@ -60,6 +60,8 @@ pub fn config() -> FusionConfig {
     FusionConfig {
         arw: 1e-3 * 0.1,
         bias_walk: 1e-5,
+        // the re-admission tests count seconds of rejections from this, not from the default
+        readmit_after: 10.0,
         ..FusionConfig::default()
     }
 }
