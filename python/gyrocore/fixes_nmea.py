@@ -16,7 +16,6 @@ binary data on its line is read, and a line of no sentence skipped, with a warni
 
 from __future__ import annotations
 
-import datetime
 import math
 import re
 from collections import Counter
@@ -32,6 +31,7 @@ from .fixes import Fixes, from_gnss
 from .fixes_files import ROW_ERROR
 from .io._csvfile import refuse_not_text
 from .io._paths import check_file
+from .fixes_nmea_time import EARLY_DATE, Clock, in_leap_second
 
 #: Metres per second in a knot and in a km/h (NMEA's speed units).
 KNOT, KMH = 1852.0 / 3600.0, 1.0 / 3.6
@@ -47,16 +47,6 @@ MAX_LINE = 4096
 #: receiver's own simulated fixes, of no vehicle's motion).
 NO_FIX_MODES = ("N", "E", "M", "S")
 
-#: Seconds in a day, and the fall of an RMC's time of day under one date that is midnight UTC
-#: passed (the receiver advanced the date field a sentence or more late): more than half a day.
-DAY = 86_400.0
-_HALF_DAY = DAY / 2
-#: The last seconds before midnight UTC in which an RMC dated a day after the epoch before it is
-#: of that epoch's day: a receiver that takes its date from GPS time (18 s ahead of UTC since
-#: 2017) advances the date field early. Further from midnight the next day's date is a gap in
-#: the log, taken as written.
-EARLY_DATE = 60.0
-
 #: The unit letters of a VTG's values: true and magnetic course, speed in knots and in km/h.
 _VTG_UNITS = ("T", "M", "N", "K")
 
@@ -66,9 +56,6 @@ _BINARY = re.compile(r".*[^\t\x20-\x7e]", re.DOTALL)
 #: A sentence with its checksum, near the start of a file: a serial log may begin with binary data
 #: before it, and is no binary file.
 _SENTENCE = re.compile(rb"[$!][A-Z][A-Z0-9]{4,5},[\x20-\x7e]*\*[0-9A-Fa-f]{2}")
-
-#: An RMC time in the leap second 23:59:60 UTC, which pynmea2 hands back as its text.
-_LEAP_SECOND = re.compile(r"235960(\.\d*)?")
 
 
 def read_nmea(path: str | Path, **options: float) -> Fixes:
@@ -86,9 +73,13 @@ def read_nmea(path: str | Path, **options: float) -> Fixes:
     Sentences are taken in the order written: an RMC time of day that wraps past midnight while
     its date field has not yet advanced is of the next day, and one in the last
     :data:`EARLY_DATE` seconds before midnight dated a day after the RMC before it (the date
-    advanced early) is of that RMC's day, a warning counting the sentences so moved either way; a
-    time that steps back otherwise is an error naming its line, and of RMC sentences repeating one time the first is kept (a warning
-    counts those that differ from it); one in the leap second 23:59:60 is skipped with a warning.
+    advanced early) is of that RMC's day, a warning counting the sentences so moved either way. A
+    log that opens in that last minute with the next day's date already, and keeps it through
+    midnight, is put a day back as a whole where more of its sentences follow that midnight than
+    precede it (the reading that takes fewer date fields for wrong). A time that steps back
+    otherwise is an error naming its line; of RMC sentences repeating one time the first is kept
+    (a warning counts those that differ from it); one in the leap second 23:59:60 is skipped with
+    a warning.
     A line that is no sentence, an RMC or VTG without a checksum, or one whose fields are not
     values is an error naming the file and line, as is a file of no sentence; a last line cut off
     without a line end is skipped with a warning, and so, from the first binary data on (a serial
@@ -115,12 +106,7 @@ class _Epochs:
         self.epochs: dict[float, tuple[float, float, int]] = {}  # time -> course [deg], speed [m/s], line
         self.tally: Counter[str] = Counter()
         self.last: float | None = None  # the epoch of the valid RMC just before: a VTG's
-        # the last dated RMC: its date field, time of day [s], time [s] and line; and the days
-        # added to the times of its date field (one after midnight with the date not yet advanced,
-        # minus one before it with the date advanced early: see _days_off)
-        self.clock: tuple[datetime.date, float, float, int] | None = None
-        self.lag = 0.0
-        self.moved: int | None = None  # the line of the first RMC put on another day than its date field's
+        self.clock = Clock(path)  # the times of the dated sentences (RMC)
         # the magnetic variation of the valid RMC just before (its fields 10 and 11) and its line: a
         # VTG's magnetic course is made true by it
         self.variation: tuple[str, str, int] = ("", "", 0)
@@ -192,12 +178,12 @@ class _Epochs:
             self.tally["void"] += 1
         elif msg.mode_indicator in NO_FIX_MODES:
             self.tally["mode"] += 1
-        elif isinstance(msg.timestamp, str) and _LEAP_SECOND.fullmatch(msg.timestamp):
-            self.tally["leap"] += 1  # Unix seconds have no 23:59:60: it would be read as the next 00:00:00
+        elif in_leap_second(msg):
+            self.tally["leap"] += 1
         elif not (msg.datestamp and msg.timestamp):
             self.tally["undated"] += 1
         else:
-            self.last = t = self._time(msg, number)
+            self.last = t = self.clock.time(msg, number)
             self.variation = (msg.mag_variation or "", msg.mag_var_dir or "", number)
             if msg.true_course is None or msg.spd_over_grnd is None:
                 self.tally["courseless"] += 1
@@ -240,27 +226,6 @@ class _Epochs:
                              "which it makes true; remove or repair the line")
         return degrees if side == "E" else -degrees
 
-    def _time(self, msg: Any, number: int) -> float:
-        """The time [s] of the dated RMC ``msg``, on the clock of the RMC before it: its date
-        field is taken where it agrees with its time of day, and put right where it is a day off
-        it (see :func:`_days_off`); a time that falls otherwise is an error naming the line."""
-        t = float(msg.datetime.timestamp())  # first: a field that is not a date or a time raises a TypeError
-        date, clock = msg.datestamp, msg.timestamp
-        of_day = 3600.0 * clock.hour + 60.0 * clock.minute + clock.second + clock.microsecond / 1e6
-        off = None if self.clock is None else _days_off(self.clock[0], self.clock[1], date, of_day)
-        self.lag = 0.0 if off is None else self.lag + off * DAY
-        if self.lag:
-            self.tally["moved"] += 1
-            self.moved = number if self.moved is None else self.moved
-        t += self.lag
-        if self.clock is not None and t < self.clock[2]:
-            before, line = self.clock[2], self.clock[3]
-            raise ValueError(f"{self.path}: line {number}: the time steps back, from {_utc(before)} (line {line}) to "
-                             f"{_utc(t)} UTC; sentences are read in the order written: remove the lines of the "
-                             "earlier time, or read two logs one at a time")
-        self.clock = (date, of_day, t, number)
-        return t
-
     def _add(self, t: float, course: float, speed: float, number: int) -> None:
         """The epoch at ``t``, unless an RMC gave that time already (its first is kept)."""
         had = self.epochs.get(t)
@@ -274,13 +239,14 @@ class _Epochs:
         """The fixes of the epochs taken, through :func:`from_gnss` with ``options``."""
         if not self.tally["sentences"]:
             raise ValueError(f"{self.path}: no NMEA sentence, so no fix; give a file of RMC (and VTG) sentences")
+        shift = self.clock.shift()  # a log that opened with its date field advanced early: a day back
         self._warn_skipped()
         if not self.epochs:
             self._warn_no_epoch()
         times = list(self.epochs)  # in time order: a step back was refused
         course, speed, lines = (np.array([self.epochs[k][i] for k in times], dtype=float) for i in range(3))
         try:
-            return from_gnss(np.array(times, dtype=float), course, speed, **options)
+            return from_gnss(np.array(times, dtype=float) + shift, course, speed, **options)
         except ValueError as e:
             # from_gnss names a sample by its index in time order: the file names its line
             m = ROW_ERROR.match(str(e))
@@ -299,10 +265,11 @@ class _Epochs:
             warn(f"{self.path}: {self.tally['repeats']} RMC sentence(s) repeat the time of an earlier one with another "
                  f"course or speed (the first: line {self.repeat}), and the first of each time is kept: a receiver "
                  "faster than its time's resolution (5 Hz in whole seconds) or repeating a time writes them")
-        if self.tally["moved"]:
-            warn(f"{self.path}: {self.tally['moved']} RMC sentence(s) have a date field off the day their time of day "
-                 f"runs on to (the first: line {self.moved}), the receiver advancing it early, in the last "
-                 f"{EARLY_DATE:.0f} s before midnight UTC, or late, after it: they are put on that day")
+        if self.clock.moved:
+            clock = self.clock
+            warn(f"{self.path}: {clock.moved} {clock.moved_kinds()} sentence(s) have a date field off the day their "
+                 f"time of day runs on to (the first: line {clock.first_moved}), the receiver advancing it early, in "
+                 f"the last {EARLY_DATE:.0f} s before midnight UTC, or late, after it: they are put on that day")
         if self.tally["magnetic"] and self.epochs:  # else said with the other reasons for no fix
             warn(f"{self.path}: {self.tally['magnetic']} VTG sentence(s) give a magnetic course only, {_MAGNETIC}")
         if self.tally["leap"]:
@@ -349,28 +316,6 @@ def _vtg_fields(data: list[str]) -> tuple[str, str, str, str, str]:
         if unit in values:
             values[unit] = value
     return values["T"], values["M"], values["N"], values["K"], data[-1] if len(data) % 2 else ""
-
-
-def _days_off(date_before: datetime.date, of_day_before: float, date: datetime.date, of_day: float) -> int | None:
-    """The days by which the date field ``date`` of an RMC at ``of_day`` [s] is off the day its
-    time of day runs on to from the RMC before it (``date_before``, ``of_day_before``), the time
-    of day being what a receiver gets right: the day advances where the time of day falls by
-    more than half a day (midnight passed). 1 where the date field has not advanced with it
-    (late); -1 where it has advanced and the time of day has not, within :data:`EARLY_DATE` of
-    midnight (early); 0 where the two agree, and None where the date field steps otherwise (a
-    gap in the log, taken as written)."""
-    passed = int(of_day_before - of_day > _HALF_DAY)
-    step = (date - date_before).days
-    if step == passed:
-        return 0
-    if (step, passed) == (0, 1) or ((step, passed) == (1, 0) and of_day >= DAY - EARLY_DATE):
-        return passed - step
-    return None
-
-
-def _utc(t: float) -> str:
-    """Unix seconds ``t`` as an ISO UTC date and time."""
-    return datetime.datetime.fromtimestamp(t, datetime.timezone.utc).isoformat(sep=" ")[:-6]
 
 
 def _sentences(path: Path) -> Iterator[tuple[int, str, bool]]:
