@@ -1,4 +1,4 @@
-"""The times of an NMEA log's dated sentences (RMC) for :func:`gyrocore.fixes.read_nmea`: a
+"""The times of an NMEA log's dated sentences (RMC, ZDA) for :func:`gyrocore.fixes.read_nmea`: a
 date field and a time of day each, read in the order written, on one clock that runs on across
 midnight UTC where a receiver advances the date field late or early, and refuses a time that
 steps back."""
