@@ -9,7 +9,8 @@ naming the file and the line: one that is no sentence (a bad checksum, a line lo
 sentence), an RMC, VTG, HDT or ZDA without its checksum (a sentence cut short reads as one of
 other values), one whose date, time, course, speed or heading is not a value (pynmea2 hands such
 a field back as its text), an RMC or ZDA whose time steps back, and one whose magnetic variation,
-needed to make a VTG's magnetic course true, is no angle. The last line, cut off without a line end (a log stopped mid-write), is skipped after
+needed to make a VTG's magnetic course true, is no angle. A logger's timestamp before a sentence
+is skipped. The last line, cut off without a line end (a log stopped mid-write), is skipped after
 a warning instead. A serial log, with a receiver's binary messages
 (u-blox UBX) among its sentences, is read from its first binary data on as such: a sentence after
 binary data on its line is read, and a line of no sentence skipped, with a warning counting them.
@@ -61,6 +62,8 @@ SOURCES = ("auto", "hdt", "course")
 #: The unit letters of a VTG's values: true and magnetic course, speed in knots and in km/h.
 _VTG_UNITS = ("T", "M", "N", "K")
 
+#: The start of a sentence on a line: a logger's time before it is skipped.
+_START = re.compile(r"[$!]")
 #: Text up to the last character that no NMEA sentence has (they are printable ASCII): binary data
 #: read as text, a receiver's binary messages among its sentences.
 _BINARY = re.compile(r".*[^\t\x20-\x7e]", re.DOTALL)
@@ -106,7 +109,10 @@ def read_nmea(path: str | Path, *, source: str = "auto", hdt_sigma_deg: float = 
     are not values is an error naming the file and line, as is a file of no sentence; a last line
     cut off without a line end is skipped with a warning, and so, from the first binary data on
     (a serial log's binary messages among its sentences), is a line of no sentence, a sentence
-    after binary data on its line read. Sentences that give no fix warn with their counts (void RMC, RMC without a course, HDT of no epoch; a log of GGA, GNS or GLL
+    after binary data on its line read. Text before the first ``$`` or ``!`` of a line (a
+    logger's timestamp: ``1634567890.123 $GPRMC,...``, ``[12:00:00.123] $GPRMC,...``) is
+    skipped, the sentence and its checksum read from there on. Sentences that give no fix warn
+    with their counts (void RMC, RMC without a course, HDT of no epoch; a log of GGA, GNS or GLL
     positions alone says what to do). The times are UTC: shift them onto the gyro's clock before
     fusing. ``options`` go to :func:`gyrocore.fixes.from_gnss`.
     """
@@ -150,7 +156,8 @@ class _Epochs:
         """Takes the sentence ``text`` of line ``number``, which ``ended`` with a line end; a
         ValueError names the line. From the first line of binary data on, the file is a serial log:
         a line is read from its last ``$`` after any binary data, and one of no sentence is skipped
-        (a binary message's bytes between two line ends may all be printable)."""
+        (a binary message's bytes between two line ends may all be printable). Before it, a line is
+        read from its first ``$`` or ``!``: a logger writes its own time before each sentence."""
         binary = _BINARY.match(text)
         if binary is not None and self.binary is None:
             self.binary = number
@@ -161,6 +168,8 @@ class _Epochs:
             if start < 0:
                 return
             text = text[start:]
+        elif (sentence := _START.search(text)) is not None:  # a line without either stays an error as it is
+            text = text[sentence.start():]
         self.tally["sentences"] += 1
         try:
             msg = self.pynmea2.parse(text)

@@ -1,6 +1,7 @@
 """NMEA logs beyond a receiver's course: true headings (HDT, a dual-antenna receiver's or a
-gyrocompass's) timed by the RMC or ZDA before them, and a log that opens in the last minute
-before midnight with its date advanced early (gyrocore.fixes.read_nmea)."""
+gyrocompass's) timed by the RMC or ZDA before them, a logger's timestamp before each sentence, and
+a log that opens in the last minute before midnight with its date advanced early
+(gyrocore.fixes.read_nmea)."""
 
 from __future__ import annotations
 
@@ -121,6 +122,23 @@ def test_an_hdt_without_a_heading_or_a_checksum(tmp_path: Path) -> None:
     np.testing.assert_array_equal(heading_deg(fixes.heading), [90.0])
     with pytest.raises(ValueError, match=r"line 2: an HDT sentence without its checksum"):
         read_nmea(nmea(tmp_path, rmc("120000"), hdt("080.0").split("*")[0]))
+
+
+@pytest.mark.parametrize("prefix", ["1634567890.123 ", "2021-10-18T12:00:00.123Z,", "[12:00:00.123] "],
+                         ids=["unix-seconds", "iso-time", "bracketed-time"])
+def test_a_loggers_timestamp_before_each_sentence_is_skipped(tmp_path: Path, prefix: str) -> None:
+    # a serial logger's or a ROS dump's time before each sentence: "line 1: not an NMEA sentence"
+    lines = [rmc(f"12000{i}") for i in range(3)] + [hdt("080.0")]
+    fixes = read_nmea(nmea(tmp_path, *(prefix + line for line in lines)))
+    np.testing.assert_array_equal(fixes.t, NOON + np.arange(3))  # the sentences' own times
+    np.testing.assert_array_equal(heading_deg(fixes.heading), [84.4, 84.4, 80.0])
+    # the checksum is still checked, from the $ on
+    lines[1] = lines[1][:-1] + ("0" if lines[1][-1] != "0" else "1")
+    with pytest.raises(ValueError, match=r"line 2: not an NMEA sentence .*checksum does not match"):
+        read_nmea(nmea(tmp_path, *(prefix + line for line in lines)))
+    # a line without $ or ! is still no sentence
+    with pytest.raises(ValueError, match=r"line 2: not an NMEA sentence"):
+        read_nmea(nmea(tmp_path, prefix + rmc("120000"), prefix + "GPRMC,1,2,3"))
 
 
 def test_a_log_opening_with_its_date_advanced_early_is_not_a_day_late(tmp_path: Path) -> None:
