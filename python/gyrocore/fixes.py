@@ -355,9 +355,15 @@ def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_spe
     keep = course & (v >= min_speed)
     if len(tt) and not keep.any():
         warn_no_fix(f"{len(tt)} GNSS samples", v[course], min_speed)
-    heading = np.angle(np.exp(1j * (math.pi / 2 - np.radians(bearing[keep]))))
     sigma = np.hypot(math.radians(min_sigma_deg), speed_sigma / v[keep])
-    return Fixes(tt[keep], heading, sigma)
+    return Fixes(tt[keep], heading_of_bearing(bearing[keep]), sigma)
+
+
+def heading_of_bearing(bearing_deg: FloatArray) -> FloatArray:
+    """Headings [rad, counter-clockwise from east, wrapped to +-pi] of bearings [deg, clockwise
+    from north]: ``pi/2 - radians(bearing)``, a course over ground's or a true heading's (HDT)."""
+    heading: FloatArray = np.angle(np.exp(1j * (math.pi / 2 - np.radians(bearing_deg))))
+    return heading
 
 
 def warn_no_fix(given: str, speeds: FloatArray, min_speed: float) -> None:

@@ -1,22 +1,23 @@
 """Heading fixes from NMEA 0183 sentences (pynmea2, the ``nmea`` extra): the course over ground and
 speed of a receiver's RMC sentences, or of the VTG sentence after one (its values read by their
 unit letters; a magnetic course made true by the RMC's magnetic variation), through
-:func:`gyrocore.fixes.from_gnss`.
+:func:`gyrocore.fixes.from_gnss`; and the true heading of HDT sentences (a dual-antenna receiver's
+or a gyrocompass's), at the time of the RMC or ZDA before them (:mod:`.fixes_nmea_time`).
 
 A file is read line by line, in the order written, and a line that cannot be used is an error
 naming the file and the line: one that is no sentence (a bad checksum, a line longer than any
-sentence), an RMC or VTG without its checksum (a sentence cut short reads as one of other values),
-one whose date, time, course or speed is not a value (pynmea2 hands such a field back as its
-text), an RMC whose time steps back, and one whose magnetic variation, needed to make a VTG's
-magnetic course true, is no angle. The last line, cut off without a line end (a log stopped
-mid-write), is skipped after a warning instead. A serial log, with a receiver's binary messages
+sentence), an RMC, VTG, HDT or ZDA without its checksum (a sentence cut short reads as one of
+other values), one whose date, time, course, speed or heading is not a value (pynmea2 hands such
+a field back as its text), an RMC or ZDA whose time steps back, and one whose magnetic variation,
+needed to make a VTG's magnetic course true, is no angle. A logger's timestamp before a sentence
+is skipped. The last line, cut off without a line end (a log stopped mid-write), is skipped after
+a warning instead. A serial log, with a receiver's binary messages
 (u-blox UBX) among its sentences, is read from its first binary data on as such: a sentence after
 binary data on its line is read, and a line of no sentence skipped, with a warning counting them.
 """
 
 from __future__ import annotations
 
-import datetime
 import math
 import re
 from collections import Counter
@@ -26,12 +27,13 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import keyword_options, require_options, shown, warn
+from ._checks import check_number, keyword_options, require_options, shown, warn
 from ._extras import require
-from .fixes import Fixes, from_gnss
+from .fixes import Fixes, from_gnss, heading_of_bearing
 from .fixes_files import ROW_ERROR
 from .io._csvfile import refuse_not_text
 from .io._paths import check_file
+from .fixes_nmea_time import EARLY_DATE, Clock, in_leap_second
 
 #: Metres per second in a knot and in a km/h (NMEA's speed units).
 KNOT, KMH = 1852.0 / 3600.0, 1.0 / 3.6
@@ -47,19 +49,21 @@ MAX_LINE = 4096
 #: receiver's own simulated fixes, of no vehicle's motion).
 NO_FIX_MODES = ("N", "E", "M", "S")
 
-#: Seconds in a day, and the fall of an RMC's time of day under one date that is midnight UTC
-#: passed (the receiver advanced the date field a sentence or more late): more than half a day.
-DAY = 86_400.0
-_HALF_DAY = DAY / 2
-#: The last seconds before midnight UTC in which an RMC dated a day after the epoch before it is
-#: of that epoch's day: a receiver that takes its date from GPS time (18 s ahead of UTC since
-#: 2017) advances the date field early. Further from midnight the next day's date is a gap in
-#: the log, taken as written.
-EARLY_DATE = 60.0
+#: The default standard deviation of an HDT heading [deg]. A dual-antenna receiver's heading error
+#: falls as its baseline grows: NovAtel gives 0.40 deg at 0.5 m, 0.20 deg at 1 m and 0.08 deg at
+#: 2 m (OEM7 manual, "Importance of Antenna Location for ALIGN"); 0.5 deg covers a short baseline
+#: of 0.5 m with some margin for multipath. Give a smaller one for a longer baseline, a larger one
+#: for a ship's gyrocompass.
+HDT_SIGMA_DEG = 0.5
+#: Where the heading of an epoch comes from (``source``): its HDT where it has one and its course
+#: otherwise, HDT alone, or the course alone.
+SOURCES = ("auto", "hdt", "course")
 
 #: The unit letters of a VTG's values: true and magnetic course, speed in knots and in km/h.
 _VTG_UNITS = ("T", "M", "N", "K")
 
+#: The start of a sentence on a line: a logger's time before it is skipped.
+_START = re.compile(r"[$!]")
 #: Text up to the last character that no NMEA sentence has (they are printable ASCII): binary data
 #: read as text, a receiver's binary messages among its sentences.
 _BINARY = re.compile(r".*[^\t\x20-\x7e]", re.DOTALL)
@@ -67,64 +71,84 @@ _BINARY = re.compile(r".*[^\t\x20-\x7e]", re.DOTALL)
 #: before it, and is no binary file.
 _SENTENCE = re.compile(rb"[$!][A-Z][A-Z0-9]{4,5},[\x20-\x7e]*\*[0-9A-Fa-f]{2}")
 
-#: An RMC time in the leap second 23:59:60 UTC, which pynmea2 hands back as its text.
-_LEAP_SECOND = re.compile(r"235960(\.\d*)?")
 
-
-def read_nmea(path: str | Path, **options: float) -> Fixes:
+def read_nmea(path: str | Path, *, source: str = "auto", hdt_sigma_deg: float = HDT_SIGMA_DEG,
+              **options: float) -> Fixes:
     """Fixes from NMEA 0183 sentences: course over ground and speed of valid RMC sentences, at
     their UTC date and time as Unix seconds; a VTG sentence supplies the course (and speed, in
     km/h or else knots) of the valid RMC epoch just before it where that RMC had none. Other
     sentences are skipped (those pynmea2 does not know too), as are RMC and VTG whose mode
     indicator is N, E, M or S (:data:`NO_FIX_MODES`).
 
+    An HDT sentence (``$GPHDT,123.4,T``: a dual-antenna receiver's or a gyrocompass's true
+    heading, valid at any speed) is a fix of sigma ``hdt_sigma_deg`` (:data:`HDT_SIGMA_DEG`). It
+    has no time of its own: it is of the epoch of the last timed sentence before it, a valid RMC
+    or a ZDA (a receiver writes an epoch's sentences after its time, as a VTG after its RMC), and
+    of several HDT of one epoch the first, nearest that time, is kept; one before any timed
+    sentence, or after a void RMC, is skipped, a warning counting them. ``source`` chooses
+    between an epoch's HDT and its course: ``"auto"`` the HDT where the epoch has one and the
+    course otherwise, ``"hdt"`` HDT alone, ``"course"`` the course alone (HDT skipped).
+
     A VTG's values are read by their unit letters (T, M, N, K; NMEA 0183's VTG before version 2,
     without them, by place); one with a magnetic course alone is made true by the magnetic
     variation of its RMC (true = magnetic + variation east, - west), and where that RMC gives none
     it is skipped with a warning.
 
-    Sentences are taken in the order written: an RMC time of day that wraps past midnight while
-    its date field has not yet advanced is of the next day, and one in the last
-    :data:`EARLY_DATE` seconds before midnight dated a day after the RMC before it (the date
-    advanced early) is of that RMC's day, a warning counting the sentences so moved either way; a
-    time that steps back otherwise is an error naming its line, and of RMC sentences repeating one time the first is kept (a warning
-    counts those that differ from it); one in the leap second 23:59:60 is skipped with a warning.
-    A line that is no sentence, an RMC or VTG without a checksum, or one whose fields are not
-    values is an error naming the file and line, as is a file of no sentence; a last line cut off
-    without a line end is skipped with a warning, and so, from the first binary data on (a serial
-    log's binary messages among its sentences), is a line of no sentence, a sentence after binary
-    data on its line read. Sentences that give no fix warn with their counts (void RMC, RMC without
-    a course; a log of GGA, GNS or GLL positions alone says what to do). The times are UTC: shift them onto the gyro's clock before fusing. ``options`` go to
-    :func:`gyrocore.fixes.from_gnss`.
+    Sentences are taken in the order written: an RMC (or ZDA) time of day that wraps past
+    midnight while its date field has not yet advanced is of the next day, and one in the last
+    :data:`EARLY_DATE` seconds before midnight dated a day after the sentence before it (the date
+    advanced early) is of that sentence's day, a warning counting the sentences so moved either
+    way. A log that opens in that last minute with the next day's date already, and keeps it
+    through midnight, is put a day back as a whole where more of its sentences follow that
+    midnight than precede it (the reading that takes fewer date fields for wrong). A time
+    that steps back otherwise is an error naming its line; of RMC sentences repeating one time
+    the first is kept (a warning counts those that differ from it); one in the leap second
+    23:59:60 is skipped with a warning.
+
+    A line that is no sentence, an RMC, VTG, HDT or ZDA without a checksum, or one whose fields
+    are not values is an error naming the file and line, as is a file of no sentence; a last line
+    cut off without a line end is skipped with a warning, and so, from the first binary data on
+    (a serial log's binary messages among its sentences), is a line of no sentence, a sentence
+    after binary data on its line read. Text before the first ``$`` or ``!`` of a line (a
+    logger's timestamp: ``1634567890.123 $GPRMC,...``, ``[12:00:00.123] $GPRMC,...``) is
+    skipped, the sentence and its checksum read from there on. Sentences that give no fix warn
+    with their counts (void RMC, RMC without a course, HDT of no epoch; a log of GGA, GNS or GLL
+    positions alone says what to do). The times are UTC: shift them onto the gyro's clock before
+    fusing. ``options`` go to :func:`gyrocore.fixes.from_gnss`.
     """
-    require_options("read_nmea (from_gnss's)", options, keyword_options(from_gnss))  # before the file is read
+    # before the file is read
+    require_options("read_nmea (from_gnss's)", options, keyword_options(read_nmea) + keyword_options(from_gnss))
+    if source not in SOURCES:
+        raise ValueError(f"source must be one of {', '.join(map(repr, SOURCES))}, got {shown(source)}")
+    sigma = math.radians(check_number("hdt_sigma_deg", hdt_sigma_deg, unit=" [deg]"))
     pynmea2 = require("pynmea2", "reading NMEA sentences")
     path = Path(path)
     check_file(path)  # a named pipe (a receiver's live output) was waited on for ever
     epochs = _Epochs(pynmea2, path)
     for number, text, ended in _sentences(path):
         epochs.take(number, text, ended)
-    return epochs.fixes(options)
+    return epochs.fixes(source, sigma, options)
 
 
 class _Epochs:
-    """The course and speed of each epoch of one file's sentences, taken in the order written."""
+    """The course and speed, and the true heading, of each epoch of one file's sentences, taken in
+    the order written."""
 
     def __init__(self, pynmea2: Any, path: Path) -> None:
         self.pynmea2, self.path = pynmea2, path
         self.epochs: dict[float, tuple[float, float, int]] = {}  # time -> course [deg], speed [m/s], line
+        self.headings: dict[float, tuple[float, int]] = {}  # time -> HDT heading [deg], line
         self.tally: Counter[str] = Counter()
         self.last: float | None = None  # the epoch of the valid RMC just before: a VTG's
-        # the last dated RMC: its date field, time of day [s], time [s] and line; and the days
-        # added to the times of its date field (one after midnight with the date not yet advanced,
-        # minus one before it with the date advanced early: see _days_off)
-        self.clock: tuple[datetime.date, float, float, int] | None = None
-        self.lag = 0.0
-        self.moved: int | None = None  # the line of the first RMC put on another day than its date field's
+        self.timed: float | None = None  # the epoch of the valid RMC or ZDA just before: an HDT's
+        self.clock = Clock(path)  # the times of the dated sentences (RMC, ZDA)
+        self.readers = {pynmea2.RMC: self._rmc, pynmea2.VTG: self._vtg, pynmea2.HDT: self._hdt,
+                        pynmea2.ZDA: self._zda}
         # the magnetic variation of the valid RMC just before (its fields 10 and 11) and its line: a
         # VTG's magnetic course is made true by it
         self.variation: tuple[str, str, int] = ("", "", 0)
         self.repeat: int | None = None  # the line of the first RMC repeating a time with other values
+        self.untimed: int | None = None  # the line of the first HDT of no epoch
         self.binary: int | None = None  # the first line of binary data: a serial log from there on
         self.skipped = 0  # the last line of it skipped
 
@@ -132,7 +156,8 @@ class _Epochs:
         """Takes the sentence ``text`` of line ``number``, which ``ended`` with a line end; a
         ValueError names the line. From the first line of binary data on, the file is a serial log:
         a line is read from its last ``$`` after any binary data, and one of no sentence is skipped
-        (a binary message's bytes between two line ends may all be printable)."""
+        (a binary message's bytes between two line ends may all be printable). Before it, a line is
+        read from its first ``$`` or ``!``: a logger writes its own time before each sentence."""
         binary = _BINARY.match(text)
         if binary is not None and self.binary is None:
             self.binary = number
@@ -143,6 +168,8 @@ class _Epochs:
             if start < 0:
                 return
             text = text[start:]
+        elif (sentence := _START.search(text)) is not None:  # a line without either stays an error as it is
+            text = text[sentence.start():]
         self.tally["sentences"] += 1
         try:
             msg = self.pynmea2.parse(text)
@@ -154,7 +181,8 @@ class _Epochs:
             reason = e.args[0] if e.args else str(e)  # pynmea2's (message, data)
             reason = reason[0] if isinstance(reason, tuple) and reason else reason
             return self._unusable(number, ended, f"not an NMEA sentence ({reason}: {shown(text, 100)})")
-        if not isinstance(msg, (self.pynmea2.RMC, self.pynmea2.VTG)):
+        reader = self.readers.get(type(msg))
+        if reader is None:
             # a position without a course: counted, to say what to do with a log of them alone
             self.tally["positions"] += isinstance(msg, (self.pynmea2.GGA, self.pynmea2.GNS, self.pynmea2.GLL))
             return
@@ -162,7 +190,7 @@ class _Epochs:
             return self._unusable(number, ended, f"an {msg.sentence_type} sentence without its checksum (*hh; "
                                   f"{shown(text, 100)}): cut short, its values cannot be trusted")
         try:
-            self._rmc(msg, number) if isinstance(msg, self.pynmea2.RMC) else self._vtg(msg, number)
+            reader(msg, number)
         except (ValueError, TypeError) as e:
             if str(e).startswith(str(self.path)):  # a time that steps back: its error names the line already
                 raise
@@ -187,17 +215,17 @@ class _Epochs:
 
     def _rmc(self, msg: Any, number: int) -> None:
         self.tally["RMC"] += 1
-        self.last = None  # a VTG after a void RMC is of that epoch, which has no fix
+        self.last = self.timed = None  # a VTG or HDT after a void RMC is of that epoch, which has no fix
         if msg.status != "A":
             self.tally["void"] += 1
         elif msg.mode_indicator in NO_FIX_MODES:
             self.tally["mode"] += 1
-        elif isinstance(msg.timestamp, str) and _LEAP_SECOND.fullmatch(msg.timestamp):
-            self.tally["leap"] += 1  # Unix seconds have no 23:59:60: it would be read as the next 00:00:00
+        elif in_leap_second(msg):
+            self.tally["leap"] += 1
         elif not (msg.datestamp and msg.timestamp):
             self.tally["undated"] += 1
         else:
-            self.last = t = self._time(msg, number)
+            self.last = self.timed = t = self.clock.time(msg, number)
             self.variation = (msg.mag_variation or "", msg.mag_var_dir or "", number)
             if msg.true_course is None or msg.spd_over_grnd is None:
                 self.tally["courseless"] += 1
@@ -240,26 +268,29 @@ class _Epochs:
                              "which it makes true; remove or repair the line")
         return degrees if side == "E" else -degrees
 
-    def _time(self, msg: Any, number: int) -> float:
-        """The time [s] of the dated RMC ``msg``, on the clock of the RMC before it: its date
-        field is taken where it agrees with its time of day, and put right where it is a day off
-        it (see :func:`_days_off`); a time that falls otherwise is an error naming the line."""
-        t = float(msg.datetime.timestamp())  # first: a field that is not a date or a time raises a TypeError
-        date, clock = msg.datestamp, msg.timestamp
-        of_day = 3600.0 * clock.hour + 60.0 * clock.minute + clock.second + clock.microsecond / 1e6
-        off = None if self.clock is None else _days_off(self.clock[0], self.clock[1], date, of_day)
-        self.lag = 0.0 if off is None else self.lag + off * DAY
-        if self.lag:
-            self.tally["moved"] += 1
-            self.moved = number if self.moved is None else self.moved
-        t += self.lag
-        if self.clock is not None and t < self.clock[2]:
-            before, line = self.clock[2], self.clock[3]
-            raise ValueError(f"{self.path}: line {number}: the time steps back, from {_utc(before)} (line {line}) to "
-                             f"{_utc(t)} UTC; sentences are read in the order written: remove the lines of the "
-                             "earlier time, or read two logs one at a time")
-        self.clock = (date, of_day, t, number)
-        return t
+    def _zda(self, msg: Any, number: int) -> None:
+        """A ZDA's date and time time the HDT after it (a log of a gyrocompass's HDT and ZDA has no
+        RMC); one without them, or in a leap second, leaves its epoch untimed."""
+        dated = None not in (msg.timestamp, msg.day, msg.month, msg.year) and not in_leap_second(msg)
+        self.timed = self.clock.time(msg, number) if dated else None
+
+    def _hdt(self, msg: Any, number: int) -> None:
+        """An HDT's true heading, of the epoch timed just before it (its first HDT kept)."""
+        self.tally["HDT"] += 1
+        if msg.heading is None:  # not "not heading": 0 (north) is a heading
+            self.tally["headingless"] += 1  # a receiver without a heading solution leaves the field empty
+            return
+        heading = float(msg.heading)
+        if not 0.0 <= heading <= 360.0:
+            raise ValueError(f"{self.path}: line {number}: the HDT heading {msg.data[0]!r} is no bearing of 0 to 360 "
+                             "degrees; remove or repair the line")
+        if self.timed is None:
+            self.tally["untimed"] += 1
+            self.untimed = number if self.untimed is None else self.untimed
+        elif self.timed in self.headings:
+            self.tally["hdt_repeats"] += 1
+        else:
+            self.headings[self.timed] = (heading, number)
 
     def _add(self, t: float, course: float, speed: float, number: int) -> None:
         """The epoch at ``t``, unless an RMC gave that time already (its first is kept)."""
@@ -270,27 +301,38 @@ class _Epochs:
             self.tally["repeats"] += 1
             self.repeat = number if self.repeat is None else self.repeat
 
-    def fixes(self, options: dict[str, float]) -> Fixes:
-        """The fixes of the epochs taken, through :func:`from_gnss` with ``options``."""
+    def fixes(self, source: str, sigma: float, options: dict[str, float]) -> Fixes:
+        """The fixes of the epochs taken, in time order: an epoch's HDT heading, of ``sigma`` [rad],
+        or its course through :func:`from_gnss` with ``options``, as ``source`` chooses."""
         if not self.tally["sentences"]:
-            raise ValueError(f"{self.path}: no NMEA sentence, so no fix; give a file of RMC (and VTG) sentences")
-        self._warn_skipped()
-        if not self.epochs:
-            self._warn_no_epoch()
-        times = list(self.epochs)  # in time order: a step back was refused
-        course, speed, lines = (np.array([self.epochs[k][i] for k in times], dtype=float) for i in range(3))
+            raise ValueError(f"{self.path}: no NMEA sentence, so no fix; give a file of RMC (and VTG) or HDT sentences")
+        shift = self.clock.shift()  # a log that opened with its date field advanced early: a day back
+        self._warn_skipped(source)
+        headings = {} if source == "course" else self.headings
+        epochs = {} if source == "hdt" else {t: e for t, e in self.epochs.items() if t not in headings}
+        if not (epochs or headings):
+            self._warn_no_epoch(source)
+        times = list(epochs)  # in time order: a step back was refused
+        course, speed, lines = (np.array([epochs[k][i] for k in times], dtype=float) for i in range(3))
         try:
-            return from_gnss(np.array(times, dtype=float), course, speed, **options)
+            by_course = from_gnss(np.array(times, dtype=float) + shift, course, speed, **options)
         except ValueError as e:
             # from_gnss names a sample by its index in time order: the file names its line
             m = ROW_ERROR.match(str(e))
             if m is None or m[4] is None:
                 raise
             raise ValueError(f"{self.path}: line {int(lines[int(m[4])])}: {e}") from None
+        if not headings:
+            return by_course
+        t = np.concatenate((by_course.t, np.array(list(headings), dtype=float) + shift))
+        heading = np.concatenate((by_course.heading, heading_of_bearing(np.array([h for h, _ in headings.values()]))))
+        order = np.argsort(t, kind="stable")  # no time is both: an epoch's HDT took the place of its course
+        return Fixes(t[order], heading[order], np.concatenate((by_course.sigma, np.full(len(headings), sigma)))[order])
 
-    def _warn_skipped(self) -> None:
-        """Warns of lines skipped: a serial log's binary data, and RMC sentences that were fixes of their own (those
-        repeating a time with other values, and those in a leap second)."""
+    def _warn_skipped(self, source: str) -> None:
+        """Warns of lines skipped: a serial log's binary data, RMC sentences that were fixes of their own (those
+        repeating a time with other values, and those in a leap second), and HDT of no epoch or after the first of
+        theirs."""
         if self.tally["binary"]:
             warn(f"{self.path}: binary data from line {self.binary} on, a receiver's binary messages (u-blox UBX) "
                  f"among its sentences: {self.tally['binary']} line(s) of it, or of no sentence after it, are skipped, "
@@ -299,20 +341,31 @@ class _Epochs:
             warn(f"{self.path}: {self.tally['repeats']} RMC sentence(s) repeat the time of an earlier one with another "
                  f"course or speed (the first: line {self.repeat}), and the first of each time is kept: a receiver "
                  "faster than its time's resolution (5 Hz in whole seconds) or repeating a time writes them")
-        if self.tally["moved"]:
-            warn(f"{self.path}: {self.tally['moved']} RMC sentence(s) have a date field off the day their time of day "
-                 f"runs on to (the first: line {self.moved}), the receiver advancing it early, in the last "
-                 f"{EARLY_DATE:.0f} s before midnight UTC, or late, after it: they are put on that day")
+        if self.clock.moved:
+            clock = self.clock
+            warn(f"{self.path}: {clock.moved} {clock.moved_kinds()} sentence(s) have a date field off the day their "
+                 f"time of day runs on to (the first: line {clock.first_moved}), the receiver advancing it early, in "
+                 f"the last {EARLY_DATE:.0f} s before midnight UTC, or late, after it: they are put on that day")
         if self.tally["magnetic"] and self.epochs:  # else said with the other reasons for no fix
             warn(f"{self.path}: {self.tally['magnetic']} VTG sentence(s) give a magnetic course only, {_MAGNETIC}")
         if self.tally["leap"]:
             warn(f"{self.path}: {self.tally['leap']} RMC sentence(s) in the leap second 23:59:60 UTC are skipped: Unix "
                  "seconds have no such second, and the fixes after it are a second behind a clock that ran through it")
+        if self.headings and source != "course":  # else said with the other reasons for no fix
+            if self.tally["untimed"]:
+                warn(f"{self.path}: {self.tally['untimed']} HDT sentence(s) {_UNTIMED} (the first: line "
+                     f"{self.untimed})")
+            if self.tally["hdt_repeats"]:
+                warn(f"{self.path}: {self.tally['hdt_repeats']} HDT sentence(s) follow another of their epoch and are "
+                     "skipped: an HDT has no time of its own, and the first after its epoch's time (a valid RMC or "
+                     "ZDA) is kept, nearest it; a gyrocompass writes HDT faster than a receiver its time")
 
-    def _warn_no_epoch(self) -> None:
-        """Warns that the sentences gave no course, with the counts that say why."""
+    def _warn_no_epoch(self, source: str) -> None:
+        """Warns that the sentences gave no course or HDT heading, with the counts that say why."""
         tally = self.tally
-        if not tally["RMC"]:
+        if source == "hdt":
+            why = "none is HDT"
+        elif not tally["RMC"]:
             why = "none is RMC"
             if tally["positions"]:
                 why += (f"; {tally['positions']} are GGA, GNS or GLL, positions without a course: set the receiver to "
@@ -324,10 +377,18 @@ class _Epochs:
             why = f"{tally['RMC']} are RMC: " + ", ".join(f"{n} {what}" for what, n in counts.items() if n)
             if tally["magnetic"]:
                 why += f"; {tally['magnetic']} VTG give a magnetic course only, {_MAGNETIC}"
-        warn(f"no heading fix from {self.path}: of its {tally['sentences']} sentences, {why}; fixes come from valid RMC "
-             "sentences with a course (or the VTG after one)")
+        if tally["HDT"]:
+            counts = {_UNTIMED: tally["untimed"], "without a heading": tally["headingless"],
+                      "skipped by source='course'": tally["HDT"] if source == "course" else 0}
+            why = (why if source != "hdt" else "") + f"; {tally['HDT']} are HDT: " + ", ".join(
+                f"{n} {what}" for what, n in counts.items() if n)
+        warn(f"no heading fix from {self.path}: of its {tally['sentences']} sentences, {why.lstrip('; ')}; fixes come "
+             "from valid RMC sentences with a course (or the VTG after one), or HDT after a valid RMC or ZDA")
 
 
+#: HDT that no epoch times, and why.
+_UNTIMED = ("come before any valid RMC or ZDA, or after a void RMC, and are skipped: an HDT has no time of its own, "
+            "and takes that of the valid RMC or ZDA before it")
 #: What is done with a VTG's magnetic course where its RMC gives no variation, and what to do.
 _MAGNETIC = ("and the RMC of their epoch no magnetic variation (fields 10 and 11) to make it true: their epochs are "
              "skipped; set the receiver to write the true course in VTG, or the magnetic variation in RMC")
@@ -349,28 +410,6 @@ def _vtg_fields(data: list[str]) -> tuple[str, str, str, str, str]:
         if unit in values:
             values[unit] = value
     return values["T"], values["M"], values["N"], values["K"], data[-1] if len(data) % 2 else ""
-
-
-def _days_off(date_before: datetime.date, of_day_before: float, date: datetime.date, of_day: float) -> int | None:
-    """The days by which the date field ``date`` of an RMC at ``of_day`` [s] is off the day its
-    time of day runs on to from the RMC before it (``date_before``, ``of_day_before``), the time
-    of day being what a receiver gets right: the day advances where the time of day falls by
-    more than half a day (midnight passed). 1 where the date field has not advanced with it
-    (late); -1 where it has advanced and the time of day has not, within :data:`EARLY_DATE` of
-    midnight (early); 0 where the two agree, and None where the date field steps otherwise (a
-    gap in the log, taken as written)."""
-    passed = int(of_day_before - of_day > _HALF_DAY)
-    step = (date - date_before).days
-    if step == passed:
-        return 0
-    if (step, passed) == (0, 1) or ((step, passed) == (1, 0) and of_day >= DAY - EARLY_DATE):
-        return passed - step
-    return None
-
-
-def _utc(t: float) -> str:
-    """Unix seconds ``t`` as an ISO UTC date and time."""
-    return datetime.datetime.fromtimestamp(t, datetime.timezone.utc).isoformat(sep=" ")[:-6]
 
 
 def _sentences(path: Path) -> Iterator[tuple[int, str, bool]]:
