@@ -66,6 +66,47 @@ fn a_step_back_names_the_way_on_and_a_duplicate_does_not() {
     assert!(!e.to_string().contains("restart_clock"));
 }
 
+/// A whole series (a log, a file) given to a stream is reported as a series: its step back is
+/// [`Error::NotIncreasing`], in the words a stream's error begins with, without `restart_clock()`.
+#[test]
+fn a_step_back_of_a_whole_series_is_reported_without_the_streams_way_on() {
+    let mut p = Pipeline::new(fixed_bias(Preset::Hdr)).unwrap();
+    let e = try_block(&mut p, &[1.0, 2.0, 1.5], &[0.0; 3]).unwrap_err();
+    let series = e.of_series();
+    assert_eq!(
+        series,
+        Error::NotIncreasing {
+            index: 2,
+            previous: 2.0,
+            value: 1.5
+        }
+    );
+    let (stream, log) = (e.to_string(), series.to_string());
+    assert_eq!(
+        log,
+        "timestamps must strictly increase: t[2] = 1.5 follows 2 (sort the log and drop \
+         duplicate timestamps)"
+    );
+    assert!(
+        stream.starts_with(&log) && stream.len() > log.len(),
+        "{stream}"
+    );
+    assert!(
+        stream[log.len()..].starts_with("; where the clock jumped back"),
+        "{stream}"
+    );
+    let duplicate = Error::NotIncreasing {
+        index: 1,
+        previous: 2.0,
+        value: 2.0,
+    };
+    assert_eq!(
+        duplicate.of_series(),
+        duplicate,
+        "any other error is itself"
+    );
+}
+
 /// After `restart_clock` the outputs are those of a run whose second part follows a gap instead
 /// of the jump, where nothing turned across the gap (the corrected rate 0 at both its ends: the
 /// gap then adds nothing to the heading), under either gap action.

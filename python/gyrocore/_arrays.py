@@ -4,18 +4,21 @@ from __future__ import annotations
 
 import dataclasses
 import datetime
+import functools
 import math
 import numbers
 import os
 import sys
 import threading
-from collections.abc import Iterator, Mapping, Sequence
-from typing import Any
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from typing import Any, ParamSpec, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 FloatArray = NDArray[np.float64]
+_P = ParamSpec("_P")
+_R = TypeVar("_R")
 
 
 #: Counts per second of the timedelta64 units below a second (divided by: rounds once).
@@ -166,14 +169,33 @@ class OwnCopy:
             self._thread = None
 
 
-def refuse_a_path(name: str, values: object) -> None:
+def refuse_a_path(name: str, values: object, takes: str = "") -> None:
     """A file's name or path given for an array (``gyrocore.process("drive.csv", ...)``, as the
     command line takes files) is told to be read first: numpy made it a text of one element, and
-    the error of its dtype said nothing of files."""
+    the error of its dtype said nothing of files. ``takes``: what the call takes instead, said
+    before the way to read the file."""
     if isinstance(values, os.PathLike) or isinstance(values, str) and (os.sep in values or os.path.splitext(values)[1][1:2].isalpha()):
-        raise TypeError(f"{name} = {values!r}: a file's name, not a sequence of numbers; a log file is read with "
-                        "gyrocore.read_log(path), then processed with its .process(preset) (on the command line: "
-                        "gyrocore process FILE)")
+        raise TypeError(f"{name} = {values!r}: a file's name, not a sequence of numbers; {takes}a log file or folder "
+                        "is read with gyrocore.read_log(path), then processed with its .process(preset) (on the "
+                        "command line: gyrocore process FILE)")
+
+
+def times_not_a_path(call: str, at: int = 0) -> Callable[[Callable[_P, _R]], Callable[_P, _R]]:
+    """Refuses a file's name or path given for the times ``t`` of ``call`` (positional argument
+    ``at``: 1 for a method) before Python binds the arguments (:func:`refuse_a_path`): given alone,
+    ``gyrocore.process("log.csv")``, a first try as the command line takes files, it met Python's
+    own ``missing 1 required positional argument: 'rate'``, which led to look for a rate to add."""
+    takes = f"{call} takes the arrays t [s] and rate [rad/s]; "
+
+    def wrap(f: Callable[_P, _R]) -> Callable[_P, _R]:
+        @functools.wraps(f)
+        def checked(*args: _P.args, **kwargs: _P.kwargs) -> _R:
+            refuse_a_path("t", args[at] if len(args) > at else kwargs.get("t"), takes)
+            return f(*args, **kwargs)
+
+        return checked
+
+    return wrap
 
 
 def _converted(name: str, values: ArrayLike, masked: str, unit: str | None) -> tuple[FloatArray, bool]:

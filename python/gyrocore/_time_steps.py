@@ -5,7 +5,6 @@ the reader's float32 warning never sees it)."""
 
 from __future__ import annotations
 
-import re
 from collections.abc import Iterator
 from contextlib import contextmanager
 
@@ -112,8 +111,9 @@ def name_time_step(error: _gyrocore.SampleError, t: FloatArray, last: float | No
     hint = None if previous is None else why_times_step_back(t, i, float(previous), last)
     if hint is None:
         return False
+    # a file's reader and a whole log take the words of a series (the binding's, where they differ)
+    error.log_message = getattr(error, "log_message", str(error)).replace(_SORT_ADVICE, hint)  # type: ignore[attr-defined]
     error.args = (str(error).replace(_SORT_ADVICE, hint),)
-    error.log_message = str(error)  # type: ignore[attr-defined]
     return True
 
 
@@ -137,24 +137,15 @@ def time_steps_named(t: FloatArray, positions: npt.NDArray[np.intp] | None = Non
         raise
 
 
-#: The core's way on for a stream whose clock jumped back (``restart_clock``), in its error about a
-#: time going back: a whole log, or a file, is one series to sort or mend, with no stream to restart.
-_RESTART_ADVICE = re.compile(r"; where the clock jumped back \(.*?\), call restart_clock\(\) .*? across the jump")
-
-
-def without_restart_advice(message: str) -> str:
-    """``message`` without the core's advice to restart a stream's clock (:data:`_RESTART_ADVICE`)."""
-    return _RESTART_ADVICE.sub("", message, count=1)
-
-
 def as_log_error(error: _gyrocore.SampleError) -> None:
-    """Drops the advice to restart a stream's clock from ``error`` where it names a whole log's time
-    going back, and from its ``log_message``, the words a file's reader names a file's line with."""
-    if _RESTART_ADVICE.search(str(error)):
-        error.args = (without_restart_advice(str(error)),)
+    """A whole log's error about a time in the log's words, its ``log_message``, where a stream's
+    words name a stream's way on: the binding gives a stream's step back the words of a whole
+    series (the core's ``Error::of_series``, without ``restart_clock()``), and the hints added
+    to a time's error are added to both (:func:`name_time_step`). A reading's error keeps its
+    words: the policy that takes the reading applies to a log too."""
     message = getattr(error, "log_message", None)
-    if message is not None:
-        error.log_message = without_restart_advice(message)  # type: ignore[attr-defined]
+    if error.what == "t" and message is not None:
+        error.args = (message,)
 
 
 @contextmanager

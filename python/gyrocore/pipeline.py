@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _gyrocore, rests
-from ._arrays import MASKED_AS_NONFINITE, FloatArray, as_float_array, as_float_array_owned
+from ._arrays import MASKED_AS_NONFINITE, FloatArray, as_float_array, as_float_array_owned, times_not_a_path
 from ._checks import public_dir, warn
 from ._inuse import Turn, one_at_a_time
 from ._motion import WindowWatch
@@ -149,6 +149,7 @@ class Pipeline:
         """The static bias in use now [rad/s] (what the gyro reads at rest)."""
         return float(self._inner.bias()[0])
 
+    @times_not_a_path("gyrocore.Pipeline.process", at=1)
     @one_at_a_time
     def process(
         self,
@@ -450,6 +451,7 @@ def _stage_settings(params: dict[str, Any], settings: dict[str, float]) -> dict[
     return stage_settings(params, settings)
 
 
+@times_not_a_path("gyrocore.process")
 def process(
     t: ArrayLike,
     rate: ArrayLike,

@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike
 from . import _gyrocore
 from ._arrays import FloatArray
 from ._checks import MAX_READING, keep_readings, usable, warn, warn_units
-from ._time_steps import name_time_step, without_restart_advice
+from ._time_steps import name_time_step
 from .window import RestWindowError, ends_before_first, no_usable_reading, refuse_start_before
 
 
@@ -102,14 +102,12 @@ def say_what_to_do(error: _gyrocore.SampleError, t: FloatArray, last: float | No
     first", sent a user with a file to edit it); for a time that a counter's wrap sent back or
     float32 rounding repeated, :func:`name_time_step`; for a chunk that starts at or before the
     last sample processed, :func:`name_samples_sent_again`. A file's reader gives its own words,
-    with the file's line (``log_message``: the core's)."""
+    with the file's line (``log_message``: the core's, a step back's as a series' from the binding)."""
     if error.what in ("rate", "temperature") and nonfinite == "error":
         error.log_message = str(error)  # type: ignore[attr-defined]
         error.args = (f"{error}; " + keep_readings("them", "nonfinite='hold'", "'skip'"),)
     if not name_time_step(error, t, last, index_offset):
         name_samples_sent_again(error, t, last, index_offset)
-    # a file's reader names a log's line: sorted or mended, not a stream's clock to restart
-    error.log_message = without_restart_advice(getattr(error, "log_message", str(error)))  # type: ignore[attr-defined]
 
 
 def name_samples_sent_again(error: _gyrocore.SampleError, t: FloatArray, last: float | None,
@@ -121,7 +119,8 @@ def name_samples_sent_again(error: _gyrocore.SampleError, t: FloatArray, last: f
     if error.what != "t" or error.index != index_offset or last is None or not len(t) or not t[0] <= last:
         return
     newer = int(np.count_nonzero(t > last))
-    error.log_message = str(error)  # type: ignore[attr-defined]  # a file's reader sorts the log instead
+    # a file's reader sorts the log instead: the core's words, a step back's as a series' (the binding's)
+    error.log_message = getattr(error, "log_message", str(error))  # type: ignore[attr-defined]
     error.args = (f"{error}; the chunk starts at or before t = {last!r}, the last sample this pipeline processed "
                   f"(Pipeline.last_time; a pipeline resumed from a pickle holds every sample up to it): give only "
                   f"the samples after it ({newer} of this chunk's {len(t)}). Nothing of this chunk was processed",)

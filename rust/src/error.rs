@@ -161,6 +161,26 @@ impl Error {
             e => e,
         }
     }
+
+    /// The error as a caller that gave a whole series at once reports it (a log, a file: one
+    /// series to sort or mend, with no stream to restart): [`Error::ClockStepsBack`] becomes
+    /// [`Error::NotIncreasing`], whose words leave out `restart_clock()`; any other is itself.
+    /// A stream's error ([`Pipeline`](crate::Pipeline), [`Fusion`](crate::Fusion)) fed the
+    /// whole series in one block, or in chunks read from one file, is mapped so.
+    pub fn of_series(self) -> Self {
+        match self {
+            Error::ClockStepsBack {
+                index,
+                previous,
+                value,
+            } => Error::NotIncreasing {
+                index,
+                previous,
+                value,
+            },
+            e => e,
+        }
+    }
 }
 
 impl fmt::Display for Error {
@@ -228,23 +248,22 @@ impl fmt::Display for Error {
                 index,
                 previous,
                 value,
-            } => write!(
-                f,
-                "timestamps must strictly increase: t[{index}] = {value} follows {previous} \
-                 (sort the log and drop duplicate timestamps)"
-            ),
+            } => not_increasing(f, index, previous, value),
             Error::ClockStepsBack {
                 index,
                 previous,
                 value,
-            } => write!(
-                f,
-                "timestamps must strictly increase: t[{index}] = {value} follows {previous} \
-                 (sort the log and drop duplicate timestamps); where the clock jumped back (a \
-                 time sync, a sensor restarted, two logs run together), call restart_clock() \
-                 and give the samples from t[{index}] on: the heading, bias and estimates are \
-                 kept, and nothing is integrated across the jump"
-            ),
+            } => {
+                // a series' words first, then a stream's way on: one sentence, written once
+                not_increasing(f, index, previous, value)?;
+                write!(
+                    f,
+                    "; where the clock jumped back (a time sync, a sensor restarted, two logs \
+                     run together), call restart_clock() and give the samples from t[{index}] \
+                     on: the heading, bias and estimates are kept, and nothing is integrated \
+                     across the jump"
+                )
+            }
             Error::ClockRestartInWindow { start, end } => write!(
                 f,
                 "restart_clock() while the rest window [{start}, {end}] s is measured: the \
@@ -280,6 +299,20 @@ impl fmt::Display for Error {
 }
 
 impl core::error::Error for Error {}
+
+/// The words of [`Error::NotIncreasing`], which [`Error::ClockStepsBack`] begins with.
+fn not_increasing(
+    f: &mut fmt::Formatter<'_>,
+    index: usize,
+    previous: f64,
+    value: f64,
+) -> fmt::Result {
+    write!(
+        f,
+        "timestamps must strictly increase: t[{index}] = {value} follows {previous} \
+         (sort the log and drop duplicate timestamps)"
+    )
+}
 
 /// What a slice named `what` in [`Error::LengthMismatch`] is measured against: the timestamps,
 /// but for the slices of a projection (`x`), of the Allan variances (their averaging factors, and

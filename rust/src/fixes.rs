@@ -134,6 +134,10 @@ pub struct Fusion {
     /// base.
     #[cfg_attr(feature = "serde", serde(default))]
     restarted: bool,
+    /// How many restarts of the clock the filter has taken (a sample after each): each left a
+    /// knot for the smoother, which the smoothed pass counts past with the fixes applied.
+    #[cfg_attr(feature = "serde", serde(default))]
+    restarts: u64,
 }
 
 /// Wraps an angle to (-pi, pi]: the IEEE remainder of `a` by `2 pi`, exact (`a - 2 pi ceil(..)`
@@ -169,6 +173,7 @@ impl Fusion {
             fix_interval: f64::INFINITY,
             run_outages: 0.0,
             restarted: false,
+            restarts: 0,
         })
     }
 
@@ -360,14 +365,16 @@ impl Fusion {
         let mut used = 0;
         if self.restarted {
             // The first sample on the new clock: the segment so far ends at a knot, from which
-            // the new one starts at `t` with the estimate and covariance of the jump.
+            // the new one starts at `t` with the estimate and covariance of the jump. The knot
+            // takes no measurement, and its transition ends at `now`, on the old clock.
             self.restarted = false;
+            self.restarts = self.restarts.saturating_add(1);
             let now = self.now();
             let (x, p) = (
                 self.segment.state(now),
                 self.segment.covariance(now, &self.config),
             );
-            record(Knot::new(t, self.segment.a(), (x, p), x, p));
+            record(Knot::new(t, self.segment.a(), (x, p), x, p).jumped_from(now));
             self.segment = Segment::new(t, x, p);
             self.anchor = Some(Anchor::of_sample(t, rate));
             used = fixes.iter().take_while(|f| f.t < t).count();

@@ -46,6 +46,18 @@ pub enum FusionError {
     },
 }
 
+impl FusionError {
+    /// The error as a caller that gave a whole series at once reports it
+    /// ([`Error::of_series`]): a step back of the gyro's clock is a series' to sort or mend, with
+    /// no stream to restart.
+    pub fn of_series(self) -> Self {
+        match self {
+            FusionError::Gyro(e) => FusionError::Gyro(e.of_series()),
+            e => e,
+        }
+    }
+}
+
 impl From<Error> for FusionError {
     fn from(e: Error) -> Self {
         FusionError::Gyro(e)

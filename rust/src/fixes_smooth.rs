@@ -27,8 +27,12 @@ pub type Mat3 = [[f64; 3]; 3];
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Knot {
-    /// Its time \[s\].
+    /// Its time \[s\]: where the segment after it starts.
     pub(crate) t: f64,
+    /// At a restart of the clock, the time on the old clock where the segment before it ends
+    /// (its transition's `C` runs to there, `t` being on the new clock); None elsewhere.
+    #[cfg_attr(feature = "serde", serde(default))]
+    jumped_from: Option<f64>,
     /// `F[0][1]` of the transition from the knot before (the rate's integral over the interval).
     pub(crate) a: f64,
     x_pred: [f64; 3],
@@ -47,6 +51,7 @@ impl Knot {
     pub(crate) fn new(t: f64, a: f64, predicted: ([f64; 3], Mat3), x: [f64; 3], p: Mat3) -> Self {
         Knot {
             t,
+            jumped_from: None,
             a,
             x_pred: predicted.0,
             p_pred: predicted.1,
@@ -55,6 +60,22 @@ impl Knot {
             w: [0.0; 3],
             e: [[0.0; 3]; 3],
         }
+    }
+
+    /// The knot of a restart of the clock: its transition from the knot before ends at `now`,
+    /// the last time on the old clock (no time passes across the jump).
+    pub(crate) fn jumped_from(self, now: f64) -> Self {
+        Knot {
+            jumped_from: Some(now),
+            ..self
+        }
+    }
+
+    /// The time where the transition from the knot before ends, on that knot's clock: `C` of
+    /// the transition is this less that knot's time, a sample's this less its own.
+    #[inline(always)]
+    pub(crate) fn reached_at(&self) -> f64 {
+        self.jumped_from.unwrap_or(self.t)
     }
 }
 
@@ -134,7 +155,7 @@ pub fn smooth(knots: &mut [Knot]) -> usize {
             core::array::from_fn(|i| core::array::from_fn(|k| next.p[i][k] - next.p_pred[i][k]));
         next.w = mul_vec(&inv, &dx);
         next.e = mul(&mul(&inv, &dp), &inv);
-        let (w, e, a, c) = (next.w, next.e, next.a, next.t - knots[j].t);
+        let (w, e, a, c) = (next.w, next.e, next.a, next.reached_at() - knots[j].t);
         let knot = &mut knots[j];
         (knot.x, knot.p) = smoothed(&knot.x, &knot.p, a, c, &w, &e);
     }

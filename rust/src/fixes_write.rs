@@ -35,13 +35,19 @@ impl Write for Smoothing<'_, '_> {
     fn write(&mut self, k: usize, fusion: &Fusion, now: f64, _calibration: (f64, f64)) {
         let s = &fusion.segment;
         let (x, p) = (s.state(now), s.covariance(now, &fusion.config));
-        // The segment's knot is the first sample's or the last fix applied: the next is the
-        // knot after it, if any.
-        let next = usize::try_from(fusion.counts.applied)
-            .ok()
+        // The segment's knot is the first sample's, the last fix applied or the last restart
+        // of the clock: the next is the knot after it, if any.
+        let next = fusion
+            .counts
+            .applied
+            .checked_add(fusion.restarts)
+            .and_then(|j| usize::try_from(j).ok())
             .and_then(|j| self.knots.get(j.checked_add(1)?));
         let (x, p) = match next {
-            Some(next) => smoothed(&x, &p, next.a - s.a(), next.t - now, &next.w, &next.e),
+            Some(next) => {
+                let c = next.reached_at() - now;
+                smoothed(&x, &p, next.a - s.a(), c, &next.w, &next.e)
+            }
             None => (x, p),
         };
         self.out.set_estimate(k, &Estimate::of(&x, &p));

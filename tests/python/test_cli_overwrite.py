@@ -5,6 +5,8 @@ keeps it and skips its input); the output is never an input, even with ``--overw
 from __future__ import annotations
 
 import json
+import os
+import shutil
 from pathlib import Path
 
 import pytest
@@ -180,21 +182,44 @@ def test_a_folder_where_the_output_file_goes_is_refused_before_any_work(name: st
 
 
 @pytest.mark.parametrize("name", [n for n in WRITERS if n not in ("process to a folder", "evaluate", "reproduce")])
-@pytest.mark.parametrize("parent", ["missing", "file"])
+@pytest.mark.parametrize("parent", ["missing", "file", "under a file"])
 def test_an_output_without_its_folder_is_refused_before_any_work(name: str, parent: str, log: Path,
                                                                  tmp_path: Path) -> None:
+    # under a file (notes.csv/sub/x.csv) it said "the folder notes.csv/sub does not exist; create
+    # it", which no one can
     args, target = _command(name, log, tmp_path)
     target.unlink()
-    folder = tmp_path / "not_here"
-    if parent == "file":
-        folder.write_text(MINE)
+    blocker = tmp_path / "not_here"
+    folder = blocker / "sub" if parent == "under a file" else blocker
+    if parent != "missing":
+        blocker.write_text(MINE)
     moved = folder / target.name
     args = [str(moved) if a == str(target) else a for a in args]
     proc = gyrocore_cli(*args, code=2, timeout=60)
-    reason = f"{folder} is not a folder; write the output elsewhere" if parent == "file" else (
+    reason = f"{blocker} is not a folder; write the output elsewhere" if parent != "missing" else (
         f"the folder {folder} does not exist; create it or write elsewhere")
     assert (proc.stdout, proc.stderr) == ("", f"gyrocore: error: {moved}: {reason}\n")
-    assert not folder.is_dir() and (parent == "missing" or folder.read_text() == MINE)
+    assert not blocker.is_dir() and (parent == "missing" or blocker.read_text() == MINE)
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc/self"), reason="no /proc here")
+@pytest.mark.parametrize("inputs", [1, 2])
+def test_an_output_in_a_folder_that_takes_no_files_is_not_said_to_be_missing(inputs: int, log: Path,
+                                                                             tmp_path: Path) -> None:
+    """/proc exists, but nothing can be created in it, not even by root, whose creation fails as
+    if it were missing: it said ``the folder /proc does not exist`` (a file), or gave a bare
+    ``[Errno 2] No such file or directory: '/proc/x'`` (the folder of two inputs' outputs)."""
+    output = "/proc/gyrocore.csv" if inputs == 1 else "/proc/gyrocore_out"
+    logs = [log, shutil.copytree(log, tmp_path / "again")][:inputs]
+    proc = gyrocore_cli("process", *map(str, logs), "--out", output, code=2, timeout=60)
+    if os.access("/proc", os.W_OK):  # root: the permission bits allow it
+        why = "it exists, but nothing can be created in it, as in a virtual filesystem such as /proc"
+        said = (f"{output}: cannot write in /proc ({why})" if inputs == 1 else
+                f"{output}: cannot make the output folder in /proc ({why})")
+    else:
+        said = (f"{output}: cannot write in /proc (no permission to write there, or a read-only filesystem)"
+                if inputs == 1 else f"{output}: cannot make the output folder (Permission denied)")
+    assert (proc.stdout, proc.stderr) == ("", f"gyrocore: error: {said}; write the output elsewhere\n")
 
 
 @pytest.mark.parametrize("name", ["process to a folder", "evaluate", "reproduce"])

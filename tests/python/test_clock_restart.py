@@ -153,3 +153,27 @@ def test_a_fusion_streams_bad_sample_is_a_sample_error_while_fixes_wait() -> Non
                                                    r"waiting from earlier calls first\)$") as info:
         f.process(tb, rb)
     assert (info.value.index, info.value.what) == (7, "rate")
+
+
+@pytest.mark.parametrize("mode", ["causal", "smoothed"])
+def test_fuse_of_a_whole_log_whose_time_steps_back_is_not_sent_to_restart_a_stream(mode: str) -> None:
+    # fuse takes a whole log at once and has no clock to restart; it was told to call restart_clock()
+    t, rate = drive(0.0, 400)
+    t[200:] -= 100.0
+    fixes = Fixes(np.array([0.5]), np.zeros(1), np.full(1, 0.05))
+    with pytest.raises(gyrocore.SampleError, match=r"t\[200\] = .*\(sort the log and drop duplicate timestamps\)$") as e:
+        gyrocore.fuse(t, rate, fixes, mode=mode)  # type: ignore[arg-type]
+    assert (e.value.index, e.value.what) == (200, "t")
+
+
+def test_a_streams_step_back_carries_the_words_of_a_log_beside_its_own() -> None:
+    """The binding gives both: a stream's way on, and a whole series' words (a file's reader, a
+    whole log), which the Python layer had cut from the stream's with a pattern of its words."""
+    p = gyrocore.Pipeline("hdr", bias=BIAS)
+    t, rate = drive(100.0, 400)
+    p.process(t, rate)
+    with pytest.raises(gyrocore.SampleError) as e:
+        p.process(t - 50.0, rate)
+    series = "timestamps must strictly increase: t[0] = 50 follows 103.1171875 (sort the log and drop duplicate timestamps)"
+    assert getattr(e.value, "log_message") == series
+    assert str(e.value).startswith(series + "; where the clock jumped back") and "restart_clock()" in str(e.value)

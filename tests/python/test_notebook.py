@@ -295,10 +295,21 @@ def test_a_fix_filter_shows_its_settings_and_what_its_fixes_did() -> None:
 def test_a_file_given_to_process_is_told_to_be_read_first(given: str) -> None:
     """As the command line takes a file, a first try in Python gives one: it was told the preset's
     name after it is no number (``rate must hold real numbers, got dtype <U3``), of files nothing."""
-    said = rf"t = '{given}': a file's name, not a sequence of numbers; a log file is read with gyrocore\.read_log"
+    said = (rf"t = '{given}': a file's name, not a sequence of numbers; gyrocore\.process takes the arrays t \[s\] "
+            r"and rate \[rad/s\]; a log file or folder is read with gyrocore\.read_log\(path\), then processed with "
+            r"its \.process\(preset\) \(on the command line: gyrocore process FILE\)$")
     with pytest.raises(TypeError, match=said):
         gyrocore.process(given, "hdr")
-    with pytest.raises(TypeError, match=said.replace(f"'{given}'", rf"PosixPath\('{given}'\)")):
+    on_pipeline = said.replace(f"'{given}'", rf"PosixPath\('{given}'\)").replace("gyrocore\\.process", "gyrocore\\.Pipeline\\.process", 1)
+    with pytest.raises(TypeError, match=on_pipeline):
         gyrocore.Pipeline("raw").process(Path(given), [0.0])
+    # alone, as the command line takes a file, or with a preset's name by keyword: Python's own
+    # "process() missing 1 required positional argument: 'rate'" said nothing of files
+    for alone in (lambda: gyrocore.process(given), lambda: gyrocore.process(given, preset="hdr"),
+                  lambda: gyrocore.process(t=given)):
+        with pytest.raises(TypeError, match=said):
+            alone()
+    with pytest.raises(TypeError, match=on_pipeline):
+        gyrocore.Pipeline("raw").process(Path(given))
     with pytest.raises(TypeError, match=r"t must hold real numbers, got dtype <U3"):  # a number as text is none
         gyrocore.process("1.5", [0.0])

@@ -28,11 +28,38 @@ _live: set[Path] = set()
 _NO_ROOM = (errno.ENOSPC, errno.EDQUOT, errno.EFBIG)
 
 
+def _nearest(folder: Path) -> Path:
+    """``folder``, or where it does not exist, the nearest path above it that does."""
+    while not os.path.lexists(folder) and folder != folder.parent:
+        folder = folder.parent
+    return folder
+
+
+def _no_folder_at(path: Path, folder: Path) -> str | None:
+    """Why ``folder`` (the output ``path``'s, or one to make) cannot hold it, where the nearest path
+    at or above it that exists is a file, not a folder (``-o notes.csv/x.csv``: a folder there
+    cannot be made either); None where that is a folder."""
+    above = _nearest(folder)
+    if os.path.lexists(above) and not above.is_dir():
+        return f"{path}: {above} is not a folder; write the output elsewhere"
+    return None
+
+
+#: Why nothing could be created in a folder that exists, which the system said is missing (a
+#: virtual filesystem's, ``/proc``: even root's ``open(O_CREAT)`` fails with ENOENT there).
+_TAKES_NO_FILES = "it exists, but nothing can be created in it, as in a virtual filesystem such as /proc"
+
+
 def output_folder_missing(path: Path) -> str:
-    """Why the output ``path`` cannot be written for want of its folder: none, or a file there."""
+    """Why the output ``path`` cannot be written for want of its folder: none, a file there or
+    above it, or a folder that exists but takes no new file (a file's creation failed as if it
+    were missing: it said ``the folder /proc does not exist``)."""
     parent = path.parent
-    if os.path.lexists(parent) and not parent.is_dir():
-        return f"{path}: {parent} is not a folder; write the output elsewhere"
+    said = _no_folder_at(path, parent)
+    if said is not None:
+        return said
+    if parent.is_dir():
+        return cannot_write_in(path, _TAKES_NO_FILES)
     return f"{path}: the folder {parent} does not exist; create it or write elsewhere"
 
 
@@ -50,6 +77,13 @@ def make_folder(path: Path) -> None:
         path.mkdir(parents=True, exist_ok=True)
     except FileExistsError:  # a file in the way: the caller's check names it, before any work
         raise NotADirectoryError(f"{path}: a file, where the output folder goes; write the output elsewhere") from None
+    except (FileNotFoundError, NotADirectoryError):  # its place is a file's, or in /proc (a bare errno said so)
+        said = _no_folder_at(path, path)
+        if said is not None:
+            raise NotADirectoryError(said) from None
+        where = _nearest(path)
+        raise PermissionError(f"{path}: cannot make the output folder in {where} ({_TAKES_NO_FILES}); write the "
+                              "output elsewhere") from None
     except OSError as e:
         if e.errno not in (errno.EROFS, errno.EACCES, errno.EPERM, *_NO_ROOM):
             raise
@@ -66,11 +100,9 @@ def check_output_folder(path: Path, *, made: bool = False) -> None:
         if not os.access(path.parent, os.W_OK):  # a read-only filesystem too (EROFS), even for root
             raise PermissionError(cannot_write_in(path, "no permission to write there, or a read-only filesystem"))
         return
-    ancestor = path.parent
-    while not os.path.lexists(ancestor) and ancestor != ancestor.parent:
-        ancestor = ancestor.parent
-    if os.path.lexists(ancestor) and not ancestor.is_dir():
-        raise NotADirectoryError(f"{path}: {ancestor} is not a folder; write the output elsewhere")
+    said = _no_folder_at(path, path.parent)
+    if said is not None:
+        raise NotADirectoryError(said)
 
 
 def already_there(taken: Sequence[str | Path], option: str) -> FileExistsError:

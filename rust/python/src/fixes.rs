@@ -125,7 +125,8 @@ type Columns<'py> = (Array<'py>, Array<'py>, Array<'py>, Array<'py>);
 /// Runs the filter over one block into four new arrays: its estimates, or with `knots` the
 /// smoothed ones (a forward pass recording the knots, the backward pass over them, and a second
 /// forward pass of a fresh filter writing the smoothed estimates). A Ctrl-C stops a long block
-/// (see [`interrupt`](crate::interrupt)) between pieces of a forward pass.
+/// (see [`interrupt`](crate::interrupt)) between pieces of a forward pass. `series`: the block
+/// is a whole series (`fuse`), whose step back is a log's to mend, not a stream's to restart.
 fn run<'py>(
     py: Python<'py>,
     fusion: &mut Fusion,
@@ -133,6 +134,7 @@ fn run<'py>(
     rate: &[f64],
     fixes: &[Fix],
     knots: Option<&mut Vec<Knot>>,
+    series: bool,
 ) -> PyResult<(Columns<'py>, usize)> {
     let n = t.len();
     let cols = (zeros(py, n), zeros(py, n), zeros(py, n), zeros(py, n));
@@ -160,7 +162,7 @@ fn run<'py>(
             })
         })
     })??
-    .map_err(fusion_error)?;
+    .map_err(|e| fusion_error(if series { e.of_series() } else { e }))?;
     Ok((cols, used))
 }
 
@@ -215,7 +217,7 @@ fn fuse<'py>(
     let (t, rate) = (slice("t", &t)?, slice("rate", &rate)?);
     let mut knots = Vec::new();
     let knots = smoothed.then_some(&mut knots);
-    let (cols, used) = run(py, &mut fusion, t, rate, &fixes, knots)?;
+    let (cols, used) = run(py, &mut fusion, t, rate, &fixes, knots, true)?;
     let counts = counts_dict(py, fusion.counts(), fixes.len() - used)?;
     Ok((cols.0, cols.1, cols.2, cols.3, counts))
 }
@@ -278,7 +280,15 @@ impl PyFusion {
         let mark = self
             .pending
             .append(fixes_from(&fix_t, &fix_heading, &fix_sigma)?);
-        match run(py, &mut self.inner, t, rate, self.pending.waiting(), None) {
+        match run(
+            py,
+            &mut self.inner,
+            t,
+            rate,
+            self.pending.waiting(),
+            None,
+            false,
+        ) {
             Ok((cols, used)) => {
                 self.pending.consume(used);
                 Ok(cols)

@@ -32,7 +32,9 @@ pyo3::create_exception!(
 );
 
 /// Maps a core error to a Python exception with the core's message: `SampleError` (a
-/// `ValueError` carrying `index` and `what`) for a bad sample, `ValueError` otherwise.
+/// `ValueError` carrying `index` and `what`) for a bad sample, `ValueError` otherwise. A stream's
+/// step back also carries `log_message`, its words as a whole series' ([`Error::of_series`],
+/// without `restart_clock()`): a log or a file processed by a stream is one series to mend.
 fn value_error(e: Error) -> PyErr {
     let Some(index) = e.index() else {
         return PyValueError::new_err(e.to_string());
@@ -44,9 +46,16 @@ fn value_error(e: Error) -> PyErr {
     Python::attach(|py| {
         let err = SampleError::new_err(e.to_string());
         let value = err.value(py);
-        match (value.setattr("index", index), value.setattr("what", what)) {
-            (Ok(()), Ok(())) => err,
-            (Err(set), _) | (_, Err(set)) => set,
+        // matched, not compared with `of_series`: a NaN in an error's value is unequal to itself
+        let series = matches!(e, Error::ClockStepsBack { .. })
+            .then(|| value.setattr("log_message", e.of_series().to_string()));
+        let set = value
+            .setattr("index", index)
+            .and(value.setattr("what", what))
+            .and(series.unwrap_or(Ok(())));
+        match set {
+            Ok(()) => err,
+            Err(set) => set,
         }
     })
 }
