@@ -243,3 +243,34 @@ def test_a_camera_folder_is_named_as_such(short: Path) -> None:
     with pytest.raises(ValueError, match=r"looks like a KITTI raw sensor folder \(timestamps.txt, data/\), and gyrocore "
                                          r"reads the drive's GPS/IMU: give its oxts folder"):
         gyrocore.read_log(camera)
+
+
+def test_a_value_read_that_is_not_finite_is_named(short: Path) -> None:
+    path = short / "data" / "0000000009.txt"
+    fields = path.read_text().split()
+    fields[8] = "nan"  # vf, the odometry
+    path.write_text(" ".join(fields) + "\n")
+    with pytest.raises(ValueError, match=r"0000000009.txt: line 1, column 9 \(vf\): nan is not a finite number"):
+        gyrocore.read_log(short)
+
+
+def test_a_timestamp_that_goes_back_is_named(short: Path) -> None:
+    path = short / "timestamps.txt"
+    lines = path.read_text().splitlines()
+    lines[3], lines[4] = lines[4], lines[3]
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(ValueError, match=rf"timestamps.txt: line 5: {lines[4]} goes back from {lines[3]} on line 4; "):
+        gyrocore.read_log(short)
+
+
+def test_a_drive_past_midnight_counts_on(short: Path) -> None:
+    # seconds of the first frame's day: the frames after midnight are 86400 s and more, not 0
+    stamps = [str(np.datetime64("2011-09-30T23:59:59.550000001") + np.timedelta64(k * 100_000_000, "ns")) for k in range(12)]
+    (short / "timestamps.txt").write_text("".join(s.replace("T", " ") + "\n" for s in stamps))
+    t = gyrocore.read_log(short).t
+    assert t[0] == 86399.550000001 and t[5] == 86400.050000001 and t[-1] == 86400.650000001
+    assert np.all(np.diff(t) > 0.0999999)
+    proc = gyrocore_cli("process", camera, "--out", short.parent / "heading.csv", code=2)
+    assert proc.stderr.strip().endswith(f"log or bag folders); it looks like a KITTI raw sensor folder (timestamps.txt, "
+                                        f"data/), and gyrocore reads the drive's GPS/IMU: give its oxts folder ({short}) "
+                                        f"or the drive folder ({short.parent})")

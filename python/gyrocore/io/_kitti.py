@@ -206,8 +206,8 @@ def _times(path: Path) -> FloatArray:
         more = f" ({len(back)} such lines in all)" if len(back) > 1 else ""
         raise ValueError(f"{path}: line {k + 1}: {lines[k].strip()} {what} {lines[k - 1].strip()} on line {k}{more}; "
                          "timestamps must strictly increase. KITTI raw's extract (unsynced) OXTS data has repeated "
-                         "and backward timestamps: read the drive's sync data, or mend the timestamps first (and "
-                         "keep one data file per line)")
+                         "timestamps: read the drive's sync data, or mend the timestamps first (and keep one data "
+                         "file per line)")
     day = stamps[0].astype("datetime64[D]").astype("datetime64[ns]").astype(np.int64)
     return np.asarray((ns - day) / _NS_PER_S, dtype=np.float64)
 
