@@ -243,6 +243,10 @@ def test_a_camera_folder_is_named_as_such(short: Path) -> None:
     with pytest.raises(ValueError, match=r"looks like a KITTI raw sensor folder \(timestamps.txt, data/\), and gyrocore "
                                          r"reads the drive's GPS/IMU: give its oxts folder"):
         gyrocore.read_log(camera)
+    proc = gyrocore_cli("process", camera, "--out", short.parent / "heading.csv", code=2)
+    assert proc.stderr.strip().endswith(f"log or bag folders); it looks like a KITTI raw sensor folder (timestamps.txt, "
+                                        f"data/), and gyrocore reads the drive's GPS/IMU: give its oxts folder ({short}) "
+                                        f"or the drive folder ({short.parent})")
 
 
 def test_a_value_read_that_is_not_finite_is_named(short: Path) -> None:
@@ -270,7 +274,3 @@ def test_a_drive_past_midnight_counts_on(short: Path) -> None:
     t = gyrocore.read_log(short).t
     assert t[0] == 86399.550000001 and t[5] == 86400.050000001 and t[-1] == 86400.650000001
     assert np.all(np.diff(t) > 0.0999999)
-    proc = gyrocore_cli("process", camera, "--out", short.parent / "heading.csv", code=2)
-    assert proc.stderr.strip().endswith(f"log or bag folders); it looks like a KITTI raw sensor folder (timestamps.txt, "
-                                        f"data/), and gyrocore reads the drive's GPS/IMU: give its oxts folder ({short}) "
-                                        f"or the drive folder ({short.parent})")
