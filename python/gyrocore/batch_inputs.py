@@ -11,6 +11,7 @@ from pathlib import Path
 
 from . import batch_names, io
 from ._checks import warn
+from .io._kitti import sensor_folder_hint
 from .io._logfolder import lacks_gyro
 from .io import atomic
 from .io._paths import check_readable, compressed_logs
@@ -41,7 +42,7 @@ def expand_inputs(items: Iterable[str | Path]) -> list[Path]:
                 packed = compressed_logs(entries, io.FILE_SUFFIXES)  # the one listing
                 if not inside and named:
                     raise ValueError(f"{m}: no logs in this folder ({', '.join(io.FILE_SUFFIXES)}, log or bag folders)"
-                                     + (f"; it holds {packed}" if packed else _dataset_hint(m)))
+                                     + (f"; it holds {packed}" if packed else _dataset_hint(m) or sensor_folder_hint(m)))
                 if packed:
                     warn(f"{m}: {packed}")
                 _warn_unsearched(m, [c for c in entries if c.is_dir() and not _named_as_input(c)])

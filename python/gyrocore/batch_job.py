@@ -24,6 +24,8 @@ from .batch_inputs import complete_output
 from .batch_report import FileReport, input_repairs
 from .io import atomic
 from .io._columns import concat
+from .io._kitti import KIND as KITTI_KIND
+from .io._kitti import oxts_tables
 from .io._logfolder import FIXES_CSV, ODOMETRY_CSV, from_stationary, read_odometry
 from .io._paths import error_text, has_file
 from .io.log import tracks_rests
@@ -235,6 +237,8 @@ class _FileJob:
             return False
         if source.kind == "log folder":
             return has_file(source.path / ODOMETRY_CSV)
+        if source.kind == KITTI_KIND:
+            return True  # its forward speed vf is its odometry
         return bool(source.extra_columns((SPEED_COLUMN,)))
 
     def _fused(
@@ -307,16 +311,18 @@ class _FileJob:
 
     def _speed(self, source: io.GyroSource, t: FloatArray) -> FloatArray | None:
         """The speed [m/s] at each of the gyro's times ``t`` whose stops whole mode takes as rests:
-        a log folder's odometry.csv, a file's ``speed`` column; None without one or with
+        a log folder's odometry.csv, a KITTI OXTS folder's vf, a file's ``speed`` column; None without one or with
         ``--no-speed``."""
         if not self.use_speed:
             return None
-        if source.kind != "log folder":
+        if source.kind == KITTI_KIND:  # read_log's odometry too: the OXTS's forward speed vf, frame by frame
+            odometry, where = oxts_tables(source.data_path)[1], f"{source.data_path} (vf)"
+        elif source.kind != "log folder":
             return source.speed(self.chunk_rows)
-        odometry = read_odometry(source.path)
+        else:
+            odometry, where = read_odometry(source.path), str(source.path / ODOMETRY_CSV)
         if not odometry:
             return None
-        where = str(source.path / ODOMETRY_CSV)
         return rests.speed_on(t, odometry["t"], odometry["speed"], where=where)
 
     def for_a_worker(self, tag: str) -> _FileJob:

@@ -17,6 +17,9 @@ log folder    ``gyro.csv`` (t, gyro_z), ``reference.csv`` (t, heading, x, y), ``
 ROS bag       a ROS 1 ``.bag`` file or a ROS 2 bag folder (``metadata.yaml``): sensor_msgs/Imu
               ``angular_velocity.z`` (or the ``rate_col`` ``angular_velocity.x`` or ``.y``) stamped
               by ``header.stamp`` (needs ``gyrocore[ros]``)
+KITTI OXTS    a KITTI raw drive's ``oxts`` folder (or the drive folder): ``wz`` at the times of
+              ``timestamps.txt``, with ``yaw`` (and x, y from lat, lon) as the reference and
+              ``vf`` as the odometry
 ============  =====================================================================================
 
 Three-axis input (``gyro_cols``, ``accel_cols``, ``up``): the yaw rate is the gyro's component along
@@ -46,6 +49,7 @@ Modules (import the names from ``gyrocore.io``, which has them all):
 ``_npyfile``        the ``.npy`` and ``.npz`` reader
 ``_rosbag``         the ROS bag reader (rosbags)
 ``_logfolder``      the log-folder layout: ``meta.json``, ``reference.csv``, ``odometry.csv``
+``_kitti``          KITTI raw OXTS folders (``timestamps.txt``, ``data/*.txt``, ``dataformat.txt``)
 ``_columns``        what the readers share: finding the named columns, column data as arrays
 ``_axes``           three-axis input: ``up`` given or measured, the projection ``gyro . up``
 ``_paths``          what stands where a file is read: a regular file, nothing, or an error naming it

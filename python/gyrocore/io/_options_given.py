@@ -34,7 +34,8 @@ def _check_axes(source: GyroSource) -> GyroSource:
     return source
 
 
-_KIND_NAMES = {"csv": "CSV file", "parquet": "Parquet file", "npy": ".npy file", "npz": ".npz file"}
+_KIND_NAMES = {"csv": "CSV file", "parquet": "Parquet file", "npy": ".npy file", "npz": ".npz file",
+               "kitti oxts": "KITTI OXTS folder"}
 
 
 def _check_topic(source: GyroSource) -> GyroSource:

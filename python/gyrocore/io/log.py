@@ -29,6 +29,8 @@ from ..rests import speed_on
 from ..wholelog import WHOLE_OPTIONS
 from ..window import RestWindowError, in_log_clock
 from ._columns import concat
+from ._kitti import KIND as KITTI_KIND
+from ._kitti import oxts_tables
 from ._logfolder import from_stationary, has_track, read_fixes, read_odometry, read_reference
 from .source import SPEED_COLUMN, GyroSource, finite_speed, open_source
 from .units import UnitCheck
@@ -320,6 +322,8 @@ def read_log(path: str | Path, *, use_fixes: bool = True, **options: Any) -> Log
     if src.kind == "log folder":
         ref, odo = read_reference(src.path), read_odometry(src.path)
         fixes = read_fixes(src.path) if use_fixes else None
+    elif src.kind == KITTI_KIND:
+        ref, odo = oxts_tables(src.data_path)
     else:
         ref, odo = _file_tables(src, t)
     rate = concat(rates)

@@ -22,6 +22,9 @@ from .._inuse import OneReader
 from ._axes import measure_up, project
 from ._columns import METRES, METRES_PER_SECOND, RADIANS, concat, import_pyarrow_lazy_modules, in_si_units
 from ._csvfile import CsvLayout, csv_chunks, csv_layout
+from ._kitti import KIND as KITTI_KIND
+from ._kitti import DATA as KITTI_DATA
+from ._kitti import frame_count, log_name, oxts_chunks, oxts_folder, oxts_options, sensor_folder_hint
 from ._logfolder import GYRO_CSV, is_log_folder, read_meta, warn_gyro_alone
 from ._npyfile import check_npz, npy_chunks, npy_fields, npy_shape, npz_chunks, npz_names
 from ._options_given import checked_options
@@ -79,13 +82,14 @@ class GyroSource:
 
     Attributes:
         path: the input as given.
-        kind: ``csv``, ``parquet``, ``npy``, ``npz``, ``bag`` or ``log folder``.
-        data_path: the file whose rows are counted (``gyro.csv`` of a log folder, else ``path``).
+        kind: ``csv``, ``parquet``, ``npy``, ``npz``, ``bag``, ``log folder`` or ``kitti oxts``.
+        data_path: the file whose rows are counted (``gyro.csv`` of a log folder, the ``oxts``
+            folder of a KITTI raw drive, else ``path``).
         options: columns and units.
         stationary: rest window ``(t0, t1)`` [s] from a log folder's meta.json, or None.
         progress_total: size of the input in :attr:`progress_unit`, or None if unknown.
         progress_unit: ``B`` (bytes of a CSV file) or ``rows``.
-        meta: a log folder's meta.json.
+        meta: a log folder's meta.json (a KITTI OXTS folder's: its drive's name).
         layout: a CSV file's (a log folder's gyro.csv's) header and the lines before its first
             sample, as read when it was opened; None for another input.
     """
@@ -120,6 +124,8 @@ class GyroSource:
             return f"line {self.csv_table().line(row)}"
         if self.kind == "bag":
             return f"message {row} on {self.options.topic}"
+        if self.kind == KITTI_KIND:
+            return f"frame {row} ({KITTI_DATA}/{row:010d}.txt)"
         return f"row {row}"
 
     def locate(self, error: SampleError, time_fix: str | None = None, reading_fix: str | None = NONFINITE_FIX) -> str:
@@ -260,6 +266,7 @@ _READERS = {
     "npy": npy_chunks,
     "npz": npz_chunks,
     "bag": bag_chunks,
+    KITTI_KIND: oxts_chunks,
 }
 
 
@@ -276,7 +283,8 @@ def open_source(path: str | Path, options: ReadOptions | None = None, **kwargs: 
 
     Args:
         path: a ``.csv`` (``.tsv``: tab-separated), ``.parquet``/``.pq``, ``.npy``, ``.npz`` or ``.bag`` file, a log folder
-            (with ``gyro.csv``) or a ROS 2 bag folder (with ``metadata.yaml``).
+            (with ``gyro.csv``), a ROS 2 bag folder (with ``metadata.yaml``) or a KITTI raw drive's
+            ``oxts`` folder (or the drive folder that holds it).
         options: columns and units; or give the :class:`ReadOptions` fields as keywords.
 
     Raises:
@@ -307,13 +315,17 @@ def _recognise(p: Path, options: ReadOptions) -> GyroSource:
             return GyroSource(p, "log folder", data, options, stationary, data.stat().st_size, "B", meta, layout)
         if is_bag_folder(p):
             return _open_bag(p, header_options(p, None, options))
+        oxts = oxts_folder(p)
+        if oxts is not None:
+            return GyroSource(p, KITTI_KIND, oxts, oxts_options(p, options), progress_total=frame_count(oxts),
+                              meta={"name": log_name(p, oxts)})
         try:
             entries = list(p.iterdir())
         except OSError:  # the hint is a kindness: an unlisted folder gives the error without it
             entries = []
         packed = compressed_logs(entries, FILE_SUFFIXES)
         raise ValueError(f"{p}: not a log folder (no gyro.csv) nor a ROS 2 bag (no metadata.yaml)"
-                         + (f"; it holds {packed}" if packed else ""))
+                         + (f"; it holds {packed}" if packed else sensor_folder_hint(p)))
     if not p.is_file():  # reading a named pipe or a device would wait for ever, or never end
         raise ValueError(f"{p}: not a regular file (a named pipe, socket or device); give a file or folder")
     check_readable(p)
@@ -373,5 +385,5 @@ def is_input(path: str | Path) -> bool:
             check_readable(path)
         except PermissionError:  # kept as an input: reading it names the folder and what to do
             return True
-        return is_log_folder(path) or is_bag_folder(path)
+        return is_log_folder(path) or is_bag_folder(path) or oxts_folder(path) is not None
     return path.is_file() and path.suffix.lower() in FILE_SUFFIXES
