@@ -180,11 +180,15 @@ def test_a_line_without_30_numbers_is_named(short: Path) -> None:
         gyrocore.read_log(short)
 
 
-def test_text_in_a_field_is_named(short: Path) -> None:
-    path = short / "data" / "0000000003.txt"
+def set_field(path: Path, index: int, value: str) -> list[str]:
+    """Field ``index`` of the OXTS data file ``path`` written as ``value``; the fields as they were."""
     fields = path.read_text().split()
-    fields[19] = "abc"
-    path.write_text(" ".join(fields) + "\n")
+    path.write_text(" ".join([*fields[:index], value, *fields[index + 1:]]) + "\n")
+    return fields
+
+
+def test_text_in_a_field_is_named(short: Path) -> None:
+    set_field(short / "data" / "0000000003.txt", 19, "abc")
     with pytest.raises(ValueError, match=r"0000000003.txt: line 1, column 20 \(wz\): 'abc' is not a number"):
         gyrocore.read_log(short)
 
@@ -222,10 +226,7 @@ def test_a_dataformat_in_another_order_is_refused(short: Path) -> None:
 
 
 def test_the_rate_is_wz_or_wu(short: Path) -> None:
-    wu = short / "data" / "0000000000.txt"
-    fields = wu.read_text().split()
-    fields[22] = "0.5"
-    wu.write_text(" ".join(fields) + "\n")
+    fields = set_field(short / "data" / "0000000000.txt", 22, "0.5")
     assert gyrocore.read_log(short, rate_col="wu").rate[0] == 0.5
     assert gyrocore.read_log(short).rate[0] == float(fields[19])
     with pytest.raises(ValueError, match=r"rate_col 'wx' \(--rate-col\) is no yaw rate of a KITTI OXTS folder"):
