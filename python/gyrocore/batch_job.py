@@ -316,7 +316,7 @@ class _FileJob:
         if not self.use_speed:
             return None
         if source.kind == KITTI_KIND:  # read_log's odometry too: the OXTS's forward speed vf, frame by frame
-            odometry, where = oxts_tables(source.data_path)[1], f"{source.data_path} (vf)"
+            odometry, where = oxts_tables(source)[1], f"{source.data_path} (vf)"
         elif source.kind != "log folder":
             return source.speed(self.chunk_rows)
         else:

@@ -23,7 +23,7 @@ import re
 from collections.abc import Iterator
 from dataclasses import replace
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -110,29 +110,68 @@ def oxts_options(path: Path, options: ReadOptions) -> ReadOptions:
     return replace(options, time_col="t", rate_col=rate, time_unit="s", rate_unit="rad/s")
 
 
-def read_oxts(folder: Path, names: tuple[str, ...]) -> tuple[FloatArray, dict[str, FloatArray]]:
-    """The times [s] of an OXTS folder (see the module) and its fields ``names``, one value per
-    frame. Every value of a field read must be finite.
+class Frames(NamedTuple):
+    """An OXTS folder read once: its times [s] and, per frame, the fields a log takes (the rate
+    fields and the track's) and the line of its data file they were read from."""
+
+    t: FloatArray
+    values: FloatArray
+    lines: np.ndarray
+
+
+#: The fields :class:`Frames` keeps, in its columns' order.
+KEPT = (*RATE_FIELDS, *TRACK_FIELDS)
+
+
+def read_frames(folder: Path) -> Frames:
+    """Every frame of an OXTS folder, each data file read and its 30 numbers parsed once.
 
     Raises:
         ValueError: naming the file and line: a dataformat.txt whose fields differ from
             :data:`FIELDS`, a timestamp that does not parse or does not come after the one before
             it, a count of data files other than the timestamps', a data line without 30
-            numbers, a value that is no number or not finite.
+            numbers, a value that is no number.
     """
     _check_dataformat(folder / DATAFORMAT)
     t = _times(folder / TIMESTAMPS)
     files = _data_files(folder, len(t))
-    columns = [FIELDS.index(name) for name in names]
-    values = np.empty((len(files), len(columns)), dtype=np.float64)
+    kept = [FIELDS.index(name) for name in KEPT]
+    values, lines = np.empty((len(files), len(kept)), dtype=np.float64), np.empty(len(files), dtype=np.int64)
     for row, path in enumerate(files):
-        values[row] = _data_line(path, columns)
-    return t, {name: values[:, i] for i, name in enumerate(names)}
+        lines[row], numbers = _data_line(path)
+        values[row] = [numbers[k] for k in kept]
+    return Frames(t, values, lines)
 
 
-def oxts_tables(folder: Path) -> tuple[dict[str, FloatArray], dict[str, FloatArray]]:
-    """The reference (t, heading, x, y) and odometry (t, speed) of an OXTS folder."""
-    t, v = read_oxts(folder, TRACK_FIELDS)
+def frames_of(src: GyroSource) -> Frames:
+    """The source's folder read once (:func:`read_frames`), for its gyro's chunks and its
+    reference and odometry alike (each had read every data file again)."""
+    if "oxts" not in src.read_once:
+        src.read_once["oxts"] = read_frames(src.data_path)
+    frames: Frames = src.read_once["oxts"]
+    return frames
+
+
+def fields_of(folder: Path, frames: Frames, names: tuple[str, ...]) -> dict[str, FloatArray]:
+    """The fields ``names`` of ``frames``, each value finite: one that is not is named by its
+    file, line and column."""
+    columns = {name: frames.values[:, KEPT.index(name)] for name in names}
+    for name, column in columns.items():
+        bad = np.flatnonzero(~np.isfinite(column))
+        if len(bad):
+            k = int(bad[0])
+            path = folder / DATA / f"{k:010d}.txt"
+            number = int(frames.lines[k])
+            token = path.read_text(encoding="utf-8", errors="replace").splitlines()[number - 1].split()[FIELDS.index(name)]
+            raise ValueError(f"{path}: line {number}, column {FIELDS.index(name) + 1} ({name}): {token} is not a finite "
+                             "number")
+    return columns
+
+
+def oxts_tables(src: GyroSource) -> tuple[dict[str, FloatArray], dict[str, FloatArray]]:
+    """The reference (t, heading, x, y) and odometry (t, speed) of an OXTS folder's source."""
+    frames = frames_of(src)
+    t, v = frames.t, fields_of(src.data_path, frames, TRACK_FIELDS)
     heading = np.where(v["yaw"] <= -np.pi, v["yaw"] + 2 * np.pi, v["yaw"])
     heading = np.where(heading > np.pi, heading - 2 * np.pi, heading)  # (-pi, pi], as a reference.csv holds it
     lat0, lon0 = np.radians(v["lat"][0]), np.radians(v["lon"][0])
@@ -144,7 +183,8 @@ def oxts_tables(folder: Path) -> tuple[dict[str, FloatArray], dict[str, FloatArr
 def oxts_chunks(src: GyroSource, rows: int, columns: tuple[str, ...]) -> Iterator[tuple[np.ndarray, list[np.ndarray], float, int]]:
     """The OXTS folder's times [s] and fields ``columns``, at most ``rows`` frames at a time (the
     reader of :meth:`GyroSource.chunks <gyrocore.io.GyroSource.chunks>`)."""
-    t, values = read_oxts(src.data_path, columns)
+    frames = frames_of(src)
+    t, values = frames.t, fields_of(src.data_path, frames, columns)
     for start in range(0, len(t), rows):
         stop = min(start + rows, len(t))
         yield t[start:stop], [values[c][start:stop] for c in columns], 1.0, stop
@@ -242,9 +282,9 @@ def _data_files(folder: Path, count: int) -> list[Path]:
     return [data / name for name in names]
 
 
-def _data_line(path: Path, columns: list[int]) -> list[float]:
-    """The fields ``columns`` of a data file's one line of 30 numbers (each one read, that a file
-    cut short or garbled is named, not read as other fields)."""
+def _data_line(path: Path) -> tuple[int, list[float]]:
+    """A data file's one line of 30 numbers: its line number and the numbers (each one read, that
+    a file cut short or garbled is named, not read as other fields)."""
     text = path.read_text(encoding="utf-8", errors="replace").splitlines()
     lines = [(number, line) for number, line in enumerate(text, 1) if line.strip()]
     if len(lines) != 1:
@@ -260,7 +300,4 @@ def _data_line(path: Path, columns: list[int]) -> list[float]:
             values.append(float(token))
         except ValueError:
             raise ValueError(f"{path}: line {number}, column {k + 1} ({FIELDS[k]}): {token[:40]!r} is not a number") from None
-    for k in columns:
-        if not np.isfinite(values[k]):
-            raise ValueError(f"{path}: line {number}, column {k + 1} ({FIELDS[k]}): {tokens[k]} is not a finite number")
-    return [values[k] for k in columns]
+    return number, values

@@ -323,7 +323,7 @@ def read_log(path: str | Path, *, use_fixes: bool = True, **options: Any) -> Log
         ref, odo = read_reference(src.path), read_odometry(src.path)
         fixes = read_fixes(src.path) if use_fixes else None
     elif src.kind == KITTI_KIND:
-        ref, odo = oxts_tables(src.data_path)
+        ref, odo = oxts_tables(src)
     else:
         ref, odo = _file_tables(src, t)
     rate = concat(rates)

@@ -92,6 +92,9 @@ class GyroSource:
         meta: a log folder's meta.json (a KITTI OXTS folder's: its drive's name).
         layout: a CSV file's (a log folder's gyro.csv's) header and the lines before its first
             sample, as read when it was opened; None for another input.
+        read_once: what a reader of a whole input parsed once, for every later reading of the
+            source (a KITTI OXTS folder's frames: its gyro's chunks, then its reference and
+            odometry, which read every data file again).
     """
 
     path: Path
@@ -103,6 +106,7 @@ class GyroSource:
     progress_unit: str = "rows"
     meta: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
     layout: CsvLayout | None = field(default=None, repr=False, compare=False)
+    read_once: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def delimiter(self) -> str:
