@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import re
 import warnings
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -180,6 +181,14 @@ def test_a_line_without_30_numbers_is_named(short: Path) -> None:
         gyrocore.read_log(short)
 
 
+def edit_lines(path: Path, edit: Callable[[list[str]], None]) -> list[str]:
+    """The file ``path`` written again with its lines as ``edit`` leaves them; those lines."""
+    lines = path.read_text().splitlines()
+    edit(lines)
+    path.write_text("\n".join(lines) + "\n")
+    return lines
+
+
 def set_field(path: Path, index: int, value: str) -> list[str]:
     """Field ``index`` of the OXTS data file ``path`` written as ``value``; the fields as they were."""
     fields = path.read_text().split()
@@ -197,30 +206,29 @@ def test_text_in_a_field_is_named(short: Path) -> None:
                                         ("2011-13-30 13:16:06.640352090", "'2011-13-30 13:16:06.640352090' is not a timestamp"),
                                         ("", "blank, where a frame's timestamp belongs")])
 def test_a_timestamp_that_does_not_parse_is_named(short: Path, line: str, said: str) -> None:
-    path = short / "timestamps.txt"
-    lines = path.read_text().splitlines()
-    lines[4] = line
-    path.write_text("\n".join(lines) + "\n")
+    def put(lines: list[str]) -> None:
+        lines[4] = line
+
+    edit_lines(short / "timestamps.txt", put)
     with pytest.raises(ValueError, match=rf"timestamps.txt: line 5: {re.escape(said)}"):
         gyrocore.read_log(short)
 
 
 def test_a_repeated_timestamp_is_named(short: Path) -> None:
-    path = short / "timestamps.txt"
-    lines = path.read_text().splitlines()
-    lines[7] = lines[6]
-    lines[10] = lines[2]
-    path.write_text("\n".join(lines) + "\n")
+    def repeat(lines: list[str]) -> None:
+        lines[7], lines[10] = lines[6], lines[2]
+
+    lines = edit_lines(short / "timestamps.txt", repeat)
     with pytest.raises(ValueError, match=rf"timestamps.txt: line 8: {lines[6]} repeats {lines[6]} on line 7 \(2 such "
                                          r"lines in all\); timestamps must strictly increase. KITTI raw's extract"):
         gyrocore.read_log(short)
 
 
 def test_a_dataformat_in_another_order_is_refused(short: Path) -> None:
-    path = short / "dataformat.txt"
-    lines = path.read_text().splitlines()
-    lines[19], lines[22] = lines[22], lines[19]  # wz and wu swapped
-    path.write_text("\n".join(lines) + "\n")
+    def swap(lines: list[str]) -> None:
+        lines[19], lines[22] = lines[22], lines[19]  # wz and wu swapped
+
+    edit_lines(short / "dataformat.txt", swap)
     with pytest.raises(ValueError, match=r"dataformat.txt: line 20: field 'wu' where KITTI raw's OXTS format has 'wz'"):
         gyrocore.read_log(short)
 
@@ -251,19 +259,16 @@ def test_a_camera_folder_is_named_as_such(short: Path) -> None:
 
 
 def test_a_value_read_that_is_not_finite_is_named(short: Path) -> None:
-    path = short / "data" / "0000000009.txt"
-    fields = path.read_text().split()
-    fields[8] = "nan"  # vf, the odometry
-    path.write_text(" ".join(fields) + "\n")
+    set_field(short / "data" / "0000000009.txt", 8, "nan")  # vf, the odometry
     with pytest.raises(ValueError, match=r"0000000009.txt: line 1, column 9 \(vf\): nan is not a finite number"):
         gyrocore.read_log(short)
 
 
 def test_a_timestamp_that_goes_back_is_named(short: Path) -> None:
-    path = short / "timestamps.txt"
-    lines = path.read_text().splitlines()
-    lines[3], lines[4] = lines[4], lines[3]
-    path.write_text("\n".join(lines) + "\n")
+    def swap(lines: list[str]) -> None:
+        lines[3], lines[4] = lines[4], lines[3]
+
+    lines = edit_lines(short / "timestamps.txt", swap)
     with pytest.raises(ValueError, match=rf"timestamps.txt: line 5: {lines[4]} goes back from {lines[3]} on line 4; "):
         gyrocore.read_log(short)
 
