@@ -217,12 +217,7 @@ fn update_skips_a_step_back_until_the_clock_is_restarted() {
 
 #[test]
 fn a_restart_within_the_rest_window_is_refused_and_changes_nothing() {
-    let mut c = Preset::StaticBias.config();
-    c.correction.bias = StaticBias::Window {
-        start: 0.0,
-        end: 1.0,
-    };
-    let mut p = Pipeline::new(c).unwrap();
+    let mut p = Pipeline::new(common::with_window(Preset::StaticBias, 0.0, 1.0)).unwrap();
     p.restart_clock().unwrap(); // before the first sample: nothing to restart
     let (t, r) = drive(0.0, 50);
     try_block(&mut p, &t, &r).unwrap();
@@ -282,11 +277,7 @@ fn a_fused_pipeline_restarts_both_clocks() {
 #[cfg(feature = "serde")]
 #[test]
 fn a_restart_survives_a_snapshot_before_and_after_the_next_sample() {
-    let mut c = Preset::StaticBias.config();
-    c.correction.bias = StaticBias::Window {
-        start: 100.0,
-        end: 101.0,
-    };
+    let c = common::with_window(Preset::StaticBias, 100.0, 101.0);
     let (ta, ra) = drive(100.0, 300);
     let (tb, rb) = drive(50.0, 300);
     let mut p = Pipeline::new(c).unwrap();

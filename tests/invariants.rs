@@ -350,12 +350,7 @@ fn presets_are_valid_and_named() {
 
 #[test]
 fn hdr_waits_for_the_end_of_the_rest_window() {
-    let mut config = Preset::Hdr.config();
-    config.correction.bias = StaticBias::Window {
-        start: 0.0,
-        end: 10.0,
-    };
-    let mut p = Pipeline::new(config).unwrap();
+    let mut p = Pipeline::new(common::with_window(Preset::Hdr, 0.0, 10.0)).unwrap();
     let t: Vec<f64> = (0..=150).map(|i| i as f64 * 0.1).collect();
     // A drifting reading during the rest: HDR must not act on it while the bias is measured.
     let rate: Vec<f64> = t.iter().map(|&x| 0.001 * x).collect();

@@ -116,11 +116,7 @@ fn an_output_of_the_wrong_length_is_an_error() {
 /// 40 s after the start), so none inside the window.
 fn stream_past_an_empty_window() -> (Vec<f64>, Vec<f64>, PipelineConfig) {
     let (t, r) = stream(3000);
-    let mut c = Preset::Tuned.config();
-    c.correction.bias = StaticBias::Window {
-        start: 75.0,
-        end: 80.0,
-    };
+    let c = common::with_window(Preset::Tuned, 75.0, 80.0);
     let t = t
         .iter()
         .map(|&x| if x > 70.0 { x + 20.0 } else { x })
@@ -194,9 +190,7 @@ fn a_sample_stream_tells_when_it_passed_an_empty_rest_window() {
 fn the_static_bias_test_is_the_pipelines_rest_window() {
     let (t, r) = stream(4000);
     let (start, end) = (60.0, 90.0);
-    let mut c = Preset::Tuned.config();
-    c.correction.bias = StaticBias::Window { start, end };
-    let mut p = Pipeline::new(c).unwrap();
+    let mut p = Pipeline::new(common::with_window(Preset::Tuned, start, end)).unwrap();
     common::try_block(&mut p, &t, &r).unwrap();
     let test = static_bias_test(&t, &r, start, end).unwrap();
     assert_eq!((test.bias, test.count), p.bias());

@@ -3,6 +3,7 @@
 //! off, or to a state that no longer read back.
 #![cfg(feature = "serde")]
 
+mod common;
 mod states;
 
 use gyrocore::*;
@@ -137,11 +138,7 @@ fn chain_settings_that_contradict_the_configuration_are_refused() {
 /// heading of -1.8e6 rad, and a state that no longer read back.
 #[test]
 fn a_rest_window_integral_whose_mean_is_no_reading_is_refused() {
-    let mut config = Preset::StaticBias.config();
-    config.correction.bias = StaticBias::Window {
-        start: 0.5,
-        end: 1.5,
-    };
+    let config = common::with_window(Preset::StaticBias, 0.5, 1.5);
     let v = serde_json::to_value(steady(config, 130, 0.001)).unwrap();
     let err = refused::<Pipeline>(edited(&v, &[("/bias/integral", 1048576.0)]));
     assert!(err.contains("invalid parameter bias integral"), "{err}");
@@ -166,12 +163,7 @@ fn pipeline_fields_that_contradict_each_other_are_refused() {
         &[("/report/longest_gap", -1000.0)],
         "invalid parameter longest_gap",
     );
-    let mut c = Preset::StaticBias.config();
-    c.correction.bias = StaticBias::Window {
-        start: 0.5,
-        end: 1.5,
-    };
-    let mut p = Pipeline::new(c).unwrap();
+    let mut p = Pipeline::new(common::with_window(Preset::StaticBias, 0.5, 1.5)).unwrap();
     p.update(0.0, 0.001);
     let mut v = serde_json::to_value(&p).unwrap();
     let good = v.clone();

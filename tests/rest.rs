@@ -25,15 +25,6 @@ fn stream(
     (t, r)
 }
 
-fn with_window(preset: Preset, rest: f64) -> PipelineConfig {
-    let mut c = preset.config();
-    c.correction.bias = StaticBias::Window {
-        start: 0.0,
-        end: rest,
-    };
-    c
-}
-
 fn headings(config: PipelineConfig, t: &[f64], r: &[f64]) -> Vec<f64> {
     let mut p = Pipeline::new(config).unwrap();
     common::try_block(&mut p, t, r)
@@ -52,7 +43,7 @@ fn white_noise_gives_its_standard_deviation_and_the_standard_error_of_the_mean()
     for seed in 0..trials {
         let mut g = Gaussian::new(seed, 0);
         let (t, r) = stream(20.0, 25.0, 0.01, || sigma * g.sample(), |_| 0.0);
-        let mut p = Pipeline::new(with_window(Preset::StaticBias, 20.0)).unwrap();
+        let mut p = Pipeline::new(common::with_window(Preset::StaticBias, 0.0, 20.0)).unwrap();
         common::try_block(&mut p, &t, &r).unwrap();
         let s = p.rest_statistics().unwrap();
         noise_ratio += s.noise / sigma / trials as f64;
@@ -84,7 +75,7 @@ fn correlated_noise_gets_the_larger_standard_error_it_has() {
             x
         };
         let (t, r) = stream(60.0, 61.0, 0.0, &mut next, |_| 0.0);
-        let mut p = Pipeline::new(with_window(Preset::StaticBias, 60.0)).unwrap();
+        let mut p = Pipeline::new(common::with_window(Preset::StaticBias, 0.0, 60.0)).unwrap();
         common::try_block(&mut p, &t, &r).unwrap();
         let s = p.rest_statistics().unwrap();
         ratio += s.bias_std_error / (0.002 / f64::sqrt(600.0)) / trials as f64;
@@ -102,7 +93,7 @@ fn a_fixed_bias_or_a_window_in_progress_has_no_statistics() {
     let mut fixed = Pipeline::new(Preset::StaticBias.config()).unwrap();
     common::try_block(&mut fixed, &t, &r).unwrap();
     assert_eq!(fixed.rest_statistics(), None);
-    let mut measuring = Pipeline::new(with_window(Preset::StaticBias, 20.0)).unwrap();
+    let mut measuring = Pipeline::new(common::with_window(Preset::StaticBias, 0.0, 20.0)).unwrap();
     common::try_block(&mut measuring, &t[..100], &r[..100]).unwrap();
     assert_eq!(measuring.rest_statistics(), None);
     common::try_block(&mut measuring, &t[100..], &r[100..]).unwrap();
@@ -120,13 +111,13 @@ fn a_noise_free_rest_turns_the_dead_band_and_hdr_off() {
     // static bias removal (to rounding: the low-pass and de-lag still run), even with Table III's
     // HDR and, before, a 0.3 deg/s threshold.
     let (t, r) = stream(20.0, 1200.0, 0.02, || 0.0, gentle_curves);
-    let mut config = with_window(Preset::Combined, 20.0);
+    let mut config = common::with_window(Preset::Combined, 0.0, 20.0);
     config.noise_scaled = NoiseScaled {
         threshold_sigmas: Some(1.0),
         hdr_bound_sigmas: Some(3.0),
     };
     let scaled = headings(config, &t, &r);
-    let plain = headings(with_window(Preset::StaticBias, 20.0), &t, &r);
+    let plain = headings(common::with_window(Preset::StaticBias, 0.0, 20.0), &t, &r);
     let worst = |a: &[f64]| {
         a.iter()
             .zip(&plain)
@@ -139,7 +130,7 @@ fn a_noise_free_rest_turns_the_dead_band_and_hdr_off() {
         worst(&scaled)
     );
     // Without the scaling, Table III corrects the curves as drift.
-    let unscaled = headings(with_window(Preset::Combined, 20.0), &t, &r);
+    let unscaled = headings(common::with_window(Preset::Combined, 0.0, 20.0), &t, &r);
     assert!(
         worst(&unscaled) > 0.1,
         "Table III changed the heading by only {} rad",
@@ -150,7 +141,7 @@ fn a_noise_free_rest_turns_the_dead_band_and_hdr_off() {
 #[test]
 fn hdr_never_corrects_beyond_its_bound() {
     let bound = 2e-4;
-    let mut config = with_window(Preset::Hdr, 20.0);
+    let mut config = common::with_window(Preset::Hdr, 0.0, 20.0);
     config.hdr = Some(HdrConfig {
         max_correction: bound,
         ..HdrConfig::table_iii()
@@ -172,7 +163,7 @@ fn hdr_never_corrects_beyond_its_bound() {
 fn the_scaled_bound_survives_a_gap_restart_and_a_reset_restores_the_configured_one() {
     let mut g = Gaussian::new(7, 0);
     let (t, r) = stream(20.0, 40.0, 0.0, || 1e-3 * g.sample(), |_| 0.0);
-    let mut config = with_window(Preset::Hdr, 20.0);
+    let mut config = common::with_window(Preset::Hdr, 0.0, 20.0);
     config.noise_scaled.hdr_bound_sigmas = Some(2.0);
     config.input.gap_action = GapAction::Reset;
     let mut p = Pipeline::new(config).unwrap();

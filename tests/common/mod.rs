@@ -1,7 +1,10 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)] // each test binary uses its own subset of the helpers
 
-use gyrocore::{Error, FusedOutputs, GyroModel, GyroSample, Output, Outputs, Pipeline, Stage};
+use gyrocore::{
+    Error, FusedOutputs, GyroModel, GyroSample, Output, Outputs, Pipeline, PipelineConfig, Preset,
+    Stage, StaticBias,
+};
 
 /// Feeds `(t, rate)` through a stand-alone stage sample by sample, returning its outputs.
 pub fn run<S: Stage<Output = f64>>(stage: &mut S, t: &[f64], rate: &[f64]) -> Vec<f64> {
@@ -64,4 +67,11 @@ pub fn heading_and_rate<'a>(heading: &'a mut [f64], rate: &'a mut [f64]) -> Fuse
         rate,
         drift: None,
     }
+}
+
+/// `preset`'s configuration with its static bias measured over the rest window `[start, end]` \[s\].
+pub fn with_window(preset: Preset, start: f64, end: f64) -> PipelineConfig {
+    let mut c = preset.config();
+    c.correction.bias = StaticBias::Window { start, end };
+    c
 }
