@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import datetime
 import functools
+import inspect
 import math
 import numbers
 import os
@@ -169,28 +170,65 @@ class OwnCopy:
             self._thread = None
 
 
-def refuse_a_path(name: str, values: object, takes: str = "") -> None:
+def read_the_log(arrays: str = "log.t, log.rate", command: str = "") -> str:
+    """What a file's name given for an array is told to do instead: read the log, give ``arrays``
+    (and on the command line, ``command``)."""
+    cli = f" (on the command line: {command})" if command else ""
+    return f"a log file or folder is read with gyrocore.read_log(path), and its arrays ({arrays}) are given here{cli}"
+
+
+#: ... by default (each entry point says its own through :func:`no_path_for_arrays`).
+READ_THE_LOG = read_the_log()
+#: ... by the calls that process a log, as the command line's ``gyrocore process``.
+READ_AND_PROCESS = ("a log file or folder is read with gyrocore.read_log(path), then processed with its "
+                    ".process(preset) (on the command line: gyrocore process FILE)")
+#: ... by the calls that process a log with its fixes.
+READ_WITH_FIXES = ("a log folder is read with gyrocore.read_log(path), its fixes from its fixes.csv or gnss.csv, "
+                   "then processed with its .process(preset) (a file of fixes is read with "
+                   "gyrocore.fixes.read_fixes_file(path) or read_nmea(path); on the command line: gyrocore process "
+                   "FILE --fixes FIXES)")
+#: ... by the calls that make fixes of a GNSS log's arrays.
+READ_GNSS = ("a GNSS log is read with gyrocore.fixes.read_nmea(path) (NMEA sentences), read_gnss_csv(path) (columns "
+             "t, speed and bearing) or read_fixes_file(path)")
+#: ... by the calibrations.
+READ_TO_CALIBRATE = read_the_log(command="gyrocore calibrate FILE")
+#: The units said of a call's arrays where it lists them.
+_UNITS = {"t": "s", "t_ref": "s", "t_speed": "s", "t_heading": "s", "rate": "rad/s", "rate_measured": "rad/s",
+          "rate_reference": "rad/s", "heading": "rad", "heading_ref": "rad", "speed": "m/s", "bearing_deg": "deg",
+          "lat_deg": "deg", "lon_deg": "deg", "x": "m", "y": "m", "dt": "s"}
+
+
+def refuse_a_path(name: str, values: object, advice: str = READ_THE_LOG) -> None:
     """A file's name or path given for an array (``gyrocore.process("drive.csv", ...)``, as the
-    command line takes files) is told to be read first: numpy made it a text of one element, and
-    the error of its dtype said nothing of files. ``takes``: what the call takes instead, said
-    before the way to read the file."""
+    command line takes files) is told how the file is read: numpy made it a text of one element,
+    and the error of its dtype said nothing of files. ``advice``: what to do instead."""
     if isinstance(values, os.PathLike) or isinstance(values, str) and (os.sep in values or os.path.splitext(values)[1][1:2].isalpha()):
-        raise TypeError(f"{name} = {values!r}: a file's name, not a sequence of numbers; {takes}a log file or folder "
-                        "is read with gyrocore.read_log(path), then processed with its .process(preset) (on the "
-                        "command line: gyrocore process FILE)")
+        raise TypeError(f"{name} = {values!r}: a file's name, not a sequence of numbers; {advice}")
 
 
-def times_not_a_path(call: str, at: int = 0) -> Callable[[Callable[_P, _R]], Callable[_P, _R]]:
-    """Refuses a file's name or path given for the times ``t`` of ``call`` (positional argument
-    ``at``: 1 for a method) before Python binds the arguments (:func:`refuse_a_path`): given alone,
-    ``gyrocore.process("log.csv")``, a first try as the command line takes files, it met Python's
-    own ``missing 1 required positional argument: 'rate'``, which led to look for a rate to add."""
-    takes = f"{call} takes the arrays t [s] and rate [rad/s]; "
+def _listed(names: Sequence[str]) -> str:
+    """``t [s], rate [rad/s] and fixes``: a call's arrays with their units."""
+    said = [f"{n} [{_UNITS[n]}]" if n in _UNITS else n for n in names]
+    return said[0] if len(said) == 1 else ", ".join(said[:-1]) + " and " + said[-1]
+
+
+def no_path_for_arrays(call: str, advice: str = READ_THE_LOG) -> Callable[[Callable[_P, _R]], Callable[_P, _R]]:
+    """Refuses a file's name or path given for the first array of ``call`` (its first parameter
+    after ``self``) before Python binds the arguments (:func:`refuse_a_path`): given alone,
+    ``gyrocore.process("log.csv")`` or ``gyrocore.fuse("log.csv")``, a first try as the command
+    line takes files, it met Python's own ``missing 1 required positional argument: 'rate'``, which
+    led to look for a rate to add. The words list the arrays the call takes (its parameters
+    without a default), then ``advice``."""
 
     def wrap(f: Callable[_P, _R]) -> Callable[_P, _R]:
+        params = list(inspect.signature(f).parameters.values())
+        at = 1 if params[0].name == "self" else 0
+        arrays = [p.name for p in params[at:] if p.default is p.empty and p.kind is p.POSITIONAL_OR_KEYWORD]
+        first, takes = params[at].name, f"{call} takes {_listed(arrays)}; {advice}"
+
         @functools.wraps(f)
         def checked(*args: _P.args, **kwargs: _P.kwargs) -> _R:
-            refuse_a_path("t", args[at] if len(args) > at else kwargs.get("t"), takes)
+            refuse_a_path(first, args[at] if len(args) > at else kwargs.get(first), takes)
             return f(*args, **kwargs)
 
         return checked

@@ -24,7 +24,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _gyrocore
-from ._arrays import FloatArray, array_fields, as_float_array, float_fields
+from ._arrays import (
+    READ_GNSS, READ_WITH_FIXES, FloatArray, array_fields, as_float_array, float_fields, no_path_for_arrays,
+)
 from ._checks import (
     MAX_READING, check_number, did_you_mean, public_dir, real_number, require_finite, require_increasing,
     require_radians, warn, warn_units,
@@ -140,6 +142,7 @@ class FusionResult:
         return array_fields(self)
 
 
+@no_path_for_arrays("gyrocore.fuse", READ_WITH_FIXES)
 def fuse(t: ArrayLike, rate: ArrayLike, fixes: FixesLike, *, mode: Literal["causal", "smoothed"] = "causal",
          **settings: float) -> FusionResult:
     """Heading, bias and scale of a whole log from its gyro and its fixes.
@@ -195,6 +198,7 @@ class Fusion:
         self._inner = _gyrocore.Fusion(_settings(settings))
         self._fixes = StreamFixes()
 
+    @no_path_for_arrays("gyrocore.fixes.Fusion.process", READ_WITH_FIXES)
     @one_at_a_time
     def process(self, t: ArrayLike, rate: ArrayLike, fixes: FixesLike | None = None) -> FusionResult:
         """Processes one block (``fixes``: :data:`FixesLike`, as every entry point takes them);
@@ -312,6 +316,7 @@ def smoothed_stage(result: HeadingResult, fixes: FixesLike, settings: dict[str, 
                    heading_sigma=sigma, fusion=fused)
 
 
+@no_path_for_arrays("gyrocore.fixes.from_gnss", READ_GNSS)
 def from_gnss(t: ArrayLike, bearing_deg: ArrayLike, speed: ArrayLike, *, min_speed: float = 2.0,
               speed_sigma: float = 0.2, min_sigma_deg: float = 0.5) -> Fixes:
     """Fixes from a GNSS receiver's course over ground.

@@ -20,9 +20,10 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._arrays import FloatArray, as_float_array
+from ._arrays import READ_GNSS, FloatArray, as_float_array, no_path_for_arrays
 from ._checks import check_number, keyword_options, require_finite, require_increasing, require_options, warn
 from .fixes import Fixes, warn_no_fix
+
 
 #: Mean Earth radius [m] (IUGG), for :func:`from_latlon`'s local plane.
 EARTH_RADIUS = 6_371_008.8
@@ -38,6 +39,7 @@ _POLAR_KM = EARTH_RADIUS * math.radians(90.0 - MAX_LATITUDE) / 1000.0
 MAX_POSITION = 2.0**40
 
 
+@no_path_for_arrays("gyrocore.fixes.from_positions", READ_GNSS)
 def from_positions(t: ArrayLike, x: ArrayLike, y: ArrayLike, *, position_sigma: float = 1.0,
                    min_speed: float = 2.0, min_sigma_deg: float = 0.5) -> Fixes:
     """Fixes from positions ``x`` (east) and ``y`` (north) [m] at strictly increasing times ``t``
@@ -74,6 +76,7 @@ def from_positions(t: ArrayLike, x: ArrayLike, y: ArrayLike, *, position_sigma: 
     return Fixes(middle[keep], np.arctan2(dy[keep], dx[keep]), sigma)
 
 
+@no_path_for_arrays("gyrocore.fixes.from_latlon", READ_GNSS)
 def from_latlon(t: ArrayLike, lat_deg: ArrayLike, lon_deg: ArrayLike, **options: float) -> Fixes:
     """:func:`from_positions` for latitude and longitude [deg] on a sphere: each step between two
     positions is laid out east (x) and north (y) at its own middle latitude, so a fix's course is

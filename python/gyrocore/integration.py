@@ -6,7 +6,7 @@ from __future__ import annotations
 from numpy.typing import ArrayLike
 
 from . import _gyrocore
-from ._arrays import FloatArray, as_float_array
+from ._arrays import READ_THE_LOG, FloatArray, as_float_array, no_path_for_arrays
 from ._checks import check_number, public_dir, warn_units
 from ._time_steps import time_steps_named
 
@@ -14,6 +14,7 @@ __all__ = ["angle_of", "downsample", "integrate"]
 __dir__ = public_dir(__name__)  # dir() and tab completion: __all__
 
 
+@no_path_for_arrays("gyrocore.integrate", READ_THE_LOG)
 def integrate(
     t: ArrayLike, rate: ArrayLike, method: str = "trapezoid", *, initial_heading: float = 0.0
 ) -> FloatArray:
@@ -46,6 +47,7 @@ def angle_of(t: FloatArray, rate: FloatArray, method: str = "trapezoid", initial
     return heading
 
 
+@no_path_for_arrays("gyrocore.downsample", READ_THE_LOG)
 def downsample(t: ArrayLike, rate: ArrayLike, interval: float = 1.0) -> tuple[FloatArray, FloatArray]:
     """Block means over ``interval`` seconds (the HDR paper's down-sampling, its second eq 14).
 

@@ -15,7 +15,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _gyrocore, rests
-from ._arrays import MASKED_AS_NONFINITE, FloatArray, as_float_array, as_float_array_owned, times_not_a_path
+from ._arrays import (
+    MASKED_AS_NONFINITE, READ_AND_PROCESS, FloatArray, as_float_array, as_float_array_owned, no_path_for_arrays,
+)
 from ._checks import public_dir, warn
 from ._inuse import Turn, one_at_a_time
 from ._motion import WindowWatch
@@ -149,7 +151,7 @@ class Pipeline:
         """The static bias in use now [rad/s] (what the gyro reads at rest)."""
         return float(self._inner.bias()[0])
 
-    @times_not_a_path("gyrocore.Pipeline.process", at=1)
+    @no_path_for_arrays("gyrocore.Pipeline.process", READ_AND_PROCESS)
     @one_at_a_time
     def process(
         self,
@@ -451,7 +453,7 @@ def _stage_settings(params: dict[str, Any], settings: dict[str, float]) -> dict[
     return stage_settings(params, settings)
 
 
-@times_not_a_path("gyrocore.process")
+@no_path_for_arrays("gyrocore.process", READ_AND_PROCESS)
 def process(
     t: ArrayLike,
     rate: ArrayLike,

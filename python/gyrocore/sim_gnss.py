@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._arrays import FloatArray, as_float_array, as_window
+from ._arrays import FloatArray, as_float_array, as_window, no_path_for_arrays, read_the_log
 from ._checks import check_number, check_seed, real_number, require_radians, require_series
 from .evaluate_metrics import find_gaps
 
@@ -28,6 +28,7 @@ MAX_FIXES = 1e7
 SIGMA_DEG = (math.degrees(1e-12), 60.0)
 
 
+@no_path_for_arrays("gyrocore.sim.gnss_fixes", read_the_log("log.t_ref, log.heading_ref"))
 def gnss_fixes(t_ref: ArrayLike, heading_ref: ArrayLike, *, seed: int, rate_hz: float = 1.0,
                sigma_deg: float = 1.0, outages: Sequence[tuple[float, float]] | None = ()) -> Fixes:
     """SIMULATED heading fixes of a GNSS receiver following a reference track (not measured).

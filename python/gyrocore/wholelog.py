@@ -38,7 +38,7 @@ from typing import TYPE_CHECKING, Any
 
 from numpy.typing import ArrayLike
 
-from ._arrays import MASKED_AS_NONFINITE, FloatArray, as_float_array, refuse_a_path
+from ._arrays import MASKED_AS_NONFINITE, FloatArray, as_float_array
 from ._checks import MAX_SECONDS, first_infinite, public_dir, refuse_no_usable_reading, require_times, warn
 from ._gyrocore import SampleError
 from ._rests import (MIN_REST, SPEED_THRESHOLD, Found, accept, few_readings_hint, find_rests, measure_rest,
@@ -309,7 +309,6 @@ def process_log(
     the core's rest tracker (``track_rests=True``), which whole mode refuses: it already uses every
     rest of the log."""
     check_mode(mode)
-    refuse_a_path("t", t)  # before the rate, which a preset's name given after a file's would be
     refuse_speed_t_alone(speed, speed_t)
     refuse_window_objects(overrides)
     si = _to_si(overrides)

@@ -295,7 +295,7 @@ def test_a_fix_filter_shows_its_settings_and_what_its_fixes_did() -> None:
 def test_a_file_given_to_process_is_told_to_be_read_first(given: str) -> None:
     """As the command line takes a file, a first try in Python gives one: it was told the preset's
     name after it is no number (``rate must hold real numbers, got dtype <U3``), of files nothing."""
-    said = (rf"t = '{given}': a file's name, not a sequence of numbers; gyrocore\.process takes the arrays t \[s\] "
+    said = (rf"t = '{given}': a file's name, not a sequence of numbers; gyrocore\.process takes t \[s\] "
             r"and rate \[rad/s\]; a log file or folder is read with gyrocore\.read_log\(path\), then processed with "
             r"its \.process\(preset\) \(on the command line: gyrocore process FILE\)$")
     with pytest.raises(TypeError, match=said):

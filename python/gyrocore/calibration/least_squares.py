@@ -8,7 +8,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._arrays import FloatArray, as_float_array, as_window
+from .._arrays import FloatArray, as_float_array, as_window, no_path_for_arrays, read_the_log
 from .._checks import UnitError, require_radians, usable, warn
 from ..evaluate import unwrap
 from ..integration import angle_of
@@ -142,6 +142,8 @@ def _excited(reference_design: NDArray[np.float64], what: str) -> None:
         )
 
 
+@no_path_for_arrays("gyrocore.calibration.rate_reference",
+                    read_the_log("log.rate, and the true rates at its times", "gyrocore calibrate FILE"))
 def rate_reference(rate_measured: ArrayLike, rate_reference: ArrayLike) -> Calibration:
     """Least squares against a reference rate at the same instants (Hong eq 8-9).
 
@@ -183,6 +185,8 @@ def rate_reference(rate_measured: ArrayLike, rate_reference: ArrayLike) -> Calib
     return _calibration_from_q("rate_reference", q, cov, rms, cond, None, len(r))
 
 
+@no_path_for_arrays("gyrocore.calibration.heading_reference",
+                    read_the_log("log.t, log.rate, log.t_ref, log.heading_ref", "gyrocore calibrate FILE"))
 def heading_reference(
     t: ArrayLike,
     rate_measured: ArrayLike,

@@ -9,7 +9,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import _gyrocore
-from .._arrays import FloatArray, as_window, span_text
+from .._arrays import READ_TO_CALIBRATE, FloatArray, as_window, no_path_for_arrays, span_text
 from .._checks import MAX_READING, check_number, did_you_mean, usable
 from .._motion import DEG_PER_S_FIX, warn_if_turning
 from ..window import refuse_few_readings, refuse_window_outside
@@ -37,6 +37,7 @@ def refuse_unknown_rest_options(where: str, options: dict[str, Any], also: tuple
         raise TypeError(f"{where}: unknown rest option(s) {said}; it takes {', '.join(known)}")
 
 
+@no_path_for_arrays("gyrocore.calibration.rest_windows", READ_TO_CALIBRATE)
 def rest_windows(
     t: ArrayLike,
     rate: ArrayLike,
@@ -184,6 +185,7 @@ def _correlation_factor(dev: FloatArray, k: NDArray[np.int64], quiet: NDArray[np
     return math.sqrt((1.0 + rho) / (1.0 - rho)) if 0.0 < rho < 1.0 else 1.0
 
 
+@no_path_for_arrays("gyrocore.calibration.detect_rest", READ_TO_CALIBRATE)
 def detect_rest(
     t: ArrayLike,
     rate: ArrayLike,
@@ -303,6 +305,7 @@ def time_weights(t: FloatArray) -> FloatArray:
     return w
 
 
+@no_path_for_arrays("gyrocore.calibration.static_bias", READ_TO_CALIBRATE)
 def static_bias(
     t: ArrayLike,
     rate: ArrayLike,

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._arrays import FloatArray
+from .._arrays import READ_TO_CALIBRATE, FloatArray, no_path_for_arrays
 from .._checks import check_number
 from ..integration import angle_of
 from .inputs import check_series, check_temperature
@@ -92,6 +92,7 @@ def _refuse_slow_turns(
             )
 
 
+@no_path_for_arrays("gyrocore.calibration.rotary_table", READ_TO_CALIBRATE)
 def rotary_table(
     t: ArrayLike,
     rate: ArrayLike,
