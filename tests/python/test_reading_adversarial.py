@@ -265,3 +265,29 @@ def test_another_tools_spelling_of_a_missing_value_says_how_to_write_one(tmp_pat
         gyrocore.read_log(src)
     src.write_text("t,gyro_z\n0,0.1\n0.01,\n0.02,0.1\n")  # the empty field, as the message says
     assert np.isnan(gyrocore.read_log(src).rate[1])
+
+
+@pytest.mark.parametrize(("close_on", "reach"), [(None, "to the end of the file, line 400"), (205, "to line 205")])
+def test_a_quote_left_open_is_named_and_the_lines_it_joins_are_not_shown(tmp_path: Path, close_on: int | None,
+                                                                         reach: str) -> None:
+    # the value shown was the rest of the file, joined by the open quote: 12 kB of one line here
+    lines = ["t,gyro_z"] + [f"{0.01 * i:.2f},0.00{i % 10}" for i in range(399)]
+    lines[200] = lines[200].replace(",", ',"')
+    if close_on is not None:
+        lines[close_on - 1] += '"'
+    path = tmp_path / "gyro.csv"
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(ValueError) as e:
+        gyrocore.read_log(path)
+    said = str(e.value)
+    assert said.startswith(f"{path}: line 201, column 2 (gyro_z): a value in quotes runs over the line ends that follow, "
+                           f"{reach}: '0.009\\n2.00,0.000\\n")
+    assert "a quote left open joins the lines after it into one value: close or delete it" in said
+    assert len(said) < 400
+
+
+def test_a_long_value_that_is_not_a_number_is_shown_by_its_start(tmp_path: Path) -> None:
+    path = tmp_path / "gyro.csv"
+    path.write_text("t,gyro_z\n0,0\n0.01," + "x" * 5000 + "\n0.02,0\n")
+    with pytest.raises(ValueError, match=rf"line 3, column 2 \(gyro_z\): '{'x' * 60}'\.\.\. \(5000 characters\) is not a number$"):
+        gyrocore.read_log(path)

@@ -366,15 +366,31 @@ def _csv_error(
             for name, pos in positions.items():
                 value = fields[pos].strip(" \t")  # what pyarrow trims
                 where = f"{path}: line {line}, column {pos + 1} ({name})"
+                if "\n" in value or "\r" in value:  # a quote left open: the rest of the file was shown as the value
+                    end = first_line + reader.line_num - 1
+                    reach = f"to the end of the file, line {end}" if not any(True for _ in reader) else f"to line {end}"
+                    return (f"{where}: a value in quotes runs over the line ends that follow, {reach}: "
+                            f"{_shown(value)}; a quote left open joins the lines after it into one value: close or "
+                            "delete it")
                 if fields[pos] and not value:
                     return f"{where}: blank value {fields[pos]!r} (leave it empty for a missing value)"
                 if value and not is_number(value):
                     if is_unit(value):
                         return f"{where}: {value!r} is not a number{_units_row_hint(line, header, fields, positions)}"
-                    return f"{where}: {value!r} is not a number{_why_not_a_number(value, delimiter, required.get(name))}"
+                    return f"{where}: {_shown(value)} is not a number{_why_not_a_number(value, delimiter, required.get(name))}"
                 if not fields[pos] and name in required:
                     return f"{where}: empty {required[name]}"
     return f"{path}: after line {first_line}: {error}"
+
+
+#: The characters of a value a message shows.
+SHOWN = 60
+
+
+def _shown(value: str) -> str:
+    """``value`` as a message shows it: its first :data:`SHOWN` characters where it is longer (a field
+    of 128 KiB of text was shown whole)."""
+    return repr(value) if len(value) <= SHOWN else f"{value[:SHOWN]!r}... ({len(value)} characters)"
 
 
 @contextmanager
