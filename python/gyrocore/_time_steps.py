@@ -1,6 +1,6 @@
 """Why times that must increase step back or repeat, where the data shows a cause that sorting
-them (the core's advice) would not mend: a counter that wrapped round, or times rounded to float32
-or float16 before they reached gyrocore (a file written from float32 holds float64 numbers, so
+them (the core's advice) would not mend: a counter that wrapped round, a clock that started again,
+or times rounded to float32 or float16 before they reached gyrocore (a file written from float32 holds float64 numbers, so
 the reader's float32 warning never sees it)."""
 
 from __future__ import annotations
@@ -73,6 +73,28 @@ def rounded_to_float(t: FloatArray, fewest: int = 3, kinds: tuple[type[np.floati
     return None
 
 
+#: A step back of more than this many of the log's median intervals, after which the times go on
+#: at that pace for :data:`_RUNS_ON` intervals, is a clock that started again, not a row out of place.
+_STEP_BACK_INTERVALS = 10
+_RUNS_ON = 5
+
+
+def clock_started_again(t: FloatArray, i: int, previous: float) -> str | None:
+    """What a time ``t[i]`` that lies well before ``previous`` is, where the times after it go on at
+    the log's pace: a clock set back (a time sync, a logger restarted) or two recordings joined.
+    Sorting the log, as the core's words advise, would interleave the two runs; a row out of place
+    (a swapped pair, one bad time) steps back by an interval or is followed by a jump forward."""
+    value = float(t[i])
+    steps = np.diff(t[np.isfinite(t)])
+    pace = float(np.median(steps)) if len(steps) else 0.0
+    after = np.diff(t[i : i + _RUNS_ON + 1])
+    if not (pace > 0 and previous - value > _STEP_BACK_INTERVALS * pace and len(after) == _RUNS_ON
+            and np.all((after > 0) & (after < 3 * pace))):
+        return None
+    return (f"(the clock steps back {previous - value:.6g} s here and runs on from there: a clock set back, or two "
+            "recordings joined; sorting would interleave them: split the log at this sample and process each part)")
+
+
 #: A stream's chunk shorter than this is judged for float32 rounding with the time before it: its
 #: own times are too few to show the repeats (a chunk of 1 or 2 samples, ``--chunk-rows 2``).
 _SHORT_CHUNK = 3
@@ -86,8 +108,10 @@ def why_times_step_back(t: FloatArray, i: int, previous: float, last: float | No
     than a millisecond (genuine float64 times that repeat are not all such values)."""
     value = float(t[i])
     wrap = counter_wrap(previous, value)
-    if wrap is not None or value != previous:
+    if wrap is not None or value > previous:
         return wrap
+    if value < previous:  # within the times given (a stream's chunk that starts back is named as sent again)
+        return clock_started_again(t, i, previous) if i > 0 else None
     if len(t) < _SHORT_CHUNK:
         # float32 alone: whole numbers below 2048, ms read as s, are float16 values, and two times
         # cannot show that the others lie a step of its spacing apart

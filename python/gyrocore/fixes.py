@@ -32,6 +32,7 @@ from ._checks import (
     require_radians, warn, warn_units,
 )
 from ._inuse import Turn, one_at_a_time
+from ._time_steps import time_steps_named
 from .result import fix_output_flags
 from .fixes_stream import TWICE, StreamFixes, say_how_to_wait
 from .fixes_warnings import MIN_SHARE_INSIDE, warn_whole_log
@@ -166,7 +167,8 @@ def fuse(t: ArrayLike, rate: ArrayLike, fixes: FixesLike, *, mode: Literal["caus
 
 def _fused(t: FloatArray, rate: FloatArray, fixes: Fixes, settings: dict[str, float], smoothed: bool) -> FusionResult:
     """:func:`fuse` of arrays already read (a pipeline's corrected rate, whose readings it judged)."""
-    h, s, b, sc, counts = _gyrocore.fuse(t, rate, fixes.t, fixes.heading, fixes.sigma, _settings(settings), smoothed)
+    with time_steps_named(t):  # a counter's wrap, a clock set back: not mended by sorting
+        h, s, b, sc, counts = _gyrocore.fuse(t, rate, fixes.t, fixes.heading, fixes.sigma, _settings(settings), smoothed)
     warn_whole_log(t, rate, fixes, counts)
     return FusionResult(t, h, s, b, sc, dict(counts))
 

@@ -4,13 +4,18 @@ stream goes on on the new clock with everything it had learned, integrating noth
 from __future__ import annotations
 
 import pickle
+import re
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import gyrocore
+import gyrocore.calibration
 from gyrocore.fixes import Fixes
+
+from .conftest import gyrocore_cli
 
 BIAS = 0.01
 
@@ -120,9 +125,10 @@ def test_rests_after_a_restart_carry_the_new_clocks_times() -> None:
 @pytest.mark.parametrize("mode", ["whole", "causal"])
 def test_a_whole_log_whose_time_steps_back_is_not_sent_to_restart_a_stream(mode: str) -> None:
     t, rate = drive(0.0, 400)
-    t[200:] -= 100.0  # one series given at once: sorted or mended, there is no stream to go on with
-    with pytest.raises(gyrocore.SampleError, match=r"\(sort the log and drop duplicate timestamps\)$"):
+    t[200:] -= 100.0  # one series given at once: split or mended, there is no stream to go on with
+    with pytest.raises(gyrocore.SampleError, match=r"\(the clock steps back 99.9922 s here .* process each part\)$") as e:
         gyrocore.process(t, rate, "static_bias", mode=mode, bias=BIAS)
+    assert "restart_clock" not in str(e.value)
 
 
 def test_a_fusion_stream_restarts_its_clock_and_drops_the_waiting_fixes() -> None:
@@ -161,9 +167,9 @@ def test_fuse_of_a_whole_log_whose_time_steps_back_is_not_sent_to_restart_a_stre
     t, rate = drive(0.0, 400)
     t[200:] -= 100.0
     fixes = Fixes(np.array([0.5]), np.zeros(1), np.full(1, 0.05))
-    with pytest.raises(gyrocore.SampleError, match=r"t\[200\] = .*\(sort the log and drop duplicate timestamps\)$") as e:
+    with pytest.raises(gyrocore.SampleError, match=r"t\[200\] = .*\(the clock steps back 99.9922 s .* each part\)$") as e:
         gyrocore.fuse(t, rate, fixes, mode=mode)  # type: ignore[arg-type]
-    assert (e.value.index, e.value.what) == (200, "t")
+    assert (e.value.index, e.value.what) == (200, "t") and "restart_clock" not in str(e.value)
 
 
 def test_a_streams_step_back_carries_the_words_of_a_log_beside_its_own() -> None:
@@ -177,3 +183,51 @@ def test_a_streams_step_back_carries_the_words_of_a_log_beside_its_own() -> None
     series = "timestamps must strictly increase: t[0] = 50 follows 103.1171875 (sort the log and drop duplicate timestamps)"
     assert getattr(e.value, "log_message") == series
     assert str(e.value).startswith(series + "; where the clock jumped back") and "restart_clock()" in str(e.value)
+
+
+JOINED = ("(the clock steps back 100.117 s here and runs on from there: a clock set back, or two recordings joined; "
+          "sorting would interleave them: split the log at this sample and process each part)")
+
+
+def joined() -> tuple[np.ndarray, np.ndarray]:
+    """Two recordings one after the other, the second's clock from 3 s: 400 samples each."""
+    ta, ra = drive(100.0, 400)
+    tb, rb = drive(3.0, 400)
+    return np.concatenate((ta, tb)), np.concatenate((ra, rb))
+
+
+def test_a_whole_log_whose_clock_starts_again_is_not_told_to_be_sorted(tmp_path: Path) -> None:
+    # it was told "sort the log and drop duplicate timestamps", which interleaves the two recordings
+    t, rate = joined()
+    with pytest.raises(gyrocore.SampleError) as e:
+        gyrocore.process(t, rate, "hdr", bias=BIAS)
+    assert str(e.value) == f"timestamps must strictly increase: t[400] = 3 follows 103.1171875 {JOINED}"
+    with pytest.raises(ValueError, match=re.escape(f"t[400] = 3.0 follows 103.1171875 {JOINED}")):
+        gyrocore.calibration.static_bias(t, rate)
+    path = tmp_path / "joined.csv"
+    path.write_text("t,gyro_z\n" + "".join(f"{a!r},{b!r}\n" for a, b in zip(t.tolist(), rate.tolist())))
+    proc = gyrocore_cli("process", path, "--out", tmp_path / "h.csv", code=2)
+    assert f"{JOINED} ({path}, line 402)" in proc.stderr and "sort" not in proc.stderr.replace("sorting", "")
+    # the advice mends it: each part processed on its own
+    assert all(np.isfinite(gyrocore.process(t[part], rate[part], "hdr", bias=BIAS).heading).all()
+               for part in (slice(0, 400), slice(400, None)))
+
+
+@pytest.mark.parametrize("where", ["swapped", "one bad time"])
+def test_rows_out_of_place_keep_the_advice_to_sort(where: str) -> None:
+    t, rate = drive(100.0, 800)
+    if where == "swapped":
+        t[[400, 401]] = t[[401, 400]]
+    else:
+        t[400] = 50.0
+    with pytest.raises(gyrocore.SampleError, match=r"\(sort the log and drop duplicate timestamps\)"):
+        gyrocore.process(t, rate, "hdr", bias=BIAS)
+
+
+def test_a_chunk_sent_again_is_named_as_such_not_as_a_clock_set_back() -> None:
+    t, rate = drive(100.0, 800)
+    p = gyrocore.Pipeline("hdr", bias=BIAS)
+    p.process(t, rate)
+    with pytest.raises(gyrocore.SampleError) as e:
+        p.process(t[200:], rate[200:])
+    assert "steps back" not in str(e.value) and "restart_clock" in str(e.value)

@@ -58,7 +58,11 @@ def test_a_counter_of_ms_given_as_counts_and_a_16_bit_one_are_named() -> None:
         gyrocore.process(signed.astype(np.int32), RATE, "raw")
 
 
-@pytest.mark.parametrize("call", [gyrocore.integrate, gyrocore.downsample, allan.deviation_from_timestamps])
+def fused(t: np.ndarray, rate: np.ndarray) -> object:
+    return gyrocore.fuse(t, rate, gyrocore.fixes.Fixes.empty())
+
+
+@pytest.mark.parametrize("call", [gyrocore.integrate, gyrocore.downsample, allan.deviation_from_timestamps, fused])
 def test_a_wrap_is_named_by_every_function_that_takes_times(call: Callable[..., object]) -> None:
     with pytest.raises(gyrocore.SampleError, match=r"t\[3000\] = 0 follows 4294.957296 \(a 32-bit counter of us "):
         call(WRAPPED, RATE)
