@@ -212,9 +212,10 @@ class Headings:
             warn(f"{self.path}: {self.tally['untimed']} {kinds} sentence(s) {self.untimed_words()} (the first: line "
                  f"{self.untimed})")
         if self.tally["hdt_repeats"]:
-            warn(f"{self.path}: {self.tally['hdt_repeats']} {kinds} sentence(s) follow another of their epoch and "
-                 "are skipped: a heading has no time of its own, and the one nearest its epoch's time (a valid RMC "
-                 "or ZDA) is kept; a gyrocompass writes HDT faster than a receiver its time")
+            side = "precede" if self.order == BEFORE else "follow"
+            warn(f"{self.path}: {self.tally['hdt_repeats']} {kinds} sentence(s) {side} another of their epoch and are "
+                 "skipped: a heading has no time of its own, and the one nearest its epoch's time (a valid RMC or "
+                 "ZDA) is kept; a gyrocompass writes HDT faster than a receiver its time")
         skipped = {mode: n for mode, n in self.modes.items() if mode not in THS_TAKEN}
         if skipped:
             said = ", ".join(f"{n} of mode {mode} ({THS_MODES.get(mode, 'no mode of THS')})"
