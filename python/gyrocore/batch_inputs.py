@@ -11,7 +11,7 @@ from pathlib import Path
 
 from . import batch_names, io
 from ._checks import warn
-from .io._kitti import sensor_folder_hint
+from .io._kitti import log_name, oxts_folder, sensor_folder_hint
 from .io._logfolder import lacks_gyro
 from .io import atomic
 from .io._paths import check_readable, compressed_logs
@@ -205,13 +205,14 @@ def complete_output(path: str | Path) -> bool:
 
 def output_paths(inputs: Sequence[str | Path], out_dir: str | Path, fmt: str,
                  named: Sequence[str | Path] = ()) -> list[Path]:
-    """``out_dir/<input name without suffix>.<fmt>`` for each input; refuses two inputs that would
+    """``out_dir/<input name without suffix>.<fmt>`` for each input (a KITTI drive's: the drive folder's
+    name, also where its ``oxts`` folder is given, as every drive's is); refuses two inputs that would
     share an output, also through a symbolic link at an output's name (its target is written), and
     an output whose link leads to an input, into an input folder or to a file ``named`` by an
     option (``--params``, ``--calibration``): with ``--overwrite`` the file it leads to was
     replaced, an input by another input's heading, or one output by another's."""
     given, folder = [Path(p) for p in inputs], Path(out_dir)  # exported: paths as text failed
-    outs = [folder / f"{p.name if p.is_dir() else p.stem}.{fmt}" for p in given]
+    outs = [folder / f"{_output_stem(p)}.{fmt}" for p in given]
     # realpath, not Path.resolve, which raises RuntimeError on a link loop (see io.check_not_input)
     real_inputs = {Path(os.path.realpath(p)): p for p in [*given, *map(Path, named)]}
     seen: dict[Path, tuple[Path, Path]] = {}
@@ -230,6 +231,17 @@ def output_paths(inputs: Sequence[str | Path], out_dir: str | Path, fmt: str,
                              f"{'remove the link, or ' if links else ''}write the outputs elsewhere")
     _check_one_file_each(given, outs, folder)
     return outs
+
+
+def _output_stem(path: Path) -> str:
+    """The name of ``path``'s output without its suffix: a file's name without its suffix, a
+    folder's name; a KITTI OXTS folder's, its drive's (``2011_09_30_drive_0034_sync/oxts`` gives
+    ``2011_09_30_drive_0034_sync``: every drive's OXTS folder is named ``oxts``, and two drives
+    into one output folder clashed)."""
+    if not path.is_dir():
+        return path.stem
+    oxts = oxts_folder(path)
+    return path.name if oxts is None else log_name(path, oxts)
 
 
 def _check_one_file_each(inputs: Sequence[Path], outs: Sequence[Path], folder: Path) -> None:

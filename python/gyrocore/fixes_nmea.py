@@ -1,13 +1,14 @@
 """Heading fixes from NMEA 0183 sentences (pynmea2, the ``nmea`` extra): the course over ground and
 speed of a receiver's RMC sentences, or of the VTG sentence after one (its values read by their
 unit letters; a magnetic course made true by the RMC's magnetic variation), through
-:func:`gyrocore.fixes.from_gnss`; and the true heading of HDT sentences (a dual-antenna receiver's
-or a gyrocompass's), at the time of the RMC or ZDA before them (:mod:`.fixes_nmea_time`).
+:func:`gyrocore.fixes.from_gnss`; and the true heading of HDT and THS sentences (a dual-antenna
+receiver's or a gyrocompass's), at the time of the RMC or ZDA of their epoch
+(:mod:`.fixes_nmea_headings`; the times: :mod:`.fixes_nmea_time`).
 
 A file is read line by line, in the order written, and a line that cannot be used is an error
 naming the file and the line: one that is no sentence (a bad checksum, a line longer than any
-sentence), an RMC, VTG, HDT or ZDA without its checksum (a sentence cut short reads as one of
-other values), one whose date, time, course, speed or heading is not a value (pynmea2 hands such
+sentence), an RMC, VTG, HDT, THS or ZDA without its checksum (a sentence cut short reads as one
+of other values), one whose date, time, course, speed or heading is not a value (pynmea2 hands such
 a field back as its text), an RMC or ZDA whose time steps back, and one whose magnetic variation,
 needed to make a VTG's magnetic course true, is no angle. A logger's timestamp before a sentence
 is skipped. The last line, cut off without a line end (a log stopped mid-write), is skipped after
@@ -33,6 +34,7 @@ from .fixes import Fixes, from_gnss, heading_of_bearing
 from .fixes_files import ROW_ERROR
 from .io._csvfile import refuse_not_text
 from .io._paths import check_file
+from .fixes_nmea_headings import Headings, ths_class
 from .fixes_nmea_time import EARLY_DATE, Clock, in_leap_second
 
 #: Metres per second in a knot and in a km/h (NMEA's speed units).
@@ -81,13 +83,17 @@ def read_nmea(path: str | Path, *, source: str = "auto", hdt_sigma_deg: float = 
     indicator is N, E, M or S (:data:`NO_FIX_MODES`).
 
     An HDT sentence (``$GPHDT,123.4,T``: a dual-antenna receiver's or a gyrocompass's true
-    heading, valid at any speed) is a fix of sigma ``hdt_sigma_deg`` (:data:`HDT_SIGMA_DEG`). It
-    has no time of its own: it is of the epoch of the last timed sentence before it, a valid RMC
-    or a ZDA (a receiver writes an epoch's sentences after its time, as a VTG after its RMC), and
-    of several HDT of one epoch the first, nearest that time, is kept; one before any timed
-    sentence, or after a void RMC, is skipped, a warning counting them. ``source`` chooses
-    between an epoch's HDT and its course: ``"auto"`` the HDT where the epoch has one and the
-    course otherwise, ``"hdt"`` HDT alone, ``"course"`` the course alone (HDT skipped).
+    heading, valid at any speed) is a fix of sigma ``hdt_sigma_deg`` (:data:`HDT_SIGMA_DEG`), and
+    so is a THS (``$GNTHS,123.45,A``, u-blox's) of mode A, or E (dead reckoning: taken, counted
+    in a warning); one of mode M, S or V is skipped, counted. It has no time of its own: it is of
+    the epoch of the burst of sentences it was written in, timed by its valid RMC or ZDA. Whether
+    the log writes it after that time (``$GPRMC, $GPVTG, $GPHDT``) or before it (``$GPHDT,
+    $GPRMC, $GPVTG``) is told from the log's pattern (:meth:`.fixes_nmea_headings.Headings.times`);
+    where it cannot be, it is of the RMC or ZDA before it, with a warning. Of several HDT of one
+    epoch the one nearest its time is kept; one of no epoch with a time is skipped, a warning
+    counting them. ``source`` chooses between an epoch's HDT and its course: ``"auto"`` the HDT
+    where the epoch has one and the course otherwise, ``"hdt"`` HDT alone, ``"course"`` the
+    course alone (HDT skipped); THS counts as HDT.
 
     A VTG's values are read by their unit letters (T, M, N, K; NMEA 0183's VTG before version 2,
     without them, by place); one with a magnetic course alone is made true by the magnetic
@@ -105,15 +111,15 @@ def read_nmea(path: str | Path, *, source: str = "auto", hdt_sigma_deg: float = 
     the first is kept (a warning counts those that differ from it); one in the leap second
     23:59:60 is skipped with a warning.
 
-    A line that is no sentence, an RMC, VTG, HDT or ZDA without a checksum, or one whose fields
-    are not values is an error naming the file and line, as is a file of no sentence; a last line
-    cut off without a line end is skipped with a warning, and so, from the first binary data on
-    (a serial log's binary messages among its sentences), is a line of no sentence, a sentence
-    after binary data on its line read. Text before the first ``$`` or ``!`` of a line (a
-    logger's timestamp: ``1634567890.123 $GPRMC,...``, ``[12:00:00.123] $GPRMC,...``) is
+    A line that is no sentence, an RMC, VTG, HDT, THS or ZDA without a checksum, or one whose
+    fields are not values is an error naming the file and line, as is a file of no sentence; a
+    last line cut off without a line end is skipped with a warning, and so, from the first binary
+    data on (a serial log's binary messages among its sentences), is a line of no sentence, a
+    sentence after binary data on its line read. Text before the first ``$`` or ``!`` of a line
+    (a logger's timestamp: ``1634567890.123 $GPRMC,...``, ``[12:00:00.123] $GPRMC,...``) is
     skipped, the sentence and its checksum read from there on. Sentences that give no fix warn
-    with their counts (void RMC, RMC without a course, HDT of no epoch; a log of GGA, GNS or GLL
-    positions alone says what to do). The times are UTC: shift them onto the gyro's clock before
+    with their counts (void RMC, RMC without a course, HDT of no epoch, THS of no measurement; a
+    log of GGA, GNS or GLL positions alone says what to do). The times are UTC: shift them onto the gyro's clock before
     fusing. ``options`` go to :func:`gyrocore.fixes.from_gnss`.
     """
     # before the file is read
@@ -137,18 +143,16 @@ class _Epochs:
     def __init__(self, pynmea2: Any, path: Path) -> None:
         self.pynmea2, self.path = pynmea2, path
         self.epochs: dict[float, tuple[float, float, int]] = {}  # time -> course [deg], speed [m/s], line
-        self.headings: dict[float, tuple[float, int]] = {}  # time -> HDT heading [deg], line
         self.tally: Counter[str] = Counter()
+        self.headings = Headings(path, self.tally)  # the HDT and THS headings, timed once the file is read
         self.last: float | None = None  # the epoch of the valid RMC just before: a VTG's
-        self.timed: float | None = None  # the epoch of the valid RMC or ZDA just before: an HDT's
         self.clock = Clock(path)  # the times of the dated sentences (RMC, ZDA)
-        self.readers = {pynmea2.RMC: self._rmc, pynmea2.VTG: self._vtg, pynmea2.HDT: self._hdt,
-                        pynmea2.ZDA: self._zda}
+        self.readers = {pynmea2.RMC: self._rmc, pynmea2.VTG: self._vtg, pynmea2.HDT: self._heading,
+                        ths_class(pynmea2): self._heading, pynmea2.ZDA: self._zda}
         # the magnetic variation of the valid RMC just before (its fields 10 and 11) and its line: a
         # VTG's magnetic course is made true by it
         self.variation: tuple[str, str, int] = ("", "", 0)
         self.repeat: int | None = None  # the line of the first RMC repeating a time with other values
-        self.untimed: int | None = None  # the line of the first HDT of no epoch
         self.binary: int | None = None  # the first line of binary data: a serial log from there on
         self.skipped = 0  # the last line of it skipped
 
@@ -205,6 +209,7 @@ class _Epochs:
             return self._skip(number)
         if ended:
             raise ValueError(f"{self.path}: line {number}: {problem}; remove or repair the line")
+        self.headings.cut_off = True  # the log stopped in a burst: its last epoch says nothing of their order
         warn(f"{self.path}: line {number}, the last, is cut off without a line end and is skipped: {problem}")
 
     def _skip(self, number: int) -> None:
@@ -215,7 +220,7 @@ class _Epochs:
 
     def _rmc(self, msg: Any, number: int) -> None:
         self.tally["RMC"] += 1
-        self.last = self.timed = None  # a VTG or HDT after a void RMC is of that epoch, which has no fix
+        self.last = None  # a VTG after a void RMC is of that epoch, which has no fix
         if msg.status != "A":
             self.tally["void"] += 1
         elif msg.mode_indicator in NO_FIX_MODES:
@@ -225,15 +230,18 @@ class _Epochs:
         elif not (msg.datestamp and msg.timestamp):
             self.tally["undated"] += 1
         else:
-            self.last = self.timed = t = self.clock.time(msg, number)
+            self.last = t = self.clock.time(msg, number)
             self.variation = (msg.mag_variation or "", msg.mag_var_dir or "", number)
             if msg.true_course is None or msg.spd_over_grnd is None:
                 self.tally["courseless"] += 1
             else:
                 self._add(t, float(msg.true_course), float(msg.spd_over_grnd) * KNOT, number)
+        self.headings.marker(self.tally["sentences"], self.last)  # the time of its epoch's headings
 
     def _vtg(self, msg: Any, number: int) -> None:
         true, magnetic, knots, kmh, mode = _vtg_fields(msg.data)
+        # a log that opens with a VTG opens in a burst: the rest of an epoch whose RMC came before it
+        self.headings.opened_with_vtg |= self.tally["sentences"] == 1
         if self.last is None or self.last in self.epochs or mode in NO_FIX_MODES:
             return
         if true:
@@ -269,28 +277,14 @@ class _Epochs:
         return degrees if side == "E" else -degrees
 
     def _zda(self, msg: Any, number: int) -> None:
-        """A ZDA's date and time time the HDT after it (a log of a gyrocompass's HDT and ZDA has no
-        RMC); one without them, or in a leap second, leaves its epoch untimed."""
+        """A ZDA's date and time time the headings of its epoch (a log of a gyrocompass's HDT and ZDA
+        has no RMC); one without them, or in a leap second, leaves its epoch untimed."""
         dated = None not in (msg.timestamp, msg.day, msg.month, msg.year) and not in_leap_second(msg)
-        self.timed = self.clock.time(msg, number) if dated else None
+        self.headings.marker(self.tally["sentences"], self.clock.time(msg, number) if dated else None)
 
-    def _hdt(self, msg: Any, number: int) -> None:
-        """An HDT's true heading, of the epoch timed just before it (its first HDT kept)."""
-        self.tally["HDT"] += 1
-        if msg.heading is None:  # not "not heading": 0 (north) is a heading
-            self.tally["headingless"] += 1  # a receiver without a heading solution leaves the field empty
-            return
-        heading = float(msg.heading)
-        if not 0.0 <= heading <= 360.0:
-            raise ValueError(f"{self.path}: line {number}: the HDT heading {msg.data[0]!r} is no bearing of 0 to 360 "
-                             "degrees; remove or repair the line")
-        if self.timed is None:
-            self.tally["untimed"] += 1
-            self.untimed = number if self.untimed is None else self.untimed
-        elif self.timed in self.headings:
-            self.tally["hdt_repeats"] += 1
-        else:
-            self.headings[self.timed] = (heading, number)
+    def _heading(self, msg: Any, number: int) -> None:
+        """An HDT's or THS's true heading, timed by its epoch's RMC or ZDA once the file is read."""
+        self.headings.take(msg, self.tally["sentences"], number)
 
     def _add(self, t: float, course: float, speed: float, number: int) -> None:
         """The epoch at ``t``, unless an RMC gave that time already (its first is kept)."""
@@ -307,8 +301,10 @@ class _Epochs:
         if not self.tally["sentences"]:
             raise ValueError(f"{self.path}: no NMEA sentence, so no fix; give a file of RMC (and VTG) or HDT sentences")
         shift = self.clock.shift()  # a log that opened with its date field advanced early: a day back
-        self._warn_skipped(source)
-        headings = {} if source == "course" else self.headings
+        headings = {} if source == "course" else self.headings.times()
+        self._warn_skipped()
+        if headings:  # else said with the other reasons for no fix
+            self.headings.warn()
         epochs = {} if source == "hdt" else {t: e for t, e in self.epochs.items() if t not in headings}
         if not (epochs or headings):
             self._warn_no_epoch(source)
@@ -329,10 +325,9 @@ class _Epochs:
         order = np.argsort(t, kind="stable")  # no time is both: an epoch's HDT took the place of its course
         return Fixes(t[order], heading[order], np.concatenate((by_course.sigma, np.full(len(headings), sigma)))[order])
 
-    def _warn_skipped(self, source: str) -> None:
-        """Warns of lines skipped: a serial log's binary data, RMC sentences that were fixes of their own (those
-        repeating a time with other values, and those in a leap second), and HDT of no epoch or after the first of
-        theirs."""
+    def _warn_skipped(self) -> None:
+        """Warns of lines skipped: a serial log's binary data, and RMC sentences that were fixes of their own (those
+        repeating a time with other values, and those in a leap second)."""
         if self.tally["binary"]:
             warn(f"{self.path}: binary data from line {self.binary} on, a receiver's binary messages (u-blox UBX) "
                  f"among its sentences: {self.tally['binary']} line(s) of it, or of no sentence after it, are skipped, "
@@ -351,20 +346,12 @@ class _Epochs:
         if self.tally["leap"]:
             warn(f"{self.path}: {self.tally['leap']} RMC sentence(s) in the leap second 23:59:60 UTC are skipped: Unix "
                  "seconds have no such second, and the fixes after it are a second behind a clock that ran through it")
-        if self.headings and source != "course":  # else said with the other reasons for no fix
-            if self.tally["untimed"]:
-                warn(f"{self.path}: {self.tally['untimed']} HDT sentence(s) {_UNTIMED} (the first: line "
-                     f"{self.untimed})")
-            if self.tally["hdt_repeats"]:
-                warn(f"{self.path}: {self.tally['hdt_repeats']} HDT sentence(s) follow another of their epoch and are "
-                     "skipped: an HDT has no time of its own, and the first after its epoch's time (a valid RMC or "
-                     "ZDA) is kept, nearest it; a gyrocompass writes HDT faster than a receiver its time")
 
     def _warn_no_epoch(self, source: str) -> None:
         """Warns that the sentences gave no course or HDT heading, with the counts that say why."""
         tally = self.tally
         if source == "hdt":
-            why = "none is HDT"
+            why = "none is HDT or THS"
         elif not tally["RMC"]:
             why = "none is RMC"
             if tally["positions"]:
@@ -378,17 +365,16 @@ class _Epochs:
             if tally["magnetic"]:
                 why += f"; {tally['magnetic']} VTG give a magnetic course only, {_MAGNETIC}"
         if tally["HDT"]:
-            counts = {_UNTIMED: tally["untimed"], "without a heading": tally["headingless"],
+            headings = self.headings
+            counts = {headings.untimed_words(): tally["untimed"], "without a heading": tally["headingless"],
+                      "of THS mode M, S or V (no measurement)": headings.skipped_modes(),
                       "skipped by source='course'": tally["HDT"] if source == "course" else 0}
-            why = (why if source != "hdt" else "") + f"; {tally['HDT']} are HDT: " + ", ".join(
+            why = (why if source != "hdt" else "") + f"; {tally['HDT']} are {headings.kinds_said()}: " + ", ".join(
                 f"{n} {what}" for what, n in counts.items() if n)
         warn(f"no heading fix from {self.path}: of its {tally['sentences']} sentences, {why.lstrip('; ')}; fixes come "
-             "from valid RMC sentences with a course (or the VTG after one), or HDT after a valid RMC or ZDA")
+             "from valid RMC sentences with a course (or the VTG after one), or HDT or THS of an epoch with a valid RMC or ZDA")
 
 
-#: HDT that no epoch times, and why.
-_UNTIMED = ("come before any valid RMC or ZDA, or after a void RMC, and are skipped: an HDT has no time of its own, "
-            "and takes that of the valid RMC or ZDA before it")
 #: What is done with a VTG's magnetic course where its RMC gives no variation, and what to do.
 _MAGNETIC = ("and the RMC of their epoch no magnetic variation (fields 10 and 11) to make it true: their epochs are "
              "skipped; set the receiver to write the true course in VTG, or the magnetic variation in RMC")

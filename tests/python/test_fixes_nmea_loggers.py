@@ -102,9 +102,9 @@ def test_hdt_that_no_epoch_times_is_skipped_with_a_warning(tmp_path: Path) -> No
     # a log of HDT alone has no time: no fix, saying why
     with pytest.warns(InputWarning, match=r"of its 2 sentences, none is RMC; 2 are HDT: 2 come before any valid RMC "
                                           r"or ZDA, .*; fixes come from valid RMC sentences with a course \(or the "
-                                          r"VTG after one\), or HDT after a valid RMC or ZDA"):
+                                          r"VTG after one\), or HDT or THS of an epoch with a valid RMC or ZDA"):
         assert len(read_nmea(nmea(tmp_path, hdt("010.0"), hdt("020.0")))) == 0
-    with pytest.warns(InputWarning, match=r"of its 2 sentences, none is HDT; fixes come"):
+    with pytest.warns(InputWarning, match=r"of its 2 sentences, none is HDT or THS; fixes come"):
         assert len(read_nmea(nmea(tmp_path, rmc("120000"), rmc("120001")), source="hdt")) == 0
 
 

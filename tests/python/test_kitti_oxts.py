@@ -280,3 +280,18 @@ def test_a_drive_past_midnight_counts_on(short: Path) -> None:
     t = gyrocore.read_log(short).t
     assert t[0] == 86399.550000001 and t[5] == 86400.050000001 and t[-1] == 86400.650000001
     assert np.all(np.diff(t) > 0.0999999)
+
+
+def test_outputs_are_named_after_their_drives(tmp_path: Path) -> None:
+    """Two drives' oxts folders processed into one output folder: each output was named after its
+    folder, oxts.csv, and the second refused as the first's; each is named after its drive."""
+    drives = [tmp_path / f"2011_09_30_drive_00{n}_sync" for n in ("18", "34")]
+    for drive, log in zip(drives, ("kitti_2011_09_30_0018", "kitti_2011_09_30_0034")):
+        write_oxts(real_log_path(log), drive / "oxts", slice(0, 300))
+    out = tmp_path / "headings"
+    proc = gyrocore_cli("process", *(drive / "oxts" for drive in drives), "--out", out, code=0)
+    assert sorted(p.name for p in out.iterdir()) == [f"{drive.name}.csv" for drive in drives], proc.stderr
+    # the drive folder names its output alike, and a drive given both ways is one output, refused
+    assert gyrocore.batch.output_paths([drives[0]], out, "csv") == [out / f"{drives[0].name}.csv"]
+    with pytest.raises(ValueError, match=r"would both be written to .*2011_09_30_drive_0018_sync\.csv"):
+        gyrocore.batch.output_paths([drives[0], drives[0] / "oxts"], out, "csv")
