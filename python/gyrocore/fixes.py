@@ -32,7 +32,7 @@ from ._checks import (
     require_radians, warn, warn_units,
 )
 from ._inuse import Turn, one_at_a_time
-from ._time_steps import time_steps_named
+from ._time_steps import name_time_step, time_steps_named
 from .result import fix_output_flags
 from .fixes_stream import TWICE, StreamFixes, say_how_to_wait
 from .fixes_warnings import MIN_SHARE_INSIDE, warn_whole_log
@@ -213,6 +213,8 @@ class Fusion:
             h, s, b, sc = self._inner.process(tt, r, f.t, f.heading, f.sigma)
         except ValueError as e:
             say_how_to_wait(e)
+            if isinstance(e, _gyrocore.SampleError):  # a counter's wrap, a clock set back within the block
+                name_time_step(e, tt, None, 0)
             raise
         self._fixes.taken(f, float(tt[-1]) if len(tt) else None)
         counts = self.counts()

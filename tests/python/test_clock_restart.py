@@ -208,6 +208,10 @@ def test_a_whole_log_whose_clock_starts_again_is_not_told_to_be_sorted(tmp_path:
     path.write_text("t,gyro_z\n" + "".join(f"{a!r},{b!r}\n" for a, b in zip(t.tolist(), rate.tolist())))
     proc = gyrocore_cli("process", path, "--out", tmp_path / "h.csv", code=2)
     assert f"{JOINED} ({path}, line 402)" in proc.stderr and "sort" not in proc.stderr.replace("sorting", "")
+    for stream in (gyrocore.Pipeline("hdr", bias=BIAS), gyrocore.fixes.Fusion()):  # in a block: both ways on
+        with pytest.raises(gyrocore.SampleError) as e:
+            stream.process(t, rate)
+        assert JOINED in str(e.value) and "call restart_clock() and give the samples from t[400] on" in str(e.value)
     # the advice mends it: each part processed on its own
     assert all(np.isfinite(gyrocore.process(t[part], rate[part], "hdr", bias=BIAS).heading).all()
                for part in (slice(0, 400), slice(400, None)))
