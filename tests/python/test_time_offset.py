@@ -102,9 +102,10 @@ def test_a_turn_whose_rate_changes_are_mostly_noise_is_refused() -> None:
     heading_ref = np.angle(np.exp(1j * 0.2 * np.unwrap(heading_ref)))
     rate = 0.2 * (rate - BIAS) + np.random.default_rng(5).normal(0.0, 0.3, len(t))
     # the first-order fit's scale error, 3100 %, is warned of before the fit is refused
-    with pytest.warns(gyrocore.InputWarning, match=r"time_offset: the fitted scale error is \+3.13e\+03 %"), pytest.raises(ValueError, match=r"^the rate must change during calibration to tell a time offset: the "
-                                         r"gyro's rate changes are mostly its noise \(a shift of its times by 0.01 s "
-                                         r"moves the fit by 0.02 of it, under 0.5\)"):
+    refused = (r"^the rate must change during calibration to tell a time offset: the gyro's rate changes are mostly "
+               r"its noise \(a shift of its times by 0.01 s moves the fit by 0.02 of it, under 0.5\)")
+    with pytest.warns(gyrocore.InputWarning, match=r"time_offset: the fitted scale error is \+3.13e\+03 %"), \
+            pytest.raises(ValueError, match=refused):
         cal.time_offset(t, rate, t_ref, heading_ref)
 
 
@@ -136,7 +137,8 @@ def _bad_inputs() -> list[tuple[str, tuple[np.ndarray, ...], dict[str, object], 
     nan = rate.copy()
     nan[5] = math.nan
     return [
-        ("a NaN reading", (t, nan, t_ref, heading_ref), {}, r"rate_measured\[5\] is nan: samples must be finite \(drop or fill them first\)"),
+        ("a NaN reading", (t, nan, t_ref, heading_ref), {},
+         r"rate_measured\[5\] is nan: samples must be finite \(drop or fill them first\)"),
         ("a reference in degrees", (t, rate, t_ref, np.degrees(heading_ref)), {},
          r"METHOD: the reference changes \S+ times as much as the gyro \(s_bar\), about 180/pi = 57.3: heading_ref "
          r"looks like degrees; convert it to rad \(numpy.radians\)"),

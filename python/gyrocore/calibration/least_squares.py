@@ -212,9 +212,8 @@ def reference_rows(
     if len(inside) < minimum:
         # a reference.csv of a header alone was asked about its time base
         why = "are both in the same time base?" if len(tr) >= minimum else f"the reference has {len(tr)} in all"
-        raise ValueError(
-            f"only {len(inside)} reference sample(s) fall inside the gyro's span {lo} .. {hi} s; need at least {minimum} ({why})"
-        )
+        raise ValueError(f"only {len(inside)} reference sample(s) fall inside the gyro's span {lo} .. {hi} s; need at "
+                         f"least {minimum} ({why})")
     return ta, ra, tr, hr, inside
 
 

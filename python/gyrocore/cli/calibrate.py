@@ -186,7 +186,9 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _time_offset(log: io.Log, window: tuple[float, float] | None, results: dict[str, Any]) -> calibration.TimeOffset | None:
+def _time_offset(
+    log: io.Log, window: tuple[float, float] | None, results: dict[str, Any]
+) -> calibration.TimeOffset | None:
     """The gyro's time offset against the log's reference over ``window`` (None: the whole log),
     put in ``results`` (its fields, or the error of a log that cannot tell it); None without one."""
     assert log.t_ref is not None and log.heading_ref is not None
