@@ -315,6 +315,9 @@ def test_calibrate_reports_and_saves_the_gyros_time_offset(tmp_path: Path, capsy
     line = next(x for x in capsys.readouterr().out.splitlines() if x.startswith("  time offset: "))
     assert line.startswith("  time offset: TimeOffset(offset = -0.0607 +- 0.00043 s (add to the gyro's times)")
     assert line.endswith("): the gyro's times t - 0.06068 s are on the reference's clock")
+    assert main(["calibrate", str(path), "--json", "--fit-window", "+0", "+60"]) == 0  # the reference fit's span
+    window = json.loads(capsys.readouterr().out)["time_offset"]["window"]
+    assert window[1] - window[0] == pytest.approx(60.0, abs=0.11) and window[0] == found["window"][0]
 
 
 def test_calibrate_says_why_a_drive_tells_no_time_offset_and_saves_none(tmp_path: Path,

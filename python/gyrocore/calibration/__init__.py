@@ -22,15 +22,15 @@ table), :mod:`.offset` (the time offset); every public name is here.
 
 from .._checks import public_dir
 from .least_squares import MAX_CONDITION, MAX_SCALE_STDERR, heading_reference, rate_reference
-from .offset import MAX_OFFSET, MAX_OFFSET_STDERR, MIN_TURN, TimeOffset, time_offset
+from .offset import MAX_OFFSET, MAX_OFFSET_STDERR, MIN_FOLLOWS, MIN_TURN, TimeOffset, time_offset
 from .rest import detect_rest, rest_windows, static_bias
 from .result import FORMAT, VERSION, BiasTable, Calibration
 from .rotary import RotaryTable, Turn, rotary_table
 from .temperature import bias_temperature_table
 
 __all__ = [
-    "FORMAT", "MAX_CONDITION", "MAX_OFFSET", "MAX_OFFSET_STDERR", "MAX_SCALE_STDERR", "MIN_TURN", "VERSION",
-    "BiasTable", "Calibration", "RotaryTable", "TimeOffset", "Turn", "bias_temperature_table", "detect_rest",
+    "FORMAT", "MAX_CONDITION", "MAX_OFFSET", "MAX_OFFSET_STDERR", "MAX_SCALE_STDERR", "MIN_FOLLOWS", "MIN_TURN",
+    "VERSION", "BiasTable", "Calibration", "RotaryTable", "TimeOffset", "Turn", "bias_temperature_table", "detect_rest",
     "heading_reference", "rate_reference", "rest_windows", "rotary_table", "static_bias", "time_offset",
 ]
 __dir__ = public_dir(__name__)  # dir() and tab completion: __all__

@@ -56,7 +56,8 @@ class TimeOffset:
             stamped ``t`` was taken at the reference's ``t + offset``. Negative for a gyro whose
             readings are stamped late (KITTI's OXTS rate: about -0.06 s), positive for one stamped
             early (the f110 car's: +0.03 s).
-        offset_stderr: its standard error [s], from the robust scatter of the per-step residuals.
+        offset_stderr: its standard error [s], from the robust scatter of the per-step residuals,
+            over how much of a shift the fit sees (:data:`PROBE`; about 1 on the real logs).
         scale_error, scale_error_stderr: the gyro's scale error ``s`` [1] fitted with it (Hong eq 1).
         bias: the gyro's bias ``b`` [rad/s] fitted with it (the step residuals' rate).
         scatter: robust scatter [rad] of the residuals of the reference's steps (its heading's
@@ -108,26 +109,29 @@ def time_offset(
     (as :func:`heading_reference` fits): a gyro's white noise makes the heading's residuals a
     random walk, the steps' independent, so the standard errors hold. The first-order term is
     exact only for a small shift; the fit is repeated on the gyro's times shifted by the offset
-    found so far until what it finds left is a hundredth of its standard error (Gauss-Newton on
-    the shift). The result is not tied to a grid of samples: a 10 Hz gyro stamped 0.06 s late
-    gives -0.06, not 0 or -0.1, and an offset of a few samples is found as precisely as a small one.
+    found so far (the gyro's integral at the reference's times then the exact integral of its
+    linearly interpolated rate) until what it finds left is a hundredth of its standard error, at
+    most :data:`MAX_STEPS` times (Gauss-Newton on the shift; three or four on the real logs). The
+    result is not tied to a grid of samples: a 10 Hz gyro stamped 0.06 s late gives -0.06, not 0
+    or -0.1, and an offset of a few samples is found as precisely as a small one.
 
     Args:
         t, rate_measured: gyro timestamps [s] and readings [rad/s].
         t_ref, heading_ref: reference times [s] and heading [rad, may be wrapped], on a clock
             offset from the gyro's by at most ``max_offset``.
-        window: ``(start, end)`` [s] to fit over (the gyro's clock); None: all.
+        window: ``(start, end)`` [s] to fit over (the log's time base); None: all.
         max_offset: the largest offset looked for [s] (default :data:`MAX_OFFSET`).
 
     Raises:
         ValueError: what :func:`heading_reference` refuses (bad samples, a reference in degrees,
             too few reference samples inside the gyro's span: here :data:`MIN_PAIRS` + 1);
             a drive whose rate does not change enough to tell an offset (a reference that turns by
-            less than :data:`MIN_TURN` besides a steady turn, or an offset's standard error over
-            :data:`MAX_OFFSET_STDERR`: a straight drive, a constant turn): refused, not returned
-            with a warning, since no value would be right; an offset the
-            fit does not settle on within ``max_offset`` (a larger one: ``gyrocore evaluate``
-            warns of those and says how large).
+            less than :data:`MIN_TURN` besides a steady turn: a straight drive, a constant turn; a
+            gyro whose rate changes are mostly its noise, the fit seeing under :data:`MIN_FOLLOWS`
+            of a shift; or an offset's standard error over :data:`MAX_OFFSET_STDERR`): refused,
+            not returned with a warning, since no value would be right; an offset the fit does
+            not settle on within ``max_offset`` (a larger one: ``gyrocore evaluate`` warns of
+            those and says how large).
     """
     max_offset = check_number("max_offset", max_offset, unit=" [s]")
     ta, ra, tr, hr, inside = reference_rows(t, rate_measured, t_ref, heading_ref, window, minimum=MIN_PAIRS + 1)
