@@ -65,6 +65,9 @@ class Agreement:
     scatter: float
     """The robust scatter of the pairs' differences, each over what the fixes' stated sigmas make it
     (1 for honest sigmas)."""
+    bias: float
+    """[rad/s] the fixes' heading rate beyond the gyro's (the interval's coefficient: minus the
+    gyro's bias, to first order)."""
 
 
 def agreement(t: FloatArray, rate: FloatArray, fixes: Fixes) -> Agreement | None:
@@ -124,7 +127,7 @@ def _fit(a: FloatArray, y: FloatArray) -> Agreement | None:
         return None
     se = scatter * np.sqrt(np.diag(np.linalg.inv(normal)))
     return Agreement(int(np.count_nonzero(keep)), float(x[1]), float(se[1]), float(x[2]), float(se[2]),
-                     scatter)
+                     scatter, float(x[0]))
 
 
 def warn_disagreement(t: FloatArray, rate: FloatArray, fixes: Fixes) -> None:

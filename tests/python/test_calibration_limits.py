@@ -19,6 +19,7 @@ import pytest
 import gyrocore
 from gyrocore import calibration as cal
 from gyrocore import datasets, motion, sim
+from gyrocore.cli import main
 
 from .conftest import gyrocore_cli, real_log_path
 
@@ -299,3 +300,33 @@ def test_a_saved_calibration_with_a_scale_error_no_gyro_has_warns_where_it_is_re
         cal.Calibration.load(path)
     with pytest.raises(ValueError, match=r"scale_error must be at most 2\^20, got 1e\+300"):
         cal.Calibration("heading_reference", scale_error=1e300)
+
+
+def test_calibrate_reports_and_saves_the_gyros_time_offset(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # the OXTS rate is stamped 0.06 s after the yaw it matches (meta.json's checks fit 0.062 s)
+    path, out = real_log_path("kitti_2011_09_30_0034"), tmp_path / "kitti.json"
+    assert main(["calibrate", str(path), "--json", "--save", str(out)]) == 0
+    found = json.loads(capsys.readouterr().out)["time_offset"]
+    assert found["offset"] == pytest.approx(-0.0607, abs=5e-5) and 0 < found["offset_stderr"] < 0.001
+    saved = cal.Calibration.load(out)
+    assert saved.method == "heading_reference"
+    assert (saved.time_offset, saved.time_offset_stderr) == (found["offset"], found["offset_stderr"])
+    assert main(["calibrate", str(path)]) == 0
+    line = next(x for x in capsys.readouterr().out.splitlines() if x.startswith("  time offset: "))
+    assert line.startswith("  time offset: TimeOffset(offset = -0.0607 +- 0.00043 s (add to the gyro's times)")
+    assert line.endswith("): the gyro's times t - 0.06068 s are on the reference's clock")
+    assert main(["calibrate", str(path), "--json", "--fit-window", "+0", "+60"]) == 0  # the reference fit's span
+    window = json.loads(capsys.readouterr().out)["time_offset"]["window"]
+    assert window[1] - window[0] == pytest.approx(60.0, abs=0.11) and window[0] == found["window"][0]
+
+
+def test_calibrate_says_why_a_drive_tells_no_time_offset_and_saves_none(tmp_path: Path,
+                                                                        capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "comma.json"
+    assert main(["calibrate", str(real_log_path("comma_seg40")), "--json", "--save", str(out)]) == 0
+    printed = capsys.readouterr()
+    assert "too little to determine the scale" in printed.err  # the scale fit's own warning
+    error = json.loads(printed.out)["time_offset"]["error"]
+    assert error == ("the rate must change during calibration to tell a time offset: the reference turns by 0.0214 rad "
+                     "besides a steady turn, under 0.1 rad; fit over a drive with turns that start and end")
+    assert "time_offset" not in json.loads(out.read_text())["calibration"]

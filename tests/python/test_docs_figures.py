@@ -130,6 +130,16 @@ def test_the_ablation_tables_are_what_their_script_prints() -> None:
         assert row[2:] == run[2:6], (row, run)
 
 
+def test_the_time_offset_table_is_what_its_script_prints() -> None:
+    # docs/calibration.md "A gyro's time offset": `python examples/time_offsets.py`
+    rows = table("calibration.md", "| log | offset [s] | its standard error [ms] |")
+    assert len(rows) == 18  # every real log has a reference
+    assert rows == script_rows("time_offsets.py")
+    text = " ".join((ROOT / "docs" / "calibration.md").read_text(encoding="utf-8").split())
+    kitti = {r[0]: r for r in rows}["kitti_2011_09_30_0034"]  # what the page's example prints and scores
+    assert f"offset = {kitti[1]}" in text and f"{kitti[4]} deg, not {kitti[3]}" in text
+
+
 def test_the_lock_out_table_is_what_its_script_prints() -> None:
     # docs/fixes_model.md "The gate's lock-out, and re-admission": `python examples/fixes_lockout.py`
     rows = table("fixes_model.md", "| fixes | gate alone: causal / smoothed")

@@ -36,6 +36,8 @@ CALLS: list[tuple[Callable[..., Any], str, str, str]] = [
     (gyrocore.calibration.rotary_table, "gyrocore.calibration.rotary_table", "t [s] and rate [rad/s]", CALIBRATE),
     (gyrocore.calibration.heading_reference, "gyrocore.calibration.heading_reference",
      "t [s], rate_measured [rad/s], t_ref [s] and heading_ref [rad]", LOG.format("log.t, log.rate, log.t_ref, log.heading_ref")),
+    (gyrocore.calibration.time_offset, "gyrocore.calibration.time_offset",
+     "t [s], rate_measured [rad/s], t_ref [s] and heading_ref [rad]", LOG.format("log.t, log.rate, log.t_ref, log.heading_ref")),
     (gyrocore.calibration.rate_reference, "gyrocore.calibration.rate_reference", "rate_measured [rad/s] and rate_reference [rad/s]", CALIBRATE),
     (gyrocore.calibration.bias_temperature_table, "gyrocore.calibration.bias_temperature_table",
      "t [s], rate [rad/s] and temperature", CALIBRATE),

@@ -45,7 +45,7 @@ DEGREE_FACTOR = 2.0
 def _check_units(method: str, s_bar: float, scale_error: float) -> None:
     """Refuse a fit whose reference is in degrees (it changes about 180/pi times as much as the
     gyro's rate or angle), and warn of a scale error no gyro has (a wrong unit of either)."""
-    reference, unit = ("heading_ref", "rad") if method == "heading_reference" else ("rate_reference", "rad/s")
+    reference, unit = ("rate_reference", "rad/s") if method == "rate_reference" else ("heading_ref", "rad")
     if 1.0 / DEGREE_FACTOR < s_bar / math.degrees(1.0) < DEGREE_FACTOR:
         raise UnitError(
             f"{method}: the reference changes {s_bar:.4g} times as much as the gyro (s_bar), about 180/pi = 57.3: "
@@ -58,11 +58,10 @@ def _check_units(method: str, s_bar: float, scale_error: float) -> None:
         )
 
 
-def _calibration_from_q(
-    method: str, q: FloatArray, cov: FloatArray, rms: float, cond: float, window: tuple[float, float] | None, n: int
-) -> Calibration:
-    """s and b from ``q = (s_bar, b_bar)`` (Hong eq 3 inverted), with first-order standard errors."""
-    s_bar, b_bar = float(q[0]), float(q[1])
+def check_gain(method: str, s_bar: float) -> float:
+    """The scale error of a fit's ``s_bar`` (the reference's turn over the gyro's), checked: a
+    ValueError where it is not positive (a reference of the other sign) or the reference looks like
+    degrees, a warning where no gyro has it."""
     if not s_bar > 0:
         raise ValueError(
             f"the fit gives s_bar = {s_bar:.4g} <= 0 (the gyro would read against the motion): "
@@ -70,6 +69,15 @@ def _calibration_from_q(
         )
     scale_error = 1.0 / s_bar - 1.0
     _check_units(method, s_bar, scale_error)
+    return scale_error
+
+
+def _calibration_from_q(
+    method: str, q: FloatArray, cov: FloatArray, rms: float, cond: float, window: tuple[float, float] | None, n: int
+) -> Calibration:
+    """s and b from ``q = (s_bar, b_bar)`` (Hong eq 3 inverted), with first-order standard errors."""
+    s_bar, b_bar = float(q[0]), float(q[1])
+    scale_error = check_gain(method, s_bar)
     bias = -b_bar / s_bar
     # Jacobians of s = 1/s_bar - 1 and b = -b_bar/s_bar with respect to (s_bar, b_bar).
     js = np.array([-1.0 / s_bar**2, 0.0])
@@ -185,6 +193,32 @@ def rate_reference(rate_measured: ArrayLike, rate_reference: ArrayLike) -> Calib
     return _calibration_from_q("rate_reference", q, cov, rms, cond, None, len(r))
 
 
+def reference_rows(
+    t: ArrayLike, rate_measured: ArrayLike, t_ref: ArrayLike, heading_ref: ArrayLike,
+    window: tuple[float, float] | None, *, minimum: int,
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, NDArray[np.intp]]:
+    """The checked gyro (``t``, ``rate_measured``) and reference (``t_ref``, ``heading_ref``), and the
+    indices of the reference samples inside the gyro's span and ``window``: at least ``minimum``
+    of them, else a ValueError (the checks every fit against a reference heading makes)."""
+    ta, ra = check_series(t, rate_measured, rate_name="rate_measured", minimum=2)
+    tr, hr = check_series(t_ref, heading_ref, t_name="t_ref", rate_name="heading_ref", readings=False)
+    require_radians("heading_ref", tr, hr)
+    lo, hi = ta[0], ta[-1]
+    if window is not None:
+        start, end = as_window("window", window)
+        if end < lo or start > hi:  # the span between them read "200.0 .. 119.99 s"
+            raise ValueError(f"the window [{start}, {end}] s lies outside the gyro's log ({lo} .. {hi} s); give it "
+                             "in the log's own time base")
+        lo, hi = max(lo, start), min(hi, end)
+    inside = np.flatnonzero((tr >= lo) & (tr <= hi))
+    if len(inside) < minimum:
+        # a reference.csv of a header alone was asked about its time base
+        why = "are both in the same time base?" if len(tr) >= minimum else f"the reference has {len(tr)} in all"
+        raise ValueError(f"only {len(inside)} reference sample(s) fall inside the gyro's span {lo} .. {hi} s; need at "
+                         f"least {minimum} ({why})")
+    return ta, ra, tr, hr, inside
+
+
 @no_path_for_arrays("gyrocore.calibration.heading_reference",
                     read_the_log("log.t, log.rate, log.t_ref, log.heading_ref", "gyrocore calibrate FILE"))
 def heading_reference(
@@ -226,23 +260,7 @@ def heading_reference(
             reference in degrees (a step of over 180 between two samples, or a fit that finds it
             changing about 180/pi times as much as the gyro's angle).
     """
-    ta, ra = check_series(t, rate_measured, rate_name="rate_measured", minimum=2)
-    tr, hr = check_series(t_ref, heading_ref, t_name="t_ref", rate_name="heading_ref", readings=False)
-    require_radians("heading_ref", tr, hr)
-    lo, hi = ta[0], ta[-1]
-    if window is not None:
-        start, end = as_window("window", window)
-        if end < lo or start > hi:  # the span between them read "200.0 .. 119.99 s"
-            raise ValueError(f"the window [{start}, {end}] s lies outside the gyro's log ({lo} .. {hi} s); give it "
-                             "in the log's own time base")
-        lo, hi = max(lo, start), min(hi, end)
-    inside = np.flatnonzero((tr >= lo) & (tr <= hi))
-    if len(inside) < 3:
-        # a reference.csv of a header alone was asked about its time base
-        why = "are both in the same time base?" if len(tr) >= 3 else f"the reference has {len(tr)} in all"
-        raise ValueError(
-            f"only {len(inside)} reference sample(s) fall inside the gyro's span {lo} .. {hi} s; need at least 3 ({why})"
-        )
+    ta, ra, tr, hr, inside = reference_rows(t, rate_measured, t_ref, heading_ref, window, minimum=3)
     origin = ta[0]
     angle = angle_of(ta - origin, ra)  # its input warned of its units
     times = tr[inside] - origin

@@ -40,7 +40,12 @@ _UNITS = {
     "temp_slope": "1/degC (FOG eq 5's E_T slope / 360 deg)",
     "temp_offset": "1 (FOG eq 5's E_T at 0 degC / 360 deg)",
     "bias_table": "temperatures degC, biases rad/s",
+    "time_offset": "s (add to the gyro's times to put them on the reference's clock)",
+    "time_offset_stderr": "s",
 }
+#: Fields saved only where they hold a value: a calibration without them saves as before they were
+#: added, and the versions of gyrocore before them read it.
+_OPTIONAL = ("time_offset", "time_offset_stderr")
 #: The calibrations there are (``Calibration.method``).
 METHODS = ("static_bias", "rate_reference", "heading_reference", "rotary_table")
 #: What a saved field of each type must be, for the errors of :meth:`Calibration.from_dict`.
@@ -136,6 +141,10 @@ class Calibration:
         c_cw, c_ccw: direction correction factors (FOG eq 2).
         temp_slope, temp_offset: temperature-linear scale factor (FOG eq 5-6, per 360 deg).
         bias_table: bias versus temperature (FOG section 2).
+        time_offset, time_offset_stderr: the gyro's time offset against the reference [s] and its
+            standard error (:func:`~gyrocore.calibration.time_offset`; None where not estimated):
+            add it to the gyro's times to put them on the reference's clock. Informative:
+            :meth:`overrides` does not apply it (the pipeline takes the times as given).
     """
 
     method: str
@@ -153,13 +162,15 @@ class Calibration:
     temp_offset: float | None = None
     bias_table: BiasTable | None = None
     notes: tuple[str, ...] = field(default=())
+    time_offset: float | None = None
+    time_offset_stderr: float | None = None
 
     def __post_init__(self) -> None:
         """Refuse values no calibration gives, so that a hand-edited or damaged file fails where it
         is read: a scale error of -1 (``s_bar = 1/0``) raised ZeroDivisionError, and a NaN bias,
         an unknown method or notes given as one text were taken without a word."""
         require_choice("calibration method", self.method, METHODS)
-        for name in ("bias", "scale_error", "c_cw", "c_ccw", "temp_slope", "temp_offset"):
+        for name in ("bias", "scale_error", "c_cw", "c_ccw", "temp_slope", "temp_offset", "time_offset"):
             value = getattr(self, name)
             if value is not None and not math.isfinite(value):
                 raise ValueError(f"{name} must be finite, got {value!r}")
@@ -171,12 +182,14 @@ class Calibration:
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)!r}")
         for name in ("bias_stderr", "scale_error_stderr", "residual_rms", "condition_number",
-                     "samples"):
+                     "samples", "time_offset_stderr"):
             value = getattr(self, name)
             if value is not None and not value >= 0:
                 raise ValueError(f"{name} must be >= 0, got {value!r}")
         if (self.temp_slope is None) != (self.temp_offset is None):  # overrides() dropped the one alone
             raise ValueError("temp_slope and temp_offset make one temperature model: give both or neither")
+        if self.time_offset is None and self.time_offset_stderr is not None:
+            raise ValueError("time_offset_stderr is the standard error of a time_offset: give the offset too")
         if not all(isinstance(n, str) for n in self.notes):
             raise ValueError(f"notes must be a list of text, got {list(self.notes)!r}")
 
@@ -240,6 +253,9 @@ class Calibration:
         if self.window is not None:
             parts.append(f"window {self.window[0]:.12g} .. {self.window[1]:.12g} s")
         parts.append(f"{self.samples} samples")
+        if self.time_offset is not None:
+            err = "" if self.time_offset_stderr is None else f" +- {self.time_offset_stderr:.2g}"
+            parts.append(f"time offset = {self.time_offset:+.4g}{err} s (add to the gyro's times)")
         parts += [f"note: {n}" for n in self.notes]
         return f"Calibration({', '.join(parts)})"
 
@@ -250,7 +266,11 @@ class Calibration:
         values = asdict(self)
         values["window"] = None if self.window is None else list(self.window)
         values["notes"] = list(self.notes)
-        return {"format": FORMAT, "version": VERSION, "units": dict(_UNITS), "calibration": values}
+        units = dict(_UNITS)
+        for name in _OPTIONAL:
+            if values[name] is None:
+                del values[name], units[name]
+        return {"format": FORMAT, "version": VERSION, "units": units, "calibration": values}
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Calibration:

@@ -1,10 +1,11 @@
-"""``gyrocore calibrate``: static bias from a rest window (found automatically) and least-squares
-scale and bias against the log's reference heading (Hong eq 4-7), from a log folder or any file
-with a reference file."""
+"""``gyrocore calibrate``: static bias from a rest window (found automatically), least-squares
+scale and bias against the log's reference heading (Hong eq 4-7) and the gyro's time offset
+against it, from a log folder or any file with a reference file."""
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
 import re
 from pathlib import Path
@@ -39,7 +40,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p = add_command(
         sub,
         "calibrate",
-        "calibrate a gyro from a log: static bias at rest, scale and bias against a reference heading",
+        "calibrate a gyro from a log: static bias at rest, scale, bias and time offset against a reference heading",
         "gyrocore calibrate sample_drive --save calibration.json",
         run,
     )
@@ -60,7 +61,7 @@ def register(sub: "argparse._SubParsersAction[argparse.ArgumentParser]") -> None
     p.add_argument("--json", action="store_true", help="print the results as JSON")
     p.add_argument("--save", type=named_path, metavar="FILE",
                    help="write the calibration (JSON): the reference fit where the log has a reference, "
-                        "else the static bias")
+                        "else the static bias; with the time offset where one was found")
     add_overwrite_option(p)
     add_reading_options(p, "--window")
 
@@ -126,6 +127,7 @@ def run(args: argparse.Namespace) -> int:
     except ValueError as e:
         results["static_bias"] = {"error": _in_option_words(str(e), args.max_rate_dps)}
     fit: calibration.Calibration | None = None
+    offset: calibration.TimeOffset | None = None
     if log.t_ref is not None and log.heading_ref is not None:
         fit_window = None if span is None else span.resolve(float(log.t[0]))
         try:
@@ -135,7 +137,10 @@ def run(args: argparse.Namespace) -> int:
             raise ValueError(f"{source}: {e}") from None
         except ValueError as e:
             results["heading_reference"] = {"error": str(e)}
+        offset = _time_offset(log, fit_window, results)
     chosen = fit or static
+    if chosen is not None and offset is not None:  # the offset belongs to the gyro and reference, either fit
+        chosen = dataclasses.replace(chosen, time_offset=offset.offset, time_offset_stderr=offset.offset_stderr)
     if chosen is None:
         raise ValueError(
             f"{source}: nothing to calibrate from: {results['static_bias']['error']}"
@@ -165,6 +170,12 @@ def run(args: argparse.Namespace) -> int:
         print(f"  reference fit: {fit!r}")
     elif "heading_reference" in results:
         print(f"  reference fit: {results['heading_reference']['error']}")
+    if offset is not None:
+        sign = "+" if offset.offset >= 0 else "-"
+        print(f"  time offset: {offset!r}: the gyro's times t {sign} {abs(offset.offset):.4g} s are on the reference's "
+              "clock")
+    elif "time_offset" in results:
+        print(f"  time offset: {results['time_offset']['error']}")
     if args.save is not None:
         print(f"  saved the {chosen.method} calibration to {args.save}; use it with gyrocore process ... "
               f"--calibration {args.save}")
@@ -173,6 +184,21 @@ def run(args: argparse.Namespace) -> int:
         print(f"  to use it: {use}save it with --save FILE and give gyrocore process ... --calibration FILE "
               f"(the {chosen.method} calibration: {'scale and bias' if fit is not None else 'its bias'})")
     return 0
+
+
+def _time_offset(
+    log: io.Log, window: tuple[float, float] | None, results: dict[str, Any]
+) -> calibration.TimeOffset | None:
+    """The gyro's time offset against the log's reference over ``window`` (None: the whole log),
+    put in ``results`` (its fields, or the error of a log that cannot tell it); None without one."""
+    assert log.t_ref is not None and log.heading_ref is not None
+    try:
+        offset = calibration.time_offset(log.t, log.rate, log.t_ref, log.heading_ref, window=window)
+    except ValueError as e:  # a drive without turns: the fits above still stand
+        results["time_offset"] = {"error": str(e)}
+        return None
+    results["time_offset"] = dataclasses.asdict(offset)
+    return offset
 
 
 #: The static bias's settings as the library's errors name them (regular expressions), and as this
