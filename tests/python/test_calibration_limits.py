@@ -330,3 +330,21 @@ def test_calibrate_says_why_a_drive_tells_no_time_offset_and_saves_none(tmp_path
     assert error == ("the rate must change during calibration to tell a time offset: the reference turns by 0.0214 rad "
                      "besides a steady turn, under 0.1 rad; fit over a drive with turns that start and end")
     assert "time_offset" not in json.loads(out.read_text())["calibration"]
+
+
+@pytest.mark.parametrize("command", ["process", "evaluate"])
+def test_a_calibrations_time_offset_not_applied_is_said(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                                         command: str) -> None:
+    # the file's offset was ignored without a word: its scale and bias applied, its times not
+    path, saved = real_log_path("kitti_2011_09_30_0034"), tmp_path / "cal.json"
+    cal.Calibration("heading_reference", bias=0.0, scale_error=0.001, time_offset=-0.0607).save(saved)
+    out = ["--out", str(tmp_path / "h.csv")] if command == "process" else ["--preset", "raw"]
+    assert main([command, str(path), "--calibration", str(saved), *out]) == 0
+    notes = [x for x in capsys.readouterr().err.splitlines() if x.startswith("gyrocore: note: --calibration")]
+    assert notes == [f"gyrocore: note: --calibration {saved}: its time offset (-0.0607 s) is not applied: the heading "
+                     "stays at the gyro's times; on the reference's clock they are t - 0.0607 s (in Python: "
+                     "gyrocore.process(t + calibration.time_offset, rate, ...))"]
+    cal.Calibration("heading_reference", bias=0.0, scale_error=0.001).save(saved)  # no offset: no note
+    again = ["--overwrite"] if command == "process" else []
+    assert main([command, str(path), "--calibration", str(saved), *out, *again]) == 0
+    assert "time offset" not in capsys.readouterr().err

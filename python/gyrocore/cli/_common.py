@@ -221,7 +221,13 @@ def pipeline_overrides(args: argparse.Namespace, named: dict[str, Any]) -> dict[
         # a bias given on the command line (or a rest window) replaces the calibration's bias; evaluate
         # passes its --bias-duration on apart from ``named`` (the calibration's bias was kept beside it)
         given = has_bias_source(out) or getattr(args, "bias_duration", None) is not None
-        found = Calibration.load(args.calibration).overrides(include_bias=False if given else None)
+        calibration = Calibration.load(args.calibration)
+        found = calibration.overrides(include_bias=False if given else None)
+        if calibration.time_offset is not None:  # a field of the file given that this run does not use
+            note(f"--calibration {args.calibration}: its time offset ({calibration.time_offset:+.4g} s) is not applied: "
+                 "the heading stays at the gyro's times; on the reference's clock they are t "
+                 f"{'+' if calibration.time_offset >= 0 else '-'} {abs(calibration.time_offset):.4g} s (in Python: "
+                 "gyrocore.process(t + calibration.time_offset, rate, ...))")
         try:  # checked here, where the file is known: the pipeline's error would name the value alone
             checked: dict[str, Any] = {"bias": 0.0, **found}
             Pipeline(recommended_preset(), **checked)  # the core checks each value as it is built
