@@ -192,6 +192,21 @@ READ_GNSS = ("a GNSS log is read with gyrocore.fixes.read_nmea(path) (NMEA sente
              "t, speed and bearing) or read_fixes_file(path)")
 #: ... by the calibrations.
 READ_TO_CALIBRATE = read_the_log(command="gyrocore calibrate FILE")
+#: ... by the fits against a reference heading.
+READ_WITH_REFERENCE = read_the_log("log.t, log.rate, log.t_ref, log.heading_ref", "gyrocore calibrate FILE")
+#: ... by the fit against a reference rate.
+READ_WITH_TRUE_RATES = read_the_log("log.rate, and the true rates at its times", "gyrocore calibrate FILE")
+#: ... by the fit of the bias to the temperature.
+READ_WITH_TEMPERATURES = read_the_log("log.t, log.rate and the temperatures", "gyrocore calibrate FILE")
+#: ... by the heading's errors against a reference.
+READ_TO_SCORE = read_the_log("a heading's t and heading, log.t_ref, log.heading_ref", "gyrocore evaluate FOLDER")
+#: ... by the Allan deviation of timed readings, and of readings at a sample interval.
+READ_FOR_ALLAN = read_the_log(command="gyrocore allan FILE")
+READ_RATE_FOR_ALLAN = read_the_log("log.rate, and its sample interval as dt", "gyrocore allan FILE")
+#: ... by the calls that take a heading.
+READ_A_HEADING = read_the_log("a heading's t and heading")
+#: ... by dead reckoning.
+READ_ODOMETRY = read_the_log("log.t_odometry, log.speed, and a heading's t and heading")
 #: The units said of a call's arrays where it lists them.
 _UNITS = {"t": "s", "t_ref": "s", "t_speed": "s", "t_heading": "s", "rate": "rad/s", "rate_measured": "rad/s",
           "rate_reference": "rad/s", "heading": "rad", "heading_ref": "rad", "speed": "m/s", "bearing_deg": "deg",

@@ -11,7 +11,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _gyrocore
-from ._arrays import FloatArray, as_float_array, no_path_for_arrays, read_the_log
+from ._arrays import READ_FOR_ALLAN, READ_RATE_FOR_ALLAN, FloatArray, as_float_array, no_path_for_arrays
 from ._checks import MAX_READING, check_number, require_flag, require_increasing, require_readings, warn
 from ._motion import warn_if_moving
 from .allan_edf import _TABLES, ONE_SIGMA, confidence_interval, equivalent_dof
@@ -92,7 +92,7 @@ class AllanResult:
         }
 
 
-@no_path_for_arrays("gyrocore.allan.deviation", read_the_log("log.rate, and its sample interval as dt", "gyrocore allan FILE"))
+@no_path_for_arrays("gyrocore.allan.deviation", READ_RATE_FOR_ALLAN)
 def deviation(
     rate: ArrayLike,
     dt: float,
@@ -155,7 +155,7 @@ def phase_deviation(
                   confidence=confidence, noise_alpha=noise_alpha)
 
 
-@no_path_for_arrays("gyrocore.allan.deviation_from_timestamps", read_the_log(command="gyrocore allan FILE"))
+@no_path_for_arrays("gyrocore.allan.deviation_from_timestamps", READ_FOR_ALLAN)
 def deviation_from_timestamps(
     t: ArrayLike,
     rate: ArrayLike,

@@ -16,7 +16,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._arrays import FloatArray, as_float_array, no_path_for_arrays, read_the_log, too_few_inside
+from ._arrays import READ_ODOMETRY, FloatArray, as_float_array, no_path_for_arrays, too_few_inside
 from ._checks import check_number, public_dir, require_finite, require_radians, require_series, warn_if_wrapped
 from .io import Log
 from .pipeline import HeadingResult
@@ -46,8 +46,7 @@ class Track:
         )
 
 
-@no_path_for_arrays("gyrocore.deadreckon.dead_reckon",
-                    read_the_log("log.t_odometry, log.speed, and a heading's t and heading"))
+@no_path_for_arrays("gyrocore.deadreckon.dead_reckon", READ_ODOMETRY)
 def dead_reckon(
     t_speed: ArrayLike,
     speed: ArrayLike,

@@ -14,7 +14,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._arrays import FloatArray, as_float_array, no_path_for_arrays, read_the_log, too_few_inside
+from ._arrays import READ_A_HEADING, READ_TO_SCORE, FloatArray, as_float_array, no_path_for_arrays, too_few_inside
 from ._checks import (
     check_number, collected, require_finite, require_flag, require_increasing, require_radians, require_series, warn,
     warn_if_wrapped,
@@ -227,8 +227,7 @@ class Reference:
         )
 
 
-@no_path_for_arrays("gyrocore.heading_errors",
-                    read_the_log("a heading's t and heading, log.t_ref, log.heading_ref", "gyrocore evaluate FOLDER"))
+@no_path_for_arrays("gyrocore.heading_errors", READ_TO_SCORE)
 def heading_errors(
     t: ArrayLike,
     heading: ArrayLike,
@@ -437,7 +436,7 @@ def improvement(raw: HeadingErrors, method: HeadingErrors) -> float:
     return math.inf if raw.e_psi_deg > 0 else 1.0
 
 
-@no_path_for_arrays("gyrocore.evaluate.return_orientation_error", read_the_log("its heading's t and heading"))
+@no_path_for_arrays("gyrocore.evaluate.return_orientation_error", READ_A_HEADING)
 def return_orientation_error(
     t: ArrayLike,
     heading: ArrayLike,

@@ -8,7 +8,9 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._arrays import FloatArray, as_float_array, as_window, no_path_for_arrays, read_the_log
+from .._arrays import (
+    READ_WITH_REFERENCE, READ_WITH_TRUE_RATES, FloatArray, as_float_array, as_window, no_path_for_arrays,
+)
 from .._checks import UnitError, require_radians, usable, warn
 from ..evaluate import unwrap
 from ..integration import angle_of
@@ -150,8 +152,7 @@ def _excited(reference_design: NDArray[np.float64], what: str) -> None:
         )
 
 
-@no_path_for_arrays("gyrocore.calibration.rate_reference",
-                    read_the_log("log.rate, and the true rates at its times", "gyrocore calibrate FILE"))
+@no_path_for_arrays("gyrocore.calibration.rate_reference", READ_WITH_TRUE_RATES)
 def rate_reference(rate_measured: ArrayLike, rate_reference: ArrayLike) -> Calibration:
     """Least squares against a reference rate at the same instants (Hong eq 8-9).
 
@@ -219,8 +220,7 @@ def reference_rows(
     return ta, ra, tr, hr, inside
 
 
-@no_path_for_arrays("gyrocore.calibration.heading_reference",
-                    read_the_log("log.t, log.rate, log.t_ref, log.heading_ref", "gyrocore calibrate FILE"))
+@no_path_for_arrays("gyrocore.calibration.heading_reference", READ_WITH_REFERENCE)
 def heading_reference(
     t: ArrayLike,
     rate_measured: ArrayLike,

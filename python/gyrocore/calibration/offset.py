@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._arrays import no_path_for_arrays, read_the_log
+from .._arrays import READ_WITH_REFERENCE, no_path_for_arrays
 from .._checks import check_number
 from ..evaluate import unwrap
 from ..fixes import Fixes
@@ -85,8 +85,7 @@ class TimeOffset:
                 f"window {self.window[0]:.12g} .. {self.window[1]:.12g} s)")
 
 
-@no_path_for_arrays("gyrocore.calibration.time_offset",
-                    read_the_log("log.t, log.rate, log.t_ref, log.heading_ref", "gyrocore calibrate FILE"))
+@no_path_for_arrays("gyrocore.calibration.time_offset", READ_WITH_REFERENCE)
 def time_offset(
     t: ArrayLike,
     rate_measured: ArrayLike,

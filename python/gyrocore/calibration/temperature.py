@@ -5,15 +5,14 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._arrays import no_path_for_arrays, read_the_log
+from .._arrays import READ_WITH_TEMPERATURES, no_path_for_arrays
 from .._checks import check_count, check_number
 from .inputs import check_series, check_temperature
 from .rest import time_weights
 from .result import BiasTable
 
 
-@no_path_for_arrays("gyrocore.calibration.bias_temperature_table",
-                    read_the_log("log.t, log.rate and the temperatures", "gyrocore calibrate FILE"))
+@no_path_for_arrays("gyrocore.calibration.bias_temperature_table", READ_WITH_TEMPERATURES)
 def bias_temperature_table(
     t: ArrayLike,
     rate: ArrayLike,
