@@ -1,7 +1,7 @@
 """Why times that must increase step back or repeat, where the data shows a cause that sorting
 them (the core's advice) would not mend: a counter that wrapped round, a clock that started again,
-or times rounded to float32 or float16 before they reached gyrocore (a file written from float32 holds float64 numbers, so
-the reader's float32 warning never sees it)."""
+or times rounded to float32 or float16 before they reached gyrocore (a file written from float32
+holds float64 numbers, so the reader's float32 warning never sees it)."""
 
 from __future__ import annotations
 
