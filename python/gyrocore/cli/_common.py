@@ -223,11 +223,6 @@ def pipeline_overrides(args: argparse.Namespace, named: dict[str, Any]) -> dict[
         given = has_bias_source(out) or getattr(args, "bias_duration", None) is not None
         calibration = Calibration.load(args.calibration)
         found = calibration.overrides(include_bias=False if given else None)
-        if calibration.time_offset is not None:  # a field of the file given that this run does not use
-            note(f"--calibration {args.calibration}: its time offset ({calibration.time_offset:+.4g} s) is not applied: "
-                 "the heading stays at the gyro's times; on the reference's clock they are t "
-                 f"{'+' if calibration.time_offset >= 0 else '-'} {abs(calibration.time_offset):.4g} s (in Python: "
-                 "gyrocore.process(t + calibration.time_offset, rate, ...))")
         try:  # checked here, where the file is known: the pipeline's error would name the value alone
             checked: dict[str, Any] = {"bias": 0.0, **found}
             Pipeline(recommended_preset(), **checked)  # the core checks each value as it is built
@@ -245,6 +240,11 @@ def pipeline_overrides(args: argparse.Namespace, named: dict[str, Any]) -> dict[
             raise ValueError(f"--param {name} is also given by {sources[name]}")
         out[name] = parse_value(value)
         sources[name] = "--param"
+    offset = None if args.calibration is None else calibration.time_offset
+    if offset is not None:  # a field of the file given that this run does not use (said once the options hold)
+        note(f"--calibration {args.calibration}: its time offset ({offset:+.4g} s) is not applied: the heading stays at "
+             f"the gyro's times; on the reference's clock they are t {'+' if offset >= 0 else '-'} {abs(offset):.4g} s "
+             "(in Python: gyrocore.process(t + calibration.time_offset, rate, ...))")
     return out
 
 
