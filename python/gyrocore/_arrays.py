@@ -170,18 +170,21 @@ class OwnCopy:
             self._thread = None
 
 
+#: How a log given by its file's name is read, where a call takes its arrays.
+_READ_LOG = "a log file or folder is read with gyrocore.read_log(path)"
+
+
 def read_the_log(arrays: str = "log.t, log.rate", command: str = "") -> str:
     """What a file's name given for an array is told to do instead: read the log, give ``arrays``
     (and on the command line, ``command``)."""
     cli = f" (on the command line: {command})" if command else ""
-    return f"a log file or folder is read with gyrocore.read_log(path), and its arrays ({arrays}) are given here{cli}"
+    return f"{_READ_LOG}, and its arrays ({arrays}) are given here{cli}"
 
 
 #: ... by default (each entry point says its own through :func:`no_path_for_arrays`).
 READ_THE_LOG = read_the_log()
 #: ... by the calls that process a log, as the command line's ``gyrocore process``.
-READ_AND_PROCESS = ("a log file or folder is read with gyrocore.read_log(path), then processed with its "
-                    ".process(preset) (on the command line: gyrocore process FILE)")
+READ_AND_PROCESS = f"{_READ_LOG}, then processed with its .process(preset) (on the command line: gyrocore process FILE)"
 #: ... by the calls that process a log with its fixes.
 READ_WITH_FIXES = ("a log folder is read with gyrocore.read_log(path), its fixes from its fixes.csv or gnss.csv, "
                    "then processed with its .process(preset) (a file of fixes is read with "
