@@ -217,12 +217,13 @@ def pipeline_overrides(args: argparse.Namespace, named: dict[str, Any]) -> dict[
     if "bias_window" in out:
         out["bias_window"] = Window.parse(out["bias_window"], "--bias-window")
     sources = dict.fromkeys(out, "its own option")
+    offset = None  # the calibration's time offset, which this run does not apply
     if args.calibration is not None:
         # a bias given on the command line (or a rest window) replaces the calibration's bias; evaluate
         # passes its --bias-duration on apart from ``named`` (the calibration's bias was kept beside it)
         given = has_bias_source(out) or getattr(args, "bias_duration", None) is not None
         calibration = Calibration.load(args.calibration)
-        found = calibration.overrides(include_bias=False if given else None)
+        found, offset = calibration.overrides(include_bias=False if given else None), calibration.time_offset
         try:  # checked here, where the file is known: the pipeline's error would name the value alone
             checked: dict[str, Any] = {"bias": 0.0, **found}
             Pipeline(recommended_preset(), **checked)  # the core checks each value as it is built
@@ -240,7 +241,6 @@ def pipeline_overrides(args: argparse.Namespace, named: dict[str, Any]) -> dict[
             raise ValueError(f"--param {name} is also given by {sources[name]}")
         out[name] = parse_value(value)
         sources[name] = "--param"
-    offset = None if args.calibration is None else calibration.time_offset
     if offset is not None:  # a field of the file given that this run does not use (said once the options hold)
         note(f"--calibration {args.calibration}: its time offset ({offset:+.4g} s) is not applied: the heading stays at "
              f"the gyro's times; on the reference's clock they are t {'+' if offset >= 0 else '-'} {abs(offset):.4g} s "
